@@ -1,0 +1,87 @@
+"""Input validation shared by navlib's public functions.
+
+Every check raises ``ValueError`` that names the offending argument and
+states what was expected, so that bad input fails loudly at the boundary
+instead of producing a plausible-looking wrong number deep inside a filter.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+
+def as_array(x, name: str, *, tail: tuple[int, ...] = (), finite: bool = True,
+             allow_nan: bool = False, min_ndim: int = 0) -> np.ndarray:
+    """Return ``x`` as a float64 array whose trailing shape is ``tail``.
+
+    Parameters
+    ----------
+    x : array_like
+        Input value.
+    name : str
+        Argument name used in error messages.
+    tail : tuple of int
+        Required trailing shape, e.g. ``(3,)`` for vectors or ``(3, 3)`` for
+        matrices. Leading axes are free (they broadcast).
+    finite : bool
+        Reject NaN and infinity.
+    allow_nan : bool
+        With ``finite=True``, still accept NaN (used for sensor dropouts) but
+        reject infinity.
+    min_ndim : int
+        Minimum number of leading axes in addition to ``tail``.
+    """
+    try:
+        arr = np.asarray(x, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"{name}: expected a real numeric array, got {type(x).__name__}") from exc
+    if tail and arr.shape[arr.ndim - len(tail):] != tail or arr.ndim < len(tail) + min_ndim:
+        want = "(" + ", ".join(["..."] + [str(t) for t in tail]) + ")"
+        raise ValueError(f"{name}: expected shape {want}, got {arr.shape}")
+    if arr.size == 0 and min_ndim > 0:
+        raise ValueError(f"{name}: expected a non-empty array, got shape {arr.shape}")
+    if finite:
+        bad = np.isinf(arr) if allow_nan else ~np.isfinite(arr)
+        if bad.any():
+            what = "infinite" if allow_nan else "non-finite (NaN or inf)"
+            raise ValueError(f"{name}: contains {what} values")
+    return arr
+
+
+def in_range(arr: np.ndarray, name: str, lo: float, hi: float, unit: str = "",
+             *, lo_open: bool = False, hi_open: bool = False) -> np.ndarray:
+    """Check ``lo <= arr <= hi`` (with optional open ends) elementwise."""
+    ok_lo = arr > lo if lo_open else arr >= lo
+    ok_hi = arr < hi if hi_open else arr <= hi
+    if not np.all(ok_lo & ok_hi):
+        lb = "(" if lo_open else "["
+        rb = ")" if hi_open else "]"
+        raise ValueError(f"{name}: expected values in {lb}{lo:g}, {hi:g}{rb}{' ' + unit if unit else ''}, "
+                         f"got min {np.nanmin(arr):g}, max {np.nanmax(arr):g}")
+    return arr
+
+
+def positive(x, name: str, *, allow_zero: bool = False) -> np.ndarray:
+    """Return ``x`` as a finite float array that is > 0 (or >= 0)."""
+    arr = as_array(x, name)
+    ok = arr >= 0 if allow_zero else arr > 0
+    if not np.all(ok):
+        raise ValueError(f"{name}: expected {'non-negative' if allow_zero else 'positive'} values, got {arr.min():g}")
+    return arr
+
+
+def latitude(lat, name: str = "lat", deg: bool = False) -> np.ndarray:
+    """Validate a geodetic latitude and return it in radians."""
+    arr = as_array(lat, name)
+    lim = 90.0 if deg else np.pi / 2
+    in_range(arr, name, -lim, lim, "deg" if deg else "rad")
+    return np.deg2rad(arr) if deg else arr
+
+
+def time_axis(t, name: str = "time") -> np.ndarray:
+    """Validate a 1-D strictly increasing time vector (s)."""
+    arr = as_array(t, name)
+    if arr.ndim != 1 or arr.size < 2:
+        raise ValueError(f"{name}: expected a 1-D array of at least 2 samples, got shape {arr.shape}")
+    if np.any(np.diff(arr) <= 0):
+        raise ValueError(f"{name}: expected strictly increasing times")
+    return arr

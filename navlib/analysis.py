@@ -1,0 +1,168 @@
+"""Error statistics and Allan-variance analysis.
+
+Allan deviation follows IEEE Std 952-1997 (overlapping estimator). The
+noise model used by :mod:`navlib.sensors` and fitted by :func:`fit_allan` is
+
+    sigma_A^2(tau) = N^2 / tau                       (white rate noise, ARW)
+                   + sigma_gm^2 g(tau / T_c)         (first-order Gauss-Markov bias)
+                   + K^2 tau / 3                     (rate random walk)
+
+with ``g(u) = (2/u) [1 - (3 - 4 e^-u + e^-2u) / (2u)]``, the Allan variance of
+a unit-variance Gauss-Markov process with correlation time T_c (e.g.
+El-Sheimy, Hou & Niu 2008). A Gauss-Markov Allan deviation peaks at
+``GM_ALLAN_PEAK * sigma_gm`` at ``tau = GM_ALLAN_PEAK_TAU * T_c``; navlib
+calls that peak the *bias instability* B, which is how the in-run bias
+stability of a datasheet (the flat part of the Allan curve) is mapped onto
+a Gauss-Markov process.
+"""
+from __future__ import annotations
+
+import numpy as np
+from scipy.optimize import least_squares, minimize_scalar
+
+from ._validate import as_array, positive
+
+__all__ = ["rmse", "allan_deviation", "allan_deviation_theory", "fit_allan",
+           "GM_ALLAN_PEAK", "GM_ALLAN_PEAK_TAU"]
+
+
+def rmse(err, axis=0):
+    """Root mean square of ``err`` along ``axis`` (NaN propagates: no silent dropping)."""
+    err = as_array(err, "err", allow_nan=True)
+    return np.sqrt(np.mean(err * err, axis=axis))
+
+
+def _gm_allan_var_unit(u):
+    """Allan variance of a unit-variance Gauss-Markov process at tau = u T_c."""
+    u = np.asarray(u, dtype=float)
+    small = u < 1e-3
+    us = np.where(small, 1.0, u)
+    big = (2 / us) * (1 - (3 - 4 * np.exp(-us) + np.exp(-2 * us)) / (2 * us))
+    return np.where(small, 2 * u / 3 - u * u / 2, big)  # series avoids cancellation
+
+
+def _peak():
+    res = minimize_scalar(lambda u: -_gm_allan_var_unit(u), bounds=(0.1, 10.0), method="bounded",
+                          options={"xatol": 1e-10})
+    return float(np.sqrt(-res.fun)), float(res.x)
+
+
+GM_ALLAN_PEAK, GM_ALLAN_PEAK_TAU = _peak()
+"""Peak Allan deviation of a unit-variance Gauss-Markov process (~0.6159), and
+the tau of the peak in units of the correlation time (~1.89)."""
+
+
+def allan_deviation(x, dt: float, taus=None):
+    """Overlapping Allan deviation of rate samples.
+
+    Parameters
+    ----------
+    x : array_like, shape (N,) or (..., N, k)
+        Rate samples (e.g. gyro output in rad/s) at interval ``dt``; time on
+        axis -2 for vector series.
+    dt : float
+        Sample interval (s).
+    taus : array_like, optional
+        Averaging times (s); rounded to whole multiples of ``dt``. Default:
+        about 10 per decade from ``dt`` to a third of the record.
+
+    Returns
+    -------
+    taus : ndarray, shape (M,)
+        Averaging times actually used (s).
+    adev : ndarray, shape (M,) or (..., M, k)
+        Allan deviation in the units of ``x``.
+    """
+    x = as_array(x, "x")
+    dt = float(positive(dt, "dt"))
+    scalar = x.ndim == 1
+    if scalar:
+        x = x[:, None]
+    if x.ndim < 2 or x.shape[-2] < 9:
+        raise ValueError(f"x: expected at least 9 samples on axis -2, got shape {x.shape}")
+    n = x.shape[-2]
+    if taus is None:
+        m = np.unique(np.round(np.logspace(0, np.log10(n // 3), 10 * max(1, int(np.log10(n // 3)) + 1))))
+    else:
+        m = np.unique(np.round(positive(taus, "taus") / dt))
+        if m.min() < 1 or m.max() > (n - 1) // 2:
+            raise ValueError(f"taus: expected values between dt and {(n - 1) // 2 * dt:g} s")
+    m = m.astype(int)
+    theta = np.concatenate([np.zeros(x.shape[:-2] + (1, x.shape[-1])), np.cumsum(x, axis=-2) * dt], axis=-2)
+    out = np.empty(x.shape[:-2] + (m.size, x.shape[-1]))
+    for i, mi in enumerate(m):
+        d = theta[..., 2 * mi:, :] - 2 * theta[..., mi:-mi, :] + theta[..., :-2 * mi, :]
+        tau = mi * dt
+        out[..., i, :] = np.sqrt(np.mean(d * d, axis=-2) / (2 * tau * tau))
+    return m * dt, (out[:, 0] if scalar else out)
+
+
+def allan_deviation_theory(taus, white=0.0, bias_instability=0.0, correlation_time=1.0,
+                           rate_random_walk=0.0):
+    """Allan deviation of navlib's sensor noise model (module docstring).
+
+    Parameters
+    ----------
+    taus : array_like (s)
+    white : float
+        White-noise density N (units/sqrt(Hz), e.g. rad/s/sqrt(Hz) = ARW).
+    bias_instability : float
+        Peak Allan deviation B of the Gauss-Markov bias (units).
+    correlation_time : float
+        Gauss-Markov correlation time T_c (s).
+    rate_random_walk : float
+        K (units/s/sqrt(Hz)).
+    """
+    taus = positive(taus, "taus")
+    sigma_gm = bias_instability / GM_ALLAN_PEAK
+    var = (white ** 2 / taus + sigma_gm ** 2 * _gm_allan_var_unit(taus / correlation_time)
+           + rate_random_walk ** 2 * taus / 3)
+    return np.sqrt(var)
+
+
+def fit_allan(taus, adev, n_samples: int, dt: float, *, rate_random_walk: bool = False) -> dict:
+    """Fit the noise model to an Allan-deviation curve by weighted least squares.
+
+    The residuals are log-deviations weighted by the approximate number of
+    independent clusters, ``sqrt(n_samples / m)``, so long averaging times
+    (few clusters, large scatter) count less.
+
+    Parameters
+    ----------
+    taus, adev : array_like, shape (M,)
+        Output of :func:`allan_deviation` for one axis.
+    n_samples : int
+        Record length in samples.
+    dt : float
+        Sample interval (s).
+    rate_random_walk : bool
+        Also fit a rate-random-walk term.
+
+    Returns
+    -------
+    dict
+        ``white`` (N), ``bias_instability`` (B), ``correlation_time`` (s) and
+        ``rate_random_walk`` (K; 0 unless fitted), in the units of ``adev``.
+    """
+    taus = positive(taus, "taus")
+    adev = positive(adev, "adev")
+    if taus.shape != adev.shape or taus.ndim != 1:
+        raise ValueError(f"adev: expected the shape of taus {taus.shape}, got {adev.shape}")
+    w = np.sqrt(np.maximum(n_samples * dt / taus, 1.0))
+    i_min = int(np.argmin(adev))
+
+    def model(p):
+        return allan_deviation_theory(taus, p[0], p[1], p[2], p[3] if rate_random_walk else 0.0)
+
+    def resid(p):
+        return w * (np.log(model(p)) - np.log(adev))
+
+    p0 = [adev[0] * np.sqrt(taus[0]), adev[i_min], taus[i_min] / GM_ALLAN_PEAK_TAU]
+    lb = [0.0, 0.0, taus[0] / 10]
+    if rate_random_walk:
+        p0.append(adev[-1] / np.sqrt(taus[-1]))
+        lb.append(0.0)
+    sol = least_squares(resid, p0, bounds=(lb, np.inf), x_scale=np.abs(p0) + 1e-300)
+    p = sol.x
+    return {"white": p[0], "bias_instability": p[1], "correlation_time": p[2],
+            "rate_random_walk": p[3] if rate_random_walk else 0.0}

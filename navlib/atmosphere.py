@@ -1,0 +1,127 @@
+"""Barometric altitude: the ISA troposphere and the BMP180 datasheet formula.
+
+* ISA (ICAO Doc 7488 = US Standard Atmosphere 1976, troposphere):
+  ``h = T0/L (1 - (p/p0)^(R L / g0))`` with T0 = 288.15 K, L = 0.0065 K/m,
+  R = 287.05287 J/(kg K), g0 = 9.80665 m/s^2 (exponent 0.190263).
+* BMP180 datasheet (BST-BMP180-DS000-09 sec. 3.6), with rounded constants:
+  ``h = 44330 (1 - (p/p0)^(1/5.255))``. It differs from ISA by +0.14 m at
+  1 km. The datasheet's "1 hPa = 8.43 m" does not follow from its own
+  formula (dh/dp at p0 is 8.33 m/hPa).
+* Hypsometric relative height with a measured temperature:
+  ``dh = R T / g0 ln(p_ref / p)`` (paper 004 §"barometer", guide 004 §4.5).
+
+Heights are geopotential metres, pressures Pa, temperatures K.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ._validate import as_array, in_range, positive
+
+__all__ = ["P0", "T0", "LAPSE", "R_AIR", "G0", "isa_altitude", "isa_pressure",
+           "bmp180_altitude", "bmp180_pressure", "hypsometric_height", "bmp180_compensate"]
+
+P0 = 101325.0
+"""ISA sea-level pressure (Pa)."""
+T0 = 288.15
+"""ISA sea-level temperature (K)."""
+LAPSE = 0.0065
+"""ISA tropospheric lapse rate (K/m)."""
+R_AIR = 287.05287
+"""Specific gas constant of dry air (J/(kg K))."""
+G0 = 9.80665
+"""Standard gravity (m/s^2)."""
+
+_EXP = R_AIR * LAPSE / G0
+
+
+def _pressure(p, name="p"):
+    return positive(p, name)
+
+
+def isa_altitude(p, p0=P0):
+    """ISA geopotential altitude (m) from pressure ``p`` (Pa) with reference ``p0`` (Pa).
+
+    Valid in the troposphere (below 11 km, p > 22632 Pa for p0 = 101325).
+    """
+    p, p0 = _pressure(p), _pressure(p0, "p0")
+    in_range(p / p0, "p", 22632.1 / P0 - 1e-9, 1.2, "(fraction of p0)")
+    return T0 / LAPSE * (1 - (p / p0) ** _EXP)
+
+
+def isa_pressure(h, p0=P0):
+    """ISA pressure (Pa) at geopotential altitude ``h`` (m, -1 km to 11 km)."""
+    h = in_range(as_array(h, "h"), "h", -1000.0, 11000.0, "m")
+    return _pressure(p0, "p0") * (1 - LAPSE * h / T0) ** (1 / _EXP)
+
+
+def bmp180_altitude(p, p0=P0):
+    """Altitude (m) by the BMP180 datasheet formula ``44330 (1 - (p/p0)^(1/5.255))``."""
+    p, p0 = _pressure(p), _pressure(p0, "p0")
+    return 44330.0 * (1 - (p / p0) ** (1 / 5.255))
+
+
+def bmp180_pressure(h, p0=P0):
+    """Inverse of :func:`bmp180_altitude`: ``p0 (1 - h/44330)^5.255`` (Pa)."""
+    h = in_range(as_array(h, "h"), "h", -1000.0, 11000.0, "m")
+    return _pressure(p0, "p0") * (1 - h / 44330.0) ** 5.255
+
+
+def hypsometric_height(p, p_ref, temperature):
+    """Height above the reference level (m): ``R T / g0 ln(p_ref / p)``.
+
+    Parameters
+    ----------
+    p, p_ref : array_like
+        Pressure and reference pressure (Pa).
+    temperature : array_like
+        Mean air temperature of the layer (K).
+    """
+    p, p_ref = _pressure(p), _pressure(p_ref, "p_ref")
+    T = in_range(as_array(temperature, "temperature"), "temperature", 150.0, 350.0, "K")
+    return R_AIR * T / G0 * np.log(p_ref / p)
+
+
+def bmp180_compensate(UT: int, UP: int, calib: dict[str, int], oss: int = 0) -> tuple[int, int]:
+    """BMP180 datasheet integer compensation (sec. 3.5).
+
+    Parameters
+    ----------
+    UT, UP : int
+        Raw temperature and pressure readings.
+    calib : dict
+        Calibration coefficients AC1..AC6, B1, B2, MB, MC, MD.
+    oss : {0, 1, 2, 3}
+        Oversampling setting.
+
+    Returns
+    -------
+    T, p : int
+        Temperature in 0.1 degC and pressure in Pa, as the device computes them.
+    """
+    if oss not in (0, 1, 2, 3):
+        raise ValueError(f"oss: expected 0, 1, 2 or 3, got {oss!r}")
+    missing = {"AC1", "AC2", "AC3", "AC4", "AC5", "AC6", "B1", "B2", "MB", "MC", "MD"} - set(calib)
+    if missing:
+        raise ValueError(f"calib: missing coefficients {sorted(missing)}")
+    c = {k: int(v) for k, v in calib.items()}
+    X1 = (UT - c["AC6"]) * c["AC5"] >> 15
+    X2 = (c["MC"] << 11) // (X1 + c["MD"])  # C integer division; operands positive here
+    B5 = X1 + X2
+    T = (B5 + 8) >> 4
+    B6 = B5 - 4000
+    X1 = (c["B2"] * (B6 * B6 >> 12)) >> 11
+    X2 = c["AC2"] * B6 >> 11
+    X3 = X1 + X2
+    B3 = (((c["AC1"] * 4 + X3) << oss) + 2) // 4
+    X1 = c["AC3"] * B6 >> 13
+    X2 = (c["B1"] * (B6 * B6 >> 12)) >> 16
+    X3 = ((X1 + X2) + 2) >> 2
+    B4 = c["AC4"] * (X3 + 32768) >> 15
+    B7 = (UP - B3) * (50000 >> oss)
+    p = (B7 * 2) // B4 if B7 < 0x80000000 else (B7 // B4) * 2
+    X1 = (p >> 8) * (p >> 8)
+    X1 = (X1 * 3038) >> 16
+    X2 = (-7357 * p) >> 16
+    p = p + ((X1 + X2 + 3791) >> 4)
+    return T, p

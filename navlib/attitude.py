@@ -1,0 +1,405 @@
+"""Attitude representations: rotation matrices, quaternions, Euler angles.
+
+One convention for the whole library (see :mod:`navlib` and notebook 00):
+
+* ``C_bn`` is the body-to-navigation rotation matrix C_b^n: ``v_n = C_bn @ v_b``.
+  Its columns are the body axes (right, front, up) expressed in ENU; its rows
+  are the ENU axes in body coordinates.
+* Euler angles ``hpr = [heading, pitch, roll]`` follow paper 000 Eq. (3)::
+
+      C_bn = rot(z, -heading) @ rot(x, pitch) @ rot(y, roll)
+
+  heading in [0, 2*pi) clockwise from north, pitch in [-pi/2, pi/2] nose up,
+  roll in (-pi, pi] right side down. ``rot`` is the ordinary active rotation.
+* Quaternions are scalar first, ``q = [q0, q1, q2, q3]``, Hamilton product,
+  and represent the same rotation: ``v_n = q (x) v_b (x) q*``.
+* Rotation vectors ``rv`` (axis times angle, rad) map through the exponential:
+  ``rotvec_to_dcm(rv) = expm(skew(rv))``.
+
+All functions broadcast over leading axes: vectors are ``(..., 3)``, matrices
+``(..., 3, 3)``, quaternions ``(..., 4)``, Euler triplets ``(..., 3)``.
+Functions taking or returning angles in degrees say so with ``deg=True``.
+"""
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from ._validate import as_array, in_range
+
+__all__ = [
+    "wrap_pi", "wrap_2pi", "skew", "rot", "orthonormalize",
+    "euler_to_dcm", "dcm_to_euler", "euler_to_quat", "quat_to_euler",
+    "quat_to_dcm", "dcm_to_quat", "quat_mult", "quat_conj", "quat_normalize",
+    "quat_rotate", "rotvec_to_dcm", "dcm_to_rotvec", "rotvec_to_quat", "quat_to_rotvec",
+]
+
+_AXES = {"x": 0, "y": 1, "z": 2}
+_ORTHO_TOL = 1e-6
+
+
+def wrap_pi(angle):
+    """Wrap angles (rad) into (-pi, pi]."""
+    a = np.asarray(angle, dtype=float)
+    w = np.mod(a + np.pi, 2 * np.pi) - np.pi
+    return np.where(w == -np.pi, np.pi, w)
+
+
+def wrap_2pi(angle):
+    """Wrap angles (rad) into [0, 2*pi)."""
+    w = np.mod(np.asarray(angle, dtype=float), 2 * np.pi)
+    return np.where(w >= 2 * np.pi, 0.0, w)
+
+
+def skew(v):
+    """Cross-product matrix: ``skew(a) @ b == cross(a, b)``.
+
+    Parameters
+    ----------
+    v : array_like, shape (..., 3)
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+    """
+    v = as_array(v, "v", tail=(3,))
+    x, y, z = v[..., 0], v[..., 1], v[..., 2]
+    o = np.zeros_like(x)
+    return np.stack([np.stack([o, -z, y], -1),
+                     np.stack([z, o, -x], -1),
+                     np.stack([-y, x, o], -1)], -2)
+
+
+def rot(axis: str, angle, deg: bool = False):
+    """Active rotation matrix about a coordinate axis (paper 000's rot(j, phi)).
+
+    Parameters
+    ----------
+    axis : {'x', 'y', 'z'}
+    angle : array_like, shape (...)
+        Rotation angle, right-hand rule (rad, or deg with ``deg=True``).
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+    """
+    if axis not in _AXES:
+        raise ValueError(f"axis: expected 'x', 'y' or 'z', got {axis!r}")
+    a = as_array(angle, "angle")
+    if deg:
+        a = np.deg2rad(a)
+    c, s = np.cos(a), np.sin(a)
+    o, i = np.zeros_like(a), np.ones_like(a)
+    if axis == "x":
+        rows = [[i, o, o], [o, c, -s], [o, s, c]]
+    elif axis == "y":
+        rows = [[c, o, s], [o, i, o], [-s, o, c]]
+    else:
+        rows = [[c, -s, o], [s, c, o], [o, o, i]]
+    return np.stack([np.stack(r, -1) for r in rows], -2)
+
+
+def _as_dcm(C, name: str = "C_bn") -> np.ndarray:
+    C = as_array(C, name, tail=(3, 3))
+    err = np.abs(np.swapaxes(C, -1, -2) @ C - np.eye(3)).max(initial=0.0)
+    if err > _ORTHO_TOL or np.any(np.linalg.det(C) < 0):
+        raise ValueError(f"{name}: expected proper rotation matrices (orthonormal, det +1); "
+                         f"max |C^T C - I| = {err:.2e}")
+    return C
+
+
+def _as_quat(q, name: str = "q") -> np.ndarray:
+    q = as_array(q, name, tail=(4,))
+    n = np.linalg.norm(q, axis=-1, keepdims=True)
+    if np.any(n < 1e-12):
+        raise ValueError(f"{name}: expected non-zero quaternions")
+    return q / n
+
+
+def orthonormalize(C):
+    """Nearest rotation matrix in the Frobenius norm (SVD projection).
+
+    Parameters
+    ----------
+    C : array_like, shape (..., 3, 3)
+        Approximately orthonormal matrices, e.g. from TRIAD with noisy inputs.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+        ``U diag(1, 1, det(U V^T)) V^T``; a proper rotation.
+    """
+    C = as_array(C, "C", tail=(3, 3))
+    U, _, Vt = np.linalg.svd(C)
+    d = np.linalg.det(U @ Vt)
+    D = np.broadcast_to(np.eye(3), U.shape).copy()
+    D[..., 2, 2] = d
+    return U @ D @ Vt
+
+
+def _as_hpr(hpr, deg: bool) -> np.ndarray:
+    hpr = as_array(hpr, "hpr", tail=(3,))
+    if deg:
+        hpr = np.deg2rad(hpr)
+    in_range(hpr[..., 1], "hpr[..., 1] (pitch)", -np.pi / 2 - 1e-12, np.pi / 2 + 1e-12, "rad")
+    return hpr
+
+
+def euler_to_dcm(hpr, deg: bool = False):
+    """C_b^n from heading, pitch, roll (paper 000 Eq. 3).
+
+    Parameters
+    ----------
+    hpr : array_like, shape (..., 3)
+        ``[heading, pitch, roll]``; heading clockwise from north, pitch nose up
+        within [-pi/2, pi/2], roll right side down (rad, or deg with ``deg=True``).
+
+    Returns
+    -------
+    C_bn : ndarray, shape (..., 3, 3)
+    """
+    h, p, r = np.moveaxis(_as_hpr(hpr, deg), -1, 0)
+    ch, sh, cp, sp, cr, sr = np.cos(h), np.sin(h), np.cos(p), np.sin(p), np.cos(r), np.sin(r)
+    rows = [[cr * ch + sr * sp * sh, cp * sh, sr * ch - cr * sp * sh],
+            [-cr * sh + sr * sp * ch, cp * ch, -sr * sh - cr * sp * ch],
+            [-sr * cp, sp, cr * cp]]
+    return np.stack([np.stack(row, -1) for row in rows], -2)
+
+
+def dcm_to_euler(C_bn, deg: bool = False):
+    """Heading, pitch, roll from C_b^n (inverse of :func:`euler_to_dcm`).
+
+    Uses pitch = atan2(c32, hypot(c31, c33)), roll = atan2(-c31, c33),
+    heading = atan2(c12, c22) mod 2 pi. At gimbal lock (|pitch| = 90 deg to
+    1e-9 rad) heading and roll are not separable: roll is set to 0 and the
+    whole rotation about the vertical is reported as heading.
+
+    Parameters
+    ----------
+    C_bn : array_like, shape (..., 3, 3)
+
+    Returns
+    -------
+    hpr : ndarray, shape (..., 3)
+        rad, or deg with ``deg=True``.
+    """
+    C = _as_dcm(C_bn)
+    c31, c32, c33 = C[..., 2, 0], C[..., 2, 1], C[..., 2, 2]
+    pitch = np.arctan2(c32, np.hypot(c31, c33))
+    locked = np.hypot(c31, c33) < 1e-9
+    roll = np.where(locked, 0.0, np.arctan2(-c31, c33))
+    heading = np.where(locked, np.arctan2(-C[..., 1, 0], C[..., 0, 0]),
+                       np.arctan2(C[..., 0, 1], C[..., 1, 1]))
+    hpr = np.stack([wrap_2pi(heading), pitch, wrap_pi(roll)], -1)
+    return np.rad2deg(hpr) if deg else hpr
+
+
+def euler_to_quat(hpr, deg: bool = False):
+    """Quaternion q_b^n from heading, pitch, roll.
+
+    ``q = q_z(-heading) (x) q_x(pitch) (x) q_y(roll)`` with
+    ``q_a(t) = [cos(t/2), sin(t/2) e_a]`` (paper 003 Eq. 1 with its phi = heading).
+
+    Parameters
+    ----------
+    hpr : array_like, shape (..., 3)
+
+    Returns
+    -------
+    q : ndarray, shape (..., 4), scalar first, q0 >= 0.
+    """
+    h, p, r = np.moveaxis(_as_hpr(hpr, deg), -1, 0) / 2
+    ch, sh, cp, sp, cr, sr = np.cos(h), np.sin(h), np.cos(p), np.sin(p), np.cos(r), np.sin(r)
+    q = np.stack([ch * cp * cr + sh * sp * sr,
+                  ch * sp * cr + sh * cp * sr,
+                  ch * cp * sr - sh * sp * cr,
+                  -sh * cp * cr + ch * sp * sr], -1)
+    return _positive_scalar(q)
+
+
+def _positive_scalar(q):
+    return np.where(q[..., :1] < 0, -q, q)
+
+
+def quat_to_euler(q, deg: bool = False):
+    """Heading, pitch, roll from a quaternion q_b^n; shape (..., 4) -> (..., 3)."""
+    return dcm_to_euler(quat_to_dcm(q), deg=deg)
+
+
+def quat_to_dcm(q):
+    """Rotation matrix C_b^n from quaternion q_b^n.
+
+    Parameters
+    ----------
+    q : array_like, shape (..., 4)
+        Scalar first; normalised before use (zero quaternions are rejected).
+
+    Returns
+    -------
+    C_bn : ndarray, shape (..., 3, 3)
+    """
+    q0, q1, q2, q3 = np.moveaxis(_as_quat(q), -1, 0)
+    rows = [[q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3, 2 * (q1 * q2 - q0 * q3), 2 * (q1 * q3 + q0 * q2)],
+            [2 * (q1 * q2 + q0 * q3), q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3, 2 * (q2 * q3 - q0 * q1)],
+            [2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3]]
+    return np.stack([np.stack(r, -1) for r in rows], -2)
+
+
+def dcm_to_quat(C_bn):
+    """Quaternion q_b^n (scalar first, q0 >= 0) from C_b^n (Shepperd's method).
+
+    Parameters
+    ----------
+    C_bn : array_like, shape (..., 3, 3)
+
+    Returns
+    -------
+    q : ndarray, shape (..., 4)
+    """
+    C = _as_dcm(C_bn)
+    tr = np.trace(C, axis1=-2, axis2=-1)
+    d = np.stack([tr, C[..., 0, 0], C[..., 1, 1], C[..., 2, 2]], -1)
+    k = np.argmax(d, axis=-1)
+    q = np.empty(C.shape[:-2] + (4,))
+    # Each branch divides by the largest of the four candidate components.
+    cases = {
+        0: lambda C, s: (s / 4, (C[..., 2, 1] - C[..., 1, 2]) / s, (C[..., 0, 2] - C[..., 2, 0]) / s,
+                         (C[..., 1, 0] - C[..., 0, 1]) / s),
+        1: lambda C, s: ((C[..., 2, 1] - C[..., 1, 2]) / s, s / 4, (C[..., 0, 1] + C[..., 1, 0]) / s,
+                         (C[..., 0, 2] + C[..., 2, 0]) / s),
+        2: lambda C, s: ((C[..., 0, 2] - C[..., 2, 0]) / s, (C[..., 0, 1] + C[..., 1, 0]) / s, s / 4,
+                         (C[..., 1, 2] + C[..., 2, 1]) / s),
+        3: lambda C, s: ((C[..., 1, 0] - C[..., 0, 1]) / s, (C[..., 0, 2] + C[..., 2, 0]) / s,
+                         (C[..., 1, 2] + C[..., 2, 1]) / s, s / 4),
+    }
+    for case, f in cases.items():
+        m = k == case
+        if not np.any(m):
+            continue
+        Cm = C[m]
+        if case == 0:
+            s = 2 * np.sqrt(1 + Cm[..., 0, 0] + Cm[..., 1, 1] + Cm[..., 2, 2])
+        else:
+            i = case - 1
+            j, l = (i + 1) % 3, (i + 2) % 3
+            s = 2 * np.sqrt(1 + Cm[..., i, i] - Cm[..., j, j] - Cm[..., l, l])
+        q[m] = np.stack(f(Cm, s), -1)
+    q /= np.linalg.norm(q, axis=-1, keepdims=True)
+    return _positive_scalar(q)
+
+
+def quat_mult(p, q):
+    """Hamilton product ``p (x) q``; shapes (..., 4) broadcast."""
+    p = as_array(p, "p", tail=(4,))
+    q = as_array(q, "q", tail=(4,))
+    p0, p1, p2, p3 = np.moveaxis(p, -1, 0)
+    q0, q1, q2, q3 = np.moveaxis(q, -1, 0)
+    return np.stack([p0 * q0 - p1 * q1 - p2 * q2 - p3 * q3,
+                     p0 * q1 + p1 * q0 + p2 * q3 - p3 * q2,
+                     p0 * q2 - p1 * q3 + p2 * q0 + p3 * q1,
+                     p0 * q3 + p1 * q2 - p2 * q1 + p3 * q0], -1)
+
+
+def quat_conj(q):
+    """Conjugate ``[q0, -q1, -q2, -q3]``; for unit q the inverse rotation."""
+    q = as_array(q, "q", tail=(4,))
+    return q * np.array([1.0, -1.0, -1.0, -1.0])
+
+
+def quat_normalize(q):
+    """Unit quaternion with q0 >= 0; shape (..., 4)."""
+    return _positive_scalar(_as_quat(q))
+
+
+def quat_rotate(q, v_b):
+    """Rotate body vectors into the navigation frame: ``v_n = q (x) v_b (x) q*``.
+
+    Parameters
+    ----------
+    q : array_like, shape (..., 4)
+    v_b : array_like, shape (..., 3)
+
+    Returns
+    -------
+    v_n : ndarray, shape (..., 3)
+    """
+    v_b = as_array(v_b, "v_b", tail=(3,))
+    return np.einsum("...ij,...j->...i", quat_to_dcm(q), v_b)
+
+
+def rotvec_to_quat(rv):
+    """Quaternion of the rotation vector ``rv`` (rad), shape (..., 3) -> (..., 4)."""
+    rv = as_array(rv, "rv", tail=(3,))
+    angle = np.linalg.norm(rv, axis=-1, keepdims=True)
+    half = angle / 2
+    # sin(x/2)/x with its Taylor series near 0 to keep full precision.
+    k = np.where(angle > 1e-4, np.sin(half) / np.where(angle > 0, angle, 1.0),
+                 0.5 - angle ** 2 / 48 + angle ** 4 / 3840)
+    return np.concatenate([np.cos(half), k * rv], -1)
+
+
+def quat_to_rotvec(q):
+    """Rotation vector (rad, angle in [0, pi]) of quaternion q, shape (..., 4) -> (..., 3)."""
+    q = quat_normalize(q)
+    s = np.linalg.norm(q[..., 1:], axis=-1, keepdims=True)
+    angle = 2 * np.arctan2(s, q[..., :1])
+    k = np.where(s > 1e-8, angle / np.where(s > 0, s, 1.0), 2 + s ** 2 / 3)
+    return k * q[..., 1:]
+
+
+def rotvec_to_dcm(rv):
+    """Rotation matrix ``expm(skew(rv))`` (Rodrigues), shape (..., 3) -> (..., 3, 3)."""
+    return quat_to_dcm(rotvec_to_quat(rv))
+
+
+def dcm_to_rotvec(C):
+    """Rotation vector (matrix logarithm) of rotation matrices, (..., 3, 3) -> (..., 3)."""
+    return quat_to_rotvec(dcm_to_quat(_as_dcm(C, "C")))
+
+
+# --------------------------------------------------------------------------
+# Per-sample helpers for compiled kernels (strapdown, filters). They take and
+# return small 1-D arrays and are tested against the vectorised functions.
+# --------------------------------------------------------------------------
+
+@njit(cache=True)
+def quat_mult_1(p, q):
+    """Hamilton product of two quaternions, shape (4,) (compiled helper)."""
+    return np.array([p[0] * q[0] - p[1] * q[1] - p[2] * q[2] - p[3] * q[3],
+                     p[0] * q[1] + p[1] * q[0] + p[2] * q[3] - p[3] * q[2],
+                     p[0] * q[2] - p[1] * q[3] + p[2] * q[0] + p[3] * q[1],
+                     p[0] * q[3] + p[1] * q[2] - p[2] * q[1] + p[3] * q[0]])
+
+
+@njit(cache=True)
+def rotvec_to_quat_1(rv):
+    """Quaternion of one rotation vector (compiled helper)."""
+    angle = np.sqrt(rv[0] * rv[0] + rv[1] * rv[1] + rv[2] * rv[2])
+    if angle > 1e-4:
+        k = np.sin(angle / 2) / angle
+    else:
+        k = 0.5 - angle * angle / 48 + angle ** 4 / 3840
+    return np.array([np.cos(angle / 2), k * rv[0], k * rv[1], k * rv[2]])
+
+
+@njit(cache=True)
+def quat_normalize_1(q):
+    """Unit quaternion (compiled helper)."""
+    return q / np.sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3])
+
+
+@njit(cache=True)
+def quat_to_dcm_1(q):
+    """C_b^n of one unit quaternion (compiled helper)."""
+    q0, q1, q2, q3 = q[0], q[1], q[2], q[3]
+    C = np.empty((3, 3))
+    C[0, 0] = q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3
+    C[0, 1] = 2 * (q1 * q2 - q0 * q3)
+    C[0, 2] = 2 * (q1 * q3 + q0 * q2)
+    C[1, 0] = 2 * (q1 * q2 + q0 * q3)
+    C[1, 1] = q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3
+    C[1, 2] = 2 * (q2 * q3 - q0 * q1)
+    C[2, 0] = 2 * (q1 * q3 - q0 * q2)
+    C[2, 1] = 2 * (q2 * q3 + q0 * q1)
+    C[2, 2] = q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3
+    return C

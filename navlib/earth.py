@@ -1,0 +1,309 @@
+"""Earth models: ellipsoids, Earth rate, normal gravity, radii, magnetic field.
+
+Constants follow NIMA TR8350.2 (WGS84), the CGCS2000 definition and Moritz
+(1980, GRS80). Derived constants (b, e^2, gamma_e, gamma_p) are computed from
+the defining ones with the closed-form level-ellipsoid formulas, which
+reproduce the printed WGS84 and GRS80 values to 1e-10 m/s^2 (tested against
+``shared/vectors``).
+
+Vectors are in the ENU navigation frame. Latitude is ``lat``, longitude
+``lon`` (rad unless ``deg=True``), height ``h`` above the ellipsoid (m).
+"""
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass
+
+import numpy as np
+from numba import njit
+
+from ._validate import as_array, in_range, latitude
+
+__all__ = ["Ellipsoid", "WGS84", "CGCS2000", "GRS80", "KRASSOVSKY",
+           "OMEGA_IE", "earth_rate_n", "gravity", "gravity_n", "radii",
+           "transport_rate_n", "magnetic_field", "field_from_angles", "field_angles"]
+
+
+@dataclass(frozen=True)
+class Ellipsoid:
+    """A reference ellipsoid with its gravity-defining constants.
+
+    Attributes
+    ----------
+    name : str
+    a : float
+        Semi-major axis (m).
+    f : float
+        Flattening.
+    GM : float
+        Geocentric gravitational constant (m^3/s^2).
+    omega : float
+        Angular velocity (rad/s).
+    """
+    name: str
+    a: float
+    f: float
+    GM: float
+    omega: float
+
+    @property
+    def b(self) -> float:
+        """Semi-minor axis (m)."""
+        return self.a * (1 - self.f)
+
+    @property
+    def e2(self) -> float:
+        """First eccentricity squared."""
+        return self.f * (2 - self.f)
+
+    @functools.cached_property
+    def _normal_gravity(self) -> tuple[float, float]:
+        # Moritz closed form (Heiskanen & Moritz 2-61/2-62; TR8350.2 ch. 4).
+        a, b = self.a, self.b
+        ep = np.sqrt(a * a - b * b) / b
+        m = self.omega ** 2 * a * a * b / self.GM
+        q0 = 0.5 * ((1 + 3 / ep ** 2) * np.arctan(ep) - 3 / ep)
+        q0p = 3 * (1 + 1 / ep ** 2) * (1 - np.arctan(ep) / ep) - 1
+        gamma_e = self.GM / (a * b) * (1 - m - m / 6 * ep * q0p / q0)
+        gamma_p = self.GM / (a * a) * (1 + m / 3 * ep * q0p / q0)
+        return float(gamma_e), float(gamma_p)
+
+    @property
+    def gamma_e(self) -> float:
+        """Normal gravity at the equator (m/s^2)."""
+        return self._normal_gravity[0]
+
+    @property
+    def gamma_p(self) -> float:
+        """Normal gravity at the poles (m/s^2)."""
+        return self._normal_gravity[1]
+
+    @property
+    def gravity_constants(self) -> tuple[float, ...]:
+        """``(a, f, e2, m, gamma_e, k)`` for the compiled gravity kernel."""
+        k = self.b * self.gamma_p / (self.a * self.gamma_e) - 1
+        return (self.a, self.f, self.e2, self.m, self.gamma_e, k)
+
+    @property
+    def m(self) -> float:
+        """omega^2 a^2 b / GM."""
+        return self.omega ** 2 * self.a ** 2 * self.b / self.GM
+
+
+OMEGA_IE = 7.292115e-5
+"""Earth rotation rate (rad/s), WGS84/CGCS2000 defining value (15.041 deg/h)."""
+
+WGS84 = Ellipsoid("WGS84", 6378137.0, 1 / 298.257223563, 3.986004418e14, OMEGA_IE)
+GRS80 = Ellipsoid("GRS80", 6378137.0, 1 / 298.257222101, 3.986005e14, OMEGA_IE)
+CGCS2000 = Ellipsoid("CGCS2000", 6378137.0, 1 / 298.257222101, 3.986004418e14, OMEGA_IE)
+# Krassovsky 1940 (Beijing 1954 grids) defines no gravity field; GM and omega
+# are WGS84's so that gravity() still runs, but only a and f are meaningful.
+KRASSOVSKY = Ellipsoid("Krassovsky1940", 6378245.0, 1 / 298.3, 3.986004418e14, OMEGA_IE)
+
+
+def _lat(lat, deg):
+    return latitude(lat, "lat", deg=deg)
+
+
+def earth_rate_n(lat, deg: bool = False, ellipsoid: Ellipsoid = WGS84):
+    """Earth rotation rate in ENU, ``[0, w cos(lat), w sin(lat)]`` (rad/s).
+
+    Parameters
+    ----------
+    lat : array_like, shape (...)
+        Geodetic latitude (rad, or deg with ``deg=True``).
+
+    Returns
+    -------
+    w_ie_n : ndarray, shape (..., 3)
+    """
+    lat = _lat(lat, deg)
+    w = ellipsoid.omega
+    return np.stack([np.zeros_like(lat), w * np.cos(lat), w * np.sin(lat)], -1)
+
+
+def gravity(lat, h=0.0, deg: bool = False, ellipsoid: Ellipsoid = WGS84):
+    """Normal gravity magnitude (m/s^2): Somigliana with the TR8350.2 height series.
+
+    ``gamma = gamma_e (1 + k sin^2 lat) / sqrt(1 - e^2 sin^2 lat)`` with
+    ``k = b gamma_p / (a gamma_e) - 1``, then
+    ``gamma_h = gamma [1 - 2/a (1 + f + m - 2 f sin^2 lat) h + 3 h^2 / a^2]``.
+
+    Parameters
+    ----------
+    lat : array_like, shape (...)
+        Geodetic latitude (rad, or deg with ``deg=True``).
+    h : array_like, shape (...)
+        Height above the ellipsoid (m), within [-12 km, 100 km].
+
+    Returns
+    -------
+    ndarray, shape (...)
+    """
+    lat = _lat(lat, deg)
+    h = in_range(as_array(h, "h"), "h", -12e3, 100e3, "m")
+    lat, h = np.broadcast_arrays(lat, h)
+    return _gravity(np.atleast_1d(lat), np.atleast_1d(h), *ellipsoid.gravity_constants).reshape(lat.shape)
+
+
+@njit(cache=True)
+def _gravity(lat, h, a, f, e2, m, gamma_e, k):
+    """Somigliana + height series; shared by :func:`gravity` and compiled kernels."""
+    s2 = np.sin(lat) ** 2
+    g0 = gamma_e * (1 + k * s2) / np.sqrt(1 - e2 * s2)
+    return g0 * (1 - 2 / a * (1 + f + m - 2 * f * s2) * h + 3 * h * h / (a * a))
+
+
+def gravity_n(lat, h=0.0, deg: bool = False, ellipsoid: Ellipsoid = WGS84):
+    """Normal gravity vector in ENU, ``[0, 0, -gamma]`` (m/s^2); shape (..., 3)."""
+    g = gravity(lat, h, deg=deg, ellipsoid=ellipsoid)
+    z = np.zeros_like(g)
+    return np.stack([z, z, -g], -1)
+
+
+def radii(lat, deg: bool = False, ellipsoid: Ellipsoid = WGS84):
+    """Meridian and prime-vertical radii of curvature (m).
+
+    Returns
+    -------
+    R_M, R_N : ndarray, shape (...)
+        ``R_N = a / sqrt(1 - e^2 sin^2 lat)``, ``R_M = R_N (1 - e^2) / (1 - e^2 sin^2 lat)``.
+    """
+    lat = _lat(lat, deg)
+    R_M, R_N = _radii(np.atleast_1d(lat), ellipsoid.a, ellipsoid.e2)
+    return R_M.reshape(lat.shape), R_N.reshape(lat.shape)
+
+
+@njit(cache=True)
+def _radii(lat, a, e2):
+    """(R_M, R_N); shared by :func:`radii` and compiled kernels."""
+    w = 1 - e2 * np.sin(lat) ** 2
+    R_N = a / np.sqrt(w)
+    return R_N * (1 - e2) / w, R_N
+
+
+def transport_rate_n(lat, h, vel_n, ellipsoid: Ellipsoid = WGS84):
+    """Transport rate of the ENU frame over the ellipsoid (rad/s).
+
+    ``w_en_n = [-v_N/(R_M+h), v_E/(R_N+h), v_E tan(lat)/(R_N+h)]``.
+
+    Parameters
+    ----------
+    lat : array_like, shape (...)  (rad)
+    h : array_like, shape (...)  (m)
+    vel_n : array_like, shape (..., 3)  ENU velocity (m/s)
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+    """
+    lat = _lat(lat, False)
+    vel_n = as_array(vel_n, "vel_n", tail=(3,))
+    R_M, R_N = radii(lat, ellipsoid=ellipsoid)
+    vE, vN = vel_n[..., 0], vel_n[..., 1]
+    return np.stack([-vN / (R_M + h), vE / (R_N + h), vE * np.tan(lat) / (R_N + h)], -1)
+
+
+# --------------------------------------------------------------------------
+# Geomagnetic field
+# --------------------------------------------------------------------------
+
+# World Magnetic Model epochs shipped with pygeomag: (first year, file).
+_WMM_MODELS = [(2010.0, "wmm/WMM_2010.COF"), (2015.0, "wmm/WMM_2015v2.COF"),
+               (2020.0, "wmm/WMM_2020.COF"), (2025.0, "wmm/WMM_2025.COF")]
+
+
+@functools.lru_cache(maxsize=None)
+def _geomag(coefficients_file: str):
+    from pygeomag import GeoMag  # imported lazily: only magnetometer users need it
+    return GeoMag(coefficients_file=coefficients_file)
+
+
+def _wmm_file(year: float) -> str:
+    if not 2010.0 <= year < 2030.0:
+        raise ValueError(f"year: expected a decimal year in [2010, 2030) covered by the "
+                         f"World Magnetic Model, got {year}")
+    return [f for start, f in _WMM_MODELS if year >= start][-1]
+
+
+def magnetic_field(lat, lon, h=0.0, year: float = 2025.0, deg: bool = True):
+    """Main geomagnetic field from the World Magnetic Model (through pygeomag).
+
+    The WMM epoch (2010, 2015v2, 2020, 2025) is chosen from ``year``; each is
+    valid for five years. Tested against NOAA's official WMM test values.
+
+    Parameters
+    ----------
+    lat, lon : array_like, shape (...)
+        Geodetic latitude and longitude (deg by default; rad with ``deg=False``).
+    h : array_like, shape (...)
+        Height above the WGS84 ellipsoid (m).
+    year : float
+        Decimal year, e.g. 2016.5.
+
+    Returns
+    -------
+    B_n : ndarray, shape (..., 3)
+        Field in ENU (uT): ``[east, north, up]``. In the northern hemisphere
+        the up component is negative (the field dips into the ground).
+    """
+    lat = _lat(lat, deg)
+    lon = as_array(lon, "lon")
+    in_range(lon, "lon", -2 * np.pi, 2 * np.pi, "rad") if not deg else in_range(lon, "lon", -360, 360, "deg")
+    lon = np.deg2rad(lon) if deg else lon
+    h = in_range(as_array(h, "h"), "h", -1e3, 850e3, "m")
+    gm = _geomag(_wmm_file(float(year)))
+    lat, lon, h = np.broadcast_arrays(lat, lon, h)
+    out = np.empty(lat.shape + (3,))
+    for idx in np.ndindex(lat.shape):
+        r = gm.calculate(glat=float(np.rad2deg(lat[idx])), glon=float(np.rad2deg(lon[idx])),
+                         alt=float(h[idx]) / 1000.0, time=float(year))
+        out[idx] = (r.y / 1000.0, r.x / 1000.0, -r.z / 1000.0)  # NED nT -> ENU uT
+    return out
+
+
+def field_from_angles(declination, inclination, intensity, deg: bool = True):
+    """Field vector in ENU from declination, inclination and intensity.
+
+    Parameters
+    ----------
+    declination : array_like
+        D, east of true north positive (deg by default).
+    inclination : array_like
+        I, positive when the field points down (deg by default).
+    intensity : array_like
+        Total intensity F (uT).
+
+    Returns
+    -------
+    B_n : ndarray, shape (..., 3)  (uT)
+    """
+    D = as_array(declination, "declination")
+    I = as_array(inclination, "inclination")
+    F = as_array(intensity, "intensity")
+    if deg:
+        D, I = np.deg2rad(D), np.deg2rad(I)
+    in_range(I, "inclination", -np.pi / 2, np.pi / 2, "rad")
+    H = F * np.cos(I)
+    return np.stack([H * np.sin(D), H * np.cos(D), -F * np.sin(I)], -1)
+
+
+def field_angles(B_n, deg: bool = True):
+    """Declination, inclination and intensity of ENU field vectors.
+
+    Parameters
+    ----------
+    B_n : array_like, shape (..., 3)
+
+    Returns
+    -------
+    declination, inclination, intensity : ndarray, shape (...)
+    """
+    B = as_array(B_n, "B_n", tail=(3,))
+    H = np.hypot(B[..., 0], B[..., 1])
+    D = np.arctan2(B[..., 0], B[..., 1])
+    I = np.arctan2(-B[..., 2], H)
+    F = np.linalg.norm(B, axis=-1)
+    if deg:
+        D, I = np.rad2deg(D), np.rad2deg(I)
+    return D, I, F

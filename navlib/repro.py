@@ -1,0 +1,215 @@
+"""Reproduction helpers for the notebooks: paths, figure style, claim checks.
+
+A notebook calls :func:`setup` once with its own name; afterwards
+
+* :func:`savefig` writes deterministic PNGs to ``build/<notebook>/figures/``
+  (no timestamps or version strings in the metadata, fixed DPI), and
+* :func:`check` compares a reproduced value with its target, records the
+  result in ``build/<notebook>/results.json`` and raises
+  :class:`ClaimCheckFailed` when it is outside tolerance, so that a failed
+  claim fails the notebook under nbmake.
+
+Check names start with the claim id from ``shared/papers/claims.csv``
+(e.g. ``P000-FIG4-TRIAD-RMSE/h091``); checks beyond the catalogue use names
+that start with no id.
+"""
+from __future__ import annotations
+
+import json
+import math
+import os
+import platform
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["root", "build_dir", "setup", "savefig", "check", "check_range", "results",
+           "ClaimCheckFailed", "Check"]
+
+
+class ClaimCheckFailed(AssertionError):
+    """A reproduced value is outside the tolerance of its target."""
+
+
+@dataclass
+class Check:
+    """One recorded claim check (a row of results.json)."""
+    name: str
+    value: float
+    expected: float | None
+    tol: float | None
+    passed: bool
+    source: str
+    paper_value: str | None = None
+    lower: float | None = None
+    upper: float | None = None
+    unit: str = ""
+    note: str = ""
+
+
+@dataclass
+class _State:
+    notebook: str | None = None
+    checks: list[Check] = field(default_factory=list)
+
+
+_state = _State()
+
+
+def root() -> Path:
+    """Repository root: the nearest parent of the working directory holding
+    ``pyproject.toml`` and ``navlib/`` (notebooks run from ``notebooks/``)."""
+    env = os.environ.get("NAVLIB_ROOT")
+    if env:
+        return Path(env).resolve()
+    here = Path.cwd().resolve()
+    for p in (here, *here.parents):
+        if (p / "pyproject.toml").is_file() and (p / "navlib").is_dir():
+            return p
+    # Installed elsewhere: fall back to the package's parent directory.
+    return Path(__file__).resolve().parents[1]
+
+
+def build_dir(notebook: str | None = None) -> Path:
+    """``build/`` (or ``build/<notebook>/``) under the repository root, created."""
+    d = root() / "build"
+    if notebook:
+        d = d / notebook
+    d.mkdir(parents=True, exist_ok=True)
+    return d
+
+
+def setup(notebook: str, *, style: bool = True) -> None:
+    """Start a notebook's run: reset its results file and set the figure style.
+
+    Parameters
+    ----------
+    notebook : str
+        The notebook's stem, e.g. ``"00_conventions_sensors"``. Outputs go to
+        ``build/<notebook>/``.
+    """
+    import matplotlib
+    import matplotlib.pyplot as plt
+
+    if not notebook or "/" in notebook:
+        raise ValueError(f"notebook: expected a plain notebook name, got {notebook!r}")
+    _state.notebook = notebook
+    _state.checks = []
+    d = build_dir(notebook)
+    (d / "results.json").unlink(missing_ok=True)
+    if style:
+        plt.rcdefaults()
+        matplotlib.rcParams.update({
+            "figure.figsize": (7.0, 4.0), "figure.dpi": 100, "savefig.dpi": 110,
+            "axes.grid": True, "grid.alpha": 0.3, "axes.spines.top": False,
+            "axes.spines.right": False, "legend.frameon": False, "font.size": 10,
+            "svg.hashsalt": "navlib", "image.cmap": "viridis",
+        })
+    _write()
+
+
+def versions() -> dict[str, str]:
+    """Versions of Python and the numerical stack, for the notebook header."""
+    import matplotlib
+    import numba
+    import scipy
+
+    import navlib
+    return {"python": platform.python_version(), "numpy": np.__version__, "scipy": scipy.__version__,
+            "matplotlib": matplotlib.__version__, "numba": numba.__version__, "navlib": navlib.__version__}
+
+
+def savefig(fig, name: str) -> Path:
+    """Save ``fig`` as ``build/<notebook>/figures/<name>.png`` deterministically.
+
+    The PNG carries no timestamp or software version, so two runs give
+    byte-identical files.
+    """
+    if _state.notebook is None:
+        raise RuntimeError("call navlib.repro.setup(notebook) before savefig()")
+    d = build_dir(_state.notebook) / "figures"
+    d.mkdir(exist_ok=True)
+    path = d / f"{name}.png"
+    fig.savefig(path, metadata={"Software": None}, bbox_inches="tight")
+    return path
+
+
+def _as_float(x) -> float:
+    x = np.asarray(x, dtype=float)
+    if x.size != 1:
+        raise ValueError(f"value: expected a scalar, got shape {x.shape}")
+    return float(x.reshape(()))
+
+
+def _record(c: Check) -> Check:
+    _state.checks = [k for k in _state.checks if k.name != c.name] + [c]
+    _write()
+    status = "PASS" if c.passed else "FAIL"
+    if c.expected is not None:
+        target = f"target {c.expected:.6g} ± {c.tol:.3g}"
+    else:
+        target = f"range [{c.lower if c.lower is not None else '-inf'}, {c.upper if c.upper is not None else 'inf'}]"
+    print(f"[{status}] {c.name}: {c.value:.6g}{' ' + c.unit if c.unit else ''} ({target}; {c.source})")
+    if not c.passed:
+        raise ClaimCheckFailed(f"{c.name}: reproduced {c.value:.6g} is outside {target}")
+    return c
+
+
+def check(name: str, value, expected, tol, source: str, *, paper_value=None,
+          rel: bool = False, unit: str = "", note: str = "") -> Check:
+    """Check ``|value - expected| <= tol`` and record it; raise if it fails.
+
+    Parameters
+    ----------
+    name : str
+        Starts with the claim id from ``claims.csv`` when it checks a claim.
+    value : float
+        Reproduced value, computed by navlib in the notebook.
+    expected : float
+        Target: the paper's value or, where the paper is wrong, the corrected
+        value (then give the printed one as ``paper_value``).
+    tol : float
+        Tolerance, absolute; relative to ``|expected|`` with ``rel=True``.
+    source : str
+        Where the target comes from (paper figure/table/equation, guide erratum).
+    paper_value : str or float, optional
+        The printed value when it differs from ``expected``.
+    """
+    v, e, t = _as_float(value), _as_float(expected), _as_float(tol)
+    if not t >= 0:
+        raise ValueError(f"tol: expected a non-negative tolerance, got {t}")
+    abs_tol = t * abs(e) if rel else t
+    passed = bool(math.isfinite(v) and abs(v - e) <= abs_tol)
+    return _record(Check(name, v, e, abs_tol, passed, source,
+                         None if paper_value is None else str(paper_value), unit=unit, note=note))
+
+
+def check_range(name: str, value, source: str, *, lower=None, upper=None,
+                paper_value=None, unit: str = "", note: str = "") -> Check:
+    """Check ``lower <= value <= upper`` (either bound may be omitted); record; raise on failure.
+
+    For directional and bound claims, e.g. "the EKF error is smaller than
+    dead reckoning's" as ``check_range(name, rmse_ekf / rmse_dr, upper=1)``.
+    """
+    if lower is None and upper is None:
+        raise ValueError("lower, upper: give at least one bound")
+    v = _as_float(value)
+    lo = None if lower is None else _as_float(lower)
+    hi = None if upper is None else _as_float(upper)
+    passed = bool(math.isfinite(v) and (lo is None or v >= lo) and (hi is None or v <= hi))
+    return _record(Check(name, v, None, None, passed, source,
+                         None if paper_value is None else str(paper_value), lo, hi, unit, note))
+
+
+def results() -> list[Check]:
+    """Checks recorded so far in this notebook run."""
+    return list(_state.checks)
+
+
+def _write() -> None:
+    if _state.notebook is None:
+        return
+    data = {"notebook": _state.notebook, "checks": [asdict(c) for c in _state.checks]}
+    path = build_dir(_state.notebook) / "results.json"
+    path.write_text(json.dumps(data, indent=1, allow_nan=True) + "\n")

@@ -1,0 +1,533 @@
+"""Simulated sensors: IMU, magnetometer, barometer, GNSS, dual-antenna heading.
+
+IMU error model (per axis, applied to the ideal outputs of
+:func:`navlib.trajectory.ideal_imu`)::
+
+    y = M x + b_on + b_gm(t) + b_rrw(t) + n(t),    clipped at +-full_scale
+
+* ``M = I + diag(scale) + misalignment``: scale-factor errors on the
+  diagonal, small-angle misalignments off it (drawn once per run).
+* ``b_on``: turn-on bias, constant within a run.
+* ``b_gm``: first-order Gauss-Markov bias, ``b[k+1] = phi b[k] + w[k]`` with
+  ``phi = exp(-dt/T_c)`` and ``var(w) = sigma^2 (1 - phi^2)``, started from its
+  stationary distribution. Its standard deviation ``sigma`` therefore does not
+  depend on the sample rate. ``sigma = B / GM_ALLAN_PEAK`` so that the Allan
+  deviation of the bias peaks at the datasheet bias instability B
+  (see :mod:`navlib.analysis`).
+* ``b_rrw``: rate random walk with density K.
+* ``n``: white noise of density N (ARW for gyros, VRW for accelerometers);
+  per-sample sigma ``N / sqrt(dt)``.
+
+Each error component draws from its own child stream of ``rng`` (via
+``Generator.spawn``), so switching one component on or off leaves the
+realisation of the others unchanged, and gyro and accelerometer are
+independent.
+
+Presets for the papers' devices are read from ``data/sensor_presets.csv``,
+which gives every number with its source.
+"""
+from __future__ import annotations
+
+import csv
+import functools
+from dataclasses import dataclass, field, fields, replace
+from pathlib import Path
+
+import numpy as np
+from scipy.signal import lfilter
+
+from . import atmosphere, attitude, earth, units
+from ._validate import as_array, positive
+from .analysis import GM_ALLAN_PEAK
+
+__all__ = ["TriadErrors", "ImuModel", "ImuOutput", "simulate_imu", "imu_model", "preset", "devices",
+           "MagnetometerModel", "simulate_magnetometer", "magnetic_disturbances",
+           "BarometerModel", "simulate_barometer", "outage_mask", "simulate_gnss_position",
+           "simulate_heading", "gauss_markov"]
+
+PRESETS_CSV = Path(__file__).resolve().parents[1] / "data" / "sensor_presets.csv"
+
+
+# --------------------------------------------------------------------------
+# IMU
+# --------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class TriadErrors:
+    """Error parameters of one sensor triad (gyro or accelerometer), SI units.
+
+    Rates for gyros (rad/s), specific force for accelerometers (m/s^2).
+
+    Attributes
+    ----------
+    noise_density : float
+        White noise N (rad/s/sqrt(Hz) = ARW; m/s^2/sqrt(Hz) = VRW).
+    bias : float
+        Turn-on bias sigma (rad/s or m/s^2).
+    bias_instability : float
+        Peak Allan deviation B of the Gauss-Markov bias (rad/s or m/s^2).
+    correlation_time : float
+        Gauss-Markov correlation time T_c (s).
+    rate_random_walk : float
+        Random-walk density K of the bias (rad/s^2/sqrt(Hz) or m/s^3/sqrt(Hz)).
+    scale_factor : float
+        Scale-factor error sigma (fraction).
+    misalignment : float
+        Misalignment sigma (rad), independent for each off-diagonal element.
+    full_scale : float
+        Saturation limit (rad/s or m/s^2); ``inf`` for none.
+    """
+    noise_density: float = 0.0
+    bias: float = 0.0
+    bias_instability: float = 0.0
+    correlation_time: float = 3600.0
+    rate_random_walk: float = 0.0
+    scale_factor: float = 0.0
+    misalignment: float = 0.0
+    full_scale: float = np.inf
+
+    def __post_init__(self):
+        for f in fields(self):
+            v = getattr(self, f.name)
+            if not (isinstance(v, (int, float, np.floating)) and v >= 0 and not np.isnan(v)):
+                raise ValueError(f"{f.name}: expected a non-negative number, got {v!r}")
+        if self.correlation_time <= 0 or self.full_scale <= 0:
+            raise ValueError("correlation_time, full_scale: expected positive values")
+
+    @property
+    def gauss_markov_sigma(self) -> float:
+        """Stationary sigma of the Gauss-Markov bias, ``B / GM_ALLAN_PEAK``."""
+        return self.bias_instability / GM_ALLAN_PEAK
+
+
+@dataclass(frozen=True)
+class ImuModel:
+    """Gyro and accelerometer error models of one IMU."""
+    gyro: TriadErrors = field(default_factory=TriadErrors)
+    accel: TriadErrors = field(default_factory=TriadErrors)
+    name: str = "custom"
+
+    def replace(self, gyro: dict | None = None, accel: dict | None = None) -> "ImuModel":
+        """Copy with some parameters changed, e.g. ``m.replace(gyro={"bias": 0.0})``."""
+        return ImuModel(replace(self.gyro, **(gyro or {})), replace(self.accel, **(accel or {})), self.name)
+
+
+@dataclass(frozen=True)
+class ImuOutput:
+    """Simulated IMU output and the error realisation behind it.
+
+    Attributes
+    ----------
+    w_ib_b, f_b : ndarray, shape (..., N, 3)
+        Measured angular rate (rad/s) and specific force (m/s^2).
+    gyro_bias, accel_bias : ndarray, shape (..., N, 3)
+        True total bias (turn-on + Gauss-Markov + random walk) per sample.
+    gyro_matrix, accel_matrix : ndarray, shape (..., 3, 3)
+        True ``I + scale + misalignment`` matrices.
+    gyro_saturated, accel_saturated : int
+        Number of clipped samples (all axes and trials).
+    """
+    w_ib_b: np.ndarray
+    f_b: np.ndarray
+    gyro_bias: np.ndarray
+    accel_bias: np.ndarray
+    gyro_matrix: np.ndarray
+    accel_matrix: np.ndarray
+    gyro_saturated: int
+    accel_saturated: int
+
+
+def gauss_markov(shape, dt: float, sigma: float, correlation_time: float, rng: np.random.Generator):
+    """First-order Gauss-Markov sequences, stationary from the first sample.
+
+    Parameters
+    ----------
+    shape : tuple
+        ``(..., N, k)``; time runs along axis -2.
+    dt : float
+        Sample interval (s).
+    sigma : float
+        Stationary standard deviation; independent of ``dt``.
+    correlation_time : float
+        Correlation time (s).
+    rng : numpy.random.Generator
+
+    Returns
+    -------
+    ndarray of ``shape``
+    """
+    dt = float(positive(dt, "dt"))
+    tc = float(positive(correlation_time, "correlation_time"))
+    if len(shape) < 2:
+        raise ValueError(f"shape: expected (..., N, k), got {shape}")
+    phi = np.exp(-dt / tc)
+    x0 = sigma * rng.standard_normal(shape[:-2] + (1, shape[-1]))
+    drive = sigma * np.sqrt(1 - phi * phi) * rng.standard_normal(shape)
+    # y[k] = phi y[k-1] + drive[k] with y[-1] = x0
+    y, _ = lfilter([1.0], [1.0, -phi], drive, axis=-2, zi=phi * x0)
+    return y
+
+
+def _error_matrix(errors: TriadErrors, lead: tuple, rng: np.random.Generator):
+    M = np.broadcast_to(np.eye(3), lead + (3, 3)).copy()
+    M += errors.misalignment * rng.standard_normal(lead + (3, 3)) * (1 - np.eye(3))
+    M += errors.scale_factor * rng.standard_normal(lead + (3,))[..., None] * np.eye(3)
+    return M
+
+
+def _corrupt(x, dt, errors: TriadErrors, rng: np.random.Generator):
+    """Apply a triad error model to ideal samples ``x`` (..., N, 3)."""
+    r_matrix, r_on, r_gm, r_rrw, r_white = rng.spawn(5)
+    lead, shape = x.shape[:-2], x.shape
+    M = _error_matrix(errors, lead, r_matrix)
+    bias = np.broadcast_to(errors.bias * r_on.standard_normal(lead + (1, 3)), shape).copy()
+    if errors.bias_instability > 0:
+        bias += gauss_markov(shape, dt, errors.gauss_markov_sigma, errors.correlation_time, r_gm)
+    if errors.rate_random_walk > 0:
+        bias += np.cumsum(errors.rate_random_walk * np.sqrt(dt) * r_rrw.standard_normal(shape), axis=-2)
+    y = np.einsum("...ij,...nj->...ni", M, x) + bias
+    if errors.noise_density > 0:
+        y += errors.noise_density / np.sqrt(dt) * r_white.standard_normal(shape)
+    clipped = np.abs(y) > errors.full_scale
+    n_clipped = int(np.count_nonzero(clipped))
+    if n_clipped:
+        y = np.clip(y, -errors.full_scale, errors.full_scale)
+    return y, bias, M, n_clipped
+
+
+def simulate_imu(w_ib_b, f_b, dt: float, model: ImuModel, rng: np.random.Generator,
+                 n_trials: int | None = None) -> ImuOutput:
+    """Corrupt ideal IMU samples with an :class:`ImuModel`.
+
+    Parameters
+    ----------
+    w_ib_b, f_b : array_like, shape (..., N, 3)
+        Ideal angular rate (rad/s) and specific force (m/s^2), e.g. from
+        :func:`navlib.trajectory.ideal_imu`.
+    dt : float
+        Sample interval (s).
+    model : ImuModel
+    rng : numpy.random.Generator
+        Source of all randomness; gyro and accelerometer use independent
+        child streams.
+    n_trials : int, optional
+        Draw this many independent realisations on a new leading axis: the
+        output has shape (n_trials, ..., N, 3).
+
+    Returns
+    -------
+    ImuOutput
+    """
+    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1)
+    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1)
+    if w.shape != f.shape:
+        raise ValueError(f"f_b: expected the shape of w_ib_b {w.shape}, got {f.shape}")
+    dt = float(positive(dt, "dt"))
+    if not isinstance(model, ImuModel):
+        raise ValueError(f"model: expected an ImuModel, got {type(model).__name__}")
+    if not isinstance(rng, np.random.Generator):
+        raise ValueError(f"rng: expected a numpy.random.Generator, got {type(rng).__name__}")
+    if n_trials is not None:
+        if int(n_trials) < 1:
+            raise ValueError(f"n_trials: expected a positive integer, got {n_trials}")
+        w = np.broadcast_to(w, (int(n_trials),) + w.shape)
+        f = np.broadcast_to(f, (int(n_trials),) + f.shape)
+    r_gyro, r_accel = rng.spawn(2)
+    gw, gb, gM, gs = _corrupt(w, dt, model.gyro, r_gyro)
+    af, ab, aM, as_ = _corrupt(f, dt, model.accel, r_accel)
+    return ImuOutput(gw, af, gb, ab, gM, aM, gs, as_)
+
+
+# --------------------------------------------------------------------------
+# Presets
+# --------------------------------------------------------------------------
+
+@functools.lru_cache(maxsize=1)
+def _preset_table() -> dict[str, dict[tuple[str, str], tuple[float, str, str]]]:
+    table: dict[str, dict] = {}
+    with open(PRESETS_CSV, encoding="utf-8") as fh:
+        rows = csv.DictReader(line for line in fh if not line.startswith("#"))
+        for r in rows:
+            table.setdefault(r["device"], {})[(r["sensor"], r["parameter"])] = (
+                float(units.to_si(float(r["value"]), r["unit"])), r["unit"], r["source"])
+    return table
+
+
+def devices() -> list[str]:
+    """Names of the devices in ``data/sensor_presets.csv``."""
+    return sorted(_preset_table())
+
+
+def preset(device: str) -> dict[tuple[str, str], float]:
+    """SI parameters of a device, keyed by ``(sensor, parameter)``.
+
+    Example: ``preset("BMP180")[("baro", "noise")]`` is 2.0 Pa.
+    """
+    table = _preset_table()
+    if device not in table:
+        raise ValueError(f"device: unknown device {device!r}; known: {devices()}")
+    return {k: v[0] for k, v in table[device].items()}
+
+
+def imu_model(device: str) -> ImuModel:
+    """:class:`ImuModel` of a preset device (``NAV-FOG``, ``MTi-100``, ``ADIS16475-1``, ``MPU-6050``)."""
+    p = preset(device)
+    names = {f.name for f in fields(TriadErrors)}
+    triads = {}
+    for sensor in ("gyro", "accel"):
+        kw = {par: v for (s, par), v in p.items() if s == sensor and par in names}
+        if not kw:
+            raise ValueError(f"device: {device!r} has no {sensor} preset")
+        triads[sensor] = TriadErrors(**kw)
+    return ImuModel(triads["gyro"], triads["accel"], device)
+
+
+# --------------------------------------------------------------------------
+# Magnetometer
+# --------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class MagnetometerModel:
+    """Magnetometer errors (uT).
+
+    ``m_b = S C_nb (B_n + d_n) + h + n``: soft-iron matrix ``S = I + E`` with
+    elements of E drawn with sigma ``soft_iron`` (symmetric), hard-iron offset
+    h with sigma ``hard_iron`` (constant per run), white noise n with sigma
+    ``noise``, and an optional external disturbance field ``d_n``.
+    """
+    noise: float = 0.0
+    hard_iron: float = 0.0
+    soft_iron: float = 0.0
+    full_scale: float = np.inf
+
+    @classmethod
+    def from_preset(cls, device: str) -> "MagnetometerModel":
+        """Model of a preset magnetometer (e.g. ``"HMC5983"``)."""
+        p = preset(device)
+        kw = {par: v for (s, par), v in p.items() if s == "mag"}
+        if not kw:
+            raise ValueError(f"device: {device!r} has no magnetometer preset")
+        return cls(**kw)
+
+
+@dataclass(frozen=True)
+class MagnetometerOutput:
+    """Simulated magnetometer samples ``m_b`` (..., N, 3) in uT and the true errors."""
+    m_b: np.ndarray
+    hard_iron: np.ndarray
+    soft_iron: np.ndarray
+
+
+def simulate_magnetometer(q_bn, B_n, model: MagnetometerModel, rng: np.random.Generator,
+                          disturbance_n=None) -> MagnetometerOutput:
+    """Magnetometer readings along an attitude history.
+
+    Parameters
+    ----------
+    q_bn : array_like, shape (..., N, 4)
+        True attitude quaternions.
+    B_n : array_like, shape (3,) or (..., N, 3)
+        Local field in ENU (uT), e.g. from :func:`navlib.earth.magnetic_field`.
+    model : MagnetometerModel
+    rng : numpy.random.Generator
+    disturbance_n : array_like, shape (..., N, 3), optional
+        Extra field in ENU (uT), e.g. from :func:`magnetic_disturbances`.
+
+    Returns
+    -------
+    MagnetometerOutput
+    """
+    q = as_array(q_bn, "q_bn", tail=(4,), min_ndim=1)
+    B = as_array(B_n, "B_n", tail=(3,))
+    if disturbance_n is not None:
+        B = B + as_array(disturbance_n, "disturbance_n", tail=(3,))
+    C_nb = np.swapaxes(attitude.quat_to_dcm(q), -1, -2)
+    m_true = np.einsum("...ij,...j->...i", C_nb, B)
+    lead = m_true.shape[:-2]
+    r_soft, r_hard, r_noise = rng.spawn(3)
+    E = model.soft_iron * r_soft.standard_normal(lead + (3, 3))
+    S = np.eye(3) + (E + np.swapaxes(E, -1, -2)) / 2
+    h = model.hard_iron * r_hard.standard_normal(lead + (3,))
+    m = np.einsum("...ij,...nj->...ni", S, m_true) + h[..., None, :]
+    m = m + model.noise * r_noise.standard_normal(m.shape)
+    return MagnetometerOutput(np.clip(m, -model.full_scale, model.full_scale), h, S)
+
+
+def magnetic_disturbances(time, rng: np.random.Generator, rate: float, amplitude=(5.0, 10.0),
+                          duration=(2.0, 5.0)):
+    """Localised magnetic disturbances (steel structures, passing cars).
+
+    Events arrive as a Poisson process; each is a Hann-shaped bump of random
+    direction, amplitude and duration.
+
+    Parameters
+    ----------
+    time : array_like, shape (N,)  (s)
+    rng : numpy.random.Generator
+    rate : float
+        Mean number of events per second.
+    amplitude : (float, float)
+        Range of peak amplitudes (uT), drawn uniformly.
+    duration : (float, float)
+        Range of durations (s), drawn uniformly.
+
+    Returns
+    -------
+    d_n : ndarray, shape (N, 3)
+        Disturbance field in ENU (uT).
+    """
+    from ._validate import time_axis
+    t = time_axis(time)
+    rate = float(positive(rate, "rate", allow_zero=True))
+    n_events = rng.poisson(rate * (t[-1] - t[0]))
+    d = np.zeros((t.size, 3))
+    for _ in range(n_events):
+        t0 = rng.uniform(t[0], t[-1])
+        T = rng.uniform(*duration)
+        a = rng.uniform(*amplitude)
+        u = rng.standard_normal(3)
+        u /= np.linalg.norm(u)
+        s = (t - t0) / T
+        bump = np.where((s >= 0) & (s <= 1), np.sin(np.pi * s) ** 2, 0.0)
+        d += a * bump[:, None] * u
+    return d
+
+
+# --------------------------------------------------------------------------
+# Barometer
+# --------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class BarometerModel:
+    """Barometer errors (Pa): white ``noise`` sigma, constant ``bias`` sigma,
+    and a deterministic weather ``drift_rate`` (Pa/s)."""
+    noise: float = 0.0
+    bias: float = 0.0
+    drift_rate: float = 0.0
+
+    @classmethod
+    def from_preset(cls, device: str = "BMP180") -> "BarometerModel":
+        """Model of a preset barometer."""
+        p = preset(device)
+        kw = {par: v for (s, par), v in p.items() if s == "baro" and par in ("noise", "bias", "drift_rate")}
+        if not kw:
+            raise ValueError(f"device: {device!r} has no barometer preset")
+        return cls(**kw)
+
+
+def simulate_barometer(h, time, model: BarometerModel, rng: np.random.Generator, p0=atmosphere.P0):
+    """Barometric pressure (Pa) at heights ``h`` (m) with the ISA as truth.
+
+    Parameters
+    ----------
+    h : array_like, shape (..., N)
+        True height (m).
+    time : array_like, shape (N,)
+        Sample times (s); the drift is ``drift_rate * (time - time[0])``.
+    model : BarometerModel
+    rng : numpy.random.Generator
+    p0 : float
+        Sea-level (reference) pressure of the day (Pa).
+
+    Returns
+    -------
+    ndarray, shape (..., N)
+    """
+    from ._validate import time_axis
+    t = time_axis(time)
+    h = as_array(h, "h")
+    if h.shape[-1:] != t.shape:
+        raise ValueError(f"h: expected last axis of length {t.size}, got shape {h.shape}")
+    r_bias, r_noise = rng.spawn(2)
+    p = atmosphere.isa_pressure(h, p0)
+    p = p + model.bias * r_bias.standard_normal(h.shape[:-1] + (1,))
+    p = p + model.drift_rate * (t - t[0])
+    return p + model.noise * r_noise.standard_normal(h.shape)
+
+
+# --------------------------------------------------------------------------
+# GNSS position and dual-antenna heading
+# --------------------------------------------------------------------------
+
+def outage_mask(time, outages) -> np.ndarray:
+    """Validity flags: False inside any ``[start, end)`` outage interval.
+
+    Parameters
+    ----------
+    time : array_like, shape (N,)  (s)
+    outages : sequence of (float, float)
+        Start and end times (s) of each outage.
+
+    Returns
+    -------
+    valid : ndarray of bool, shape (N,)
+    """
+    t = as_array(time, "time")
+    valid = np.ones(t.shape, dtype=bool)
+    for iv in outages:
+        if len(iv) != 2 or not iv[1] > iv[0]:
+            raise ValueError(f"outages: expected (start, end) pairs with end > start, got {iv!r}")
+        valid &= ~((t >= iv[0]) & (t < iv[1]))
+    return valid
+
+
+def simulate_gnss_position(lla, rng: np.random.Generator, sigma_horizontal: float,
+                           sigma_vertical: float | None = None, valid=None):
+    """GNSS positions: truth plus white noise in metres, NaN during outages.
+
+    Parameters
+    ----------
+    lla : array_like, shape (..., N, 3)
+        True ``[lat (rad), lon (rad), h (m)]``.
+    rng : numpy.random.Generator
+    sigma_horizontal : float
+        Noise sigma per horizontal axis (m).
+    sigma_vertical : float, optional
+        Vertical noise sigma (m); default ``1.5 * sigma_horizontal``.
+    valid : array_like of bool, shape (N,), optional
+        Validity flags (e.g. from :func:`outage_mask`); invalid epochs are NaN.
+
+    Returns
+    -------
+    lla_meas : ndarray, shape (..., N, 3)
+    """
+    lla = as_array(lla, "lla", tail=(3,), min_ndim=1)
+    sh = float(positive(sigma_horizontal, "sigma_horizontal", allow_zero=True))
+    sv = 1.5 * sh if sigma_vertical is None else float(positive(sigma_vertical, "sigma_vertical", allow_zero=True))
+    R_M, R_N = earth.radii(lla[..., 0])
+    e = rng.standard_normal(lla.shape)
+    out = lla.copy()
+    out[..., 0] += sh * e[..., 1] / (R_M + lla[..., 2])
+    out[..., 1] += sh * e[..., 0] / ((R_N + lla[..., 2]) * np.cos(lla[..., 0]))
+    out[..., 2] += sv * e[..., 2]
+    if valid is not None:
+        out[..., ~np.asarray(valid, dtype=bool), :] = np.nan
+    return out
+
+
+def simulate_heading(heading, rng: np.random.Generator, sigma: float, valid=None):
+    """Dual-antenna heading: truth plus white noise, wrapped to [0, 2 pi).
+
+    Parameters
+    ----------
+    heading : array_like, shape (..., N)
+        True heading (rad, clockwise from true north).
+    rng : numpy.random.Generator
+    sigma : float
+        Noise sigma (rad).
+    valid : array_like of bool, shape (N,), optional
+        Validity flags; invalid epochs are NaN (never a fused zero).
+
+    Returns
+    -------
+    heading_meas : ndarray, shape (..., N)
+    valid : ndarray of bool, shape (N,)
+    """
+    h = as_array(heading, "heading")
+    s = float(positive(sigma, "sigma", allow_zero=True))
+    out = attitude.wrap_2pi(h + s * rng.standard_normal(h.shape))
+    v = np.ones(h.shape[-1:], dtype=bool) if valid is None else np.asarray(valid, dtype=bool)
+    if v.shape != h.shape[-1:]:
+        raise ValueError(f"valid: expected shape {h.shape[-1:]}, got {v.shape}")
+    out[..., ~v] = np.nan
+    return out, v

@@ -1,0 +1,160 @@
+"""Strapdown inertial navigation in the ENU frame over the WGS84 ellipsoid.
+
+Discrete mechanisation (Titterton & Weston 2004, ch. 3; Groves 2013, ch. 5),
+one step per IMU sample k covering [t_k, t_k + dt]::
+
+    w_in   = w_ie(lat_k) + w_en(lat_k, h_k, v_k)
+    q_k+1  = q(-w_in dt) (x) q_k (x) q(w_k dt)                      attitude
+    f_n    = C(q(-w_in dt/2) (x) q_k (x) q(w_k dt/2)) f_k            mid-interval attitude
+    v_k+1  = v_k + (f_n + g_n(lat_k, h_k) - (2 w_ie + w_en) x v_k) dt
+    lat, lon, h advance with the mean of v_k and v_k+1 (trapezoid)
+
+where ``q(rv)`` is the quaternion of a rotation vector. Gyro and
+accelerometer samples are the mean rate and mean specific force over the
+interval (``w_k dt`` is the angle increment). :func:`navlib.trajectory.ideal_imu`
+is the exact inverse of this scheme, so integrating ideal samples reproduces
+the true trajectory to rounding error.
+
+The kernels are compiled with numba and loop over samples; leading axes of
+the inputs (Monte Carlo trials) are flattened into one loop. With
+``NUMBA_DISABLE_JIT=1`` they run as plain Python.
+"""
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from . import attitude, earth
+from ._validate import as_array, latitude, positive
+from .earth import _gravity, _radii
+from .attitude import quat_mult_1, quat_normalize_1, quat_to_dcm_1, rotvec_to_quat_1
+from .trajectory import Trajectory
+
+__all__ = ["integrate", "integrate_attitude"]
+
+
+@njit(cache=True)
+def _attitude_kernel(q0, w, dt, w_in_n):
+    T, N = w.shape[0], w.shape[1]
+    q = np.empty((T, N + 1, 4))
+    q_nav = rotvec_to_quat_1(-w_in_n * dt)
+    for t in range(T):
+        qk = q0[t].copy()
+        q[t, 0] = qk
+        for k in range(N):
+            qk = quat_normalize_1(quat_mult_1(quat_mult_1(q_nav, qk), rotvec_to_quat_1(w[t, k] * dt)))
+            q[t, k + 1] = qk
+    return q
+
+
+def integrate_attitude(q0, w_ib_b, dt: float, w_in_n=None):
+    """Integrate gyro samples into an attitude history.
+
+    ``q_k+1 = q(-w_in_n dt) (x) q_k (x) q(w_k dt)`` with a constant
+    navigation-frame rate ``w_in_n`` (e.g. Earth rate at a fixed latitude for
+    a static or slowly moving IMU; zero to neglect it).
+
+    Parameters
+    ----------
+    q0 : array_like, shape (4,) or (..., 4)
+        Initial attitude quaternion q_b^n.
+    w_ib_b : array_like, shape (..., N, 3)
+        Gyro samples (rad/s).
+    dt : float
+        Sample interval (s).
+    w_in_n : array_like, shape (3,), optional
+        Rotation rate of the navigation frame (rad/s); default zero.
+
+    Returns
+    -------
+    q_bn : ndarray, shape (..., N + 1, 4)
+    """
+    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1)
+    dt = float(positive(dt, "dt"))
+    q0 = attitude.quat_normalize(as_array(q0, "q0", tail=(4,)))
+    lead = w.shape[:-2]
+    q0 = np.broadcast_to(q0, lead + (4,)).reshape(-1, 4)
+    w_in = np.zeros(3) if w_in_n is None else as_array(w_in_n, "w_in_n", tail=(3,)).reshape(3)
+    q = _attitude_kernel(np.ascontiguousarray(q0), np.ascontiguousarray(w.reshape(-1, *w.shape[-2:])), dt, w_in)
+    return q.reshape(lead + q.shape[-2:])
+
+
+@njit(cache=True)
+def _nav_kernel(lla0, vel0, q0, w, f, dt, a, flat, e2, m, gamma_e, k_som, omega):
+    T, N = w.shape[0], w.shape[1]
+    lla = np.empty((T, N + 1, 3))
+    vel = np.empty((T, N + 1, 3))
+    q = np.empty((T, N + 1, 4))
+    for t in range(T):
+        lat, lon, h = lla0[t, 0], lla0[t, 1], lla0[t, 2]
+        v = vel0[t].copy()
+        qk = q0[t].copy()
+        lla[t, 0], vel[t, 0], q[t, 0] = lla0[t], v, qk
+        for k in range(N):
+            sl, cl = np.sin(lat), np.cos(lat)
+            R_M, R_N = _radii(lat, a, e2)
+            w_ie = np.array([0.0, omega * cl, omega * sl])
+            w_en = np.array([-v[1] / (R_M + h), v[0] / (R_N + h), v[0] * sl / cl / (R_N + h)])
+            w_in = w_ie + w_en
+            dq = rotvec_to_quat_1(w[t, k] * dt)
+            q_mid = quat_mult_1(quat_mult_1(rotvec_to_quat_1(-w_in * (dt / 2)), qk), rotvec_to_quat_1(w[t, k] * (dt / 2)))
+            f_n = quat_to_dcm_1(q_mid) @ f[t, k]
+            g = _gravity(lat, h, a, flat, e2, m, gamma_e, k_som)
+            cor = np.cross(2 * w_ie + w_en, v)
+            v_new = v + (f_n - cor) * dt
+            v_new[2] -= g * dt
+            qk = quat_normalize_1(quat_mult_1(quat_mult_1(rotvec_to_quat_1(-w_in * dt), qk), dq))
+            vm = (v + v_new) / 2
+            lat_new = lat + vm[1] / (R_M + h) * dt
+            lon = lon + vm[0] / ((R_N + h) * cl) * dt
+            h = h + vm[2] * dt
+            lat = lat_new
+            v = v_new
+            lla[t, k + 1, 0], lla[t, k + 1, 1], lla[t, k + 1, 2] = lat, lon, h
+            vel[t, k + 1] = v
+            q[t, k + 1] = qk
+    return lla, vel, q
+
+
+def integrate(lla0, vel0, q0, w_ib_b, f_b, dt: float, t0: float = 0.0,
+              ellipsoid: earth.Ellipsoid = earth.WGS84) -> Trajectory:
+    """Full strapdown navigation: attitude, ENU velocity and geodetic position.
+
+    Parameters
+    ----------
+    lla0 : array_like, shape (3,) or (..., 3)
+        Initial ``[lat (rad), lon (rad), h (m)]``.
+    vel0 : array_like, shape (3,) or (..., 3)
+        Initial ENU velocity (m/s).
+    q0 : array_like, shape (4,) or (..., 4)
+        Initial attitude quaternion q_b^n.
+    w_ib_b, f_b : array_like, shape (..., N, 3)
+        Gyro (rad/s) and accelerometer (m/s^2) samples; NaN is not accepted.
+    dt : float
+        Sample interval (s).
+    t0 : float
+        Time of the initial state (s).
+
+    Returns
+    -------
+    Trajectory
+        N + 1 epochs; arrays carry the leading (trial) axes of the inputs.
+    """
+    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1)
+    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1)
+    if w.shape != f.shape:
+        raise ValueError(f"f_b: expected the shape of w_ib_b {w.shape}, got {f.shape}")
+    dt = float(positive(dt, "dt"))
+    lead, n = w.shape[:-2], w.shape[-2]
+    lla0 = as_array(lla0, "lla0", tail=(3,))
+    latitude(lla0[..., 0], "lla0[..., 0] (lat)")
+    if np.any(np.abs(lla0[..., 0]) > np.deg2rad(89.9)):
+        raise ValueError("lla0[..., 0] (lat): the ENU mechanisation is singular at the poles; expected |lat| <= 89.9 deg")
+    vel0 = as_array(vel0, "vel0", tail=(3,))
+    q0 = attitude.quat_normalize(as_array(q0, "q0", tail=(4,)))
+    flat = lambda x, k: np.ascontiguousarray(np.broadcast_to(x, lead + x.shape[-k:]).reshape((-1,) + x.shape[-k:]))
+    lla, vel, q = _nav_kernel(flat(lla0, 1), flat(vel0, 1), flat(q0, 1), flat(w, 2), flat(f, 2), dt,
+                              *ellipsoid.gravity_constants, ellipsoid.omega)
+    time = t0 + dt * np.arange(n + 1)
+    shape = lambda x: x.reshape(lead + x.shape[-2:])
+    return Trajectory(time, shape(lla), shape(vel), shape(q))

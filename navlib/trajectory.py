@@ -1,0 +1,276 @@
+"""Motion: trajectories and the ideal IMU outputs they imply.
+
+A :class:`Trajectory` holds time, geodetic position, ENU velocity and
+attitude on a uniform time grid. Generators build the motions the papers
+need (static, reciprocating rotation of an IMU, vehicles with stops and
+turns), integrating position from velocity with the same trapezoid rule as
+:func:`navlib.strapdown.integrate`. :func:`ideal_imu` inverts the strapdown
+step exactly, so error-free samples integrate back to the trajectory to
+rounding error and every simulated error is due to the sensor model alone.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numba import njit
+
+from . import attitude, earth
+from ._validate import as_array, latitude, positive, time_axis
+from .earth import _radii
+
+__all__ = ["Trajectory", "Segment", "static", "from_profiles", "reciprocating_rotation",
+           "vehicle", "ideal_imu", "smooth_ramp"]
+
+
+@dataclass(frozen=True)
+class Trajectory:
+    """Time history of position, velocity and attitude.
+
+    Attributes
+    ----------
+    time : ndarray, shape (N,)
+        Uniformly spaced sample times (s).
+    lla : ndarray, shape (..., N, 3)
+        ``[lat (rad), lon (rad), h (m)]``.
+    vel_n : ndarray, shape (..., N, 3)
+        ENU velocity (m/s).
+    q_bn : ndarray, shape (..., N, 4)
+        Attitude quaternion q_b^n (scalar first).
+    """
+    time: np.ndarray
+    lla: np.ndarray
+    vel_n: np.ndarray
+    q_bn: np.ndarray
+
+    def __post_init__(self):
+        t = time_axis(self.time)
+        n = t.size
+        for name, tail in (("lla", 3), ("vel_n", 3), ("q_bn", 4)):
+            a = as_array(getattr(self, name), name, tail=(tail,), min_ndim=1, allow_nan=True)
+            if a.shape[-2] != n:
+                raise ValueError(f"{name}: expected {n} epochs on axis -2, got shape {a.shape}")
+
+    @property
+    def dt(self) -> float:
+        """Sample interval (s)."""
+        return float(self.time[1] - self.time[0])
+
+    @property
+    def C_bn(self) -> np.ndarray:
+        """Rotation matrices, shape (..., N, 3, 3)."""
+        return attitude.quat_to_dcm(self.q_bn)
+
+    @property
+    def hpr(self) -> np.ndarray:
+        """``[heading, pitch, roll]`` (rad), shape (..., N, 3)."""
+        return attitude.quat_to_euler(self.q_bn)
+
+    def __len__(self) -> int:
+        return self.time.size
+
+
+@njit(cache=True)
+def _positions(lla0, vel, dt, a, e2):
+    n = vel.shape[0]
+    lla = np.empty((n, 3))
+    lat, lon, h = lla0[0], lla0[1], lla0[2]
+    lla[0, 0], lla[0, 1], lla[0, 2] = lat, lon, h
+    for k in range(n - 1):
+        R_M, R_N = _radii(lat, a, e2)
+        vm = (vel[k] + vel[k + 1]) / 2
+        lat_new = lat + vm[1] / (R_M + h) * dt
+        lon = lon + vm[0] / ((R_N + h) * np.cos(lat)) * dt
+        h = h + vm[2] * dt
+        lat = lat_new
+        lla[k + 1, 0], lla[k + 1, 1], lla[k + 1, 2] = lat, lon, h
+    return lla
+
+
+def _time(duration, dt):
+    duration = float(positive(duration, "duration"))
+    dt = float(positive(dt, "dt"))
+    n = int(round(duration / dt))
+    if n < 1:
+        raise ValueError(f"duration: expected at least one sample interval dt={dt}, got {duration}")
+    return dt * np.arange(n + 1)
+
+
+def _lla(lla):
+    lla = as_array(lla, "lla0", tail=(3,)).reshape(3)
+    latitude(lla[0], "lla0[0] (lat)")
+    return lla
+
+
+def from_profiles(time, lla0, hpr, vel_n, ellipsoid: earth.Ellipsoid = earth.WGS84) -> Trajectory:
+    """Trajectory from attitude and velocity profiles; position is integrated.
+
+    Parameters
+    ----------
+    time : array_like, shape (N,)
+        Uniform sample times (s).
+    lla0 : array_like, shape (3,)
+        Initial ``[lat (rad), lon (rad), h (m)]``.
+    hpr : array_like, shape (N, 3)
+        ``[heading, pitch, roll]`` (rad).
+    vel_n : array_like, shape (N, 3)
+        ENU velocity (m/s).
+    """
+    t = time_axis(time)
+    if not np.allclose(np.diff(t), t[1] - t[0], rtol=1e-9, atol=0):
+        raise ValueError("time: expected a uniform time grid")
+    hpr = as_array(hpr, "hpr", tail=(3,))
+    vel = as_array(vel_n, "vel_n", tail=(3,))
+    if hpr.shape != (t.size, 3) or vel.shape != (t.size, 3):
+        raise ValueError(f"hpr, vel_n: expected shape ({t.size}, 3), got {hpr.shape} and {vel.shape}")
+    lla = _positions(_lla(lla0), np.ascontiguousarray(vel), t[1] - t[0], ellipsoid.a, ellipsoid.e2)
+    return Trajectory(t, lla, vel, attitude.euler_to_quat(hpr))
+
+
+def static(duration: float, dt: float, lla0, hpr) -> Trajectory:
+    """A stationary IMU at ``lla0`` with constant attitude ``hpr`` (rad)."""
+    t = _time(duration, dt)
+    lla = np.broadcast_to(_lla(lla0), (t.size, 3)).copy()
+    q = np.broadcast_to(attitude.euler_to_quat(hpr), (t.size, 4)).copy()
+    return Trajectory(t, lla, np.zeros((t.size, 3)), q)
+
+
+def smooth_ramp(x):
+    """``x - sin(2 pi x) / (2 pi)`` on [0, 1]: 0 to 1 with zero slope at both ends."""
+    x = np.clip(np.asarray(x, dtype=float), 0.0, 1.0)
+    return x - np.sin(2 * np.pi * x) / (2 * np.pi)
+
+
+def reciprocating_rotation(duration: float, dt: float, lla0, hpr0, axis_b, amplitude: float,
+                           period: float, rotation_time: float = 1.0) -> Trajectory:
+    """An IMU rotated back and forth about a body-fixed axis (paper 001 §3.2).
+
+    The rotation angle alternates between 0 and ``amplitude``: each
+    ``period`` starts with a dwell and ends with a smooth rotation of length
+    ``rotation_time``. The attitude is ``C_bn(t) = C_bn0 exp(alpha(t) [u x])``.
+
+    Parameters
+    ----------
+    duration, dt : float  (s)
+    lla0 : array_like, shape (3,)
+    hpr0 : array_like, shape (3,)
+        Initial attitude (rad).
+    axis_b : array_like, shape (3,)
+        Unit rotation axis u in the body frame.
+    amplitude : float
+        Rotation angle (rad), e.g. pi/2.
+    period : float
+        Time between the starts of successive rotations (s).
+    rotation_time : float
+        Duration of each rotation (s), less than ``period``.
+    """
+    t = _time(duration, dt)
+    u = as_array(axis_b, "axis_b", tail=(3,)).reshape(3)
+    if abs(np.linalg.norm(u) - 1) > 1e-9:
+        raise ValueError(f"axis_b: expected a unit vector, got norm {np.linalg.norm(u):.6g}")
+    period = float(positive(period, "period"))
+    rotation_time = float(positive(rotation_time, "rotation_time"))
+    if rotation_time >= period:
+        raise ValueError(f"rotation_time: expected less than period={period}, got {rotation_time}")
+    k = np.floor(t / period)
+    s = smooth_ramp((t - k * period - (period - rotation_time)) / rotation_time)
+    start = np.where(k % 2 == 0, 0.0, 1.0)
+    alpha = amplitude * (start + (1 - 2 * start) * s)
+    q0 = attitude.euler_to_quat(hpr0)
+    q = attitude.quat_mult(q0, attitude.rotvec_to_quat(alpha[:, None] * u))
+    lla = np.broadcast_to(_lla(lla0), (t.size, 3)).copy()
+    return Trajectory(t, lla, np.zeros((t.size, 3)), attitude.quat_normalize(q))
+
+
+@dataclass(frozen=True)
+class Segment:
+    """One leg of a :func:`vehicle` trajectory.
+
+    Over ``duration`` seconds the speed, pitch and roll move smoothly from
+    their values at the end of the previous segment to the values given
+    here (``None`` keeps them), and the heading changes by ``turn``.
+    Units: s, m/s, rad.
+    """
+    duration: float
+    speed: float | None = None
+    turn: float = 0.0
+    pitch: float | None = None
+    roll: float | None = None
+
+
+def vehicle(segments, dt: float, lla0, heading0: float, ellipsoid: earth.Ellipsoid = earth.WGS84) -> Trajectory:
+    """A land vehicle driving along its forward axis through a list of segments.
+
+    The velocity is ``speed * [sin(heading) cos(pitch), cos(heading) cos(pitch), sin(pitch)]``
+    (no side slip). Starts at rest, level, with heading ``heading0`` (rad).
+
+    Parameters
+    ----------
+    segments : sequence of Segment
+    dt : float
+        Sample interval (s).
+    lla0 : array_like, shape (3,)
+    heading0 : float  (rad)
+    """
+    segments = list(segments)
+    if not segments or not all(isinstance(s, Segment) for s in segments):
+        raise ValueError("segments: expected a non-empty sequence of Segment")
+    total = sum(float(positive(s.duration, "segments[].duration")) for s in segments)
+    t = _time(total, dt)
+    speed, heading, pitch, roll = (np.empty(t.size) for _ in range(4))
+    cur = {"speed": 0.0, "heading": float(heading0), "pitch": 0.0, "roll": 0.0}
+    t_start = 0.0
+    for i, seg in enumerate(segments):
+        end = t_start + seg.duration
+        m = (t >= t_start - 1e-9) & ((t < end - 1e-9) if i < len(segments) - 1 else (t <= end + 1e-9))
+        r = smooth_ramp((t[m] - t_start) / seg.duration)
+        targets = {"speed": seg.speed, "heading": cur["heading"] + seg.turn, "pitch": seg.pitch, "roll": seg.roll}
+        for key, arr in (("speed", speed), ("heading", heading), ("pitch", pitch), ("roll", roll)):
+            new = cur[key] if targets[key] is None else float(targets[key])
+            arr[m] = cur[key] + (new - cur[key]) * r
+            cur[key] = new
+        t_start = end
+    if np.any(speed < 0):
+        raise ValueError("segments[].speed: expected non-negative speeds")
+    vel = speed[:, None] * np.stack([np.sin(heading) * np.cos(pitch), np.cos(heading) * np.cos(pitch),
+                                     np.sin(pitch)], -1)
+    hpr = np.stack([attitude.wrap_2pi(heading), pitch, roll], -1)
+    return from_profiles(t, lla0, hpr, vel, ellipsoid)
+
+
+def ideal_imu(traj: Trajectory, ellipsoid: earth.Ellipsoid = earth.WGS84):
+    """Error-free gyro and accelerometer samples along a trajectory.
+
+    Sample k is the mean angular rate and specific force over
+    ``[t_k, t_k+1]``, the exact inverse of :func:`navlib.strapdown.integrate`'s
+    step, including Earth rate, transport rate, Coriolis and normal gravity.
+
+    Parameters
+    ----------
+    traj : Trajectory
+        N epochs (leading axes allowed).
+
+    Returns
+    -------
+    w_ib_b : ndarray, shape (..., N - 1, 3)
+        Angular rate relative to inertial space (rad/s).
+    f_b : ndarray, shape (..., N - 1, 3)
+        Specific force (m/s^2).
+    """
+    if not isinstance(traj, Trajectory):
+        raise ValueError(f"traj: expected a Trajectory, got {type(traj).__name__}")
+    dt = traj.dt
+    lat, h = traj.lla[..., :-1, 0], traj.lla[..., :-1, 2]
+    v0, v1 = traj.vel_n[..., :-1, :], traj.vel_n[..., 1:, :]
+    q0, q1 = traj.q_bn[..., :-1, :], traj.q_bn[..., 1:, :]
+    w_ie = earth.earth_rate_n(lat, ellipsoid=ellipsoid)
+    w_en = earth.transport_rate_n(lat, h, v0, ellipsoid=ellipsoid)
+    w_in = w_ie + w_en
+    dq = attitude.quat_mult(attitude.quat_mult(attitude.quat_conj(q0), attitude.rotvec_to_quat(w_in * dt)), q1)
+    w_ib_b = attitude.quat_to_rotvec(dq) / dt
+    q_mid = attitude.quat_mult(attitude.quat_mult(attitude.rotvec_to_quat(-w_in * dt / 2), q0),
+                               attitude.rotvec_to_quat(w_ib_b * dt / 2))
+    C_mid = attitude.quat_to_dcm(q_mid)
+    a_n = (v1 - v0) / dt - earth.gravity_n(lat, h, ellipsoid=ellipsoid) + np.cross(2 * w_ie + w_en, v0)
+    f_b = np.einsum("...ji,...j->...i", C_mid, a_n)
+    return w_ib_b, f_b
