@@ -142,8 +142,9 @@ def gravity(lat, h=0.0, deg: bool = False, ellipsoid: Ellipsoid = WGS84):
     """
     lat = _lat(lat, deg)
     h = in_range(as_array(h, "h"), "h", -12e3, 100e3, "m")
-    lat, h = np.broadcast_arrays(lat, h)
-    return _gravity(np.atleast_1d(lat), np.atleast_1d(h), *ellipsoid.gravity_constants).reshape(lat.shape)
+    shape = np.broadcast_shapes(lat.shape, h.shape)
+    lat, h = (np.ascontiguousarray(np.broadcast_to(x, shape)).reshape(-1) for x in (lat, h))
+    return _gravity(lat, h, *ellipsoid.gravity_constants).reshape(shape)
 
 
 @njit(cache=True)
@@ -170,7 +171,7 @@ def radii(lat, deg: bool = False, ellipsoid: Ellipsoid = WGS84):
         ``R_N = a / sqrt(1 - e^2 sin^2 lat)``, ``R_M = R_N (1 - e^2) / (1 - e^2 sin^2 lat)``.
     """
     lat = _lat(lat, deg)
-    R_M, R_N = _radii(np.atleast_1d(lat), ellipsoid.a, ellipsoid.e2)
+    R_M, R_N = _radii(np.ascontiguousarray(lat).reshape(-1), ellipsoid.a, ellipsoid.e2)
     return R_M.reshape(lat.shape), R_N.reshape(lat.shape)
 
 
@@ -198,6 +199,7 @@ def transport_rate_n(lat, h, vel_n, ellipsoid: Ellipsoid = WGS84):
     ndarray, shape (..., 3)
     """
     lat = _lat(lat, False)
+    h = in_range(as_array(h, "h"), "h", -12e3, 1e6, "m")
     vel_n = as_array(vel_n, "vel_n", tail=(3,))
     R_M, R_N = radii(lat, ellipsoid=ellipsoid)
     vE, vN = vel_n[..., 0], vel_n[..., 1]

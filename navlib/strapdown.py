@@ -30,7 +30,7 @@ from .earth import _gravity, _radii
 from .attitude import quat_mult_1, quat_normalize_1, quat_to_dcm_1, rotvec_to_quat_1
 from .trajectory import Trajectory
 
-__all__ = ["integrate", "integrate_attitude"]
+__all__ = ["integrate", "integrate_attitude", "error_model", "error_input"]
 
 
 @njit(cache=True)
@@ -71,7 +71,7 @@ def integrate_attitude(q0, w_ib_b, dt: float, w_in_n=None):
     """
     w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1)
     dt = float(positive(dt, "dt"))
-    q0 = attitude.quat_normalize(as_array(q0, "q0", tail=(4,)))
+    q0 = attitude._as_quat(q0, "q0")
     lead = w.shape[:-2]
     q0 = np.broadcast_to(q0, lead + (4,)).reshape(-1, 4)
     w_in = np.zeros(3) if w_in_n is None else as_array(w_in_n, "w_in_n", tail=(3,)).reshape(3)
@@ -80,7 +80,7 @@ def integrate_attitude(q0, w_ib_b, dt: float, w_in_n=None):
 
 
 @njit(cache=True)
-def _nav_kernel(lla0, vel0, q0, w, f, dt, a, flat, e2, m, gamma_e, k_som, omega):
+def _nav_kernel(lla0, vel0, q0, w, f, dt, a, flat, e2, m, gamma_e, k_som, omega, hold_height):
     T, N = w.shape[0], w.shape[1]
     lla = np.empty((T, N + 1, 3))
     vel = np.empty((T, N + 1, 3))
@@ -103,6 +103,8 @@ def _nav_kernel(lla0, vel0, q0, w, f, dt, a, flat, e2, m, gamma_e, k_som, omega)
             cor = np.cross(2 * w_ie + w_en, v)
             v_new = v + (f_n - cor) * dt
             v_new[2] -= g * dt
+            if hold_height:
+                v_new[2] = 0.0
             qk = quat_normalize_1(quat_mult_1(quat_mult_1(rotvec_to_quat_1(-w_in * dt), qk), dq))
             vm = (v + v_new) / 2
             lat_new = lat + vm[1] / (R_M + h) * dt
@@ -116,7 +118,7 @@ def _nav_kernel(lla0, vel0, q0, w, f, dt, a, flat, e2, m, gamma_e, k_som, omega)
     return lla, vel, q
 
 
-def integrate(lla0, vel0, q0, w_ib_b, f_b, dt: float, t0: float = 0.0,
+def integrate(lla0, vel0, q0, w_ib_b, f_b, dt: float, t0: float = 0.0, hold_height: bool = False,
               ellipsoid: earth.Ellipsoid = earth.WGS84) -> Trajectory:
     """Full strapdown navigation: attitude, ENU velocity and geodetic position.
 
@@ -134,6 +136,10 @@ def integrate(lla0, vel0, q0, w_ib_b, f_b, dt: float, t0: float = 0.0,
         Sample interval (s).
     t0 : float
         Time of the initial state (s).
+    hold_height : bool
+        Hold the vertical channel (vertical velocity 0, height fixed at its
+        initial value), as an INS aided by a known altitude does. The free
+        vertical channel is unstable: height errors grow like cosh(sqrt(2 g/R) t).
 
     Returns
     -------
@@ -142,8 +148,10 @@ def integrate(lla0, vel0, q0, w_ib_b, f_b, dt: float, t0: float = 0.0,
     """
     w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1)
     f = as_array(f_b, "f_b", tail=(3,), min_ndim=1)
-    if w.shape != f.shape:
-        raise ValueError(f"f_b: expected the shape of w_ib_b {w.shape}, got {f.shape}")
+    try:
+        w, f = np.broadcast_arrays(w, f)
+    except ValueError:
+        raise ValueError(f"f_b: expected a shape that broadcasts with w_ib_b {w.shape}, got {f.shape}") from None
     dt = float(positive(dt, "dt"))
     lead, n = w.shape[:-2], w.shape[-2]
     lla0 = as_array(lla0, "lla0", tail=(3,))
@@ -151,10 +159,87 @@ def integrate(lla0, vel0, q0, w_ib_b, f_b, dt: float, t0: float = 0.0,
     if np.any(np.abs(lla0[..., 0]) > np.deg2rad(89.9)):
         raise ValueError("lla0[..., 0] (lat): the ENU mechanisation is singular at the poles; expected |lat| <= 89.9 deg")
     vel0 = as_array(vel0, "vel0", tail=(3,))
-    q0 = attitude.quat_normalize(as_array(q0, "q0", tail=(4,)))
+    q0 = attitude._as_quat(q0, "q0")
     flat = lambda x, k: np.ascontiguousarray(np.broadcast_to(x, lead + x.shape[-k:]).reshape((-1,) + x.shape[-k:]))
     lla, vel, q = _nav_kernel(flat(lla0, 1), flat(vel0, 1), flat(q0, 1), flat(w, 2), flat(f, 2), dt,
-                              *ellipsoid.gravity_constants, ellipsoid.omega)
+                              *ellipsoid.gravity_constants, ellipsoid.omega, bool(hold_height))
     time = t0 + dt * np.arange(n + 1)
     shape = lambda x: x.reshape(lead + x.shape[-2:])
     return Trajectory(time, shape(lla), shape(vel), shape(q))
+
+
+def error_model(lat, h, vel_n, f_n, ellipsoid: earth.Ellipsoid = earth.WGS84):
+    """Linear error dynamics of the ENU mechanisation (phi-angle model).
+
+    State ``dx = [phi (3), dv_n (3), dlat, dlon, dh]`` with the attitude
+    error defined by ``C_bn_hat = (I - [phi x]) C_bn``, velocity error
+    ``dv_n = v_hat - v`` (m/s) and position error in rad, rad, m. Sensor errors
+    enter as ``d(phi)/dt += -C_bn dw_b`` and ``d(dv_n)/dt += C_bn df_b`` (see
+    :func:`error_input`). Follows the standard local-level model (Titterton &
+    Weston 2004, ch. 12; Qin 2006, ch. 7) with the vertical gravity gradient
+    ``2 g / R``; the latitude derivative of gravity (about 5e-6 m/s^2 per km)
+    is neglected.
+
+    Parameters
+    ----------
+    lat, h : float
+        Latitude (rad) and height (m).
+    vel_n : array_like, shape (3,)
+        ENU velocity (m/s).
+    f_n : array_like, shape (3,)
+        Specific force in ENU (m/s^2).
+
+    Returns
+    -------
+    F : ndarray, shape (9, 9)
+    """
+    lat = float(latitude(lat))
+    h = float(as_array(h, "h"))
+    v = as_array(vel_n, "vel_n", tail=(3,)).reshape(3)
+    f = as_array(f_n, "f_n", tail=(3,)).reshape(3)
+    R_M, R_N = earth.radii(lat, ellipsoid=ellipsoid)
+    RMh, RNh = float(R_M) + h, float(R_N) + h
+    sl, cl, tl = np.sin(lat), np.cos(lat), np.tan(lat)
+    W = ellipsoid.omega
+    vE, vN = v[0], v[1]
+    w_ie = np.array([0.0, W * cl, W * sl])
+    w_en = np.array([-vN / RMh, vE / RNh, vE * tl / RNh])
+    g = float(earth.gravity(lat, h, ellipsoid=ellipsoid))
+    sk = attitude.skew
+    Maa = -sk(w_ie + w_en)
+    Mav = np.array([[0, -1 / RMh, 0], [1 / RNh, 0, 0], [tl / RNh, 0, 0]])
+    M1 = np.array([[0, 0, 0], [-W * sl, 0, 0], [W * cl, 0, 0]])
+    M2 = np.array([[0, 0, vN / RMh ** 2], [0, 0, -vE / RNh ** 2],
+                   [vE / (cl * cl * RNh), 0, -vE * tl / RNh ** 2]])
+    Map = M1 + M2
+    Mva = sk(f)
+    Mvv = sk(v) @ Mav - sk(2 * w_ie + w_en)
+    Mvp = sk(v) @ (2 * M1 + M2)
+    Mvp[2, 2] += 2 * g / RNh
+    Mpv = np.array([[0, 1 / RMh, 0], [1 / (cl * RNh), 0, 0], [0, 0, 1]])
+    Mpp = np.array([[0, 0, -vN / RMh ** 2], [vE * tl / (cl * RNh), 0, -vE / (cl * RNh ** 2)], [0, 0, 0]])
+    F = np.zeros((9, 9))
+    F[0:3, 0:3], F[0:3, 3:6], F[0:3, 6:9] = Maa, Mav, Map
+    F[3:6, 0:3], F[3:6, 3:6], F[3:6, 6:9] = Mva, Mvv, Mvp
+    F[6:9, 3:6], F[6:9, 6:9] = Mpv, Mpp
+    return F
+
+
+def error_input(C_bn):
+    """Input matrix of gyro and accelerometer errors for :func:`error_model`.
+
+    ``d(dx)/dt = F dx + G [dw_b; df_b]`` with ``G = [[-C_bn, 0], [0, C_bn], [0, 0]]``.
+
+    Parameters
+    ----------
+    C_bn : array_like, shape (3, 3)
+
+    Returns
+    -------
+    G : ndarray, shape (9, 6)
+    """
+    C = as_array(C_bn, "C_bn", tail=(3, 3)).reshape(3, 3)
+    G = np.zeros((9, 6))
+    G[0:3, 0:3] = -C
+    G[3:6, 3:6] = C
+    return G
