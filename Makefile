@@ -1,0 +1,62 @@
+# navlib: reproducible low-cost inertial navigation notebooks.
+# `make reproduce` and `make test` each do all set-up from a fresh clone.
+
+PYTHON ?= python3
+VENV   := .venv
+PY     := $(VENV)/bin/python
+PIP    := $(PY) -m pip --disable-pip-version-check
+STAMP  := $(VENV)/.installed
+BENCH_STAMP := $(VENV)/.bench-installed
+
+# Headless, deterministic runs.
+export PYTHONHASHSEED := 0
+reproduce test: export MPLBACKEND := Agg
+
+PYTEST_FLAGS ?= -q -ra --durations=10 --nbmake-timeout=1800
+
+.DEFAULT_GOAL := help
+.PHONY: help venv reproduce test lab bench strip clean
+
+help:
+	@echo "make reproduce  execute every notebook, write build/ (index.html, HTML, figures, results)"
+	@echo "make test       unit/property tests + every notebook executed by nbmake"
+	@echo "make lab        JupyterLab on notebooks/"
+	@echo "make bench      install bench-only peers (requirements-bench.txt), run bench/run.py"
+	@echo "make strip      strip outputs from notebooks/*.ipynb before committing"
+	@echo "make venv       create .venv from environment.txt and install navlib (done by all targets)"
+	@echo "make clean      remove build/"
+
+venv: $(STAMP)
+
+# Re-installs only when the pins or the package metadata change.
+$(STAMP): environment.txt pyproject.toml
+	test -x $(PY) || $(PYTHON) -m venv $(VENV)
+	$(PIP) install -r environment.txt
+	$(PIP) install --no-deps -e .
+	touch $@
+
+reproduce: $(STAMP)
+	$(PY) tools/reproduce.py
+
+# pytest exits 5 when it collected no tests: that is a failure here too.
+test: $(STAMP)
+	@rc=0; $(PY) -m pytest tests notebooks --nbmake $(PYTEST_FLAGS) || rc=$$?; \
+	if [ $$rc -eq 5 ]; then echo "make test: pytest collected no tests" >&2; fi; \
+	exit $$rc
+
+lab: $(STAMP)
+	$(PY) -m jupyter lab notebooks/
+
+# Bench-only peers go into the same .venv; -c keeps the project's pins intact.
+$(BENCH_STAMP): requirements-bench.txt environment.txt $(STAMP)
+	$(PIP) install -r requirements-bench.txt -c environment.txt
+	touch $@
+
+bench: $(BENCH_STAMP)
+	$(PY) bench/run.py
+
+strip: $(STAMP)
+	$(PY) tools/strip_notebooks.py
+
+clean:
+	rm -rf build/

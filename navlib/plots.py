@@ -1,0 +1,58 @@
+"""Plot helpers shared by the notebooks (matplotlib; axes labelled with units)."""
+from __future__ import annotations
+
+import numpy as np
+
+from . import attitude, units
+
+__all__ = ["body_axes", "allan", "heading_deg"]
+
+_AXIS_STYLE = (("x right", "tab:red"), ("y forward", "tab:green"), ("z up", "tab:blue"))
+
+
+def body_axes(ax, C_bn, title: str = "") -> None:
+    """Draw the ENU frame (grey) and the body axes of ``C_bn`` on a 3-D axes.
+
+    Parameters
+    ----------
+    ax : mpl_toolkits.mplot3d.Axes3D
+    C_bn : array_like, shape (3, 3)
+        Body-to-ENU rotation; its columns are the body axes in ENU.
+    """
+    C = np.asarray(C_bn, dtype=float)
+    for v, name in zip(np.eye(3), "ENU"):
+        ax.quiver(0, 0, 0, *v, color="0.6", arrow_length_ratio=0.08, linewidth=1)
+        ax.text(*(1.12 * v), name, color="0.4")
+    for i, (name, color) in enumerate(_AXIS_STYLE):
+        ax.quiver(0, 0, 0, *C[:, i], color=color, arrow_length_ratio=0.1, linewidth=2)
+        ax.text(*(1.15 * C[:, i]), name, color=color)
+    ax.set(xlim=(-1, 1), ylim=(-1, 1), zlim=(-1, 1), xlabel="East", ylabel="North", zlabel="Up")
+    ax.set_box_aspect((1, 1, 1))
+    if title:
+        ax.set_title(title)
+
+
+def allan(ax, taus, adev_rad_s, theory=None, label: str = "", color=None) -> None:
+    """Log-log Allan deviation of a gyro in deg/h against averaging time in s.
+
+    Parameters
+    ----------
+    taus : array_like, shape (M,)  (s)
+    adev_rad_s : array_like, shape (M,) or (M, k)
+        Allan deviation (rad/s); several columns are drawn thin.
+    theory : array_like, shape (M,), optional
+        Model curve (rad/s), drawn dashed.
+    """
+    a = units.to_deg_per_h(np.asarray(adev_rad_s))
+    lines = ax.loglog(taus, a, color=color, linewidth=1 if a.ndim > 1 else 1.5, alpha=0.8)
+    lines[0].set_label(label)
+    if theory is not None:
+        ax.loglog(taus, units.to_deg_per_h(theory), "--", color=lines[0].get_color(), linewidth=1.5,
+                  label=f"{label} model" if label else "model")
+    ax.set(xlabel="averaging time τ (s)", ylabel="Allan deviation (°/h)")
+    ax.grid(True, which="both", alpha=0.3)
+
+
+def heading_deg(hpr):
+    """Heading in degrees in [0, 360) from an ``hpr`` array (..., 3)."""
+    return units.to_deg(attitude.wrap_2pi(np.asarray(hpr)[..., 0]))

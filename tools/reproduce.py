@@ -1,0 +1,184 @@
+#!/usr/bin/env python3
+"""Execute every numbered notebook and build the reproduction report in build/.
+
+For each ``notebooks/NN_*.ipynb`` in name order (kernel ``python3``, working
+directory ``notebooks/``) this writes
+
+* ``build/<stem>.ipynb`` and ``build/<stem>.html`` - the executed notebook,
+* ``build/<stem>.kernel.log`` - the kernel process's own stderr,
+
+and reads ``build/<stem>/results.json`` and ``build/<stem>/figures/*.png``,
+which the notebook itself writes through ``navlib.repro``. Then it writes
+``build/index.html`` (paper-vs-reproduction tables and figure thumbnails) and
+``build/summary.json``, and prints one line per notebook.
+
+A notebook that raises is reported and the run goes on with the next one; the
+exit status is non-zero if any notebook failed. ``--only`` runs a subset, and
+the report then covers that subset only. Needs no network.
+
+Usage: python tools/reproduce.py [--only PATTERN] [--root DIR] [--timeout S]
+"""
+from __future__ import annotations
+
+import argparse
+import fnmatch
+import html
+import json
+import os
+import shutil
+import sys
+import time
+from pathlib import Path
+
+import nbformat
+from nbclient import NotebookClient
+from nbconvert import HTMLExporter
+
+REPO = Path(__file__).resolve().parents[1]
+
+
+def error_line(exc: BaseException) -> str:
+    """The one line that says what went wrong (the traceback's last line)."""
+    if getattr(exc, "ename", None):  # nbclient.exceptions.CellExecutionError
+        return f"{exc.ename}: {exc.evalue}"
+    lines = [ln.strip() for ln in str(exc).splitlines() if ln.strip()]
+    return lines[-1] if lines else type(exc).__name__
+
+
+def run_notebook(path: Path, build: Path, timeout: int) -> dict:
+    """Execute one notebook, write its .ipynb/.html, return its summary entry."""
+    stem = path.stem
+    shutil.rmtree(build / stem, ignore_errors=True)  # no stale results or figures
+    nb = nbformat.read(path, as_version=4)
+    client = NotebookClient(nb, kernel_name="python3", timeout=timeout,
+                            resources={"metadata": {"path": str(path.parent)}})
+    error = None
+    start = time.perf_counter()
+    with open(build / f"{stem}.kernel.log", "w") as log:
+        try:
+            client.execute(stderr=log)
+        except Exception as exc:  # report it and go on with the next notebook
+            error = error_line(exc)
+    seconds = time.perf_counter() - start
+    nbformat.write(nb, build / f"{stem}.ipynb")
+    body, _ = HTMLExporter().from_notebook_node(nb)
+    (build / f"{stem}.html").write_text(body, encoding="utf-8")
+
+    results = build / stem / "results.json"
+    checks = json.loads(results.read_text())["checks"] if results.is_file() else []
+    passed = sum(bool(c.get("passed")) for c in checks)
+    figures = sorted(p.relative_to(build).as_posix() for p in (build / stem / "figures").glob("*.png"))
+    return {"notebook": stem, "ok": error is None and passed == len(checks), "error": error,
+            "seconds": round(seconds, 1), "claims_passed": passed, "claims_total": len(checks),
+            "checks": checks, "figures": figures}
+
+
+def fmt(x, unit: str = "") -> str:
+    if x is None:
+        return ""
+    s = f"{x:.6g}" if isinstance(x, (int, float)) else str(x)
+    return f"{s} {unit}".strip()
+
+
+def claims_table(checks: list[dict]) -> str:
+    if not checks:
+        return "<p><em>No claims recorded.</em></p>"
+    rows = []
+    for c in checks:
+        unit = c.get("unit") or ""
+        if c.get("expected") is not None:
+            target, tol = fmt(c["expected"], unit), f"± {fmt(c.get('tol'))}"
+        else:
+            lo, hi = c.get("lower"), c.get("upper")
+            target = f"[{fmt(lo) if lo is not None else '−∞'}, {fmt(hi) if hi is not None else '∞'}] {unit}"
+            tol = "range"
+        paper = c.get("paper_value")
+        if paper is None:
+            paper = "= target" if c.get("expected") is not None else ""
+        ok = bool(c.get("passed"))
+        cells = [c["name"], paper, target, fmt(c.get("value"), unit), tol, c.get("source", ""), c.get("note", "")]
+        tds = "".join(f"<td>{html.escape(str(v))}</td>" for v in cells)
+        rows.append(f'<tr>{tds}<td class="{"pass" if ok else "fail"}">{"pass" if ok else "FAIL"}</td></tr>')
+    head = "".join(f"<th>{h}</th>" for h in
+                   ("claim", "paper value", "target", "reproduced", "tolerance", "source", "note", "result"))
+    return f"<table><tr>{head}</tr>\n" + "\n".join(rows) + "\n</table>"
+
+
+def write_index(build: Path, entries: list[dict]) -> None:
+    style = ("body{font-family:sans-serif;max-width:80em;margin:2em auto;padding:0 1em}"
+             "table{border-collapse:collapse;font-size:90%}td,th{border:1px solid #ccc;padding:.2em .5em}"
+             "th{background:#f4f4f4}.pass{background:#d4f4d4}.fail{background:#f8d0d0;font-weight:bold}"
+             ".err{color:#a00}img{margin:4px;border:1px solid #ddd}")
+    parts = [f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>navlib reproduction</title>"
+             f"<style>{style}</style></head><body><h1>navlib: paper claims reproduced</h1><ul>"]
+    for e in entries:
+        status = "ok" if e["ok"] else "FAILED"
+        parts.append(f"<li><a href='#{e['notebook']}'>{e['notebook']}</a>: {e['claims_passed']}/"
+                     f"{e['claims_total']} claims passed, {status}</li>")
+    parts.append("</ul>")
+    for e in entries:
+        nb = html.escape(e["notebook"])
+        parts.append(f"<h2 id='{nb}'><a href='{nb}.html'>{nb}</a></h2>"
+                     f"<p>run time {e['seconds']:.1f} s; {e['claims_passed']}/{e['claims_total']} claims passed"
+                     f" (<a href='{nb}.ipynb'>executed notebook</a>)</p>")
+        if e["error"]:
+            parts.append(f"<p class='err'>Notebook failed: {html.escape(e['error'])}</p>")
+        parts.append(claims_table(e["checks"]))
+        parts.append("<p>" + "".join(f"<a href='{f}'><img src='{f}' width='240' alt='{html.escape(f)}'></a>"
+                                     for f in e["figures"]) + "</p>")
+    parts.append("</body></html>\n")
+    (build / "index.html").write_text("\n".join(parts), encoding="utf-8")
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--only", metavar="PATTERN", help="run only notebooks whose name matches (substring or glob)")
+    ap.add_argument("--root", type=Path, default=REPO, help="repository root holding notebooks/ (default: this repo)")
+    ap.add_argument("--timeout", type=int, default=1800, help="per-cell timeout in seconds (default 1800)")
+    args = ap.parse_args(argv)
+
+    root = args.root.resolve()
+    notebooks = sorted((root / "notebooks").glob("[0-9][0-9]_*.ipynb"))
+    if args.only:
+        notebooks = [p for p in notebooks if fnmatch.fnmatch(p.stem, f"*{args.only}*")]
+    if not notebooks:
+        print(f"no notebooks matched in {root / 'notebooks'}", file=sys.stderr)
+        return 1
+    build = root / "build"
+    build.mkdir(exist_ok=True)
+    # Kernels inherit this environment: navlib.repro writes to <root>/build, and
+    # figures render with the (headless) inline backend so the HTML shows them.
+    os.environ["NAVLIB_ROOT"] = str(root)
+    os.environ["MPLBACKEND"] = "module://matplotlib_inline.backend_inline"
+
+    entries = []
+    for k, path in enumerate(notebooks, 1):
+        print(f"[{k}/{len(notebooks)}] {path.stem} ...", flush=True)
+        e = run_notebook(path, build, args.timeout)
+        entries.append(e)
+        tail = "" if e["error"] is None else f"\n    ERROR: {e['error']}"
+        print(f"    {'done' if e['ok'] else 'FAILED'} in {e['seconds']:.1f} s{tail}", flush=True)
+
+    write_index(build, entries)
+    summary = {e["notebook"]: {k: e[k] for k in ("claims_passed", "claims_total", "seconds", "ok", "error")}
+               for e in entries}
+    (build / "summary.json").write_text(json.dumps(summary, indent=1) + "\n")
+
+    width = max(len(e["notebook"]) for e in entries) + 3
+    print()
+    for e in entries:
+        mark = "" if e["ok"] else "   FAILED"
+        claims = f"{e['claims_passed']}/{e['claims_total']}"
+        print(f"{e['notebook']:<{width}}{claims:>7} claims passed{e['seconds']:>9.1f} s{mark}")
+    n_ok = sum(e["ok"] for e in entries)
+    passed = sum(e["claims_passed"] for e in entries)
+    total = sum(e["claims_total"] for e in entries)
+    seconds = sum(e["seconds"] for e in entries)
+    print(f"{'total':<{width}}{f'{passed}/{total}':>7} claims passed{seconds:>9.1f} s"
+          f"   ({n_ok}/{len(entries)} notebooks ok)")
+    print(f"report: {build / 'index.html'}")
+    return 0 if n_ok == len(entries) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
