@@ -27,7 +27,7 @@ from numba import njit
 from . import attitude, earth
 from ._validate import as_array, latitude, positive
 from .earth import _gravity, _radii
-from .attitude import quat_mult_1, quat_normalize_1, quat_to_dcm_1, rotvec_to_quat_1
+from .attitude import quat_mult_1, quat_mult_t, quat_normalize_1, quat_to_dcm_1, rotvec_to_quat_1, rotvec_to_quat_t
 from .trajectory import Trajectory
 
 __all__ = ["integrate", "integrate_attitude", "error_model", "error_input"]
@@ -37,13 +37,18 @@ __all__ = ["integrate", "integrate_attitude", "error_model", "error_input"]
 def _attitude_kernel(q0, w, dt, w_in_n):
     T, N = w.shape[0], w.shape[1]
     q = np.empty((T, N + 1, 4))
-    q_nav = rotvec_to_quat_1(-w_in_n * dt)
+    n0, n1, n2, n3 = rotvec_to_quat_t(-w_in_n[0] * dt, -w_in_n[1] * dt, -w_in_n[2] * dt)
     for t in range(T):
-        qk = q0[t].copy()
-        q[t, 0] = qk
+        a0, a1, a2, a3 = q0[t, 0], q0[t, 1], q0[t, 2], q0[t, 3]
+        q[t, 0, 0], q[t, 0, 1], q[t, 0, 2], q[t, 0, 3] = a0, a1, a2, a3
         for k in range(N):
-            qk = quat_normalize_1(quat_mult_1(quat_mult_1(q_nav, qk), rotvec_to_quat_1(w[t, k] * dt)))
-            q[t, k + 1] = qk
+            # q_k+1 = q(-w_in dt) (x) q_k (x) q(w_k dt), then renormalise
+            b0, b1, b2, b3 = rotvec_to_quat_t(w[t, k, 0] * dt, w[t, k, 1] * dt, w[t, k, 2] * dt)
+            a0, a1, a2, a3 = quat_mult_t(n0, n1, n2, n3, a0, a1, a2, a3)
+            a0, a1, a2, a3 = quat_mult_t(a0, a1, a2, a3, b0, b1, b2, b3)
+            s = 1.0 / np.sqrt(a0 * a0 + a1 * a1 + a2 * a2 + a3 * a3)
+            a0, a1, a2, a3 = a0 * s, a1 * s, a2 * s, a3 * s
+            q[t, k + 1, 0], q[t, k + 1, 1], q[t, k + 1, 2], q[t, k + 1, 3] = a0, a1, a2, a3
     return q
 
 

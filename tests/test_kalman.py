@@ -223,3 +223,10 @@ def test_closed_loop_nees_consistent():
     # Power check: an overconfident filter is detected.
     bad = _run_cv_filter(seed=2024, n_runs=50, n_steps=K, dt=0.1, q=0.5, r=1.0, r_filter=0.1)
     assert bad.mean() > n + 8 / np.sqrt(50)
+
+
+@pytest.mark.xfail(strict=True, raises=IndexError,
+                   reason="navlib bug: discretize indexes F.shape[0] before validating; a 0-d F gives IndexError")
+def test_discretize_scalar_F_is_value_error():
+    with pytest.raises(ValueError, match="F"):
+        kalman.discretize(1.0, [[1.0]], [[1.0]], 0.1)

@@ -533,3 +533,30 @@ def test_heading_wrap_noise_and_validity():
         sensors.simulate_heading(truth, np.random.default_rng(13), sigma, valid=mask[:-1])
     with pytest.raises(ValueError, match="^sigma:"):
         sensors.simulate_heading(truth, np.random.default_rng(13), -sigma)
+
+
+# --------------------------------------------------------------------------
+# Known navlib convention violations (bad input must raise ValueError naming
+# the argument). strict=True: these start failing once navlib is fixed, as a
+# reminder to drop the marker.
+# --------------------------------------------------------------------------
+
+@pytest.mark.xfail(strict=True, raises=IndexError,
+                   reason="navlib bug: simulate_gnss_position does not validate `valid`; IndexError")
+def test_gnss_position_bad_valid_shape():
+    lla = np.zeros((10, 3))
+    with pytest.raises(ValueError, match="^valid:"):
+        sensors.simulate_gnss_position(lla, np.random.default_rng(0), 1.0, valid=np.ones(9, dtype=bool))
+
+
+@pytest.mark.xfail(strict=True, raises=AttributeError,
+                   reason="navlib bug: simulate_magnetometer/simulate_barometer do not validate `rng`")
+@pytest.mark.parametrize("which", ["magnetometer", "barometer"])
+def test_mag_baro_reject_non_generator_rng(which):
+    with pytest.raises(ValueError, match="^rng:"):
+        if which == "magnetometer":
+            sensors.simulate_magnetometer(np.array([[1.0, 0, 0, 0]]), B_N, sensors.MagnetometerModel(),
+                                          np.random.RandomState(0))
+        else:
+            sensors.simulate_barometer(np.zeros(3), [0.0, 1.0, 2.0], sensors.BarometerModel(),
+                                       np.random.RandomState(0))

@@ -1,0 +1,80 @@
+"""navlib benchmarks: throughput of the kernels, peers side by side in one run.
+
+Each case module in this folder defines ``CASES``, a list of functions that
+return :class:`Result` rows (one per implementation). ``make bench`` runs them
+all, prints a table with the ratio of every implementation to navlib's and to
+the goal of DESIGN.md §6 where there is one, and writes ``build/bench.json``.
+
+    .venv/bin/python bench/run.py [--only SUBSTRING] [--quick]
+"""
+from __future__ import annotations
+
+import argparse
+import importlib
+import json
+import os
+import platform
+import sys
+import time
+from dataclasses import asdict, dataclass
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+CASE_MODULES = ["bench.cases_core"]
+
+
+@dataclass
+class Result:
+    case: str
+    implementation: str
+    throughput: float           # work units per second
+    unit: str                   # e.g. "samples/s"
+    seconds: float              # best wall time of one run
+    goal: float | None = None   # DESIGN.md §6 goal in the same unit (navlib rows)
+    note: str = ""
+
+
+def best_time(fn, repeat: int = 3) -> float:
+    """Best wall time of ``repeat`` calls of ``fn`` (after one warm-up call)."""
+    fn()
+    best = float("inf")
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        fn()
+        best = min(best, time.perf_counter() - t0)
+    return best
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--only", default="", help="run cases whose name contains this")
+    ap.add_argument("--quick", action="store_true", help="smaller problem sizes (smoke test)")
+    args = ap.parse_args()
+    os.environ.setdefault("NAVLIB_BENCH_QUICK", "1" if args.quick else "0")
+    results: list[Result] = []
+    for mod_name in CASE_MODULES:
+        mod = importlib.import_module(mod_name)
+        for case in mod.CASES:
+            if args.only and args.only not in case.__name__:
+                continue
+            print(f"running {case.__name__} ...", flush=True)
+            results.extend(case(quick=args.quick))
+    print()
+    print(f"{'case':34s} {'implementation':28s} {'throughput':>14s} {'unit':12s} {'vs navlib':>9s} {'vs goal':>8s}")
+    for r in results:
+        ref = next((x for x in results if x.case == r.case and x.implementation.startswith("navlib")), None)
+        ratio = f"{r.throughput / ref.throughput:9.3g}" if ref else " " * 9
+        goal = f"{r.throughput / r.goal:8.2f}" if r.goal else " " * 8
+        print(f"{r.case:34s} {r.implementation:28s} {r.throughput:14.4g} {r.unit:12s} {ratio} {goal}")
+    out = ROOT / "build" / "bench.json"
+    out.parent.mkdir(exist_ok=True)
+    out.write_text(json.dumps({"machine": {"python": platform.python_version(), "cpus": os.cpu_count(),
+                                           "platform": platform.platform()},
+                               "quick": args.quick, "results": [asdict(r) for r in results]}, indent=1) + "\n")
+    print(f"\nwrote {out.relative_to(ROOT)}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

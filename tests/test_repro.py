@@ -1,0 +1,177 @@
+"""Tests of navlib.repro: claim checks, results.json and deterministic figures."""
+import json
+import math
+import struct
+import zlib
+
+import numpy as np
+import pytest
+
+matplotlib = pytest.importorskip("matplotlib")
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+from navlib import repro  # noqa: E402
+
+NB = "zz_test"
+
+
+@pytest.fixture
+def fake_root(tmp_path, monkeypatch):
+    """A throw-away repository root; repro's module state and rcParams restored afterwards."""
+    (tmp_path / "pyproject.toml").write_text("[project]\nname = 'x'\n")
+    (tmp_path / "navlib").mkdir()
+    monkeypatch.setenv("NAVLIB_ROOT", str(tmp_path))
+    # Fresh module state, so no other test's notebook leaks in or out.
+    monkeypatch.setattr(repro, "_state", repro._State())
+    with matplotlib.rc_context():
+        yield tmp_path
+    plt.close("all")
+
+
+def _results(root):
+    return json.loads((root / "build" / NB / "results.json").read_text())
+
+
+def test_root_from_env(fake_root):
+    assert repro.root() == fake_root.resolve()
+    assert repro.build_dir(NB) == fake_root.resolve() / "build" / NB
+    assert (fake_root / "build" / NB).is_dir()
+
+
+def test_setup_writes_empty_results(fake_root):
+    repro.setup(NB)
+    data = _results(fake_root)
+    assert data == {"notebook": NB, "checks": []}
+    with pytest.raises(ValueError, match="^notebook:"):
+        repro.setup("a/b")
+
+
+def test_passing_check_recorded(fake_root):
+    repro.setup(NB)
+    c = repro.check("P999-TEST/a", 1.04, 1.0, 0.05, "test source", paper_value="1.0 (printed)")
+    assert isinstance(c, repro.Check) and c.passed
+    rows = _results(fake_root)["checks"]
+    assert len(rows) == 1
+    row = rows[0]
+    for key in ("name", "value", "expected", "tol", "passed", "source", "paper_value"):
+        assert key in row, key
+    assert row["name"] == "P999-TEST/a"
+    assert row["value"] == pytest.approx(1.04)
+    assert row["expected"] == 1.0 and row["tol"] == 0.05
+    assert row["passed"] is True
+    assert row["source"] == "test source"
+    assert row["paper_value"] == "1.0 (printed)"
+    assert [k.name for k in repro.results()] == ["P999-TEST/a"]
+
+
+def test_failing_check_raises_and_is_recorded(fake_root):
+    repro.setup(NB)
+    repro.check("ok", 2.0, 2.0, 0.0, "src")  # |v - e| <= tol with tol 0 passes
+    with pytest.raises(repro.ClaimCheckFailed, match="bad"):
+        repro.check("bad", 1.2, 1.0, 0.1, "src")
+    assert issubclass(repro.ClaimCheckFailed, AssertionError)
+    rows = {r["name"]: r for r in _results(fake_root)["checks"]}
+    assert rows["ok"]["passed"] is True
+    assert rows["bad"]["passed"] is False and rows["bad"]["value"] == pytest.approx(1.2)
+    assert rows["bad"]["paper_value"] is None
+    # Re-checking a name replaces its row.
+    repro.check("bad", 1.05, 1.0, 0.1, "src")
+    rows = [r for r in _results(fake_root)["checks"] if r["name"] == "bad"]
+    assert len(rows) == 1 and rows[0]["passed"] is True
+
+
+def test_relative_tolerance(fake_root):
+    repro.setup(NB)
+    c = repro.check("rel-pass", 104.0, 100.0, 0.05, "src", rel=True)
+    assert c.passed and c.tol == pytest.approx(5.0)  # recorded as the absolute tolerance
+    with pytest.raises(repro.ClaimCheckFailed):
+        repro.check("rel-fail", 106.0, 100.0, 0.05, "src", rel=True)
+    with pytest.raises(repro.ClaimCheckFailed):
+        repro.check("abs-fail", 104.0, 100.0, 0.05, "src")  # the same tol without rel fails
+    # Negative expected values use |expected|.
+    assert repro.check("rel-neg", -104.0, -100.0, 0.05, "src", rel=True).passed
+
+
+def test_check_range(fake_root):
+    repro.setup(NB)
+    assert repro.check_range("ratio", 0.8, "src", upper=1.0).passed
+    assert repro.check_range("lo", 3.0, "src", lower=2.0).passed
+    assert repro.check_range("both", 2.0, "src", lower=2.0, upper=2.0).passed  # inclusive bounds
+    with pytest.raises(repro.ClaimCheckFailed):
+        repro.check_range("too-high", 1.2, "src", upper=1.0)
+    with pytest.raises(repro.ClaimCheckFailed):
+        repro.check_range("too-low", 1.0, "src", lower=2.0, upper=3.0)
+    with pytest.raises(ValueError, match="lower"):
+        repro.check_range("none", 1.0, "src")
+    rows = {r["name"]: r for r in _results(fake_root)["checks"]}
+    assert rows["ratio"]["lower"] is None and rows["ratio"]["upper"] == 1.0
+    assert rows["too-low"]["passed"] is False and rows["too-low"]["lower"] == 2.0
+
+
+@pytest.mark.parametrize("value", [np.nan, np.inf])
+def test_nonfinite_value_fails(fake_root, value):
+    repro.setup(NB)
+    with pytest.raises(repro.ClaimCheckFailed):
+        repro.check("nan", value, 1.0, 1e9, "src")
+    with pytest.raises(repro.ClaimCheckFailed):
+        repro.check_range("nan-range", value, "src", lower=-math.inf)
+    rows = _results(fake_root)["checks"]
+    assert [r["passed"] for r in rows] == [False, False]
+
+
+def test_check_bad_arguments(fake_root):
+    repro.setup(NB)
+    with pytest.raises(ValueError, match="^tol:"):
+        repro.check("neg-tol", 1.0, 1.0, -0.1, "src")
+    with pytest.raises(ValueError, match="^value:"):
+        repro.check("vector", [1.0, 2.0], 1.0, 0.1, "src")
+    # numpy scalars and 1-element arrays are accepted.
+    assert repro.check("np", np.array([1.0]), np.float32(1.0), 0.0, "src").passed
+
+
+def test_savefig_before_setup_raises(fake_root):
+    fig, ax = plt.subplots()
+    with pytest.raises(RuntimeError, match="setup"):
+        repro.savefig(fig, "early")
+
+
+def _png_chunks(data):
+    assert data[:8] == b"\x89PNG\r\n\x1a\n"
+    pos, chunks = 8, []
+    while pos < len(data):
+        (length,) = struct.unpack(">I", data[pos:pos + 4])
+        ctype = data[pos + 4:pos + 8]
+        body = data[pos + 8:pos + 8 + length]
+        (crc,) = struct.unpack(">I", data[pos + 8 + length:pos + 12 + length])
+        assert crc == zlib.crc32(ctype + body) & 0xFFFFFFFF
+        chunks.append((ctype, body))
+        pos += 12 + length
+    return chunks
+
+
+def _figure():
+    fig, ax = plt.subplots()
+    t = np.linspace(0, 10, 200)
+    ax.plot(t, np.sin(t), label="sin")
+    ax.set_title("deterministic")
+    ax.legend()
+    return fig
+
+
+def test_savefig_deterministic(fake_root):
+    repro.setup(NB)
+    fig = _figure()
+    p1 = repro.savefig(fig, "a")
+    p2 = repro.savefig(fig, "b")
+    p3 = repro.savefig(_figure(), "c")  # a fresh, identical figure
+    assert p1 == fake_root.resolve() / "build" / NB / "figures" / "a.png"
+    b1, b2, b3 = p1.read_bytes(), p2.read_bytes(), p3.read_bytes()
+    assert b1 == b2 == b3
+    chunks = _png_chunks(b1)
+    types = [c[0] for c in chunks]
+    assert types[0] == b"IHDR" and types[-1] == b"IEND"
+    assert b"tIME" not in types  # no modification time
+    text = b" ".join(body for ctype, body in chunks if ctype in (b"tEXt", b"zTXt", b"iTXt"))
+    for key in (b"Software", b"Creation Time", b"Date", b"matplotlib", b"Matplotlib"):
+        assert key not in text, key
