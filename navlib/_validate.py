@@ -77,6 +77,13 @@ def latitude(lat, name: str = "lat", deg: bool = False) -> np.ndarray:
     return np.deg2rad(arr) if deg else arr
 
 
+def generator(rng, name: str = "rng") -> np.random.Generator:
+    """Check that ``rng`` is a ``numpy.random.Generator`` (no legacy global state)."""
+    if not isinstance(rng, np.random.Generator):
+        raise ValueError(f"{name}: expected a numpy.random.Generator, got {type(rng).__name__}")
+    return rng
+
+
 def time_axis(t, name: str = "time") -> np.ndarray:
     """Validate a 1-D strictly increasing time vector (s)."""
     arr = as_array(t, name)

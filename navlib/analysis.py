@@ -48,8 +48,8 @@ def _peak():
 
 
 GM_ALLAN_PEAK, GM_ALLAN_PEAK_TAU = _peak()
-"""Peak Allan deviation of a unit-variance Gauss-Markov process (~0.6159), and
-the tau of the peak in units of the correlation time (~1.89)."""
+"""Peak Allan deviation of a unit-variance Gauss-Markov process (~0.6174), and
+the tau of the peak in units of the correlation time (~1.893)."""
 
 
 def allan_deviation(x, dt: float, taus=None):

@@ -33,6 +33,7 @@ G0 = 9.80665
 """Standard gravity (m/s^2)."""
 
 _EXP = R_AIR * LAPSE / G0
+_P_11KM = P0 * (1 - LAPSE * 11000.0 / T0) ** (1 / _EXP)  # tropopause pressure, 22632.04 Pa
 
 
 def _pressure(p, name="p"):
@@ -45,7 +46,7 @@ def isa_altitude(p, p0=P0):
     Valid in the troposphere (below 11 km, p > 22632 Pa for p0 = 101325).
     """
     p, p0 = _pressure(p), _pressure(p0, "p0")
-    in_range(p / p0, "p", 22632.1 / P0 - 1e-9, 1.2, "(fraction of p0)")
+    in_range(p / p0, "p", _P_11KM / P0 * (1 - 1e-12), 1.2, "(fraction of p0)")
     return T0 / LAPSE * (1 - (p / p0) ** _EXP)
 
 
@@ -82,6 +83,12 @@ def hypsometric_height(p, p_ref, temperature):
     return R_AIR * T / G0 * np.log(p_ref / p)
 
 
+def _cdiv(a: int, b: int) -> int:
+    """C integer division (truncates toward zero; Python's // floors)."""
+    q = abs(a) // abs(b)
+    return q if (a >= 0) == (b >= 0) else -q
+
+
 def bmp180_compensate(UT: int, UP: int, calib: dict[str, int], oss: int = 0) -> tuple[int, int]:
     """BMP180 datasheet integer compensation (sec. 3.5).
 
@@ -97,7 +104,8 @@ def bmp180_compensate(UT: int, UP: int, calib: dict[str, int], oss: int = 0) -> 
     Returns
     -------
     T, p : int
-        Temperature in 0.1 degC and pressure in Pa, as the device computes them.
+        Temperature in 0.1 degC and pressure in Pa, as the device computes them
+        (C semantics: divisions truncate toward zero, right shifts are arithmetic).
     """
     if oss not in (0, 1, 2, 3):
         raise ValueError(f"oss: expected 0, 1, 2 or 3, got {oss!r}")
@@ -106,20 +114,20 @@ def bmp180_compensate(UT: int, UP: int, calib: dict[str, int], oss: int = 0) -> 
         raise ValueError(f"calib: missing coefficients {sorted(missing)}")
     c = {k: int(v) for k, v in calib.items()}
     X1 = (UT - c["AC6"]) * c["AC5"] >> 15
-    X2 = (c["MC"] << 11) // (X1 + c["MD"])  # C integer division; operands positive here
+    X2 = _cdiv(c["MC"] << 11, X1 + c["MD"])
     B5 = X1 + X2
     T = (B5 + 8) >> 4
     B6 = B5 - 4000
     X1 = (c["B2"] * (B6 * B6 >> 12)) >> 11
     X2 = c["AC2"] * B6 >> 11
     X3 = X1 + X2
-    B3 = (((c["AC1"] * 4 + X3) << oss) + 2) // 4
+    B3 = _cdiv(((c["AC1"] * 4 + X3) << oss) + 2, 4)
     X1 = c["AC3"] * B6 >> 13
     X2 = (c["B1"] * (B6 * B6 >> 12)) >> 16
     X3 = ((X1 + X2) + 2) >> 2
     B4 = c["AC4"] * (X3 + 32768) >> 15
     B7 = (UP - B3) * (50000 >> oss)
-    p = (B7 * 2) // B4 if B7 < 0x80000000 else (B7 // B4) * 2
+    p = _cdiv(B7 * 2, B4) if B7 < 0x80000000 else _cdiv(B7, B4) * 2
     X1 = (p >> 8) * (p >> 8)
     X1 = (X1 * 3038) >> 16
     X2 = (-7357 * p) >> 16

@@ -132,8 +132,8 @@ def discretize(F, G, Qc, dt: float):
     F = as_array(F, "F")
     G = as_array(G, "G")
     Qc = as_array(Qc, "Qc")
-    n = F.shape[0]
-    if F.shape != (n, n) or G.ndim != 2 or G.shape[0] != n or Qc.shape != (G.shape[1], G.shape[1]):
+    n = F.shape[0] if F.ndim == 2 else -1
+    if n < 1 or F.shape != (n, n) or G.ndim != 2 or G.shape[0] != n or Qc.shape != (G.shape[1], G.shape[1]):
         raise ValueError(f"F, G, Qc: expected shapes (n, n), (n, p), (p, p), got {F.shape}, {G.shape}, {Qc.shape}")
     dt = float(positive(dt, "dt"))
     M = np.zeros((2 * n, 2 * n))
@@ -141,6 +141,6 @@ def discretize(F, G, Qc, dt: float):
     M[:n, n:] = G @ Qc @ G.T
     M[n:, n:] = F.T
     E = expm(M * dt)
-    Phi = E[n:, n:].T
+    Phi = np.ascontiguousarray(E[n:, n:].T)
     Qd = Phi @ E[:n, n:]
     return Phi, (Qd + Qd.T) / 2

@@ -37,7 +37,7 @@ import numpy as np
 from scipy.signal import lfilter
 
 from . import atmosphere, attitude, earth, units
-from ._validate import as_array, positive
+from ._validate import as_array, generator, positive, time_axis
 from .analysis import GM_ALLAN_PEAK
 
 __all__ = ["TriadErrors", "ImuModel", "ImuOutput", "simulate_imu", "imu_model", "preset", "devices",
@@ -89,7 +89,7 @@ class TriadErrors:
     def __post_init__(self):
         for f in fields(self):
             v = getattr(self, f.name)
-            if not (isinstance(v, (int, float, np.floating)) and v >= 0 and not np.isnan(v)):
+            if not (isinstance(v, (int, float, np.integer, np.floating)) and v >= 0 and not np.isnan(v)):
                 raise ValueError(f"{f.name}: expected a non-negative number, got {v!r}")
         if self.correlation_time <= 0 or self.full_scale <= 0:
             raise ValueError("correlation_time, full_scale: expected positive values")
@@ -158,6 +158,8 @@ def gauss_markov(shape, dt: float, sigma: float, correlation_time: float, rng: n
     """
     dt = float(positive(dt, "dt"))
     tc = float(positive(correlation_time, "correlation_time"))
+    sigma = float(positive(sigma, "sigma", allow_zero=True))
+    generator(rng)
     if len(shape) < 2:
         raise ValueError(f"shape: expected (..., N, k), got {shape}")
     phi = np.exp(-dt / tc)
@@ -225,8 +227,7 @@ def simulate_imu(w_ib_b, f_b, dt: float, model: ImuModel, rng: np.random.Generat
     dt = float(positive(dt, "dt"))
     if not isinstance(model, ImuModel):
         raise ValueError(f"model: expected an ImuModel, got {type(model).__name__}")
-    if not isinstance(rng, np.random.Generator):
-        raise ValueError(f"rng: expected a numpy.random.Generator, got {type(rng).__name__}")
+    generator(rng)
     if n_trials is not None:
         if int(n_trials) < 1:
             raise ValueError(f"n_trials: expected a positive integer, got {n_trials}")
@@ -339,6 +340,7 @@ def simulate_magnetometer(q_bn, B_n, model: MagnetometerModel, rng: np.random.Ge
     """
     q = as_array(q_bn, "q_bn", tail=(4,), min_ndim=1)
     B = as_array(B_n, "B_n", tail=(3,))
+    generator(rng)
     if disturbance_n is not None:
         B = B + as_array(disturbance_n, "disturbance_n", tail=(3,))
     C_nb = np.swapaxes(attitude.quat_to_dcm(q), -1, -2)
@@ -376,9 +378,9 @@ def magnetic_disturbances(time, rng: np.random.Generator, rate: float, amplitude
     d_n : ndarray, shape (N, 3)
         Disturbance field in ENU (uT).
     """
-    from ._validate import time_axis
     t = time_axis(time)
     rate = float(positive(rate, "rate", allow_zero=True))
+    generator(rng)
     n_events = rng.poisson(rate * (t[-1] - t[0]))
     d = np.zeros((t.size, 3))
     for _ in range(n_events):
@@ -433,9 +435,9 @@ def simulate_barometer(h, time, model: BarometerModel, rng: np.random.Generator,
     -------
     ndarray, shape (..., N)
     """
-    from ._validate import time_axis
     t = time_axis(time)
     h = as_array(h, "h")
+    generator(rng)
     if h.shape[-1:] != t.shape:
         raise ValueError(f"h: expected last axis of length {t.size}, got shape {h.shape}")
     r_bias, r_noise = rng.spawn(2)
@@ -494,6 +496,7 @@ def simulate_gnss_position(lla, rng: np.random.Generator, sigma_horizontal: floa
     lla = as_array(lla, "lla", tail=(3,), min_ndim=1)
     sh = float(positive(sigma_horizontal, "sigma_horizontal", allow_zero=True))
     sv = 1.5 * sh if sigma_vertical is None else float(positive(sigma_vertical, "sigma_vertical", allow_zero=True))
+    generator(rng)
     R_M, R_N = earth.radii(lla[..., 0])
     e = rng.standard_normal(lla.shape)
     out = lla.copy()
@@ -501,7 +504,10 @@ def simulate_gnss_position(lla, rng: np.random.Generator, sigma_horizontal: floa
     out[..., 1] += sh * e[..., 0] / ((R_N + lla[..., 2]) * np.cos(lla[..., 0]))
     out[..., 2] += sv * e[..., 2]
     if valid is not None:
-        out[..., ~np.asarray(valid, dtype=bool), :] = np.nan
+        valid = np.asarray(valid, dtype=bool)
+        if valid.shape != lla.shape[-2:-1]:
+            raise ValueError(f"valid: expected shape {lla.shape[-2:-1]}, got {valid.shape}")
+        out[..., ~valid, :] = np.nan
     return out
 
 
@@ -525,6 +531,7 @@ def simulate_heading(heading, rng: np.random.Generator, sigma: float, valid=None
     """
     h = as_array(heading, "heading")
     s = float(positive(sigma, "sigma", allow_zero=True))
+    generator(rng)
     out = attitude.wrap_2pi(h + s * rng.standard_normal(h.shape))
     v = np.ones(h.shape[-1:], dtype=bool) if valid is None else np.asarray(valid, dtype=bool)
     if v.shape != h.shape[-1:]:

@@ -87,14 +87,11 @@ def test_bmp180_compensate_datasheet_example(bmp180_example):
 @settings(max_examples=60, deadline=None)
 @given(h=st.floats(-1000.0, 10999.0), p0=st.floats(95000.0, 105000.0))
 def test_isa_round_trip(h, p0):
-    # Up to 10999 m: the 11000 m boundary itself is a known bug (test below).
+    # Up to 10999 m; the 11000 m boundary is tested below.
     p = atm.isa_pressure(h, p0)
     assert float(atm.isa_altitude(p, p0)) == pytest.approx(h, abs=1e-7)
 
 
-@pytest.mark.xfail(strict=True, raises=ValueError,
-                   reason="navlib bug: isa_altitude's lower pressure bound uses the rounded table value "
-                          "22632.1 Pa, but isa_pressure(11000) = 22632.04 Pa is rejected")
 def test_isa_round_trip_at_tropopause():
     p = atm.isa_pressure(11000.0)
     assert float(atm.isa_altitude(p)) == pytest.approx(11000.0, abs=1e-7)
@@ -174,3 +171,13 @@ def test_bad_input(arg, call):
 def test_missing_calib_names_the_coefficient():
     with pytest.raises(ValueError, match="MD"):
         atm.bmp180_compensate(27898, 23843, {k: v for k, v in _calib().items() if k != "MD"})
+
+
+def test_bmp180_compensate_uses_c_division():
+    """Negative MC: C truncates toward zero where Python's // floors (datasheet calibration)."""
+    calib = dict(AC1=408, AC2=-72, AC3=-14383, AC4=32741, AC5=32757, AC6=23153, B1=6190, B2=4,
+                 MB=-32768, MC=-8711, MD=2868)
+    # Reference values from the datasheet integer algorithm with C semantics (truncating division).
+    assert atm.bmp180_compensate(27898, 23843, calib, 0) == (150, 69964)
+    assert atm.bmp180_compensate(30000, 23843, calib, 0)[1] == 72532
+    assert atm.bmp180_compensate(33000, 23843, calib, 0)[0] == 528

@@ -225,8 +225,6 @@ def test_closed_loop_nees_consistent():
     assert bad.mean() > n + 8 / np.sqrt(50)
 
 
-@pytest.mark.xfail(strict=True, raises=IndexError,
-                   reason="navlib bug: discretize indexes F.shape[0] before validating; a 0-d F gives IndexError")
 def test_discretize_scalar_F_is_value_error():
     with pytest.raises(ValueError, match="F"):
         kalman.discretize(1.0, [[1.0]], [[1.0]], 0.1)

@@ -541,16 +541,12 @@ def test_heading_wrap_noise_and_validity():
 # reminder to drop the marker.
 # --------------------------------------------------------------------------
 
-@pytest.mark.xfail(strict=True, raises=IndexError,
-                   reason="navlib bug: simulate_gnss_position does not validate `valid`; IndexError")
 def test_gnss_position_bad_valid_shape():
     lla = np.zeros((10, 3))
     with pytest.raises(ValueError, match="^valid:"):
         sensors.simulate_gnss_position(lla, np.random.default_rng(0), 1.0, valid=np.ones(9, dtype=bool))
 
 
-@pytest.mark.xfail(strict=True, raises=AttributeError,
-                   reason="navlib bug: simulate_magnetometer/simulate_barometer do not validate `rng`")
 @pytest.mark.parametrize("which", ["magnetometer", "barometer"])
 def test_mag_baro_reject_non_generator_rng(which):
     with pytest.raises(ValueError, match="^rng:"):
