@@ -86,29 +86,31 @@ def update(x, P, z, h, H, R, angle_mask, gate=np.inf):
         ``ACCEPTED`` (1), ``NO_DATA`` (0) or ``REJECTED`` (-1).
     """
     m = z.shape[0]
-    y_full = np.full(m, np.nan)
-    idx = np.nonzero(np.isfinite(z))[0]
-    if idx.size == 0:
-        return x.copy(), P.copy(), y_full, np.nan, 0
-    y = np.empty(idx.size)
-    for i in range(idx.size):
-        j = idx[i]
-        y[i] = z[j] - h[j]
-        if angle_mask[j]:
-            y[i] = _wrap_pi(y[i])
-        y_full[j] = y[i]
-    Hs = np.ascontiguousarray(H[idx, :])
-    Rs = np.ascontiguousarray(R[idx][:, idx])
+    finite = np.isfinite(z)
+    n_used = int(finite.sum())
+    if n_used == 0:
+        return x.copy(), P.copy(), np.full(m, np.nan), np.nan, 0
+    y = z - h
+    for j in range(m):
+        if angle_mask[j] and finite[j]:
+            y[j] = _wrap_pi(y[j])
+    if n_used == m:                      # common case: no dropout, no copies
+        Hs, Rs, ys = H, R, y
+    else:
+        idx = np.nonzero(finite)[0]
+        Hs = np.ascontiguousarray(H[idx, :])
+        Rs = np.ascontiguousarray(R[idx][:, idx])
+        ys = y[idx]
     PHt = P @ np.ascontiguousarray(Hs.T)
     S = Hs @ PHt + Rs
-    S = (S + S.T) / 2
-    nis = y @ np.linalg.solve(S, y)
+    S_inv = np.linalg.inv((S + S.T) / 2)
+    nis = ys @ S_inv @ ys
     if nis > gate:
-        return x.copy(), P.copy(), y_full, nis, -1
-    K = np.ascontiguousarray(np.linalg.solve(S, np.ascontiguousarray(PHt.T)).T)
+        return x.copy(), P.copy(), y, nis, -1
+    K = PHt @ S_inv
     IKH = np.eye(x.shape[0]) - K @ Hs
     Pn = IKH @ P @ np.ascontiguousarray(IKH.T) + K @ Rs @ np.ascontiguousarray(K.T)
-    return x + K @ y, (Pn + Pn.T) / 2, y_full, nis, 1
+    return x + K @ ys, (Pn + Pn.T) / 2, y, nis, 1
 
 
 def discretize(F, G, Qc, dt: float):
