@@ -29,6 +29,8 @@ __all__ = ["rmse", "allan_deviation", "allan_deviation_theory", "fit_allan",
 def rmse(err, axis=0):
     """Root mean square of ``err`` along ``axis`` (NaN propagates: no silent dropping)."""
     err = as_array(err, "err", allow_nan=True)
+    if err.size == 0:
+        raise ValueError("err: expected a non-empty array")
     return np.sqrt(np.mean(err * err, axis=axis))
 
 
@@ -114,6 +116,10 @@ def allan_deviation_theory(taus, white=0.0, bias_instability=0.0, correlation_ti
         K (units/s/sqrt(Hz)).
     """
     taus = positive(taus, "taus")
+    white, bias_instability, rate_random_walk = (
+        positive(v, name, allow_zero=True) for v, name in ((white, "white"), (bias_instability, "bias_instability"),
+                                                           (rate_random_walk, "rate_random_walk")))
+    correlation_time = positive(correlation_time, "correlation_time")
     sigma_gm = bias_instability / GM_ALLAN_PEAK
     var = (white ** 2 / taus + sigma_gm ** 2 * _gm_allan_var_unit(taus / correlation_time)
            + rate_random_walk ** 2 * taus / 3)
@@ -146,8 +152,13 @@ def fit_allan(taus, adev, n_samples: int, dt: float, *, rate_random_walk: bool =
     """
     taus = positive(taus, "taus")
     adev = positive(adev, "adev")
-    if taus.shape != adev.shape or taus.ndim != 1:
+    if taus.ndim != 1 or taus.size < 3:
+        raise ValueError(f"taus: expected a 1-D array of at least 3 averaging times, got shape {taus.shape}")
+    if taus.shape != adev.shape:
         raise ValueError(f"adev: expected the shape of taus {taus.shape}, got {adev.shape}")
+    if not isinstance(n_samples, (int, np.integer)) or n_samples < 1:
+        raise ValueError(f"n_samples: expected a positive integer, got {n_samples!r}")
+    dt = float(positive(dt, "dt"))
     w = np.sqrt(np.maximum(n_samples * dt / taus, 1.0))
     i_min = int(np.argmin(adev))
 

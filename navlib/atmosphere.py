@@ -109,10 +109,18 @@ def bmp180_compensate(UT: int, UP: int, calib: dict[str, int], oss: int = 0) -> 
     """
     if oss not in (0, 1, 2, 3):
         raise ValueError(f"oss: expected 0, 1, 2 or 3, got {oss!r}")
+    if not isinstance(calib, dict):
+        raise ValueError(f"calib: expected a dict of calibration coefficients, got {type(calib).__name__}")
     missing = {"AC1", "AC2", "AC3", "AC4", "AC5", "AC6", "B1", "B2", "MB", "MC", "MD"} - set(calib)
     if missing:
         raise ValueError(f"calib: missing coefficients {sorted(missing)}")
-    c = {k: int(v) for k, v in calib.items()}
+    def integer(v, name):
+        if isinstance(v, bool) or not isinstance(v, (int, np.integer)):
+            raise ValueError(f"{name}: expected an integer register value, got {v!r}")
+        return int(v)
+
+    c = {k: integer(v, f"calib[{k!r}]") for k, v in calib.items()}
+    UT, UP = integer(UT, "UT"), integer(UP, "UP")
     X1 = (UT - c["AC6"]) * c["AC5"] >> 15
     X2 = _cdiv(c["MC"] << 11, X1 + c["MD"])
     B5 = X1 + X2

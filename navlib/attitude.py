@@ -39,15 +39,15 @@ _ORTHO_TOL = 1e-6
 
 
 def wrap_pi(angle):
-    """Wrap angles (rad) into (-pi, pi]."""
-    a = np.asarray(angle, dtype=float)
+    """Wrap angles (rad) into (-pi, pi]; NaN (a dropout) stays NaN."""
+    a = as_array(angle, "angle", allow_nan=True)
     w = np.mod(a + np.pi, 2 * np.pi) - np.pi
     return np.where(w == -np.pi, np.pi, w)
 
 
 def wrap_2pi(angle):
-    """Wrap angles (rad) into [0, 2*pi)."""
-    w = np.mod(np.asarray(angle, dtype=float), 2 * np.pi)
+    """Wrap angles (rad) into [0, 2*pi); NaN (a dropout) stays NaN."""
+    w = np.mod(as_array(angle, "angle", allow_nan=True), 2 * np.pi)
     return np.where(w >= 2 * np.pi, 0.0, w)
 
 

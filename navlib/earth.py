@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from ._validate import as_array, in_range, latitude
+from ._validate import as_array, in_range, latitude, positive
 
 __all__ = ["Ellipsoid", "WGS84", "CGCS2000", "GRS80", "KRASSOVSKY",
            "OMEGA_IE", "earth_rate_n", "gravity", "gravity_n", "radii",
@@ -45,6 +45,12 @@ class Ellipsoid:
     f: float
     GM: float
     omega: float
+
+    def __post_init__(self):
+        for key, lo, hi in (("a", 6e6, 7e6), ("f", 0.0, 0.01), ("GM", 3e14, 5e14), ("omega", 0.0, 1e-4)):
+            v = getattr(self, key)
+            if not (isinstance(v, (int, float, np.integer, np.floating)) and lo <= v <= hi):
+                raise ValueError(f"{key}: expected an Earth-like value in [{lo:g}, {hi:g}], got {v!r}")
 
     @property
     def b(self) -> float:
@@ -254,7 +260,11 @@ def magnetic_field(lat, lon, h=0.0, year: float = 2025.0, deg: bool = True):
     in_range(lon, "lon", -2 * np.pi, 2 * np.pi, "rad") if not deg else in_range(lon, "lon", -360, 360, "deg")
     lon = np.deg2rad(lon) if deg else lon
     h = in_range(as_array(h, "h"), "h", -1e3, 850e3, "m")
-    gm = _geomag(_wmm_file(float(year)))
+    try:
+        year = float(year)
+    except (TypeError, ValueError):
+        raise ValueError(f"year: expected a decimal year, got {year!r}") from None
+    gm = _geomag(_wmm_file(year))
     lat, lon, h = np.broadcast_arrays(lat, lon, h)
     out = np.empty(lat.shape + (3,))
     for idx in np.ndindex(lat.shape):
@@ -282,7 +292,7 @@ def field_from_angles(declination, inclination, intensity, deg: bool = True):
     """
     D = as_array(declination, "declination")
     I = as_array(inclination, "inclination")
-    F = as_array(intensity, "intensity")
+    F = positive(intensity, "intensity", allow_zero=True)
     if deg:
         D, I = np.deg2rad(D), np.deg2rad(I)
     in_range(I, "inclination", -np.pi / 2, np.pi / 2, "rad")

@@ -4,6 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import attitude, units
+from ._validate import as_array, positive
 
 __all__ = ["body_axes", "allan", "heading_deg"]
 
@@ -19,7 +20,9 @@ def body_axes(ax, C_bn, title: str = "") -> None:
     C_bn : array_like, shape (3, 3)
         Body-to-ENU rotation; its columns are the body axes in ENU.
     """
-    C = np.asarray(C_bn, dtype=float)
+    if not hasattr(ax, "quiver") or not hasattr(ax, "set_zlim"):
+        raise ValueError(f"ax: expected a 3-D matplotlib Axes (projection='3d'), got {type(ax).__name__}")
+    C = attitude._as_dcm(C_bn, "C_bn")
     for v, name in zip(np.eye(3), "ENU"):
         ax.quiver(0, 0, 0, *v, color="0.6", arrow_length_ratio=0.08, linewidth=1)
         ax.text(*(1.12 * v), name, color="0.4")
@@ -43,7 +46,12 @@ def allan(ax, taus, adev_rad_s, theory=None, label: str = "", color=None) -> Non
     theory : array_like, shape (M,), optional
         Model curve (rad/s), drawn dashed.
     """
-    a = units.to_deg_per_h(np.asarray(adev_rad_s))
+    taus = positive(taus, "taus")
+    a = units.to_deg_per_h(positive(adev_rad_s, "adev_rad_s"))
+    if taus.ndim != 1 or a.shape[0] != taus.size:
+        raise ValueError(f"adev_rad_s: expected {taus.size} values on axis 0 (one per tau), got shape {a.shape}")
+    if theory is not None:
+        theory = positive(theory, "theory")
     lines = ax.loglog(taus, a, color=color, linewidth=1 if a.ndim > 1 else 1.5, alpha=0.8)
     lines[0].set_label(label)
     if theory is not None:
@@ -55,4 +63,4 @@ def allan(ax, taus, adev_rad_s, theory=None, label: str = "", color=None) -> Non
 
 def heading_deg(hpr):
     """Heading in degrees in [0, 360) from an ``hpr`` array (..., 3)."""
-    return units.to_deg(attitude.wrap_2pi(np.asarray(hpr)[..., 0]))
+    return units.to_deg(attitude.wrap_2pi(as_array(hpr, "hpr", tail=(3,))[..., 0]))

@@ -73,6 +73,8 @@ def root() -> Path:
 
 def build_dir(notebook: str | None = None) -> Path:
     """``build/`` (or ``build/<notebook>/``) under the repository root, created."""
+    if notebook is not None and not isinstance(notebook, str):
+        raise ValueError(f"notebook: expected a notebook name (str), got {type(notebook).__name__}")
     d = root() / "build"
     if notebook:
         d = d / notebook
@@ -92,7 +94,7 @@ def setup(notebook: str, *, style: bool = True) -> None:
     import matplotlib
     import matplotlib.pyplot as plt
 
-    if not notebook or "/" in notebook:
+    if not isinstance(notebook, str) or not notebook or "/" in notebook:
         raise ValueError(f"notebook: expected a plain notebook name, got {notebook!r}")
     _state.notebook = notebook
     _state.checks = []
@@ -128,6 +130,10 @@ def savefig(fig, name: str) -> Path:
     """
     if _state.notebook is None:
         raise RuntimeError("call navlib.repro.setup(notebook) before savefig()")
+    if not hasattr(fig, "savefig"):
+        raise ValueError(f"fig: expected a matplotlib Figure, got {type(fig).__name__}")
+    if not isinstance(name, str) or not name or "/" in name or "\\" in name:
+        raise ValueError(f"name: expected a plain file name without directories, got {name!r}")
     d = build_dir(_state.notebook) / "figures"
     d.mkdir(exist_ok=True)
     path = d / f"{name}.png"
@@ -135,11 +141,17 @@ def savefig(fig, name: str) -> Path:
     return path
 
 
-def _as_float(x) -> float:
-    x = np.asarray(x, dtype=float)
+def _as_float(x, name: str, finite: bool = False) -> float:
+    try:
+        x = np.asarray(x, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name}: expected a real number, got {type(x).__name__}") from None
     if x.size != 1:
-        raise ValueError(f"value: expected a scalar, got shape {x.shape}")
-    return float(x.reshape(()))
+        raise ValueError(f"{name}: expected a scalar, got shape {x.shape}")
+    v = float(x.reshape(()))
+    if finite and not math.isfinite(v):
+        raise ValueError(f"{name}: expected a finite number, got {v}")
+    return v
 
 
 def _record(c: Check) -> Check:
@@ -176,8 +188,10 @@ def check(name: str, value, expected, tol, source: str, *, paper_value=None,
     paper_value : str or float, optional
         The printed value when it differs from ``expected``.
     """
-    v, e, t = _as_float(value), _as_float(expected), _as_float(tol)
-    if not t >= 0:
+    v = _as_float(value, "value")
+    e = _as_float(expected, "expected", finite=True)
+    t = _as_float(tol, "tol", finite=True)
+    if t < 0:
         raise ValueError(f"tol: expected a non-negative tolerance, got {t}")
     abs_tol = t * abs(e) if rel else t
     passed = bool(math.isfinite(v) and abs(v - e) <= abs_tol)
@@ -194,9 +208,11 @@ def check_range(name: str, value, source: str, *, lower=None, upper=None,
     """
     if lower is None and upper is None:
         raise ValueError("lower, upper: give at least one bound")
-    v = _as_float(value)
-    lo = None if lower is None else _as_float(lower)
-    hi = None if upper is None else _as_float(upper)
+    v = _as_float(value, "value")
+    lo = None if lower is None else _as_float(lower, "lower")
+    hi = None if upper is None else _as_float(upper, "upper")
+    if (lo is not None and math.isnan(lo)) or (hi is not None and math.isnan(hi)):
+        raise ValueError(f"lower, upper: expected numbers (infinite for no bound), got {lower}, {upper}")
     passed = bool(math.isfinite(v) and (lo is None or v >= lo) and (hi is None or v <= hi))
     return _record(Check(name, v, None, None, passed, source,
                          None if paper_value is None else str(paper_value), lo, hi, unit, note))

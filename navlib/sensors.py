@@ -37,7 +37,7 @@ import numpy as np
 from scipy.signal import lfilter
 
 from . import atmosphere, attitude, earth, units
-from ._validate import as_array, generator, positive, time_axis
+from ._validate import as_array, generator, in_range, positive, time_axis
 from .analysis import GM_ALLAN_PEAK
 
 __all__ = ["TriadErrors", "ImuModel", "ImuOutput", "simulate_imu", "imu_model", "preset", "devices",
@@ -46,6 +46,16 @@ __all__ = ["TriadErrors", "ImuModel", "ImuOutput", "simulate_imu", "imu_model", 
            "simulate_heading", "gauss_markov"]
 
 PRESETS_CSV = Path(__file__).resolve().parents[1] / "data" / "sensor_presets.csv"
+
+
+def _check_fields(obj, infinite_ok=()) -> None:
+    """Every field of a model dataclass is a non-negative number (finite unless listed)."""
+    for f in fields(obj):
+        v = getattr(obj, f.name)
+        ok = isinstance(v, (int, float, np.integer, np.floating)) and v >= 0  # NaN fails v >= 0
+        if not ok or (np.isinf(v) and f.name not in infinite_ok):
+            raise ValueError(f"{f.name}: expected a non-negative {'number' if f.name in infinite_ok else 'finite number'}, "
+                             f"got {v!r}")
 
 
 # --------------------------------------------------------------------------
@@ -87,10 +97,7 @@ class TriadErrors:
     full_scale: float = np.inf
 
     def __post_init__(self):
-        for f in fields(self):
-            v = getattr(self, f.name)
-            if not (isinstance(v, (int, float, np.integer, np.floating)) and v >= 0 and not np.isnan(v)):
-                raise ValueError(f"{f.name}: expected a non-negative number, got {v!r}")
+        _check_fields(self, infinite_ok=("full_scale",))
         if self.correlation_time <= 0 or self.full_scale <= 0:
             raise ValueError("correlation_time, full_scale: expected positive values")
 
@@ -106,6 +113,11 @@ class ImuModel:
     gyro: TriadErrors = field(default_factory=TriadErrors)
     accel: TriadErrors = field(default_factory=TriadErrors)
     name: str = "custom"
+
+    def __post_init__(self):
+        for key in ("gyro", "accel"):
+            if not isinstance(getattr(self, key), TriadErrors):
+                raise ValueError(f"{key}: expected TriadErrors, got {type(getattr(self, key)).__name__}")
 
     def replace(self, gyro: dict | None = None, accel: dict | None = None) -> "ImuModel":
         """Copy with some parameters changed, e.g. ``m.replace(gyro={"bias": 0.0})``."""
@@ -229,8 +241,8 @@ def simulate_imu(w_ib_b, f_b, dt: float, model: ImuModel, rng: np.random.Generat
         raise ValueError(f"model: expected an ImuModel, got {type(model).__name__}")
     generator(rng)
     if n_trials is not None:
-        if int(n_trials) < 1:
-            raise ValueError(f"n_trials: expected a positive integer, got {n_trials}")
+        if not isinstance(n_trials, (int, np.integer)) or n_trials < 1:
+            raise ValueError(f"n_trials: expected a positive integer, got {n_trials!r}")
         w = np.broadcast_to(w, (int(n_trials),) + w.shape)
         f = np.broadcast_to(f, (int(n_trials),) + f.shape)
     r_gyro, r_accel = rng.spawn(2)
@@ -265,7 +277,7 @@ def preset(device: str) -> dict[tuple[str, str], float]:
     Example: ``preset("BMP180")[("baro", "noise")]`` is 2.0 Pa.
     """
     table = _preset_table()
-    if device not in table:
+    if not isinstance(device, str) or device not in table:
         raise ValueError(f"device: unknown device {device!r}; known: {devices()}")
     return {k: v[0] for k, v in table[device].items()}
 
@@ -300,6 +312,9 @@ class MagnetometerModel:
     hard_iron: float = 0.0
     soft_iron: float = 0.0
     full_scale: float = np.inf
+
+    def __post_init__(self):
+        _check_fields(self, infinite_ok=("full_scale",))
 
     @classmethod
     def from_preset(cls, device: str) -> "MagnetometerModel":
@@ -338,9 +353,11 @@ def simulate_magnetometer(q_bn, B_n, model: MagnetometerModel, rng: np.random.Ge
     -------
     MagnetometerOutput
     """
-    q = as_array(q_bn, "q_bn", tail=(4,), min_ndim=1)
+    q = attitude._as_quat(as_array(q_bn, "q_bn", tail=(4,), min_ndim=1), "q_bn")
     B = as_array(B_n, "B_n", tail=(3,))
     generator(rng)
+    if not isinstance(model, MagnetometerModel):
+        raise ValueError(f"model: expected a MagnetometerModel, got {type(model).__name__}")
     if disturbance_n is not None:
         B = B + as_array(disturbance_n, "disturbance_n", tail=(3,))
     C_nb = np.swapaxes(attitude.quat_to_dcm(q), -1, -2)
@@ -381,6 +398,10 @@ def magnetic_disturbances(time, rng: np.random.Generator, rate: float, amplitude
     t = time_axis(time)
     rate = float(positive(rate, "rate", allow_zero=True))
     generator(rng)
+    for name, (lo, hi) in (("amplitude", amplitude), ("duration", duration)):
+        lo, hi = positive([lo, hi], name)
+        if hi < lo:
+            raise ValueError(f"{name}: expected (low, high) with low <= high, got ({lo}, {hi})")
     n_events = rng.poisson(rate * (t[-1] - t[0]))
     d = np.zeros((t.size, 3))
     for _ in range(n_events):
@@ -406,6 +427,14 @@ class BarometerModel:
     noise: float = 0.0
     bias: float = 0.0
     drift_rate: float = 0.0
+
+    def __post_init__(self):
+        for f in fields(self):
+            v = getattr(self, f.name)
+            if not (isinstance(v, (int, float, np.integer, np.floating)) and np.isfinite(v)):
+                raise ValueError(f"{f.name}: expected a finite number, got {v!r}")
+        if self.noise < 0 or self.bias < 0:
+            raise ValueError(f"noise, bias: expected non-negative sigmas, got {self.noise}, {self.bias}")
 
     @classmethod
     def from_preset(cls, device: str = "BMP180") -> "BarometerModel":
@@ -438,6 +467,8 @@ def simulate_barometer(h, time, model: BarometerModel, rng: np.random.Generator,
     t = time_axis(time)
     h = as_array(h, "h")
     generator(rng)
+    if not isinstance(model, BarometerModel):
+        raise ValueError(f"model: expected a BarometerModel, got {type(model).__name__}")
     if h.shape[-1:] != t.shape:
         raise ValueError(f"h: expected last axis of length {t.size}, got shape {h.shape}")
     r_bias, r_noise = rng.spawn(2)
@@ -464,7 +495,7 @@ def outage_mask(time, outages) -> np.ndarray:
     -------
     valid : ndarray of bool, shape (N,)
     """
-    t = as_array(time, "time")
+    t = time_axis(time)
     valid = np.ones(t.shape, dtype=bool)
     for iv in outages:
         if len(iv) != 2 or not iv[1] > iv[0]:
@@ -494,6 +525,7 @@ def simulate_gnss_position(lla, rng: np.random.Generator, sigma_horizontal: floa
     lla_meas : ndarray, shape (..., N, 3)
     """
     lla = as_array(lla, "lla", tail=(3,), min_ndim=1)
+    in_range(lla[..., 0], "lla[..., 0] (lat)", -np.pi / 2, np.pi / 2, "rad")
     sh = float(positive(sigma_horizontal, "sigma_horizontal", allow_zero=True))
     sv = 1.5 * sh if sigma_vertical is None else float(positive(sigma_vertical, "sigma_vertical", allow_zero=True))
     generator(rng)
@@ -529,7 +561,7 @@ def simulate_heading(heading, rng: np.random.Generator, sigma: float, valid=None
     heading_meas : ndarray, shape (..., N)
     valid : ndarray of bool, shape (N,)
     """
-    h = as_array(heading, "heading")
+    h = as_array(heading, "heading", min_ndim=1)
     s = float(positive(sigma, "sigma", allow_zero=True))
     generator(rng)
     out = attitude.wrap_2pi(h + s * rng.standard_normal(h.shape))

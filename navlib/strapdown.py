@@ -158,6 +158,7 @@ def integrate(lla0, vel0, q0, w_ib_b, f_b, dt: float, t0: float = 0.0, hold_heig
     except ValueError:
         raise ValueError(f"f_b: expected a shape that broadcasts with w_ib_b {w.shape}, got {f.shape}") from None
     dt = float(positive(dt, "dt"))
+    t0 = float(as_array(t0, "t0"))
     lead, n = w.shape[:-2], w.shape[-2]
     lla0 = as_array(lla0, "lla0", tail=(3,))
     latitude(lla0[..., 0], "lla0[..., 0] (lat)")

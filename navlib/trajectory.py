@@ -16,7 +16,7 @@ import numpy as np
 from numba import njit
 
 from . import attitude, earth
-from ._validate import as_array, latitude, positive, time_axis
+from ._validate import as_array, in_range, latitude, positive, time_axis
 from .earth import _radii
 
 __all__ = ["Trajectory", "Segment", "static", "from_profiles", "reciprocating_rotation",
@@ -50,6 +50,9 @@ class Trajectory:
             a = as_array(getattr(self, name), name, tail=(tail,), min_ndim=1, allow_nan=True)
             if a.shape[-2] != n:
                 raise ValueError(f"{name}: expected {n} epochs on axis -2, got shape {a.shape}")
+        lat = np.asarray(self.lla)[..., 0]
+        if np.any(np.abs(lat[np.isfinite(lat)]) > np.pi / 2):
+            raise ValueError("lla: expected latitudes (lla[..., 0]) within [-pi/2, pi/2] rad")
 
     @property
     def dt(self) -> float:
@@ -137,7 +140,7 @@ def static(duration: float, dt: float, lla0, hpr) -> Trajectory:
 
 def smooth_ramp(x):
     """``x - sin(2 pi x) / (2 pi)`` on [0, 1]: 0 to 1 with zero slope at both ends."""
-    x = np.clip(np.asarray(x, dtype=float), 0.0, 1.0)
+    x = np.clip(as_array(x, "x"), 0.0, 1.0)
     return x - np.sin(2 * np.pi * x) / (2 * np.pi)
 
 
@@ -170,6 +173,7 @@ def reciprocating_rotation(duration: float, dt: float, lla0, hpr0, axis_b, ampli
         raise ValueError(f"axis_b: expected a unit vector, got norm {np.linalg.norm(u):.6g}")
     period = float(positive(period, "period"))
     rotation_time = float(positive(rotation_time, "rotation_time"))
+    amplitude = float(as_array(amplitude, "amplitude"))
     if rotation_time >= period:
         raise ValueError(f"rotation_time: expected less than period={period}, got {rotation_time}")
     k = np.floor(t / period)
@@ -197,6 +201,16 @@ class Segment:
     pitch: float | None = None
     roll: float | None = None
 
+    def __post_init__(self):
+        positive(self.duration, "duration")
+        if self.speed is not None:
+            positive(self.speed, "speed", allow_zero=True)
+        as_array(self.turn, "turn")
+        if self.pitch is not None:
+            in_range(as_array(self.pitch, "pitch"), "pitch", -np.pi / 2, np.pi / 2, "rad")
+        if self.roll is not None:
+            in_range(as_array(self.roll, "roll"), "roll", -np.pi, np.pi, "rad")
+
 
 def vehicle(segments, dt: float, lla0, heading0: float, ellipsoid: earth.Ellipsoid = earth.WGS84) -> Trajectory:
     """A land vehicle driving along its forward axis through a list of segments.
@@ -215,7 +229,8 @@ def vehicle(segments, dt: float, lla0, heading0: float, ellipsoid: earth.Ellipso
     segments = list(segments)
     if not segments or not all(isinstance(s, Segment) for s in segments):
         raise ValueError("segments: expected a non-empty sequence of Segment")
-    total = sum(float(positive(s.duration, "segments[].duration")) for s in segments)
+    heading0 = float(as_array(heading0, "heading0"))
+    total = sum(s.duration for s in segments)
     t = _time(total, dt)
     speed, heading, pitch, roll = (np.empty(t.size) for _ in range(4))
     cur = {"speed": 0.0, "heading": float(heading0), "pitch": 0.0, "roll": 0.0}
@@ -259,6 +274,8 @@ def ideal_imu(traj: Trajectory, ellipsoid: earth.Ellipsoid = earth.WGS84):
     """
     if not isinstance(traj, Trajectory):
         raise ValueError(f"traj: expected a Trajectory, got {type(traj).__name__}")
+    if not all(np.isfinite(a).all() for a in (traj.lla, traj.vel_n, traj.q_bn)):
+        raise ValueError("traj: expected a finite trajectory (no NaN positions, velocities or attitudes)")
     dt = traj.dt
     lat, h = traj.lla[..., :-1, 0], traj.lla[..., :-1, 2]
     v0, v1 = traj.vel_n[..., :-1, :], traj.vel_n[..., 1:, :]

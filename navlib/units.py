@@ -14,80 +14,93 @@ from __future__ import annotations
 
 import numpy as np
 
+__all__ = ["G0", "CONVERTERS", "to_si", "deg", "to_deg", "deg_per_s", "to_deg_per_s", "deg_per_h", "to_deg_per_h",
+           "deg_per_sqrt_h", "to_deg_per_sqrt_h", "deg_per_s_sqrt_hz", "to_deg_per_s_sqrt_hz", "deg_per_h_sqrt_h",
+           "mg", "ug", "to_ug", "ug_per_sqrt_hz", "m_per_s_sqrt_h", "gauss", "to_gauss", "nanotesla", "hpa",
+           "to_hpa", "percent", "ppm"]
+
 G0 = 9.80665
 """Standard gravity (m/s^2) used to convert g, mg and ug (ISO 80000-3)."""
 
 _DEG = np.pi / 180.0
 
 
+def _num(x, name: str = "x") -> np.ndarray:
+    """Float array of ``x``; NaN (dropout) and inf (e.g. "no saturation") pass through."""
+    try:
+        return np.asarray(x, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name}: expected a real number or array, got {type(x).__name__} {x!r:.40}") from None
+
+
 def deg(x):
     """Degrees to radians."""
-    return np.asarray(x, dtype=float) * _DEG
+    return _num(x) * _DEG
 
 
 def to_deg(x):
     """Radians to degrees."""
-    return np.asarray(x, dtype=float) / _DEG
+    return _num(x) / _DEG
 
 
 def deg_per_s(x):
     """deg/s to rad/s."""
-    return np.asarray(x, dtype=float) * _DEG
+    return _num(x) * _DEG
 
 
 def to_deg_per_s(x):
     """rad/s to deg/s."""
-    return np.asarray(x, dtype=float) / _DEG
+    return _num(x) / _DEG
 
 
 def deg_per_h(x):
     """deg/h to rad/s."""
-    return np.asarray(x, dtype=float) * _DEG / 3600.0
+    return _num(x) * _DEG / 3600.0
 
 
 def to_deg_per_h(x):
     """rad/s to deg/h."""
-    return np.asarray(x, dtype=float) * 3600.0 / _DEG
+    return _num(x) * 3600.0 / _DEG
 
 
 def deg_per_sqrt_h(x):
     """Angle random walk deg/sqrt(h) to rad/s/sqrt(Hz)."""
-    return np.asarray(x, dtype=float) * _DEG / 60.0
+    return _num(x) * _DEG / 60.0
 
 
 def to_deg_per_sqrt_h(x):
     """Angle random walk rad/s/sqrt(Hz) to deg/sqrt(h)."""
-    return np.asarray(x, dtype=float) * 60.0 / _DEG
+    return _num(x) * 60.0 / _DEG
 
 
 def deg_per_s_sqrt_hz(x):
     """Rate noise density deg/s/sqrt(Hz) to rad/s/sqrt(Hz)."""
-    return np.asarray(x, dtype=float) * _DEG
+    return _num(x) * _DEG
 
 
 def to_deg_per_s_sqrt_hz(x):
     """Rate noise density rad/s/sqrt(Hz) to deg/s/sqrt(Hz)."""
-    return np.asarray(x, dtype=float) / _DEG
+    return _num(x) / _DEG
 
 
 def deg_per_h_sqrt_h(x):
     """Rate random walk deg/h/sqrt(h) to rad/s^2/sqrt(Hz) (= rad/s/sqrt(s))."""
-    return np.asarray(x, dtype=float) * _DEG / 3600.0 / 60.0
+    return _num(x) * _DEG / 3600.0 / 60.0
 
 
 def mg(x):
     """milli-g to m/s^2."""
-    return np.asarray(x, dtype=float) * 1e-3 * G0
+    return _num(x) * 1e-3 * G0
 
 
 def ug(x):
     """micro-g to m/s^2."""
-    return np.asarray(x, dtype=float) * 1e-6 * G0
+    return _num(x) * 1e-6 * G0
 
 
 def to_ug(x):
     """m/s^2 to micro-g."""
-    return np.asarray(x, dtype=float) / (1e-6 * G0)
+    return _num(x) / (1e-6 * G0)
 
 
 def ug_per_sqrt_hz(x):
@@ -97,72 +110,72 @@ def ug_per_sqrt_hz(x):
 
 def m_per_s_sqrt_h(x):
     """Velocity random walk m/s/sqrt(h) to m/s^2/sqrt(Hz)."""
-    return np.asarray(x, dtype=float) / 60.0
+    return _num(x) / 60.0
 
 
 def gauss(x):
     """Gauss to microtesla (1 G = 100 uT)."""
-    return np.asarray(x, dtype=float) * 100.0
+    return _num(x) * 100.0
 
 
 def to_gauss(x):
     """Microtesla to gauss."""
-    return np.asarray(x, dtype=float) / 100.0
+    return _num(x) / 100.0
 
 
 def nanotesla(x):
     """Nanotesla to microtesla."""
-    return np.asarray(x, dtype=float) * 1e-3
+    return _num(x) * 1e-3
 
 
 def hpa(x):
     """Hectopascal to pascal."""
-    return np.asarray(x, dtype=float) * 100.0
+    return _num(x) * 100.0
 
 
 def to_hpa(x):
     """Pascal to hectopascal."""
-    return np.asarray(x, dtype=float) / 100.0
+    return _num(x) / 100.0
 
 
 def percent(x):
     """Percent to a fraction."""
-    return np.asarray(x, dtype=float) / 100.0
+    return _num(x) / 100.0
 
 
 def ppm(x):
     """Parts per million to a fraction."""
-    return np.asarray(x, dtype=float) * 1e-6
+    return _num(x) * 1e-6
 
 
 # unit string -> SI converter, used to read datasheet tables from data/.
 CONVERTERS = {
-    "rad": lambda x: np.asarray(x, dtype=float),
+    "rad": lambda x: _num(x),
     "deg": deg,
     "deg/s": deg_per_s,
     "deg/h": deg_per_h,
     "deg/sqrt(h)": deg_per_sqrt_h,
     "deg/s/sqrt(Hz)": deg_per_s_sqrt_hz,
     "deg/h/sqrt(h)": deg_per_h_sqrt_h,
-    "m/s^2": lambda x: np.asarray(x, dtype=float),
-    "g": lambda x: np.asarray(x, dtype=float) * G0,
+    "m/s^2": lambda x: _num(x),
+    "g": lambda x: _num(x) * G0,
     "mg": mg,
     "ug": ug,
     "ug/sqrt(Hz)": ug_per_sqrt_hz,
     "m/s/sqrt(h)": m_per_s_sqrt_h,
-    "m/s^2/sqrt(Hz)": lambda x: np.asarray(x, dtype=float),
-    "uT": lambda x: np.asarray(x, dtype=float),
+    "m/s^2/sqrt(Hz)": lambda x: _num(x),
+    "uT": lambda x: _num(x),
     "G": gauss,
-    "mG": lambda x: gauss(np.asarray(x, dtype=float) * 1e-3),
-    "Pa": lambda x: np.asarray(x, dtype=float),
+    "mG": lambda x: gauss(_num(x) * 1e-3),
+    "Pa": lambda x: _num(x),
     "hPa": hpa,
-    "Pa/s": lambda x: np.asarray(x, dtype=float),
+    "Pa/s": lambda x: _num(x),
     "hPa/h": lambda x: hpa(x) / 3600.0,
     "%": percent,
     "ppm": ppm,
-    "m": lambda x: np.asarray(x, dtype=float),
-    "s": lambda x: np.asarray(x, dtype=float),
-    "-": lambda x: np.asarray(x, dtype=float),
+    "m": lambda x: _num(x),
+    "s": lambda x: _num(x),
+    "-": lambda x: _num(x),
 }
 
 
@@ -172,4 +185,4 @@ def to_si(value, unit: str):
         conv = CONVERTERS[unit]
     except KeyError:
         raise ValueError(f"unit: unknown unit {unit!r}; known: {sorted(CONVERTERS)}") from None
-    return conv(value)
+    return conv(_num(value, "value"))
