@@ -1,6 +1,6 @@
 """navlib benchmarks: throughput of the kernels, peers side by side in one run.
 
-Each case module in this folder defines ``CASES``, a list of functions that
+Each case module ``bench/cases_*.py`` (found automatically) defines ``CASES``, a list of functions that
 return :class:`Result` rows (one per implementation). ``make bench`` runs them
 all, prints a table with the ratio of every implementation to navlib's and to
 the goal of DESIGN.md §6 where there is one, and writes ``build/bench.json``.
@@ -21,7 +21,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
-CASE_MODULES = ["bench.cases_core"]
+CASE_MODULES = sorted(f"bench.{p.stem}" for p in Path(__file__).parent.glob("cases_*.py"))
 
 
 @dataclass
