@@ -47,11 +47,11 @@ matplotlib = pytest.importorskip("matplotlib")
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from navlib import (analysis, atmosphere, attitude, earth, kalman, plots, repro,  # noqa: E402
+from navlib import (analysis, atmosphere, attitude, earth, kalman, montecarlo, plots, repro,  # noqa: E402
                     sensors, strapdown, trajectory, units)
 
 MODULES = ["attitude", "earth", "units", "sensors", "atmosphere", "trajectory", "strapdown",
-           "kalman", "analysis", "repro", "plots"]
+           "kalman", "analysis", "repro", "plots", "montecarlo"]
 
 NAN, INF = np.nan, np.inf
 STR = "abc"                      # a string where numbers are expected
@@ -484,6 +484,22 @@ CASES = [
 
 
 # The one-argument unit converters (units has no __all__: its public functions).
+def _mc_batch(ids, streams):
+    return {"x": streams.normal()}
+
+
+CASES += [
+    bad("montecarlo.run", "n_trials", "zero", lambda: montecarlo.run(_mc_batch, 0, 1, progress=False)),
+    bad("montecarlo.run", "seed", "str", lambda: montecarlo.run(_mc_batch, 5, STR, progress=False)),
+    bad("montecarlo.run", "batch_size", "negative", lambda: montecarlo.run(_mc_batch, 5, 1, batch_size=-2)),
+    bad("montecarlo.run", "batch_fn", "not_callable", lambda: montecarlo.run(None, 5, 1)),
+    bad("montecarlo.run", "executor", "str", lambda: montecarlo.run(_mc_batch, 5, 1, executor=STR)),
+    bad("montecarlo.TrialStreams", "seed", "nan", lambda: montecarlo.TrialStreams(NAN, [0, 1])),
+    bad("montecarlo.TrialStreams", "ids", "negative", lambda: montecarlo.TrialStreams(1, [0, -1])),
+    bad("montecarlo.TrialStreams", "ids", "empty", lambda: montecarlo.TrialStreams(1, [])),
+]
+
+
 def _unit_converters():
     return sorted(name for name, obj in vars(units).items()
                   if callable(obj) and not name.startswith("_") and getattr(obj, "__module__", "") == units.__name__
