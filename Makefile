@@ -15,7 +15,7 @@ reproduce test: export MPLBACKEND := Agg
 PYTEST_FLAGS ?= -q -ra --durations=10 --nbmake-timeout=1800
 
 .DEFAULT_GOAL := help
-.PHONY: help venv reproduce test lab bench strip clean
+.PHONY: help venv reproduce test lab bench strip clean determinism report-screenshot
 
 help:
 	@echo "make reproduce  execute every notebook, write build/ (index.html, HTML, figures, results)"
@@ -23,6 +23,8 @@ help:
 	@echo "make lab        JupyterLab on notebooks/"
 	@echo "make bench      install bench-only peers (requirements-bench.txt), run bench/run.py"
 	@echo "make strip      strip outputs from notebooks/*.ipynb before committing"
+	@echo "make determinism  run reproduce twice; fail unless results and PNGs are byte-identical"
+	@echo "make report-screenshot  render build/index.html in headless Chromium to build/index.png"
 	@echo "make venv       create .venv from environment.txt and install navlib (done by all targets)"
 	@echo "make clean      remove build/"
 
@@ -37,6 +39,22 @@ $(STAMP): environment.txt pyproject.toml
 
 reproduce: $(STAMP)
 	$(PY) tools/reproduce.py
+
+# Two full runs; the second compares SHA-256 of every results.json and PNG with the first.
+determinism: $(STAMP)
+	$(PY) tools/reproduce.py
+	cp build/manifest.json build/manifest.run1.json
+	$(PY) tools/reproduce.py --check-against build/manifest.run1.json
+
+# Opens the report in a real browser (Debian's chromium; installed here if missing).
+report-screenshot:
+	test -f build/index.html || $(MAKE) reproduce
+	command -v chromium >/dev/null || (apt-get update -qq && apt-get install -y -qq chromium)
+	chromium --headless --no-sandbox --disable-gpu --disable-quic --no-first-run \
+	  --disable-background-networking --disable-component-update --disable-sync \
+	  --user-data-dir=$$(mktemp -d) --window-size=1280,2400 \
+	  --screenshot=$(CURDIR)/build/index.png file://$(CURDIR)/build/index.html
+	@echo "wrote build/index.png"
 
 # pytest exits 5 when it collected no tests: that is a failure here too.
 test: $(STAMP)

@@ -10,7 +10,10 @@ directory ``notebooks/``) this writes
 and reads ``build/<stem>/results.json`` and ``build/<stem>/figures/*.png``,
 which the notebook itself writes through ``navlib.repro``. Then it writes
 ``build/index.html`` (paper-vs-reproduction tables and figure thumbnails) and
-``build/summary.json``, and prints one line per notebook.
+``build/summary.json`` and ``build/manifest.json`` (SHA-256 of every
+results file and figure), and prints one line per notebook.
+``--check-against MANIFEST`` fails the run unless those files are
+byte-identical to an earlier run's (``make determinism``).
 
 A notebook that raises is reported and the run goes on with the next one; the
 exit status is non-zero if any notebook failed. ``--only`` runs a subset, and
@@ -22,6 +25,7 @@ from __future__ import annotations
 
 import argparse
 import fnmatch
+import hashlib
 import html
 import json
 import os
@@ -130,11 +134,30 @@ def write_index(build: Path, entries: list[dict]) -> None:
     (build / "index.html").write_text("\n".join(parts), encoding="utf-8")
 
 
+def write_manifest(build: Path, entries: list[dict]) -> dict:
+    """SHA-256 of every results.json and PNG figure: what must not change between two runs."""
+    files = []
+    for e in entries:
+        files += [build / e["notebook"] / "results.json"] + [build / f for f in e["figures"]]
+    manifest = {p.relative_to(build).as_posix(): hashlib.sha256(p.read_bytes()).hexdigest()
+                for p in files if p.is_file()}
+    (build / "manifest.json").write_text(json.dumps(manifest, indent=1, sort_keys=True) + "\n")
+    return manifest
+
+
+def compare_manifest(manifest: dict, reference: Path) -> list[str]:
+    """Files whose hash differs from (or is missing in) a previous run's manifest."""
+    ref = json.loads(reference.read_text())
+    return sorted(k for k in set(ref) | set(manifest) if ref.get(k) != manifest.get(k))
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--only", metavar="PATTERN", help="run only notebooks whose name matches (substring or glob)")
     ap.add_argument("--root", type=Path, default=REPO, help="repository root holding notebooks/ (default: this repo)")
     ap.add_argument("--timeout", type=int, default=1800, help="per-cell timeout in seconds (default 1800)")
+    ap.add_argument("--check-against", type=Path, metavar="MANIFEST",
+                    help="fail unless every results.json and PNG is byte-identical to this earlier manifest")
     args = ap.parse_args(argv)
 
     root = args.root.resolve()
@@ -160,6 +183,7 @@ def main(argv=None) -> int:
         print(f"    {'done' if e['ok'] else 'FAILED'} in {e['seconds']:.1f} s{tail}", flush=True)
 
     write_index(build, entries)
+    manifest = write_manifest(build, entries)
     summary = {e["notebook"]: {k: e[k] for k in ("claims_passed", "claims_total", "seconds", "ok", "error")}
                for e in entries}
     (build / "summary.json").write_text(json.dumps(summary, indent=1) + "\n")
@@ -177,6 +201,12 @@ def main(argv=None) -> int:
     print(f"{'total':<{width}}{f'{passed}/{total}':>7} claims passed{seconds:>9.1f} s"
           f"   ({n_ok}/{len(entries)} notebooks ok)")
     print(f"report: {build / 'index.html'}")
+    if args.check_against:
+        changed = compare_manifest(manifest, args.check_against)
+        print(f"determinism: {len(manifest)} files, {len(changed)} differ from {args.check_against.name}"
+              + "".join(f"\n    {c}" for c in changed))
+        if changed:
+            return 1
     return 0 if n_ok == len(entries) else 1
 
 
