@@ -15,10 +15,11 @@ reproduce test: export MPLBACKEND := Agg
 PYTEST_FLAGS ?= -q -ra --durations=10 --nbmake-timeout=1800
 
 .DEFAULT_GOAL := help
-.PHONY: help venv reproduce test lab bench strip clean determinism report-screenshot
+.PHONY: help venv reproduce readme test lab bench strip clean determinism report-screenshot
 
 help:
 	@echo "make reproduce  execute every notebook, write build/ (index.html, HTML, figures, results)"
+	@echo "make readme     regenerate the README results table and figure gallery from build/"
 	@echo "make test       unit/property tests + every notebook executed by nbmake"
 	@echo "make lab        JupyterLab on notebooks/"
 	@echo "make bench      install bench-only peers (requirements-bench.txt), run bench/run.py"
@@ -39,6 +40,10 @@ $(STAMP): environment.txt pyproject.toml
 
 reproduce: $(STAMP)
 	$(PY) tools/reproduce.py
+	$(PY) tools/readme.py
+
+readme: $(STAMP)
+	$(PY) tools/readme.py
 
 # Two full runs; the second compares SHA-256 of every results.json and PNG with the first.
 determinism: $(STAMP)

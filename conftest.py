@@ -1,0 +1,32 @@
+"""Session hook: after notebooks ran under nbmake, the README results table must match.
+
+Each notebook writes ``build/<notebook>/results.json``; ``tools/readme.py``
+turns those into the README's results table. When a pytest session executed
+notebooks and they all passed, this hook re-renders the rows of the notebooks
+that ran and fails the session if the committed README disagrees
+(run ``make readme`` and commit).
+"""
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent
+_START = time.time()
+
+
+def pytest_sessionfinish(session, exitstatus):
+    if exitstatus != 0:
+        return
+    sys.path.insert(0, str(ROOT / "tools"))
+    import readme
+
+    fresh = {k: v for k, v in readme.table_rows(ROOT / "build").items()
+             if (ROOT / "build" / k / "results.json").stat().st_mtime >= _START}
+    if not fresh:
+        return
+    committed = readme.readme_rows((ROOT / "README.md").read_text(encoding="utf-8"))
+    stale = sorted(k for k, row in fresh.items() if committed.get(k) != row)
+    if stale:
+        print(f"\nREADME results table is stale for {stale}: run `make readme` and commit README.md",
+              file=sys.stderr)
+        session.exitstatus = 1
