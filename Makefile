@@ -63,7 +63,7 @@ report-screenshot:
 
 # pytest exits 5 when it collected no tests: that is a failure here too.
 test: $(STAMP)
-	@rc=0; $(PY) -m pytest tests notebooks --nbmake $(PYTEST_FLAGS) || rc=$$?; \
+	@rc=0; NAVLIB_CHECK_README=1 $(PY) -m pytest tests notebooks --nbmake $(PYTEST_FLAGS) || rc=$$?; \
 	if [ $$rc -eq 5 ]; then echo "make test: pytest collected no tests" >&2; fi; \
 	exit $$rc
 

@@ -4,7 +4,8 @@ Each notebook writes ``build/<notebook>/results.json``; ``tools/readme.py``
 turns those into the README's results table. When a pytest session executed
 notebooks and they all passed, this hook re-renders the rows of the notebooks
 that ran and fails the session if the committed README disagrees
-(run ``make readme`` and commit).
+(run ``make readme`` and commit). Enabled by ``make test`` (NAVLIB_CHECK_README=1),
+so a developer running one notebook by hand is not stopped by it.
 """
 import os
 import sys
