@@ -1,0 +1,814 @@
+"""North finding with a single-axis optical gyro and a MEMS IMU (paper 000).
+
+Tan C., Xie X., "Indoor mobile robot north-finding based on single-axis optical
+gyroscope and MEMS IMU", Chinese Journal of Scientific Instrument
+(仪器仪表学报), doi:10.19650/j.cnki.cjsi.J2412479.
+
+Frames follow :mod:`navlib`: ENU navigation frame, right-front-up body frame
+(the paper's s frame, with the optical gyro on the forward axis y), ``C_bn``
+is the paper's ``C_s^n`` and heading is clockwise from north (paper Eq. 3).
+Latitude is ``lat`` (the paper's L). omega_ie = 7.292115e-5 rad/s.
+
+Equations implemented
+---------------------
+TRIAD, Eqs. (1)-(2) -- :func:`triad`::
+
+    C_n^s = [-f, -f x w, (-f x w) x (-f)] [g_n, g_n x w_ie, (g_n x w_ie) x g_n]^-1
+
+  With noisy inputs the product is not orthonormal (the paper does not say
+  what it does about that); :func:`triad` projects it onto the nearest
+  rotation with :func:`navlib.attitude.orthonormalize` (SVD) unless asked for
+  the raw product.
+Tilt, Eqs. (4)-(6) -- :func:`tilt_from_accel`: ``pitch = asin(f_y / g)``,
+  ``roll = atan2(-f_x, f_z)``.
+Single-axis candidates, Eqs. (8)-(11) -- :func:`heading_candidates`::
+
+    cos psi = (w_y - w_ie sin(lat) sin(pitch)) / (w_ie cos(lat) cos(pitch))
+    psi(1) = alpha = acos(clip(cos psi, -1, 1)),   psi(2) = 2 pi - alpha
+
+  The clipping is reported per trial (``clipped``).
+Resolution, Eq. (12) -- :func:`resolve`: the four candidate heading changes
+  ``psi2(i) - psi1(j)`` are compared with the MEMS INS heading change through
+  ``wrap_pi``; the nearest one gives the heading at position 2, and the margin
+  to the nearest *different* candidate is returned.
+Error theory -- Eq. (13) with its sign corrected (:func:`triad_heading_error`),
+  Eq. (16) (:func:`triad_heading_std`), Eq. (20) and its full linearisation
+  with the pitch (accelerometer) term (:func:`single_axis_heading_std`,
+  :func:`single_axis_heading_error`)::
+
+    d psi = [-d w_y + w_ie (sin lat cos th - cos lat sin th cos psi) d th]
+            / (w_ie cos lat cos th sin psi),        d th = d f_y / (g cos th)
+
+Extensions: :func:`pair_probabilities` (exact probability of each candidate
+pair winning for a Gaussian INS error; paper's "any second position" claim),
+:func:`four_position_heading` (classic turntable north finding with the same
+gyro) and the Monte Carlo of Fig. 4 (:func:`simulate_static_outputs`,
+:func:`monte_carlo`) vectorised over headings and trials.
+
+Errata corrected (guide 000 section 8)
+--------------------------------------
+* Err 1: omega_ic in Eqs. (13), (16)-(20) is omega_ie.
+* Err 2: with clockwise heading, Eq. (13) has the wrong sign:
+  ``psi_hat - psi = -dw_E / (w_ie cos lat)``.
+* Err 3: Eq. (20) fails near 0 deg / 180 deg, where |cos psi| > 1 must be
+  clipped (this is where Table 1's "180.00, 180.00" comes from).
+* Err 4: Eq. (20) omits the accelerometer (pitch) term and a 1/cos^2(pitch).
+* Err 7: the candidate comparison must use wrapped differences.
+* Err 10: alpha, beta lie in [0, pi], not [0, 2 pi).
+* Err 12: a MEMS INS started with heading 0 cannot remove the horizontal Earth
+  rate correctly; :func:`ins_heading_change` removes only the vertical part
+  ``w_ie sin(lat)`` by default (or none / the full, misdirected rate).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.special import ndtr
+
+from . import attitude, earth, strapdown
+from ._validate import as_array, generator, in_range, latitude, positive
+from .sensors import TriadErrors
+from .trajectory import Segment
+
+__all__ = ["MAX_LAT_DEG", "static_means", "triad", "triad_heading", "tilt_from_accel", "Candidates",
+           "heading_candidates", "nearest_candidate_error", "Resolution", "resolve", "triad_heading_error",
+           "triad_heading_std",
+           "single_axis_heading_std", "single_axis_heading_error", "simulate_static_outputs",
+           "MonteCarlo", "monte_carlo", "pair_probabilities", "four_position_heading",
+           "four_position_heading_std", "window_mean_std", "stop_and_go",
+           "StopSolutions", "stop_solutions", "ins_heading_change"]
+
+OMEGA_IE = earth.OMEGA_IE
+MAX_LAT_DEG = 89.0
+"""Largest |latitude| accepted (deg): beyond it cos(lat) < 0.0175 and the
+horizontal Earth rate (< 0.26 deg/h) no longer defines north usefully."""
+
+
+# --------------------------------------------------------------------------
+# validation helpers
+# --------------------------------------------------------------------------
+
+def _lat(lat, deg: bool = False) -> np.ndarray:
+    """Latitude in rad, rejecting |lat| > 90 deg and near-polar |lat| > MAX_LAT_DEG."""
+    lat = latitude(lat, "lat", deg=deg)
+    if np.any(np.abs(lat) > np.deg2rad(MAX_LAT_DEG)):
+        raise ValueError(f"lat: expected |lat| <= {MAX_LAT_DEG} deg for north finding (cos(lat) -> 0 near "
+                         f"the poles), got {np.rad2deg(np.abs(lat).max()):.4g} deg")
+    return lat
+
+
+def _vec(x, name: str) -> np.ndarray:
+    return as_array(x, name, tail=(3,))
+
+
+def static_means(w_ib_b, f_b, lat, h=0.0, accel_tol: float = 0.2):
+    """Average a static window of gyro and accelerometer samples (paper step 1).
+
+    Parameters
+    ----------
+    w_ib_b, f_b : array_like, shape (..., N, 3)
+        Gyro (rad/s) and accelerometer (m/s^2) samples of one stop, N >= 2.
+    lat : float
+        Latitude (rad), used for the expected gravity.
+    h : float
+        Height (m).
+    accel_tol : float
+        Largest accepted deviation (m/s^2) of the mean specific-force norm
+        from normal gravity, and of the two half-window means from each
+        other. Larger deviations mean the robot was not static.
+
+    Returns
+    -------
+    w_mean, f_mean : ndarray, shape (..., 3)
+
+    Raises
+    ------
+    ValueError
+        Empty or non-finite windows, mismatched shapes, or a window in which
+        the robot was evidently moving.
+    """
+    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1)
+    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1)
+    if w.shape != f.shape:
+        raise ValueError(f"f_b: expected the shape of w_ib_b {w.shape}, got {f.shape}")
+    n = w.shape[-2]
+    if n < 2:
+        raise ValueError(f"w_ib_b: expected a static window of at least 2 samples, got {n}")
+    tol = float(positive(accel_tol, "accel_tol"))
+    g = earth.gravity(_lat(lat), h)
+    f_mean = f.mean(-2)
+    dev = np.abs(np.linalg.norm(f_mean, axis=-1) - g)
+    if np.any(dev > tol):
+        raise ValueError(f"f_b: mean specific-force norm differs from gravity by {dev.max():.3g} m/s^2 "
+                         f"(> accel_tol = {tol:g}): the robot is not static")
+    halves = np.abs(f[..., : n // 2, :].mean(-2) - f[..., n // 2:, :].mean(-2)).max(initial=0.0)
+    if halves > tol:
+        raise ValueError(f"f_b: the two halves of the window differ by {halves:.3g} m/s^2 "
+                         f"(> accel_tol = {tol:g}): the robot moved during the stop")
+    return w.mean(-2), f_mean
+
+
+# --------------------------------------------------------------------------
+# TRIAD (Eqs. 1-3)
+# --------------------------------------------------------------------------
+
+def _reference_triad(g_n, w_ie_n):
+    a = g_n
+    b = np.cross(g_n, w_ie_n)
+    return np.stack([a, b, np.cross(b, a)], -1)
+
+
+def triad(f_b, w_ib_b, lat, orthonormal: bool = True):
+    """Analytic coarse alignment with a three-axis gyro (paper Eqs. 1-2).
+
+    Parameters
+    ----------
+    f_b : array_like, shape (..., 3)
+        Averaged specific force (m/s^2).
+    w_ib_b : array_like, shape (..., 3)
+        Averaged angular rate (rad/s).
+    lat : float or array_like broadcasting with the leading axes
+        Latitude (rad).
+    orthonormal : bool
+        Project the result onto the nearest rotation (SVD). ``False`` returns
+        Eq. (2)'s raw product, which noise makes slightly non-orthonormal.
+
+    Returns
+    -------
+    C_bn : ndarray, shape (..., 3, 3)
+    """
+    f = _vec(f_b, "f_b")
+    w = _vec(w_ib_b, "w_ib_b")
+    lat = _lat(lat)
+    g_n = np.stack(np.broadcast_arrays(0.0, 0.0, -earth.gravity(lat)), -1)
+    body = _reference_triad(-f, w)                    # columns: -f, -f x w, (-f x w) x (-f)
+    nav = _reference_triad(g_n, earth.earth_rate_n(lat))
+    C_nb = body @ np.linalg.inv(nav)
+    C_bn = np.swapaxes(C_nb, -1, -2)
+    return attitude.orthonormalize(C_bn) if orthonormal else C_bn
+
+
+def triad_heading(C_bn):
+    """Heading ``atan2(c12, c22) mod 2 pi`` (rad) of a TRIAD matrix, orthonormal or raw.
+
+    The paper's extraction (guide section 3); unlike
+    :func:`navlib.attitude.dcm_to_euler` it accepts Eq. (2)'s raw,
+    slightly non-orthonormal product. Shape (..., 3, 3) -> (...).
+    """
+    C = as_array(C_bn, "C_bn", tail=(3, 3))
+    return attitude.wrap_2pi(np.arctan2(C[..., 0, 1], C[..., 1, 1]))
+
+
+def tilt_from_accel(f_b, g=None):
+    """Pitch and roll from averaged specific force (paper Eqs. 5-6).
+
+    ``pitch = asin(f_y / g)``, ``roll = atan2(-f_x, f_z)``. Without ``g`` the
+    norm ``|f|`` stands in for g (guide Err 13), which keeps asin's argument
+    in range; with ``g`` the argument is clipped to [-1, 1].
+
+    Parameters
+    ----------
+    f_b : array_like, shape (..., 3)  (m/s^2)
+    g : float, optional
+        Gravity (m/s^2).
+
+    Returns
+    -------
+    pitch, roll : ndarray, shape (...)  (rad)
+    """
+    f = _vec(f_b, "f_b")
+    norm = np.linalg.norm(f, axis=-1)
+    if np.any(norm < 1e-9):
+        raise ValueError("f_b: expected non-zero specific force (a static accelerometer reads about g)")
+    g = norm if g is None else positive(g, "g")
+    return np.arcsin(np.clip(f[..., 1] / g, -1.0, 1.0)), np.arctan2(-f[..., 0], f[..., 2])
+
+
+# --------------------------------------------------------------------------
+# single-axis candidates and their resolution (Eqs. 8-12)
+# --------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Candidates:
+    """Two heading candidates of one stop (paper Eqs. 9-11).
+
+    Attributes
+    ----------
+    pair : ndarray, shape (..., 2)
+        ``[alpha, 2 pi - alpha]`` wrapped into [0, 2 pi) (rad).
+    alpha : ndarray, shape (...)
+        ``acos`` of the clipped cosine, in [0, pi] (Err 10).
+    cos_heading : ndarray, shape (...)
+        Right side of Eq. (9) before clipping.
+    clipped : ndarray of bool, shape (...)
+        True where |cos_heading| > 1 was clipped (noise near 0 or 180 deg).
+    pitch : ndarray, shape (...)
+        Pitch from Eq. (5) (rad).
+    """
+    pair: np.ndarray
+    alpha: np.ndarray
+    cos_heading: np.ndarray
+    clipped: np.ndarray
+    pitch: np.ndarray
+
+    @property
+    def n_clipped(self) -> int:
+        """Number of clipped stops/trials."""
+        return int(np.count_nonzero(self.clipped))
+
+
+def heading_candidates(w_y, f_b, lat, h=0.0) -> Candidates:
+    """Heading candidates from the forward gyro and the accelerometers (Eqs. 5, 9, 10).
+
+    Pitch is Eq. (5) literally, ``asin(f_y / g)`` with normal gravity g at
+    ``lat`` and ``h``, so that :func:`single_axis_heading_error` is its exact
+    linearisation.
+
+    Parameters
+    ----------
+    w_y : array_like, shape (...)
+        Averaged forward (y) gyro output (rad/s).
+    f_b : array_like, shape (..., 3)
+        Averaged specific force (m/s^2); only pitch is used (roll is not needed).
+    lat : float
+        Latitude (rad), |lat| <= MAX_LAT_DEG.
+    h : float
+        Height (m), for normal gravity.
+
+    Returns
+    -------
+    Candidates
+    """
+    w_y = as_array(w_y, "w_y")
+    lat = _lat(lat)
+    pitch, _ = tilt_from_accel(f_b, earth.gravity(lat, h))
+    cos_h = (w_y - OMEGA_IE * np.sin(lat) * np.sin(pitch)) / (OMEGA_IE * np.cos(lat) * np.cos(pitch))
+    clipped = np.abs(cos_h) > 1.0
+    alpha = np.arccos(np.clip(cos_h, -1.0, 1.0))
+    pair = np.stack([alpha, attitude.wrap_2pi(2 * np.pi - alpha)], -1)
+    return Candidates(pair, alpha, cos_h, clipped, pitch)
+
+
+def nearest_candidate_error(pair, heading):
+    """Error of the candidate nearest the true heading, wrapped (rad).
+
+    The single-axis error when the ambiguity is resolved correctly (Fig. 4).
+
+    Parameters
+    ----------
+    pair : array_like, shape (..., 2)
+        Candidate pairs (rad).
+    heading : array_like, broadcasting to (...)
+        True headings (rad).
+    """
+    p = as_array(pair, "pair", tail=(2,))
+    e = attitude.wrap_pi(p - as_array(heading, "heading")[..., None])
+    return np.take_along_axis(e, np.argmin(np.abs(e), -1)[..., None], -1)[..., 0]
+
+
+@dataclass(frozen=True)
+class Resolution:
+    """Outcome of the candidate-pair resolution (paper Eq. 12 and step 5).
+
+    Attributes
+    ----------
+    heading : ndarray, shape (...)
+        Chosen heading at position 2 (rad, [0, 2 pi)).
+    dpsi_candidates : ndarray, shape (..., 4)
+        ``[psi2(1)-psi1(1), psi2(1)-psi1(2), psi2(2)-psi1(1), psi2(2)-psi1(2)]``
+        = ``{beta-alpha, alpha+beta-2pi, 2pi-alpha-beta, alpha-beta}`` (rad).
+    residuals : ndarray, shape (..., 4)
+        Candidate minus INS heading change, wrapped (or not) as requested.
+    index : ndarray of int, shape (...)
+        Winning candidate (0..3); ``index // 2`` is position 2's candidate.
+    margin : ndarray, shape (...)
+        |residual| of the nearest candidate with a *different* value minus the
+        winner's (rad); ``inf`` when all four coincide (alpha = beta = pi).
+    """
+    heading: np.ndarray
+    dpsi_candidates: np.ndarray
+    residuals: np.ndarray
+    index: np.ndarray
+    margin: np.ndarray
+
+    @property
+    def dpsi(self) -> np.ndarray:
+        """The winning candidate heading change (rad)."""
+        return np.take_along_axis(self.dpsi_candidates, self.index[..., None], -1)[..., 0]
+
+
+def resolve(pair1, pair2, dpsi_ins, wrap: bool = True) -> Resolution:
+    """Pick position 2's heading with the INS heading change (Eq. 12, step 5).
+
+    Parameters
+    ----------
+    pair1, pair2 : array_like, shape (..., 2)
+        Candidate pairs at positions 1 and 2 (rad), e.g. ``Candidates.pair``.
+    dpsi_ins : array_like, shape (...)
+        Heading change measured by the MEMS INS (rad).
+    wrap : bool
+        Compare ``wrap_pi(candidate - dpsi_ins)`` (default, Err 7). ``False``
+        reproduces the paper's literal unwrapped comparison, for demonstration.
+
+    Returns
+    -------
+    Resolution
+    """
+    p1 = as_array(pair1, "pair1", tail=(2,))
+    p2 = as_array(pair2, "pair2", tail=(2,))
+    ins = as_array(dpsi_ins, "dpsi_ins")
+    cands = (p2[..., :, None] - p1[..., None, :]).reshape(p2.shape[:-1] + (4,))
+    cands, ins = np.broadcast_arrays(cands, ins[..., None])
+    diff = cands - ins
+    res = attitude.wrap_pi(diff) if wrap else diff
+    score = np.abs(res)
+    index = np.argmin(score, axis=-1)
+    best_cand = np.take_along_axis(cands, index[..., None], -1)
+    best = np.take_along_axis(score, index[..., None], -1)
+    distinct = np.abs(attitude.wrap_pi(cands - best_cand)) > 1e-9
+    margin = np.where(distinct, score, np.inf).min(-1) - best[..., 0]
+    p2b = np.broadcast_to(p2, cands.shape[:-1] + (2,))
+    heading = np.take_along_axis(p2b, (index // 2)[..., None], -1)[..., 0]
+    return Resolution(heading, cands, res, index, margin)
+
+
+# --------------------------------------------------------------------------
+# error theory (Eqs. 13-20, guide Err 2 and 4)
+# --------------------------------------------------------------------------
+
+def triad_heading_error(C_bn, dw_b, lat):
+    """TRIAD heading error caused by a gyro error, Eq. (13) with its sign corrected.
+
+    ``psi_hat - psi = -dw_E / (w_ie cos lat)`` with ``dw_n = C_bn dw_b``
+    (guide Err 2: the printed ``+dw_E/...`` is the error of a counter-clockwise
+    azimuth).
+
+    Parameters
+    ----------
+    C_bn : array_like, shape (..., 3, 3)
+    dw_b : array_like, shape (..., 3)
+        Gyro error (rad/s).
+    lat : float  (rad)
+
+    Returns
+    -------
+    ndarray, shape (...)  (rad)
+    """
+    C = attitude._as_dcm(C_bn)
+    dw = _vec(dw_b, "dw_b")
+    dw_east = np.einsum("...j,...j->...", C[..., 0, :], dw)
+    return -dw_east / (OMEGA_IE * np.cos(_lat(lat)))
+
+
+def triad_heading_std(sigma_gyro, lat):
+    """Eq. (16): TRIAD heading error std ``sigma / (w_ie cos lat)`` (rad).
+
+    ``sigma_gyro`` (rad/s) is the std of each horizontal gyro error (equal and
+    uncorrelated, as the paper assumes); independent of heading.
+    """
+    s = positive(sigma_gyro, "sigma_gyro", allow_zero=True)
+    return s / (OMEGA_IE * np.cos(_lat(lat)))
+
+
+def _pitch(pitch):
+    return in_range(as_array(pitch, "pitch"), "pitch", -np.pi / 2, np.pi / 2, "rad", lo_open=True, hi_open=True)
+
+
+def single_axis_heading_std(heading, sigma_gyro, lat, pitch=0.0, sigma_accel=0.0, g=None):
+    """Single-axis heading error std (rad): Eq. (20) or its full linearisation.
+
+    With ``pitch = 0`` and ``sigma_accel = 0`` this is Eq. (20),
+    ``sigma_gyro / (w_ie cos lat |sin psi|)``. Otherwise the full
+    linearisation of Eq. (8) (guide Err 4)::
+
+        var = [sigma_g^2 + (w_ie (sin lat cos th - cos lat sin th cos psi) sigma_th)^2]
+              / (w_ie cos lat cos th sin psi)^2,      sigma_th = sigma_a / (g cos th)
+
+    Infinite at psi = 0 and pi, where the linearisation fails (Err 3).
+
+    Parameters
+    ----------
+    heading : array_like  (rad)
+    sigma_gyro : float  (rad/s)
+        Std of the averaged forward-gyro error.
+    lat : float  (rad)
+    pitch : array_like  (rad)
+    sigma_accel : float  (m/s^2)
+        Std of the averaged forward-accelerometer error.
+    g : float, optional
+        Gravity (m/s^2); normal gravity at ``lat`` by default.
+    """
+    psi = as_array(heading, "heading")
+    th = _pitch(pitch)
+    s_g = positive(sigma_gyro, "sigma_gyro", allow_zero=True)
+    s_a = positive(sigma_accel, "sigma_accel", allow_zero=True)
+    lat = _lat(lat)
+    g = earth.gravity(lat) if g is None else positive(g, "g")
+    s_th = s_a / (g * np.cos(th))
+    coupling = OMEGA_IE * (np.sin(lat) * np.cos(th) - np.cos(lat) * np.sin(th) * np.cos(psi))
+    with np.errstate(divide="ignore"):
+        return np.sqrt(s_g ** 2 + (coupling * s_th) ** 2) / np.abs(OMEGA_IE * np.cos(lat) * np.cos(th) * np.sin(psi))
+
+
+def single_axis_heading_error(heading, pitch, lat, dw_y, df_y=0.0, g=None):
+    """Linearised single-axis heading error for given sensor errors (rad, guide Err 4).
+
+    ``d psi = [-dw_y + w_ie (sin lat cos th - cos lat sin th cos psi) d th]
+    / (w_ie cos lat cos th sin psi)`` with ``d th = df_y / (g cos th)``. With
+    ``pitch = df_y = 0`` it is Eq. (19) solved for d psi.
+
+    Parameters
+    ----------
+    heading, pitch : array_like  (rad)
+    lat : float  (rad)
+    dw_y : array_like
+        Forward-gyro error (rad/s).
+    df_y : array_like
+        Forward-accelerometer error (m/s^2).
+    g : float, optional
+        Gravity (m/s^2); normal gravity at ``lat`` by default.
+    """
+    psi = as_array(heading, "heading")
+    th = _pitch(pitch)
+    dw = as_array(dw_y, "dw_y")
+    df = as_array(df_y, "df_y")
+    lat = _lat(lat)
+    g = earth.gravity(lat) if g is None else positive(g, "g")
+    d_th = df / (g * np.cos(th))
+    coupling = OMEGA_IE * (np.sin(lat) * np.cos(th) - np.cos(lat) * np.sin(th) * np.cos(psi))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return (-dw + coupling * d_th) / (OMEGA_IE * np.cos(lat) * np.cos(th) * np.sin(psi))
+
+
+# --------------------------------------------------------------------------
+# Monte Carlo of Fig. 4
+# --------------------------------------------------------------------------
+
+def simulate_static_outputs(hpr, lat, n_trials: int, sigma_gyro, sigma_accel, rng: np.random.Generator,
+                            gyro_bias=0.0, accel_bias=0.0):
+    """Averaged outputs of a static IMU plus white noise, as in the paper's Monte Carlo.
+
+    ``w = C_nb w_ie_n + b_g + sigma_gyro n``, ``f = C_nb [0, 0, g] + b_a + sigma_accel n``
+    with independent standard normal ``n`` per axis and trial (gyro and
+    accelerometer from separate child streams of ``rng``).
+
+    Parameters
+    ----------
+    hpr : array_like, shape (..., 3)
+        True attitudes (rad).
+    lat : float  (rad)
+    n_trials : int
+        Trials per attitude, on a new axis before the vector axis.
+    sigma_gyro : float  (rad/s)
+    sigma_accel : float  (m/s^2)
+    rng : numpy.random.Generator
+    gyro_bias, accel_bias : array_like, broadcasting to (..., n_trials, 3)
+        Deterministic errors added to every trial (rad/s, m/s^2).
+
+    Returns
+    -------
+    w_ib_b, f_b : ndarray, shape (..., n_trials, 3)
+    """
+    C_nb = np.swapaxes(attitude.euler_to_dcm(hpr), -1, -2)
+    lat = _lat(lat)
+    if not isinstance(n_trials, (int, np.integer)) or n_trials < 1:
+        raise ValueError(f"n_trials: expected a positive integer, got {n_trials!r}")
+    s_g = float(positive(sigma_gyro, "sigma_gyro", allow_zero=True))
+    s_a = float(positive(sigma_accel, "sigma_accel", allow_zero=True))
+    r_gyro, r_accel = generator(rng).spawn(2)
+    w_true = C_nb @ earth.earth_rate_n(lat)
+    f_true = C_nb @ np.array([0.0, 0.0, float(earth.gravity(lat))])
+    shape = w_true.shape[:-1] + (int(n_trials), 3)
+    w = w_true[..., None, :] + as_array(gyro_bias, "gyro_bias") + s_g * r_gyro.standard_normal(shape)
+    f = f_true[..., None, :] + as_array(accel_bias, "accel_bias") + s_a * r_accel.standard_normal(shape)
+    return w, f
+
+
+@dataclass(frozen=True)
+class MonteCarlo:
+    """Heading errors of the Fig. 4 Monte Carlo (rad), shape (n_headings, n_trials).
+
+    ``single`` is the error of the candidate nearest the truth (the resolution
+    assumed correct, as in Fig. 4); ``triad_raw`` uses Eq. (2) without
+    orthonormalisation; ``clipped`` marks trials whose cosine was clipped.
+    """
+    heading: np.ndarray
+    triad: np.ndarray
+    triad_raw: np.ndarray
+    single: np.ndarray
+    clipped: np.ndarray
+
+
+def monte_carlo(headings, pitch, roll, lat, n_trials: int, sigma_gyro, sigma_accel,
+                rng: np.random.Generator) -> MonteCarlo:
+    """TRIAD and single-axis heading errors over a heading grid (paper Fig. 4).
+
+    Parameters
+    ----------
+    headings : array_like, shape (H,)
+        True headings (rad).
+    pitch, roll : float
+        True tilt (rad); the paper uses 5 deg each.
+    lat : float  (rad)
+    n_trials : int
+        Trials per heading (paper: 1000).
+    sigma_gyro, sigma_accel : float
+        White noise on the averaged outputs (rad/s, m/s^2), paper: 0.01 deg/h, 100 ug.
+    rng : numpy.random.Generator
+
+    Returns
+    -------
+    MonteCarlo
+    """
+    psi = as_array(headings, "headings").reshape(-1)
+    th = float(_pitch(pitch))
+    ro = float(in_range(as_array(roll, "roll"), "roll", -np.pi, np.pi, "rad"))
+    hpr = np.stack(np.broadcast_arrays(psi, th, ro), -1)
+    w, f = simulate_static_outputs(hpr, lat, n_trials, sigma_gyro, sigma_accel, rng)
+    C_raw = triad(f, w, lat, orthonormal=False)
+    truth = psi[:, None]
+    err_raw = attitude.wrap_pi(triad_heading(C_raw) - truth)
+    err_triad = attitude.wrap_pi(triad_heading(attitude.orthonormalize(C_raw)) - truth)
+    cand = heading_candidates(w[..., 1], f, lat)
+    return MonteCarlo(psi, err_triad, err_raw, nearest_candidate_error(cand.pair, truth), cand.clipped)
+
+
+# --------------------------------------------------------------------------
+# ambiguity of the resolution (extension, guide Err 6)
+# --------------------------------------------------------------------------
+
+def pair_probabilities(heading1, heading2, sigma_ins):
+    """Probability that each candidate wins the resolution, for a Gaussian INS error.
+
+    With noise-free candidates the four heading-change candidates sit at the
+    true change plus the shifts ``0`` (true pair), ``2 psi1`` (position 1
+    swapped), ``-2 psi2`` (position 2 swapped) and ``-2 dpsi`` (both swapped),
+    all mod 2 pi. The INS error e ~ N(0, sigma_ins^2) picks the shift nearest
+    to e on the circle, so each probability is the Gaussian mass of that
+    shift's Voronoi arc (exact up to the N(0, sigma) mass beyond +-3 pi).
+
+    Parameters
+    ----------
+    heading1, heading2 : array_like  (rad)
+        True headings at the two stops.
+    sigma_ins : array_like  (rad, > 0)
+        Std of the INS heading-change error.
+
+    Returns
+    -------
+    ndarray, shape (..., 4)
+        ``[true pair, position 1 swapped, position 2 swapped, both swapped]``;
+        heading 2 is wrong in the last two (by 2 dist(psi2, {0, pi})).
+    """
+    p1, p2 = as_array(heading1, "heading1"), as_array(heading2, "heading2")
+    sigma = positive(sigma_ins, "sigma_ins")
+    p1, p2, sigma = np.broadcast_arrays(p1, p2, sigma)
+    shifts = attitude.wrap_pi(np.stack([np.zeros_like(p1), 2 * p1, -2 * p2, -2 * (p2 - p1)], -1))
+    # periodic images so that every Voronoi arc is bounded on both sides
+    images = np.concatenate([shifts - 2 * np.pi, shifts, shifts + 2 * np.pi], -1)
+    order = np.argsort(images, axis=-1, kind="stable")
+    s = np.take_along_axis(images, order, -1)
+    mid = (s[..., 1:] + s[..., :-1]) / 2
+    lo = np.concatenate([np.full(s.shape[:-1] + (1,), -np.inf), mid], -1)
+    hi = np.concatenate([mid, np.full(s.shape[:-1] + (1,), np.inf)], -1)
+    mass = ndtr(hi / sigma[..., None]) - ndtr(lo / sigma[..., None])
+    owner = order % 4
+    out = np.zeros(p1.shape + (4,))
+    for k in range(4):
+        out[..., k] = np.where(owner == k, mass, 0.0).sum(-1)
+    return out
+
+
+# --------------------------------------------------------------------------
+# four-position north finding on a turntable (extension)
+# --------------------------------------------------------------------------
+
+def four_position_heading(w_y):
+    """Heading from a level gyro turned to four positions 90 deg apart (turntable).
+
+    Position k has heading ``psi + k pi/2`` (turned clockwise), so
+    ``w_k = w_ie cos(lat) cos(psi + k pi/2) + b``: the bias b cancels in
+    ``psi = atan2(w_3 - w_1, w_0 - w_2)``, for every psi.
+
+    Parameters
+    ----------
+    w_y : array_like, shape (..., 4)
+        Averaged gyro output at the four positions (rad/s).
+
+    Returns
+    -------
+    ndarray, shape (...)
+        Heading of position 0 (rad, [0, 2 pi)).
+    """
+    w = as_array(w_y, "w_y", tail=(4,))
+    return attitude.wrap_2pi(np.arctan2(w[..., 3] - w[..., 1], w[..., 0] - w[..., 2]))
+
+
+def four_position_heading_std(sigma_gyro, lat):
+    """Four-position heading std ``sigma / (sqrt(2) w_ie cos lat)`` (rad), any heading.
+
+    ``sigma_gyro`` (rad/s) is the std of each position's averaged output.
+    """
+    return triad_heading_std(sigma_gyro, lat) / np.sqrt(2.0)
+
+
+# --------------------------------------------------------------------------
+# the vehicle test (Table 1 stand-in)
+# --------------------------------------------------------------------------
+
+def window_mean_std(errors: TriadErrors, duration: float, dt: float):
+    """Std of one axis's error averaged over a static window (white + bias terms).
+
+    ``var = N^2 / T + bias^2 + sigma_gm^2 * 2 (tau/T) [1 - (tau/T)(1 - exp(-T/tau))]``
+    for white noise density N, turn-on bias and a Gauss-Markov bias of std
+    sigma_gm and correlation time tau (rate random walk and scale factor are
+    not included). This is the "total gyro error" that Eq. (20) needs for a
+    real sensor rather than the paper's white noise.
+
+    Parameters
+    ----------
+    errors : navlib.sensors.TriadErrors
+    duration : float
+        Averaging time T (s).
+    dt : float
+        Sample interval (s), for the discrete white-noise mean ``N / sqrt(n dt)``.
+    """
+    if not isinstance(errors, TriadErrors):
+        raise ValueError(f"errors: expected TriadErrors, got {type(errors).__name__}")
+    T = float(positive(duration, "duration"))
+    dt = float(positive(dt, "dt"))
+    n = max(int(round(T / dt)), 1)
+    r = errors.correlation_time / T
+    gm = errors.gauss_markov_sigma ** 2 * 2 * r * (1 - r * (1 - np.exp(-1 / r)))
+    return float(np.sqrt(errors.noise_density ** 2 / (n * dt) + errors.bias ** 2 + gm))
+
+
+def stop_and_go(headings, stop_duration: float, drive_duration: float, speed: float, pitches, rolls):
+    """Segments of a drive with stops at given headings (Table 1 stand-in).
+
+    The vehicle starts at rest at ``headings[0]``; each drive accelerates,
+    turns by ``wrap_pi(headings[k+1] - headings[k])`` while cruising and
+    brakes, ramping pitch and roll to the next stop's values.
+
+    Parameters
+    ----------
+    headings : array_like, shape (S,)
+        Stop headings (rad).
+    stop_duration, drive_duration : float
+        Seconds per stop and per drive (drives >= 30 s).
+    speed : float
+        Cruising speed (m/s).
+    pitches, rolls : array_like, shape (S,)
+        Stop attitudes (rad); the first stop is level as :func:`navlib.trajectory.vehicle` starts level.
+
+    Returns
+    -------
+    segments : list of Segment
+        For :func:`navlib.trajectory.vehicle` with ``heading0 = headings[0]``.
+    stops : ndarray, shape (S, 2)
+        Start and end time of each stop (s).
+    """
+    psi = as_array(headings, "headings").reshape(-1)
+    th = as_array(pitches, "pitches").reshape(-1)
+    ro = as_array(rolls, "rolls").reshape(-1)
+    if psi.size < 2 or th.shape != psi.shape or ro.shape != psi.shape:
+        raise ValueError(f"headings, pitches, rolls: expected equal 1-D arrays of >= 2 stops, "
+                         f"got {psi.shape}, {th.shape}, {ro.shape}")
+    stop_duration = float(positive(stop_duration, "stop_duration"))
+    drive_duration = float(positive(drive_duration, "drive_duration"))
+    if drive_duration < 30:
+        raise ValueError(f"drive_duration: expected >= 30 s (accelerate, turn, brake), got {drive_duration}")
+    speed = float(positive(speed, "speed"))
+    ramp = 10.0
+    segments = [Segment(stop_duration, speed=0.0, pitch=th[0], roll=ro[0])]
+    stops = [(0.0, stop_duration)]
+    t = stop_duration
+    for k in range(1, psi.size):
+        turn = float(attitude.wrap_pi(psi[k] - psi[k - 1]))
+        segments += [Segment(ramp, speed=speed), Segment(drive_duration - 2 * ramp, turn=turn),
+                     Segment(ramp, speed=0.0, pitch=th[k], roll=ro[k]), Segment(stop_duration)]
+        t += drive_duration
+        stops.append((t, t + stop_duration))
+        t += stop_duration
+    return segments, np.array(stops)
+
+
+@dataclass(frozen=True)
+class StopSolutions:
+    """North finding at each stop of a drive, shapes (..., S) and (..., S, 2).
+
+    ``candidates`` are the single-axis pairs (forward gyro + accelerometers),
+    ``triad`` the three-axis TRIAD headings (rad), ``clipped`` the clipping flags.
+    """
+    candidates: np.ndarray
+    triad: np.ndarray
+    clipped: np.ndarray
+    f_mean: np.ndarray
+
+
+def stop_solutions(w_ib_b, f_b, windows, lat, h=0.0) -> StopSolutions:
+    """Average each stop window and solve it with TRIAD and the single-axis method.
+
+    Parameters
+    ----------
+    w_ib_b, f_b : array_like, shape (..., N, 3)
+        IMU samples of the whole run (rad/s, m/s^2).
+    windows : array_like of int, shape (S, 2)
+        ``[start, end)`` sample indices of the stops.
+    lat, h : float
+        Latitude (rad) and height (m) of the site.
+    """
+    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1)
+    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1)
+    win = np.asarray(windows)
+    if win.ndim != 2 or win.shape[1] != 2 or not np.issubdtype(win.dtype, np.integer) \
+            or np.any(win[:, 0] < 0) or np.any(win[:, 1] > w.shape[-2]) or np.any(win[:, 1] - win[:, 0] < 2):
+        raise ValueError(f"windows: expected (S, 2) integer [start, end) sample indices within "
+                         f"{w.shape[-2]} samples, each >= 2 long, got {win.tolist()}")
+    means = [static_means(w[..., a:b, :], f[..., a:b, :], lat, h) for a, b in win]
+    w_mean = np.stack([m[0] for m in means], -2)
+    f_mean = np.stack([m[1] for m in means], -2)
+    cand = heading_candidates(w_mean[..., 1], f_mean, lat, h)
+    return StopSolutions(cand.pair, triad_heading(triad(f_mean, w_mean, lat)), cand.clipped, f_mean)
+
+
+def ins_heading_change(w_ib_b, f_start, dt: float, lat, earth_rate: str = "vertical"):
+    """MEMS strapdown heading change over a drive, started with heading 0 (paper step 2).
+
+    The attitude starts at heading 0 with pitch and roll from ``f_start``
+    (Eqs. 5-6) and integrates the gyro with
+    :func:`navlib.strapdown.integrate_attitude`. Since the true heading is
+    unknown, the horizontal Earth rate cannot be removed correctly (Err 12):
+
+    * ``"vertical"`` (default) removes only ``w_ie sin(lat)`` about Up, which
+      does not depend on heading;
+    * ``"none"`` ignores Earth rate (heading drifts by ``w_ie sin lat`` per s);
+    * ``"full"`` removes ``[0, w_ie cos lat, w_ie sin lat]`` as if heading 0
+      were true, i.e. the horizontal part in the wrong direction (a tilt
+      error, second order in heading over a short drive).
+
+    Parameters
+    ----------
+    w_ib_b : array_like, shape (..., N, 3)
+        MEMS gyro samples of the drive (rad/s).
+    f_start : array_like, shape (..., 3)
+        Averaged specific force at the start stop (m/s^2).
+    dt : float  (s)
+    lat : float  (rad)
+    earth_rate : {"vertical", "none", "full"}
+
+    Returns
+    -------
+    ndarray, shape (...)
+        Heading change, wrapped into (-pi, pi] (rad).
+    """
+    w_ie = earth.earth_rate_n(_lat(lat))
+    rates = {"vertical": w_ie * [0, 0, 1], "none": np.zeros(3), "full": w_ie}
+    if earth_rate not in rates:
+        raise ValueError(f"earth_rate: expected 'vertical', 'none' or 'full', got {earth_rate!r}")
+    pitch, roll = tilt_from_accel(f_start)
+    q0 = attitude.euler_to_quat(np.stack([np.zeros_like(pitch), pitch, roll], -1))
+    q = strapdown.integrate_attitude(q0, w_ib_b, dt, rates[earth_rate])
+    end = attitude.quat_to_dcm(q[..., -1, :])
+    return attitude.wrap_pi(np.arctan2(end[..., 0, 1], end[..., 1, 1]))
