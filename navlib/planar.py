@@ -1,0 +1,659 @@
+"""Planar dead reckoning and the 5-state INS/GPS EKF of paper 002.
+
+Zhao Y., Nie X., Fang S., Wu H., "Research on inertial navigation/GPS robot
+combined positioning based on Gaussian projection", *Machine Building &
+Automation* 52(1): 173–176, 2023, doi:10.19344/j.cnki.issn1671-5276.2023.01.043.
+
+Frame and state
+---------------
+The state is ``X = [x, y, theta, v, omega]`` in the Gauss–Krüger grid of
+:mod:`navlib.geodesy`: **x grid north, y grid east** (m), as in the paper,
+``theta`` the heading measured from x toward y, i.e. **clockwise from grid
+north** — navlib's heading convention, referenced to grid north instead of
+true north — ``v`` the forward speed (m/s) and ``omega`` the yaw rate,
+positive clockwise seen from above (rad/s; ``omega = -w_z`` of a right-front-up
+gyro). An IMU heading (clockwise from true north) becomes a grid heading by
+subtracting the grid convergence gamma (``geodesy.convergence``), which the
+paper omits (Erratum 9; -0.35° at Fuzhou, 0.66° at a 3° zone edge).
+
+Equations
+---------
+Eq. (13), lost in the source and reconstructed (Erratum 6) as the
+short-step unicycle model::
+
+    f(X) = [x + v T cos(theta), y + v T sin(theta), theta + omega T, v, omega]
+
+Eq. (16), its Jacobian ``Phi = df/dX``; Eq. (12) ``X_k = f(X_k-1) + Gamma w``
+with ``Gamma = I5`` (not given); Eqs. (14)–(15) ``Z = H X + v`` with
+``H = I5`` and ``Z = [x_GPS, y_GPS, theta_IMU, v_IMU, omega_IMU]`` (Erratum 7:
+the printed ``X_m`` is the measurement); the heading innovation is wrapped to
+(-pi, pi]. Noise, Eqs. (17)–(18), per step::
+
+    Q = diag(1, 1, 0.01, 0.0001, 0.0016)      R = diag(6.25, 6.25, 0.01, 0.0004, 0.0025)
+
+in SI units (m², rad², m²/s², rad²/s²): GPS sigma 2.5 m, heading 0.1 rad
+(units unstated in the paper, Erratum 10). ``theta_IMU`` must be an absolute
+heading and ``omega_IMU`` the vertical gyro rate (Erratum 8).
+
+Filtering (:func:`ekf`): GPS fixes arrive as latitude/longitude and are
+projected here, in one zone held for the whole run (the zone of ``origin`` or
+of the first fix), so a run crossing a zone boundary stays continuous. NaN
+measurement components (GPS outages, dropouts) are left out of the update;
+an epoch with no measurement is prediction only; the counts are reported.
+The predict/update cycle is one compiled kernel (:func:`filter_grid`) that
+calls :func:`navlib.kalman.predict` and :func:`navlib.kalman.update`.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numba import njit
+
+from . import geodesy, kalman
+from ._validate import as_array, generator, positive, time_axis
+from .earth import CGCS2000, Ellipsoid
+
+__all__ = ["Q_PAPER", "R_PAPER", "motion_model", "jacobian", "propagate", "waypoint_path",
+           "dead_reckoning", "filter_grid", "ekf", "EkfResult", "simulate_sensors", "Sensors",
+           "position_error"]
+
+Q_PAPER = np.diag([1.0, 1.0, 0.01, 0.0001, 0.0016])
+"""Process noise per step, Eq. (17) (SI reading: m², m², rad², m²/s², rad²/s²)."""
+R_PAPER = np.diag([6.25, 6.25, 0.01, 0.0004, 0.0025])
+"""Measurement noise, Eq. (18): GPS 2.5 m, heading 0.1 rad, speed 0.02 m/s, yaw rate 0.05 rad/s (sigmas)."""
+
+_HEADING = 2
+_ANGLE_MASK = np.array([False, False, True, False, False])
+
+
+# --------------------------------------------------------------------------
+# Motion model, Eqs. (13) and (16)
+# --------------------------------------------------------------------------
+
+@njit(cache=True)
+def _f(X, T):
+    out = X.copy()
+    out[0] = X[0] + X[3] * T * np.cos(X[2])
+    out[1] = X[1] + X[3] * T * np.sin(X[2])
+    out[2] = X[2] + X[4] * T
+    return out
+
+
+@njit(cache=True)
+def _phi(X, T):
+    Phi = np.eye(5)
+    s, c = np.sin(X[2]), np.cos(X[2])
+    Phi[0, 2] = -X[3] * T * s
+    Phi[0, 3] = T * c
+    Phi[1, 2] = X[3] * T * c
+    Phi[1, 3] = T * s
+    Phi[2, 4] = T
+    return Phi
+
+
+def _state(X, name="X"):
+    return as_array(X, name, tail=(5,))
+
+
+def motion_model(X, T: float):
+    """Reconstructed Eq. (13): ``f(X)`` for states of shape (..., 5) and step ``T`` (s)."""
+    X = _state(X)
+    T = float(positive(T, "T"))
+    x, y, th, v, w = np.moveaxis(X, -1, 0)
+    return np.stack([x + v * T * np.cos(th), y + v * T * np.sin(th), th + w * T, v, w], -1)
+
+
+def jacobian(X, T: float):
+    """Eq. (16): ``Phi = df/dX`` at states (..., 5); returns shape (..., 5, 5)."""
+    X = _state(X)
+    T = float(positive(T, "T"))
+    Phi = np.broadcast_to(np.eye(5), X.shape[:-1] + (5, 5)).copy()
+    s, c = np.sin(X[..., 2]), np.cos(X[..., 2])
+    Phi[..., 0, 2] = -X[..., 3] * T * s
+    Phi[..., 0, 3] = T * c
+    Phi[..., 1, 2] = X[..., 3] * T * c
+    Phi[..., 1, 3] = T * s
+    Phi[..., 2, 4] = T
+    return Phi
+
+
+# --------------------------------------------------------------------------
+# Truth trajectories
+# --------------------------------------------------------------------------
+
+@njit(cache=True)
+def _propagate(x0, T, speed, yaw_rate):
+    X = np.empty((speed.shape[0] + 1, 5))
+    X[0] = x0
+    X[0, 3], X[0, 4] = speed[0], yaw_rate[0]
+    for k in range(speed.shape[0]):
+        X[k + 1] = _f(X[k], T)
+        if k + 1 < speed.shape[0]:
+            X[k + 1, 3], X[k + 1, 4] = speed[k + 1], yaw_rate[k + 1]
+    return X
+
+
+def propagate(x0, T: float, n_steps: int | None = None, speed=None, yaw_rate=None):
+    """Noise-free states from Eq. (13): ``X_k+1 = f(X_k)``.
+
+    Parameters
+    ----------
+    x0 : array_like, shape (5,)
+        Initial state ``[x, y, theta, v, omega]`` (m, m, rad, m/s, rad/s).
+    T : float
+        Step (s).
+    n_steps : int, optional
+        Number of steps with constant v, omega (from ``x0``).
+    speed, yaw_rate : array_like, shape (n,), optional
+        Commanded v and omega for each step instead (overriding ``x0[3:]``).
+
+    Returns
+    -------
+    X : ndarray, shape (n_steps + 1, 5)
+    """
+    x0 = as_array(x0, "x0", tail=(5,))
+    if x0.ndim != 1:
+        raise ValueError(f"x0: expected shape (5,), got {x0.shape}")
+    T = float(positive(T, "T"))
+    if speed is None and yaw_rate is None:
+        if n_steps is None or int(n_steps) != n_steps or n_steps < 1:
+            raise ValueError(f"n_steps: expected a positive integer, got {n_steps!r}")
+        speed, yaw_rate = np.full(int(n_steps), x0[3]), np.full(int(n_steps), x0[4])
+    else:
+        speed = as_array(speed, "speed", min_ndim=1)
+        yaw_rate = as_array(yaw_rate, "yaw_rate", min_ndim=1)
+        if speed.ndim != 1 or speed.shape != yaw_rate.shape:
+            raise ValueError(f"speed, yaw_rate: expected equal 1-D shapes, got {speed.shape}, {yaw_rate.shape}")
+    return _propagate(x0, T, speed, yaw_rate)
+
+
+def waypoint_path(waypoints, speed: float, turn_rate: float, T: float):
+    """Drive straight between waypoints and turn on the spot at each (a robot square loop).
+
+    Each leg and each turn gets a whole number of steps, with the speed or
+    turn rate adjusted (down) so that every waypoint is reached exactly.
+
+    Parameters
+    ----------
+    waypoints : array_like, shape (M, 2)
+        Grid positions ``[x north, y east]`` (m), M >= 2, consecutive points distinct.
+    speed : float
+        Nominal forward speed (m/s).
+    turn_rate : float
+        Nominal magnitude of the yaw rate while turning (rad/s).
+    T : float
+        Step (s).
+
+    Returns
+    -------
+    X : ndarray, shape (N, 5)
+        True states; the first heading points along the first leg.
+    at_waypoint : ndarray of int, shape (M,)
+        Index into ``X`` where each waypoint is reached (at the end of its turn).
+    """
+    wp = as_array(waypoints, "waypoints", tail=(2,), min_ndim=1)
+    if wp.ndim != 2 or len(wp) < 2:
+        raise ValueError(f"waypoints: expected shape (M, 2) with M >= 2, got {wp.shape}")
+    legs = np.diff(wp, axis=0)
+    length = np.hypot(legs[:, 0], legs[:, 1])
+    if np.any(length <= 0):
+        raise ValueError("waypoints: consecutive waypoints must differ")
+    speed = float(positive(speed, "speed"))
+    turn_rate = float(positive(turn_rate, "turn_rate"))
+    T = float(positive(T, "T"))
+    course = np.arctan2(legs[:, 1], legs[:, 0])
+    v_cmd, w_cmd, reached = [], [], []
+    for i, (L, c) in enumerate(zip(length, course)):
+        if i > 0:
+            turn = np.angle(np.exp(1j * (c - course[i - 1])))
+            n_turn = max(1, int(np.ceil(abs(turn) / (turn_rate * T))))
+            v_cmd += [0.0] * n_turn
+            w_cmd += [turn / (n_turn * T)] * n_turn
+        reached.append(len(v_cmd))
+        n_leg = max(1, int(np.ceil(L / (speed * T))))
+        v_cmd += [L / (n_leg * T)] * n_leg
+        w_cmd += [0.0] * n_leg
+    reached.append(len(v_cmd))
+    x0 = np.array([wp[0, 0], wp[0, 1], course[0], 0.0, 0.0])
+    X = _propagate(x0, T, np.array(v_cmd + [0.0]), np.array(w_cmd + [0.0]))[:-1]
+    return X, np.array(reached)
+
+
+# --------------------------------------------------------------------------
+# Dead reckoning
+# --------------------------------------------------------------------------
+
+@njit(cache=True)
+def _dead_reckon(t, speed, yaw_rate, x0, velocity_bias):
+    n = t.shape[0]
+    out = np.empty((n, 3))
+    out[0] = x0[:3]
+    v, w = x0[3], x0[4]
+    held = 0
+    for k in range(1, n):
+        if np.isfinite(speed[k - 1]) and np.isfinite(yaw_rate[k - 1]):
+            v, w = speed[k - 1], yaw_rate[k - 1]
+        else:
+            held += 1
+        T = t[k] - t[k - 1]
+        out[k, 0] = out[k - 1, 0] + (v * np.cos(out[k - 1, 2]) + velocity_bias[0]) * T
+        out[k, 1] = out[k - 1, 1] + (v * np.sin(out[k - 1, 2]) + velocity_bias[1]) * T
+        out[k, 2] = out[k - 1, 2] + w * T
+    return out, held
+
+
+def dead_reckoning(t, speed, yaw_rate, x0, velocity_bias=(0.0, 0.0)):
+    """Integrate measured speed and yaw rate from ``x0`` with the motion model (no GPS).
+
+    Parameters
+    ----------
+    t : array_like, shape (N,)
+        Strictly increasing times (s).
+    speed, yaw_rate : array_like, shape (N,)
+        Measured v (m/s) and omega (rad/s, clockwise positive); a NaN sample
+        holds the previous value (counted in ``held``).
+    x0 : array_like, shape (5,)
+        Initial state.
+    velocity_bias : array_like, shape (2,)
+        A constant velocity error in the grid (north, east; m/s) added at every
+        step: an error model for simulations (the frame-fixed drift of the
+        paper's Table 1), zero for plain dead reckoning.
+
+    Returns
+    -------
+    pose : ndarray, shape (N, 3)
+        ``[x, y, theta]``.
+    held : int
+        Steps that reused an earlier measurement.
+    """
+    t = time_axis(t, "t")
+    speed = as_array(speed, "speed", allow_nan=True)
+    yaw_rate = as_array(yaw_rate, "yaw_rate", allow_nan=True)
+    if speed.shape != t.shape or yaw_rate.shape != t.shape:
+        raise ValueError(f"speed, yaw_rate: expected shape {t.shape}, got {speed.shape}, {yaw_rate.shape}")
+    x0 = as_array(x0, "x0", tail=(5,))
+    bias = as_array(velocity_bias, "velocity_bias", tail=(2,))
+    return _dead_reckon(t, speed, yaw_rate, x0.reshape(5), bias.reshape(2))
+
+
+# --------------------------------------------------------------------------
+# EKF
+# --------------------------------------------------------------------------
+
+# A specialised update for the common epoch (H = I5, every component present): the same
+# Joseph-form update as kalman.update, written with fixed-size loops and preallocated work
+# arrays (about 5x faster than the general kernel, which handles dropouts and any H).
+
+@njit(cache=True)
+def _mul(A, B, out):
+    """out = A @ B for 5x5 matrices (no allocation)."""
+    for i in range(5):
+        for j in range(5):
+            acc = 0.0
+            for m in range(5):
+                acc += A[i, m] * B[m, j]
+            out[i, j] = acc
+
+
+@njit(cache=True)
+def _mul_bt(A, B, out):
+    """out = A @ B.T for 5x5 matrices."""
+    for i in range(5):
+        for j in range(5):
+            acc = 0.0
+            for m in range(5):
+                acc += A[i, m] * B[j, m]
+            out[i, j] = acc
+
+
+@njit(cache=True)
+def _cholesky_solve(S, B, L, out):
+    """out = S^-1 B for symmetric positive definite S (5x5) and B (5 x m), via S = L L^T."""
+    for j in range(5):
+        d = S[j, j]
+        for m in range(j):
+            d -= L[j, m] * L[j, m]
+        L[j, j] = np.sqrt(d)
+        for i in range(j + 1, 5):
+            acc = S[i, j]
+            for m in range(j):
+                acc -= L[i, m] * L[j, m]
+            L[i, j] = acc / L[j, j]
+    for c in range(B.shape[1]):
+        for i in range(5):                  # forward: L w = b
+            acc = B[i, c]
+            for m in range(i):
+                acc -= L[i, m] * out[m, c]
+            out[i, c] = acc / L[i, i]
+        for i in range(4, -1, -1):          # back: L^T u = w
+            acc = out[i, c]
+            for m in range(i + 1, 5):
+                acc -= L[m, i] * out[m, c]
+            out[i, c] = acc / L[i, i]
+
+
+@njit(cache=True)
+def _update_identity_h(x, P, z, R, gate, w):
+    """Joseph-form update with H = I5 in place on x, P; returns (nis, status). w: work arrays (7, 5, 5)."""
+    S, L, Kt, A, tmp, KR, y = w[0], w[1], w[2], w[3], w[4], w[5], w[6]
+    for i in range(5):
+        y[i, 0] = z[i] - x[i]
+        for j in range(5):
+            S[i, j] = 0.5 * (P[i, j] + P[j, i]) + R[i, j]
+    y[_HEADING, 0] = kalman._wrap_pi(y[_HEADING, 0])
+    _cholesky_solve(S, y[:, :1], L, tmp)                 # S^-1 y
+    nis = 0.0
+    for i in range(5):
+        nis += y[i, 0] * tmp[i, 0]
+    if nis > gate:
+        return nis, kalman.REJECTED
+    _cholesky_solve(S, P, L, Kt)                         # K^T = S^-1 P  (K = P S^-1)
+    for i in range(5):
+        for j in range(5):
+            x[i] += Kt[j, i] * y[j, 0]
+            A[i, j] = (1.0 if i == j else 0.0) - Kt[j, i]  # I - K
+    _mul(A, P, tmp)
+    _mul_bt(tmp, A, P)                                   # (I - K) P (I - K)^T
+    for i in range(5):
+        for j in range(5):
+            acc = 0.0
+            for m in range(5):
+                acc += Kt[m, i] * R[m, j]
+            KR[i, j] = acc                               # K R
+    for i in range(5):
+        for j in range(5):
+            acc = 0.0
+            for m in range(5):
+                acc += KR[i, m] * Kt[m, j]
+            tmp[i, j] = acc                              # K R K^T
+    for i in range(5):
+        for j in range(i, 5):
+            v = 0.5 * (P[i, j] + P[j, i] + tmp[i, j] + tmp[j, i])
+            P[i, j] = v
+            P[j, i] = v
+    return nis, kalman.ACCEPTED
+
+
+@njit(cache=True)
+def _ekf_kernel(t, Z, x0, P0, Q, R, gate, fast):
+    n = t.shape[0]
+    X = np.empty((n, 5))
+    Ps = np.empty((n, 5, 5))
+    nis = np.full(n, np.nan)
+    status = np.zeros(n, dtype=np.int64)
+    H = np.eye(5)
+    w = np.zeros((7, 5, 5))
+    Phi_P = np.empty((5, 5))
+    x, P = x0.copy(), P0.copy()
+    X[0], Ps[0] = x, P
+    for k in range(1, n):
+        T = t[k] - t[k - 1]
+        Phi = _phi(x, T)                                   # Eq. (16) at the previous estimate
+        _mul(Phi, P, Phi_P)
+        _mul_bt(Phi_P, Phi, P)
+        P += Q                                             # P = Phi P Phi^T + Gamma Q Gamma^T, Gamma = I
+        x = _f(x, T)                                       # Eq. (13)
+        z = Z[k]
+        if fast and np.all(np.isfinite(z)):
+            nis[k], status[k] = _update_identity_h(x, P, z, R, gate, w)
+        else:                                              # dropouts: the general kernel
+            x, P, _, nis[k], status[k] = kalman.update(x, P, z, x, H, R, _ANGLE_MASK, gate)
+        x[_HEADING] = np.mod(x[_HEADING], 2 * np.pi)
+        X[k], Ps[k] = x, P
+    return X, Ps, nis, status
+
+
+@dataclass
+class EkfResult:
+    """Output of :func:`ekf` and :func:`filter_grid`.
+
+    Attributes
+    ----------
+    t : ndarray, shape (N,)  (s)
+    x : ndarray, shape (N, 5)
+        Filtered states ``[x north, y east, heading (grid, rad), v, omega]``.
+    P : ndarray, shape (N, 5, 5)
+    nis : ndarray, shape (N,)
+        Normalised innovation squared (NaN where nothing was measured).
+    status : ndarray of int, shape (N,)
+        ``kalman.ACCEPTED``, ``NO_DATA`` (prediction only) or ``REJECTED`` (gated outlier).
+    z : ndarray, shape (N, 5)
+        Measurements in the grid frame as fused (projected GPS, grid heading).
+    n_predict_only, n_gps_missing, n_rejected : int
+        Epochs (after the first) with no measurement at all, without a GPS
+        fix, and rejected by the gate.
+    zone : int or None
+        Zone held by :func:`ekf`.
+    origin_gk : ndarray, shape (2,)
+        GK coordinates (north, east; m) subtracted from the projected fixes.
+    """
+    t: np.ndarray
+    x: np.ndarray
+    P: np.ndarray
+    nis: np.ndarray
+    status: np.ndarray
+    z: np.ndarray
+    n_predict_only: int
+    n_gps_missing: int
+    n_rejected: int
+    zone: int | None = None
+    origin_gk: np.ndarray | None = None
+
+
+def _covariance(M, name):
+    M = as_array(M, name)
+    if M.shape == (5,):
+        M = np.diag(M)
+    if M.shape != (5, 5) or not np.allclose(M, M.T) or np.any(np.linalg.eigvalsh(M) < 0):
+        raise ValueError(f"{name}: expected a symmetric positive semi-definite (5, 5) matrix or a diagonal (5,)")
+    return np.ascontiguousarray(M)
+
+
+def filter_grid(t, z, x0, P0=None, Q=Q_PAPER, R=R_PAPER, gate: float = np.inf, fast: bool = True):
+    """The EKF on measurements already in the grid frame.
+
+    Parameters
+    ----------
+    t : array_like, shape (N,)
+        Strictly increasing times (s); step ``T = t[k] - t[k-1]``.
+    z : array_like, shape (N, 5)
+        ``[x_GPS, y_GPS, theta, v, omega]`` per epoch; NaN components are
+        missing (the row of ``t[0]`` is not used: ``x0`` holds there).
+    x0 : array_like, shape (5,)
+    P0 : array_like, shape (5, 5) or (5,), optional
+        Initial covariance; default zeros (the paper's P(0)).
+    Q, R : array_like, shape (5, 5) or (5,)
+        Per-step process noise and measurement noise (Eqs. 17–18 by default).
+    gate : float
+        NIS above which an update is rejected (``inf``: never).
+    fast : bool
+        Use the specialised H = I5 update when every component is present
+        (False: :func:`navlib.kalman.update` at every epoch; same result).
+
+    Returns
+    -------
+    EkfResult
+    """
+    t = time_axis(t, "t")
+    z = as_array(z, "z", tail=(5,), allow_nan=True)
+    if z.shape != (t.size, 5):
+        raise ValueError(f"z: expected shape ({t.size}, 5), got {z.shape}")
+    x0 = as_array(x0, "x0", tail=(5,))
+    if x0.shape != (5,):
+        raise ValueError(f"x0: expected shape (5,), got {x0.shape}")
+    P0 = np.zeros((5, 5)) if P0 is None else _covariance(P0, "P0")
+    Q, R = _covariance(Q, "Q"), _covariance(R, "R")
+    gate = float(as_array(gate, "gate", allow_nan=False, finite=False))
+    if not gate > 0:
+        raise ValueError(f"gate: expected a positive NIS threshold (inf for none), got {gate}")
+    X, P, nis, status = _ekf_kernel(t, np.ascontiguousarray(z), x0, P0, Q, R, gate, bool(fast))
+    gps_missing = ~np.all(np.isfinite(z[1:, :2]), axis=1)
+    return EkfResult(t, X, P, nis, status, z, int(np.sum(status[1:] == kalman.NO_DATA)),
+                     int(gps_missing.sum()), int(np.sum(status == kalman.REJECTED)))
+
+
+def _forward_fill(values):
+    """Replace NaN by the last finite value (the first finite one before it)."""
+    ok = np.isfinite(values)
+    if not ok.any():
+        return values
+    idx = np.where(ok, np.arange(values.size), 0)
+    idx = np.maximum.accumulate(idx)
+    idx[: np.argmax(ok)] = np.argmax(ok)
+    return values[idx]
+
+
+def ekf(t, gps, heading, speed, yaw_rate, x0, *, origin=None, zone=None, width: int = 3,
+        ellipsoid: Ellipsoid = CGCS2000, P0=None, Q=Q_PAPER, R=R_PAPER, gate: float = np.inf,
+        correct_convergence: bool = True, deg: bool = False):
+    """The paper's pipeline: GPS lat/lon -> Gauss–Krüger -> EKF with IMU heading, speed, yaw rate.
+
+    Parameters
+    ----------
+    t : array_like, shape (N,)
+        Strictly increasing times (s).
+    gps : array_like, shape (N, 2)
+        GPS ``[lat, lon]`` (rad, or deg with ``deg=True``); NaN rows are outages.
+    heading : array_like, shape (N,)
+        IMU heading clockwise from **true** north (rad, or deg); NaN = missing.
+    speed, yaw_rate : array_like, shape (N,)
+        Measured speed (m/s) and yaw rate (rad/s or deg/s, clockwise positive); NaN = missing.
+    x0 : array_like, shape (5,)
+        Initial state in the grid relative to ``origin`` (heading in rad).
+    origin : array_like, shape (2,), optional
+        ``[lat, lon]`` of the local grid origin; default none (absolute GK coordinates).
+    zone : int, optional
+        Zone to hold for the whole run; default the zone of ``origin`` or of the first fix.
+    width, ellipsoid
+        As in :func:`navlib.geodesy.geodetic2gk`.
+    P0, Q, R, gate
+        As in :func:`filter_grid`.
+    correct_convergence : bool
+        Subtract the grid convergence at the latest fix from the heading (True);
+        False fuses the true-north heading with grid coordinates as the paper does.
+
+    Returns
+    -------
+    EkfResult
+    """
+    t = time_axis(t, "t")
+    n = t.size
+    gps = as_array(gps, "gps", tail=(2,), allow_nan=True)
+    if gps.shape != (n, 2):
+        raise ValueError(f"gps: expected shape ({n}, 2), got {gps.shape}")
+    imu = []
+    for name, val in (("heading", heading), ("speed", speed), ("yaw_rate", yaw_rate)):
+        arr = as_array(val, name, allow_nan=True)
+        if arr.shape != (n,):
+            raise ValueError(f"{name}: expected shape ({n},), got {arr.shape}")
+        imu.append(np.deg2rad(arr) if deg and name != "speed" else arr)
+    heading, speed, yaw_rate = imu
+    fix = np.all(np.isfinite(gps), axis=1)
+    if origin is not None:
+        origin = as_array(origin, "origin", tail=(2,))
+        ref = origin.reshape(2)
+    elif fix.any():
+        ref = gps[np.argmax(fix)]
+    else:
+        raise ValueError("gps: no valid fix and no origin given; cannot choose a zone")
+    if zone is None:
+        zone = int(geodesy.zone(ref[1], width, deg=deg))
+    kw = dict(zone=zone, width=width, ellipsoid=ellipsoid, deg=deg)
+    origin_gk = np.array(geodesy.geodetic2gk(ref[0], ref[1], **kw)) if origin is not None else np.zeros(2)
+    z = np.full((n, 5), np.nan)
+    gamma = np.full(n, np.nan)
+    if fix.any():
+        north, east = geodesy.geodetic2gk(gps[fix, 0], gps[fix, 1], **kw)
+        z[fix, 0], z[fix, 1] = north - origin_gk[0], east - origin_gk[1]
+        gamma[fix] = geodesy.convergence(gps[fix, 0], gps[fix, 1], **kw)
+    else:
+        gamma[:] = geodesy.convergence(ref[0], ref[1], **kw)
+    if deg:
+        gamma = np.deg2rad(gamma)
+    z[:, 2] = heading - _forward_fill(gamma) if correct_convergence else heading
+    z[:, 3], z[:, 4] = speed, yaw_rate
+    res = filter_grid(t, z, x0, P0, Q, R, gate)
+    res.zone, res.origin_gk = zone, origin_gk
+    return res
+
+
+# --------------------------------------------------------------------------
+# Simulated sensors for the paper's scenarios
+# --------------------------------------------------------------------------
+
+@dataclass
+class Sensors:
+    """Simulated measurements in the form the robot gets them.
+
+    gps : (N, 2) ``[lat, lon]`` (rad), NaN rows during outages;
+    heading : (N,) clockwise from true north (rad, [0, 2 pi));
+    speed : (N,) (m/s); yaw_rate : (N,) (rad/s, clockwise positive).
+    """
+    gps: np.ndarray
+    heading: np.ndarray
+    speed: np.ndarray
+    yaw_rate: np.ndarray
+
+
+def simulate_sensors(truth, origin, R, rng: np.random.Generator, *, zone=None, width: int = 3,
+                     ellipsoid: Ellipsoid = CGCS2000, yaw_rate_bias: float = 0.0, gps_valid=None):
+    """GPS, IMU heading, speed and yaw rate from true grid states: truth + N(0, R).
+
+    The GPS noise (sigmas ``sqrt(R[0,0])``, ``sqrt(R[1,1])`` in m) is added in
+    the grid before the inverse projection (the scale factor, 1 + 8e-5 at
+    80 km, changes it by < 0.01 %); the heading is turned from grid to true
+    north with the convergence at the true position.
+
+    Parameters
+    ----------
+    truth : array_like, shape (N, 5)
+        True states in the grid relative to ``origin``.
+    origin : array_like, shape (2,)
+        ``[lat, lon]`` (rad) of the grid origin.
+    R : array_like, shape (5, 5) or (5,)
+        Measurement noise covariance (only its diagonal is used).
+    rng : numpy.random.Generator
+    zone : int, optional
+        Zone of the grid; default the zone of ``origin``.
+    yaw_rate_bias : float
+        Constant gyro bias added to the yaw rate (rad/s).
+    gps_valid : array_like of bool, shape (N,), optional
+        False where GPS is out (NaN fixes).
+
+    Returns
+    -------
+    Sensors
+    """
+    truth = as_array(truth, "truth", tail=(5,))
+    if truth.ndim != 2:
+        raise ValueError(f"truth: expected shape (N, 5), got {truth.shape}")
+    origin = as_array(origin, "origin", tail=(2,)).reshape(2)
+    sigma = np.sqrt(np.diag(_covariance(R, "R")))
+    generator(rng)
+    yaw_rate_bias = float(as_array(yaw_rate_bias, "yaw_rate_bias"))
+    zone = int(geodesy.zone(origin[1], width)) if zone is None else zone
+    kw = dict(zone=zone, width=width, ellipsoid=ellipsoid)
+    o_north, o_east = geodesy.geodetic2gk(origin[0], origin[1], **kw)
+    noise = sigma * rng.standard_normal(truth.shape)
+    lat, lon = geodesy.gk2geodetic(o_north + truth[:, 0] + noise[:, 0], o_east + truth[:, 1] + noise[:, 1], **kw)
+    gps = np.stack([lat, lon], -1)
+    if gps_valid is not None:
+        gps_valid = np.asarray(gps_valid, dtype=bool)
+        if gps_valid.shape != (len(truth),):
+            raise ValueError(f"gps_valid: expected shape ({len(truth)},), got {gps_valid.shape}")
+        gps[~gps_valid] = np.nan
+    true_lat, true_lon = geodesy.gk2geodetic(o_north + truth[:, 0], o_east + truth[:, 1], **kw)
+    gamma = geodesy.convergence(true_lat, true_lon, **kw)
+    heading = np.mod(truth[:, 2] + gamma + noise[:, 2], 2 * np.pi)
+    return Sensors(gps, heading, truth[:, 3] + noise[:, 3], truth[:, 4] + noise[:, 4] + yaw_rate_bias)
+
+
+def position_error(estimate, truth):
+    """Horizontal position error (m): ``|estimate[..., :2] - truth[..., :2]|``, shape (...)."""
+    est = as_array(estimate, "estimate", allow_nan=True)
+    tru = as_array(truth, "truth")
+    if est.shape[-1] < 2 or tru.shape[-1] < 2:
+        raise ValueError("estimate, truth: expected positions on the last axis (at least 2 components)")
+    d = est[..., :2] - tru[..., :2]
+    return np.hypot(d[..., 0], d[..., 1])

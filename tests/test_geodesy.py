@@ -1,0 +1,265 @@
+"""Tests of navlib.geodesy: PROJ reference vectors, pyproj cross-checks, round trips, paper 002 values."""
+import csv
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import given, settings, strategies as st
+from numpy.testing import assert_allclose
+
+from navlib import earth, geodesy
+
+pyproj = pytest.importorskip("pyproj")
+
+VECTORS = Path(__file__).resolve().parents[2] / "shared" / "vectors"
+ELLIPSOIDS = [earth.CGCS2000, earth.WGS84, earth.KRASSOVSKY]
+M_PER_DEG = 111_320.0           # metres per degree of arc, to express angular errors as distances
+
+
+def read_vectors(name):
+    """Rows of a shared/vectors CSV (lines starting with '#' are comments) as dicts of strings."""
+    path = VECTORS / name
+    if not path.is_file():
+        pytest.skip(f"reference vectors not found: {path} (clone the shared/ folder beside the repo)")
+    with open(path, newline="") as fh:
+        return list(csv.DictReader(line for line in fh if not line.startswith("#")))
+
+
+def tolerance_m(text):
+    """'50 nm', '0.1 mm', '0.01 m', 'printed to 1e-6 m' -> metres."""
+    value, unit = re.search(r"([0-9.e-]+)\s*(nm|mm|m)\b", text).groups()
+    return float(value) * {"nm": 1e-9, "mm": 1e-3, "m": 1.0}[unit]
+
+
+def proj_tmerc(ell, lon0, k0=1.0):
+    return pyproj.Proj(f"+proj=tmerc +a={ell.a} +rf={1 / ell.f!r} +lon_0={lon0} +k={k0} +x_0=0 +y_0=0 "
+                       "+algo=poder_engsager +units=m")
+
+
+# --------------------------------------------------------------------------
+# PROJ reference vectors
+# --------------------------------------------------------------------------
+
+def vector_rows():
+    return read_vectors("tmerc_gauss_kruger.csv")
+
+
+def test_proj_vectors_within_stated_tolerances():
+    rows = vector_rows()
+    assert len(rows) >= 25
+    for r in rows:
+        ell = earth.Ellipsoid(r["ellps"], float(r["a_m"]), 1 / float(r["rf"]), earth.WGS84.GM, earth.OMEGA_IE)
+        k0 = float(r["k_0"])
+        fn = float(r["y_0"]) - k0 * geodesy.meridian_arc(float(r["lat_0"]), ell, deg=True)
+        kw = dict(lon0=float(r["lon_0"]), ellipsoid=ell, deg=True, k0=k0, false_easting=float(r["x_0"]),
+                  false_northing=fn, max_offset_deg=60.0)
+        tol = tolerance_m(r["tolerance"])
+        lon, lat, east, north = (float(r[k]) for k in ("lon_deg", "lat_deg", "x_m", "y_m"))
+        if r["direction"] == "forward":
+            x, y = geodesy.geodetic2gk(lat, lon, **kw)
+            assert abs(y - east) <= tol and abs(x - north) <= tol, (r["case_id"], y - east, x - north)
+        else:
+            kw.pop("max_offset_deg")
+            la, lo = geodesy.gk2geodetic(north, east, **kw)
+            err = M_PER_DEG * max(abs(la - lat), abs(lo - lon) * np.cos(np.deg2rad(lat)))
+            assert err <= tol, (r["case_id"], err)
+
+
+def test_paper_test_vector_and_epsg_grids():
+    """Guide 002 §4.1: 119.20° E, 26.06° N -> zone 40, x = 2 883 727.417 m, y = -80 055.050 m (EPSG:4549/4528)."""
+    assert geodesy.zone(119.2, deg=True) == 40
+    assert geodesy.central_meridian(40, deg=True) == 120
+    x, y = geodesy.geodetic2gk(26.06, 119.20, deg=True)
+    assert abs(x - 2_883_727.417) < 1e-3 and abs(y + 80_055.050) < 1e-3
+    e4549, n4549 = pyproj.Transformer.from_crs("EPSG:4490", "EPSG:4549", always_xy=True).transform(119.2, 26.06)
+    e4528, n4528 = pyproj.Transformer.from_crs("EPSG:4490", "EPSG:4528", always_xy=True).transform(119.2, 26.06)
+    x1, y1 = geodesy.geodetic2gk(26.06, 119.2, deg=True, false_easting=500e3)
+    x2, y2 = geodesy.geodetic2gk(26.06, 119.2, deg=True, false_easting=500e3, zone_prefix=True)
+    assert_allclose([x1, y1, x2, y2], [n4549, e4549, n4528, e4528], rtol=0, atol=1e-6)
+    la, lo = geodesy.gk2geodetic(x2, y2, deg=True, false_easting=500e3, zone_prefix=True)
+    assert_allclose([la, lo], [26.06, 119.2], rtol=0, atol=1e-11)
+    assert abs(geodesy.meridian_arc(26.06, deg=True) - 2_883_481.880) < 1e-3
+
+
+# --------------------------------------------------------------------------
+# pyproj cross-check inside zones
+# --------------------------------------------------------------------------
+
+@pytest.mark.parametrize("width", [3, 6])
+@pytest.mark.parametrize("ell", ELLIPSOIDS, ids=lambda e: e.name)
+def test_matches_pyproj_inside_zones(width, ell):
+    """Random points inside each zone at 0-70° latitude agree with PROJ's exact tmerc to < 0.01 mm."""
+    rng = np.random.default_rng(width)
+    zones = np.arange(1, 360 // width + 1)
+    for zn in zones:
+        lon0 = float(geodesy.central_meridian(zn, width, deg=True))
+        lat = rng.uniform(0.0, 70.0, 200)
+        lon = lon0 + rng.uniform(-width / 2, width / 2, 200)
+        x, y = geodesy.geodetic2gk(lat, lon, zone=zn, width=width, ellipsoid=ell, deg=True)
+        east, north = proj_tmerc(ell, lon0).transform(lon, lat)
+        assert np.abs(x - north).max() < 1e-5 and np.abs(y - east).max() < 1e-5, zn
+
+
+def test_grid_convergence_and_scale_match_pyproj():
+    rng = np.random.default_rng(7)
+    lat, lon = rng.uniform(-70, 70, 2000), 120 + rng.uniform(-3, 3, 2000)
+    f = proj_tmerc(earth.CGCS2000, 120).get_factors(lon, lat)
+    gamma = geodesy.convergence(lat, lon, lon0=120, width=6, deg=True)
+    k = geodesy.scale_factor(lat, lon, lon0=120, width=6, deg=True)
+    assert_allclose(gamma, f.meridian_convergence, rtol=0, atol=1e-8)
+    assert_allclose(k, f.meridional_scale, rtol=0, atol=1e-9)
+    # Guide 002 Erratum 9: -0.3515° at Fuzhou; l sin(lat) to first order
+    assert abs(geodesy.convergence(26.06, 119.2, deg=True) + 0.3515) < 1e-3
+
+
+def test_grid_convergence_is_the_grid_bearing_of_true_north():
+    """A step due (true) north has grid bearing -gamma: heading_grid = heading_true - gamma."""
+    lat, lon, d = 26.06, 121.3, 1e-6
+    x0, y0 = geodesy.geodetic2gk(lat, lon, zone=40, deg=True)
+    x1, y1 = geodesy.geodetic2gk(lat + d, lon, zone=40, deg=True)
+    bearing = np.degrees(np.arctan2(y1 - y0, x1 - x0))
+    assert abs(bearing + geodesy.convergence(lat, lon, zone=40, deg=True)) < 1e-6
+
+
+# --------------------------------------------------------------------------
+# Round trips and the paper's equations
+# --------------------------------------------------------------------------
+
+@settings(max_examples=300, deadline=None)
+@given(lat=st.floats(-89.0, 89.0), offset=st.floats(-3.0, 3.0), zn=st.integers(1, 60),
+       ell=st.sampled_from(ELLIPSOIDS))
+def test_round_trip_inverse_of_forward(lat, offset, zn, ell):
+    lon0 = float(geodesy.central_meridian(zn, 6, deg=True))
+    lon = lon0 + offset
+    x, y = geodesy.geodetic2gk(lat, lon, zone=zn, width=6, ellipsoid=ell, deg=True)
+    la, lo = geodesy.gk2geodetic(x, y, zone=zn, width=6, ellipsoid=ell, deg=True)
+    assert abs(la - lat) < 1e-9
+    assert abs((lo - lon + 180) % 360 - 180) < 1e-9
+
+
+def test_zone_numbers_corrected_formula():
+    """Erratum 1: n = floor((L + 1.5)/3); the printed (L - 1.5)/3 is not an integer."""
+    lon = [1.5, 4.49, 4.5, 117.0, 118.5, 119.2, 121.49, 121.5, 0.5, 359.0, -1.0]
+    assert geodesy.zone(lon, deg=True).tolist() == [1, 1, 2, 39, 40, 40, 40, 41, 120, 120, 120]
+    assert geodesy.central_meridian(120, deg=True) == 0
+    assert geodesy.zone([117.0, 0.5, -3.0], width=6, deg=True).tolist() == [20, 1, 60]
+    assert_allclose(geodesy.central_meridian([20, 60], 6, deg=True), [117, -3])
+    assert abs(geodesy.printed_zone_number(119.2, deg=True) - 39.2333333) < 1e-6
+    assert geodesy.zone(np.deg2rad(119.2)) == 40                   # radians by default
+
+
+def test_per_point_zones_and_prefix():
+    x, y = geodesy.geodetic2gk([26.0, 26.0], [121.4, 121.6], deg=True, false_easting=500e3, zone_prefix=True)
+    assert int(y[0] // 1e6) == 40 and int(y[1] // 1e6) == 41
+    la, lo = geodesy.gk2geodetic(x, y, deg=True, false_easting=500e3, zone_prefix=True)
+    assert_allclose(lo, [121.4, 121.6], atol=1e-11)
+
+
+def arc_by_quadrature(lat, ell, order=64):
+    """Integral of R_M from 0 to lat by Gauss-Legendre (exact to rounding for this smooth integrand)."""
+    nodes, weights = np.polynomial.legendre.leggauss(order)
+    w = lat / 2 * (nodes + 1)
+    return lat / 2 * np.sum(weights * geodesy.paper_radii(w, ell)[3])
+
+
+def test_meridian_arc_series_against_quadrature():
+    """Eqs. (7)-(8) are correct (Erratum 5): 1e-8 m at 26°, 1e-6 m at 45°, 1e-4 m at 89.9°."""
+    ell = earth.CGCS2000
+    for lat_deg, tol in ((26.0, 1e-8), (45.0, 1e-6), (89.9, 1e-4)):
+        exact = arc_by_quadrature(np.deg2rad(lat_deg), ell)
+        assert abs(geodesy.meridian_arc(lat_deg, ell, deg=True, series="paper") - exact) < tol
+        assert abs(geodesy.meridian_arc(lat_deg, ell, deg=True) - exact) < 1e-8
+
+
+def test_paper_radii():
+    """Eqs. (3)-(6): R_N as in earth.radii; corrected R_M = 6 347 737.10 m at 26.06° N; printed 4.04e13."""
+    e1, e2, R_N, R_M = geodesy.paper_radii(26.06, deg=True)
+    R_M_ref, R_N_ref = earth.radii(26.06, deg=True, ellipsoid=earth.CGCS2000)
+    assert abs(e1 ** 2 - earth.CGCS2000.e2) < 1e-15
+    assert abs(R_N / R_N_ref - 1) < 1e-12 and abs(R_M / R_M_ref - 1) < 1e-12
+    assert abs(R_M - 6_347_737.10) < 0.01
+    assert 4.0e13 < geodesy.printed_meridian_radius(26.06, deg=True) < 4.1e13
+
+
+def test_paper_series_and_its_typos():
+    """Erratum 3: corrected series within 1 µm of PROJ for |l| <= 1.5° at 26° N; typos 0.31 mm / 19.7 mm."""
+    tm = proj_tmerc(earth.CGCS2000, 120)
+    l = np.linspace(-1.5, 1.5, 31)
+    east, north = tm.transform(120 + l, np.full_like(l, 26.0))
+    x, y = geodesy.paper_series(26.0, 120 + l, 120.0, deg=True)
+    assert np.abs(x - north).max() < 1e-6 and np.abs(y - east).max() < 1e-6
+    for off, mm in ((1.5, 0.31), (3.0, 19.7)):
+        xt, _ = geodesy.paper_series(26.0, 120 + off, 120.0, deg=True, typos=True)
+        assert abs((xt - tm.transform(120 + off, 26.0)[1]) * 1e3 / mm - 1) < 0.05
+
+
+# --------------------------------------------------------------------------
+# Geodetic <-> ECEF <-> ENU
+# --------------------------------------------------------------------------
+
+def test_ecef_matches_pyproj_and_round_trips():
+    rng = np.random.default_rng(3)
+    lat, lon, h = rng.uniform(-89, 89, 500), rng.uniform(-180, 180, 500), rng.uniform(-100, 9000, 500)
+    x, y, z = geodesy.geodetic2ecef(lat, lon, h, earth.WGS84, deg=True)
+    X, Y, Z = pyproj.Transformer.from_crs("EPSG:4979", "EPSG:4978", always_xy=True).transform(lon, lat, h)
+    assert_allclose(np.stack([x, y, z]), np.stack([X, Y, Z]), rtol=0, atol=1e-6)
+    la, lo, hh = geodesy.ecef2geodetic(x, y, z, earth.WGS84, deg=True)
+    assert np.abs(la - lat).max() < 1e-10 and np.abs(lo - lon).max() < 1e-10 and np.abs(hh - h).max() < 1e-6
+
+
+def test_enu_round_trip_and_axes():
+    lat0, lon0, h0 = 26.06, 119.2, 10.0
+    e, n, u = geodesy.geodetic2enu(lat0 + 1e-3, lon0, h0, lat0, lon0, h0, deg=True)
+    assert abs(e) < 1e-6 and 100 < n < 120 and abs(u) < 0.01          # a step north is +n
+    e, n, u = geodesy.geodetic2enu(lat0, lon0 + 1e-3, h0, lat0, lon0, h0, deg=True)
+    assert e > 90 and abs(n) < 0.01
+    enu = np.array([[100.0, -250.0, 3.0], [5e3, 2e3, -40.0]])
+    la, lo, h = geodesy.enu2geodetic(enu[:, 0], enu[:, 1], enu[:, 2], lat0, lon0, h0, deg=True)
+    back = geodesy.geodetic2enu(la, lo, h, lat0, lon0, h0, deg=True)
+    assert_allclose(np.stack(back, -1), enu, rtol=0, atol=1e-7)
+
+
+def test_broadcasting():
+    x, y = geodesy.geodetic2gk(np.array([[20.0], [30.0], [40.0]]), 120 + np.array([-1.0, 0.0, 0.5, 1.0]),
+                               zone=40, deg=True)
+    assert x.shape == y.shape == (3, 4)
+    la, lo = geodesy.gk2geodetic(x, y, zone=40, deg=True)
+    assert la.shape == (3, 4)
+
+
+# --------------------------------------------------------------------------
+# Bad input
+# --------------------------------------------------------------------------
+
+@pytest.mark.parametrize("call, arg", [
+    (lambda: geodesy.geodetic2gk(91.0, 120.0, deg=True), "lat"),
+    (lambda: geodesy.geodetic2gk(2.0, 2.0), "lat"),                                   # radians: 2 rad > pi/2
+    (lambda: geodesy.geodetic2gk(26.0, 130.0, zone=40, deg=True), "lon"),              # far outside zone 40
+    (lambda: geodesy.geodetic2gk(26.0, 123.5, lon0=120.0, deg=True), "lon"),
+    (lambda: geodesy.geodetic2gk(np.nan, 120.0, deg=True), "lat"),
+    (lambda: geodesy.geodetic2gk(26.0, np.inf, deg=True), "lon"),
+    (lambda: geodesy.geodetic2gk(26.0, 120.0, width=4, deg=True), "width"),
+    (lambda: geodesy.geodetic2gk(26.0, 120.0, zone=40, lon0=120.0, deg=True), "lon0, zone"),
+    (lambda: geodesy.geodetic2gk([1.0, 2.0], [1.0, 2.0, 3.0], deg=True), "lat, lon"),
+    (lambda: geodesy.central_meridian(0), "zone_number"),
+    (lambda: geodesy.central_meridian(40.5), "zone_number"),
+    (lambda: geodesy.central_meridian(61, width=6), "zone_number"),
+    (lambda: geodesy.gk2geodetic(2.8e6, -8e4), "zone, lon0"),
+    (lambda: geodesy.gk2geodetic(2.8e6, np.nan, zone=40), "y"),
+    (lambda: geodesy.gk2geodetic(2.8e6, 9e6, zone=40), "y"),
+    (lambda: geodesy.gk2geodetic(2.8e6, 4e7, zone=40, zone_prefix=True), "zone, lon0"),
+    (lambda: geodesy.meridian_arc(0.5, series="taylor"), "series"),
+    (lambda: geodesy.geodetic2gk(26.0, 119.2, deg=True, zone_prefix=True), "false_easting"),
+    (lambda: geodesy.meridian_arc(-100.0, deg=True), "lat"),
+    (lambda: geodesy.paper_series(26.0, 127.0, 120.0, deg=True), "lon"),
+    (lambda: geodesy.ecef2geodetic(0.0, 0.0, 10.0), "x, y, z"),
+    (lambda: geodesy.geodetic2enu(26.0, 119.0, np.nan, 26.0, 119.0, 0.0, deg=True), "h"),
+    (lambda: geodesy.enu2geodetic(0.0, 0.0, 0.0, 95.0, 119.0, 0.0, deg=True), "lat"),
+    (lambda: geodesy.convergence(26.0, 140.0, zone=40, deg=True), "lon"),
+    (lambda: geodesy.scale_factor(26.0, 120.0, k0=0.0, deg=True), "k0"),
+])
+def test_bad_input_raises_value_error_naming_the_argument(call, arg):
+    with pytest.raises(ValueError) as info:
+        call()
+    assert str(info.value).split(":")[0] == arg, str(info.value)

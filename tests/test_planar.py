@@ -1,0 +1,221 @@
+"""Tests of navlib.planar: motion model, EKF cycle, dropouts, zone crossing, bad input."""
+import json
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+
+from navlib import geodesy, kalman, planar
+
+ORIGIN = np.deg2rad([26.06, 119.20])       # guide 002: Fuzhou, GK zone 40
+X0_STRAIGHT = np.array([0.0, 0.0, np.pi / 4, 1.0, 0.0])
+
+
+def straight_run(seed, n=2000, T=0.5, R=planar.R_PAPER, **kw):
+    truth = planar.propagate(X0_STRAIGHT, T, n)
+    t = np.arange(n + 1) * T
+    sens = planar.simulate_sensors(truth, ORIGIN, R, np.random.default_rng(seed), **kw)
+    return t, truth, sens
+
+
+def test_jacobian_equals_finite_differences():
+    """Eq. (16) is the Jacobian of the reconstructed Eq. (13) (central differences, 1e-8)."""
+    rng = np.random.default_rng(0)
+    X = rng.uniform([-50, -50, -np.pi, 0, -1], [50, 50, np.pi, 3, 1], (20, 5))
+    T, h = 0.5, 1e-6
+    num = np.stack([(planar.motion_model(X + h * e, T) - planar.motion_model(X - h * e, T)) / (2 * h)
+                    for e in np.eye(5)], -1)
+    assert_allclose(planar.jacobian(X, T), num, rtol=0, atol=1e-8)
+
+
+def test_circle_radius_for_5_deg_per_s():
+    """Fig. 5: omega0 = 5 deg/s gives a circle of radius v/omega = 11.459 m; 5 rad/s a 0.53 m polygon."""
+    X = planar.propagate([0, 0, 0, 1, np.deg2rad(5)], 0.5, 144)        # one period, 72 s
+    assert abs(np.ptp(X[:, 1]) / 2 - 1 / np.deg2rad(5)) < 0.01
+    assert np.hypot(*X[-1, :2]) < 1e-9
+    P = planar.propagate([0, 0, 0, 1, 5.0], 0.5, 200)
+    assert np.ptp(P[:, 0]) < 0.6 and np.ptp(P[:, 1]) < 0.6
+
+
+def test_fast_update_equals_general_kalman_update():
+    """The H = I5 specialised update gives the same states, covariances and NIS as kalman.update."""
+    t, truth, s = straight_run(1, n=400)
+    z = np.column_stack([truth[:, :2] + np.random.default_rng(2).normal(0, 2.5, (401, 2)),
+                         truth[:, 2] + np.pi + 0.1, s.speed, s.yaw_rate])     # heading near the wrap
+    fast = planar.filter_grid(t, z, X0_STRAIGHT, P0=np.eye(5))
+    slow = planar.filter_grid(t, z, X0_STRAIGHT, P0=np.eye(5), fast=False)
+    assert_allclose(fast.x, slow.x, rtol=0, atol=1e-10)
+    assert_allclose(fast.P, slow.P, rtol=0, atol=1e-12)
+    assert_allclose(fast.nis[1:], slow.nis[1:], rtol=1e-10)
+
+
+def test_update_with_identity_h_is_the_linear_update_with_wrapped_heading():
+    """Eqs. (14)-(15): with H = I5 the EKF update is the linear KF update; a heading innovation near ±pi wraps."""
+    P = np.diag([4.0, 4.0, 0.04, 0.01, 0.01])
+    x0 = np.array([10.0, -5.0, np.pi - 0.05, 1.0, 0.0])
+    z = np.array([11.0, -4.0, -np.pi + 0.05, 1.1, 0.02])           # heading 0.1 rad clockwise of x0
+    res = planar.filter_grid([0.0, 1e-9], np.vstack([np.full(5, np.nan), z]), x0, P0=P, Q=np.zeros(5))
+    R = planar.R_PAPER
+    K = P @ np.linalg.inv(P + R)
+    innov = z - x0
+    innov[2] = 0.1
+    expected = x0 + K @ innov
+    expected[2] = np.mod(expected[2], 2 * np.pi)
+    assert_allclose(res.x[1], expected, rtol=0, atol=1e-6)         # 1e-9 s of prediction moves x by 1e-9 m
+    assert res.status[1] == kalman.ACCEPTED
+
+
+def test_ekf_beats_dead_reckoning_and_is_consistent_with_R():
+    """Fig. 4 set-up (paper Q, R in SI): EKF position RMSE ~1.6 m < GPS sigma 2.5 m; DR drifts away."""
+    t, truth, s = straight_run(3, yaw_rate_bias=np.deg2rad(0.05))
+    res = planar.ekf(t, s.gps, s.heading, s.speed, s.yaw_rate, X0_STRAIGHT, origin=ORIGIN)
+    dr, held = planar.dead_reckoning(t, s.speed, s.yaw_rate, X0_STRAIGHT)
+    e_ekf = planar.position_error(res.x, truth)
+    e_dr = planar.position_error(dr, truth)
+    rmse = np.sqrt(np.mean(e_ekf ** 2))
+    assert 1.3 < rmse < 1.9
+    assert rmse < np.sqrt(np.mean(e_dr ** 2)) and held == 0
+    assert res.zone == 40 and res.n_predict_only == 0 and res.n_gps_missing == 0
+    # The truth is noise-free, so the paper's Q overstates the process noise: conservative, NIS < 5 dof.
+    nis = np.nanmean(res.nis[100:])
+    assert 2.5 < nis < 5.0
+
+
+def test_gps_outage_is_prediction_only_and_counted():
+    valid = np.ones(2001, bool)
+    valid[800:920] = False                                          # 60 s without GPS
+    t, truth, s = straight_run(4, gps_valid=valid)
+    res = planar.ekf(t, s.gps, s.heading, s.speed, s.yaw_rate, X0_STRAIGHT, origin=ORIGIN)
+    assert res.n_gps_missing == 120 and res.n_predict_only == 0
+    assert np.all(np.isfinite(res.x))
+    var = res.P[:, 0, 0] + res.P[:, 1, 1]
+    assert var[919] > 5 * var[799] and var[1000] < 2 * var[799]      # grows in the gap, recovers after
+    s.heading[500:510] = np.nan
+    s.speed[500:510] = np.nan
+    s.yaw_rate[500:510] = np.nan
+    s.gps[500:510] = np.nan
+    res = planar.ekf(t, s.gps, s.heading, s.speed, s.yaw_rate, X0_STRAIGHT, origin=ORIGIN)
+    assert res.n_predict_only == 10 and np.all(res.status[500:510] == kalman.NO_DATA)
+
+
+def test_gate_rejects_gps_outlier():
+    t, truth, s = straight_run(5, n=400)
+    res = planar.ekf(t, s.gps, s.heading, s.speed, s.yaw_rate, X0_STRAIGHT, origin=ORIGIN, P0=np.eye(5))
+    s.gps[300, 0] += 1e-4                                            # ~640 m north
+    gated = planar.ekf(t, s.gps, s.heading, s.speed, s.yaw_rate, X0_STRAIGHT, origin=ORIGIN, P0=np.eye(5),
+                       gate=30.0)
+    assert gated.n_rejected >= 1 and gated.status[300] == kalman.REJECTED
+    assert planar.position_error(gated.x[300], truth[300]) < 5
+    assert gated.n_rejected <= 2 and np.abs(gated.x[-1, :2] - res.x[-1, :2]).max() < 5
+
+
+def test_zone_crossing_stays_continuous_and_convergence_corrects_heading():
+    """An eastward run across 121.5° E (zone 40 -> 41): one zone held, no jump; grid heading corrected."""
+    lat0 = np.deg2rad(26.06)
+    x_e, y_e = geodesy.geodetic2gk(lat0, np.deg2rad(121.4), zone=40)
+    origin = np.array(geodesy.gk2geodetic(x_e, y_e, zone=40))
+    x0 = np.array([0.0, 0.0, np.pi / 2, 20.0, 0.0])                  # due grid east at 20 m/s
+    n, T = 2000, 0.5
+    truth = planar.propagate(x0, T, n)
+    R = np.diag([6.25, 6.25, np.deg2rad(0.5) ** 2, 4e-4, 2.5e-3])
+    s = planar.simulate_sensors(truth, origin, R, np.random.default_rng(6))
+    assert geodesy.zone(s.gps[-1, 1]) == 41
+    t = np.arange(n + 1) * T
+    res = planar.ekf(t, s.gps, s.heading, s.speed, s.yaw_rate, x0, origin=origin, R=R)
+    assert res.zone == 40 and np.abs(np.diff(res.z[1:, 1])).max() < 30
+    err = np.angle(np.exp(1j * (res.x[:, 2] - truth[:, 2])))
+    raw = planar.ekf(t, s.gps, s.heading, s.speed, s.yaw_rate, x0, origin=origin, R=R, correct_convergence=False)
+    err_raw = np.angle(np.exp(1j * (raw.x[:, 2] - truth[:, 2])))
+    gamma = geodesy.convergence(s.gps[:, 0], s.gps[:, 1], zone=40)
+    assert abs(np.mean(err)) < 0.05 * np.mean(gamma)
+    assert abs(np.mean(err_raw) / np.mean(gamma) - 1) < 0.2
+
+
+def test_dead_reckoning_holds_through_nan_and_adds_velocity_bias():
+    t = np.arange(11.0)
+    v, w = np.ones(11), np.zeros(11)
+    v[3] = np.nan
+    pose, held = planar.dead_reckoning(t, v, w, [0, 0, 0, 1, 0], velocity_bias=[0.0, 0.1])
+    assert held == 1
+    assert_allclose(pose[-1], [10.0, 1.0, 0.0], rtol=0, atol=1e-12)
+
+
+def test_waypoint_path_reaches_every_mark():
+    marks = np.array([[0, 0], [0, 1], [0, 2], [1, 2], [2, 2], [2, 1], [2, 0], [1, 0], [1, 1.0]])
+    X, idx = planar.waypoint_path(marks, 0.1, np.deg2rad(15), 0.5)
+    assert_allclose(X[idx, :2], marks, rtol=0, atol=1e-12)
+    assert np.all(np.diff(idx) > 0)
+
+
+def test_kernels_run_uncompiled_with_the_same_results():
+    script = r"""
+import json, numpy as np
+from navlib import planar
+t = np.arange(50) * 0.5
+rng = np.random.default_rng(0)
+z = np.column_stack([rng.normal(0, 2, (50, 2)), rng.normal(0.3, 0.1, 50), np.ones(50), np.zeros(50)])
+z[10:15, :2] = np.nan
+r = planar.filter_grid(t, z, [0, 0, 0.3, 1, 0], P0=np.eye(5))
+d, _ = planar.dead_reckoning(t, z[:, 3], z[:, 4], [0, 0, 0.3, 1, 0])
+print(json.dumps({"x": r.x.tolist(), "d": d.tolist()}))
+"""
+    out = {}
+    for flag in ("0", "1"):
+        env = dict(os.environ, NUMBA_DISABLE_JIT=flag)
+        run = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True, text=True, check=True)
+        out[flag] = json.loads(run.stdout)
+    assert_allclose(out["1"]["x"], out["0"]["x"], rtol=0, atol=1e-9)
+    assert_allclose(out["1"]["d"], out["0"]["d"], rtol=0, atol=1e-12)
+
+
+# --------------------------------------------------------------------------
+# Bad input
+# --------------------------------------------------------------------------
+
+T3 = np.array([0.0, 0.5, 1.0])
+GPS3 = np.tile(ORIGIN, (3, 1))
+ONES3 = np.ones(3)
+
+
+@pytest.mark.parametrize("call, arg", [
+    (lambda: planar.ekf([0.0, 1.0, 0.5], GPS3, ONES3, ONES3, ONES3, np.zeros(5)), "t"),     # non-monotonic
+    (lambda: planar.ekf([0.0, 0.5, 0.5], GPS3, ONES3, ONES3, ONES3, np.zeros(5)), "t"),
+    (lambda: planar.ekf(T3, GPS3[:2], ONES3, ONES3, ONES3, np.zeros(5)), "gps"),
+    (lambda: planar.ekf(T3, np.full((3, 2), np.nan), ONES3, ONES3, ONES3, np.zeros(5)), "gps"),
+    (lambda: planar.ekf(T3, GPS3 + [[np.inf, 0]], ONES3, ONES3, ONES3, np.zeros(5)), "gps"),
+    (lambda: planar.ekf(T3, [[2.0, 2.1]] * 3, ONES3, ONES3, ONES3, np.zeros(5)), "lat"),
+    (lambda: planar.ekf(T3, GPS3, ONES3, ONES3, ONES3, np.zeros(5), zone=41 + 10), "lon"),
+    (lambda: planar.ekf(T3, GPS3, ONES3[:2], ONES3, ONES3, np.zeros(5)), "heading"),
+    (lambda: planar.ekf(T3, GPS3, ONES3, ONES3, ONES3, np.zeros(4)), "x0"),
+    (lambda: planar.ekf(T3, GPS3, ONES3, ONES3, ONES3, np.zeros(5), gate=-1.0), "gate"),
+    (lambda: planar.filter_grid(T3, np.zeros((3, 5)), np.zeros(5), Q=-np.eye(5)), "Q"),
+    (lambda: planar.filter_grid(T3, np.zeros((3, 5)), np.zeros(5), R=np.ones((4, 4))), "R"),
+    (lambda: planar.filter_grid(T3, np.zeros((3, 4)), np.zeros(5)), "z"),
+    (lambda: planar.dead_reckoning([0.0, 0.0, 1.0], ONES3, ONES3, np.zeros(5)), "t"),
+    (lambda: planar.dead_reckoning(T3, ONES3[:2], ONES3, np.zeros(5)), "speed, yaw_rate"),
+    (lambda: planar.propagate(np.zeros(5), 0.0, 10), "T"),
+    (lambda: planar.propagate(np.zeros(5), 0.5, 2.5), "n_steps"),
+    (lambda: planar.motion_model(np.zeros(4), 0.5), "X"),
+    (lambda: planar.jacobian(np.full(5, np.nan), 0.5), "X"),
+    (lambda: planar.waypoint_path([[0, 0], [0, 0]], 1.0, 1.0, 0.5), "waypoints"),
+    (lambda: planar.waypoint_path([[0, 0], [0, 1]], -1.0, 1.0, 0.5), "speed"),
+    (lambda: planar.simulate_sensors(np.zeros((3, 5)), ORIGIN, planar.R_PAPER, np.random), "rng"),
+    (lambda: planar.simulate_sensors(np.zeros((3, 5)), ORIGIN, planar.R_PAPER, np.random.default_rng(0),
+                                     gps_valid=[True]), "gps_valid"),
+    (lambda: planar.position_error(np.zeros((3, 1)), np.zeros((3, 1))), "estimate, truth"),
+])
+def test_bad_input_raises_value_error_naming_the_argument(call, arg):
+    with pytest.raises(ValueError) as info:
+        call()
+    assert str(info.value).split(":")[0] == arg, str(info.value)
+
+
+def test_degree_inputs_give_the_same_filter():
+    t, truth, s = straight_run(8, n=200)
+    rad = planar.ekf(t, s.gps, s.heading, s.speed, s.yaw_rate, X0_STRAIGHT, origin=ORIGIN)
+    deg = planar.ekf(t, np.degrees(s.gps), np.degrees(s.heading), s.speed, np.degrees(s.yaw_rate), X0_STRAIGHT,
+                     origin=np.degrees(ORIGIN), deg=True)
+    assert_allclose(deg.x, rad.x, rtol=0, atol=1e-9)
