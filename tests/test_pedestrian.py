@@ -1,0 +1,336 @@
+"""navlib.pedestrian (paper 004): conventions, Eqs. (1)-(6), detector, filter, barometer, PDR."""
+import json
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
+
+from navlib import attitude, earth, kalman, pedestrian as pd, sensors, strapdown, trajectory, units
+
+LAT = units.deg(30.55)
+LLA0 = [LAT, units.deg(114.30), 20.0]
+DT = 0.01
+RESIDUAL = sensors.imu_model("MPU-6050").replace(gyro={"bias": units.deg_per_s(0.05)}, accel={"bias": units.mg(10)})
+
+
+def random_hpr(rng, n, max_tilt=np.deg2rad(40)):
+    return np.stack([rng.uniform(0, 2 * np.pi, n), rng.uniform(-max_tilt, max_tilt, n),
+                     rng.uniform(-max_tilt, max_tilt, n)], -1)
+
+
+# ---------------------------------------------------------------- conventions
+
+def test_ned_frd_to_enu_rfu_is_the_same_euler_triplet():
+    rng = np.random.default_rng(0)
+    hpr = random_hpr(rng, 1000, np.deg2rad(85))
+    C_ned = Rotation.from_euler("ZYX", hpr).as_matrix()         # R_z(H) R_y(theta) R_x(gamma), FRD -> NED
+    np.testing.assert_allclose(pd.ned_to_enu_dcm(C_ned), attitude.euler_to_dcm(hpr), atol=1e-14)
+    assert np.isclose(np.linalg.det(pd.M_NED_ENU), 1.0)
+
+
+# ---------------------------------------------------------------- Eqs. (4)-(6)
+
+def field_in_body(hpr, B_n):
+    return np.einsum("nji,j->ni", attitude.euler_to_dcm(hpr), B_n)   # C_nb B_n
+
+
+def test_corrected_tilt_compensation_recovers_heading_in_both_frames():
+    rng = np.random.default_rng(1)
+    hpr = random_hpr(rng, 300)
+    B_n = earth.field_from_angles(0.0, 47.0, 49.7)                  # magnetic north: heading = magnetic heading
+    m_b = field_in_body(hpr, B_n)
+    enu = pd.magnetic_heading(m_b, hpr[:, 1], hpr[:, 2])
+    assert np.abs(attitude.wrap_pi(enu - hpr[:, 0])).max() < 1e-12
+    H_frd = np.stack([m_b[:, 1], m_b[:, 0], -m_b[:, 2]], -1)        # (H_x, H_y, H_z) = (m_y, m_x, -m_z)
+    HX, HY = pd.tilt_compensate_ned(H_frd, hpr[:, 1], hpr[:, 2])
+    ned = pd.heading_from_horizontal(HX, HY)
+    assert np.abs(attitude.wrap_pi(ned - hpr[:, 0])).max() < 1e-12
+    np.testing.assert_allclose(attitude.wrap_pi(ned - enu), 0.0, atol=1e-14)
+    PX, PY = pd.tilt_compensate_printed(H_frd, hpr[:, 1], hpr[:, 2])
+    printed = pd.heading_from_horizontal(PX, PY)
+    assert np.median(np.abs(attitude.wrap_pi(printed - hpr[:, 0]))) > np.deg2rad(10)
+
+
+def test_heading_range_is_zero_to_two_pi_and_declination_added():
+    assert pd.heading_from_horizontal(1.0, 0.0) == 0.0               # north maps to 0, never 2 pi
+    assert pd.heading_from_horizontal(1.0, -0.0) == 0.0
+    a = pd.heading_from_horizontal(np.cos(np.linspace(0, 6.28, 50)), -np.sin(np.linspace(0, 6.28, 50)))
+    assert np.all((a >= 0) & (a < 2 * np.pi))
+    assert np.isclose(pd.heading_from_horizontal(1.0, 0.0, declination=units.deg(-4.3)), units.deg(355.7))
+    D = np.rad2deg(earth.field_angles(earth.magnetic_field(30.55, 114.30, 0.0, 2016.5), deg=False)[0])
+    assert abs(D + 4.3) < 0.3
+
+
+# ---------------------------------------------------------------- Eqs. (1)-(3)
+
+def test_error_model_matches_finite_differences_of_the_mechanisation():
+    rng = np.random.default_rng(2)
+    for _ in range(5):
+        C = attitude.euler_to_dcm(random_hpr(rng, 1)[0])
+        f = np.array([0.3, -0.5, 9.8]) + rng.normal(0, 2, 3)
+        F_fd = pd.error_model_fd(C, f)
+        F = pd.error_state_matrix(C, f)
+        np.testing.assert_allclose(F_fd, F, atol=1e-6 * np.abs(F).max())
+
+
+def test_zupt_zaru_innovation_is_H_dx_to_second_order():
+    rng = np.random.default_rng(3)
+    C = attitude.euler_to_dcm([0.7, 0.05, -0.03])
+    w_ie = earth.earth_rate_n(LAT)
+    b_g = units.deg_per_s(np.array([0.04, -0.03, 0.05]))
+    w_meas = C.T @ w_ie + b_g                                       # static, noise-free
+    d = rng.standard_normal(15)
+    res = []
+    for eps in (1e-3, 5e-4):
+        dx = eps * d
+        C_hat = attitude.rotvec_to_dcm(dx[6:9]) @ C
+        z = pd.zupt_zaru_innovation(dx[3:6], w_meas, b_g - dx[12:15], C_hat, w_ie)
+        res.append(np.abs(z - pd.zupt_zaru_matrix(C_hat, w_ie) @ dx).max())
+    assert res[0] / res[1] == pytest.approx(4.0, rel=0.05)         # residual proportional to error^2
+
+
+def test_printed_covariance_update_equals_joseph_form():
+    rng = np.random.default_rng(4)
+    A = rng.standard_normal((15, 15))
+    P = A @ A.T + np.eye(15)
+    H = pd.zupt_zaru_matrix(np.eye(3), earth.earth_rate_n(LAT))
+    R = np.diag([1e-4] * 3 + [1e-6] * 3)
+    K, P_simple = pd.simple_covariance_update(P, H, R)
+    _, P_joseph, *_ = kalman.update(np.zeros(15), P, np.zeros(6), np.zeros(6), H, R, np.zeros(6, bool))
+    np.testing.assert_allclose(P_simple, P_joseph, atol=1e-12 * np.abs(P).max())
+    assert np.linalg.eigvalsh(P_joseph).min() > 0
+
+
+# ---------------------------------------------------------------- walk and detector
+
+@pytest.fixture(scope="module")
+def carpark():
+    legs = pd.carpark_legs(stops=(8.0, 5.0, 12.0))
+    traj = pd.walk(legs, DT, LLA0, 0.0)
+    return legs, traj, pd.stance_mask(legs, DT)
+
+
+def test_walk_is_exact_for_ideal_imu_and_has_the_gait(carpark):
+    legs, traj, static = carpark
+    w, f = trajectory.ideal_imu(traj)
+    nav = strapdown.integrate(traj.lla[0], traj.vel_n[0], traj.q_bn[0], w, f, DT)
+    np.testing.assert_allclose(nav.lla[:, :2], traj.lla[:, :2], atol=1e-11)
+    np.testing.assert_allclose(nav.vel_n, traj.vel_n, atol=1e-6)
+    assert np.abs(traj.vel_n[static]).max() < 0.01
+    straight = pd.walk([pd.Leg(5.0), pd.Leg(30.0, 1.2), pd.Leg(5.0)], DT, LLA0, 0.0)
+    up = straight.vel_n[1000:3000, 2]                               # 20 s of steady walking
+    spec = np.abs(np.fft.rfft(up - up.mean()))
+    freq = np.fft.rfftfreq(up.size, DT)
+    assert abs(freq[spec.argmax()] - pd.Gait().step_frequency) < 0.05
+    assert np.ptp(traj.lla[:, 2]) == pytest.approx(2 * pd.Gait().bounce, rel=0.05)
+    assert np.rad2deg(attitude.wrap_pi(traj.hpr[-1, 0] - traj.hpr[0, 0])) == pytest.approx(0.0, abs=0.5)
+
+
+def test_detector_rates_on_labelled_walk(carpark):
+    _, traj, static = carpark
+    w, f = trajectory.ideal_imu(traj)
+    imu = sensors.simulate_imu(w, f, DT, RESIDUAL, np.random.default_rng(5))
+    det = pd.detect_static(imu.w_ib_b, imu.f_b, DT)
+    p_d, p_fa = pd.detection_rates(det, static[:-1])
+    assert p_d > 0.95 and p_fa < 0.01
+    with pytest.raises(ValueError, match="^window: "):
+        pd.detect_static(imu.w_ib_b[:30], imu.f_b[:30], DT, window=0.5)
+
+
+def test_floor_test_legs_round_trip():
+    legs = pd.floor_test_legs()
+    traj = pd.walk(legs, 0.05, LLA0, 0.0)
+    static = pd.stance_mask(legs, 0.05)
+    _, _, floors = pd.segment_floors(traj.lla[:, 2] - 20.0, static, ref_floor=2)
+    assert floors.tolist() == [2, 1, 2, 1, 2]
+
+
+# ---------------------------------------------------------------- filter
+
+@pytest.fixture(scope="module")
+def static_run():
+    traj = trajectory.static(120.0, DT, LLA0, [0.3, 0.0, 0.0])
+    w, f = trajectory.ideal_imu(traj)
+    imu = sensors.simulate_imu(w, f, DT, RESIDUAL, np.random.default_rng(6))
+    pitch, roll = pd.level(imu.f_b[:100].mean(0))
+    q0 = attitude.euler_to_quat([0.3, float(pitch), float(roll)])
+    return traj, imu, q0
+
+
+def test_static_zupt_zaru_holds_position_and_finds_gyro_bias(static_run):
+    traj, imu, q0 = static_run
+    res = pd.run_filter(imu.w_ib_b, imu.f_b, DT, LLA0, np.zeros(3), q0, np.ones(len(imu.f_b), bool))
+    R_M, _ = earth.radii(LAT)
+    assert res.updated and res.counts["zupt_updates"] == 1200
+    assert np.std(res.nav.lla[:, 0]) * R_M < 0.01
+    assert np.abs(res.gyro_bias[-1] - imu.gyro_bias[-1]).max() < units.deg_per_s(0.005)
+    free = strapdown.integrate(LLA0, np.zeros(3), q0, imu.w_ib_b, imu.f_b, DT)
+    assert np.std(free.lla[:, 0]) * R_M > 100.0
+
+
+def test_no_static_interval_is_reported_not_hidden(static_run):
+    traj, imu, q0 = static_run
+    with pytest.warns(RuntimeWarning, match="no ZUPT/ZARU update"):
+        res = pd.run_filter(imu.w_ib_b, imu.f_b, DT, LLA0, np.zeros(3), q0, np.zeros(len(imu.f_b), bool))
+    assert not res.updated
+    free = strapdown.integrate(LLA0, np.zeros(3), q0, imu.w_ib_b, imu.f_b, DT)
+    np.testing.assert_array_equal(res.nav.lla, free.lla)             # exactly the free INS: same mechanisation
+
+
+def test_repeated_rejections_force_an_update_instead_of_locking_out(static_run):
+    traj, imu, q0 = static_run
+    res = pd.run_filter(imu.w_ib_b, imu.f_b, DT, LLA0, [3.0, 0.0, 0.0], q0, np.ones(len(imu.f_b), bool))
+    assert res.counts["zupt_rejected"] == pd.FilterConfig().max_rejected
+    assert res.counts["zupt_forced"] == 1
+    assert np.abs(res.nav.vel_n[-1]).max() < 0.01
+
+
+def test_filter_survives_dropouts_and_gates_false_zupts(static_run):
+    traj, imu, q0 = static_run
+    w, f = imu.w_ib_b.copy(), imu.f_b.copy()
+    w[500:520] = np.nan
+    f[700] = np.nan
+    static = np.ones(len(f), bool)
+    res = pd.run_filter(w, f, DT, LLA0, np.zeros(3), q0, static)
+    assert res.counts["imu_dropouts"] == 21
+    assert np.all(np.isfinite(res.nav.lla))
+    # a walker flagged static for 1 s in the middle of a walk: the NIS gate rejects most of those updates
+    legs = [pd.Leg(20.0), pd.Leg(20.0, 1.2), pd.Leg(10.0)]
+    walk = pd.walk(legs, DT, LLA0, 0.0)
+    ww, fw = trajectory.ideal_imu(walk)
+    imu_w = sensors.simulate_imu(ww, fw, DT, RESIDUAL, np.random.default_rng(7))
+    flags = pd.stance_mask(legs, DT)[:-1].copy()
+    flags[3000:3100] = True
+    res = pd.run_filter(imu_w.w_ib_b, imu_w.f_b, DT, LLA0, np.zeros(3), walk.q_bn[0], flags)
+    assert res.counts["zupt_rejected"] >= 5
+
+
+def test_walking_aids_bound_heading_and_height(carpark):
+    legs, traj, static = carpark
+    ss = np.random.SeedSequence(8).spawn(3)
+    w, f = trajectory.ideal_imu(traj)
+    imu = sensors.simulate_imu(w, f, DT, RESIDUAL, np.random.default_rng(ss[0]))
+    B = earth.magnetic_field(30.55, 114.30, 20.0, 2016.5)
+    D = earth.field_angles(B, deg=False)[0]
+    m = sensors.simulate_magnetometer(traj.q_bn[:-1], B, sensors.MagnetometerModel.from_preset("HMC5983"),
+                                      np.random.default_rng(ss[1])).m_b
+    p = sensors.simulate_barometer(traj.lla[:-1, 2], traj.time[:-1], sensors.BarometerModel.from_preset("BMP180"),
+                                   np.random.default_rng(ss[2]))
+    h = 20.0 + pd.baro_height(p, pd.reference_pressure(p, traj.time[:-1], 20.0))
+    h[np.arange(h.size) % 10 != 0] = np.nan                         # 10 Hz barometer and magnetometer
+    m[np.arange(h.size) % 10 != 0] = np.nan
+    det = pd.detect_static(imu.w_ib_b, imu.f_b, DT)
+    out = {}
+    for mode in ("reset", "filter", "none"):
+        res = pd.run_filter(imu.w_ib_b, imu.f_b, DT, LLA0, np.zeros(3), traj.q_bn[0], det, h_baro=h, m_b=m,
+                            declination=float(D), walk_aiding=mode)
+        out[mode] = (np.abs(attitude.wrap_pi(res.nav.hpr[:, 0] - traj.hpr[:, 0])).max(),
+                     np.abs(res.nav.lla[:, 2] - traj.lla[:, 2]).max(), res)
+    assert out["reset"][0] < np.deg2rad(3) and out["filter"][0] < np.deg2rad(3)
+    assert out["reset"][1] < 1.0 and out["filter"][1] < 1.0
+    assert out["reset"][2].counts["mag_aidings"] > 1000
+    assert out["none"][2].counts["mag_aidings"] == 0
+    # ENU sign of the heading reset: a 10-degree initial heading error is removed while walking
+    q_off = attitude.euler_to_quat(traj.hpr[0] + [np.deg2rad(10.0), 0.0, 0.0])
+    res = pd.run_filter(imu.w_ib_b, imu.f_b, DT, LLA0, np.zeros(3), q_off, det, h_baro=h, m_b=m,
+                        declination=float(D))
+    err = np.abs(attitude.wrap_pi(res.nav.hpr[:, 0] - traj.hpr[:, 0]))
+    assert err[0] > np.deg2rad(9.9) and err[int(40 / DT):].max() < np.deg2rad(3)
+    # a strong disturbance everywhere: the gate on field magnitude and dip rejects it
+    cfg = pd.FilterConfig(mag_field_tol=5.0, mag_dip_tol=np.deg2rad(5))
+    res = pd.run_filter(imu.w_ib_b, imu.f_b, DT, LLA0, np.zeros(3), traj.q_bn[0], det, h_baro=h,
+                        m_b=m + np.array([0.0, 0.0, 30.0]), declination=float(D), field_n=B, config=cfg)
+    assert res.counts["mag_gated"] > 0 and res.counts["mag_aidings"] == 0
+
+
+def test_kernel_runs_uncompiled_with_the_same_result():
+    script = r"""
+import json, numpy as np, warnings
+from navlib import pedestrian as pd, trajectory, units
+legs = [pd.Leg(3.0), pd.Leg(3.0, 1.0, turn=0.5), pd.Leg(2.0)]
+traj = pd.walk(legs, 0.02, [0.5, 1.9, 10.0], 0.2)
+w, f = trajectory.ideal_imu(traj)
+static = pd.stance_mask(legs, 0.02)[:-1]
+m = np.tile([10.0, 20.0, -30.0], (len(w), 1))
+res = pd.run_filter(w + 1e-3, f, 0.02, traj.lla[0], traj.vel_n[0], traj.q_bn[0], static,
+                    h_baro=traj.lla[:-1, 2], m_b=m)
+print(json.dumps({"lla": res.nav.lla.tolist(), "counts": res.counts}))
+"""
+    runs = []
+    for flag in ("0", "1"):
+        env = dict(os.environ, NUMBA_DISABLE_JIT=flag)
+        out = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True, text=True, check=True)
+        runs.append(json.loads(out.stdout))
+    np.testing.assert_allclose(runs[0]["lla"], runs[1]["lla"], rtol=0, atol=1e-12)
+    assert runs[0]["counts"] == runs[1]["counts"]
+
+
+# ---------------------------------------------------------------- barometer and floors
+
+def test_baro_height_formula_and_floors():
+    p_ref = 100500.0
+    h = np.array([-3.0, 0.0, 3.0, 6.1])
+    from navlib import atmosphere
+    p = atmosphere.bmp180_pressure(h, p_ref)
+    np.testing.assert_allclose(pd.baro_height(p, p_ref), h, atol=1e-9)
+    assert np.allclose(pd.baro_height(p, p_ref, temperature=288.15), h, atol=0.05)
+    assert pd.classify_floor(h, 3.0, 2).tolist() == [1, 2, 3, 4]
+    t = np.arange(10.0)
+    assert pd.reference_pressure(np.r_[np.full(5, 1e5), np.full(5, 2e5)], t, 4.0) == 1e5
+    steps = pd.hvac_pressure_steps(t, [2.5, 6.5], np.random.default_rng(0), 10.0)
+    assert steps[0] == 0 and np.all(np.abs(steps) <= 10) and len(np.unique(steps)) == 3
+
+
+# ---------------------------------------------------------------- PDR
+
+def test_step_detection_and_pdr(carpark):
+    legs, traj, static = carpark
+    w, f = trajectory.ideal_imu(traj)
+    imu = sensors.simulate_imu(w, f, DT, RESIDUAL, np.random.default_rng(9))
+    steps = pd.detect_steps(imu.f_b, DT)
+    a_up = np.diff(traj.vel_n[:, 2]) / DT                           # true vertical acceleration
+    true_steps = np.sum((a_up[1:-1] > a_up[:-2]) & (a_up[1:-1] >= a_up[2:]) & (a_up[1:-1] > 1.0))
+    assert steps.index.size == pytest.approx(true_steps, rel=0.03)
+    en = pd.pdr(np.ones(4), np.array([0, np.pi / 2, np.pi, 3 * np.pi / 2]))
+    np.testing.assert_allclose(en[-1], [0.0, 0.0], atol=1e-12)
+    np.testing.assert_allclose(en[1], [0.0, 1.0], atol=1e-12)
+
+
+# ---------------------------------------------------------------- bad input
+
+@pytest.mark.parametrize("call, arg", [
+    (lambda: pd.baro_height([100000.0, 0.0], 101325.0), "p"),
+    (lambda: pd.baro_height([100000.0, -5.0], 101325.0), "p"),
+    (lambda: pd.baro_height([np.nan], 101325.0), "p"),
+    (lambda: pd.baro_height([np.inf], 101325.0), "p"),
+    (lambda: pd.baro_height([1e5], 0.0), "p_ref"),
+    (lambda: pd.magnetic_heading([0.0, 0.0, 0.0], 0.0, 0.0), "m_b"),
+    (lambda: pd.magnetic_heading([np.nan, 1.0, 0.0], 0.0, 0.0), "m_b"),
+    (lambda: pd.heading_from_horizontal(0.0, 0.0), "H_X, H_Y"),
+    (lambda: pd.detect_static(np.zeros((10, 3)), np.zeros((10, 3)), 0.01, window=1.0), "window"),
+    (lambda: pd.detect_static(np.zeros((10, 3)), np.zeros((9, 3)), 0.01), "f_b"),
+    (lambda: pd.detection_rates(np.ones(5, bool), np.ones(5, bool)), "truth"),
+    (lambda: pd.walk([], 0.01, LLA0, 0.0), "legs"),
+    (lambda: pd.Leg(-1.0), "duration"),
+    (lambda: pd.Leg(5.0, 0.0, turn=1.0), "turn, climb"),
+    (lambda: pd.Gait(step_frequency=0.0), "step_frequency"),
+    (lambda: pd.FilterConfig(sigma_zupt=0.0), "sigma_zupt"),
+    (lambda: pd.level([0.0, 0.0, 0.0]), "f_b"),
+    (lambda: pd.reference_pressure([np.nan, np.nan], [0.0, 1.0], 5.0), "until"),
+    (lambda: pd.classify_floor([1.0], floor_height=0.0), "floor_height"),
+    (lambda: pd.run_filter(np.zeros((5, 3)), np.zeros((5, 3)), 0.01, LLA0, np.zeros(3), [1, 0, 0, 0],
+                           np.ones(4, bool)), "static"),
+    (lambda: pd.run_filter(np.zeros((5, 3)), np.zeros((5, 3)), 0.01, LLA0, np.zeros(3), [1, 0, 0, 0],
+                           np.ones(5, bool), m_b=np.zeros((5, 3))), "m_b"),
+    (lambda: pd.run_filter(np.zeros((5, 3)), np.zeros((5, 3)), 0.01, LLA0, np.zeros(3), [1, 0, 0, 0],
+                           np.ones(5, bool), walk_aiding="magic"), "walk_aiding"),
+    (lambda: pd.detect_steps(np.zeros((5, 3)), 0.01), "f_b"),
+    (lambda: pd.weinberg_step_length([1.0], K=-1.0), "K"),
+    (lambda: pd.pdr([1.0, 2.0], [0.0]), "step_headings"),
+])
+def test_bad_input_names_the_argument(call, arg):
+    with pytest.raises(ValueError, match=f"^{arg}: "):
+        call()
