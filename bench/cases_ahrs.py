@@ -1,0 +1,83 @@
+"""Attitude filters of navlib.ahrs (paper 003) against ahrs (AHRS 0.4.0) and imufusion, same data, same run."""
+from __future__ import annotations
+
+import numpy as np
+
+from bench.run import Result, best_time
+from navlib import ahrs, attitude, earth
+
+DT = 0.01
+B_N = earth.magnetic_field(32.03, 118.85, 20.0, 2022.5)
+
+
+def _marg_data(n: int, trials: int | None = None, seed: int = 0):
+    """Noisy gyro (rad/s), accelerometer (m/s^2) and magnetometer (uT) of a slowly turning, tilted IMU."""
+    rng = np.random.default_rng(seed)
+    lead = () if trials is None else (trials,)
+    t = np.arange(n) * DT
+    hpr = np.stack([0.3 * t % (2 * np.pi), 0.1 * np.sin(0.2 * t), 0.1 * np.cos(0.3 * t)], -1)
+    C_nb = np.swapaxes(attitude.euler_to_dcm(hpr), -1, -2)
+    f = C_nb @ [0.0, 0.0, 9.8] + 0.02 * rng.standard_normal(lead + (n, 3))
+    m = C_nb @ B_N + 0.5 * rng.standard_normal(lead + (n, 3))
+    w = np.array([0.0, 0.0, 0.3]) + 1e-3 * rng.standard_normal(lead + (n, 3))
+    return w, f, m, attitude.euler_to_quat(hpr[0])
+
+
+def _peers(case: str, w, f, m, q0, n_total: int, m_peer: int) -> list[Result]:
+    """ahrs Mahony / EKF and imufusion on the first ``m_peer`` samples, scaled to ``n_total``."""
+    rows = []
+    try:
+        from ahrs.filters import EKF, Mahony
+        peer = Mahony if "Mahony" in case else EKF
+        kw = dict(k_P=1.0, k_I=0.02) if "Mahony" in case else dict(frame="ENU")
+        t = best_time(lambda: peer(gyr=w[:m_peer], acc=f[:m_peer], mag=m[:m_peer], frequency=1 / DT, q0=q0, **kw),
+                      repeat=1)
+        rows.append(Result(case, f"ahrs 0.4.0 {peer.__name__}", m_peer / t, "samples/s", t * n_total / m_peer,
+                           note=f"timed on {m_peer} samples"))
+    except ImportError:
+        pass
+    try:
+        import imufusion
+    except ImportError:
+        return rows
+    gyro_dps, acc_g = np.rad2deg(w[:m_peer]), f[:m_peer] / 9.80665
+
+    def fusion_loop():
+        filt = imufusion.Ahrs()
+        for k in range(m_peer):
+            filt.update(gyro_dps[k], acc_g[k], m[k])
+
+    t = best_time(fusion_loop, repeat=1)
+    rows.append(Result(case, "imufusion (C, per-sample calls)", m_peer / t, "samples/s", t * n_total / m_peer,
+                       note=f"timed on {m_peer} samples"))
+    return rows
+
+
+def mahony_single(quick: bool):
+    """One Mahony MARG filter over 1 h at 100 Hz (DESIGN §6: >= 10 M samples/s)."""
+    n = 36_000 if quick else 360_000
+    w, f, m, q0 = _marg_data(n)
+    t = best_time(lambda: ahrs.mahony(w, f, DT, q0, m_b=m))
+    rows = [Result("Mahony MARG, 1 filter", "navlib.ahrs.mahony (numba)", n / t, "samples/s", t, goal=10e6)]
+    return rows + _peers("Mahony MARG, 1 filter", w, f, m, q0, n, 2_000 if quick else 10_000)
+
+
+def mahony_batch(quick: bool):
+    """A batch of Mahony filters (trials split over the cores; DESIGN §6: >= 25 M samples/s aggregate)."""
+    trials, n = (8, 36_000) if quick else (32, 180_000)
+    w, f, m, q0 = _marg_data(n, trials, seed=1)
+    t = best_time(lambda: ahrs.mahony(w, f, DT, q0, m_b=m))
+    return [Result(f"Mahony MARG, {trials} trials", "navlib.ahrs.mahony (numba)", trials * n / t, "samples/s", t,
+                   goal=25e6, note="aggregate over the batch")]
+
+
+def quaternion_kf(quick: bool):
+    """The paper's PI + quaternion KF (4 states, 6 measurements) against ahrs's EKF and imufusion."""
+    n = 36_000 if quick else 360_000
+    w, f, m, q0 = _marg_data(n, seed=2)
+    t = best_time(lambda: ahrs.quaternion_kf(w, f, DT, q0, m_b=m, B_n=B_N))
+    rows = [Result("quaternion KF (PI + KF)", "navlib.ahrs.quaternion_kf (numba)", n / t, "samples/s", t)]
+    return rows + _peers("quaternion KF (PI + KF)", w, f, m, q0, n, 1_000 if quick else 5_000)
+
+
+CASES = [mahony_single, mahony_batch, quaternion_kf]

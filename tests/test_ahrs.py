@@ -1,0 +1,336 @@
+"""navlib.ahrs (paper 003): equations, filters, bad input, and the cross-check against ahrs (AHRS 0.4.0)."""
+import json
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from hypothesis import given, settings, strategies as st
+
+from navlib import ahrs, attitude, earth, units
+
+B_N = earth.magnetic_field(32.03, 118.85, 20.0, 2022.5)        # Nanjing, the paper's site
+B_REF, DECL, INCL, INTENSITY = ahrs.magnetic_reference(B_N)
+G = 9.8
+DT = 0.01
+
+
+def random_quats(n, seed=0):
+    rng = np.random.default_rng(seed)
+    hpr = np.stack([rng.uniform(0, 2 * np.pi, n), rng.uniform(-1.4, 1.4, n), rng.uniform(-np.pi, np.pi, n)], -1)
+    return hpr, attitude.euler_to_quat(hpr)
+
+
+def static_marg(hpr_mag, n, rng, gyro=(0.0, 0.0, 0.0), noise=(1e-3, 0.02, 0.3)):
+    """Static gyro/accel/mag samples at a magnetic-north attitude (field in the magnetic frame)."""
+    C_nb = attitude.euler_to_dcm(hpr_mag).T
+    B_mag = INTENSITY * B_REF
+    w = np.asarray(gyro) + noise[0] * rng.standard_normal((n, 3))
+    f = C_nb @ [0.0, 0.0, G] + noise[1] * rng.standard_normal((n, 3))
+    m = C_nb @ B_mag + noise[2] * rng.standard_normal((n, 3))
+    return w, f, m
+
+
+# --------------------------------------------------------------------------- equations
+
+def test_measurement_model_and_jacobian_match_rotation_and_finite_differences():
+    _, q = random_quats(500)
+    C_nb = np.swapaxes(attitude.quat_to_dcm(q), -1, -2)
+    h = ahrs.measurement_model(q, B_REF)
+    np.testing.assert_allclose(h[:, :3], C_nb @ [0, 0, 1], atol=1e-15)          # Eq. (4) corrected
+    np.testing.assert_allclose(h[:, 3:], C_nb @ B_REF, atol=1e-15)              # Eq. (6) corrected
+    eps = 1e-6
+    num = np.stack([(ahrs.measurement_model(q + eps * e, B_REF) - ahrs.measurement_model(q - eps * e, B_REF)) / (2 * eps)
+                    for e in np.eye(4)], -1)
+    np.testing.assert_allclose(ahrs.measurement_jacobian(q, B_REF), num, atol=1e-8)   # Eq. (20), H44 corrected
+    Hq = np.einsum("nij,nj->ni", ahrs.measurement_jacobian(q, B_REF), q)
+    np.testing.assert_allclose(Hq, 2 * h, atol=1e-14)                           # why z - Hq is wrong (E12)
+
+
+def test_printed_jacobian_differs_only_at_h44():
+    _, q = random_quats(200, seed=1)
+    d = ahrs.printed_eq20_jacobian(q, B_REF) - ahrs.measurement_jacobian(q, B_REF)
+    np.testing.assert_allclose(d[:, 3, 3], -4 * q[:, 1] * B_REF[2], atol=1e-15)
+    d[:, 3, 3] = 0
+    assert np.abs(d).max() == 0
+
+
+def test_transition_and_noise_input_are_the_quaternion_kinematics():
+    _, q = random_quats(300, seed=2)
+    w = np.random.default_rng(3).normal(0, 1, (300, 3))
+    inc = 0.5 * DT * attitude.quat_mult(q, np.concatenate([np.zeros((300, 1)), w], -1))
+    np.testing.assert_allclose(np.einsum("nij,nj->ni", ahrs.transition(w, DT), q), q + inc, atol=1e-15)
+    np.testing.assert_allclose(np.einsum("nij,nj->ni", ahrs.noise_input(q, DT), w), inc, atol=1e-15)
+    np.testing.assert_allclose(ahrs.printed_eq18_gamma(q, DT), -2 * ahrs.noise_input(q, DT), atol=0)
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.floats(0, 2 * np.pi, exclude_max=True), st.floats(-1.3, 1.3), st.floats(-3.0, 3.0))
+def test_tilt_heading_inverts_the_measurement_model(heading, pitch, roll):
+    hpr = np.array([heading, pitch, roll])
+    q = attitude.euler_to_quat(hpr)
+    h = ahrs.measurement_model(q, B_REF)
+    back = ahrs.tilt_heading(3.7 * h[:3], 42.0 * h[3:])            # any scale: Eqs. (5), (7) normalise
+    np.testing.assert_allclose(attitude.wrap_pi(back - hpr), 0, atol=1e-9)
+    np.testing.assert_allclose(np.abs(ahrs.initial_attitude(h[:3], h[3:]) @ q), 1, atol=1e-12)
+
+
+def test_printed_eq8_is_a_different_rotation():
+    q8 = ahrs.printed_eq8_quat(units.deg([30.0, 10.0, 20.0]))
+    np.testing.assert_allclose(units.to_deg(attitude.quat_to_euler(q8)), [33.45, 9.39, 20.28], atol=0.01)
+
+
+# --------------------------------------------------------------------------- bad input
+
+@pytest.mark.parametrize("f_b, m_b, arg", [
+    ([0.0, 0.0, 0.0], [0.0, 20.0, -30.0], "f_b"),
+    ([0.0, 0.0, 9.8], [0.0, 0.0, 0.0], "m_b"),
+    ([0.0, np.nan, 9.8], [0.0, 20.0, -30.0], "f_b"),
+    ([0.0, 0.0, 9.8], [0.0, np.inf, -30.0], "m_b"),
+    ([0.0, 0.0, 9.8], [0.0, 0.0, -30.0], "m_b"),            # magnetometer parallel to gravity
+])
+def test_initial_attitude_rejects_bad_vectors(f_b, m_b, arg):
+    with pytest.raises(ValueError, match=f"^{arg}: "):
+        ahrs.initial_attitude(f_b, m_b)
+
+
+def test_filters_reject_bad_arguments():
+    rng = np.random.default_rng(0)
+    w, f, m = static_marg([0.5, 0, 0], 100, rng)
+    q0 = attitude.euler_to_quat([0.5, 0, 0])
+    valid = np.ones(100, dtype=bool)
+    with pytest.raises(ValueError, match="^m_b, heading_rtk: "):
+        ahrs.mahony(w, f, DT, q0)                                      # no heading reference
+    with pytest.raises(ValueError, match="^heading_rtk: "):
+        ahrs.mahony(w, f, DT, q0, heading_rtk=np.full(100, 7.0), rtk_valid=valid)   # out of [0, 2 pi)
+    with pytest.raises(ValueError, match="^heading_rtk: "):
+        ahrs.fuse_rtk_heading(np.zeros(100), np.full(100, np.nan), valid, DT)       # valid but NaN
+    with pytest.raises(ValueError, match="^rtk_valid: "):
+        ahrs.mahony(w, f, DT, q0, heading_rtk=np.zeros(100), rtk_valid=None)
+    with pytest.raises(ValueError, match="^rtk_valid: "):
+        ahrs.fuse_rtk_heading(np.zeros(100), np.zeros(100), np.ones(100), DT)       # flags must be booleans
+    with pytest.raises(ValueError, match="^kp: "):
+        ahrs.mahony(w, f, DT, q0, m_b=m, kp=-1.0)
+    with pytest.raises(ValueError, match="^B_n: "):
+        ahrs.quaternion_kf(w, f, DT, q0, m_b=m)
+    with pytest.raises(ValueError, match="^w_ib_b: "):
+        ahrs.mahony(np.where(np.arange(100)[:, None] == 3, np.inf, w), f, DT, q0, m_b=m)
+    with pytest.raises(ValueError, match="^B_n: "):
+        ahrs.mahony(w, f, DT, q0, m_b=m, gate=ahrs.MagGate())
+
+
+@pytest.mark.parametrize("filt", [ahrs.mahony, ahrs.quaternion_kf])
+def test_dropouts_are_skipped_and_counted_never_poisoning_the_state(filt):
+    rng = np.random.default_rng(1)
+    hpr = np.array([1.0, 0.1, -0.2])
+    w, f, m = static_marg(hpr, 3000, rng)
+    w[100:110] = np.nan                      # gyro dropout: last valid sample held
+    f[200:205] = np.nan                      # accelerometer dropout
+    f[300] = 0.0                             # zero vector
+    m[400:420] = np.nan                      # magnetometer dropout
+    m[500] = np.inf
+    m[600] = 0.0
+    m[700] = f[700]                          # magnetometer parallel to gravity
+    out = filt(w, f, DT, attitude.euler_to_quat(hpr), m_b=m, B_n=B_N)
+    assert np.isfinite(out.q_bn).all()
+    assert {k: int(v) for k, v in out.counts.items()} == {
+        "gyro_held": 10, "accel_skipped": 6, "accel_gated": 0, "mag_skipped": 20 + 3, "mag_gated": 0}
+    assert abs(attitude.wrap_pi(out.hpr[-1, 0] - hpr[0])) < units.deg(1.0)
+
+
+def test_magnetic_gate_skips_disturbed_samples_and_counts_them():
+    rng = np.random.default_rng(2)
+    hpr = np.array([0.3, 0.0, 0.0])
+    w, f, m = static_marg(hpr, 2000, rng)
+    m[1000:1200] += [10.0, 0.0, -15.0]       # 0.18 G disturbance for 2 s: changes norm and dip
+    q0 = attitude.euler_to_quat(hpr)
+    plain = ahrs.mahony(w, f, DT, q0, m_b=m)
+    gated = ahrs.mahony(w, f, DT, q0, m_b=m, B_n=B_N, gate=ahrs.MagGate(norm_tol=0.1, dip_tol=units.deg(3.0)))
+    assert int(plain.counts["mag_gated"]) == 0
+    assert 195 <= int(gated.counts["mag_gated"]) <= 210         # the disturbance, plus a few noisy samples
+    err = lambda r: np.abs(attitude.wrap_pi(r.hpr[1000:1300, 0] - hpr[0])).max()
+    assert err(gated) < 0.2 * err(plain)
+
+
+def test_accelerometer_gate_counts():
+    rng = np.random.default_rng(3)
+    w, f, m = static_marg([0.0, 0.0, 0.0], 500, rng)
+    f[100:150] *= 1.5
+    out = ahrs.mahony(w, f, DT, [1.0, 0, 0, 0], m_b=m, accel_tol=0.1)
+    assert int(out.counts["accel_gated"]) == 50
+
+
+# --------------------------------------------------------------------------- filter behaviour
+
+def test_mahony_converges_and_learns_gyro_bias():
+    rng = np.random.default_rng(4)
+    hpr = np.array([2.0, 0.05, 0.1])
+    bias = units.deg_per_s([0.09, -0.05, 0.09])
+    w, f, m = static_marg(hpr, 30_000, rng, gyro=bias, noise=(0.0, 0.0, 0.0))
+    q0 = attitude.euler_to_quat(hpr + [units.deg(20.0), 0, 0])
+    out = ahrs.mahony(w, f, DT, q0, m_b=m, kp=1.0, ki=0.02)
+    assert abs(attitude.wrap_pi(out.hpr[-1, 0] - hpr[0])) < units.deg(0.01)
+    np.testing.assert_allclose(out.gyro_bias, bias, rtol=0.01)
+
+
+def test_kf_innovation_z_minus_h_converges_z_minus_Hq_stalls():
+    hpr = np.array([0.0, 0.0, 0.0])
+    w, f, m = static_marg(hpr, 30_000, np.random.default_rng(5), noise=(0.0, 0.0, 0.0))
+    q0 = attitude.euler_to_quat(hpr + [units.deg(20.0), 0, 0])
+    kw = dict(kp=0.0, ki=0.0, B_n=B_N, sigma_gyro=1e-3, p0=1e-2)
+    good = ahrs.quaternion_kf(w, f, DT, q0, m_b=m, **kw)
+    bad = ahrs.quaternion_kf(w, f, DT, q0, m_b=m, linear_innovation=True, **kw)
+    assert abs(attitude.wrap_pi(good.hpr[-1, 0])) < units.deg(0.1)
+    assert abs(attitude.wrap_pi(bad.hpr[-1, 0])) > units.deg(5.0)
+
+
+def test_batch_of_trials_equals_single_runs():
+    rng = np.random.default_rng(6)
+    runs = [static_marg([0.4 * i, 0.0, 0.1], 1000, rng) for i in range(3)]
+    w, f, m = (np.stack(x) for x in zip(*runs))
+    q0 = attitude.euler_to_quat(np.stack([[0.4 * i, 0.0, 0.1] for i in range(3)]))
+    for filt in (ahrs.mahony, ahrs.quaternion_kf):
+        batch = filt(w, f, DT, q0, m_b=m, B_n=B_N)
+        for i in range(3):
+            single = filt(w[i], f[i], DT, q0[i], m_b=m[i], B_n=B_N)
+            np.testing.assert_array_equal(batch.q_bn[i], single.q_bn)
+
+
+def test_rtk_mode_ignores_the_value_of_invalid_epochs_and_drifts_without_bias_estimation():
+    n = 20_000
+    w, f, _ = static_marg([np.pi / 2, 0, 0], n, np.random.default_rng(7), gyro=units.deg_per_s([0, 0, 0.09]),
+                          noise=(0.0, 0.0, 0.0))
+    valid = np.zeros(n, dtype=bool)
+    valid[:10_000:20] = True                                       # 5 Hz RTK, lost after 100 s
+    q0 = attitude.euler_to_quat([np.pi / 2, 0, 0])
+    zeros = ahrs.mahony(w, f, DT, q0, heading_rtk=np.where(valid, np.pi / 2, 0.0), rtk_valid=valid, ki=0.0)
+    nans = ahrs.mahony(w, f, DT, q0, heading_rtk=np.where(valid, np.pi / 2, np.nan), rtk_valid=valid, ki=0.0)
+    np.testing.assert_array_equal(zeros.q_bn, nans.q_bn)
+    drift = attitude.wrap_pi(zeros.hpr[-1, 0] - np.pi / 2)
+    assert drift == pytest.approx(-units.deg_per_s(0.09) * 100.0, rel=0.02)
+
+
+def test_fusion_outputs_rtk_when_valid_holds_delta_in_outages():
+    n = 5000
+    h_mag = np.full(n, 1.0)
+    h_rtk = np.full(n, 1.1)
+    valid = np.zeros(n, dtype=bool)
+    valid[1000:3000:20] = True
+    fused, delta, counts = ahrs.fuse_rtk_heading(h_mag, np.where(valid, h_rtk, 0.0), valid, DT)
+    assert int(counts["uncalibrated"]) == 1000 and np.isnan(delta[:1000]).all()
+    np.testing.assert_allclose(fused[1000:3000], 1.1, atol=1e-12)
+    np.testing.assert_allclose(delta[3000:], 0.1, atol=1e-12)
+    np.testing.assert_allclose(fused[3100:], 1.1, atol=1e-12)      # H_mag + held delta
+    every = np.zeros(n, dtype=bool)
+    every[1000::20] = True                                          # the paper's 0 fused as a value: wrong
+    as_value, _, _ = ahrs.fuse_rtk_heading(h_mag, np.where(valid, h_rtk, 0.0), every, DT)
+    assert np.abs(as_value[3100:]).max() < 0.01
+
+
+def test_settling_time():
+    t = np.arange(0, 10, 0.1)
+    e = np.where(t < 6.0, 5.0, 0.1)
+    assert ahrs.settling_time(t, e, 2.0, 1.0) == pytest.approx(4.0)
+    assert ahrs.settling_time(t, np.full(t.size, 5.0), 2.0, 1.0) == np.inf
+    with pytest.raises(ValueError, match="^tol: "):
+        ahrs.settling_time(t, e, 2.0, -1.0)
+
+
+# --------------------------------------------------------------------------- cross-check
+
+def test_mahony_matches_ahrs_package_to_rounding():
+    """ahrs 0.4.0 Mahony.updateMARG: ENU (mag reference [0, |h_xy|, h_z]), q = body->nav (h = R m),
+    e = measured x estimated, b -= kI e dt before use, q += 0.5 q (x) [0, w] dt, normalise.
+    Identical to navlib's Eqs. (12)-(17) with kp = k_P, ki = k_I; ahrs uses sample 0 only for Q[0]."""
+    ahrs_pkg = pytest.importorskip("ahrs")
+    rng = np.random.default_rng(8)
+    n = 2000
+    t = np.arange(n) * DT
+    hpr = np.stack([0.5 * t, 0.2 * np.sin(t), 0.3 * np.cos(0.7 * t)], -1)
+    C_nb = np.swapaxes(attitude.euler_to_dcm(hpr), -1, -2)
+    f = C_nb @ [0, 0, G] + 0.05 * rng.standard_normal((n, 3))
+    m = C_nb @ B_N + 0.5 * rng.standard_normal((n, 3))
+    w = np.array([0.0, 0.0, 0.5]) + 0.01 * rng.standard_normal((n, 3))
+    q0 = attitude.euler_to_quat(hpr[0] + [0.3, 0.05, -0.05])
+    peer = ahrs_pkg.filters.Mahony(gyr=w, acc=f, mag=m, frequency=1 / DT, k_P=1.5, k_I=0.1, q0=q0)
+    ours = ahrs.mahony(w[1:], f[1:], DT, q0, m_b=m[1:], kp=1.5, ki=0.1)
+    np.testing.assert_allclose(ours.q_bn, peer.Q[1:], atol=1e-12)
+
+
+# --------------------------------------------------------------------------- compiled == plain Python
+
+SCRIPT = r"""
+import json, numpy as np
+from navlib import ahrs, attitude, earth
+rng = np.random.default_rng(0)
+B = earth.magnetic_field(32.0, 118.8, 0.0, 2022.5)
+w = 0.01 * rng.standard_normal((2, 200, 3)); w[0, 5] = np.nan
+f = np.array([0.1, 0.2, 9.8]) + 0.05 * rng.standard_normal((2, 200, 3))
+m = B + 0.5 * rng.standard_normal((2, 200, 3)); m[1, 7] = 0.0
+q0 = [1.0, 0.0, 0.0, 0.0]
+a = ahrs.mahony(w, f, 0.01, q0, m_b=m, B_n=B, gate=ahrs.MagGate())
+k = ahrs.quaternion_kf(w, f, 0.01, q0, m_b=m, B_n=B)
+valid = np.zeros(200, dtype=bool); valid[::20] = True
+h, d, c = ahrs.fuse_rtk_heading(k.hpr[..., 0], np.full(200, 0.5), valid, 0.01)
+print(json.dumps({"a": a.q_bn.tolist(), "k": k.q_bn.tolist(), "h": h.tolist(),
+                  "c": {key: v.tolist() for key, v in a.counts.items()}}))
+"""
+
+
+def _run(disable_jit: bool) -> dict:
+    env = dict(os.environ, NUMBA_DISABLE_JIT="1" if disable_jit else "0")
+    out = subprocess.run([sys.executable, "-c", SCRIPT], env=env, capture_output=True, text=True, check=True)
+    return json.loads(out.stdout)
+
+
+def test_kernels_run_uncompiled_with_the_same_results():
+    jit, plain = _run(False), _run(True)
+    for key in ("a", "k", "h"):
+        np.testing.assert_allclose(plain[key], jit[key], rtol=0, atol=1e-12)
+    assert plain["c"] == jit["c"]
+
+
+# --------------------------------------------------------------------------- bad input, every public callable
+
+_W = np.zeros((10, 3))
+_F = np.tile([0.0, 0.0, 9.8], (10, 1))
+_M = np.tile([0.0, 20.0, -30.0], (10, 1))
+_Q = [1.0, 0.0, 0.0, 0.0]
+BAD_CALLS = [
+    ("magnetic_reference", lambda: ahrs.magnetic_reference([0.0, 0.0, 0.0]), "B_n"),
+    ("magnetic_reference", lambda: ahrs.magnetic_reference([1.0, np.nan, 0.0]), "B_n"),
+    ("tilt_heading", lambda: ahrs.tilt_heading([0.0, 0.0, 1.0], [1.0, 2.0]), "m_b"),
+    ("initial_attitude", lambda: ahrs.initial_attitude("abc", [0.0, 1.0, 0.0]), "f_b"),
+    ("settling_time", lambda: ahrs.settling_time([0.0, 1.0], [1.0, 2.0], 5.0, 1.0), "error, start, end"),
+    ("transition", lambda: ahrs.transition([0.0, 0.0, 0.0], 0.0), "dt"),
+    ("noise_input", lambda: ahrs.noise_input([1.0, 0.0, 0.0], 0.01), "q"),
+    ("measurement_model", lambda: ahrs.measurement_model(_Q, [1.0, 0.0, 0.0]), "b"),
+    ("measurement_jacobian", lambda: ahrs.measurement_jacobian([np.inf, 0, 0, 0], [0.0, 1.0, 0.0]), "q"),
+    ("mahony", lambda: ahrs.mahony(_W, _F[:5], 0.01, _Q, m_b=_M), "f_b"),
+    ("mahony", lambda: ahrs.mahony(_W, _F, 0.01, [0.0, 0.0, 0.0, 0.0], m_b=_M), "q0"),
+    ("quaternion_kf", lambda: ahrs.quaternion_kf(_W, _F, 0.01, _Q, m_b=_M, B_n=B_N, sigma_mag=0.0), "sigma_mag"),
+    ("fuse_rtk_heading", lambda: ahrs.fuse_rtk_heading(np.zeros(10), np.zeros(10), np.ones(10, bool), 0.01,
+                                                       alpha=1.5), "alpha"),
+    ("rtk_at_imu_rate", lambda: ahrs.rtk_at_imu_rate(np.arange(10.0), np.zeros(10), np.ones(10, bool), 0), "step"),
+    ("MagGate", lambda: ahrs.MagGate(norm_tol=-0.1), "norm_tol"),
+    ("printed_eq2_roll", lambda: ahrs.printed_eq2_roll([1.0, 0.0]), "q"),
+    ("printed_eq4", lambda: ahrs.printed_eq4("abc"), "q"),
+    ("printed_eq5_tilt", lambda: ahrs.printed_eq5_tilt([0.0, np.nan, 1.0]), "f_b"),
+    ("printed_eq7_heading", lambda: ahrs.printed_eq7_heading([1.0]), "m_h"),
+    ("printed_eq8_quat", lambda: ahrs.printed_eq8_quat([0.0, 0.0]), "hpr"),
+    ("printed_eq18_gamma", lambda: ahrs.printed_eq18_gamma(_Q, -1.0), "dt"),
+    ("printed_eq20_jacobian", lambda: ahrs.printed_eq20_jacobian(_Q, [0.5, 1.0, 0.0]), "b"),
+]
+NOT_APPLICABLE = {"AttitudeResult": "record returned by the filters"}
+
+
+@pytest.mark.parametrize("name, call, arg", BAD_CALLS, ids=[f"{c[0]}-{i}" for i, c in enumerate(BAD_CALLS)])
+def test_bad_input_names_the_argument(name, call, arg):
+    with pytest.raises(ValueError, match=f"^{arg}: "):
+        call()
+
+
+def test_every_public_callable_has_a_bad_input_case():
+    public = {n for n in ahrs.__all__ if callable(getattr(ahrs, n))}
+    assert public == {c[0] for c in BAD_CALLS} | set(NOT_APPLICABLE)
