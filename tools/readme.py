@@ -37,7 +37,10 @@ PAPERS = {
     "05_pedestrian_ins": ("004", "Wen, Xu & Yu 2016 — shoulder-mounted MEMS IMU indoor navigation"),
 }
 # figures shown in the README: (notebook, figure stem)
-GALLERY = [("00_conventions_sensors", "allan_gyros"), ("00_conventions_sensors", "ins_error_theory")]
+GALLERY = [("00_conventions_sensors", "allan_gyros"), ("00_conventions_sensors", "ins_error_theory"),
+           ("01_north_finding", "fig4_rmse_vs_heading"), ("02_rotation_bias", "fig6_heading_error"),
+           ("03_gauss_kruger_ekf", "fig4_fig5_tracks"), ("04_mimu_mag_rtk", "fig4_heading_modes"),
+           ("05_pedestrian_ins", "fig4_floor_test"), ("05_pedestrian_ins", "carpark_trajectory_error")]
 GALLERY_WIDTH_PX = 480
 
 
