@@ -98,7 +98,7 @@ from numba import njit
 from . import atmosphere, attitude, earth, kalman, trajectory
 from ._validate import as_array, generator, positive
 from .earth import _radii
-from .strapdown import _nav_kernel
+from .strapdown import nav_step
 
 __all__ = ["M_NED_ENU", "STATIC_THRESHOLDS", "ned_to_enu_dcm", "Leg", "Gait", "walk", "stance_mask", "carpark_legs",
            "floor_test_legs", "detect_static", "detection_rates", "level", "static_gyro_bias",
@@ -951,7 +951,8 @@ def _filter_kernel(lla0, vel0, q0, b0, w, f, dt, static, h_baro, m_b, declinatio
     R6 = np.diag(np.array([r_zupt, r_zupt, r_zupt, r_zaru, r_zaru, r_zaru]))
     H1, z1, h1, R1 = np.zeros((1, 15)), np.zeros(1), np.zeros(1), np.zeros((1, 1))
     no_wrap6, wrap1, no_wrap1 = np.zeros(6, dtype=np.bool_), np.ones(1, dtype=np.bool_), np.zeros(1, dtype=np.bool_)
-    wk, fk = np.zeros((1, 1, 3)), np.zeros((1, 1, 3))
+    wk, fk = np.zeros(3), np.zeros(3)
+    earth_consts = np.array([a, flat, e2, mgrav, gamma_e, k_som, omega])
     w_last, f_last = w[0].copy(), f[0].copy()
     w_sum, n_sum, n_rejected = np.zeros(3), 0, 0
     hb, vb, hb_init, t_baro = 0.0, 0.0, False, 0.0          # alpha-beta tracker of the baro height
@@ -965,13 +966,11 @@ def _filter_kernel(lla0, vel0, q0, b0, w, f, dt, static, h_baro, m_b, declinatio
         else:
             counts[_N_IMU_NAN] += 1                          # hold the last good sample
         for i in range(3):
-            wk[0, 0, i] = w_last[i] - b[3 + i]
-            fk[0, 0, i] = f_last[i] - b[i]
-        # strapdown step (the shared navlib mechanisation, one sample)
-        l2, v2, q2 = _nav_kernel(lla, vel, q, wk, fk, dt, a, flat, e2, mgrav, gamma_e, k_som, omega, False)
-        lla[0], vel[0], q[0] = l2[0, 1], v2[0, 1], q2[0, 1]
+            wk[i] = w_last[i] - b[3 + i]
+            fk[i] = f_last[i] - b[i]
+        nav_step(lla[0], vel[0], q[0], wk, fk, dt, earth_consts, False)   # the shared mechanisation
         C = attitude.quat_to_dcm_1(q[0])
-        _fill_F(Phi, C * dt, C @ fk[0, 0] * dt)              # Phi = I + F dt (blocks scaled by dt)
+        _fill_F(Phi, C * dt, C @ fk * dt)              # Phi = I + F dt (blocks scaled by dt)
         x, P = kalman.predict(x, P, Phi, Q)
         # --- standing still: ZUPT + ZARU (Eq. 2) ---
         if static[k] and zupt:

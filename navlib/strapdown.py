@@ -30,7 +30,7 @@ from .earth import _gravity, _radii
 from .attitude import quat_mult_1, quat_mult_t, quat_normalize_1, quat_to_dcm_1, rotvec_to_quat_1, rotvec_to_quat_t
 from .trajectory import Trajectory
 
-__all__ = ["integrate", "integrate_attitude", "error_model", "error_input"]
+__all__ = ["integrate", "integrate_attitude", "nav_step", "earth_constants", "error_model", "error_input"]
 
 
 @njit(cache=True)
@@ -85,41 +85,69 @@ def integrate_attitude(q0, w_ib_b, dt: float, w_in_n=None):
 
 
 @njit(cache=True)
-def _nav_kernel(lla0, vel0, q0, w, f, dt, a, flat, e2, m, gamma_e, k_som, omega, hold_height):
+def nav_step(lla, vel, q, w, f, dt, earth_consts, hold_height=False):
+    """One mechanisation step (module docstring), updating ``lla``, ``vel``, ``q`` in place.
+
+    Compiled building block for filters that run the INS sample by sample
+    (e.g. :mod:`navlib.pedestrian`); :func:`integrate` loops over it.
+
+    Parameters
+    ----------
+    lla : ndarray, shape (3,)
+        ``[lat (rad), lon (rad), h (m)]``, updated in place.
+    vel : ndarray, shape (3,)
+        ENU velocity (m/s), updated in place.
+    q : ndarray, shape (4,)
+        Attitude quaternion q_b^n, updated in place.
+    w, f : ndarray, shape (3,)
+        Gyro (rad/s) and accelerometer (m/s^2) sample.
+    dt : float
+        Sample interval (s).
+    earth_consts : ndarray, shape (7,)
+        ``Ellipsoid.gravity_constants + (omega,)``; see :func:`earth_constants`.
+    hold_height : bool
+        Hold vertical velocity at 0 and the height fixed.
+    """
+    a, flat, e2, m, gamma_e, k_som, omega = (earth_consts[0], earth_consts[1], earth_consts[2], earth_consts[3],
+                                            earth_consts[4], earth_consts[5], earth_consts[6])
+    lat, h = lla[0], lla[2]
+    sl, cl = np.sin(lat), np.cos(lat)
+    R_M, R_N = _radii(lat, a, e2)
+    w_ie = np.array([0.0, omega * cl, omega * sl])
+    w_en = np.array([-vel[1] / (R_M + h), vel[0] / (R_N + h), vel[0] * sl / cl / (R_N + h)])
+    w_in = w_ie + w_en
+    q_mid = quat_mult_1(quat_mult_1(rotvec_to_quat_1(-w_in * (dt / 2)), q), rotvec_to_quat_1(w * (dt / 2)))
+    f_n = quat_to_dcm_1(q_mid) @ f
+    g = _gravity(lat, h, a, flat, e2, m, gamma_e, k_som)
+    v_new = vel + (f_n - np.cross(2 * w_ie + w_en, vel)) * dt
+    v_new[2] -= g * dt
+    if hold_height:
+        v_new[2] = 0.0
+    q[:] = quat_normalize_1(quat_mult_1(quat_mult_1(rotvec_to_quat_1(-w_in * dt), q), rotvec_to_quat_1(w * dt)))
+    vm = (vel + v_new) / 2
+    lla[0] = lat + vm[1] / (R_M + h) * dt
+    lla[1] += vm[0] / ((R_N + h) * cl) * dt
+    lla[2] = h + vm[2] * dt
+    vel[:] = v_new
+
+
+def earth_constants(ellipsoid: earth.Ellipsoid = earth.WGS84) -> np.ndarray:
+    """The ``earth_consts`` array of :func:`nav_step` for an ellipsoid."""
+    return np.array(ellipsoid.gravity_constants + (ellipsoid.omega,))
+
+
+@njit(cache=True)
+def _nav_kernel(lla0, vel0, q0, w, f, dt, earth_consts, hold_height):
     T, N = w.shape[0], w.shape[1]
     lla = np.empty((T, N + 1, 3))
     vel = np.empty((T, N + 1, 3))
     q = np.empty((T, N + 1, 4))
     for t in range(T):
-        lat, lon, h = lla0[t, 0], lla0[t, 1], lla0[t, 2]
-        v = vel0[t].copy()
-        qk = q0[t].copy()
-        lla[t, 0], vel[t, 0], q[t, 0] = lla0[t], v, qk
+        lla_k, v_k, q_k = lla0[t].copy(), vel0[t].copy(), q0[t].copy()
+        lla[t, 0], vel[t, 0], q[t, 0] = lla_k, v_k, q_k
         for k in range(N):
-            sl, cl = np.sin(lat), np.cos(lat)
-            R_M, R_N = _radii(lat, a, e2)
-            w_ie = np.array([0.0, omega * cl, omega * sl])
-            w_en = np.array([-v[1] / (R_M + h), v[0] / (R_N + h), v[0] * sl / cl / (R_N + h)])
-            w_in = w_ie + w_en
-            dq = rotvec_to_quat_1(w[t, k] * dt)
-            q_mid = quat_mult_1(quat_mult_1(rotvec_to_quat_1(-w_in * (dt / 2)), qk), rotvec_to_quat_1(w[t, k] * (dt / 2)))
-            f_n = quat_to_dcm_1(q_mid) @ f[t, k]
-            g = _gravity(lat, h, a, flat, e2, m, gamma_e, k_som)
-            cor = np.cross(2 * w_ie + w_en, v)
-            v_new = v + (f_n - cor) * dt
-            v_new[2] -= g * dt
-            if hold_height:
-                v_new[2] = 0.0
-            qk = quat_normalize_1(quat_mult_1(quat_mult_1(rotvec_to_quat_1(-w_in * dt), qk), dq))
-            vm = (v + v_new) / 2
-            lat_new = lat + vm[1] / (R_M + h) * dt
-            lon = lon + vm[0] / ((R_N + h) * cl) * dt
-            h = h + vm[2] * dt
-            lat = lat_new
-            v = v_new
-            lla[t, k + 1, 0], lla[t, k + 1, 1], lla[t, k + 1, 2] = lat, lon, h
-            vel[t, k + 1] = v
-            q[t, k + 1] = qk
+            nav_step(lla_k, v_k, q_k, w[t, k], f[t, k], dt, earth_consts, hold_height)
+            lla[t, k + 1], vel[t, k + 1], q[t, k + 1] = lla_k, v_k, q_k
     return lla, vel, q
 
 
@@ -168,7 +196,7 @@ def integrate(lla0, vel0, q0, w_ib_b, f_b, dt: float, t0: float = 0.0, hold_heig
     q0 = attitude._as_quat(q0, "q0")
     flat = lambda x, k: np.ascontiguousarray(np.broadcast_to(x, lead + x.shape[-k:]).reshape((-1,) + x.shape[-k:]))
     lla, vel, q = _nav_kernel(flat(lla0, 1), flat(vel0, 1), flat(q0, 1), flat(w, 2), flat(f, 2), dt,
-                              *ellipsoid.gravity_constants, ellipsoid.omega, bool(hold_height))
+                              earth_constants(ellipsoid), bool(hold_height))
     time = t0 + dt * np.arange(n + 1)
     shape = lambda x: x.reshape(lead + x.shape[-2:])
     return Trajectory(time, shape(lla), shape(vel), shape(q))
