@@ -1,0 +1,231 @@
+"""Fault injection for robustness tests and demonstrations.
+
+Each function returns a corrupted *copy* of its input plus the boolean mask
+(or index list) of what it changed, so a test can check that a filter
+reported exactly the faults it was given. All draws take an explicit
+``rng``; nothing here is used by the algorithms themselves.
+
+Faults covered (navlib's robustness suite, ``tests/faults/``):
+
+* dropouts: a random fraction of samples set to NaN (:func:`dropouts`), and
+  a contiguous gap (:func:`gap`);
+* outliers: spikes of k sigma on a random fraction of samples (:func:`spikes`),
+  GNSS position jumps (:func:`position_jumps`), heading flips of 180 deg
+  (:func:`heading_flips`);
+* timing: duplicated and out-of-order timestamps, irregular sampling
+  (:func:`duplicate_timestamps`, :func:`swap_timestamps`, :func:`irregular_times`);
+* saturation: clipping at a device's full-scale range (:func:`saturate`).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from . import attitude, earth
+from ._validate import as_array, generator, in_range, positive, time_axis
+
+__all__ = ["dropouts", "gap", "spikes", "position_jumps", "heading_flips", "duplicate_timestamps",
+           "swap_timestamps", "irregular_times", "saturate"]
+
+
+def _fraction(x, name):
+    return float(in_range(as_array(x, name), name, 0.0, 1.0))
+
+
+def _samples(x, name):
+    """Series with time on axis 0 of the sample dimension: (..., N) or (..., N, k) -> N on axis -2 if 2-D+."""
+    return as_array(x, name, allow_nan=True, min_ndim=1)
+
+
+def _time_axis_len(a):
+    return a.shape[-2] if a.ndim >= 2 else a.shape[-1]
+
+
+def dropouts(x, fraction: float, rng: np.random.Generator):
+    """Set a random ``fraction`` of samples (whole rows) to NaN.
+
+    Parameters
+    ----------
+    x : array_like, shape (N,) or (..., N, k)
+        Samples; time on axis -2 for vector series (axis -1 for 1-D).
+    fraction : float
+        Fraction of samples to drop, in [0, 1].
+    rng : numpy.random.Generator
+
+    Returns
+    -------
+    x_faulty : ndarray
+    dropped : ndarray of bool, shape (N,)
+    """
+    x = _samples(x, "x").copy()
+    generator(rng)
+    n = _time_axis_len(x)
+    dropped = rng.random(n) < _fraction(fraction, "fraction")
+    if x.ndim == 1:
+        x[dropped] = np.nan
+    else:
+        x[..., dropped, :] = np.nan
+    return x, dropped
+
+
+def gap(x, time, start: float, duration: float):
+    """NaN over ``[start, start + duration)`` (s): a sensor outage.
+
+    Returns
+    -------
+    x_faulty : ndarray
+    dropped : ndarray of bool, shape (N,)
+    """
+    x = _samples(x, "x").copy()
+    t = as_array(time, "time")
+    if t.ndim != 1 or t.size != _time_axis_len(x):
+        raise ValueError(f"time: expected a 1-D array of {_time_axis_len(x)} sample times, got shape {t.shape}")
+    duration = float(positive(duration, "duration"))
+    dropped = (t >= start) & (t < start + duration)
+    if x.ndim == 1:
+        x[dropped] = np.nan
+    else:
+        x[..., dropped, :] = np.nan
+    return x, dropped
+
+
+def spikes(x, fraction: float, sigma, rng: np.random.Generator, k: float = 100.0):
+    """Add ``±k sigma`` spikes to a random ``fraction`` of samples (each component).
+
+    Parameters
+    ----------
+    x : array_like, shape (N,) or (..., N, k)
+    fraction : float
+    sigma : float or array_like, shape (k,)
+        Noise standard deviation of the sensor (per component).
+    k : float
+        Spike size in sigmas (default 100).
+
+    Returns
+    -------
+    x_faulty : ndarray
+    hit : ndarray of bool, shape (N,)
+    """
+    x = _samples(x, "x").copy()
+    generator(rng)
+    sigma = positive(sigma, "sigma")
+    n = _time_axis_len(x)
+    hit = rng.random(n) < _fraction(fraction, "fraction")
+    sign = np.where(rng.random(x.shape) < 0.5, -1.0, 1.0)
+    mask = hit if x.ndim == 1 else hit[:, None]
+    x = x + np.where(mask, float(positive(k, "k")) * sigma * sign, 0.0)
+    return x, hit
+
+
+def position_jumps(lla, fraction: float, rng: np.random.Generator, size_m: float = 50.0):
+    """Move a random ``fraction`` of GNSS fixes by ``size_m`` metres horizontally.
+
+    Parameters
+    ----------
+    lla : array_like, shape (N, 3)
+        ``[lat (rad), lon (rad), h (m)]``; NaN rows (outages) stay NaN.
+
+    Returns
+    -------
+    lla_faulty : ndarray, shape (N, 3)
+    hit : ndarray of bool, shape (N,)
+    """
+    lla = as_array(lla, "lla", tail=(3,), allow_nan=True, min_ndim=1).copy()
+    generator(rng)
+    hit = rng.random(lla.shape[-2]) < _fraction(fraction, "fraction")
+    az = rng.uniform(0, 2 * np.pi, lla.shape[-2])
+    lat, h = np.nan_to_num(lla[..., 0]), np.nan_to_num(lla[..., 2])
+    R_M, R_N = earth.radii(lat)
+    size = float(positive(size_m, "size_m"))
+    lla[..., 0] += np.where(hit, size * np.cos(az) / (R_M + h), 0.0)
+    lla[..., 1] += np.where(hit, size * np.sin(az) / ((R_N + h) * np.cos(lat)), 0.0)
+    return lla, hit
+
+
+def heading_flips(heading, fraction: float, rng: np.random.Generator):
+    """Rotate a random ``fraction`` of heading samples by 180 deg (dual-antenna ambiguity).
+
+    Returns
+    -------
+    heading_faulty : ndarray, shape (N,)  in [0, 2 pi), NaN kept
+    hit : ndarray of bool, shape (N,)
+    """
+    h = as_array(heading, "heading", allow_nan=True, min_ndim=1).copy()
+    generator(rng)
+    hit = rng.random(h.shape[-1]) < _fraction(fraction, "fraction")
+    return np.where(hit, attitude.wrap_2pi(h + np.pi), h), hit
+
+
+def duplicate_timestamps(time, fraction: float, rng: np.random.Generator):
+    """Repeat the previous timestamp on a random ``fraction`` of samples.
+
+    Returns
+    -------
+    time_faulty : ndarray, shape (N,)
+    hit : ndarray of bool, shape (N,)
+    """
+    t = time_axis(time).copy()
+    generator(rng)
+    hit = rng.random(t.size) < _fraction(fraction, "fraction")
+    hit[0] = False
+    t[hit] = t[np.flatnonzero(hit) - 1]
+    return t, hit
+
+
+def swap_timestamps(time, fraction: float, rng: np.random.Generator):
+    """Swap a random ``fraction`` of samples with their successor: out-of-order arrival.
+
+    Returns the permutation too, so data can be reordered the same way.
+
+    Returns
+    -------
+    time_faulty : ndarray, shape (N,)
+    order : ndarray of int, shape (N,)
+        ``time_faulty = time[order]``; apply it to the data as well.
+    """
+    t = as_array(time, "time")
+    if t.ndim != 1 or t.size < 2:
+        raise ValueError(f"time: expected a 1-D array of at least 2 sample times, got shape {t.shape}")
+    generator(rng)
+    order = np.arange(t.size)
+    for i in np.flatnonzero(rng.random(t.size - 1) < _fraction(fraction, "fraction")):
+        order[i], order[i + 1] = order[i + 1], order[i]
+    return t[order], order
+
+
+def irregular_times(n: int, dt: float, jitter: float, rng: np.random.Generator, t0: float = 0.0):
+    """Sample times with intervals ``dt (1 + u)``, u uniform in ``[-jitter, jitter]``.
+
+    Returns
+    -------
+    time : ndarray, shape (n,)
+    """
+    if not isinstance(n, (int, np.integer)) or n < 2:
+        raise ValueError(f"n: expected an integer >= 2, got {n!r}")
+    dt = float(positive(dt, "dt"))
+    jitter = float(in_range(as_array(jitter, "jitter"), "jitter", 0.0, 0.99))
+    generator(rng)
+    steps = dt * (1 + rng.uniform(-jitter, jitter, n - 1))
+    return t0 + np.concatenate([[0.0], np.cumsum(steps)])
+
+
+def saturate(x, full_scale):
+    """Clip at ``±full_scale``; returns the clipped copy and the mask of clipped samples.
+
+    Parameters
+    ----------
+    x : array_like, shape (..., N, 3)
+    full_scale : float
+        Device range (same units as x).
+
+    Returns
+    -------
+    x_clipped : ndarray
+    clipped : ndarray of bool, shape (..., N)
+        True where any component was clipped.
+    """
+    x = _samples(x, "x")
+    fs = float(positive(full_scale, "full_scale"))
+    clipped = np.abs(x) > fs
+    if x.ndim >= 2:
+        clipped = clipped.any(axis=-1)
+    return np.clip(x, -fs, fs), clipped

@@ -1,0 +1,117 @@
+"""Timestamps: sort, de-duplicate and describe irregular sampling before filtering.
+
+Real logs arrive with repeated timestamps (a driver re-sending a sample),
+out-of-order samples (buffered packets) and jittered intervals. navlib's
+filters never guess: :func:`sanitize` puts samples in time order, drops
+exact repeats, and returns a :class:`TimingReport` that says how many of
+each fault it found and how irregular the intervals are. Filters that accept
+per-sample intervals take ``dt = np.diff(time)``-style arrays from
+:func:`intervals`.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._validate import as_array
+
+__all__ = ["TimingReport", "sanitize", "intervals"]
+
+
+@dataclass(frozen=True)
+class TimingReport:
+    """What :func:`sanitize` found and did.
+
+    Attributes
+    ----------
+    n_in, n_out : int
+        Samples before and after.
+    n_out_of_order : int
+        Samples whose timestamp was earlier than one already received (moved
+        into time order, not dropped).
+    n_duplicate : int
+        Samples with a timestamp equal to an earlier one (dropped; the first
+        is kept).
+    dt_median, dt_min, dt_max : float
+        Interval statistics after cleaning (s).
+    """
+    n_in: int
+    n_out: int
+    n_out_of_order: int
+    n_duplicate: int
+    dt_median: float
+    dt_min: float
+    dt_max: float
+
+    @property
+    def irregular(self) -> bool:
+        """True when intervals vary by more than 1 % of the median."""
+        return bool(self.dt_max - self.dt_min > 0.01 * self.dt_median)
+
+
+def _reindex(x, keep, n, name):
+    a = as_array(x, name, allow_nan=True, min_ndim=1)
+    axis = -2 if a.ndim >= 2 else -1
+    if a.shape[axis] != n:
+        raise ValueError(f"{name}: expected {n} samples on axis {axis}, got shape {a.shape}")
+    return np.take(a, keep, axis=axis)
+
+
+def sanitize(time, *series):
+    """Sort samples by time, drop repeated timestamps, report what was found.
+
+    Parameters
+    ----------
+    time : array_like, shape (N,)
+        Sample times (s); finite.
+    *series : array_like, shape (N,) or (..., N, k)
+        Data reordered the same way (time on axis -2 for vector series).
+
+    Returns
+    -------
+    time : ndarray, shape (M,)
+        Strictly increasing.
+    *series : ndarray
+        The series, reordered and de-duplicated.
+    report : TimingReport
+    """
+    t = as_array(time, "time")
+    if t.ndim != 1 or t.size < 2:
+        raise ValueError(f"time: expected a 1-D array of at least 2 sample times, got shape {t.shape}")
+    running_max = np.maximum.accumulate(t)
+    n_late = int(np.count_nonzero(t[1:] < running_max[:-1]))
+    order = np.argsort(t, kind="stable")
+    ts = t[order]
+    first = np.concatenate([[True], np.diff(ts) > 0])
+    keep = order[first]
+    dt = np.diff(t[keep])
+    if dt.size == 0:
+        raise ValueError("time: all timestamps are equal")
+    report = TimingReport(t.size, int(keep.size), n_late, int(np.count_nonzero(~first)),
+                          float(np.median(dt)), float(dt.min()), float(dt.max()))
+    out = [_reindex(x, keep, t.size, f"series[{i}]") for i, x in enumerate(series)]
+    return (t[keep], *out, report)
+
+
+def intervals(time, n_samples: int | None = None):
+    """Per-sample intervals ``dt[k] = t[k+1] - t[k]`` of a strictly increasing time axis.
+
+    Parameters
+    ----------
+    time : array_like, shape (N + 1,)
+        Epoch times (s).
+    n_samples : int, optional
+        Expected number of intervals (checks the length).
+
+    Returns
+    -------
+    dt : ndarray, shape (N,)
+    """
+    t = as_array(time, "time")
+    if t.ndim != 1 or t.size < 2 or np.any(np.diff(t) <= 0):
+        raise ValueError("time: expected a strictly increasing 1-D array (run timing.sanitize first)")
+    dt = np.diff(t)
+    if n_samples is not None and dt.size != n_samples:
+        raise ValueError(f"time: expected {n_samples + 1} epochs for {n_samples} samples, got {t.size}")
+    return dt
