@@ -37,6 +37,7 @@ from pathlib import Path
 import nbformat
 from nbclient import NotebookClient
 from nbconvert import HTMLExporter
+from nbconvert.filters.markdown_mistune import markdown2html_mistune
 
 REPO = Path(__file__).resolve().parents[1]
 
@@ -72,9 +73,10 @@ def run_notebook(path: Path, build: Path, timeout: int) -> dict:
     checks = json.loads(results.read_text())["checks"] if results.is_file() else []
     passed = sum(bool(c.get("passed")) for c in checks)
     figures = sorted(p.relative_to(build).as_posix() for p in (build / stem / "figures").glob("*.png"))
+    header = next((c.source for c in nb.cells if c.cell_type == "markdown"), "")
     return {"notebook": stem, "ok": error is None and passed == len(checks), "error": error,
             "seconds": round(seconds, 1), "claims_passed": passed, "claims_total": len(checks),
-            "checks": checks, "figures": figures}
+            "checks": checks, "figures": figures, "header": header}
 
 
 def fmt(x, unit: str = "") -> str:
@@ -113,12 +115,16 @@ def write_index(build: Path, entries: list[dict]) -> None:
              "table{border-collapse:collapse;font-size:90%}td,th{border:1px solid #ccc;padding:.2em .5em}"
              "th{background:#f4f4f4}.pass{background:#d4f4d4}.fail{background:#f8d0d0;font-weight:bold}"
              ".err{color:#a00}img{margin:4px;border:1px solid #ddd}")
+    total_s = sum(e["seconds"] for e in entries)
+    passed = sum(e["claims_passed"] for e in entries)
+    total = sum(e["claims_total"] for e in entries)
     parts = [f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>navlib reproduction</title>"
-             f"<style>{style}</style></head><body><h1>navlib: paper claims reproduced</h1><ul>"]
+             f"<style>{style}</style></head><body><h1>navlib: paper claims reproduced</h1>"
+             f"<p>{passed}/{total} checks passed in {len(entries)} notebooks; total run time {total_s:.1f} s.</p><ul>"]
     for e in entries:
         status = "ok" if e["ok"] else "FAILED"
         parts.append(f"<li><a href='#{e['notebook']}'>{e['notebook']}</a>: {e['claims_passed']}/"
-                     f"{e['claims_total']} claims passed, {status}</li>")
+                     f"{e['claims_total']} claims passed, {e['seconds']:.1f} s, {status}</li>")
     parts.append("</ul>")
     for e in entries:
         nb = html.escape(e["notebook"])
@@ -127,6 +133,9 @@ def write_index(build: Path, entries: list[dict]) -> None:
                      f" (<a href='{nb}.ipynb'>executed notebook</a>)</p>")
         if e["error"]:
             parts.append(f"<p class='err'>Notebook failed: {html.escape(e['error'])}</p>")
+        # the notebook's own header: citation, what is reproduced, status table with reasons
+        header = markdown2html_mistune(e.get("header", "")).replace("<h1", "<h3").replace("</h1>", "</h3>")
+        parts.append(f"<div class='header'>{header}</div>")
         parts.append(claims_table(e["checks"]))
         parts.append("<p>" + "".join(f"<a href='{f}'><img src='{f}' width='240' alt='{html.escape(f)}'></a>"
                                      for f in e["figures"]) + "</p>")
