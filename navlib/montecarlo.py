@@ -106,7 +106,7 @@ def run(batch_fn, n_trials: int, seed: int, *, batch_size: int = 1000, executor:
         Runs the batches (e.g. ``ProcessPoolExecutor`` or a dask client's
         ``get_executor()``); default: serially in this process.
     progress : bool
-        Print a progress line to stderr as batches complete.
+        Print a progress line to stderr as batches complete (at most one a second).
     **kwargs
         Passed to every ``batch_fn`` call (study parameters).
 
@@ -122,15 +122,17 @@ def run(batch_fn, n_trials: int, seed: int, *, batch_size: int = 1000, executor:
         raise ValueError(f"executor: expected a concurrent.futures.Executor, got {type(executor).__name__}")
     batches = [np.arange(s, min(s + batch_size, n_trials)) for s in range(0, n_trials, batch_size)]
     job = partial(_run_batch, batch_fn, int(seed))
-    start = time.perf_counter()
+    start = last = time.perf_counter()
     results = [None] * len(batches)
 
     def report(done):
-        if progress:
+        # at most one line a second, and always the last one
+        nonlocal last
+        now = time.perf_counter()
+        if progress and (now - last >= 1.0 or done == len(batches)):
+            last = now
             n = sum(len(batches[k]) for k in range(done))
-            rate = n / max(time.perf_counter() - start, 1e-9)
-            print(f"\r{label}: {n}/{n_trials} ({rate:,.0f}/s)", end="" if done < len(batches) else "\n",
-                  file=sys.stderr, flush=True)
+            print(f"{label}: {n}/{n_trials} trials ({n / max(now - start, 1e-9):,.0f}/s)", file=sys.stderr, flush=True)
 
     if executor is None:
         for k, ids in enumerate(batches):
