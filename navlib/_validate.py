@@ -1,12 +1,52 @@
 """Input validation shared by navlib's public functions.
 
-Every check raises ``ValueError`` that names the offending argument and
-states what was expected, so that bad input fails loudly at the boundary
-instead of producing a plausible-looking wrong number deep inside a filter.
+Every check raises ``ValueError`` whose message starts with the offending
+argument's name and states what was expected (``"<arg>: expected ..."``), so
+that bad input fails loudly at the boundary instead of producing a
+plausible-looking wrong number deep inside a filter. A value of the wrong
+kind -- a string, complex, object, boolean or date where real numbers are
+expected -- raises :class:`InputTypeError`, which is both a ``TypeError`` and
+a ``ValueError``.
 """
 from __future__ import annotations
 
 import numpy as np
+
+
+class InputTypeError(TypeError, ValueError):
+    """Wrong kind of value (string, complex, object, boolean, ...) for a real argument.
+
+    A ``TypeError`` as Python convention asks, and a ``ValueError`` too, so
+    that ``except ValueError`` -- navlib's documented "bad input" error --
+    still catches it (as numpy's ``AxisError`` is both a ``ValueError`` and an
+    ``IndexError``).
+    """
+
+
+# numpy dtype kinds that are not real numbers: bool, complex, object, bytes,
+# str, void (records), datetime64, timedelta64.
+_NOT_REAL = {"b": "a boolean", "c": "a complex", "O": "an object", "S": "a bytes", "U": "a string",
+             "V": "a record", "M": "a datetime", "m": "a timedelta"}
+
+
+def real(x, name: str) -> np.ndarray:
+    """Return ``x`` as a float64 array, rejecting values that are not real numbers.
+
+    Strings (also numeric ones such as ``"1.5"``), complex values (numpy would
+    silently drop the imaginary part), object arrays, booleans, records and
+    dates raise :class:`InputTypeError` naming the argument.
+    """
+    if isinstance(x, (str, bytes)):
+        raise InputTypeError(f"{name}: expected a real numeric array, got {type(x).__name__} {x!r:.40}")
+    try:
+        arr = np.asarray(x)
+    except (TypeError, ValueError) as exc:   # ragged nested sequences
+        raise InputTypeError(f"{name}: expected a real numeric array, got {type(x).__name__}") from exc
+    kind = _NOT_REAL.get(arr.dtype.kind)
+    if kind is not None:
+        raise InputTypeError(f"{name}: expected a real numeric array, got {kind} {'array' if arr.ndim else 'value'}"
+                             f" (dtype {arr.dtype})")
+    return arr.astype(float, copy=False)
 
 
 def as_array(x, name: str, *, tail: tuple[int, ...] = (), finite: bool = True,
@@ -30,10 +70,7 @@ def as_array(x, name: str, *, tail: tuple[int, ...] = (), finite: bool = True,
     min_ndim : int
         Minimum number of leading axes in addition to ``tail``.
     """
-    try:
-        arr = np.asarray(x, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"{name}: expected a real numeric array, got {type(x).__name__}") from exc
+    arr = real(x, name)
     if tail and arr.shape[arr.ndim - len(tail):] != tail or arr.ndim < len(tail) + min_ndim:
         want = "(" + ", ".join(["..."] + [str(t) for t in tail]) + ")"
         raise ValueError(f"{name}: expected shape {want}, got {arr.shape}")

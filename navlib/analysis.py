@@ -116,6 +116,8 @@ def allan_deviation_theory(taus, white=0.0, bias_instability=0.0, correlation_ti
         K (units/s/sqrt(Hz)).
     """
     taus = positive(taus, "taus")
+    if taus.size == 0:
+        raise ValueError("taus: expected at least one averaging time, got an empty array")
     white, bias_instability, rate_random_walk = (
         positive(v, name, allow_zero=True) for v, name in ((white, "white"), (bias_instability, "bias_instability"),
                                                            (rate_random_walk, "rate_random_walk")))

@@ -324,7 +324,12 @@ def quat_rotate(q, v_b):
     v_n : ndarray, shape (..., 3)
     """
     v_b = as_array(v_b, "v_b", tail=(3,))
-    return np.einsum("...ij,...j->...i", quat_to_dcm(q), v_b)
+    C = quat_to_dcm(q)
+    try:
+        np.broadcast_shapes(C.shape[:-2], v_b.shape[:-1])
+    except ValueError:
+        raise ValueError(f"q, v_b: leading shapes {C.shape[:-2]} and {v_b.shape[:-1]} do not broadcast") from None
+    return np.einsum("...ij,...j->...i", C, v_b)
 
 
 def rotvec_to_quat(rv):

@@ -260,10 +260,10 @@ def magnetic_field(lat, lon, h=0.0, year: float = 2025.0, deg: bool = True):
     in_range(lon, "lon", -2 * np.pi, 2 * np.pi, "rad") if not deg else in_range(lon, "lon", -360, 360, "deg")
     lon = np.deg2rad(lon) if deg else lon
     h = in_range(as_array(h, "h"), "h", -1e3, 850e3, "m")
-    try:
-        year = float(year)
-    except (TypeError, ValueError):
-        raise ValueError(f"year: expected a decimal year, got {year!r}") from None
+    year_arr = as_array(year, "year")
+    if year_arr.ndim != 0:
+        raise ValueError(f"year: expected a decimal year (a scalar), got shape {year_arr.shape}")
+    year = float(year_arr)
     gm = _geomag(_wmm_file(year))
     lat, lon, h = np.broadcast_arrays(lat, lon, h)
     out = np.empty(lat.shape + (3,))

@@ -28,7 +28,14 @@ __all__ = ["dropouts", "gap", "spikes", "position_jumps", "heading_flips", "dupl
 
 
 def _fraction(x, name):
-    return float(in_range(as_array(x, name), name, 0.0, 1.0))
+    return _scalar(in_range(as_array(x, name), name, 0.0, 1.0), name)
+
+
+def _scalar(a, name):
+    a = as_array(a, name)
+    if a.ndim != 0:
+        raise ValueError(f"{name}: expected a scalar, got shape {a.shape}")
+    return float(a)
 
 
 def _samples(x, name):
@@ -79,7 +86,8 @@ def gap(x, time, start: float, duration: float):
     t = as_array(time, "time")
     if t.ndim != 1 or t.size != _time_axis_len(x):
         raise ValueError(f"time: expected a 1-D array of {_time_axis_len(x)} sample times, got shape {t.shape}")
-    duration = float(positive(duration, "duration"))
+    start = _scalar(start, "start")
+    duration = _scalar(positive(duration, "duration"), "duration")
     dropped = (t >= start) & (t < start + duration)
     if x.ndim == 1:
         x[dropped] = np.nan
@@ -108,6 +116,9 @@ def spikes(x, fraction: float, sigma, rng: np.random.Generator, k: float = 100.0
     x = _samples(x, "x").copy()
     generator(rng)
     sigma = positive(sigma, "sigma")
+    k_comp = x.shape[-1] if x.ndim >= 2 else 1
+    if sigma.ndim > 1 or sigma.size not in (1, k_comp):
+        raise ValueError(f"sigma: expected a scalar or one value per component ({k_comp}), got shape {sigma.shape}")
     n = _time_axis_len(x)
     hit = rng.random(n) < _fraction(fraction, "fraction")
     sign = np.where(rng.random(x.shape) < 0.5, -1.0, 1.0)
@@ -130,6 +141,9 @@ def position_jumps(lla, fraction: float, rng: np.random.Generator, size_m: float
     hit : ndarray of bool, shape (N,)
     """
     lla = as_array(lla, "lla", tail=(3,), allow_nan=True, min_ndim=1).copy()
+    lat_ok = np.isnan(lla[..., 0]) | (np.abs(lla[..., 0]) <= np.pi / 2)
+    if not lat_ok.all():
+        raise ValueError("lla[..., 0] (lat): expected latitudes in [-pi/2, pi/2] rad")
     generator(rng)
     hit = rng.random(lla.shape[-2]) < _fraction(fraction, "fraction")
     az = rng.uniform(0, 2 * np.pi, lla.shape[-2])
@@ -199,10 +213,11 @@ def irregular_times(n: int, dt: float, jitter: float, rng: np.random.Generator, 
     -------
     time : ndarray, shape (n,)
     """
-    if not isinstance(n, (int, np.integer)) or n < 2:
+    if not isinstance(n, (int, np.integer)) or isinstance(n, bool) or n < 2:
         raise ValueError(f"n: expected an integer >= 2, got {n!r}")
     dt = float(positive(dt, "dt"))
     jitter = float(in_range(as_array(jitter, "jitter"), "jitter", 0.0, 0.99))
+    t0 = _scalar(t0, "t0")
     generator(rng)
     steps = dt * (1 + rng.uniform(-jitter, jitter, n - 1))
     return t0 + np.concatenate([[0.0], np.cumsum(steps)])

@@ -135,8 +135,13 @@ def discretize(F, G, Qc, dt: float):
     G = as_array(G, "G")
     Qc = as_array(Qc, "Qc")
     n = F.shape[0] if F.ndim == 2 else -1
-    if n < 1 or F.shape != (n, n) or G.ndim != 2 or G.shape[0] != n or Qc.shape != (G.shape[1], G.shape[1]):
-        raise ValueError(f"F, G, Qc: expected shapes (n, n), (n, p), (p, p), got {F.shape}, {G.shape}, {Qc.shape}")
+    got = f"got F {F.shape}, G {G.shape}, Qc {Qc.shape}"
+    if n < 1 or F.shape != (n, n):
+        raise ValueError(f"F: expected a non-empty square matrix (n, n); shapes (n, n), (n, p), (p, p) for F, G, Qc, {got}")
+    if G.ndim != 2 or G.shape[0] != n:
+        raise ValueError(f"G: expected shape (n, p) with n = {n} rows; {got}")
+    if Qc.shape != (G.shape[1], G.shape[1]):
+        raise ValueError(f"Qc: expected shape (p, p) with p = {G.shape[1]} (columns of G); {got}")
     dt = float(positive(dt, "dt"))
     M = np.zeros((2 * n, 2 * n))
     M[:n, :n] = -F

@@ -46,7 +46,11 @@ def allan(ax, taus, adev_rad_s, theory=None, label: str = "", color=None) -> Non
     theory : array_like, shape (M,), optional
         Model curve (rad/s), drawn dashed.
     """
+    if not hasattr(ax, "loglog"):
+        raise ValueError(f"ax: expected a matplotlib Axes, got {type(ax).__name__}")
     taus = positive(taus, "taus")
+    if taus.size == 0:
+        raise ValueError("taus: expected at least one averaging time, got an empty array")
     a = units.to_deg_per_h(positive(adev_rad_s, "adev_rad_s"))
     if taus.ndim != 1 or a.shape[0] != taus.size:
         raise ValueError(f"adev_rad_s: expected {taus.size} values on axis 0 (one per tau), got shape {a.shape}")

@@ -24,6 +24,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ._validate import real
+
 __all__ = ["root", "build_dir", "setup", "savefig", "check", "check_range", "results",
            "ClaimCheckFailed", "Check"]
 
@@ -75,6 +77,8 @@ def build_dir(notebook: str | None = None) -> Path:
     """``build/`` (or ``build/<notebook>/``) under the repository root, created."""
     if notebook is not None and not isinstance(notebook, str):
         raise ValueError(f"notebook: expected a notebook name (str), got {type(notebook).__name__}")
+    if notebook and ("/" in notebook or "\\" in notebook or notebook in (".", "..")):
+        raise ValueError(f"notebook: expected a plain notebook name, got {notebook!r}")
     d = root() / "build"
     if notebook:
         d = d / notebook
@@ -142,16 +146,18 @@ def savefig(fig, name: str) -> Path:
 
 
 def _as_float(x, name: str, finite: bool = False) -> float:
-    try:
-        x = np.asarray(x, dtype=float)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name}: expected a real number, got {type(x).__name__}") from None
+    x = real(x, name)  # strings (also "1.5"), complex, object and bool raise InputTypeError
     if x.size != 1:
         raise ValueError(f"{name}: expected a scalar, got shape {x.shape}")
     v = float(x.reshape(()))
     if finite and not math.isfinite(v):
         raise ValueError(f"{name}: expected a finite number, got {v}")
     return v
+
+
+def _check_name(name) -> None:
+    if not isinstance(name, str) or not name.strip():
+        raise ValueError(f"name: expected a non-empty check name (str), got {name!r}")
 
 
 def _record(c: Check) -> Check:
@@ -188,6 +194,7 @@ def check(name: str, value, expected, tol, source: str, *, paper_value=None,
     paper_value : str or float, optional
         The printed value when it differs from ``expected``.
     """
+    _check_name(name)
     v = _as_float(value, "value")
     e = _as_float(expected, "expected", finite=True)
     t = _as_float(tol, "tol", finite=True)
@@ -208,11 +215,15 @@ def check_range(name: str, value, source: str, *, lower=None, upper=None,
     """
     if lower is None and upper is None:
         raise ValueError("lower, upper: give at least one bound")
+    _check_name(name)
     v = _as_float(value, "value")
     lo = None if lower is None else _as_float(lower, "lower")
     hi = None if upper is None else _as_float(upper, "upper")
-    if (lo is not None and math.isnan(lo)) or (hi is not None and math.isnan(hi)):
-        raise ValueError(f"lower, upper: expected numbers (infinite for no bound), got {lower}, {upper}")
+    for bound, b in (("lower", lo), ("upper", hi)):
+        if b is not None and math.isnan(b):
+            raise ValueError(f"{bound}: expected a number (infinite for no bound), got {b}")
+    if lo is not None and hi is not None and lo > hi:
+        raise ValueError(f"lower: expected lower <= upper, got {lo} > {hi}")
     passed = bool(math.isfinite(v) and (lo is None or v >= lo) and (hi is None or v <= hi))
     return _record(Check(name, v, None, None, passed, source,
                          None if paper_value is None else str(paper_value), lo, hi, unit, note))

@@ -52,7 +52,8 @@ def _check_fields(obj, infinite_ok=()) -> None:
     """Every field of a model dataclass is a non-negative number (finite unless listed)."""
     for f in fields(obj):
         v = getattr(obj, f.name)
-        ok = isinstance(v, (int, float, np.integer, np.floating)) and v >= 0  # NaN fails v >= 0
+        # bool is an int subclass but not a parameter value; NaN fails v >= 0
+        ok = isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, (bool, np.bool_)) and v >= 0
         if not ok or (np.isinf(v) and f.name not in infinite_ok):
             raise ValueError(f"{f.name}: expected a non-negative {'number' if f.name in infinite_ok else 'finite number'}, "
                              f"got {v!r}")
@@ -98,8 +99,9 @@ class TriadErrors:
 
     def __post_init__(self):
         _check_fields(self, infinite_ok=("full_scale",))
-        if self.correlation_time <= 0 or self.full_scale <= 0:
-            raise ValueError("correlation_time, full_scale: expected positive values")
+        for key in ("correlation_time", "full_scale"):
+            if getattr(self, key) <= 0:
+                raise ValueError(f"{key}: expected a positive value, got {getattr(self, key)!r}")
 
     @property
     def gauss_markov_sigma(self) -> float:
@@ -172,8 +174,10 @@ def gauss_markov(shape, dt: float, sigma: float, correlation_time: float, rng: n
     tc = float(positive(correlation_time, "correlation_time"))
     sigma = float(positive(sigma, "sigma", allow_zero=True))
     generator(rng)
-    if len(shape) < 2:
-        raise ValueError(f"shape: expected (..., N, k), got {shape}")
+    if (not isinstance(shape, (tuple, list)) or len(shape) < 2
+            or not all(isinstance(n, (int, np.integer)) and not isinstance(n, bool) and n > 0 for n in shape)):
+        raise ValueError(f"shape: expected a tuple (..., N, k) of positive integers, got {shape!r}")
+    shape = tuple(int(n) for n in shape)
     phi = np.exp(-dt / tc)
     x0 = sigma * rng.standard_normal(shape[:-2] + (1, shape[-1]))
     drive = sigma * np.sqrt(1 - phi * phi) * rng.standard_normal(shape)
@@ -315,6 +319,8 @@ class MagnetometerModel:
 
     def __post_init__(self):
         _check_fields(self, infinite_ok=("full_scale",))
+        if self.full_scale <= 0:
+            raise ValueError(f"full_scale: expected a positive value (inf: no saturation), got {self.full_scale!r}")
 
     @classmethod
     def from_preset(cls, device: str) -> "MagnetometerModel":
@@ -497,8 +503,11 @@ def outage_mask(time, outages) -> np.ndarray:
     """
     t = time_axis(time)
     valid = np.ones(t.shape, dtype=bool)
+    if isinstance(outages, (str, bytes)):
+        raise ValueError(f"outages: expected a sequence of (start, end) pairs, got {outages!r:.40}")
     for iv in outages:
-        if len(iv) != 2 or not iv[1] > iv[0]:
+        iv = as_array(iv, "outages", allow_nan=False)
+        if iv.shape != (2,) or not iv[1] > iv[0]:
             raise ValueError(f"outages: expected (start, end) pairs with end > start, got {iv!r}")
         valid &= ~((t >= iv[0]) & (t < iv[1]))
     return valid

@@ -112,6 +112,9 @@ def intervals(time, n_samples: int | None = None):
     if t.ndim != 1 or t.size < 2 or np.any(np.diff(t) <= 0):
         raise ValueError("time: expected a strictly increasing 1-D array (run timing.sanitize first)")
     dt = np.diff(t)
+    if n_samples is not None and (not isinstance(n_samples, (int, np.integer)) or isinstance(n_samples, bool)
+                                  or n_samples < 1):
+        raise ValueError(f"n_samples: expected a positive integer, got {n_samples!r}")
     if n_samples is not None and dt.size != n_samples:
         raise ValueError(f"time: expected {n_samples + 1} epochs for {n_samples} samples, got {t.size}")
     return dt

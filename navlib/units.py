@@ -14,6 +14,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._validate import real
+
 __all__ = ["G0", "CONVERTERS", "to_si", "deg", "to_deg", "deg_per_s", "to_deg_per_s", "deg_per_h", "to_deg_per_h",
            "deg_per_sqrt_h", "to_deg_per_sqrt_h", "deg_per_s_sqrt_hz", "to_deg_per_s_sqrt_hz", "deg_per_h_sqrt_h",
            "mg", "ug", "to_ug", "ug_per_sqrt_hz", "m_per_s_sqrt_h", "gauss", "to_gauss", "nanotesla", "hpa",
@@ -27,10 +29,7 @@ _DEG = np.pi / 180.0
 
 def _num(x, name: str = "x") -> np.ndarray:
     """Float array of ``x``; NaN (dropout) and inf (e.g. "no saturation") pass through."""
-    try:
-        return np.asarray(x, dtype=float)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name}: expected a real number or array, got {type(x).__name__} {x!r:.40}") from None
+    return real(x, name)
 
 
 def deg(x):

@@ -1,13 +1,20 @@
-"""Bad input to every public navlib function fails loudly (project rule).
+"""Bad input to every public navlib function fails loudly (project rule; issue 9, item 3).
 
 Rule (navlib/__init__.py, "Bad input"): every public function rejects wrong
-shapes, non-finite values and out-of-range angles or latitudes with a
-``ValueError`` naming the argument and what was expected.
+shapes, wrong dtypes, non-finite values, empty arrays and out-of-range values
+with a ``ValueError`` (or ``TypeError`` for a wrong kind of value) naming the
+argument and what was expected.
 
 ``CASES`` is a table of bad calls, one or more per public function or class
-in the modules' ``__all__``. Each case names the argument the ValueError must
-name; "naming" means the argument appears before the first colon of the
-message, as in navlib's ``"<arg>: expected ..."`` convention. Cases where
+in the modules' ``__all__``. Each case names the argument the error must
+name; "naming" means the message *starts* with the argument name, as in
+navlib's ``"<arg>: expected ..."`` convention (``"<arg>[..., 1] (pitch): ..."``
+for a part of an array argument). ``DTYPE_CASES`` adds, per argument, values
+that are not real numbers: complex (numpy would silently drop the imaginary
+part), object arrays, booleans (a mask where numbers belong) and numeric
+strings (numpy would parse ``"1.5"``); navlib raises
+``navlib._validate.InputTypeError``, which is a ``TypeError`` and a
+``ValueError``. Cases where
 navlib does not (yet) follow the rule are marked ``xfail(strict=True)`` with
 the reason "navlib gap: ...", so the suite stays green, the gap stays
 recorded, and fixing it turns the xfail into an XPASS that forces the mark
@@ -32,6 +39,15 @@ Exceptions to the rule, by design (not tested as failures):
   velocities (GNSS outages are NaN) and ``repro.Check.value`` (a failed NaN
   check is recorded with its NaN value). Only their other bad inputs are in
   the table.
+* Empty *batches* are valid for the elementwise (broadcasting) functions of
+  attitude, earth, units, atmosphere, ``trajectory.smooth_ramp`` and
+  ``plots.heading_deg``: a ``(0, 3)`` array of vectors is zero vectors, and
+  the result is an empty array of the right shape (numpy semantics; tested
+  by ``test_empty_batch_gives_empty_result``). Empty *series* (time axes,
+  sensor records, Allan inputs, fault-injection inputs) are errors and are in
+  the table.
+* ``trajectory.Trajectory`` accepts NaN in ``q_bn`` as in ``lla`` and
+  ``vel_n``: it also holds filter outputs, which mark unavailable epochs NaN.
 * No bad input exists for ``repro.root``, ``repro.results`` and
   ``sensors.devices`` (they take no arguments) or for the exception class
   ``repro.ClaimCheckFailed``. The records ``sensors.ImuOutput`` and
@@ -47,11 +63,11 @@ matplotlib = pytest.importorskip("matplotlib")
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from navlib import (analysis, atmosphere, attitude, earth, kalman, montecarlo, plots, repro,  # noqa: E402
-                    sensors, strapdown, trajectory, units)
+from navlib import (analysis, atmosphere, attitude, earth, faults, kalman, montecarlo, plots, repro,  # noqa: E402
+                    sensors, strapdown, timing, trajectory, units)
 
 MODULES = ["attitude", "earth", "units", "sensors", "atmosphere", "trajectory", "strapdown",
-           "kalman", "analysis", "repro", "plots", "montecarlo"]
+           "kalman", "analysis", "repro", "plots", "montecarlo", "faults", "timing"]
 
 NAN, INF = np.nan, np.inf
 STR = "abc"                      # a string where numbers are expected
@@ -131,14 +147,14 @@ CASES = [
     bad("attitude.orthonormalize", "C", "nan", lambda: attitude.orthonormalize(with_nan(np.eye(3), (0, 1)))),
     bad("attitude.euler_to_dcm", "hpr", "shape2", lambda: attitude.euler_to_dcm([0.1, 0.2])),
     bad("attitude.euler_to_dcm", "hpr", "nan", lambda: attitude.euler_to_dcm([NAN, 0.0, 0.0])),
-    bad("attitude.euler_to_dcm", "pitch", "pitch91deg", lambda: attitude.euler_to_dcm([0, 91, 0], deg=True)),
-    bad("attitude.euler_to_dcm", "pitch", "pitch2rad", lambda: attitude.euler_to_dcm([0.0, -2.0, 0.0])),
+    bad("attitude.euler_to_dcm", "hpr", "pitch91deg", lambda: attitude.euler_to_dcm([0, 91, 0], deg=True)),
+    bad("attitude.euler_to_dcm", "hpr", "pitch2rad", lambda: attitude.euler_to_dcm([0.0, -2.0, 0.0])),
     bad("attitude.dcm_to_euler", "C_bn", "shape3x2", lambda: attitude.dcm_to_euler(np.ones((3, 2)))),
     bad("attitude.dcm_to_euler", "C_bn", "nan", lambda: attitude.dcm_to_euler(with_nan(np.eye(3), (2, 2)))),
     bad("attitude.dcm_to_euler", "C_bn", "not_rotation", lambda: attitude.dcm_to_euler(2 * np.eye(3))),
     bad("attitude.euler_to_quat", "hpr", "shape4", lambda: attitude.euler_to_quat([0.0, 0.0, 0.0, 0.0])),
     bad("attitude.euler_to_quat", "hpr", "inf", lambda: attitude.euler_to_quat([0.0, 0.0, INF])),
-    bad("attitude.euler_to_quat", "pitch", "pitch100deg", lambda: attitude.euler_to_quat([0, 100, 0], deg=True)),
+    bad("attitude.euler_to_quat", "hpr", "pitch100deg", lambda: attitude.euler_to_quat([0, 100, 0], deg=True)),
     bad("attitude.quat_to_euler", "q", "shape3", lambda: attitude.quat_to_euler([1.0, 0.0, 0.0])),
     bad("attitude.quat_to_euler", "q", "nan", lambda: attitude.quat_to_euler([NAN, 0.0, 0.0, 0.0])),
     bad("attitude.quat_to_euler", "q", "zero", lambda: attitude.quat_to_euler([0.0, 0.0, 0.0, 0.0])),
@@ -339,7 +355,7 @@ CASES = [
     bad("trajectory.static", "lla0", "shape2", lambda: trajectory.static(1.0, 0.1, LLA0[:2], [0, 0, 0])),
     bad("trajectory.static", "lla0", "lat2rad", lambda: trajectory.static(1.0, 0.1, [2.0, 0.0, 0.0], [0, 0, 0])),
     bad("trajectory.static", "hpr", "shape2", lambda: trajectory.static(1.0, 0.1, LLA0, [0, 0])),
-    bad("trajectory.static", "pitch", "pitch2rad", lambda: trajectory.static(1.0, 0.1, LLA0, [0.0, 2.0, 0.0])),
+    bad("trajectory.static", "hpr", "pitch2rad", lambda: trajectory.static(1.0, 0.1, LLA0, [0.0, 2.0, 0.0])),
     bad("trajectory.from_profiles", "time", "non_uniform",
         lambda: trajectory.from_profiles(T10 ** 2, LLA0, np.zeros((10, 3)), np.zeros((10, 3)))),
     bad("trajectory.from_profiles", "time", "empty",
@@ -348,7 +364,7 @@ CASES = [
         lambda: trajectory.from_profiles(T10, LLA0, np.zeros((9, 3)), np.zeros((10, 3)))),
     bad("trajectory.from_profiles", "hpr", "nan",
         lambda: trajectory.from_profiles(T10, LLA0, with_nan(np.zeros((10, 3)), (4, 0)), np.zeros((10, 3)))),
-    bad("trajectory.from_profiles", "pitch", "pitch2rad",
+    bad("trajectory.from_profiles", "hpr", "pitch2rad",
         lambda: trajectory.from_profiles(T10, LLA0, np.tile([0.0, 2.0, 0.0], (10, 1)), np.zeros((10, 3)))),
     bad("trajectory.from_profiles", "vel_n", "nan",
         lambda: trajectory.from_profiles(T10, LLA0, np.zeros((10, 3)), with_nan(np.zeros((10, 3)), (4, 1)))),
@@ -364,7 +380,7 @@ CASES = [
         lambda: trajectory.reciprocating_rotation(10.0, 0.1, LLA0, [0, 0, 0], [0, 0, 1], np.pi / 2, 0.0)),
     bad("trajectory.reciprocating_rotation", "rotation_time", "longer_than_period",
         lambda: trajectory.reciprocating_rotation(10.0, 0.1, LLA0, [0, 0, 0], [0, 0, 1], np.pi / 2, 4.0, 5.0)),
-    bad("trajectory.reciprocating_rotation", "pitch", "pitch2rad",
+    bad("trajectory.reciprocating_rotation", "hpr0", "pitch2rad",
         lambda: trajectory.reciprocating_rotation(10.0, 0.1, LLA0, [0, 2.0, 0], [0, 0, 1], np.pi / 2, 4.0)),
     bad("trajectory.reciprocating_rotation", "amplitude", "nan",
         lambda: trajectory.reciprocating_rotation(10.0, 0.1, LLA0, [0, 0, 0], [0, 0, 1], NAN, 4.0)),
@@ -510,9 +526,305 @@ CASES += [bad(f"units.{name}", "x", "str", lambda f=getattr(units, name): f(STR)
           for name in _unit_converters()]
 
 
+# ------------------------------------------------------- wrong dtypes (issue 9)
+# Values that are not real numbers where navlib expects reals: complex
+# (numpy would silently drop the imaginary part), object arrays, booleans
+# (a mask passed where numbers belong) and numeric strings (numpy would parse
+# "1.5"). navlib raises _validate.InputTypeError, a TypeError that is also a
+# ValueError; the message starts with the argument name.
+def as_complex(good):
+    return np.asarray(good, dtype=float) + 1j
+
+
+def as_object(good):
+    return np.asarray(good, dtype=float).astype(object)
+
+
+def as_bool(good):
+    return np.ones(np.shape(good), dtype=bool)
+
+
+KINDS = {"complex": as_complex, "object": as_object, "bool": as_bool, "numeric_str": lambda good: "1.5"}
+
+
+def dtype_rows(target, arg, call, good, kinds=("complex", "object", "bool")):
+    """Rows calling ``call(value)`` with ``good`` turned into each wrong kind of value."""
+    return [bad(target, arg, kind, lambda f=KINDS[kind]: call(f(good))) for kind in kinds]
+
+
+_ALL4 = ("complex", "object", "bool", "numeric_str")
+FS = np.tile([0.0, 0.0, 1.0], (20, 1))
+T20 = np.arange(20.0)
+HPR0 = [0.1, 0.2, 0.3]
+
+
+def _traj_with(**kw):
+    args = dict(time=TRAJ.time, lla=TRAJ.lla, vel_n=TRAJ.vel_n, q_bn=TRAJ.q_bn)
+    args.update(kw)
+    return trajectory.Trajectory(**args)
+
+
+DTYPE_CASES = [
+    # attitude
+    *dtype_rows("attitude.wrap_pi", "angle", attitude.wrap_pi, [0.1, 0.2], _ALL4),
+    *dtype_rows("attitude.wrap_2pi", "angle", attitude.wrap_2pi, 0.1),
+    *dtype_rows("attitude.skew", "v", attitude.skew, [1.0, 2.0, 3.0], _ALL4),
+    *dtype_rows("attitude.rot", "angle", lambda a: attitude.rot("x", a), 0.1),
+    *dtype_rows("attitude.orthonormalize", "C", attitude.orthonormalize, np.eye(3)),
+    *dtype_rows("attitude.euler_to_dcm", "hpr", attitude.euler_to_dcm, HPR0, _ALL4),
+    *dtype_rows("attitude.dcm_to_euler", "C_bn", attitude.dcm_to_euler, np.eye(3)),
+    *dtype_rows("attitude.euler_to_quat", "hpr", attitude.euler_to_quat, HPR0),
+    *dtype_rows("attitude.quat_to_euler", "q", attitude.quat_to_euler, Q1),
+    *dtype_rows("attitude.quat_to_dcm", "q", attitude.quat_to_dcm, Q1, _ALL4),
+    *dtype_rows("attitude.dcm_to_quat", "C_bn", attitude.dcm_to_quat, np.eye(3)),
+    *dtype_rows("attitude.quat_mult", "p", lambda p: attitude.quat_mult(p, Q1), Q1),
+    *dtype_rows("attitude.quat_mult", "q", lambda q: attitude.quat_mult(Q1, q), Q1),
+    *dtype_rows("attitude.quat_conj", "q", attitude.quat_conj, Q1),
+    *dtype_rows("attitude.quat_normalize", "q", attitude.quat_normalize, Q1),
+    *dtype_rows("attitude.quat_rotate", "v_b", lambda v: attitude.quat_rotate(Q1, v), [1.0, 0.0, 0.0]),
+    *dtype_rows("attitude.rotvec_to_dcm", "rv", attitude.rotvec_to_dcm, [0.1, 0.0, 0.0]),
+    *dtype_rows("attitude.dcm_to_rotvec", "C", attitude.dcm_to_rotvec, np.eye(3)),
+    *dtype_rows("attitude.rotvec_to_quat", "rv", attitude.rotvec_to_quat, [0.1, 0.0, 0.0]),
+    *dtype_rows("attitude.quat_to_rotvec", "q", attitude.quat_to_rotvec, Q1),
+    bad("attitude.rot", "axis", "int", lambda: attitude.rot(1, 0.1)),
+    bad("attitude.quat_rotate", "q", "empty_batch_mismatch", lambda: attitude.quat_rotate(np.zeros((0, 4)), np.ones((2, 3)))),
+    # earth
+    *dtype_rows("earth.earth_rate_n", "lat", earth.earth_rate_n, 0.5),
+    *dtype_rows("earth.gravity", "lat", earth.gravity, 0.5, _ALL4),
+    *dtype_rows("earth.gravity", "h", lambda h: earth.gravity(0.5, h), 10.0),
+    *dtype_rows("earth.gravity_n", "lat", earth.gravity_n, 0.5),
+    *dtype_rows("earth.radii", "lat", earth.radii, 0.5, _ALL4),
+    *dtype_rows("earth.transport_rate_n", "vel_n", lambda v: earth.transport_rate_n(0.5, 0.0, v), [1.0, 2.0, 0.0]),
+    *dtype_rows("earth.magnetic_field", "lat", lambda lat: earth.magnetic_field(lat, 10.0), 45.0),
+    *dtype_rows("earth.magnetic_field", "year", lambda y: earth.magnetic_field(45.0, 10.0, year=y), 2024.0),
+    *dtype_rows("earth.field_from_angles", "intensity", lambda F: earth.field_from_angles(0.0, 60.0, F), 50.0),
+    *dtype_rows("earth.field_angles", "B_n", earth.field_angles, [1.0, 20.0, -40.0], _ALL4),
+    bad("earth.Ellipsoid", "a", "complex", lambda: earth.Ellipsoid("bad", 6378137.0 + 1j, 1 / 298.257, 3.986e14, 7.29e-5)),
+    bad("earth.Ellipsoid", "f", "str", lambda: earth.Ellipsoid("bad", 6378137.0, "0.0033", 3.986e14, 7.29e-5)),
+    bad("earth.Ellipsoid", "omega", "inf", lambda: earth.Ellipsoid("bad", 6378137.0, 1 / 298.257, 3.986e14, INF)),
+    bad("earth.Ellipsoid", "f", "f_one", lambda: earth.Ellipsoid("bad", 6378137.0, 1.0, 3.986e14, 7.29e-5)),
+    # units
+    bad("units.to_si", "value", "complex", lambda: units.to_si(1 + 1j, "deg")),
+    bad("units.to_si", "value", "object", lambda: units.to_si(as_object([1.0, 2.0]), "g")),
+    bad("units.to_si", "value", "bool", lambda: units.to_si(True, "deg/h")),
+    bad("units.to_si", "value", "numeric_str", lambda: units.to_si("1.5", "deg/h")),
+    # sensors
+    bad("sensors.TriadErrors", "bias", "complex", lambda: sensors.TriadErrors(bias=1e-3 + 1j)),
+    bad("sensors.TriadErrors", "noise_density", "bool", lambda: sensors.TriadErrors(noise_density=True)),
+    bad("sensors.ImuModel", "accel", "none", lambda: sensors.ImuModel(accel=None)),
+    *dtype_rows("sensors.simulate_imu", "w_ib_b", lambda w: sensors.simulate_imu(w, F, 0.01, sensors.ImuModel(), rng()), W),
+    *dtype_rows("sensors.simulate_imu", "f_b", lambda f: sensors.simulate_imu(W, f, 0.01, sensors.ImuModel(), rng()), F),
+    *dtype_rows("sensors.simulate_imu", "dt", lambda dt: sensors.simulate_imu(W, F, dt, sensors.ImuModel(), rng()), 0.01, _ALL4),
+    bad("sensors.simulate_imu", "w_ib_b", "inf", lambda: sensors.simulate_imu(W + INF, F, 0.01, sensors.ImuModel(), rng())),
+    bad("sensors.imu_model", "device", "int", lambda: sensors.imu_model(7)),
+    bad("sensors.preset", "device", "empty", lambda: sensors.preset("")),
+    bad("sensors.MagnetometerModel", "soft_iron", "complex", lambda: sensors.MagnetometerModel(soft_iron=0.01j)),
+    bad("sensors.MagnetometerModel", "full_scale", "zero", lambda: sensors.MagnetometerModel(full_scale=0.0)),
+    *dtype_rows("sensors.simulate_magnetometer", "q_bn",
+                lambda q: sensors.simulate_magnetometer(q, [0.0, 20.0, -40.0], sensors.MagnetometerModel(), rng()),
+                np.tile(Q1, (10, 1))),
+    *dtype_rows("sensors.simulate_magnetometer", "B_n",
+                lambda B: sensors.simulate_magnetometer(np.tile(Q1, (10, 1)), B, sensors.MagnetometerModel(), rng()),
+                [0.0, 20.0, -40.0]),
+    *dtype_rows("sensors.magnetic_disturbances", "time", lambda t: sensors.magnetic_disturbances(t, rng(), 0.1), T10),
+    bad("sensors.magnetic_disturbances", "rate", "str", lambda: sensors.magnetic_disturbances(T10, rng(), STR)),
+    bad("sensors.magnetic_disturbances", "time", "empty", lambda: sensors.magnetic_disturbances([], rng(), 0.1)),
+    bad("sensors.BarometerModel", "drift_rate", "complex", lambda: sensors.BarometerModel(drift_rate=1j)),
+    bad("sensors.BarometerModel", "noise", "str", lambda: sensors.BarometerModel(noise=STR)),
+    *dtype_rows("sensors.simulate_barometer", "h", lambda h: sensors.simulate_barometer(h, T10, sensors.BarometerModel(), rng()), T10),
+    bad("sensors.simulate_barometer", "time", "empty", lambda: sensors.simulate_barometer([], [], sensors.BarometerModel(), rng())),
+    bad("sensors.simulate_barometer", "h", "inf", lambda: sensors.simulate_barometer(T10 + INF, T10, sensors.BarometerModel(), rng())),
+    *dtype_rows("sensors.outage_mask", "time", lambda t: sensors.outage_mask(t, [(2.0, 3.0)]), T10),
+    bad("sensors.outage_mask", "outages", "str", lambda: sensors.outage_mask(T10, STR)),
+    bad("sensors.outage_mask", "outages", "complex", lambda: sensors.outage_mask(T10, [(2.0 + 1j, 3.0)])),
+    *dtype_rows("sensors.simulate_gnss_position", "lla", lambda lla: sensors.simulate_gnss_position(lla, rng(), 3.0), with_lat(0.6)),
+    bad("sensors.simulate_gnss_position", "lla", "inf", lambda: sensors.simulate_gnss_position(with_lat(0.6) + INF, rng(), 3.0)),
+    bad("sensors.simulate_gnss_position", "sigma_horizontal", "str", lambda: sensors.simulate_gnss_position(with_lat(0.6), rng(), STR)),
+    *dtype_rows("sensors.simulate_heading", "heading", lambda h: sensors.simulate_heading(h, rng(), 0.01), T10),
+    bad("sensors.simulate_heading", "heading", "inf", lambda: sensors.simulate_heading(T10 + INF, rng(), 0.01)),
+    bad("sensors.simulate_heading", "sigma", "complex", lambda: sensors.simulate_heading(T10, rng(), 0.01j)),
+    bad("sensors.gauss_markov", "shape", "str", lambda: sensors.gauss_markov(STR, 0.1, 1.0, 10.0, rng())),
+    bad("sensors.gauss_markov", "shape", "empty", lambda: sensors.gauss_markov((0, 3), 0.1, 1.0, 10.0, rng())),
+    bad("sensors.gauss_markov", "dt", "complex", lambda: sensors.gauss_markov((10, 3), 0.1j, 1.0, 10.0, rng())),
+    bad("sensors.gauss_markov", "correlation_time", "inf", lambda: sensors.gauss_markov((10, 3), 0.1, 1.0, INF, rng())),
+    # atmosphere
+    *dtype_rows("atmosphere.isa_altitude", "p", atmosphere.isa_altitude, 9e4, _ALL4),
+    *dtype_rows("atmosphere.isa_pressure", "h", atmosphere.isa_pressure, 100.0, _ALL4),
+    *dtype_rows("atmosphere.bmp180_altitude", "p", atmosphere.bmp180_altitude, 9e4),
+    *dtype_rows("atmosphere.bmp180_pressure", "h", atmosphere.bmp180_pressure, 100.0),
+    bad("atmosphere.bmp180_pressure", "h", "inf", lambda: atmosphere.bmp180_pressure(INF)),
+    bad("atmosphere.isa_pressure", "p0", "complex", lambda: atmosphere.isa_pressure(100.0, 101325.0j)),
+    *dtype_rows("atmosphere.hypsometric_height", "temperature", lambda T: atmosphere.hypsometric_height(9e4, 1e5, T), 288.0),
+    bad("atmosphere.hypsometric_height", "p", "inf", lambda: atmosphere.hypsometric_height(INF, 1e5, 288.0)),
+    bad("atmosphere.bmp180_compensate", "UT", "complex", lambda: atmosphere.bmp180_compensate(27898 + 1j, 23843, CALIB)),
+    bad("atmosphere.bmp180_compensate", "UT", "fractional", lambda: atmosphere.bmp180_compensate(27898.5, 23843, CALIB)),
+    bad("atmosphere.bmp180_compensate", "UP", "inf", lambda: atmosphere.bmp180_compensate(27898, INF, CALIB)),
+    bad("atmosphere.bmp180_compensate", "oss", "str", lambda: atmosphere.bmp180_compensate(27898, 23843, CALIB, oss=STR)),
+    bad("atmosphere.bmp180_compensate", "calib", "not_dict", lambda: atmosphere.bmp180_compensate(27898, 23843, [1, 2, 3])),
+    # trajectory
+    bad("trajectory.Trajectory", "time", "complex", lambda: _traj_with(time=as_complex(TRAJ.time))),
+    bad("trajectory.Trajectory", "lla", "object", lambda: _traj_with(lla=as_object(TRAJ.lla))),
+    bad("trajectory.Trajectory", "q_bn", "bool", lambda: _traj_with(q_bn=as_bool(TRAJ.q_bn))),
+    bad("trajectory.Trajectory", "time", "nan", lambda: _traj_with(time=with_nan(TRAJ.time, 2))),
+    bad("trajectory.Segment", "duration", "complex", lambda: trajectory.Segment(duration=1.0 + 1j)),
+    bad("trajectory.Segment", "turn", "str", lambda: trajectory.Segment(duration=1.0, turn=STR)),
+    bad("trajectory.Segment", "speed", "inf", lambda: trajectory.Segment(duration=1.0, speed=INF)),
+    *dtype_rows("trajectory.static", "lla0", lambda lla0: trajectory.static(1.0, 0.1, lla0, [0, 0, 0]), LLA0),
+    *dtype_rows("trajectory.static", "hpr", lambda hpr: trajectory.static(1.0, 0.1, LLA0, hpr), [0.0, 0.0, 0.0]),
+    bad("trajectory.static", "dt", "complex", lambda: trajectory.static(1.0, 0.1j, LLA0, [0, 0, 0])),
+    *dtype_rows("trajectory.from_profiles", "vel_n", lambda v: trajectory.from_profiles(T10, LLA0, np.zeros((10, 3)), v),
+                np.zeros((10, 3))),
+    bad("trajectory.from_profiles", "time", "complex",
+        lambda: trajectory.from_profiles(as_complex(T10), LLA0, np.zeros((10, 3)), np.zeros((10, 3)))),
+    bad("trajectory.reciprocating_rotation", "axis_b", "complex",
+        lambda: trajectory.reciprocating_rotation(10.0, 0.1, LLA0, [0, 0, 0], as_complex([0, 0, 1]), np.pi / 2, 4.0)),
+    bad("trajectory.reciprocating_rotation", "axis_b", "bool",
+        lambda: trajectory.reciprocating_rotation(10.0, 0.1, LLA0, [0, 0, 0], [False, False, True], np.pi / 2, 4.0)),
+    bad("trajectory.reciprocating_rotation", "period", "inf",
+        lambda: trajectory.reciprocating_rotation(10.0, 0.1, LLA0, [0, 0, 0], [0, 0, 1], np.pi / 2, INF)),
+    bad("trajectory.vehicle", "dt", "complex", lambda: trajectory.vehicle([trajectory.Segment(2.0, speed=5.0)], 0.1j, LLA0, 0.0)),
+    bad("trajectory.vehicle", "heading0", "str", lambda: trajectory.vehicle([trajectory.Segment(2.0, speed=5.0)], 0.1, LLA0, STR)),
+    bad("trajectory.vehicle", "lla0", "object",
+        lambda: trajectory.vehicle([trajectory.Segment(2.0, speed=5.0)], 0.1, as_object(LLA0), 0.0)),
+    bad("trajectory.ideal_imu", "traj", "str", lambda: trajectory.ideal_imu(STR)),
+    *dtype_rows("trajectory.smooth_ramp", "x", trajectory.smooth_ramp, [0.2, 0.5]),
+    bad("trajectory.smooth_ramp", "x", "inf", lambda: trajectory.smooth_ramp([0.2, INF])),
+    # strapdown (owned by its module's helper; only the row the coverage test needs)
+    bad("strapdown.earth_constants", "ellipsoid", "str", lambda: strapdown.earth_constants(STR)),
+    # kalman
+    *dtype_rows("kalman.discretize", "F", lambda F_: kalman.discretize(F_, np.eye(2), np.eye(2), 0.1), np.zeros((2, 2))),
+    bad("kalman.discretize", "G", "complex", lambda: kalman.discretize(np.zeros((2, 2)), as_complex(np.eye(2)), np.eye(2), 0.1)),
+    bad("kalman.discretize", "Qc", "object", lambda: kalman.discretize(np.zeros((2, 2)), np.eye(2), as_object(np.eye(2)), 0.1)),
+    bad("kalman.discretize", "dt", "str", lambda: kalman.discretize(np.zeros((2, 2)), np.eye(2), np.eye(2), STR)),
+    bad("kalman.discretize", "F", "empty", lambda: kalman.discretize(np.zeros((0, 0)), np.zeros((0, 0)), np.zeros((0, 0)), 0.1)),
+    bad("kalman.discretize", "dt", "inf", lambda: kalman.discretize(np.zeros((2, 2)), np.eye(2), np.eye(2), INF)),
+    # analysis
+    *dtype_rows("analysis.rmse", "err", analysis.rmse, [1.0, 2.0], ("complex", "object", "bool")),
+    *dtype_rows("analysis.allan_deviation", "x", lambda x: analysis.allan_deviation(x, 0.1), np.ones(100)),
+    bad("analysis.allan_deviation", "dt", "str", lambda: analysis.allan_deviation(np.ones(100), STR)),
+    bad("analysis.allan_deviation", "dt", "inf", lambda: analysis.allan_deviation(np.ones(100), INF)),
+    bad("analysis.allan_deviation", "taus", "complex", lambda: analysis.allan_deviation(np.ones(100), 0.1, taus=[1j])),
+    *dtype_rows("analysis.allan_deviation_theory", "taus", lambda t: analysis.allan_deviation_theory(t, white=1e-3), [1.0, 10.0]),
+    bad("analysis.allan_deviation_theory", "taus", "empty", lambda: analysis.allan_deviation_theory([], white=1e-3)),
+    bad("analysis.allan_deviation_theory", "white", "str", lambda: analysis.allan_deviation_theory([1.0], white=STR)),
+    bad("analysis.fit_allan", "taus", "complex", lambda: analysis.fit_allan(as_complex([1.0, 2.0]), [1e-3, 1e-3], 1000, 0.1)),
+    bad("analysis.fit_allan", "adev", "object", lambda: analysis.fit_allan([1.0, 2.0], as_object([1e-3, 1e-3]), 1000, 0.1)),
+    bad("analysis.fit_allan", "n_samples", "str", lambda: analysis.fit_allan([1.0, 2.0, 4.0], [3e-3, 2e-3, 1.5e-3], STR, 0.1)),
+    bad("analysis.fit_allan", "n_samples", "fractional", lambda: analysis.fit_allan([1.0, 2.0, 4.0], [3e-3, 2e-3, 1.5e-3], 10.5, 0.1)),
+    bad("analysis.fit_allan", "dt", "complex", lambda: analysis.fit_allan([1.0, 2.0, 4.0], [3e-3, 2e-3, 1.5e-3], 1000, 0.1j)),
+    # repro
+    bad("repro.check", "value", "complex", lambda: repro.check("T/x", 1.0 + 1j, 1.0, 0.1, "src")),
+    bad("repro.check", "value", "bool", lambda: repro.check("T/x", True, 1.0, 0.1, "src")),
+    bad("repro.check", "expected", "numeric_str", lambda: repro.check("T/x", 1.0, "1.0", 0.1, "src")),
+    bad("repro.check", "tol", "object", lambda: repro.check("T/x", 1.0, 1.0, as_object(0.1), "src")),
+    bad("repro.check", "name", "int", lambda: repro.check(5, 1.0, 1.0, 0.1, "src")),
+    bad("repro.check", "name", "empty", lambda: repro.check("", 1.0, 1.0, 0.1, "src")),
+    bad("repro.check_range", "value", "complex", lambda: repro.check_range("T/x", 1j, "src", upper=3.0)),
+    bad("repro.check_range", "upper", "numeric_str", lambda: repro.check_range("T/x", 1.0, "src", upper="3")),
+    bad("repro.check_range", "lower", "inf_above_upper", lambda: repro.check_range("T/x", 1.0, "src", lower=5.0, upper=3.0)),
+    bad("repro.savefig", "name", "empty", lambda: (repro.setup("zz_bad_input", style=False), repro.savefig(plt.figure(), ""))),
+    bad("repro.savefig", "fig", "none", lambda: (repro.setup("zz_bad_input", style=False), repro.savefig(None, "x"))),
+    bad("repro.build_dir", "notebook", "path", lambda: repro.build_dir("../x")),
+    # plots
+    *dtype_rows("plots.body_axes", "C_bn", lambda C: plots.body_axes(axes3d(), C), np.eye(3)),
+    *dtype_rows("plots.allan", "taus", lambda t: plots.allan(axes2d(), t, [1e-5, 1e-5]), [1.0, 2.0]),
+    bad("plots.allan", "ax", "str", lambda: plots.allan(STR, [1.0, 2.0], [1e-5, 1e-5])),
+    bad("plots.allan", "taus", "empty", lambda: plots.allan(axes2d(), [], [])),
+    *dtype_rows("plots.heading_deg", "hpr", plots.heading_deg, HPR0),
+    # montecarlo
+    bad("montecarlo.run", "n_trials", "float", lambda: montecarlo.run(_mc_batch, 2.5, 1, progress=False)),
+    bad("montecarlo.run", "n_trials", "bool", lambda: montecarlo.run(_mc_batch, True, 1, progress=False)),
+    bad("montecarlo.run", "seed", "complex", lambda: montecarlo.run(_mc_batch, 5, 1j, progress=False)),
+    bad("montecarlo.run", "seed", "negative", lambda: montecarlo.run(_mc_batch, 5, -1, progress=False)),
+    bad("montecarlo.run", "batch_size", "str", lambda: montecarlo.run(_mc_batch, 5, 1, batch_size=STR, progress=False)),
+    bad("montecarlo.TrialStreams", "ids", "str", lambda: montecarlo.TrialStreams(1, STR)),
+    bad("montecarlo.TrialStreams", "ids", "float", lambda: montecarlo.TrialStreams(1, [0.5, 1.5])),
+    bad("montecarlo.TrialStreams", "seed", "str", lambda: montecarlo.TrialStreams(STR, [0, 1])),
+    # faults
+    *dtype_rows("faults.dropouts", "x", lambda x: faults.dropouts(x, 0.1, rng()), FS, _ALL4),
+    bad("faults.dropouts", "x", "empty", lambda: faults.dropouts(np.zeros((0, 3)), 0.1, rng())),
+    bad("faults.dropouts", "x", "inf", lambda: faults.dropouts(FS + INF, 0.1, rng())),
+    bad("faults.dropouts", "fraction", "above_one", lambda: faults.dropouts(FS, 1.5, rng())),
+    bad("faults.dropouts", "fraction", "nan", lambda: faults.dropouts(FS, NAN, rng())),
+    bad("faults.dropouts", "fraction", "shape2", lambda: faults.dropouts(FS, [0.1, 0.2], rng())),
+    bad("faults.dropouts", "rng", "legacy_rng", lambda: faults.dropouts(FS, 0.1, legacy_rng())),
+    bad("faults.gap", "x", "complex", lambda: faults.gap(as_complex(FS), T20, 2.0, 3.0)),
+    bad("faults.gap", "time", "length_mismatch", lambda: faults.gap(FS, T10, 2.0, 3.0)),
+    bad("faults.gap", "time", "nan", lambda: faults.gap(FS, with_nan(T20, 3), 2.0, 3.0)),
+    bad("faults.gap", "start", "nan", lambda: faults.gap(FS, T20, NAN, 3.0)),
+    bad("faults.gap", "start", "str", lambda: faults.gap(FS, T20, STR, 3.0)),
+    bad("faults.gap", "duration", "negative", lambda: faults.gap(FS, T20, 2.0, -3.0)),
+    bad("faults.gap", "duration", "inf", lambda: faults.gap(FS, T20, 2.0, INF)),
+    bad("faults.spikes", "x", "object", lambda: faults.spikes(as_object(FS), 0.1, 0.01, rng())),
+    bad("faults.spikes", "x", "empty", lambda: faults.spikes([], 0.1, 0.01, rng())),
+    bad("faults.spikes", "fraction", "negative", lambda: faults.spikes(FS, -0.1, 0.01, rng())),
+    bad("faults.spikes", "sigma", "negative", lambda: faults.spikes(FS, 0.1, -0.01, rng())),
+    bad("faults.spikes", "sigma", "shape2", lambda: faults.spikes(FS, 0.1, [0.01, 0.02], rng())),
+    bad("faults.spikes", "k", "nan", lambda: faults.spikes(FS, 0.1, 0.01, rng(), k=NAN)),
+    bad("faults.spikes", "rng", "int", lambda: faults.spikes(FS, 0.1, 0.01, 3)),
+    bad("faults.position_jumps", "lla", "shape2", lambda: faults.position_jumps(np.zeros((10, 2)), 0.1, rng())),
+    bad("faults.position_jumps", "lla", "complex", lambda: faults.position_jumps(as_complex(with_lat(0.6)), 0.1, rng())),
+    bad("faults.position_jumps", "lla", "lat2rad", lambda: faults.position_jumps(with_lat(2.0), 0.1, rng())),
+    bad("faults.position_jumps", "lla", "empty", lambda: faults.position_jumps(np.zeros((0, 3)), 0.1, rng())),
+    bad("faults.position_jumps", "fraction", "str", lambda: faults.position_jumps(with_lat(0.6), STR, rng())),
+    bad("faults.position_jumps", "size_m", "negative", lambda: faults.position_jumps(with_lat(0.6), 0.1, rng(), size_m=-5.0)),
+    bad("faults.position_jumps", "rng", "legacy_rng", lambda: faults.position_jumps(with_lat(0.6), 0.1, legacy_rng())),
+    bad("faults.heading_flips", "heading", "complex", lambda: faults.heading_flips(as_complex(T10), 0.1, rng())),
+    bad("faults.heading_flips", "heading", "empty", lambda: faults.heading_flips([], 0.1, rng())),
+    bad("faults.heading_flips", "heading", "inf", lambda: faults.heading_flips(T10 + INF, 0.1, rng())),
+    bad("faults.heading_flips", "fraction", "above_one", lambda: faults.heading_flips(T10, 2.0, rng())),
+    bad("faults.heading_flips", "rng", "legacy_rng", lambda: faults.heading_flips(T10, 0.1, legacy_rng())),
+    bad("faults.duplicate_timestamps", "time", "decreasing", lambda: faults.duplicate_timestamps(T10[::-1], 0.1, rng())),
+    bad("faults.duplicate_timestamps", "time", "complex", lambda: faults.duplicate_timestamps(as_complex(T10), 0.1, rng())),
+    bad("faults.duplicate_timestamps", "time", "empty", lambda: faults.duplicate_timestamps([], 0.1, rng())),
+    bad("faults.duplicate_timestamps", "fraction", "nan", lambda: faults.duplicate_timestamps(T10, NAN, rng())),
+    bad("faults.duplicate_timestamps", "rng", "int", lambda: faults.duplicate_timestamps(T10, 0.1, 1)),
+    bad("faults.swap_timestamps", "time", "one_sample", lambda: faults.swap_timestamps([0.0], 0.1, rng())),
+    bad("faults.swap_timestamps", "time", "nan", lambda: faults.swap_timestamps(with_nan(T10, 2), 0.1, rng())),
+    bad("faults.swap_timestamps", "time", "object", lambda: faults.swap_timestamps(as_object(T10), 0.1, rng())),
+    bad("faults.swap_timestamps", "fraction", "negative", lambda: faults.swap_timestamps(T10, -0.5, rng())),
+    bad("faults.swap_timestamps", "rng", "legacy_rng", lambda: faults.swap_timestamps(T10, 0.1, legacy_rng())),
+    bad("faults.irregular_times", "n", "one", lambda: faults.irregular_times(1, 0.1, 0.2, rng())),
+    bad("faults.irregular_times", "n", "float", lambda: faults.irregular_times(10.0, 0.1, 0.2, rng())),
+    bad("faults.irregular_times", "n", "bool", lambda: faults.irregular_times(True, 0.1, 0.2, rng())),
+    bad("faults.irregular_times", "dt", "zero", lambda: faults.irregular_times(10, 0.0, 0.2, rng())),
+    bad("faults.irregular_times", "dt", "complex", lambda: faults.irregular_times(10, 0.1j, 0.2, rng())),
+    bad("faults.irregular_times", "jitter", "one", lambda: faults.irregular_times(10, 0.1, 1.0, rng())),
+    bad("faults.irregular_times", "jitter", "nan", lambda: faults.irregular_times(10, 0.1, NAN, rng())),
+    bad("faults.irregular_times", "t0", "nan", lambda: faults.irregular_times(10, 0.1, 0.2, rng(), t0=NAN)),
+    bad("faults.irregular_times", "rng", "legacy_rng", lambda: faults.irregular_times(10, 0.1, 0.2, legacy_rng())),
+    bad("faults.saturate", "x", "complex", lambda: faults.saturate(as_complex(FS), 1.0)),
+    bad("faults.saturate", "x", "empty", lambda: faults.saturate(np.zeros((0, 3)), 1.0)),
+    bad("faults.saturate", "x", "inf", lambda: faults.saturate(FS + INF, 1.0)),
+    bad("faults.saturate", "full_scale", "zero", lambda: faults.saturate(FS, 0.0)),
+    bad("faults.saturate", "full_scale", "nan", lambda: faults.saturate(FS, NAN)),
+    bad("faults.saturate", "full_scale", "str", lambda: faults.saturate(FS, STR)),
+    # timing
+    bad("timing.sanitize", "time", "nan", lambda: timing.sanitize(with_nan(T10, 4), FS[:10])),
+    bad("timing.sanitize", "time", "inf", lambda: timing.sanitize(T10 + INF)),
+    bad("timing.sanitize", "time", "complex", lambda: timing.sanitize(as_complex(T10))),
+    bad("timing.sanitize", "time", "empty", lambda: timing.sanitize([])),
+    bad("timing.sanitize", "time", "2d", lambda: timing.sanitize(np.zeros((10, 2)))),
+    bad("timing.sanitize", "time", "all_equal", lambda: timing.sanitize(np.zeros(10))),
+    bad("timing.sanitize", "series[0]", "length_mismatch", lambda: timing.sanitize(T10, FS)),
+    bad("timing.sanitize", "series[1]", "object", lambda: timing.sanitize(T10, FS[:10], as_object(T10))),
+    bad("timing.intervals", "time", "decreasing", lambda: timing.intervals(T10[::-1])),
+    bad("timing.intervals", "time", "nan", lambda: timing.intervals(with_nan(T10, 2))),
+    bad("timing.intervals", "time", "bool", lambda: timing.intervals(as_bool(T10))),
+    bad("timing.intervals", "time", "empty", lambda: timing.intervals([])),
+    bad("timing.intervals", "time", "length_mismatch", lambda: timing.intervals(T10, n_samples=5)),
+    bad("timing.intervals", "n_samples", "str", lambda: timing.intervals(T10, n_samples=STR)),
+    bad("timing.intervals", "n_samples", "negative", lambda: timing.intervals(T10, n_samples=-1)),
+]
+CASES += DTYPE_CASES
+CASES += [bad(f"units.{name}", "x", kind, lambda f=getattr(units, name), v=KINDS[kind]([1.0, 2.0]): f(v))
+          for name in _unit_converters() for kind in ("complex", "object", "bool", "numeric_str")]
+
+
 def names_arg(arg):
-    """Regex: ``arg`` appears as a word before the first colon of the message."""
-    return rf"^[^:]*(?<![\w.]){re.escape(arg)}(?!\w)"
+    """Regex: the message starts with the argument name ``arg``: "<arg>: expected ...",
+    or "<arg>[...] (<part>): ..." for a part of an array argument."""
+    return rf"^{re.escape(arg)}(?!\w)"
 
 
 @pytest.fixture
@@ -533,7 +845,7 @@ def test_bad_input_raises_value_error_naming_argument(target, arg, call, request
     if target.startswith(("repro.", "plots.")):
         request.getfixturevalue("sandbox")
     try:
-        with pytest.raises(ValueError, match=names_arg(arg)):
+        with pytest.raises((ValueError, TypeError), match=names_arg(arg)):
             call()
         return
     except (Exception, pytest.fail.Exception) as exc:
@@ -544,6 +856,52 @@ def test_bad_input_raises_value_error_naming_argument(target, arg, call, request
 
 
 # ---------------------------------------------------------------- by design
+
+def _e(*shape):
+    return np.zeros(shape)
+
+
+EMPTY_BATCH = {  # call on an empty batch -> expected result shape(s)
+    "attitude.wrap_pi": (lambda: attitude.wrap_pi(_e(0)), (0,)),
+    "attitude.skew": (lambda: attitude.skew(_e(0, 3)), (0, 3, 3)),
+    "attitude.rot": (lambda: attitude.rot("x", _e(0)), (0, 3, 3)),
+    "attitude.orthonormalize": (lambda: attitude.orthonormalize(_e(0, 3, 3)), (0, 3, 3)),
+    "attitude.euler_to_dcm": (lambda: attitude.euler_to_dcm(_e(0, 3)), (0, 3, 3)),
+    "attitude.dcm_to_euler": (lambda: attitude.dcm_to_euler(_e(0, 3, 3)), (0, 3)),
+    "attitude.euler_to_quat": (lambda: attitude.euler_to_quat(_e(0, 3)), (0, 4)),
+    "attitude.quat_to_euler": (lambda: attitude.quat_to_euler(_e(0, 4)), (0, 3)),
+    "attitude.quat_to_dcm": (lambda: attitude.quat_to_dcm(_e(0, 4)), (0, 3, 3)),
+    "attitude.dcm_to_quat": (lambda: attitude.dcm_to_quat(_e(0, 3, 3)), (0, 4)),
+    "attitude.quat_mult": (lambda: attitude.quat_mult(_e(0, 4), Q1), (0, 4)),
+    "attitude.quat_rotate": (lambda: attitude.quat_rotate(_e(0, 4), _e(0, 3)), (0, 3)),
+    "attitude.rotvec_to_quat": (lambda: attitude.rotvec_to_quat(_e(0, 3)), (0, 4)),
+    "attitude.quat_to_rotvec": (lambda: attitude.quat_to_rotvec(_e(0, 4)), (0, 3)),
+    "earth.gravity_n": (lambda: earth.gravity_n(_e(0)), (0, 3)),
+    "earth.radii": (lambda: earth.radii(_e(0)), ((0,), (0,))),
+    "earth.field_angles": (lambda: earth.field_angles(_e(0, 3)), ((0,), (0,), (0,))),
+    "units.to_si": (lambda: units.to_si(_e(0), "deg/h"), (0,)),
+    "atmosphere.isa_altitude": (lambda: atmosphere.isa_altitude(_e(0)), (0,)),
+    "trajectory.smooth_ramp": (lambda: trajectory.smooth_ramp(_e(0)), (0,)),
+    "plots.heading_deg": (lambda: plots.heading_deg(_e(0, 3)), (0,)),
+}
+
+
+@pytest.mark.parametrize("name", sorted(EMPTY_BATCH))
+def test_empty_batch_gives_empty_result(name):
+    """Elementwise functions map an empty batch to an empty result of the documented shape."""
+    call, shape = EMPTY_BATCH[name]
+    out = call()
+    got = tuple(o.shape for o in out) if isinstance(out, tuple) else out.shape
+    assert got == shape
+
+
+def test_wrong_dtype_error_is_type_and_value_error():
+    """InputTypeError is a TypeError (Python convention) and a ValueError (navlib's documented error)."""
+    with pytest.raises(TypeError, match="^q: expected a real numeric array, got a complex array"):
+        attitude.quat_to_dcm(np.array(Q1) + 1j)
+    with pytest.raises(ValueError, match="^lat: expected a real numeric array, got a boolean value"):
+        earth.gravity(True)
+
 
 @pytest.mark.parametrize("func", [attitude.wrap_pi, attitude.wrap_2pi]
                          + [getattr(units, n) for n in _unit_converters()], ids=lambda f: f.__name__)
@@ -590,6 +948,8 @@ NOT_APPLICABLE = {
     "kalman.update": "compiled kernel, NaN skipped by design; see test_kalman_update_all_nan_measurement_is_no_data",
     "sensors.ImuOutput": "record returned by simulate_imu, not constructed by users",
     "repro.Check": "record of a check, built by check()/check_range() from validated values",
+    "strapdown.nav_step": "compiled kernel fed by strapdown.integrate and navlib's filters (like kalman.predict)",
+    "timing.TimingReport": "record returned by timing.sanitize, built from validated values",
 }
 
 
