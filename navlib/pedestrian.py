@@ -77,6 +77,32 @@ rejections within a stance (a drifted INS must not lock the filter out),
 optionally gates compass samples on the field's magnitude and dip (steel),
 counts all of these, and warns when it never updated (no static interval).
 
+Faults (robustness contract; tests in ``tests/faults/test_faults_pedestrian.py``;
+every action is counted in ``FilterResult.counts``):
+
+* IMU dropouts (NaN): zero-order hold of the last good sample
+  (``imu_dropouts``), with the process noise inflated while holding
+  (``FilterConfig.hold_*_sigma``); held samples never feed ZUPT/ZARU
+  (``static_skipped``); :func:`detect_static` uses the valid samples of a
+  window and needs at least half of them.
+* IMU spikes: with ``FilterConfig.spike_gyro`` / ``spike_accel`` set, an
+  isolated sample sticking out of both neighbours is held like a dropout
+  (``imu_spikes``); :func:`despike` applies the same test before
+  :func:`detect_static` (whose variance test spikes would otherwise fail).
+  Off by default (the paper's filter): then a spike in a stance fails the
+  detector or the NIS gate (``zupt_rejected``) and one while walking is
+  integrated.
+* IMU saturation (``full_scale=`` given): samples at the rails are counted
+  (``imu_saturated``), integrated as measured, and excluded from ZUPT/ZARU
+  (``static_skipped``).
+* Barometer: NaN = no reading (the tracker coasts); spikes beyond
+  ``FilterConfig.baro_gate`` are skipped (``baro_rejected``); a persistent
+  jump re-initialises the tracker (``baro_reinit``).
+* Magnetometer: NaN = no reading; spikes and disturbances fail the field
+  magnitude / dip gate when ``field_n`` and tolerances are given (``mag_gated``).
+* Timing: ``dt`` may be per-sample intervals (irregular sampling); repeated
+  and out-of-order timestamps go through :func:`navlib.timing.sanitize` first.
+
 Not in the paper: the Earth-rate block ``-C^T [w_ie x]`` of H (above), and
 an accelerometer process noise five times the MPU-6050 density to cover the
 scale-factor and cross-axis errors the 15-state model leaves out
@@ -100,12 +126,15 @@ from ._validate import as_array, generator, positive
 from .earth import _radii
 from .strapdown import nav_step
 
+
+
 __all__ = ["M_NED_ENU", "STATIC_THRESHOLDS", "ned_to_enu_dcm", "Leg", "Gait", "walk", "stance_mask", "carpark_legs",
            "floor_test_legs", "detect_static", "detection_rates", "level", "static_gyro_bias",
            "magnetic_heading", "tilt_compensate_ned", "tilt_compensate_printed", "heading_from_horizontal",
            "baro_height", "reference_pressure", "classify_floor", "segment_floors", "hvac_pressure_steps",
-           "error_state_matrix", "error_model_fd", "zupt_zaru_matrix", "zupt_zaru_innovation",
-           "simple_covariance_update", "FilterConfig", "FilterResult", "run_filter", "detect_steps",
+           "despike", "error_state_matrix", "error_model_fd", "zupt_zaru_matrix", "zupt_zaru_innovation",
+           "simple_covariance_update", "FilterConfig", "FilterResult", "run_filter", "FLAG_DROPOUT", "FLAG_SPIKE",
+           "FLAG_SATURATED", "FLAG_STATIC_SKIPPED", "detect_steps",
            "weinberg_step_length", "pdr", "StepResult", "segments", "pdr_headings", "expanding_std",
            "horizontal_error"]
 
@@ -378,12 +407,17 @@ def detect_static(w_ib_b, f_b, dt: float, window: float = 0.5, gyro_bias=(0.0, 0
     ``rms |w - b_g| < tau_w`` (angular-rate energy), ``std |f| < tau_f``
     (specific-force variance) and ``|mean |f| - g| < tau_g`` (magnitude).
 
+    NaN samples (dropouts) are left out: the statistics use the valid
+    samples of each window, and a window with fewer than half of its
+    samples valid is never static (a missing sample is no evidence of
+    standing still).
+
     Parameters
     ----------
     w_ib_b, f_b : array_like, shape (N, 3)
-        Gyro (rad/s) and accelerometer (m/s^2) samples.
+        Gyro (rad/s) and accelerometer (m/s^2) samples; NaN marks dropouts.
     dt : float
-        Sample interval (s).
+        Sample interval (s) (nominal; the window is a number of samples).
     window : float
         Window length (s); at most the record length.
     gyro_bias : array_like, shape (3,)
@@ -397,11 +431,14 @@ def detect_static(w_ib_b, f_b, dt: float, window: float = 0.5, gyro_bias=(0.0, 0
     -------
     static : ndarray of bool, shape (N,)
     """
-    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1)
-    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1)
+    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
+    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=True)
     if w.ndim != 2 or f.shape != w.shape:
         raise ValueError(f"f_b: expected the shape (N, 3) of w_ib_b {w.shape}, got {f.shape}")
     dt = float(positive(dt, "dt"))
+    valid = np.isfinite(w).all(-1) & np.isfinite(f).all(-1)
+    if not valid.all():
+        w, f = np.where(valid[:, None], w, 0.0), np.where(valid[:, None], f, 0.0)
     n = int(round(float(positive(window, "window")) / dt))
     if n < 2 or n > w.shape[0]:
         raise ValueError(f"window: expected 2 samples up to the record length {w.shape[0] * dt:g} s, "
@@ -411,9 +448,65 @@ def detect_static(w_ib_b, f_b, dt: float, window: float = 0.5, gyro_bias=(0.0, 0
     g = float(positive(g, "g"))
     w2 = np.sum((w - b) ** 2, -1)
     fn = np.linalg.norm(f, axis=-1)
-    f_mean = _window_mean(fn, n)
-    f_var = np.maximum(_window_mean(fn ** 2, n) - f_mean ** 2, 0.0)
-    return (np.sqrt(_window_mean(w2, n)) < tw) & (np.sqrt(f_var) < tf) & (np.abs(f_mean - g) < tg)
+    if valid.all():
+        mean = lambda x: _window_mean(x, n)
+    else:
+        share = _window_mean(valid.astype(float), n)           # fraction of valid samples per window
+        mean = lambda x: _window_mean(np.where(valid, x, 0.0), n) / np.maximum(share, 0.5 / n)
+    f_mean = mean(fn)
+    f_var = np.maximum(mean(fn ** 2) - f_mean ** 2, 0.0)
+    static = (np.sqrt(mean(w2)) < tw) & (np.sqrt(f_var) < tf) & (np.abs(f_mean - g) < tg)
+    if not valid.all():
+        static &= share >= 0.5
+    return static
+
+
+@njit(cache=True)
+def _spike_mask(w, f, spike_gyro, spike_accel):
+    n = w.shape[0]
+    hit = np.zeros(n, dtype=np.bool_)
+    for k in range(2, n - 2):
+        hit[k] = _is_spike(w, k, spike_gyro) or _is_spike(f, k, spike_accel)
+    return hit
+
+
+def despike(w_ib_b, f_b, spike_gyro: float, spike_accel: float):
+    """Mark isolated IMU spikes as dropouts (NaN), before :func:`detect_static` and :func:`run_filter`.
+
+    The same test as ``FilterConfig.spike_gyro`` / ``spike_accel`` (see
+    there): a sample deviating from the line through its neighbours by more
+    than the threshold, and by 1.5 times more than either neighbour does.
+    Two adjacent spikes are not found (each hides the other). Spiky samples
+    inflate the detector's variance test and hide stances; as NaN they are
+    left out of it and held by the filter (counted as ``imu_dropouts``).
+
+    Parameters
+    ----------
+    w_ib_b, f_b : array_like, shape (N, 3)
+        Gyro (rad/s) and accelerometer (m/s^2) samples; NaN allowed.
+    spike_gyro, spike_accel : float
+        Thresholds (rad/s, m/s^2); inf disables a sensor's test.
+
+    Returns
+    -------
+    w_ib_b, f_b : ndarray, shape (N, 3)
+        Copies with the spiky samples (both sensors) set to NaN.
+    spikes : ndarray of bool, shape (N,)
+    """
+    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
+    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=True)
+    if w.ndim != 2 or f.shape != w.shape:
+        raise ValueError(f"f_b: expected the shape (N, 3) of w_ib_b {w.shape}, got {f.shape}")
+    tg = float(as_array(spike_gyro, "spike_gyro", finite=False))
+    ta = float(as_array(spike_accel, "spike_accel", finite=False))
+    if not tg > 0:
+        raise ValueError(f"spike_gyro: expected a positive threshold (inf: off), got {spike_gyro!r}")
+    if not ta > 0:
+        raise ValueError(f"spike_accel: expected a positive threshold (inf: off), got {spike_accel!r}")
+    hit = _spike_mask(np.ascontiguousarray(w), np.ascontiguousarray(f), tg, ta)
+    w, f = w.copy(), f.copy()
+    w[hit], f[hit] = np.nan, np.nan
+    return w, f, hit
 
 
 def detection_rates(detected, truth) -> tuple[float, float]:
@@ -584,6 +677,8 @@ def baro_height(p, p_ref, temperature=None):
         Air temperature (K).
     """
     p = as_array(p, "p")
+    if p.size == 0:
+        raise ValueError("p: expected at least one pressure, got an empty array")
     if np.any(p <= 0):
         raise ValueError(f"p: expected positive pressures (Pa), got min {p.min():g}")
     p_ref = float(positive(p_ref, "p_ref"))
@@ -821,6 +916,19 @@ def simple_covariance_update(P, H, R):
 # Error-state filter: configuration, compiled kernel, driver
 # --------------------------------------------------------------------------
 
+def _intervals(dt, n):
+    """``dt`` scalar or shape (n,) -> positive float array of shape (n,)."""
+    d = positive(dt, "dt")
+    if d.ndim == 0:
+        return np.full(n, float(d))
+    if d.shape != (n,):
+        raise ValueError(f"dt: expected a scalar or per-sample intervals of shape ({n},), got shape {d.shape}")
+    return np.ascontiguousarray(d, dtype=float)
+
+
+_MAY_BE_INF = ("gate", "mag_field_tol", "mag_dip_tol", "baro_gate", "spike_gyro", "spike_accel")
+
+
 @dataclass(frozen=True)
 class FilterConfig:
     """Noise and tuning of the ZUPT/ZARU error-state filter (SI units).
@@ -866,7 +974,33 @@ class FilterConfig:
     mag_field_tol, mag_dip_tol : float
         Reject magnetic resets when |m| differs from the reference intensity
         by more than this (uT) or the dip by more than this (rad); inf to
-        accept every sample.
+        accept every sample. This is also the defence against magnetometer
+        spikes (a 100-sigma spike changes |m| by tens of uT); it needs
+        ``field_n`` in :func:`run_filter`.
+    baro_gate : float
+        Reject a barometric height that differs from the alpha-beta tracker's
+        prediction by more than this (m): a spike (counted ``baro_rejected``;
+        the tracker coasts over it and no aiding uses it). After
+        ``max_rejected`` consecutive rejections the tracker is re-initialised
+        on the measurement (counted ``baro_reinit``): the height really
+        changed while the barometer was missing or the tracker diverged.
+        Default 5 m: 10 BMP180 sigmas (0.5 m at 0.06 hPa), far beyond HVAC
+        pressure steps (~1 m) and the tracker lag on stairs; inf disables.
+    spike_gyro, spike_accel : float
+        IMU spike test (rad/s, m/s^2): a sample that deviates from the line
+        through its two neighbours by more than this, on any axis, and by
+        more than 1.5 times the same deviation of either neighbour, is an
+        isolated spike; it is held like a dropout and counted
+        (``imu_spikes``). Default inf (off, the paper's filter). At 100 Hz
+        on a walking shoulder 0.02 rad/s and 0.5 m/s^2 are safe (that
+        deviation is a few mrad/s and cm/s^2 for the gait, noise 0.001 rad/s
+        and 0.05 m/s^2 for the MPU-6050). Offline test: it looks two samples
+        ahead; the first and last two samples are never tested.
+    hold_gyro_sigma, hold_accel_sigma : float
+        Uncertainty of a held sample (rad/s, m/s^2): while a dropout or
+        spike is bridged by holding, the attitude and velocity process noise
+        grow by ``sigma^2 dt`` per held sample, so the covariance admits the
+        guess and the next stance's ZUPT/ZARU is not gated out.
     """
     accel_noise: float = 0.02
     gyro_noise: float = np.deg2rad(0.005)
@@ -889,19 +1023,48 @@ class FilterConfig:
     max_rejected: int = 5
     mag_field_tol: float = np.inf
     mag_dip_tol: float = np.inf
+    baro_gate: float = 5.0
+    spike_gyro: float = np.inf
+    spike_accel: float = np.inf
+    hold_gyro_sigma: float = 0.1
+    hold_accel_sigma: float = 1.0
 
     def __post_init__(self):
         for name, v in self.__dict__.items():
-            ok = isinstance(v, (int, float, np.floating, np.integer)) and v > 0
-            if not ok or (np.isinf(v) and name not in ("gate", "mag_field_tol", "mag_dip_tol")):
+            ok = isinstance(v, (int, float, np.floating, np.integer)) and not isinstance(v, bool) and v > 0
+            if not ok or (np.isinf(v) and name not in _MAY_BE_INF):
                 raise ValueError(f"{name}: expected a positive number, got {v!r}")
 
 
 # counters returned by the kernel
-_N_ZUPT, _N_ZUPT_REJ, _N_ZUPT_FORCED, _N_IMU_NAN, _N_BARO, _N_MAG, _N_MAG_GATED = range(7)
+(_N_ZUPT, _N_ZUPT_REJ, _N_ZUPT_FORCED, _N_IMU_NAN, _N_BARO, _N_MAG, _N_MAG_GATED, _N_SAT, _N_STATIC_SKIP,
+ _N_BARO_REJ, _N_BARO_REINIT, _N_SPIKE) = range(12)
 _COUNTERS = ("zupt_updates", "zupt_rejected", "zupt_forced", "imu_dropouts", "baro_aidings", "mag_aidings",
-             "mag_gated")
+             "mag_gated", "imu_saturated", "static_skipped", "baro_rejected", "baro_reinit", "imu_spikes")
+
+
 _AIDING = {"none": 0, "reset": 1, "filter": 2}
+FLAG_DROPOUT, FLAG_SPIKE, FLAG_SATURATED, FLAG_STATIC_SKIPPED = 1, 2, 4, 8
+"""Bits of :attr:`FilterResult.flags`."""
+
+
+@njit(cache=True)
+def _is_spike(x, k, thr):
+    """Sample k is an isolated spike on some axis (needs 2 <= k < N - 2).
+
+    With ``r_j = x_j - (x_j-1 + x_j+1) / 2`` (the deviation from the line
+    through the neighbours): ``|r_k| > thr`` and ``|r_k| > 1.5 |r_k-+1|``. A
+    spike S gives ``r_k = S`` and ``r_k-+1 = -S/2``, so its neighbours never
+    qualify; smooth motion gives ``r ~ a w^2 dt^2``, a few mrad/s or cm/s^2
+    at 100 Hz. NaN nearby never flags a spike.
+    """
+    for i in range(3):
+        r0 = x[k, i] - (x[k - 1, i] + x[k + 1, i]) / 2
+        rm = x[k - 1, i] - (x[k - 2, i] + x[k, i]) / 2
+        rp = x[k + 1, i] - (x[k, i] + x[k + 2, i]) / 2
+        if abs(r0) > thr and abs(r0) > 1.5 * abs(rm) and abs(r0) > 1.5 * abs(rp):
+            return True
+    return False
 
 
 @njit(cache=True)
@@ -935,18 +1098,19 @@ def _reset_state(P, i, sigma):
 
 @njit(cache=True)
 def _filter_kernel(lla0, vel0, q0, b0, w, f, dt, static, h_baro, m_b, declination, field_ref, zupt,
-                   aiding, every, q_diag, p0_diag, r_zupt, r_zaru, r_baro, r_heading, alpha, beta, gate, max_rejected,
-                   field_tol, dip_tol, a, flat, e2, mgrav, gamma_e, k_som, omega):
+                   aiding, every, q_rate, p0_diag, r_zupt, r_zaru, r_baro, r_heading, alpha, beta, gate, max_rejected,
+                   field_tol, dip_tol, gyro_fs, accel_fs, baro_gate, spike_gyro, spike_accel, hold_gyro, hold_accel,
+                   a, flat, e2, mgrav, gamma_e, k_som, omega):
+    """``dt`` (N,) per-sample intervals; ``q_rate`` (15,) process-noise densities squared (Q = q_rate dt_k)."""
     n = w.shape[0]
+    counts = np.zeros(12, dtype=np.int64)
+    flags = np.zeros(n, dtype=np.uint8)
     lla_out, vel_out, q_out = np.empty((n + 1, 3)), np.empty((n + 1, 3)), np.empty((n + 1, 4))
     b_out, p_out = np.empty((n + 1, 6)), np.empty((n + 1, 15))
-    counts = np.zeros(7, dtype=np.int64)
     lla, vel, q, b = lla0.copy().reshape(1, 3), vel0.copy().reshape(1, 3), q0.copy().reshape(1, 4), b0.copy()
     x, P = np.zeros(15), np.diag(p0_diag)
     Phi = np.eye(15)
-    for i in range(3):
-        Phi[i, 3 + i] = dt
-    Q = np.diag(q_diag)
+    Q = np.zeros((15, 15))
     H6, z6, h6 = np.zeros((6, 15)), np.zeros(6), np.zeros(6)
     R6 = np.diag(np.array([r_zupt, r_zupt, r_zupt, r_zaru, r_zaru, r_zaru]))
     H1, z1, h1, R1 = np.zeros((1, 15)), np.zeros(1), np.zeros(1), np.zeros((1, 1))
@@ -956,24 +1120,50 @@ def _filter_kernel(lla0, vel0, q0, b0, w, f, dt, static, h_baro, m_b, declinatio
     w_last, f_last = w[0].copy(), f[0].copy()
     w_sum, n_sum, n_rejected = np.zeros(3), 0, 0
     hb, vb, hb_init, t_baro = 0.0, 0.0, False, 0.0          # alpha-beta tracker of the baro height
+    n_baro_rej = 0
     w_ie = np.zeros(3)
     lla_out[0], vel_out[0], q_out[0], b_out[0] = lla[0], vel[0], q[0], b
     for i in range(15):
         p_out[0, i] = P[i, i]
     for k in range(n):
-        if np.isfinite(w[k]).all() and np.isfinite(f[k]).all():
-            w_last[:], f_last[:] = w[k], f[k]
+        dtk = dt[k]
+        good, held = True, False                         # good: a real, unclipped sample, usable for ZUPT/ZARU
+        if not (np.isfinite(w[k]).all() and np.isfinite(f[k]).all()):
+            counts[_N_IMU_NAN] += 1                      # dropout: hold the last good sample
+            flags[k] |= FLAG_DROPOUT
+            good, held = False, True
+        elif k > 1 and k + 2 < n and (_is_spike(w, k, spike_gyro) or _is_spike(f, k, spike_accel)):
+            counts[_N_SPIKE] += 1                        # isolated spike: held like a dropout
+            flags[k] |= FLAG_SPIKE
+            good, held = False, True
         else:
-            counts[_N_IMU_NAN] += 1                          # hold the last good sample
+            w_last[:], f_last[:] = w[k], f[k]
+            for i in range(3):
+                if abs(w[k, i]) >= gyro_fs or abs(f[k, i]) >= accel_fs:
+                    good = False
+            if not good:
+                counts[_N_SAT] += 1                      # at the rails: integrated as is, no static update
+                flags[k] |= FLAG_SATURATED
         for i in range(3):
             wk[i] = w_last[i] - b[3 + i]
             fk[i] = f_last[i] - b[i]
-        nav_step(lla[0], vel[0], q[0], wk, fk, dt, earth_consts, False)   # the shared mechanisation
+        nav_step(lla[0], vel[0], q[0], wk, fk, dtk, earth_consts, False)   # the shared mechanisation
         C = attitude.quat_to_dcm_1(q[0])
-        _fill_F(Phi, C * dt, C @ fk * dt)              # Phi = I + F dt (blocks scaled by dt)
+        for i in range(3):
+            Phi[i, 3 + i] = dtk
+        for i in range(15):
+            Q[i, i] = q_rate[i] * dtk
+        if held:                                         # the held sample is a guess: inflate, don't trust
+            for i in range(3):
+                Q[3 + i, 3 + i] += hold_accel * hold_accel * dtk
+                Q[6 + i, 6 + i] += hold_gyro * hold_gyro * dtk
+        _fill_F(Phi, C * dtk, C @ fk * dtk)            # Phi = I + F dt (blocks scaled by dt)
         x, P = kalman.predict(x, P, Phi, Q)
+        if static[k] and zupt and not good:              # held or clipped: left out of the static average
+            counts[_N_STATIC_SKIP] += 1
+            flags[k] |= FLAG_STATIC_SKIPPED
         # --- standing still: ZUPT + ZARU (Eq. 2) ---
-        if static[k] and zupt:
+        elif static[k] and zupt:
             for i in range(3):
                 w_sum[i] += w_last[i]
             n_sum += 1
@@ -1002,13 +1192,24 @@ def _filter_kernel(lla0, vel0, q0, b0, w, f, dt, static, h_baro, m_b, declinatio
         elif not static[k]:
             w_sum[:], n_sum, n_rejected = 0.0, 0, 0
         # --- barometer: alpha-beta tracker always, aiding while walking ---
-        if np.isfinite(h_baro[k]):
+        use_baro = np.isfinite(h_baro[k])
+        if use_baro:
             if not hb_init:
                 hb, vb, hb_init = h_baro[k], 0.0, True
             else:
                 r = h_baro[k] - hb
-                hb += alpha * r
-                vb += beta * r / t_baro
+                if abs(r) > baro_gate and n_baro_rej < max_rejected:
+                    counts[_N_BARO_REJ] += 1                 # spike: the tracker coasts over it
+                    n_baro_rej += 1
+                    use_baro = False
+                elif abs(r) > baro_gate:                     # persistent: the tracker, not the sensor, is off
+                    counts[_N_BARO_REINIT] += 1
+                    hb, vb, n_baro_rej = h_baro[k], 0.0, 0
+                else:
+                    hb += alpha * r
+                    vb += beta * r / t_baro
+                    n_baro_rej = 0
+        if use_baro:
             t_baro = 0.0
             if aiding > 0 and not static[k]:
                 counts[_N_BARO] += 1
@@ -1022,8 +1223,8 @@ def _filter_kernel(lla0, vel0, q0, b0, w, f, dt, static, h_baro, m_b, declinatio
                     z1[0], h1[0], R1[0, 0] = lla[0, 2] - h_baro[k], 0.0, r_baro
                     x, P, _, _, status = kalman.update(x, P, z1, h1, H1, R1, no_wrap1, np.inf)
                     _feedback(x, lla[0], vel[0], q[0], b, a, e2)
-        hb += vb * dt
-        t_baro += dt
+        hb += vb * dtk
+        t_baro += dtk
         # --- magnetometer heading while walking (Eqs. 4-6) ---
         if aiding > 0 and not static[k] and np.isfinite(m_b[k]).all():
             m_n = C @ m_b[k]
@@ -1051,7 +1252,7 @@ def _filter_kernel(lla0, vel0, q0, b0, w, f, dt, static, h_baro, m_b, declinatio
         lla_out[k + 1], vel_out[k + 1], q_out[k + 1], b_out[k + 1] = lla[0], vel[0], q[0], b
         for i in range(15):
             p_out[k + 1, i] = P[i, i]
-    return lla_out, vel_out, q_out, b_out, p_out, counts
+    return lla_out, vel_out, q_out, b_out, p_out, counts, flags, P
 
 
 @dataclass(frozen=True)
@@ -1069,15 +1270,34 @@ class FilterResult:
     counts : dict
         ``zupt_updates`` (accepted static updates), ``zupt_rejected`` (NIS
         gate), ``zupt_forced`` (applied ungated after repeated rejections),
-        ``imu_dropouts`` (NaN IMU samples held), ``baro_aidings`` /
-        ``mag_aidings`` (samples used while walking), ``mag_gated``
-        (magnetometer samples rejected as disturbed).
+        ``imu_dropouts`` (NaN IMU samples held from the last good one),
+        ``imu_spikes`` (isolated spikes found by the ``spike_gyro`` /
+        ``spike_accel`` test of :class:`FilterConfig`, held like dropouts),
+        ``imu_saturated`` (samples with a gyro or accelerometer component at
+        the rails of ``full_scale``; integrated as measured),
+        ``static_skipped`` (samples flagged static but held or saturated:
+        left out of the ZUPT/ZARU average),
+        ``baro_aidings`` / ``mag_aidings`` (samples used while walking),
+        ``mag_gated`` (magnetometer samples rejected as disturbed or spiky),
+        ``baro_rejected`` (barometer samples beyond ``baro_gate`` of the
+        tracker: spikes, skipped), ``baro_reinit`` (tracker re-initialised on
+        the measurement after ``max_rejected`` consecutive rejections).
+    flags : ndarray of uint8, shape (N,)
+        Per IMU sample, a bit set of what the filter did with it:
+        ``FLAG_DROPOUT`` (1, NaN, held), ``FLAG_SPIKE`` (2, spike, held),
+        ``FLAG_SATURATED`` (4, at the rails), ``FLAG_STATIC_SKIPPED`` (8,
+        flagged static but left out of ZUPT/ZARU). The counters are the
+        sums of these bits.
+    P : ndarray, shape (15, 15)
+        Error covariance after the last sample (symmetric positive definite).
     """
     nav: trajectory.Trajectory
     accel_bias: np.ndarray
     gyro_bias: np.ndarray
     P_diag: np.ndarray
     counts: dict
+    flags: np.ndarray
+    P: np.ndarray
 
     @property
     def updated(self) -> bool:
@@ -1092,19 +1312,25 @@ def _field_reference(B_n):
     return np.array([float(F), float(I)])
 
 
-def run_filter(w_ib_b, f_b, dt: float, lla0, vel0, q0, static, *, h_baro=None, m_b=None,
+def run_filter(w_ib_b, f_b, dt, lla0, vel0, q0, static, *, h_baro=None, m_b=None,
                declination: float = 0.0, field_n=None, walk_aiding: str = "reset", zupt: bool = True,
                accel_bias0=(0.0, 0.0, 0.0), gyro_bias0=(0.0, 0.0, 0.0), config: FilterConfig = FilterConfig(),
-               t0: float = 0.0, ellipsoid: earth.Ellipsoid = earth.WGS84) -> FilterResult:
+               t0: float = 0.0, ellipsoid: earth.Ellipsoid = earth.WGS84, full_scale=None) -> FilterResult:
     """The paper's system: strapdown INS + ZUPT/ZARU Kalman filter + walking aids.
 
     Parameters
     ----------
     w_ib_b, f_b : array_like, shape (N, 3)
         Gyro (rad/s) and accelerometer (m/s^2) samples; NaN samples
-        (dropouts) are replaced by the last good one and counted.
-    dt : float
-        IMU sample interval (s).
+        (dropouts) are replaced by the last good one and counted
+        (``imu_dropouts``); they are never used for ZUPT/ZARU
+        (``static_skipped``). The first sample must be valid.
+    dt : float or array_like, shape (N,)
+        IMU sample interval (s), or per-sample intervals (irregular
+        sampling; ``dt[k]`` covered by sample k, e.g.
+        :func:`navlib.timing.intervals`). Logs with repeated or out-of-order
+        timestamps go through :func:`navlib.timing.sanitize` first. The
+        static update rate uses the median interval.
     lla0, vel0 : array_like, shape (3,)
         Initial position (rad, rad, m) and ENU velocity (m/s).
     q0 : array_like, shape (4,)
@@ -1130,6 +1356,13 @@ def run_filter(w_ib_b, f_b, dt: float, lla0, vel0, q0, static, *, h_baro=None, m
     config : FilterConfig
     t0 : float
         Time of the first epoch (s).
+    full_scale : (float, float), optional
+        Device range ``(gyro rad/s, accelerometer m/s^2)``, e.g. the
+        ``full_scale`` of :func:`navlib.sensors.imu_model`. A sample with any
+        component at or beyond the range is at the rails: counted
+        (``imu_saturated``), integrated as measured (the best estimate
+        available), but never used for ZUPT/ZARU (``static_skipped``).
+        Default: no range (nothing is treated as clipped).
 
     Returns
     -------
@@ -1144,7 +1377,7 @@ def run_filter(w_ib_b, f_b, dt: float, lla0, vel0, q0, static, *, h_baro=None, m
     n = w.shape[0]
     if not (np.isfinite(w[0]).all() and np.isfinite(f[0]).all()):
         raise ValueError("w_ib_b, f_b: expected a valid first sample (dropouts are held from the last good one)")
-    dt = float(positive(dt, "dt"))
+    dts = _intervals(dt, n)
     lla0 = as_array(lla0, "lla0", tail=(3,)).reshape(3)
     if abs(lla0[0]) > np.deg2rad(89.9):
         raise ValueError("lla0: expected |lat| <= 89.9 deg (ENU mechanisation)")
@@ -1165,24 +1398,37 @@ def run_filter(w_ib_b, f_b, dt: float, lla0, vel0, q0, static, *, h_baro=None, m
         raise ValueError(f"walk_aiding: expected one of {sorted(_AIDING)}, got {walk_aiding!r}")
     if not isinstance(config, FilterConfig):
         raise ValueError(f"config: expected a FilterConfig, got {type(config).__name__}")
+    if not isinstance(ellipsoid, earth.Ellipsoid):
+        raise ValueError(f"ellipsoid: expected a navlib.earth.Ellipsoid, got {type(ellipsoid).__name__}")
     b0 = np.concatenate([as_array(accel_bias0, "accel_bias0", tail=(3,)).reshape(3),
                          as_array(gyro_bias0, "gyro_bias0", tail=(3,)).reshape(3)])
+    if full_scale is None:
+        gyro_fs, accel_fs = np.inf, np.inf
+    else:
+        fs = as_array(full_scale, "full_scale", allow_nan=False, finite=False)
+        if fs.shape != (2,) or np.isnan(fs).any() or np.any(fs <= 0):
+            raise ValueError(f"full_scale: expected (gyro rad/s, accel m/s^2), two positive numbers, "
+                             f"got {full_scale!r}")
+        gyro_fs, accel_fs = float(fs[0]), float(fs[1])
     c = config
-    every = max(1, int(round(1.0 / (c.update_rate * dt))))
-    q_diag = np.concatenate([np.zeros(3), np.full(3, c.accel_noise ** 2 * dt), np.full(3, c.gyro_noise ** 2 * dt),
-                             np.full(3, c.accel_bias_rw ** 2 * dt), np.full(3, c.gyro_bias_rw ** 2 * dt)])
+    every = max(1, int(round(1.0 / (c.update_rate * float(np.median(dts))))))
+    q_rate = np.concatenate([np.zeros(3), np.full(3, c.accel_noise ** 2), np.full(3, c.gyro_noise ** 2),
+                             np.full(3, c.accel_bias_rw ** 2), np.full(3, c.gyro_bias_rw ** 2)])
     p0 = np.array([c.p0_pos] * 3 + [c.p0_vel] * 3 + [c.p0_tilt] * 2 + [c.p0_heading]
                   + [c.p0_accel_bias] * 3 + [c.p0_gyro_bias] * 3) ** 2
     out = _filter_kernel(lla0, vel0, np.ascontiguousarray(q0), b0, np.ascontiguousarray(w), np.ascontiguousarray(f),
-                         dt, s, np.ascontiguousarray(hb), np.ascontiguousarray(mb),
+                         dts, s, np.ascontiguousarray(hb), np.ascontiguousarray(mb),
                          float(as_array(declination, "declination")), _field_reference(field_n), bool(zupt),
-                         _AIDING[walk_aiding], every, q_diag, p0, c.sigma_zupt ** 2, c.sigma_zaru ** 2,
+                         _AIDING[walk_aiding], every, q_rate, p0, c.sigma_zupt ** 2, c.sigma_zaru ** 2,
                          c.sigma_baro ** 2, c.sigma_heading ** 2, c.baro_alpha, c.baro_beta, c.gate, c.max_rejected,
-                         c.mag_field_tol, c.mag_dip_tol, *ellipsoid.gravity_constants, ellipsoid.omega)
-    lla, vel, q, b, p_diag, counts = out
-    time = float(as_array(t0, "t0")) + dt * np.arange(n + 1)
+                         c.mag_field_tol, c.mag_dip_tol, gyro_fs, accel_fs, c.baro_gate, c.spike_gyro, c.spike_accel,
+                         c.hold_gyro_sigma, c.hold_accel_sigma,
+                         *ellipsoid.gravity_constants, ellipsoid.omega)
+    lla, vel, q, b, p_diag, counts, flags, P = out
+    t0 = float(as_array(t0, "t0"))
+    time = t0 + (dts[0] * np.arange(n + 1) if np.all(dts == dts[0]) else np.concatenate([[0.0], np.cumsum(dts)]))
     result = FilterResult(trajectory.Trajectory(time, lla, vel, q), b[:, :3], b[:, 3:], p_diag,
-                          dict(zip(_COUNTERS, (int(x) for x in counts))))
+                          dict(zip(_COUNTERS, (int(x) for x in counts))), flags, P)
     if zupt and not result.updated:
         warnings.warn("run_filter: no ZUPT/ZARU update was applied (no static interval detected); "
                       "the output is a free INS with walking aids only", RuntimeWarning, stacklevel=2)

@@ -18,6 +18,28 @@ the true trajectory to rounding error.
 The kernels are compiled with numba and loop over samples; leading axes of
 the inputs (Monte Carlo trials) are flattened into one loop. With
 ``NUMBA_DISABLE_JIT=1`` they run as plain Python.
+
+Faults (navlib's robustness contract; tests in ``tests/faults/test_faults_strapdown.py``)
+-----------------------------------------------------------------------------------------
+Dropouts
+    By default (``on_nan="raise"``) a NaN sample raises ``ValueError``: a free
+    INS has no measurement to fall back on, so nothing is guessed silently.
+    With ``on_nan="hold"`` a NaN gyro (accelerometer) sample is replaced by the
+    last good gyro (accelerometer) sample of the same trial, zero-order hold,
+    and the held samples are returned as a boolean mask next to the result
+    (its sum is the count). A trial whose first sample is NaN cannot be held
+    and raises. The error of a hold grows with the gap like any dead reckoning:
+    attitude error ~ |dw| * gap, position error ~ |df| * gap^2 / 2.
+Outliers, saturation
+    Not detectable by a free INS (no redundancy): spikes and clipped samples are
+    integrated as given. Saturation is counted where it happens, in
+    :func:`navlib.sensors.simulate_imu` (``ImuOutput.gyro_saturated``,
+    ``accel_saturated``) and :func:`navlib.faults.saturate`.
+Timing
+    ``dt`` is a scalar or a per-sample array of shape (N,) (``dt[k]`` is the
+    interval covered by sample k, e.g. :func:`navlib.timing.intervals` of the
+    epoch times); the documented pipeline for logs with repeated or
+    out-of-order timestamps is :func:`navlib.timing.sanitize` first.
 """
 from __future__ import annotations
 
@@ -35,15 +57,21 @@ __all__ = ["integrate", "integrate_attitude", "nav_step", "earth_constants", "er
 
 @njit(cache=True)
 def _attitude_kernel(q0, w, dt, w_in_n):
+    """``dt`` has 1 element (regular sampling) or one per sample (irregular)."""
     T, N = w.shape[0], w.shape[1]
     q = np.empty((T, N + 1, 4))
-    n0, n1, n2, n3 = rotvec_to_quat_t(-w_in_n[0] * dt, -w_in_n[1] * dt, -w_in_n[2] * dt)
+    per_sample = dt.shape[0] > 1
+    dtk = dt[0]
+    n0, n1, n2, n3 = rotvec_to_quat_t(-w_in_n[0] * dtk, -w_in_n[1] * dtk, -w_in_n[2] * dtk)
     for t in range(T):
         a0, a1, a2, a3 = q0[t, 0], q0[t, 1], q0[t, 2], q0[t, 3]
         q[t, 0, 0], q[t, 0, 1], q[t, 0, 2], q[t, 0, 3] = a0, a1, a2, a3
         for k in range(N):
+            if per_sample:
+                dtk = dt[k]
+                n0, n1, n2, n3 = rotvec_to_quat_t(-w_in_n[0] * dtk, -w_in_n[1] * dtk, -w_in_n[2] * dtk)
             # q_k+1 = q(-w_in dt) (x) q_k (x) q(w_k dt), then renormalise
-            b0, b1, b2, b3 = rotvec_to_quat_t(w[t, k, 0] * dt, w[t, k, 1] * dt, w[t, k, 2] * dt)
+            b0, b1, b2, b3 = rotvec_to_quat_t(w[t, k, 0] * dtk, w[t, k, 1] * dtk, w[t, k, 2] * dtk)
             a0, a1, a2, a3 = quat_mult_t(n0, n1, n2, n3, a0, a1, a2, a3)
             a0, a1, a2, a3 = quat_mult_t(a0, a1, a2, a3, b0, b1, b2, b3)
             s = 1.0 / np.sqrt(a0 * a0 + a1 * a1 + a2 * a2 + a3 * a3)
@@ -52,10 +80,55 @@ def _attitude_kernel(q0, w, dt, w_in_n):
     return q
 
 
-def integrate_attitude(q0, w_ib_b, dt: float, w_in_n=None):
+_ON_NAN = ("raise", "hold")
+
+
+def _intervals(dt, n):
+    """Validate ``dt`` (scalar or shape (n,)); return it as a 1-element or n-element float array."""
+    d = positive(dt, "dt")
+    if d.ndim == 0:
+        return np.array([float(d)])
+    if d.shape != (n,):
+        raise ValueError(f"dt: expected a scalar or per-sample intervals of shape ({n},), got {d.shape}")
+    return np.ascontiguousarray(d, dtype=float)
+
+
+def _samples(x, name):
+    """IMU samples ``(..., N, 3)``: real numbers, NaN allowed here (dropouts), inf never."""
+    return as_array(x, name, tail=(3,), min_ndim=1, allow_nan=True)
+
+
+def _hold(x, name):
+    """Zero-order hold of NaN rows along axis -2, per trial; returns (filled, held mask (..., N))."""
+    bad = ~np.isfinite(x).all(axis=-1)
+    if not bad.any():
+        return x, bad
+    if bad[..., 0].any():
+        raise ValueError(f"{name}: the first sample of a trial is NaN; on_nan='hold' needs a good sample to hold")
+    idx = np.where(bad, 0, np.arange(x.shape[-2]))
+    idx = np.maximum.accumulate(idx, axis=-1)
+    return np.take_along_axis(x, idx[..., None], axis=-2), bad
+
+
+def _dropouts(x, name, on_nan):
+    """Apply the ``on_nan`` policy to samples x; return (x, held mask)."""
+    if on_nan == "raise":
+        if np.isnan(x).any():
+            raise ValueError(f"{name}: contains NaN samples (use on_nan='hold' to hold the last good sample)")
+        return x, np.zeros(x.shape[:-1], dtype=bool)
+    return _hold(x, name)
+
+
+def _policy(on_nan):
+    if on_nan not in _ON_NAN:
+        raise ValueError(f"on_nan: expected one of {_ON_NAN}, got {on_nan!r}")
+    return on_nan
+
+
+def integrate_attitude(q0, w_ib_b, dt, w_in_n=None, on_nan: str = "raise"):
     """Integrate gyro samples into an attitude history.
 
-    ``q_k+1 = q(-w_in_n dt) (x) q_k (x) q(w_k dt)`` with a constant
+    ``q_k+1 = q(-w_in_n dt_k) (x) q_k (x) q(w_k dt_k)`` with a constant
     navigation-frame rate ``w_in_n`` (e.g. Earth rate at a fixed latitude for
     a static or slowly moving IMU; zero to neglect it).
 
@@ -64,24 +137,38 @@ def integrate_attitude(q0, w_ib_b, dt: float, w_in_n=None):
     q0 : array_like, shape (4,) or (..., 4)
         Initial attitude quaternion q_b^n.
     w_ib_b : array_like, shape (..., N, 3)
-        Gyro samples (rad/s).
-    dt : float
-        Sample interval (s).
+        Gyro samples (rad/s). NaN marks a dropout (see ``on_nan``); inf is rejected.
+    dt : float or array_like, shape (N,)
+        Sample interval (s), or per-sample intervals (irregular sampling;
+        ``dt[k]`` is covered by sample k, shared by all trials).
     w_in_n : array_like, shape (3,), optional
         Rotation rate of the navigation frame (rad/s); default zero.
+    on_nan : {"raise", "hold"}
+        Dropout policy: raise ``ValueError`` on NaN samples (default), or hold
+        the last good sample of the trial and report the held samples.
 
     Returns
     -------
     q_bn : ndarray, shape (..., N + 1, 4)
+        With ``on_nan="raise"``.
+    (q_bn, held) : tuple
+        With ``on_nan="hold"``: ``held``, bool ndarray of shape (..., N), is
+        True on every sample that was replaced by the last good one
+        (``held.sum()`` is the count of held samples).
     """
-    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1)
-    dt = float(positive(dt, "dt"))
+    on_nan = _policy(on_nan)
+    w = _samples(w_ib_b, "w_ib_b")
+    w, held = _dropouts(w, "w_ib_b", on_nan)
+    dt = _intervals(dt, w.shape[-2])
     q0 = attitude._as_quat(q0, "q0")
     lead = w.shape[:-2]
     q0 = np.broadcast_to(q0, lead + (4,)).reshape(-1, 4)
-    w_in = np.zeros(3) if w_in_n is None else as_array(w_in_n, "w_in_n", tail=(3,)).reshape(3)
+    w_in = np.zeros(3) if w_in_n is None else as_array(w_in_n, "w_in_n", tail=(3,))
+    if w_in.shape != (3,):
+        raise ValueError(f"w_in_n: expected shape (3,), got {w_in.shape}")
     q = _attitude_kernel(np.ascontiguousarray(q0), np.ascontiguousarray(w.reshape(-1, *w.shape[-2:])), dt, w_in)
-    return q.reshape(lead + q.shape[-2:])
+    q = q.reshape(lead + q.shape[-2:])
+    return (q, held) if on_nan == "hold" else q
 
 
 @njit(cache=True)
@@ -102,7 +189,7 @@ def nav_step(lla, vel, q, w, f, dt, earth_consts, hold_height=False):
     w, f : ndarray, shape (3,)
         Gyro (rad/s) and accelerometer (m/s^2) sample.
     dt : float
-        Sample interval (s).
+        Interval covered by this sample (s).
     earth_consts : ndarray, shape (7,)
         ``Ellipsoid.gravity_constants + (omega,)``; see :func:`earth_constants`.
     hold_height : bool
@@ -131,14 +218,22 @@ def nav_step(lla, vel, q, w, f, dt, earth_consts, hold_height=False):
     vel[:] = v_new
 
 
+def _ellipsoid(ellipsoid):
+    if not isinstance(ellipsoid, earth.Ellipsoid):
+        raise ValueError(f"ellipsoid: expected a navlib.earth.Ellipsoid, got {type(ellipsoid).__name__}")
+    return ellipsoid
+
+
 def earth_constants(ellipsoid: earth.Ellipsoid = earth.WGS84) -> np.ndarray:
     """The ``earth_consts`` array of :func:`nav_step` for an ellipsoid."""
+    _ellipsoid(ellipsoid)
     return np.array(ellipsoid.gravity_constants + (ellipsoid.omega,))
 
 
 @njit(cache=True)
 def _nav_kernel(lla0, vel0, q0, w, f, dt, earth_consts, hold_height):
     T, N = w.shape[0], w.shape[1]
+    per_sample = dt.shape[0] > 1
     lla = np.empty((T, N + 1, 3))
     vel = np.empty((T, N + 1, 3))
     q = np.empty((T, N + 1, 4))
@@ -146,13 +241,13 @@ def _nav_kernel(lla0, vel0, q0, w, f, dt, earth_consts, hold_height):
         lla_k, v_k, q_k = lla0[t].copy(), vel0[t].copy(), q0[t].copy()
         lla[t, 0], vel[t, 0], q[t, 0] = lla_k, v_k, q_k
         for k in range(N):
-            nav_step(lla_k, v_k, q_k, w[t, k], f[t, k], dt, earth_consts, hold_height)
+            nav_step(lla_k, v_k, q_k, w[t, k], f[t, k], dt[k if per_sample else 0], earth_consts, hold_height)
             lla[t, k + 1], vel[t, k + 1], q[t, k + 1] = lla_k, v_k, q_k
     return lla, vel, q
 
 
-def integrate(lla0, vel0, q0, w_ib_b, f_b, dt: float, t0: float = 0.0, hold_height: bool = False,
-              ellipsoid: earth.Ellipsoid = earth.WGS84) -> Trajectory:
+def integrate(lla0, vel0, q0, w_ib_b, f_b, dt, t0: float = 0.0, hold_height: bool = False,
+              ellipsoid: earth.Ellipsoid = earth.WGS84, on_nan: str = "raise"):
     """Full strapdown navigation: attitude, ENU velocity and geodetic position.
 
     Parameters
@@ -164,30 +259,47 @@ def integrate(lla0, vel0, q0, w_ib_b, f_b, dt: float, t0: float = 0.0, hold_heig
     q0 : array_like, shape (4,) or (..., 4)
         Initial attitude quaternion q_b^n.
     w_ib_b, f_b : array_like, shape (..., N, 3)
-        Gyro (rad/s) and accelerometer (m/s^2) samples; NaN is not accepted.
-    dt : float
-        Sample interval (s).
+        Gyro (rad/s) and accelerometer (m/s^2) samples. NaN marks a dropout
+        (see ``on_nan``); inf is rejected.
+    dt : float or array_like, shape (N,)
+        Sample interval (s), or per-sample intervals for irregular sampling
+        (``dt[k]`` is the interval covered by sample k, shared by all trials;
+        e.g. :func:`navlib.timing.intervals` of the N + 1 epoch times).
     t0 : float
         Time of the initial state (s).
     hold_height : bool
         Hold the vertical channel (vertical velocity 0, height fixed at its
         initial value), as an INS aided by a known altitude does. The free
         vertical channel is unstable: height errors grow like cosh(sqrt(2 g/R) t).
+    on_nan : {"raise", "hold"}
+        Dropout policy. ``"raise"`` (default): NaN samples raise ValueError.
+        ``"hold"``: a NaN gyro or accelerometer sample is replaced by the last
+        good sample of the same sensor and trial (zero-order hold) and reported.
 
     Returns
     -------
     Trajectory
-        N + 1 epochs; arrays carry the leading (trial) axes of the inputs.
+        With ``on_nan="raise"``: N + 1 epochs; arrays carry the leading
+        (trial) axes of the inputs; ``time = t0 + [0, cumsum(dt)]``.
+    (Trajectory, held) : tuple
+        With ``on_nan="hold"``: ``held``, bool ndarray of shape (..., N), True
+        on every sample where the gyro or the accelerometer sample (or both)
+        was held; ``held.sum()`` counts them.
     """
-    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1)
-    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1)
+    on_nan = _policy(on_nan)
+    w = _samples(w_ib_b, "w_ib_b")
+    f = _samples(f_b, "f_b")
     try:
         w, f = np.broadcast_arrays(w, f)
     except ValueError:
         raise ValueError(f"f_b: expected a shape that broadcasts with w_ib_b {w.shape}, got {f.shape}") from None
-    dt = float(positive(dt, "dt"))
-    t0 = float(as_array(t0, "t0"))
+    w, held_w = _dropouts(w, "w_ib_b", on_nan)
+    f, held_f = _dropouts(f, "f_b", on_nan)
+    held = held_w | held_f
     lead, n = w.shape[:-2], w.shape[-2]
+    dt = _intervals(dt, n)
+    t0 = float(as_array(t0, "t0"))
+    _ellipsoid(ellipsoid)
     lla0 = as_array(lla0, "lla0", tail=(3,))
     latitude(lla0[..., 0], "lla0[..., 0] (lat)")
     if np.any(np.abs(lla0[..., 0]) > np.deg2rad(89.9)):
@@ -197,9 +309,10 @@ def integrate(lla0, vel0, q0, w_ib_b, f_b, dt: float, t0: float = 0.0, hold_heig
     flat = lambda x, k: np.ascontiguousarray(np.broadcast_to(x, lead + x.shape[-k:]).reshape((-1,) + x.shape[-k:]))
     lla, vel, q = _nav_kernel(flat(lla0, 1), flat(vel0, 1), flat(q0, 1), flat(w, 2), flat(f, 2), dt,
                               earth_constants(ellipsoid), bool(hold_height))
-    time = t0 + dt * np.arange(n + 1)
+    time = t0 + (dt[0] * np.arange(n + 1) if dt.size == 1 else np.concatenate([[0.0], np.cumsum(dt)]))
     shape = lambda x: x.reshape(lead + x.shape[-2:])
-    return Trajectory(time, shape(lla), shape(vel), shape(q))
+    traj = Trajectory(time, shape(lla), shape(vel), shape(q))
+    return (traj, held) if on_nan == "hold" else traj
 
 
 def error_model(lat, h, vel_n, f_n, ellipsoid: earth.Ellipsoid = earth.WGS84):
@@ -227,10 +340,20 @@ def error_model(lat, h, vel_n, f_n, ellipsoid: earth.Ellipsoid = earth.WGS84):
     -------
     F : ndarray, shape (9, 9)
     """
-    lat = float(latitude(lat))
-    h = float(as_array(h, "h"))
-    v = as_array(vel_n, "vel_n", tail=(3,)).reshape(3)
-    f = as_array(f_n, "f_n", tail=(3,)).reshape(3)
+    lat = latitude(lat)
+    if lat.ndim != 0:
+        raise ValueError(f"lat: expected a scalar latitude (rad), got shape {lat.shape}")
+    lat = float(lat)
+    h = as_array(h, "h")
+    if h.ndim != 0:
+        raise ValueError(f"h: expected a scalar height (m), got shape {h.shape}")
+    h = float(h)
+    _ellipsoid(ellipsoid)
+    v = as_array(vel_n, "vel_n", tail=(3,))
+    f = as_array(f_n, "f_n", tail=(3,))
+    for x, name in ((v, "vel_n"), (f, "f_n")):
+        if x.shape != (3,):
+            raise ValueError(f"{name}: expected shape (3,), got {x.shape}")
     R_M, R_N = earth.radii(lat, ellipsoid=ellipsoid)
     RMh, RNh = float(R_M) + h, float(R_N) + h
     sl, cl, tl = np.sin(lat), np.cos(lat), np.tan(lat)
@@ -272,7 +395,9 @@ def error_input(C_bn):
     -------
     G : ndarray, shape (9, 6)
     """
-    C = as_array(C_bn, "C_bn", tail=(3, 3)).reshape(3, 3)
+    C = as_array(C_bn, "C_bn", tail=(3, 3))
+    if C.shape != (3, 3):
+        raise ValueError(f"C_bn: expected shape (3, 3), got {C.shape}")
     G = np.zeros((9, 6))
     G[0:3, 0:3] = -C
     G[3:6, 3:6] = C

@@ -140,6 +140,22 @@ def test_detector_rates_on_labelled_walk(carpark):
         pd.detect_static(imu.w_ib_b[:30], imu.f_b[:30], DT, window=0.5)
 
 
+def test_detector_ignores_dropouts_and_needs_half_a_window(carpark):
+    _, traj, static = carpark
+    w, f = trajectory.ideal_imu(traj)
+    imu = sensors.simulate_imu(w, f, DT, RESIDUAL, np.random.default_rng(5))
+    clean = pd.detect_static(imu.w_ib_b, imu.f_b, DT)
+    wn, fn = imu.w_ib_b.copy(), imu.f_b.copy()
+    drop = np.random.default_rng(6).random(len(wn)) < 0.1
+    wn[drop], fn[drop] = np.nan, np.nan
+    wn[2000:2100] = np.nan                                          # 1 s without data: never static
+    det = pd.detect_static(wn, fn, DT)
+    assert not det[2000 + 25:2100 - 25].any()
+    other = np.ones(len(det), bool)
+    other[1950:2150] = False
+    assert np.mean(det[other] == clean[other]) > 0.99               # 10 % dropouts barely matter
+
+
 def test_floor_test_legs_round_trip():
     legs = pd.floor_test_legs()
     traj = pd.walk(legs, 0.05, LLA0, 0.0)
@@ -257,7 +273,17 @@ static = pd.stance_mask(legs, 0.02)[:-1]
 m = np.tile([10.0, 20.0, -30.0], (len(w), 1))
 res = pd.run_filter(w + 1e-3, f, 0.02, traj.lla[0], traj.vel_n[0], traj.q_bn[0], static,
                     h_baro=traj.lla[:-1, 2], m_b=m)
-print(json.dumps({"lla": res.nav.lla.tolist(), "counts": res.counts}))
+# the fault paths: a dropout, a spike, clipping, a baro spike, per-sample intervals
+w2, f2, h2 = w + 1e-3, f.copy(), traj.lla[:-1, 2].copy()
+w2[50] = np.nan
+f2[120, 2] += 5.0
+h2[300] += 50.0
+dt = 0.02 * (1 + 0.1 * np.sin(np.arange(len(w))))
+cfg = pd.FilterConfig(spike_gyro=0.02, spike_accel=0.5)
+res2 = pd.run_filter(w2, f2, dt, traj.lla[0], traj.vel_n[0], traj.q_bn[0], static, h_baro=h2, m_b=m,
+                     config=cfg, full_scale=(0.3, 11.0))
+print(json.dumps({"lla": res.nav.lla.tolist(), "counts": res.counts, "lla2": res2.nav.lla.tolist(),
+                  "counts2": res2.counts, "flags2": res2.flags.tolist()}))
 """
     runs = []
     for flag in ("0", "1"):
@@ -266,6 +292,10 @@ print(json.dumps({"lla": res.nav.lla.tolist(), "counts": res.counts}))
         runs.append(json.loads(out.stdout))
     np.testing.assert_allclose(runs[0]["lla"], runs[1]["lla"], rtol=0, atol=1e-12)
     assert runs[0]["counts"] == runs[1]["counts"]
+    np.testing.assert_allclose(runs[0]["lla2"], runs[1]["lla2"], rtol=0, atol=1e-12)
+    assert runs[0]["counts2"] == runs[1]["counts2"] and runs[0]["flags2"] == runs[1]["flags2"]
+    c = runs[0]["counts2"]
+    assert c["imu_dropouts"] == 1 and c["imu_spikes"] == 1 and c["baro_rejected"] == 1 and c["imu_saturated"] > 0
 
 
 # ---------------------------------------------------------------- barometer and floors
