@@ -48,6 +48,27 @@ or gated update is counted in :attr:`AttitudeResult.counts`; NaN gyro samples
 are replaced by the last valid one (counted), so a dropout never reaches the
 state.
 
+Robustness (what the filters do with bad data; all counted, keys :data:`COUNT_NAMES`)
+------------------------------------------------------------------------------------
+* dropouts and gaps (NaN): gyro -> hold the last used sample; accelerometer,
+  magnetometer, RTK -> skip that correction (a gap is a run of these: the
+  gyro alone carries the attitude);
+* outliers: accelerometer -> ``accel_tol`` norm gate; magnetometer ->
+  :class:`MagGate`; gyro -> ``gyro_jump`` spike gate (hold); RTK heading ->
+  ``rtk_gate`` against the current heading estimate, so 180 deg ambiguity
+  flips are rejected and never fused, with re-acquisition after
+  ``rtk_confirm`` consistent epochs (a drifted estimate is pulled back). The
+  gates are opt-in (defaults keep the paper's filter);
+* timing: ``dt`` may be per-sample intervals of shape (N,) (irregular
+  sampling, used in the compiled kernels); repeated or out-of-order
+  timestamps go through :func:`navlib.timing.sanitize` first;
+* saturation: with ``gyro_range``/``accel_range``/``mag_range`` samples at the
+  rails are counted; accelerometer and magnetometer corrections are skipped
+  for them, gyro samples are used (nothing better exists);
+* the quaternion KF's covariance stays symmetric positive definite under all
+  of these (skipped data never enters it; prediction and Joseph update are
+  symmetrised); :func:`quaternion_kf` returns it (``keep_cov`` for every sample).
+
 The filters are compiled per-sample kernels (numba, allocation-free for
 Mahony); leading axes of the inputs are Monte Carlo trials, split over one
 thread per core (the kernels release the GIL).
@@ -62,7 +83,7 @@ import numpy as np
 from numba import njit
 
 from . import attitude, earth, kalman
-from ._validate import as_array, in_range, positive
+from ._validate import as_array, in_range
 from .attitude import quat_mult_t
 
 __all__ = ["MagGate", "AttitudeResult", "COUNT_NAMES", "magnetic_reference", "tilt_heading",
@@ -71,11 +92,56 @@ __all__ = ["MagGate", "AttitudeResult", "COUNT_NAMES", "magnetic_reference", "ti
            "printed_eq2_roll", "printed_eq4", "printed_eq5_tilt", "printed_eq7_heading", "printed_eq8_quat",
            "printed_eq18_gamma", "printed_eq20_jacobian"]
 
-COUNT_NAMES = ("gyro_held", "accel_skipped", "accel_gated", "mag_skipped", "mag_gated")
-"""Columns of the update counters: NaN gyro samples replaced by the last valid
-one; accelerometer samples unusable (NaN, inf, zero) or gated; heading
-reference samples unusable (magnetometer NaN/zero/parallel to gravity, or no
-valid RTK epoch) or gated (field norm or dip angle)."""
+def _arr(x, name, **kw):
+    """:func:`navlib._validate.as_array`, and non-empty: every input here needs at least one value."""
+    a = as_array(x, name, **kw)
+    if a.size == 0:
+        raise ValueError(f"{name}: expected a non-empty array, got shape {a.shape}")
+    return a
+
+
+def _real_scalar(x, name):
+    """A finite real scalar (any sign)."""
+    a = _arr(x, name)
+    if a.ndim != 0:
+        raise ValueError(f"{name}: expected a scalar, got shape {a.shape}")
+    return float(a)
+
+
+COUNT_NAMES = ("gyro_held", "accel_skipped", "accel_gated", "mag_skipped", "mag_gated", "gyro_saturated",
+               "accel_saturated", "mag_saturated", "rtk_dropped", "rtk_rejected", "rtk_reacquired", "gyro_gated")
+"""Keys of :attr:`AttitudeResult.counts`, one count per trial:
+
+``gyro_held``
+    NaN gyro samples, replaced by the last used sample (hold).
+``accel_skipped``, ``accel_gated``
+    Accelerometer samples unusable (NaN, inf, zero: the correction is
+    skipped) or outside ``accel_tol`` (skipped).
+``mag_skipped``, ``mag_gated``
+    Heading-reference samples unusable (magnetometer NaN, inf, zero or
+    parallel to gravity; in RTK mode, no used RTK epoch within ``rtk_hold``)
+    or outside the :class:`MagGate` (skipped).
+``gyro_saturated``
+    Gyro samples with a component at the rails (``|w| >= gyro_range``): used
+    (unless the spike gate holds them; counted either way), because nothing
+    better exists, but the attitude after them is suspect.
+``accel_saturated``, ``mag_saturated``
+    Accelerometer / magnetometer samples at the rails (``accel_range``,
+    ``mag_range``): their correction is skipped (not also counted as skipped).
+``rtk_dropped``
+    Valid-flagged RTK epochs holding NaN: ignored.
+``rtk_rejected``
+    RTK epochs further than ``rtk_gate`` from the current heading estimate
+    (e.g. 180 deg ambiguity flips): never fused.
+``rtk_reacquired``
+    RTK epochs used although outside ``rtk_gate``, because ``rtk_confirm``
+    consecutive epochs agreed with each other: the estimate, not the RTK, was
+    wrong (e.g. after a long outage without bias estimation).
+``gyro_gated``
+    Gyro spikes: samples differing from the last used one by more than
+    ``gyro_jump`` on some axis, replaced by it (hold); a second such sample in a
+    row is used (a sustained change is motion).
+"""
 
 
 # --------------------------------------------------------------------------
@@ -97,7 +163,7 @@ def magnetic_reference(B_n):
     declination, inclination, intensity : float
         D (rad, east positive), I (rad, down positive), F (uT).
     """
-    B = as_array(B_n, "B_n", tail=(3,))
+    B = _arr(B_n, "B_n", tail=(3,))
     if B.shape != (3,) or np.linalg.norm(B) == 0:
         raise ValueError(f"B_n: expected one non-zero field vector of shape (3,), got {B.tolist()}")
     D, I, F = earth.field_angles(B, deg=False)
@@ -126,8 +192,8 @@ def tilt_heading(f_b, m_b):
     hpr : ndarray, shape (..., 3)
         Magnetic heading (clockwise from magnetic north, [0, 2 pi)), pitch, roll (rad).
     """
-    a = _unit_vectors(as_array(f_b, "f_b", tail=(3,)), "f_b")
-    m = _unit_vectors(as_array(m_b, "m_b", tail=(3,)), "m_b")
+    a = _unit_vectors(_arr(f_b, "f_b", tail=(3,)), "f_b")
+    m = _unit_vectors(_arr(m_b, "m_b", tail=(3,)), "m_b")
     if np.any(np.linalg.norm(np.cross(a, m), axis=-1) < 1e-6):
         raise ValueError("m_b: magnetometer parallel to gravity; heading is undefined")
     ax, ay, az = np.moveaxis(a, -1, 0)
@@ -207,8 +273,8 @@ def _model_rows(q, b, out_h, out_H):
 
 
 def _model(q, b):
-    q = as_array(q, "q", tail=(4,))
-    b = as_array(b, "b", tail=(3,))
+    q = _arr(q, "q", tail=(4,))
+    b = _arr(b, "b", tail=(3,))
     if np.any(b[..., 0] != 0):
         raise ValueError("b: expected reference vectors [0, b_y, b_z] (Eq. 3, magnetic north)")
     lead = np.broadcast_shapes(q.shape[:-1], b.shape[:-1])
@@ -244,8 +310,8 @@ def measurement_jacobian(q, b):
 
 def transition(w, dt: float):
     """Quaternion transition ``Phi = I + dt/2 Omega(w)`` (Eq. 17); w (..., 3) rad/s -> (..., 4, 4)."""
-    w = as_array(w, "w", tail=(3,))
-    dt = float(positive(dt, "dt"))
+    w = _arr(w, "w", tail=(3,))
+    dt = _scalar(dt, "dt")
     c = 0.5 * dt
     wx, wy, wz = np.moveaxis(w, -1, 0)
     o = np.ones_like(wx)
@@ -256,8 +322,8 @@ def transition(w, dt: float):
 
 def noise_input(q, dt: float):
     """Gyro-noise input matrix ``Gamma = dt/2 Xi(q)`` (Eq. 18 corrected, E11); (..., 4) -> (..., 4, 3)."""
-    q = as_array(q, "q", tail=(4,))
-    dt = float(positive(dt, "dt"))
+    q = _arr(q, "q", tail=(4,))
+    dt = _scalar(dt, "dt")
     q0, q1, q2, q3 = np.moveaxis(q, -1, 0)
     rows = [[-q1, -q2, -q3], [q0, -q3, q2], [q3, q0, -q1], [-q2, q1, q0]]
     return dt / 2 * np.stack([np.stack(r, -1) for r in rows], -2)
@@ -269,31 +335,31 @@ def noise_input(q, dt: float):
 
 def printed_eq2_roll(q):
     """Roll as printed in Eq. (2): ``atan(-2(q1 q3 + q0 q2) / (1 - 2(q1^2 + q2^2)))`` (E2)."""
-    q0, q1, q2, q3 = np.moveaxis(as_array(q, "q", tail=(4,)), -1, 0)
+    q0, q1, q2, q3 = np.moveaxis(_arr(q, "q", tail=(4,)), -1, 0)
     return np.arctan(-2 * (q1 * q3 + q0 * q2) / (1 - 2 * (q1 ** 2 + q2 ** 2)))
 
 
 def printed_eq4(q):
     """Eq. (4) as printed, with ``q0`` instead of ``q0**2`` in the third row (E4); (..., 4) -> (..., 3)."""
-    q0, q1, q2, q3 = np.moveaxis(as_array(q, "q", tail=(4,)), -1, 0)
+    q0, q1, q2, q3 = np.moveaxis(_arr(q, "q", tail=(4,)), -1, 0)
     return np.stack([2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), q0 + q3 ** 2 - q1 ** 2 - q2 ** 2], -1)
 
 
 def printed_eq5_tilt(f_b):
     """Eq. (5) as printed: ``roll = atan(a_x / hypot(a_y, a_z))``, ``pitch = atan(-a_y / a_z)`` (E5); returns (pitch, roll)."""
-    a = as_array(f_b, "f_b", tail=(3,))
+    a = _arr(f_b, "f_b", tail=(3,))
     return np.arctan(-a[..., 1] / a[..., 2]), np.arctan(a[..., 0] / np.hypot(a[..., 1], a[..., 2]))
 
 
 def printed_eq7_heading(m_h):
     """Eq. (7) as printed, ``atan(m_x / m_y)`` of the levelled field (the CCW yaw, E8)."""
-    m = as_array(m_h, "m_h", tail=(3,))
+    m = _arr(m_h, "m_h", tail=(3,))
     return np.arctan(m[..., 0] / m[..., 1])
 
 
 def printed_eq8_quat(hpr):
     """Eq. (8) as printed, with its yaw psi = -heading: ``q_z(psi) q_y(roll) q_x(pitch)`` (E1)."""
-    h, p, r = np.moveaxis(as_array(hpr, "hpr", tail=(3,)), -1, 0)
+    h, p, r = np.moveaxis(_arr(hpr, "hpr", tail=(3,)), -1, 0)
     axis_quat = lambda a, i: np.stack([np.cos(a / 2)] + [np.sin(a / 2) * (i == j) for j in range(3)], -1)
     return attitude.quat_mult(attitude.quat_mult(axis_quat(-h, 2), axis_quat(r, 1)), axis_quat(p, 0))
 
@@ -306,7 +372,7 @@ def printed_eq18_gamma(q, dt: float):
 def printed_eq20_jacobian(q, b):
     """Eq. (20) as printed: H44 = 2(q0 b_y - q1 b_z) (E13)."""
     H = measurement_jacobian(q, b).copy()
-    q, b = as_array(q, "q", tail=(4,)), as_array(b, "b", tail=(3,))
+    q, b = _arr(q, "q", tail=(4,)), _arr(b, "b", tail=(3,))
     H[..., 3, 3] = 2 * (q[..., 0] * b[..., 1] - q[..., 1] * b[..., 2])
     return H
 
@@ -395,12 +461,36 @@ def _heading_of(C12, C22):
 
 
 @njit(cache=True, inline="always")
-def _observe(t, k, q0, q1, q2, q3, f, m, hdg, hdg_ok, use_rtk, gates, hold, rtk, counts):
+def _rtk_gate(h, predicted, gate, confirm, state):
+    """Gate one RTK epoch against the predicted heading: 0 use, 1 reject, 2 use (re-acquired).
+
+    An epoch within ``gate`` (rad) of ``predicted`` is used. One outside is
+    rejected (a 180 deg ambiguity flip, a wrong fix) unless it is the
+    ``confirm``-th in a row of rejected epochs that agree with each other
+    within ``gate``: then the reference, not the epoch, is taken to be wrong
+    and the epoch is used. ``state = [run length, heading of the last rejected epoch]``.
+    """
+    if abs(_wrap(h - predicted)) <= gate:
+        state[0] = 0.0
+        return 0
+    if state[0] > 0.0 and abs(_wrap(h - state[1])) <= gate:
+        state[0] += 1.0
+    else:
+        state[0] = 1.0
+    state[1] = h
+    return 2 if state[0] >= confirm else 1
+
+
+@njit(cache=True, inline="always")
+def _observe(t, k, q0, q1, q2, q3, f, m, hdg, hdg_ok, use_rtk, gates, rtk_par, dtk, rtk, counts):
     """Read sample k of trial t: unit accelerometer vector and unit heading reference, counting skips.
 
     The heading reference is the magnetometer, or with ``use_rtk`` the RTK
     north pseudo-vector; ``rtk = [sin H, cos H, heading estimate at the epoch,
-    age in samples]`` of the last valid RTK epoch is updated in place. Returns
+    age (s), gate run length, last rejected heading]`` of the last used RTK
+    epoch is updated in place; ``rtk_par = [hold (s), gate (rad), confirm
+    (epochs)]``. Saturated accelerometer and magnetometer samples arrive here
+    as NaN (set by :func:`_prepare`, which counts them). Returns
     (ax, ay, az, a_ok, mx, my, mz, m_ok, C) with C the nine elements of C_b^n(q).
     """
     C = _dcm_t(q0, q1, q2, q3)
@@ -408,10 +498,21 @@ def _observe(t, k, q0, q1, q2, q3, f, m, hdg, hdg_ok, use_rtk, gates, hold, rtk,
     if ca > 0:
         counts[t, ca] += 1
     if use_rtk:
-        rtk[3] += 1.0
+        rtk[3] += dtk
         if hdg_ok[t, k]:
-            rtk[0], rtk[1], rtk[2], rtk[3] = np.sin(hdg[t, k]), np.cos(hdg[t, k]), _heading_of(C[1], C[4]), 0.0
-        if rtk[3] <= hold and C[6] * C[6] + C[8] * C[8] > 1e-12:     # (no heading at pitch +-90 deg)
+            hk = hdg[t, k]
+            if np.isnan(hk):                                           # valid flag but no value: dropout
+                counts[t, 8] += 1
+            else:
+                est = _heading_of(C[1], C[4])
+                code = _rtk_gate(hk, est, rtk_par[1], rtk_par[2], rtk[4:6])
+                if code == 1:
+                    counts[t, 9] += 1
+                else:
+                    if code == 2:
+                        counts[t, 10] += 1
+                    rtk[0], rtk[1], rtk[2], rtk[3] = np.sin(hk), np.cos(hk), est, 0.0
+        if rtk[3] <= rtk_par[0] and C[6] * C[6] + C[8] * C[8] > 1e-12:     # (no heading at pitch +-90 deg)
             # carry the epoch's heading forward with the estimate's own heading change
             d = _heading_of(C[1], C[4]) - rtk[2]
             sd, cd = np.sin(d), np.cos(d)
@@ -427,13 +528,22 @@ def _observe(t, k, q0, q1, q2, q3, f, m, hdg, hdg_ok, use_rtk, gates, hold, rtk,
 
 
 @njit(cache=True, inline="always")
-def _gyro(t, k, w, gx, gy, gz, counts):
-    """Gyro sample k, or the last valid one (gx, gy, gz) if it is NaN/inf (counted)."""
+def _gyro(t, k, w, gx, gy, gz, held, jump, counts):
+    """Gyro sample k, or the last used one (gx, gy, gz) if it is NaN or a spike (counted).
+
+    A spike (only when ``jump > 0``) is a sample differing from the last used
+    one by more than ``jump`` on some axis, unless the previous sample was
+    already held (``held``): a sustained change is motion, not a spike.
+    Returns (wx, wy, wz, held).
+    """
     wx, wy, wz = w[t, k, 0], w[t, k, 1], w[t, k, 2]
-    if np.isfinite(wx) and np.isfinite(wy) and np.isfinite(wz):
-        return wx, wy, wz
-    counts[t, 0] += 1
-    return gx, gy, gz
+    if not (np.isfinite(wx) and np.isfinite(wy) and np.isfinite(wz)):
+        counts[t, 0] += 1
+        return gx, gy, gz, held
+    if jump > 0.0 and not held and k > 0 and (abs(wx - gx) > jump or abs(wy - gy) > jump or abs(wz - gz) > jump):
+        counts[t, 11] += 1
+        return gx, gy, gz, True
+    return wx, wy, wz, False
 
 
 # --------------------------------------------------------------------------
@@ -441,21 +551,26 @@ def _gyro(t, k, w, gx, gy, gz, counts):
 # --------------------------------------------------------------------------
 
 @njit(cache=True, nogil=True)
-def _mahony_kernel(t0, t1, q_init, w, f, m, hdg, hdg_ok, use_rtk, dt, kp, ki, gates, hold, q_out, bias_out, counts):
+def _mahony_kernel(t0, t1, q_init, w, f, m, hdg, hdg_ok, use_rtk, dts, kp, ki, gates, jump, rtk_par,
+                   q_out, bias_out, counts):
     for t in range(t0, t1):
-        _mahony_trial(t, q_init, w, f, m, hdg, hdg_ok, use_rtk, dt, kp, ki, gates, hold, q_out, bias_out, counts)
+        _mahony_trial(t, q_init, w, f, m, hdg, hdg_ok, use_rtk, dts, kp, ki, gates, jump, rtk_par,
+                      q_out, bias_out, counts)
 
 
 @njit(cache=True)
-def _mahony_trial(t, q_init, w, f, m, hdg, hdg_ok, use_rtk, dt, kp, ki, gates, hold, q_out, bias_out, counts):
+def _mahony_trial(t, q_init, w, f, m, hdg, hdg_ok, use_rtk, dts, kp, ki, gates, jump, rtk_par,
+                  q_out, bias_out, counts):
     q0, q1, q2, q3 = q_init[t, 0], q_init[t, 1], q_init[t, 2], q_init[t, 3]
     gx = gy = gz = 0.0
     ix = iy = iz = 0.0
-    rtk = np.array([0.0, 1.0, 0.0, np.inf])
+    held = False
+    rtk = np.array([0.0, 1.0, 0.0, np.inf, 0.0, 0.0])
     for k in range(w.shape[1]):
-        gx, gy, gz = _gyro(t, k, w, gx, gy, gz, counts)
+        dt = dts[k]
+        gx, gy, gz, held = _gyro(t, k, w, gx, gy, gz, held, jump, counts)
         ax, ay, az, a_ok, mx, my, mz, m_ok, C = _observe(t, k, q0, q1, q2, q3, f, m, hdg, hdg_ok, use_rtk,
-                                                       gates, hold, rtk, counts)
+                                                       gates, rtk_par, dt, rtk, counts)
         ex, ey, ez = _pi_error(C, ax, ay, az, a_ok, mx, my, mz, m_ok)
         ix += ex * dt                                                  # Eq. (15)
         iy += ey * dt
@@ -470,17 +585,18 @@ def _mahony_trial(t, q_init, w, f, m, hdg, hdg_ok, use_rtk, dt, kp, ki, gates, h
 
 
 @njit(cache=True, nogil=True)
-def _kf_kernel(t0, t1, q_init, w, f, m, hdg, hdg_ok, use_rtk, dt, kp, ki, gates, hold, b_ref, sigmas, p0,
-               linear_innovation, q_out, bias_out, counts):
+def _kf_kernel(t0, t1, q_init, w, f, m, hdg, hdg_ok, use_rtk, dts, kp, ki, gates, jump, rtk_par, b_ref, sigmas,
+               p0, linear_innovation, q_out, bias_out, counts, P_out, P_hist):
     for t in range(t0, t1):
-        _kf_trial(t, q_init, w, f, m, hdg, hdg_ok, use_rtk, dt, kp, ki, gates, hold, b_ref, sigmas, p0,
-                  linear_innovation, q_out, bias_out, counts)
+        _kf_trial(t, q_init, w, f, m, hdg, hdg_ok, use_rtk, dts, kp, ki, gates, jump, rtk_par, b_ref, sigmas, p0,
+                  linear_innovation, q_out, bias_out, counts, P_out, P_hist)
 
 
 @njit(cache=True)
-def _kf_trial(t, q_init, w, f, m, hdg, hdg_ok, use_rtk, dt, kp, ki, gates, hold, b_ref, sigmas, p0,
-              linear_innovation, q_out, bias_out, counts):
+def _kf_trial(t, q_init, w, f, m, hdg, hdg_ok, use_rtk, dts, kp, ki, gates, jump, rtk_par, b_ref, sigmas, p0,
+              linear_innovation, q_out, bias_out, counts, P_out, P_hist):
     N = w.shape[1]
+    keep = P_hist.shape[1] == N
     sg, sa, sm = sigmas[0], sigmas[1], sigmas[2]
     by, bz = b_ref[1], b_ref[2]
     x = q_init[t].copy()
@@ -490,12 +606,14 @@ def _kf_trial(t, q_init, w, f, m, hdg, hdg_ok, use_rtk, dt, kp, ki, gates, hold,
     Phi, G, z, h, H = np.empty((4, 4)), np.empty((4, 3)), np.empty(6), np.empty(6), np.empty((6, 4))
     no_angles = np.zeros(6, dtype=np.bool_)
     gx = gy = gz = 0.0
-    rtk = np.array([0.0, 1.0, 0.0, np.inf])
+    held = False
+    rtk = np.array([0.0, 1.0, 0.0, np.inf, 0.0, 0.0])
     ix = iy = iz = 0.0
     for k in range(N):
-        gx, gy, gz = _gyro(t, k, w, gx, gy, gz, counts)
+        dt = dts[k]
+        gx, gy, gz, held = _gyro(t, k, w, gx, gy, gz, held, jump, counts)
         ax, ay, az, a_ok, mx, my, mz, m_ok, C = _observe(t, k, x[0], x[1], x[2], x[3], f, m, hdg, hdg_ok,
-                                                       use_rtk, gates, hold, rtk, counts)
+                                                       use_rtk, gates, rtk_par, dt, rtk, counts)
         ex, ey, ez = _pi_error(C, ax, ay, az, a_ok, mx, my, mz, m_ok)   # PI-corrected rate, Eq. (15)
         ix += ex * dt
         iy += ey * dt
@@ -513,7 +631,10 @@ def _kf_trial(t, q_init, w, f, m, hdg, hdg_ok, use_rtk, dt, kp, ki, gates, hold,
         x, P, _, _, _ = kalman.update(x, P, z, h, H, R, no_angles)
         x = x / np.sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2] + x[3] * x[3])
         q_out[t, k, 0], q_out[t, k, 1], q_out[t, k, 2], q_out[t, k, 3] = x[0], x[1], x[2], x[3]
+        if keep:
+            P_hist[t, k] = P
     bias_out[t, 0], bias_out[t, 1], bias_out[t, 2] = -ki * ix, -ki * iy, -ki * iz
+    P_out[t] = P
 
 
 @njit(cache=True)
@@ -522,16 +643,36 @@ def _wrap(a):
 
 
 @njit(cache=True)
-def _fuse_kernel(h_mag, h_rtk, ok, alpha, hold, out, delta_out, counts):
+def _fuse_kernel(h_mag, h_rtk, ok, dts, alpha, rtk_par, out, delta_out, counts):
     T, N = h_mag.shape
+    hold, gate, confirm = rtk_par[0], rtk_par[1], rtk_par[2]
+    state = np.zeros(2)
     for t in range(T):
         delta, age, anchor_rtk, anchor_mag = np.nan, np.inf, 0.0, 0.0
+        state[0] = 0.0
         for k in range(N):
-            age += 1.0
+            age += dts[k]
             if ok[t, k]:                                   # R1: RTK valid
-                d = _wrap(h_rtk[t, k] - h_mag[t, k])
-                delta = d if np.isnan(delta) else delta + alpha * _wrap(d - delta)
-                anchor_rtk, anchor_mag, age = h_rtk[t, k], h_mag[t, k], 0.0
+                hk = h_rtk[t, k]
+                if np.isnan(hk):                           # valid flag without a value: dropout
+                    counts[t, 3] += 1
+                    code = 1
+                else:
+                    if age <= hold:                        # predicted heading: carried RTK, held delta, or none
+                        pred = anchor_rtk + _wrap(h_mag[t, k] - anchor_mag)
+                    elif not np.isnan(delta):
+                        pred = h_mag[t, k] + delta
+                    else:
+                        pred = hk                          # first epoch: nothing to check it against
+                    code = _rtk_gate(hk, pred, gate, confirm, state)
+                    if code == 1:
+                        counts[t, 4] += 1
+                    elif code == 2:
+                        counts[t, 5] += 1
+                if code != 1:
+                    d = _wrap(hk - h_mag[t, k])
+                    delta = d if (np.isnan(delta) or code == 2) else delta + alpha * _wrap(d - delta)
+                    anchor_rtk, anchor_mag, age = hk, h_mag[t, k], 0.0
             if age <= hold:                                # output the RTK heading, carried between epochs
                 out[t, k] = anchor_rtk + _wrap(h_mag[t, k] - anchor_mag)
                 counts[t, 0] += 1
@@ -561,8 +702,8 @@ class MagGate:
     dip_tol: float = np.deg2rad(5.0)
 
     def __post_init__(self):
-        positive(self.norm_tol, "norm_tol")
-        positive(self.dip_tol, "dip_tol")
+        _scalar(self.norm_tol, "norm_tol")
+        _scalar(self.dip_tol, "dip_tol")
 
 
 @dataclass(frozen=True)
@@ -577,11 +718,17 @@ class AttitudeResult:
     gyro_bias : ndarray, shape (..., 3)
         Final gyro-bias estimate ``-Ki sum(e dt)`` (rad/s).
     counts : dict of str -> ndarray of int, shape (...)
-        Skipped or gated updates, keys :data:`COUNT_NAMES`.
+        Held, skipped, gated, rejected and saturated samples, keys :data:`COUNT_NAMES`.
+    P : ndarray, shape (..., 4, 4) or None
+        Final quaternion covariance (:func:`quaternion_kf`; None for Mahony).
+    P_history : ndarray, shape (..., N, 4, 4) or None
+        Covariance after every sample (``quaternion_kf(..., keep_cov=True)``).
     """
     q_bn: np.ndarray
     gyro_bias: np.ndarray
     counts: dict
+    P: np.ndarray | None = None
+    P_history: np.ndarray | None = None
 
     @property
     def hpr(self) -> np.ndarray:
@@ -597,31 +744,75 @@ def _heading_input(heading_rtk, rtk_valid, shape, name="heading_rtk"):
     v = np.asarray(rtk_valid)
     if v.dtype != bool:
         raise ValueError(f"rtk_valid: expected booleans, got dtype {v.dtype}")
-    h = as_array(heading_rtk, name, finite=False)
-    try:
-        h, v = np.broadcast_to(h, shape), np.broadcast_to(v, shape)
-    except ValueError:
-        raise ValueError(f"{name}, rtk_valid: expected shapes broadcastable to {shape}, got "
-                         f"{np.shape(heading_rtk)}, {np.shape(rtk_valid)}") from None
+    h = _arr(heading_rtk, name, finite=False)
+    for arr, label in ((h, name), (v, "rtk_valid")):
+        try:
+            np.broadcast_to(arr, shape)
+        except ValueError:
+            raise ValueError(f"{label}: expected a shape broadcastable to {shape} (the samples of heading_mag "
+                             f"or w_ib_b), got {arr.shape}") from None
+    h, v = np.broadcast_to(h, shape), np.broadcast_to(v, shape)
     used = h[v]
-    bad = ~(np.isfinite(used) & (used >= 0) & (used < 2 * np.pi))
+    bad = ~np.isnan(used) & ~((used >= 0) & (used < 2 * np.pi))
     if bad.any():
-        raise ValueError(f"{name}: valid epochs must hold finite headings in [0, 2 pi) rad; {int(bad.sum())} "
-                         f"do not (first: {used[bad][0]!r})")
+        raise ValueError(f"{name}: valid epochs must hold headings in [0, 2 pi) rad (or NaN for a dropout); "
+                         f"{int(bad.sum())} do not (first: {used[bad][0]!r})")
     return np.ascontiguousarray(h.reshape(-1, shape[-1])), np.ascontiguousarray(v.reshape(-1, shape[-1]))
 
 
-def _prepare(w_ib_b, f_b, dt, q0, m_b, heading_rtk, rtk_valid, kp, ki, B_n, gate, accel_tol, g, rtk_hold):
-    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
-    f = as_array(f_b, "f_b", tail=(3,), finite=False)
+def _scalar(x, name, *, allow_zero=False, allow_inf=False):
+    """A positive (or non-negative) float scalar; inf allowed with ``allow_inf``."""
+    a = _arr(x, name, finite=not allow_inf)
+    if a.ndim != 0:
+        raise ValueError(f"{name}: expected a scalar, got shape {a.shape}")
+    if np.isnan(a) or not (a >= 0 if allow_zero else a > 0):
+        raise ValueError(f"{name}: expected a {'non-negative' if allow_zero else 'positive'} value, got {float(a)!r}")
+    return float(a)
+
+
+def _intervals(dt, n, name="dt"):
+    """``dt`` as per-sample intervals of shape (n,): a positive scalar, or an (n,) array of positive intervals."""
+    a = _arr(dt, name)
+    if a.ndim == 0:
+        return np.full(n, _scalar(a, name))
+    if a.shape != (n,):
+        raise ValueError(f"{name}: expected a positive scalar or per-sample intervals of shape ({n},), got {a.shape}")
+    if not np.all(a > 0):
+        raise ValueError(f"{name}: expected positive intervals, got min {a.min():g} (run timing.sanitize first)")
+    return np.ascontiguousarray(a)
+
+
+def _bool_flag(x, name):
+    if not isinstance(x, (bool, np.bool_)):
+        raise ValueError(f"{name}: expected True or False, got {x!r}")
+    return bool(x)
+
+
+def _rtk_params(rtk_hold, rtk_gate, rtk_confirm):
+    """``[hold (s, + 1 ns rounding allowance), gate (rad, inf = off), confirm (epochs)]``."""
+    hold = _scalar(rtk_hold, "rtk_hold", allow_zero=True) + 1e-9
+    gate = np.inf if rtk_gate is None else _scalar(rtk_gate, "rtk_gate")
+    if gate != np.inf and gate >= np.pi:
+        raise ValueError(f"rtk_gate: expected a value in (0, pi) rad, got {gate!r}")
+    if isinstance(rtk_confirm, (bool, np.bool_)) or not isinstance(rtk_confirm, (int, np.integer)) or rtk_confirm < 1:
+        raise ValueError(f"rtk_confirm: expected a positive integer, got {rtk_confirm!r}")
+    return np.array([hold, gate, float(rtk_confirm)])
+
+
+def _prepare(w_ib_b, f_b, dt, q0, m_b, heading_rtk, rtk_valid, kp, ki, B_n, gate, accel_tol, g, rtk_hold,
+             rtk_gate, rtk_confirm, gyro_range, accel_range, mag_range, gyro_jump):
+    w = _arr(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
+    f = _arr(f_b, "f_b", tail=(3,), finite=False)
     if f.shape != w.shape:
         raise ValueError(f"f_b: expected the shape of w_ib_b {w.shape}, got {f.shape}")
-    dt = float(positive(dt, "dt"))
-    kp, ki = float(positive(kp, "kp", allow_zero=True)), float(positive(ki, "ki", allow_zero=True))
+    kp, ki = _scalar(kp, "kp", allow_zero=True), _scalar(ki, "ki", allow_zero=True)
     lead, N = w.shape[:-2], w.shape[-2]
+    dts = _intervals(dt, N)
     T = int(np.prod(lead))
     q = attitude._as_quat(q0, "q0")
     q = np.ascontiguousarray(np.broadcast_to(q, lead + (4,)).reshape(T, 4))
+    if B_n is not None:
+        magnetic_reference(B_n)                              # validate even where it is not needed
     use_rtk = heading_rtk is not None
     if use_rtk == (m_b is not None):
         raise ValueError("m_b, heading_rtk: give exactly one heading reference (magnetometer or RTK)")
@@ -629,14 +820,15 @@ def _prepare(w_ib_b, f_b, dt, q0, m_b, heading_rtk, rtk_valid, kp, ki, B_n, gate
         hdg, ok = _heading_input(heading_rtk, rtk_valid, lead + (N,))
         m = np.zeros((1, 1, 3))
     else:
-        m = as_array(m_b, "m_b", tail=(3,), finite=False)
+        m = _arr(m_b, "m_b", tail=(3,), finite=False)
         if m.shape != w.shape:
             raise ValueError(f"m_b: expected the shape of w_ib_b {w.shape}, got {m.shape}")
         m = m.reshape(T, N, 3)
         hdg, ok = np.zeros((1, 1)), np.zeros((1, 1), dtype=bool)
     gates = np.array([0.0, np.inf, 0.0, np.inf, -2.0, 2.0])
     if accel_tol is not None:
-        tol = float(positive(accel_tol, "accel_tol"))
+        tol = _scalar(accel_tol, "accel_tol")
+        g = _scalar(g, "g")
         gates[0:2] = (g * max(1 - tol, 0.0)) ** 2, (g * (1 + tol)) ** 2
     if gate is not None:
         if not isinstance(gate, MagGate):
@@ -646,9 +838,27 @@ def _prepare(w_ib_b, f_b, dt, q0, m_b, heading_rtk, rtk_valid, kp, ki, B_n, gate
         _, _, I, F = magnetic_reference(B_n)
         gates[2:4] = (F * max(1 - gate.norm_tol, 0.0)) ** 2, (F * (1 + gate.norm_tol)) ** 2
         gates[4:6] = np.sin(max(I - gate.dip_tol, -np.pi / 2)), np.sin(min(I + gate.dip_tol, np.pi / 2))
-    hold = float(positive(rtk_hold, "rtk_hold", allow_zero=True)) / dt
-    return (lead, T, N, q, np.ascontiguousarray(w.reshape(T, N, 3)), np.ascontiguousarray(f.reshape(T, N, 3)),
-            np.ascontiguousarray(m), hdg, ok, use_rtk, dt, kp, ki, gates, hold)
+    jump = 0.0 if gyro_jump is None else _scalar(gyro_jump, "gyro_jump")
+    rtk_par = _rtk_params(rtk_hold, rtk_gate, rtk_confirm)
+    w, f = w.reshape(T, N, 3), f.reshape(T, N, 3)
+    # Saturation: counted here; accelerometer/magnetometer samples at the rails become NaN (skipped by the
+    # kernel exactly like a dropout; the kernel's skip counts are corrected in _result), gyro samples are used.
+    sat = np.zeros((T, 3), dtype=np.int64)
+    for i, (r, name) in enumerate(((gyro_range, "gyro_range"), (accel_range, "accel_range"), (mag_range, "mag_range"))):
+        if r is None:
+            continue
+        r = _scalar(r, name)
+        if i == 2 and use_rtk:
+            continue
+        x = (w, f, m)[i]
+        rail = (np.abs(x) >= r).any(-1) & np.isfinite(x).all(-1)
+        sat[:, i] = rail.sum(-1)
+        if i == 1 and sat[:, i].any():
+            f = np.where(rail[..., None], np.nan, f)
+        elif i == 2 and sat[:, i].any():
+            m = np.where(rail[..., None], np.nan, m)
+    return (lead, T, N, q, np.ascontiguousarray(w), np.ascontiguousarray(f), np.ascontiguousarray(m), hdg, ok,
+            use_rtk, dts, kp, ki, gates, jump, rtk_par, sat)
 
 
 def _run_trials(kernel, n_trials, *args):
@@ -662,22 +872,30 @@ def _run_trials(kernel, n_trials, *args):
         list(pool.map(lambda i: kernel(bounds[i], bounds[i + 1], *args), range(workers)))
 
 
-def _result(lead, q_out, bias, counts):
+def _result(lead, q_out, bias, counts, sat, P=None, P_hist=None):
+    counts[:, 5:8] = sat                                   # saturated samples (see _prepare) ...
+    counts[:, 1] -= sat[:, 1]                              # ... were skipped as NaN by the kernel
+    counts[:, 3] -= sat[:, 2]
     N = q_out.shape[1]
     return AttitudeResult(q_out.reshape(lead + (N, 4)), bias.reshape(lead + (3,)),
-                          {name: counts[:, i].reshape(lead) for i, name in enumerate(COUNT_NAMES)})
+                          {name: counts[:, i].reshape(lead) for i, name in enumerate(COUNT_NAMES)},
+                          None if P is None else P.reshape(lead + (4, 4)),
+                          None if P_hist is None else P_hist.reshape(lead + (N, 4, 4)))
 
 
 _COMMON_DOC = """
     Parameters
     ----------
     w_ib_b : array_like, shape (..., N, 3)
-        Gyro samples (rad/s); NaN samples are replaced by the last valid one (counted).
+        Gyro samples (rad/s); NaN samples are replaced by the last used one (counted).
         Earth rate is neglected, as in the paper.
     f_b : array_like, shape (..., N, 3)
         Accelerometer samples (m/s^2); NaN, infinite or zero samples are skipped (counted).
-    dt : float
-        Sample interval (s).
+    dt : float or array_like, shape (N,)
+        Sample interval (s), or per-sample intervals: sample k covers
+        ``dt[k] = t[k] - t[k-1]`` (irregular sampling). Timestamps with
+        repeats or out of order go through :func:`navlib.timing.sanitize`
+        first; then ``dt = timing.intervals(np.r_[t_before_first, t])``.
     q0 : array_like, shape (4,) or (..., 4)
         Attitude before the first sample, e.g. :func:`initial_attitude`.
     m_b : array_like, shape (..., N, 3), optional
@@ -688,6 +906,7 @@ _COMMON_DOC = """
         ``rtk_valid`` are read; each is held for ``rtk_hold`` seconds.
     rtk_valid : array_like of bool, same shape as ``heading_rtk``
         True where a valid RTK epoch arrives (the receiver's status flag).
+        A valid epoch holding NaN is a dropout (ignored, ``rtk_dropped``).
     kp, ki : float
         Proportional (rad/s) and integral (rad/s^2) gains of Eq. (15); ``ki = 0``
         disables gyro-bias estimation.
@@ -701,6 +920,36 @@ _COMMON_DOC = """
         Gravity for ``accel_tol`` (m/s^2).
     rtk_hold : float
         How long an RTK epoch is used (s).
+    rtk_gate : float, optional
+        Reject RTK epochs whose heading differs from the current estimate by
+        more than this (rad, in (0, pi)), e.g. 180 deg ambiguity flips
+        (``rtk_rejected``); None (default) uses every valid epoch.
+    rtk_confirm : int
+        With ``rtk_gate``: after this many consecutive rejected epochs that
+        agree with each other (within ``rtk_gate``), use them (``rtk_reacquired``),
+        so that an estimate that drifted in an outage is pulled back.
+    gyro_range, accel_range, mag_range : float, optional
+        Full-scale ranges (rad/s, m/s^2, uT), e.g. ``sensors.imu_model(name).gyro.full_scale``.
+        Samples with a component at or beyond the range are counted
+        (``*_saturated``); accelerometer and magnetometer corrections are
+        skipped for them, gyro samples are used (the clipped rate is the best
+        available) and flag the attitude after them as suspect.
+    gyro_jump : float, optional
+        Spike gate (rad/s): a gyro sample differing from the last used one by
+        more than this on some axis is replaced by it (``gyro_gated``) unless
+        the previous sample was already replaced. Choose well above the
+        per-sample noise and the largest rate change per sample of the motion.
+
+    What the filter does with bad samples
+    -------------------------------------
+    NaN gyro: hold the last used sample. Gyro spike (``gyro_jump``): hold.
+    NaN/inf/zero accelerometer, or outside ``accel_tol``, or saturated: skip
+    the accelerometer correction. Magnetometer NaN/inf/zero, parallel to
+    gravity, outside the ``gate`` or saturated: skip the heading correction.
+    RTK: invalid epochs and NaN values are not read; epochs outside
+    ``rtk_gate`` are rejected. A gap (any sensor) is a run of such samples: the
+    attitude is propagated by the gyro alone and drifts at the gyro-bias
+    error. Every case is counted in :attr:`AttitudeResult.counts`.
 
     Returns
     -------
@@ -708,14 +957,17 @@ _COMMON_DOC = """
 """
 
 
-def mahony(w_ib_b, f_b, dt: float, q0, *, m_b=None, heading_rtk=None, rtk_valid=None, kp: float = 1.0,
+def mahony(w_ib_b, f_b, dt, q0, *, m_b=None, heading_rtk=None, rtk_valid=None, kp: float = 1.0,
            ki: float = 0.02, B_n=None, gate: MagGate | None = None, accel_tol: float | None = None,
-           g: float = 9.80665, rtk_hold: float = 0.25) -> AttitudeResult:
-    prep = _prepare(w_ib_b, f_b, dt, q0, m_b, heading_rtk, rtk_valid, kp, ki, B_n, gate, accel_tol, g, rtk_hold)
+           g: float = 9.80665, rtk_hold: float = 0.25, rtk_gate: float | None = None, rtk_confirm: int = 5,
+           gyro_range: float | None = None, accel_range: float | None = None, mag_range: float | None = None,
+           gyro_jump: float | None = None) -> AttitudeResult:
+    prep = _prepare(w_ib_b, f_b, dt, q0, m_b, heading_rtk, rtk_valid, kp, ki, B_n, gate, accel_tol, g, rtk_hold,
+                    rtk_gate, rtk_confirm, gyro_range, accel_range, mag_range, gyro_jump)
     lead, T, N = prep[:3]
     q_out, bias, counts = np.empty((T, N, 4)), np.empty((T, 3)), np.zeros((T, len(COUNT_NAMES)), dtype=np.int64)
-    _run_trials(_mahony_kernel, T, *prep[3:], q_out, bias, counts)
-    return _result(lead, q_out, bias, counts)
+    _run_trials(_mahony_kernel, T, *prep[3:-1], q_out, bias, counts)
+    return _result(lead, q_out, bias, counts, prep[-1])
 
 
 mahony.__doc__ = """Mahony PI complementary filter (Eqs. 9-15), per sample:
@@ -724,16 +976,20 @@ mahony.__doc__ = """Mahony PI complementary filter (Eqs. 9-15), per sample:
 
 Identical to ``ahrs.filters.Mahony.updateMARG`` (AHRS 0.4.0, same frames and
 first-order update) except that ahrs skips samples whose gyro norm is exactly 0.
+With per-sample ``dt`` each step uses its own interval (integral term and
+quaternion update).
 """ + _COMMON_DOC.format(b_ref="")
 
 
-def quaternion_kf(w_ib_b, f_b, dt: float, q0, *, m_b=None, heading_rtk=None, rtk_valid=None, kp: float = 1.0,
+def quaternion_kf(w_ib_b, f_b, dt, q0, *, m_b=None, heading_rtk=None, rtk_valid=None, kp: float = 1.0,
                   ki: float = 0.02, B_n=None, gate: MagGate | None = None, accel_tol: float | None = None,
                   g: float = 9.80665, rtk_hold: float = 0.25, sigma_gyro: float = 1e-3,
                   sigma_accel: float = 0.02, sigma_mag: float = 0.08, p0: float = 1e-4,
-                  linear_innovation: bool = False) -> AttitudeResult:
+                  linear_innovation: bool = False, rtk_gate: float | None = None, rtk_confirm: int = 5,
+                  gyro_range: float | None = None, accel_range: float | None = None, mag_range: float | None = None,
+                  gyro_jump: float | None = None, keep_cov: bool = False) -> AttitudeResult:
     prep = list(_prepare(w_ib_b, f_b, dt, q0, m_b, heading_rtk, rtk_valid, kp, ki, B_n, gate, accel_tol, g,
-                         rtk_hold))
+                         rtk_hold, rtk_gate, rtk_confirm, gyro_range, accel_range, mag_range, gyro_jump))
     lead, T, N = prep[:3]
     if prep[9]:
         b = np.array([0.0, 1.0, 0.0])                       # RTK pseudo-vector points north
@@ -741,12 +997,14 @@ def quaternion_kf(w_ib_b, f_b, dt: float, q0, *, m_b=None, heading_rtk=None, rtk
         raise ValueError("B_n: the quaternion KF needs the local field for its magnetometer reference")
     else:
         b = magnetic_reference(B_n)[0]
-    sig = np.array([float(positive(s, n)) for s, n in ((sigma_gyro, "sigma_gyro"), (sigma_accel, "sigma_accel"),
-                                                         (sigma_mag, "sigma_mag"))])
-    p0 = float(positive(p0, "p0"))
+    sig = np.array([_scalar(s, n) for s, n in ((sigma_gyro, "sigma_gyro"), (sigma_accel, "sigma_accel"),
+                                                (sigma_mag, "sigma_mag"))])
+    p0 = _scalar(p0, "p0")
+    linear_innovation, keep_cov = _bool_flag(linear_innovation, "linear_innovation"), _bool_flag(keep_cov, "keep_cov")
     q_out, bias, counts = np.empty((T, N, 4)), np.empty((T, 3)), np.zeros((T, len(COUNT_NAMES)), dtype=np.int64)
-    _run_trials(_kf_kernel, T, *prep[3:], b, sig, p0, bool(linear_innovation), q_out, bias, counts)
-    return _result(lead, q_out, bias, counts)
+    P_out, P_hist = np.empty((T, 4, 4)), np.empty((T, N if keep_cov else 0, 4, 4))
+    _run_trials(_kf_kernel, T, *prep[3:-1], b, sig, p0, linear_innovation, q_out, bias, counts, P_out, P_hist)
+    return _result(lead, q_out, bias, counts, prep[-1], P_out, P_hist if keep_cov else None)
 
 
 quaternion_kf.__doc__ = """Quaternion Kalman filter driven by the PI-corrected rate (Eqs. 16-20, Fig. 2).
@@ -767,11 +1025,17 @@ missing rows; normalise. ``linear_innovation=True`` uses the printed
         Initial covariance ``p0 I``.
     linear_innovation : bool
         Use the printed innovation ``z - H q`` (wrong; for the erratum demonstration).
+    keep_cov : bool
+        Also return the covariance after every sample (``P_history``).
+
+    The covariance is predicted with ``Phi P Phi^T + Gamma Q Gamma^T`` and
+    updated in Joseph form (both symmetrised); skipped, gated, rejected and
+    saturated measurements are simply not used, so a fault never enters P.
 """
 
 
-def fuse_rtk_heading(heading_mag, heading_rtk, rtk_valid, dt: float, alpha: float = 0.01,
-                     rtk_hold: float = 0.25):
+def fuse_rtk_heading(heading_mag, heading_rtk, rtk_valid, dt, alpha: float = 0.01,
+                     rtk_hold: float = 0.25, rtk_gate: float | None = None, rtk_confirm: int = 5):
     """Fuse the magnetic heading with dual-antenna RTK heading (Sec. 2.5, guide R1/R2).
 
     Parameters
@@ -782,14 +1046,25 @@ def fuse_rtk_heading(heading_mag, heading_rtk, rtk_valid, dt: float, alpha: floa
         RTK heading (rad, [0, 2 pi)) at the IMU rate; read only where ``rtk_valid``.
     rtk_valid : array_like of bool
         True where a valid RTK epoch arrives. An invalid epoch's value (the
-        paper's 0) is never used.
-    dt : float
-        Sample interval (s).
+        paper's 0) is never used; a valid epoch holding NaN is a dropout
+        (ignored, counted in ``rtk_dropped``).
+    dt : float or array_like, shape (N,)
+        Sample interval (s), or per-sample intervals ``dt[k] = t[k] - t[k-1]``.
     alpha : float
         Smoothing of the offset per RTK epoch (guide: 0.01 at 5 Hz).
     rtk_hold : float
         How long after an epoch its heading is output (carried by the magnetic
         heading's increments) before falling back to ``H_mag + delta`` (s).
+    rtk_gate : float, optional
+        Reject epochs further than this (rad, in (0, pi)) from the predicted
+        heading (the carried RTK heading, else ``H_mag + delta``): 180 deg
+        ambiguity flips are never fused (``rtk_rejected``). The first epoch
+        has nothing to be checked against and is used.
+    rtk_confirm : int
+        With ``rtk_gate``: the ``rtk_confirm``-th consecutive rejected epoch
+        agreeing with the previous rejected ones within ``rtk_gate`` is used and
+        restarts delta from it (``rtk_reacquired``): a wrong first epoch or a
+        real change of the offset is recovered from.
 
     Returns
     -------
@@ -798,20 +1073,29 @@ def fuse_rtk_heading(heading_mag, heading_rtk, rtk_valid, dt: float, alpha: floa
     delta : ndarray, shape (..., N)
         Offset estimate ``H_rtk - H_mag`` (rad); NaN before the first valid epoch.
     counts : dict of str -> ndarray of int
-        ``rtk`` (samples output from RTK), ``held`` (outage samples using the
-        held delta), ``uncalibrated`` (samples before any valid RTK epoch).
+        Per sample: ``rtk`` (output from RTK), ``held`` (outage samples using
+        the held delta), ``uncalibrated`` (before any used RTK epoch). Per
+        valid epoch: ``rtk_dropped`` (NaN value), ``rtk_rejected`` (outside
+        ``rtk_gate``, not fused), ``rtk_reacquired`` (used after ``rtk_confirm``
+        agreeing rejections).
     """
-    hm = as_array(heading_mag, "heading_mag", min_ndim=1)
-    dt = float(positive(dt, "dt"))
-    alpha = float(in_range(as_array(alpha, "alpha"), "alpha", 0.0, 1.0, lo_open=True))
-    hold = float(positive(rtk_hold, "rtk_hold", allow_zero=True)) / dt
+    hm = _arr(heading_mag, "heading_mag", min_ndim=1)
+    alpha = _arr(alpha, "alpha")
+    if alpha.ndim != 0:
+        raise ValueError(f"alpha: expected a scalar, got shape {alpha.shape}")
+    alpha = float(in_range(alpha, "alpha", 0.0, 1.0, lo_open=True))
     hr, ok = _heading_input(heading_rtk, rtk_valid, hm.shape)
     T, N = hr.shape
-    out, delta, counts = np.empty((T, N)), np.empty((T, N)), np.zeros((T, 3), dtype=np.int64)
-    _fuse_kernel(np.ascontiguousarray(hm.reshape(T, N)), hr, ok, alpha, hold, out, delta, counts)
+    dts = _intervals(dt, N)
+    rtk_par = _rtk_params(rtk_hold, rtk_gate, rtk_confirm)
+    out, delta, counts = np.empty((T, N)), np.empty((T, N)), np.zeros((T, len(_FUSE_COUNTS)), dtype=np.int64)
+    _fuse_kernel(np.ascontiguousarray(hm.reshape(T, N)), hr, ok, dts, alpha, rtk_par, out, delta, counts)
     lead = hm.shape[:-1]
     return (out.reshape(hm.shape), delta.reshape(hm.shape),
-            {name: counts[:, i].reshape(lead) for i, name in enumerate(("rtk", "held", "uncalibrated"))})
+            {name: counts[:, i].reshape(lead) for i, name in enumerate(_FUSE_COUNTS)})
+
+
+_FUSE_COUNTS = ("rtk", "held", "uncalibrated", "rtk_dropped", "rtk_rejected", "rtk_reacquired")
 
 
 def rtk_at_imu_rate(time, heading, valid, step: int):
@@ -835,13 +1119,19 @@ def rtk_at_imu_rate(time, heading, valid, step: int):
     epoch_valid : ndarray of bool, shape (N,)
         True at valid epochs.
     """
-    t = as_array(time, "time")
-    h = as_array(heading, "heading", finite=False)
-    v = np.asarray(valid, dtype=bool)
-    if not isinstance(step, (int, np.integer)) or step < 1:
+    t = _arr(time, "time")
+    if t.ndim != 1:
+        raise ValueError(f"time: expected a 1-D array of sample times, got shape {t.shape}")
+    h = _arr(heading, "heading", finite=False)
+    v = np.asarray(valid)
+    if v.dtype != bool:
+        raise ValueError(f"valid: expected booleans, got dtype {v.dtype}")
+    if isinstance(step, (bool, np.bool_)) or not isinstance(step, (int, np.integer)) or step < 1:
         raise ValueError(f"step: expected a positive integer, got {step!r}")
-    if v.shape != t.shape or h.shape[-1:] != t.shape:
-        raise ValueError(f"heading, valid: expected last axis of length {t.size}, got {h.shape}, {v.shape}")
+    if h.shape[-1:] != t.shape:
+        raise ValueError(f"heading: expected a last axis of length {t.size} (that of time), got {h.shape}")
+    if v.shape != t.shape:
+        raise ValueError(f"valid: expected the shape of time {t.shape}, got {v.shape}")
     epoch = np.zeros(t.shape, dtype=bool)
     epoch[::step] = True
     ok = epoch & v
@@ -863,13 +1153,17 @@ def settling_time(time, error, start: float, tol: float, end: float | None = Non
     end : float, optional
         Last time considered (s), e.g. the start of the next outage; default the end of the record.
     """
-    t = as_array(time, "time")
-    e = as_array(error, "error", min_ndim=1)
-    tol = float(positive(tol, "tol"))
-    stop = np.inf if end is None else float(end)
+    t = _arr(time, "time")
+    e = _arr(error, "error", min_ndim=1)
+    tol = _scalar(tol, "tol")
+    start = _real_scalar(start, "start")
+    stop = np.inf if end is None else _real_scalar(end, "end")
+    if t.ndim != 1 or e.shape[-1] != t.size:
+        raise ValueError(f"time, error: expected 1-D time and error with a last axis of the same length, got "
+                         f"{t.shape}, {e.shape}")
     window = (t >= start) & (t < stop)
-    if e.shape[-1] != t.size or not window.any():
-        raise ValueError(f"error, start, end: expected last axis of length {t.size} and samples in [start, end)")
+    if not window.any():
+        raise ValueError(f"start, end: expected samples in [start, end) = [{start}, {stop})")
     outside = np.abs(e[..., window]) > tol
     n = outside.shape[-1]
     last = np.where(outside.any(-1), n - 1 - np.argmax(outside[..., ::-1], -1), -1)

@@ -105,7 +105,9 @@ def test_filters_reject_bad_arguments():
     with pytest.raises(ValueError, match="^heading_rtk: "):
         ahrs.mahony(w, f, DT, q0, heading_rtk=np.full(100, 7.0), rtk_valid=valid)   # out of [0, 2 pi)
     with pytest.raises(ValueError, match="^heading_rtk: "):
-        ahrs.fuse_rtk_heading(np.zeros(100), np.full(100, np.nan), valid, DT)       # valid but NaN
+        ahrs.fuse_rtk_heading(np.zeros(100), np.full(100, np.inf), valid, DT)       # valid but infinite
+    _, _, c = ahrs.fuse_rtk_heading(np.zeros(100), np.full(100, np.nan), valid, DT)  # valid but NaN: dropout
+    assert int(c["rtk_dropped"]) == 100 and int(c["uncalibrated"]) == 100
     with pytest.raises(ValueError, match="^rtk_valid: "):
         ahrs.mahony(w, f, DT, q0, heading_rtk=np.zeros(100), rtk_valid=None)
     with pytest.raises(ValueError, match="^rtk_valid: "):
@@ -135,7 +137,9 @@ def test_dropouts_are_skipped_and_counted_never_poisoning_the_state(filt):
     out = filt(w, f, DT, attitude.euler_to_quat(hpr), m_b=m, B_n=B_N)
     assert np.isfinite(out.q_bn).all()
     assert {k: int(v) for k, v in out.counts.items()} == {
-        "gyro_held": 10, "accel_skipped": 6, "accel_gated": 0, "mag_skipped": 20 + 3, "mag_gated": 0}
+        "gyro_held": 10, "accel_skipped": 6, "accel_gated": 0, "mag_skipped": 20 + 3, "mag_gated": 0,
+        "gyro_saturated": 0, "accel_saturated": 0, "mag_saturated": 0, "rtk_dropped": 0, "rtk_rejected": 0,
+        "rtk_reacquired": 0, "gyro_gated": 0}
     assert abs(attitude.wrap_pi(out.hpr[-1, 0] - hpr[0])) < units.deg(1.0)
 
 
@@ -273,8 +277,18 @@ a = ahrs.mahony(w, f, 0.01, q0, m_b=m, B_n=B, gate=ahrs.MagGate())
 k = ahrs.quaternion_kf(w, f, 0.01, q0, m_b=m, B_n=B)
 valid = np.zeros(200, dtype=bool); valid[::20] = True
 h, d, c = ahrs.fuse_rtk_heading(k.hpr[..., 0], np.full(200, 0.5), valid, 0.01)
-print(json.dumps({"a": a.q_bn.tolist(), "k": k.q_bn.tolist(), "h": h.tolist(),
-                  "c": {key: v.tolist() for key, v in a.counts.items()}}))
+# the robustness paths: per-sample dt, spike gate, saturation, RTK dropouts, flips and re-acquisition
+dt = 0.01 * (1 + 0.2 * rng.uniform(-1, 1, 200))
+w[1, 50] += 1.0; f[0, 60] = [0.0, 0.0, 80.0]
+rtk = np.where(valid, 0.5, np.nan); rtk[40] = 0.5 + np.pi; rtk[60] = np.nan; rtk[100:] = 2.0
+r = ahrs.quaternion_kf(w, f, dt, q0, heading_rtk=rtk, rtk_valid=valid, gyro_jump=0.5, accel_range=78.0,
+                       gyro_range=0.02, rtk_gate=0.3, rtk_confirm=2, keep_cov=True)
+hr, _, cr = ahrs.fuse_rtk_heading(r.hpr[..., 0], rtk, valid, dt, rtk_gate=0.3, rtk_confirm=2)
+print(json.dumps({"a": a.q_bn.tolist(), "k": k.q_bn.tolist(), "h": h.tolist(), "r": r.q_bn.tolist(),
+                  "P": r.P_history.tolist(), "hr": hr.tolist(),
+                  "c": {key: v.tolist() for key, v in a.counts.items()},
+                  "cr": {key: v.tolist() for key, v in r.counts.items()},
+                  "cf": {key: v.tolist() for key, v in cr.items()}}))
 """
 
 
@@ -286,9 +300,34 @@ def _run(disable_jit: bool) -> dict:
 
 def test_kernels_run_uncompiled_with_the_same_results():
     jit, plain = _run(False), _run(True)
-    for key in ("a", "k", "h"):
+    for key in ("a", "k", "h", "r", "P", "hr"):
         np.testing.assert_allclose(plain[key], jit[key], rtol=0, atol=1e-12)
-    assert plain["c"] == jit["c"]
+    for key in ("c", "cr", "cf"):
+        assert plain[key] == jit[key]
+    cr, cf = jit["cr"], jit["cf"]                   # every robustness path was taken
+    assert cr["gyro_gated"][1] >= 1 and cr["accel_saturated"][0] == 1 and min(cr["gyro_saturated"]) > 0
+    assert min(cr["rtk_rejected"]) >= 1 and cr["rtk_dropped"] == [1, 1] and min(cr["rtk_reacquired"]) >= 1
+    assert min(cf["rtk_rejected"]) >= 1 and cf["rtk_dropped"] == [1, 1] and min(cf["rtk_reacquired"]) >= 1
+
+
+def test_scalar_dt_and_a_constant_dt_array_give_identical_results():
+    rng = np.random.default_rng(9)
+    w, f, m = static_marg([0.7, 0.05, -0.1], 500, rng)
+    q0 = attitude.euler_to_quat([0.7, 0.05, -0.1])
+    for filt in (ahrs.mahony, ahrs.quaternion_kf):
+        a = filt(w, f, DT, q0, m_b=m, B_n=B_N)
+        b = filt(w, f, np.full(500, DT), q0, m_b=m, B_n=B_N)
+        np.testing.assert_array_equal(a.q_bn, b.q_bn)
+
+
+def test_kf_returns_a_symmetric_positive_definite_covariance():
+    rng = np.random.default_rng(10)
+    w, f, m = static_marg([0.7, 0.05, -0.1], 2000, rng)
+    out = ahrs.quaternion_kf(w, f, DT, attitude.euler_to_quat([0.7, 0.05, -0.1]), m_b=m, B_n=B_N, keep_cov=True)
+    P = out.P_history
+    assert P.shape == (2000, 4, 4) and np.array_equal(out.P, P[-1])
+    assert np.array_equal(P, np.swapaxes(P, -1, -2)) and np.linalg.eigvalsh(P).min() > 0
+    assert ahrs.mahony(w, f, DT, [1.0, 0, 0, 0], m_b=m).P is None
 
 
 # --------------------------------------------------------------------------- bad input, every public callable
@@ -302,7 +341,7 @@ BAD_CALLS = [
     ("magnetic_reference", lambda: ahrs.magnetic_reference([1.0, np.nan, 0.0]), "B_n"),
     ("tilt_heading", lambda: ahrs.tilt_heading([0.0, 0.0, 1.0], [1.0, 2.0]), "m_b"),
     ("initial_attitude", lambda: ahrs.initial_attitude("abc", [0.0, 1.0, 0.0]), "f_b"),
-    ("settling_time", lambda: ahrs.settling_time([0.0, 1.0], [1.0, 2.0], 5.0, 1.0), "error, start, end"),
+    ("settling_time", lambda: ahrs.settling_time([0.0, 1.0], [1.0, 2.0], 5.0, 1.0), "start, end"),
     ("transition", lambda: ahrs.transition([0.0, 0.0, 0.0], 0.0), "dt"),
     ("noise_input", lambda: ahrs.noise_input([1.0, 0.0, 0.0], 0.01), "q"),
     ("measurement_model", lambda: ahrs.measurement_model(_Q, [1.0, 0.0, 0.0]), "b"),
@@ -334,3 +373,109 @@ def test_bad_input_names_the_argument(name, call, arg):
 def test_every_public_callable_has_a_bad_input_case():
     public = {n for n in ahrs.__all__ if callable(getattr(ahrs, n))}
     assert public == {c[0] for c in BAD_CALLS} | set(NOT_APPLICABLE)
+
+
+# --------------------------------------------------------------------------- public API fuzzing
+
+_N = 10
+_VALID = np.zeros(_N, bool)
+_VALID[::2] = True
+# name -> (callable, good keyword arguments, arguments that take NaN as a documented dropout marker,
+#          arguments that take inf as an unusable (skipped) sample)
+FUZZ = {
+    "magnetic_reference": (ahrs.magnetic_reference, dict(B_n=B_N), (), ()),
+    "tilt_heading": (ahrs.tilt_heading, dict(f_b=[0.0, 0.0, 9.8], m_b=[0.0, 20.0, -30.0]), (), ()),
+    "initial_attitude": (ahrs.initial_attitude, dict(f_b=[0.0, 0.0, 9.8], m_b=[0.0, 20.0, -30.0]), (), ()),
+    "settling_time": (ahrs.settling_time, dict(time=np.arange(_N, dtype=float), error=np.ones(_N), start=2.0,
+                                              tol=0.5, end=8.0), (), ()),
+    "transition": (ahrs.transition, dict(w=[0.1, 0.2, 0.3], dt=0.01), (), ()),
+    "noise_input": (ahrs.noise_input, dict(q=_Q, dt=0.01), (), ()),
+    "measurement_model": (ahrs.measurement_model, dict(q=_Q, b=B_REF), (), ()),
+    "measurement_jacobian": (ahrs.measurement_jacobian, dict(q=_Q, b=B_REF), (), ()),
+    "mahony": (ahrs.mahony, dict(w_ib_b=_W, f_b=_F, dt=0.01, q0=_Q, m_b=_M, kp=1.0, ki=0.02, B_n=B_N,
+                                 accel_tol=0.1, rtk_hold=0.25, gyro_range=2.0, accel_range=80.0, mag_range=800.0,
+                                 gyro_jump=0.5), ("w_ib_b", "f_b", "m_b"), ("f_b", "m_b")),
+    "mahony/rtk": (ahrs.mahony, dict(w_ib_b=_W, f_b=_F, dt=np.full(_N, 0.01), q0=_Q, heading_rtk=np.full(_N, 0.5),
+                                     rtk_valid=_VALID, rtk_gate=0.3), ("w_ib_b", "f_b", "heading_rtk"), ("f_b",)),
+    "quaternion_kf": (ahrs.quaternion_kf, dict(w_ib_b=_W, f_b=_F, dt=0.01, q0=_Q, m_b=_M, B_n=B_N, sigma_gyro=1e-3,
+                                               sigma_accel=0.02, sigma_mag=0.08, p0=1e-4),
+                      ("w_ib_b", "f_b", "m_b"), ("f_b", "m_b")),
+    "fuse_rtk_heading": (ahrs.fuse_rtk_heading, dict(heading_mag=np.zeros(_N), heading_rtk=np.full(_N, 0.5),
+                                                     rtk_valid=_VALID, dt=0.01, alpha=0.01, rtk_hold=0.25,
+                                                     rtk_gate=0.3), ("heading_rtk",), ()),
+    "rtk_at_imu_rate": (ahrs.rtk_at_imu_rate, dict(time=np.arange(_N, dtype=float), heading=np.zeros(_N),
+                                                   valid=np.ones(_N, bool), step=2), ("heading",), ("heading",)),
+    "printed_eq2_roll": (ahrs.printed_eq2_roll, dict(q=_Q), (), ()),
+    "printed_eq4": (ahrs.printed_eq4, dict(q=_Q), (), ()),
+    "printed_eq5_tilt": (ahrs.printed_eq5_tilt, dict(f_b=[0.1, 0.2, 9.8]), (), ()),
+    "printed_eq7_heading": (ahrs.printed_eq7_heading, dict(m_h=[1.0, 2.0, 3.0]), (), ()),
+    "printed_eq8_quat": (ahrs.printed_eq8_quat, dict(hpr=[0.1, 0.2, 0.3]), (), ()),
+    "printed_eq18_gamma": (ahrs.printed_eq18_gamma, dict(q=_Q, dt=0.01), (), ()),
+    "printed_eq20_jacobian": (ahrs.printed_eq20_jacobian, dict(q=_Q, b=B_REF), (), ()),
+    "MagGate": (ahrs.MagGate, dict(norm_tol=0.1, dip_tol=0.05), (), ()),
+}
+
+
+def _variants(value, nan_ok, inf_ok):
+    """Bad versions of a good argument: wrong type, complex, object, wrong shape, empty, NaN, inf."""
+    a = np.asarray(value)
+    out = [("string", "abc"), ("complex", a + 1j), ("object", np.full(a.shape, None, dtype=object)),
+           ("empty", np.empty((0,) + a.shape[1:], dtype=a.dtype) if a.ndim else np.empty(0))]
+    out.append(("shape", np.concatenate([a, a[..., :1]], -1) if a.ndim else np.ones(2)))
+    if a.dtype == bool:
+        return [("numbers", a.astype(float))] + out[:1] + out[3:]
+    if not nan_ok:
+        out.append(("nan", np.full(a.shape, np.nan)))
+    if not inf_ok:
+        out.append(("inf", np.full(a.shape, np.inf)))
+    return out
+
+
+FUZZ_CASES = [(fn, arg, kind, bad) for fn, (_, good, nan_ok, inf_ok) in FUZZ.items() for arg in good
+              if not isinstance(good[arg], str)
+              for kind, bad in _variants(good[arg], arg in nan_ok, arg in inf_ok)
+              if not (kind == "shape" and fn == "settling_time" and arg == "error")]   # (trials, N) is valid
+
+
+def test_fuzz_good_calls_work():
+    for fn, (call, good, _, _) in FUZZ.items():
+        call(**good)
+
+
+@pytest.mark.parametrize("fn, arg, kind, bad", FUZZ_CASES, ids=[f"{c[0]}-{c[1]}-{c[2]}" for c in FUZZ_CASES])
+def test_fuzz_bad_input_names_the_argument(fn, arg, kind, bad):
+    """The message starts with the argument's name; a length mismatch between two arguments may start with the other."""
+    call, good, _, _ = FUZZ[fn]
+    with pytest.raises((ValueError, TypeError), match=rf"^{arg}\b" if kind != "shape" else rf"^(?=\w).*\b{arg}\b"):
+        call(**dict(good, **{arg: bad}))
+
+
+OUT_OF_RANGE = [
+    ("mahony", lambda: ahrs.mahony(_W, _F, np.full(_N, -0.01), _Q, m_b=_M), "dt"),
+    ("mahony", lambda: ahrs.mahony(_W, _F, np.full(_N - 1, 0.01), _Q, m_b=_M), "dt"),
+    ("mahony", lambda: ahrs.mahony(_W, _F, 0.01, _Q, heading_rtk=np.zeros(_N), rtk_valid=_VALID, rtk_gate=4.0), "rtk_gate"),
+    ("mahony", lambda: ahrs.mahony(_W, _F, 0.01, _Q, heading_rtk=np.zeros(_N), rtk_valid=_VALID, rtk_confirm=0), "rtk_confirm"),
+    ("mahony", lambda: ahrs.mahony(_W, _F, 0.01, _Q, m_b=_M, gyro_range=-1.0), "gyro_range"),
+    ("mahony", lambda: ahrs.mahony(_W, _F, 0.01, _Q, m_b=_M, gyro_jump=0.0), "gyro_jump"),
+    ("mahony", lambda: ahrs.mahony(_W, _F, 0.01, _Q, m_b=_M, rtk_hold=-1.0), "rtk_hold"),
+    ("mahony", lambda: ahrs.mahony(_W, _F, 0.01, _Q, m_b=_M, gate="tight"), "gate"),
+    ("quaternion_kf", lambda: ahrs.quaternion_kf(_W, _F, 0.01, _Q, m_b=_M, B_n=B_N, keep_cov="yes"), "keep_cov"),
+    ("quaternion_kf", lambda: ahrs.quaternion_kf(_W, _F, 0.01, _Q, m_b=_M, B_n=B_N, p0=-1.0), "p0"),
+    ("fuse_rtk_heading", lambda: ahrs.fuse_rtk_heading(np.zeros(_N), np.full(_N, 7.0), _VALID, 0.01), "heading_rtk"),
+    ("fuse_rtk_heading", lambda: ahrs.fuse_rtk_heading(np.zeros(_N), np.zeros(_N), _VALID, 0.01, rtk_confirm=1.5),
+     "rtk_confirm"),
+    ("rtk_at_imu_rate", lambda: ahrs.rtk_at_imu_rate(np.arange(10.0), np.zeros(10), np.ones(10), 2), "valid"),
+    ("settling_time", lambda: ahrs.settling_time(np.arange(10.0), np.ones(10), "2", 1.0), "start"),
+    ("MagGate", lambda: ahrs.MagGate(dip_tol=np.inf), "dip_tol"),
+]
+
+
+@pytest.mark.parametrize("name, call, arg", OUT_OF_RANGE, ids=[f"{c[0]}-{c[2]}" for c in OUT_OF_RANGE])
+def test_out_of_range_values_name_the_argument(name, call, arg):
+    with pytest.raises((ValueError, TypeError), match=rf"^{arg}\b"):
+        call()
+
+
+def test_every_public_callable_is_fuzzed():
+    public = {n for n in ahrs.__all__ if callable(getattr(ahrs, n))}
+    assert public == {k.split("/")[0] for k in FUZZ} | set(NOT_APPLICABLE)
