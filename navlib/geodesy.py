@@ -42,6 +42,14 @@ The paper's own equations are kept for comparison:
 
 Longitude is ``lon`` and latitude ``lat`` (the paper writes L for longitude,
 W for latitude). Angles in rad unless ``deg=True``; distances in m.
+
+Bad input: every public function raises an error whose message starts with
+the argument's name -- ``TypeError`` (navlib's ``InputTypeError``, also a
+``ValueError``) for strings, complex, boolean, object or ragged input and a
+``ellipsoid`` that is not an :class:`navlib.earth.Ellipsoid`; ``ValueError``
+for NaN, infinity (no function here takes NaN as a marker), empty arrays,
+shapes that do not broadcast, and out-of-range values (|lat| > 90°, a
+longitude too far from the zone, zone numbers, ``k0``, ``width``...).
 """
 from __future__ import annotations
 
@@ -62,17 +70,52 @@ _PREFIX_UNIT = 1e6              # zone number times 1e6 m prefixed to the eastin
 
 
 # --------------------------------------------------------------------------
+# Validation (every public function: wrong types, NaN/inf, empty, out of range -> error naming the argument)
+# --------------------------------------------------------------------------
+
+def _arr(x, name: str, **kw) -> np.ndarray:
+    """``as_array`` that also rejects empty arrays."""
+    arr = as_array(x, name, **kw)
+    if arr.size == 0:
+        raise ValueError(f"{name}: expected a non-empty array, got shape {arr.shape}")
+    return arr
+
+
+def _lat(lat, name: str = "lat", deg: bool = False) -> np.ndarray:
+    _arr(lat, name)
+    return latitude(lat, name, deg=deg)
+
+
+def _ell(ellipsoid) -> Ellipsoid:
+    if not isinstance(ellipsoid, Ellipsoid):
+        raise TypeError(f"ellipsoid: expected a navlib.earth.Ellipsoid (e.g. earth.CGCS2000), "
+                        f"got {type(ellipsoid).__name__}")
+    return ellipsoid
+
+
+def _max_offset(max_offset_deg):
+    if max_offset_deg is None:
+        return None
+    return float(in_range(_arr(max_offset_deg, "max_offset_deg"), "max_offset_deg", 0.0, _MAX_OFFSET_DEG,
+                          lo_open=True))
+
+
+# --------------------------------------------------------------------------
 # Zones
 # --------------------------------------------------------------------------
 
 def _width(width) -> int:
-    if width not in ZONE_WIDTHS:
+    try:
+        ok = not isinstance(width, (bool, np.bool_)) and width in ZONE_WIDTHS
+    except (TypeError, ValueError):          # arrays, unhashable values
+        ok = False
+    if not ok:
         raise ValueError(f"width: expected a zone width of 3 or 6 (deg), got {width!r}")
     return int(width)
 
 
 def _lon_deg(lon, deg: bool, name: str = "lon") -> np.ndarray:
-    arr = as_array(lon, name)
+    arr = _arr(lon, name)
     return arr if deg else np.rad2deg(arr)
 
 
@@ -115,11 +158,14 @@ def central_meridian(zone_number, width: int = 3, deg: bool = False) -> np.ndarr
     deg : bool
         Return degrees instead of rad.
     """
-    w = _width(width)
-    n = as_array(zone_number, "zone_number")
+    return _central_meridian(zone_number, _width(width), deg, "zone_number")
+
+
+def _central_meridian(zone_number, w: int, deg: bool, name: str):
+    n = _arr(zone_number, name)
     if np.any(n != np.round(n)):
-        raise ValueError("zone_number: expected integers")
-    in_range(n, "zone_number", 1, 360 // w)
+        raise ValueError(f"{name}: expected integer zone numbers")
+    in_range(n, name, 1, 360 // w)
     L0 = w * n if w == 3 else 6 * n - 3
     L0 = np.where(L0 > 180, L0 - 360, L0)
     return L0 if deg else np.deg2rad(L0)
@@ -134,7 +180,8 @@ def _resolve_lon0(lon_deg, zone_number, lon0, width, deg, max_offset_deg):
         L0 = central_meridian(_zone_number(lon_deg, w, deg=True), w, deg=True)
         limit = np.inf
     else:
-        L0 = (central_meridian(zone_number, w, deg=True) if lon0 is None else _lon_deg(lon0, deg, "lon0"))
+        L0 = (_central_meridian(zone_number, w, True, "zone") if lon0 is None else _lon_deg(lon0, deg, "lon0"))
+        max_offset_deg = _max_offset(max_offset_deg)
         limit = float(w if max_offset_deg is None else max_offset_deg)
     l_deg = lon_deg - L0
     offset = np.abs(l_deg).max(initial=0.0)
@@ -269,7 +316,7 @@ def _inverse(xi, eta, e, beta):
 
 
 def _validate_lat_lon(lat, lon, deg):
-    lat_rad = latitude(lat, "lat", deg=deg)
+    lat_rad = _lat(lat, "lat", deg=deg)
     lon_deg = _lon_deg(lon, deg)
     try:
         lat_rad, lon_deg = np.broadcast_arrays(lat_rad, lon_deg)
@@ -313,10 +360,11 @@ def geodetic2gk(lat, lon, *, zone=None, lon0=None, width: int = 3, ellipsoid: El
     x, y : ndarray, shape (...)
         Northing x and easting y (m), the paper's order.
     """
+    _ell(ellipsoid)
     lat_rad, lon_deg = _validate_lat_lon(lat, lon, deg)
-    k0 = float(in_range(as_array(k0, "k0"), "k0", 0.5, 1.5))
-    fe = float(as_array(false_easting, "false_easting"))
-    fn = float(as_array(false_northing, "false_northing"))
+    k0 = float(in_range(_arr(k0, "k0"), "k0", 0.5, 1.5))
+    fe = float(_arr(false_easting, "false_easting"))
+    fn = float(_arr(false_northing, "false_northing"))
     L0, l_deg = _resolve_lon0(lon_deg, zone, lon0, width, deg, max_offset_deg)
     x, y = _forward(lat_rad, np.deg2rad(l_deg), ellipsoid)
     y = k0 * y + fe
@@ -348,11 +396,12 @@ def gk2geodetic(x, y, *, zone=None, lon0=None, width: int = 3, ellipsoid: Ellips
     lat, lon : ndarray, shape (...)
         rad, or deg with ``deg=True``; lon in (-180°, 180°].
     """
-    x = as_array(x, "x")
-    y = as_array(y, "y")
-    k0 = float(in_range(as_array(k0, "k0"), "k0", 0.5, 1.5))
-    fe = float(as_array(false_easting, "false_easting"))
-    fn = float(as_array(false_northing, "false_northing"))
+    _ell(ellipsoid)
+    x = _arr(x, "x")
+    y = _arr(y, "y")
+    k0 = float(in_range(_arr(k0, "k0"), "k0", 0.5, 1.5))
+    fe = float(_arr(false_easting, "false_easting"))
+    fn = float(_arr(false_northing, "false_northing"))
     w = _width(width)
     if zone_prefix:
         if zone is not None or lon0 is not None:
@@ -361,7 +410,8 @@ def gk2geodetic(x, y, *, zone=None, lon0=None, width: int = 3, ellipsoid: Ellips
         y = y - _PREFIX_UNIT * zone
     if (zone is None) == (lon0 is None):
         raise ValueError("zone, lon0: give exactly one of them (or zone_prefix=True)")
-    L0 = central_meridian(zone, w, deg=True) if lon0 is None else _lon_deg(lon0, deg, "lon0")
+    L0 = (_central_meridian(zone, w, True, "y" if zone_prefix else "zone") if lon0 is None
+          else _lon_deg(lon0, deg, "lon0"))
     try:
         x, y, L0 = np.broadcast_arrays(x, y, L0)
     except ValueError:
@@ -379,6 +429,7 @@ def gk2geodetic(x, y, *, zone=None, lon0=None, width: int = 3, ellipsoid: Ellips
 
 
 def _factors(lat, lon, zone, lon0, width, ellipsoid, deg, max_offset_deg):
+    _ell(ellipsoid)
     lat_rad, lon_deg = _validate_lat_lon(lat, lon, deg)
     _, l_deg = _resolve_lon0(lon_deg, zone, lon0, width, deg, max_offset_deg)
     return _forward(lat_rad, np.deg2rad(l_deg), ellipsoid, factors=True)
@@ -410,7 +461,7 @@ def scale_factor(lat, lon, *, zone=None, lon0=None, width: int = 3, ellipsoid: E
 
     Parameters are those of :func:`geodetic2gk`; returns shape (...).
     """
-    k0 = float(in_range(as_array(k0, "k0"), "k0", 0.5, 1.5))
+    k0 = float(in_range(_arr(k0, "k0"), "k0", 0.5, 1.5))
     _, k = _factors(lat, lon, zone, lon0, width, ellipsoid, deg, max_offset_deg)
     return k0 * k
 
@@ -427,7 +478,8 @@ def meridian_arc(lat, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False, series
         (7)–(8), ``S = a(1-e^2)[A W - B/2 sin 2W + C/4 sin 4W - D/6 sin 6W + E/8 sin 8W]``
         to e^8 (1e-8 m at 26°, 1e-4 m near the pole).
     """
-    lat = latitude(lat, "lat", deg=deg)
+    _ell(ellipsoid)
+    lat = _lat(lat, "lat", deg=deg)
     if series == "kruger":
         return _forward(lat, np.zeros_like(lat), ellipsoid)[0]
     if series != "paper":
@@ -465,8 +517,10 @@ def local_scales(lat, lon, lon0, ellipsoid: Ellipsoid = CGCS2000, deg: bool = Fa
     angle : ndarray, shape (...)
         Angle between the images of the meridian and the parallel (rad; pi/2 if conformal).
     """
+    _ell(ellipsoid)
     if series not in ("kruger", "paper"):
         raise ValueError(f"series: expected 'kruger' or 'paper', got {series!r}")
+    step = float(in_range(_arr(step, "step"), "step", 0.0, 1e-2, lo_open=True))
     lat_r, lon_d = _validate_lat_lon(lat, lon, deg)
     lon0_d = _lon_deg(lon0, deg, "lon0")
     lon_r, lon0_r = np.deg2rad(lon_d), np.deg2rad(lon0_d)
@@ -492,9 +546,14 @@ def local_scales(lat, lon, lon0, ellipsoid: Ellipsoid = CGCS2000, deg: bool = Fa
 
 def geodetic2ecef(lat, lon, h, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False):
     """Earth-centred Earth-fixed coordinates (m) of geodetic points; returns x, y, z of shape (...)."""
-    lat = latitude(lat, "lat", deg=deg)
-    lon = np.deg2rad(_lon_deg(lon, deg))
-    h = as_array(h, "h")
+    _ell(ellipsoid)
+    lat, lon_deg = _validate_lat_lon(lat, lon, deg)
+    lon = np.deg2rad(lon_deg)
+    h = _arr(h, "h")
+    try:
+        np.broadcast_shapes(lat.shape, h.shape)
+    except ValueError:
+        raise ValueError(f"h: shape {h.shape} does not broadcast with lat, lon {lat.shape}") from None
     R_N = ellipsoid.a / np.sqrt(1 - ellipsoid.e2 * np.sin(lat) ** 2)
     r = (R_N + h) * np.cos(lat)
     return r * np.cos(lon), r * np.sin(lon), (R_N * (1 - ellipsoid.e2) + h) * np.sin(lat)
@@ -506,7 +565,12 @@ def ecef2geodetic(x, y, z, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False):
     Bowring's iteration on the parametric latitude (three steps reach 1e-15
     rad for points within 100 km of the surface).
     """
-    x, y, z = (as_array(v, k) for v, k in ((x, "x"), (y, "y"), (z, "z")))
+    _ell(ellipsoid)
+    x, y, z = (_arr(v, k) for v, k in ((x, "x"), (y, "y"), (z, "z")))
+    try:
+        x, y, z = np.broadcast_arrays(x, y, z)
+    except ValueError:
+        raise ValueError(f"x, y, z: shapes {x.shape}, {y.shape}, {z.shape} do not broadcast") from None
     a, b, e2 = ellipsoid.a, ellipsoid.b, ellipsoid.e2
     ep2 = e2 / (1 - e2)
     p = np.hypot(x, y)
@@ -517,9 +581,15 @@ def ecef2geodetic(x, y, z, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False):
         lat = np.arctan2(z + ep2 * b * np.sin(beta) ** 3, p - e2 * a * np.cos(beta) ** 3)
         beta = np.arctan2(b * np.sin(lat), a * np.cos(lat))
     R_N = a / np.sqrt(1 - e2 * np.sin(lat) ** 2)
-    h = np.where(np.abs(np.cos(lat)) > 0.1, p / np.cos(lat) - R_N, z / np.sin(lat) - R_N * (1 - e2))
+    with np.errstate(divide="ignore", invalid="ignore"):      # np.where evaluates both branches
+        h = np.where(np.abs(np.cos(lat)) > 0.1, p / np.cos(lat) - R_N, z / np.sin(lat) - R_N * (1 - e2))
     lon = np.arctan2(y, x)
     return (np.rad2deg(lat), np.rad2deg(lon), h) if deg else (lat, lon, h)
+
+
+def _validate_origin(lat0, lon0, h0, deg):
+    """lat0 (rad), lon0 (rad), h0 (m) of a local frame, each checked under its own name."""
+    return _lat(lat0, "lat0", deg=deg), np.deg2rad(_lon_deg(lon0, deg, "lon0")), _arr(h0, "h0")
 
 
 def _enu_rotation(lat0, lon0):
@@ -536,20 +606,27 @@ def geodetic2enu(lat, lon, h, lat0, lon0, h0, ellipsoid: Ellipsoid = CGCS2000, d
     All arguments broadcast; angles in rad (deg with ``deg=True``). Returns
     e, n, u of shape (...).
     """
+    _ell(ellipsoid)
+    lat0_r, lon0_r, _ = _validate_origin(lat0, lon0, h0, deg)
     p = np.stack(geodetic2ecef(lat, lon, h, ellipsoid, deg), -1)
     p0 = np.stack(geodetic2ecef(lat0, lon0, h0, ellipsoid, deg), -1)
-    lat0 = latitude(lat0, "lat0", deg=deg)
-    lon0 = np.deg2rad(_lon_deg(lon0, deg, "lon0"))
+    lat0, lon0 = lat0_r, lon0_r
     enu = np.einsum("...ij,...j->...i", _enu_rotation(lat0, lon0), p - p0)
     return enu[..., 0], enu[..., 1], enu[..., 2]
 
 
 def enu2geodetic(e, n, u, lat0, lon0, h0, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False):
     """Inverse of :func:`geodetic2enu`: geodetic lat, lon (rad or deg), h (m) of local ENU points."""
-    enu = np.stack(np.broadcast_arrays(as_array(e, "e"), as_array(n, "n"), as_array(u, "u")), -1)
+    _ell(ellipsoid)
+    try:
+        enu = np.stack(np.broadcast_arrays(_arr(e, "e"), _arr(n, "n"), _arr(u, "u")), -1)
+    except ValueError as exc:
+        if str(exc).split(":")[0] in ("e", "n", "u"):
+            raise
+        raise ValueError(f"e, n, u: shapes {np.shape(e)}, {np.shape(n)}, {np.shape(u)} do not broadcast") from None
+    lat0_r, lon0_r, _ = _validate_origin(lat0, lon0, h0, deg)
     p0 = np.stack(geodetic2ecef(lat0, lon0, h0, ellipsoid, deg), -1)
-    lat0 = latitude(lat0, "lat0", deg=deg)
-    lon0 = np.deg2rad(_lon_deg(lon0, deg, "lon0"))
+    lat0, lon0 = lat0_r, lon0_r
     p = p0 + np.einsum("...ji,...j->...i", _enu_rotation(lat0, lon0), enu)
     return ecef2geodetic(p[..., 0], p[..., 1], p[..., 2], ellipsoid, deg)
 
@@ -579,7 +656,8 @@ def paper_radii(lat, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False):
     e1, e2 : float
     R_N, R_M : ndarray, shape (...)
     """
-    W = latitude(lat, "lat", deg=deg)
+    _ell(ellipsoid)
+    W = _lat(lat, "lat", deg=deg)
     a, b = ellipsoid.a, ellipsoid.b
     e1 = np.sqrt(a * a - b * b) / a
     e2 = np.sqrt(a * a - b * b) / b
@@ -590,7 +668,8 @@ def paper_radii(lat, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False):
 
 def printed_meridian_radius(lat, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False):
     """Eq. (6) exactly as printed, ``a^2 (1 - e1^2)/sqrt((1 + e2^2 sin^2 W)^(3/2))`` (m): wrong (Erratum 2)."""
-    W = latitude(lat, "lat", deg=deg)
+    _ell(ellipsoid)
+    W = _lat(lat, "lat", deg=deg)
     e1, e2, _, _ = paper_radii(0.0, ellipsoid)
     return ellipsoid.a ** 2 * (1 - e1 ** 2) / np.sqrt((1 + e2 ** 2 * np.sin(W) ** 2) ** 1.5)
 
@@ -613,6 +692,7 @@ def paper_series(lat, lon, lon0, ellipsoid: Ellipsoid = CGCS2000, deg: bool = Fa
     lat, lon, lon0 : array_like, broadcasting to shape (...)
         rad, or deg with ``deg=True``; ``|lon - lon0|`` at most 6°.
     """
+    _ell(ellipsoid)
     W, lon_deg = _validate_lat_lon(lat, lon, deg)
     L0 = _lon_deg(lon0, deg, "lon0")
     l_deg = lon_deg - L0

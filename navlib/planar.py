@@ -37,11 +37,34 @@ heading and ``omega_IMU`` the vertical gyro rate (Erratum 8).
 
 Filtering (:func:`ekf`): GPS fixes arrive as latitude/longitude and are
 projected here, in one zone held for the whole run (the zone of ``origin`` or
-of the first fix), so a run crossing a zone boundary stays continuous. NaN
-measurement components (GPS outages, dropouts) are left out of the update;
-an epoch with no measurement is prediction only; the counts are reported.
+of the first fix), so a run crossing a zone boundary stays continuous.
 The predict/update cycle is one compiled kernel (:func:`filter_grid`) that
-calls :func:`navlib.kalman.predict` and :func:`navlib.kalman.update`.
+calls :func:`navlib.kalman.update` (and a specialised H = I5 update).
+
+Faults (what the filters do, and which counter of :class:`EkfResult` says so)
+-----------------------------------------------------------------------------
+============================  ==============================================  =====================================
+fault                         EKF                                             counter
+============================  ==============================================  =====================================
+NaN sample / outage / gap     skip that component; nothing at all: predict    ``n_missing_channels``,
+                              only (P grows, recovers at the next fix)        ``n_gps_missing``, ``n_predict_only``
+outlier (spike, GPS jump)     with a finite ``gate``: gate each channel        ``rejected``, ``n_rejected_channels``,
+                              (GPS 2 dof, heading, speed, yaw rate 1 dof) on   ``n_rejected`` (status ``REJECTED``)
+                              its marginal NIS; fuse the channels that pass;
+                              after ``reacquire`` rejections in a row inflate  ``reacquired``, ``n_reacquired_channels``
+                              P by the squared innovation and fuse the next
+                              sample ungated
+yaw rate at the gyro rails    with ``yaw_rate_range``: a censored sample:      ``saturated``, ``n_saturated``
+                              fuse the rail value while the prediction is
+                              inside the rails, else skip; never gated
+repeated / out-of-order t     ``ValueError`` (run ``timing.sanitize`` first,   ``timing.TimingReport``
+                              which sorts, drops repeats and counts them)
+irregular sampling            step ``T = t[k] - t[k-1]`` per epoch             --
+============================  ==============================================  =====================================
+
+:func:`dead_reckoning` holds the previous speed and yaw rate over NaN and
+saturated samples (counted in ``held``); it has no redundancy to detect an
+in-range outlier.
 """
 from __future__ import annotations
 
@@ -54,7 +77,7 @@ from . import geodesy, kalman
 from ._validate import as_array, generator, positive, time_axis
 from .earth import CGCS2000, Ellipsoid
 
-__all__ = ["Q_PAPER", "R_PAPER", "motion_model", "jacobian", "propagate", "waypoint_path",
+__all__ = ["CHANNELS", "Q_PAPER", "R_PAPER", "motion_model", "jacobian", "propagate", "waypoint_path",
            "dead_reckoning", "filter_grid", "ekf", "EkfResult", "simulate_sensors", "Sensors",
            "position_error"]
 
@@ -65,6 +88,14 @@ R_PAPER = np.diag([6.25, 6.25, 0.01, 0.0004, 0.0025])
 
 _HEADING = 2
 _ANGLE_MASK = np.array([False, False, True, False, False])
+
+
+def _scalar(x, name: str) -> float:
+    """A positive finite scalar (raises ValueError/TypeError naming the argument)."""
+    arr = positive(x, name)
+    if arr.shape != ():
+        raise ValueError(f"{name}: expected a scalar, got shape {arr.shape}")
+    return float(arr)
 
 
 # --------------------------------------------------------------------------
@@ -99,7 +130,7 @@ def _state(X, name="X"):
 def motion_model(X, T: float):
     """Reconstructed Eq. (13): ``f(X)`` for states of shape (..., 5) and step ``T`` (s)."""
     X = _state(X)
-    T = float(positive(T, "T"))
+    T = _scalar(T, "T")
     x, y, th, v, w = np.moveaxis(X, -1, 0)
     return np.stack([x + v * T * np.cos(th), y + v * T * np.sin(th), th + w * T, v, w], -1)
 
@@ -107,7 +138,7 @@ def motion_model(X, T: float):
 def jacobian(X, T: float):
     """Eq. (16): ``Phi = df/dX`` at states (..., 5); returns shape (..., 5, 5)."""
     X = _state(X)
-    T = float(positive(T, "T"))
+    T = _scalar(T, "T")
     Phi = np.broadcast_to(np.eye(5), X.shape[:-1] + (5, 5)).copy()
     s, c = np.sin(X[..., 2]), np.cos(X[..., 2])
     Phi[..., 0, 2] = -X[..., 3] * T * s
@@ -155,9 +186,9 @@ def propagate(x0, T: float, n_steps: int | None = None, speed=None, yaw_rate=Non
     x0 = as_array(x0, "x0", tail=(5,))
     if x0.ndim != 1:
         raise ValueError(f"x0: expected shape (5,), got {x0.shape}")
-    T = float(positive(T, "T"))
+    T = _scalar(T, "T")
     if speed is None and yaw_rate is None:
-        if n_steps is None or int(n_steps) != n_steps or n_steps < 1:
+        if isinstance(n_steps, (bool, np.bool_)) or not isinstance(n_steps, (int, np.integer)) or n_steps < 1:
             raise ValueError(f"n_steps: expected a positive integer, got {n_steps!r}")
         speed, yaw_rate = np.full(int(n_steps), x0[3]), np.full(int(n_steps), x0[4])
     else:
@@ -199,9 +230,9 @@ def waypoint_path(waypoints, speed: float, turn_rate: float, T: float):
     length = np.hypot(legs[:, 0], legs[:, 1])
     if np.any(length <= 0):
         raise ValueError("waypoints: consecutive waypoints must differ")
-    speed = float(positive(speed, "speed"))
-    turn_rate = float(positive(turn_rate, "turn_rate"))
-    T = float(positive(T, "T"))
+    speed = _scalar(speed, "speed")
+    turn_rate = _scalar(turn_rate, "turn_rate")
+    T = _scalar(T, "T")
     course = np.arctan2(legs[:, 1], legs[:, 0])
     v_cmd, w_cmd, reached = [], [], []
     for i, (L, c) in enumerate(zip(length, course)):
@@ -225,14 +256,14 @@ def waypoint_path(waypoints, speed: float, turn_rate: float, T: float):
 # --------------------------------------------------------------------------
 
 @njit(cache=True)
-def _dead_reckon(t, speed, yaw_rate, x0, velocity_bias):
+def _dead_reckon(t, speed, yaw_rate, x0, velocity_bias, yaw_rate_range):
     n = t.shape[0]
     out = np.empty((n, 3))
     out[0] = x0[:3]
     v, w = x0[3], x0[4]
     held = 0
     for k in range(1, n):
-        if np.isfinite(speed[k - 1]) and np.isfinite(yaw_rate[k - 1]):
+        if np.isfinite(speed[k - 1]) and np.isfinite(yaw_rate[k - 1]) and abs(yaw_rate[k - 1]) < yaw_rate_range:
             v, w = speed[k - 1], yaw_rate[k - 1]
         else:
             held += 1
@@ -243,8 +274,15 @@ def _dead_reckon(t, speed, yaw_rate, x0, velocity_bias):
     return out, held
 
 
-def dead_reckoning(t, speed, yaw_rate, x0, velocity_bias=(0.0, 0.0)):
+def dead_reckoning(t, speed, yaw_rate, x0, velocity_bias=(0.0, 0.0), yaw_rate_range: float | None = None):
     """Integrate measured speed and yaw rate from ``x0`` with the motion model (no GPS).
+
+    Dead reckoning has no redundancy, so it cannot detect an outlier inside
+    the sensor's range: a speed spike moves the track by ``spike * T``, a
+    yaw-rate spike turns it by ``spike * T`` for good. What it can tell is
+    held and counted: NaN samples (dropouts, gaps) and, given the gyro range,
+    yaw-rate samples at the rails. Times must be strictly increasing
+    (``ValueError``; :func:`navlib.timing.sanitize` first); the step follows ``t``.
 
     Parameters
     ----------
@@ -259,22 +297,33 @@ def dead_reckoning(t, speed, yaw_rate, x0, velocity_bias=(0.0, 0.0)):
         A constant velocity error in the grid (north, east; m/s) added at every
         step: an error model for simulations (the frame-fixed drift of the
         paper's Table 1), zero for plain dead reckoning.
+    yaw_rate_range : float, optional
+        Gyro full-scale range (rad/s): a sample with ``|omega| >= yaw_rate_range``
+        is at the rails, not a measurement, and holds the previous speed and
+        yaw rate (counted in ``held``). Default: no range.
 
     Returns
     -------
     pose : ndarray, shape (N, 3)
         ``[x, y, theta]``.
     held : int
-        Steps that reused an earlier measurement.
+        Steps that reused an earlier measurement (NaN or saturated sample at
+        the start of the step; samples ``0 .. N-2`` drive the steps).
     """
     t = time_axis(t, "t")
     speed = as_array(speed, "speed", allow_nan=True)
     yaw_rate = as_array(yaw_rate, "yaw_rate", allow_nan=True)
-    if speed.shape != t.shape or yaw_rate.shape != t.shape:
-        raise ValueError(f"speed, yaw_rate: expected shape {t.shape}, got {speed.shape}, {yaw_rate.shape}")
+    for name, arr in (("speed", speed), ("yaw_rate", yaw_rate)):
+        if arr.shape != t.shape:
+            raise ValueError(f"{name}: expected shape {t.shape} (one sample per time), got {arr.shape}")
     x0 = as_array(x0, "x0", tail=(5,))
+    if x0.shape != (5,):
+        raise ValueError(f"x0: expected shape (5,), got {x0.shape}")
     bias = as_array(velocity_bias, "velocity_bias", tail=(2,))
-    return _dead_reckon(t, speed, yaw_rate, x0.reshape(5), bias.reshape(2))
+    if bias.shape != (2,):
+        raise ValueError(f"velocity_bias: expected shape (2,), got {bias.shape}")
+    fs = _full_scale(yaw_rate_range, "yaw_rate_range")
+    return _dead_reckon(t, speed, yaw_rate, x0, bias, fs)
 
 
 # --------------------------------------------------------------------------
@@ -376,15 +425,106 @@ def _update_identity_h(x, P, z, R, gate, w):
 
 
 @njit(cache=True)
-def _ekf_kernel(t, Z, x0, P0, Q, R, gate, fast):
+def _gate_groups(x, P, z, R, gate, zu, rejected_row, streak, reacquire, reacquired_row):
+    """Test each measurement group on its own marginal innovation (GPS: 2 dof, others 1 dof).
+
+    Copies ``z`` into ``zu`` with the rejected groups set to NaN, marks them in
+    ``rejected_row`` (4,) and returns how many groups were rejected. A group
+    rejected on ``reacquire`` consecutive epochs with data is fused without the
+    test at its next sample (marked in ``reacquired_row``), with the variance of
+    its states inflated by the squared innovation so that the sample takes
+    over: a lasting change is the state's error, not an outlier, and must not
+    lock the channel out.
+    """
+    for i in range(5):
+        zu[i] = z[i]
+    n_rej = 0
+    f0, f1 = np.isfinite(z[0]), np.isfinite(z[1])
+    if f0 or f1:
+        y0, y1 = z[0] - x[0], z[1] - x[1]
+        s00, s11 = P[0, 0] + R[0, 0], P[1, 1] + R[1, 1]
+        s01 = 0.5 * (P[0, 1] + P[1, 0]) + 0.5 * (R[0, 1] + R[1, 0])
+        if f0 and f1:
+            nis = (s11 * y0 * y0 - 2.0 * s01 * y0 * y1 + s00 * y1 * y1) / (s00 * s11 - s01 * s01)
+        elif f0:
+            nis = y0 * y0 / s00
+        else:
+            nis = y1 * y1 / s11
+        if nis <= gate[0]:
+            streak[0] = 0
+        elif streak[0] >= reacquire:                       # inflate P so the sample takes over
+            streak[0] = 0
+            reacquired_row[0] = True
+            if f0:
+                P[0, 0] += y0 * y0
+            if f1:
+                P[1, 1] += y1 * y1
+        else:
+            zu[0] = np.nan
+            zu[1] = np.nan
+            rejected_row[0] = True
+            streak[0] += 1
+            n_rej += 1
+    for g in range(1, 4):
+        i = g + 1
+        if np.isfinite(z[i]):
+            y = z[i] - x[i]
+            if i == _HEADING:
+                y = kalman._wrap_pi(y)
+            if y * y / (P[i, i] + R[i, i]) <= gate[g]:
+                streak[g] = 0
+            elif streak[g] >= reacquire:
+                streak[g] = 0
+                reacquired_row[g] = True
+                P[i, i] += y * y
+            else:
+                zu[i] = np.nan
+                rejected_row[g] = True
+                streak[g] += 1
+                n_rej += 1
+    return n_rej
+
+
+@njit(cache=True)
+def _screen(x, P, z, R, gate, gate_on, w_range, sat_on, zu, rejected_row, streak, reacquire, reacquired_row):
+    """Gate the channels and handle a yaw rate at the rails; fills ``zu``. Returns (n_rejected, saturated)."""
+    sat = sat_on and abs(z[4]) >= w_range                  # NaN: False
+    n_rej = 0
+    if not (gate_on or sat):
+        return n_rej, sat
+    for i in range(5):
+        zu[i] = z[i]
+    if sat:
+        zu[4] = np.nan                                     # a rail sample is not gated ...
+    if gate_on:                                            # gate each group, fuse the rest
+        n_rej = _gate_groups(x, P, zu, R, gate, zu, rejected_row, streak, reacquire, reacquired_row)
+    if sat:                                                # ... it only says |omega| >= range:
+        sign = 1.0 if z[4] > 0 else -1.0
+        if sign * x[4] < w_range:                          # pull a prediction inside the rails to the rail,
+            zu[4] = sign * w_range                         # skip it when the prediction is beyond already
+    return n_rej, sat
+
+
+@njit(cache=True)
+def _ekf_kernel(t, Z, x0, P0, Q, R, gate, fast, w_range, reacquire):
     n = t.shape[0]
     X = np.empty((n, 5))
     Ps = np.empty((n, 5, 5))
     nis = np.full(n, np.nan)
     status = np.zeros(n, dtype=np.int64)
+    rejected = np.zeros((n, 4), dtype=np.bool_)
+    reacquired = np.zeros((n, 4), dtype=np.bool_)
+    streak = np.zeros(4, dtype=np.int64)
+    gate_on = False
+    for g in range(4):
+        if np.isfinite(gate[g]):
+            gate_on = True
+    sat_on = np.isfinite(w_range)
+    robust = gate_on or sat_on
     H = np.eye(5)
     w = np.zeros((7, 5, 5))
     Phi_P = np.empty((5, 5))
+    zu = np.empty(5)
     x, P = x0.copy(), P0.copy()
     X[0], Ps[0] = x, P
     for k in range(1, n):
@@ -395,18 +535,34 @@ def _ekf_kernel(t, Z, x0, P0, Q, R, gate, fast):
         P += Q                                             # P = Phi P Phi^T + Gamma Q Gamma^T, Gamma = I
         x = _f(x, T)                                       # Eq. (13)
         z = Z[k]
-        if fast and np.all(np.isfinite(z)):
-            nis[k], status[k] = _update_identity_h(x, P, z, R, gate, w)
+        n_rej, sat = 0, False
+        if robust:                                         # gate and/or gyro range given
+            n_rej, sat = _screen(x, P, z, R, gate, gate_on, w_range, sat_on, zu, rejected[k], streak, reacquire,
+                                 reacquired[k])
+        if n_rej > 0 or sat:                               # gated or saturated: the general kernel on zu
+            x, P, _, nis[k], status[k] = kalman.update(x, P, zu, x, H, R, _ANGLE_MASK, np.inf)
+            if n_rej > 0:
+                status[k] = kalman.REJECTED
+        elif fast and np.all(np.isfinite(z)):
+            nis[k], status[k] = _update_identity_h(x, P, z, R, np.inf, w)
         else:                                              # dropouts: the general kernel
-            x, P, _, nis[k], status[k] = kalman.update(x, P, z, x, H, R, _ANGLE_MASK, gate)
+            x, P, _, nis[k], status[k] = kalman.update(x, P, z, x, H, R, _ANGLE_MASK, np.inf)
         x[_HEADING] = np.mod(x[_HEADING], 2 * np.pi)
         X[k], Ps[k] = x, P
-    return X, Ps, nis, status
+    return X, Ps, nis, status, rejected, reacquired
+
+
+CHANNELS = ("gps", "heading", "speed", "yaw_rate")
+"""Measurement groups of the EKF, in the order of ``gate`` and of the per-channel counters."""
 
 
 @dataclass
 class EkfResult:
     """Output of :func:`ekf` and :func:`filter_grid`.
+
+    Every epoch after the first is accounted for: each channel of it was fused,
+    missing (NaN), gated out (``rejected``) or at the gyro rails
+    (``saturated``); the counters below count these epochs.
 
     Attributes
     ----------
@@ -415,18 +571,36 @@ class EkfResult:
         Filtered states ``[x north, y east, heading (grid, rad), v, omega]``.
     P : ndarray, shape (N, 5, 5)
     nis : ndarray, shape (N,)
-        Normalised innovation squared (NaN where nothing was measured).
+        Normalised innovation squared of the components fused (NaN where
+        nothing was fused).
     status : ndarray of int, shape (N,)
-        ``kalman.ACCEPTED``, ``NO_DATA`` (prediction only) or ``REJECTED`` (gated outlier).
+        ``kalman.ACCEPTED``; ``NO_DATA`` (nothing measured: prediction only);
+        ``REJECTED`` (at least one channel gated out; the others were fused).
     z : ndarray, shape (N, 5)
-        Measurements in the grid frame as fused (projected GPS, grid heading).
+        Measurements in the grid frame as given to the filter (projected GPS,
+        grid heading); saturated or gated samples are still shown here.
     n_predict_only, n_gps_missing, n_rejected : int
         Epochs (after the first) with no measurement at all, without a GPS
-        fix, and rejected by the gate.
+        fix, and with at least one channel rejected by the gate.
     zone : int or None
         Zone held by :func:`ekf`.
     origin_gk : ndarray, shape (2,)
         GK coordinates (north, east; m) subtracted from the projected fixes.
+    rejected : ndarray of bool, shape (N, 4)
+        Channel (``CHANNELS``: GPS position, heading, speed, yaw rate) gated out at each epoch.
+    n_rejected_channels : ndarray of int, shape (4,)
+        ``rejected.sum(axis=0)``: gated samples per channel.
+    n_missing_channels : ndarray of int, shape (4,)
+        Epochs after the first with the channel missing (NaN; GPS: either coordinate).
+    reacquired : ndarray of bool, shape (N, 4)
+        Channel fused without the gate after ``reacquire`` consecutive rejections.
+    n_reacquired_channels : ndarray of int, shape (4,)
+        ``reacquired.sum(axis=0)``.
+    saturated : ndarray of bool, shape (N,)
+        Yaw-rate samples at or beyond the gyro rails (``|omega| >= yaw_rate_range``),
+        never fused at face value (see :func:`filter_grid`).
+    n_saturated : int
+        Saturated yaw-rate samples in epochs after the first (``saturated[1:].sum()``).
     """
     t: np.ndarray
     x: np.ndarray
@@ -439,6 +613,13 @@ class EkfResult:
     n_rejected: int
     zone: int | None = None
     origin_gk: np.ndarray | None = None
+    rejected: np.ndarray | None = None
+    n_rejected_channels: np.ndarray | None = None
+    n_missing_channels: np.ndarray | None = None
+    reacquired: np.ndarray | None = None
+    n_reacquired_channels: np.ndarray | None = None
+    saturated: np.ndarray | None = None
+    n_saturated: int = 0
 
 
 def _covariance(M, name):
@@ -450,8 +631,35 @@ def _covariance(M, name):
     return np.ascontiguousarray(M)
 
 
-def filter_grid(t, z, x0, P0=None, Q=Q_PAPER, R=R_PAPER, gate: float = np.inf, fast: bool = True):
+def _gate(gate):
+    g = as_array(gate, "gate", finite=False)
+    if g.shape not in ((), (4,)) or np.any(np.isnan(g)) or not np.all(g > 0):
+        raise ValueError(f"gate: expected a positive NIS threshold (inf for none) or 4 of them "
+                         f"(gps, heading, speed, yaw_rate), got {gate!r}")
+    return np.ascontiguousarray(np.broadcast_to(g, (4,)), dtype=float)
+
+
+def _full_scale(value, name):
+    if value is None:
+        return np.inf
+    v = as_array(value, name, finite=False)
+    if v.shape != () or not v > 0 or np.isnan(v):
+        raise ValueError(f"{name}: expected a positive full-scale range (or None), got {value!r}")
+    return float(v)
+
+
+def filter_grid(t, z, x0, P0=None, Q=Q_PAPER, R=R_PAPER, gate=np.inf, fast: bool = True,
+                yaw_rate_range: float | None = None, reacquire: int = 3):
     """The EKF on measurements already in the grid frame.
+
+    Faults: a NaN component is missing and left out of the update (an epoch
+    with nothing is prediction only); with a finite ``gate`` each channel
+    whose innovation fails its own NIS test is left out and the others are
+    fused; yaw-rate samples at the gyro rails are treated as censored (see
+    ``yaw_rate_range``). All are
+    counted in the :class:`EkfResult`. Times must be strictly increasing
+    (``ValueError`` otherwise: run :func:`navlib.timing.sanitize` first); the
+    step ``T = t[k] - t[k-1]`` may vary from epoch to epoch (``Q`` stays per step).
 
     Parameters
     ----------
@@ -465,11 +673,32 @@ def filter_grid(t, z, x0, P0=None, Q=Q_PAPER, R=R_PAPER, gate: float = np.inf, f
         Initial covariance; default zeros (the paper's P(0)).
     Q, R : array_like, shape (5, 5) or (5,)
         Per-step process noise and measurement noise (Eqs. 17–18 by default).
-    gate : float
-        NIS above which an update is rejected (``inf``: never).
+    gate : float or array_like, shape (4,)
+        NIS thresholds per channel (``CHANNELS``: GPS position, 2 dof; heading,
+        speed, yaw rate, 1 dof each), each tested on its marginal innovation
+        ``y_g^T S_gg^-1 y_g``; a scalar applies to all; ``inf``: never gate.
+        E.g. ``[18.4, 15.1, 15.1, 15.1]`` (chi-square, 1e-4 false alarms).
+        A manoeuvre the process noise ``Q`` does not allow for (the paper's Q:
+        0.04 rad/s and 0.01 m/s per step) fails the test like an outlier; see
+        ``reacquire``.
     fast : bool
         Use the specialised H = I5 update when every component is present
         (False: :func:`navlib.kalman.update` at every epoch; same result).
+    yaw_rate_range : float, optional
+        Gyro full-scale range (rad/s): a yaw-rate sample with ``|omega| >=
+        yaw_rate_range`` is at the rails and only says ``|omega| >= range``.
+        It is never gated and never fused at face value: while the predicted
+        omega is inside the rails the rail value ``±range`` is fused (the
+        nearest rate the sample allows), once the prediction is beyond the
+        rail the sample is skipped. Counted in ``saturated``, ``n_saturated``.
+        Default: no range.
+    reacquire : int
+        A channel gated out on this many consecutive epochs (with data) is
+        fused without the test at its next sample, its states' variance
+        inflated by the squared innovation (the sample takes over), and the
+        streak restarts (``reacquired``, ``n_reacquired_channels``): isolated outliers stay
+        out, a lasting change of the truth (a real step in speed or yaw rate,
+        a filter that has lost the heading) cannot lock the channel out.
 
     Returns
     -------
@@ -484,13 +713,23 @@ def filter_grid(t, z, x0, P0=None, Q=Q_PAPER, R=R_PAPER, gate: float = np.inf, f
         raise ValueError(f"x0: expected shape (5,), got {x0.shape}")
     P0 = np.zeros((5, 5)) if P0 is None else _covariance(P0, "P0")
     Q, R = _covariance(Q, "Q"), _covariance(R, "R")
-    gate = float(as_array(gate, "gate", allow_nan=False, finite=False))
-    if not gate > 0:
-        raise ValueError(f"gate: expected a positive NIS threshold (inf for none), got {gate}")
-    X, P, nis, status = _ekf_kernel(t, np.ascontiguousarray(z), x0, P0, Q, R, gate, bool(fast))
-    gps_missing = ~np.all(np.isfinite(z[1:, :2]), axis=1)
+    gate = _gate(gate)
+    fs = _full_scale(yaw_rate_range, "yaw_rate_range")
+    with np.errstate(invalid="ignore"):
+        saturated = np.abs(z[:, 4]) >= fs                   # NaN compares False
+    if isinstance(reacquire, (bool, np.bool_)) or not isinstance(reacquire, (int, np.integer)) or reacquire < 1:
+        raise ValueError(f"reacquire: expected a positive integer, got {reacquire!r}")
+    X, P, nis, status, rejected, reacquired = _ekf_kernel(t, np.ascontiguousarray(z), x0, P0, Q, R, gate,
+                                                          bool(fast), fs, int(reacquire))
+    later = z[1:]
+    missing = np.stack([~np.all(np.isfinite(later[:, :2]), axis=1), np.isnan(later[:, 2]),
+                        np.isnan(later[:, 3]), np.isnan(later[:, 4])], -1)
     return EkfResult(t, X, P, nis, status, z, int(np.sum(status[1:] == kalman.NO_DATA)),
-                     int(gps_missing.sum()), int(np.sum(status == kalman.REJECTED)))
+                     int(missing[:, 0].sum()), int(np.sum(status == kalman.REJECTED)),
+                     rejected=rejected, n_rejected_channels=rejected.sum(axis=0),
+                     n_missing_channels=missing.sum(axis=0), reacquired=reacquired,
+                     n_reacquired_channels=reacquired.sum(axis=0), saturated=saturated,
+                     n_saturated=int(saturated[1:].sum()))
 
 
 def _forward_fill(values):
@@ -505,9 +744,18 @@ def _forward_fill(values):
 
 
 def ekf(t, gps, heading, speed, yaw_rate, x0, *, origin=None, zone=None, width: int = 3,
-        ellipsoid: Ellipsoid = CGCS2000, P0=None, Q=Q_PAPER, R=R_PAPER, gate: float = np.inf,
-        correct_convergence: bool = True, deg: bool = False):
+        ellipsoid: Ellipsoid = CGCS2000, P0=None, Q=Q_PAPER, R=R_PAPER, gate=np.inf,
+        correct_convergence: bool = True, deg: bool = False, yaw_rate_range: float | None = None,
+        reacquire: int = 3):
     """The paper's pipeline: GPS lat/lon -> Gauss–Krüger -> EKF with IMU heading, speed, yaw rate.
+
+    Faults are handled as in :func:`filter_grid` (NaN: skip the component;
+    ``gate``: leave out a channel whose innovation fails its NIS test, e.g. a
+    50 m GPS jump or an IMU spike; ``yaw_rate_range``: leave out samples at the
+    gyro rails) and counted in the result. Timestamps must be strictly
+    increasing: for logs with repeated or out-of-order samples the documented
+    pipeline is ``navlib.timing.sanitize(t, gps, heading, speed, yaw_rate)``
+    then :func:`ekf`; unsanitised times raise ``ValueError``.
 
     Parameters
     ----------
@@ -527,8 +775,10 @@ def ekf(t, gps, heading, speed, yaw_rate, x0, *, origin=None, zone=None, width: 
         Zone to hold for the whole run; default the zone of ``origin`` or of the first fix.
     width, ellipsoid
         As in :func:`navlib.geodesy.geodetic2gk`.
-    P0, Q, R, gate
+    P0, Q, R, gate, reacquire
         As in :func:`filter_grid`.
+    yaw_rate_range : float, optional
+        Gyro full-scale range (rad/s, or deg/s with ``deg=True``); see :func:`filter_grid`.
     correct_convergence : bool
         Subtract the grid convergence at the latest fix from the heading (True);
         False fuses the true-north heading with grid coordinates as the paper does.
@@ -573,7 +823,10 @@ def ekf(t, gps, heading, speed, yaw_rate, x0, *, origin=None, zone=None, width: 
         gamma = np.deg2rad(gamma)
     z[:, 2] = heading - _forward_fill(gamma) if correct_convergence else heading
     z[:, 3], z[:, 4] = speed, yaw_rate
-    res = filter_grid(t, z, x0, P0, Q, R, gate)
+    if yaw_rate_range is not None:
+        yaw_rate_range = _full_scale(yaw_rate_range, "yaw_rate_range")
+        yaw_rate_range = np.deg2rad(yaw_rate_range) if deg else yaw_rate_range
+    res = filter_grid(t, z, x0, P0, Q, R, gate, yaw_rate_range=yaw_rate_range, reacquire=reacquire)
     res.zone, res.origin_gk = zone, origin_gk
     return res
 
@@ -631,7 +884,10 @@ def simulate_sensors(truth, origin, R, rng: np.random.Generator, *, zone=None, w
     origin = as_array(origin, "origin", tail=(2,)).reshape(2)
     sigma = np.sqrt(np.diag(_covariance(R, "R")))
     generator(rng)
-    yaw_rate_bias = float(as_array(yaw_rate_bias, "yaw_rate_bias"))
+    yaw_rate_bias = as_array(yaw_rate_bias, "yaw_rate_bias")
+    if yaw_rate_bias.shape != ():
+        raise ValueError(f"yaw_rate_bias: expected a scalar (rad/s), got shape {yaw_rate_bias.shape}")
+    yaw_rate_bias = float(yaw_rate_bias)
     zone = int(geodesy.zone(origin[1], width)) if zone is None else zone
     kw = dict(zone=zone, width=width, ellipsoid=ellipsoid)
     o_north, o_east = geodesy.geodetic2gk(origin[0], origin[1], **kw)
@@ -639,7 +895,12 @@ def simulate_sensors(truth, origin, R, rng: np.random.Generator, *, zone=None, w
     lat, lon = geodesy.gk2geodetic(o_north + truth[:, 0] + noise[:, 0], o_east + truth[:, 1] + noise[:, 1], **kw)
     gps = np.stack([lat, lon], -1)
     if gps_valid is not None:
-        gps_valid = np.asarray(gps_valid, dtype=bool)
+        try:
+            gps_valid = np.asarray(gps_valid)
+        except ValueError:
+            raise ValueError("gps_valid: expected a boolean array of shape (N,), got a ragged sequence") from None
+        if gps_valid.dtype != bool:
+            raise TypeError(f"gps_valid: expected booleans, got dtype {gps_valid.dtype}")
         if gps_valid.shape != (len(truth),):
             raise ValueError(f"gps_valid: expected shape ({len(truth)},), got {gps_valid.shape}")
         gps[~gps_valid] = np.nan
@@ -653,7 +914,12 @@ def position_error(estimate, truth):
     """Horizontal position error (m): ``|estimate[..., :2] - truth[..., :2]|``, shape (...)."""
     est = as_array(estimate, "estimate", allow_nan=True)
     tru = as_array(truth, "truth")
-    if est.shape[-1] < 2 or tru.shape[-1] < 2:
-        raise ValueError("estimate, truth: expected positions on the last axis (at least 2 components)")
+    for name, arr in (("estimate", est), ("truth", tru)):
+        if arr.ndim < 1 or arr.shape[-1] < 2:
+            raise ValueError(f"{name}: expected positions on the last axis (at least 2 components), got shape {arr.shape}")
+    try:
+        np.broadcast_shapes(est.shape[:-1], tru.shape[:-1])
+    except ValueError:
+        raise ValueError(f"estimate, truth: shapes {est.shape} and {tru.shape} do not broadcast") from None
     d = est[..., :2] - tru[..., :2]
     return np.hypot(d[..., 0], d[..., 1])

@@ -255,7 +255,7 @@ def test_broadcasting():
     (lambda: geodesy.paper_series(26.0, 127.0, 120.0, deg=True), "lon"),
     (lambda: geodesy.ecef2geodetic(0.0, 0.0, 10.0), "x, y, z"),
     (lambda: geodesy.geodetic2enu(26.0, 119.0, np.nan, 26.0, 119.0, 0.0, deg=True), "h"),
-    (lambda: geodesy.enu2geodetic(0.0, 0.0, 0.0, 95.0, 119.0, 0.0, deg=True), "lat"),
+    (lambda: geodesy.enu2geodetic(0.0, 0.0, 0.0, 95.0, 119.0, 0.0, deg=True), "lat0"),
     (lambda: geodesy.convergence(26.0, 140.0, zone=40, deg=True), "lon"),
     (lambda: geodesy.scale_factor(26.0, 120.0, k0=0.0, deg=True), "k0"),
 ])
@@ -263,3 +263,181 @@ def test_bad_input_raises_value_error_naming_the_argument(call, arg):
     with pytest.raises(ValueError) as info:
         call()
     assert str(info.value).split(":")[0] == arg, str(info.value)
+
+
+# --------------------------------------------------------------------------
+# Public API fuzzing (issue 9): every public function, every numeric argument
+# --------------------------------------------------------------------------
+
+LAT_F, LON_F = 0.45, 2.08                       # rad, near Fuzhou (zone 40 of 3°)
+VALID_CALLS = {                                 # one valid call per public function
+    "zone": dict(lon=LON_F),
+    "central_meridian": dict(zone_number=40),
+    "geodetic2gk": dict(lat=LAT_F, lon=LON_F, zone=40),
+    "gk2geodetic": dict(x=2.88e6, y=1e4, zone=40),
+    "convergence": dict(lat=LAT_F, lon=LON_F, zone=40),
+    "scale_factor": dict(lat=LAT_F, lon=LON_F, zone=40),
+    "meridian_arc": dict(lat=LAT_F),
+    "geodetic2ecef": dict(lat=LAT_F, lon=LON_F, h=10.0),
+    "ecef2geodetic": dict(x=-2.8e6, y=5.0e6, z=2.8e6),
+    "geodetic2enu": dict(lat=LAT_F, lon=LON_F, h=10.0, lat0=LAT_F, lon0=LON_F, h0=0.0),
+    "enu2geodetic": dict(e=10.0, n=5.0, u=1.0, lat0=LAT_F, lon0=LON_F, h0=0.0),
+    "local_scales": dict(lat=LAT_F, lon=LON_F, lon0=2.094),
+    "printed_zone_number": dict(lon=LON_F),
+    "printed_meridian_radius": dict(lat=LAT_F),
+    "paper_radii": dict(lat=LAT_F),
+    "paper_series": dict(lat=LAT_F, lon=LON_F, lon0=2.094),
+}
+BAD_VALUES = {"string": "abc", "string array": ["1.0"], "complex": 1 + 1j, "object array": np.array([1.0, "a"], dtype=object),
+              "boolean": True, "empty": np.array([]), "nan": np.nan, "inf": -np.inf, "ragged": [1.0, [2.0, 3.0]]}
+FUZZ_CASES = [(fn, arg, bad) for fn, kw in VALID_CALLS.items() for arg in kw for bad in BAD_VALUES]
+
+
+def test_fuzz_table_covers_every_public_function():
+    """Covered / total public functions of navlib.geodesy (reported in the issue-9 note): 16/16."""
+    assert sorted(VALID_CALLS) == sorted(geodesy.__all__)
+    for fn, kw in VALID_CALLS.items():
+        out = getattr(geodesy, fn)(**kw)
+        assert np.all(np.isfinite(np.concatenate([np.ravel(o) for o in np.atleast_1d(*np.atleast_1d(out))])
+                                  if isinstance(out, tuple) else out))
+
+
+@pytest.mark.parametrize("fn, arg, bad", FUZZ_CASES)
+def test_fuzz_bad_values_raise_naming_the_argument(fn, arg, bad):
+    """Strings, complex, object, boolean, ragged -> TypeError (navlib's InputTypeError, also a ValueError);
+    empty arrays, NaN, inf -> ValueError; the message starts with the argument's name."""
+    kw = dict(VALID_CALLS[fn], **{arg: BAD_VALUES[bad]})
+    with pytest.raises((TypeError, ValueError)) as info:
+        getattr(geodesy, fn)(**kw)
+    assert str(info.value).split(":")[0] == arg, str(info.value)
+    if bad in ("empty", "nan", "inf"):
+        assert isinstance(info.value, ValueError)
+
+
+@pytest.mark.parametrize("call, arg", [
+    # out of range
+    (lambda: geodesy.zone(2.0, width=5), "width"),
+    (lambda: geodesy.zone(2.0, width=np.array([3, 6])), "width"),
+    (lambda: geodesy.central_meridian(121), "zone_number"),
+    (lambda: geodesy.geodetic2gk(0.45, 2.08, zone=0), "zone"),
+    (lambda: geodesy.geodetic2gk(0.45, 2.08, zone=40.5), "zone"),
+    (lambda: geodesy.gk2geodetic(2.88e6, 1e4, zone=121), "zone"),
+    (lambda: geodesy.geodetic2gk(0.45, 2.08, zone=40, max_offset_deg=-1.0), "max_offset_deg"),
+    (lambda: geodesy.geodetic2gk(0.45, 2.08, zone=40, max_offset_deg=90.0), "max_offset_deg"),
+    (lambda: geodesy.geodetic2gk(0.45, 2.08, k0=2.0), "k0"),
+    (lambda: geodesy.gk2geodetic(2.88e6, 1e4, zone=40, k0=np.nan), "k0"),
+    (lambda: geodesy.geodetic2gk(0.45, 2.08, false_easting="500000"), "false_easting"),
+    (lambda: geodesy.gk2geodetic(2.88e6, 1e4, zone=40, false_northing=np.inf), "false_northing"),
+    (lambda: geodesy.gk2geodetic(2.88e6, 1e4, lon0=np.nan), "lon0"),
+    (lambda: geodesy.meridian_arc(-1.6), "lat"),
+    (lambda: geodesy.paper_radii(95.0, deg=True), "lat"),
+    (lambda: geodesy.printed_meridian_radius(1.6), "lat"),
+    (lambda: geodesy.geodetic2enu(0.45, 2.08, 0.0, 1.6, 2.08, 0.0), "lat0"),
+    (lambda: geodesy.local_scales(0.45, 2.08, 2.094, step=0.0), "step"),
+    (lambda: geodesy.local_scales(0.45, 2.08, 2.094, series="exact"), "series"),
+    (lambda: geodesy.ecef2geodetic(1e3, 1e3, 1e3), "x, y, z"),
+    # wrong shapes
+    (lambda: geodesy.gk2geodetic(np.zeros(3), np.zeros(2), zone=40), "x, y"),
+    (lambda: geodesy.geodetic2ecef(np.zeros(3), np.zeros(2), 0.0), "lat, lon"),
+    (lambda: geodesy.geodetic2ecef(np.zeros(3), np.zeros(3), np.zeros(2)), "h"),
+    (lambda: geodesy.ecef2geodetic(np.full(3, 7e6), np.zeros(2), 0.0), "x, y, z"),
+    (lambda: geodesy.enu2geodetic(np.zeros(3), np.zeros(2), 0.0, 0.45, 2.08, 0.0), "e, n, u"),
+    (lambda: geodesy.local_scales(np.zeros(3), np.zeros(2), 0.0), "lat, lon"),
+    (lambda: geodesy.paper_series(np.zeros(3), np.zeros(2), 0.0), "lat, lon"),
+    # wrong types of the non-numeric arguments
+    (lambda: geodesy.geodetic2gk(0.45, 2.08, ellipsoid="WGS84"), "ellipsoid"),
+    (lambda: geodesy.ecef2geodetic(7e6, 0.0, 0.0, ellipsoid=None), "ellipsoid"),
+    (lambda: geodesy.meridian_arc(0.45, ellipsoid=6378137.0), "ellipsoid"),
+])
+def test_fuzz_out_of_range_shapes_and_types(call, arg):
+    with pytest.raises((TypeError, ValueError)) as info:
+        call()
+    assert str(info.value).split(":")[0] == arg, str(info.value)
+
+
+# --------------------------------------------------------------------------
+# Properties (issue 9): every conversion and projection, by hypothesis
+# --------------------------------------------------------------------------
+
+LATS = st.floats(-85.0, 85.0)
+
+
+@settings(max_examples=150, deadline=None)
+@given(lat=LATS, offset=st.floats(-3.0, 3.0), ell=st.sampled_from(ELLIPSOIDS))
+def test_gk_is_conformal_and_scale_factor_matches_the_local_scales(lat, offset, ell):
+    """Conformal: meridian and parallel scales equal, their images at right angles (central
+    differences of step 1e-6 rad: 1e-8 relative); ``scale_factor`` equals that scale (1e-8)."""
+    lon0 = 120.0
+    h, k, angle = geodesy.local_scales(lat, lon0 + offset, lon0, ell, deg=True)
+    assert abs(h / k - 1) < 1e-8 and abs(angle - np.pi / 2) < 1e-8
+    kk = geodesy.scale_factor(lat, lon0 + offset, lon0=lon0, ellipsoid=ell, deg=True)
+    assert abs(kk / h - 1) < 1e-8 and kk >= 1 - 1e-12                     # GK: k0 = 1 on the meridian
+
+
+@settings(max_examples=150, deadline=None)
+@given(lat=LATS, offset=st.floats(-3.0, 3.0), ell=st.sampled_from(ELLIPSOIDS))
+def test_gk_symmetries(lat, offset, ell):
+    """Easting odd and northing even in the longitude offset; northing odd in latitude (1e-6 m)."""
+    kw = dict(lon0=120.0, ellipsoid=ell, deg=True)
+    x1, y1 = geodesy.geodetic2gk(lat, 120.0 + offset, **kw)
+    x2, y2 = geodesy.geodetic2gk(lat, 120.0 - offset, **kw)
+    x3, y3 = geodesy.geodetic2gk(-lat, 120.0 + offset, **kw)
+    assert abs(x1 - x2) < 1e-6 and abs(y1 + y2) < 1e-6
+    assert abs(x1 + x3) < 1e-6 and abs(y1 - y3) < 1e-6
+
+
+@settings(max_examples=150, deadline=None)
+@given(lat=st.floats(-80.0, 80.0), offset=st.floats(-3.0, 3.0), ell=st.sampled_from(ELLIPSOIDS))
+def test_convergence_is_the_grid_bearing_of_true_north(lat, offset, ell):
+    """A step north on the ellipsoid points at grid bearing -gamma (1e-6 rad, from 1e-7 deg steps)."""
+    kw = dict(lon0=120.0, ellipsoid=ell, deg=True)
+    d = 1e-7
+    xa, ya = geodesy.geodetic2gk(lat - d, 120.0 + offset, **kw)
+    xb, yb = geodesy.geodetic2gk(lat + d, 120.0 + offset, **kw)
+    gamma = np.radians(geodesy.convergence(lat, 120.0 + offset, **kw))           # deg=True: degrees
+    bearing = np.arctan2(yb - ya, xb - xa)
+    assert abs(np.angle(np.exp(1j * (bearing + gamma)))) < 1e-6
+
+
+@settings(max_examples=200, deadline=None)
+@given(lon=st.floats(-180.0, 360.0), width=st.sampled_from([3, 6]))
+def test_every_longitude_lies_in_its_zone(lon, width):
+    """|lon - central_meridian(zone(lon))| <= width/2 (mod 360; 1e-9 deg)."""
+    zn = geodesy.zone(lon, width, deg=True)
+    assert 1 <= zn <= 360 // width
+    off = (lon - geodesy.central_meridian(zn, width, deg=True) + 180.0) % 360.0 - 180.0
+    assert abs(off) <= width / 2 + 1e-9
+
+
+@settings(max_examples=200, deadline=None)
+@given(lat=st.floats(-89.9, 89.9), lon=st.floats(-180.0, 180.0), h=st.floats(-500.0, 1e5),
+       ell=st.sampled_from(ELLIPSOIDS))
+def test_ecef_round_trip(lat, lon, h, ell):
+    """geodetic -> ECEF -> geodetic: 1e-9 deg and 1e-6 m up to 100 km height."""
+    la, lo, hh = geodesy.ecef2geodetic(*geodesy.geodetic2ecef(lat, lon, h, ell, deg=True), ell, deg=True)
+    assert abs(la - lat) < 1e-9 and abs((lo - lon + 180) % 360 - 180) * np.cos(np.radians(lat)) < 1e-9
+    assert abs(hh - h) < 1e-6
+
+
+@settings(max_examples=200, deadline=None)
+@given(lat0=st.floats(-85.0, 85.0), lon0=st.floats(-180.0, 180.0),
+       enu=st.tuples(*[st.floats(-5e4, 5e4)] * 2, st.floats(-1e3, 1e3)))
+def test_enu_round_trip_and_isometry(lat0, lon0, enu):
+    """ENU -> geodetic -> ENU to 1e-6 m within 50 km; the ENU frame is a rotation: |enu| equals
+    the ECEF distance to the origin (1e-6 m)."""
+    la, lo, h = geodesy.enu2geodetic(*enu, lat0, lon0, 0.0, deg=True)
+    back = geodesy.geodetic2enu(la, lo, h, lat0, lon0, 0.0, deg=True)
+    assert_allclose(np.array(back, dtype=float), enu, rtol=0, atol=1e-6)
+    p = np.array(geodesy.geodetic2ecef(la, lo, h, deg=True)) - np.array(geodesy.geodetic2ecef(lat0, lon0, 0.0, deg=True))
+    assert abs(np.linalg.norm(p) - np.linalg.norm(enu)) < 1e-6
+
+
+@settings(max_examples=200, deadline=None)
+@given(a=st.floats(-89.0, 89.0), b=st.floats(-89.0, 89.0), ell=st.sampled_from(ELLIPSOIDS))
+def test_meridian_arc_odd_monotonic_and_series_agree(a, b, ell):
+    """S(-lat) = -S(lat); S increases with lat; the paper's e^8 series equals Krüger's to 1e-4 m."""
+    Sa, Sb = (geodesy.meridian_arc(v, ell, deg=True) for v in (a, b))
+    assert abs(geodesy.meridian_arc(-a, ell, deg=True) + Sa) < 1e-6
+    if a < b:
+        assert Sa < Sb
+    assert abs(geodesy.meridian_arc(a, ell, deg=True, series="paper") - Sa) < 1e-4

@@ -159,8 +159,13 @@ rng = np.random.default_rng(0)
 z = np.column_stack([rng.normal(0, 2, (50, 2)), rng.normal(0.3, 0.1, 50), np.ones(50), np.zeros(50)])
 z[10:15, :2] = np.nan
 r = planar.filter_grid(t, z, [0, 0, 0.3, 1, 0], P0=np.eye(5))
-d, _ = planar.dead_reckoning(t, z[:, 3], z[:, 4], [0, 0, 0.3, 1, 0])
-print(json.dumps({"x": r.x.tolist(), "d": d.tolist()}))
+d, _ = planar.dead_reckoning(t, z[:, 3], z[:, 4], [0, 0, 0.3, 1, 0], yaw_rate_range=0.1)
+z[20, 0] += 50.0
+z[21:25, 3] += 5.0                                  # a 4-epoch step: 3 rejections, reacquired; back: same
+z[30, 4] = 0.5                                                      # at the rails
+g = planar.filter_grid(t, z, [0, 0, 0.3, 1, 0], P0=np.eye(5), gate=[18.4, 15.1, 15.1, 15.1], yaw_rate_range=0.5)
+print(json.dumps({"x": r.x.tolist(), "d": d.tolist(), "g": g.x.tolist(), "rej": g.n_rejected_channels.tolist(),
+                  "reacq": g.n_reacquired_channels.tolist(), "sat": g.n_saturated}))
 """
     out = {}
     for flag in ("0", "1"):
@@ -169,6 +174,10 @@ print(json.dumps({"x": r.x.tolist(), "d": d.tolist()}))
         out[flag] = json.loads(run.stdout)
     assert_allclose(out["1"]["x"], out["0"]["x"], rtol=0, atol=1e-9)
     assert_allclose(out["1"]["d"], out["0"]["d"], rtol=0, atol=1e-12)
+    assert_allclose(out["1"]["g"], out["0"]["g"], rtol=0, atol=1e-9)
+    for key in ("rej", "reacq", "sat"):
+        assert out["1"][key] == out["0"][key]
+    assert out["0"]["rej"] == [1, 0, 6, 0] and out["0"]["reacq"] == [0, 0, 2, 0] and out["0"]["sat"] == 1
 
 
 # --------------------------------------------------------------------------
@@ -195,7 +204,7 @@ ONES3 = np.ones(3)
     (lambda: planar.filter_grid(T3, np.zeros((3, 5)), np.zeros(5), R=np.ones((4, 4))), "R"),
     (lambda: planar.filter_grid(T3, np.zeros((3, 4)), np.zeros(5)), "z"),
     (lambda: planar.dead_reckoning([0.0, 0.0, 1.0], ONES3, ONES3, np.zeros(5)), "t"),
-    (lambda: planar.dead_reckoning(T3, ONES3[:2], ONES3, np.zeros(5)), "speed, yaw_rate"),
+    (lambda: planar.dead_reckoning(T3, ONES3[:2], ONES3, np.zeros(5)), "speed"),
     (lambda: planar.propagate(np.zeros(5), 0.0, 10), "T"),
     (lambda: planar.propagate(np.zeros(5), 0.5, 2.5), "n_steps"),
     (lambda: planar.motion_model(np.zeros(4), 0.5), "X"),
@@ -205,7 +214,7 @@ ONES3 = np.ones(3)
     (lambda: planar.simulate_sensors(np.zeros((3, 5)), ORIGIN, planar.R_PAPER, np.random), "rng"),
     (lambda: planar.simulate_sensors(np.zeros((3, 5)), ORIGIN, planar.R_PAPER, np.random.default_rng(0),
                                      gps_valid=[True]), "gps_valid"),
-    (lambda: planar.position_error(np.zeros((3, 1)), np.zeros((3, 1))), "estimate, truth"),
+    (lambda: planar.position_error(np.zeros((3, 1)), np.zeros((3, 1))), "estimate"),
 ])
 def test_bad_input_raises_value_error_naming_the_argument(call, arg):
     with pytest.raises(ValueError) as info:
@@ -219,3 +228,108 @@ def test_degree_inputs_give_the_same_filter():
     deg = planar.ekf(t, np.degrees(s.gps), np.degrees(s.heading), s.speed, np.degrees(s.yaw_rate), X0_STRAIGHT,
                      origin=np.degrees(ORIGIN), deg=True)
     assert_allclose(deg.x, rad.x, rtol=0, atol=1e-9)
+    w_fs = np.abs(s.yaw_rate).max() * 0.9                           # some samples at the "rails"
+    rad = planar.ekf(t, s.gps, s.heading, s.speed, s.yaw_rate, X0_STRAIGHT, origin=ORIGIN, yaw_rate_range=w_fs)
+    deg = planar.ekf(t, np.degrees(s.gps), np.degrees(s.heading), s.speed, np.degrees(s.yaw_rate), X0_STRAIGHT,
+                     origin=np.degrees(ORIGIN), deg=True, yaw_rate_range=np.degrees(w_fs))
+    assert rad.n_saturated > 0 and deg.n_saturated == rad.n_saturated
+    assert_allclose(deg.x, rad.x, rtol=0, atol=1e-9)
+
+
+# --------------------------------------------------------------------------
+# Public API fuzzing (issue 9)
+# --------------------------------------------------------------------------
+
+X5 = np.array([0.0, 0.0, 0.3, 1.0, 0.0])
+Z3 = np.tile(X5, (3, 1))
+VALID_CALLS = {                                 # one valid call per public function, every argument given
+    "motion_model": dict(X=X5, T=0.5),
+    "jacobian": dict(X=X5, T=0.5),
+    "propagate": dict(x0=X5, T=0.5, n_steps=3),
+    "waypoint_path": dict(waypoints=[[0, 0], [0, 1.0]], speed=0.1, turn_rate=0.2, T=0.5),
+    "dead_reckoning": dict(t=T3, speed=ONES3, yaw_rate=np.zeros(3), x0=X5, velocity_bias=[0.0, 0.0],
+                           yaw_rate_range=2.0),
+    "filter_grid": dict(t=T3, z=Z3, x0=X5, P0=np.eye(5), Q=planar.Q_PAPER, R=planar.R_PAPER, gate=10.0,
+                        yaw_rate_range=2.0, reacquire=3),
+    "ekf": dict(t=T3, gps=GPS3, heading=ONES3, speed=ONES3, yaw_rate=np.zeros(3), x0=X5, origin=ORIGIN, zone=40,
+                P0=np.eye(5), Q=planar.Q_PAPER, R=planar.R_PAPER, gate=10.0, yaw_rate_range=2.0, reacquire=3),
+    "simulate_sensors": dict(truth=Z3, origin=ORIGIN, R=planar.R_PAPER, rng=np.random.default_rng(0),
+                             yaw_rate_bias=0.0, gps_valid=np.ones(3, bool)),
+    "position_error": dict(estimate=Z3, truth=Z3),
+}
+RECORDS = {"EkfResult", "Sensors"}              # dataclasses filled by navlib from validated values
+CONSTANTS = {"Q_PAPER", "R_PAPER", "CHANNELS"}
+BAD_VALUES = {"string": "abc", "complex": 1 + 1j, "object array": np.array([1.0, "a"], dtype=object),
+              "boolean": True, "empty": np.array([]), "nan": np.nan, "inf": -np.inf, "ragged": [1.0, [2.0, 3.0]]}
+FUZZ_CASES = [(fn, arg, bad) for fn, kw in VALID_CALLS.items() for arg in kw for bad in BAD_VALUES
+              if not (arg == "rng" or (arg == "gps_valid" and bad == "boolean"))]
+
+
+def test_fuzz_table_covers_every_public_function():
+    """Covered / total public functions of navlib.planar: 9/9 (plus 2 result records and 3 constants)."""
+    assert sorted(VALID_CALLS) == sorted(set(planar.__all__) - RECORDS - CONSTANTS)
+    for fn, kw in VALID_CALLS.items():
+        getattr(planar, fn)(**kw)
+
+
+@pytest.mark.parametrize("fn, arg, bad", FUZZ_CASES)
+def test_fuzz_bad_values_raise_naming_the_argument(fn, arg, bad):
+    """Strings, complex, object, boolean, ragged -> TypeError (InputTypeError, also a ValueError);
+    empty, NaN (except where NaN marks a dropout), inf -> ValueError; message starts with the argument."""
+    kw = dict(VALID_CALLS[fn], **{arg: BAD_VALUES[bad]})
+    nan_is_dropout = (fn in ("filter_grid", "ekf", "dead_reckoning", "position_error") and bad == "nan"
+                      and arg in ("z", "gps", "heading", "speed", "yaw_rate", "estimate"))
+    if nan_is_dropout:
+        kw[arg] = np.full(np.shape(VALID_CALLS[fn][arg]), np.nan)
+    if nan_is_dropout:                          # documented dropout marker: accepted, output stays finite
+        if fn == "position_error":
+            assert np.all(np.isnan(planar.position_error(**kw)))
+        elif fn == "dead_reckoning":
+            assert np.all(np.isfinite(planar.dead_reckoning(**kw)[0]))
+        elif fn == "ekf" and arg == "gps":
+            getattr(planar, fn)(**kw)           # origin given: a run without any fix is prediction only
+        else:
+            assert np.all(np.isfinite(getattr(planar, fn)(**kw).x))
+        return
+    with pytest.raises((TypeError, ValueError)) as info:
+        getattr(planar, fn)(**kw)
+    assert str(info.value).split(":")[0] == arg, str(info.value)
+    if bad in ("empty", "nan", "inf") and arg != "gps_valid":     # gps_valid: floats are the wrong dtype
+        assert isinstance(info.value, ValueError)
+
+
+@pytest.mark.parametrize("call, arg", [
+    (lambda: planar.filter_grid(T3, Z3, X5, gate=[1.0, 2.0, 3.0]), "gate"),
+    (lambda: planar.filter_grid(T3, Z3, X5, gate=0.0), "gate"),
+    (lambda: planar.filter_grid(T3, Z3, X5, reacquire=0), "reacquire"),
+    (lambda: planar.filter_grid(T3, Z3, X5, reacquire=2.5), "reacquire"),
+    (lambda: planar.filter_grid(T3, Z3, X5, yaw_rate_range=-1.0), "yaw_rate_range"),
+    (lambda: planar.filter_grid(T3, Z3, X5, yaw_rate_range=[1.0, 2.0]), "yaw_rate_range"),
+    (lambda: planar.filter_grid(T3, Z3, X5, P0=np.diag([1.0, 1.0, -1.0, 1.0, 1.0])), "P0"),
+    (lambda: planar.filter_grid(np.array([0.0, 1.0, 1.0]), Z3, X5), "t"),
+    (lambda: planar.filter_grid(T3[:1], Z3[:1], X5), "t"),
+    (lambda: planar.ekf(T3, GPS3, ONES3, ONES3, ONES3, X5, origin=[2.0, 2.08]), "lat"),
+    (lambda: planar.ekf(T3, GPS3, ONES3, ONES3, ONES3, X5, zone=200), "zone"),
+    (lambda: planar.ekf(T3, GPS3, ONES3, ONES3, ONES3, X5, width=4), "width"),
+    (lambda: planar.ekf(T3, GPS3, ONES3, ONES3, ONES3, X5, ellipsoid="WGS84"), "ellipsoid"),
+    (lambda: planar.ekf(T3, GPS3, ONES3, ONES3, ONES3, X5, yaw_rate_range=0.0), "yaw_rate_range"),
+    (lambda: planar.dead_reckoning(T3, ONES3, ONES3, X5, yaw_rate_range=-2.0), "yaw_rate_range"),
+    (lambda: planar.propagate(X5, 0.5, True), "n_steps"),
+    (lambda: planar.propagate(X5, 0.5, speed=ONES3, yaw_rate=ONES3[:2]), "speed, yaw_rate"),
+    (lambda: planar.simulate_sensors(Z3, ORIGIN, planar.R_PAPER, np.random.default_rng(0),
+                                     gps_valid=[1, 0, 1]), "gps_valid"),
+    (lambda: planar.position_error(np.zeros((3, 2)), np.zeros((2, 2))), "estimate, truth"),
+])
+def test_fuzz_out_of_range_and_shapes(call, arg):
+    with pytest.raises((TypeError, ValueError)) as info:
+        call()
+    assert str(info.value).split(":")[0] == arg, str(info.value)
+
+
+def test_gate_and_range_inf_mean_off():
+    """``gate=inf`` and ``yaw_rate_range=inf`` (or None) are the documented 'off' values: same result."""
+    t, truth, s = straight_run(9, n=100)
+    a = planar.ekf(t, s.gps, s.heading, s.speed, s.yaw_rate, X0_STRAIGHT, origin=ORIGIN)
+    b = planar.ekf(t, s.gps, s.heading, s.speed, s.yaw_rate, X0_STRAIGHT, origin=ORIGIN, gate=np.inf,
+                   yaw_rate_range=np.inf)
+    assert np.array_equal(a.x, b.x) and b.n_saturated == 0 and b.n_rejected == 0
