@@ -55,6 +55,27 @@ Errata corrected (guide 001 section 8)
 8. Two attitudes suffice only if their body verticals differ (axis not
    vertical) and pitch stays away from +-90 deg; violations raise ValueError.
 
+Faulty data (every fault is counted; nothing is dropped silently)
+-----------------------------------------------------------------
+=================  ===========================================  ======================================
+fault              what happens                                 reported by
+=================  ===========================================  ======================================
+NaN dropouts       residuals: a dwell with > ``max_missing`` of ``Residuals.n_skipped``, ``n_missing``,
+                   its samples NaN is skipped (default: any),   ``n_filled``; Kalman ``n_no_data``;
+                   else filled with the dwell median; LSQ and   ``running_lsq_bias`` ``n_skipped``
+                   Kalman skip / predict through NaN dwells
+                   integration: linear interpolation, a gap     ``EulerReport.n_filled``; ValueError
+                   longer than ``max_gap`` raises
+outliers (spikes)  residuals: ``outlier_k`` x MAD from the      ``n_outliers_gyro``/``_accel``;
+                   dwell median replaced (opt-in); Kalman       ``KalmanBias.n_rejected``
+                   gate rejects corrupted dwells
+saturation         residuals: dwell with samples at the rails   ``n_saturated``, ``n_skipped_saturated``
+                   skipped; integration: counted (unreliable)   ``EulerReport.n_saturated``
+timing             per-sample ``dt`` arrays in                  ``TimingReport`` from
+                   :func:`tilt_residuals`, :func:`integrate_euler`;  ``timing.sanitize``
+                   per-dwell intervals in :func:`kalman_bias`
+=================  ===========================================  ======================================
+
 Extensions: a Kalman filter with a random-walk bias state (:func:`kalman_bias`),
 the residual noise model (:func:`residual_covariance`) and the Cramer-Rao
 bound (:func:`cramer_rao_bound`, :func:`design`).
@@ -67,9 +88,28 @@ import numpy as np
 from numba import njit
 
 from . import attitude, earth, kalman
-from ._validate import as_array, latitude, positive
+from ._validate import as_array as _as_array, in_range, latitude as _latitude, positive as _positive
 
-__all__ = ["eq1_matrix", "euler_rates", "integrate_euler", "gravity_body", "tilt_from_accel",
+
+def _nonempty(arr, name):
+    if arr.size == 0:
+        raise ValueError(f"{name}: expected a non-empty array, got shape {arr.shape}")
+    return arr
+
+
+def as_array(x, name, **kwargs):
+    """:func:`navlib._validate.as_array` that also rejects empty arrays."""
+    return _nonempty(_as_array(x, name, **kwargs), name)
+
+
+def positive(x, name, **kwargs):
+    return _positive(_nonempty(_as_array(x, name), name), name, **kwargs)
+
+
+def latitude(x, name="lat", deg=False):
+    return _latitude(_nonempty(_as_array(x, name), name), name, deg=deg)
+
+__all__ = ["eq1_matrix", "euler_rates", "integrate_euler", "EulerReport", "gravity_body", "tilt_from_accel",
            "tilt_matrix", "rodrigues", "rotate_attitude", "dwell_attitudes", "dwell_windows",
            "earth_rate_body", "Residuals", "tilt_residuals", "residual_covariance", "lsq_bias",
            "running_lsq_bias", "KalmanBias", "kalman_bias", "condition_number", "lsq_covariance",
@@ -91,6 +131,20 @@ def _hpr(hpr, name="hpr"):
     hpr = as_array(hpr, name, tail=(3,))
     _check_pitch(hpr[..., 1], f"{name}[..., 1] (pitch)")
     return hpr
+
+
+def _intervals(dt, n, name="dt"):
+    """``dt`` as a float or a per-sample array of shape (n,); returns (array (n,), regular)."""
+    arr = positive(dt, name)
+    if arr.ndim == 0:
+        return np.full(max(n, 1), float(arr)), True
+    if arr.shape != (n,):
+        raise ValueError(f"{name}: expected a float or per-sample intervals of shape ({n},), got {arr.shape}")
+    return np.ascontiguousarray(arr), False
+
+
+def _full_scale(x, name):
+    return np.inf if x is None else float(positive(x, name))
 
 
 def _check_pitch(pitch, name):
@@ -157,23 +211,60 @@ def _hpr_dot(h, p, r, wx, wy, wz, nE, nN, nU):
 
 
 @njit(cache=True)
-def _euler_kernel(hpr0, w, dt, w_in, bias, bias_from, pitch_limit):
+def _euler_kernel(hpr0, w, dts, w_in, bias, bias_from, pitch_limit, max_gap, fs):
     T, N = w.shape[0], w.shape[1]
     K = bias_from.shape[0]
     out = np.empty((T, N + 1, 3))
     singular = False
+    gap_too_long = False
+    held = 0
+    saturated = 0
+    first_saturated = -1
     nE, nN, nU = w_in[0], w_in[1], w_in[2]
     for t in range(T):
         h, p, r = hpr0[t, 0], hpr0[t, 1], hpr0[t, 2]
         out[t, 0, 0], out[t, 0, 1], out[t, 0, 2] = h, p, r
         k = -1
         bx = by = bz = 0.0
+        lx = ly = lz = 0.0           # last valid gyro sample (zero before the first)
+        li = -1                      # its index
+        nj = -1                      # next valid sample after a dropout (-1: none found yet / none left)
+        gap = 0.0
         for i in range(N):
+            dt = dts[i]
             while k + 1 < K and bias_from[k + 1] <= i:      # newest estimate available at sample i
                 k += 1
                 if np.isfinite(bias[t, k, 0]):
                     bx, by, bz = bias[t, k, 0], bias[t, k, 1], bias[t, k, 2]
-            wx, wy, wz = w[t, i, 0] - bx, w[t, i, 1] - by, w[t, i, 2] - bz
+            sx, sy, sz = w[t, i, 0], w[t, i, 1], w[t, i, 2]
+            if np.isfinite(sx) and np.isfinite(sy) and np.isfinite(sz):
+                lx, ly, lz = sx, sy, sz
+                li = i
+                gap = 0.0
+                if abs(sx) >= fs or abs(sy) >= fs or abs(sz) >= fs:
+                    saturated += 1
+                    if first_saturated < 0 or i < first_saturated:
+                        first_saturated = i
+            else:                                           # dropout: interpolate between valid neighbours
+                if nj <= i:
+                    nj = i + 1
+                    while nj < N and not (np.isfinite(w[t, nj, 0]) and np.isfinite(w[t, nj, 1])
+                                          and np.isfinite(w[t, nj, 2])):
+                        nj += 1
+                if nj >= N:                                 # trailing dropouts: hold the last valid sample
+                    sx, sy, sz = lx, ly, lz
+                elif li < 0:                                # leading dropouts: the first valid sample
+                    sx, sy, sz = w[t, nj, 0], w[t, nj, 1], w[t, nj, 2]
+                else:
+                    c = (i - li) / (nj - li)
+                    sx = lx + c * (w[t, nj, 0] - lx)
+                    sy = ly + c * (w[t, nj, 1] - ly)
+                    sz = lz + c * (w[t, nj, 2] - lz)
+                held += 1
+                gap += dt
+                if gap > max_gap:
+                    gap_too_long = True
+            wx, wy, wz = sx - bx, sy - by, sz - bz
             if (wx * wx + wy * wy + wz * wz) * dt * dt > _RK4_ANGLE2:
                 # classic RK4 with the sample's rate held over [t_i, t_i + dt]
                 k1h, k1p, k1r = _hpr_dot(h, p, r, wx, wy, wz, nE, nN, nU)
@@ -193,26 +284,60 @@ def _euler_kernel(hpr0, w, dt, w_in, bias, bias_from, pitch_limit):
             if abs(p) > pitch_limit:
                 singular = True
             out[t, i + 1, 0], out[t, i + 1, 1], out[t, i + 1, 2] = h, p, r
-    return out, singular
+    return out, singular, gap_too_long, held, saturated, first_saturated
 
 
-def integrate_euler(hpr0, w_ib_b, dt: float, w_in_n=None, bias_b=None, bias_from=None):
+@dataclass(frozen=True)
+class EulerReport:
+    """What :func:`integrate_euler` did with faulty gyro samples.
+
+    Attributes
+    ----------
+    n_filled : int
+        NaN samples (dropouts) replaced by linear interpolation between the
+        neighbouring valid samples (the nearest valid sample at the ends),
+        summed over runs.
+    n_saturated : int
+        Samples with a component at the rails (``|w| >= full_scale``); the
+        true rate was larger, so the attitude from ``first_saturated`` on is
+        unreliable. 0 without ``full_scale``.
+    first_saturated : int
+        Earliest saturated sample index over all runs (-1: none).
+    """
+    n_filled: int
+    n_saturated: int
+    first_saturated: int
+
+
+def integrate_euler(hpr0, w_ib_b, dt, w_in_n=None, bias_b=None, bias_from=None, *, max_gap: float = 0.0,
+                    full_scale: float | None = None, report: bool = False):
     """Integrate Eq. (2) from gyro samples, optionally bias-compensated.
 
-    Each sample is the mean rate over ``[t_k, t_k + dt]``; the Euler-angle
+    Each sample is the mean rate over ``[t_k, t_k + dt_k]``; the Euler-angle
     ODE is advanced over the interval with that rate held, by classic RK4
     when the step angle ``|w| dt`` exceeds 1e-3 rad (rotations) and by the
     midpoint rule otherwise (still IMU; local error below 1e-9 rad).
+
+    Faults: NaN samples (dropouts) raise ValueError unless ``max_gap > 0``;
+    then each is replaced by linear interpolation between the neighbouring
+    valid samples (counted in ``EulerReport.n_filled``; to first order the
+    attitude error is the integral of the interpolation error, at most
+    ``sum |w_interp - w_true| dt`` over the filled samples) and a run of
+    dropouts longer than ``max_gap`` seconds raises ValueError (the rotation
+    over it is unknown). With
+    ``full_scale`` (the gyro range, rad/s) samples at the rails are counted
+    (``n_saturated``, ``first_saturated``): they cannot be corrected, the
+    attitude after them is unreliable. Irregular sampling: pass per-sample
+    intervals ``dt`` (``timing.intervals`` after ``timing.sanitize``).
 
     Parameters
     ----------
     hpr0 : array_like, shape (3,) or (..., 3)
         Initial ``[heading, pitch, roll]`` (rad).
     w_ib_b : array_like, shape (..., N, 3)
-        Gyro samples (rad/s); NaN is not accepted (a dropout leaves the
-        rotation over that interval unknown).
-    dt : float
-        Sample interval (s).
+        Gyro samples (rad/s); NaN only with ``max_gap > 0``.
+    dt : float or array_like, shape (N,)
+        Sample interval (s), or the interval after each sample.
     w_in_n : array_like, shape (3,), optional
         Rate of the navigation frame (rad/s), e.g. ``earth.earth_rate_n(lat)``
         for a static host (erratum 6); default zero, as in the paper.
@@ -223,26 +348,42 @@ def integrate_euler(hpr0, w_ib_b, dt: float, w_in_n=None, bias_b=None, bias_from
         "not yet observable", keep the previous estimate).
     bias_from : array_like of int, shape (K,), optional
         Sample index from which each estimate applies; required with K > 1.
+    max_gap : float
+        Longest run of dropouts (s) bridged by interpolation; default 0:
+        NaN is not accepted.
+    full_scale : float, optional
+        Gyro range (rad/s) for counting saturated samples.
+    report : bool
+        Also return an :class:`EulerReport`.
 
     Returns
     -------
     hpr : ndarray, shape (..., N + 1, 3)
         Heading wrapped to [0, 2 pi), roll to (-pi, pi].
+    report : EulerReport
+        Only with ``report=True``.
     """
-    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1)
-    dt = float(positive(dt, "dt"))
+    max_gap = float(positive(max_gap, "max_gap", allow_zero=True))
+    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=max_gap > 0)
     lead, n = w.shape[:-2], w.shape[-2]
+    dts, _ = _intervals(dt, n)
+    fs = _full_scale(full_scale, "full_scale")
     hpr0 = np.broadcast_to(_hpr(hpr0, "hpr0"), lead + (3,)).reshape(-1, 3)
     w_in = np.zeros(3) if w_in_n is None else as_array(w_in_n, "w_in_n", tail=(3,)).reshape(3)
     bias, idx = _bias_schedule(bias_b, bias_from, lead)
-    out, singular = _euler_kernel(np.ascontiguousarray(hpr0), np.ascontiguousarray(w.reshape((-1, n, 3))), dt,
-                                  w_in, bias, idx, PITCH_LIMIT)
+    out, singular, gap_long, held, sat, first = _euler_kernel(
+        np.ascontiguousarray(hpr0), np.ascontiguousarray(w.reshape((-1, n, 3))), dts, w_in, bias, idx,
+        PITCH_LIMIT, max_gap, fs)
+    if gap_long:
+        raise ValueError(f"w_ib_b: a run of NaN samples (dropouts) is longer than max_gap = {max_gap:g} s; the "
+                         "rotation over it is unknown")
     if singular:
         raise ValueError(f"w_ib_b: the integrated pitch passed +-{np.rad2deg(PITCH_LIMIT):g} deg, where Eq. (2) "
                          "is singular; integrate this motion with quaternions (strapdown.integrate_attitude)")
     out[..., 0] = attitude.wrap_2pi(out[..., 0])
     out[..., 2] = attitude.wrap_pi(out[..., 2])
-    return out.reshape(lead + (n + 1, 3))
+    out = out.reshape(lead + (n + 1, 3))
+    return (out, EulerReport(int(held), int(sat), int(first))) if report else out
 
 
 def _bias_schedule(bias_b, bias_from, lead):
@@ -405,7 +546,7 @@ def dwell_attitudes(hpr0, axis_b, amplitude: float, n_dwells: int):
         If a dwell's pitch is within 1 deg of +-90 deg (erratum 8).
     """
     hpr0 = as_array(hpr0, "hpr0", tail=(3,)).reshape(3)
-    if not isinstance(n_dwells, (int, np.integer)) or n_dwells < 1:
+    if not isinstance(n_dwells, (int, np.integer)) or isinstance(n_dwells, bool) or n_dwells < 1:
         raise ValueError(f"n_dwells: expected a positive integer, got {n_dwells!r}")
     pair = np.stack([hpr0, rotate_attitude(hpr0, axis_b, float(as_array(amplitude, "amplitude")))])
     if np.any(np.abs(pair[:, 1]) > PITCH_LIMIT):
@@ -433,7 +574,7 @@ def dwell_windows(n_samples: int, dt: float, period: float, rotation_time: float
     length : int
         Samples per dwell (at least :data:`MIN_DWELL_SAMPLES`).
     """
-    if not isinstance(n_samples, (int, np.integer)) or n_samples < 1:
+    if not isinstance(n_samples, (int, np.integer)) or isinstance(n_samples, bool) or n_samples < 1:
         raise ValueError(f"n_samples: expected a positive integer, got {n_samples!r}")
     dt, period = float(positive(dt, "dt")), float(positive(period, "period"))
     rotation_time = float(positive(rotation_time, "rotation_time", allow_zero=True))
@@ -485,9 +626,23 @@ class Residuals:
     end : ndarray of int, shape (K,)
         Sample index after each dwell (when its residual becomes available).
     duration : float
-        Dwell length T (s).
+        Dwell length T (s); with per-sample intervals, the mean over the dwells
+        (each dwell's own length is in its ``V``).
     n_skipped : int
-        Dwells skipped because they contained NaN samples (dropouts).
+        Dwells skipped for dropouts: more than ``max_missing`` of their
+        samples NaN (any NaN with the default ``max_missing = 0``).
+    n_missing : int
+        Samples inside dwell windows with a NaN gyro or accelerometer reading
+        (those of skipped dwells included).
+    n_filled : int
+        Of these, samples in kept dwells, replaced by the dwell median.
+    n_outliers_gyro, n_outliers_accel : int
+        Samples of kept dwells rejected as outliers (``outlier_k`` x MAD from
+        the dwell median) and replaced by the median; 0 without ``outlier_k``.
+    n_saturated : int
+        Samples inside dwell windows at the device rails (``full_scale_*``).
+    n_skipped_saturated : int
+        Dwells skipped because they contained saturated samples.
     """
     r: np.ndarray
     V: np.ndarray
@@ -495,29 +650,112 @@ class Residuals:
     end: np.ndarray
     duration: float
     n_skipped: int
+    n_missing: int = 0
+    n_filled: int = 0
+    n_outliers_gyro: int = 0
+    n_outliers_accel: int = 0
+    n_saturated: int = 0
+    n_skipped_saturated: int = 0
 
 
 @njit(cache=True)
-def _residual_kernel(w, f, dt, starts, n, w_ie, pitch_limit):
+def _median_mad(buf, ok, n, a, want_mad):
+    """Median (and MAD) of column ``a`` of ``buf[:n]`` over rows where ``ok``; NaN when none."""
+    m = 0
+    vals = np.empty(n)
+    for j in range(n):
+        if ok[j]:
+            vals[m] = buf[j, a]
+            m += 1
+    if m == 0:
+        return np.nan, np.nan
+    med = np.median(vals[:m])
+    if not want_mad:
+        return med, 0.0
+    for j in range(m):
+        vals[j] = abs(vals[j] - med)
+    return med, np.median(vals[:m])
+
+
+@njit(cache=True)
+def _clean_dwell(wb, fb, n, max_missing, outlier_k, fs_gyro, fs_accel, counts):
+    """Fill dropouts and replace outliers of one dwell in place; False when the dwell must be skipped.
+
+    counts: [skipped_nan, missing, filled, outliers_gyro, outliers_accel, saturated, skipped_saturated]
+    """
+    ok_w = np.ones(n, dtype=np.bool_)
+    ok_f = np.ones(n, dtype=np.bool_)
+    missing = 0
+    saturated = 0
+    for j in range(n):
+        for a in range(3):
+            if not np.isfinite(wb[j, a]):
+                ok_w[j] = False
+            if not np.isfinite(fb[j, a]):
+                ok_f[j] = False
+        if not (ok_w[j] and ok_f[j]):
+            missing += 1
+        elif (abs(wb[j, 0]) >= fs_gyro or abs(wb[j, 1]) >= fs_gyro or abs(wb[j, 2]) >= fs_gyro
+              or abs(fb[j, 0]) >= fs_accel or abs(fb[j, 1]) >= fs_accel or abs(fb[j, 2]) >= fs_accel):
+            saturated += 1
+    counts[1] += missing
+    if saturated > 0:                    # at the rails: the IMU was not still, or the reading is unknown
+        counts[5] += saturated
+        counts[6] += 1
+        return False
+    if missing > max_missing * n or missing == n:
+        counts[0] += 1
+        return False
+    if missing == 0 and outlier_k <= 0:
+        return True                      # the common case: untouched
+    counts[2] += missing
+    detect = outlier_k > 0
+    for buf, ok, c in ((wb, ok_w, 3), (fb, ok_f, 4)):
+        bad = np.zeros(n, dtype=np.bool_)
+        med = np.empty(3)
+        for a in range(3):
+            med[a], mad = _median_mad(buf, ok, n, a, detect)
+            if detect:
+                thresh = outlier_k * max(1.4826 * mad, 1e-12)
+                for j in range(n):
+                    if ok[j] and abs(buf[j, a] - med[a]) > thresh:
+                        bad[j] = True
+        for j in range(n):
+            if bad[j]:
+                counts[c] += 1
+            if bad[j] or not ok[j]:
+                buf[j, 0], buf[j, 1], buf[j, 2] = med[0], med[1], med[2]
+    return True
+
+
+@njit(cache=True)
+def _residual_kernel(w, f, dts, regular, starts, n, w_ie, pitch_limit, max_missing, outlier_k, fs_gyro, fs_accel):
     T, K = w.shape[0], starts.shape[0]
     r = np.full((T, K, 2), np.nan)
     V = np.full((T, K, 2, 3), np.nan)
     tilt = np.full((T, K, 2), np.nan)
-    skipped = 0
+    counts = np.zeros(7, dtype=np.int64)
     singular = False
     jbar = (n - 1) / 2
     s_jj = n * (n * n - 1) / 12.0                 # sum of (j - jbar)^2
+    dt = dts[0]
+    wb = np.empty((n, 3))
+    fb = np.empty((n, 3))
+    tj = np.empty(n)
     for t in range(T):
         for k in range(K):
             s = starts[k]
+            for j in range(n):
+                for a in range(3):
+                    wb[j, a] = w[t, s + j, a]
+                    fb[j, a] = f[t, s + j, a]
+            if not _clean_dwell(wb, fb, n, max_missing, outlier_k, fs_gyro, fs_accel, counts):
+                continue
             fx = fy = fz = 0.0
             for j in range(n):
-                fx += f[t, s + j, 0]
-                fy += f[t, s + j, 1]
-                fz += f[t, s + j, 2]
-            if not (np.isfinite(fx) and np.isfinite(fy) and np.isfinite(fz)):
-                skipped += 1
-                continue
+                fx += fb[j, 0]
+                fy += fb[j, 1]
+                fz += fb[j, 2]
             roll_k, pitch_k = np.arctan2(-fx, fz), np.arctan2(fy, np.hypot(fx, fz))
             if abs(pitch_k) > pitch_limit:
                 singular = True
@@ -525,36 +763,49 @@ def _residual_kernel(w, f, dt, starts, n, w_ie, pitch_limit):
             tp, cr, sr = np.tan(pitch_k), np.cos(roll_k), np.sin(roll_k)
             m00, m01, m02, m10, m12 = sr * tp, 1.0, -cr * tp, cr, sr        # M (m11 = 0)
             wex, wey, wez = w_ie[t, k, 0], w_ie[t, k, 1], w_ie[t, k, 2]
+            if regular:
+                Td = n * dt
+            else:                          # sample times within the dwell for the slope fit
+                Td = 0.0
+                for j in range(n):
+                    tj[j] = Td
+                    Td += dts[s + j]
+                tbar = 0.0
+                for j in range(n):
+                    tbar += tj[j]
+                tbar /= n
+                s_tt = 0.0
+                for j in range(n):
+                    s_tt += (tj[j] - tbar) ** 2
             g_r = g_p = 0.0            # gyro tilt change since the dwell start, M sum(w dt) (Eq. 6)
             sum_r = sum_p = 0.0        # sum (j - jbar) d_j for the slope fit
-            bad = False
             for j in range(n):
-                i = s + j
-                a_r = np.arctan2(-f[t, i, 0], f[t, i, 2]) - roll_k           # Eq. (5), about the dwell tilt
+                a_r = np.arctan2(-fb[j, 0], fb[j, 2]) - roll_k               # Eq. (5), about the dwell tilt
                 a_r = (a_r + np.pi) % (2 * np.pi) - np.pi
-                a_p = np.arctan2(f[t, i, 1], np.hypot(f[t, i, 0], f[t, i, 2])) - pitch_k
-                sum_r += (j - jbar) * (g_r - a_r)                           # Eq. (7)
-                sum_p += (j - jbar) * (g_p - a_p)
-                wx, wy, wz = w[t, i, 0] - wex, w[t, i, 1] - wey, w[t, i, 2] - wez
-                if not (np.isfinite(wx) and np.isfinite(wy) and np.isfinite(wz)):
-                    bad = True
-                    break
-                g_r += (m00 * wx + m01 * wy + m02 * wz) * dt
-                g_p += (m10 * wx + m12 * wz) * dt
-            if bad:
-                skipped += 1
-                continue
-            # slope (rad/s) times the dwell length T = n dt gives delta_k (Eq. 9: delta_k = M T b)
-            r[t, k, 0] = sum_r / s_jj * n
-            r[t, k, 1] = sum_p / s_jj * n
+                a_p = np.arctan2(fb[j, 1], np.hypot(fb[j, 0], fb[j, 2])) - pitch_k
+                x = (j - jbar) if regular else (tj[j] - tbar)
+                sum_r += x * (g_r - a_r)                                     # Eq. (7)
+                sum_p += x * (g_p - a_p)
+                wx, wy, wz = wb[j, 0] - wex, wb[j, 1] - wey, wb[j, 2] - wez
+                h = dt if regular else dts[s + j]
+                g_r += (m00 * wx + m01 * wy + m02 * wz) * h
+                g_p += (m10 * wx + m12 * wz) * h
+            if regular:
+                # slope (rad/s) times the dwell length T = n dt gives delta_k (Eq. 9: delta_k = M T b)
+                r[t, k, 0] = sum_r / s_jj * n
+                r[t, k, 1] = sum_p / s_jj * n
+            else:
+                r[t, k, 0] = sum_r / s_tt * Td
+                r[t, k, 1] = sum_p / s_tt * Td
             tilt[t, k, 0], tilt[t, k, 1] = roll_k, pitch_k
-            Td = n * dt
             V[t, k, 0, 0], V[t, k, 0, 1], V[t, k, 0, 2] = m00 * Td, m01 * Td, m02 * Td
             V[t, k, 1, 0], V[t, k, 1, 1], V[t, k, 1, 2] = m10 * Td, 0.0, m12 * Td
-    return r, V, tilt, skipped, singular
+    return r, V, tilt, counts, singular
 
 
-def tilt_residuals(w_ib_b, f_b, dt: float, starts, length: int, w_ie_b=None) -> Residuals:
+def tilt_residuals(w_ib_b, f_b, dt, starts, length: int, w_ie_b=None, *, max_missing: float = 0.0,
+                   outlier_k: float | None = None, full_scale_gyro: float | None = None,
+                   full_scale_accel: float | None = None) -> Residuals:
     """Eqs. (6)-(9): gyro-minus-accelerometer tilt change over each dwell.
 
     Over dwell k the sequence ``d_j = M_k sum_{i<j} w_i dt - (tilt_j - tilt_k)``
@@ -563,13 +814,35 @@ def tilt_residuals(w_ib_b, f_b, dt: float, starts, length: int, w_ie_b=None) -> 
     residual ``delta_k = V_k b + noise`` with ``V_k = M_k T``. M_k is taken
     at the dwell's mean accelerometer tilt. On a static rig Eq. (6) is exact.
 
+    Faults (every one counted in :class:`Residuals`; the IMU is still during a
+    dwell, so its median reading is a good stand-in for a lost sample):
+
+    * dropouts (NaN samples): a dwell with more than ``max_missing`` of its
+      samples NaN is skipped (``n_skipped``, residual NaN); otherwise its NaN
+      samples are filled with the dwell median (``n_filled``). The default 0
+      skips any dwell with a NaN, as before; a 30-s gap skips the dwells it
+      covers.
+    * outliers: with ``outlier_k``, samples more than ``outlier_k`` x
+      1.4826 MAD from the dwell median in any component are replaced by the
+      median (``n_outliers_gyro``/``_accel``). Without it a gyro spike of
+      size s on one sample shifts the integrated tilt by s dt and the residual
+      by up to 1.5 s dt (the slope-fit weight), unreported unless a later
+      gate (:func:`kalman_bias`) rejects the dwell.
+    * saturation: with ``full_scale_gyro``/``full_scale_accel`` (the device
+      range, rad/s and m/s^2), a dwell with a sample at the rails
+      (``|x| >= full_scale``) is skipped (``n_saturated`` samples,
+      ``n_skipped_saturated`` dwells): the IMU was not still, or its reading
+      is unknown.
+    * timing: ``dt`` may be per-sample intervals (``timing.intervals`` of
+      timestamps cleaned by ``timing.sanitize``); the gyro is integrated with
+      each interval and the slope is fitted against sample time.
+
     Parameters
     ----------
     w_ib_b, f_b : array_like, shape (..., N, 3)
-        Gyro (rad/s) and accelerometer (m/s^2) samples; a dwell containing
-        NaN samples is skipped and counted in ``n_skipped``.
-    dt : float
-        Sample interval (s).
+        Gyro (rad/s) and accelerometer (m/s^2) samples; NaN marks dropouts.
+    dt : float or array_like, shape (N,)
+        Sample interval (s), or the interval after each sample.
     starts : array_like of int, shape (K,)
         First sample of each dwell (e.g. from :func:`dwell_windows`).
     length : int
@@ -578,6 +851,13 @@ def tilt_residuals(w_ib_b, f_b, dt: float, starts, length: int, w_ie_b=None) -> 
         Earth rate in the body frame during each dwell, subtracted from the
         gyros (erratum 6; :func:`earth_rate_body`). Default: neglected, as in
         the paper.
+    max_missing : float
+        Largest fraction of a dwell's samples, in [0, 0.5], that may be NaN
+        and filled (default 0: skip any dwell with a NaN).
+    outlier_k : float, optional
+        MAD outlier threshold (e.g. 6); None (default) detects no outliers.
+    full_scale_gyro, full_scale_accel : float, optional
+        Device ranges (rad/s, m/s^2); None: no saturation check.
 
     Returns
     -------
@@ -587,15 +867,18 @@ def tilt_residuals(w_ib_b, f_b, dt: float, starts, length: int, w_ie_b=None) -> 
     f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=True)
     if w.shape != f.shape:
         raise ValueError(f"f_b: expected the shape of w_ib_b {w.shape}, got {f.shape}")
-    dt = float(positive(dt, "dt"))
-    if not isinstance(length, (int, np.integer)) or length < MIN_DWELL_SAMPLES:
+    lead, n = w.shape[:-2], w.shape[-2]
+    dts, regular = _intervals(dt, n)
+    if not isinstance(length, (int, np.integer)) or isinstance(length, bool) or length < MIN_DWELL_SAMPLES:
         raise ValueError(f"length: dwell windows too short; expected at least {MIN_DWELL_SAMPLES} samples, "
                          f"got {length!r}")
     starts = np.asarray(starts)
-    lead, n = w.shape[:-2], w.shape[-2]
     if starts.ndim != 1 or starts.size == 0 or not np.issubdtype(starts.dtype, np.integer) \
             or starts.min() < 0 or starts.max() + length > n:
         raise ValueError(f"starts: expected a 1-D array of dwell start indices within [0, {n - length}]")
+    max_missing = float(in_range(as_array(max_missing, "max_missing"), "max_missing", 0.0, 0.5))
+    k_out = 0.0 if outlier_k is None else float(positive(outlier_k, "outlier_k"))
+    fs_g, fs_a = _full_scale(full_scale_gyro, "full_scale_gyro"), _full_scale(full_scale_accel, "full_scale_accel")
     K = starts.size
     w_ie = np.zeros((K, 3)) if w_ie_b is None else as_array(w_ie_b, "w_ie_b", tail=(3,))
     try:
@@ -603,13 +886,19 @@ def tilt_residuals(w_ib_b, f_b, dt: float, starts, length: int, w_ie_b=None) -> 
     except ValueError:
         raise ValueError(f"w_ie_b: expected shape (K={K}, 3) or (..., K, 3), got {w_ie.shape}") from None
     flat = lambda x: np.ascontiguousarray(x.reshape((-1, n, 3)))
-    r, V, tilt, skipped, singular = _residual_kernel(flat(w), flat(f), dt, starts.astype(np.int64), int(length),
-                                                     np.ascontiguousarray(w_ie), PITCH_LIMIT)
+    r, V, tilt, c, singular = _residual_kernel(flat(w), flat(f), dts, regular, starts.astype(np.int64), int(length),
+                                               np.ascontiguousarray(w_ie), PITCH_LIMIT, max_missing, k_out,
+                                               fs_g, fs_a)
     if singular:
         raise ValueError(f"f_b: a dwell's pitch is beyond +-{np.rad2deg(PITCH_LIMIT):g} deg, where Eq. (2) is "
                          "singular; choose a rotation that keeps pitch away from +-90 deg")
+    if regular:
+        duration = length * float(dts[0])
+    else:
+        duration = float(np.mean([dts[s:s + length].sum() for s in starts]))
     return Residuals(r.reshape(lead + (K, 2)), V.reshape(lead + (K, 2, 3)), tilt.reshape(lead + (K, 2)),
-                     starts + length, length * dt, int(skipped))
+                     starts + length, duration, int(c[0]), int(c[1]), int(c[2]), int(c[3]), int(c[4]), int(c[5]),
+                     int(c[6]))
 
 
 def residual_covariance(tilt, length: int, dt: float, gyro_noise: float, accel_noise: float = 0.0,
@@ -641,7 +930,7 @@ def residual_covariance(tilt, length: int, dt: float, gyro_noise: float, accel_n
     R : ndarray, shape (..., 2, 2)  (rad^2)
     """
     M = tilt_matrix(tilt)
-    if not isinstance(length, (int, np.integer)) or length < MIN_DWELL_SAMPLES:
+    if not isinstance(length, (int, np.integer)) or isinstance(length, bool) or length < MIN_DWELL_SAMPLES:
         raise ValueError(f"length: dwell windows too short; expected an integer >= {MIN_DWELL_SAMPLES}, got {length!r}")
     n = int(length)
     dt = float(positive(dt, "dt"))
@@ -804,21 +1093,26 @@ class KalmanBias:
     sigma : ndarray, shape (..., K, 3)
         Its standard deviation from the filter covariance (rad/s).
     n_no_data : int
-        Dwells without a residual (dropouts), predicted through.
+        Dwells without a residual (dropouts, skipped dwells), predicted through.
     n_rejected : int
         Residuals rejected by the innovation gate (outliers).
+    P : ndarray, shape (..., K, 3, 3)
+        Covariance after each dwell (rad^2/s^2); symmetric positive definite
+        (Joseph-form update, symmetrised predict).
     """
     b: np.ndarray
     sigma: np.ndarray
     n_no_data: int
     n_rejected: int
+    P: np.ndarray | None = None
 
 
 @njit(cache=True)
-def _kalman_kernel(r, V, R, Q, p0, gate):
+def _kalman_kernel(r, V, R, qq, intervals, p0, gate):
     T, K = r.shape[0], r.shape[1]
     b = np.empty((T, K, 3))
     sig = np.empty((T, K, 3))
+    Ps = np.empty((T, K, 3, 3))
     F = np.eye(3)
     mask = np.zeros(2, dtype=np.bool_)
     no_data = rejected = 0
@@ -827,36 +1121,47 @@ def _kalman_kernel(r, V, R, Q, p0, gate):
         P = p0.copy()
         for k in range(K):
             if k > 0:
-                x, P = kalman.predict(x, P, F, Q)
+                x, P = kalman.predict(x, P, F, qq * intervals[k] * np.eye(3))
             H = V[t, k]
-            x, P, _, _, status = kalman.update(x, P, r[t, k], H @ x, H, R[t, k], mask, gate)
+            if np.all(np.isfinite(H)):
+                x, P, _, _, status = kalman.update(x, P, r[t, k], H @ x, H, R[t, k], mask, gate)
+            else:                                   # a skipped dwell: no V either
+                status = kalman.NO_DATA
             if status == kalman.NO_DATA:
                 no_data += 1
             elif status == kalman.REJECTED:
                 rejected += 1
             b[t, k] = x
+            Ps[t, k] = P
             for i in range(3):
                 sig[t, k, i] = np.sqrt(P[i, i])
-    return b, sig, no_data, rejected
+    return b, sig, no_data, rejected, Ps
 
 
-def kalman_bias(r, V, R, interval: float, rate_random_walk: float, bias_sigma: float,
+def kalman_bias(r, V, R, interval, rate_random_walk: float, bias_sigma: float,
                 gate: float = 13.8) -> KalmanBias:
     """Kalman filter on the dwell residuals with a random-walk bias state.
 
     State ``b`` (3); between dwells ``b_k = b_k-1 + w`` with
-    ``cov(w) = K^2 interval I``; measurement ``delta_k = V_k b + v`` with
-    ``cov(v) = R_k`` (:func:`residual_covariance`). NaN residuals are
-    predicted through; residuals whose NIS exceeds ``gate`` are rejected.
+    ``cov(w) = K^2 interval_k I``; measurement ``delta_k = V_k b + v`` with
+    ``cov(v) = R_k`` (:func:`residual_covariance`). NaN residuals (dropouts,
+    skipped dwells) are predicted through and counted (``n_no_data``);
+    residuals whose NIS exceeds ``gate`` are rejected and counted
+    (``n_rejected``), e.g. dwells hit by spikes when :func:`tilt_residuals`
+    ran without ``outlier_k``. The covariance stays symmetric positive
+    definite (Joseph form, symmetrised; returned as ``P``).
 
     Parameters
     ----------
     r : array_like, shape (..., K, 2)
     V : array_like, shape (..., K, 2, 3)
+        NaN for skipped dwells.
     R : array_like, shape (..., K, 2, 2) or (K, 2, 2)
         Residual covariances (rad^2); NaN allowed only where r is NaN.
-    interval : float
-        Time between dwells (s).
+    interval : float or array_like, shape (K,)
+        Time between dwells (s); an array gives the time from dwell k-1 to
+        dwell k (entry 0 unused), e.g. ``np.diff(time[res.end], prepend=0)``
+        for irregular or gappy timing.
     rate_random_walk : float
         Random-walk density K of the bias (rad/s/sqrt(s)).
     bias_sigma : float
@@ -878,14 +1183,20 @@ def kalman_bias(r, V, R, interval: float, rate_random_walk: float, bias_sigma: f
     ok = np.all(np.isfinite(r), -1)
     if np.any(~np.isfinite(R[ok])):
         raise ValueError("R: expected finite covariances wherever r is finite")
-    interval = float(positive(interval, "interval"))
+    intervals = positive(interval, "interval")
+    if intervals.ndim == 0:
+        intervals = np.full(K, float(intervals))
+    elif intervals.shape != (K,):
+        raise ValueError(f"interval: expected a float or shape ({K},), got {intervals.shape}")
     q = float(positive(rate_random_walk, "rate_random_walk", allow_zero=True))
     s0 = float(positive(bias_sigma, "bias_sigma"))
     gate = float(positive(gate, "gate"))
-    b, sig, no_data, rejected = _kalman_kernel(
+    b, sig, no_data, rejected, P = _kalman_kernel(
         np.ascontiguousarray(r.reshape(-1, K, 2)), np.ascontiguousarray(V.reshape(-1, K, 2, 3)),
-        np.ascontiguousarray(R.reshape(-1, K, 2, 2)), q * q * interval * np.eye(3), s0 * s0 * np.eye(3), gate)
-    return KalmanBias(b.reshape(lead + (K, 3)), sig.reshape(lead + (K, 3)), int(no_data), int(rejected))
+        np.ascontiguousarray(R.reshape(-1, K, 2, 2)), q * q, np.ascontiguousarray(intervals), s0 * s0 * np.eye(3),
+        gate)
+    return KalmanBias(b.reshape(lead + (K, 3)), sig.reshape(lead + (K, 3)), int(no_data), int(rejected),
+                      P.reshape(lead + (K, 3, 3)))
 
 
 # --------------------------------------------------------------------------

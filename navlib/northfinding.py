@@ -45,6 +45,28 @@ pair winning for a Gaussian INS error; paper's "any second position" claim),
 gyro) and the Monte Carlo of Fig. 4 (:func:`simulate_static_outputs`,
 :func:`monte_carlo`) vectorised over headings and trials.
 
+Faulty data (every fault is counted; nothing is dropped silently)
+-----------------------------------------------------------------
+=================  ===========================================  ======================================
+fault              what happens                                 reported by
+=================  ===========================================  ======================================
+NaN dropouts       stop means: samples left out; a stop with    ``StaticWindow.n_dropped_*``,
+                   < ``min_fraction`` (50 %) left is refused    ``status == TOO_FEW``
+                   INS change: last sample held; a run longer   ``InsReport.n_held``, ``longest_gap``,
+                   than ``max_gap`` (0.1 s) refuses the drive   ``refused`` (NaN result)
+outliers (spikes)  stop means: ``outlier_k`` x MAD from the     ``StaticWindow.n_outliers_*``
+                   median left out (opt-in; without it the
+                   error bound is ``k sigma sqrt(p/N)``)
+saturation         stop: refused (``full_scale_*``);            ``n_saturated_*``, ``SATURATED``;
+                   INS drive: refused (``full_scale``)          ``InsReport.n_saturated``
+timing             ``timing.sanitize`` then windows cut by      ``TimingReport``; ``dt`` arrays in
+                   time (``stop_solutions(time=...)``); INS     :func:`ins_heading_change`
+                   integrates per-sample intervals
+=================  ===========================================  ======================================
+
+A refused stop or drive raises ValueError (``strict=True``, the default) or
+gives NaN, which :func:`resolve` rejects, so it cannot be used by mistake.
+
 Errata corrected (guide 000 section 8)
 --------------------------------------
 * Err 1: omega_ic in Eqs. (13), (16)-(20) is omega_ie.
@@ -61,23 +83,45 @@ Errata corrected (guide 000 section 8)
 """
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 from scipy.special import ndtr
 
 from . import attitude, earth, strapdown
-from ._validate import as_array, generator, in_range, latitude, positive
+from ._validate import as_array as _as_array, generator, in_range, latitude as _latitude, positive as _positive, \
+    time_axis
 from .sensors import TriadErrors
 from .trajectory import Segment
 
-__all__ = ["MAX_LAT_DEG", "static_means", "triad", "triad_heading", "tilt_from_accel", "Candidates",
+__all__ = ["MAX_LAT_DEG", "OK", "TOO_FEW", "SATURATED", "MOVING", "StaticWindow", "static_means", "triad",
+           "triad_heading", "tilt_from_accel", "Candidates",
            "heading_candidates", "nearest_candidate_error", "Resolution", "resolve", "triad_heading_error",
            "triad_heading_std",
            "single_axis_heading_std", "single_axis_heading_error", "simulate_static_outputs",
            "MonteCarlo", "monte_carlo", "pair_probabilities", "four_position_heading",
            "four_position_heading_std", "window_mean_std", "stop_and_go",
-           "StopSolutions", "stop_solutions", "ins_heading_change"]
+           "StopSolutions", "stop_solutions", "InsReport", "ins_heading_change"]
+
+def _nonempty(arr, name):
+    if arr.size == 0:
+        raise ValueError(f"{name}: expected a non-empty array, got shape {arr.shape}")
+    return arr
+
+
+def as_array(x, name, **kwargs):
+    """:func:`navlib._validate.as_array` that also rejects empty arrays."""
+    return _nonempty(_as_array(x, name, **kwargs), name)
+
+
+def positive(x, name, **kwargs):
+    return _positive(_nonempty(_as_array(x, name), name), name, **kwargs)
+
+
+def latitude(x, name="lat", deg=False):
+    return _latitude(_nonempty(_as_array(x, name), name), name, deg=deg)
+
 
 OMEGA_IE = earth.OMEGA_IE
 MAX_LAT_DEG = 89.0
@@ -102,13 +146,107 @@ def _vec(x, name: str) -> np.ndarray:
     return as_array(x, name, tail=(3,))
 
 
-def static_means(w_ib_b, f_b, lat, h=0.0, accel_tol: float = 0.2):
+OK, TOO_FEW, SATURATED, MOVING = 0, 1, 2, 3
+"""Status codes of a static window (:class:`StaticWindow`)."""
+
+
+@dataclass(frozen=True)
+class StaticWindow:
+    """Averages of one static window and what was left out (shapes (..., 3) and (...)).
+
+    Unpacks as ``w_mean, f_mean = static_means(...)``.
+
+    Attributes
+    ----------
+    w_mean, f_mean : ndarray, shape (..., 3)
+        Means of the samples used (rad/s, m/s^2); NaN where the window was
+        refused (``status != OK``).
+    n_samples : int
+        Samples in the window (N).
+    n_used_gyro, n_used_accel : ndarray of int, shape (...)
+        Samples averaged.
+    n_dropped_gyro, n_dropped_accel : ndarray of int, shape (...)
+        Samples with a NaN component (dropouts), left out.
+    n_outliers_gyro, n_outliers_accel : ndarray of int, shape (...)
+        Samples more than ``outlier_k`` x 1.4826 MAD from the window median in
+        any component, left out (0 without ``outlier_k``).
+    n_saturated_gyro, n_saturated_accel : ndarray of int, shape (...)
+        Samples with a component at the device rails (``|x| >= full_scale``).
+    status : ndarray of int, shape (...)
+        ``OK`` (0); ``TOO_FEW`` (1): fewer than ``min_fraction`` of the samples
+        (and 2) left; ``SATURATED`` (2): saturated samples, the robot was not
+        still or the reading is unknown; ``MOVING`` (3): the accelerometer
+        shows motion (``accel_tol``).
+    """
+    w_mean: np.ndarray
+    f_mean: np.ndarray
+    n_samples: int
+    n_used_gyro: np.ndarray
+    n_used_accel: np.ndarray
+    n_dropped_gyro: np.ndarray
+    n_dropped_accel: np.ndarray
+    n_outliers_gyro: np.ndarray
+    n_outliers_accel: np.ndarray
+    n_saturated_gyro: np.ndarray
+    n_saturated_accel: np.ndarray
+    status: np.ndarray
+
+    def __iter__(self):
+        return iter((self.w_mean, self.f_mean))
+
+    @property
+    def ok(self) -> np.ndarray:
+        """True where the window was accepted."""
+        return self.status == OK
+
+
+def _outliers(x, valid, k):
+    """Samples more than k * 1.4826 MAD from the median of the valid samples (any component)."""
+    xv = np.where(valid[..., None], x, np.nan)
+    with np.errstate(all="ignore"), warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)          # all-NaN windows: handled as TOO_FEW
+        med = np.nanmedian(xv, axis=-2, keepdims=True)
+        mad = np.nanmedian(np.abs(xv - med), axis=-2, keepdims=True)
+    thresh = k * np.maximum(1.4826 * mad, 1e-12)
+    return valid & np.any(np.abs(x - med) > thresh, axis=-1)
+
+
+def _masked_mean(x, used, n_used):
+    if used.all():
+        return x.mean(-2)                    # the fault-free path, bit-identical to a plain mean
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(used[..., None], x, 0.0).sum(-2) / n_used[..., None]
+
+
+def static_means(w_ib_b, f_b, lat, h=0.0, accel_tol: float = 0.2, *, min_fraction: float = 0.5,
+                 outlier_k: float | None = None, full_scale_gyro: float | None = None,
+                 full_scale_accel: float | None = None, strict: bool = True) -> StaticWindow:
     """Average a static window of gyro and accelerometer samples (paper step 1).
+
+    Faults, each counted in the returned :class:`StaticWindow`:
+
+    * dropouts: samples with a NaN component are left out of that sensor's
+      mean (``n_dropped_*``); a window with fewer than
+      ``max(2, min_fraction N)`` samples left is refused (``TOO_FEW``). A
+      30-s gap in a 3-min stop leaves 150 s: the mean's white-noise std grows
+      by sqrt(180/150) = 1.10.
+    * outliers: with ``outlier_k``, samples more than ``outlier_k`` x
+      1.4826 MAD from the window median are left out (``n_outliers_*``).
+      Without it, spikes of +-k sigma on a fraction p of the samples add
+      ``k sigma sqrt(p / N)`` of noise to the mean (10x the mean's
+      white-noise std for p = 1 %, k = 100), unreported.
+    * saturation: with ``full_scale_gyro``/``full_scale_accel`` (device
+      ranges, rad/s and m/s^2), samples at the rails are counted and the
+      window is refused (``SATURATED``): a static robot never reaches them.
+    * timing: the mean does not depend on sample order; duplicated
+      timestamps are removed by ``timing.sanitize`` before windows are cut
+      by time (:func:`stop_solutions` with ``time``).
 
     Parameters
     ----------
     w_ib_b, f_b : array_like, shape (..., N, 3)
-        Gyro (rad/s) and accelerometer (m/s^2) samples of one stop, N >= 2.
+        Gyro (rad/s) and accelerometer (m/s^2) samples of one stop, N >= 2;
+        NaN marks dropouts.
     lat : float
         Latitude (rad), used for the expected gravity.
     h : float
@@ -116,37 +254,83 @@ def static_means(w_ib_b, f_b, lat, h=0.0, accel_tol: float = 0.2):
     accel_tol : float
         Largest accepted deviation (m/s^2) of the mean specific-force norm
         from normal gravity, and of the two half-window means from each
-        other. Larger deviations mean the robot was not static.
+        other. Larger deviations mean the robot was not static (``MOVING``).
+    min_fraction : float
+        Smallest fraction of the window, in (0, 1], that must remain per sensor.
+    outlier_k : float, optional
+        MAD outlier threshold (e.g. 6); None: no outlier rejection.
+    full_scale_gyro, full_scale_accel : float, optional
+        Device ranges; None: no saturation check.
+    strict : bool
+        Raise ValueError for a refused window (default); ``False`` returns NaN
+        means with its ``status`` instead.
 
     Returns
     -------
-    w_mean, f_mean : ndarray, shape (..., 3)
+    StaticWindow
+        Unpacks as ``(w_mean, f_mean)``, shapes (..., 3).
 
     Raises
     ------
     ValueError
-        Empty or non-finite windows, mismatched shapes, or a window in which
-        the robot was evidently moving.
+        Empty windows, inf, mismatched shapes; with ``strict``, a refused
+        window (too few samples, saturated, or the robot evidently moving).
     """
-    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1)
-    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1)
+    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
+    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=True)
     if w.shape != f.shape:
         raise ValueError(f"f_b: expected the shape of w_ib_b {w.shape}, got {f.shape}")
     n = w.shape[-2]
     if n < 2:
         raise ValueError(f"w_ib_b: expected a static window of at least 2 samples, got {n}")
     tol = float(positive(accel_tol, "accel_tol"))
-    g = earth.gravity(_lat(lat), h)
-    f_mean = f.mean(-2)
-    dev = np.abs(np.linalg.norm(f_mean, axis=-1) - g)
-    if np.any(dev > tol):
-        raise ValueError(f"f_b: mean specific-force norm differs from gravity by {dev.max():.3g} m/s^2 "
-                         f"(> accel_tol = {tol:g}): the robot is not static")
-    halves = np.abs(f[..., : n // 2, :].mean(-2) - f[..., n // 2:, :].mean(-2)).max(initial=0.0)
-    if halves > tol:
-        raise ValueError(f"f_b: the two halves of the window differ by {halves:.3g} m/s^2 "
+    frac = float(in_range(as_array(min_fraction, "min_fraction"), "min_fraction", 0.0, 1.0, lo_open=True))
+    k_out = None if outlier_k is None else float(positive(outlier_k, "outlier_k"))
+    fs_g = np.inf if full_scale_gyro is None else float(positive(full_scale_gyro, "full_scale_gyro"))
+    fs_a = np.inf if full_scale_accel is None else float(positive(full_scale_accel, "full_scale_accel"))
+    g = earth.gravity(_lat(lat), as_array(h, "h"))
+    need = max(2, int(np.ceil(frac * n)))
+    out = {}
+    for name, x, fs in (("gyro", w, fs_g), ("accel", f, fs_a)):
+        valid = np.all(np.isfinite(x), -1)
+        sat = valid & np.any(np.abs(x) >= fs, -1)
+        outl = _outliers(x, valid, k_out) if k_out is not None else np.zeros_like(valid)
+        used = valid & ~outl
+        n_used = used.sum(-1)
+        out[name] = (_masked_mean(x, used, n_used), n_used, n - valid.sum(-1), outl.sum(-1), sat.sum(-1), used)
+    (w_mean, nu_g, nd_g, no_g, ns_g, _), (f_mean, nu_a, nd_a, no_a, ns_a, used_f) = out["gyro"], out["accel"]
+    status = np.zeros(w_mean.shape[:-1], dtype=int)
+    too_few = (nu_g < need) | (nu_a < need)
+    status[too_few] = TOO_FEW
+    status[(status == OK) & ((ns_g > 0) | (ns_a > 0))] = SATURATED
+    with np.errstate(invalid="ignore"):
+        dev = np.abs(np.linalg.norm(f_mean, axis=-1) - g)
+        if used_f.all():
+            halves = np.abs(f[..., : n // 2, :].mean(-2) - f[..., n // 2:, :].mean(-2)).max(-1)
+        else:
+            u1, u2 = used_f[..., : n // 2], used_f[..., n // 2:]
+            halves = np.abs(_masked_mean(f[..., : n // 2, :], u1, u1.sum(-1))
+                            - _masked_mean(f[..., n // 2:, :], u2, u2.sum(-1))).max(-1)
+    status[(status == OK) & ((dev > tol) | ~(halves <= tol))] = MOVING
+    if strict and np.any(status != OK):
+        if np.any(status == TOO_FEW):
+            which = "w_ib_b" if np.any(nu_g < need) else "f_b"
+            left = int(min(nu_g.min(), nu_a.min()))
+            raise ValueError(f"{which}: only {left} of {n} samples left after dropouts/outliers; expected at least "
+                             f"{need} (min_fraction = {frac:g})")
+        if np.any(status == SATURATED):
+            which = "w_ib_b" if np.any(ns_g > 0) else "f_b"
+            raise ValueError(f"{which}: {int(ns_g.sum() + ns_a.sum())} samples at the full-scale range: the robot "
+                             "was not static during the stop")
+        if np.any(dev[status == MOVING] > tol):
+            raise ValueError(f"f_b: mean specific-force norm differs from gravity by {np.nanmax(dev):.3g} m/s^2 "
+                             f"(> accel_tol = {tol:g}): the robot is not static")
+        raise ValueError(f"f_b: the two halves of the window differ by {np.nanmax(halves):.3g} m/s^2 "
                          f"(> accel_tol = {tol:g}): the robot moved during the stop")
-    return w.mean(-2), f_mean
+    bad = status != OK
+    w_mean = np.where(bad[..., None], np.nan, w_mean)
+    f_mean = np.where(bad[..., None], np.nan, f_mean)
+    return StaticWindow(w_mean, f_mean, n, nu_g, nu_a, nd_g, nd_a, no_g, no_a, ns_g, ns_a, status)
 
 
 # --------------------------------------------------------------------------
@@ -282,7 +466,7 @@ def heading_candidates(w_y, f_b, lat, h=0.0) -> Candidates:
     """
     w_y = as_array(w_y, "w_y")
     lat = _lat(lat)
-    pitch, _ = tilt_from_accel(f_b, earth.gravity(lat, h))
+    pitch, _ = tilt_from_accel(f_b, earth.gravity(lat, as_array(h, "h")))
     cos_h = (w_y - OMEGA_IE * np.sin(lat) * np.sin(pitch)) / (OMEGA_IE * np.cos(lat) * np.cos(pitch))
     clipped = np.abs(cos_h) > 1.0
     alpha = np.arccos(np.clip(cos_h, -1.0, 1.0))
@@ -346,7 +530,9 @@ def resolve(pair1, pair2, dpsi_ins, wrap: bool = True) -> Resolution:
     pair1, pair2 : array_like, shape (..., 2)
         Candidate pairs at positions 1 and 2 (rad), e.g. ``Candidates.pair``.
     dpsi_ins : array_like, shape (...)
-        Heading change measured by the MEMS INS (rad).
+        Heading change measured by the MEMS INS (rad). NaN (a drive refused
+        by :func:`ins_heading_change`) raises ValueError: there is nothing
+        to resolve with.
     wrap : bool
         Compare ``wrap_pi(candidate - dpsi_ins)`` (default, Err 7). ``False``
         reproduces the paper's literal unwrapped comparison, for demonstration.
@@ -512,7 +698,7 @@ def simulate_static_outputs(hpr, lat, n_trials: int, sigma_gyro, sigma_accel, rn
     """
     C_nb = np.swapaxes(attitude.euler_to_dcm(hpr), -1, -2)
     lat = _lat(lat)
-    if not isinstance(n_trials, (int, np.integer)) or n_trials < 1:
+    if not isinstance(n_trials, (int, np.integer)) or isinstance(n_trials, bool) or n_trials < 1:
         raise ValueError(f"n_trials: expected a positive integer, got {n_trials!r}")
     s_g = float(positive(sigma_gyro, "sigma_gyro", allow_zero=True))
     s_a = float(positive(sigma_accel, "sigma_accel", allow_zero=True))
@@ -520,9 +706,14 @@ def simulate_static_outputs(hpr, lat, n_trials: int, sigma_gyro, sigma_accel, rn
     w_true = C_nb @ earth.earth_rate_n(lat)
     f_true = C_nb @ np.array([0.0, 0.0, float(earth.gravity(lat))])
     shape = w_true.shape[:-1] + (int(n_trials), 3)
-    w = w_true[..., None, :] + as_array(gyro_bias, "gyro_bias") + s_g * r_gyro.standard_normal(shape)
-    f = f_true[..., None, :] + as_array(accel_bias, "accel_bias") + s_a * r_accel.standard_normal(shape)
+    w = w_true[..., None, :] + _bias(gyro_bias, "gyro_bias") + s_g * r_gyro.standard_normal(shape)
+    f = f_true[..., None, :] + _bias(accel_bias, "accel_bias") + s_a * r_accel.standard_normal(shape)
     return w, f
+
+
+def _bias(x, name):
+    b = as_array(x, name)
+    return b if b.ndim == 0 else as_array(b, name, tail=(3,))
 
 
 @dataclass(frozen=True)
@@ -712,9 +903,11 @@ def stop_and_go(headings, stop_duration: float, drive_duration: float, speed: fl
     psi = as_array(headings, "headings").reshape(-1)
     th = as_array(pitches, "pitches").reshape(-1)
     ro = as_array(rolls, "rolls").reshape(-1)
-    if psi.size < 2 or th.shape != psi.shape or ro.shape != psi.shape:
-        raise ValueError(f"headings, pitches, rolls: expected equal 1-D arrays of >= 2 stops, "
-                         f"got {psi.shape}, {th.shape}, {ro.shape}")
+    if psi.size < 2:
+        raise ValueError(f"headings: expected a 1-D array of >= 2 stops, got {psi.shape}")
+    for name, x in (("pitches", th), ("rolls", ro)):
+        if x.shape != psi.shape:
+            raise ValueError(f"{name}: expected one value per stop, shape {psi.shape}, got {x.shape}")
     stop_duration = float(positive(stop_duration, "stop_duration"))
     drive_duration = float(positive(drive_duration, "drive_duration"))
     if drive_duration < 30:
@@ -740,40 +933,120 @@ class StopSolutions:
 
     ``candidates`` are the single-axis pairs (forward gyro + accelerometers),
     ``triad`` the three-axis TRIAD headings (rad), ``clipped`` the clipping flags.
+    ``windows`` holds each stop's :class:`StaticWindow` (counts of dropped,
+    rejected and saturated samples and the status); with ``strict=False`` a
+    refused stop has NaN candidates and heading.
     """
     candidates: np.ndarray
     triad: np.ndarray
     clipped: np.ndarray
     f_mean: np.ndarray
+    windows: tuple = ()
+
+    @property
+    def status(self) -> np.ndarray:
+        """Status of each stop's window, shape (..., S) (:data:`OK`, :data:`TOO_FEW`, ...)."""
+        return np.stack([s.status for s in self.windows], -1)
 
 
-def stop_solutions(w_ib_b, f_b, windows, lat, h=0.0) -> StopSolutions:
+def stop_solutions(w_ib_b, f_b, windows, lat, h=0.0, *, time=None, strict: bool = True,
+                   **window_options) -> StopSolutions:
     """Average each stop window and solve it with TRIAD and the single-axis method.
 
     Parameters
     ----------
     w_ib_b, f_b : array_like, shape (..., N, 3)
-        IMU samples of the whole run (rad/s, m/s^2).
-    windows : array_like of int, shape (S, 2)
-        ``[start, end)`` sample indices of the stops.
+        IMU samples of the whole run (rad/s, m/s^2); NaN marks dropouts.
+    windows : array_like, shape (S, 2)
+        ``[start, end)`` of the stops: integer sample indices, or times (s)
+        when ``time`` is given.
     lat, h : float
         Latitude (rad) and height (m) of the site.
+    time : array_like, shape (N,), optional
+        Strictly increasing sample times (s), e.g. from ``timing.sanitize``
+        (which removes duplicated and out-of-order timestamps and reports
+        them); the windows are then cut by time, so dropped samples do not
+        shift them.
+    strict : bool
+        Raise for a refused stop (default) or return NaN for it (see
+        :func:`static_means`).
+    **window_options
+        ``accel_tol``, ``min_fraction``, ``outlier_k``, ``full_scale_gyro``,
+        ``full_scale_accel`` for :func:`static_means`.
     """
-    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1)
-    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1)
-    win = np.asarray(windows)
-    if win.ndim != 2 or win.shape[1] != 2 or not np.issubdtype(win.dtype, np.integer) \
-            or np.any(win[:, 0] < 0) or np.any(win[:, 1] > w.shape[-2]) or np.any(win[:, 1] - win[:, 0] < 2):
-        raise ValueError(f"windows: expected (S, 2) integer [start, end) sample indices within "
-                         f"{w.shape[-2]} samples, each >= 2 long, got {win.tolist()}")
-    means = [static_means(w[..., a:b, :], f[..., a:b, :], lat, h) for a, b in win]
-    w_mean = np.stack([m[0] for m in means], -2)
-    f_mean = np.stack([m[1] for m in means], -2)
-    cand = heading_candidates(w_mean[..., 1], f_mean, lat, h)
-    return StopSolutions(cand.pair, triad_heading(triad(f_mean, w_mean, lat)), cand.clipped, f_mean)
+    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
+    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=True)
+    n = w.shape[-2]
+    if time is not None:
+        t = time_axis(time, "time")
+        if t.size != n:
+            raise ValueError(f"time: expected {n} sample times, got {t.size}")
+        tw = as_array(windows, "windows")
+        if tw.ndim != 2 or tw.shape[1] != 2 or np.any(tw[:, 1] <= tw[:, 0]):
+            raise ValueError(f"windows: expected (S, 2) [start, end) times in s with end > start, got {tw.tolist()}")
+        win = np.searchsorted(t, tw, side="left")
+    else:
+        win = np.asarray(windows)
+        if win.ndim != 2 or win.shape[1] != 2 or not np.issubdtype(win.dtype, np.integer):
+            raise ValueError(f"windows: expected (S, 2) integer [start, end) sample indices, got {win.tolist()}")
+    if np.any(win[:, 0] < 0) or np.any(win[:, 1] > n) or np.any(win[:, 1] - win[:, 0] < 2):
+        raise ValueError(f"windows: expected (S, 2) [start, end) sample indices within {n} samples, each >= 2 "
+                         f"long, got {win.tolist()}")
+    stats = tuple(static_means(w[..., a:b, :], f[..., a:b, :], lat, h, strict=strict, **window_options)
+                  for a, b in win)
+    w_mean = np.stack([m.w_mean for m in stats], -2)
+    f_mean = np.stack([m.f_mean for m in stats], -2)
+    ok = np.all(np.isfinite(f_mean), -1)
+    f_safe = np.where(ok[..., None], f_mean, [0.0, 0.0, 9.8])           # refused stops: solved on a dummy, set NaN
+    w_safe = np.where(ok[..., None], w_mean, 1e-5)
+    cand = heading_candidates(w_safe[..., 1], f_safe, lat, h)
+    heading = triad_heading(triad(f_safe, w_safe, lat))
+    pair = np.where(ok[..., None], cand.pair, np.nan)
+    return StopSolutions(pair, np.where(ok, heading, np.nan), cand.clipped & ok, f_mean, stats)
 
 
-def ins_heading_change(w_ib_b, f_start, dt: float, lat, earth_rate: str = "vertical"):
+@dataclass(frozen=True)
+class InsReport:
+    """What :func:`ins_heading_change` did with faulty samples, per drive (shape (...)).
+
+    Attributes
+    ----------
+    n_held : ndarray of int
+        NaN gyro samples (dropouts) replaced by the last valid sample.
+    longest_gap : ndarray
+        Longest run of dropouts (s).
+    n_saturated : ndarray of int
+        Samples with a component at the rails (``|w| >= full_scale``).
+    refused : ndarray of bool
+        Drives whose heading change is NaN: a dropout run longer than
+        ``max_gap``, a saturated sample, or no valid sample at all.
+    """
+    n_held: np.ndarray
+    longest_gap: np.ndarray
+    n_saturated: np.ndarray
+    refused: np.ndarray
+
+
+def _hold_last(w, dts):
+    """Forward-fill NaN rows along axis -2 (back-fill leading ones); counts and longest run (s)."""
+    bad = ~np.all(np.isfinite(w), -1)
+    n = w.shape[-2]
+    idx = np.where(bad, 0, np.arange(n))
+    np.maximum.accumulate(idx, axis=-1, out=idx)
+    first = np.argmax(~bad, axis=-1)                       # leading dropouts take the first valid sample
+    idx = np.where(bad & (np.arange(n) < first[..., None]), first[..., None], idx)
+    filled = np.take_along_axis(w, idx[..., None], -2)
+    # longest run of consecutive dropouts, in seconds
+    run = np.zeros(bad.shape[:-1])
+    longest = np.zeros(bad.shape[:-1])
+    for i in range(n):
+        run = np.where(bad[..., i], run + dts[i], 0.0)
+        longest = np.maximum(longest, run)
+    return filled, bad.sum(-1), longest, bad.all(-1)
+
+
+def ins_heading_change(w_ib_b, f_start, dt, lat, earth_rate: str = "vertical", *, max_gap: float = 0.1,
+                       full_scale: float | None = None, report: bool = False):
     """MEMS strapdown heading change over a drive, started with heading 0 (paper step 2).
 
     The attitude starts at heading 0 with pitch and roll from ``f_start``
@@ -788,27 +1061,79 @@ def ins_heading_change(w_ib_b, f_start, dt: float, lat, earth_rate: str = "verti
       were true, i.e. the horizontal part in the wrong direction (a tilt
       error, second order in heading over a short drive).
 
+    Faults (counted in :class:`InsReport`; a refused drive gives NaN, which
+    :func:`resolve` does not accept, so it cannot pass unnoticed):
+
+    * dropouts: NaN gyro samples are replaced by the last valid sample
+      (``n_held``); the heading error this adds is at most the rate change
+      across a gap times its length, so a drive with a run of dropouts longer
+      than ``max_gap`` (default 0.1 s: <= 0.3 deg for a 3 deg/s turn starting
+      inside the gap) is refused. A 30-s gap in a 60-s drive is refused.
+    * saturation: with ``full_scale`` (gyro range, rad/s), a drive with
+      samples at the rails is refused (``n_saturated``): the turn was faster
+      than the clipped reading.
+    * timing: ``dt`` may be per-sample intervals (``timing.intervals`` after
+      ``timing.sanitize``). Each sample's rotation ``w_k dt_k`` is integrated
+      exactly; the Earth-rate removal uses the mean interval, which is exact
+      for the total and differs per step by second-order terms only.
+    * outliers: a gyro spike of size s on one sample adds s dt to the heading
+      change; not detected here (a turning vehicle has no static median).
+
     Parameters
     ----------
     w_ib_b : array_like, shape (..., N, 3)
-        MEMS gyro samples of the drive (rad/s).
+        MEMS gyro samples of the drive (rad/s); NaN marks dropouts.
     f_start : array_like, shape (..., 3)
         Averaged specific force at the start stop (m/s^2).
-    dt : float  (s)
+    dt : float or array_like, shape (N,)
+        Sample interval (s), or the interval after each sample.
     lat : float  (rad)
     earth_rate : {"vertical", "none", "full"}
+    max_gap : float
+        Longest run of dropouts bridged by holding the last sample (s).
+    full_scale : float, optional
+        Gyro range (rad/s); None: no saturation check.
+    report : bool
+        Also return an :class:`InsReport`.
 
     Returns
     -------
     ndarray, shape (...)
-        Heading change, wrapped into (-pi, pi] (rad).
+        Heading change, wrapped into (-pi, pi] (rad); NaN for refused drives.
+    InsReport
+        Only with ``report=True``.
     """
     w_ie = earth.earth_rate_n(_lat(lat))
     rates = {"vertical": w_ie * [0, 0, 1], "none": np.zeros(3), "full": w_ie}
     if earth_rate not in rates:
         raise ValueError(f"earth_rate: expected 'vertical', 'none' or 'full', got {earth_rate!r}")
-    pitch, roll = tilt_from_accel(f_start)
+    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
+    n = w.shape[-2]
+    step = positive(dt, "dt")
+    if step.ndim == 0:
+        dts, step = np.full(n, float(step)), float(step)
+    elif step.shape != (n,):
+        raise ValueError(f"dt: expected a float or per-sample intervals of shape ({n},), got {step.shape}")
+    else:
+        dts, step = step, float(step.mean())
+    max_gap = float(positive(max_gap, "max_gap", allow_zero=True))
+    fs = np.inf if full_scale is None else float(positive(full_scale, "full_scale"))
+    pitch, roll = tilt_from_accel(as_array(f_start, "f_start", tail=(3,)))
+    with np.errstate(invalid="ignore"):
+        n_sat = np.sum(np.any(np.abs(w) >= fs, -1), -1)             # NaN compares False
+    if np.all(np.isfinite(w)):
+        n_held = np.zeros(w.shape[:-2], dtype=int)
+        longest, empty = np.zeros(w.shape[:-2]), np.zeros(w.shape[:-2], dtype=bool)
+    else:
+        w, n_held, longest, empty = _hold_last(w, dts)
+        w = np.where(empty[..., None, None], 0.0, w)
+    if not np.all(dts == step):
+        w = w * (dts / step)[:, None]                      # w_k dt_k integrated exactly with the mean interval
+    refused = empty | (longest > max_gap) | (n_sat > 0)
     q0 = attitude.euler_to_quat(np.stack([np.zeros_like(pitch), pitch, roll], -1))
-    q = strapdown.integrate_attitude(q0, w_ib_b, dt, rates[earth_rate])
+    q = strapdown.integrate_attitude(q0, w, step, rates[earth_rate])
     end = attitude.quat_to_dcm(q[..., -1, :])
-    return attitude.wrap_pi(np.arctan2(end[..., 0, 1], end[..., 1, 1]))
+    dpsi = attitude.wrap_pi(np.arctan2(end[..., 0, 1], end[..., 1, 1]))
+    if np.any(refused):
+        dpsi = np.where(refused, np.nan, dpsi)
+    return (dpsi, InsReport(n_held, longest, n_sat, refused)) if report else dpsi

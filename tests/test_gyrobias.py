@@ -253,6 +253,22 @@ def test_error_statistics_match_numpy():
     (lambda: gb.earth_rate_body([0, 0, 0], 2.0), "lat"),
     (lambda: gb.design([0, 0, 0], EY, np.pi / 2, 0.05, DT, 1e-4), "dwell_time"),
     (lambda: gb.error_statistics(np.zeros((2, 5, 3)), np.zeros((4, 3))), "hpr_true"),
+    (lambda: gb.tilt_residuals(np.zeros((100, 3)), np.tile([0, 0, 9.8], (100, 1)), np.full(99, DT), [0], 10), "dt"),
+    (lambda: gb.tilt_residuals(np.zeros((100, 3)), np.tile([0, 0, 9.8], (100, 1)), DT, [0], 10, max_missing=0.6),
+     "max_missing"),
+    (lambda: gb.tilt_residuals(np.zeros((100, 3)), np.tile([0, 0, 9.8], (100, 1)), DT, [0], 10, outlier_k=0.0),
+     "outlier_k"),
+    (lambda: gb.tilt_residuals(np.zeros((100, 3)), np.tile([0, 0, 9.8], (100, 1)), DT, [0], 10,
+                               full_scale_gyro=-1.0), "full_scale_gyro"),
+    (lambda: gb.tilt_residuals(np.zeros((100, 3)), np.tile([0, 0, 9.8], (100, 1)), DT, [0], 10,
+                               full_scale_accel=0.0), "full_scale_accel"),
+    (lambda: gb.integrate_euler([0, 0, 0], np.zeros((5, 3)), np.full(4, DT)), "dt"),
+    (lambda: gb.integrate_euler([0, 0, 0], np.zeros((5, 3)), DT, max_gap=-0.1), "max_gap"),
+    (lambda: gb.integrate_euler([0, 0, 0], np.zeros((5, 3)), DT, full_scale=0.0), "full_scale"),
+    (lambda: gb.kalman_bias(np.zeros((4, 2)), np.zeros((4, 2, 3)), np.tile(np.eye(2), (4, 1, 1)), np.ones(3), 0.0,
+                            1.0), "interval"),
+    (lambda: gb.kalman_bias(np.zeros((4, 2)), np.zeros((4, 2, 3)), np.tile(np.eye(2), (4, 1, 1)), 0.0, 0.0, 1.0),
+     "interval"),
 ])
 def test_bad_input_names_the_argument(call, arg):
     with pytest.raises(ValueError) as exc:
@@ -288,4 +304,141 @@ def test_kernels_run_uncompiled_with_the_same_results():
         return json.loads(out.stdout)
     jit, plain = run(False), run(True)
     for key in jit:
+        np.testing.assert_allclose(plain[key], jit[key], rtol=1e-12, atol=1e-15)
+
+
+# ---------------------------------------------------------------- API fuzzing
+# Every public function is called with each of its numeric arguments replaced by a string, a complex
+# value, an object array, a boolean, NaN, inf, an empty array and (for vector arguments) a wrong trailing shape;
+# each call must raise ValueError/TypeError whose message starts with the argument's name. NaN is
+# skipped where the docstring makes it a dropout marker.
+
+MUTATIONS = ("str", "complex", "object", "bool", "nan", "inf", "empty", "shape")
+
+
+def _mutate(value, how):
+    v = np.asarray(value, dtype=float)
+    if how == "str":
+        return "abc"
+    if how == "complex":
+        return v + 1j
+    if how == "object":
+        return v.astype(object)
+    if how == "bool":
+        return True if v.ndim == 0 else np.ones(v.shape, dtype=bool)
+    if how in ("nan", "inf"):
+        v = v.copy()
+        v.reshape(-1)[0] = np.nan if how == "nan" else np.inf
+        return v
+    if how == "empty":
+        return np.zeros((0,) + v.shape[1:]) if v.ndim > 1 else np.zeros(0)
+    if how == "shape":
+        return np.zeros(v.shape[:-1] + (v.shape[-1] + 1,)) if v.ndim >= 1 else None
+    raise AssertionError(how)
+
+
+def _fuzz_cases(table):
+    cases = []
+    for name, (func, good, nan_ok, *free) in table.items():
+        for arg, value in good.items():
+            if not isinstance(value, (int, float, list, np.ndarray)) or isinstance(value, bool):
+                continue                                   # generators, records, options: not numeric
+            for how in MUTATIONS:
+                if how == "nan" and arg in nan_ok:
+                    continue
+                if how == "shape" and (np.ndim(value) == 0 or (free and arg in free[0])):
+                    continue                               # scalars and free-length 1-D arrays have no wrong tail
+                cases.append(pytest.param(func, good, arg, how, id=f"{name}-{arg}-{how}"))
+    return cases
+
+
+def _check_fuzz(func, good, arg, how):
+    func(**good)                                           # the unmutated call works
+    kwargs = dict(good)
+    kwargs[arg] = _mutate(good[arg], how)
+    with pytest.raises((ValueError, TypeError)) as exc:
+        func(**kwargs)
+    assert str(exc.value).startswith(arg), str(exc.value)
+
+
+_HPR = [0.1, 0.5, 0.2]
+_WS = np.full((1000, 3), 1e-4)
+_FS = np.tile([0.0, 0.0, 9.8], (1000, 1))
+_COND, _CRB, _V2 = gb.design([0.0, 0.5, 0.0], EY, np.pi / 2, 4.5, DT, 1e-4, 1e-3, 4)
+_R2 = gb.residual_covariance(np.stack([[0.0, 0.5]] * 4), 450, DT, 1e-4, 1e-3)
+_r2 = _V2 @ B
+GB_FUZZ = {   # name: (function, good keyword arguments, NaN-marker arguments[, free-length 1-D arguments])
+    "eq1_matrix": (gb.eq1_matrix, dict(hpr=_HPR), set()),
+    "euler_rates": (gb.euler_rates, dict(hpr=_HPR, w_nb_b=[0.01, 0.02, 0.03]), set()),
+    "integrate_euler": (gb.integrate_euler, dict(hpr0=_HPR, w_ib_b=np.full((20, 3), 0.01), dt=DT, w_in_n=[0, 0, 1e-5],
+                                                 bias_b=[1e-5, 0, 0]), {"bias_b"}),     # NaN: keep the previous estimate
+    "gravity_body": (gb.gravity_body, dict(tilt=[0.1, 0.2], g=9.8), set()),
+    "tilt_from_accel": (gb.tilt_from_accel, dict(f_b=[0.1, 0.2, 9.8]), set()),
+    "tilt_matrix": (gb.tilt_matrix, dict(tilt=[0.1, 0.2]), set()),
+    "rodrigues": (gb.rodrigues, dict(axis_b=EY, angle=0.5), set()),
+    "rotate_attitude": (gb.rotate_attitude, dict(hpr=_HPR, axis_b=EY, angle=0.5), set()),
+    "dwell_attitudes": (gb.dwell_attitudes, dict(hpr0=_HPR, axis_b=EY, amplitude=1.5, n_dwells=4), set()),
+    "dwell_windows": (gb.dwell_windows, dict(n_samples=1000, dt=DT, period=5.0, rotation_time=0.5, settle=0.1), set()),
+    "earth_rate_body": (gb.earth_rate_body, dict(hpr=_HPR, lat=LAT), set()),
+    "tilt_residuals": (gb.tilt_residuals, dict(w_ib_b=_WS, f_b=_FS, dt=DT, starts=np.array([0, 500]), length=450,
+                                               w_ie_b=np.zeros((2, 3))), {"w_ib_b", "f_b"}, {"starts"}),
+    "residual_covariance": (gb.residual_covariance, dict(tilt=[0.1, 0.2], length=450, dt=DT, gyro_noise=1e-4,
+                                                         accel_noise=1e-3, g=9.8), set()),
+    "lsq_bias": (gb.lsq_bias, dict(r=_r2, V=_V2), {"r", "V"}),
+    "running_lsq_bias": (gb.running_lsq_bias, dict(r=_r2, V=_V2, forgetting=0.9), {"r", "V"}),
+    "kalman_bias": (gb.kalman_bias, dict(r=_r2, V=_V2, R=_R2, interval=5.0, rate_random_walk=1e-6, bias_sigma=1e-4,
+                                         gate=13.8), {"r", "V"}),
+    "condition_number": (gb.condition_number, dict(V=_V2), {"V"}),
+    "lsq_covariance": (gb.lsq_covariance, dict(V=_V2, R=_R2), set()),
+    "cramer_rao_bound": (gb.cramer_rao_bound, dict(V=_V2, R=_R2), set()),
+    "design": (gb.design, dict(hpr0=[0.0, 0.5, 0.0], axis_b=EY, amplitude=1.5, dwell_time=4.5, dt=DT, gyro_noise=1e-4,
+                               accel_noise=1e-3, n_dwells=4), set()),
+    "attitude_errors": (gb.attitude_errors, dict(hpr=_HPR, hpr_true=_HPR), set()),
+    "error_statistics": (gb.error_statistics, dict(hpr=np.zeros((5, 3)), hpr_true=np.zeros((5, 3))), set()),
+}
+
+
+@pytest.mark.parametrize("func, good, arg, how", _fuzz_cases(GB_FUZZ))
+def test_fuzz_public_api(func, good, arg, how):
+    _check_fuzz(func, good, arg, how)
+
+
+def test_fuzz_table_covers_every_public_function():
+    funcs = {n for n in gb.__all__ if callable(getattr(gb, n)) and not isinstance(getattr(gb, n), type)}
+    assert funcs == set(GB_FUZZ), funcs ^ set(GB_FUZZ)
+
+
+FAULT_SCRIPT = r"""
+import json, numpy as np
+from navlib import gyrobias as gb, trajectory, units, earth
+lat = units.deg(40.0)
+traj = trajectory.reciprocating_rotation(20.0, 0.01, [lat, 0, 0], units.deg([0, 30, 0]), [0, 1, 0], np.pi / 2, 5.0, 0.5)
+w, f = trajectory.ideal_imu(traj)
+rng = np.random.default_rng(0)
+w = w + 1e-3 * rng.standard_normal(w.shape)
+f = f + 1e-2 * rng.standard_normal(f.shape)
+w[rng.random(w.shape[0]) < 0.05] = np.nan                      # dropouts
+f[rng.random(f.shape[0]) < 0.01] += 5.0                        # spikes
+f[520:523, 0] = 30.0                                           # at the rails of a 30 m/s^2 range
+starts, n = gb.dwell_windows(w.shape[0], 0.01, 5.0, 0.5)
+dts = 0.01 * (1 + 0.2 * np.sin(np.arange(w.shape[0])))
+res = gb.tilt_residuals(w, f, dts, starts, n, max_missing=0.5, outlier_k=6.0, full_scale_accel=30.0)
+R = gb.residual_covariance(np.nan_to_num(res.tilt), n, 0.01, 1e-3, 1e-2)
+kf = gb.kalman_bias(res.r, res.V, R, np.full(starts.size, 5.0), 1e-6, 1e-3)
+hpr, rep = gb.integrate_euler(traj.hpr[0], w, dts, earth.earth_rate_n(lat), max_gap=0.1, full_scale=5.0, report=True)
+print(json.dumps({"r": np.nan_to_num(res.r).tolist(), "counts": [res.n_skipped, res.n_filled, res.n_outliers_accel,
+                  res.n_skipped_saturated, kf.n_no_data, rep.n_filled, rep.n_saturated],
+                  "kf": kf.b.tolist(), "P": kf.P.tolist(), "hpr": hpr[::50].tolist()}))
+"""
+
+
+def test_fault_paths_run_uncompiled_with_the_same_results():
+    def run(disable):
+        env = dict(os.environ, NUMBA_DISABLE_JIT="1" if disable else "0")
+        out = subprocess.run([sys.executable, "-c", FAULT_SCRIPT], env=env, capture_output=True, text=True, check=True)
+        return json.loads(out.stdout)
+    jit, plain = run(False), run(True)
+    assert jit["counts"] == plain["counts"]
+    assert jit["counts"][1] > 0 and jit["counts"][2] > 0 and jit["counts"][3] == 1 and jit["counts"][5] > 0
+    for key in ("r", "kf", "P", "hpr"):
         np.testing.assert_allclose(plain[key], jit[key], rtol=1e-12, atol=1e-15)
