@@ -129,3 +129,27 @@ def time_axis(t, name: str = "time") -> np.ndarray:
     if np.any(np.diff(arr) <= 0):
         raise ValueError(f"{name}: expected strictly increasing times")
     return arr
+
+
+# Variants that also reject empty arrays, for modules where every argument is a
+# measurement or parameter that must hold at least one value.
+
+def _nonempty(arr: np.ndarray, name: str) -> np.ndarray:
+    if arr.size == 0:
+        raise ValueError(f"{name}: expected a non-empty array, got shape {arr.shape}")
+    return arr
+
+
+def nonempty_array(x, name: str, **kwargs) -> np.ndarray:
+    """:func:`as_array` that also rejects empty arrays."""
+    return _nonempty(as_array(x, name, **kwargs), name)
+
+
+def nonempty_positive(x, name: str, **kwargs) -> np.ndarray:
+    """:func:`positive` that also rejects empty arrays."""
+    return positive(_nonempty(as_array(x, name), name), name, **kwargs)
+
+
+def nonempty_latitude(x, name: str = "lat", deg: bool = False) -> np.ndarray:
+    """:func:`latitude` that also rejects empty arrays."""
+    return latitude(_nonempty(as_array(x, name), name), name, deg=deg)

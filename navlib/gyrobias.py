@@ -88,26 +88,8 @@ import numpy as np
 from numba import njit
 
 from . import attitude, earth, kalman
-from ._validate import as_array as _as_array, in_range, latitude as _latitude, positive as _positive
-
-
-def _nonempty(arr, name):
-    if arr.size == 0:
-        raise ValueError(f"{name}: expected a non-empty array, got shape {arr.shape}")
-    return arr
-
-
-def as_array(x, name, **kwargs):
-    """:func:`navlib._validate.as_array` that also rejects empty arrays."""
-    return _nonempty(_as_array(x, name, **kwargs), name)
-
-
-def positive(x, name, **kwargs):
-    return _positive(_nonempty(_as_array(x, name), name), name, **kwargs)
-
-
-def latitude(x, name="lat", deg=False):
-    return _latitude(_nonempty(_as_array(x, name), name), name, deg=deg)
+from ._validate import in_range
+from ._validate import nonempty_array as as_array, nonempty_latitude as latitude, nonempty_positive as positive
 
 __all__ = ["eq1_matrix", "euler_rates", "integrate_euler", "EulerReport", "gravity_body", "tilt_from_accel",
            "tilt_matrix", "rodrigues", "rotate_attitude", "dwell_attitudes", "dwell_windows",

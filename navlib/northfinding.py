@@ -90,8 +90,8 @@ import numpy as np
 from scipy.special import ndtr
 
 from . import attitude, earth, strapdown
-from ._validate import as_array as _as_array, generator, in_range, latitude as _latitude, positive as _positive, \
-    time_axis
+from ._validate import generator, in_range, time_axis
+from ._validate import nonempty_array as as_array, nonempty_latitude as latitude, nonempty_positive as positive
 from .sensors import TriadErrors
 from .trajectory import Segment
 
@@ -103,25 +103,6 @@ __all__ = ["MAX_LAT_DEG", "OK", "TOO_FEW", "SATURATED", "MOVING", "StaticWindow"
            "MonteCarlo", "monte_carlo", "pair_probabilities", "four_position_heading",
            "four_position_heading_std", "window_mean_std", "stop_and_go",
            "StopSolutions", "stop_solutions", "InsReport", "ins_heading_change"]
-
-def _nonempty(arr, name):
-    if arr.size == 0:
-        raise ValueError(f"{name}: expected a non-empty array, got shape {arr.shape}")
-    return arr
-
-
-def as_array(x, name, **kwargs):
-    """:func:`navlib._validate.as_array` that also rejects empty arrays."""
-    return _nonempty(_as_array(x, name, **kwargs), name)
-
-
-def positive(x, name, **kwargs):
-    return _positive(_nonempty(_as_array(x, name), name), name, **kwargs)
-
-
-def latitude(x, name="lat", deg=False):
-    return _latitude(_nonempty(_as_array(x, name), name), name, deg=deg)
-
 
 OMEGA_IE = earth.OMEGA_IE
 MAX_LAT_DEG = 89.0
