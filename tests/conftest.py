@@ -7,11 +7,9 @@ that need them skip with a reason when the folder is absent; under CI
 skipped silently.
 """
 import os
-from pathlib import Path
-
 import pytest
 
-VECTORS = Path(__file__).resolve().parents[2] / "shared" / "vectors"
+from helpers import VECTORS
 
 
 def pytest_sessionstart(session):

@@ -7,8 +7,6 @@ state the tolerances used here: the BMP180-formula function against the
 ``bmp180`` column to 1e-6 m, the ISA function against the tabulated altitude
 to 0.05 m (table printed to 0.1 Pa ~ 0.01 m).
 """
-import csv
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -18,28 +16,19 @@ from numpy.testing import assert_allclose
 
 from navlib import atmosphere as atm
 
-VECTORS = Path(__file__).resolve().parents[2] / "shared" / "vectors"
+from helpers import read_vectors
 
-
-def _read_vectors(name):
-    path = VECTORS / name
-    if not path.is_file():
-        pytest.skip(f"reference vectors {path} not found (shared/vectors is outside the repository)")
-    with open(path, encoding="utf-8") as fh:
-        rows = list(csv.DictReader(line for line in fh if not line.startswith("#")))
-    assert rows, f"{path} has no data rows"
-    return rows
 
 
 @pytest.fixture(scope="module")
 def baro_table():
-    rows = _read_vectors("barometric_altitude.csv")
+    rows = read_vectors("barometric_altitude.csv")
     return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
 
 
 @pytest.fixture(scope="module")
 def bmp180_example():
-    return _read_vectors("bmp180_datasheet_example.csv")[0]
+    return read_vectors("bmp180_datasheet_example.csv")[0]
 
 
 # --------------------------------------------------------------------------

@@ -1,8 +1,6 @@
 """Tests of navlib.earth against published reference values in shared/vectors."""
-import csv
 import time
 from decimal import Decimal
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -11,17 +9,9 @@ from numpy.testing import assert_allclose
 
 from navlib import earth
 
-VECTORS = Path(__file__).resolve().parents[2] / "shared" / "vectors"
+from helpers import read_vectors
+
 ELLIPSOIDS = {e.name: e for e in (earth.WGS84, earth.GRS80, earth.CGCS2000, earth.KRASSOVSKY)}
-
-
-def read_vectors(name):
-    """Rows of a shared/vectors CSV (lines starting with '#' are comments) as dicts of strings."""
-    path = VECTORS / name
-    if not path.is_file():
-        pytest.skip(f"reference vectors not found: {path} (clone the shared/ folder beside the repo)")
-    with open(path, newline="") as fh:
-        return list(csv.DictReader(line for line in fh if not line.startswith("#")))
 
 
 def half_last_digit(text):

@@ -1,7 +1,5 @@
 """Tests of navlib.geodesy: PROJ reference vectors, pyproj cross-checks, round trips, paper 002 values."""
-import csv
 import re
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -10,20 +8,12 @@ from numpy.testing import assert_allclose
 
 from navlib import earth, geodesy
 
+from helpers import read_vectors
+
 pyproj = pytest.importorskip("pyproj")
 
-VECTORS = Path(__file__).resolve().parents[2] / "shared" / "vectors"
 ELLIPSOIDS = [earth.CGCS2000, earth.WGS84, earth.KRASSOVSKY]
 M_PER_DEG = 111_320.0           # metres per degree of arc, to express angular errors as distances
-
-
-def read_vectors(name):
-    """Rows of a shared/vectors CSV (lines starting with '#' are comments) as dicts of strings."""
-    path = VECTORS / name
-    if not path.is_file():
-        pytest.skip(f"reference vectors not found: {path} (clone the shared/ folder beside the repo)")
-    with open(path, newline="") as fh:
-        return list(csv.DictReader(line for line in fh if not line.startswith("#")))
 
 
 def tolerance_m(text):

@@ -12,6 +12,8 @@ from scipy.spatial.transform import Rotation
 
 from navlib import attitude, earth, gyrobias as gb, sensors, strapdown, trajectory, units
 
+from helpers import check_fuzz, fuzz_cases
+
 DT = 0.01
 LAT = units.deg(40.0)
 B = units.deg_per_h(np.array([10.0, -7.0, 12.0]))
@@ -307,58 +309,7 @@ def test_kernels_run_uncompiled_with_the_same_results():
         np.testing.assert_allclose(plain[key], jit[key], rtol=1e-12, atol=1e-15)
 
 
-# ---------------------------------------------------------------- API fuzzing
-# Every public function is called with each of its numeric arguments replaced by a string, a complex
-# value, an object array, a boolean, NaN, inf, an empty array and (for vector arguments) a wrong trailing shape;
-# each call must raise ValueError/TypeError whose message starts with the argument's name. NaN is
-# skipped where the docstring makes it a dropout marker.
-
-MUTATIONS = ("str", "complex", "object", "bool", "nan", "inf", "empty", "shape")
-
-
-def _mutate(value, how):
-    v = np.asarray(value, dtype=float)
-    if how == "str":
-        return "abc"
-    if how == "complex":
-        return v + 1j
-    if how == "object":
-        return v.astype(object)
-    if how == "bool":
-        return True if v.ndim == 0 else np.ones(v.shape, dtype=bool)
-    if how in ("nan", "inf"):
-        v = v.copy()
-        v.reshape(-1)[0] = np.nan if how == "nan" else np.inf
-        return v
-    if how == "empty":
-        return np.zeros((0,) + v.shape[1:]) if v.ndim > 1 else np.zeros(0)
-    if how == "shape":
-        return np.zeros(v.shape[:-1] + (v.shape[-1] + 1,)) if v.ndim >= 1 else None
-    raise AssertionError(how)
-
-
-def _fuzz_cases(table):
-    cases = []
-    for name, (func, good, nan_ok, *free) in table.items():
-        for arg, value in good.items():
-            if not isinstance(value, (int, float, list, np.ndarray)) or isinstance(value, bool):
-                continue                                   # generators, records, options: not numeric
-            for how in MUTATIONS:
-                if how == "nan" and arg in nan_ok:
-                    continue
-                if how == "shape" and (np.ndim(value) == 0 or (free and arg in free[0])):
-                    continue                               # scalars and free-length 1-D arrays have no wrong tail
-                cases.append(pytest.param(func, good, arg, how, id=f"{name}-{arg}-{how}"))
-    return cases
-
-
-def _check_fuzz(func, good, arg, how):
-    func(**good)                                           # the unmutated call works
-    kwargs = dict(good)
-    kwargs[arg] = _mutate(good[arg], how)
-    with pytest.raises((ValueError, TypeError)) as exc:
-        func(**kwargs)
-    assert str(exc.value).startswith(arg), str(exc.value)
+# API fuzzing: helpers.fuzz_cases / helpers.check_fuzz (every numeric argument mutated).
 
 
 _HPR = [0.1, 0.5, 0.2]
@@ -398,9 +349,9 @@ GB_FUZZ = {   # name: (function, good keyword arguments, NaN-marker arguments[, 
 }
 
 
-@pytest.mark.parametrize("func, good, arg, how", _fuzz_cases(GB_FUZZ))
+@pytest.mark.parametrize("func, good, arg, how", fuzz_cases(GB_FUZZ))
 def test_fuzz_public_api(func, good, arg, how):
-    _check_fuzz(func, good, arg, how)
+    check_fuzz(func, good, arg, how)
 
 
 def test_fuzz_table_covers_every_public_function():

@@ -1,0 +1,74 @@
+"""Helpers shared by the test modules: shared reference vectors and argument fuzzing."""
+import csv
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+VECTORS = Path(__file__).resolve().parents[2] / "shared" / "vectors"
+"""Published reference values beside the repository (tests/conftest.py makes them mandatory under CI)."""
+
+
+def read_vectors(name):
+    """Rows of a shared/vectors CSV (lines starting with '#' are comments) as dicts of strings."""
+    path = VECTORS / name
+    if not path.is_file():
+        pytest.skip(f"reference vectors not found: {path} (clone the shared/ folder beside the repo)")
+    with open(path, newline="", encoding="utf-8") as fh:
+        rows = list(csv.DictReader(line for line in fh if not line.startswith("#")))
+    assert rows, f"{path} has no data rows"
+    return rows
+
+
+# ---------------------------------------------------------------- API fuzzing
+# Every public function is called with each of its numeric arguments replaced by a string, a complex
+# value, an object array, a boolean, NaN, inf, an empty array and (for vector arguments) a wrong trailing shape;
+# each call must raise ValueError/TypeError whose message starts with the argument's name. NaN is
+# skipped where the docstring makes it a dropout marker.
+
+MUTATIONS = ("str", "complex", "object", "bool", "nan", "inf", "empty", "shape")
+
+
+def mutate(value, how):
+    v = np.asarray(value, dtype=float)
+    if how == "str":
+        return "abc"
+    if how == "complex":
+        return v + 1j
+    if how == "object":
+        return v.astype(object)
+    if how == "bool":
+        return True if v.ndim == 0 else np.ones(v.shape, dtype=bool)
+    if how in ("nan", "inf"):
+        v = v.copy()
+        v.reshape(-1)[0] = np.nan if how == "nan" else np.inf
+        return v
+    if how == "empty":
+        return np.zeros((0,) + v.shape[1:]) if v.ndim > 1 else np.zeros(0)
+    if how == "shape":
+        return np.zeros(v.shape[:-1] + (v.shape[-1] + 1,)) if v.ndim >= 1 else None
+    raise AssertionError(how)
+
+
+def fuzz_cases(table):
+    cases = []
+    for name, (func, good, nan_ok, *free) in table.items():
+        for arg, value in good.items():
+            if not isinstance(value, (int, float, list, np.ndarray)) or isinstance(value, bool):
+                continue                                   # generators, records, options: not numeric
+            for how in MUTATIONS:
+                if how == "nan" and arg in nan_ok:
+                    continue
+                if how == "shape" and (np.ndim(value) == 0 or (free and arg in free[0])):
+                    continue                               # scalars and free-length 1-D arrays have no wrong tail
+                cases.append(pytest.param(func, good, arg, how, id=f"{name}-{arg}-{how}"))
+    return cases
+
+
+def check_fuzz(func, good, arg, how):
+    func(**good)                                           # the unmutated call works
+    kwargs = dict(good)
+    kwargs[arg] = mutate(good[arg], how)
+    with pytest.raises((ValueError, TypeError)) as exc:
+        func(**kwargs)
+    assert str(exc.value).startswith(arg), str(exc.value)
