@@ -8,7 +8,8 @@
   1 km. The datasheet's "1 hPa = 8.43 m" does not follow from its own
   formula (dh/dp at p0 is 8.33 m/hPa).
 * Hypsometric relative height with a measured temperature:
-  ``dh = R T / g0 ln(p_ref / p)`` (paper 004 §"barometer", guide 004 §4.5).
+  ``dh = R T / g0 ln(p_ref / p)`` (paper 004 §"barometer"; the
+  hypsometric equation of any meteorology text).
 
 Heights are geopotential metres, pressures Pa, temperatures K.
 """

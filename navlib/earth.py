@@ -4,7 +4,7 @@ Constants follow NIMA TR8350.2 (WGS84), the CGCS2000 definition and Moritz
 (1980, GRS80). Derived constants (b, e^2, gamma_e, gamma_p) are computed from
 the defining ones with the closed-form level-ellipsoid formulas, which
 reproduce the printed WGS84 and GRS80 values to 1e-10 m/s^2 (tested against
-``shared/vectors``).
+``data/reference/``).
 
 Vectors are in the ENU navigation frame. Latitude is ``lat``, longitude
 ``lon`` (rad unless ``deg=True``), height ``h`` above the ellipsoid (m).

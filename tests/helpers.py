@@ -1,19 +1,21 @@
-"""Helpers shared by the test modules: shared reference vectors and argument fuzzing."""
+"""Helpers shared by the test modules: reference values and argument fuzzing."""
 import csv
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-VECTORS = Path(__file__).resolve().parents[2] / "shared" / "vectors"
-"""Published reference values beside the repository (tests/conftest.py makes them mandatory under CI)."""
+REFERENCE = Path(__file__).resolve().parents[1] / "data" / "reference"
+"""Published reference values committed with the project (each file names its source and tolerance)."""
 
 
 def read_vectors(name):
-    """Rows of a shared/vectors CSV (lines starting with '#' are comments) as dicts of strings."""
-    path = VECTORS / name
-    if not path.is_file():
-        pytest.skip(f"reference vectors not found: {path} (clone the shared/ folder beside the repo)")
+    """Rows of a ``data/reference`` CSV (lines starting with '#' are comments) as dicts of strings.
+
+    A missing or empty file fails the test: the cross-checks must never be skipped.
+    """
+    path = REFERENCE / name
+    assert path.is_file(), f"reference file missing: {path}"
     with open(path, newline="", encoding="utf-8") as fh:
         rows = list(csv.DictReader(line for line in fh if not line.startswith("#")))
     assert rows, f"{path} has no data rows"

@@ -1,6 +1,6 @@
 """Tests of navlib.atmosphere against the shared reference vectors.
 
-Reference files (``shared/vectors``): ``barometric_altitude.csv`` (ICAO/ISA
+Reference files (``data/reference/``): ``barometric_altitude.csv`` (ICAO/ISA
 table plus two computed formula columns) and ``bmp180_datasheet_example.csv``
 (the datasheet's integer compensation example). Their ``#`` comment lines
 state the tolerances used here: the BMP180-formula function against the

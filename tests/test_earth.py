@@ -1,4 +1,4 @@
-"""Tests of navlib.earth against published reference values in shared/vectors."""
+"""Tests of navlib.earth against published reference values in data/reference/."""
 import time
 from decimal import Decimal
 
