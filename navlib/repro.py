@@ -9,7 +9,7 @@ A notebook calls :func:`setup` once with its own name; afterwards
   :class:`ClaimCheckFailed` when it is outside tolerance, so that a failed
   claim fails the notebook under nbmake.
 
-Check names start with the claim id from ``shared/papers/claims.csv``
+Check names start with the claim id from ``data/claims.csv``
 (e.g. ``P000-FIG4-TRIAD-RMSE/h091``); checks beyond the catalogue use names
 that start with no id.
 """
@@ -27,7 +27,7 @@ import numpy as np
 from ._validate import real
 
 __all__ = ["root", "build_dir", "setup", "savefig", "check", "check_range", "results",
-           "ClaimCheckFailed", "Check"]
+           "ClaimCheckFailed", "Check", "NoOutputDirectory"]
 
 
 class ClaimCheckFailed(AssertionError):
@@ -53,15 +53,26 @@ class Check:
 @dataclass
 class _State:
     notebook: str | None = None
+    out_dir: Path | None = None
     checks: list[Check] = field(default_factory=list)
 
 
 _state = _State()
 
 
+class NoOutputDirectory(RuntimeError):
+    """navlib.repro runs outside a checkout and was given no output directory."""
+
+
 def root() -> Path:
-    """Repository root: the nearest parent of the working directory holding
-    ``pyproject.toml`` and ``navlib/`` (notebooks run from ``notebooks/``)."""
+    """The project root that holds ``build/`` and ``data/``.
+
+    ``NAVLIB_ROOT`` when set; otherwise the nearest parent of the working
+    directory holding ``pyproject.toml`` and ``navlib/`` (notebooks run from
+    ``notebooks/``). Outside a checkout there is no such directory, and
+    :class:`NoOutputDirectory` is raised rather than writing beside the
+    installed package: set ``NAVLIB_ROOT`` or pass ``out_dir`` to :func:`setup`.
+    """
     env = os.environ.get("NAVLIB_ROOT")
     if env:
         return Path(env).resolve()
@@ -69,38 +80,45 @@ def root() -> Path:
     for p in (here, *here.parents):
         if (p / "pyproject.toml").is_file() and (p / "navlib").is_dir():
             return p
-    # Installed elsewhere: fall back to the package's parent directory.
-    return Path(__file__).resolve().parents[1]
+    raise NoOutputDirectory(
+        f"navlib.repro: {here} is not inside a navlib checkout, so there is no build/ to write to; "
+        "set the NAVLIB_ROOT environment variable or call repro.setup(notebook, out_dir=...)")
 
 
 def build_dir(notebook: str | None = None) -> Path:
-    """``build/`` (or ``build/<notebook>/``) under the repository root, created."""
+    """The output directory (``<root>/build`` or ``setup``'s ``out_dir``), or its ``<notebook>/`` folder; created."""
     if notebook is not None and not isinstance(notebook, str):
         raise ValueError(f"notebook: expected a notebook name (str), got {type(notebook).__name__}")
     if notebook and ("/" in notebook or "\\" in notebook or notebook in (".", "..")):
         raise ValueError(f"notebook: expected a plain notebook name, got {notebook!r}")
-    d = root() / "build"
+    d = _state.out_dir if _state.out_dir is not None else root() / "build"
     if notebook:
         d = d / notebook
     d.mkdir(parents=True, exist_ok=True)
     return d
 
 
-def setup(notebook: str, *, style: bool = True) -> None:
+def setup(notebook: str, *, out_dir: str | os.PathLike | None = None, style: bool = True) -> None:
     """Start a notebook's run: reset its results file and set the figure style.
 
     Parameters
     ----------
     notebook : str
         The notebook's stem, e.g. ``"00_conventions_sensors"``. Outputs go to
-        ``build/<notebook>/``.
+        ``<out_dir>/<notebook>/``.
+    out_dir : path, optional
+        Where outputs go. Default: ``build/`` of the checkout (see :func:`root`);
+        required when navlib runs outside a checkout.
     """
     import matplotlib
     import matplotlib.pyplot as plt
 
     if not isinstance(notebook, str) or not notebook or "/" in notebook:
         raise ValueError(f"notebook: expected a plain notebook name, got {notebook!r}")
+    if out_dir is not None and not isinstance(out_dir, (str, os.PathLike)):
+        raise ValueError(f"out_dir: expected a directory path, got {type(out_dir).__name__}")
     _state.notebook = notebook
+    _state.out_dir = None if out_dir is None else Path(out_dir).resolve()
     _state.checks = []
     d = build_dir(notebook)
     (d / "results.json").unlink(missing_ok=True)
@@ -181,7 +199,7 @@ def check(name: str, value, expected, tol, source: str, *, paper_value=None,
     Parameters
     ----------
     name : str
-        Starts with the claim id from ``claims.csv`` when it checks a claim.
+        Starts with the claim id from ``data/claims.csv`` when it checks a claim.
     value : float
         Reproduced value, computed by navlib in the notebook.
     expected : float
@@ -190,7 +208,8 @@ def check(name: str, value, expected, tol, source: str, *, paper_value=None,
     tol : float
         Tolerance, absolute; relative to ``|expected|`` with ``rel=True``.
     source : str
-        Where the target comes from (paper figure/table/equation, guide erratum).
+        Where the target comes from: the paper item (figure, table, equation), a
+        published reference, or a project file such as an erratum of ``data/errata.csv``.
     paper_value : str or float, optional
         The printed value when it differs from ``expected``.
     """

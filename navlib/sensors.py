@@ -23,15 +23,16 @@ Each error component draws from its own child stream of ``rng`` (via
 realisation of the others unchanged, and gyro and accelerometer are
 independent.
 
-Presets for the papers' devices are read from ``data/sensor_presets.csv``,
-which gives every number with its source.
+Presets for the papers' devices are read from ``navlib/data/sensor_presets.csv``
+(package data, so an installed navlib has them), which gives every number with
+its source.
 """
 from __future__ import annotations
 
 import csv
 import functools
 from dataclasses import dataclass, field, fields, replace
-from pathlib import Path
+from importlib import resources
 
 import numpy as np
 from scipy.signal import lfilter
@@ -45,7 +46,8 @@ __all__ = ["TriadErrors", "ImuModel", "ImuOutput", "simulate_imu", "imu_model", 
            "BarometerModel", "simulate_barometer", "outage_mask", "simulate_gnss_position",
            "simulate_heading", "gauss_markov"]
 
-PRESETS_CSV = Path(__file__).resolve().parents[1] / "data" / "sensor_presets.csv"
+PRESETS_CSV = resources.files("navlib") / "data" / "sensor_presets.csv"
+"""The device presets, shipped inside the package (read with ``importlib.resources``)."""
 
 
 def _check_fields(obj, infinite_ok=()) -> None:
@@ -262,7 +264,7 @@ def simulate_imu(w_ib_b, f_b, dt: float, model: ImuModel, rng: np.random.Generat
 @functools.lru_cache(maxsize=1)
 def _preset_table() -> dict[str, dict[tuple[str, str], tuple[float, str, str]]]:
     table: dict[str, dict] = {}
-    with open(PRESETS_CSV, encoding="utf-8") as fh:
+    with PRESETS_CSV.open(encoding="utf-8") as fh:
         rows = csv.DictReader(line for line in fh if not line.startswith("#"))
         for r in rows:
             table.setdefault(r["device"], {})[(r["sensor"], r["parameter"])] = (
@@ -271,7 +273,7 @@ def _preset_table() -> dict[str, dict[tuple[str, str], tuple[float, str, str]]]:
 
 
 def devices() -> list[str]:
-    """Names of the devices in ``data/sensor_presets.csv``."""
+    """Names of the devices in ``navlib/data/sensor_presets.csv``."""
     return sorted(_preset_table())
 
 

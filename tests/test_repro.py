@@ -175,3 +175,27 @@ def test_savefig_deterministic(fake_root):
     text = b" ".join(body for ctype, body in chunks if ctype in (b"tEXt", b"zTXt", b"iTXt"))
     for key in (b"Software", b"Creation Time", b"Date", b"matplotlib", b"Matplotlib"):
         assert key not in text, key
+
+
+def test_outside_checkout_needs_an_output_directory(tmp_path, monkeypatch):
+    """Outside a checkout repro refuses to guess (it would write beside the installed package)."""
+    monkeypatch.delenv("NAVLIB_ROOT", raising=False)
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr(repro, "_state", repro._State())
+    with pytest.raises(repro.NoOutputDirectory, match="NAVLIB_ROOT"):
+        repro.root()
+    with pytest.raises(repro.NoOutputDirectory, match="out_dir"):
+        repro.setup(NB)
+    assert not any(tmp_path.iterdir())
+
+
+def test_explicit_output_directory(tmp_path, monkeypatch):
+    monkeypatch.delenv("NAVLIB_ROOT", raising=False)
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr(repro, "_state", repro._State())
+    with matplotlib.rc_context():
+        repro.setup(NB, out_dir=tmp_path / "out")
+        repro.check("x", 1.0, 1.0, 0.0, "test")
+    assert json.loads((tmp_path / "out" / NB / "results.json").read_text())["checks"][0]["name"] == "x"
+    with pytest.raises(ValueError, match="^out_dir"):
+        repro.setup(NB, out_dir=3)

@@ -323,7 +323,7 @@ def test_preset_values():
 
 
 def test_preset_csv_every_row_has_source():
-    with open(sensors.PRESETS_CSV, encoding="utf-8") as fh:
+    with sensors.PRESETS_CSV.open(encoding="utf-8") as fh:
         rows = list(csv.DictReader(line for line in fh if not line.startswith("#")))
     assert len(rows) > 30
     for r in rows:
