@@ -45,10 +45,31 @@ Compiled kernels
     Sequential per-sample loops are compiled with numba (``@njit(cache=True)``)
     and run unchanged as plain Python with ``NUMBA_DISABLE_JIT=1``.
 """
-from . import (ahrs, analysis, atmosphere, attitude, earth, faults, geodesy, gyrobias, kalman, montecarlo,
-               northfinding, pedestrian, planar, plots, repro, sensors, strapdown, timing, trajectory, units)
+from . import (
+    ahrs,
+    analysis,
+    atmosphere,
+    attitude,
+    earth,
+    faults,
+    geodesy,
+    gyrobias,
+    kalman,
+    montecarlo,
+    northfinding,
+    pedestrian,
+    planar,
+    plots,
+    repro,
+    sensors,
+    strapdown,
+    timing,
+    trajectory,
+    units,
+)
 
 __version__ = "0.1.0"
 
-__all__ = ["ahrs", "analysis", "atmosphere", "attitude", "earth", "faults", "geodesy", "gyrobias", "kalman", "montecarlo", "northfinding", "pedestrian", "planar",
-           "plots", "repro", "sensors", "strapdown", "timing", "trajectory", "units", "__version__"]
+__all__ = ["ahrs", "analysis", "atmosphere", "attitude", "earth", "faults", "geodesy", "gyrobias", "kalman",
+           "montecarlo", "northfinding", "pedestrian", "planar", "plots", "repro", "sensors", "strapdown", "timing",
+           "trajectory", "units", "__version__"]

@@ -221,7 +221,7 @@ _WMM_MODELS = [(2010.0, "wmm/WMM_2010.COF"), (2015.0, "wmm/WMM_2015v2.COF"),
                (2020.0, "wmm/WMM_2020.COF"), (2025.0, "wmm/WMM_2025.COF")]
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _geomag(coefficients_file: str):
     from pygeomag import GeoMag  # imported lazily: only magnetometer users need it
     return GeoMag(coefficients_file=coefficients_file)

@@ -23,7 +23,7 @@ def body_axes(ax, C_bn, title: str = "") -> None:
     if not hasattr(ax, "quiver") or not hasattr(ax, "set_zlim"):
         raise ValueError(f"ax: expected a 3-D matplotlib Axes (projection='3d'), got {type(ax).__name__}")
     C = attitude._as_dcm(C_bn, "C_bn")
-    for v, name in zip(np.eye(3), "ENU"):
+    for v, name in zip(np.eye(3), "ENU", strict=True):
         ax.quiver(0, 0, 0, *v, color="0.6", arrow_length_ratio=0.08, linewidth=1)
         ax.text(*(1.12 * v), name, color="0.4")
     for i, (name, color) in enumerate(_AXIS_STYLE):

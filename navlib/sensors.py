@@ -123,7 +123,7 @@ class ImuModel:
             if not isinstance(getattr(self, key), TriadErrors):
                 raise ValueError(f"{key}: expected TriadErrors, got {type(getattr(self, key)).__name__}")
 
-    def replace(self, gyro: dict | None = None, accel: dict | None = None) -> "ImuModel":
+    def replace(self, gyro: dict | None = None, accel: dict | None = None) -> ImuModel:
         """Copy with some parameters changed, e.g. ``m.replace(gyro={"bias": 0.0})``."""
         return ImuModel(replace(self.gyro, **(gyro or {})), replace(self.accel, **(accel or {})), self.name)
 
@@ -325,7 +325,7 @@ class MagnetometerModel:
             raise ValueError(f"full_scale: expected a positive value (inf: no saturation), got {self.full_scale!r}")
 
     @classmethod
-    def from_preset(cls, device: str) -> "MagnetometerModel":
+    def from_preset(cls, device: str) -> MagnetometerModel:
         """Model of a preset magnetometer (e.g. ``"HMC5983"``)."""
         p = preset(device)
         kw = {par: v for (s, par), v in p.items() if s == "mag"}
@@ -445,7 +445,7 @@ class BarometerModel:
             raise ValueError(f"noise, bias: expected non-negative sigmas, got {self.noise}, {self.bias}")
 
     @classmethod
-    def from_preset(cls, device: str = "BMP180") -> "BarometerModel":
+    def from_preset(cls, device: str = "BMP180") -> BarometerModel:
         """Model of a preset barometer."""
         p = preset(device)
         kw = {par: v for (s, par), v in p.items() if s == "baro" and par in ("noise", "bias", "drift_rate")}

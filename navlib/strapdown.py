@@ -48,8 +48,8 @@ from numba import njit
 
 from . import attitude, earth
 from ._validate import as_array, latitude, positive
-from .earth import _gravity, _radii
 from .attitude import quat_mult_1, quat_mult_t, quat_normalize_1, quat_to_dcm_1, rotvec_to_quat_1, rotvec_to_quat_t
+from .earth import _gravity, _radii
 from .trajectory import Trajectory
 
 __all__ = ["integrate", "integrate_attitude", "nav_step", "earth_constants", "error_model", "error_input"]
@@ -306,12 +306,13 @@ def integrate(lla0, vel0, q0, w_ib_b, f_b, dt, t0: float = 0.0, hold_height: boo
         raise ValueError("lla0[..., 0] (lat): the ENU mechanisation is singular at the poles; expected |lat| <= 89.9 deg")
     vel0 = as_array(vel0, "vel0", tail=(3,))
     q0 = attitude._as_quat(q0, "q0")
-    flat = lambda x, k: np.ascontiguousarray(np.broadcast_to(x, lead + x.shape[-k:]).reshape((-1,) + x.shape[-k:]))
+    def flat(x, k):
+        return np.ascontiguousarray(np.broadcast_to(x, lead + x.shape[-k:]).reshape((-1,) + x.shape[-k:]))
+
     lla, vel, q = _nav_kernel(flat(lla0, 1), flat(vel0, 1), flat(q0, 1), flat(w, 2), flat(f, 2), dt,
                               earth_constants(ellipsoid), bool(hold_height))
     time = t0 + (dt[0] * np.arange(n + 1) if dt.size == 1 else np.concatenate([[0.0], np.cumsum(dt)]))
-    shape = lambda x: x.reshape(lead + x.shape[-2:])
-    traj = Trajectory(time, shape(lla), shape(vel), shape(q))
+    traj = Trajectory(time, *(x.reshape(lead + x.shape[-2:]) for x in (lla, vel, q)))
     return (traj, held) if on_nan == "hold" else traj
 
 

@@ -7,7 +7,6 @@ from scipy.optimize import minimize_scalar
 from navlib import analysis as A
 from navlib import sensors
 
-
 # --------------------------------------------------------------------------
 # rmse
 # --------------------------------------------------------------------------

@@ -10,14 +10,12 @@ to 0.05 m (table printed to 0.1 Pa ~ 0.01 m).
 
 import numpy as np
 import pytest
+from helpers import read_vectors
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from numpy.testing import assert_allclose
 
 from navlib import atmosphere as atm
-
-from helpers import read_vectors
-
 
 
 @pytest.fixture(scope="module")

@@ -1,7 +1,8 @@
 """Tests of navlib.attitude: conventions, scipy cross-checks, round trips, bad input."""
 import numpy as np
 import pytest
-from hypothesis import assume, given, settings, strategies as st
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 from numpy.testing import assert_allclose
 from scipy.spatial.transform import Rotation
 
@@ -441,7 +442,7 @@ def test_dcm_to_quat_mixed_branches():
     """A stack needing every Shepperd branch (trace and each diagonal largest) is handled."""
     C = np.stack([np.eye(3), att.rot("x", 3.0), att.rot("y", 3.0), att.rot("z", 3.0)])
     q = att.dcm_to_quat(C)
-    for Ci, qi in zip(C, q):
+    for Ci, qi in zip(C, q, strict=True):
         assert same_quat(qi, scipy_quat_first(Rotation.from_matrix(Ci)), atol=1e-15)
 
 

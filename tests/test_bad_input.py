@@ -63,8 +63,22 @@ matplotlib = pytest.importorskip("matplotlib")
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from navlib import (analysis, atmosphere, attitude, earth, faults, kalman, montecarlo, plots, repro,  # noqa: E402
-                    sensors, strapdown, timing, trajectory, units)
+from navlib import (  # noqa: E402
+    analysis,
+    atmosphere,
+    attitude,
+    earth,
+    faults,
+    kalman,
+    montecarlo,
+    plots,
+    repro,
+    sensors,
+    strapdown,
+    timing,
+    trajectory,
+    units,
+)
 
 MODULES = ["attitude", "earth", "units", "sensors", "atmosphere", "trajectory", "strapdown",
            "kalman", "analysis", "repro", "plots", "montecarlo", "faults", "timing"]
@@ -944,6 +958,7 @@ NOT_APPLICABLE = {
     "repro.results": "takes no arguments",
     "sensors.devices": "takes no arguments",
     "repro.ClaimCheckFailed": "exception class, raised by navlib itself",
+    "repro.NoOutputDirectory": "exception class, raised by navlib itself",
     "kalman.predict": "compiled kernel fed by navlib's filters (by design)",
     "kalman.update": "compiled kernel, NaN skipped by design; see test_kalman_update_all_nan_measurement_is_no_data",
     "sensors.ImuOutput": "record returned by simulate_imu, not constructed by users",

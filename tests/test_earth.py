@@ -4,12 +4,12 @@ from decimal import Decimal
 
 import numpy as np
 import pytest
-from hypothesis import given, settings, strategies as st
+from helpers import read_vectors
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from numpy.testing import assert_allclose
 
 from navlib import earth
-
-from helpers import read_vectors
 
 ELLIPSOIDS = {e.name: e for e in (earth.WGS84, earth.GRS80, earth.CGCS2000, earth.KRASSOVSKY)}
 

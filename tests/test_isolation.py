@@ -208,16 +208,6 @@ def make_notebook(path: Path, *cells: str) -> Path:
     return path
 
 
-@pytest.fixture
-def no_probe():
-    """The probe file in the repository must not exist before or after."""
-    assert not PROBE.exists()
-    yield
-    if PROBE.exists():
-        PROBE.unlink()
-        pytest.fail(f"the harness let a notebook write {PROBE}")
-
-
 def test_paper_notebook_runs_without_network_and_writes_only_build(tmp_path):
     ok, out, violations, _ = run_isolated(NOTEBOOK, tmp_path)
     assert violations == [], violations
@@ -284,7 +274,7 @@ def test_harness_catches_violations(tmp_path, no_probe):
     ok, out, violations, result = run_isolated(nb, tmp_path)
     assert not ok, "the harness passed a notebook that wrote into the repository and reached the network"
     assert result is not None and len(result) == len(cells), out[-3000:]
-    for (op, logged), cell in zip(PROBES, result[1:-1]):
+    for (op, logged), cell in zip(PROBES, result[1:-1], strict=True):
         assert cell["error"] is None, (op, cell)
         if logged is None:
             assert cell["stdout"].strip() == "ALLOWED", f"allowed operation refused: {op!r}: {cell}"

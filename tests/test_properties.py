@@ -34,7 +34,8 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from numpy.testing import assert_allclose
 
-from navlib import atmosphere, attitude as att, earth, kalman, units
+from navlib import atmosphere, earth, kalman, units
+from navlib import attitude as att
 
 PI = np.pi
 SETTINGS = settings(max_examples=100, deadline=None)

@@ -402,7 +402,7 @@ def test_magnetic_disturbances():
     on = np.any(d != 0, axis=1)
     # Split the 'on' samples into contiguous segments (events).
     edges = np.flatnonzero(np.diff(np.concatenate([[0], on.astype(int), [0]])))
-    segments = list(zip(edges[::2], edges[1::2]))
+    segments = list(zip(edges[::2], edges[1::2], strict=True))
     assert 5 <= len(segments) <= 40            # Poisson mean 20 events
     assert on.mean() < 0.1                     # exactly zero outside the events
     # Single events (no overlap), not cut off by the end of the record.
