@@ -15,12 +15,13 @@ reproduce test: export MPLBACKEND := Agg
 PYTEST_FLAGS ?= -q -ra --durations=10 --nbmake-timeout=1800
 
 .DEFAULT_GOAL := help
-.PHONY: help venv reproduce readme test lab bench strip clean determinism report-screenshot
+.PHONY: help venv reproduce readme test lint lab bench strip clean determinism report-screenshot
 
 help:
 	@echo "make reproduce  execute every notebook, write build/ (index.html, HTML, figures, results)"
 	@echo "make readme     regenerate the README results table and figure gallery from build/"
 	@echo "make test       unit/property tests + every notebook executed by nbmake"
+	@echo "make lint       ruff over the code (also part of make test)"
 	@echo "make lab        JupyterLab on notebooks/"
 	@echo "make bench      install bench-only peers (requirements-bench.txt), run bench/run.py"
 	@echo "make strip      strip outputs from notebooks/*.ipynb before committing"
@@ -66,6 +67,9 @@ test: $(STAMP)
 	@rc=0; NAVLIB_CHECK_README=1 $(PY) -m pytest tests notebooks --nbmake $(PYTEST_FLAGS) || rc=$$?; \
 	if [ $$rc -eq 5 ]; then echo "make test: pytest collected no tests" >&2; fi; \
 	exit $$rc
+
+lint: $(STAMP)
+	$(VENV)/bin/ruff check .
 
 lab: $(STAMP)
 	$(PY) -m jupyter lab notebooks/
