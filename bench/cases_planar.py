@@ -9,7 +9,7 @@ from navlib.geodesy import geodetic2gk
 
 
 def gauss_kruger(quick: bool):
-    """Forward GK (CGCS2000, 3° zone 40) of random points in the zone at 0-70° N; goal 2x pyproj (DESIGN §6)."""
+    """Forward GK (CGCS2000, 3° zone 40) of random points in the zone at 0-70° N; goal 2x pyproj."""
     n = 100_000 if quick else 1_000_000
     rng = np.random.default_rng(10)
     lat, lon = rng.uniform(0.0, 70.0, n), rng.uniform(118.5, 121.5, n)
@@ -63,7 +63,7 @@ def ekf_step(quick: bool):
     x0 = truth[0]
     t_nav = best_time(lambda: planar.filter_grid(t, z, x0, np.eye(5)))
     rows = [Result("EKF step, 5 states (paper 002)", "navlib.planar (numba)", n / t_nav, "steps/s", t_nav,
-                   goal=5e5, note="goal 0.5 M/s (DESIGN §6) and 10x filterpy")]
+                   goal=5e5, note="goal 0.5 M/s and 10x filterpy")]
     try:
         import filterpy  # noqa: F401
     except ImportError:

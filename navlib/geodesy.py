@@ -26,18 +26,18 @@ come from the derivative of the same series (:func:`convergence`,
 The paper's own equations are kept for comparison:
 
 * Eq. (1)–(2) zone number: printed ``n = (L - 1.5)/3`` is not an integer
-  (Erratum 1); :func:`zone` uses ``n = floor((L + 1.5)/3)`` (0 ≤ L < 1.5° E
+  (erratum E002-01); :func:`zone` uses ``n = floor((L + 1.5)/3)`` (0 ≤ L < 1.5° E
   is zone 120, central meridian 0°). :func:`printed_zone_number` returns
   the printed value for the errata demonstration.
 * Eq. (3)–(6) eccentricities and radii (:func:`paper_radii`); Eq. (6) as
   printed, ``a^2 (1 - e1^2) / sqrt((1 + e2^2 sin^2 W)^(3/2))``, is wrong by
-  seven orders of magnitude (Erratum 2, :func:`printed_meridian_radius`).
+  seven orders of magnitude (erratum E002-02, :func:`printed_meridian_radius`).
 * Eq. (7)–(8) meridian arc ``S`` to e^8 (``meridian_arc(series="paper")``;
-  correct, Erratum 5).
+  correct, erratum E002-05).
 * Eq. (9)–(11) sixth-order series in l (:func:`paper_series`). As printed,
   the l^6 term of x has ``R_N/72`` and ``270 eta^4``; the correct values are
-  ``R_N/720`` and ``270 eta^2`` (Erratum 3), ``N`` means ``R_N``, and l, W are
-  in radians (Erratum 4). ``typos=True`` keeps the printed typos only to show
+  ``R_N/720`` and ``270 eta^2`` (erratum E002-03), ``N`` means ``R_N``, and l, W are
+  in radians (erratum E002-04). ``typos=True`` keeps the printed typos only to show
   the error they cause.
 
 Longitude is ``lon`` and latitude ``lat`` (the paper writes L for longitude,
@@ -636,7 +636,7 @@ def enu2geodetic(e, n, u, lat0, lon0, h0, ellipsoid: Ellipsoid = CGCS2000, deg: 
 # --------------------------------------------------------------------------
 
 def printed_zone_number(lon, deg: bool = False):
-    """Eq. (1) exactly as printed, ``n = (L - 1.5)/3`` (L in deg): not an integer (Erratum 1).
+    """Eq. (1) exactly as printed, ``n = (L - 1.5)/3`` (L in deg): not an integer (erratum E002-01).
 
     Taken literally with Eq. (2), ``L0 = 3n = L - 1.5°``, so l = 1.5° for
     every point. Use :func:`zone` instead.
@@ -649,7 +649,7 @@ def paper_radii(lat, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False):
 
     ``e1 = sqrt(a^2 - b^2)/a``, ``e2 = sqrt(a^2 - b^2)/b``,
     ``R_N = (a^2/b)/sqrt(1 + e2^2 cos^2 W)`` and the corrected Eq. (6)
-    ``R_M = a(1 - e1^2)/(1 - e1^2 sin^2 W)^(3/2)`` (Erratum 2).
+    ``R_M = a(1 - e1^2)/(1 - e1^2 sin^2 W)^(3/2)`` (erratum E002-02).
 
     Returns
     -------
@@ -667,7 +667,7 @@ def paper_radii(lat, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False):
 
 
 def printed_meridian_radius(lat, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False):
-    """Eq. (6) exactly as printed, ``a^2 (1 - e1^2)/sqrt((1 + e2^2 sin^2 W)^(3/2))`` (m): wrong (Erratum 2)."""
+    """Eq. (6) exactly as printed, ``a^2 (1 - e1^2)/sqrt((1 + e2^2 sin^2 W)^(3/2))`` (m): wrong (erratum E002-02)."""
     _ell(ellipsoid)
     W = _lat(lat, "lat", deg=deg)
     e1, e2, _, _ = paper_radii(0.0, ellipsoid)
@@ -684,7 +684,7 @@ def paper_series(lat, lon, lon0, ellipsoid: Ellipsoid = CGCS2000, deg: bool = Fa
         y = N l cosW + N/6 l^3 cos^3W (1 - t^2 + eta^2)
               + N/120 l^5 cos^5W (5 - 18 t^2 + t^4 + 14 eta^2 - 58 eta^2 t^2)
 
-    ``typos=True`` uses the printed ``N/72`` and ``270 eta^4`` (Erratum 3) to
+    ``typos=True`` uses the printed ``N/72`` and ``270 eta^4`` (erratum E002-03) to
     show their effect; the production projection is :func:`geodetic2gk`.
 
     Parameters

@@ -14,26 +14,26 @@ true north — ``v`` the forward speed (m/s) and ``omega`` the yaw rate,
 positive clockwise seen from above (rad/s; ``omega = -w_z`` of a right-front-up
 gyro). An IMU heading (clockwise from true north) becomes a grid heading by
 subtracting the grid convergence gamma (``geodesy.convergence``), which the
-paper omits (Erratum 9; -0.35° at Fuzhou, 0.66° at a 3° zone edge).
+paper omits (erratum E002-09; -0.35° at Fuzhou, 0.66° at a 3° zone edge).
 
 Equations
 ---------
-Eq. (13), lost in the source and reconstructed (Erratum 6) as the
+Eq. (13), lost in the source and reconstructed (erratum E002-06) as the
 short-step unicycle model::
 
     f(X) = [x + v T cos(theta), y + v T sin(theta), theta + omega T, v, omega]
 
 Eq. (16), its Jacobian ``Phi = df/dX``; Eq. (12) ``X_k = f(X_k-1) + Gamma w``
 with ``Gamma = I5`` (not given); Eqs. (14)–(15) ``Z = H X + v`` with
-``H = I5`` and ``Z = [x_GPS, y_GPS, theta_IMU, v_IMU, omega_IMU]`` (Erratum 7:
+``H = I5`` and ``Z = [x_GPS, y_GPS, theta_IMU, v_IMU, omega_IMU]`` (erratum E002-07:
 the printed ``X_m`` is the measurement); the heading innovation is wrapped to
 (-pi, pi]. Noise, Eqs. (17)–(18), per step::
 
     Q = diag(1, 1, 0.01, 0.0001, 0.0016)      R = diag(6.25, 6.25, 0.01, 0.0004, 0.0025)
 
 in SI units (m², rad², m²/s², rad²/s²): GPS sigma 2.5 m, heading 0.1 rad
-(units unstated in the paper, Erratum 10). ``theta_IMU`` must be an absolute
-heading and ``omega_IMU`` the vertical gyro rate (Erratum 8).
+(units unstated in the paper, erratum E002-10). ``theta_IMU`` must be an absolute
+heading and ``omega_IMU`` the vertical gyro rate (erratum E002-08).
 
 Filtering (:func:`ekf`): GPS fixes arrive as latitude/longitude and are
 projected here, in one zone held for the whole run (the zone of ``origin`` or

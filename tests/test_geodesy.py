@@ -57,7 +57,7 @@ def test_proj_vectors_within_stated_tolerances():
 
 
 def test_paper_test_vector_and_epsg_grids():
-    """Guide 002 §4.1: 119.20° E, 26.06° N -> zone 40, x = 2 883 727.417 m, y = -80 055.050 m (EPSG:4549/4528)."""
+    """Paper 002 site (assumed): 119.20° E, 26.06° N -> zone 40, x = 2 883 727.417 m, y = -80 055.050 m (PROJ, EPSG:4549/4528)."""
     assert geodesy.zone(119.2, deg=True) == 40
     assert geodesy.central_meridian(40, deg=True) == 120
     x, y = geodesy.geodetic2gk(26.06, 119.20, deg=True)
@@ -99,7 +99,7 @@ def test_grid_convergence_and_scale_match_pyproj():
     k = geodesy.scale_factor(lat, lon, lon0=120, width=6, deg=True)
     assert_allclose(gamma, f.meridian_convergence, rtol=0, atol=1e-8)
     assert_allclose(k, f.meridional_scale, rtol=0, atol=1e-9)
-    # Guide 002 Erratum 9: -0.3515° at Fuzhou; l sin(lat) to first order
+    # Erratum E002-09: -0.3515° at Fuzhou (PROJ); l sin(lat) to first order
     assert abs(geodesy.convergence(26.06, 119.2, deg=True) + 0.3515) < 1e-3
 
 
@@ -129,7 +129,7 @@ def test_round_trip_inverse_of_forward(lat, offset, zn, ell):
 
 
 def test_zone_numbers_corrected_formula():
-    """Erratum 1: n = floor((L + 1.5)/3); the printed (L - 1.5)/3 is not an integer."""
+    """Erratum E002-01: n = floor((L + 1.5)/3); the printed (L - 1.5)/3 is not an integer."""
     lon = [1.5, 4.49, 4.5, 117.0, 118.5, 119.2, 121.49, 121.5, 0.5, 359.0, -1.0]
     assert geodesy.zone(lon, deg=True).tolist() == [1, 1, 2, 39, 40, 40, 40, 41, 120, 120, 120]
     assert geodesy.central_meridian(120, deg=True) == 0
@@ -154,7 +154,7 @@ def arc_by_quadrature(lat, ell, order=64):
 
 
 def test_meridian_arc_series_against_quadrature():
-    """Eqs. (7)-(8) are correct (Erratum 5): 1e-8 m at 26°, 1e-6 m at 45°, 1e-4 m at 89.9°."""
+    """Eqs. (7)-(8) are correct (erratum E002-05): 1e-8 m at 26°, 1e-6 m at 45°, 1e-4 m at 89.9°."""
     ell = earth.CGCS2000
     for lat_deg, tol in ((26.0, 1e-8), (45.0, 1e-6), (89.9, 1e-4)):
         exact = arc_by_quadrature(np.deg2rad(lat_deg), ell)
@@ -173,7 +173,7 @@ def test_paper_radii():
 
 
 def test_paper_series_and_its_typos():
-    """Erratum 3: corrected series within 1 µm of PROJ for |l| <= 1.5° at 26° N; typos 0.31 mm / 19.7 mm."""
+    """Erratum E002-03: corrected series within 1 µm of PROJ for |l| <= 1.5° at 26° N; typos 0.31 mm / 19.7 mm."""
     tm = proj_tmerc(earth.CGCS2000, 120)
     l = np.linspace(-1.5, 1.5, 31)
     east, north = tm.transform(120 + l, np.full_like(l, 26.0))

@@ -10,7 +10,7 @@ from numpy.testing import assert_allclose
 
 from navlib import geodesy, kalman, planar
 
-ORIGIN = np.deg2rad([26.06, 119.20])       # guide 002: Fuzhou, GK zone 40
+ORIGIN = np.deg2rad([26.06, 119.20])       # paper 002 site (Fuzhou, assumed), GK zone 40
 X0_STRAIGHT = np.array([0.0, 0.0, np.pi / 4, 1.0, 0.0])
 
 
