@@ -54,7 +54,7 @@ def _peers(case: str, w, f, m, q0, n_total: int, m_peer: int) -> list[Result]:
 
 
 def mahony_single(quick: bool):
-    """One Mahony MARG filter over 1 h at 100 Hz (DESIGN §6: >= 10 M samples/s)."""
+    """One Mahony MARG filter over 1 h at 100 Hz (goal: >= 10 M samples/s)."""
     n = 36_000 if quick else 360_000
     w, f, m, q0 = _marg_data(n)
     t = best_time(lambda: ahrs.mahony(w, f, DT, q0, m_b=m))
@@ -63,7 +63,7 @@ def mahony_single(quick: bool):
 
 
 def mahony_batch(quick: bool):
-    """A batch of Mahony filters (trials split over the cores; DESIGN §6: >= 25 M samples/s aggregate)."""
+    """A batch of Mahony filters (trials split over the cores; goal: >= 25 M samples/s aggregate)."""
     trials, n = (8, 36_000) if quick else (32, 180_000)
     w, f, m, q0 = _marg_data(n, trials, seed=1)
     t = best_time(lambda: ahrs.mahony(w, f, DT, q0, m_b=m))

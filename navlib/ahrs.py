@@ -10,31 +10,31 @@ paper's counter-clockwise yaw is ``-heading``; its z-x-y Euler order is
 navlib's, so Eq. (1) is :func:`navlib.attitude.euler_to_quat` and the
 corrected Eq. (2) is :func:`navlib.attitude.quat_to_euler`.
 
-Equations implemented (paper numbering, errata of guide 003 corrected)
------------------------------------------------------------------------
+Equations implemented (paper numbering, errata E003-nn corrected; see data/errata.csv)
+--------------------------------------------------------------------------------------
 Eq. (3)   reference directions ``a_n = [0, 0, 1]``, ``b = [0, cos I, -sin I]``
-          (magnetic north; b normalised, ``b_u < 0`` in the north; E7):
+          (magnetic north; b normalised, ``b_u < 0`` in the north; E003-07):
           :func:`magnetic_reference`.
-Eq. (4)   ``a = C_nb [0, 0, 1]`` with ``q0**2`` in the third row (E4), and
-Eq. (6)   ``m = C_nb b`` with ``(q0^2 - q1^2 - q2^2 + q3^2) b_z`` in row 3 (E6):
+Eq. (4)   ``a = C_nb [0, 0, 1]`` with ``q0**2`` in the third row (E003-04), and
+Eq. (6)   ``m = C_nb b`` with ``(q0^2 - q1^2 - q2^2 + q3^2) b_z`` in row 3 (E003-06):
           :func:`measurement_model`.
-Eq. (5)   ``roll = atan2(-a_x, a_z)``, ``pitch = atan2(a_y, hypot(a_x, a_z))`` (E5);
+Eq. (5)   ``roll = atan2(-a_x, a_z)``, ``pitch = atan2(a_y, hypot(a_x, a_z))`` (E003-05);
 Eq. (7)   levelled field ``m_h = R_x(pitch) R_y(roll) m_b`` and
-          ``heading = atan2(-m_h,x, m_h,y)`` (E8);
-Eq. (8)   replaced by Eq. (1) (E1): :func:`tilt_heading`, :func:`initial_attitude`.
+          ``heading = atan2(-m_h,x, m_h,y)`` (E003-08);
+Eq. (8)   replaced by Eq. (1) (E003-01): :func:`tilt_heading`, :func:`initial_attitude`.
 Eqs. (9)-(15)  Mahony PI filter: ``e = a_meas x a_est + m_meas x m_est``
-          (measured x estimated, hats restored, E9), ``m_est = C_nb [0, |h_xy|, h_z]``
+          (measured x estimated, hats restored, E003-09), ``m_est = C_nb [0, |h_xy|, h_z]``
           with ``h = C_bn m_meas`` (the magnetometer corrects heading only),
           ``w = w_m + Kp e + Ki sum(e dt)`` with Kp in rad/s and Ki in rad/s^2
-          (the full cross product, not MahonyAHRS.c's half error "twoKp", E10):
+          (the full cross product, not MahonyAHRS.c's half error "twoKp", E003-10):
           :func:`mahony`.
 Eqs. (16)-(17) ``Phi = I + dt/2 Omega(w)`` with the PI-corrected rate: :func:`transition`.
-Eq. (18)  ``Gamma = dt/2 Xi(q)`` (printed ``-dt Xi``, E11): :func:`noise_input`.
+Eq. (18)  ``Gamma = dt/2 Xi(q)`` (printed ``-dt Xi``, E003-11): :func:`noise_input`.
 Eq. (19)  ``z = h(q) + v`` with innovation ``z - h(q_pred)``; the printed
-          ``z - H q`` is wrong because ``H q = 2 h(q)`` (E12).
-Eq. (20)  Jacobian with ``H44 = 2(q0 b_y + q1 b_z)`` (E13): :func:`measurement_jacobian`;
+          ``z - H q`` is wrong because ``H q = 2 h(q)`` (E003-12).
+Eq. (20)  Jacobian with ``H44 = 2(q0 b_y + q1 b_z)`` (E003-13): :func:`measurement_jacobian`;
           the filter is :func:`quaternion_kf` (Joseph update from :mod:`navlib.kalman`).
-Sec. 2.5  heading fusion, reconstructed (guide R1/R2, E15, E16): while RTK is
+Sec. 2.5  heading fusion, reconstructed (the paper gives no rule; E003-15, E003-16): while RTK is
           valid the offset ``delta = wrap(H_rtk - H_mag)`` is smoothed with
           ``delta += alpha wrap(delta_k - delta)`` per epoch and the output is
           the RTK heading (carried between 5 Hz epochs by the filter's heading
@@ -210,7 +210,7 @@ def initial_attitude(f_b, m_b):
     """Initial quaternion q_b^n (magnetic north) from accelerometer and magnetometer.
 
     Eqs. (5) and (7) corrected, then Eq. (1) (:func:`navlib.attitude.euler_to_quat`)
-    instead of the inconsistent Eq. (8) (E1). Shapes (..., 3) -> (..., 4).
+    instead of the inconsistent Eq. (8) (E003-01). Shapes (..., 3) -> (..., 4).
     """
     return attitude.euler_to_quat(tilt_heading(f_b, m_b))
 
@@ -321,7 +321,7 @@ def transition(w, dt: float):
 
 
 def noise_input(q, dt: float):
-    """Gyro-noise input matrix ``Gamma = dt/2 Xi(q)`` (Eq. 18 corrected, E11); (..., 4) -> (..., 4, 3)."""
+    """Gyro-noise input matrix ``Gamma = dt/2 Xi(q)`` (Eq. 18 corrected, E003-11); (..., 4) -> (..., 4, 3)."""
     q = _arr(q, "q", tail=(4,))
     dt = _scalar(dt, "dt")
     q0, q1, q2, q3 = np.moveaxis(q, -1, 0)
@@ -334,43 +334,46 @@ def noise_input(q, dt: float):
 # --------------------------------------------------------------------------
 
 def printed_eq2_roll(q):
-    """Roll as printed in Eq. (2): ``atan(-2(q1 q3 + q0 q2) / (1 - 2(q1^2 + q2^2)))`` (E2)."""
+    """Roll as printed in Eq. (2): ``atan(-2(q1 q3 + q0 q2) / (1 - 2(q1^2 + q2^2)))`` (E003-02)."""
     q0, q1, q2, q3 = np.moveaxis(_arr(q, "q", tail=(4,)), -1, 0)
     return np.arctan(-2 * (q1 * q3 + q0 * q2) / (1 - 2 * (q1 ** 2 + q2 ** 2)))
 
 
 def printed_eq4(q):
-    """Eq. (4) as printed, with ``q0`` instead of ``q0**2`` in the third row (E4); (..., 4) -> (..., 3)."""
+    """Eq. (4) as printed, with ``q0`` instead of ``q0**2`` in the third row (E003-04); (..., 4) -> (..., 3)."""
     q0, q1, q2, q3 = np.moveaxis(_arr(q, "q", tail=(4,)), -1, 0)
     return np.stack([2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), q0 + q3 ** 2 - q1 ** 2 - q2 ** 2], -1)
 
 
 def printed_eq5_tilt(f_b):
-    """Eq. (5) as printed: ``roll = atan(a_x / hypot(a_y, a_z))``, ``pitch = atan(-a_y / a_z)`` (E5); returns (pitch, roll)."""
+    """Eq. (5) as printed, ``roll = atan(a_x / hypot(a_y, a_z))``, ``pitch = atan(-a_y / a_z)`` (E003-05).
+
+    Returns (pitch, roll).
+    """
     a = _arr(f_b, "f_b", tail=(3,))
     return np.arctan(-a[..., 1] / a[..., 2]), np.arctan(a[..., 0] / np.hypot(a[..., 1], a[..., 2]))
 
 
 def printed_eq7_heading(m_h):
-    """Eq. (7) as printed, ``atan(m_x / m_y)`` of the levelled field (the CCW yaw, E8)."""
+    """Eq. (7) as printed, ``atan(m_x / m_y)`` of the levelled field (the CCW yaw, E003-08)."""
     m = _arr(m_h, "m_h", tail=(3,))
     return np.arctan(m[..., 0] / m[..., 1])
 
 
 def printed_eq8_quat(hpr):
-    """Eq. (8) as printed, with its yaw psi = -heading: ``q_z(psi) q_y(roll) q_x(pitch)`` (E1)."""
+    """Eq. (8) as printed, with its yaw psi = -heading: ``q_z(psi) q_y(roll) q_x(pitch)`` (E003-01)."""
     h, p, r = np.moveaxis(_arr(hpr, "hpr", tail=(3,)), -1, 0)
     axis_quat = lambda a, i: np.stack([np.cos(a / 2)] + [np.sin(a / 2) * (i == j) for j in range(3)], -1)
     return attitude.quat_mult(attitude.quat_mult(axis_quat(-h, 2), axis_quat(r, 1)), axis_quat(p, 0))
 
 
 def printed_eq18_gamma(q, dt: float):
-    """Gamma as printed in Eq. (18): ``-dt Xi(q)`` (E11)."""
+    """Gamma as printed in Eq. (18): ``-dt Xi(q)`` (E003-11)."""
     return -2 * noise_input(q, dt)
 
 
 def printed_eq20_jacobian(q, b):
-    """Eq. (20) as printed: H44 = 2(q0 b_y - q1 b_z) (E13)."""
+    """Eq. (20) as printed: H44 = 2(q0 b_y - q1 b_z) (E003-13)."""
     H = measurement_jacobian(q, b).copy()
     q, b = _arr(q, "q", tail=(4,)), _arr(b, "b", tail=(3,))
     H[..., 3, 3] = 2 * (q[..., 0] * b[..., 1] - q[..., 1] * b[..., 2])
@@ -426,7 +429,7 @@ def _dcm_t(q0, q1, q2, q3):
 
 @njit(cache=True, inline="always")
 def _rtk_north(C31, C32, C33, sh, ch):
-    """Guide 4.6(a): body-frame north ``C_nb(H_rtk, pitch_est, roll_est) [0, 1, 0]``."""
+    """Mode (a) of Fig. 4: RTK heading as body-frame north ``C_nb(H_rtk, pitch_est, roll_est) [0, 1, 0]``."""
     cp = np.sqrt(C31 * C31 + C33 * C33)
     sr, cr = -C31 / cp, C33 / cp
     return -sh * cr + ch * C32 * sr, ch * cp, -sh * sr - ch * C32 * cr
@@ -625,7 +628,7 @@ def _kf_trial(t, q_init, w, f, m, hdg, hdg_ok, use_rtk, dts, kp, ki, gates, jump
         z[3], z[4], z[5] = (mx, my, mz) if m_ok else (np.nan, np.nan, np.nan)
         _jacobian_into(H, x, by, bz)                                        # Eq. (20)
         if linear_innovation:
-            h[:] = H @ x                                                    # printed Eq. (19): wrong (E12)
+            h[:] = H @ x                                                    # printed Eq. (19): wrong (E003-12)
         else:
             _h_into(h, x, by, bz)                                           # z - h(q), Eq. (19) corrected
         x, P, _, _, _ = kalman.update(x, P, z, h, H, R, no_angles)
@@ -652,7 +655,7 @@ def _fuse_kernel(h_mag, h_rtk, ok, dts, alpha, rtk_par, out, delta_out, counts):
         state[0] = 0.0
         for k in range(N):
             age += dts[k]
-            if ok[t, k]:                                   # R1: RTK valid
+            if ok[t, k]:                                   # RTK epoch flagged valid
                 hk = h_rtk[t, k]
                 if np.isnan(hk):                           # valid flag without a value: dropout
                     counts[t, 3] += 1
@@ -676,7 +679,7 @@ def _fuse_kernel(h_mag, h_rtk, ok, dts, alpha, rtk_par, out, delta_out, counts):
             if age <= hold:                                # output the RTK heading, carried between epochs
                 out[t, k] = anchor_rtk + _wrap(h_mag[t, k] - anchor_mag)
                 counts[t, 0] += 1
-            elif not np.isnan(delta):                      # R2: outage, hold delta
+            elif not np.isnan(delta):                      # outage: hold delta
                 out[t, k] = h_mag[t, k] + delta
                 counts[t, 1] += 1
             else:                                          # no RTK yet: uncalibrated magnetic heading
@@ -902,7 +905,7 @@ _COMMON_DOC = """
         Magnetometer samples (uT); unusable samples are skipped and gated ones counted.
     heading_rtk : array_like, shape (N,) or (..., N), optional
         Instead of ``m_b``: dual-antenna heading (rad, [0, 2 pi)) at the IMU rate,
-        used as a north pseudo-vector (guide 4.6, mode a). Only samples with
+        used as a north pseudo-vector (mode (a) of the paper's Fig. 4). Only samples with
         ``rtk_valid`` are read; each is held for ``rtk_hold`` seconds.
     rtk_valid : array_like of bool, same shape as ``heading_rtk``
         True where a valid RTK epoch arrives (the receiver's status flag).
@@ -1015,7 +1018,7 @@ measurement ``z = [a; m]`` (unit vectors) against ``h(q) = [C_nb [0,0,1]; C_nb b
 with ``b`` from the local field (or north for RTK), ``R = diag(sigma_accel^2 I,
 sigma_mag^2 I)``; Joseph update of :func:`navlib.kalman.update` skipping
 missing rows; normalise. ``linear_innovation=True`` uses the printed
-``z - H q`` (E12), only to show that it fails.
+``z - H q`` (E003-12), only to show that it fails.
 """ + _COMMON_DOC.format(b_ref=" and by the KF (reference b, Eq. 3)") + """
     sigma_gyro : float
         Gyro white-noise sigma per sample (rad/s).
@@ -1036,7 +1039,7 @@ missing rows; normalise. ``linear_innovation=True`` uses the printed
 
 def fuse_rtk_heading(heading_mag, heading_rtk, rtk_valid, dt, alpha: float = 0.01,
                      rtk_hold: float = 0.25, rtk_gate: float | None = None, rtk_confirm: int = 5):
-    """Fuse the magnetic heading with dual-antenna RTK heading (Sec. 2.5, guide R1/R2).
+    """Fuse the magnetic heading with dual-antenna RTK heading (Sec. 2.5, rule reconstructed, E003-15).
 
     Parameters
     ----------
@@ -1051,7 +1054,7 @@ def fuse_rtk_heading(heading_mag, heading_rtk, rtk_valid, dt, alpha: float = 0.0
     dt : float or array_like, shape (N,)
         Sample interval (s), or per-sample intervals ``dt[k] = t[k] - t[k-1]``.
     alpha : float
-        Smoothing of the offset per RTK epoch (guide: 0.01 at 5 Hz).
+        Smoothing of the offset per RTK epoch (0.01 at 5 Hz: a time constant of about 20 s).
     rtk_hold : float
         How long after an epoch its heading is output (carried by the magnetic
         heading's increments) before falling back to ``H_mag + delta`` (s).

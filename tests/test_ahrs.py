@@ -45,7 +45,7 @@ def test_measurement_model_and_jacobian_match_rotation_and_finite_differences():
                     for e in np.eye(4)], -1)
     np.testing.assert_allclose(ahrs.measurement_jacobian(q, B_REF), num, atol=1e-8)   # Eq. (20), H44 corrected
     Hq = np.einsum("nij,nj->ni", ahrs.measurement_jacobian(q, B_REF), q)
-    np.testing.assert_allclose(Hq, 2 * h, atol=1e-14)                           # why z - Hq is wrong (E12)
+    np.testing.assert_allclose(Hq, 2 * h, atol=1e-14)                           # why z - Hq is wrong (E003-12)
 
 
 def test_printed_jacobian_differs_only_at_h44():
