@@ -15,11 +15,13 @@ Implemented here, in navlib's ENU / right-front-up convention (the paper
 prints NED / forward-right-down; ``C_enu = M C_ned M`` with
 :data:`M_NED_ENU`, the same (heading, pitch, roll) in both):
 
-* Static detector (reconstructed, guide 004 §4.1; the ARE + MV + MAG tests of
+* Static detector (the paper gives none; we use the ARE + MV + MAG tests of
   Skog et al. 2010): static when, over a centred window,
   ``rms|w - b_g| < tau_w``, ``std|f| < tau_f`` and ``|mean|f| - g| < tau_g``
-  (rad/s, m/s^2, m/s^2; defaults 0.05, 0.1, 0.3 from the guide).
-* Eq. (1), 15-state error model (reconstructed, guide §4.2)::
+  (rad/s, m/s^2, m/s^2; default starting values 0.05, 0.1, 0.3, our choice).
+* Eq. (1), 15-state error model (missing from the paper and reconstructed
+  here, erratum E004-03; the standard local-level INS error model without
+  Earth-rate and transport-rate terms)::
 
       dx = [dr_n, dv_n, dpsi, db_a, db_g],  C_hat = (I + [dpsi x]) C
       d(dr)/dt = dv,   d(dv)/dt = -[(C_hat f_b) x] dpsi + C_hat db_a,
@@ -28,24 +30,26 @@ prints NED / forward-right-down; ``C_enu = M C_ned M`` with
   with dr in metres (E, N, U) and ``d = estimate - truth`` for r, v, psi,
   ``d = truth - estimate`` for the biases. Earth rate, transport rate and
   the gravity gradient are left out of F (the mechanisation keeps them).
-* Eq. (2), ZUPT/ZARU measurement (reconstructed, guide §4.3)::
+* Eq. (2), ZUPT/ZARU measurement (missing, reconstructed; erratum E004-03)::
 
       z = [v_hat; w_meas - b_g_hat - C_hat^T w_ie_n] = H dx + v,
       H = [[0, I, 0, 0, 0], [0, 0, -C_hat^T [w_ie_n x], 0, I]]
 
   The ``-C^T [w_ie x]`` block (coefficient 7e-5) is the exact first-order
-  Earth-rate term that the guide drops; with it, ``z - H dx`` is second order.
+  Earth-rate term that the simplified ``H = [[0, I, 0, 0, 0], [0, 0, 0, 0, I]]``
+  leaves out; with it, ``z - H dx`` is second order.
 * Eq. (3), Kalman recursion with closed-loop feedback
   ``r -= dr, v -= dv, C <- (I - [dpsi x]) C, b += db, dx = 0``; the covariance
   update is the Joseph form of :func:`navlib.kalman.update`, equal to the
   printed ``P = (I - K H) P`` for the optimal gain (:func:`simple_covariance_update`).
-* Barometric altitude (guide §4.5): BMP180 datasheet form
-  ``h = 44330 (1 - (p/p_ref)^(1/5.255))`` with ``p_ref`` the mean pressure of
-  the initial stand (relative height; the weather's sea-level pressure
-  cancels), or the hypsometric ``R T/g ln(p_ref/p)`` with temperature.
+* Barometric altitude (formula not printed in the paper, erratum E004-03):
+  the BMP180 datasheet form ``h = 44330 (1 - (p/p_ref)^(1/5.255))`` with
+  ``p_ref`` the mean pressure of the initial stand (relative height; the
+  weather's sea-level pressure cancels), or the hypsometric
+  ``R T/g ln(p_ref/p)`` with temperature.
   Floors: ``n = n_ref + round(h / h_floor)``.
-* Eq. (4), tilt compensation, CORRECTED (erratum E1; the printed form mixes
-  up axes and angles, :func:`tilt_compensate_printed`). NED/FRD::
+* Eq. (4), tilt compensation, CORRECTED (erratum E004-01; the printed form
+  mixes up axes and angles, :func:`tilt_compensate_printed`). NED/FRD::
 
       H_X = H_x cos(th) + H_y sin(th) sin(ga) + H_z sin(th) cos(ga)
       H_Y = H_y cos(ga) - H_z sin(ga)
@@ -55,17 +59,17 @@ prints NED / forward-right-down; ``C_enu = M C_ned M`` with
       mh_x = m_x cos(ga) + m_z sin(ga)
       mh_y = m_y cos(th) + m_x sin(th) sin(ga) - m_z sin(th) cos(ga)
 
-* Eq. (5) (reconstructed): ``angle = atan2(-H_Y, H_X) = atan2(-mh_x, mh_y)``
-  plus 2 pi when negative, i.e. in **[0, 2 pi)** (erratum E4: the paper says
-  (0, 2 pi]).
+* Eq. (5) (missing, reconstructed; erratum E004-03):
+  ``angle = atan2(-H_Y, H_X) = atan2(-mh_x, mh_y)`` plus 2 pi when negative,
+  i.e. in **[0, 2 pi)** (erratum E004-04: the paper says (0, 2 pi]).
 * Eq. (6): ``alpha = angle + D`` wrapped to [0, 2 pi), D the declination
-  (east positive; the paper calls it lambda, erratum E5).
-* Walking phase (guide §4.7): height and vertical rate from an alpha-beta
-  tracker on the barometric height, heading reset
+  (east positive; the paper calls it lambda, erratum E004-05).
+* Walking phase (the paper's "direct binding"): height and vertical rate
+  from an alpha-beta tracker on the barometric height, heading reset
   ``C <- rot(z, H_hat - alpha) C`` (ENU sign; the NED form is
   ``rot(z, alpha - H_hat)``), their covariance rows reset.
   Horizontal position and velocity are *not* corrected while walking
-  (erratum E13): they drift until the next stop. As a documented
+  (erratum E004-13): they drift until the next stop. As a documented
   alternative (``walk_aiding="filter"``) the same height and heading are
   Kalman measurements instead of resets.
 
@@ -139,10 +143,10 @@ __all__ = ["M_NED_ENU", "STATIC_THRESHOLDS", "ned_to_enu_dcm", "Leg", "Gait", "w
            "horizontal_error"]
 
 M_NED_ENU = np.array([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]])
-"""Swaps N<->E and negates the vertical: ``C_bn(ENU/RFU) = M C_bn(NED/FRD) M`` (guide 004 §3)."""
+"""Swaps N<->E and negates the vertical: ``C_bn(ENU/RFU) = M C_bn(NED/FRD) M``, same (heading, pitch, roll)."""
 
 STATIC_THRESHOLDS = (0.05, 0.1, 0.3)
-"""Default static-detector thresholds: gyro rms (rad/s), std |f| and |mean |f| - g| (m/s^2), guide §4.1."""
+"""Default static-detector thresholds: gyro rms (rad/s), std |f| and |mean |f| - g| (m/s^2); our starting values."""
 
 
 def ned_to_enu_dcm(C_ned):
@@ -635,7 +639,7 @@ def tilt_compensate_ned(H_b, pitch, roll):
 
 
 def tilt_compensate_printed(H_b, pitch, roll):
-    """Eq. (4) as printed (erratum E1), with theta = pitch and phi = roll.
+    """Eq. (4) as printed (errata E004-01, E004-02), with theta = pitch and phi = roll.
 
     ``H_X = H_x sin(th) sin(ph) + H_y cos(ph) - H_z cos(th) sin(ph)``,
     ``H_Y = H_x cos(th) + H_z sin(th)``. Kept to show that it does not
@@ -649,7 +653,7 @@ def tilt_compensate_printed(H_b, pitch, roll):
 
 
 def heading_from_horizontal(H_X, H_Y, declination: float = 0.0):
-    """Eqs. (5)-(6): ``atan2(-H_Y, H_X) + D`` wrapped to [0, 2 pi) (erratum E4)."""
+    """Eqs. (5)-(6): ``atan2(-H_Y, H_X) + D`` wrapped to [0, 2 pi) (erratum E004-04)."""
     X, Y = as_array(H_X, "H_X"), as_array(H_Y, "H_Y")
     if np.any((X == 0) & (Y == 0)):
         raise ValueError("H_X, H_Y: heading undefined for a zero horizontal field")
@@ -933,7 +937,7 @@ _MAY_BE_INF = ("gate", "mag_field_tol", "mag_dip_tol", "baro_gate", "spike_gyro"
 class FilterConfig:
     """Noise and tuning of the ZUPT/ZARU error-state filter (SI units).
 
-    Defaults: MPU-6050 gyro density (guide §5); accelerometer density
+    Defaults: MPU-6050 gyro rate-noise density (datasheet); accelerometer density
     0.02 m/s^2/sqrt(Hz), five times the MPU-6050's 400 ug/sqrt(Hz), to cover
     the scale-factor and cross-axis errors (1 %, 0.67 %) that the 15-state
     model leaves out and that walking's 3 m/s^2 oscillations excite (with
