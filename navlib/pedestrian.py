@@ -130,8 +130,6 @@ from ._validate import as_array, generator, positive
 from .earth import _radii
 from .strapdown import nav_step
 
-
-
 __all__ = ["M_NED_ENU", "STATIC_THRESHOLDS", "ned_to_enu_dcm", "Leg", "Gait", "walk", "stance_mask", "carpark_legs",
            "floor_test_legs", "detect_static", "detection_rates", "level", "static_gyro_bias",
            "magnetic_heading", "tilt_compensate_ned", "tilt_compensate_printed", "heading_from_horizontal",
@@ -360,7 +358,7 @@ def carpark_legs(speed: float = 1.2, stops=(8.0, 5.0, 20.0, 10.0, 6.0, 15.0, 30.
     corner = 3.0 * 2 / 3 * speed                       # path length of a corner (m)
     for _ in range(n_loops):
         for length in (a, b, a, b):
-            for half in range(2):
+            for _ in range(2):
                 legs.append(Leg((length - corner) / 2 / speed, speed))
                 legs.append(Leg(float(stops[k % stops.size])))
                 k += 1
@@ -452,11 +450,13 @@ def detect_static(w_ib_b, f_b, dt: float, window: float = 0.5, gyro_bias=(0.0, 0
     g = float(positive(g, "g"))
     w2 = np.sum((w - b) ** 2, -1)
     fn = np.linalg.norm(f, axis=-1)
-    if valid.all():
-        mean = lambda x: _window_mean(x, n)
-    else:
-        share = _window_mean(valid.astype(float), n)           # fraction of valid samples per window
-        mean = lambda x: _window_mean(np.where(valid, x, 0.0), n) / np.maximum(share, 0.5 / n)
+    share = None if valid.all() else _window_mean(valid.astype(float), n)   # fraction of valid samples per window
+
+    def mean(x):
+        if share is None:
+            return _window_mean(x, n)
+        return _window_mean(np.where(valid, x, 0.0), n) / np.maximum(share, 0.5 / n)
+
     f_mean = mean(fn)
     f_var = np.maximum(mean(fn ** 2) - f_mean ** 2, 0.0)
     static = (np.sqrt(mean(w2)) < tw) & (np.sqrt(f_var) < tf) & (np.abs(f_mean - g) < tg)
@@ -758,7 +758,7 @@ def segment_floors(h, static, floor_height: float = 3.0, ref_floor: int = 0):
     if s.dtype != bool or s.shape != h.shape or h.ndim != 1:
         raise ValueError(f"static: expected booleans of the shape of h {h.shape}, got {s.shape}")
     starts, ends = segments(s)
-    med = np.array([np.nanmedian(h[a:b]) for a, b in zip(starts, ends)])
+    med = np.array([np.nanmedian(h[a:b]) for a, b in zip(starts, ends, strict=True)])
     return starts, ends, classify_floor(med, floor_height, ref_floor) if med.size else med.astype(int)
 
 
@@ -1432,7 +1432,7 @@ def run_filter(w_ib_b, f_b, dt, lla0, vel0, q0, static, *, h_baro=None, m_b=None
     t0 = float(as_array(t0, "t0"))
     time = t0 + (dts[0] * np.arange(n + 1) if np.all(dts == dts[0]) else np.concatenate([[0.0], np.cumsum(dts)]))
     result = FilterResult(trajectory.Trajectory(time, lla, vel, q), b[:, :3], b[:, 3:], p_diag,
-                          dict(zip(_COUNTERS, (int(x) for x in counts))), flags, P)
+                          dict(zip(_COUNTERS, (int(x) for x in counts), strict=True)), flags, P)
     if zupt and not result.updated:
         warnings.warn("run_filter: no ZUPT/ZARU update was applied (no static interval detected); "
                       "the output is a free INS with walking aids only", RuntimeWarning, stacklevel=2)
@@ -1482,7 +1482,7 @@ def detect_steps(f_b, dt: float, threshold: float = 1.0, min_interval: float = 0
             idx.append(i)
     idx = np.array(idx, dtype=int)
     bounds = np.concatenate([[max(0, idx[0] - gap)], idx]) if idx.size else np.zeros(1, dtype=int)
-    p2p = np.array([a[lo:hi + 1].max() - a[lo:hi + 1].min() for lo, hi in zip(bounds[:-1], bounds[1:])])
+    p2p = np.array([a[lo:hi + 1].max() - a[lo:hi + 1].min() for lo, hi in zip(bounds[:-1], bounds[1:], strict=True)])
     return StepResult(idx, p2p)
 
 
@@ -1539,9 +1539,9 @@ def pdr_headings(f_b, m_b, step_index, declination: float = 0.0):
             or idx[0] < 1 or idx[-1] > f.shape[0]:
         raise ValueError("step_index: expected at least two increasing sample indices within the record")
     starts = np.concatenate([[max(0, idx[0] - (idx[1] - idx[0]))], idx[:-1]])
-    f_mean = np.stack([f[a:b].mean(0) for a, b in zip(starts, idx)])
+    f_mean = np.stack([f[a:b].mean(0) for a, b in zip(starts, idx, strict=True)])
     m_mean = np.stack([np.nanmean(m[a:b], 0) if np.isfinite(m[a:b, 0]).any() else np.full(3, np.nan)
-                       for a, b in zip(starts, idx)])
+                       for a, b in zip(starts, idx, strict=True)])
     if not np.isfinite(m_mean).all():
         raise ValueError("m_b: a step without any magnetometer sample")
     pitch, roll = level(f_mean)

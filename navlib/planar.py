@@ -235,7 +235,7 @@ def waypoint_path(waypoints, speed: float, turn_rate: float, T: float):
     T = _scalar(T, "T")
     course = np.arctan2(legs[:, 1], legs[:, 0])
     v_cmd, w_cmd, reached = [], [], []
-    for i, (L, c) in enumerate(zip(length, course)):
+    for i, (L, c) in enumerate(zip(length, course, strict=True)):
         if i > 0:
             turn = np.angle(np.exp(1j * (c - course[i - 1])))
             n_turn = max(1, int(np.ceil(abs(turn) / (turn_rate * T))))

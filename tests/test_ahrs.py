@@ -6,7 +6,8 @@ import sys
 
 import numpy as np
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from navlib import ahrs, attitude, earth, units
 
@@ -153,7 +154,9 @@ def test_magnetic_gate_skips_disturbed_samples_and_counts_them():
     gated = ahrs.mahony(w, f, DT, q0, m_b=m, B_n=B_N, gate=ahrs.MagGate(norm_tol=0.1, dip_tol=units.deg(3.0)))
     assert int(plain.counts["mag_gated"]) == 0
     assert 195 <= int(gated.counts["mag_gated"]) <= 210         # the disturbance, plus a few noisy samples
-    err = lambda r: np.abs(attitude.wrap_pi(r.hpr[1000:1300, 0] - hpr[0])).max()
+    def err(r):
+        return np.abs(attitude.wrap_pi(r.hpr[1000:1300, 0] - hpr[0])).max()
+
     assert err(gated) < 0.2 * err(plain)
 
 
@@ -192,7 +195,7 @@ def test_kf_innovation_z_minus_h_converges_z_minus_Hq_stalls():
 def test_batch_of_trials_equals_single_runs():
     rng = np.random.default_rng(6)
     runs = [static_marg([0.4 * i, 0.0, 0.1], 1000, rng) for i in range(3)]
-    w, f, m = (np.stack(x) for x in zip(*runs))
+    w, f, m = (np.stack(x) for x in zip(*runs, strict=True))
     q0 = attitude.euler_to_quat(np.stack([[0.4 * i, 0.0, 0.1] for i in range(3)]))
     for filt in (ahrs.mahony, ahrs.quaternion_kf):
         batch = filt(w, f, DT, q0, m_b=m, B_n=B_N)
@@ -438,7 +441,7 @@ FUZZ_CASES = [(fn, arg, kind, bad) for fn, (_, good, nan_ok, inf_ok) in FUZZ.ite
 
 
 def test_fuzz_good_calls_work():
-    for fn, (call, good, _, _) in FUZZ.items():
+    for call, good, _, _ in FUZZ.values():
         call(**good)
 
 

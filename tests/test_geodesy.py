@@ -3,12 +3,12 @@ import re
 
 import numpy as np
 import pytest
-from hypothesis import given, settings, strategies as st
+from helpers import read_vectors
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from numpy.testing import assert_allclose
 
 from navlib import earth, geodesy
-
-from helpers import read_vectors
 
 pyproj = pytest.importorskip("pyproj")
 

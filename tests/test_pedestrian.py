@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from navlib import attitude, earth, kalman, pedestrian as pd, sensors, strapdown, trajectory, units
+from navlib import attitude, earth, kalman, sensors, strapdown, trajectory, units
+from navlib import pedestrian as pd
 
 LAT = units.deg(30.55)
 LLA0 = [LAT, units.deg(114.30), 20.0]
@@ -16,7 +17,10 @@ DT = 0.01
 RESIDUAL = sensors.imu_model("MPU-6050").replace(gyro={"bias": units.deg_per_s(0.05)}, accel={"bias": units.mg(10)})
 
 
-def random_hpr(rng, n, max_tilt=np.deg2rad(40)):
+MAX_TILT = np.deg2rad(40)
+
+
+def random_hpr(rng, n, max_tilt=MAX_TILT):
     return np.stack([rng.uniform(0, 2 * np.pi, n), rng.uniform(-max_tilt, max_tilt, n),
                      rng.uniform(-max_tilt, max_tilt, n)], -1)
 

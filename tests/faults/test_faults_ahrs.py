@@ -391,7 +391,9 @@ def test_gyro_saturation_is_counted_and_the_reference_recovers(name):
     """
     filt, opts = FILTERS[name]
     n = 3000
-    spin = lambda t: np.where((t >= 20.0) & (t < 21.8), units.deg(200.0), 0.0)
+    def spin(t):
+        return np.where((t >= 20.0) & (t < 21.8), units.deg(200.0), 0.0)
+
     d = turning(np.arange(n + 1) * DT, spin)
     fs = IMU.gyro.full_scale
     w, clipped = faults.saturate(d["w"], fs)

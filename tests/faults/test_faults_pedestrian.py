@@ -16,7 +16,8 @@ import warnings
 import numpy as np
 import pytest
 
-from navlib import attitude, earth, faults, pedestrian as pd, sensors, timing, trajectory, units
+from navlib import attitude, earth, faults, sensors, timing, trajectory, units
+from navlib import pedestrian as pd
 
 LLA0 = [units.deg(30.55), units.deg(114.30), 20.0]
 DT = 0.01
@@ -356,8 +357,10 @@ ST = np.ones(50, bool)
 Q1 = [1.0, 0.0, 0.0, 0.0]
 CPLX = np.zeros((50, 3), complex)
 OBJ = np.array([[None, 0.0, 0.0]] * 50, dtype=object)
-RF = lambda **kw: pd.run_filter(**{**dict(w_ib_b=Z3, f_b=F3, dt=DT, lla0=LLA0, vel0=np.zeros(3), q0=Q1,
-                                          static=ST), **kw})
+def RF(**kw):
+    return pd.run_filter(**{**dict(w_ib_b=Z3, f_b=F3, dt=DT, lla0=LLA0, vel0=np.zeros(3), q0=Q1, static=ST), **kw})
+
+
 B0 = np.array([0.0, 30.0, -40.0])
 
 FUZZ = [
