@@ -3,9 +3,10 @@
 Wu Z., Sun Z., Zhang W., Chen Q. (2014). Gyroscope bias estimation and
 compensation by rotation of the inertial measurement unit. *Journal of
 Tsinghua University (Science and Technology)* 54(9): 1143-1147
-(ISSN 1000-0054; no DOI in the source). The seed text is OCR-damaged; the
-equations below are the reconstruction of ``papers/001-rotation-bias-estimation.md``
-with its errata, written in navlib's conventions.
+(ISSN 1000-0054; no DOI). The only text of the paper available to the project
+is OCR-damaged; the equations below were reconstructed from its legible parts,
+corrected as listed under "Errata" (project ids, ``data/errata.csv``) and
+written in navlib's conventions.
 
 Conventions
 -----------
@@ -40,20 +41,22 @@ Eqs. (12)-(14) stacked ``r = V b``, ``b = (V^T V)^-1 V^T r``          :func:`lsq
 Paper's numbers: MTi-100 (bias stability 10 deg/h, noise 0.01 deg/s/sqrt(Hz)),
 Delta alpha = 90 deg reciprocating every 5 s, 100 Hz, 3600 s, pitch 0/30/60 deg.
 
-Errata corrected (guide 001 section 8)
---------------------------------------
-1. Heading is clockwise: the first rotation is -psi.
-2. The third row of Eq. (2) is ``(sin(phi) Wx - cos(phi) Wz) / cos(theta)``.
-3. Row 2 of Eq. (4) is ``-g sin(theta)``; a_m is gravity, i.e. ``-f_b``.
-4. Eq. (11) is ``R' = dR^T R`` (``dR R`` flips the sign of Delta alpha).
-5. ``u (x) u`` in Eq. (10) is the outer product ``u u^T``.
-6. Earth rate (15.04 deg/h) is not negligible against a 10 deg/h bias: with
-   ``w_ie_b`` given, :func:`tilt_residuals` subtracts ``R w_ie_n`` and
-   :func:`integrate_euler` integrates the rate relative to the ENU frame.
-7. Eq. (6) is a first-order step; here each dwell's tilt residual is the
-   least-squares slope of (integrated gyro tilt - accelerometer tilt).
-8. Two attitudes suffice only if their body verticals differ (axis not
-   vertical) and pitch stays away from +-90 deg; violations raise ValueError.
+Errata (ids of ``data/errata.csv``)
+-----------------------------------
+E001-01  Heading is clockwise: the first rotation is -psi.
+E001-02  The third row of Eq. (2) is ``(sin(phi) Wx - cos(phi) Wz) / cos(theta)``.
+E001-03  Row 2 of Eq. (4) is ``-g sin(theta)``; a_m is gravity, i.e. ``-f_b``.
+E001-04  Eq. (11) is ``R' = dR^T R`` (``dR R`` flips the sign of Delta alpha).
+E001-05  ``u (x) u`` in Eq. (10) is the outer product ``u u^T``.
+E001-06  Earth rate (15.04 deg/h) is not negligible against a 10 deg/h bias: with
+         ``w_ie_b`` given, :func:`tilt_residuals` subtracts ``R w_ie_n`` and
+         :func:`integrate_euler` integrates the rate relative to the ENU frame.
+E001-07  Eq. (6) is a first-order step; here each dwell's tilt residual is the
+         least-squares slope of (integrated gyro tilt - accelerometer tilt).
+E001-08  Two attitudes suffice only if their body verticals differ (axis not
+         vertical) and pitch stays away from +-90 deg; violations raise ValueError.
+E001-09  Unstated details (rotation axis, dwell timing, estimator window) are
+         arguments here; E001-10 (Fig. 5 axis) does not affect the module.
 
 Faulty data (every fault is counted; nothing is dropped silently)
 -----------------------------------------------------------------
@@ -146,7 +149,7 @@ def eq1_matrix(hpr):
     Returns
     -------
     R : ndarray, shape (..., 3, 3)
-        Equals ``attitude.euler_to_dcm(hpr).T`` (erratum 1: heading clockwise).
+        Equals ``attitude.euler_to_dcm(hpr).T`` (erratum E001-01: heading clockwise).
     """
     h, p, r = np.moveaxis(as_array(hpr, "hpr", tail=(3,)), -1, 0)
     ch, sh, cp, sp, cr, sr = np.cos(h), np.sin(h), np.cos(p), np.sin(p), np.cos(r), np.sin(r)
@@ -322,7 +325,7 @@ def integrate_euler(hpr0, w_ib_b, dt, w_in_n=None, bias_b=None, bias_from=None, 
         Sample interval (s), or the interval after each sample.
     w_in_n : array_like, shape (3,), optional
         Rate of the navigation frame (rad/s), e.g. ``earth.earth_rate_n(lat)``
-        for a static host (erratum 6); default zero, as in the paper.
+        for a static host (erratum E001-06); default zero, as in the paper.
     bias_b : array_like, shape (..., 3) or (..., K, 3), optional
         Bias estimates to subtract (rad/s). A (..., 3) array is constant; a
         (..., K, 3) array holds successive estimates, estimate k applying from
@@ -407,7 +410,7 @@ def gravity_body(tilt, g: float = 9.80665):
     Returns
     -------
     a_m : ndarray, shape (..., 3)
-        Equals ``-f_b`` of a static accelerometer (erratum 3).
+        Equals ``-f_b`` of a static accelerometer (erratum E001-03).
     """
     tilt = as_array(tilt, "tilt", tail=(2,))
     g = float(positive(g, "g"))
@@ -489,7 +492,7 @@ def rodrigues(axis_b, angle):
 def rotate_attitude(hpr, axis_b, angle):
     """Eq. (11): attitude after rotating the IMU by ``angle`` about ``axis_b``.
 
-    ``R' = dR^T R`` (erratum 4), i.e. ``C_bn' = C_bn dR``.
+    ``R' = dR^T R`` (erratum E001-04), i.e. ``C_bn' = C_bn dR``.
 
     Parameters
     ----------
@@ -525,7 +528,7 @@ def dwell_attitudes(hpr0, axis_b, amplitude: float, n_dwells: int):
     Raises
     ------
     ValueError
-        If a dwell's pitch is within 1 deg of +-90 deg (erratum 8).
+        If a dwell's pitch is within 1 deg of +-90 deg (erratum E001-08).
     """
     hpr0 = as_array(hpr0, "hpr0", tail=(3,)).reshape(3)
     if not isinstance(n_dwells, (int, np.integer)) or isinstance(n_dwells, bool) or n_dwells < 1:
@@ -572,7 +575,7 @@ def dwell_windows(n_samples: int, dt: float, period: float, rotation_time: float
 
 
 def earth_rate_body(hpr, lat):
-    """Earth rate in the body frame, ``R w_ie_n`` (rad/s) (erratum 6).
+    """Earth rate in the body frame, ``R w_ie_n`` (rad/s) (erratum E001-06).
 
     Parameters
     ----------
@@ -831,7 +834,7 @@ def tilt_residuals(w_ib_b, f_b, dt, starts, length: int, w_ie_b=None, *, max_mis
         Samples per dwell, at least :data:`MIN_DWELL_SAMPLES`.
     w_ie_b : array_like, shape (K, 3) or (..., K, 3), optional
         Earth rate in the body frame during each dwell, subtracted from the
-        gyros (erratum 6; :func:`earth_rate_body`). Default: neglected, as in
+        gyros (erratum E001-06; :func:`earth_rate_body`). Default: neglected, as in
         the paper.
     max_missing : float
         Largest fraction of a dwell's samples, in [0, 0.5], that may be NaN
