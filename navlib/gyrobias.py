@@ -92,7 +92,9 @@ from numba import njit
 
 from . import attitude, earth, kalman
 from ._validate import in_range
-from ._validate import nonempty_array as as_array, nonempty_latitude as latitude, nonempty_positive as positive
+from ._validate import nonempty_array as as_array
+from ._validate import nonempty_latitude as latitude
+from ._validate import nonempty_positive as positive
 
 __all__ = ["eq1_matrix", "euler_rates", "integrate_euler", "EulerReport", "gravity_body", "tilt_from_accel",
            "tilt_matrix", "rodrigues", "rotate_attitude", "dwell_attitudes", "dwell_windows",
@@ -870,7 +872,9 @@ def tilt_residuals(w_ib_b, f_b, dt, starts, length: int, w_ie_b=None, *, max_mis
         w_ie = np.broadcast_to(w_ie, lead + (K, 3)).reshape(-1, K, 3)
     except ValueError:
         raise ValueError(f"w_ie_b: expected shape (K={K}, 3) or (..., K, 3), got {w_ie.shape}") from None
-    flat = lambda x: np.ascontiguousarray(x.reshape((-1, n, 3)))
+    def flat(x):
+        return np.ascontiguousarray(x.reshape((-1, n, 3)))
+
     r, V, tilt, c, singular = _residual_kernel(flat(w), flat(f), dts, regular, starts.astype(np.int64), int(length),
                                                np.ascontiguousarray(w_ie), PITCH_LIMIT, max_missing, k_out,
                                                fs_g, fs_a)

@@ -6,13 +6,13 @@ import sys
 
 import numpy as np
 import pytest
+from helpers import check_fuzz, fuzz_cases
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation
 
-from navlib import attitude, earth, gyrobias as gb, sensors, strapdown, trajectory, units
-
-from helpers import check_fuzz, fuzz_cases
+from navlib import attitude, earth, sensors, strapdown, trajectory, units
+from navlib import gyrobias as gb
 
 DT = 0.01
 LAT = units.deg(40.0)

@@ -11,7 +11,8 @@ estimate (``lsq_covariance``), about 3.3 deg/h per axis here.
 import numpy as np
 import pytest
 
-from navlib import earth, faults, gyrobias as gb, sensors, timing, trajectory, units
+from navlib import earth, faults, sensors, timing, trajectory, units
+from navlib import gyrobias as gb
 
 DT, PERIOD, ROT = 0.01, 5.0, 0.5
 LAT = units.deg(40.0)
