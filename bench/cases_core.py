@@ -9,7 +9,7 @@ from navlib import kalman, sensors, strapdown, trajectory, units
 
 
 def strapdown_attitude(quick: bool):
-    """30 trials x 1 h x 100 Hz of gyro samples through the quaternion update (DESIGN §6)."""
+    """30 trials x 1 h x 100 Hz of gyro samples through the quaternion update (goal: 0.5 s)."""
     trials, n, dt = 30, (36_000 if quick else 360_000), 0.01
     rng = np.random.default_rng(0)
     w = 0.1 * rng.standard_normal((trials, n, 3))

@@ -3,7 +3,9 @@
 Each case module ``bench/cases_*.py`` (found automatically) defines ``CASES``, a list of functions that
 return :class:`Result` rows (one per implementation). ``make bench`` runs them
 all, prints a table with the ratio of every implementation to navlib's and to
-the goal of DESIGN.md §6 where there is one, and writes ``build/bench.json``.
+the case's performance goal where it has one, and writes ``build/bench.json``.
+The goals are the project's own targets, set in each case module beside the
+case (e.g. the strapdown batch: 30 trials x 1 h x 100 Hz in 0.5 s).
 
     .venv/bin/python bench/run.py [--only SUBSTRING] [--quick]
 """
@@ -31,7 +33,7 @@ class Result:
     throughput: float           # work units per second
     unit: str                   # e.g. "samples/s"
     seconds: float              # best wall time of one run
-    goal: float | None = None   # DESIGN.md §6 goal in the same unit (navlib rows)
+    goal: float | None = None   # the case's goal in the same unit (navlib rows)
     note: str = ""
 
 
