@@ -6,7 +6,8 @@ import math
 import numpy as np
 
 from bench.run import Result, best_time
-from navlib import earth, northfinding as nf, units
+from navlib import earth, units
+from navlib import northfinding as nf
 
 LAT = units.deg(28.361735)
 SIGMA_GYRO, SIGMA_ACCEL = units.deg_per_h(0.01), units.ug(100)

@@ -67,17 +67,17 @@ timing             ``timing.sanitize`` then windows cut by      ``TimingReport``
 A refused stop or drive raises ValueError (``strict=True``, the default) or
 gives NaN, which :func:`resolve` rejects, so it cannot be used by mistake.
 
-Errata corrected (guide 000 section 8)
---------------------------------------
-* Err 1: omega_ic in Eqs. (13), (16)-(20) is omega_ie.
-* Err 2: with clockwise heading, Eq. (13) has the wrong sign:
+Errata corrected (ids of ``data/errata.csv``)
+--------------------------------------------
+* E000-01: omega_ic in Eqs. (13), (16)-(20) is omega_ie.
+* E000-02: with clockwise heading, Eq. (13) has the wrong sign:
   ``psi_hat - psi = -dw_E / (w_ie cos lat)``.
-* Err 3: Eq. (20) fails near 0 deg / 180 deg, where |cos psi| > 1 must be
+* E000-03: Eq. (20) fails near 0 deg / 180 deg, where |cos psi| > 1 must be
   clipped (this is where Table 1's "180.00, 180.00" comes from).
-* Err 4: Eq. (20) omits the accelerometer (pitch) term and a 1/cos^2(pitch).
-* Err 7: the candidate comparison must use wrapped differences.
-* Err 10: alpha, beta lie in [0, pi], not [0, 2 pi).
-* Err 12: a MEMS INS started with heading 0 cannot remove the horizontal Earth
+* E000-04: Eq. (20) omits the accelerometer (pitch) term and a 1/cos^2(pitch).
+* E000-07: the candidate comparison must use wrapped differences.
+* E000-10: alpha, beta lie in [0, pi], not [0, 2 pi).
+* E000-12: a MEMS INS started with heading 0 cannot remove the horizontal Earth
   rate correctly; :func:`ins_heading_change` removes only the vertical part
   ``w_ie sin(lat)`` by default (or none / the full, misdirected rate).
 """
@@ -91,7 +91,9 @@ from scipy.special import ndtr
 
 from . import attitude, earth, strapdown
 from ._validate import generator, in_range, time_axis
-from ._validate import nonempty_array as as_array, nonempty_latitude as latitude, nonempty_positive as positive
+from ._validate import nonempty_array as as_array
+from ._validate import nonempty_latitude as latitude
+from ._validate import nonempty_positive as positive
 from .sensors import TriadErrors
 from .trajectory import Segment
 
@@ -357,7 +359,7 @@ def triad(f_b, w_ib_b, lat, orthonormal: bool = True):
 def triad_heading(C_bn):
     """Heading ``atan2(c12, c22) mod 2 pi`` (rad) of a TRIAD matrix, orthonormal or raw.
 
-    The paper's extraction (guide section 3); unlike
+    The inverse of paper Eq. (3) for the heading; unlike
     :func:`navlib.attitude.dcm_to_euler` it accepts Eq. (2)'s raw,
     slightly non-orthonormal product. Shape (..., 3, 3) -> (...).
     """
@@ -369,7 +371,7 @@ def tilt_from_accel(f_b, g=None):
     """Pitch and roll from averaged specific force (paper Eqs. 5-6).
 
     ``pitch = asin(f_y / g)``, ``roll = atan2(-f_x, f_z)``. Without ``g`` the
-    norm ``|f|`` stands in for g (guide Err 13), which keeps asin's argument
+    norm ``|f|`` stands in for g (the paper gives no value, E000-13), which keeps asin's argument
     in range; with ``g`` the argument is clipped to [-1, 1].
 
     Parameters
@@ -403,7 +405,7 @@ class Candidates:
     pair : ndarray, shape (..., 2)
         ``[alpha, 2 pi - alpha]`` wrapped into [0, 2 pi) (rad).
     alpha : ndarray, shape (...)
-        ``acos`` of the clipped cosine, in [0, pi] (Err 10).
+        ``acos`` of the clipped cosine, in [0, pi] (E000-10).
     cos_heading : ndarray, shape (...)
         Right side of Eq. (9) before clipping.
     clipped : ndarray of bool, shape (...)
@@ -515,7 +517,7 @@ def resolve(pair1, pair2, dpsi_ins, wrap: bool = True) -> Resolution:
         by :func:`ins_heading_change`) raises ValueError: there is nothing
         to resolve with.
     wrap : bool
-        Compare ``wrap_pi(candidate - dpsi_ins)`` (default, Err 7). ``False``
+        Compare ``wrap_pi(candidate - dpsi_ins)`` (default, E000-07). ``False``
         reproduces the paper's literal unwrapped comparison, for demonstration.
 
     Returns
@@ -541,14 +543,14 @@ def resolve(pair1, pair2, dpsi_ins, wrap: bool = True) -> Resolution:
 
 
 # --------------------------------------------------------------------------
-# error theory (Eqs. 13-20, guide Err 2 and 4)
+# error theory (Eqs. 13-20, errata E000-02 and E000-04)
 # --------------------------------------------------------------------------
 
 def triad_heading_error(C_bn, dw_b, lat):
     """TRIAD heading error caused by a gyro error, Eq. (13) with its sign corrected.
 
     ``psi_hat - psi = -dw_E / (w_ie cos lat)`` with ``dw_n = C_bn dw_b``
-    (guide Err 2: the printed ``+dw_E/...`` is the error of a counter-clockwise
+    (E000-02: the printed ``+dw_E/...`` is the error of a counter-clockwise
     azimuth).
 
     Parameters
@@ -587,12 +589,12 @@ def single_axis_heading_std(heading, sigma_gyro, lat, pitch=0.0, sigma_accel=0.0
 
     With ``pitch = 0`` and ``sigma_accel = 0`` this is Eq. (20),
     ``sigma_gyro / (w_ie cos lat |sin psi|)``. Otherwise the full
-    linearisation of Eq. (8) (guide Err 4)::
+    linearisation of Eq. (8) (E000-04)::
 
         var = [sigma_g^2 + (w_ie (sin lat cos th - cos lat sin th cos psi) sigma_th)^2]
               / (w_ie cos lat cos th sin psi)^2,      sigma_th = sigma_a / (g cos th)
 
-    Infinite at psi = 0 and pi, where the linearisation fails (Err 3).
+    Infinite at psi = 0 and pi, where the linearisation fails (E000-03).
 
     Parameters
     ----------
@@ -619,7 +621,7 @@ def single_axis_heading_std(heading, sigma_gyro, lat, pitch=0.0, sigma_accel=0.0
 
 
 def single_axis_heading_error(heading, pitch, lat, dw_y, df_y=0.0, g=None):
-    """Linearised single-axis heading error for given sensor errors (rad, guide Err 4).
+    """Linearised single-axis heading error for given sensor errors (rad, E000-04).
 
     ``d psi = [-dw_y + w_ie (sin lat cos th - cos lat sin th cos psi) d th]
     / (w_ie cos lat cos th sin psi)`` with ``d th = df_y / (g cos th)``. With
@@ -747,7 +749,7 @@ def monte_carlo(headings, pitch, roll, lat, n_trials: int, sigma_gyro, sigma_acc
 
 
 # --------------------------------------------------------------------------
-# ambiguity of the resolution (extension, guide Err 6)
+# ambiguity of the resolution (extension, erratum E000-06)
 # --------------------------------------------------------------------------
 
 def pair_probabilities(heading1, heading2, sigma_ins):
@@ -1033,7 +1035,7 @@ def ins_heading_change(w_ib_b, f_start, dt, lat, earth_rate: str = "vertical", *
     The attitude starts at heading 0 with pitch and roll from ``f_start``
     (Eqs. 5-6) and integrates the gyro with
     :func:`navlib.strapdown.integrate_attitude`. Since the true heading is
-    unknown, the horizontal Earth rate cannot be removed correctly (Err 12):
+    unknown, the horizontal Earth rate cannot be removed correctly (E000-12):
 
     * ``"vertical"`` (default) removes only ``w_ie sin(lat)`` about Up, which
       does not depend on heading;

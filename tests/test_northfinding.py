@@ -3,10 +3,10 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-
-from navlib import attitude, northfinding as nf, sensors, trajectory, units
-
 from helpers import check_fuzz, fuzz_cases
+
+from navlib import attitude, sensors, trajectory, units
+from navlib import northfinding as nf
 
 LAT = units.deg(28.361735)
 

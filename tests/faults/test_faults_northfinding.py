@@ -16,7 +16,8 @@ fails by chance with p ~ 1e-5.
 import numpy as np
 import pytest
 
-from navlib import attitude, faults, northfinding as nf, sensors, timing, trajectory, units
+from navlib import attitude, faults, sensors, timing, trajectory, units
+from navlib import northfinding as nf
 
 DT = 0.01
 LAT = units.deg(28.361735)
