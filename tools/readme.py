@@ -3,9 +3,8 @@
 
 Reads ``build/<notebook>/results.json`` (written by the notebooks through
 ``navlib.repro``) and rewrites the block between the ``results`` markers of
-README.md: one row per notebook with its claims passed / total, and, where
-``../shared/papers/claims.csv`` is available, how many of the paper's
-checkable claims have a check. It also copies the figures listed in
+README.md: one row per notebook with its checks passed / total and how many
+of the paper's checkable claims (``data/claims.csv``) have a check. It also copies the figures listed in
 ``GALLERY`` into ``docs/figures/`` at a small size for the README.
 
 Only deterministic numbers go into the table (no run times), so the root
@@ -24,7 +23,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 README = ROOT / "README.md"
-CLAIMS = ROOT.parent / "shared" / "papers" / "claims.csv"
+CLAIMS = ROOT / "data" / "claims.csv"
 START, END = "<!-- results:start -->", "<!-- results:end -->"
 
 # notebook stem -> (paper id in claims.csv, short citation)
@@ -46,8 +45,6 @@ GALLERY_WIDTH_PX = 480
 
 def coverable_claims() -> dict[str, list[str]]:
     """Claim ids per paper that count towards coverage (kind != hardware-only)."""
-    if not CLAIMS.is_file():
-        return {}
     out: dict[str, list[str]] = {}
     with open(CLAIMS, encoding="utf-8") as fh:
         for row in csv.DictReader(fh):
