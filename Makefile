@@ -12,7 +12,8 @@ BENCH_STAMP := $(VENV)/.bench-installed
 export PYTHONHASHSEED := 0
 reproduce test: export MPLBACKEND := Agg
 
-PYTEST_FLAGS ?= -q -ra --durations=10 --nbmake-timeout=1800
+# Two workers (this machine has two cores); tests sharing a build/ folder share a group (conftest.py).
+PYTEST_FLAGS ?= -q -ra --durations=10 --nbmake-timeout=1800 -n 2 --dist loadgroup
 
 .DEFAULT_GOAL := help
 .PHONY: help venv reproduce readme test lint lab bench strip clean determinism report-screenshot
