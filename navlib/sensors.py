@@ -261,15 +261,42 @@ def simulate_imu(w_ib_b, f_b, dt: float, model: ImuModel, rng: np.random.Generat
 # Presets
 # --------------------------------------------------------------------------
 
-@functools.lru_cache(maxsize=1)
-def _preset_table() -> dict[str, dict[tuple[str, str], tuple[float, str, str]]]:
+def _preset_parameters() -> dict[str, set[str]]:
+    """The parameters a preset row may name, per sensor (the fields of the model it feeds)."""
+    triad = {f.name for f in fields(TriadErrors)}
+    return {"gyro": triad, "accel": triad, "mag": {f.name for f in fields(MagnetometerModel)},
+            "baro": {f.name for f in fields(BarometerModel)} | {"noise_ultra_low_power"},
+            "heading": {"noise"}, "gnss": {"rtk_horizontal", "single_point_horizontal"}}
+
+
+def _read_presets(path) -> dict[str, dict[tuple[str, str], tuple[float, str, str]]]:
+    """Parse a presets CSV strictly: an unknown sensor or parameter, a repeated row or a bad
+    value raises ``ValueError`` naming the line (a typo must not silently give a noise-free sensor)."""
+    known = _preset_parameters()
     table: dict[str, dict] = {}
-    with PRESETS_CSV.open(encoding="utf-8") as fh:
-        rows = csv.DictReader(line for line in fh if not line.startswith("#"))
-        for r in rows:
-            table.setdefault(r["device"], {})[(r["sensor"], r["parameter"])] = (
-                float(units.to_si(float(r["value"]), r["unit"])), r["unit"], r["source"])
+    with path.open(encoding="utf-8") as fh:
+        lines = [(n, line) for n, line in enumerate(fh, 1) if line.strip() and not line.startswith("#")]
+    rows = csv.DictReader(line for _, line in lines)
+    for (n, _), r in zip(lines[1:], rows, strict=False):
+        where = f"{path.name} line {n}"
+        sensor, par = r["sensor"], r["parameter"]
+        if sensor not in known:
+            raise ValueError(f"{where}: unknown sensor {sensor!r}; known: {sorted(known)}")
+        if par not in known[sensor]:
+            raise ValueError(f"{where}: unknown {sensor} parameter {par!r}; known: {sorted(known[sensor])}")
+        if (sensor, par) in table.get(r["device"], {}):
+            raise ValueError(f"{where}: {r['device']} {sensor} {par} given twice")
+        try:
+            value = float(units.to_si(float(r["value"]), r["unit"]))
+        except (TypeError, ValueError) as exc:
+            raise ValueError(f"{where}: bad value or unit {r['value']!r} {r['unit']!r} ({exc})") from None
+        table.setdefault(r["device"], {})[(sensor, par)] = (value, r["unit"], r["source"])
     return table
+
+
+@functools.cache
+def _preset_table() -> dict[str, dict[tuple[str, str], tuple[float, str, str]]]:
+    return _read_presets(PRESETS_CSV)
 
 
 def devices() -> list[str]:

@@ -556,3 +556,34 @@ def test_mag_baro_reject_non_generator_rng(which):
         else:
             sensors.simulate_barometer(np.zeros(3), [0.0, 1.0, 2.0], sensors.BarometerModel(),
                                        np.random.RandomState(0))
+
+
+# ---------------------------------------------------------------- presets are read strictly
+
+_HEADER = "# comment\ndevice,sensor,parameter,value,unit,source\n"
+
+
+@pytest.mark.parametrize("row, message", [
+    ("X,gyro,noise_densty,0.01,deg/s/sqrt(Hz),typo", "line 3: unknown gyro parameter 'noise_densty'"),
+    ("X,gyroscope,noise_density,0.01,deg/s/sqrt(Hz),typo", "line 3: unknown sensor 'gyroscope'"),
+    ("X,gyro,noise_density,0.01,furlong,bad unit", "line 3: bad value or unit"),
+    ("X,gyro,noise_density,abc,deg/s/sqrt(Hz),bad value", "line 3: bad value or unit"),
+])
+def test_presets_reject_unknown_names_and_bad_values(tmp_path, row, message):
+    path = tmp_path / "presets.csv"
+    path.write_text(_HEADER + row + "\n", encoding="utf-8")
+    with pytest.raises(ValueError, match=message):
+        sensors._read_presets(path)
+
+
+def test_presets_reject_a_repeated_row(tmp_path):
+    path = tmp_path / "presets.csv"
+    row = "X,gyro,bias,1,deg/h,src\n"
+    path.write_text(_HEADER + row + "\n" + row, encoding="utf-8")
+    with pytest.raises(ValueError, match="line 5: X gyro bias given twice"):
+        sensors._read_presets(path)
+
+
+def test_shipped_presets_parse_strictly():
+    table = sensors._read_presets(sensors.PRESETS_CSV)
+    assert set(table) == set(sensors.devices()) and len(table) == 8
