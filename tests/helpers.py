@@ -1,5 +1,6 @@
 """Helpers shared by the test modules: reference values and argument fuzzing."""
 import csv
+import subprocess
 from pathlib import Path
 
 import numpy as np
@@ -20,6 +21,22 @@ def read_vectors(name):
         rows = list(csv.DictReader(line for line in fh if not line.startswith("#")))
     assert rows, f"{path} has no data rows"
     return rows
+
+
+ROOT = Path(__file__).resolve().parents[1]
+_NOT_SOURCE = {".git", ".venv", "build", "__pycache__", ".pytest_cache", ".hypothesis", ".ipynb_checkpoints"}
+
+
+def project_files() -> list[Path]:
+    """The project's files: ``git ls-files`` in a checkout; in an unpacked archive, every file
+    outside virtual environments, caches and ``build/``."""
+    try:
+        out = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, check=True).stdout
+        return [ROOT / p for p in out.decode().split("\0") if p]
+    except (OSError, subprocess.CalledProcessError):
+        return [p for p in sorted(ROOT.rglob("*"))
+                if p.is_file() and not _NOT_SOURCE & set(p.relative_to(ROOT).parts) and p.suffix != ".egg-info"
+                and not any(part.endswith(".egg-info") for part in p.relative_to(ROOT).parts)]
 
 
 # ---------------------------------------------------------------- API fuzzing

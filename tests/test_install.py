@@ -20,6 +20,7 @@ import venv
 from pathlib import Path
 
 import pytest
+from helpers import project_files
 
 ROOT = Path(__file__).resolve().parents[1]
 SMOKE = ROOT / "tests" / "data" / "installed_smoke.py"
@@ -34,10 +35,9 @@ def installed(tmp_path_factory):
     # A copy of the checkout's tracked files, so nothing the build writes (build/, *.egg-info) lands
     # in the checkout and untracked local files cannot leak into the wheel.
     src = tmp_path_factory.mktemp("src")
-    files = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, check=True).stdout
-    subprocess.run(["tar", "-cf", "-", "--null", "-T", "-"], cwd=ROOT, input=files, check=True,
-                   stdout=open(src / "src.tar", "wb"))
-    subprocess.run(["tar", "-xf", "src.tar"], cwd=src, check=True)
+    for path in project_files():
+        (src / path.relative_to(ROOT)).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy2(path, src / path.relative_to(ROOT))
     pip = ([uv, "pip", "install", "--quiet", "--python", str(py)] if uv else
            [str(py), "-m", "pip", "install", "--quiet", "--disable-pip-version-check"])
     subprocess.run([*pip, "-c", str(ROOT / "environment.txt"), str(src)], check=True)

@@ -12,10 +12,10 @@ from __future__ import annotations
 import csv
 import hashlib
 import re
-import subprocess
 from pathlib import Path
 
 import pytest
+from helpers import project_files
 
 ROOT = Path(__file__).resolve().parents[1]
 DATA = ROOT / "data"
@@ -33,17 +33,9 @@ PAPERS = {"000", "001", "002", "003", "004"}
 ERRATUM_ID = re.compile(r"\bE00[0-4]-\d\d\b")
 
 
-def tracked_files() -> list[Path]:
-    try:
-        out = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, check=True).stdout
-    except (OSError, subprocess.CalledProcessError):
-        pytest.skip("not a git checkout")
-    return [ROOT / p for p in out.decode().split("\0") if p]
-
-
 def text_files() -> dict[Path, str]:
     out = {}
-    for path in tracked_files():
+    for path in project_files():
         try:
             out[path] = path.read_text(encoding="utf-8")
         except (UnicodeDecodeError, FileNotFoundError):
