@@ -153,3 +153,36 @@ def nonempty_positive(x, name: str, **kwargs) -> np.ndarray:
 def nonempty_latitude(x, name: str = "lat", deg: bool = False) -> np.ndarray:
     """:func:`latitude` that also rejects empty arrays."""
     return latitude(_nonempty(as_array(x, name), name), name, deg=deg)
+
+
+ORTHO_TOL = 1e-6
+"""Largest ``|C^T C - I|`` accepted for a rotation matrix."""
+
+
+def as_dcm(C, name: str = "C_bn") -> np.ndarray:
+    """Return ``C`` as float rotation matrices, shape (..., 3, 3): orthonormal to ``ORTHO_TOL``, det +1."""
+    C = as_array(C, name, tail=(3, 3))
+    err = np.abs(np.swapaxes(C, -1, -2) @ C - np.eye(3)).max(initial=0.0)
+    if err > ORTHO_TOL or np.any(np.linalg.det(C) < 0):
+        raise ValueError(f"{name}: expected proper rotation matrices (orthonormal, det +1); "
+                         f"max |C^T C - I| = {err:.2e}")
+    return C
+
+
+def as_quat(q, name: str = "q") -> np.ndarray:
+    """Return ``q`` as unit quaternions, shape (..., 4), scalar first; a zero quaternion raises."""
+    q = as_array(q, name, tail=(4,))
+    n = np.linalg.norm(q, axis=-1, keepdims=True)
+    if np.any(n < 1e-12):
+        raise ValueError(f"{name}: expected non-zero quaternions")
+    return q / n
+
+
+def time_grid(duration, dt) -> np.ndarray:
+    """Sample times ``0, dt, ..., n dt`` with ``n = round(duration / dt) >= 1`` (s)."""
+    duration = float(positive(duration, "duration"))
+    dt = float(positive(dt, "dt"))
+    n = int(round(duration / dt))
+    if n < 1:
+        raise ValueError(f"duration: expected at least one sample interval dt={dt}, got {duration}")
+    return dt * np.arange(n + 1)

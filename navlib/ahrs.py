@@ -83,7 +83,7 @@ import numpy as np
 from numba import njit
 
 from . import attitude, earth, kalman
-from ._validate import as_array, in_range
+from ._validate import as_array, as_quat, in_range
 from .attitude import quat_mult_t
 
 __all__ = ["MagGate", "AttitudeResult", "COUNT_NAMES", "magnetic_reference", "tilt_heading",
@@ -814,7 +814,7 @@ def _prepare(w_ib_b, f_b, dt, q0, m_b, heading_rtk, rtk_valid, kp, ki, B_n, gate
     lead, N = w.shape[:-2], w.shape[-2]
     dts = _intervals(dt, N)
     T = int(np.prod(lead))
-    q = attitude._as_quat(q0, "q0")
+    q = as_quat(q0, "q0")
     q = np.ascontiguousarray(np.broadcast_to(q, lead + (4,)).reshape(T, 4))
     if B_n is not None:
         magnetic_reference(B_n)                              # validate even where it is not needed

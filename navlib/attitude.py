@@ -25,7 +25,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ._validate import as_array, in_range
+from ._validate import as_array, as_dcm, as_quat, in_range
 
 __all__ = [
     "wrap_pi", "wrap_2pi", "skew", "rot", "orthonormalize",
@@ -35,7 +35,6 @@ __all__ = [
 ]
 
 _AXES = {"x": 0, "y": 1, "z": 2}
-_ORTHO_TOL = 1e-6
 
 
 def wrap_pi(angle):
@@ -97,23 +96,6 @@ def rot(axis: str, angle, deg: bool = False):
     else:
         rows = [[c, -s, o], [s, c, o], [o, o, i]]
     return np.stack([np.stack(r, -1) for r in rows], -2)
-
-
-def _as_dcm(C, name: str = "C_bn") -> np.ndarray:
-    C = as_array(C, name, tail=(3, 3))
-    err = np.abs(np.swapaxes(C, -1, -2) @ C - np.eye(3)).max(initial=0.0)
-    if err > _ORTHO_TOL or np.any(np.linalg.det(C) < 0):
-        raise ValueError(f"{name}: expected proper rotation matrices (orthonormal, det +1); "
-                         f"max |C^T C - I| = {err:.2e}")
-    return C
-
-
-def _as_quat(q, name: str = "q") -> np.ndarray:
-    q = as_array(q, name, tail=(4,))
-    n = np.linalg.norm(q, axis=-1, keepdims=True)
-    if np.any(n < 1e-12):
-        raise ValueError(f"{name}: expected non-zero quaternions")
-    return q / n
 
 
 def orthonormalize(C):
@@ -183,7 +165,7 @@ def dcm_to_euler(C_bn, deg: bool = False):
     hpr : ndarray, shape (..., 3)
         rad, or deg with ``deg=True``.
     """
-    C = _as_dcm(C_bn)
+    C = as_dcm(C_bn)
     c31, c32, c33 = C[..., 2, 0], C[..., 2, 1], C[..., 2, 2]
     pitch = np.arctan2(c32, np.hypot(c31, c33))
     locked = np.hypot(c31, c33) < 1e-9
@@ -238,7 +220,7 @@ def quat_to_dcm(q):
     -------
     C_bn : ndarray, shape (..., 3, 3)
     """
-    q0, q1, q2, q3 = np.moveaxis(_as_quat(q), -1, 0)
+    q0, q1, q2, q3 = np.moveaxis(as_quat(q), -1, 0)
     rows = [[q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3, 2 * (q1 * q2 - q0 * q3), 2 * (q1 * q3 + q0 * q2)],
             [2 * (q1 * q2 + q0 * q3), q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3, 2 * (q2 * q3 - q0 * q1)],
             [2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3]]
@@ -256,7 +238,7 @@ def dcm_to_quat(C_bn):
     -------
     q : ndarray, shape (..., 4)
     """
-    C = _as_dcm(C_bn)
+    C = as_dcm(C_bn)
     tr = np.trace(C, axis1=-2, axis2=-1)
     d = np.stack([tr, C[..., 0, 0], C[..., 1, 1], C[..., 2, 2]], -1)
     k = np.argmax(d, axis=-1)
@@ -308,7 +290,7 @@ def quat_conj(q):
 
 def quat_normalize(q):
     """Unit quaternion with q0 >= 0; shape (..., 4)."""
-    return _positive_scalar(_as_quat(q))
+    return _positive_scalar(as_quat(q))
 
 
 def quat_rotate(q, v_b):
@@ -359,7 +341,7 @@ def rotvec_to_dcm(rv):
 
 def dcm_to_rotvec(C):
     """Rotation vector (matrix logarithm) of rotation matrices, (..., 3, 3) -> (..., 3)."""
-    return quat_to_rotvec(dcm_to_quat(_as_dcm(C, "C")))
+    return quat_to_rotvec(dcm_to_quat(as_dcm(C, "C")))
 
 
 # --------------------------------------------------------------------------

@@ -15,8 +15,8 @@ import functools
 from dataclasses import dataclass
 
 import numpy as np
-from numba import njit
 
+from ._kernels import normal_gravity, radii_mn
 from ._validate import as_array, in_range, latitude, positive
 
 __all__ = ["Ellipsoid", "WGS84", "CGCS2000", "GRS80", "KRASSOVSKY",
@@ -150,15 +150,7 @@ def gravity(lat, h=0.0, deg: bool = False, ellipsoid: Ellipsoid = WGS84):
     h = in_range(as_array(h, "h"), "h", -12e3, 100e3, "m")
     shape = np.broadcast_shapes(lat.shape, h.shape)
     lat, h = (np.ascontiguousarray(np.broadcast_to(x, shape)).reshape(-1) for x in (lat, h))
-    return _gravity(lat, h, *ellipsoid.gravity_constants).reshape(shape)
-
-
-@njit(cache=True)
-def _gravity(lat, h, a, f, e2, m, gamma_e, k):
-    """Somigliana + height series; shared by :func:`gravity` and compiled kernels."""
-    s2 = np.sin(lat) ** 2
-    g0 = gamma_e * (1 + k * s2) / np.sqrt(1 - e2 * s2)
-    return g0 * (1 - 2 / a * (1 + f + m - 2 * f * s2) * h + 3 * h * h / (a * a))
+    return normal_gravity(lat, h, *ellipsoid.gravity_constants).reshape(shape)
 
 
 def gravity_n(lat, h=0.0, deg: bool = False, ellipsoid: Ellipsoid = WGS84):
@@ -177,16 +169,8 @@ def radii(lat, deg: bool = False, ellipsoid: Ellipsoid = WGS84):
         ``R_N = a / sqrt(1 - e^2 sin^2 lat)``, ``R_M = R_N (1 - e^2) / (1 - e^2 sin^2 lat)``.
     """
     lat = _lat(lat, deg)
-    R_M, R_N = _radii(np.ascontiguousarray(lat).reshape(-1), ellipsoid.a, ellipsoid.e2)
+    R_M, R_N = radii_mn(np.ascontiguousarray(lat).reshape(-1), ellipsoid.a, ellipsoid.e2)
     return R_M.reshape(lat.shape), R_N.reshape(lat.shape)
-
-
-@njit(cache=True)
-def _radii(lat, a, e2):
-    """(R_M, R_N); shared by :func:`radii` and compiled kernels."""
-    w = 1 - e2 * np.sin(lat) ** 2
-    R_N = a / np.sqrt(w)
-    return R_N * (1 - e2) / w, R_N
 
 
 def transport_rate_n(lat, h, vel_n, ellipsoid: Ellipsoid = WGS84):

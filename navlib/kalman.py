@@ -19,6 +19,7 @@ import numpy as np
 from numba import njit
 from scipy.linalg import expm
 
+from ._kernels import wrap_pi
 from ._validate import as_array, positive
 
 __all__ = ["predict", "update", "discretize", "ACCEPTED", "NO_DATA", "REJECTED"]
@@ -42,12 +43,6 @@ def predict(x, P, F, Q):
     """
     Pn = F @ P @ np.ascontiguousarray(F.T) + Q
     return F @ x, (Pn + Pn.T) / 2
-
-
-@njit(cache=True)
-def _wrap_pi(a):
-    w = np.mod(a + np.pi, 2 * np.pi) - np.pi
-    return np.pi if w == -np.pi else w
 
 
 @njit(cache=True)
@@ -93,7 +88,7 @@ def update(x, P, z, h, H, R, angle_mask, gate=np.inf):
     y = z - h
     for j in range(m):
         if angle_mask[j] and finite[j]:
-            y[j] = _wrap_pi(y[j])
+            y[j] = wrap_pi(y[j])
     if n_used == m:                      # common case: no dropout, no copies
         Hs, Rs, ys = H, R, y
     else:

@@ -90,7 +90,7 @@ import numpy as np
 from scipy.special import ndtr
 
 from . import attitude, earth, strapdown
-from ._validate import generator, in_range, time_axis
+from ._validate import as_dcm, generator, in_range, time_axis
 from ._validate import nonempty_array as as_array
 from ._validate import nonempty_latitude as latitude
 from ._validate import nonempty_positive as positive
@@ -564,7 +564,7 @@ def triad_heading_error(C_bn, dw_b, lat):
     -------
     ndarray, shape (...)  (rad)
     """
-    C = attitude._as_dcm(C_bn)
+    C = as_dcm(C_bn)
     dw = _vec(dw_b, "dw_b")
     dw_east = np.einsum("...j,...j->...", C[..., 0, :], dw)
     return -dw_east / (OMEGA_IE * np.cos(_lat(lat)))

@@ -126,8 +126,8 @@ import numpy as np
 from numba import njit
 
 from . import atmosphere, attitude, earth, kalman, trajectory
-from ._validate import as_array, generator, positive
-from .earth import _radii
+from ._kernels import radii_mn
+from ._validate import as_array, as_dcm, as_quat, generator, positive, time_grid
 from .strapdown import nav_step
 
 __all__ = ["M_NED_ENU", "STATIC_THRESHOLDS", "ned_to_enu_dcm", "Leg", "Gait", "walk", "stance_mask", "carpark_legs",
@@ -285,7 +285,7 @@ def stance_mask(legs, dt: float, gait: Gait = Gait()) -> np.ndarray:
     legs = _legs(legs)
     if not isinstance(gait, Gait):
         raise ValueError(f"gait: expected a Gait, got {type(gait).__name__}")
-    t = trajectory._time(sum(leg.duration for leg in legs), dt)
+    t = time_grid(sum(leg.duration for leg in legs), dt)
     return _schedule(legs, t, gait.ramp)[3]
 
 
@@ -319,7 +319,7 @@ def walk(legs, dt: float, lla0, heading0: float, gait: Gait = Gait(),
     if not isinstance(gait, Gait):
         raise ValueError(f"gait: expected a Gait, got {type(gait).__name__}")
     heading0 = float(as_array(heading0, "heading0"))
-    t = trajectory._time(sum(leg.duration for leg in legs), dt)
+    t = time_grid(sum(leg.duration for leg in legs), dt)
     speed, turn, climb, _ = _schedule(legs, t, gait.ramp)
     v_max = max(leg.speed for leg in legs)
     a = speed / v_max if v_max > 0 else np.zeros_like(speed)   # gait envelope, 0 when standing
@@ -802,7 +802,7 @@ def error_state_matrix(C_bn, f_b):
     f_b : array_like, shape (3,)
         Bias-corrected specific force (m/s^2).
     """
-    C = attitude._as_dcm(as_array(C_bn, "C_bn", tail=(3, 3)).reshape(3, 3))
+    C = as_dcm(as_array(C_bn, "C_bn", tail=(3, 3)).reshape(3, 3))
     f = as_array(f_b, "f_b", tail=(3,)).reshape(3)
     F = np.zeros((15, 15))
     F[0:3, 3:6] = np.eye(3)
@@ -843,7 +843,7 @@ def error_model_fd(C_bn, f_b, eps: float = 1e-6):
     -------
     F : ndarray, shape (15, 15)
     """
-    C = attitude._as_dcm(as_array(C_bn, "C_bn", tail=(3, 3)).reshape(3, 3))
+    C = as_dcm(as_array(C_bn, "C_bn", tail=(3, 3)).reshape(3, 3))
     f = as_array(f_b, "f_b", tail=(3,)).reshape(3)
     eps = float(positive(eps, "eps"))
     F = np.empty((15, 15))
@@ -875,7 +875,7 @@ def _static_z(z, vel, w_mean, b_g, C, w_ie_n):
 
 def zupt_zaru_matrix(C_bn, w_ie_n):
     """H of Eq. (2) (6 x 15) at the estimated attitude, with the Earth-rate block."""
-    C = attitude._as_dcm(as_array(C_bn, "C_bn", tail=(3, 3)).reshape(3, 3))
+    C = as_dcm(as_array(C_bn, "C_bn", tail=(3, 3)).reshape(3, 3))
     H = np.zeros((6, 15))
     _fill_H(H, np.ascontiguousarray(C), as_array(w_ie_n, "w_ie_n", tail=(3,)).reshape(3))
     return H
@@ -899,7 +899,7 @@ def zupt_zaru_innovation(vel_n, w_ib_b, b_g, C_bn, w_ie_n):
     """
     args = [as_array(a, n, tail=(3,)).reshape(3) for a, n in
             ((vel_n, "vel_n"), (w_ib_b, "w_ib_b"), (b_g, "b_g"), (w_ie_n, "w_ie_n"))]
-    C = attitude._as_dcm(as_array(C_bn, "C_bn", tail=(3, 3)).reshape(3, 3))
+    C = as_dcm(as_array(C_bn, "C_bn", tail=(3, 3)).reshape(3, 3))
     z = np.empty(6)
     _static_z(z, args[0], args[1], args[2], np.ascontiguousarray(C), args[3])
     return z
@@ -1079,7 +1079,7 @@ def _heading_of(C):
 @njit(cache=True)
 def _feedback(x, lla, vel, q, b, a, e2):
     """Closed-loop correction of Eq. (3): apply dx to the INS and zero it."""
-    R_M, R_N = _radii(lla[0], a, e2)
+    R_M, R_N = radii_mn(lla[0], a, e2)
     lla[0] -= x[1] / (R_M + lla[2])
     lla[1] -= x[0] / ((R_N + lla[2]) * np.cos(lla[0]))
     lla[2] -= x[2]
@@ -1386,7 +1386,7 @@ def run_filter(w_ib_b, f_b, dt, lla0, vel0, q0, static, *, h_baro=None, m_b=None
     if abs(lla0[0]) > np.deg2rad(89.9):
         raise ValueError("lla0: expected |lat| <= 89.9 deg (ENU mechanisation)")
     vel0 = as_array(vel0, "vel0", tail=(3,)).reshape(3)
-    q0 = attitude._as_quat(as_array(q0, "q0", tail=(4,)).reshape(4), "q0")
+    q0 = as_quat(as_array(q0, "q0", tail=(4,)).reshape(4), "q0")
     s = np.asarray(static)
     if s.dtype != bool or s.shape != (n,):
         raise ValueError(f"static: expected booleans of shape ({n},), got {s.dtype} {s.shape}")

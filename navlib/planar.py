@@ -74,6 +74,7 @@ import numpy as np
 from numba import njit
 
 from . import geodesy, kalman
+from ._kernels import wrap_pi
 from ._validate import as_array, generator, positive, time_axis
 from .earth import CGCS2000, Ellipsoid
 
@@ -390,7 +391,7 @@ def _update_identity_h(x, P, z, R, gate, w):
         y[i, 0] = z[i] - x[i]
         for j in range(5):
             S[i, j] = 0.5 * (P[i, j] + P[j, i]) + R[i, j]
-    y[_HEADING, 0] = kalman._wrap_pi(y[_HEADING, 0])
+    y[_HEADING, 0] = wrap_pi(y[_HEADING, 0])
     _cholesky_solve(S, y[:, :1], L, tmp)                 # S^-1 y
     nis = 0.0
     for i in range(5):
@@ -470,7 +471,7 @@ def _gate_groups(x, P, z, R, gate, zu, rejected_row, streak, reacquire, reacquir
         if np.isfinite(z[i]):
             y = z[i] - x[i]
             if i == _HEADING:
-                y = kalman._wrap_pi(y)
+                y = wrap_pi(y)
             if y * y / (P[i, i] + R[i, i]) <= gate[g]:
                 streak[g] = 0
             elif streak[g] >= reacquire:

@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import attitude, units
-from ._validate import as_array, positive
+from ._validate import as_array, as_dcm, positive
 
 __all__ = ["body_axes", "allan", "heading_deg"]
 
@@ -22,7 +22,7 @@ def body_axes(ax, C_bn, title: str = "") -> None:
     """
     if not hasattr(ax, "quiver") or not hasattr(ax, "set_zlim"):
         raise ValueError(f"ax: expected a 3-D matplotlib Axes (projection='3d'), got {type(ax).__name__}")
-    C = attitude._as_dcm(C_bn, "C_bn")
+    C = as_dcm(C_bn, "C_bn")
     for v, name in zip(np.eye(3), "ENU", strict=True):
         ax.quiver(0, 0, 0, *v, color="0.6", arrow_length_ratio=0.08, linewidth=1)
         ax.text(*(1.12 * v), name, color="0.4")

@@ -38,7 +38,7 @@ import numpy as np
 from scipy.signal import lfilter
 
 from . import atmosphere, attitude, earth, units
-from ._validate import as_array, generator, in_range, positive, time_axis
+from ._validate import as_array, as_quat, generator, in_range, positive, time_axis
 from .analysis import GM_ALLAN_PEAK
 
 __all__ = ["TriadErrors", "ImuModel", "ImuOutput", "simulate_imu", "imu_model", "preset", "devices",
@@ -388,7 +388,7 @@ def simulate_magnetometer(q_bn, B_n, model: MagnetometerModel, rng: np.random.Ge
     -------
     MagnetometerOutput
     """
-    q = attitude._as_quat(as_array(q_bn, "q_bn", tail=(4,), min_ndim=1), "q_bn")
+    q = as_quat(as_array(q_bn, "q_bn", tail=(4,), min_ndim=1), "q_bn")
     B = as_array(B_n, "B_n", tail=(3,))
     generator(rng)
     if not isinstance(model, MagnetometerModel):

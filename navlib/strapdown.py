@@ -47,9 +47,9 @@ import numpy as np
 from numba import njit
 
 from . import attitude, earth
-from ._validate import as_array, latitude, positive
+from ._kernels import normal_gravity, radii_mn
+from ._validate import as_array, as_quat, latitude, positive
 from .attitude import quat_mult_1, quat_mult_t, quat_normalize_1, quat_to_dcm_1, rotvec_to_quat_1, rotvec_to_quat_t
-from .earth import _gravity, _radii
 from .trajectory import Trajectory
 
 __all__ = ["integrate", "integrate_attitude", "nav_step", "earth_constants", "error_model", "error_input"]
@@ -160,7 +160,7 @@ def integrate_attitude(q0, w_ib_b, dt, w_in_n=None, on_nan: str = "raise"):
     w = _samples(w_ib_b, "w_ib_b")
     w, held = _dropouts(w, "w_ib_b", on_nan)
     dt = _intervals(dt, w.shape[-2])
-    q0 = attitude._as_quat(q0, "q0")
+    q0 = as_quat(q0, "q0")
     lead = w.shape[:-2]
     q0 = np.broadcast_to(q0, lead + (4,)).reshape(-1, 4)
     w_in = np.zeros(3) if w_in_n is None else as_array(w_in_n, "w_in_n", tail=(3,))
@@ -199,13 +199,13 @@ def nav_step(lla, vel, q, w, f, dt, earth_consts, hold_height=False):
                                             earth_consts[4], earth_consts[5], earth_consts[6])
     lat, h = lla[0], lla[2]
     sl, cl = np.sin(lat), np.cos(lat)
-    R_M, R_N = _radii(lat, a, e2)
+    R_M, R_N = radii_mn(lat, a, e2)
     w_ie = np.array([0.0, omega * cl, omega * sl])
     w_en = np.array([-vel[1] / (R_M + h), vel[0] / (R_N + h), vel[0] * sl / cl / (R_N + h)])
     w_in = w_ie + w_en
     q_mid = quat_mult_1(quat_mult_1(rotvec_to_quat_1(-w_in * (dt / 2)), q), rotvec_to_quat_1(w * (dt / 2)))
     f_n = quat_to_dcm_1(q_mid) @ f
-    g = _gravity(lat, h, a, flat, e2, m, gamma_e, k_som)
+    g = normal_gravity(lat, h, a, flat, e2, m, gamma_e, k_som)
     v_new = vel + (f_n - np.cross(2 * w_ie + w_en, vel)) * dt
     v_new[2] -= g * dt
     if hold_height:
@@ -305,7 +305,7 @@ def integrate(lla0, vel0, q0, w_ib_b, f_b, dt, t0: float = 0.0, hold_height: boo
     if np.any(np.abs(lla0[..., 0]) > np.deg2rad(89.9)):
         raise ValueError("lla0[..., 0] (lat): the ENU mechanisation is singular at the poles; expected |lat| <= 89.9 deg")
     vel0 = as_array(vel0, "vel0", tail=(3,))
-    q0 = attitude._as_quat(q0, "q0")
+    q0 = as_quat(q0, "q0")
     def flat(x, k):
         return np.ascontiguousarray(np.broadcast_to(x, lead + x.shape[-k:]).reshape((-1,) + x.shape[-k:]))
 

@@ -16,8 +16,8 @@ import numpy as np
 from numba import njit
 
 from . import attitude, earth
-from ._validate import as_array, in_range, latitude, positive, time_axis
-from .earth import _radii
+from ._kernels import radii_mn
+from ._validate import as_array, in_range, latitude, positive, time_axis, time_grid
 
 __all__ = ["Trajectory", "Segment", "static", "from_profiles", "reciprocating_rotation",
            "vehicle", "ideal_imu", "smooth_ramp"]
@@ -80,7 +80,7 @@ def _positions(lla0, vel, dt, a, e2):
     lat, lon, h = lla0[0], lla0[1], lla0[2]
     lla[0, 0], lla[0, 1], lla[0, 2] = lat, lon, h
     for k in range(n - 1):
-        R_M, R_N = _radii(lat, a, e2)
+        R_M, R_N = radii_mn(lat, a, e2)
         vm = (vel[k] + vel[k + 1]) / 2
         lat_new = lat + vm[1] / (R_M + h) * dt
         lon = lon + vm[0] / ((R_N + h) * np.cos(lat)) * dt
@@ -88,15 +88,6 @@ def _positions(lla0, vel, dt, a, e2):
         lat = lat_new
         lla[k + 1, 0], lla[k + 1, 1], lla[k + 1, 2] = lat, lon, h
     return lla
-
-
-def _time(duration, dt):
-    duration = float(positive(duration, "duration"))
-    dt = float(positive(dt, "dt"))
-    n = int(round(duration / dt))
-    if n < 1:
-        raise ValueError(f"duration: expected at least one sample interval dt={dt}, got {duration}")
-    return dt * np.arange(n + 1)
 
 
 def _lla(lla):
@@ -132,7 +123,7 @@ def from_profiles(time, lla0, hpr, vel_n, ellipsoid: earth.Ellipsoid = earth.WGS
 
 def static(duration: float, dt: float, lla0, hpr) -> Trajectory:
     """A stationary IMU at ``lla0`` with constant attitude ``hpr`` (rad)."""
-    t = _time(duration, dt)
+    t = time_grid(duration, dt)
     lla = np.broadcast_to(_lla(lla0), (t.size, 3)).copy()
     q = np.broadcast_to(attitude.euler_to_quat(hpr), (t.size, 4)).copy()
     return Trajectory(t, lla, np.zeros((t.size, 3)), q)
@@ -167,7 +158,7 @@ def reciprocating_rotation(duration: float, dt: float, lla0, hpr0, axis_b, ampli
     rotation_time : float
         Duration of each rotation (s), less than ``period``.
     """
-    t = _time(duration, dt)
+    t = time_grid(duration, dt)
     u = as_array(axis_b, "axis_b", tail=(3,)).reshape(3)
     if abs(np.linalg.norm(u) - 1) > 1e-9:
         raise ValueError(f"axis_b: expected a unit vector, got norm {np.linalg.norm(u):.6g}")
@@ -233,7 +224,7 @@ def vehicle(segments, dt: float, lla0, heading0: float, ellipsoid: earth.Ellipso
         raise ValueError("segments: expected a non-empty sequence of Segment")
     heading0 = float(as_array(heading0, "heading0"))
     total = sum(s.duration for s in segments)
-    t = _time(total, dt)
+    t = time_grid(total, dt)
     speed, heading, pitch, roll = (np.empty(t.size) for _ in range(4))
     cur = {"speed": 0.0, "heading": float(heading0), "pitch": 0.0, "roll": 0.0}
     t_start = 0.0

@@ -1,0 +1,34 @@
+"""Compiled per-sample primitives shared by navlib's modules and their numba kernels.
+
+Each is the one implementation of its formula: the public, validated functions
+(:func:`navlib.earth.gravity`, :func:`navlib.earth.radii`) and the compiled filters
+(strapdown, Kalman update, pedestrian and planar filters) call these. Arguments are plain
+floats or float arrays in SI units, unvalidated: validate at the public boundary.
+"""
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+
+@njit(cache=True)
+def normal_gravity(lat, h, a, f, e2, m, gamma_e, k):
+    """Normal gravity (m/s^2): Somigliana's closed form with the second-order height series."""
+    s2 = np.sin(lat) ** 2
+    g0 = gamma_e * (1 + k * s2) / np.sqrt(1 - e2 * s2)
+    return g0 * (1 - 2 / a * (1 + f + m - 2 * f * s2) * h + 3 * h * h / (a * a))
+
+
+@njit(cache=True)
+def radii_mn(lat, a, e2):
+    """Meridian and prime-vertical radii of curvature ``(R_M, R_N)`` (m)."""
+    w = 1 - e2 * np.sin(lat) ** 2
+    R_N = a / np.sqrt(w)
+    return R_N * (1 - e2) / w, R_N
+
+
+@njit(cache=True)
+def wrap_pi(a):
+    """A scalar angle wrapped to (-pi, pi] (rad)."""
+    w = np.mod(a + np.pi, 2 * np.pi) - np.pi
+    return np.pi if w == -np.pi else w
