@@ -98,8 +98,6 @@ def test_every_top_level_pin_is_declared():
 def test_environment_matches_running_interpreter():
     """environment.txt is exact for the Python it is installed with (its header says which)."""
     for name, version in ENV.items():
-        if name in ("importlib-metadata", "overrides") and sys.version_info >= (3, 12):
-            continue                       # required only on 3.11; the freeze is exact there
         assert md.version(name) == version, f"{name}: installed {md.version(name)}, pinned {version} (run `make venv`)"
 
 
