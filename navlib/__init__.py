@@ -47,6 +47,7 @@ Compiled kernels
 """
 from . import (
     ahrs,
+    alignment,
     analysis,
     atmosphere,
     attitude,
@@ -61,6 +62,7 @@ from . import (
     planar,
     plots,
     repro,
+    robust,
     sensors,
     strapdown,
     timing,
@@ -70,6 +72,6 @@ from . import (
 
 __version__ = "0.1.0"
 
-__all__ = ["ahrs", "analysis", "atmosphere", "attitude", "earth", "faults", "geodesy", "gyrobias", "kalman",
-           "montecarlo", "northfinding", "pedestrian", "planar", "plots", "repro", "sensors", "strapdown", "timing",
+__all__ = ["ahrs", "alignment", "analysis", "atmosphere", "attitude", "earth", "faults", "geodesy", "gyrobias", "kalman",
+           "montecarlo", "northfinding", "pedestrian", "planar", "plots", "repro", "robust", "sensors", "strapdown", "timing",
            "trajectory", "units", "__version__"]

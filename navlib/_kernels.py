@@ -32,3 +32,17 @@ def wrap_pi(a):
     """A scalar angle wrapped to (-pi, pi] (rad)."""
     w = np.mod(a + np.pi, 2 * np.pi) - np.pi
     return np.pi if w == -np.pi else w
+
+
+@njit(cache=True)
+def tilt_heading(mx, my, mz, pitch, roll):
+    """Tilt-compensated magnetic heading in [0, 2 pi) (rad) of a right-front-up magnetometer reading.
+
+    The field is levelled with ``pitch`` and ``roll`` (hpr convention of :mod:`navlib`); the heading is
+    ``atan2(-m_h,x, m_h,y)``, clockwise from magnetic north. Works on floats and arrays alike.
+    """
+    sp, cp, sr, cr = np.sin(pitch), np.cos(pitch), np.sin(roll), np.cos(roll)
+    mhx = mx * cr + mz * sr
+    mhy = my * cp + mx * sp * sr - mz * sp * cr
+    a = np.mod(np.arctan2(-mhx, mhy), 2 * np.pi)
+    return a * (a < 2 * np.pi)                               # [0, 2 pi): a rounded-up 2 pi is north

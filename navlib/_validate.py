@@ -186,3 +186,65 @@ def time_grid(duration, dt) -> np.ndarray:
     if n < 1:
         raise ValueError(f"duration: expected at least one sample interval dt={dt}, got {duration}")
     return dt * np.arange(n + 1)
+
+
+def scalar(x, name: str, *, positive: bool = False, allow_zero: bool = False, allow_inf: bool = False) -> float:
+    """Return ``x`` as a Python float; optionally > 0 (or >= 0 with ``allow_zero``); inf only if ``allow_inf``."""
+    arr = as_array(x, name, finite=not allow_inf)
+    if arr.ndim != 0:
+        raise ValueError(f"{name}: expected a scalar, got shape {arr.shape}")
+    value = float(arr)
+    if np.isnan(value) or (positive or allow_zero) and not (value >= 0 if allow_zero else value > 0):
+        raise ValueError(f"{name}: expected a {'non-negative' if allow_zero else 'positive'} value, got {value!r}")
+    return value
+
+
+def integer(x, name: str, *, minimum: int = 1) -> int:
+    """Return ``x`` as an int >= ``minimum``. ``bool`` is refused (``True`` is not a count)."""
+    if isinstance(x, (bool, np.bool_)) or not isinstance(x, (int, np.integer)) or x < minimum:
+        raise ValueError(f"{name}: expected an integer >= {minimum}, got {x!r}")
+    return int(x)
+
+
+def flag(x, name: str) -> bool:
+    """Return ``x`` as a bool; only ``True``/``False`` (also numpy's) are accepted."""
+    if not isinstance(x, (bool, np.bool_)):
+        raise ValueError(f"{name}: expected True or False, got {x!r}")
+    return bool(x)
+
+
+def choice(x, name: str, options) -> str:
+    """Return ``x`` if it is one of ``options``."""
+    if x not in options:
+        raise ValueError(f"{name}: expected one of {tuple(options)}, got {x!r}")
+    return x
+
+
+def full_scale(x, name: str) -> float:
+    """A device's full-scale range (same unit as its samples): a positive value, or ``None``/inf for no limit."""
+    return np.inf if x is None else scalar(x, name, positive=True, allow_inf=True)
+
+
+def intervals(dt, n: int, name: str = "dt") -> np.ndarray:
+    """Per-sample intervals of shape (n,) from a positive scalar or an (n,) array of positive intervals (s).
+
+    This is navlib's one reading of ``dt``: every filter accepts a fixed interval
+    or per-sample intervals (e.g. :func:`navlib.timing.intervals` of the epoch times).
+    """
+    arr = as_array(dt, name)
+    if arr.ndim == 0:
+        return np.full(n, scalar(arr, name, positive=True))
+    if arr.shape != (n,):
+        raise ValueError(f"{name}: expected a positive scalar or per-sample intervals of shape ({n},), got {arr.shape}")
+    if not np.all(arr > 0):
+        raise ValueError(f"{name}: expected positive intervals, got min {arr.min():g} (run timing.sanitize first)")
+    return np.ascontiguousarray(arr)
+
+
+def imu_samples(w_ib_b, f_b, *, allow_nan: bool = True) -> tuple[np.ndarray, np.ndarray]:
+    """Gyro and accelerometer samples, each (..., N, 3) with the same shape; NaN marks a dropout."""
+    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=allow_nan)
+    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=allow_nan)
+    if w.shape != f.shape:
+        raise ValueError(f"w_ib_b, f_b: expected the same shape (..., N, 3), got {w.shape} and {f.shape}")
+    return w, f

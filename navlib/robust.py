@@ -1,0 +1,102 @@
+"""Robust input handling and the one fault vocabulary of navlib's filters.
+
+:class:`FaultReport` is what every filter result carries in its ``faults`` field:
+counts per ``(sensor, kind)`` (arrays over Monte Carlo trials where a filter runs a
+batch) and, when asked for, per-sample boolean flags. Sensors are named ``"gyro"``,
+``"accel"``, ``"mag"``, ``"baro"``, ``"gnss"``, ``"heading"``...; kinds are
+
+``"nan"``        a dropout (NaN) replaced by :func:`hold` or skipped;
+``"saturated"``  a sample at or beyond the device's full-scale range (rails);
+``"spike"``      an isolated jump replaced by a hold;
+``"outlier"``    a sample rejected by a MAD or innovation (chi-square) gate;
+``"refused"``    a quantity that could not be formed (e.g. a static window with too few samples).
+
+:func:`hold` is the one zero-order hold of NaN samples, with an explicit policy for
+leading NaN samples (there is nothing before them to hold).
+"""
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ._validate import as_array, choice
+
+__all__ = ["FaultReport", "hold", "LEADING"]
+
+LEADING = ("raise", "first", "zero")
+"""Policies for NaN samples before the first valid one: raise, take the first valid sample, or 0."""
+
+
+@dataclass(frozen=True)
+class FaultReport:
+    """Fault counts per ``(sensor, kind)``, and optional per-sample flags under the same keys.
+
+    ``report["gyro", "nan"]`` is the count (0 when the key is absent); ``report.flags[...]`` a
+    boolean mask over samples where the filter was asked to keep flags.
+    """
+
+    counts: Mapping[tuple[str, str], np.ndarray | int] = field(default_factory=dict)
+    flags: Mapping[tuple[str, str], np.ndarray] = field(default_factory=dict)
+
+    def __getitem__(self, key: tuple[str, str]):
+        return self.counts.get(key, 0)
+
+    def total(self):
+        """Sum of all counts (an array over trials for batched filters)."""
+        return sum((np.asarray(c) for c in self.counts.values()), start=np.int64(0))
+
+    def __bool__(self) -> bool:
+        return bool(np.any(self.total()))
+
+    def as_dict(self) -> dict[str, int | list]:
+        """``{"sensor.kind": count}`` with plain Python numbers (e.g. for results.json)."""
+        return {f"{s}.{k}": np.asarray(c).tolist() for (s, k), c in self.counts.items()}
+
+    def __str__(self) -> str:
+        rows = [f"{s}.{k}: {np.asarray(c).tolist()}" for (s, k), c in self.counts.items() if np.any(c)]
+        return "FaultReport(" + (", ".join(rows) if rows else "no faults") + ")"
+
+
+def hold(x, *, leading: str = "raise", name: str = "x", axis: int = -2) -> tuple[np.ndarray, np.ndarray]:
+    """Zero-order hold of NaN samples along the time axis.
+
+    Parameters
+    ----------
+    x : array_like, shape (..., N, k) (or (..., N) with ``axis=-1``)
+        Samples; a sample (row) with any NaN is a dropout. Infinity is rejected.
+    leading : {"raise", "first", "zero"}
+        NaN samples before the first valid one: raise ``ValueError``, take the first valid
+        sample (back-fill), or set them to 0. A series with no valid sample raises.
+    name : str
+        Argument name in error messages.
+    axis : int
+        Time axis: -2 for vector series (default), -1 for scalar series.
+
+    Returns
+    -------
+    filled : ndarray, same shape as ``x``
+    held : ndarray of bool, shape of ``x`` without the vector axis
+        True where a sample was replaced.
+    """
+    choice(leading, "leading", LEADING)
+    a = as_array(x, name, allow_nan=True, min_ndim=1)
+    vector = axis == -2
+    bad = np.isnan(a).any(axis=-1) if vector else np.isnan(a)
+    if not bad.any():
+        return a, bad
+    n = bad.shape[-1]
+    first = np.argmax(~bad, axis=-1)
+    if np.any(bad.all(axis=-1)):
+        raise ValueError(f"{name}: a series has no valid sample to hold")
+    if leading == "raise" and np.any(bad[..., 0]):
+        raise ValueError(f"{name}: the first sample is NaN; choose leading='first' or 'zero' to fill it")
+    idx = np.where(bad, 0, np.arange(n))
+    np.maximum.accumulate(idx, axis=-1, out=idx)
+    before = bad & (np.arange(n) < first[..., None])
+    idx = np.where(before, first[..., None], idx)
+    filled = np.take_along_axis(a, idx[..., None] if vector else idx, axis=axis)
+    if leading == "zero" and before.any():
+        filled = np.where(before[..., None] if vector else before, 0.0, filled)
+    return filled, bad
