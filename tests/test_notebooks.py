@@ -13,11 +13,13 @@ from pathlib import Path
 
 import pytest
 
+from navlib.papers import by_notebook
+
 NOTEBOOKS = Path(__file__).resolve().parents[1] / "notebooks"
 PATHS = sorted(NOTEBOOKS.glob("*.ipynb")) if NOTEBOOKS.is_dir() else []
 SETUP_CALL = re.compile(r"\bsetup\(\s*(?:notebook\s*=\s*)?[\"']([^\"']*)[\"']")
 YEAR = re.compile(r"\b(19|20)\d\d\b")
-PAPERS = [p for p in PATHS if re.match(r"0[1-5]_", p.name)]
+PAPERS = [p for p in PATHS if by_notebook(p.stem) is not None]
 
 
 def load(path: Path) -> dict:

@@ -17,6 +17,8 @@ from pathlib import Path
 import pytest
 from helpers import project_files
 
+from navlib.papers import PAPERS as REGISTRY
+
 ROOT = Path(__file__).resolve().parents[1]
 DATA = ROOT / "data"
 
@@ -29,8 +31,8 @@ OUTSIDE = re.compile("|".join([
     r"(?<!docs/)(?<!\]\()" + "claims" + r"\.md",  # the old catalogue's explanation (now docs/claims.md)
 ]), re.IGNORECASE)
 KINDS = {"analytic", "deterministic", "monte-carlo", "simulation-stand-in", "qualitative", "hardware-only"}
-PAPERS = {"000", "001", "002", "003", "004"}
-ERRATUM_ID = re.compile(r"\bE00[0-4]-\d\d\b")
+PAPERS = {p.claims_id for p in REGISTRY}
+ERRATUM_ID = re.compile(r"\bE(?:" + "|".join(sorted(PAPERS)) + r")-\d\d\b")
 
 
 def text_files() -> dict[Path, str]:
@@ -109,7 +111,7 @@ def test_every_cited_erratum_exists():
 
 def test_erratum_boxes_in_notebooks_name_known_errata():
     known = {e["id"] for e in ERRATA}
-    box = re.compile(r"\*\*Erratum (E00[0-4]-\d\d)\b")
+    box = re.compile(r"\*\*Erratum (" + ERRATUM_ID.pattern.removeprefix(r"\b").removesuffix(r"\b") + r")\b")
     boxes = {m for p in (ROOT / "notebooks").glob("*.ipynb") for m in box.findall(p.read_text(encoding="utf-8"))}
     assert boxes, "no erratum boxes in the notebooks"
     assert boxes <= known

@@ -22,19 +22,18 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from navlib.papers import CONVENTIONS  # noqa: E402  (the registry: one entry per paper)
+from navlib.papers import PAPERS as REGISTRY  # noqa: E402
+
 README = ROOT / "README.md"
 CLAIMS = ROOT / "data" / "claims.csv"
 START, END = "<!-- results:start -->", "<!-- results:end -->"
 
-# notebook stem -> (paper id in claims.csv, short citation)
-PAPERS = {
-    "00_conventions_sensors": (None, "conventions, sensor models, strapdown error theory"),
-    "01_north_finding": ("000", "Tan & Xie — single-axis optical gyro + MEMS IMU north finding"),
-    "02_rotation_bias": ("001", "Wu, Sun, Zhang & Chen 2014 — gyro bias estimation by rotating the IMU"),
-    "03_gauss_kruger_ekf": ("002", "Zhao, Nie, Fang & Wu 2023 — Gauss–Krüger projection + EKF INS/GPS"),
-    "04_mimu_mag_rtk": ("003", "Zhang, Wu & Yun 2023 — MIMU / magnetometer / dual-antenna RTK attitude"),
-    "05_pedestrian_ins": ("004", "Wen, Xu & Yu 2016 — shoulder-mounted MEMS IMU indoor navigation"),
-}
+# notebook stem -> (paper id in claims.csv, short citation), from the paper registry
+PAPERS = {CONVENTIONS: (None, "conventions, sensor models, strapdown error theory")}
+PAPERS.update({p.notebook: (p.claims_id, p.citation) for p in REGISTRY})
 # figures shown in the README: (notebook, figure stem)
 GALLERY = [("00_conventions_sensors", "allan_gyros"), ("00_conventions_sensors", "ins_error_theory"),
            ("01_north_finding", "fig4_rmse_vs_heading"), ("02_rotation_bias", "fig6_heading_error"),

@@ -40,6 +40,15 @@ from nbconvert import HTMLExporter
 from nbconvert.filters.markdown_mistune import markdown2html_mistune
 
 REPO = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(REPO))
+
+from navlib.papers import CONVENTIONS, PAPERS  # noqa: E402  (the registry: one entry per paper)
+
+
+def unregistered(notebooks: list[Path]) -> list[str]:
+    """Notebook stems that are neither notebook 00 nor a registered paper (navlib/papers/__init__.py)."""
+    known = {CONVENTIONS} | {p.notebook for p in PAPERS}
+    return [p.stem for p in notebooks if p.stem not in known]
 
 
 def error_line(exc: BaseException) -> str:
@@ -173,6 +182,10 @@ def main(argv=None) -> int:
     notebooks = sorted((root / "notebooks").glob("[0-9][0-9]_*.ipynb"))
     if args.only:
         notebooks = [p for p in notebooks if fnmatch.fnmatch(p.stem, f"*{args.only}*")]
+    stray = unregistered(notebooks)
+    if stray:
+        print(f"not in the paper registry (navlib/papers/__init__.py): {', '.join(stray)}", file=sys.stderr)
+        return 1
     if not notebooks:
         print(f"no notebooks matched in {root / 'notebooks'}", file=sys.stderr)
         return 1
