@@ -1,10 +1,11 @@
-"""Attitude filters of navlib.ahrs (paper 003) against ahrs (AHRS 0.4.0) and imufusion, same data, same run."""
+"""Attitude filters of navlib.papers.mimu_mag_rtk (paper 003) against ahrs (AHRS 0.4.0) and imufusion, same data, same run."""
 from __future__ import annotations
 
 import numpy as np
 
 from bench.run import Result, best_time
-from navlib import ahrs, attitude, earth
+from navlib import attitude, earth
+from navlib.papers import mimu_mag_rtk as ahrs
 
 DT = 0.01
 B_N = earth.magnetic_field(32.03, 118.85, 20.0, 2022.5)
@@ -58,7 +59,7 @@ def mahony_single(quick: bool):
     n = 36_000 if quick else 360_000
     w, f, m, q0 = _marg_data(n)
     t = best_time(lambda: ahrs.mahony(w, f, DT, q0, m_b=m))
-    rows = [Result("Mahony MARG, 1 filter", "navlib.ahrs.mahony (numba)", n / t, "samples/s", t, goal=10e6)]
+    rows = [Result("Mahony MARG, 1 filter", "navlib.papers.mimu_mag_rtk.mahony (numba)", n / t, "samples/s", t, goal=10e6)]
     return rows + _peers("Mahony MARG, 1 filter", w, f, m, q0, n, 2_000 if quick else 10_000)
 
 
@@ -67,7 +68,7 @@ def mahony_batch(quick: bool):
     trials, n = (8, 36_000) if quick else (32, 180_000)
     w, f, m, q0 = _marg_data(n, trials, seed=1)
     t = best_time(lambda: ahrs.mahony(w, f, DT, q0, m_b=m))
-    return [Result(f"Mahony MARG, {trials} trials", "navlib.ahrs.mahony (numba)", trials * n / t, "samples/s", t,
+    return [Result(f"Mahony MARG, {trials} trials", "navlib.papers.mimu_mag_rtk.mahony (numba)", trials * n / t, "samples/s", t,
                    goal=25e6, note="aggregate over the batch")]
 
 
@@ -76,7 +77,7 @@ def quaternion_kf(quick: bool):
     n = 36_000 if quick else 360_000
     w, f, m, q0 = _marg_data(n, seed=2)
     t = best_time(lambda: ahrs.quaternion_kf(w, f, DT, q0, m_b=m, B_n=B_N))
-    rows = [Result("quaternion KF (PI + KF)", "navlib.ahrs.quaternion_kf (numba)", n / t, "samples/s", t)]
+    rows = [Result("quaternion KF (PI + KF)", "navlib.papers.mimu_mag_rtk.quaternion_kf (numba)", n / t, "samples/s", t)]
     return rows + _peers("quaternion KF (PI + KF)", w, f, m, q0, n, 1_000 if quick else 5_000)
 
 

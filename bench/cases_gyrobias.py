@@ -4,7 +4,8 @@ from __future__ import annotations
 import numpy as np
 
 from bench.run import Result, best_time
-from navlib import earth, gyrobias, sensors, strapdown, trajectory, units
+from navlib import earth, sensors, strapdown, trajectory, units
+from navlib.papers import rotation_bias as gyrobias
 
 DT, PERIOD, ROTATION_TIME = 0.01, 5.0, 0.5
 LAT = units.deg(40.0)

@@ -7,7 +7,7 @@ import numpy as np
 
 from bench.run import Result, best_time
 from navlib import earth, units
-from navlib import northfinding as nf
+from navlib.papers import north_finding as nf
 
 LAT = units.deg(28.361735)
 SIGMA_GYRO, SIGMA_ACCEL = units.deg_per_h(0.01), units.ug(100)

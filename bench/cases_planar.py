@@ -4,8 +4,8 @@ from __future__ import annotations
 import numpy as np
 
 from bench.run import Result, best_time
-from navlib import planar
 from navlib.geodesy import geodetic2gk
+from navlib.papers import gauss_kruger_ekf as planar
 
 
 def gauss_kruger(quick: bool):
@@ -62,7 +62,7 @@ def ekf_step(quick: bool):
     t = np.arange(n) * T
     x0 = truth[0]
     t_nav = best_time(lambda: planar.filter_grid(t, z, x0, np.eye(5)))
-    rows = [Result("EKF step, 5 states (paper 002)", "navlib.planar (numba)", n / t_nav, "steps/s", t_nav,
+    rows = [Result("EKF step, 5 states (paper 002)", "navlib.papers.gauss_kruger_ekf (numba)", n / t_nav, "steps/s", t_nav,
                    goal=5e5, note="goal 0.5 M/s and 10x filterpy")]
     try:
         import filterpy  # noqa: F401

@@ -45,21 +45,21 @@ Compiled kernels
     Sequential per-sample loops are compiled with numba (``@njit(cache=True)``)
     and run unchanged as plain Python with ``NUMBA_DISABLE_JIT=1``.
 """
+import importlib
+import warnings
+
 from . import (
-    ahrs,
     alignment,
     analysis,
     atmosphere,
     attitude,
     earth,
     faults,
+    filters,
     geodesy,
-    gyrobias,
     kalman,
     montecarlo,
-    northfinding,
-    pedestrian,
-    planar,
+    papers,
     plots,
     repro,
     robust,
@@ -72,6 +72,21 @@ from . import (
 
 __version__ = "0.1.0"
 
-__all__ = ["ahrs", "alignment", "analysis", "atmosphere", "attitude", "earth", "faults", "geodesy", "gyrobias", "kalman",
-           "montecarlo", "northfinding", "pedestrian", "planar", "plots", "repro", "robust", "sensors", "strapdown", "timing",
-           "trajectory", "units", "__version__"]
+__all__ = ["alignment", "analysis", "atmosphere", "attitude", "earth", "faults", "filters", "geodesy", "kalman",
+           "montecarlo", "papers", "plots", "repro", "robust", "sensors", "strapdown", "timing", "trajectory", "units",
+           "__version__"]
+
+# The old paper modules, kept one release as deprecated aliases (see CONTRIBUTING.md): ``navlib.ahrs``
+# still works after ``import navlib``, and warns.
+_DEPRECATED = {"northfinding", "gyrobias", "planar", "ahrs", "pedestrian"}
+
+
+def __getattr__(name: str):
+    if name in _DEPRECATED:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", DeprecationWarning)
+            module = importlib.import_module(f"{__name__}.{name}")
+        warnings.warn(f"navlib.{name} is deprecated and will be removed in navlib 0.3; see CONTRIBUTING.md",
+                      DeprecationWarning, stacklevel=2)
+        return module
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

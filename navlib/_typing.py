@@ -5,8 +5,6 @@ last axis, time on the axis before it, leading axes free (trials).
 """
 from __future__ import annotations
 
-from typing import Union
-
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
@@ -14,7 +12,7 @@ __all__ = ["ArrayLike", "Array", "Scalar", "Vec3", "Vec3Series", "Quat", "Dcm", 
 
 Array = NDArray[np.float64]
 """A float64 result array."""
-Scalar = Union[float, np.floating]
+Scalar = float | np.floating
 Vec3 = ArrayLike
 """(..., 3): a vector such as ``f_b`` or ``vel_n``."""
 Vec3Series = ArrayLike
@@ -27,5 +25,5 @@ Angles = ArrayLike
 """(...,) angles in rad, or (..., 3) ``hpr`` = [heading, pitch, roll] (rad)."""
 Times = ArrayLike
 """(N,) epoch times (s), strictly increasing."""
-Interval = Union[float, ArrayLike]
+Interval = float | ArrayLike
 """A fixed sample interval (s) or per-sample intervals of shape (N,)."""

@@ -5,7 +5,7 @@ robot combined positioning based on Gaussian projection", *Machine Building &
 Automation* 52(1): 173–176, 2023, doi:10.19344/j.cnki.issn1671-5276.2023.01.043.
 
 The paper projects GPS latitude/longitude to Gauss–Krüger (GK) plane
-coordinates in 3° zones before its EKF (:mod:`navlib.planar`). GK is the
+coordinates in 3° zones before its EKF (:mod:`navlib.papers.gauss_kruger_ekf`). GK is the
 tangent transverse Mercator (scale 1 on the central meridian, no 0.9996 as in
 UTM). As in the paper and Chinese practice, **x is the northing** (meridian
 arc from the equator) and **y the easting** from the central meridian; no

@@ -176,7 +176,7 @@ def nav_step(lla, vel, q, w, f, dt, earth_consts, hold_height=False):
     """One mechanisation step (module docstring), updating ``lla``, ``vel``, ``q`` in place.
 
     Compiled building block for filters that run the INS sample by sample
-    (e.g. :mod:`navlib.pedestrian`); :func:`integrate` loops over it.
+    (e.g. :mod:`navlib.papers.pedestrian_ins`); :func:`integrate` loops over it.
 
     Parameters
     ----------

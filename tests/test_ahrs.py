@@ -1,4 +1,4 @@
-"""navlib.ahrs (paper 003): equations, filters, bad input, and the cross-check against ahrs (AHRS 0.4.0)."""
+"""navlib.papers.mimu_mag_rtk (paper 003): equations, filters, bad input, and the cross-check against ahrs (AHRS 0.4.0)."""
 import json
 import os
 import subprocess
@@ -9,7 +9,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from navlib import ahrs, attitude, earth, units
+from navlib import attitude, earth, units
+from navlib.papers import mimu_mag_rtk as ahrs
 
 B_N = earth.magnetic_field(32.03, 118.85, 20.0, 2022.5)        # Nanjing, the paper's site
 B_REF, DECL, INCL, INTENSITY = ahrs.magnetic_reference(B_N)
@@ -269,7 +270,8 @@ def test_mahony_matches_ahrs_package_to_rounding():
 
 SCRIPT = r"""
 import json, numpy as np
-from navlib import ahrs, attitude, earth
+from navlib import attitude, earth
+from navlib.papers import mimu_mag_rtk as ahrs
 rng = np.random.default_rng(0)
 B = earth.magnetic_field(32.0, 118.8, 0.0, 2022.5)
 w = 0.01 * rng.standard_normal((2, 200, 3)); w[0, 5] = np.nan

@@ -1,4 +1,4 @@
-"""Tests of navlib.gyrobias (paper 001): equations, closed loops, noise model, bad input."""
+"""Tests of navlib.papers.rotation_bias (paper 001): equations, closed loops, noise model, bad input."""
 import json
 import os
 import subprocess
@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation
 
 from navlib import attitude, earth, sensors, strapdown, trajectory, units
-from navlib import gyrobias as gb
+from navlib.papers import rotation_bias as gb
 
 DT = 0.01
 LAT = units.deg(40.0)
@@ -282,7 +282,8 @@ def test_bad_input_names_the_argument(call, arg):
 
 SCRIPT = r"""
 import json, numpy as np
-from navlib import gyrobias as gb, trajectory, units, earth
+from navlib import trajectory, units, earth
+from navlib.papers import rotation_bias as gb
 lat = units.deg(40.0)
 traj = trajectory.reciprocating_rotation(20.0, 0.01, [lat, 0, 0], units.deg([0, 30, 0]), [0, 1, 0], np.pi / 2, 5.0, 0.5)
 w, f = trajectory.ideal_imu(traj)
@@ -361,7 +362,8 @@ def test_fuzz_table_covers_every_public_function():
 
 FAULT_SCRIPT = r"""
 import json, numpy as np
-from navlib import gyrobias as gb, trajectory, units, earth
+from navlib import trajectory, units, earth
+from navlib.papers import rotation_bias as gb
 lat = units.deg(40.0)
 traj = trajectory.reciprocating_rotation(20.0, 0.01, [lat, 0, 0], units.deg([0, 30, 0]), [0, 1, 0], np.pi / 2, 5.0, 0.5)
 w, f = trajectory.ideal_imu(traj)

@@ -1,4 +1,4 @@
-"""Tests of navlib.northfinding (paper 000, Tan & Xie): identities, error theory, bad input."""
+"""Tests of navlib.papers.north_finding (paper 000, Tan & Xie): identities, error theory, bad input."""
 from __future__ import annotations
 
 import numpy as np
@@ -6,7 +6,7 @@ import pytest
 from helpers import check_fuzz, fuzz_cases
 
 from navlib import attitude, sensors, trajectory, units
-from navlib import northfinding as nf
+from navlib.papers import north_finding as nf
 
 LAT = units.deg(28.361735)
 

@@ -1,4 +1,4 @@
-"""navlib.pedestrian (paper 004): conventions, Eqs. (1)-(6), detector, filter, barometer, PDR."""
+"""navlib.papers.pedestrian_ins (paper 004): conventions, Eqs. (1)-(6), detector, filter, barometer, PDR."""
 import json
 import os
 import subprocess
@@ -9,7 +9,7 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from navlib import attitude, earth, kalman, sensors, strapdown, trajectory, units
-from navlib import pedestrian as pd
+from navlib.papers import pedestrian_ins as pd
 
 LAT = units.deg(30.55)
 LLA0 = [LAT, units.deg(114.30), 20.0]
@@ -269,7 +269,8 @@ def test_walking_aids_bound_heading_and_height(carpark):
 def test_kernel_runs_uncompiled_with_the_same_result():
     script = r"""
 import json, numpy as np, warnings
-from navlib import pedestrian as pd, trajectory, units
+from navlib import trajectory, units
+from navlib.papers import pedestrian_ins as pd
 legs = [pd.Leg(3.0), pd.Leg(3.0, 1.0, turn=0.5), pd.Leg(2.0)]
 traj = pd.walk(legs, 0.02, [0.5, 1.9, 10.0], 0.2)
 w, f = trajectory.ideal_imu(traj)

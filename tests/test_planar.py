@@ -1,4 +1,4 @@
-"""Tests of navlib.planar: motion model, EKF cycle, dropouts, zone crossing, bad input."""
+"""Tests of navlib.papers.gauss_kruger_ekf: motion model, EKF cycle, dropouts, zone crossing, bad input."""
 import json
 import os
 import subprocess
@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from navlib import geodesy, kalman, planar
+from navlib import geodesy, kalman
+from navlib.papers import gauss_kruger_ekf as planar
 
 ORIGIN = np.deg2rad([26.06, 119.20])       # paper 002 site (Fuzhou, assumed), GK zone 40
 X0_STRAIGHT = np.array([0.0, 0.0, np.pi / 4, 1.0, 0.0])
@@ -153,7 +154,7 @@ def test_waypoint_path_reaches_every_mark():
 def test_kernels_run_uncompiled_with_the_same_results():
     script = r"""
 import json, numpy as np
-from navlib import planar
+from navlib.papers import gauss_kruger_ekf as planar
 t = np.arange(50) * 0.5
 rng = np.random.default_rng(0)
 z = np.column_stack([rng.normal(0, 2, (50, 2)), rng.normal(0.3, 0.1, 50), np.ones(50), np.zeros(50)])
@@ -266,7 +267,7 @@ FUZZ_CASES = [(fn, arg, bad) for fn, kw in VALID_CALLS.items() for arg in kw for
 
 
 def test_fuzz_table_covers_every_public_function():
-    """Covered / total public functions of navlib.planar: 9/9 (plus 2 result records and 3 constants)."""
+    """Covered / total public functions of navlib.papers.gauss_kruger_ekf: 9/9 (plus 2 result records and 3 constants)."""
     assert sorted(VALID_CALLS) == sorted(set(planar.__all__) - RECORDS - CONSTANTS)
     for fn, kw in VALID_CALLS.items():
         getattr(planar, fn)(**kw)

@@ -10,7 +10,8 @@ from pathlib import Path
 import numpy as np
 
 import navlib
-from navlib import ahrs, attitude, earth, repro, sensors, strapdown, trajectory
+from navlib import attitude, earth, repro, sensors, strapdown, trajectory
+from navlib.papers import mimu_mag_rtk as ahrs
 
 here = Path.cwd()
 pkg = Path(navlib.__file__).resolve().parent

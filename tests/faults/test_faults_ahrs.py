@@ -1,4 +1,4 @@
-"""Fault injection for navlib.ahrs (paper 003): Mahony PI filter, quaternion KF, RTK heading fusion.
+"""Fault injection for navlib.papers.mimu_mag_rtk (paper 003): Mahony PI filter, quaternion KF, RTK heading fusion.
 
 Data: the Fig. 4 static simulation of notebook 04, shortened to 300 s at 50 Hz
 (ADIS16475-1 noise, 0.09 deg/s gyro bias on every axis, 0.04 G magnetometer
@@ -9,12 +9,13 @@ exact answer is known.
 Every test checks: output finite; the quaternion KF's covariance symmetric
 positive definite after every sample; the heading within a stated bound of
 the fault-free run on the same data; and each injected fault counted in
-:data:`navlib.ahrs.COUNT_NAMES` (or bounded, with the reason).
+:data:`navlib.papers.mimu_mag_rtk.COUNT_NAMES` (or bounded, with the reason).
 """
 import numpy as np
 import pytest
 
-from navlib import ahrs, attitude, earth, faults, sensors, timing, trajectory, units
+from navlib import attitude, earth, faults, sensors, timing, trajectory, units
+from navlib.papers import mimu_mag_rtk as ahrs
 
 B_N = earth.magnetic_field(32.03, 118.85, 20.0, 2022.5)
 LLA0 = [units.deg(32.03), units.deg(118.85), 20.0]

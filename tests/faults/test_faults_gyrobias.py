@@ -1,4 +1,4 @@
-"""Fault injection: the rotation bias estimator of paper 001 (navlib.gyrobias).
+"""Fault injection: the rotation bias estimator of paper 001 (navlib.papers.rotation_bias).
 
 Data: the paper's rig, small: an MTi-100 rotated +-90 deg about y_b every 5 s
 (0.5-s rotations, 4.5-s dwells) at 30 deg pitch, 40 deg N, 100 Hz, 300 s
@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from navlib import earth, faults, sensors, timing, trajectory, units
-from navlib import gyrobias as gb
+from navlib.papers import rotation_bias as gb
 
 DT, PERIOD, ROT = 0.01, 5.0, 0.5
 LAT = units.deg(40.0)

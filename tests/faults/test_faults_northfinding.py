@@ -1,4 +1,4 @@
-"""Fault injection: north finding of paper 000 (navlib.northfinding).
+"""Fault injection: north finding of paper 000 (navlib.papers.north_finding).
 
 Data: the paper's stop-and-go drive, small: three 3-min stops (headings 122,
 191.47, 232.93 deg, tilted by up to 2 deg) joined by 40-s drives, 100 Hz,
@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 from navlib import attitude, faults, sensors, timing, trajectory, units
-from navlib import northfinding as nf
+from navlib.papers import north_finding as nf
 
 DT = 0.01
 LAT = units.deg(28.361735)

@@ -1,4 +1,4 @@
-"""Pedestrian ZUPT/ZARU error-state filter (navlib.pedestrian, paper 004) under faults and bad input.
+"""Pedestrian ZUPT/ZARU error-state filter (navlib.papers.pedestrian_ins, paper 004) under faults and bad input.
 
 Data: paper 004's simulation (notebook 05) shortened to a 118-s walk with
 stops, a turn and a flight of stairs: ``pedestrian.walk`` seen by an MPU-6050
@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 from navlib import attitude, earth, faults, sensors, timing, trajectory, units
-from navlib import pedestrian as pd
+from navlib.papers import pedestrian_ins as pd
 
 LLA0 = [units.deg(30.55), units.deg(114.30), 20.0]
 DT = 0.01

@@ -1,4 +1,4 @@
-"""Fault injection for navlib.planar: the 5-state EKF and dead reckoning of paper 002.
+"""Fault injection for navlib.papers.gauss_kruger_ekf: the 5-state EKF and dead reckoning of paper 002.
 
 Data: paper 002's simulated robot (Fuzhou site, GK zone 40, T = 0.5 s, the
 paper's Q and R in SI units: GPS sigma 2.5 m, heading 0.1 rad, speed 0.02 m/s,
@@ -17,7 +17,8 @@ check that it raises no false alarm on this data.
 import numpy as np
 import pytest
 
-from navlib import faults, kalman, planar, sensors, timing
+from navlib import faults, kalman, sensors, timing
+from navlib.papers import gauss_kruger_ekf as planar
 
 ORIGIN = np.deg2rad([26.06, 119.20])            # Fuzhou, GK zone 40 (notebook 03's site)
 T = 0.5

@@ -1,0 +1,1122 @@
+"""North finding with a single-axis optical gyro and a MEMS IMU (paper 000).
+
+Tan C., Xie X., "Indoor mobile robot north-finding based on single-axis optical
+gyroscope and MEMS IMU", Chinese Journal of Scientific Instrument
+(仪器仪表学报), doi:10.19650/j.cnki.cjsi.J2412479.
+
+Frames follow :mod:`navlib`: ENU navigation frame, right-front-up body frame
+(the paper's s frame, with the optical gyro on the forward axis y), ``C_bn``
+is the paper's ``C_s^n`` and heading is clockwise from north (paper Eq. 3).
+Latitude is ``lat`` (the paper's L). omega_ie = 7.292115e-5 rad/s.
+
+Equations implemented
+---------------------
+TRIAD, Eqs. (1)-(2) -- :func:`triad`::
+
+    C_n^s = [-f, -f x w, (-f x w) x (-f)] [g_n, g_n x w_ie, (g_n x w_ie) x g_n]^-1
+
+  With noisy inputs the product is not orthonormal (the paper does not say
+  what it does about that); :func:`triad` projects it onto the nearest
+  rotation with :func:`navlib.attitude.orthonormalize` (SVD) unless asked for
+  the raw product.
+Tilt, Eqs. (4)-(6) -- :func:`tilt_from_accel`: ``pitch = asin(f_y / g)``,
+  ``roll = atan2(-f_x, f_z)``.
+Single-axis candidates, Eqs. (8)-(11) -- :func:`heading_candidates`::
+
+    cos psi = (w_y - w_ie sin(lat) sin(pitch)) / (w_ie cos(lat) cos(pitch))
+    psi(1) = alpha = acos(clip(cos psi, -1, 1)),   psi(2) = 2 pi - alpha
+
+  The clipping is reported per trial (``clipped``).
+Resolution, Eq. (12) -- :func:`resolve`: the four candidate heading changes
+  ``psi2(i) - psi1(j)`` are compared with the MEMS INS heading change through
+  ``wrap_pi``; the nearest one gives the heading at position 2, and the margin
+  to the nearest *different* candidate is returned.
+Error theory -- Eq. (13) with its sign corrected (:func:`triad_heading_error`),
+  Eq. (16) (:func:`triad_heading_std`), Eq. (20) and its full linearisation
+  with the pitch (accelerometer) term (:func:`single_axis_heading_std`,
+  :func:`single_axis_heading_error`)::
+
+    d psi = [-d w_y + w_ie (sin lat cos th - cos lat sin th cos psi) d th]
+            / (w_ie cos lat cos th sin psi),        d th = d f_y / (g cos th)
+
+Extensions: :func:`pair_probabilities` (exact probability of each candidate
+pair winning for a Gaussian INS error; paper's "any second position" claim),
+:func:`four_position_heading` (classic turntable north finding with the same
+gyro) and the Monte Carlo of Fig. 4 (:func:`simulate_static_outputs`,
+:func:`monte_carlo`) vectorised over headings and trials.
+
+Faulty data (every fault is counted; nothing is dropped silently)
+-----------------------------------------------------------------
+=================  ===========================================  ======================================
+fault              what happens                                 reported by
+=================  ===========================================  ======================================
+NaN dropouts       stop means: samples left out; a stop with    ``StaticWindow.n_dropped_*``,
+                   < ``min_fraction`` (50 %) left is refused    ``status == TOO_FEW``
+                   INS change: last sample held; a run longer   ``InsReport.n_held``, ``longest_gap``,
+                   than ``max_gap`` (0.1 s) refuses the drive   ``refused`` (NaN result)
+outliers (spikes)  stop means: ``outlier_k`` x MAD from the     ``StaticWindow.n_outliers_*``
+                   median left out (opt-in; without it the
+                   error bound is ``k sigma sqrt(p/N)``)
+saturation         stop: refused (``full_scale_*``);            ``n_saturated_*``, ``SATURATED``;
+                   INS drive: refused (``full_scale``)          ``InsReport.n_saturated``
+timing             ``timing.sanitize`` then windows cut by      ``TimingReport``; ``dt`` arrays in
+                   time (``stop_solutions(time=...)``); INS     :func:`ins_heading_change`
+                   integrates per-sample intervals
+=================  ===========================================  ======================================
+
+A refused stop or drive raises ValueError (``strict=True``, the default) or
+gives NaN, which :func:`resolve` rejects, so it cannot be used by mistake.
+
+Errata corrected (ids of ``data/errata.csv``)
+--------------------------------------------
+* E000-01: omega_ic in Eqs. (13), (16)-(20) is omega_ie.
+* E000-02: with clockwise heading, Eq. (13) has the wrong sign:
+  ``psi_hat - psi = -dw_E / (w_ie cos lat)``.
+* E000-03: Eq. (20) fails near 0 deg / 180 deg, where |cos psi| > 1 must be
+  clipped (this is where Table 1's "180.00, 180.00" comes from).
+* E000-04: Eq. (20) omits the accelerometer (pitch) term and a 1/cos^2(pitch).
+* E000-07: the candidate comparison must use wrapped differences.
+* E000-10: alpha, beta lie in [0, pi], not [0, 2 pi).
+* E000-12: a MEMS INS started with heading 0 cannot remove the horizontal Earth
+  rate correctly; :func:`ins_heading_change` removes only the vertical part
+  ``w_ie sin(lat)`` by default (or none / the full, misdirected rate).
+"""
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.special import ndtr
+
+from .. import attitude, earth, strapdown
+from .._validate import as_dcm, generator, in_range, time_axis
+from .._validate import nonempty_array as as_array
+from .._validate import nonempty_latitude as latitude
+from .._validate import nonempty_positive as positive
+from ..sensors import TriadErrors
+from ..trajectory import Segment
+
+__all__ = ["MAX_LAT_DEG", "OK", "TOO_FEW", "SATURATED", "MOVING", "StaticWindow", "static_means", "triad",
+           "triad_heading", "tilt_from_accel", "Candidates",
+           "heading_candidates", "nearest_candidate_error", "Resolution", "resolve", "triad_heading_error",
+           "triad_heading_std",
+           "single_axis_heading_std", "single_axis_heading_error", "simulate_static_outputs",
+           "MonteCarlo", "monte_carlo", "pair_probabilities", "four_position_heading",
+           "four_position_heading_std", "window_mean_std", "stop_and_go",
+           "StopSolutions", "stop_solutions", "InsReport", "ins_heading_change"]
+
+OMEGA_IE = earth.OMEGA_IE
+MAX_LAT_DEG = 89.0
+"""Largest |latitude| accepted (deg): beyond it cos(lat) < 0.0175 and the
+horizontal Earth rate (< 0.26 deg/h) no longer defines north usefully."""
+
+
+# --------------------------------------------------------------------------
+# validation helpers
+# --------------------------------------------------------------------------
+
+def _lat(lat, deg: bool = False) -> np.ndarray:
+    """Latitude in rad, rejecting |lat| > 90 deg and near-polar |lat| > MAX_LAT_DEG."""
+    lat = latitude(lat, "lat", deg=deg)
+    if np.any(np.abs(lat) > np.deg2rad(MAX_LAT_DEG)):
+        raise ValueError(f"lat: expected |lat| <= {MAX_LAT_DEG} deg for north finding (cos(lat) -> 0 near "
+                         f"the poles), got {np.rad2deg(np.abs(lat).max()):.4g} deg")
+    return lat
+
+
+def _vec(x, name: str) -> np.ndarray:
+    return as_array(x, name, tail=(3,))
+
+
+OK, TOO_FEW, SATURATED, MOVING = 0, 1, 2, 3
+"""Status codes of a static window (:class:`StaticWindow`)."""
+
+
+@dataclass(frozen=True)
+class StaticWindow:
+    """Averages of one static window and what was left out (shapes (..., 3) and (...)).
+
+    Unpacks as ``w_mean, f_mean = static_means(...)``.
+
+    Attributes
+    ----------
+    w_mean, f_mean : ndarray, shape (..., 3)
+        Means of the samples used (rad/s, m/s^2); NaN where the window was
+        refused (``status != OK``).
+    n_samples : int
+        Samples in the window (N).
+    n_used_gyro, n_used_accel : ndarray of int, shape (...)
+        Samples averaged.
+    n_dropped_gyro, n_dropped_accel : ndarray of int, shape (...)
+        Samples with a NaN component (dropouts), left out.
+    n_outliers_gyro, n_outliers_accel : ndarray of int, shape (...)
+        Samples more than ``outlier_k`` x 1.4826 MAD from the window median in
+        any component, left out (0 without ``outlier_k``).
+    n_saturated_gyro, n_saturated_accel : ndarray of int, shape (...)
+        Samples with a component at the device rails (``|x| >= full_scale``).
+    status : ndarray of int, shape (...)
+        ``OK`` (0); ``TOO_FEW`` (1): fewer than ``min_fraction`` of the samples
+        (and 2) left; ``SATURATED`` (2): saturated samples, the robot was not
+        still or the reading is unknown; ``MOVING`` (3): the accelerometer
+        shows motion (``accel_tol``).
+    """
+    w_mean: np.ndarray
+    f_mean: np.ndarray
+    n_samples: int
+    n_used_gyro: np.ndarray
+    n_used_accel: np.ndarray
+    n_dropped_gyro: np.ndarray
+    n_dropped_accel: np.ndarray
+    n_outliers_gyro: np.ndarray
+    n_outliers_accel: np.ndarray
+    n_saturated_gyro: np.ndarray
+    n_saturated_accel: np.ndarray
+    status: np.ndarray
+
+    def __iter__(self):
+        return iter((self.w_mean, self.f_mean))
+
+    @property
+    def ok(self) -> np.ndarray:
+        """True where the window was accepted."""
+        return self.status == OK
+
+
+def _outliers(x, valid, k):
+    """Samples more than k * 1.4826 MAD from the median of the valid samples (any component)."""
+    xv = np.where(valid[..., None], x, np.nan)
+    with np.errstate(all="ignore"), warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)          # all-NaN windows: handled as TOO_FEW
+        med = np.nanmedian(xv, axis=-2, keepdims=True)
+        mad = np.nanmedian(np.abs(xv - med), axis=-2, keepdims=True)
+    thresh = k * np.maximum(1.4826 * mad, 1e-12)
+    return valid & np.any(np.abs(x - med) > thresh, axis=-1)
+
+
+def _masked_mean(x, used, n_used):
+    if used.all():
+        return x.mean(-2)                    # the fault-free path, bit-identical to a plain mean
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(used[..., None], x, 0.0).sum(-2) / n_used[..., None]
+
+
+def static_means(w_ib_b, f_b, lat, h=0.0, accel_tol: float = 0.2, *, min_fraction: float = 0.5,
+                 outlier_k: float | None = None, full_scale_gyro: float | None = None,
+                 full_scale_accel: float | None = None, strict: bool = True) -> StaticWindow:
+    """Average a static window of gyro and accelerometer samples (paper step 1).
+
+    Faults, each counted in the returned :class:`StaticWindow`:
+
+    * dropouts: samples with a NaN component are left out of that sensor's
+      mean (``n_dropped_*``); a window with fewer than
+      ``max(2, min_fraction N)`` samples left is refused (``TOO_FEW``). A
+      30-s gap in a 3-min stop leaves 150 s: the mean's white-noise std grows
+      by sqrt(180/150) = 1.10.
+    * outliers: with ``outlier_k``, samples more than ``outlier_k`` x
+      1.4826 MAD from the window median are left out (``n_outliers_*``).
+      Without it, spikes of +-k sigma on a fraction p of the samples add
+      ``k sigma sqrt(p / N)`` of noise to the mean (10x the mean's
+      white-noise std for p = 1 %, k = 100), unreported.
+    * saturation: with ``full_scale_gyro``/``full_scale_accel`` (device
+      ranges, rad/s and m/s^2), samples at the rails are counted and the
+      window is refused (``SATURATED``): a static robot never reaches them.
+    * timing: the mean does not depend on sample order; duplicated
+      timestamps are removed by ``timing.sanitize`` before windows are cut
+      by time (:func:`stop_solutions` with ``time``).
+
+    Parameters
+    ----------
+    w_ib_b, f_b : array_like, shape (..., N, 3)
+        Gyro (rad/s) and accelerometer (m/s^2) samples of one stop, N >= 2;
+        NaN marks dropouts.
+    lat : float
+        Latitude (rad), used for the expected gravity.
+    h : float
+        Height (m).
+    accel_tol : float
+        Largest accepted deviation (m/s^2) of the mean specific-force norm
+        from normal gravity, and of the two half-window means from each
+        other. Larger deviations mean the robot was not static (``MOVING``).
+    min_fraction : float
+        Smallest fraction of the window, in (0, 1], that must remain per sensor.
+    outlier_k : float, optional
+        MAD outlier threshold (e.g. 6); None: no outlier rejection.
+    full_scale_gyro, full_scale_accel : float, optional
+        Device ranges; None: no saturation check.
+    strict : bool
+        Raise ValueError for a refused window (default); ``False`` returns NaN
+        means with its ``status`` instead.
+
+    Returns
+    -------
+    StaticWindow
+        Unpacks as ``(w_mean, f_mean)``, shapes (..., 3).
+
+    Raises
+    ------
+    ValueError
+        Empty windows, inf, mismatched shapes; with ``strict``, a refused
+        window (too few samples, saturated, or the robot evidently moving).
+    """
+    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
+    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=True)
+    if w.shape != f.shape:
+        raise ValueError(f"f_b: expected the shape of w_ib_b {w.shape}, got {f.shape}")
+    n = w.shape[-2]
+    if n < 2:
+        raise ValueError(f"w_ib_b: expected a static window of at least 2 samples, got {n}")
+    tol = float(positive(accel_tol, "accel_tol"))
+    frac = float(in_range(as_array(min_fraction, "min_fraction"), "min_fraction", 0.0, 1.0, lo_open=True))
+    k_out = None if outlier_k is None else float(positive(outlier_k, "outlier_k"))
+    fs_g = np.inf if full_scale_gyro is None else float(positive(full_scale_gyro, "full_scale_gyro"))
+    fs_a = np.inf if full_scale_accel is None else float(positive(full_scale_accel, "full_scale_accel"))
+    g = earth.gravity(_lat(lat), as_array(h, "h"))
+    need = max(2, int(np.ceil(frac * n)))
+    out = {}
+    for name, x, fs in (("gyro", w, fs_g), ("accel", f, fs_a)):
+        valid = np.all(np.isfinite(x), -1)
+        sat = valid & np.any(np.abs(x) >= fs, -1)
+        outl = _outliers(x, valid, k_out) if k_out is not None else np.zeros_like(valid)
+        used = valid & ~outl
+        n_used = used.sum(-1)
+        out[name] = (_masked_mean(x, used, n_used), n_used, n - valid.sum(-1), outl.sum(-1), sat.sum(-1), used)
+    (w_mean, nu_g, nd_g, no_g, ns_g, _), (f_mean, nu_a, nd_a, no_a, ns_a, used_f) = out["gyro"], out["accel"]
+    status = np.zeros(w_mean.shape[:-1], dtype=int)
+    too_few = (nu_g < need) | (nu_a < need)
+    status[too_few] = TOO_FEW
+    status[(status == OK) & ((ns_g > 0) | (ns_a > 0))] = SATURATED
+    with np.errstate(invalid="ignore"):
+        dev = np.abs(np.linalg.norm(f_mean, axis=-1) - g)
+        if used_f.all():
+            halves = np.abs(f[..., : n // 2, :].mean(-2) - f[..., n // 2:, :].mean(-2)).max(-1)
+        else:
+            u1, u2 = used_f[..., : n // 2], used_f[..., n // 2:]
+            halves = np.abs(_masked_mean(f[..., : n // 2, :], u1, u1.sum(-1))
+                            - _masked_mean(f[..., n // 2:, :], u2, u2.sum(-1))).max(-1)
+    status[(status == OK) & ((dev > tol) | ~(halves <= tol))] = MOVING
+    if strict and np.any(status != OK):
+        if np.any(status == TOO_FEW):
+            which = "w_ib_b" if np.any(nu_g < need) else "f_b"
+            left = int(min(nu_g.min(), nu_a.min()))
+            raise ValueError(f"{which}: only {left} of {n} samples left after dropouts/outliers; expected at least "
+                             f"{need} (min_fraction = {frac:g})")
+        if np.any(status == SATURATED):
+            which = "w_ib_b" if np.any(ns_g > 0) else "f_b"
+            raise ValueError(f"{which}: {int(ns_g.sum() + ns_a.sum())} samples at the full-scale range: the robot "
+                             "was not static during the stop")
+        if np.any(dev[status == MOVING] > tol):
+            raise ValueError(f"f_b: mean specific-force norm differs from gravity by {np.nanmax(dev):.3g} m/s^2 "
+                             f"(> accel_tol = {tol:g}): the robot is not static")
+        raise ValueError(f"f_b: the two halves of the window differ by {np.nanmax(halves):.3g} m/s^2 "
+                         f"(> accel_tol = {tol:g}): the robot moved during the stop")
+    bad = status != OK
+    w_mean = np.where(bad[..., None], np.nan, w_mean)
+    f_mean = np.where(bad[..., None], np.nan, f_mean)
+    return StaticWindow(w_mean, f_mean, n, nu_g, nu_a, nd_g, nd_a, no_g, no_a, ns_g, ns_a, status)
+
+
+# --------------------------------------------------------------------------
+# TRIAD (Eqs. 1-3)
+# --------------------------------------------------------------------------
+
+def _reference_triad(g_n, w_ie_n):
+    a = g_n
+    b = np.cross(g_n, w_ie_n)
+    return np.stack([a, b, np.cross(b, a)], -1)
+
+
+def triad(f_b, w_ib_b, lat, orthonormal: bool = True):
+    """Analytic coarse alignment with a three-axis gyro (paper Eqs. 1-2).
+
+    Parameters
+    ----------
+    f_b : array_like, shape (..., 3)
+        Averaged specific force (m/s^2).
+    w_ib_b : array_like, shape (..., 3)
+        Averaged angular rate (rad/s).
+    lat : float or array_like broadcasting with the leading axes
+        Latitude (rad).
+    orthonormal : bool
+        Project the result onto the nearest rotation (SVD). ``False`` returns
+        Eq. (2)'s raw product, which noise makes slightly non-orthonormal.
+
+    Returns
+    -------
+    C_bn : ndarray, shape (..., 3, 3)
+    """
+    f = _vec(f_b, "f_b")
+    w = _vec(w_ib_b, "w_ib_b")
+    lat = _lat(lat)
+    g_n = np.stack(np.broadcast_arrays(0.0, 0.0, -earth.gravity(lat)), -1)
+    body = _reference_triad(-f, w)                    # columns: -f, -f x w, (-f x w) x (-f)
+    nav = _reference_triad(g_n, earth.earth_rate_n(lat))
+    C_nb = body @ np.linalg.inv(nav)
+    C_bn = np.swapaxes(C_nb, -1, -2)
+    return attitude.orthonormalize(C_bn) if orthonormal else C_bn
+
+
+def triad_heading(C_bn):
+    """Heading ``atan2(c12, c22) mod 2 pi`` (rad) of a TRIAD matrix, orthonormal or raw.
+
+    The inverse of paper Eq. (3) for the heading; unlike
+    :func:`navlib.attitude.dcm_to_euler` it accepts Eq. (2)'s raw,
+    slightly non-orthonormal product. Shape (..., 3, 3) -> (...).
+    """
+    C = as_array(C_bn, "C_bn", tail=(3, 3))
+    return attitude.wrap_2pi(np.arctan2(C[..., 0, 1], C[..., 1, 1]))
+
+
+def tilt_from_accel(f_b, g=None):
+    """Pitch and roll from averaged specific force (paper Eqs. 5-6).
+
+    ``pitch = asin(f_y / g)``, ``roll = atan2(-f_x, f_z)``. Without ``g`` the
+    norm ``|f|`` stands in for g (the paper gives no value, E000-13), which keeps asin's argument
+    in range; with ``g`` the argument is clipped to [-1, 1].
+
+    Parameters
+    ----------
+    f_b : array_like, shape (..., 3)  (m/s^2)
+    g : float, optional
+        Gravity (m/s^2).
+
+    Returns
+    -------
+    pitch, roll : ndarray, shape (...)  (rad)
+    """
+    f = _vec(f_b, "f_b")
+    norm = np.linalg.norm(f, axis=-1)
+    if np.any(norm < 1e-9):
+        raise ValueError("f_b: expected non-zero specific force (a static accelerometer reads about g)")
+    g = norm if g is None else positive(g, "g")
+    return np.arcsin(np.clip(f[..., 1] / g, -1.0, 1.0)), np.arctan2(-f[..., 0], f[..., 2])
+
+
+# --------------------------------------------------------------------------
+# single-axis candidates and their resolution (Eqs. 8-12)
+# --------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Candidates:
+    """Two heading candidates of one stop (paper Eqs. 9-11).
+
+    Attributes
+    ----------
+    pair : ndarray, shape (..., 2)
+        ``[alpha, 2 pi - alpha]`` wrapped into [0, 2 pi) (rad).
+    alpha : ndarray, shape (...)
+        ``acos`` of the clipped cosine, in [0, pi] (E000-10).
+    cos_heading : ndarray, shape (...)
+        Right side of Eq. (9) before clipping.
+    clipped : ndarray of bool, shape (...)
+        True where |cos_heading| > 1 was clipped (noise near 0 or 180 deg).
+    pitch : ndarray, shape (...)
+        Pitch from Eq. (5) (rad).
+    """
+    pair: np.ndarray
+    alpha: np.ndarray
+    cos_heading: np.ndarray
+    clipped: np.ndarray
+    pitch: np.ndarray
+
+    @property
+    def n_clipped(self) -> int:
+        """Number of clipped stops/trials."""
+        return int(np.count_nonzero(self.clipped))
+
+
+def heading_candidates(w_y, f_b, lat, h=0.0) -> Candidates:
+    """Heading candidates from the forward gyro and the accelerometers (Eqs. 5, 9, 10).
+
+    Pitch is Eq. (5) literally, ``asin(f_y / g)`` with normal gravity g at
+    ``lat`` and ``h``, so that :func:`single_axis_heading_error` is its exact
+    linearisation.
+
+    Parameters
+    ----------
+    w_y : array_like, shape (...)
+        Averaged forward (y) gyro output (rad/s).
+    f_b : array_like, shape (..., 3)
+        Averaged specific force (m/s^2); only pitch is used (roll is not needed).
+    lat : float
+        Latitude (rad), |lat| <= MAX_LAT_DEG.
+    h : float
+        Height (m), for normal gravity.
+
+    Returns
+    -------
+    Candidates
+    """
+    w_y = as_array(w_y, "w_y")
+    lat = _lat(lat)
+    pitch, _ = tilt_from_accel(f_b, earth.gravity(lat, as_array(h, "h")))
+    cos_h = (w_y - OMEGA_IE * np.sin(lat) * np.sin(pitch)) / (OMEGA_IE * np.cos(lat) * np.cos(pitch))
+    clipped = np.abs(cos_h) > 1.0
+    alpha = np.arccos(np.clip(cos_h, -1.0, 1.0))
+    pair = np.stack([alpha, attitude.wrap_2pi(2 * np.pi - alpha)], -1)
+    return Candidates(pair, alpha, cos_h, clipped, pitch)
+
+
+def nearest_candidate_error(pair, heading):
+    """Error of the candidate nearest the true heading, wrapped (rad).
+
+    The single-axis error when the ambiguity is resolved correctly (Fig. 4).
+
+    Parameters
+    ----------
+    pair : array_like, shape (..., 2)
+        Candidate pairs (rad).
+    heading : array_like, broadcasting to (...)
+        True headings (rad).
+    """
+    p = as_array(pair, "pair", tail=(2,))
+    e = attitude.wrap_pi(p - as_array(heading, "heading")[..., None])
+    return np.take_along_axis(e, np.argmin(np.abs(e), -1)[..., None], -1)[..., 0]
+
+
+@dataclass(frozen=True)
+class Resolution:
+    """Outcome of the candidate-pair resolution (paper Eq. 12 and step 5).
+
+    Attributes
+    ----------
+    heading : ndarray, shape (...)
+        Chosen heading at position 2 (rad, [0, 2 pi)).
+    dpsi_candidates : ndarray, shape (..., 4)
+        ``[psi2(1)-psi1(1), psi2(1)-psi1(2), psi2(2)-psi1(1), psi2(2)-psi1(2)]``
+        = ``{beta-alpha, alpha+beta-2pi, 2pi-alpha-beta, alpha-beta}`` (rad).
+    residuals : ndarray, shape (..., 4)
+        Candidate minus INS heading change, wrapped (or not) as requested.
+    index : ndarray of int, shape (...)
+        Winning candidate (0..3); ``index // 2`` is position 2's candidate.
+    margin : ndarray, shape (...)
+        |residual| of the nearest candidate with a *different* value minus the
+        winner's (rad); ``inf`` when all four coincide (alpha = beta = pi).
+    """
+    heading: np.ndarray
+    dpsi_candidates: np.ndarray
+    residuals: np.ndarray
+    index: np.ndarray
+    margin: np.ndarray
+
+    @property
+    def dpsi(self) -> np.ndarray:
+        """The winning candidate heading change (rad)."""
+        return np.take_along_axis(self.dpsi_candidates, self.index[..., None], -1)[..., 0]
+
+
+def resolve(pair1, pair2, dpsi_ins, wrap: bool = True) -> Resolution:
+    """Pick position 2's heading with the INS heading change (Eq. 12, step 5).
+
+    Parameters
+    ----------
+    pair1, pair2 : array_like, shape (..., 2)
+        Candidate pairs at positions 1 and 2 (rad), e.g. ``Candidates.pair``.
+    dpsi_ins : array_like, shape (...)
+        Heading change measured by the MEMS INS (rad). NaN (a drive refused
+        by :func:`ins_heading_change`) raises ValueError: there is nothing
+        to resolve with.
+    wrap : bool
+        Compare ``wrap_pi(candidate - dpsi_ins)`` (default, E000-07). ``False``
+        reproduces the paper's literal unwrapped comparison, for demonstration.
+
+    Returns
+    -------
+    Resolution
+    """
+    p1 = as_array(pair1, "pair1", tail=(2,))
+    p2 = as_array(pair2, "pair2", tail=(2,))
+    ins = as_array(dpsi_ins, "dpsi_ins")
+    cands = (p2[..., :, None] - p1[..., None, :]).reshape(p2.shape[:-1] + (4,))
+    cands, ins = np.broadcast_arrays(cands, ins[..., None])
+    diff = cands - ins
+    res = attitude.wrap_pi(diff) if wrap else diff
+    score = np.abs(res)
+    index = np.argmin(score, axis=-1)
+    best_cand = np.take_along_axis(cands, index[..., None], -1)
+    best = np.take_along_axis(score, index[..., None], -1)
+    distinct = np.abs(attitude.wrap_pi(cands - best_cand)) > 1e-9
+    margin = np.where(distinct, score, np.inf).min(-1) - best[..., 0]
+    p2b = np.broadcast_to(p2, cands.shape[:-1] + (2,))
+    heading = np.take_along_axis(p2b, (index // 2)[..., None], -1)[..., 0]
+    return Resolution(heading, cands, res, index, margin)
+
+
+# --------------------------------------------------------------------------
+# error theory (Eqs. 13-20, errata E000-02 and E000-04)
+# --------------------------------------------------------------------------
+
+def triad_heading_error(C_bn, dw_b, lat):
+    """TRIAD heading error caused by a gyro error, Eq. (13) with its sign corrected.
+
+    ``psi_hat - psi = -dw_E / (w_ie cos lat)`` with ``dw_n = C_bn dw_b``
+    (E000-02: the printed ``+dw_E/...`` is the error of a counter-clockwise
+    azimuth).
+
+    Parameters
+    ----------
+    C_bn : array_like, shape (..., 3, 3)
+    dw_b : array_like, shape (..., 3)
+        Gyro error (rad/s).
+    lat : float  (rad)
+
+    Returns
+    -------
+    ndarray, shape (...)  (rad)
+    """
+    C = as_dcm(C_bn)
+    dw = _vec(dw_b, "dw_b")
+    dw_east = np.einsum("...j,...j->...", C[..., 0, :], dw)
+    return -dw_east / (OMEGA_IE * np.cos(_lat(lat)))
+
+
+def triad_heading_std(sigma_gyro, lat):
+    """Eq. (16): TRIAD heading error std ``sigma / (w_ie cos lat)`` (rad).
+
+    ``sigma_gyro`` (rad/s) is the std of each horizontal gyro error (equal and
+    uncorrelated, as the paper assumes); independent of heading.
+    """
+    s = positive(sigma_gyro, "sigma_gyro", allow_zero=True)
+    return s / (OMEGA_IE * np.cos(_lat(lat)))
+
+
+def _pitch(pitch):
+    return in_range(as_array(pitch, "pitch"), "pitch", -np.pi / 2, np.pi / 2, "rad", lo_open=True, hi_open=True)
+
+
+def single_axis_heading_std(heading, sigma_gyro, lat, pitch=0.0, sigma_accel=0.0, g=None):
+    """Single-axis heading error std (rad): Eq. (20) or its full linearisation.
+
+    With ``pitch = 0`` and ``sigma_accel = 0`` this is Eq. (20),
+    ``sigma_gyro / (w_ie cos lat |sin psi|)``. Otherwise the full
+    linearisation of Eq. (8) (E000-04)::
+
+        var = [sigma_g^2 + (w_ie (sin lat cos th - cos lat sin th cos psi) sigma_th)^2]
+              / (w_ie cos lat cos th sin psi)^2,      sigma_th = sigma_a / (g cos th)
+
+    Infinite at psi = 0 and pi, where the linearisation fails (E000-03).
+
+    Parameters
+    ----------
+    heading : array_like  (rad)
+    sigma_gyro : float  (rad/s)
+        Std of the averaged forward-gyro error.
+    lat : float  (rad)
+    pitch : array_like  (rad)
+    sigma_accel : float  (m/s^2)
+        Std of the averaged forward-accelerometer error.
+    g : float, optional
+        Gravity (m/s^2); normal gravity at ``lat`` by default.
+    """
+    psi = as_array(heading, "heading")
+    th = _pitch(pitch)
+    s_g = positive(sigma_gyro, "sigma_gyro", allow_zero=True)
+    s_a = positive(sigma_accel, "sigma_accel", allow_zero=True)
+    lat = _lat(lat)
+    g = earth.gravity(lat) if g is None else positive(g, "g")
+    s_th = s_a / (g * np.cos(th))
+    coupling = OMEGA_IE * (np.sin(lat) * np.cos(th) - np.cos(lat) * np.sin(th) * np.cos(psi))
+    with np.errstate(divide="ignore"):
+        return np.sqrt(s_g ** 2 + (coupling * s_th) ** 2) / np.abs(OMEGA_IE * np.cos(lat) * np.cos(th) * np.sin(psi))
+
+
+def single_axis_heading_error(heading, pitch, lat, dw_y, df_y=0.0, g=None):
+    """Linearised single-axis heading error for given sensor errors (rad, E000-04).
+
+    ``d psi = [-dw_y + w_ie (sin lat cos th - cos lat sin th cos psi) d th]
+    / (w_ie cos lat cos th sin psi)`` with ``d th = df_y / (g cos th)``. With
+    ``pitch = df_y = 0`` it is Eq. (19) solved for d psi.
+
+    Parameters
+    ----------
+    heading, pitch : array_like  (rad)
+    lat : float  (rad)
+    dw_y : array_like
+        Forward-gyro error (rad/s).
+    df_y : array_like
+        Forward-accelerometer error (m/s^2).
+    g : float, optional
+        Gravity (m/s^2); normal gravity at ``lat`` by default.
+    """
+    psi = as_array(heading, "heading")
+    th = _pitch(pitch)
+    dw = as_array(dw_y, "dw_y")
+    df = as_array(df_y, "df_y")
+    lat = _lat(lat)
+    g = earth.gravity(lat) if g is None else positive(g, "g")
+    d_th = df / (g * np.cos(th))
+    coupling = OMEGA_IE * (np.sin(lat) * np.cos(th) - np.cos(lat) * np.sin(th) * np.cos(psi))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return (-dw + coupling * d_th) / (OMEGA_IE * np.cos(lat) * np.cos(th) * np.sin(psi))
+
+
+# --------------------------------------------------------------------------
+# Monte Carlo of Fig. 4
+# --------------------------------------------------------------------------
+
+def simulate_static_outputs(hpr, lat, n_trials: int, sigma_gyro, sigma_accel, rng: np.random.Generator,
+                            gyro_bias=0.0, accel_bias=0.0):
+    """Averaged outputs of a static IMU plus white noise, as in the paper's Monte Carlo.
+
+    ``w = C_nb w_ie_n + b_g + sigma_gyro n``, ``f = C_nb [0, 0, g] + b_a + sigma_accel n``
+    with independent standard normal ``n`` per axis and trial (gyro and
+    accelerometer from separate child streams of ``rng``).
+
+    Parameters
+    ----------
+    hpr : array_like, shape (..., 3)
+        True attitudes (rad).
+    lat : float  (rad)
+    n_trials : int
+        Trials per attitude, on a new axis before the vector axis.
+    sigma_gyro : float  (rad/s)
+    sigma_accel : float  (m/s^2)
+    rng : numpy.random.Generator
+    gyro_bias, accel_bias : array_like, broadcasting to (..., n_trials, 3)
+        Deterministic errors added to every trial (rad/s, m/s^2).
+
+    Returns
+    -------
+    w_ib_b, f_b : ndarray, shape (..., n_trials, 3)
+    """
+    C_nb = np.swapaxes(attitude.euler_to_dcm(hpr), -1, -2)
+    lat = _lat(lat)
+    if not isinstance(n_trials, (int, np.integer)) or isinstance(n_trials, bool) or n_trials < 1:
+        raise ValueError(f"n_trials: expected a positive integer, got {n_trials!r}")
+    s_g = float(positive(sigma_gyro, "sigma_gyro", allow_zero=True))
+    s_a = float(positive(sigma_accel, "sigma_accel", allow_zero=True))
+    r_gyro, r_accel = generator(rng).spawn(2)
+    w_true = C_nb @ earth.earth_rate_n(lat)
+    f_true = C_nb @ np.array([0.0, 0.0, float(earth.gravity(lat))])
+    shape = w_true.shape[:-1] + (int(n_trials), 3)
+    w = w_true[..., None, :] + _bias(gyro_bias, "gyro_bias") + s_g * r_gyro.standard_normal(shape)
+    f = f_true[..., None, :] + _bias(accel_bias, "accel_bias") + s_a * r_accel.standard_normal(shape)
+    return w, f
+
+
+def _bias(x, name):
+    b = as_array(x, name)
+    return b if b.ndim == 0 else as_array(b, name, tail=(3,))
+
+
+@dataclass(frozen=True)
+class MonteCarlo:
+    """Heading errors of the Fig. 4 Monte Carlo (rad), shape (n_headings, n_trials).
+
+    ``single`` is the error of the candidate nearest the truth (the resolution
+    assumed correct, as in Fig. 4); ``triad_raw`` uses Eq. (2) without
+    orthonormalisation; ``clipped`` marks trials whose cosine was clipped.
+    """
+    heading: np.ndarray
+    triad: np.ndarray
+    triad_raw: np.ndarray
+    single: np.ndarray
+    clipped: np.ndarray
+
+
+def monte_carlo(headings, pitch, roll, lat, n_trials: int, sigma_gyro, sigma_accel,
+                rng: np.random.Generator) -> MonteCarlo:
+    """TRIAD and single-axis heading errors over a heading grid (paper Fig. 4).
+
+    Parameters
+    ----------
+    headings : array_like, shape (H,)
+        True headings (rad).
+    pitch, roll : float
+        True tilt (rad); the paper uses 5 deg each.
+    lat : float  (rad)
+    n_trials : int
+        Trials per heading (paper: 1000).
+    sigma_gyro, sigma_accel : float
+        White noise on the averaged outputs (rad/s, m/s^2), paper: 0.01 deg/h, 100 ug.
+    rng : numpy.random.Generator
+
+    Returns
+    -------
+    MonteCarlo
+    """
+    psi = as_array(headings, "headings").reshape(-1)
+    th = float(_pitch(pitch))
+    ro = float(in_range(as_array(roll, "roll"), "roll", -np.pi, np.pi, "rad"))
+    hpr = np.stack(np.broadcast_arrays(psi, th, ro), -1)
+    w, f = simulate_static_outputs(hpr, lat, n_trials, sigma_gyro, sigma_accel, rng)
+    C_raw = triad(f, w, lat, orthonormal=False)
+    truth = psi[:, None]
+    err_raw = attitude.wrap_pi(triad_heading(C_raw) - truth)
+    err_triad = attitude.wrap_pi(triad_heading(attitude.orthonormalize(C_raw)) - truth)
+    cand = heading_candidates(w[..., 1], f, lat)
+    return MonteCarlo(psi, err_triad, err_raw, nearest_candidate_error(cand.pair, truth), cand.clipped)
+
+
+# --------------------------------------------------------------------------
+# ambiguity of the resolution (extension, erratum E000-06)
+# --------------------------------------------------------------------------
+
+def pair_probabilities(heading1, heading2, sigma_ins):
+    """Probability that each candidate wins the resolution, for a Gaussian INS error.
+
+    With noise-free candidates the four heading-change candidates sit at the
+    true change plus the shifts ``0`` (true pair), ``2 psi1`` (position 1
+    swapped), ``-2 psi2`` (position 2 swapped) and ``-2 dpsi`` (both swapped),
+    all mod 2 pi. The INS error e ~ N(0, sigma_ins^2) picks the shift nearest
+    to e on the circle, so each probability is the Gaussian mass of that
+    shift's Voronoi arc (exact up to the N(0, sigma) mass beyond +-3 pi).
+
+    Parameters
+    ----------
+    heading1, heading2 : array_like  (rad)
+        True headings at the two stops.
+    sigma_ins : array_like  (rad, > 0)
+        Std of the INS heading-change error.
+
+    Returns
+    -------
+    ndarray, shape (..., 4)
+        ``[true pair, position 1 swapped, position 2 swapped, both swapped]``;
+        heading 2 is wrong in the last two (by 2 dist(psi2, {0, pi})).
+    """
+    p1, p2 = as_array(heading1, "heading1"), as_array(heading2, "heading2")
+    sigma = positive(sigma_ins, "sigma_ins")
+    p1, p2, sigma = np.broadcast_arrays(p1, p2, sigma)
+    shifts = attitude.wrap_pi(np.stack([np.zeros_like(p1), 2 * p1, -2 * p2, -2 * (p2 - p1)], -1))
+    # periodic images so that every Voronoi arc is bounded on both sides
+    images = np.concatenate([shifts - 2 * np.pi, shifts, shifts + 2 * np.pi], -1)
+    order = np.argsort(images, axis=-1, kind="stable")
+    s = np.take_along_axis(images, order, -1)
+    mid = (s[..., 1:] + s[..., :-1]) / 2
+    lo = np.concatenate([np.full(s.shape[:-1] + (1,), -np.inf), mid], -1)
+    hi = np.concatenate([mid, np.full(s.shape[:-1] + (1,), np.inf)], -1)
+    mass = ndtr(hi / sigma[..., None]) - ndtr(lo / sigma[..., None])
+    owner = order % 4
+    out = np.zeros(p1.shape + (4,))
+    for k in range(4):
+        out[..., k] = np.where(owner == k, mass, 0.0).sum(-1)
+    return out
+
+
+# --------------------------------------------------------------------------
+# four-position north finding on a turntable (extension)
+# --------------------------------------------------------------------------
+
+def four_position_heading(w_y):
+    """Heading from a level gyro turned to four positions 90 deg apart (turntable).
+
+    Position k has heading ``psi + k pi/2`` (turned clockwise), so
+    ``w_k = w_ie cos(lat) cos(psi + k pi/2) + b``: the bias b cancels in
+    ``psi = atan2(w_3 - w_1, w_0 - w_2)``, for every psi.
+
+    Parameters
+    ----------
+    w_y : array_like, shape (..., 4)
+        Averaged gyro output at the four positions (rad/s).
+
+    Returns
+    -------
+    ndarray, shape (...)
+        Heading of position 0 (rad, [0, 2 pi)).
+    """
+    w = as_array(w_y, "w_y", tail=(4,))
+    return attitude.wrap_2pi(np.arctan2(w[..., 3] - w[..., 1], w[..., 0] - w[..., 2]))
+
+
+def four_position_heading_std(sigma_gyro, lat):
+    """Four-position heading std ``sigma / (sqrt(2) w_ie cos lat)`` (rad), any heading.
+
+    ``sigma_gyro`` (rad/s) is the std of each position's averaged output.
+    """
+    return triad_heading_std(sigma_gyro, lat) / np.sqrt(2.0)
+
+
+# --------------------------------------------------------------------------
+# the vehicle test (Table 1 stand-in)
+# --------------------------------------------------------------------------
+
+def window_mean_std(errors: TriadErrors, duration: float, dt: float):
+    """Std of one axis's error averaged over a static window (white + bias terms).
+
+    ``var = N^2 / T + bias^2 + sigma_gm^2 * 2 (tau/T) [1 - (tau/T)(1 - exp(-T/tau))]``
+    for white noise density N, turn-on bias and a Gauss-Markov bias of std
+    sigma_gm and correlation time tau (rate random walk and scale factor are
+    not included). This is the "total gyro error" that Eq. (20) needs for a
+    real sensor rather than the paper's white noise.
+
+    Parameters
+    ----------
+    errors : navlib.sensors.TriadErrors
+    duration : float
+        Averaging time T (s).
+    dt : float
+        Sample interval (s), for the discrete white-noise mean ``N / sqrt(n dt)``.
+    """
+    if not isinstance(errors, TriadErrors):
+        raise ValueError(f"errors: expected TriadErrors, got {type(errors).__name__}")
+    T = float(positive(duration, "duration"))
+    dt = float(positive(dt, "dt"))
+    n = max(int(round(T / dt)), 1)
+    r = errors.correlation_time / T
+    gm = errors.gauss_markov_sigma ** 2 * 2 * r * (1 - r * (1 - np.exp(-1 / r)))
+    return float(np.sqrt(errors.noise_density ** 2 / (n * dt) + errors.bias ** 2 + gm))
+
+
+def stop_and_go(headings, stop_duration: float, drive_duration: float, speed: float, pitches, rolls):
+    """Segments of a drive with stops at given headings (Table 1 stand-in).
+
+    The vehicle starts at rest at ``headings[0]``; each drive accelerates,
+    turns by ``wrap_pi(headings[k+1] - headings[k])`` while cruising and
+    brakes, ramping pitch and roll to the next stop's values.
+
+    Parameters
+    ----------
+    headings : array_like, shape (S,)
+        Stop headings (rad).
+    stop_duration, drive_duration : float
+        Seconds per stop and per drive (drives >= 30 s).
+    speed : float
+        Cruising speed (m/s).
+    pitches, rolls : array_like, shape (S,)
+        Stop attitudes (rad); the first stop is level as :func:`navlib.trajectory.vehicle` starts level.
+
+    Returns
+    -------
+    segments : list of Segment
+        For :func:`navlib.trajectory.vehicle` with ``heading0 = headings[0]``.
+    stops : ndarray, shape (S, 2)
+        Start and end time of each stop (s).
+    """
+    psi = as_array(headings, "headings").reshape(-1)
+    th = as_array(pitches, "pitches").reshape(-1)
+    ro = as_array(rolls, "rolls").reshape(-1)
+    if psi.size < 2:
+        raise ValueError(f"headings: expected a 1-D array of >= 2 stops, got {psi.shape}")
+    for name, x in (("pitches", th), ("rolls", ro)):
+        if x.shape != psi.shape:
+            raise ValueError(f"{name}: expected one value per stop, shape {psi.shape}, got {x.shape}")
+    stop_duration = float(positive(stop_duration, "stop_duration"))
+    drive_duration = float(positive(drive_duration, "drive_duration"))
+    if drive_duration < 30:
+        raise ValueError(f"drive_duration: expected >= 30 s (accelerate, turn, brake), got {drive_duration}")
+    speed = float(positive(speed, "speed"))
+    ramp = 10.0
+    segments = [Segment(stop_duration, speed=0.0, pitch=th[0], roll=ro[0])]
+    stops = [(0.0, stop_duration)]
+    t = stop_duration
+    for k in range(1, psi.size):
+        turn = float(attitude.wrap_pi(psi[k] - psi[k - 1]))
+        segments += [Segment(ramp, speed=speed), Segment(drive_duration - 2 * ramp, turn=turn),
+                     Segment(ramp, speed=0.0, pitch=th[k], roll=ro[k]), Segment(stop_duration)]
+        t += drive_duration
+        stops.append((t, t + stop_duration))
+        t += stop_duration
+    return segments, np.array(stops)
+
+
+@dataclass(frozen=True)
+class StopSolutions:
+    """North finding at each stop of a drive, shapes (..., S) and (..., S, 2).
+
+    ``candidates`` are the single-axis pairs (forward gyro + accelerometers),
+    ``triad`` the three-axis TRIAD headings (rad), ``clipped`` the clipping flags.
+    ``windows`` holds each stop's :class:`StaticWindow` (counts of dropped,
+    rejected and saturated samples and the status); with ``strict=False`` a
+    refused stop has NaN candidates and heading.
+    """
+    candidates: np.ndarray
+    triad: np.ndarray
+    clipped: np.ndarray
+    f_mean: np.ndarray
+    windows: tuple = ()
+
+    @property
+    def status(self) -> np.ndarray:
+        """Status of each stop's window, shape (..., S) (:data:`OK`, :data:`TOO_FEW`, ...)."""
+        return np.stack([s.status for s in self.windows], -1)
+
+
+def stop_solutions(w_ib_b, f_b, windows, lat, h=0.0, *, time=None, strict: bool = True,
+                   **window_options) -> StopSolutions:
+    """Average each stop window and solve it with TRIAD and the single-axis method.
+
+    Parameters
+    ----------
+    w_ib_b, f_b : array_like, shape (..., N, 3)
+        IMU samples of the whole run (rad/s, m/s^2); NaN marks dropouts.
+    windows : array_like, shape (S, 2)
+        ``[start, end)`` of the stops: integer sample indices, or times (s)
+        when ``time`` is given.
+    lat, h : float
+        Latitude (rad) and height (m) of the site.
+    time : array_like, shape (N,), optional
+        Strictly increasing sample times (s), e.g. from ``timing.sanitize``
+        (which removes duplicated and out-of-order timestamps and reports
+        them); the windows are then cut by time, so dropped samples do not
+        shift them.
+    strict : bool
+        Raise for a refused stop (default) or return NaN for it (see
+        :func:`static_means`).
+    **window_options
+        ``accel_tol``, ``min_fraction``, ``outlier_k``, ``full_scale_gyro``,
+        ``full_scale_accel`` for :func:`static_means`.
+    """
+    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
+    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=True)
+    n = w.shape[-2]
+    if time is not None:
+        t = time_axis(time, "time")
+        if t.size != n:
+            raise ValueError(f"time: expected {n} sample times, got {t.size}")
+        tw = as_array(windows, "windows")
+        if tw.ndim != 2 or tw.shape[1] != 2 or np.any(tw[:, 1] <= tw[:, 0]):
+            raise ValueError(f"windows: expected (S, 2) [start, end) times in s with end > start, got {tw.tolist()}")
+        win = np.searchsorted(t, tw, side="left")
+    else:
+        win = np.asarray(windows)
+        if win.ndim != 2 or win.shape[1] != 2 or not np.issubdtype(win.dtype, np.integer):
+            raise ValueError(f"windows: expected (S, 2) integer [start, end) sample indices, got {win.tolist()}")
+    if np.any(win[:, 0] < 0) or np.any(win[:, 1] > n) or np.any(win[:, 1] - win[:, 0] < 2):
+        raise ValueError(f"windows: expected (S, 2) [start, end) sample indices within {n} samples, each >= 2 "
+                         f"long, got {win.tolist()}")
+    stats = tuple(static_means(w[..., a:b, :], f[..., a:b, :], lat, h, strict=strict, **window_options)
+                  for a, b in win)
+    w_mean = np.stack([m.w_mean for m in stats], -2)
+    f_mean = np.stack([m.f_mean for m in stats], -2)
+    ok = np.all(np.isfinite(f_mean), -1)
+    f_safe = np.where(ok[..., None], f_mean, [0.0, 0.0, 9.8])           # refused stops: solved on a dummy, set NaN
+    w_safe = np.where(ok[..., None], w_mean, 1e-5)
+    cand = heading_candidates(w_safe[..., 1], f_safe, lat, h)
+    heading = triad_heading(triad(f_safe, w_safe, lat))
+    pair = np.where(ok[..., None], cand.pair, np.nan)
+    return StopSolutions(pair, np.where(ok, heading, np.nan), cand.clipped & ok, f_mean, stats)
+
+
+@dataclass(frozen=True)
+class InsReport:
+    """What :func:`ins_heading_change` did with faulty samples, per drive (shape (...)).
+
+    Attributes
+    ----------
+    n_held : ndarray of int
+        NaN gyro samples (dropouts) replaced by the last valid sample.
+    longest_gap : ndarray
+        Longest run of dropouts (s).
+    n_saturated : ndarray of int
+        Samples with a component at the rails (``|w| >= full_scale``).
+    refused : ndarray of bool
+        Drives whose heading change is NaN: a dropout run longer than
+        ``max_gap``, a saturated sample, or no valid sample at all.
+    """
+    n_held: np.ndarray
+    longest_gap: np.ndarray
+    n_saturated: np.ndarray
+    refused: np.ndarray
+
+
+def _hold_last(w, dts):
+    """Forward-fill NaN rows along axis -2 (back-fill leading ones); counts and longest run (s)."""
+    bad = ~np.all(np.isfinite(w), -1)
+    n = w.shape[-2]
+    idx = np.where(bad, 0, np.arange(n))
+    np.maximum.accumulate(idx, axis=-1, out=idx)
+    first = np.argmax(~bad, axis=-1)                       # leading dropouts take the first valid sample
+    idx = np.where(bad & (np.arange(n) < first[..., None]), first[..., None], idx)
+    filled = np.take_along_axis(w, idx[..., None], -2)
+    # longest run of consecutive dropouts, in seconds
+    run = np.zeros(bad.shape[:-1])
+    longest = np.zeros(bad.shape[:-1])
+    for i in range(n):
+        run = np.where(bad[..., i], run + dts[i], 0.0)
+        longest = np.maximum(longest, run)
+    return filled, bad.sum(-1), longest, bad.all(-1)
+
+
+def ins_heading_change(w_ib_b, f_start, dt, lat, earth_rate: str = "vertical", *, max_gap: float = 0.1,
+                       full_scale: float | None = None, report: bool = False):
+    """MEMS strapdown heading change over a drive, started with heading 0 (paper step 2).
+
+    The attitude starts at heading 0 with pitch and roll from ``f_start``
+    (Eqs. 5-6) and integrates the gyro with
+    :func:`navlib.strapdown.integrate_attitude`. Since the true heading is
+    unknown, the horizontal Earth rate cannot be removed correctly (E000-12):
+
+    * ``"vertical"`` (default) removes only ``w_ie sin(lat)`` about Up, which
+      does not depend on heading;
+    * ``"none"`` ignores Earth rate (heading drifts by ``w_ie sin lat`` per s);
+    * ``"full"`` removes ``[0, w_ie cos lat, w_ie sin lat]`` as if heading 0
+      were true, i.e. the horizontal part in the wrong direction (a tilt
+      error, second order in heading over a short drive).
+
+    Faults (counted in :class:`InsReport`; a refused drive gives NaN, which
+    :func:`resolve` does not accept, so it cannot pass unnoticed):
+
+    * dropouts: NaN gyro samples are replaced by the last valid sample
+      (``n_held``); the heading error this adds is at most the rate change
+      across a gap times its length, so a drive with a run of dropouts longer
+      than ``max_gap`` (default 0.1 s: <= 0.3 deg for a 3 deg/s turn starting
+      inside the gap) is refused. A 30-s gap in a 60-s drive is refused.
+    * saturation: with ``full_scale`` (gyro range, rad/s), a drive with
+      samples at the rails is refused (``n_saturated``): the turn was faster
+      than the clipped reading.
+    * timing: ``dt`` may be per-sample intervals (``timing.intervals`` after
+      ``timing.sanitize``). Each sample's rotation ``w_k dt_k`` is integrated
+      exactly; the Earth-rate removal uses the mean interval, which is exact
+      for the total and differs per step by second-order terms only.
+    * outliers: a gyro spike of size s on one sample adds s dt to the heading
+      change; not detected here (a turning vehicle has no static median).
+
+    Parameters
+    ----------
+    w_ib_b : array_like, shape (..., N, 3)
+        MEMS gyro samples of the drive (rad/s); NaN marks dropouts.
+    f_start : array_like, shape (..., 3)
+        Averaged specific force at the start stop (m/s^2).
+    dt : float or array_like, shape (N,)
+        Sample interval (s), or the interval after each sample.
+    lat : float  (rad)
+    earth_rate : {"vertical", "none", "full"}
+    max_gap : float
+        Longest run of dropouts bridged by holding the last sample (s).
+    full_scale : float, optional
+        Gyro range (rad/s); None: no saturation check.
+    report : bool
+        Also return an :class:`InsReport`.
+
+    Returns
+    -------
+    ndarray, shape (...)
+        Heading change, wrapped into (-pi, pi] (rad); NaN for refused drives.
+    InsReport
+        Only with ``report=True``.
+    """
+    w_ie = earth.earth_rate_n(_lat(lat))
+    rates = {"vertical": w_ie * [0, 0, 1], "none": np.zeros(3), "full": w_ie}
+    if earth_rate not in rates:
+        raise ValueError(f"earth_rate: expected 'vertical', 'none' or 'full', got {earth_rate!r}")
+    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
+    n = w.shape[-2]
+    step = positive(dt, "dt")
+    if step.ndim == 0:
+        dts, step = np.full(n, float(step)), float(step)
+    elif step.shape != (n,):
+        raise ValueError(f"dt: expected a float or per-sample intervals of shape ({n},), got {step.shape}")
+    else:
+        dts, step = step, float(step.mean())
+    max_gap = float(positive(max_gap, "max_gap", allow_zero=True))
+    fs = np.inf if full_scale is None else float(positive(full_scale, "full_scale"))
+    pitch, roll = tilt_from_accel(as_array(f_start, "f_start", tail=(3,)))
+    with np.errstate(invalid="ignore"):
+        n_sat = np.sum(np.any(np.abs(w) >= fs, -1), -1)             # NaN compares False
+    if np.all(np.isfinite(w)):
+        n_held = np.zeros(w.shape[:-2], dtype=int)
+        longest, empty = np.zeros(w.shape[:-2]), np.zeros(w.shape[:-2], dtype=bool)
+    else:
+        w, n_held, longest, empty = _hold_last(w, dts)
+        w = np.where(empty[..., None, None], 0.0, w)
+    if not np.all(dts == step):
+        w = w * (dts / step)[:, None]                      # w_k dt_k integrated exactly with the mean interval
+    refused = empty | (longest > max_gap) | (n_sat > 0)
+    q0 = attitude.euler_to_quat(np.stack([np.zeros_like(pitch), pitch, roll], -1))
+    q = strapdown.integrate_attitude(q0, w, step, rates[earth_rate])
+    end = attitude.quat_to_dcm(q[..., -1, :])
+    dpsi = attitude.wrap_pi(np.arctan2(end[..., 0, 1], end[..., 1, 1]))
+    if np.any(refused):
+        dpsi = np.where(refused, np.nan, dpsi)
+    return (dpsi, InsReport(n_held, longest, n_sat, refused)) if report else dpsi

@@ -1,0 +1,1577 @@
+"""Indoor pedestrian navigation with a shoulder-mounted MEMS IMU (paper 004).
+
+Wen Zeyang, Xu Jiangning, Yu Mengqi, "Design of Indoor Navigation System
+Based on Double MEMS IMU" (基于MEMS IMU的室内导航系统设计), *Ship Electronic
+Engineering* 2016 (12). doi:10.3969/j.issn.1672-9730.2016.12.018
+
+A shoulder-worn board (MPU-6050 IMU, HMC5983 magnetometer, BMP180
+barometer) runs a strapdown INS at all times. While the pedestrian stands
+still a Kalman filter uses zero velocity and zero angular rate (ZUPT/ZARU)
+to estimate and feed back the INS errors; while walking the INS height and
+heading are overwritten ("direct binding") by barometric altitude and
+tilt-compensated magnetic heading.
+
+Implemented here, in navlib's ENU / right-front-up convention (the paper
+prints NED / forward-right-down; ``C_enu = M C_ned M`` with
+:data:`M_NED_ENU`, the same (heading, pitch, roll) in both):
+
+* Static detector (the paper gives none; we use the ARE + MV + MAG tests of
+  Skog et al. 2010): static when, over a centred window,
+  ``rms|w - b_g| < tau_w``, ``std|f| < tau_f`` and ``|mean|f| - g| < tau_g``
+  (rad/s, m/s^2, m/s^2; default starting values 0.05, 0.1, 0.3, our choice).
+* Eq. (1), 15-state error model (missing from the paper and reconstructed
+  here, erratum E004-03; the standard local-level INS error model without
+  Earth-rate and transport-rate terms)::
+
+      dx = [dr_n, dv_n, dpsi, db_a, db_g],  C_hat = (I + [dpsi x]) C
+      d(dr)/dt = dv,   d(dv)/dt = -[(C_hat f_b) x] dpsi + C_hat db_a,
+      d(dpsi)/dt = C_hat db_g,   d(db)/dt = white
+
+  with dr in metres (E, N, U) and ``d = estimate - truth`` for r, v, psi,
+  ``d = truth - estimate`` for the biases. Earth rate, transport rate and
+  the gravity gradient are left out of F (the mechanisation keeps them).
+* Eq. (2), ZUPT/ZARU measurement (missing, reconstructed; erratum E004-03)::
+
+      z = [v_hat; w_meas - b_g_hat - C_hat^T w_ie_n] = H dx + v,
+      H = [[0, I, 0, 0, 0], [0, 0, -C_hat^T [w_ie_n x], 0, I]]
+
+  The ``-C^T [w_ie x]`` block (coefficient 7e-5) is the exact first-order
+  Earth-rate term that the simplified ``H = [[0, I, 0, 0, 0], [0, 0, 0, 0, I]]``
+  leaves out; with it, ``z - H dx`` is second order.
+* Eq. (3), Kalman recursion with closed-loop feedback
+  ``r -= dr, v -= dv, C <- (I - [dpsi x]) C, b += db, dx = 0``; the covariance
+  update is the Joseph form of :func:`navlib.kalman.update`, equal to the
+  printed ``P = (I - K H) P`` for the optimal gain (:func:`simple_covariance_update`).
+* Barometric altitude (formula not printed in the paper, erratum E004-03):
+  the BMP180 datasheet form ``h = 44330 (1 - (p/p_ref)^(1/5.255))`` with
+  ``p_ref`` the mean pressure of the initial stand (relative height; the
+  weather's sea-level pressure cancels), or the hypsometric
+  ``R T/g ln(p_ref/p)`` with temperature.
+  Floors: ``n = n_ref + round(h / h_floor)``.
+* Eq. (4), tilt compensation, CORRECTED (erratum E004-01; the printed form
+  mixes up axes and angles, :func:`tilt_compensate_printed`). NED/FRD::
+
+      H_X = H_x cos(th) + H_y sin(th) sin(ga) + H_z sin(th) cos(ga)
+      H_Y = H_y cos(ga) - H_z sin(ga)
+
+  ENU/RFU (used by the filter), ``m_b = (m_x, m_y, m_z) = (H_y, H_x, -H_z)``::
+
+      mh_x = m_x cos(ga) + m_z sin(ga)
+      mh_y = m_y cos(th) + m_x sin(th) sin(ga) - m_z sin(th) cos(ga)
+
+* Eq. (5) (missing, reconstructed; erratum E004-03):
+  ``angle = atan2(-H_Y, H_X) = atan2(-mh_x, mh_y)`` plus 2 pi when negative,
+  i.e. in **[0, 2 pi)** (erratum E004-04: the paper says (0, 2 pi]).
+* Eq. (6): ``alpha = angle + D`` wrapped to [0, 2 pi), D the declination
+  (east positive; the paper calls it lambda, erratum E004-05).
+* Walking phase (the paper's "direct binding"): height and vertical rate
+  from an alpha-beta tracker on the barometric height, heading reset
+  ``C <- rot(z, H_hat - alpha) C`` (ENU sign; the NED form is
+  ``rot(z, alpha - H_hat)``), their covariance rows reset.
+  Horizontal position and velocity are *not* corrected while walking
+  (erratum E004-13): they drift until the next stop. As a documented
+  alternative (``walk_aiding="filter"``) the same height and heading are
+  Kalman measurements instead of resets.
+
+The filter (:func:`run_filter`, compiled per-sample kernel) reuses navlib's
+strapdown step, :func:`navlib.kalman.predict` and :func:`navlib.kalman.update`.
+It holds NaN IMU samples from the last good one, rejects static updates that
+fail a NIS gate (false stances), applies one ungated after repeated
+rejections within a stance (a drifted INS must not lock the filter out),
+optionally gates compass samples on the field's magnitude and dip (steel),
+counts all of these, and warns when it never updated (no static interval).
+
+Faults (robustness contract; tests in ``tests/faults/test_faults_pedestrian.py``;
+every action is counted in ``FilterResult.counts``):
+
+* IMU dropouts (NaN): zero-order hold of the last good sample
+  (``imu_dropouts``), with the process noise inflated while holding
+  (``FilterConfig.hold_*_sigma``); held samples never feed ZUPT/ZARU
+  (``static_skipped``); :func:`detect_static` uses the valid samples of a
+  window and needs at least half of them.
+* IMU spikes: with ``FilterConfig.spike_gyro`` / ``spike_accel`` set, an
+  isolated sample sticking out of both neighbours is held like a dropout
+  (``imu_spikes``); :func:`despike` applies the same test before
+  :func:`detect_static` (whose variance test spikes would otherwise fail).
+  Off by default (the paper's filter): then a spike in a stance fails the
+  detector or the NIS gate (``zupt_rejected``) and one while walking is
+  integrated.
+* IMU saturation (``full_scale=`` given): samples at the rails are counted
+  (``imu_saturated``), integrated as measured, and excluded from ZUPT/ZARU
+  (``static_skipped``).
+* Barometer: NaN = no reading (the tracker coasts); spikes beyond
+  ``FilterConfig.baro_gate`` are skipped (``baro_rejected``); a persistent
+  jump re-initialises the tracker (``baro_reinit``).
+* Magnetometer: NaN = no reading; spikes and disturbances fail the field
+  magnitude / dip gate when ``field_n`` and tolerances are given (``mag_gated``).
+* Timing: ``dt`` may be per-sample intervals (irregular sampling); repeated
+  and out-of-order timestamps go through :func:`navlib.timing.sanitize` first.
+
+Not in the paper: the Earth-rate block ``-C^T [w_ie x]`` of H (above), and
+an accelerometer process noise five times the MPU-6050 density to cover the
+scale-factor and cross-axis errors the 15-state model leaves out
+(:class:`FilterConfig`).
+
+Also here: a walking-trajectory generator for a shoulder-worn IMU
+(:func:`walk`), the truth of its stances (:func:`stance_mask`), barometer
+reference and floor helpers, and step-detection pedestrian dead reckoning
+with Weinberg's step length (the extension of the notebook).
+"""
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+from numba import njit
+
+from .. import atmosphere, attitude, earth, kalman, trajectory
+from .._kernels import radii_mn
+from .._validate import as_array, as_dcm, as_quat, generator, positive, time_grid
+from ..strapdown import nav_step
+
+__all__ = ["M_NED_ENU", "STATIC_THRESHOLDS", "ned_to_enu_dcm", "Leg", "Gait", "walk", "stance_mask", "carpark_legs",
+           "floor_test_legs", "detect_static", "detection_rates", "level", "static_gyro_bias",
+           "magnetic_heading", "tilt_compensate_ned", "tilt_compensate_printed", "heading_from_horizontal",
+           "baro_height", "reference_pressure", "classify_floor", "segment_floors", "hvac_pressure_steps",
+           "despike", "error_state_matrix", "error_model_fd", "zupt_zaru_matrix", "zupt_zaru_innovation",
+           "simple_covariance_update", "FilterConfig", "FilterResult", "run_filter", "FLAG_DROPOUT", "FLAG_SPIKE",
+           "FLAG_SATURATED", "FLAG_STATIC_SKIPPED", "detect_steps",
+           "weinberg_step_length", "pdr", "StepResult", "segments", "pdr_headings", "expanding_std",
+           "horizontal_error"]
+
+M_NED_ENU = np.array([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]])
+"""Swaps N<->E and negates the vertical: ``C_bn(ENU/RFU) = M C_bn(NED/FRD) M``, same (heading, pitch, roll)."""
+
+STATIC_THRESHOLDS = (0.05, 0.1, 0.3)
+"""Default static-detector thresholds: gyro rms (rad/s), std |f| and |mean |f| - g| (m/s^2); our starting values."""
+
+
+def ned_to_enu_dcm(C_ned):
+    """Body-to-navigation matrix of the paper's NED/FRD convention in navlib's ENU/RFU one.
+
+    Parameters
+    ----------
+    C_ned : array_like, shape (..., 3, 3)
+
+    Returns
+    -------
+    C_bn : ndarray, shape (..., 3, 3)
+        ``M C_ned M``.
+    """
+    C = as_array(C_ned, "C_ned", tail=(3, 3))
+    return M_NED_ENU @ C @ M_NED_ENU
+
+
+# --------------------------------------------------------------------------
+# Walking trajectory
+# --------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Leg:
+    """One leg of a walk: a stop (``speed == 0``) or walking at ``speed`` (m/s).
+
+    Over ``duration`` (s) the heading changes by ``turn`` (rad, clockwise
+    positive) and the height by ``climb`` (m; stairs). The speed moves
+    smoothly from the previous leg's within the first ``ramp`` seconds of
+    the walk (see :func:`walk`); a stop is static once that ramp is over.
+    """
+    duration: float
+    speed: float = 0.0
+    turn: float = 0.0
+    climb: float = 0.0
+
+    def __post_init__(self):
+        positive(self.duration, "duration")
+        positive(self.speed, "speed", allow_zero=True)
+        as_array(self.turn, "turn")
+        as_array(self.climb, "climb")
+        if self.speed == 0 and (self.turn != 0 or self.climb != 0):
+            raise ValueError("turn, climb: expected 0 on a stop (speed == 0)")
+
+
+@dataclass(frozen=True)
+class Gait:
+    """Shoulder motion of a walking pedestrian (amplitudes at full walking speed).
+
+    Attributes
+    ----------
+    step_frequency : float
+        Steps per second (Hz); typical 1.6-2.0.
+    bounce : float
+        Vertical oscillation amplitude at the step frequency (m); 2-3 cm.
+    sway : float
+        Lateral oscillation amplitude at half the step frequency (m).
+    surge : float
+        Fore-aft oscillation amplitude at the step frequency (m).
+    heading_wiggle, pitch_bob, roll_sway : float
+        Shoulder rotation amplitudes (rad): heading and roll at half the step
+        frequency (the shoulders turn with each stride), pitch at the step
+        frequency.
+    lean : float
+        Mean forward lean while walking (rad, nose down negative).
+    stand_sway, stand_tilt : float
+        Body sway while standing: horizontal amplitude (m) and tilt
+        amplitude (rad) at ``stand_frequency``.
+    stand_frequency : float
+        Standing sway frequency (Hz).
+    ramp : float
+        Time to start or stop walking (s).
+    """
+    step_frequency: float = 1.8
+    bounce: float = 0.025
+    sway: float = 0.02
+    surge: float = 0.01
+    heading_wiggle: float = np.deg2rad(3.0)
+    pitch_bob: float = np.deg2rad(1.5)
+    roll_sway: float = np.deg2rad(2.0)
+    lean: float = np.deg2rad(-3.0)
+    stand_sway: float = 0.002
+    stand_tilt: float = np.deg2rad(0.05)
+    stand_frequency: float = 0.3
+    ramp: float = 1.0
+
+    def __post_init__(self):
+        for name in ("step_frequency", "stand_frequency", "ramp"):
+            positive(getattr(self, name), name)
+        for name in ("bounce", "sway", "surge", "heading_wiggle", "pitch_bob", "roll_sway",
+                     "stand_sway", "stand_tilt"):
+            positive(getattr(self, name), name, allow_zero=True)
+        as_array(self.lean, "lean")
+
+
+def _legs(legs):
+    legs = list(legs)
+    if not legs or not all(isinstance(leg, Leg) for leg in legs):
+        raise ValueError("legs: expected a non-empty sequence of Leg")
+    return legs
+
+
+def _schedule(legs, t, ramp):
+    """Speed, heading offset, height offset and stance flags on the time grid."""
+    speed, turn, climb = (np.zeros(t.size) for _ in range(3))
+    static = np.zeros(t.size, dtype=bool)
+    v_prev, psi, h, t0 = 0.0, 0.0, 0.0, 0.0
+    for i, leg in enumerate(legs):
+        end = t0 + leg.duration
+        last = i == len(legs) - 1
+        m = (t >= t0 - 1e-9) if last else (t >= t0 - 1e-9) & (t < end - 1e-9)
+        tau = t[m] - t0
+        r = min(ramp, leg.duration)
+        speed[m] = v_prev + (leg.speed - v_prev) * trajectory.smooth_ramp(tau / r)
+        frac = trajectory.smooth_ramp(tau / leg.duration)
+        turn[m] = psi + leg.turn * frac
+        climb[m] = h + leg.climb * frac
+        static[m] = (leg.speed == 0) & ((v_prev == 0) | (tau >= r - 1e-9))
+        v_prev, psi, h, t0 = leg.speed, psi + leg.turn, h + leg.climb, end
+    return speed, turn, climb, static
+
+
+def stance_mask(legs, dt: float, gait: Gait = Gait()) -> np.ndarray:
+    """True-static flags of :func:`walk` on its time grid (stops after their ramp).
+
+    Parameters
+    ----------
+    legs : sequence of Leg
+    dt : float  (s)
+    gait : Gait
+        The gait given to :func:`walk` (its ``ramp``).
+
+    Returns
+    -------
+    static : ndarray of bool, shape (N,)
+        Same length as the trajectory's ``time``.
+    """
+    legs = _legs(legs)
+    if not isinstance(gait, Gait):
+        raise ValueError(f"gait: expected a Gait, got {type(gait).__name__}")
+    t = time_grid(sum(leg.duration for leg in legs), dt)
+    return _schedule(legs, t, gait.ramp)[3]
+
+
+def walk(legs, dt: float, lla0, heading0: float, gait: Gait = Gait(),
+         ellipsoid: earth.Ellipsoid = earth.WGS84) -> trajectory.Trajectory:
+    """A pedestrian walking and stopping, as seen by a shoulder-worn IMU.
+
+    The shoulder follows a smooth path (speed ramps, turns, stairs) plus
+    the gait oscillations of :class:`Gait`, whose amplitudes scale with the
+    speed (relative to the fastest leg); while standing it sways slightly.
+    Heading = path heading + wiggle, pitch = lean + bob, roll = sway.
+    Built with :func:`navlib.trajectory.from_profiles`, so
+    :func:`navlib.trajectory.ideal_imu` is exact on it.
+
+    Parameters
+    ----------
+    legs : sequence of Leg
+    dt : float
+        Sample interval (s).
+    lla0 : array_like, shape (3,)
+        Start ``[lat (rad), lon (rad), h (m)]``.
+    heading0 : float
+        Initial path heading (rad).
+    gait : Gait
+
+    Returns
+    -------
+    Trajectory
+    """
+    legs = _legs(legs)
+    if not isinstance(gait, Gait):
+        raise ValueError(f"gait: expected a Gait, got {type(gait).__name__}")
+    heading0 = float(as_array(heading0, "heading0"))
+    t = time_grid(sum(leg.duration for leg in legs), dt)
+    speed, turn, climb, _ = _schedule(legs, t, gait.ramp)
+    v_max = max(leg.speed for leg in legs)
+    a = speed / v_max if v_max > 0 else np.zeros_like(speed)   # gait envelope, 0 when standing
+    psi = heading0 + turn
+    fwd = np.stack([np.sin(psi), np.cos(psi), np.zeros_like(psi)], -1)
+    right = np.stack([np.cos(psi), -np.sin(psi), np.zeros_like(psi)], -1)
+    up = np.array([0.0, 0.0, 1.0])
+    step, stride, stand = (2 * np.pi * gait.step_frequency * t, np.pi * gait.step_frequency * t,
+                           2 * np.pi * gait.stand_frequency * t)
+    still = 1 - np.clip(a, 0, 1)
+    osc = ((gait.sway * a * np.sin(stride) + gait.stand_sway * still * np.sin(stand))[:, None] * right
+           + (gait.surge * a * np.sin(step) + gait.stand_sway * still * np.cos(0.7 * stand))[:, None] * fwd
+           + (gait.bounce * a * np.cos(step))[:, None] * up)
+    vel = (speed[:, None] * fwd + np.gradient(climb, dt)[:, None] * up + np.gradient(osc, dt, axis=0))
+    hpr = np.stack([attitude.wrap_2pi(psi + gait.heading_wiggle * a * np.sin(stride + 0.3)),
+                    gait.lean * a + gait.pitch_bob * a * np.sin(step + 0.5) + gait.stand_tilt * still * np.sin(stand),
+                    gait.roll_sway * a * np.sin(stride) + gait.stand_tilt * still * np.cos(0.8 * stand)], -1)
+    return trajectory.from_profiles(t, lla0, hpr, vel, ellipsoid)
+
+
+def carpark_legs(speed: float = 1.2, stops=(8.0, 5.0, 20.0, 10.0, 6.0, 15.0, 30.0, 4.0, 12.0, 25.0),
+                 side=(40.0, 24.0), n_loops: int = 1, initial_stand: float = 30.0) -> list[Leg]:
+    """A rectangular walk in an underground car park with stops between the pillars.
+
+    Each side is walked in two halves with a stop after each half (the stop
+    lengths cycle through ``stops``, s); each corner is a 90-degree right turn
+    taken at 2/3 of the speed over 3 s. Starts with ``initial_stand``
+    seconds of standing (calibration, pressure reference).
+    """
+    speed = float(positive(speed, "speed"))
+    stops = positive(as_array(stops, "stops", min_ndim=1), "stops").ravel()
+    a, b = positive(as_array(side, "side", tail=(2,)).reshape(2), "side")
+    if not isinstance(n_loops, (int, np.integer)) or n_loops < 1:
+        raise ValueError(f"n_loops: expected a positive integer, got {n_loops!r}")
+    legs, k = [Leg(float(positive(initial_stand, "initial_stand")))], 0
+    corner = 3.0 * 2 / 3 * speed                       # path length of a corner (m)
+    for _ in range(n_loops):
+        for length in (a, b, a, b):
+            for _ in range(2):
+                legs.append(Leg((length - corner) / 2 / speed, speed))
+                legs.append(Leg(float(stops[k % stops.size])))
+                k += 1
+            legs.append(Leg(3.0, 2 / 3 * speed, turn=np.pi / 2))
+    legs.append(Leg(float(stops[k % stops.size])))
+    return legs
+
+
+def floor_test_legs(stand: float = 60.0, stairs: float = 15.0, floor_height: float = 3.0,
+                    n_round_trips: int = 2) -> list[Leg]:
+    """The paper's floor test 2F -> 1F -> 2F (x ``n_round_trips``): stands, corridor walks and stairs.
+
+    Each transition: 8 m of corridor at 1.2 m/s, the stairs (``stairs`` s at
+    0.35 m/s, ``floor_height`` down or up, with a U-turn at the landing) and
+    4 m of corridor; then a stand of ``stand`` seconds. The first stand is
+    on 2F.
+    """
+    stand = float(positive(stand, "stand"))
+    stairs = float(positive(stairs, "stairs"))
+    hf = float(positive(floor_height, "floor_height"))
+    if not isinstance(n_round_trips, (int, np.integer)) or n_round_trips < 1:
+        raise ValueError(f"n_round_trips: expected a positive integer, got {n_round_trips!r}")
+    legs = [Leg(stand)]
+    for trip in range(2 * n_round_trips):
+        climb = -hf if trip % 2 == 0 else hf
+        legs += [Leg(8 / 1.2, 1.2), Leg(stairs, 0.35, turn=np.pi, climb=climb), Leg(4 / 1.2, 1.2, turn=np.pi),
+                 Leg(stand)]
+    return legs
+
+
+# --------------------------------------------------------------------------
+# Static detection
+# --------------------------------------------------------------------------
+
+def _window_mean(x, n):
+    """Centred moving mean over n samples along axis 0 (edges use the nearest full window)."""
+    c = np.cumsum(np.concatenate([np.zeros((1,) + x.shape[1:]), x]), axis=0)
+    valid = (c[n:] - c[:-n]) / n                       # windows starting at 0 .. N - n
+    start = np.clip(np.arange(x.shape[0]) - n // 2, 0, x.shape[0] - n)
+    return valid[start]
+
+
+def detect_static(w_ib_b, f_b, dt: float, window: float = 0.5, gyro_bias=(0.0, 0.0, 0.0),
+                  thresholds=STATIC_THRESHOLDS, g: float = 9.7936):
+    """Static (standing) detector from gyro and accelerometer statistics.
+
+    Static when, over a centred window of ``window`` seconds, all hold:
+    ``rms |w - b_g| < tau_w`` (angular-rate energy), ``std |f| < tau_f``
+    (specific-force variance) and ``|mean |f| - g| < tau_g`` (magnitude).
+
+    NaN samples (dropouts) are left out: the statistics use the valid
+    samples of each window, and a window with fewer than half of its
+    samples valid is never static (a missing sample is no evidence of
+    standing still).
+
+    Parameters
+    ----------
+    w_ib_b, f_b : array_like, shape (N, 3)
+        Gyro (rad/s) and accelerometer (m/s^2) samples; NaN marks dropouts.
+    dt : float
+        Sample interval (s) (nominal; the window is a number of samples).
+    window : float
+        Window length (s); at most the record length.
+    gyro_bias : array_like, shape (3,)
+        Gyro bias to remove first (rad/s), e.g. from :func:`static_gyro_bias`.
+    thresholds : (float, float, float)
+        ``(tau_w rad/s, tau_f m/s^2, tau_g m/s^2)``.
+    g : float
+        Local gravity (m/s^2); default Wuhan.
+
+    Returns
+    -------
+    static : ndarray of bool, shape (N,)
+    """
+    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
+    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=True)
+    if w.ndim != 2 or f.shape != w.shape:
+        raise ValueError(f"f_b: expected the shape (N, 3) of w_ib_b {w.shape}, got {f.shape}")
+    dt = float(positive(dt, "dt"))
+    valid = np.isfinite(w).all(-1) & np.isfinite(f).all(-1)
+    if not valid.all():
+        w, f = np.where(valid[:, None], w, 0.0), np.where(valid[:, None], f, 0.0)
+    n = int(round(float(positive(window, "window")) / dt))
+    if n < 2 or n > w.shape[0]:
+        raise ValueError(f"window: expected 2 samples up to the record length {w.shape[0] * dt:g} s, "
+                         f"got {window} s ({n} samples)")
+    b = as_array(gyro_bias, "gyro_bias", tail=(3,)).reshape(3)
+    tw, tf, tg = positive(as_array(thresholds, "thresholds", tail=(3,)).reshape(3), "thresholds")
+    g = float(positive(g, "g"))
+    w2 = np.sum((w - b) ** 2, -1)
+    fn = np.linalg.norm(f, axis=-1)
+    share = None if valid.all() else _window_mean(valid.astype(float), n)   # fraction of valid samples per window
+
+    def mean(x):
+        if share is None:
+            return _window_mean(x, n)
+        return _window_mean(np.where(valid, x, 0.0), n) / np.maximum(share, 0.5 / n)
+
+    f_mean = mean(fn)
+    f_var = np.maximum(mean(fn ** 2) - f_mean ** 2, 0.0)
+    static = (np.sqrt(mean(w2)) < tw) & (np.sqrt(f_var) < tf) & (np.abs(f_mean - g) < tg)
+    if not valid.all():
+        static &= share >= 0.5
+    return static
+
+
+@njit(cache=True)
+def _spike_mask(w, f, spike_gyro, spike_accel):
+    n = w.shape[0]
+    hit = np.zeros(n, dtype=np.bool_)
+    for k in range(2, n - 2):
+        hit[k] = _is_spike(w, k, spike_gyro) or _is_spike(f, k, spike_accel)
+    return hit
+
+
+def despike(w_ib_b, f_b, spike_gyro: float, spike_accel: float):
+    """Mark isolated IMU spikes as dropouts (NaN), before :func:`detect_static` and :func:`run_filter`.
+
+    The same test as ``FilterConfig.spike_gyro`` / ``spike_accel`` (see
+    there): a sample deviating from the line through its neighbours by more
+    than the threshold, and by 1.5 times more than either neighbour does.
+    Two adjacent spikes are not found (each hides the other). Spiky samples
+    inflate the detector's variance test and hide stances; as NaN they are
+    left out of it and held by the filter (counted as ``imu_dropouts``).
+
+    Parameters
+    ----------
+    w_ib_b, f_b : array_like, shape (N, 3)
+        Gyro (rad/s) and accelerometer (m/s^2) samples; NaN allowed.
+    spike_gyro, spike_accel : float
+        Thresholds (rad/s, m/s^2); inf disables a sensor's test.
+
+    Returns
+    -------
+    w_ib_b, f_b : ndarray, shape (N, 3)
+        Copies with the spiky samples (both sensors) set to NaN.
+    spikes : ndarray of bool, shape (N,)
+    """
+    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
+    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=True)
+    if w.ndim != 2 or f.shape != w.shape:
+        raise ValueError(f"f_b: expected the shape (N, 3) of w_ib_b {w.shape}, got {f.shape}")
+    tg = float(as_array(spike_gyro, "spike_gyro", finite=False))
+    ta = float(as_array(spike_accel, "spike_accel", finite=False))
+    if not tg > 0:
+        raise ValueError(f"spike_gyro: expected a positive threshold (inf: off), got {spike_gyro!r}")
+    if not ta > 0:
+        raise ValueError(f"spike_accel: expected a positive threshold (inf: off), got {spike_accel!r}")
+    hit = _spike_mask(np.ascontiguousarray(w), np.ascontiguousarray(f), tg, ta)
+    w, f = w.copy(), f.copy()
+    w[hit], f[hit] = np.nan, np.nan
+    return w, f, hit
+
+
+def detection_rates(detected, truth) -> tuple[float, float]:
+    """Detection and false-alarm rates of a static detector.
+
+    Parameters
+    ----------
+    detected, truth : array_like of bool, shape (N,)
+
+    Returns
+    -------
+    p_detect : float
+        Fraction of truly static samples declared static.
+    p_false : float
+        Fraction of moving samples declared static.
+    """
+    d, t = np.asarray(detected), np.asarray(truth)
+    if d.dtype != bool or t.dtype != bool or d.shape != t.shape or d.ndim != 1:
+        raise ValueError(f"detected, truth: expected boolean arrays of one shape (N,), got {d.shape}, {t.shape}")
+    if t.all() or not t.any():
+        raise ValueError("truth: expected both static and moving samples")
+    return float(d[t].mean()), float(d[~t].mean())
+
+
+def level(f_b):
+    """Pitch and roll (rad) from mean specific force: the accelerometer levelling.
+
+    ``pitch = atan2(f_y, hypot(f_x, f_z))``, ``roll = atan2(-f_x, f_z)``
+    (right-front-up body; exact for a static IMU).
+
+    Parameters
+    ----------
+    f_b : array_like, shape (..., 3)
+        (Mean) specific force (m/s^2).
+    """
+    f = as_array(f_b, "f_b", tail=(3,))
+    if np.any(np.linalg.norm(f, axis=-1) == 0):
+        raise ValueError("f_b: expected a non-zero specific force")
+    return np.arctan2(f[..., 1], np.hypot(f[..., 0], f[..., 2])), np.arctan2(-f[..., 0], f[..., 2])
+
+
+def static_gyro_bias(w_ib_b, C_bn, lat: float):
+    """Gyro bias from a static record: ``mean(w) - C_bn^T w_ie_n`` (rad/s).
+
+    Parameters
+    ----------
+    w_ib_b : array_like, shape (N, 3)
+    C_bn : array_like, shape (3, 3)
+        Attitude during the record.
+    lat : float  (rad)
+    """
+    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1)
+    C = as_array(C_bn, "C_bn", tail=(3, 3)).reshape(3, 3)
+    return w.reshape(-1, 3).mean(0) - C.T @ earth.earth_rate_n(lat)
+
+
+# --------------------------------------------------------------------------
+# Magnetic heading (Eqs. 4-6)
+# --------------------------------------------------------------------------
+
+@njit(cache=True)
+def _tilt_heading(mx, my, mz, pitch, roll):
+    """Corrected Eqs. (4)-(5) in ENU/RFU: magnetic heading in [0, 2 pi)."""
+    sp, cp, sr, cr = np.sin(pitch), np.cos(pitch), np.sin(roll), np.cos(roll)
+    mhx = mx * cr + mz * sr
+    mhy = my * cp + mx * sp * sr - mz * sp * cr
+    a = np.mod(np.arctan2(-mhx, mhy), 2 * np.pi)
+    return a * (a < 2 * np.pi)                               # [0, 2 pi): a rounded-up 2 pi is north
+
+
+def _mag(m_b):
+    m = as_array(m_b, "m_b", tail=(3,))
+    if np.any(np.linalg.norm(m, axis=-1) == 0):
+        raise ValueError("m_b: expected a non-zero magnetic field vector")
+    return m
+
+
+def magnetic_heading(m_b, pitch, roll, declination: float = 0.0):
+    """Tilt-compensated heading (corrected Eqs. 4-6), clockwise from true north.
+
+    Parameters
+    ----------
+    m_b : array_like, shape (..., 3)
+        Magnetometer reading, right-front-up (any unit); NaN is rejected.
+    pitch, roll : array_like, shape (...)
+        Attitude (rad), e.g. from the INS.
+    declination : float
+        D, east of true north positive (rad); 0 gives the magnetic heading.
+
+    Returns
+    -------
+    heading : ndarray, shape (...)
+        In [0, 2 pi).
+    """
+    m = _mag(m_b)
+    p, r = as_array(pitch, "pitch"), as_array(roll, "roll")
+    D = float(as_array(declination, "declination"))
+    shape = np.broadcast_shapes(m.shape[:-1], p.shape, r.shape)
+    m = np.broadcast_to(m, shape + (3,)).reshape(-1, 3)
+    p, r = (np.ascontiguousarray(np.broadcast_to(x, shape).reshape(-1)) for x in (p, r))
+    a = _tilt_heading(np.ascontiguousarray(m[:, 0]), np.ascontiguousarray(m[:, 1]),
+                      np.ascontiguousarray(m[:, 2]), p, r)
+    return attitude.wrap_2pi(a + D).reshape(shape)
+
+
+def tilt_compensate_ned(H_b, pitch, roll):
+    """Corrected Eq. (4) in the paper's NED / forward-right-down frame.
+
+    Parameters
+    ----------
+    H_b : array_like, shape (..., 3)
+        ``[H_x forward, H_y right, H_z down]``.
+    pitch, roll : array_like  (rad)
+
+    Returns
+    -------
+    H_X, H_Y : ndarray
+        Horizontal components along magnetic-north-of-heading and its right.
+    """
+    H = as_array(H_b, "H_b", tail=(3,))
+    th, ga = as_array(pitch, "pitch"), as_array(roll, "roll")
+    Hx, Hy, Hz = H[..., 0], H[..., 1], H[..., 2]
+    HX = Hx * np.cos(th) + Hy * np.sin(th) * np.sin(ga) + Hz * np.sin(th) * np.cos(ga)
+    HY = Hy * np.cos(ga) - Hz * np.sin(ga)
+    return HX, HY
+
+
+def tilt_compensate_printed(H_b, pitch, roll):
+    """Eq. (4) as printed (errata E004-01, E004-02), with theta = pitch and phi = roll.
+
+    ``H_X = H_x sin(th) sin(ph) + H_y cos(ph) - H_z cos(th) sin(ph)``,
+    ``H_Y = H_x cos(th) + H_z sin(th)``. Kept to show that it does not
+    recover the heading under the stated axes.
+    """
+    H = as_array(H_b, "H_b", tail=(3,))
+    th, ph = as_array(pitch, "pitch"), as_array(roll, "roll")
+    Hx, Hy, Hz = H[..., 0], H[..., 1], H[..., 2]
+    return (Hx * np.sin(th) * np.sin(ph) + Hy * np.cos(ph) - Hz * np.cos(th) * np.sin(ph),
+            Hx * np.cos(th) + Hz * np.sin(th))
+
+
+def heading_from_horizontal(H_X, H_Y, declination: float = 0.0):
+    """Eqs. (5)-(6): ``atan2(-H_Y, H_X) + D`` wrapped to [0, 2 pi) (erratum E004-04)."""
+    X, Y = as_array(H_X, "H_X"), as_array(H_Y, "H_Y")
+    if np.any((X == 0) & (Y == 0)):
+        raise ValueError("H_X, H_Y: heading undefined for a zero horizontal field")
+    return attitude.wrap_2pi(np.arctan2(-Y, X) + float(as_array(declination, "declination")))
+
+
+# --------------------------------------------------------------------------
+# Barometer and floors
+# --------------------------------------------------------------------------
+
+def baro_height(p, p_ref, temperature=None):
+    """Height above the reference level from pressure (m).
+
+    BMP180 formula ``44330 (1 - (p/p_ref)^(1/5.255))`` with the reference
+    pressure of the start floor, or, given a temperature, the hypsometric
+    ``R T / g0 ln(p_ref / p)``.
+
+    Parameters
+    ----------
+    p : array_like
+        Pressure (Pa), finite and positive.
+    p_ref : float
+        Reference pressure (Pa), e.g. :func:`reference_pressure`.
+    temperature : array_like, optional
+        Air temperature (K).
+    """
+    p = as_array(p, "p")
+    if p.size == 0:
+        raise ValueError("p: expected at least one pressure, got an empty array")
+    if np.any(p <= 0):
+        raise ValueError(f"p: expected positive pressures (Pa), got min {p.min():g}")
+    p_ref = float(positive(p_ref, "p_ref"))
+    if temperature is None:
+        return atmosphere.bmp180_altitude(p, p_ref)
+    return atmosphere.hypsometric_height(p, p_ref, temperature)
+
+
+def reference_pressure(p, time, until: float):
+    """Mean pressure (Pa) over ``time <= until`` (the initial stand on the start floor).
+
+    Parameters
+    ----------
+    p : array_like, shape (N,)
+        Pressure (Pa); NaN samples (no reading) are ignored.
+    time : array_like, shape (N,)  (s)
+    until : float  (s)
+    """
+    p = as_array(p, "p", allow_nan=True)
+    t = as_array(time, "time")
+    if p.shape != t.shape or p.ndim != 1:
+        raise ValueError(f"p: expected the shape of time {t.shape}, got {p.shape}")
+    sel = p[(t <= until) & np.isfinite(p)]
+    if sel.size == 0:
+        raise ValueError(f"until: no pressure sample at or before {until} s")
+    if np.any(sel <= 0):
+        raise ValueError("p: expected positive pressures (Pa)")
+    return float(sel.mean())
+
+
+def classify_floor(h, floor_height: float = 3.0, ref_floor: int = 0):
+    """Floor index ``ref_floor + round(h / floor_height)`` from a relative height (m)."""
+    h = as_array(h, "h")
+    hf = float(positive(floor_height, "floor_height"))
+    return int(ref_floor) + np.round(h / hf).astype(int)
+
+
+def segments(mask):
+    """Contiguous runs of True: first index and one-past-last index of each.
+
+    Parameters
+    ----------
+    mask : array_like of bool, shape (N,)
+
+    Returns
+    -------
+    starts, ends : ndarray of int
+    """
+    m = np.asarray(mask)
+    if m.dtype != bool or m.ndim != 1:
+        raise ValueError(f"mask: expected a 1-D boolean array, got {m.dtype} {m.shape}")
+    edges = np.diff(np.concatenate([[0], m.astype(np.int8), [0]]))
+    return np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
+
+
+def segment_floors(h, static, floor_height: float = 3.0, ref_floor: int = 0):
+    """Floor of every static segment from the median height over the segment.
+
+    Parameters
+    ----------
+    h : array_like, shape (N,)
+        Relative height (m); NaN samples are ignored.
+    static : array_like of bool, shape (N,)
+
+    Returns
+    -------
+    starts, ends : ndarray of int
+        Sample index of each segment's first sample and one past its last.
+    floors : ndarray of int
+    """
+    h = as_array(h, "h", allow_nan=True)
+    s = np.asarray(static)
+    if s.dtype != bool or s.shape != h.shape or h.ndim != 1:
+        raise ValueError(f"static: expected booleans of the shape of h {h.shape}, got {s.shape}")
+    starts, ends = segments(s)
+    med = np.array([np.nanmedian(h[a:b]) for a, b in zip(starts, ends, strict=True)])
+    return starts, ends, classify_floor(med, floor_height, ref_floor) if med.size else med.astype(int)
+
+
+def hvac_pressure_steps(time, door_times, rng: np.random.Generator, amplitude: float = 10.0):
+    """Pressure offsets of ventilated zones: a new offset in [-a, a] after each door (Pa)."""
+    t = as_array(time, "time")
+    doors = np.sort(as_array(door_times, "door_times").reshape(-1))
+    a = float(positive(amplitude, "amplitude", allow_zero=True))
+    generator(rng)
+    levels = np.concatenate([[0.0], rng.uniform(-a, a, doors.size)])
+    return levels[np.searchsorted(doors, t, side="right")]
+
+
+# --------------------------------------------------------------------------
+# Error-state filter: model (Eqs. 1-3)
+# --------------------------------------------------------------------------
+
+@njit(cache=True)
+def _skew(v):
+    return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
+
+
+@njit(cache=True)
+def _fill_F(F, C, f_n):
+    """Write the time-varying blocks of Eq. (1) into F (15 x 15, constant blocks preset)."""
+    Sf = _skew(f_n)
+    for i in range(3):
+        for j in range(3):
+            F[3 + i, 6 + j] = -Sf[i, j]
+            F[3 + i, 9 + j] = C[i, j]
+            F[6 + i, 12 + j] = C[i, j]
+
+
+def error_state_matrix(C_bn, f_b):
+    """F of the reconstructed Eq. (1) (15 x 15), ENU.
+
+    Parameters
+    ----------
+    C_bn : array_like, shape (3, 3)
+        Estimated attitude.
+    f_b : array_like, shape (3,)
+        Bias-corrected specific force (m/s^2).
+    """
+    C = as_dcm(as_array(C_bn, "C_bn", tail=(3, 3)).reshape(3, 3))
+    f = as_array(f_b, "f_b", tail=(3,)).reshape(3)
+    F = np.zeros((15, 15))
+    F[0:3, 3:6] = np.eye(3)
+    _fill_F(F, np.ascontiguousarray(C), C @ f)
+    return F
+
+
+def _error_rate(dx, C_true, f_true):
+    """Exact time derivative of the error state for a static-Earth mechanisation.
+
+    Truth: C' = C [w x], v' = C f + g. Estimate: C_hat = exp([dpsi x]) C,
+    driven by the corrected samples f + b_a - b_a_hat = f + db_a and w + db_g.
+    Then d/dt exp([dpsi x]) exp([dpsi x])^T = [(C_hat db_g) x], and the
+    rotation vector moves with the inverse left Jacobian of SO(3).
+    """
+    dpsi, dba, dbg = dx[6:9], dx[9:12], dx[12:15]
+    C_hat = attitude.rotvec_to_dcm(dpsi) @ C_true
+    dv_rate = C_hat @ (f_true + dba) - C_true @ f_true
+    th = np.linalg.norm(dpsi)
+    c = 1 / 12 + th * th / 720 if th < 1e-4 else 1 / th ** 2 - (1 + np.cos(th)) / (2 * th * np.sin(th))
+    S = attitude.skew(dpsi)
+    dpsi_rate = (np.eye(3) - S / 2 + c * S @ S) @ (C_hat @ dbg)
+    return np.concatenate([dx[3:6], dv_rate, dpsi_rate, np.zeros(6)])
+
+
+def error_model_fd(C_bn, f_b, eps: float = 1e-6):
+    """Central-difference Jacobian of the exact error dynamics at dx = 0 (checks Eq. 1).
+
+    Parameters
+    ----------
+    C_bn : array_like, shape (3, 3)
+    f_b : array_like, shape (3,)
+        Specific force (m/s^2).
+    eps : float
+        Perturbation of each error state.
+
+    Returns
+    -------
+    F : ndarray, shape (15, 15)
+    """
+    C = as_dcm(as_array(C_bn, "C_bn", tail=(3, 3)).reshape(3, 3))
+    f = as_array(f_b, "f_b", tail=(3,)).reshape(3)
+    eps = float(positive(eps, "eps"))
+    F = np.empty((15, 15))
+    for j in range(15):
+        e = np.zeros(15)
+        e[j] = eps
+        F[:, j] = (_error_rate(e, C, f) - _error_rate(-e, C, f)) / (2 * eps)
+    return F
+
+
+@njit(cache=True)
+def _fill_H(H, C, w_ie_n):
+    """ZUPT/ZARU rows of Eq. (2): H[0:3, 3:6] = I, H[3:6, 6:9] = -C^T [w_ie x], H[3:6, 12:15] = I."""
+    A = -(C.T @ _skew(w_ie_n))
+    for i in range(3):
+        H[i, 3 + i] = 1.0
+        H[3 + i, 12 + i] = 1.0
+        for j in range(3):
+            H[3 + i, 6 + j] = A[i, j]
+
+
+@njit(cache=True)
+def _static_z(z, vel, w_mean, b_g, C, w_ie_n):
+    ce = C.T @ w_ie_n
+    for i in range(3):
+        z[i] = vel[i]
+        z[3 + i] = w_mean[i] - b_g[i] - ce[i]
+
+
+def zupt_zaru_matrix(C_bn, w_ie_n):
+    """H of Eq. (2) (6 x 15) at the estimated attitude, with the Earth-rate block."""
+    C = as_dcm(as_array(C_bn, "C_bn", tail=(3, 3)).reshape(3, 3))
+    H = np.zeros((6, 15))
+    _fill_H(H, np.ascontiguousarray(C), as_array(w_ie_n, "w_ie_n", tail=(3,)).reshape(3))
+    return H
+
+
+def zupt_zaru_innovation(vel_n, w_ib_b, b_g, C_bn, w_ie_n):
+    """Static measurement of Eq. (2): ``[v_hat; w_meas - b_g_hat - C_hat^T w_ie_n]``.
+
+    Parameters
+    ----------
+    vel_n : array_like, shape (3,)
+        Estimated velocity (m/s).
+    w_ib_b : array_like, shape (3,)
+        Measured (mean) angular rate (rad/s).
+    b_g : array_like, shape (3,)
+        Estimated gyro bias (rad/s).
+    C_bn : array_like, shape (3, 3)
+        Estimated attitude.
+    w_ie_n : array_like, shape (3,)
+        Earth rate in ENU (rad/s).
+    """
+    args = [as_array(a, n, tail=(3,)).reshape(3) for a, n in
+            ((vel_n, "vel_n"), (w_ib_b, "w_ib_b"), (b_g, "b_g"), (w_ie_n, "w_ie_n"))]
+    C = as_dcm(as_array(C_bn, "C_bn", tail=(3, 3)).reshape(3, 3))
+    z = np.empty(6)
+    _static_z(z, args[0], args[1], args[2], np.ascontiguousarray(C), args[3])
+    return z
+
+
+def simple_covariance_update(P, H, R):
+    """The printed last line of Eq. (3): optimal gain K and ``(I - K H) P``."""
+    P = as_array(P, "P")
+    H = as_array(H, "H")
+    R = as_array(R, "R")
+    if P.ndim != 2 or P.shape[0] != P.shape[1] or H.shape[-1] != P.shape[0] or R.shape != (H.shape[0],) * 2:
+        raise ValueError(f"P, H, R: expected shapes (n, n), (m, n), (m, m), got {P.shape}, {H.shape}, {R.shape}")
+    K = P @ H.T @ np.linalg.inv(H @ P @ H.T + R)
+    return K, (np.eye(P.shape[0]) - K @ H) @ P
+
+
+# --------------------------------------------------------------------------
+# Error-state filter: configuration, compiled kernel, driver
+# --------------------------------------------------------------------------
+
+def _intervals(dt, n):
+    """``dt`` scalar or shape (n,) -> positive float array of shape (n,)."""
+    d = positive(dt, "dt")
+    if d.ndim == 0:
+        return np.full(n, float(d))
+    if d.shape != (n,):
+        raise ValueError(f"dt: expected a scalar or per-sample intervals of shape ({n},), got shape {d.shape}")
+    return np.ascontiguousarray(d, dtype=float)
+
+
+_MAY_BE_INF = ("gate", "mag_field_tol", "mag_dip_tol", "baro_gate", "spike_gyro", "spike_accel")
+
+
+@dataclass(frozen=True)
+class FilterConfig:
+    """Noise and tuning of the ZUPT/ZARU error-state filter (SI units).
+
+    Defaults: MPU-6050 gyro rate-noise density (datasheet); accelerometer density
+    0.02 m/s^2/sqrt(Hz), five times the MPU-6050's 400 ug/sqrt(Hz), to cover
+    the scale-factor and cross-axis errors (1 %, 0.67 %) that the 15-state
+    model leaves out and that walking's 3 m/s^2 oscillations excite (with
+    the datasheet density the NIS gate rejects the legitimate ZUPTs after a
+    walk); residual biases after a static calibration (0.05 deg/s, 10 mg) as
+    initial bias sigmas; BMP180 height noise 0.17 m; HMC5983 heading 2 deg.
+
+    Attributes
+    ----------
+    accel_noise, gyro_noise : float
+        White-noise densities (m/s^2/sqrt(Hz), rad/s/sqrt(Hz)).
+    accel_bias_rw, gyro_bias_rw : float
+        Bias random-walk densities (m/s^3/sqrt(Hz), rad/s^2/sqrt(Hz)).
+    sigma_zupt : float
+        ZUPT velocity sigma (m/s), absorbs standing sway.
+    sigma_zaru : float
+        ZARU rate sigma (rad/s) of a single sample; divided by sqrt(n) for
+        the mean of n samples.
+    update_rate : float
+        ZUPT/ZARU update rate while static (Hz).
+    sigma_baro : float
+        Barometric height sigma (m).
+    sigma_heading : float
+        Magnetic heading sigma (rad).
+    baro_alpha, baro_beta : float
+        Gains of the alpha-beta tracker smoothing the barometric height.
+    p0_pos, p0_vel, p0_tilt, p0_heading, p0_accel_bias, p0_gyro_bias : float
+        Initial standard deviations (m, m/s, rad, rad, m/s^2, rad/s).
+    gate : float
+        NIS gate of the static update (chi-square, 6 dof; 22.5 is 99.9 %).
+        Rejects false stances (a walker flagged static).
+    max_rejected : int
+        After this many consecutive rejections within one stance the next
+        update is applied ungated, with the velocity variances widened to
+        the innovation, and counted as ``zupt_forced``: a stance that keeps
+        failing the gate means the INS has drifted beyond its covariance,
+        and gating it forever would lock the filter out.
+    mag_field_tol, mag_dip_tol : float
+        Reject magnetic resets when |m| differs from the reference intensity
+        by more than this (uT) or the dip by more than this (rad); inf to
+        accept every sample. This is also the defence against magnetometer
+        spikes (a 100-sigma spike changes |m| by tens of uT); it needs
+        ``field_n`` in :func:`run_filter`.
+    baro_gate : float
+        Reject a barometric height that differs from the alpha-beta tracker's
+        prediction by more than this (m): a spike (counted ``baro_rejected``;
+        the tracker coasts over it and no aiding uses it). After
+        ``max_rejected`` consecutive rejections the tracker is re-initialised
+        on the measurement (counted ``baro_reinit``): the height really
+        changed while the barometer was missing or the tracker diverged.
+        Default 5 m: 10 BMP180 sigmas (0.5 m at 0.06 hPa), far beyond HVAC
+        pressure steps (~1 m) and the tracker lag on stairs; inf disables.
+    spike_gyro, spike_accel : float
+        IMU spike test (rad/s, m/s^2): a sample that deviates from the line
+        through its two neighbours by more than this, on any axis, and by
+        more than 1.5 times the same deviation of either neighbour, is an
+        isolated spike; it is held like a dropout and counted
+        (``imu_spikes``). Default inf (off, the paper's filter). At 100 Hz
+        on a walking shoulder 0.02 rad/s and 0.5 m/s^2 are safe (that
+        deviation is a few mrad/s and cm/s^2 for the gait, noise 0.001 rad/s
+        and 0.05 m/s^2 for the MPU-6050). Offline test: it looks two samples
+        ahead; the first and last two samples are never tested.
+    hold_gyro_sigma, hold_accel_sigma : float
+        Uncertainty of a held sample (rad/s, m/s^2): while a dropout or
+        spike is bridged by holding, the attitude and velocity process noise
+        grow by ``sigma^2 dt`` per held sample, so the covariance admits the
+        guess and the next stance's ZUPT/ZARU is not gated out.
+    """
+    accel_noise: float = 0.02
+    gyro_noise: float = np.deg2rad(0.005)
+    accel_bias_rw: float = 1e-4
+    gyro_bias_rw: float = 1e-5
+    sigma_zupt: float = 0.01
+    sigma_zaru: float = np.deg2rad(0.1)
+    update_rate: float = 10.0
+    sigma_baro: float = 0.17
+    sigma_heading: float = np.deg2rad(2.0)
+    baro_alpha: float = 0.2
+    baro_beta: float = 0.02
+    p0_pos: float = 0.01
+    p0_vel: float = 0.01
+    p0_tilt: float = np.deg2rad(0.5)
+    p0_heading: float = np.deg2rad(2.0)
+    p0_accel_bias: float = 0.01 * 9.80665
+    p0_gyro_bias: float = np.deg2rad(0.05)
+    gate: float = 22.5
+    max_rejected: int = 5
+    mag_field_tol: float = np.inf
+    mag_dip_tol: float = np.inf
+    baro_gate: float = 5.0
+    spike_gyro: float = np.inf
+    spike_accel: float = np.inf
+    hold_gyro_sigma: float = 0.1
+    hold_accel_sigma: float = 1.0
+
+    def __post_init__(self):
+        for name, v in self.__dict__.items():
+            ok = isinstance(v, (int, float, np.floating, np.integer)) and not isinstance(v, bool) and v > 0
+            if not ok or (np.isinf(v) and name not in _MAY_BE_INF):
+                raise ValueError(f"{name}: expected a positive number, got {v!r}")
+
+
+# counters returned by the kernel
+(_N_ZUPT, _N_ZUPT_REJ, _N_ZUPT_FORCED, _N_IMU_NAN, _N_BARO, _N_MAG, _N_MAG_GATED, _N_SAT, _N_STATIC_SKIP,
+ _N_BARO_REJ, _N_BARO_REINIT, _N_SPIKE) = range(12)
+_COUNTERS = ("zupt_updates", "zupt_rejected", "zupt_forced", "imu_dropouts", "baro_aidings", "mag_aidings",
+             "mag_gated", "imu_saturated", "static_skipped", "baro_rejected", "baro_reinit", "imu_spikes")
+
+
+_AIDING = {"none": 0, "reset": 1, "filter": 2}
+FLAG_DROPOUT, FLAG_SPIKE, FLAG_SATURATED, FLAG_STATIC_SKIPPED = 1, 2, 4, 8
+"""Bits of :attr:`FilterResult.flags`."""
+
+
+@njit(cache=True)
+def _is_spike(x, k, thr):
+    """Sample k is an isolated spike on some axis (needs 2 <= k < N - 2).
+
+    With ``r_j = x_j - (x_j-1 + x_j+1) / 2`` (the deviation from the line
+    through the neighbours): ``|r_k| > thr`` and ``|r_k| > 1.5 |r_k-+1|``. A
+    spike S gives ``r_k = S`` and ``r_k-+1 = -S/2``, so its neighbours never
+    qualify; smooth motion gives ``r ~ a w^2 dt^2``, a few mrad/s or cm/s^2
+    at 100 Hz. NaN nearby never flags a spike.
+    """
+    for i in range(3):
+        r0 = x[k, i] - (x[k - 1, i] + x[k + 1, i]) / 2
+        rm = x[k - 1, i] - (x[k - 2, i] + x[k, i]) / 2
+        rp = x[k + 1, i] - (x[k, i] + x[k + 2, i]) / 2
+        if abs(r0) > thr and abs(r0) > 1.5 * abs(rm) and abs(r0) > 1.5 * abs(rp):
+            return True
+    return False
+
+
+@njit(cache=True)
+def _heading_of(C):
+    return np.arctan2(C[0, 1], C[1, 1])
+
+
+@njit(cache=True)
+def _feedback(x, lla, vel, q, b, a, e2):
+    """Closed-loop correction of Eq. (3): apply dx to the INS and zero it."""
+    R_M, R_N = radii_mn(lla[0], a, e2)
+    lla[0] -= x[1] / (R_M + lla[2])
+    lla[1] -= x[0] / ((R_N + lla[2]) * np.cos(lla[0]))
+    lla[2] -= x[2]
+    for i in range(3):
+        vel[i] -= x[3 + i]
+    dq = attitude.rotvec_to_quat_1(-x[6:9])                   # C <- (I - [dpsi x]) C
+    q[:] = attitude.quat_normalize_1(attitude.quat_mult_1(dq, q))
+    for i in range(6):
+        b[i] += x[9 + i]
+    x[:] = 0.0
+
+
+@njit(cache=True)
+def _reset_state(P, i, sigma):
+    for j in range(P.shape[0]):
+        P[i, j] = 0.0
+        P[j, i] = 0.0
+    P[i, i] = sigma * sigma
+
+
+@njit(cache=True)
+def _filter_kernel(lla0, vel0, q0, b0, w, f, dt, static, h_baro, m_b, declination, field_ref, zupt,
+                   aiding, every, q_rate, p0_diag, r_zupt, r_zaru, r_baro, r_heading, alpha, beta, gate, max_rejected,
+                   field_tol, dip_tol, gyro_fs, accel_fs, baro_gate, spike_gyro, spike_accel, hold_gyro, hold_accel,
+                   a, flat, e2, mgrav, gamma_e, k_som, omega):
+    """``dt`` (N,) per-sample intervals; ``q_rate`` (15,) process-noise densities squared (Q = q_rate dt_k)."""
+    n = w.shape[0]
+    counts = np.zeros(12, dtype=np.int64)
+    flags = np.zeros(n, dtype=np.uint8)
+    lla_out, vel_out, q_out = np.empty((n + 1, 3)), np.empty((n + 1, 3)), np.empty((n + 1, 4))
+    b_out, p_out = np.empty((n + 1, 6)), np.empty((n + 1, 15))
+    lla, vel, q, b = lla0.copy().reshape(1, 3), vel0.copy().reshape(1, 3), q0.copy().reshape(1, 4), b0.copy()
+    x, P = np.zeros(15), np.diag(p0_diag)
+    Phi = np.eye(15)
+    Q = np.zeros((15, 15))
+    H6, z6, h6 = np.zeros((6, 15)), np.zeros(6), np.zeros(6)
+    R6 = np.diag(np.array([r_zupt, r_zupt, r_zupt, r_zaru, r_zaru, r_zaru]))
+    H1, z1, h1, R1 = np.zeros((1, 15)), np.zeros(1), np.zeros(1), np.zeros((1, 1))
+    no_wrap6, wrap1, no_wrap1 = np.zeros(6, dtype=np.bool_), np.ones(1, dtype=np.bool_), np.zeros(1, dtype=np.bool_)
+    wk, fk = np.zeros(3), np.zeros(3)
+    earth_consts = np.array([a, flat, e2, mgrav, gamma_e, k_som, omega])
+    w_last, f_last = w[0].copy(), f[0].copy()
+    w_sum, n_sum, n_rejected = np.zeros(3), 0, 0
+    hb, vb, hb_init, t_baro = 0.0, 0.0, False, 0.0          # alpha-beta tracker of the baro height
+    n_baro_rej = 0
+    w_ie = np.zeros(3)
+    lla_out[0], vel_out[0], q_out[0], b_out[0] = lla[0], vel[0], q[0], b
+    for i in range(15):
+        p_out[0, i] = P[i, i]
+    for k in range(n):
+        dtk = dt[k]
+        good, held = True, False                         # good: a real, unclipped sample, usable for ZUPT/ZARU
+        if not (np.isfinite(w[k]).all() and np.isfinite(f[k]).all()):
+            counts[_N_IMU_NAN] += 1                      # dropout: hold the last good sample
+            flags[k] |= FLAG_DROPOUT
+            good, held = False, True
+        elif k > 1 and k + 2 < n and (_is_spike(w, k, spike_gyro) or _is_spike(f, k, spike_accel)):
+            counts[_N_SPIKE] += 1                        # isolated spike: held like a dropout
+            flags[k] |= FLAG_SPIKE
+            good, held = False, True
+        else:
+            w_last[:], f_last[:] = w[k], f[k]
+            for i in range(3):
+                if abs(w[k, i]) >= gyro_fs or abs(f[k, i]) >= accel_fs:
+                    good = False
+            if not good:
+                counts[_N_SAT] += 1                      # at the rails: integrated as is, no static update
+                flags[k] |= FLAG_SATURATED
+        for i in range(3):
+            wk[i] = w_last[i] - b[3 + i]
+            fk[i] = f_last[i] - b[i]
+        nav_step(lla[0], vel[0], q[0], wk, fk, dtk, earth_consts, False)   # the shared mechanisation
+        C = attitude.quat_to_dcm_1(q[0])
+        for i in range(3):
+            Phi[i, 3 + i] = dtk
+        for i in range(15):
+            Q[i, i] = q_rate[i] * dtk
+        if held:                                         # the held sample is a guess: inflate, don't trust
+            for i in range(3):
+                Q[3 + i, 3 + i] += hold_accel * hold_accel * dtk
+                Q[6 + i, 6 + i] += hold_gyro * hold_gyro * dtk
+        _fill_F(Phi, C * dtk, C @ fk * dtk)            # Phi = I + F dt (blocks scaled by dt)
+        x, P = kalman.predict(x, P, Phi, Q)
+        if static[k] and zupt and not good:              # held or clipped: left out of the static average
+            counts[_N_STATIC_SKIP] += 1
+            flags[k] |= FLAG_STATIC_SKIPPED
+        # --- standing still: ZUPT + ZARU (Eq. 2) ---
+        elif static[k] and zupt:
+            for i in range(3):
+                w_sum[i] += w_last[i]
+            n_sum += 1
+            if n_sum >= every:
+                w_ie[1], w_ie[2] = omega * np.cos(lla[0, 0]), omega * np.sin(lla[0, 0])
+                _fill_H(H6, C, w_ie)
+                _static_z(z6, vel[0], w_sum / n_sum, b[3:6], C, w_ie)
+                for i in range(3):
+                    R6[3 + i, 3 + i] = r_zaru / n_sum
+                h6[:] = H6 @ x
+                # a stance that keeps failing the gate means the INS, not the stance, is wrong
+                forced = n_rejected >= max_rejected
+                if forced:                                   # P was too small: widen the velocity rows
+                    for i in range(3):
+                        _reset_state(P, 3 + i, max(np.sqrt(P[3 + i, 3 + i]), abs(z6[i] - h6[i])))
+                x, P, _, _, status = kalman.update(x, P, z6, h6, H6, R6, no_wrap6, np.inf if forced else gate)
+                if status == 1:
+                    counts[_N_ZUPT] += 1
+                    counts[_N_ZUPT_FORCED] += forced
+                    n_rejected = 0
+                    _feedback(x, lla[0], vel[0], q[0], b, a, e2)
+                elif status == -1:
+                    counts[_N_ZUPT_REJ] += 1
+                    n_rejected += 1
+                w_sum[:], n_sum = 0.0, 0
+        elif not static[k]:
+            w_sum[:], n_sum, n_rejected = 0.0, 0, 0
+        # --- barometer: alpha-beta tracker always, aiding while walking ---
+        use_baro = np.isfinite(h_baro[k])
+        if use_baro:
+            if not hb_init:
+                hb, vb, hb_init = h_baro[k], 0.0, True
+            else:
+                r = h_baro[k] - hb
+                if abs(r) > baro_gate and n_baro_rej < max_rejected:
+                    counts[_N_BARO_REJ] += 1                 # spike: the tracker coasts over it
+                    n_baro_rej += 1
+                    use_baro = False
+                elif abs(r) > baro_gate:                     # persistent: the tracker, not the sensor, is off
+                    counts[_N_BARO_REINIT] += 1
+                    hb, vb, n_baro_rej = h_baro[k], 0.0, 0
+                else:
+                    hb += alpha * r
+                    vb += beta * r / t_baro
+                    n_baro_rej = 0
+        if use_baro:
+            t_baro = 0.0
+            if aiding > 0 and not static[k]:
+                counts[_N_BARO] += 1
+                if aiding == 1:                              # direct binding
+                    lla[0, 2], vel[0, 2] = hb, vb
+                    _reset_state(P, 2, np.sqrt(r_baro))
+                    _reset_state(P, 5, 0.3)
+                else:
+                    H1[:] = 0.0
+                    H1[0, 2] = 1.0
+                    z1[0], h1[0], R1[0, 0] = lla[0, 2] - h_baro[k], 0.0, r_baro
+                    x, P, _, _, status = kalman.update(x, P, z1, h1, H1, R1, no_wrap1, np.inf)
+                    _feedback(x, lla[0], vel[0], q[0], b, a, e2)
+        hb += vb * dtk
+        t_baro += dtk
+        # --- magnetometer heading while walking (Eqs. 4-6) ---
+        if aiding > 0 and not static[k] and np.isfinite(m_b[k]).all():
+            m_n = C @ m_b[k]
+            F_m = np.sqrt(m_n[0] ** 2 + m_n[1] ** 2 + m_n[2] ** 2)
+            dip = np.arctan2(-m_n[2], np.sqrt(m_n[0] ** 2 + m_n[1] ** 2))
+            if abs(F_m - field_ref[0]) > field_tol or abs(dip - field_ref[1]) > dip_tol:
+                counts[_N_MAG_GATED] += 1
+            else:
+                pitch, roll = np.arcsin(min(1.0, max(-1.0, C[2, 1]))), np.arctan2(-C[2, 0], C[2, 2])
+                alpha_h = _tilt_heading(m_b[k, 0], m_b[k, 1], m_b[k, 2], pitch, roll) + declination
+                dh = (_heading_of(C) - alpha_h + np.pi) % (2 * np.pi) - np.pi
+                counts[_N_MAG] += 1
+                if aiding == 1:                          # C <- rot(z, H_hat - alpha) C
+                    rz = np.array([np.cos(dh / 2), 0.0, 0.0, np.sin(dh / 2)])
+                    q[0] = attitude.quat_normalize_1(attitude.quat_mult_1(rz, q[0]))
+                    _reset_state(P, 8, np.sqrt(r_heading))
+                else:
+                    c1 = C[:, 1]
+                    hh = c1[0] ** 2 + c1[1] ** 2
+                    H1[:] = 0.0
+                    H1[0, 6], H1[0, 7], H1[0, 8] = c1[0] * c1[2] / hh, c1[1] * c1[2] / hh, -1.0
+                    z1[0], h1[0], R1[0, 0] = dh, 0.0, r_heading
+                    x, P, _, _, status = kalman.update(x, P, z1, h1, H1, R1, wrap1, np.inf)
+                    _feedback(x, lla[0], vel[0], q[0], b, a, e2)
+        lla_out[k + 1], vel_out[k + 1], q_out[k + 1], b_out[k + 1] = lla[0], vel[0], q[0], b
+        for i in range(15):
+            p_out[k + 1, i] = P[i, i]
+    return lla_out, vel_out, q_out, b_out, p_out, counts, flags, P
+
+
+@dataclass(frozen=True)
+class FilterResult:
+    """Output of :func:`run_filter`.
+
+    Attributes
+    ----------
+    nav : Trajectory
+        Corrected INS solution, N + 1 epochs.
+    accel_bias, gyro_bias : ndarray, shape (N + 1, 3)
+        Bias estimates (m/s^2, rad/s).
+    P_diag : ndarray, shape (N + 1, 15)
+        Diagonal of the error covariance.
+    counts : dict
+        ``zupt_updates`` (accepted static updates), ``zupt_rejected`` (NIS
+        gate), ``zupt_forced`` (applied ungated after repeated rejections),
+        ``imu_dropouts`` (NaN IMU samples held from the last good one),
+        ``imu_spikes`` (isolated spikes found by the ``spike_gyro`` /
+        ``spike_accel`` test of :class:`FilterConfig`, held like dropouts),
+        ``imu_saturated`` (samples with a gyro or accelerometer component at
+        the rails of ``full_scale``; integrated as measured),
+        ``static_skipped`` (samples flagged static but held or saturated:
+        left out of the ZUPT/ZARU average),
+        ``baro_aidings`` / ``mag_aidings`` (samples used while walking),
+        ``mag_gated`` (magnetometer samples rejected as disturbed or spiky),
+        ``baro_rejected`` (barometer samples beyond ``baro_gate`` of the
+        tracker: spikes, skipped), ``baro_reinit`` (tracker re-initialised on
+        the measurement after ``max_rejected`` consecutive rejections).
+    flags : ndarray of uint8, shape (N,)
+        Per IMU sample, a bit set of what the filter did with it:
+        ``FLAG_DROPOUT`` (1, NaN, held), ``FLAG_SPIKE`` (2, spike, held),
+        ``FLAG_SATURATED`` (4, at the rails), ``FLAG_STATIC_SKIPPED`` (8,
+        flagged static but left out of ZUPT/ZARU). The counters are the
+        sums of these bits.
+    P : ndarray, shape (15, 15)
+        Error covariance after the last sample (symmetric positive definite).
+    """
+    nav: trajectory.Trajectory
+    accel_bias: np.ndarray
+    gyro_bias: np.ndarray
+    P_diag: np.ndarray
+    counts: dict
+    flags: np.ndarray
+    P: np.ndarray
+
+    @property
+    def updated(self) -> bool:
+        """False when no ZUPT/ZARU update was ever applied (no static interval)."""
+        return self.counts["zupt_updates"] > 0
+
+
+def _field_reference(B_n):
+    if B_n is None:
+        return np.array([0.0, 0.0])
+    D, I, F = earth.field_angles(as_array(B_n, "field_n", tail=(3,)).reshape(3), deg=False)
+    return np.array([float(F), float(I)])
+
+
+def run_filter(w_ib_b, f_b, dt, lla0, vel0, q0, static, *, h_baro=None, m_b=None,
+               declination: float = 0.0, field_n=None, walk_aiding: str = "reset", zupt: bool = True,
+               accel_bias0=(0.0, 0.0, 0.0), gyro_bias0=(0.0, 0.0, 0.0), config: FilterConfig = FilterConfig(),
+               t0: float = 0.0, ellipsoid: earth.Ellipsoid = earth.WGS84, full_scale=None) -> FilterResult:
+    """The paper's system: strapdown INS + ZUPT/ZARU Kalman filter + walking aids.
+
+    Parameters
+    ----------
+    w_ib_b, f_b : array_like, shape (N, 3)
+        Gyro (rad/s) and accelerometer (m/s^2) samples; NaN samples
+        (dropouts) are replaced by the last good one and counted
+        (``imu_dropouts``); they are never used for ZUPT/ZARU
+        (``static_skipped``). The first sample must be valid.
+    dt : float or array_like, shape (N,)
+        IMU sample interval (s), or per-sample intervals (irregular
+        sampling; ``dt[k]`` covered by sample k, e.g.
+        :func:`navlib.timing.intervals`). Logs with repeated or out-of-order
+        timestamps go through :func:`navlib.timing.sanitize` first. The
+        static update rate uses the median interval.
+    lla0, vel0 : array_like, shape (3,)
+        Initial position (rad, rad, m) and ENU velocity (m/s).
+    q0 : array_like, shape (4,)
+        Initial attitude quaternion (e.g. from :func:`level` and
+        :func:`magnetic_heading`).
+    static : array_like of bool, shape (N,)
+        Static flags, e.g. from :func:`detect_static`.
+    h_baro : array_like, shape (N,), optional
+        Barometric height (m, same datum as ``lla0[2]``), NaN between samples.
+    m_b : array_like, shape (N, 3), optional
+        Magnetometer (uT), NaN between samples.
+    declination : float
+        Magnetic declination (rad, east positive).
+    field_n : array_like, shape (3,), optional
+        Reference field in ENU (uT) for the magnetic disturbance gate.
+    walk_aiding : {"reset", "filter", "none"}
+        While walking: the paper's direct resets of height and heading,
+        the same as Kalman measurements, or nothing.
+    zupt : bool
+        Apply ZUPT/ZARU updates while static (False: free INS + walking aids).
+    accel_bias0, gyro_bias0 : array_like, shape (3,)
+        Initial bias estimates (m/s^2, rad/s).
+    config : FilterConfig
+    t0 : float
+        Time of the first epoch (s).
+    full_scale : (float, float), optional
+        Device range ``(gyro rad/s, accelerometer m/s^2)``, e.g. the
+        ``full_scale`` of :func:`navlib.sensors.imu_model`. A sample with any
+        component at or beyond the range is at the rails: counted
+        (``imu_saturated``), integrated as measured (the best estimate
+        available), but never used for ZUPT/ZARU (``static_skipped``).
+        Default: no range (nothing is treated as clipped).
+
+    Returns
+    -------
+    FilterResult
+        A ``RuntimeWarning`` is issued when ``zupt`` is on and no static
+        update was ever applied (check ``result.updated``).
+    """
+    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
+    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=True)
+    if w.ndim != 2 or f.shape != w.shape:
+        raise ValueError(f"f_b: expected the shape (N, 3) of w_ib_b {w.shape}, got {f.shape}")
+    n = w.shape[0]
+    if not (np.isfinite(w[0]).all() and np.isfinite(f[0]).all()):
+        raise ValueError("w_ib_b, f_b: expected a valid first sample (dropouts are held from the last good one)")
+    dts = _intervals(dt, n)
+    lla0 = as_array(lla0, "lla0", tail=(3,)).reshape(3)
+    if abs(lla0[0]) > np.deg2rad(89.9):
+        raise ValueError("lla0: expected |lat| <= 89.9 deg (ENU mechanisation)")
+    vel0 = as_array(vel0, "vel0", tail=(3,)).reshape(3)
+    q0 = as_quat(as_array(q0, "q0", tail=(4,)).reshape(4), "q0")
+    s = np.asarray(static)
+    if s.dtype != bool or s.shape != (n,):
+        raise ValueError(f"static: expected booleans of shape ({n},), got {s.dtype} {s.shape}")
+    hb = np.full(n, np.nan) if h_baro is None else as_array(h_baro, "h_baro", allow_nan=True)
+    if hb.shape != (n,):
+        raise ValueError(f"h_baro: expected shape ({n},), got {hb.shape}")
+    mb = np.full((n, 3), np.nan) if m_b is None else as_array(m_b, "m_b", tail=(3,), allow_nan=True)
+    if mb.shape != (n, 3):
+        raise ValueError(f"m_b: expected shape ({n}, 3), got {mb.shape}")
+    if np.any(np.all(mb == 0, axis=-1)):
+        raise ValueError("m_b: expected non-zero magnetometer vectors (NaN marks a missing sample)")
+    if walk_aiding not in _AIDING:
+        raise ValueError(f"walk_aiding: expected one of {sorted(_AIDING)}, got {walk_aiding!r}")
+    if not isinstance(config, FilterConfig):
+        raise ValueError(f"config: expected a FilterConfig, got {type(config).__name__}")
+    if not isinstance(ellipsoid, earth.Ellipsoid):
+        raise ValueError(f"ellipsoid: expected a navlib.earth.Ellipsoid, got {type(ellipsoid).__name__}")
+    b0 = np.concatenate([as_array(accel_bias0, "accel_bias0", tail=(3,)).reshape(3),
+                         as_array(gyro_bias0, "gyro_bias0", tail=(3,)).reshape(3)])
+    if full_scale is None:
+        gyro_fs, accel_fs = np.inf, np.inf
+    else:
+        fs = as_array(full_scale, "full_scale", allow_nan=False, finite=False)
+        if fs.shape != (2,) or np.isnan(fs).any() or np.any(fs <= 0):
+            raise ValueError(f"full_scale: expected (gyro rad/s, accel m/s^2), two positive numbers, "
+                             f"got {full_scale!r}")
+        gyro_fs, accel_fs = float(fs[0]), float(fs[1])
+    c = config
+    every = max(1, int(round(1.0 / (c.update_rate * float(np.median(dts))))))
+    q_rate = np.concatenate([np.zeros(3), np.full(3, c.accel_noise ** 2), np.full(3, c.gyro_noise ** 2),
+                             np.full(3, c.accel_bias_rw ** 2), np.full(3, c.gyro_bias_rw ** 2)])
+    p0 = np.array([c.p0_pos] * 3 + [c.p0_vel] * 3 + [c.p0_tilt] * 2 + [c.p0_heading]
+                  + [c.p0_accel_bias] * 3 + [c.p0_gyro_bias] * 3) ** 2
+    out = _filter_kernel(lla0, vel0, np.ascontiguousarray(q0), b0, np.ascontiguousarray(w), np.ascontiguousarray(f),
+                         dts, s, np.ascontiguousarray(hb), np.ascontiguousarray(mb),
+                         float(as_array(declination, "declination")), _field_reference(field_n), bool(zupt),
+                         _AIDING[walk_aiding], every, q_rate, p0, c.sigma_zupt ** 2, c.sigma_zaru ** 2,
+                         c.sigma_baro ** 2, c.sigma_heading ** 2, c.baro_alpha, c.baro_beta, c.gate, c.max_rejected,
+                         c.mag_field_tol, c.mag_dip_tol, gyro_fs, accel_fs, c.baro_gate, c.spike_gyro, c.spike_accel,
+                         c.hold_gyro_sigma, c.hold_accel_sigma,
+                         *ellipsoid.gravity_constants, ellipsoid.omega)
+    lla, vel, q, b, p_diag, counts, flags, P = out
+    t0 = float(as_array(t0, "t0"))
+    time = t0 + (dts[0] * np.arange(n + 1) if np.all(dts == dts[0]) else np.concatenate([[0.0], np.cumsum(dts)]))
+    result = FilterResult(trajectory.Trajectory(time, lla, vel, q), b[:, :3], b[:, 3:], p_diag,
+                          dict(zip(_COUNTERS, (int(x) for x in counts), strict=True)), flags, P)
+    if zupt and not result.updated:
+        warnings.warn("run_filter: no ZUPT/ZARU update was applied (no static interval detected); "
+                      "the output is a free INS with walking aids only", RuntimeWarning, stacklevel=2)
+    return result
+
+
+# --------------------------------------------------------------------------
+# Pedestrian dead reckoning (extension)
+# --------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class StepResult:
+    """Detected steps: sample index of each step's end, and the accelerometer
+    peak-to-peak of |f| within it (m/s^2), the input of Weinberg's model."""
+    index: np.ndarray
+    peak_to_peak: np.ndarray
+
+
+def detect_steps(f_b, dt: float, threshold: float = 1.0, min_interval: float = 0.35,
+                 g: float = 9.7936) -> StepResult:
+    """Steps as peaks of the smoothed specific-force magnitude above ``g + threshold``.
+
+    Parameters
+    ----------
+    f_b : array_like, shape (N, 3)
+        Accelerometer samples (m/s^2).
+    dt : float  (s)
+    threshold : float
+        Peak height above g (m/s^2).
+    min_interval : float
+        Minimum time between steps (s).
+    g : float
+        Local gravity (m/s^2).
+    """
+    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1)
+    dt = float(positive(dt, "dt"))
+    thr = float(positive(threshold, "threshold"))
+    gap = int(round(float(positive(min_interval, "min_interval")) / dt))
+    n_smooth = max(2, int(round(0.1 / dt)))
+    if f.ndim != 2 or f.shape[0] < max(gap, n_smooth) + 2:
+        raise ValueError(f"f_b: expected (N, 3) with N > {max(gap, n_smooth) + 2} samples, got {f.shape}")
+    a = _window_mean(np.linalg.norm(f, axis=-1), n_smooth) - float(positive(g, "g"))
+    peak = (a[1:-1] > a[:-2]) & (a[1:-1] >= a[2:]) & (a[1:-1] > thr)
+    idx = []
+    for i in np.flatnonzero(peak) + 1:
+        if not idx or i - idx[-1] >= gap:
+            idx.append(i)
+    idx = np.array(idx, dtype=int)
+    bounds = np.concatenate([[max(0, idx[0] - gap)], idx]) if idx.size else np.zeros(1, dtype=int)
+    p2p = np.array([a[lo:hi + 1].max() - a[lo:hi + 1].min() for lo, hi in zip(bounds[:-1], bounds[1:], strict=True)])
+    return StepResult(idx, p2p)
+
+
+def weinberg_step_length(peak_to_peak, K: float = 0.45):
+    """Weinberg (2002) step length ``K (a_max - a_min)^(1/4)`` (m); K is calibrated per person."""
+    a = positive(peak_to_peak, "peak_to_peak", allow_zero=True)
+    return float(positive(K, "K")) * a ** 0.25
+
+
+def pdr(step_lengths, step_headings, start_en=(0.0, 0.0)):
+    """Dead reckoning from step lengths (m) and headings (rad): East/North after each step.
+
+    Returns
+    -------
+    en : ndarray, shape (n_steps + 1, 2)
+        Positions (m), starting at ``start_en``.
+    """
+    L = positive(step_lengths, "step_lengths", allow_zero=True)
+    psi = as_array(step_headings, "step_headings")
+    if L.shape != psi.shape or L.ndim != 1:
+        raise ValueError(f"step_headings: expected the shape of step_lengths {L.shape}, got {psi.shape}")
+    start = as_array(start_en, "start_en", tail=(2,)).reshape(2)
+    d = np.stack([L * np.sin(psi), L * np.cos(psi)], -1)
+    return start + np.concatenate([np.zeros((1, 2)), np.cumsum(d, 0)])
+
+
+def pdr_headings(f_b, m_b, step_index, declination: float = 0.0):
+    """Heading of every step: tilt-compensated magnetic heading from the step's mean samples.
+
+    Pitch and roll come from the mean specific force over the step
+    (:func:`level`; the gait accelerations average out over a step), the
+    field from the mean magnetometer reading (NaN samples ignored).
+
+    Parameters
+    ----------
+    f_b : array_like, shape (N, 3)
+        Accelerometer (m/s^2).
+    m_b : array_like, shape (N, 3)
+        Magnetometer (uT), NaN between samples.
+    step_index : array_like of int, shape (n_steps,)
+        End sample of each step (:func:`detect_steps`); a step starts where the previous ended.
+    declination : float  (rad)
+
+    Returns
+    -------
+    heading : ndarray, shape (n_steps,)  (rad)
+    """
+    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1)
+    m = as_array(m_b, "m_b", tail=(3,), min_ndim=1, allow_nan=True)
+    idx = np.asarray(step_index)
+    if f.shape != m.shape or f.ndim != 2:
+        raise ValueError(f"m_b: expected the shape (N, 3) of f_b {f.shape}, got {m.shape}")
+    if idx.ndim != 1 or idx.size < 2 or not np.issubdtype(idx.dtype, np.integer) or np.any(np.diff(idx) <= 0) \
+            or idx[0] < 1 or idx[-1] > f.shape[0]:
+        raise ValueError("step_index: expected at least two increasing sample indices within the record")
+    starts = np.concatenate([[max(0, idx[0] - (idx[1] - idx[0]))], idx[:-1]])
+    f_mean = np.stack([f[a:b].mean(0) for a, b in zip(starts, idx, strict=True)])
+    m_mean = np.stack([np.nanmean(m[a:b], 0) if np.isfinite(m[a:b, 0]).any() else np.full(3, np.nan)
+                       for a, b in zip(starts, idx, strict=True)])
+    if not np.isfinite(m_mean).all():
+        raise ValueError("m_b: a step without any magnetometer sample")
+    pitch, roll = level(f_mean)
+    return magnetic_heading(m_mean, pitch, roll, declination)
+
+
+def expanding_std(x):
+    """Standard deviation of ``x[:k+1]`` for every k (population std), e.g. of latitude over [0, t]."""
+    x = as_array(x, "x", min_ndim=1)
+    if x.ndim != 1:
+        raise ValueError(f"x: expected a 1-D array, got shape {x.shape}")
+    x = x - x[0]                                             # conditioning
+    n = np.arange(1, x.size + 1)
+    m1, m2 = np.cumsum(x) / n, np.cumsum(x * x) / n
+    return np.sqrt(np.maximum(m2 - m1 * m1, 0.0))
+
+
+def horizontal_error(lla, lla_true):
+    """East and north position error (m) of ``lla`` against ``lla_true`` (local radii).
+
+    Parameters
+    ----------
+    lla, lla_true : array_like, shape (..., N, 3)
+
+    Returns
+    -------
+    en : ndarray, shape (..., N, 2)
+    """
+    a = as_array(lla, "lla", tail=(3,))
+    b = as_array(lla_true, "lla_true", tail=(3,))
+    R_M, R_N = earth.radii(b[..., 0])
+    return np.stack([(a[..., 1] - b[..., 1]) * (R_N + b[..., 2]) * np.cos(b[..., 0]),
+                     (a[..., 0] - b[..., 0]) * (R_M + b[..., 2])], -1)

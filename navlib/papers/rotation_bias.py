@@ -1,0 +1,1335 @@
+"""Gyro bias estimation by rotating the IMU (paper 001).
+
+Wu Z., Sun Z., Zhang W., Chen Q. (2014). Gyroscope bias estimation and
+compensation by rotation of the inertial measurement unit. *Journal of
+Tsinghua University (Science and Technology)* 54(9): 1143-1147
+(ISSN 1000-0054; no DOI). The only text of the paper available to the project
+is OCR-damaged; the equations below were reconstructed from its legible parts,
+corrected as listed under "Errata" (project ids, ``data/errata.csv``) and
+written in navlib's conventions.
+
+Conventions
+-----------
+The paper's Euler angles (psi, theta, phi) are navlib's ``hpr = [heading,
+pitch, roll]`` (z-x-y order, heading clockwise from north), and its matrix
+R (n -> b) is ``C_bn.T``. Pairs of tilt angles are ordered as in the paper,
+``tilt = [roll, pitch]``. Gyros measure ``w_ib_b``; accelerometers measure
+specific force ``f_b`` (+g up); the paper's gravity vector is ``a_m = -f_b``.
+
+Equations (paper numbering)
+---------------------------
+Eq. (1)  ``R = R_y(phi) R_x(theta) R_z(-psi) = C_bn.T``             :func:`eq1_matrix`
+Eq. (2)  Euler-angle kinematics, Omega = body rate relative to n::
+
+             roll'    = sin(phi) tan(theta) Wx + Wy - cos(phi) tan(theta) Wz
+             pitch'   = cos(phi) Wx + sin(phi) Wz
+             heading' = (sin(phi) Wx - cos(phi) Wz) / cos(theta)
+
+         :func:`euler_rates`; integrated sample by sample (RK4 with the
+         rate held over each sample) by :func:`integrate_euler`.
+Eq. (3)  measured rate = Omega + b.
+Eq. (4)  ``a_m = R [0, 0, -g] = g [cos(th) sin(phi), -sin(th), -cos(th) cos(phi)]``  :func:`gravity_body`
+Eq. (5)  ``phi = atan2(a_mx, -a_mz)``, ``theta = atan2(-a_my, hypot(a_mx, a_mz))``     :func:`tilt_from_accel`
+Eqs. (6)-(9)  per dwell k, ``delta_k = (gyro tilt change) - (accelerometer tilt
+         change) = M(phi_k, theta_k) dT b = V_k b`` with M the first two rows
+         of Eq. (2)                                                  :func:`tilt_matrix`, :func:`tilt_residuals`
+Eq. (10) ``dR = I cos(da) + sin(da) [u x] + (1 - cos(da)) u u^T``    :func:`rodrigues`
+Eq. (11) ``R' = dR^T R`` (``C_bn' = C_bn dR``)                       :func:`rotate_attitude`
+Eqs. (12)-(14) stacked ``r = V b``, ``b = (V^T V)^-1 V^T r``          :func:`lsq_bias`,
+         :func:`running_lsq_bias` (recursive, optional forgetting)
+
+Paper's numbers: MTi-100 (bias stability 10 deg/h, noise 0.01 deg/s/sqrt(Hz)),
+Delta alpha = 90 deg reciprocating every 5 s, 100 Hz, 3600 s, pitch 0/30/60 deg.
+
+Errata (ids of ``data/errata.csv``)
+-----------------------------------
+E001-01  Heading is clockwise: the first rotation is -psi.
+E001-02  The third row of Eq. (2) is ``(sin(phi) Wx - cos(phi) Wz) / cos(theta)``.
+E001-03  Row 2 of Eq. (4) is ``-g sin(theta)``; a_m is gravity, i.e. ``-f_b``.
+E001-04  Eq. (11) is ``R' = dR^T R`` (``dR R`` flips the sign of Delta alpha).
+E001-05  ``u (x) u`` in Eq. (10) is the outer product ``u u^T``.
+E001-06  Earth rate (15.04 deg/h) is not negligible against a 10 deg/h bias: with
+         ``w_ie_b`` given, :func:`tilt_residuals` subtracts ``R w_ie_n`` and
+         :func:`integrate_euler` integrates the rate relative to the ENU frame.
+E001-07  Eq. (6) is a first-order step; here each dwell's tilt residual is the
+         least-squares slope of (integrated gyro tilt - accelerometer tilt).
+E001-08  Two attitudes suffice only if their body verticals differ (axis not
+         vertical) and pitch stays away from +-90 deg; violations raise ValueError.
+E001-09  Unstated details (rotation axis, dwell timing, estimator window) are
+         arguments here; E001-10 (Fig. 5 axis) does not affect the module.
+
+Faulty data (every fault is counted; nothing is dropped silently)
+-----------------------------------------------------------------
+=================  ===========================================  ======================================
+fault              what happens                                 reported by
+=================  ===========================================  ======================================
+NaN dropouts       residuals: a dwell with > ``max_missing`` of ``Residuals.n_skipped``, ``n_missing``,
+                   its samples NaN is skipped (default: any),   ``n_filled``; Kalman ``n_no_data``;
+                   else filled with the dwell median; LSQ and   ``running_lsq_bias`` ``n_skipped``
+                   Kalman skip / predict through NaN dwells
+                   integration: linear interpolation, a gap     ``EulerReport.n_filled``; ValueError
+                   longer than ``max_gap`` raises
+outliers (spikes)  residuals: ``outlier_k`` x MAD from the      ``n_outliers_gyro``/``_accel``;
+                   dwell median replaced (opt-in); Kalman       ``KalmanBias.n_rejected``
+                   gate rejects corrupted dwells
+saturation         residuals: dwell with samples at the rails   ``n_saturated``, ``n_skipped_saturated``
+                   skipped; integration: counted (unreliable)   ``EulerReport.n_saturated``
+timing             per-sample ``dt`` arrays in                  ``TimingReport`` from
+                   :func:`tilt_residuals`, :func:`integrate_euler`;  ``timing.sanitize``
+                   per-dwell intervals in :func:`kalman_bias`
+=================  ===========================================  ======================================
+
+Extensions: a Kalman filter with a random-walk bias state (:func:`kalman_bias`),
+the residual noise model (:func:`residual_covariance`) and the Cramer-Rao
+bound (:func:`cramer_rao_bound`, :func:`design`).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numba import njit
+
+from .. import attitude, earth, kalman
+from .._validate import in_range
+from .._validate import nonempty_array as as_array
+from .._validate import nonempty_latitude as latitude
+from .._validate import nonempty_positive as positive
+
+__all__ = ["eq1_matrix", "euler_rates", "integrate_euler", "EulerReport", "gravity_body", "tilt_from_accel",
+           "tilt_matrix", "rodrigues", "rotate_attitude", "dwell_attitudes", "dwell_windows",
+           "earth_rate_body", "Residuals", "tilt_residuals", "residual_covariance", "lsq_bias",
+           "running_lsq_bias", "KalmanBias", "kalman_bias", "condition_number", "lsq_covariance",
+           "cramer_rao_bound", "design", "attitude_errors", "error_statistics", "PITCH_LIMIT", "MIN_DWELL_SAMPLES"]
+
+PITCH_LIMIT = np.deg2rad(89.0)
+"""Largest |pitch| (rad) accepted where Eq. (2) divides by cos(pitch)."""
+MIN_DWELL_SAMPLES = 10
+"""Fewest samples in a dwell window for a tilt-rate fit."""
+_MAX_COND = 1e6
+_RK4_ANGLE2 = 1e-6          # squared step angle (rad^2) above which integrate_euler uses RK4
+
+
+# --------------------------------------------------------------------------
+# Eqs. (1)-(2): attitude matrix and Euler-angle kinematics
+# --------------------------------------------------------------------------
+
+def _hpr(hpr, name="hpr"):
+    hpr = as_array(hpr, name, tail=(3,))
+    _check_pitch(hpr[..., 1], f"{name}[..., 1] (pitch)")
+    return hpr
+
+
+def _intervals(dt, n, name="dt"):
+    """``dt`` as a float or a per-sample array of shape (n,); returns (array (n,), regular)."""
+    arr = positive(dt, name)
+    if arr.ndim == 0:
+        return np.full(max(n, 1), float(arr)), True
+    if arr.shape != (n,):
+        raise ValueError(f"{name}: expected a float or per-sample intervals of shape ({n},), got {arr.shape}")
+    return np.ascontiguousarray(arr), False
+
+
+def _full_scale(x, name):
+    return np.inf if x is None else float(positive(x, name))
+
+
+def _check_pitch(pitch, name):
+    if np.any(np.abs(pitch) > PITCH_LIMIT):
+        raise ValueError(f"{name}: expected |pitch| <= {np.rad2deg(PITCH_LIMIT):g} deg; Eq. (2) is singular "
+                         f"at +-90 deg (got max |pitch| {np.rad2deg(np.nanmax(np.abs(pitch))):.3f} deg)")
+
+
+def eq1_matrix(hpr):
+    """Paper Eq. (1) as printed (reconstructed signs): R, mapping n to b.
+
+    Parameters
+    ----------
+    hpr : array_like, shape (..., 3)
+        ``[heading, pitch, roll]`` (rad).
+
+    Returns
+    -------
+    R : ndarray, shape (..., 3, 3)
+        Equals ``attitude.euler_to_dcm(hpr).T`` (erratum E001-01: heading clockwise).
+    """
+    h, p, r = np.moveaxis(as_array(hpr, "hpr", tail=(3,)), -1, 0)
+    ch, sh, cp, sp, cr, sr = np.cos(h), np.sin(h), np.cos(p), np.sin(p), np.cos(r), np.sin(r)
+    rows = [[cr * ch + sr * sp * sh, -cr * sh + sr * sp * ch, -sr * cp],
+            [cp * sh, cp * ch, sp],
+            [sr * ch - cr * sp * sh, -sr * sh - cr * sp * ch, cr * cp]]
+    return np.stack([np.stack(row, -1) for row in rows], -2)
+
+
+def euler_rates(hpr, w_nb_b):
+    """Eq. (2): time derivative of ``[heading, pitch, roll]`` from the body rate.
+
+    Parameters
+    ----------
+    hpr : array_like, shape (..., 3)
+        ``[heading, pitch, roll]`` (rad); |pitch| <= 89 deg.
+    w_nb_b : array_like, shape (..., 3)
+        Body rate relative to the navigation frame (rad/s).
+
+    Returns
+    -------
+    hpr_dot : ndarray, shape (..., 3)
+        ``[heading', pitch', roll']`` (rad/s).
+    """
+    hpr = _hpr(hpr)
+    w = as_array(w_nb_b, "w_nb_b", tail=(3,))
+    _, p, r = np.moveaxis(hpr, -1, 0)
+    wx, wy, wz = np.moveaxis(w, -1, 0)
+    heading_dot = (np.sin(r) * wx - np.cos(r) * wz) / np.cos(p)
+    pitch_dot = np.cos(r) * wx + np.sin(r) * wz
+    roll_dot = wy + np.sin(p) * heading_dot
+    return np.stack(np.broadcast_arrays(heading_dot, pitch_dot, roll_dot), -1)
+
+
+@njit(cache=True, inline="always")
+def _hpr_dot(h, p, r, wx, wy, wz, nE, nN, nU):
+    """Eq. (2) with the navigation-frame rate removed: w_nb_b = w_ib_b - C_nb w_in_n."""
+    ch, sh, cp, sp, cr, sr = np.cos(h), np.sin(h), np.cos(p), np.sin(p), np.cos(r), np.sin(r)
+    wx -= (cr * ch + sr * sp * sh) * nE + (-cr * sh + sr * sp * ch) * nN - sr * cp * nU
+    wy -= cp * sh * nE + cp * ch * nN + sp * nU
+    wz -= (sr * ch - cr * sp * sh) * nE + (-sr * sh - cr * sp * ch) * nN + cr * cp * nU
+    hd = (sr * wx - cr * wz) / cp
+    return hd, cr * wx + sr * wz, wy + sp * hd
+
+
+@njit(cache=True)
+def _euler_kernel(hpr0, w, dts, w_in, bias, bias_from, pitch_limit, max_gap, fs):
+    T, N = w.shape[0], w.shape[1]
+    K = bias_from.shape[0]
+    out = np.empty((T, N + 1, 3))
+    singular = False
+    gap_too_long = False
+    held = 0
+    saturated = 0
+    first_saturated = -1
+    nE, nN, nU = w_in[0], w_in[1], w_in[2]
+    for t in range(T):
+        h, p, r = hpr0[t, 0], hpr0[t, 1], hpr0[t, 2]
+        out[t, 0, 0], out[t, 0, 1], out[t, 0, 2] = h, p, r
+        k = -1
+        bx = by = bz = 0.0
+        lx = ly = lz = 0.0           # last valid gyro sample (zero before the first)
+        li = -1                      # its index
+        nj = -1                      # next valid sample after a dropout (-1: none found yet / none left)
+        gap = 0.0
+        for i in range(N):
+            dt = dts[i]
+            while k + 1 < K and bias_from[k + 1] <= i:      # newest estimate available at sample i
+                k += 1
+                if np.isfinite(bias[t, k, 0]):
+                    bx, by, bz = bias[t, k, 0], bias[t, k, 1], bias[t, k, 2]
+            sx, sy, sz = w[t, i, 0], w[t, i, 1], w[t, i, 2]
+            if np.isfinite(sx) and np.isfinite(sy) and np.isfinite(sz):
+                lx, ly, lz = sx, sy, sz
+                li = i
+                gap = 0.0
+                if abs(sx) >= fs or abs(sy) >= fs or abs(sz) >= fs:
+                    saturated += 1
+                    if first_saturated < 0 or i < first_saturated:
+                        first_saturated = i
+            else:                                           # dropout: interpolate between valid neighbours
+                if nj <= i:
+                    nj = i + 1
+                    while nj < N and not (np.isfinite(w[t, nj, 0]) and np.isfinite(w[t, nj, 1])
+                                          and np.isfinite(w[t, nj, 2])):
+                        nj += 1
+                if nj >= N:                                 # trailing dropouts: hold the last valid sample
+                    sx, sy, sz = lx, ly, lz
+                elif li < 0:                                # leading dropouts: the first valid sample
+                    sx, sy, sz = w[t, nj, 0], w[t, nj, 1], w[t, nj, 2]
+                else:
+                    c = (i - li) / (nj - li)
+                    sx = lx + c * (w[t, nj, 0] - lx)
+                    sy = ly + c * (w[t, nj, 1] - ly)
+                    sz = lz + c * (w[t, nj, 2] - lz)
+                held += 1
+                gap += dt
+                if gap > max_gap:
+                    gap_too_long = True
+            wx, wy, wz = sx - bx, sy - by, sz - bz
+            if (wx * wx + wy * wy + wz * wz) * dt * dt > _RK4_ANGLE2:
+                # classic RK4 with the sample's rate held over [t_i, t_i + dt]
+                k1h, k1p, k1r = _hpr_dot(h, p, r, wx, wy, wz, nE, nN, nU)
+                k2h, k2p, k2r = _hpr_dot(h + dt / 2 * k1h, p + dt / 2 * k1p, r + dt / 2 * k1r, wx, wy, wz, nE, nN, nU)
+                k3h, k3p, k3r = _hpr_dot(h + dt / 2 * k2h, p + dt / 2 * k2p, r + dt / 2 * k2r, wx, wy, wz, nE, nN, nU)
+                k4h, k4p, k4r = _hpr_dot(h + dt * k3h, p + dt * k3p, r + dt * k3r, wx, wy, wz, nE, nN, nU)
+                h += dt / 6 * (k1h + 2 * k2h + 2 * k3h + k4h)
+                p += dt / 6 * (k1p + 2 * k2p + 2 * k3p + k4p)
+                r += dt / 6 * (k1r + 2 * k2r + 2 * k3r + k4r)
+            else:
+                # small step (a still IMU): the midpoint rule, local error ~ (|w| dt)^3 < 1e-9 rad
+                k1h, k1p, k1r = _hpr_dot(h, p, r, wx, wy, wz, nE, nN, nU)
+                k2h, k2p, k2r = _hpr_dot(h + dt / 2 * k1h, p + dt / 2 * k1p, r + dt / 2 * k1r, wx, wy, wz, nE, nN, nU)
+                h += dt * k2h
+                p += dt * k2p
+                r += dt * k2r
+            if abs(p) > pitch_limit:
+                singular = True
+            out[t, i + 1, 0], out[t, i + 1, 1], out[t, i + 1, 2] = h, p, r
+    return out, singular, gap_too_long, held, saturated, first_saturated
+
+
+@dataclass(frozen=True)
+class EulerReport:
+    """What :func:`integrate_euler` did with faulty gyro samples.
+
+    Attributes
+    ----------
+    n_filled : int
+        NaN samples (dropouts) replaced by linear interpolation between the
+        neighbouring valid samples (the nearest valid sample at the ends),
+        summed over runs.
+    n_saturated : int
+        Samples with a component at the rails (``|w| >= full_scale``); the
+        true rate was larger, so the attitude from ``first_saturated`` on is
+        unreliable. 0 without ``full_scale``.
+    first_saturated : int
+        Earliest saturated sample index over all runs (-1: none).
+    """
+    n_filled: int
+    n_saturated: int
+    first_saturated: int
+
+
+def integrate_euler(hpr0, w_ib_b, dt, w_in_n=None, bias_b=None, bias_from=None, *, max_gap: float = 0.0,
+                    full_scale: float | None = None, report: bool = False):
+    """Integrate Eq. (2) from gyro samples, optionally bias-compensated.
+
+    Each sample is the mean rate over ``[t_k, t_k + dt_k]``; the Euler-angle
+    ODE is advanced over the interval with that rate held, by classic RK4
+    when the step angle ``|w| dt`` exceeds 1e-3 rad (rotations) and by the
+    midpoint rule otherwise (still IMU; local error below 1e-9 rad).
+
+    Faults: NaN samples (dropouts) raise ValueError unless ``max_gap > 0``;
+    then each is replaced by linear interpolation between the neighbouring
+    valid samples (counted in ``EulerReport.n_filled``; to first order the
+    attitude error is the integral of the interpolation error, at most
+    ``sum |w_interp - w_true| dt`` over the filled samples) and a run of
+    dropouts longer than ``max_gap`` seconds raises ValueError (the rotation
+    over it is unknown). With
+    ``full_scale`` (the gyro range, rad/s) samples at the rails are counted
+    (``n_saturated``, ``first_saturated``): they cannot be corrected, the
+    attitude after them is unreliable. Irregular sampling: pass per-sample
+    intervals ``dt`` (``timing.intervals`` after ``timing.sanitize``).
+
+    Parameters
+    ----------
+    hpr0 : array_like, shape (3,) or (..., 3)
+        Initial ``[heading, pitch, roll]`` (rad).
+    w_ib_b : array_like, shape (..., N, 3)
+        Gyro samples (rad/s); NaN only with ``max_gap > 0``.
+    dt : float or array_like, shape (N,)
+        Sample interval (s), or the interval after each sample.
+    w_in_n : array_like, shape (3,), optional
+        Rate of the navigation frame (rad/s), e.g. ``earth.earth_rate_n(lat)``
+        for a static host (erratum E001-06); default zero, as in the paper.
+    bias_b : array_like, shape (..., 3) or (..., K, 3), optional
+        Bias estimates to subtract (rad/s). A (..., 3) array is constant; a
+        (..., K, 3) array holds successive estimates, estimate k applying from
+        sample ``bias_from[k]`` on (zero before the first; NaN entries, e.g.
+        "not yet observable", keep the previous estimate).
+    bias_from : array_like of int, shape (K,), optional
+        Sample index from which each estimate applies; required with K > 1.
+    max_gap : float
+        Longest run of dropouts (s) bridged by interpolation; default 0:
+        NaN is not accepted.
+    full_scale : float, optional
+        Gyro range (rad/s) for counting saturated samples.
+    report : bool
+        Also return an :class:`EulerReport`.
+
+    Returns
+    -------
+    hpr : ndarray, shape (..., N + 1, 3)
+        Heading wrapped to [0, 2 pi), roll to (-pi, pi].
+    report : EulerReport
+        Only with ``report=True``.
+    """
+    max_gap = float(positive(max_gap, "max_gap", allow_zero=True))
+    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=max_gap > 0)
+    lead, n = w.shape[:-2], w.shape[-2]
+    dts, _ = _intervals(dt, n)
+    fs = _full_scale(full_scale, "full_scale")
+    hpr0 = np.broadcast_to(_hpr(hpr0, "hpr0"), lead + (3,)).reshape(-1, 3)
+    w_in = np.zeros(3) if w_in_n is None else as_array(w_in_n, "w_in_n", tail=(3,)).reshape(3)
+    bias, idx = _bias_schedule(bias_b, bias_from, lead)
+    out, singular, gap_long, held, sat, first = _euler_kernel(
+        np.ascontiguousarray(hpr0), np.ascontiguousarray(w.reshape((-1, n, 3))), dts, w_in, bias, idx,
+        PITCH_LIMIT, max_gap, fs)
+    if gap_long:
+        raise ValueError(f"w_ib_b: a run of NaN samples (dropouts) is longer than max_gap = {max_gap:g} s; the "
+                         "rotation over it is unknown")
+    if singular:
+        raise ValueError(f"w_ib_b: the integrated pitch passed +-{np.rad2deg(PITCH_LIMIT):g} deg, where Eq. (2) "
+                         "is singular; integrate this motion with quaternions (strapdown.integrate_attitude)")
+    out[..., 0] = attitude.wrap_2pi(out[..., 0])
+    out[..., 2] = attitude.wrap_pi(out[..., 2])
+    out = out.reshape(lead + (n + 1, 3))
+    return (out, EulerReport(int(held), int(sat), int(first))) if report else out
+
+
+def _bias_schedule(bias_b, bias_from, lead):
+    n_lead = int(np.prod(lead, dtype=int))
+    if bias_b is None:
+        return np.zeros((n_lead, 1, 3)), np.zeros(1, dtype=np.int64)
+    b = as_array(bias_b, "bias_b", tail=(3,), allow_nan=True)
+    if bias_from is None:
+        idx = np.zeros(1, dtype=np.int64)
+        b = b[..., None, :]
+    else:
+        idx = np.asarray(bias_from)
+        if idx.ndim != 1 or not np.issubdtype(idx.dtype, np.integer) or np.any(np.diff(idx) < 0) \
+                or np.any(idx < 0):
+            raise ValueError("bias_from: expected a non-decreasing 1-D array of non-negative sample indices")
+        if b.ndim < 2 or b.shape[-2] != idx.size:
+            raise ValueError(f"bias_b: expected shape (..., {idx.size}, 3) to match bias_from, got {b.shape}")
+    try:
+        b = np.broadcast_to(b, lead + b.shape[-2:])
+    except ValueError:
+        raise ValueError(f"bias_b: expected leading axes broadcasting to {lead}, got {b.shape}") from None
+    return np.ascontiguousarray(b.reshape((n_lead,) + b.shape[-2:])), idx.astype(np.int64)
+
+
+# --------------------------------------------------------------------------
+# Eqs. (4)-(5): accelerometer tilt
+# --------------------------------------------------------------------------
+
+def gravity_body(tilt, g: float = 9.80665):
+    """Eq. (4): gravity vector in the body frame, ``a_m = R [0, 0, -g]``.
+
+    Parameters
+    ----------
+    tilt : array_like, shape (..., 2)
+        ``[roll, pitch]`` (rad).
+    g : float
+        Gravity (m/s^2).
+
+    Returns
+    -------
+    a_m : ndarray, shape (..., 3)
+        Equals ``-f_b`` of a static accelerometer (erratum E001-03).
+    """
+    tilt = as_array(tilt, "tilt", tail=(2,))
+    g = float(positive(g, "g"))
+    r, p = tilt[..., 0], tilt[..., 1]
+    return g * np.stack([np.cos(p) * np.sin(r), -np.sin(p), -np.cos(p) * np.cos(r)], -1)
+
+
+def tilt_from_accel(f_b):
+    """Eq. (5) on specific force: ``[roll, pitch]`` of a static IMU (rad).
+
+    With ``a_m = -f_b``: ``roll = atan2(-f_x, f_z)``,
+    ``pitch = atan2(f_y, hypot(f_x, f_z))`` (the atan2 form of the arcsine).
+
+    Parameters
+    ----------
+    f_b : array_like, shape (..., 3)
+        Specific force (m/s^2), +g up when level.
+
+    Returns
+    -------
+    tilt : ndarray, shape (..., 2)
+    """
+    f = as_array(f_b, "f_b", tail=(3,))
+    return np.stack([np.arctan2(-f[..., 0], f[..., 2]),
+                     np.arctan2(f[..., 1], np.hypot(f[..., 0], f[..., 2]))], -1)
+
+
+def tilt_matrix(tilt):
+    """M(roll, pitch): the first two rows of Eq. (2), ``[roll', pitch'] = M Omega``.
+
+    Parameters
+    ----------
+    tilt : array_like, shape (..., 2)
+        ``[roll, pitch]`` (rad); |pitch| <= 89 deg.
+
+    Returns
+    -------
+    M : ndarray, shape (..., 2, 3)
+        Its null space is the body vertical ``a_m`` (section 3.1).
+    """
+    tilt = as_array(tilt, "tilt", tail=(2,))
+    _check_pitch(tilt[..., 1], "tilt[..., 1] (pitch)")
+    r, p = tilt[..., 0], tilt[..., 1]
+    tp, cr, sr = np.tan(p), np.cos(r), np.sin(r)
+    rows = [[sr * tp, np.ones_like(r), -cr * tp], [cr, np.zeros_like(r), sr]]
+    return np.stack([np.stack(row, -1) for row in rows], -2)
+
+
+# --------------------------------------------------------------------------
+# Eqs. (10)-(11): rotation of the IMU
+# --------------------------------------------------------------------------
+
+def _unit_axis(axis_b):
+    u = as_array(axis_b, "axis_b", tail=(3,)).reshape(3)
+    if abs(np.linalg.norm(u) - 1) > 1e-9:
+        raise ValueError(f"axis_b: expected a unit vector, got norm {np.linalg.norm(u):.6g}")
+    return u
+
+
+def rodrigues(axis_b, angle):
+    """Eq. (10): ``dR = I cos a + sin a [u x] + (1 - cos a) u u^T`` (b' -> b).
+
+    Parameters
+    ----------
+    axis_b : array_like, shape (3,)
+        Unit rotation axis u in the body frame.
+    angle : array_like, shape (...)
+        Rotation angle Delta alpha (rad).
+
+    Returns
+    -------
+    dR : ndarray, shape (..., 3, 3)
+    """
+    u = _unit_axis(axis_b)
+    a = as_array(angle, "angle")[..., None, None]
+    return np.cos(a) * np.eye(3) + np.sin(a) * attitude.skew(u) + (1 - np.cos(a)) * np.outer(u, u)
+
+
+def rotate_attitude(hpr, axis_b, angle):
+    """Eq. (11): attitude after rotating the IMU by ``angle`` about ``axis_b``.
+
+    ``R' = dR^T R`` (erratum E001-04), i.e. ``C_bn' = C_bn dR``.
+
+    Parameters
+    ----------
+    hpr : array_like, shape (..., 3)
+        Attitude before the rotation (rad).
+    axis_b : array_like, shape (3,)
+    angle : array_like, shape (...)
+
+    Returns
+    -------
+    hpr : ndarray, shape (..., 3)
+    """
+    C = attitude.euler_to_dcm(as_array(hpr, "hpr", tail=(3,)))
+    return attitude.dcm_to_euler(C @ rodrigues(axis_b, angle))
+
+
+def dwell_attitudes(hpr0, axis_b, amplitude: float, n_dwells: int):
+    """Attitudes of a reciprocating schedule: hpr0, rotated, hpr0, rotated, ...
+
+    Parameters
+    ----------
+    hpr0 : array_like, shape (3,)
+        Initial attitude (rad).
+    axis_b : array_like, shape (3,)
+    amplitude : float
+        Delta alpha (rad).
+    n_dwells : int
+
+    Returns
+    -------
+    hpr : ndarray, shape (n_dwells, 3)
+
+    Raises
+    ------
+    ValueError
+        If a dwell's pitch is within 1 deg of +-90 deg (erratum E001-08).
+    """
+    hpr0 = as_array(hpr0, "hpr0", tail=(3,)).reshape(3)
+    if not isinstance(n_dwells, (int, np.integer)) or isinstance(n_dwells, bool) or n_dwells < 1:
+        raise ValueError(f"n_dwells: expected a positive integer, got {n_dwells!r}")
+    pair = np.stack([hpr0, rotate_attitude(hpr0, axis_b, float(as_array(amplitude, "amplitude")))])
+    if np.any(np.abs(pair[:, 1]) > PITCH_LIMIT):
+        raise ValueError(f"axis_b: rotating by {np.rad2deg(amplitude):g} deg about {np.round(axis_b, 6)} drives "
+                         f"pitch to {np.rad2deg(pair[1, 1]):.1f} deg, where Eq. (2) is singular")
+    return pair[np.arange(n_dwells) % 2]
+
+
+def dwell_windows(n_samples: int, dt: float, period: float, rotation_time: float, settle: float = 0.0):
+    """Dwell windows of :func:`navlib.trajectory.reciprocating_rotation`.
+
+    Period k holds still over ``[k period, (k+1) period - rotation_time)``;
+    the first ``settle`` seconds of each dwell are skipped.
+
+    Parameters
+    ----------
+    n_samples : int
+        Number of IMU samples.
+    dt, period, rotation_time, settle : float  (s)
+
+    Returns
+    -------
+    starts : ndarray of int, shape (K,)
+        First sample of each complete dwell.
+    length : int
+        Samples per dwell (at least :data:`MIN_DWELL_SAMPLES`).
+    """
+    if not isinstance(n_samples, (int, np.integer)) or isinstance(n_samples, bool) or n_samples < 1:
+        raise ValueError(f"n_samples: expected a positive integer, got {n_samples!r}")
+    dt, period = float(positive(dt, "dt")), float(positive(period, "period"))
+    rotation_time = float(positive(rotation_time, "rotation_time", allow_zero=True))
+    settle = float(positive(settle, "settle", allow_zero=True))
+    per = int(round(period / dt))
+    first = int(round(settle / dt))
+    length = int(np.floor((period - rotation_time) / dt + 1e-9)) - first
+    if length < MIN_DWELL_SAMPLES:
+        raise ValueError(f"period, rotation_time, settle: dwell windows too short ({length} samples); "
+                         f"expected at least {MIN_DWELL_SAMPLES}")
+    starts = np.arange(0, n_samples - length - first + 1, per) + first
+    return starts.astype(np.int64), length
+
+
+def earth_rate_body(hpr, lat):
+    """Earth rate in the body frame, ``R w_ie_n`` (rad/s) (erratum E001-06).
+
+    Parameters
+    ----------
+    hpr : array_like, shape (..., 3)
+        Attitude (rad), e.g. from :func:`dwell_attitudes`.
+    lat : float
+        Latitude (rad).
+
+    Returns
+    -------
+    w_ie_b : ndarray, shape (..., 3)
+    """
+    C = attitude.euler_to_dcm(as_array(hpr, "hpr", tail=(3,)))
+    return np.einsum("...ji,j->...i", C, earth.earth_rate_n(float(latitude(lat))))
+
+
+# --------------------------------------------------------------------------
+# Eqs. (6)-(9): tilt-difference residuals per dwell
+# --------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Residuals:
+    """Tilt-difference residuals of the dwells (Eqs. 6-9).
+
+    Attributes
+    ----------
+    r : ndarray, shape (..., K, 2)
+        ``delta_k = [d roll, d pitch]`` (rad) over each dwell; NaN for skipped dwells.
+    V : ndarray, shape (..., K, 2, 3)
+        ``V_k = M(roll_k, pitch_k) T`` (s); NaN for skipped dwells.
+    tilt : ndarray, shape (..., K, 2)
+        Dwell tilt ``[roll, pitch]`` from the mean specific force (rad).
+    end : ndarray of int, shape (K,)
+        Sample index after each dwell (when its residual becomes available).
+    duration : float
+        Dwell length T (s); with per-sample intervals, the mean over the dwells
+        (each dwell's own length is in its ``V``).
+    n_skipped : int
+        Dwells skipped for dropouts: more than ``max_missing`` of their
+        samples NaN (any NaN with the default ``max_missing = 0``).
+    n_missing : int
+        Samples inside dwell windows with a NaN gyro or accelerometer reading
+        (those of skipped dwells included).
+    n_filled : int
+        Of these, samples in kept dwells, replaced by the dwell median.
+    n_outliers_gyro, n_outliers_accel : int
+        Samples of kept dwells rejected as outliers (``outlier_k`` x MAD from
+        the dwell median) and replaced by the median; 0 without ``outlier_k``.
+    n_saturated : int
+        Samples inside dwell windows at the device rails (``full_scale_*``).
+    n_skipped_saturated : int
+        Dwells skipped because they contained saturated samples.
+    """
+    r: np.ndarray
+    V: np.ndarray
+    tilt: np.ndarray
+    end: np.ndarray
+    duration: float
+    n_skipped: int
+    n_missing: int = 0
+    n_filled: int = 0
+    n_outliers_gyro: int = 0
+    n_outliers_accel: int = 0
+    n_saturated: int = 0
+    n_skipped_saturated: int = 0
+
+
+@njit(cache=True)
+def _median_mad(buf, ok, n, a, want_mad):
+    """Median (and MAD) of column ``a`` of ``buf[:n]`` over rows where ``ok``; NaN when none."""
+    m = 0
+    vals = np.empty(n)
+    for j in range(n):
+        if ok[j]:
+            vals[m] = buf[j, a]
+            m += 1
+    if m == 0:
+        return np.nan, np.nan
+    med = np.median(vals[:m])
+    if not want_mad:
+        return med, 0.0
+    for j in range(m):
+        vals[j] = abs(vals[j] - med)
+    return med, np.median(vals[:m])
+
+
+@njit(cache=True)
+def _clean_dwell(wb, fb, n, max_missing, outlier_k, fs_gyro, fs_accel, counts):
+    """Fill dropouts and replace outliers of one dwell in place; False when the dwell must be skipped.
+
+    counts: [skipped_nan, missing, filled, outliers_gyro, outliers_accel, saturated, skipped_saturated]
+    """
+    ok_w = np.ones(n, dtype=np.bool_)
+    ok_f = np.ones(n, dtype=np.bool_)
+    missing = 0
+    saturated = 0
+    for j in range(n):
+        for a in range(3):
+            if not np.isfinite(wb[j, a]):
+                ok_w[j] = False
+            if not np.isfinite(fb[j, a]):
+                ok_f[j] = False
+        if not (ok_w[j] and ok_f[j]):
+            missing += 1
+        elif (abs(wb[j, 0]) >= fs_gyro or abs(wb[j, 1]) >= fs_gyro or abs(wb[j, 2]) >= fs_gyro
+              or abs(fb[j, 0]) >= fs_accel or abs(fb[j, 1]) >= fs_accel or abs(fb[j, 2]) >= fs_accel):
+            saturated += 1
+    counts[1] += missing
+    if saturated > 0:                    # at the rails: the IMU was not still, or the reading is unknown
+        counts[5] += saturated
+        counts[6] += 1
+        return False
+    if missing > max_missing * n or missing == n:
+        counts[0] += 1
+        return False
+    if missing == 0 and outlier_k <= 0:
+        return True                      # the common case: untouched
+    counts[2] += missing
+    detect = outlier_k > 0
+    for buf, ok, c in ((wb, ok_w, 3), (fb, ok_f, 4)):
+        bad = np.zeros(n, dtype=np.bool_)
+        med = np.empty(3)
+        for a in range(3):
+            med[a], mad = _median_mad(buf, ok, n, a, detect)
+            if detect:
+                thresh = outlier_k * max(1.4826 * mad, 1e-12)
+                for j in range(n):
+                    if ok[j] and abs(buf[j, a] - med[a]) > thresh:
+                        bad[j] = True
+        for j in range(n):
+            if bad[j]:
+                counts[c] += 1
+            if bad[j] or not ok[j]:
+                buf[j, 0], buf[j, 1], buf[j, 2] = med[0], med[1], med[2]
+    return True
+
+
+@njit(cache=True)
+def _residual_kernel(w, f, dts, regular, starts, n, w_ie, pitch_limit, max_missing, outlier_k, fs_gyro, fs_accel):
+    T, K = w.shape[0], starts.shape[0]
+    r = np.full((T, K, 2), np.nan)
+    V = np.full((T, K, 2, 3), np.nan)
+    tilt = np.full((T, K, 2), np.nan)
+    counts = np.zeros(7, dtype=np.int64)
+    singular = False
+    jbar = (n - 1) / 2
+    s_jj = n * (n * n - 1) / 12.0                 # sum of (j - jbar)^2
+    dt = dts[0]
+    wb = np.empty((n, 3))
+    fb = np.empty((n, 3))
+    tj = np.empty(n)
+    for t in range(T):
+        for k in range(K):
+            s = starts[k]
+            for j in range(n):
+                for a in range(3):
+                    wb[j, a] = w[t, s + j, a]
+                    fb[j, a] = f[t, s + j, a]
+            if not _clean_dwell(wb, fb, n, max_missing, outlier_k, fs_gyro, fs_accel, counts):
+                continue
+            fx = fy = fz = 0.0
+            for j in range(n):
+                fx += fb[j, 0]
+                fy += fb[j, 1]
+                fz += fb[j, 2]
+            roll_k, pitch_k = np.arctan2(-fx, fz), np.arctan2(fy, np.hypot(fx, fz))
+            if abs(pitch_k) > pitch_limit:
+                singular = True
+                continue
+            tp, cr, sr = np.tan(pitch_k), np.cos(roll_k), np.sin(roll_k)
+            m00, m01, m02, m10, m12 = sr * tp, 1.0, -cr * tp, cr, sr        # M (m11 = 0)
+            wex, wey, wez = w_ie[t, k, 0], w_ie[t, k, 1], w_ie[t, k, 2]
+            if regular:
+                Td = n * dt
+            else:                          # sample times within the dwell for the slope fit
+                Td = 0.0
+                for j in range(n):
+                    tj[j] = Td
+                    Td += dts[s + j]
+                tbar = 0.0
+                for j in range(n):
+                    tbar += tj[j]
+                tbar /= n
+                s_tt = 0.0
+                for j in range(n):
+                    s_tt += (tj[j] - tbar) ** 2
+            g_r = g_p = 0.0            # gyro tilt change since the dwell start, M sum(w dt) (Eq. 6)
+            sum_r = sum_p = 0.0        # sum (j - jbar) d_j for the slope fit
+            for j in range(n):
+                a_r = np.arctan2(-fb[j, 0], fb[j, 2]) - roll_k               # Eq. (5), about the dwell tilt
+                a_r = (a_r + np.pi) % (2 * np.pi) - np.pi
+                a_p = np.arctan2(fb[j, 1], np.hypot(fb[j, 0], fb[j, 2])) - pitch_k
+                x = (j - jbar) if regular else (tj[j] - tbar)
+                sum_r += x * (g_r - a_r)                                     # Eq. (7)
+                sum_p += x * (g_p - a_p)
+                wx, wy, wz = wb[j, 0] - wex, wb[j, 1] - wey, wb[j, 2] - wez
+                h = dt if regular else dts[s + j]
+                g_r += (m00 * wx + m01 * wy + m02 * wz) * h
+                g_p += (m10 * wx + m12 * wz) * h
+            if regular:
+                # slope (rad/s) times the dwell length T = n dt gives delta_k (Eq. 9: delta_k = M T b)
+                r[t, k, 0] = sum_r / s_jj * n
+                r[t, k, 1] = sum_p / s_jj * n
+            else:
+                r[t, k, 0] = sum_r / s_tt * Td
+                r[t, k, 1] = sum_p / s_tt * Td
+            tilt[t, k, 0], tilt[t, k, 1] = roll_k, pitch_k
+            V[t, k, 0, 0], V[t, k, 0, 1], V[t, k, 0, 2] = m00 * Td, m01 * Td, m02 * Td
+            V[t, k, 1, 0], V[t, k, 1, 1], V[t, k, 1, 2] = m10 * Td, 0.0, m12 * Td
+    return r, V, tilt, counts, singular
+
+
+def tilt_residuals(w_ib_b, f_b, dt, starts, length: int, w_ie_b=None, *, max_missing: float = 0.0,
+                   outlier_k: float | None = None, full_scale_gyro: float | None = None,
+                   full_scale_accel: float | None = None) -> Residuals:
+    """Eqs. (6)-(9): gyro-minus-accelerometer tilt change over each dwell.
+
+    Over dwell k the sequence ``d_j = M_k sum_{i<j} w_i dt - (tilt_j - tilt_k)``
+    (integrated gyro tilt minus Eq. (5) accelerometer tilt) grows at the
+    rate ``M_k b``; its least-squares slope times the dwell length T is the
+    residual ``delta_k = V_k b + noise`` with ``V_k = M_k T``. M_k is taken
+    at the dwell's mean accelerometer tilt. On a static rig Eq. (6) is exact.
+
+    Faults (every one counted in :class:`Residuals`; the IMU is still during a
+    dwell, so its median reading is a good stand-in for a lost sample):
+
+    * dropouts (NaN samples): a dwell with more than ``max_missing`` of its
+      samples NaN is skipped (``n_skipped``, residual NaN); otherwise its NaN
+      samples are filled with the dwell median (``n_filled``). The default 0
+      skips any dwell with a NaN, as before; a 30-s gap skips the dwells it
+      covers.
+    * outliers: with ``outlier_k``, samples more than ``outlier_k`` x
+      1.4826 MAD from the dwell median in any component are replaced by the
+      median (``n_outliers_gyro``/``_accel``). Without it a gyro spike of
+      size s on one sample shifts the integrated tilt by s dt and the residual
+      by up to 1.5 s dt (the slope-fit weight), unreported unless a later
+      gate (:func:`kalman_bias`) rejects the dwell.
+    * saturation: with ``full_scale_gyro``/``full_scale_accel`` (the device
+      range, rad/s and m/s^2), a dwell with a sample at the rails
+      (``|x| >= full_scale``) is skipped (``n_saturated`` samples,
+      ``n_skipped_saturated`` dwells): the IMU was not still, or its reading
+      is unknown.
+    * timing: ``dt`` may be per-sample intervals (``timing.intervals`` of
+      timestamps cleaned by ``timing.sanitize``); the gyro is integrated with
+      each interval and the slope is fitted against sample time.
+
+    Parameters
+    ----------
+    w_ib_b, f_b : array_like, shape (..., N, 3)
+        Gyro (rad/s) and accelerometer (m/s^2) samples; NaN marks dropouts.
+    dt : float or array_like, shape (N,)
+        Sample interval (s), or the interval after each sample.
+    starts : array_like of int, shape (K,)
+        First sample of each dwell (e.g. from :func:`dwell_windows`).
+    length : int
+        Samples per dwell, at least :data:`MIN_DWELL_SAMPLES`.
+    w_ie_b : array_like, shape (K, 3) or (..., K, 3), optional
+        Earth rate in the body frame during each dwell, subtracted from the
+        gyros (erratum E001-06; :func:`earth_rate_body`). Default: neglected, as in
+        the paper.
+    max_missing : float
+        Largest fraction of a dwell's samples, in [0, 0.5], that may be NaN
+        and filled (default 0: skip any dwell with a NaN).
+    outlier_k : float, optional
+        MAD outlier threshold (e.g. 6); None (default) detects no outliers.
+    full_scale_gyro, full_scale_accel : float, optional
+        Device ranges (rad/s, m/s^2); None: no saturation check.
+
+    Returns
+    -------
+    Residuals
+    """
+    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
+    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=True)
+    if w.shape != f.shape:
+        raise ValueError(f"f_b: expected the shape of w_ib_b {w.shape}, got {f.shape}")
+    lead, n = w.shape[:-2], w.shape[-2]
+    dts, regular = _intervals(dt, n)
+    if not isinstance(length, (int, np.integer)) or isinstance(length, bool) or length < MIN_DWELL_SAMPLES:
+        raise ValueError(f"length: dwell windows too short; expected at least {MIN_DWELL_SAMPLES} samples, "
+                         f"got {length!r}")
+    starts = np.asarray(starts)
+    if starts.ndim != 1 or starts.size == 0 or not np.issubdtype(starts.dtype, np.integer) \
+            or starts.min() < 0 or starts.max() + length > n:
+        raise ValueError(f"starts: expected a 1-D array of dwell start indices within [0, {n - length}]")
+    max_missing = float(in_range(as_array(max_missing, "max_missing"), "max_missing", 0.0, 0.5))
+    k_out = 0.0 if outlier_k is None else float(positive(outlier_k, "outlier_k"))
+    fs_g, fs_a = _full_scale(full_scale_gyro, "full_scale_gyro"), _full_scale(full_scale_accel, "full_scale_accel")
+    K = starts.size
+    w_ie = np.zeros((K, 3)) if w_ie_b is None else as_array(w_ie_b, "w_ie_b", tail=(3,))
+    try:
+        w_ie = np.broadcast_to(w_ie, lead + (K, 3)).reshape(-1, K, 3)
+    except ValueError:
+        raise ValueError(f"w_ie_b: expected shape (K={K}, 3) or (..., K, 3), got {w_ie.shape}") from None
+    def flat(x):
+        return np.ascontiguousarray(x.reshape((-1, n, 3)))
+
+    r, V, tilt, c, singular = _residual_kernel(flat(w), flat(f), dts, regular, starts.astype(np.int64), int(length),
+                                               np.ascontiguousarray(w_ie), PITCH_LIMIT, max_missing, k_out,
+                                               fs_g, fs_a)
+    if singular:
+        raise ValueError(f"f_b: a dwell's pitch is beyond +-{np.rad2deg(PITCH_LIMIT):g} deg, where Eq. (2) is "
+                         "singular; choose a rotation that keeps pitch away from +-90 deg")
+    if regular:
+        duration = length * float(dts[0])
+    else:
+        duration = float(np.mean([dts[s:s + length].sum() for s in starts]))
+    return Residuals(r.reshape(lead + (K, 2)), V.reshape(lead + (K, 2, 3)), tilt.reshape(lead + (K, 2)),
+                     starts + length, duration, int(c[0]), int(c[1]), int(c[2]), int(c[3]), int(c[4]), int(c[5]),
+                     int(c[6]))
+
+
+def residual_covariance(tilt, length: int, dt: float, gyro_noise: float, accel_noise: float = 0.0,
+                        g: float = 9.80665):
+    """Covariance of each dwell residual of :func:`tilt_residuals` from white sensor noise.
+
+    Gyro white noise of density N integrates into a random walk; the slope
+    fit weights it by ``c_i = dt sum_{j>i} (j - jbar) / S_jj``, giving
+    ``cov = (N^2/dt) sum c_i^2 T^2 / dt^2 M M^T``, close to ``(6/5) N^2 T M M^T``.
+    Accelerometer noise of density A gives tilt noise of variance
+    ``(A^2/dt/g^2) diag(1/cos^2 pitch, 1)`` per sample and adds
+    ``12/n`` times that (for n >> 1).
+
+    Parameters
+    ----------
+    tilt : array_like, shape (..., 2)
+        Dwell tilts ``[roll, pitch]`` (rad).
+    length : int
+        Samples per dwell.
+    dt : float  (s)
+    gyro_noise : float
+        Gyro white-noise density (rad/s/sqrt(Hz)).
+    accel_noise : float
+        Accelerometer white-noise density (m/s^2/sqrt(Hz)).
+    g : float  (m/s^2)
+
+    Returns
+    -------
+    R : ndarray, shape (..., 2, 2)  (rad^2)
+    """
+    M = tilt_matrix(tilt)
+    if not isinstance(length, (int, np.integer)) or isinstance(length, bool) or length < MIN_DWELL_SAMPLES:
+        raise ValueError(f"length: dwell windows too short; expected an integer >= {MIN_DWELL_SAMPLES}, got {length!r}")
+    n = int(length)
+    dt = float(positive(dt, "dt"))
+    N = float(positive(gyro_noise, "gyro_noise", allow_zero=True))
+    A = float(positive(accel_noise, "accel_noise", allow_zero=True))
+    g = float(positive(g, "g"))
+    j = np.arange(n)
+    wts = (j - (n - 1) / 2) / (n * (n * n - 1) / 12.0)          # slope weights per sample index
+    c = np.cumsum(wts[::-1])[::-1][1:]                           # sum_{j>i} w_j, i = 0..n-2
+    gyro_var = N ** 2 * dt * np.sum(c ** 2) * n ** 2             # (N^2/dt)(dt c)^2 summed, times n^2
+    accel_var = A ** 2 / dt / g ** 2 * np.sum(wts ** 2) * n ** 2
+    pitch = as_array(tilt, "tilt", tail=(2,))[..., 1]
+    D = np.zeros(pitch.shape + (2, 2))
+    D[..., 0, 0] = 1 / np.cos(pitch) ** 2
+    D[..., 1, 1] = 1.0
+    return gyro_var * M @ np.swapaxes(M, -1, -2) + accel_var * D
+
+
+# --------------------------------------------------------------------------
+# Eqs. (12)-(14): stacked least squares, batch and running
+# --------------------------------------------------------------------------
+
+def _rv(r, V):
+    r = as_array(r, "r", tail=(2,), min_ndim=1, allow_nan=True)
+    V = as_array(V, "V", tail=(2, 3), min_ndim=1, allow_nan=True)
+    if V.shape[:-2] != r.shape[:-1]:
+        raise ValueError(f"V: expected shape {r.shape[:-1] + (2, 3)} to match r {r.shape}, got {V.shape}")
+    return r, V
+
+
+def condition_number(V):
+    """cond(V) of the stacked Eq. (13) matrix, ``sqrt(eig_max / eig_min)`` of ``V^T V``.
+
+    Parameters
+    ----------
+    V : array_like, shape (..., K, 2, 3)
+        Per-dwell matrices; NaN dwells are left out.
+
+    Returns
+    -------
+    cond : ndarray, shape (...)
+        ``inf`` when the bias is not fully observable.
+    """
+    V = as_array(V, "V", tail=(2, 3), min_ndim=1, allow_nan=True)
+    ok = np.all(np.isfinite(V), axis=(-2, -1))
+    Vz = np.where(ok[..., None, None], V, 0.0)
+    A = np.einsum("...kij,...kil->...jl", Vz, Vz)
+    return _cond_info(A)
+
+
+def _cond_info(A):
+    ev = np.linalg.eigvalsh(A)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        c = np.sqrt(ev[..., -1] / ev[..., 0])
+    return np.where((ev[..., 0] > 0) & np.isfinite(c), c, np.inf)
+
+
+def lsq_bias(r, V):
+    """Eq. (14): ``b = (V^T V)^-1 V^T r`` over all valid dwells.
+
+    Parameters
+    ----------
+    r : array_like, shape (..., K, 2)
+        Residuals (rad); NaN dwells (dropouts) are left out.
+    V : array_like, shape (..., K, 2, 3)
+
+    Returns
+    -------
+    b : ndarray, shape (..., 3)
+        Bias estimate (rad/s).
+
+    Raises
+    ------
+    ValueError
+        If the valid dwells leave the bias unobservable (cond(V) > 1e6): the
+        body verticals do not differ, e.g. a vertical rotation axis.
+    """
+    r, V = _rv(r, V)
+    ok = np.all(np.isfinite(r), -1) & np.all(np.isfinite(V), (-2, -1))
+    rz = np.where(ok[..., None], r, 0.0)
+    Vz = np.where(ok[..., None, None], V, 0.0)
+    A = np.einsum("...kij,...kil->...jl", Vz, Vz)
+    y = np.einsum("...kij,...ki->...j", Vz, rz)
+    cond = _cond_info(A)
+    if np.any(cond > _MAX_COND):
+        raise ValueError(f"V: the bias is not observable from these dwells (cond(V) = {np.max(cond):.3g}): their "
+                         "body verticals do not differ (is the rotation axis vertical?) or all dwells were dropped")
+    return np.linalg.solve(A, y[..., None])[..., 0]
+
+
+@njit(cache=True)
+def _running_kernel(r, V, lam, max_cond):
+    T, K = r.shape[0], r.shape[1]
+    out = np.full((T, K, 3), np.nan)
+    skipped = 0
+    for t in range(T):
+        A = np.zeros((3, 3))
+        y = np.zeros(3)
+        for k in range(K):
+            A *= lam
+            y *= lam
+            Vk = V[t, k]
+            if np.all(np.isfinite(r[t, k])) and np.all(np.isfinite(Vk)):
+                A += Vk.T @ Vk
+                y += Vk.T @ r[t, k]
+            else:
+                skipped += 1
+            ev = np.linalg.eigvalsh(A)
+            if ev[0] > 0 and ev[2] / ev[0] < max_cond * max_cond:
+                out[t, k] = np.linalg.solve(A, y)
+    return out, skipped
+
+
+def running_lsq_bias(r, V, forgetting: float = 1.0):
+    """Eq. (14) updated dwell by dwell (recursive least squares).
+
+    After dwell k, ``b_k = (sum_i l^(k-i) V_i^T V_i)^-1 sum_i l^(k-i) V_i^T r_i``
+    with forgetting factor ``l``; ``l = 1`` reproduces :func:`lsq_bias` on
+    the first k dwells, ``l < 1`` tracks a slowly varying bias with a memory
+    of about ``1 / (1 - l)`` dwells.
+
+    Parameters
+    ----------
+    r : array_like, shape (..., K, 2)
+        Residuals (rad); NaN dwells are skipped (counted).
+    V : array_like, shape (..., K, 2, 3)
+    forgetting : float
+        In (0, 1].
+
+    Returns
+    -------
+    b : ndarray, shape (..., K, 3)
+        Estimate after each dwell (rad/s); NaN until the dwells so far make
+        the bias observable (cond(V) <= 1e6).
+    n_skipped : int
+        Dwells skipped for NaN residuals.
+    """
+    r, V = _rv(r, V)
+    lam = float(as_array(forgetting, "forgetting"))
+    if not 0 < lam <= 1:
+        raise ValueError(f"forgetting: expected a value in (0, 1], got {lam}")
+    lead, K = r.shape[:-2], r.shape[-2]
+    out, skipped = _running_kernel(np.ascontiguousarray(r.reshape(-1, K, 2)),
+                                   np.ascontiguousarray(V.reshape(-1, K, 2, 3)), lam, _MAX_COND)
+    return out.reshape(lead + (K, 3)), int(skipped)
+
+
+# --------------------------------------------------------------------------
+# Extension: Kalman filter with a random-walk bias state
+# --------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class KalmanBias:
+    """Output of :func:`kalman_bias`.
+
+    Attributes
+    ----------
+    b : ndarray, shape (..., K, 3)
+        Bias estimate after each dwell (rad/s).
+    sigma : ndarray, shape (..., K, 3)
+        Its standard deviation from the filter covariance (rad/s).
+    n_no_data : int
+        Dwells without a residual (dropouts, skipped dwells), predicted through.
+    n_rejected : int
+        Residuals rejected by the innovation gate (outliers).
+    P : ndarray, shape (..., K, 3, 3)
+        Covariance after each dwell (rad^2/s^2); symmetric positive definite
+        (Joseph-form update, symmetrised predict).
+    """
+    b: np.ndarray
+    sigma: np.ndarray
+    n_no_data: int
+    n_rejected: int
+    P: np.ndarray | None = None
+
+
+@njit(cache=True)
+def _kalman_kernel(r, V, R, qq, intervals, p0, gate):
+    T, K = r.shape[0], r.shape[1]
+    b = np.empty((T, K, 3))
+    sig = np.empty((T, K, 3))
+    Ps = np.empty((T, K, 3, 3))
+    F = np.eye(3)
+    mask = np.zeros(2, dtype=np.bool_)
+    no_data = rejected = 0
+    for t in range(T):
+        x = np.zeros(3)
+        P = p0.copy()
+        for k in range(K):
+            if k > 0:
+                x, P = kalman.predict(x, P, F, qq * intervals[k] * np.eye(3))
+            H = V[t, k]
+            if np.all(np.isfinite(H)):
+                x, P, _, _, status = kalman.update(x, P, r[t, k], H @ x, H, R[t, k], mask, gate)
+            else:                                   # a skipped dwell: no V either
+                status = kalman.NO_DATA
+            if status == kalman.NO_DATA:
+                no_data += 1
+            elif status == kalman.REJECTED:
+                rejected += 1
+            b[t, k] = x
+            Ps[t, k] = P
+            for i in range(3):
+                sig[t, k, i] = np.sqrt(P[i, i])
+    return b, sig, no_data, rejected, Ps
+
+
+def kalman_bias(r, V, R, interval, rate_random_walk: float, bias_sigma: float,
+                gate: float = 13.8) -> KalmanBias:
+    """Kalman filter on the dwell residuals with a random-walk bias state.
+
+    State ``b`` (3); between dwells ``b_k = b_k-1 + w`` with
+    ``cov(w) = K^2 interval_k I``; measurement ``delta_k = V_k b + v`` with
+    ``cov(v) = R_k`` (:func:`residual_covariance`). NaN residuals (dropouts,
+    skipped dwells) are predicted through and counted (``n_no_data``);
+    residuals whose NIS exceeds ``gate`` are rejected and counted
+    (``n_rejected``), e.g. dwells hit by spikes when :func:`tilt_residuals`
+    ran without ``outlier_k``. The covariance stays symmetric positive
+    definite (Joseph form, symmetrised; returned as ``P``).
+
+    Parameters
+    ----------
+    r : array_like, shape (..., K, 2)
+    V : array_like, shape (..., K, 2, 3)
+        NaN for skipped dwells.
+    R : array_like, shape (..., K, 2, 2) or (K, 2, 2)
+        Residual covariances (rad^2); NaN allowed only where r is NaN.
+    interval : float or array_like, shape (K,)
+        Time between dwells (s); an array gives the time from dwell k-1 to
+        dwell k (entry 0 unused), e.g. ``np.diff(time[res.end], prepend=0)``
+        for irregular or gappy timing.
+    rate_random_walk : float
+        Random-walk density K of the bias (rad/s/sqrt(s)).
+    bias_sigma : float
+        Initial standard deviation of each bias component (rad/s).
+    gate : float
+        NIS threshold (default: chi-square, 2 dof, 99.9 %).
+
+    Returns
+    -------
+    KalmanBias
+    """
+    r, V = _rv(r, V)
+    lead, K = r.shape[:-2], r.shape[-2]
+    R = as_array(R, "R", tail=(2, 2), allow_nan=True)
+    try:
+        R = np.broadcast_to(R, lead + (K, 2, 2))
+    except ValueError:
+        raise ValueError(f"R: expected shape {lead + (K, 2, 2)}, got {R.shape}") from None
+    ok = np.all(np.isfinite(r), -1)
+    if np.any(~np.isfinite(R[ok])):
+        raise ValueError("R: expected finite covariances wherever r is finite")
+    intervals = positive(interval, "interval")
+    if intervals.ndim == 0:
+        intervals = np.full(K, float(intervals))
+    elif intervals.shape != (K,):
+        raise ValueError(f"interval: expected a float or shape ({K},), got {intervals.shape}")
+    q = float(positive(rate_random_walk, "rate_random_walk", allow_zero=True))
+    s0 = float(positive(bias_sigma, "bias_sigma"))
+    gate = float(positive(gate, "gate"))
+    b, sig, no_data, rejected, P = _kalman_kernel(
+        np.ascontiguousarray(r.reshape(-1, K, 2)), np.ascontiguousarray(V.reshape(-1, K, 2, 3)),
+        np.ascontiguousarray(R.reshape(-1, K, 2, 2)), q * q, np.ascontiguousarray(intervals), s0 * s0 * np.eye(3),
+        gate)
+    return KalmanBias(b.reshape(lead + (K, 3)), sig.reshape(lead + (K, 3)), int(no_data), int(rejected),
+                      P.reshape(lead + (K, 3, 3)))
+
+
+# --------------------------------------------------------------------------
+# Observability
+# --------------------------------------------------------------------------
+
+def lsq_covariance(V, R):
+    """Covariance of the unweighted Eq. (14) estimate, ``A^-1 (sum V_k^T R_k V_k) A^-1``, ``A = sum V_k^T V_k``.
+
+    Parameters
+    ----------
+    V : array_like, shape (..., K, 2, 3)
+    R : array_like, shape (..., K, 2, 2)
+        Residual covariances (:func:`residual_covariance`).
+
+    Returns
+    -------
+    P : ndarray, shape (..., 3, 3)  (rad^2/s^2)
+    """
+    V = as_array(V, "V", tail=(2, 3), min_ndim=1)
+    R = as_array(R, "R", tail=(2, 2), min_ndim=1)
+    A = np.einsum("...kji,...kjl->...il", V, V)
+    if np.any(_cond_info(A) > _MAX_COND):
+        raise ValueError("V: the bias is not observable from these dwells (rank-deficient V)")
+    A_inv = np.linalg.inv(A)
+    return A_inv @ np.einsum("...kji,...kjl,...klm->...im", V, R, V) @ A_inv
+
+
+def cramer_rao_bound(V, R):
+    """Cramer-Rao bound of the bias from dwell residuals, ``(sum V_k^T R_k^-1 V_k)^-1``.
+
+    Parameters
+    ----------
+    V : array_like, shape (..., K, 2, 3)
+    R : array_like, shape (..., K, 2, 2)
+        Residual covariances (:func:`residual_covariance`).
+
+    Returns
+    -------
+    P : ndarray, shape (..., 3, 3)
+        Lower bound on the covariance of any unbiased estimate (rad^2/s^2);
+        ``inf`` on the diagonal where the bias is not observable.
+    """
+    V = as_array(V, "V", tail=(2, 3), min_ndim=1)
+    R = as_array(R, "R", tail=(2, 2), min_ndim=1)
+    info = np.einsum("...kji,...kjl,...klm->...im", V, np.linalg.inv(R), V)
+    bad = _cond_info(info) ** 2 > _MAX_COND ** 2
+    safe = np.where(bad[..., None, None], np.eye(3), info)
+    P = np.linalg.inv(safe)
+    return np.where(bad[..., None, None], np.where(np.eye(3, dtype=bool), np.inf, np.nan), P)
+
+
+def design(hpr0, axis_b, amplitude: float, dwell_time: float, dt: float, gyro_noise: float,
+           accel_noise: float = 0.0, n_dwells: int = 2):
+    """Observability of a rotation schedule without simulation.
+
+    Builds V (Eq. 13) for ``n_dwells`` dwells of :func:`dwell_attitudes` and
+    the residual covariances of :func:`residual_covariance`.
+
+    Parameters
+    ----------
+    hpr0 : array_like, shape (3,)  (rad)
+    axis_b : array_like, shape (3,)
+        Unit rotation axis.
+    amplitude : float
+        Delta alpha (rad).
+    dwell_time, dt : float  (s)
+    gyro_noise, accel_noise : float
+        White-noise densities (rad/s/sqrt(Hz), m/s^2/sqrt(Hz)).
+    n_dwells : int
+
+    Returns
+    -------
+    cond : float
+        cond(V).
+    crb : ndarray, shape (3, 3)
+        Cramer-Rao bound (rad^2/s^2).
+    V : ndarray, shape (n_dwells, 2, 3)
+    """
+    hpr = dwell_attitudes(hpr0, axis_b, amplitude, n_dwells)
+    n = int(round(float(positive(dwell_time, "dwell_time")) / float(positive(dt, "dt"))))
+    if n < MIN_DWELL_SAMPLES:
+        raise ValueError(f"dwell_time: dwell windows too short ({n} samples); expected at least {MIN_DWELL_SAMPLES}")
+    tilt = hpr[:, [2, 1]]
+    V = tilt_matrix(tilt) * (n * dt)
+    R = residual_covariance(tilt, n, dt, gyro_noise, accel_noise)
+    return float(condition_number(V)), cramer_rao_bound(V, R), V
+
+
+def attitude_errors(hpr, hpr_true):
+    """Euler-angle errors ``hpr - hpr_true`` wrapped into (-pi, pi] (rad).
+
+    Parameters
+    ----------
+    hpr, hpr_true : array_like, shape (..., 3)
+        ``[heading, pitch, roll]``; shapes broadcast.
+
+    Returns
+    -------
+    err : ndarray, shape (..., 3)
+    """
+    a = as_array(hpr, "hpr", tail=(3,))
+    b = as_array(hpr_true, "hpr_true", tail=(3,))
+    return attitude.wrap_pi(a - b)
+
+
+@njit(cache=True)
+def _error_stats_kernel(hpr, truth):
+    T, N = hpr.shape[0], hpr.shape[1]
+    mx = np.zeros((T, 3))
+    mean = np.zeros((T, 3))
+    for t in range(T):
+        tt = t if truth.shape[0] > 1 else 0          # one truth shared by all runs, or one per run
+        for i in range(N):
+            for a in range(3):
+                e = hpr[t, i, a] - truth[tt, i, a]
+                e = abs((e + np.pi) % (2 * np.pi) - np.pi)
+                mean[t, a] += e
+                if e > mx[t, a]:
+                    mx[t, a] = e
+        for a in range(3):
+            mean[t, a] /= N
+    return mx, mean
+
+
+def error_statistics(hpr, hpr_true):
+    """Max and mean |attitude error| over time, in one pass (Table 2 statistics).
+
+    Parameters
+    ----------
+    hpr : array_like, shape (..., N, 3)
+        Estimated ``[heading, pitch, roll]`` (rad).
+    hpr_true : array_like, shape (N, 3) or (..., N, 3)
+        True attitude (rad); broadcast over the leading axes of ``hpr``.
+
+    Returns
+    -------
+    max_abs, mean_abs : ndarray, shape (..., 3)
+        Largest and mean wrapped |error| over time (rad).
+    """
+    a = as_array(hpr, "hpr", tail=(3,), min_ndim=1)
+    b = as_array(hpr_true, "hpr_true", tail=(3,), min_ndim=1)
+    lead, n = a.shape[:-2], a.shape[-2]
+    if b.shape != (n, 3) and b.shape != a.shape:
+        raise ValueError(f"hpr_true: expected shape ({n}, 3) or {a.shape}, got {b.shape}")
+    mx, mean = _error_stats_kernel(np.ascontiguousarray(a.reshape(-1, n, 3)), np.ascontiguousarray(b.reshape(-1, n, 3)))
+    return mx.reshape(lead + (3,)), mean.reshape(lead + (3,))
