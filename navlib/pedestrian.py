@@ -1,4 +1,4 @@
-"""Deprecated alias of :mod:`navlib.papers.pedestrian_ins`.
+"""Deprecated alias of :mod:`navlib.papers.pedestrian_ins` and of the core modules navlib.alignment.
 
 ``navlib.pedestrian`` was the module of this paper before the split into a paper companion
 and core homes (see CONTRIBUTING.md). Every old name still resolves here; importing this
@@ -7,6 +7,7 @@ module warns. It will be removed in navlib 0.3.
 # ruff: noqa: F405  (the names come from the star import)
 import warnings
 
+from .alignment import level, magnetic_heading  # noqa: F401
 from .papers.pedestrian_ins import *  # noqa: F403
 
 __all__ = ["M_NED_ENU", "STATIC_THRESHOLDS", "ned_to_enu_dcm", "Leg", "Gait", "walk", "stance_mask", "carpark_legs",
@@ -19,4 +20,4 @@ __all__ = ["M_NED_ENU", "STATIC_THRESHOLDS", "ned_to_enu_dcm", "Leg", "Gait", "w
            "segments", "pdr_headings", "expanding_std", "horizontal_error"]
 
 warnings.warn("navlib.pedestrian is deprecated and will be removed in navlib 0.3; use navlib.papers.pedestrian_ins"
-              , DeprecationWarning, stacklevel=2)
+              " and navlib.alignment", DeprecationWarning, stacklevel=2)

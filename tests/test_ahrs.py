@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from navlib import attitude, earth, units
+from navlib import alignment, attitude, earth, units
 from navlib.papers import mimu_mag_rtk as ahrs
 
 B_N = earth.magnetic_field(32.03, 118.85, 20.0, 2022.5)        # Nanjing, the paper's site
@@ -73,9 +73,9 @@ def test_tilt_heading_inverts_the_measurement_model(heading, pitch, roll):
     hpr = np.array([heading, pitch, roll])
     q = attitude.euler_to_quat(hpr)
     h = ahrs.measurement_model(q, B_REF)
-    back = ahrs.tilt_heading(3.7 * h[:3], 42.0 * h[3:])            # any scale: Eqs. (5), (7) normalise
+    back = alignment.tilt_heading(3.7 * h[:3], 42.0 * h[3:])            # any scale: Eqs. (5), (7) normalise
     np.testing.assert_allclose(attitude.wrap_pi(back - hpr), 0, atol=1e-9)
-    np.testing.assert_allclose(np.abs(ahrs.initial_attitude(h[:3], h[3:]) @ q), 1, atol=1e-12)
+    np.testing.assert_allclose(np.abs(alignment.initial_attitude(h[:3], h[3:]) @ q), 1, atol=1e-12)
 
 
 def test_printed_eq8_is_a_different_rotation():
@@ -94,7 +94,7 @@ def test_printed_eq8_is_a_different_rotation():
 ])
 def test_initial_attitude_rejects_bad_vectors(f_b, m_b, arg):
     with pytest.raises(ValueError, match=f"^{arg}: "):
-        ahrs.initial_attitude(f_b, m_b)
+        alignment.initial_attitude(f_b, m_b)
 
 
 def test_filters_reject_bad_arguments():
@@ -344,8 +344,8 @@ _Q = [1.0, 0.0, 0.0, 0.0]
 BAD_CALLS = [
     ("magnetic_reference", lambda: ahrs.magnetic_reference([0.0, 0.0, 0.0]), "B_n"),
     ("magnetic_reference", lambda: ahrs.magnetic_reference([1.0, np.nan, 0.0]), "B_n"),
-    ("tilt_heading", lambda: ahrs.tilt_heading([0.0, 0.0, 1.0], [1.0, 2.0]), "m_b"),
-    ("initial_attitude", lambda: ahrs.initial_attitude("abc", [0.0, 1.0, 0.0]), "f_b"),
+    ("tilt_heading", lambda: alignment.tilt_heading([0.0, 0.0, 1.0], [1.0, 2.0]), "m_b"),
+    ("initial_attitude", lambda: alignment.initial_attitude("abc", [0.0, 1.0, 0.0]), "f_b"),
     ("settling_time", lambda: ahrs.settling_time([0.0, 1.0], [1.0, 2.0], 5.0, 1.0), "start, end"),
     ("transition", lambda: ahrs.transition([0.0, 0.0, 0.0], 0.0), "dt"),
     ("noise_input", lambda: ahrs.noise_input([1.0, 0.0, 0.0], 0.01), "q"),
@@ -376,8 +376,8 @@ def test_bad_input_names_the_argument(name, call, arg):
 
 
 def test_every_public_callable_has_a_bad_input_case():
-    public = {n for n in ahrs.__all__ if callable(getattr(ahrs, n))}
-    assert public == {c[0] for c in BAD_CALLS} | set(NOT_APPLICABLE)
+    public = {n for n in ahrs.__all__ if callable(getattr(ahrs, n))} | set(alignment.__all__)
+    assert public == {c[0] for c in BAD_CALLS} | set(NOT_APPLICABLE) | {"level", "magnetic_heading"}
 
 
 # --------------------------------------------------------------------------- public API fuzzing
@@ -389,8 +389,8 @@ _VALID[::2] = True
 #          arguments that take inf as an unusable (skipped) sample)
 FUZZ = {
     "magnetic_reference": (ahrs.magnetic_reference, dict(B_n=B_N), (), ()),
-    "tilt_heading": (ahrs.tilt_heading, dict(f_b=[0.0, 0.0, 9.8], m_b=[0.0, 20.0, -30.0]), (), ()),
-    "initial_attitude": (ahrs.initial_attitude, dict(f_b=[0.0, 0.0, 9.8], m_b=[0.0, 20.0, -30.0]), (), ()),
+    "tilt_heading": (alignment.tilt_heading, dict(f_b=[0.0, 0.0, 9.8], m_b=[0.0, 20.0, -30.0]), (), ()),
+    "initial_attitude": (alignment.initial_attitude, dict(f_b=[0.0, 0.0, 9.8], m_b=[0.0, 20.0, -30.0]), (), ()),
     "settling_time": (ahrs.settling_time, dict(time=np.arange(_N, dtype=float), error=np.ones(_N), start=2.0,
                                               tol=0.5, end=8.0), (), ()),
     "transition": (ahrs.transition, dict(w=[0.1, 0.2, 0.3], dt=0.01), (), ()),
@@ -482,5 +482,5 @@ def test_out_of_range_values_name_the_argument(name, call, arg):
 
 
 def test_every_public_callable_is_fuzzed():
-    public = {n for n in ahrs.__all__ if callable(getattr(ahrs, n))}
-    assert public == {k.split("/")[0] for k in FUZZ} | set(NOT_APPLICABLE)
+    public = {n for n in ahrs.__all__ if callable(getattr(ahrs, n))} | set(alignment.__all__)
+    assert public == {k.split("/")[0] for k in FUZZ} | set(NOT_APPLICABLE) | {"level", "magnetic_heading"}

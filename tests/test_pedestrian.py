@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from navlib import attitude, earth, kalman, sensors, strapdown, trajectory, units
+from navlib import alignment, attitude, earth, kalman, sensors, strapdown, trajectory, units
 from navlib.papers import pedestrian_ins as pd
 
 LAT = units.deg(30.55)
@@ -46,7 +46,7 @@ def test_corrected_tilt_compensation_recovers_heading_in_both_frames():
     hpr = random_hpr(rng, 300)
     B_n = earth.field_from_angles(0.0, 47.0, 49.7)                  # magnetic north: heading = magnetic heading
     m_b = field_in_body(hpr, B_n)
-    enu = pd.magnetic_heading(m_b, hpr[:, 1], hpr[:, 2])
+    enu = alignment.magnetic_heading(m_b, hpr[:, 1], hpr[:, 2])
     assert np.abs(attitude.wrap_pi(enu - hpr[:, 0])).max() < 1e-12
     H_frd = np.stack([m_b[:, 1], m_b[:, 0], -m_b[:, 2]], -1)        # (H_x, H_y, H_z) = (m_y, m_x, -m_z)
     HX, HY = pd.tilt_compensate_ned(H_frd, hpr[:, 1], hpr[:, 2])
@@ -175,7 +175,7 @@ def static_run():
     traj = trajectory.static(120.0, DT, LLA0, [0.3, 0.0, 0.0])
     w, f = trajectory.ideal_imu(traj)
     imu = sensors.simulate_imu(w, f, DT, RESIDUAL, np.random.default_rng(6))
-    pitch, roll = pd.level(imu.f_b[:100].mean(0))
+    pitch, roll = alignment.level(imu.f_b[:100].mean(0))
     q0 = attitude.euler_to_quat([0.3, float(pitch), float(roll)])
     return traj, imu, q0
 
@@ -342,8 +342,8 @@ def test_step_detection_and_pdr(carpark):
     (lambda: pd.baro_height([np.nan], 101325.0), "p"),
     (lambda: pd.baro_height([np.inf], 101325.0), "p"),
     (lambda: pd.baro_height([1e5], 0.0), "p_ref"),
-    (lambda: pd.magnetic_heading([0.0, 0.0, 0.0], 0.0, 0.0), "m_b"),
-    (lambda: pd.magnetic_heading([np.nan, 1.0, 0.0], 0.0, 0.0), "m_b"),
+    (lambda: alignment.magnetic_heading([0.0, 0.0, 0.0], 0.0, 0.0), "m_b"),
+    (lambda: alignment.magnetic_heading([np.nan, 1.0, 0.0], 0.0, 0.0), "m_b"),
     (lambda: pd.heading_from_horizontal(0.0, 0.0), "H_X, H_Y"),
     (lambda: pd.detect_static(np.zeros((10, 3)), np.zeros((10, 3)), 0.01, window=1.0), "window"),
     (lambda: pd.detect_static(np.zeros((10, 3)), np.zeros((9, 3)), 0.01), "f_b"),
@@ -353,7 +353,7 @@ def test_step_detection_and_pdr(carpark):
     (lambda: pd.Leg(5.0, 0.0, turn=1.0), "turn, climb"),
     (lambda: pd.Gait(step_frequency=0.0), "step_frequency"),
     (lambda: pd.FilterConfig(sigma_zupt=0.0), "sigma_zupt"),
-    (lambda: pd.level([0.0, 0.0, 0.0]), "f_b"),
+    (lambda: alignment.level([0.0, 0.0, 0.0]), "f_b"),
     (lambda: pd.reference_pressure([np.nan, np.nan], [0.0, 1.0], 5.0), "until"),
     (lambda: pd.classify_floor([1.0], floor_height=0.0), "floor_height"),
     (lambda: pd.run_filter(np.zeros((5, 3)), np.zeros((5, 3)), 0.01, LLA0, np.zeros(3), [1, 0, 0, 0],

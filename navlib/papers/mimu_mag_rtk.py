@@ -21,7 +21,7 @@ Eq. (6)   ``m = C_nb b`` with ``(q0^2 - q1^2 - q2^2 + q3^2) b_z`` in row 3 (E003
 Eq. (5)   ``roll = atan2(-a_x, a_z)``, ``pitch = atan2(a_y, hypot(a_x, a_z))`` (E003-05);
 Eq. (7)   levelled field ``m_h = R_x(pitch) R_y(roll) m_b`` and
           ``heading = atan2(-m_h,x, m_h,y)`` (E003-08);
-Eq. (8)   replaced by Eq. (1) (E003-01): :func:`tilt_heading`, :func:`initial_attitude`.
+Eq. (8)   replaced by Eq. (1) (E003-01): :func:`navlib.alignment.tilt_heading`, :func:`navlib.alignment.initial_attitude`.
 Eqs. (9)-(15)  Mahony PI filter: ``e = a_meas x a_est + m_meas x m_est``
           (measured x estimated, hats restored, E003-09), ``m_est = C_nb [0, |h_xy|, h_z]``
           with ``h = C_bn m_meas`` (the magnetometer corrects heading only),
@@ -86,8 +86,8 @@ from .. import attitude, earth, kalman
 from .._validate import as_array, as_quat, in_range
 from ..attitude import quat_mult_t
 
-__all__ = ["MagGate", "AttitudeResult", "COUNT_NAMES", "magnetic_reference", "tilt_heading",
-           "initial_attitude", "settling_time", "transition", "noise_input", "measurement_model", "measurement_jacobian",
+__all__ = ["MagGate", "AttitudeResult", "COUNT_NAMES", "magnetic_reference",
+           "settling_time", "transition", "noise_input", "measurement_model", "measurement_jacobian",
            "mahony", "quaternion_kf", "fuse_rtk_heading", "rtk_at_imu_rate",
            "printed_eq2_roll", "printed_eq4", "printed_eq5_tilt", "printed_eq7_heading", "printed_eq8_quat",
            "printed_eq18_gamma", "printed_eq20_jacobian"]
@@ -168,51 +168,6 @@ def magnetic_reference(B_n):
         raise ValueError(f"B_n: expected one non-zero field vector of shape (3,), got {B.tolist()}")
     D, I, F = earth.field_angles(B, deg=False)
     return np.array([0.0, np.cos(I), -np.sin(I)]), float(D), float(I), float(F)
-
-
-def _unit_vectors(v, name):
-    n = np.linalg.norm(v, axis=-1, keepdims=True)
-    if np.any(n == 0):
-        raise ValueError(f"{name}: expected non-zero vectors")
-    return v / n
-
-
-def tilt_heading(f_b, m_b):
-    """Heading, pitch and roll from one accelerometer and magnetometer reading (Eqs. 5, 7).
-
-    Parameters
-    ----------
-    f_b : array_like, shape (..., 3)
-        Specific force (any unit; the vehicle must be static), e.g. a 1-s mean.
-    m_b : array_like, shape (..., 3)
-        Magnetic field (any unit).
-
-    Returns
-    -------
-    hpr : ndarray, shape (..., 3)
-        Magnetic heading (clockwise from magnetic north, [0, 2 pi)), pitch, roll (rad).
-    """
-    a = _unit_vectors(_arr(f_b, "f_b", tail=(3,)), "f_b")
-    m = _unit_vectors(_arr(m_b, "m_b", tail=(3,)), "m_b")
-    if np.any(np.linalg.norm(np.cross(a, m), axis=-1) < 1e-6):
-        raise ValueError("m_b: magnetometer parallel to gravity; heading is undefined")
-    ax, ay, az = np.moveaxis(a, -1, 0)
-    mx, my, mz = np.moveaxis(m, -1, 0)
-    roll = np.arctan2(-ax, az)                                  # Eq. (5), corrected
-    pitch = np.arctan2(ay, np.hypot(ax, az))
-    mhx = mx * np.cos(roll) + mz * np.sin(roll)                 # Eq. (7), corrected
-    mhy = my * np.cos(pitch) + mx * np.sin(pitch) * np.sin(roll) - mz * np.sin(pitch) * np.cos(roll)
-    heading = attitude.wrap_2pi(np.arctan2(-mhx, mhy))
-    return np.stack([heading, pitch, roll], -1)
-
-
-def initial_attitude(f_b, m_b):
-    """Initial quaternion q_b^n (magnetic north) from accelerometer and magnetometer.
-
-    Eqs. (5) and (7) corrected, then Eq. (1) (:func:`navlib.attitude.euler_to_quat`)
-    instead of the inconsistent Eq. (8) (E003-01). Shapes (..., 3) -> (..., 4).
-    """
-    return attitude.euler_to_quat(tilt_heading(f_b, m_b))
 
 
 # --------------------------------------------------------------------------
@@ -902,7 +857,7 @@ _COMMON_DOC = """
         repeats or out of order go through :func:`navlib.timing.sanitize`
         first; then ``dt = timing.intervals(np.r_[t_before_first, t])``.
     q0 : array_like, shape (4,) or (..., 4)
-        Attitude before the first sample, e.g. :func:`initial_attitude`.
+        Attitude before the first sample, e.g. :func:`navlib.alignment.initial_attitude`.
     m_b : array_like, shape (..., N, 3), optional
         Magnetometer samples (uT); unusable samples are skipped and gated ones counted.
     heading_rtk : array_like, shape (N,) or (..., N), optional

@@ -94,6 +94,7 @@ from .._validate import as_dcm, generator, in_range, time_axis
 from .._validate import nonempty_array as as_array
 from .._validate import nonempty_latitude as latitude
 from .._validate import nonempty_positive as positive
+from ..alignment import level
 from ..sensors import TriadErrors
 from ..trajectory import Segment
 
@@ -1101,7 +1102,7 @@ def ins_heading_change(w_ib_b, f_start, dt, lat, earth_rate: str = "vertical", *
         dts, step = step, float(step.mean())
     max_gap = float(positive(max_gap, "max_gap", allow_zero=True))
     fs = np.inf if full_scale is None else float(positive(full_scale, "full_scale"))
-    pitch, roll = tilt_from_accel(as_array(f_start, "f_start", tail=(3,)))
+    pitch, roll = level(as_array(f_start, "f_start", tail=(3,)))
     with np.errstate(invalid="ignore"):
         n_sat = np.sum(np.any(np.abs(w) >= fs, -1), -1)             # NaN compares False
     if np.all(np.isfinite(w)):

@@ -125,14 +125,15 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from .. import atmosphere, attitude, earth, kalman, trajectory
+from .. import _kernels, atmosphere, attitude, earth, kalman, trajectory
 from .._kernels import radii_mn
 from .._validate import as_array, as_dcm, as_quat, generator, positive, time_grid
+from ..alignment import level, magnetic_heading
 from ..strapdown import nav_step
 
 __all__ = ["M_NED_ENU", "STATIC_THRESHOLDS", "ned_to_enu_dcm", "Leg", "Gait", "walk", "stance_mask", "carpark_legs",
-           "floor_test_legs", "detect_static", "detection_rates", "level", "static_gyro_bias",
-           "magnetic_heading", "tilt_compensate_ned", "tilt_compensate_printed", "heading_from_horizontal",
+           "floor_test_legs", "detect_static", "detection_rates", "static_gyro_bias",
+           "tilt_compensate_ned", "tilt_compensate_printed", "heading_from_horizontal",
            "baro_height", "reference_pressure", "classify_floor", "segment_floors", "hvac_pressure_steps",
            "despike", "error_state_matrix", "error_model_fd", "zupt_zaru_matrix", "zupt_zaru_innovation",
            "simple_covariance_update", "FilterConfig", "FilterResult", "run_filter", "FLAG_DROPOUT", "FLAG_SPIKE",
@@ -535,23 +536,6 @@ def detection_rates(detected, truth) -> tuple[float, float]:
     return float(d[t].mean()), float(d[~t].mean())
 
 
-def level(f_b):
-    """Pitch and roll (rad) from mean specific force: the accelerometer levelling.
-
-    ``pitch = atan2(f_y, hypot(f_x, f_z))``, ``roll = atan2(-f_x, f_z)``
-    (right-front-up body; exact for a static IMU).
-
-    Parameters
-    ----------
-    f_b : array_like, shape (..., 3)
-        (Mean) specific force (m/s^2).
-    """
-    f = as_array(f_b, "f_b", tail=(3,))
-    if np.any(np.linalg.norm(f, axis=-1) == 0):
-        raise ValueError("f_b: expected a non-zero specific force")
-    return np.arctan2(f[..., 1], np.hypot(f[..., 0], f[..., 2])), np.arctan2(-f[..., 0], f[..., 2])
-
-
 def static_gyro_bias(w_ib_b, C_bn, lat: float):
     """Gyro bias from a static record: ``mean(w) - C_bn^T w_ie_n`` (rad/s).
 
@@ -570,51 +554,6 @@ def static_gyro_bias(w_ib_b, C_bn, lat: float):
 # --------------------------------------------------------------------------
 # Magnetic heading (Eqs. 4-6)
 # --------------------------------------------------------------------------
-
-@njit(cache=True)
-def _tilt_heading(mx, my, mz, pitch, roll):
-    """Corrected Eqs. (4)-(5) in ENU/RFU: magnetic heading in [0, 2 pi)."""
-    sp, cp, sr, cr = np.sin(pitch), np.cos(pitch), np.sin(roll), np.cos(roll)
-    mhx = mx * cr + mz * sr
-    mhy = my * cp + mx * sp * sr - mz * sp * cr
-    a = np.mod(np.arctan2(-mhx, mhy), 2 * np.pi)
-    return a * (a < 2 * np.pi)                               # [0, 2 pi): a rounded-up 2 pi is north
-
-
-def _mag(m_b):
-    m = as_array(m_b, "m_b", tail=(3,))
-    if np.any(np.linalg.norm(m, axis=-1) == 0):
-        raise ValueError("m_b: expected a non-zero magnetic field vector")
-    return m
-
-
-def magnetic_heading(m_b, pitch, roll, declination: float = 0.0):
-    """Tilt-compensated heading (corrected Eqs. 4-6), clockwise from true north.
-
-    Parameters
-    ----------
-    m_b : array_like, shape (..., 3)
-        Magnetometer reading, right-front-up (any unit); NaN is rejected.
-    pitch, roll : array_like, shape (...)
-        Attitude (rad), e.g. from the INS.
-    declination : float
-        D, east of true north positive (rad); 0 gives the magnetic heading.
-
-    Returns
-    -------
-    heading : ndarray, shape (...)
-        In [0, 2 pi).
-    """
-    m = _mag(m_b)
-    p, r = as_array(pitch, "pitch"), as_array(roll, "roll")
-    D = float(as_array(declination, "declination"))
-    shape = np.broadcast_shapes(m.shape[:-1], p.shape, r.shape)
-    m = np.broadcast_to(m, shape + (3,)).reshape(-1, 3)
-    p, r = (np.ascontiguousarray(np.broadcast_to(x, shape).reshape(-1)) for x in (p, r))
-    a = _tilt_heading(np.ascontiguousarray(m[:, 0]), np.ascontiguousarray(m[:, 1]),
-                      np.ascontiguousarray(m[:, 2]), p, r)
-    return attitude.wrap_2pi(a + D).reshape(shape)
-
 
 def tilt_compensate_ned(H_b, pitch, roll):
     """Corrected Eq. (4) in the paper's NED / forward-right-down frame.
@@ -1238,8 +1177,8 @@ def _filter_kernel(lla0, vel0, q0, b0, w, f, dt, static, h_baro, m_b, declinatio
                 counts[_N_MAG_GATED] += 1
             else:
                 pitch, roll = np.arcsin(min(1.0, max(-1.0, C[2, 1]))), np.arctan2(-C[2, 0], C[2, 2])
-                alpha_h = _tilt_heading(m_b[k, 0], m_b[k, 1], m_b[k, 2], pitch, roll) + declination
-                dh = (_heading_of(C) - alpha_h + np.pi) % (2 * np.pi) - np.pi
+                alpha_h = _kernels.tilt_heading(m_b[k, 0], m_b[k, 1], m_b[k, 2], pitch, roll) + declination
+                dh = _kernels.wrap_pi(_heading_of(C) - alpha_h)
                 counts[_N_MAG] += 1
                 if aiding == 1:                          # C <- rot(z, H_hat - alpha) C
                     rz = np.array([np.cos(dh / 2), 0.0, 0.0, np.sin(dh / 2)])
@@ -1338,7 +1277,7 @@ def run_filter(w_ib_b, f_b, dt, lla0, vel0, q0, static, *, h_baro=None, m_b=None
     lla0, vel0 : array_like, shape (3,)
         Initial position (rad, rad, m) and ENU velocity (m/s).
     q0 : array_like, shape (4,)
-        Initial attitude quaternion (e.g. from :func:`level` and
+        Initial attitude quaternion (e.g. from :func:`navlib.alignment.level` and
         :func:`magnetic_heading`).
     static : array_like of bool, shape (N,)
         Static flags, e.g. from :func:`detect_static`.
@@ -1513,7 +1452,7 @@ def pdr_headings(f_b, m_b, step_index, declination: float = 0.0):
     """Heading of every step: tilt-compensated magnetic heading from the step's mean samples.
 
     Pitch and roll come from the mean specific force over the step
-    (:func:`level`; the gait accelerations average out over a step), the
+    (:func:`navlib.alignment.level`; the gait accelerations average out over a step), the
     field from the mean magnetometer reading (NaN samples ignored).
 
     Parameters

@@ -95,6 +95,7 @@ from .._validate import in_range
 from .._validate import nonempty_array as as_array
 from .._validate import nonempty_latitude as latitude
 from .._validate import nonempty_positive as positive
+from ..alignment import level
 
 __all__ = ["eq1_matrix", "euler_rates", "integrate_euler", "EulerReport", "gravity_body", "tilt_from_accel",
            "tilt_matrix", "rodrigues", "rotate_attitude", "dwell_attitudes", "dwell_windows",
@@ -423,8 +424,8 @@ def gravity_body(tilt, g: float = 9.80665):
 def tilt_from_accel(f_b):
     """Eq. (5) on specific force: ``[roll, pitch]`` of a static IMU (rad).
 
-    With ``a_m = -f_b``: ``roll = atan2(-f_x, f_z)``,
-    ``pitch = atan2(f_y, hypot(f_x, f_z))`` (the atan2 form of the arcsine).
+    With ``a_m = -f_b`` this is the accelerometer levelling :func:`navlib.alignment.level`
+    (the atan2 form of the arcsine) in the paper's order ``[roll, pitch]``.
 
     Parameters
     ----------
@@ -435,9 +436,8 @@ def tilt_from_accel(f_b):
     -------
     tilt : ndarray, shape (..., 2)
     """
-    f = as_array(f_b, "f_b", tail=(3,))
-    return np.stack([np.arctan2(-f[..., 0], f[..., 2]),
-                     np.arctan2(f[..., 1], np.hypot(f[..., 0], f[..., 2]))], -1)
+    pitch, roll = level(f_b)
+    return np.stack([roll, pitch], -1)
 
 
 def tilt_matrix(tilt):

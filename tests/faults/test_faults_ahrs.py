@@ -14,7 +14,7 @@ the fault-free run on the same data; and each injected fault counted in
 import numpy as np
 import pytest
 
-from navlib import attitude, earth, faults, sensors, timing, trajectory, units
+from navlib import alignment, attitude, earth, faults, sensors, timing, trajectory, units
 from navlib.papers import mimu_mag_rtk as ahrs
 
 B_N = earth.magnetic_field(32.03, 118.85, 20.0, 2022.5)
@@ -43,7 +43,7 @@ def fig4():
     m = sensors.simulate_magnetometer(st.q_bn[1:], B_N, sensors.MagnetometerModel(noise=SIGMA_MAG), rng).m_b
     rtk, _ = sensors.simulate_heading(np.full(t.size, H_TRUE), rng, units.deg(0.2))
     rtk, epoch = ahrs.rtk_at_imu_rate(t, rtk, np.ones(t.size, bool), STEP)
-    q0_mag = ahrs.initial_attitude(imu.f_b[:50].mean(0), m[:50].mean(0))
+    q0_mag = alignment.initial_attitude(imu.f_b[:50].mean(0), m[:50].mean(0))
     tilt = attitude.quat_to_euler(q0_mag)
     q0_rtk = attitude.euler_to_quat([H_TRUE, tilt[1], tilt[2]])
     return dict(t=t, w=w, f=imu.f_b, m=m, rtk=rtk, epoch=epoch, q0_mag=q0_mag, q0_rtk=q0_rtk)
