@@ -199,6 +199,11 @@ def scalar(x, name: str, *, positive: bool = False, allow_zero: bool = False, al
     return value
 
 
+def unit_interval(x, name: str) -> float:
+    """Return ``x`` as a float in [0, 1]."""
+    return scalar(in_range(as_array(x, name), name, 0.0, 1.0), name)
+
+
 def integer(x, name: str, *, minimum: int = 1) -> int:
     """Return ``x`` as an int >= ``minimum``. ``bool`` is refused (``True`` is not a count)."""
     if isinstance(x, (bool, np.bool_)) or not isinstance(x, (int, np.integer)) or x < minimum:
@@ -220,7 +225,7 @@ def choice(x, name: str, options) -> str:
     return x
 
 
-def full_scale(x, name: str) -> float:
+def range_limit(x, name: str) -> float:
     """A device's full-scale range (same unit as its samples): a positive value, or ``None``/inf for no limit."""
     return np.inf if x is None else scalar(x, name, positive=True, allow_inf=True)
 

@@ -21,21 +21,10 @@ from __future__ import annotations
 import numpy as np
 
 from . import attitude, earth
-from ._validate import as_array, generator, in_range, positive, time_axis
+from ._validate import as_array, generator, in_range, positive, scalar, time_axis, unit_interval
 
 __all__ = ["dropouts", "gap", "spikes", "position_jumps", "heading_flips", "duplicate_timestamps",
            "swap_timestamps", "irregular_times", "saturate"]
-
-
-def _fraction(x, name):
-    return _scalar(in_range(as_array(x, name), name, 0.0, 1.0), name)
-
-
-def _scalar(a, name):
-    a = as_array(a, name)
-    if a.ndim != 0:
-        raise ValueError(f"{name}: expected a scalar, got shape {a.shape}")
-    return float(a)
 
 
 def _samples(x, name):
@@ -66,7 +55,7 @@ def dropouts(x, fraction: float, rng: np.random.Generator):
     x = _samples(x, "x").copy()
     generator(rng)
     n = _time_axis_len(x)
-    dropped = rng.random(n) < _fraction(fraction, "fraction")
+    dropped = rng.random(n) < unit_interval(fraction, "fraction")
     if x.ndim == 1:
         x[dropped] = np.nan
     else:
@@ -86,8 +75,8 @@ def gap(x, time, start: float, duration: float):
     t = as_array(time, "time")
     if t.ndim != 1 or t.size != _time_axis_len(x):
         raise ValueError(f"time: expected a 1-D array of {_time_axis_len(x)} sample times, got shape {t.shape}")
-    start = _scalar(start, "start")
-    duration = _scalar(positive(duration, "duration"), "duration")
+    start = scalar(start, "start")
+    duration = scalar(duration, "duration", positive=True)
     dropped = (t >= start) & (t < start + duration)
     if x.ndim == 1:
         x[dropped] = np.nan
@@ -120,7 +109,7 @@ def spikes(x, fraction: float, sigma, rng: np.random.Generator, k: float = 100.0
     if sigma.ndim > 1 or sigma.size not in (1, k_comp):
         raise ValueError(f"sigma: expected a scalar or one value per component ({k_comp}), got shape {sigma.shape}")
     n = _time_axis_len(x)
-    hit = rng.random(n) < _fraction(fraction, "fraction")
+    hit = rng.random(n) < unit_interval(fraction, "fraction")
     sign = np.where(rng.random(x.shape) < 0.5, -1.0, 1.0)
     mask = hit if x.ndim == 1 else hit[:, None]
     x = x + np.where(mask, float(positive(k, "k")) * sigma * sign, 0.0)
@@ -145,7 +134,7 @@ def position_jumps(lla, fraction: float, rng: np.random.Generator, size_m: float
     if not lat_ok.all():
         raise ValueError("lla[..., 0] (lat): expected latitudes in [-pi/2, pi/2] rad")
     generator(rng)
-    hit = rng.random(lla.shape[-2]) < _fraction(fraction, "fraction")
+    hit = rng.random(lla.shape[-2]) < unit_interval(fraction, "fraction")
     az = rng.uniform(0, 2 * np.pi, lla.shape[-2])
     lat, h = np.nan_to_num(lla[..., 0]), np.nan_to_num(lla[..., 2])
     R_M, R_N = earth.radii(lat)
@@ -165,7 +154,7 @@ def heading_flips(heading, fraction: float, rng: np.random.Generator):
     """
     h = as_array(heading, "heading", allow_nan=True, min_ndim=1).copy()
     generator(rng)
-    hit = rng.random(h.shape[-1]) < _fraction(fraction, "fraction")
+    hit = rng.random(h.shape[-1]) < unit_interval(fraction, "fraction")
     return np.where(hit, attitude.wrap_2pi(h + np.pi), h), hit
 
 
@@ -179,7 +168,7 @@ def duplicate_timestamps(time, fraction: float, rng: np.random.Generator):
     """
     t = time_axis(time).copy()
     generator(rng)
-    hit = rng.random(t.size) < _fraction(fraction, "fraction")
+    hit = rng.random(t.size) < unit_interval(fraction, "fraction")
     hit[0] = False
     t[hit] = t[np.flatnonzero(hit) - 1]
     return t, hit
@@ -201,7 +190,7 @@ def swap_timestamps(time, fraction: float, rng: np.random.Generator):
         raise ValueError(f"time: expected a 1-D array of at least 2 sample times, got shape {t.shape}")
     generator(rng)
     order = np.arange(t.size)
-    for i in np.flatnonzero(rng.random(t.size - 1) < _fraction(fraction, "fraction")):
+    for i in np.flatnonzero(rng.random(t.size - 1) < unit_interval(fraction, "fraction")):
         order[i], order[i + 1] = order[i + 1], order[i]
     return t[order], order
 
@@ -217,7 +206,7 @@ def irregular_times(n: int, dt: float, jitter: float, rng: np.random.Generator, 
         raise ValueError(f"n: expected an integer >= 2, got {n!r}")
     dt = float(positive(dt, "dt"))
     jitter = float(in_range(as_array(jitter, "jitter"), "jitter", 0.0, 0.99))
-    t0 = _scalar(t0, "t0")
+    t0 = scalar(t0, "t0")
     generator(rng)
     steps = dt * (1 + rng.uniform(-jitter, jitter, n - 1))
     return t0 + np.concatenate([[0.0], np.cumsum(steps)])

@@ -48,7 +48,7 @@ from numba import njit
 
 from . import attitude, earth
 from ._kernels import normal_gravity, radii_mn
-from ._validate import as_array, as_quat, latitude, positive
+from ._validate import as_array, as_quat, intervals, latitude
 from .attitude import quat_mult_1, quat_mult_t, quat_normalize_1, quat_to_dcm_1, rotvec_to_quat_1, rotvec_to_quat_t
 from .trajectory import Trajectory
 
@@ -81,16 +81,6 @@ def _attitude_kernel(q0, w, dt, w_in_n):
 
 
 _ON_NAN = ("raise", "hold")
-
-
-def _intervals(dt, n):
-    """Validate ``dt`` (scalar or shape (n,)); return it as a 1-element or n-element float array."""
-    d = positive(dt, "dt")
-    if d.ndim == 0:
-        return np.array([float(d)])
-    if d.shape != (n,):
-        raise ValueError(f"dt: expected a scalar or per-sample intervals of shape ({n},), got {d.shape}")
-    return np.ascontiguousarray(d, dtype=float)
 
 
 def _samples(x, name):
@@ -159,7 +149,7 @@ def integrate_attitude(q0, w_ib_b, dt, w_in_n=None, on_nan: str = "raise"):
     on_nan = _policy(on_nan)
     w = _samples(w_ib_b, "w_ib_b")
     w, held = _dropouts(w, "w_ib_b", on_nan)
-    dt = _intervals(dt, w.shape[-2])
+    dt = intervals(dt, w.shape[-2])[:1] if np.ndim(dt) == 0 else intervals(dt, w.shape[-2])
     q0 = as_quat(q0, "q0")
     lead = w.shape[:-2]
     q0 = np.broadcast_to(q0, lead + (4,)).reshape(-1, 4)
@@ -297,7 +287,7 @@ def integrate(lla0, vel0, q0, w_ib_b, f_b, dt, t0: float = 0.0, hold_height: boo
     f, held_f = _dropouts(f, "f_b", on_nan)
     held = held_w | held_f
     lead, n = w.shape[:-2], w.shape[-2]
-    dt = _intervals(dt, n)
+    dt = intervals(dt, n)[:1] if np.ndim(dt) == 0 else intervals(dt, n)
     t0 = float(as_array(t0, "t0"))
     _ellipsoid(ellipsoid)
     lla0 = as_array(lla0, "lla0", tail=(3,))

@@ -75,7 +75,7 @@ from numba import njit
 
 from .. import geodesy, kalman
 from .._kernels import wrap_pi
-from .._validate import as_array, generator, positive, time_axis
+from .._validate import as_array, generator, range_limit, scalar, time_axis
 from ..earth import CGCS2000, Ellipsoid
 
 __all__ = ["CHANNELS", "Q_PAPER", "R_PAPER", "motion_model", "jacobian", "propagate", "waypoint_path",
@@ -89,14 +89,6 @@ R_PAPER = np.diag([6.25, 6.25, 0.01, 0.0004, 0.0025])
 
 _HEADING = 2
 _ANGLE_MASK = np.array([False, False, True, False, False])
-
-
-def _scalar(x, name: str) -> float:
-    """A positive finite scalar (raises ValueError/TypeError naming the argument)."""
-    arr = positive(x, name)
-    if arr.shape != ():
-        raise ValueError(f"{name}: expected a scalar, got shape {arr.shape}")
-    return float(arr)
 
 
 # --------------------------------------------------------------------------
@@ -131,7 +123,7 @@ def _state(X, name="X"):
 def motion_model(X, T: float):
     """Reconstructed Eq. (13): ``f(X)`` for states of shape (..., 5) and step ``T`` (s)."""
     X = _state(X)
-    T = _scalar(T, "T")
+    T = scalar(T, "T", positive=True)
     x, y, th, v, w = np.moveaxis(X, -1, 0)
     return np.stack([x + v * T * np.cos(th), y + v * T * np.sin(th), th + w * T, v, w], -1)
 
@@ -139,7 +131,7 @@ def motion_model(X, T: float):
 def jacobian(X, T: float):
     """Eq. (16): ``Phi = df/dX`` at states (..., 5); returns shape (..., 5, 5)."""
     X = _state(X)
-    T = _scalar(T, "T")
+    T = scalar(T, "T", positive=True)
     Phi = np.broadcast_to(np.eye(5), X.shape[:-1] + (5, 5)).copy()
     s, c = np.sin(X[..., 2]), np.cos(X[..., 2])
     Phi[..., 0, 2] = -X[..., 3] * T * s
@@ -187,7 +179,7 @@ def propagate(x0, T: float, n_steps: int | None = None, speed=None, yaw_rate=Non
     x0 = as_array(x0, "x0", tail=(5,))
     if x0.ndim != 1:
         raise ValueError(f"x0: expected shape (5,), got {x0.shape}")
-    T = _scalar(T, "T")
+    T = scalar(T, "T", positive=True)
     if speed is None and yaw_rate is None:
         if isinstance(n_steps, (bool, np.bool_)) or not isinstance(n_steps, (int, np.integer)) or n_steps < 1:
             raise ValueError(f"n_steps: expected a positive integer, got {n_steps!r}")
@@ -231,9 +223,9 @@ def waypoint_path(waypoints, speed: float, turn_rate: float, T: float):
     length = np.hypot(legs[:, 0], legs[:, 1])
     if np.any(length <= 0):
         raise ValueError("waypoints: consecutive waypoints must differ")
-    speed = _scalar(speed, "speed")
-    turn_rate = _scalar(turn_rate, "turn_rate")
-    T = _scalar(T, "T")
+    speed = scalar(speed, "speed", positive=True)
+    turn_rate = scalar(turn_rate, "turn_rate", positive=True)
+    T = scalar(T, "T", positive=True)
     course = np.arctan2(legs[:, 1], legs[:, 0])
     v_cmd, w_cmd, reached = [], [], []
     for i, (L, c) in enumerate(zip(length, course, strict=True)):
@@ -323,7 +315,7 @@ def dead_reckoning(t, speed, yaw_rate, x0, velocity_bias=(0.0, 0.0), yaw_rate_ra
     bias = as_array(velocity_bias, "velocity_bias", tail=(2,))
     if bias.shape != (2,):
         raise ValueError(f"velocity_bias: expected shape (2,), got {bias.shape}")
-    fs = _full_scale(yaw_rate_range, "yaw_rate_range")
+    fs = range_limit(yaw_rate_range, "yaw_rate_range")
     return _dead_reckon(t, speed, yaw_rate, x0, bias, fs)
 
 
@@ -640,15 +632,6 @@ def _gate(gate):
     return np.ascontiguousarray(np.broadcast_to(g, (4,)), dtype=float)
 
 
-def _full_scale(value, name):
-    if value is None:
-        return np.inf
-    v = as_array(value, name, finite=False)
-    if v.shape != () or not v > 0 or np.isnan(v):
-        raise ValueError(f"{name}: expected a positive full-scale range (or None), got {value!r}")
-    return float(v)
-
-
 def filter_grid(t, z, x0, P0=None, Q=Q_PAPER, R=R_PAPER, gate=np.inf, fast: bool = True,
                 yaw_rate_range: float | None = None, reacquire: int = 3):
     """The EKF on measurements already in the grid frame.
@@ -715,7 +698,7 @@ def filter_grid(t, z, x0, P0=None, Q=Q_PAPER, R=R_PAPER, gate=np.inf, fast: bool
     P0 = np.zeros((5, 5)) if P0 is None else _covariance(P0, "P0")
     Q, R = _covariance(Q, "Q"), _covariance(R, "R")
     gate = _gate(gate)
-    fs = _full_scale(yaw_rate_range, "yaw_rate_range")
+    fs = range_limit(yaw_rate_range, "yaw_rate_range")
     with np.errstate(invalid="ignore"):
         saturated = np.abs(z[:, 4]) >= fs                   # NaN compares False
     if isinstance(reacquire, (bool, np.bool_)) or not isinstance(reacquire, (int, np.integer)) or reacquire < 1:
@@ -825,7 +808,7 @@ def ekf(t, gps, heading, speed, yaw_rate, x0, *, origin=None, zone=None, width: 
     z[:, 2] = heading - _forward_fill(gamma) if correct_convergence else heading
     z[:, 3], z[:, 4] = speed, yaw_rate
     if yaw_rate_range is not None:
-        yaw_rate_range = _full_scale(yaw_rate_range, "yaw_rate_range")
+        yaw_rate_range = range_limit(yaw_rate_range, "yaw_rate_range")
         yaw_rate_range = np.deg2rad(yaw_rate_range) if deg else yaw_rate_range
     res = filter_grid(t, z, x0, P0, Q, R, gate, yaw_rate_range=yaw_rate_range, reacquire=reacquire)
     res.zone, res.origin_gk = zone, origin_gk

@@ -83,7 +83,7 @@ import numpy as np
 from numba import njit
 
 from .. import attitude, earth, kalman
-from .._validate import as_array, as_quat, in_range
+from .._validate import as_quat, flag, in_range, intervals, nonempty_array, scalar
 from ..attitude import quat_mult_t
 
 __all__ = ["MagGate", "AttitudeResult", "COUNT_NAMES", "magnetic_reference",
@@ -91,22 +91,6 @@ __all__ = ["MagGate", "AttitudeResult", "COUNT_NAMES", "magnetic_reference",
            "mahony", "quaternion_kf", "fuse_rtk_heading", "rtk_at_imu_rate",
            "printed_eq2_roll", "printed_eq4", "printed_eq5_tilt", "printed_eq7_heading", "printed_eq8_quat",
            "printed_eq18_gamma", "printed_eq20_jacobian"]
-
-def _arr(x, name, **kw):
-    """:func:`navlib._validate.as_array`, and non-empty: every input here needs at least one value."""
-    a = as_array(x, name, **kw)
-    if a.size == 0:
-        raise ValueError(f"{name}: expected a non-empty array, got shape {a.shape}")
-    return a
-
-
-def _real_scalar(x, name):
-    """A finite real scalar (any sign)."""
-    a = _arr(x, name)
-    if a.ndim != 0:
-        raise ValueError(f"{name}: expected a scalar, got shape {a.shape}")
-    return float(a)
-
 
 COUNT_NAMES = ("gyro_held", "accel_skipped", "accel_gated", "mag_skipped", "mag_gated", "gyro_saturated",
                "accel_saturated", "mag_saturated", "rtk_dropped", "rtk_rejected", "rtk_reacquired", "gyro_gated")
@@ -163,7 +147,7 @@ def magnetic_reference(B_n):
     declination, inclination, intensity : float
         D (rad, east positive), I (rad, down positive), F (uT).
     """
-    B = _arr(B_n, "B_n", tail=(3,))
+    B = nonempty_array(B_n, "B_n", tail=(3,))
     if B.shape != (3,) or np.linalg.norm(B) == 0:
         raise ValueError(f"B_n: expected one non-zero field vector of shape (3,), got {B.tolist()}")
     D, I, F = earth.field_angles(B, deg=False)
@@ -228,8 +212,8 @@ def _model_rows(q, b, out_h, out_H):
 
 
 def _model(q, b):
-    q = _arr(q, "q", tail=(4,))
-    b = _arr(b, "b", tail=(3,))
+    q = nonempty_array(q, "q", tail=(4,))
+    b = nonempty_array(b, "b", tail=(3,))
     if np.any(b[..., 0] != 0):
         raise ValueError("b: expected reference vectors [0, b_y, b_z] (Eq. 3, magnetic north)")
     lead = np.broadcast_shapes(q.shape[:-1], b.shape[:-1])
@@ -265,8 +249,8 @@ def measurement_jacobian(q, b):
 
 def transition(w, dt: float):
     """Quaternion transition ``Phi = I + dt/2 Omega(w)`` (Eq. 17); w (..., 3) rad/s -> (..., 4, 4)."""
-    w = _arr(w, "w", tail=(3,))
-    dt = _scalar(dt, "dt")
+    w = nonempty_array(w, "w", tail=(3,))
+    dt = scalar(dt, "dt", positive=True)
     c = 0.5 * dt
     wx, wy, wz = np.moveaxis(w, -1, 0)
     o = np.ones_like(wx)
@@ -277,8 +261,8 @@ def transition(w, dt: float):
 
 def noise_input(q, dt: float):
     """Gyro-noise input matrix ``Gamma = dt/2 Xi(q)`` (Eq. 18 corrected, E003-11); (..., 4) -> (..., 4, 3)."""
-    q = _arr(q, "q", tail=(4,))
-    dt = _scalar(dt, "dt")
+    q = nonempty_array(q, "q", tail=(4,))
+    dt = scalar(dt, "dt", positive=True)
     q0, q1, q2, q3 = np.moveaxis(q, -1, 0)
     rows = [[-q1, -q2, -q3], [q0, -q3, q2], [q3, q0, -q1], [-q2, q1, q0]]
     return dt / 2 * np.stack([np.stack(r, -1) for r in rows], -2)
@@ -290,13 +274,13 @@ def noise_input(q, dt: float):
 
 def printed_eq2_roll(q):
     """Roll as printed in Eq. (2): ``atan(-2(q1 q3 + q0 q2) / (1 - 2(q1^2 + q2^2)))`` (E003-02)."""
-    q0, q1, q2, q3 = np.moveaxis(_arr(q, "q", tail=(4,)), -1, 0)
+    q0, q1, q2, q3 = np.moveaxis(nonempty_array(q, "q", tail=(4,)), -1, 0)
     return np.arctan(-2 * (q1 * q3 + q0 * q2) / (1 - 2 * (q1 ** 2 + q2 ** 2)))
 
 
 def printed_eq4(q):
     """Eq. (4) as printed, with ``q0`` instead of ``q0**2`` in the third row (E003-04); (..., 4) -> (..., 3)."""
-    q0, q1, q2, q3 = np.moveaxis(_arr(q, "q", tail=(4,)), -1, 0)
+    q0, q1, q2, q3 = np.moveaxis(nonempty_array(q, "q", tail=(4,)), -1, 0)
     return np.stack([2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), q0 + q3 ** 2 - q1 ** 2 - q2 ** 2], -1)
 
 
@@ -305,19 +289,19 @@ def printed_eq5_tilt(f_b):
 
     Returns (pitch, roll).
     """
-    a = _arr(f_b, "f_b", tail=(3,))
+    a = nonempty_array(f_b, "f_b", tail=(3,))
     return np.arctan(-a[..., 1] / a[..., 2]), np.arctan(a[..., 0] / np.hypot(a[..., 1], a[..., 2]))
 
 
 def printed_eq7_heading(m_h):
     """Eq. (7) as printed, ``atan(m_x / m_y)`` of the levelled field (the CCW yaw, E003-08)."""
-    m = _arr(m_h, "m_h", tail=(3,))
+    m = nonempty_array(m_h, "m_h", tail=(3,))
     return np.arctan(m[..., 0] / m[..., 1])
 
 
 def printed_eq8_quat(hpr):
     """Eq. (8) as printed, with its yaw psi = -heading: ``q_z(psi) q_y(roll) q_x(pitch)`` (E003-01)."""
-    h, p, r = np.moveaxis(_arr(hpr, "hpr", tail=(3,)), -1, 0)
+    h, p, r = np.moveaxis(nonempty_array(hpr, "hpr", tail=(3,)), -1, 0)
     def axis_quat(a, i):
         return np.stack([np.cos(a / 2)] + [np.sin(a / 2) * (i == j) for j in range(3)], -1)
 
@@ -332,7 +316,7 @@ def printed_eq18_gamma(q, dt: float):
 def printed_eq20_jacobian(q, b):
     """Eq. (20) as printed: H44 = 2(q0 b_y - q1 b_z) (E003-13)."""
     H = measurement_jacobian(q, b).copy()
-    q, b = _arr(q, "q", tail=(4,)), _arr(b, "b", tail=(3,))
+    q, b = nonempty_array(q, "q", tail=(4,)), nonempty_array(b, "b", tail=(3,))
     H[..., 3, 3] = 2 * (q[..., 0] * b[..., 1] - q[..., 1] * b[..., 2])
     return H
 
@@ -662,8 +646,8 @@ class MagGate:
     dip_tol: float = np.deg2rad(5.0)
 
     def __post_init__(self):
-        _scalar(self.norm_tol, "norm_tol")
-        _scalar(self.dip_tol, "dip_tol")
+        scalar(self.norm_tol, "norm_tol", positive=True)
+        scalar(self.dip_tol, "dip_tol", positive=True)
 
 
 @dataclass(frozen=True)
@@ -704,7 +688,7 @@ def _heading_input(heading_rtk, rtk_valid, shape, name="heading_rtk"):
     v = np.asarray(rtk_valid)
     if v.dtype != bool:
         raise ValueError(f"rtk_valid: expected booleans, got dtype {v.dtype}")
-    h = _arr(heading_rtk, name, finite=False)
+    h = nonempty_array(heading_rtk, name, finite=False)
     for arr, label in ((h, name), (v, "rtk_valid")):
         try:
             np.broadcast_to(arr, shape)
@@ -720,38 +704,10 @@ def _heading_input(heading_rtk, rtk_valid, shape, name="heading_rtk"):
     return np.ascontiguousarray(h.reshape(-1, shape[-1])), np.ascontiguousarray(v.reshape(-1, shape[-1]))
 
 
-def _scalar(x, name, *, allow_zero=False, allow_inf=False):
-    """A positive (or non-negative) float scalar; inf allowed with ``allow_inf``."""
-    a = _arr(x, name, finite=not allow_inf)
-    if a.ndim != 0:
-        raise ValueError(f"{name}: expected a scalar, got shape {a.shape}")
-    if np.isnan(a) or not (a >= 0 if allow_zero else a > 0):
-        raise ValueError(f"{name}: expected a {'non-negative' if allow_zero else 'positive'} value, got {float(a)!r}")
-    return float(a)
-
-
-def _intervals(dt, n, name="dt"):
-    """``dt`` as per-sample intervals of shape (n,): a positive scalar, or an (n,) array of positive intervals."""
-    a = _arr(dt, name)
-    if a.ndim == 0:
-        return np.full(n, _scalar(a, name))
-    if a.shape != (n,):
-        raise ValueError(f"{name}: expected a positive scalar or per-sample intervals of shape ({n},), got {a.shape}")
-    if not np.all(a > 0):
-        raise ValueError(f"{name}: expected positive intervals, got min {a.min():g} (run timing.sanitize first)")
-    return np.ascontiguousarray(a)
-
-
-def _bool_flag(x, name):
-    if not isinstance(x, (bool, np.bool_)):
-        raise ValueError(f"{name}: expected True or False, got {x!r}")
-    return bool(x)
-
-
 def _rtk_params(rtk_hold, rtk_gate, rtk_confirm):
     """``[hold (s, + 1 ns rounding allowance), gate (rad, inf = off), confirm (epochs)]``."""
-    hold = _scalar(rtk_hold, "rtk_hold", allow_zero=True) + 1e-9
-    gate = np.inf if rtk_gate is None else _scalar(rtk_gate, "rtk_gate")
+    hold = scalar(rtk_hold, "rtk_hold", positive=True, allow_zero=True) + 1e-9
+    gate = np.inf if rtk_gate is None else scalar(rtk_gate, "rtk_gate", positive=True)
     if gate != np.inf and gate >= np.pi:
         raise ValueError(f"rtk_gate: expected a value in (0, pi) rad, got {gate!r}")
     if isinstance(rtk_confirm, (bool, np.bool_)) or not isinstance(rtk_confirm, (int, np.integer)) or rtk_confirm < 1:
@@ -761,13 +717,13 @@ def _rtk_params(rtk_hold, rtk_gate, rtk_confirm):
 
 def _prepare(w_ib_b, f_b, dt, q0, m_b, heading_rtk, rtk_valid, kp, ki, B_n, gate, accel_tol, g, rtk_hold,
              rtk_gate, rtk_confirm, gyro_range, accel_range, mag_range, gyro_jump):
-    w = _arr(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
-    f = _arr(f_b, "f_b", tail=(3,), finite=False)
+    w = nonempty_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
+    f = nonempty_array(f_b, "f_b", tail=(3,), finite=False)
     if f.shape != w.shape:
         raise ValueError(f"f_b: expected the shape of w_ib_b {w.shape}, got {f.shape}")
-    kp, ki = _scalar(kp, "kp", allow_zero=True), _scalar(ki, "ki", allow_zero=True)
+    kp, ki = scalar(kp, "kp", positive=True, allow_zero=True), scalar(ki, "ki", positive=True, allow_zero=True)
     lead, N = w.shape[:-2], w.shape[-2]
-    dts = _intervals(dt, N)
+    dts = intervals(dt, N)
     T = int(np.prod(lead))
     q = as_quat(q0, "q0")
     q = np.ascontiguousarray(np.broadcast_to(q, lead + (4,)).reshape(T, 4))
@@ -780,15 +736,15 @@ def _prepare(w_ib_b, f_b, dt, q0, m_b, heading_rtk, rtk_valid, kp, ki, B_n, gate
         hdg, ok = _heading_input(heading_rtk, rtk_valid, lead + (N,))
         m = np.zeros((1, 1, 3))
     else:
-        m = _arr(m_b, "m_b", tail=(3,), finite=False)
+        m = nonempty_array(m_b, "m_b", tail=(3,), finite=False)
         if m.shape != w.shape:
             raise ValueError(f"m_b: expected the shape of w_ib_b {w.shape}, got {m.shape}")
         m = m.reshape(T, N, 3)
         hdg, ok = np.zeros((1, 1)), np.zeros((1, 1), dtype=bool)
     gates = np.array([0.0, np.inf, 0.0, np.inf, -2.0, 2.0])
     if accel_tol is not None:
-        tol = _scalar(accel_tol, "accel_tol")
-        g = _scalar(g, "g")
+        tol = scalar(accel_tol, "accel_tol", positive=True)
+        g = scalar(g, "g", positive=True)
         gates[0:2] = (g * max(1 - tol, 0.0)) ** 2, (g * (1 + tol)) ** 2
     if gate is not None:
         if not isinstance(gate, MagGate):
@@ -798,7 +754,7 @@ def _prepare(w_ib_b, f_b, dt, q0, m_b, heading_rtk, rtk_valid, kp, ki, B_n, gate
         _, _, I, F = magnetic_reference(B_n)
         gates[2:4] = (F * max(1 - gate.norm_tol, 0.0)) ** 2, (F * (1 + gate.norm_tol)) ** 2
         gates[4:6] = np.sin(max(I - gate.dip_tol, -np.pi / 2)), np.sin(min(I + gate.dip_tol, np.pi / 2))
-    jump = 0.0 if gyro_jump is None else _scalar(gyro_jump, "gyro_jump")
+    jump = 0.0 if gyro_jump is None else scalar(gyro_jump, "gyro_jump", positive=True)
     rtk_par = _rtk_params(rtk_hold, rtk_gate, rtk_confirm)
     w, f = w.reshape(T, N, 3), f.reshape(T, N, 3)
     # Saturation: counted here; accelerometer/magnetometer samples at the rails become NaN (skipped by the
@@ -807,7 +763,7 @@ def _prepare(w_ib_b, f_b, dt, q0, m_b, heading_rtk, rtk_valid, kp, ki, B_n, gate
     for i, (r, name) in enumerate(((gyro_range, "gyro_range"), (accel_range, "accel_range"), (mag_range, "mag_range"))):
         if r is None:
             continue
-        r = _scalar(r, name)
+        r = scalar(r, name, positive=True)
         if i == 2 and use_rtk:
             continue
         x = (w, f, m)[i]
@@ -957,10 +913,10 @@ def quaternion_kf(w_ib_b, f_b, dt, q0, *, m_b=None, heading_rtk=None, rtk_valid=
         raise ValueError("B_n: the quaternion KF needs the local field for its magnetometer reference")
     else:
         b = magnetic_reference(B_n)[0]
-    sig = np.array([_scalar(s, n) for s, n in ((sigma_gyro, "sigma_gyro"), (sigma_accel, "sigma_accel"),
+    sig = np.array([scalar(s, n, positive=True) for s, n in ((sigma_gyro, "sigma_gyro"), (sigma_accel, "sigma_accel"),
                                                 (sigma_mag, "sigma_mag"))])
-    p0 = _scalar(p0, "p0")
-    linear_innovation, keep_cov = _bool_flag(linear_innovation, "linear_innovation"), _bool_flag(keep_cov, "keep_cov")
+    p0 = scalar(p0, "p0", positive=True)
+    linear_innovation, keep_cov = flag(linear_innovation, "linear_innovation"), flag(keep_cov, "keep_cov")
     q_out, bias, counts = np.empty((T, N, 4)), np.empty((T, 3)), np.zeros((T, len(COUNT_NAMES)), dtype=np.int64)
     P_out, P_hist = np.empty((T, 4, 4)), np.empty((T, N if keep_cov else 0, 4, 4))
     _run_trials(_kf_kernel, T, *prep[3:-1], b, sig, p0, linear_innovation, q_out, bias, counts, P_out, P_hist)
@@ -1039,14 +995,14 @@ def fuse_rtk_heading(heading_mag, heading_rtk, rtk_valid, dt, alpha: float = 0.0
         ``rtk_gate``, not fused), ``rtk_reacquired`` (used after ``rtk_confirm``
         agreeing rejections).
     """
-    hm = _arr(heading_mag, "heading_mag", min_ndim=1)
-    alpha = _arr(alpha, "alpha")
+    hm = nonempty_array(heading_mag, "heading_mag", min_ndim=1)
+    alpha = nonempty_array(alpha, "alpha")
     if alpha.ndim != 0:
         raise ValueError(f"alpha: expected a scalar, got shape {alpha.shape}")
     alpha = float(in_range(alpha, "alpha", 0.0, 1.0, lo_open=True))
     hr, ok = _heading_input(heading_rtk, rtk_valid, hm.shape)
     T, N = hr.shape
-    dts = _intervals(dt, N)
+    dts = intervals(dt, N)
     rtk_par = _rtk_params(rtk_hold, rtk_gate, rtk_confirm)
     out, delta, counts = np.empty((T, N)), np.empty((T, N)), np.zeros((T, len(_FUSE_COUNTS)), dtype=np.int64)
     _fuse_kernel(np.ascontiguousarray(hm.reshape(T, N)), hr, ok, dts, alpha, rtk_par, out, delta, counts)
@@ -1079,10 +1035,10 @@ def rtk_at_imu_rate(time, heading, valid, step: int):
     epoch_valid : ndarray of bool, shape (N,)
         True at valid epochs.
     """
-    t = _arr(time, "time")
+    t = nonempty_array(time, "time")
     if t.ndim != 1:
         raise ValueError(f"time: expected a 1-D array of sample times, got shape {t.shape}")
-    h = _arr(heading, "heading", finite=False)
+    h = nonempty_array(heading, "heading", finite=False)
     v = np.asarray(valid)
     if v.dtype != bool:
         raise ValueError(f"valid: expected booleans, got dtype {v.dtype}")
@@ -1113,11 +1069,11 @@ def settling_time(time, error, start: float, tol: float, end: float | None = Non
     end : float, optional
         Last time considered (s), e.g. the start of the next outage; default the end of the record.
     """
-    t = _arr(time, "time")
-    e = _arr(error, "error", min_ndim=1)
-    tol = _scalar(tol, "tol")
-    start = _real_scalar(start, "start")
-    stop = np.inf if end is None else _real_scalar(end, "end")
+    t = nonempty_array(time, "time")
+    e = nonempty_array(error, "error", min_ndim=1)
+    tol = scalar(tol, "tol", positive=True)
+    start = scalar(start, "start")
+    stop = np.inf if end is None else scalar(end, "end")
     if t.ndim != 1 or e.shape[-1] != t.size:
         raise ValueError(f"time, error: expected 1-D time and error with a last axis of the same length, got "
                          f"{t.shape}, {e.shape}")

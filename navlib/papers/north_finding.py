@@ -126,10 +126,6 @@ def _lat(lat, deg: bool = False) -> np.ndarray:
     return lat
 
 
-def _vec(x, name: str) -> np.ndarray:
-    return as_array(x, name, tail=(3,))
-
-
 OK, TOO_FEW, SATURATED, MOVING = 0, 1, 2, 3
 """Status codes of a static window (:class:`StaticWindow`)."""
 
@@ -346,8 +342,8 @@ def triad(f_b, w_ib_b, lat, orthonormal: bool = True):
     -------
     C_bn : ndarray, shape (..., 3, 3)
     """
-    f = _vec(f_b, "f_b")
-    w = _vec(w_ib_b, "w_ib_b")
+    f = as_array(f_b, "f_b", tail=(3,))
+    w = as_array(w_ib_b, "w_ib_b", tail=(3,))
     lat = _lat(lat)
     g_n = np.stack(np.broadcast_arrays(0.0, 0.0, -earth.gravity(lat)), -1)
     body = _reference_triad(-f, w)                    # columns: -f, -f x w, (-f x w) x (-f)
@@ -385,7 +381,7 @@ def tilt_from_accel(f_b, g=None):
     -------
     pitch, roll : ndarray, shape (...)  (rad)
     """
-    f = _vec(f_b, "f_b")
+    f = as_array(f_b, "f_b", tail=(3,))
     norm = np.linalg.norm(f, axis=-1)
     if np.any(norm < 1e-9):
         raise ValueError("f_b: expected non-zero specific force (a static accelerometer reads about g)")
@@ -566,7 +562,7 @@ def triad_heading_error(C_bn, dw_b, lat):
     ndarray, shape (...)  (rad)
     """
     C = as_dcm(C_bn)
-    dw = _vec(dw_b, "dw_b")
+    dw = as_array(dw_b, "dw_b", tail=(3,))
     dw_east = np.einsum("...j,...j->...", C[..., 0, :], dw)
     return -dw_east / (OMEGA_IE * np.cos(_lat(lat)))
 

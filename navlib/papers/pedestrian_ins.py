@@ -127,7 +127,7 @@ from numba import njit
 
 from .. import _kernels, atmosphere, attitude, earth, kalman, trajectory
 from .._kernels import radii_mn
-from .._validate import as_array, as_dcm, as_quat, generator, positive, time_grid
+from .._validate import as_array, as_dcm, as_quat, generator, intervals, positive, time_grid
 from ..alignment import level, magnetic_heading
 from ..strapdown import nav_step
 
@@ -859,16 +859,6 @@ def simple_covariance_update(P, H, R):
 # Error-state filter: configuration, compiled kernel, driver
 # --------------------------------------------------------------------------
 
-def _intervals(dt, n):
-    """``dt`` scalar or shape (n,) -> positive float array of shape (n,)."""
-    d = positive(dt, "dt")
-    if d.ndim == 0:
-        return np.full(n, float(d))
-    if d.shape != (n,):
-        raise ValueError(f"dt: expected a scalar or per-sample intervals of shape ({n},), got shape {d.shape}")
-    return np.ascontiguousarray(d, dtype=float)
-
-
 _MAY_BE_INF = ("gate", "mag_field_tol", "mag_dip_tol", "baro_gate", "spike_gyro", "spike_accel")
 
 
@@ -1320,7 +1310,7 @@ def run_filter(w_ib_b, f_b, dt, lla0, vel0, q0, static, *, h_baro=None, m_b=None
     n = w.shape[0]
     if not (np.isfinite(w[0]).all() and np.isfinite(f[0]).all()):
         raise ValueError("w_ib_b, f_b: expected a valid first sample (dropouts are held from the last good one)")
-    dts = _intervals(dt, n)
+    dts = intervals(dt, n)
     lla0 = as_array(lla0, "lla0", tail=(3,)).reshape(3)
     if abs(lla0[0]) > np.deg2rad(89.9):
         raise ValueError("lla0: expected |lat| <= 89.9 deg (ENU mechanisation)")

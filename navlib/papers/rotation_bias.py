@@ -91,7 +91,7 @@ import numpy as np
 from numba import njit
 
 from .. import attitude, earth, kalman
-from .._validate import in_range
+from .._validate import in_range, intervals, range_limit
 from .._validate import nonempty_array as as_array
 from .._validate import nonempty_latitude as latitude
 from .._validate import nonempty_positive as positive
@@ -119,20 +119,6 @@ def _hpr(hpr, name="hpr"):
     hpr = as_array(hpr, name, tail=(3,))
     _check_pitch(hpr[..., 1], f"{name}[..., 1] (pitch)")
     return hpr
-
-
-def _intervals(dt, n, name="dt"):
-    """``dt`` as a float or a per-sample array of shape (n,); returns (array (n,), regular)."""
-    arr = positive(dt, name)
-    if arr.ndim == 0:
-        return np.full(max(n, 1), float(arr)), True
-    if arr.shape != (n,):
-        raise ValueError(f"{name}: expected a float or per-sample intervals of shape ({n},), got {arr.shape}")
-    return np.ascontiguousarray(arr), False
-
-
-def _full_scale(x, name):
-    return np.inf if x is None else float(positive(x, name))
 
 
 def _check_pitch(pitch, name):
@@ -354,8 +340,8 @@ def integrate_euler(hpr0, w_ib_b, dt, w_in_n=None, bias_b=None, bias_from=None, 
     max_gap = float(positive(max_gap, "max_gap", allow_zero=True))
     w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=max_gap > 0)
     lead, n = w.shape[:-2], w.shape[-2]
-    dts, _ = _intervals(dt, n)
-    fs = _full_scale(full_scale, "full_scale")
+    dts = intervals(dt, n)
+    fs = range_limit(full_scale, "full_scale")
     hpr0 = np.broadcast_to(_hpr(hpr0, "hpr0"), lead + (3,)).reshape(-1, 3)
     w_in = np.zeros(3) if w_in_n is None else as_array(w_in_n, "w_in_n", tail=(3,)).reshape(3)
     bias, idx = _bias_schedule(bias_b, bias_from, lead)
@@ -855,7 +841,7 @@ def tilt_residuals(w_ib_b, f_b, dt, starts, length: int, w_ie_b=None, *, max_mis
     if w.shape != f.shape:
         raise ValueError(f"f_b: expected the shape of w_ib_b {w.shape}, got {f.shape}")
     lead, n = w.shape[:-2], w.shape[-2]
-    dts, regular = _intervals(dt, n)
+    dts, regular = intervals(dt, n), np.ndim(dt) == 0
     if not isinstance(length, (int, np.integer)) or isinstance(length, bool) or length < MIN_DWELL_SAMPLES:
         raise ValueError(f"length: dwell windows too short; expected at least {MIN_DWELL_SAMPLES} samples, "
                          f"got {length!r}")
@@ -865,7 +851,7 @@ def tilt_residuals(w_ib_b, f_b, dt, starts, length: int, w_ie_b=None, *, max_mis
         raise ValueError(f"starts: expected a 1-D array of dwell start indices within [0, {n - length}]")
     max_missing = float(in_range(as_array(max_missing, "max_missing"), "max_missing", 0.0, 0.5))
     k_out = 0.0 if outlier_k is None else float(positive(outlier_k, "outlier_k"))
-    fs_g, fs_a = _full_scale(full_scale_gyro, "full_scale_gyro"), _full_scale(full_scale_accel, "full_scale_accel")
+    fs_g, fs_a = range_limit(full_scale_gyro, "full_scale_gyro"), range_limit(full_scale_accel, "full_scale_accel")
     K = starts.size
     w_ie = np.zeros((K, 3)) if w_ie_b is None else as_array(w_ie_b, "w_ie_b", tail=(3,))
     try:
