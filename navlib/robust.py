@@ -91,7 +91,7 @@ def hold(x, *, leading: str = "raise", name: str = "x", axis: int = -2) -> tuple
     if np.any(bad.all(axis=-1)):
         raise ValueError(f"{name}: a series has no valid sample to hold")
     if leading == "raise" and np.any(bad[..., 0]):
-        raise ValueError(f"{name}: the first sample is NaN; choose leading='first' or 'zero' to fill it")
+        raise ValueError(f"{name}: the first sample of a series is NaN and there is nothing before it to hold")
     idx = np.where(bad, 0, np.arange(n))
     np.maximum.accumulate(idx, axis=-1, out=idx)
     before = bad & (np.arange(n) < first[..., None])

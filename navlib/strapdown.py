@@ -46,7 +46,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from . import attitude, earth
+from . import attitude, earth, robust
 from ._kernels import normal_gravity, radii_mn
 from ._validate import as_array, as_quat, intervals, latitude
 from .attitude import quat_mult_1, quat_mult_t, quat_normalize_1, quat_to_dcm_1, rotvec_to_quat_1, rotvec_to_quat_t
@@ -88,25 +88,13 @@ def _samples(x, name):
     return as_array(x, name, tail=(3,), min_ndim=1, allow_nan=True)
 
 
-def _hold(x, name):
-    """Zero-order hold of NaN rows along axis -2, per trial; returns (filled, held mask (..., N))."""
-    bad = ~np.isfinite(x).all(axis=-1)
-    if not bad.any():
-        return x, bad
-    if bad[..., 0].any():
-        raise ValueError(f"{name}: the first sample of a trial is NaN; on_nan='hold' needs a good sample to hold")
-    idx = np.where(bad, 0, np.arange(x.shape[-2]))
-    idx = np.maximum.accumulate(idx, axis=-1)
-    return np.take_along_axis(x, idx[..., None], axis=-2), bad
-
-
 def _dropouts(x, name, on_nan):
     """Apply the ``on_nan`` policy to samples x; return (x, held mask)."""
     if on_nan == "raise":
         if np.isnan(x).any():
             raise ValueError(f"{name}: contains NaN samples (use on_nan='hold' to hold the last good sample)")
         return x, np.zeros(x.shape[:-1], dtype=bool)
-    return _hold(x, name)
+    return robust.hold(x, leading="raise", name=name)
 
 
 def _policy(on_nan):

@@ -73,7 +73,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from .. import geodesy, kalman
+from .. import geodesy, kalman, robust
 from .._kernels import wrap_pi
 from .._validate import as_array, generator, range_limit, scalar, time_axis
 from ..earth import CGCS2000, Ellipsoid
@@ -718,13 +718,9 @@ def filter_grid(t, z, x0, P0=None, Q=Q_PAPER, R=R_PAPER, gate=np.inf, fast: bool
 
 def _forward_fill(values):
     """Replace NaN by the last finite value (the first finite one before it)."""
-    ok = np.isfinite(values)
-    if not ok.any():
+    if not np.isfinite(values).any():
         return values
-    idx = np.where(ok, np.arange(values.size), 0)
-    idx = np.maximum.accumulate(idx)
-    idx[: np.argmax(ok)] = np.argmax(ok)
-    return values[idx]
+    return robust.hold(values, leading="first", name="values", axis=-1)[0]
 
 
 def ekf(t, gps, heading, speed, yaw_rate, x0, *, origin=None, zone=None, width: int = 3,

@@ -89,7 +89,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.special import ndtr
 
-from .. import attitude, earth, strapdown
+from .. import attitude, earth, robust, strapdown
 from .._validate import as_dcm, generator, in_range, time_axis
 from .._validate import nonempty_array as as_array
 from .._validate import nonempty_latitude as latitude
@@ -1011,18 +1011,18 @@ def _hold_last(w, dts):
     """Forward-fill NaN rows along axis -2 (back-fill leading ones); counts and longest run (s)."""
     bad = ~np.all(np.isfinite(w), -1)
     n = w.shape[-2]
-    idx = np.where(bad, 0, np.arange(n))
-    np.maximum.accumulate(idx, axis=-1, out=idx)
-    first = np.argmax(~bad, axis=-1)                       # leading dropouts take the first valid sample
-    idx = np.where(bad & (np.arange(n) < first[..., None]), first[..., None], idx)
-    filled = np.take_along_axis(w, idx[..., None], -2)
+    empty = bad.all(-1)
+    # leading dropouts take the first valid sample; a trial without any is refused (held as it is)
+    filled = np.where(empty[..., None, None], w, 0.0)
+    if not empty.all():
+        filled[~empty] = robust.hold(w[~empty], leading="first", name="w_ib_b")[0]
     # longest run of consecutive dropouts, in seconds
     run = np.zeros(bad.shape[:-1])
     longest = np.zeros(bad.shape[:-1])
     for i in range(n):
         run = np.where(bad[..., i], run + dts[i], 0.0)
         longest = np.maximum(longest, run)
-    return filled, bad.sum(-1), longest, bad.all(-1)
+    return filled, bad.sum(-1), longest, empty
 
 
 def ins_heading_change(w_ib_b, f_start, dt, lat, earth_rate: str = "vertical", *, max_gap: float = 0.1,
