@@ -1,4 +1,4 @@
-"""Deprecated alias of :mod:`navlib.papers.mimu_mag_rtk` and of the core modules navlib.alignment.
+"""Deprecated alias of :mod:`navlib.papers.mimu_mag_rtk` and of the core modules navlib.alignment, navlib.analysis.
 
 ``navlib.ahrs`` was the module of this paper before the split into a paper companion
 and core homes (see CONTRIBUTING.md). Every old name still resolves here; importing this
@@ -8,6 +8,7 @@ module warns. It will be removed in navlib 0.3.
 import warnings
 
 from .alignment import initial_attitude, tilt_heading  # noqa: F401
+from .analysis import settling_time  # noqa: F401
 from .papers.mimu_mag_rtk import *  # noqa: F403
 
 __all__ = ["MagGate", "AttitudeResult", "COUNT_NAMES", "magnetic_reference", "tilt_heading", "initial_attitude", "settling_time",
@@ -16,4 +17,4 @@ __all__ = ["MagGate", "AttitudeResult", "COUNT_NAMES", "magnetic_reference", "ti
            "printed_eq7_heading", "printed_eq8_quat", "printed_eq18_gamma", "printed_eq20_jacobian"]
 
 warnings.warn("navlib.ahrs is deprecated and will be removed in navlib 0.3; use navlib.papers.mimu_mag_rtk"
-              " and navlib.alignment", DeprecationWarning, stacklevel=2)
+              " and navlib.alignment, navlib.analysis", DeprecationWarning, stacklevel=2)

@@ -18,12 +18,15 @@ a Gauss-Markov process.
 from __future__ import annotations
 
 import numpy as np
+from numba import njit
 from scipy.optimize import least_squares, minimize_scalar
 
-from ._validate import as_array, positive
+from . import _kernels, attitude, earth
+from ._validate import as_array, nonempty_array, positive, scalar
 
 __all__ = ["rmse", "allan_deviation", "allan_deviation_theory", "fit_allan",
-           "GM_ALLAN_PEAK", "GM_ALLAN_PEAK_TAU"]
+           "GM_ALLAN_PEAK", "GM_ALLAN_PEAK_TAU", "attitude_errors", "error_statistics", "horizontal_error",
+           "position_error", "expanding_std", "detection_rates", "settling_time"]
 
 
 def rmse(err, axis=0):
@@ -179,3 +182,166 @@ def fit_allan(taus, adev, n_samples: int, dt: float, *, rate_random_walk: bool =
     p = sol.x
     return {"white": p[0], "bias_instability": p[1], "correlation_time": p[2],
             "rate_random_walk": p[3] if rate_random_walk else 0.0}
+
+
+# --------------------------------------------------------------------------
+# Error statistics of estimated attitude and position
+# --------------------------------------------------------------------------
+
+@njit(cache=True)
+def _error_stats_kernel(hpr, truth):
+    T, N = hpr.shape[0], hpr.shape[1]
+    mx = np.zeros((T, 3))
+    mean = np.zeros((T, 3))
+    for t in range(T):
+        tt = t if truth.shape[0] > 1 else 0          # one truth shared by all runs, or one per run
+        for i in range(N):
+            for a in range(3):
+                e = hpr[t, i, a] - truth[tt, i, a]
+                e = abs(_kernels.wrap_pi(e))
+                mean[t, a] += e
+                if e > mx[t, a]:
+                    mx[t, a] = e
+        for a in range(3):
+            mean[t, a] /= N
+    return mx, mean
+
+
+def attitude_errors(hpr, hpr_true):
+    """Euler-angle errors ``hpr - hpr_true`` wrapped into (-pi, pi] (rad).
+
+    Parameters
+    ----------
+    hpr, hpr_true : array_like, shape (..., 3)
+        ``[heading, pitch, roll]``; shapes broadcast.
+
+    Returns
+    -------
+    err : ndarray, shape (..., 3)
+    """
+    a = nonempty_array(hpr, "hpr", tail=(3,))
+    b = nonempty_array(hpr_true, "hpr_true", tail=(3,))
+    return attitude.wrap_pi(a - b)
+
+
+def error_statistics(hpr, hpr_true):
+    """Max and mean |attitude error| over time, in one pass (e.g. the statistics of paper 001, Table 2).
+
+    Parameters
+    ----------
+    hpr : array_like, shape (..., N, 3)
+        Estimated ``[heading, pitch, roll]`` (rad).
+    hpr_true : array_like, shape (N, 3) or (..., N, 3)
+        True attitude (rad); broadcast over the leading axes of ``hpr``.
+
+    Returns
+    -------
+    max_abs, mean_abs : ndarray, shape (..., 3)
+        Largest and mean wrapped |error| over time (rad).
+    """
+    a = nonempty_array(hpr, "hpr", tail=(3,), min_ndim=1)
+    b = nonempty_array(hpr_true, "hpr_true", tail=(3,), min_ndim=1)
+    lead, n = a.shape[:-2], a.shape[-2]
+    if b.shape != (n, 3) and b.shape != a.shape:
+        raise ValueError(f"hpr_true: expected shape ({n}, 3) or {a.shape}, got {b.shape}")
+    mx, mean = _error_stats_kernel(np.ascontiguousarray(a.reshape(-1, n, 3)), np.ascontiguousarray(b.reshape(-1, n, 3)))
+    return mx.reshape(lead + (3,)), mean.reshape(lead + (3,))
+
+
+def horizontal_error(lla, lla_true):
+    """East and north position error (m) of ``lla`` against ``lla_true`` (local radii).
+
+    Parameters
+    ----------
+    lla, lla_true : array_like, shape (..., N, 3)
+
+    Returns
+    -------
+    en : ndarray, shape (..., N, 2)
+    """
+    a = as_array(lla, "lla", tail=(3,))
+    b = as_array(lla_true, "lla_true", tail=(3,))
+    R_M, R_N = earth.radii(b[..., 0])
+    return np.stack([(a[..., 1] - b[..., 1]) * (R_N + b[..., 2]) * np.cos(b[..., 0]),
+                     (a[..., 0] - b[..., 0]) * (R_M + b[..., 2])], -1)
+
+
+def expanding_std(x):
+    """Standard deviation of ``x[:k+1]`` for every k (population std), e.g. of latitude over [0, t]."""
+    x = as_array(x, "x", min_ndim=1)
+    if x.ndim != 1:
+        raise ValueError(f"x: expected a 1-D array, got shape {x.shape}")
+    x = x - x[0]                                             # conditioning
+    n = np.arange(1, x.size + 1)
+    m1, m2 = np.cumsum(x) / n, np.cumsum(x * x) / n
+    return np.sqrt(np.maximum(m2 - m1 * m1, 0.0))
+
+
+def detection_rates(detected, truth) -> tuple[float, float]:
+    """Detection and false-alarm rates of a static detector.
+
+    Parameters
+    ----------
+    detected, truth : array_like of bool, shape (N,)
+
+    Returns
+    -------
+    p_detect : float
+        Fraction of truly static samples declared static.
+    p_false : float
+        Fraction of moving samples declared static.
+    """
+    d, t = np.asarray(detected), np.asarray(truth)
+    if d.dtype != bool or t.dtype != bool or d.shape != t.shape or d.ndim != 1:
+        raise ValueError(f"detected, truth: expected boolean arrays of one shape (N,), got {d.shape}, {t.shape}")
+    if t.all() or not t.any():
+        raise ValueError("truth: expected both static and moving samples")
+    return float(d[t].mean()), float(d[~t].mean())
+
+
+def position_error(estimate, truth):
+    """Horizontal position error (m): ``|estimate[..., :2] - truth[..., :2]|``, shape (...)."""
+    est = as_array(estimate, "estimate", allow_nan=True)
+    tru = as_array(truth, "truth")
+    for name, arr in (("estimate", est), ("truth", tru)):
+        if arr.ndim < 1 or arr.shape[-1] < 2:
+            raise ValueError(f"{name}: expected positions on the last axis (at least 2 components), got shape {arr.shape}")
+    try:
+        np.broadcast_shapes(est.shape[:-1], tru.shape[:-1])
+    except ValueError:
+        raise ValueError(f"estimate, truth: shapes {est.shape} and {tru.shape} do not broadcast") from None
+    d = est[..., :2] - tru[..., :2]
+    return np.hypot(d[..., 0], d[..., 1])
+
+
+def settling_time(time, error, start: float, tol: float, end: float | None = None):
+    """Time after ``start`` until ``|error|`` stays within ``tol`` up to ``end`` (s); inf if it never does.
+
+    Parameters
+    ----------
+    time : array_like, shape (N,)  (s)
+    error : array_like, shape (..., N)
+        Error history (any unit, the unit of ``tol``), e.g. heading error after an outage ends.
+    start : float
+        When the clock starts (s), e.g. the end of an RTK outage.
+    tol : float
+        Band that counts as converged.
+    end : float, optional
+        Last time considered (s), e.g. the start of the next outage; default the end of the record.
+    """
+    t = nonempty_array(time, "time")
+    e = nonempty_array(error, "error", min_ndim=1)
+    tol = scalar(tol, "tol", positive=True)
+    start = scalar(start, "start")
+    stop = np.inf if end is None else scalar(end, "end")
+    if t.ndim != 1 or e.shape[-1] != t.size:
+        raise ValueError(f"time, error: expected 1-D time and error with a last axis of the same length, got "
+                         f"{t.shape}, {e.shape}")
+    window = (t >= start) & (t < stop)
+    if not window.any():
+        raise ValueError(f"start, end: expected samples in [start, end) = [{start}, {stop})")
+    outside = np.abs(e[..., window]) > tol
+    n = outside.shape[-1]
+    last = np.where(outside.any(-1), n - 1 - np.argmax(outside[..., ::-1], -1), -1)
+    tw = t[window]
+    return np.where(last == n - 1, np.inf, tw[np.minimum(last + 1, n - 1)] - start)

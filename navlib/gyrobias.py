@@ -1,4 +1,4 @@
-"""Deprecated alias of :mod:`navlib.papers.rotation_bias`.
+"""Deprecated alias of :mod:`navlib.papers.rotation_bias` and of the core modules navlib.analysis.
 
 ``navlib.gyrobias`` was the module of this paper before the split into a paper companion
 and core homes (see CONTRIBUTING.md). Every old name still resolves here; importing this
@@ -7,6 +7,7 @@ module warns. It will be removed in navlib 0.3.
 # ruff: noqa: F405  (the names come from the star import)
 import warnings
 
+from .analysis import attitude_errors, error_statistics  # noqa: F401
 from .papers.rotation_bias import *  # noqa: F403
 
 __all__ = ["eq1_matrix", "euler_rates", "integrate_euler", "EulerReport", "gravity_body", "tilt_from_accel", "tilt_matrix",
@@ -16,4 +17,4 @@ __all__ = ["eq1_matrix", "euler_rates", "integrate_euler", "EulerReport", "gravi
            "PITCH_LIMIT", "MIN_DWELL_SAMPLES"]
 
 warnings.warn("navlib.gyrobias is deprecated and will be removed in navlib 0.3; use navlib.papers.rotation_bias"
-              , DeprecationWarning, stacklevel=2)
+              " and navlib.analysis", DeprecationWarning, stacklevel=2)

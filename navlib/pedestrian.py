@@ -1,4 +1,4 @@
-"""Deprecated alias of :mod:`navlib.papers.pedestrian_ins` and of the core modules navlib.alignment.
+"""Deprecated alias of :mod:`navlib.papers.pedestrian_ins` and of the core modules navlib.alignment, navlib.analysis.
 
 ``navlib.pedestrian`` was the module of this paper before the split into a paper companion
 and core homes (see CONTRIBUTING.md). Every old name still resolves here; importing this
@@ -8,6 +8,7 @@ module warns. It will be removed in navlib 0.3.
 import warnings
 
 from .alignment import level, magnetic_heading  # noqa: F401
+from .analysis import detection_rates, expanding_std, horizontal_error  # noqa: F401
 from .papers.pedestrian_ins import *  # noqa: F403
 
 __all__ = ["M_NED_ENU", "STATIC_THRESHOLDS", "ned_to_enu_dcm", "Leg", "Gait", "walk", "stance_mask", "carpark_legs",
@@ -20,4 +21,4 @@ __all__ = ["M_NED_ENU", "STATIC_THRESHOLDS", "ned_to_enu_dcm", "Leg", "Gait", "w
            "segments", "pdr_headings", "expanding_std", "horizontal_error"]
 
 warnings.warn("navlib.pedestrian is deprecated and will be removed in navlib 0.3; use navlib.papers.pedestrian_ins"
-              " and navlib.alignment", DeprecationWarning, stacklevel=2)
+              " and navlib.alignment, navlib.analysis", DeprecationWarning, stacklevel=2)

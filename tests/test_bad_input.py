@@ -64,6 +64,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from navlib import (  # noqa: E402
+    alignment,
     analysis,
     atmosphere,
     attitude,
@@ -73,6 +74,7 @@ from navlib import (  # noqa: E402
     montecarlo,
     plots,
     repro,
+    robust,
     sensors,
     strapdown,
     timing,
@@ -81,7 +83,7 @@ from navlib import (  # noqa: E402
 )
 
 MODULES = ["attitude", "earth", "units", "sensors", "atmosphere", "trajectory", "strapdown",
-           "kalman", "analysis", "repro", "plots", "montecarlo", "faults", "timing"]
+           "kalman", "analysis", "repro", "plots", "montecarlo", "faults", "timing", "alignment", "robust"]
 
 NAN, INF = np.nan, np.inf
 STR = "abc"                      # a string where numbers are expected
@@ -457,6 +459,21 @@ CASES = [
     bad("analysis.rmse", "err", "str", lambda: analysis.rmse(STR)),
     bad("analysis.rmse", "err", "empty", lambda: analysis.rmse([])),
     bad("analysis.rmse", "axis", "out_of_bounds", lambda: analysis.rmse([1.0, 2.0], axis=3)),
+    bad("analysis.attitude_errors", "hpr", "shape", lambda: analysis.attitude_errors([0.0, 1.0], [0.0, 0.0, 0.0])),
+    bad("analysis.attitude_errors", "hpr_true", "str", lambda: analysis.attitude_errors([0.0, 0.0, 0.0], STR)),
+    bad("analysis.error_statistics", "hpr_true", "shape",
+        lambda: analysis.error_statistics(np.zeros((2, 5, 3)), np.zeros((4, 3)))),
+    bad("analysis.horizontal_error", "lla", "inf", lambda: analysis.horizontal_error([INF, 0.0, 0.0], [0.0, 0.0, 0.0])),
+    bad("analysis.position_error", "truth", "nan", lambda: analysis.position_error([[0.0, 0.0]], [[NAN, 0.0]])),
+    bad("analysis.expanding_std", "x", "empty", lambda: analysis.expanding_std([])),
+    bad("analysis.detection_rates", "detected", "str", lambda: analysis.detection_rates(STR, [True, False])),
+    bad("analysis.settling_time", "tol", "zero", lambda: analysis.settling_time([0.0, 1.0], [1.0, 0.0], 0.0, 0.0)),
+    bad("alignment.level", "f_b", "zero", lambda: alignment.level([0.0, 0.0, 0.0])),
+    bad("alignment.magnetic_heading", "m_b", "nan", lambda: alignment.magnetic_heading([NAN, 1.0, 0.0], 0.0, 0.0)),
+    bad("alignment.tilt_heading", "m_b", "parallel", lambda: alignment.tilt_heading([0.0, 0.0, 9.8], [0.0, 0.0, 1.0])),
+    bad("alignment.initial_attitude", "f_b", "str", lambda: alignment.initial_attitude(STR, [0.0, 1.0, 0.0])),
+    bad("robust.hold", "leading", "unknown", lambda: robust.hold(np.ones((3, 3)), leading="back")),
+    bad("robust.hold", "x", "all_nan", lambda: robust.hold(np.full((3, 3), NAN), leading="first")),
     bad("analysis.allan_deviation", "x", "too_short", lambda: analysis.allan_deviation(np.ones(5), 0.1)),
     bad("analysis.allan_deviation", "x", "empty", lambda: analysis.allan_deviation([], 0.1)),
     bad("analysis.allan_deviation", "x", "nan", lambda: analysis.allan_deviation(with_nan(np.ones(100), 7), 0.1)),
@@ -954,6 +971,7 @@ def test_repro_nan_value_fails_the_claim(call, sandbox):
 # ----------------------------------------------------------------- coverage
 
 NOT_APPLICABLE = {
+    "robust.FaultReport": "a plain record of counts; nothing to validate",
     "repro.root": "takes no arguments",
     "repro.results": "takes no arguments",
     "sensors.devices": "takes no arguments",

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from navlib import alignment, attitude, earth, kalman, sensors, strapdown, trajectory, units
+from navlib import alignment, analysis, attitude, earth, kalman, sensors, strapdown, trajectory, units
 from navlib.papers import pedestrian_ins as pd
 
 LAT = units.deg(30.55)
@@ -138,7 +138,7 @@ def test_detector_rates_on_labelled_walk(carpark):
     w, f = trajectory.ideal_imu(traj)
     imu = sensors.simulate_imu(w, f, DT, RESIDUAL, np.random.default_rng(5))
     det = pd.detect_static(imu.w_ib_b, imu.f_b, DT)
-    p_d, p_fa = pd.detection_rates(det, static[:-1])
+    p_d, p_fa = analysis.detection_rates(det, static[:-1])
     assert p_d > 0.95 and p_fa < 0.01
     with pytest.raises(ValueError, match="^window: "):
         pd.detect_static(imu.w_ib_b[:30], imu.f_b[:30], DT, window=0.5)
@@ -347,7 +347,7 @@ def test_step_detection_and_pdr(carpark):
     (lambda: pd.heading_from_horizontal(0.0, 0.0), "H_X, H_Y"),
     (lambda: pd.detect_static(np.zeros((10, 3)), np.zeros((10, 3)), 0.01, window=1.0), "window"),
     (lambda: pd.detect_static(np.zeros((10, 3)), np.zeros((9, 3)), 0.01), "f_b"),
-    (lambda: pd.detection_rates(np.ones(5, bool), np.ones(5, bool)), "truth"),
+    (lambda: analysis.detection_rates(np.ones(5, bool), np.ones(5, bool)), "truth"),
     (lambda: pd.walk([], 0.01, LLA0, 0.0), "legs"),
     (lambda: pd.Leg(-1.0), "duration"),
     (lambda: pd.Leg(5.0, 0.0, turn=1.0), "turn, climb"),

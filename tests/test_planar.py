@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from navlib import geodesy, kalman
+from navlib import analysis, geodesy, kalman
 from navlib.papers import gauss_kruger_ekf as planar
 
 ORIGIN = np.deg2rad([26.06, 119.20])       # paper 002 site (Fuzhou, assumed), GK zone 40
@@ -74,8 +74,8 @@ def test_ekf_beats_dead_reckoning_and_is_consistent_with_R():
     t, truth, s = straight_run(3, yaw_rate_bias=np.deg2rad(0.05))
     res = planar.ekf(t, s.gps, s.heading, s.speed, s.yaw_rate, X0_STRAIGHT, origin=ORIGIN)
     dr, held = planar.dead_reckoning(t, s.speed, s.yaw_rate, X0_STRAIGHT)
-    e_ekf = planar.position_error(res.x, truth)
-    e_dr = planar.position_error(dr, truth)
+    e_ekf = analysis.position_error(res.x, truth)
+    e_dr = analysis.position_error(dr, truth)
     rmse = np.sqrt(np.mean(e_ekf ** 2))
     assert 1.3 < rmse < 1.9
     assert rmse < np.sqrt(np.mean(e_dr ** 2)) and held == 0
@@ -109,7 +109,7 @@ def test_gate_rejects_gps_outlier():
     gated = planar.ekf(t, s.gps, s.heading, s.speed, s.yaw_rate, X0_STRAIGHT, origin=ORIGIN, P0=np.eye(5),
                        gate=30.0)
     assert gated.n_rejected >= 1 and gated.status[300] == kalman.REJECTED
-    assert planar.position_error(gated.x[300], truth[300]) < 5
+    assert analysis.position_error(gated.x[300], truth[300]) < 5
     assert gated.n_rejected <= 2 and np.abs(gated.x[-1, :2] - res.x[-1, :2]).max() < 5
 
 
@@ -215,7 +215,7 @@ ONES3 = np.ones(3)
     (lambda: planar.simulate_sensors(np.zeros((3, 5)), ORIGIN, planar.R_PAPER, np.random), "rng"),
     (lambda: planar.simulate_sensors(np.zeros((3, 5)), ORIGIN, planar.R_PAPER, np.random.default_rng(0),
                                      gps_valid=[True]), "gps_valid"),
-    (lambda: planar.position_error(np.zeros((3, 1)), np.zeros((3, 1))), "estimate"),
+    (lambda: analysis.position_error(np.zeros((3, 1)), np.zeros((3, 1))), "estimate"),
 ])
 def test_bad_input_raises_value_error_naming_the_argument(call, arg):
     with pytest.raises(ValueError) as info:
@@ -267,10 +267,15 @@ FUZZ_CASES = [(fn, arg, bad) for fn, kw in VALID_CALLS.items() for arg in kw for
 
 
 def test_fuzz_table_covers_every_public_function():
-    """Covered / total public functions of navlib.papers.gauss_kruger_ekf: 9/9 (plus 2 result records and 3 constants)."""
-    assert sorted(VALID_CALLS) == sorted(set(planar.__all__) - RECORDS - CONSTANTS)
+    """Every public function of navlib.papers.gauss_kruger_ekf (plus analysis.position_error) has a fuzz row."""
+    assert sorted(VALID_CALLS) == sorted(set(planar.__all__) - RECORDS - CONSTANTS | {"position_error"})
     for fn, kw in VALID_CALLS.items():
-        getattr(planar, fn)(**kw)
+        func(fn)(**kw)
+
+
+def func(name):
+    """The companion's function, or ``analysis.position_error`` (moved to core, still fuzzed here)."""
+    return analysis.position_error if name == "position_error" else getattr(planar, name)
 
 
 @pytest.mark.parametrize("fn, arg, bad", FUZZ_CASES)
@@ -284,7 +289,7 @@ def test_fuzz_bad_values_raise_naming_the_argument(fn, arg, bad):
         kw[arg] = np.full(np.shape(VALID_CALLS[fn][arg]), np.nan)
     if nan_is_dropout:                          # documented dropout marker: accepted, output stays finite
         if fn == "position_error":
-            assert np.all(np.isnan(planar.position_error(**kw)))
+            assert np.all(np.isnan(analysis.position_error(**kw)))
         elif fn == "dead_reckoning":
             assert np.all(np.isfinite(planar.dead_reckoning(**kw)[0]))
         elif fn == "ekf" and arg == "gps":
@@ -293,7 +298,7 @@ def test_fuzz_bad_values_raise_naming_the_argument(fn, arg, bad):
             assert np.all(np.isfinite(getattr(planar, fn)(**kw).x))
         return
     with pytest.raises((TypeError, ValueError)) as info:
-        getattr(planar, fn)(**kw)
+        func(fn)(**kw)
     assert str(info.value).split(":")[0] == arg, str(info.value)
     if bad in ("empty", "nan", "inf") and arg != "gps_valid":     # gps_valid: floats are the wrong dtype
         assert isinstance(info.value, ValueError)
@@ -319,7 +324,7 @@ def test_fuzz_bad_values_raise_naming_the_argument(fn, arg, bad):
     (lambda: planar.propagate(X5, 0.5, speed=ONES3, yaw_rate=ONES3[:2]), "speed, yaw_rate"),
     (lambda: planar.simulate_sensors(Z3, ORIGIN, planar.R_PAPER, np.random.default_rng(0),
                                      gps_valid=[1, 0, 1]), "gps_valid"),
-    (lambda: planar.position_error(np.zeros((3, 2)), np.zeros((2, 2))), "estimate, truth"),
+    (lambda: analysis.position_error(np.zeros((3, 2)), np.zeros((2, 2))), "estimate, truth"),
 ])
 def test_fuzz_out_of_range_and_shapes(call, arg):
     with pytest.raises((TypeError, ValueError)) as info:

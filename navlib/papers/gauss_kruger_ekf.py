@@ -78,9 +78,8 @@ from .._kernels import wrap_pi
 from .._validate import as_array, generator, range_limit, scalar, time_axis
 from ..earth import CGCS2000, Ellipsoid
 
-__all__ = ["CHANNELS", "Q_PAPER", "R_PAPER", "motion_model", "jacobian", "propagate", "waypoint_path",
-           "dead_reckoning", "filter_grid", "ekf", "EkfResult", "simulate_sensors", "Sensors",
-           "position_error"]
+__all__ = ["CHANNELS", "Q_PAPER", "R_PAPER", "motion_model", "jacobian", "propagate", "waypoint_path", "dead_reckoning",
+           "filter_grid", "ekf", "EkfResult", "simulate_sensors", "Sensors"]
 
 Q_PAPER = np.diag([1.0, 1.0, 0.01, 0.0001, 0.0016])
 """Process noise per step, Eq. (17) (SI reading: m², m², rad², m²/s², rad²/s²)."""
@@ -890,16 +889,3 @@ def simulate_sensors(truth, origin, R, rng: np.random.Generator, *, zone=None, w
     return Sensors(gps, heading, truth[:, 3] + noise[:, 3], truth[:, 4] + noise[:, 4] + yaw_rate_bias)
 
 
-def position_error(estimate, truth):
-    """Horizontal position error (m): ``|estimate[..., :2] - truth[..., :2]|``, shape (...)."""
-    est = as_array(estimate, "estimate", allow_nan=True)
-    tru = as_array(truth, "truth")
-    for name, arr in (("estimate", est), ("truth", tru)):
-        if arr.ndim < 1 or arr.shape[-1] < 2:
-            raise ValueError(f"{name}: expected positions on the last axis (at least 2 components), got shape {arr.shape}")
-    try:
-        np.broadcast_shapes(est.shape[:-1], tru.shape[:-1])
-    except ValueError:
-        raise ValueError(f"estimate, truth: shapes {est.shape} and {tru.shape} do not broadcast") from None
-    d = est[..., :2] - tru[..., :2]
-    return np.hypot(d[..., 0], d[..., 1])

@@ -86,11 +86,10 @@ from .. import attitude, earth, kalman
 from .._validate import as_quat, flag, in_range, intervals, nonempty_array, scalar
 from ..attitude import quat_mult_t
 
-__all__ = ["MagGate", "AttitudeResult", "COUNT_NAMES", "magnetic_reference",
-           "settling_time", "transition", "noise_input", "measurement_model", "measurement_jacobian",
-           "mahony", "quaternion_kf", "fuse_rtk_heading", "rtk_at_imu_rate",
-           "printed_eq2_roll", "printed_eq4", "printed_eq5_tilt", "printed_eq7_heading", "printed_eq8_quat",
-           "printed_eq18_gamma", "printed_eq20_jacobian"]
+__all__ = ["MagGate", "AttitudeResult", "COUNT_NAMES", "magnetic_reference", "transition", "noise_input",
+           "measurement_model", "measurement_jacobian", "mahony", "quaternion_kf", "fuse_rtk_heading",
+           "rtk_at_imu_rate", "printed_eq2_roll", "printed_eq4", "printed_eq5_tilt", "printed_eq7_heading",
+           "printed_eq8_quat", "printed_eq18_gamma", "printed_eq20_jacobian"]
 
 COUNT_NAMES = ("gyro_held", "accel_skipped", "accel_gated", "mag_skipped", "mag_gated", "gyro_saturated",
                "accel_saturated", "mag_saturated", "rtk_dropped", "rtk_rejected", "rtk_reacquired", "gyro_gated")
@@ -1054,34 +1053,3 @@ def rtk_at_imu_rate(time, heading, valid, step: int):
     return np.where(ok, h, np.nan), ok
 
 
-def settling_time(time, error, start: float, tol: float, end: float | None = None):
-    """Time after ``start`` until ``|error|`` stays within ``tol`` up to ``end`` (s); inf if it never does.
-
-    Parameters
-    ----------
-    time : array_like, shape (N,)  (s)
-    error : array_like, shape (..., N)
-        Error history (any unit, the unit of ``tol``), e.g. heading error after an outage ends.
-    start : float
-        When the clock starts (s), e.g. the end of an RTK outage.
-    tol : float
-        Band that counts as converged.
-    end : float, optional
-        Last time considered (s), e.g. the start of the next outage; default the end of the record.
-    """
-    t = nonempty_array(time, "time")
-    e = nonempty_array(error, "error", min_ndim=1)
-    tol = scalar(tol, "tol", positive=True)
-    start = scalar(start, "start")
-    stop = np.inf if end is None else scalar(end, "end")
-    if t.ndim != 1 or e.shape[-1] != t.size:
-        raise ValueError(f"time, error: expected 1-D time and error with a last axis of the same length, got "
-                         f"{t.shape}, {e.shape}")
-    window = (t >= start) & (t < stop)
-    if not window.any():
-        raise ValueError(f"start, end: expected samples in [start, end) = [{start}, {stop})")
-    outside = np.abs(e[..., window]) > tol
-    n = outside.shape[-1]
-    last = np.where(outside.any(-1), n - 1 - np.argmax(outside[..., ::-1], -1), -1)
-    tw = t[window]
-    return np.where(last == n - 1, np.inf, tw[np.minimum(last + 1, n - 1)] - start)

@@ -132,14 +132,13 @@ from ..alignment import level, magnetic_heading
 from ..strapdown import nav_step
 
 __all__ = ["M_NED_ENU", "STATIC_THRESHOLDS", "ned_to_enu_dcm", "Leg", "Gait", "walk", "stance_mask", "carpark_legs",
-           "floor_test_legs", "detect_static", "detection_rates", "static_gyro_bias",
-           "tilt_compensate_ned", "tilt_compensate_printed", "heading_from_horizontal",
-           "baro_height", "reference_pressure", "classify_floor", "segment_floors", "hvac_pressure_steps",
-           "despike", "error_state_matrix", "error_model_fd", "zupt_zaru_matrix", "zupt_zaru_innovation",
-           "simple_covariance_update", "FilterConfig", "FilterResult", "run_filter", "FLAG_DROPOUT", "FLAG_SPIKE",
-           "FLAG_SATURATED", "FLAG_STATIC_SKIPPED", "detect_steps",
-           "weinberg_step_length", "pdr", "StepResult", "segments", "pdr_headings", "expanding_std",
-           "horizontal_error"]
+           "floor_test_legs", "detect_static", "static_gyro_bias", "tilt_compensate_ned",
+           "tilt_compensate_printed", "heading_from_horizontal", "baro_height", "reference_pressure",
+           "classify_floor", "segment_floors", "hvac_pressure_steps", "despike", "error_state_matrix",
+           "error_model_fd", "zupt_zaru_matrix", "zupt_zaru_innovation", "simple_covariance_update",
+           "FilterConfig", "FilterResult", "run_filter", "FLAG_DROPOUT", "FLAG_SPIKE", "FLAG_SATURATED",
+           "FLAG_STATIC_SKIPPED", "detect_steps", "weinberg_step_length", "pdr", "StepResult", "segments",
+           "pdr_headings"]
 
 M_NED_ENU = np.array([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]])
 """Swaps N<->E and negates the vertical: ``C_bn(ENU/RFU) = M C_bn(NED/FRD) M``, same (heading, pitch, roll)."""
@@ -512,28 +511,6 @@ def despike(w_ib_b, f_b, spike_gyro: float, spike_accel: float):
     w, f = w.copy(), f.copy()
     w[hit], f[hit] = np.nan, np.nan
     return w, f, hit
-
-
-def detection_rates(detected, truth) -> tuple[float, float]:
-    """Detection and false-alarm rates of a static detector.
-
-    Parameters
-    ----------
-    detected, truth : array_like of bool, shape (N,)
-
-    Returns
-    -------
-    p_detect : float
-        Fraction of truly static samples declared static.
-    p_false : float
-        Fraction of moving samples declared static.
-    """
-    d, t = np.asarray(detected), np.asarray(truth)
-    if d.dtype != bool or t.dtype != bool or d.shape != t.shape or d.ndim != 1:
-        raise ValueError(f"detected, truth: expected boolean arrays of one shape (N,), got {d.shape}, {t.shape}")
-    if t.all() or not t.any():
-        raise ValueError("truth: expected both static and moving samples")
-    return float(d[t].mean()), float(d[~t].mean())
 
 
 def static_gyro_bias(w_ib_b, C_bn, lat: float):
@@ -1477,30 +1454,3 @@ def pdr_headings(f_b, m_b, step_index, declination: float = 0.0):
     return magnetic_heading(m_mean, pitch, roll, declination)
 
 
-def expanding_std(x):
-    """Standard deviation of ``x[:k+1]`` for every k (population std), e.g. of latitude over [0, t]."""
-    x = as_array(x, "x", min_ndim=1)
-    if x.ndim != 1:
-        raise ValueError(f"x: expected a 1-D array, got shape {x.shape}")
-    x = x - x[0]                                             # conditioning
-    n = np.arange(1, x.size + 1)
-    m1, m2 = np.cumsum(x) / n, np.cumsum(x * x) / n
-    return np.sqrt(np.maximum(m2 - m1 * m1, 0.0))
-
-
-def horizontal_error(lla, lla_true):
-    """East and north position error (m) of ``lla`` against ``lla_true`` (local radii).
-
-    Parameters
-    ----------
-    lla, lla_true : array_like, shape (..., N, 3)
-
-    Returns
-    -------
-    en : ndarray, shape (..., N, 2)
-    """
-    a = as_array(lla, "lla", tail=(3,))
-    b = as_array(lla_true, "lla_true", tail=(3,))
-    R_M, R_N = earth.radii(b[..., 0])
-    return np.stack([(a[..., 1] - b[..., 1]) * (R_N + b[..., 2]) * np.cos(b[..., 0]),
-                     (a[..., 0] - b[..., 0]) * (R_M + b[..., 2])], -1)

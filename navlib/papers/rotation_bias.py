@@ -101,7 +101,7 @@ __all__ = ["eq1_matrix", "euler_rates", "integrate_euler", "EulerReport", "gravi
            "tilt_matrix", "rodrigues", "rotate_attitude", "dwell_attitudes", "dwell_windows",
            "earth_rate_body", "Residuals", "tilt_residuals", "residual_covariance", "lsq_bias",
            "running_lsq_bias", "KalmanBias", "kalman_bias", "condition_number", "lsq_covariance",
-           "cramer_rao_bound", "design", "attitude_errors", "error_statistics", "PITCH_LIMIT", "MIN_DWELL_SAMPLES"]
+           "cramer_rao_bound", "design", "PITCH_LIMIT", "MIN_DWELL_SAMPLES"]
 
 PITCH_LIMIT = np.deg2rad(89.0)
 """Largest |pitch| (rad) accepted where Eq. (2) divides by cos(pitch)."""
@@ -1261,61 +1261,3 @@ def design(hpr0, axis_b, amplitude: float, dwell_time: float, dt: float, gyro_no
     return float(condition_number(V)), cramer_rao_bound(V, R), V
 
 
-def attitude_errors(hpr, hpr_true):
-    """Euler-angle errors ``hpr - hpr_true`` wrapped into (-pi, pi] (rad).
-
-    Parameters
-    ----------
-    hpr, hpr_true : array_like, shape (..., 3)
-        ``[heading, pitch, roll]``; shapes broadcast.
-
-    Returns
-    -------
-    err : ndarray, shape (..., 3)
-    """
-    a = as_array(hpr, "hpr", tail=(3,))
-    b = as_array(hpr_true, "hpr_true", tail=(3,))
-    return attitude.wrap_pi(a - b)
-
-
-@njit(cache=True)
-def _error_stats_kernel(hpr, truth):
-    T, N = hpr.shape[0], hpr.shape[1]
-    mx = np.zeros((T, 3))
-    mean = np.zeros((T, 3))
-    for t in range(T):
-        tt = t if truth.shape[0] > 1 else 0          # one truth shared by all runs, or one per run
-        for i in range(N):
-            for a in range(3):
-                e = hpr[t, i, a] - truth[tt, i, a]
-                e = abs((e + np.pi) % (2 * np.pi) - np.pi)
-                mean[t, a] += e
-                if e > mx[t, a]:
-                    mx[t, a] = e
-        for a in range(3):
-            mean[t, a] /= N
-    return mx, mean
-
-
-def error_statistics(hpr, hpr_true):
-    """Max and mean |attitude error| over time, in one pass (Table 2 statistics).
-
-    Parameters
-    ----------
-    hpr : array_like, shape (..., N, 3)
-        Estimated ``[heading, pitch, roll]`` (rad).
-    hpr_true : array_like, shape (N, 3) or (..., N, 3)
-        True attitude (rad); broadcast over the leading axes of ``hpr``.
-
-    Returns
-    -------
-    max_abs, mean_abs : ndarray, shape (..., 3)
-        Largest and mean wrapped |error| over time (rad).
-    """
-    a = as_array(hpr, "hpr", tail=(3,), min_ndim=1)
-    b = as_array(hpr_true, "hpr_true", tail=(3,), min_ndim=1)
-    lead, n = a.shape[:-2], a.shape[-2]
-    if b.shape != (n, 3) and b.shape != a.shape:
-        raise ValueError(f"hpr_true: expected shape ({n}, 3) or {a.shape}, got {b.shape}")
-    mx, mean = _error_stats_kernel(np.ascontiguousarray(a.reshape(-1, n, 3)), np.ascontiguousarray(b.reshape(-1, n, 3)))
-    return mx.reshape(lead + (3,)), mean.reshape(lead + (3,))

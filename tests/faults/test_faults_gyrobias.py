@@ -11,7 +11,7 @@ estimate (``lsq_covariance``), about 3.3 deg/h per axis here.
 import numpy as np
 import pytest
 
-from navlib import earth, faults, sensors, timing, trajectory, units
+from navlib import analysis, earth, faults, sensors, timing, trajectory, units
 from navlib.papers import rotation_bias as gb
 
 DT, PERIOD, ROT = 0.01, 5.0, 0.5
@@ -171,9 +171,9 @@ def test_irregular_sampling_is_integrated_exactly_with_per_sample_intervals():
     # integration with per-sample intervals follows the true attitude; bound 1e-6 rad (RK4 with each
     # interval's mean rate held; the regular 100-Hz run of the same rig reaches 1e-8)
     hpr = gb.integrate_euler(hpr_true[0], w, dts, W_IE_N)
-    assert np.abs(gb.attitude_errors(hpr, hpr_true)).max() < 1e-6
+    assert np.abs(analysis.attitude_errors(hpr, hpr_true)).max() < 1e-6
     hpr_reg = gb.integrate_euler(hpr_true[0], w, float(dts.mean()), W_IE_N)
-    assert np.abs(gb.attitude_errors(hpr_reg, hpr_true)).max() > 1e-3
+    assert np.abs(analysis.attitude_errors(hpr_reg, hpr_true)).max() > 1e-3
 
 
 def test_duplicated_and_out_of_order_timestamps_through_sanitize():
@@ -205,7 +205,7 @@ def test_integrator_fills_dropouts_by_interpolation_within_a_stated_bound():
     idx = np.arange(w.shape[0])
     interp = np.stack([np.interp(idx, idx[~drop], IMU.w_ib_b[~drop, a]) for a in range(3)], -1)
     bound = 2.5 * np.sum(np.linalg.norm(interp - IMU.w_ib_b, axis=-1)) * DT
-    err = np.abs(gb.attitude_errors(hpr, clean)).max()
+    err = np.abs(analysis.attitude_errors(hpr, clean)).max()
     assert err < bound, (err, bound)
 
 
@@ -220,7 +220,7 @@ def test_gyro_saturation_is_counted_by_the_integrator():
     assert rep.n_saturated == clipped.sum() > 0 and rep.first_saturated == np.flatnonzero(clipped)[0]
     # why it must be reported: every clipped rotation falls short by tens of degrees (the return
     # rotation undoes it, so only the attitude in between shows it)
-    assert np.abs(gb.attitude_errors(hpr, TRAJ.hpr)).max() > units.deg(10.0)
+    assert np.abs(analysis.attitude_errors(hpr, TRAJ.hpr)).max() > units.deg(10.0)
     # the dwells are still: the estimator is unaffected and counts nothing
     res = gb.tilt_residuals(w, IMU.f_b, DT, STARTS, LENGTH, W_IE_B, full_scale_gyro=fs)
     assert res.n_saturated == res.n_skipped_saturated == 0

@@ -17,7 +17,7 @@ check that it raises no false alarm on this data.
 import numpy as np
 import pytest
 
-from navlib import faults, kalman, sensors, timing
+from navlib import analysis, faults, kalman, sensors, timing
 from navlib.papers import gauss_kruger_ekf as planar
 
 ORIGIN = np.deg2rad([26.06, 119.20])            # Fuzhou, GK zone 40 (notebook 03's site)
@@ -48,7 +48,7 @@ def heading_gap(a, b):
 
 
 def rmse(res, truth):
-    return np.sqrt(np.mean(planar.position_error(res.x, truth) ** 2))
+    return np.sqrt(np.mean(analysis.position_error(res.x, truth) ** 2))
 
 
 def assert_healthy(res):
@@ -121,11 +121,11 @@ def test_ekf_30_s_gap_predicts_and_recovers(clean, channels):
     assert list(res.n_missing_channels) == expect
     assert res.n_predict_only == (60 if channels == "all" else 0)
     assert np.all(res.status[hole] == (kalman.NO_DATA if channels == "all" else kalman.ACCEPTED))
-    err = planar.position_error(res.x, truth)
+    err = analysis.position_error(res.x, truth)
     sigma = np.sqrt(res.P[:, 0, 0] + res.P[:, 1, 1])
     assert np.all(err[1:] < 3 * sigma[1:])
     after = slice(int(230 / T), None)
-    e_ref = planar.position_error(ref.x, truth)
+    e_ref = analysis.position_error(ref.x, truth)
     assert np.sqrt(np.mean(err[after] ** 2)) < 1.05 * np.sqrt(np.mean(e_ref[after] ** 2))
 
 
@@ -251,7 +251,7 @@ def test_ekf_irregular_sampling_uses_the_per_step_interval(clean):
     pose, held = planar.dead_reckoning(t_irr, truth_irr[:, 3], truth_irr[:, 4], X0_CURVE)
     np.testing.assert_allclose(pose[:, :2], truth_irr[:, :2], rtol=0, atol=1e-9)
     pose, _ = planar.dead_reckoning(t, truth_irr[:, 3], truth_irr[:, 4], X0_CURVE)
-    assert planar.position_error(pose, truth_irr).max() > 1.0
+    assert analysis.position_error(pose, truth_irr).max() > 1.0
     s_irr = planar.simulate_sensors(truth_irr, ORIGIN, planar.R_PAPER, np.random.default_rng(1))
     res = ekf(t_irr, s_irr.gps, s_irr.heading, s_irr.speed, s_irr.yaw_rate, gate=GATE)
     assert_healthy(res)
