@@ -83,6 +83,7 @@ import numpy as np
 from numba import njit
 
 from .. import attitude, earth, kalman
+from .._kernels import wrap_pi
 from .._validate import as_quat, flag, in_range, intervals, nonempty_array, scalar
 from ..attitude import quat_mult_t
 
@@ -413,10 +414,10 @@ def _rtk_gate(h, predicted, gate, confirm, state):
     within ``gate``: then the reference, not the epoch, is taken to be wrong
     and the epoch is used. ``state = [run length, heading of the last rejected epoch]``.
     """
-    if abs(_wrap(h - predicted)) <= gate:
+    if abs(wrap_pi(h - predicted)) <= gate:
         state[0] = 0.0
         return 0
-    if state[0] > 0.0 and abs(_wrap(h - state[1])) <= gate:
+    if state[0] > 0.0 and abs(wrap_pi(h - state[1])) <= gate:
         state[0] += 1.0
     else:
         state[0] = 1.0
@@ -581,11 +582,6 @@ def _kf_trial(t, q_init, w, f, m, hdg, hdg_ok, use_rtk, dts, kp, ki, gates, jump
 
 
 @njit(cache=True)
-def _wrap(a):
-    return (a + np.pi) % (2 * np.pi) - np.pi
-
-
-@njit(cache=True)
 def _fuse_kernel(h_mag, h_rtk, ok, dts, alpha, rtk_par, out, delta_out, counts):
     T, N = h_mag.shape
     hold, gate, confirm = rtk_par[0], rtk_par[1], rtk_par[2]
@@ -602,7 +598,7 @@ def _fuse_kernel(h_mag, h_rtk, ok, dts, alpha, rtk_par, out, delta_out, counts):
                     code = 1
                 else:
                     if age <= hold:                        # predicted heading: carried RTK, held delta, or none
-                        pred = anchor_rtk + _wrap(h_mag[t, k] - anchor_mag)
+                        pred = anchor_rtk + wrap_pi(h_mag[t, k] - anchor_mag)
                     elif not np.isnan(delta):
                         pred = h_mag[t, k] + delta
                     else:
@@ -613,11 +609,11 @@ def _fuse_kernel(h_mag, h_rtk, ok, dts, alpha, rtk_par, out, delta_out, counts):
                     elif code == 2:
                         counts[t, 5] += 1
                 if code != 1:
-                    d = _wrap(hk - h_mag[t, k])
-                    delta = d if (np.isnan(delta) or code == 2) else delta + alpha * _wrap(d - delta)
+                    d = wrap_pi(hk - h_mag[t, k])
+                    delta = d if (np.isnan(delta) or code == 2) else delta + alpha * wrap_pi(d - delta)
                     anchor_rtk, anchor_mag, age = hk, h_mag[t, k], 0.0
             if age <= hold:                                # output the RTK heading, carried between epochs
-                out[t, k] = anchor_rtk + _wrap(h_mag[t, k] - anchor_mag)
+                out[t, k] = anchor_rtk + wrap_pi(h_mag[t, k] - anchor_mag)
                 counts[t, 0] += 1
             elif not np.isnan(delta):                      # outage: hold delta
                 out[t, k] = h_mag[t, k] + delta

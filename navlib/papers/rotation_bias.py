@@ -91,6 +91,7 @@ import numpy as np
 from numba import njit
 
 from .. import attitude, earth, kalman
+from .._kernels import wrap_pi
 from .._validate import in_range, intervals, range_limit
 from .._validate import nonempty_array as as_array
 from .._validate import nonempty_latitude as latitude
@@ -754,7 +755,7 @@ def _residual_kernel(w, f, dts, regular, starts, n, w_ie, pitch_limit, max_missi
             sum_r = sum_p = 0.0        # sum (j - jbar) d_j for the slope fit
             for j in range(n):
                 a_r = np.arctan2(-fb[j, 0], fb[j, 2]) - roll_k               # Eq. (5), about the dwell tilt
-                a_r = (a_r + np.pi) % (2 * np.pi) - np.pi
+                a_r = wrap_pi(a_r)
                 a_p = np.arctan2(fb[j, 1], np.hypot(fb[j, 0], fb[j, 2])) - pitch_k
                 x = (j - jbar) if regular else (tj[j] - tbar)
                 sum_r += x * (g_r - a_r)                                     # Eq. (7)
