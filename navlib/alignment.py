@@ -10,19 +10,28 @@ One implementation of each concept, imported by every paper companion and notebo
   pitch and roll (from :func:`level` or an INS).
 * :func:`tilt_heading` -- both at once from one accelerometer + magnetometer reading,
   ``hpr``; :func:`initial_attitude` returns it as a quaternion.
+* gyrocompassing of a static IMU: :func:`static_means` (robust window means with a
+  :class:`StaticWindow` report), :func:`triad` (analytic coarse alignment from specific force
+  and Earth rate) and :func:`triad_heading`, :func:`four_position_heading` (a single gyro on a
+  turntable).
 
 Conventions are stated once in :mod:`navlib`: ENU navigation frame, right-front-up body,
 heading clockwise from north in [0, 2 pi).
 """
 from __future__ import annotations
 
+import warnings
+from dataclasses import dataclass
+
 import numpy as np
 
-from . import _kernels, attitude
+from . import _kernels, attitude, earth
 from ._typing import Angles, Array, Vec3
-from ._validate import as_array, scalar
+from ._validate import as_array, in_range, nonempty_array, nonempty_latitude, nonempty_positive, scalar
 
-__all__ = ["level", "magnetic_heading", "tilt_heading", "initial_attitude"]
+__all__ = ["level", "magnetic_heading", "tilt_heading", "initial_attitude", "MAX_LAT_DEG", "gyrocompass_latitude", "OK",
+           "TOO_FEW", "SATURATED", "MOVING", "StaticWindow", "static_means", "triad", "triad_heading",
+           "four_position_heading"]
 
 
 def _nonzero(v: np.ndarray, name: str) -> np.ndarray:
@@ -99,3 +108,272 @@ def tilt_heading(f_b: Vec3, m_b: Vec3, declination: float = 0.0) -> Array:
 def initial_attitude(f_b: Vec3, m_b: Vec3, declination: float = 0.0) -> Array:
     """Initial quaternion ``q_bn`` (..., 4) from :func:`tilt_heading` (scalar first)."""
     return attitude.euler_to_quat(tilt_heading(f_b, m_b, declination))
+
+
+# --------------------------------------------------------------------------
+# Gyrocompassing: static means, TRIAD, four-position
+# --------------------------------------------------------------------------
+
+MAX_LAT_DEG = 89.0
+"""Largest |latitude| accepted for gyrocompassing (deg): beyond it cos(lat) < 0.0175 and the
+horizontal Earth rate (< 0.26 deg/h) no longer defines north usefully."""
+
+
+def gyrocompass_latitude(lat, deg: bool = False) -> np.ndarray:
+    """Latitude in rad, rejecting |lat| > 90 deg and near-polar |lat| > MAX_LAT_DEG."""
+    lat = nonempty_latitude(lat, "lat", deg=deg)
+    if np.any(np.abs(lat) > np.deg2rad(MAX_LAT_DEG)):
+        raise ValueError(f"lat: expected |lat| <= {MAX_LAT_DEG} deg for north finding (cos(lat) -> 0 near "
+                         f"the poles), got {np.rad2deg(np.abs(lat).max()):.4g} deg")
+    return lat
+
+OK, TOO_FEW, SATURATED, MOVING = 0, 1, 2, 3
+"""Status codes of a static window (:class:`StaticWindow`)."""
+
+@dataclass(frozen=True)
+class StaticWindow:
+    """Averages of one static window and what was left out (shapes (..., 3) and (...)).
+
+    Unpacks as ``w_mean, f_mean = static_means(...)``.
+
+    Attributes
+    ----------
+    w_mean, f_mean : ndarray, shape (..., 3)
+        Means of the samples used (rad/s, m/s^2); NaN where the window was
+        refused (``status != OK``).
+    n_samples : int
+        Samples in the window (N).
+    n_used_gyro, n_used_accel : ndarray of int, shape (...)
+        Samples averaged.
+    n_dropped_gyro, n_dropped_accel : ndarray of int, shape (...)
+        Samples with a NaN component (dropouts), left out.
+    n_outliers_gyro, n_outliers_accel : ndarray of int, shape (...)
+        Samples more than ``outlier_k`` x 1.4826 MAD from the window median in
+        any component, left out (0 without ``outlier_k``).
+    n_saturated_gyro, n_saturated_accel : ndarray of int, shape (...)
+        Samples with a component at the device rails (``|x| >= full_scale``).
+    status : ndarray of int, shape (...)
+        ``OK`` (0); ``TOO_FEW`` (1): fewer than ``min_fraction`` of the samples
+        (and 2) left; ``SATURATED`` (2): saturated samples, the robot was not
+        still or the reading is unknown; ``MOVING`` (3): the accelerometer
+        shows motion (``accel_tol``).
+    """
+    w_mean: np.ndarray
+    f_mean: np.ndarray
+    n_samples: int
+    n_used_gyro: np.ndarray
+    n_used_accel: np.ndarray
+    n_dropped_gyro: np.ndarray
+    n_dropped_accel: np.ndarray
+    n_outliers_gyro: np.ndarray
+    n_outliers_accel: np.ndarray
+    n_saturated_gyro: np.ndarray
+    n_saturated_accel: np.ndarray
+    status: np.ndarray
+
+    def __iter__(self):
+        return iter((self.w_mean, self.f_mean))
+
+    @property
+    def ok(self) -> np.ndarray:
+        """True where the window was accepted."""
+        return self.status == OK
+
+
+def _outliers(x, valid, k):
+    """Samples more than k * 1.4826 MAD from the median of the valid samples (any component)."""
+    xv = np.where(valid[..., None], x, np.nan)
+    with np.errstate(all="ignore"), warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)          # all-NaN windows: handled as TOO_FEW
+        med = np.nanmedian(xv, axis=-2, keepdims=True)
+        mad = np.nanmedian(np.abs(xv - med), axis=-2, keepdims=True)
+    thresh = k * np.maximum(1.4826 * mad, 1e-12)
+    return valid & np.any(np.abs(x - med) > thresh, axis=-1)
+
+
+def _masked_mean(x, used, n_used):
+    if used.all():
+        return x.mean(-2)                    # the fault-free path, bit-identical to a plain mean
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(used[..., None], x, 0.0).sum(-2) / n_used[..., None]
+
+
+def static_means(w_ib_b, f_b, lat, h=0.0, accel_tol: float = 0.2, *, min_fraction: float = 0.5,
+                 outlier_k: float | None = None, full_scale_gyro: float | None = None,
+                 full_scale_accel: float | None = None, strict: bool = True) -> StaticWindow:
+    """Average a static window of gyro and accelerometer samples (paper step 1).
+
+    Faults, each counted in the returned :class:`StaticWindow`:
+
+    * dropouts: samples with a NaN component are left out of that sensor's
+      mean (``n_dropped_*``); a window with fewer than
+      ``max(2, min_fraction N)`` samples left is refused (``TOO_FEW``). A
+      30-s gap in a 3-min stop leaves 150 s: the mean's white-noise std grows
+      by sqrt(180/150) = 1.10.
+    * outliers: with ``outlier_k``, samples more than ``outlier_k`` x
+      1.4826 MAD from the window median are left out (``n_outliers_*``).
+      Without it, spikes of +-k sigma on a fraction p of the samples add
+      ``k sigma sqrt(p / N)`` of noise to the mean (10x the mean's
+      white-noise std for p = 1 %, k = 100), unreported.
+    * saturation: with ``full_scale_gyro``/``full_scale_accel`` (device
+      ranges, rad/s and m/s^2), samples at the rails are counted and the
+      window is refused (``SATURATED``): a static robot never reaches them.
+    * timing: the mean does not depend on sample order; duplicated
+      timestamps are removed by ``timing.sanitize`` before windows are cut
+      by time (:func:`stop_solutions` with ``time``).
+
+    Parameters
+    ----------
+    w_ib_b, f_b : array_like, shape (..., N, 3)
+        Gyro (rad/s) and accelerometer (m/s^2) samples of one stop, N >= 2;
+        NaN marks dropouts.
+    lat : float
+        Latitude (rad), used for the expected gravity.
+    h : float
+        Height (m).
+    accel_tol : float
+        Largest accepted deviation (m/s^2) of the mean specific-force norm
+        from normal gravity, and of the two half-window means from each
+        other. Larger deviations mean the robot was not static (``MOVING``).
+    min_fraction : float
+        Smallest fraction of the window, in (0, 1], that must remain per sensor.
+    outlier_k : float, optional
+        MAD outlier threshold (e.g. 6); None: no outlier rejection.
+    full_scale_gyro, full_scale_accel : float, optional
+        Device ranges; None: no saturation check.
+    strict : bool
+        Raise ValueError for a refused window (default); ``False`` returns NaN
+        means with its ``status`` instead.
+
+    Returns
+    -------
+    StaticWindow
+        Unpacks as ``(w_mean, f_mean)``, shapes (..., 3).
+
+    Raises
+    ------
+    ValueError
+        Empty windows, inf, mismatched shapes; with ``strict``, a refused
+        window (too few samples, saturated, or the robot evidently moving).
+    """
+    w = nonempty_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
+    f = nonempty_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=True)
+    if w.shape != f.shape:
+        raise ValueError(f"f_b: expected the shape of w_ib_b {w.shape}, got {f.shape}")
+    n = w.shape[-2]
+    if n < 2:
+        raise ValueError(f"w_ib_b: expected a static window of at least 2 samples, got {n}")
+    tol = float(nonempty_positive(accel_tol, "accel_tol"))
+    frac = float(in_range(nonempty_array(min_fraction, "min_fraction"), "min_fraction", 0.0, 1.0, lo_open=True))
+    k_out = None if outlier_k is None else float(nonempty_positive(outlier_k, "outlier_k"))
+    fs_g = np.inf if full_scale_gyro is None else float(nonempty_positive(full_scale_gyro, "full_scale_gyro"))
+    fs_a = np.inf if full_scale_accel is None else float(nonempty_positive(full_scale_accel, "full_scale_accel"))
+    g = earth.gravity(gyrocompass_latitude(lat), nonempty_array(h, "h"))
+    need = max(2, int(np.ceil(frac * n)))
+    out = {}
+    for name, x, fs in (("gyro", w, fs_g), ("accel", f, fs_a)):
+        valid = np.all(np.isfinite(x), -1)
+        sat = valid & np.any(np.abs(x) >= fs, -1)
+        outl = _outliers(x, valid, k_out) if k_out is not None else np.zeros_like(valid)
+        used = valid & ~outl
+        n_used = used.sum(-1)
+        out[name] = (_masked_mean(x, used, n_used), n_used, n - valid.sum(-1), outl.sum(-1), sat.sum(-1), used)
+    (w_mean, nu_g, nd_g, no_g, ns_g, _), (f_mean, nu_a, nd_a, no_a, ns_a, used_f) = out["gyro"], out["accel"]
+    status = np.zeros(w_mean.shape[:-1], dtype=int)
+    too_few = (nu_g < need) | (nu_a < need)
+    status[too_few] = TOO_FEW
+    status[(status == OK) & ((ns_g > 0) | (ns_a > 0))] = SATURATED
+    with np.errstate(invalid="ignore"):
+        dev = np.abs(np.linalg.norm(f_mean, axis=-1) - g)
+        if used_f.all():
+            halves = np.abs(f[..., : n // 2, :].mean(-2) - f[..., n // 2:, :].mean(-2)).max(-1)
+        else:
+            u1, u2 = used_f[..., : n // 2], used_f[..., n // 2:]
+            halves = np.abs(_masked_mean(f[..., : n // 2, :], u1, u1.sum(-1))
+                            - _masked_mean(f[..., n // 2:, :], u2, u2.sum(-1))).max(-1)
+    status[(status == OK) & ((dev > tol) | ~(halves <= tol))] = MOVING
+    if strict and np.any(status != OK):
+        if np.any(status == TOO_FEW):
+            which = "w_ib_b" if np.any(nu_g < need) else "f_b"
+            left = int(min(nu_g.min(), nu_a.min()))
+            raise ValueError(f"{which}: only {left} of {n} samples left after dropouts/outliers; expected at least "
+                             f"{need} (min_fraction = {frac:g})")
+        if np.any(status == SATURATED):
+            which = "w_ib_b" if np.any(ns_g > 0) else "f_b"
+            raise ValueError(f"{which}: {int(ns_g.sum() + ns_a.sum())} samples at the full-scale range: the robot "
+                             "was not static during the stop")
+        if np.any(dev[status == MOVING] > tol):
+            raise ValueError(f"f_b: mean specific-force norm differs from gravity by {np.nanmax(dev):.3g} m/s^2 "
+                             f"(> accel_tol = {tol:g}): the robot is not static")
+        raise ValueError(f"f_b: the two halves of the window differ by {np.nanmax(halves):.3g} m/s^2 "
+                         f"(> accel_tol = {tol:g}): the robot moved during the stop")
+    bad = status != OK
+    w_mean = np.where(bad[..., None], np.nan, w_mean)
+    f_mean = np.where(bad[..., None], np.nan, f_mean)
+    return StaticWindow(w_mean, f_mean, n, nu_g, nu_a, nd_g, nd_a, no_g, no_a, ns_g, ns_a, status)
+
+def _reference_triad(g_n, w_ie_n):
+    a = g_n
+    b = np.cross(g_n, w_ie_n)
+    return np.stack([a, b, np.cross(b, a)], -1)
+
+
+def triad(f_b, w_ib_b, lat, orthonormal: bool = True):
+    """Analytic coarse alignment with a three-axis gyro: TRIAD (paper 000, Tan & Xie, Eqs. 1-2).
+
+    Parameters
+    ----------
+    f_b : array_like, shape (..., 3)
+        Averaged specific force (m/s^2).
+    w_ib_b : array_like, shape (..., 3)
+        Averaged angular rate (rad/s).
+    lat : float or array_like broadcasting with the leading axes
+        Latitude (rad).
+    orthonormal : bool
+        Project the result onto the nearest rotation (SVD). ``False`` returns
+        Eq. (2)'s raw product, which noise makes slightly non-orthonormal.
+
+    Returns
+    -------
+    C_bn : ndarray, shape (..., 3, 3)
+    """
+    f = nonempty_array(f_b, "f_b", tail=(3,))
+    w = nonempty_array(w_ib_b, "w_ib_b", tail=(3,))
+    lat = gyrocompass_latitude(lat)
+    g_n = np.stack(np.broadcast_arrays(0.0, 0.0, -earth.gravity(lat)), -1)
+    body = _reference_triad(-f, w)                    # columns: -f, -f x w, (-f x w) x (-f)
+    nav = _reference_triad(g_n, earth.earth_rate_n(lat))
+    C_nb = body @ np.linalg.inv(nav)
+    C_bn = np.swapaxes(C_nb, -1, -2)
+    return attitude.orthonormalize(C_bn) if orthonormal else C_bn
+
+
+def triad_heading(C_bn):
+    """Heading ``atan2(c12, c22) mod 2 pi`` (rad) of a TRIAD matrix, orthonormal or raw.
+
+    The inverse of paper Eq. (3) for the heading; unlike
+    :func:`navlib.attitude.dcm_to_euler` it accepts Eq. (2)'s raw,
+    slightly non-orthonormal product. Shape (..., 3, 3) -> (...).
+    """
+    C = nonempty_array(C_bn, "C_bn", tail=(3, 3))
+    return attitude.wrap_2pi(np.arctan2(C[..., 0, 1], C[..., 1, 1]))
+
+def four_position_heading(w_y):
+    """Heading from a level gyro turned to four positions 90 deg apart (turntable).
+
+    Position k has heading ``psi + k pi/2`` (turned clockwise), so
+    ``w_k = w_ie cos(lat) cos(psi + k pi/2) + b``: the bias b cancels in
+    ``psi = atan2(w_3 - w_1, w_0 - w_2)``, for every psi.
+
+    Parameters
+    ----------
+    w_y : array_like, shape (..., 4)
+        Averaged gyro output at the four positions (rad/s).
+
+    Returns
+    -------
+    ndarray, shape (...)
+        Heading of position 0 (rad, [0, 2 pi)).
+    """
+    w = nonempty_array(w_y, "w_y", tail=(4,))
+    return attitude.wrap_2pi(np.arctan2(w[..., 3] - w[..., 1], w[..., 0] - w[..., 2]))

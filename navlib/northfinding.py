@@ -1,4 +1,4 @@
-"""Deprecated alias of :mod:`navlib.papers.north_finding`.
+"""Deprecated alias of :mod:`navlib.papers.north_finding` and of the core modules navlib.alignment.
 
 ``navlib.northfinding`` was the module of this paper before the split into a paper companion
 and core homes (see CONTRIBUTING.md). Every old name still resolves here; importing this
@@ -7,6 +7,18 @@ module warns. It will be removed in navlib 0.3.
 # ruff: noqa: F405  (the names come from the star import)
 import warnings
 
+from .alignment import (  # noqa: F401
+           MAX_LAT_DEG,
+           MOVING,
+           OK,
+           SATURATED,
+           TOO_FEW,
+           StaticWindow,
+           four_position_heading,
+           static_means,
+           triad,
+           triad_heading,
+)
 from .papers.north_finding import *  # noqa: F403
 
 __all__ = ["MAX_LAT_DEG", "OK", "TOO_FEW", "SATURATED", "MOVING", "StaticWindow", "static_means", "triad", "triad_heading",
@@ -17,4 +29,4 @@ __all__ = ["MAX_LAT_DEG", "OK", "TOO_FEW", "SATURATED", "MOVING", "StaticWindow"
            "InsReport", "ins_heading_change"]
 
 warnings.warn("navlib.northfinding is deprecated and will be removed in navlib 0.3; use navlib.papers.north_finding"
-              , DeprecationWarning, stacklevel=2)
+              " and navlib.alignment", DeprecationWarning, stacklevel=2)

@@ -472,6 +472,11 @@ CASES = [
     bad("alignment.magnetic_heading", "m_b", "nan", lambda: alignment.magnetic_heading([NAN, 1.0, 0.0], 0.0, 0.0)),
     bad("alignment.tilt_heading", "m_b", "parallel", lambda: alignment.tilt_heading([0.0, 0.0, 9.8], [0.0, 0.0, 1.0])),
     bad("alignment.initial_attitude", "f_b", "str", lambda: alignment.initial_attitude(STR, [0.0, 1.0, 0.0])),
+    bad("alignment.gyrocompass_latitude", "lat", "polar", lambda: alignment.gyrocompass_latitude(89.5, deg=True)),
+    bad("alignment.static_means", "f_b", "shape", lambda: alignment.static_means(np.zeros((10, 3)), np.zeros((10, 2)), 0.5)),
+    bad("alignment.triad", "lat", "str", lambda: alignment.triad([0.0, 0.0, 9.8], [0.0, 5e-5, 5e-5], STR)),
+    bad("alignment.triad_heading", "C_bn", "shape", lambda: alignment.triad_heading(np.eye(2))),
+    bad("alignment.four_position_heading", "w_y", "shape", lambda: alignment.four_position_heading([1.0, 2.0, 3.0])),
     bad("robust.hold", "leading", "unknown", lambda: robust.hold(np.ones((3, 3)), leading="back")),
     bad("robust.hold", "x", "all_nan", lambda: robust.hold(np.full((3, 3), NAN), leading="first")),
     bad("analysis.allan_deviation", "x", "too_short", lambda: analysis.allan_deviation(np.ones(5), 0.1)),
@@ -972,6 +977,7 @@ def test_repro_nan_value_fails_the_claim(call, sandbox):
 
 NOT_APPLICABLE = {
     "robust.FaultReport": "a plain record of counts; nothing to validate",
+    "alignment.StaticWindow": "a result record, built by static_means",
     "repro.root": "takes no arguments",
     "repro.results": "takes no arguments",
     "sensors.devices": "takes no arguments",

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 from helpers import check_fuzz, fuzz_cases
 
-from navlib import attitude, sensors, trajectory, units
+from navlib import alignment, attitude, sensors, trajectory, units
 from navlib.papers import north_finding as nf
 
 LAT = units.deg(28.361735)
@@ -27,9 +27,9 @@ def test_triad_recovers_attitude_from_ideal_outputs():
     for lat in (LAT, units.deg(-60.0), 0.0):
         w, f = ideal(hpr, lat)
         C_true = attitude.euler_to_dcm(hpr)
-        assert np.abs(nf.triad(f, w, lat) - C_true).max() < 1e-12
-        assert np.abs(nf.triad(f, w, lat, orthonormal=False) - C_true).max() < 1e-12
-        assert np.abs(attitude.wrap_pi(nf.triad_heading(C_true) - hpr[:, 0])).max() < 1e-12
+        assert np.abs(alignment.triad(f, w, lat) - C_true).max() < 1e-12
+        assert np.abs(alignment.triad(f, w, lat, orthonormal=False) - C_true).max() < 1e-12
+        assert np.abs(attitude.wrap_pi(alignment.triad_heading(C_true) - hpr[:, 0])).max() < 1e-12
 
 
 def test_tilt_recovers_pitch_and_roll():
@@ -105,7 +105,7 @@ def test_eq13_sign_by_perturbation():
         hpr = np.array([psi, 0.0, 0.0])
         w, f = ideal(hpr, units.deg(30.0))
         dw = np.array([2e-9, -1e-9, 3e-9])
-        h1 = nf.triad_heading(nf.triad(f, w + dw, units.deg(30.0)))
+        h1 = alignment.triad_heading(alignment.triad(f, w + dw, units.deg(30.0)))
         pred = nf.triad_heading_error(attitude.euler_to_dcm(hpr), dw, units.deg(30.0))
         assert attitude.wrap_pi(h1 - psi) == pytest.approx(pred, rel=1e-4)
 
@@ -170,7 +170,7 @@ def test_four_position_cancels_bias():
     psi = np.deg2rad([0.0, 37.0, 181.0, 300.0])
     hpr = np.stack([psi[:, None] + np.arange(4) * np.pi / 2, np.zeros((4, 4)), np.zeros((4, 4))], -1)
     w, _ = ideal(hpr)
-    assert np.abs(attitude.wrap_pi(nf.four_position_heading(w[..., 1] + 1e-7) - psi)).max() < 1e-9
+    assert np.abs(attitude.wrap_pi(alignment.four_position_heading(w[..., 1] + 1e-7) - psi)).max() < 1e-9
 
 
 def test_window_mean_std_white_and_gm():
@@ -207,24 +207,24 @@ GOOD_F = np.tile(ideal([1.0, 0.0, 0.0])[1], (10, 1))
 
 
 @pytest.mark.parametrize("call, arg", [
-    (lambda: nf.triad([0, 0, 9.8], [0, 1e-5, 1e-5], units.deg(95.0)), "lat"),
-    (lambda: nf.triad([0, 0, 9.8], [0, 1e-5, 1e-5], units.deg(89.5)), "lat"),
-    (lambda: nf.triad([0, 0, np.nan], [0, 1e-5, 1e-5], LAT), "f_b"),
-    (lambda: nf.triad([0, 0, 9.8], [0, 1e-5], LAT), "w_ib_b"),
+    (lambda: alignment.triad([0, 0, 9.8], [0, 1e-5, 1e-5], units.deg(95.0)), "lat"),
+    (lambda: alignment.triad([0, 0, 9.8], [0, 1e-5, 1e-5], units.deg(89.5)), "lat"),
+    (lambda: alignment.triad([0, 0, np.nan], [0, 1e-5, 1e-5], LAT), "f_b"),
+    (lambda: alignment.triad([0, 0, 9.8], [0, 1e-5], LAT), "w_ib_b"),
     (lambda: nf.heading_candidates(1e-5, [0, 0, 9.8], units.deg(-90.0)), "lat"),
     (lambda: nf.heading_candidates(np.inf, [0, 0, 9.8], LAT), "w_y"),
     (lambda: nf.tilt_from_accel([0.0, 0.0, 0.0]), "f_b"),
-    (lambda: nf.static_means(np.zeros((0, 3)), np.zeros((0, 3)), LAT), "w_ib_b"),
-    (lambda: nf.static_means(GOOD_W[:1], GOOD_F[:1], LAT), "w_ib_b"),
-    (lambda: nf.static_means(GOOD_W, GOOD_F * 1.2, LAT), "f_b"),
-    (lambda: nf.static_means(GOOD_W, GOOD_F + np.linspace(-1, 1, 10)[:, None] * [1, 0, 0], LAT), "f_b"),
-    (lambda: nf.static_means(GOOD_W, np.where((np.arange(10) < 6)[:, None], np.nan, GOOD_F), LAT), "f_b"),
-    (lambda: nf.static_means(GOOD_W, GOOD_F[:5], LAT), "f_b"),
-    (lambda: nf.static_means(GOOD_W, GOOD_F, LAT, accel_tol=-1), "accel_tol"),
+    (lambda: alignment.static_means(np.zeros((0, 3)), np.zeros((0, 3)), LAT), "w_ib_b"),
+    (lambda: alignment.static_means(GOOD_W[:1], GOOD_F[:1], LAT), "w_ib_b"),
+    (lambda: alignment.static_means(GOOD_W, GOOD_F * 1.2, LAT), "f_b"),
+    (lambda: alignment.static_means(GOOD_W, GOOD_F + np.linspace(-1, 1, 10)[:, None] * [1, 0, 0], LAT), "f_b"),
+    (lambda: alignment.static_means(GOOD_W, np.where((np.arange(10) < 6)[:, None], np.nan, GOOD_F), LAT), "f_b"),
+    (lambda: alignment.static_means(GOOD_W, GOOD_F[:5], LAT), "f_b"),
+    (lambda: alignment.static_means(GOOD_W, GOOD_F, LAT, accel_tol=-1), "accel_tol"),
     (lambda: nf.resolve([1.0, 2.0, 3.0], [1.0, 2.0], 0.0), "pair1"),
     (lambda: nf.resolve([1.0, 2.0], [1.0, np.nan], 0.0), "pair2"),
     (lambda: nf.resolve([1.0, 2.0], [1.0, 2.0], np.nan), "dpsi_ins"),
-    (lambda: nf.triad_heading(np.eye(2)), "C_bn"),
+    (lambda: alignment.triad_heading(np.eye(2)), "C_bn"),
     (lambda: nf.triad_heading_error(2 * np.eye(3), [0, 0, 0], LAT), "C_bn"),
     (lambda: nf.triad_heading_error(np.eye(3), [0, 0], LAT), "dw_b"),
     (lambda: nf.triad_heading_std(-1.0, LAT), "sigma_gyro"),
@@ -240,7 +240,7 @@ GOOD_F = np.tile(ideal([1.0, 0.0, 0.0])[1], (10, 1))
     (lambda: nf.monte_carlo([0.0], 0.0, 0.0, units.deg(-89.9), 3, 1e-7, 1e-3, np.random.default_rng(0)), "lat"),
     (lambda: nf.pair_probabilities(1.0, 2.0, 0.0), "sigma_ins"),
     (lambda: nf.pair_probabilities(np.nan, 2.0, 0.1), "heading1"),
-    (lambda: nf.four_position_heading([1.0, 2.0, 3.0]), "w_y"),
+    (lambda: alignment.four_position_heading([1.0, 2.0, 3.0]), "w_y"),
     (lambda: nf.four_position_heading_std(1e-7, units.deg(91.0)), "lat"),
     (lambda: nf.window_mean_std("NAV-FOG", 180.0, 0.01), "errors"),
     (lambda: nf.window_mean_std(sensors.TriadErrors(), 0.0, 0.01), "duration"),
@@ -254,12 +254,12 @@ GOOD_F = np.tile(ideal([1.0, 0.0, 0.0])[1], (10, 1))
     (lambda: nf.ins_heading_change(GOOD_W, GOOD_F[0], np.full(9, 0.01), LAT), "dt"),
     (lambda: nf.ins_heading_change(GOOD_W, GOOD_F[0], 0.01, LAT, max_gap=-1.0), "max_gap"),
     (lambda: nf.ins_heading_change(GOOD_W, GOOD_F[0], 0.01, LAT, full_scale=0.0), "full_scale"),
-    (lambda: nf.static_means(GOOD_W, GOOD_F, LAT, min_fraction=0.0), "min_fraction"),
-    (lambda: nf.static_means(GOOD_W, GOOD_F, LAT, min_fraction=1.5), "min_fraction"),
-    (lambda: nf.static_means(GOOD_W, GOOD_F, LAT, outlier_k=-3.0), "outlier_k"),
-    (lambda: nf.static_means(GOOD_W, GOOD_F, LAT, full_scale_gyro=0.0), "full_scale_gyro"),
-    (lambda: nf.static_means(GOOD_W, GOOD_F, LAT, full_scale_accel=-1.0), "full_scale_accel"),
-    (lambda: nf.static_means(GOOD_W, np.full((10, 3), np.nan), LAT), "f_b"),
+    (lambda: alignment.static_means(GOOD_W, GOOD_F, LAT, min_fraction=0.0), "min_fraction"),
+    (lambda: alignment.static_means(GOOD_W, GOOD_F, LAT, min_fraction=1.5), "min_fraction"),
+    (lambda: alignment.static_means(GOOD_W, GOOD_F, LAT, outlier_k=-3.0), "outlier_k"),
+    (lambda: alignment.static_means(GOOD_W, GOOD_F, LAT, full_scale_gyro=0.0), "full_scale_gyro"),
+    (lambda: alignment.static_means(GOOD_W, GOOD_F, LAT, full_scale_accel=-1.0), "full_scale_accel"),
+    (lambda: alignment.static_means(GOOD_W, np.full((10, 3), np.nan), LAT), "f_b"),
     (lambda: nf.stop_solutions(GOOD_W, GOOD_F, [[0.0, 0.05]], LAT, time=np.arange(9) * 0.01), "time"),
     (lambda: nf.stop_solutions(GOOD_W, GOOD_F, [[0.0, 0.05]], LAT, time=np.zeros(10)), "time"),
     (lambda: nf.stop_solutions(GOOD_W, GOOD_F, [[0.05, 0.0]], LAT, time=np.arange(10) * 0.01), "windows"),
@@ -280,9 +280,9 @@ _W1, _F1 = ideal([1.0, 0.05, 0.02])
 _C = attitude.euler_to_dcm([1.0, 0.05, 0.02])
 _PAIR = np.array([1.0, 2 * np.pi - 1.0])
 NF_FUZZ = {   # name: (function, good keyword arguments, arguments where NaN is a documented dropout marker)
-    "static_means": (nf.static_means, dict(w_ib_b=GOOD_W, f_b=GOOD_F, lat=LAT, h=0.0, accel_tol=0.2), {"w_ib_b", "f_b"}),
-    "triad": (nf.triad, dict(f_b=_F1, w_ib_b=_W1, lat=LAT), set()),
-    "triad_heading": (nf.triad_heading, dict(C_bn=_C), set()),
+    "static_means": (alignment.static_means, dict(w_ib_b=GOOD_W, f_b=GOOD_F, lat=LAT, h=0.0, accel_tol=0.2), {"w_ib_b", "f_b"}),
+    "triad": (alignment.triad, dict(f_b=_F1, w_ib_b=_W1, lat=LAT), set()),
+    "triad_heading": (alignment.triad_heading, dict(C_bn=_C), set()),
     "tilt_from_accel": (nf.tilt_from_accel, dict(f_b=_F1, g=9.79), set()),
     "heading_candidates": (nf.heading_candidates, dict(w_y=_W1[1], f_b=_F1, lat=LAT, h=0.0), set()),
     "nearest_candidate_error": (nf.nearest_candidate_error, dict(pair=_PAIR, heading=1.0), set()),
@@ -300,7 +300,7 @@ NF_FUZZ = {   # name: (function, good keyword arguments, arguments where NaN is 
                                          sigma_gyro=1e-8, sigma_accel=1e-4, rng=np.random.default_rng(0)), set(),
                     {"headings"}),
     "pair_probabilities": (nf.pair_probabilities, dict(heading1=1.0, heading2=2.0, sigma_ins=0.1), set()),
-    "four_position_heading": (nf.four_position_heading, dict(w_y=[1e-5, 0.0, -1e-5, 0.0]), set()),
+    "four_position_heading": (alignment.four_position_heading, dict(w_y=[1e-5, 0.0, -1e-5, 0.0]), set()),
     "four_position_heading_std": (nf.four_position_heading_std, dict(sigma_gyro=1e-8, lat=LAT), set()),
     "window_mean_std": (nf.window_mean_std, dict(errors=sensors.imu_model("NAV-FOG").gyro, duration=180.0, dt=0.01),
                         set()),
@@ -320,4 +320,5 @@ def test_fuzz_public_api(func, good, arg, how):
 
 def test_fuzz_table_covers_every_public_function():
     funcs = {n for n in nf.__all__ if callable(getattr(nf, n)) and not isinstance(getattr(nf, n), type)}
+    funcs |= {"static_means", "triad", "triad_heading", "four_position_heading"}     # now in navlib.alignment
     assert funcs == set(NF_FUZZ), funcs ^ set(NF_FUZZ)

@@ -83,7 +83,6 @@ Errata corrected (ids of ``data/errata.csv``)
 """
 from __future__ import annotations
 
-import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -92,277 +91,26 @@ from scipy.special import ndtr
 from .. import attitude, earth, robust, strapdown
 from .._validate import as_dcm, generator, in_range, time_axis
 from .._validate import nonempty_array as as_array
-from .._validate import nonempty_latitude as latitude
 from .._validate import nonempty_positive as positive
-from ..alignment import level
+from ..alignment import gyrocompass_latitude, level, static_means, triad, triad_heading
 from ..sensors import TriadErrors
 from ..trajectory import Segment
 
-__all__ = ["MAX_LAT_DEG", "OK", "TOO_FEW", "SATURATED", "MOVING", "StaticWindow", "static_means", "triad",
-           "triad_heading", "tilt_from_accel", "Candidates",
-           "heading_candidates", "nearest_candidate_error", "Resolution", "resolve", "triad_heading_error",
-           "triad_heading_std",
-           "single_axis_heading_std", "single_axis_heading_error", "simulate_static_outputs",
-           "MonteCarlo", "monte_carlo", "pair_probabilities", "four_position_heading",
-           "four_position_heading_std", "window_mean_std", "stop_and_go",
-           "StopSolutions", "stop_solutions", "InsReport", "ins_heading_change"]
+__all__ = ["Candidates", "heading_candidates", "nearest_candidate_error", "Resolution", "resolve", "tilt_from_accel",
+           "triad_heading_error", "triad_heading_std", "single_axis_heading_std", "single_axis_heading_error",
+           "simulate_static_outputs", "MonteCarlo", "monte_carlo", "pair_probabilities", "four_position_heading_std",
+           "window_mean_std", "stop_and_go", "StopSolutions", "stop_solutions", "InsReport", "ins_heading_change"]
 
 OMEGA_IE = earth.OMEGA_IE
-MAX_LAT_DEG = 89.0
-"""Largest |latitude| accepted (deg): beyond it cos(lat) < 0.0175 and the
-horizontal Earth rate (< 0.26 deg/h) no longer defines north usefully."""
 
 
 # --------------------------------------------------------------------------
 # validation helpers
 # --------------------------------------------------------------------------
 
-def _lat(lat, deg: bool = False) -> np.ndarray:
-    """Latitude in rad, rejecting |lat| > 90 deg and near-polar |lat| > MAX_LAT_DEG."""
-    lat = latitude(lat, "lat", deg=deg)
-    if np.any(np.abs(lat) > np.deg2rad(MAX_LAT_DEG)):
-        raise ValueError(f"lat: expected |lat| <= {MAX_LAT_DEG} deg for north finding (cos(lat) -> 0 near "
-                         f"the poles), got {np.rad2deg(np.abs(lat).max()):.4g} deg")
-    return lat
-
-
-OK, TOO_FEW, SATURATED, MOVING = 0, 1, 2, 3
-"""Status codes of a static window (:class:`StaticWindow`)."""
-
-
-@dataclass(frozen=True)
-class StaticWindow:
-    """Averages of one static window and what was left out (shapes (..., 3) and (...)).
-
-    Unpacks as ``w_mean, f_mean = static_means(...)``.
-
-    Attributes
-    ----------
-    w_mean, f_mean : ndarray, shape (..., 3)
-        Means of the samples used (rad/s, m/s^2); NaN where the window was
-        refused (``status != OK``).
-    n_samples : int
-        Samples in the window (N).
-    n_used_gyro, n_used_accel : ndarray of int, shape (...)
-        Samples averaged.
-    n_dropped_gyro, n_dropped_accel : ndarray of int, shape (...)
-        Samples with a NaN component (dropouts), left out.
-    n_outliers_gyro, n_outliers_accel : ndarray of int, shape (...)
-        Samples more than ``outlier_k`` x 1.4826 MAD from the window median in
-        any component, left out (0 without ``outlier_k``).
-    n_saturated_gyro, n_saturated_accel : ndarray of int, shape (...)
-        Samples with a component at the device rails (``|x| >= full_scale``).
-    status : ndarray of int, shape (...)
-        ``OK`` (0); ``TOO_FEW`` (1): fewer than ``min_fraction`` of the samples
-        (and 2) left; ``SATURATED`` (2): saturated samples, the robot was not
-        still or the reading is unknown; ``MOVING`` (3): the accelerometer
-        shows motion (``accel_tol``).
-    """
-    w_mean: np.ndarray
-    f_mean: np.ndarray
-    n_samples: int
-    n_used_gyro: np.ndarray
-    n_used_accel: np.ndarray
-    n_dropped_gyro: np.ndarray
-    n_dropped_accel: np.ndarray
-    n_outliers_gyro: np.ndarray
-    n_outliers_accel: np.ndarray
-    n_saturated_gyro: np.ndarray
-    n_saturated_accel: np.ndarray
-    status: np.ndarray
-
-    def __iter__(self):
-        return iter((self.w_mean, self.f_mean))
-
-    @property
-    def ok(self) -> np.ndarray:
-        """True where the window was accepted."""
-        return self.status == OK
-
-
-def _outliers(x, valid, k):
-    """Samples more than k * 1.4826 MAD from the median of the valid samples (any component)."""
-    xv = np.where(valid[..., None], x, np.nan)
-    with np.errstate(all="ignore"), warnings.catch_warnings():
-        warnings.simplefilter("ignore", RuntimeWarning)          # all-NaN windows: handled as TOO_FEW
-        med = np.nanmedian(xv, axis=-2, keepdims=True)
-        mad = np.nanmedian(np.abs(xv - med), axis=-2, keepdims=True)
-    thresh = k * np.maximum(1.4826 * mad, 1e-12)
-    return valid & np.any(np.abs(x - med) > thresh, axis=-1)
-
-
-def _masked_mean(x, used, n_used):
-    if used.all():
-        return x.mean(-2)                    # the fault-free path, bit-identical to a plain mean
-    with np.errstate(invalid="ignore", divide="ignore"):
-        return np.where(used[..., None], x, 0.0).sum(-2) / n_used[..., None]
-
-
-def static_means(w_ib_b, f_b, lat, h=0.0, accel_tol: float = 0.2, *, min_fraction: float = 0.5,
-                 outlier_k: float | None = None, full_scale_gyro: float | None = None,
-                 full_scale_accel: float | None = None, strict: bool = True) -> StaticWindow:
-    """Average a static window of gyro and accelerometer samples (paper step 1).
-
-    Faults, each counted in the returned :class:`StaticWindow`:
-
-    * dropouts: samples with a NaN component are left out of that sensor's
-      mean (``n_dropped_*``); a window with fewer than
-      ``max(2, min_fraction N)`` samples left is refused (``TOO_FEW``). A
-      30-s gap in a 3-min stop leaves 150 s: the mean's white-noise std grows
-      by sqrt(180/150) = 1.10.
-    * outliers: with ``outlier_k``, samples more than ``outlier_k`` x
-      1.4826 MAD from the window median are left out (``n_outliers_*``).
-      Without it, spikes of +-k sigma on a fraction p of the samples add
-      ``k sigma sqrt(p / N)`` of noise to the mean (10x the mean's
-      white-noise std for p = 1 %, k = 100), unreported.
-    * saturation: with ``full_scale_gyro``/``full_scale_accel`` (device
-      ranges, rad/s and m/s^2), samples at the rails are counted and the
-      window is refused (``SATURATED``): a static robot never reaches them.
-    * timing: the mean does not depend on sample order; duplicated
-      timestamps are removed by ``timing.sanitize`` before windows are cut
-      by time (:func:`stop_solutions` with ``time``).
-
-    Parameters
-    ----------
-    w_ib_b, f_b : array_like, shape (..., N, 3)
-        Gyro (rad/s) and accelerometer (m/s^2) samples of one stop, N >= 2;
-        NaN marks dropouts.
-    lat : float
-        Latitude (rad), used for the expected gravity.
-    h : float
-        Height (m).
-    accel_tol : float
-        Largest accepted deviation (m/s^2) of the mean specific-force norm
-        from normal gravity, and of the two half-window means from each
-        other. Larger deviations mean the robot was not static (``MOVING``).
-    min_fraction : float
-        Smallest fraction of the window, in (0, 1], that must remain per sensor.
-    outlier_k : float, optional
-        MAD outlier threshold (e.g. 6); None: no outlier rejection.
-    full_scale_gyro, full_scale_accel : float, optional
-        Device ranges; None: no saturation check.
-    strict : bool
-        Raise ValueError for a refused window (default); ``False`` returns NaN
-        means with its ``status`` instead.
-
-    Returns
-    -------
-    StaticWindow
-        Unpacks as ``(w_mean, f_mean)``, shapes (..., 3).
-
-    Raises
-    ------
-    ValueError
-        Empty windows, inf, mismatched shapes; with ``strict``, a refused
-        window (too few samples, saturated, or the robot evidently moving).
-    """
-    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
-    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=True)
-    if w.shape != f.shape:
-        raise ValueError(f"f_b: expected the shape of w_ib_b {w.shape}, got {f.shape}")
-    n = w.shape[-2]
-    if n < 2:
-        raise ValueError(f"w_ib_b: expected a static window of at least 2 samples, got {n}")
-    tol = float(positive(accel_tol, "accel_tol"))
-    frac = float(in_range(as_array(min_fraction, "min_fraction"), "min_fraction", 0.0, 1.0, lo_open=True))
-    k_out = None if outlier_k is None else float(positive(outlier_k, "outlier_k"))
-    fs_g = np.inf if full_scale_gyro is None else float(positive(full_scale_gyro, "full_scale_gyro"))
-    fs_a = np.inf if full_scale_accel is None else float(positive(full_scale_accel, "full_scale_accel"))
-    g = earth.gravity(_lat(lat), as_array(h, "h"))
-    need = max(2, int(np.ceil(frac * n)))
-    out = {}
-    for name, x, fs in (("gyro", w, fs_g), ("accel", f, fs_a)):
-        valid = np.all(np.isfinite(x), -1)
-        sat = valid & np.any(np.abs(x) >= fs, -1)
-        outl = _outliers(x, valid, k_out) if k_out is not None else np.zeros_like(valid)
-        used = valid & ~outl
-        n_used = used.sum(-1)
-        out[name] = (_masked_mean(x, used, n_used), n_used, n - valid.sum(-1), outl.sum(-1), sat.sum(-1), used)
-    (w_mean, nu_g, nd_g, no_g, ns_g, _), (f_mean, nu_a, nd_a, no_a, ns_a, used_f) = out["gyro"], out["accel"]
-    status = np.zeros(w_mean.shape[:-1], dtype=int)
-    too_few = (nu_g < need) | (nu_a < need)
-    status[too_few] = TOO_FEW
-    status[(status == OK) & ((ns_g > 0) | (ns_a > 0))] = SATURATED
-    with np.errstate(invalid="ignore"):
-        dev = np.abs(np.linalg.norm(f_mean, axis=-1) - g)
-        if used_f.all():
-            halves = np.abs(f[..., : n // 2, :].mean(-2) - f[..., n // 2:, :].mean(-2)).max(-1)
-        else:
-            u1, u2 = used_f[..., : n // 2], used_f[..., n // 2:]
-            halves = np.abs(_masked_mean(f[..., : n // 2, :], u1, u1.sum(-1))
-                            - _masked_mean(f[..., n // 2:, :], u2, u2.sum(-1))).max(-1)
-    status[(status == OK) & ((dev > tol) | ~(halves <= tol))] = MOVING
-    if strict and np.any(status != OK):
-        if np.any(status == TOO_FEW):
-            which = "w_ib_b" if np.any(nu_g < need) else "f_b"
-            left = int(min(nu_g.min(), nu_a.min()))
-            raise ValueError(f"{which}: only {left} of {n} samples left after dropouts/outliers; expected at least "
-                             f"{need} (min_fraction = {frac:g})")
-        if np.any(status == SATURATED):
-            which = "w_ib_b" if np.any(ns_g > 0) else "f_b"
-            raise ValueError(f"{which}: {int(ns_g.sum() + ns_a.sum())} samples at the full-scale range: the robot "
-                             "was not static during the stop")
-        if np.any(dev[status == MOVING] > tol):
-            raise ValueError(f"f_b: mean specific-force norm differs from gravity by {np.nanmax(dev):.3g} m/s^2 "
-                             f"(> accel_tol = {tol:g}): the robot is not static")
-        raise ValueError(f"f_b: the two halves of the window differ by {np.nanmax(halves):.3g} m/s^2 "
-                         f"(> accel_tol = {tol:g}): the robot moved during the stop")
-    bad = status != OK
-    w_mean = np.where(bad[..., None], np.nan, w_mean)
-    f_mean = np.where(bad[..., None], np.nan, f_mean)
-    return StaticWindow(w_mean, f_mean, n, nu_g, nu_a, nd_g, nd_a, no_g, no_a, ns_g, ns_a, status)
-
-
 # --------------------------------------------------------------------------
 # TRIAD (Eqs. 1-3)
 # --------------------------------------------------------------------------
-
-def _reference_triad(g_n, w_ie_n):
-    a = g_n
-    b = np.cross(g_n, w_ie_n)
-    return np.stack([a, b, np.cross(b, a)], -1)
-
-
-def triad(f_b, w_ib_b, lat, orthonormal: bool = True):
-    """Analytic coarse alignment with a three-axis gyro (paper Eqs. 1-2).
-
-    Parameters
-    ----------
-    f_b : array_like, shape (..., 3)
-        Averaged specific force (m/s^2).
-    w_ib_b : array_like, shape (..., 3)
-        Averaged angular rate (rad/s).
-    lat : float or array_like broadcasting with the leading axes
-        Latitude (rad).
-    orthonormal : bool
-        Project the result onto the nearest rotation (SVD). ``False`` returns
-        Eq. (2)'s raw product, which noise makes slightly non-orthonormal.
-
-    Returns
-    -------
-    C_bn : ndarray, shape (..., 3, 3)
-    """
-    f = as_array(f_b, "f_b", tail=(3,))
-    w = as_array(w_ib_b, "w_ib_b", tail=(3,))
-    lat = _lat(lat)
-    g_n = np.stack(np.broadcast_arrays(0.0, 0.0, -earth.gravity(lat)), -1)
-    body = _reference_triad(-f, w)                    # columns: -f, -f x w, (-f x w) x (-f)
-    nav = _reference_triad(g_n, earth.earth_rate_n(lat))
-    C_nb = body @ np.linalg.inv(nav)
-    C_bn = np.swapaxes(C_nb, -1, -2)
-    return attitude.orthonormalize(C_bn) if orthonormal else C_bn
-
-
-def triad_heading(C_bn):
-    """Heading ``atan2(c12, c22) mod 2 pi`` (rad) of a TRIAD matrix, orthonormal or raw.
-
-    The inverse of paper Eq. (3) for the heading; unlike
-    :func:`navlib.attitude.dcm_to_euler` it accepts Eq. (2)'s raw,
-    slightly non-orthonormal product. Shape (..., 3, 3) -> (...).
-    """
-    C = as_array(C_bn, "C_bn", tail=(3, 3))
-    return attitude.wrap_2pi(np.arctan2(C[..., 0, 1], C[..., 1, 1]))
-
 
 def tilt_from_accel(f_b, g=None):
     """Pitch and roll from averaged specific force (paper Eqs. 5-6).
@@ -445,7 +193,7 @@ def heading_candidates(w_y, f_b, lat, h=0.0) -> Candidates:
     Candidates
     """
     w_y = as_array(w_y, "w_y")
-    lat = _lat(lat)
+    lat = gyrocompass_latitude(lat)
     pitch, _ = tilt_from_accel(f_b, earth.gravity(lat, as_array(h, "h")))
     cos_h = (w_y - OMEGA_IE * np.sin(lat) * np.sin(pitch)) / (OMEGA_IE * np.cos(lat) * np.cos(pitch))
     clipped = np.abs(cos_h) > 1.0
@@ -564,7 +312,7 @@ def triad_heading_error(C_bn, dw_b, lat):
     C = as_dcm(C_bn)
     dw = as_array(dw_b, "dw_b", tail=(3,))
     dw_east = np.einsum("...j,...j->...", C[..., 0, :], dw)
-    return -dw_east / (OMEGA_IE * np.cos(_lat(lat)))
+    return -dw_east / (OMEGA_IE * np.cos(gyrocompass_latitude(lat)))
 
 
 def triad_heading_std(sigma_gyro, lat):
@@ -574,7 +322,7 @@ def triad_heading_std(sigma_gyro, lat):
     uncorrelated, as the paper assumes); independent of heading.
     """
     s = positive(sigma_gyro, "sigma_gyro", allow_zero=True)
-    return s / (OMEGA_IE * np.cos(_lat(lat)))
+    return s / (OMEGA_IE * np.cos(gyrocompass_latitude(lat)))
 
 
 def _pitch(pitch):
@@ -609,7 +357,7 @@ def single_axis_heading_std(heading, sigma_gyro, lat, pitch=0.0, sigma_accel=0.0
     th = _pitch(pitch)
     s_g = positive(sigma_gyro, "sigma_gyro", allow_zero=True)
     s_a = positive(sigma_accel, "sigma_accel", allow_zero=True)
-    lat = _lat(lat)
+    lat = gyrocompass_latitude(lat)
     g = earth.gravity(lat) if g is None else positive(g, "g")
     s_th = s_a / (g * np.cos(th))
     coupling = OMEGA_IE * (np.sin(lat) * np.cos(th) - np.cos(lat) * np.sin(th) * np.cos(psi))
@@ -639,7 +387,7 @@ def single_axis_heading_error(heading, pitch, lat, dw_y, df_y=0.0, g=None):
     th = _pitch(pitch)
     dw = as_array(dw_y, "dw_y")
     df = as_array(df_y, "df_y")
-    lat = _lat(lat)
+    lat = gyrocompass_latitude(lat)
     g = earth.gravity(lat) if g is None else positive(g, "g")
     d_th = df / (g * np.cos(th))
     coupling = OMEGA_IE * (np.sin(lat) * np.cos(th) - np.cos(lat) * np.sin(th) * np.cos(psi))
@@ -677,7 +425,7 @@ def simulate_static_outputs(hpr, lat, n_trials: int, sigma_gyro, sigma_accel, rn
     w_ib_b, f_b : ndarray, shape (..., n_trials, 3)
     """
     C_nb = np.swapaxes(attitude.euler_to_dcm(hpr), -1, -2)
-    lat = _lat(lat)
+    lat = gyrocompass_latitude(lat)
     if not isinstance(n_trials, (int, np.integer)) or isinstance(n_trials, bool) or n_trials < 1:
         raise ValueError(f"n_trials: expected a positive integer, got {n_trials!r}")
     s_g = float(positive(sigma_gyro, "sigma_gyro", allow_zero=True))
@@ -794,27 +542,6 @@ def pair_probabilities(heading1, heading2, sigma_ins):
 # --------------------------------------------------------------------------
 # four-position north finding on a turntable (extension)
 # --------------------------------------------------------------------------
-
-def four_position_heading(w_y):
-    """Heading from a level gyro turned to four positions 90 deg apart (turntable).
-
-    Position k has heading ``psi + k pi/2`` (turned clockwise), so
-    ``w_k = w_ie cos(lat) cos(psi + k pi/2) + b``: the bias b cancels in
-    ``psi = atan2(w_3 - w_1, w_0 - w_2)``, for every psi.
-
-    Parameters
-    ----------
-    w_y : array_like, shape (..., 4)
-        Averaged gyro output at the four positions (rad/s).
-
-    Returns
-    -------
-    ndarray, shape (...)
-        Heading of position 0 (rad, [0, 2 pi)).
-    """
-    w = as_array(w_y, "w_y", tail=(4,))
-    return attitude.wrap_2pi(np.arctan2(w[..., 3] - w[..., 1], w[..., 0] - w[..., 2]))
-
 
 def four_position_heading_std(sigma_gyro, lat):
     """Four-position heading std ``sigma / (sqrt(2) w_ie cos lat)`` (rad), any heading.
@@ -1083,7 +810,7 @@ def ins_heading_change(w_ib_b, f_start, dt, lat, earth_rate: str = "vertical", *
     InsReport
         Only with ``report=True``.
     """
-    w_ie = earth.earth_rate_n(_lat(lat))
+    w_ie = earth.earth_rate_n(gyrocompass_latitude(lat))
     rates = {"vertical": w_ie * [0, 0, 1], "none": np.zeros(3), "full": w_ie}
     if earth_rate not in rates:
         raise ValueError(f"earth_rate: expected 'vertical', 'none' or 'full', got {earth_rate!r}")
