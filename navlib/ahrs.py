@@ -1,4 +1,5 @@
-"""Deprecated alias of :mod:`navlib.papers.mimu_mag_rtk` and of the core modules navlib.alignment, navlib.analysis.
+"""Deprecated alias of :mod:`navlib.papers.mimu_mag_rtk` and of core modules:
+navlib.alignment, navlib.analysis.
 
 ``navlib.ahrs`` was the module of this paper before the split into a paper companion
 and core homes (see CONTRIBUTING.md). Every old name still resolves here; importing this

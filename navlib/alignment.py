@@ -31,7 +31,7 @@ from ._validate import as_array, in_range, nonempty_array, nonempty_latitude, no
 
 __all__ = ["level", "magnetic_heading", "tilt_heading", "initial_attitude", "MAX_LAT_DEG", "gyrocompass_latitude", "OK",
            "TOO_FEW", "SATURATED", "MOVING", "StaticWindow", "static_means", "triad", "triad_heading",
-           "four_position_heading"]
+           "four_position_heading", "static_gyro_bias"]
 
 
 def _nonzero(v: np.ndarray, name: str) -> np.ndarray:
@@ -377,3 +377,22 @@ def four_position_heading(w_y):
     """
     w = nonempty_array(w_y, "w_y", tail=(4,))
     return attitude.wrap_2pi(np.arctan2(w[..., 3] - w[..., 1], w[..., 0] - w[..., 2]))
+
+
+# --------------------------------------------------------------------------
+# Static gyro bias
+# --------------------------------------------------------------------------
+
+def static_gyro_bias(w_ib_b, C_bn, lat: float):
+    """Gyro bias from a static record: ``mean(w) - C_bn^T w_ie_n`` (rad/s).
+
+    Parameters
+    ----------
+    w_ib_b : array_like, shape (N, 3)
+    C_bn : array_like, shape (3, 3)
+        Attitude during the record.
+    lat : float  (rad)
+    """
+    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1)
+    C = as_array(C_bn, "C_bn", tail=(3, 3)).reshape(3, 3)
+    return w.reshape(-1, 3).mean(0) - C.T @ earth.earth_rate_n(lat)

@@ -26,7 +26,7 @@ from ._validate import as_array, nonempty_array, positive, scalar
 
 __all__ = ["rmse", "allan_deviation", "allan_deviation_theory", "fit_allan",
            "GM_ALLAN_PEAK", "GM_ALLAN_PEAK_TAU", "attitude_errors", "error_statistics", "horizontal_error",
-           "position_error", "expanding_std", "detection_rates", "settling_time"]
+           "position_error", "expanding_std", "detection_rates", "settling_time", "segments"]
 
 
 def rmse(err, axis=0):
@@ -345,3 +345,25 @@ def settling_time(time, error, start: float, tol: float, end: float | None = Non
     last = np.where(outside.any(-1), n - 1 - np.argmax(outside[..., ::-1], -1), -1)
     tw = t[window]
     return np.where(last == n - 1, np.inf, tw[np.minimum(last + 1, n - 1)] - start)
+
+
+# --------------------------------------------------------------------------
+# Runs of a boolean mask
+# --------------------------------------------------------------------------
+
+def segments(mask):
+    """Contiguous runs of True: first index and one-past-last index of each.
+
+    Parameters
+    ----------
+    mask : array_like of bool, shape (N,)
+
+    Returns
+    -------
+    starts, ends : ndarray of int
+    """
+    m = np.asarray(mask)
+    if m.dtype != bool or m.ndim != 1:
+        raise ValueError(f"mask: expected a 1-D boolean array, got {m.dtype} {m.shape}")
+    edges = np.diff(np.concatenate([[0], m.astype(np.int8), [0]]))
+    return np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)

@@ -18,9 +18,11 @@ from __future__ import annotations
 import numpy as np
 
 from ._validate import as_array, in_range, positive
+from .analysis import segments
 
-__all__ = ["P0", "T0", "LAPSE", "R_AIR", "G0", "isa_altitude", "isa_pressure",
-           "bmp180_altitude", "bmp180_pressure", "hypsometric_height", "bmp180_compensate"]
+__all__ = ["P0", "T0", "LAPSE", "R_AIR", "G0", "isa_altitude", "isa_pressure", "bmp180_altitude", "bmp180_pressure",
+           "hypsometric_height", "bmp180_compensate", "baro_height", "reference_pressure", "classify_floor",
+           "segment_floors"]
 
 P0 = 101325.0
 """ISA sea-level pressure (Pa)."""
@@ -142,3 +144,87 @@ def bmp180_compensate(UT: int, UP: int, calib: dict[str, int], oss: int = 0) -> 
     X2 = (-7357 * p) >> 16
     p = p + ((X1 + X2 + 3791) >> 4)
     return T, p
+
+
+# --------------------------------------------------------------------------
+# Barometric height and floors
+# --------------------------------------------------------------------------
+
+def baro_height(p, p_ref, temperature=None):
+    """Height above the reference level from pressure (m).
+
+    BMP180 formula ``44330 (1 - (p/p_ref)^(1/5.255))`` with the reference
+    pressure of the start floor, or, given a temperature, the hypsometric
+    ``R T / g0 ln(p_ref / p)``.
+
+    Parameters
+    ----------
+    p : array_like
+        Pressure (Pa), finite and positive.
+    p_ref : float
+        Reference pressure (Pa), e.g. :func:`reference_pressure`.
+    temperature : array_like, optional
+        Air temperature (K).
+    """
+    p = as_array(p, "p")
+    if p.size == 0:
+        raise ValueError("p: expected at least one pressure, got an empty array")
+    if np.any(p <= 0):
+        raise ValueError(f"p: expected positive pressures (Pa), got min {p.min():g}")
+    p_ref = float(positive(p_ref, "p_ref"))
+    if temperature is None:
+        return bmp180_altitude(p, p_ref)
+    return hypsometric_height(p, p_ref, temperature)
+
+
+def reference_pressure(p, time, until: float):
+    """Mean pressure (Pa) over ``time <= until`` (the initial stand on the start floor).
+
+    Parameters
+    ----------
+    p : array_like, shape (N,)
+        Pressure (Pa); NaN samples (no reading) are ignored.
+    time : array_like, shape (N,)  (s)
+    until : float  (s)
+    """
+    p = as_array(p, "p", allow_nan=True)
+    t = as_array(time, "time")
+    if p.shape != t.shape or p.ndim != 1:
+        raise ValueError(f"p: expected the shape of time {t.shape}, got {p.shape}")
+    sel = p[(t <= until) & np.isfinite(p)]
+    if sel.size == 0:
+        raise ValueError(f"until: no pressure sample at or before {until} s")
+    if np.any(sel <= 0):
+        raise ValueError("p: expected positive pressures (Pa)")
+    return float(sel.mean())
+
+
+def classify_floor(h, floor_height: float = 3.0, ref_floor: int = 0):
+    """Floor index ``ref_floor + round(h / floor_height)`` from a relative height (m)."""
+    h = as_array(h, "h")
+    hf = float(positive(floor_height, "floor_height"))
+    return int(ref_floor) + np.round(h / hf).astype(int)
+
+
+def segment_floors(h, static, floor_height: float = 3.0, ref_floor: int = 0):
+    """Floor of every static segment from the median height over the segment.
+
+    Parameters
+    ----------
+    h : array_like, shape (N,)
+        Relative height (m); NaN samples are ignored.
+    static : array_like of bool, shape (N,)
+
+    Returns
+    -------
+    starts, ends : ndarray of int
+        Sample index of each segment's first sample and one past its last.
+    floors : ndarray of int
+    """
+    h = as_array(h, "h", allow_nan=True)
+    s = np.asarray(static)
+    if s.dtype != bool or s.shape != h.shape or h.ndim != 1:
+        raise ValueError(f"static: expected booleans of the shape of h {h.shape}, got {s.shape}")
+    starts, ends = segments(s)
+    med = np.array([np.nanmedian(h[a:b]) for a, b in zip(starts, ends, strict=True)])
+    return starts, ends, classify_floor(med, floor_height, ref_floor) if med.size else med.astype(int)

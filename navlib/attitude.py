@@ -31,8 +31,7 @@ __all__ = [
     "wrap_pi", "wrap_2pi", "skew", "rot", "orthonormalize",
     "euler_to_dcm", "dcm_to_euler", "euler_to_quat", "quat_to_euler",
     "quat_to_dcm", "dcm_to_quat", "quat_mult", "quat_conj", "quat_normalize",
-    "quat_rotate", "rotvec_to_dcm", "dcm_to_rotvec", "rotvec_to_quat", "quat_to_rotvec",
-]
+    "quat_rotate", "rotvec_to_dcm", "dcm_to_rotvec", "rotvec_to_quat", "quat_to_rotvec", "M_NED_ENU", "ned_to_enu_dcm"]
 
 _AXES = {"x": 0, "y": 1, "z": 2}
 
@@ -410,3 +409,27 @@ def quat_to_dcm_1(q):
     C[2, 1] = 2 * (q2 * q3 + q0 * q1)
     C[2, 2] = q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3
     return C
+
+
+# --------------------------------------------------------------------------
+# Frame conventions: NED / forward-right-down to ENU / right-front-up
+# --------------------------------------------------------------------------
+
+M_NED_ENU = np.array([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]])
+"""Swaps N<->E and negates the vertical: ``C_bn(ENU/RFU) = M C_bn(NED/FRD) M``, same (heading, pitch, roll)."""
+
+
+def ned_to_enu_dcm(C_ned):
+    """Body-to-navigation matrix of the paper's NED/FRD convention in navlib's ENU/RFU one.
+
+    Parameters
+    ----------
+    C_ned : array_like, shape (..., 3, 3)
+
+    Returns
+    -------
+    C_bn : ndarray, shape (..., 3, 3)
+        ``M C_ned M``.
+    """
+    C = as_array(C_ned, "C_ned", tail=(3, 3))
+    return M_NED_ENU @ C @ M_NED_ENU

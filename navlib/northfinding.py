@@ -1,4 +1,5 @@
-"""Deprecated alias of :mod:`navlib.papers.north_finding` and of the core modules navlib.alignment.
+"""Deprecated alias of :mod:`navlib.papers.north_finding` and of core modules:
+navlib.alignment.
 
 ``navlib.northfinding`` was the module of this paper before the split into a paper companion
 and core homes (see CONTRIBUTING.md). Every old name still resolves here; importing this

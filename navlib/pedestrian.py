@@ -1,4 +1,5 @@
-"""Deprecated alias of :mod:`navlib.papers.pedestrian_ins` and of the core modules navlib.alignment, navlib.analysis.
+"""Deprecated alias of :mod:`navlib.papers.pedestrian_ins` and of core modules:
+navlib.alignment, navlib.analysis, navlib.atmosphere, navlib.attitude.
 
 ``navlib.pedestrian`` was the module of this paper before the split into a paper companion
 and core homes (see CONTRIBUTING.md). Every old name still resolves here; importing this
@@ -7,8 +8,10 @@ module warns. It will be removed in navlib 0.3.
 # ruff: noqa: F405  (the names come from the star import)
 import warnings
 
-from .alignment import level, magnetic_heading  # noqa: F401
-from .analysis import detection_rates, expanding_std, horizontal_error  # noqa: F401
+from .alignment import level, magnetic_heading, static_gyro_bias  # noqa: F401
+from .analysis import detection_rates, expanding_std, horizontal_error, segments  # noqa: F401
+from .atmosphere import baro_height, classify_floor, reference_pressure, segment_floors  # noqa: F401
+from .attitude import M_NED_ENU, ned_to_enu_dcm  # noqa: F401
 from .papers.pedestrian_ins import *  # noqa: F403
 
 __all__ = ["M_NED_ENU", "STATIC_THRESHOLDS", "ned_to_enu_dcm", "Leg", "Gait", "walk", "stance_mask", "carpark_legs",
@@ -21,4 +24,4 @@ __all__ = ["M_NED_ENU", "STATIC_THRESHOLDS", "ned_to_enu_dcm", "Leg", "Gait", "w
            "segments", "pdr_headings", "expanding_std", "horizontal_error"]
 
 warnings.warn("navlib.pedestrian is deprecated and will be removed in navlib 0.3; use navlib.papers.pedestrian_ins"
-              " and navlib.alignment, navlib.analysis", DeprecationWarning, stacklevel=2)
+              " and navlib.alignment, navlib.analysis, navlib.atmosphere, navlib.attitude", DeprecationWarning, stacklevel=2)

@@ -1,4 +1,5 @@
-"""Deprecated alias of :mod:`navlib.papers.gauss_kruger_ekf` and of the core modules navlib.analysis.
+"""Deprecated alias of :mod:`navlib.papers.gauss_kruger_ekf` and of core modules:
+navlib.analysis.
 
 ``navlib.planar`` was the module of this paper before the split into a paper companion
 and core homes (see CONTRIBUTING.md). Every old name still resolves here; importing this

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from navlib import alignment, analysis, attitude, earth, kalman, sensors, strapdown, trajectory, units
+from navlib import alignment, analysis, atmosphere, attitude, earth, kalman, sensors, strapdown, trajectory, units
 from navlib.papers import pedestrian_ins as pd
 
 LAT = units.deg(30.55)
@@ -31,8 +31,8 @@ def test_ned_frd_to_enu_rfu_is_the_same_euler_triplet():
     rng = np.random.default_rng(0)
     hpr = random_hpr(rng, 1000, np.deg2rad(85))
     C_ned = Rotation.from_euler("ZYX", hpr).as_matrix()         # R_z(H) R_y(theta) R_x(gamma), FRD -> NED
-    np.testing.assert_allclose(pd.ned_to_enu_dcm(C_ned), attitude.euler_to_dcm(hpr), atol=1e-14)
-    assert np.isclose(np.linalg.det(pd.M_NED_ENU), 1.0)
+    np.testing.assert_allclose(attitude.ned_to_enu_dcm(C_ned), attitude.euler_to_dcm(hpr), atol=1e-14)
+    assert np.isclose(np.linalg.det(attitude.M_NED_ENU), 1.0)
 
 
 # ---------------------------------------------------------------- Eqs. (4)-(6)
@@ -164,7 +164,7 @@ def test_floor_test_legs_round_trip():
     legs = pd.floor_test_legs()
     traj = pd.walk(legs, 0.05, LLA0, 0.0)
     static = pd.stance_mask(legs, 0.05)
-    _, _, floors = pd.segment_floors(traj.lla[:, 2] - 20.0, static, ref_floor=2)
+    _, _, floors = atmosphere.segment_floors(traj.lla[:, 2] - 20.0, static, ref_floor=2)
     assert floors.tolist() == [2, 1, 2, 1, 2]
 
 
@@ -239,7 +239,7 @@ def test_walking_aids_bound_heading_and_height(carpark):
                                       np.random.default_rng(ss[1])).m_b
     p = sensors.simulate_barometer(traj.lla[:-1, 2], traj.time[:-1], sensors.BarometerModel.from_preset("BMP180"),
                                    np.random.default_rng(ss[2]))
-    h = 20.0 + pd.baro_height(p, pd.reference_pressure(p, traj.time[:-1], 20.0))
+    h = 20.0 + atmosphere.baro_height(p, atmosphere.reference_pressure(p, traj.time[:-1], 20.0))
     h[np.arange(h.size) % 10 != 0] = np.nan                         # 10 Hz barometer and magnetometer
     m[np.arange(h.size) % 10 != 0] = np.nan
     det = pd.detect_static(imu.w_ib_b, imu.f_b, DT)
@@ -310,11 +310,11 @@ def test_baro_height_formula_and_floors():
     h = np.array([-3.0, 0.0, 3.0, 6.1])
     from navlib import atmosphere
     p = atmosphere.bmp180_pressure(h, p_ref)
-    np.testing.assert_allclose(pd.baro_height(p, p_ref), h, atol=1e-9)
-    assert np.allclose(pd.baro_height(p, p_ref, temperature=288.15), h, atol=0.05)
-    assert pd.classify_floor(h, 3.0, 2).tolist() == [1, 2, 3, 4]
+    np.testing.assert_allclose(atmosphere.baro_height(p, p_ref), h, atol=1e-9)
+    assert np.allclose(atmosphere.baro_height(p, p_ref, temperature=288.15), h, atol=0.05)
+    assert atmosphere.classify_floor(h, 3.0, 2).tolist() == [1, 2, 3, 4]
     t = np.arange(10.0)
-    assert pd.reference_pressure(np.r_[np.full(5, 1e5), np.full(5, 2e5)], t, 4.0) == 1e5
+    assert atmosphere.reference_pressure(np.r_[np.full(5, 1e5), np.full(5, 2e5)], t, 4.0) == 1e5
     steps = pd.hvac_pressure_steps(t, [2.5, 6.5], np.random.default_rng(0), 10.0)
     assert steps[0] == 0 and np.all(np.abs(steps) <= 10) and len(np.unique(steps)) == 3
 
@@ -337,11 +337,11 @@ def test_step_detection_and_pdr(carpark):
 # ---------------------------------------------------------------- bad input
 
 @pytest.mark.parametrize("call, arg", [
-    (lambda: pd.baro_height([100000.0, 0.0], 101325.0), "p"),
-    (lambda: pd.baro_height([100000.0, -5.0], 101325.0), "p"),
-    (lambda: pd.baro_height([np.nan], 101325.0), "p"),
-    (lambda: pd.baro_height([np.inf], 101325.0), "p"),
-    (lambda: pd.baro_height([1e5], 0.0), "p_ref"),
+    (lambda: atmosphere.baro_height([100000.0, 0.0], 101325.0), "p"),
+    (lambda: atmosphere.baro_height([100000.0, -5.0], 101325.0), "p"),
+    (lambda: atmosphere.baro_height([np.nan], 101325.0), "p"),
+    (lambda: atmosphere.baro_height([np.inf], 101325.0), "p"),
+    (lambda: atmosphere.baro_height([1e5], 0.0), "p_ref"),
     (lambda: alignment.magnetic_heading([0.0, 0.0, 0.0], 0.0, 0.0), "m_b"),
     (lambda: alignment.magnetic_heading([np.nan, 1.0, 0.0], 0.0, 0.0), "m_b"),
     (lambda: pd.heading_from_horizontal(0.0, 0.0), "H_X, H_Y"),
@@ -354,8 +354,8 @@ def test_step_detection_and_pdr(carpark):
     (lambda: pd.Gait(step_frequency=0.0), "step_frequency"),
     (lambda: pd.FilterConfig(sigma_zupt=0.0), "sigma_zupt"),
     (lambda: alignment.level([0.0, 0.0, 0.0]), "f_b"),
-    (lambda: pd.reference_pressure([np.nan, np.nan], [0.0, 1.0], 5.0), "until"),
-    (lambda: pd.classify_floor([1.0], floor_height=0.0), "floor_height"),
+    (lambda: atmosphere.reference_pressure([np.nan, np.nan], [0.0, 1.0], 5.0), "until"),
+    (lambda: atmosphere.classify_floor([1.0], floor_height=0.0), "floor_height"),
     (lambda: pd.run_filter(np.zeros((5, 3)), np.zeros((5, 3)), 0.01, LLA0, np.zeros(3), [1, 0, 0, 0],
                            np.ones(4, bool)), "static"),
     (lambda: pd.run_filter(np.zeros((5, 3)), np.zeros((5, 3)), 0.01, LLA0, np.zeros(3), [1, 0, 0, 0],

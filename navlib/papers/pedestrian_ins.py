@@ -13,7 +13,7 @@ tilt-compensated magnetic heading.
 
 Implemented here, in navlib's ENU / right-front-up convention (the paper
 prints NED / forward-right-down; ``C_enu = M C_ned M`` with
-:data:`M_NED_ENU`, the same (heading, pitch, roll) in both):
+:data:`navlib.attitude.M_NED_ENU`, the same (heading, pitch, roll) in both):
 
 * Static detector (the paper gives none; we use the ARE + MV + MAG tests of
   Skog et al. 2010): static when, over a centred window,
@@ -125,42 +125,22 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from .. import _kernels, atmosphere, attitude, earth, kalman, trajectory
+from .. import _kernels, attitude, earth, kalman, trajectory
 from .._kernels import radii_mn
 from .._validate import as_array, as_dcm, as_quat, generator, intervals, positive, time_grid
 from ..alignment import level, magnetic_heading
 from ..strapdown import nav_step
 
-__all__ = ["M_NED_ENU", "STATIC_THRESHOLDS", "ned_to_enu_dcm", "Leg", "Gait", "walk", "stance_mask", "carpark_legs",
-           "floor_test_legs", "detect_static", "static_gyro_bias", "tilt_compensate_ned",
-           "tilt_compensate_printed", "heading_from_horizontal", "baro_height", "reference_pressure",
-           "classify_floor", "segment_floors", "hvac_pressure_steps", "despike", "error_state_matrix",
-           "error_model_fd", "zupt_zaru_matrix", "zupt_zaru_innovation", "simple_covariance_update",
-           "FilterConfig", "FilterResult", "run_filter", "FLAG_DROPOUT", "FLAG_SPIKE", "FLAG_SATURATED",
-           "FLAG_STATIC_SKIPPED", "detect_steps", "weinberg_step_length", "pdr", "StepResult", "segments",
-           "pdr_headings"]
+__all__ = ["STATIC_THRESHOLDS", "Leg", "Gait", "walk", "stance_mask", "carpark_legs", "floor_test_legs", "detect_static",
+           "tilt_compensate_ned", "tilt_compensate_printed", "heading_from_horizontal", "hvac_pressure_steps",
+           "despike", "error_state_matrix", "error_model_fd", "zupt_zaru_matrix", "zupt_zaru_innovation",
+           "simple_covariance_update", "FilterConfig", "FilterResult", "run_filter", "FLAG_DROPOUT",
+           "FLAG_SPIKE", "FLAG_SATURATED", "FLAG_STATIC_SKIPPED", "detect_steps", "weinberg_step_length",
+           "pdr", "StepResult", "pdr_headings"]
 
-M_NED_ENU = np.array([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]])
-"""Swaps N<->E and negates the vertical: ``C_bn(ENU/RFU) = M C_bn(NED/FRD) M``, same (heading, pitch, roll)."""
 
 STATIC_THRESHOLDS = (0.05, 0.1, 0.3)
 """Default static-detector thresholds: gyro rms (rad/s), std |f| and |mean |f| - g| (m/s^2); our starting values."""
-
-
-def ned_to_enu_dcm(C_ned):
-    """Body-to-navigation matrix of the paper's NED/FRD convention in navlib's ENU/RFU one.
-
-    Parameters
-    ----------
-    C_ned : array_like, shape (..., 3, 3)
-
-    Returns
-    -------
-    C_bn : ndarray, shape (..., 3, 3)
-        ``M C_ned M``.
-    """
-    C = as_array(C_ned, "C_ned", tail=(3, 3))
-    return M_NED_ENU @ C @ M_NED_ENU
 
 
 # --------------------------------------------------------------------------
@@ -423,7 +403,7 @@ def detect_static(w_ib_b, f_b, dt: float, window: float = 0.5, gyro_bias=(0.0, 0
     window : float
         Window length (s); at most the record length.
     gyro_bias : array_like, shape (3,)
-        Gyro bias to remove first (rad/s), e.g. from :func:`static_gyro_bias`.
+        Gyro bias to remove first (rad/s), e.g. from :func:`navlib.alignment.static_gyro_bias`.
     thresholds : (float, float, float)
         ``(tau_w rad/s, tau_f m/s^2, tau_g m/s^2)``.
     g : float
@@ -513,21 +493,6 @@ def despike(w_ib_b, f_b, spike_gyro: float, spike_accel: float):
     return w, f, hit
 
 
-def static_gyro_bias(w_ib_b, C_bn, lat: float):
-    """Gyro bias from a static record: ``mean(w) - C_bn^T w_ie_n`` (rad/s).
-
-    Parameters
-    ----------
-    w_ib_b : array_like, shape (N, 3)
-    C_bn : array_like, shape (3, 3)
-        Attitude during the record.
-    lat : float  (rad)
-    """
-    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1)
-    C = as_array(C_bn, "C_bn", tail=(3, 3)).reshape(3, 3)
-    return w.reshape(-1, 3).mean(0) - C.T @ earth.earth_rate_n(lat)
-
-
 # --------------------------------------------------------------------------
 # Magnetic heading (Eqs. 4-6)
 # --------------------------------------------------------------------------
@@ -579,104 +544,6 @@ def heading_from_horizontal(H_X, H_Y, declination: float = 0.0):
 # --------------------------------------------------------------------------
 # Barometer and floors
 # --------------------------------------------------------------------------
-
-def baro_height(p, p_ref, temperature=None):
-    """Height above the reference level from pressure (m).
-
-    BMP180 formula ``44330 (1 - (p/p_ref)^(1/5.255))`` with the reference
-    pressure of the start floor, or, given a temperature, the hypsometric
-    ``R T / g0 ln(p_ref / p)``.
-
-    Parameters
-    ----------
-    p : array_like
-        Pressure (Pa), finite and positive.
-    p_ref : float
-        Reference pressure (Pa), e.g. :func:`reference_pressure`.
-    temperature : array_like, optional
-        Air temperature (K).
-    """
-    p = as_array(p, "p")
-    if p.size == 0:
-        raise ValueError("p: expected at least one pressure, got an empty array")
-    if np.any(p <= 0):
-        raise ValueError(f"p: expected positive pressures (Pa), got min {p.min():g}")
-    p_ref = float(positive(p_ref, "p_ref"))
-    if temperature is None:
-        return atmosphere.bmp180_altitude(p, p_ref)
-    return atmosphere.hypsometric_height(p, p_ref, temperature)
-
-
-def reference_pressure(p, time, until: float):
-    """Mean pressure (Pa) over ``time <= until`` (the initial stand on the start floor).
-
-    Parameters
-    ----------
-    p : array_like, shape (N,)
-        Pressure (Pa); NaN samples (no reading) are ignored.
-    time : array_like, shape (N,)  (s)
-    until : float  (s)
-    """
-    p = as_array(p, "p", allow_nan=True)
-    t = as_array(time, "time")
-    if p.shape != t.shape or p.ndim != 1:
-        raise ValueError(f"p: expected the shape of time {t.shape}, got {p.shape}")
-    sel = p[(t <= until) & np.isfinite(p)]
-    if sel.size == 0:
-        raise ValueError(f"until: no pressure sample at or before {until} s")
-    if np.any(sel <= 0):
-        raise ValueError("p: expected positive pressures (Pa)")
-    return float(sel.mean())
-
-
-def classify_floor(h, floor_height: float = 3.0, ref_floor: int = 0):
-    """Floor index ``ref_floor + round(h / floor_height)`` from a relative height (m)."""
-    h = as_array(h, "h")
-    hf = float(positive(floor_height, "floor_height"))
-    return int(ref_floor) + np.round(h / hf).astype(int)
-
-
-def segments(mask):
-    """Contiguous runs of True: first index and one-past-last index of each.
-
-    Parameters
-    ----------
-    mask : array_like of bool, shape (N,)
-
-    Returns
-    -------
-    starts, ends : ndarray of int
-    """
-    m = np.asarray(mask)
-    if m.dtype != bool or m.ndim != 1:
-        raise ValueError(f"mask: expected a 1-D boolean array, got {m.dtype} {m.shape}")
-    edges = np.diff(np.concatenate([[0], m.astype(np.int8), [0]]))
-    return np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
-
-
-def segment_floors(h, static, floor_height: float = 3.0, ref_floor: int = 0):
-    """Floor of every static segment from the median height over the segment.
-
-    Parameters
-    ----------
-    h : array_like, shape (N,)
-        Relative height (m); NaN samples are ignored.
-    static : array_like of bool, shape (N,)
-
-    Returns
-    -------
-    starts, ends : ndarray of int
-        Sample index of each segment's first sample and one past its last.
-    floors : ndarray of int
-    """
-    h = as_array(h, "h", allow_nan=True)
-    s = np.asarray(static)
-    if s.dtype != bool or s.shape != h.shape or h.ndim != 1:
-        raise ValueError(f"static: expected booleans of the shape of h {h.shape}, got {s.shape}")
-    starts, ends = segments(s)
-    med = np.array([np.nanmedian(h[a:b]) for a, b in zip(starts, ends, strict=True)])
-    return starts, ends, classify_floor(med, floor_height, ref_floor) if med.size else med.astype(int)
-
 
 def hvac_pressure_steps(time, door_times, rng: np.random.Generator, amplitude: float = 10.0):
     """Pressure offsets of ventilated zones: a new offset in [-a, a] after each door (Pa)."""

@@ -16,7 +16,7 @@ import warnings
 import numpy as np
 import pytest
 
-from navlib import alignment, analysis, attitude, earth, faults, sensors, timing, trajectory, units
+from navlib import alignment, analysis, atmosphere, attitude, earth, faults, sensors, timing, trajectory, units
 from navlib.papers import pedestrian_ins as pd
 
 LLA0 = [units.deg(30.55), units.deg(114.30), 20.0]
@@ -42,7 +42,7 @@ def walk():
                                       np.random.default_rng(ss[1])).m_b
     p = sensors.simulate_barometer(traj.lla[:-1, 2], t, sensors.BarometerModel.from_preset("BMP180"),
                                    np.random.default_rng(ss[2]))
-    h = 20.0 + pd.baro_height(p, pd.reference_pressure(p, t, 15.0))
+    h = 20.0 + atmosphere.baro_height(p, atmosphere.reference_pressure(p, t, 15.0))
     off = np.arange(t.size) % 10 != 0                                   # 10 Hz aiding sensors
     h[off], m[off] = np.nan, np.nan
     static = pd.detect_static(imu.w_ib_b, imu.f_b, DT)
@@ -364,9 +364,9 @@ def RF(**kw):
 B0 = np.array([0.0, 30.0, -40.0])
 
 FUZZ = [
-    ("ned_to_enu_dcm", "C_ned", lambda: pd.ned_to_enu_dcm(np.eye(3, dtype=complex))),
-    ("ned_to_enu_dcm", "C_ned", lambda: pd.ned_to_enu_dcm(np.zeros((2, 2)))),
-    ("ned_to_enu_dcm", "C_ned", lambda: pd.ned_to_enu_dcm(np.full((3, 3), np.nan))),
+    ("ned_to_enu_dcm", "C_ned", lambda: attitude.ned_to_enu_dcm(np.eye(3, dtype=complex))),
+    ("ned_to_enu_dcm", "C_ned", lambda: attitude.ned_to_enu_dcm(np.zeros((2, 2)))),
+    ("ned_to_enu_dcm", "C_ned", lambda: attitude.ned_to_enu_dcm(np.full((3, 3), np.nan))),
     ("Leg", "duration", lambda: pd.Leg(np.inf)),
     ("Leg", "speed", lambda: pd.Leg(1.0, "fast")),
     ("Leg", "turn", lambda: pd.Leg(1.0, 1.0, turn=np.nan)),
@@ -393,9 +393,9 @@ FUZZ = [
     ("detection_rates", "detected", lambda: analysis.detection_rates(np.ones(5), np.r_[True, False, True, True, True])),
     ("level", "f_b", lambda: alignment.level([0.0, 0.0, np.nan])),
     ("level", "f_b", lambda: alignment.level(np.zeros(3, complex))),
-    ("static_gyro_bias", "w_ib_b", lambda: pd.static_gyro_bias(np.full((5, 3), np.nan), np.eye(3), 0.5)),
-    ("static_gyro_bias", "C_bn", lambda: pd.static_gyro_bias(Z3, np.eye(2), 0.5)),
-    ("static_gyro_bias", "lat", lambda: pd.static_gyro_bias(Z3, np.eye(3), 3.0)),
+    ("static_gyro_bias", "w_ib_b", lambda: alignment.static_gyro_bias(np.full((5, 3), np.nan), np.eye(3), 0.5)),
+    ("static_gyro_bias", "C_bn", lambda: alignment.static_gyro_bias(Z3, np.eye(2), 0.5)),
+    ("static_gyro_bias", "lat", lambda: alignment.static_gyro_bias(Z3, np.eye(3), 3.0)),
     ("magnetic_heading", "m_b", lambda: alignment.magnetic_heading(np.zeros(3, complex) + 1, 0.0, 0.0)),
     ("magnetic_heading", "pitch", lambda: alignment.magnetic_heading(B0, np.inf, 0.0)),
     ("magnetic_heading", "declination", lambda: alignment.magnetic_heading(B0, 0.0, 0.0, declination="east")),
@@ -405,17 +405,17 @@ FUZZ = [
     ("tilt_compensate_printed", "pitch", lambda: pd.tilt_compensate_printed(B0, "up", 0.0)),
     ("heading_from_horizontal", "H_X", lambda: pd.heading_from_horizontal(np.nan, 1.0)),
     ("heading_from_horizontal", "H_Y", lambda: pd.heading_from_horizontal(1.0, 1j)),
-    ("baro_height", "p", lambda: pd.baro_height([], 1e5)),
-    ("baro_height", "p_ref", lambda: pd.baro_height(1e5, np.inf)),
-    ("baro_height", "temperature", lambda: pd.baro_height(1e5, 1e5, temperature=np.nan)),
-    ("reference_pressure", "p", lambda: pd.reference_pressure([1e5, 1e5], [0.0], 1.0)),
-    ("reference_pressure", "time", lambda: pd.reference_pressure([1e5, 1e5], [0.0, np.nan], 1.0)),
-    ("reference_pressure", "until", lambda: pd.reference_pressure([1e5, 1e5], [0.0, 1.0], -1.0)),
-    ("classify_floor", "h", lambda: pd.classify_floor(np.nan)),
-    ("classify_floor", "floor_height", lambda: pd.classify_floor(1.0, floor_height=-3.0)),
-    ("segment_floors", "static", lambda: pd.segment_floors(np.zeros(5), np.ones(4, bool))),
-    ("segment_floors", "h", lambda: pd.segment_floors(np.full(5, np.inf), np.ones(5, bool))),
-    ("segments", "mask", lambda: pd.segments(np.ones(5))),
+    ("baro_height", "p", lambda: atmosphere.baro_height([], 1e5)),
+    ("baro_height", "p_ref", lambda: atmosphere.baro_height(1e5, np.inf)),
+    ("baro_height", "temperature", lambda: atmosphere.baro_height(1e5, 1e5, temperature=np.nan)),
+    ("reference_pressure", "p", lambda: atmosphere.reference_pressure([1e5, 1e5], [0.0], 1.0)),
+    ("reference_pressure", "time", lambda: atmosphere.reference_pressure([1e5, 1e5], [0.0, np.nan], 1.0)),
+    ("reference_pressure", "until", lambda: atmosphere.reference_pressure([1e5, 1e5], [0.0, 1.0], -1.0)),
+    ("classify_floor", "h", lambda: atmosphere.classify_floor(np.nan)),
+    ("classify_floor", "floor_height", lambda: atmosphere.classify_floor(1.0, floor_height=-3.0)),
+    ("segment_floors", "static", lambda: atmosphere.segment_floors(np.zeros(5), np.ones(4, bool))),
+    ("segment_floors", "h", lambda: atmosphere.segment_floors(np.full(5, np.inf), np.ones(5, bool))),
+    ("segments", "mask", lambda: analysis.segments(np.ones(5))),
     ("hvac_pressure_steps", "time", lambda: pd.hvac_pressure_steps([np.nan], [1.0], np.random.default_rng(0))),
     ("hvac_pressure_steps", "amplitude", lambda: pd.hvac_pressure_steps([0.0], [1.0], np.random.default_rng(0), -1.0)),
     ("hvac_pressure_steps", "rng", lambda: pd.hvac_pressure_steps([0.0], [1.0], np.random.RandomState(0))),
@@ -500,5 +500,7 @@ def test_bad_input_raises_naming_the_argument(func, arg, call):
 def test_every_public_function_is_fuzzed():
     covered = {f for f, _, _ in FUZZ}
     # plus the functions that moved to navlib.alignment and navlib.analysis, still fuzzed here
-    public = set(pd.__all__) | {"level", "magnetic_heading", "horizontal_error", "expanding_std", "detection_rates"}
+    public = set(pd.__all__) | {"level", "magnetic_heading", "horizontal_error", "expanding_std", "detection_rates",
+                                "baro_height", "reference_pressure", "classify_floor", "segment_floors", "segments",
+                                "static_gyro_bias", "ned_to_enu_dcm", "M_NED_ENU"}
     assert covered | NOT_FUZZED == public, public - covered - NOT_FUZZED
