@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from bench.run import Result, best_time
-from navlib import earth, sensors, strapdown, trajectory, units
+from navlib import earth, euler, sensors, strapdown, trajectory, units
 from navlib.papers import rotation_bias as gyrobias
 
 DT, PERIOD, ROTATION_TIME = 0.01, 5.0, 0.5
@@ -55,8 +55,8 @@ def estimator_and_integration(quick: bool):
 
     res, b = estimate()
     t_est = best_time(estimate)
-    t_int = best_time(lambda: gyrobias.integrate_euler(hpr0, imu.w_ib_b, DT, w_ie_n, b, res.end))
-    t_all = best_time(lambda: gyrobias.integrate_euler(hpr0, imu.w_ib_b, DT, w_ie_n, estimate()[1], res.end))
+    t_int = best_time(lambda: euler.integrate_euler(hpr0, imu.w_ib_b, DT, w_ie_n, b, res.end))
+    t_all = best_time(lambda: euler.integrate_euler(hpr0, imu.w_ib_b, DT, w_ie_n, estimate()[1], res.end))
     q0 = np.array([1.0, 0.0, 0.0, 0.0])
     t_quat = best_time(lambda: strapdown.integrate_attitude(q0, imu.w_ib_b, DT, w_ie_n))
     m = 2000                                              # a slice is enough to time Python loops

@@ -1,5 +1,5 @@
 """Deprecated alias of :mod:`navlib.papers.rotation_bias` and of core modules:
-navlib.analysis.
+navlib.analysis, navlib.euler.
 
 ``navlib.gyrobias`` was the module of this paper before the split into a paper companion
 and core homes (see CONTRIBUTING.md). Every old name still resolves here; importing this
@@ -9,6 +9,7 @@ module warns. It will be removed in navlib 0.3.
 import warnings
 
 from .analysis import attitude_errors, error_statistics  # noqa: F401
+from .euler import PITCH_LIMIT, EulerReport, euler_rates, integrate_euler  # noqa: F401
 from .papers.rotation_bias import *  # noqa: F403
 
 __all__ = ["eq1_matrix", "euler_rates", "integrate_euler", "EulerReport", "gravity_body", "tilt_from_accel", "tilt_matrix",
@@ -18,4 +19,4 @@ __all__ = ["eq1_matrix", "euler_rates", "integrate_euler", "EulerReport", "gravi
            "PITCH_LIMIT", "MIN_DWELL_SAMPLES"]
 
 warnings.warn("navlib.gyrobias is deprecated and will be removed in navlib 0.3; use navlib.papers.rotation_bias"
-              " and navlib.analysis", DeprecationWarning, stacklevel=2)
+              " and navlib.analysis, navlib.euler", DeprecationWarning, stacklevel=2)

@@ -69,6 +69,7 @@ from navlib import (  # noqa: E402
     atmosphere,
     attitude,
     earth,
+    euler,
     faults,
     kalman,
     montecarlo,
@@ -83,7 +84,8 @@ from navlib import (  # noqa: E402
 )
 
 MODULES = ["attitude", "earth", "units", "sensors", "atmosphere", "trajectory", "strapdown",
-           "kalman", "analysis", "repro", "plots", "montecarlo", "faults", "timing", "alignment", "robust"]
+           "kalman", "analysis", "repro", "plots", "montecarlo", "faults", "timing", "alignment", "robust",
+           "euler"]
 
 NAN, INF = np.nan, np.inf
 STR = "abc"                      # a string where numbers are expected
@@ -484,6 +486,9 @@ CASES = [
     bad("atmosphere.classify_floor", "floor_height", "zero", lambda: atmosphere.classify_floor([1.0], floor_height=0.0)),
     bad("atmosphere.segment_floors", "h", "str", lambda: atmosphere.segment_floors(STR, np.ones(3, bool))),
     bad("attitude.ned_to_enu_dcm", "C_ned", "shape", lambda: attitude.ned_to_enu_dcm(np.eye(2))),
+    bad("euler.check_pitch", "pitch", "at_90_deg", lambda: euler.check_pitch(np.pi / 2)),
+    bad("euler.euler_rates", "w_nb_b", "shape", lambda: euler.euler_rates([0.0, 0.0, 0.0], [1.0, 2.0])),
+    bad("euler.integrate_euler", "dt", "negative", lambda: euler.integrate_euler([0.0, 0.0, 0.0], np.zeros((4, 3)), -0.1)),
     bad("robust.hold", "leading", "unknown", lambda: robust.hold(np.ones((3, 3)), leading="back")),
     bad("robust.hold", "x", "all_nan", lambda: robust.hold(np.full((3, 3), NAN), leading="first")),
     bad("analysis.allan_deviation", "x", "too_short", lambda: analysis.allan_deviation(np.ones(5), 0.1)),
@@ -985,6 +990,7 @@ def test_repro_nan_value_fails_the_claim(call, sandbox):
 NOT_APPLICABLE = {
     "robust.FaultReport": "a plain record of counts; nothing to validate",
     "alignment.StaticWindow": "a result record, built by static_means",
+    "euler.EulerReport": "a result record, built by integrate_euler",
     "repro.root": "takes no arguments",
     "repro.results": "takes no arguments",
     "sensors.devices": "takes no arguments",

@@ -11,7 +11,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation
 
-from navlib import analysis, attitude, earth, sensors, strapdown, trajectory, units
+from navlib import analysis, attitude, earth, euler, sensors, strapdown, trajectory, units
 from navlib.papers import rotation_bias as gb
 
 DT = 0.01
@@ -48,12 +48,12 @@ def test_euler_rates_match_the_dcm_derivative(hpr, w):
     ahead = attitude.dcm_to_euler(attitude.euler_to_dcm(hpr) @ attitude.rotvec_to_dcm(w * h))
     behind = attitude.dcm_to_euler(attitude.euler_to_dcm(hpr) @ attitude.rotvec_to_dcm(-w * h))
     fd = attitude.wrap_pi(ahead - behind) / (2 * h)
-    np.testing.assert_allclose(gb.euler_rates(hpr, w), fd, atol=1e-5 / np.cos(hpr[1]) ** 2)
+    np.testing.assert_allclose(euler.euler_rates(hpr, w), fd, atol=1e-5 / np.cos(hpr[1]) ** 2)
 
 
 def test_integration_reproduces_the_rig_with_earth_rate():
     traj, w, *_ = rig(60.0, duration=120.0)
-    hpr = gb.integrate_euler(traj.hpr[0], w, DT, earth.earth_rate_n(LAT))
+    hpr = euler.integrate_euler(traj.hpr[0], w, DT, earth.earth_rate_n(LAT))
     assert np.abs(analysis.attitude_errors(hpr, traj.hpr)).max() < 1e-8
 
 
@@ -61,7 +61,7 @@ def test_integration_agrees_with_quaternion_strapdown():
     rng = np.random.default_rng(0)
     w = 0.3 * rng.standard_normal((2, 3000, 3))
     hpr0 = units.deg([10.0, 20.0, -30.0])
-    hpr = gb.integrate_euler(hpr0, w, DT)
+    hpr = euler.integrate_euler(hpr0, w, DT)
     q = strapdown.integrate_attitude(attitude.euler_to_quat(hpr0), w, DT)
     assert np.abs(analysis.attitude_errors(hpr, attitude.quat_to_euler(q))).max() < 1e-9
 
@@ -71,15 +71,15 @@ def test_constant_and_scheduled_bias_compensation():
     w = 0.01 * rng.standard_normal((2, 500, 3))
     b = np.array([[1e-3, -2e-3, 3e-3], [0.0, 1e-3, 0.0]])
     hpr0 = [0.0, 0.2, 0.1]
-    np.testing.assert_allclose(gb.integrate_euler(hpr0, w, DT, bias_b=b), gb.integrate_euler(hpr0, w - b[:, None], DT),
+    np.testing.assert_allclose(euler.integrate_euler(hpr0, w, DT, bias_b=b), euler.integrate_euler(hpr0, w - b[:, None], DT),
                                atol=1e-15)
     # estimate 0 applies from sample 100, estimate 1 (NaN: not available) keeps it, estimate 2 from 300
     sched = np.array([[1e-3, 0, 0], [np.nan] * 3, [0, 2e-3, 0]])
-    hpr = gb.integrate_euler(hpr0, w[0], DT, bias_b=sched, bias_from=np.array([100, 200, 300]))
+    hpr = euler.integrate_euler(hpr0, w[0], DT, bias_b=sched, bias_from=np.array([100, 200, 300]))
     b_per_sample = np.zeros((500, 3))
     b_per_sample[100:] = sched[0]
     b_per_sample[300:] = sched[2]
-    np.testing.assert_allclose(hpr, gb.integrate_euler(hpr0, w[0] - b_per_sample, DT), atol=1e-15)
+    np.testing.assert_allclose(hpr, euler.integrate_euler(hpr0, w[0] - b_per_sample, DT), atol=1e-15)
 
 
 # --- Eqs. (4)-(5), (6)-(9) -------------------------------------------------
@@ -232,13 +232,13 @@ def test_error_statistics_match_numpy():
     (lambda: gb.rodrigues([1.0, 1.0, 0.0], 0.5), "axis_b"),
     (lambda: gb.rotate_attitude([0, 0, 0], [0, 0, 2.0], 0.5), "axis_b"),
     (lambda: gb.dwell_attitudes([0, 0, 0], [1.0, 0, 0], np.pi / 2, 4), "axis_b"),
-    (lambda: gb.euler_rates([0, np.pi / 2, 0], [0, 0, 1.0]), "hpr[..., 1] (pitch)"),
+    (lambda: euler.euler_rates([0, np.pi / 2, 0], [0, 0, 1.0]), "hpr[..., 1] (pitch)"),
     (lambda: gb.tilt_matrix([0.0, -np.pi / 2]), "tilt[..., 1] (pitch)"),
-    (lambda: gb.integrate_euler([0, np.pi / 2, 0], np.zeros((5, 3)), DT), "hpr0[..., 1] (pitch)"),
-    (lambda: gb.integrate_euler([0, 1.5, 0], np.tile([1.0, 0, 0], (100, 1)), DT), "w_ib_b"),
-    (lambda: gb.integrate_euler([0, 0, 0], np.full((5, 3), np.nan), DT), "w_ib_b"),
-    (lambda: gb.integrate_euler([0, 0, 0], np.zeros((5, 3)), 0.0), "dt"),
-    (lambda: gb.integrate_euler([0, 0, 0], np.zeros((5, 3)), DT, bias_b=np.zeros((2, 3)),
+    (lambda: euler.integrate_euler([0, np.pi / 2, 0], np.zeros((5, 3)), DT), "hpr0[..., 1] (pitch)"),
+    (lambda: euler.integrate_euler([0, 1.5, 0], np.tile([1.0, 0, 0], (100, 1)), DT), "w_ib_b"),
+    (lambda: euler.integrate_euler([0, 0, 0], np.full((5, 3), np.nan), DT), "w_ib_b"),
+    (lambda: euler.integrate_euler([0, 0, 0], np.zeros((5, 3)), 0.0), "dt"),
+    (lambda: euler.integrate_euler([0, 0, 0], np.zeros((5, 3)), DT, bias_b=np.zeros((2, 3)),
                                 bias_from=np.array([3, 1])), "bias_from"),
     (lambda: gb.dwell_windows(1000, DT, 5.0, 4.95), "period, rotation_time, settle"),
     (lambda: gb.tilt_residuals(np.zeros((100, 3)), np.zeros((100, 3)), DT, [0], 5), "length"),
@@ -264,9 +264,9 @@ def test_error_statistics_match_numpy():
                                full_scale_gyro=-1.0), "full_scale_gyro"),
     (lambda: gb.tilt_residuals(np.zeros((100, 3)), np.tile([0, 0, 9.8], (100, 1)), DT, [0], 10,
                                full_scale_accel=0.0), "full_scale_accel"),
-    (lambda: gb.integrate_euler([0, 0, 0], np.zeros((5, 3)), np.full(4, DT)), "dt"),
-    (lambda: gb.integrate_euler([0, 0, 0], np.zeros((5, 3)), DT, max_gap=-0.1), "max_gap"),
-    (lambda: gb.integrate_euler([0, 0, 0], np.zeros((5, 3)), DT, full_scale=0.0), "full_scale"),
+    (lambda: euler.integrate_euler([0, 0, 0], np.zeros((5, 3)), np.full(4, DT)), "dt"),
+    (lambda: euler.integrate_euler([0, 0, 0], np.zeros((5, 3)), DT, max_gap=-0.1), "max_gap"),
+    (lambda: euler.integrate_euler([0, 0, 0], np.zeros((5, 3)), DT, full_scale=0.0), "full_scale"),
     (lambda: gb.kalman_bias(np.zeros((4, 2)), np.zeros((4, 2, 3)), np.tile(np.eye(2), (4, 1, 1)), np.ones(3), 0.0,
                             1.0), "interval"),
     (lambda: gb.kalman_bias(np.zeros((4, 2)), np.zeros((4, 2, 3)), np.tile(np.eye(2), (4, 1, 1)), 0.0, 0.0, 1.0),
@@ -283,7 +283,7 @@ def test_bad_input_names_the_argument(call, arg):
 SCRIPT = r"""
 import json, numpy as np
 from navlib import trajectory, units, earth
-from navlib import analysis
+from navlib import analysis, euler
 from navlib.papers import rotation_bias as gb
 lat = units.deg(40.0)
 traj = trajectory.reciprocating_rotation(20.0, 0.01, [lat, 0, 0], units.deg([0, 30, 0]), [0, 1, 0], np.pi / 2, 5.0, 0.5)
@@ -294,7 +294,7 @@ res = gb.tilt_residuals(w, f, 0.01, starts, n)
 b, _ = gb.running_lsq_bias(res.r, res.V, 0.9)
 R = gb.residual_covariance(res.tilt, n, 0.01, 1e-4, 1e-3)
 kf = gb.kalman_bias(res.r, res.V, R, 5.0, 1e-6, 1e-4)
-hpr = gb.integrate_euler(traj.hpr[0], w, 0.01, earth.earth_rate_n(lat), b, res.end)
+hpr = euler.integrate_euler(traj.hpr[0], w, 0.01, earth.earth_rate_n(lat), b, res.end)
 mx, mean = analysis.error_statistics(hpr, traj.hpr)
 print(json.dumps({"r": res.r.tolist(), "b": np.nan_to_num(b).tolist(), "kf": kf.b.tolist(), "hpr": hpr[::50].tolist(),
                   "mx": mx.tolist()}))
@@ -322,8 +322,8 @@ _R2 = gb.residual_covariance(np.stack([[0.0, 0.5]] * 4), 450, DT, 1e-4, 1e-3)
 _r2 = _V2 @ B
 GB_FUZZ = {   # name: (function, good keyword arguments, NaN-marker arguments[, free-length 1-D arguments])
     "eq1_matrix": (gb.eq1_matrix, dict(hpr=_HPR), set()),
-    "euler_rates": (gb.euler_rates, dict(hpr=_HPR, w_nb_b=[0.01, 0.02, 0.03]), set()),
-    "integrate_euler": (gb.integrate_euler, dict(hpr0=_HPR, w_ib_b=np.full((20, 3), 0.01), dt=DT, w_in_n=[0, 0, 1e-5],
+    "euler_rates": (euler.euler_rates, dict(hpr=_HPR, w_nb_b=[0.01, 0.02, 0.03]), set()),
+    "integrate_euler": (euler.integrate_euler, dict(hpr0=_HPR, w_ib_b=np.full((20, 3), 0.01), dt=DT, w_in_n=[0, 0, 1e-5],
                                                  bias_b=[1e-5, 0, 0]), {"bias_b"}),     # NaN: keep the previous estimate
     "gravity_body": (gb.gravity_body, dict(tilt=[0.1, 0.2], g=9.8), set()),
     "tilt_from_accel": (gb.tilt_from_accel, dict(f_b=[0.1, 0.2, 9.8]), set()),
@@ -358,14 +358,14 @@ def test_fuzz_public_api(func, good, arg, how):
 
 def test_fuzz_table_covers_every_public_function():
     funcs = {n for n in gb.__all__ if callable(getattr(gb, n)) and not isinstance(getattr(gb, n), type)}
-    funcs |= {"attitude_errors", "error_statistics"}          # moved to navlib.analysis, still fuzzed here
+    funcs |= {"attitude_errors", "error_statistics", "euler_rates", "integrate_euler"}   # moved to core, still fuzzed here
     assert funcs == set(GB_FUZZ), funcs ^ set(GB_FUZZ)
 
 
 FAULT_SCRIPT = r"""
 import json, numpy as np
 from navlib import trajectory, units, earth
-from navlib import analysis
+from navlib import analysis, euler
 from navlib.papers import rotation_bias as gb
 lat = units.deg(40.0)
 traj = trajectory.reciprocating_rotation(20.0, 0.01, [lat, 0, 0], units.deg([0, 30, 0]), [0, 1, 0], np.pi / 2, 5.0, 0.5)
@@ -381,7 +381,7 @@ dts = 0.01 * (1 + 0.2 * np.sin(np.arange(w.shape[0])))
 res = gb.tilt_residuals(w, f, dts, starts, n, max_missing=0.5, outlier_k=6.0, full_scale_accel=30.0)
 R = gb.residual_covariance(np.nan_to_num(res.tilt), n, 0.01, 1e-3, 1e-2)
 kf = gb.kalman_bias(res.r, res.V, R, np.full(starts.size, 5.0), 1e-6, 1e-3)
-hpr, rep = gb.integrate_euler(traj.hpr[0], w, dts, earth.earth_rate_n(lat), max_gap=0.1, full_scale=5.0, report=True)
+hpr, rep = euler.integrate_euler(traj.hpr[0], w, dts, earth.earth_rate_n(lat), max_gap=0.1, full_scale=5.0, report=True)
 print(json.dumps({"r": np.nan_to_num(res.r).tolist(), "counts": [res.n_skipped, res.n_filled, res.n_outliers_accel,
                   res.n_skipped_saturated, kf.n_no_data, rep.n_filled, rep.n_saturated],
                   "kf": kf.b.tolist(), "P": kf.P.tolist(), "hpr": hpr[::50].tolist()}))

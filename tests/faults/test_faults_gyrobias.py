@@ -11,7 +11,7 @@ estimate (``lsq_covariance``), about 3.3 deg/h per axis here.
 import numpy as np
 import pytest
 
-from navlib import analysis, earth, faults, sensors, timing, trajectory, units
+from navlib import analysis, earth, euler, faults, sensors, timing, trajectory, units
 from navlib.papers import rotation_bias as gb
 
 DT, PERIOD, ROT = 0.01, 5.0, 0.5
@@ -114,7 +114,7 @@ def test_gap_of_30_s_skips_the_dwells_it_covers():
     assert kf.n_no_data == skipped.sum()
     # the integrator refuses to bridge 30 s of unknown rotation
     with pytest.raises(ValueError, match="^w_ib_b: .*max_gap"):
-        gb.integrate_euler(HPR0, w, DT, W_IE_N, max_gap=0.1)
+        euler.integrate_euler(HPR0, w, DT, W_IE_N, max_gap=0.1)
 
 
 def test_spikes_are_replaced_and_counted_with_outlier_k():
@@ -170,9 +170,9 @@ def test_irregular_sampling_is_integrated_exactly_with_per_sample_intervals():
     # matters for the integration through the rotations, below)
     # integration with per-sample intervals follows the true attitude; bound 1e-6 rad (RK4 with each
     # interval's mean rate held; the regular 100-Hz run of the same rig reaches 1e-8)
-    hpr = gb.integrate_euler(hpr_true[0], w, dts, W_IE_N)
+    hpr = euler.integrate_euler(hpr_true[0], w, dts, W_IE_N)
     assert np.abs(analysis.attitude_errors(hpr, hpr_true)).max() < 1e-6
-    hpr_reg = gb.integrate_euler(hpr_true[0], w, float(dts.mean()), W_IE_N)
+    hpr_reg = euler.integrate_euler(hpr_true[0], w, float(dts.mean()), W_IE_N)
     assert np.abs(analysis.attitude_errors(hpr_reg, hpr_true)).max() > 1e-3
 
 
@@ -197,8 +197,8 @@ def test_duplicated_and_out_of_order_timestamps_through_sanitize():
 
 def test_integrator_fills_dropouts_by_interpolation_within_a_stated_bound():
     w, drop = faults.dropouts(IMU.w_ib_b, 0.1, np.random.default_rng(1))
-    clean = gb.integrate_euler(HPR0, IMU.w_ib_b, DT, W_IE_N)
-    hpr, rep = gb.integrate_euler(HPR0, w, DT, W_IE_N, max_gap=0.1, report=True)
+    clean = euler.integrate_euler(HPR0, IMU.w_ib_b, DT, W_IE_N)
+    hpr, rep = euler.integrate_euler(HPR0, w, DT, W_IE_N, max_gap=0.1, report=True)
     assert rep.n_filled == drop.sum() and rep.n_saturated == 0 and np.isfinite(hpr).all()
     # bound (first order): the attitude error is the integral of the interpolation error, mapped by Eq. (2)
     # (|Euler rate| <= |w| (1 + tan p) / cos p... <= 2.5 |w| at 30 deg pitch)
@@ -212,11 +212,11 @@ def test_integrator_fills_dropouts_by_interpolation_within_a_stated_bound():
 def test_gyro_saturation_is_counted_by_the_integrator():
     """The rig's rotations peak at 360 deg/s: within the MTi-100's 450 deg/s, beyond the ADIS16475-1's 125."""
     fs_mti = MODEL.gyro.full_scale
-    _, rep = gb.integrate_euler(HPR0, IMU.w_ib_b, DT, W_IE_N, full_scale=fs_mti, report=True)
+    _, rep = euler.integrate_euler(HPR0, IMU.w_ib_b, DT, W_IE_N, full_scale=fs_mti, report=True)
     assert rep.n_saturated == 0 and rep.first_saturated == -1
     fs = sensors.imu_model("ADIS16475-1").gyro.full_scale
     w, clipped = faults.saturate(IMU.w_ib_b, fs)
-    hpr, rep = gb.integrate_euler(HPR0, w, DT, W_IE_N, full_scale=fs, report=True)
+    hpr, rep = euler.integrate_euler(HPR0, w, DT, W_IE_N, full_scale=fs, report=True)
     assert rep.n_saturated == clipped.sum() > 0 and rep.first_saturated == np.flatnonzero(clipped)[0]
     # why it must be reported: every clipped rotation falls short by tens of degrees (the return
     # rotation undoes it, so only the attitude in between shows it)
