@@ -54,6 +54,7 @@ from . import (
     atmosphere,
     attitude,
     earth,
+    euler,
     faults,
     filters,
     geodesy,
@@ -72,7 +73,7 @@ from . import (
 
 __version__ = "0.1.0"
 
-__all__ = ["alignment", "analysis", "atmosphere", "attitude", "earth", "faults", "filters", "geodesy", "kalman",
+__all__ = ["alignment", "analysis", "atmosphere", "attitude", "earth", "euler", "faults", "filters", "geodesy", "kalman",
            "montecarlo", "papers", "plots", "repro", "robust", "sensors", "strapdown", "timing", "trajectory", "units",
            "__version__"]
 
