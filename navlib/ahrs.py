@@ -18,4 +18,4 @@ __all__ = ["MagGate", "AttitudeResult", "COUNT_NAMES", "magnetic_reference", "ti
            "printed_eq7_heading", "printed_eq8_quat", "printed_eq18_gamma", "printed_eq20_jacobian"]
 
 warnings.warn("navlib.ahrs is deprecated and will be removed in navlib 0.3; use navlib.papers.mimu_mag_rtk"
-              " and navlib.alignment, navlib.analysis", DeprecationWarning, stacklevel=2)
+              " and the core modules named in the README", DeprecationWarning, stacklevel=2)

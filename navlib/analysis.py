@@ -22,11 +22,11 @@ from numba import njit
 from scipy.optimize import least_squares, minimize_scalar
 
 from . import _kernels, attitude, earth
-from ._validate import as_array, nonempty_array, positive, scalar
+from ._validate import as_array, integer, nonempty_array, positive, scalar
 
 __all__ = ["rmse", "allan_deviation", "allan_deviation_theory", "fit_allan",
            "GM_ALLAN_PEAK", "GM_ALLAN_PEAK_TAU", "attitude_errors", "error_statistics", "horizontal_error",
-           "position_error", "expanding_std", "detection_rates", "settling_time", "segments"]
+           "position_error", "expanding_std", "detection_rates", "settling_time", "segments", "moving_mean"]
 
 
 def rmse(err, axis=0):
@@ -367,3 +367,18 @@ def segments(mask):
         raise ValueError(f"mask: expected a 1-D boolean array, got {m.dtype} {m.shape}")
     edges = np.diff(np.concatenate([[0], m.astype(np.int8), [0]]))
     return np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
+
+
+def moving_mean(x, n: int):
+    """Centred moving mean over ``n`` samples along axis 0 (edges use the nearest full window).
+
+    ``x`` : array_like, shape (N, ...) with N >= n >= 1. Returns a float array of the same shape.
+    """
+    x = as_array(x, "x", min_ndim=1)
+    n = integer(n, "n")
+    if n > x.shape[0]:
+        raise ValueError(f"n: expected a window of at most {x.shape[0]} samples (the length of x), got {n}")
+    c = np.cumsum(np.concatenate([np.zeros((1,) + x.shape[1:]), x]), axis=0)
+    valid = (c[n:] - c[:-n]) / n                       # windows starting at 0 .. N - n
+    start = np.clip(np.arange(x.shape[0]) - n // 2, 0, x.shape[0] - n)
+    return valid[start]

@@ -19,4 +19,4 @@ __all__ = ["eq1_matrix", "euler_rates", "integrate_euler", "EulerReport", "gravi
            "PITCH_LIMIT", "MIN_DWELL_SAMPLES"]
 
 warnings.warn("navlib.gyrobias is deprecated and will be removed in navlib 0.3; use navlib.papers.rotation_bias"
-              " and navlib.analysis, navlib.euler", DeprecationWarning, stacklevel=2)
+              " and the core modules named in the README", DeprecationWarning, stacklevel=2)

@@ -30,4 +30,4 @@ __all__ = ["MAX_LAT_DEG", "OK", "TOO_FEW", "SATURATED", "MOVING", "StaticWindow"
            "InsReport", "ins_heading_change"]
 
 warnings.warn("navlib.northfinding is deprecated and will be removed in navlib 0.3; use navlib.papers.north_finding"
-              " and navlib.alignment", DeprecationWarning, stacklevel=2)
+              " and the core modules named in the README", DeprecationWarning, stacklevel=2)

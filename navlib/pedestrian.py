@@ -1,5 +1,5 @@
 """Deprecated alias of :mod:`navlib.papers.pedestrian_ins` and of core modules:
-navlib.alignment, navlib.analysis, navlib.atmosphere, navlib.attitude.
+navlib.alignment, navlib.analysis, navlib.atmosphere, navlib.attitude, navlib.pdr.
 
 ``navlib.pedestrian`` was the module of this paper before the split into a paper companion
 and core homes (see CONTRIBUTING.md). Every old name still resolves here; importing this
@@ -13,6 +13,7 @@ from .analysis import detection_rates, expanding_std, horizontal_error, segments
 from .atmosphere import baro_height, classify_floor, reference_pressure, segment_floors  # noqa: F401
 from .attitude import M_NED_ENU, ned_to_enu_dcm  # noqa: F401
 from .papers.pedestrian_ins import *  # noqa: F403
+from .pdr import StepResult, detect_steps, pdr, pdr_headings, weinberg_step_length  # noqa: F401
 
 __all__ = ["M_NED_ENU", "STATIC_THRESHOLDS", "ned_to_enu_dcm", "Leg", "Gait", "walk", "stance_mask", "carpark_legs",
            "floor_test_legs", "detect_static", "detection_rates", "level", "static_gyro_bias", "magnetic_heading",
@@ -24,4 +25,4 @@ __all__ = ["M_NED_ENU", "STATIC_THRESHOLDS", "ned_to_enu_dcm", "Leg", "Gait", "w
            "segments", "pdr_headings", "expanding_std", "horizontal_error"]
 
 warnings.warn("navlib.pedestrian is deprecated and will be removed in navlib 0.3; use navlib.papers.pedestrian_ins"
-              " and navlib.alignment, navlib.analysis, navlib.atmosphere, navlib.attitude", DeprecationWarning, stacklevel=2)
+              " and the core modules named in the README", DeprecationWarning, stacklevel=2)

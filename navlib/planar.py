@@ -15,4 +15,4 @@ __all__ = ["CHANNELS", "Q_PAPER", "R_PAPER", "motion_model", "jacobian", "propag
            "filter_grid", "ekf", "EkfResult", "simulate_sensors", "Sensors", "position_error"]
 
 warnings.warn("navlib.planar is deprecated and will be removed in navlib 0.3; use navlib.papers.gauss_kruger_ekf"
-              " and navlib.analysis", DeprecationWarning, stacklevel=2)
+              " and the core modules named in the README", DeprecationWarning, stacklevel=2)

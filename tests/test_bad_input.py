@@ -73,6 +73,7 @@ from navlib import (  # noqa: E402
     faults,
     kalman,
     montecarlo,
+    pdr,
     plots,
     repro,
     robust,
@@ -85,7 +86,7 @@ from navlib import (  # noqa: E402
 
 MODULES = ["attitude", "earth", "units", "sensors", "atmosphere", "trajectory", "strapdown",
            "kalman", "analysis", "repro", "plots", "montecarlo", "faults", "timing", "alignment", "robust",
-           "euler"]
+           "euler", "pdr"]
 
 NAN, INF = np.nan, np.inf
 STR = "abc"                      # a string where numbers are expected
@@ -489,6 +490,11 @@ CASES = [
     bad("euler.check_pitch", "pitch", "at_90_deg", lambda: euler.check_pitch(np.pi / 2)),
     bad("euler.euler_rates", "w_nb_b", "shape", lambda: euler.euler_rates([0.0, 0.0, 0.0], [1.0, 2.0])),
     bad("euler.integrate_euler", "dt", "negative", lambda: euler.integrate_euler([0.0, 0.0, 0.0], np.zeros((4, 3)), -0.1)),
+    bad("analysis.moving_mean", "n", "too_long", lambda: analysis.moving_mean(np.ones(3), 5)),
+    bad("pdr.detect_steps", "threshold", "zero", lambda: pdr.detect_steps(np.ones((10, 3)), 0.01, threshold=0.0)),
+    bad("pdr.weinberg_step_length", "K", "negative", lambda: pdr.weinberg_step_length([1.0], K=-1.0)),
+    bad("pdr.pdr", "step_headings", "shape", lambda: pdr.pdr([1.0, 2.0], [0.0])),
+    bad("pdr.pdr_headings", "m_b", "str", lambda: pdr.pdr_headings(np.ones((10, 3)), STR, [3, 6])),
     bad("robust.hold", "leading", "unknown", lambda: robust.hold(np.ones((3, 3)), leading="back")),
     bad("robust.hold", "x", "all_nan", lambda: robust.hold(np.full((3, 3), NAN), leading="first")),
     bad("analysis.allan_deviation", "x", "too_short", lambda: analysis.allan_deviation(np.ones(5), 0.1)),
@@ -991,6 +997,7 @@ NOT_APPLICABLE = {
     "robust.FaultReport": "a plain record of counts; nothing to validate",
     "alignment.StaticWindow": "a result record, built by static_means",
     "euler.EulerReport": "a result record, built by integrate_euler",
+    "pdr.StepResult": "a result record, built by detect_steps",
     "repro.root": "takes no arguments",
     "repro.results": "takes no arguments",
     "sensors.devices": "takes no arguments",

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from navlib import alignment, analysis, atmosphere, attitude, earth, kalman, sensors, strapdown, trajectory, units
+from navlib import alignment, analysis, atmosphere, attitude, earth, kalman, pdr, sensors, strapdown, trajectory, units
 from navlib.papers import pedestrian_ins as pd
 
 LAT = units.deg(30.55)
@@ -325,11 +325,11 @@ def test_step_detection_and_pdr(carpark):
     legs, traj, static = carpark
     w, f = trajectory.ideal_imu(traj)
     imu = sensors.simulate_imu(w, f, DT, RESIDUAL, np.random.default_rng(9))
-    steps = pd.detect_steps(imu.f_b, DT)
+    steps = pdr.detect_steps(imu.f_b, DT, g=pd.G_LOCAL)
     a_up = np.diff(traj.vel_n[:, 2]) / DT                           # true vertical acceleration
     true_steps = np.sum((a_up[1:-1] > a_up[:-2]) & (a_up[1:-1] >= a_up[2:]) & (a_up[1:-1] > 1.0))
     assert steps.index.size == pytest.approx(true_steps, rel=0.03)
-    en = pd.pdr(np.ones(4), np.array([0, np.pi / 2, np.pi, 3 * np.pi / 2]))
+    en = pdr.pdr(np.ones(4), np.array([0, np.pi / 2, np.pi, 3 * np.pi / 2]))
     np.testing.assert_allclose(en[-1], [0.0, 0.0], atol=1e-12)
     np.testing.assert_allclose(en[1], [0.0, 1.0], atol=1e-12)
 
@@ -362,9 +362,9 @@ def test_step_detection_and_pdr(carpark):
                            np.ones(5, bool), m_b=np.zeros((5, 3))), "m_b"),
     (lambda: pd.run_filter(np.zeros((5, 3)), np.zeros((5, 3)), 0.01, LLA0, np.zeros(3), [1, 0, 0, 0],
                            np.ones(5, bool), walk_aiding="magic"), "walk_aiding"),
-    (lambda: pd.detect_steps(np.zeros((5, 3)), 0.01), "f_b"),
-    (lambda: pd.weinberg_step_length([1.0], K=-1.0), "K"),
-    (lambda: pd.pdr([1.0, 2.0], [0.0]), "step_headings"),
+    (lambda: pdr.detect_steps(np.zeros((5, 3)), 0.01), "f_b"),
+    (lambda: pdr.weinberg_step_length([1.0], K=-1.0), "K"),
+    (lambda: pdr.pdr([1.0, 2.0], [0.0]), "step_headings"),
 ])
 def test_bad_input_names_the_argument(call, arg):
     with pytest.raises(ValueError, match=f"^{arg}: "):

@@ -16,7 +16,7 @@ import warnings
 import numpy as np
 import pytest
 
-from navlib import alignment, analysis, atmosphere, attitude, earth, faults, sensors, timing, trajectory, units
+from navlib import alignment, analysis, atmosphere, attitude, earth, faults, pdr, sensors, timing, trajectory, units
 from navlib.papers import pedestrian_ins as pd
 
 LLA0 = [units.deg(30.55), units.deg(114.30), 20.0]
@@ -467,16 +467,16 @@ FUZZ = [
     ("run_filter", "full_scale", lambda: RF(full_scale=(1.0, -2.0))),
     ("run_filter", "full_scale", lambda: RF(full_scale=(1.0, np.nan))),
     ("run_filter", "ellipsoid", lambda: RF(ellipsoid="WGS84")),
-    ("detect_steps", "f_b", lambda: pd.detect_steps(np.full((100, 3), np.nan), DT)),
-    ("detect_steps", "threshold", lambda: pd.detect_steps(F3, DT, threshold=0.0)),
-    ("detect_steps", "g", lambda: pd.detect_steps(np.tile(F3, (4, 1)), DT, g=-9.8)),
-    ("weinberg_step_length", "peak_to_peak", lambda: pd.weinberg_step_length([-1.0])),
-    ("weinberg_step_length", "peak_to_peak", lambda: pd.weinberg_step_length([np.nan])),
-    ("pdr", "step_lengths", lambda: pd.pdr([1j], [0.0])),
-    ("pdr", "start_en", lambda: pd.pdr([1.0], [0.0], start_en=[0.0])),
-    ("pdr_headings", "m_b", lambda: pd.pdr_headings(F3, np.full((49, 3), 1.0), [10, 20])),
-    ("pdr_headings", "step_index", lambda: pd.pdr_headings(F3, np.ones((50, 3)), [20, 10])),
-    ("pdr_headings", "step_index", lambda: pd.pdr_headings(F3, np.ones((50, 3)), [10.0, 20.0])),
+    ("detect_steps", "f_b", lambda: pdr.detect_steps(np.full((100, 3), np.nan), DT)),
+    ("detect_steps", "threshold", lambda: pdr.detect_steps(F3, DT, threshold=0.0)),
+    ("detect_steps", "g", lambda: pdr.detect_steps(np.tile(F3, (4, 1)), DT, g=-9.8)),
+    ("weinberg_step_length", "peak_to_peak", lambda: pdr.weinberg_step_length([-1.0])),
+    ("weinberg_step_length", "peak_to_peak", lambda: pdr.weinberg_step_length([np.nan])),
+    ("pdr", "step_lengths", lambda: pdr.pdr([1j], [0.0])),
+    ("pdr", "start_en", lambda: pdr.pdr([1.0], [0.0], start_en=[0.0])),
+    ("pdr_headings", "m_b", lambda: pdr.pdr_headings(F3, np.full((49, 3), 1.0), [10, 20])),
+    ("pdr_headings", "step_index", lambda: pdr.pdr_headings(F3, np.ones((50, 3)), [20, 10])),
+    ("pdr_headings", "step_index", lambda: pdr.pdr_headings(F3, np.ones((50, 3)), [10.0, 20.0])),
     ("expanding_std", "x", lambda: analysis.expanding_std([])),
     ("expanding_std", "x", lambda: analysis.expanding_std(np.ones((2, 2)))),
     ("horizontal_error", "lla", lambda: analysis.horizontal_error([0.5, 0.5], [0.5, 0.5, 0.0])),
@@ -484,7 +484,7 @@ FUZZ = [
 ]
 
 # Constants and result records: no arguments to fuzz (built by navlib from validated values).
-NOT_FUZZED = {"M_NED_ENU", "STATIC_THRESHOLDS", "FilterResult", "StepResult", "FLAG_DROPOUT", "FLAG_SPIKE",
+NOT_FUZZED = {"G_LOCAL", "M_NED_ENU", "STATIC_THRESHOLDS", "FilterResult", "StepResult", "FLAG_DROPOUT", "FLAG_SPIKE",
               "FLAG_SATURATED", "FLAG_STATIC_SKIPPED"}
 
 
@@ -502,5 +502,6 @@ def test_every_public_function_is_fuzzed():
     # plus the functions that moved to navlib.alignment and navlib.analysis, still fuzzed here
     public = set(pd.__all__) | {"level", "magnetic_heading", "horizontal_error", "expanding_std", "detection_rates",
                                 "baro_height", "reference_pressure", "classify_floor", "segment_floors", "segments",
-                                "static_gyro_bias", "ned_to_enu_dcm", "M_NED_ENU"}
+                                "static_gyro_bias", "ned_to_enu_dcm", "M_NED_ENU", "StepResult", "detect_steps",
+                                "weinberg_step_length", "pdr", "pdr_headings"}
     assert covered | NOT_FUZZED == public, public - covered - NOT_FUZZED

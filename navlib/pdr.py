@@ -1,0 +1,130 @@
+"""Pedestrian dead reckoning (PDR): step detection, step length and step-by-step position.
+
+* :func:`detect_steps` -- steps as peaks of the smoothed specific-force magnitude above ``g +
+  threshold`` with a minimum interval between steps; returns each step's end and the accelerometer
+  peak-to-peak within it (:class:`StepResult`).
+* :func:`weinberg_step_length` -- Weinberg's (2002) model ``K (a_max - a_min)^(1/4)``, K calibrated
+  per walker.
+* :func:`pdr_headings` -- one tilt-compensated magnetic heading per step
+  (:func:`navlib.alignment.magnetic_heading` on the step's mean accelerometer and magnetometer).
+* :func:`pdr` -- east/north positions from step lengths and headings.
+
+Used by paper 004 (Wen et al. 2016) as the baseline its INS is compared with.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import analysis
+from ._validate import as_array, positive
+from .alignment import level, magnetic_heading
+from .atmosphere import G0
+
+__all__ = ["StepResult", "detect_steps", "weinberg_step_length", "pdr", "pdr_headings"]
+
+
+@dataclass(frozen=True)
+class StepResult:
+    """Detected steps: sample index of each step's end, and the accelerometer
+    peak-to-peak of |f| within it (m/s^2), the input of Weinberg's model."""
+    index: np.ndarray
+    peak_to_peak: np.ndarray
+
+
+def detect_steps(f_b, dt: float, threshold: float = 1.0, min_interval: float = 0.35,
+                 g: float = G0) -> StepResult:
+    """Steps as peaks of the smoothed specific-force magnitude above ``g + threshold``.
+
+    Parameters
+    ----------
+    f_b : array_like, shape (N, 3)
+        Accelerometer samples (m/s^2).
+    dt : float  (s)
+    threshold : float
+        Peak height above g (m/s^2).
+    min_interval : float
+        Minimum time between steps (s).
+    g : float
+        Local gravity (m/s^2).
+    """
+    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1)
+    dt = float(positive(dt, "dt"))
+    thr = float(positive(threshold, "threshold"))
+    gap = int(round(float(positive(min_interval, "min_interval")) / dt))
+    n_smooth = max(2, int(round(0.1 / dt)))
+    if f.ndim != 2 or f.shape[0] < max(gap, n_smooth) + 2:
+        raise ValueError(f"f_b: expected (N, 3) with N > {max(gap, n_smooth) + 2} samples, got {f.shape}")
+    a = analysis.moving_mean(np.linalg.norm(f, axis=-1), n_smooth) - float(positive(g, "g"))
+    peak = (a[1:-1] > a[:-2]) & (a[1:-1] >= a[2:]) & (a[1:-1] > thr)
+    idx = []
+    for i in np.flatnonzero(peak) + 1:
+        if not idx or i - idx[-1] >= gap:
+            idx.append(i)
+    idx = np.array(idx, dtype=int)
+    bounds = np.concatenate([[max(0, idx[0] - gap)], idx]) if idx.size else np.zeros(1, dtype=int)
+    p2p = np.array([a[lo:hi + 1].max() - a[lo:hi + 1].min() for lo, hi in zip(bounds[:-1], bounds[1:], strict=True)])
+    return StepResult(idx, p2p)
+
+
+def weinberg_step_length(peak_to_peak, K: float = 0.45):
+    """Weinberg (2002) step length ``K (a_max - a_min)^(1/4)`` (m); K is calibrated per person."""
+    a = positive(peak_to_peak, "peak_to_peak", allow_zero=True)
+    return float(positive(K, "K")) * a ** 0.25
+
+
+def pdr(step_lengths, step_headings, start_en=(0.0, 0.0)):
+    """Dead reckoning from step lengths (m) and headings (rad): East/North after each step.
+
+    Returns
+    -------
+    en : ndarray, shape (n_steps + 1, 2)
+        Positions (m), starting at ``start_en``.
+    """
+    L = positive(step_lengths, "step_lengths", allow_zero=True)
+    psi = as_array(step_headings, "step_headings")
+    if L.shape != psi.shape or L.ndim != 1:
+        raise ValueError(f"step_headings: expected the shape of step_lengths {L.shape}, got {psi.shape}")
+    start = as_array(start_en, "start_en", tail=(2,)).reshape(2)
+    d = np.stack([L * np.sin(psi), L * np.cos(psi)], -1)
+    return start + np.concatenate([np.zeros((1, 2)), np.cumsum(d, 0)])
+
+
+def pdr_headings(f_b, m_b, step_index, declination: float = 0.0):
+    """Heading of every step: tilt-compensated magnetic heading from the step's mean samples.
+
+    Pitch and roll come from the mean specific force over the step
+    (:func:`navlib.alignment.level`; the gait accelerations average out over a step), the
+    field from the mean magnetometer reading (NaN samples ignored).
+
+    Parameters
+    ----------
+    f_b : array_like, shape (N, 3)
+        Accelerometer (m/s^2).
+    m_b : array_like, shape (N, 3)
+        Magnetometer (uT), NaN between samples.
+    step_index : array_like of int, shape (n_steps,)
+        End sample of each step (:func:`detect_steps`); a step starts where the previous ended.
+    declination : float  (rad)
+
+    Returns
+    -------
+    heading : ndarray, shape (n_steps,)  (rad)
+    """
+    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1)
+    m = as_array(m_b, "m_b", tail=(3,), min_ndim=1, allow_nan=True)
+    idx = np.asarray(step_index)
+    if f.shape != m.shape or f.ndim != 2:
+        raise ValueError(f"m_b: expected the shape (N, 3) of f_b {f.shape}, got {m.shape}")
+    if idx.ndim != 1 or idx.size < 2 or not np.issubdtype(idx.dtype, np.integer) or np.any(np.diff(idx) <= 0) \
+            or idx[0] < 1 or idx[-1] > f.shape[0]:
+        raise ValueError("step_index: expected at least two increasing sample indices within the record")
+    starts = np.concatenate([[max(0, idx[0] - (idx[1] - idx[0]))], idx[:-1]])
+    f_mean = np.stack([f[a:b].mean(0) for a, b in zip(starts, idx, strict=True)])
+    m_mean = np.stack([np.nanmean(m[a:b], 0) if np.isfinite(m[a:b, 0]).any() else np.full(3, np.nan)
+                       for a, b in zip(starts, idx, strict=True)])
+    if not np.isfinite(m_mean).all():
+        raise ValueError("m_b: a step without any magnetometer sample")
+    pitch, roll = level(f_mean)
+    return magnetic_heading(m_mean, pitch, roll, declination)
