@@ -26,7 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _kernels, attitude, earth
-from ._typing import Angles, Array, Vec3
+from ._typing import Angles, Array, ArrayLike, Dcm, Vec3, Vec3Series
 from ._validate import as_array, in_range, nonempty_array, nonempty_latitude, nonempty_positive, scalar
 
 __all__ = ["level", "magnetic_heading", "tilt_heading", "initial_attitude", "MAX_LAT_DEG", "gyrocompass_latitude", "OK",
@@ -119,7 +119,7 @@ MAX_LAT_DEG = 89.0
 horizontal Earth rate (< 0.26 deg/h) no longer defines north usefully."""
 
 
-def gyrocompass_latitude(lat, deg: bool = False) -> np.ndarray:
+def gyrocompass_latitude(lat: ArrayLike, deg: bool = False) -> Array:
     """Latitude in rad, rejecting |lat| > 90 deg and near-polar |lat| > MAX_LAT_DEG."""
     lat = nonempty_latitude(lat, "lat", deg=deg)
     if np.any(np.abs(lat) > np.deg2rad(MAX_LAT_DEG)):
@@ -198,7 +198,8 @@ def _masked_mean(x, used, n_used):
         return np.where(used[..., None], x, 0.0).sum(-2) / n_used[..., None]
 
 
-def static_means(w_ib_b, f_b, lat, h=0.0, accel_tol: float = 0.2, *, min_fraction: float = 0.5,
+def static_means(w_ib_b: Vec3Series, f_b: Vec3Series, lat: ArrayLike, h: ArrayLike = 0.0, accel_tol: float = 0.2, *,
+                 min_fraction: float = 0.5,
                  outlier_k: float | None = None, full_scale_gyro: float | None = None,
                  full_scale_accel: float | None = None, strict: bool = True) -> StaticWindow:
     """Average a static window of gyro and accelerometer samples (paper step 1).
@@ -318,7 +319,7 @@ def _reference_triad(g_n, w_ie_n):
     return np.stack([a, b, np.cross(b, a)], -1)
 
 
-def triad(f_b, w_ib_b, lat, orthonormal: bool = True):
+def triad(f_b: Vec3, w_ib_b: Vec3, lat: ArrayLike, orthonormal: bool = True) -> Array:
     """Analytic coarse alignment with a three-axis gyro: TRIAD (paper 000, Tan & Xie, Eqs. 1-2).
 
     Parameters
@@ -348,7 +349,7 @@ def triad(f_b, w_ib_b, lat, orthonormal: bool = True):
     return attitude.orthonormalize(C_bn) if orthonormal else C_bn
 
 
-def triad_heading(C_bn):
+def triad_heading(C_bn: Dcm) -> Array:
     """Heading ``atan2(c12, c22) mod 2 pi`` (rad) of a TRIAD matrix, orthonormal or raw.
 
     The inverse of paper Eq. (3) for the heading; unlike
@@ -358,7 +359,7 @@ def triad_heading(C_bn):
     C = nonempty_array(C_bn, "C_bn", tail=(3, 3))
     return attitude.wrap_2pi(np.arctan2(C[..., 0, 1], C[..., 1, 1]))
 
-def four_position_heading(w_y):
+def four_position_heading(w_y: ArrayLike) -> Array:
     """Heading from a level gyro turned to four positions 90 deg apart (turntable).
 
     Position k has heading ``psi + k pi/2`` (turned clockwise), so
@@ -383,7 +384,7 @@ def four_position_heading(w_y):
 # Static gyro bias
 # --------------------------------------------------------------------------
 
-def static_gyro_bias(w_ib_b, C_bn, lat: float):
+def static_gyro_bias(w_ib_b: Vec3Series, C_bn: Dcm, lat: float) -> Array:
     """Gyro bias from a static record: ``mean(w) - C_bn^T w_ie_n`` (rad/s).
 
     Parameters

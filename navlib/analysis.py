@@ -22,6 +22,7 @@ from numba import njit
 from scipy.optimize import least_squares, minimize_scalar
 
 from . import _kernels, attitude, earth
+from ._typing import Angles, Array, ArrayLike, Times, Vec3
 from ._validate import as_array, integer, nonempty_array, positive, scalar
 
 __all__ = ["rmse", "allan_deviation", "allan_deviation_theory", "fit_allan",
@@ -29,7 +30,7 @@ __all__ = ["rmse", "allan_deviation", "allan_deviation_theory", "fit_allan",
            "position_error", "expanding_std", "detection_rates", "settling_time", "segments", "moving_mean"]
 
 
-def rmse(err, axis=0):
+def rmse(err: ArrayLike, axis: int | tuple[int, ...] | None = 0) -> Array:
     """Root mean square of ``err`` along ``axis`` (NaN propagates: no silent dropping)."""
     err = as_array(err, "err", allow_nan=True)
     if err.size == 0:
@@ -57,7 +58,7 @@ GM_ALLAN_PEAK, GM_ALLAN_PEAK_TAU = _peak()
 the tau of the peak in units of the correlation time (~1.893)."""
 
 
-def allan_deviation(x, dt: float, taus=None):
+def allan_deviation(x: ArrayLike, dt: float, taus: ArrayLike | None = None):
     """Overlapping Allan deviation of rate samples.
 
     Parameters
@@ -102,8 +103,8 @@ def allan_deviation(x, dt: float, taus=None):
     return m * dt, (out[:, 0] if scalar else out)
 
 
-def allan_deviation_theory(taus, white=0.0, bias_instability=0.0, correlation_time=1.0,
-                           rate_random_walk=0.0):
+def allan_deviation_theory(taus: ArrayLike, white: float = 0.0, bias_instability: float = 0.0,
+                           correlation_time: float = 1.0, rate_random_walk: float = 0.0) -> Array:
     """Allan deviation of navlib's sensor noise model (module docstring).
 
     Parameters
@@ -131,7 +132,7 @@ def allan_deviation_theory(taus, white=0.0, bias_instability=0.0, correlation_ti
     return np.sqrt(var)
 
 
-def fit_allan(taus, adev, n_samples: int, dt: float, *, rate_random_walk: bool = False) -> dict:
+def fit_allan(taus: ArrayLike, adev: ArrayLike, n_samples: int, dt: float, *, rate_random_walk: bool = False) -> dict:
     """Fit the noise model to an Allan-deviation curve by weighted least squares.
 
     The residuals are log-deviations weighted by the approximate number of
@@ -207,7 +208,7 @@ def _error_stats_kernel(hpr, truth):
     return mx, mean
 
 
-def attitude_errors(hpr, hpr_true):
+def attitude_errors(hpr: Angles, hpr_true: Angles) -> Array:
     """Euler-angle errors ``hpr - hpr_true`` wrapped into (-pi, pi] (rad).
 
     Parameters
@@ -224,7 +225,7 @@ def attitude_errors(hpr, hpr_true):
     return attitude.wrap_pi(a - b)
 
 
-def error_statistics(hpr, hpr_true):
+def error_statistics(hpr: Angles, hpr_true: Angles) -> tuple[Array, Array]:
     """Max and mean |attitude error| over time, in one pass (e.g. the statistics of paper 001, Table 2).
 
     Parameters
@@ -248,7 +249,7 @@ def error_statistics(hpr, hpr_true):
     return mx.reshape(lead + (3,)), mean.reshape(lead + (3,))
 
 
-def horizontal_error(lla, lla_true):
+def horizontal_error(lla: Vec3, lla_true: Vec3) -> Array:
     """East and north position error (m) of ``lla`` against ``lla_true`` (local radii).
 
     Parameters
@@ -266,7 +267,7 @@ def horizontal_error(lla, lla_true):
                      (a[..., 0] - b[..., 0]) * (R_M + b[..., 2])], -1)
 
 
-def expanding_std(x):
+def expanding_std(x: ArrayLike) -> Array:
     """Standard deviation of ``x[:k+1]`` for every k (population std), e.g. of latitude over [0, t]."""
     x = as_array(x, "x", min_ndim=1)
     if x.ndim != 1:
@@ -277,7 +278,7 @@ def expanding_std(x):
     return np.sqrt(np.maximum(m2 - m1 * m1, 0.0))
 
 
-def detection_rates(detected, truth) -> tuple[float, float]:
+def detection_rates(detected: ArrayLike, truth: ArrayLike) -> tuple[float, float]:
     """Detection and false-alarm rates of a static detector.
 
     Parameters
@@ -299,7 +300,7 @@ def detection_rates(detected, truth) -> tuple[float, float]:
     return float(d[t].mean()), float(d[~t].mean())
 
 
-def position_error(estimate, truth):
+def position_error(estimate: ArrayLike, truth: ArrayLike) -> Array:
     """Horizontal position error (m): ``|estimate[..., :2] - truth[..., :2]|``, shape (...)."""
     est = as_array(estimate, "estimate", allow_nan=True)
     tru = as_array(truth, "truth")
@@ -314,7 +315,7 @@ def position_error(estimate, truth):
     return np.hypot(d[..., 0], d[..., 1])
 
 
-def settling_time(time, error, start: float, tol: float, end: float | None = None):
+def settling_time(time: Times, error: ArrayLike, start: float, tol: float, end: float | None = None):
     """Time after ``start`` until ``|error|`` stays within ``tol`` up to ``end`` (s); inf if it never does.
 
     Parameters
@@ -351,7 +352,7 @@ def settling_time(time, error, start: float, tol: float, end: float | None = Non
 # Runs of a boolean mask
 # --------------------------------------------------------------------------
 
-def segments(mask):
+def segments(mask: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """Contiguous runs of True: first index and one-past-last index of each.
 
     Parameters
@@ -369,7 +370,7 @@ def segments(mask):
     return np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
 
 
-def moving_mean(x, n: int):
+def moving_mean(x: ArrayLike, n: int) -> Array:
     """Centred moving mean over ``n`` samples along axis 0 (edges use the nearest full window).
 
     ``x`` : array_like, shape (N, ...) with N >= n >= 1. Returns a float array of the same shape.

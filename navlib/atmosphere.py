@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._typing import Array, ArrayLike, Times
 from ._validate import as_array, in_range, positive
 from .analysis import segments
 
@@ -43,7 +44,7 @@ def _pressure(p, name="p"):
     return positive(p, name)
 
 
-def isa_altitude(p, p0=P0):
+def isa_altitude(p: ArrayLike, p0: ArrayLike = P0) -> Array:
     """ISA geopotential altitude (m) from pressure ``p`` (Pa) with reference ``p0`` (Pa).
 
     Valid in the troposphere (below 11 km, p > 22632 Pa for p0 = 101325).
@@ -53,25 +54,25 @@ def isa_altitude(p, p0=P0):
     return T0 / LAPSE * (1 - (p / p0) ** _EXP)
 
 
-def isa_pressure(h, p0=P0):
+def isa_pressure(h: ArrayLike, p0: ArrayLike = P0) -> Array:
     """ISA pressure (Pa) at geopotential altitude ``h`` (m, -1 km to 11 km)."""
     h = in_range(as_array(h, "h"), "h", -1000.0, 11000.0, "m")
     return _pressure(p0, "p0") * (1 - LAPSE * h / T0) ** (1 / _EXP)
 
 
-def bmp180_altitude(p, p0=P0):
+def bmp180_altitude(p: ArrayLike, p0: ArrayLike = P0) -> Array:
     """Altitude (m) by the BMP180 datasheet formula ``44330 (1 - (p/p0)^(1/5.255))``."""
     p, p0 = _pressure(p), _pressure(p0, "p0")
     return 44330.0 * (1 - (p / p0) ** (1 / 5.255))
 
 
-def bmp180_pressure(h, p0=P0):
+def bmp180_pressure(h: ArrayLike, p0: ArrayLike = P0) -> Array:
     """Inverse of :func:`bmp180_altitude`: ``p0 (1 - h/44330)^5.255`` (Pa)."""
     h = in_range(as_array(h, "h"), "h", -1000.0, 11000.0, "m")
     return _pressure(p0, "p0") * (1 - h / 44330.0) ** 5.255
 
 
-def hypsometric_height(p, p_ref, temperature):
+def hypsometric_height(p: ArrayLike, p_ref: ArrayLike, temperature: ArrayLike) -> Array:
     """Height above the reference level (m): ``R T / g0 ln(p_ref / p)``.
 
     Parameters
@@ -150,7 +151,7 @@ def bmp180_compensate(UT: int, UP: int, calib: dict[str, int], oss: int = 0) -> 
 # Barometric height and floors
 # --------------------------------------------------------------------------
 
-def baro_height(p, p_ref, temperature=None):
+def baro_height(p: ArrayLike, p_ref: ArrayLike, temperature: ArrayLike | None = None) -> Array:
     """Height above the reference level from pressure (m).
 
     BMP180 formula ``44330 (1 - (p/p_ref)^(1/5.255))`` with the reference
@@ -177,7 +178,7 @@ def baro_height(p, p_ref, temperature=None):
     return hypsometric_height(p, p_ref, temperature)
 
 
-def reference_pressure(p, time, until: float):
+def reference_pressure(p: ArrayLike, time: Times, until: float) -> float:
     """Mean pressure (Pa) over ``time <= until`` (the initial stand on the start floor).
 
     Parameters
@@ -199,14 +200,14 @@ def reference_pressure(p, time, until: float):
     return float(sel.mean())
 
 
-def classify_floor(h, floor_height: float = 3.0, ref_floor: int = 0):
+def classify_floor(h: ArrayLike, floor_height: float = 3.0, ref_floor: int = 0) -> np.ndarray:
     """Floor index ``ref_floor + round(h / floor_height)`` from a relative height (m)."""
     h = as_array(h, "h")
     hf = float(positive(floor_height, "floor_height"))
     return int(ref_floor) + np.round(h / hf).astype(int)
 
 
-def segment_floors(h, static, floor_height: float = 3.0, ref_floor: int = 0):
+def segment_floors(h: ArrayLike, static: ArrayLike, floor_height: float = 3.0, ref_floor: int = 0):
     """Floor of every static segment from the median height over the segment.
 
     Parameters

@@ -15,6 +15,7 @@ import numpy as np
 from numba import njit
 
 from . import attitude
+from ._typing import Angles, Array, ArrayLike, Interval, Vec3, Vec3Series
 from ._validate import intervals, range_limit
 from ._validate import nonempty_array as as_array
 from ._validate import nonempty_positive as positive
@@ -32,14 +33,14 @@ def _hpr(hpr, name="hpr"):
     return hpr
 
 
-def check_pitch(pitch, name: str = "pitch") -> None:
+def check_pitch(pitch: ArrayLike, name: str = "pitch") -> None:
     """Raise ``ValueError`` naming ``name`` if any |pitch| exceeds :data:`PITCH_LIMIT` (Euler rates are singular at 90 deg)."""
     if np.any(np.abs(pitch) > PITCH_LIMIT):
         raise ValueError(f"{name}: expected |pitch| <= {np.rad2deg(PITCH_LIMIT):g} deg; the Euler rates are singular "
                          f"at +-90 deg (got max |pitch| {np.rad2deg(np.nanmax(np.abs(pitch))):.3f} deg)")
 
 
-def euler_rates(hpr, w_nb_b):
+def euler_rates(hpr: Angles, w_nb_b: Vec3) -> Array:
     """Time derivative (Wu et al. 2014 Eq. 2) of ``[heading, pitch, roll]`` from the body rate.
 
     Parameters
@@ -174,7 +175,8 @@ class EulerReport:
     first_saturated: int
 
 
-def integrate_euler(hpr0, w_ib_b, dt, w_in_n=None, bias_b=None, bias_from=None, *, max_gap: float = 0.0,
+def integrate_euler(hpr0: Angles, w_ib_b: Vec3Series, dt: Interval, w_in_n: Vec3 | None = None,
+                    bias_b: ArrayLike | None = None, bias_from: ArrayLike | None = None, *, max_gap: float = 0.0,
                     full_scale: float | None = None, report: bool = False):
     """Integrate Eq. (2) from gyro samples, optionally bias-compensated.
 

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import analysis
+from ._typing import Array, ArrayLike, Vec3Series
 from ._validate import as_array, positive
 from .alignment import level, magnetic_heading
 from .atmosphere import G0
@@ -33,7 +34,7 @@ class StepResult:
     peak_to_peak: np.ndarray
 
 
-def detect_steps(f_b, dt: float, threshold: float = 1.0, min_interval: float = 0.35,
+def detect_steps(f_b: Vec3Series, dt: float, threshold: float = 1.0, min_interval: float = 0.35,
                  g: float = G0) -> StepResult:
     """Steps as peaks of the smoothed specific-force magnitude above ``g + threshold``.
 
@@ -68,13 +69,13 @@ def detect_steps(f_b, dt: float, threshold: float = 1.0, min_interval: float = 0
     return StepResult(idx, p2p)
 
 
-def weinberg_step_length(peak_to_peak, K: float = 0.45):
+def weinberg_step_length(peak_to_peak: ArrayLike, K: float = 0.45) -> Array:
     """Weinberg (2002) step length ``K (a_max - a_min)^(1/4)`` (m); K is calibrated per person."""
     a = positive(peak_to_peak, "peak_to_peak", allow_zero=True)
     return float(positive(K, "K")) * a ** 0.25
 
 
-def pdr(step_lengths, step_headings, start_en=(0.0, 0.0)):
+def pdr(step_lengths: ArrayLike, step_headings: ArrayLike, start_en: ArrayLike = (0.0, 0.0)) -> Array:
     """Dead reckoning from step lengths (m) and headings (rad): East/North after each step.
 
     Returns
@@ -91,7 +92,7 @@ def pdr(step_lengths, step_headings, start_en=(0.0, 0.0)):
     return start + np.concatenate([np.zeros((1, 2)), np.cumsum(d, 0)])
 
 
-def pdr_headings(f_b, m_b, step_index, declination: float = 0.0):
+def pdr_headings(f_b: Vec3Series, m_b: Vec3Series, step_index: ArrayLike, declination: float = 0.0) -> Array:
     """Heading of every step: tilt-compensated magnetic heading from the step's mean samples.
 
     Pitch and roll come from the mean specific force over the step

@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ._typing import ArrayLike
 from ._validate import as_array, choice
 
 __all__ = ["FaultReport", "hold", "LEADING"]
@@ -59,7 +60,7 @@ class FaultReport:
         return "FaultReport(" + (", ".join(rows) if rows else "no faults") + ")"
 
 
-def hold(x, *, leading: str = "raise", name: str = "x", axis: int = -2) -> tuple[np.ndarray, np.ndarray]:
+def hold(x: ArrayLike, *, leading: str = "raise", name: str = "x", axis: int = -2) -> tuple[np.ndarray, np.ndarray]:
     """Zero-order hold of NaN samples along the time axis.
 
     Parameters
