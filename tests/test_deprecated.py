@@ -1,0 +1,38 @@
+"""The old paper modules are deprecated aliases for one release: every old name resolves, and they warn."""
+from __future__ import annotations
+
+import importlib
+import subprocess
+import sys
+
+import pytest
+
+import navlib
+
+OLD = {"northfinding": "north_finding", "gyrobias": "rotation_bias", "planar": "gauss_kruger_ekf",
+       "ahrs": "mimu_mag_rtk", "pedestrian": "pedestrian_ins"}
+
+
+@pytest.mark.parametrize("old", sorted(OLD))
+def test_alias_warns_and_resolves_every_old_name(old):
+    sys.modules.pop(f"navlib.{old}", None)
+    with pytest.warns(DeprecationWarning, match=f"navlib.{old} is deprecated.*navlib.papers.{OLD[old]}"):
+        module = importlib.import_module(f"navlib.{old}")
+    missing = [name for name in module.__all__ if not hasattr(module, name)]
+    assert not missing, f"navlib.{old} lost {missing}"
+    companion = importlib.import_module(f"navlib.papers.{OLD[old]}")
+    assert set(companion.__all__) <= set(module.__all__) | {"G_LOCAL"}
+
+
+def test_attribute_access_on_the_package_warns():
+    sys.modules.pop("navlib.ahrs", None)
+    vars(navlib).pop("ahrs", None)                  # an earlier import binds the submodule on the package
+    with pytest.warns(DeprecationWarning, match="navlib.ahrs is deprecated"):
+        module = navlib.ahrs
+    assert module.mahony is importlib.import_module("navlib.papers.mimu_mag_rtk").mahony
+
+
+def test_importing_navlib_does_not_warn():
+    out = subprocess.run([sys.executable, "-W", "error::DeprecationWarning", "-c", "import navlib, navlib.papers"],
+                         capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
