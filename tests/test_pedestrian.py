@@ -262,7 +262,7 @@ def test_walking_aids_bound_heading_and_height(carpark):
     # a strong disturbance everywhere: the gate on field magnitude and dip rejects it
     cfg = pd.FilterConfig(mag_field_tol=5.0, mag_dip_tol=np.deg2rad(5))
     res = pd.run_filter(imu.w_ib_b, imu.f_b, DT, LLA0, np.zeros(3), traj.q_bn[0], det, h_baro=h,
-                        m_b=m + np.array([0.0, 0.0, 30.0]), declination=float(D), field_n=B, config=cfg)
+                        m_b=m + np.array([0.0, 0.0, 30.0]), declination=float(D), B_n=B, config=cfg)
     assert res.counts["mag_gated"] > 0 and res.counts["mag_aidings"] == 0
 
 

@@ -103,7 +103,7 @@ every action is counted in ``FilterResult.counts``):
   ``FilterConfig.baro_gate`` are skipped (``baro_rejected``); a persistent
   jump re-initialises the tracker (``baro_reinit``).
 * Magnetometer: NaN = no reading; spikes and disturbances fail the field
-  magnitude / dip gate when ``field_n`` and tolerances are given (``mag_gated``).
+  magnitude / dip gate when ``B_n`` and tolerances are given (``mag_gated``).
 * Timing: ``dt`` may be per-sample intervals (irregular sampling); repeated
   and out-of-order timestamps go through :func:`navlib.timing.sanitize` first.
 
@@ -747,7 +747,7 @@ class FilterConfig:
         by more than this (uT) or the dip by more than this (rad); inf to
         accept every sample. This is also the defence against magnetometer
         spikes (a 100-sigma spike changes |m| by tens of uT); it needs
-        ``field_n`` in :func:`run_filter`.
+        ``B_n`` in :func:`run_filter`.
     baro_gate : float
         Reject a barometric height that differs from the alpha-beta tracker's
         prediction by more than this (m): a spike (counted ``baro_rejected``;
@@ -1076,17 +1076,18 @@ class FilterResult:
         return self.counts["zupt_updates"] > 0
 
 
-def _field_reference(B_n):
+def _field_reference(B_n, name="B_n"):
     if B_n is None:
         return np.array([0.0, 0.0])
-    D, I, F = earth.field_angles(as_array(B_n, "field_n", tail=(3,)).reshape(3), deg=False)
+    D, I, F = earth.field_angles(as_array(B_n, name, tail=(3,)).reshape(3), deg=False)
     return np.array([float(F), float(I)])
 
 
 def run_filter(w_ib_b, f_b, dt, lla0, vel0, q0, static, *, h_baro=None, m_b=None,
-               declination: float = 0.0, field_n=None, walk_aiding: str = "reset", zupt: bool = True,
+               declination: float = 0.0, B_n=None, walk_aiding: str = "reset", zupt: bool = True,
                accel_bias0=(0.0, 0.0, 0.0), gyro_bias0=(0.0, 0.0, 0.0), config: FilterConfig = FilterConfig(),
-               t0: float = 0.0, ellipsoid: earth.Ellipsoid = earth.WGS84, full_scale=None) -> FilterResult:
+               t0: float = 0.0, ellipsoid: earth.Ellipsoid = earth.WGS84, full_scale=None,
+               field_n=None) -> FilterResult:
     """The paper's system: strapdown INS + ZUPT/ZARU Kalman filter + walking aids.
 
     Parameters
@@ -1115,8 +1116,9 @@ def run_filter(w_ib_b, f_b, dt, lla0, vel0, q0, static, *, h_baro=None, m_b=None
         Magnetometer (uT), NaN between samples.
     declination : float
         Magnetic declination (rad, east positive).
-    field_n : array_like, shape (3,), optional
-        Reference field in ENU (uT) for the magnetic disturbance gate.
+    B_n : array_like, shape (3,), optional
+        Reference field in ENU (uT) for the magnetic disturbance gate (the name used across navlib,
+        e.g. :func:`navlib.earth.magnetic_field`).
     walk_aiding : {"reset", "filter", "none"}
         While walking: the paper's direct resets of height and heading,
         the same as Kalman measurements, or nothing.
@@ -1135,6 +1137,8 @@ def run_filter(w_ib_b, f_b, dt, lla0, vel0, q0, static, *, h_baro=None, m_b=None
         available), but never used for ZUPT/ZARU (``static_skipped``).
         Default: no range (nothing is treated as clipped).
 
+    field_n : array_like, shape (3,), optional
+        Deprecated spelling of ``B_n`` (warns; removed in navlib 0.3).
     Returns
     -------
     FilterResult
@@ -1181,6 +1185,11 @@ def run_filter(w_ib_b, f_b, dt, lla0, vel0, q0, static, *, h_baro=None, m_b=None
             raise ValueError(f"full_scale: expected (gyro rad/s, accel m/s^2), two positive numbers, "
                              f"got {full_scale!r}")
         gyro_fs, accel_fs = float(fs[0]), float(fs[1])
+    if field_n is not None:                       # deprecated spelling, removed in navlib 0.3
+        warnings.warn("run_filter(field_n=...) is deprecated; use B_n=", DeprecationWarning, stacklevel=2)
+        if B_n is not None:
+            raise ValueError("field_n: give the reference field once, as B_n")
+    field_ref = _field_reference(B_n) if field_n is None else _field_reference(field_n, "field_n")
     c = config
     every = max(1, int(round(1.0 / (c.update_rate * float(np.median(dts))))))
     q_rate = np.concatenate([np.zeros(3), np.full(3, c.accel_noise ** 2), np.full(3, c.gyro_noise ** 2),
@@ -1189,7 +1198,7 @@ def run_filter(w_ib_b, f_b, dt, lla0, vel0, q0, static, *, h_baro=None, m_b=None
                   + [c.p0_accel_bias] * 3 + [c.p0_gyro_bias] * 3) ** 2
     out = _filter_kernel(lla0, vel0, np.ascontiguousarray(q0), b0, np.ascontiguousarray(w), np.ascontiguousarray(f),
                          dts, s, np.ascontiguousarray(hb), np.ascontiguousarray(mb),
-                         float(as_array(declination, "declination")), _field_reference(field_n), bool(zupt),
+                         float(as_array(declination, "declination")), field_ref, bool(zupt),
                          _AIDING[walk_aiding], every, q_rate, p0, c.sigma_zupt ** 2, c.sigma_zaru ** 2,
                          c.sigma_baro ** 2, c.sigma_heading ** 2, c.baro_alpha, c.baro_beta, c.gate, c.max_rejected,
                          c.mag_field_tol, c.mag_dip_tol, gyro_fs, accel_fs, c.baro_gate, c.spike_gyro, c.spike_accel,

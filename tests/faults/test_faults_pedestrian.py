@@ -259,9 +259,9 @@ def test_mag_spikes_are_gated_by_field_and_dip(walk):
     m, hit = faults.spikes(walk["m"], 0.01, 0.2, rng)                     # 100 x 2 mG = 20 uT per axis
     used = np.isfinite(walk["m"][:, 0]) & ~walk["static"]                 # compass samples used (walking)
     cfg = pd.FilterConfig(mag_field_tol=3.0, mag_dip_tol=np.deg2rad(3.0))
-    clean = run(walk, field_n=walk["B"], config=cfg)
+    clean = run(walk, B_n=walk["B"], config=cfg)
     assert clean.counts["mag_gated"] == 0
-    res = run(walk, m=m, field_n=walk["B"], config=cfg)
+    res = run(walk, m=m, B_n=walk["B"], config=cfg)
     # A +-20 uT spike on every axis changes |B| (~50 uT) or the dip by far more than 3 uT / 3 deg:
     # every spike on a used sample is gated.
     assert res.counts["mag_gated"] == (hit & used).sum() > 0
@@ -271,7 +271,7 @@ def test_mag_spikes_are_gated_by_field_and_dip(walk):
     hdg = np.abs(attitude.wrap_pi(res.nav.hpr[:, 0] - clean.nav.hpr[:, 0])).max()
     assert hdg < np.deg2rad(1.5), np.rad2deg(hdg)
     # without the gate a spike resets the heading by tens of degrees: visible, not silent, only in the
-    # error -- which is why the docstring tells users to give field_n
+    # error -- which is why the docstring tells users to give B_n
     raw = run(walk, m=m)
     assert np.abs(attitude.wrap_pi(raw.nav.hpr[:, 0] - walk["traj"].hpr[:, 0])).max() > np.deg2rad(10)
 
@@ -457,7 +457,7 @@ FUZZ = [
     ("run_filter", "h_baro", lambda: RF(h_baro=np.zeros(49))),
     ("run_filter", "m_b", lambda: RF(m_b=np.full((50, 3), 1j))),
     ("run_filter", "declination", lambda: RF(declination=np.nan)),
-    ("run_filter", "field_n", lambda: RF(field_n=[0.0, np.nan, 1.0])),
+    ("run_filter", "B_n", lambda: RF(B_n=[0.0, np.nan, 1.0])),
     ("run_filter", "walk_aiding", lambda: RF(walk_aiding=None)),
     ("run_filter", "accel_bias0", lambda: RF(accel_bias0=[0.0, 0.0])),
     ("run_filter", "gyro_bias0", lambda: RF(gyro_bias0=[0.0, 0.0, np.inf])),
@@ -505,3 +505,13 @@ def test_every_public_function_is_fuzzed():
                                 "static_gyro_bias", "ned_to_enu_dcm", "M_NED_ENU", "StepResult", "detect_steps",
                                 "weinberg_step_length", "pdr", "pdr_headings"}
     assert covered | NOT_FUZZED == public, public - covered - NOT_FUZZED
+
+
+def test_field_n_is_a_deprecated_spelling_of_B_n():
+    B = [0.0, 22.0, -40.0]
+    with pytest.warns(DeprecationWarning, match="field_n"):
+        old = RF(field_n=B)
+    new = RF(B_n=B)
+    np.testing.assert_array_equal(old.nav.lla, new.nav.lla)
+    with pytest.warns(DeprecationWarning), pytest.raises(ValueError, match="^field_n: "):
+        RF(field_n=B, B_n=B)
