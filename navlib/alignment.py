@@ -13,7 +13,7 @@ One implementation of each concept, imported by every paper companion and notebo
 * gyrocompassing of a static IMU: :func:`static_means` (robust window means with a
   :class:`StaticWindow` report), :func:`triad` (analytic coarse alignment from specific force
   and Earth rate) and :func:`triad_heading`, :func:`four_position_heading` (a single gyro on a
-  turntable).
+  turntable); :func:`static_gyro_bias` (a static record's mean rate minus Earth rate).
 
 Conventions are stated once in :mod:`navlib`: ENU navigation frame, right-front-up body,
 heading clockwise from north in [0, 2 pi).
@@ -127,8 +127,10 @@ def gyrocompass_latitude(lat: ArrayLike, deg: bool = False) -> Array:
                          f"the poles), got {np.rad2deg(np.abs(lat).max()):.4g} deg")
     return lat
 
+
 OK, TOO_FEW, SATURATED, MOVING = 0, 1, 2, 3
 """Status codes of a static window (:class:`StaticWindow`)."""
+
 
 @dataclass(frozen=True)
 class StaticWindow:
