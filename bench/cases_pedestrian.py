@@ -5,6 +5,7 @@ import numpy as np
 
 from bench.run import Result, best_time
 from navlib import attitude, sensors, trajectory, units
+from navlib.filters import zupt
 from navlib.papers import pedestrian_ins as pedestrian
 
 LLA0 = [units.deg(30.55), units.deg(114.30), 20.0]
@@ -33,8 +34,8 @@ def error_state_filter(quick: bool):
         return rows
     m = 5_000
     C = attitude.quat_to_dcm(q0)
-    F = np.eye(15) + DT * pedestrian.error_state_matrix(C, f[0])
-    H = pedestrian.zupt_zaru_matrix(C, np.zeros(3))
+    F = np.eye(15) + DT * zupt.error_state_matrix(C, f[0])
+    H = zupt.zupt_zaru_matrix(C, np.zeros(3))
     Q, R = 1e-6 * np.eye(15), np.diag([1e-4] * 3 + [3e-6] * 3)
 
     def filterpy_loop():

@@ -1,5 +1,6 @@
 """Deprecated alias of :mod:`navlib.papers.pedestrian_ins` and of core modules:
-navlib.alignment, navlib.analysis, navlib.atmosphere, navlib.attitude, navlib.pdr.
+navlib.alignment, navlib.analysis, navlib.atmosphere, navlib.attitude, navlib.filters.zupt, navlib.pdr,
+navlib.robust.
 
 ``navlib.pedestrian`` was the module of this paper before the split into a paper companion
 and core homes (see CONTRIBUTING.md). Every old name still resolves here; importing this
@@ -12,8 +13,17 @@ from .alignment import level, magnetic_heading, static_gyro_bias  # noqa: F401
 from .analysis import detection_rates, expanding_std, horizontal_error, segments  # noqa: F401
 from .atmosphere import baro_height, classify_floor, reference_pressure, segment_floors  # noqa: F401
 from .attitude import M_NED_ENU, ned_to_enu_dcm  # noqa: F401
+from .filters.zupt import (  # noqa: F401  # noqa: F401
+           STATIC_THRESHOLDS,
+           detect_static,
+           error_model_fd,
+           error_state_matrix,
+           zupt_zaru_innovation,
+           zupt_zaru_matrix,
+)
 from .papers.pedestrian_ins import *  # noqa: F403
 from .pdr import StepResult, detect_steps, pdr, pdr_headings, weinberg_step_length  # noqa: F401
+from .robust import despike  # noqa: F401
 
 __all__ = ["M_NED_ENU", "STATIC_THRESHOLDS", "ned_to_enu_dcm", "Leg", "Gait", "walk", "stance_mask", "carpark_legs",
            "floor_test_legs", "detect_static", "detection_rates", "level", "static_gyro_bias", "magnetic_heading",

@@ -12,7 +12,8 @@ batch) and, when asked for, per-sample boolean flags. Sensors are named ``"gyro"
 ``"refused"``    a quantity that could not be formed (e.g. a static window with too few samples).
 
 :func:`hold` is the one zero-order hold of NaN samples, with an explicit policy for
-leading NaN samples (there is nothing before them to hold).
+leading NaN samples (there is nothing before them to hold). :func:`despike` marks isolated
+IMU spikes as NaN with the test of :func:`is_spike` (compiled; filters call it per sample).
 """
 from __future__ import annotations
 
@@ -20,11 +21,13 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
+from numba import njit
+from numpy.typing import NDArray
 
-from ._typing import ArrayLike
+from ._typing import Array, ArrayLike, Vec3Series
 from ._validate import as_array, choice
 
-__all__ = ["FaultReport", "hold", "LEADING"]
+__all__ = ["FaultReport", "hold", "despike", "LEADING"]
 
 LEADING = ("raise", "first", "zero")
 """Policies for NaN samples before the first valid one: raise, take the first valid sample, or 0."""
@@ -101,3 +104,71 @@ def hold(x: ArrayLike, *, leading: str = "raise", name: str = "x", axis: int = -
     if leading == "zero" and before.any():
         filled = np.where(before[..., None] if vector else before, 0.0, filled)
     return filled, bad
+
+
+@njit(cache=True)
+def is_spike(x, k, thr):
+    """Sample k is an isolated spike on some axis (needs 2 <= k < N - 2).
+
+    With ``r_j = x_j - (x_j-1 + x_j+1) / 2`` (the deviation from the line
+    through the neighbours): ``|r_k| > thr`` and ``|r_k| > 1.5 |r_k-+1|``. A
+    spike S gives ``r_k = S`` and ``r_k-+1 = -S/2``, so its neighbours never
+    qualify; smooth motion gives ``r ~ a w^2 dt^2``, a few mrad/s or cm/s^2
+    at 100 Hz. NaN nearby never flags a spike.
+    """
+    for i in range(3):
+        r0 = x[k, i] - (x[k - 1, i] + x[k + 1, i]) / 2
+        rm = x[k - 1, i] - (x[k - 2, i] + x[k, i]) / 2
+        rp = x[k + 1, i] - (x[k, i] + x[k + 2, i]) / 2
+        if abs(r0) > thr and abs(r0) > 1.5 * abs(rm) and abs(r0) > 1.5 * abs(rp):
+            return True
+    return False
+
+
+@njit(cache=True)
+def _spike_mask(w, f, spike_gyro, spike_accel):
+    n = w.shape[0]
+    hit = np.zeros(n, dtype=np.bool_)
+    for k in range(2, n - 2):
+        hit[k] = is_spike(w, k, spike_gyro) or is_spike(f, k, spike_accel)
+    return hit
+
+
+def despike(w_ib_b: Vec3Series, f_b: Vec3Series, spike_gyro: float,
+            spike_accel: float) -> tuple[Array, Array, NDArray[np.bool_]]:
+    """Mark isolated IMU spikes as dropouts (NaN), e.g. before :func:`navlib.filters.zupt.detect_static`.
+
+    The test of :func:`is_spike` (also run inside the pedestrian filter of
+    paper 004): a sample deviating from the line through its neighbours by more
+    than the threshold, and by 1.5 times more than either neighbour does.
+    Two adjacent spikes are not found (each hides the other). Spiky samples
+    inflate the detector's variance test and hide stances; as NaN they are
+    left out of it and held by the filters that hold dropouts.
+
+    Parameters
+    ----------
+    w_ib_b, f_b : array_like, shape (N, 3)
+        Gyro (rad/s) and accelerometer (m/s^2) samples; NaN allowed.
+    spike_gyro, spike_accel : float
+        Thresholds (rad/s, m/s^2); inf disables a sensor's test.
+
+    Returns
+    -------
+    w_ib_b, f_b : ndarray, shape (N, 3)
+        Copies with the spiky samples (both sensors) set to NaN.
+    spikes : ndarray of bool, shape (N,)
+    """
+    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
+    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=True)
+    if w.ndim != 2 or f.shape != w.shape:
+        raise ValueError(f"f_b: expected the shape (N, 3) of w_ib_b {w.shape}, got {f.shape}")
+    tg = float(as_array(spike_gyro, "spike_gyro", finite=False))
+    ta = float(as_array(spike_accel, "spike_accel", finite=False))
+    if not tg > 0:
+        raise ValueError(f"spike_gyro: expected a positive threshold (inf: off), got {spike_gyro!r}")
+    if not ta > 0:
+        raise ValueError(f"spike_accel: expected a positive threshold (inf: off), got {spike_accel!r}")
+    hit = _spike_mask(np.ascontiguousarray(w), np.ascontiguousarray(f), tg, ta)
+    w, f = w.copy(), f.copy()
+    w[hit], f[hit] = np.nan, np.nan
+    return w, f, hit

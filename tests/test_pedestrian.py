@@ -9,6 +9,7 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from navlib import alignment, analysis, atmosphere, attitude, earth, kalman, pdr, sensors, strapdown, trajectory, units
+from navlib.filters import zupt
 from navlib.papers import pedestrian_ins as pd
 
 LAT = units.deg(30.55)
@@ -75,8 +76,8 @@ def test_error_model_matches_finite_differences_of_the_mechanisation():
     for _ in range(5):
         C = attitude.euler_to_dcm(random_hpr(rng, 1)[0])
         f = np.array([0.3, -0.5, 9.8]) + rng.normal(0, 2, 3)
-        F_fd = pd.error_model_fd(C, f)
-        F = pd.error_state_matrix(C, f)
+        F_fd = zupt.error_model_fd(C, f)
+        F = zupt.error_state_matrix(C, f)
         np.testing.assert_allclose(F_fd, F, atol=1e-6 * np.abs(F).max())
 
 
@@ -91,8 +92,8 @@ def test_zupt_zaru_innovation_is_H_dx_to_second_order():
     for eps in (1e-3, 5e-4):
         dx = eps * d
         C_hat = attitude.rotvec_to_dcm(dx[6:9]) @ C
-        z = pd.zupt_zaru_innovation(dx[3:6], w_meas, b_g - dx[12:15], C_hat, w_ie)
-        res.append(np.abs(z - pd.zupt_zaru_matrix(C_hat, w_ie) @ dx).max())
+        z = zupt.zupt_zaru_innovation(dx[3:6], w_meas, b_g - dx[12:15], C_hat, w_ie)
+        res.append(np.abs(z - zupt.zupt_zaru_matrix(C_hat, w_ie) @ dx).max())
     assert res[0] / res[1] == pytest.approx(4.0, rel=0.05)         # residual proportional to error^2
 
 
@@ -100,7 +101,7 @@ def test_printed_covariance_update_equals_joseph_form():
     rng = np.random.default_rng(4)
     A = rng.standard_normal((15, 15))
     P = A @ A.T + np.eye(15)
-    H = pd.zupt_zaru_matrix(np.eye(3), earth.earth_rate_n(LAT))
+    H = zupt.zupt_zaru_matrix(np.eye(3), earth.earth_rate_n(LAT))
     R = np.diag([1e-4] * 3 + [1e-6] * 3)
     K, P_simple = pd.simple_covariance_update(P, H, R)
     _, P_joseph, *_ = kalman.update(np.zeros(15), P, np.zeros(6), np.zeros(6), H, R, np.zeros(6, bool))
@@ -137,23 +138,23 @@ def test_detector_rates_on_labelled_walk(carpark):
     _, traj, static = carpark
     w, f = trajectory.ideal_imu(traj)
     imu = sensors.simulate_imu(w, f, DT, RESIDUAL, np.random.default_rng(5))
-    det = pd.detect_static(imu.w_ib_b, imu.f_b, DT)
+    det = zupt.detect_static(imu.w_ib_b, imu.f_b, DT)
     p_d, p_fa = analysis.detection_rates(det, static[:-1])
     assert p_d > 0.95 and p_fa < 0.01
     with pytest.raises(ValueError, match="^window: "):
-        pd.detect_static(imu.w_ib_b[:30], imu.f_b[:30], DT, window=0.5)
+        zupt.detect_static(imu.w_ib_b[:30], imu.f_b[:30], DT, window=0.5)
 
 
 def test_detector_ignores_dropouts_and_needs_half_a_window(carpark):
     _, traj, static = carpark
     w, f = trajectory.ideal_imu(traj)
     imu = sensors.simulate_imu(w, f, DT, RESIDUAL, np.random.default_rng(5))
-    clean = pd.detect_static(imu.w_ib_b, imu.f_b, DT)
+    clean = zupt.detect_static(imu.w_ib_b, imu.f_b, DT)
     wn, fn = imu.w_ib_b.copy(), imu.f_b.copy()
     drop = np.random.default_rng(6).random(len(wn)) < 0.1
     wn[drop], fn[drop] = np.nan, np.nan
     wn[2000:2100] = np.nan                                          # 1 s without data: never static
-    det = pd.detect_static(wn, fn, DT)
+    det = zupt.detect_static(wn, fn, DT)
     assert not det[2000 + 25:2100 - 25].any()
     other = np.ones(len(det), bool)
     other[1950:2150] = False
@@ -242,7 +243,7 @@ def test_walking_aids_bound_heading_and_height(carpark):
     h = 20.0 + atmosphere.baro_height(p, atmosphere.reference_pressure(p, traj.time[:-1], 20.0))
     h[np.arange(h.size) % 10 != 0] = np.nan                         # 10 Hz barometer and magnetometer
     m[np.arange(h.size) % 10 != 0] = np.nan
-    det = pd.detect_static(imu.w_ib_b, imu.f_b, DT)
+    det = zupt.detect_static(imu.w_ib_b, imu.f_b, DT)
     out = {}
     for mode in ("reset", "filter", "none"):
         res = pd.run_filter(imu.w_ib_b, imu.f_b, DT, LLA0, np.zeros(3), traj.q_bn[0], det, h_baro=h, m_b=m,
@@ -270,6 +271,7 @@ def test_kernel_runs_uncompiled_with_the_same_result():
     script = r"""
 import json, numpy as np, warnings
 from navlib import trajectory, units
+from navlib.filters import zupt
 from navlib.papers import pedestrian_ins as pd
 legs = [pd.Leg(3.0), pd.Leg(3.0, 1.0, turn=0.5), pd.Leg(2.0)]
 traj = pd.walk(legs, 0.02, [0.5, 1.9, 10.0], 0.2)
@@ -345,8 +347,8 @@ def test_step_detection_and_pdr(carpark):
     (lambda: alignment.magnetic_heading([0.0, 0.0, 0.0], 0.0, 0.0), "m_b"),
     (lambda: alignment.magnetic_heading([np.nan, 1.0, 0.0], 0.0, 0.0), "m_b"),
     (lambda: pd.heading_from_horizontal(0.0, 0.0), "H_X, H_Y"),
-    (lambda: pd.detect_static(np.zeros((10, 3)), np.zeros((10, 3)), 0.01, window=1.0), "window"),
-    (lambda: pd.detect_static(np.zeros((10, 3)), np.zeros((9, 3)), 0.01), "f_b"),
+    (lambda: zupt.detect_static(np.zeros((10, 3)), np.zeros((10, 3)), 0.01, window=1.0), "window"),
+    (lambda: zupt.detect_static(np.zeros((10, 3)), np.zeros((9, 3)), 0.01), "f_b"),
     (lambda: analysis.detection_rates(np.ones(5, bool), np.ones(5, bool)), "truth"),
     (lambda: pd.walk([], 0.01, LLA0, 0.0), "legs"),
     (lambda: pd.Leg(-1.0), "duration"),

@@ -15,29 +15,16 @@ Implemented here, in navlib's ENU / right-front-up convention (the paper
 prints NED / forward-right-down; ``C_enu = M C_ned M`` with
 :data:`navlib.attitude.M_NED_ENU`, the same (heading, pitch, roll) in both):
 
-* Static detector (the paper gives none; we use the ARE + MV + MAG tests of
-  Skog et al. 2010): static when, over a centred window,
-  ``rms|w - b_g| < tau_w``, ``std|f| < tau_f`` and ``|mean|f| - g| < tau_g``
-  (rad/s, m/s^2, m/s^2; default starting values 0.05, 0.1, 0.3, our choice).
-* Eq. (1), 15-state error model (missing from the paper and reconstructed
-  here, erratum E004-03; the standard local-level INS error model without
-  Earth-rate and transport-rate terms)::
-
-      dx = [dr_n, dv_n, dpsi, db_a, db_g],  C_hat = (I + [dpsi x]) C
-      d(dr)/dt = dv,   d(dv)/dt = -[(C_hat f_b) x] dpsi + C_hat db_a,
-      d(dpsi)/dt = C_hat db_g,   d(db)/dt = white
-
-  with dr in metres (E, N, U) and ``d = estimate - truth`` for r, v, psi,
-  ``d = truth - estimate`` for the biases. Earth rate, transport rate and
-  the gravity gradient are left out of F (the mechanisation keeps them).
-* Eq. (2), ZUPT/ZARU measurement (missing, reconstructed; erratum E004-03)::
-
-      z = [v_hat; w_meas - b_g_hat - C_hat^T w_ie_n] = H dx + v,
-      H = [[0, I, 0, 0, 0], [0, 0, -C_hat^T [w_ie_n x], 0, I]]
-
-  The ``-C^T [w_ie x]`` block (coefficient 7e-5) is the exact first-order
-  Earth-rate term that the simplified ``H = [[0, I, 0, 0, 0], [0, 0, 0, 0, I]]``
-  leaves out; with it, ``z - H dx`` is second order.
+* Static detector (the paper gives none): the ARE + MV + MAG tests of Skog et al.
+  2010, :func:`navlib.filters.zupt.detect_static`, with our starting thresholds
+  (:data:`navlib.filters.zupt.STATIC_THRESHOLDS`) and the site's gravity :data:`G_LOCAL`.
+* Eq. (1), the 15-state error model, and Eq. (2), the ZUPT/ZARU measurement,
+  are missing from the paper (erratum E004-03); they are reconstructed as the
+  standard local-level error model and static measurement of
+  :mod:`navlib.filters.zupt` (states ``[dr_n, dv_n, dpsi, db_a, db_g]``, dr in
+  metres E, N, U). Its H adds the exact first-order Earth-rate block
+  ``-C^T [w_ie x]`` (coefficient 7e-5) that the simplified
+  ``H = [[0, I, 0, 0, 0], [0, 0, 0, 0, I]]`` leaves out.
 * Eq. (3), Kalman recursion with closed-loop feedback
   ``r -= dr, v -= dv, C <- (I - [dpsi x]) C, b += db, dx = 0``; the covariance
   update is the Joseph form of :func:`navlib.kalman.update`, equal to the
@@ -87,12 +74,12 @@ every action is counted in ``FilterResult.counts``):
 * IMU dropouts (NaN): zero-order hold of the last good sample
   (``imu_dropouts``), with the process noise inflated while holding
   (``FilterConfig.hold_*_sigma``); held samples never feed ZUPT/ZARU
-  (``static_skipped``); :func:`detect_static` uses the valid samples of a
+  (``static_skipped``); :func:`navlib.filters.zupt.detect_static` uses the valid samples of a
   window and needs at least half of them.
 * IMU spikes: with ``FilterConfig.spike_gyro`` / ``spike_accel`` set, an
   isolated sample sticking out of both neighbours is held like a dropout
-  (``imu_spikes``); :func:`despike` applies the same test before
-  :func:`detect_static` (whose variance test spikes would otherwise fail).
+  (``imu_spikes``); :func:`navlib.robust.despike` applies the same test before
+  the static detector (whose variance test spikes would otherwise fail).
   Off by default (the paper's filter): then a spike in a stance fails the
   detector or the NIS gate (``zupt_rejected``) and one while walking is
   integrated.
@@ -121,29 +108,26 @@ from __future__ import annotations
 
 import warnings
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 from numba import njit
 
-from .. import _kernels, analysis, attitude, earth, kalman, trajectory
+from .. import _kernels, attitude, earth, kalman, robust, trajectory
 from .._kernels import radii_mn
-from .._validate import as_array, as_dcm, as_quat, generator, intervals, positive, time_grid
-from ..strapdown import nav_step
+from .._validate import as_array, as_quat, generator, intervals, positive, time_grid
+from ..filters.zupt import error_state_into, zupt_zaru_rows_into, zupt_zaru_z_into
+from ..strapdown import earth_constants, nav_step
 
-__all__ = ["G_LOCAL", "STATIC_THRESHOLDS", "Leg", "Gait", "walk", "stance_mask", "carpark_legs", "floor_test_legs",
-           "detect_static", "tilt_compensate_ned", "tilt_compensate_printed", "heading_from_horizontal",
-           "hvac_pressure_steps", "despike", "error_state_matrix", "error_model_fd", "zupt_zaru_matrix",
-           "zupt_zaru_innovation", "simple_covariance_update", "FilterConfig", "FilterResult", "run_filter",
+__all__ = ["G_LOCAL", "Leg", "Gait", "walk", "stance_mask", "carpark_legs", "floor_test_legs",
+           "tilt_compensate_ned", "tilt_compensate_printed", "heading_from_horizontal",
+           "hvac_pressure_steps", "simple_covariance_update", "FilterConfig", "FilterResult", "run_filter",
            "FLAG_DROPOUT", "FLAG_SPIKE", "FLAG_SATURATED", "FLAG_STATIC_SKIPPED"]
 
 
 G_LOCAL = 9.7936
-"""Gravity (m/s^2) this companion assumes at the paper's test site when no value is given (the default of the
-static detector; pass it to :func:`navlib.pdr.detect_steps` for the paper's step detector)."""
-
-STATIC_THRESHOLDS = (0.05, 0.1, 0.3)
-"""Default static-detector thresholds: gyro rms (rad/s), std |f| and |mean |f| - g| (m/s^2); our starting values."""
-
+"""Gravity (m/s^2) at the paper's test site (Wuhan): pass it as ``g`` to :func:`navlib.filters.zupt.detect_static`
+and :func:`navlib.pdr.detect_steps` for the paper's detectors."""
 
 # --------------------------------------------------------------------------
 # Walking trajectory
@@ -372,122 +356,6 @@ def floor_test_legs(stand: float = 60.0, stairs: float = 15.0, floor_height: flo
 
 
 # --------------------------------------------------------------------------
-# Static detection
-# --------------------------------------------------------------------------
-
-def detect_static(w_ib_b, f_b, dt: float, window: float = 0.5, gyro_bias=(0.0, 0.0, 0.0),
-                  thresholds=STATIC_THRESHOLDS, g: float = G_LOCAL):
-    """Static (standing) detector from gyro and accelerometer statistics.
-
-    Static when, over a centred window of ``window`` seconds, all hold:
-    ``rms |w - b_g| < tau_w`` (angular-rate energy), ``std |f| < tau_f``
-    (specific-force variance) and ``|mean |f| - g| < tau_g`` (magnitude).
-
-    NaN samples (dropouts) are left out: the statistics use the valid
-    samples of each window, and a window with fewer than half of its
-    samples valid is never static (a missing sample is no evidence of
-    standing still).
-
-    Parameters
-    ----------
-    w_ib_b, f_b : array_like, shape (N, 3)
-        Gyro (rad/s) and accelerometer (m/s^2) samples; NaN marks dropouts.
-    dt : float
-        Sample interval (s) (nominal; the window is a number of samples).
-    window : float
-        Window length (s); at most the record length.
-    gyro_bias : array_like, shape (3,)
-        Gyro bias to remove first (rad/s), e.g. from :func:`navlib.alignment.static_gyro_bias`.
-    thresholds : (float, float, float)
-        ``(tau_w rad/s, tau_f m/s^2, tau_g m/s^2)``.
-    g : float
-        Local gravity (m/s^2); default Wuhan.
-
-    Returns
-    -------
-    static : ndarray of bool, shape (N,)
-    """
-    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
-    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=True)
-    if w.ndim != 2 or f.shape != w.shape:
-        raise ValueError(f"f_b: expected the shape (N, 3) of w_ib_b {w.shape}, got {f.shape}")
-    dt = float(positive(dt, "dt"))
-    valid = np.isfinite(w).all(-1) & np.isfinite(f).all(-1)
-    if not valid.all():
-        w, f = np.where(valid[:, None], w, 0.0), np.where(valid[:, None], f, 0.0)
-    n = int(round(float(positive(window, "window")) / dt))
-    if n < 2 or n > w.shape[0]:
-        raise ValueError(f"window: expected 2 samples up to the record length {w.shape[0] * dt:g} s, "
-                         f"got {window} s ({n} samples)")
-    b = as_array(gyro_bias, "gyro_bias", tail=(3,)).reshape(3)
-    tw, tf, tg = positive(as_array(thresholds, "thresholds", tail=(3,)).reshape(3), "thresholds")
-    g = float(positive(g, "g"))
-    w2 = np.sum((w - b) ** 2, -1)
-    fn = np.linalg.norm(f, axis=-1)
-    share = None if valid.all() else analysis.moving_mean(valid.astype(float), n)   # fraction of valid samples per window
-
-    def mean(x):
-        if share is None:
-            return analysis.moving_mean(x, n)
-        return analysis.moving_mean(np.where(valid, x, 0.0), n) / np.maximum(share, 0.5 / n)
-
-    f_mean = mean(fn)
-    f_var = np.maximum(mean(fn ** 2) - f_mean ** 2, 0.0)
-    static = (np.sqrt(mean(w2)) < tw) & (np.sqrt(f_var) < tf) & (np.abs(f_mean - g) < tg)
-    if not valid.all():
-        static &= share >= 0.5
-    return static
-
-
-@njit(cache=True)
-def _spike_mask(w, f, spike_gyro, spike_accel):
-    n = w.shape[0]
-    hit = np.zeros(n, dtype=np.bool_)
-    for k in range(2, n - 2):
-        hit[k] = _is_spike(w, k, spike_gyro) or _is_spike(f, k, spike_accel)
-    return hit
-
-
-def despike(w_ib_b, f_b, spike_gyro: float, spike_accel: float):
-    """Mark isolated IMU spikes as dropouts (NaN), before :func:`detect_static` and :func:`run_filter`.
-
-    The same test as ``FilterConfig.spike_gyro`` / ``spike_accel`` (see
-    there): a sample deviating from the line through its neighbours by more
-    than the threshold, and by 1.5 times more than either neighbour does.
-    Two adjacent spikes are not found (each hides the other). Spiky samples
-    inflate the detector's variance test and hide stances; as NaN they are
-    left out of it and held by the filter (counted as ``imu_dropouts``).
-
-    Parameters
-    ----------
-    w_ib_b, f_b : array_like, shape (N, 3)
-        Gyro (rad/s) and accelerometer (m/s^2) samples; NaN allowed.
-    spike_gyro, spike_accel : float
-        Thresholds (rad/s, m/s^2); inf disables a sensor's test.
-
-    Returns
-    -------
-    w_ib_b, f_b : ndarray, shape (N, 3)
-        Copies with the spiky samples (both sensors) set to NaN.
-    spikes : ndarray of bool, shape (N,)
-    """
-    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
-    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=True)
-    if w.ndim != 2 or f.shape != w.shape:
-        raise ValueError(f"f_b: expected the shape (N, 3) of w_ib_b {w.shape}, got {f.shape}")
-    tg = float(as_array(spike_gyro, "spike_gyro", finite=False))
-    ta = float(as_array(spike_accel, "spike_accel", finite=False))
-    if not tg > 0:
-        raise ValueError(f"spike_gyro: expected a positive threshold (inf: off), got {spike_gyro!r}")
-    if not ta > 0:
-        raise ValueError(f"spike_accel: expected a positive threshold (inf: off), got {spike_accel!r}")
-    hit = _spike_mask(np.ascontiguousarray(w), np.ascontiguousarray(f), tg, ta)
-    w, f = w.copy(), f.copy()
-    w[hit], f[hit] = np.nan, np.nan
-    return w, f, hit
-
-
-# --------------------------------------------------------------------------
 # Magnetic heading (Eqs. 4-6)
 # --------------------------------------------------------------------------
 
@@ -550,137 +418,8 @@ def hvac_pressure_steps(time, door_times, rng: np.random.Generator, amplitude: f
 
 
 # --------------------------------------------------------------------------
-# Error-state filter: model (Eqs. 1-3)
+# Error-state filter: the printed covariance update (Eq. 3)
 # --------------------------------------------------------------------------
-
-@njit(cache=True)
-def _skew(v):
-    return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
-
-
-@njit(cache=True)
-def _fill_F(F, C, f_n):
-    """Write the time-varying blocks of Eq. (1) into F (15 x 15, constant blocks preset)."""
-    Sf = _skew(f_n)
-    for i in range(3):
-        for j in range(3):
-            F[3 + i, 6 + j] = -Sf[i, j]
-            F[3 + i, 9 + j] = C[i, j]
-            F[6 + i, 12 + j] = C[i, j]
-
-
-def error_state_matrix(C_bn, f_b):
-    """F of the reconstructed Eq. (1) (15 x 15), ENU.
-
-    Parameters
-    ----------
-    C_bn : array_like, shape (3, 3)
-        Estimated attitude.
-    f_b : array_like, shape (3,)
-        Bias-corrected specific force (m/s^2).
-    """
-    C = as_dcm(as_array(C_bn, "C_bn", tail=(3, 3)).reshape(3, 3))
-    f = as_array(f_b, "f_b", tail=(3,)).reshape(3)
-    F = np.zeros((15, 15))
-    F[0:3, 3:6] = np.eye(3)
-    _fill_F(F, np.ascontiguousarray(C), C @ f)
-    return F
-
-
-def _error_rate(dx, C_true, f_true):
-    """Exact time derivative of the error state for a static-Earth mechanisation.
-
-    Truth: C' = C [w x], v' = C f + g. Estimate: C_hat = exp([dpsi x]) C,
-    driven by the corrected samples f + b_a - b_a_hat = f + db_a and w + db_g.
-    Then d/dt exp([dpsi x]) exp([dpsi x])^T = [(C_hat db_g) x], and the
-    rotation vector moves with the inverse left Jacobian of SO(3).
-    """
-    dpsi, dba, dbg = dx[6:9], dx[9:12], dx[12:15]
-    C_hat = attitude.rotvec_to_dcm(dpsi) @ C_true
-    dv_rate = C_hat @ (f_true + dba) - C_true @ f_true
-    th = np.linalg.norm(dpsi)
-    c = 1 / 12 + th * th / 720 if th < 1e-4 else 1 / th ** 2 - (1 + np.cos(th)) / (2 * th * np.sin(th))
-    S = attitude.skew(dpsi)
-    dpsi_rate = (np.eye(3) - S / 2 + c * S @ S) @ (C_hat @ dbg)
-    return np.concatenate([dx[3:6], dv_rate, dpsi_rate, np.zeros(6)])
-
-
-def error_model_fd(C_bn, f_b, eps: float = 1e-6):
-    """Central-difference Jacobian of the exact error dynamics at dx = 0 (checks Eq. 1).
-
-    Parameters
-    ----------
-    C_bn : array_like, shape (3, 3)
-    f_b : array_like, shape (3,)
-        Specific force (m/s^2).
-    eps : float
-        Perturbation of each error state.
-
-    Returns
-    -------
-    F : ndarray, shape (15, 15)
-    """
-    C = as_dcm(as_array(C_bn, "C_bn", tail=(3, 3)).reshape(3, 3))
-    f = as_array(f_b, "f_b", tail=(3,)).reshape(3)
-    eps = float(positive(eps, "eps"))
-    F = np.empty((15, 15))
-    for j in range(15):
-        e = np.zeros(15)
-        e[j] = eps
-        F[:, j] = (_error_rate(e, C, f) - _error_rate(-e, C, f)) / (2 * eps)
-    return F
-
-
-@njit(cache=True)
-def _fill_H(H, C, w_ie_n):
-    """ZUPT/ZARU rows of Eq. (2): H[0:3, 3:6] = I, H[3:6, 6:9] = -C^T [w_ie x], H[3:6, 12:15] = I."""
-    A = -(C.T @ _skew(w_ie_n))
-    for i in range(3):
-        H[i, 3 + i] = 1.0
-        H[3 + i, 12 + i] = 1.0
-        for j in range(3):
-            H[3 + i, 6 + j] = A[i, j]
-
-
-@njit(cache=True)
-def _static_z(z, vel, w_mean, b_g, C, w_ie_n):
-    ce = C.T @ w_ie_n
-    for i in range(3):
-        z[i] = vel[i]
-        z[3 + i] = w_mean[i] - b_g[i] - ce[i]
-
-
-def zupt_zaru_matrix(C_bn, w_ie_n):
-    """H of Eq. (2) (6 x 15) at the estimated attitude, with the Earth-rate block."""
-    C = as_dcm(as_array(C_bn, "C_bn", tail=(3, 3)).reshape(3, 3))
-    H = np.zeros((6, 15))
-    _fill_H(H, np.ascontiguousarray(C), as_array(w_ie_n, "w_ie_n", tail=(3,)).reshape(3))
-    return H
-
-
-def zupt_zaru_innovation(vel_n, w_ib_b, b_g, C_bn, w_ie_n):
-    """Static measurement of Eq. (2): ``[v_hat; w_meas - b_g_hat - C_hat^T w_ie_n]``.
-
-    Parameters
-    ----------
-    vel_n : array_like, shape (3,)
-        Estimated velocity (m/s).
-    w_ib_b : array_like, shape (3,)
-        Measured (mean) angular rate (rad/s).
-    b_g : array_like, shape (3,)
-        Estimated gyro bias (rad/s).
-    C_bn : array_like, shape (3, 3)
-        Estimated attitude.
-    w_ie_n : array_like, shape (3,)
-        Earth rate in ENU (rad/s).
-    """
-    args = [as_array(a, n, tail=(3,)).reshape(3) for a, n in
-            ((vel_n, "vel_n"), (w_ib_b, "w_ib_b"), (b_g, "b_g"), (w_ie_n, "w_ie_n"))]
-    C = as_dcm(as_array(C_bn, "C_bn", tail=(3, 3)).reshape(3, 3))
-    z = np.empty(6)
-    _static_z(z, args[0], args[1], args[2], np.ascontiguousarray(C), args[3])
-    return z
-
 
 def simple_covariance_update(P, H, R):
     """The printed last line of Eq. (3): optimal gain K and ``(I - K H) P``."""
@@ -819,23 +558,47 @@ FLAG_DROPOUT, FLAG_SPIKE, FLAG_SATURATED, FLAG_STATIC_SKIPPED = 1, 2, 4, 8
 """Bits of :attr:`FilterResult.flags`."""
 
 
-@njit(cache=True)
-def _is_spike(x, k, thr):
-    """Sample k is an isolated spike on some axis (needs 2 <= k < N - 2).
+class _Samples(NamedTuple):
+    """Per-sample inputs of :func:`_filter_kernel`: N rows each, SI units, NaN = no reading."""
+    w: np.ndarray                   # (N, 3) gyro (rad/s)
+    f: np.ndarray                   # (N, 3) accelerometer (m/s^2)
+    dt: np.ndarray                  # (N,) interval covered by each sample (s)
+    static: np.ndarray              # (N,) bool
+    h_baro: np.ndarray              # (N,) barometric height (m)
+    m_b: np.ndarray                 # (N, 3) magnetometer (uT)
 
-    With ``r_j = x_j - (x_j-1 + x_j+1) / 2`` (the deviation from the line
-    through the neighbours): ``|r_k| > thr`` and ``|r_k| > 1.5 |r_k-+1|``. A
-    spike S gives ``r_k = S`` and ``r_k-+1 = -S/2``, so its neighbours never
-    qualify; smooth motion gives ``r ~ a w^2 dt^2``, a few mrad/s or cm/s^2
-    at 100 Hz. NaN nearby never flags a spike.
-    """
-    for i in range(3):
-        r0 = x[k, i] - (x[k - 1, i] + x[k + 1, i]) / 2
-        rm = x[k - 1, i] - (x[k - 2, i] + x[k, i]) / 2
-        rp = x[k + 1, i] - (x[k, i] + x[k + 2, i]) / 2
-        if abs(r0) > thr and abs(r0) > 1.5 * abs(rm) and abs(r0) > 1.5 * abs(rp):
-            return True
-    return False
+
+class _Setup(NamedTuple):
+    """Initial state and tuning of :func:`_filter_kernel` (``r_*`` are variances; see :class:`FilterConfig`)."""
+    lla0: np.ndarray                # (3,) rad, rad, m
+    vel0: np.ndarray                # (3,) m/s ENU
+    q0: np.ndarray                  # (4,)
+    b0: np.ndarray                  # (6,) accelerometer then gyro bias
+    declination: float
+    field_ref: np.ndarray           # (2,) reference intensity (uT) and dip (rad); zeros: no gate
+    zupt: bool
+    aiding: int                     # _AIDING code
+    every: int                      # static samples averaged per ZUPT/ZARU update
+    q_rate: np.ndarray              # (15,) process-noise densities squared (Q = q_rate dt_k)
+    p0_diag: np.ndarray             # (15,) initial variances
+    r_zupt: float
+    r_zaru: float
+    r_baro: float
+    r_heading: float
+    alpha: float
+    beta: float
+    gate: float
+    max_rejected: int
+    field_tol: float
+    dip_tol: float
+    gyro_fs: float
+    accel_fs: float
+    baro_gate: float
+    spike_gyro: float
+    spike_accel: float
+    hold_gyro: float
+    hold_accel: float
+    earth_consts: np.ndarray        # (7,) navlib.strapdown.earth_constants
 
 
 @njit(cache=True)
@@ -868,26 +631,24 @@ def _reset_state(P, i, sigma):
 
 
 @njit(cache=True)
-def _filter_kernel(lla0, vel0, q0, b0, w, f, dt, static, h_baro, m_b, declination, field_ref, zupt,
-                   aiding, every, q_rate, p0_diag, r_zupt, r_zaru, r_baro, r_heading, alpha, beta, gate, max_rejected,
-                   field_tol, dip_tol, gyro_fs, accel_fs, baro_gate, spike_gyro, spike_accel, hold_gyro, hold_accel,
-                   a, flat, e2, mgrav, gamma_e, k_som, omega):
-    """``dt`` (N,) per-sample intervals; ``q_rate`` (15,) process-noise densities squared (Q = q_rate dt_k)."""
+def _filter_kernel(samples, c):
+    """Run the filter over ``samples`` (:class:`_Samples`) from the state and tuning ``c`` (:class:`_Setup`)."""
+    w, f, dt, static, h_baro, m_b = samples
+    a, e2, omega = c.earth_consts[0], c.earth_consts[2], c.earth_consts[6]
     n = w.shape[0]
     counts = np.zeros(12, dtype=np.int64)
     flags = np.zeros(n, dtype=np.uint8)
     lla_out, vel_out, q_out = np.empty((n + 1, 3)), np.empty((n + 1, 3)), np.empty((n + 1, 4))
     b_out, p_out = np.empty((n + 1, 6)), np.empty((n + 1, 15))
-    lla, vel, q, b = lla0.copy().reshape(1, 3), vel0.copy().reshape(1, 3), q0.copy().reshape(1, 4), b0.copy()
-    x, P = np.zeros(15), np.diag(p0_diag)
+    lla, vel, q, b = c.lla0.copy().reshape(1, 3), c.vel0.copy().reshape(1, 3), c.q0.copy().reshape(1, 4), c.b0.copy()
+    x, P = np.zeros(15), np.diag(c.p0_diag)
     Phi = np.eye(15)
     Q = np.zeros((15, 15))
     H6, z6, h6 = np.zeros((6, 15)), np.zeros(6), np.zeros(6)
-    R6 = np.diag(np.array([r_zupt, r_zupt, r_zupt, r_zaru, r_zaru, r_zaru]))
+    R6 = np.diag(np.array([c.r_zupt, c.r_zupt, c.r_zupt, c.r_zaru, c.r_zaru, c.r_zaru]))
     H1, z1, h1, R1 = np.zeros((1, 15)), np.zeros(1), np.zeros(1), np.zeros((1, 1))
     no_wrap6, wrap1, no_wrap1 = np.zeros(6, dtype=np.bool_), np.ones(1, dtype=np.bool_), np.zeros(1, dtype=np.bool_)
     wk, fk = np.zeros(3), np.zeros(3)
-    earth_consts = np.array([a, flat, e2, mgrav, gamma_e, k_som, omega])
     w_last, f_last = w[0].copy(), f[0].copy()
     w_sum, n_sum, n_rejected = np.zeros(3), 0, 0
     hb, vb, hb_init, t_baro = 0.0, 0.0, False, 0.0          # alpha-beta tracker of the baro height
@@ -903,14 +664,14 @@ def _filter_kernel(lla0, vel0, q0, b0, w, f, dt, static, h_baro, m_b, declinatio
             counts[_N_IMU_NAN] += 1                      # dropout: hold the last good sample
             flags[k] |= FLAG_DROPOUT
             good, held = False, True
-        elif k > 1 and k + 2 < n and (_is_spike(w, k, spike_gyro) or _is_spike(f, k, spike_accel)):
+        elif k > 1 and k + 2 < n and (robust.is_spike(w, k, c.spike_gyro) or robust.is_spike(f, k, c.spike_accel)):
             counts[_N_SPIKE] += 1                        # isolated spike: held like a dropout
             flags[k] |= FLAG_SPIKE
             good, held = False, True
         else:
             w_last[:], f_last[:] = w[k], f[k]
             for i in range(3):
-                if abs(w[k, i]) >= gyro_fs or abs(f[k, i]) >= accel_fs:
+                if abs(w[k, i]) >= c.gyro_fs or abs(f[k, i]) >= c.accel_fs:
                     good = False
             if not good:
                 counts[_N_SAT] += 1                      # at the rails: integrated as is, no static update
@@ -918,39 +679,39 @@ def _filter_kernel(lla0, vel0, q0, b0, w, f, dt, static, h_baro, m_b, declinatio
         for i in range(3):
             wk[i] = w_last[i] - b[3 + i]
             fk[i] = f_last[i] - b[i]
-        nav_step(lla[0], vel[0], q[0], wk, fk, dtk, earth_consts, False)   # the shared mechanisation
+        nav_step(lla[0], vel[0], q[0], wk, fk, dtk, c.earth_consts, False)   # the shared mechanisation
         C = attitude.quat_to_dcm_1(q[0])
         for i in range(3):
             Phi[i, 3 + i] = dtk
         for i in range(15):
-            Q[i, i] = q_rate[i] * dtk
+            Q[i, i] = c.q_rate[i] * dtk
         if held:                                         # the held sample is a guess: inflate, don't trust
             for i in range(3):
-                Q[3 + i, 3 + i] += hold_accel * hold_accel * dtk
-                Q[6 + i, 6 + i] += hold_gyro * hold_gyro * dtk
-        _fill_F(Phi, C * dtk, C @ fk * dtk)            # Phi = I + F dt (blocks scaled by dt)
+                Q[3 + i, 3 + i] += c.hold_accel * c.hold_accel * dtk
+                Q[6 + i, 6 + i] += c.hold_gyro * c.hold_gyro * dtk
+        error_state_into(Phi, C * dtk, C @ fk * dtk)            # Phi = I + F dt (blocks scaled by dt)
         x, P = kalman.predict(x, P, Phi, Q)
-        if static[k] and zupt and not good:              # held or clipped: left out of the static average
+        if static[k] and c.zupt and not good:              # held or clipped: left out of the static average
             counts[_N_STATIC_SKIP] += 1
             flags[k] |= FLAG_STATIC_SKIPPED
         # --- standing still: ZUPT + ZARU (Eq. 2) ---
-        elif static[k] and zupt:
+        elif static[k] and c.zupt:
             for i in range(3):
                 w_sum[i] += w_last[i]
             n_sum += 1
-            if n_sum >= every:
+            if n_sum >= c.every:
                 w_ie[1], w_ie[2] = omega * np.cos(lla[0, 0]), omega * np.sin(lla[0, 0])
-                _fill_H(H6, C, w_ie)
-                _static_z(z6, vel[0], w_sum / n_sum, b[3:6], C, w_ie)
+                zupt_zaru_rows_into(H6, C, w_ie)
+                zupt_zaru_z_into(z6, vel[0], w_sum / n_sum, b[3:6], C, w_ie)
                 for i in range(3):
-                    R6[3 + i, 3 + i] = r_zaru / n_sum
+                    R6[3 + i, 3 + i] = c.r_zaru / n_sum
                 h6[:] = H6 @ x
                 # a stance that keeps failing the gate means the INS, not the stance, is wrong
-                forced = n_rejected >= max_rejected
+                forced = n_rejected >= c.max_rejected
                 if forced:                                   # P was too small: widen the velocity rows
                     for i in range(3):
                         _reset_state(P, 3 + i, max(np.sqrt(P[3 + i, 3 + i]), abs(z6[i] - h6[i])))
-                x, P, _, _, status = kalman.update(x, P, z6, h6, H6, R6, no_wrap6, np.inf if forced else gate)
+                x, P, _, _, status = kalman.update(x, P, z6, h6, H6, R6, no_wrap6, np.inf if forced else c.gate)
                 if status == 1:
                     counts[_N_ZUPT] += 1
                     counts[_N_ZUPT_FORCED] += forced
@@ -969,55 +730,55 @@ def _filter_kernel(lla0, vel0, q0, b0, w, f, dt, static, h_baro, m_b, declinatio
                 hb, vb, hb_init = h_baro[k], 0.0, True
             else:
                 r = h_baro[k] - hb
-                if abs(r) > baro_gate and n_baro_rej < max_rejected:
+                if abs(r) > c.baro_gate and n_baro_rej < c.max_rejected:
                     counts[_N_BARO_REJ] += 1                 # spike: the tracker coasts over it
                     n_baro_rej += 1
                     use_baro = False
-                elif abs(r) > baro_gate:                     # persistent: the tracker, not the sensor, is off
+                elif abs(r) > c.baro_gate:                     # persistent: the tracker, not the sensor, is off
                     counts[_N_BARO_REINIT] += 1
                     hb, vb, n_baro_rej = h_baro[k], 0.0, 0
                 else:
-                    hb += alpha * r
-                    vb += beta * r / t_baro
+                    hb += c.alpha * r
+                    vb += c.beta * r / t_baro
                     n_baro_rej = 0
         if use_baro:
             t_baro = 0.0
-            if aiding > 0 and not static[k]:
+            if c.aiding > 0 and not static[k]:
                 counts[_N_BARO] += 1
-                if aiding == 1:                              # direct binding
+                if c.aiding == 1:                              # direct binding
                     lla[0, 2], vel[0, 2] = hb, vb
-                    _reset_state(P, 2, np.sqrt(r_baro))
+                    _reset_state(P, 2, np.sqrt(c.r_baro))
                     _reset_state(P, 5, 0.3)
                 else:
                     H1[:] = 0.0
                     H1[0, 2] = 1.0
-                    z1[0], h1[0], R1[0, 0] = lla[0, 2] - h_baro[k], 0.0, r_baro
+                    z1[0], h1[0], R1[0, 0] = lla[0, 2] - h_baro[k], 0.0, c.r_baro
                     x, P, _, _, status = kalman.update(x, P, z1, h1, H1, R1, no_wrap1, np.inf)
                     _feedback(x, lla[0], vel[0], q[0], b, a, e2)
         hb += vb * dtk
         t_baro += dtk
         # --- magnetometer heading while walking (Eqs. 4-6) ---
-        if aiding > 0 and not static[k] and np.isfinite(m_b[k]).all():
+        if c.aiding > 0 and not static[k] and np.isfinite(m_b[k]).all():
             m_n = C @ m_b[k]
             F_m = np.sqrt(m_n[0] ** 2 + m_n[1] ** 2 + m_n[2] ** 2)
             dip = np.arctan2(-m_n[2], np.sqrt(m_n[0] ** 2 + m_n[1] ** 2))
-            if abs(F_m - field_ref[0]) > field_tol or abs(dip - field_ref[1]) > dip_tol:
+            if abs(F_m - c.field_ref[0]) > c.field_tol or abs(dip - c.field_ref[1]) > c.dip_tol:
                 counts[_N_MAG_GATED] += 1
             else:
                 pitch, roll = np.arcsin(min(1.0, max(-1.0, C[2, 1]))), np.arctan2(-C[2, 0], C[2, 2])
-                alpha_h = _kernels.tilt_heading(m_b[k, 0], m_b[k, 1], m_b[k, 2], pitch, roll) + declination
+                alpha_h = _kernels.tilt_heading(m_b[k, 0], m_b[k, 1], m_b[k, 2], pitch, roll) + c.declination
                 dh = _kernels.wrap_pi(_heading_of(C) - alpha_h)
                 counts[_N_MAG] += 1
-                if aiding == 1:                          # C <- rot(z, H_hat - alpha) C
+                if c.aiding == 1:                          # C <- rot(z, H_hat - alpha) C
                     rz = np.array([np.cos(dh / 2), 0.0, 0.0, np.sin(dh / 2)])
                     q[0] = attitude.quat_normalize_1(attitude.quat_mult_1(rz, q[0]))
-                    _reset_state(P, 8, np.sqrt(r_heading))
+                    _reset_state(P, 8, np.sqrt(c.r_heading))
                 else:
                     c1 = C[:, 1]
                     hh = c1[0] ** 2 + c1[1] ** 2
                     H1[:] = 0.0
                     H1[0, 6], H1[0, 7], H1[0, 8] = c1[0] * c1[2] / hh, c1[1] * c1[2] / hh, -1.0
-                    z1[0], h1[0], R1[0, 0] = dh, 0.0, r_heading
+                    z1[0], h1[0], R1[0, 0] = dh, 0.0, c.r_heading
                     x, P, _, _, status = kalman.update(x, P, z1, h1, H1, R1, wrap1, np.inf)
                     _feedback(x, lla[0], vel[0], q[0], b, a, e2)
         lla_out[k + 1], vel_out[k + 1], q_out[k + 1], b_out[k + 1] = lla[0], vel[0], q[0], b
@@ -1109,7 +870,7 @@ def run_filter(w_ib_b, f_b, dt, lla0, vel0, q0, static, *, h_baro=None, m_b=None
         Initial attitude quaternion (e.g. from :func:`navlib.alignment.level` and
         :func:`magnetic_heading`).
     static : array_like of bool, shape (N,)
-        Static flags, e.g. from :func:`detect_static`.
+        Static flags, e.g. from :func:`navlib.filters.zupt.detect_static`.
     h_baro : array_like, shape (N,), optional
         Barometric height (m, same datum as ``lla0[2]``), NaN between samples.
     m_b : array_like, shape (N, 3), optional
@@ -1196,14 +957,16 @@ def run_filter(w_ib_b, f_b, dt, lla0, vel0, q0, static, *, h_baro=None, m_b=None
                              np.full(3, c.accel_bias_rw ** 2), np.full(3, c.gyro_bias_rw ** 2)])
     p0 = np.array([c.p0_pos] * 3 + [c.p0_vel] * 3 + [c.p0_tilt] * 2 + [c.p0_heading]
                   + [c.p0_accel_bias] * 3 + [c.p0_gyro_bias] * 3) ** 2
-    out = _filter_kernel(lla0, vel0, np.ascontiguousarray(q0), b0, np.ascontiguousarray(w), np.ascontiguousarray(f),
-                         dts, s, np.ascontiguousarray(hb), np.ascontiguousarray(mb),
-                         float(as_array(declination, "declination")), field_ref, bool(zupt),
-                         _AIDING[walk_aiding], every, q_rate, p0, c.sigma_zupt ** 2, c.sigma_zaru ** 2,
-                         c.sigma_baro ** 2, c.sigma_heading ** 2, c.baro_alpha, c.baro_beta, c.gate, c.max_rejected,
-                         c.mag_field_tol, c.mag_dip_tol, gyro_fs, accel_fs, c.baro_gate, c.spike_gyro, c.spike_accel,
-                         c.hold_gyro_sigma, c.hold_accel_sigma,
-                         *ellipsoid.gravity_constants, ellipsoid.omega)
+    samples = _Samples(np.ascontiguousarray(w), np.ascontiguousarray(f), dts, s, np.ascontiguousarray(hb),
+                       np.ascontiguousarray(mb))
+    setup = _Setup(lla0, vel0, np.ascontiguousarray(q0), b0, float(as_array(declination, "declination")), field_ref,
+                   bool(zupt), _AIDING[walk_aiding], every, q_rate, p0, float(c.sigma_zupt ** 2),
+                   float(c.sigma_zaru ** 2), float(c.sigma_baro ** 2), float(c.sigma_heading ** 2),
+                   float(c.baro_alpha), float(c.baro_beta), float(c.gate), int(c.max_rejected), float(c.mag_field_tol),
+                   float(c.mag_dip_tol), gyro_fs, accel_fs, float(c.baro_gate), float(c.spike_gyro),
+                   float(c.spike_accel), float(c.hold_gyro_sigma), float(c.hold_accel_sigma),
+                   earth_constants(ellipsoid))
+    out = _filter_kernel(samples, setup)
     lla, vel, q, b, p_diag, counts, flags, P = out
     t0 = float(as_array(t0, "t0"))
     time = t0 + (dts[0] * np.arange(n + 1) if np.all(dts == dts[0]) else np.concatenate([[0.0], np.cumsum(dts)]))

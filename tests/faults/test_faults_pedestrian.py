@@ -16,7 +16,8 @@ import warnings
 import numpy as np
 import pytest
 
-from navlib import alignment, analysis, atmosphere, attitude, earth, faults, pdr, sensors, timing, trajectory, units
+from navlib import alignment, analysis, atmosphere, attitude, earth, faults, pdr, robust, sensors, timing, trajectory, units
+from navlib.filters import zupt
 from navlib.papers import pedestrian_ins as pd
 
 LLA0 = [units.deg(30.55), units.deg(114.30), 20.0]
@@ -45,7 +46,7 @@ def walk():
     h = 20.0 + atmosphere.baro_height(p, atmosphere.reference_pressure(p, t, 15.0))
     off = np.arange(t.size) % 10 != 0                                   # 10 Hz aiding sensors
     h[off], m[off] = np.nan, np.nan
-    static = pd.detect_static(imu.w_ib_b, imu.f_b, DT)
+    static = zupt.detect_static(imu.w_ib_b, imu.f_b, DT)
     data = dict(traj=traj, t=t, w=imu.w_ib_b, f=imu.f_b, h=h, m=m, B=B, D=D, static=static)
     data["ref"] = run(data)
     data["e_ref"] = herr(data["ref"], traj)
@@ -56,7 +57,7 @@ def run(d, w=None, f=None, dt=DT, static=None, h=None, m=None, **kw):
     """The filter on the walk, with any input replaced (and checked for finiteness and a SPD covariance)."""
     w = d["w"] if w is None else w
     f = d["f"] if f is None else f
-    static = pd.detect_static(w, f, DT) if static is None else static
+    static = zupt.detect_static(w, f, DT) if static is None else static
     res = pd.run_filter(w, f, dt, LLA0, np.zeros(3), d["traj"].q_bn[0], static,
                         h_baro=d["h"] if h is None else h, m_b=d["m"] if m is None else m, declination=d["D"], **kw)
     assert np.isfinite(res.nav.lla).all() and np.isfinite(res.nav.q_bn).all() and np.isfinite(res.P_diag).all()
@@ -82,7 +83,7 @@ def test_random_dropouts_are_held_counted_and_bounded(walk):
     w[0] = walk["w"][0]
     f = walk["f"].copy()
     f[drop] = np.nan
-    static = pd.detect_static(w, f, DT)          # NaN-tolerant: windows with >= half their samples valid
+    static = zupt.detect_static(w, f, DT)          # NaN-tolerant: windows with >= half their samples valid
     res = run(walk, w, f, static=static)
     assert res.counts["imu_dropouts"] == drop.sum() > 1000
     np.testing.assert_array_equal(flagged(res, pd.FLAG_DROPOUT), drop)
@@ -150,11 +151,11 @@ def _spiky(walk, seed=3):
 
 def test_despike_finds_the_spikes_and_the_pipeline_stays_near_the_clean_run(walk):
     w, f, hit = _spiky(walk)
-    wd, fd, found = pd.despike(w, f, SPIKE_GYRO, SPIKE_ACCEL)
+    wd, fd, found = robust.despike(w, f, SPIKE_GYRO, SPIKE_ACCEL)
     # No false alarm; misses only where two spikes are adjacent (each hides the other) or at the ends.
     assert not (found & ~hit).any()
     assert found.sum() >= 0.95 * hit.sum() and hit.sum() > 150, (found.sum(), hit.sum())
-    assert not pd.despike(walk["w"], walk["f"], SPIKE_GYRO, SPIKE_ACCEL)[2].any()   # clean data: none
+    assert not robust.despike(walk["w"], walk["f"], SPIKE_GYRO, SPIKE_ACCEL)[2].any()   # clean data: none
     res = run(walk, wd, fd)                     # despike -> detect_static -> run_filter (spikes held)
     assert res.counts["imu_dropouts"] == found.sum()
     # Stated bound: the undetected adjacent spikes (2 of 235) and the held samples: within 3 m of the
@@ -169,8 +170,8 @@ def test_despike_finds_the_spikes_and_the_pipeline_stays_near_the_clean_run(walk
 
 def test_spike_test_inside_the_filter_flags_the_same_samples(walk):
     w, f, hit = _spiky(walk)
-    found = pd.despike(w, f, SPIKE_GYRO, SPIKE_ACCEL)[2]
-    res = run(walk, w, f, static=pd.detect_static(*pd.despike(w, f, SPIKE_GYRO, SPIKE_ACCEL)[:2], DT),
+    found = robust.despike(w, f, SPIKE_GYRO, SPIKE_ACCEL)[2]
+    res = run(walk, w, f, static=zupt.detect_static(*robust.despike(w, f, SPIKE_GYRO, SPIKE_ACCEL)[:2], DT),
               config=pd.FilterConfig(spike_gyro=SPIKE_GYRO, spike_accel=SPIKE_ACCEL))
     np.testing.assert_array_equal(flagged(res, pd.FLAG_SPIKE), found)
     assert res.counts["imu_spikes"] == found.sum() and res.counts["imu_dropouts"] == 0
@@ -384,12 +385,12 @@ FUZZ = [
     ("carpark_legs", "n_loops", lambda: pd.carpark_legs(n_loops=0)),
     ("floor_test_legs", "stand", lambda: pd.floor_test_legs(stand=np.inf)),
     ("floor_test_legs", "n_round_trips", lambda: pd.floor_test_legs(n_round_trips=1.5)),
-    ("detect_static", "w_ib_b", lambda: pd.detect_static(CPLX, F3, DT)),
-    ("detect_static", "w_ib_b", lambda: pd.detect_static(np.zeros((0, 3)), np.zeros((0, 3)), DT)),
-    ("detect_static", "f_b", lambda: pd.detect_static(Z3, OBJ, DT)),
-    ("detect_static", "thresholds", lambda: pd.detect_static(Z3, F3, DT, thresholds=(0.1, 0.1))),
-    ("detect_static", "g", lambda: pd.detect_static(Z3, F3, DT, g=np.nan)),
-    ("detect_static", "gyro_bias", lambda: pd.detect_static(Z3, F3, DT, gyro_bias=[0.0, np.inf, 0.0])),
+    ("detect_static", "w_ib_b", lambda: zupt.detect_static(CPLX, F3, DT)),
+    ("detect_static", "w_ib_b", lambda: zupt.detect_static(np.zeros((0, 3)), np.zeros((0, 3)), DT)),
+    ("detect_static", "f_b", lambda: zupt.detect_static(Z3, OBJ, DT)),
+    ("detect_static", "thresholds", lambda: zupt.detect_static(Z3, F3, DT, thresholds=(0.1, 0.1))),
+    ("detect_static", "g", lambda: zupt.detect_static(Z3, F3, DT, g=np.nan)),
+    ("detect_static", "gyro_bias", lambda: zupt.detect_static(Z3, F3, DT, gyro_bias=[0.0, np.inf, 0.0])),
     ("detection_rates", "detected", lambda: analysis.detection_rates(np.ones(5), np.r_[True, False, True, True, True])),
     ("level", "f_b", lambda: alignment.level([0.0, 0.0, np.nan])),
     ("level", "f_b", lambda: alignment.level(np.zeros(3, complex))),
@@ -419,18 +420,18 @@ FUZZ = [
     ("hvac_pressure_steps", "time", lambda: pd.hvac_pressure_steps([np.nan], [1.0], np.random.default_rng(0))),
     ("hvac_pressure_steps", "amplitude", lambda: pd.hvac_pressure_steps([0.0], [1.0], np.random.default_rng(0), -1.0)),
     ("hvac_pressure_steps", "rng", lambda: pd.hvac_pressure_steps([0.0], [1.0], np.random.RandomState(0))),
-    ("despike", "w_ib_b", lambda: pd.despike(CPLX, F3, 0.1, 1.0)),
-    ("despike", "f_b", lambda: pd.despike(Z3, F3[:10], 0.1, 1.0)),
-    ("despike", "spike_gyro", lambda: pd.despike(Z3, F3, 0.0, 1.0)),
-    ("despike", "spike_accel", lambda: pd.despike(Z3, F3, 0.1, np.nan)),
-    ("error_state_matrix", "C_bn", lambda: pd.error_state_matrix(np.ones((3, 3)), [0, 0, 9.8])),
-    ("error_state_matrix", "f_b", lambda: pd.error_state_matrix(np.eye(3), [0, 0, np.nan])),
-    ("error_model_fd", "eps", lambda: pd.error_model_fd(np.eye(3), [0, 0, 9.8], eps=0.0)),
-    ("error_model_fd", "f_b", lambda: pd.error_model_fd(np.eye(3), "abc")),
-    ("zupt_zaru_matrix", "C_bn", lambda: pd.zupt_zaru_matrix(np.full((3, 3), np.nan), np.zeros(3))),
-    ("zupt_zaru_matrix", "w_ie_n", lambda: pd.zupt_zaru_matrix(np.eye(3), [0.0, 1j, 0.0])),
-    ("zupt_zaru_innovation", "vel_n", lambda: pd.zupt_zaru_innovation([np.nan] * 3, Z3[0], Z3[0], np.eye(3), Z3[0])),
-    ("zupt_zaru_innovation", "b_g", lambda: pd.zupt_zaru_innovation(Z3[0], Z3[0], [0, 0], np.eye(3), Z3[0])),
+    ("despike", "w_ib_b", lambda: robust.despike(CPLX, F3, 0.1, 1.0)),
+    ("despike", "f_b", lambda: robust.despike(Z3, F3[:10], 0.1, 1.0)),
+    ("despike", "spike_gyro", lambda: robust.despike(Z3, F3, 0.0, 1.0)),
+    ("despike", "spike_accel", lambda: robust.despike(Z3, F3, 0.1, np.nan)),
+    ("error_state_matrix", "C_bn", lambda: zupt.error_state_matrix(np.ones((3, 3)), [0, 0, 9.8])),
+    ("error_state_matrix", "f_b", lambda: zupt.error_state_matrix(np.eye(3), [0, 0, np.nan])),
+    ("error_model_fd", "eps", lambda: zupt.error_model_fd(np.eye(3), [0, 0, 9.8], eps=0.0)),
+    ("error_model_fd", "f_b", lambda: zupt.error_model_fd(np.eye(3), "abc")),
+    ("zupt_zaru_matrix", "C_bn", lambda: zupt.zupt_zaru_matrix(np.full((3, 3), np.nan), np.zeros(3))),
+    ("zupt_zaru_matrix", "w_ie_n", lambda: zupt.zupt_zaru_matrix(np.eye(3), [0.0, 1j, 0.0])),
+    ("zupt_zaru_innovation", "vel_n", lambda: zupt.zupt_zaru_innovation([np.nan] * 3, Z3[0], Z3[0], np.eye(3), Z3[0])),
+    ("zupt_zaru_innovation", "b_g", lambda: zupt.zupt_zaru_innovation(Z3[0], Z3[0], [0, 0], np.eye(3), Z3[0])),
     ("simple_covariance_update", "P",
      lambda: pd.simple_covariance_update(np.full((2, 2), np.nan), np.eye(2), np.eye(2))),
     ("simple_covariance_update", "P, H, R", lambda: pd.simple_covariance_update(np.eye(2), np.eye(3), np.eye(2))),
@@ -499,8 +500,10 @@ def test_bad_input_raises_naming_the_argument(func, arg, call):
 
 def test_every_public_function_is_fuzzed():
     covered = {f for f, _, _ in FUZZ}
-    # plus the functions that moved to navlib.alignment and navlib.analysis, still fuzzed here
-    public = set(pd.__all__) | {"level", "magnetic_heading", "horizontal_error", "expanding_std", "detection_rates",
+    # plus the functions that moved to core modules, still fuzzed here
+    public = set(pd.__all__) | {"detect_static", "despike", "error_state_matrix", "error_model_fd", "zupt_zaru_matrix",
+                                "zupt_zaru_innovation", "STATIC_THRESHOLDS",
+                                "level", "magnetic_heading", "horizontal_error", "expanding_std", "detection_rates",
                                 "baro_height", "reference_pressure", "classify_floor", "segment_floors", "segments",
                                 "static_gyro_bias", "ned_to_enu_dcm", "M_NED_ENU", "StepResult", "detect_steps",
                                 "weinberg_step_length", "pdr", "pdr_headings"}

@@ -1,0 +1,242 @@
+"""ZUPT/ZARU: static detection and the zero-velocity / zero-angular-rate update of an INS.
+
+A strapdown INS drifts quadratically in position; whenever the IMU is known to stand still,
+the velocity must be zero (ZUPT) and the gyros must read the Earth rate only (ZARU). An
+error-state Kalman filter turns both into measurements of its 15 error states
+``dx = [dr_n, dv_n, dpsi, db_a, db_g]`` (ENU; ``C_hat = (I + [dpsi x]) C``; ``d = estimate -
+truth`` for r, v, psi and ``truth - estimate`` for the biases).
+
+* :func:`detect_static` -- the ARE + MV + MAG detector of Skog et al. (2010, "Zero-velocity
+  detection: an algorithm evaluation", IEEE T-BME 57(11)): static when, over a centred window,
+  ``rms|w - b_g| < tau_w``, ``std|f| < tau_f`` and ``|mean|f| - g| < tau_g``.
+* :func:`error_state_matrix` -- the continuous-time F of the standard local-level error model
+  without Earth-rate and transport-rate terms::
+
+      d(dr)/dt = dv,   d(dv)/dt = -[(C_hat f_b) x] dpsi + C_hat db_a,
+      d(dpsi)/dt = C_hat db_g,   d(db)/dt = white
+
+  :func:`error_model_fd` differentiates the exact error dynamics numerically to check it.
+* :func:`zupt_zaru_matrix`, :func:`zupt_zaru_innovation` -- the static measurement::
+
+      z = [v_hat; w_meas - b_g_hat - C_hat^T w_ie_n] = H dx + v,
+      H = [[0, I, 0, 0, 0], [0, 0, -C_hat^T [w_ie_n x], 0, I]]
+
+  The ``-C^T [w_ie x]`` block is the exact first-order Earth-rate term; with it ``z - H dx``
+  is second order.
+
+The ``*_into`` functions are the compiled forms that filter kernels call (no validation).
+Used by paper 004 (Wen et al. 2016, :mod:`navlib.papers.pedestrian_ins`), which assembles them
+with barometer and magnetometer aiding into its filter.
+"""
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+from numpy.typing import NDArray
+
+from .. import analysis, attitude
+from .._typing import Array, ArrayLike, Dcm, Vec3, Vec3Series
+from .._validate import as_array, as_dcm, positive
+from ..atmosphere import G0
+
+__all__ = ["STATIC_THRESHOLDS", "detect_static", "error_state_matrix", "error_model_fd", "zupt_zaru_matrix",
+           "zupt_zaru_innovation"]
+
+STATIC_THRESHOLDS = (0.05, 0.1, 0.3)
+"""Default static-detector thresholds: gyro rms (rad/s), std |f| and |mean |f| - g| (m/s^2); starting values to
+tune per sensor and wearer."""
+
+
+def detect_static(w_ib_b: Vec3Series, f_b: Vec3Series, dt: float, window: float = 0.5, gyro_bias: Vec3 = (0.0, 0.0, 0.0),
+                  thresholds: ArrayLike = STATIC_THRESHOLDS, g: float = G0) -> NDArray[np.bool_]:
+    """Static (standing) detector from gyro and accelerometer statistics.
+
+    Static when, over a centred window of ``window`` seconds, all hold:
+    ``rms |w - b_g| < tau_w`` (angular-rate energy), ``std |f| < tau_f``
+    (specific-force variance) and ``|mean |f| - g| < tau_g`` (magnitude).
+
+    NaN samples (dropouts) are left out: the statistics use the valid
+    samples of each window, and a window with fewer than half of its
+    samples valid is never static (a missing sample is no evidence of
+    standing still).
+
+    Parameters
+    ----------
+    w_ib_b, f_b : array_like, shape (N, 3)
+        Gyro (rad/s) and accelerometer (m/s^2) samples; NaN marks dropouts.
+    dt : float
+        Sample interval (s) (nominal; the window is a number of samples).
+    window : float
+        Window length (s); at most the record length.
+    gyro_bias : array_like, shape (3,)
+        Gyro bias to remove first (rad/s), e.g. from :func:`navlib.alignment.static_gyro_bias`.
+    thresholds : (float, float, float)
+        ``(tau_w rad/s, tau_f m/s^2, tau_g m/s^2)``.
+    g : float
+        Local gravity (m/s^2); default the standard 9.80665 (pass the local value).
+
+    Returns
+    -------
+    static : ndarray of bool, shape (N,)
+    """
+    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
+    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=True)
+    if w.ndim != 2 or f.shape != w.shape:
+        raise ValueError(f"f_b: expected the shape (N, 3) of w_ib_b {w.shape}, got {f.shape}")
+    dt = float(positive(dt, "dt"))
+    valid = np.isfinite(w).all(-1) & np.isfinite(f).all(-1)
+    if not valid.all():
+        w, f = np.where(valid[:, None], w, 0.0), np.where(valid[:, None], f, 0.0)
+    n = int(round(float(positive(window, "window")) / dt))
+    if n < 2 or n > w.shape[0]:
+        raise ValueError(f"window: expected 2 samples up to the record length {w.shape[0] * dt:g} s, "
+                         f"got {window} s ({n} samples)")
+    b = as_array(gyro_bias, "gyro_bias", tail=(3,)).reshape(3)
+    tw, tf, tg = positive(as_array(thresholds, "thresholds", tail=(3,)).reshape(3), "thresholds")
+    g = float(positive(g, "g"))
+    w2 = np.sum((w - b) ** 2, -1)
+    fn = np.linalg.norm(f, axis=-1)
+    share = None if valid.all() else analysis.moving_mean(valid.astype(float), n)   # fraction of valid samples per window
+
+    def mean(x):
+        if share is None:
+            return analysis.moving_mean(x, n)
+        return analysis.moving_mean(np.where(valid, x, 0.0), n) / np.maximum(share, 0.5 / n)
+
+    f_mean = mean(fn)
+    f_var = np.maximum(mean(fn ** 2) - f_mean ** 2, 0.0)
+    static = (np.sqrt(mean(w2)) < tw) & (np.sqrt(f_var) < tf) & (np.abs(f_mean - g) < tg)
+    if not valid.all():
+        static &= share >= 0.5
+    return static
+
+
+@njit(cache=True)
+def skew_1(v):
+    """``[v x]`` of one vector; compiled."""
+    return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
+
+
+@njit(cache=True)
+def error_state_into(F, C, f_n):
+    """Write the time-varying blocks of F into ``F`` (15 x 15, constant blocks preset); compiled, unvalidated."""
+    Sf = skew_1(f_n)
+    for i in range(3):
+        for j in range(3):
+            F[3 + i, 6 + j] = -Sf[i, j]
+            F[3 + i, 9 + j] = C[i, j]
+            F[6 + i, 12 + j] = C[i, j]
+
+
+def error_state_matrix(C_bn: Dcm, f_b: Vec3) -> Array:
+    """F of the 15-state error model (15 x 15), ENU.
+
+    Parameters
+    ----------
+    C_bn : array_like, shape (3, 3)
+        Estimated attitude.
+    f_b : array_like, shape (3,)
+        Bias-corrected specific force (m/s^2).
+    """
+    C = as_dcm(as_array(C_bn, "C_bn", tail=(3, 3)).reshape(3, 3))
+    f = as_array(f_b, "f_b", tail=(3,)).reshape(3)
+    F = np.zeros((15, 15))
+    F[0:3, 3:6] = np.eye(3)
+    error_state_into(F, np.ascontiguousarray(C), C @ f)
+    return F
+
+
+def _error_rate(dx, C_true, f_true):
+    """Exact time derivative of the error state for a static-Earth mechanisation.
+
+    Truth: C' = C [w x], v' = C f + g. Estimate: C_hat = exp([dpsi x]) C,
+    driven by the corrected samples f + b_a - b_a_hat = f + db_a and w + db_g.
+    Then d/dt exp([dpsi x]) exp([dpsi x])^T = [(C_hat db_g) x], and the
+    rotation vector moves with the inverse left Jacobian of SO(3).
+    """
+    dpsi, dba, dbg = dx[6:9], dx[9:12], dx[12:15]
+    C_hat = attitude.rotvec_to_dcm(dpsi) @ C_true
+    dv_rate = C_hat @ (f_true + dba) - C_true @ f_true
+    th = np.linalg.norm(dpsi)
+    c = 1 / 12 + th * th / 720 if th < 1e-4 else 1 / th ** 2 - (1 + np.cos(th)) / (2 * th * np.sin(th))
+    S = attitude.skew(dpsi)
+    dpsi_rate = (np.eye(3) - S / 2 + c * S @ S) @ (C_hat @ dbg)
+    return np.concatenate([dx[3:6], dv_rate, dpsi_rate, np.zeros(6)])
+
+
+def error_model_fd(C_bn: Dcm, f_b: Vec3, eps: float = 1e-6) -> Array:
+    """Central-difference Jacobian of the exact error dynamics at dx = 0 (checks :func:`error_state_matrix`).
+
+    Parameters
+    ----------
+    C_bn : array_like, shape (3, 3)
+    f_b : array_like, shape (3,)
+        Specific force (m/s^2).
+    eps : float
+        Perturbation of each error state.
+
+    Returns
+    -------
+    F : ndarray, shape (15, 15)
+    """
+    C = as_dcm(as_array(C_bn, "C_bn", tail=(3, 3)).reshape(3, 3))
+    f = as_array(f_b, "f_b", tail=(3,)).reshape(3)
+    eps = float(positive(eps, "eps"))
+    F = np.empty((15, 15))
+    for j in range(15):
+        e = np.zeros(15)
+        e[j] = eps
+        F[:, j] = (_error_rate(e, C, f) - _error_rate(-e, C, f)) / (2 * eps)
+    return F
+
+
+@njit(cache=True)
+def zupt_zaru_rows_into(H, C, w_ie_n):
+    """ZUPT/ZARU rows into ``H`` (6 x 15): H[0:3, 3:6] = I, H[3:6, 6:9] = -C^T [w_ie x], H[3:6, 12:15] = I."""
+    A = -(C.T @ skew_1(w_ie_n))
+    for i in range(3):
+        H[i, 3 + i] = 1.0
+        H[3 + i, 12 + i] = 1.0
+        for j in range(3):
+            H[3 + i, 6 + j] = A[i, j]
+
+
+@njit(cache=True)
+def zupt_zaru_z_into(z, vel, w_mean, b_g, C, w_ie_n):
+    """The static measurement into ``z`` (6,); compiled, unvalidated."""
+    ce = C.T @ w_ie_n
+    for i in range(3):
+        z[i] = vel[i]
+        z[3 + i] = w_mean[i] - b_g[i] - ce[i]
+
+
+def zupt_zaru_matrix(C_bn: Dcm, w_ie_n: Vec3) -> Array:
+    """H of the ZUPT/ZARU measurement (6 x 15) at the estimated attitude, with the Earth-rate block."""
+    C = as_dcm(as_array(C_bn, "C_bn", tail=(3, 3)).reshape(3, 3))
+    H = np.zeros((6, 15))
+    zupt_zaru_rows_into(H, np.ascontiguousarray(C), as_array(w_ie_n, "w_ie_n", tail=(3,)).reshape(3))
+    return H
+
+
+def zupt_zaru_innovation(vel_n: Vec3, w_ib_b: Vec3, b_g: Vec3, C_bn: Dcm, w_ie_n: Vec3) -> Array:
+    """The static measurement ``[v_hat; w_meas - b_g_hat - C_hat^T w_ie_n]``.
+
+    Parameters
+    ----------
+    vel_n : array_like, shape (3,)
+        Estimated velocity (m/s).
+    w_ib_b : array_like, shape (3,)
+        Measured (mean) angular rate (rad/s).
+    b_g : array_like, shape (3,)
+        Estimated gyro bias (rad/s).
+    C_bn : array_like, shape (3, 3)
+        Estimated attitude.
+    w_ie_n : array_like, shape (3,)
+        Earth rate in ENU (rad/s).
+    """
+    args = [as_array(a, n, tail=(3,)).reshape(3) for a, n in
+            ((vel_n, "vel_n"), (w_ib_b, "w_ib_b"), (b_g, "b_g"), (w_ie_n, "w_ie_n"))]
+    C = as_dcm(as_array(C_bn, "C_bn", tail=(3, 3)).reshape(3, 3))
+    z = np.empty(6)
+    zupt_zaru_z_into(z, args[0], args[1], args[2], np.ascontiguousarray(C), args[3])
+    return z
