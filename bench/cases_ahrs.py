@@ -5,7 +5,8 @@ import numpy as np
 
 from bench.run import Result, best_time
 from navlib import attitude, earth
-from navlib.papers import mimu_mag_rtk as ahrs
+from navlib.filters import mahony as mh
+from navlib.filters import quaternion_kf as qkf
 
 DT = 0.01
 B_N = earth.magnetic_field(32.03, 118.85, 20.0, 2022.5)
@@ -58,7 +59,7 @@ def mahony_single(quick: bool):
     """One Mahony MARG filter over 1 h at 100 Hz (goal: >= 10 M samples/s)."""
     n = 36_000 if quick else 360_000
     w, f, m, q0 = _marg_data(n)
-    t = best_time(lambda: ahrs.mahony(w, f, DT, q0, m_b=m))
+    t = best_time(lambda: mh.mahony(w, f, DT, q0, m_b=m))
     rows = [Result("Mahony MARG, 1 filter", "navlib.papers.mimu_mag_rtk.mahony (numba)", n / t, "samples/s", t, goal=10e6)]
     return rows + _peers("Mahony MARG, 1 filter", w, f, m, q0, n, 2_000 if quick else 10_000)
 
@@ -67,7 +68,7 @@ def mahony_batch(quick: bool):
     """A batch of Mahony filters (trials split over the cores; goal: >= 25 M samples/s aggregate)."""
     trials, n = (8, 36_000) if quick else (32, 180_000)
     w, f, m, q0 = _marg_data(n, trials, seed=1)
-    t = best_time(lambda: ahrs.mahony(w, f, DT, q0, m_b=m))
+    t = best_time(lambda: mh.mahony(w, f, DT, q0, m_b=m))
     return [Result(f"Mahony MARG, {trials} trials", "navlib.papers.mimu_mag_rtk.mahony (numba)", trials * n / t, "samples/s", t,
                    goal=25e6, note="aggregate over the batch")]
 
@@ -76,7 +77,7 @@ def quaternion_kf(quick: bool):
     """The paper's PI + quaternion KF (4 states, 6 measurements) against ahrs's EKF and imufusion."""
     n = 36_000 if quick else 360_000
     w, f, m, q0 = _marg_data(n, seed=2)
-    t = best_time(lambda: ahrs.quaternion_kf(w, f, DT, q0, m_b=m, B_n=B_N))
+    t = best_time(lambda: qkf.quaternion_kf(w, f, DT, q0, m_b=m, B_n=B_N))
     rows = [Result("quaternion KF (PI + KF)", "navlib.papers.mimu_mag_rtk.quaternion_kf (numba)", n / t, "samples/s", t)]
     return rows + _peers("quaternion KF (PI + KF)", w, f, m, q0, n, 1_000 if quick else 5_000)
 

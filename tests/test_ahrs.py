@@ -10,10 +10,13 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from navlib import alignment, analysis, attitude, earth, units
+from navlib.filters import mahony as mh
+from navlib.filters import observations as obs
+from navlib.filters import quaternion_kf as qkf
 from navlib.papers import mimu_mag_rtk as ahrs
 
 B_N = earth.magnetic_field(32.03, 118.85, 20.0, 2022.5)        # Nanjing, the paper's site
-B_REF, DECL, INCL, INTENSITY = ahrs.magnetic_reference(B_N)
+B_REF, DECL, INCL, INTENSITY = obs.magnetic_reference(B_N)
 G = 9.8
 DT = 0.01
 
@@ -39,20 +42,20 @@ def static_marg(hpr_mag, n, rng, gyro=(0.0, 0.0, 0.0), noise=(1e-3, 0.02, 0.3)):
 def test_measurement_model_and_jacobian_match_rotation_and_finite_differences():
     _, q = random_quats(500)
     C_nb = np.swapaxes(attitude.quat_to_dcm(q), -1, -2)
-    h = ahrs.measurement_model(q, B_REF)
+    h = qkf.measurement_model(q, B_REF)
     np.testing.assert_allclose(h[:, :3], C_nb @ [0, 0, 1], atol=1e-15)          # Eq. (4) corrected
     np.testing.assert_allclose(h[:, 3:], C_nb @ B_REF, atol=1e-15)              # Eq. (6) corrected
     eps = 1e-6
-    num = np.stack([(ahrs.measurement_model(q + eps * e, B_REF) - ahrs.measurement_model(q - eps * e, B_REF)) / (2 * eps)
+    num = np.stack([(qkf.measurement_model(q + eps * e, B_REF) - qkf.measurement_model(q - eps * e, B_REF)) / (2 * eps)
                     for e in np.eye(4)], -1)
-    np.testing.assert_allclose(ahrs.measurement_jacobian(q, B_REF), num, atol=1e-8)   # Eq. (20), H44 corrected
-    Hq = np.einsum("nij,nj->ni", ahrs.measurement_jacobian(q, B_REF), q)
+    np.testing.assert_allclose(qkf.measurement_jacobian(q, B_REF), num, atol=1e-8)   # Eq. (20), H44 corrected
+    Hq = np.einsum("nij,nj->ni", qkf.measurement_jacobian(q, B_REF), q)
     np.testing.assert_allclose(Hq, 2 * h, atol=1e-14)                           # why z - Hq is wrong (E003-12)
 
 
 def test_printed_jacobian_differs_only_at_h44():
     _, q = random_quats(200, seed=1)
-    d = ahrs.printed_eq20_jacobian(q, B_REF) - ahrs.measurement_jacobian(q, B_REF)
+    d = ahrs.printed_eq20_jacobian(q, B_REF) - qkf.measurement_jacobian(q, B_REF)
     np.testing.assert_allclose(d[:, 3, 3], -4 * q[:, 1] * B_REF[2], atol=1e-15)
     d[:, 3, 3] = 0
     assert np.abs(d).max() == 0
@@ -62,9 +65,9 @@ def test_transition_and_noise_input_are_the_quaternion_kinematics():
     _, q = random_quats(300, seed=2)
     w = np.random.default_rng(3).normal(0, 1, (300, 3))
     inc = 0.5 * DT * attitude.quat_mult(q, np.concatenate([np.zeros((300, 1)), w], -1))
-    np.testing.assert_allclose(np.einsum("nij,nj->ni", ahrs.transition(w, DT), q), q + inc, atol=1e-15)
-    np.testing.assert_allclose(np.einsum("nij,nj->ni", ahrs.noise_input(q, DT), w), inc, atol=1e-15)
-    np.testing.assert_allclose(ahrs.printed_eq18_gamma(q, DT), -2 * ahrs.noise_input(q, DT), atol=0)
+    np.testing.assert_allclose(np.einsum("nij,nj->ni", qkf.transition(w, DT), q), q + inc, atol=1e-15)
+    np.testing.assert_allclose(np.einsum("nij,nj->ni", qkf.noise_input(q, DT), w), inc, atol=1e-15)
+    np.testing.assert_allclose(ahrs.printed_eq18_gamma(q, DT), -2 * qkf.noise_input(q, DT), atol=0)
 
 
 @settings(max_examples=200, deadline=None)
@@ -72,7 +75,7 @@ def test_transition_and_noise_input_are_the_quaternion_kinematics():
 def test_tilt_heading_inverts_the_measurement_model(heading, pitch, roll):
     hpr = np.array([heading, pitch, roll])
     q = attitude.euler_to_quat(hpr)
-    h = ahrs.measurement_model(q, B_REF)
+    h = qkf.measurement_model(q, B_REF)
     back = alignment.tilt_heading(3.7 * h[:3], 42.0 * h[3:])            # any scale: Eqs. (5), (7) normalise
     np.testing.assert_allclose(attitude.wrap_pi(back - hpr), 0, atol=1e-9)
     np.testing.assert_allclose(np.abs(alignment.initial_attitude(h[:3], h[3:]) @ q), 1, atol=1e-12)
@@ -103,28 +106,28 @@ def test_filters_reject_bad_arguments():
     q0 = attitude.euler_to_quat([0.5, 0, 0])
     valid = np.ones(100, dtype=bool)
     with pytest.raises(ValueError, match="^m_b, heading_rtk: "):
-        ahrs.mahony(w, f, DT, q0)                                      # no heading reference
+        mh.mahony(w, f, DT, q0)                                      # no heading reference
     with pytest.raises(ValueError, match="^heading_rtk: "):
-        ahrs.mahony(w, f, DT, q0, heading_rtk=np.full(100, 7.0), rtk_valid=valid)   # out of [0, 2 pi)
+        mh.mahony(w, f, DT, q0, heading_rtk=np.full(100, 7.0), rtk_valid=valid)   # out of [0, 2 pi)
     with pytest.raises(ValueError, match="^heading_rtk: "):
         ahrs.fuse_rtk_heading(np.zeros(100), np.full(100, np.inf), valid, DT)       # valid but infinite
     _, _, c = ahrs.fuse_rtk_heading(np.zeros(100), np.full(100, np.nan), valid, DT)  # valid but NaN: dropout
     assert int(c["rtk_dropped"]) == 100 and int(c["uncalibrated"]) == 100
     with pytest.raises(ValueError, match="^rtk_valid: "):
-        ahrs.mahony(w, f, DT, q0, heading_rtk=np.zeros(100), rtk_valid=None)
+        mh.mahony(w, f, DT, q0, heading_rtk=np.zeros(100), rtk_valid=None)
     with pytest.raises(ValueError, match="^rtk_valid: "):
         ahrs.fuse_rtk_heading(np.zeros(100), np.zeros(100), np.ones(100), DT)       # flags must be booleans
     with pytest.raises(ValueError, match="^kp: "):
-        ahrs.mahony(w, f, DT, q0, m_b=m, kp=-1.0)
+        mh.mahony(w, f, DT, q0, m_b=m, kp=-1.0)
     with pytest.raises(ValueError, match="^B_n: "):
-        ahrs.quaternion_kf(w, f, DT, q0, m_b=m)
+        qkf.quaternion_kf(w, f, DT, q0, m_b=m)
     with pytest.raises(ValueError, match="^w_ib_b: "):
-        ahrs.mahony(np.where(np.arange(100)[:, None] == 3, np.inf, w), f, DT, q0, m_b=m)
+        mh.mahony(np.where(np.arange(100)[:, None] == 3, np.inf, w), f, DT, q0, m_b=m)
     with pytest.raises(ValueError, match="^B_n: "):
-        ahrs.mahony(w, f, DT, q0, m_b=m, gate=ahrs.MagGate())
+        mh.mahony(w, f, DT, q0, m_b=m, gate=obs.MagGate())
 
 
-@pytest.mark.parametrize("filt", [ahrs.mahony, ahrs.quaternion_kf])
+@pytest.mark.parametrize("filt", [mh.mahony, qkf.quaternion_kf])
 def test_dropouts_are_skipped_and_counted_never_poisoning_the_state(filt):
     rng = np.random.default_rng(1)
     hpr = np.array([1.0, 0.1, -0.2])
@@ -151,8 +154,8 @@ def test_magnetic_gate_skips_disturbed_samples_and_counts_them():
     w, f, m = static_marg(hpr, 2000, rng)
     m[1000:1200] += [10.0, 0.0, -15.0]       # 0.18 G disturbance for 2 s: changes norm and dip
     q0 = attitude.euler_to_quat(hpr)
-    plain = ahrs.mahony(w, f, DT, q0, m_b=m)
-    gated = ahrs.mahony(w, f, DT, q0, m_b=m, B_n=B_N, gate=ahrs.MagGate(norm_tol=0.1, dip_tol=units.deg(3.0)))
+    plain = mh.mahony(w, f, DT, q0, m_b=m)
+    gated = mh.mahony(w, f, DT, q0, m_b=m, B_n=B_N, gate=obs.MagGate(norm_tol=0.1, dip_tol=units.deg(3.0)))
     assert int(plain.counts["mag_gated"]) == 0
     assert 195 <= int(gated.counts["mag_gated"]) <= 210         # the disturbance, plus a few noisy samples
     def err(r):
@@ -165,7 +168,7 @@ def test_accelerometer_gate_counts():
     rng = np.random.default_rng(3)
     w, f, m = static_marg([0.0, 0.0, 0.0], 500, rng)
     f[100:150] *= 1.5
-    out = ahrs.mahony(w, f, DT, [1.0, 0, 0, 0], m_b=m, accel_tol=0.1)
+    out = mh.mahony(w, f, DT, [1.0, 0, 0, 0], m_b=m, accel_tol=0.1)
     assert int(out.counts["accel_gated"]) == 50
 
 
@@ -177,7 +180,7 @@ def test_mahony_converges_and_learns_gyro_bias():
     bias = units.deg_per_s([0.09, -0.05, 0.09])
     w, f, m = static_marg(hpr, 30_000, rng, gyro=bias, noise=(0.0, 0.0, 0.0))
     q0 = attitude.euler_to_quat(hpr + [units.deg(20.0), 0, 0])
-    out = ahrs.mahony(w, f, DT, q0, m_b=m, kp=1.0, ki=0.02)
+    out = mh.mahony(w, f, DT, q0, m_b=m, kp=1.0, ki=0.02)
     assert abs(attitude.wrap_pi(out.hpr[-1, 0] - hpr[0])) < units.deg(0.01)
     np.testing.assert_allclose(out.gyro_bias, bias, rtol=0.01)
 
@@ -187,8 +190,8 @@ def test_kf_innovation_z_minus_h_converges_z_minus_Hq_stalls():
     w, f, m = static_marg(hpr, 30_000, np.random.default_rng(5), noise=(0.0, 0.0, 0.0))
     q0 = attitude.euler_to_quat(hpr + [units.deg(20.0), 0, 0])
     kw = dict(kp=0.0, ki=0.0, B_n=B_N, sigma_gyro=1e-3, p0=1e-2)
-    good = ahrs.quaternion_kf(w, f, DT, q0, m_b=m, **kw)
-    bad = ahrs.quaternion_kf(w, f, DT, q0, m_b=m, linear_innovation=True, **kw)
+    good = qkf.quaternion_kf(w, f, DT, q0, m_b=m, **kw)
+    bad = qkf.quaternion_kf(w, f, DT, q0, m_b=m, linear_innovation=True, **kw)
     assert abs(attitude.wrap_pi(good.hpr[-1, 0])) < units.deg(0.1)
     assert abs(attitude.wrap_pi(bad.hpr[-1, 0])) > units.deg(5.0)
 
@@ -198,7 +201,7 @@ def test_batch_of_trials_equals_single_runs():
     runs = [static_marg([0.4 * i, 0.0, 0.1], 1000, rng) for i in range(3)]
     w, f, m = (np.stack(x) for x in zip(*runs, strict=True))
     q0 = attitude.euler_to_quat(np.stack([[0.4 * i, 0.0, 0.1] for i in range(3)]))
-    for filt in (ahrs.mahony, ahrs.quaternion_kf):
+    for filt in (mh.mahony, qkf.quaternion_kf):
         batch = filt(w, f, DT, q0, m_b=m, B_n=B_N)
         for i in range(3):
             single = filt(w[i], f[i], DT, q0[i], m_b=m[i], B_n=B_N)
@@ -212,8 +215,8 @@ def test_rtk_mode_ignores_the_value_of_invalid_epochs_and_drifts_without_bias_es
     valid = np.zeros(n, dtype=bool)
     valid[:10_000:20] = True                                       # 5 Hz RTK, lost after 100 s
     q0 = attitude.euler_to_quat([np.pi / 2, 0, 0])
-    zeros = ahrs.mahony(w, f, DT, q0, heading_rtk=np.where(valid, np.pi / 2, 0.0), rtk_valid=valid, ki=0.0)
-    nans = ahrs.mahony(w, f, DT, q0, heading_rtk=np.where(valid, np.pi / 2, np.nan), rtk_valid=valid, ki=0.0)
+    zeros = mh.mahony(w, f, DT, q0, heading_rtk=np.where(valid, np.pi / 2, 0.0), rtk_valid=valid, ki=0.0)
+    nans = mh.mahony(w, f, DT, q0, heading_rtk=np.where(valid, np.pi / 2, np.nan), rtk_valid=valid, ki=0.0)
     np.testing.assert_array_equal(zeros.q_bn, nans.q_bn)
     drift = attitude.wrap_pi(zeros.hpr[-1, 0] - np.pi / 2)
     assert drift == pytest.approx(-units.deg_per_s(0.09) * 100.0, rel=0.02)
@@ -262,7 +265,7 @@ def test_mahony_matches_ahrs_package_to_rounding():
     w = np.array([0.0, 0.0, 0.5]) + 0.01 * rng.standard_normal((n, 3))
     q0 = attitude.euler_to_quat(hpr[0] + [0.3, 0.05, -0.05])
     peer = ahrs_pkg.filters.Mahony(gyr=w, acc=f, mag=m, frequency=1 / DT, k_P=1.5, k_I=0.1, q0=q0)
-    ours = ahrs.mahony(w[1:], f[1:], DT, q0, m_b=m[1:], kp=1.5, ki=0.1)
+    ours = mh.mahony(w[1:], f[1:], DT, q0, m_b=m[1:], kp=1.5, ki=0.1)
     np.testing.assert_allclose(ours.q_bn, peer.Q[1:], atol=1e-12)
 
 
@@ -271,6 +274,9 @@ def test_mahony_matches_ahrs_package_to_rounding():
 SCRIPT = r"""
 import json, numpy as np
 from navlib import attitude, earth
+from navlib.filters import mahony as mh
+from navlib.filters import observations as obs
+from navlib.filters import quaternion_kf as qkf
 from navlib.papers import mimu_mag_rtk as ahrs
 rng = np.random.default_rng(0)
 B = earth.magnetic_field(32.0, 118.8, 0.0, 2022.5)
@@ -278,15 +284,15 @@ w = 0.01 * rng.standard_normal((2, 200, 3)); w[0, 5] = np.nan
 f = np.array([0.1, 0.2, 9.8]) + 0.05 * rng.standard_normal((2, 200, 3))
 m = B + 0.5 * rng.standard_normal((2, 200, 3)); m[1, 7] = 0.0
 q0 = [1.0, 0.0, 0.0, 0.0]
-a = ahrs.mahony(w, f, 0.01, q0, m_b=m, B_n=B, gate=ahrs.MagGate())
-k = ahrs.quaternion_kf(w, f, 0.01, q0, m_b=m, B_n=B)
+a = mh.mahony(w, f, 0.01, q0, m_b=m, B_n=B, gate=obs.MagGate())
+k = qkf.quaternion_kf(w, f, 0.01, q0, m_b=m, B_n=B)
 valid = np.zeros(200, dtype=bool); valid[::20] = True
 h, d, c = ahrs.fuse_rtk_heading(k.hpr[..., 0], np.full(200, 0.5), valid, 0.01)
 # the robustness paths: per-sample dt, spike gate, saturation, RTK dropouts, flips and re-acquisition
 dt = 0.01 * (1 + 0.2 * rng.uniform(-1, 1, 200))
 w[1, 50] += 1.0; f[0, 60] = [0.0, 0.0, 80.0]
 rtk = np.where(valid, 0.5, np.nan); rtk[40] = 0.5 + np.pi; rtk[60] = np.nan; rtk[100:] = 2.0
-r = ahrs.quaternion_kf(w, f, dt, q0, heading_rtk=rtk, rtk_valid=valid, gyro_jump=0.5, accel_range=78.0,
+r = qkf.quaternion_kf(w, f, dt, q0, heading_rtk=rtk, rtk_valid=valid, gyro_jump=0.5, accel_range=78.0,
                        gyro_range=0.02, rtk_gate=0.3, rtk_confirm=2, keep_cov=True)
 hr, _, cr = ahrs.fuse_rtk_heading(r.hpr[..., 0], rtk, valid, dt, rtk_gate=0.3, rtk_confirm=2)
 print(json.dumps({"a": a.q_bn.tolist(), "k": k.q_bn.tolist(), "h": h.tolist(), "r": r.q_bn.tolist(),
@@ -319,7 +325,7 @@ def test_scalar_dt_and_a_constant_dt_array_give_identical_results():
     rng = np.random.default_rng(9)
     w, f, m = static_marg([0.7, 0.05, -0.1], 500, rng)
     q0 = attitude.euler_to_quat([0.7, 0.05, -0.1])
-    for filt in (ahrs.mahony, ahrs.quaternion_kf):
+    for filt in (mh.mahony, qkf.quaternion_kf):
         a = filt(w, f, DT, q0, m_b=m, B_n=B_N)
         b = filt(w, f, np.full(500, DT), q0, m_b=m, B_n=B_N)
         np.testing.assert_array_equal(a.q_bn, b.q_bn)
@@ -328,11 +334,11 @@ def test_scalar_dt_and_a_constant_dt_array_give_identical_results():
 def test_kf_returns_a_symmetric_positive_definite_covariance():
     rng = np.random.default_rng(10)
     w, f, m = static_marg([0.7, 0.05, -0.1], 2000, rng)
-    out = ahrs.quaternion_kf(w, f, DT, attitude.euler_to_quat([0.7, 0.05, -0.1]), m_b=m, B_n=B_N, keep_cov=True)
+    out = qkf.quaternion_kf(w, f, DT, attitude.euler_to_quat([0.7, 0.05, -0.1]), m_b=m, B_n=B_N, keep_cov=True)
     P = out.P_history
     assert P.shape == (2000, 4, 4) and np.array_equal(out.P, P[-1])
     assert np.array_equal(P, np.swapaxes(P, -1, -2)) and np.linalg.eigvalsh(P).min() > 0
-    assert ahrs.mahony(w, f, DT, [1.0, 0, 0, 0], m_b=m).P is None
+    assert mh.mahony(w, f, DT, [1.0, 0, 0, 0], m_b=m).P is None
 
 
 # --------------------------------------------------------------------------- bad input, every public callable
@@ -342,22 +348,22 @@ _F = np.tile([0.0, 0.0, 9.8], (10, 1))
 _M = np.tile([0.0, 20.0, -30.0], (10, 1))
 _Q = [1.0, 0.0, 0.0, 0.0]
 BAD_CALLS = [
-    ("magnetic_reference", lambda: ahrs.magnetic_reference([0.0, 0.0, 0.0]), "B_n"),
-    ("magnetic_reference", lambda: ahrs.magnetic_reference([1.0, np.nan, 0.0]), "B_n"),
+    ("magnetic_reference", lambda: obs.magnetic_reference([0.0, 0.0, 0.0]), "B_n"),
+    ("magnetic_reference", lambda: obs.magnetic_reference([1.0, np.nan, 0.0]), "B_n"),
     ("tilt_heading", lambda: alignment.tilt_heading([0.0, 0.0, 1.0], [1.0, 2.0]), "m_b"),
     ("initial_attitude", lambda: alignment.initial_attitude("abc", [0.0, 1.0, 0.0]), "f_b"),
     ("settling_time", lambda: analysis.settling_time([0.0, 1.0], [1.0, 2.0], 5.0, 1.0), "start, end"),
-    ("transition", lambda: ahrs.transition([0.0, 0.0, 0.0], 0.0), "dt"),
-    ("noise_input", lambda: ahrs.noise_input([1.0, 0.0, 0.0], 0.01), "q"),
-    ("measurement_model", lambda: ahrs.measurement_model(_Q, [1.0, 0.0, 0.0]), "b"),
-    ("measurement_jacobian", lambda: ahrs.measurement_jacobian([np.inf, 0, 0, 0], [0.0, 1.0, 0.0]), "q"),
-    ("mahony", lambda: ahrs.mahony(_W, _F[:5], 0.01, _Q, m_b=_M), "f_b"),
-    ("mahony", lambda: ahrs.mahony(_W, _F, 0.01, [0.0, 0.0, 0.0, 0.0], m_b=_M), "q0"),
-    ("quaternion_kf", lambda: ahrs.quaternion_kf(_W, _F, 0.01, _Q, m_b=_M, B_n=B_N, sigma_mag=0.0), "sigma_mag"),
+    ("transition", lambda: qkf.transition([0.0, 0.0, 0.0], 0.0), "dt"),
+    ("noise_input", lambda: qkf.noise_input([1.0, 0.0, 0.0], 0.01), "q"),
+    ("measurement_model", lambda: qkf.measurement_model(_Q, [1.0, 0.0, 0.0]), "b"),
+    ("measurement_jacobian", lambda: qkf.measurement_jacobian([np.inf, 0, 0, 0], [0.0, 1.0, 0.0]), "q"),
+    ("mahony", lambda: mh.mahony(_W, _F[:5], 0.01, _Q, m_b=_M), "f_b"),
+    ("mahony", lambda: mh.mahony(_W, _F, 0.01, [0.0, 0.0, 0.0, 0.0], m_b=_M), "q0"),
+    ("quaternion_kf", lambda: qkf.quaternion_kf(_W, _F, 0.01, _Q, m_b=_M, B_n=B_N, sigma_mag=0.0), "sigma_mag"),
     ("fuse_rtk_heading", lambda: ahrs.fuse_rtk_heading(np.zeros(10), np.zeros(10), np.ones(10, bool), 0.01,
                                                        alpha=1.5), "alpha"),
     ("rtk_at_imu_rate", lambda: ahrs.rtk_at_imu_rate(np.arange(10.0), np.zeros(10), np.ones(10, bool), 0), "step"),
-    ("MagGate", lambda: ahrs.MagGate(norm_tol=-0.1), "norm_tol"),
+    ("MagGate", lambda: obs.MagGate(norm_tol=-0.1), "norm_tol"),
     ("printed_eq2_roll", lambda: ahrs.printed_eq2_roll([1.0, 0.0]), "q"),
     ("printed_eq4", lambda: ahrs.printed_eq4("abc"), "q"),
     ("printed_eq5_tilt", lambda: ahrs.printed_eq5_tilt([0.0, np.nan, 1.0]), "f_b"),
@@ -376,7 +382,8 @@ def test_bad_input_names_the_argument(name, call, arg):
 
 
 # moved to navlib.alignment / navlib.analysis, still covered here
-MOVED_TO_CORE = {"tilt_heading", "initial_attitude", "settling_time"}
+MOVED_TO_CORE = {"tilt_heading", "initial_attitude", "settling_time", "mahony", "quaternion_kf", "MagGate", "AttitudeResult",
+                 "magnetic_reference", "transition", "noise_input", "measurement_model", "measurement_jacobian"}
 
 
 def test_every_public_callable_has_a_bad_input_case():
@@ -392,21 +399,21 @@ _VALID[::2] = True
 # name -> (callable, good keyword arguments, arguments that take NaN as a documented dropout marker,
 #          arguments that take inf as an unusable (skipped) sample)
 FUZZ = {
-    "magnetic_reference": (ahrs.magnetic_reference, dict(B_n=B_N), (), ()),
+    "magnetic_reference": (obs.magnetic_reference, dict(B_n=B_N), (), ()),
     "tilt_heading": (alignment.tilt_heading, dict(f_b=[0.0, 0.0, 9.8], m_b=[0.0, 20.0, -30.0]), (), ()),
     "initial_attitude": (alignment.initial_attitude, dict(f_b=[0.0, 0.0, 9.8], m_b=[0.0, 20.0, -30.0]), (), ()),
     "settling_time": (analysis.settling_time, dict(time=np.arange(_N, dtype=float), error=np.ones(_N), start=2.0,
                                               tol=0.5, end=8.0), (), ()),
-    "transition": (ahrs.transition, dict(w=[0.1, 0.2, 0.3], dt=0.01), (), ()),
-    "noise_input": (ahrs.noise_input, dict(q=_Q, dt=0.01), (), ()),
-    "measurement_model": (ahrs.measurement_model, dict(q=_Q, b=B_REF), (), ()),
-    "measurement_jacobian": (ahrs.measurement_jacobian, dict(q=_Q, b=B_REF), (), ()),
-    "mahony": (ahrs.mahony, dict(w_ib_b=_W, f_b=_F, dt=0.01, q0=_Q, m_b=_M, kp=1.0, ki=0.02, B_n=B_N,
+    "transition": (qkf.transition, dict(w=[0.1, 0.2, 0.3], dt=0.01), (), ()),
+    "noise_input": (qkf.noise_input, dict(q=_Q, dt=0.01), (), ()),
+    "measurement_model": (qkf.measurement_model, dict(q=_Q, b=B_REF), (), ()),
+    "measurement_jacobian": (qkf.measurement_jacobian, dict(q=_Q, b=B_REF), (), ()),
+    "mahony": (mh.mahony, dict(w_ib_b=_W, f_b=_F, dt=0.01, q0=_Q, m_b=_M, kp=1.0, ki=0.02, B_n=B_N,
                                  accel_tol=0.1, rtk_hold=0.25, gyro_range=2.0, accel_range=80.0, mag_range=800.0,
                                  gyro_jump=0.5), ("w_ib_b", "f_b", "m_b"), ("f_b", "m_b")),
-    "mahony/rtk": (ahrs.mahony, dict(w_ib_b=_W, f_b=_F, dt=np.full(_N, 0.01), q0=_Q, heading_rtk=np.full(_N, 0.5),
+    "mahony/rtk": (mh.mahony, dict(w_ib_b=_W, f_b=_F, dt=np.full(_N, 0.01), q0=_Q, heading_rtk=np.full(_N, 0.5),
                                      rtk_valid=_VALID, rtk_gate=0.3), ("w_ib_b", "f_b", "heading_rtk"), ("f_b",)),
-    "quaternion_kf": (ahrs.quaternion_kf, dict(w_ib_b=_W, f_b=_F, dt=0.01, q0=_Q, m_b=_M, B_n=B_N, sigma_gyro=1e-3,
+    "quaternion_kf": (qkf.quaternion_kf, dict(w_ib_b=_W, f_b=_F, dt=0.01, q0=_Q, m_b=_M, B_n=B_N, sigma_gyro=1e-3,
                                                sigma_accel=0.02, sigma_mag=0.08, p0=1e-4),
                       ("w_ib_b", "f_b", "m_b"), ("f_b", "m_b")),
     "fuse_rtk_heading": (ahrs.fuse_rtk_heading, dict(heading_mag=np.zeros(_N), heading_rtk=np.full(_N, 0.5),
@@ -421,7 +428,7 @@ FUZZ = {
     "printed_eq8_quat": (ahrs.printed_eq8_quat, dict(hpr=[0.1, 0.2, 0.3]), (), ()),
     "printed_eq18_gamma": (ahrs.printed_eq18_gamma, dict(q=_Q, dt=0.01), (), ()),
     "printed_eq20_jacobian": (ahrs.printed_eq20_jacobian, dict(q=_Q, b=B_REF), (), ()),
-    "MagGate": (ahrs.MagGate, dict(norm_tol=0.1, dip_tol=0.05), (), ()),
+    "MagGate": (obs.MagGate, dict(norm_tol=0.1, dip_tol=0.05), (), ()),
 }
 
 
@@ -460,22 +467,22 @@ def test_fuzz_bad_input_names_the_argument(fn, arg, kind, bad):
 
 
 OUT_OF_RANGE = [
-    ("mahony", lambda: ahrs.mahony(_W, _F, np.full(_N, -0.01), _Q, m_b=_M), "dt"),
-    ("mahony", lambda: ahrs.mahony(_W, _F, np.full(_N - 1, 0.01), _Q, m_b=_M), "dt"),
-    ("mahony", lambda: ahrs.mahony(_W, _F, 0.01, _Q, heading_rtk=np.zeros(_N), rtk_valid=_VALID, rtk_gate=4.0), "rtk_gate"),
-    ("mahony", lambda: ahrs.mahony(_W, _F, 0.01, _Q, heading_rtk=np.zeros(_N), rtk_valid=_VALID, rtk_confirm=0), "rtk_confirm"),
-    ("mahony", lambda: ahrs.mahony(_W, _F, 0.01, _Q, m_b=_M, gyro_range=-1.0), "gyro_range"),
-    ("mahony", lambda: ahrs.mahony(_W, _F, 0.01, _Q, m_b=_M, gyro_jump=0.0), "gyro_jump"),
-    ("mahony", lambda: ahrs.mahony(_W, _F, 0.01, _Q, m_b=_M, rtk_hold=-1.0), "rtk_hold"),
-    ("mahony", lambda: ahrs.mahony(_W, _F, 0.01, _Q, m_b=_M, gate="tight"), "gate"),
-    ("quaternion_kf", lambda: ahrs.quaternion_kf(_W, _F, 0.01, _Q, m_b=_M, B_n=B_N, keep_cov="yes"), "keep_cov"),
-    ("quaternion_kf", lambda: ahrs.quaternion_kf(_W, _F, 0.01, _Q, m_b=_M, B_n=B_N, p0=-1.0), "p0"),
+    ("mahony", lambda: mh.mahony(_W, _F, np.full(_N, -0.01), _Q, m_b=_M), "dt"),
+    ("mahony", lambda: mh.mahony(_W, _F, np.full(_N - 1, 0.01), _Q, m_b=_M), "dt"),
+    ("mahony", lambda: mh.mahony(_W, _F, 0.01, _Q, heading_rtk=np.zeros(_N), rtk_valid=_VALID, rtk_gate=4.0), "rtk_gate"),
+    ("mahony", lambda: mh.mahony(_W, _F, 0.01, _Q, heading_rtk=np.zeros(_N), rtk_valid=_VALID, rtk_confirm=0), "rtk_confirm"),
+    ("mahony", lambda: mh.mahony(_W, _F, 0.01, _Q, m_b=_M, gyro_range=-1.0), "gyro_range"),
+    ("mahony", lambda: mh.mahony(_W, _F, 0.01, _Q, m_b=_M, gyro_jump=0.0), "gyro_jump"),
+    ("mahony", lambda: mh.mahony(_W, _F, 0.01, _Q, m_b=_M, rtk_hold=-1.0), "rtk_hold"),
+    ("mahony", lambda: mh.mahony(_W, _F, 0.01, _Q, m_b=_M, gate="tight"), "gate"),
+    ("quaternion_kf", lambda: qkf.quaternion_kf(_W, _F, 0.01, _Q, m_b=_M, B_n=B_N, keep_cov="yes"), "keep_cov"),
+    ("quaternion_kf", lambda: qkf.quaternion_kf(_W, _F, 0.01, _Q, m_b=_M, B_n=B_N, p0=-1.0), "p0"),
     ("fuse_rtk_heading", lambda: ahrs.fuse_rtk_heading(np.zeros(_N), np.full(_N, 7.0), _VALID, 0.01), "heading_rtk"),
     ("fuse_rtk_heading", lambda: ahrs.fuse_rtk_heading(np.zeros(_N), np.zeros(_N), _VALID, 0.01, rtk_confirm=1.5),
      "rtk_confirm"),
     ("rtk_at_imu_rate", lambda: ahrs.rtk_at_imu_rate(np.arange(10.0), np.zeros(10), np.ones(10), 2), "valid"),
     ("settling_time", lambda: analysis.settling_time(np.arange(10.0), np.ones(10), "2", 1.0), "start"),
-    ("MagGate", lambda: ahrs.MagGate(dip_tol=np.inf), "dip_tol"),
+    ("MagGate", lambda: obs.MagGate(dip_tol=np.inf), "dip_tol"),
 ]
 
 

@@ -29,7 +29,7 @@ def test_attribute_access_on_the_package_warns():
     vars(navlib).pop("ahrs", None)                  # an earlier import binds the submodule on the package
     with pytest.warns(DeprecationWarning, match="navlib.ahrs is deprecated"):
         module = navlib.ahrs
-    assert module.mahony is importlib.import_module("navlib.papers.mimu_mag_rtk").mahony
+    assert module.mahony is importlib.import_module("navlib.filters.mahony").mahony
 
 
 def test_importing_navlib_does_not_warn():

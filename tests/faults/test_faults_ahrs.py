@@ -15,6 +15,9 @@ import numpy as np
 import pytest
 
 from navlib import alignment, attitude, earth, faults, sensors, timing, trajectory, units
+from navlib.filters import mahony as mh
+from navlib.filters import observations as obs
+from navlib.filters import quaternion_kf as qkf
 from navlib.papers import mimu_mag_rtk as ahrs
 
 B_N = earth.magnetic_field(32.03, 118.85, 20.0, 2022.5)
@@ -28,8 +31,8 @@ SIGMA_GYRO = IMU.gyro.noise_density / np.sqrt(DT)        # per-sample gyro noise
 SIGMA_ACCEL = IMU.accel.noise_density / np.sqrt(DT)      # per-sample accelerometer noise (m/s^2)
 SIGMA_MAG = units.gauss(0.04)                            # magnetometer noise (uT)
 KF = dict(kp=1.0, ki=0.02, sigma_gyro=SIGMA_GYRO, sigma_accel=0.02, sigma_mag=0.08)
-FILTERS = {"mahony": (ahrs.mahony, dict(kp=1.0, ki=0.02)),
-           "kf": (ahrs.quaternion_kf, dict(KF, keep_cov=True))}
+FILTERS = {"mahony": (mh.mahony, dict(kp=1.0, ki=0.02)),
+           "kf": (qkf.quaternion_kf, dict(KF, keep_cov=True))}
 
 
 @pytest.fixture(scope="module")
@@ -165,7 +168,7 @@ def test_accelerometer_spikes_are_gated_exactly(fig4, clean, name):
 @pytest.mark.parametrize("name", FILTERS)
 def test_magnetometer_spikes_are_gated_exactly(fig4, clean, name):
     """100 sigma = 400 uT per axis: |m| ~ 14 F, far outside a 50 % norm gate that clean 8 %-noise samples pass."""
-    gate = ahrs.MagGate(norm_tol=0.5, dip_tol=units.deg(45.0))
+    gate = obs.MagGate(norm_tol=0.5, dip_tol=units.deg(45.0))
     m, hit = faults.spikes(fig4["m"], 0.01, SIGMA_MAG, np.random.default_rng(3))
     ref = run(name, fig4, "mag", gate=gate)
     res = run(name, fig4, "mag", m=m, gate=gate)

@@ -1,0 +1,165 @@
+"""Mahony's nonlinear complementary filter on SO(3) with a PI correction (gyro + accelerometer + heading reference).
+
+Mahony, Hamel, Pflimlin (2008), "Nonlinear complementary filters on the special orthogonal
+group", IEEE T-AC 53(5), in the explicit form used by Zhang et al. 2023 (paper 003,
+:mod:`navlib.papers.mimu_mag_rtk`), whose equation numbers are quoted:
+
+* Eqs. (12)-(14): error ``e = a_meas x a_est + m_meas x m_est`` (measured x estimated), with
+  ``m_est = C_nb [0, |h_xy|, h_z]`` and ``h = C_bn m_meas``, so the magnetometer corrects heading
+  only (:func:`navlib.filters.observations.pi_error`);
+* Eq. (15): ``w = w_m + kp e + ki sum(e dt)`` with kp in rad/s and ki in rad/s^2 (the full cross
+  product, not MahonyAHRS.c's half error "twoKp");
+* Eq. (17): first-order update ``q <- normalise(q + dt/2 q (x) [0, w])``.
+
+The heading reference is a magnetometer or a dual-antenna RTK heading; gates, holds and their
+fault counts are those of :mod:`navlib.filters.observations`. Compiled and allocation-free per
+sample; leading axes of the inputs are Monte Carlo trials, one thread per core.
+"""
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from .._typing import ArrayLike, Interval, Quat, Vec3, Vec3Series
+from .._validate import scalar
+from ..attitude import quat_mult_t
+from .observations import (
+    COUNT_NAMES,
+    AttitudeResult,
+    MagGate,
+    attitude_result,
+    gyro_sample,
+    observe,
+    pi_error,
+    prepare_inputs,
+    run_trials,
+)
+
+__all__ = ["mahony"]
+
+
+@njit(cache=True, nogil=True)
+def _kernel(t0, t1, inp, kp, ki, q_out, bias_out, counts):
+    """Trials t0 to t1 - 1 of ``inp`` (:class:`~navlib.filters.observations.AttitudeInputs`)."""
+    for t in range(t0, t1):
+        _trial(t, inp, kp, ki, q_out, bias_out, counts)
+
+
+@njit(cache=True)
+def _trial(t, inp, kp, ki, q_out, bias_out, counts):
+    w, dts = inp.w, inp.dts
+    q0, q1, q2, q3 = inp.q_init[t, 0], inp.q_init[t, 1], inp.q_init[t, 2], inp.q_init[t, 3]
+    gx = gy = gz = 0.0
+    ix = iy = iz = 0.0
+    held = False
+    rtk = np.array([0.0, 1.0, 0.0, np.inf, 0.0, 0.0])
+    for k in range(w.shape[1]):
+        dt = dts[k]
+        gx, gy, gz, held = gyro_sample(t, k, w, gx, gy, gz, held, inp.jump, counts)
+        ax, ay, az, a_ok, mx, my, mz, m_ok, C = observe(inp, t, k, q0, q1, q2, q3, dt, rtk, counts)
+        ex, ey, ez = pi_error(C, ax, ay, az, a_ok, mx, my, mz, m_ok)
+        ix += ex * dt                                                  # Eq. (15)
+        iy += ey * dt
+        iz += ez * dt
+        wx, wy, wz = gx + kp * ex + ki * ix, gy + kp * ey + ki * iy, gz + kp * ez + ki * iz
+        d0, d1, d2, d3 = quat_mult_t(q0, q1, q2, q3, 0.0, wx, wy, wz)  # Eq. (17): q + dt/2 q (x) [0, w]
+        q0, q1, q2, q3 = q0 + 0.5 * dt * d0, q1 + 0.5 * dt * d1, q2 + 0.5 * dt * d2, q3 + 0.5 * dt * d3
+        s = 1.0 / np.sqrt(q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
+        q0, q1, q2, q3 = q0 * s, q1 * s, q2 * s, q3 * s
+        q_out[t, k, 0], q_out[t, k, 1], q_out[t, k, 2], q_out[t, k, 3] = q0, q1, q2, q3
+    bias_out[t, 0], bias_out[t, 1], bias_out[t, 2] = -ki * ix, -ki * iy, -ki * iz
+
+
+def mahony(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, *, m_b: Vec3Series | None = None,
+           heading_rtk: ArrayLike | None = None, rtk_valid: ArrayLike | None = None, kp: float = 1.0,
+           ki: float = 0.02, B_n: Vec3 | None = None, gate: MagGate | None = None, accel_tol: float | None = None,
+           g: float = 9.80665, rtk_hold: float = 0.25, rtk_gate: float | None = None, rtk_confirm: int = 5,
+           gyro_range: float | None = None, accel_range: float | None = None, mag_range: float | None = None,
+           gyro_jump: float | None = None) -> AttitudeResult:
+    """Mahony PI complementary filter (Eqs. 9-15 of Zhang et al. 2023), per sample:
+    ``e = a x a_est + m x m_est``, ``w = w_m + kp e + ki sum(e dt)``,
+    ``q <- normalise(q + dt/2 q (x) [0, w])``.
+
+    Identical to ``ahrs.filters.Mahony.updateMARG`` (AHRS 0.4.0, same frames and
+    first-order update) except that ahrs skips samples whose gyro norm is exactly 0.
+    With per-sample ``dt`` each step uses its own interval (integral term and
+    quaternion update).
+
+    Parameters
+    ----------
+    w_ib_b : array_like, shape (..., N, 3)
+        Gyro samples (rad/s); NaN samples are replaced by the last used one (counted).
+        Earth rate is neglected, as in the paper.
+    f_b : array_like, shape (..., N, 3)
+        Accelerometer samples (m/s^2); NaN, infinite or zero samples are skipped (counted).
+    dt : float or array_like, shape (N,)
+        Sample interval (s), or per-sample intervals: sample k covers
+        ``dt[k] = t[k] - t[k-1]`` (irregular sampling). Timestamps with
+        repeats or out of order go through :func:`navlib.timing.sanitize`
+        first; then ``dt = timing.intervals(np.r_[t_before_first, t])``.
+    q0 : array_like, shape (4,) or (..., 4)
+        Attitude before the first sample, e.g. :func:`navlib.alignment.initial_attitude`.
+    m_b : array_like, shape (..., N, 3), optional
+        Magnetometer samples (uT); unusable samples are skipped and gated ones counted.
+    heading_rtk : array_like, shape (N,) or (..., N), optional
+        Instead of ``m_b``: dual-antenna heading (rad, [0, 2 pi)) at the IMU rate,
+        used as a north pseudo-vector (mode (a) of the paper's Fig. 4). Only samples with
+        ``rtk_valid`` are read; each is held for ``rtk_hold`` seconds.
+    rtk_valid : array_like of bool, same shape as ``heading_rtk``
+        True where a valid RTK epoch arrives (the receiver's status flag).
+        A valid epoch holding NaN is a dropout (ignored, ``rtk_dropped``).
+    kp, ki : float
+        Proportional (rad/s) and integral (rad/s^2) gains of Eq. (15); ``ki = 0``
+        disables gyro-bias estimation.
+    B_n : array_like, shape (3,), optional
+        Local field (uT, ENU); needed by ``gate``.
+    gate : MagGate, optional
+        Field-norm and dip-angle gate for the magnetometer.
+    accel_tol : float, optional
+        Skip accelerometer samples whose norm differs from ``g`` by more than this fraction.
+    g : float
+        Gravity for ``accel_tol`` (m/s^2).
+    rtk_hold : float
+        How long an RTK epoch is used (s).
+    rtk_gate : float, optional
+        Reject RTK epochs whose heading differs from the current estimate by
+        more than this (rad, in (0, pi)), e.g. 180 deg ambiguity flips
+        (``rtk_rejected``); None (default) uses every valid epoch.
+    rtk_confirm : int
+        With ``rtk_gate``: after this many consecutive rejected epochs that
+        agree with each other (within ``rtk_gate``), use them (``rtk_reacquired``),
+        so that an estimate that drifted in an outage is pulled back.
+    gyro_range, accel_range, mag_range : float, optional
+        Full-scale ranges (rad/s, m/s^2, uT), e.g. ``sensors.imu_model(name).gyro.full_scale``.
+        Samples with a component at or beyond the range are counted
+        (``*_saturated``); accelerometer and magnetometer corrections are
+        skipped for them, gyro samples are used (the clipped rate is the best
+        available) and flag the attitude after them as suspect.
+    gyro_jump : float, optional
+        Spike gate (rad/s): a gyro sample differing from the last used one by
+        more than this on some axis is replaced by it (``gyro_gated``) unless
+        the previous sample was already replaced. Choose well above the
+        per-sample noise and the largest rate change per sample of the motion.
+
+    What the filter does with bad samples
+    -------------------------------------
+    NaN gyro: hold the last used sample. Gyro spike (``gyro_jump``): hold.
+    NaN/inf/zero accelerometer, or outside ``accel_tol``, or saturated: skip
+    the accelerometer correction. Magnetometer NaN/inf/zero, parallel to
+    gravity, outside the ``gate`` or saturated: skip the heading correction.
+    RTK: invalid epochs and NaN values are not read; epochs outside
+    ``rtk_gate`` are rejected. A gap (any sensor) is a run of such samples: the
+    attitude is propagated by the gyro alone and drifts at the gyro-bias
+    error. Every case is counted in :attr:`AttitudeResult.counts`.
+
+    Returns
+    -------
+    AttitudeResult
+    """
+    lead, inp, sat = prepare_inputs(w_ib_b, f_b, dt, q0, m_b, heading_rtk, rtk_valid, B_n, gate, accel_tol, g,
+                                    rtk_hold, rtk_gate, rtk_confirm, gyro_range, accel_range, mag_range, gyro_jump)
+    kp, ki = scalar(kp, "kp", positive=True, allow_zero=True), scalar(ki, "ki", positive=True, allow_zero=True)
+    T, N = inp.w.shape[:2]
+    q_out, bias, counts = np.empty((T, N, 4)), np.empty((T, 3)), np.zeros((T, len(COUNT_NAMES)), dtype=np.int64)
+    run_trials(_kernel, T, inp, kp, ki, q_out, bias, counts)
+    return attitude_result(lead, q_out, bias, counts, sat)

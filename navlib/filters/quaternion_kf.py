@@ -1,0 +1,335 @@
+"""Quaternion Kalman filter on gravity and a heading reference, driven by the Mahony PI-corrected rate.
+
+The filter of Zhang et al. 2023 (paper 003, :mod:`navlib.papers.mimu_mag_rtk`; its equation
+numbers are quoted, errata corrected). State: the quaternion ``q = q_b^n`` (4,).
+
+* Eq. (15): the rate is the gyro corrected by the Mahony PI error of the current estimate
+  (:func:`navlib.filters.observations.pi_error`, as in :mod:`navlib.filters.mahony`);
+* Eqs. (16)-(17): ``Phi = I + dt/2 Omega(w)`` (:func:`transition`);
+* Eq. (18): ``Gamma = dt/2 Xi(q)`` (:func:`noise_input`), ``Q = sigma_gyro^2 I``;
+* Eqs. (4), (6), (19): measurement ``z = [a; m]`` of unit vectors against
+  ``h(q) = [C_nb [0, 0, 1]; C_nb b]`` with ``b = [0, cos I, -sin I]`` (Eq. 3,
+  :func:`navlib.filters.observations.magnetic_reference`; north for RTK heading), innovation
+  ``z - h(q)`` (:func:`measurement_model`);
+* Eq. (20): Jacobian ``H = dh/dq`` (:func:`measurement_jacobian`); Joseph update of
+  :func:`navlib.kalman.update` skipping missing rows; normalise.
+
+Inputs, gates and fault counts are those of :mod:`navlib.filters.observations`.
+"""
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+from numba import njit
+
+from .. import kalman
+from .._typing import Array, ArrayLike, Interval, Quat, Vec3, Vec3Series
+from .._validate import flag, nonempty_array, scalar
+from .observations import (
+    COUNT_NAMES,
+    AttitudeResult,
+    MagGate,
+    attitude_result,
+    gyro_sample,
+    magnetic_reference,
+    observe,
+    pi_error,
+    prepare_inputs,
+    run_trials,
+)
+
+__all__ = ["quaternion_kf", "measurement_model", "measurement_jacobian", "transition", "noise_input"]
+
+
+class _Model(NamedTuple):
+    """Measurement and noise model of the kernel."""
+    b_ref: np.ndarray               # (3,) reference [0, b_y, b_z]
+    sigmas: np.ndarray              # (3,) gyro, accelerometer, magnetometer noise
+    p0: float                       # initial covariance p0 I
+    linear_innovation: bool         # the printed z - H q (erratum E003-12), for its demonstration only
+
+
+@njit(cache=True, inline="always")
+def _phi_into(Phi, wx, wy, wz, dt):
+    """Eq. (17): Phi = I + dt/2 Omega(w)."""
+    c = 0.5 * dt
+    Phi[0, 0], Phi[0, 1], Phi[0, 2], Phi[0, 3] = 1.0, -c * wx, -c * wy, -c * wz
+    Phi[1, 0], Phi[1, 1], Phi[1, 2], Phi[1, 3] = c * wx, 1.0, c * wz, -c * wy
+    Phi[2, 0], Phi[2, 1], Phi[2, 2], Phi[2, 3] = c * wy, -c * wz, 1.0, c * wx
+    Phi[3, 0], Phi[3, 1], Phi[3, 2], Phi[3, 3] = c * wz, c * wy, -c * wx, 1.0
+
+
+@njit(cache=True, inline="always")
+def _gamma_into(G, q, dt):
+    """Eq. (18) corrected: Gamma = dt/2 Xi(q)."""
+    c = 0.5 * dt
+    q0, q1, q2, q3 = q[0], q[1], q[2], q[3]
+    G[0, 0], G[0, 1], G[0, 2] = -c * q1, -c * q2, -c * q3
+    G[1, 0], G[1, 1], G[1, 2] = c * q0, -c * q3, c * q2
+    G[2, 0], G[2, 1], G[2, 2] = c * q3, c * q0, -c * q1
+    G[3, 0], G[3, 1], G[3, 2] = -c * q2, c * q1, c * q0
+
+
+@njit(cache=True, inline="always")
+def _h_into(h, q, by, bz):
+    """Eqs. (4), (6) corrected: h(q) = [C_nb [0,0,1]; C_nb [0, by, bz]]."""
+    q0, q1, q2, q3 = q[0], q[1], q[2], q[3]
+    h[0] = 2 * (q1 * q3 - q0 * q2)
+    h[1] = 2 * (q2 * q3 + q0 * q1)
+    h[2] = q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3
+    h[3] = 2 * (q1 * q2 + q0 * q3) * by + 2 * (q1 * q3 - q0 * q2) * bz
+    h[4] = (q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3) * by + 2 * (q2 * q3 + q0 * q1) * bz
+    h[5] = 2 * (q2 * q3 - q0 * q1) * by + (q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3) * bz
+
+
+@njit(cache=True, inline="always")
+def _jacobian_into(H, q, by, bz):
+    """Eq. (20) with the corrected H44 = 2(q0 by + q1 bz)."""
+    q0, q1, q2, q3 = q[0], q[1], q[2], q[3]
+    H[0, 0], H[0, 1], H[0, 2], H[0, 3] = -2 * q2, 2 * q3, -2 * q0, 2 * q1
+    H[1, 0], H[1, 1], H[1, 2], H[1, 3] = 2 * q1, 2 * q0, 2 * q3, 2 * q2
+    H[2, 0], H[2, 1], H[2, 2], H[2, 3] = 2 * q0, -2 * q1, -2 * q2, 2 * q3
+    u, v, s, r = q3 * by - q2 * bz, q2 * by + q3 * bz, q1 * by - q0 * bz, q0 * by + q1 * bz
+    H[3, 0], H[3, 1], H[3, 2], H[3, 3] = 2 * u, 2 * v, 2 * s, 2 * r
+    H[4, 0], H[4, 1], H[4, 2], H[4, 3] = 2 * r, -2 * s, 2 * v, -2 * u
+    H[5, 0], H[5, 1], H[5, 2], H[5, 3] = -2 * s, -2 * r, 2 * u, 2 * v
+
+
+@njit(cache=True)
+def _model_rows(q, b, out_h, out_H):
+    for i in range(q.shape[0]):
+        _h_into(out_h[i], q[i], b[i, 1], b[i, 2])
+        _jacobian_into(out_H[i], q[i], b[i, 1], b[i, 2])
+
+
+def _model(q, b):
+    q = nonempty_array(q, "q", tail=(4,))
+    b = nonempty_array(b, "b", tail=(3,))
+    if np.any(b[..., 0] != 0):
+        raise ValueError("b: expected reference vectors [0, b_y, b_z] (Eq. 3, magnetic north)")
+    lead = np.broadcast_shapes(q.shape[:-1], b.shape[:-1])
+    qf = np.ascontiguousarray(np.broadcast_to(q, lead + (4,)).reshape(-1, 4))
+    bf = np.ascontiguousarray(np.broadcast_to(b, lead + (3,)).reshape(-1, 3))
+    h, H = np.empty((qf.shape[0], 6)), np.empty((qf.shape[0], 6, 4))
+    _model_rows(qf, bf, h, H)
+    return h.reshape(lead + (6,)), H.reshape(lead + (6, 4))
+
+
+def measurement_model(q: Quat, b: Vec3) -> Array:
+    """Predicted normalised measurement h(q) (Eqs. 4, 6 corrected; Eq. 19).
+
+    Parameters
+    ----------
+    q : array_like, shape (..., 4)
+        Quaternion q_b^n (the magnetic-north frame for the magnetometer rows).
+    b : array_like, shape (..., 3)
+        Reference ``[0, b_y, b_z]`` (Eq. 3).
+
+    Returns
+    -------
+    h : ndarray, shape (..., 6)
+        ``[C_nb [0, 0, 1]; C_nb b]``.
+    """
+    return _model(q, b)[0]
+
+
+def measurement_jacobian(q: Quat, b: Vec3) -> Array:
+    """Jacobian ``H = dh/dq`` of :func:`measurement_model` (Eq. 20, H44 corrected); (..., 6, 4)."""
+    return _model(q, b)[1]
+
+
+def transition(w: Vec3, dt: float) -> Array:
+    """Quaternion transition ``Phi = I + dt/2 Omega(w)`` (Eq. 17); w (..., 3) rad/s -> (..., 4, 4)."""
+    w = nonempty_array(w, "w", tail=(3,))
+    dt = scalar(dt, "dt", positive=True)
+    c = 0.5 * dt
+    wx, wy, wz = np.moveaxis(w, -1, 0)
+    o = np.ones_like(wx)
+    rows = [[o, -c * wx, -c * wy, -c * wz], [c * wx, o, c * wz, -c * wy],
+            [c * wy, -c * wz, o, c * wx], [c * wz, c * wy, -c * wx, o]]
+    return np.stack([np.stack(r, -1) for r in rows], -2)
+
+
+def noise_input(q: Quat, dt: float) -> Array:
+    """Gyro-noise input matrix ``Gamma = dt/2 Xi(q)`` (Eq. 18 corrected, E003-11); (..., 4) -> (..., 4, 3)."""
+    q = nonempty_array(q, "q", tail=(4,))
+    dt = scalar(dt, "dt", positive=True)
+    q0, q1, q2, q3 = np.moveaxis(q, -1, 0)
+    rows = [[-q1, -q2, -q3], [q0, -q3, q2], [q3, q0, -q1], [-q2, q1, q0]]
+    return dt / 2 * np.stack([np.stack(r, -1) for r in rows], -2)
+
+
+@njit(cache=True, nogil=True)
+def _kernel(t0, t1, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
+    """Trials t0 to t1 - 1 of ``inp`` (:class:`~navlib.filters.observations.AttitudeInputs`); ``model``: :class:`_Model`."""
+    for t in range(t0, t1):
+        _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist)
+
+
+@njit(cache=True)
+def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
+    w, dts, b_ref, sigmas = inp.w, inp.dts, model.b_ref, model.sigmas
+    N = w.shape[1]
+    keep = P_hist.shape[1] == N
+    sg, sa, sm = sigmas[0], sigmas[1], sigmas[2]
+    by, bz = b_ref[1], b_ref[2]
+    x = inp.q_init[t].copy()
+    P = model.p0 * np.eye(4)
+    Qg = sg * sg * np.eye(3)
+    R = np.diag(np.array([sa * sa, sa * sa, sa * sa, sm * sm, sm * sm, sm * sm]))
+    Phi, G, z, h, H = np.empty((4, 4)), np.empty((4, 3)), np.empty(6), np.empty(6), np.empty((6, 4))
+    no_angles = np.zeros(6, dtype=np.bool_)
+    gx = gy = gz = 0.0
+    held = False
+    rtk = np.array([0.0, 1.0, 0.0, np.inf, 0.0, 0.0])
+    ix = iy = iz = 0.0
+    for k in range(N):
+        dt = dts[k]
+        gx, gy, gz, held = gyro_sample(t, k, w, gx, gy, gz, held, inp.jump, counts)
+        ax, ay, az, a_ok, mx, my, mz, m_ok, C = observe(inp, t, k, x[0], x[1], x[2], x[3], dt, rtk, counts)
+        ex, ey, ez = pi_error(C, ax, ay, az, a_ok, mx, my, mz, m_ok)   # PI-corrected rate, Eq. (15)
+        ix += ex * dt
+        iy += ey * dt
+        iz += ez * dt
+        _phi_into(Phi, gx + kp * ex + ki * ix, gy + kp * ey + ki * iy, gz + kp * ez + ki * iz, dt)
+        _gamma_into(G, x, dt)
+        x, P = kalman.predict(x, P, Phi, G @ Qg @ np.ascontiguousarray(G.T))     # Eqs. (16)-(18)
+        z[0], z[1], z[2] = (ax, ay, az) if a_ok else (np.nan, np.nan, np.nan)
+        z[3], z[4], z[5] = (mx, my, mz) if m_ok else (np.nan, np.nan, np.nan)
+        _jacobian_into(H, x, by, bz)                                        # Eq. (20)
+        if model.linear_innovation:
+            h[:] = H @ x                                                    # printed Eq. (19): wrong (E003-12)
+        else:
+            _h_into(h, x, by, bz)                                           # z - h(q), Eq. (19) corrected
+        x, P, _, _, _ = kalman.update(x, P, z, h, H, R, no_angles)
+        x = x / np.sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2] + x[3] * x[3])
+        q_out[t, k, 0], q_out[t, k, 1], q_out[t, k, 2], q_out[t, k, 3] = x[0], x[1], x[2], x[3]
+        if keep:
+            P_hist[t, k] = P
+    bias_out[t, 0], bias_out[t, 1], bias_out[t, 2] = -ki * ix, -ki * iy, -ki * iz
+    P_out[t] = P
+
+
+def quaternion_kf(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, *, m_b: Vec3Series | None = None,
+                  heading_rtk: ArrayLike | None = None, rtk_valid: ArrayLike | None = None, kp: float = 1.0,
+                  ki: float = 0.02, B_n: Vec3 | None = None, gate: MagGate | None = None, accel_tol: float | None = None,
+                  g: float = 9.80665, rtk_hold: float = 0.25, sigma_gyro: float = 1e-3,
+                  sigma_accel: float = 0.02, sigma_mag: float = 0.08, p0: float = 1e-4,
+                  linear_innovation: bool = False, rtk_gate: float | None = None, rtk_confirm: int = 5,
+                  gyro_range: float | None = None, accel_range: float | None = None, mag_range: float | None = None,
+                  gyro_jump: float | None = None, keep_cov: bool = False) -> AttitudeResult:
+    """Quaternion Kalman filter driven by the PI-corrected rate (Eqs. 16-20, Fig. 2 of Zhang et al. 2023).
+
+    Per sample: the Mahony error of the current estimate gives the rate (Eq. 15);
+    ``Phi = I + dt/2 Omega(w)``, ``Gamma = dt/2 Xi(q)``, ``Q = sigma_gyro^2 I``;
+    measurement ``z = [a; m]`` (unit vectors) against ``h(q) = [C_nb [0,0,1]; C_nb b]``
+    with ``b`` from the local field (or north for RTK), ``R = diag(sigma_accel^2 I,
+    sigma_mag^2 I)``; Joseph update of :func:`navlib.kalman.update` skipping
+    missing rows; normalise. ``linear_innovation=True`` uses the printed
+    ``z - H q`` (E003-12), only to show that it fails.
+
+    Parameters
+    ----------
+    w_ib_b : array_like, shape (..., N, 3)
+        Gyro samples (rad/s); NaN samples are replaced by the last used one (counted).
+        Earth rate is neglected, as in the paper.
+    f_b : array_like, shape (..., N, 3)
+        Accelerometer samples (m/s^2); NaN, infinite or zero samples are skipped (counted).
+    dt : float or array_like, shape (N,)
+        Sample interval (s), or per-sample intervals: sample k covers
+        ``dt[k] = t[k] - t[k-1]`` (irregular sampling). Timestamps with
+        repeats or out of order go through :func:`navlib.timing.sanitize`
+        first; then ``dt = timing.intervals(np.r_[t_before_first, t])``.
+    q0 : array_like, shape (4,) or (..., 4)
+        Attitude before the first sample, e.g. :func:`navlib.alignment.initial_attitude`.
+    m_b : array_like, shape (..., N, 3), optional
+        Magnetometer samples (uT); unusable samples are skipped and gated ones counted.
+    heading_rtk : array_like, shape (N,) or (..., N), optional
+        Instead of ``m_b``: dual-antenna heading (rad, [0, 2 pi)) at the IMU rate,
+        used as a north pseudo-vector (mode (a) of the paper's Fig. 4). Only samples with
+        ``rtk_valid`` are read; each is held for ``rtk_hold`` seconds.
+    rtk_valid : array_like of bool, same shape as ``heading_rtk``
+        True where a valid RTK epoch arrives (the receiver's status flag).
+        A valid epoch holding NaN is a dropout (ignored, ``rtk_dropped``).
+    kp, ki : float
+        Proportional (rad/s) and integral (rad/s^2) gains of Eq. (15); ``ki = 0``
+        disables gyro-bias estimation.
+    B_n : array_like, shape (3,), optional
+        Local field (uT, ENU); needed by ``gate`` and by the KF (reference b, Eq. 3).
+    gate : MagGate, optional
+        Field-norm and dip-angle gate for the magnetometer.
+    accel_tol : float, optional
+        Skip accelerometer samples whose norm differs from ``g`` by more than this fraction.
+    g : float
+        Gravity for ``accel_tol`` (m/s^2).
+    rtk_hold : float
+        How long an RTK epoch is used (s).
+    rtk_gate : float, optional
+        Reject RTK epochs whose heading differs from the current estimate by
+        more than this (rad, in (0, pi)), e.g. 180 deg ambiguity flips
+        (``rtk_rejected``); None (default) uses every valid epoch.
+    rtk_confirm : int
+        With ``rtk_gate``: after this many consecutive rejected epochs that
+        agree with each other (within ``rtk_gate``), use them (``rtk_reacquired``),
+        so that an estimate that drifted in an outage is pulled back.
+    gyro_range, accel_range, mag_range : float, optional
+        Full-scale ranges (rad/s, m/s^2, uT), e.g. ``sensors.imu_model(name).gyro.full_scale``.
+        Samples with a component at or beyond the range are counted
+        (``*_saturated``); accelerometer and magnetometer corrections are
+        skipped for them, gyro samples are used (the clipped rate is the best
+        available) and flag the attitude after them as suspect.
+    gyro_jump : float, optional
+        Spike gate (rad/s): a gyro sample differing from the last used one by
+        more than this on some axis is replaced by it (``gyro_gated``) unless
+        the previous sample was already replaced. Choose well above the
+        per-sample noise and the largest rate change per sample of the motion.
+
+    What the filter does with bad samples
+    -------------------------------------
+    NaN gyro: hold the last used sample. Gyro spike (``gyro_jump``): hold.
+    NaN/inf/zero accelerometer, or outside ``accel_tol``, or saturated: skip
+    the accelerometer correction. Magnetometer NaN/inf/zero, parallel to
+    gravity, outside the ``gate`` or saturated: skip the heading correction.
+    RTK: invalid epochs and NaN values are not read; epochs outside
+    ``rtk_gate`` are rejected. A gap (any sensor) is a run of such samples: the
+    attitude is propagated by the gyro alone and drifts at the gyro-bias
+    error. Every case is counted in :attr:`AttitudeResult.counts`.
+
+    Returns
+    -------
+    AttitudeResult
+
+    sigma_gyro : float
+        Gyro white-noise sigma per sample (rad/s).
+    sigma_accel, sigma_mag : float
+        Noise of the normalised accelerometer and magnetometer vectors.
+    p0 : float
+        Initial covariance ``p0 I``.
+    linear_innovation : bool
+        Use the printed innovation ``z - H q`` (wrong; for the erratum demonstration).
+    keep_cov : bool
+        Also return the covariance after every sample (``P_history``).
+
+    The covariance is predicted with ``Phi P Phi^T + Gamma Q Gamma^T`` and
+    updated in Joseph form (both symmetrised); skipped, gated, rejected and
+    saturated measurements are simply not used, so a fault never enters P.
+    """
+    lead, inp, sat = prepare_inputs(w_ib_b, f_b, dt, q0, m_b, heading_rtk, rtk_valid, B_n, gate, accel_tol, g,
+                                    rtk_hold, rtk_gate, rtk_confirm, gyro_range, accel_range, mag_range, gyro_jump)
+    kp, ki = scalar(kp, "kp", positive=True, allow_zero=True), scalar(ki, "ki", positive=True, allow_zero=True)
+    T, N = inp.w.shape[:2]
+    if inp.use_rtk:
+        b = np.array([0.0, 1.0, 0.0])                       # RTK pseudo-vector points north
+    elif B_n is None:
+        raise ValueError("B_n: the quaternion KF needs the local field for its magnetometer reference")
+    else:
+        b = magnetic_reference(B_n)[0]
+    sig = np.array([scalar(s, n, positive=True) for s, n in ((sigma_gyro, "sigma_gyro"), (sigma_accel, "sigma_accel"),
+                                                (sigma_mag, "sigma_mag"))])
+    model = _Model(b, sig, scalar(p0, "p0", positive=True), flag(linear_innovation, "linear_innovation"))
+    keep_cov = flag(keep_cov, "keep_cov")
+    q_out, bias, counts = np.empty((T, N, 4)), np.empty((T, 3)), np.zeros((T, len(COUNT_NAMES)), dtype=np.int64)
+    P_out, P_hist = np.empty((T, 4, 4)), np.empty((T, N if keep_cov else 0, 4, 4))
+    run_trials(_kernel, T, inp, kp, ki, model, q_out, bias, counts, P_out, P_hist)
+    return attitude_result(lead, q_out, bias, counts, sat, P_out, P_hist if keep_cov else None)
