@@ -83,10 +83,11 @@ from navlib import (  # noqa: E402
     trajectory,
     units,
 )
+from navlib.filters import mahony, observations, quaternion_kf, zupt  # noqa: E402
 
 MODULES = ["attitude", "earth", "units", "sensors", "atmosphere", "trajectory", "strapdown",
            "kalman", "analysis", "repro", "plots", "montecarlo", "faults", "timing", "alignment", "robust",
-           "euler", "pdr"]
+           "euler", "pdr", "filters.zupt", "filters.mahony", "filters.quaternion_kf", "filters.observations"]
 
 NAN, INF = np.nan, np.inf
 STR = "abc"                      # a string where numbers are expected
@@ -497,6 +498,27 @@ CASES = [
     bad("pdr.pdr_headings", "m_b", "str", lambda: pdr.pdr_headings(np.ones((10, 3)), STR, [3, 6])),
     bad("robust.hold", "leading", "unknown", lambda: robust.hold(np.ones((3, 3)), leading="back")),
     bad("robust.hold", "x", "all_nan", lambda: robust.hold(np.full((3, 3), NAN), leading="first")),
+    bad("robust.despike", "spike_gyro", "zero", lambda: robust.despike(W, F, 0.0, 1.0)),
+    bad("robust.despike", "f_b", "shape", lambda: robust.despike(W, F[:5], 0.1, 1.0)),
+    bad("filters.zupt.detect_static", "g", "negative", lambda: zupt.detect_static(W, F, 0.01, window=0.05, g=-9.8)),
+    bad("filters.zupt.error_state_matrix", "C_bn", "not_rotation", lambda: zupt.error_state_matrix(np.ones((3, 3)), F[0])),
+    bad("filters.zupt.error_model_fd", "eps", "zero", lambda: zupt.error_model_fd(np.eye(3), F[0], eps=0.0)),
+    bad("filters.zupt.zupt_zaru_matrix", "w_ie_n", "nan", lambda: zupt.zupt_zaru_matrix(np.eye(3), [0.0, NAN, 0.0])),
+    bad("filters.zupt.zupt_zaru_innovation", "vel_n", "shape", lambda: zupt.zupt_zaru_innovation(
+        [0.0, 0.0], W[0], W[0], np.eye(3), W[0])),
+    bad("filters.mahony.mahony", "kp", "negative", lambda: mahony.mahony(W, F, 0.01, Q1, m_b=F, kp=-1.0)),
+    bad("filters.mahony.mahony", "m_b", "both_references", lambda: mahony.mahony(
+        W, F, 0.01, Q1, m_b=F, heading_rtk=np.zeros(10), rtk_valid=np.ones(10, bool))),
+    bad("filters.quaternion_kf.quaternion_kf", "B_n", "missing", lambda: quaternion_kf.quaternion_kf(W, F, 0.01, Q1, m_b=F)),
+    bad("filters.quaternion_kf.measurement_model", "b", "east_component", lambda: quaternion_kf.measurement_model(
+        Q1, [1.0, 0.0, 0.0])),
+    bad("filters.quaternion_kf.measurement_jacobian", "q", "str", lambda: quaternion_kf.measurement_jacobian(STR, [0, 1, 0])),
+    bad("filters.quaternion_kf.transition", "dt", "zero", lambda: quaternion_kf.transition(W[0], 0.0)),
+    bad("filters.quaternion_kf.noise_input", "q", "nan", lambda: quaternion_kf.noise_input([NAN, 0, 0, 0], 0.01)),
+    bad("filters.observations.MagGate", "norm_tol", "negative", lambda: observations.MagGate(norm_tol=-0.1)),
+    bad("filters.observations.magnetic_reference", "B_n", "zero", lambda: observations.magnetic_reference([0.0, 0.0, 0.0])),
+    bad("filters.observations.prepare_inputs", "f_b", "shape", lambda: observations.prepare_inputs(
+        W, F[:5], 0.01, Q1, F, None, None, None, None, None, 9.8, 0.25, None, 5, None, None, None, None)),
     bad("analysis.allan_deviation", "x", "too_short", lambda: analysis.allan_deviation(np.ones(5), 0.1)),
     bad("analysis.allan_deviation", "x", "empty", lambda: analysis.allan_deviation([], 0.1)),
     bad("analysis.allan_deviation", "x", "nan", lambda: analysis.allan_deviation(with_nan(np.ones(100), 7), 0.1)),
@@ -1009,6 +1031,10 @@ NOT_APPLICABLE = {
     "repro.Check": "record of a check, built by check()/check_range() from validated values",
     "strapdown.nav_step": "compiled kernel fed by strapdown.integrate and navlib's filters (like kalman.predict)",
     "timing.TimingReport": "record returned by timing.sanitize, built from validated values",
+    "filters.observations.AttitudeResult": "a result record, built by the attitude filters",
+    "filters.observations.AttitudeInputs": "the kernel record, built by prepare_inputs from validated values",
+    "filters.observations.attitude_result": "assembles kernel outputs (validated by prepare_inputs)",
+    "filters.observations.run_trials": "runs a compiled kernel on validated inputs",
 }
 
 
