@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from navlib import alignment, attitude
@@ -20,6 +20,7 @@ def static_readings(hpr, B_n=(0.0, 22.0, -40.0)):
     return C_bn.T @ np.array([0.0, 0.0, 9.8]), C_bn.T @ np.asarray(B_n)
 
 
+@settings(deadline=None)              # the first call compiles the heading kernel
 @given(angles)
 def test_level_and_heading_recover_the_attitude(hpr):
     f_b, m_b = static_readings(np.array(hpr))

@@ -685,9 +685,11 @@ def condition_number(V):
 
 def _cond_info(A):
     ev = np.linalg.eigvalsh(A)
+    # an eigenvalue within the eigensolver's rounding of ev_max is zero: its sign is machine-dependent noise
+    zero = ev[..., 0] <= ev[..., -1] * A.shape[-1] * np.finfo(float).eps
     with np.errstate(divide="ignore", invalid="ignore"):
         c = np.sqrt(ev[..., -1] / ev[..., 0])
-    return np.where((ev[..., 0] > 0) & np.isfinite(c), c, np.inf)
+    return np.where(~zero & np.isfinite(c), c, np.inf)
 
 
 def lsq_bias(r, V):
