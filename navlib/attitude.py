@@ -25,6 +25,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from ._typing import Angles, Array, Dcm, Quat, Vec3
 from ._validate import as_array, as_dcm, as_quat, in_range
 
 __all__ = [
@@ -36,20 +37,20 @@ __all__ = [
 _AXES = {"x": 0, "y": 1, "z": 2}
 
 
-def wrap_pi(angle):
+def wrap_pi(angle: Angles) -> Array:
     """Wrap angles (rad) into (-pi, pi]; NaN (a dropout) stays NaN."""
     a = as_array(angle, "angle", allow_nan=True)
     w = np.mod(a + np.pi, 2 * np.pi) - np.pi
     return np.where(w == -np.pi, np.pi, w)
 
 
-def wrap_2pi(angle):
+def wrap_2pi(angle: Angles) -> Array:
     """Wrap angles (rad) into [0, 2*pi); NaN (a dropout) stays NaN."""
     w = np.mod(as_array(angle, "angle", allow_nan=True), 2 * np.pi)
     return np.where(w >= 2 * np.pi, 0.0, w)
 
 
-def skew(v):
+def skew(v: Vec3) -> Array:
     """Cross-product matrix: ``skew(a) @ b == cross(a, b)``.
 
     Parameters
@@ -68,7 +69,7 @@ def skew(v):
                      np.stack([-y, x, o], -1)], -2)
 
 
-def rot(axis: str, angle, deg: bool = False):
+def rot(axis: str, angle: Angles, deg: bool = False) -> Array:
     """Active rotation matrix about a coordinate axis (paper 000's rot(j, phi)).
 
     Parameters
@@ -97,7 +98,7 @@ def rot(axis: str, angle, deg: bool = False):
     return np.stack([np.stack(r, -1) for r in rows], -2)
 
 
-def orthonormalize(C):
+def orthonormalize(C: Dcm) -> Array:
     """Nearest rotation matrix in the Frobenius norm (SVD projection).
 
     Parameters
@@ -126,7 +127,7 @@ def _as_hpr(hpr, deg: bool) -> np.ndarray:
     return hpr
 
 
-def euler_to_dcm(hpr, deg: bool = False):
+def euler_to_dcm(hpr: Angles, deg: bool = False) -> Array:
     """C_b^n from heading, pitch, roll (paper 000 Eq. 3).
 
     Parameters
@@ -147,7 +148,7 @@ def euler_to_dcm(hpr, deg: bool = False):
     return np.stack([np.stack(row, -1) for row in rows], -2)
 
 
-def dcm_to_euler(C_bn, deg: bool = False):
+def dcm_to_euler(C_bn: Dcm, deg: bool = False) -> Array:
     """Heading, pitch, roll from C_b^n (inverse of :func:`euler_to_dcm`).
 
     Uses pitch = atan2(c32, hypot(c31, c33)), roll = atan2(-c31, c33),
@@ -175,7 +176,7 @@ def dcm_to_euler(C_bn, deg: bool = False):
     return np.rad2deg(hpr) if deg else hpr
 
 
-def euler_to_quat(hpr, deg: bool = False):
+def euler_to_quat(hpr: Angles, deg: bool = False) -> Array:
     """Quaternion q_b^n from heading, pitch, roll.
 
     ``q = q_z(-heading) (x) q_x(pitch) (x) q_y(roll)`` with
@@ -202,12 +203,12 @@ def _positive_scalar(q):
     return np.where(q[..., :1] < 0, -q, q)
 
 
-def quat_to_euler(q, deg: bool = False):
+def quat_to_euler(q: Quat, deg: bool = False) -> Array:
     """Heading, pitch, roll from a quaternion q_b^n; shape (..., 4) -> (..., 3)."""
     return dcm_to_euler(quat_to_dcm(q), deg=deg)
 
 
-def quat_to_dcm(q):
+def quat_to_dcm(q: Quat) -> Array:
     """Rotation matrix C_b^n from quaternion q_b^n.
 
     Parameters
@@ -226,7 +227,7 @@ def quat_to_dcm(q):
     return np.stack([np.stack(r, -1) for r in rows], -2)
 
 
-def dcm_to_quat(C_bn):
+def dcm_to_quat(C_bn: Dcm) -> Array:
     """Quaternion q_b^n (scalar first, q0 >= 0) from C_b^n (Shepperd's method).
 
     Parameters
@@ -269,7 +270,7 @@ def dcm_to_quat(C_bn):
     return _positive_scalar(q)
 
 
-def quat_mult(p, q):
+def quat_mult(p: Quat, q: Quat) -> Array:
     """Hamilton product ``p (x) q``; shapes (..., 4) broadcast."""
     p = as_array(p, "p", tail=(4,))
     q = as_array(q, "q", tail=(4,))
@@ -281,18 +282,18 @@ def quat_mult(p, q):
                      p0 * q3 + p1 * q2 - p2 * q1 + p3 * q0], -1)
 
 
-def quat_conj(q):
+def quat_conj(q: Quat) -> Array:
     """Conjugate ``[q0, -q1, -q2, -q3]``; for unit q the inverse rotation."""
     q = as_array(q, "q", tail=(4,))
     return q * np.array([1.0, -1.0, -1.0, -1.0])
 
 
-def quat_normalize(q):
+def quat_normalize(q: Quat) -> Array:
     """Unit quaternion with q0 >= 0; shape (..., 4)."""
     return _positive_scalar(as_quat(q))
 
 
-def quat_rotate(q, v_b):
+def quat_rotate(q: Quat, v_b: Vec3) -> Array:
     """Rotate body vectors into the navigation frame: ``v_n = q (x) v_b (x) q*``.
 
     Parameters
@@ -313,7 +314,7 @@ def quat_rotate(q, v_b):
     return np.einsum("...ij,...j->...i", C, v_b)
 
 
-def rotvec_to_quat(rv):
+def rotvec_to_quat(rv: Vec3) -> Array:
     """Quaternion of the rotation vector ``rv`` (rad), shape (..., 3) -> (..., 4)."""
     rv = as_array(rv, "rv", tail=(3,))
     angle = np.linalg.norm(rv, axis=-1, keepdims=True)
@@ -324,7 +325,7 @@ def rotvec_to_quat(rv):
     return np.concatenate([np.cos(half), k * rv], -1)
 
 
-def quat_to_rotvec(q):
+def quat_to_rotvec(q: Quat) -> Array:
     """Rotation vector (rad, angle in [0, pi]) of quaternion q, shape (..., 4) -> (..., 3)."""
     q = quat_normalize(q)
     s = np.linalg.norm(q[..., 1:], axis=-1, keepdims=True)
@@ -333,12 +334,12 @@ def quat_to_rotvec(q):
     return k * q[..., 1:]
 
 
-def rotvec_to_dcm(rv):
+def rotvec_to_dcm(rv: Vec3) -> Array:
     """Rotation matrix ``expm(skew(rv))`` (Rodrigues), shape (..., 3) -> (..., 3, 3)."""
     return quat_to_dcm(rotvec_to_quat(rv))
 
 
-def dcm_to_rotvec(C):
+def dcm_to_rotvec(C: Dcm) -> Array:
     """Rotation vector (matrix logarithm) of rotation matrices, (..., 3, 3) -> (..., 3)."""
     return quat_to_rotvec(dcm_to_quat(as_dcm(C, "C")))
 
@@ -419,7 +420,7 @@ M_NED_ENU = np.array([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]])
 """Swaps N<->E and negates the vertical: ``C_bn(ENU/RFU) = M C_bn(NED/FRD) M``, same (heading, pitch, roll)."""
 
 
-def ned_to_enu_dcm(C_ned):
+def ned_to_enu_dcm(C_ned: Dcm) -> Array:
     """Body-to-navigation matrix of the paper's NED/FRD convention in navlib's ENU/RFU one.
 
     Parameters

@@ -17,6 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._kernels import normal_gravity, radii_mn
+from ._typing import Array, ArrayLike, Vec3
 from ._validate import as_array, in_range, latitude, positive
 
 __all__ = ["Ellipsoid", "WGS84", "CGCS2000", "GRS80", "KRASSOVSKY",
@@ -111,7 +112,7 @@ def _lat(lat, deg):
     return latitude(lat, "lat", deg=deg)
 
 
-def earth_rate_n(lat, deg: bool = False, ellipsoid: Ellipsoid = WGS84):
+def earth_rate_n(lat: ArrayLike, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> Array:
     """Earth rotation rate in ENU, ``[0, w cos(lat), w sin(lat)]`` (rad/s).
 
     Parameters
@@ -128,7 +129,7 @@ def earth_rate_n(lat, deg: bool = False, ellipsoid: Ellipsoid = WGS84):
     return np.stack([np.zeros_like(lat), w * np.cos(lat), w * np.sin(lat)], -1)
 
 
-def gravity(lat, h=0.0, deg: bool = False, ellipsoid: Ellipsoid = WGS84):
+def gravity(lat: ArrayLike, h: ArrayLike = 0.0, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> Array:
     """Normal gravity magnitude (m/s^2): Somigliana with the TR8350.2 height series.
 
     ``gamma = gamma_e (1 + k sin^2 lat) / sqrt(1 - e^2 sin^2 lat)`` with
@@ -153,14 +154,14 @@ def gravity(lat, h=0.0, deg: bool = False, ellipsoid: Ellipsoid = WGS84):
     return normal_gravity(lat, h, *ellipsoid.gravity_constants).reshape(shape)
 
 
-def gravity_n(lat, h=0.0, deg: bool = False, ellipsoid: Ellipsoid = WGS84):
+def gravity_n(lat: ArrayLike, h: ArrayLike = 0.0, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> Array:
     """Normal gravity vector in ENU, ``[0, 0, -gamma]`` (m/s^2); shape (..., 3)."""
     g = gravity(lat, h, deg=deg, ellipsoid=ellipsoid)
     z = np.zeros_like(g)
     return np.stack([z, z, -g], -1)
 
 
-def radii(lat, deg: bool = False, ellipsoid: Ellipsoid = WGS84):
+def radii(lat: ArrayLike, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> tuple[Array, Array]:
     """Meridian and prime-vertical radii of curvature (m).
 
     Returns
@@ -173,7 +174,7 @@ def radii(lat, deg: bool = False, ellipsoid: Ellipsoid = WGS84):
     return R_M.reshape(lat.shape), R_N.reshape(lat.shape)
 
 
-def transport_rate_n(lat, h, vel_n, ellipsoid: Ellipsoid = WGS84):
+def transport_rate_n(lat: ArrayLike, h: ArrayLike, vel_n: Vec3, ellipsoid: Ellipsoid = WGS84) -> Array:
     """Transport rate of the ENU frame over the ellipsoid (rad/s).
 
     ``w_en_n = [-v_N/(R_M+h), v_E/(R_N+h), v_E tan(lat)/(R_N+h)]``.
@@ -218,7 +219,7 @@ def _wmm_file(year: float) -> str:
     return [f for start, f in _WMM_MODELS if year >= start][-1]
 
 
-def magnetic_field(lat, lon, h=0.0, year: float = 2025.0, deg: bool = True):
+def magnetic_field(lat: ArrayLike, lon: ArrayLike, h: ArrayLike = 0.0, year: float = 2025.0, deg: bool = True) -> Array:
     """Main geomagnetic field from the World Magnetic Model (through pygeomag).
 
     The WMM epoch (2010, 2015v2, 2020, 2025) is chosen from ``year``; each is
@@ -258,7 +259,7 @@ def magnetic_field(lat, lon, h=0.0, year: float = 2025.0, deg: bool = True):
     return out
 
 
-def field_from_angles(declination, inclination, intensity, deg: bool = True):
+def field_from_angles(declination: ArrayLike, inclination: ArrayLike, intensity: ArrayLike, deg: bool = True) -> Array:
     """Field vector in ENU from declination, inclination and intensity.
 
     Parameters
@@ -284,7 +285,7 @@ def field_from_angles(declination, inclination, intensity, deg: bool = True):
     return np.stack([H * np.sin(D), H * np.cos(D), -F * np.sin(I)], -1)
 
 
-def field_angles(B_n, deg: bool = True):
+def field_angles(B_n: Vec3, deg: bool = True) -> tuple[Array, Array, Array]:
     """Declination, inclination and intensity of ENU field vectors.
 
     Parameters

@@ -21,6 +21,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import attitude, earth
+from ._typing import Angles, Array, ArrayLike, Times, Vec3Series
 from ._validate import as_array, generator, in_range, positive, scalar, time_axis, unit_interval
 
 __all__ = ["dropouts", "gap", "spikes", "position_jumps", "heading_flips", "duplicate_timestamps",
@@ -36,7 +37,7 @@ def _time_axis_len(a):
     return a.shape[-2] if a.ndim >= 2 else a.shape[-1]
 
 
-def dropouts(x, fraction: float, rng: np.random.Generator):
+def dropouts(x: ArrayLike, fraction: float, rng: np.random.Generator) -> tuple[Array, np.ndarray]:
     """Set a random ``fraction`` of samples (whole rows) to NaN.
 
     Parameters
@@ -63,7 +64,7 @@ def dropouts(x, fraction: float, rng: np.random.Generator):
     return x, dropped
 
 
-def gap(x, time, start: float, duration: float):
+def gap(x: ArrayLike, time: Times, start: float, duration: float) -> tuple[Array, np.ndarray]:
     """NaN over ``[start, start + duration)`` (s): a sensor outage.
 
     Returns
@@ -85,7 +86,8 @@ def gap(x, time, start: float, duration: float):
     return x, dropped
 
 
-def spikes(x, fraction: float, sigma, rng: np.random.Generator, k: float = 100.0):
+def spikes(x: ArrayLike, fraction: float, sigma: ArrayLike, rng: np.random.Generator,
+           k: float = 100.0) -> tuple[Array, np.ndarray]:
     """Add ``±k sigma`` spikes to a random ``fraction`` of samples (each component).
 
     Parameters
@@ -116,7 +118,8 @@ def spikes(x, fraction: float, sigma, rng: np.random.Generator, k: float = 100.0
     return x, hit
 
 
-def position_jumps(lla, fraction: float, rng: np.random.Generator, size_m: float = 50.0):
+def position_jumps(lla: Vec3Series, fraction: float, rng: np.random.Generator,
+                   size_m: float = 50.0) -> tuple[Array, np.ndarray]:
     """Move a random ``fraction`` of GNSS fixes by ``size_m`` metres horizontally.
 
     Parameters
@@ -144,7 +147,7 @@ def position_jumps(lla, fraction: float, rng: np.random.Generator, size_m: float
     return lla, hit
 
 
-def heading_flips(heading, fraction: float, rng: np.random.Generator):
+def heading_flips(heading: Angles, fraction: float, rng: np.random.Generator) -> tuple[Array, np.ndarray]:
     """Rotate a random ``fraction`` of heading samples by 180 deg (dual-antenna ambiguity).
 
     Returns
@@ -158,7 +161,7 @@ def heading_flips(heading, fraction: float, rng: np.random.Generator):
     return np.where(hit, attitude.wrap_2pi(h + np.pi), h), hit
 
 
-def duplicate_timestamps(time, fraction: float, rng: np.random.Generator):
+def duplicate_timestamps(time: Times, fraction: float, rng: np.random.Generator) -> tuple[Array, np.ndarray]:
     """Repeat the previous timestamp on a random ``fraction`` of samples.
 
     Returns
@@ -174,7 +177,7 @@ def duplicate_timestamps(time, fraction: float, rng: np.random.Generator):
     return t, hit
 
 
-def swap_timestamps(time, fraction: float, rng: np.random.Generator):
+def swap_timestamps(time: Times, fraction: float, rng: np.random.Generator) -> tuple[Array, np.ndarray]:
     """Swap a random ``fraction`` of samples with their successor: out-of-order arrival.
 
     Returns the permutation too, so data can be reordered the same way.
@@ -195,7 +198,7 @@ def swap_timestamps(time, fraction: float, rng: np.random.Generator):
     return t[order], order
 
 
-def irregular_times(n: int, dt: float, jitter: float, rng: np.random.Generator, t0: float = 0.0):
+def irregular_times(n: int, dt: float, jitter: float, rng: np.random.Generator, t0: float = 0.0) -> Array:
     """Sample times with intervals ``dt (1 + u)``, u uniform in ``[-jitter, jitter]``.
 
     Returns
@@ -212,7 +215,7 @@ def irregular_times(n: int, dt: float, jitter: float, rng: np.random.Generator, 
     return t0 + np.concatenate([[0.0], np.cumsum(steps)])
 
 
-def saturate(x, full_scale):
+def saturate(x: Vec3Series, full_scale: float) -> tuple[Array, np.ndarray]:
     """Clip at ``±full_scale``; returns the clipped copy and the mask of clipped samples.
 
     Parameters

@@ -57,6 +57,7 @@ import functools
 
 import numpy as np
 
+from ._typing import Array, ArrayLike
 from ._validate import as_array, in_range, latitude
 from .earth import CGCS2000, Ellipsoid
 
@@ -119,7 +120,7 @@ def _lon_deg(lon, deg: bool, name: str = "lon") -> np.ndarray:
     return arr if deg else np.rad2deg(arr)
 
 
-def zone(lon, width: int = 3, deg: bool = False) -> np.ndarray:
+def zone(lon: ArrayLike, width: int = 3, deg: bool = False) -> np.ndarray:
     """Gauss–Krüger zone number (corrected Eq. 1).
 
     3° zones: ``n = floor((L + 1.5)/3)``, 1–120, with 0 ≤ L < 1.5° E (and
@@ -147,7 +148,7 @@ def zone(lon, width: int = 3, deg: bool = False) -> np.ndarray:
 _zone_number = zone          # for functions whose ``zone`` argument shadows the function
 
 
-def central_meridian(zone_number, width: int = 3, deg: bool = False) -> np.ndarray:
+def central_meridian(zone_number: ArrayLike, width: int = 3, deg: bool = False) -> np.ndarray:
     """Central meridian of a zone (Eq. 2: ``L0 = 3n`` for 3° zones; ``6n - 3`` for 6°), in (-180°, 180°].
 
     Parameters
@@ -325,9 +326,10 @@ def _validate_lat_lon(lat, lon, deg):
     return lat_rad, lon_deg
 
 
-def geodetic2gk(lat, lon, *, zone=None, lon0=None, width: int = 3, ellipsoid: Ellipsoid = CGCS2000,
-                deg: bool = False, k0: float = 1.0, false_easting: float = 0.0, false_northing: float = 0.0,
-                zone_prefix: bool = False, max_offset_deg: float | None = None):
+def geodetic2gk(lat: ArrayLike, lon: ArrayLike, *, zone: ArrayLike | None = None, lon0: ArrayLike | None = None,
+                width: int = 3, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False, k0: float = 1.0,
+                false_easting: float = 0.0, false_northing: float = 0.0, zone_prefix: bool = False,
+                max_offset_deg: float | None = None) -> tuple[Array, Array]:
     """Gauss–Krüger forward projection (Eq. 9, by Krüger's n-series).
 
     Parameters
@@ -375,9 +377,9 @@ def geodetic2gk(lat, lon, *, zone=None, lon0=None, width: int = 3, ellipsoid: El
     return k0 * x + fn, y
 
 
-def gk2geodetic(x, y, *, zone=None, lon0=None, width: int = 3, ellipsoid: Ellipsoid = CGCS2000,
-                deg: bool = False, k0: float = 1.0, false_easting: float = 0.0, false_northing: float = 0.0,
-                zone_prefix: bool = False):
+def gk2geodetic(x: ArrayLike, y: ArrayLike, *, zone: ArrayLike | None = None, lon0: ArrayLike | None = None,
+                width: int = 3, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False, k0: float = 1.0,
+                false_easting: float = 0.0, false_northing: float = 0.0, zone_prefix: bool = False) -> tuple[Array, Array]:
     """Gauss–Krüger inverse projection.
 
     Parameters
@@ -435,8 +437,9 @@ def _factors(lat, lon, zone, lon0, width, ellipsoid, deg, max_offset_deg):
     return _forward(lat_rad, np.deg2rad(l_deg), ellipsoid, factors=True)
 
 
-def convergence(lat, lon, *, zone=None, lon0=None, width: int = 3, ellipsoid: Ellipsoid = CGCS2000,
-                deg: bool = False, max_offset_deg: float | None = None):
+def convergence(lat: ArrayLike, lon: ArrayLike, *, zone: ArrayLike | None = None, lon0: ArrayLike | None = None,
+                width: int = 3, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False,
+                max_offset_deg: float | None = None) -> Array:
     """Grid (meridian) convergence gamma: the grid bearing of true north is ``-gamma``.
 
     Positive east of the central meridian in the northern hemisphere
@@ -455,8 +458,9 @@ def convergence(lat, lon, *, zone=None, lon0=None, width: int = 3, ellipsoid: El
     return np.rad2deg(gamma) if deg else gamma
 
 
-def scale_factor(lat, lon, *, zone=None, lon0=None, width: int = 3, ellipsoid: Ellipsoid = CGCS2000,
-                 deg: bool = False, k0: float = 1.0, max_offset_deg: float | None = None):
+def scale_factor(lat: ArrayLike, lon: ArrayLike, *, zone: ArrayLike | None = None, lon0: ArrayLike | None = None,
+                 width: int = 3, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False, k0: float = 1.0,
+                 max_offset_deg: float | None = None) -> Array:
     """Point scale factor k of the projection (1 on the central meridian for GK).
 
     Parameters are those of :func:`geodetic2gk`; returns shape (...).
@@ -466,7 +470,7 @@ def scale_factor(lat, lon, *, zone=None, lon0=None, width: int = 3, ellipsoid: E
     return k0 * k
 
 
-def meridian_arc(lat, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False, series: str = "kruger"):
+def meridian_arc(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False, series: str = "kruger") -> Array:
     """Meridian arc length S from the equator (m).
 
     Parameters
@@ -495,8 +499,8 @@ def meridian_arc(lat, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False, series
                                      - D / 6 * np.sin(6 * lat) + E / 8 * np.sin(8 * lat))
 
 
-def local_scales(lat, lon, lon0, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False, series: str = "kruger",
-                 step: float = 1e-6):
+def local_scales(lat: ArrayLike, lon: ArrayLike, lon0: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False,
+                 series: str = "kruger", step: float = 1e-6) -> tuple[Array, Array, Array]:
     """Meridian and parallel scale factors and the angle between their images, by central differences.
 
     A conformal projection has equal scales ``h = k`` and images of meridian
@@ -544,7 +548,8 @@ def local_scales(lat, lon, lon0, ellipsoid: Ellipsoid = CGCS2000, deg: bool = Fa
 # Geodetic <-> ECEF <-> local ENU (pymap3d-style)
 # --------------------------------------------------------------------------
 
-def geodetic2ecef(lat, lon, h, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False):
+def geodetic2ecef(lat: ArrayLike, lon: ArrayLike, h: ArrayLike, ellipsoid: Ellipsoid = CGCS2000,
+                  deg: bool = False) -> tuple[Array, Array, Array]:
     """Earth-centred Earth-fixed coordinates (m) of geodetic points; returns x, y, z of shape (...)."""
     _ell(ellipsoid)
     lat, lon_deg = _validate_lat_lon(lat, lon, deg)
@@ -559,7 +564,8 @@ def geodetic2ecef(lat, lon, h, ellipsoid: Ellipsoid = CGCS2000, deg: bool = Fals
     return r * np.cos(lon), r * np.sin(lon), (R_N * (1 - ellipsoid.e2) + h) * np.sin(lat)
 
 
-def ecef2geodetic(x, y, z, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False):
+def ecef2geodetic(x: ArrayLike, y: ArrayLike, z: ArrayLike, ellipsoid: Ellipsoid = CGCS2000,
+                  deg: bool = False) -> tuple[Array, Array, Array]:
     """Geodetic latitude, longitude (rad or deg) and height (m) of ECEF points (m).
 
     Bowring's iteration on the parametric latitude (three steps reach 1e-15
@@ -600,7 +606,8 @@ def _enu_rotation(lat0, lon0):
                      np.stack([cl * co, cl * so, sl], -1)], -2)
 
 
-def geodetic2enu(lat, lon, h, lat0, lon0, h0, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False):
+def geodetic2enu(lat: ArrayLike, lon: ArrayLike, h: ArrayLike, lat0: ArrayLike, lon0: ArrayLike, h0: ArrayLike,
+                 ellipsoid: Ellipsoid = CGCS2000, deg: bool = False) -> tuple[Array, Array, Array]:
     """East, north, up (m) of geodetic points in the local tangent frame at (lat0, lon0, h0).
 
     All arguments broadcast; angles in rad (deg with ``deg=True``). Returns
@@ -615,7 +622,8 @@ def geodetic2enu(lat, lon, h, lat0, lon0, h0, ellipsoid: Ellipsoid = CGCS2000, d
     return enu[..., 0], enu[..., 1], enu[..., 2]
 
 
-def enu2geodetic(e, n, u, lat0, lon0, h0, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False):
+def enu2geodetic(e: ArrayLike, n: ArrayLike, u: ArrayLike, lat0: ArrayLike, lon0: ArrayLike, h0: ArrayLike,
+                 ellipsoid: Ellipsoid = CGCS2000, deg: bool = False) -> tuple[Array, Array, Array]:
     """Inverse of :func:`geodetic2enu`: geodetic lat, lon (rad or deg), h (m) of local ENU points."""
     _ell(ellipsoid)
     try:
@@ -635,7 +643,7 @@ def enu2geodetic(e, n, u, lat0, lon0, h0, ellipsoid: Ellipsoid = CGCS2000, deg: 
 # The paper's printed equations (errata demonstrations only)
 # --------------------------------------------------------------------------
 
-def printed_zone_number(lon, deg: bool = False):
+def printed_zone_number(lon: ArrayLike, deg: bool = False) -> Array:
     """Eq. (1) exactly as printed, ``n = (L - 1.5)/3`` (L in deg): not an integer (erratum E002-01).
 
     Taken literally with Eq. (2), ``L0 = 3n = L - 1.5°``, so l = 1.5° for
@@ -644,7 +652,7 @@ def printed_zone_number(lon, deg: bool = False):
     return (_lon_deg(lon, deg) - 1.5) / 3.0
 
 
-def paper_radii(lat, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False):
+def paper_radii(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False) -> tuple[float, float, Array, Array]:
     """Eqs. (3)–(6): first and second eccentricities and the radii R_N, R_M (m).
 
     ``e1 = sqrt(a^2 - b^2)/a``, ``e2 = sqrt(a^2 - b^2)/b``,
@@ -666,7 +674,7 @@ def paper_radii(lat, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False):
     return e1, e2, R_N, R_M
 
 
-def printed_meridian_radius(lat, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False):
+def printed_meridian_radius(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False) -> Array:
     """Eq. (6) exactly as printed, ``a^2 (1 - e1^2)/sqrt((1 + e2^2 sin^2 W)^(3/2))`` (m): wrong (erratum E002-02)."""
     _ell(ellipsoid)
     W = _lat(lat, "lat", deg=deg)
@@ -674,7 +682,8 @@ def printed_meridian_radius(lat, ellipsoid: Ellipsoid = CGCS2000, deg: bool = Fa
     return ellipsoid.a ** 2 * (1 - e1 ** 2) / np.sqrt((1 + e2 ** 2 * np.sin(W) ** 2) ** 1.5)
 
 
-def paper_series(lat, lon, lon0, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False, typos: bool = False):
+def paper_series(lat: ArrayLike, lon: ArrayLike, lon0: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False,
+                 typos: bool = False) -> tuple[Array, Array]:
     """The paper's sixth-order GK series, Eqs. (7)–(11): northing x and easting y (m).
 
     With ``t = tan W``, ``eta^2 = e2^2 cos^2 W`` and ``N = R_N``::

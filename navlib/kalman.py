@@ -20,6 +20,7 @@ from numba import njit
 from scipy.linalg import expm
 
 from ._kernels import wrap_pi
+from ._typing import Array, ArrayLike
 from ._validate import as_array, positive
 
 __all__ = ["predict", "update", "discretize", "ACCEPTED", "NO_DATA", "REJECTED"]
@@ -108,7 +109,7 @@ def update(x, P, z, h, H, R, angle_mask, gate=np.inf):
     return x + K @ ys, (Pn + Pn.T) / 2, y, nis, 1
 
 
-def discretize(F, G, Qc, dt: float):
+def discretize(F: ArrayLike, G: ArrayLike, Qc: ArrayLike, dt: float) -> tuple[Array, Array]:
     """Discretise a continuous linear model by Van Loan's method.
 
     For ``dx/dt = F x + G w`` with white noise of spectral density ``Qc``,

@@ -23,10 +23,14 @@ from __future__ import annotations
 
 import sys
 import time
+from collections.abc import Callable
 from concurrent.futures import Executor
 from functools import partial
+from typing import Any
 
 import numpy as np
+
+from ._typing import ArrayLike
 
 __all__ = ["TrialStreams", "run"]
 
@@ -46,7 +50,7 @@ class TrialStreams:
         Trial indices of the batch.
     """
 
-    def __init__(self, seed: int, ids):
+    def __init__(self, seed: int, ids: ArrayLike):
         _check_args(1, seed, 1)
         ids = np.asarray(ids)
         if ids.ndim != 1 or ids.size == 0 or not np.issubdtype(ids.dtype, np.integer) or ids.min() < 0:
@@ -61,11 +65,11 @@ class TrialStreams:
         shape = tuple(np.atleast_1d(shape)) if shape != () else ()
         return np.stack([getattr(r, method)(size=shape, **kw) for r in self._rngs])
 
-    def normal(self, shape=(), loc=0.0, scale=1.0) -> np.ndarray:
+    def normal(self, shape: int | tuple[int, ...] = (), loc: float = 0.0, scale: float = 1.0) -> np.ndarray:
         """Normal draws, shape (B, *shape)."""
         return self._stack("normal", shape, loc=loc, scale=scale)
 
-    def uniform(self, shape=(), low=0.0, high=1.0) -> np.ndarray:
+    def uniform(self, shape: int | tuple[int, ...] = (), low: float = 0.0, high: float = 1.0) -> np.ndarray:
         """Uniform draws on [low, high), shape (B, *shape)."""
         return self._stack("uniform", shape, low=low, high=high)
 
@@ -84,8 +88,9 @@ def _check_args(n_trials, seed, batch_size):
             raise ValueError(f"{name}: expected an integer >= {lo}, got {v!r}")
 
 
-def run(batch_fn, n_trials: int, seed: int, *, batch_size: int = 1000, executor: Executor | None = None,
-        progress: bool = True, label: str = "trials", **kwargs) -> dict[str, np.ndarray]:
+def run(batch_fn: Callable[..., dict[str, np.ndarray]], n_trials: int, seed: int, *, batch_size: int = 1000,
+        executor: Executor | None = None, progress: bool = True, label: str = "trials",
+        **kwargs: Any) -> dict[str, np.ndarray]:
     """Run ``n_trials`` Monte Carlo trials in batches and concatenate the results.
 
     Parameters

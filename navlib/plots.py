@@ -1,17 +1,25 @@
 """Plot helpers shared by the notebooks (matplotlib; axes labelled with units)."""
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from . import attitude, units
+from ._typing import Angles, Array, ArrayLike, Dcm
 from ._validate import as_array, as_dcm, positive
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.typing import ColorType
+    from mpl_toolkits.mplot3d import Axes3D
 
 __all__ = ["body_axes", "allan", "heading_deg"]
 
 _AXIS_STYLE = (("x right", "tab:red"), ("y forward", "tab:green"), ("z up", "tab:blue"))
 
 
-def body_axes(ax, C_bn, title: str = "") -> None:
+def body_axes(ax: Axes3D, C_bn: Dcm, title: str = "") -> None:
     """Draw the ENU frame (grey) and the body axes of ``C_bn`` on a 3-D axes.
 
     Parameters
@@ -35,7 +43,8 @@ def body_axes(ax, C_bn, title: str = "") -> None:
         ax.set_title(title)
 
 
-def allan(ax, taus, adev_rad_s, theory=None, label: str = "", color=None) -> None:
+def allan(ax: Axes, taus: ArrayLike, adev_rad_s: ArrayLike, theory: ArrayLike | None = None, label: str = "",
+          color: ColorType | None = None) -> None:
     """Log-log Allan deviation of a gyro in deg/h against averaging time in s.
 
     Parameters
@@ -65,6 +74,6 @@ def allan(ax, taus, adev_rad_s, theory=None, label: str = "", color=None) -> Non
     ax.grid(True, which="both", alpha=0.3)
 
 
-def heading_deg(hpr):
+def heading_deg(hpr: Angles) -> Array:
     """Heading in degrees in [0, 360) from an ``hpr`` array (..., 3)."""
     return units.to_deg(attitude.wrap_2pi(as_array(hpr, "hpr", tail=(3,))[..., 0]))

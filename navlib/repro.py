@@ -21,10 +21,15 @@ import os
 import platform
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ._typing import Scalar
 from ._validate import real
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 __all__ = ["root", "build_dir", "setup", "savefig", "check", "check_range", "results",
            "ClaimCheckFailed", "Check", "NoOutputDirectory"]
@@ -144,7 +149,7 @@ def versions() -> dict[str, str]:
             "matplotlib": matplotlib.__version__, "numba": numba.__version__, "navlib": navlib.__version__}
 
 
-def savefig(fig, name: str) -> Path:
+def savefig(fig: Figure, name: str) -> Path:
     """Save ``fig`` as ``build/<notebook>/figures/<name>.png`` deterministically.
 
     The PNG carries no timestamp or software version, so two runs give
@@ -192,7 +197,7 @@ def _record(c: Check) -> Check:
     return c
 
 
-def check(name: str, value, expected, tol, source: str, *, paper_value=None,
+def check(name: str, value: Scalar, expected: float, tol: float, source: str, *, paper_value: str | float | None = None,
           rel: bool = False, unit: str = "", note: str = "") -> Check:
     """Check ``|value - expected| <= tol`` and record it; raise if it fails.
 
@@ -225,8 +230,8 @@ def check(name: str, value, expected, tol, source: str, *, paper_value=None,
                          None if paper_value is None else str(paper_value), unit=unit, note=note))
 
 
-def check_range(name: str, value, source: str, *, lower=None, upper=None,
-                paper_value=None, unit: str = "", note: str = "") -> Check:
+def check_range(name: str, value: Scalar, source: str, *, lower: float | None = None, upper: float | None = None,
+                paper_value: str | float | None = None, unit: str = "", note: str = "") -> Check:
     """Check ``lower <= value <= upper`` (either bound may be omitted); record; raise on failure.
 
     For directional and bound claims, e.g. "the EKF error is smaller than

@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import csv
 import functools
+from collections.abc import Sequence
 from dataclasses import dataclass, field, fields, replace
 from importlib import resources
 
@@ -38,6 +39,7 @@ import numpy as np
 from scipy.signal import lfilter
 
 from . import atmosphere, attitude, earth, units
+from ._typing import Angles, Array, ArrayLike, Quat, Times, Vec3, Vec3Series
 from ._validate import as_array, as_quat, generator, in_range, positive, time_axis
 from .analysis import GM_ALLAN_PEAK
 
@@ -153,7 +155,8 @@ class ImuOutput:
     accel_saturated: int
 
 
-def gauss_markov(shape, dt: float, sigma: float, correlation_time: float, rng: np.random.Generator):
+def gauss_markov(shape: tuple[int, ...], dt: float, sigma: float, correlation_time: float,
+                 rng: np.random.Generator) -> Array:
     """First-order Gauss-Markov sequences, stationary from the first sample.
 
     Parameters
@@ -215,7 +218,7 @@ def _corrupt(x, dt, errors: TriadErrors, rng: np.random.Generator):
     return y, bias, M, n_clipped
 
 
-def simulate_imu(w_ib_b, f_b, dt: float, model: ImuModel, rng: np.random.Generator,
+def simulate_imu(w_ib_b: Vec3Series, f_b: Vec3Series, dt: float, model: ImuModel, rng: np.random.Generator,
                  n_trials: int | None = None) -> ImuOutput:
     """Corrupt ideal IMU samples with an :class:`ImuModel`.
 
@@ -369,8 +372,8 @@ class MagnetometerOutput:
     soft_iron: np.ndarray
 
 
-def simulate_magnetometer(q_bn, B_n, model: MagnetometerModel, rng: np.random.Generator,
-                          disturbance_n=None) -> MagnetometerOutput:
+def simulate_magnetometer(q_bn: Quat, B_n: Vec3, model: MagnetometerModel, rng: np.random.Generator,
+                          disturbance_n: Vec3Series | None = None) -> MagnetometerOutput:
     """Magnetometer readings along an attitude history.
 
     Parameters
@@ -407,8 +410,8 @@ def simulate_magnetometer(q_bn, B_n, model: MagnetometerModel, rng: np.random.Ge
     return MagnetometerOutput(np.clip(m, -model.full_scale, model.full_scale), h, S)
 
 
-def magnetic_disturbances(time, rng: np.random.Generator, rate: float, amplitude=(5.0, 10.0),
-                          duration=(2.0, 5.0)):
+def magnetic_disturbances(time: Times, rng: np.random.Generator, rate: float, amplitude: tuple[float, float] = (5.0, 10.0),
+                          duration: tuple[float, float] = (2.0, 5.0)) -> Array:
     """Localised magnetic disturbances (steel structures, passing cars).
 
     Events arrive as a Poisson process; each is a Hann-shaped bump of random
@@ -481,7 +484,8 @@ class BarometerModel:
         return cls(**kw)
 
 
-def simulate_barometer(h, time, model: BarometerModel, rng: np.random.Generator, p0=atmosphere.P0):
+def simulate_barometer(h: ArrayLike, time: Times, model: BarometerModel, rng: np.random.Generator,
+                       p0: float = atmosphere.P0) -> Array:
     """Barometric pressure (Pa) at heights ``h`` (m) with the ISA as truth.
 
     Parameters
@@ -517,7 +521,7 @@ def simulate_barometer(h, time, model: BarometerModel, rng: np.random.Generator,
 # GNSS position and dual-antenna heading
 # --------------------------------------------------------------------------
 
-def outage_mask(time, outages) -> np.ndarray:
+def outage_mask(time: Times, outages: Sequence[tuple[float, float]]) -> np.ndarray:
     """Validity flags: False inside any ``[start, end)`` outage interval.
 
     Parameters
@@ -542,8 +546,8 @@ def outage_mask(time, outages) -> np.ndarray:
     return valid
 
 
-def simulate_gnss_position(lla, rng: np.random.Generator, sigma_horizontal: float,
-                           sigma_vertical: float | None = None, valid=None):
+def simulate_gnss_position(lla: Vec3Series, rng: np.random.Generator, sigma_horizontal: float,
+                           sigma_vertical: float | None = None, valid: ArrayLike | None = None) -> Array:
     """GNSS positions: truth plus white noise in metres, NaN during outages.
 
     Parameters
@@ -581,7 +585,8 @@ def simulate_gnss_position(lla, rng: np.random.Generator, sigma_horizontal: floa
     return out
 
 
-def simulate_heading(heading, rng: np.random.Generator, sigma: float, valid=None):
+def simulate_heading(heading: Angles, rng: np.random.Generator, sigma: float,
+                     valid: ArrayLike | None = None) -> tuple[Array, np.ndarray]:
     """Dual-antenna heading: truth plus white noise, wrapped to [0, 2 pi).
 
     Parameters

@@ -48,6 +48,7 @@ from numba import njit
 
 from . import attitude, earth, robust
 from ._kernels import normal_gravity, radii_mn
+from ._typing import Array, Dcm, Interval, Quat, Vec3, Vec3Series
 from ._validate import as_array, as_quat, intervals, latitude
 from .attitude import quat_mult_1, quat_mult_t, quat_normalize_1, quat_to_dcm_1, rotvec_to_quat_1, rotvec_to_quat_t
 from .trajectory import Trajectory
@@ -103,7 +104,8 @@ def _policy(on_nan):
     return on_nan
 
 
-def integrate_attitude(q0, w_ib_b, dt, w_in_n=None, on_nan: str = "raise"):
+def integrate_attitude(q0: Quat, w_ib_b: Vec3Series, dt: Interval, w_in_n: Vec3 | None = None,
+                       on_nan: str = "raise") -> Array | tuple[Array, np.ndarray]:
     """Integrate gyro samples into an attitude history.
 
     ``q_k+1 = q(-w_in_n dt_k) (x) q_k (x) q(w_k dt_k)`` with a constant
@@ -224,8 +226,9 @@ def _nav_kernel(lla0, vel0, q0, w, f, dt, earth_consts, hold_height):
     return lla, vel, q
 
 
-def integrate(lla0, vel0, q0, w_ib_b, f_b, dt, t0: float = 0.0, hold_height: bool = False,
-              ellipsoid: earth.Ellipsoid = earth.WGS84, on_nan: str = "raise"):
+def integrate(lla0: Vec3, vel0: Vec3, q0: Quat, w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, t0: float = 0.0,
+              hold_height: bool = False, ellipsoid: earth.Ellipsoid = earth.WGS84,
+              on_nan: str = "raise") -> Trajectory | tuple[Trajectory, np.ndarray]:
     """Full strapdown navigation: attitude, ENU velocity and geodetic position.
 
     Parameters
@@ -294,7 +297,7 @@ def integrate(lla0, vel0, q0, w_ib_b, f_b, dt, t0: float = 0.0, hold_height: boo
     return (traj, held) if on_nan == "hold" else traj
 
 
-def error_model(lat, h, vel_n, f_n, ellipsoid: earth.Ellipsoid = earth.WGS84):
+def error_model(lat: float, h: float, vel_n: Vec3, f_n: Vec3, ellipsoid: earth.Ellipsoid = earth.WGS84) -> Array:
     """Linear error dynamics of the ENU mechanisation (phi-angle model).
 
     State ``dx = [phi (3), dv_n (3), dlat, dlon, dh]`` with the attitude
@@ -361,7 +364,7 @@ def error_model(lat, h, vel_n, f_n, ellipsoid: earth.Ellipsoid = earth.WGS84):
     return F
 
 
-def error_input(C_bn):
+def error_input(C_bn: Dcm) -> Array:
     """Input matrix of gyro and accelerometer errors for :func:`error_model`.
 
     ``d(dx)/dt = F dx + G [dw_b; df_b]`` with ``G = [[-C_bn, 0], [0, C_bn], [0, 0]]``.

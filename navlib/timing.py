@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._typing import Array, ArrayLike, Times
 from ._validate import as_array
 
 __all__ = ["TimingReport", "sanitize", "intervals"]
@@ -58,7 +59,7 @@ def _reindex(x, keep, n, name):
     return np.take(a, keep, axis=axis)
 
 
-def sanitize(time, *series):
+def sanitize(time: ArrayLike, *series: ArrayLike) -> tuple[Array | TimingReport, ...]:
     """Sort samples by time, drop repeated timestamps, report what was found.
 
     Parameters
@@ -94,7 +95,7 @@ def sanitize(time, *series):
     return (t[keep], *out, report)
 
 
-def intervals(time, n_samples: int | None = None):
+def intervals(time: Times, n_samples: int | None = None) -> Array:
     """Per-sample intervals ``dt[k] = t[k+1] - t[k]`` of a strictly increasing time axis.
 
     Parameters

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._typing import Array, ArrayLike
 from ._validate import real
 
 __all__ = ["G0", "CONVERTERS", "to_si", "deg", "to_deg", "deg_per_s", "to_deg_per_s", "deg_per_h", "to_deg_per_h",
@@ -32,117 +33,117 @@ def _num(x, name: str = "x") -> np.ndarray:
     return real(x, name)
 
 
-def deg(x):
+def deg(x: ArrayLike) -> Array:
     """Degrees to radians."""
     return _num(x) * _DEG
 
 
-def to_deg(x):
+def to_deg(x: ArrayLike) -> Array:
     """Radians to degrees."""
     return _num(x) / _DEG
 
 
-def deg_per_s(x):
+def deg_per_s(x: ArrayLike) -> Array:
     """deg/s to rad/s."""
     return _num(x) * _DEG
 
 
-def to_deg_per_s(x):
+def to_deg_per_s(x: ArrayLike) -> Array:
     """rad/s to deg/s."""
     return _num(x) / _DEG
 
 
-def deg_per_h(x):
+def deg_per_h(x: ArrayLike) -> Array:
     """deg/h to rad/s."""
     return _num(x) * _DEG / 3600.0
 
 
-def to_deg_per_h(x):
+def to_deg_per_h(x: ArrayLike) -> Array:
     """rad/s to deg/h."""
     return _num(x) * 3600.0 / _DEG
 
 
-def deg_per_sqrt_h(x):
+def deg_per_sqrt_h(x: ArrayLike) -> Array:
     """Angle random walk deg/sqrt(h) to rad/s/sqrt(Hz)."""
     return _num(x) * _DEG / 60.0
 
 
-def to_deg_per_sqrt_h(x):
+def to_deg_per_sqrt_h(x: ArrayLike) -> Array:
     """Angle random walk rad/s/sqrt(Hz) to deg/sqrt(h)."""
     return _num(x) * 60.0 / _DEG
 
 
-def deg_per_s_sqrt_hz(x):
+def deg_per_s_sqrt_hz(x: ArrayLike) -> Array:
     """Rate noise density deg/s/sqrt(Hz) to rad/s/sqrt(Hz)."""
     return _num(x) * _DEG
 
 
-def to_deg_per_s_sqrt_hz(x):
+def to_deg_per_s_sqrt_hz(x: ArrayLike) -> Array:
     """Rate noise density rad/s/sqrt(Hz) to deg/s/sqrt(Hz)."""
     return _num(x) / _DEG
 
 
-def deg_per_h_sqrt_h(x):
+def deg_per_h_sqrt_h(x: ArrayLike) -> Array:
     """Rate random walk deg/h/sqrt(h) to rad/s^2/sqrt(Hz) (= rad/s/sqrt(s))."""
     return _num(x) * _DEG / 3600.0 / 60.0
 
 
-def mg(x):
+def mg(x: ArrayLike) -> Array:
     """milli-g to m/s^2."""
     return _num(x) * 1e-3 * G0
 
 
-def ug(x):
+def ug(x: ArrayLike) -> Array:
     """micro-g to m/s^2."""
     return _num(x) * 1e-6 * G0
 
 
-def to_ug(x):
+def to_ug(x: ArrayLike) -> Array:
     """m/s^2 to micro-g."""
     return _num(x) / (1e-6 * G0)
 
 
-def ug_per_sqrt_hz(x):
+def ug_per_sqrt_hz(x: ArrayLike) -> Array:
     """Accelerometer noise density ug/sqrt(Hz) to m/s^2/sqrt(Hz)."""
     return ug(x)
 
 
-def m_per_s_sqrt_h(x):
+def m_per_s_sqrt_h(x: ArrayLike) -> Array:
     """Velocity random walk m/s/sqrt(h) to m/s^2/sqrt(Hz)."""
     return _num(x) / 60.0
 
 
-def gauss(x):
+def gauss(x: ArrayLike) -> Array:
     """Gauss to microtesla (1 G = 100 uT)."""
     return _num(x) * 100.0
 
 
-def to_gauss(x):
+def to_gauss(x: ArrayLike) -> Array:
     """Microtesla to gauss."""
     return _num(x) / 100.0
 
 
-def nanotesla(x):
+def nanotesla(x: ArrayLike) -> Array:
     """Nanotesla to microtesla."""
     return _num(x) * 1e-3
 
 
-def hpa(x):
+def hpa(x: ArrayLike) -> Array:
     """Hectopascal to pascal."""
     return _num(x) * 100.0
 
 
-def to_hpa(x):
+def to_hpa(x: ArrayLike) -> Array:
     """Pascal to hectopascal."""
     return _num(x) / 100.0
 
 
-def percent(x):
+def percent(x: ArrayLike) -> Array:
     """Percent to a fraction."""
     return _num(x) / 100.0
 
 
-def ppm(x):
+def ppm(x: ArrayLike) -> Array:
     """Parts per million to a fraction."""
     return _num(x) * 1e-6
 
@@ -178,7 +179,7 @@ CONVERTERS = {
 }
 
 
-def to_si(value, unit: str):
+def to_si(value: ArrayLike, unit: str) -> Array:
     """Convert ``value`` given in ``unit`` (a key of :data:`CONVERTERS`) to SI."""
     try:
         conv = CONVERTERS[unit]
