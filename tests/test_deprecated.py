@@ -5,6 +5,7 @@ import importlib
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 
 import navlib
@@ -36,3 +37,14 @@ def test_importing_navlib_does_not_warn():
     out = subprocess.run([sys.executable, "-W", "error::DeprecationWarning", "-c", "import navlib, navlib.papers"],
                          capture_output=True, text=True)
     assert out.returncode == 0, out.stderr
+
+
+def test_old_filter_grid_keeps_the_paper_noise_as_defaults():
+    from navlib.filters import planar_ekf
+    from navlib.papers import gauss_kruger_ekf
+    t, z = np.arange(5.0), np.tile([0.0, 0.0, 0.3, 1.0, 0.0], (5, 1))
+    sys.modules.pop("navlib.planar", None)
+    with pytest.warns(DeprecationWarning):
+        old = importlib.import_module("navlib.planar")
+    new = planar_ekf.filter_grid(t, z, z[0], Q=gauss_kruger_ekf.Q_PAPER, R=gauss_kruger_ekf.R_PAPER)
+    np.testing.assert_array_equal(old.filter_grid(t, z, z[0]).x, new.x)

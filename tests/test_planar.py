@@ -9,14 +9,16 @@ import pytest
 from numpy.testing import assert_allclose
 
 from navlib import analysis, geodesy, kalman
+from navlib.filters import planar_ekf
 from navlib.papers import gauss_kruger_ekf as planar
 
+PAPER = dict(Q=planar.Q_PAPER, R=planar.R_PAPER)    # the paper's noise, Eqs. (17)-(18)
 ORIGIN = np.deg2rad([26.06, 119.20])       # paper 002 site (Fuzhou, assumed), GK zone 40
 X0_STRAIGHT = np.array([0.0, 0.0, np.pi / 4, 1.0, 0.0])
 
 
 def straight_run(seed, n=2000, T=0.5, R=planar.R_PAPER, **kw):
-    truth = planar.propagate(X0_STRAIGHT, T, n)
+    truth = planar_ekf.propagate(X0_STRAIGHT, T, n)
     t = np.arange(n + 1) * T
     sens = planar.simulate_sensors(truth, ORIGIN, R, np.random.default_rng(seed), **kw)
     return t, truth, sens
@@ -27,17 +29,17 @@ def test_jacobian_equals_finite_differences():
     rng = np.random.default_rng(0)
     X = rng.uniform([-50, -50, -np.pi, 0, -1], [50, 50, np.pi, 3, 1], (20, 5))
     T, h = 0.5, 1e-6
-    num = np.stack([(planar.motion_model(X + h * e, T) - planar.motion_model(X - h * e, T)) / (2 * h)
+    num = np.stack([(planar_ekf.motion_model(X + h * e, T) - planar_ekf.motion_model(X - h * e, T)) / (2 * h)
                     for e in np.eye(5)], -1)
-    assert_allclose(planar.jacobian(X, T), num, rtol=0, atol=1e-8)
+    assert_allclose(planar_ekf.jacobian(X, T), num, rtol=0, atol=1e-8)
 
 
 def test_circle_radius_for_5_deg_per_s():
     """Fig. 5: omega0 = 5 deg/s gives a circle of radius v/omega = 11.459 m; 5 rad/s a 0.53 m polygon."""
-    X = planar.propagate([0, 0, 0, 1, np.deg2rad(5)], 0.5, 144)        # one period, 72 s
+    X = planar_ekf.propagate([0, 0, 0, 1, np.deg2rad(5)], 0.5, 144)        # one period, 72 s
     assert abs(np.ptp(X[:, 1]) / 2 - 1 / np.deg2rad(5)) < 0.01
     assert np.hypot(*X[-1, :2]) < 1e-9
-    P = planar.propagate([0, 0, 0, 1, 5.0], 0.5, 200)
+    P = planar_ekf.propagate([0, 0, 0, 1, 5.0], 0.5, 200)
     assert np.ptp(P[:, 0]) < 0.6 and np.ptp(P[:, 1]) < 0.6
 
 
@@ -46,8 +48,8 @@ def test_fast_update_equals_general_kalman_update():
     t, truth, s = straight_run(1, n=400)
     z = np.column_stack([truth[:, :2] + np.random.default_rng(2).normal(0, 2.5, (401, 2)),
                          truth[:, 2] + np.pi + 0.1, s.speed, s.yaw_rate])     # heading near the wrap
-    fast = planar.filter_grid(t, z, X0_STRAIGHT, P0=np.eye(5))
-    slow = planar.filter_grid(t, z, X0_STRAIGHT, P0=np.eye(5), fast=False)
+    fast = planar_ekf.filter_grid(t, z, X0_STRAIGHT, P0=np.eye(5), **PAPER)
+    slow = planar_ekf.filter_grid(t, z, X0_STRAIGHT, P0=np.eye(5), fast=False, **PAPER)
     assert_allclose(fast.x, slow.x, rtol=0, atol=1e-10)
     assert_allclose(fast.P, slow.P, rtol=0, atol=1e-12)
     assert_allclose(fast.nis[1:], slow.nis[1:], rtol=1e-10)
@@ -58,7 +60,7 @@ def test_update_with_identity_h_is_the_linear_update_with_wrapped_heading():
     P = np.diag([4.0, 4.0, 0.04, 0.01, 0.01])
     x0 = np.array([10.0, -5.0, np.pi - 0.05, 1.0, 0.0])
     z = np.array([11.0, -4.0, -np.pi + 0.05, 1.1, 0.02])           # heading 0.1 rad clockwise of x0
-    res = planar.filter_grid([0.0, 1e-9], np.vstack([np.full(5, np.nan), z]), x0, P0=P, Q=np.zeros(5))
+    res = planar_ekf.filter_grid([0.0, 1e-9], np.vstack([np.full(5, np.nan), z]), x0, P0=P, Q=np.zeros(5), R=planar.R_PAPER)
     R = planar.R_PAPER
     K = P @ np.linalg.inv(P + R)
     innov = z - x0
@@ -73,7 +75,7 @@ def test_ekf_beats_dead_reckoning_and_is_consistent_with_R():
     """Fig. 4 set-up (paper Q, R in SI): EKF position RMSE ~1.6 m < GPS sigma 2.5 m; DR drifts away."""
     t, truth, s = straight_run(3, yaw_rate_bias=np.deg2rad(0.05))
     res = planar.ekf(t, s.gps, s.heading, s.speed, s.yaw_rate, X0_STRAIGHT, origin=ORIGIN)
-    dr, held = planar.dead_reckoning(t, s.speed, s.yaw_rate, X0_STRAIGHT)
+    dr, held = planar_ekf.dead_reckoning(t, s.speed, s.yaw_rate, X0_STRAIGHT)
     e_ekf = analysis.position_error(res.x, truth)
     e_dr = analysis.position_error(dr, truth)
     rmse = np.sqrt(np.mean(e_ekf ** 2))
@@ -120,7 +122,7 @@ def test_zone_crossing_stays_continuous_and_convergence_corrects_heading():
     origin = np.array(geodesy.gk2geodetic(x_e, y_e, zone=40))
     x0 = np.array([0.0, 0.0, np.pi / 2, 20.0, 0.0])                  # due grid east at 20 m/s
     n, T = 2000, 0.5
-    truth = planar.propagate(x0, T, n)
+    truth = planar_ekf.propagate(x0, T, n)
     R = np.diag([6.25, 6.25, np.deg2rad(0.5) ** 2, 4e-4, 2.5e-3])
     s = planar.simulate_sensors(truth, origin, R, np.random.default_rng(6))
     assert geodesy.zone(s.gps[-1, 1]) == 41
@@ -139,7 +141,7 @@ def test_dead_reckoning_holds_through_nan_and_adds_velocity_bias():
     t = np.arange(11.0)
     v, w = np.ones(11), np.zeros(11)
     v[3] = np.nan
-    pose, held = planar.dead_reckoning(t, v, w, [0, 0, 0, 1, 0], velocity_bias=[0.0, 0.1])
+    pose, held = planar_ekf.dead_reckoning(t, v, w, [0, 0, 0, 1, 0], velocity_bias=[0.0, 0.1])
     assert held == 1
     assert_allclose(pose[-1], [10.0, 1.0, 0.0], rtol=0, atol=1e-12)
 
@@ -154,17 +156,19 @@ def test_waypoint_path_reaches_every_mark():
 def test_kernels_run_uncompiled_with_the_same_results():
     script = r"""
 import json, numpy as np
+from navlib.filters import planar_ekf
 from navlib.papers import gauss_kruger_ekf as planar
+PAPER = dict(Q=planar.Q_PAPER, R=planar.R_PAPER)
 t = np.arange(50) * 0.5
 rng = np.random.default_rng(0)
 z = np.column_stack([rng.normal(0, 2, (50, 2)), rng.normal(0.3, 0.1, 50), np.ones(50), np.zeros(50)])
 z[10:15, :2] = np.nan
-r = planar.filter_grid(t, z, [0, 0, 0.3, 1, 0], P0=np.eye(5))
-d, _ = planar.dead_reckoning(t, z[:, 3], z[:, 4], [0, 0, 0.3, 1, 0], yaw_rate_range=0.1)
+r = planar_ekf.filter_grid(t, z, [0, 0, 0.3, 1, 0], P0=np.eye(5), **PAPER)
+d, _ = planar_ekf.dead_reckoning(t, z[:, 3], z[:, 4], [0, 0, 0.3, 1, 0], yaw_rate_range=0.1)
 z[20, 0] += 50.0
 z[21:25, 3] += 5.0                                  # a 4-epoch step: 3 rejections, reacquired; back: same
 z[30, 4] = 0.5                                                      # at the rails
-g = planar.filter_grid(t, z, [0, 0, 0.3, 1, 0], P0=np.eye(5), gate=[18.4, 15.1, 15.1, 15.1], yaw_rate_range=0.5)
+g = planar_ekf.filter_grid(t, z, [0, 0, 0.3, 1, 0], P0=np.eye(5), gate=[18.4, 15.1, 15.1, 15.1], yaw_rate_range=0.5, **PAPER)
 print(json.dumps({"x": r.x.tolist(), "d": d.tolist(), "g": g.x.tolist(), "rej": g.n_rejected_channels.tolist(),
                   "reacq": g.n_reacquired_channels.tolist(), "sat": g.n_saturated}))
 """
@@ -201,15 +205,15 @@ ONES3 = np.ones(3)
     (lambda: planar.ekf(T3, GPS3, ONES3[:2], ONES3, ONES3, np.zeros(5)), "heading"),
     (lambda: planar.ekf(T3, GPS3, ONES3, ONES3, ONES3, np.zeros(4)), "x0"),
     (lambda: planar.ekf(T3, GPS3, ONES3, ONES3, ONES3, np.zeros(5), gate=-1.0), "gate"),
-    (lambda: planar.filter_grid(T3, np.zeros((3, 5)), np.zeros(5), Q=-np.eye(5)), "Q"),
-    (lambda: planar.filter_grid(T3, np.zeros((3, 5)), np.zeros(5), R=np.ones((4, 4))), "R"),
-    (lambda: planar.filter_grid(T3, np.zeros((3, 4)), np.zeros(5)), "z"),
-    (lambda: planar.dead_reckoning([0.0, 0.0, 1.0], ONES3, ONES3, np.zeros(5)), "t"),
-    (lambda: planar.dead_reckoning(T3, ONES3[:2], ONES3, np.zeros(5)), "speed"),
-    (lambda: planar.propagate(np.zeros(5), 0.0, 10), "T"),
-    (lambda: planar.propagate(np.zeros(5), 0.5, 2.5), "n_steps"),
-    (lambda: planar.motion_model(np.zeros(4), 0.5), "X"),
-    (lambda: planar.jacobian(np.full(5, np.nan), 0.5), "X"),
+    (lambda: planar_ekf.filter_grid(T3, np.zeros((3, 5)), np.zeros(5), Q=-np.eye(5), R=planar.R_PAPER), "Q"),
+    (lambda: planar_ekf.filter_grid(T3, np.zeros((3, 5)), np.zeros(5), R=np.ones((4, 4)), Q=planar.Q_PAPER), "R"),
+    (lambda: planar_ekf.filter_grid(T3, np.zeros((3, 4)), np.zeros(5), **PAPER), "z"),
+    (lambda: planar_ekf.dead_reckoning([0.0, 0.0, 1.0], ONES3, ONES3, np.zeros(5)), "t"),
+    (lambda: planar_ekf.dead_reckoning(T3, ONES3[:2], ONES3, np.zeros(5)), "speed"),
+    (lambda: planar_ekf.propagate(np.zeros(5), 0.0, 10), "T"),
+    (lambda: planar_ekf.propagate(np.zeros(5), 0.5, 2.5), "n_steps"),
+    (lambda: planar_ekf.motion_model(np.zeros(4), 0.5), "X"),
+    (lambda: planar_ekf.jacobian(np.full(5, np.nan), 0.5), "X"),
     (lambda: planar.waypoint_path([[0, 0], [0, 0]], 1.0, 1.0, 0.5), "waypoints"),
     (lambda: planar.waypoint_path([[0, 0], [0, 1]], -1.0, 1.0, 0.5), "speed"),
     (lambda: planar.simulate_sensors(np.zeros((3, 5)), ORIGIN, planar.R_PAPER, np.random), "rng"),
@@ -268,14 +272,17 @@ FUZZ_CASES = [(fn, arg, bad) for fn, kw in VALID_CALLS.items() for arg in kw for
 
 def test_fuzz_table_covers_every_public_function():
     """Every public function of navlib.papers.gauss_kruger_ekf (plus analysis.position_error) has a fuzz row."""
-    assert sorted(VALID_CALLS) == sorted(set(planar.__all__) - RECORDS - CONSTANTS | {"position_error"})
+    public = set(planar.__all__) | set(planar_ekf.__all__) - {"covariance"}
+    assert sorted(VALID_CALLS) == sorted(public - RECORDS - CONSTANTS | {"position_error"})
     for fn, kw in VALID_CALLS.items():
         func(fn)(**kw)
 
 
 def func(name):
-    """The companion's function, or ``analysis.position_error`` (moved to core, still fuzzed here)."""
-    return analysis.position_error if name == "position_error" else getattr(planar, name)
+    """The companion's or navlib.filters.planar_ekf's function, or ``analysis.position_error`` (fuzzed here)."""
+    if name == "position_error":
+        return analysis.position_error
+    return getattr(planar_ekf, name) if name in planar_ekf.__all__ else getattr(planar, name)
 
 
 @pytest.mark.parametrize("fn, arg, bad", FUZZ_CASES)
@@ -291,11 +298,11 @@ def test_fuzz_bad_values_raise_naming_the_argument(fn, arg, bad):
         if fn == "position_error":
             assert np.all(np.isnan(analysis.position_error(**kw)))
         elif fn == "dead_reckoning":
-            assert np.all(np.isfinite(planar.dead_reckoning(**kw)[0]))
+            assert np.all(np.isfinite(planar_ekf.dead_reckoning(**kw)[0]))
         elif fn == "ekf" and arg == "gps":
-            getattr(planar, fn)(**kw)           # origin given: a run without any fix is prediction only
+            func(fn)(**kw)                      # origin given: a run without any fix is prediction only
         else:
-            assert np.all(np.isfinite(getattr(planar, fn)(**kw).x))
+            assert np.all(np.isfinite(func(fn)(**kw).x))
         return
     with pytest.raises((TypeError, ValueError)) as info:
         func(fn)(**kw)
@@ -305,23 +312,23 @@ def test_fuzz_bad_values_raise_naming_the_argument(fn, arg, bad):
 
 
 @pytest.mark.parametrize("call, arg", [
-    (lambda: planar.filter_grid(T3, Z3, X5, gate=[1.0, 2.0, 3.0]), "gate"),
-    (lambda: planar.filter_grid(T3, Z3, X5, gate=0.0), "gate"),
-    (lambda: planar.filter_grid(T3, Z3, X5, reacquire=0), "reacquire"),
-    (lambda: planar.filter_grid(T3, Z3, X5, reacquire=2.5), "reacquire"),
-    (lambda: planar.filter_grid(T3, Z3, X5, yaw_rate_range=-1.0), "yaw_rate_range"),
-    (lambda: planar.filter_grid(T3, Z3, X5, yaw_rate_range=[1.0, 2.0]), "yaw_rate_range"),
-    (lambda: planar.filter_grid(T3, Z3, X5, P0=np.diag([1.0, 1.0, -1.0, 1.0, 1.0])), "P0"),
-    (lambda: planar.filter_grid(np.array([0.0, 1.0, 1.0]), Z3, X5), "t"),
-    (lambda: planar.filter_grid(T3[:1], Z3[:1], X5), "t"),
+    (lambda: planar_ekf.filter_grid(T3, Z3, X5, gate=[1.0, 2.0, 3.0], **PAPER), "gate"),
+    (lambda: planar_ekf.filter_grid(T3, Z3, X5, gate=0.0, **PAPER), "gate"),
+    (lambda: planar_ekf.filter_grid(T3, Z3, X5, reacquire=0, **PAPER), "reacquire"),
+    (lambda: planar_ekf.filter_grid(T3, Z3, X5, reacquire=2.5, **PAPER), "reacquire"),
+    (lambda: planar_ekf.filter_grid(T3, Z3, X5, yaw_rate_range=-1.0, **PAPER), "yaw_rate_range"),
+    (lambda: planar_ekf.filter_grid(T3, Z3, X5, yaw_rate_range=[1.0, 2.0], **PAPER), "yaw_rate_range"),
+    (lambda: planar_ekf.filter_grid(T3, Z3, X5, P0=np.diag([1.0, 1.0, -1.0, 1.0, 1.0]), **PAPER), "P0"),
+    (lambda: planar_ekf.filter_grid(np.array([0.0, 1.0, 1.0]), Z3, X5, **PAPER), "t"),
+    (lambda: planar_ekf.filter_grid(T3[:1], Z3[:1], X5, **PAPER), "t"),
     (lambda: planar.ekf(T3, GPS3, ONES3, ONES3, ONES3, X5, origin=[2.0, 2.08]), "lat"),
     (lambda: planar.ekf(T3, GPS3, ONES3, ONES3, ONES3, X5, zone=200), "zone"),
     (lambda: planar.ekf(T3, GPS3, ONES3, ONES3, ONES3, X5, width=4), "width"),
     (lambda: planar.ekf(T3, GPS3, ONES3, ONES3, ONES3, X5, ellipsoid="WGS84"), "ellipsoid"),
     (lambda: planar.ekf(T3, GPS3, ONES3, ONES3, ONES3, X5, yaw_rate_range=0.0), "yaw_rate_range"),
-    (lambda: planar.dead_reckoning(T3, ONES3, ONES3, X5, yaw_rate_range=-2.0), "yaw_rate_range"),
-    (lambda: planar.propagate(X5, 0.5, True), "n_steps"),
-    (lambda: planar.propagate(X5, 0.5, speed=ONES3, yaw_rate=ONES3[:2]), "speed, yaw_rate"),
+    (lambda: planar_ekf.dead_reckoning(T3, ONES3, ONES3, X5, yaw_rate_range=-2.0), "yaw_rate_range"),
+    (lambda: planar_ekf.propagate(X5, 0.5, True), "n_steps"),
+    (lambda: planar_ekf.propagate(X5, 0.5, speed=ONES3, yaw_rate=ONES3[:2]), "speed, yaw_rate"),
     (lambda: planar.simulate_sensors(Z3, ORIGIN, planar.R_PAPER, np.random.default_rng(0),
                                      gps_valid=[1, 0, 1]), "gps_valid"),
     (lambda: analysis.position_error(np.zeros((3, 2)), np.zeros((2, 2))), "estimate, truth"),

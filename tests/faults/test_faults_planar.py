@@ -18,6 +18,7 @@ import numpy as np
 import pytest
 
 from navlib import analysis, faults, kalman, sensors, timing
+from navlib.filters import planar_ekf
 from navlib.papers import gauss_kruger_ekf as planar
 
 ORIGIN = np.deg2rad([26.06, 119.20])            # Fuzhou, GK zone 40 (notebook 03's site)
@@ -32,7 +33,7 @@ GYRO_RANGE = sensors.imu_model("ADIS16475-1").gyro.full_scale    # ±125 deg/s =
 
 
 def curve_run(seed=1):
-    truth = planar.propagate(X0_CURVE, T, N)
+    truth = planar_ekf.propagate(X0_CURVE, T, N)
     t = np.arange(N + 1) * T
     s = planar.simulate_sensors(truth, ORIGIN, planar.R_PAPER, np.random.default_rng(seed))
     return t, truth, s
@@ -227,7 +228,7 @@ def _irregular_truth(dt):
     X = np.empty((len(dt) + 1, 5))
     X[0] = X0_CURVE
     for k, step in enumerate(dt):
-        X[k + 1] = planar.motion_model(X[k], step)
+        X[k + 1] = planar_ekf.motion_model(X[k], step)
     return X
 
 
@@ -245,12 +246,12 @@ def test_ekf_irregular_sampling_uses_the_per_step_interval(clean):
     dt = np.diff(t_irr)
     assert 0.79 * T < dt.min() and dt.max() < 1.21 * T
     truth_irr = _irregular_truth(dt)
-    blind = planar.filter_grid(t_irr, np.full((N + 1, 5), np.nan), X0_CURVE, P0=P0)
+    blind = planar_ekf.filter_grid(t_irr, np.full((N + 1, 5), np.nan), X0_CURVE, P0=P0, Q=planar.Q_PAPER, R=planar.R_PAPER)
     assert blind.n_predict_only == N
     np.testing.assert_allclose(blind.x[:, :2], truth_irr[:, :2], rtol=0, atol=1e-9)
-    pose, held = planar.dead_reckoning(t_irr, truth_irr[:, 3], truth_irr[:, 4], X0_CURVE)
+    pose, held = planar_ekf.dead_reckoning(t_irr, truth_irr[:, 3], truth_irr[:, 4], X0_CURVE)
     np.testing.assert_allclose(pose[:, :2], truth_irr[:, :2], rtol=0, atol=1e-9)
-    pose, _ = planar.dead_reckoning(t, truth_irr[:, 3], truth_irr[:, 4], X0_CURVE)
+    pose, _ = planar_ekf.dead_reckoning(t, truth_irr[:, 3], truth_irr[:, 4], X0_CURVE)
     assert analysis.position_error(pose, truth_irr).max() > 1.0
     s_irr = planar.simulate_sensors(truth_irr, ORIGIN, planar.R_PAPER, np.random.default_rng(1))
     res = ekf(t_irr, s_irr.gps, s_irr.heading, s_irr.speed, s_irr.yaw_rate, gate=GATE)
@@ -269,7 +270,7 @@ def fast_turns_run(seed=3, spin_steps=4):
     for k in (120, 300, 450):
         w[k:k + spin_steps], v[k:k + spin_steps] = 3.0, 0.3
     x0 = np.array([0.0, 0.0, 0.3, 1.0, 0.0])
-    truth = planar.propagate(x0, T, speed=v, yaw_rate=w)
+    truth = planar_ekf.propagate(x0, T, speed=v, yaw_rate=w)
     s = planar.simulate_sensors(truth, ORIGIN, planar.R_PAPER, np.random.default_rng(seed))
     return np.arange(N + 1) * T, truth, s, x0
 
@@ -362,13 +363,13 @@ def test_dead_reckoning_dropouts_gap_and_saturation_are_held_and_counted(clean):
     speed, m_v = faults.dropouts(truth[:, 3], 0.1, rng)
     yaw_rate, m_w = faults.dropouts(truth[:, 4], 0.1, rng)
     yaw_rate, m_gap = faults.gap(yaw_rate, t, 100.0, 30.0)
-    pose, held = planar.dead_reckoning(t, speed, yaw_rate, X0_CURVE)
+    pose, held = planar_ekf.dead_reckoning(t, speed, yaw_rate, X0_CURVE)
     assert held == (m_v | m_w | m_gap)[:-1].sum()
     np.testing.assert_allclose(pose, truth[:, :3], rtol=0, atol=1e-9)
 
     t2, truth2, s2, x0 = fast_turns_run()
     clipped, at_rail = faults.saturate(s2.yaw_rate, GYRO_RANGE)
-    _, held = planar.dead_reckoning(t2, s2.speed, clipped, x0, yaw_rate_range=GYRO_RANGE)
+    _, held = planar_ekf.dead_reckoning(t2, s2.speed, clipped, x0, yaw_rate_range=GYRO_RANGE)
     assert held == at_rail[:-1].sum() == 12
 
 
@@ -379,9 +380,9 @@ def test_dead_reckoning_spikes_stated_bounds(clean):
     told the range, DR holds them and counts them in ``held``."""
     t, truth, s = curve_run()
     rng = np.random.default_rng(70)
-    ref, _ = planar.dead_reckoning(t, s.speed, s.yaw_rate, X0_CURVE)
+    ref, _ = planar_ekf.dead_reckoning(t, s.speed, s.yaw_rate, X0_CURVE)
     speed, m_v = faults.spikes(s.speed, 0.01, SIGMA[3], rng)
-    pose, held = planar.dead_reckoning(t, speed, s.yaw_rate, X0_CURVE)
+    pose, held = planar_ekf.dead_reckoning(t, speed, s.yaw_rate, X0_CURVE)
     bound = np.abs(speed - s.speed)[:-1].sum() * T
     assert held == 0 and m_v.sum() > 0
     assert np.all(np.hypot(*(pose[:, :2] - ref[:, :2]).T) <= bound + 1e-9)
@@ -389,5 +390,5 @@ def test_dead_reckoning_spikes_stated_bounds(clean):
     yaw_rate, m_w = faults.spikes(s.yaw_rate, 0.01, SIGMA[4], rng)
     yaw_rate, at_rail = faults.saturate(yaw_rate, GYRO_RANGE)
     assert np.array_equal(at_rail, m_w)
-    _, held = planar.dead_reckoning(t, s.speed, yaw_rate, X0_CURVE, yaw_rate_range=GYRO_RANGE)
+    _, held = planar_ekf.dead_reckoning(t, s.speed, yaw_rate, X0_CURVE, yaw_rate_range=GYRO_RANGE)
     assert held == m_w[:-1].sum() > 0
