@@ -1,6 +1,6 @@
 """Deprecated alias of :mod:`navlib.papers.pedestrian_ins` and of core modules:
 navlib.alignment, navlib.analysis, navlib.atmosphere, navlib.attitude, navlib.filters.zupt, navlib.pdr,
-navlib.robust.
+navlib.robust, navlib.trajectory.
 
 ``navlib.pedestrian`` was the module of this paper before the split into a paper companion
 and core homes (see CONTRIBUTING.md). Every old name still resolves here; importing this
@@ -24,6 +24,7 @@ from .filters.zupt import (  # noqa: F401  # noqa: F401
 from .papers.pedestrian_ins import *  # noqa: F403
 from .pdr import StepResult, detect_steps, pdr, pdr_headings, weinberg_step_length  # noqa: F401
 from .robust import despike  # noqa: F401
+from .trajectory import Gait, Leg, stance_mask, walk  # noqa: F401
 
 __all__ = ["M_NED_ENU", "STATIC_THRESHOLDS", "ned_to_enu_dcm", "Leg", "Gait", "walk", "stance_mask", "carpark_legs",
            "floor_test_legs", "detect_static", "detection_rates", "level", "static_gyro_bias", "magnetic_heading",

@@ -3,13 +3,14 @@
 A :class:`Trajectory` holds time, geodetic position, ENU velocity and
 attitude on a uniform time grid. Generators build the motions the papers
 need (static, reciprocating rotation of an IMU, vehicles with stops and
-turns), integrating position from velocity with the same trapezoid rule as
+turns, a pedestrian walking with a shoulder-worn IMU), integrating position from velocity with the same trapezoid rule as
 :func:`navlib.strapdown.integrate`. :func:`ideal_imu` inverts the strapdown
 step exactly, so error-free samples integrate back to the trajectory to
 rounding error and every simulated error is due to the sensor model alone.
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -17,10 +18,11 @@ from numba import njit
 
 from . import attitude, earth
 from ._kernels import radii_mn
+from ._typing import Vec3
 from ._validate import as_array, in_range, latitude, positive, time_axis, time_grid
 
 __all__ = ["Trajectory", "Segment", "static", "from_profiles", "reciprocating_rotation",
-           "vehicle", "ideal_imu", "smooth_ramp"]
+           "vehicle", "Leg", "Gait", "walk", "stance_mask", "ideal_imu", "smooth_ramp"]
 
 
 @dataclass(frozen=True)
@@ -243,6 +245,178 @@ def vehicle(segments, dt: float, lla0, heading0: float, ellipsoid: earth.Ellipso
     vel = speed[:, None] * np.stack([np.sin(heading) * np.cos(pitch), np.cos(heading) * np.cos(pitch),
                                      np.sin(pitch)], -1)
     hpr = np.stack([attitude.wrap_2pi(heading), pitch, roll], -1)
+    return from_profiles(t, lla0, hpr, vel, ellipsoid)
+
+
+@dataclass(frozen=True)
+class Leg:
+    """One leg of a walk: a stop (``speed == 0``) or walking at ``speed`` (m/s).
+
+    Over ``duration`` (s) the heading changes by ``turn`` (rad, clockwise
+    positive) and the height by ``climb`` (m; stairs). The speed moves
+    smoothly from the previous leg's within the first ``ramp`` seconds of
+    the walk (see :func:`walk`); a stop is static once that ramp is over.
+    """
+    duration: float
+    speed: float = 0.0
+    turn: float = 0.0
+    climb: float = 0.0
+
+    def __post_init__(self):
+        positive(self.duration, "duration")
+        positive(self.speed, "speed", allow_zero=True)
+        as_array(self.turn, "turn")
+        as_array(self.climb, "climb")
+        if self.speed == 0 and (self.turn != 0 or self.climb != 0):
+            raise ValueError("turn, climb: expected 0 on a stop (speed == 0)")
+
+
+@dataclass(frozen=True)
+class Gait:
+    """Shoulder motion of a walking pedestrian (amplitudes at full walking speed).
+
+    Attributes
+    ----------
+    step_frequency : float
+        Steps per second (Hz); typical 1.6-2.0.
+    bounce : float
+        Vertical oscillation amplitude at the step frequency (m); 2-3 cm.
+    sway : float
+        Lateral oscillation amplitude at half the step frequency (m).
+    surge : float
+        Fore-aft oscillation amplitude at the step frequency (m).
+    heading_wiggle, pitch_bob, roll_sway : float
+        Shoulder rotation amplitudes (rad): heading and roll at half the step
+        frequency (the shoulders turn with each stride), pitch at the step
+        frequency.
+    lean : float
+        Mean forward lean while walking (rad, nose down negative).
+    stand_sway, stand_tilt : float
+        Body sway while standing: horizontal amplitude (m) and tilt
+        amplitude (rad) at ``stand_frequency``.
+    stand_frequency : float
+        Standing sway frequency (Hz).
+    ramp : float
+        Time to start or stop walking (s).
+    """
+    step_frequency: float = 1.8
+    bounce: float = 0.025
+    sway: float = 0.02
+    surge: float = 0.01
+    heading_wiggle: float = np.deg2rad(3.0)
+    pitch_bob: float = np.deg2rad(1.5)
+    roll_sway: float = np.deg2rad(2.0)
+    lean: float = np.deg2rad(-3.0)
+    stand_sway: float = 0.002
+    stand_tilt: float = np.deg2rad(0.05)
+    stand_frequency: float = 0.3
+    ramp: float = 1.0
+
+    def __post_init__(self):
+        for name in ("step_frequency", "stand_frequency", "ramp"):
+            positive(getattr(self, name), name)
+        for name in ("bounce", "sway", "surge", "heading_wiggle", "pitch_bob", "roll_sway",
+                     "stand_sway", "stand_tilt"):
+            positive(getattr(self, name), name, allow_zero=True)
+        as_array(self.lean, "lean")
+
+
+def _legs(legs):
+    legs = list(legs)
+    if not legs or not all(isinstance(leg, Leg) for leg in legs):
+        raise ValueError("legs: expected a non-empty sequence of Leg")
+    return legs
+
+
+def _schedule(legs, t, ramp):
+    """Speed, heading offset, height offset and stance flags on the time grid."""
+    speed, turn, climb = (np.zeros(t.size) for _ in range(3))
+    static = np.zeros(t.size, dtype=bool)
+    v_prev, psi, h, t0 = 0.0, 0.0, 0.0, 0.0
+    for i, leg in enumerate(legs):
+        end = t0 + leg.duration
+        last = i == len(legs) - 1
+        m = (t >= t0 - 1e-9) if last else (t >= t0 - 1e-9) & (t < end - 1e-9)
+        tau = t[m] - t0
+        r = min(ramp, leg.duration)
+        speed[m] = v_prev + (leg.speed - v_prev) * smooth_ramp(tau / r)
+        frac = smooth_ramp(tau / leg.duration)
+        turn[m] = psi + leg.turn * frac
+        climb[m] = h + leg.climb * frac
+        static[m] = (leg.speed == 0) & ((v_prev == 0) | (tau >= r - 1e-9))
+        v_prev, psi, h, t0 = leg.speed, psi + leg.turn, h + leg.climb, end
+    return speed, turn, climb, static
+
+
+def stance_mask(legs: Sequence[Leg], dt: float, gait: Gait = Gait()) -> np.ndarray:
+    """True-static flags of :func:`walk` on its time grid (stops after their ramp).
+
+    Parameters
+    ----------
+    legs : sequence of Leg
+    dt : float  (s)
+    gait : Gait
+        The gait given to :func:`walk` (its ``ramp``).
+
+    Returns
+    -------
+    static : ndarray of bool, shape (N,)
+        Same length as the trajectory's ``time``.
+    """
+    legs = _legs(legs)
+    if not isinstance(gait, Gait):
+        raise ValueError(f"gait: expected a Gait, got {type(gait).__name__}")
+    t = time_grid(sum(leg.duration for leg in legs), dt)
+    return _schedule(legs, t, gait.ramp)[3]
+
+
+def walk(legs: Sequence[Leg], dt: float, lla0: Vec3, heading0: float, gait: Gait = Gait(),
+         ellipsoid: earth.Ellipsoid = earth.WGS84) -> Trajectory:
+    """A pedestrian walking and stopping, as seen by a shoulder-worn IMU.
+
+    The shoulder follows a smooth path (speed ramps, turns, stairs) plus
+    the gait oscillations of :class:`Gait`, whose amplitudes scale with the
+    speed (relative to the fastest leg); while standing it sways slightly.
+    Heading = path heading + wiggle, pitch = lean + bob, roll = sway.
+    Built with :func:`from_profiles`, so :func:`ideal_imu` is exact on it.
+
+    Parameters
+    ----------
+    legs : sequence of Leg
+    dt : float
+        Sample interval (s).
+    lla0 : array_like, shape (3,)
+        Start ``[lat (rad), lon (rad), h (m)]``.
+    heading0 : float
+        Initial path heading (rad).
+    gait : Gait
+
+    Returns
+    -------
+    Trajectory
+    """
+    legs = _legs(legs)
+    if not isinstance(gait, Gait):
+        raise ValueError(f"gait: expected a Gait, got {type(gait).__name__}")
+    heading0 = float(as_array(heading0, "heading0"))
+    t = time_grid(sum(leg.duration for leg in legs), dt)
+    speed, turn, climb, _ = _schedule(legs, t, gait.ramp)
+    v_max = max(leg.speed for leg in legs)
+    a = speed / v_max if v_max > 0 else np.zeros_like(speed)   # gait envelope, 0 when standing
+    psi = heading0 + turn
+    fwd = np.stack([np.sin(psi), np.cos(psi), np.zeros_like(psi)], -1)
+    right = np.stack([np.cos(psi), -np.sin(psi), np.zeros_like(psi)], -1)
+    up = np.array([0.0, 0.0, 1.0])
+    step, stride, stand = (2 * np.pi * gait.step_frequency * t, np.pi * gait.step_frequency * t,
+                           2 * np.pi * gait.stand_frequency * t)
+    still = 1 - np.clip(a, 0, 1)
+    osc = ((gait.sway * a * np.sin(stride) + gait.stand_sway * still * np.sin(stand))[:, None] * right
+           + (gait.surge * a * np.sin(step) + gait.stand_sway * still * np.cos(0.7 * stand))[:, None] * fwd
+           + (gait.bounce * a * np.cos(step))[:, None] * up)
+    vel = (speed[:, None] * fwd + np.gradient(climb, dt)[:, None] * up + np.gradient(osc, dt, axis=0))
+    hpr = np.stack([attitude.wrap_2pi(psi + gait.heading_wiggle * a * np.sin(stride + 0.3)),
+                    gait.lean * a + gait.pitch_bob * a * np.sin(step + 0.5) + gait.stand_tilt * still * np.sin(stand),
+                    gait.roll_sway * a * np.sin(stride) + gait.stand_tilt * still * np.cos(0.8 * stand)], -1)
     return from_profiles(t, lla0, hpr, vel, ellipsoid)
 
 

@@ -83,11 +83,12 @@ from navlib import (  # noqa: E402
     trajectory,
     units,
 )
-from navlib.filters import mahony, observations, quaternion_kf, zupt  # noqa: E402
+from navlib.filters import mahony, observations, planar_ekf, quaternion_kf, zupt  # noqa: E402
 
 MODULES = ["attitude", "earth", "units", "sensors", "atmosphere", "trajectory", "strapdown",
            "kalman", "analysis", "repro", "plots", "montecarlo", "faults", "timing", "alignment", "robust",
-           "euler", "pdr", "filters.zupt", "filters.mahony", "filters.quaternion_kf", "filters.observations"]
+           "euler", "pdr", "filters.zupt", "filters.mahony", "filters.quaternion_kf", "filters.observations",
+           "filters.planar_ekf"]
 
 NAN, INF = np.nan, np.inf
 STR = "abc"                      # a string where numbers are expected
@@ -515,6 +516,20 @@ CASES = [
     bad("filters.quaternion_kf.measurement_jacobian", "q", "str", lambda: quaternion_kf.measurement_jacobian(STR, [0, 1, 0])),
     bad("filters.quaternion_kf.transition", "dt", "zero", lambda: quaternion_kf.transition(W[0], 0.0)),
     bad("filters.quaternion_kf.noise_input", "q", "nan", lambda: quaternion_kf.noise_input([NAN, 0, 0, 0], 0.01)),
+    bad("trajectory.Leg", "duration", "zero", lambda: trajectory.Leg(0.0)),
+    bad("trajectory.Leg", "turn, climb", "turn_on_a_stop", lambda: trajectory.Leg(5.0, 0.0, turn=1.0)),
+    bad("trajectory.Gait", "ramp", "negative", lambda: trajectory.Gait(ramp=-1.0)),
+    bad("trajectory.walk", "legs", "empty", lambda: trajectory.walk([], 0.01, LLA0, 0.0)),
+    bad("trajectory.walk", "heading0", "nan", lambda: trajectory.walk([trajectory.Leg(1.0)], 0.01, LLA0, NAN)),
+    bad("trajectory.stance_mask", "gait", "wrong_type", lambda: trajectory.stance_mask([trajectory.Leg(1.0)], 0.01, gait=1.0)),
+    bad("filters.planar_ekf.motion_model", "X", "shape", lambda: planar_ekf.motion_model(np.zeros(4), 0.5)),
+    bad("filters.planar_ekf.jacobian", "T", "zero", lambda: planar_ekf.jacobian(np.zeros(5), 0.0)),
+    bad("filters.planar_ekf.propagate", "n_steps", "float", lambda: planar_ekf.propagate(np.zeros(5), 0.5, 2.5)),
+    bad("filters.planar_ekf.dead_reckoning", "speed", "shape", lambda: planar_ekf.dead_reckoning(
+        T10, np.ones(9), np.zeros(10), np.zeros(5))),
+    bad("filters.planar_ekf.filter_grid", "Q", "missing", lambda: planar_ekf.filter_grid(
+        T10, np.zeros((10, 5)), np.zeros(5), R=np.eye(5))),
+    bad("filters.planar_ekf.covariance", "P0", "not_psd", lambda: planar_ekf.covariance(-np.eye(5), "P0")),
     bad("filters.observations.MagGate", "norm_tol", "negative", lambda: observations.MagGate(norm_tol=-0.1)),
     bad("filters.observations.magnetic_reference", "B_n", "zero", lambda: observations.magnetic_reference([0.0, 0.0, 0.0])),
     bad("filters.observations.prepare_inputs", "f_b", "shape", lambda: observations.prepare_inputs(
@@ -1032,6 +1047,7 @@ NOT_APPLICABLE = {
     "strapdown.nav_step": "compiled kernel fed by strapdown.integrate and navlib's filters (like kalman.predict)",
     "timing.TimingReport": "record returned by timing.sanitize, built from validated values",
     "filters.observations.AttitudeResult": "a result record, built by the attitude filters",
+    "filters.planar_ekf.EkfResult": "a result record, built by filter_grid",
     "filters.observations.AttitudeInputs": "the kernel record, built by prepare_inputs from validated values",
     "filters.observations.attitude_result": "assembles kernel outputs (validated by prepare_inputs)",
     "filters.observations.run_trials": "runs a compiled kernel on validated inputs",

@@ -114,8 +114,8 @@ def test_printed_covariance_update_equals_joseph_form():
 @pytest.fixture(scope="module")
 def carpark():
     legs = pd.carpark_legs(stops=(8.0, 5.0, 12.0))
-    traj = pd.walk(legs, DT, LLA0, 0.0)
-    return legs, traj, pd.stance_mask(legs, DT)
+    traj = trajectory.walk(legs, DT, LLA0, 0.0)
+    return legs, traj, trajectory.stance_mask(legs, DT)
 
 
 def test_walk_is_exact_for_ideal_imu_and_has_the_gait(carpark):
@@ -125,12 +125,12 @@ def test_walk_is_exact_for_ideal_imu_and_has_the_gait(carpark):
     np.testing.assert_allclose(nav.lla[:, :2], traj.lla[:, :2], atol=1e-11)
     np.testing.assert_allclose(nav.vel_n, traj.vel_n, atol=1e-6)
     assert np.abs(traj.vel_n[static]).max() < 0.01
-    straight = pd.walk([pd.Leg(5.0), pd.Leg(30.0, 1.2), pd.Leg(5.0)], DT, LLA0, 0.0)
+    straight = trajectory.walk([trajectory.Leg(5.0), trajectory.Leg(30.0, 1.2), trajectory.Leg(5.0)], DT, LLA0, 0.0)
     up = straight.vel_n[1000:3000, 2]                               # 20 s of steady walking
     spec = np.abs(np.fft.rfft(up - up.mean()))
     freq = np.fft.rfftfreq(up.size, DT)
-    assert abs(freq[spec.argmax()] - pd.Gait().step_frequency) < 0.05
-    assert np.ptp(traj.lla[:, 2]) == pytest.approx(2 * pd.Gait().bounce, rel=0.05)
+    assert abs(freq[spec.argmax()] - trajectory.Gait().step_frequency) < 0.05
+    assert np.ptp(traj.lla[:, 2]) == pytest.approx(2 * trajectory.Gait().bounce, rel=0.05)
     assert np.rad2deg(attitude.wrap_pi(traj.hpr[-1, 0] - traj.hpr[0, 0])) == pytest.approx(0.0, abs=0.5)
 
 
@@ -163,8 +163,8 @@ def test_detector_ignores_dropouts_and_needs_half_a_window(carpark):
 
 def test_floor_test_legs_round_trip():
     legs = pd.floor_test_legs()
-    traj = pd.walk(legs, 0.05, LLA0, 0.0)
-    static = pd.stance_mask(legs, 0.05)
+    traj = trajectory.walk(legs, 0.05, LLA0, 0.0)
+    static = trajectory.stance_mask(legs, 0.05)
     _, _, floors = atmosphere.segment_floors(traj.lla[:, 2] - 20.0, static, ref_floor=2)
     assert floors.tolist() == [2, 1, 2, 1, 2]
 
@@ -219,11 +219,11 @@ def test_filter_survives_dropouts_and_gates_false_zupts(static_run):
     assert res.counts["imu_dropouts"] == 21
     assert np.all(np.isfinite(res.nav.lla))
     # a walker flagged static for 1 s in the middle of a walk: the NIS gate rejects most of those updates
-    legs = [pd.Leg(20.0), pd.Leg(20.0, 1.2), pd.Leg(10.0)]
-    walk = pd.walk(legs, DT, LLA0, 0.0)
+    legs = [trajectory.Leg(20.0), trajectory.Leg(20.0, 1.2), trajectory.Leg(10.0)]
+    walk = trajectory.walk(legs, DT, LLA0, 0.0)
     ww, fw = trajectory.ideal_imu(walk)
     imu_w = sensors.simulate_imu(ww, fw, DT, RESIDUAL, np.random.default_rng(7))
-    flags = pd.stance_mask(legs, DT)[:-1].copy()
+    flags = trajectory.stance_mask(legs, DT)[:-1].copy()
     flags[3000:3100] = True
     res = pd.run_filter(imu_w.w_ib_b, imu_w.f_b, DT, LLA0, np.zeros(3), walk.q_bn[0], flags)
     assert res.counts["zupt_rejected"] >= 5
@@ -273,10 +273,10 @@ import json, numpy as np, warnings
 from navlib import trajectory, units
 from navlib.filters import zupt
 from navlib.papers import pedestrian_ins as pd
-legs = [pd.Leg(3.0), pd.Leg(3.0, 1.0, turn=0.5), pd.Leg(2.0)]
-traj = pd.walk(legs, 0.02, [0.5, 1.9, 10.0], 0.2)
+legs = [trajectory.Leg(3.0), trajectory.Leg(3.0, 1.0, turn=0.5), trajectory.Leg(2.0)]
+traj = trajectory.walk(legs, 0.02, [0.5, 1.9, 10.0], 0.2)
 w, f = trajectory.ideal_imu(traj)
-static = pd.stance_mask(legs, 0.02)[:-1]
+static = trajectory.stance_mask(legs, 0.02)[:-1]
 m = np.tile([10.0, 20.0, -30.0], (len(w), 1))
 res = pd.run_filter(w + 1e-3, f, 0.02, traj.lla[0], traj.vel_n[0], traj.q_bn[0], static,
                     h_baro=traj.lla[:-1, 2], m_b=m)
@@ -350,10 +350,10 @@ def test_step_detection_and_pdr(carpark):
     (lambda: zupt.detect_static(np.zeros((10, 3)), np.zeros((10, 3)), 0.01, window=1.0), "window"),
     (lambda: zupt.detect_static(np.zeros((10, 3)), np.zeros((9, 3)), 0.01), "f_b"),
     (lambda: analysis.detection_rates(np.ones(5, bool), np.ones(5, bool)), "truth"),
-    (lambda: pd.walk([], 0.01, LLA0, 0.0), "legs"),
-    (lambda: pd.Leg(-1.0), "duration"),
-    (lambda: pd.Leg(5.0, 0.0, turn=1.0), "turn, climb"),
-    (lambda: pd.Gait(step_frequency=0.0), "step_frequency"),
+    (lambda: trajectory.walk([], 0.01, LLA0, 0.0), "legs"),
+    (lambda: trajectory.Leg(-1.0), "duration"),
+    (lambda: trajectory.Leg(5.0, 0.0, turn=1.0), "turn, climb"),
+    (lambda: trajectory.Gait(step_frequency=0.0), "step_frequency"),
     (lambda: pd.FilterConfig(sigma_zupt=0.0), "sigma_zupt"),
     (lambda: alignment.level([0.0, 0.0, 0.0]), "f_b"),
     (lambda: atmosphere.reference_pressure([np.nan, np.nan], [0.0, 1.0], 5.0), "until"),

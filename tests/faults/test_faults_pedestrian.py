@@ -23,8 +23,8 @@ from navlib.papers import pedestrian_ins as pd
 LLA0 = [units.deg(30.55), units.deg(114.30), 20.0]
 DT = 0.01
 MODEL = sensors.imu_model("MPU-6050").replace(gyro={"bias": units.deg_per_s(0.05)}, accel={"bias": units.mg(10)})
-LEGS = [pd.Leg(20.0), pd.Leg(15.0, 1.2), pd.Leg(8.0), pd.Leg(15.0, 1.2, turn=np.pi / 2), pd.Leg(10.0),
-        pd.Leg(10.0, 1.2, climb=-1.0), pd.Leg(40.0)]
+Leg = trajectory.Leg
+LEGS = [Leg(20.0), Leg(15.0, 1.2), Leg(8.0), Leg(15.0, 1.2, turn=np.pi / 2), Leg(10.0), Leg(10.0, 1.2, climb=-1.0), Leg(40.0)]
 SIGMA_GYRO = units.deg_per_s(0.005) / np.sqrt(DT)        # MPU-6050 noise per 100-Hz sample (rad/s)
 SIGMA_ACCEL = units.ug(400) / np.sqrt(DT)                # (m/s^2)
 SPIKE_GYRO, SPIKE_ACCEL = 0.02, 0.5                      # spike-test thresholds (FilterConfig docstring)
@@ -33,7 +33,7 @@ SPIKE_GYRO, SPIKE_ACCEL = 0.02, 0.5                      # spike-test thresholds
 @pytest.fixture(scope="module")
 def walk():
     ss = np.random.SeedSequence(2016).spawn(3)
-    traj = pd.walk(LEGS, DT, LLA0, 0.0)
+    traj = trajectory.walk(LEGS, DT, LLA0, 0.0)
     w, f = trajectory.ideal_imu(traj)
     imu = sensors.simulate_imu(w, f, DT, MODEL, np.random.default_rng(ss[0]))
     B = earth.magnetic_field(30.55, 114.30, 20.0, 2016.5)
@@ -301,10 +301,10 @@ def test_per_sample_dt_equal_to_the_scalar_is_bit_identical(walk):
 
 def test_irregular_sampling_is_integrated_as_well_as_regular():
     fine = 0.002
-    traj = pd.walk(LEGS, fine, LLA0, 0.0)
+    traj = trajectory.walk(LEGS, fine, LLA0, 0.0)
     w, f = trajectory.ideal_imu(traj)
     imu = sensors.simulate_imu(w, f, fine, MODEL, np.random.default_rng(8))   # 500 Hz, averaged below
-    stance = pd.stance_mask(LEGS, fine)[:-1]
+    stance = trajectory.stance_mask(LEGS, fine)[:-1]
     rng = np.random.default_rng(9)
     err = {}
     for name, sizes in (("regular", np.full(len(w) // 5, 5)), ("irregular", rng.integers(4, 7, len(w) // 4))):
@@ -368,18 +368,18 @@ FUZZ = [
     ("ned_to_enu_dcm", "C_ned", lambda: attitude.ned_to_enu_dcm(np.eye(3, dtype=complex))),
     ("ned_to_enu_dcm", "C_ned", lambda: attitude.ned_to_enu_dcm(np.zeros((2, 2)))),
     ("ned_to_enu_dcm", "C_ned", lambda: attitude.ned_to_enu_dcm(np.full((3, 3), np.nan))),
-    ("Leg", "duration", lambda: pd.Leg(np.inf)),
-    ("Leg", "speed", lambda: pd.Leg(1.0, "fast")),
-    ("Leg", "turn", lambda: pd.Leg(1.0, 1.0, turn=np.nan)),
-    ("Gait", "bounce", lambda: pd.Gait(bounce=-0.1)),
-    ("Gait", "lean", lambda: pd.Gait(lean=1j)),
-    ("walk", "legs", lambda: pd.walk([1.0], DT, LLA0, 0.0)),
-    ("walk", "dt", lambda: pd.walk([pd.Leg(1.0)], 0.0, LLA0, 0.0)),
-    ("walk", "heading0", lambda: pd.walk([pd.Leg(1.0)], DT, LLA0, np.nan)),
-    ("walk", "gait", lambda: pd.walk([pd.Leg(1.0)], DT, LLA0, 0.0, gait=None)),
-    ("walk", "lla0", lambda: pd.walk([pd.Leg(1.0)], DT, [0.5, 0.5], 0.0)),
-    ("stance_mask", "legs", lambda: pd.stance_mask("abc", DT)),
-    ("stance_mask", "gait", lambda: pd.stance_mask([pd.Leg(1.0)], DT, gait=1.0)),
+    ("Leg", "duration", lambda: trajectory.Leg(np.inf)),
+    ("Leg", "speed", lambda: trajectory.Leg(1.0, "fast")),
+    ("Leg", "turn", lambda: trajectory.Leg(1.0, 1.0, turn=np.nan)),
+    ("Gait", "bounce", lambda: trajectory.Gait(bounce=-0.1)),
+    ("Gait", "lean", lambda: trajectory.Gait(lean=1j)),
+    ("walk", "legs", lambda: trajectory.walk([1.0], DT, LLA0, 0.0)),
+    ("walk", "dt", lambda: trajectory.walk([trajectory.Leg(1.0)], 0.0, LLA0, 0.0)),
+    ("walk", "heading0", lambda: trajectory.walk([trajectory.Leg(1.0)], DT, LLA0, np.nan)),
+    ("walk", "gait", lambda: trajectory.walk([trajectory.Leg(1.0)], DT, LLA0, 0.0, gait=None)),
+    ("walk", "lla0", lambda: trajectory.walk([trajectory.Leg(1.0)], DT, [0.5, 0.5], 0.0)),
+    ("stance_mask", "legs", lambda: trajectory.stance_mask("abc", DT)),
+    ("stance_mask", "gait", lambda: trajectory.stance_mask([trajectory.Leg(1.0)], DT, gait=1.0)),
     ("carpark_legs", "speed", lambda: pd.carpark_legs(speed=-1.0)),
     ("carpark_legs", "stops", lambda: pd.carpark_legs(stops=[])),
     ("carpark_legs", "n_loops", lambda: pd.carpark_legs(n_loops=0)),
@@ -501,7 +501,8 @@ def test_bad_input_raises_naming_the_argument(func, arg, call):
 def test_every_public_function_is_fuzzed():
     covered = {f for f, _, _ in FUZZ}
     # plus the functions that moved to core modules, still fuzzed here
-    public = set(pd.__all__) | {"detect_static", "despike", "error_state_matrix", "error_model_fd", "zupt_zaru_matrix",
+    public = set(pd.__all__) | {"walk", "Leg", "Gait", "stance_mask",
+                                "detect_static", "despike", "error_state_matrix", "error_model_fd", "zupt_zaru_matrix",
                                 "zupt_zaru_innovation", "STATIC_THRESHOLDS",
                                 "level", "magnetic_heading", "horizontal_error", "expanding_std", "detection_rates",
                                 "baro_height", "reference_pressure", "classify_floor", "segment_floors", "segments",
