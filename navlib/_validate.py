@@ -10,7 +10,11 @@ a ``ValueError``.
 """
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
+
+from ._typing import ArrayLike, Dcm, Interval, Quat, Times, Vec3Series
 
 
 class InputTypeError(TypeError, ValueError):
@@ -29,7 +33,7 @@ _NOT_REAL = {"b": "a boolean", "c": "a complex", "O": "an object", "S": "a bytes
              "V": "a record", "M": "a datetime", "m": "a timedelta"}
 
 
-def real(x, name: str) -> np.ndarray:
+def real(x: ArrayLike, name: str) -> np.ndarray:
     """Return ``x`` as a float64 array, rejecting values that are not real numbers.
 
     Strings (also numeric ones such as ``"1.5"``), complex values (numpy would
@@ -49,7 +53,7 @@ def real(x, name: str) -> np.ndarray:
     return arr.astype(float, copy=False)
 
 
-def as_array(x, name: str, *, tail: tuple[int, ...] = (), finite: bool = True,
+def as_array(x: ArrayLike, name: str, *, tail: tuple[int, ...] = (), finite: bool = True,
              allow_nan: bool = False, min_ndim: int = 0) -> np.ndarray:
     """Return ``x`` as a float64 array whose trailing shape is ``tail``.
 
@@ -97,7 +101,7 @@ def in_range(arr: np.ndarray, name: str, lo: float, hi: float, unit: str = "",
     return arr
 
 
-def positive(x, name: str, *, allow_zero: bool = False) -> np.ndarray:
+def positive(x: ArrayLike, name: str, *, allow_zero: bool = False) -> np.ndarray:
     """Return ``x`` as a finite float array that is > 0 (or >= 0)."""
     arr = as_array(x, name)
     ok = arr >= 0 if allow_zero else arr > 0
@@ -106,7 +110,7 @@ def positive(x, name: str, *, allow_zero: bool = False) -> np.ndarray:
     return arr
 
 
-def latitude(lat, name: str = "lat", deg: bool = False) -> np.ndarray:
+def latitude(lat: ArrayLike, name: str = "lat", deg: bool = False) -> np.ndarray:
     """Validate a geodetic latitude and return it in radians."""
     arr = as_array(lat, name)
     lim = 90.0 if deg else np.pi / 2
@@ -114,14 +118,14 @@ def latitude(lat, name: str = "lat", deg: bool = False) -> np.ndarray:
     return np.deg2rad(arr) if deg else arr
 
 
-def generator(rng, name: str = "rng") -> np.random.Generator:
+def generator(rng: np.random.Generator, name: str = "rng") -> np.random.Generator:
     """Check that ``rng`` is a ``numpy.random.Generator`` (no legacy global state)."""
     if not isinstance(rng, np.random.Generator):
         raise ValueError(f"{name}: expected a numpy.random.Generator, got {type(rng).__name__}")
     return rng
 
 
-def time_axis(t, name: str = "time") -> np.ndarray:
+def time_axis(t: Times, name: str = "time") -> np.ndarray:
     """Validate a 1-D strictly increasing time vector (s)."""
     arr = as_array(t, name)
     if arr.ndim != 1 or arr.size < 2:
@@ -140,17 +144,17 @@ def _nonempty(arr: np.ndarray, name: str) -> np.ndarray:
     return arr
 
 
-def nonempty_array(x, name: str, **kwargs) -> np.ndarray:
+def nonempty_array(x: ArrayLike, name: str, **kwargs: Any) -> np.ndarray:
     """:func:`as_array` that also rejects empty arrays."""
     return _nonempty(as_array(x, name, **kwargs), name)
 
 
-def nonempty_positive(x, name: str, **kwargs) -> np.ndarray:
+def nonempty_positive(x: ArrayLike, name: str, **kwargs: bool) -> np.ndarray:
     """:func:`positive` that also rejects empty arrays."""
     return positive(_nonempty(as_array(x, name), name), name, **kwargs)
 
 
-def nonempty_latitude(x, name: str = "lat", deg: bool = False) -> np.ndarray:
+def nonempty_latitude(x: ArrayLike, name: str = "lat", deg: bool = False) -> np.ndarray:
     """:func:`latitude` that also rejects empty arrays."""
     return latitude(_nonempty(as_array(x, name), name), name, deg=deg)
 
@@ -159,7 +163,7 @@ ORTHO_TOL = 1e-6
 """Largest ``|C^T C - I|`` accepted for a rotation matrix."""
 
 
-def as_dcm(C, name: str = "C_bn") -> np.ndarray:
+def as_dcm(C: Dcm, name: str = "C_bn") -> np.ndarray:
     """Return ``C`` as float rotation matrices, shape (..., 3, 3): orthonormal to ``ORTHO_TOL``, det +1."""
     C = as_array(C, name, tail=(3, 3))
     err = np.abs(np.swapaxes(C, -1, -2) @ C - np.eye(3)).max(initial=0.0)
@@ -169,7 +173,7 @@ def as_dcm(C, name: str = "C_bn") -> np.ndarray:
     return C
 
 
-def as_quat(q, name: str = "q") -> np.ndarray:
+def as_quat(q: Quat, name: str = "q") -> np.ndarray:
     """Return ``q`` as unit quaternions, shape (..., 4), scalar first; a zero quaternion raises."""
     q = as_array(q, name, tail=(4,))
     n = np.linalg.norm(q, axis=-1, keepdims=True)
@@ -178,7 +182,7 @@ def as_quat(q, name: str = "q") -> np.ndarray:
     return q / n
 
 
-def time_grid(duration, dt) -> np.ndarray:
+def time_grid(duration: float, dt: float) -> np.ndarray:
     """Sample times ``0, dt, ..., n dt`` with ``n = round(duration / dt) >= 1`` (s)."""
     duration = float(positive(duration, "duration"))
     dt = float(positive(dt, "dt"))
@@ -188,7 +192,7 @@ def time_grid(duration, dt) -> np.ndarray:
     return dt * np.arange(n + 1)
 
 
-def scalar(x, name: str, *, positive: bool = False, allow_zero: bool = False, allow_inf: bool = False) -> float:
+def scalar(x: ArrayLike, name: str, *, positive: bool = False, allow_zero: bool = False, allow_inf: bool = False) -> float:
     """Return ``x`` as a Python float; optionally > 0 (or >= 0 with ``allow_zero``); inf only if ``allow_inf``."""
     arr = as_array(x, name, finite=not allow_inf)
     if arr.ndim != 0:
@@ -199,38 +203,38 @@ def scalar(x, name: str, *, positive: bool = False, allow_zero: bool = False, al
     return value
 
 
-def unit_interval(x, name: str) -> float:
+def unit_interval(x: float, name: str) -> float:
     """Return ``x`` as a float in [0, 1]."""
     return scalar(in_range(as_array(x, name), name, 0.0, 1.0), name)
 
 
-def integer(x, name: str, *, minimum: int = 1) -> int:
+def integer(x: int, name: str, *, minimum: int = 1) -> int:
     """Return ``x`` as an int >= ``minimum``. ``bool`` is refused (``True`` is not a count)."""
     if isinstance(x, (bool, np.bool_)) or not isinstance(x, (int, np.integer)) or x < minimum:
         raise ValueError(f"{name}: expected an integer >= {minimum}, got {x!r}")
     return int(x)
 
 
-def flag(x, name: str) -> bool:
+def flag(x: bool, name: str) -> bool:
     """Return ``x`` as a bool; only ``True``/``False`` (also numpy's) are accepted."""
     if not isinstance(x, (bool, np.bool_)):
         raise ValueError(f"{name}: expected True or False, got {x!r}")
     return bool(x)
 
 
-def choice(x, name: str, options) -> str:
+def choice(x: str, name: str, options: tuple[str, ...]) -> str:
     """Return ``x`` if it is one of ``options``."""
     if x not in options:
         raise ValueError(f"{name}: expected one of {tuple(options)}, got {x!r}")
     return x
 
 
-def range_limit(x, name: str) -> float:
+def range_limit(x: float | None, name: str) -> float:
     """A device's full-scale range (same unit as its samples): a positive value, or ``None``/inf for no limit."""
     return np.inf if x is None else scalar(x, name, positive=True, allow_inf=True)
 
 
-def intervals(dt, n: int, name: str = "dt") -> np.ndarray:
+def intervals(dt: Interval, n: int, name: str = "dt") -> np.ndarray:
     """Per-sample intervals of shape (n,) from a positive scalar or an (n,) array of positive intervals (s).
 
     This is navlib's one reading of ``dt``: every filter accepts a fixed interval
@@ -246,7 +250,7 @@ def intervals(dt, n: int, name: str = "dt") -> np.ndarray:
     return np.ascontiguousarray(arr)
 
 
-def imu_samples(w_ib_b, f_b, *, allow_nan: bool = True) -> tuple[np.ndarray, np.ndarray]:
+def imu_samples(w_ib_b: Vec3Series, f_b: Vec3Series, *, allow_nan: bool = True) -> tuple[np.ndarray, np.ndarray]:
     """Gyro and accelerometer samples, each (..., N, 3) with the same shape; NaN marks a dropout."""
     w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=allow_nan)
     f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=allow_nan)

@@ -58,7 +58,7 @@ GM_ALLAN_PEAK, GM_ALLAN_PEAK_TAU = _peak()
 the tau of the peak in units of the correlation time (~1.893)."""
 
 
-def allan_deviation(x: ArrayLike, dt: float, taus: ArrayLike | None = None):
+def allan_deviation(x: ArrayLike, dt: float, taus: ArrayLike | None = None) -> tuple[Array, Array]:
     """Overlapping Allan deviation of rate samples.
 
     Parameters
@@ -315,7 +315,7 @@ def position_error(estimate: ArrayLike, truth: ArrayLike) -> Array:
     return np.hypot(d[..., 0], d[..., 1])
 
 
-def settling_time(time: Times, error: ArrayLike, start: float, tol: float, end: float | None = None):
+def settling_time(time: Times, error: ArrayLike, start: float, tol: float, end: float | None = None) -> Array:
     """Time after ``start`` until ``|error|`` stays within ``tol`` up to ``end`` (s); inf if it never does.
 
     Parameters

@@ -207,7 +207,8 @@ def classify_floor(h: ArrayLike, floor_height: float = 3.0, ref_floor: int = 0) 
     return int(ref_floor) + np.round(h / hf).astype(int)
 
 
-def segment_floors(h: ArrayLike, static: ArrayLike, floor_height: float = 3.0, ref_floor: int = 0):
+def segment_floors(h: ArrayLike, static: ArrayLike, floor_height: float = 3.0,
+                   ref_floor: int = 0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Floor of every static segment from the median height over the segment.
 
     Parameters

@@ -50,7 +50,7 @@ class TrialStreams:
         Trial indices of the batch.
     """
 
-    def __init__(self, seed: int, ids: ArrayLike):
+    def __init__(self, seed: int, ids: ArrayLike) -> None:
         _check_args(1, seed, 1)
         ids = np.asarray(ids)
         if ids.ndim != 1 or ids.size == 0 or not np.issubdtype(ids.dtype, np.integer) or ids.min() < 0:

@@ -83,6 +83,7 @@ from numba import njit
 
 from .. import attitude
 from .._kernels import wrap_pi
+from .._typing import Angles, Array, ArrayLike, Interval, Quat, Times, Vec3
 from .._validate import in_range, intervals, nonempty_array
 from ..filters.observations import heading_input, rtk_gate, rtk_params
 from ..filters.quaternion_kf import measurement_jacobian, noise_input
@@ -95,19 +96,19 @@ __all__ = ["fuse_rtk_heading", "rtk_at_imu_rate", "printed_eq2_roll", "printed_e
 # The printed equations, kept to show the errata (never used by the filters)
 # --------------------------------------------------------------------------
 
-def printed_eq2_roll(q):
+def printed_eq2_roll(q: Quat) -> Array:
     """Roll as printed in Eq. (2): ``atan(-2(q1 q3 + q0 q2) / (1 - 2(q1^2 + q2^2)))`` (E003-02)."""
     q0, q1, q2, q3 = np.moveaxis(nonempty_array(q, "q", tail=(4,)), -1, 0)
     return np.arctan(-2 * (q1 * q3 + q0 * q2) / (1 - 2 * (q1 ** 2 + q2 ** 2)))
 
 
-def printed_eq4(q):
+def printed_eq4(q: Quat) -> Array:
     """Eq. (4) as printed, with ``q0`` instead of ``q0**2`` in the third row (E003-04); (..., 4) -> (..., 3)."""
     q0, q1, q2, q3 = np.moveaxis(nonempty_array(q, "q", tail=(4,)), -1, 0)
     return np.stack([2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), q0 + q3 ** 2 - q1 ** 2 - q2 ** 2], -1)
 
 
-def printed_eq5_tilt(f_b):
+def printed_eq5_tilt(f_b: Vec3) -> tuple[Array, Array]:
     """Eq. (5) as printed, ``roll = atan(a_x / hypot(a_y, a_z))``, ``pitch = atan(-a_y / a_z)`` (E003-05).
 
     Returns (pitch, roll).
@@ -116,13 +117,13 @@ def printed_eq5_tilt(f_b):
     return np.arctan(-a[..., 1] / a[..., 2]), np.arctan(a[..., 0] / np.hypot(a[..., 1], a[..., 2]))
 
 
-def printed_eq7_heading(m_h):
+def printed_eq7_heading(m_h: Vec3) -> Array:
     """Eq. (7) as printed, ``atan(m_x / m_y)`` of the levelled field (the CCW yaw, E003-08)."""
     m = nonempty_array(m_h, "m_h", tail=(3,))
     return np.arctan(m[..., 0] / m[..., 1])
 
 
-def printed_eq8_quat(hpr):
+def printed_eq8_quat(hpr: Angles) -> Array:
     """Eq. (8) as printed, with its yaw psi = -heading: ``q_z(psi) q_y(roll) q_x(pitch)`` (E003-01)."""
     h, p, r = np.moveaxis(nonempty_array(hpr, "hpr", tail=(3,)), -1, 0)
     def axis_quat(a, i):
@@ -131,12 +132,12 @@ def printed_eq8_quat(hpr):
     return attitude.quat_mult(attitude.quat_mult(axis_quat(-h, 2), axis_quat(r, 1)), axis_quat(p, 0))
 
 
-def printed_eq18_gamma(q, dt: float):
+def printed_eq18_gamma(q: Quat, dt: float) -> Array:
     """Gamma as printed in Eq. (18): ``-dt Xi(q)`` (E003-11)."""
     return -2 * noise_input(q, dt)
 
 
-def printed_eq20_jacobian(q, b):
+def printed_eq20_jacobian(q: Quat, b: Vec3) -> Array:
     """Eq. (20) as printed: H44 = 2(q0 b_y - q1 b_z) (E003-13)."""
     H = measurement_jacobian(q, b).copy()
     q, b = nonempty_array(q, "q", tail=(4,)), nonempty_array(b, "b", tail=(3,))
@@ -192,8 +193,9 @@ def _fuse_kernel(h_mag, h_rtk, ok, dts, alpha, rtk_par, out, delta_out, counts):
             delta_out[t, k] = delta
 
 
-def fuse_rtk_heading(heading_mag, heading_rtk, rtk_valid, dt, alpha: float = 0.01,
-                     rtk_hold: float = 0.25, rtk_gate: float | None = None, rtk_confirm: int = 5):
+def fuse_rtk_heading(heading_mag: Angles, heading_rtk: Angles, rtk_valid: ArrayLike, dt: Interval, alpha: float = 0.01,
+                     rtk_hold: float = 0.25, rtk_gate: float | None = None,
+                     rtk_confirm: int = 5) -> tuple[Array, Array, dict[str, np.ndarray]]:
     """Fuse the magnetic heading with dual-antenna RTK heading (Sec. 2.5, rule reconstructed, E003-15).
 
     Parameters
@@ -256,7 +258,7 @@ def fuse_rtk_heading(heading_mag, heading_rtk, rtk_valid, dt, alpha: float = 0.0
 _FUSE_COUNTS = ("rtk", "held", "uncalibrated", "rtk_dropped", "rtk_rejected", "rtk_reacquired")
 
 
-def rtk_at_imu_rate(time, heading, valid, step: int):
+def rtk_at_imu_rate(time: Times, heading: Angles, valid: ArrayLike, step: int) -> tuple[Array, np.ndarray]:
     """Place RTK epochs on the IMU time axis: every ``step``-th IMU sample carries an epoch.
 
     Parameters

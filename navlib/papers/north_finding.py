@@ -89,6 +89,7 @@ import numpy as np
 from scipy.special import ndtr
 
 from .. import attitude, earth, robust, strapdown
+from .._typing import Angles, Array, ArrayLike, Dcm, Interval, Times, Vec3, Vec3Series
 from .._validate import as_dcm, generator, in_range, time_axis
 from .._validate import nonempty_array as as_array
 from .._validate import nonempty_positive as positive
@@ -112,7 +113,7 @@ OMEGA_IE = earth.OMEGA_IE
 # TRIAD (Eqs. 1-3)
 # --------------------------------------------------------------------------
 
-def tilt_from_accel(f_b, g=None):
+def tilt_from_accel(f_b: Vec3, g: float | None = None) -> tuple[Array, Array]:
     """Pitch and roll from averaged specific force (paper Eqs. 5-6).
 
     ``pitch = asin(f_y / g)``, ``roll = atan2(-f_x, f_z)``. Without ``g`` the
@@ -170,7 +171,7 @@ class Candidates:
         return int(np.count_nonzero(self.clipped))
 
 
-def heading_candidates(w_y, f_b, lat, h=0.0) -> Candidates:
+def heading_candidates(w_y: ArrayLike, f_b: Vec3, lat: float, h: float = 0.0) -> Candidates:
     """Heading candidates from the forward gyro and the accelerometers (Eqs. 5, 9, 10).
 
     Pitch is Eq. (5) literally, ``asin(f_y / g)`` with normal gravity g at
@@ -202,7 +203,7 @@ def heading_candidates(w_y, f_b, lat, h=0.0) -> Candidates:
     return Candidates(pair, alpha, cos_h, clipped, pitch)
 
 
-def nearest_candidate_error(pair, heading):
+def nearest_candidate_error(pair: ArrayLike, heading: Angles) -> Array:
     """Error of the candidate nearest the true heading, wrapped (rad).
 
     The single-axis error when the ambiguity is resolved correctly (Fig. 4).
@@ -250,7 +251,7 @@ class Resolution:
         return np.take_along_axis(self.dpsi_candidates, self.index[..., None], -1)[..., 0]
 
 
-def resolve(pair1, pair2, dpsi_ins, wrap: bool = True) -> Resolution:
+def resolve(pair1: ArrayLike, pair2: ArrayLike, dpsi_ins: Angles, wrap: bool = True) -> Resolution:
     """Pick position 2's heading with the INS heading change (Eq. 12, step 5).
 
     Parameters
@@ -291,7 +292,7 @@ def resolve(pair1, pair2, dpsi_ins, wrap: bool = True) -> Resolution:
 # error theory (Eqs. 13-20, errata E000-02 and E000-04)
 # --------------------------------------------------------------------------
 
-def triad_heading_error(C_bn, dw_b, lat):
+def triad_heading_error(C_bn: Dcm, dw_b: Vec3, lat: float) -> Array:
     """TRIAD heading error caused by a gyro error, Eq. (13) with its sign corrected.
 
     ``psi_hat - psi = -dw_E / (w_ie cos lat)`` with ``dw_n = C_bn dw_b``
@@ -315,7 +316,7 @@ def triad_heading_error(C_bn, dw_b, lat):
     return -dw_east / (OMEGA_IE * np.cos(gyrocompass_latitude(lat)))
 
 
-def triad_heading_std(sigma_gyro, lat):
+def triad_heading_std(sigma_gyro: float, lat: float) -> Array:
     """Eq. (16): TRIAD heading error std ``sigma / (w_ie cos lat)`` (rad).
 
     ``sigma_gyro`` (rad/s) is the std of each horizontal gyro error (equal and
@@ -329,7 +330,8 @@ def _pitch(pitch):
     return in_range(as_array(pitch, "pitch"), "pitch", -np.pi / 2, np.pi / 2, "rad", lo_open=True, hi_open=True)
 
 
-def single_axis_heading_std(heading, sigma_gyro, lat, pitch=0.0, sigma_accel=0.0, g=None):
+def single_axis_heading_std(heading: Angles, sigma_gyro: float, lat: float, pitch: Angles = 0.0, sigma_accel: float = 0.0,
+                            g: float | None = None) -> Array:
     """Single-axis heading error std (rad): Eq. (20) or its full linearisation.
 
     With ``pitch = 0`` and ``sigma_accel = 0`` this is Eq. (20),
@@ -365,7 +367,8 @@ def single_axis_heading_std(heading, sigma_gyro, lat, pitch=0.0, sigma_accel=0.0
         return np.sqrt(s_g ** 2 + (coupling * s_th) ** 2) / np.abs(OMEGA_IE * np.cos(lat) * np.cos(th) * np.sin(psi))
 
 
-def single_axis_heading_error(heading, pitch, lat, dw_y, df_y=0.0, g=None):
+def single_axis_heading_error(heading: Angles, pitch: Angles, lat: float, dw_y: ArrayLike, df_y: ArrayLike = 0.0,
+                              g: float | None = None) -> Array:
     """Linearised single-axis heading error for given sensor errors (rad, E000-04).
 
     ``d psi = [-dw_y + w_ie (sin lat cos th - cos lat sin th cos psi) d th]
@@ -399,8 +402,8 @@ def single_axis_heading_error(heading, pitch, lat, dw_y, df_y=0.0, g=None):
 # Monte Carlo of Fig. 4
 # --------------------------------------------------------------------------
 
-def simulate_static_outputs(hpr, lat, n_trials: int, sigma_gyro, sigma_accel, rng: np.random.Generator,
-                            gyro_bias=0.0, accel_bias=0.0):
+def simulate_static_outputs(hpr: Angles, lat: float, n_trials: int, sigma_gyro: float, sigma_accel: float,
+                            rng: np.random.Generator, gyro_bias: Vec3 = 0.0, accel_bias: Vec3 = 0.0) -> tuple[Array, Array]:
     """Averaged outputs of a static IMU plus white noise, as in the paper's Monte Carlo.
 
     ``w = C_nb w_ie_n + b_g + sigma_gyro n``, ``f = C_nb [0, 0, g] + b_a + sigma_accel n``
@@ -459,7 +462,7 @@ class MonteCarlo:
     clipped: np.ndarray
 
 
-def monte_carlo(headings, pitch, roll, lat, n_trials: int, sigma_gyro, sigma_accel,
+def monte_carlo(headings: Angles, pitch: float, roll: float, lat: float, n_trials: int, sigma_gyro: float, sigma_accel: float,
                 rng: np.random.Generator) -> MonteCarlo:
     """TRIAD and single-axis heading errors over a heading grid (paper Fig. 4).
 
@@ -497,7 +500,7 @@ def monte_carlo(headings, pitch, roll, lat, n_trials: int, sigma_gyro, sigma_acc
 # ambiguity of the resolution (extension, erratum E000-06)
 # --------------------------------------------------------------------------
 
-def pair_probabilities(heading1, heading2, sigma_ins):
+def pair_probabilities(heading1: Angles, heading2: Angles, sigma_ins: ArrayLike) -> Array:
     """Probability that each candidate wins the resolution, for a Gaussian INS error.
 
     With noise-free candidates the four heading-change candidates sit at the
@@ -543,7 +546,7 @@ def pair_probabilities(heading1, heading2, sigma_ins):
 # four-position north finding on a turntable (extension)
 # --------------------------------------------------------------------------
 
-def four_position_heading_std(sigma_gyro, lat):
+def four_position_heading_std(sigma_gyro: float, lat: float) -> Array:
     """Four-position heading std ``sigma / (sqrt(2) w_ie cos lat)`` (rad), any heading.
 
     ``sigma_gyro`` (rad/s) is the std of each position's averaged output.
@@ -555,7 +558,7 @@ def four_position_heading_std(sigma_gyro, lat):
 # the vehicle test (Table 1 stand-in)
 # --------------------------------------------------------------------------
 
-def window_mean_std(errors: TriadErrors, duration: float, dt: float):
+def window_mean_std(errors: TriadErrors, duration: float, dt: float) -> float:
     """Std of one axis's error averaged over a static window (white + bias terms).
 
     ``var = N^2 / T + bias^2 + sigma_gm^2 * 2 (tau/T) [1 - (tau/T)(1 - exp(-T/tau))]``
@@ -582,7 +585,8 @@ def window_mean_std(errors: TriadErrors, duration: float, dt: float):
     return float(np.sqrt(errors.noise_density ** 2 / (n * dt) + errors.bias ** 2 + gm))
 
 
-def stop_and_go(headings, stop_duration: float, drive_duration: float, speed: float, pitches, rolls):
+def stop_and_go(headings: Angles, stop_duration: float, drive_duration: float, speed: float, pitches: Angles,
+                rolls: Angles) -> tuple[list[Segment], Array]:
     """Segments of a drive with stops at given headings (Table 1 stand-in).
 
     The vehicle starts at rest at ``headings[0]``; each drive accelerates,
@@ -656,8 +660,8 @@ class StopSolutions:
         return np.stack([s.status for s in self.windows], -1)
 
 
-def stop_solutions(w_ib_b, f_b, windows, lat, h=0.0, *, time=None, strict: bool = True,
-                   **window_options) -> StopSolutions:
+def stop_solutions(w_ib_b: Vec3Series, f_b: Vec3Series, windows: ArrayLike, lat: float, h: float = 0.0, *,
+                   time: Times | None = None, strict: bool = True, **window_options: float | None) -> StopSolutions:
     """Average each stop window and solve it with TRIAD and the single-axis method.
 
     Parameters
@@ -752,8 +756,9 @@ def _hold_last(w, dts):
     return filled, bad.sum(-1), longest, empty
 
 
-def ins_heading_change(w_ib_b, f_start, dt, lat, earth_rate: str = "vertical", *, max_gap: float = 0.1,
-                       full_scale: float | None = None, report: bool = False):
+def ins_heading_change(w_ib_b: Vec3Series, f_start: Vec3, dt: Interval, lat: float, earth_rate: str = "vertical", *,
+                       max_gap: float = 0.1, full_scale: float | None = None,
+                       report: bool = False) -> Array | tuple[Array, InsReport]:
     """MEMS strapdown heading change over a drive, started with heading 0 (paper step 2).
 
     The attitude starts at heading 0 with pitch and roll from ``f_start``

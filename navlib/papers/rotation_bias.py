@@ -92,6 +92,7 @@ from numba import njit
 
 from .. import attitude, earth, kalman
 from .._kernels import wrap_pi
+from .._typing import Angles, Array, ArrayLike, Interval, Vec3, Vec3Series
 from .._validate import in_range, intervals, range_limit
 from .._validate import nonempty_array as as_array
 from .._validate import nonempty_latitude as latitude
@@ -113,7 +114,7 @@ _MAX_COND = 1e6
 # Eqs. (4)-(5): accelerometer tilt
 # --------------------------------------------------------------------------
 
-def gravity_body(tilt, g: float = 9.80665):
+def gravity_body(tilt: ArrayLike, g: float = 9.80665) -> Array:
     """Eq. (4): gravity vector in the body frame, ``a_m = R [0, 0, -g]``.
 
     Parameters
@@ -134,7 +135,7 @@ def gravity_body(tilt, g: float = 9.80665):
     return g * np.stack([np.cos(p) * np.sin(r), -np.sin(p), -np.cos(p) * np.cos(r)], -1)
 
 
-def tilt_from_accel(f_b):
+def tilt_from_accel(f_b: Vec3) -> Array:
     """Eq. (5) on specific force: ``[roll, pitch]`` of a static IMU (rad).
 
     With ``a_m = -f_b`` this is the accelerometer levelling :func:`navlib.alignment.level`
@@ -153,7 +154,7 @@ def tilt_from_accel(f_b):
     return np.stack([roll, pitch], -1)
 
 
-def tilt_matrix(tilt):
+def tilt_matrix(tilt: ArrayLike) -> Array:
     """M(roll, pitch): the first two rows of Eq. (2), ``[roll', pitch'] = M Omega``.
 
     Parameters
@@ -185,7 +186,7 @@ def _unit_axis(axis_b):
     return u
 
 
-def rodrigues(axis_b, angle):
+def rodrigues(axis_b: Vec3, angle: Angles) -> Array:
     """Eq. (10): ``dR = I cos a + sin a [u x] + (1 - cos a) u u^T`` (b' -> b).
 
     Parameters
@@ -204,7 +205,7 @@ def rodrigues(axis_b, angle):
     return np.cos(a) * np.eye(3) + np.sin(a) * attitude.skew(u) + (1 - np.cos(a)) * np.outer(u, u)
 
 
-def rotate_attitude(hpr, axis_b, angle):
+def rotate_attitude(hpr: Angles, axis_b: Vec3, angle: Angles) -> Array:
     """Eq. (11): attitude after rotating the IMU by ``angle`` about ``axis_b``.
 
     ``R' = dR^T R`` (erratum E001-04), i.e. ``C_bn' = C_bn dR``.
@@ -224,7 +225,7 @@ def rotate_attitude(hpr, axis_b, angle):
     return attitude.dcm_to_euler(C @ rodrigues(axis_b, angle))
 
 
-def dwell_attitudes(hpr0, axis_b, amplitude: float, n_dwells: int):
+def dwell_attitudes(hpr0: Angles, axis_b: Vec3, amplitude: float, n_dwells: int) -> Array:
     """Attitudes of a reciprocating schedule: hpr0, rotated, hpr0, rotated, ...
 
     Parameters
@@ -255,7 +256,8 @@ def dwell_attitudes(hpr0, axis_b, amplitude: float, n_dwells: int):
     return pair[np.arange(n_dwells) % 2]
 
 
-def dwell_windows(n_samples: int, dt: float, period: float, rotation_time: float, settle: float = 0.0):
+def dwell_windows(n_samples: int, dt: float, period: float, rotation_time: float,
+                  settle: float = 0.0) -> tuple[np.ndarray, int]:
     """Dwell windows of :func:`navlib.trajectory.reciprocating_rotation`.
 
     Period k holds still over ``[k period, (k+1) period - rotation_time)``;
@@ -289,7 +291,7 @@ def dwell_windows(n_samples: int, dt: float, period: float, rotation_time: float
     return starts.astype(np.int64), length
 
 
-def earth_rate_body(hpr, lat):
+def earth_rate_body(hpr: Angles, lat: float) -> Array:
     """Earth rate in the body frame, ``R w_ie_n`` (rad/s) (erratum E001-06).
 
     Parameters
@@ -503,7 +505,8 @@ def _residual_kernel(w, f, dts, regular, starts, n, w_ie, pitch_limit, max_missi
     return r, V, tilt, counts, singular
 
 
-def tilt_residuals(w_ib_b, f_b, dt, starts, length: int, w_ie_b=None, *, max_missing: float = 0.0,
+def tilt_residuals(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, starts: ArrayLike, length: int,
+                   w_ie_b: Vec3Series | None = None, *, max_missing: float = 0.0,
                    outlier_k: float | None = None, full_scale_gyro: float | None = None,
                    full_scale_accel: float | None = None) -> Residuals:
     """Eqs. (6)-(9): gyro-minus-accelerometer tilt change over each dwell.
@@ -603,8 +606,8 @@ def tilt_residuals(w_ib_b, f_b, dt, starts, length: int, w_ie_b=None, *, max_mis
                      int(c[6]))
 
 
-def residual_covariance(tilt, length: int, dt: float, gyro_noise: float, accel_noise: float = 0.0,
-                        g: float = 9.80665):
+def residual_covariance(tilt: ArrayLike, length: int, dt: float, gyro_noise: float, accel_noise: float = 0.0,
+                        g: float = 9.80665) -> Array:
     """Covariance of each dwell residual of :func:`tilt_residuals` from white sensor noise.
 
     Gyro white noise of density N integrates into a random walk; the slope
@@ -663,7 +666,7 @@ def _rv(r, V):
     return r, V
 
 
-def condition_number(V):
+def condition_number(V: ArrayLike) -> Array:
     """cond(V) of the stacked Eq. (13) matrix, ``sqrt(eig_max / eig_min)`` of ``V^T V``.
 
     Parameters
@@ -692,7 +695,7 @@ def _cond_info(A):
     return np.where(~zero & np.isfinite(c), c, np.inf)
 
 
-def lsq_bias(r, V):
+def lsq_bias(r: ArrayLike, V: ArrayLike) -> Array:
     """Eq. (14): ``b = (V^T V)^-1 V^T r`` over all valid dwells.
 
     Parameters
@@ -748,7 +751,7 @@ def _running_kernel(r, V, lam, max_cond):
     return out, skipped
 
 
-def running_lsq_bias(r, V, forgetting: float = 1.0):
+def running_lsq_bias(r: ArrayLike, V: ArrayLike, forgetting: float = 1.0) -> tuple[Array, int]:
     """Eq. (14) updated dwell by dwell (recursive least squares).
 
     After dwell k, ``b_k = (sum_i l^(k-i) V_i^T V_i)^-1 sum_i l^(k-i) V_i^T r_i``
@@ -842,7 +845,7 @@ def _kalman_kernel(r, V, R, qq, intervals, p0, gate):
     return b, sig, no_data, rejected, Ps
 
 
-def kalman_bias(r, V, R, interval, rate_random_walk: float, bias_sigma: float,
+def kalman_bias(r: ArrayLike, V: ArrayLike, R: ArrayLike, interval: Interval, rate_random_walk: float, bias_sigma: float,
                 gate: float = 13.8) -> KalmanBias:
     """Kalman filter on the dwell residuals with a random-walk bias state.
 
@@ -907,7 +910,7 @@ def kalman_bias(r, V, R, interval, rate_random_walk: float, bias_sigma: float,
 # Observability
 # --------------------------------------------------------------------------
 
-def lsq_covariance(V, R):
+def lsq_covariance(V: ArrayLike, R: ArrayLike) -> Array:
     """Covariance of the unweighted Eq. (14) estimate, ``A^-1 (sum V_k^T R_k V_k) A^-1``, ``A = sum V_k^T V_k``.
 
     Parameters
@@ -929,7 +932,7 @@ def lsq_covariance(V, R):
     return A_inv @ np.einsum("...kji,...kjl,...klm->...im", V, R, V) @ A_inv
 
 
-def cramer_rao_bound(V, R):
+def cramer_rao_bound(V: ArrayLike, R: ArrayLike) -> Array:
     """Cramer-Rao bound of the bias from dwell residuals, ``(sum V_k^T R_k^-1 V_k)^-1``.
 
     Parameters
@@ -953,8 +956,8 @@ def cramer_rao_bound(V, R):
     return np.where(bad[..., None, None], np.where(np.eye(3, dtype=bool), np.inf, np.nan), P)
 
 
-def design(hpr0, axis_b, amplitude: float, dwell_time: float, dt: float, gyro_noise: float,
-           accel_noise: float = 0.0, n_dwells: int = 2):
+def design(hpr0: Angles, axis_b: Vec3, amplitude: float, dwell_time: float, dt: float, gyro_noise: float,
+           accel_noise: float = 0.0, n_dwells: int = 2) -> tuple[float, Array, Array]:
     """Observability of a rotation schedule without simulation.
 
     Builds V (Eq. 13) for ``n_dwells`` dwells of :func:`dwell_attitudes` and
@@ -990,7 +993,7 @@ def design(hpr0, axis_b, amplitude: float, dwell_time: float, dt: float, gyro_no
     return float(condition_number(V)), cramer_rao_bound(V, R), V
 
 
-def eq1_matrix(hpr):
+def eq1_matrix(hpr: Angles) -> Array:
     """Paper Eq. (1) as printed (reconstructed signs): R, mapping n to b.
 
     Parameters
