@@ -5,11 +5,19 @@ counts per ``(sensor, kind)`` (arrays over Monte Carlo trials where a filter run
 batch) and, when asked for, per-sample boolean flags. Sensors are named ``"gyro"``,
 ``"accel"``, ``"mag"``, ``"baro"``, ``"gnss"``, ``"heading"``...; kinds are
 
-``"nan"``        a dropout (NaN) replaced by :func:`hold` or skipped;
+``"nan"``        a dropout or unusable sample (NaN; inf or zero where a filter cannot use it),
+                 replaced by :func:`hold` or skipped;
 ``"saturated"``  a sample at or beyond the device's full-scale range (rails);
 ``"spike"``      an isolated jump replaced by a hold;
 ``"outlier"``    a sample rejected by a MAD or innovation (chi-square) gate;
-``"refused"``    a quantity that could not be formed (e.g. a static window with too few samples).
+``"reacquired"`` a sample used although it failed its gate, because a run of them agreed (the
+                 estimate, not the sensor, was wrong), or a forced update after repeated rejections;
+``"refused"``    a quantity that could not be formed (e.g. a static window with too few samples,
+                 a dwell skipped for dropouts).
+
+Every filter result carries one: :class:`navlib.filters.observations.AttitudeResult` (Mahony,
+quaternion KF), :class:`navlib.filters.planar_ekf.EkfResult`, and the paper filters'
+results (``pedestrian_ins.FilterResult``, ``rotation_bias.Residuals``).
 
 :func:`hold` is the one zero-order hold of NaN samples, with an explicit policy for
 leading NaN samples (there is nothing before them to hold). :func:`despike` marks isolated

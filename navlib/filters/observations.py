@@ -23,7 +23,7 @@ from __future__ import annotations
 import os
 from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import NamedTuple
 
 import numpy as np
@@ -33,8 +33,9 @@ from .. import attitude, earth
 from .._kernels import wrap_pi
 from .._typing import Array, ArrayLike, Interval, Quat, Vec3, Vec3Series
 from .._validate import as_quat, intervals, nonempty_array, scalar
+from ..robust import FaultReport
 
-__all__ = ["MagGate", "AttitudeResult", "AttitudeInputs", "COUNT_NAMES", "magnetic_reference", "prepare_inputs",
+__all__ = ["MagGate", "AttitudeResult", "AttitudeInputs", "COUNT_NAMES", "FAULT_KEYS", "magnetic_reference", "prepare_inputs",
            "attitude_result", "run_trials"]
 
 COUNT_NAMES = ("gyro_held", "accel_skipped", "accel_gated", "mag_skipped", "mag_gated", "gyro_saturated",
@@ -71,6 +72,14 @@ COUNT_NAMES = ("gyro_held", "accel_skipped", "accel_gated", "mag_skipped", "mag_
     ``gyro_jump`` on some axis, replaced by it (hold); a second such sample in a
     row is used (a sustained change is motion).
 """
+
+FAULT_KEYS = {"gyro_held": ("gyro", "nan"), "accel_skipped": ("accel", "nan"), "accel_gated": ("accel", "outlier"),
+              "mag_skipped": ("mag", "nan"), "mag_gated": ("mag", "outlier"), "gyro_saturated": ("gyro", "saturated"),
+              "accel_saturated": ("accel", "saturated"), "mag_saturated": ("mag", "saturated"),
+              "rtk_dropped": ("heading", "nan"), "rtk_rejected": ("heading", "outlier"),
+              "rtk_reacquired": ("heading", "reacquired"), "gyro_gated": ("gyro", "spike")}
+"""Each counter of :data:`COUNT_NAMES` as a ``(sensor, kind)`` key of :class:`navlib.robust.FaultReport`
+(``mag`` is the heading reference: the RTK pseudo-vector in RTK mode)."""
 
 (_GYRO_HELD, _ACCEL_SKIPPED, _ACCEL_GATED, _MAG_SKIPPED, _MAG_GATED, _GYRO_SATURATED, _ACCEL_SATURATED,
  _MAG_SATURATED, _RTK_DROPPED, _RTK_REJECTED, _RTK_REACQUIRED, _GYRO_GATED) = range(len(COUNT_NAMES))
@@ -325,12 +334,16 @@ class AttitudeResult:
         Final quaternion covariance (:func:`quaternion_kf`; None for Mahony).
     P_history : ndarray, shape (..., N, 4, 4) or None
         Covariance after every sample (``quaternion_kf(..., keep_cov=True)``).
+    faults : FaultReport
+        The same counts in navlib's one fault vocabulary (:data:`FAULT_KEYS`), e.g.
+        ``result.faults["gyro", "nan"]``.
     """
     q_bn: np.ndarray
     gyro_bias: np.ndarray
     counts: dict
     P: np.ndarray | None = None
     P_history: np.ndarray | None = None
+    faults: FaultReport = field(default_factory=FaultReport)
 
     @property
     def hpr(self) -> np.ndarray:
@@ -464,7 +477,8 @@ def attitude_result(lead: tuple[int, ...], q_out: np.ndarray, bias: np.ndarray, 
     counts[:, _ACCEL_SKIPPED] -= sat[:, 1]                              # ... were skipped as NaN by the kernel
     counts[:, _MAG_SKIPPED] -= sat[:, 2]
     N = q_out.shape[1]
-    return AttitudeResult(q_out.reshape(lead + (N, 4)), bias.reshape(lead + (3,)),
-                          {name: counts[:, i].reshape(lead) for i, name in enumerate(COUNT_NAMES)},
+    named = {name: counts[:, i].reshape(lead) for i, name in enumerate(COUNT_NAMES)}
+    return AttitudeResult(q_out.reshape(lead + (N, 4)), bias.reshape(lead + (3,)), named,
                           None if P is None else P.reshape(lead + (4, 4)),
-                          None if P_hist is None else P_hist.reshape(lead + (N, 4, 4)))
+                          None if P_hist is None else P_hist.reshape(lead + (N, 4, 4)),
+                          FaultReport({FAULT_KEYS[name]: c for name, c in named.items()}))

@@ -67,7 +67,7 @@ in-range outlier.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from numba import njit
@@ -76,11 +76,13 @@ from .. import kalman
 from .._kernels import wrap_pi
 from .._typing import Array, ArrayLike, Times
 from .._validate import as_array, range_limit, scalar, time_axis
+from ..robust import FaultReport
 
 __all__ = ["CHANNELS", "motion_model", "jacobian", "propagate", "dead_reckoning", "filter_grid", "EkfResult",
            "covariance"]
 
 _HEADING = 2
+_FAULT_SENSORS = ("gnss", "heading", "speed", "yaw_rate")        # CHANNELS in the FaultReport vocabulary
 _ANGLE_MASK = np.array([False, False, True, False, False])
 
 
@@ -536,6 +538,10 @@ class EkfResult:
         never fused at face value (see :func:`filter_grid`).
     n_saturated : int
         Saturated yaw-rate samples in epochs after the first (``saturated[1:].sum()``).
+    faults : FaultReport
+        The same counts in navlib's one fault vocabulary, sensors ``gnss``, ``heading``, ``speed``,
+        ``yaw_rate`` (:data:`CHANNELS` order) and kinds ``nan``, ``outlier``, ``reacquired``,
+        ``saturated``; flags per epoch for the last three.
     """
     t: np.ndarray
     x: np.ndarray
@@ -555,6 +561,7 @@ class EkfResult:
     n_reacquired_channels: np.ndarray | None = None
     saturated: np.ndarray | None = None
     n_saturated: int = 0
+    faults: FaultReport = field(default_factory=FaultReport)
 
 
 def covariance(M: ArrayLike, name: str) -> Array:
@@ -661,4 +668,14 @@ def filter_grid(t: Times, z: ArrayLike, x0: ArrayLike, P0: ArrayLike | None = No
                      rejected=rejected, n_rejected_channels=rejected.sum(axis=0),
                      n_missing_channels=missing.sum(axis=0), reacquired=reacquired,
                      n_reacquired_channels=reacquired.sum(axis=0), saturated=saturated,
-                     n_saturated=int(saturated[1:].sum()))
+                     n_saturated=int(saturated[1:].sum()), faults=_fault_report(missing, rejected, reacquired, saturated))
+
+
+def _fault_report(missing, rejected, reacquired, saturated):
+    counts, flags = {}, {}
+    for i, sensor in enumerate(_FAULT_SENSORS):
+        counts[sensor, "nan"] = int(missing[:, i].sum())
+        for kind, mask in (("outlier", rejected[:, i]), ("reacquired", reacquired[:, i])):
+            counts[sensor, kind], flags[sensor, kind] = int(mask.sum()), mask
+    counts["yaw_rate", "saturated"], flags["yaw_rate", "saturated"] = int(saturated[1:].sum()), saturated
+    return FaultReport(counts, flags)

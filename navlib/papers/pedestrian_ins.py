@@ -105,7 +105,7 @@ generator :func:`navlib.trajectory.walk`, and the HVAC pressure steps of its bui
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import NamedTuple
 
 import numpy as np
@@ -121,7 +121,7 @@ from ..trajectory import Leg
 __all__ = ["G_LOCAL", "carpark_legs", "floor_test_legs",
            "tilt_compensate_ned", "tilt_compensate_printed", "heading_from_horizontal",
            "hvac_pressure_steps", "simple_covariance_update", "FilterConfig", "FilterResult", "run_filter",
-           "FLAG_DROPOUT", "FLAG_SPIKE", "FLAG_SATURATED", "FLAG_STATIC_SKIPPED"]
+           "FLAG_DROPOUT", "FLAG_SPIKE", "FLAG_SATURATED", "FLAG_STATIC_SKIPPED", "FAULT_KEYS"]
 
 
 G_LOCAL = 9.7936
@@ -382,6 +382,15 @@ _COUNTERS = ("zupt_updates", "zupt_rejected", "zupt_forced", "imu_dropouts", "ba
 _AIDING = {"none": 0, "reset": 1, "filter": 2}
 FLAG_DROPOUT, FLAG_SPIKE, FLAG_SATURATED, FLAG_STATIC_SKIPPED = 1, 2, 4, 8
 """Bits of :attr:`FilterResult.flags`."""
+
+FAULT_KEYS = {"imu_dropouts": ("imu", "nan"), "imu_spikes": ("imu", "spike"), "imu_saturated": ("imu", "saturated"),
+              "static_skipped": ("zupt", "refused"), "zupt_rejected": ("zupt", "outlier"),
+              "zupt_forced": ("zupt", "reacquired"), "baro_rejected": ("baro", "outlier"),
+              "baro_reinit": ("baro", "reacquired"), "mag_gated": ("mag", "outlier")}
+"""The fault counters of :attr:`FilterResult.counts` as ``(sensor, kind)`` keys of
+:class:`navlib.robust.FaultReport` (the other counters count aiding, not faults)."""
+_FLAG_KEYS = {FLAG_DROPOUT: ("imu", "nan"), FLAG_SPIKE: ("imu", "spike"), FLAG_SATURATED: ("imu", "saturated"),
+              FLAG_STATIC_SKIPPED: ("zupt", "refused")}
 
 
 class _Samples(NamedTuple):
@@ -648,6 +657,9 @@ class FilterResult:
         sums of these bits.
     P : ndarray, shape (15, 15)
         Error covariance after the last sample (symmetric positive definite).
+    faults : FaultReport
+        The fault counters in navlib's one vocabulary (:data:`FAULT_KEYS`), with the per-sample
+        flags of the IMU kinds, e.g. ``result.faults.flags["imu", "nan"]``.
     """
     nav: trajectory.Trajectory
     accel_bias: np.ndarray
@@ -656,6 +668,7 @@ class FilterResult:
     counts: dict
     flags: np.ndarray
     P: np.ndarray
+    faults: robust.FaultReport = field(default_factory=robust.FaultReport)
 
     @property
     def updated(self) -> bool:
@@ -796,8 +809,10 @@ def run_filter(w_ib_b, f_b, dt, lla0, vel0, q0, static, *, h_baro=None, m_b=None
     lla, vel, q, b, p_diag, counts, flags, P = out
     t0 = float(as_array(t0, "t0"))
     time = t0 + (dts[0] * np.arange(n + 1) if np.all(dts == dts[0]) else np.concatenate([[0.0], np.cumsum(dts)]))
-    result = FilterResult(trajectory.Trajectory(time, lla, vel, q), b[:, :3], b[:, 3:], p_diag,
-                          dict(zip(_COUNTERS, (int(x) for x in counts), strict=True)), flags, P)
+    named = dict(zip(_COUNTERS, (int(x) for x in counts), strict=True))
+    faults = robust.FaultReport({key: named[name] for name, key in FAULT_KEYS.items()},
+                                {key: (flags & bit) > 0 for bit, key in _FLAG_KEYS.items()})
+    result = FilterResult(trajectory.Trajectory(time, lla, vel, q), b[:, :3], b[:, 3:], p_diag, named, flags, P, faults)
     if zupt and not result.updated:
         warnings.warn("run_filter: no ZUPT/ZARU update was applied (no static interval detected); "
                       "the output is a free INS with walking aids only", RuntimeWarning, stacklevel=2)

@@ -90,7 +90,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from .. import attitude, earth, kalman
+from .. import attitude, earth, kalman, robust
 from .._kernels import wrap_pi
 from .._typing import Angles, Array, ArrayLike, Interval, Vec3, Vec3Series
 from .._validate import in_range, intervals, range_limit
@@ -345,6 +345,10 @@ class Residuals:
         Samples inside dwell windows at the device rails (``full_scale_*``).
     n_skipped_saturated : int
         Dwells skipped because they contained saturated samples.
+    faults : FaultReport
+        The same counts in navlib's one fault vocabulary: ``("imu", "nan")`` missing samples,
+        ``("gyro", "outlier")``, ``("accel", "outlier")``, ``("imu", "saturated")`` samples and
+        ``("dwell", "refused")`` dwells skipped (for dropouts or saturation).
     """
     r: np.ndarray
     V: np.ndarray
@@ -358,6 +362,13 @@ class Residuals:
     n_outliers_accel: int = 0
     n_saturated: int = 0
     n_skipped_saturated: int = 0
+
+    @property
+    def faults(self) -> robust.FaultReport:
+        """The counters above as a :class:`navlib.robust.FaultReport`."""
+        return robust.FaultReport({("imu", "nan"): self.n_missing, ("gyro", "outlier"): self.n_outliers_gyro,
+                                   ("accel", "outlier"): self.n_outliers_accel, ("imu", "saturated"): self.n_saturated,
+                                   ("dwell", "refused"): self.n_skipped + self.n_skipped_saturated})
 
 
 @njit(cache=True)

@@ -1,0 +1,71 @@
+"""Every filter result reports its faults in the one vocabulary of navlib.robust.FaultReport.
+
+Each filter's own counters stay (documented per filter); ``result.faults`` must carry the same
+numbers under ``(sensor, kind)`` keys, so code that inspects faults works across filters.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from navlib import robust, trajectory
+from navlib.filters import mahony, observations, planar_ekf
+from navlib.papers import gauss_kruger_ekf, pedestrian_ins, rotation_bias
+
+KINDS = {"nan", "saturated", "spike", "outlier", "reacquired", "refused"}
+
+
+def check_vocabulary(report):
+    assert isinstance(report, robust.FaultReport)
+    assert {kind for _, kind in report.counts} <= KINDS
+    for key, mask in report.flags.items():
+        assert int(np.sum(mask)) >= int(np.sum(report[key])) - 1     # flags and counts agree (EKF: epoch 0 aside)
+
+
+def test_attitude_filters():
+    rng = np.random.default_rng(1)
+    n = 400
+    w = rng.normal(0, 0.01, (n, 3))
+    f = np.tile([0.0, 0.0, 9.8], (n, 1))
+    m = np.tile([0.0, 20.0, -40.0], (n, 1))
+    w[10], f[20], m[30] = np.nan, np.nan, np.nan
+    res = mahony.mahony(w, f, 0.01, [1.0, 0, 0, 0], m_b=m, gyro_range=0.02)
+    check_vocabulary(res.faults)
+    for name, key in observations.FAULT_KEYS.items():
+        assert res.faults[key] == res.counts[name]
+    assert res.faults["gyro", "nan"] == 1 and res.faults["accel", "nan"] == 1 and res.faults["mag", "nan"] == 1
+    assert res.faults["gyro", "saturated"] == np.sum(np.any(np.abs(w) >= 0.02, axis=-1) & np.isfinite(w).all(-1))
+
+
+def test_planar_ekf():
+    t = np.arange(20.0)
+    z = np.tile([0.0, 0.0, 0.3, 1.0, 0.0], (20, 1))
+    z[5, :2] = np.nan
+    z[8, 0] += 500.0
+    z[12, 4] = 0.6
+    res = planar_ekf.filter_grid(t, z, z[0], P0=np.eye(5), Q=gauss_kruger_ekf.Q_PAPER, R=gauss_kruger_ekf.R_PAPER,
+                                 gate=15.0, yaw_rate_range=0.5)
+    check_vocabulary(res.faults)
+    assert res.faults["gnss", "nan"] == res.n_missing_channels[0] == 1
+    assert res.faults["gnss", "outlier"] == res.n_rejected_channels[0] >= 1
+    assert res.faults["yaw_rate", "saturated"] == res.n_saturated == 1
+
+
+def test_pedestrian_filter():
+    legs = [trajectory.Leg(3.0), trajectory.Leg(2.0, 1.0), trajectory.Leg(3.0)]
+    traj = trajectory.walk(legs, 0.01, [0.5, 0.2, 10.0], 0.0)
+    w, f = trajectory.ideal_imu(traj)
+    w[50] = np.nan
+    static = trajectory.stance_mask(legs, 0.01)[:-1]
+    res = pedestrian_ins.run_filter(w, f, 0.01, traj.lla[0], traj.vel_n[0], traj.q_bn[0], static)
+    check_vocabulary(res.faults)
+    for name, key in pedestrian_ins.FAULT_KEYS.items():
+        assert res.faults[key] == res.counts[name]
+    assert res.faults["imu", "nan"] == 1 and res.faults.flags["imu", "nan"][50]
+
+
+def test_rotation_bias_residuals():
+    res = rotation_bias.Residuals(np.zeros((1, 2)), np.zeros((1, 2, 3)), np.zeros((1, 2)), np.array([10]), 1.0,
+                                  n_skipped=2, n_missing=5, n_outliers_gyro=1, n_saturated=3, n_skipped_saturated=1)
+    check_vocabulary(res.faults)
+    assert res.faults["dwell", "refused"] == 3 and res.faults["imu", "nan"] == 5
+
