@@ -21,7 +21,7 @@ from . import analysis
 from ._typing import Array, ArrayLike, Vec3Series
 from ._validate import as_array, positive
 from .alignment import level, magnetic_heading
-from .atmosphere import G0
+from .units import G0
 
 __all__ = ["StepResult", "detect_steps", "weinberg_step_length", "pdr", "pdr_headings"]
 

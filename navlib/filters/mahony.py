@@ -23,6 +23,7 @@ from numba import njit
 from .._typing import ArrayLike, Interval, Quat, Vec3, Vec3Series
 from .._validate import scalar
 from ..attitude import quat_mult_t
+from ..units import G0
 from .observations import (
     COUNT_NAMES,
     AttitudeResult,
@@ -73,7 +74,7 @@ def _trial(t, inp, kp, ki, q_out, bias_out, counts):
 def mahony(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, *, m_b: Vec3Series | None = None,
            heading_rtk: ArrayLike | None = None, rtk_valid: ArrayLike | None = None, kp: float = 1.0,
            ki: float = 0.02, B_n: Vec3 | None = None, gate: MagGate | None = None, accel_tol: float | None = None,
-           g: float = 9.80665, rtk_hold: float = 0.25, rtk_gate: float | None = None, rtk_confirm: int = 5,
+           g: float = G0, rtk_hold: float = 0.25, rtk_gate: float | None = None, rtk_confirm: int = 5,
            gyro_range: float | None = None, accel_range: float | None = None, mag_range: float | None = None,
            gyro_jump: float | None = None) -> AttitudeResult:
     """Mahony PI complementary filter (Eqs. 9-15 of Zhang et al. 2023), per sample:

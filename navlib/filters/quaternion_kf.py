@@ -26,6 +26,7 @@ from numba import njit
 from .. import kalman
 from .._typing import Array, ArrayLike, Interval, Quat, Vec3, Vec3Series
 from .._validate import flag, nonempty_array, scalar
+from ..units import G0
 from .observations import (
     COUNT_NAMES,
     AttitudeResult,
@@ -214,7 +215,7 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
 def quaternion_kf(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, *, m_b: Vec3Series | None = None,
                   heading_rtk: ArrayLike | None = None, rtk_valid: ArrayLike | None = None, kp: float = 1.0,
                   ki: float = 0.02, B_n: Vec3 | None = None, gate: MagGate | None = None, accel_tol: float | None = None,
-                  g: float = 9.80665, rtk_hold: float = 0.25, sigma_gyro: float = 1e-3,
+                  g: float = G0, rtk_hold: float = 0.25, sigma_gyro: float = 1e-3,
                   sigma_accel: float = 0.02, sigma_mag: float = 0.08, p0: float = 1e-4,
                   linear_innovation: bool = False, rtk_gate: float | None = None, rtk_confirm: int = 5,
                   gyro_range: float | None = None, accel_range: float | None = None, mag_range: float | None = None,

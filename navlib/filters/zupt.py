@@ -37,7 +37,7 @@ from numpy.typing import NDArray
 from .. import analysis, attitude
 from .._typing import Array, ArrayLike, Dcm, Vec3, Vec3Series
 from .._validate import as_array, as_dcm, positive
-from ..atmosphere import G0
+from ..units import G0
 
 __all__ = ["STATIC_THRESHOLDS", "detect_static", "error_state_matrix", "error_model_fd", "zupt_zaru_matrix",
            "zupt_zaru_innovation"]

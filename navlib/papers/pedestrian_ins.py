@@ -117,6 +117,7 @@ from .._validate import as_array, as_quat, generator, intervals, positive
 from ..filters.zupt import error_state_into, zupt_zaru_rows_into, zupt_zaru_z_into
 from ..strapdown import earth_constants, nav_step
 from ..trajectory import Leg
+from ..units import G0
 
 __all__ = ["G_LOCAL", "carpark_legs", "floor_test_legs",
            "tilt_compensate_ned", "tilt_compensate_printed", "heading_from_horizontal",
@@ -353,7 +354,7 @@ class FilterConfig:
     p0_vel: float = 0.01
     p0_tilt: float = np.deg2rad(0.5)
     p0_heading: float = np.deg2rad(2.0)
-    p0_accel_bias: float = 0.01 * 9.80665
+    p0_accel_bias: float = 0.01 * G0
     p0_gyro_bias: float = np.deg2rad(0.05)
     gate: float = 22.5
     max_rejected: int = 5

@@ -99,6 +99,7 @@ from .._validate import nonempty_latitude as latitude
 from .._validate import nonempty_positive as positive
 from ..alignment import level
 from ..euler import PITCH_LIMIT, check_pitch
+from ..units import G0
 
 __all__ = ["eq1_matrix", "gravity_body", "tilt_from_accel", "tilt_matrix", "rodrigues", "rotate_attitude", "dwell_attitudes",
            "dwell_windows", "earth_rate_body", "Residuals", "tilt_residuals", "residual_covariance",
@@ -114,7 +115,7 @@ _MAX_COND = 1e6
 # Eqs. (4)-(5): accelerometer tilt
 # --------------------------------------------------------------------------
 
-def gravity_body(tilt: ArrayLike, g: float = 9.80665) -> Array:
+def gravity_body(tilt: ArrayLike, g: float = G0) -> Array:
     """Eq. (4): gravity vector in the body frame, ``a_m = R [0, 0, -g]``.
 
     Parameters
@@ -618,7 +619,7 @@ def tilt_residuals(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, starts: Ar
 
 
 def residual_covariance(tilt: ArrayLike, length: int, dt: float, gyro_noise: float, accel_noise: float = 0.0,
-                        g: float = 9.80665) -> Array:
+                        g: float = G0) -> Array:
     """Covariance of each dwell residual of :func:`tilt_residuals` from white sensor noise.
 
     Gyro white noise of density N integrates into a random walk; the slope
