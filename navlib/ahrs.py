@@ -1,6 +1,6 @@
 """Deprecated alias of :mod:`navlib.papers.mimu_mag_rtk` and of core modules:
-navlib.alignment, navlib.analysis, navlib.filters.mahony, navlib.filters.observations,
-navlib.filters.quaternion_kf.
+navlib.alignment, navlib.analysis, navlib.filters.heading_fusion, navlib.filters.mahony,
+navlib.filters.observations, navlib.filters.quaternion_kf.
 
 ``navlib.ahrs`` was the module of this paper before the split into a paper companion
 and core homes (see CONTRIBUTING.md). Every old name still resolves here; importing this
@@ -11,6 +11,7 @@ import warnings
 
 from .alignment import initial_attitude, tilt_heading  # noqa: F401
 from .analysis import settling_time  # noqa: F401
+from .filters.heading_fusion import fuse_rtk_heading, rtk_at_imu_rate  # noqa: F401
 from .filters.mahony import mahony  # noqa: F401
 from .filters.observations import COUNT_NAMES, AttitudeResult, MagGate, magnetic_reference  # noqa: F401
 from .filters.quaternion_kf import measurement_jacobian, measurement_model, noise_input, quaternion_kf, transition  # noqa: F401

@@ -10,6 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from navlib import alignment, analysis, attitude, earth, units
+from navlib.filters import heading_fusion as hf
 from navlib.filters import mahony as mh
 from navlib.filters import observations as obs
 from navlib.filters import quaternion_kf as qkf
@@ -110,13 +111,13 @@ def test_filters_reject_bad_arguments():
     with pytest.raises(ValueError, match="^heading_rtk: "):
         mh.mahony(w, f, DT, q0, heading_rtk=np.full(100, 7.0), rtk_valid=valid)   # out of [0, 2 pi)
     with pytest.raises(ValueError, match="^heading_rtk: "):
-        ahrs.fuse_rtk_heading(np.zeros(100), np.full(100, np.inf), valid, DT)       # valid but infinite
-    _, _, c = ahrs.fuse_rtk_heading(np.zeros(100), np.full(100, np.nan), valid, DT)  # valid but NaN: dropout
+        hf.fuse_rtk_heading(np.zeros(100), np.full(100, np.inf), valid, DT)       # valid but infinite
+    _, _, c = hf.fuse_rtk_heading(np.zeros(100), np.full(100, np.nan), valid, DT)  # valid but NaN: dropout
     assert int(c["rtk_dropped"]) == 100 and int(c["uncalibrated"]) == 100
     with pytest.raises(ValueError, match="^rtk_valid: "):
         mh.mahony(w, f, DT, q0, heading_rtk=np.zeros(100), rtk_valid=None)
     with pytest.raises(ValueError, match="^rtk_valid: "):
-        ahrs.fuse_rtk_heading(np.zeros(100), np.zeros(100), np.ones(100), DT)       # flags must be booleans
+        hf.fuse_rtk_heading(np.zeros(100), np.zeros(100), np.ones(100), DT)       # flags must be booleans
     with pytest.raises(ValueError, match="^kp: "):
         mh.mahony(w, f, DT, q0, m_b=m, kp=-1.0)
     with pytest.raises(ValueError, match="^B_n: "):
@@ -228,14 +229,14 @@ def test_fusion_outputs_rtk_when_valid_holds_delta_in_outages():
     h_rtk = np.full(n, 1.1)
     valid = np.zeros(n, dtype=bool)
     valid[1000:3000:20] = True
-    fused, delta, counts = ahrs.fuse_rtk_heading(h_mag, np.where(valid, h_rtk, 0.0), valid, DT)
+    fused, delta, counts = hf.fuse_rtk_heading(h_mag, np.where(valid, h_rtk, 0.0), valid, DT)
     assert int(counts["uncalibrated"]) == 1000 and np.isnan(delta[:1000]).all()
     np.testing.assert_allclose(fused[1000:3000], 1.1, atol=1e-12)
     np.testing.assert_allclose(delta[3000:], 0.1, atol=1e-12)
     np.testing.assert_allclose(fused[3100:], 1.1, atol=1e-12)      # H_mag + held delta
     every = np.zeros(n, dtype=bool)
     every[1000::20] = True                                          # the paper's 0 fused as a value: wrong
-    as_value, _, _ = ahrs.fuse_rtk_heading(h_mag, np.where(valid, h_rtk, 0.0), every, DT)
+    as_value, _, _ = hf.fuse_rtk_heading(h_mag, np.where(valid, h_rtk, 0.0), every, DT)
     assert np.abs(as_value[3100:]).max() < 0.01
 
 
@@ -274,6 +275,7 @@ def test_mahony_matches_ahrs_package_to_rounding():
 SCRIPT = r"""
 import json, numpy as np
 from navlib import attitude, earth
+from navlib.filters import heading_fusion as hf
 from navlib.filters import mahony as mh
 from navlib.filters import observations as obs
 from navlib.filters import quaternion_kf as qkf
@@ -287,14 +289,14 @@ q0 = [1.0, 0.0, 0.0, 0.0]
 a = mh.mahony(w, f, 0.01, q0, m_b=m, B_n=B, gate=obs.MagGate())
 k = qkf.quaternion_kf(w, f, 0.01, q0, m_b=m, B_n=B)
 valid = np.zeros(200, dtype=bool); valid[::20] = True
-h, d, c = ahrs.fuse_rtk_heading(k.hpr[..., 0], np.full(200, 0.5), valid, 0.01)
+h, d, c = hf.fuse_rtk_heading(k.hpr[..., 0], np.full(200, 0.5), valid, 0.01)
 # the robustness paths: per-sample dt, spike gate, saturation, RTK dropouts, flips and re-acquisition
 dt = 0.01 * (1 + 0.2 * rng.uniform(-1, 1, 200))
 w[1, 50] += 1.0; f[0, 60] = [0.0, 0.0, 80.0]
 rtk = np.where(valid, 0.5, np.nan); rtk[40] = 0.5 + np.pi; rtk[60] = np.nan; rtk[100:] = 2.0
 r = qkf.quaternion_kf(w, f, dt, q0, heading_rtk=rtk, rtk_valid=valid, gyro_jump=0.5, accel_range=78.0,
                        gyro_range=0.02, rtk_gate=0.3, rtk_confirm=2, keep_cov=True)
-hr, _, cr = ahrs.fuse_rtk_heading(r.hpr[..., 0], rtk, valid, dt, rtk_gate=0.3, rtk_confirm=2)
+hr, _, cr = hf.fuse_rtk_heading(r.hpr[..., 0], rtk, valid, dt, rtk_gate=0.3, rtk_confirm=2)
 print(json.dumps({"a": a.q_bn.tolist(), "k": k.q_bn.tolist(), "h": h.tolist(), "r": r.q_bn.tolist(),
                   "P": r.P_history.tolist(), "hr": hr.tolist(),
                   "c": {key: v.tolist() for key, v in a.counts.items()},
@@ -360,9 +362,9 @@ BAD_CALLS = [
     ("mahony", lambda: mh.mahony(_W, _F[:5], 0.01, _Q, m_b=_M), "f_b"),
     ("mahony", lambda: mh.mahony(_W, _F, 0.01, [0.0, 0.0, 0.0, 0.0], m_b=_M), "q0"),
     ("quaternion_kf", lambda: qkf.quaternion_kf(_W, _F, 0.01, _Q, m_b=_M, B_n=B_N, sigma_mag=0.0), "sigma_mag"),
-    ("fuse_rtk_heading", lambda: ahrs.fuse_rtk_heading(np.zeros(10), np.zeros(10), np.ones(10, bool), 0.01,
+    ("fuse_rtk_heading", lambda: hf.fuse_rtk_heading(np.zeros(10), np.zeros(10), np.ones(10, bool), 0.01,
                                                        alpha=1.5), "alpha"),
-    ("rtk_at_imu_rate", lambda: ahrs.rtk_at_imu_rate(np.arange(10.0), np.zeros(10), np.ones(10, bool), 0), "step"),
+    ("rtk_at_imu_rate", lambda: hf.rtk_at_imu_rate(np.arange(10.0), np.zeros(10), np.ones(10, bool), 0), "step"),
     ("MagGate", lambda: obs.MagGate(norm_tol=-0.1), "norm_tol"),
     ("printed_eq2_roll", lambda: ahrs.printed_eq2_roll([1.0, 0.0]), "q"),
     ("printed_eq4", lambda: ahrs.printed_eq4("abc"), "q"),
@@ -383,7 +385,8 @@ def test_bad_input_names_the_argument(name, call, arg):
 
 # moved to navlib.alignment / navlib.analysis, still covered here
 MOVED_TO_CORE = {"tilt_heading", "initial_attitude", "settling_time", "mahony", "quaternion_kf", "MagGate", "AttitudeResult",
-                 "magnetic_reference", "transition", "noise_input", "measurement_model", "measurement_jacobian"}
+                 "magnetic_reference", "transition", "noise_input", "measurement_model", "measurement_jacobian",
+                 "fuse_rtk_heading", "rtk_at_imu_rate"}
 
 
 def test_every_public_callable_has_a_bad_input_case():
@@ -416,10 +419,10 @@ FUZZ = {
     "quaternion_kf": (qkf.quaternion_kf, dict(w_ib_b=_W, f_b=_F, dt=0.01, q0=_Q, m_b=_M, B_n=B_N, sigma_gyro=1e-3,
                                                sigma_accel=0.02, sigma_mag=0.08, p0=1e-4),
                       ("w_ib_b", "f_b", "m_b"), ("f_b", "m_b")),
-    "fuse_rtk_heading": (ahrs.fuse_rtk_heading, dict(heading_mag=np.zeros(_N), heading_rtk=np.full(_N, 0.5),
+    "fuse_rtk_heading": (hf.fuse_rtk_heading, dict(heading_mag=np.zeros(_N), heading_rtk=np.full(_N, 0.5),
                                                      rtk_valid=_VALID, dt=0.01, alpha=0.01, rtk_hold=0.25,
                                                      rtk_gate=0.3), ("heading_rtk",), ()),
-    "rtk_at_imu_rate": (ahrs.rtk_at_imu_rate, dict(time=np.arange(_N, dtype=float), heading=np.zeros(_N),
+    "rtk_at_imu_rate": (hf.rtk_at_imu_rate, dict(time=np.arange(_N, dtype=float), heading=np.zeros(_N),
                                                    valid=np.ones(_N, bool), step=2), ("heading",), ("heading",)),
     "printed_eq2_roll": (ahrs.printed_eq2_roll, dict(q=_Q), (), ()),
     "printed_eq4": (ahrs.printed_eq4, dict(q=_Q), (), ()),
@@ -477,10 +480,10 @@ OUT_OF_RANGE = [
     ("mahony", lambda: mh.mahony(_W, _F, 0.01, _Q, m_b=_M, gate="tight"), "gate"),
     ("quaternion_kf", lambda: qkf.quaternion_kf(_W, _F, 0.01, _Q, m_b=_M, B_n=B_N, keep_cov="yes"), "keep_cov"),
     ("quaternion_kf", lambda: qkf.quaternion_kf(_W, _F, 0.01, _Q, m_b=_M, B_n=B_N, p0=-1.0), "p0"),
-    ("fuse_rtk_heading", lambda: ahrs.fuse_rtk_heading(np.zeros(_N), np.full(_N, 7.0), _VALID, 0.01), "heading_rtk"),
-    ("fuse_rtk_heading", lambda: ahrs.fuse_rtk_heading(np.zeros(_N), np.zeros(_N), _VALID, 0.01, rtk_confirm=1.5),
+    ("fuse_rtk_heading", lambda: hf.fuse_rtk_heading(np.zeros(_N), np.full(_N, 7.0), _VALID, 0.01), "heading_rtk"),
+    ("fuse_rtk_heading", lambda: hf.fuse_rtk_heading(np.zeros(_N), np.zeros(_N), _VALID, 0.01, rtk_confirm=1.5),
      "rtk_confirm"),
-    ("rtk_at_imu_rate", lambda: ahrs.rtk_at_imu_rate(np.arange(10.0), np.zeros(10), np.ones(10), 2), "valid"),
+    ("rtk_at_imu_rate", lambda: hf.rtk_at_imu_rate(np.arange(10.0), np.zeros(10), np.ones(10), 2), "valid"),
     ("settling_time", lambda: analysis.settling_time(np.arange(10.0), np.ones(10), "2", 1.0), "start"),
     ("MagGate", lambda: obs.MagGate(dip_tol=np.inf), "dip_tol"),
 ]

@@ -83,12 +83,12 @@ from navlib import (  # noqa: E402
     trajectory,
     units,
 )
-from navlib.filters import mahony, observations, planar_ekf, quaternion_kf, zupt  # noqa: E402
+from navlib.filters import heading_fusion, mahony, observations, planar_ekf, quaternion_kf, zupt  # noqa: E402
 
 MODULES = ["attitude", "earth", "units", "sensors", "atmosphere", "trajectory", "strapdown",
            "kalman", "analysis", "repro", "plots", "montecarlo", "faults", "timing", "alignment", "robust",
            "euler", "pdr", "filters.zupt", "filters.mahony", "filters.quaternion_kf", "filters.observations",
-           "filters.planar_ekf"]
+           "filters.planar_ekf", "filters.heading_fusion"]
 
 NAN, INF = np.nan, np.inf
 STR = "abc"                      # a string where numbers are expected
@@ -530,6 +530,10 @@ CASES = [
     bad("filters.planar_ekf.filter_grid", "Q", "missing", lambda: planar_ekf.filter_grid(
         T10, np.zeros((10, 5)), np.zeros(5), R=np.eye(5))),
     bad("filters.planar_ekf.covariance", "P0", "not_psd", lambda: planar_ekf.covariance(-np.eye(5), "P0")),
+    bad("filters.heading_fusion.fuse_rtk_heading", "alpha", "zero", lambda: heading_fusion.fuse_rtk_heading(
+        np.zeros(10), np.zeros(10), np.ones(10, bool), 0.01, alpha=0.0)),
+    bad("filters.heading_fusion.rtk_at_imu_rate", "step", "zero", lambda: heading_fusion.rtk_at_imu_rate(
+        T10, np.zeros(10), np.ones(10, bool), 0)),
     bad("filters.observations.MagGate", "norm_tol", "negative", lambda: observations.MagGate(norm_tol=-0.1)),
     bad("filters.observations.magnetic_reference", "B_n", "zero", lambda: observations.magnetic_reference([0.0, 0.0, 0.0])),
     bad("filters.observations.prepare_inputs", "f_b", "shape", lambda: observations.prepare_inputs(

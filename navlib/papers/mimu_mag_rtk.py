@@ -42,7 +42,7 @@ Sec. 2.5  heading fusion, reconstructed (the paper gives no rule; E003-15, E003-
           the RTK heading (carried between 5 Hz epochs by the filter's heading
           increments); during outages the output is ``H_mag + delta`` with
           delta held. Validity is a flag; the value of an invalid epoch (the
-          paper's 0) is never used: :func:`fuse_rtk_heading`.
+          paper's 0) is never used: :func:`navlib.filters.heading_fusion.fuse_rtk_heading`.
 
 Extensions: the magnetometer gate (field norm and dip angle against the
 local field, :class:`navlib.filters.observations.MagGate`) and an accelerometer-norm gate. Every
@@ -73,22 +73,19 @@ Robustness (what the filters do with bad data; all counted, keys ``observations.
 
 The filters live in :mod:`navlib.filters` (``mahony``, ``quaternion_kf``, with
 the shared ``observations``); this companion holds what only this paper names:
-the printed forms of the misprinted equations, the reconstructed heading fusion
-of Sec. 2.5 and the placement of RTK epochs on the IMU time axis.
+the printed forms of the misprinted equations. The heading fusion reconstructed
+for Sec. 2.5 is :mod:`navlib.filters.heading_fusion`.
 """
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
 from .. import attitude
-from .._kernels import wrap_pi
-from .._typing import Angles, Array, ArrayLike, Interval, Quat, Times, Vec3
-from .._validate import in_range, intervals, nonempty_array
-from ..filters.observations import heading_input, rtk_gate, rtk_params
+from .._typing import Angles, Array, Quat, Vec3
+from .._validate import nonempty_array
 from ..filters.quaternion_kf import measurement_jacobian, noise_input
 
-__all__ = ["fuse_rtk_heading", "rtk_at_imu_rate", "printed_eq2_roll", "printed_eq4", "printed_eq5_tilt",
+__all__ = ["printed_eq2_roll", "printed_eq4", "printed_eq5_tilt",
            "printed_eq7_heading", "printed_eq8_quat", "printed_eq18_gamma", "printed_eq20_jacobian"]
 
 
@@ -143,156 +140,3 @@ def printed_eq20_jacobian(q: Quat, b: Vec3) -> Array:
     q, b = nonempty_array(q, "q", tail=(4,)), nonempty_array(b, "b", tail=(3,))
     H[..., 3, 3] = 2 * (q[..., 0] * b[..., 1] - q[..., 1] * b[..., 2])
     return H
-
-
-# --------------------------------------------------------------------------
-# Heading fusion (Sec. 2.5, reconstructed)
-# --------------------------------------------------------------------------
-
-@njit(cache=True)
-def _fuse_kernel(h_mag, h_rtk, ok, dts, alpha, rtk_par, out, delta_out, counts):
-    T, N = h_mag.shape
-    hold, gate, confirm = rtk_par[0], rtk_par[1], rtk_par[2]
-    state = np.zeros(2)
-    for t in range(T):
-        delta, age, anchor_rtk, anchor_mag = np.nan, np.inf, 0.0, 0.0
-        state[0] = 0.0
-        for k in range(N):
-            age += dts[k]
-            if ok[t, k]:                                   # RTK epoch flagged valid
-                hk = h_rtk[t, k]
-                if np.isnan(hk):                           # valid flag without a value: dropout
-                    counts[t, 3] += 1
-                    code = 1
-                else:
-                    if age <= hold:                        # predicted heading: carried RTK, held delta, or none
-                        pred = anchor_rtk + wrap_pi(h_mag[t, k] - anchor_mag)
-                    elif not np.isnan(delta):
-                        pred = h_mag[t, k] + delta
-                    else:
-                        pred = hk                          # first epoch: nothing to check it against
-                    code = rtk_gate(hk, pred, gate, confirm, state)
-                    if code == 1:
-                        counts[t, 4] += 1
-                    elif code == 2:
-                        counts[t, 5] += 1
-                if code != 1:
-                    d = wrap_pi(hk - h_mag[t, k])
-                    delta = d if (np.isnan(delta) or code == 2) else delta + alpha * wrap_pi(d - delta)
-                    anchor_rtk, anchor_mag, age = hk, h_mag[t, k], 0.0
-            if age <= hold:                                # output the RTK heading, carried between epochs
-                out[t, k] = anchor_rtk + wrap_pi(h_mag[t, k] - anchor_mag)
-                counts[t, 0] += 1
-            elif not np.isnan(delta):                      # outage: hold delta
-                out[t, k] = h_mag[t, k] + delta
-                counts[t, 1] += 1
-            else:                                          # no RTK yet: uncalibrated magnetic heading
-                out[t, k] = h_mag[t, k]
-                counts[t, 2] += 1
-            out[t, k] = out[t, k] % (2 * np.pi)
-            delta_out[t, k] = delta
-
-
-def fuse_rtk_heading(heading_mag: Angles, heading_rtk: Angles, rtk_valid: ArrayLike, dt: Interval, alpha: float = 0.01,
-                     rtk_hold: float = 0.25, rtk_gate: float | None = None,
-                     rtk_confirm: int = 5) -> tuple[Array, Array, dict[str, np.ndarray]]:
-    """Fuse the magnetic heading with dual-antenna RTK heading (Sec. 2.5, rule reconstructed, E003-15).
-
-    Parameters
-    ----------
-    heading_mag : array_like, shape (..., N)
-        Heading of the MIMU + magnetometer filter (rad, magnetic north).
-    heading_rtk : array_like, shape (N,) or (..., N)
-        RTK heading (rad, [0, 2 pi)) at the IMU rate; read only where ``rtk_valid``.
-    rtk_valid : array_like of bool
-        True where a valid RTK epoch arrives. An invalid epoch's value (the
-        paper's 0) is never used; a valid epoch holding NaN is a dropout
-        (ignored, counted in ``rtk_dropped``).
-    dt : float or array_like, shape (N,)
-        Sample interval (s), or per-sample intervals ``dt[k] = t[k] - t[k-1]``.
-    alpha : float
-        Smoothing of the offset per RTK epoch (0.01 at 5 Hz: a time constant of about 20 s).
-    rtk_hold : float
-        How long after an epoch its heading is output (carried by the magnetic
-        heading's increments) before falling back to ``H_mag + delta`` (s).
-    rtk_gate : float, optional
-        Reject epochs further than this (rad, in (0, pi)) from the predicted
-        heading (the carried RTK heading, else ``H_mag + delta``): 180 deg
-        ambiguity flips are never fused (``rtk_rejected``). The first epoch
-        has nothing to be checked against and is used.
-    rtk_confirm : int
-        With ``rtk_gate``: the ``rtk_confirm``-th consecutive rejected epoch
-        agreeing with the previous rejected ones within ``rtk_gate`` is used and
-        restarts delta from it (``rtk_reacquired``): a wrong first epoch or a
-        real change of the offset is recovered from.
-
-    Returns
-    -------
-    heading : ndarray, shape (..., N)
-        Fused heading (rad, [0, 2 pi)).
-    delta : ndarray, shape (..., N)
-        Offset estimate ``H_rtk - H_mag`` (rad); NaN before the first valid epoch.
-    counts : dict of str -> ndarray of int
-        Per sample: ``rtk`` (output from RTK), ``held`` (outage samples using
-        the held delta), ``uncalibrated`` (before any used RTK epoch). Per
-        valid epoch: ``rtk_dropped`` (NaN value), ``rtk_rejected`` (outside
-        ``rtk_gate``, not fused), ``rtk_reacquired`` (used after ``rtk_confirm``
-        agreeing rejections).
-    """
-    hm = nonempty_array(heading_mag, "heading_mag", min_ndim=1)
-    alpha = nonempty_array(alpha, "alpha")
-    if alpha.ndim != 0:
-        raise ValueError(f"alpha: expected a scalar, got shape {alpha.shape}")
-    alpha = float(in_range(alpha, "alpha", 0.0, 1.0, lo_open=True))
-    hr, ok = heading_input(heading_rtk, rtk_valid, hm.shape)
-    T, N = hr.shape
-    dts = intervals(dt, N)
-    rtk_par = rtk_params(rtk_hold, rtk_gate, rtk_confirm)
-    out, delta, counts = np.empty((T, N)), np.empty((T, N)), np.zeros((T, len(_FUSE_COUNTS)), dtype=np.int64)
-    _fuse_kernel(np.ascontiguousarray(hm.reshape(T, N)), hr, ok, dts, alpha, rtk_par, out, delta, counts)
-    lead = hm.shape[:-1]
-    return (out.reshape(hm.shape), delta.reshape(hm.shape),
-            {name: counts[:, i].reshape(lead) for i, name in enumerate(_FUSE_COUNTS)})
-
-
-_FUSE_COUNTS = ("rtk", "held", "uncalibrated", "rtk_dropped", "rtk_rejected", "rtk_reacquired")
-
-
-def rtk_at_imu_rate(time: Times, heading: Angles, valid: ArrayLike, step: int) -> tuple[Array, np.ndarray]:
-    """Place RTK epochs on the IMU time axis: every ``step``-th IMU sample carries an epoch.
-
-    Parameters
-    ----------
-    time : array_like, shape (N,)
-        IMU sample times (s).
-    heading : array_like, shape (..., N)
-        RTK heading at the IMU times (rad), e.g. :func:`navlib.sensors.simulate_heading`.
-    valid : array_like of bool, shape (N,)
-        Receiver validity at each IMU time (e.g. :func:`navlib.sensors.outage_mask`).
-    step : int
-        IMU samples per RTK epoch (e.g. 20 for 5 Hz RTK with a 100 Hz IMU).
-
-    Returns
-    -------
-    heading : ndarray, shape (..., N)
-        The heading, NaN between epochs and at invalid epochs.
-    epoch_valid : ndarray of bool, shape (N,)
-        True at valid epochs.
-    """
-    t = nonempty_array(time, "time")
-    if t.ndim != 1:
-        raise ValueError(f"time: expected a 1-D array of sample times, got shape {t.shape}")
-    h = nonempty_array(heading, "heading", finite=False)
-    v = np.asarray(valid)
-    if v.dtype != bool:
-        raise ValueError(f"valid: expected booleans, got dtype {v.dtype}")
-    if isinstance(step, (bool, np.bool_)) or not isinstance(step, (int, np.integer)) or step < 1:
-        raise ValueError(f"step: expected a positive integer, got {step!r}")
-    if h.shape[-1:] != t.shape:
-        raise ValueError(f"heading: expected a last axis of length {t.size} (that of time), got {h.shape}")
-    if v.shape != t.shape:
-        raise ValueError(f"valid: expected the shape of time {t.shape}, got {v.shape}")
-    epoch = np.zeros(t.shape, dtype=bool)
-    epoch[::step] = True
-    ok = epoch & v
-    return np.where(ok, h, np.nan), ok

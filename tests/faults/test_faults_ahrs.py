@@ -15,10 +15,10 @@ import numpy as np
 import pytest
 
 from navlib import alignment, attitude, earth, faults, sensors, timing, trajectory, units
+from navlib.filters import heading_fusion as hf
 from navlib.filters import mahony as mh
 from navlib.filters import observations as obs
 from navlib.filters import quaternion_kf as qkf
-from navlib.papers import mimu_mag_rtk as ahrs
 
 B_N = earth.magnetic_field(32.03, 118.85, 20.0, 2022.5)
 LLA0 = [units.deg(32.03), units.deg(118.85), 20.0]
@@ -45,7 +45,7 @@ def fig4():
     w = imu.w_ib_b + units.deg_per_s(0.09)
     m = sensors.simulate_magnetometer(st.q_bn[1:], B_N, sensors.MagnetometerModel(noise=SIGMA_MAG), rng).m_b
     rtk, _ = sensors.simulate_heading(np.full(t.size, H_TRUE), rng, units.deg(0.2))
-    rtk, epoch = ahrs.rtk_at_imu_rate(t, rtk, np.ones(t.size, bool), STEP)
+    rtk, epoch = hf.rtk_at_imu_rate(t, rtk, np.ones(t.size, bool), STEP)
     q0_mag = alignment.initial_attitude(imu.f_b[:50].mean(0), m[:50].mean(0))
     tilt = attitude.quat_to_euler(q0_mag)
     q0_rtk = attitude.euler_to_quat([H_TRUE, tilt[1], tilt[2]])
@@ -260,8 +260,8 @@ def test_fusion_rejects_flips_and_counts_dropouts(fig4, clean):
     rtk, drop = faults.dropouts(rtk, 0.10, np.random.default_rng(7))
     epoch = fig4["epoch"]
     gate = units.deg(10.0)
-    ref, _, _ = ahrs.fuse_rtk_heading(h_mag, fig4["rtk"], epoch, DT, rtk_gate=gate)
-    out, delta, c = ahrs.fuse_rtk_heading(h_mag, rtk, epoch, DT, rtk_gate=gate)
+    ref, _, _ = hf.fuse_rtk_heading(h_mag, fig4["rtk"], epoch, DT, rtk_gate=gate)
+    out, delta, c = hf.fuse_rtk_heading(h_mag, rtk, epoch, DT, rtk_gate=gate)
     assert np.isfinite(out).all() and np.isfinite(delta).all()
     assert int(c["rtk_dropped"]) == (drop & epoch).sum()
     first = np.flatnonzero(epoch)[0]
@@ -271,7 +271,7 @@ def test_fusion_rejects_flips_and_counts_dropouts(fig4, clean):
     # a dropped/rejected epoch: the previous one is carried 0.25 s, then H_mag + delta,
     # whose error is mode (b)'s (0.4 deg std, peaks ~1.5 deg): bound 2 deg
     assert err.max() < 2.0
-    fused, _, _ = ahrs.fuse_rtk_heading(h_mag, rtk, epoch, DT)  # no gate: flips are output as the heading
+    fused, _, _ = hf.fuse_rtk_heading(h_mag, rtk, epoch, DT)  # no gate: flips are output as the heading
     assert units.to_deg(np.abs(attitude.wrap_pi(fused - ref))).max() > 170.0
 
 
@@ -280,7 +280,7 @@ def test_fusion_gate_recovers_from_a_flipped_first_epoch(fig4, clean):
     rtk = fig4["rtk"].copy()
     first = np.flatnonzero(fig4["epoch"])[0]
     rtk[first] = (rtk[first] + np.pi) % (2 * np.pi)
-    out, _, c = ahrs.fuse_rtk_heading(h_mag, rtk, fig4["epoch"], DT, rtk_gate=units.deg(10.0))
+    out, _, c = hf.fuse_rtk_heading(h_mag, rtk, fig4["epoch"], DT, rtk_gate=units.deg(10.0))
     assert int(c["rtk_rejected"]) == 4 and int(c["rtk_reacquired"]) >= 1
     assert units.to_deg(np.abs(attitude.wrap_pi(out[fig4["t"] > 5.0] - H_TRUE))).max() < 1.0
 
@@ -378,9 +378,9 @@ def test_fusion_accepts_per_sample_intervals():
     dt[10:] = 0.05                                   # 10 samples at 100 Hz, then 20 Hz
     valid = np.zeros(n, bool)
     valid[[0, 10]] = True
-    _, _, c = ahrs.fuse_rtk_heading(np.zeros(n), np.full(n, 0.5), valid, dt)
+    _, _, c = hf.fuse_rtk_heading(np.zeros(n), np.full(n, 0.5), valid, dt)
     assert int(c["rtk"]) == 10 + 6                  # epoch at 10 held for 5 x 50 ms = 0.25 s
-    _, _, c_scalar = ahrs.fuse_rtk_heading(np.zeros(n), np.full(n, 0.5), valid, 0.01)
+    _, _, c_scalar = hf.fuse_rtk_heading(np.zeros(n), np.full(n, 0.5), valid, 0.01)
     assert int(c_scalar["rtk"]) == 10 + 26
 
 
