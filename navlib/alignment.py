@@ -28,6 +28,7 @@ import numpy as np
 from . import _kernels, attitude, earth
 from ._typing import Angles, Array, ArrayLike, Dcm, Vec3, Vec3Series
 from ._validate import as_array, in_range, nonempty_array, nonempty_latitude, nonempty_positive, scalar
+from .robust import FaultReport
 
 __all__ = ["level", "magnetic_heading", "tilt_heading", "initial_attitude", "MAX_LAT_DEG", "gyrocompass_latitude", "OK",
            "TOO_FEW", "SATURATED", "MOVING", "StaticWindow", "static_means", "triad", "triad_heading",
@@ -180,6 +181,14 @@ class StaticWindow:
     def ok(self) -> np.ndarray:
         """True where the window was accepted."""
         return self.status == OK
+
+    @property
+    def faults(self) -> FaultReport:
+        """The counts above as a :class:`navlib.robust.FaultReport` (``("window", "refused")``: status != OK)."""
+        return FaultReport({("gyro", "nan"): self.n_dropped_gyro, ("accel", "nan"): self.n_dropped_accel,
+                            ("gyro", "outlier"): self.n_outliers_gyro, ("accel", "outlier"): self.n_outliers_accel,
+                            ("gyro", "saturated"): self.n_saturated_gyro, ("accel", "saturated"): self.n_saturated_accel,
+                            ("window", "refused"): (self.status != OK).astype(int)})
 
 
 def _outliers(x, valid, k):

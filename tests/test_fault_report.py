@@ -69,3 +69,17 @@ def test_rotation_bias_residuals():
     check_vocabulary(res.faults)
     assert res.faults["dwell", "refused"] == 3 and res.faults["imu", "nan"] == 5
 
+
+
+def test_static_window_and_ins_report():
+    from navlib import alignment
+    from navlib.papers import north_finding
+    w = np.tile([1e-5, 2e-5, 3e-5], (100, 1))
+    f = np.tile([0.0, 0.0, 9.8], (100, 1))
+    w[3] = np.nan
+    win = alignment.static_means(w, f, 0.5)
+    check_vocabulary(win.faults)
+    assert win.faults["gyro", "nan"] == 1 and win.faults["window", "refused"] == 0
+    dpsi, rep = north_finding.ins_heading_change(w, f[0], 0.01, 0.5, report=True)
+    check_vocabulary(rep.faults)
+    assert rep.faults["gyro", "nan"] == 1 and rep.faults["drive", "refused"] == 0

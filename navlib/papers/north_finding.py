@@ -90,7 +90,7 @@ from scipy.special import ndtr
 
 from .. import attitude, earth, robust, strapdown
 from .._typing import Angles, Array, ArrayLike, Dcm, Interval, Times, Vec3, Vec3Series
-from .._validate import as_dcm, generator, in_range, time_axis
+from .._validate import as_dcm, generator, in_range, intervals, time_axis
 from .._validate import nonempty_array as as_array
 from .._validate import nonempty_positive as positive
 from ..alignment import gyrocompass_latitude, level, static_means, triad, triad_heading
@@ -737,6 +737,12 @@ class InsReport:
     n_saturated: np.ndarray
     refused: np.ndarray
 
+    @property
+    def faults(self) -> robust.FaultReport:
+        """The counts above as a :class:`navlib.robust.FaultReport` (``("drive", "refused")`` per drive)."""
+        return robust.FaultReport({("gyro", "nan"): self.n_held, ("gyro", "saturated"): self.n_saturated,
+                                   ("drive", "refused"): self.refused.astype(int)})
+
 
 def _hold_last(w, dts):
     """Forward-fill NaN rows along axis -2 (back-fill leading ones); counts and longest run (s)."""
@@ -821,13 +827,8 @@ def ins_heading_change(w_ib_b: Vec3Series, f_start: Vec3, dt: Interval, lat: flo
         raise ValueError(f"earth_rate: expected 'vertical', 'none' or 'full', got {earth_rate!r}")
     w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
     n = w.shape[-2]
-    step = positive(dt, "dt")
-    if step.ndim == 0:
-        dts, step = np.full(n, float(step)), float(step)
-    elif step.shape != (n,):
-        raise ValueError(f"dt: expected a float or per-sample intervals of shape ({n},), got {step.shape}")
-    else:
-        dts, step = step, float(step.mean())
+    dts = intervals(dt, n)
+    step = float(dts[0]) if np.all(dts == dts[0]) else float(dts.mean())
     max_gap = float(positive(max_gap, "max_gap", allow_zero=True))
     fs = np.inf if full_scale is None else float(positive(full_scale, "full_scale"))
     pitch, roll = level(as_array(f_start, "f_start", tail=(3,)))
