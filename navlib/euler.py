@@ -15,6 +15,7 @@ import numpy as np
 from numba import njit
 
 from . import attitude
+from ._deprecate import renamed_keywords
 from ._typing import Angles, Array, ArrayLike, Interval, Vec3, Vec3Series
 from ._validate import intervals, range_limit
 from ._validate import nonempty_array as as_array
@@ -164,9 +165,9 @@ class EulerReport:
         neighbouring valid samples (the nearest valid sample at the ends),
         summed over runs.
     n_saturated : int
-        Samples with a component at the rails (``|w| >= full_scale``); the
+        Samples with a component at the rails (``|w| >= full_scale_gyro``); the
         true rate was larger, so the attitude from ``first_saturated`` on is
-        unreliable. 0 without ``full_scale``.
+        unreliable. 0 without ``full_scale_gyro``.
     first_saturated : int
         Earliest saturated sample index over all runs (-1: none).
     """
@@ -175,9 +176,10 @@ class EulerReport:
     first_saturated: int
 
 
+@renamed_keywords(full_scale="full_scale_gyro")
 def integrate_euler(hpr0: Angles, w_ib_b: Vec3Series, dt: Interval, w_in_n: Vec3 | None = None,
                     bias_b: ArrayLike | None = None, bias_from: ArrayLike | None = None, *, max_gap: float = 0.0,
-                    full_scale: float | None = None, report: bool = False):
+                    full_scale_gyro: float | None = None, report: bool = False):
     """Integrate Eq. (2) from gyro samples, optionally bias-compensated.
 
     Each sample is the mean rate over ``[t_k, t_k + dt_k]``; the Euler-angle
@@ -192,7 +194,7 @@ def integrate_euler(hpr0: Angles, w_ib_b: Vec3Series, dt: Interval, w_in_n: Vec3
     ``sum |w_interp - w_true| dt`` over the filled samples) and a run of
     dropouts longer than ``max_gap`` seconds raises ValueError (the rotation
     over it is unknown). With
-    ``full_scale`` (the gyro range, rad/s) samples at the rails are counted
+    ``full_scale_gyro`` (the gyro range, rad/s) samples at the rails are counted
     (``n_saturated``, ``first_saturated``): they cannot be corrected, the
     attitude after them is unreliable. Irregular sampling: pass per-sample
     intervals ``dt`` (``timing.intervals`` after ``timing.sanitize``).
@@ -218,7 +220,7 @@ def integrate_euler(hpr0: Angles, w_ib_b: Vec3Series, dt: Interval, w_in_n: Vec3
     max_gap : float
         Longest run of dropouts (s) bridged by interpolation; default 0:
         NaN is not accepted.
-    full_scale : float, optional
+    full_scale_gyro : float, optional  (formerly ``full_scale``, which warns)
         Gyro range (rad/s) for counting saturated samples.
     report : bool
         Also return an :class:`EulerReport`.
@@ -234,7 +236,7 @@ def integrate_euler(hpr0: Angles, w_ib_b: Vec3Series, dt: Interval, w_in_n: Vec3
     w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=max_gap > 0)
     lead, n = w.shape[:-2], w.shape[-2]
     dts = intervals(dt, n)
-    fs = range_limit(full_scale, "full_scale")
+    fs = range_limit(full_scale_gyro, "full_scale_gyro")
     hpr0 = np.broadcast_to(_hpr(hpr0, "hpr0"), lead + (3,)).reshape(-1, 3)
     w_in = np.zeros(3) if w_in_n is None else as_array(w_in_n, "w_in_n", tail=(3,)).reshape(3)
     bias, idx = _bias_schedule(bias_b, bias_from, lead)

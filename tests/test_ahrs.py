@@ -294,8 +294,8 @@ h, d, c = hf.fuse_rtk_heading(k.hpr[..., 0], np.full(200, 0.5), valid, 0.01)
 dt = 0.01 * (1 + 0.2 * rng.uniform(-1, 1, 200))
 w[1, 50] += 1.0; f[0, 60] = [0.0, 0.0, 80.0]
 rtk = np.where(valid, 0.5, np.nan); rtk[40] = 0.5 + np.pi; rtk[60] = np.nan; rtk[100:] = 2.0
-r = qkf.quaternion_kf(w, f, dt, q0, heading_rtk=rtk, rtk_valid=valid, gyro_jump=0.5, accel_range=78.0,
-                       gyro_range=0.02, rtk_gate=0.3, rtk_confirm=2, keep_cov=True)
+r = qkf.quaternion_kf(w, f, dt, q0, heading_rtk=rtk, rtk_valid=valid, gyro_jump=0.5, full_scale_accel=78.0,
+                       full_scale_gyro=0.02, rtk_gate=0.3, rtk_confirm=2, keep_cov=True)
 hr, _, cr = hf.fuse_rtk_heading(r.hpr[..., 0], rtk, valid, dt, rtk_gate=0.3, rtk_confirm=2)
 print(json.dumps({"a": a.q_bn.tolist(), "k": k.q_bn.tolist(), "h": h.tolist(), "r": r.q_bn.tolist(),
                   "P": r.P_history.tolist(), "hr": hr.tolist(),
@@ -412,7 +412,7 @@ FUZZ = {
     "measurement_model": (qkf.measurement_model, dict(q=_Q, b=B_REF), (), ()),
     "measurement_jacobian": (qkf.measurement_jacobian, dict(q=_Q, b=B_REF), (), ()),
     "mahony": (mh.mahony, dict(w_ib_b=_W, f_b=_F, dt=0.01, q0=_Q, m_b=_M, kp=1.0, ki=0.02, B_n=B_N,
-                                 accel_tol=0.1, rtk_hold=0.25, gyro_range=2.0, accel_range=80.0, mag_range=800.0,
+                                 accel_tol=0.1, rtk_hold=0.25, full_scale_gyro=2.0, full_scale_accel=80.0, full_scale_mag=800.0,
                                  gyro_jump=0.5), ("w_ib_b", "f_b", "m_b"), ("f_b", "m_b")),
     "mahony/rtk": (mh.mahony, dict(w_ib_b=_W, f_b=_F, dt=np.full(_N, 0.01), q0=_Q, heading_rtk=np.full(_N, 0.5),
                                      rtk_valid=_VALID, rtk_gate=0.3), ("w_ib_b", "f_b", "heading_rtk"), ("f_b",)),
@@ -474,7 +474,7 @@ OUT_OF_RANGE = [
     ("mahony", lambda: mh.mahony(_W, _F, np.full(_N - 1, 0.01), _Q, m_b=_M), "dt"),
     ("mahony", lambda: mh.mahony(_W, _F, 0.01, _Q, heading_rtk=np.zeros(_N), rtk_valid=_VALID, rtk_gate=4.0), "rtk_gate"),
     ("mahony", lambda: mh.mahony(_W, _F, 0.01, _Q, heading_rtk=np.zeros(_N), rtk_valid=_VALID, rtk_confirm=0), "rtk_confirm"),
-    ("mahony", lambda: mh.mahony(_W, _F, 0.01, _Q, m_b=_M, gyro_range=-1.0), "gyro_range"),
+    ("mahony", lambda: mh.mahony(_W, _F, 0.01, _Q, m_b=_M, full_scale_gyro=-1.0), "full_scale_gyro"),
     ("mahony", lambda: mh.mahony(_W, _F, 0.01, _Q, m_b=_M, gyro_jump=0.0), "gyro_jump"),
     ("mahony", lambda: mh.mahony(_W, _F, 0.01, _Q, m_b=_M, rtk_hold=-1.0), "rtk_hold"),
     ("mahony", lambda: mh.mahony(_W, _F, 0.01, _Q, m_b=_M, gate="tight"), "gate"),

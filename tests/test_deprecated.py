@@ -48,3 +48,20 @@ def test_old_filter_grid_keeps_the_paper_noise_as_defaults():
         old = importlib.import_module("navlib.planar")
     new = planar_ekf.filter_grid(t, z, z[0], Q=gauss_kruger_ekf.Q_PAPER, R=gauss_kruger_ekf.R_PAPER)
     np.testing.assert_array_equal(old.filter_grid(t, z, z[0]).x, new.x)
+
+
+def test_old_range_keywords_warn_and_mean_the_same():
+    from navlib.filters import mahony, planar_ekf
+    from navlib.papers import gauss_kruger_ekf
+    w, f, m = np.zeros((20, 3)), np.tile([0.0, 0.0, 9.8], (20, 1)), np.tile([0.0, 20.0, -40.0], (20, 1))
+    w[5, 2] = 0.5
+    with pytest.warns(DeprecationWarning, match="gyro_range"):
+        old = mahony.mahony(w, f, 0.01, [1.0, 0, 0, 0], m_b=m, gyro_range=0.4)
+    new = mahony.mahony(w, f, 0.01, [1.0, 0, 0, 0], m_b=m, full_scale_gyro=0.4)
+    assert old.counts == new.counts and new.counts["gyro_saturated"] == 1
+    with pytest.raises(ValueError, match="^gyro_range: "), pytest.warns(DeprecationWarning):
+        mahony.mahony(w, f, 0.01, [1.0, 0, 0, 0], m_b=m, gyro_range=0.4, full_scale_gyro=0.4)
+    t, z = np.arange(5.0), np.tile([0.0, 0.0, 0.3, 1.0, 0.5], (5, 1))
+    with pytest.warns(DeprecationWarning, match="yaw_rate_range"):
+        old = planar_ekf.filter_grid(t, z, z[0], Q=gauss_kruger_ekf.Q_PAPER, R=gauss_kruger_ekf.R_PAPER, yaw_rate_range=0.5)
+    assert old.n_saturated == 4

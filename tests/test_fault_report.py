@@ -28,7 +28,7 @@ def test_attitude_filters():
     f = np.tile([0.0, 0.0, 9.8], (n, 1))
     m = np.tile([0.0, 20.0, -40.0], (n, 1))
     w[10], f[20], m[30] = np.nan, np.nan, np.nan
-    res = mahony.mahony(w, f, 0.01, [1.0, 0, 0, 0], m_b=m, gyro_range=0.02)
+    res = mahony.mahony(w, f, 0.01, [1.0, 0, 0, 0], m_b=m, full_scale_gyro=0.02)
     check_vocabulary(res.faults)
     for name, key in observations.FAULT_KEYS.items():
         assert res.faults[key] == res.counts[name]
@@ -43,7 +43,7 @@ def test_planar_ekf():
     z[8, 0] += 500.0
     z[12, 4] = 0.6
     res = planar_ekf.filter_grid(t, z, z[0], P0=np.eye(5), Q=gauss_kruger_ekf.Q_PAPER, R=gauss_kruger_ekf.R_PAPER,
-                                 gate=15.0, yaw_rate_range=0.5)
+                                 gate=15.0, full_scale_gyro=0.5)
     check_vocabulary(res.faults)
     assert res.faults["gnss", "nan"] == res.n_missing_channels[0] == 1
     assert res.faults["gnss", "outlier"] == res.n_rejected_channels[0] >= 1

@@ -266,7 +266,7 @@ def test_error_statistics_match_numpy():
                                full_scale_accel=0.0), "full_scale_accel"),
     (lambda: euler.integrate_euler([0, 0, 0], np.zeros((5, 3)), np.full(4, DT)), "dt"),
     (lambda: euler.integrate_euler([0, 0, 0], np.zeros((5, 3)), DT, max_gap=-0.1), "max_gap"),
-    (lambda: euler.integrate_euler([0, 0, 0], np.zeros((5, 3)), DT, full_scale=0.0), "full_scale"),
+    (lambda: euler.integrate_euler([0, 0, 0], np.zeros((5, 3)), DT, full_scale_gyro=0.0), "full_scale_gyro"),
     (lambda: gb.kalman_bias(np.zeros((4, 2)), np.zeros((4, 2, 3)), np.tile(np.eye(2), (4, 1, 1)), np.ones(3), 0.0,
                             1.0), "interval"),
     (lambda: gb.kalman_bias(np.zeros((4, 2)), np.zeros((4, 2, 3)), np.tile(np.eye(2), (4, 1, 1)), 0.0, 0.0, 1.0),
@@ -381,7 +381,7 @@ dts = 0.01 * (1 + 0.2 * np.sin(np.arange(w.shape[0])))
 res = gb.tilt_residuals(w, f, dts, starts, n, max_missing=0.5, outlier_k=6.0, full_scale_accel=30.0)
 R = gb.residual_covariance(np.nan_to_num(res.tilt), n, 0.01, 1e-3, 1e-2)
 kf = gb.kalman_bias(res.r, res.V, R, np.full(starts.size, 5.0), 1e-6, 1e-3)
-hpr, rep = euler.integrate_euler(traj.hpr[0], w, dts, earth.earth_rate_n(lat), max_gap=0.1, full_scale=5.0, report=True)
+hpr, rep = euler.integrate_euler(traj.hpr[0], w, dts, earth.earth_rate_n(lat), max_gap=0.1, full_scale_gyro=5.0, report=True)
 print(json.dumps({"r": np.nan_to_num(res.r).tolist(), "counts": [res.n_skipped, res.n_filled, res.n_outliers_accel,
                   res.n_skipped_saturated, kf.n_no_data, rep.n_filled, rep.n_saturated],
                   "kf": kf.b.tolist(), "P": kf.P.tolist(), "hpr": hpr[::50].tolist()}))

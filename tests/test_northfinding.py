@@ -253,7 +253,7 @@ GOOD_F = np.tile(ideal([1.0, 0.0, 0.0])[1], (10, 1))
     (lambda: nf.ins_heading_change(GOOD_W, GOOD_F[0], -0.01, LAT), "dt"),
     (lambda: nf.ins_heading_change(GOOD_W, GOOD_F[0], np.full(9, 0.01), LAT), "dt"),
     (lambda: nf.ins_heading_change(GOOD_W, GOOD_F[0], 0.01, LAT, max_gap=-1.0), "max_gap"),
-    (lambda: nf.ins_heading_change(GOOD_W, GOOD_F[0], 0.01, LAT, full_scale=0.0), "full_scale"),
+    (lambda: nf.ins_heading_change(GOOD_W, GOOD_F[0], 0.01, LAT, full_scale_gyro=0.0), "full_scale_gyro"),
     (lambda: alignment.static_means(GOOD_W, GOOD_F, LAT, min_fraction=0.0), "min_fraction"),
     (lambda: alignment.static_means(GOOD_W, GOOD_F, LAT, min_fraction=1.5), "min_fraction"),
     (lambda: alignment.static_means(GOOD_W, GOOD_F, LAT, outlier_k=-3.0), "outlier_k"),

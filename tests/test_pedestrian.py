@@ -288,7 +288,7 @@ h2[300] += 50.0
 dt = 0.02 * (1 + 0.1 * np.sin(np.arange(len(w))))
 cfg = pd.FilterConfig(spike_gyro=0.02, spike_accel=0.5)
 res2 = pd.run_filter(w2, f2, dt, traj.lla[0], traj.vel_n[0], traj.q_bn[0], static, h_baro=h2, m_b=m,
-                     config=cfg, full_scale=(0.3, 11.0))
+                     config=cfg, full_scale_gyro=0.3, full_scale_accel=11.0)
 print(json.dumps({"lla": res.nav.lla.tolist(), "counts": res.counts, "lla2": res2.nav.lla.tolist(),
                   "counts2": res2.counts, "flags2": res2.flags.tolist()}))
 """

@@ -164,11 +164,11 @@ rng = np.random.default_rng(0)
 z = np.column_stack([rng.normal(0, 2, (50, 2)), rng.normal(0.3, 0.1, 50), np.ones(50), np.zeros(50)])
 z[10:15, :2] = np.nan
 r = planar_ekf.filter_grid(t, z, [0, 0, 0.3, 1, 0], P0=np.eye(5), **PAPER)
-d, _ = planar_ekf.dead_reckoning(t, z[:, 3], z[:, 4], [0, 0, 0.3, 1, 0], yaw_rate_range=0.1)
+d, _ = planar_ekf.dead_reckoning(t, z[:, 3], z[:, 4], [0, 0, 0.3, 1, 0], full_scale_gyro=0.1)
 z[20, 0] += 50.0
 z[21:25, 3] += 5.0                                  # a 4-epoch step: 3 rejections, reacquired; back: same
 z[30, 4] = 0.5                                                      # at the rails
-g = planar_ekf.filter_grid(t, z, [0, 0, 0.3, 1, 0], P0=np.eye(5), gate=[18.4, 15.1, 15.1, 15.1], yaw_rate_range=0.5, **PAPER)
+g = planar_ekf.filter_grid(t, z, [0, 0, 0.3, 1, 0], P0=np.eye(5), gate=[18.4, 15.1, 15.1, 15.1], full_scale_gyro=0.5, **PAPER)
 print(json.dumps({"x": r.x.tolist(), "d": d.tolist(), "g": g.x.tolist(), "rej": g.n_rejected_channels.tolist(),
                   "reacq": g.n_reacquired_channels.tolist(), "sat": g.n_saturated}))
 """
@@ -234,9 +234,9 @@ def test_degree_inputs_give_the_same_filter():
                      origin=np.degrees(ORIGIN), deg=True)
     assert_allclose(deg.x, rad.x, rtol=0, atol=1e-9)
     w_fs = np.abs(s.yaw_rate).max() * 0.9                           # some samples at the "rails"
-    rad = planar.ekf(t, s.gps, s.heading, s.speed, s.yaw_rate, X0_STRAIGHT, origin=ORIGIN, yaw_rate_range=w_fs)
+    rad = planar.ekf(t, s.gps, s.heading, s.speed, s.yaw_rate, X0_STRAIGHT, origin=ORIGIN, full_scale_gyro=w_fs)
     deg = planar.ekf(t, np.degrees(s.gps), np.degrees(s.heading), s.speed, np.degrees(s.yaw_rate), X0_STRAIGHT,
-                     origin=np.degrees(ORIGIN), deg=True, yaw_rate_range=np.degrees(w_fs))
+                     origin=np.degrees(ORIGIN), deg=True, full_scale_gyro=np.degrees(w_fs))
     assert rad.n_saturated > 0 and deg.n_saturated == rad.n_saturated
     assert_allclose(deg.x, rad.x, rtol=0, atol=1e-9)
 
@@ -253,11 +253,11 @@ VALID_CALLS = {                                 # one valid call per public func
     "propagate": dict(x0=X5, T=0.5, n_steps=3),
     "waypoint_path": dict(waypoints=[[0, 0], [0, 1.0]], speed=0.1, turn_rate=0.2, T=0.5),
     "dead_reckoning": dict(t=T3, speed=ONES3, yaw_rate=np.zeros(3), x0=X5, velocity_bias=[0.0, 0.0],
-                           yaw_rate_range=2.0),
+                           full_scale_gyro=2.0),
     "filter_grid": dict(t=T3, z=Z3, x0=X5, P0=np.eye(5), Q=planar.Q_PAPER, R=planar.R_PAPER, gate=10.0,
-                        yaw_rate_range=2.0, reacquire=3),
+                        full_scale_gyro=2.0, reacquire=3),
     "ekf": dict(t=T3, gps=GPS3, heading=ONES3, speed=ONES3, yaw_rate=np.zeros(3), x0=X5, origin=ORIGIN, zone=40,
-                P0=np.eye(5), Q=planar.Q_PAPER, R=planar.R_PAPER, gate=10.0, yaw_rate_range=2.0, reacquire=3),
+                P0=np.eye(5), Q=planar.Q_PAPER, R=planar.R_PAPER, gate=10.0, full_scale_gyro=2.0, reacquire=3),
     "simulate_sensors": dict(truth=Z3, origin=ORIGIN, R=planar.R_PAPER, rng=np.random.default_rng(0),
                              yaw_rate_bias=0.0, gps_valid=np.ones(3, bool)),
     "position_error": dict(estimate=Z3, truth=Z3),
@@ -316,8 +316,8 @@ def test_fuzz_bad_values_raise_naming_the_argument(fn, arg, bad):
     (lambda: planar_ekf.filter_grid(T3, Z3, X5, gate=0.0, **PAPER), "gate"),
     (lambda: planar_ekf.filter_grid(T3, Z3, X5, reacquire=0, **PAPER), "reacquire"),
     (lambda: planar_ekf.filter_grid(T3, Z3, X5, reacquire=2.5, **PAPER), "reacquire"),
-    (lambda: planar_ekf.filter_grid(T3, Z3, X5, yaw_rate_range=-1.0, **PAPER), "yaw_rate_range"),
-    (lambda: planar_ekf.filter_grid(T3, Z3, X5, yaw_rate_range=[1.0, 2.0], **PAPER), "yaw_rate_range"),
+    (lambda: planar_ekf.filter_grid(T3, Z3, X5, full_scale_gyro=-1.0, **PAPER), "full_scale_gyro"),
+    (lambda: planar_ekf.filter_grid(T3, Z3, X5, full_scale_gyro=[1.0, 2.0], **PAPER), "full_scale_gyro"),
     (lambda: planar_ekf.filter_grid(T3, Z3, X5, P0=np.diag([1.0, 1.0, -1.0, 1.0, 1.0]), **PAPER), "P0"),
     (lambda: planar_ekf.filter_grid(np.array([0.0, 1.0, 1.0]), Z3, X5, **PAPER), "t"),
     (lambda: planar_ekf.filter_grid(T3[:1], Z3[:1], X5, **PAPER), "t"),
@@ -325,8 +325,8 @@ def test_fuzz_bad_values_raise_naming_the_argument(fn, arg, bad):
     (lambda: planar.ekf(T3, GPS3, ONES3, ONES3, ONES3, X5, zone=200), "zone"),
     (lambda: planar.ekf(T3, GPS3, ONES3, ONES3, ONES3, X5, width=4), "width"),
     (lambda: planar.ekf(T3, GPS3, ONES3, ONES3, ONES3, X5, ellipsoid="WGS84"), "ellipsoid"),
-    (lambda: planar.ekf(T3, GPS3, ONES3, ONES3, ONES3, X5, yaw_rate_range=0.0), "yaw_rate_range"),
-    (lambda: planar_ekf.dead_reckoning(T3, ONES3, ONES3, X5, yaw_rate_range=-2.0), "yaw_rate_range"),
+    (lambda: planar.ekf(T3, GPS3, ONES3, ONES3, ONES3, X5, full_scale_gyro=0.0), "full_scale_gyro"),
+    (lambda: planar_ekf.dead_reckoning(T3, ONES3, ONES3, X5, full_scale_gyro=-2.0), "full_scale_gyro"),
     (lambda: planar_ekf.propagate(X5, 0.5, True), "n_steps"),
     (lambda: planar_ekf.propagate(X5, 0.5, speed=ONES3, yaw_rate=ONES3[:2]), "speed, yaw_rate"),
     (lambda: planar.simulate_sensors(Z3, ORIGIN, planar.R_PAPER, np.random.default_rng(0),
@@ -340,9 +340,9 @@ def test_fuzz_out_of_range_and_shapes(call, arg):
 
 
 def test_gate_and_range_inf_mean_off():
-    """``gate=inf`` and ``yaw_rate_range=inf`` (or None) are the documented 'off' values: same result."""
+    """``gate=inf`` and ``full_scale_gyro=inf`` (or None) are the documented 'off' values: same result."""
     t, truth, s = straight_run(9, n=100)
     a = planar.ekf(t, s.gps, s.heading, s.speed, s.yaw_rate, X0_STRAIGHT, origin=ORIGIN)
     b = planar.ekf(t, s.gps, s.heading, s.speed, s.yaw_rate, X0_STRAIGHT, origin=ORIGIN, gate=np.inf,
-                   yaw_rate_range=np.inf)
+                   full_scale_gyro=np.inf)
     assert np.array_equal(a.x, b.x) and b.n_saturated == 0 and b.n_rejected == 0

@@ -20,6 +20,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from .._deprecate import renamed_keywords
 from .._typing import ArrayLike, Interval, Quat, Vec3, Vec3Series
 from .._validate import scalar
 from ..attitude import quat_mult_t
@@ -71,11 +72,12 @@ def _trial(t, inp, kp, ki, q_out, bias_out, counts):
     bias_out[t, 0], bias_out[t, 1], bias_out[t, 2] = -ki * ix, -ki * iy, -ki * iz
 
 
+@renamed_keywords(gyro_range="full_scale_gyro", accel_range="full_scale_accel", mag_range="full_scale_mag")
 def mahony(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, *, m_b: Vec3Series | None = None,
            heading_rtk: ArrayLike | None = None, rtk_valid: ArrayLike | None = None, kp: float = 1.0,
            ki: float = 0.02, B_n: Vec3 | None = None, gate: MagGate | None = None, accel_tol: float | None = None,
            g: float = G0, rtk_hold: float = 0.25, rtk_gate: float | None = None, rtk_confirm: int = 5,
-           gyro_range: float | None = None, accel_range: float | None = None, mag_range: float | None = None,
+           full_scale_gyro: float | None = None, full_scale_accel: float | None = None, full_scale_mag: float | None = None,
            gyro_jump: float | None = None) -> AttitudeResult:
     """Mahony PI complementary filter (Eqs. 9-15 of Zhang et al. 2023), per sample:
     ``e = a x a_est + m x m_est``, ``w = w_m + kp e + ki sum(e dt)``,
@@ -130,12 +132,13 @@ def mahony(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, *, m_b: 
         With ``rtk_gate``: after this many consecutive rejected epochs that
         agree with each other (within ``rtk_gate``), use them (``rtk_reacquired``),
         so that an estimate that drifted in an outage is pulled back.
-    gyro_range, accel_range, mag_range : float, optional
+    full_scale_gyro, full_scale_accel, full_scale_mag : float, optional
         Full-scale ranges (rad/s, m/s^2, uT), e.g. ``sensors.imu_model(name).gyro.full_scale``.
         Samples with a component at or beyond the range are counted
         (``*_saturated``); accelerometer and magnetometer corrections are
         skipped for them, gyro samples are used (the clipped rate is the best
-        available) and flag the attitude after them as suspect.
+        available) and flag the attitude after them as suspect. (Formerly ``gyro_range``,
+        ``accel_range``, ``mag_range``: the old names warn.)
     gyro_jump : float, optional
         Spike gate (rad/s): a gyro sample differing from the last used one by
         more than this on some axis is replaced by it (``gyro_gated``) unless
@@ -158,7 +161,7 @@ def mahony(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, *, m_b: 
     AttitudeResult
     """
     lead, inp, sat = prepare_inputs(w_ib_b, f_b, dt, q0, m_b, heading_rtk, rtk_valid, B_n, gate, accel_tol, g,
-                                    rtk_hold, rtk_gate, rtk_confirm, gyro_range, accel_range, mag_range, gyro_jump)
+                                    rtk_hold, rtk_gate, rtk_confirm, full_scale_gyro, full_scale_accel, full_scale_mag, gyro_jump)
     kp, ki = scalar(kp, "kp", positive=True, allow_zero=True), scalar(ki, "ki", positive=True, allow_zero=True)
     T, N = inp.w.shape[:2]
     q_out, bias, counts = np.empty((T, N, 4)), np.empty((T, 3)), np.zeros((T, len(COUNT_NAMES)), dtype=np.int64)

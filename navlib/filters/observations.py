@@ -52,12 +52,12 @@ COUNT_NAMES = ("gyro_held", "accel_skipped", "accel_gated", "mag_skipped", "mag_
     parallel to gravity; in RTK mode, no used RTK epoch within ``rtk_hold``)
     or outside the :class:`MagGate` (skipped).
 ``gyro_saturated``
-    Gyro samples with a component at the rails (``|w| >= gyro_range``): used
+    Gyro samples with a component at the rails (``|w| >= full_scale_gyro``): used
     (unless the spike gate holds them; counted either way), because nothing
     better exists, but the attitude after them is suspect.
 ``accel_saturated``, ``mag_saturated``
-    Accelerometer / magnetometer samples at the rails (``accel_range``,
-    ``mag_range``): their correction is skipped (not also counted as skipped).
+    Accelerometer / magnetometer samples at the rails (``full_scale_accel``,
+    ``full_scale_mag``): their correction is skipped (not also counted as skipped).
 ``rtk_dropped``
     Valid-flagged RTK epochs holding NaN: ignored.
 ``rtk_rejected``
@@ -390,7 +390,7 @@ def rtk_params(rtk_hold: float, rtk_gate: float | None, rtk_confirm: int) -> np.
 def prepare_inputs(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, m_b: Vec3Series | None,
                    heading_rtk: ArrayLike | None, rtk_valid: ArrayLike | None, B_n: Vec3 | None, gate: MagGate | None,
                    accel_tol: float | None, g: float, rtk_hold: float, rtk_gate: float | None, rtk_confirm: int,
-                   gyro_range: float | None, accel_range: float | None, mag_range: float | None,
+                   full_scale_gyro: float | None, full_scale_accel: float | None, full_scale_mag: float | None,
                    gyro_jump: float | None) -> tuple[tuple[int, ...], AttitudeInputs, np.ndarray]:
     """Validate the inputs of an attitude filter once (the parameters of :func:`navlib.filters.mahony.mahony`).
 
@@ -441,7 +441,8 @@ def prepare_inputs(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, 
     # Saturation: counted here; accelerometer/magnetometer samples at the rails become NaN (skipped by the
     # kernel exactly like a dropout; the kernel's skip counts are corrected in _result), gyro samples are used.
     sat = np.zeros((T, 3), dtype=np.int64)
-    for i, (r, name) in enumerate(((gyro_range, "gyro_range"), (accel_range, "accel_range"), (mag_range, "mag_range"))):
+    ranges = ((full_scale_gyro, "full_scale_gyro"), (full_scale_accel, "full_scale_accel"), (full_scale_mag, "full_scale_mag"))
+    for i, (r, name) in enumerate(ranges):
         if r is None:
             continue
         r = scalar(r, name, positive=True)

@@ -53,7 +53,7 @@ outlier (spike, GPS jump)     with a finite ``gate``: gate each channel        `
                               after ``reacquire`` rejections in a row inflate  ``reacquired``, ``n_reacquired_channels``
                               P by the squared innovation and fuse the next
                               sample ungated
-yaw rate at the gyro rails    with ``yaw_rate_range``: a censored sample:      ``saturated``, ``n_saturated``
+yaw rate at the gyro rails    with ``full_scale_gyro``: a censored sample:      ``saturated``, ``n_saturated``
                               fuse the rail value while the prediction is
                               inside the rails, else skip; never gated
 repeated / out-of-order t     ``ValueError`` (run ``timing.sanitize`` first,   ``timing.TimingReport``
@@ -73,6 +73,7 @@ import numpy as np
 from numba import njit
 
 from .. import kalman
+from .._deprecate import renamed_keywords
 from .._kernels import wrap_pi
 from .._typing import Array, ArrayLike, Times
 from .._validate import as_array, range_limit, scalar, time_axis
@@ -193,14 +194,14 @@ def propagate(x0: ArrayLike, T: float, n_steps: int | None = None, speed: ArrayL
 # --------------------------------------------------------------------------
 
 @njit(cache=True)
-def _dead_reckon(t, speed, yaw_rate, x0, velocity_bias, yaw_rate_range):
+def _dead_reckon(t, speed, yaw_rate, x0, velocity_bias, full_scale_gyro):
     n = t.shape[0]
     out = np.empty((n, 3))
     out[0] = x0[:3]
     v, w = x0[3], x0[4]
     held = 0
     for k in range(1, n):
-        if np.isfinite(speed[k - 1]) and np.isfinite(yaw_rate[k - 1]) and abs(yaw_rate[k - 1]) < yaw_rate_range:
+        if np.isfinite(speed[k - 1]) and np.isfinite(yaw_rate[k - 1]) and abs(yaw_rate[k - 1]) < full_scale_gyro:
             v, w = speed[k - 1], yaw_rate[k - 1]
         else:
             held += 1
@@ -211,8 +212,9 @@ def _dead_reckon(t, speed, yaw_rate, x0, velocity_bias, yaw_rate_range):
     return out, held
 
 
+@renamed_keywords(yaw_rate_range="full_scale_gyro")
 def dead_reckoning(t: Times, speed: ArrayLike, yaw_rate: ArrayLike, x0: ArrayLike,
-                   velocity_bias: ArrayLike = (0.0, 0.0), yaw_rate_range: float | None = None) -> tuple[Array, int]:
+                   velocity_bias: ArrayLike = (0.0, 0.0), full_scale_gyro: float | None = None) -> tuple[Array, int]:
     """Integrate measured speed and yaw rate from ``x0`` with the motion model (no GPS).
 
     Dead reckoning has no redundancy, so it cannot detect an outlier inside
@@ -235,8 +237,8 @@ def dead_reckoning(t: Times, speed: ArrayLike, yaw_rate: ArrayLike, x0: ArrayLik
         A constant velocity error in the grid (north, east; m/s) added at every
         step: an error model for simulations (the frame-fixed drift of the
         paper's Table 1), zero for plain dead reckoning.
-    yaw_rate_range : float, optional
-        Gyro full-scale range (rad/s): a sample with ``|omega| >= yaw_rate_range``
+    full_scale_gyro : float, optional  (formerly ``yaw_rate_range``, which warns)
+        Gyro full-scale range (rad/s): a sample with ``|omega| >= full_scale_gyro``
         is at the rails, not a measurement, and holds the previous speed and
         yaw rate (counted in ``held``). Default: no range.
 
@@ -260,7 +262,7 @@ def dead_reckoning(t: Times, speed: ArrayLike, yaw_rate: ArrayLike, x0: ArrayLik
     bias = as_array(velocity_bias, "velocity_bias", tail=(2,))
     if bias.shape != (2,):
         raise ValueError(f"velocity_bias: expected shape (2,), got {bias.shape}")
-    fs = range_limit(yaw_rate_range, "yaw_rate_range")
+    fs = range_limit(full_scale_gyro, "full_scale_gyro")
     return _dead_reckon(t, speed, yaw_rate, x0, bias, fs)
 
 
@@ -534,7 +536,7 @@ class EkfResult:
     n_reacquired_channels : ndarray of int, shape (4,)
         ``reacquired.sum(axis=0)``.
     saturated : ndarray of bool, shape (N,)
-        Yaw-rate samples at or beyond the gyro rails (``|omega| >= yaw_rate_range``),
+        Yaw-rate samples at or beyond the gyro rails (``|omega| >= full_scale_gyro``),
         never fused at face value (see :func:`filter_grid`).
     n_saturated : int
         Saturated yaw-rate samples in epochs after the first (``saturated[1:].sum()``).
@@ -582,16 +584,17 @@ def _gate(gate):
     return np.ascontiguousarray(np.broadcast_to(g, (4,)), dtype=float)
 
 
+@renamed_keywords(yaw_rate_range="full_scale_gyro")
 def filter_grid(t: Times, z: ArrayLike, x0: ArrayLike, P0: ArrayLike | None = None, Q: ArrayLike | None = None,
                 R: ArrayLike | None = None, gate: float | ArrayLike = np.inf, fast: bool = True,
-                yaw_rate_range: float | None = None, reacquire: int = 3) -> EkfResult:
+                full_scale_gyro: float | None = None, reacquire: int = 3) -> EkfResult:
     """The EKF on measurements already in the grid frame.
 
     Faults: a NaN component is missing and left out of the update (an epoch
     with nothing is prediction only); with a finite ``gate`` each channel
     whose innovation fails its own NIS test is left out and the others are
     fused; yaw-rate samples at the gyro rails are treated as censored (see
-    ``yaw_rate_range``). All are
+    ``full_scale_gyro``). All are
     counted in the :class:`EkfResult`. Times must be strictly increasing
     (``ValueError`` otherwise: run :func:`navlib.timing.sanitize` first); the
     step ``T = t[k] - t[k-1]`` may vary from epoch to epoch (``Q`` stays per step).
@@ -620,9 +623,9 @@ def filter_grid(t: Times, z: ArrayLike, x0: ArrayLike, P0: ArrayLike | None = No
     fast : bool
         Use the specialised H = I5 update when every component is present
         (False: :func:`navlib.kalman.update` at every epoch; same result).
-    yaw_rate_range : float, optional
+    full_scale_gyro : float, optional  (formerly ``yaw_rate_range``, which warns)
         Gyro full-scale range (rad/s): a yaw-rate sample with ``|omega| >=
-        yaw_rate_range`` is at the rails and only says ``|omega| >= range``.
+        full_scale_gyro`` is at the rails and only says ``|omega| >= range``.
         It is never gated and never fused at face value: while the predicted
         omega is inside the rails the rail value ``±range`` is fused (the
         nearest rate the sample allows), once the prediction is beyond the
@@ -653,7 +656,7 @@ def filter_grid(t: Times, z: ArrayLike, x0: ArrayLike, P0: ArrayLike | None = No
             raise ValueError(f"{name}: required (the filter has no default noise; e.g. gauss_kruger_ekf.{name}_PAPER)")
     Q, R = covariance(Q, "Q"), covariance(R, "R")
     gate = _gate(gate)
-    fs = range_limit(yaw_rate_range, "yaw_rate_range")
+    fs = range_limit(full_scale_gyro, "full_scale_gyro")
     with np.errstate(invalid="ignore"):
         saturated = np.abs(z[:, 4]) >= fs                   # NaN compares False
     if isinstance(reacquire, (bool, np.bool_)) or not isinstance(reacquire, (int, np.integer)) or reacquire < 1:

@@ -24,6 +24,7 @@ import numpy as np
 from numba import njit
 
 from .. import kalman
+from .._deprecate import renamed_keywords
 from .._typing import Array, ArrayLike, Interval, Quat, Vec3, Vec3Series
 from .._validate import flag, nonempty_array, scalar
 from ..units import G0
@@ -212,13 +213,15 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
     P_out[t] = P
 
 
+@renamed_keywords(gyro_range="full_scale_gyro", accel_range="full_scale_accel", mag_range="full_scale_mag")
 def quaternion_kf(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, *, m_b: Vec3Series | None = None,
                   heading_rtk: ArrayLike | None = None, rtk_valid: ArrayLike | None = None, kp: float = 1.0,
                   ki: float = 0.02, B_n: Vec3 | None = None, gate: MagGate | None = None, accel_tol: float | None = None,
                   g: float = G0, rtk_hold: float = 0.25, sigma_gyro: float = 1e-3,
                   sigma_accel: float = 0.02, sigma_mag: float = 0.08, p0: float = 1e-4,
                   linear_innovation: bool = False, rtk_gate: float | None = None, rtk_confirm: int = 5,
-                  gyro_range: float | None = None, accel_range: float | None = None, mag_range: float | None = None,
+                  full_scale_gyro: float | None = None, full_scale_accel: float | None = None,
+                  full_scale_mag: float | None = None,
                   gyro_jump: float | None = None, keep_cov: bool = False) -> AttitudeResult:
     """Quaternion Kalman filter driven by the PI-corrected rate (Eqs. 16-20, Fig. 2 of Zhang et al. 2023).
 
@@ -274,12 +277,13 @@ def quaternion_kf(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, *
         With ``rtk_gate``: after this many consecutive rejected epochs that
         agree with each other (within ``rtk_gate``), use them (``rtk_reacquired``),
         so that an estimate that drifted in an outage is pulled back.
-    gyro_range, accel_range, mag_range : float, optional
+    full_scale_gyro, full_scale_accel, full_scale_mag : float, optional
         Full-scale ranges (rad/s, m/s^2, uT), e.g. ``sensors.imu_model(name).gyro.full_scale``.
         Samples with a component at or beyond the range are counted
         (``*_saturated``); accelerometer and magnetometer corrections are
         skipped for them, gyro samples are used (the clipped rate is the best
-        available) and flag the attitude after them as suspect.
+        available) and flag the attitude after them as suspect. (Formerly ``gyro_range``,
+        ``accel_range``, ``mag_range``: the old names warn.)
     gyro_jump : float, optional
         Spike gate (rad/s): a gyro sample differing from the last used one by
         more than this on some axis is replaced by it (``gyro_gated``) unless
@@ -317,7 +321,7 @@ def quaternion_kf(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, *
     saturated measurements are simply not used, so a fault never enters P.
     """
     lead, inp, sat = prepare_inputs(w_ib_b, f_b, dt, q0, m_b, heading_rtk, rtk_valid, B_n, gate, accel_tol, g,
-                                    rtk_hold, rtk_gate, rtk_confirm, gyro_range, accel_range, mag_range, gyro_jump)
+                                    rtk_hold, rtk_gate, rtk_confirm, full_scale_gyro, full_scale_accel, full_scale_mag, gyro_jump)
     kp, ki = scalar(kp, "kp", positive=True, allow_zero=True), scalar(ki, "ki", positive=True, allow_zero=True)
     T, N = inp.w.shape[:2]
     if inp.use_rtk:

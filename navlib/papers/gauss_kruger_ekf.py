@@ -23,6 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import geodesy, robust
+from .._deprecate import renamed_keywords
 from .._validate import as_array, generator, range_limit, scalar, time_axis
 from ..earth import CGCS2000, Ellipsoid
 from ..filters.planar_ekf import covariance, filter_grid, propagate
@@ -102,15 +103,16 @@ def _forward_fill(values):
     return robust.hold(values, leading="first", name="values", axis=-1)[0]
 
 
+@renamed_keywords(yaw_rate_range="full_scale_gyro")
 def ekf(t, gps, heading, speed, yaw_rate, x0, *, origin=None, zone=None, width: int = 3,
         ellipsoid: Ellipsoid = CGCS2000, P0=None, Q=Q_PAPER, R=R_PAPER, gate=np.inf,
-        correct_convergence: bool = True, deg: bool = False, yaw_rate_range: float | None = None,
+        correct_convergence: bool = True, deg: bool = False, full_scale_gyro: float | None = None,
         reacquire: int = 3):
     """The paper's pipeline: GPS lat/lon -> Gauss–Krüger -> EKF with IMU heading, speed, yaw rate.
 
     Faults are handled as in :func:`navlib.filters.planar_ekf.filter_grid` (NaN: skip the component;
     ``gate``: leave out a channel whose innovation fails its NIS test, e.g. a
-    50 m GPS jump or an IMU spike; ``yaw_rate_range``: leave out samples at the
+    50 m GPS jump or an IMU spike; ``full_scale_gyro``: leave out samples at the
     gyro rails) and counted in the result. Timestamps must be strictly
     increasing: for logs with repeated or out-of-order samples the documented
     pipeline is ``navlib.timing.sanitize(t, gps, heading, speed, yaw_rate)``
@@ -136,7 +138,7 @@ def ekf(t, gps, heading, speed, yaw_rate, x0, *, origin=None, zone=None, width: 
         As in :func:`navlib.geodesy.geodetic2gk`.
     P0, Q, R, gate, reacquire
         As in :func:`navlib.filters.planar_ekf.filter_grid` (Q and R default to Eqs. 17–18).
-    yaw_rate_range : float, optional
+    full_scale_gyro : float, optional  (formerly ``yaw_rate_range``, which warns)
         Gyro full-scale range (rad/s, or deg/s with ``deg=True``); see :func:`navlib.filters.planar_ekf.filter_grid`.
     correct_convergence : bool
         Subtract the grid convergence at the latest fix from the heading (True);
@@ -182,10 +184,10 @@ def ekf(t, gps, heading, speed, yaw_rate, x0, *, origin=None, zone=None, width: 
         gamma = np.deg2rad(gamma)
     z[:, 2] = heading - _forward_fill(gamma) if correct_convergence else heading
     z[:, 3], z[:, 4] = speed, yaw_rate
-    if yaw_rate_range is not None:
-        yaw_rate_range = range_limit(yaw_rate_range, "yaw_rate_range")
-        yaw_rate_range = np.deg2rad(yaw_rate_range) if deg else yaw_rate_range
-    res = filter_grid(t, z, x0, P0, Q, R, gate, yaw_rate_range=yaw_rate_range, reacquire=reacquire)
+    if full_scale_gyro is not None:
+        full_scale_gyro = range_limit(full_scale_gyro, "full_scale_gyro")
+        full_scale_gyro = np.deg2rad(full_scale_gyro) if deg else full_scale_gyro
+    res = filter_grid(t, z, x0, P0, Q, R, gate, full_scale_gyro=full_scale_gyro, reacquire=reacquire)
     res.zone, res.origin_gk = zone, origin_gk
     return res
 

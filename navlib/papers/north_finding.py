@@ -58,7 +58,7 @@ outliers (spikes)  stop means: ``outlier_k`` x MAD from the     ``StaticWindow.n
                    median left out (opt-in; without it the
                    error bound is ``k sigma sqrt(p/N)``)
 saturation         stop: refused (``full_scale_*``);            ``n_saturated_*``, ``SATURATED``;
-                   INS drive: refused (``full_scale``)          ``InsReport.n_saturated``
+                   INS drive: refused (``full_scale_gyro``)     ``InsReport.n_saturated``
 timing             ``timing.sanitize`` then windows cut by      ``TimingReport``; ``dt`` arrays in
                    time (``stop_solutions(time=...)``); INS     :func:`ins_heading_change`
                    integrates per-sample intervals
@@ -89,6 +89,7 @@ import numpy as np
 from scipy.special import ndtr
 
 from .. import attitude, earth, robust, strapdown
+from .._deprecate import renamed_keywords
 from .._typing import Angles, Array, ArrayLike, Dcm, Interval, Times, Vec3, Vec3Series
 from .._validate import as_dcm, generator, in_range, intervals, time_axis
 from .._validate import nonempty_array as as_array
@@ -727,7 +728,7 @@ class InsReport:
     longest_gap : ndarray
         Longest run of dropouts (s).
     n_saturated : ndarray of int
-        Samples with a component at the rails (``|w| >= full_scale``).
+        Samples with a component at the rails (``|w| >= full_scale_gyro``).
     refused : ndarray of bool
         Drives whose heading change is NaN: a dropout run longer than
         ``max_gap``, a saturated sample, or no valid sample at all.
@@ -762,8 +763,9 @@ def _hold_last(w, dts):
     return filled, bad.sum(-1), longest, empty
 
 
+@renamed_keywords(full_scale="full_scale_gyro")
 def ins_heading_change(w_ib_b: Vec3Series, f_start: Vec3, dt: Interval, lat: float, earth_rate: str = "vertical", *,
-                       max_gap: float = 0.1, full_scale: float | None = None,
+                       max_gap: float = 0.1, full_scale_gyro: float | None = None,
                        report: bool = False) -> Array | tuple[Array, InsReport]:
     """MEMS strapdown heading change over a drive, started with heading 0 (paper step 2).
 
@@ -787,7 +789,7 @@ def ins_heading_change(w_ib_b: Vec3Series, f_start: Vec3, dt: Interval, lat: flo
       across a gap times its length, so a drive with a run of dropouts longer
       than ``max_gap`` (default 0.1 s: <= 0.3 deg for a 3 deg/s turn starting
       inside the gap) is refused. A 30-s gap in a 60-s drive is refused.
-    * saturation: with ``full_scale`` (gyro range, rad/s), a drive with
+    * saturation: with ``full_scale_gyro`` (gyro range, rad/s), a drive with
       samples at the rails is refused (``n_saturated``): the turn was faster
       than the clipped reading.
     * timing: ``dt`` may be per-sample intervals (``timing.intervals`` after
@@ -809,7 +811,7 @@ def ins_heading_change(w_ib_b: Vec3Series, f_start: Vec3, dt: Interval, lat: flo
     earth_rate : {"vertical", "none", "full"}
     max_gap : float
         Longest run of dropouts bridged by holding the last sample (s).
-    full_scale : float, optional
+    full_scale_gyro : float, optional  (formerly ``full_scale``, which warns)
         Gyro range (rad/s); None: no saturation check.
     report : bool
         Also return an :class:`InsReport`.
@@ -830,7 +832,7 @@ def ins_heading_change(w_ib_b: Vec3Series, f_start: Vec3, dt: Interval, lat: flo
     dts = intervals(dt, n)
     step = float(dts[0]) if np.all(dts == dts[0]) else float(dts.mean())
     max_gap = float(positive(max_gap, "max_gap", allow_zero=True))
-    fs = np.inf if full_scale is None else float(positive(full_scale, "full_scale"))
+    fs = np.inf if full_scale_gyro is None else float(positive(full_scale_gyro, "full_scale_gyro"))
     pitch, roll = level(as_array(f_start, "f_start", tail=(3,)))
     with np.errstate(invalid="ignore"):
         n_sat = np.sum(np.any(np.abs(w) >= fs, -1), -1)             # NaN compares False

@@ -83,7 +83,7 @@ every action is counted in ``FilterResult.counts``):
   Off by default (the paper's filter): then a spike in a stance fails the
   detector or the NIS gate (``zupt_rejected``) and one while walking is
   integrated.
-* IMU saturation (``full_scale=`` given): samples at the rails are counted
+* IMU saturation (``full_scale_gyro`` / ``full_scale_accel`` given): samples at the rails are counted
   (``imu_saturated``), integrated as measured, and excluded from ZUPT/ZARU
   (``static_skipped``).
 * Barometer: NaN = no reading (the tracker coasts); spikes beyond
@@ -112,8 +112,9 @@ import numpy as np
 from numba import njit
 
 from .. import _kernels, attitude, earth, kalman, robust, trajectory
+from .._deprecate import renamed_keywords
 from .._kernels import radii_mn
-from .._validate import as_array, as_quat, generator, intervals, positive
+from .._validate import as_array, as_quat, generator, intervals, positive, range_limit
 from ..filters.zupt import error_state_into, zupt_zaru_rows_into, zupt_zaru_z_into
 from ..strapdown import earth_constants, nav_step
 from ..trajectory import Leg
@@ -642,7 +643,7 @@ class FilterResult:
         ``imu_spikes`` (isolated spikes found by the ``spike_gyro`` /
         ``spike_accel`` test of :class:`FilterConfig`, held like dropouts),
         ``imu_saturated`` (samples with a gyro or accelerometer component at
-        the rails of ``full_scale``; integrated as measured),
+        the rails of ``full_scale_gyro`` / ``full_scale_accel``; integrated as measured),
         ``static_skipped`` (samples flagged static but held or saturated:
         left out of the ZUPT/ZARU average),
         ``baro_aidings`` / ``mag_aidings`` (samples used while walking),
@@ -677,18 +678,19 @@ class FilterResult:
         return self.counts["zupt_updates"] > 0
 
 
-def _field_reference(B_n, name="B_n"):
+def _field_reference(B_n):
     if B_n is None:
         return np.array([0.0, 0.0])
-    D, I, F = earth.field_angles(as_array(B_n, name, tail=(3,)).reshape(3), deg=False)
+    D, I, F = earth.field_angles(as_array(B_n, "B_n", tail=(3,)).reshape(3), deg=False)
     return np.array([float(F), float(I)])
 
 
+@renamed_keywords(field_n="B_n")
 def run_filter(w_ib_b, f_b, dt, lla0, vel0, q0, static, *, h_baro=None, m_b=None,
                declination: float = 0.0, B_n=None, walk_aiding: str = "reset", zupt: bool = True,
                accel_bias0=(0.0, 0.0, 0.0), gyro_bias0=(0.0, 0.0, 0.0), config: FilterConfig = FilterConfig(),
-               t0: float = 0.0, ellipsoid: earth.Ellipsoid = earth.WGS84, full_scale=None,
-               field_n=None) -> FilterResult:
+               t0: float = 0.0, ellipsoid: earth.Ellipsoid = earth.WGS84, full_scale_gyro: float | None = None,
+               full_scale_accel: float | None = None, full_scale=None) -> FilterResult:
     """The paper's system: strapdown INS + ZUPT/ZARU Kalman filter + walking aids.
 
     Parameters
@@ -730,16 +732,16 @@ def run_filter(w_ib_b, f_b, dt, lla0, vel0, q0, static, *, h_baro=None, m_b=None
     config : FilterConfig
     t0 : float
         Time of the first epoch (s).
+    full_scale_gyro, full_scale_accel : float, optional
+        Device ranges (rad/s, m/s^2), e.g. the ``full_scale`` of the triads of
+        :func:`navlib.sensors.imu_model`. A sample with any component at or
+        beyond the range is at the rails: counted (``imu_saturated``),
+        integrated as measured (the best estimate available), but never used
+        for ZUPT/ZARU (``static_skipped``). Default: no range (nothing is
+        treated as clipped).
     full_scale : (float, float), optional
-        Device range ``(gyro rad/s, accelerometer m/s^2)``, e.g. the
-        ``full_scale`` of :func:`navlib.sensors.imu_model`. A sample with any
-        component at or beyond the range is at the rails: counted
-        (``imu_saturated``), integrated as measured (the best estimate
-        available), but never used for ZUPT/ZARU (``static_skipped``).
-        Default: no range (nothing is treated as clipped).
-
-    field_n : array_like, shape (3,), optional
-        Deprecated spelling of ``B_n`` (warns; removed in navlib 0.3).
+        Deprecated: ``(full_scale_gyro, full_scale_accel)`` as one pair (warns; removed in navlib 0.3).
+        ``field_n`` is the deprecated spelling of ``B_n`` (warns likewise).
     Returns
     -------
     FilterResult
@@ -778,19 +780,18 @@ def run_filter(w_ib_b, f_b, dt, lla0, vel0, q0, static, *, h_baro=None, m_b=None
         raise ValueError(f"ellipsoid: expected a navlib.earth.Ellipsoid, got {type(ellipsoid).__name__}")
     b0 = np.concatenate([as_array(accel_bias0, "accel_bias0", tail=(3,)).reshape(3),
                          as_array(gyro_bias0, "gyro_bias0", tail=(3,)).reshape(3)])
-    if full_scale is None:
-        gyro_fs, accel_fs = np.inf, np.inf
-    else:
+    gyro_fs, accel_fs = range_limit(full_scale_gyro, "full_scale_gyro"), range_limit(full_scale_accel, "full_scale_accel")
+    if full_scale is not None:                    # deprecated pair, removed in navlib 0.3
+        warnings.warn("run_filter(full_scale=(gyro, accel)) is deprecated; use full_scale_gyro=, full_scale_accel=",
+                      DeprecationWarning, stacklevel=2)
         fs = as_array(full_scale, "full_scale", allow_nan=False, finite=False)
         if fs.shape != (2,) or np.isnan(fs).any() or np.any(fs <= 0):
             raise ValueError(f"full_scale: expected (gyro rad/s, accel m/s^2), two positive numbers, "
                              f"got {full_scale!r}")
+        if full_scale_gyro is not None or full_scale_accel is not None:
+            raise ValueError("full_scale: give the ranges once, as full_scale_gyro and full_scale_accel")
         gyro_fs, accel_fs = float(fs[0]), float(fs[1])
-    if field_n is not None:                       # deprecated spelling, removed in navlib 0.3
-        warnings.warn("run_filter(field_n=...) is deprecated; use B_n=", DeprecationWarning, stacklevel=2)
-        if B_n is not None:
-            raise ValueError("field_n: give the reference field once, as B_n")
-    field_ref = _field_reference(B_n) if field_n is None else _field_reference(field_n, "field_n")
+    field_ref = _field_reference(B_n)
     c = config
     every = max(1, int(round(1.0 / (c.update_rate * float(np.median(dts))))))
     q_rate = np.concatenate([np.zeros(3), np.full(3, c.accel_noise ** 2), np.full(3, c.gyro_noise ** 2),

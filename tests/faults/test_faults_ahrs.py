@@ -401,7 +401,7 @@ def test_gyro_saturation_is_counted_and_the_reference_recovers(name):
     d = turning(np.arange(n + 1) * DT, spin)
     fs = IMU.gyro.full_scale
     w, clipped = faults.saturate(d["w"], fs)
-    kw = dict(opts, ki=0.0, rtk_gate=units.deg(10.0), gyro_range=fs)
+    kw = dict(opts, ki=0.0, rtk_gate=units.deg(10.0), full_scale_gyro=fs)
     res = filt(w, d["f"], DT, d["q0"], heading_rtk=d["rtk"], rtk_valid=d["epoch"], **kw)
     assert_healthy(res)
     c = counts(res)
@@ -428,7 +428,7 @@ def test_saturated_accelerometer_and_magnetometer_samples_are_not_used(fig4, nam
     x[shock] += [0.0, 0.3 * fs, 1.5 * fs] if sensor == "f" else [2000.0, -500.0, 0.0]
     x, clipped = faults.saturate(x, fs)
     assert (clipped == shock).all()
-    kw = {"accel_range": fs} if sensor == "f" else {"mag_range": fs}
+    kw = {"full_scale_accel": fs} if sensor == "f" else {"full_scale_mag": fs}
     res = run(name, fig4, "mag", **{sensor: x}, **kw)
     assert_healthy(res)
     key = "accel_saturated" if sensor == "f" else "mag_saturated"

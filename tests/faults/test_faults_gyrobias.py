@@ -212,11 +212,11 @@ def test_integrator_fills_dropouts_by_interpolation_within_a_stated_bound():
 def test_gyro_saturation_is_counted_by_the_integrator():
     """The rig's rotations peak at 360 deg/s: within the MTi-100's 450 deg/s, beyond the ADIS16475-1's 125."""
     fs_mti = MODEL.gyro.full_scale
-    _, rep = euler.integrate_euler(HPR0, IMU.w_ib_b, DT, W_IE_N, full_scale=fs_mti, report=True)
+    _, rep = euler.integrate_euler(HPR0, IMU.w_ib_b, DT, W_IE_N, full_scale_gyro=fs_mti, report=True)
     assert rep.n_saturated == 0 and rep.first_saturated == -1
     fs = sensors.imu_model("ADIS16475-1").gyro.full_scale
     w, clipped = faults.saturate(IMU.w_ib_b, fs)
-    hpr, rep = euler.integrate_euler(HPR0, w, DT, W_IE_N, full_scale=fs, report=True)
+    hpr, rep = euler.integrate_euler(HPR0, w, DT, W_IE_N, full_scale_gyro=fs, report=True)
     assert rep.n_saturated == clipped.sum() > 0 and rep.first_saturated == np.flatnonzero(clipped)[0]
     # why it must be reported: every clipped rotation falls short by tens of degrees (the return
     # rotation undoes it, so only the attitude in between shows it)

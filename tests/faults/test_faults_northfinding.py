@@ -197,11 +197,11 @@ def test_ins_gap_of_30_s_is_refused():
 
 def test_ins_saturation_is_refused_and_counted():
     """The 69-deg turn runs at 3.5 deg/s: within the ADIS16475-1's 125 deg/s, clipped by a 2-deg/s range."""
-    dpsi, rep = nf.ins_heading_change(W_DRIVE, F_START, DT, LAT, full_scale=MEMS.gyro.full_scale, report=True)
+    dpsi, rep = nf.ins_heading_change(W_DRIVE, F_START, DT, LAT, full_scale_gyro=MEMS.gyro.full_scale, report=True)
     assert np.all(rep.n_saturated == 0) and np.array_equal(dpsi, DPSI_CLEAN)
     fs = units.deg_per_s(2.0)
     w, clipped = faults.saturate(W_DRIVE, fs)
-    dpsi, rep = nf.ins_heading_change(w, F_START, DT, LAT, full_scale=fs, report=True)
+    dpsi, rep = nf.ins_heading_change(w, F_START, DT, LAT, full_scale_gyro=fs, report=True)
     np.testing.assert_array_equal(rep.n_saturated, clipped.sum(-1))
     assert np.all(rep.n_saturated > 0) and rep.refused.all() and np.isnan(dpsi).all()
     # why: the clipped turn is short by tens of degrees

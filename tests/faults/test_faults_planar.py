@@ -278,7 +278,7 @@ def fast_turns_run(seed=3, spin_steps=4):
 def test_ekf_gyro_saturation_is_counted_and_never_taken_at_face_value():
     """The yaw-rate channel of a ±125 deg/s gyro (ADIS16475-1) through 172 deg/s turns.
 
-    With ``yaw_rate_range`` every sample at the rails is counted
+    With ``full_scale_gyro`` every sample at the rails is counted
     (``n_saturated`` = injected, ``saturated`` = the clipped mask) and fused
     only as the bound ``|omega| >= range``. Bounds vs the unclipped run:
     heading error < 0.6 rad (measured 0.44; unclipped 0.26: the rails hide
@@ -290,7 +290,7 @@ def test_ekf_gyro_saturation_is_counted_and_never_taken_at_face_value():
     clipped, at_rail = faults.saturate(s.yaw_rate, GYRO_RANGE)
     assert at_rail[1:].sum() == 12
     ref = ekf(t, s.gps, s.heading, s.speed, s.yaw_rate, x0=x0, gate=GATE_GPS)
-    res = ekf(t, s.gps, s.heading, s.speed, clipped, x0=x0, gate=GATE_GPS, yaw_rate_range=GYRO_RANGE)
+    res = ekf(t, s.gps, s.heading, s.speed, clipped, x0=x0, gate=GATE_GPS, full_scale_gyro=GYRO_RANGE)
     assert_healthy(res)
     assert ref.n_rejected == 0 and res.n_rejected == 0
     assert res.n_saturated == at_rail[1:].sum() and np.array_equal(res.saturated, at_rail)
@@ -312,7 +312,7 @@ def test_ekf_gate_cannot_lock_out_a_manoeuvre_beyond_q():
     Saturated rail samples are never gated."""
     t, truth, s, x0 = fast_turns_run()
     clipped, at_rail = faults.saturate(s.yaw_rate, GYRO_RANGE)
-    res = ekf(t, s.gps, s.heading, s.speed, clipped, x0=x0, gate=GATE, yaw_rate_range=GYRO_RANGE)
+    res = ekf(t, s.gps, s.heading, s.speed, clipped, x0=x0, gate=GATE, full_scale_gyro=GYRO_RANGE)
     assert_healthy(res)
     assert res.n_saturated == 12 and not res.rejected[at_rail, 3].any()
     hit = np.flatnonzero(res.rejected.any(axis=1))
@@ -323,7 +323,7 @@ def test_ekf_gate_cannot_lock_out_a_manoeuvre_beyond_q():
     err = np.abs(np.angle(np.exp(1j * (res.x[:, 2] - truth[:, 2]))))
     for k in starts:
         assert err[k + 20:k + 100].max() < 0.3
-    locked = ekf(t, s.gps, s.heading, s.speed, clipped, x0=x0, gate=GATE, yaw_rate_range=GYRO_RANGE,
+    locked = ekf(t, s.gps, s.heading, s.speed, clipped, x0=x0, gate=GATE, full_scale_gyro=GYRO_RANGE,
                  reacquire=10 ** 9)
     assert locked.n_rejected_channels[3] > 100 and locked.n_reacquired_channels.sum() == 0
 
@@ -334,7 +334,7 @@ def test_ekf_estimate_can_leave_the_rails_in_a_long_saturated_turn():
     held at the rail (ends > range, within 0.3 rad/s of the truth)."""
     t, truth, s, x0 = fast_turns_run(seed=4, spin_steps=40)
     clipped, at_rail = faults.saturate(s.yaw_rate, GYRO_RANGE)
-    res = ekf(t, s.gps, s.heading, s.speed, clipped, x0=x0, yaw_rate_range=GYRO_RANGE)
+    res = ekf(t, s.gps, s.heading, s.speed, clipped, x0=x0, full_scale_gyro=GYRO_RANGE)
     assert_healthy(res)
     assert res.n_saturated == at_rail[1:].sum() >= 100
     end_of_turn = 120 + 39
@@ -369,7 +369,7 @@ def test_dead_reckoning_dropouts_gap_and_saturation_are_held_and_counted(clean):
 
     t2, truth2, s2, x0 = fast_turns_run()
     clipped, at_rail = faults.saturate(s2.yaw_rate, GYRO_RANGE)
-    _, held = planar_ekf.dead_reckoning(t2, s2.speed, clipped, x0, yaw_rate_range=GYRO_RANGE)
+    _, held = planar_ekf.dead_reckoning(t2, s2.speed, clipped, x0, full_scale_gyro=GYRO_RANGE)
     assert held == at_rail[:-1].sum() == 12
 
 
@@ -390,5 +390,5 @@ def test_dead_reckoning_spikes_stated_bounds(clean):
     yaw_rate, m_w = faults.spikes(s.yaw_rate, 0.01, SIGMA[4], rng)
     yaw_rate, at_rail = faults.saturate(yaw_rate, GYRO_RANGE)
     assert np.array_equal(at_rail, m_w)
-    _, held = planar_ekf.dead_reckoning(t, s.speed, yaw_rate, X0_CURVE, yaw_rate_range=GYRO_RANGE)
+    _, held = planar_ekf.dead_reckoning(t, s.speed, yaw_rate, X0_CURVE, full_scale_gyro=GYRO_RANGE)
     assert held == m_w[:-1].sum() > 0
