@@ -228,8 +228,8 @@ def flag(x: bool, name: str) -> bool:
     return bool(x)
 
 
-def choice(x: str, name: str, options: tuple[str, ...]) -> str:
-    """Return ``x`` if it is one of ``options``."""
+def choice(x: Any, name: str, options: tuple[Any, ...]) -> Any:
+    """Return ``x`` if it is one of ``options`` (strings, or e.g. the allowed integer settings)."""
     if x not in options:
         raise ValueError(f"{name}: expected one of {tuple(options)}, got {x!r}")
     return x
@@ -249,12 +249,16 @@ def same_shape(arr: np.ndarray, name: str, shape: tuple[int, ...], of: str = "")
     return arr
 
 
-def broadcast(*arrays: np.ndarray, name: str) -> list[np.ndarray]:
-    """Return ``arrays`` broadcast against each other (``np.broadcast_arrays``); ``name`` is blamed if they do not."""
+def broadcast(*arrays: np.ndarray, name: str, of: str = "") -> list[np.ndarray]:
+    """Return ``arrays`` broadcast against each other (``np.broadcast_arrays``); ``name`` is blamed if they do not.
+
+    ``of`` names the arrays in the message when ``name`` does not (e.g. ``name="f_b", of="w_ib_b, f_b"``).
+    """
     try:
         return list(np.broadcast_arrays(*arrays))
     except ValueError:
-        raise ValueError(f"{name}: shapes {', '.join(str(np.shape(a)) for a in arrays)} do not broadcast") from None
+        shapes = ", ".join(str(np.shape(a)) for a in arrays)
+        raise ValueError(f"{name}: shapes {shapes}{f' (of {of})' if of else ''} do not broadcast") from None
 
 
 def range_limit(x: float | None, name: str) -> float:

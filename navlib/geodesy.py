@@ -394,7 +394,7 @@ def gk2geodetic(x: ArrayLike, y: ArrayLike, *, zone: ArrayLike | None = None, lo
         raise ValueError("zone, lon0: give exactly one of them (or zone_prefix=True)")
     L0 = (_central_meridian(zone, w, True, "y" if zone_prefix else "zone") if lon0 is None
           else _lon_deg(lon0, deg, "lon0"))
-    x, y, L0 = broadcast(x, y, L0, name="x, y")
+    x, y, L0 = broadcast(x, y, L0, name="x, y", of="x, y and the central meridian")
     A, e, _, beta = _kruger(ellipsoid.a, ellipsoid.f)
     xi = (x - fn) / (k0 * A)
     eta = (y - fe) / (k0 * A)
@@ -529,7 +529,7 @@ def geodetic2ecef(lat: ArrayLike, lon: ArrayLike, h: ArrayLike, ellipsoid: Ellip
     lat, lon_deg = _validate_lat_lon(lat, lon, deg)
     lon = np.deg2rad(lon_deg)
     h = nonempty_array(h, "h")
-    broadcast(h, lat, name="h")
+    broadcast(h, lat, name="h", of="h and lat, lon")
     R_N = ellipsoid.a / np.sqrt(1 - ellipsoid.e2 * np.sin(lat) ** 2)
     r = (R_N + h) * np.cos(lat)
     return r * np.cos(lon), r * np.sin(lon), (R_N * (1 - ellipsoid.e2) + h) * np.sin(lat)

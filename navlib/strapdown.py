@@ -260,7 +260,7 @@ def integrate(lla0: Vec3, vel0: Vec3, q0: Quat, w_ib_b: Vec3Series, f_b: Vec3Ser
     on_nan = choice(on_nan, "on_nan", _ON_NAN)
     w = _samples(w_ib_b, "w_ib_b")
     f = _samples(f_b, "f_b")
-    w, f = broadcast(w, f, name="f_b")
+    w, f = broadcast(w, f, name="f_b", of="w_ib_b, f_b")
     w, held_w = _dropouts(w, "w_ib_b", on_nan)
     f, held_f = _dropouts(f, "f_b", on_nan)
     held = held_w | held_f
