@@ -54,7 +54,7 @@ def real(x: ArrayLike, name: str) -> np.ndarray:
 
 
 def as_array(x: ArrayLike, name: str, *, tail: tuple[int, ...] = (), finite: bool = True,
-             allow_nan: bool = False, min_ndim: int = 0) -> np.ndarray:
+             allow_nan: bool = False, min_ndim: int = 0, shape: tuple[int | None, ...] | None = None) -> np.ndarray:
     """Return ``x`` as a float64 array whose trailing shape is ``tail``.
 
     Parameters
@@ -73,10 +73,16 @@ def as_array(x: ArrayLike, name: str, *, tail: tuple[int, ...] = (), finite: boo
         reject infinity.
     min_ndim : int
         Minimum number of leading axes in addition to ``tail``.
+    shape : tuple of int or None, optional
+        Required exact shape; a ``None`` entry takes any length, e.g. ``(None,)``
+        for a 1-D array.
     """
     arr = real(x, name)
     if tail and arr.shape[arr.ndim - len(tail):] != tail or arr.ndim < len(tail) + min_ndim:
         want = "(" + ", ".join(["..."] + [str(t) for t in tail]) + ")"
+        raise ValueError(f"{name}: expected shape {want}, got {arr.shape}")
+    if shape is not None and (arr.ndim != len(shape) or any(s not in (None, n) for s, n in zip(shape, arr.shape, strict=True))):
+        want = "(" + ", ".join("N" if s is None else str(s) for s in shape) + ("," if len(shape) == 1 else "") + ")"
         raise ValueError(f"{name}: expected shape {want}, got {arr.shape}")
     if arr.size == 0 and min_ndim > 0:
         raise ValueError(f"{name}: expected a non-empty array, got shape {arr.shape}")
@@ -125,13 +131,13 @@ def generator(rng: np.random.Generator, name: str = "rng") -> np.random.Generato
     return rng
 
 
-def time_axis(t: Times, name: str = "time") -> np.ndarray:
-    """Validate a 1-D strictly increasing time vector (s)."""
+def time_axis(t: Times, name: str = "time", *, increasing: bool = True) -> np.ndarray:
+    """Return a 1-D time vector (s) of at least 2 samples, strictly increasing unless ``increasing=False``."""
     arr = as_array(t, name)
     if arr.ndim != 1 or arr.size < 2:
         raise ValueError(f"{name}: expected a 1-D array of at least 2 samples, got shape {arr.shape}")
-    if np.any(np.diff(arr) <= 0):
-        raise ValueError(f"{name}: expected strictly increasing times")
+    if increasing and np.any(np.diff(arr) <= 0):
+        raise ValueError(f"{name}: expected strictly increasing times (run navlib.timing.sanitize first)")
     return arr
 
 
@@ -208,10 +214,10 @@ def unit_interval(x: float, name: str) -> float:
     return scalar(in_range(as_array(x, name), name, 0.0, 1.0), name)
 
 
-def integer(x: int, name: str, *, minimum: int = 1) -> int:
-    """Return ``x`` as an int >= ``minimum``. ``bool`` is refused (``True`` is not a count)."""
-    if isinstance(x, (bool, np.bool_)) or not isinstance(x, (int, np.integer)) or x < minimum:
-        raise ValueError(f"{name}: expected an integer >= {minimum}, got {x!r}")
+def integer(x: int, name: str, *, minimum: int | None = 1) -> int:
+    """Return ``x`` as an int >= ``minimum`` (any int with ``minimum=None``). ``bool`` is refused (``True`` is not a count)."""
+    if isinstance(x, (bool, np.bool_)) or not isinstance(x, (int, np.integer)) or minimum is not None and x < minimum:
+        raise ValueError(f"{name}: expected an integer{'' if minimum is None else f' >= {minimum}'}, got {x!r}")
     return int(x)
 
 
@@ -222,11 +228,37 @@ def flag(x: bool, name: str) -> bool:
     return bool(x)
 
 
-def choice(x: str, name: str, options: tuple[str, ...]) -> str:
-    """Return ``x`` if it is one of ``options``."""
+def choice(x: Any, name: str, options: tuple[Any, ...]) -> Any:
+    """Return ``x`` if it is one of ``options`` (strings, or e.g. the allowed integer settings)."""
     if x not in options:
         raise ValueError(f"{name}: expected one of {tuple(options)}, got {x!r}")
     return x
+
+
+def instance(x: Any, name: str, cls: type | tuple[type, ...], what: str, *, error: type[Exception] = ValueError) -> Any:
+    """Return ``x`` if it is an instance of ``cls``; else raise ``error`` saying ``what`` was expected (e.g. "an ImuModel")."""
+    if not isinstance(x, cls):
+        raise error(f"{name}: expected {what}, got {type(x).__name__}")
+    return x
+
+
+def same_shape(arr: np.ndarray, name: str, shape: tuple[int, ...], of: str = "") -> np.ndarray:
+    """Return ``arr`` if its shape is ``shape`` (the shape of argument ``of``, when given, for the message)."""
+    if arr.shape != tuple(shape):
+        raise ValueError(f"{name}: expected {'the shape of ' + of if of else 'shape'} {tuple(shape)}, got {arr.shape}")
+    return arr
+
+
+def broadcast(*arrays: np.ndarray, name: str, of: str = "") -> list[np.ndarray]:
+    """Return ``arrays`` broadcast against each other (``np.broadcast_arrays``); ``name`` is blamed if they do not.
+
+    ``of`` names the arrays in the message when ``name`` does not (e.g. ``name="f_b", of="w_ib_b, f_b"``).
+    """
+    try:
+        return list(np.broadcast_arrays(*arrays))
+    except ValueError:
+        shapes = ", ".join(str(np.shape(a)) for a in arrays)
+        raise ValueError(f"{name}: shapes {shapes}{f' (of {of})' if of else ''} do not broadcast") from None
 
 
 def range_limit(x: float | None, name: str) -> float:

@@ -23,7 +23,7 @@ from scipy.optimize import least_squares, minimize_scalar
 
 from . import _kernels, attitude, earth
 from ._typing import Angles, Array, ArrayLike, Times, Vec3
-from ._validate import as_array, integer, nonempty_array, positive, scalar
+from ._validate import as_array, integer, nonempty_array, nonempty_positive, positive, same_shape, scalar
 
 __all__ = ["rmse", "allan_deviation", "allan_deviation_theory", "fit_allan",
            "GM_ALLAN_PEAK", "GM_ALLAN_PEAK_TAU", "attitude_errors", "error_statistics", "horizontal_error",
@@ -32,9 +32,7 @@ __all__ = ["rmse", "allan_deviation", "allan_deviation_theory", "fit_allan",
 
 def rmse(err: ArrayLike, axis: int | tuple[int, ...] | None = 0) -> Array:
     """Root mean square of ``err`` along ``axis`` (NaN propagates: no silent dropping)."""
-    err = as_array(err, "err", allow_nan=True)
-    if err.size == 0:
-        raise ValueError("err: expected a non-empty array")
+    err = nonempty_array(err, "err", allow_nan=True)
     return np.sqrt(np.mean(err * err, axis=axis))
 
 
@@ -119,9 +117,7 @@ def allan_deviation_theory(taus: ArrayLike, white: float = 0.0, bias_instability
     rate_random_walk : float
         K (units/s/sqrt(Hz)).
     """
-    taus = positive(taus, "taus")
-    if taus.size == 0:
-        raise ValueError("taus: expected at least one averaging time, got an empty array")
+    taus = nonempty_positive(taus, "taus")
     white, bias_instability, rate_random_walk = (
         positive(v, name, allow_zero=True) for v, name in ((white, "white"), (bias_instability, "bias_instability"),
                                                            (rate_random_walk, "rate_random_walk")))
@@ -160,8 +156,7 @@ def fit_allan(taus: ArrayLike, adev: ArrayLike, n_samples: int, dt: float, *, ra
     adev = positive(adev, "adev")
     if taus.ndim != 1 or taus.size < 3:
         raise ValueError(f"taus: expected a 1-D array of at least 3 averaging times, got shape {taus.shape}")
-    if taus.shape != adev.shape:
-        raise ValueError(f"adev: expected the shape of taus {taus.shape}, got {adev.shape}")
+    same_shape(adev, "adev", taus.shape, of="taus")
     if not isinstance(n_samples, (int, np.integer)) or n_samples < 1:
         raise ValueError(f"n_samples: expected a positive integer, got {n_samples!r}")
     dt = float(positive(dt, "dt"))
@@ -269,9 +264,7 @@ def horizontal_error(lla: Vec3, lla_true: Vec3) -> Array:
 
 def expanding_std(x: ArrayLike) -> Array:
     """Standard deviation of ``x[:k+1]`` for every k (population std), e.g. of latitude over [0, t]."""
-    x = as_array(x, "x", min_ndim=1)
-    if x.ndim != 1:
-        raise ValueError(f"x: expected a 1-D array, got shape {x.shape}")
+    x = as_array(x, "x", min_ndim=1, shape=(None,))
     x = x - x[0]                                             # conditioning
     n = np.arange(1, x.size + 1)
     m1, m2 = np.cumsum(x) / n, np.cumsum(x * x) / n

@@ -18,7 +18,7 @@ from __future__ import annotations
 import numpy as np
 
 from ._typing import Array, ArrayLike, Times
-from ._validate import as_array, in_range, positive
+from ._validate import as_array, choice, in_range, instance, integer, nonempty_positive, positive
 from .analysis import segments
 
 __all__ = ["P0", "T0", "LAPSE", "R_AIR", "G0", "isa_altitude", "isa_pressure", "bmp180_altitude", "bmp180_pressure",
@@ -40,16 +40,12 @@ _EXP = R_AIR * LAPSE / G0
 _P_11KM = P0 * (1 - LAPSE * 11000.0 / T0) ** (1 / _EXP)  # tropopause pressure, 22632.04 Pa
 
 
-def _pressure(p, name="p"):
-    return positive(p, name)
-
-
 def isa_altitude(p: ArrayLike, p0: ArrayLike = P0) -> Array:
     """ISA geopotential altitude (m) from pressure ``p`` (Pa) with reference ``p0`` (Pa).
 
     Valid in the troposphere (below 11 km, p > 22632 Pa for p0 = 101325).
     """
-    p, p0 = _pressure(p), _pressure(p0, "p0")
+    p, p0 = positive(p, "p"), positive(p0, "p0")
     in_range(p / p0, "p", _P_11KM / P0 * (1 - 1e-12), 1.2, "(fraction of p0)")
     return T0 / LAPSE * (1 - (p / p0) ** _EXP)
 
@@ -57,19 +53,19 @@ def isa_altitude(p: ArrayLike, p0: ArrayLike = P0) -> Array:
 def isa_pressure(h: ArrayLike, p0: ArrayLike = P0) -> Array:
     """ISA pressure (Pa) at geopotential altitude ``h`` (m, -1 km to 11 km)."""
     h = in_range(as_array(h, "h"), "h", -1000.0, 11000.0, "m")
-    return _pressure(p0, "p0") * (1 - LAPSE * h / T0) ** (1 / _EXP)
+    return positive(p0, "p0") * (1 - LAPSE * h / T0) ** (1 / _EXP)
 
 
 def bmp180_altitude(p: ArrayLike, p0: ArrayLike = P0) -> Array:
     """Altitude (m) by the BMP180 datasheet formula ``44330 (1 - (p/p0)^(1/5.255))``."""
-    p, p0 = _pressure(p), _pressure(p0, "p0")
+    p, p0 = positive(p, "p"), positive(p0, "p0")
     return 44330.0 * (1 - (p / p0) ** (1 / 5.255))
 
 
 def bmp180_pressure(h: ArrayLike, p0: ArrayLike = P0) -> Array:
     """Inverse of :func:`bmp180_altitude`: ``p0 (1 - h/44330)^5.255`` (Pa)."""
     h = in_range(as_array(h, "h"), "h", -1000.0, 11000.0, "m")
-    return _pressure(p0, "p0") * (1 - h / 44330.0) ** 5.255
+    return positive(p0, "p0") * (1 - h / 44330.0) ** 5.255
 
 
 def hypsometric_height(p: ArrayLike, p_ref: ArrayLike, temperature: ArrayLike) -> Array:
@@ -82,7 +78,7 @@ def hypsometric_height(p: ArrayLike, p_ref: ArrayLike, temperature: ArrayLike) -
     temperature : array_like
         Mean air temperature of the layer (K).
     """
-    p, p_ref = _pressure(p), _pressure(p_ref, "p_ref")
+    p, p_ref = positive(p, "p"), positive(p_ref, "p_ref")
     T = in_range(as_array(temperature, "temperature"), "temperature", 150.0, 350.0, "K")
     return R_AIR * T / G0 * np.log(p_ref / p)
 
@@ -111,20 +107,13 @@ def bmp180_compensate(UT: int, UP: int, calib: dict[str, int], oss: int = 0) -> 
         Temperature in 0.1 degC and pressure in Pa, as the device computes them
         (C semantics: divisions truncate toward zero, right shifts are arithmetic).
     """
-    if oss not in (0, 1, 2, 3):
-        raise ValueError(f"oss: expected 0, 1, 2 or 3, got {oss!r}")
-    if not isinstance(calib, dict):
-        raise ValueError(f"calib: expected a dict of calibration coefficients, got {type(calib).__name__}")
+    choice(oss, "oss", (0, 1, 2, 3))
+    instance(calib, "calib", dict, "a dict of calibration coefficients")
     missing = {"AC1", "AC2", "AC3", "AC4", "AC5", "AC6", "B1", "B2", "MB", "MC", "MD"} - set(calib)
     if missing:
         raise ValueError(f"calib: missing coefficients {sorted(missing)}")
-    def integer(v, name):
-        if isinstance(v, bool) or not isinstance(v, (int, np.integer)):
-            raise ValueError(f"{name}: expected an integer register value, got {v!r}")
-        return int(v)
-
-    c = {k: integer(v, f"calib[{k!r}]") for k, v in calib.items()}
-    UT, UP = integer(UT, "UT"), integer(UP, "UP")
+    c = {k: integer(v, f"calib[{k!r}]", minimum=None) for k, v in calib.items()}
+    UT, UP = integer(UT, "UT", minimum=None), integer(UP, "UP", minimum=None)
     X1 = (UT - c["AC6"]) * c["AC5"] >> 15
     X2 = _cdiv(c["MC"] << 11, X1 + c["MD"])
     B5 = X1 + X2
@@ -167,11 +156,7 @@ def baro_height(p: ArrayLike, p_ref: ArrayLike, temperature: ArrayLike | None = 
     temperature : array_like, optional
         Air temperature (K).
     """
-    p = as_array(p, "p")
-    if p.size == 0:
-        raise ValueError("p: expected at least one pressure, got an empty array")
-    if np.any(p <= 0):
-        raise ValueError(f"p: expected positive pressures (Pa), got min {p.min():g}")
+    p = nonempty_positive(p, "p")
     p_ref = float(positive(p_ref, "p_ref"))
     if temperature is None:
         return bmp180_altitude(p, p_ref)

@@ -18,7 +18,7 @@ import numpy as np
 
 from ._kernels import normal_gravity, radii_mn
 from ._typing import Array, ArrayLike, Vec3
-from ._validate import as_array, in_range, latitude, positive
+from ._validate import as_array, in_range, latitude, positive, scalar
 
 __all__ = ["Ellipsoid", "WGS84", "CGCS2000", "GRS80", "KRASSOVSKY",
            "OMEGA_IE", "earth_rate_n", "gravity", "gravity_n", "radii",
@@ -108,10 +108,6 @@ CGCS2000 = Ellipsoid("CGCS2000", 6378137.0, 1 / 298.257222101, 3.986004418e14, O
 KRASSOVSKY = Ellipsoid("Krassovsky1940", 6378245.0, 1 / 298.3, 3.986004418e14, OMEGA_IE)
 
 
-def _lat(lat, deg):
-    return latitude(lat, "lat", deg=deg)
-
-
 def earth_rate_n(lat: ArrayLike, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> Array:
     """Earth rotation rate in ENU, ``[0, w cos(lat), w sin(lat)]`` (rad/s).
 
@@ -124,7 +120,7 @@ def earth_rate_n(lat: ArrayLike, deg: bool = False, ellipsoid: Ellipsoid = WGS84
     -------
     w_ie_n : ndarray, shape (..., 3)
     """
-    lat = _lat(lat, deg)
+    lat = latitude(lat, "lat", deg=deg)
     w = ellipsoid.omega
     return np.stack([np.zeros_like(lat), w * np.cos(lat), w * np.sin(lat)], -1)
 
@@ -147,7 +143,7 @@ def gravity(lat: ArrayLike, h: ArrayLike = 0.0, deg: bool = False, ellipsoid: El
     -------
     ndarray, shape (...)
     """
-    lat = _lat(lat, deg)
+    lat = latitude(lat, "lat", deg=deg)
     h = in_range(as_array(h, "h"), "h", -12e3, 100e3, "m")
     shape = np.broadcast_shapes(lat.shape, h.shape)
     lat, h = (np.ascontiguousarray(np.broadcast_to(x, shape)).reshape(-1) for x in (lat, h))
@@ -169,7 +165,7 @@ def radii(lat: ArrayLike, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> tu
     R_M, R_N : ndarray, shape (...)
         ``R_N = a / sqrt(1 - e^2 sin^2 lat)``, ``R_M = R_N (1 - e^2) / (1 - e^2 sin^2 lat)``.
     """
-    lat = _lat(lat, deg)
+    lat = latitude(lat, "lat", deg=deg)
     R_M, R_N = radii_mn(np.ascontiguousarray(lat).reshape(-1), ellipsoid.a, ellipsoid.e2)
     return R_M.reshape(lat.shape), R_N.reshape(lat.shape)
 
@@ -189,7 +185,7 @@ def transport_rate_n(lat: ArrayLike, h: ArrayLike, vel_n: Vec3, ellipsoid: Ellip
     -------
     ndarray, shape (..., 3)
     """
-    lat = _lat(lat, False)
+    lat = latitude(lat)
     h = in_range(as_array(h, "h"), "h", -12e3, 1e6, "m")
     vel_n = as_array(vel_n, "vel_n", tail=(3,))
     R_M, R_N = radii(lat, ellipsoid=ellipsoid)
@@ -240,15 +236,12 @@ def magnetic_field(lat: ArrayLike, lon: ArrayLike, h: ArrayLike = 0.0, year: flo
         Field in ENU (uT): ``[east, north, up]``. In the northern hemisphere
         the up component is negative (the field dips into the ground).
     """
-    lat = _lat(lat, deg)
+    lat = latitude(lat, "lat", deg=deg)
     lon = as_array(lon, "lon")
     in_range(lon, "lon", -2 * np.pi, 2 * np.pi, "rad") if not deg else in_range(lon, "lon", -360, 360, "deg")
     lon = np.deg2rad(lon) if deg else lon
     h = in_range(as_array(h, "h"), "h", -1e3, 850e3, "m")
-    year_arr = as_array(year, "year")
-    if year_arr.ndim != 0:
-        raise ValueError(f"year: expected a decimal year (a scalar), got shape {year_arr.shape}")
-    year = float(year_arr)
+    year = scalar(year, "year")
     gm = _geomag(_wmm_file(year))
     lat, lon, h = np.broadcast_arrays(lat, lon, h)
     out = np.empty(lat.shape + (3,))

@@ -22,7 +22,7 @@ import numpy as np
 
 from . import attitude, earth
 from ._typing import Angles, Array, ArrayLike, Times, Vec3Series
-from ._validate import as_array, generator, in_range, positive, scalar, time_axis, unit_interval
+from ._validate import as_array, generator, in_range, integer, positive, scalar, time_axis, unit_interval
 
 __all__ = ["dropouts", "gap", "spikes", "position_jumps", "heading_flips", "duplicate_timestamps",
            "swap_timestamps", "irregular_times", "saturate"]
@@ -73,9 +73,7 @@ def gap(x: ArrayLike, time: Times, start: float, duration: float) -> tuple[Array
     dropped : ndarray of bool, shape (N,)
     """
     x = _samples(x, "x").copy()
-    t = as_array(time, "time")
-    if t.ndim != 1 or t.size != _time_axis_len(x):
-        raise ValueError(f"time: expected a 1-D array of {_time_axis_len(x)} sample times, got shape {t.shape}")
+    t = as_array(time, "time", shape=(_time_axis_len(x),))
     start = scalar(start, "start")
     duration = scalar(duration, "duration", positive=True)
     dropped = (t >= start) & (t < start + duration)
@@ -188,9 +186,7 @@ def swap_timestamps(time: Times, fraction: float, rng: np.random.Generator) -> t
     order : ndarray of int, shape (N,)
         ``time_faulty = time[order]``; apply it to the data as well.
     """
-    t = as_array(time, "time")
-    if t.ndim != 1 or t.size < 2:
-        raise ValueError(f"time: expected a 1-D array of at least 2 sample times, got shape {t.shape}")
+    t = time_axis(time, increasing=False)
     generator(rng)
     order = np.arange(t.size)
     for i in np.flatnonzero(rng.random(t.size - 1) < unit_interval(fraction, "fraction")):
@@ -205,8 +201,7 @@ def irregular_times(n: int, dt: float, jitter: float, rng: np.random.Generator, 
     -------
     time : ndarray, shape (n,)
     """
-    if not isinstance(n, (int, np.integer)) or isinstance(n, bool) or n < 2:
-        raise ValueError(f"n: expected an integer >= 2, got {n!r}")
+    integer(n, "n", minimum=2)
     dt = float(positive(dt, "dt"))
     jitter = float(in_range(as_array(jitter, "jitter"), "jitter", 0.0, 0.99))
     t0 = scalar(t0, "t0")

@@ -58,7 +58,7 @@ import functools
 import numpy as np
 
 from ._typing import Array, ArrayLike
-from ._validate import as_array, in_range, latitude
+from ._validate import broadcast, choice, in_range, instance, nonempty_array, nonempty_latitude
 from .earth import CGCS2000, Ellipsoid
 
 __all__ = ["zone", "central_meridian", "geodetic2gk", "gk2geodetic", "convergence", "scale_factor",
@@ -74,30 +74,14 @@ _PREFIX_UNIT = 1e6              # zone number times 1e6 m prefixed to the eastin
 # Validation (every public function: wrong types, NaN/inf, empty, out of range -> error naming the argument)
 # --------------------------------------------------------------------------
 
-def _arr(x, name: str, **kw) -> np.ndarray:
-    """``as_array`` that also rejects empty arrays."""
-    arr = as_array(x, name, **kw)
-    if arr.size == 0:
-        raise ValueError(f"{name}: expected a non-empty array, got shape {arr.shape}")
-    return arr
-
-
-def _lat(lat, name: str = "lat", deg: bool = False) -> np.ndarray:
-    _arr(lat, name)
-    return latitude(lat, name, deg=deg)
-
-
 def _ell(ellipsoid) -> Ellipsoid:
-    if not isinstance(ellipsoid, Ellipsoid):
-        raise TypeError(f"ellipsoid: expected a navlib.earth.Ellipsoid (e.g. earth.CGCS2000), "
-                        f"got {type(ellipsoid).__name__}")
-    return ellipsoid
+    return instance(ellipsoid, "ellipsoid", Ellipsoid, "a navlib.earth.Ellipsoid (e.g. earth.CGCS2000)", error=TypeError)
 
 
 def _max_offset(max_offset_deg):
     if max_offset_deg is None:
         return None
-    return float(in_range(_arr(max_offset_deg, "max_offset_deg"), "max_offset_deg", 0.0, _MAX_OFFSET_DEG,
+    return float(in_range(nonempty_array(max_offset_deg, "max_offset_deg"), "max_offset_deg", 0.0, _MAX_OFFSET_DEG,
                           lo_open=True))
 
 
@@ -116,7 +100,7 @@ def _width(width) -> int:
 
 
 def _lon_deg(lon, deg: bool, name: str = "lon") -> np.ndarray:
-    arr = _arr(lon, name)
+    arr = nonempty_array(lon, name)
     return arr if deg else np.rad2deg(arr)
 
 
@@ -163,7 +147,7 @@ def central_meridian(zone_number: ArrayLike, width: int = 3, deg: bool = False) 
 
 
 def _central_meridian(zone_number, w: int, deg: bool, name: str):
-    n = _arr(zone_number, name)
+    n = nonempty_array(zone_number, name)
     if np.any(n != np.round(n)):
         raise ValueError(f"{name}: expected integer zone numbers")
     in_range(n, name, 1, 360 // w)
@@ -317,13 +301,9 @@ def _inverse(xi, eta, e, beta):
 
 
 def _validate_lat_lon(lat, lon, deg):
-    lat_rad = _lat(lat, "lat", deg=deg)
+    lat_rad = nonempty_latitude(lat, "lat", deg=deg)
     lon_deg = _lon_deg(lon, deg)
-    try:
-        lat_rad, lon_deg = np.broadcast_arrays(lat_rad, lon_deg)
-    except ValueError:
-        raise ValueError(f"lat, lon: shapes {np.shape(lat)} and {np.shape(lon)} do not broadcast") from None
-    return lat_rad, lon_deg
+    return broadcast(lat_rad, lon_deg, name="lat, lon")
 
 
 def geodetic2gk(lat: ArrayLike, lon: ArrayLike, *, zone: ArrayLike | None = None, lon0: ArrayLike | None = None,
@@ -364,9 +344,9 @@ def geodetic2gk(lat: ArrayLike, lon: ArrayLike, *, zone: ArrayLike | None = None
     """
     _ell(ellipsoid)
     lat_rad, lon_deg = _validate_lat_lon(lat, lon, deg)
-    k0 = float(in_range(_arr(k0, "k0"), "k0", 0.5, 1.5))
-    fe = float(_arr(false_easting, "false_easting"))
-    fn = float(_arr(false_northing, "false_northing"))
+    k0 = float(in_range(nonempty_array(k0, "k0"), "k0", 0.5, 1.5))
+    fe = float(nonempty_array(false_easting, "false_easting"))
+    fn = float(nonempty_array(false_northing, "false_northing"))
     L0, l_deg = _resolve_lon0(lon_deg, zone, lon0, width, deg, max_offset_deg)
     x, y = _forward(lat_rad, np.deg2rad(l_deg), ellipsoid)
     y = k0 * y + fe
@@ -399,11 +379,11 @@ def gk2geodetic(x: ArrayLike, y: ArrayLike, *, zone: ArrayLike | None = None, lo
         rad, or deg with ``deg=True``; lon in (-180°, 180°].
     """
     _ell(ellipsoid)
-    x = _arr(x, "x")
-    y = _arr(y, "y")
-    k0 = float(in_range(_arr(k0, "k0"), "k0", 0.5, 1.5))
-    fe = float(_arr(false_easting, "false_easting"))
-    fn = float(_arr(false_northing, "false_northing"))
+    x = nonempty_array(x, "x")
+    y = nonempty_array(y, "y")
+    k0 = float(in_range(nonempty_array(k0, "k0"), "k0", 0.5, 1.5))
+    fe = float(nonempty_array(false_easting, "false_easting"))
+    fn = float(nonempty_array(false_northing, "false_northing"))
     w = _width(width)
     if zone_prefix:
         if zone is not None or lon0 is not None:
@@ -414,10 +394,7 @@ def gk2geodetic(x: ArrayLike, y: ArrayLike, *, zone: ArrayLike | None = None, lo
         raise ValueError("zone, lon0: give exactly one of them (or zone_prefix=True)")
     L0 = (_central_meridian(zone, w, True, "y" if zone_prefix else "zone") if lon0 is None
           else _lon_deg(lon0, deg, "lon0"))
-    try:
-        x, y, L0 = np.broadcast_arrays(x, y, L0)
-    except ValueError:
-        raise ValueError(f"x, y: shapes {x.shape} and {y.shape} do not broadcast") from None
+    x, y, L0 = broadcast(x, y, L0, name="x, y", of="x, y and the central meridian")
     A, e, _, beta = _kruger(ellipsoid.a, ellipsoid.f)
     xi = (x - fn) / (k0 * A)
     eta = (y - fe) / (k0 * A)
@@ -465,7 +442,7 @@ def scale_factor(lat: ArrayLike, lon: ArrayLike, *, zone: ArrayLike | None = Non
 
     Parameters are those of :func:`geodetic2gk`; returns shape (...).
     """
-    k0 = float(in_range(_arr(k0, "k0"), "k0", 0.5, 1.5))
+    k0 = float(in_range(nonempty_array(k0, "k0"), "k0", 0.5, 1.5))
     _, k = _factors(lat, lon, zone, lon0, width, ellipsoid, deg, max_offset_deg)
     return k0 * k
 
@@ -483,11 +460,9 @@ def meridian_arc(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = Fa
         to e^8 (1e-8 m at 26°, 1e-4 m near the pole).
     """
     _ell(ellipsoid)
-    lat = _lat(lat, "lat", deg=deg)
-    if series == "kruger":
+    lat = nonempty_latitude(lat, "lat", deg=deg)
+    if choice(series, "series", ("kruger", "paper")) == "kruger":
         return _forward(lat, np.zeros_like(lat), ellipsoid)[0]
-    if series != "paper":
-        raise ValueError(f"series: expected 'kruger' or 'paper', got {series!r}")
     e2 = ellipsoid.e2
     e4, e6, e8 = e2 ** 2, e2 ** 3, e2 ** 4
     A = 1 + 3 / 4 * e2 + 45 / 64 * e4 + 175 / 256 * e6 + 11025 / 16384 * e8
@@ -522,9 +497,8 @@ def local_scales(lat: ArrayLike, lon: ArrayLike, lon0: ArrayLike, ellipsoid: Ell
         Angle between the images of the meridian and the parallel (rad; pi/2 if conformal).
     """
     _ell(ellipsoid)
-    if series not in ("kruger", "paper"):
-        raise ValueError(f"series: expected 'kruger' or 'paper', got {series!r}")
-    step = float(in_range(_arr(step, "step"), "step", 0.0, 1e-2, lo_open=True))
+    choice(series, "series", ("kruger", "paper"))
+    step = float(in_range(nonempty_array(step, "step"), "step", 0.0, 1e-2, lo_open=True))
     lat_r, lon_d = _validate_lat_lon(lat, lon, deg)
     lon0_d = _lon_deg(lon0, deg, "lon0")
     lon_r, lon0_r = np.deg2rad(lon_d), np.deg2rad(lon0_d)
@@ -554,11 +528,8 @@ def geodetic2ecef(lat: ArrayLike, lon: ArrayLike, h: ArrayLike, ellipsoid: Ellip
     _ell(ellipsoid)
     lat, lon_deg = _validate_lat_lon(lat, lon, deg)
     lon = np.deg2rad(lon_deg)
-    h = _arr(h, "h")
-    try:
-        np.broadcast_shapes(lat.shape, h.shape)
-    except ValueError:
-        raise ValueError(f"h: shape {h.shape} does not broadcast with lat, lon {lat.shape}") from None
+    h = nonempty_array(h, "h")
+    broadcast(h, lat, name="h", of="h and lat, lon")
     R_N = ellipsoid.a / np.sqrt(1 - ellipsoid.e2 * np.sin(lat) ** 2)
     r = (R_N + h) * np.cos(lat)
     return r * np.cos(lon), r * np.sin(lon), (R_N * (1 - ellipsoid.e2) + h) * np.sin(lat)
@@ -572,11 +543,7 @@ def ecef2geodetic(x: ArrayLike, y: ArrayLike, z: ArrayLike, ellipsoid: Ellipsoid
     rad for points within 100 km of the surface).
     """
     _ell(ellipsoid)
-    x, y, z = (_arr(v, k) for v, k in ((x, "x"), (y, "y"), (z, "z")))
-    try:
-        x, y, z = np.broadcast_arrays(x, y, z)
-    except ValueError:
-        raise ValueError(f"x, y, z: shapes {x.shape}, {y.shape}, {z.shape} do not broadcast") from None
+    x, y, z = broadcast(nonempty_array(x, "x"), nonempty_array(y, "y"), nonempty_array(z, "z"), name="x, y, z")
     a, b, e2 = ellipsoid.a, ellipsoid.b, ellipsoid.e2
     ep2 = e2 / (1 - e2)
     p = np.hypot(x, y)
@@ -595,7 +562,7 @@ def ecef2geodetic(x: ArrayLike, y: ArrayLike, z: ArrayLike, ellipsoid: Ellipsoid
 
 def _validate_origin(lat0, lon0, h0, deg):
     """lat0 (rad), lon0 (rad), h0 (m) of a local frame, each checked under its own name."""
-    return _lat(lat0, "lat0", deg=deg), np.deg2rad(_lon_deg(lon0, deg, "lon0")), _arr(h0, "h0")
+    return nonempty_latitude(lat0, "lat0", deg=deg), np.deg2rad(_lon_deg(lon0, deg, "lon0")), nonempty_array(h0, "h0")
 
 
 def _enu_rotation(lat0, lon0):
@@ -626,12 +593,7 @@ def enu2geodetic(e: ArrayLike, n: ArrayLike, u: ArrayLike, lat0: ArrayLike, lon0
                  ellipsoid: Ellipsoid = CGCS2000, deg: bool = False) -> tuple[Array, Array, Array]:
     """Inverse of :func:`geodetic2enu`: geodetic lat, lon (rad or deg), h (m) of local ENU points."""
     _ell(ellipsoid)
-    try:
-        enu = np.stack(np.broadcast_arrays(_arr(e, "e"), _arr(n, "n"), _arr(u, "u")), -1)
-    except ValueError as exc:
-        if str(exc).split(":")[0] in ("e", "n", "u"):
-            raise
-        raise ValueError(f"e, n, u: shapes {np.shape(e)}, {np.shape(n)}, {np.shape(u)} do not broadcast") from None
+    enu = np.stack(broadcast(nonempty_array(e, "e"), nonempty_array(n, "n"), nonempty_array(u, "u"), name="e, n, u"), -1)
     lat0_r, lon0_r, _ = _validate_origin(lat0, lon0, h0, deg)
     p0 = np.stack(geodetic2ecef(lat0, lon0, h0, ellipsoid, deg), -1)
     lat0, lon0 = lat0_r, lon0_r
@@ -665,7 +627,7 @@ def paper_radii(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = Fal
     R_N, R_M : ndarray, shape (...)
     """
     _ell(ellipsoid)
-    W = _lat(lat, "lat", deg=deg)
+    W = nonempty_latitude(lat, "lat", deg=deg)
     a, b = ellipsoid.a, ellipsoid.b
     e1 = np.sqrt(a * a - b * b) / a
     e2 = np.sqrt(a * a - b * b) / b
@@ -677,7 +639,7 @@ def paper_radii(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = Fal
 def printed_meridian_radius(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False) -> Array:
     """Eq. (6) exactly as printed, ``a^2 (1 - e1^2)/sqrt((1 + e2^2 sin^2 W)^(3/2))`` (m): wrong (erratum E002-02)."""
     _ell(ellipsoid)
-    W = _lat(lat, "lat", deg=deg)
+    W = nonempty_latitude(lat, "lat", deg=deg)
     e1, e2, _, _ = paper_radii(0.0, ellipsoid)
     return ellipsoid.a ** 2 * (1 - e1 ** 2) / np.sqrt((1 + e2 ** 2 * np.sin(W) ** 2) ** 1.5)
 

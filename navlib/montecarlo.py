@@ -31,6 +31,7 @@ from typing import Any
 import numpy as np
 
 from ._typing import ArrayLike
+from ._validate import integer
 
 __all__ = ["TrialStreams", "run"]
 
@@ -84,8 +85,7 @@ def _run_batch(batch_fn, seed, ids, kwargs):
 
 def _check_args(n_trials, seed, batch_size):
     for name, v, lo in (("n_trials", n_trials, 1), ("seed", seed, 0), ("batch_size", batch_size, 1)):
-        if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < lo:
-            raise ValueError(f"{name}: expected an integer >= {lo}, got {v!r}")
+        integer(v, name, minimum=lo)
 
 
 def run(batch_fn: Callable[..., dict[str, np.ndarray]], n_trials: int, seed: int, *, batch_size: int = 1000,

@@ -40,7 +40,7 @@ from scipy.signal import lfilter
 
 from . import atmosphere, attitude, earth, units
 from ._typing import Angles, Array, ArrayLike, Quat, Times, Vec3, Vec3Series
-from ._validate import as_array, as_quat, generator, in_range, positive, time_axis
+from ._validate import as_array, as_quat, generator, in_range, instance, positive, same_shape, time_axis
 from .analysis import GM_ALLAN_PEAK
 
 __all__ = ["TriadErrors", "ImuModel", "ImuOutput", "simulate_imu", "imu_model", "preset", "devices",
@@ -122,8 +122,7 @@ class ImuModel:
 
     def __post_init__(self):
         for key in ("gyro", "accel"):
-            if not isinstance(getattr(self, key), TriadErrors):
-                raise ValueError(f"{key}: expected TriadErrors, got {type(getattr(self, key)).__name__}")
+            instance(getattr(self, key), key, TriadErrors, "TriadErrors")
 
     def replace(self, gyro: dict | None = None, accel: dict | None = None) -> ImuModel:
         """Copy with some parameters changed, e.g. ``m.replace(gyro={"bias": 0.0})``."""
@@ -242,12 +241,9 @@ def simulate_imu(w_ib_b: Vec3Series, f_b: Vec3Series, dt: float, model: ImuModel
     ImuOutput
     """
     w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1)
-    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1)
-    if w.shape != f.shape:
-        raise ValueError(f"f_b: expected the shape of w_ib_b {w.shape}, got {f.shape}")
+    f = same_shape(as_array(f_b, "f_b", tail=(3,), min_ndim=1), "f_b", w.shape, of="w_ib_b")
     dt = float(positive(dt, "dt"))
-    if not isinstance(model, ImuModel):
-        raise ValueError(f"model: expected an ImuModel, got {type(model).__name__}")
+    instance(model, "model", ImuModel, "an ImuModel")
     generator(rng)
     if n_trials is not None:
         if not isinstance(n_trials, (int, np.integer)) or n_trials < 1:
@@ -394,8 +390,7 @@ def simulate_magnetometer(q_bn: Quat, B_n: Vec3, model: MagnetometerModel, rng: 
     q = as_quat(as_array(q_bn, "q_bn", tail=(4,), min_ndim=1), "q_bn")
     B = as_array(B_n, "B_n", tail=(3,))
     generator(rng)
-    if not isinstance(model, MagnetometerModel):
-        raise ValueError(f"model: expected a MagnetometerModel, got {type(model).__name__}")
+    instance(model, "model", MagnetometerModel, "a MagnetometerModel")
     if disturbance_n is not None:
         B = B + as_array(disturbance_n, "disturbance_n", tail=(3,))
     C_nb = np.swapaxes(attitude.quat_to_dcm(q), -1, -2)
@@ -506,8 +501,7 @@ def simulate_barometer(h: ArrayLike, time: Times, model: BarometerModel, rng: np
     t = time_axis(time)
     h = as_array(h, "h")
     generator(rng)
-    if not isinstance(model, BarometerModel):
-        raise ValueError(f"model: expected a BarometerModel, got {type(model).__name__}")
+    instance(model, "model", BarometerModel, "a BarometerModel")
     if h.shape[-1:] != t.shape:
         raise ValueError(f"h: expected last axis of length {t.size}, got shape {h.shape}")
     r_bias, r_noise = rng.spawn(2)
@@ -578,9 +572,7 @@ def simulate_gnss_position(lla: Vec3Series, rng: np.random.Generator, sigma_hori
     out[..., 1] += sh * e[..., 0] / ((R_N + lla[..., 2]) * np.cos(lla[..., 0]))
     out[..., 2] += sv * e[..., 2]
     if valid is not None:
-        valid = np.asarray(valid, dtype=bool)
-        if valid.shape != lla.shape[-2:-1]:
-            raise ValueError(f"valid: expected shape {lla.shape[-2:-1]}, got {valid.shape}")
+        valid = same_shape(np.asarray(valid, dtype=bool), "valid", lla.shape[-2:-1])
         out[..., ~valid, :] = np.nan
     return out
 
@@ -608,8 +600,6 @@ def simulate_heading(heading: Angles, rng: np.random.Generator, sigma: float,
     s = float(positive(sigma, "sigma", allow_zero=True))
     generator(rng)
     out = attitude.wrap_2pi(h + s * rng.standard_normal(h.shape))
-    v = np.ones(h.shape[-1:], dtype=bool) if valid is None else np.asarray(valid, dtype=bool)
-    if v.shape != h.shape[-1:]:
-        raise ValueError(f"valid: expected shape {h.shape[-1:]}, got {v.shape}")
+    v = same_shape(np.ones(h.shape[-1:], dtype=bool) if valid is None else np.asarray(valid, dtype=bool), "valid", h.shape[-1:])
     out[..., ~v] = np.nan
     return out, v

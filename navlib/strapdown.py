@@ -49,7 +49,7 @@ from numba import njit
 from . import attitude, earth, robust
 from ._kernels import normal_gravity, radii_mn
 from ._typing import Array, Dcm, Interval, Quat, Vec3, Vec3Series
-from ._validate import as_array, as_quat, intervals, latitude
+from ._validate import as_array, as_quat, broadcast, choice, instance, intervals, latitude, scalar
 from .attitude import quat_mult_1, quat_mult_t, quat_normalize_1, quat_to_dcm_1, rotvec_to_quat_1, rotvec_to_quat_t
 from .trajectory import Trajectory
 
@@ -98,12 +98,6 @@ def _dropouts(x, name, on_nan):
     return robust.hold(x, leading="raise", name=name)
 
 
-def _policy(on_nan):
-    if on_nan not in _ON_NAN:
-        raise ValueError(f"on_nan: expected one of {_ON_NAN}, got {on_nan!r}")
-    return on_nan
-
-
 def integrate_attitude(q0: Quat, w_ib_b: Vec3Series, dt: Interval, w_in_n: Vec3 | None = None,
                        on_nan: str = "raise") -> Array | tuple[Array, np.ndarray]:
     """Integrate gyro samples into an attitude history.
@@ -136,16 +130,14 @@ def integrate_attitude(q0: Quat, w_ib_b: Vec3Series, dt: Interval, w_in_n: Vec3 
         True on every sample that was replaced by the last good one
         (``held.sum()`` is the count of held samples).
     """
-    on_nan = _policy(on_nan)
+    on_nan = choice(on_nan, "on_nan", _ON_NAN)
     w = _samples(w_ib_b, "w_ib_b")
     w, held = _dropouts(w, "w_ib_b", on_nan)
     dt = intervals(dt, w.shape[-2])[:1] if np.ndim(dt) == 0 else intervals(dt, w.shape[-2])
     q0 = as_quat(q0, "q0")
     lead = w.shape[:-2]
     q0 = np.broadcast_to(q0, lead + (4,)).reshape(-1, 4)
-    w_in = np.zeros(3) if w_in_n is None else as_array(w_in_n, "w_in_n", tail=(3,))
-    if w_in.shape != (3,):
-        raise ValueError(f"w_in_n: expected shape (3,), got {w_in.shape}")
+    w_in = np.zeros(3) if w_in_n is None else as_array(w_in_n, "w_in_n", shape=(3,))
     q = _attitude_kernel(np.ascontiguousarray(q0), np.ascontiguousarray(w.reshape(-1, *w.shape[-2:])), dt, w_in)
     q = q.reshape(lead + q.shape[-2:])
     return (q, held) if on_nan == "hold" else q
@@ -199,9 +191,7 @@ def nav_step(lla, vel, q, w, f, dt, earth_consts, hold_height=False):
 
 
 def _ellipsoid(ellipsoid):
-    if not isinstance(ellipsoid, earth.Ellipsoid):
-        raise ValueError(f"ellipsoid: expected a navlib.earth.Ellipsoid, got {type(ellipsoid).__name__}")
-    return ellipsoid
+    return instance(ellipsoid, "ellipsoid", earth.Ellipsoid, "a navlib.earth.Ellipsoid")
 
 
 def earth_constants(ellipsoid: earth.Ellipsoid = earth.WGS84) -> np.ndarray:
@@ -267,13 +257,10 @@ def integrate(lla0: Vec3, vel0: Vec3, q0: Quat, w_ib_b: Vec3Series, f_b: Vec3Ser
         on every sample where the gyro or the accelerometer sample (or both)
         was held; ``held.sum()`` counts them.
     """
-    on_nan = _policy(on_nan)
+    on_nan = choice(on_nan, "on_nan", _ON_NAN)
     w = _samples(w_ib_b, "w_ib_b")
     f = _samples(f_b, "f_b")
-    try:
-        w, f = np.broadcast_arrays(w, f)
-    except ValueError:
-        raise ValueError(f"f_b: expected a shape that broadcasts with w_ib_b {w.shape}, got {f.shape}") from None
+    w, f = broadcast(w, f, name="f_b", of="w_ib_b, f_b")
     w, held_w = _dropouts(w, "w_ib_b", on_nan)
     f, held_f = _dropouts(f, "f_b", on_nan)
     held = held_w | held_f
@@ -322,20 +309,11 @@ def error_model(lat: float, h: float, vel_n: Vec3, f_n: Vec3, ellipsoid: earth.E
     -------
     F : ndarray, shape (9, 9)
     """
-    lat = latitude(lat)
-    if lat.ndim != 0:
-        raise ValueError(f"lat: expected a scalar latitude (rad), got shape {lat.shape}")
-    lat = float(lat)
-    h = as_array(h, "h")
-    if h.ndim != 0:
-        raise ValueError(f"h: expected a scalar height (m), got shape {h.shape}")
-    h = float(h)
+    lat = scalar(latitude(lat), "lat")
+    h = scalar(h, "h")
     _ellipsoid(ellipsoid)
-    v = as_array(vel_n, "vel_n", tail=(3,))
-    f = as_array(f_n, "f_n", tail=(3,))
-    for x, name in ((v, "vel_n"), (f, "f_n")):
-        if x.shape != (3,):
-            raise ValueError(f"{name}: expected shape (3,), got {x.shape}")
+    v = as_array(vel_n, "vel_n", shape=(3,))
+    f = as_array(f_n, "f_n", shape=(3,))
     R_M, R_N = earth.radii(lat, ellipsoid=ellipsoid)
     RMh, RNh = float(R_M) + h, float(R_N) + h
     sl, cl, tl = np.sin(lat), np.cos(lat), np.tan(lat)
@@ -377,9 +355,7 @@ def error_input(C_bn: Dcm) -> Array:
     -------
     G : ndarray, shape (9, 6)
     """
-    C = as_array(C_bn, "C_bn", tail=(3, 3))
-    if C.shape != (3, 3):
-        raise ValueError(f"C_bn: expected shape (3, 3), got {C.shape}")
+    C = as_array(C_bn, "C_bn", shape=(3, 3))
     G = np.zeros((9, 6))
     G[0:3, 0:3] = -C
     G[3:6, 3:6] = C

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._typing import Array, ArrayLike, Times
-from ._validate import as_array
+from ._validate import as_array, integer, time_axis
 
 __all__ = ["TimingReport", "sanitize", "intervals"]
 
@@ -77,9 +77,7 @@ def sanitize(time: ArrayLike, *series: ArrayLike) -> tuple[Array | TimingReport,
         The series, reordered and de-duplicated.
     report : TimingReport
     """
-    t = as_array(time, "time")
-    if t.ndim != 1 or t.size < 2:
-        raise ValueError(f"time: expected a 1-D array of at least 2 sample times, got shape {t.shape}")
+    t = time_axis(time, increasing=False)
     running_max = np.maximum.accumulate(t)
     n_late = int(np.count_nonzero(t[1:] < running_max[:-1]))
     order = np.argsort(t, kind="stable")
@@ -109,13 +107,8 @@ def intervals(time: Times, n_samples: int | None = None) -> Array:
     -------
     dt : ndarray, shape (N,)
     """
-    t = as_array(time, "time")
-    if t.ndim != 1 or t.size < 2 or np.any(np.diff(t) <= 0):
-        raise ValueError("time: expected a strictly increasing 1-D array (run timing.sanitize first)")
+    t = time_axis(time)
     dt = np.diff(t)
-    if n_samples is not None and (not isinstance(n_samples, (int, np.integer)) or isinstance(n_samples, bool)
-                                  or n_samples < 1):
-        raise ValueError(f"n_samples: expected a positive integer, got {n_samples!r}")
-    if n_samples is not None and dt.size != n_samples:
+    if n_samples is not None and dt.size != integer(n_samples, "n_samples"):
         raise ValueError(f"time: expected {n_samples + 1} epochs for {n_samples} samples, got {t.size}")
     return dt
