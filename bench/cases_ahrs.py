@@ -1,4 +1,4 @@
-"""Attitude filters of navlib.papers.mimu_mag_rtk (paper 003) against ahrs (AHRS 0.4.0) and imufusion, same data, same run."""
+"""Attitude filters of navlib.filters (Mahony, quaternion KF) against ahrs (AHRS 0.4.0) and imufusion, same data, same run."""
 from __future__ import annotations
 
 import numpy as np
@@ -60,7 +60,7 @@ def mahony_single(quick: bool):
     n = 36_000 if quick else 360_000
     w, f, m, q0 = _marg_data(n)
     t = best_time(lambda: mh.mahony(w, f, DT, q0, m_b=m))
-    rows = [Result("Mahony MARG, 1 filter", "navlib.papers.mimu_mag_rtk.mahony (numba)", n / t, "samples/s", t, goal=10e6)]
+    rows = [Result("Mahony MARG, 1 filter", "navlib.filters.mahony.mahony (numba)", n / t, "samples/s", t, goal=10e6)]
     return rows + _peers("Mahony MARG, 1 filter", w, f, m, q0, n, 2_000 if quick else 10_000)
 
 
@@ -69,7 +69,7 @@ def mahony_batch(quick: bool):
     trials, n = (8, 36_000) if quick else (32, 180_000)
     w, f, m, q0 = _marg_data(n, trials, seed=1)
     t = best_time(lambda: mh.mahony(w, f, DT, q0, m_b=m))
-    return [Result(f"Mahony MARG, {trials} trials", "navlib.papers.mimu_mag_rtk.mahony (numba)", trials * n / t, "samples/s", t,
+    return [Result(f"Mahony MARG, {trials} trials", "navlib.filters.mahony.mahony (numba)", trials * n / t, "samples/s", t,
                    goal=25e6, note="aggregate over the batch")]
 
 
@@ -78,7 +78,7 @@ def quaternion_kf(quick: bool):
     n = 36_000 if quick else 360_000
     w, f, m, q0 = _marg_data(n, seed=2)
     t = best_time(lambda: qkf.quaternion_kf(w, f, DT, q0, m_b=m, B_n=B_N))
-    rows = [Result("quaternion KF (PI + KF)", "navlib.papers.mimu_mag_rtk.quaternion_kf (numba)", n / t, "samples/s", t)]
+    rows = [Result("quaternion KF (PI + KF)", "navlib.filters.quaternion_kf.quaternion_kf (numba)", n / t, "samples/s", t)]
     return rows + _peers("quaternion KF (PI + KF)", w, f, m, q0, n, 1_000 if quick else 5_000)
 
 

@@ -63,7 +63,7 @@ def ekf_step(quick: bool):
     t = np.arange(n) * T
     x0 = truth[0]
     t_nav = best_time(lambda: planar_ekf.filter_grid(t, z, x0, np.eye(5), Q=planar.Q_PAPER, R=planar.R_PAPER))
-    rows = [Result("EKF step, 5 states (paper 002)", "navlib.papers.gauss_kruger_ekf (numba)", n / t_nav, "steps/s", t_nav,
+    rows = [Result("EKF step, 5 states (paper 002)", "navlib.filters.planar_ekf (numba)", n / t_nav, "steps/s", t_nav,
                    goal=5e5, note="goal 0.5 M/s and 10x filterpy")]
     try:
         import filterpy  # noqa: F401
