@@ -17,11 +17,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._kernels import normal_gravity, radii_mn
-from ._typing import Array, ArrayLike, Vec3
+from ._typing import Array, ArrayLike, Dcm, Vec3
 from ._validate import as_array, in_range, latitude, positive, scalar
 
 __all__ = ["Ellipsoid", "WGS84", "CGCS2000", "GRS80", "KRASSOVSKY",
-           "OMEGA_IE", "earth_rate_n", "gravity", "gravity_n", "radii",
+           "OMEGA_IE", "earth_rate_n", "earth_rate_b", "gravity", "gravity_n", "radii",
            "transport_rate_n", "magnetic_field", "field_from_angles", "field_angles"]
 
 
@@ -124,6 +124,24 @@ def earth_rate_n(lat: ArrayLike, deg: bool = False, ellipsoid: Ellipsoid = WGS84
     w = ellipsoid.omega
     return np.stack([np.zeros_like(lat), w * np.cos(lat), w * np.sin(lat)], -1)
 
+
+
+def earth_rate_b(C_bn: Dcm, lat: float, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> Array:
+    """Earth rotation rate in the body frame, ``C_bn^T w_ie_n`` (rad/s), e.g. what a static gyro triad reads.
+
+    Parameters
+    ----------
+    C_bn : array_like, shape (..., 3, 3)
+        Attitude(s) (body to ENU).
+    lat : float
+        Geodetic latitude (rad, or deg with ``deg=True``).
+
+    Returns
+    -------
+    w_ie_b : ndarray, shape (..., 3)
+    """
+    C = as_array(C_bn, "C_bn", tail=(3, 3))
+    return np.einsum("...ji,j->...i", C, earth_rate_n(scalar(lat, "lat"), deg, ellipsoid))
 
 def gravity(lat: ArrayLike, h: ArrayLike = 0.0, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> Array:
     """Normal gravity magnitude (m/s^2): Somigliana with the TR8350.2 height series.

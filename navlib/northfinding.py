@@ -1,5 +1,5 @@
 """Deprecated alias of :mod:`navlib.papers.north_finding` and of core modules:
-navlib.alignment.
+navlib.alignment, navlib.sensors.
 
 ``navlib.northfinding`` was the module of this paper before the split into a paper companion
 and core homes (see CONTRIBUTING.md). Every old name still resolves here; importing this
@@ -21,6 +21,7 @@ from .alignment import (  # noqa: F401
            triad_heading,
 )
 from .papers.north_finding import *  # noqa: F403
+from .sensors import window_mean_std  # noqa: F401
 
 __all__ = ["MAX_LAT_DEG", "OK", "TOO_FEW", "SATURATED", "MOVING", "StaticWindow", "static_means", "triad", "triad_heading",
            "tilt_from_accel", "Candidates", "heading_candidates", "nearest_candidate_error", "Resolution", "resolve",

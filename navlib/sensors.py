@@ -40,10 +40,10 @@ from scipy.signal import lfilter
 
 from . import atmosphere, attitude, earth, units
 from ._typing import Angles, Array, ArrayLike, Quat, Times, Vec3, Vec3Series
-from ._validate import as_array, as_quat, generator, in_range, instance, positive, same_shape, time_axis
+from ._validate import as_array, as_quat, generator, in_range, instance, positive, same_shape, scalar, time_axis
 from .analysis import GM_ALLAN_PEAK
 
-__all__ = ["TriadErrors", "ImuModel", "ImuOutput", "simulate_imu", "imu_model", "preset", "devices",
+__all__ = ["TriadErrors", "ImuModel", "ImuOutput", "window_mean_std", "simulate_imu", "imu_model", "preset", "devices",
            "MagnetometerModel", "simulate_magnetometer", "magnetic_disturbances",
            "BarometerModel", "simulate_barometer", "outage_mask", "simulate_gnss_position",
            "simulate_heading", "gauss_markov"]
@@ -215,6 +215,31 @@ def _corrupt(x, dt, errors: TriadErrors, rng: np.random.Generator):
     if n_clipped:
         y = np.clip(y, -errors.full_scale, errors.full_scale)
     return y, bias, M, n_clipped
+
+
+def window_mean_std(errors: TriadErrors, duration: float, dt: float) -> float:
+    """Std of one axis's error averaged over a static window (white + bias terms).
+
+    ``var = N^2 / T + bias^2 + sigma_gm^2 * 2 (tau/T) [1 - (tau/T)(1 - exp(-T/tau))]``
+    for white noise density N, turn-on bias and a Gauss-Markov bias of std
+    sigma_gm and correlation time tau (rate random walk and scale factor are
+    not included): the error left in a static average of a real sensor, e.g. the
+    "total gyro error" the north-finding error theory of paper 000 needs instead of white noise.
+
+    Parameters
+    ----------
+    errors : TriadErrors
+    duration : float
+        Averaging time T (s).
+    dt : float
+        Sample interval (s), for the discrete white-noise mean ``N / sqrt(n dt)``.
+    """
+    instance(errors, "errors", TriadErrors, "TriadErrors")
+    T, dt = scalar(duration, "duration", positive=True), scalar(dt, "dt", positive=True)
+    n = max(int(round(T / dt)), 1)
+    r = errors.correlation_time / T
+    gm = errors.gauss_markov_sigma ** 2 * 2 * r * (1 - r * (1 - np.exp(-1 / r)))
+    return float(np.sqrt(errors.noise_density ** 2 / (n * dt) + errors.bias ** 2 + gm))
 
 
 def simulate_imu(w_ib_b: Vec3Series, f_b: Vec3Series, dt: float, model: ImuModel, rng: np.random.Generator,

@@ -27,7 +27,7 @@ def rig(pitch_deg=30.0, axis=EY, duration=60.0, period=5.0, rotation_time=0.5):
     traj = trajectory.reciprocating_rotation(duration, DT, [LAT, 0, 0], hpr0, axis, np.pi / 2, period, rotation_time)
     w, f = trajectory.ideal_imu(traj)
     starts, length = gb.dwell_windows(w.shape[0], DT, period, rotation_time)
-    w_ie_b = gb.earth_rate_body(gb.dwell_attitudes(hpr0, axis, np.pi / 2, starts.size), LAT)
+    w_ie_b = earth.earth_rate_b(attitude.euler_to_dcm(gb.dwell_attitudes(hpr0, axis, np.pi / 2, starts.size)), LAT)
     return traj, w, f, starts, length, w_ie_b
 
 
@@ -252,7 +252,7 @@ def test_error_statistics_match_numpy():
     (lambda: gb.lsq_bias(np.full((4, 2), np.nan), np.full((4, 2, 3), np.nan)), "V"),
     (lambda: gb.kalman_bias(np.zeros((4, 2)), np.zeros((4, 2, 3)), np.full((4, 2, 2), np.nan), 5.0, 0.0, 1.0), "R"),
     (lambda: gb.residual_covariance([0.0, 0.0], 3, DT, 1e-4), "length"),
-    (lambda: gb.earth_rate_body([0, 0, 0], 2.0), "lat"),
+    (lambda: earth.earth_rate_b(np.eye(3), 2.0), "lat"),
     (lambda: gb.design([0, 0, 0], EY, np.pi / 2, 0.05, DT, 1e-4), "dwell_time"),
     (lambda: analysis.error_statistics(np.zeros((2, 5, 3)), np.zeros((4, 3))), "hpr_true"),
     (lambda: gb.tilt_residuals(np.zeros((100, 3)), np.tile([0, 0, 9.8], (100, 1)), np.full(99, DT), [0], 10), "dt"),
@@ -332,7 +332,7 @@ GB_FUZZ = {   # name: (function, good keyword arguments, NaN-marker arguments[, 
     "rotate_attitude": (gb.rotate_attitude, dict(hpr=_HPR, axis_b=EY, angle=0.5), set()),
     "dwell_attitudes": (gb.dwell_attitudes, dict(hpr0=_HPR, axis_b=EY, amplitude=1.5, n_dwells=4), set()),
     "dwell_windows": (gb.dwell_windows, dict(n_samples=1000, dt=DT, period=5.0, rotation_time=0.5, settle=0.1), set()),
-    "earth_rate_body": (gb.earth_rate_body, dict(hpr=_HPR, lat=LAT), set()),
+    "earth_rate_b": (earth.earth_rate_b, dict(C_bn=np.eye(3), lat=LAT), set()),
     "tilt_residuals": (gb.tilt_residuals, dict(w_ib_b=_WS, f_b=_FS, dt=DT, starts=np.array([0, 500]), length=450,
                                                w_ie_b=np.zeros((2, 3))), {"w_ib_b", "f_b"}, {"starts"}),
     "residual_covariance": (gb.residual_covariance, dict(tilt=[0.1, 0.2], length=450, dt=DT, gyro_noise=1e-4,
@@ -358,7 +358,7 @@ def test_fuzz_public_api(func, good, arg, how):
 
 def test_fuzz_table_covers_every_public_function():
     funcs = {n for n in gb.__all__ if callable(getattr(gb, n)) and not isinstance(getattr(gb, n), type)}
-    funcs |= {"attitude_errors", "error_statistics", "euler_rates", "integrate_euler"}   # moved to core, still fuzzed here
+    funcs |= {"attitude_errors", "error_statistics", "euler_rates", "integrate_euler", "earth_rate_b"}  # moved to core
     assert funcs == set(GB_FUZZ), funcs ^ set(GB_FUZZ)
 
 

@@ -175,9 +175,9 @@ def test_four_position_cancels_bias():
 
 def test_window_mean_std_white_and_gm():
     e = sensors.TriadErrors(noise_density=units.deg_per_sqrt_h(0.00224))
-    assert units.to_deg_per_h(nf.window_mean_std(e, 180.0, 0.01)) == pytest.approx(0.01, rel=0.01)
+    assert units.to_deg_per_h(sensors.window_mean_std(e, 180.0, 0.01)) == pytest.approx(0.01, rel=0.01)
     gm = sensors.TriadErrors(bias_instability=1e-6, correlation_time=1e6)
-    assert nf.window_mean_std(gm, 180.0, 0.01) == pytest.approx(gm.gauss_markov_sigma, rel=1e-3)
+    assert sensors.window_mean_std(gm, 180.0, 0.01) == pytest.approx(gm.gauss_markov_sigma, rel=1e-3)
 
 
 def test_vehicle_stand_in_end_to_end():
@@ -242,8 +242,8 @@ GOOD_F = np.tile(ideal([1.0, 0.0, 0.0])[1], (10, 1))
     (lambda: nf.pair_probabilities(np.nan, 2.0, 0.1), "heading1"),
     (lambda: alignment.four_position_heading([1.0, 2.0, 3.0]), "w_y"),
     (lambda: nf.four_position_heading_std(1e-7, units.deg(91.0)), "lat"),
-    (lambda: nf.window_mean_std("NAV-FOG", 180.0, 0.01), "errors"),
-    (lambda: nf.window_mean_std(sensors.TriadErrors(), 0.0, 0.01), "duration"),
+    (lambda: sensors.window_mean_std("NAV-FOG", 180.0, 0.01), "errors"),
+    (lambda: sensors.window_mean_std(sensors.TriadErrors(), 0.0, 0.01), "duration"),
     (lambda: nf.stop_and_go([1.0], 10, 40, 5, [0.0], [0.0]), "headings"),
     (lambda: nf.stop_and_go([1.0, 2.0], 10, 20, 5, [0.0, 0.0], [0.0, 0.0]), "drive_duration"),
     (lambda: nf.stop_and_go([1.0, 2.0], 10, 40, -5, [0.0, 0.0], [0.0, 0.0]), "speed"),
@@ -302,7 +302,7 @@ NF_FUZZ = {   # name: (function, good keyword arguments, arguments where NaN is 
     "pair_probabilities": (nf.pair_probabilities, dict(heading1=1.0, heading2=2.0, sigma_ins=0.1), set()),
     "four_position_heading": (alignment.four_position_heading, dict(w_y=[1e-5, 0.0, -1e-5, 0.0]), set()),
     "four_position_heading_std": (nf.four_position_heading_std, dict(sigma_gyro=1e-8, lat=LAT), set()),
-    "window_mean_std": (nf.window_mean_std, dict(errors=sensors.imu_model("NAV-FOG").gyro, duration=180.0, dt=0.01),
+    "window_mean_std": (sensors.window_mean_std, dict(errors=sensors.imu_model("NAV-FOG").gyro, duration=180.0, dt=0.01),
                         set()),
     "stop_and_go": (nf.stop_and_go, dict(headings=[1.0, 2.0], stop_duration=10.0, drive_duration=40.0, speed=5.0,
                                          pitches=[0.0, 0.01], rolls=[0.0, 0.01]), set(), {"headings"}),
@@ -320,5 +320,5 @@ def test_fuzz_public_api(func, good, arg, how):
 
 def test_fuzz_table_covers_every_public_function():
     funcs = {n for n in nf.__all__ if callable(getattr(nf, n)) and not isinstance(getattr(nf, n), type)}
-    funcs |= {"static_means", "triad", "triad_heading", "four_position_heading"}     # now in navlib.alignment
+    funcs |= {"static_means", "triad", "triad_heading", "four_position_heading", "window_mean_std"}  # now in core
     assert funcs == set(NF_FUZZ), funcs ^ set(NF_FUZZ)

@@ -95,13 +95,12 @@ from .._validate import as_dcm, generator, in_range, intervals, time_axis
 from .._validate import nonempty_array as as_array
 from .._validate import nonempty_positive as positive
 from ..alignment import gyrocompass_latitude, level, static_means, triad, triad_heading
-from ..sensors import TriadErrors
 from ..trajectory import Segment
 
 __all__ = ["Candidates", "heading_candidates", "nearest_candidate_error", "Resolution", "resolve", "tilt_from_accel",
            "triad_heading_error", "triad_heading_std", "single_axis_heading_std", "single_axis_heading_error",
            "simulate_static_outputs", "MonteCarlo", "monte_carlo", "pair_probabilities", "four_position_heading_std",
-           "window_mean_std", "stop_and_go", "StopSolutions", "stop_solutions", "InsReport", "ins_heading_change"]
+           "stop_and_go", "StopSolutions", "stop_solutions", "InsReport", "ins_heading_change"]
 
 OMEGA_IE = earth.OMEGA_IE
 
@@ -558,33 +557,6 @@ def four_position_heading_std(sigma_gyro: float, lat: float) -> Array:
 # --------------------------------------------------------------------------
 # the vehicle test (Table 1 stand-in)
 # --------------------------------------------------------------------------
-
-def window_mean_std(errors: TriadErrors, duration: float, dt: float) -> float:
-    """Std of one axis's error averaged over a static window (white + bias terms).
-
-    ``var = N^2 / T + bias^2 + sigma_gm^2 * 2 (tau/T) [1 - (tau/T)(1 - exp(-T/tau))]``
-    for white noise density N, turn-on bias and a Gauss-Markov bias of std
-    sigma_gm and correlation time tau (rate random walk and scale factor are
-    not included). This is the "total gyro error" that Eq. (20) needs for a
-    real sensor rather than the paper's white noise.
-
-    Parameters
-    ----------
-    errors : navlib.sensors.TriadErrors
-    duration : float
-        Averaging time T (s).
-    dt : float
-        Sample interval (s), for the discrete white-noise mean ``N / sqrt(n dt)``.
-    """
-    if not isinstance(errors, TriadErrors):
-        raise ValueError(f"errors: expected TriadErrors, got {type(errors).__name__}")
-    T = float(positive(duration, "duration"))
-    dt = float(positive(dt, "dt"))
-    n = max(int(round(T / dt)), 1)
-    r = errors.correlation_time / T
-    gm = errors.gauss_markov_sigma ** 2 * 2 * r * (1 - r * (1 - np.exp(-1 / r)))
-    return float(np.sqrt(errors.noise_density ** 2 / (n * dt) + errors.bias ** 2 + gm))
-
 
 def stop_and_go(headings: Angles, stop_duration: float, drive_duration: float, speed: float, pitches: Angles,
                 rolls: Angles) -> tuple[list[Segment], Array]:

@@ -90,19 +90,18 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from .. import attitude, earth, kalman, robust
+from .. import attitude, kalman, robust
 from .._kernels import wrap_pi
 from .._typing import Angles, Array, ArrayLike, Interval, Vec3, Vec3Series
 from .._validate import in_range, intervals, range_limit
 from .._validate import nonempty_array as as_array
-from .._validate import nonempty_latitude as latitude
 from .._validate import nonempty_positive as positive
 from ..alignment import level
 from ..euler import PITCH_LIMIT, check_pitch
 from ..units import G0
 
 __all__ = ["eq1_matrix", "gravity_body", "tilt_from_accel", "tilt_matrix", "rodrigues", "rotate_attitude", "dwell_attitudes",
-           "dwell_windows", "earth_rate_body", "Residuals", "tilt_residuals", "residual_covariance",
+           "dwell_windows", "Residuals", "tilt_residuals", "residual_covariance",
            "lsq_bias", "running_lsq_bias", "KalmanBias", "kalman_bias", "condition_number", "lsq_covariance",
            "cramer_rao_bound", "design", "MIN_DWELL_SAMPLES"]
 
@@ -290,24 +289,6 @@ def dwell_windows(n_samples: int, dt: float, period: float, rotation_time: float
                          f"expected at least {MIN_DWELL_SAMPLES}")
     starts = np.arange(0, n_samples - length - first + 1, per) + first
     return starts.astype(np.int64), length
-
-
-def earth_rate_body(hpr: Angles, lat: float) -> Array:
-    """Earth rate in the body frame, ``R w_ie_n`` (rad/s) (erratum E001-06).
-
-    Parameters
-    ----------
-    hpr : array_like, shape (..., 3)
-        Attitude (rad), e.g. from :func:`dwell_attitudes`.
-    lat : float
-        Latitude (rad).
-
-    Returns
-    -------
-    w_ie_b : ndarray, shape (..., 3)
-    """
-    C = attitude.euler_to_dcm(as_array(hpr, "hpr", tail=(3,)))
-    return np.einsum("...ji,j->...i", C, earth.earth_rate_n(float(latitude(lat))))
 
 
 # --------------------------------------------------------------------------
@@ -564,7 +545,7 @@ def tilt_residuals(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, starts: Ar
         Samples per dwell, at least :data:`MIN_DWELL_SAMPLES`.
     w_ie_b : array_like, shape (K, 3) or (..., K, 3), optional
         Earth rate in the body frame during each dwell, subtracted from the
-        gyros (erratum E001-06; :func:`earth_rate_body`). Default: neglected, as in
+        gyros (erratum E001-06; :func:`navlib.earth.earth_rate_b`). Default: neglected, as in
         the paper.
     max_missing : float
         Largest fraction of a dwell's samples, in [0, 0.5], that may be NaN

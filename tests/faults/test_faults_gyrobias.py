@@ -11,7 +11,7 @@ estimate (``lsq_covariance``), about 3.3 deg/h per axis here.
 import numpy as np
 import pytest
 
-from navlib import analysis, earth, euler, faults, sensors, timing, trajectory, units
+from navlib import analysis, attitude, earth, euler, faults, sensors, timing, trajectory, units
 from navlib.papers import rotation_bias as gb
 
 DT, PERIOD, ROT = 0.01, 5.0, 0.5
@@ -30,7 +30,7 @@ def _rig(duration=300.0, seed=7):
     w, f = trajectory.ideal_imu(traj)
     imu = sensors.simulate_imu(w, f, DT, MODEL, np.random.default_rng(seed))
     starts, length = gb.dwell_windows(w.shape[0], DT, PERIOD, ROT)
-    w_ie_b = gb.earth_rate_body(gb.dwell_attitudes(HPR0, EY, np.pi / 2, starts.size), LAT)
+    w_ie_b = earth.earth_rate_b(attitude.euler_to_dcm(gb.dwell_attitudes(HPR0, EY, np.pi / 2, starts.size)), LAT)
     in_dwell = np.zeros(w.shape[0], bool)
     for s in starts:
         in_dwell[s:s + length] = True
@@ -162,7 +162,7 @@ def test_irregular_sampling_is_integrated_exactly_with_per_sample_intervals():
     dts = np.diff(t)
     starts = np.searchsorted(t, np.arange(0, 55, PERIOD) + 0.05)         # first sample inside each dwell
     length = int(min(np.searchsorted(t, t[s] + 4.35) - s for s in starts))    # ends before the rotation
-    w_ie_b = gb.earth_rate_body(gb.dwell_attitudes(HPR0, EY, np.pi / 2, starts.size), LAT)
+    w_ie_b = earth.earth_rate_b(attitude.euler_to_dcm(gb.dwell_attitudes(HPR0, EY, np.pi / 2, starts.size)), LAT)
     res = gb.tilt_residuals(w + B, f, dts, starts, length, w_ie_b)
     # bound: exact up to the linear-trend model of the dwell (noise-free), 1e-3 deg/h
     assert units.to_deg_per_h(np.abs(gb.lsq_bias(res.r, res.V) - B).max()) < 1e-3
