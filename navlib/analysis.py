@@ -27,7 +27,8 @@ from ._validate import as_array, integer, nonempty_array, nonempty_positive, pos
 
 __all__ = ["rmse", "allan_deviation", "allan_deviation_theory", "fit_allan",
            "GM_ALLAN_PEAK", "GM_ALLAN_PEAK_TAU", "attitude_errors", "error_statistics", "horizontal_error",
-           "position_error", "expanding_std", "detection_rates", "settling_time", "segments", "moving_mean"]
+           "position_error", "expanding_std", "detection_rates", "settling_time", "segments", "moving_mean",
+           "normal_condition", "condition_number", "lsq_covariance", "cramer_rao_bound"]
 
 
 def rmse(err: ArrayLike, axis: int | tuple[int, ...] | None = 0) -> Array:
@@ -376,3 +377,90 @@ def moving_mean(x: ArrayLike, n: int) -> Array:
     valid = (c[n:] - c[:-n]) / n                       # windows starting at 0 .. N - n
     start = np.clip(np.arange(x.shape[0]) - n // 2, 0, x.shape[0] - n)
     return valid[start]
+
+
+# --------------------------------------------------------------------------
+# Stacked linear least squares: r_k = V_k b + v_k, k = 1..K
+# --------------------------------------------------------------------------
+
+def _blocks(V, R=None, allow_nan=False):
+    V = nonempty_array(V, "V", min_ndim=3, allow_nan=allow_nan)
+    if R is None:
+        return V
+    m = V.shape[-2]
+    return V, nonempty_array(R, "R", tail=(m, m), min_ndim=1)
+
+
+def normal_condition(A: ArrayLike) -> Array:
+    """Condition number of normal (information) matrices ``A`` (..., n, n): ``sqrt(eig_max / eig_min)``.
+
+    ``inf`` when ``A`` is singular: an eigenvalue within the eigensolver's rounding of the largest
+    (``n eps eig_max``) counts as zero, whatever its sign (which is machine-dependent noise).
+    """
+    A = nonempty_array(A, "A", min_ndim=2)
+    ev = np.linalg.eigvalsh(A)
+    zero = ev[..., 0] <= ev[..., -1] * A.shape[-1] * np.finfo(float).eps
+    with np.errstate(divide="ignore", invalid="ignore"):
+        c = np.sqrt(ev[..., -1] / ev[..., 0])
+    return np.where(~zero & np.isfinite(c), c, np.inf)
+
+
+def condition_number(V: ArrayLike) -> Array:
+    """cond(V) of stacked blocks ``V_k`` (..., K, m, n): ``sqrt(eig_max / eig_min)`` of ``sum V_k^T V_k``.
+
+    Blocks holding NaN are left out. ``inf`` when ``b`` is not fully observable from the blocks.
+    """
+    V = _blocks(V, allow_nan=True)
+    ok = np.all(np.isfinite(V), axis=(-2, -1))
+    Vz = np.where(ok[..., None, None], V, 0.0)
+    A = np.einsum("...kij,...kil->...jl", Vz, Vz)
+    return normal_condition(A)
+
+
+def lsq_covariance(V: ArrayLike, R: ArrayLike, max_cond: float = 1e6) -> Array:
+    """Covariance of the unweighted least-squares estimate of ``b``: ``A^-1 (sum V_k^T R_k V_k) A^-1``, ``A = sum V_k^T V_k``.
+
+    Parameters
+    ----------
+    V : array_like, shape (..., K, m, n)
+    R : array_like, shape (..., K, m, m)
+        Covariance of each block's noise ``v_k``.
+    max_cond : float
+        ``ValueError`` (naming ``V``) when ``cond(V)`` exceeds this: ``b`` is not observable.
+
+    Returns
+    -------
+    P : ndarray, shape (..., n, n)
+    """
+    V, R = _blocks(V, R)
+    A = np.einsum("...kji,...kjl->...il", V, V)
+    if np.any(normal_condition(A) > max_cond):
+        raise ValueError("V: the unknowns are not observable from these blocks (rank-deficient V)")
+    A_inv = np.linalg.inv(A)
+    return A_inv @ np.einsum("...kji,...kjl,...klm->...im", V, R, V) @ A_inv
+
+
+def cramer_rao_bound(V: ArrayLike, R: ArrayLike, max_cond: float = 1e6) -> Array:
+    """Cramer-Rao bound of ``b`` from stacked blocks: ``(sum V_k^T R_k^-1 V_k)^-1``.
+
+    Parameters
+    ----------
+    V : array_like, shape (..., K, m, n)
+    R : array_like, shape (..., K, m, m)
+        Covariance of each block's noise.
+    max_cond : float
+        Information matrices with ``sqrt(cond) > max_cond`` count as singular.
+
+    Returns
+    -------
+    P : ndarray, shape (..., n, n)
+        Lower bound on the covariance of any unbiased estimate; ``inf`` on the diagonal (NaN off it)
+        where ``b`` is not observable.
+    """
+    V, R = _blocks(V, R)
+    n = V.shape[-1]
+    info = np.einsum("...kji,...kjl,...klm->...im", V, np.linalg.inv(R), V)
+    bad = normal_condition(info) ** 2 > max_cond ** 2
+    safe = np.where(bad[..., None, None], np.eye(n), info)
+    P = np.linalg.inv(safe)
+    return np.where(bad[..., None, None], np.where(np.eye(n, dtype=bool), np.inf, np.nan), P)

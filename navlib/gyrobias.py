@@ -9,7 +9,7 @@ module warns. It will be removed in navlib 0.3.
 import warnings
 
 from . import attitude, earth
-from .analysis import attitude_errors, error_statistics  # noqa: F401
+from .analysis import attitude_errors, condition_number, cramer_rao_bound, error_statistics, lsq_covariance  # noqa: F401
 from .euler import PITCH_LIMIT, EulerReport, euler_rates, integrate_euler  # noqa: F401
 from .papers.rotation_bias import *  # noqa: F403
 

@@ -81,7 +81,7 @@ timing             per-sample ``dt`` arrays in                  ``TimingReport``
 
 Extensions: a Kalman filter with a random-walk bias state (:func:`kalman_bias`),
 the residual noise model (:func:`residual_covariance`) and the Cramer-Rao
-bound (:func:`cramer_rao_bound`, :func:`design`).
+bound (:func:`navlib.analysis.cramer_rao_bound`, :func:`design`).
 """
 from __future__ import annotations
 
@@ -97,13 +97,13 @@ from .._validate import in_range, intervals, range_limit
 from .._validate import nonempty_array as as_array
 from .._validate import nonempty_positive as positive
 from ..alignment import level
+from ..analysis import condition_number, cramer_rao_bound, normal_condition
 from ..euler import PITCH_LIMIT, check_pitch
 from ..units import G0
 
 __all__ = ["eq1_matrix", "gravity_body", "tilt_from_accel", "tilt_matrix", "rodrigues", "rotate_attitude", "dwell_attitudes",
            "dwell_windows", "Residuals", "tilt_residuals", "residual_covariance",
-           "lsq_bias", "running_lsq_bias", "KalmanBias", "kalman_bias", "condition_number", "lsq_covariance",
-           "cramer_rao_bound", "design", "MIN_DWELL_SAMPLES"]
+           "lsq_bias", "running_lsq_bias", "KalmanBias", "kalman_bias", "design", "MIN_DWELL_SAMPLES"]
 
 MIN_DWELL_SAMPLES = 10
 """Fewest samples in a dwell window for a tilt-rate fit."""
@@ -659,35 +659,6 @@ def _rv(r, V):
     return r, V
 
 
-def condition_number(V: ArrayLike) -> Array:
-    """cond(V) of the stacked Eq. (13) matrix, ``sqrt(eig_max / eig_min)`` of ``V^T V``.
-
-    Parameters
-    ----------
-    V : array_like, shape (..., K, 2, 3)
-        Per-dwell matrices; NaN dwells are left out.
-
-    Returns
-    -------
-    cond : ndarray, shape (...)
-        ``inf`` when the bias is not fully observable.
-    """
-    V = as_array(V, "V", tail=(2, 3), min_ndim=1, allow_nan=True)
-    ok = np.all(np.isfinite(V), axis=(-2, -1))
-    Vz = np.where(ok[..., None, None], V, 0.0)
-    A = np.einsum("...kij,...kil->...jl", Vz, Vz)
-    return _cond_info(A)
-
-
-def _cond_info(A):
-    ev = np.linalg.eigvalsh(A)
-    # an eigenvalue within the eigensolver's rounding of ev_max is zero: its sign is machine-dependent noise
-    zero = ev[..., 0] <= ev[..., -1] * A.shape[-1] * np.finfo(float).eps
-    with np.errstate(divide="ignore", invalid="ignore"):
-        c = np.sqrt(ev[..., -1] / ev[..., 0])
-    return np.where(~zero & np.isfinite(c), c, np.inf)
-
-
 def lsq_bias(r: ArrayLike, V: ArrayLike) -> Array:
     """Eq. (14): ``b = (V^T V)^-1 V^T r`` over all valid dwells.
 
@@ -714,7 +685,7 @@ def lsq_bias(r: ArrayLike, V: ArrayLike) -> Array:
     Vz = np.where(ok[..., None, None], V, 0.0)
     A = np.einsum("...kij,...kil->...jl", Vz, Vz)
     y = np.einsum("...kij,...ki->...j", Vz, rz)
-    cond = _cond_info(A)
+    cond = normal_condition(A)
     if np.any(cond > _MAX_COND):
         raise ValueError(f"V: the bias is not observable from these dwells (cond(V) = {np.max(cond):.3g}): their "
                          "body verticals do not differ (is the rotation axis vertical?) or all dwells were dropped")
@@ -903,52 +874,6 @@ def kalman_bias(r: ArrayLike, V: ArrayLike, R: ArrayLike, interval: Interval, ra
 # Observability
 # --------------------------------------------------------------------------
 
-def lsq_covariance(V: ArrayLike, R: ArrayLike) -> Array:
-    """Covariance of the unweighted Eq. (14) estimate, ``A^-1 (sum V_k^T R_k V_k) A^-1``, ``A = sum V_k^T V_k``.
-
-    Parameters
-    ----------
-    V : array_like, shape (..., K, 2, 3)
-    R : array_like, shape (..., K, 2, 2)
-        Residual covariances (:func:`residual_covariance`).
-
-    Returns
-    -------
-    P : ndarray, shape (..., 3, 3)  (rad^2/s^2)
-    """
-    V = as_array(V, "V", tail=(2, 3), min_ndim=1)
-    R = as_array(R, "R", tail=(2, 2), min_ndim=1)
-    A = np.einsum("...kji,...kjl->...il", V, V)
-    if np.any(_cond_info(A) > _MAX_COND):
-        raise ValueError("V: the bias is not observable from these dwells (rank-deficient V)")
-    A_inv = np.linalg.inv(A)
-    return A_inv @ np.einsum("...kji,...kjl,...klm->...im", V, R, V) @ A_inv
-
-
-def cramer_rao_bound(V: ArrayLike, R: ArrayLike) -> Array:
-    """Cramer-Rao bound of the bias from dwell residuals, ``(sum V_k^T R_k^-1 V_k)^-1``.
-
-    Parameters
-    ----------
-    V : array_like, shape (..., K, 2, 3)
-    R : array_like, shape (..., K, 2, 2)
-        Residual covariances (:func:`residual_covariance`).
-
-    Returns
-    -------
-    P : ndarray, shape (..., 3, 3)
-        Lower bound on the covariance of any unbiased estimate (rad^2/s^2);
-        ``inf`` on the diagonal where the bias is not observable.
-    """
-    V = as_array(V, "V", tail=(2, 3), min_ndim=1)
-    R = as_array(R, "R", tail=(2, 2), min_ndim=1)
-    info = np.einsum("...kji,...kjl,...klm->...im", V, np.linalg.inv(R), V)
-    bad = _cond_info(info) ** 2 > _MAX_COND ** 2
-    safe = np.where(bad[..., None, None], np.eye(3), info)
-    P = np.linalg.inv(safe)
-    return np.where(bad[..., None, None], np.where(np.eye(3, dtype=bool), np.inf, np.nan), P)
-
-
 def design(hpr0: Angles, axis_b: Vec3, amplitude: float, dwell_time: float, dt: float, gyro_noise: float,
            accel_noise: float = 0.0, n_dwells: int = 2) -> tuple[float, Array, Array]:
     """Observability of a rotation schedule without simulation.
@@ -983,7 +908,7 @@ def design(hpr0: Angles, axis_b: Vec3, amplitude: float, dwell_time: float, dt: 
     tilt = hpr[:, [2, 1]]
     V = tilt_matrix(tilt) * (n * dt)
     R = residual_covariance(tilt, n, dt, gyro_noise, accel_noise)
-    return float(condition_number(V)), cramer_rao_bound(V, R), V
+    return float(condition_number(V)), cramer_rao_bound(V, R, _MAX_COND), V
 
 
 def eq1_matrix(hpr: Angles) -> Array:

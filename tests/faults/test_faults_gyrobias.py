@@ -41,7 +41,7 @@ TRAJ, W_TRUE, F_TRUE, IMU, STARTS, LENGTH, W_IE_B, IN_DWELL = _rig()
 CLEAN = gb.tilt_residuals(IMU.w_ib_b, IMU.f_b, DT, STARTS, LENGTH, W_IE_B)
 R = gb.residual_covariance(CLEAN.tilt, LENGTH, DT, MODEL.gyro.noise_density, MODEL.accel.noise_density)
 B_CLEAN = gb.lsq_bias(CLEAN.r, CLEAN.V)
-SIGMA = np.sqrt(np.diag(gb.lsq_covariance(CLEAN.V, R)))
+SIGMA = np.sqrt(np.diag(analysis.lsq_covariance(CLEAN.V, R)))
 
 
 def assert_spd(P):
@@ -107,7 +107,7 @@ def test_gap_of_30_s_skips_the_dwells_it_covers():
     # bound: least squares on a subset of the dwells; b_sub - b_all has covariance P_sub - P_all (nested OLS,
     # R ~ equal per dwell) -> 5 sigma of that difference per axis
     b = gb.lsq_bias(res.r, res.V)
-    P_sub = gb.lsq_covariance(CLEAN.V[~skipped], R[~skipped])
+    P_sub = analysis.lsq_covariance(CLEAN.V[~skipped], R[~skipped])
     d_sigma = np.sqrt(np.clip(np.diag(P_sub) - SIGMA ** 2, 0, None))
     assert np.all(np.abs(b - B_CLEAN) < 5 * d_sigma + 0.05 * SIGMA)
     kf = kalman(res)
