@@ -58,6 +58,7 @@ from . import (
     faults,
     filters,
     geodesy,
+    imu,
     kalman,
     montecarlo,
     papers,
@@ -73,7 +74,7 @@ from . import (
 
 __version__ = "0.1.0"
 
-__all__ = ["alignment", "analysis", "atmosphere", "attitude", "earth", "euler", "faults", "filters", "geodesy", "kalman",
+__all__ = ["alignment", "analysis", "atmosphere", "attitude", "earth", "euler", "faults", "filters", "geodesy", "imu", "kalman",
            "montecarlo", "papers", "plots", "repro", "robust", "sensors", "strapdown", "timing", "trajectory", "units",
            "__version__"]
 

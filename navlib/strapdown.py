@@ -51,6 +51,7 @@ from ._kernels import normal_gravity, radii_mn
 from ._typing import Array, Dcm, Interval, Quat, Vec3, Vec3Series
 from ._validate import as_array, as_quat, broadcast, choice, instance, intervals, latitude, scalar
 from .attitude import quat_mult_1, quat_mult_t, quat_normalize_1, quat_to_dcm_1, rotvec_to_quat_1, rotvec_to_quat_t
+from .imu import ImuSamples, unpack
 from .trajectory import Trajectory
 
 __all__ = ["integrate", "integrate_attitude", "nav_step", "earth_constants", "error_model", "error_input"]
@@ -216,7 +217,8 @@ def _nav_kernel(lla0, vel0, q0, w, f, dt, earth_consts, hold_height):
     return lla, vel, q
 
 
-def integrate(lla0: Vec3, vel0: Vec3, q0: Quat, w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, t0: float = 0.0,
+def integrate(lla0: Vec3, vel0: Vec3, q0: Quat, w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None,
+              dt: Interval | None = None, t0: float = 0.0,
               hold_height: bool = False, ellipsoid: earth.Ellipsoid = earth.WGS84,
               on_nan: str = "raise") -> Trajectory | tuple[Trajectory, np.ndarray]:
     """Full strapdown navigation: attitude, ENU velocity and geodetic position.
@@ -231,7 +233,8 @@ def integrate(lla0: Vec3, vel0: Vec3, q0: Quat, w_ib_b: Vec3Series, f_b: Vec3Ser
         Initial attitude quaternion q_b^n.
     w_ib_b, f_b : array_like, shape (..., N, 3)
         Gyro (rad/s) and accelerometer (m/s^2) samples. NaN marks a dropout
-        (see ``on_nan``); inf is rejected.
+        (see ``on_nan``); inf is rejected. An :class:`navlib.imu.ImuSamples` as
+        ``w_ib_b`` supplies ``f_b`` and ``dt`` (its ranges are not used here).
     dt : float or array_like, shape (N,)
         Sample interval (s), or per-sample intervals for irregular sampling
         (``dt[k]`` is the interval covered by sample k, shared by all trials;
@@ -257,6 +260,7 @@ def integrate(lla0: Vec3, vel0: Vec3, q0: Quat, w_ib_b: Vec3Series, f_b: Vec3Ser
         on every sample where the gyro or the accelerometer sample (or both)
         was held; ``held.sum()`` counts them.
     """
+    w_ib_b, f_b, dt, _, _ = unpack(w_ib_b, f_b, dt)
     on_nan = choice(on_nan, "on_nan", _ON_NAN)
     w = _samples(w_ib_b, "w_ib_b")
     f = _samples(f_b, "f_b")

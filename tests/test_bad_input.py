@@ -71,6 +71,7 @@ from navlib import (  # noqa: E402
     earth,
     euler,
     faults,
+    imu,
     kalman,
     montecarlo,
     pdr,
@@ -87,7 +88,7 @@ from navlib.filters import heading_fusion, mahony, observations, planar_ekf, qua
 
 MODULES = ["attitude", "earth", "units", "sensors", "atmosphere", "trajectory", "strapdown",
            "kalman", "analysis", "repro", "plots", "montecarlo", "faults", "timing", "alignment", "robust",
-           "euler", "pdr", "filters.zupt", "filters.mahony", "filters.quaternion_kf", "filters.observations",
+           "euler", "pdr", "imu", "filters.zupt", "filters.mahony", "filters.quaternion_kf", "filters.observations",
            "filters.planar_ekf", "filters.heading_fusion"]
 
 NAN, INF = np.nan, np.inf
@@ -523,6 +524,12 @@ CASES = [
     bad("analysis.lsq_covariance", "R", "shape", lambda: analysis.lsq_covariance(np.ones((4, 2, 3)), np.ones((4, 3, 3)))),
     bad("analysis.lsq_covariance", "V", "unobservable", lambda: analysis.lsq_covariance(np.zeros((4, 2, 3)), np.ones((4, 2, 2)))),
     bad("analysis.cramer_rao_bound", "V", "nan", lambda: analysis.cramer_rao_bound(np.full((4, 2, 3), NAN), np.ones((4, 2, 2)))),
+    bad("imu.ImuSamples", "w_ib_b, f_b", "shape", lambda: imu.ImuSamples(W, F[:5], 0.01)),
+    bad("imu.ImuSamples", "dt", "negative", lambda: imu.ImuSamples(W, F, -0.01)),
+    bad("imu.ImuSamples", "full_scale_gyro", "zero", lambda: imu.ImuSamples(W, F, 0.01, full_scale_gyro=0.0)),
+    bad("imu.ImuSamples", "time", "repeated_times", lambda: imu.ImuSamples.from_times(np.zeros(11), W, F)),
+    bad("imu.unpack", "dt", "given_twice", lambda: imu.unpack(imu.ImuSamples(W, F, 0.01), dt=0.01)),
+    bad("imu.unpack", "f_b", "missing", lambda: imu.unpack(W)),
     bad("earth.earth_rate_b", "C_bn", "shape", lambda: earth.earth_rate_b(np.eye(2), 0.5)),
     bad("earth.earth_rate_b", "lat", "array", lambda: earth.earth_rate_b(np.eye(3), [0.5, 0.6])),
     bad("trajectory.Leg", "duration", "zero", lambda: trajectory.Leg(0.0)),

@@ -24,6 +24,7 @@ from .._deprecate import renamed_keywords
 from .._typing import ArrayLike, Interval, Quat, Vec3, Vec3Series
 from .._validate import scalar
 from ..attitude import quat_mult_t
+from ..imu import ImuSamples, unpack
 from ..units import G0
 from .observations import (
     COUNT_NAMES,
@@ -73,7 +74,8 @@ def _trial(t, inp, kp, ki, q_out, bias_out, counts):
 
 
 @renamed_keywords(gyro_range="full_scale_gyro", accel_range="full_scale_accel", mag_range="full_scale_mag")
-def mahony(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, *, m_b: Vec3Series | None = None,
+def mahony(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None, dt: Interval | None = None,
+           q0: Quat | None = None, *, m_b: Vec3Series | None = None,
            heading_rtk: ArrayLike | None = None, rtk_valid: ArrayLike | None = None, kp: float = 1.0,
            ki: float = 0.02, B_n: Vec3 | None = None, gate: MagGate | None = None, accel_tol: float | None = None,
            g: float = G0, rtk_hold: float = 0.25, rtk_gate: float | None = None, rtk_confirm: int = 5,
@@ -90,8 +92,9 @@ def mahony(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, *, m_b: 
 
     Parameters
     ----------
-    w_ib_b : array_like, shape (..., N, 3)
-        Gyro samples (rad/s); NaN samples are replaced by the last used one (counted).
+    w_ib_b : array_like, shape (..., N, 3), or ImuSamples
+        Gyro samples (rad/s); NaN samples are replaced by the last used one (counted). An
+        :class:`navlib.imu.ImuSamples` here supplies ``f_b``, ``dt`` and the gyro and accelerometer ranges.
         Earth rate is neglected, as in the paper.
     f_b : array_like, shape (..., N, 3)
         Accelerometer samples (m/s^2); NaN, infinite or zero samples are skipped (counted).
@@ -160,6 +163,7 @@ def mahony(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, *, m_b: 
     -------
     AttitudeResult
     """
+    w_ib_b, f_b, dt, full_scale_gyro, full_scale_accel = unpack(w_ib_b, f_b, dt, full_scale_gyro, full_scale_accel)
     lead, inp, sat = prepare_inputs(w_ib_b, f_b, dt, q0, m_b, heading_rtk, rtk_valid, B_n, gate, accel_tol, g,
                                     rtk_hold, rtk_gate, rtk_confirm, full_scale_gyro, full_scale_accel, full_scale_mag, gyro_jump)
     kp, ki = scalar(kp, "kp", positive=True, allow_zero=True), scalar(ki, "ki", positive=True, allow_zero=True)

@@ -116,6 +116,7 @@ from .._deprecate import renamed_keywords
 from .._kernels import radii_mn
 from .._validate import as_array, as_quat, generator, intervals, positive, range_limit
 from ..filters.zupt import error_state_into, zupt_zaru_rows_into, zupt_zaru_z_into
+from ..imu import unpack
 from ..strapdown import earth_constants, nav_step
 from ..trajectory import Leg
 from ..units import G0
@@ -686,7 +687,7 @@ def _field_reference(B_n):
 
 
 @renamed_keywords(field_n="B_n")
-def run_filter(w_ib_b, f_b, dt, lla0, vel0, q0, static, *, h_baro=None, m_b=None,
+def run_filter(w_ib_b, f_b=None, dt=None, lla0=None, vel0=None, q0=None, static=None, *, h_baro=None, m_b=None,
                declination: float = 0.0, B_n=None, walk_aiding: str = "reset", zupt: bool = True,
                accel_bias0=(0.0, 0.0, 0.0), gyro_bias0=(0.0, 0.0, 0.0), config: FilterConfig = FilterConfig(),
                t0: float = 0.0, ellipsoid: earth.Ellipsoid = earth.WGS84, full_scale_gyro: float | None = None,
@@ -696,7 +697,8 @@ def run_filter(w_ib_b, f_b, dt, lla0, vel0, q0, static, *, h_baro=None, m_b=None
     Parameters
     ----------
     w_ib_b, f_b : array_like, shape (N, 3)
-        Gyro (rad/s) and accelerometer (m/s^2) samples; NaN samples
+        Gyro (rad/s) and accelerometer (m/s^2) samples (or an :class:`navlib.imu.ImuSamples` as
+        ``w_ib_b``, supplying ``f_b``, ``dt`` and the ranges); NaN samples
         (dropouts) are replaced by the last good one and counted
         (``imu_dropouts``); they are never used for ZUPT/ZARU
         (``static_skipped``). The first sample must be valid.
@@ -748,6 +750,7 @@ def run_filter(w_ib_b, f_b, dt, lla0, vel0, q0, static, *, h_baro=None, m_b=None
         A ``RuntimeWarning`` is issued when ``zupt`` is on and no static
         update was ever applied (check ``result.updated``).
     """
+    w_ib_b, f_b, dt, full_scale_gyro, full_scale_accel = unpack(w_ib_b, f_b, dt, full_scale_gyro, full_scale_accel)
     w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
     f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=True)
     if w.ndim != 2 or f.shape != w.shape:

@@ -1,0 +1,62 @@
+"""navlib.imu.ImuSamples: validated once, accepted by the IMU filters beside raw arrays, same results."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from navlib import imu, strapdown, trajectory
+from navlib.filters import mahony, quaternion_kf
+from navlib.papers import pedestrian_ins
+
+DT = 0.01
+LLA0 = [0.5, 0.2, 10.0]
+
+
+@pytest.fixture(scope="module")
+def walk():
+    legs = [trajectory.Leg(3.0), trajectory.Leg(2.0, 1.0), trajectory.Leg(3.0)]
+    traj = trajectory.walk(legs, DT, LLA0, 0.3)
+    w, f = trajectory.ideal_imu(traj)
+    w = w + 0.01 * np.sin(np.arange(len(w)))[:, None]            # some signal for the range test
+    return traj, w, f, trajectory.stance_mask(legs, DT)[:-1]
+
+
+def test_construction_validates_and_stores_arrays():
+    s = imu.ImuSamples(np.zeros((2, 5, 3)), np.ones((2, 5, 3)), 0.1, full_scale_gyro=3.0)
+    assert s.n == 5 and s.dt.shape == (5,) and np.all(s.dt == 0.1)
+    assert s.full_scale_gyro == 3.0 and np.isinf(s.full_scale_accel)
+    t = np.array([0.0, 0.1, 0.25, 0.3, 0.5, 0.6])
+    np.testing.assert_array_equal(imu.ImuSamples.from_times(t, np.zeros((5, 3)), np.ones((5, 3))).dt, np.diff(t))
+
+
+def test_filters_give_the_same_result_with_samples_or_arrays(walk):
+    traj, w, f, static = walk
+    dts = np.full(len(w), DT)
+    samples = imu.ImuSamples(w, f, DT, full_scale_gyro=0.5, full_scale_accel=20.0)
+    m = np.tile([0.0, 20.0, -40.0], (len(w), 1))
+    raw = mahony.mahony(w, f, dts, traj.q_bn[0], m_b=m, full_scale_gyro=0.5, full_scale_accel=20.0)
+    new = mahony.mahony(samples, q0=traj.q_bn[0], m_b=m)
+    np.testing.assert_array_equal(raw.q_bn, new.q_bn)
+    assert raw.counts == new.counts
+    raw = quaternion_kf.quaternion_kf(w, f, dts, traj.q_bn[0], m_b=m, B_n=[0.0, 20.0, -40.0])
+    new = quaternion_kf.quaternion_kf(imu.ImuSamples(w, f, DT), q0=traj.q_bn[0], m_b=m, B_n=[0.0, 20.0, -40.0])
+    np.testing.assert_array_equal(raw.q_bn, new.q_bn)
+    raw = strapdown.integrate(traj.lla[0], traj.vel_n[0], traj.q_bn[0], w, f, dts)
+    new = strapdown.integrate(traj.lla[0], traj.vel_n[0], traj.q_bn[0], samples)
+    np.testing.assert_array_equal(raw.lla, new.lla)
+    raw = pedestrian_ins.run_filter(w, f, dts, traj.lla[0], traj.vel_n[0], traj.q_bn[0], static,
+                                    full_scale_gyro=0.5, full_scale_accel=20.0)
+    new = pedestrian_ins.run_filter(samples, lla0=traj.lla[0], vel0=traj.vel_n[0], q0=traj.q_bn[0], static=static)
+    np.testing.assert_array_equal(raw.nav.lla, new.nav.lla)
+    assert raw.counts == new.counts
+
+
+def test_a_range_is_given_once(walk):
+    _, w, f, _ = walk
+    samples = imu.ImuSamples(w, f, DT, full_scale_gyro=0.5)
+    with pytest.raises(ValueError, match="^full_scale_gyro: given twice"):
+        mahony.mahony(samples, q0=[1.0, 0, 0, 0], m_b=np.ones_like(w), full_scale_gyro=0.4)
+    with pytest.raises(ValueError, match="^f_b: given twice"):
+        mahony.mahony(samples, f, q0=[1.0, 0, 0, 0], m_b=np.ones_like(w))
+    with pytest.raises(ValueError, match="^dt: required"):
+        mahony.mahony(w, f, q0=[1.0, 0, 0, 0], m_b=np.ones_like(w))
