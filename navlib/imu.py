@@ -66,7 +66,8 @@ def _one(name: str, given, held: float):
     return given if given is not None else (None if np.isinf(held) else held)
 
 
-def unpack(w_ib_b, f_b=None, dt=None, full_scale_gyro=None, full_scale_accel=None) -> tuple:
+def unpack(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None, dt: Interval | None = None,
+           full_scale_gyro: float | None = None, full_scale_accel: float | None = None) -> tuple:
     """``(w_ib_b, f_b, dt, full_scale_gyro, full_scale_accel)`` from an :class:`ImuSamples` or raw arguments.
 
     With an ImuSamples, ``f_b`` and ``dt`` must be None and a range may be given either there or here,
