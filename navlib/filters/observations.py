@@ -331,7 +331,7 @@ class AttitudeResult:
     counts : dict of str -> ndarray of int, shape (...)
         Held, skipped, gated, rejected and saturated samples, keys :data:`COUNT_NAMES`.
     P : ndarray, shape (..., 4, 4) or None
-        Final quaternion covariance (:func:`quaternion_kf`; None for Mahony).
+        Final quaternion covariance (:func:`navlib.filters.quaternion_kf.quaternion_kf`; None for Mahony).
     P_history : ndarray, shape (..., N, 4, 4) or None
         Covariance after every sample (``quaternion_kf(..., keep_cov=True)``).
     faults : FaultReport
