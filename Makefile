@@ -33,11 +33,17 @@ help:
 
 venv: $(STAMP)
 
-# Re-installs only when the pins or the package metadata change.
+# Re-installs only when the pins or the package metadata change. The exact pins of environment.txt are
+# installed with uv (the version pinned there; ~10x faster than pip) when it can be installed, else with pip.
+UV_VERSION := $(shell sed -n 's/^uv==//p' environment.txt)
 $(STAMP): environment.txt pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
-	$(PIP) install -r environment.txt
-	$(PIP) install --no-deps -e .
+	if $(PIP) install -q uv==$(UV_VERSION) && $(VENV)/bin/uv --version; then \
+	  $(VENV)/bin/uv pip install --python $(PY) -r environment.txt && \
+	  $(VENV)/bin/uv pip install --python $(PY) --no-deps -e . ; \
+	else \
+	  $(PIP) install -r environment.txt && $(PIP) install --no-deps -e . ; \
+	fi
 	touch $@
 
 reproduce: $(STAMP)
