@@ -15,11 +15,12 @@ results file and figure), and prints one line per notebook.
 ``--check-against MANIFEST`` fails the run unless those files are
 byte-identical to an earlier run's (``make determinism``).
 
-A notebook that raises is reported and the run goes on with the next one; the
+Notebooks run ``--jobs`` at a time (default 2), each in its own kernel. A notebook that raises is
+reported and the run goes on with the others; the
 exit status is non-zero if any notebook failed. ``--only`` runs a subset, and
 the report then covers that subset only. Needs no network.
 
-Usage: python tools/reproduce.py [--only PATTERN] [--root DIR] [--timeout S]
+Usage: python tools/reproduce.py [--only PATTERN] [--root DIR] [--timeout S] [--jobs N]
 """
 from __future__ import annotations
 
@@ -28,10 +29,12 @@ import fnmatch
 import hashlib
 import html
 import json
+import multiprocessing
 import os
 import shutil
 import sys
 import time
+from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
 
 import nbformat
@@ -174,6 +177,8 @@ def main(argv=None) -> int:
     ap.add_argument("--only", metavar="PATTERN", help="run only notebooks whose name matches (substring or glob)")
     ap.add_argument("--root", type=Path, default=REPO, help="repository root holding notebooks/ (default: this repo)")
     ap.add_argument("--timeout", type=int, default=1800, help="per-cell timeout in seconds (default 1800)")
+    ap.add_argument("--jobs", type=int, default=min(2, os.cpu_count() or 1),
+                    help="notebooks executed at once, each in its own kernel (default: 2, or 1 on one core)")
     ap.add_argument("--check-against", type=Path, metavar="MANIFEST",
                     help="fail unless every results.json and PNG is byte-identical to this earlier manifest")
     args = ap.parse_args(argv)
@@ -196,13 +201,19 @@ def main(argv=None) -> int:
     os.environ["NAVLIB_ROOT"] = str(root)
     os.environ["MPLBACKEND"] = "module://matplotlib_inline.backend_inline"
 
-    entries = []
-    for k, path in enumerate(notebooks, 1):
-        print(f"[{k}/{len(notebooks)}] {path.stem} ...", flush=True)
-        e = run_notebook(path, build, args.timeout)
-        entries.append(e)
-        tail = "" if e["error"] is None else f"\n    ERROR: {e['error']}"
-        print(f"    {'done' if e['ok'] else 'FAILED'} in {e['seconds']:.1f} s{tail}", flush=True)
+    # Notebooks are independent (own kernel, own build/<stem>/, own seeds): run --jobs at once.
+    start = time.perf_counter()
+    done = {}
+    with ProcessPoolExecutor(max(1, args.jobs), mp_context=multiprocessing.get_context("spawn")) as pool:
+        futures = {pool.submit(run_notebook, path, build, args.timeout): path for path in notebooks}
+        print(f"executing {len(notebooks)} notebooks, {max(1, args.jobs)} at a time ...", flush=True)
+        for future in as_completed(futures):
+            e = done[futures[future]] = future.result()
+            tail = "" if e["error"] is None else f"\n    ERROR: {e['error']}"
+            print(f"[{len(done)}/{len(notebooks)}] {e['notebook']} {'done' if e['ok'] else 'FAILED'} "
+                  f"in {e['seconds']:.1f} s{tail}", flush=True)
+    entries = [done[path] for path in notebooks]
+    wall = time.perf_counter() - start
 
     write_index(build, entries)
     manifest = write_manifest(build, entries)
@@ -221,7 +232,7 @@ def main(argv=None) -> int:
     total = sum(e["claims_total"] for e in entries)
     seconds = sum(e["seconds"] for e in entries)
     print(f"{'total':<{width}}{f'{passed}/{total}':>7} claims passed{seconds:>9.1f} s"
-          f"   ({n_ok}/{len(entries)} notebooks ok)")
+          f"   ({n_ok}/{len(entries)} notebooks ok; {wall:.1f} s wall with {max(1, args.jobs)} at a time)")
     print(f"report: {build / 'index.html'}")
     if args.check_against:
         changed = compare_manifest(manifest, args.check_against)
