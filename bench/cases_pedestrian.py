@@ -5,8 +5,7 @@ import numpy as np
 
 from bench.run import Result, best_time
 from navlib import attitude, sensors, trajectory, units
-from navlib.filters import zupt
-from navlib.papers import pedestrian_ins as pedestrian
+from navlib.filters import zupt, zupt_ins
 
 LLA0 = [units.deg(30.55), units.deg(114.30), 20.0]
 DT = 0.01
@@ -25,7 +24,7 @@ def error_state_filter(quick: bool):
     n = 30_000 if quick else 300_000
     w, f, q0 = _static_imu(n)
     static = np.ones(n, dtype=bool)
-    t_nav = best_time(lambda: pedestrian.run_filter(w, f, DT, LLA0, np.zeros(3), q0, static), repeat=2)
+    t_nav = best_time(lambda: zupt_ins.run_filter(w, f, DT, LLA0, np.zeros(3), q0, static), repeat=2)
     rows = [Result("15-state error-state INS step", "navlib.papers.pedestrian_ins (numba)", n / t_nav, "steps/s", t_nav,
                    goal=0.15e6, note="strapdown + predict each step, 6-component update every 10th")]
     try:

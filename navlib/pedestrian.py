@@ -1,6 +1,6 @@
 """Deprecated alias of :mod:`navlib.papers.pedestrian_ins` and of core modules:
-navlib.alignment, navlib.analysis, navlib.atmosphere, navlib.attitude, navlib.filters.zupt, navlib.pdr,
-navlib.robust, navlib.trajectory.
+navlib.alignment, navlib.analysis, navlib.atmosphere, navlib.attitude, navlib.filters.zupt,
+navlib.filters.zupt_ins, navlib.pdr, navlib.robust, navlib.trajectory.
 
 ``navlib.pedestrian`` was the module of this paper before the split into a paper companion
 and core homes (see CONTRIBUTING.md). Every old name still resolves here; importing this
@@ -13,13 +13,22 @@ from .alignment import level, magnetic_heading, static_gyro_bias  # noqa: F401
 from .analysis import detection_rates, expanding_std, horizontal_error, segments  # noqa: F401
 from .atmosphere import baro_height, classify_floor, reference_pressure, segment_floors  # noqa: F401
 from .attitude import M_NED_ENU, ned_to_enu_dcm  # noqa: F401
-from .filters.zupt import (  # noqa: F401  # noqa: F401
+from .filters.zupt import (  # noqa: F401
            STATIC_THRESHOLDS,
            detect_static,
            error_model_fd,
            error_state_matrix,
            zupt_zaru_innovation,
            zupt_zaru_matrix,
+)
+from .filters.zupt_ins import (  # noqa: F401
+           FLAG_DROPOUT,
+           FLAG_SATURATED,
+           FLAG_SPIKE,
+           FLAG_STATIC_SKIPPED,
+           FilterConfig,
+           FilterResult,
+           run_filter,
 )
 from .papers.pedestrian_ins import *  # noqa: F403
 from .pdr import StepResult, detect_steps, pdr, pdr_headings, weinberg_step_length  # noqa: F401

@@ -8,8 +8,8 @@ from __future__ import annotations
 import numpy as np
 
 from navlib import robust, trajectory
-from navlib.filters import mahony, observations, planar_ekf
-from navlib.papers import gauss_kruger_ekf, pedestrian_ins, rotation_bias
+from navlib.filters import mahony, observations, planar_ekf, zupt_ins
+from navlib.papers import gauss_kruger_ekf, rotation_bias
 
 KINDS = {"nan", "saturated", "spike", "outlier", "reacquired", "refused"}
 
@@ -56,9 +56,9 @@ def test_pedestrian_filter():
     w, f = trajectory.ideal_imu(traj)
     w[50] = np.nan
     static = trajectory.stance_mask(legs, 0.01)[:-1]
-    res = pedestrian_ins.run_filter(w, f, 0.01, traj.lla[0], traj.vel_n[0], traj.q_bn[0], static)
+    res = zupt_ins.run_filter(w, f, 0.01, traj.lla[0], traj.vel_n[0], traj.q_bn[0], static)
     check_vocabulary(res.faults)
-    for name, key in pedestrian_ins.FAULT_KEYS.items():
+    for name, key in zupt_ins.FAULT_KEYS.items():
         assert res.faults[key] == res.counts[name]
     assert res.faults["imu", "nan"] == 1 and res.faults.flags["imu", "nan"][50]
 

@@ -5,8 +5,7 @@ import numpy as np
 import pytest
 
 from navlib import imu, strapdown, trajectory
-from navlib.filters import mahony, quaternion_kf
-from navlib.papers import pedestrian_ins
+from navlib.filters import mahony, quaternion_kf, zupt_ins
 
 DT = 0.01
 LLA0 = [0.5, 0.2, 10.0]
@@ -44,9 +43,9 @@ def test_filters_give_the_same_result_with_samples_or_arrays(walk):
     raw = strapdown.integrate(traj.lla[0], traj.vel_n[0], traj.q_bn[0], w, f, dts)
     new = strapdown.integrate(traj.lla[0], traj.vel_n[0], traj.q_bn[0], samples)
     np.testing.assert_array_equal(raw.lla, new.lla)
-    raw = pedestrian_ins.run_filter(w, f, dts, traj.lla[0], traj.vel_n[0], traj.q_bn[0], static,
+    raw = zupt_ins.run_filter(w, f, dts, traj.lla[0], traj.vel_n[0], traj.q_bn[0], static,
                                     full_scale_gyro=0.5, full_scale_accel=20.0)
-    new = pedestrian_ins.run_filter(samples, lla0=traj.lla[0], vel0=traj.vel_n[0], q0=traj.q_bn[0], static=static)
+    new = zupt_ins.run_filter(samples, lla0=traj.lla[0], vel0=traj.vel_n[0], q0=traj.q_bn[0], static=static)
     np.testing.assert_array_equal(raw.nav.lla, new.nav.lla)
     assert raw.counts == new.counts
 

@@ -9,7 +9,7 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from navlib import alignment, analysis, atmosphere, attitude, earth, kalman, pdr, sensors, strapdown, trajectory, units
-from navlib.filters import zupt
+from navlib.filters import zupt, zupt_ins
 from navlib.papers import pedestrian_ins as pd
 
 LAT = units.deg(30.55)
@@ -183,7 +183,7 @@ def static_run():
 
 def test_static_zupt_zaru_holds_position_and_finds_gyro_bias(static_run):
     traj, imu, q0 = static_run
-    res = pd.run_filter(imu.w_ib_b, imu.f_b, DT, LLA0, np.zeros(3), q0, np.ones(len(imu.f_b), bool))
+    res = zupt_ins.run_filter(imu.w_ib_b, imu.f_b, DT, LLA0, np.zeros(3), q0, np.ones(len(imu.f_b), bool))
     R_M, _ = earth.radii(LAT)
     assert res.updated and res.counts["zupt_updates"] == 1200
     assert np.std(res.nav.lla[:, 0]) * R_M < 0.01
@@ -195,7 +195,7 @@ def test_static_zupt_zaru_holds_position_and_finds_gyro_bias(static_run):
 def test_no_static_interval_is_reported_not_hidden(static_run):
     traj, imu, q0 = static_run
     with pytest.warns(RuntimeWarning, match="no ZUPT/ZARU update"):
-        res = pd.run_filter(imu.w_ib_b, imu.f_b, DT, LLA0, np.zeros(3), q0, np.zeros(len(imu.f_b), bool))
+        res = zupt_ins.run_filter(imu.w_ib_b, imu.f_b, DT, LLA0, np.zeros(3), q0, np.zeros(len(imu.f_b), bool))
     assert not res.updated
     free = strapdown.integrate(LLA0, np.zeros(3), q0, imu.w_ib_b, imu.f_b, DT)
     np.testing.assert_array_equal(res.nav.lla, free.lla)             # exactly the free INS: same mechanisation
@@ -203,8 +203,8 @@ def test_no_static_interval_is_reported_not_hidden(static_run):
 
 def test_repeated_rejections_force_an_update_instead_of_locking_out(static_run):
     traj, imu, q0 = static_run
-    res = pd.run_filter(imu.w_ib_b, imu.f_b, DT, LLA0, [3.0, 0.0, 0.0], q0, np.ones(len(imu.f_b), bool))
-    assert res.counts["zupt_rejected"] == pd.FilterConfig().max_rejected
+    res = zupt_ins.run_filter(imu.w_ib_b, imu.f_b, DT, LLA0, [3.0, 0.0, 0.0], q0, np.ones(len(imu.f_b), bool))
+    assert res.counts["zupt_rejected"] == zupt_ins.FilterConfig().max_rejected
     assert res.counts["zupt_forced"] == 1
     assert np.abs(res.nav.vel_n[-1]).max() < 0.01
 
@@ -215,7 +215,7 @@ def test_filter_survives_dropouts_and_gates_false_zupts(static_run):
     w[500:520] = np.nan
     f[700] = np.nan
     static = np.ones(len(f), bool)
-    res = pd.run_filter(w, f, DT, LLA0, np.zeros(3), q0, static)
+    res = zupt_ins.run_filter(w, f, DT, LLA0, np.zeros(3), q0, static)
     assert res.counts["imu_dropouts"] == 21
     assert np.all(np.isfinite(res.nav.lla))
     # a walker flagged static for 1 s in the middle of a walk: the NIS gate rejects most of those updates
@@ -225,7 +225,7 @@ def test_filter_survives_dropouts_and_gates_false_zupts(static_run):
     imu_w = sensors.simulate_imu(ww, fw, DT, RESIDUAL, np.random.default_rng(7))
     flags = trajectory.stance_mask(legs, DT)[:-1].copy()
     flags[3000:3100] = True
-    res = pd.run_filter(imu_w.w_ib_b, imu_w.f_b, DT, LLA0, np.zeros(3), walk.q_bn[0], flags)
+    res = zupt_ins.run_filter(imu_w.w_ib_b, imu_w.f_b, DT, LLA0, np.zeros(3), walk.q_bn[0], flags)
     assert res.counts["zupt_rejected"] >= 5
 
 
@@ -246,7 +246,7 @@ def test_walking_aids_bound_heading_and_height(carpark):
     det = zupt.detect_static(imu.w_ib_b, imu.f_b, DT)
     out = {}
     for mode in ("reset", "filter", "none"):
-        res = pd.run_filter(imu.w_ib_b, imu.f_b, DT, LLA0, np.zeros(3), traj.q_bn[0], det, h_baro=h, m_b=m,
+        res = zupt_ins.run_filter(imu.w_ib_b, imu.f_b, DT, LLA0, np.zeros(3), traj.q_bn[0], det, h_baro=h, m_b=m,
                             declination=float(D), walk_aiding=mode)
         out[mode] = (np.abs(attitude.wrap_pi(res.nav.hpr[:, 0] - traj.hpr[:, 0])).max(),
                      np.abs(res.nav.lla[:, 2] - traj.lla[:, 2]).max(), res)
@@ -256,13 +256,13 @@ def test_walking_aids_bound_heading_and_height(carpark):
     assert out["none"][2].counts["mag_aidings"] == 0
     # ENU sign of the heading reset: a 10-degree initial heading error is removed while walking
     q_off = attitude.euler_to_quat(traj.hpr[0] + [np.deg2rad(10.0), 0.0, 0.0])
-    res = pd.run_filter(imu.w_ib_b, imu.f_b, DT, LLA0, np.zeros(3), q_off, det, h_baro=h, m_b=m,
+    res = zupt_ins.run_filter(imu.w_ib_b, imu.f_b, DT, LLA0, np.zeros(3), q_off, det, h_baro=h, m_b=m,
                         declination=float(D))
     err = np.abs(attitude.wrap_pi(res.nav.hpr[:, 0] - traj.hpr[:, 0]))
     assert err[0] > np.deg2rad(9.9) and err[int(40 / DT):].max() < np.deg2rad(3)
     # a strong disturbance everywhere: the gate on field magnitude and dip rejects it
-    cfg = pd.FilterConfig(mag_field_tol=5.0, mag_dip_tol=np.deg2rad(5))
-    res = pd.run_filter(imu.w_ib_b, imu.f_b, DT, LLA0, np.zeros(3), traj.q_bn[0], det, h_baro=h,
+    cfg = zupt_ins.FilterConfig(mag_field_tol=5.0, mag_dip_tol=np.deg2rad(5))
+    res = zupt_ins.run_filter(imu.w_ib_b, imu.f_b, DT, LLA0, np.zeros(3), traj.q_bn[0], det, h_baro=h,
                         m_b=m + np.array([0.0, 0.0, 30.0]), declination=float(D), B_n=B, config=cfg)
     assert res.counts["mag_gated"] > 0 and res.counts["mag_aidings"] == 0
 
@@ -271,14 +271,14 @@ def test_kernel_runs_uncompiled_with_the_same_result():
     script = r"""
 import json, numpy as np, warnings
 from navlib import trajectory, units
-from navlib.filters import zupt
+from navlib.filters import zupt, zupt_ins
 from navlib.papers import pedestrian_ins as pd
 legs = [trajectory.Leg(3.0), trajectory.Leg(3.0, 1.0, turn=0.5), trajectory.Leg(2.0)]
 traj = trajectory.walk(legs, 0.02, [0.5, 1.9, 10.0], 0.2)
 w, f = trajectory.ideal_imu(traj)
 static = trajectory.stance_mask(legs, 0.02)[:-1]
 m = np.tile([10.0, 20.0, -30.0], (len(w), 1))
-res = pd.run_filter(w + 1e-3, f, 0.02, traj.lla[0], traj.vel_n[0], traj.q_bn[0], static,
+res = zupt_ins.run_filter(w + 1e-3, f, 0.02, traj.lla[0], traj.vel_n[0], traj.q_bn[0], static,
                     h_baro=traj.lla[:-1, 2], m_b=m)
 # the fault paths: a dropout, a spike, clipping, a baro spike, per-sample intervals
 w2, f2, h2 = w + 1e-3, f.copy(), traj.lla[:-1, 2].copy()
@@ -286,8 +286,8 @@ w2[50] = np.nan
 f2[120, 2] += 5.0
 h2[300] += 50.0
 dt = 0.02 * (1 + 0.1 * np.sin(np.arange(len(w))))
-cfg = pd.FilterConfig(spike_gyro=0.02, spike_accel=0.5)
-res2 = pd.run_filter(w2, f2, dt, traj.lla[0], traj.vel_n[0], traj.q_bn[0], static, h_baro=h2, m_b=m,
+cfg = zupt_ins.FilterConfig(spike_gyro=0.02, spike_accel=0.5)
+res2 = zupt_ins.run_filter(w2, f2, dt, traj.lla[0], traj.vel_n[0], traj.q_bn[0], static, h_baro=h2, m_b=m,
                      config=cfg, full_scale_gyro=0.3, full_scale_accel=11.0)
 print(json.dumps({"lla": res.nav.lla.tolist(), "counts": res.counts, "lla2": res2.nav.lla.tolist(),
                   "counts2": res2.counts, "flags2": res2.flags.tolist()}))
@@ -354,15 +354,15 @@ def test_step_detection_and_pdr(carpark):
     (lambda: trajectory.Leg(-1.0), "duration"),
     (lambda: trajectory.Leg(5.0, 0.0, turn=1.0), "turn, climb"),
     (lambda: trajectory.Gait(step_frequency=0.0), "step_frequency"),
-    (lambda: pd.FilterConfig(sigma_zupt=0.0), "sigma_zupt"),
+    (lambda: zupt_ins.FilterConfig(sigma_zupt=0.0), "sigma_zupt"),
     (lambda: alignment.level([0.0, 0.0, 0.0]), "f_b"),
     (lambda: atmosphere.reference_pressure([np.nan, np.nan], [0.0, 1.0], 5.0), "until"),
     (lambda: atmosphere.classify_floor([1.0], floor_height=0.0), "floor_height"),
-    (lambda: pd.run_filter(np.zeros((5, 3)), np.zeros((5, 3)), 0.01, LLA0, np.zeros(3), [1, 0, 0, 0],
+    (lambda: zupt_ins.run_filter(np.zeros((5, 3)), np.zeros((5, 3)), 0.01, LLA0, np.zeros(3), [1, 0, 0, 0],
                            np.ones(4, bool)), "static"),
-    (lambda: pd.run_filter(np.zeros((5, 3)), np.zeros((5, 3)), 0.01, LLA0, np.zeros(3), [1, 0, 0, 0],
+    (lambda: zupt_ins.run_filter(np.zeros((5, 3)), np.zeros((5, 3)), 0.01, LLA0, np.zeros(3), [1, 0, 0, 0],
                            np.ones(5, bool), m_b=np.zeros((5, 3))), "m_b"),
-    (lambda: pd.run_filter(np.zeros((5, 3)), np.zeros((5, 3)), 0.01, LLA0, np.zeros(3), [1, 0, 0, 0],
+    (lambda: zupt_ins.run_filter(np.zeros((5, 3)), np.zeros((5, 3)), 0.01, LLA0, np.zeros(3), [1, 0, 0, 0],
                            np.ones(5, bool), walk_aiding="magic"), "walk_aiding"),
     (lambda: pdr.detect_steps(np.zeros((5, 3)), 0.01), "f_b"),
     (lambda: pdr.weinberg_step_length([1.0], K=-1.0), "K"),

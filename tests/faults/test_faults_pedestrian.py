@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 from navlib import alignment, analysis, atmosphere, attitude, earth, faults, pdr, robust, sensors, timing, trajectory, units
-from navlib.filters import zupt
+from navlib.filters import zupt, zupt_ins
 from navlib.papers import pedestrian_ins as pd
 
 LLA0 = [units.deg(30.55), units.deg(114.30), 20.0]
@@ -58,7 +58,7 @@ def run(d, w=None, f=None, dt=DT, static=None, h=None, m=None, **kw):
     w = d["w"] if w is None else w
     f = d["f"] if f is None else f
     static = zupt.detect_static(w, f, DT) if static is None else static
-    res = pd.run_filter(w, f, dt, LLA0, np.zeros(3), d["traj"].q_bn[0], static,
+    res = zupt_ins.run_filter(w, f, dt, LLA0, np.zeros(3), d["traj"].q_bn[0], static,
                         h_baro=d["h"] if h is None else h, m_b=d["m"] if m is None else m, declination=d["D"], **kw)
     assert np.isfinite(res.nav.lla).all() and np.isfinite(res.nav.q_bn).all() and np.isfinite(res.P_diag).all()
     np.testing.assert_allclose(res.P, res.P.T, rtol=0, atol=1e-12 * np.abs(res.P).max())
@@ -86,8 +86,8 @@ def test_random_dropouts_are_held_counted_and_bounded(walk):
     static = zupt.detect_static(w, f, DT)          # NaN-tolerant: windows with >= half their samples valid
     res = run(walk, w, f, static=static)
     assert res.counts["imu_dropouts"] == drop.sum() > 1000
-    np.testing.assert_array_equal(flagged(res, pd.FLAG_DROPOUT), drop)
-    np.testing.assert_array_equal(flagged(res, pd.FLAG_STATIC_SKIPPED), drop & static)
+    np.testing.assert_array_equal(flagged(res, zupt_ins.FLAG_DROPOUT), drop)
+    np.testing.assert_array_equal(flagged(res, zupt_ins.FLAG_STATIC_SKIPPED), drop & static)
     assert res.counts["static_skipped"] == (drop & static).sum()
     assert res.counts["zupt_updates"] > 0.8 * walk["ref"].counts["zupt_updates"]
     # Stated bound: the held samples add a random walk of the MPU-6050 noise while walking and cost ~10 %
@@ -103,7 +103,7 @@ def test_30s_gap_in_a_stand_is_held_counted_and_recovered(walk):
     f[gap] = np.nan
     res = run(walk, w, f)
     assert res.counts["imu_dropouts"] == gap.sum() == 3000
-    np.testing.assert_array_equal(flagged(res, pd.FLAG_DROPOUT), gap)
+    np.testing.assert_array_equal(flagged(res, zupt_ins.FLAG_DROPOUT), gap)
     # The detector sees no data (no stance) and the held sample's noise (0.04 m/s^2, 0.05 deg/s) is
     # integrated for 30 s: ~130 m at the end of the gap. The covariance admits it (held samples inflate
     # the process noise by hold_*_sigma): the position sigma then exceeds the actual error. The ZUPTs of
@@ -127,7 +127,7 @@ def test_30s_gap_while_walking_is_reported_not_hidden(walk):
     # counted and flagged, and the covariance says so -- velocity sigma at the end of the gap above
     # 30 m/s (measured 70 m/s), and the later stances fail the NIS gate (zupt_rejected, zupt_forced).
     assert res.counts["imu_dropouts"] == 3000
-    np.testing.assert_array_equal(flagged(res, pd.FLAG_DROPOUT), gap)
+    np.testing.assert_array_equal(flagged(res, zupt_ins.FLAG_DROPOUT), gap)
     end = np.flatnonzero(gap)[-1] + 1
     assert np.sqrt(res.P_diag[end, 3:5]).min() > 30.0
     assert res.counts["zupt_forced"] > 0 and res.counts["zupt_rejected"] > walk["ref"].counts["zupt_rejected"]
@@ -137,7 +137,7 @@ def test_first_sample_must_be_valid(walk):
     w = walk["w"].copy()
     w[0] = np.nan
     with pytest.raises(ValueError, match="^w_ib_b, f_b: expected a valid first sample"):
-        pd.run_filter(w, walk["f"], DT, LLA0, np.zeros(3), walk["traj"].q_bn[0], walk["static"])
+        zupt_ins.run_filter(w, walk["f"], DT, LLA0, np.zeros(3), walk["traj"].q_bn[0], walk["static"])
 
 
 # ---------------------------------------------------------------- IMU spikes
@@ -172,10 +172,10 @@ def test_spike_test_inside_the_filter_flags_the_same_samples(walk):
     w, f, hit = _spiky(walk)
     found = robust.despike(w, f, SPIKE_GYRO, SPIKE_ACCEL)[2]
     res = run(walk, w, f, static=zupt.detect_static(*robust.despike(w, f, SPIKE_GYRO, SPIKE_ACCEL)[:2], DT),
-              config=pd.FilterConfig(spike_gyro=SPIKE_GYRO, spike_accel=SPIKE_ACCEL))
-    np.testing.assert_array_equal(flagged(res, pd.FLAG_SPIKE), found)
+              config=zupt_ins.FilterConfig(spike_gyro=SPIKE_GYRO, spike_accel=SPIKE_ACCEL))
+    np.testing.assert_array_equal(flagged(res, zupt_ins.FLAG_SPIKE), found)
     assert res.counts["imu_spikes"] == found.sum() and res.counts["imu_dropouts"] == 0
-    clean = run(walk, config=pd.FilterConfig(spike_gyro=SPIKE_GYRO, spike_accel=SPIKE_ACCEL))
+    clean = run(walk, config=zupt_ins.FilterConfig(spike_gyro=SPIKE_GYRO, spike_accel=SPIKE_ACCEL))
     assert clean.counts["imu_spikes"] == 0                               # no false alarm on the walk
 
 
@@ -188,7 +188,7 @@ def test_saturated_samples_are_counted_and_never_used_for_zupt(walk):
     res = run(walk, w, f, full_scale_gyro=gyro_fs, full_scale_accel=accel_fs)
     rails = cw | cf
     assert res.counts["imu_saturated"] == rails.sum() > 500
-    np.testing.assert_array_equal(flagged(res, pd.FLAG_SATURATED), rails)
+    np.testing.assert_array_equal(flagged(res, zupt_ins.FLAG_SATURATED), rails)
     # Stated bound: the clipped gait peaks (< 1.5 m/s^2 over ~10 % of the walking samples) bias the
     # velocity while walking only; ZUPTs at the next stop remove it: within 10 m of the clean run during
     # the walk (measured 5.7 m) and 1.5 m at the end (measured 0.6 m).
@@ -216,7 +216,7 @@ def test_saturation_counts_match_the_sensor_model(walk):
     assert (np.abs(imu.f_b) >= 12.0).sum() == imu.accel_saturated > 0
     rails = (np.abs(imu.w_ib_b) >= 0.3).any(-1) | (np.abs(imu.f_b) >= 12.0).any(-1)
     assert res.counts["imu_saturated"] == rails.sum()
-    np.testing.assert_array_equal(flagged(res, pd.FLAG_SATURATED), rails)
+    np.testing.assert_array_equal(flagged(res, zupt_ins.FLAG_SATURATED), rails)
 
 
 # ---------------------------------------------------------------- barometer and magnetometer
@@ -251,7 +251,7 @@ def test_baro_spikes_are_gated_and_dropouts_coast(walk):
 def test_baro_step_reinitialises_the_tracker(walk):
     h = walk["h"] + np.where(walk["t"] > 60.0, 20.0, 0.0)               # a real 20-m jump (e.g. a new datum)
     res = run(walk, h=h)
-    cfg = pd.FilterConfig()
+    cfg = zupt_ins.FilterConfig()
     assert res.counts["baro_reinit"] == 1 and res.counts["baro_rejected"] == cfg.max_rejected
 
 
@@ -259,7 +259,7 @@ def test_mag_spikes_are_gated_by_field_and_dip(walk):
     rng = np.random.default_rng(6)
     m, hit = faults.spikes(walk["m"], 0.01, 0.2, rng)                     # 100 x 2 mG = 20 uT per axis
     used = np.isfinite(walk["m"][:, 0]) & ~walk["static"]                 # compass samples used (walking)
-    cfg = pd.FilterConfig(mag_field_tol=3.0, mag_dip_tol=np.deg2rad(3.0))
+    cfg = zupt_ins.FilterConfig(mag_field_tol=3.0, mag_dip_tol=np.deg2rad(3.0))
     clean = run(walk, B_n=walk["B"], config=cfg)
     assert clean.counts["mag_gated"] == 0
     res = run(walk, m=m, B_n=walk["B"], config=cfg)
@@ -314,11 +314,11 @@ def test_irregular_sampling_is_integrated_as_well_as_regular():
         W = np.add.reduceat(imu.w_ib_b, edges[:-1], axis=0)[:n.size] / n[:, None]
         F = np.add.reduceat(imu.f_b, edges[:-1], axis=0)[:n.size] / n[:, None]
         dts = n * fine                                                  # 10 ms +-20 %
-        res = pd.run_filter(W, F, dts, LLA0, np.zeros(3), traj.q_bn[0], stance[edges[:-1]])
+        res = zupt_ins.run_filter(W, F, dts, LLA0, np.zeros(3), traj.q_bn[0], stance[edges[:-1]])
         np.testing.assert_allclose(res.nav.time, traj.time[edges], atol=1e-9)
         err[name] = herr(res, traj, edges)
         if name == "irregular":
-            wrong = pd.run_filter(W, F, DT, LLA0, np.zeros(3), traj.q_bn[0], stance[edges[:-1]])
+            wrong = zupt_ins.run_filter(W, F, DT, LLA0, np.zeros(3), traj.q_bn[0], stance[edges[:-1]])
             err["as if regular"] = herr(wrong, traj, edges)
     # Stated bound: with the intervals given, irregular sampling does as well as regular sampling
     # (max error within 10 % + 0.5 m; measured 2.55 vs 2.59 m, INS drift between stops), while
@@ -359,7 +359,7 @@ Q1 = [1.0, 0.0, 0.0, 0.0]
 CPLX = np.zeros((50, 3), complex)
 OBJ = np.array([[None, 0.0, 0.0]] * 50, dtype=object)
 def RF(**kw):
-    return pd.run_filter(**{**dict(w_ib_b=Z3, f_b=F3, dt=DT, lla0=LLA0, vel0=np.zeros(3), q0=Q1, static=ST), **kw})
+    return zupt_ins.run_filter(**{**dict(w_ib_b=Z3, f_b=F3, dt=DT, lla0=LLA0, vel0=np.zeros(3), q0=Q1, static=ST), **kw})
 
 
 B0 = np.array([0.0, 30.0, -40.0])
@@ -435,11 +435,11 @@ FUZZ = [
     ("simple_covariance_update", "P",
      lambda: pd.simple_covariance_update(np.full((2, 2), np.nan), np.eye(2), np.eye(2))),
     ("simple_covariance_update", "P, H, R", lambda: pd.simple_covariance_update(np.eye(2), np.eye(3), np.eye(2))),
-    ("FilterConfig", "gate", lambda: pd.FilterConfig(gate=np.nan)),
-    ("FilterConfig", "sigma_baro", lambda: pd.FilterConfig(sigma_baro=np.inf)),
-    ("FilterConfig", "baro_gate", lambda: pd.FilterConfig(baro_gate=-1.0)),
-    ("FilterConfig", "spike_gyro", lambda: pd.FilterConfig(spike_gyro="low")),
-    ("FilterConfig", "max_rejected", lambda: pd.FilterConfig(max_rejected=True)),
+    ("FilterConfig", "gate", lambda: zupt_ins.FilterConfig(gate=np.nan)),
+    ("FilterConfig", "sigma_baro", lambda: zupt_ins.FilterConfig(sigma_baro=np.inf)),
+    ("FilterConfig", "baro_gate", lambda: zupt_ins.FilterConfig(baro_gate=-1.0)),
+    ("FilterConfig", "spike_gyro", lambda: zupt_ins.FilterConfig(spike_gyro="low")),
+    ("FilterConfig", "max_rejected", lambda: zupt_ins.FilterConfig(max_rejected=True)),
     ("run_filter", "w_ib_b", lambda: RF(w_ib_b=CPLX)),
     ("run_filter", "w_ib_b", lambda: RF(w_ib_b=np.full((50, 3), np.inf))),
     ("run_filter", "w_ib_b", lambda: RF(w_ib_b=np.zeros((0, 3)), f_b=np.zeros((0, 3)), static=np.ones(0, bool))),
@@ -501,7 +501,7 @@ def test_bad_input_raises_naming_the_argument(func, arg, call):
 def test_every_public_function_is_fuzzed():
     covered = {f for f, _, _ in FUZZ}
     # plus the functions that moved to core modules, still fuzzed here
-    public = set(pd.__all__) | {"walk", "Leg", "Gait", "stance_mask",
+    public = set(pd.__all__) | set(zupt_ins.__all__) | {"walk", "Leg", "Gait", "stance_mask",
                                 "detect_static", "despike", "error_state_matrix", "error_model_fd", "zupt_zaru_matrix",
                                 "zupt_zaru_innovation", "STATIC_THRESHOLDS",
                                 "level", "magnetic_heading", "horizontal_error", "expanding_std", "detection_rates",
