@@ -34,6 +34,12 @@ def wrap_pi(a):
     return np.pi if w == -np.pi else w
 
 
+@njit(cache=True, inline="always")
+def dcm_heading(c12, c22):
+    """Heading (rad, (-pi, pi]) of ``C_bn`` from its elements ``C[0, 1]`` and ``C[1, 1]`` (hpr convention)."""
+    return np.arctan2(c12, c22)
+
+
 @njit(cache=True)
 def tilt_heading(mx, my, mz, pitch, roll):
     """Tilt-compensated magnetic heading in [0, 2 pi) (rad) of a right-front-up magnetometer reading.

@@ -143,6 +143,7 @@ def earth_rate_b(C_bn: Dcm, lat: float, deg: bool = False, ellipsoid: Ellipsoid 
     C = as_array(C_bn, "C_bn", tail=(3, 3))
     return np.einsum("...ji,j->...i", C, earth_rate_n(scalar(lat, "lat"), deg, ellipsoid))
 
+
 def gravity(lat: ArrayLike, h: ArrayLike = 0.0, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> Array:
     """Normal gravity magnitude (m/s^2): Somigliana with the TR8350.2 height series.
 

@@ -16,8 +16,8 @@ batch) and, when asked for, per-sample boolean flags. Sensors are named ``"gyro"
                  a dwell skipped for dropouts).
 
 Every filter result carries one: :class:`navlib.filters.observations.AttitudeResult` (Mahony,
-quaternion KF), :class:`navlib.filters.planar_ekf.EkfResult`, and the paper filters'
-results (``pedestrian_ins.FilterResult``, ``rotation_bias.Residuals``).
+quaternion KF), :class:`navlib.filters.planar_ekf.EkfResult`, :class:`navlib.filters.zupt_ins.FilterResult`,
+and the paper method's ``rotation_bias.Residuals``.
 
 :func:`hold` is the one zero-order hold of NaN samples, with an explicit policy for
 leading NaN samples (there is nothing before them to hold). :func:`despike` marks isolated
@@ -146,8 +146,8 @@ def despike(w_ib_b: Vec3Series, f_b: Vec3Series, spike_gyro: float,
             spike_accel: float) -> tuple[Array, Array, NDArray[np.bool_]]:
     """Mark isolated IMU spikes as dropouts (NaN), e.g. before :func:`navlib.filters.zupt.detect_static`.
 
-    The test of :func:`is_spike` (also run inside the pedestrian filter of
-    paper 004): a sample deviating from the line through its neighbours by more
+    The test of :func:`is_spike` (also run inside
+    :func:`navlib.filters.zupt_ins.run_filter`): a sample deviating from the line through its neighbours by more
     than the threshold, and by 1.5 times more than either neighbour does.
     Two adjacent spikes are not found (each hides the other). Spiky samples
     inflate the detector's variance test and hide stances; as NaN they are

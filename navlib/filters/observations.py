@@ -30,7 +30,7 @@ import numpy as np
 from numba import njit
 
 from .. import attitude, earth
-from .._kernels import wrap_pi
+from .._kernels import dcm_heading, wrap_pi
 from .._typing import Array, ArrayLike, Interval, Quat, Vec3, Vec3Series
 from .._validate import as_quat, intervals, nonempty_array, scalar
 from ..robust import FaultReport
@@ -205,11 +205,6 @@ def pi_error(C, ax, ay, az, a_ok, mx, my, mz, m_ok):
 
 
 @njit(cache=True, inline="always")
-def _heading_of(C12, C22):
-    return np.arctan2(C12, C22)
-
-
-@njit(cache=True, inline="always")
 def rtk_gate(h, predicted, gate, confirm, state):
     """Gate one RTK epoch against the predicted heading: 0 use, 1 reject, 2 use (re-acquired).
 
@@ -255,7 +250,7 @@ def observe(inp, t, k, q0, q1, q2, q3, dtk, rtk, counts):
             if np.isnan(hk):                                           # valid flag but no value: dropout
                 counts[t, _RTK_DROPPED] += 1
             else:
-                est = _heading_of(C[1], C[4])
+                est = dcm_heading(C[1], C[4])
                 code = rtk_gate(hk, est, rtk_par[1], rtk_par[2], rtk[4:6])
                 if code == 1:
                     counts[t, _RTK_REJECTED] += 1
@@ -265,7 +260,7 @@ def observe(inp, t, k, q0, q1, q2, q3, dtk, rtk, counts):
                     rtk[0], rtk[1], rtk[2], rtk[3] = np.sin(hk), np.cos(hk), est, 0.0
         if rtk[3] <= rtk_par[0] and C[6] * C[6] + C[8] * C[8] > 1e-12:     # (no heading at pitch +-90 deg)
             # carry the epoch's heading forward with the estimate's own heading change
-            d = _heading_of(C[1], C[4]) - rtk[2]
+            d = dcm_heading(C[1], C[4]) - rtk[2]
             sd, cd = np.sin(d), np.cos(d)
             mx, my, mz = _rtk_north(C[6], C[7], C[8], rtk[0] * cd + rtk[1] * sd, rtk[1] * cd - rtk[0] * sd)
             cm = 0

@@ -244,11 +244,6 @@ class _Setup(NamedTuple):
 
 
 @njit(cache=True)
-def _heading_of(C):
-    return np.arctan2(C[0, 1], C[1, 1])
-
-
-@njit(cache=True)
 def _feedback(x, lla, vel, q, b, a, e2):
     """Closed-loop correction of Eq. (3): apply dx to the INS and zero it."""
     R_M, R_N = radii_mn(lla[0], a, e2)
@@ -409,7 +404,7 @@ def _filter_kernel(samples, c):
             else:
                 pitch, roll = np.arcsin(min(1.0, max(-1.0, C[2, 1]))), np.arctan2(-C[2, 0], C[2, 2])
                 alpha_h = _kernels.tilt_heading(m_b[k, 0], m_b[k, 1], m_b[k, 2], pitch, roll) + c.declination
-                dh = _kernels.wrap_pi(_heading_of(C) - alpha_h)
+                dh = _kernels.wrap_pi(_kernels.dcm_heading(C[0, 1], C[1, 1]) - alpha_h)
                 counts[_N_MAG] += 1
                 if c.aiding == 1:                          # C <- rot(z, H_hat - alpha) C
                     rz = np.array([np.cos(dh / 2), 0.0, 0.0, np.sin(dh / 2)])
