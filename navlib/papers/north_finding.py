@@ -117,8 +117,9 @@ def tilt_from_accel(f_b: Vec3, g: float | None = None) -> tuple[Array, Array]:
     """Pitch and roll from averaged specific force (paper Eqs. 5-6).
 
     ``pitch = asin(f_y / g)``, ``roll = atan2(-f_x, f_z)``. Without ``g`` the
-    norm ``|f|`` stands in for g (the paper gives no value, E000-13), which keeps asin's argument
-    in range; with ``g`` the argument is clipped to [-1, 1].
+    norm ``|f|`` stands in for g (the paper gives no value, E000-13): that is the levelling
+    :func:`navlib.alignment.level`. With ``g`` the paper's arcsine is kept (its argument clipped
+    to [-1, 1]): an accelerometer scale error then enters the pitch, as the error theory assumes.
 
     Parameters
     ----------
@@ -130,12 +131,11 @@ def tilt_from_accel(f_b: Vec3, g: float | None = None) -> tuple[Array, Array]:
     -------
     pitch, roll : ndarray, shape (...)  (rad)
     """
-    f = as_array(f_b, "f_b", tail=(3,))
-    norm = np.linalg.norm(f, axis=-1)
-    if np.any(norm < 1e-9):
-        raise ValueError("f_b: expected non-zero specific force (a static accelerometer reads about g)")
-    g = norm if g is None else positive(g, "g")
-    return np.arcsin(np.clip(f[..., 1] / g, -1.0, 1.0)), np.arctan2(-f[..., 0], f[..., 2])
+    pitch, roll = level(f_b)
+    if g is None:
+        return pitch, roll
+    f_y = as_array(f_b, "f_b", tail=(3,))[..., 1]
+    return np.arcsin(np.clip(f_y / positive(g, "g"), -1.0, 1.0)), roll
 
 
 # --------------------------------------------------------------------------
