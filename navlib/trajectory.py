@@ -181,6 +181,22 @@ def reciprocating_rotation(duration: float, dt: float, lla0, hpr0, axis_b, ampli
     return Trajectory(t, lla, np.zeros((t.size, 3)), attitude.quat_normalize(q))
 
 
+def _on_grid(t, durations):
+    """Mask and local time of each of consecutive legs (``durations``, s) on the time grid ``t``.
+
+    The legs of :func:`vehicle` and :func:`walk` both go through here; the last leg also takes
+    the samples of a grid that overshoots the total duration, so every sample belongs to a leg.
+    """
+    t0 = 0.0
+    for i, duration in enumerate(durations):
+        end = t0 + duration
+        m = t >= t0 - 1e-9
+        if i < len(durations) - 1:
+            m &= t < end - 1e-9
+        yield m, t[m] - t0
+        t0 = end
+
+
 @dataclass(frozen=True)
 class Segment:
     """One leg of a :func:`vehicle` trajectory.
@@ -229,17 +245,13 @@ def vehicle(segments, dt: float, lla0, heading0: float, ellipsoid: earth.Ellipso
     t = time_grid(total, dt)
     speed, heading, pitch, roll = (np.empty(t.size) for _ in range(4))
     cur = {"speed": 0.0, "heading": float(heading0), "pitch": 0.0, "roll": 0.0}
-    t_start = 0.0
-    for i, seg in enumerate(segments):
-        end = t_start + seg.duration
-        m = (t >= t_start - 1e-9) & ((t < end - 1e-9) if i < len(segments) - 1 else (t <= end + 1e-9))
-        r = smooth_ramp((t[m] - t_start) / seg.duration)
+    for seg, (m, tau) in zip(segments, _on_grid(t, [s.duration for s in segments]), strict=True):
+        r = smooth_ramp(tau / seg.duration)
         targets = {"speed": seg.speed, "heading": cur["heading"] + seg.turn, "pitch": seg.pitch, "roll": seg.roll}
         for key, arr in (("speed", speed), ("heading", heading), ("pitch", pitch), ("roll", roll)):
             new = cur[key] if targets[key] is None else float(targets[key])
             arr[m] = cur[key] + (new - cur[key]) * r
             cur[key] = new
-        t_start = end
     if np.any(speed < 0):
         raise ValueError("segments[].speed: expected non-negative speeds")
     vel = speed[:, None] * np.stack([np.sin(heading) * np.cos(pitch), np.cos(heading) * np.cos(pitch),
@@ -332,19 +344,15 @@ def _schedule(legs, t, ramp):
     """Speed, heading offset, height offset and stance flags on the time grid."""
     speed, turn, climb = (np.zeros(t.size) for _ in range(3))
     static = np.zeros(t.size, dtype=bool)
-    v_prev, psi, h, t0 = 0.0, 0.0, 0.0, 0.0
-    for i, leg in enumerate(legs):
-        end = t0 + leg.duration
-        last = i == len(legs) - 1
-        m = (t >= t0 - 1e-9) if last else (t >= t0 - 1e-9) & (t < end - 1e-9)
-        tau = t[m] - t0
+    v_prev, psi, h = 0.0, 0.0, 0.0
+    for leg, (m, tau) in zip(legs, _on_grid(t, [leg.duration for leg in legs]), strict=True):
         r = min(ramp, leg.duration)
         speed[m] = v_prev + (leg.speed - v_prev) * smooth_ramp(tau / r)
         frac = smooth_ramp(tau / leg.duration)
         turn[m] = psi + leg.turn * frac
         climb[m] = h + leg.climb * frac
         static[m] = (leg.speed == 0) & ((v_prev == 0) | (tau >= r - 1e-9))
-        v_prev, psi, h, t0 = leg.speed, psi + leg.turn, h + leg.climb, end
+        v_prev, psi, h = leg.speed, psi + leg.turn, h + leg.climb
     return speed, turn, climb, static
 
 
