@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from . import units
 from ._typing import Array, ArrayLike, Times
 from ._validate import as_array, choice, in_range, instance, integer, nonempty_positive, positive
 from .analysis import segments
@@ -33,8 +34,8 @@ LAPSE = 0.0065
 """ISA tropospheric lapse rate (K/m)."""
 R_AIR = 287.05287
 """Specific gas constant of dry air (J/(kg K))."""
-G0 = 9.80665
-"""Standard gravity (m/s^2)."""
+G0 = units.G0
+"""Standard gravity (m/s^2): :data:`navlib.units.G0`, the one definition."""
 
 _EXP = R_AIR * LAPSE / G0
 _P_11KM = P0 * (1 - LAPSE * 11000.0 / T0) ** (1 / _EXP)  # tropopause pressure, 22632.04 Pa
