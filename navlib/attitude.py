@@ -32,7 +32,8 @@ __all__ = [
     "wrap_pi", "wrap_2pi", "skew", "rot", "orthonormalize",
     "euler_to_dcm", "dcm_to_euler", "euler_to_quat", "quat_to_euler",
     "quat_to_dcm", "dcm_to_quat", "quat_mult", "quat_conj", "quat_normalize",
-    "quat_rotate", "rotvec_to_dcm", "dcm_to_rotvec", "rotvec_to_quat", "quat_to_rotvec", "M_NED_ENU", "ned_to_enu_dcm"]
+    "quat_rotate", "rotvec_to_dcm", "dcm_to_rotvec", "rotvec_to_quat", "quat_to_rotvec",
+    "M_NED_ENU", "ned_to_enu", "ned_to_enu_dcm", "ned_to_enu_quat", "ypr_to_hpr", "hpr_to_ypr", "mount_matrix"]
 
 _AXES = {"x": 0, "y": 1, "z": 2}
 
@@ -415,13 +416,28 @@ def quat_to_dcm_1(q):
 # --------------------------------------------------------------------------
 # Frame conventions: NED / forward-right-down to ENU / right-front-up
 # --------------------------------------------------------------------------
+#
+# One matrix does both swaps: NED -> ENU (east = N-frame y, north = x, up = -z) and
+# FRD -> RFU (right = y, front = x, up = -z). It is the half turn about the axis between
+# north and east (det +1) and its own inverse, so every conversion below is its own inverse too. Aerospace yaw/pitch/roll
+# (ZYX, FRD to NED) are the same physical angles as navlib's heading/pitch/roll; only the
+# heading's range differs ((-pi, pi] there, [0, 2 pi) here).
 
 M_NED_ENU = np.array([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]])
 """Swaps N<->E and negates the vertical: ``C_bn(ENU/RFU) = M C_bn(NED/FRD) M``, same (heading, pitch, roll)."""
 
 
+def ned_to_enu(v: Vec3) -> Array:
+    """A navigation-frame vector (..., 3) from NED to ENU; the same swap takes FRD body vectors to RFU.
+
+    Its own inverse: ``ned_to_enu(ned_to_enu(v)) == v`` (so it also maps ENU to NED and RFU to FRD).
+    """
+    v = as_array(v, "v", tail=(3,), allow_nan=True)
+    return np.stack([v[..., 1], v[..., 0], -v[..., 2]], -1)
+
+
 def ned_to_enu_dcm(C_ned: Dcm) -> Array:
-    """Body-to-navigation matrix of the paper's NED/FRD convention in navlib's ENU/RFU one.
+    """Body-to-navigation matrix of the NED/FRD convention in navlib's ENU/RFU one (and back).
 
     Parameters
     ----------
@@ -430,7 +446,70 @@ def ned_to_enu_dcm(C_ned: Dcm) -> Array:
     Returns
     -------
     C_bn : ndarray, shape (..., 3, 3)
-        ``M C_ned M``.
+        ``M C_ned M`` (:data:`M_NED_ENU`); applied to an ENU/RFU matrix it gives the NED/FRD one.
     """
     C = as_array(C_ned, "C_ned", tail=(3, 3))
     return M_NED_ENU @ C @ M_NED_ENU
+
+
+def ned_to_enu_quat(q_ned: Quat) -> Array:
+    """Quaternion of the NED/FRD convention in navlib's ENU/RFU one (and back).
+
+    Conjugation by the half turn :data:`M_NED_ENU` keeps the angle and maps the rotation axis
+    ``a`` to ``M a``: ``[q0, q1, q2, q3] -> [q0, q2, q1, -q3]``.
+
+    Parameters
+    ----------
+    q_ned : array_like, shape (..., 4)
+        Scalar-first unit quaternion of C_frd^ned.
+
+    Returns
+    -------
+    q_bn : ndarray, shape (..., 4)
+    """
+    q = as_quat(as_array(q_ned, "q_ned", tail=(4,)), "q_ned")
+    return np.stack([q[..., 0], q[..., 2], q[..., 1], -q[..., 3]], -1)
+
+
+def ypr_to_hpr(ypr: Angles, deg: bool = False) -> Array:
+    """navlib's ``[heading, pitch, roll]`` from aerospace ``[yaw, pitch, roll]`` (ZYX, FRD to NED).
+
+    The angles are the same; the heading is wrapped to [0, 2 pi) (or [0, 360) deg with ``deg=True``).
+    """
+    a = np.array(_as_hpr(ypr, deg), dtype=float)
+    a[..., 0] = wrap_2pi(a[..., 0])
+    return np.rad2deg(a) if deg else a
+
+
+def hpr_to_ypr(hpr: Angles, deg: bool = False) -> Array:
+    """Aerospace ``[yaw, pitch, roll]`` (ZYX, FRD to NED; yaw in (-pi, pi]) from navlib's ``[heading, pitch, roll]``."""
+    a = np.array(_as_hpr(hpr, deg), dtype=float)
+    a[..., 0] = wrap_pi(a[..., 0])
+    return np.rad2deg(a) if deg else a
+
+
+def mount_matrix(axes: str | Dcm) -> Array:
+    """Sensor-to-body rotation ``C_bs`` (``v_b = C_bs @ v_s``) from a signed axis mapping or a matrix.
+
+    Parameters
+    ----------
+    axes : str or array_like, shape (3, 3)
+        Which sensor axis (with its sign) each body axis -- right, front, up -- is, e.g. ``"-y,x,z"``
+        for a sensor whose x points forward and y left (FLU); ``"x,y,z"`` when the sensor's axes are
+        already right-front-up. Or a rotation matrix C_bs (orthonormal, det +1; a mirror is refused).
+
+    Returns
+    -------
+    C_bs : ndarray, shape (3, 3)
+    """
+    if not isinstance(axes, str):
+        return as_dcm(as_array(axes, "axes", shape=(3, 3)), "axes")
+    parts = [a.strip().lower() for a in axes.split(",")]
+    if len(parts) != 3 or any(a.lstrip("+-") not in _AXES for a in parts) or len({a.lstrip("+-") for a in parts}) != 3:
+        raise ValueError(f"axes: expected three signed sensor axes for (right, front, up), e.g. '-y,x,z', got {axes!r}")
+    C = np.zeros((3, 3))
+    for row, a in enumerate(parts):
+        C[row, _AXES[a.lstrip("+-")]] = -1.0 if a.startswith("-") else 1.0
+    if np.linalg.det(C) < 0:
+        raise ValueError(f"axes: {axes!r} is a mirror image (left-handed); flip the sign of one axis")
+    return C
