@@ -28,6 +28,7 @@ import numpy as np
 from . import _kernels, attitude, earth
 from ._typing import Angles, Array, ArrayLike, Dcm, Vec3, Vec3Series
 from ._validate import as_array, in_range, nonempty_array, nonempty_latitude, nonempty_positive, scalar
+from .imu import ImuSamples, unpack
 from .robust import FaultReport
 
 __all__ = ["level", "magnetic_heading", "tilt_heading", "initial_attitude", "MAX_LAT_DEG", "gyrocompass_latitude", "OK",
@@ -209,7 +210,8 @@ def _masked_mean(x, used, n_used):
         return np.where(used[..., None], x, 0.0).sum(-2) / n_used[..., None]
 
 
-def static_means(w_ib_b: Vec3Series, f_b: Vec3Series, lat: ArrayLike, h: ArrayLike = 0.0, accel_tol: float = 0.2, *,
+def static_means(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None, lat: ArrayLike | None = None,
+                 h: ArrayLike = 0.0, accel_tol: float = 0.2, *,
                  min_fraction: float = 0.5,
                  outlier_k: float | None = None, full_scale_gyro: float | None = None,
                  full_scale_accel: float | None = None, strict: bool = True) -> StaticWindow:
@@ -238,9 +240,10 @@ def static_means(w_ib_b: Vec3Series, f_b: Vec3Series, lat: ArrayLike, h: ArrayLi
     ----------
     w_ib_b, f_b : array_like, shape (..., N, 3)
         Gyro (rad/s) and accelerometer (m/s^2) samples of one stop, N >= 2;
-        NaN marks dropouts.
+        NaN marks dropouts. An :class:`navlib.imu.ImuSamples` as ``w_ib_b``
+        supplies ``f_b`` and the device ranges (its intervals are not used here).
     lat : float
-        Latitude (rad), used for the expected gravity.
+        Latitude (rad), used for the expected gravity (required).
     h : float
         Height (m).
     accel_tol : float
@@ -268,6 +271,13 @@ def static_means(w_ib_b: Vec3Series, f_b: Vec3Series, lat: ArrayLike, h: ArrayLi
         Empty windows, inf, mismatched shapes; with ``strict``, a refused
         window (too few samples, saturated, or the robot evidently moving).
     """
+    if isinstance(w_ib_b, ImuSamples):          # no dt here: unpack's dt is left None and its intervals unused
+        w_ib_b, f_b, _, full_scale_gyro, full_scale_accel = unpack(w_ib_b, f_b, None, full_scale_gyro,
+                                                                   full_scale_accel)
+    elif f_b is None:
+        raise ValueError("f_b: required (or pass an ImuSamples as w_ib_b)")
+    if lat is None:
+        raise ValueError("lat: required")
     w = nonempty_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
     f = nonempty_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=True)
     if w.shape != f.shape:

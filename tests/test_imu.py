@@ -1,11 +1,14 @@
 """navlib.imu.ImuSamples: validated once, accepted by the IMU filters beside raw arrays, same results."""
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 
-from navlib import imu, strapdown, trajectory
-from navlib.filters import mahony, quaternion_kf, zupt_ins
+from navlib import alignment, attitude, earth, imu, strapdown, trajectory
+from navlib.filters import mahony, quaternion_kf, zupt, zupt_ins
+from navlib.papers import rotation_bias
 
 DT = 0.01
 LLA0 = [0.5, 0.2, 10.0]
@@ -59,3 +62,93 @@ def test_a_range_is_given_once(walk):
         mahony.mahony(samples, f, q0=[1.0, 0, 0, 0], m_b=np.ones_like(w))
     with pytest.raises(ValueError, match="^dt: required"):
         mahony.mahony(w, f, q0=[1.0, 0, 0, 0], m_b=np.ones_like(w))
+
+
+def assert_same(a, b):
+    """Every field of two result records equal, bit for bit."""
+    for field in dataclasses.fields(a):
+        np.testing.assert_array_equal(getattr(a, field.name), getattr(b, field.name), err_msg=field.name)
+
+
+@pytest.fixture(scope="module")
+def rig():
+    """A noisy reciprocating-rotation rig (paper 001) with its dwell windows."""
+    lat, period, rotation_time, hpr0 = LLA0[0], 5.0, 0.5, np.deg2rad([0.0, 30.0, 0.0])
+    traj = trajectory.reciprocating_rotation(30.0, DT, [lat, 0, 0], hpr0, [0, 1, 0], np.pi / 2, period, rotation_time)
+    w, f = trajectory.ideal_imu(traj)
+    rng = np.random.default_rng(1)
+    w, f = w + 1e-4 + 1e-3 * rng.standard_normal(w.shape), f + 1e-2 * rng.standard_normal(f.shape)
+    starts, length = rotation_bias.dwell_windows(len(w), DT, period, rotation_time)
+    f[starts[1] + 10, 0] = 45.0                                # a shock: at the rails of a 40 m/s^2 accelerometer
+    hpr = rotation_bias.dwell_attitudes(hpr0, [0, 1, 0], np.pi / 2, starts.size)
+    return w, f, starts, length, earth.earth_rate_b(attitude.euler_to_dcm(hpr), lat)
+
+
+def test_detect_static_gives_the_same_flags_with_samples_or_arrays(walk):
+    _, w, f, _ = walk
+    raw = zupt.detect_static(w, f, DT, 0.3, g=9.8)
+    assert raw.any() and not raw.all()
+    np.testing.assert_array_equal(zupt.detect_static(imu.ImuSamples(w, f, DT), window=0.3, g=9.8), raw)
+    # per-sample intervals: the window is a number of samples, set by the median interval
+    jitter = DT * (1 + 0.01 * np.sin(np.arange(len(w))))
+    np.testing.assert_array_equal(zupt.detect_static(imu.ImuSamples(w, f, jitter), window=0.3, g=9.8),
+                                  zupt.detect_static(w, f, float(np.median(jitter)), 0.3, g=9.8))
+
+
+def test_static_means_gives_the_same_window_with_samples_or_arrays(walk):
+    _, w, f, static = walk
+    first = slice(0, int(np.argmin(static)))                   # the stance before the first step
+    w, f = w[first], f[first]
+    for ranges in ({}, dict(full_scale_gyro=0.5, full_scale_accel=9.0)):   # 9 m/s^2: the accelerometer saturates
+        raw = alignment.static_means(w, f, LLA0[0], LLA0[2], 0.5, strict=False, **ranges)
+        new = alignment.static_means(imu.ImuSamples(w, f, DT, **ranges), lat=LLA0[0], h=LLA0[2], accel_tol=0.5,
+                                     strict=False)
+        assert_same(raw, new)
+    assert raw.n_saturated_accel > 0 and raw.status == alignment.SATURATED
+
+
+def test_tilt_residuals_give_the_same_residuals_with_samples_or_arrays(rig):
+    w, f, starts, length, w_ie_b = rig
+    dts = np.full(len(w), DT)
+    for ranges in ({}, dict(full_scale_gyro=10.0, full_scale_accel=40.0)):
+        raw = rotation_bias.tilt_residuals(w, f, dts, starts, length, w_ie_b, outlier_k=6.0, **ranges)
+        new = rotation_bias.tilt_residuals(imu.ImuSamples(w, f, DT, **ranges), starts=starts, length=length,
+                                           w_ie_b=w_ie_b, outlier_k=6.0)
+        assert_same(raw, new)
+    assert raw.n_skipped_saturated == 1
+    # a fixed interval given as a scalar fits the slope against the sample index: equal to rounding
+    fixed = rotation_bias.tilt_residuals(w, f, DT, starts, length, w_ie_b, outlier_k=6.0)
+    np.testing.assert_allclose(fixed.r, rotation_bias.tilt_residuals(imu.ImuSamples(w, f, DT), starts=starts,
+                                                                      length=length, w_ie_b=w_ie_b, outlier_k=6.0).r,
+                               rtol=1e-9, atol=1e-15)
+
+
+def test_the_new_functions_take_f_b_and_dt_once(walk, rig):
+    _, w, f, _ = walk
+    samples = imu.ImuSamples(w, f, DT, full_scale_accel=20.0)
+    with pytest.raises(ValueError, match="^f_b: given twice"):
+        zupt.detect_static(samples, f)
+    with pytest.raises(ValueError, match="^dt: given twice"):
+        zupt.detect_static(samples, dt=DT)
+    with pytest.raises(ValueError, match="^dt: required"):
+        zupt.detect_static(w, f)
+    with pytest.raises(ValueError, match="^f_b: given twice"):
+        alignment.static_means(samples, f, LLA0[0])
+    with pytest.raises(ValueError, match="^full_scale_accel: given twice"):
+        alignment.static_means(samples, lat=LLA0[0], full_scale_accel=20.0)
+    with pytest.raises(ValueError, match="^f_b: required"):
+        alignment.static_means(w, lat=LLA0[0])
+    with pytest.raises(ValueError, match="^lat: required"):
+        alignment.static_means(samples)
+    wr, fr, starts, length, _ = rig
+    rig_samples = imu.ImuSamples(wr, fr, DT, full_scale_gyro=3.0)
+    with pytest.raises(ValueError, match="^f_b: given twice"):
+        rotation_bias.tilt_residuals(rig_samples, fr, starts=starts, length=length)
+    with pytest.raises(ValueError, match="^dt: given twice"):
+        rotation_bias.tilt_residuals(rig_samples, dt=DT, starts=starts, length=length)
+    with pytest.raises(ValueError, match="^full_scale_gyro: given twice"):
+        rotation_bias.tilt_residuals(rig_samples, starts=starts, length=length, full_scale_gyro=3.0)
+    with pytest.raises(ValueError, match="^starts: required"):
+        rotation_bias.tilt_residuals(rig_samples, length=length)
+    with pytest.raises(ValueError, match="^length: required"):
+        rotation_bias.tilt_residuals(rig_samples, starts=starts)

@@ -37,6 +37,7 @@ from numpy.typing import NDArray
 from .. import analysis, attitude
 from .._typing import Array, ArrayLike, Dcm, Vec3, Vec3Series
 from .._validate import as_array, as_dcm, positive
+from ..imu import ImuSamples, unpack
 from ..units import G0
 
 __all__ = ["STATIC_THRESHOLDS", "detect_static", "error_state_matrix", "error_model_fd", "zupt_zaru_matrix",
@@ -47,8 +48,9 @@ STATIC_THRESHOLDS = (0.05, 0.1, 0.3)
 tune per sensor and wearer."""
 
 
-def detect_static(w_ib_b: Vec3Series, f_b: Vec3Series, dt: float, window: float = 0.5, gyro_bias: Vec3 = (0.0, 0.0, 0.0),
-                  thresholds: ArrayLike = STATIC_THRESHOLDS, g: float = G0) -> NDArray[np.bool_]:
+def detect_static(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None, dt: float | None = None,
+                  window: float = 0.5, gyro_bias: Vec3 = (0.0, 0.0, 0.0), thresholds: ArrayLike = STATIC_THRESHOLDS,
+                  g: float = G0) -> NDArray[np.bool_]:
     """Static (standing) detector from gyro and accelerometer statistics.
 
     Static when, over a centred window of ``window`` seconds, all hold:
@@ -63,9 +65,11 @@ def detect_static(w_ib_b: Vec3Series, f_b: Vec3Series, dt: float, window: float 
     Parameters
     ----------
     w_ib_b, f_b : array_like, shape (N, 3)
-        Gyro (rad/s) and accelerometer (m/s^2) samples; NaN marks dropouts.
+        Gyro (rad/s) and accelerometer (m/s^2) samples; NaN marks dropouts. An
+        :class:`navlib.imu.ImuSamples` as ``w_ib_b`` supplies ``f_b`` and ``dt`` (its ranges are not used here).
     dt : float
-        Sample interval (s) (nominal; the window is a number of samples).
+        Sample interval (s) (nominal; the window is a number of samples). From an ImuSamples: the median of
+        its intervals.
     window : float
         Window length (s); at most the record length.
     gyro_bias : array_like, shape (3,)
@@ -79,6 +83,10 @@ def detect_static(w_ib_b: Vec3Series, f_b: Vec3Series, dt: float, window: float 
     -------
     static : ndarray of bool, shape (N,)
     """
+    held = isinstance(w_ib_b, ImuSamples)
+    w_ib_b, f_b, dt, _, _ = unpack(w_ib_b, f_b, dt)
+    if held:
+        dt = np.median(dt)                         # the nominal interval of its per-sample intervals
     w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
     f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=True)
     if w.ndim != 2 or f.shape != w.shape:

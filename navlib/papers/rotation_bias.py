@@ -99,6 +99,7 @@ from .._validate import nonempty_positive as positive
 from ..alignment import level
 from ..analysis import condition_number, cramer_rao_bound, normal_condition
 from ..euler import PITCH_LIMIT, check_pitch
+from ..imu import ImuSamples, unpack
 from ..units import G0
 
 __all__ = ["eq1_matrix", "gravity_body", "tilt_from_accel", "tilt_matrix", "rodrigues", "rotate_attitude", "dwell_attitudes",
@@ -498,7 +499,8 @@ def _residual_kernel(w, f, dts, regular, starts, n, w_ie, pitch_limit, max_missi
     return r, V, tilt, counts, singular
 
 
-def tilt_residuals(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, starts: ArrayLike, length: int,
+def tilt_residuals(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None, dt: Interval | None = None,
+                   starts: ArrayLike | None = None, length: int | None = None,
                    w_ie_b: Vec3Series | None = None, *, max_missing: float = 0.0,
                    outlier_k: float | None = None, full_scale_gyro: float | None = None,
                    full_scale_accel: float | None = None) -> Residuals:
@@ -536,13 +538,15 @@ def tilt_residuals(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, starts: Ar
     Parameters
     ----------
     w_ib_b, f_b : array_like, shape (..., N, 3)
-        Gyro (rad/s) and accelerometer (m/s^2) samples; NaN marks dropouts.
+        Gyro (rad/s) and accelerometer (m/s^2) samples; NaN marks dropouts. An
+        :class:`navlib.imu.ImuSamples` as ``w_ib_b`` supplies ``f_b``, ``dt`` (as per-sample
+        intervals) and the gyro and accelerometer ranges.
     dt : float or array_like, shape (N,)
         Sample interval (s), or the interval after each sample.
     starts : array_like of int, shape (K,)
-        First sample of each dwell (e.g. from :func:`dwell_windows`).
+        First sample of each dwell (e.g. from :func:`dwell_windows`); required.
     length : int
-        Samples per dwell, at least :data:`MIN_DWELL_SAMPLES`.
+        Samples per dwell, at least :data:`MIN_DWELL_SAMPLES`; required.
     w_ie_b : array_like, shape (K, 3) or (..., K, 3), optional
         Earth rate in the body frame during each dwell, subtracted from the
         gyros (erratum E001-06; :func:`navlib.earth.earth_rate_b`). Default: neglected, as in
@@ -559,6 +563,10 @@ def tilt_residuals(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, starts: Ar
     -------
     Residuals
     """
+    w_ib_b, f_b, dt, full_scale_gyro, full_scale_accel = unpack(w_ib_b, f_b, dt, full_scale_gyro, full_scale_accel)
+    for name, value in (("starts", starts), ("length", length)):
+        if value is None:
+            raise ValueError(f"{name}: required")
     w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
     f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=True)
     if w.shape != f.shape:
