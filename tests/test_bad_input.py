@@ -367,6 +367,7 @@ CASES = [
     bad("trajectory.Trajectory", "q_bn", "epoch_mismatch", lambda: trajectory.Trajectory(TRAJ.time, TRAJ.lla, TRAJ.vel_n, TRAJ.q_bn[:5])),
     bad("trajectory.Trajectory", "vel_n", "inf", lambda: trajectory.Trajectory(TRAJ.time, TRAJ.lla, TRAJ.vel_n + INF, TRAJ.q_bn)),
     bad("trajectory.Trajectory", "lla", "lat2rad", lambda: trajectory.Trajectory(TRAJ.time, with_lat(2.0), TRAJ.vel_n, TRAJ.q_bn)),
+    bad("trajectory.Trajectory", "faults", "dict", lambda: trajectory.Trajectory(TRAJ.time, TRAJ.lla, TRAJ.vel_n, TRAJ.q_bn, {})),
     bad("trajectory.Segment", "duration", "negative", lambda: trajectory.Segment(duration=-1.0)),
     bad("trajectory.Segment", "speed", "nan", lambda: trajectory.Segment(duration=1.0, speed=NAN)),
     bad("trajectory.Segment", "pitch", "pitch2rad", lambda: trajectory.Segment(duration=1.0, pitch=2.0)),

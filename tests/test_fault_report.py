@@ -8,7 +8,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from navlib import robust, trajectory
+from navlib import imu, robust, strapdown, trajectory
 from navlib.filters import mahony, observations, planar_ekf, zupt_ins
 from navlib.papers import gauss_kruger_ekf, rotation_bias
 
@@ -86,6 +86,24 @@ def test_static_window_and_ins_report():
     assert rep.faults["gyro", "nan"] == 1 and rep.faults["drive", "refused"] == 0
 
 
+def test_strapdown_trajectory():
+    traj = trajectory.static(2.0, 0.01, [0.5, 0.2, 10.0], [0.3, 0.0, 0.0])
+    w, f = trajectory.ideal_imu(traj)
+    w[[5, 9]], f[7] = np.nan, np.nan
+    nav = strapdown.integrate(traj.lla[0], traj.vel_n[0], traj.q_bn[0], w, f, 0.01, nan_policy="hold")
+    check_vocabulary(nav.faults)
+    assert nav.faults["gyro", "nan"] == 2 and nav.faults["accel", "nan"] == 1
+    assert np.flatnonzero(nav.faults.flags["gyro", "nan"]).tolist() == [5, 9]
+    assert nav.faults.flags["accel", "nan"].shape == (len(w),)
+    samples = imu.ImuSamples(np.stack([w, w]), np.stack([f, f]), 0.01)
+    nav = strapdown.integrate(traj.lla[0], traj.vel_n[0], traj.q_bn[0], samples, nan_policy="hold")
+    np.testing.assert_array_equal(nav.faults["gyro", "nan"], [2, 2])     # per trial
+    clean = strapdown.integrate(traj.lla[0], traj.vel_n[0], traj.q_bn[0], *trajectory.ideal_imu(traj), 0.01)
+    check_vocabulary(clean.faults)
+    assert clean.faults["gyro", "nan"] == 0 and not clean.faults               # default: raise, nothing held
+    assert isinstance(traj.faults, robust.FaultReport) and not traj.faults     # generated: no faults
+
+
 # ----------------------------------------------------------------------------- robust.fault_report
 
 def test_fault_report_counts_nan_rows_per_trial():
@@ -123,6 +141,17 @@ def test_fault_report_batch_axes():
     valid = ~np.isnan(x).any(-1)
     np.testing.assert_array_equal(rep["mag", "saturated"], (valid & (np.abs(x) >= 1.5).any(-1)).sum(-1))
     np.testing.assert_array_equal(rep.total(), rep["mag", "nan"] + rep["mag", "saturated"])
+
+
+def test_fault_report_matches_what_strapdown_holds():
+    traj = trajectory.static(1.0, 0.01, [0.5, 0.2, 10.0], [0.3, 0.0, 0.0])
+    w, f = trajectory.ideal_imu(traj)
+    w[[3, 4, 60]], f[20] = np.nan, np.nan
+    nav = strapdown.integrate(traj.lla[0], traj.vel_n[0], traj.q_bn[0], w, f, 0.01, nan_policy="hold")
+    for x, sensor in ((w, "gyro"), (f, "accel")):
+        rep = robust.fault_report(x, sensor, flags=True)
+        assert rep[sensor, "nan"] == nav.faults[sensor, "nan"]
+        np.testing.assert_array_equal(rep.flags[sensor, "nan"], nav.faults.flags[sensor, "nan"])
 
 
 @pytest.mark.parametrize("arg, call", [
