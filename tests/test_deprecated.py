@@ -100,3 +100,21 @@ def test_strapdown_on_nan_keeps_the_tuple_and_warns():
         strapdown.integrate_attitude(traj.q_bn[0], w, 0.01, on_nan="hold", nan_policy="hold")
     with pytest.raises(ValueError, match="^on_nan: "), pytest.warns(DeprecationWarning):
         strapdown.integrate_attitude(traj.q_bn[0], w, 0.01, on_nan="skip")
+
+
+def test_integrate_euler_report_keeps_the_tuple_and_warns():
+    from navlib import euler, robust
+    w = np.tile([0.0, 0.3, 0.0], (200, 1))
+    w[[10, 11, 40]] = np.nan
+    w[100:105, 1] = 0.5
+    new = euler.integrate_euler([0.0, 0.1, 0.0], w, 0.01, max_gap=0.1, full_scale_gyro=0.5)
+    with pytest.warns(DeprecationWarning, match=r"report=.*deprecated.*robust.fault_report\(w_ib_b, \"gyro\""):
+        hpr, rep = euler.integrate_euler([0.0, 0.1, 0.0], w, 0.01, max_gap=0.1, full_scale_gyro=0.5, report=True)
+    assert isinstance(rep, euler.EulerReport)
+    np.testing.assert_array_equal(hpr, new)
+    counts = robust.fault_report(w, "gyro", full_scale=0.5, flags=True)
+    assert rep.n_filled == counts["gyro", "nan"] == 3 and rep.n_saturated == counts["gyro", "saturated"] == 5
+    assert rep.first_saturated == np.flatnonzero(counts.flags["gyro", "saturated"])[0] == 100
+    with pytest.warns(DeprecationWarning, match="report="):
+        out = euler.integrate_euler([0.0, 0.1, 0.0], w, 0.01, max_gap=0.1, report=False)
+    np.testing.assert_array_equal(out, euler.integrate_euler([0.0, 0.1, 0.0], w, 0.01, max_gap=0.1))

@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from navlib import imu, strapdown, trajectory
+from navlib import euler, imu, strapdown, trajectory
 from navlib.filters import mahony, quaternion_kf, zupt_ins
 
 DT = 0.01
@@ -59,3 +59,17 @@ def test_a_range_is_given_once(walk):
         mahony.mahony(samples, f, q0=[1.0, 0, 0, 0], m_b=np.ones_like(w))
     with pytest.raises(ValueError, match="^dt: required"):
         mahony.mahony(w, f, q0=[1.0, 0, 0, 0], m_b=np.ones_like(w))
+
+
+def test_integrate_euler_takes_samples(walk):
+    traj, w, f, _ = walk
+    dts = DT * (1 + 0.1 * np.sin(np.arange(len(w))))
+    samples = imu.ImuSamples(w, f, dts, full_scale_gyro=0.5)
+    raw = euler.integrate_euler(traj.hpr[0], w, dts, full_scale_gyro=0.5)
+    np.testing.assert_array_equal(euler.integrate_euler(traj.hpr[0], samples), raw)
+    with pytest.raises(ValueError, match="^dt: given twice"):
+        euler.integrate_euler(traj.hpr[0], samples, DT)
+    with pytest.raises(ValueError, match="^full_scale_gyro: given twice"):
+        euler.integrate_euler(traj.hpr[0], samples, full_scale_gyro=0.4)
+    with pytest.raises(ValueError, match="^dt: "):
+        euler.integrate_euler(traj.hpr[0], w)                                  # arrays need dt
