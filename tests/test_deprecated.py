@@ -118,3 +118,24 @@ def test_integrate_euler_report_keeps_the_tuple_and_warns():
     with pytest.warns(DeprecationWarning, match="report="):
         out = euler.integrate_euler([0.0, 0.1, 0.0], w, 0.01, max_gap=0.1, report=False)
     np.testing.assert_array_equal(out, euler.integrate_euler([0.0, 0.1, 0.0], w, 0.01, max_gap=0.1))
+
+
+def test_ins_heading_change_report_keeps_the_tuple_and_warns():
+    from navlib import robust
+    from navlib.papers import north_finding
+    w = np.tile([0.0, 0.0, 0.01], (3, 300, 1))
+    w[0, 20] = np.nan                       # held
+    w[1, 50:80] = np.nan                    # 0.3 s gap: refused
+    w[2, 200, 2] = 0.05                     # saturated: refused
+    f0 = [0.0, 0.0, 9.8]
+    new = north_finding.ins_heading_change(w, f0, 0.01, 0.5, full_scale_gyro=0.05)
+    with pytest.warns(DeprecationWarning, match="report=.*deprecated.*NaN entries.*fault_report"):
+        dpsi, rep = north_finding.ins_heading_change(w, f0, 0.01, 0.5, full_scale_gyro=0.05, report=True)
+    assert isinstance(rep, north_finding.InsReport)
+    np.testing.assert_array_equal(dpsi, new)
+    np.testing.assert_array_equal(rep.refused, np.isnan(dpsi))
+    np.testing.assert_array_equal(rep.refused, [False, True, True])
+    counts = robust.fault_report(w, "gyro", full_scale=0.05)
+    np.testing.assert_array_equal(rep.n_held, counts["gyro", "nan"])
+    np.testing.assert_array_equal(rep.n_saturated, counts["gyro", "saturated"])
+    np.testing.assert_allclose(rep.longest_gap, [0.01, 0.3, 0.0])
