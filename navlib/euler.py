@@ -4,11 +4,12 @@ In navlib's ``hpr`` convention (:mod:`navlib`): ``C_bn = rot(z, -heading) rot(x,
 :func:`euler_rates` gives ``[heading', pitch', roll']`` of a body turning at ``w_nb_b`` (Wu et al. 2014,
 Eq. (2), in this convention); it divides by cos(pitch), so |pitch| must stay below :data:`PITCH_LIMIT`.
 :func:`integrate_euler` integrates gyro samples (RK4 above a step angle, Euler below) with an optional
-bias schedule and the navigation-frame rate ``w_in_n``; it holds dropouts up to ``max_gap`` and counts
-saturated samples in its report.
+bias schedule and the navigation-frame rate ``w_in_n``; it fills dropouts up to ``max_gap``, and
+:func:`navlib.robust.fault_report` counts the filled (NaN) and saturated samples.
 """
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -17,9 +18,10 @@ from numba import njit
 from . import attitude
 from ._deprecate import renamed_keywords
 from ._typing import Angles, Array, ArrayLike, Interval, Vec3, Vec3Series
-from ._validate import intervals, range_limit
+from ._validate import flag, intervals, range_limit
 from ._validate import nonempty_array as as_array
 from ._validate import nonempty_positive as positive
+from .imu import ImuSamples, unpack
 
 __all__ = ["PITCH_LIMIT", "check_pitch", "euler_rates", "integrate_euler", "EulerReport"]
 
@@ -156,7 +158,10 @@ def _euler_kernel(hpr0, w, dts, w_in, bias, bias_from, pitch_limit, max_gap, fs)
 
 @dataclass(frozen=True)
 class EulerReport:
-    """What :func:`integrate_euler` did with faulty gyro samples.
+    """What :func:`integrate_euler` did with faulty gyro samples (its deprecated ``report=True``).
+
+    Deprecated with ``report=``: ``robust.fault_report(w_ib_b, "gyro", full_scale=full_scale_gyro,
+    flags=True)`` gives the same counts (per trial) and flags.
 
     Attributes
     ----------
@@ -177,9 +182,9 @@ class EulerReport:
 
 
 @renamed_keywords(full_scale="full_scale_gyro")
-def integrate_euler(hpr0: Angles, w_ib_b: Vec3Series, dt: Interval, w_in_n: Vec3 | None = None,
-                    bias_b: ArrayLike | None = None, bias_from: ArrayLike | None = None, *, max_gap: float = 0.0,
-                    full_scale_gyro: float | None = None, report: bool = False):
+def integrate_euler(hpr0: Angles, w_ib_b: Vec3Series | ImuSamples, dt: Interval | None = None,
+                    w_in_n: Vec3 | None = None, bias_b: ArrayLike | None = None, bias_from: ArrayLike | None = None, *,
+                    max_gap: float = 0.0, full_scale_gyro: float | None = None, report: bool | None = None) -> Array:
     """Integrate Eq. (2) from gyro samples, optionally bias-compensated.
 
     Each sample is the mean rate over ``[t_k, t_k + dt_k]``; the Euler-angle
@@ -189,24 +194,25 @@ def integrate_euler(hpr0: Angles, w_ib_b: Vec3Series, dt: Interval, w_in_n: Vec3
 
     Faults: NaN samples (dropouts) raise ValueError unless ``max_gap > 0``;
     then each is replaced by linear interpolation between the neighbouring
-    valid samples (counted in ``EulerReport.n_filled``; to first order the
-    attitude error is the integral of the interpolation error, at most
-    ``sum |w_interp - w_true| dt`` over the filled samples) and a run of
-    dropouts longer than ``max_gap`` seconds raises ValueError (the rotation
-    over it is unknown). With
-    ``full_scale_gyro`` (the gyro range, rad/s) samples at the rails are counted
-    (``n_saturated``, ``first_saturated``): they cannot be corrected, the
-    attitude after them is unreliable. Irregular sampling: pass per-sample
-    intervals ``dt`` (``timing.intervals`` after ``timing.sanitize``).
+    valid samples (to first order the attitude error is the integral of the
+    interpolation error, at most ``sum |w_interp - w_true| dt`` over the filled
+    samples) and a run of dropouts longer than ``max_gap`` seconds raises
+    ValueError (the rotation over it is unknown). Samples at the rails of the
+    gyro range cannot be corrected: the attitude after them is unreliable.
+    ``robust.fault_report(w_ib_b, "gyro", full_scale=full_scale_gyro, flags=True)``
+    counts and flags the filled (``"nan"``) and saturated samples. Irregular
+    sampling: pass per-sample intervals ``dt`` (``timing.intervals`` after
+    ``timing.sanitize``).
 
     Parameters
     ----------
     hpr0 : array_like, shape (3,) or (..., 3)
         Initial ``[heading, pitch, roll]`` (rad).
-    w_ib_b : array_like, shape (..., N, 3)
-        Gyro samples (rad/s); NaN only with ``max_gap > 0``.
+    w_ib_b : array_like, shape (..., N, 3), or ImuSamples
+        Gyro samples (rad/s); NaN only with ``max_gap > 0``. An
+        :class:`navlib.imu.ImuSamples` here supplies ``dt`` and ``full_scale_gyro``.
     dt : float or array_like, shape (N,)
-        Sample interval (s), or the interval after each sample.
+        Sample interval (s), or the interval after each sample; required with arrays.
     w_in_n : array_like, shape (3,), optional
         Rate of the navigation frame (rad/s), e.g. ``earth.earth_rate_n(lat)``
         for a static host (erratum E001-06); default zero, as in the paper.
@@ -221,17 +227,24 @@ def integrate_euler(hpr0: Angles, w_ib_b: Vec3Series, dt: Interval, w_in_n: Vec3
         Longest run of dropouts (s) bridged by interpolation; default 0:
         NaN is not accepted.
     full_scale_gyro : float, optional  (formerly ``full_scale``, which warns)
-        Gyro range (rad/s) for counting saturated samples.
-    report : bool
-        Also return an :class:`EulerReport`.
+        Gyro range (rad/s); only the deprecated ``report=True`` counts saturated samples with it
+        (:func:`navlib.robust.fault_report` does that now).
+    report : bool, optional
+        Deprecated (warns; removed in navlib 0.3): ``report=True`` returns
+        ``(hpr, EulerReport)``; use :func:`navlib.robust.fault_report` instead.
 
     Returns
     -------
     hpr : ndarray, shape (..., N + 1, 3)
         Heading wrapped to [0, 2 pi), roll to (-pi, pi].
-    report : EulerReport
-        Only with ``report=True``.
     """
+    if report is not None:
+        warnings.warn("integrate_euler(report=...) is deprecated and will be removed in navlib 0.3; the angles are "
+                      'returned alone and robust.fault_report(w_ib_b, "gyro", full_scale=full_scale_gyro) counts '
+                      "the filled and saturated samples", DeprecationWarning, stacklevel=3)
+        report = flag(report, "report")
+    if isinstance(w_ib_b, ImuSamples):
+        w_ib_b, _, dt, full_scale_gyro, _ = unpack(w_ib_b, dt=dt, full_scale_gyro=full_scale_gyro)
     max_gap = float(positive(max_gap, "max_gap", allow_zero=True))
     w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=max_gap > 0)
     lead, n = w.shape[:-2], w.shape[-2]

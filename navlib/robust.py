@@ -19,6 +19,10 @@ Every filter result carries one: :class:`navlib.filters.observations.AttitudeRes
 quaternion KF), :class:`navlib.filters.planar_ekf.EkfResult`, :class:`navlib.filters.zupt_ins.FilterResult`,
 and the paper method's ``rotation_bias.Residuals``.
 
+:func:`fault_report` counts the NaN and saturated samples of a raw series, e.g. what an
+integrator that returns a plain array (:func:`navlib.strapdown.integrate_attitude`,
+:func:`navlib.euler.integrate_euler`) held, filled or integrated at the rails.
+
 :func:`hold` is the one zero-order hold of NaN samples, with an explicit policy for
 leading NaN samples (there is nothing before them to hold). :func:`despike` marks isolated
 IMU spikes as NaN with the test of :func:`is_spike` (compiled; filters call it per sample).
@@ -33,9 +37,9 @@ from numba import njit
 from numpy.typing import NDArray
 
 from ._typing import Array, ArrayLike, Vec3Series
-from ._validate import as_array, choice
+from ._validate import as_array, choice, flag, instance, range_limit
 
-__all__ = ["FaultReport", "hold", "despike", "LEADING"]
+__all__ = ["FaultReport", "fault_report", "hold", "despike", "LEADING"]
 
 LEADING = ("raise", "first", "zero")
 """Policies for NaN samples before the first valid one: raise, take the first valid sample, or 0."""
@@ -69,6 +73,40 @@ class FaultReport:
     def __str__(self) -> str:
         rows = [f"{s}.{k}: {np.asarray(c).tolist()}" for (s, k), c in self.counts.items() if np.any(c)]
         return "FaultReport(" + (", ".join(rows) if rows else "no faults") + ")"
+
+
+def fault_report(x: ArrayLike, sensor: str, *, full_scale: float | None = None, flags: bool = False) -> FaultReport:
+    """Count the NaN and saturated samples of a series, per trial.
+
+    E.g. ``fault_report(w_ib_b, "gyro", full_scale=fs)`` before an integrator that returns a plain array
+    says which samples it will hold or fill (the NaN rows) and which were at the rails.
+
+    Parameters
+    ----------
+    x : array_like, shape (..., N, k)
+        Samples (e.g. rad/s or m/s^2); leading axes are trials, a row with any NaN is a dropout.
+        Infinity is rejected.
+    sensor : str
+        Sensor name of the keys, e.g. ``"gyro"``.
+    full_scale : float, optional
+        Device range (same unit as ``x``): a valid row with any ``|x| >= full_scale`` is saturated.
+        None (default): saturation is not counted.
+    flags : bool
+        Also keep the per-sample masks.
+
+    Returns
+    -------
+    FaultReport
+        ``counts[(sensor, "nan")]`` and, with ``full_scale``, ``counts[(sensor, "saturated")]``: int
+        arrays of shape (...); with ``flags=True`` the boolean masks, shape (..., N), under the same keys.
+    """
+    instance(sensor, "sensor", str, "a sensor name (str)")
+    a = as_array(x, "x", allow_nan=True, min_ndim=2)
+    fs = range_limit(full_scale, "full_scale")
+    masks = {(sensor, "nan"): np.isnan(a).any(axis=-1)}
+    if full_scale is not None:
+        masks[sensor, "saturated"] = ~masks[sensor, "nan"] & (np.abs(a) >= fs).any(axis=-1)
+    return FaultReport({key: m.sum(axis=-1) for key, m in masks.items()}, masks if flag(flags, "flags") else {})
 
 
 def hold(x: ArrayLike, *, leading: str = "raise", name: str = "x", axis: int = -2) -> tuple[np.ndarray, np.ndarray]:

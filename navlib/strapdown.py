@@ -22,14 +22,17 @@ the inputs (Monte Carlo trials) are flattened into one loop. With
 Faults (navlib's robustness contract; tests in ``tests/faults/test_faults_strapdown.py``)
 -----------------------------------------------------------------------------------------
 Dropouts
-    By default (``on_nan="raise"``) a NaN sample raises ``ValueError``: a free
+    By default (``nan_policy="raise"``) a NaN sample raises ``ValueError``: a free
     INS has no measurement to fall back on, so nothing is guessed silently.
-    With ``on_nan="hold"`` a NaN gyro (accelerometer) sample is replaced by the
-    last good gyro (accelerometer) sample of the same trial, zero-order hold,
-    and the held samples are returned as a boolean mask next to the result
-    (its sum is the count). A trial whose first sample is NaN cannot be held
-    and raises. The error of a hold grows with the gap like any dead reckoning:
-    attitude error ~ |dw| * gap, position error ~ |df| * gap^2 / 2.
+    With ``nan_policy="hold"`` a NaN gyro (accelerometer) sample is replaced by the
+    last good gyro (accelerometer) sample of the same trial, zero-order hold.
+    :func:`integrate` reports the held samples in ``Trajectory.faults``
+    (``("gyro", "nan")``, ``("accel", "nan")``: counts per trial and per-sample
+    flags); for :func:`integrate_attitude` they are the NaN rows of its input,
+    :func:`navlib.robust.fault_report`. A trial whose first sample is NaN cannot be
+    held and raises. The error of a hold grows with the gap like any dead reckoning:
+    attitude error ~ |dw| * gap, position error ~ |df| * gap^2 / 2. (The keyword
+    ``on_nan`` is deprecated: it returns ``(result, held)`` on ``"hold"`` and warns.)
 Outliers, saturation
     Not detectable by a free INS (no redundancy): spikes and clipped samples are
     integrated as given. Saturation is counted where it happens, in
@@ -42,6 +45,8 @@ Timing
     out-of-order timestamps is :func:`navlib.timing.sanitize` first.
 """
 from __future__ import annotations
+
+import warnings
 
 import numpy as np
 from numba import njit
@@ -82,7 +87,7 @@ def _attitude_kernel(q0, w, dt, w_in_n):
     return q
 
 
-_ON_NAN = ("raise", "hold")
+_NAN_POLICIES = ("raise", "hold")
 
 
 def _samples(x, name):
@@ -90,17 +95,28 @@ def _samples(x, name):
     return as_array(x, name, tail=(3,), min_ndim=1, allow_nan=True)
 
 
-def _dropouts(x, name, on_nan):
-    """Apply the ``on_nan`` policy to samples x; return (x, held mask)."""
-    if on_nan == "raise":
+def _policy(nan_policy, on_nan, func, where):
+    """``(policy, old)``: the dropout policy, and whether the deprecated ``on_nan`` gave it (tuple result)."""
+    if on_nan is None:
+        return choice("raise" if nan_policy is None else nan_policy, "nan_policy", _NAN_POLICIES), False
+    if nan_policy is not None:
+        raise ValueError("nan_policy, on_nan: give nan_policy only (on_nan is deprecated)")
+    warnings.warn(f"{func}: on_nan is deprecated; use nan_policy=..., {where}; removed in navlib 0.3",
+                  DeprecationWarning, stacklevel=3)
+    return choice(on_nan, "on_nan", _NAN_POLICIES), True
+
+
+def _dropouts(x, name, policy):
+    """Apply the dropout policy to samples x; return (x, held mask)."""
+    if policy == "raise":
         if np.isnan(x).any():
-            raise ValueError(f"{name}: contains NaN samples (use on_nan='hold' to hold the last good sample)")
+            raise ValueError(f"{name}: contains NaN samples (use nan_policy='hold' to hold the last good sample)")
         return x, np.zeros(x.shape[:-1], dtype=bool)
     return robust.hold(x, leading="raise", name=name)
 
 
 def integrate_attitude(q0: Quat, w_ib_b: Vec3Series, dt: Interval, w_in_n: Vec3 | None = None,
-                       on_nan: str = "raise") -> Array | tuple[Array, np.ndarray]:
+                       on_nan: str | None = None, *, nan_policy: str | None = None) -> Array:
     """Integrate gyro samples into an attitude history.
 
     ``q_k+1 = q(-w_in_n dt_k) (x) q_k (x) q(w_k dt_k)`` with a constant
@@ -112,28 +128,30 @@ def integrate_attitude(q0: Quat, w_ib_b: Vec3Series, dt: Interval, w_in_n: Vec3 
     q0 : array_like, shape (4,) or (..., 4)
         Initial attitude quaternion q_b^n.
     w_ib_b : array_like, shape (..., N, 3)
-        Gyro samples (rad/s). NaN marks a dropout (see ``on_nan``); inf is rejected.
+        Gyro samples (rad/s). NaN marks a dropout (see ``nan_policy``); inf is rejected.
     dt : float or array_like, shape (N,)
         Sample interval (s), or per-sample intervals (irregular sampling;
         ``dt[k]`` is covered by sample k, shared by all trials).
     w_in_n : array_like, shape (3,), optional
         Rotation rate of the navigation frame (rad/s); default zero.
-    on_nan : {"raise", "hold"}
-        Dropout policy: raise ``ValueError`` on NaN samples (default), or hold
-        the last good sample of the trial and report the held samples.
+    nan_policy : {"raise", "hold"}, default "raise"
+        Dropout policy: raise ``ValueError`` on NaN samples, or hold the last
+        good sample of the trial. The held samples are exactly the NaN rows of
+        ``w_ib_b``: ``robust.fault_report(w_ib_b, "gyro", flags=True)`` counts
+        and flags them.
+    on_nan : {"raise", "hold"}, optional
+        Deprecated spelling of ``nan_policy`` (warns; removed in navlib 0.3):
+        ``on_nan="hold"`` returns ``(q_bn, held)``, ``held`` a bool ndarray of
+        shape (..., N).
 
     Returns
     -------
     q_bn : ndarray, shape (..., N + 1, 4)
-        With ``on_nan="raise"``.
-    (q_bn, held) : tuple
-        With ``on_nan="hold"``: ``held``, bool ndarray of shape (..., N), is
-        True on every sample that was replaced by the last good one
-        (``held.sum()`` is the count of held samples).
     """
-    on_nan = choice(on_nan, "on_nan", _ON_NAN)
+    policy, old = _policy(nan_policy, on_nan, "integrate_attitude",
+                          'the held samples are robust.fault_report(w_ib_b, "gyro", flags=True)')
     w = _samples(w_ib_b, "w_ib_b")
-    w, held = _dropouts(w, "w_ib_b", on_nan)
+    w, held = _dropouts(w, "w_ib_b", policy)
     dt = intervals(dt, w.shape[-2])[:1] if np.ndim(dt) == 0 else intervals(dt, w.shape[-2])
     q0 = as_quat(q0, "q0")
     lead = w.shape[:-2]
@@ -141,7 +159,7 @@ def integrate_attitude(q0: Quat, w_ib_b: Vec3Series, dt: Interval, w_in_n: Vec3 
     w_in = np.zeros(3) if w_in_n is None else as_array(w_in_n, "w_in_n", shape=(3,))
     q = _attitude_kernel(np.ascontiguousarray(q0), np.ascontiguousarray(w.reshape(-1, *w.shape[-2:])), dt, w_in)
     q = q.reshape(lead + q.shape[-2:])
-    return (q, held) if on_nan == "hold" else q
+    return (q, held) if old and policy == "hold" else q
 
 
 @njit(cache=True)
@@ -220,7 +238,7 @@ def _nav_kernel(lla0, vel0, q0, w, f, dt, earth_consts, hold_height):
 def integrate(lla0: Vec3, vel0: Vec3, q0: Quat, w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None,
               dt: Interval | None = None, t0: float = 0.0,
               hold_height: bool = False, ellipsoid: earth.Ellipsoid = earth.WGS84,
-              on_nan: str = "raise") -> Trajectory | tuple[Trajectory, np.ndarray]:
+              on_nan: str | None = None, *, nan_policy: str | None = None) -> Trajectory:
     """Full strapdown navigation: attitude, ENU velocity and geodetic position.
 
     Parameters
@@ -233,7 +251,7 @@ def integrate(lla0: Vec3, vel0: Vec3, q0: Quat, w_ib_b: Vec3Series | ImuSamples,
         Initial attitude quaternion q_b^n.
     w_ib_b, f_b : array_like, shape (..., N, 3)
         Gyro (rad/s) and accelerometer (m/s^2) samples. NaN marks a dropout
-        (see ``on_nan``); inf is rejected. An :class:`navlib.imu.ImuSamples` as
+        (see ``nan_policy``); inf is rejected. An :class:`navlib.imu.ImuSamples` as
         ``w_ib_b`` supplies ``f_b`` and ``dt`` (its ranges are not used here).
     dt : float or array_like, shape (N,)
         Sample interval (s), or per-sample intervals for irregular sampling
@@ -245,29 +263,32 @@ def integrate(lla0: Vec3, vel0: Vec3, q0: Quat, w_ib_b: Vec3Series | ImuSamples,
         Hold the vertical channel (vertical velocity 0, height fixed at its
         initial value), as an INS aided by a known altitude does. The free
         vertical channel is unstable: height errors grow like cosh(sqrt(2 g/R) t).
-    on_nan : {"raise", "hold"}
-        Dropout policy. ``"raise"`` (default): NaN samples raise ValueError.
+    nan_policy : {"raise", "hold"}, default "raise"
+        Dropout policy. ``"raise"``: NaN samples raise ValueError.
         ``"hold"``: a NaN gyro or accelerometer sample is replaced by the last
-        good sample of the same sensor and trial (zero-order hold) and reported.
+        good sample of the same sensor and trial (zero-order hold) and reported
+        in ``faults``.
+    on_nan : {"raise", "hold"}, optional
+        Deprecated spelling of ``nan_policy`` (warns; removed in navlib 0.3):
+        ``on_nan="hold"`` returns ``(Trajectory, held)``, ``held`` a bool
+        ndarray of shape (..., N), True where the gyro or the accelerometer
+        sample (or both) was held.
 
     Returns
     -------
     Trajectory
-        With ``on_nan="raise"``: N + 1 epochs; arrays carry the leading
-        (trial) axes of the inputs; ``time = t0 + [0, cumsum(dt)]``.
-    (Trajectory, held) : tuple
-        With ``on_nan="hold"``: ``held``, bool ndarray of shape (..., N), True
-        on every sample where the gyro or the accelerometer sample (or both)
-        was held; ``held.sum()`` counts them.
+        N + 1 epochs; arrays carry the leading (trial) axes of the inputs;
+        ``time = t0 + [0, cumsum(dt)]``. Its ``faults`` counts the held samples
+        per trial under ``("gyro", "nan")`` and ``("accel", "nan")`` (int arrays
+        of shape (...), zero with ``"raise"``) with their flags (bool, shape (..., N)).
     """
     w_ib_b, f_b, dt, _, _ = unpack(w_ib_b, f_b, dt)
-    on_nan = choice(on_nan, "on_nan", _ON_NAN)
+    policy, old = _policy(nan_policy, on_nan, "integrate", "the held samples are in traj.faults")
     w = _samples(w_ib_b, "w_ib_b")
     f = _samples(f_b, "f_b")
     w, f = broadcast(w, f, name="f_b", of="w_ib_b, f_b")
-    w, held_w = _dropouts(w, "w_ib_b", on_nan)
-    f, held_f = _dropouts(f, "f_b", on_nan)
-    held = held_w | held_f
+    w, held_w = _dropouts(w, "w_ib_b", policy)
+    f, held_f = _dropouts(f, "f_b", policy)
     lead, n = w.shape[:-2], w.shape[-2]
     dt = intervals(dt, n)[:1] if np.ndim(dt) == 0 else intervals(dt, n)
     t0 = float(as_array(t0, "t0"))
@@ -284,8 +305,10 @@ def integrate(lla0: Vec3, vel0: Vec3, q0: Quat, w_ib_b: Vec3Series | ImuSamples,
     lla, vel, q = _nav_kernel(flat(lla0, 1), flat(vel0, 1), flat(q0, 1), flat(w, 2), flat(f, 2), dt,
                               earth_constants(ellipsoid), bool(hold_height))
     time = t0 + (dt[0] * np.arange(n + 1) if dt.size == 1 else np.concatenate([[0.0], np.cumsum(dt)]))
-    traj = Trajectory(time, *(x.reshape(lead + x.shape[-2:]) for x in (lla, vel, q)))
-    return (traj, held) if on_nan == "hold" else traj
+    held = {("gyro", "nan"): held_w, ("accel", "nan"): held_f}
+    faults = robust.FaultReport({key: m.sum(axis=-1) for key, m in held.items()}, held)
+    traj = Trajectory(time, *(x.reshape(lead + x.shape[-2:]) for x in (lla, vel, q)), faults)
+    return (traj, held_w | held_f) if old and policy == "hold" else traj
 
 
 def error_model(lat: float, h: float, vel_n: Vec3, f_n: Vec3, ellipsoid: earth.Ellipsoid = earth.WGS84) -> Array:

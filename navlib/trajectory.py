@@ -11,7 +11,7 @@ rounding error and every simulated error is due to the sensor model alone.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from numba import njit
@@ -19,7 +19,8 @@ from numba import njit
 from . import attitude, earth
 from ._kernels import radii_mn
 from ._typing import Vec3
-from ._validate import as_array, in_range, latitude, positive, time_axis, time_grid
+from ._validate import as_array, in_range, instance, latitude, positive, time_axis, time_grid
+from .robust import FaultReport
 
 __all__ = ["Trajectory", "Segment", "static", "from_profiles", "reciprocating_rotation",
            "vehicle", "Leg", "Gait", "walk", "stance_mask", "ideal_imu", "smooth_ramp"]
@@ -39,13 +40,19 @@ class Trajectory:
         ENU velocity (m/s).
     q_bn : ndarray, shape (..., N, 4)
         Attitude quaternion q_b^n (scalar first).
+    faults : navlib.robust.FaultReport
+        What the integrator did with faulty samples, e.g. :func:`navlib.strapdown.integrate`'s held
+        dropouts (``faults["gyro", "nan"]``, counts of shape (...), flags of shape (..., N - 1));
+        empty for generated trajectories.
     """
     time: np.ndarray
     lla: np.ndarray
     vel_n: np.ndarray
     q_bn: np.ndarray
+    faults: FaultReport = field(default_factory=FaultReport)
 
     def __post_init__(self):
+        instance(self.faults, "faults", FaultReport, "a navlib.robust.FaultReport")
         t = time_axis(self.time)
         n = t.size
         for name, tail in (("lla", 3), ("vel_n", 3), ("q_bn", 4)):

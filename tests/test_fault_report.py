@@ -6,8 +6,9 @@ numbers under ``(sensor, kind)`` keys, so code that inspects faults works across
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
-from navlib import robust, trajectory
+from navlib import imu, robust, strapdown, trajectory
 from navlib.filters import mahony, observations, planar_ekf, zupt_ins
 from navlib.papers import gauss_kruger_ekf, rotation_bias
 
@@ -80,6 +81,92 @@ def test_static_window_and_ins_report():
     win = alignment.static_means(w, f, 0.5)
     check_vocabulary(win.faults)
     assert win.faults["gyro", "nan"] == 1 and win.faults["window", "refused"] == 0
-    dpsi, rep = north_finding.ins_heading_change(w, f[0], 0.01, 0.5, report=True)
-    check_vocabulary(rep.faults)
-    assert rep.faults["gyro", "nan"] == 1 and rep.faults["drive", "refused"] == 0
+    dpsi = north_finding.ins_heading_change(w, f[0], 0.01, 0.5)
+    rep = robust.fault_report(w, "gyro")
+    check_vocabulary(rep)
+    assert rep["gyro", "nan"] == 1 and np.isfinite(dpsi)                # held, not refused
+
+
+def test_strapdown_trajectory():
+    traj = trajectory.static(2.0, 0.01, [0.5, 0.2, 10.0], [0.3, 0.0, 0.0])
+    w, f = trajectory.ideal_imu(traj)
+    w[[5, 9]], f[7] = np.nan, np.nan
+    nav = strapdown.integrate(traj.lla[0], traj.vel_n[0], traj.q_bn[0], w, f, 0.01, nan_policy="hold")
+    check_vocabulary(nav.faults)
+    assert nav.faults["gyro", "nan"] == 2 and nav.faults["accel", "nan"] == 1
+    assert np.flatnonzero(nav.faults.flags["gyro", "nan"]).tolist() == [5, 9]
+    assert nav.faults.flags["accel", "nan"].shape == (len(w),)
+    samples = imu.ImuSamples(np.stack([w, w]), np.stack([f, f]), 0.01)
+    nav = strapdown.integrate(traj.lla[0], traj.vel_n[0], traj.q_bn[0], samples, nan_policy="hold")
+    np.testing.assert_array_equal(nav.faults["gyro", "nan"], [2, 2])     # per trial
+    clean = strapdown.integrate(traj.lla[0], traj.vel_n[0], traj.q_bn[0], *trajectory.ideal_imu(traj), 0.01)
+    check_vocabulary(clean.faults)
+    assert clean.faults["gyro", "nan"] == 0 and not clean.faults               # default: raise, nothing held
+    assert isinstance(traj.faults, robust.FaultReport) and not traj.faults     # generated: no faults
+
+
+# ----------------------------------------------------------------------------- robust.fault_report
+
+def test_fault_report_counts_nan_rows_per_trial():
+    x = np.zeros((2, 6, 3))
+    x[0, 1, 2] = np.nan                     # one NaN component makes the row a dropout
+    x[1, [0, 4]] = np.nan
+    rep = robust.fault_report(x, "gyro")
+    check_vocabulary(rep)
+    np.testing.assert_array_equal(rep["gyro", "nan"], [1, 2])
+    assert set(rep.counts) == {("gyro", "nan")} and rep.flags == {}          # no full_scale, no flags
+    assert rep["gyro", "saturated"] == 0
+    assert robust.fault_report(x[0], "accel")["accel", "nan"] == 1          # no batch axis: a scalar count
+
+
+def test_fault_report_flags_and_saturation():
+    x = np.zeros((5, 3))
+    x[1, 0] = 2.0                           # at the rails (>=)
+    x[2, 1] = -3.0                          # beyond, negative
+    x[3] = [np.nan, 5.0, 0.0]               # a dropout is not also counted as saturated
+    rep = robust.fault_report(x, "gyro", full_scale=2.0, flags=True)
+    check_vocabulary(rep)
+    assert rep["gyro", "nan"] == 1 and rep["gyro", "saturated"] == 2
+    np.testing.assert_array_equal(rep.flags["gyro", "saturated"], [False, True, True, False, False])
+    np.testing.assert_array_equal(rep.flags["gyro", "nan"], [False, False, False, True, False])
+    assert robust.fault_report(x, "gyro", full_scale=np.inf)["gyro", "saturated"] == 0
+
+
+def test_fault_report_batch_axes():
+    rng = np.random.default_rng(0)
+    x = rng.normal(0, 1, (3, 4, 50, 2))
+    x[rng.random(x.shape) < 0.05] = np.nan
+    rep = robust.fault_report(x, "mag", full_scale=1.5, flags=True)
+    assert rep["mag", "nan"].shape == (3, 4) and rep.flags["mag", "nan"].shape == (3, 4, 50)
+    np.testing.assert_array_equal(rep["mag", "nan"], np.isnan(x).any(-1).sum(-1))
+    valid = ~np.isnan(x).any(-1)
+    np.testing.assert_array_equal(rep["mag", "saturated"], (valid & (np.abs(x) >= 1.5).any(-1)).sum(-1))
+    np.testing.assert_array_equal(rep.total(), rep["mag", "nan"] + rep["mag", "saturated"])
+
+
+def test_fault_report_matches_what_strapdown_holds():
+    traj = trajectory.static(1.0, 0.01, [0.5, 0.2, 10.0], [0.3, 0.0, 0.0])
+    w, f = trajectory.ideal_imu(traj)
+    w[[3, 4, 60]], f[20] = np.nan, np.nan
+    nav = strapdown.integrate(traj.lla[0], traj.vel_n[0], traj.q_bn[0], w, f, 0.01, nan_policy="hold")
+    for x, sensor in ((w, "gyro"), (f, "accel")):
+        rep = robust.fault_report(x, sensor, flags=True)
+        assert rep[sensor, "nan"] == nav.faults[sensor, "nan"]
+        np.testing.assert_array_equal(rep.flags[sensor, "nan"], nav.faults.flags[sensor, "nan"])
+
+
+@pytest.mark.parametrize("arg, call", [
+    ("x", lambda: robust.fault_report(np.zeros(5), "gyro")),                   # no sample axis
+    ("x", lambda: robust.fault_report(np.zeros((0, 3)), "gyro")),              # empty
+    ("x", lambda: robust.fault_report(np.full((4, 3), np.inf), "gyro")),       # inf is not a dropout
+    ("x", lambda: robust.fault_report("abc", "gyro")),
+    ("x", lambda: robust.fault_report(np.zeros((4, 3), complex), "gyro")),
+    ("sensor", lambda: robust.fault_report(np.zeros((4, 3)), 1)),
+    ("full_scale", lambda: robust.fault_report(np.zeros((4, 3)), "gyro", full_scale=0.0)),
+    ("full_scale", lambda: robust.fault_report(np.zeros((4, 3)), "gyro", full_scale=np.nan)),
+    ("full_scale", lambda: robust.fault_report(np.zeros((4, 3)), "gyro", full_scale=[1.0, 2.0])),
+    ("flags", lambda: robust.fault_report(np.zeros((4, 3)), "gyro", flags="yes")),
+])
+def test_fault_report_bad_input_names_the_argument(arg, call):
+    with pytest.raises(ValueError, match=f"^{arg}: "):
+        call()

@@ -366,7 +366,7 @@ def test_fuzz_table_covers_every_public_function():
 FAULT_SCRIPT = r"""
 import json, numpy as np
 from navlib import trajectory, units, earth
-from navlib import analysis, euler
+from navlib import analysis, euler, robust
 from navlib.papers import rotation_bias as gb
 lat = units.deg(40.0)
 traj = trajectory.reciprocating_rotation(20.0, 0.01, [lat, 0, 0], units.deg([0, 30, 0]), [0, 1, 0], np.pi / 2, 5.0, 0.5)
@@ -382,9 +382,10 @@ dts = 0.01 * (1 + 0.2 * np.sin(np.arange(w.shape[0])))
 res = gb.tilt_residuals(w, f, dts, starts, n, max_missing=0.5, outlier_k=6.0, full_scale_accel=30.0)
 R = gb.residual_covariance(np.nan_to_num(res.tilt), n, 0.01, 1e-3, 1e-2)
 kf = gb.kalman_bias(res.r, res.V, R, np.full(starts.size, 5.0), 1e-6, 1e-3)
-hpr, rep = euler.integrate_euler(traj.hpr[0], w, dts, earth.earth_rate_n(lat), max_gap=0.1, full_scale_gyro=5.0, report=True)
+hpr = euler.integrate_euler(traj.hpr[0], w, dts, earth.earth_rate_n(lat), max_gap=0.1, full_scale_gyro=5.0)
+rep = robust.fault_report(w, "gyro", full_scale=5.0)
 print(json.dumps({"r": np.nan_to_num(res.r).tolist(), "counts": [res.n_skipped, res.n_filled, res.n_outliers_accel,
-                  res.n_skipped_saturated, kf.n_no_data, rep.n_filled, rep.n_saturated],
+                  res.n_skipped_saturated, kf.n_no_data, int(rep["gyro", "nan"]), int(rep["gyro", "saturated"])],
                   "kf": kf.b.tolist(), "P": kf.P.tolist(), "hpr": hpr[::50].tolist()}))
 """
 

@@ -6,9 +6,9 @@ import dataclasses
 import numpy as np
 import pytest
 
-from navlib import alignment, attitude, earth, imu, strapdown, trajectory
+from navlib import alignment, attitude, earth, euler, imu, strapdown, trajectory
 from navlib.filters import mahony, quaternion_kf, zupt, zupt_ins
-from navlib.papers import rotation_bias
+from navlib.papers import north_finding, rotation_bias
 
 DT = 0.01
 LLA0 = [0.5, 0.2, 10.0]
@@ -152,3 +152,51 @@ def test_the_new_functions_take_f_b_and_dt_once(walk, rig):
         rotation_bias.tilt_residuals(rig_samples, length=length)
     with pytest.raises(ValueError, match="^length: required"):
         rotation_bias.tilt_residuals(rig_samples, starts=starts)
+
+
+def test_integrate_euler_takes_samples(walk):
+    traj, w, f, _ = walk
+    dts = DT * (1 + 0.1 * np.sin(np.arange(len(w))))
+    samples = imu.ImuSamples(w, f, dts, full_scale_gyro=0.5)
+    raw = euler.integrate_euler(traj.hpr[0], w, dts, full_scale_gyro=0.5)
+    np.testing.assert_array_equal(euler.integrate_euler(traj.hpr[0], samples), raw)
+    with pytest.raises(ValueError, match="^dt: given twice"):
+        euler.integrate_euler(traj.hpr[0], samples, DT)
+    with pytest.raises(ValueError, match="^full_scale_gyro: given twice"):
+        euler.integrate_euler(traj.hpr[0], samples, full_scale_gyro=0.4)
+    with pytest.raises(ValueError, match="^dt: "):
+        euler.integrate_euler(traj.hpr[0], w)                                  # arrays need dt
+
+
+def test_ins_heading_change_takes_samples(walk):
+    _, w, f, _ = walk
+    dts = DT * (1 + 0.1 * np.sin(np.arange(len(w))))
+    samples = imu.ImuSamples(w, f, dts, full_scale_gyro=0.5)
+    raw = north_finding.ins_heading_change(w, f[0], dts, 0.5, full_scale_gyro=0.5)
+    np.testing.assert_array_equal(north_finding.ins_heading_change(samples, f[0], lat=0.5), raw)
+    clipped = imu.ImuSamples(w, f, dts, full_scale_gyro=0.01)                 # the range is used: refused
+    assert np.isnan(north_finding.ins_heading_change(clipped, f[0], lat=0.5))
+    with pytest.raises(ValueError, match="^dt: given twice"):
+        north_finding.ins_heading_change(samples, f[0], DT, 0.5)
+    with pytest.raises(ValueError, match="^full_scale_gyro: given twice"):
+        north_finding.ins_heading_change(samples, f[0], lat=0.5, full_scale_gyro=0.4)
+
+
+def test_stop_solutions_take_samples(walk):
+    _, w, f, _ = walk
+    win = np.array([[0, 250], [550, 800]])
+    raw = north_finding.stop_solutions(w, f, win, 0.5, strict=False, full_scale_gyro=0.5, full_scale_accel=20.0)
+    new = north_finding.stop_solutions(imu.ImuSamples(w, f, DT, full_scale_gyro=0.5, full_scale_accel=20.0),
+                                       windows=win, lat=0.5, strict=False)
+    np.testing.assert_array_equal(new.candidates, raw.candidates)
+    np.testing.assert_array_equal(new.triad, raw.triad)
+    np.testing.assert_array_equal(new.status, raw.status)
+    sat = north_finding.stop_solutions(imu.ImuSamples(w, f, DT, full_scale_accel=9.0), windows=win, lat=0.5,
+                                       strict=False)                      # the range reaches static_means
+    assert np.isnan(sat.triad).all() and np.all(sat.status == alignment.SATURATED)
+    assert all(s.n_saturated_accel > 0 for s in sat.windows)
+    with pytest.raises(ValueError, match="^f_b: given twice"):
+        north_finding.stop_solutions(imu.ImuSamples(w, f, DT), f, win, 0.5)
+    with pytest.raises(ValueError, match="^full_scale_accel: given twice"):
+        north_finding.stop_solutions(imu.ImuSamples(w, f, DT, full_scale_accel=20.0), windows=win, lat=0.5,
+                                     full_scale_accel=30.0)

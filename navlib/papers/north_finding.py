@@ -52,13 +52,13 @@ fault              what happens                                 reported by
 =================  ===========================================  ======================================
 NaN dropouts       stop means: samples left out; a stop with    ``StaticWindow.n_dropped_*``,
                    < ``min_fraction`` (50 %) left is refused    ``status == TOO_FEW``
-                   INS change: last sample held; a run longer   ``InsReport.n_held``, ``longest_gap``,
-                   than ``max_gap`` (0.1 s) refuses the drive   ``refused`` (NaN result)
+                   INS change: last sample held; a run longer   ``robust.fault_report`` of the gyro
+                   than ``max_gap`` (0.1 s) refuses the drive   (``"nan"``); NaN result (refused)
 outliers (spikes)  stop means: ``outlier_k`` x MAD from the     ``StaticWindow.n_outliers_*``
                    median left out (opt-in; without it the
                    error bound is ``k sigma sqrt(p/N)``)
 saturation         stop: refused (``full_scale_*``);            ``n_saturated_*``, ``SATURATED``;
-                   INS drive: refused (``full_scale_gyro``)     ``InsReport.n_saturated``
+                   INS drive: refused (``full_scale_gyro``)     ``fault_report(..., full_scale=)``
 timing             ``timing.sanitize`` then windows cut by      ``TimingReport``; ``dt`` arrays in
                    time (``stop_solutions(time=...)``); INS     :func:`ins_heading_change`
                    integrates per-sample intervals
@@ -83,6 +83,7 @@ Errata corrected (ids of ``data/errata.csv``)
 """
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -91,10 +92,11 @@ from scipy.special import ndtr
 from .. import attitude, earth, robust, strapdown
 from .._deprecate import renamed_keywords
 from .._typing import Angles, Array, ArrayLike, Dcm, Interval, Times, Vec3, Vec3Series
-from .._validate import as_dcm, generator, in_range, intervals, time_axis
+from .._validate import as_dcm, flag, generator, in_range, intervals, time_axis
 from .._validate import nonempty_array as as_array
 from .._validate import nonempty_positive as positive
 from ..alignment import gyrocompass_latitude, level, static_means, triad, triad_heading
+from ..imu import ImuSamples, unpack
 from ..trajectory import Segment
 
 __all__ = ["Candidates", "heading_candidates", "nearest_candidate_error", "Resolution", "resolve", "tilt_from_accel",
@@ -633,14 +635,18 @@ class StopSolutions:
         return np.stack([s.status for s in self.windows], -1)
 
 
-def stop_solutions(w_ib_b: Vec3Series, f_b: Vec3Series, windows: ArrayLike, lat: float, h: float = 0.0, *,
-                   time: Times | None = None, strict: bool = True, **window_options: float | None) -> StopSolutions:
+def stop_solutions(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None, windows: ArrayLike | None = None,
+                   lat: float | None = None, h: float = 0.0, *, time: Times | None = None, strict: bool = True,
+                   **window_options: float | None) -> StopSolutions:
     """Average each stop window and solve it with TRIAD and the single-axis method.
 
     Parameters
     ----------
     w_ib_b, f_b : array_like, shape (..., N, 3)
-        IMU samples of the whole run (rad/s, m/s^2); NaN marks dropouts.
+        IMU samples of the whole run (rad/s, m/s^2); NaN marks dropouts. An
+        :class:`navlib.imu.ImuSamples` as ``w_ib_b`` supplies ``f_b`` and the
+        ``full_scale_gyro`` / ``full_scale_accel`` window options (not its ``dt``:
+        windows are sample indices, or times with ``time``).
     windows : array_like, shape (S, 2)
         ``[start, end)`` of the stops: integer sample indices, or times (s)
         when ``time`` is given.
@@ -658,6 +664,10 @@ def stop_solutions(w_ib_b: Vec3Series, f_b: Vec3Series, windows: ArrayLike, lat:
         ``accel_tol``, ``min_fraction``, ``outlier_k``, ``full_scale_gyro``,
         ``full_scale_accel`` for :func:`static_means`.
     """
+    if isinstance(w_ib_b, ImuSamples):
+        fs_gyro, fs_accel = window_options.pop("full_scale_gyro", None), window_options.pop("full_scale_accel", None)
+        w_ib_b, f_b, _, fs_gyro, fs_accel = unpack(w_ib_b, f_b, None, fs_gyro, fs_accel)
+        window_options.update(full_scale_gyro=fs_gyro, full_scale_accel=fs_accel)
     w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
     f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=True)
     n = w.shape[-2]
@@ -691,7 +701,10 @@ def stop_solutions(w_ib_b: Vec3Series, f_b: Vec3Series, windows: ArrayLike, lat:
 
 @dataclass(frozen=True)
 class InsReport:
-    """What :func:`ins_heading_change` did with faulty samples, per drive (shape (...)).
+    """What :func:`ins_heading_change` did with faulty samples, per drive (shape (...)); its deprecated ``report=True``.
+
+    Deprecated with ``report=``: the refused drives are the NaN entries of the heading change and
+    ``robust.fault_report(w_ib_b, "gyro", full_scale=full_scale_gyro)`` counts the held and saturated samples.
 
     Attributes
     ----------
@@ -736,9 +749,9 @@ def _hold_last(w, dts):
 
 
 @renamed_keywords(full_scale="full_scale_gyro")
-def ins_heading_change(w_ib_b: Vec3Series, f_start: Vec3, dt: Interval, lat: float, earth_rate: str = "vertical", *,
-                       max_gap: float = 0.1, full_scale_gyro: float | None = None,
-                       report: bool = False) -> Array | tuple[Array, InsReport]:
+def ins_heading_change(w_ib_b: Vec3Series | ImuSamples, f_start: Vec3, dt: Interval | None = None,
+                       lat: float | None = None, earth_rate: str = "vertical", *, max_gap: float = 0.1,
+                       full_scale_gyro: float | None = None, report: bool | None = None) -> Array:
     """MEMS strapdown heading change over a drive, started with heading 0 (paper step 2).
 
     The attitude starts at heading 0 with pitch and roll from ``f_start``
@@ -753,16 +766,17 @@ def ins_heading_change(w_ib_b: Vec3Series, f_start: Vec3, dt: Interval, lat: flo
       were true, i.e. the horizontal part in the wrong direction (a tilt
       error, second order in heading over a short drive).
 
-    Faults (counted in :class:`InsReport`; a refused drive gives NaN, which
-    :func:`resolve` does not accept, so it cannot pass unnoticed):
+    Faults (a refused drive gives NaN, which :func:`resolve` does not accept, so
+    it cannot pass unnoticed; ``robust.fault_report(w_ib_b, "gyro",
+    full_scale=full_scale_gyro)`` counts the held and saturated samples per drive):
 
     * dropouts: NaN gyro samples are replaced by the last valid sample
-      (``n_held``); the heading error this adds is at most the rate change
+      (``"nan"``); the heading error this adds is at most the rate change
       across a gap times its length, so a drive with a run of dropouts longer
       than ``max_gap`` (default 0.1 s: <= 0.3 deg for a 3 deg/s turn starting
       inside the gap) is refused. A 30-s gap in a 60-s drive is refused.
     * saturation: with ``full_scale_gyro`` (gyro range, rad/s), a drive with
-      samples at the rails is refused (``n_saturated``): the turn was faster
+      samples at the rails is refused (``"saturated"``): the turn was faster
       than the clipped reading.
     * timing: ``dt`` may be per-sample intervals (``timing.intervals`` after
       ``timing.sanitize``). Each sample's rotation ``w_k dt_k`` is integrated
@@ -773,28 +787,37 @@ def ins_heading_change(w_ib_b: Vec3Series, f_start: Vec3, dt: Interval, lat: flo
 
     Parameters
     ----------
-    w_ib_b : array_like, shape (..., N, 3)
-        MEMS gyro samples of the drive (rad/s); NaN marks dropouts.
+    w_ib_b : array_like, shape (..., N, 3), or ImuSamples
+        MEMS gyro samples of the drive (rad/s); NaN marks dropouts. An
+        :class:`navlib.imu.ImuSamples` here supplies ``dt`` and ``full_scale_gyro``.
     f_start : array_like, shape (..., 3)
         Averaged specific force at the start stop (m/s^2).
     dt : float or array_like, shape (N,)
-        Sample interval (s), or the interval after each sample.
+        Sample interval (s), or the interval after each sample; required with arrays.
     lat : float  (rad)
     earth_rate : {"vertical", "none", "full"}
     max_gap : float
         Longest run of dropouts bridged by holding the last sample (s).
     full_scale_gyro : float, optional  (formerly ``full_scale``, which warns)
         Gyro range (rad/s); None: no saturation check.
-    report : bool
-        Also return an :class:`InsReport`.
+    report : bool, optional
+        Deprecated (warns; removed in navlib 0.3): ``report=True`` returns
+        ``(dpsi, InsReport)``; the refused drives are the NaN entries of
+        ``dpsi``, the counts come from :func:`navlib.robust.fault_report`.
 
     Returns
     -------
     ndarray, shape (...)
         Heading change, wrapped into (-pi, pi] (rad); NaN for refused drives.
-    InsReport
-        Only with ``report=True``.
     """
+    if report is not None:
+        warnings.warn("ins_heading_change(report=...) is deprecated and will be removed in navlib 0.3; refused "
+                      'drives are the NaN entries of the result and robust.fault_report(w_ib_b, "gyro", '
+                      "full_scale=full_scale_gyro) counts the held and saturated samples", DeprecationWarning,
+                      stacklevel=3)
+        report = flag(report, "report")
+    if isinstance(w_ib_b, ImuSamples):
+        w_ib_b, _, dt, full_scale_gyro, _ = unpack(w_ib_b, dt=dt, full_scale_gyro=full_scale_gyro)
     w_ie = earth.earth_rate_n(gyrocompass_latitude(lat))
     rates = {"vertical": w_ie * [0, 0, 1], "none": np.zeros(3), "full": w_ie}
     if earth_rate not in rates:

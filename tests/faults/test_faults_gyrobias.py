@@ -11,7 +11,7 @@ estimate (``lsq_covariance``), about 3.3 deg/h per axis here.
 import numpy as np
 import pytest
 
-from navlib import analysis, attitude, earth, euler, faults, sensors, timing, trajectory, units
+from navlib import analysis, attitude, earth, euler, faults, robust, sensors, timing, trajectory, units
 from navlib.papers import rotation_bias as gb
 
 DT, PERIOD, ROT = 0.01, 5.0, 0.5
@@ -198,8 +198,10 @@ def test_duplicated_and_out_of_order_timestamps_through_sanitize():
 def test_integrator_fills_dropouts_by_interpolation_within_a_stated_bound():
     w, drop = faults.dropouts(IMU.w_ib_b, 0.1, np.random.default_rng(1))
     clean = euler.integrate_euler(HPR0, IMU.w_ib_b, DT, W_IE_N)
-    hpr, rep = euler.integrate_euler(HPR0, w, DT, W_IE_N, max_gap=0.1, report=True)
-    assert rep.n_filled == drop.sum() and rep.n_saturated == 0 and np.isfinite(hpr).all()
+    hpr = euler.integrate_euler(HPR0, w, DT, W_IE_N, max_gap=0.1)
+    rep = robust.fault_report(w, "gyro", full_scale=MODEL.gyro.full_scale, flags=True)   # what it filled
+    assert rep["gyro", "nan"] == drop.sum() and rep["gyro", "saturated"] == 0 and np.isfinite(hpr).all()
+    np.testing.assert_array_equal(rep.flags["gyro", "nan"], drop)
     # bound (first order): the attitude error is the integral of the interpolation error, mapped by Eq. (2)
     # (|Euler rate| <= |w| (1 + tan p) / cos p... <= 2.5 |w| at 30 deg pitch)
     idx = np.arange(w.shape[0])
@@ -212,12 +214,14 @@ def test_integrator_fills_dropouts_by_interpolation_within_a_stated_bound():
 def test_gyro_saturation_is_counted_by_the_integrator():
     """The rig's rotations peak at 360 deg/s: within the MTi-100's 450 deg/s, beyond the ADIS16475-1's 125."""
     fs_mti = MODEL.gyro.full_scale
-    _, rep = euler.integrate_euler(HPR0, IMU.w_ib_b, DT, W_IE_N, full_scale_gyro=fs_mti, report=True)
-    assert rep.n_saturated == 0 and rep.first_saturated == -1
+    rep = robust.fault_report(IMU.w_ib_b, "gyro", full_scale=fs_mti, flags=True)
+    assert rep["gyro", "saturated"] == 0 and not rep.flags["gyro", "saturated"].any()
     fs = sensors.imu_model("ADIS16475-1").gyro.full_scale
     w, clipped = faults.saturate(IMU.w_ib_b, fs)
-    hpr, rep = euler.integrate_euler(HPR0, w, DT, W_IE_N, full_scale_gyro=fs, report=True)
-    assert rep.n_saturated == clipped.sum() > 0 and rep.first_saturated == np.flatnonzero(clipped)[0]
+    hpr = euler.integrate_euler(HPR0, w, DT, W_IE_N, full_scale_gyro=fs)
+    rep = robust.fault_report(w, "gyro", full_scale=fs, flags=True)
+    assert rep["gyro", "saturated"] == clipped.sum() > 0
+    np.testing.assert_array_equal(rep.flags["gyro", "saturated"], clipped)
     # why it must be reported: every clipped rotation falls short by tens of degrees (the return
     # rotation undoes it, so only the attitude in between shows it)
     assert np.abs(analysis.attitude_errors(hpr, TRAJ.hpr)).max() > units.deg(10.0)

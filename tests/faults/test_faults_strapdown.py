@@ -3,7 +3,8 @@
 Data: paper 000's simulated sensors (notebook 00): a static MTi-100 INS and
 a vehicle drive with stops and turns (``trajectory.vehicle``), both at
 100 Hz. A free INS has no redundancy, so the contract here is: dropouts are
-held only when asked (``on_nan="hold"``) and every held sample is reported;
+held only when asked (``nan_policy="hold"``) and every held sample is reported
+(``Trajectory.faults``);
 spikes and clipping cannot be detected and are integrated, with an error
 bounded by the injected fault itself; irregular sampling is integrated with
 per-sample intervals.
@@ -11,7 +12,7 @@ per-sample intervals.
 import numpy as np
 import pytest
 
-from navlib import attitude, earth, faults, sensors, strapdown, timing, trajectory, units
+from navlib import attitude, earth, faults, robust, sensors, strapdown, timing, trajectory, units
 
 LLA0 = np.array([units.deg(28.361735), units.deg(112.9), 60.0])
 DT = 0.01
@@ -45,12 +46,12 @@ def drive():
 def test_nan_raises_by_default_and_names_the_sensor(static_imu):
     traj, imu = static_imu
     w, _ = faults.dropouts(imu.w_ib_b, 0.1, np.random.default_rng(1))
-    with pytest.raises(ValueError, match="^w_ib_b: .*on_nan='hold'"):
+    with pytest.raises(ValueError, match="^w_ib_b: .*nan_policy='hold'"):
         strapdown.integrate(LLA0, np.zeros(3), traj.q_bn[0], w, imu.f_b, DT)
     with pytest.raises(ValueError, match="^w_ib_b: "):
         strapdown.integrate_attitude(traj.q_bn[0], w, DT)
-    with pytest.raises(ValueError, match="^on_nan: "):
-        strapdown.integrate(LLA0, np.zeros(3), traj.q_bn[0], imu.w_ib_b, imu.f_b, DT, on_nan="skip")
+    with pytest.raises(ValueError, match="^nan_policy: "):
+        strapdown.integrate(LLA0, np.zeros(3), traj.q_bn[0], imu.w_ib_b, imu.f_b, DT, nan_policy="skip")
 
 
 def test_hold_reports_every_dropout_and_stays_near_the_clean_run(static_imu):
@@ -60,9 +61,11 @@ def test_hold_reports_every_dropout_and_stays_near_the_clean_run(static_imu):
     f, df = faults.dropouts(imu.f_b, 0.1, rng)
     w[0], f[0], dw[0], df[0] = imu.w_ib_b[0], imu.f_b[0], False, False     # hold needs a first sample
     clean = strapdown.integrate(LLA0, np.zeros(3), traj.q_bn[0], imu.w_ib_b, imu.f_b, DT)
-    nav, held = strapdown.integrate(LLA0, np.zeros(3), traj.q_bn[0], w, f, DT, on_nan="hold")
-    np.testing.assert_array_equal(held, dw | df)                            # exactly the injected samples
-    assert held.sum() == (dw | df).sum() > 0.15 * len(w)
+    nav = strapdown.integrate(LLA0, np.zeros(3), traj.q_bn[0], w, f, DT, nan_policy="hold")
+    np.testing.assert_array_equal(nav.faults.flags["gyro", "nan"], dw)      # exactly the injected samples
+    np.testing.assert_array_equal(nav.faults.flags["accel", "nan"], df)
+    assert nav.faults["gyro", "nan"] == dw.sum() > 0.05 * len(w) and nav.faults["accel", "nan"] == df.sum()
+    assert clean.faults.total() == 0 and clean.faults.flags["gyro", "nan"].shape == (len(w),)
     assert np.isfinite(nav.lla).all() and np.isfinite(nav.q_bn).all()
     # Static IMU: a held sample differs from the true one by its noise only, so the hold changes the
     # angle random walk, not the drift. Stated bounds: attitude within 3 x the MTi-100's ARW over the run
@@ -81,10 +84,11 @@ def test_hold_over_a_30s_gap_is_counted_and_exact_for_a_static_imu(static_imu):
     t = traj.time[:-1]
     w, gw = faults.gap(imu.w_ib_b, t, 40.0, 30.0)
     f, gf = faults.gap(imu.f_b, t, 40.0, 30.0)
-    q, held_q = strapdown.integrate_attitude(traj.q_bn[0], w, DT, on_nan="hold")
-    assert held_q.sum() == gw.sum() == 3000
-    nav, held = strapdown.integrate(LLA0, np.zeros(3), traj.q_bn[0], w, f, DT, on_nan="hold")
-    assert held.sum() == 3000 and np.array_equal(held, gw | gf)
+    q = strapdown.integrate_attitude(traj.q_bn[0], w, DT, nan_policy="hold")
+    assert np.isfinite(q).all() and robust.fault_report(w, "gyro")["gyro", "nan"] == gw.sum() == 3000
+    nav = strapdown.integrate(LLA0, np.zeros(3), traj.q_bn[0], w, f, DT, nan_policy="hold")
+    assert nav.faults["gyro", "nan"] == nav.faults["accel", "nan"] == 3000
+    assert np.array_equal(nav.faults.flags["gyro", "nan"], gw) and np.array_equal(nav.faults.flags["accel", "nan"], gf)
     clean = strapdown.integrate(LLA0, np.zeros(3), traj.q_bn[0], imu.w_ib_b, imu.f_b, DT)
     # Holding one static sample for 30 s integrates that sample's noise 3000 times: the attitude moves by
     # 30 s x (one sample's gyro noise, 0.1 deg/s 1-sigma for the MTi-100 at 100 Hz). Stated bound: 3 sigma,
@@ -98,13 +102,17 @@ def test_hold_needs_a_first_sample_and_works_per_trial():
     w = np.zeros((2, 5, 3))
     w[1, 0] = np.nan
     with pytest.raises(ValueError, match="^w_ib_b: the first sample"):
-        strapdown.integrate_attitude([1.0, 0, 0, 0], w, DT, on_nan="hold")
+        strapdown.integrate_attitude([1.0, 0, 0, 0], w, DT, nan_policy="hold")
     w = 0.1 * np.ones((2, 5, 3))
     w[0, 2] = np.nan
     w[1, 3:] = np.nan
-    q, held = strapdown.integrate_attitude([1.0, 0, 0, 0], w, DT, on_nan="hold")
-    assert held.shape == (2, 5) and held.sum() == 3
+    q = strapdown.integrate_attitude([1.0, 0, 0, 0], w, DT, nan_policy="hold")
     np.testing.assert_allclose(q, strapdown.integrate_attitude([1.0, 0, 0, 0], 0.1 * np.ones((2, 5, 3)), DT))
+    nav = strapdown.integrate(LLA0, np.zeros(3), [1.0, 0, 0, 0], w, np.tile([0.0, 0.0, 9.8], (5, 1)), DT,
+                              nan_policy="hold")
+    assert nav.faults.flags["gyro", "nan"].shape == (2, 5) and nav.faults.flags["accel", "nan"].shape == (2, 5)
+    np.testing.assert_array_equal(nav.faults["gyro", "nan"], [1, 2])                      # per trial
+    np.testing.assert_array_equal(nav.faults["accel", "nan"], [0, 0])
 
 
 # ---------------------------------------------------------------- outliers and saturation
@@ -237,7 +245,7 @@ FUZZ = [
     ("integrate_attitude", "w_ib_b", lambda: strapdown.integrate_attitude(Q1, OBJ, DT)),
     ("integrate_attitude", "w_ib_b", lambda: strapdown.integrate_attitude(Q1, "abc", DT)),
     ("integrate_attitude", "w_ib_b",
-     lambda: strapdown.integrate_attitude(Q1, np.full((10, 3), np.inf), DT, on_nan="hold")),
+     lambda: strapdown.integrate_attitude(Q1, np.full((10, 3), np.inf), DT, nan_policy="hold")),
     ("integrate_attitude", "w_ib_b", lambda: strapdown.integrate_attitude(Q1, np.zeros((0, 3)), DT)),
     ("integrate_attitude", "w_ib_b", lambda: strapdown.integrate_attitude(Q1, np.zeros((10, 4)), DT)),
     ("integrate_attitude", "q0", lambda: strapdown.integrate_attitude(np.array(Q1, complex), W, DT)),
@@ -249,7 +257,9 @@ FUZZ = [
     ("integrate_attitude", "dt", lambda: strapdown.integrate_attitude(Q1, W, np.zeros(10))),
     ("integrate_attitude", "w_in_n", lambda: strapdown.integrate_attitude(Q1, W, DT, [0, 0, np.inf])),
     ("integrate_attitude", "w_in_n", lambda: strapdown.integrate_attitude(Q1, W, DT, np.zeros((2, 3)))),
-    ("integrate_attitude", "on_nan", lambda: strapdown.integrate_attitude(Q1, W, DT, on_nan=None)),
+    ("integrate_attitude", "nan_policy", lambda: strapdown.integrate_attitude(Q1, W, DT, nan_policy="Hold")),
+    ("integrate_attitude", "nan_policy, on_nan",
+     lambda: strapdown.integrate_attitude(Q1, W, DT, nan_policy="hold", on_nan="hold")),
     # integrate
     ("integrate", "lla0", lambda: strapdown.integrate([0.6, 0.2], [0, 0, 0], Q1, W, F, DT)),
     ("integrate", "lla0", lambda: strapdown.integrate(np.array(LL, complex), [0, 0, 0], Q1, W, F, DT)),
@@ -263,13 +273,15 @@ FUZZ = [
     ("integrate", "f_b", lambda: strapdown.integrate(LL, [0, 0, 0], Q1, W, OBJ, DT)),
     ("integrate", "f_b", lambda: strapdown.integrate(LL, [0, 0, 0], Q1, W, np.full((10, 3), np.nan), DT)),
     ("integrate", "f_b",
-     lambda: strapdown.integrate(LL, [0, 0, 0], Q1, W, np.full((10, 3), -np.inf), DT, on_nan="hold")),
+     lambda: strapdown.integrate(LL, [0, 0, 0], Q1, W, np.full((10, 3), -np.inf), DT, nan_policy="hold")),
     ("integrate", "dt", lambda: strapdown.integrate(LL, [0, 0, 0], Q1, W, F, "abc")),
     ("integrate", "dt", lambda: strapdown.integrate(LL, [0, 0, 0], Q1, W, F, np.full((2, 10), DT))),
     ("integrate", "t0", lambda: strapdown.integrate(LL, [0, 0, 0], Q1, W, F, DT, t0=np.inf)),
     ("integrate", "t0", lambda: strapdown.integrate(LL, [0, 0, 0], Q1, W, F, DT, t0=1j)),
     ("integrate", "ellipsoid", lambda: strapdown.integrate(LL, [0, 0, 0], Q1, W, F, DT, ellipsoid="WGS84")),
-    ("integrate", "on_nan", lambda: strapdown.integrate(LL, [0, 0, 0], Q1, W, F, DT, on_nan="zero")),
+    ("integrate", "nan_policy", lambda: strapdown.integrate(LL, [0, 0, 0], Q1, W, F, DT, nan_policy="zero")),
+    ("integrate", "nan_policy, on_nan",
+     lambda: strapdown.integrate(LL, [0, 0, 0], Q1, W, F, DT, nan_policy="raise", on_nan="raise")),
     # earth_constants
     ("earth_constants", "ellipsoid", lambda: strapdown.earth_constants("WGS84")),
     ("earth_constants", "ellipsoid", lambda: strapdown.earth_constants(None)),
