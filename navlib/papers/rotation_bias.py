@@ -67,13 +67,13 @@ NaN dropouts       residuals: a dwell with > ``max_missing`` of ``Residuals.n_sk
                    its samples NaN is skipped (default: any),   ``n_filled``; Kalman ``n_no_data``;
                    else filled with the dwell median; LSQ and   ``running_lsq_bias`` ``n_skipped``
                    Kalman skip / predict through NaN dwells
-                   integration: linear interpolation, a gap     ``EulerReport.n_filled``; ValueError
-                   longer than ``max_gap`` raises
+                   integration: linear interpolation, a gap     ``robust.fault_report(w, "gyro")``;
+                   longer than ``max_gap`` raises               ValueError
 outliers (spikes)  residuals: ``outlier_k`` x MAD from the      ``n_outliers_gyro``/``_accel``;
                    dwell median replaced (opt-in); Kalman       ``KalmanBias.n_rejected``
                    gate rejects corrupted dwells
 saturation         residuals: dwell with samples at the rails   ``n_saturated``, ``n_skipped_saturated``
-                   skipped; integration: counted (unreliable)   ``EulerReport.n_saturated``
+                   skipped; integration: unreliable after it    ``fault_report(..., full_scale=)``
 timing             per-sample ``dt`` arrays in                  ``TimingReport`` from
                    :func:`tilt_residuals`, :func:`integrate_euler`;  ``timing.sanitize``
                    per-dwell intervals in :func:`kalman_bias`
