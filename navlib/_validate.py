@@ -81,9 +81,8 @@ def as_array(x: ArrayLike, name: str, *, tail: tuple[int, ...] = (), finite: boo
     if tail and arr.shape[arr.ndim - len(tail):] != tail or arr.ndim < len(tail) + min_ndim:
         want = "(" + ", ".join(["..."] + [str(t) for t in tail]) + ")"
         raise ValueError(f"{name}: expected shape {want}, got {arr.shape}")
-    if shape is not None and (arr.ndim != len(shape) or any(s not in (None, n) for s, n in zip(shape, arr.shape, strict=True))):
-        want = "(" + ", ".join("N" if s is None else str(s) for s in shape) + ("," if len(shape) == 1 else "") + ")"
-        raise ValueError(f"{name}: expected shape {want}, got {arr.shape}")
+    if shape is not None:
+        _exact_shape(arr, name, shape)
     if arr.size == 0 and min_ndim > 0:
         raise ValueError(f"{name}: expected a non-empty array, got shape {arr.shape}")
     if finite:
@@ -92,6 +91,29 @@ def as_array(x: ArrayLike, name: str, *, tail: tuple[int, ...] = (), finite: boo
             what = "infinite" if allow_nan else "non-finite (NaN or inf)"
             raise ValueError(f"{name}: contains {what} values")
     return arr
+
+
+def _exact_shape(arr: np.ndarray, name: str, shape: tuple[int | None, ...]) -> np.ndarray:
+    """Return ``arr`` if its shape is ``shape``; a ``None`` entry takes any length, e.g. ``(None, 3)``."""
+    if arr.ndim != len(shape) or any(s not in (None, n) for s, n in zip(shape, arr.shape, strict=True)):
+        want = "(" + ", ".join("N" if s is None else str(s) for s in shape) + ("," if len(shape) == 1 else "") + ")"
+        raise ValueError(f"{name}: expected shape {want}, got {arr.shape}")
+    return arr
+
+
+def booleans(x: ArrayLike, name: str, *, shape: tuple[int | None, ...] | None = None) -> np.ndarray:
+    """Return ``x`` as a boolean array (validity flags, masks), optionally of exact ``shape`` (as in :func:`as_array`).
+
+    Only booleans are accepted: numbers (``0``/``1``, NaN) are refused with
+    :class:`InputTypeError`, so a mask is never guessed from values.
+    """
+    try:
+        arr = np.asarray(x)
+    except (TypeError, ValueError) as exc:   # ragged nested sequences
+        raise InputTypeError(f"{name}: expected booleans, got a ragged {type(x).__name__}") from exc
+    if arr.dtype != bool:
+        raise InputTypeError(f"{name}: expected booleans, got dtype {arr.dtype}")
+    return arr if shape is None else _exact_shape(arr, name, shape)
 
 
 def in_range(arr: np.ndarray, name: str, lo: float, hi: float, unit: str = "",
@@ -229,8 +251,12 @@ def flag(x: bool, name: str) -> bool:
 
 
 def choice(x: Any, name: str, options: tuple[Any, ...]) -> Any:
-    """Return ``x`` if it is one of ``options`` (strings, or e.g. the allowed integer settings)."""
-    if x not in options:
+    """Return ``x`` if it is one of ``options`` (strings, or e.g. the allowed integer settings); arrays are refused."""
+    try:
+        ok = x in options
+    except (TypeError, ValueError):          # an array (no single truth value) or an unhashable value
+        ok = False
+    if not ok:
         raise ValueError(f"{name}: expected one of {tuple(options)}, got {x!r}")
     return x
 
@@ -246,6 +272,16 @@ def same_shape(arr: np.ndarray, name: str, shape: tuple[int, ...], of: str = "")
     """Return ``arr`` if its shape is ``shape`` (the shape of argument ``of``, when given, for the message)."""
     if arr.shape != tuple(shape):
         raise ValueError(f"{name}: expected {'the shape of ' + of if of else 'shape'} {tuple(shape)}, got {arr.shape}")
+    return arr
+
+
+def last_axis(arr: np.ndarray, name: str, n: int, of: str = "") -> np.ndarray:
+    """Return ``arr`` if its last axis holds ``n`` samples (those of argument ``of``, when given, for the message).
+
+    For series of shape (..., N) that go with a time axis of N samples.
+    """
+    if arr.shape[-1:] != (n,):
+        raise ValueError(f"{name}: expected a last axis of length {n}{f' (that of {of})' if of else ''}, got shape {arr.shape}")
     return arr
 
 
@@ -282,10 +318,13 @@ def intervals(dt: Interval, n: int, name: str = "dt") -> np.ndarray:
     return np.ascontiguousarray(arr)
 
 
-def imu_samples(w_ib_b: Vec3Series, f_b: Vec3Series, *, allow_nan: bool = True) -> tuple[np.ndarray, np.ndarray]:
-    """Gyro and accelerometer samples, each (..., N, 3) with the same shape; NaN marks a dropout."""
-    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=allow_nan)
+def imu_samples(w_ib_b: Vec3Series, f_b: Vec3Series, *, allow_nan: bool = True,
+                shape: tuple[int | None, ...] | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Gyro and accelerometer samples, each (..., N, 3) with the same shape; NaN marks a dropout.
+
+    ``shape`` fixes the shape exactly (as in :func:`as_array`), e.g. ``(None, 3)`` for one record;
+    ``f_b`` is blamed when its shape differs from that of ``w_ib_b``.
+    """
+    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=allow_nan, shape=shape)
     f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=allow_nan)
-    if w.shape != f.shape:
-        raise ValueError(f"w_ib_b, f_b: expected the same shape (..., N, 3), got {w.shape} and {f.shape}")
-    return w, f
+    return w, same_shape(f, "f_b", w.shape, of="w_ib_b")

@@ -23,7 +23,7 @@ from scipy.optimize import least_squares, minimize_scalar
 
 from . import _kernels, attitude, earth
 from ._typing import Angles, Array, ArrayLike, Times, Vec3
-from ._validate import as_array, integer, nonempty_array, nonempty_positive, positive, same_shape, scalar
+from ._validate import as_array, booleans, integer, last_axis, nonempty_array, nonempty_positive, positive, same_shape, scalar
 
 __all__ = ["rmse", "allan_deviation", "allan_deviation_theory", "fit_allan",
            "GM_ALLAN_PEAK", "GM_ALLAN_PEAK_TAU", "attitude_errors", "error_statistics", "horizontal_error",
@@ -158,8 +158,7 @@ def fit_allan(taus: ArrayLike, adev: ArrayLike, n_samples: int, dt: float, *, ra
     if taus.ndim != 1 or taus.size < 3:
         raise ValueError(f"taus: expected a 1-D array of at least 3 averaging times, got shape {taus.shape}")
     same_shape(adev, "adev", taus.shape, of="taus")
-    if not isinstance(n_samples, (int, np.integer)) or n_samples < 1:
-        raise ValueError(f"n_samples: expected a positive integer, got {n_samples!r}")
+    n_samples = integer(n_samples, "n_samples")
     dt = float(positive(dt, "dt"))
     w = np.sqrt(np.maximum(n_samples * dt / taus, 1.0))
     i_min = int(np.argmin(adev))
@@ -286,9 +285,8 @@ def detection_rates(detected: ArrayLike, truth: ArrayLike) -> tuple[float, float
     p_false : float
         Fraction of moving samples declared static.
     """
-    d, t = np.asarray(detected), np.asarray(truth)
-    if d.dtype != bool or t.dtype != bool or d.shape != t.shape or d.ndim != 1:
-        raise ValueError(f"detected, truth: expected boolean arrays of one shape (N,), got {d.shape}, {t.shape}")
+    d = booleans(detected, "detected", shape=(None,))
+    t = same_shape(booleans(truth, "truth"), "truth", d.shape, of="detected")
     if t.all() or not t.any():
         raise ValueError("truth: expected both static and moving samples")
     return float(d[t].mean()), float(d[~t].mean())
@@ -324,14 +322,11 @@ def settling_time(time: Times, error: ArrayLike, start: float, tol: float, end: 
     end : float, optional
         Last time considered (s), e.g. the start of the next outage; default the end of the record.
     """
-    t = nonempty_array(time, "time")
-    e = nonempty_array(error, "error", min_ndim=1)
+    t = nonempty_array(time, "time", shape=(None,))
+    e = last_axis(nonempty_array(error, "error", min_ndim=1), "error", t.size, of="time")
     tol = scalar(tol, "tol", positive=True)
     start = scalar(start, "start")
     stop = np.inf if end is None else scalar(end, "end")
-    if t.ndim != 1 or e.shape[-1] != t.size:
-        raise ValueError(f"time, error: expected 1-D time and error with a last axis of the same length, got "
-                         f"{t.shape}, {e.shape}")
     window = (t >= start) & (t < stop)
     if not window.any():
         raise ValueError(f"start, end: expected samples in [start, end) = [{start}, {stop})")
@@ -357,9 +352,7 @@ def segments(mask: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     -------
     starts, ends : ndarray of int
     """
-    m = np.asarray(mask)
-    if m.dtype != bool or m.ndim != 1:
-        raise ValueError(f"mask: expected a 1-D boolean array, got {m.dtype} {m.shape}")
+    m = booleans(mask, "mask", shape=(None,))
     edges = np.diff(np.concatenate([[0], m.astype(np.int8), [0]]))
     return np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
 

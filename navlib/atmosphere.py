@@ -19,7 +19,7 @@ import numpy as np
 
 from . import units
 from ._typing import Array, ArrayLike, Times
-from ._validate import as_array, choice, in_range, instance, integer, nonempty_positive, positive
+from ._validate import as_array, booleans, choice, in_range, instance, integer, nonempty_positive, positive, same_shape
 from .analysis import segments
 
 __all__ = ["P0", "T0", "LAPSE", "R_AIR", "G0", "isa_altitude", "isa_pressure", "bmp180_altitude", "bmp180_pressure",
@@ -174,10 +174,8 @@ def reference_pressure(p: ArrayLike, time: Times, until: float) -> float:
     time : array_like, shape (N,)  (s)
     until : float  (s)
     """
-    p = as_array(p, "p", allow_nan=True)
-    t = as_array(time, "time")
-    if p.shape != t.shape or p.ndim != 1:
-        raise ValueError(f"p: expected the shape of time {t.shape}, got {p.shape}")
+    t = as_array(time, "time", shape=(None,))
+    p = same_shape(as_array(p, "p", allow_nan=True), "p", t.shape, of="time")
     sel = p[(t <= until) & np.isfinite(p)]
     if sel.size == 0:
         raise ValueError(f"until: no pressure sample at or before {until} s")
@@ -209,10 +207,8 @@ def segment_floors(h: ArrayLike, static: ArrayLike, floor_height: float = 3.0,
         Sample index of each segment's first sample and one past its last.
     floors : ndarray of int
     """
-    h = as_array(h, "h", allow_nan=True)
-    s = np.asarray(static)
-    if s.dtype != bool or s.shape != h.shape or h.ndim != 1:
-        raise ValueError(f"static: expected booleans of the shape of h {h.shape}, got {s.shape}")
+    h = as_array(h, "h", allow_nan=True, shape=(None,))
+    s = same_shape(booleans(static, "static"), "static", h.shape, of="h")
     starts, ends = segments(s)
     med = np.array([np.nanmedian(h[a:b]) for a, b in zip(starts, ends, strict=True)])
     return starts, ends, classify_floor(med, floor_height, ref_floor) if med.size else med.astype(int)

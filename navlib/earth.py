@@ -49,9 +49,7 @@ class Ellipsoid:
 
     def __post_init__(self):
         for key, lo, hi in (("a", 6e6, 7e6), ("f", 0.0, 0.01), ("GM", 3e14, 5e14), ("omega", 0.0, 1e-4)):
-            v = getattr(self, key)
-            if not (isinstance(v, (int, float, np.integer, np.floating)) and lo <= v <= hi):
-                raise ValueError(f"{key}: expected an Earth-like value in [{lo:g}, {hi:g}], got {v!r}")
+            in_range(scalar(getattr(self, key), key), key, lo, hi)      # an Earth-like value
 
     @property
     def b(self) -> float:

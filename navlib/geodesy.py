@@ -90,13 +90,8 @@ def _max_offset(max_offset_deg):
 # --------------------------------------------------------------------------
 
 def _width(width) -> int:
-    try:
-        ok = not isinstance(width, (bool, np.bool_)) and width in ZONE_WIDTHS
-    except (TypeError, ValueError):          # arrays, unhashable values
-        ok = False
-    if not ok:
-        raise ValueError(f"width: expected a zone width of 3 or 6 (deg), got {width!r}")
-    return int(width)
+    """The zone width (deg) as an int: 3 or 6."""
+    return int(choice(width, "width", ZONE_WIDTHS))
 
 
 def _lon_deg(lon, deg: bool, name: str = "lon") -> np.ndarray:

@@ -21,7 +21,7 @@ from scipy.linalg import expm
 
 from ._kernels import wrap_pi
 from ._typing import Array, ArrayLike
-from ._validate import as_array, positive
+from ._validate import as_array, nonempty_array, positive, same_shape
 
 __all__ = ["predict", "update", "discretize", "ACCEPTED", "NO_DATA", "REJECTED"]
 
@@ -127,17 +127,11 @@ def discretize(F: ArrayLike, G: ArrayLike, Qc: ArrayLike, dt: float) -> tuple[Ar
     -------
     Phi, Qd : ndarray, shape (n, n)
     """
-    F = as_array(F, "F")
-    G = as_array(G, "G")
-    Qc = as_array(Qc, "Qc")
-    n = F.shape[0] if F.ndim == 2 else -1
-    got = f"got F {F.shape}, G {G.shape}, Qc {Qc.shape}"
-    if n < 1 or F.shape != (n, n):
-        raise ValueError(f"F: expected a non-empty square matrix (n, n); shapes (n, n), (n, p), (p, p) for F, G, Qc, {got}")
-    if G.ndim != 2 or G.shape[0] != n:
-        raise ValueError(f"G: expected shape (n, p) with n = {n} rows; {got}")
-    if Qc.shape != (G.shape[1], G.shape[1]):
-        raise ValueError(f"Qc: expected shape (p, p) with p = {G.shape[1]} (columns of G); {got}")
+    F = nonempty_array(F, "F", shape=(None, None))
+    n = len(F)
+    same_shape(F, "F", (n, n))                                   # square
+    G = as_array(G, "G", shape=(n, None))                        # n rows
+    Qc = as_array(Qc, "Qc", shape=(G.shape[1], G.shape[1]))      # (p, p), p the columns of G
     dt = float(positive(dt, "dt"))
     M = np.zeros((2 * n, 2 * n))
     M[:n, :n] = -F

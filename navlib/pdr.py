@@ -19,7 +19,7 @@ import numpy as np
 
 from . import analysis
 from ._typing import Array, ArrayLike, Vec3Series
-from ._validate import as_array, positive
+from ._validate import as_array, positive, same_shape
 from .alignment import level, magnetic_heading
 from .units import G0
 
@@ -50,12 +50,12 @@ def detect_steps(f_b: Vec3Series, dt: float, threshold: float = 1.0, min_interva
     g : float
         Local gravity (m/s^2).
     """
-    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1)
+    f = as_array(f_b, "f_b", shape=(None, 3), min_ndim=1)
     dt = float(positive(dt, "dt"))
     thr = float(positive(threshold, "threshold"))
     gap = int(round(float(positive(min_interval, "min_interval")) / dt))
     n_smooth = max(2, int(round(0.1 / dt)))
-    if f.ndim != 2 or f.shape[0] < max(gap, n_smooth) + 2:
+    if f.shape[0] < max(gap, n_smooth) + 2:
         raise ValueError(f"f_b: expected (N, 3) with N > {max(gap, n_smooth) + 2} samples, got {f.shape}")
     a = analysis.moving_mean(np.linalg.norm(f, axis=-1), n_smooth) - float(positive(g, "g"))
     peak = (a[1:-1] > a[:-2]) & (a[1:-1] >= a[2:]) & (a[1:-1] > thr)
@@ -83,10 +83,8 @@ def pdr(step_lengths: ArrayLike, step_headings: ArrayLike, start_en: ArrayLike =
     en : ndarray, shape (n_steps + 1, 2)
         Positions (m), starting at ``start_en``.
     """
-    L = positive(step_lengths, "step_lengths", allow_zero=True)
-    psi = as_array(step_headings, "step_headings")
-    if L.shape != psi.shape or L.ndim != 1:
-        raise ValueError(f"step_headings: expected the shape of step_lengths {L.shape}, got {psi.shape}")
+    L = positive(as_array(step_lengths, "step_lengths", shape=(None,)), "step_lengths", allow_zero=True)
+    psi = same_shape(as_array(step_headings, "step_headings"), "step_headings", L.shape, of="step_lengths")
     start = as_array(start_en, "start_en", tail=(2,)).reshape(2)
     d = np.stack([L * np.sin(psi), L * np.cos(psi)], -1)
     return start + np.concatenate([np.zeros((1, 2)), np.cumsum(d, 0)])
@@ -113,11 +111,9 @@ def pdr_headings(f_b: Vec3Series, m_b: Vec3Series, step_index: ArrayLike, declin
     -------
     heading : ndarray, shape (n_steps,)  (rad)
     """
-    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1)
-    m = as_array(m_b, "m_b", tail=(3,), min_ndim=1, allow_nan=True)
+    f = as_array(f_b, "f_b", shape=(None, 3), min_ndim=1)
+    m = same_shape(as_array(m_b, "m_b", allow_nan=True), "m_b", f.shape, of="f_b")
     idx = np.asarray(step_index)
-    if f.shape != m.shape or f.ndim != 2:
-        raise ValueError(f"m_b: expected the shape (N, 3) of f_b {f.shape}, got {m.shape}")
     if idx.ndim != 1 or idx.size < 2 or not np.issubdtype(idx.dtype, np.integer) or np.any(np.diff(idx) <= 0) \
             or idx[0] < 1 or idx[-1] > f.shape[0]:
         raise ValueError("step_index: expected at least two increasing sample indices within the record")

@@ -40,7 +40,20 @@ from scipy.signal import lfilter
 
 from . import atmosphere, attitude, earth, units
 from ._typing import Angles, Array, ArrayLike, Quat, Times, Vec3, Vec3Series
-from ._validate import as_array, as_quat, generator, in_range, instance, positive, same_shape, scalar, time_axis
+from ._validate import (
+    as_array,
+    as_quat,
+    generator,
+    imu_samples,
+    in_range,
+    instance,
+    integer,
+    last_axis,
+    positive,
+    same_shape,
+    scalar,
+    time_axis,
+)
 from .analysis import GM_ALLAN_PEAK
 
 __all__ = ["TriadErrors", "ImuModel", "ImuOutput", "window_mean_std", "simulate_imu", "imu_model", "preset", "devices",
@@ -55,12 +68,7 @@ PRESETS_CSV = resources.files("navlib") / "data" / "sensor_presets.csv"
 def _check_fields(obj, infinite_ok=()) -> None:
     """Every field of a model dataclass is a non-negative number (finite unless listed)."""
     for f in fields(obj):
-        v = getattr(obj, f.name)
-        # bool is an int subclass but not a parameter value; NaN fails v >= 0
-        ok = isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, (bool, np.bool_)) and v >= 0
-        if not ok or (np.isinf(v) and f.name not in infinite_ok):
-            raise ValueError(f"{f.name}: expected a non-negative {'number' if f.name in infinite_ok else 'finite number'}, "
-                             f"got {v!r}")
+        scalar(getattr(obj, f.name), f.name, allow_zero=True, allow_inf=f.name in infinite_ok)
 
 
 # --------------------------------------------------------------------------
@@ -103,9 +111,8 @@ class TriadErrors:
 
     def __post_init__(self):
         _check_fields(self, infinite_ok=("full_scale",))
-        for key in ("correlation_time", "full_scale"):
-            if getattr(self, key) <= 0:
-                raise ValueError(f"{key}: expected a positive value, got {getattr(self, key)!r}")
+        scalar(self.correlation_time, "correlation_time", positive=True)
+        scalar(self.full_scale, "full_scale", positive=True, allow_inf=True)
 
     @property
     def gauss_markov_sigma(self) -> float:
@@ -178,10 +185,9 @@ def gauss_markov(shape: tuple[int, ...], dt: float, sigma: float, correlation_ti
     tc = float(positive(correlation_time, "correlation_time"))
     sigma = float(positive(sigma, "sigma", allow_zero=True))
     generator(rng)
-    if (not isinstance(shape, (tuple, list)) or len(shape) < 2
-            or not all(isinstance(n, (int, np.integer)) and not isinstance(n, bool) and n > 0 for n in shape)):
+    if not isinstance(shape, (tuple, list)) or len(shape) < 2:
         raise ValueError(f"shape: expected a tuple (..., N, k) of positive integers, got {shape!r}")
-    shape = tuple(int(n) for n in shape)
+    shape = tuple(integer(n, "shape") for n in shape)
     phi = np.exp(-dt / tc)
     x0 = sigma * rng.standard_normal(shape[:-2] + (1, shape[-1]))
     drive = sigma * np.sqrt(1 - phi * phi) * rng.standard_normal(shape)
@@ -265,16 +271,14 @@ def simulate_imu(w_ib_b: Vec3Series, f_b: Vec3Series, dt: float, model: ImuModel
     -------
     ImuOutput
     """
-    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1)
-    f = same_shape(as_array(f_b, "f_b", tail=(3,), min_ndim=1), "f_b", w.shape, of="w_ib_b")
+    w, f = imu_samples(w_ib_b, f_b, allow_nan=False)
     dt = float(positive(dt, "dt"))
     instance(model, "model", ImuModel, "an ImuModel")
     generator(rng)
     if n_trials is not None:
-        if not isinstance(n_trials, (int, np.integer)) or n_trials < 1:
-            raise ValueError(f"n_trials: expected a positive integer, got {n_trials!r}")
-        w = np.broadcast_to(w, (int(n_trials),) + w.shape)
-        f = np.broadcast_to(f, (int(n_trials),) + f.shape)
+        n_trials = integer(n_trials, "n_trials")
+        w = np.broadcast_to(w, (n_trials,) + w.shape)
+        f = np.broadcast_to(f, (n_trials,) + f.shape)
     r_gyro, r_accel = rng.spawn(2)
     gw, gb, gM, gs = _corrupt(w, dt, model.gyro, r_gyro)
     af, ab, aM, as_ = _corrupt(f, dt, model.accel, r_accel)
@@ -372,8 +376,7 @@ class MagnetometerModel:
 
     def __post_init__(self):
         _check_fields(self, infinite_ok=("full_scale",))
-        if self.full_scale <= 0:
-            raise ValueError(f"full_scale: expected a positive value (inf: no saturation), got {self.full_scale!r}")
+        scalar(self.full_scale, "full_scale", positive=True, allow_inf=True)
 
     @classmethod
     def from_preset(cls, device: str) -> MagnetometerModel:
@@ -487,12 +490,9 @@ class BarometerModel:
     drift_rate: float = 0.0
 
     def __post_init__(self):
-        for f in fields(self):
-            v = getattr(self, f.name)
-            if not (isinstance(v, (int, float, np.integer, np.floating)) and np.isfinite(v)):
-                raise ValueError(f"{f.name}: expected a finite number, got {v!r}")
-        if self.noise < 0 or self.bias < 0:
-            raise ValueError(f"noise, bias: expected non-negative sigmas, got {self.noise}, {self.bias}")
+        scalar(self.noise, "noise", allow_zero=True)
+        scalar(self.bias, "bias", allow_zero=True)
+        scalar(self.drift_rate, "drift_rate")
 
     @classmethod
     def from_preset(cls, device: str = "BMP180") -> BarometerModel:
@@ -527,8 +527,7 @@ def simulate_barometer(h: ArrayLike, time: Times, model: BarometerModel, rng: np
     h = as_array(h, "h")
     generator(rng)
     instance(model, "model", BarometerModel, "a BarometerModel")
-    if h.shape[-1:] != t.shape:
-        raise ValueError(f"h: expected last axis of length {t.size}, got shape {h.shape}")
+    last_axis(h, "h", t.size, of="time")
     r_bias, r_noise = rng.spawn(2)
     p = atmosphere.isa_pressure(h, p0)
     p = p + model.bias * r_bias.standard_normal(h.shape[:-1] + (1,))
@@ -558,8 +557,8 @@ def outage_mask(time: Times, outages: Sequence[tuple[float, float]]) -> np.ndarr
     if isinstance(outages, (str, bytes)):
         raise ValueError(f"outages: expected a sequence of (start, end) pairs, got {outages!r:.40}")
     for iv in outages:
-        iv = as_array(iv, "outages", allow_nan=False)
-        if iv.shape != (2,) or not iv[1] > iv[0]:
+        iv = as_array(iv, "outages", shape=(2,))
+        if not iv[1] > iv[0]:
             raise ValueError(f"outages: expected (start, end) pairs with end > start, got {iv!r}")
         valid &= ~((t >= iv[0]) & (t < iv[1]))
     return valid

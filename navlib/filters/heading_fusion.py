@@ -16,7 +16,7 @@ from numba import njit
 
 from .._kernels import wrap_pi
 from .._typing import Angles, Array, ArrayLike, Interval, Times
-from .._validate import in_range, intervals, nonempty_array
+from .._validate import booleans, in_range, integer, intervals, last_axis, nonempty_array, same_shape, scalar
 from .observations import heading_input, rtk_gate, rtk_params
 
 __all__ = ["fuse_rtk_heading", "rtk_at_imu_rate", "FUSE_COUNT_NAMES"]
@@ -116,10 +116,7 @@ def fuse_rtk_heading(heading_mag: Angles, heading_rtk: Angles, rtk_valid: ArrayL
         agreeing rejections).
     """
     hm = nonempty_array(heading_mag, "heading_mag", min_ndim=1)
-    alpha = nonempty_array(alpha, "alpha")
-    if alpha.ndim != 0:
-        raise ValueError(f"alpha: expected a scalar, got shape {alpha.shape}")
-    alpha = float(in_range(alpha, "alpha", 0.0, 1.0, lo_open=True))
+    alpha = in_range(scalar(alpha, "alpha"), "alpha", 0.0, 1.0, lo_open=True)
     hr, ok = heading_input(heading_rtk, rtk_valid, hm.shape)
     T, N = hr.shape
     dts = intervals(dt, N)
@@ -153,19 +150,11 @@ def rtk_at_imu_rate(time: Times, heading: Angles, valid: ArrayLike, step: int) -
     epoch_valid : ndarray of bool, shape (N,)
         True at valid epochs.
     """
-    t = nonempty_array(time, "time")
-    if t.ndim != 1:
-        raise ValueError(f"time: expected a 1-D array of sample times, got shape {t.shape}")
+    t = nonempty_array(time, "time", shape=(None,))
     h = nonempty_array(heading, "heading", finite=False)
-    v = np.asarray(valid)
-    if v.dtype != bool:
-        raise ValueError(f"valid: expected booleans, got dtype {v.dtype}")
-    if isinstance(step, (bool, np.bool_)) or not isinstance(step, (int, np.integer)) or step < 1:
-        raise ValueError(f"step: expected a positive integer, got {step!r}")
-    if h.shape[-1:] != t.shape:
-        raise ValueError(f"heading: expected a last axis of length {t.size} (that of time), got {h.shape}")
-    if v.shape != t.shape:
-        raise ValueError(f"valid: expected the shape of time {t.shape}, got {v.shape}")
+    v = same_shape(booleans(valid, "valid"), "valid", t.shape, of="time")
+    step = integer(step, "step")
+    last_axis(h, "heading", t.size, of="time")
     epoch = np.zeros(t.shape, dtype=bool)
     epoch[::step] = True
     ok = epoch & v

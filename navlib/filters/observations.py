@@ -32,7 +32,7 @@ from numba import njit
 from .. import attitude, earth
 from .._kernels import dcm_heading, wrap_pi
 from .._typing import Array, ArrayLike, Interval, Quat, Vec3, Vec3Series
-from .._validate import as_quat, intervals, nonempty_array, scalar
+from .._validate import as_array, as_quat, booleans, instance, integer, intervals, nonempty_array, same_shape, scalar
 from ..robust import FaultReport
 
 __all__ = ["MagGate", "AttitudeResult", "AttitudeInputs", "COUNT_NAMES", "FAULT_KEYS", "magnetic_reference", "prepare_inputs",
@@ -119,9 +119,9 @@ def magnetic_reference(B_n: Vec3) -> tuple[Array, float, float, float]:
     declination, inclination, intensity : float
         D (rad, east positive), I (rad, down positive), F (uT).
     """
-    B = nonempty_array(B_n, "B_n", tail=(3,))
-    if B.shape != (3,) or np.linalg.norm(B) == 0:
-        raise ValueError(f"B_n: expected one non-zero field vector of shape (3,), got {B.tolist()}")
+    B = as_array(B_n, "B_n", shape=(3,))
+    if np.linalg.norm(B) == 0:
+        raise ValueError(f"B_n: expected a non-zero field vector, got {B.tolist()}")
     D, I, F = earth.field_angles(B, deg=False)
     return np.array([0.0, np.cos(I), -np.sin(I)]), float(D), float(I), float(F)
 
@@ -352,9 +352,7 @@ def heading_input(heading_rtk: ArrayLike, rtk_valid: ArrayLike, shape: tuple[int
     if rtk_valid is None:
         raise ValueError("rtk_valid: expected validity flags with the RTK heading (never infer validity "
                          "from the value)")
-    v = np.asarray(rtk_valid)
-    if v.dtype != bool:
-        raise ValueError(f"rtk_valid: expected booleans, got dtype {v.dtype}")
+    v = booleans(rtk_valid, "rtk_valid")
     h = nonempty_array(heading_rtk, name, finite=False)
     for arr, label in ((h, name), (v, "rtk_valid")):
         try:
@@ -377,9 +375,7 @@ def rtk_params(rtk_hold: float, rtk_gate: float | None, rtk_confirm: int) -> np.
     gate = np.inf if rtk_gate is None else scalar(rtk_gate, "rtk_gate", positive=True)
     if gate != np.inf and gate >= np.pi:
         raise ValueError(f"rtk_gate: expected a value in (0, pi) rad, got {gate!r}")
-    if isinstance(rtk_confirm, (bool, np.bool_)) or not isinstance(rtk_confirm, (int, np.integer)) or rtk_confirm < 1:
-        raise ValueError(f"rtk_confirm: expected a positive integer, got {rtk_confirm!r}")
-    return np.array([hold, gate, float(rtk_confirm)])
+    return np.array([hold, gate, float(integer(rtk_confirm, "rtk_confirm"))])
 
 
 def prepare_inputs(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, m_b: Vec3Series | None,
@@ -395,9 +391,7 @@ def prepare_inputs(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, 
     them like dropouts and :func:`attitude_result` corrects the skip counts).
     """
     w = nonempty_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
-    f = nonempty_array(f_b, "f_b", tail=(3,), finite=False)
-    if f.shape != w.shape:
-        raise ValueError(f"f_b: expected the shape of w_ib_b {w.shape}, got {f.shape}")
+    f = same_shape(nonempty_array(f_b, "f_b", tail=(3,), finite=False), "f_b", w.shape, of="w_ib_b")
     lead, N = w.shape[:-2], w.shape[-2]
     dts = intervals(dt, N)
     T = int(np.prod(lead))
@@ -412,10 +406,7 @@ def prepare_inputs(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, 
         hdg, ok = heading_input(heading_rtk, rtk_valid, lead + (N,))
         m = np.zeros((1, 1, 3))
     else:
-        m = nonempty_array(m_b, "m_b", tail=(3,), finite=False)
-        if m.shape != w.shape:
-            raise ValueError(f"m_b: expected the shape of w_ib_b {w.shape}, got {m.shape}")
-        m = m.reshape(T, N, 3)
+        m = same_shape(nonempty_array(m_b, "m_b", tail=(3,), finite=False), "m_b", w.shape, of="w_ib_b").reshape(T, N, 3)
         hdg, ok = np.zeros((1, 1)), np.zeros((1, 1), dtype=bool)
     gates = np.array([0.0, np.inf, 0.0, np.inf, -2.0, 2.0])
     if accel_tol is not None:
@@ -423,8 +414,7 @@ def prepare_inputs(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, 
         g = scalar(g, "g", positive=True)
         gates[0:2] = (g * max(1 - tol, 0.0)) ** 2, (g * (1 + tol)) ** 2
     if gate is not None:
-        if not isinstance(gate, MagGate):
-            raise ValueError(f"gate: expected a MagGate, got {type(gate).__name__}")
+        instance(gate, "gate", MagGate, "a MagGate")
         if B_n is None:
             raise ValueError("B_n: the magnetometer gate needs the local field")
         _, _, I, F = magnetic_reference(B_n)

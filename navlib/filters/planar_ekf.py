@@ -76,7 +76,7 @@ from .. import kalman
 from .._deprecate import renamed_keywords
 from .._kernels import wrap_pi
 from .._typing import Array, ArrayLike, Times
-from .._validate import as_array, range_limit, scalar, time_axis
+from .._validate import as_array, integer, range_limit, same_shape, scalar, time_axis
 from ..robust import FaultReport
 
 __all__ = ["CHANNELS", "motion_model", "jacobian", "propagate", "dead_reckoning", "filter_grid", "EkfResult",
@@ -173,19 +173,14 @@ def propagate(x0: ArrayLike, T: float, n_steps: int | None = None, speed: ArrayL
     -------
     X : ndarray, shape (n_steps + 1, 5)
     """
-    x0 = as_array(x0, "x0", tail=(5,))
-    if x0.ndim != 1:
-        raise ValueError(f"x0: expected shape (5,), got {x0.shape}")
+    x0 = as_array(x0, "x0", shape=(5,))
     T = scalar(T, "T", positive=True)
     if speed is None and yaw_rate is None:
-        if isinstance(n_steps, (bool, np.bool_)) or not isinstance(n_steps, (int, np.integer)) or n_steps < 1:
-            raise ValueError(f"n_steps: expected a positive integer, got {n_steps!r}")
-        speed, yaw_rate = np.full(int(n_steps), x0[3]), np.full(int(n_steps), x0[4])
+        n_steps = integer(n_steps, "n_steps")
+        speed, yaw_rate = np.full(n_steps, x0[3]), np.full(n_steps, x0[4])
     else:
-        speed = as_array(speed, "speed", min_ndim=1)
-        yaw_rate = as_array(yaw_rate, "yaw_rate", min_ndim=1)
-        if speed.ndim != 1 or speed.shape != yaw_rate.shape:
-            raise ValueError(f"speed, yaw_rate: expected equal 1-D shapes, got {speed.shape}, {yaw_rate.shape}")
+        speed = as_array(speed, "speed", shape=(None,), min_ndim=1)
+        yaw_rate = same_shape(as_array(yaw_rate, "yaw_rate"), "yaw_rate", speed.shape, of="speed")
     return _propagate(x0, T, speed, yaw_rate)
 
 
@@ -251,17 +246,10 @@ def dead_reckoning(t: Times, speed: ArrayLike, yaw_rate: ArrayLike, x0: ArrayLik
         the start of the step; samples ``0 .. N-2`` drive the steps).
     """
     t = time_axis(t, "t")
-    speed = as_array(speed, "speed", allow_nan=True)
-    yaw_rate = as_array(yaw_rate, "yaw_rate", allow_nan=True)
-    for name, arr in (("speed", speed), ("yaw_rate", yaw_rate)):
-        if arr.shape != t.shape:
-            raise ValueError(f"{name}: expected shape {t.shape} (one sample per time), got {arr.shape}")
-    x0 = as_array(x0, "x0", tail=(5,))
-    if x0.shape != (5,):
-        raise ValueError(f"x0: expected shape (5,), got {x0.shape}")
-    bias = as_array(velocity_bias, "velocity_bias", tail=(2,))
-    if bias.shape != (2,):
-        raise ValueError(f"velocity_bias: expected shape (2,), got {bias.shape}")
+    speed = same_shape(as_array(speed, "speed", allow_nan=True), "speed", t.shape, of="t")
+    yaw_rate = same_shape(as_array(yaw_rate, "yaw_rate", allow_nan=True), "yaw_rate", t.shape, of="t")
+    x0 = as_array(x0, "x0", shape=(5,))
+    bias = as_array(velocity_bias, "velocity_bias", shape=(2,))
     fs = range_limit(full_scale_gyro, "full_scale_gyro")
     return _dead_reckon(t, speed, yaw_rate, x0, bias, fs)
 
@@ -644,12 +632,8 @@ def filter_grid(t: Times, z: ArrayLike, x0: ArrayLike, P0: ArrayLike | None = No
     EkfResult
     """
     t = time_axis(t, "t")
-    z = as_array(z, "z", tail=(5,), allow_nan=True)
-    if z.shape != (t.size, 5):
-        raise ValueError(f"z: expected shape ({t.size}, 5), got {z.shape}")
-    x0 = as_array(x0, "x0", tail=(5,))
-    if x0.shape != (5,):
-        raise ValueError(f"x0: expected shape (5,), got {x0.shape}")
+    z = as_array(z, "z", allow_nan=True, shape=(t.size, 5))
+    x0 = as_array(x0, "x0", shape=(5,))
     P0 = np.zeros((5, 5)) if P0 is None else covariance(P0, "P0")
     for name, M in (("Q", Q), ("R", R)):
         if M is None:
@@ -659,10 +643,9 @@ def filter_grid(t: Times, z: ArrayLike, x0: ArrayLike, P0: ArrayLike | None = No
     fs = range_limit(full_scale_gyro, "full_scale_gyro")
     with np.errstate(invalid="ignore"):
         saturated = np.abs(z[:, 4]) >= fs                   # NaN compares False
-    if isinstance(reacquire, (bool, np.bool_)) or not isinstance(reacquire, (int, np.integer)) or reacquire < 1:
-        raise ValueError(f"reacquire: expected a positive integer, got {reacquire!r}")
+    reacquire = integer(reacquire, "reacquire")
     X, P, nis, status, rejected, reacquired = _ekf_kernel(t, np.ascontiguousarray(z), x0, P0, Q, R, gate,
-                                                          bool(fast), fs, int(reacquire))
+                                                          bool(fast), fs, reacquire)
     later = z[1:]
     missing = np.stack([~np.all(np.isfinite(later[:, :2]), axis=1), np.isnan(later[:, 2]),
                         np.isnan(later[:, 3]), np.isnan(later[:, 4])], -1)

@@ -59,7 +59,7 @@ from numba import njit
 from .. import _kernels, attitude, earth, kalman, robust, trajectory
 from .._deprecate import renamed_keywords
 from .._kernels import radii_mn
-from .._validate import as_array, as_quat, intervals, range_limit
+from .._validate import as_array, as_quat, booleans, choice, imu_samples, instance, integer, intervals, range_limit, scalar
 from ..imu import unpack
 from ..strapdown import earth_constants, nav_step
 from ..units import G0
@@ -174,9 +174,9 @@ class FilterConfig:
 
     def __post_init__(self):
         for name, v in self.__dict__.items():
-            ok = isinstance(v, (int, float, np.floating, np.integer)) and not isinstance(v, bool) and v > 0
-            if not ok or (np.isinf(v) and name not in _MAY_BE_INF):
-                raise ValueError(f"{name}: expected a positive number, got {v!r}")
+            if name != "max_rejected":
+                scalar(v, name, positive=True, allow_inf=name in _MAY_BE_INF)
+        integer(self.max_rejected, "max_rejected")
 
 
 # counters returned by the kernel
@@ -550,10 +550,7 @@ def run_filter(w_ib_b, f_b=None, dt=None, lla0=None, vel0=None, q0=None, static=
         update was ever applied (check ``result.updated``).
     """
     w_ib_b, f_b, dt, full_scale_gyro, full_scale_accel = unpack(w_ib_b, f_b, dt, full_scale_gyro, full_scale_accel)
-    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
-    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=True)
-    if w.ndim != 2 or f.shape != w.shape:
-        raise ValueError(f"f_b: expected the shape (N, 3) of w_ib_b {w.shape}, got {f.shape}")
+    w, f = imu_samples(w_ib_b, f_b, shape=(None, 3))
     n = w.shape[0]
     if not (np.isfinite(w[0]).all() and np.isfinite(f[0]).all()):
         raise ValueError("w_ib_b, f_b: expected a valid first sample (dropouts are held from the last good one)")
@@ -563,36 +560,25 @@ def run_filter(w_ib_b, f_b=None, dt=None, lla0=None, vel0=None, q0=None, static=
         raise ValueError("lla0: expected |lat| <= 89.9 deg (ENU mechanisation)")
     vel0 = as_array(vel0, "vel0", tail=(3,)).reshape(3)
     q0 = as_quat(as_array(q0, "q0", tail=(4,)).reshape(4), "q0")
-    s = np.asarray(static)
-    if s.dtype != bool or s.shape != (n,):
-        raise ValueError(f"static: expected booleans of shape ({n},), got {s.dtype} {s.shape}")
-    hb = np.full(n, np.nan) if h_baro is None else as_array(h_baro, "h_baro", allow_nan=True)
-    if hb.shape != (n,):
-        raise ValueError(f"h_baro: expected shape ({n},), got {hb.shape}")
-    mb = np.full((n, 3), np.nan) if m_b is None else as_array(m_b, "m_b", tail=(3,), allow_nan=True)
-    if mb.shape != (n, 3):
-        raise ValueError(f"m_b: expected shape ({n}, 3), got {mb.shape}")
+    s = booleans(static, "static", shape=(n,))
+    hb = np.full(n, np.nan) if h_baro is None else as_array(h_baro, "h_baro", allow_nan=True, shape=(n,))
+    mb = np.full((n, 3), np.nan) if m_b is None else as_array(m_b, "m_b", allow_nan=True, shape=(n, 3))
     if np.any(np.all(mb == 0, axis=-1)):
         raise ValueError("m_b: expected non-zero magnetometer vectors (NaN marks a missing sample)")
-    if walk_aiding not in _AIDING:
-        raise ValueError(f"walk_aiding: expected one of {sorted(_AIDING)}, got {walk_aiding!r}")
-    if not isinstance(config, FilterConfig):
-        raise ValueError(f"config: expected a FilterConfig, got {type(config).__name__}")
-    if not isinstance(ellipsoid, earth.Ellipsoid):
-        raise ValueError(f"ellipsoid: expected a navlib.earth.Ellipsoid, got {type(ellipsoid).__name__}")
+    choice(walk_aiding, "walk_aiding", tuple(_AIDING))
+    instance(config, "config", FilterConfig, "a FilterConfig")
+    instance(ellipsoid, "ellipsoid", earth.Ellipsoid, "a navlib.earth.Ellipsoid")
     b0 = np.concatenate([as_array(accel_bias0, "accel_bias0", tail=(3,)).reshape(3),
                          as_array(gyro_bias0, "gyro_bias0", tail=(3,)).reshape(3)])
     gyro_fs, accel_fs = range_limit(full_scale_gyro, "full_scale_gyro"), range_limit(full_scale_accel, "full_scale_accel")
     if full_scale is not None:                    # deprecated pair, removed in navlib 0.3
         warnings.warn("run_filter(full_scale=(gyro, accel)) is deprecated; use full_scale_gyro=, full_scale_accel=",
                       DeprecationWarning, stacklevel=2)
-        fs = as_array(full_scale, "full_scale", allow_nan=False, finite=False)
-        if fs.shape != (2,) or np.isnan(fs).any() or np.any(fs <= 0):
-            raise ValueError(f"full_scale: expected (gyro rad/s, accel m/s^2), two positive numbers, "
-                             f"got {full_scale!r}")
+        fs = as_array(full_scale, "full_scale", finite=False, shape=(2,))      # (gyro rad/s, accel m/s^2)
+        fs = [range_limit(v, "full_scale") for v in fs]
         if full_scale_gyro is not None or full_scale_accel is not None:
             raise ValueError("full_scale: give the ranges once, as full_scale_gyro and full_scale_accel")
-        gyro_fs, accel_fs = float(fs[0]), float(fs[1])
+        gyro_fs, accel_fs = fs
     field_ref = _field_reference(B_n)
     c = config
     every = max(1, int(round(1.0 / (c.update_rate * float(np.median(dts))))))

@@ -24,7 +24,7 @@ import numpy as np
 
 from .. import geodesy, robust
 from .._deprecate import renamed_keywords
-from .._validate import as_array, generator, range_limit, scalar, time_axis
+from .._validate import as_array, booleans, generator, range_limit, scalar, time_axis
 from ..earth import CGCS2000, Ellipsoid
 from ..filters.planar_ekf import covariance, filter_grid, propagate
 
@@ -64,9 +64,9 @@ def waypoint_path(waypoints, speed: float, turn_rate: float, T: float):
     at_waypoint : ndarray of int, shape (M,)
         Index into ``X`` where each waypoint is reached (at the end of its turn).
     """
-    wp = as_array(waypoints, "waypoints", tail=(2,), min_ndim=1)
-    if wp.ndim != 2 or len(wp) < 2:
-        raise ValueError(f"waypoints: expected shape (M, 2) with M >= 2, got {wp.shape}")
+    wp = as_array(waypoints, "waypoints", shape=(None, 2))
+    if len(wp) < 2:
+        raise ValueError(f"waypoints: expected at least 2 waypoints, got {len(wp)}")
     legs = np.diff(wp, axis=0)
     length = np.hypot(legs[:, 0], legs[:, 1])
     if np.any(length <= 0):
@@ -150,14 +150,10 @@ def ekf(t, gps, heading, speed, yaw_rate, x0, *, origin=None, zone=None, width: 
     """
     t = time_axis(t, "t")
     n = t.size
-    gps = as_array(gps, "gps", tail=(2,), allow_nan=True)
-    if gps.shape != (n, 2):
-        raise ValueError(f"gps: expected shape ({n}, 2), got {gps.shape}")
+    gps = as_array(gps, "gps", allow_nan=True, shape=(n, 2))
     imu = []
     for name, val in (("heading", heading), ("speed", speed), ("yaw_rate", yaw_rate)):
-        arr = as_array(val, name, allow_nan=True)
-        if arr.shape != (n,):
-            raise ValueError(f"{name}: expected shape ({n},), got {arr.shape}")
+        arr = as_array(val, name, allow_nan=True, shape=(n,))
         imu.append(np.deg2rad(arr) if deg and name != "speed" else arr)
     heading, speed, yaw_rate = imu
     fix = np.all(np.isfinite(gps), axis=1)
@@ -239,16 +235,11 @@ def simulate_sensors(truth, origin, R, rng: np.random.Generator, *, zone=None, w
     -------
     Sensors
     """
-    truth = as_array(truth, "truth", tail=(5,))
-    if truth.ndim != 2:
-        raise ValueError(f"truth: expected shape (N, 5), got {truth.shape}")
+    truth = as_array(truth, "truth", shape=(None, 5))
     origin = as_array(origin, "origin", tail=(2,)).reshape(2)
     sigma = np.sqrt(np.diag(covariance(R, "R")))
     generator(rng)
-    yaw_rate_bias = as_array(yaw_rate_bias, "yaw_rate_bias")
-    if yaw_rate_bias.shape != ():
-        raise ValueError(f"yaw_rate_bias: expected a scalar (rad/s), got shape {yaw_rate_bias.shape}")
-    yaw_rate_bias = float(yaw_rate_bias)
+    yaw_rate_bias = scalar(yaw_rate_bias, "yaw_rate_bias")
     zone = int(geodesy.zone(origin[1], width)) if zone is None else zone
     kw = dict(zone=zone, width=width, ellipsoid=ellipsoid)
     o_north, o_east = geodesy.geodetic2gk(origin[0], origin[1], **kw)
@@ -256,15 +247,7 @@ def simulate_sensors(truth, origin, R, rng: np.random.Generator, *, zone=None, w
     lat, lon = geodesy.gk2geodetic(o_north + truth[:, 0] + noise[:, 0], o_east + truth[:, 1] + noise[:, 1], **kw)
     gps = np.stack([lat, lon], -1)
     if gps_valid is not None:
-        try:
-            gps_valid = np.asarray(gps_valid)
-        except ValueError:
-            raise ValueError("gps_valid: expected a boolean array of shape (N,), got a ragged sequence") from None
-        if gps_valid.dtype != bool:
-            raise TypeError(f"gps_valid: expected booleans, got dtype {gps_valid.dtype}")
-        if gps_valid.shape != (len(truth),):
-            raise ValueError(f"gps_valid: expected shape ({len(truth)},), got {gps_valid.shape}")
-        gps[~gps_valid] = np.nan
+        gps[~booleans(gps_valid, "gps_valid", shape=(len(truth),))] = np.nan
     true_lat, true_lon = geodesy.gk2geodetic(o_north + truth[:, 0], o_east + truth[:, 1], **kw)
     gamma = geodesy.convergence(true_lat, true_lon, **kw)
     heading = np.mod(truth[:, 2] + gamma + noise[:, 2], 2 * np.pi)

@@ -77,7 +77,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import attitude
-from .._validate import as_array, generator, positive
+from .._validate import as_array, generator, integer, positive, same_shape
 from ..trajectory import Leg
 
 __all__ = ["G_LOCAL", "carpark_legs", "floor_test_legs", "tilt_compensate_ned", "tilt_compensate_printed",
@@ -104,8 +104,7 @@ def carpark_legs(speed: float = 1.2, stops=(8.0, 5.0, 20.0, 10.0, 6.0, 15.0, 30.
     speed = float(positive(speed, "speed"))
     stops = positive(as_array(stops, "stops", min_ndim=1), "stops").ravel()
     a, b = positive(as_array(side, "side", tail=(2,)).reshape(2), "side")
-    if not isinstance(n_loops, (int, np.integer)) or n_loops < 1:
-        raise ValueError(f"n_loops: expected a positive integer, got {n_loops!r}")
+    n_loops = integer(n_loops, "n_loops")
     legs, k = [Leg(float(positive(initial_stand, "initial_stand")))], 0
     corner = 3.0 * 2 / 3 * speed                       # path length of a corner (m)
     for _ in range(n_loops):
@@ -131,8 +130,7 @@ def floor_test_legs(stand: float = 60.0, stairs: float = 15.0, floor_height: flo
     stand = float(positive(stand, "stand"))
     stairs = float(positive(stairs, "stairs"))
     hf = float(positive(floor_height, "floor_height"))
-    if not isinstance(n_round_trips, (int, np.integer)) or n_round_trips < 1:
-        raise ValueError(f"n_round_trips: expected a positive integer, got {n_round_trips!r}")
+    n_round_trips = integer(n_round_trips, "n_round_trips")
     legs = [Leg(stand)]
     for trip in range(2 * n_round_trips):
         climb = -hf if trip % 2 == 0 else hf
@@ -209,10 +207,9 @@ def hvac_pressure_steps(time, door_times, rng: np.random.Generator, amplitude: f
 
 def simple_covariance_update(P, H, R):
     """The printed last line of Eq. (3): optimal gain K and ``(I - K H) P``."""
-    P = as_array(P, "P")
-    H = as_array(H, "H")
-    R = as_array(R, "R")
-    if P.ndim != 2 or P.shape[0] != P.shape[1] or H.shape[-1] != P.shape[0] or R.shape != (H.shape[0],) * 2:
-        raise ValueError(f"P, H, R: expected shapes (n, n), (m, n), (m, m), got {P.shape}, {H.shape}, {R.shape}")
+    P = as_array(P, "P", shape=(None, None))
+    same_shape(P, "P", (len(P), len(P)))                         # square (n, n)
+    H = as_array(H, "H", shape=(None, len(P)))                   # (m, n)
+    R = as_array(R, "R", shape=(len(H), len(H)))                 # (m, m)
     K = P @ H.T @ np.linalg.inv(H @ P @ H.T + R)
     return K, (np.eye(P.shape[0]) - K @ H) @ P

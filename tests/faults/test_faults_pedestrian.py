@@ -434,7 +434,7 @@ FUZZ = [
     ("zupt_zaru_innovation", "b_g", lambda: zupt.zupt_zaru_innovation(Z3[0], Z3[0], [0, 0], np.eye(3), Z3[0])),
     ("simple_covariance_update", "P",
      lambda: pd.simple_covariance_update(np.full((2, 2), np.nan), np.eye(2), np.eye(2))),
-    ("simple_covariance_update", "P, H, R", lambda: pd.simple_covariance_update(np.eye(2), np.eye(3), np.eye(2))),
+    ("simple_covariance_update", "H", lambda: pd.simple_covariance_update(np.eye(2), np.eye(3), np.eye(2))),
     ("FilterConfig", "gate", lambda: zupt_ins.FilterConfig(gate=np.nan)),
     ("FilterConfig", "sigma_baro", lambda: zupt_ins.FilterConfig(sigma_baro=np.inf)),
     ("FilterConfig", "baro_gate", lambda: zupt_ins.FilterConfig(baro_gate=-1.0)),
