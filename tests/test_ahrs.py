@@ -107,7 +107,9 @@ def test_filters_reject_bad_arguments():
     q0 = attitude.euler_to_quat([0.5, 0, 0])
     valid = np.ones(100, dtype=bool)
     with pytest.raises(ValueError, match="^m_b, heading_rtk: "):
-        mh.mahony(w, f, DT, q0)                                      # no heading reference
+        mh.mahony(w, f, DT, q0, m_b=m, heading_rtk=np.zeros(100), rtk_valid=valid)   # two heading references
+    with pytest.raises(ValueError, match="^gate: "):
+        mh.mahony(w, f, DT, q0, B_n=B_N, gate=obs.MagGate())                        # a gate but no magnetometer
     with pytest.raises(ValueError, match="^heading_rtk: "):
         mh.mahony(w, f, DT, q0, heading_rtk=np.full(100, 7.0), rtk_valid=valid)   # out of [0, 2 pi)
     with pytest.raises(ValueError, match="^heading_rtk: "):
@@ -498,3 +500,25 @@ def test_out_of_range_values_name_the_argument(name, call, arg):
 def test_every_public_callable_is_fuzzed():
     public = {n for n in ahrs.__all__ if callable(getattr(ahrs, n))} | MOVED_TO_CORE
     assert public == {k.split("/")[0] for k in FUZZ} | set(NOT_APPLICABLE)
+
+
+# --------------------------------------------------------------------------- gyro + accelerometer only
+
+@pytest.mark.parametrize("run", [
+    lambda w, f, q0: mh.mahony(w, f, DT, q0, kp=2.0),
+    lambda w, f, q0: qkf.quaternion_kf(w, f, DT, q0, kp=2.0),
+], ids=["mahony", "quaternion_kf"])
+def test_without_a_heading_reference_tilt_converges_and_heading_drifts_with_the_bias(run):
+    rng = np.random.default_rng(7)
+    hpr = units.deg([40.0, 8.0, -5.0])
+    bias_z = units.deg(0.5)                                   # deg/s about the body z axis
+    w, f, _ = static_marg(hpr, 3000, rng, gyro=(0.0, 0.0, bias_z))
+    q0 = attitude.euler_to_quat(units.deg([40.0, 0.0, 0.0]))   # level start: 9.4 deg of tilt error
+    res = run(w, f, q0)
+    est = attitude.quat_to_euler(res.q_bn[-1])
+    tilt = np.hypot(attitude.wrap_pi(est[1] - hpr[1]), attitude.wrap_pi(est[2] - hpr[2]))
+    assert units.to_deg(tilt) < 0.3                          # levelled by the accelerometer alone
+    # heading: no reference, so it integrates the z bias (about 0.5 deg/s * 30 s, projected on the vertical)
+    drift = units.to_deg(attitude.wrap_pi(est[0] - hpr[0]))
+    assert 10.0 < abs(drift) < 20.0
+    assert not res.faults                                      # nothing skipped: there was nothing to read

@@ -15,7 +15,8 @@ group", IEEE T-AC 53(5), in the explicit form used by Zhang et al. 2023 (paper 0
   product, not MahonyAHRS.c's half error "twoKp");
 * Eq. (17): first-order update ``q <- normalise(q + dt/2 q (x) [0, w])``.
 
-The heading reference is a magnetometer or a dual-antenna RTK heading; gates, holds and their
+The heading reference is a magnetometer, a dual-antenna RTK heading, or none (gyro + accelerometer:
+heading free); gates, holds and their
 fault counts are those of :mod:`navlib.filters.observations`. Compiled and allocation-free per
 sample; leading axes of the inputs are Monte Carlo trials, one thread per core.
 """
@@ -110,7 +111,10 @@ def mahony(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None, dt: I
     q0 : array_like, shape (4,) or (..., 4)
         Attitude before the first sample, e.g. :func:`navlib.alignment.initial_attitude`.
     m_b : array_like, shape (..., N, 3), optional
-        Magnetometer samples (uT); unusable samples are skipped and gated ones counted.
+        Magnetometer samples (uT); unusable samples are skipped and gated ones counted. With neither
+        ``m_b`` nor ``heading_rtk`` the filter runs on gyro and accelerometer alone: tilt is corrected,
+        the heading is free (it starts at ``q0``'s heading and drifts with the gyro bias about the
+        vertical, which the accelerometer cannot observe).
     heading_rtk : array_like, shape (N,) or (..., N), optional
         Instead of ``m_b``: dual-antenna heading (rad, [0, 2 pi)) at the IMU rate,
         used as a north pseudo-vector (mode (a) of the paper's Fig. 4). Only samples with

@@ -90,10 +90,11 @@ class AttitudeInputs(NamedTuple):
     q_init: np.ndarray              # (T, 4) attitude before the first sample
     w: np.ndarray                   # (T, N, 3) gyro (rad/s), NaN = dropout
     f: np.ndarray                   # (T, N, 3) accelerometer (m/s^2), NaN = skip
-    m: np.ndarray                   # (T, N, 3) magnetometer (uT), or (1, 1, 3) unused with RTK
+    m: np.ndarray                   # (T, N, 3) magnetometer (uT), or (1, 1, 3) unused (RTK or no reference)
     hdg: np.ndarray                 # (T, N) RTK heading (rad), or (1, 1) unused
     hdg_ok: np.ndarray              # (T, N) bool: a valid RTK epoch, or (1, 1) unused
     use_rtk: bool                   # heading reference: RTK (True) or magnetometer
+    use_mag: bool                   # False with RTK or without a heading reference (gyro + accelerometer only)
     dts: np.ndarray                 # (N,) interval covered by each sample (s)
     gates: np.ndarray               # (6,) |f|^2 low/high, |m|^2 low/high, sin(dip) low/high
     jump: float                     # gyro spike gate (rad/s), 0 = off
@@ -266,8 +267,10 @@ def observe(inp, t, k, q0, q1, q2, q3, dtk, rtk, counts):
             cm = 0
         else:
             mx, my, mz, cm = 0.0, 0.0, 0.0, 1
-    else:
+    elif inp.use_mag:
         mx, my, mz, cm = _mag_obs(m[t, k, 0], m[t, k, 1], m[t, k, 2], ax, ay, az, ca, gates[2:])
+    else:                                               # no heading reference: nothing to skip or count
+        mx, my, mz, cm = 0.0, 0.0, 0.0, -1
     if cm > 0:
         counts[t, _MAG_SKIPPED - 1 + cm] += 1           # 1 skipped, 2 gated
     return ax, ay, az, ca == 0, mx, my, mz, cm == 0, C
@@ -399,12 +402,16 @@ def prepare_inputs(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, 
     q = np.ascontiguousarray(np.broadcast_to(q, lead + (4,)).reshape(T, 4))
     if B_n is not None:
         magnetic_reference(B_n)                              # validate even where it is not needed
-    use_rtk = heading_rtk is not None
-    if use_rtk == (m_b is not None):
-        raise ValueError("m_b, heading_rtk: give exactly one heading reference (magnetometer or RTK)")
+    use_rtk, use_mag = heading_rtk is not None, m_b is not None
+    if use_rtk and use_mag:
+        raise ValueError("m_b, heading_rtk: give at most one heading reference (magnetometer or RTK)")
     if use_rtk:
         hdg, ok = heading_input(heading_rtk, rtk_valid, lead + (N,))
         m = np.zeros((1, 1, 3))
+    elif not use_mag:
+        if gate is not None:
+            raise ValueError("gate: a magnetometer gate needs m_b")
+        hdg, ok, m = np.zeros((1, 1)), np.zeros((1, 1), dtype=bool), np.zeros((1, 1, 3))
     else:
         m = same_shape(nonempty_array(m_b, "m_b", tail=(3,), finite=False), "m_b", w.shape, of="w_ib_b").reshape(T, N, 3)
         hdg, ok = np.zeros((1, 1)), np.zeros((1, 1), dtype=bool)
@@ -431,7 +438,7 @@ def prepare_inputs(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, 
         if r is None:
             continue
         r = scalar(r, name, positive=True)
-        if i == 2 and use_rtk:
+        if i == 2 and not use_mag:
             continue
         x = (w, f, m)[i]
         rail = (np.abs(x) >= r).any(-1) & np.isfinite(x).all(-1)
@@ -441,7 +448,7 @@ def prepare_inputs(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, 
         elif i == 2 and sat[:, i].any():
             m = np.where(rail[..., None], np.nan, m)
     inputs = AttitudeInputs(q, np.ascontiguousarray(w), np.ascontiguousarray(f), np.ascontiguousarray(m), hdg, ok,
-                            use_rtk, dts, gates, jump, rtk_par)
+                            use_rtk, use_mag, dts, gates, jump, rtk_par)
     return lead, inputs, sat
 
 

@@ -14,7 +14,8 @@ numbers are quoted, errata corrected). State: the quaternion ``q = q_b^n`` (4,).
 * Eq. (20): Jacobian ``H = dh/dq`` (:func:`measurement_jacobian`); Joseph update of
   :func:`navlib.kalman.update` skipping missing rows; normalise.
 
-Inputs, gates and fault counts are those of :mod:`navlib.filters.observations`.
+Without a heading reference the magnetometer rows are missing at every sample: the gravity rows
+alone correct tilt. Inputs, gates and fault counts are those of :mod:`navlib.filters.observations`.
 """
 from __future__ import annotations
 
@@ -251,7 +252,10 @@ def quaternion_kf(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None
     q0 : array_like, shape (4,) or (..., 4)
         Attitude before the first sample, e.g. :func:`navlib.alignment.initial_attitude`.
     m_b : array_like, shape (..., N, 3), optional
-        Magnetometer samples (uT); unusable samples are skipped and gated ones counted.
+        Magnetometer samples (uT); unusable samples are skipped and gated ones counted. With neither
+        ``m_b`` nor ``heading_rtk`` the filter runs on gyro and accelerometer alone: tilt is corrected,
+        the heading is free (it starts at ``q0``'s heading and drifts with the gyro bias about the
+        vertical, which the accelerometer cannot observe).
     heading_rtk : array_like, shape (N,) or (..., N), optional
         Instead of ``m_b``: dual-antenna heading (rad, [0, 2 pi)) at the IMU rate,
         used as a north pseudo-vector (mode (a) of the paper's Fig. 4). Only samples with
@@ -328,8 +332,8 @@ def quaternion_kf(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None
                                     rtk_hold, rtk_gate, rtk_confirm, full_scale_gyro, full_scale_accel, full_scale_mag, gyro_jump)
     kp, ki = scalar(kp, "kp", positive=True, allow_zero=True), scalar(ki, "ki", positive=True, allow_zero=True)
     T, N = inp.w.shape[:2]
-    if inp.use_rtk:
-        b = np.array([0.0, 1.0, 0.0])                       # RTK pseudo-vector points north
+    if not inp.use_mag:
+        b = np.array([0.0, 1.0, 0.0])        # RTK pseudo-vector points north (unused without a heading reference)
     elif B_n is None:
         raise ValueError("B_n: the quaternion KF needs the local field for its magnetometer reference")
     else:
