@@ -457,7 +457,7 @@ class TriadNoise:
     bias_instability : ndarray, shape (3,)
         Peak Allan deviation B of the Gauss-Markov bias (u).
     correlation_time : ndarray, shape (3,)
-        Gauss-Markov correlation time T_c (s).
+        Gauss-Markov correlation time T_c (s); meaningless where ``bias_instability`` is 0.
     rate_random_walk : ndarray, shape (3,)
         K (u/s/sqrt(Hz)); 0 unless fitted.
     noise_density_ci, bias_instability_ci, rate_random_walk_ci : ndarray, shape (3, 2)
@@ -484,13 +484,13 @@ class TriadNoise:
         ``noise_density``, ``bias_instability`` and ``rate_random_walk`` are combined over the axes by
         ``combine``: ``"rms"`` (the root mean square: the same total variance) or ``"max"`` (the worst axis,
         conservative for a filter's process noise); ``correlation_time`` by the geometric mean over the axes
-        with a bias instability (the default 3600 s if none has one). Turn-on
-        bias, scale factor, misalignment and full scale are not observable from one static record and keep
-        their defaults (set them with :meth:`navlib.sensors.ImuModel.replace`).
+        with a bias instability (the default 3600 s if none has one). Turn-on bias, scale factor,
+        misalignment and full scale are not observable from one static record and keep their defaults (set
+        them with :meth:`navlib.sensors.ImuModel.replace`).
         """
         combine = choice(combine, "combine", ("rms", "max"))
 
-        def one(x):
+        def one(x: np.ndarray) -> float:
             return float(np.sqrt(np.mean(x * x)) if combine == "rms" else np.max(x))
 
         tc = self.correlation_time[self.bias_instability > 0]
@@ -584,7 +584,7 @@ def _triad_noise(x: np.ndarray, dt: float, rate_random_walk: bool, confidence: f
     terms = {key: np.array([f[key] for f in fits]) for key in fits[0]}
     observed = _fold_unobserved_peaks(terms, taus[0], taus[-1], rate_random_walk)
 
-    def factors(noise, tau):
+    def factors(noise: str, tau: np.ndarray) -> np.ndarray:
         m = np.clip(tau, taus[0], taus[-1]) / dt
         return _interval(_edf(noise, n + 1, m), confidence)
 
