@@ -68,6 +68,7 @@ from navlib import (  # noqa: E402
     analysis,
     atmosphere,
     attitude,
+    calibration,
     earth,
     euler,
     faults,
@@ -89,7 +90,7 @@ from navlib.filters import heading_fusion, mahony, observations, planar_ekf, qua
 MODULES = ["attitude", "earth", "units", "sensors", "atmosphere", "trajectory", "strapdown",
            "kalman", "analysis", "repro", "plots", "montecarlo", "faults", "timing", "alignment", "robust",
            "euler", "pdr", "imu", "filters.zupt", "filters.mahony", "filters.quaternion_kf", "filters.observations",
-           "filters.planar_ekf", "filters.heading_fusion"]
+           "filters.planar_ekf", "filters.heading_fusion", "calibration"]
 
 NAN, INF = np.nan, np.inf
 STR = "abc"                      # a string where numbers are expected
@@ -950,6 +951,40 @@ CASES += [bad(f"units.{name}", "x", kind, lambda f=getattr(units, name), v=KINDS
           for name in _unit_converters() for kind in ("complex", "object", "bool", "numeric_str")]
 
 
+# ------------------------------------------------------------- calibration
+M_SPHERE = 40.0 * attitude.quat_rotate(np.random.default_rng(0).standard_normal((30, 4)), [0.0, 0.0, 1.0])
+F_SIX = 9.8 * np.array([[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]], dtype=float)
+W_REC, F_REC = np.zeros((200, 3)), np.tile([0.0, 0.0, 9.8], (200, 1))
+CASES += [
+    bad("calibration.fit_magnetometer", "m_b", "too_few", lambda: calibration.fit_magnetometer(M_SPHERE[:8])),
+    bad("calibration.fit_magnetometer", "m_b", "shape", lambda: calibration.fit_magnetometer(M_SPHERE[:, :2])),
+    bad("calibration.fit_magnetometer", "m_b", "nan", lambda: calibration.fit_magnetometer(with_nan(M_SPHERE, (3, 1)))),
+    bad("calibration.fit_magnetometer", "m_b", "planar", lambda: calibration.fit_magnetometer(M_SPHERE * [1.0, 1.0, 0.0])),
+    bad("calibration.fit_magnetometer", "field_strength", "zero", lambda: calibration.fit_magnetometer(M_SPHERE, 0.0)),
+    *dtype_rows("calibration.fit_magnetometer", "m_b", calibration.fit_magnetometer, M_SPHERE),
+    bad("calibration.MagCalibration", "offset", "shape", lambda: calibration.MagCalibration([0.0, 0.0], np.eye(3), 50.0)),
+    bad("calibration.MagCalibration", "soft_iron", "not_spd", lambda: calibration.MagCalibration(np.zeros(3), -np.eye(3), 50.0)),
+    bad("calibration.MagCalibration", "field_strength", "nan", lambda: calibration.MagCalibration(np.zeros(3), np.eye(3), NAN)),
+    bad("calibration.fit_accelerometer", "f_means", "too_few", lambda: calibration.fit_accelerometer(F_SIX[:5])),
+    bad("calibration.fit_accelerometer", "f_means", "inf", lambda: calibration.fit_accelerometer(F_SIX + [0.0, 0.0, INF])),
+    bad("calibration.fit_accelerometer", "f_means", "all_level", lambda: calibration.fit_accelerometer(np.tile(F_SIX[4], (6, 1)))),
+    bad("calibration.fit_accelerometer", "g", "negative", lambda: calibration.fit_accelerometer(F_SIX, g=-9.8)),
+    *dtype_rows("calibration.fit_accelerometer", "f_means", calibration.fit_accelerometer, F_SIX),
+    bad("calibration.AccelCalibration", "matrix", "upper", lambda: calibration.AccelCalibration(np.zeros(3), np.ones((3, 3)))),
+    bad("calibration.AccelCalibration", "bias", "nan", lambda: calibration.AccelCalibration([NAN, 0.0, 0.0], np.eye(3))),
+    bad("calibration.gyro_bias_at_rest", "w_ib_b", "one_sample", lambda: calibration.gyro_bias_at_rest(W[:1])),
+    bad("calibration.gyro_bias_at_rest", "w_ib_b", "nan", lambda: calibration.gyro_bias_at_rest(with_nan(W, (2, 0)))),
+    bad("calibration.gyro_bias_at_rest", "C_bn", "missing", lambda: calibration.gyro_bias_at_rest(W, lat=0.5)),
+    bad("calibration.gyro_bias_at_rest", "lat", "out_of_range", lambda: calibration.gyro_bias_at_rest(W, 2.0, np.eye(3))),
+    *dtype_rows("calibration.gyro_bias_at_rest", "w_ib_b", calibration.gyro_bias_at_rest, W),
+    bad("calibration.characterise", "w_ib_b", "too_short", lambda: calibration.characterise(W, F, 0.01)),
+    bad("calibration.characterise", "w_ib_b", "nan", lambda: calibration.characterise(with_nan(W_REC, (5, 0)), F_REC, 0.1)),
+    bad("calibration.characterise", "w_ib_b, f_b", "shape", lambda: calibration.characterise(W_REC, F_REC[:150], 0.1)),
+    bad("calibration.characterise", "dt", "irregular", lambda: calibration.characterise(W_REC, F_REC, np.linspace(0.09, 0.11, 200))),
+    bad("calibration.characterise", "confidence", "one", lambda: calibration.characterise(W_REC, F_REC, 0.1, confidence=1.0)),
+    *dtype_rows("calibration.characterise", "f_b", lambda f: calibration.characterise(W_REC, f, 0.1), F_REC),
+]
+
 def names_arg(arg):
     """Regex: the message starts with the argument name ``arg``: "<arg>: expected ...",
     or "<arg>[...] (<part>): ..." for a part of an array argument."""
@@ -1089,6 +1124,8 @@ NOT_APPLICABLE = {
     "filters.observations.AttitudeInputs": "the kernel record, built by prepare_inputs from validated values",
     "filters.observations.attitude_result": "assembles kernel outputs (validated by prepare_inputs)",
     "filters.observations.run_trials": "runs a compiled kernel on validated inputs",
+    "calibration.TriadNoise": "a result record, built by characterise",
+    "calibration.NoiseCharacterisation": "a result record, built by characterise",
 }
 
 

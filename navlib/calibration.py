@@ -1,0 +1,652 @@
+"""Sensor calibration and "characterise my IMU": ellipsoid, multi-position and Allan-deviation fits.
+
+Magnetometer: hard and soft iron (:func:`fit_magnetometer`)
+    Model ``m_raw = W m + b`` with the hard-iron offset ``b`` (3,) and a symmetric positive-definite
+    soft-iron matrix ``W`` (3, 3) (the model of :class:`navlib.sensors.MagnetometerModel`), corrected by
+    ``m_cal = W^-1 (m_raw - b)``. As the sensor turns, ``|m_cal| = F`` (the field strength), so the raw
+    samples lie on the ellipsoid ``(m_raw - b)^T A (m_raw - b) = 1`` with ``A = W^-2 / F^2``. The
+    ellipsoid is fitted algebraically to the general quadric
+    ``v1 x^2 + v2 y^2 + v3 z^2 + 2 v4 yz + 2 v5 xz + 2 v6 xy + 2 v7 x + 2 v8 y + 2 v9 z + v10 = 0`` by least
+    squares under the ellipsoid-specific constraint ``4J - I^2 = 1`` (``I = v1 + v2 + v3``,
+    ``J = v1 v2 + v2 v3 + v1 v3 - v4^2 - v5^2 - v6^2``), a generalised eigenproblem whose one positive
+    eigenvalue gives the fit (Li & Griffiths 2004); the samples are centred and scaled first, which leaves
+    the fitted ellipsoid unchanged. Then ``b = -A3^-1 [v7, v8, v9]`` for the quadratic part ``A3``, and
+    ``W^-1 = F sqrt(A)`` with the symmetric square root: of all correction matrices ``R W^-1`` (R any
+    rotation) the symmetric one does not rotate the sensor frame. ``F`` and ``W`` are only determined
+    together: with a known ``field_strength`` (e.g. :func:`navlib.earth.magnetic_field`) ``F`` is that
+    value; without, ``F = det(A)^(-1/6)`` so that ``det W = 1`` (soft iron redistributes the field between
+    axes without gaining or losing any on average; Ozyagcilar 2015). The fit needs the samples to cover
+    the ellipsoid in three dimensions:
+    turning about one axis only traces a plane ellipse, which does not determine the ellipsoid
+    (``MIN_THICKNESS``), and a small cap of orientations determines it poorly (``MAX_MAG_CONDITION``).
+
+Accelerometer: six or more static positions (:func:`fit_accelerometer`)
+    Model ``f_cal = S (f_raw - b)``, bias ``b`` (3,) and ``S`` diagonal (scale factors) or lower
+    triangular (scale factors and non-orthogonality). At rest ``|f_cal| = g`` in every orientation, so
+    ``b`` and ``S`` follow from ``K >= 6`` (diagonal) or ``K >= 9`` (triangular) static mean specific
+    forces by nonlinear least squares on ``|S (f_k - b)| - g`` (Skog & Haendel 2006; Fong, Ong & Nee 2008;
+    the triangular form of Tedaldi, Pretto & Menegatti 2014). ``|S (f - b)|`` does not change when ``S``
+    is rotated, so a full ``S`` is not observable: the triangular form fixes the calibrated x axis to the
+    sensor's x axis and the calibrated x-y plane to the sensor's. The positions must point each axis up
+    and down (e.g. the six faces of a cube); tilting about level leaves bias and scale of the vertical
+    axis inseparable, which the condition number of the fit's Jacobian exposes.
+
+Gyro bias at rest (:func:`gyro_bias_at_rest`)
+    ``b = mean(w_ib_b) - C_bn^T w_ie_n`` (:func:`navlib.earth.earth_rate_b`) when attitude and latitude
+    are known, else the mean itself (which then includes Earth rate, up to 7.3e-5 rad/s). Its standard
+    error is the white-noise one, ``std(w) / sqrt(N)``.
+
+Noise characterisation (:func:`characterise`)
+    Per axis, the overlapping Allan deviation of a static record (IEEE Std 952-1997,
+    :func:`navlib.analysis.allan_deviation`) is fitted with navlib's noise model
+    (:func:`navlib.analysis.fit_allan`): white noise density N (angle random walk for gyros, velocity
+    random walk for accelerometers), bias instability B (peak Allan deviation of a Gauss-Markov bias, with
+    its correlation time T_c) and, optionally, rate random walk K. A Gauss-Markov term whose Allan peak
+    ``GM_ALLAN_PEAK_TAU T_c`` lies outside the averaging times is not identifiable: below them it is white
+    noise (``N^2 += 2 sigma^2 T_c``), beyond the record a rate random walk (``K^2 += 2 sigma^2 / T_c``,
+    when K is fitted), and it is moved there (``sigma = B / GM_ALLAN_PEAK``).
+
+    Each term's confidence interval is that of the Allan deviation it is read from (IEEE Std 952-1997,
+    Annex C; El-Sheimy, Hou & Niu 2008): N at ``tau = 1 s``, B at its peak ``tau = GM_ALLAN_PEAK_TAU T_c``,
+    K at the longest averaging time, each clipped to the averaging times available. An overlapping Allan
+    variance at cluster length ``m = tau / dt`` is chi-square distributed with ``edf`` equivalent degrees
+    of freedom, and the interval of the deviation at confidence c is
+    ``[sqrt(edf / chi2_{(1+c)/2}(edf)), sqrt(edf / chi2_{(1-c)/2}(edf))]`` times the estimate (Riley 2008,
+    Sec. 5.3). ``edf`` is the simple approximation for the noise that dominates there (Howe, Allan & Barnes
+    1981, as tabulated in Riley 2008, Table 5; ``N`` = n + 1 integrated samples): white rate noise for N,
+    ``edf = (3 (N - 1) / (2m) - 2 (N - 2) / N) 4 m^2 / (4 m^2 + 5)``; flicker (the flat floor) for B,
+    ``edf = 5 N^2 / (4 m (N + 3m))``; random walk for K,
+    ``edf = (N - 2) ((N - 1)^2 - 3 m (N - 1) + 4 m^2) / (m (N - 3)^2)``. For many clusters these approach
+    ``1.5 n/m``, ``1.25 n/m`` and ``n/m``, against the ``n/m - 1`` behind the familiar 1-sigma error
+    ``1 / sqrt(2 (n/m - 1))`` of IEEE Std 952; at the longest averaging time (``m = n/3``) the random-walk
+    edf is 1.3, so K's interval spans more than a decade unless the record is many times the averaging
+    time at which K shows. K's upper limit is also at least that of the largest K the longest averaging
+    time allows (``adev(tau_max) / sqrt(tau_max / 3)``), so a K fitted as 0 still gets an upper limit; B's
+    upper limit is ``inf`` where B is 0 or its peak is outside the averaging times (not identifiable).
+    The intervals express the scatter of the Allan deviation, not the choice of model: the fit trades
+    terms against each other where their curves are alike (a Gauss-Markov peak near the end of the record
+    against rate random walk), so compare the fitted curve
+    (:func:`navlib.analysis.allan_deviation_theory`) with ``adev``.
+
+References
+----------
+* Q. Li, J. G. Griffiths, "Least squares ellipsoid specific fitting", Proc. Geometric Modeling and
+  Processing 2004, pp. 335-340.
+* T. Ozyagcilar, "Calibrating an eCompass in the presence of hard- and soft-iron interference", NXP
+  application note AN4246, rev. 4, 2015.
+* I. Skog, P. Haendel, "Calibration of a MEMS inertial measurement unit", XVII IMEKO World Congress, 2006.
+* W. T. Fong, S. K. Ong, A. Y. C. Nee, "Methods for in-field user calibration of an inertial measurement
+  unit without external equipment", Meas. Sci. Technol. 19 (2008) 085202.
+* D. Tedaldi, A. Pretto, E. Menegatti, "A robust and easy to implement method for IMU calibration
+  without external equipments", IEEE ICRA 2014.
+* IEEE Std 952-1997, Annex C (Allan variance, percentage error of the estimate).
+* N. El-Sheimy, H. Hou, X. Niu, "Analysis and modeling of inertial sensors using Allan variance",
+  IEEE T-IM 57(1), 2008.
+* W. J. Riley, "Handbook of Frequency Stability Analysis", NIST SP 1065, 2008.
+* D. A. Howe, D. W. Allan, J. A. Barnes, "Properties of signal sources and measurement methods",
+  Proc. 35th Annual Symposium on Frequency Control, 1981.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import least_squares
+from scipy.stats import chi2
+
+from . import analysis, earth, units
+from ._typing import Array, Dcm, Interval, Vec3, Vec3Series
+from ._validate import as_array, as_dcm, choice, flag, imu_samples, in_range, instance, intervals, scalar
+from .imu import ImuSamples, unpack
+from .sensors import ImuModel, TriadErrors
+
+__all__ = ["MIN_THICKNESS", "MAX_MAG_CONDITION", "MAX_ACCEL_CONDITION", "MIN_RECORD", "MagCalibration",
+           "fit_magnetometer", "AccelCalibration", "fit_accelerometer", "gyro_bias_at_rest", "TriadNoise",
+           "NoiseCharacterisation", "characterise"]
+
+MIN_THICKNESS = 0.1
+"""Smallest accepted ``sqrt(lambda_min / lambda_max)`` of the covariance of the magnetometer samples: a
+full sphere of samples gives 1, one turn about a single axis (a plane circle of radius r) about ``1.4 noise / r``."""
+
+MAX_MAG_CONDITION = 30.0
+"""Largest accepted condition number of the magnetometer fit (the Jacobian of ``|m_cal| / F`` with the offset
+in units of F) at the fitted ellipsoid. Samples all over the sphere give about 2, tilts within +-90 deg
+(any heading) about 8, within +-60 deg about 20, within +-45 deg about 50, where the algebraic fit's
+offset is already wrong by a few percent of F at 0.6 % noise."""
+
+MAX_ACCEL_CONDITION = 100.0
+"""Largest accepted condition number of the accelerometer fit's Jacobian (bias in units of g): noise in the
+static means is amplified at most this much in the estimates. The six faces of a cube give 1."""
+
+MIN_RECORD = 100
+"""Fewest samples :func:`characterise` accepts (a decade of averaging times needs more; hours are usual)."""
+
+
+# --------------------------------------------------------------------------
+# Magnetometer: hard and soft iron
+# --------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class MagCalibration:
+    """Hard- and soft-iron correction ``m_cal = soft_iron @ (m_raw - offset)``.
+
+    Construct it from stored values to apply a saved calibration; :func:`fit_magnetometer` also fills the
+    quality figures (NaN when unknown).
+
+    Attributes
+    ----------
+    offset : ndarray, shape (3,)
+        Hard-iron offset ``b`` (unit of the samples, e.g. uT).
+    soft_iron : ndarray, shape (3, 3)
+        The correction matrix ``W^-1``, symmetric positive definite.
+    field_strength : float
+        Radius ``F`` of the corrected sphere (unit of the samples): the given field strength, or the
+        fitted one (``det W = 1``).
+    residual : float
+        RMS of ``|m_cal| - field_strength`` over the fitted samples.
+    norm_spread_before, norm_spread_after : float
+        Standard deviation of ``|m|`` over the fitted samples, raw and corrected.
+    condition : float
+        Condition number of the fit at the solution (``MAX_MAG_CONDITION``): how well the samples' coverage
+        of orientations determines offset and soft iron.
+    """
+    offset: np.ndarray
+    soft_iron: np.ndarray
+    field_strength: float
+    residual: float = np.nan
+    norm_spread_before: float = np.nan
+    norm_spread_after: float = np.nan
+    condition: float = np.nan
+
+    def __post_init__(self):
+        object.__setattr__(self, "offset", as_array(self.offset, "offset", shape=(3,)))
+        W = as_array(self.soft_iron, "soft_iron", shape=(3, 3))
+        if not np.allclose(W, W.T, rtol=1e-9, atol=0.0) or np.linalg.eigvalsh(W)[0] <= 0:
+            raise ValueError("soft_iron: expected a symmetric positive-definite correction matrix")
+        object.__setattr__(self, "soft_iron", W)
+        object.__setattr__(self, "field_strength", scalar(self.field_strength, "field_strength", positive=True))
+
+    def apply(self, m_raw: Vec3) -> Array:
+        """Corrected field ``soft_iron @ (m_raw - offset)``, shape (..., 3) like ``m_raw`` (NaN propagates)."""
+        m = as_array(m_raw, "m_raw", tail=(3,), allow_nan=True)
+        return (m - self.offset) @ self.soft_iron.T
+
+
+def _thickness(m: np.ndarray) -> float:
+    """``sqrt(lambda_min / lambda_max)`` of the sample covariance: how far the samples leave a plane."""
+    ev = np.linalg.eigvalsh(np.cov(m.T))
+    return float(np.sqrt(max(ev[0], 0.0) / ev[-1])) if ev[-1] > 0 else 0.0
+
+
+def _quadric_li_griffiths(x: np.ndarray) -> np.ndarray:
+    """Ellipsoid-specific quadric ``v`` (10,) of the module docstring through points ``x`` (N, 3) (k = 4)."""
+    X, Y, Z = x.T
+    D = np.stack([X * X, Y * Y, Z * Z, 2 * Y * Z, 2 * X * Z, 2 * X * Y, 2 * X, 2 * Y, 2 * Z, np.ones_like(X)])
+    S = D @ D.T
+    S11, S12, S22 = S[:6, :6], S[:6, 6:], S[6:, 6:]
+    C = np.zeros((6, 6))
+    C[:3, :3] = 1.0                      # k/2 - 1 = 1 off the diagonal
+    np.fill_diagonal(C[:3, :3], -1.0)
+    C[3:, 3:] = -4.0 * np.eye(3)
+    reduced = S11 - S12 @ np.linalg.solve(S22, S12.T)
+    ev, vec = np.linalg.eig(np.linalg.solve(C, reduced))
+    v1 = np.real(vec[:, np.argmax(np.real(ev))])
+    return np.concatenate([v1, -np.linalg.solve(S22, S12.T @ v1)])
+
+
+def _ellipsoid(v: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+    """Centre and normalised shape matrix ``A`` (positive definite) of a quadric, or None if not an ellipsoid."""
+    A3 = np.array([[v[0], v[5], v[4]], [v[5], v[1], v[3]], [v[4], v[3], v[2]]])
+    centre = -np.linalg.solve(A3, v[6:9])
+    A = A3 / (centre @ A3 @ centre - v[9])
+    return (centre, A) if np.linalg.eigvalsh(A)[0] > 0 else None
+
+
+_UPPER = np.triu_indices(3)
+
+
+def _mag_condition(m: np.ndarray, offset: np.ndarray, W_inv: np.ndarray, F: float) -> float:
+    """cond of d(|W_inv (m - offset)| / F) / d(offset / F, W_inv entries): the geometric fit's Jacobian."""
+    d = m - offset
+    y = d @ W_inv.T
+    u = y / np.linalg.norm(y, axis=-1, keepdims=True)
+    dW = u[:, :, None] * d[:, None, :]
+    dW = dW + np.swapaxes(dW, 1, 2) * (1 - np.eye(3))          # symmetric: W_jk = W_kj, one parameter
+    return float(np.linalg.cond(np.concatenate([-u @ W_inv, dW[:, _UPPER[0], _UPPER[1]] / F], 1)))
+
+
+def _sqrtm_spd(A: np.ndarray) -> np.ndarray:
+    ev, V = np.linalg.eigh(A)
+    return (V * np.sqrt(ev)) @ V.T
+
+
+def fit_magnetometer(m_b: Vec3Series, field_strength: float | None = None) -> MagCalibration:
+    """Hard- and soft-iron calibration by an ellipsoid fit (Li & Griffiths 2004; module docstring).
+
+    Parameters
+    ----------
+    m_b : array_like, shape (N, 3)
+        Raw magnetometer samples (any unit, e.g. uT), N >= 9, taken while the sensor turns through as many
+        orientations as possible, away from local disturbances.
+    field_strength : float, optional
+        Known field strength (unit of ``m_b``), e.g. ``|earth.magnetic_field(...)|``; default: fitted,
+        with ``det W = 1``.
+
+    Returns
+    -------
+    MagCalibration
+
+    Raises
+    ------
+    ValueError
+        Fewer than 9 samples, NaN or inf, samples (nearly) in one plane (``MIN_THICKNESS``), too small a
+        range of orientations (``MAX_MAG_CONDITION``), or samples that no ellipsoid fits.
+    """
+    m = as_array(m_b, "m_b", shape=(None, 3))
+    if m.shape[0] < 9:
+        raise ValueError(f"m_b: expected at least 9 samples (an ellipsoid has 9 parameters), got {m.shape[0]}")
+    F = None if field_strength is None else scalar(field_strength, "field_strength", positive=True)
+    thick = _thickness(m)
+    if thick < MIN_THICKNESS:
+        raise ValueError(f"m_b: the samples lie (nearly) in one plane (thickness {thick:.3g} < {MIN_THICKNESS}): "
+                         "turning about one axis traces an ellipse, not the ellipsoid; turn the sensor through "
+                         "all orientations (e.g. each axis pointing up and down, or a figure eight in 3-D)")
+    c0 = m.mean(0)
+    s0 = float(np.sqrt(np.mean(np.sum((m - c0) ** 2, -1))))
+    fit = _ellipsoid(_quadric_li_griffiths((m - c0) / s0))
+    if fit is None:
+        raise ValueError("m_b: no ellipsoid fits the samples (too noisy or disturbed for their coverage)")
+    centre, A = c0 + s0 * fit[0], fit[1] / s0 ** 2
+    if F is None:
+        F = float(np.linalg.det(A) ** (-1 / 6))
+    W_inv = F * _sqrtm_spd(A)
+    W_inv = (W_inv + W_inv.T) / 2
+    cond = _mag_condition(m, centre, W_inv, F)
+    if not cond <= MAX_MAG_CONDITION:
+        raise ValueError(f"m_b: the orientations cover too little of the sphere to determine hard and soft iron "
+                         f"(condition number {cond:.3g} > {MAX_MAG_CONDITION:g}); tilt the sensor further, "
+                         "ideally pointing each axis up and down")
+    norm_raw = np.linalg.norm(m, axis=-1)
+    norm_cal = np.linalg.norm((m - centre) @ W_inv.T, axis=-1)
+    return MagCalibration(centre, W_inv, F, float(np.sqrt(np.mean((norm_cal - F) ** 2))),
+                          float(norm_raw.std()), float(norm_cal.std()), cond)
+
+
+# --------------------------------------------------------------------------
+# Accelerometer: multi-position
+# --------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class AccelCalibration:
+    """Accelerometer correction ``f_cal = matrix @ (f_raw - bias)``.
+
+    Construct it from stored values to apply a saved calibration; :func:`fit_accelerometer` also fills the
+    quality figures (NaN when unknown).
+
+    Attributes
+    ----------
+    bias : ndarray, shape (3,)
+        Bias ``b`` (m/s^2).
+    matrix : ndarray, shape (3, 3)
+        Correction ``S``: diagonal (inverse scale factors) or lower triangular (with non-orthogonality).
+    g : float
+        Gravity the fit matched (m/s^2).
+    residual : float
+        RMS of ``|f_cal| - g`` over the positions (m/s^2).
+    condition : float
+        Condition number of the fit's Jacobian (bias in units of g); see ``MAX_ACCEL_CONDITION``.
+    """
+    bias: np.ndarray
+    matrix: np.ndarray
+    g: float = units.G0
+    residual: float = np.nan
+    condition: float = np.nan
+
+    def __post_init__(self):
+        object.__setattr__(self, "bias", as_array(self.bias, "bias", shape=(3,)))
+        S = as_array(self.matrix, "matrix", shape=(3, 3))
+        if np.any(np.triu(S, 1) != 0) or np.any(np.diag(S) <= 0):
+            raise ValueError("matrix: expected a lower-triangular (or diagonal) matrix with a positive diagonal")
+        object.__setattr__(self, "matrix", S)
+        object.__setattr__(self, "g", scalar(self.g, "g", positive=True))
+
+    @property
+    def scale_factor(self) -> Array:
+        """Scale-factor errors (fraction, (3,)): ``diag(matrix^-1) - 1``, as in ``f_raw = (I + diag(sf)) f + b``."""
+        return np.diag(np.linalg.inv(self.matrix)) - 1.0
+
+    def apply(self, f_raw: Vec3) -> Array:
+        """Corrected specific force ``matrix @ (f_raw - bias)``, shape (..., 3) like ``f_raw`` (NaN propagates)."""
+        f = as_array(f_raw, "f_raw", tail=(3,), allow_nan=True)
+        return (f - self.bias) @ self.matrix.T
+
+
+_LOWER = np.tril_indices(3)      # (0,0), (1,0), (1,1), (2,0), (2,1), (2,2)
+
+
+def _unpack_params(p: np.ndarray, misalignment: bool) -> tuple[np.ndarray, np.ndarray]:
+    S = np.zeros((3, 3))
+    if misalignment:
+        S[_LOWER] = p[3:]
+    else:
+        S[np.diag_indices(3)] = p[3:]
+    return p[:3], S
+
+
+def _accel_residual(p: np.ndarray, f: np.ndarray, g: float, misalignment: bool) -> np.ndarray:
+    b, S = _unpack_params(p, misalignment)
+    return np.linalg.norm((f - b) @ S.T, axis=-1) - g
+
+
+def _accel_jacobian(p: np.ndarray, f: np.ndarray, g: float, misalignment: bool) -> np.ndarray:
+    """d residual / d p: ``-u^T S`` for the bias, ``u_i (f - b)_j`` for ``S_ij``; u = S (f - b) / |S (f - b)|."""
+    b, S = _unpack_params(p, misalignment)
+    y = (f - b) @ S.T
+    u = y / np.linalg.norm(y, axis=-1, keepdims=True)
+    dS = u[:, :, None] * (f - b)[:, None, :]
+    cols = dS[:, _LOWER[0], _LOWER[1]] if misalignment else dS[:, [0, 1, 2], [0, 1, 2]]
+    return np.concatenate([-u @ S, cols], axis=1)
+
+
+def _condition(p: np.ndarray, f: np.ndarray, g: float, misalignment: bool) -> float:
+    J = _accel_jacobian(p, f, g, misalignment)
+    J[:, :3] *= g                                   # bias in units of g: all parameters dimensionless
+    return float(np.linalg.cond(J))
+
+
+def fit_accelerometer(f_means: Vec3Series, g: float = units.G0, *, misalignment: bool = False) -> AccelCalibration:
+    """Accelerometer bias and scale factors from static positions (module docstring).
+
+    Parameters
+    ----------
+    f_means : array_like, shape (K, 3)
+        Mean specific force (m/s^2) of each static position, e.g. from
+        :func:`navlib.alignment.static_means`; K >= 6 (K >= 9 with ``misalignment``), in orientations
+        that point each axis up and down.
+    g : float
+        Local gravity (m/s^2), e.g. :func:`navlib.earth.gravity`; default one standard gravity.
+    misalignment : bool
+        Fit a lower-triangular ``S`` (scale factors and the three non-orthogonality angles) instead of a
+        diagonal one.
+
+    Returns
+    -------
+    AccelCalibration
+
+    Raises
+    ------
+    ValueError
+        Too few positions, NaN or inf, a zero mean, or orientations that do not determine the unknowns
+        (Jacobian condition number above ``MAX_ACCEL_CONDITION``).
+    """
+    f = as_array(f_means, "f_means", shape=(None, 3))
+    g = scalar(g, "g", positive=True)
+    misalignment = flag(misalignment, "misalignment")
+    need = 9 if misalignment else 6
+    if f.shape[0] < need:
+        raise ValueError(f"f_means: expected at least {need} static positions, got {f.shape[0]}")
+    norms = np.linalg.norm(f, axis=-1)
+    if np.any(norms == 0):
+        raise ValueError("f_means: expected non-zero mean specific forces")
+    s0 = g / norms.mean()
+    p0 = np.concatenate([np.zeros(3), s0 * (np.eye(3)[_LOWER] if misalignment else np.ones(3))])
+    cond = _condition(p0, f, g, misalignment)
+    if not cond <= MAX_ACCEL_CONDITION:
+        raise ValueError(f"f_means: the orientations do not determine bias and scale (condition number {cond:.3g} "
+                         f"> {MAX_ACCEL_CONDITION:g}); use positions that point each axis up and down, e.g. the six "
+                         "faces of a cube")
+    sol = least_squares(_accel_residual, p0, jac=_accel_jacobian, args=(f, g, misalignment), method="lm",
+                        x_scale=np.concatenate([np.full(3, g), np.abs(p0[3:]) + s0]))
+    b, S = _unpack_params(sol.x, misalignment)
+    S = np.sign(np.diag(S))[:, None] * S            # |S (f - b)| is blind to the signs of S's rows
+    return AccelCalibration(b, S, g, float(np.sqrt(np.mean(sol.fun ** 2))), _condition(sol.x, f, g, misalignment))
+
+
+# --------------------------------------------------------------------------
+# Gyro bias at rest
+# --------------------------------------------------------------------------
+
+def gyro_bias_at_rest(w_ib_b: Vec3Series, lat: float | None = None, C_bn: Dcm | None = None) -> tuple[Array, Array]:
+    """Gyro bias from a static record, and its standard error (module docstring).
+
+    Parameters
+    ----------
+    w_ib_b : array_like, shape (..., N, 3)
+        Gyro samples (rad/s) of a static IMU, N >= 2, no NaN.
+    lat : float, optional
+        Geodetic latitude (rad). Give it with ``C_bn`` to remove Earth rate.
+    C_bn : array_like, shape (3, 3) or (..., 3, 3), optional
+        Attitude during the record (body to ENU), e.g. :func:`navlib.alignment.triad`.
+
+    Returns
+    -------
+    bias : ndarray, shape (..., 3)
+        ``mean(w_ib_b) - C_bn^T w_ie_n`` (rad/s); without ``lat`` and ``C_bn``, the mean (Earth rate
+        included).
+    std_error : ndarray, shape (..., 3)
+        White-noise standard error of the mean, ``std(w_ib_b) / sqrt(N)`` (rad/s). Optimistic when the
+        record is longer than the Allan-deviation minimum (bias instability then dominates).
+    """
+    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1)
+    n = w.shape[-2]
+    if n < 2:
+        raise ValueError(f"w_ib_b: expected at least 2 samples, got {n}")
+    mean = w.mean(-2)
+    if (lat is None) != (C_bn is None):
+        given, missing = ("lat", "C_bn") if C_bn is None else ("C_bn", "lat")
+        raise ValueError(f"{missing}: required with {given} to remove Earth rate (give both or neither)")
+    if lat is not None:
+        mean = mean - earth.earth_rate_b(as_dcm(C_bn, "C_bn"), lat)      # validates lat (rad, scalar)
+    return mean, w.std(-2, ddof=1) / np.sqrt(n)
+
+
+# --------------------------------------------------------------------------
+# Noise characterisation from a static record
+# --------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class TriadNoise:
+    """Allan-deviation noise terms of one triad, per axis (field names as in :class:`navlib.sensors.TriadErrors`).
+
+    Units: rad/s for gyros, m/s^2 for accelerometers ("u" below).
+
+    Attributes
+    ----------
+    noise_density : ndarray, shape (3,)
+        White noise N (u/sqrt(Hz)): angle random walk (rad/sqrt(s)) or velocity random walk (m/s/sqrt(s)).
+    bias_instability : ndarray, shape (3,)
+        Peak Allan deviation B of the Gauss-Markov bias (u).
+    correlation_time : ndarray, shape (3,)
+        Gauss-Markov correlation time T_c (s); meaningless where ``bias_instability`` is 0.
+    rate_random_walk : ndarray, shape (3,)
+        K (u/s/sqrt(Hz)); 0 unless fitted.
+    noise_density_ci, bias_instability_ci, rate_random_walk_ci : ndarray, shape (3, 2)
+        Lower and upper confidence limits of each term (module docstring); an upper limit is ``inf`` where
+        the term is not identifiable from the record.
+    taus : ndarray, shape (M,)
+        Averaging times (s).
+    adev : ndarray, shape (M, 3)
+        Measured Allan deviation (u).
+    """
+    noise_density: np.ndarray
+    bias_instability: np.ndarray
+    correlation_time: np.ndarray
+    rate_random_walk: np.ndarray
+    noise_density_ci: np.ndarray
+    bias_instability_ci: np.ndarray
+    rate_random_walk_ci: np.ndarray
+    taus: np.ndarray
+    adev: np.ndarray
+
+    def to_triad_errors(self, combine: str = "rms") -> TriadErrors:
+        """The :class:`navlib.sensors.TriadErrors` these terms feed (one value for the three axes).
+
+        ``noise_density``, ``bias_instability`` and ``rate_random_walk`` are combined over the axes by
+        ``combine``: ``"rms"`` (the root mean square: the same total variance) or ``"max"`` (the worst axis,
+        conservative for a filter's process noise); ``correlation_time`` by the geometric mean over the axes
+        with a bias instability (the default 3600 s if none has one). Turn-on bias, scale factor,
+        misalignment and full scale are not observable from one static record and keep their defaults (set
+        them with :meth:`navlib.sensors.ImuModel.replace`).
+        """
+        combine = choice(combine, "combine", ("rms", "max"))
+
+        def one(x: np.ndarray) -> float:
+            return float(np.sqrt(np.mean(x * x)) if combine == "rms" else np.max(x))
+
+        tc = self.correlation_time[self.bias_instability > 0]
+        return TriadErrors(noise_density=one(self.noise_density), bias_instability=one(self.bias_instability),
+                           correlation_time=float(np.exp(np.mean(np.log(tc)))) if tc.size else TriadErrors.correlation_time,
+                           rate_random_walk=one(self.rate_random_walk))
+
+
+@dataclass(frozen=True)
+class NoiseCharacterisation:
+    """Noise terms of a static IMU record: :func:`characterise`.
+
+    Attributes
+    ----------
+    gyro, accel : TriadNoise
+        Gyro (rad/s) and accelerometer (m/s^2) terms.
+    dt : float
+        Sample interval (s).
+    n_samples : int
+        Record length N.
+    confidence : float
+        Confidence level of the intervals.
+    """
+    gyro: TriadNoise
+    accel: TriadNoise
+    dt: float
+    n_samples: int
+    confidence: float
+
+    @property
+    def angle_random_walk(self) -> Array:
+        """Gyro white noise density (rad/sqrt(s) = rad/s/sqrt(Hz)), (3,)."""
+        return self.gyro.noise_density
+
+    @property
+    def velocity_random_walk(self) -> Array:
+        """Accelerometer white noise density (m/s/sqrt(s) = m/s^2/sqrt(Hz)), (3,)."""
+        return self.accel.noise_density
+
+    def to_imu_model(self, name: str = "characterised", combine: str = "rms") -> ImuModel:
+        """The :class:`navlib.sensors.ImuModel` for :func:`navlib.sensors.simulate_imu` and the filters.
+
+        See :meth:`TriadNoise.to_triad_errors` for ``combine`` and what stays at its default.
+        """
+        instance(name, "name", str, "a string")
+        return ImuModel(self.gyro.to_triad_errors(combine), self.accel.to_triad_errors(combine), name)
+
+
+def _edf(noise: str, n_phase: int, m: np.ndarray) -> np.ndarray:
+    """Equivalent degrees of freedom of an overlapping Allan variance at cluster length ``m`` from ``n_phase``
+    integrated samples, by dominant noise (Howe, Allan & Barnes 1981; NIST SP 1065, Table 5)."""
+    N = float(n_phase)
+    if noise == "white":                                 # white rate noise (white FM)
+        edf = (3 * (N - 1) / (2 * m) - 2 * (N - 2) / N) * 4 * m * m / (4 * m * m + 5)
+    elif noise == "flicker":                             # flat floor of the bias instability (flicker FM)
+        edf = np.where(m < 2, 2 * (N - 2) ** 2 / (2.3 * N - 4.9), 5 * N * N / (4 * m * (N + 3 * m)))
+    else:                                                # rate random walk (random-walk FM)
+        edf = (N - 2) / (m * (N - 3) ** 2) * ((N - 1) ** 2 - 3 * m * (N - 1) + 4 * m * m)
+    return np.maximum(edf, 1.0)
+
+
+def _interval(edf: np.ndarray, confidence: float) -> np.ndarray:
+    """Factors (..., 2) scaling an Allan deviation with ``edf`` degrees of freedom to its interval."""
+    return np.stack([np.sqrt(edf / chi2.ppf((1 + confidence) / 2, edf)),
+                     np.sqrt(edf / chi2.ppf((1 - confidence) / 2, edf))], -1)
+
+
+def _fold_unobserved_peaks(terms: dict, tau_min: float, tau_max: float, rate_random_walk: bool) -> np.ndarray:
+    """Move a Gauss-Markov term whose Allan peak lies outside the averaging times into the term it mimics.
+
+    Its Allan variance ``sigma^2 g(tau / T_c)`` is ``2 sigma^2 T_c / tau`` for ``tau >> T_c`` (white noise
+    with ``N^2 = 2 sigma^2 T_c``) and ``2 sigma^2 tau / (3 T_c)`` for ``tau << T_c`` (rate random walk
+    with ``K^2 = 2 sigma^2 / T_c``); B and T_c are then not identifiable, only N or K. Beyond the record
+    it is folded into K only when K is fitted. Returns where the peak lies within the averaging times.
+    """
+    tc = terms["correlation_time"]
+    peak = analysis.GM_ALLAN_PEAK_TAU * tc
+    var = (terms["bias_instability"] / analysis.GM_ALLAN_PEAK) ** 2
+    below, beyond = peak < tau_min, (peak > tau_max) & rate_random_walk
+    terms["white"] = np.where(below, np.sqrt(terms["white"] ** 2 + 2 * var * tc), terms["white"])
+    terms["rate_random_walk"] = np.where(beyond, np.sqrt(terms["rate_random_walk"] ** 2 + 2 * var / tc),
+                                         terms["rate_random_walk"])
+    terms["bias_instability"] = np.where(below | beyond, 0.0, terms["bias_instability"])
+    return (peak >= tau_min) & (peak <= tau_max)
+
+
+def _triad_noise(x: np.ndarray, dt: float, rate_random_walk: bool, confidence: float) -> TriadNoise:
+    n = x.shape[0]
+    taus, adev = analysis.allan_deviation(x - x.mean(0), dt)
+    fits = [analysis.fit_allan(taus, adev[:, k], n, dt, rate_random_walk=rate_random_walk) for k in range(3)]
+    terms = {key: np.array([f[key] for f in fits]) for key in fits[0]}
+    observed = _fold_unobserved_peaks(terms, taus[0], taus[-1], rate_random_walk)
+
+    def factors(noise: str, tau: np.ndarray) -> np.ndarray:
+        m = np.clip(tau, taus[0], taus[-1]) / dt
+        return _interval(_edf(noise, n + 1, m), confidence)
+
+    B, K = terms["bias_instability"], terms["rate_random_walk"]
+    f_N = factors("white", np.full(3, 1.0))
+    f_B = factors("flicker", analysis.GM_ALLAN_PEAK_TAU * terms["correlation_time"])
+    f_K = factors("rrw", np.full(3, taus[-1]))
+    K_end = adev[-1] / np.sqrt(taus[-1] / 3)             # the largest K the longest averaging time allows
+    return TriadNoise(terms["white"], B, terms["correlation_time"], K, terms["white"][:, None] * f_N,
+                      np.stack([B * f_B[:, 0], np.where(observed & (B > 0), B * f_B[:, 1], np.inf)], -1),
+                      np.stack([K * f_K[:, 0], np.maximum(K, K_end) * f_K[:, 1]], -1), taus, adev)
+
+
+def _fixed_interval(dt: Interval, n: int) -> float:
+    """The one sample interval of ``dt`` (scalar, or per-sample intervals that agree to 1e-6)."""
+    d = intervals(dt, n)
+    if np.ptp(d) > 1e-6 * d.mean():
+        raise ValueError(f"dt: expected a fixed sample interval for the Allan deviation, got intervals from "
+                         f"{d.min():g} to {d.max():g} s (resample first)")
+    return float(d.mean())
+
+
+def characterise(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None, dt: Interval | None = None, *,
+                 rate_random_walk: bool = False, confidence: float = 0.95) -> NoiseCharacterisation:
+    """Characterise an IMU from a static record: per-axis Allan deviation and noise terms (module docstring).
+
+    Parameters
+    ----------
+    w_ib_b : array_like, shape (N, 3), or ImuSamples
+        Gyro samples (rad/s) of a static, temperature-stable IMU, N >= ``MIN_RECORD`` (hours are usual: the
+        bias instability needs averaging times beyond its correlation time). An
+        :class:`navlib.imu.ImuSamples` here supplies ``f_b`` and ``dt``.
+    f_b : array_like, shape (N, 3)
+        Accelerometer samples (m/s^2) of the same record.
+    dt : float or array_like, shape (N,)
+        Sample interval (s); per-sample intervals must all be equal.
+    rate_random_walk : bool
+        Also fit rate random walk K (otherwise K = 0).
+    confidence : float
+        Confidence level of the intervals, in (0, 1).
+
+    Returns
+    -------
+    NoiseCharacterisation
+        ``to_imu_model()`` gives the :class:`navlib.sensors.ImuModel` for the simulator and filters.
+
+    Raises
+    ------
+    ValueError
+        Wrong shapes, NaN (dropouts: the Allan deviation needs an unbroken record), too short a record,
+        irregular sampling.
+    """
+    w, f, dt, _, _ = unpack(w_ib_b, f_b, dt)
+    w, f = imu_samples(w, f, allow_nan=False)
+    if w.ndim != 2:
+        raise ValueError(f"w_ib_b: expected one record of shape (N, 3), got {w.shape}")
+    n = w.shape[0]
+    if n < MIN_RECORD:
+        raise ValueError(f"w_ib_b: expected a static record of at least {MIN_RECORD} samples, got {n}")
+    dt = _fixed_interval(dt, n)
+    rate_random_walk = flag(rate_random_walk, "rate_random_walk")
+    confidence = scalar(in_range(as_array(confidence, "confidence"), "confidence", 0.0, 1.0, lo_open=True,
+                                 hi_open=True), "confidence")
+    return NoiseCharacterisation(_triad_noise(w, dt, rate_random_walk, confidence),
+                                 _triad_noise(f, dt, rate_random_walk, confidence), dt, n, confidence)
