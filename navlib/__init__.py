@@ -8,7 +8,8 @@ Conventions (stated here once; every module follows them)
 Frames
     n, navigation: East-North-Up (ENU). b, body: right-front-up (x right,
     y forward, z up). The sensor frame equals b unless a notebook says
-    otherwise.
+    otherwise; :func:`navlib.attitude.mount_matrix` maps a sensor's axes to b, and
+    :mod:`navlib.io` reads real logs into these conventions.
 Attitude
     ``C_bn`` is C_b^n, body to navigation: ``v_n = C_bn @ v_b``.
     Euler angles ``hpr = [heading, pitch, roll]`` as in paper 000 Eq. (3):
@@ -53,15 +54,18 @@ from . import (
     analysis,
     atmosphere,
     attitude,
+    calibration,
     earth,
     euler,
     faults,
     filters,
     geodesy,
     imu,
+    io,
     kalman,
     montecarlo,
     papers,
+    pdr,
     plots,
     repro,
     robust,
@@ -74,9 +78,9 @@ from . import (
 
 __version__ = "0.1.0"
 
-__all__ = ["alignment", "analysis", "atmosphere", "attitude", "earth", "euler", "faults", "filters", "geodesy", "imu", "kalman",
-           "montecarlo", "papers", "plots", "repro", "robust", "sensors", "strapdown", "timing", "trajectory", "units",
-           "__version__"]
+__all__ = ["alignment", "analysis", "atmosphere", "attitude", "calibration", "earth", "euler", "faults", "filters",
+           "geodesy", "imu", "io", "kalman", "montecarlo", "papers", "pdr", "plots", "repro", "robust", "sensors",
+           "strapdown", "timing", "trajectory", "units", "__version__"]
 
 # The old paper modules, kept one release as deprecated aliases (see CONTRIBUTING.md): ``navlib.ahrs``
 # still works after ``import navlib``, and warns.

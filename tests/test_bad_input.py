@@ -73,6 +73,7 @@ from navlib import (  # noqa: E402
     euler,
     faults,
     imu,
+    io,
     kalman,
     montecarlo,
     pdr,
@@ -87,10 +88,12 @@ from navlib import (  # noqa: E402
 )
 from navlib.filters import heading_fusion, mahony, observations, planar_ekf, quaternion_kf, zupt  # noqa: E402
 
+IO_TABLE = __import__("pandas").DataFrame({"t": [0.0, 0.01, 0.02], "gx": [0.0] * 3, "gy": [0.0] * 3, "gz": [0.0] * 3})
+
 MODULES = ["attitude", "earth", "units", "sensors", "atmosphere", "trajectory", "strapdown",
            "kalman", "analysis", "repro", "plots", "montecarlo", "faults", "timing", "alignment", "robust",
            "euler", "pdr", "imu", "filters.zupt", "filters.mahony", "filters.quaternion_kf", "filters.observations",
-           "filters.planar_ekf", "filters.heading_fusion", "calibration"]
+           "filters.planar_ekf", "filters.heading_fusion", "calibration", "io"]
 
 NAN, INF = np.nan, np.inf
 STR = "abc"                      # a string where numbers are expected
@@ -979,10 +982,27 @@ CASES += [
     *dtype_rows("calibration.gyro_bias_at_rest", "w_ib_b", calibration.gyro_bias_at_rest, W),
     bad("calibration.characterise", "w_ib_b", "too_short", lambda: calibration.characterise(W, F, 0.01)),
     bad("calibration.characterise", "w_ib_b", "nan", lambda: calibration.characterise(with_nan(W_REC, (5, 0)), F_REC, 0.1)),
-    bad("calibration.characterise", "w_ib_b, f_b", "shape", lambda: calibration.characterise(W_REC, F_REC[:150], 0.1)),
+    bad("calibration.characterise", "f_b", "shape", lambda: calibration.characterise(W_REC, F_REC[:150], 0.1)),
     bad("calibration.characterise", "dt", "irregular", lambda: calibration.characterise(W_REC, F_REC, np.linspace(0.09, 0.11, 200))),
     bad("calibration.characterise", "confidence", "one", lambda: calibration.characterise(W_REC, F_REC, 0.1, confidence=1.0)),
     *dtype_rows("calibration.characterise", "f_b", lambda f: calibration.characterise(W_REC, f, 0.1), F_REC),
+    bad("io.from_dataframe", "df", "not_a_frame", lambda: io.from_dataframe({"t": [0, 1]}, time="t", units={})),
+    bad("io.from_dataframe", "columns", "missing", lambda: io.from_dataframe(IO_TABLE, time="t", units={"gyro": "rad/s"},
+                                                                             gyro=("gx", "gy", "nope"))),
+    bad("io.from_dataframe", "units['gyro']", "unknown", lambda: io.from_dataframe(IO_TABLE, time="t", units={"gyro": "rpm"},
+                                                                                   gyro=("gx", "gy", "gz"))),
+    bad("io.from_dataframe", "time_unit", "unknown", lambda: io.from_dataframe(IO_TABLE, time="t", time_unit="min",
+                                                                               units={"gyro": "rad/s"}, gyro=("gx", "gy", "gz"))),
+    bad("io.from_dataframe", "axes", "mirror", lambda: io.from_dataframe(IO_TABLE, time="t", units={"gyro": "rad/s"},
+                                                                         gyro=("gx", "gy", "gz"), axes="y,x,z")),
+    bad("io.read_csv", "path", "missing", lambda: io.read_csv("no/such/file.csv", time="t", units={})),
+    bad("io.read_xio", "path", "missing", lambda: io.read_xio("no/such/file.csv")),
+    bad("io.read_euroc", "path", "missing", lambda: io.read_euroc("no/such/data.csv")),
+    bad("io.read_sensor_logger", "directory", "missing", lambda: io.read_sensor_logger("no/such/dir")),
+    bad("io.align", "t_target", "decreasing", lambda: io.align([1.0, 0.0], [0.0, 1.0], [1.0, 2.0])),
+    bad("io.align", "x_source", "length", lambda: io.align([0.0, 1.0], [0.0, 1.0], [1.0, 2.0, 3.0])),
+    bad("io.align", "max_gap", "negative", lambda: io.align([0.0, 1.0], [0.0, 1.0], [1.0, 2.0], max_gap=-1.0)),
+    bad("io.align", "method", "unknown", lambda: io.align([0.0, 1.0], [0.0, 1.0], [1.0, 2.0], method="cubic")),
 ]
 
 def names_arg(arg):
@@ -1104,6 +1124,7 @@ def test_repro_nan_value_fails_the_claim(call, sandbox):
 # ----------------------------------------------------------------- coverage
 
 NOT_APPLICABLE = {
+    "io.Recording": "a result record, built by the readers",
     "robust.FaultReport": "a plain record of counts; nothing to validate",
     "alignment.StaticWindow": "a result record, built by static_means",
     "euler.EulerReport": "a result record, built by integrate_euler",
