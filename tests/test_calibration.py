@@ -330,7 +330,7 @@ F_REC = np.tile([0.0, 0.0, 9.8], (200, 1))
     ("w_ib_b", lambda: calibration.characterise(W_REC[:50], F_REC[:50], 0.1)),
     ("w_ib_b", lambda: calibration.characterise(np.where(np.arange(600).reshape(200, 3) == 5, np.nan, W_REC), F_REC, 0.1)),
     ("w_ib_b", lambda: calibration.characterise(np.stack([W_REC, W_REC]), np.stack([F_REC, F_REC]), 0.1)),
-    ("w_ib_b, f_b", lambda: calibration.characterise(W_REC, F_REC[:100], 0.1)),
+    ("f_b", lambda: calibration.characterise(W_REC, F_REC[:100], 0.1)),
     ("f_b", lambda: calibration.characterise(W_REC, None, 0.1)),
     ("f_b", lambda: calibration.characterise(ImuSamples(W_REC, F_REC, 0.1), F_REC)),
     ("dt", lambda: calibration.characterise(W_REC, F_REC, 0.0)),
