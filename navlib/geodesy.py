@@ -62,7 +62,7 @@ from ._validate import broadcast, choice, in_range, instance, nonempty_array, no
 from .earth import CGCS2000, Ellipsoid
 
 __all__ = ["zone", "central_meridian", "geodetic2gk", "gk2geodetic", "convergence", "scale_factor",
-           "meridian_arc", "geodetic2ecef", "ecef2geodetic", "geodetic2enu", "enu2geodetic",
+           "meridian_arc", "geodetic2ecef", "ecef2geodetic", "geodetic2enu", "enu2geodetic", "geodetic2ned", "ned2geodetic",
            "local_scales", "printed_zone_number", "printed_meridian_radius", "paper_radii", "paper_series"]
 
 ZONE_WIDTHS = (3, 6)
@@ -594,6 +594,19 @@ def enu2geodetic(e: ArrayLike, n: ArrayLike, u: ArrayLike, lat0: ArrayLike, lon0
     lat0, lon0 = lat0_r, lon0_r
     p = p0 + np.einsum("...ji,...j->...i", _enu_rotation(lat0, lon0), enu)
     return ecef2geodetic(p[..., 0], p[..., 1], p[..., 2], ellipsoid, deg)
+
+
+def geodetic2ned(lat: ArrayLike, lon: ArrayLike, h: ArrayLike, lat0: ArrayLike, lon0: ArrayLike, h0: ArrayLike,
+                 ellipsoid: Ellipsoid = CGCS2000, deg: bool = False) -> tuple[Array, Array, Array]:
+    """North, east, down (m) of geodetic points in the local frame at (lat0, lon0, h0): :func:`geodetic2enu` reordered."""
+    e, n, u = geodetic2enu(lat, lon, h, lat0, lon0, h0, ellipsoid, deg)
+    return n, e, -u
+
+
+def ned2geodetic(n: ArrayLike, e: ArrayLike, d: ArrayLike, lat0: ArrayLike, lon0: ArrayLike, h0: ArrayLike,
+                 ellipsoid: Ellipsoid = CGCS2000, deg: bool = False) -> tuple[Array, Array, Array]:
+    """Inverse of :func:`geodetic2ned`: geodetic lat, lon (rad or deg), h (m) of local NED points."""
+    return enu2geodetic(e, n, -nonempty_array(d, "d"), lat0, lon0, h0, ellipsoid, deg)
 
 
 # --------------------------------------------------------------------------

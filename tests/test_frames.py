@@ -10,7 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation
 
-from navlib import attitude
+from navlib import attitude, earth, geodesy
 
 angle = st.floats(-np.pi, np.pi, allow_nan=False)
 pitch = st.floats(-1.5, 1.5, allow_nan=False)
@@ -85,3 +85,15 @@ def test_mount_matrix_maps_sensor_axes_to_body_axes(axes, v_s, v_b):
 
 def test_mount_matrix_for_frd_is_the_ned_swap():
     np.testing.assert_array_equal(attitude.mount_matrix("y,x,-z"), attitude.M_NED_ENU)
+
+
+@settings(max_examples=50, deadline=None)
+@given(st.floats(-80, 80), st.floats(-179, 179), st.floats(-1e4, 1e4), st.floats(-2e4, 2e4))
+def test_geodetic_ned_round_trip_and_ahrs(lat0, lon0, dn, de):
+    lat, lon, h = lat0 + dn * 1e-5, lon0 + de * 1e-5, 120.0
+    n, e, d = geodesy.geodetic2ned(lat, lon, h, lat0, lon0, 10.0, earth.WGS84, deg=True)
+    enu = ahrs_frames.geodetic2enu(lat, lon, h, lat0, lon0, 10.0,                      # ahrs takes degrees
+                                   a=earth.WGS84.a, b=earth.WGS84.b)
+    np.testing.assert_allclose([e, n, -d], np.ravel(enu), atol=1e-6)
+    back = geodesy.ned2geodetic(n, e, d, lat0, lon0, 10.0, earth.WGS84, deg=True)
+    np.testing.assert_allclose(back, [lat, lon, h], atol=1e-9)
