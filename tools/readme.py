@@ -24,7 +24,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from navlib.papers import CONVENTIONS  # noqa: E402  (the registry: one entry per paper)
+from navlib.papers import CHAPTERS  # noqa: E402  (notebooks without a paper)
 from navlib.papers import PAPERS as REGISTRY  # noqa: E402
 
 README = ROOT / "README.md"
@@ -32,13 +32,14 @@ CLAIMS = ROOT / "data" / "claims.csv"
 START, END = "<!-- results:start -->", "<!-- results:end -->"
 
 # notebook stem -> (paper id in claims.csv, short citation), from the paper registry
-PAPERS = {CONVENTIONS: (None, "conventions, sensor models, strapdown error theory")}
+PAPERS = {stem: (None, title) for stem, title in CHAPTERS.items()}
 PAPERS.update({p.notebook: (p.claims_id, p.citation) for p in REGISTRY})
 # figures shown in the README: (notebook, figure stem)
 GALLERY = [("00_conventions_sensors", "allan_gyros"), ("00_conventions_sensors", "ins_error_theory"),
            ("01_north_finding", "fig4_rmse_vs_heading"), ("02_rotation_bias", "fig6_heading_error"),
            ("03_gauss_kruger_ekf", "fig4_fig5_tracks"), ("04_mimu_mag_rtk", "fig4_heading_modes"),
-           ("05_pedestrian_ins", "fig4_floor_test"), ("05_pedestrian_ins", "carpark_trajectory_error")]
+           ("05_pedestrian_ins", "fig4_floor_test"), ("05_pedestrian_ins", "carpark_trajectory_error"),
+           ("06_real_recordings", "attitude_real")]
 GALLERY_WIDTH_PX = 480
 
 

@@ -45,12 +45,12 @@ from nbconvert.filters.markdown_mistune import markdown2html_mistune
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO))
 
-from navlib.papers import CONVENTIONS, PAPERS  # noqa: E402  (the registry: one entry per paper)
+from navlib.papers import CHAPTERS, PAPERS  # noqa: E402  (the registry: one entry per paper)
 
 
 def unregistered(notebooks: list[Path]) -> list[str]:
-    """Notebook stems that are neither notebook 00 nor a registered paper (navlib/papers/__init__.py)."""
-    known = {CONVENTIONS} | {p.notebook for p in PAPERS}
+    """Notebook stems that are neither a chapter without a paper nor a registered paper (navlib/papers/__init__.py)."""
+    known = set(CHAPTERS) | {p.notebook for p in PAPERS}
     return [p.stem for p in notebooks if p.stem not in known]
 
 

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["Paper", "PAPERS", "CONVENTIONS", "by_notebook"]
+__all__ = ["Paper", "PAPERS", "CONVENTIONS", "REAL_DATA", "CHAPTERS", "by_notebook"]
 
 
 @dataclass(frozen=True)
@@ -45,6 +45,11 @@ class Paper:
 
 CONVENTIONS = "00_conventions_sensors"
 """Notebook 00: conventions and sensor-model validation (no paper)."""
+REAL_DATA = "06_real_recordings"
+"""Notebook 06: the methods on public real recordings (no paper)."""
+CHAPTERS: dict[str, str] = {CONVENTIONS: "conventions, sensor models, strapdown error theory",
+                            REAL_DATA: "the methods on public real recordings (data/real/)"}
+"""The notebooks that reproduce no paper, with their one-line titles."""
 
 PAPERS: tuple[Paper, ...] = (
     Paper("north_finding", 1, "000", "Tan & Xie — single-axis optical gyro + MEMS IMU north finding"),
