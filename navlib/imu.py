@@ -1,8 +1,11 @@
 """IMU samples validated once: :class:`ImuSamples`, accepted by navlib's IMU filters beside raw arrays.
 
-A filter that takes ``(w_ib_b, f_b, dt)`` also takes an :class:`ImuSamples` in place of ``w_ib_b``
-with ``f_b`` and ``dt`` left out; the device ranges it carries become the filter's
-``full_scale_gyro`` / ``full_scale_accel`` (where the filter has them). E.g.::
+Every navlib function that takes IMU samples ``(w_ib_b, f_b, dt)`` also takes an :class:`ImuSamples`
+in place of ``w_ib_b`` with ``f_b`` and ``dt`` left out -- the filters (``mahony``, ``quaternion_kf``,
+``zupt_ins.run_filter``, ``strapdown.integrate``), ``euler.integrate_euler``, ``zupt.detect_static``,
+``alignment.static_means``, ``calibration.characterise`` and the paper companions' IMU functions; the
+device ranges it carries become the function's ``full_scale_gyro`` / ``full_scale_accel`` (where it has
+them). :meth:`navlib.io.Recording.imu` builds one from a real log. E.g.::
 
     imu = ImuSamples(w_ib_b, f_b, dt, full_scale_gyro=model.gyro.full_scale)
     res = mahony.mahony(imu, q0=q0, m_b=m_b)
