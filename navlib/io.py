@@ -40,7 +40,7 @@ from . import attitude
 from ._typing import Array, ArrayLike, Dcm, Times
 from ._validate import as_array, choice, flag, scalar, time_axis
 from .imu import ImuSamples
-from .timing import TimingReport, sanitize
+from .timing import TimingReport, intervals, sanitize
 from .units import G0
 
 __all__ = ["UNITS", "TIME_UNITS", "Recording", "read_csv", "from_dataframe", "read_xio", "read_sensor_logger",
@@ -100,9 +100,10 @@ class Recording:
         """Number of samples N."""
         return self.time.size
 
-    def intervals(self) -> Array:
+    @property
+    def dt(self) -> Array:
         """Interval covered by each sample (s), shape (N,): ``t[k] - t[k-1]``, the first one repeating the second."""
-        dt = np.diff(self.time)
+        dt = intervals(self.time)
         return np.concatenate([dt[:1], dt])
 
     def imu(self, full_scale_gyro: float | None = None, full_scale_accel: float | None = None) -> ImuSamples:
@@ -111,7 +112,7 @@ class Recording:
             raise ValueError(f"recording: has no {'gyro' if self.w_ib_b is None else 'accelerometer'} samples")
         ranges = {k: v for k, v in (("full_scale_gyro", full_scale_gyro), ("full_scale_accel", full_scale_accel))
                   if v is not None}
-        return ImuSamples(self.w_ib_b, self.f_b, self.intervals(), **ranges)
+        return ImuSamples(self.w_ib_b, self.f_b, self.dt, **ranges)
 
     def __str__(self) -> str:
         rate = 1.0 / np.median(np.diff(self.time))
