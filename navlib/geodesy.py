@@ -1,16 +1,18 @@
-"""Gauss–Krüger projection, zone numbers, meridian arc, geodetic <-> local ENU.
+"""Gauss–Krüger projection, zone numbers, meridian arc, geodetic <-> ECEF <-> local ENU/NED.
 
-Paper 002: Zhao Y., Nie X., Fang S., Wu H., "Research on inertial navigation/GPS
-robot combined positioning based on Gaussian projection", *Machine Building &
-Automation* 52(1): 173–176, 2023, doi:10.19344/j.cnki.issn1671-5276.2023.01.043.
+Generic geodesy: every ``ellipsoid`` defaults to ``earth.WGS84``, as in
+other geodesy libraries (pymap3d, PROJ); pass ``earth.CGCS2000`` for China's
+national grid. GK is the tangent transverse Mercator (scale 1 on the central
+meridian, no 0.9996 as in UTM). As in Chinese practice, **x is the northing**
+(meridian arc from the equator) and **y the easting** from the central
+meridian; no false easting and no zone prefix unless asked for
+(``false_easting=500e3, zone_prefix=True`` gives EPSG:4528-style eastings
+such as 40 419 944.950 m on CGCS2000).
 
-The paper projects GPS latitude/longitude to Gauss–Krüger (GK) plane
-coordinates in 3° zones before its EKF (:mod:`navlib.papers.gauss_kruger_ekf`). GK is the
-tangent transverse Mercator (scale 1 on the central meridian, no 0.9996 as in
-UTM). As in the paper and Chinese practice, **x is the northing** (meridian
-arc from the equator) and **y the easting** from the central meridian; no
-false easting and no zone prefix unless asked for (``false_easting=500e3,
-zone_prefix=True`` gives EPSG:4528-style eastings such as 40 419 944.950 m).
+Paper 002 (Zhao et al. 2023, :mod:`navlib.papers.gauss_kruger_ekf`) projects
+GPS latitude/longitude to GK coordinates in 3° zones before its EKF; that
+companion holds the paper's own equations (printed zone number, radii, the
+e^8 meridian-arc series and the sixth-order series in l) and their errata.
 
 Implementation
 --------------
@@ -18,52 +20,52 @@ Implementation
 flattening n to order n^6 (Karney 2011, "Transverse Mercator with an accuracy
 of a few nanometers", J. Geodesy 85:475, eqs. 7–11, 35–36), evaluated with
 Clenshaw summation on complex numbers: ~nm error within 3900 km of the central
-meridian, so the paper's 3° zones are far inside its range. The inverse solves
+meridian, so 3° and 6° zones are far inside its range. The inverse solves
 the conformal latitude by Newton's method. Grid convergence and point scale
 come from the derivative of the same series (:func:`convergence`,
-:func:`scale_factor`).
+:func:`scale_factor`); :func:`meridian_arc` is the same series on the
+central meridian.
 
-The paper's own equations are kept for comparison:
+Zone numbers: 3° zone n covers ``3n ± 1.5°``, so :func:`zone` uses
+``n = floor((L + 1.5)/3)`` (0 ≤ L < 1.5° E is zone 120, central meridian 0°;
+paper 002 prints ``n = (L - 1.5)/3``, erratum E002-01).
 
-* Eq. (1)–(2) zone number: printed ``n = (L - 1.5)/3`` is not an integer
-  (erratum E002-01); :func:`zone` uses ``n = floor((L + 1.5)/3)`` (0 ≤ L < 1.5° E
-  is zone 120, central meridian 0°). :func:`printed_zone_number` returns
-  the printed value for the errata demonstration.
-* Eq. (3)–(6) eccentricities and radii (:func:`paper_radii`); Eq. (6) as
-  printed, ``a^2 (1 - e1^2) / sqrt((1 + e2^2 sin^2 W)^(3/2))``, is wrong by
-  seven orders of magnitude (erratum E002-02, :func:`printed_meridian_radius`).
-* Eq. (7)–(8) meridian arc ``S`` to e^8 (``meridian_arc(series="paper")``;
-  correct, erratum E002-05).
-* Eq. (9)–(11) sixth-order series in l (:func:`paper_series`). As printed,
-  the l^6 term of x has ``R_N/72`` and ``270 eta^4``; the correct values are
-  ``R_N/720`` and ``270 eta^2`` (erratum E002-03), ``N`` means ``R_N``, and l, W are
-  in radians (erratum E002-04). ``typos=True`` keeps the printed typos only to show
-  the error they cause.
-
-Longitude is ``lon`` and latitude ``lat`` (the paper writes L for longitude,
-W for latitude). Angles in rad unless ``deg=True``; distances in m.
+Longitude is ``lon`` and latitude ``lat``. Angles in rad unless ``deg=True``;
+distances in m.
 
 Bad input: every public function raises an error whose message starts with
 the argument's name -- ``TypeError`` (navlib's ``InputTypeError``, also a
-``ValueError``) for strings, complex, boolean, object or ragged input and a
-``ellipsoid`` that is not an :class:`navlib.earth.Ellipsoid`; ``ValueError``
-for NaN, infinity (no function here takes NaN as a marker), empty arrays,
-shapes that do not broadcast, and out-of-range values (|lat| > 90°, a
-longitude too far from the zone, zone numbers, ``k0``, ``width``...).
+``ValueError``) for strings, complex, boolean, object or ragged input, a
+``ellipsoid`` that is not an :class:`navlib.earth.Ellipsoid` and a ``project``
+that is not callable; ``ValueError`` for NaN, infinity (no function here takes
+NaN as a marker), empty arrays, shapes that do not broadcast, and out-of-range
+values (|lat| > 90°, a longitude too far from the zone, zone numbers, ``k0``,
+``width``...).
 """
 from __future__ import annotations
 
 import functools
+from collections.abc import Callable
 
 import numpy as np
 
 from ._typing import Array, ArrayLike
 from ._validate import broadcast, choice, in_range, instance, nonempty_array, nonempty_latitude
-from .earth import CGCS2000, Ellipsoid
+from .earth import WGS84, Ellipsoid, radii
 
 __all__ = ["zone", "central_meridian", "geodetic2gk", "gk2geodetic", "convergence", "scale_factor",
            "meridian_arc", "geodetic2ecef", "ecef2geodetic", "geodetic2enu", "enu2geodetic", "geodetic2ned", "ned2geodetic",
-           "local_scales", "printed_zone_number", "printed_meridian_radius", "paper_radii", "paper_series"]
+           "local_scales"]
+
+_MOVED = {name: "navlib.papers.gauss_kruger_ekf." + name      # paper 002's own equations, now in its companion
+          for name in ("printed_zone_number", "printed_meridian_radius", "paper_radii", "paper_series")}
+
+
+def __getattr__(name: str):
+    """Name the new home of the paper functions moved out (core may not import a companion, so no aliases)."""
+    if name in _MOVED:
+        raise AttributeError(f"geodesy.{name} moved to {_MOVED[name]}")
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 ZONE_WIDTHS = (3, 6)
 _MAX_OFFSET_DEG = 60.0          # hard limit from the central meridian (series valid to ~ 3900 km at 35° N)
@@ -75,7 +77,7 @@ _PREFIX_UNIT = 1e6              # zone number times 1e6 m prefixed to the eastin
 # --------------------------------------------------------------------------
 
 def _ell(ellipsoid) -> Ellipsoid:
-    return instance(ellipsoid, "ellipsoid", Ellipsoid, "a navlib.earth.Ellipsoid (e.g. earth.CGCS2000)", error=TypeError)
+    return instance(ellipsoid, "ellipsoid", Ellipsoid, "a navlib.earth.Ellipsoid (e.g. earth.WGS84)", error=TypeError)
 
 
 def _max_offset(max_offset_deg):
@@ -302,7 +304,7 @@ def _validate_lat_lon(lat, lon, deg):
 
 
 def geodetic2gk(lat: ArrayLike, lon: ArrayLike, *, zone: ArrayLike | None = None, lon0: ArrayLike | None = None,
-                width: int = 3, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False, k0: float = 1.0,
+                width: int = 3, ellipsoid: Ellipsoid = WGS84, deg: bool = False, k0: float = 1.0,
                 false_easting: float = 0.0, false_northing: float = 0.0, zone_prefix: bool = False,
                 max_offset_deg: float | None = None) -> tuple[Array, Array]:
     """Gauss–Krüger forward projection (Eq. 9, by Krüger's n-series).
@@ -319,7 +321,8 @@ def geodetic2gk(lat: ArrayLike, lon: ArrayLike, *, zone: ArrayLike | None = None
     width : {3, 6}
         Zone width (deg); the paper uses 3° zones.
     ellipsoid : earth.Ellipsoid
-        ``earth.CGCS2000`` (default), ``earth.WGS84``, ``earth.KRASSOVSKY``...
+        Default WGS84; pass ``earth.CGCS2000`` for China's national grid
+        (``earth.KRASSOVSKY`` for the older Beijing 1954 grid...).
     k0 : float
         Scale on the central meridian: 1 for GK (0.9996 for UTM).
     false_easting, false_northing : float
@@ -353,7 +356,7 @@ def geodetic2gk(lat: ArrayLike, lon: ArrayLike, *, zone: ArrayLike | None = None
 
 
 def gk2geodetic(x: ArrayLike, y: ArrayLike, *, zone: ArrayLike | None = None, lon0: ArrayLike | None = None,
-                width: int = 3, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False, k0: float = 1.0,
+                width: int = 3, ellipsoid: Ellipsoid = WGS84, deg: bool = False, k0: float = 1.0,
                 false_easting: float = 0.0, false_northing: float = 0.0, zone_prefix: bool = False) -> tuple[Array, Array]:
     """Gauss–Krüger inverse projection.
 
@@ -410,7 +413,7 @@ def _factors(lat, lon, zone, lon0, width, ellipsoid, deg, max_offset_deg):
 
 
 def convergence(lat: ArrayLike, lon: ArrayLike, *, zone: ArrayLike | None = None, lon0: ArrayLike | None = None,
-                width: int = 3, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False,
+                width: int = 3, ellipsoid: Ellipsoid = WGS84, deg: bool = False,
                 max_offset_deg: float | None = None) -> Array:
     """Grid (meridian) convergence gamma: the grid bearing of true north is ``-gamma``.
 
@@ -431,7 +434,7 @@ def convergence(lat: ArrayLike, lon: ArrayLike, *, zone: ArrayLike | None = None
 
 
 def scale_factor(lat: ArrayLike, lon: ArrayLike, *, zone: ArrayLike | None = None, lon0: ArrayLike | None = None,
-                 width: int = 3, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False, k0: float = 1.0,
+                 width: int = 3, ellipsoid: Ellipsoid = WGS84, deg: bool = False, k0: float = 1.0,
                  max_offset_deg: float | None = None) -> Array:
     """Point scale factor k of the projection (1 on the central meridian for GK).
 
@@ -442,70 +445,77 @@ def scale_factor(lat: ArrayLike, lon: ArrayLike, *, zone: ArrayLike | None = Non
     return k0 * k
 
 
-def meridian_arc(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False, series: str = "kruger") -> Array:
-    """Meridian arc length S from the equator (m).
+def meridian_arc(lat: ArrayLike, ellipsoid: Ellipsoid = WGS84, deg: bool = False) -> Array:
+    """Meridian arc length S from the equator (m), by Krüger's n^6 series (nm accuracy).
 
     Parameters
     ----------
     lat : array_like, shape (...)
         Geodetic latitude (rad, or deg with ``deg=True``).
-    series : {"kruger", "paper"}
-        ``"kruger"``: Krüger's n^6 series (nm accuracy). ``"paper"``: Eqs.
-        (7)–(8), ``S = a(1-e^2)[A W - B/2 sin 2W + C/4 sin 4W - D/6 sin 6W + E/8 sin 8W]``
-        to e^8 (1e-8 m at 26°, 1e-4 m near the pole).
+    ellipsoid : earth.Ellipsoid
+        Default WGS84; pass ``earth.CGCS2000`` for China's national grid.
+
+    Returns
+    -------
+    S : ndarray, shape (...)
     """
     _ell(ellipsoid)
     lat = nonempty_latitude(lat, "lat", deg=deg)
-    if choice(series, "series", ("kruger", "paper")) == "kruger":
-        return _forward(lat, np.zeros_like(lat), ellipsoid)[0]
-    e2 = ellipsoid.e2
-    e4, e6, e8 = e2 ** 2, e2 ** 3, e2 ** 4
-    A = 1 + 3 / 4 * e2 + 45 / 64 * e4 + 175 / 256 * e6 + 11025 / 16384 * e8
-    B = 3 / 4 * e2 + 15 / 16 * e4 + 525 / 512 * e6 + 2205 / 2048 * e8
-    C = 15 / 64 * e4 + 105 / 256 * e6 + 2205 / 4096 * e8
-    D = 35 / 512 * e6 + 315 / 2048 * e8
-    E = 315 / 16384 * e8
-    return ellipsoid.a * (1 - e2) * (A * lat - B / 2 * np.sin(2 * lat) + C / 4 * np.sin(4 * lat)
-                                     - D / 6 * np.sin(6 * lat) + E / 8 * np.sin(8 * lat))
+    return _forward(lat, np.zeros_like(lat), ellipsoid)[0]
 
 
-def local_scales(lat: ArrayLike, lon: ArrayLike, lon0: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False,
-                 series: str = "kruger", step: float = 1e-6) -> tuple[Array, Array, Array]:
+def _gk_project(lat, lon, lon0, ellipsoid):
+    """:func:`geodetic2gk` about the central meridian lon0 (all rad), any offset up to the series' 60° limit."""
+    return geodetic2gk(lat, lon, lon0=lon0, ellipsoid=ellipsoid, max_offset_deg=_MAX_OFFSET_DEG)
+
+
+def local_scales(lat: ArrayLike, lon: ArrayLike, lon0: ArrayLike, ellipsoid: Ellipsoid = WGS84, deg: bool = False,
+                 project: Callable[..., tuple[Array, Array]] | None = None,
+                 step: float = 1e-6) -> tuple[Array, Array, Array]:
     """Meridian and parallel scale factors and the angle between their images, by central differences.
 
     A conformal projection has equal scales ``h = k`` and images of meridian
     and parallel at right angles; this measures both for :func:`geodetic2gk`
-    (``series="kruger"``) or the corrected paper series (``series="paper"``).
+    (default) or any other projection passed as ``project``.
 
     Parameters
     ----------
     lat, lon, lon0 : array_like, broadcasting to shape (...)
         rad, or deg with ``deg=True``.
+    ellipsoid : earth.Ellipsoid
+        Default WGS84; pass ``earth.CGCS2000`` for China's national grid.
+    project : callable, optional
+        ``project(lat, lon, lon0, ellipsoid) -> (x, y)`` with angles in rad and
+        x, y in m, evaluated on arrays of shape (...); default
+        :func:`geodetic2gk` about the central meridian ``lon0``.
     step : float
         Difference step (rad).
 
     Returns
     -------
     h, k : ndarray, shape (...)
-        Meridian scale ``|dP/dlat| / R_M`` and parallel scale ``|dP/dlon| / (R_N cos lat)``.
+        Meridian scale ``|dP/dlat| / R_M`` and parallel scale ``|dP/dlon| / (R_N cos lat)``
+        (radii of curvature from :func:`navlib.earth.radii`).
     angle : ndarray, shape (...)
         Angle between the images of the meridian and the parallel (rad; pi/2 if conformal).
     """
     _ell(ellipsoid)
-    choice(series, "series", ("kruger", "paper"))
+    if project is None:
+        project = _gk_project
+    elif not callable(project):
+        raise TypeError(f"project: expected a callable (lat, lon, lon0, ellipsoid) -> (x, y), "
+                        f"got {type(project).__name__}")
     step = float(in_range(nonempty_array(step, "step"), "step", 0.0, 1e-2, lo_open=True))
     lat_r, lon_d = _validate_lat_lon(lat, lon, deg)
     lon0_d = _lon_deg(lon0, deg, "lon0")
     lon_r, lon0_r = np.deg2rad(lon_d), np.deg2rad(lon0_d)
 
-    def project(la, lo):
-        if series == "paper":
-            return np.stack(paper_series(la, lo, lon0_r, ellipsoid), -1)
-        return np.stack(geodetic2gk(la, lo, lon0=lon0_r, ellipsoid=ellipsoid, max_offset_deg=_MAX_OFFSET_DEG), -1)
+    def xy(la, lo):
+        return np.stack(project(la, lo, lon0_r, ellipsoid), -1)
 
-    d_lat = (project(lat_r + step, lon_r) - project(lat_r - step, lon_r)) / (2 * step)
-    d_lon = (project(lat_r, lon_r + step) - project(lat_r, lon_r - step)) / (2 * step)
-    _, _, R_N, R_M = paper_radii(lat_r, ellipsoid)
+    d_lat = (xy(lat_r + step, lon_r) - xy(lat_r - step, lon_r)) / (2 * step)
+    d_lon = (xy(lat_r, lon_r + step) - xy(lat_r, lon_r - step)) / (2 * step)
+    R_M, R_N = radii(lat_r, ellipsoid=ellipsoid)
     h = np.linalg.norm(d_lat, axis=-1) / R_M
     k = np.linalg.norm(d_lon, axis=-1) / (R_N * np.cos(lat_r))
     cross = d_lat[..., 0] * d_lon[..., 1] - d_lat[..., 1] * d_lon[..., 0]
@@ -517,9 +527,12 @@ def local_scales(lat: ArrayLike, lon: ArrayLike, lon0: ArrayLike, ellipsoid: Ell
 # Geodetic <-> ECEF <-> local ENU (pymap3d-style)
 # --------------------------------------------------------------------------
 
-def geodetic2ecef(lat: ArrayLike, lon: ArrayLike, h: ArrayLike, ellipsoid: Ellipsoid = CGCS2000,
+def geodetic2ecef(lat: ArrayLike, lon: ArrayLike, h: ArrayLike, ellipsoid: Ellipsoid = WGS84,
                   deg: bool = False) -> tuple[Array, Array, Array]:
-    """Earth-centred Earth-fixed coordinates (m) of geodetic points; returns x, y, z of shape (...)."""
+    """Earth-centred Earth-fixed coordinates (m) of geodetic points; returns x, y, z of shape (...).
+
+    ``ellipsoid``: default WGS84; pass ``earth.CGCS2000`` for China's national grid.
+    """
     _ell(ellipsoid)
     lat, lon_deg = _validate_lat_lon(lat, lon, deg)
     lon = np.deg2rad(lon_deg)
@@ -530,12 +543,13 @@ def geodetic2ecef(lat: ArrayLike, lon: ArrayLike, h: ArrayLike, ellipsoid: Ellip
     return r * np.cos(lon), r * np.sin(lon), (R_N * (1 - ellipsoid.e2) + h) * np.sin(lat)
 
 
-def ecef2geodetic(x: ArrayLike, y: ArrayLike, z: ArrayLike, ellipsoid: Ellipsoid = CGCS2000,
+def ecef2geodetic(x: ArrayLike, y: ArrayLike, z: ArrayLike, ellipsoid: Ellipsoid = WGS84,
                   deg: bool = False) -> tuple[Array, Array, Array]:
     """Geodetic latitude, longitude (rad or deg) and height (m) of ECEF points (m).
 
     Bowring's iteration on the parametric latitude (three steps reach 1e-15
-    rad for points within 100 km of the surface).
+    rad for points within 100 km of the surface). ``ellipsoid``: default WGS84;
+    pass ``earth.CGCS2000`` for China's national grid.
     """
     _ell(ellipsoid)
     x, y, z = broadcast(nonempty_array(x, "x"), nonempty_array(y, "y"), nonempty_array(z, "z"), name="x, y, z")
@@ -569,11 +583,12 @@ def _enu_rotation(lat0, lon0):
 
 
 def geodetic2enu(lat: ArrayLike, lon: ArrayLike, h: ArrayLike, lat0: ArrayLike, lon0: ArrayLike, h0: ArrayLike,
-                 ellipsoid: Ellipsoid = CGCS2000, deg: bool = False) -> tuple[Array, Array, Array]:
+                 ellipsoid: Ellipsoid = WGS84, deg: bool = False) -> tuple[Array, Array, Array]:
     """East, north, up (m) of geodetic points in the local tangent frame at (lat0, lon0, h0).
 
     All arguments broadcast; angles in rad (deg with ``deg=True``). Returns
-    e, n, u of shape (...).
+    e, n, u of shape (...). ``ellipsoid``: default WGS84; pass ``earth.CGCS2000``
+    for China's national grid.
     """
     _ell(ellipsoid)
     lat0_r, lon0_r, _ = _validate_origin(lat0, lon0, h0, deg)
@@ -585,7 +600,7 @@ def geodetic2enu(lat: ArrayLike, lon: ArrayLike, h: ArrayLike, lat0: ArrayLike, 
 
 
 def enu2geodetic(e: ArrayLike, n: ArrayLike, u: ArrayLike, lat0: ArrayLike, lon0: ArrayLike, h0: ArrayLike,
-                 ellipsoid: Ellipsoid = CGCS2000, deg: bool = False) -> tuple[Array, Array, Array]:
+                 ellipsoid: Ellipsoid = WGS84, deg: bool = False) -> tuple[Array, Array, Array]:
     """Inverse of :func:`geodetic2enu`: geodetic lat, lon (rad or deg), h (m) of local ENU points."""
     _ell(ellipsoid)
     enu = np.stack(broadcast(nonempty_array(e, "e"), nonempty_array(n, "n"), nonempty_array(u, "u"), name="e, n, u"), -1)
@@ -597,95 +612,14 @@ def enu2geodetic(e: ArrayLike, n: ArrayLike, u: ArrayLike, lat0: ArrayLike, lon0
 
 
 def geodetic2ned(lat: ArrayLike, lon: ArrayLike, h: ArrayLike, lat0: ArrayLike, lon0: ArrayLike, h0: ArrayLike,
-                 ellipsoid: Ellipsoid = CGCS2000, deg: bool = False) -> tuple[Array, Array, Array]:
+                 ellipsoid: Ellipsoid = WGS84, deg: bool = False) -> tuple[Array, Array, Array]:
     """North, east, down (m) of geodetic points in the local frame at (lat0, lon0, h0): :func:`geodetic2enu` reordered."""
     e, n, u = geodetic2enu(lat, lon, h, lat0, lon0, h0, ellipsoid, deg)
     return n, e, -u
 
 
 def ned2geodetic(n: ArrayLike, e: ArrayLike, d: ArrayLike, lat0: ArrayLike, lon0: ArrayLike, h0: ArrayLike,
-                 ellipsoid: Ellipsoid = CGCS2000, deg: bool = False) -> tuple[Array, Array, Array]:
+                 ellipsoid: Ellipsoid = WGS84, deg: bool = False) -> tuple[Array, Array, Array]:
     """Inverse of :func:`geodetic2ned`: geodetic lat, lon (rad or deg), h (m) of local NED points."""
     return enu2geodetic(e, n, -nonempty_array(d, "d"), lat0, lon0, h0, ellipsoid, deg)
 
-
-# --------------------------------------------------------------------------
-# The paper's printed equations (errata demonstrations only)
-# --------------------------------------------------------------------------
-
-def printed_zone_number(lon: ArrayLike, deg: bool = False) -> Array:
-    """Eq. (1) exactly as printed, ``n = (L - 1.5)/3`` (L in deg): not an integer (erratum E002-01).
-
-    Taken literally with Eq. (2), ``L0 = 3n = L - 1.5°``, so l = 1.5° for
-    every point. Use :func:`zone` instead.
-    """
-    return (_lon_deg(lon, deg) - 1.5) / 3.0
-
-
-def paper_radii(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False) -> tuple[float, float, Array, Array]:
-    """Eqs. (3)–(6): first and second eccentricities and the radii R_N, R_M (m).
-
-    ``e1 = sqrt(a^2 - b^2)/a``, ``e2 = sqrt(a^2 - b^2)/b``,
-    ``R_N = (a^2/b)/sqrt(1 + e2^2 cos^2 W)`` and the corrected Eq. (6)
-    ``R_M = a(1 - e1^2)/(1 - e1^2 sin^2 W)^(3/2)`` (erratum E002-02).
-
-    Returns
-    -------
-    e1, e2 : float
-    R_N, R_M : ndarray, shape (...)
-    """
-    _ell(ellipsoid)
-    W = nonempty_latitude(lat, "lat", deg=deg)
-    a, b = ellipsoid.a, ellipsoid.b
-    e1 = np.sqrt(a * a - b * b) / a
-    e2 = np.sqrt(a * a - b * b) / b
-    R_N = (a * a / b) / np.sqrt(1 + e2 ** 2 * np.cos(W) ** 2)
-    R_M = a * (1 - e1 ** 2) / (1 - e1 ** 2 * np.sin(W) ** 2) ** 1.5
-    return e1, e2, R_N, R_M
-
-
-def printed_meridian_radius(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False) -> Array:
-    """Eq. (6) exactly as printed, ``a^2 (1 - e1^2)/sqrt((1 + e2^2 sin^2 W)^(3/2))`` (m): wrong (erratum E002-02)."""
-    _ell(ellipsoid)
-    W = nonempty_latitude(lat, "lat", deg=deg)
-    e1, e2, _, _ = paper_radii(0.0, ellipsoid)
-    return ellipsoid.a ** 2 * (1 - e1 ** 2) / np.sqrt((1 + e2 ** 2 * np.sin(W) ** 2) ** 1.5)
-
-
-def paper_series(lat: ArrayLike, lon: ArrayLike, lon0: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False,
-                 typos: bool = False) -> tuple[Array, Array]:
-    """The paper's sixth-order GK series, Eqs. (7)–(11): northing x and easting y (m).
-
-    With ``t = tan W``, ``eta^2 = e2^2 cos^2 W`` and ``N = R_N``::
-
-        x = S + N/2 l^2 sinW cosW + N/24 l^4 sinW cos^3W (5 - t^2 + 9 eta^2 + 4 eta^4)
-              + N/720 l^6 sinW cos^5W (61 - 58 t^2 + t^4 + 270 eta^2 - 330 eta^2 t^2)
-        y = N l cosW + N/6 l^3 cos^3W (1 - t^2 + eta^2)
-              + N/120 l^5 cos^5W (5 - 18 t^2 + t^4 + 14 eta^2 - 58 eta^2 t^2)
-
-    ``typos=True`` uses the printed ``N/72`` and ``270 eta^4`` (erratum E002-03) to
-    show their effect; the production projection is :func:`geodetic2gk`.
-
-    Parameters
-    ----------
-    lat, lon, lon0 : array_like, broadcasting to shape (...)
-        rad, or deg with ``deg=True``; ``|lon - lon0|`` at most 6°.
-    """
-    _ell(ellipsoid)
-    W, lon_deg = _validate_lat_lon(lat, lon, deg)
-    L0 = _lon_deg(lon0, deg, "lon0")
-    l_deg = lon_deg - L0
-    if np.any(np.abs(l_deg) > 6.0):
-        raise ValueError(f"lon: expected |lon - lon0| <= 6°, got {np.abs(l_deg).max():.4g}°")
-    l = np.deg2rad(l_deg)
-    _, e2, N, _ = paper_radii(W, ellipsoid)
-    t2 = np.tan(W) ** 2
-    eta2 = e2 ** 2 * np.cos(W) ** 2
-    s, c = np.sin(W), np.cos(W)
-    sixth = (N / 72 if typos else N / 720) * l ** 6 * s * c ** 5 \
-        * (61 - 58 * t2 + t2 ** 2 + 270 * (eta2 ** 2 if typos else eta2) - 330 * eta2 * t2)
-    x = (meridian_arc(W, ellipsoid, series="paper") + N / 2 * l ** 2 * s * c
-         + N / 24 * l ** 4 * s * c ** 3 * (5 - t2 + 9 * eta2 + 4 * eta2 ** 2) + sixth)
-    y = (N * l * c + N / 6 * l ** 3 * c ** 3 * (1 - t2 + eta2)
-         + N / 120 * l ** 5 * c ** 5 * (5 - 18 * t2 + t2 ** 2 + 14 * eta2 - 58 * eta2 * t2))
-    return x, y

@@ -1,4 +1,9 @@
-"""Tests of navlib.geodesy: PROJ reference vectors, pyproj cross-checks, round trips, paper 002 values."""
+"""Tests of navlib.geodesy: PROJ reference vectors, pyproj cross-checks, round trips, paper 002 values.
+
+The paper's own equations (printed zone number, radii, e^8 arc, sixth-order series) are the companion's:
+tests/test_planar.py. navlib.geodesy defaults to WGS84; CGCS2000 references pass ``ellipsoid=CGCS2000``.
+"""
+import inspect
 import re
 
 import numpy as np
@@ -9,11 +14,13 @@ from hypothesis import strategies as st
 from numpy.testing import assert_allclose
 
 from navlib import earth, geodesy
+from navlib.papers import gauss_kruger_ekf
 
 pyproj = pytest.importorskip("pyproj")
 
 ELLIPSOIDS = [earth.CGCS2000, earth.WGS84, earth.KRASSOVSKY]
 M_PER_DEG = 111_320.0           # metres per degree of arc, to express angular errors as distances
+CGCS = dict(ellipsoid=earth.CGCS2000)     # China's datum (EPSG:4490 grids); geodesy defaults to WGS84
 
 
 def tolerance_m(text):
@@ -60,16 +67,16 @@ def test_paper_test_vector_and_epsg_grids():
     """Paper 002 site (assumed): 119.20° E, 26.06° N -> zone 40, x = 2 883 727.417 m, y = -80 055.050 m (PROJ, EPSG:4549/4528)."""
     assert geodesy.zone(119.2, deg=True) == 40
     assert geodesy.central_meridian(40, deg=True) == 120
-    x, y = geodesy.geodetic2gk(26.06, 119.20, deg=True)
+    x, y = geodesy.geodetic2gk(26.06, 119.20, deg=True, **CGCS)
     assert abs(x - 2_883_727.417) < 1e-3 and abs(y + 80_055.050) < 1e-3
     e4549, n4549 = pyproj.Transformer.from_crs("EPSG:4490", "EPSG:4549", always_xy=True).transform(119.2, 26.06)
     e4528, n4528 = pyproj.Transformer.from_crs("EPSG:4490", "EPSG:4528", always_xy=True).transform(119.2, 26.06)
-    x1, y1 = geodesy.geodetic2gk(26.06, 119.2, deg=True, false_easting=500e3)
-    x2, y2 = geodesy.geodetic2gk(26.06, 119.2, deg=True, false_easting=500e3, zone_prefix=True)
+    x1, y1 = geodesy.geodetic2gk(26.06, 119.2, deg=True, false_easting=500e3, **CGCS)
+    x2, y2 = geodesy.geodetic2gk(26.06, 119.2, deg=True, false_easting=500e3, zone_prefix=True, **CGCS)
     assert_allclose([x1, y1, x2, y2], [n4549, e4549, n4528, e4528], rtol=0, atol=1e-6)
-    la, lo = geodesy.gk2geodetic(x2, y2, deg=True, false_easting=500e3, zone_prefix=True)
+    la, lo = geodesy.gk2geodetic(x2, y2, deg=True, false_easting=500e3, zone_prefix=True, **CGCS)
     assert_allclose([la, lo], [26.06, 119.2], rtol=0, atol=1e-11)
-    assert abs(geodesy.meridian_arc(26.06, deg=True) - 2_883_481.880) < 1e-3
+    assert abs(geodesy.meridian_arc(26.06, deg=True, **CGCS) - 2_883_481.880) < 1e-3
 
 
 # --------------------------------------------------------------------------
@@ -95,12 +102,12 @@ def test_grid_convergence_and_scale_match_pyproj():
     rng = np.random.default_rng(7)
     lat, lon = rng.uniform(-70, 70, 2000), 120 + rng.uniform(-3, 3, 2000)
     f = proj_tmerc(earth.CGCS2000, 120).get_factors(lon, lat)
-    gamma = geodesy.convergence(lat, lon, lon0=120, width=6, deg=True)
-    k = geodesy.scale_factor(lat, lon, lon0=120, width=6, deg=True)
+    gamma = geodesy.convergence(lat, lon, lon0=120, width=6, deg=True, **CGCS)
+    k = geodesy.scale_factor(lat, lon, lon0=120, width=6, deg=True, **CGCS)
     assert_allclose(gamma, f.meridian_convergence, rtol=0, atol=1e-8)
     assert_allclose(k, f.meridional_scale, rtol=0, atol=1e-9)
     # Erratum E002-09: -0.3515° at Fuzhou (PROJ); l sin(lat) to first order
-    assert abs(geodesy.convergence(26.06, 119.2, deg=True) + 0.3515) < 1e-3
+    assert abs(geodesy.convergence(26.06, 119.2, deg=True, **CGCS) + 0.3515) < 1e-3
 
 
 def test_grid_convergence_is_the_grid_bearing_of_true_north():
@@ -129,13 +136,12 @@ def test_round_trip_inverse_of_forward(lat, offset, zn, ell):
 
 
 def test_zone_numbers_corrected_formula():
-    """Erratum E002-01: n = floor((L + 1.5)/3); the printed (L - 1.5)/3 is not an integer."""
+    """Erratum E002-01: n = floor((L + 1.5)/3) (the printed (L - 1.5)/3: tests/test_planar.py)."""
     lon = [1.5, 4.49, 4.5, 117.0, 118.5, 119.2, 121.49, 121.5, 0.5, 359.0, -1.0]
     assert geodesy.zone(lon, deg=True).tolist() == [1, 1, 2, 39, 40, 40, 40, 41, 120, 120, 120]
     assert geodesy.central_meridian(120, deg=True) == 0
     assert geodesy.zone([117.0, 0.5, -3.0], width=6, deg=True).tolist() == [20, 1, 60]
     assert_allclose(geodesy.central_meridian([20, 60], 6, deg=True), [117, -3])
-    assert abs(geodesy.printed_zone_number(119.2, deg=True) - 39.2333333) < 1e-6
     assert geodesy.zone(np.deg2rad(119.2)) == 40                   # radians by default
 
 
@@ -150,38 +156,59 @@ def arc_by_quadrature(lat, ell, order=64):
     """Integral of R_M from 0 to lat by Gauss-Legendre (exact to rounding for this smooth integrand)."""
     nodes, weights = np.polynomial.legendre.leggauss(order)
     w = lat / 2 * (nodes + 1)
-    return lat / 2 * np.sum(weights * geodesy.paper_radii(w, ell)[3])
+    return lat / 2 * np.sum(weights * earth.radii(w, ellipsoid=ell)[0])
 
 
-def test_meridian_arc_series_against_quadrature():
-    """Eqs. (7)-(8) are correct (erratum E002-05): 1e-8 m at 26°, 1e-6 m at 45°, 1e-4 m at 89.9°."""
-    ell = earth.CGCS2000
-    for lat_deg, tol in ((26.0, 1e-8), (45.0, 1e-6), (89.9, 1e-4)):
+@pytest.mark.parametrize("ell", ELLIPSOIDS, ids=lambda e: e.name)
+def test_meridian_arc_against_quadrature(ell):
+    """Krüger's series equals the integral of R_M to 1e-8 m from the equator to the pole."""
+    for lat_deg in (26.0, 45.0, 89.9):
         exact = arc_by_quadrature(np.deg2rad(lat_deg), ell)
-        assert abs(geodesy.meridian_arc(lat_deg, ell, deg=True, series="paper") - exact) < tol
         assert abs(geodesy.meridian_arc(lat_deg, ell, deg=True) - exact) < 1e-8
 
 
-def test_paper_radii():
-    """Eqs. (3)-(6): R_N as in earth.radii; corrected R_M = 6 347 737.10 m at 26.06° N; printed 4.04e13."""
-    e1, e2, R_N, R_M = geodesy.paper_radii(26.06, deg=True)
-    R_M_ref, R_N_ref = earth.radii(26.06, deg=True, ellipsoid=earth.CGCS2000)
-    assert abs(e1 ** 2 - earth.CGCS2000.e2) < 1e-15
-    assert abs(R_N / R_N_ref - 1) < 1e-12 and abs(R_M / R_M_ref - 1) < 1e-12
-    assert abs(R_M - 6_347_737.10) < 0.01
-    assert 4.0e13 < geodesy.printed_meridian_radius(26.06, deg=True) < 4.1e13
+def test_default_ellipsoid_is_wgs84():
+    """Every ``ellipsoid`` of navlib.geodesy defaults to WGS84 (CGCS2000 differs by 0.1 mm in b)."""
+    defaults = {name: inspect.signature(getattr(geodesy, name)).parameters.get("ellipsoid")
+                for name in geodesy.__all__}
+    defaults = {name: p.default for name, p in defaults.items() if p is not None}
+    assert len(defaults) == 12 and all(d is earth.WGS84 for d in defaults.values()), defaults
+    x, y = geodesy.geodetic2gk(26.06, 119.2, deg=True)
+    assert (x, y) == geodesy.geodetic2gk(26.06, 119.2, deg=True, ellipsoid=earth.WGS84)
+    x_c, _ = geodesy.geodetic2gk(26.06, 119.2, deg=True, **CGCS)
+    assert 0 < abs(x - x_c) < 1e-3
+    assert geodesy.geodetic2ecef(26.06, 119.2, 0.0, deg=True) == geodesy.geodetic2ecef(26.06, 119.2, 0.0, earth.WGS84, True)
 
 
-def test_paper_series_and_its_typos():
-    """Erratum E002-03: corrected series within 1 µm of PROJ for |l| <= 1.5° at 26° N; typos 0.31 mm / 19.7 mm."""
-    tm = proj_tmerc(earth.CGCS2000, 120)
-    l = np.linspace(-1.5, 1.5, 31)
-    east, north = tm.transform(120 + l, np.full_like(l, 26.0))
-    x, y = geodesy.paper_series(26.0, 120 + l, 120.0, deg=True)
-    assert np.abs(x - north).max() < 1e-6 and np.abs(y - east).max() < 1e-6
-    for off, mm in ((1.5, 0.31), (3.0, 19.7)):
-        xt, _ = geodesy.paper_series(26.0, 120 + off, 120.0, deg=True, typos=True)
-        assert abs((xt - tm.transform(120 + off, 26.0)[1]) * 1e3 / mm - 1) < 0.05
+@pytest.mark.parametrize("name", ["printed_zone_number", "printed_meridian_radius", "paper_radii", "paper_series"])
+def test_paper_functions_moved_to_the_companion(name):
+    """Paper 002's own equations live in navlib.papers.gauss_kruger_ekf; geodesy names their new home."""
+    with pytest.raises(AttributeError, match=rf"^geodesy\.{name} moved to navlib\.papers\.gauss_kruger_ekf\.{name}$"):
+        getattr(geodesy, name)
+    assert name not in geodesy.__all__ and name in gauss_kruger_ekf.__all__
+    with pytest.raises(AttributeError, match="has no attribute 'no_such_name'"):
+        geodesy.no_such_name                                          # noqa: B018
+    with pytest.raises(TypeError):
+        geodesy.meridian_arc(0.45, series="paper")                    # the e^8 series: gauss_kruger_ekf.paper_meridian_arc
+
+
+def test_local_scales_of_any_projection():
+    """``project`` replaces geodetic2gk: UTM's k0 scales h and k (1e-9, central differences); plate carrée is not conformal."""
+    lat, lon = 0.45, 2.08
+
+    def utm(la, lo, lo0, ell):
+        return geodesy.geodetic2gk(la, lo, lon0=lo0, ellipsoid=ell, k0=0.9996)
+
+    def plate_carree(la, lo, lo0, ell):
+        return ell.a * la, ell.a * (lo - lo0)
+
+    h, k, angle = geodesy.local_scales(lat, lon, 2.094, project=utm)
+    h1, k1, angle1 = geodesy.local_scales(lat, lon, 2.094)
+    assert abs(h / h1 - 0.9996) < 1e-9 and abs(k / k1 - 0.9996) < 1e-9 and abs(angle - angle1) < 1e-9
+    h, k, angle = geodesy.local_scales(lat, lon, 2.094, project=plate_carree)
+    R_M, R_N = earth.radii(lat)
+    assert abs(h - earth.WGS84.a / R_M) < 1e-9 and abs(k - earth.WGS84.a / (R_N * np.cos(lat))) < 1e-9
+    assert abs(angle - np.pi / 2) < 1e-12 and k / h > 1.1
 
 
 # --------------------------------------------------------------------------
@@ -239,10 +266,8 @@ def test_broadcasting():
     (lambda: geodesy.gk2geodetic(2.8e6, np.nan, zone=40), "y"),
     (lambda: geodesy.gk2geodetic(2.8e6, 9e6, zone=40), "y"),
     (lambda: geodesy.gk2geodetic(2.8e6, 4e7, zone=40, zone_prefix=True), "zone, lon0"),
-    (lambda: geodesy.meridian_arc(0.5, series="taylor"), "series"),
     (lambda: geodesy.geodetic2gk(26.0, 119.2, deg=True, zone_prefix=True), "false_easting"),
     (lambda: geodesy.meridian_arc(-100.0, deg=True), "lat"),
-    (lambda: geodesy.paper_series(26.0, 127.0, 120.0, deg=True), "lon"),
     (lambda: geodesy.ecef2geodetic(0.0, 0.0, 10.0), "x, y, z"),
     (lambda: geodesy.geodetic2enu(26.0, 119.0, np.nan, 26.0, 119.0, 0.0, deg=True), "h"),
     (lambda: geodesy.enu2geodetic(0.0, 0.0, 0.0, 95.0, 119.0, 0.0, deg=True), "lat0"),
@@ -275,10 +300,6 @@ VALID_CALLS = {                                 # one valid call per public func
     "geodetic2ned": dict(lat=LAT_F, lon=LON_F, h=10.0, lat0=LAT_F, lon0=LON_F, h0=0.0),
     "ned2geodetic": dict(n=10.0, e=5.0, d=1.0, lat0=LAT_F, lon0=LON_F, h0=0.0),
     "local_scales": dict(lat=LAT_F, lon=LON_F, lon0=2.094),
-    "printed_zone_number": dict(lon=LON_F),
-    "printed_meridian_radius": dict(lat=LAT_F),
-    "paper_radii": dict(lat=LAT_F),
-    "paper_series": dict(lat=LAT_F, lon=LON_F, lon0=2.094),
 }
 BAD_VALUES = {"string": "abc", "string array": ["1.0"], "complex": 1 + 1j, "object array": np.array([1.0, "a"], dtype=object),
               "boolean": True, "empty": np.array([]), "nan": np.nan, "inf": -np.inf, "ragged": [1.0, [2.0, 3.0]]}
@@ -322,11 +343,8 @@ def test_fuzz_bad_values_raise_naming_the_argument(fn, arg, bad):
     (lambda: geodesy.gk2geodetic(2.88e6, 1e4, zone=40, false_northing=np.inf), "false_northing"),
     (lambda: geodesy.gk2geodetic(2.88e6, 1e4, lon0=np.nan), "lon0"),
     (lambda: geodesy.meridian_arc(-1.6), "lat"),
-    (lambda: geodesy.paper_radii(95.0, deg=True), "lat"),
-    (lambda: geodesy.printed_meridian_radius(1.6), "lat"),
     (lambda: geodesy.geodetic2enu(0.45, 2.08, 0.0, 1.6, 2.08, 0.0), "lat0"),
     (lambda: geodesy.local_scales(0.45, 2.08, 2.094, step=0.0), "step"),
-    (lambda: geodesy.local_scales(0.45, 2.08, 2.094, series="exact"), "series"),
     (lambda: geodesy.ecef2geodetic(1e3, 1e3, 1e3), "x, y, z"),
     # wrong shapes
     (lambda: geodesy.gk2geodetic(np.zeros(3), np.zeros(2), zone=40), "x, y"),
@@ -335,11 +353,11 @@ def test_fuzz_bad_values_raise_naming_the_argument(fn, arg, bad):
     (lambda: geodesy.ecef2geodetic(np.full(3, 7e6), np.zeros(2), 0.0), "x, y, z"),
     (lambda: geodesy.enu2geodetic(np.zeros(3), np.zeros(2), 0.0, 0.45, 2.08, 0.0), "e, n, u"),
     (lambda: geodesy.local_scales(np.zeros(3), np.zeros(2), 0.0), "lat, lon"),
-    (lambda: geodesy.paper_series(np.zeros(3), np.zeros(2), 0.0), "lat, lon"),
     # wrong types of the non-numeric arguments
     (lambda: geodesy.geodetic2gk(0.45, 2.08, ellipsoid="WGS84"), "ellipsoid"),
     (lambda: geodesy.ecef2geodetic(7e6, 0.0, 0.0, ellipsoid=None), "ellipsoid"),
     (lambda: geodesy.meridian_arc(0.45, ellipsoid=6378137.0), "ellipsoid"),
+    (lambda: geodesy.local_scales(0.45, 2.08, 2.094, project="paper"), "project"),
 ])
 def test_fuzz_out_of_range_shapes_and_types(call, arg):
     with pytest.raises((TypeError, ValueError)) as info:
@@ -426,10 +444,9 @@ def test_enu_round_trip_and_isometry(lat0, lon0, enu):
 
 @settings(max_examples=200, deadline=None)
 @given(a=st.floats(-89.0, 89.0), b=st.floats(-89.0, 89.0), ell=st.sampled_from(ELLIPSOIDS))
-def test_meridian_arc_odd_monotonic_and_series_agree(a, b, ell):
-    """S(-lat) = -S(lat); S increases with lat; the paper's e^8 series equals Krüger's to 1e-4 m."""
+def test_meridian_arc_odd_and_monotonic(a, b, ell):
+    """S(-lat) = -S(lat); S increases with lat."""
     Sa, Sb = (geodesy.meridian_arc(v, ell, deg=True) for v in (a, b))
     assert abs(geodesy.meridian_arc(-a, ell, deg=True) + Sa) < 1e-6
     if a < b:
         assert Sa < Sb
-    assert abs(geodesy.meridian_arc(a, ell, deg=True, series="paper") - Sa) < 1e-4

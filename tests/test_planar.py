@@ -1,4 +1,5 @@
-"""Tests of navlib.papers.gauss_kruger_ekf: motion model, EKF cycle, dropouts, zone crossing, bad input."""
+"""Tests of navlib.papers.gauss_kruger_ekf: the paper's projection equations (1)-(11), motion model, EKF cycle,
+dropouts, zone crossing, bad input."""
 import json
 import os
 import subprocess
@@ -6,15 +7,18 @@ import sys
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from numpy.testing import assert_allclose
 
-from navlib import analysis, geodesy, kalman
+from navlib import analysis, earth, geodesy, kalman
 from navlib.filters import planar_ekf
 from navlib.papers import gauss_kruger_ekf as planar
 
 PAPER = dict(Q=planar.Q_PAPER, R=planar.R_PAPER)    # the paper's noise, Eqs. (17)-(18)
 ORIGIN = np.deg2rad([26.06, 119.20])       # paper 002 site (Fuzhou, assumed), GK zone 40
 X0_STRAIGHT = np.array([0.0, 0.0, np.pi / 4, 1.0, 0.0])
+CGCS = dict(ellipsoid=earth.CGCS2000)     # the paper's datum; navlib.geodesy defaults to WGS84
 
 
 def straight_run(seed, n=2000, T=0.5, R=planar.R_PAPER, **kw):
@@ -118,8 +122,8 @@ def test_gate_rejects_gps_outlier():
 def test_zone_crossing_stays_continuous_and_convergence_corrects_heading():
     """An eastward run across 121.5° E (zone 40 -> 41): one zone held, no jump; grid heading corrected."""
     lat0 = np.deg2rad(26.06)
-    x_e, y_e = geodesy.geodetic2gk(lat0, np.deg2rad(121.4), zone=40)
-    origin = np.array(geodesy.gk2geodetic(x_e, y_e, zone=40))
+    x_e, y_e = geodesy.geodetic2gk(lat0, np.deg2rad(121.4), zone=40, **CGCS)
+    origin = np.array(geodesy.gk2geodetic(x_e, y_e, zone=40, **CGCS))
     x0 = np.array([0.0, 0.0, np.pi / 2, 20.0, 0.0])                  # due grid east at 20 m/s
     n, T = 2000, 0.5
     truth = planar_ekf.propagate(x0, T, n)
@@ -132,7 +136,7 @@ def test_zone_crossing_stays_continuous_and_convergence_corrects_heading():
     err = np.angle(np.exp(1j * (res.x[:, 2] - truth[:, 2])))
     raw = planar.ekf(t, s.gps, s.heading, s.speed, s.yaw_rate, x0, origin=origin, R=R, correct_convergence=False)
     err_raw = np.angle(np.exp(1j * (raw.x[:, 2] - truth[:, 2])))
-    gamma = geodesy.convergence(s.gps[:, 0], s.gps[:, 1], zone=40)
+    gamma = geodesy.convergence(s.gps[:, 0], s.gps[:, 1], zone=40, **CGCS)
     assert abs(np.mean(err)) < 0.05 * np.mean(gamma)
     assert abs(np.mean(err_raw) / np.mean(gamma) - 1) < 0.2
 
@@ -186,6 +190,72 @@ print(json.dumps({"x": r.x.tolist(), "d": d.tolist(), "g": g.x.tolist(), "rej": 
 
 
 # --------------------------------------------------------------------------
+# The paper's projection equations, Eqs. (1)-(11) (moved here from navlib.geodesy)
+# --------------------------------------------------------------------------
+
+def test_printed_zone_number_is_not_an_integer():
+    """Erratum E002-01: the printed n = (L - 1.5)/3 is 39.23 at 119.2° E (geodesy.zone: 40)."""
+    assert abs(planar.printed_zone_number(119.2, deg=True) - 39.2333333) < 1e-6
+    assert abs(planar.printed_zone_number(np.deg2rad(119.2)) - 39.2333333) < 1e-6       # radians by default
+    assert geodesy.zone(119.2, deg=True) == 40
+
+
+def arc_by_quadrature(lat, ell, order=64):
+    """Integral of the paper's R_M (corrected Eq. 6) from 0 to lat by Gauss-Legendre."""
+    nodes, weights = np.polynomial.legendre.leggauss(order)
+    w = lat / 2 * (nodes + 1)
+    return lat / 2 * np.sum(weights * planar.paper_radii(w, ell)[3])
+
+
+def test_meridian_arc_series_against_quadrature():
+    """Eqs. (7)-(8) are correct (erratum E002-05): 1e-8 m at 26°, 1e-6 m at 45°, 1e-4 m at 89.9°."""
+    ell = earth.CGCS2000
+    for lat_deg, tol in ((26.0, 1e-8), (45.0, 1e-6), (89.9, 1e-4)):
+        exact = arc_by_quadrature(np.deg2rad(lat_deg), ell)
+        assert abs(planar.paper_meridian_arc(lat_deg, ell, deg=True) - exact) < tol
+        assert abs(geodesy.meridian_arc(lat_deg, ell, deg=True) - exact) < 1e-8
+    assert planar.paper_meridian_arc(26.06, deg=True) == planar.paper_meridian_arc(26.06, earth.CGCS2000, deg=True)
+
+
+@settings(max_examples=200, deadline=None)
+@given(a=st.floats(-89.0, 89.0), ell=st.sampled_from([earth.CGCS2000, earth.WGS84, earth.KRASSOVSKY]))
+def test_paper_arc_series_equals_kruger(a, ell):
+    """The paper's e^8 series equals Krüger's (navlib.geodesy.meridian_arc) to 1e-4 m."""
+    assert abs(planar.paper_meridian_arc(a, ell, deg=True) - geodesy.meridian_arc(a, ell, deg=True)) < 1e-4
+
+
+def test_paper_radii():
+    """Eqs. (3)-(6): R_N as in earth.radii; corrected R_M = 6 347 737.10 m at 26.06° N; printed 4.04e13."""
+    e1, e2, R_N, R_M = planar.paper_radii(26.06, deg=True)
+    R_M_ref, R_N_ref = earth.radii(26.06, deg=True, ellipsoid=earth.CGCS2000)
+    assert abs(e1 ** 2 - earth.CGCS2000.e2) < 1e-15
+    assert abs(R_N / R_N_ref - 1) < 1e-12 and abs(R_M / R_M_ref - 1) < 1e-12
+    assert abs(R_M - 6_347_737.10) < 0.01
+    assert 4.0e13 < planar.printed_meridian_radius(26.06, deg=True) < 4.1e13
+
+
+def test_paper_series_and_its_typos():
+    """Erratum E002-03: corrected series within 1 µm of PROJ for |l| <= 1.5° at 26° N; typos 0.31 mm / 19.7 mm."""
+    pyproj = pytest.importorskip("pyproj")
+    tm = pyproj.Proj("+proj=tmerc +ellps=GRS80 +lon_0=120 +k=1 +x_0=0 +y_0=0 +algo=poder_engsager +units=m")
+    l = np.linspace(-1.5, 1.5, 31)
+    east, north = tm.transform(120 + l, np.full_like(l, 26.0))
+    x, y = planar.paper_series(26.0, 120 + l, 120.0, deg=True)
+    assert np.abs(x - north).max() < 1e-6 and np.abs(y - east).max() < 1e-6
+    for off, mm in ((1.5, 0.31), (3.0, 19.7)):
+        xt, _ = planar.paper_series(26.0, 120 + off, 120.0, deg=True, typos=True)
+        assert abs((xt - tm.transform(120 + off, 26.0)[1]) * 1e3 / mm - 1) < 0.05
+
+
+def test_paper_series_is_conformal_through_local_scales():
+    """The corrected Eq. (9) passed to geodesy.local_scales as ``project``: h = k, right angles (1e-8)."""
+    lat, lon = np.meshgrid(np.linspace(0, 70, 8), 120 + np.linspace(-3, 3, 7))
+    h, k, angle = geodesy.local_scales(lat, lon, 120.0, deg=True, project=planar.paper_series, **CGCS)
+    assert np.abs(h / k - 1).max() < 1e-8 and np.abs(angle - np.pi / 2).max() < 1e-8
+    assert_allclose(h, geodesy.scale_factor(lat, lon, lon0=120.0, deg=True, max_offset_deg=3.0, **CGCS), rtol=1e-8)
+
+
+# --------------------------------------------------------------------------
 # Bad input
 # --------------------------------------------------------------------------
 
@@ -220,6 +290,8 @@ ONES3 = np.ones(3)
     (lambda: planar.simulate_sensors(np.zeros((3, 5)), ORIGIN, planar.R_PAPER, np.random.default_rng(0),
                                      gps_valid=[True]), "gps_valid"),
     (lambda: analysis.position_error(np.zeros((3, 1)), np.zeros((3, 1))), "estimate"),
+    (lambda: planar.paper_series(26.0, 127.0, 120.0, deg=True), "lon"),
+    (lambda: planar.paper_meridian_arc(-100.0, deg=True), "lat"),
 ])
 def test_bad_input_raises_value_error_naming_the_argument(call, arg):
     with pytest.raises(ValueError) as info:
@@ -247,7 +319,14 @@ def test_degree_inputs_give_the_same_filter():
 
 X5 = np.array([0.0, 0.0, 0.3, 1.0, 0.0])
 Z3 = np.tile(X5, (3, 1))
+LAT_F, LON_F = 0.45, 2.08                       # rad, near Fuzhou (zone 40 of 3°)
 VALID_CALLS = {                                 # one valid call per public function, every argument given
+    # the paper's equations (moved from navlib.geodesy; ellipsoid, deg, typos: tested below)
+    "printed_zone_number": dict(lon=LON_F),
+    "paper_radii": dict(lat=LAT_F),
+    "printed_meridian_radius": dict(lat=LAT_F),
+    "paper_meridian_arc": dict(lat=LAT_F),
+    "paper_series": dict(lat=LAT_F, lon=LON_F, lon0=2.094),
     "motion_model": dict(X=X5, T=0.5),
     "jacobian": dict(X=X5, T=0.5),
     "propagate": dict(x0=X5, T=0.5, n_steps=3),
@@ -332,6 +411,14 @@ def test_fuzz_bad_values_raise_naming_the_argument(fn, arg, bad):
     (lambda: planar.simulate_sensors(Z3, ORIGIN, planar.R_PAPER, np.random.default_rng(0),
                                      gps_valid=[1, 0, 1]), "gps_valid"),
     (lambda: analysis.position_error(np.zeros((3, 2)), np.zeros((2, 2))), "estimate, truth"),
+    (lambda: planar.paper_radii(95.0, deg=True), "lat"),
+    (lambda: planar.printed_meridian_radius(1.6), "lat"),
+    (lambda: planar.paper_meridian_arc(-1.6), "lat"),
+    (lambda: planar.paper_series(np.zeros(3), np.zeros(2), 0.0), "lat, lon"),
+    (lambda: planar.paper_series(0.45, 2.08, 2.094, ellipsoid="CGCS2000"), "ellipsoid"),
+    (lambda: planar.paper_radii(0.45, ellipsoid=None), "ellipsoid"),
+    (lambda: planar.paper_meridian_arc(0.45, ellipsoid=6378137.0), "ellipsoid"),
+    (lambda: planar.printed_meridian_radius(0.45, ellipsoid=earth.CGCS2000.a), "ellipsoid"),
 ])
 def test_fuzz_out_of_range_and_shapes(call, arg):
     with pytest.raises((TypeError, ValueError)) as info:

@@ -7,14 +7,37 @@ Automation* 52(1): 173–176, 2023, doi:10.19344/j.cnki.issn1671-5276.2023.01.04
 The filter -- state ``X = [x north, y east, theta, v, omega]`` in the Gauss–Krüger grid, the
 unicycle model of Eq. (13) (lost in the source and reconstructed, erratum E002-06), its Jacobian
 Eq. (16), ``H = I5`` (erratum E002-07: the printed ``X_m`` is the measurement) -- is
-:mod:`navlib.filters.planar_ekf`, and the projection :mod:`navlib.geodesy`. This companion holds
-what the paper adds: its noise values (Eqs. 17–18, :data:`Q_PAPER`, :data:`R_PAPER`; units
+:mod:`navlib.filters.planar_ekf`, and the projection :mod:`navlib.geodesy` (Krüger's n^6 series,
+nm accuracy; it defaults to WGS84, so everything here passes the paper's datum, CGCS2000). This
+companion holds what the paper adds: its noise values (Eqs. 17–18, :data:`Q_PAPER`, :data:`R_PAPER`; units
 unstated in the paper, erratum E002-10), its pipeline :func:`ekf` (GPS latitude/longitude projected
 in one zone held for the whole run, so a run crossing a zone boundary stays continuous; the IMU
 heading turned from true to grid north by the convergence the paper omits, erratum E002-09;
 ``theta_IMU`` absolute and ``omega_IMU`` the vertical gyro rate, erratum E002-08), the robot's
 square loop (:func:`waypoint_path`) and its simulated sensors (:func:`simulate_sensors`).
 Faults are handled and counted as in :func:`navlib.filters.planar_ekf.filter_grid`.
+
+The paper's own projection equations, kept to check them and to show its errata (default
+ellipsoid ``earth.CGCS2000``, the paper's datum):
+
+* Eq. (1)–(2) zone number: printed ``n = (L - 1.5)/3`` is not an integer
+  (erratum E002-01); :func:`navlib.geodesy.zone` uses ``n = floor((L + 1.5)/3)``
+  (0 ≤ L < 1.5° E is zone 120, central meridian 0°). :func:`printed_zone_number`
+  returns the printed value for the errata demonstration.
+* Eq. (3)–(6) eccentricities and radii (:func:`paper_radii`); Eq. (6) as
+  printed, ``a^2 (1 - e1^2) / sqrt((1 + e2^2 sin^2 W)^(3/2))``, is wrong by
+  seven orders of magnitude (erratum E002-02, :func:`printed_meridian_radius`).
+* Eq. (7)–(8) meridian arc ``S`` to e^8 (:func:`paper_meridian_arc`; correct,
+  erratum E002-05).
+* Eq. (9)–(11) sixth-order series in l (:func:`paper_series`). As printed,
+  the l^6 term of x has ``R_N/72`` and ``270 eta^4``; the correct values are
+  ``R_N/720`` and ``270 eta^2`` (erratum E002-03), ``N`` means ``R_N``, and l, W are
+  in radians (erratum E002-04). ``typos=True`` keeps the printed typos only to show
+  the error they cause. It is a projection ``(lat, lon, lon0, ellipsoid) -> (x, y)``,
+  so :func:`navlib.geodesy.local_scales` takes it as ``project`` to check that it is conformal.
+
+The paper writes L for longitude and W for latitude; the functions take ``lat``, ``lon`` in rad
+unless ``deg=True`` and return metres.
 """
 from __future__ import annotations
 
@@ -24,16 +47,153 @@ import numpy as np
 
 from .. import geodesy, robust
 from .._deprecate import renamed_keywords
-from .._validate import as_array, booleans, generator, range_limit, scalar, time_axis
+from .._typing import Array, ArrayLike
+from .._validate import (
+    as_array,
+    booleans,
+    broadcast,
+    generator,
+    instance,
+    nonempty_array,
+    nonempty_latitude,
+    range_limit,
+    scalar,
+    time_axis,
+)
 from ..earth import CGCS2000, Ellipsoid
 from ..filters.planar_ekf import covariance, filter_grid, propagate
 
-__all__ = ["Q_PAPER", "R_PAPER", "waypoint_path", "ekf", "simulate_sensors", "Sensors"]
+__all__ = ["Q_PAPER", "R_PAPER", "printed_zone_number", "paper_radii", "printed_meridian_radius",
+           "paper_meridian_arc", "paper_series", "waypoint_path", "ekf", "simulate_sensors", "Sensors"]
 
 Q_PAPER = np.diag([1.0, 1.0, 0.01, 0.0001, 0.0016])
 """Process noise per step, Eq. (17) (SI reading: m², m², rad², m²/s², rad²/s²)."""
 R_PAPER = np.diag([6.25, 6.25, 0.01, 0.0004, 0.0025])
 """Measurement noise, Eq. (18): GPS 2.5 m, heading 0.1 rad, speed 0.02 m/s, yaw rate 0.05 rad/s (sigmas)."""
+
+
+# --------------------------------------------------------------------------
+# The paper's projection equations, Eqs. (1)-(11) (checks and errata demonstrations)
+# --------------------------------------------------------------------------
+
+def _ell(ellipsoid) -> Ellipsoid:
+    return instance(ellipsoid, "ellipsoid", Ellipsoid, "a navlib.earth.Ellipsoid (e.g. earth.CGCS2000)", error=TypeError)
+
+
+def _lon_deg(lon, deg: bool, name: str = "lon") -> np.ndarray:
+    arr = nonempty_array(lon, name)
+    return arr if deg else np.rad2deg(arr)
+
+
+def _validate_lat_lon(lat, lon, deg):
+    lat_rad = nonempty_latitude(lat, "lat", deg=deg)
+    lon_deg = _lon_deg(lon, deg)
+    return broadcast(lat_rad, lon_deg, name="lat, lon")
+
+
+def printed_zone_number(lon: ArrayLike, deg: bool = False) -> Array:
+    """Eq. (1) exactly as printed, ``n = (L - 1.5)/3`` (L in deg): not an integer (erratum E002-01).
+
+    Taken literally with Eq. (2), ``L0 = 3n = L - 1.5°``, so l = 1.5° for
+    every point. Use :func:`navlib.geodesy.zone` instead.
+    """
+    return (_lon_deg(lon, deg) - 1.5) / 3.0
+
+
+def paper_radii(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False) -> tuple[float, float, Array, Array]:
+    """Eqs. (3)–(6): first and second eccentricities and the radii R_N, R_M (m).
+
+    ``e1 = sqrt(a^2 - b^2)/a``, ``e2 = sqrt(a^2 - b^2)/b``,
+    ``R_N = (a^2/b)/sqrt(1 + e2^2 cos^2 W)`` and the corrected Eq. (6)
+    ``R_M = a(1 - e1^2)/(1 - e1^2 sin^2 W)^(3/2)`` (erratum E002-02).
+    The same radii in core: :func:`navlib.earth.radii` (returns ``R_M, R_N``).
+
+    Returns
+    -------
+    e1, e2 : float
+    R_N, R_M : ndarray, shape (...)
+    """
+    _ell(ellipsoid)
+    W = nonempty_latitude(lat, "lat", deg=deg)
+    a, b = ellipsoid.a, ellipsoid.b
+    e1 = np.sqrt(a * a - b * b) / a
+    e2 = np.sqrt(a * a - b * b) / b
+    R_N = (a * a / b) / np.sqrt(1 + e2 ** 2 * np.cos(W) ** 2)
+    R_M = a * (1 - e1 ** 2) / (1 - e1 ** 2 * np.sin(W) ** 2) ** 1.5
+    return e1, e2, R_N, R_M
+
+
+def printed_meridian_radius(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False) -> Array:
+    """Eq. (6) exactly as printed, ``a^2 (1 - e1^2)/sqrt((1 + e2^2 sin^2 W)^(3/2))`` (m): wrong (erratum E002-02)."""
+    _ell(ellipsoid)
+    W = nonempty_latitude(lat, "lat", deg=deg)
+    e1, e2, _, _ = paper_radii(0.0, ellipsoid)
+    return ellipsoid.a ** 2 * (1 - e1 ** 2) / np.sqrt((1 + e2 ** 2 * np.sin(W) ** 2) ** 1.5)
+
+
+def paper_meridian_arc(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False) -> Array:
+    """Eqs. (7)–(8): meridian arc length S from the equator (m), series to e^8 (correct, erratum E002-05).
+
+    ``S = a(1-e^2)[A W - B/2 sin 2W + C/4 sin 4W - D/6 sin 6W + E/8 sin 8W]``:
+    1e-8 m at 26°, 1e-4 m near the pole. Core's :func:`navlib.geodesy.meridian_arc`
+    uses Krüger's n^6 series (nm accuracy).
+
+    Parameters
+    ----------
+    lat : array_like, shape (...)
+        Geodetic latitude (rad, or deg with ``deg=True``).
+    """
+    _ell(ellipsoid)
+    lat = nonempty_latitude(lat, "lat", deg=deg)
+    e2 = ellipsoid.e2
+    e4, e6, e8 = e2 ** 2, e2 ** 3, e2 ** 4
+    A = 1 + 3 / 4 * e2 + 45 / 64 * e4 + 175 / 256 * e6 + 11025 / 16384 * e8
+    B = 3 / 4 * e2 + 15 / 16 * e4 + 525 / 512 * e6 + 2205 / 2048 * e8
+    C = 15 / 64 * e4 + 105 / 256 * e6 + 2205 / 4096 * e8
+    D = 35 / 512 * e6 + 315 / 2048 * e8
+    E = 315 / 16384 * e8
+    return ellipsoid.a * (1 - e2) * (A * lat - B / 2 * np.sin(2 * lat) + C / 4 * np.sin(4 * lat)
+                                     - D / 6 * np.sin(6 * lat) + E / 8 * np.sin(8 * lat))
+
+
+def paper_series(lat: ArrayLike, lon: ArrayLike, lon0: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False,
+                 typos: bool = False) -> tuple[Array, Array]:
+    """The paper's sixth-order GK series, Eqs. (7)–(11): northing x and easting y (m).
+
+    With ``t = tan W``, ``eta^2 = e2^2 cos^2 W`` and ``N = R_N``::
+
+        x = S + N/2 l^2 sinW cosW + N/24 l^4 sinW cos^3W (5 - t^2 + 9 eta^2 + 4 eta^4)
+              + N/720 l^6 sinW cos^5W (61 - 58 t^2 + t^4 + 270 eta^2 - 330 eta^2 t^2)
+        y = N l cosW + N/6 l^3 cos^3W (1 - t^2 + eta^2)
+              + N/120 l^5 cos^5W (5 - 18 t^2 + t^4 + 14 eta^2 - 58 eta^2 t^2)
+
+    ``typos=True`` uses the printed ``N/72`` and ``270 eta^4`` (erratum E002-03) to
+    show their effect; l and W in radians (erratum E002-04). The production projection
+    is :func:`navlib.geodesy.geodetic2gk`.
+
+    Parameters
+    ----------
+    lat, lon, lon0 : array_like, broadcasting to shape (...)
+        rad, or deg with ``deg=True``; ``|lon - lon0|`` at most 6°.
+    """
+    _ell(ellipsoid)
+    W, lon_deg = _validate_lat_lon(lat, lon, deg)
+    L0 = _lon_deg(lon0, deg, "lon0")
+    l_deg = lon_deg - L0
+    if np.any(np.abs(l_deg) > 6.0):
+        raise ValueError(f"lon: expected |lon - lon0| <= 6°, got {np.abs(l_deg).max():.4g}°")
+    l = np.deg2rad(l_deg)
+    _, e2, N, _ = paper_radii(W, ellipsoid)
+    t2 = np.tan(W) ** 2
+    eta2 = e2 ** 2 * np.cos(W) ** 2
+    s, c = np.sin(W), np.cos(W)
+    sixth = (N / 72 if typos else N / 720) * l ** 6 * s * c ** 5 \
+        * (61 - 58 * t2 + t2 ** 2 + 270 * (eta2 ** 2 if typos else eta2) - 330 * eta2 * t2)
+    x = (paper_meridian_arc(W, ellipsoid) + N / 2 * l ** 2 * s * c
+         + N / 24 * l ** 4 * s * c ** 3 * (5 - t2 + 9 * eta2 + 4 * eta2 ** 2) + sixth)
+    y = (N * l * c + N / 6 * l ** 3 * c ** 3 * (1 - t2 + eta2)
+         + N / 120 * l ** 5 * c ** 5 * (5 - 18 * t2 + t2 ** 2 + 14 * eta2 - 58 * eta2 * t2))
+    return x, y
 
 
 # --------------------------------------------------------------------------
@@ -135,7 +295,8 @@ def ekf(t, gps, heading, speed, yaw_rate, x0, *, origin=None, zone=None, width: 
     zone : int, optional
         Zone to hold for the whole run; default the zone of ``origin`` or of the first fix.
     width, ellipsoid
-        As in :func:`navlib.geodesy.geodetic2gk`.
+        As in :func:`navlib.geodesy.geodetic2gk`, but ``ellipsoid`` defaults to
+        ``earth.CGCS2000``, the paper's datum.
     P0, Q, R, gate, reacquire
         As in :func:`navlib.filters.planar_ekf.filter_grid` (Q and R default to Eqs. 17–18).
     full_scale_gyro : float, optional  (formerly ``yaw_rate_range``, which warns)
@@ -226,6 +387,8 @@ def simulate_sensors(truth, origin, R, rng: np.random.Generator, *, zone=None, w
     rng : numpy.random.Generator
     zone : int, optional
         Zone of the grid; default the zone of ``origin``.
+    width, ellipsoid
+        As in :func:`ekf` (default ``earth.CGCS2000``).
     yaw_rate_bias : float
         Constant gyro bias added to the yaw rate (rad/s).
     gps_valid : array_like of bool, shape (N,), optional
