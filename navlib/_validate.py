@@ -129,6 +129,25 @@ def in_range(arr: np.ndarray, name: str, lo: float, hi: float, unit: str = "",
     return arr
 
 
+def pitch_roll(pitch: ArrayLike, roll: ArrayLike, names: tuple[str, str] = ("pitch", "roll")) -> tuple[np.ndarray, np.ndarray]:
+    """Pitch within [-pi/2, pi/2] and roll within [-pi, pi] (rad); outside, degrees were most likely passed."""
+    out = []
+    for x, name, limit in ((pitch, names[0], np.pi / 2), (roll, names[1], np.pi)):
+        a = as_array(x, name)
+        if np.any(np.abs(a) > limit + 1e-12):
+            raise ValueError(f"{name}: expected radians within [{-limit:.4g}, {limit:.4g}], got max |{name}| "
+                             f"{np.max(np.abs(a)):g} (degrees? convert with np.deg2rad)")
+        out.append(a)
+    return out[0], out[1]
+
+
+def euler_angles(hpr: ArrayLike, name: str = "hpr") -> np.ndarray:
+    """``[heading, pitch, roll]`` (..., 3) in rad, its pitch and roll checked by :func:`pitch_roll`."""
+    a = as_array(hpr, name, tail=(3,))
+    pitch_roll(a[..., 1], a[..., 2], (f"{name}[..., 1] (pitch)", f"{name}[..., 2] (roll)"))
+    return a
+
+
 def positive(x: ArrayLike, name: str, *, allow_zero: bool = False) -> np.ndarray:
     """Return ``x`` as a finite float array that is > 0 (or >= 0)."""
     arr = as_array(x, name)

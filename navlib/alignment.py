@@ -27,7 +27,7 @@ import numpy as np
 
 from . import _kernels, attitude, earth
 from ._typing import Angles, Array, ArrayLike, Dcm, Vec3, Vec3Series
-from ._validate import as_array, in_range, nonempty_array, nonempty_latitude, nonempty_positive, scalar
+from ._validate import as_array, in_range, nonempty_array, nonempty_latitude, nonempty_positive, pitch_roll, scalar
 from .imu import ImuSamples, unpack
 from .robust import FaultReport
 
@@ -72,7 +72,7 @@ def magnetic_heading(m_b: Vec3, pitch: Angles, roll: Angles, declination: float 
         Magnetic declination D, east of true north positive (rad); 0 gives the magnetic heading.
     """
     m = _nonzero(as_array(m_b, "m_b", tail=(3,)), "m_b")
-    p, r = as_array(pitch, "pitch"), as_array(roll, "roll")
+    p, r = pitch_roll(pitch, roll)
     D = scalar(declination, "declination")
     shape = np.broadcast_shapes(m.shape[:-1], p.shape, r.shape)
     m = np.broadcast_to(m, shape + (3,)).reshape(-1, 3)

@@ -23,7 +23,18 @@ from scipy.optimize import least_squares, minimize_scalar
 
 from . import _kernels, attitude, earth
 from ._typing import Angles, Array, ArrayLike, Times, Vec3
-from ._validate import as_array, booleans, integer, last_axis, nonempty_array, nonempty_positive, positive, same_shape, scalar
+from ._validate import (
+    as_array,
+    booleans,
+    integer,
+    last_axis,
+    latitude,
+    nonempty_array,
+    nonempty_positive,
+    positive,
+    same_shape,
+    scalar,
+)
 
 __all__ = ["rmse", "allan_deviation", "allan_deviation_theory", "fit_allan",
            "GM_ALLAN_PEAK", "GM_ALLAN_PEAK_TAU", "attitude_errors", "error_statistics", "horizontal_error",
@@ -257,6 +268,8 @@ def horizontal_error(lla: Vec3, lla_true: Vec3) -> Array:
     """
     a = as_array(lla, "lla", tail=(3,))
     b = as_array(lla_true, "lla_true", tail=(3,))
+    latitude(a[..., 0], "lla[..., 0] (lat)")
+    latitude(b[..., 0], "lla_true[..., 0] (lat)")
     R_M, R_N = earth.radii(b[..., 0])
     return np.stack([(a[..., 1] - b[..., 1]) * (R_N + b[..., 2]) * np.cos(b[..., 0]),
                      (a[..., 0] - b[..., 0]) * (R_M + b[..., 2])], -1)

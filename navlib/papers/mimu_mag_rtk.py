@@ -82,7 +82,7 @@ import numpy as np
 
 from .. import attitude
 from .._typing import Angles, Array, Quat, Vec3
-from .._validate import nonempty_array
+from .._validate import euler_angles, nonempty_array
 from ..filters.quaternion_kf import measurement_jacobian, noise_input
 
 __all__ = ["printed_eq2_roll", "printed_eq4", "printed_eq5_tilt",
@@ -122,7 +122,8 @@ def printed_eq7_heading(m_h: Vec3) -> Array:
 
 def printed_eq8_quat(hpr: Angles) -> Array:
     """Eq. (8) as printed, with its yaw psi = -heading: ``q_z(psi) q_y(roll) q_x(pitch)`` (E003-01)."""
-    h, p, r = np.moveaxis(nonempty_array(hpr, "hpr", tail=(3,)), -1, 0)
+    h, p, r = np.moveaxis(euler_angles(nonempty_array(hpr, "hpr", tail=(3,))), -1, 0)
+
     def axis_quat(a, i):
         return np.stack([np.cos(a / 2)] + [np.sin(a / 2) * (i == j) for j in range(3)], -1)
 

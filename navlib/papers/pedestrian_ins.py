@@ -77,7 +77,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import attitude
-from .._validate import as_array, generator, integer, positive, same_shape
+from .._validate import as_array, generator, integer, pitch_roll, positive, same_shape
 from ..trajectory import Leg
 
 __all__ = ["G_LOCAL", "carpark_legs", "floor_test_legs", "tilt_compensate_ned", "tilt_compensate_printed",
@@ -158,7 +158,7 @@ def tilt_compensate_ned(H_b, pitch, roll):
         Horizontal components along magnetic-north-of-heading and its right.
     """
     H = as_array(H_b, "H_b", tail=(3,))
-    th, ga = as_array(pitch, "pitch"), as_array(roll, "roll")
+    th, ga = pitch_roll(pitch, roll)
     Hx, Hy, Hz = H[..., 0], H[..., 1], H[..., 2]
     HX = Hx * np.cos(th) + Hy * np.sin(th) * np.sin(ga) + Hz * np.sin(th) * np.cos(ga)
     HY = Hy * np.cos(ga) - Hz * np.sin(ga)
@@ -173,7 +173,7 @@ def tilt_compensate_printed(H_b, pitch, roll):
     recover the heading under the stated axes.
     """
     H = as_array(H_b, "H_b", tail=(3,))
-    th, ph = as_array(pitch, "pitch"), as_array(roll, "roll")
+    th, ph = pitch_roll(pitch, roll)
     Hx, Hy, Hz = H[..., 0], H[..., 1], H[..., 2]
     return (Hx * np.sin(th) * np.sin(ph) + Hy * np.cos(ph) - Hz * np.cos(th) * np.sin(ph),
             Hx * np.cos(th) + Hz * np.sin(th))

@@ -93,7 +93,7 @@ from numba import njit
 from .. import attitude, kalman, robust
 from .._kernels import wrap_pi
 from .._typing import Angles, Array, ArrayLike, Interval, Vec3, Vec3Series
-from .._validate import in_range, intervals, range_limit
+from .._validate import euler_angles, in_range, intervals, range_limit
 from .._validate import nonempty_array as as_array
 from .._validate import nonempty_positive as positive
 from ..alignment import level
@@ -932,7 +932,7 @@ def eq1_matrix(hpr: Angles) -> Array:
     R : ndarray, shape (..., 3, 3)
         Equals ``attitude.euler_to_dcm(hpr).T`` (erratum E001-01: heading clockwise).
     """
-    h, p, r = np.moveaxis(as_array(hpr, "hpr", tail=(3,)), -1, 0)
+    h, p, r = np.moveaxis(euler_angles(as_array(hpr, "hpr", tail=(3,))), -1, 0)
     ch, sh, cp, sp, cr, sr = np.cos(h), np.sin(h), np.cos(p), np.sin(p), np.cos(r), np.sin(r)
     rows = [[cr * ch + sr * sp * sh, -cr * sh + sr * sp * ch, -sr * cp],
             [cp * sh, cp * ch, sp],
