@@ -223,6 +223,9 @@ def as_dcm(C: Dcm, name: str = "C_bn") -> np.ndarray:
 def as_quat(q: Quat, name: str = "q") -> np.ndarray:
     """Return ``q`` as unit quaternions, shape (..., 4), scalar first; a zero quaternion raises."""
     q = as_array(q, name, tail=(4,))
+    big = np.abs(q).max(axis=-1, keepdims=True)
+    if np.any(big > 1e150):                    # |q|^2 would overflow: scale first (exact, a power of two)
+        q = q / np.exp2(np.floor(np.log2(np.where(big > 1e150, big, 1.0))))
     n = np.linalg.norm(q, axis=-1, keepdims=True)
     if np.any(n < 1e-12):
         raise ValueError(f"{name}: expected non-zero quaternions")

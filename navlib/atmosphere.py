@@ -96,7 +96,7 @@ def bmp180_compensate(UT: int, UP: int, calib: dict[str, int], oss: int = 0) -> 
     Parameters
     ----------
     UT, UP : int
-        Raw temperature and pressure readings.
+        Raw temperature (16-bit) and pressure (16 + oss bits) ADC readings, non-negative.
     calib : dict
         Calibration coefficients AC1..AC6, B1, B2, MB, MC, MD.
     oss : {0, 1, 2, 3}
@@ -114,7 +114,11 @@ def bmp180_compensate(UT: int, UP: int, calib: dict[str, int], oss: int = 0) -> 
     if missing:
         raise ValueError(f"calib: missing coefficients {sorted(missing)}")
     c = {k: integer(v, f"calib[{k!r}]", minimum=None) for k, v in calib.items()}
-    UT, UP = integer(UT, "UT", minimum=None), integer(UP, "UP", minimum=None)
+    UT, UP = integer(UT, "UT", minimum=0), integer(UP, "UP", minimum=0)
+    if UT >= 1 << 16:
+        raise ValueError(f"UT: expected a 16-bit raw reading (0 ... 65535), got {UT}")
+    if UP >= 1 << (16 + oss):
+        raise ValueError(f"UP: expected a {16 + oss}-bit raw reading at oss={oss} (0 ... {(1 << (16 + oss)) - 1}), got {UP}")
     X1 = (UT - c["AC6"]) * c["AC5"] >> 15
     X2 = _cdiv(c["MC"] << 11, X1 + c["MD"])
     B5 = X1 + X2

@@ -36,6 +36,8 @@ __all__ = [
     "M_NED_ENU", "ned_to_enu", "ned_to_enu_dcm", "ned_to_enu_quat", "ypr_to_hpr", "hpr_to_ypr", "mount_matrix"]
 
 _AXES = {"x": 0, "y": 1, "z": 2}
+MAX_ROTVEC_ANGLE = 1e12
+"""Largest rotation-vector angle (rad) accepted: beyond it a float's spacing exceeds 1e-4 rad."""
 
 
 def wrap_pi(angle: Angles) -> Array:
@@ -318,6 +320,9 @@ def quat_rotate(q: Quat, v_b: Vec3) -> Array:
 def rotvec_to_quat(rv: Vec3) -> Array:
     """Quaternion of the rotation vector ``rv`` (rad), shape (..., 3) -> (..., 4)."""
     rv = as_array(rv, "rv", tail=(3,))
+    if np.any(np.abs(rv) > MAX_ROTVEC_ANGLE):
+        raise ValueError(f"rv: rotation angle {np.abs(rv).max():.3g} rad is beyond {MAX_ROTVEC_ANGLE:g} rad, where a "
+                         f"float no longer resolves the angle modulo 2 pi")
     angle = np.linalg.norm(rv, axis=-1, keepdims=True)
     half = angle / 2
     # sin(x/2)/x with its Taylor series near 0 to keep full precision.

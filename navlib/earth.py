@@ -203,6 +203,9 @@ def transport_rate_n(lat: ArrayLike, h: ArrayLike, vel_n: Vec3, ellipsoid: Ellip
     ndarray, shape (..., 3)
     """
     lat = latitude(lat)
+    if np.any(np.cos(lat) < 1e-9):
+        raise ValueError("lat: the ENU transport rate is singular at the poles (east is undefined there); "
+                         "expected |lat| < 90 deg")
     h = in_range(as_array(h, "h"), "h", -12e3, 1e6, "m")
     vel_n = as_array(vel_n, "vel_n", tail=(3,))
     R_M, R_N = radii(lat, ellipsoid=ellipsoid)

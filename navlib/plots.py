@@ -7,7 +7,7 @@ import numpy as np
 
 from . import attitude, units
 from ._typing import Angles, Array, ArrayLike, Dcm
-from ._validate import as_array, as_dcm, positive
+from ._validate import as_array, as_dcm, positive, same_shape
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -61,10 +61,12 @@ def allan(ax: Axes, taus: ArrayLike, adev_rad_s: ArrayLike, theory: ArrayLike | 
     if taus.size == 0:
         raise ValueError("taus: expected at least one averaging time, got an empty array")
     a = units.to_deg_per_h(positive(adev_rad_s, "adev_rad_s"))
-    if taus.ndim != 1 or a.shape[0] != taus.size:
-        raise ValueError(f"adev_rad_s: expected {taus.size} values on axis 0 (one per tau), got shape {a.shape}")
+    if taus.ndim != 1:
+        raise ValueError(f"taus: expected a 1-D array of averaging times, got shape {taus.shape}")
+    if a.ndim not in (1, 2) or a.shape[0] != taus.size:
+        raise ValueError(f"adev_rad_s: expected shape ({taus.size},) or ({taus.size}, k) (one row per tau), got {a.shape}")
     if theory is not None:
-        theory = positive(theory, "theory")
+        theory = same_shape(positive(theory, "theory"), "theory", taus.shape, of="taus")
     lines = ax.loglog(taus, a, color=color, linewidth=1 if a.ndim > 1 else 1.5, alpha=0.8)
     lines[0].set_label(label)
     if theory is not None:

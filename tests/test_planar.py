@@ -342,7 +342,7 @@ VALID_CALLS = {                                 # one valid call per public func
     "position_error": dict(estimate=Z3, truth=Z3),
 }
 RECORDS = {"EkfResult", "Sensors"}              # dataclasses filled by navlib from validated values
-CONSTANTS = {"Q_PAPER", "R_PAPER", "CHANNELS"}
+CONSTANTS = {"Q_PAPER", "R_PAPER", "CHANNELS", "MAX_STEPS"}
 BAD_VALUES = {"string": "abc", "complex": 1 + 1j, "object array": np.array([1.0, "a"], dtype=object),
               "boolean": True, "empty": np.array([]), "nan": np.nan, "inf": -np.inf, "ragged": [1.0, [2.0, 3.0]]}
 FUZZ_CASES = [(fn, arg, bad) for fn, kw in VALID_CALLS.items() for arg in kw for bad in BAD_VALUES

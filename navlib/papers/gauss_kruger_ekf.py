@@ -63,7 +63,7 @@ from .._validate import (
 from ..earth import CGCS2000, Ellipsoid
 from ..filters.planar_ekf import covariance, filter_grid, propagate
 
-__all__ = ["Q_PAPER", "R_PAPER", "printed_zone_number", "paper_radii", "printed_meridian_radius",
+__all__ = ["Q_PAPER", "R_PAPER", "MAX_STEPS", "printed_zone_number", "paper_radii", "printed_meridian_radius",
            "paper_meridian_arc", "paper_series", "waypoint_path", "ekf", "simulate_sensors", "Sensors"]
 
 Q_PAPER = np.diag([1.0, 1.0, 0.01, 0.0001, 0.0016])
@@ -200,6 +200,10 @@ def paper_series(lat: ArrayLike, lon: ArrayLike, lon0: ArrayLike, ellipsoid: Ell
 # The robot's square loop
 # --------------------------------------------------------------------------
 
+MAX_STEPS = 1e8
+"""Most steps :func:`waypoint_path` builds (about 4 GB of states)."""
+
+
 def waypoint_path(waypoints, speed: float, turn_rate: float, T: float):
     """Drive straight between waypoints and turn on the spot at each (a robot square loop).
 
@@ -235,6 +239,9 @@ def waypoint_path(waypoints, speed: float, turn_rate: float, T: float):
     turn_rate = scalar(turn_rate, "turn_rate", positive=True)
     T = scalar(T, "T", positive=True)
     course = np.arctan2(legs[:, 1], legs[:, 0])
+    steps = (length.sum() / speed + np.abs(np.angle(np.exp(1j * np.diff(course)))).sum() / turn_rate) / T
+    if steps > MAX_STEPS:
+        raise ValueError(f"T: a step of {T:g} s needs about {steps:.3g} steps for this path, more than {MAX_STEPS:g}")
     v_cmd, w_cmd, reached = [], [], []
     for i, (L, c) in enumerate(zip(length, course, strict=True)):
         if i > 0:

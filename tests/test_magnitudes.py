@@ -1,0 +1,53 @@
+"""Extreme magnitudes and out-of-range raw values give a clear error or the right answer (issue 15, items 7-8)."""
+import matplotlib
+import numpy as np
+import pytest
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+from navlib import atmosphere, attitude, earth, plots  # noqa: E402
+from navlib.papers import gauss_kruger_ekf  # noqa: E402
+
+
+@pytest.mark.parametrize("scale", [1e155, 1e300, 1e-9])
+def test_quaternions_of_any_finite_magnitude_normalise(scale):
+    q = np.array([1.0, 2.0, -2.0, 4.0])
+    np.testing.assert_allclose(attitude.quat_normalize(scale * q), q / 5.0, rtol=1e-15)
+    np.testing.assert_allclose(attitude.quat_to_dcm(scale * q), attitude.quat_to_dcm(q), atol=1e-15)
+
+
+def test_rotation_vector_beyond_float_resolution_is_refused():
+    with pytest.raises(ValueError, match="^rv: rotation angle"):
+        attitude.rotvec_to_quat([1e300, 0.0, 0.0])
+    assert np.all(np.isfinite(attitude.rotvec_to_quat([1e9, 0.0, 0.0])))
+
+
+def test_transport_rate_is_refused_at_the_poles():
+    with pytest.raises(ValueError, match="^lat: the ENU transport rate is singular"):
+        earth.transport_rate_n(np.pi / 2, 0.0, [1.0, 0.0, 0.0])
+    assert np.all(np.isfinite(earth.transport_rate_n(np.deg2rad(89.9), 0.0, [1.0, 0.0, 0.0])))
+
+
+@pytest.mark.parametrize("UT, UP, arg", [(-1, 23843, "UT"), (27898, -5, "UP"), (1 << 16, 23843, "UT"), (27898, 1 << 16, "UP")])
+def test_bmp180_raw_counts_outside_the_adc_range_are_refused(UT, UP, arg):
+    calib = dict(AC1=408, AC2=-72, AC3=-14383, AC4=32741, AC5=32757, AC6=23153, B1=6190, B2=4, MB=-32768, MC=-8711, MD=2868)
+    with pytest.raises(ValueError, match=f"^{arg}: "):
+        atmosphere.bmp180_compensate(UT, UP, calib)
+
+
+def test_a_path_with_too_many_steps_is_refused_naming_T():
+    with pytest.raises(ValueError, match="^T: "):
+        gauss_kruger_ekf.waypoint_path([[0.0, 0.0], [100.0, 0.0], [100.0, 100.0]], 5.0, 0.2, 1e-300)
+
+
+@pytest.mark.parametrize("taus, adev, theory, arg", [
+    ([[1.0, 2.0]], [1.0, 2.0], None, "taus"),
+    ([1.0, 2.0], np.ones((2, 3, 2)), None, "adev_rad_s"),
+    ([1.0, 2.0], [1.0, 2.0], [1.0], "theory"),
+])
+def test_allan_plot_shapes_name_the_argument(taus, adev, theory, arg):
+    fig, ax = plt.subplots()
+    with pytest.raises(ValueError, match=f"^{arg}: "):
+        plots.allan(ax, taus, adev, theory=theory)
+    plt.close(fig)
