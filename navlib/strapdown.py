@@ -51,7 +51,7 @@ import warnings
 import numpy as np
 from numba import njit
 
-from . import attitude, earth, robust
+from . import _kernels, attitude, earth, robust
 from ._kernels import normal_gravity, radii_mn
 from ._typing import Array, Dcm, Interval, Quat, Vec3, Vec3Series
 from ._validate import as_array, as_quat, broadcast, choice, instance, intervals, latitude, scalar
@@ -230,7 +230,7 @@ def _nav_kernel(lla0, vel0, q0, w, f, dt, earth_consts, hold_height):
         lla_k, v_k, q_k = lla0[t].copy(), vel0[t].copy(), q0[t].copy()
         lla[t, 0], vel[t, 0], q[t, 0] = lla_k, v_k, q_k
         for k in range(N):
-            nav_step(lla_k, v_k, q_k, w[t, k], f[t, k], dt[k if per_sample else 0], earth_consts, hold_height)
+            _kernels.nav_step(lla_k, v_k, q_k, w[t, k], f[t, k], dt[k if per_sample else 0], earth_consts, hold_height)
             lla[t, k + 1], vel[t, k + 1], q[t, k + 1] = lla_k, v_k, q_k
     return lla, vel, q
 
