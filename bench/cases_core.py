@@ -5,7 +5,7 @@ import numpy as np
 from numba import njit
 
 from bench.run import Result, best_time
-from navlib import kalman, sensors, strapdown, trajectory, units
+from navlib import _kernels, sensors, strapdown, trajectory, units
 
 
 def strapdown_attitude(quick: bool):
@@ -56,8 +56,8 @@ def _kf_loop(z, F, Q, H, R):
     P = np.eye(F.shape[0])
     mask = np.zeros(z.shape[1], dtype=np.bool_)
     for k in range(z.shape[0]):
-        x, P = kalman.predict(x, P, F, Q)
-        x, P, _, _, _ = kalman.update(x, P, z[k], H @ x, H, R, mask)
+        x, P = _kernels.kalman_predict(x, P, F, Q)
+        x, P, _, _, _ = _kernels.kalman_update(x, P, z[k], H @ x, H, R, mask)
     return x
 
 

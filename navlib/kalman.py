@@ -1,8 +1,13 @@
 """Kalman filter building blocks: predict, Joseph-form update, discretisation.
 
-Written once as compiled per-sample functions (numba) so that the papers'
-filters can call them inside their own compiled loops; they also run from
-Python, and as plain Python with ``NUMBA_DISABLE_JIT=1``.
+The predict and update are written once as compiled per-sample primitives (numba),
+:func:`navlib._kernels.kalman_predict` and :func:`navlib._kernels.kalman_update`, which
+navlib's filters call inside their own compiled loops (and which run as plain Python with
+``NUMBA_DISABLE_JIT=1``). :func:`predict` and :func:`update` here are their public,
+validated Python wrappers: arguments are converted to float64 (lists, float32 and integer
+arrays are accepted; the caller's arrays are never modified) and every shape is checked,
+so a wrong argument raises ``ValueError`` naming it instead of being broadcast or read past
+its end.
 
 The update is the standard (E)KF update with the covariance in Joseph form,
 ``P = (I - K H) P (I - K H)^T + K R K^T``, which stays symmetric positive
@@ -16,12 +21,11 @@ is rejected and reported, never silently applied.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 from scipy.linalg import expm
 
-from ._kernels import wrap_pi
+from . import _kernels
 from ._typing import Array, ArrayLike
-from ._validate import as_array, nonempty_array, positive, same_shape
+from ._validate import as_array, booleans, nonempty_array, positive, same_shape, scalar
 
 __all__ = ["predict", "update", "discretize", "ACCEPTED", "NO_DATA", "REJECTED"]
 
@@ -29,46 +33,74 @@ ACCEPTED, NO_DATA, REJECTED = 1, 0, -1
 """Status codes returned by :func:`update`."""
 
 
-@njit(cache=True)
-def predict(x, P, F, Q):
+def _matrix(a: ArrayLike, name: str, shape: tuple[int | None, ...], **kwargs: bool) -> np.ndarray:
+    """``a`` as a C-contiguous float64 array of exactly ``shape``, finite unless ``kwargs`` say otherwise."""
+    return np.ascontiguousarray(as_array(a, name, shape=shape, **kwargs))
+
+
+def _state(x: ArrayLike, P: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+    """A non-empty state vector ``x`` (n,) and its covariance ``P`` (n, n)."""
+    x = np.ascontiguousarray(nonempty_array(x, "x", shape=(None,)))
+    return x, _matrix(P, "P", (x.shape[0], x.shape[0]))
+
+
+def predict(x: ArrayLike, P: ArrayLike, F: ArrayLike, Q: ArrayLike) -> tuple[Array, Array]:
     """Linear prediction ``x = F x``, ``P = F P F^T + Q`` (symmetrised).
+
+    Validates its arguments, then runs the compiled primitive
+    :func:`navlib._kernels.kalman_predict` (which navlib's own compiled filters call directly).
 
     Parameters
     ----------
-    x : ndarray, shape (n,)
-    P, F, Q : ndarray, shape (n, n)
+    x : array_like, shape (n,)
+        State, n >= 1.
+    P, F, Q : array_like, shape (n, n)
+        Covariance, transition matrix and process noise; a scalar or otherwise
+        shaped ``Q`` is an error, not broadcast.
 
     Returns
     -------
     x, P : ndarray
+        Float64 arrays of shapes (n,) and (n, n) (new arrays; the arguments are not modified).
+
+    Raises
+    ------
+    ValueError
+        Naming the argument: wrong shape, empty ``x``, non-finite values, or not real numbers.
     """
-    Pn = F @ P @ np.ascontiguousarray(F.T) + Q
-    return F @ x, (Pn + Pn.T) / 2
+    x, P = _state(x, P)
+    n = x.shape[0]
+    return _kernels.kalman_predict(x, P, _matrix(F, "F", (n, n)), _matrix(Q, "Q", (n, n)))
 
 
-@njit(cache=True)
-def update(x, P, z, h, H, R, angle_mask, gate=np.inf):
+def update(x: ArrayLike, P: ArrayLike, z: ArrayLike, h: ArrayLike, H: ArrayLike, R: ArrayLike,
+           angle_mask: ArrayLike, gate: float = np.inf) -> tuple[Array, Array, Array, float, int]:
     """Joseph-form measurement update that skips NaN components.
+
+    Validates its arguments, then runs the compiled primitive
+    :func:`navlib._kernels.kalman_update` (which navlib's own compiled filters call directly).
 
     Parameters
     ----------
-    x : ndarray, shape (n,)
-        Prior state.
-    P : ndarray, shape (n, n)
+    x : array_like, shape (n,)
+        Prior state, n >= 1.
+    P : array_like, shape (n, n)
         Prior covariance.
-    z : ndarray, shape (m,)
-        Measurement; NaN components are not used.
-    h : ndarray, shape (m,)
+    z : array_like, shape (m,)
+        Measurement; NaN components are not used (m = 0 or all NaN: nothing to
+        update, status ``NO_DATA``). Infinite values are an error.
+    h : array_like, shape (m,)
         Predicted measurement (``H x`` or ``h(x)``).
-    H : ndarray, shape (m, n)
+    H : array_like, shape (m, n)
         Measurement matrix or Jacobian.
-    R : ndarray, shape (m, m)
+    R : array_like, shape (m, m)
         Measurement noise covariance.
-    angle_mask : ndarray of bool, shape (m,)
+    angle_mask : array_like of bool, shape (m,)
         Components whose innovation is an angle to wrap into (-pi, pi].
     gate : float
         Reject the update when the NIS ``y^T S^-1 y`` exceeds this value
-        (e.g. a chi-square quantile); ``inf`` accepts everything.
+        (e.g. a chi-square quantile); ``inf`` accepts everything. Must be
+        positive (NaN is an error: it would switch the gate off).
 
     Returns
     -------
@@ -80,33 +112,23 @@ def update(x, P, z, h, H, R, angle_mask, gate=np.inf):
         Normalised innovation squared (NaN when no component was available).
     status : int
         ``ACCEPTED`` (1), ``NO_DATA`` (0) or ``REJECTED`` (-1).
+
+    Raises
+    ------
+    ValueError
+        Naming the argument: shapes that do not agree with ``x`` and ``z``, empty
+        ``x``, non-finite values (other than NaN in ``z``), a mask that is not
+        boolean, a gate that is not positive, or values that are not real numbers.
     """
-    m = z.shape[0]
-    finite = np.isfinite(z)
-    n_used = int(finite.sum())
-    if n_used == 0:
-        return x.copy(), P.copy(), np.full(m, np.nan), np.nan, 0
-    y = z - h
-    for j in range(m):
-        if angle_mask[j] and finite[j]:
-            y[j] = wrap_pi(y[j])
-    if n_used == m:                      # common case: no dropout, no copies
-        Hs, Rs, ys = H, R, y
-    else:
-        idx = np.nonzero(finite)[0]
-        Hs = np.ascontiguousarray(H[idx, :])
-        Rs = np.ascontiguousarray(R[idx][:, idx])
-        ys = y[idx]
-    PHt = P @ np.ascontiguousarray(Hs.T)
-    S = Hs @ PHt + Rs
-    S_inv = np.linalg.inv((S + S.T) / 2)
-    nis = ys @ S_inv @ ys
-    if nis > gate:
-        return x.copy(), P.copy(), y, nis, -1
-    K = PHt @ S_inv
-    IKH = np.eye(x.shape[0]) - K @ Hs
-    Pn = IKH @ P @ np.ascontiguousarray(IKH.T) + K @ Rs @ np.ascontiguousarray(K.T)
-    return x + K @ ys, (Pn + Pn.T) / 2, y, nis, 1
+    x, P = _state(x, P)
+    z = _matrix(z, "z", (None,), allow_nan=True)
+    m, n = z.shape[0], x.shape[0]
+    h = _matrix(h, "h", (m,))
+    H = _matrix(H, "H", (m, n))
+    R = _matrix(R, "R", (m, m))
+    angle_mask = np.ascontiguousarray(booleans(angle_mask, "angle_mask", shape=(m,)))
+    gate = scalar(gate, "gate", positive=True, allow_inf=True)
+    return _kernels.kalman_update(x, P, z, h, H, R, angle_mask, gate)
 
 
 def discretize(F: ArrayLike, G: ArrayLike, Qc: ArrayLike, dt: float) -> tuple[Array, Array]:

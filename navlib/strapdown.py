@@ -17,7 +17,9 @@ the true trajectory to rounding error.
 
 The kernels are compiled with numba and loop over samples; leading axes of
 the inputs (Monte Carlo trials) are flattened into one loop. With
-``NUMBA_DISABLE_JIT=1`` they run as plain Python.
+``NUMBA_DISABLE_JIT=1`` they run as plain Python. The step is the compiled
+primitive :func:`navlib._kernels.nav_step`, which navlib's kernels call;
+:func:`nav_step` is its validated public wrapper.
 
 Faults (navlib's robustness contract; tests in ``tests/faults/test_faults_strapdown.py``)
 -----------------------------------------------------------------------------------------
@@ -51,11 +53,10 @@ import warnings
 import numpy as np
 from numba import njit
 
-from . import attitude, earth, robust
-from ._kernels import normal_gravity, radii_mn
-from ._typing import Array, Dcm, Interval, Quat, Vec3, Vec3Series
-from ._validate import as_array, as_quat, broadcast, choice, instance, intervals, latitude, scalar
-from .attitude import quat_mult_1, quat_mult_t, quat_normalize_1, quat_to_dcm_1, rotvec_to_quat_1, rotvec_to_quat_t
+from . import _kernels, attitude, earth, robust
+from ._typing import Array, ArrayLike, Dcm, Interval, Quat, Vec3, Vec3Series
+from ._validate import as_array, as_quat, broadcast, choice, flag, instance, intervals, latitude, scalar
+from .attitude import quat_mult_t, rotvec_to_quat_t
 from .imu import ImuSamples, unpack
 from .trajectory import Trajectory
 
@@ -162,51 +163,67 @@ def integrate_attitude(q0: Quat, w_ib_b: Vec3Series, dt: Interval, w_in_n: Vec3 
     return (q, held) if old and policy == "hold" else q
 
 
-@njit(cache=True)
-def nav_step(lla, vel, q, w, f, dt, earth_consts, hold_height=False):
+def _state_array(x: ArrayLike, name: str, size: int) -> np.ndarray:
+    """A state argument of :func:`nav_step`: the caller's writeable float64 array itself (updated in place),
+    else a float64 copy (a list, an integer or float32 array is never modified)."""
+    arr = as_array(x, name, shape=(size,))
+    return x if arr is x and arr.flags.writeable else arr.copy()
+
+
+def nav_step(lla: Vec3, vel: Vec3, q: Quat, w: Vec3, f: Vec3, dt: float, earth_consts: ArrayLike,
+             hold_height: bool = False) -> tuple[Array, Array, Array]:
     """One mechanisation step (module docstring), updating ``lla``, ``vel``, ``q`` in place.
 
-    Compiled building block for filters that run the INS sample by sample
-    (e.g. :mod:`navlib.papers.pedestrian_ins`); :func:`integrate` loops over it.
+    Validates its arguments, then runs the compiled primitive
+    :func:`navlib._kernels.nav_step`, which :func:`integrate` and navlib's own compiled
+    filters (e.g. :mod:`navlib.filters.zupt_ins`) call directly, sample by sample.
 
     Parameters
     ----------
-    lla : ndarray, shape (3,)
-        ``[lat (rad), lon (rad), h (m)]``, updated in place.
-    vel : ndarray, shape (3,)
-        ENU velocity (m/s), updated in place.
-    q : ndarray, shape (4,)
-        Attitude quaternion q_b^n, updated in place.
-    w, f : ndarray, shape (3,)
-        Gyro (rad/s) and accelerometer (m/s^2) sample.
+    lla : array_like, shape (3,)
+        ``[lat (rad), lon (rad), h (m)]``, |lat| <= pi/2.
+    vel : array_like, shape (3,)
+        ENU velocity (m/s).
+    q : array_like, shape (4,)
+        Attitude quaternion q_b^n (non-zero).
+    w, f : array_like, shape (3,)
+        Gyro (rad/s) and accelerometer (m/s^2) sample, finite.
     dt : float
-        Interval covered by this sample (s).
-    earth_consts : ndarray, shape (7,)
+        Interval covered by this sample (s), positive and finite.
+    earth_consts : array_like, shape (7,)
         ``Ellipsoid.gravity_constants + (omega,)``; see :func:`earth_constants`.
     hold_height : bool
         Hold vertical velocity at 0 and the height fixed.
+
+    Returns
+    -------
+    lla, vel, q : ndarray, shapes (3,), (3,), (4,)
+        The state after the step. A writeable float64 ndarray argument is updated in
+        place and returned; any other (a list, an integer or float32 array) is left
+        unchanged and the new state is a float64 copy.
+
+    Raises
+    ------
+    ValueError
+        Naming the argument: wrong shape (also empty), non-finite values, a latitude
+        outside [-pi/2, pi/2] rad, a zero quaternion, ``dt <= 0``, a non-bool
+        ``hold_height``, or values that are not real numbers.
     """
-    a, flat, e2, m, gamma_e, k_som, omega = (earth_consts[0], earth_consts[1], earth_consts[2], earth_consts[3],
-                                            earth_consts[4], earth_consts[5], earth_consts[6])
-    lat, h = lla[0], lla[2]
-    sl, cl = np.sin(lat), np.cos(lat)
-    R_M, R_N = radii_mn(lat, a, e2)
-    w_ie = np.array([0.0, omega * cl, omega * sl])
-    w_en = np.array([-vel[1] / (R_M + h), vel[0] / (R_N + h), vel[0] * sl / cl / (R_N + h)])
-    w_in = w_ie + w_en
-    q_mid = quat_mult_1(quat_mult_1(rotvec_to_quat_1(-w_in * (dt / 2)), q), rotvec_to_quat_1(w * (dt / 2)))
-    f_n = quat_to_dcm_1(q_mid) @ f
-    g = normal_gravity(lat, h, a, flat, e2, m, gamma_e, k_som)
-    v_new = vel + (f_n - np.cross(2 * w_ie + w_en, vel)) * dt
-    v_new[2] -= g * dt
-    if hold_height:
-        v_new[2] = 0.0
-    q[:] = quat_normalize_1(quat_mult_1(quat_mult_1(rotvec_to_quat_1(-w_in * dt), q), rotvec_to_quat_1(w * dt)))
-    vm = (vel + v_new) / 2
-    lla[0] = lat + vm[1] / (R_M + h) * dt
-    lla[1] += vm[0] / ((R_N + h) * cl) * dt
-    lla[2] = h + vm[2] * dt
-    vel[:] = v_new
+    lla = _state_array(lla, "lla", 3)
+    latitude(lla[0], "lla[0] (lat)")
+    vel = _state_array(vel, "vel", 3)
+    q = _state_array(q, "q", 4)
+    if not q @ q > 0:
+        raise ValueError("q: expected a non-zero quaternion")
+    w = np.ascontiguousarray(as_array(w, "w", shape=(3,)))
+    f = np.ascontiguousarray(as_array(f, "f", shape=(3,)))
+    dt = scalar(dt, "dt", positive=True)
+    c = np.ascontiguousarray(as_array(earth_consts, "earth_consts", shape=(7,)))
+    if not (c[0] > 0 and 0 <= c[2] < 1):
+        raise ValueError("earth_consts: expected [a > 0, f, 0 <= e2 < 1, m, gamma_e, k, omega] "
+                         f"(strapdown.earth_constants), got a = {c[0]:g}, e2 = {c[2]:g}")
+    _kernels.nav_step(lla, vel, q, w, f, dt, c, flag(hold_height, "hold_height"))
+    return lla, vel, q
 
 
 def _ellipsoid(ellipsoid):
@@ -230,7 +247,7 @@ def _nav_kernel(lla0, vel0, q0, w, f, dt, earth_consts, hold_height):
         lla_k, v_k, q_k = lla0[t].copy(), vel0[t].copy(), q0[t].copy()
         lla[t, 0], vel[t, 0], q[t, 0] = lla_k, v_k, q_k
         for k in range(N):
-            nav_step(lla_k, v_k, q_k, w[t, k], f[t, k], dt[k if per_sample else 0], earth_consts, hold_height)
+            _kernels.nav_step(lla_k, v_k, q_k, w[t, k], f[t, k], dt[k if per_sample else 0], earth_consts, hold_height)
             lla[t, k + 1], vel[t, k + 1], q[t, k + 1] = lla_k, v_k, q_k
     return lla, vel, q
 

@@ -28,9 +28,8 @@ Exceptions to the rule, by design (not tested as failures):
   (Their other bad inputs -- inf for the wraps, strings -- are in the table.)
   The unit converters also pass inf through, because ``full_scale = inf``
   ("no saturation") is a legitimate datasheet value.
-* ``kalman.predict`` / ``kalman.update`` are compiled kernels that take
-  arrays already validated by navlib's own filters; ``update`` skips NaN
-  measurement components by design. Tested instead: an all-NaN ``z`` gives
+* ``kalman.update`` skips NaN measurement components by design (its other
+  bad inputs are in the table). Tested instead: an all-NaN ``z`` gives
   status ``kalman.NO_DATA``.
 * ``repro.check`` / ``repro.check_range`` with a NaN *value* must fail the
   claim (``ClaimCheckFailed``), not raise ValueError.
@@ -120,6 +119,26 @@ def with_nan(a, index):
     a = np.array(a, dtype=float)
     a[index] = np.nan
     return a
+
+
+def kf_predict(**kw):
+    """``kalman.predict`` on a valid 2-state problem, with the arguments in ``kw`` replaced."""
+    args = dict(x=[1.0, 2.0], P=np.eye(2), F=np.eye(2), Q=0.01 * np.eye(2))
+    return kalman.predict(**{**args, **kw})
+
+
+def kf_update(**kw):
+    """``kalman.update`` on a valid 2-state, 2-row problem, with the arguments in ``kw`` replaced."""
+    args = dict(x=[1.0, 2.0], P=np.eye(2), z=[1.5, 2.5], h=[1.0, 2.0], H=np.eye(2), R=np.eye(2),
+                angle_mask=np.zeros(2, dtype=bool), gate=INF)
+    return kalman.update(**{**args, **kw})
+
+
+def nav_step(**kw):
+    """``strapdown.nav_step`` on a valid state and sample, with the arguments in ``kw`` replaced."""
+    args = dict(lla=np.array(LLA0), vel=np.zeros(3), q=np.array(Q1), w=np.zeros(3), f=[0.0, 0.0, 9.8], dt=0.01,
+                earth_consts=strapdown.earth_constants())
+    return strapdown.nav_step(**{**args, **kw})
 
 
 def with_lat(lat, n=11):
@@ -465,6 +484,32 @@ CASES = [
     bad("strapdown.error_model", "f_n", "inf", lambda: strapdown.error_model(0.6, 0.0, [0, 0, 0], [0, 0, INF])),
     bad("strapdown.error_input", "C_bn", "shape3x2", lambda: strapdown.error_input(np.ones((3, 2)))),
     bad("strapdown.error_input", "C_bn", "nan", lambda: strapdown.error_input(with_nan(np.eye(3), (1, 1)))),
+    bad("strapdown.nav_step", "lla", "empty", lambda: nav_step(lla=np.zeros(0))),
+    bad("strapdown.nav_step", "lla", "shape2", lambda: nav_step(lla=[0.6, 0.2])),
+    bad("strapdown.nav_step", "lla", "lat45rad", lambda: nav_step(lla=[45.0, 0.2, 50.0])),
+    bad("strapdown.nav_step", "lla", "nan", lambda: nav_step(lla=[0.6, NAN, 50.0])),
+    bad("strapdown.nav_step", "lla", "none", lambda: nav_step(lla=None)),
+    bad("strapdown.nav_step", "vel", "empty", lambda: nav_step(vel=[])),
+    bad("strapdown.nav_step", "vel", "inf", lambda: nav_step(vel=[INF, 0.0, 0.0])),
+    bad("strapdown.nav_step", "vel", "str", lambda: nav_step(vel=STR)),
+    bad("strapdown.nav_step", "q", "shape3", lambda: nav_step(q=[1.0, 0.0, 0.0])),
+    bad("strapdown.nav_step", "q", "zero", lambda: nav_step(q=np.zeros(4))),
+    bad("strapdown.nav_step", "q", "none", lambda: nav_step(q=None)),
+    bad("strapdown.nav_step", "w", "empty", lambda: nav_step(w=np.zeros(0))),
+    bad("strapdown.nav_step", "w", "nan", lambda: nav_step(w=[0.0, NAN, 0.0])),
+    bad("strapdown.nav_step", "w", "shape2x3", lambda: nav_step(w=np.zeros((2, 3)))),
+    bad("strapdown.nav_step", "f", "shape2", lambda: nav_step(f=[0.0, 9.8])),
+    bad("strapdown.nav_step", "f", "none", lambda: nav_step(f=None)),
+    bad("strapdown.nav_step", "dt", "negative", lambda: nav_step(dt=-0.01)),
+    bad("strapdown.nav_step", "dt", "zero", lambda: nav_step(dt=0.0)),
+    bad("strapdown.nav_step", "dt", "nan", lambda: nav_step(dt=NAN)),
+    bad("strapdown.nav_step", "dt", "array", lambda: nav_step(dt=[0.01, 0.01])),
+    bad("strapdown.nav_step", "dt", "str", lambda: nav_step(dt=STR)),
+    bad("strapdown.nav_step", "earth_consts", "shape6", lambda: nav_step(earth_consts=strapdown.earth_constants()[:6])),
+    bad("strapdown.nav_step", "earth_consts", "negative_a", lambda: nav_step(earth_consts=-strapdown.earth_constants())),
+    bad("strapdown.nav_step", "earth_consts", "none", lambda: nav_step(earth_consts=None)),
+    bad("strapdown.nav_step", "hold_height", "int", lambda: nav_step(hold_height=1)),
+    bad("strapdown.nav_step", "hold_height", "str", lambda: nav_step(hold_height=STR)),
 
     # ------------------------------------------------------------------ kalman
     bad("kalman.discretize", "F", "not_square", lambda: kalman.discretize(np.zeros((2, 3)), np.eye(2), np.eye(2), 0.1)),
@@ -474,6 +519,46 @@ CASES = [
     bad("kalman.discretize", "Qc", "inf", lambda: kalman.discretize(np.zeros((2, 2)), np.eye(2), np.eye(2) * INF, 0.1)),
     bad("kalman.discretize", "dt", "zero", lambda: kalman.discretize(np.zeros((2, 2)), np.eye(2), np.eye(2), 0.0)),
     bad("kalman.discretize", "dt", "nan", lambda: kalman.discretize(np.zeros((2, 2)), np.eye(2), np.eye(2), NAN)),
+    bad("kalman.predict", "x", "empty", lambda: kf_predict(x=[], P=np.zeros((0, 0)), F=np.zeros((0, 0)), Q=np.zeros((0, 0)))),
+    bad("kalman.predict", "x", "shape2x1", lambda: kf_predict(x=[[1.0], [2.0]])),
+    bad("kalman.predict", "x", "nan", lambda: kf_predict(x=[1.0, NAN])),
+    bad("kalman.predict", "x", "none", lambda: kf_predict(x=None)),
+    bad("kalman.predict", "x", "str", lambda: kf_predict(x=STR)),
+    bad("kalman.predict", "P", "shape3x3", lambda: kf_predict(P=np.eye(3))),
+    bad("kalman.predict", "P", "inf", lambda: kf_predict(P=np.eye(2) * INF)),
+    bad("kalman.predict", "F", "shape2x3", lambda: kf_predict(F=np.ones((2, 3)))),
+    bad("kalman.predict", "F", "none", lambda: kf_predict(F=None)),
+    bad("kalman.predict", "Q", "scalar", lambda: kf_predict(Q=0.01)),
+    bad("kalman.predict", "Q", "shape2x1", lambda: kf_predict(Q=np.full((2, 1), 0.01))),
+    bad("kalman.predict", "Q", "vector", lambda: kf_predict(Q=[0.01, 0.01])),
+    bad("kalman.predict", "Q", "empty", lambda: kf_predict(Q=np.zeros((0, 0)))),
+    bad("kalman.predict", "Q", "nan", lambda: kf_predict(Q=with_nan(np.eye(2), (0, 0)))),
+    bad("kalman.predict", "Q", "str", lambda: kf_predict(Q=STR)),
+    bad("kalman.update", "x", "empty", lambda: kf_update(x=np.zeros(0))),
+    bad("kalman.update", "x", "none", lambda: kf_update(x=None)),
+    bad("kalman.update", "P", "shape1x1", lambda: kf_update(P=[[1.0]])),
+    bad("kalman.update", "P", "nan", lambda: kf_update(P=with_nan(np.eye(2), (1, 0)))),
+    bad("kalman.update", "z", "shape2x1", lambda: kf_update(z=[[1.5], [2.5]])),
+    bad("kalman.update", "z", "inf", lambda: kf_update(z=[1.5, INF])),
+    bad("kalman.update", "z", "str", lambda: kf_update(z=STR)),
+    bad("kalman.update", "h", "shape3", lambda: kf_update(h=[1.0, 2.0, 3.0])),
+    bad("kalman.update", "h", "empty", lambda: kf_update(h=[])),
+    bad("kalman.update", "h", "nan", lambda: kf_update(h=[1.0, NAN])),
+    bad("kalman.update", "H", "shape2x3", lambda: kf_update(H=np.ones((2, 3)))),
+    bad("kalman.update", "H", "none", lambda: kf_update(H=None)),
+    bad("kalman.update", "R", "scalar", lambda: kf_update(R=1.0)),
+    bad("kalman.update", "R", "shape2x1", lambda: kf_update(R=np.ones((2, 1)))),
+    bad("kalman.update", "R", "inf", lambda: kf_update(R=np.eye(2) * INF)),
+    bad("kalman.update", "angle_mask", "empty", lambda: kf_update(angle_mask=np.zeros(0, dtype=bool))),
+    bad("kalman.update", "angle_mask", "float", lambda: kf_update(angle_mask=[0.0, 1.0])),
+    bad("kalman.update", "angle_mask", "none", lambda: kf_update(angle_mask=None)),
+    bad("kalman.update", "angle_mask", "str", lambda: kf_update(angle_mask=STR)),
+    bad("kalman.update", "gate", "nan", lambda: kf_update(z=[1.0 + 100 * np.sqrt(2.0), 2.0], gate=NAN)),
+    bad("kalman.update", "gate", "negative", lambda: kf_update(gate=-1.0)),
+    bad("kalman.update", "gate", "zero", lambda: kf_update(gate=0.0)),
+    bad("kalman.update", "gate", "array", lambda: kf_update(gate=[9.0, 9.0])),
+    bad("kalman.update", "gate", "none", lambda: kf_update(gate=None)),
+    bad("kalman.update", "gate", "str", lambda: kf_update(gate=STR)),
 
     # ---------------------------------------------------------------- analysis
     bad("analysis.rmse", "err", "inf", lambda: analysis.rmse([1.0, INF])),
@@ -831,6 +916,9 @@ DTYPE_CASES = [
     bad("kalman.discretize", "dt", "str", lambda: kalman.discretize(np.zeros((2, 2)), np.eye(2), np.eye(2), STR)),
     bad("kalman.discretize", "F", "empty", lambda: kalman.discretize(np.zeros((0, 0)), np.zeros((0, 0)), np.zeros((0, 0)), 0.1)),
     bad("kalman.discretize", "dt", "inf", lambda: kalman.discretize(np.zeros((2, 2)), np.eye(2), np.eye(2), INF)),
+    *dtype_rows("kalman.predict", "F", lambda F_: kf_predict(F=F_), np.eye(2), _ALL4),
+    *dtype_rows("kalman.update", "R", lambda R_: kf_update(R=R_), np.eye(2), _ALL4),
+    *dtype_rows("strapdown.nav_step", "w", lambda w_: nav_step(w=w_), np.zeros(3), _ALL4),
     # analysis
     *dtype_rows("analysis.rmse", "err", analysis.rmse, [1.0, 2.0], ("complex", "object", "bool")),
     *dtype_rows("analysis.allan_deviation", "x", lambda x: analysis.allan_deviation(x, 0.1), np.ones(100)),
@@ -1100,7 +1188,7 @@ def test_units_to_si_propagates_nan_by_design():
 
 
 def test_kalman_update_all_nan_measurement_is_no_data():
-    """The compiled update skips NaN components; with none left it reports NO_DATA."""
+    """The update skips NaN components; with none left it reports NO_DATA."""
     x, P = np.zeros(2), np.eye(2)
     z = np.array([np.nan, np.nan])
     H = np.eye(2)
@@ -1134,11 +1222,8 @@ NOT_APPLICABLE = {
     "sensors.devices": "takes no arguments",
     "repro.ClaimCheckFailed": "exception class, raised by navlib itself",
     "repro.NoOutputDirectory": "exception class, raised by navlib itself",
-    "kalman.predict": "compiled kernel fed by navlib's filters (by design)",
-    "kalman.update": "compiled kernel, NaN skipped by design; see test_kalman_update_all_nan_measurement_is_no_data",
     "sensors.ImuOutput": "record returned by simulate_imu, not constructed by users",
     "repro.Check": "record of a check, built by check()/check_range() from validated values",
-    "strapdown.nav_step": "compiled kernel fed by strapdown.integrate and navlib's filters (like kalman.predict)",
     "timing.TimingReport": "record returned by timing.sanitize, built from validated values",
     "filters.observations.AttitudeResult": "a result record, built by the attitude filters",
     "filters.planar_ekf.EkfResult": "a result record, built by filter_grid",

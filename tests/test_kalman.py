@@ -228,3 +228,67 @@ def test_closed_loop_nees_consistent():
 def test_discretize_scalar_F_is_value_error():
     with pytest.raises(ValueError, match="F"):
         kalman.discretize(1.0, [[1.0]], [[1.0]], 0.1)
+
+
+def test_wrappers_equal_the_compiled_primitives():
+    """kalman.predict / update validate and then give exactly what navlib's kernels get from _kernels."""
+    from navlib import _kernels
+    x, P, z, h, H, R = _random_problem(7, 4, 3)
+    F, Q = np.eye(4) + 0.1 * np.ones((4, 4)), 0.01 * np.eye(4)
+    for a, b in zip(kalman.predict(x, P, F, Q), _kernels.kalman_predict(x, P, F, Q), strict=True):
+        assert_array_equal(a, b)
+    mask = np.array([True, False, False])
+    z[1] = np.nan
+    for gate in (np.inf, 1e-3):
+        got, want = _update(x, P, z, h, H, R, mask, gate), _kernels.kalman_update(x, P, z, h, H, R, mask, gate)
+        for a, b in zip(got, want, strict=True):
+            assert_array_equal(a, b)
+
+
+def test_integer_and_list_arguments_give_the_float_result_and_are_not_modified():
+    """Integer arrays, lists and float32 are read as float64 copies: same result, caller's arrays untouched."""
+    x_i, P_i = np.array([1, -2, 3]), np.array([[4, 1, 0], [1, 3, 0], [0, 0, 2]])
+    F_i, Q_f32 = np.array([[1, 1, 0], [0, 1, 0], [0, 0, 1]]), np.eye(3, dtype=np.float32)
+    H_l, R_l, z_l, h_l = [[1, 0, 0], [0, 0, 1]], [[2, 0], [0, 1]], [3, -1], [1, 3]
+    copies = [a.copy() for a in (x_i, P_i, F_i, Q_f32)]
+    xp, Pp = kalman.predict(x_i, P_i, F_i, Q_f32)
+    xf, Pf = kalman.predict(x_i.astype(float), P_i.astype(float), F_i.astype(float), np.eye(3))
+    assert xp.dtype == Pp.dtype == np.float64
+    assert_array_equal(xp, xf)
+    assert_array_equal(Pp, Pf)
+    assert_array_equal(xp, [-1.0, -2.0, 3.0])
+    xu, Pu, y, nis, status = kalman.update(x_i, P_i, z_l, h_l, H_l, R_l, [False, False])
+    want = kalman.update(x_i.astype(float), P_i.astype(float), np.array(z_l, float), np.array(h_l, float),
+                         np.array(H_l, float), np.array(R_l, float), np.zeros(2, bool))
+    assert status == want[4] == kalman.ACCEPTED and nis == want[3]
+    for a, b in zip((xu, Pu, y), want[:3], strict=True):
+        assert a.dtype == np.float64
+        assert_array_equal(a, b)
+    assert not np.array_equal(xu, x_i)   # a real (non-integer) update ...
+    for a, b in zip((x_i, P_i, F_i, Q_f32), copies, strict=True):
+        assert a.dtype == b.dtype        # ... of which the caller's arrays see nothing
+        assert_array_equal(a, b)
+    assert H_l == [[1, 0, 0], [0, 0, 1]] and z_l == [3, -1]
+
+
+def test_shape_mistakes_are_errors_not_broadcasts():
+    """A scalar or (n, 1) Q used to be broadcast onto the off-diagonal terms; a NaN gate switched gating off."""
+    x, P = np.zeros(2), np.eye(2)
+    for Q in (0.01, np.full((2, 1), 0.01), [0.01, 0.01]):
+        with pytest.raises(ValueError, match="^Q: expected shape"):
+            kalman.predict(x, P, np.eye(2), Q)
+    z_out = np.array([100 * np.sqrt(2.0), 0.0])   # a 100-sigma outlier
+    with pytest.raises(ValueError, match="^gate:"):
+        _update(x, P, z_out, np.zeros(2), np.eye(2), np.eye(2), gate=np.nan)
+    assert _update(x, P, z_out, np.zeros(2), np.eye(2), np.eye(2), gate=13.8)[4] == kalman.REJECTED
+    with pytest.raises(ValueError, match="^angle_mask: expected shape"):
+        _update(x, P, z_out, np.zeros(2), np.eye(2), np.eye(2), angle_mask=np.zeros(0, bool))
+
+
+def test_no_rows_is_no_data():
+    """m = 0 measurement rows (and an all-NaN z) are valid: nothing to update."""
+    x, P = np.array([1.0, 2.0]), np.eye(2)
+    xn, Pn, y, nis, status = _update(x, P, np.zeros(0), np.zeros(0), np.zeros((0, 2)), np.zeros((0, 0)))
+    assert status == kalman.NO_DATA and y.shape == (0,) and np.isnan(nis)
+    assert_array_equal(xn, x)
+    assert_array_equal(Pn, P)

@@ -174,3 +174,49 @@ def test_trajectory_generators_reject_bad_input():
         trajectory.static(-1.0, 0.1, LLA0, [0, 0, 0])
     with pytest.raises(ValueError, match="traj"):
         trajectory.ideal_imu("not a trajectory")
+
+
+def test_nav_step_is_the_integrate_step():
+    """The validated strapdown.nav_step gives integrate's states bit for bit, updating float64 arrays in place."""
+    traj = _drive()
+    w, f = trajectory.ideal_imu(traj)
+    nav = strapdown.integrate(traj.lla[0], traj.vel_n[0], traj.q_bn[0], w[:50], f[:50], traj.dt)
+    lla, vel, q = traj.lla[0].copy(), traj.vel_n[0].copy(), traj.q_bn[0].copy()
+    consts = strapdown.earth_constants()
+    for k in range(50):
+        out = strapdown.nav_step(lla, vel, q, w[k], f[k], traj.dt, consts)
+        assert out[0] is lla and out[1] is vel and out[2] is q
+    np.testing.assert_array_equal(lla, nav.lla[-1])
+    np.testing.assert_array_equal(vel, nav.vel_n[-1])
+    np.testing.assert_array_equal(q, nav.q_bn[-1])
+
+
+def test_nav_step_integer_state_is_not_modified_and_gives_the_float_result():
+    """Integer (or list) state arrays are read as float64 copies: the caller's arrays stay as they were
+    (they were truncated in place before), and the returned state is the float64 result."""
+    consts = strapdown.earth_constants()
+    w, f = [0.01, -0.02, 0.3], [0.5, 0.2, 9.8]
+    lla_i, vel_i, q_l = np.array([0, 0, 100]), np.array([3, 4, 0]), [1, 0, 0, 0]
+    lla, vel, q = strapdown.nav_step(lla_i, vel_i, q_l, w, f, 0.5, consts)
+    want = [np.array([0.0, 0.0, 100.0]), np.array([3.0, 4.0, 0.0]), np.array([1.0, 0.0, 0.0, 0.0])]
+    strapdown.nav_step(*want, np.array(w), np.array(f), 0.5, consts)
+    for got, ref in zip((lla, vel, q), want, strict=True):
+        assert got.dtype == np.float64
+        np.testing.assert_array_equal(got, ref)
+    np.testing.assert_array_equal(lla_i, [0, 0, 100])
+    np.testing.assert_array_equal(vel_i, [3, 4, 0])
+    assert q_l == [1, 0, 0, 0] and lla_i.dtype.kind == vel_i.dtype.kind == "i"
+    assert abs(lla[0]) > 0 and vel[1] != 4.0      # the step did move the state
+
+
+@pytest.mark.parametrize("kw, match", [
+    (dict(w=np.zeros(0)), "^w: expected shape"),
+    (dict(lla=[45.0, 0.0, 0.0]), r"^lla\[0\] \(lat\): expected values in"),
+    (dict(dt=-0.01), "^dt: expected a positive value"),
+    (dict(q=np.zeros(4, dtype=np.float32)), "^q: expected a non-zero quaternion"),
+], ids=["empty-gyro", "lat45", "dt-negative", "q-zero"])
+def test_nav_step_rejects_what_the_kernel_would_misread(kw, match):
+    args = dict(lla=LLA0.copy(), vel=np.zeros(3), q=np.array([1.0, 0, 0, 0]), w=np.zeros(3), f=[0, 0, 9.8],
+                dt=0.01, earth_consts=strapdown.earth_constants())
+    with pytest.raises(ValueError, match=match):
+        strapdown.nav_step(**{**args, **kw})

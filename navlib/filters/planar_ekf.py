@@ -72,7 +72,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numba import njit
 
-from .. import kalman
+from .. import _kernels, kalman
 from .._deprecate import renamed_keywords
 from .._kernels import wrap_pi
 from .._typing import Array, ArrayLike, Times
@@ -467,13 +467,13 @@ def _ekf_kernel(t, Z, x0, P0, Q, R, gate, fast, w_range, reacquire):
         if robust:                                         # gate and/or gyro range given
             n_rej, sat = _screen(x, P, z, R, gate, gate_on, w_range, zu, rejected[k], streak, reacquire, reacquired[k])
         if n_rej > 0 or sat:                               # gated or saturated: the general kernel on zu
-            x, P, _, nis[k], status[k] = kalman.update(x, P, zu, x, H, R, _ANGLE_MASK, np.inf)
+            x, P, _, nis[k], status[k] = _kernels.kalman_update(x, P, zu, x, H, R, _ANGLE_MASK, np.inf)
             if n_rej > 0:
                 status[k] = kalman.REJECTED
         elif fast and np.all(np.isfinite(z)):
             nis[k], status[k] = _update_identity_h(x, P, z, R, np.inf, w)
         else:                                              # dropouts: the general kernel
-            x, P, _, nis[k], status[k] = kalman.update(x, P, z, x, H, R, _ANGLE_MASK, np.inf)
+            x, P, _, nis[k], status[k] = _kernels.kalman_update(x, P, z, x, H, R, _ANGLE_MASK, np.inf)
         x[_HEADING] = np.mod(x[_HEADING], 2 * np.pi)
         X[k], Ps[k] = x, P
     return X, Ps, nis, status, rejected, reacquired

@@ -24,7 +24,7 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit
 
-from .. import kalman
+from .. import _kernels
 from .._deprecate import renamed_keywords
 from .._typing import Array, ArrayLike, Interval, Quat, Vec3, Vec3Series
 from .._validate import flag, nonempty_array, scalar
@@ -198,7 +198,7 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
         iz += ez * dt
         _phi_into(Phi, gx + kp * ex + ki * ix, gy + kp * ey + ki * iy, gz + kp * ez + ki * iz, dt)
         _gamma_into(G, x, dt)
-        x, P = kalman.predict(x, P, Phi, G @ Qg @ np.ascontiguousarray(G.T))     # Eqs. (16)-(18)
+        x, P = _kernels.kalman_predict(x, P, Phi, G @ Qg @ np.ascontiguousarray(G.T))     # Eqs. (16)-(18)
         z[0], z[1], z[2] = (ax, ay, az) if a_ok else (np.nan, np.nan, np.nan)
         z[3], z[4], z[5] = (mx, my, mz) if m_ok else (np.nan, np.nan, np.nan)
         _jacobian_into(H, x, by, bz)                                        # Eq. (20)
@@ -206,7 +206,7 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
             h[:] = H @ x                                                    # printed Eq. (19): wrong (E003-12)
         else:
             _h_into(h, x, by, bz)                                           # z - h(q), Eq. (19) corrected
-        x, P, _, _, _ = kalman.update(x, P, z, h, H, R, no_angles)
+        x, P, _, _, _ = _kernels.kalman_update(x, P, z, h, H, R, no_angles)
         x = x / np.sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2] + x[3] * x[3])
         q_out[t, k, 0], q_out[t, k, 1], q_out[t, k, 2], q_out[t, k, 3] = x[0], x[1], x[2], x[3]
         if keep:

@@ -56,12 +56,12 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit
 
-from .. import _kernels, attitude, earth, kalman, robust, trajectory
+from .. import _kernels, attitude, earth, robust, trajectory
 from .._deprecate import renamed_keywords
 from .._kernels import radii_mn
 from .._validate import as_array, as_quat, booleans, choice, imu_samples, instance, integer, intervals, range_limit, scalar
 from ..imu import unpack
-from ..strapdown import earth_constants, nav_step
+from ..strapdown import earth_constants
 from ..units import G0
 from .zupt import error_state_into, zupt_zaru_rows_into, zupt_zaru_z_into
 
@@ -316,7 +316,7 @@ def _filter_kernel(samples, c):
         for i in range(3):
             wk[i] = w_last[i] - b[3 + i]
             fk[i] = f_last[i] - b[i]
-        nav_step(lla[0], vel[0], q[0], wk, fk, dtk, c.earth_consts, False)   # the shared mechanisation
+        _kernels.nav_step(lla[0], vel[0], q[0], wk, fk, dtk, c.earth_consts, False)   # the shared mechanisation
         C = attitude.quat_to_dcm_1(q[0])
         for i in range(3):
             Phi[i, 3 + i] = dtk
@@ -327,7 +327,7 @@ def _filter_kernel(samples, c):
                 Q[3 + i, 3 + i] += c.hold_accel * c.hold_accel * dtk
                 Q[6 + i, 6 + i] += c.hold_gyro * c.hold_gyro * dtk
         error_state_into(Phi, C * dtk, C @ fk * dtk)            # Phi = I + F dt (blocks scaled by dt)
-        x, P = kalman.predict(x, P, Phi, Q)
+        x, P = _kernels.kalman_predict(x, P, Phi, Q)
         if static[k] and c.zupt and not good:              # held or clipped: left out of the static average
             counts[_N_STATIC_SKIP] += 1
             flags[k] |= FLAG_STATIC_SKIPPED
@@ -348,7 +348,7 @@ def _filter_kernel(samples, c):
                 if forced:                                   # P was too small: widen the velocity rows
                     for i in range(3):
                         _reset_state(P, 3 + i, max(np.sqrt(P[3 + i, 3 + i]), abs(z6[i] - h6[i])))
-                x, P, _, _, status = kalman.update(x, P, z6, h6, H6, R6, no_wrap6, np.inf if forced else c.gate)
+                x, P, _, _, status = _kernels.kalman_update(x, P, z6, h6, H6, R6, no_wrap6, np.inf if forced else c.gate)
                 if status == 1:
                     counts[_N_ZUPT] += 1
                     counts[_N_ZUPT_FORCED] += forced
@@ -390,7 +390,7 @@ def _filter_kernel(samples, c):
                     H1[:] = 0.0
                     H1[0, 2] = 1.0
                     z1[0], h1[0], R1[0, 0] = lla[0, 2] - h_baro[k], 0.0, c.r_baro
-                    x, P, _, _, status = kalman.update(x, P, z1, h1, H1, R1, no_wrap1, np.inf)
+                    x, P, _, _, status = _kernels.kalman_update(x, P, z1, h1, H1, R1, no_wrap1, np.inf)
                     _feedback(x, lla[0], vel[0], q[0], b, a, e2)
         hb += vb * dtk
         t_baro += dtk
@@ -416,7 +416,7 @@ def _filter_kernel(samples, c):
                     H1[:] = 0.0
                     H1[0, 6], H1[0, 7], H1[0, 8] = c1[0] * c1[2] / hh, c1[1] * c1[2] / hh, -1.0
                     z1[0], h1[0], R1[0, 0] = dh, 0.0, c.r_heading
-                    x, P, _, _, status = kalman.update(x, P, z1, h1, H1, R1, wrap1, np.inf)
+                    x, P, _, _, status = _kernels.kalman_update(x, P, z1, h1, H1, R1, wrap1, np.inf)
                     _feedback(x, lla[0], vel[0], q[0], b, a, e2)
         lla_out[k + 1], vel_out[k + 1], q_out[k + 1], b_out[k + 1] = lla[0], vel[0], q[0], b
         for i in range(15):

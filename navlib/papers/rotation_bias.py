@@ -90,7 +90,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from .. import attitude, kalman, robust
+from .. import _kernels, attitude, kalman, robust
 from .._kernels import wrap_pi
 from .._typing import Angles, Array, ArrayLike, Interval, Vec3, Vec3Series
 from .._validate import euler_angles, in_range, intervals, range_limit
@@ -800,10 +800,10 @@ def _kalman_kernel(r, V, R, qq, intervals, p0, gate):
         P = p0.copy()
         for k in range(K):
             if k > 0:
-                x, P = kalman.predict(x, P, F, qq * intervals[k] * np.eye(3))
+                x, P = _kernels.kalman_predict(x, P, F, qq * intervals[k] * np.eye(3))
             H = V[t, k]
             if np.all(np.isfinite(H)):
-                x, P, _, _, status = kalman.update(x, P, r[t, k], H @ x, H, R[t, k], mask, gate)
+                x, P, _, _, status = _kernels.kalman_update(x, P, r[t, k], H @ x, H, R[t, k], mask, gate)
             else:                                   # a skipped dwell: no V either
                 status = kalman.NO_DATA
             if status == kalman.NO_DATA:

@@ -1,0 +1,65 @@
+"""The compiled Kalman and strapdown primitives stay inside their arrays (numba bounds checking on).
+
+numba does not check indices by default: a kernel that reads past an array's end returns
+garbage instead of failing. This test runs :mod:`navlib._kernels`' ``kalman_predict``,
+``kalman_update`` and ``nav_step``, and their validated public wrappers ``kalman.predict``,
+``kalman.update`` and ``strapdown.nav_step``, on valid inputs -- also m = 0 measurement rows,
+all-NaN and partly NaN measurements, wrapped angles and a rejecting gate -- in a subprocess
+with ``NUMBA_BOUNDSCHECK=1``, where an out-of-bounds index raises ``IndexError``. A fresh
+``NUMBA_CACHE_DIR`` keeps the cached builds compiled without bounds checks out of it.
+"""
+import os
+import subprocess
+import sys
+
+SCRIPT = r"""
+import numpy as np
+from navlib import _kernels, kalman, strapdown
+
+rng = np.random.default_rng(5)
+for n in (1, 3, 15):
+    A = rng.standard_normal((n, n))
+    x, P, F, Q = rng.standard_normal(n), A @ A.T + np.eye(n), np.eye(n) + 0.1 * A, 0.01 * np.eye(n)
+    for predict in (_kernels.kalman_predict, kalman.predict):
+        xp, Pp = predict(x, P, F, Q)
+        assert xp.shape == (n,) and Pp.shape == (n, n)
+    for m in (0, 1, 2, 6):
+        H = rng.standard_normal((m, n))
+        B = rng.standard_normal((m, m))
+        R = B @ B.T + np.eye(m)
+        h = H @ x
+        mask = np.arange(m) % 2 == 0
+        z_full = h + rng.standard_normal(m)
+        z_part = np.where(np.arange(m) % 2 == 1, np.nan, z_full)
+        for z in (z_full, z_part, np.full(m, np.nan), h + 1e3):
+            for gate in (np.inf, 9.0):
+                for update in (_kernels.kalman_update, kalman.update):
+                    xu, Pu, y, nis, status = update(x, P, z, h, H, R, mask, gate)
+                    assert xu.shape == (n,) and Pu.shape == (n, n) and y.shape == (m,)
+                    assert status in (kalman.ACCEPTED, kalman.NO_DATA, kalman.REJECTED)
+                    if not np.isfinite(z).any():
+                        assert status == kalman.NO_DATA
+
+c = strapdown.earth_constants()
+for step in (_kernels.nav_step, strapdown.nav_step):
+    for hold in (False, True):
+        lla, vel, q = np.array([0.5, 0.2, 30.0]), np.array([1.0, 2.0, 0.1]), np.array([0.9, 0.1, 0.2, 0.3])
+        q /= np.linalg.norm(q)
+        for k in range(5):
+            step(lla, vel, q, np.array([0.01, -0.02, 0.3]), np.array([0.1, 0.2, 9.8]), 0.01, c, hold)
+        assert np.all(np.isfinite(lla)) and np.all(np.isfinite(vel)) and np.all(np.isfinite(q))
+
+# The primitives are unvalidated: bounds checking is on, so an empty gyro sample is caught here.
+try:
+    _kernels.nav_step(np.zeros(3), np.zeros(3), np.array([1.0, 0, 0, 0]), np.zeros(0), np.zeros(3), 0.01, c)
+except IndexError:
+    print("ok")
+"""
+
+
+def test_kernels_stay_in_bounds(tmp_path):
+    env = dict(os.environ, NUMBA_BOUNDSCHECK="1", NUMBA_CACHE_DIR=str(tmp_path / "numba-cache"))
+    env.pop("NUMBA_DISABLE_JIT", None)
+    out = subprocess.run([sys.executable, "-c", SCRIPT], env=env, capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stderr[-3000:]
+    assert out.stdout.strip() == "ok", "bounds checking was not active: " + out.stdout + out.stderr[-2000:]
