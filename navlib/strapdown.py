@@ -354,6 +354,8 @@ def error_model(lat: float, h: float, vel_n: Vec3, f_n: Vec3, ellipsoid: earth.E
     F : ndarray, shape (9, 9)
     """
     lat = scalar(latitude(lat), "lat")
+    if np.cos(lat) < 1e-9:
+        raise ValueError("lat: the local-level (ENU) error model is singular at the poles; expected |lat| < 90 deg")
     h = scalar(h, "h")
     _ellipsoid(ellipsoid)
     v = as_array(vel_n, "vel_n", shape=(3,))

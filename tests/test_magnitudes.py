@@ -6,7 +6,7 @@ import pytest
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from navlib import atmosphere, attitude, earth, plots  # noqa: E402
+from navlib import atmosphere, attitude, earth, plots, strapdown  # noqa: E402
 from navlib.papers import gauss_kruger_ekf  # noqa: E402
 
 
@@ -23,9 +23,11 @@ def test_rotation_vector_beyond_float_resolution_is_refused():
     assert np.all(np.isfinite(attitude.rotvec_to_quat([1e9, 0.0, 0.0])))
 
 
-def test_transport_rate_is_refused_at_the_poles():
+def test_transport_rate_and_error_model_are_refused_at_the_poles():
     with pytest.raises(ValueError, match="^lat: the ENU transport rate is singular"):
         earth.transport_rate_n(np.pi / 2, 0.0, [1.0, 0.0, 0.0])
+    with pytest.raises(ValueError, match="^lat: the local-level"):
+        strapdown.error_model(-np.pi / 2, 0.0, [1.0, 0.0, 0.0], [0.0, 0.0, 9.8])
     assert np.all(np.isfinite(earth.transport_rate_n(np.deg2rad(89.9), 0.0, [1.0, 0.0, 0.0])))
 
 
