@@ -54,9 +54,11 @@ NaN dropouts       stop means: samples left out; a stop with    ``StaticWindow.n
                    < ``min_fraction`` (50 %) left is refused    ``status == TOO_FEW``
                    INS change: last sample held; a run longer   ``robust.fault_report`` of the gyro
                    than ``max_gap`` (0.1 s) refuses the drive   (``"nan"``); NaN result (refused)
-outliers (spikes)  stop means: ``outlier_k`` x MAD from the     ``StaticWindow.n_outliers_*``
-                   median left out (opt-in; without it the
-                   error bound is ``k sigma sqrt(p/N)``)
+outliers (spikes)  stop means: ``outlier_k`` robust sigmas      ``StaticWindow.n_outliers_*``
+                   (1.4826 MAD, at least 1.4826 q/2 for a
+                   quantisation step q) from the median left
+                   out (opt-in; without it the error bound is
+                   ``k sigma sqrt(p/N)``)
 saturation         stop: refused (``full_scale_*``);            ``n_saturated_*``, ``SATURATED``;
                    INS drive: refused (``full_scale_gyro``)     ``fault_report(..., full_scale=)``
 timing             ``timing.sanitize`` then windows cut by      ``TimingReport``; ``dt`` arrays in

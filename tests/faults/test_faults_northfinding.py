@@ -165,6 +165,31 @@ def test_saturated_stop_is_refused_and_counted():
     np.testing.assert_array_equal(same.triad, CLEAN.triad)
 
 
+def test_quantised_gyro_keeps_its_good_samples_under_mad_rejection():
+    """A gyro quantised at 2 sigma: MAD = 0 (68 % of the samples on the median code).
+
+    Campaign: with outlier_k=5, 1,647 of 3,000 samples were "outliers" and the stop was refused; the
+    robust sigma is now 1.4826 max(MAD, q/2).
+    """
+    q = 2 * SIG_G
+    a = WIN[1, 0]
+    w, f = IMU.w_ib_b[..., a:a + 3000, :], IMU.f_b[..., a:a + 3000, :]
+    wq = np.round(w / q) * q
+    assert np.all(np.median(np.abs(wq - np.median(wq, axis=-2, keepdims=True)), axis=-2) == 0)
+    win = alignment.static_means(wq, f, LAT, 50.0, outlier_k=5.0)
+    assert np.all(win.status == alignment.OK) and np.all(win.n_outliers_gyro == 0)
+    # the quantised mean differs from the exact one by the mean rounding error: 5 sigma = 5 q / sqrt(12 N)
+    exact = alignment.static_means(w, f, LAT, 50.0)
+    assert np.abs(win.w_mean - exact.w_mean).max() < 5 * q / np.sqrt(12 * 3000)
+    # whole stops: no sample rejected, no stop refused or stuck
+    sol = nf.stop_solutions(np.round(IMU.w_ib_b / q) * q, IMU.f_b, WIN, LAT, 50.0, outlier_k=5.0)
+    assert np.all(sol.status == alignment.OK) and np.all(counts(sol, "n_outliers_gyro") == 0)
+    # and quantised spikes (100 sigma) are still rejected, exactly
+    ws, hit = faults.spikes(IMU.w_ib_b, 0.01, SIG_G, np.random.default_rng(3))
+    sol = nf.stop_solutions(np.round(ws / q) * q, IMU.f_b, WIN, LAT, 50.0, outlier_k=5.0)
+    np.testing.assert_array_equal(counts(sol, "n_outliers_gyro"), np.broadcast_to(window_counts(hit), (4, 3)))
+
+
 # ----------------------------------------------------------------------------- MEMS INS heading change
 
 MEMS = sensors.imu_model("ADIS16475-1").replace(gyro={"bias": units.deg_per_s(0.005), "scale_factor": 0.0015})
