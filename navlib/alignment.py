@@ -32,7 +32,7 @@ from .imu import ImuSamples, unpack
 from .robust import FaultReport
 
 __all__ = ["level", "magnetic_heading", "tilt_heading", "initial_attitude", "MAX_LAT_DEG", "gyrocompass_latitude", "OK",
-           "TOO_FEW", "SATURATED", "MOVING", "StaticWindow", "static_means", "triad", "triad_heading",
+           "TOO_FEW", "SATURATED", "MOVING", "STUCK", "StaticWindow", "static_means", "triad", "triad_heading",
            "four_position_heading", "static_gyro_bias"]
 
 
@@ -130,7 +130,7 @@ def gyrocompass_latitude(lat: ArrayLike, deg: bool = False) -> Array:
     return lat
 
 
-OK, TOO_FEW, SATURATED, MOVING = 0, 1, 2, 3
+OK, TOO_FEW, SATURATED, MOVING, STUCK = 0, 1, 2, 3, 4
 """Status codes of a static window (:class:`StaticWindow`)."""
 
 
@@ -152,7 +152,8 @@ class StaticWindow:
     n_dropped_gyro, n_dropped_accel : ndarray of int, shape (...)
         Samples with a NaN component (dropouts), left out.
     n_outliers_gyro, n_outliers_accel : ndarray of int, shape (...)
-        Samples more than ``outlier_k`` x 1.4826 MAD from the window median in
+        Samples more than ``outlier_k`` robust sigmas (1.4826 MAD, floored at the
+        quantisation step: see :func:`static_means`) from the window median in
         any component, left out (0 without ``outlier_k``).
     n_saturated_gyro, n_saturated_accel : ndarray of int, shape (...)
         Samples with a component at the device rails (``|x| >= full_scale``).
@@ -160,7 +161,13 @@ class StaticWindow:
         ``OK`` (0); ``TOO_FEW`` (1): fewer than ``min_fraction`` of the samples
         (and 2) left; ``SATURATED`` (2): saturated samples, the robot was not
         still or the reading is unknown; ``MOVING`` (3): the accelerometer
-        shows motion (``accel_tol``).
+        shows motion (``accel_tol``); ``STUCK`` (4): a sensor axis repeated
+        one reading over at least ``stuck_fraction`` of the valid samples
+        (a frozen output).
+    n_stuck_gyro, n_stuck_accel : ndarray of int, shape (...)
+        Samples in the longest run of identical readings on any axis, where it
+        reached ``stuck_fraction`` of the valid samples (0 otherwise, and without
+        ``stuck_fraction``).
     """
     w_mean: np.ndarray
     f_mean: np.ndarray
@@ -174,6 +181,8 @@ class StaticWindow:
     n_saturated_gyro: np.ndarray
     n_saturated_accel: np.ndarray
     status: np.ndarray
+    n_stuck_gyro: np.ndarray | int = 0
+    n_stuck_accel: np.ndarray | int = 0
 
     def __iter__(self):
         return iter((self.w_mean, self.f_mean))
@@ -189,18 +198,50 @@ class StaticWindow:
         return FaultReport({("gyro", "nan"): self.n_dropped_gyro, ("accel", "nan"): self.n_dropped_accel,
                             ("gyro", "outlier"): self.n_outliers_gyro, ("accel", "outlier"): self.n_outliers_accel,
                             ("gyro", "saturated"): self.n_saturated_gyro, ("accel", "saturated"): self.n_saturated_accel,
+                            ("gyro", "stuck"): self.n_stuck_gyro, ("accel", "stuck"): self.n_stuck_accel,
                             ("window", "refused"): (self.status != OK).astype(int)})
 
 
 def _outliers(x, valid, k):
-    """Samples more than k * 1.4826 MAD from the median of the valid samples (any component)."""
+    """Samples more than ``k`` robust sigmas from the median of the valid samples (any component).
+
+    The robust sigma is ``1.4826 max(MAD, q / 2)`` per component, with ``q`` the quantisation step:
+    the smallest non-zero difference between two valid readings (0 for continuous readings, where
+    it is far below the MAD and the rule is the plain 1.4826 MAD). A quantised reading resolves the
+    MAD only to a step: a MAD that reads 0 (more than half of the samples on the median's code,
+    noise sigma below ~0.74 q) means a true MAD anywhere below q / 2, and 1.4826 q / 2 is the largest
+    Gaussian sigma that agrees with it. Without the floor every sample off the median code was an
+    outlier (with ``k = 5``, 1,500-2,200 of the 3,000 samples of a good stop quantised at 1.5-3
+    noise sigmas; ``tests/faults/test_faults_northfinding.py``); with the quantisation noise
+    q / sqrt(12) as the floor, samples two codes out still were (35-110 of 3,000).
+    """
     xv = np.where(valid[..., None], x, np.nan)
     with np.errstate(all="ignore"), warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)          # all-NaN windows: handled as TOO_FEW
         med = np.nanmedian(xv, axis=-2, keepdims=True)
         mad = np.nanmedian(np.abs(xv - med), axis=-2, keepdims=True)
-    thresh = k * np.maximum(1.4826 * mad, 1e-12)
+        step = np.diff(np.sort(xv, axis=-2), axis=-2)           # NaN sorted last: NaN steps
+        q = np.min(np.where(step > 0, step, np.inf), axis=-2, keepdims=True)
+    q = np.where(np.isfinite(q), q, 0.0)                        # no two distinct readings: no step
+    thresh = k * np.maximum(1.4826 * np.maximum(mad, q / 2), 1e-12)
     return valid & np.any(np.abs(x - med) > thresh, axis=-1)
+
+
+def _longest_repeat(x, valid):
+    """Samples in the longest run of one repeated reading per component, over the valid samples.
+
+    A dropout (invalid row) neither breaks nor extends a run; shape (..., 3).
+    """
+    n = x.shape[-2]
+    idx = np.where(valid, np.arange(n), -1)
+    np.maximum.accumulate(idx, axis=-1, out=idx)                # last valid sample at or before k
+    prev = np.concatenate([np.full(idx.shape[:-1] + (1,), -1), idx[..., :-1]], axis=-1)
+    before = np.take_along_axis(x, np.maximum(prev, 0)[..., None], axis=-2)
+    same = valid[..., None] & (prev >= 0)[..., None] & (x == before)
+    new = valid[..., None] & ~same                              # a valid reading that starts a run
+    c = np.cumsum(same, axis=-2)
+    start = np.maximum.accumulate(np.where(new, c, 0), axis=-2)
+    return (c - start).max(-2) + 1
 
 
 def _masked_mean(x, used, n_used):
@@ -214,7 +255,8 @@ def static_means(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None,
                  h: ArrayLike = 0.0, accel_tol: float = 0.2, *,
                  min_fraction: float = 0.5,
                  outlier_k: float | None = None, full_scale_gyro: float | None = None,
-                 full_scale_accel: float | None = None, strict: bool = True) -> StaticWindow:
+                 full_scale_accel: float | None = None, stuck_fraction: float | None = None,
+                 strict: bool = True) -> StaticWindow:
     """Average a static window of gyro and accelerometer samples (paper step 1).
 
     Faults, each counted in the returned :class:`StaticWindow`:
@@ -224,11 +266,23 @@ def static_means(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None,
       ``max(2, min_fraction N)`` samples left is refused (``TOO_FEW``). A
       30-s gap in a 3-min stop leaves 150 s: the mean's white-noise std grows
       by sqrt(180/150) = 1.10.
-    * outliers: with ``outlier_k``, samples more than ``outlier_k`` x
-      1.4826 MAD from the window median are left out (``n_outliers_*``).
+    * outliers: with ``outlier_k``, samples more than ``outlier_k`` robust
+      sigmas from the window median are left out (``n_outliers_*``); the
+      robust sigma is ``1.4826 max(MAD, q / 2)`` per component, ``q`` the
+      quantisation step (the smallest non-zero difference between two
+      readings): a quantised sensor whose MAD reads 0 keeps its good samples
+      (1.4826 MAD alone made every sample off the median code an outlier).
       Without it, spikes of +-k sigma on a fraction p of the samples add
       ``k sigma sqrt(p / N)`` of noise to the mean (10x the mean's
       white-noise std for p = 1 %, k = 100), unreported.
+    * frozen output: with ``stuck_fraction``, a window in which one axis
+      repeats a single reading over at least that fraction of its valid
+      samples (consecutive, dropouts skipped) is refused (``STUCK``,
+      ``n_stuck_*``): a live sensor's noise changes every reading, and a
+      frozen gyro's mean is one old sample (a stop then gave a heading
+      13-20 deg off with status OK). A quantised sensor whose noise is far
+      below its step looks the same and is refused too (it resolves nothing
+      below the step); so is noise-free simulated data (pass None).
     * saturation: with ``full_scale_gyro``/``full_scale_accel`` (device
       ranges, rad/s and m/s^2), samples at the rails are counted and the
       window is refused (``SATURATED``): a static robot never reaches them.
@@ -256,6 +310,11 @@ def static_means(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None,
         MAD outlier threshold (e.g. 6); None: no outlier rejection.
     full_scale_gyro, full_scale_accel : float, optional
         Device ranges; None: no saturation check.
+    stuck_fraction : float, optional
+        In (0, 1]: refuse a window whose longest run of one repeated reading,
+        on any axis, covers this fraction of the valid samples (0.5: most of
+        the stop; :func:`navlib.papers.north_finding.stop_solutions` uses
+        0.5); None (default): no check.
     strict : bool
         Raise ValueError for a refused window (default); ``False`` returns NaN
         means with its ``status`` instead.
@@ -269,7 +328,8 @@ def static_means(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None,
     ------
     ValueError
         Empty windows, inf, mismatched shapes; with ``strict``, a refused
-        window (too few samples, saturated, or the robot evidently moving).
+        window (too few samples, saturated, a frozen sensor, or the robot
+        evidently moving).
     """
     if isinstance(w_ib_b, ImuSamples):          # no dt here: unpack's dt is left None and its intervals unused
         w_ib_b, f_b, _, full_scale_gyro, full_scale_accel = unpack(w_ib_b, f_b, None, full_scale_gyro,
@@ -288,6 +348,8 @@ def static_means(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None,
     tol = float(nonempty_positive(accel_tol, "accel_tol"))
     frac = float(in_range(nonempty_array(min_fraction, "min_fraction"), "min_fraction", 0.0, 1.0, lo_open=True))
     k_out = None if outlier_k is None else float(nonempty_positive(outlier_k, "outlier_k"))
+    stuck = None if stuck_fraction is None else float(in_range(nonempty_array(stuck_fraction, "stuck_fraction"),
+                                                               "stuck_fraction", 0.0, 1.0, lo_open=True))
     fs_g = np.inf if full_scale_gyro is None else float(nonempty_positive(full_scale_gyro, "full_scale_gyro"))
     fs_a = np.inf if full_scale_accel is None else float(nonempty_positive(full_scale_accel, "full_scale_accel"))
     g = earth.gravity(gyrocompass_latitude(lat), nonempty_array(h, "h"))
@@ -299,12 +361,17 @@ def static_means(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None,
         outl = _outliers(x, valid, k_out) if k_out is not None else np.zeros_like(valid)
         used = valid & ~outl
         n_used = used.sum(-1)
-        out[name] = (_masked_mean(x, used, n_used), n_used, n - valid.sum(-1), outl.sum(-1), sat.sum(-1), used)
-    (w_mean, nu_g, nd_g, no_g, ns_g, _), (f_mean, nu_a, nd_a, no_a, ns_a, used_f) = out["gyro"], out["accel"]
+        n_stuck = np.zeros(valid.shape[:-1], dtype=int)
+        if stuck is not None:
+            run = _longest_repeat(x, valid).max(-1)
+            n_stuck = np.where((run >= stuck * valid.sum(-1)) & (run >= 2), run, 0)
+        out[name] = (_masked_mean(x, used, n_used), n_used, n - valid.sum(-1), outl.sum(-1), sat.sum(-1), used, n_stuck)
+    (w_mean, nu_g, nd_g, no_g, ns_g, _, nk_g), (f_mean, nu_a, nd_a, no_a, ns_a, used_f, nk_a) = out["gyro"], out["accel"]
     status = np.zeros(w_mean.shape[:-1], dtype=int)
     too_few = (nu_g < need) | (nu_a < need)
     status[too_few] = TOO_FEW
     status[(status == OK) & ((ns_g > 0) | (ns_a > 0))] = SATURATED
+    status[(status == OK) & ((nk_g > 0) | (nk_a > 0))] = STUCK
     with np.errstate(invalid="ignore"):
         dev = np.abs(np.linalg.norm(f_mean, axis=-1) - g)
         if used_f.all():
@@ -324,6 +391,10 @@ def static_means(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None,
             which = "w_ib_b" if np.any(ns_g > 0) else "f_b"
             raise ValueError(f"{which}: {int(ns_g.sum() + ns_a.sum())} samples at the full-scale range: the robot "
                              "was not static during the stop")
+        if np.any(status == STUCK):
+            which, run = ("w_ib_b", nk_g) if np.any(nk_g > 0) else ("f_b", nk_a)
+            raise ValueError(f"{which}: one reading repeated over {int(run.max())} consecutive samples of {n} "
+                             f"(stuck_fraction = {stuck:g}): the sensor output is frozen")
         if np.any(dev[status == MOVING] > tol):
             raise ValueError(f"f_b: mean specific-force norm differs from gravity by {np.nanmax(dev):.3g} m/s^2 "
                              f"(> accel_tol = {tol:g}): the robot is not static")
@@ -332,7 +403,7 @@ def static_means(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None,
     bad = status != OK
     w_mean = np.where(bad[..., None], np.nan, w_mean)
     f_mean = np.where(bad[..., None], np.nan, f_mean)
-    return StaticWindow(w_mean, f_mean, n, nu_g, nu_a, nd_g, nd_a, no_g, no_a, ns_g, ns_a, status)
+    return StaticWindow(w_mean, f_mean, n, nu_g, nu_a, nd_g, nd_a, no_g, no_a, ns_g, ns_a, status, nk_g, nk_a)
 
 def _reference_triad(g_n, w_ie_n):
     a = g_n

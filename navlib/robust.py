@@ -13,7 +13,13 @@ batch) and, when asked for, per-sample boolean flags. Sensors are named ``"gyro"
 ``"reacquired"`` a sample used although it failed its gate, because a run of them agreed (the
                  estimate, not the sensor, was wrong), or a forced update after repeated rejections;
 ``"refused"``    a quantity that could not be formed (e.g. a static window with too few samples,
-                 a dwell skipped for dropouts).
+                 a dwell skipped for dropouts);
+``"jump"``       a time jump: a sample interval too long to integrate as motion (``("clock", "jump")``,
+                 :class:`navlib.filters.zupt_ins.FilterConfig` ``max_dt``), held over;
+``"freefall"``   accelerometer samples reading ``|f|`` near 0 for a while (free fall or a dead sensor:
+                 ``("accel", "freefall")``), held from the last good sample;
+``"stuck"``      a frozen output: one reading repeated over most of a window (``("gyro", "stuck")``,
+                 :func:`navlib.alignment.static_means` ``stuck_fraction``), the window refused.
 
 Every filter result carries one: :class:`navlib.filters.observations.AttitudeResult` (Mahony,
 quaternion KF), :class:`navlib.filters.planar_ekf.EkfResult`, :class:`navlib.filters.zupt_ins.FilterResult`,

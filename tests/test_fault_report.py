@@ -12,7 +12,7 @@ from navlib import imu, robust, strapdown, trajectory
 from navlib.filters import mahony, observations, planar_ekf, zupt_ins
 from navlib.papers import gauss_kruger_ekf, rotation_bias
 
-KINDS = {"nan", "saturated", "spike", "outlier", "reacquired", "refused"}
+KINDS = {"nan", "saturated", "spike", "outlier", "reacquired", "refused", "jump", "freefall", "stuck"}
 
 
 def check_vocabulary(report):

@@ -188,7 +188,9 @@ def test_vehicle_stand_in_end_to_end():
     traj = trajectory.vehicle(segs, 0.01, [LAT, 2.0, 50.0], heads[0])
     w, f = trajectory.ideal_imu(traj)
     win = np.round(stops / 0.01).astype(int)
-    sol = nf.stop_solutions(w, f, win, LAT, 50.0)
+    with pytest.raises(ValueError, match="^w_ib_b: one reading repeated"):    # noise-free: looks frozen
+        nf.stop_solutions(w, f, win, LAT, 50.0)
+    sol = nf.stop_solutions(w, f, win, LAT, 50.0, stuck_fraction=None)
     assert np.abs(attitude.wrap_pi(sol.triad - heads)).max() < 1e-6
     assert np.abs(attitude.wrap_pi(sol.candidates - heads[:, None])).min(-1).max() < 1e-4
     for k in range(2):
@@ -257,6 +259,9 @@ GOOD_F = np.tile(ideal([1.0, 0.0, 0.0])[1], (10, 1))
     (lambda: alignment.static_means(GOOD_W, GOOD_F, LAT, min_fraction=0.0), "min_fraction"),
     (lambda: alignment.static_means(GOOD_W, GOOD_F, LAT, min_fraction=1.5), "min_fraction"),
     (lambda: alignment.static_means(GOOD_W, GOOD_F, LAT, outlier_k=-3.0), "outlier_k"),
+    (lambda: alignment.static_means(GOOD_W, GOOD_F, LAT, stuck_fraction=0.0), "stuck_fraction"),
+    (lambda: alignment.static_means(GOOD_W, GOOD_F, LAT, stuck_fraction=np.nan), "stuck_fraction"),
+    (lambda: nf.stop_solutions(GOOD_W, GOOD_F, [[0, 5]], LAT, stuck_fraction=-0.5), "stuck_fraction"),
     (lambda: alignment.static_means(GOOD_W, GOOD_F, LAT, full_scale_gyro=0.0), "full_scale_gyro"),
     (lambda: alignment.static_means(GOOD_W, GOOD_F, LAT, full_scale_accel=-1.0), "full_scale_accel"),
     (lambda: alignment.static_means(GOOD_W, np.full((10, 3), np.nan), LAT), "f_b"),
@@ -306,8 +311,8 @@ NF_FUZZ = {   # name: (function, good keyword arguments, arguments where NaN is 
                         set()),
     "stop_and_go": (nf.stop_and_go, dict(headings=[1.0, 2.0], stop_duration=10.0, drive_duration=40.0, speed=5.0,
                                          pitches=[0.0, 0.01], rolls=[0.0, 0.01]), set(), {"headings"}),
-    "stop_solutions": (nf.stop_solutions, dict(w_ib_b=GOOD_W, f_b=GOOD_F, windows=[[0, 5], [5, 10]], lat=LAT, h=0.0),
-                       {"w_ib_b", "f_b"}),
+    "stop_solutions": (nf.stop_solutions, dict(w_ib_b=GOOD_W, f_b=GOOD_F, windows=[[0, 5], [5, 10]], lat=LAT, h=0.0,
+                                               stuck_fraction=None), {"w_ib_b", "f_b"}),     # noise-free: not frozen
     "ins_heading_change": (nf.ins_heading_change, dict(w_ib_b=GOOD_W, f_start=GOOD_F[0], dt=0.01, lat=LAT),
                            {"w_ib_b"}),
 }

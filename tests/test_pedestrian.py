@@ -280,12 +280,14 @@ static = trajectory.stance_mask(legs, 0.02)[:-1]
 m = np.tile([10.0, 20.0, -30.0], (len(w), 1))
 res = zupt_ins.run_filter(w + 1e-3, f, 0.02, traj.lla[0], traj.vel_n[0], traj.q_bn[0], static,
                     h_baro=traj.lla[:-1, 2], m_b=m)
-# the fault paths: a dropout, a spike, clipping, a baro spike, per-sample intervals
+# the fault paths: a dropout, a spike, clipping, a baro spike, per-sample intervals, a time jump, free fall
 w2, f2, h2 = w + 1e-3, f.copy(), traj.lla[:-1, 2].copy()
 w2[50] = np.nan
 f2[120, 2] += 5.0
+f2[250:255] = 0.0
 h2[300] += 50.0
 dt = 0.02 * (1 + 0.1 * np.sin(np.arange(len(w))))
+dt[200] = 5.0
 cfg = zupt_ins.FilterConfig(spike_gyro=0.02, spike_accel=0.5)
 res2 = zupt_ins.run_filter(w2, f2, dt, traj.lla[0], traj.vel_n[0], traj.q_bn[0], static, h_baro=h2, m_b=m,
                      config=cfg, full_scale_gyro=0.3, full_scale_accel=11.0)
@@ -303,6 +305,7 @@ print(json.dumps({"lla": res.nav.lla.tolist(), "counts": res.counts, "lla2": res
     assert runs[0]["counts2"] == runs[1]["counts2"] and runs[0]["flags2"] == runs[1]["flags2"]
     c = runs[0]["counts2"]
     assert c["imu_dropouts"] == 1 and c["imu_spikes"] == 1 and c["baro_rejected"] == 1 and c["imu_saturated"] > 0
+    assert c["time_jumps"] == 1 and c["imu_freefall"] == 5
 
 
 # ---------------------------------------------------------------- barometer and floors

@@ -42,6 +42,19 @@ every action is counted in ``FilterResult.counts``):
   magnitude / dip gate when ``B_n`` and tolerances are given (``mag_gated``).
 * Timing: ``dt`` may be per-sample intervals (irregular sampling); repeated
   and out-of-order timestamps go through :func:`navlib.timing.sanitize` first.
+  A time jump (an interval above ``FilterConfig.max_dt``, default 1 s, e.g. a
+  clock step of an hour) is not integrated as motion: the INS and the
+  barometer tracker are held over it (mechanised over a zero interval), the
+  covariance grows by the process noise of the whole interval, the sample is
+  never used for ZUPT/ZARU, and the filter goes on (``time_jumps``,
+  ``FLAG_TIME_JUMP``).
+* Free fall / dead accelerometer: a run of samples with ``|f| <
+  FilterConfig.freefall_accel`` (default 2 m/s^2) lasting at least
+  ``freefall_time`` (default 0.05 s) cannot be a walker (a stance reads |f| = g,
+  the gait never drops below ~5 m/s^2): its accelerometer samples are held
+  from the last good one like a dropout (gyro used; velocity process noise
+  inflated by ``hold_accel_sigma``), never used for ZUPT/ZARU, counted
+  (``imu_freefall``) and flagged (``FLAG_FREEFALL``).
 
 Beyond the paper: the Earth-rate block ``-C^T [w_ie x]`` of H (:mod:`navlib.filters.zupt`), and an
 accelerometer process noise five times the MPU-6050 density to cover the scale-factor and cross-axis
@@ -66,10 +79,11 @@ from ..units import G0
 from .zupt import error_state_into, zupt_zaru_rows_into, zupt_zaru_z_into
 
 __all__ = ["FilterConfig", "FilterResult", "run_filter", "FLAG_DROPOUT", "FLAG_SPIKE", "FLAG_SATURATED",
-           "FLAG_STATIC_SKIPPED", "FAULT_KEYS"]
+           "FLAG_STATIC_SKIPPED", "FLAG_TIME_JUMP", "FLAG_FREEFALL", "FAULT_KEYS"]
 
 
-_MAY_BE_INF = ("gate", "mag_field_tol", "mag_dip_tol", "baro_gate", "spike_gyro", "spike_accel")
+_MAY_BE_INF = ("gate", "mag_field_tol", "mag_dip_tol", "baro_gate", "spike_gyro", "spike_accel", "max_dt",
+               "freefall_time")
 
 
 @dataclass(frozen=True)
@@ -144,6 +158,34 @@ class FilterConfig:
         spike is bridged by holding, the attitude and velocity process noise
         grow by ``sigma^2 dt`` per held sample, so the covariance admits the
         guess and the next stance's ZUPT/ZARU is not gated out.
+    max_dt : float
+        Longest sample interval integrated as motion (s); a longer one is a
+        time jump (counted ``time_jumps``): the INS is held over it, the
+        covariance grows by the process noise ``q dt`` of the whole interval
+        (no hold inflation: the samples around it are real), and the sample
+        is left out of ZUPT/ZARU. Default 1 s, two steps of a walker:
+        up to it, one sample integrated over the interval errs by about as
+        much as not moving at all (walking 1.2 m/s, gait accelerations of
+        +-3 m/s^2: about a metre either way); beyond it the integrated
+        sample's error grows with dt^2 (a 0.1 m/s^2 residual bias alone
+        gives 650 km over a 1-h clock step, which took the latitude past
+        the pole), holding's at most with dt. Independent of the sample
+        rate on purpose: gaps of many samples up to 1 s are still
+        integrated (``timing.intervals`` after dropped samples). inf
+        disables the test; a record whose median interval exceeds it is
+        refused (``dt``).
+    freefall_accel, freefall_time : float
+        Free-fall test (m/s^2, s): samples with ``|f| < freefall_accel``
+        in a run lasting at least ``freefall_time`` (the sum of their
+        intervals) have their accelerometer held from the last good sample,
+        are never used for ZUPT/ZARU and are counted (``imu_freefall``).
+        Defaults 2 m/s^2 and 0.05 s: a stance reads |f| = g +- 0.3 m/s^2
+        (the static detector's tolerance), a walker's gait stays above ~5
+        m/s^2, and a zeroed or falling MPU-6050 reads its residual bias, 0.1
+        m/s^2; 0.05 s (5 samples at 100 Hz) leaves single glitches to the
+        spike test. A runner's ballistic phases (~0.1 s at |f| ~ 0) would be
+        held: raise ``freefall_time`` (inf disables the test) for running.
+        Offline test: a run is judged on its whole length.
     """
     accel_noise: float = 0.02
     gyro_noise: float = np.deg2rad(0.005)
@@ -171,6 +213,9 @@ class FilterConfig:
     spike_accel: float = np.inf
     hold_gyro_sigma: float = 0.1
     hold_accel_sigma: float = 1.0
+    max_dt: float = 1.0
+    freefall_accel: float = 2.0
+    freefall_time: float = 0.05
 
     def __post_init__(self):
         for name, v in self.__dict__.items():
@@ -181,23 +226,26 @@ class FilterConfig:
 
 # counters returned by the kernel
 (_N_ZUPT, _N_ZUPT_REJ, _N_ZUPT_FORCED, _N_IMU_NAN, _N_BARO, _N_MAG, _N_MAG_GATED, _N_SAT, _N_STATIC_SKIP,
- _N_BARO_REJ, _N_BARO_REINIT, _N_SPIKE) = range(12)
+ _N_BARO_REJ, _N_BARO_REINIT, _N_SPIKE, _N_JUMP, _N_FREEFALL) = range(14)
 _COUNTERS = ("zupt_updates", "zupt_rejected", "zupt_forced", "imu_dropouts", "baro_aidings", "mag_aidings",
-             "mag_gated", "imu_saturated", "static_skipped", "baro_rejected", "baro_reinit", "imu_spikes")
+             "mag_gated", "imu_saturated", "static_skipped", "baro_rejected", "baro_reinit", "imu_spikes",
+             "time_jumps", "imu_freefall")
 
 
 _AIDING = {"none": 0, "reset": 1, "filter": 2}
-FLAG_DROPOUT, FLAG_SPIKE, FLAG_SATURATED, FLAG_STATIC_SKIPPED = 1, 2, 4, 8
+FLAG_DROPOUT, FLAG_SPIKE, FLAG_SATURATED, FLAG_STATIC_SKIPPED, FLAG_TIME_JUMP, FLAG_FREEFALL = 1, 2, 4, 8, 16, 32
 """Bits of :attr:`FilterResult.flags`."""
 
 FAULT_KEYS = {"imu_dropouts": ("imu", "nan"), "imu_spikes": ("imu", "spike"), "imu_saturated": ("imu", "saturated"),
               "static_skipped": ("zupt", "refused"), "zupt_rejected": ("zupt", "outlier"),
               "zupt_forced": ("zupt", "reacquired"), "baro_rejected": ("baro", "outlier"),
-              "baro_reinit": ("baro", "reacquired"), "mag_gated": ("mag", "outlier")}
+              "baro_reinit": ("baro", "reacquired"), "mag_gated": ("mag", "outlier"),
+              "time_jumps": ("clock", "jump"), "imu_freefall": ("accel", "freefall")}
 """The fault counters of :attr:`FilterResult.counts` as ``(sensor, kind)`` keys of
 :class:`navlib.robust.FaultReport` (the other counters count aiding, not faults)."""
 _FLAG_KEYS = {FLAG_DROPOUT: ("imu", "nan"), FLAG_SPIKE: ("imu", "spike"), FLAG_SATURATED: ("imu", "saturated"),
-              FLAG_STATIC_SKIPPED: ("zupt", "refused")}
+              FLAG_STATIC_SKIPPED: ("zupt", "refused"), FLAG_TIME_JUMP: ("clock", "jump"),
+              FLAG_FREEFALL: ("accel", "freefall")}
 
 
 class _Samples(NamedTuple):
@@ -208,6 +256,7 @@ class _Samples(NamedTuple):
     static: np.ndarray              # (N,) bool
     h_baro: np.ndarray              # (N,) barometric height (m)
     m_b: np.ndarray                 # (N, 3) magnetometer (uT)
+    freefall: np.ndarray            # (N,) bool: |f| ~ 0 for at least FilterConfig.freefall_time
 
 
 class _Setup(NamedTuple):
@@ -240,7 +289,22 @@ class _Setup(NamedTuple):
     spike_accel: float
     hold_gyro: float
     hold_accel: float
+    max_dt: float                   # longer intervals are time jumps (s)
     earth_consts: np.ndarray        # (7,) navlib.strapdown.earth_constants
+
+
+def _freefall(f, dts, threshold, min_time):
+    """Samples in a run of ``|f| < threshold`` whose intervals sum to at least ``min_time`` (NaN: not in a run)."""
+    with np.errstate(invalid="ignore"):
+        low = np.sqrt(np.sum(f * f, axis=-1)) < threshold         # NaN compares False
+    if not low.any():
+        return low
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], low.astype(np.int8), [0]])))
+    out = np.zeros_like(low)
+    for a, b in zip(edges[::2], edges[1::2], strict=True):
+        if dts[a:b].sum() >= min_time:
+            out[a:b] = True
+    return out
 
 
 @njit(cache=True)
@@ -270,10 +334,10 @@ def _reset_state(P, i, sigma):
 @njit(cache=True)
 def _filter_kernel(samples, c):
     """Run the filter over ``samples`` (:class:`_Samples`) from the state and tuning ``c`` (:class:`_Setup`)."""
-    w, f, dt, static, h_baro, m_b = samples
+    w, f, dt, static, h_baro, m_b, freefall = samples
     a, e2, omega = c.earth_consts[0], c.earth_consts[2], c.earth_consts[6]
     n = w.shape[0]
-    counts = np.zeros(12, dtype=np.int64)
+    counts = np.zeros(14, dtype=np.int64)
     flags = np.zeros(n, dtype=np.uint8)
     lla_out, vel_out, q_out = np.empty((n + 1, 3)), np.empty((n + 1, 3)), np.empty((n + 1, 4))
     b_out, p_out = np.empty((n + 1, 6)), np.empty((n + 1, 15))
@@ -296,7 +360,12 @@ def _filter_kernel(samples, c):
         p_out[0, i] = P[i, i]
     for k in range(n):
         dtk = dt[k]
-        good, held = True, False                         # good: a real, unclipped sample, usable for ZUPT/ZARU
+        good, held, f_held = True, False, False          # good: a real, unclipped sample, usable for ZUPT/ZARU
+        jump = dtk > c.max_dt
+        if jump:                                         # time jump: no motion integrated over it (held)
+            counts[_N_JUMP] += 1
+            flags[k] |= FLAG_TIME_JUMP
+            dtk = 0.0
         if not (np.isfinite(w[k]).all() and np.isfinite(f[k]).all()):
             counts[_N_IMU_NAN] += 1                      # dropout: hold the last good sample
             flags[k] |= FLAG_DROPOUT
@@ -306,13 +375,23 @@ def _filter_kernel(samples, c):
             flags[k] |= FLAG_SPIKE
             good, held = False, True
         else:
-            w_last[:], f_last[:] = w[k], f[k]
+            w_last[:] = w[k]
+            if freefall[k]:                              # |f| ~ 0: free fall or a dead accelerometer, held
+                counts[_N_FREEFALL] += 1
+                flags[k] |= FLAG_FREEFALL
+                good, f_held = False, True
+            else:
+                f_last[:] = f[k]
+            clipped = False
             for i in range(3):
                 if abs(w[k, i]) >= c.gyro_fs or abs(f[k, i]) >= c.accel_fs:
-                    good = False
-            if not good:
+                    clipped = True
+            if clipped:
+                good = False
                 counts[_N_SAT] += 1                      # at the rails: integrated as is, no static update
                 flags[k] |= FLAG_SATURATED
+        if jump:
+            good = False
         for i in range(3):
             wk[i] = w_last[i] - b[3 + i]
             fk[i] = f_last[i] - b[i]
@@ -326,8 +405,14 @@ def _filter_kernel(samples, c):
             for i in range(3):
                 Q[3 + i, 3 + i] += c.hold_accel * c.hold_accel * dtk
                 Q[6 + i, 6 + i] += c.hold_gyro * c.hold_gyro * dtk
+        elif f_held:                                     # only the accelerometer is a guess
+            for i in range(3):
+                Q[3 + i, 3 + i] += c.hold_accel * c.hold_accel * dtk
         error_state_into(Phi, C * dtk, C @ fk * dtk)            # Phi = I + F dt (blocks scaled by dt)
         x, P = _kernels.kalman_predict(x, P, Phi, Q)
+        if jump:                                         # Phi = I, Q = 0 above: add the whole interval's noise
+            for i in range(15):
+                P[i, i] += c.q_rate[i] * dt[k]
         if static[k] and c.zupt and not good:              # held or clipped: left out of the static average
             counts[_N_STATIC_SKIP] += 1
             flags[k] |= FLAG_STATIC_SKIPPED
@@ -393,7 +478,7 @@ def _filter_kernel(samples, c):
                     x, P, _, _, status = _kernels.kalman_update(x, P, z1, h1, H1, R1, no_wrap1, np.inf)
                     _feedback(x, lla[0], vel[0], q[0], b, a, e2)
         hb += vb * dtk
-        t_baro += dtk
+        t_baro += dt[k]                                  # (dtk but for a jump, 0: keeps t_baro > 0)
         # --- magnetometer heading while walking (Eqs. 4-6) ---
         if c.aiding > 0 and not static[k] and np.isfinite(m_b[k]).all():
             m_n = C @ m_b[k]
@@ -450,18 +535,24 @@ class FilterResult:
         ``mag_gated`` (magnetometer samples rejected as disturbed or spiky),
         ``baro_rejected`` (barometer samples beyond ``baro_gate`` of the
         tracker: spikes, skipped), ``baro_reinit`` (tracker re-initialised on
-        the measurement after ``max_rejected`` consecutive rejections).
+        the measurement after ``max_rejected`` consecutive rejections),
+        ``time_jumps`` (intervals above ``FilterConfig.max_dt``: the INS held over them),
+        ``imu_freefall`` (samples with ``|f| < freefall_accel`` for at least ``freefall_time``: accelerometer
+        held from the last good sample).
     flags : ndarray of uint8, shape (N,)
         Per IMU sample, a bit set of what the filter did with it:
         ``FLAG_DROPOUT`` (1, NaN, held), ``FLAG_SPIKE`` (2, spike, held),
         ``FLAG_SATURATED`` (4, at the rails), ``FLAG_STATIC_SKIPPED`` (8,
-        flagged static but left out of ZUPT/ZARU). The counters are the
-        sums of these bits.
+        flagged static but left out of ZUPT/ZARU), ``FLAG_TIME_JUMP`` (16,
+        its interval ``dt[k] > max_dt``: not integrated), ``FLAG_FREEFALL``
+        (32, accelerometer held: free fall or a dead sensor). The counters
+        are the sums of these bits.
     P : ndarray, shape (15, 15)
         Error covariance after the last sample (symmetric positive definite).
     faults : FaultReport
         The fault counters in navlib's one vocabulary (:data:`FAULT_KEYS`), with the per-sample
-        flags of the IMU kinds, e.g. ``result.faults.flags["imu", "nan"]``.
+        flags of the flagged kinds, e.g. ``result.faults.flags["imu", "nan"]``,
+        ``result.faults["clock", "jump"]``, ``result.faults.flags["accel", "freefall"]``.
     """
     nav: trajectory.Trajectory
     accel_bias: np.ndarray
@@ -506,7 +597,9 @@ def run_filter(w_ib_b, f_b=None, dt=None, lla0=None, vel0=None, q0=None, static=
         sampling; ``dt[k]`` covered by sample k, e.g.
         :func:`navlib.timing.intervals`). Logs with repeated or out-of-order
         timestamps go through :func:`navlib.timing.sanitize` first. The
-        static update rate uses the median interval.
+        static update rate uses the median interval. An interval above
+        ``config.max_dt`` is a time jump: not integrated (the INS is held),
+        counted and flagged (``FLAG_TIME_JUMP``).
     lla0, vel0 : array_like, shape (3,)
         Initial position (rad, rad, m) and ENU velocity (m/s).
     q0 : array_like, shape (4,)
@@ -581,19 +674,26 @@ def run_filter(w_ib_b, f_b=None, dt=None, lla0=None, vel0=None, q0=None, static=
         gyro_fs, accel_fs = fs
     field_ref = _field_reference(B_n)
     c = config
+    if np.median(dts) > c.max_dt:
+        raise ValueError(f"dt: expected a median interval below config.max_dt = {c.max_dt:g} s (longer intervals are "
+                         f"time jumps, not integrated), got {np.median(dts):g} s")
+    freefall = _freefall(f, dts, c.freefall_accel, c.freefall_time)
+    if freefall[0]:
+        raise ValueError(f"f_b: expected a valid first sample, got |f| = {np.linalg.norm(f[0]):.3g} m/s^2 "
+                         f"< freefall_accel = {c.freefall_accel:g} (free fall is held from the last good one)")
     every = max(1, int(round(1.0 / (c.update_rate * float(np.median(dts))))))
     q_rate = np.concatenate([np.zeros(3), np.full(3, c.accel_noise ** 2), np.full(3, c.gyro_noise ** 2),
                              np.full(3, c.accel_bias_rw ** 2), np.full(3, c.gyro_bias_rw ** 2)])
     p0 = np.array([c.p0_pos] * 3 + [c.p0_vel] * 3 + [c.p0_tilt] * 2 + [c.p0_heading]
                   + [c.p0_accel_bias] * 3 + [c.p0_gyro_bias] * 3) ** 2
     samples = _Samples(np.ascontiguousarray(w), np.ascontiguousarray(f), dts, s, np.ascontiguousarray(hb),
-                       np.ascontiguousarray(mb))
+                       np.ascontiguousarray(mb), freefall)
     setup = _Setup(lla0, vel0, np.ascontiguousarray(q0), b0, float(as_array(declination, "declination")), field_ref,
                    bool(zupt), _AIDING[walk_aiding], every, q_rate, p0, float(c.sigma_zupt ** 2),
                    float(c.sigma_zaru ** 2), float(c.sigma_baro ** 2), float(c.sigma_heading ** 2),
                    float(c.baro_alpha), float(c.baro_beta), float(c.gate), int(c.max_rejected), float(c.mag_field_tol),
                    float(c.mag_dip_tol), gyro_fs, accel_fs, float(c.baro_gate), float(c.spike_gyro),
-                   float(c.spike_accel), float(c.hold_gyro_sigma), float(c.hold_accel_sigma),
+                   float(c.spike_accel), float(c.hold_gyro_sigma), float(c.hold_accel_sigma), float(c.max_dt),
                    earth_constants(ellipsoid))
     out = _filter_kernel(samples, setup)
     lla, vel, q, b, p_diag, counts, flags, P = out

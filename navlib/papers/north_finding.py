@@ -54,9 +54,14 @@ NaN dropouts       stop means: samples left out; a stop with    ``StaticWindow.n
                    < ``min_fraction`` (50 %) left is refused    ``status == TOO_FEW``
                    INS change: last sample held; a run longer   ``robust.fault_report`` of the gyro
                    than ``max_gap`` (0.1 s) refuses the drive   (``"nan"``); NaN result (refused)
-outliers (spikes)  stop means: ``outlier_k`` x MAD from the     ``StaticWindow.n_outliers_*``
-                   median left out (opt-in; without it the
-                   error bound is ``k sigma sqrt(p/N)``)
+outliers (spikes)  stop means: ``outlier_k`` robust sigmas      ``StaticWindow.n_outliers_*``
+                   (1.4826 MAD, at least 1.4826 q/2 for a
+                   quantisation step q) from the median left
+                   out (opt-in; without it the error bound is
+                   ``k sigma sqrt(p/N)``)
+frozen sensor      stop: refused when one axis repeats a        ``n_stuck_*``, ``STUCK``;
+                   reading over >= ``stuck_fraction`` (50 %)    ``("gyro", "stuck")``
+                   of the stop's valid samples
 saturation         stop: refused (``full_scale_*``);            ``n_saturated_*``, ``SATURATED``;
                    INS drive: refused (``full_scale_gyro``)     ``fault_report(..., full_scale=)``
 timing             ``timing.sanitize`` then windows cut by      ``TimingReport``; ``dt`` arrays in
@@ -620,7 +625,7 @@ class StopSolutions:
     ``candidates`` are the single-axis pairs (forward gyro + accelerometers),
     ``triad`` the three-axis TRIAD headings (rad), ``clipped`` the clipping flags.
     ``windows`` holds each stop's :class:`StaticWindow` (counts of dropped,
-    rejected and saturated samples and the status); with ``strict=False`` a
+    rejected, saturated and frozen samples and the status); with ``strict=False`` a
     refused stop has NaN candidates and heading.
     """
     candidates: np.ndarray
@@ -662,8 +667,14 @@ def stop_solutions(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = Non
         :func:`static_means`).
     **window_options
         ``accel_tol``, ``min_fraction``, ``outlier_k``, ``full_scale_gyro``,
-        ``full_scale_accel`` for :func:`static_means`.
+        ``full_scale_accel``, ``stuck_fraction`` for :func:`static_means`.
+        ``stuck_fraction`` defaults to 0.5 here: a stop in which a gyro or
+        accelerometer axis repeats one reading over half of its valid samples
+        is refused (``STUCK``; a frozen gyro otherwise passes as OK with a
+        heading error of many degrees). Pass ``stuck_fraction=None`` for
+        noise-free simulated data, whose readings repeat exactly.
     """
+    window_options.setdefault("stuck_fraction", 0.5)
     if isinstance(w_ib_b, ImuSamples):
         fs_gyro, fs_accel = window_options.pop("full_scale_gyro", None), window_options.pop("full_scale_accel", None)
         w_ib_b, f_b, _, fs_gyro, fs_accel = unpack(w_ib_b, f_b, None, fs_gyro, fs_accel)

@@ -165,6 +165,60 @@ def test_saturated_stop_is_refused_and_counted():
     np.testing.assert_array_equal(same.triad, CLEAN.triad)
 
 
+def test_frozen_gyro_stop_is_refused_and_counted():
+    """Stop 2's gyro repeats its first sample (campaign: status OK, heading 19.5 deg off; here 13 deg)."""
+    a, b = WIN[1]
+    w = IMU.w_ib_b.copy()
+    w[..., a:b, :] = w[..., a:a + 1, :]
+    with pytest.raises(ValueError, match="^w_ib_b: one reading repeated over 18000 consecutive samples"):
+        nf.stop_solutions(w, IMU.f_b, WIN, LAT, 50.0)
+    sol = nf.stop_solutions(w, IMU.f_b, WIN, LAT, 50.0, strict=False)
+    assert np.all(sol.status == [alignment.OK, alignment.STUCK, alignment.OK]) and np.isnan(sol.triad[:, 1]).all()
+    np.testing.assert_array_equal(counts(sol, "n_stuck_gyro"), [[0, 18000, 0]] * 4)
+    np.testing.assert_array_equal(sol.windows[1].faults["gyro", "stuck"], [18000] * 4)
+    assert np.all(counts(sol, "n_stuck_accel") == 0)
+    np.testing.assert_array_equal(sol.triad[:, [0, 2]], CLEAN.triad[:, [0, 2]])
+    # why: accepted, the frozen stop is many degrees off (the mean is one noisy sample)
+    raw = nf.stop_solutions(w, IMU.f_b, WIN, LAT, 50.0, stuck_fraction=None)
+    assert np.all(raw.status == alignment.OK) and np.abs(attitude.wrap_pi(raw.triad - CLEAN.triad)).max() > 0.1
+    # frozen on one axis after 60 s of the 180 s (2/3 of the stop), with 10 % dropouts: still refused
+    w = IMU.w_ib_b.copy()
+    w[..., a + 6000:b, 0] = w[..., a + 6000:a + 6001, 0]
+    w, drop = faults.dropouts(w, 0.1, np.random.default_rng(12))
+    sol = nf.stop_solutions(w, IMU.f_b, WIN, LAT, 50.0, strict=False)
+    assert np.all(sol.status[:, 1] == alignment.STUCK)
+    np.testing.assert_array_equal(counts(sol, "n_stuck_gyro")[:, 1], 12000 - drop[a + 6000:b].sum())
+    # below stuck_fraction (0.5 by default) a frozen stretch is not refused: 1/4 of the stop here
+    w = IMU.w_ib_b.copy()
+    w[..., a:a + 4500, :] = w[..., a:a + 1, :]
+    assert np.all(nf.stop_solutions(w, IMU.f_b, WIN, LAT, 50.0).status == alignment.OK)
+
+
+def test_quantised_gyro_keeps_its_good_samples_under_mad_rejection():
+    """A gyro quantised at 2 sigma: MAD = 0 (68 % of the samples on the median code).
+
+    Campaign: with outlier_k=5, 1,647 of 3,000 samples were "outliers" and the stop was refused; the
+    robust sigma is now 1.4826 max(MAD, q/2).
+    """
+    q = 2 * SIG_G
+    a = WIN[1, 0]
+    w, f = IMU.w_ib_b[..., a:a + 3000, :], IMU.f_b[..., a:a + 3000, :]
+    wq = np.round(w / q) * q
+    assert np.all(np.median(np.abs(wq - np.median(wq, axis=-2, keepdims=True)), axis=-2) == 0)
+    win = alignment.static_means(wq, f, LAT, 50.0, outlier_k=5.0)
+    assert np.all(win.status == alignment.OK) and np.all(win.n_outliers_gyro == 0)
+    # the quantised mean differs from the exact one by the mean rounding error: 5 sigma = 5 q / sqrt(12 N)
+    exact = alignment.static_means(w, f, LAT, 50.0)
+    assert np.abs(win.w_mean - exact.w_mean).max() < 5 * q / np.sqrt(12 * 3000)
+    # whole stops: no sample rejected, no stop refused or stuck
+    sol = nf.stop_solutions(np.round(IMU.w_ib_b / q) * q, IMU.f_b, WIN, LAT, 50.0, outlier_k=5.0)
+    assert np.all(sol.status == alignment.OK) and np.all(counts(sol, "n_outliers_gyro") == 0)
+    # and quantised spikes (100 sigma) are still rejected, exactly
+    ws, hit = faults.spikes(IMU.w_ib_b, 0.01, SIG_G, np.random.default_rng(3))
+    sol = nf.stop_solutions(np.round(ws / q) * q, IMU.f_b, WIN, LAT, 50.0, outlier_k=5.0)
+    np.testing.assert_array_equal(counts(sol, "n_outliers_gyro"), np.broadcast_to(window_counts(hit), (4, 3)))
+
+
 # ----------------------------------------------------------------------------- MEMS INS heading change
 
 MEMS = sensors.imu_model("ADIS16475-1").replace(gyro={"bias": units.deg_per_s(0.005), "scale_factor": 0.0015})

@@ -350,6 +350,70 @@ def test_out_of_order_and_duplicated_timestamps_via_sanitize(walk):
     assert d.max() < 2.0, d.max()
 
 
+def test_time_jump_is_held_counted_and_the_filter_goes_on(walk):
+    """A clock step of one hour in one interval (campaign: ran to the end, then raised 'lla: expected latitudes')."""
+    n = len(walk["w"])
+    for k, bound_max, bound_end in ((8200, 0.5, 0.5), (2500, 6.0, 1.5)):          # in the final stand; walking
+        dt = np.full(n, DT)
+        dt[k] = 3600.0
+        res = run(walk, dt=dt)                          # finite, SPD covariance (run checks both)
+        assert res.counts["time_jumps"] == res.faults["clock", "jump"] == 1
+        np.testing.assert_array_equal(flagged(res, zupt_ins.FLAG_TIME_JUMP), np.arange(n) == k)
+        np.testing.assert_array_equal(res.faults.flags["clock", "jump"], np.arange(n) == k)
+        assert res.nav.time[-1] == pytest.approx(walk["ref"].nav.time[-1] + 3600.0 - DT)
+        np.testing.assert_array_equal(res.nav.lla[:k + 1], walk["ref"].nav.lla[:k + 1])    # untouched before it
+        np.testing.assert_array_equal(res.nav.lla[k + 1, :2], res.nav.lla[k, :2])           # held over it
+        # the covariance grows by the process noise of the hour: horizontal velocity sigma >= 0.02 sqrt(3600)
+        # = 1.2 m/s (the vertical one is reset by the barometer while walking)
+        assert np.sqrt(res.P_diag[k + 1, 3:5]).min() >= zupt_ins.FilterConfig().accel_noise * 60.0
+        # Stated bounds, horizontal error difference to the clean run: a jump in a stand loses nothing
+        # (0.5 m; measured 0.10 m, 0.06 m at the end); one while walking holds the walker for one sample
+        # and the inflated covariance lets the next stance pull the INS back (6 m at most, measured 3.6 m;
+        # 1.5 m at the end, measured 0.7 m).
+        d = np.abs(herr(res, walk["traj"]) - walk["e_ref"])
+        assert d.max() < bound_max and d[-1] < bound_end, (k, d.max(), d[-1])
+    # the threshold is FilterConfig.max_dt: inf integrates the hour (and leaves the Earth: refused)
+    with pytest.raises(ValueError, match="^lla: "):
+        run(walk, dt=dt, config=zupt_ins.FilterConfig(max_dt=np.inf))
+
+
+def test_free_fall_in_a_stand_is_held_counted_and_never_used_for_zupt(walk):
+    """One second of |f| = 0 in the final stand, no barometer (campaign: 13.2 m height error, not reported)."""
+    n = len(walk["w"])
+    fall = (np.arange(n) >= 8200) & (np.arange(n) < 8300)
+    f = np.where(fall[:, None], 0.0, walk["f"])
+    no_baro = np.full(n, np.nan)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        clean = run(walk, h=no_baro, static=walk["static"])
+    dz_clean = clean.nav.lla[:, 2] - walk["traj"].lla[:, 2]
+    for static in (walk["static"], None):        # a given stance mask (the fall inside it); the detector's
+        res = run(walk, f=f, h=no_baro, static=static)
+        assert res.counts["imu_freefall"] == res.faults["accel", "freefall"] == fall.sum()
+        np.testing.assert_array_equal(flagged(res, zupt_ins.FLAG_FREEFALL), fall)
+        st = walk["static"] if static is not None else zupt.detect_static(walk["w"], f, DT)
+        np.testing.assert_array_equal(flagged(res, zupt_ins.FLAG_STATIC_SKIPPED), fall & st)   # never a ZUPT
+        # Stated bound: the held accelerometer reads the stance's g, so the height stays within 0.1 m of
+        # the clean run's (measured 0.03 m); integrated, the fall costs 12.9 m here (13.2 m in the campaign).
+        dz = res.nav.lla[:, 2] - walk["traj"].lla[:, 2]
+        assert np.abs(dz - dz_clean).max() < 0.1, np.abs(dz - dz_clean).max()
+    raw = run(walk, f=f, h=no_baro, config=zupt_ins.FilterConfig(freefall_time=np.inf))   # test off
+    assert raw.counts["imu_freefall"] == 0 and abs(raw.nav.lla[-1, 2] - walk["traj"].lla[-1, 2]) > 10.0
+
+
+def test_free_fall_needs_a_run_of_freefall_time(walk):
+    """No false alarm on the walk (|f| >= 6.5 m/s^2); a 0.03-s dip is left to the spike test, 0.05 s is held."""
+    assert walk["ref"].counts["imu_freefall"] == 0 and np.linalg.norm(walk["f"], axis=-1).min() > 6.0
+    for length, held in ((3, 0), (5, 5)):
+        f = walk["f"].copy()
+        f[8200:8200 + length] = 0.0
+        assert run(walk, f=f).counts["imu_freefall"] == held
+    f = walk["f"].copy()
+    f[0] = 0.0
+    with pytest.raises(ValueError, match="^f_b: expected a valid first sample"):
+        run(walk, f=f, config=zupt_ins.FilterConfig(freefall_time=DT / 2))
+
+
 # ---------------------------------------------------------------- bad input (API fuzzing)
 
 Z3 = np.zeros((50, 3))
@@ -440,6 +504,13 @@ FUZZ = [
     ("FilterConfig", "baro_gate", lambda: zupt_ins.FilterConfig(baro_gate=-1.0)),
     ("FilterConfig", "spike_gyro", lambda: zupt_ins.FilterConfig(spike_gyro="low")),
     ("FilterConfig", "max_rejected", lambda: zupt_ins.FilterConfig(max_rejected=True)),
+    ("FilterConfig", "max_dt", lambda: zupt_ins.FilterConfig(max_dt=-1.0)),
+    ("FilterConfig", "max_dt", lambda: zupt_ins.FilterConfig(max_dt=np.nan)),
+    ("FilterConfig", "freefall_accel", lambda: zupt_ins.FilterConfig(freefall_accel=-2.0)),
+    ("FilterConfig", "freefall_accel", lambda: zupt_ins.FilterConfig(freefall_accel=np.nan)),
+    ("FilterConfig", "freefall_accel", lambda: zupt_ins.FilterConfig(freefall_accel=np.inf)),
+    ("FilterConfig", "freefall_time", lambda: zupt_ins.FilterConfig(freefall_time=0.0)),
+    ("FilterConfig", "freefall_time", lambda: zupt_ins.FilterConfig(freefall_time=np.nan)),
     ("run_filter", "w_ib_b", lambda: RF(w_ib_b=CPLX)),
     ("run_filter", "w_ib_b", lambda: RF(w_ib_b=np.full((50, 3), np.inf))),
     ("run_filter", "w_ib_b", lambda: RF(w_ib_b=np.zeros((0, 3)), f_b=np.zeros((0, 3)), static=np.ones(0, bool))),
@@ -448,6 +519,7 @@ FUZZ = [
     ("run_filter", "dt", lambda: RF(dt=np.full(49, DT))),
     ("run_filter", "dt", lambda: RF(dt=np.r_[np.full(49, DT), np.nan])),
     ("run_filter", "dt", lambda: RF(dt="fast")),
+    ("run_filter", "dt", lambda: RF(dt=2.0)),                    # every interval a time jump (max_dt = 1 s)
     ("run_filter", "lla0", lambda: RF(lla0=[np.pi, 0.0, 0.0])),
     ("run_filter", "lla0", lambda: RF(lla0=[0.5, 0.0])),
     ("run_filter", "vel0", lambda: RF(vel0=[0.0, np.nan, 0.0])),
@@ -486,7 +558,7 @@ FUZZ = [
 
 # Constants and result records: no arguments to fuzz (built by navlib from validated values).
 NOT_FUZZED = {"G_LOCAL", "FAULT_KEYS", "M_NED_ENU", "STATIC_THRESHOLDS", "FilterResult", "StepResult", "FLAG_DROPOUT",
-              "FLAG_SPIKE", "FLAG_SATURATED", "FLAG_STATIC_SKIPPED"}
+              "FLAG_SPIKE", "FLAG_SATURATED", "FLAG_STATIC_SKIPPED", "FLAG_TIME_JUMP", "FLAG_FREEFALL"}
 
 
 @pytest.mark.parametrize("func, arg, call", FUZZ, ids=[f"{f}-{a}-{i}" for i, (f, a, _) in enumerate(FUZZ)])
