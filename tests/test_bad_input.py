@@ -534,9 +534,19 @@ CASES = [
     bad("filters.zupt.zupt_zaru_innovation", "vel_n", "shape", lambda: zupt.zupt_zaru_innovation(
         [0.0, 0.0], W[0], W[0], np.eye(3), W[0])),
     bad("filters.mahony.mahony", "kp", "negative", lambda: mahony.mahony(W, F, 0.01, Q1, m_b=F, kp=-1.0)),
+    bad("filters.mahony.mahony", "max_dt", "negative", lambda: mahony.mahony(W, F, 0.01, Q1, max_dt=-1.0)),
+    bad("filters.mahony.mahony", "max_dt", "nan", lambda: mahony.mahony(W, F, 0.01, Q1, max_dt=NAN)),
+    bad("filters.mahony.mahony", "stuck_run", "zero", lambda: mahony.mahony(W, F, 0.01, Q1, stuck_run=0)),
+    bad("filters.mahony.mahony", "stuck_run", "bool", lambda: mahony.mahony(W, F, 0.01, Q1, stuck_run=True)),
+    bad("filters.mahony.mahony", "stuck_run", "str", lambda: mahony.mahony(W, F, 0.01, Q1, stuck_run="on")),
     bad("filters.mahony.mahony", "m_b", "both_references", lambda: mahony.mahony(
         W, F, 0.01, Q1, m_b=F, heading_rtk=np.zeros(10), rtk_valid=np.ones(10, bool))),
     bad("filters.quaternion_kf.quaternion_kf", "B_n", "missing", lambda: quaternion_kf.quaternion_kf(W, F, 0.01, Q1, m_b=F)),
+    bad("filters.quaternion_kf.quaternion_kf", "max_dt", "negative", lambda: quaternion_kf.quaternion_kf(W, F, 0.01, Q1, max_dt=-1.0)),
+    bad("filters.quaternion_kf.quaternion_kf", "max_dt", "nan", lambda: quaternion_kf.quaternion_kf(W, F, 0.01, Q1, max_dt=NAN)),
+    bad("filters.quaternion_kf.quaternion_kf", "stuck_run", "zero", lambda: quaternion_kf.quaternion_kf(W, F, 0.01, Q1, stuck_run=0)),
+    bad("filters.quaternion_kf.quaternion_kf", "stuck_run", "bool",
+        lambda: quaternion_kf.quaternion_kf(W, F, 0.01, Q1, stuck_run=False)),
     bad("filters.quaternion_kf.measurement_model", "b", "east_component", lambda: quaternion_kf.measurement_model(
         Q1, [1.0, 0.0, 0.0])),
     bad("filters.quaternion_kf.measurement_jacobian", "q", "str", lambda: quaternion_kf.measurement_jacobian(STR, [0, 1, 0])),
@@ -1149,6 +1159,7 @@ NOT_APPLICABLE = {
     "filters.observations.AttitudeResult": "a result record, built by the attitude filters",
     "filters.planar_ekf.EkfResult": "a result record, built by filter_grid",
     "filters.observations.AttitudeInputs": "the kernel record, built by prepare_inputs from validated values",
+    "filters.observations.Screened": "a record of what prepare_inputs found, built from validated values",
     "filters.observations.attitude_result": "assembles kernel outputs (validated by prepare_inputs)",
     "filters.observations.run_trials": "runs a compiled kernel on validated inputs",
     "calibration.TriadNoise": "a result record, built by characterise",

@@ -12,7 +12,7 @@ from navlib import imu, robust, strapdown, trajectory
 from navlib.filters import mahony, observations, planar_ekf, zupt_ins
 from navlib.papers import gauss_kruger_ekf, rotation_bias
 
-KINDS = {"nan", "saturated", "spike", "outlier", "reacquired", "refused"}
+KINDS = {"nan", "saturated", "spike", "outlier", "reacquired", "refused", "stuck", "jump"}
 
 
 def check_vocabulary(report):
@@ -208,3 +208,18 @@ def test_stuck_mask_any_axis_and_batch_axes():
 def test_stuck_mask_bad_input_names_the_argument(kwargs, arg):
     with pytest.raises(ValueError, match=f"^{arg}: "):
         robust.stuck_mask(**kwargs, **({"name": "w_ib_b"} if arg == "w_ib_b" else {}))
+
+
+def test_attitude_filters_flag_stuck_and_jump_samples():
+    rng = np.random.default_rng(2)
+    w = rng.normal(0, 0.01, (2, 300, 3))
+    w[0, 100:120] = w[0, 100]
+    dt = np.full(300, 0.01)
+    dt[250] = 2.0
+    res = mahony.mahony(w, np.tile([0.0, 0.0, 9.8], (2, 300, 1)), dt, [1.0, 0, 0, 0])
+    check_vocabulary(res.faults)
+    np.testing.assert_array_equal(res.faults["gyro", "stuck"], [20, 0])
+    np.testing.assert_array_equal(res.faults["clock", "jump"], [1, 1])
+    for key in (("gyro", "stuck"), ("clock", "jump")):
+        np.testing.assert_array_equal(res.faults.flags[key].sum(-1), res.faults[key])
+    assert res.faults["gyro", "nan"].tolist() == [0, 0]                    # stuck is not counted as a dropout
