@@ -14,12 +14,14 @@ batch) and, when asked for, per-sample boolean flags. Sensors are named ``"gyro"
                  estimate, not the sensor, was wrong), or a forced update after repeated rejections;
 ``"refused"``    a quantity that could not be formed (e.g. a static window with too few samples,
                  a dwell skipped for dropouts);
-``"jump"``       a time jump: a sample interval too long to integrate as motion (``("clock", "jump")``,
-                 :class:`navlib.filters.zupt_ins.FilterConfig` ``max_dt``), held over;
+``"jump"``       a time jump (sensor ``"clock"``): a sample interval too long to integrate as motion
+                 (``max_dt`` of the attitude filters and of :class:`navlib.filters.zupt_ins.FilterConfig`);
+                 nothing is integrated over it;
 ``"freefall"``   accelerometer samples reading ``|f|`` near 0 for a while (free fall or a dead sensor:
                  ``("accel", "freefall")``), held from the last good sample;
-``"stuck"``      a frozen output: one reading repeated over most of a window (``("gyro", "stuck")``,
-                 :func:`navlib.alignment.static_means` ``stuck_fraction``), the window refused.
+``"stuck"``      a sensor that stopped updating: a component repeating exactly the same value over a run
+                 of samples (:func:`stuck_mask`; held like a dropout), or over most of a static window
+                 (:func:`navlib.alignment.static_means` ``stuck_fraction``; the window refused).
 
 Every filter result carries one: :class:`navlib.filters.observations.AttitudeResult` (Mahony,
 quaternion KF), :class:`navlib.filters.planar_ekf.EkfResult`, :class:`navlib.filters.zupt_ins.FilterResult`,
@@ -32,6 +34,7 @@ integrator that returns a plain array (:func:`navlib.strapdown.integrate_attitud
 :func:`hold` is the one zero-order hold of NaN samples, with an explicit policy for
 leading NaN samples (there is nothing before them to hold). :func:`despike` marks isolated
 IMU spikes as NaN with the test of :func:`is_spike` (compiled; filters call it per sample).
+:func:`stuck_mask` finds the samples of a sensor that stopped updating (exact repeats).
 """
 from __future__ import annotations
 
@@ -43,9 +46,9 @@ from numba import njit
 from numpy.typing import NDArray
 
 from ._typing import Array, ArrayLike, Vec3Series
-from ._validate import as_array, choice, flag, instance, range_limit
+from ._validate import as_array, choice, flag, instance, integer, range_limit
 
-__all__ = ["FaultReport", "fault_report", "hold", "despike", "LEADING"]
+__all__ = ["FaultReport", "fault_report", "hold", "despike", "stuck_mask", "LEADING"]
 
 LEADING = ("raise", "first", "zero")
 """Policies for NaN samples before the first valid one: raise, take the first valid sample, or 0."""
@@ -224,3 +227,47 @@ def despike(w_ib_b: Vec3Series, f_b: Vec3Series, spike_gyro: float,
     w, f = w.copy(), f.copy()
     w[hit], f[hit] = np.nan, np.nan
     return w, f, hit
+
+
+def stuck_mask(x: ArrayLike, run: int, *, name: str = "x", axis: int = -2) -> NDArray[np.bool_]:
+    """Samples of a sensor that stopped updating: some component repeats exactly over ``run`` samples.
+
+    Real sensor noise makes an exact repeat of a floating-point reading over a
+    few samples essentially impossible, so such a run is a frozen or latched
+    output (a stalled bus, a driver re-sending its last value). Every sample of
+    the run is marked, from its first sample until the value changes. NaN is
+    never a repeat. Quantised sensors whose noise is below one count repeat by
+    chance: choose ``run`` long enough that chance runs are negligible.
+
+    Parameters
+    ----------
+    x : array_like, shape (..., N, k) (or (..., N) with ``axis=-1``)
+        Samples; leading axes are trials. Infinity is rejected.
+    run : int
+        Shortest run of equal values that counts (>= 2).
+    name : str
+        Argument name in error messages.
+    axis : int
+        Time axis: -2 for vector series (default), -1 for scalar series.
+
+    Returns
+    -------
+    stuck : ndarray of bool, shape (..., N)
+        True where some component of the sample belongs to such a run.
+    """
+    run = integer(run, "run", minimum=2)
+    choice(axis, "axis", (-1, -2))
+    a = as_array(x, name, allow_nan=True, min_ndim=-axis)
+    if axis == -1:
+        a = a[..., None]
+    n = a.shape[-2]
+    same = a[..., 1:, :] == a[..., :-1, :]                  # sample i equals sample i - 1 (False for NaN)
+    c = np.cumsum(np.concatenate([np.zeros_like(same[..., :1, :], dtype=int), same], axis=-2), axis=-2)
+    # a run of `run` equal samples starts at s when samples s + 1 ... s + run - 1 all equal their predecessor
+    starts = np.zeros(a.shape, dtype=int)
+    if n >= run:
+        starts[..., :n - run + 1, :] = c[..., run - 1:, :] - c[..., :n - run + 1, :] == run - 1
+    # sample i is stuck when such a run starts within the run - 1 samples before it (or at it)
+    s = np.cumsum(starts, axis=-2)
+    covered = s - np.concatenate([np.zeros_like(s[..., :run, :]), s[..., :-run, :]], axis=-2)[..., :n, :] > 0
+    return covered.any(axis=-1)

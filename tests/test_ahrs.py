@@ -147,7 +147,7 @@ def test_dropouts_are_skipped_and_counted_never_poisoning_the_state(filt):
     assert {k: int(v) for k, v in out.counts.items()} == {
         "gyro_held": 10, "accel_skipped": 6, "accel_gated": 0, "mag_skipped": 20 + 3, "mag_gated": 0,
         "gyro_saturated": 0, "accel_saturated": 0, "mag_saturated": 0, "rtk_dropped": 0, "rtk_rejected": 0,
-        "rtk_reacquired": 0, "gyro_gated": 0}
+        "rtk_reacquired": 0, "gyro_gated": 0, "gyro_stuck": 0, "clock_jump": 0}
     assert abs(attitude.wrap_pi(out.hpr[-1, 0] - hpr[0])) < units.deg(1.0)
 
 

@@ -170,3 +170,56 @@ def test_fault_report_matches_what_strapdown_holds():
 def test_fault_report_bad_input_names_the_argument(arg, call):
     with pytest.raises(ValueError, match=f"^{arg}: "):
         call()
+
+
+# ----------------------------------------------------------------------------- robust.stuck_mask
+
+def test_stuck_mask_marks_whole_runs_of_exact_repeats():
+    x = np.array([1.0, 2, 2, 2, 3, 3, np.nan, np.nan, np.nan, 4, 4, 4, 4])
+    #              -  ---------  ----  NaN is never a repeat  ----------
+    np.testing.assert_array_equal(robust.stuck_mask(x, 3, axis=-1), [0, 1, 1, 1, 0, 0, 0, 0, 0, 1, 1, 1, 1])
+    np.testing.assert_array_equal(robust.stuck_mask(x, 2, axis=-1), [0, 1, 1, 1, 1, 1, 0, 0, 0, 1, 1, 1, 1])
+    np.testing.assert_array_equal(robust.stuck_mask(x, 4, axis=-1), [0] * 9 + [1] * 4)
+    assert not robust.stuck_mask(x[:3], 4, axis=-1).any()                # shorter than a run
+
+
+def test_stuck_mask_any_axis_and_batch_axes():
+    rng = np.random.default_rng(0)
+    x = rng.normal(size=(2, 3, 40, 3))
+    x[0, 1, 5:12, 2] = 0.7                    # one axis latched for 7 samples
+    x[1, 2, 30:40] = x[1, 2, 30]              # all axes frozen to the end
+    x[1, 0, 10:14, 0] = 0.1                   # 4 repeats: below run = 5
+    mask = robust.stuck_mask(x, 5)
+    assert mask.shape == (2, 3, 40)
+    expected = np.zeros((2, 3, 40), bool)
+    expected[0, 1, 5:12] = expected[1, 2, 30:40] = True
+    np.testing.assert_array_equal(mask, expected)
+    for i in range(2):
+        for j in range(3):
+            np.testing.assert_array_equal(robust.stuck_mask(x[i, j], 5), mask[i, j])
+
+
+@pytest.mark.parametrize("kwargs, arg", [(dict(x=np.full((5, 3), np.inf), run=3), "x"),
+                                         (dict(x=np.zeros((5, 3)), run=1), "run"),
+                                         (dict(x=np.zeros((5, 3)), run=True), "run"),
+                                         (dict(x=np.zeros((5, 3)), run=3.0), "run"),
+                                         (dict(x=np.zeros((5, 3)), run=3, axis=0), "axis"),
+                                         (dict(x=np.zeros(5), run=3), "w_ib_b")])
+def test_stuck_mask_bad_input_names_the_argument(kwargs, arg):
+    with pytest.raises(ValueError, match=f"^{arg}: "):
+        robust.stuck_mask(**kwargs, **({"name": "w_ib_b"} if arg == "w_ib_b" else {}))
+
+
+def test_attitude_filters_flag_stuck_and_jump_samples():
+    rng = np.random.default_rng(2)
+    w = rng.normal(0, 0.01, (2, 300, 3))
+    w[0, 100:120] = w[0, 100]
+    dt = np.full(300, 0.01)
+    dt[250] = 2.0
+    res = mahony.mahony(w, np.tile([0.0, 0.0, 9.8], (2, 300, 1)), dt, [1.0, 0, 0, 0])
+    check_vocabulary(res.faults)
+    np.testing.assert_array_equal(res.faults["gyro", "stuck"], [20, 0])
+    np.testing.assert_array_equal(res.faults["clock", "jump"], [1, 1])
+    for key in (("gyro", "stuck"), ("clock", "jump")):
+        np.testing.assert_array_equal(res.faults.flags[key].sum(-1), res.faults[key])
+    assert res.faults["gyro", "nan"].tolist() == [0, 0]                    # stuck is not counted as a dropout

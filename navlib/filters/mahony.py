@@ -37,9 +37,11 @@ from .observations import (
     MagGate,
     attitude_result,
     gyro_sample,
+    learning,
     observe,
     pi_error,
     prepare_inputs,
+    reinit,
     run_trials,
 )
 
@@ -61,19 +63,25 @@ def _trial(t, inp, kp, ki, q_out, bias_out, counts):
     ix = iy = iz = 0.0
     held = False
     rtk = np.array([0.0, 1.0, 0.0, np.inf, 0.0, 0.0])
+    health = np.array([0.0, np.inf])
     for k in range(w.shape[1]):
         dt = dts[k]
-        gx, gy, gz, held = gyro_sample(t, k, w, gx, gy, gz, held, inp.jump, counts)
-        ax, ay, az, a_ok, mx, my, mz, m_ok, C = observe(inp, t, k, q0, q1, q2, q3, dt, rtk, counts)
-        ex, ey, ez = pi_error(C, ax, ay, az, a_ok, mx, my, mz, m_ok)
-        ix += ex * dt                                                  # Eq. (15)
-        iy += ey * dt
-        iz += ez * dt
-        wx, wy, wz = gx + kp * ex + ki * ix, gy + kp * ey + ki * iy, gz + kp * ez + ki * iz
-        d0, d1, d2, d3 = quat_mult_t(q0, q1, q2, q3, 0.0, wx, wy, wz)  # Eq. (17): q + dt/2 q (x) [0, w]
-        q0, q1, q2, q3 = q0 + 0.5 * dt * d0, q1 + 0.5 * dt * d1, q2 + 0.5 * dt * d2, q3 + 0.5 * dt * d3
-        s = 1.0 / np.sqrt(q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
-        q0, q1, q2, q3 = q0 * s, q1 * s, q2 * s, q3 * s
+        gx, gy, gz, held, fresh = gyro_sample(t, k, w, gx, gy, gz, held, inp.jump, counts)
+        if dt > inp.max_dt:                                            # clock jump: integrate nothing
+            q0, q1, q2, q3 = reinit(inp, t, k, q0, q1, q2, q3, rtk)
+            health[1] = 0.0
+        else:
+            ax, ay, az, a_ok, mx, my, mz, m_ok, C = observe(inp, t, k, q0, q1, q2, q3, dt, rtk, counts)
+            ex, ey, ez = pi_error(C, ax, ay, az, a_ok, mx, my, mz, m_ok)
+            if learning(fresh, dt, health, inp):                       # Eq. (15), unless settling after a fault
+                ix += ex * dt
+                iy += ey * dt
+                iz += ez * dt
+            wx, wy, wz = gx + kp * ex + ki * ix, gy + kp * ey + ki * iy, gz + kp * ez + ki * iz
+            d0, d1, d2, d3 = quat_mult_t(q0, q1, q2, q3, 0.0, wx, wy, wz)  # Eq. (17): q + dt/2 q (x) [0, w]
+            q0, q1, q2, q3 = q0 + 0.5 * dt * d0, q1 + 0.5 * dt * d1, q2 + 0.5 * dt * d2, q3 + 0.5 * dt * d3
+            s = 1.0 / np.sqrt(q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
+            q0, q1, q2, q3 = q0 * s, q1 * s, q2 * s, q3 * s
         q_out[t, k, 0], q_out[t, k, 1], q_out[t, k, 2], q_out[t, k, 3] = q0, q1, q2, q3
     bias_out[t, 0], bias_out[t, 1], bias_out[t, 2] = -ki * ix, -ki * iy, -ki * iz
 
@@ -85,7 +93,8 @@ def mahony(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None, dt: I
            ki: float = 0.02, B_n: Vec3 | None = None, gate: MagGate | None = None, accel_tol: float | None = None,
            g: float = G0, rtk_hold: float = 0.25, rtk_gate: float | None = None, rtk_confirm: int = 5,
            full_scale_gyro: float | None = None, full_scale_accel: float | None = None, full_scale_mag: float | None = None,
-           gyro_jump: float | None = None) -> AttitudeResult:
+           gyro_jump: float | None = None, max_dt: float | None = None,
+           stuck_run: int | str | None = "auto") -> AttitudeResult:
     """Mahony PI complementary filter (Eqs. 9-15 of Zhang et al. 2023), per sample:
     ``e = a x a_est + m x m_est``, ``w = w_m + kp e + ki sum(e dt)``,
     ``q <- normalise(q + dt/2 q (x) [0, w])``.
@@ -155,27 +164,54 @@ def mahony(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None, dt: I
         more than this on some axis is replaced by it (``gyro_gated``) unless
         the previous sample was already replaced. Choose well above the
         per-sample noise and the largest rate change per sample of the motion.
+    max_dt : float, optional
+        Longest interval integrated (s). A sample whose ``dt`` exceeds it is a
+        clock jump (``clock_jump``): nothing is integrated over it (gyro, PI
+        integral) and the attitude is re-initialised from that sample's
+        accelerometer (tilt) and magnetometer or RTK epoch (heading; else the
+        heading is kept), or kept if the accelerometer sample is unusable.
+        Default None: ``JUMP_FACTOR`` = 10 median intervals (no jump with a scalar
+        ``dt``); ``inf``: off.
+    stuck_run : int, "auto" or None
+        A gyro whose output stopped updating: a sample where some axis repeats
+        exactly the same value over ``stuck_run`` samples or more is stuck
+        (``gyro_stuck``, from the first sample of the run until the value
+        changes) and held like a NaN sample. Sensor noise makes such repeats of a
+        real reading essentially impossible. Values at the ``full_scale_gyro``
+        rails are saturated, not stuck; a trial whose gyro is not noisy from the
+        start (some axis repeats its first value ``stuck_run`` times: a
+        noise-free simulation, a quantised gyro at rest) is not checked.
+        Default "auto": 0.1 s of samples (``STUCK_DURATION``), at least 5.
+        Quantised gyros whose noise is about one count repeat by chance: use a
+        larger value, or None (off).
 
     What the filter does with bad samples
     -------------------------------------
-    NaN gyro: hold the last used sample. Gyro spike (``gyro_jump``): hold.
+    NaN or stuck gyro: hold the last used sample, and freeze the gyro-bias
+    estimate (the PI integral) while held and, after a hold of ``stuck_run``
+    samples or more or a clock jump, for ``SETTLE_TIME_CONSTANTS / kp`` = 15 s
+    at kp = 1 (the transient the fault left would corrupt it). Gyro spike
+    (``gyro_jump``): hold.
     NaN/inf/zero accelerometer, or outside ``accel_tol``, or saturated: skip
     the accelerometer correction. Magnetometer NaN/inf/zero, parallel to
     gravity, outside the ``gate`` or saturated: skip the heading correction.
     RTK: invalid epochs and NaN values are not read; epochs outside
     ``rtk_gate`` are rejected. A gap (any sensor) is a run of such samples: the
     attitude is propagated by the gyro alone and drifts at the gyro-bias
-    error. Every case is counted in :attr:`AttitudeResult.counts`.
+    error. A clock jump (``max_dt``): re-initialise. Every case is counted in
+    :attr:`AttitudeResult.counts`; stuck and jump samples are also flagged in
+    ``faults.flags``.
 
     Returns
     -------
     AttitudeResult
     """
     w_ib_b, f_b, dt, full_scale_gyro, full_scale_accel = unpack(w_ib_b, f_b, dt, full_scale_gyro, full_scale_accel)
-    lead, inp, sat = prepare_inputs(w_ib_b, f_b, dt, q0, m_b, heading_rtk, rtk_valid, B_n, gate, accel_tol, g,
-                                    rtk_hold, rtk_gate, rtk_confirm, full_scale_gyro, full_scale_accel, full_scale_mag, gyro_jump)
+    lead, inp, screened = prepare_inputs(w_ib_b, f_b, dt, q0, m_b, heading_rtk, rtk_valid, B_n, gate, accel_tol, g,
+                                         rtk_hold, rtk_gate, rtk_confirm, full_scale_gyro, full_scale_accel,
+                                         full_scale_mag, gyro_jump, max_dt, stuck_run, kp)
     kp, ki = scalar(kp, "kp", positive=True, allow_zero=True), scalar(ki, "ki", positive=True, allow_zero=True)
     T, N = inp.w.shape[:2]
     q_out, bias, counts = np.empty((T, N, 4)), np.empty((T, 3)), np.zeros((T, len(COUNT_NAMES)), dtype=np.int64)
     run_trials(_kernel, T, inp, kp, ki, q_out, bias, counts)
-    return attitude_result(lead, q_out, bias, counts, sat)
+    return attitude_result(lead, q_out, bias, counts, screened)

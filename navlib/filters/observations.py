@@ -8,11 +8,12 @@ Fig. 4 of Zhang et al. 2023, :mod:`navlib.papers.mimu_mag_rtk`). This module own
 such filters:
 
 * :func:`prepare_inputs` -- validation of the samples, gains aside, into an :class:`AttitudeInputs`
-  record for the compiled kernels (trials flattened; saturated samples counted);
-* :func:`observe`, :func:`gyro_sample`, :func:`pi_error`, :func:`rtk_gate` -- the compiled per-sample
-  steps: unit vectors with their gates (accelerometer norm, :class:`MagGate`, RTK gate with
-  re-acquisition), the gyro hold of dropouts and spikes, and Mahony's error
-  ``e = a_meas x a_est + m_meas x m_est``;
+  record for the compiled kernels (trials flattened; saturated and stuck gyro samples found, clock
+  jumps marked; :data:`STUCK_DURATION`, :data:`JUMP_FACTOR`);
+* :func:`observe`, :func:`gyro_sample`, :func:`pi_error`, :func:`rtk_gate`, :func:`reinit` -- the compiled
+  per-sample steps: unit vectors with their gates (accelerometer norm, :class:`MagGate`, RTK gate with
+  re-acquisition), the gyro hold of dropouts, spikes and stuck samples, Mahony's error
+  ``e = a_meas x a_est + m_meas x m_est``, and the re-initialisation after a clock jump;
 * :class:`AttitudeResult` with the counts :data:`COUNT_NAMES`; :func:`run_trials` (one thread
   per core over Monte Carlo trials; the kernels release the GIL).
 
@@ -30,20 +31,24 @@ import numpy as np
 from numba import njit
 
 from .. import attitude, earth
-from .._kernels import dcm_heading, wrap_pi
+from .._kernels import dcm_heading, tilt_heading, wrap_pi
 from .._typing import Array, ArrayLike, Interval, Quat, Vec3, Vec3Series
 from .._validate import as_array, as_quat, booleans, instance, integer, intervals, nonempty_array, same_shape, scalar
-from ..robust import FaultReport
+from ..robust import FaultReport, stuck_mask
 
-__all__ = ["MagGate", "AttitudeResult", "AttitudeInputs", "COUNT_NAMES", "FAULT_KEYS", "magnetic_reference", "prepare_inputs",
-           "attitude_result", "run_trials"]
+__all__ = ["MagGate", "AttitudeResult", "AttitudeInputs", "Screened", "COUNT_NAMES", "FAULT_KEYS", "STUCK_DURATION",
+           "JUMP_FACTOR", "SETTLE_TIME_CONSTANTS", "magnetic_reference", "prepare_inputs", "attitude_result", "run_trials"]
 
 COUNT_NAMES = ("gyro_held", "accel_skipped", "accel_gated", "mag_skipped", "mag_gated", "gyro_saturated",
-               "accel_saturated", "mag_saturated", "rtk_dropped", "rtk_rejected", "rtk_reacquired", "gyro_gated")
+               "accel_saturated", "mag_saturated", "rtk_dropped", "rtk_rejected", "rtk_reacquired", "gyro_gated",
+               "gyro_stuck", "clock_jump")
 """Keys of :attr:`AttitudeResult.counts`, one count per trial:
 
 ``gyro_held``
-    NaN gyro samples, replaced by the last used sample (hold).
+    NaN gyro samples, replaced by the last used sample (hold). While the gyro is
+    held (here and for ``gyro_gated``, ``gyro_stuck``) the gyro-bias estimate is
+    frozen, and after a hold of ``stuck_run`` samples or more it stays frozen for
+    :data:`SETTLE_TIME_CONSTANTS` / kp seconds (:func:`learning`).
 ``accel_skipped``, ``accel_gated``
     Accelerometer samples unusable (NaN, inf, zero: the correction is
     skipped) or outside ``accel_tol`` (skipped).
@@ -71,18 +76,48 @@ COUNT_NAMES = ("gyro_held", "accel_skipped", "accel_gated", "mag_skipped", "mag_
     Gyro spikes: samples differing from the last used one by more than
     ``gyro_jump`` on some axis, replaced by it (hold); a second such sample in a
     row is used (a sustained change is motion).
+``gyro_stuck``
+    Gyro samples of a stuck (frozen, latched) output: some axis repeats
+    exactly the same value over ``stuck_run`` samples or more
+    (:func:`navlib.robust.stuck_mask`); held like NaN samples (not also
+    counted in ``gyro_held``), from the first sample of the run until the
+    value changes.
+``clock_jump``
+    Samples whose interval exceeds ``max_dt`` (a time-stamp jump or a long
+    recording gap): nothing is integrated over it, the attitude is
+    re-initialised from that sample (:func:`reinit`), the quaternion KF's
+    covariance reset to ``p0 I``, and the gyro-bias estimate frozen for
+    :data:`SETTLE_TIME_CONSTANTS` / kp seconds. The same count in every trial
+    (``dt`` is shared).
 """
 
 FAULT_KEYS = {"gyro_held": ("gyro", "nan"), "accel_skipped": ("accel", "nan"), "accel_gated": ("accel", "outlier"),
               "mag_skipped": ("mag", "nan"), "mag_gated": ("mag", "outlier"), "gyro_saturated": ("gyro", "saturated"),
               "accel_saturated": ("accel", "saturated"), "mag_saturated": ("mag", "saturated"),
               "rtk_dropped": ("heading", "nan"), "rtk_rejected": ("heading", "outlier"),
-              "rtk_reacquired": ("heading", "reacquired"), "gyro_gated": ("gyro", "spike")}
+              "rtk_reacquired": ("heading", "reacquired"), "gyro_gated": ("gyro", "spike"),
+              "gyro_stuck": ("gyro", "stuck"), "clock_jump": ("clock", "jump")}
 """Each counter of :data:`COUNT_NAMES` as a ``(sensor, kind)`` key of :class:`navlib.robust.FaultReport`
 (``mag`` is the heading reference: the RTK pseudo-vector in RTK mode)."""
 
 (_GYRO_HELD, _ACCEL_SKIPPED, _ACCEL_GATED, _MAG_SKIPPED, _MAG_GATED, _GYRO_SATURATED, _ACCEL_SATURATED,
- _MAG_SATURATED, _RTK_DROPPED, _RTK_REJECTED, _RTK_REACQUIRED, _GYRO_GATED) = range(len(COUNT_NAMES))
+ _MAG_SATURATED, _RTK_DROPPED, _RTK_REJECTED, _RTK_REACQUIRED, _GYRO_GATED, _GYRO_STUCK, _CLOCK_JUMP) = range(len(COUNT_NAMES))
+
+STUCK_DURATION = 0.1
+"""Default ``stuck_run`` of the attitude filters, in seconds of samples (``stuck_run="auto"``: this
+duration over the median interval, at least 5 samples): 5 samples at 50 Hz, 10 at 100 Hz, 100 at 1 kHz."""
+
+SETTLE_TIME_CONSTANTS = 15.0
+"""After a clock jump or a gyro hold of ``stuck_run`` samples or more, the gyro-bias integral of the attitude
+filters stays frozen for this many time constants ``1 / kp`` of the PI loop (15 s at kp = 1 rad/s) while the
+reference removes the attitude error the fault left: learning from that transient would shift the bias
+estimate by ``ki`` times the integral of the error. The magnetometer loop is the slowest (time constant
+about 3.5 / kp); a gyro frozen through a 90 deg turn leaves 55 deg, a re-initialisation from one sample
+with 0.04 G noise up to ~15 deg (tests/faults/test_sensor_health.py: 10 / kp is too short for the latter)."""
+
+JUMP_FACTOR = 10.0
+"""Default ``max_dt`` of the attitude filters, in median sample intervals (``max_dt=None``): at 100 Hz, an
+interval longer than 0.1 s is a clock jump. With a scalar ``dt`` no interval can exceed it."""
 
 
 class AttitudeInputs(NamedTuple):
@@ -99,6 +134,16 @@ class AttitudeInputs(NamedTuple):
     gates: np.ndarray               # (6,) |f|^2 low/high, |m|^2 low/high, sin(dip) low/high
     jump: float                     # gyro spike gate (rad/s), 0 = off
     rtk_par: np.ndarray             # (3,) hold (s), gate (rad), confirm (epochs); see rtk_params
+    max_dt: float                   # longest interval integrated (s); longer ones are clock jumps (inf = off)
+    long_hold: int                  # gyro holds of at least this many samples are followed by settling
+    settle: float                   # bias integral frozen this long (s) after a long hold or a clock jump
+
+
+class Screened(NamedTuple):
+    """What :func:`prepare_inputs` found before filtering, for :func:`attitude_result`."""
+    saturated: np.ndarray           # (T, 3) gyro, accelerometer, magnetometer samples at the rails
+    stuck: np.ndarray               # (T, N) bool: stuck gyro samples (NaN in the kernel's input)
+    jump: np.ndarray                # (N,) bool: clock jumps (interval > max_dt)
 
 
 # --------------------------------------------------------------------------
@@ -278,21 +323,75 @@ def observe(inp, t, k, q0, q1, q2, q3, dtk, rtk, counts):
 
 @njit(cache=True, inline="always")
 def gyro_sample(t, k, w, gx, gy, gz, held, jump, counts):
-    """Gyro sample k, or the last used one (gx, gy, gz) if it is NaN or a spike (counted).
+    """Gyro sample k, or the last used one (gx, gy, gz) if it is NaN (a dropout, or stuck: see
+    :func:`prepare_inputs`) or a spike (counted).
 
     A spike (only when ``jump > 0``) is a sample differing from the last used
     one by more than ``jump`` on some axis, unless the previous sample was
     already held (``held``): a sustained change is motion, not a spike.
-    Returns (wx, wy, wz, held).
+    Returns (wx, wy, wz, held, fresh); ``fresh`` is False when the sample was
+    replaced (the kernels then freeze their gyro-bias integral).
     """
     wx, wy, wz = w[t, k, 0], w[t, k, 1], w[t, k, 2]
     if not (np.isfinite(wx) and np.isfinite(wy) and np.isfinite(wz)):
         counts[t, _GYRO_HELD] += 1
-        return gx, gy, gz, held
+        return gx, gy, gz, held, False
     if jump > 0.0 and not held and k > 0 and (abs(wx - gx) > jump or abs(wy - gy) > jump or abs(wz - gz) > jump):
         counts[t, _GYRO_GATED] += 1
-        return gx, gy, gz, True
-    return wx, wy, wz, False
+        return gx, gy, gz, True, False
+    return wx, wy, wz, False, True
+
+
+@njit(cache=True, inline="always")
+def learning(fresh, dt, state, inp):
+    """May the gyro-bias (PI) integral learn from this sample? Not while the gyro is held (``fresh`` False),
+    nor for ``inp.settle`` seconds after a hold of ``inp.long_hold`` samples or more or a clock jump.
+
+    ``state = [samples held in a row, time since the last long hold or jump (s)]`` (start ``[0, inf]``;
+    a clock jump sets ``state[1] = 0``).
+    """
+    if not fresh:
+        state[0] += 1.0
+        return False
+    if state[0] >= inp.long_hold:
+        state[1] = 0.0
+    state[0] = 0.0
+    state[1] += dt
+    return state[1] >= inp.settle
+
+
+@njit(cache=True, inline="always")
+def reinit(inp, t, k, q0, q1, q2, q3, rtk):
+    """Attitude after a clock jump at sample k of trial t (nothing is integrated over its interval).
+
+    Tilt from the sample's accelerometer (pitch ``atan2(a_y, |a_xz|)``, roll
+    ``atan2(-a_x, a_z)``), heading from its magnetometer (tilt-compensated), or
+    in RTK mode from a valid RTK epoch at k, else the current estimate's
+    heading. An unusable or gated accelerometer sample keeps the attitude
+    ``q``. The RTK hold and gate state ``rtk`` (see :func:`observe`) restarts.
+    The caller restarts the settling of :func:`learning`.
+    Returns (q0, q1, q2, q3).
+    """
+    f, m, gates = inp.f, inp.m, inp.gates
+    rtk[3], rtk[4] = np.inf, 0.0                                   # the last epoch is stale
+    ax, ay, az, ca = _accel_obs(f[t, k, 0], f[t, k, 1], f[t, k, 2], gates[0], gates[1])
+    if ca != 0:
+        return q0, q1, q2, q3
+    pitch, roll = np.arctan2(ay, np.sqrt(ax * ax + az * az)), np.arctan2(-ax, az)
+    C = _dcm_t(q0, q1, q2, q3)
+    h = dcm_heading(C[1], C[4])
+    if inp.use_rtk:
+        if inp.hdg_ok[t, k] and not np.isnan(inp.hdg[t, k]):
+            h = inp.hdg[t, k]
+            rtk[0], rtk[1], rtk[2], rtk[3] = np.sin(h), np.cos(h), h, 0.0
+    elif inp.use_mag:
+        mx, my, mz, cm = _mag_obs(m[t, k, 0], m[t, k, 1], m[t, k, 2], ax, ay, az, 0, gates[2:])
+        if cm == 0:
+            h = tilt_heading(mx, my, mz, pitch, roll)
+    ch, sh, cp, sp, cr, sr = (np.cos(h / 2), np.sin(h / 2), np.cos(pitch / 2), np.sin(pitch / 2),
+                              np.cos(roll / 2), np.sin(roll / 2))
+    return (ch * cp * cr + sh * sp * sr, ch * sp * cr + sh * cp * sr, ch * cp * sr - sh * sp * cr,
+            -sh * cp * cr + ch * sp * sr)                          # attitude.euler_to_quat([h, pitch, roll])
 
 
 # --------------------------------------------------------------------------
@@ -334,7 +433,8 @@ class AttitudeResult:
         Covariance after every sample (``quaternion_kf(..., keep_cov=True)``).
     faults : FaultReport
         The same counts in navlib's one fault vocabulary (:data:`FAULT_KEYS`), e.g.
-        ``result.faults["gyro", "nan"]``.
+        ``result.faults["gyro", "nan"]``, and per-sample flags, shape (..., N), of the faults found
+        before filtering: ``faults.flags["gyro", "stuck"]``, ``faults.flags["clock", "jump"]``.
     """
     q_bn: np.ndarray
     gyro_bias: np.ndarray
@@ -385,13 +485,23 @@ def prepare_inputs(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, 
                    heading_rtk: ArrayLike | None, rtk_valid: ArrayLike | None, B_n: Vec3 | None, gate: MagGate | None,
                    accel_tol: float | None, g: float, rtk_hold: float, rtk_gate: float | None, rtk_confirm: int,
                    full_scale_gyro: float | None, full_scale_accel: float | None, full_scale_mag: float | None,
-                   gyro_jump: float | None) -> tuple[tuple[int, ...], AttitudeInputs, np.ndarray]:
+                   gyro_jump: float | None, max_dt: float | None = None, stuck_run: int | str | None = "auto",
+                   kp: float = 1.0) -> tuple[tuple[int, ...], AttitudeInputs, Screened]:
     """Validate the inputs of an attitude filter once (the parameters of :func:`navlib.filters.mahony.mahony`).
 
-    Returns ``(lead, inputs, saturated)``: the leading (trial) shape, the kernel record with trials
-    flattened to T, and the (T, 3) counts of gyro, accelerometer and magnetometer samples at the rails
-    (accelerometer and magnetometer samples at the rails are NaN in ``inputs``: the kernels skip
-    them like dropouts and :func:`attitude_result` corrects the skip counts).
+    Returns ``(lead, inputs, screened)``: the leading (trial) shape, the kernel record with trials
+    flattened to T, and a :class:`Screened` record: the (T, 3) counts of gyro, accelerometer and
+    magnetometer samples at the rails (accelerometer and magnetometer samples at the rails are NaN in
+    ``inputs``: the kernels skip them like dropouts and :func:`attitude_result` corrects the skip
+    counts), the stuck gyro samples (NaN in ``inputs``: held like dropouts) and the clock jumps.
+
+    Stuck gyro samples: :func:`navlib.robust.stuck_mask` with ``stuck_run`` samples ("auto":
+    :data:`STUCK_DURATION` over the median interval, at least 5; None: off), in the trials whose gyro is
+    noisy from the start (no axis repeats its first value ``stuck_run`` times: a noise-free simulation or
+    a quantised gyro at rest is not checked); values at the rails (``full_scale_gyro``) are saturated,
+    never stuck.
+    Clock jumps: intervals longer than ``max_dt`` (s; None: :data:`JUMP_FACTOR` median intervals;
+    inf: off). ``kp`` (rad/s) sets the settling time :data:`SETTLE_TIME_CONSTANTS` / kp.
     """
     w = nonempty_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
     f = same_shape(nonempty_array(f_b, "f_b", tail=(3,), finite=False), "f_b", w.shape, of="w_ib_b")
@@ -429,6 +539,16 @@ def prepare_inputs(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, 
         gates[4:6] = np.sin(max(I - gate.dip_tol, -np.pi / 2)), np.sin(min(I + gate.dip_tol, np.pi / 2))
     jump = 0.0 if gyro_jump is None else scalar(gyro_jump, "gyro_jump", positive=True)
     rtk_par = rtk_params(rtk_hold, rtk_gate, rtk_confirm)
+    typical = float(np.median(dts))
+    max_dt = JUMP_FACTOR * typical if max_dt is None else scalar(max_dt, "max_dt", positive=True, allow_inf=True)
+    auto = max(5, int(np.ceil(STUCK_DURATION / typical - 1e-9)))
+    if isinstance(stuck_run, str) and stuck_run == "auto":
+        stuck_run = auto
+    elif stuck_run is not None and (isinstance(stuck_run, (bool, np.bool_, str))
+                                    or not isinstance(stuck_run, (int, np.integer)) or stuck_run < 2):
+        raise ValueError(f'stuck_run: expected an integer >= 2, "auto" or None, got {stuck_run!r}')
+    kp = scalar(kp, "kp", positive=True, allow_zero=True)
+    settle = SETTLE_TIME_CONSTANTS / kp if kp > 0 else 0.0
     w, f = w.reshape(T, N, 3), f.reshape(T, N, 3)
     # Saturation: counted here; accelerometer/magnetometer samples at the rails become NaN (skipped by the
     # kernel exactly like a dropout; the kernel's skip counts are corrected in _result), gyro samples are used.
@@ -447,9 +567,17 @@ def prepare_inputs(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, 
             f = np.where(rail[..., None], np.nan, f)
         elif i == 2 and sat[:, i].any():
             m = np.where(rail[..., None], np.nan, m)
+    stuck = np.zeros((T, N), dtype=bool)
+    if stuck_run is not None:
+        # only trials whose gyro is noisy from the start are checked: a first run of repeats is a noise-free signal
+        noisy = np.logical_and.accumulate(w == w[:, :1], axis=1).sum(1).max(-1) < stuck_run
+        probe = w if full_scale_gyro is None else np.where(np.abs(w) >= full_scale_gyro, np.nan, w)   # rails: saturated
+        stuck = stuck_mask(probe, stuck_run) & noisy[:, None]
+        if stuck.any():
+            w = np.where(stuck[..., None], np.nan, w)
     inputs = AttitudeInputs(q, np.ascontiguousarray(w), np.ascontiguousarray(f), np.ascontiguousarray(m), hdg, ok,
-                            use_rtk, use_mag, dts, gates, jump, rtk_par)
-    return lead, inputs, sat
+                            use_rtk, use_mag, dts, gates, jump, rtk_par, max_dt, stuck_run or auto, settle)
+    return lead, inputs, Screened(sat, stuck, dts > max_dt)
 
 
 def run_trials(kernel: Callable, n_trials: int, *args) -> None:
@@ -464,14 +592,19 @@ def run_trials(kernel: Callable, n_trials: int, *args) -> None:
 
 
 def attitude_result(lead: tuple[int, ...], q_out: np.ndarray, bias: np.ndarray, counts: np.ndarray,
-                    sat: np.ndarray, P: np.ndarray | None = None, P_hist: np.ndarray | None = None) -> AttitudeResult:
+                    screened: Screened, P: np.ndarray | None = None, P_hist: np.ndarray | None = None) -> AttitudeResult:
     """Assemble an :class:`AttitudeResult` from kernel outputs over T flattened trials (leading shape ``lead``)."""
+    sat, stuck, jump = screened
     counts[:, _GYRO_SATURATED:_MAG_SATURATED + 1] = sat    # saturated samples (see prepare_inputs) ...
     counts[:, _ACCEL_SKIPPED] -= sat[:, 1]                              # ... were skipped as NaN by the kernel
     counts[:, _MAG_SKIPPED] -= sat[:, 2]
+    counts[:, _GYRO_STUCK] = stuck.sum(-1)                  # stuck samples were held as NaN by the kernel
+    counts[:, _GYRO_HELD] -= counts[:, _GYRO_STUCK]
+    counts[:, _CLOCK_JUMP] = jump.sum()
     N = q_out.shape[1]
     named = {name: counts[:, i].reshape(lead) for i, name in enumerate(COUNT_NAMES)}
+    flags = {("gyro", "stuck"): stuck.reshape(lead + (N,)), ("clock", "jump"): np.broadcast_to(jump, lead + (N,))}
     return AttitudeResult(q_out.reshape(lead + (N, 4)), bias.reshape(lead + (3,)), named,
                           None if P is None else P.reshape(lead + (4, 4)),
                           None if P_hist is None else P_hist.reshape(lead + (N, 4, 4)),
-                          FaultReport({FAULT_KEYS[name]: c for name, c in named.items()}))
+                          FaultReport({FAULT_KEYS[name]: c for name, c in named.items()}, flags))

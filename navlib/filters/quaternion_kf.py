@@ -36,10 +36,12 @@ from .observations import (
     MagGate,
     attitude_result,
     gyro_sample,
+    learning,
     magnetic_reference,
     observe,
     pi_error,
     prepare_inputs,
+    reinit,
     run_trials,
 )
 
@@ -164,6 +166,13 @@ def noise_input(q: Quat, dt: float) -> Array:
     return dt / 2 * np.stack([np.stack(r, -1) for r in rows], -2)
 
 
+@njit(cache=True, inline="always")
+def _output(t, k, x, P, q_out, P_hist, keep):
+    q_out[t, k, 0], q_out[t, k, 1], q_out[t, k, 2], q_out[t, k, 3] = x[0], x[1], x[2], x[3]
+    if keep:
+        P_hist[t, k] = P
+
+
 @njit(cache=True, nogil=True)
 def _kernel(t0, t1, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
     """Trials t0 to t1 - 1 of ``inp`` (:class:`~navlib.filters.observations.AttitudeInputs`); ``model``: :class:`_Model`."""
@@ -187,15 +196,23 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
     gx = gy = gz = 0.0
     held = False
     rtk = np.array([0.0, 1.0, 0.0, np.inf, 0.0, 0.0])
+    health = np.array([0.0, np.inf])
     ix = iy = iz = 0.0
     for k in range(N):
         dt = dts[k]
-        gx, gy, gz, held = gyro_sample(t, k, w, gx, gy, gz, held, inp.jump, counts)
+        gx, gy, gz, held, fresh = gyro_sample(t, k, w, gx, gy, gz, held, inp.jump, counts)
+        if dt > inp.max_dt:                             # clock jump: re-initialise, covariance back to p0 I
+            x = np.array(reinit(inp, t, k, x[0], x[1], x[2], x[3], rtk))
+            P = model.p0 * np.eye(4)
+            health[1] = 0.0
+            _output(t, k, x, P, q_out, P_hist, keep)
+            continue
         ax, ay, az, a_ok, mx, my, mz, m_ok, C = observe(inp, t, k, x[0], x[1], x[2], x[3], dt, rtk, counts)
         ex, ey, ez = pi_error(C, ax, ay, az, a_ok, mx, my, mz, m_ok)   # PI-corrected rate, Eq. (15)
-        ix += ex * dt
-        iy += ey * dt
-        iz += ez * dt
+        if learning(fresh, dt, health, inp):                           # Eq. (15), unless settling after a fault
+            ix += ex * dt
+            iy += ey * dt
+            iz += ez * dt
         _phi_into(Phi, gx + kp * ex + ki * ix, gy + kp * ey + ki * iy, gz + kp * ez + ki * iz, dt)
         _gamma_into(G, x, dt)
         x, P = _kernels.kalman_predict(x, P, Phi, G @ Qg @ np.ascontiguousarray(G.T))     # Eqs. (16)-(18)
@@ -208,9 +225,7 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
             _h_into(h, x, by, bz)                                           # z - h(q), Eq. (19) corrected
         x, P, _, _, _ = _kernels.kalman_update(x, P, z, h, H, R, no_angles)
         x = x / np.sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2] + x[3] * x[3])
-        q_out[t, k, 0], q_out[t, k, 1], q_out[t, k, 2], q_out[t, k, 3] = x[0], x[1], x[2], x[3]
-        if keep:
-            P_hist[t, k] = P
+        _output(t, k, x, P, q_out, P_hist, keep)
     bias_out[t, 0], bias_out[t, 1], bias_out[t, 2] = -ki * ix, -ki * iy, -ki * iz
     P_out[t] = P
 
@@ -225,7 +240,8 @@ def quaternion_kf(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None
                   linear_innovation: bool = False, rtk_gate: float | None = None, rtk_confirm: int = 5,
                   full_scale_gyro: float | None = None, full_scale_accel: float | None = None,
                   full_scale_mag: float | None = None,
-                  gyro_jump: float | None = None, keep_cov: bool = False) -> AttitudeResult:
+                  gyro_jump: float | None = None, keep_cov: bool = False, max_dt: float | None = None,
+                  stuck_run: int | str | None = "auto") -> AttitudeResult:
     """Quaternion Kalman filter driven by the PI-corrected rate (Eqs. 16-20, Fig. 2 of Zhang et al. 2023).
 
     Per sample: the Mahony error of the current estimate gives the rate (Eq. 15);
@@ -296,17 +312,43 @@ def quaternion_kf(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None
         more than this on some axis is replaced by it (``gyro_gated``) unless
         the previous sample was already replaced. Choose well above the
         per-sample noise and the largest rate change per sample of the motion.
+    max_dt : float, optional
+        Longest interval integrated (s). A sample whose ``dt`` exceeds it is a
+        clock jump (``clock_jump``): nothing is integrated over it (gyro, PI
+        integral, covariance), the attitude is re-initialised from that sample's
+        accelerometer (tilt) and magnetometer or RTK epoch (heading; else the
+        heading is kept), or kept if the accelerometer sample is unusable, and the
+        covariance is reset to ``p0 I``. Default None: ``JUMP_FACTOR`` = 10 median
+        intervals (no jump with a scalar ``dt``); ``inf``: off.
+    stuck_run : int, "auto" or None
+        A gyro whose output stopped updating: a sample where some axis repeats
+        exactly the same value over ``stuck_run`` samples or more is stuck
+        (``gyro_stuck``, from the first sample of the run until the value
+        changes) and held like a NaN sample. Sensor noise makes such repeats of a
+        real reading essentially impossible. Values at the ``full_scale_gyro``
+        rails are saturated, not stuck; a trial whose gyro is not noisy from the
+        start (some axis repeats its first value ``stuck_run`` times: a
+        noise-free simulation, a quantised gyro at rest) is not checked.
+        Default "auto": 0.1 s of samples (``STUCK_DURATION``), at least 5.
+        Quantised gyros whose noise is about one count repeat by chance: use a
+        larger value, or None (off).
 
     What the filter does with bad samples
     -------------------------------------
-    NaN gyro: hold the last used sample. Gyro spike (``gyro_jump``): hold.
+    NaN or stuck gyro: hold the last used sample, and freeze the gyro-bias
+    estimate (the PI integral) while held and, after a hold of ``stuck_run``
+    samples or more or a clock jump, for ``SETTLE_TIME_CONSTANTS / kp`` = 15 s
+    at kp = 1 (the transient the fault left would corrupt it). Gyro spike
+    (``gyro_jump``): hold.
     NaN/inf/zero accelerometer, or outside ``accel_tol``, or saturated: skip
     the accelerometer correction. Magnetometer NaN/inf/zero, parallel to
     gravity, outside the ``gate`` or saturated: skip the heading correction.
     RTK: invalid epochs and NaN values are not read; epochs outside
     ``rtk_gate`` are rejected. A gap (any sensor) is a run of such samples: the
     attitude is propagated by the gyro alone and drifts at the gyro-bias
-    error. Every case is counted in :attr:`AttitudeResult.counts`.
+    error. A clock jump (``max_dt``): re-initialise. Every case is counted in
+    :attr:`AttitudeResult.counts`; stuck and jump samples are also flagged in
+    ``faults.flags``.
 
     Returns
     -------
@@ -328,8 +370,9 @@ def quaternion_kf(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None
     saturated measurements are simply not used, so a fault never enters P.
     """
     w_ib_b, f_b, dt, full_scale_gyro, full_scale_accel = unpack(w_ib_b, f_b, dt, full_scale_gyro, full_scale_accel)
-    lead, inp, sat = prepare_inputs(w_ib_b, f_b, dt, q0, m_b, heading_rtk, rtk_valid, B_n, gate, accel_tol, g,
-                                    rtk_hold, rtk_gate, rtk_confirm, full_scale_gyro, full_scale_accel, full_scale_mag, gyro_jump)
+    lead, inp, screened = prepare_inputs(w_ib_b, f_b, dt, q0, m_b, heading_rtk, rtk_valid, B_n, gate, accel_tol, g,
+                                         rtk_hold, rtk_gate, rtk_confirm, full_scale_gyro, full_scale_accel,
+                                         full_scale_mag, gyro_jump, max_dt, stuck_run, kp)
     kp, ki = scalar(kp, "kp", positive=True, allow_zero=True), scalar(ki, "ki", positive=True, allow_zero=True)
     T, N = inp.w.shape[:2]
     if not inp.use_mag:
@@ -345,4 +388,4 @@ def quaternion_kf(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None
     q_out, bias, counts = np.empty((T, N, 4)), np.empty((T, 3)), np.zeros((T, len(COUNT_NAMES)), dtype=np.int64)
     P_out, P_hist = np.empty((T, 4, 4)), np.empty((T, N if keep_cov else 0, 4, 4))
     run_trials(_kernel, T, inp, kp, ki, model, q_out, bias, counts, P_out, P_hist)
-    return attitude_result(lead, q_out, bias, counts, sat, P_out, P_hist if keep_cov else None)
+    return attitude_result(lead, q_out, bias, counts, screened, P_out, P_hist if keep_cov else None)

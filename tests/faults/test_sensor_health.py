@@ -1,0 +1,280 @@
+"""Sensor health in the attitude filters: clock jumps and stuck gyros are detected, counted, flagged, recovered from.
+
+Data: the Fig. 4 setting of notebook 04 (as in test_faults_ahrs.py) -- 50 Hz, ADIS16475-1 noise, 0.09 deg/s
+gyro bias on every axis, 0.04 G magnetometer noise, 5 Hz dual-antenna heading with 0.2 deg noise, Nanjing
+field -- as 8 Monte Carlo trials of a level IMU at heading 90 deg, static or turning 90 deg at 20 deg/s
+from 100 s to 104.5 s. The faults (an independent campaign's findings, at 100 s):
+
+* ``jump``: one interval of 3600 s, static and mid-turn (102 s);
+* ``stuck``: z gyro latched at 0.3 rad/s for 10 s, static;
+* ``frozen``: all gyro axes repeating the sample of 99 s for 10 s, through the turn.
+
+Recovery, the issue's acceptance: 30 s after the fault ends, the RMS over trials of the gyro-bias error is
+within 2x that of the fault-free run, and the heading and tilt errors are back to the fault-free run's
+(within 0.1 deg RMS). Measured ratios (fault / fault-free bias error; both filters, magnetometer and RTK
+heading): 1.11-1.64 with detection. Detection off (``max_dt=inf, stuck_run=None``: bit-identical to the
+filters before it existed) reproduces the findings: nothing counted, ratios 67-21000 (RATIO_OFF), and
++30 s heading errors up to 131 deg (jump), 7.6 deg (stuck z) and 4.0 deg (frozen turn).
+The frozen turn's peak heading error (53 deg magnetometer, 20 deg RTK) is the same either way: a held
+gyro has nothing better to offer; detection reports it and keeps it out of the bias estimate.
+"""
+import numpy as np
+import pytest
+
+from navlib import attitude, earth, sensors, units
+from navlib.filters import mahony as mh
+from navlib.filters import observations as obs
+from navlib.filters import quaternion_kf as qkf
+
+B_N = earth.magnetic_field(32.03, 118.85, 20.0, 2022.5)
+DECL = obs.magnetic_reference(B_N)[1]
+IMU = sensors.imu_model("ADIS16475-1")
+DT, STEP, TRIALS = 0.02, 10, 8
+N = 7000                                                  # 140 s
+K0 = 5000                                                 # 100 s
+H0 = units.deg(90.0)
+BIAS = units.deg_per_s(0.09)
+SIGMA_GYRO = IMU.gyro.noise_density / np.sqrt(DT)
+SIGMA_ACCEL = IMU.accel.noise_density / np.sqrt(DT)
+FILTERS = {"mahony": (mh.mahony, dict(kp=1.0, ki=0.02)),
+           "kf": (qkf.quaternion_kf, dict(kp=1.0, ki=0.02, sigma_gyro=SIGMA_GYRO, sigma_accel=0.02, sigma_mag=0.08))}
+
+
+def trial(seed, moving):
+    """One trial: samples (N, 3), true heading after each sample, RTK heading and epochs."""
+    rng = np.random.default_rng(seed)
+    t = np.arange(N) * DT                                                  # start of each sample's interval
+    rate = np.where(moving & (t >= 100.0) & (t < 104.5), units.deg(20.0), 0.0)   # heading rate, clockwise
+    H = H0 + np.cumsum(rate * DT)
+    w = np.zeros((N, 3))
+    w[:, 2] = -rate                                                         # z up: w_z = -dH/dt
+    w += BIAS + rng.normal(0.0, SIGMA_GYRO, (N, 3))
+    f = np.array([0.0, 0.0, 9.8]) + rng.normal(0.0, SIGMA_ACCEL, (N, 3))
+    q = attitude.euler_to_quat(np.stack([H, 0 * H, 0 * H], -1))
+    m = sensors.simulate_magnetometer(q, B_N, sensors.MagnetometerModel(noise=units.gauss(0.04)), rng).m_b
+    epoch = np.arange(N) % STEP == 0
+    rtk = np.where(epoch, attitude.wrap_2pi(H + rng.normal(0.0, units.deg(0.2), N)), np.nan)
+    return dict(w=w, f=f, m=m, rtk=rtk, epoch=epoch, H=H)
+
+
+@pytest.fixture(scope="module")
+def data():
+    out = {}
+    for moving in (False, True):
+        trials = [trial(seed, moving) for seed in range(TRIALS)]
+        out[moving] = {k: np.stack([d[k] for d in trials]) for k in trials[0]}
+    return out
+
+
+def run(name, d, mode, n, **kw):
+    """The filter on the first n samples of every trial; ``kw`` overrides ``w`` and ``dt`` and sets options."""
+    filt, opts = FILTERS[name]
+    w, dt = kw.pop("w", d["w"])[:, :n], kw.pop("dt", DT)
+    dt = dt if np.isscalar(dt) else dt[:n]
+    if mode == "mag":
+        return filt(w, d["f"][:, :n], dt, attitude.euler_to_quat([H0 - DECL, 0.0, 0.0]), m_b=d["m"][:, :n], B_n=B_N,
+                    **opts, **kw)
+    return filt(w, d["f"][:, :n], dt, attitude.euler_to_quat([H0, 0.0, 0.0]), heading_rtk=d["rtk"][:, :n],
+                rtk_valid=d["epoch"][:, :n], **opts, **kw)
+
+
+def bias_rms(res):
+    """RMS over trials of the gyro-bias error norm (rad/s)."""
+    return np.sqrt(np.mean(np.sum((res.gyro_bias - BIAS) ** 2, -1)))
+
+
+def final_errors(res, d, mode):
+    """RMS over trials of the heading and tilt errors (deg) after the last sample."""
+    n = res.q_bn.shape[-2]
+    H = d["H"][:, n - 1] - (DECL if mode == "mag" else 0.0)
+    err = units.to_deg(np.abs(attitude.wrap_pi(res.hpr[:, -1] - np.stack([H, 0 * H, 0 * H], -1))))
+    return np.sqrt(np.mean(err[:, 0] ** 2)), np.sqrt(np.mean(np.max(err[:, 1:], -1) ** 2))
+
+
+def inject(d, kind):
+    """Faulty inputs, the fault's end (sample), the count name, the expected flags (N,) and count per trial."""
+    flags = np.zeros(N, bool)
+    if kind in ("jump", "jump-moving"):
+        k = K0 + (100 if kind == "jump-moving" else 0)                    # moving: mid-turn, 102 s
+        dt = np.full(N, DT)
+        dt[k] = 3600.0
+        flags[k] = True
+        return dict(dt=dt), k + 1, "clock_jump", flags
+    w = d["w"].copy()
+    if kind == "stuck":
+        w[:, K0:K0 + 500, 2] = 0.3
+        flags[K0:K0 + 500] = True
+    else:                                                                  # frozen: 99 s to 109 s
+        w[:, K0 - 50:K0 + 450] = w[:, K0 - 50:K0 - 49]
+        flags[K0 - 50:K0 + 450] = True
+    return dict(w=w), int(np.flatnonzero(flags)[-1]) + 1, "gyro_stuck", flags
+
+
+SCENARIOS = {"jump": False, "jump-moving": True, "stuck": False, "frozen": True}
+RATIO_OFF = 10.0          # without detection the bias error is 67x (frozen turn, KF, magnetometer) to 21000x larger
+
+
+@pytest.mark.parametrize("name", FILTERS)
+@pytest.mark.parametrize("mode", ["mag", "rtk"])
+@pytest.mark.parametrize("kind", SCENARIOS)
+def test_fault_is_counted_flagged_and_recovered_from(data, name, mode, kind):
+    d = data[SCENARIOS[kind]]
+    faulty, end, key, flags = inject(d, kind)
+    n = end + int(round(30.0 / DT))                                       # 30 s after the fault
+    ref = run(name, d, mode, n)
+    res = run(name, d, mode, n, **faulty)
+    assert np.isfinite(res.q_bn).all() and np.isfinite(res.gyro_bias).all()
+    expected = int(flags.sum())
+    np.testing.assert_array_equal(res.counts[key], expected)
+    assert not any(np.any(c) for k, c in res.counts.items() if k != key)         # nothing else: a stuck gyro is not NaN
+    assert not any(np.any(c) for c in ref.counts.values())
+    fk = obs.FAULT_KEYS[key]
+    np.testing.assert_array_equal(res.faults[fk], expected)
+    np.testing.assert_array_equal(res.faults.flags[fk], np.broadcast_to(flags[:n], (TRIALS, n)))
+    assert bias_rms(res) < 2.0 * bias_rms(ref)                             # recovered: the issue's criterion
+    for e_res, e_ref in zip(final_errors(res, d, mode), final_errors(ref, d, mode), strict=True):
+        assert abs(e_res - e_ref) < 0.1
+    off = run(name, d, mode, n, max_dt=np.inf, stuck_run=None, **faulty)
+    assert not off.faults                                                  # the finding: unreported ...
+    assert bias_rms(off) > RATIO_OFF * bias_rms(ref)                      # ... and the bias estimate corrupted
+
+
+# --------------------------------------------------------------------------- behaviour in detail
+
+@pytest.mark.parametrize("name", FILTERS)
+def test_fault_free_results_are_unchanged(data, name):
+    """No jump and no stuck sample in noisy data: bit-identical to the run with both detectors off."""
+    d = data[True]
+    for mode in ("mag", "rtk"):
+        on = run(name, d, mode, N)
+        off = run(name, d, mode, N, max_dt=np.inf, stuck_run=None)
+        assert not on.faults
+        np.testing.assert_array_equal(on.q_bn, off.q_bn)
+        np.testing.assert_array_equal(on.gyro_bias, off.gyro_bias)
+        assert not on.faults.flags["gyro", "stuck"].any() and not on.faults.flags["clock", "jump"].any()
+
+
+def level(n, heading=0.3):
+    """Noise-free level static samples: gyro, accelerometer, magnetometer (magnetic frame) and the attitude."""
+    q = attitude.euler_to_quat([heading, 0.0, 0.0])
+    C_nb = attitude.quat_to_dcm(q).T
+    b = obs.magnetic_reference(B_N)[0] * 50.0
+    return np.zeros((n, 3)), np.tile(C_nb @ [0.0, 0.0, 9.8], (n, 1)), np.tile(C_nb @ b, (n, 1)), q
+
+
+@pytest.mark.parametrize("filt", [mh.mahony, qkf.quaternion_kf])
+def test_jump_reinitialises_from_the_sample(filt):
+    """At the jump the attitude is the sample's tilt and magnetic heading (not integrated over 3600 s)."""
+    w, f, m, q_true = level(200)
+    w[:] = 0.05                                                            # a rate that 3600 s would wrap many times
+    dt = np.full(200, 0.01)
+    dt[100] = 3600.0
+    q0 = attitude.euler_to_quat([1.3, 0.2, -0.1])                          # far from the truth
+    res = filt(w, f, dt, q0, m_b=m, B_n=B_N, kp=0.0, ki=0.0)
+    assert int(res.counts["clock_jump"]) == 1 and res.faults.flags["clock", "jump"][100]
+    assert abs(attitude.wrap_pi(res.hpr[99, 0] - 0.3)) > 0.2                # not converged before the jump
+    np.testing.assert_allclose(abs(res.q_bn[100] @ q_true), 1.0, atol=1e-12)   # the same rotation
+    bad_f = f.copy()
+    bad_f[100] = np.nan                                                    # unusable: the attitude is kept
+    kept = filt(w, bad_f, dt, q0, m_b=m, B_n=B_N, kp=0.0, ki=0.0)
+    np.testing.assert_array_equal(kept.q_bn[100], kept.q_bn[99])
+    if filt is qkf.quaternion_kf:
+        res = filt(w, f, dt, q0, m_b=m, B_n=B_N, p0=1e-3, keep_cov=True)
+        np.testing.assert_array_equal(res.P_history[100], 1e-3 * np.eye(4))   # uncertainty back to its start
+        assert res.P_history[99][0, 0] != 1e-3
+
+
+@pytest.mark.parametrize("filt", [mh.mahony, qkf.quaternion_kf])
+def test_jump_heading_from_rtk_epoch_or_kept(filt):
+    """RTK mode: a valid epoch at the jump sets the heading; without one (or without a reference) it is kept."""
+    w, f, _, _ = level(200)
+    dt = np.full(200, 0.01)
+    dt[100] = 3600.0
+    q0 = attitude.euler_to_quat([1.0, 0.1, 0.0])
+    valid = np.zeros(200, bool)
+    for epoch_at_jump, heading in ((True, 2.5), (False, 1.0)):
+        valid[100] = epoch_at_jump
+        res = filt(w, f, dt, q0, heading_rtk=np.full(200, 2.5), rtk_valid=valid, kp=0.0, ki=0.0)
+        np.testing.assert_allclose(res.hpr[100], [heading, 0.0, 0.0], atol=1e-12)
+    res = filt(w, f, dt, q0, kp=0.0, ki=0.0)                              # gyro + accelerometer only
+    np.testing.assert_allclose(res.hpr[100], [1.0, 0.0, 0.0], atol=1e-12)
+
+
+def test_max_dt_default_is_ten_median_intervals():
+    w, f, m, q = level(100)
+    dt = np.full(100, 0.01)
+    dt[50] = 0.099
+    assert int(mh.mahony(w, f, dt, q, m_b=m).counts["clock_jump"]) == 0
+    dt[50] = 0.101
+    assert int(mh.mahony(w, f, dt, q, m_b=m).counts["clock_jump"]) == 1
+    assert int(mh.mahony(w, f, dt, q, m_b=m, max_dt=0.2).counts["clock_jump"]) == 0
+    assert int(mh.mahony(w, f, dt, q, m_b=m, max_dt=np.inf).counts["clock_jump"]) == 0
+    assert int(mh.mahony(w, f, 3600.0, q, m_b=m).counts["clock_jump"]) == 0   # a scalar interval never jumps
+
+
+def noisy(n, seed=0):
+    return np.random.default_rng(seed).normal(0.0, 1e-3, (n, 3))
+
+
+def test_stuck_run_default_is_a_tenth_of_a_second():
+    """At 100 Hz a run of 10 equal samples is stuck, 9 are not; at 50 Hz 5; explicit values override."""
+    _, f, m, q = level(300)
+    for dt, run in ((0.01, 10), (0.02, 5)):
+        for length in (run - 1, run):
+            w = noisy(300)
+            w[100:100 + length, 1] = w[100, 1]
+            res = mh.mahony(w, f, dt, q, m_b=m)
+            assert int(res.counts["gyro_stuck"]) == (length if length == run else 0)
+            assert int(res.counts["gyro_held"]) == 0
+    w = noisy(300)
+    w[100:130] = w[100]
+    assert int(mh.mahony(w, f, 0.01, q, m_b=m, stuck_run=40).counts["gyro_stuck"]) == 0
+    assert int(mh.mahony(w, f, 0.01, q, m_b=m, stuck_run=None).counts["gyro_stuck"]) == 0
+    assert int(mh.mahony(w, f, 0.01, q, m_b=m, stuck_run=30).counts["gyro_stuck"]) == 30
+
+
+def test_noise_free_and_saturated_gyros_are_not_stuck():
+    """A gyro that repeats its first value (noise-free simulation) is not checked; values at the rails are
+    saturated (counted as such), not stuck; a stuck sample is held like a NaN one."""
+    _, f, m, q = level(400)
+    w = np.zeros((400, 3))
+    w[100:200, 2] = 0.2                                                   # noise-free turn, back to exactly 0
+    res = mh.mahony(w, f, 0.01, q, m_b=m)
+    assert not res.faults
+    np.testing.assert_array_equal(res.q_bn, mh.mahony(w, f, 0.01, q, m_b=m, stuck_run=None).q_bn)
+    w = noisy(400)
+    w[100:200, 2] = 0.5                                                   # clipped at 0.5 rad/s
+    res = mh.mahony(w, f, 0.01, q, m_b=m, full_scale_gyro=0.5)
+    assert int(res.counts["gyro_saturated"]) == 100 and int(res.counts["gyro_stuck"]) == 0
+    w[300:320] = w[300]
+    stuck = mh.mahony(w, f, 0.01, q, m_b=m, full_scale_gyro=0.5)
+    w[300:320] = np.nan
+    held = mh.mahony(w, f, 0.01, q, m_b=m, full_scale_gyro=0.5)
+    assert int(stuck.counts["gyro_stuck"]) == 20 and int(held.counts["gyro_held"]) == 20
+    np.testing.assert_array_equal(stuck.q_bn, held.q_bn)
+
+
+@pytest.mark.parametrize("filt", [mh.mahony, qkf.quaternion_kf])
+def test_bias_estimate_is_frozen_while_the_gyro_is_held(filt):
+    """A gyro lost for good after sample 500: the bias estimate stays what it was after sample 500."""
+    _, f, m, q = level(1000)
+    w = noisy(1000) + 0.01
+    before = filt(w[:500], f[:500], 0.01, q, m_b=m[:500], B_n=B_N)
+    w[500:] = np.nan
+    after = filt(w, f, 0.01, q, m_b=m, B_n=B_N)
+    np.testing.assert_array_equal(after.gyro_bias, before.gyro_bias)
+    assert np.any(before.gyro_bias != 0)
+
+
+def test_batch_counts_and_flags_per_trial():
+    _, f, m, q = level(300)
+    w = np.stack([noisy(300, 1), noisy(300, 2)])
+    w[1, 50:70, 0] = 0.1
+    dt = np.full(300, 0.01)
+    dt[200] = 5.0
+    res = mh.mahony(w, np.stack([f, f]), dt, q, m_b=np.stack([m, m]))
+    np.testing.assert_array_equal(res.counts["gyro_stuck"], [0, 20])
+    np.testing.assert_array_equal(res.counts["clock_jump"], [1, 1])
+    assert res.faults.flags["gyro", "stuck"].shape == res.faults.flags["clock", "jump"].shape == (2, 300)
+    np.testing.assert_array_equal(np.flatnonzero(res.faults.flags["gyro", "stuck"][1]), np.arange(50, 70))
+    np.testing.assert_array_equal(res.faults.flags["clock", "jump"].sum(-1), [1, 1])
