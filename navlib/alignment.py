@@ -29,7 +29,7 @@ from . import _kernels, attitude, earth
 from ._typing import Angles, Array, ArrayLike, Dcm, Vec3, Vec3Series
 from ._validate import as_array, in_range, nonempty_array, nonempty_latitude, nonempty_positive, pitch_roll, scalar
 from .imu import ImuSamples, unpack
-from .robust import FaultReport
+from .robust import FaultReport, longest_repeat
 
 __all__ = ["level", "magnetic_heading", "tilt_heading", "initial_attitude", "MAX_LAT_DEG", "gyrocompass_latitude", "OK",
            "TOO_FEW", "SATURATED", "MOVING", "STUCK", "StaticWindow", "static_means", "triad", "triad_heading",
@@ -227,23 +227,6 @@ def _outliers(x, valid, k):
     return valid & np.any(np.abs(x - med) > thresh, axis=-1)
 
 
-def _longest_repeat(x, valid):
-    """Samples in the longest run of one repeated reading per component, over the valid samples.
-
-    A dropout (invalid row) neither breaks nor extends a run; shape (..., 3).
-    """
-    n = x.shape[-2]
-    idx = np.where(valid, np.arange(n), -1)
-    np.maximum.accumulate(idx, axis=-1, out=idx)                # last valid sample at or before k
-    prev = np.concatenate([np.full(idx.shape[:-1] + (1,), -1), idx[..., :-1]], axis=-1)
-    before = np.take_along_axis(x, np.maximum(prev, 0)[..., None], axis=-2)
-    same = valid[..., None] & (prev >= 0)[..., None] & (x == before)
-    new = valid[..., None] & ~same                              # a valid reading that starts a run
-    c = np.cumsum(same, axis=-2)
-    start = np.maximum.accumulate(np.where(new, c, 0), axis=-2)
-    return (c - start).max(-2) + 1
-
-
 def _masked_mean(x, used, n_used):
     if used.all():
         return x.mean(-2)                    # the fault-free path, bit-identical to a plain mean
@@ -363,7 +346,7 @@ def static_means(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None,
         n_used = used.sum(-1)
         n_stuck = np.zeros(valid.shape[:-1], dtype=int)
         if stuck is not None:
-            run = _longest_repeat(x, valid).max(-1)
+            run = longest_repeat(x, valid).max(-1)
             n_stuck = np.where((run >= stuck * valid.sum(-1)) & (run >= 2), run, 0)
         out[name] = (_masked_mean(x, used, n_used), n_used, n - valid.sum(-1), outl.sum(-1), sat.sum(-1), used, n_stuck)
     (w_mean, nu_g, nd_g, no_g, ns_g, _, nk_g), (f_mean, nu_a, nd_a, no_a, ns_a, used_f, nk_a) = out["gyro"], out["accel"]

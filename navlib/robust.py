@@ -46,9 +46,9 @@ from numba import njit
 from numpy.typing import NDArray
 
 from ._typing import Array, ArrayLike, Vec3Series
-from ._validate import as_array, choice, flag, instance, integer, range_limit
+from ._validate import as_array, booleans, choice, flag, instance, integer, range_limit
 
-__all__ = ["FaultReport", "fault_report", "hold", "despike", "stuck_mask", "LEADING"]
+__all__ = ["FaultReport", "fault_report", "hold", "despike", "stuck_mask", "longest_repeat", "LEADING"]
 
 LEADING = ("raise", "first", "zero")
 """Policies for NaN samples before the first valid one: raise, take the first valid sample, or 0."""
@@ -227,6 +227,41 @@ def despike(w_ib_b: Vec3Series, f_b: Vec3Series, spike_gyro: float,
     w, f = w.copy(), f.copy()
     w[hit], f[hit] = np.nan, np.nan
     return w, f, hit
+
+
+def longest_repeat(x: ArrayLike, valid: ArrayLike | None = None) -> NDArray[np.int64]:
+    """Length of the longest run of one repeated reading, per component, over the valid samples.
+
+    The window-level companion of :func:`stuck_mask`: a static window whose output repeats one value
+    over most of its samples comes from a frozen sensor. A dropout (invalid sample) neither breaks nor
+    extends a run.
+
+    Parameters
+    ----------
+    x : array_like, shape (..., N, k)
+        Samples; leading axes are trials.
+    valid : array_like of bool, shape (..., N), optional
+        Samples to consider (default: those without NaN).
+
+    Returns
+    -------
+    run : ndarray of int, shape (..., k)
+        1 where no reading repeats; 0 for a component with no valid sample.
+    """
+    x = as_array(x, "x", allow_nan=True)
+    if x.ndim < 2 or x.shape[-2] == 0:
+        raise ValueError(f"x: expected samples of shape (..., N, k), got {x.shape}")
+    valid = np.all(np.isfinite(x), -1) if valid is None else booleans(valid, "valid", shape=x.shape[:-1])
+    n = x.shape[-2]
+    idx = np.where(valid, np.arange(n), -1)
+    np.maximum.accumulate(idx, axis=-1, out=idx)                # last valid sample at or before k
+    prev = np.concatenate([np.full(idx.shape[:-1] + (1,), -1), idx[..., :-1]], axis=-1)
+    before = np.take_along_axis(x, np.maximum(prev, 0)[..., None], axis=-2)
+    same = valid[..., None] & (prev >= 0)[..., None] & (x == before)
+    new = valid[..., None] & ~same                              # a valid reading that starts a run
+    c = np.cumsum(same, axis=-2)
+    start = np.maximum.accumulate(np.where(new, c, 0), axis=-2)
+    return np.where(valid.any(-1)[..., None], (c - start).max(-2) + 1, 0)
 
 
 def stuck_mask(x: ArrayLike, run: int, *, name: str = "x", axis: int = -2) -> NDArray[np.bool_]:

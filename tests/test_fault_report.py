@@ -223,3 +223,15 @@ def test_attitude_filters_flag_stuck_and_jump_samples():
     for key in (("gyro", "stuck"), ("clock", "jump")):
         np.testing.assert_array_equal(res.faults.flags[key].sum(-1), res.faults[key])
     assert res.faults["gyro", "nan"].tolist() == [0, 0]                    # stuck is not counted as a dropout
+
+
+def test_longest_repeat_counts_runs_over_valid_samples():
+    x = np.array([[1.0, 2.0], [1.0, 3.0], [np.nan, 3.0], [1.0, 3.0], [2.0, 4.0]])
+    np.testing.assert_array_equal(robust.longest_repeat(x), [3, 2])        # the NaN row is skipped, not a break
+    valid = np.array([True, True, False, True, True])
+    np.testing.assert_array_equal(robust.longest_repeat(np.nan_to_num(x), valid), [3, 2])   # an invalid row likewise
+    np.testing.assert_array_equal(robust.longest_repeat(np.stack([x, x + 0.5])), [[3, 2], [3, 2]])
+    with pytest.raises(ValueError, match="^x: "):
+        robust.longest_repeat([1.0, 2.0, 3.0])
+    with pytest.raises(ValueError, match="^valid: "):
+        robust.longest_repeat(x, valid[:3])
