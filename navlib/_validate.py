@@ -324,6 +324,10 @@ def range_limit(x: float | None, name: str) -> float:
     return np.inf if x is None else scalar(x, name, positive=True, allow_inf=True)
 
 
+MIN_INTERVAL = 1e-9
+"""Shortest sample interval (s) :func:`intervals` accepts."""
+
+
 def intervals(dt: Interval, n: int, name: str = "dt") -> np.ndarray:
     """Per-sample intervals of shape (n,) from a positive scalar or an (n,) array of positive intervals (s).
 
@@ -332,11 +336,14 @@ def intervals(dt: Interval, n: int, name: str = "dt") -> np.ndarray:
     """
     arr = as_array(dt, name)
     if arr.ndim == 0:
-        return np.full(n, scalar(arr, name, positive=True))
-    if arr.shape != (n,):
+        arr = np.full(n, scalar(arr, name, positive=True))
+    elif arr.shape != (n,):
         raise ValueError(f"{name}: expected a positive scalar or per-sample intervals of shape ({n},), got {arr.shape}")
-    if not np.all(arr > 0):
+    elif not np.all(arr > 0):
         raise ValueError(f"{name}: expected positive intervals, got min {arr.min():g} (run timing.sanitize first)")
+    if arr.min() < MIN_INTERVAL:
+        raise ValueError(f"{name}: expected intervals of at least {MIN_INTERVAL:g} s (no IMU samples faster than "
+                         f"1 GHz; is dt in seconds?), got {arr.min():g}")
     return np.ascontiguousarray(arr)
 
 

@@ -336,6 +336,9 @@ def static_means(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None,
     fs_g = np.inf if full_scale_gyro is None else float(nonempty_positive(full_scale_gyro, "full_scale_gyro"))
     fs_a = np.inf if full_scale_accel is None else float(nonempty_positive(full_scale_accel, "full_scale_accel"))
     g = earth.gravity(gyrocompass_latitude(lat), nonempty_array(h, "h"))
+    lead = w.shape[:-2]
+    if np.ndim(g) > len(lead) or any(a not in (1, b) for a, b in zip(np.shape(g)[::-1], lead[::-1], strict=False)):
+        raise ValueError(f"lat, h: expected one value or one per trial (trial shape {lead}), got shape {np.shape(g)}")
     need = max(2, int(np.ceil(frac * n)))
     out = {}
     for name, x, fs in (("gyro", w, fs_g), ("accel", f, fs_a)):

@@ -53,3 +53,40 @@ def test_allan_plot_shapes_name_the_argument(taus, adev, theory, arg):
     with pytest.raises(ValueError, match=f"^{arg}: "):
         plots.allan(ax, taus, adev, theory=theory)
     plt.close(fig)
+
+
+def _static_marg(n=200, seed=0):
+    rng = np.random.default_rng(seed)
+    w = 1e-3 * rng.standard_normal((n, 3))
+    f = np.array([0.0, 0.0, 9.8]) + 0.01 * rng.standard_normal((n, 3))
+    return w, f, np.tile([0.0, 20.0, -40.0], (n, 1))
+
+
+@pytest.mark.parametrize("filt", ["mahony", "quaternion_kf", "run_filter"])
+def test_sample_intervals_below_a_nanosecond_are_refused(filt):
+    from navlib.filters import mahony, quaternion_kf, zupt_ins
+    w, f, m = _static_marg()
+    q0 = [1.0, 0.0, 0.0, 0.0]
+    call = {"mahony": lambda: mahony.mahony(w, f, 1e-300, q0, m_b=m),
+            "quaternion_kf": lambda: quaternion_kf.quaternion_kf(w, f, 1e-300, q0, m_b=m, B_n=[0.0, 20.0, -40.0]),
+            "run_filter": lambda: zupt_ins.run_filter(w, f, 1e-300, lla0=[0.5, 0.1, 0.0], vel0=[0.0, 0.0, 0.0], q0=q0,
+                                                      static=np.ones(len(w), bool))}[filt]
+    with pytest.raises(ValueError, match="^dt: expected intervals of at least"):      # was a numba TypingError
+        call()
+
+
+def test_attitude_filters_refuse_intervals_the_first_order_update_cannot_integrate():
+    from navlib.filters import mahony, quaternion_kf
+    w, f, m = _static_marg()
+    with pytest.raises(ValueError, match="^dt: the gyro turns up to"):
+        quaternion_kf.quaternion_kf(w, f, 1e6, [1.0, 0.0, 0.0, 0.0], m_b=m, B_n=[0.0, 20.0, -40.0])   # was LinAlgError
+    with pytest.raises(ValueError, match="^dt: the gyro turns up to"):
+        mahony.mahony(w, f, 1e6, [1.0, 0.0, 0.0, 0.0], m_b=m)
+
+
+def test_static_means_names_a_latitude_that_does_not_match_the_trials():
+    from navlib import alignment
+    w, f, _ = _static_marg()
+    with pytest.raises(ValueError, match="^lat, h: "):                                    # was IndexError
+        alignment.static_means(w, f, [0.6, 0.6])
+    assert alignment.static_means(np.stack([w, w]), np.stack([f, f]), [0.6, 0.6]).status.shape == (2,)

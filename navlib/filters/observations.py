@@ -119,6 +119,10 @@ JUMP_FACTOR = 10.0
 """Default ``max_dt`` of the attitude filters, in median sample intervals (``max_dt=None``): at 100 Hz, an
 interval longer than 0.1 s is a clock jump. With a scalar ``dt`` no interval can exceed it."""
 
+MAX_TURN_PER_SAMPLE = 1.0
+"""Largest rotation (rad) the gyro may report within one integrated interval: the first-order quaternion
+update and the KF's linearised transition are meaningless beyond it (2000 deg/s at 100 Hz is 0.35 rad)."""
+
 
 class AttitudeInputs(NamedTuple):
     """Validated inputs of the attitude kernels, T trials of N samples (from :func:`prepare_inputs`)."""
@@ -541,12 +545,15 @@ def prepare_inputs(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, 
     rtk_par = rtk_params(rtk_hold, rtk_gate, rtk_confirm)
     typical = float(np.median(dts))
     max_dt = JUMP_FACTOR * typical if max_dt is None else scalar(max_dt, "max_dt", positive=True, allow_inf=True)
+    turn = np.linalg.norm(w, axis=-1)[..., dts <= max_dt] * dts[dts <= max_dt]     # rad within each interval
+    if np.nanmax(turn, initial=0.0) > MAX_TURN_PER_SAMPLE:
+        raise ValueError(f"dt: the gyro turns up to {np.nanmax(turn):.3g} rad within one interval; the first-order "
+                         f"attitude update needs less than {MAX_TURN_PER_SAMPLE:g} rad per sample (is dt in seconds?)")
     auto = max(5, int(np.ceil(STUCK_DURATION / typical - 1e-9)))
     if isinstance(stuck_run, str) and stuck_run == "auto":
         stuck_run = auto
-    elif stuck_run is not None and (isinstance(stuck_run, (bool, np.bool_, str))
-                                    or not isinstance(stuck_run, (int, np.integer)) or stuck_run < 2):
-        raise ValueError(f'stuck_run: expected an integer >= 2, "auto" or None, got {stuck_run!r}')
+    elif stuck_run is not None:
+        stuck_run = integer(stuck_run, "stuck_run", minimum=2)
     kp = scalar(kp, "kp", positive=True, allow_zero=True)
     settle = SETTLE_TIME_CONSTANTS / kp if kp > 0 else 0.0
     w, f = w.reshape(T, N, 3), f.reshape(T, N, 3)
