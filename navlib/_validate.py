@@ -327,6 +327,18 @@ def range_limit(x: float | None, name: str) -> float:
 MIN_INTERVAL = 1e-9
 """Shortest sample interval (s) :func:`intervals` accepts."""
 
+MAX_TURN_PER_SAMPLE = 1.0
+"""Largest rotation (rad) a gyro may report within one integrated interval (:func:`small_turns`): first-order
+attitude updates and linearised transitions are meaningless beyond it (2000 deg/s at 100 Hz is 0.35 rad)."""
+
+
+def small_turns(w: np.ndarray, dts: np.ndarray, name: str = "dt") -> None:
+    """Refuse intervals ``dts`` (N,) over which the gyro ``w`` (..., N, 3) turns more than :data:`MAX_TURN_PER_SAMPLE`."""
+    turn = np.linalg.norm(w, axis=-1) * dts
+    if np.nanmax(turn, initial=0.0) > MAX_TURN_PER_SAMPLE:
+        raise ValueError(f"{name}: the gyro turns up to {np.nanmax(turn):.3g} rad within one interval; integrating it "
+                         f"needs less than {MAX_TURN_PER_SAMPLE:g} rad per sample (is {name} in seconds?)")
+
 
 def intervals(dt: Interval, n: int, name: str = "dt") -> np.ndarray:
     """Per-sample intervals of shape (n,) from a positive scalar or an (n,) array of positive intervals (s).

@@ -55,7 +55,7 @@ from numba import njit
 
 from . import _kernels, attitude, earth, robust
 from ._typing import Array, ArrayLike, Dcm, Interval, Quat, Vec3, Vec3Series
-from ._validate import as_array, as_quat, broadcast, choice, flag, instance, intervals, latitude, scalar
+from ._validate import as_array, as_quat, broadcast, choice, flag, instance, intervals, latitude, scalar, small_turns
 from .attitude import quat_mult_t, rotvec_to_quat_t
 from .imu import ImuSamples, unpack
 from .trajectory import Trajectory
@@ -154,6 +154,7 @@ def integrate_attitude(q0: Quat, w_ib_b: Vec3Series, dt: Interval, w_in_n: Vec3 
     w = _samples(w_ib_b, "w_ib_b")
     w, held = _dropouts(w, "w_ib_b", policy)
     dt = intervals(dt, w.shape[-2])[:1] if np.ndim(dt) == 0 else intervals(dt, w.shape[-2])
+    small_turns(w, dt)
     q0 = as_quat(q0, "q0")
     lead = w.shape[:-2]
     q0 = np.broadcast_to(q0, lead + (4,)).reshape(-1, 4)
@@ -308,6 +309,7 @@ def integrate(lla0: Vec3, vel0: Vec3, q0: Quat, w_ib_b: Vec3Series | ImuSamples,
     f, held_f = _dropouts(f, "f_b", policy)
     lead, n = w.shape[:-2], w.shape[-2]
     dt = intervals(dt, n)[:1] if np.ndim(dt) == 0 else intervals(dt, n)
+    small_turns(w, dt)
     t0 = float(as_array(t0, "t0"))
     _ellipsoid(ellipsoid)
     lla0 = as_array(lla0, "lla0", tail=(3,))
@@ -321,6 +323,9 @@ def integrate(lla0: Vec3, vel0: Vec3, q0: Quat, w_ib_b: Vec3Series | ImuSamples,
 
     lla, vel, q = _nav_kernel(flat(lla0, 1), flat(vel0, 1), flat(q0, 1), flat(w, 2), flat(f, 2), dt,
                               earth_constants(ellipsoid), bool(hold_height))
+    if not (np.all(np.isfinite(lla)) and np.all(np.abs(lla[..., 0]) < np.pi / 2)):
+        raise ValueError("w_ib_b, f_b, dt: the integrated position diverges (it reaches a pole or overflows); check "
+                         "the units of dt and f_b and that f_b is specific force including gravity")
     time = t0 + (dt[0] * np.arange(n + 1) if dt.size == 1 else np.concatenate([[0.0], np.cumsum(dt)]))
     held = {("gyro", "nan"): held_w, ("accel", "nan"): held_f}
     faults = robust.FaultReport({key: m.sum(axis=-1) for key, m in held.items()}, held)

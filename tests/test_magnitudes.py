@@ -90,3 +90,14 @@ def test_static_means_names_a_latitude_that_does_not_match_the_trials():
     with pytest.raises(ValueError, match="^lat, h: "):                                    # was IndexError
         alignment.static_means(w, f, [0.6, 0.6])
     assert alignment.static_means(np.stack([w, w]), np.stack([f, f]), [0.6, 0.6]).status.shape == (2,)
+
+
+def test_strapdown_refuses_what_it_cannot_integrate():
+    w = 1e-3 * np.ones((10, 3))
+    f = np.tile([0.0, 0.0, 9.8], (10, 1))
+    with pytest.raises(ValueError, match="^dt: the gyro turns up to"):                  # was silent NaN
+        strapdown.integrate_attitude([1.0, 0.0, 0.0, 0.0], w, 1e300)
+    with pytest.raises(ValueError, match="^dt: the gyro turns up to"):
+        strapdown.integrate([0.5, 0.1, 0.0], [0.0, 0.0, 0.0], [1.0, 0.0, 0.0, 0.0], w, f, 1e300)
+    with pytest.raises(ValueError, match="^w_ib_b, f_b, dt: the integrated position diverges"):   # was "lla: ..."
+        strapdown.integrate([0.5, 0.1, 0.0], [0.0, 0.0, 0.0], [1.0, 0.0, 0.0, 0.0], np.zeros((10, 3)), 0 * f, 1e3)

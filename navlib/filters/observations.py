@@ -33,7 +33,7 @@ from numba import njit
 from .. import attitude, earth
 from .._kernels import dcm_heading, tilt_heading, wrap_pi
 from .._typing import Array, ArrayLike, Interval, Quat, Vec3, Vec3Series
-from .._validate import as_array, as_quat, booleans, instance, integer, intervals, nonempty_array, same_shape, scalar
+from .._validate import as_array, as_quat, booleans, instance, integer, intervals, nonempty_array, same_shape, scalar, small_turns
 from ..robust import FaultReport, stuck_mask
 
 __all__ = ["MagGate", "AttitudeResult", "AttitudeInputs", "Screened", "COUNT_NAMES", "FAULT_KEYS", "STUCK_DURATION",
@@ -119,9 +119,6 @@ JUMP_FACTOR = 10.0
 """Default ``max_dt`` of the attitude filters, in median sample intervals (``max_dt=None``): at 100 Hz, an
 interval longer than 0.1 s is a clock jump. With a scalar ``dt`` no interval can exceed it."""
 
-MAX_TURN_PER_SAMPLE = 1.0
-"""Largest rotation (rad) the gyro may report within one integrated interval: the first-order quaternion
-update and the KF's linearised transition are meaningless beyond it (2000 deg/s at 100 Hz is 0.35 rad)."""
 
 
 class AttitudeInputs(NamedTuple):
@@ -545,10 +542,7 @@ def prepare_inputs(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, 
     rtk_par = rtk_params(rtk_hold, rtk_gate, rtk_confirm)
     typical = float(np.median(dts))
     max_dt = JUMP_FACTOR * typical if max_dt is None else scalar(max_dt, "max_dt", positive=True, allow_inf=True)
-    turn = np.linalg.norm(w, axis=-1)[..., dts <= max_dt] * dts[dts <= max_dt]     # rad within each interval
-    if np.nanmax(turn, initial=0.0) > MAX_TURN_PER_SAMPLE:
-        raise ValueError(f"dt: the gyro turns up to {np.nanmax(turn):.3g} rad within one interval; the first-order "
-                         f"attitude update needs less than {MAX_TURN_PER_SAMPLE:g} rad per sample (is dt in seconds?)")
+    small_turns(w[..., dts <= max_dt, :], dts[dts <= max_dt])       # clock jumps are not integrated
     auto = max(5, int(np.ceil(STUCK_DURATION / typical - 1e-9)))
     if isinstance(stuck_run, str) and stuck_run == "auto":
         stuck_run = auto
