@@ -44,6 +44,20 @@ def dcm_heading(c12, c22):
     return np.arctan2(c12, c22)
 
 
+@njit(cache=True, inline="always")
+def level(ax, ay, az):
+    """Pitch and roll (rad) from one specific-force sample: :func:`navlib.alignment.level`, compiled."""
+    return np.arctan2(ay, np.sqrt(ax * ax + az * az)), np.arctan2(-ax, az)
+
+
+@njit(cache=True, inline="always")
+def euler_to_quat(h, p, r):
+    """q_b^n of heading, pitch, roll (rad): :func:`navlib.attitude.euler_to_quat`, compiled (no sign fix-up)."""
+    ch, sh, cp, sp, cr, sr = np.cos(h / 2), np.sin(h / 2), np.cos(p / 2), np.sin(p / 2), np.cos(r / 2), np.sin(r / 2)
+    return (ch * cp * cr + sh * sp * sr, ch * sp * cr + sh * cp * sr, ch * cp * sr - sh * sp * cr,
+            -sh * cp * cr + ch * sp * sr)
+
+
 @njit(cache=True)
 def tilt_heading(mx, my, mz, pitch, roll):
     """Tilt-compensated magnetic heading in [0, 2 pi) (rad) of a right-front-up magnetometer reading.

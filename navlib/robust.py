@@ -118,6 +118,13 @@ def fault_report(x: ArrayLike, sensor: str, *, full_scale: float | None = None, 
     return FaultReport({key: m.sum(axis=-1) for key, m in masks.items()}, masks if flag(flags, "flags") else {})
 
 
+def _last_valid(valid: np.ndarray, fill: int) -> np.ndarray:
+    """Index of the last valid sample at or before each sample (along the last axis); ``fill`` before the first."""
+    idx = np.where(valid, np.arange(valid.shape[-1]), fill)
+    np.maximum.accumulate(idx, axis=-1, out=idx)
+    return idx
+
+
 def hold(x: ArrayLike, *, leading: str = "raise", name: str = "x", axis: int = -2) -> tuple[np.ndarray, np.ndarray]:
     """Zero-order hold of NaN samples along the time axis.
 
@@ -151,8 +158,7 @@ def hold(x: ArrayLike, *, leading: str = "raise", name: str = "x", axis: int = -
         raise ValueError(f"{name}: a series has no valid sample to hold")
     if leading == "raise" and np.any(bad[..., 0]):
         raise ValueError(f"{name}: the first sample of a series is NaN and there is nothing before it to hold")
-    idx = np.where(bad, 0, np.arange(n))
-    np.maximum.accumulate(idx, axis=-1, out=idx)
+    idx = _last_valid(~bad, fill=0)
     before = bad & (np.arange(n) < first[..., None])
     idx = np.where(before, first[..., None], idx)
     filled = np.take_along_axis(a, idx[..., None] if vector else idx, axis=axis)
@@ -252,9 +258,7 @@ def longest_repeat(x: ArrayLike, valid: ArrayLike | None = None) -> NDArray[np.i
     if x.ndim < 2 or x.shape[-2] == 0:
         raise ValueError(f"x: expected samples of shape (..., N, k), got {x.shape}")
     valid = np.all(np.isfinite(x), -1) if valid is None else booleans(valid, "valid", shape=x.shape[:-1])
-    n = x.shape[-2]
-    idx = np.where(valid, np.arange(n), -1)
-    np.maximum.accumulate(idx, axis=-1, out=idx)                # last valid sample at or before k
+    idx = _last_valid(valid, fill=-1)
     prev = np.concatenate([np.full(idx.shape[:-1] + (1,), -1), idx[..., :-1]], axis=-1)
     before = np.take_along_axis(x, np.maximum(prev, 0)[..., None], axis=-2)
     same = valid[..., None] & (prev >= 0)[..., None] & (x == before)

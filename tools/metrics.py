@@ -29,7 +29,7 @@ VALIDATE_NAMES = {"real", "as_array", "in_range", "positive", "latitude", "gener
 # One formula, one place: regular expressions that find where each is written out.
 FORMULAS = {
     "levelling": r"arctan2\(\s*-\s*\w+\[\.\.\., 0\]|arctan2\(-ax, az\)|arcsin\(np\.clip\(f\[\.\.\., 1\]",
-    "nan_hold": r"maximum\.accumulate\((?:idx|np\.where)",
+    "nan_hold": r"maximum\.accumulate\((?:idx|np\.where\([^)]*arange)",
     "dt_reading": r"def _?intervals\(|def _dt\(",
     "wrapping": r"[(%]\s*\(?2 \* np\.pi\)?\s*-\s*np\.pi|np\.mod\(\w+ \+ np\.pi, 2 \* np\.pi\)",
     "tilt_heading": r"arctan2\(-mhx, mhy\)",

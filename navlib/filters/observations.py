@@ -31,7 +31,7 @@ import numpy as np
 from numba import njit
 
 from .. import attitude, earth
-from .._kernels import dcm_heading, tilt_heading, wrap_pi
+from .._kernels import dcm_heading, euler_to_quat, level, tilt_heading, wrap_pi
 from .._typing import Array, ArrayLike, Interval, Quat, Vec3, Vec3Series
 from .._validate import as_array, as_quat, booleans, instance, integer, intervals, nonempty_array, same_shape, scalar, small_turns
 from ..robust import FaultReport, stuck_mask
@@ -378,7 +378,7 @@ def reinit(inp, t, k, q0, q1, q2, q3, rtk):
     ax, ay, az, ca = _accel_obs(f[t, k, 0], f[t, k, 1], f[t, k, 2], gates[0], gates[1])
     if ca != 0:
         return q0, q1, q2, q3
-    pitch, roll = np.arctan2(ay, np.sqrt(ax * ax + az * az)), np.arctan2(-ax, az)
+    pitch, roll = level(ax, ay, az)
     C = _dcm_t(q0, q1, q2, q3)
     h = dcm_heading(C[1], C[4])
     if inp.use_rtk:
@@ -389,10 +389,7 @@ def reinit(inp, t, k, q0, q1, q2, q3, rtk):
         mx, my, mz, cm = _mag_obs(m[t, k, 0], m[t, k, 1], m[t, k, 2], ax, ay, az, 0, gates[2:])
         if cm == 0:
             h = tilt_heading(mx, my, mz, pitch, roll)
-    ch, sh, cp, sp, cr, sr = (np.cos(h / 2), np.sin(h / 2), np.cos(pitch / 2), np.sin(pitch / 2),
-                              np.cos(roll / 2), np.sin(roll / 2))
-    return (ch * cp * cr + sh * sp * sr, ch * sp * cr + sh * cp * sr, ch * cp * sr - sh * sp * cr,
-            -sh * cp * cr + ch * sp * sr)                          # attitude.euler_to_quat([h, pitch, roll])
+    return euler_to_quat(h, pitch, roll)
 
 
 # --------------------------------------------------------------------------
