@@ -34,6 +34,7 @@ from ._validate import (
     positive,
     same_shape,
     scalar,
+    time_axis,
 )
 
 __all__ = ["rmse", "allan_deviation", "allan_deviation_theory", "fit_allan",
@@ -335,7 +336,7 @@ def settling_time(time: Times, error: ArrayLike, start: float, tol: float, end: 
     end : float, optional
         Last time considered (s), e.g. the start of the next outage; default the end of the record.
     """
-    t = nonempty_array(time, "time", shape=(None,))
+    t = time_axis(time, "time")
     e = last_axis(nonempty_array(error, "error", min_ndim=1), "error", t.size, of="time")
     tol = scalar(tol, "tol", positive=True)
     start = scalar(start, "start")

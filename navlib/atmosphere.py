@@ -192,7 +192,7 @@ def classify_floor(h: ArrayLike, floor_height: float = 3.0, ref_floor: int = 0) 
     """Floor index ``ref_floor + round(h / floor_height)`` from a relative height (m)."""
     h = as_array(h, "h")
     hf = float(positive(floor_height, "floor_height"))
-    return int(ref_floor) + np.round(h / hf).astype(int)
+    return integer(ref_floor, "ref_floor", minimum=None) + np.round(h / hf).astype(int)
 
 
 def segment_floors(h: ArrayLike, static: ArrayLike, floor_height: float = 3.0,

@@ -101,3 +101,12 @@ def test_strapdown_refuses_what_it_cannot_integrate():
         strapdown.integrate([0.5, 0.1, 0.0], [0.0, 0.0, 0.0], [1.0, 0.0, 0.0, 0.0], w, f, 1e300)
     with pytest.raises(ValueError, match="^w_ib_b, f_b, dt: the integrated position diverges"):   # was "lla: ..."
         strapdown.integrate([0.5, 0.1, 0.0], [0.0, 0.0, 0.0], [1.0, 0.0, 0.0, 0.0], np.zeros((10, 3)), 0 * f, 1e3)
+
+
+def test_settling_time_refuses_time_that_goes_backwards_and_floors_take_whole_numbers():
+    from navlib import analysis
+    with pytest.raises(ValueError, match="^time: expected strictly increasing"):          # was accepted
+        analysis.settling_time([0.0, 2.0, 1.0, 3.0], [1.0, 1.0, 0.0, 0.0], 0.0, 0.5)
+    with pytest.raises(ValueError, match="^ref_floor: "):                                  # 1.5 was truncated to 1
+        atmosphere.classify_floor([0.0, 3.0], ref_floor=1.5)
+    assert list(atmosphere.classify_floor([0.0, 3.1], ref_floor=np.int64(2))) == [2, 3]
