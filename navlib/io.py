@@ -278,11 +278,8 @@ def read_csv(path: str | Path, *, sep: str = ",", comment: str | None = None, **
     **kwargs
         The column, unit, axes and timing arguments of :func:`from_dataframe`.
     """
-    path = Path(path)
-    if not path.is_file():
-        raise ValueError(f"path: no such file {str(path)!r}")
-    df = pd.read_csv(path, sep=sep, comment=comment, skipinitialspace=True)
-    return from_dataframe(df, source=str(path), **kwargs)
+    df, source = _read_table(path, sep=sep, comment=comment)
+    return from_dataframe(df, source=source, **kwargs)
 
 
 def read_xio(path: str | Path, *, axes: str | Dcm = "x,y,z", timing: str = "raise",
@@ -298,16 +295,26 @@ def read_xio(path: str | Path, *, axes: str | Dcm = "x,y,z", timing: str = "rais
     axes, timing, check_units
         As in :func:`from_dataframe`. x-io's axes are used as the body axes unless ``axes`` maps them.
     """
-    path = Path(path)
-    if not path.is_file():
-        raise ValueError(f"path: no such file {str(path)!r}")
-    df = pd.read_csv(path, skipinitialspace=True)
+    df, source = _read_table(path)
     cols = {"gyro": [f"Gyroscope {a} (deg/s)" for a in "XYZ"], "accel": [f"Accelerometer {a} (g)" for a in "XYZ"]}
     units = {"gyro": "deg/s", "accel": "g"}
     if "Magnetometer X (uT)" in df.columns:
         cols["mag"], units["mag"] = [f"Magnetometer {a} (uT)" for a in "XYZ"], "uT"
     return from_dataframe(df, time="Time (s)", units=units, axes=axes, timing=timing, check_units=check_units,
-                          source=str(path), **cols)
+                          source=source, **cols)
+
+
+def _read_table(path: str | Path, **read_csv) -> tuple[pd.DataFrame, str]:
+    """A CSV file as a DataFrame (spaces after separators ignored), and its path for ``Recording.source``."""
+    path = Path(path)
+    if not path.is_file():
+        raise ValueError(f"path: no such file {str(path)!r}")
+    return pd.read_csv(path, skipinitialspace=True, **read_csv), str(path)
+
+
+def _stamps(df: pd.DataFrame) -> np.ndarray:
+    """A Sensor Logger file's ``time`` column: integer nanoseconds since the epoch."""
+    return pd.to_numeric(df["time"]).to_numpy(dtype=np.int64)
 
 
 def _logger_file(directory: Path, name: str) -> pd.DataFrame:
@@ -349,11 +356,11 @@ def read_sensor_logger(directory: str | Path, *, axes: str | Dcm = "x,y,z", meth
         raise ValueError("directory: no TotalAcceleration.csv (Accelerometer.csv has gravity removed; "
                          "navlib needs specific force including gravity)")
     gyro = _logger_file(d, "Gyroscope.csv")
-    _check_timing(pd.to_numeric(gyro["time"]).to_numpy(dtype=np.int64), timing, "Gyroscope.csv")
+    _check_timing(_stamps(gyro), timing, "Gyroscope.csv")
     if timing == "sanitize":                 # the other sensors are put on this clock: repair it first
         gyro = gyro.sort_values("time", kind="stable").drop_duplicates("time")
     frame = pd.DataFrame({"time": gyro["time"], "gx": gyro["x"], "gy": gyro["y"], "gz": gyro["z"]})
-    t_ns = pd.to_numeric(gyro["time"]).to_numpy(dtype=np.int64)
+    t_ns = _stamps(gyro)
     t_gyro = (t_ns - t_ns[0]) * 1e-9
     kw = {"gyro": ("gx", "gy", "gz")}
     units = {"gyro": "rad/s"}
@@ -366,9 +373,9 @@ def read_sensor_logger(directory: str | Path, *, axes: str | Dcm = "x,y,z", meth
         cols = ["pressure"] if sensor == "baro" else ["x", "y", "z"]
         if sensor == "baro" and "pressure" not in df.columns:
             raise ValueError(f"directory: {name} lacks the column 'pressure'")
-        t_s = (pd.to_numeric(df["time"]).to_numpy(dtype=np.int64) - t_ns[0]) * 1e-9
-        x = df[cols].to_numpy(dtype=float)
-        _check_timing(pd.to_numeric(df["time"]).to_numpy(dtype=np.int64), timing, name)
+        stamps = _stamps(df)
+        _check_timing(stamps, timing, name)
+        t_s, x = (stamps - t_ns[0]) * 1e-9, df[cols].to_numpy(dtype=float)
         if timing == "sanitize":
             t_s, x, _ = sanitize(t_s, x)
         x = align(t_gyro, t_s, x, method=method, max_gap=max_gap)
@@ -387,15 +394,12 @@ def read_euroc(path: str | Path, *, axes: str | Dcm = "x,y,z", timing: str = "ra
     Columns ``#timestamp [ns]``, ``w_RS_S_x [rad s^-1]`` ... ``a_RS_S_z [m s^-2]`` in the sensor frame S;
     give ``axes`` to map it to right-front-up.
     """
-    path = Path(path)
-    if not path.is_file():
-        raise ValueError(f"path: no such file {str(path)!r}")
-    df = pd.read_csv(path, skipinitialspace=True)
+    df, source = _read_table(path)
     df.columns = [c.strip() for c in df.columns]
     gyro = [f"w_RS_S_{a} [rad s^-1]" for a in "xyz"]
     accel = [f"a_RS_S_{a} [m s^-2]" for a in "xyz"]
     return from_dataframe(df, time="#timestamp [ns]", time_unit="ns", units={"gyro": "rad/s", "accel": "m/s^2"},
-                          gyro=gyro, accel=accel, axes=axes, timing=timing, check_units=check_units, source=str(path))
+                          gyro=gyro, accel=accel, axes=axes, timing=timing, check_units=check_units, source=source)
 
 
 def align(t_target: Times, t_source: ArrayLike, x_source: ArrayLike, *, method: str = "hold",
