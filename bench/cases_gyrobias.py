@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from bench.run import Result, best_time
-from navlib import earth, euler, sensors, strapdown, trajectory, units
+from navlib import attitude, earth, euler, sensors, strapdown, trajectory, units
 from navlib.papers import rotation_bias as gyrobias
 
 DT, PERIOD, ROTATION_TIME = 0.01, 5.0, 0.5
@@ -19,7 +19,8 @@ def _rig(trials: int, duration: float):
     w, f = trajectory.ideal_imu(traj)
     imu = sensors.simulate_imu(w, f, DT, sensors.imu_model("MTi-100"), np.random.default_rng(0), n_trials=trials)
     starts, length = gyrobias.dwell_windows(w.shape[0], DT, PERIOD, ROTATION_TIME)
-    w_ie_b = gyrobias.earth_rate_body(gyrobias.dwell_attitudes(hpr0, [0, 1, 0], np.pi / 2, starts.size), LAT)
+    attitudes = gyrobias.dwell_attitudes(hpr0, [0, 1, 0], np.pi / 2, starts.size)
+    w_ie_b = earth.earth_rate_b(attitude.euler_to_dcm(attitudes), LAT)
     return hpr0, imu, starts, length, w_ie_b
 
 
