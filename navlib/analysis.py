@@ -104,14 +104,35 @@ def allan_deviation(x: ArrayLike, dt: float, taus: ArrayLike | None = None) -> t
         m = np.unique(np.round(positive(taus, "taus") / dt))
         if m.min() < 1 or m.max() > (n - 1) // 2:
             raise ValueError(f"taus: expected values between dt and {(n - 1) // 2 * dt:g} s")
-    m = m.astype(int)
+    m = m.astype(np.int64)
     theta = np.concatenate([np.zeros(x.shape[:-2] + (1, x.shape[-1])), np.cumsum(x, axis=-2) * dt], axis=-2)
-    out = np.empty(x.shape[:-2] + (m.size, x.shape[-1]))
-    for i, mi in enumerate(m):
-        d = theta[..., 2 * mi:, :] - 2 * theta[..., mi:-mi, :] + theta[..., :-2 * mi, :]
-        tau = mi * dt
-        out[..., i, :] = np.sqrt(np.mean(d * d, axis=-2) / (2 * tau * tau))
-    return m * dt, (out[:, 0] if scalar else out)
+    mean_sq = _mean_square_second_difference(theta.reshape(-1, n + 1, x.shape[-1]), m)
+    tau = m * dt
+    out = np.sqrt(mean_sq / (2 * tau * tau)[:, None]).reshape(x.shape[:-2] + (m.size, x.shape[-1]))
+    return tau, (out[:, 0] if scalar else out)
+
+
+@njit(cache=True)
+def _mean_square_second_difference(theta, m):
+    """Mean over ``r`` of ``(theta[r + 2m] - 2 theta[r + m] + theta[r])**2`` for each ``m``: shape (B, M, k).
+
+    One pass per averaging time and no temporaries (numpy needs four record-sized arrays per ``m``); the
+    sum runs over ``r`` in order, as numpy's reduction over a non-contiguous axis does.
+    """
+    n_b, length, k = theta.shape
+    out = np.empty((n_b, m.size, k))
+    acc = np.empty(k)
+    for b in range(n_b):
+        for i in range(m.size):
+            mi = m[i]
+            count = length - 2 * mi
+            acc[:] = 0.0
+            for r in range(count):
+                for j in range(k):
+                    d = theta[b, r + 2 * mi, j] - 2 * theta[b, r + mi, j] + theta[b, r, j]
+                    acc[j] += d * d
+            out[b, i] = acc / count
+    return out
 
 
 def allan_deviation_theory(taus: ArrayLike, white: float = 0.0, bias_instability: float = 0.0,

@@ -36,7 +36,7 @@ from dataclasses import dataclass, field, fields, replace
 from importlib import resources
 
 import numpy as np
-from scipy.signal import lfilter
+from numba import njit
 
 from . import atmosphere, attitude, earth, units
 from ._typing import Angles, Array, ArrayLike, Quat, Times, Vec3, Vec3Series
@@ -190,10 +190,22 @@ def gauss_markov(shape: tuple[int, ...], dt: float, sigma: float, correlation_ti
     shape = tuple(integer(n, "shape") for n in shape)
     phi = np.exp(-dt / tc)
     x0 = sigma * rng.standard_normal(shape[:-2] + (1, shape[-1]))
-    drive = sigma * np.sqrt(1 - phi * phi) * rng.standard_normal(shape)
-    # y[k] = phi y[k-1] + drive[k] with y[-1] = x0
-    y, _ = lfilter([1.0], [1.0, -phi], drive, axis=-2, zi=phi * x0)
+    y = rng.standard_normal(out=np.empty(shape))      # the driving noise, filtered in place below
+    y *= sigma * np.sqrt(1 - phi * phi)
+    _ar1_in_place(y.reshape(-1, shape[-2], shape[-1]), phi, (phi * x0).reshape(-1, shape[-1]))
     return y
+
+
+@njit(cache=True)
+def _ar1_in_place(y, phi, y_before):
+    """``y[:, k] += phi * y[:, k-1]`` along axis 1, with ``phi * y[:, -1] = y_before``: a first-order
+    recursive filter (scipy's ``lfilter([1], [1, -phi], y, axis=1, zi=y_before)``, same arithmetic) without
+    a second array of the size of ``y`` (gigabytes for a Monte Carlo batch)."""
+    for b in range(y.shape[0]):
+        for j in range(y.shape[2]):
+            y[b, 0, j] += y_before[b, j]
+            for k in range(1, y.shape[1]):
+                y[b, k, j] += phi * y[b, k - 1, j]
 
 
 def _error_matrix(errors: TriadErrors, lead: tuple, rng: np.random.Generator):
