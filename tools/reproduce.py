@@ -166,9 +166,9 @@ def write_manifest(build: Path, entries: list[dict]) -> dict:
     return manifest
 
 
-def compare_manifest(manifest: dict, reference: Path) -> list[str]:
-    """Files whose hash differs from (or is missing in) a previous run's manifest."""
-    ref = json.loads(reference.read_text())
+def compare_manifest(manifest: dict, reference: Path, notebooks: list[str]) -> list[str]:
+    """Files of ``notebooks`` whose hash differs from (or is missing in) a previous run's manifest."""
+    ref = {k: v for k, v in json.loads(reference.read_text()).items() if k.split("/")[0] in notebooks}
     return sorted(k for k in set(ref) | set(manifest) if ref.get(k) != manifest.get(k))
 
 
@@ -235,7 +235,7 @@ def main(argv=None) -> int:
           f"   ({n_ok}/{len(entries)} notebooks ok; {wall:.1f} s wall with {max(1, args.jobs)} at a time)")
     print(f"report: {build / 'index.html'}")
     if args.check_against:
-        changed = compare_manifest(manifest, args.check_against)
+        changed = compare_manifest(manifest, args.check_against, [p.stem for p in notebooks])
         print(f"determinism: {len(manifest)} files, {len(changed)} differ from {args.check_against.name}"
               + "".join(f"\n    {c}" for c in changed))
         if changed:
