@@ -5,7 +5,8 @@ return :class:`Result` rows (one per implementation). ``make bench`` runs them
 all, prints a table with the ratio of every implementation to navlib's and to
 the case's performance goal where it has one, and writes ``build/bench.json``.
 The goals are the project's own targets, set in each case module beside the
-case (e.g. the strapdown batch: 30 trials x 1 h x 100 Hz in 0.5 s).
+case (e.g. the strapdown batch: 30 trials x 1 h x 100 Hz in 0.5 s); a goal relative to a peer (e.g.
+">= 3x pyproj") is computed from the peer's throughput measured in the same run. "vs goal" >= 1 means met.
 
     .venv/bin/python bench/run.py [--only SUBSTRING] [--quick]
 """
@@ -63,12 +64,13 @@ def main() -> int:
             print(f"running {case.__name__} ...", flush=True)
             results.extend(case(quick=args.quick))
     print()
-    print(f"{'case':34s} {'implementation':28s} {'throughput':>14s} {'unit':12s} {'vs navlib':>9s} {'vs goal':>8s}")
+    print(f"{'case':42s} {'implementation':40s} {'throughput':>11s} {'unit':10s} {'vs navlib':>9s} {'vs goal':>8s}"
+          "  note (goal)")
     for r in results:
         ref = next((x for x in results if x.case == r.case and x.implementation.startswith("navlib")), None)
         ratio = f"{r.throughput / ref.throughput:9.3g}" if ref else " " * 9
         goal = f"{r.throughput / r.goal:8.2f}" if r.goal else " " * 8
-        print(f"{r.case:34s} {r.implementation:28s} {r.throughput:14.4g} {r.unit:12s} {ratio} {goal}")
+        print(f"{r.case:42.42s} {r.implementation:40.40s} {r.throughput:11.4g} {r.unit:10s} {ratio} {goal}  {r.note}")
     out = ROOT / "build" / "bench.json"
     out.parent.mkdir(exist_ok=True)
     out.write_text(json.dumps({"machine": {"python": platform.python_version(), "cpus": os.cpu_count(),

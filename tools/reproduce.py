@@ -15,7 +15,9 @@ results file and figure), and prints one line per notebook.
 ``--check-against MANIFEST`` fails the run unless those files are
 byte-identical to an earlier run's (``make determinism``).
 
-Notebooks run ``--jobs`` at a time (default 2), each in its own kernel. A notebook that raises is
+Notebooks run ``--jobs`` at a time (default 2), each in its own kernel, the longest first (by the
+previous run's times in ``build/summary.json``); each is reported with its wall time and its kernel's
+peak memory (resident set size). A notebook that raises is
 reported and the run goes on with the others; the
 exit status is non-zero if any notebook failed. ``--only`` runs a subset, and
 the report then covers that subset only. Needs no network.
@@ -31,6 +33,7 @@ import html
 import json
 import multiprocessing
 import os
+import resource
 import shutil
 import sys
 import time
@@ -45,11 +48,11 @@ from nbconvert.filters.markdown_mistune import markdown2html_mistune
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO))
 
-from navlib.papers import CHAPTERS, PAPERS  # noqa: E402  (the registry: one entry per paper)
-
 
 def unregistered(notebooks: list[Path]) -> list[str]:
     """Notebook stems that are neither a chapter without a paper nor a registered paper (navlib/papers/__init__.py)."""
+    from navlib.papers import CHAPTERS, PAPERS  # the registry (imported here: the notebook workers need no navlib)
+
     known = set(CHAPTERS) | {p.notebook for p in PAPERS}
     return [p.stem for p in notebooks if p.stem not in known]
 
@@ -77,6 +80,8 @@ def run_notebook(path: Path, build: Path, timeout: int) -> dict:
         except Exception as exc:  # report it and go on with the next notebook
             error = error_line(exc)
     seconds = time.perf_counter() - start
+    # This worker runs one notebook (max_tasks_per_child=1): its reaped children are this kernel.
+    peak_mb = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024
     nbformat.write(nb, build / f"{stem}.ipynb")
     body, _ = HTMLExporter().from_notebook_node(nb)
     (build / f"{stem}.html").write_text(body, encoding="utf-8")
@@ -87,7 +92,7 @@ def run_notebook(path: Path, build: Path, timeout: int) -> dict:
     figures = sorted(p.relative_to(build).as_posix() for p in (build / stem / "figures").glob("*.png"))
     header = next((c.source for c in nb.cells if c.cell_type == "markdown"), "")
     return {"notebook": stem, "ok": error is None and passed == len(checks), "error": error,
-            "seconds": round(seconds, 1), "claims_passed": passed, "claims_total": len(checks),
+            "seconds": round(seconds, 1), "peak_mb": round(peak_mb), "claims_passed": passed, "claims_total": len(checks),
             "checks": checks, "figures": figures, "header": header}
 
 
@@ -201,23 +206,27 @@ def main(argv=None) -> int:
     os.environ["NAVLIB_ROOT"] = str(root)
     os.environ["MPLBACKEND"] = "module://matplotlib_inline.backend_inline"
 
-    # Notebooks are independent (own kernel, own build/<stem>/, own seeds): run --jobs at once.
+    # Notebooks are independent (own kernel, own build/<stem>/, own seeds): run --jobs at once, the
+    # longest first (by the last run's times) so that the last one to start is a short one.
+    last = json.loads((build / "summary.json").read_text()) if (build / "summary.json").is_file() else {}
+    order = sorted(notebooks, key=lambda p: -last.get(p.stem, {}).get("seconds", 0.0))
     start = time.perf_counter()
     done = {}
-    with ProcessPoolExecutor(max(1, args.jobs), mp_context=multiprocessing.get_context("spawn")) as pool:
-        futures = {pool.submit(run_notebook, path, build, args.timeout): path for path in notebooks}
+    with ProcessPoolExecutor(max(1, args.jobs), mp_context=multiprocessing.get_context("spawn"),
+                             max_tasks_per_child=1) as pool:
+        futures = {pool.submit(run_notebook, path, build, args.timeout): path for path in order}
         print(f"executing {len(notebooks)} notebooks, {max(1, args.jobs)} at a time ...", flush=True)
         for future in as_completed(futures):
             e = done[futures[future]] = future.result()
             tail = "" if e["error"] is None else f"\n    ERROR: {e['error']}"
             print(f"[{len(done)}/{len(notebooks)}] {e['notebook']} {'done' if e['ok'] else 'FAILED'} "
-                  f"in {e['seconds']:.1f} s{tail}", flush=True)
+                  f"in {e['seconds']:.1f} s, peak memory {e['peak_mb']} MB{tail}", flush=True)
     entries = [done[path] for path in notebooks]
     wall = time.perf_counter() - start
 
     write_index(build, entries)
     manifest = write_manifest(build, entries)
-    summary = {e["notebook"]: {k: e[k] for k in ("claims_passed", "claims_total", "seconds", "ok", "error")}
+    summary = {e["notebook"]: {k: e[k] for k in ("claims_passed", "claims_total", "seconds", "peak_mb", "ok", "error")}
                for e in entries}
     (build / "summary.json").write_text(json.dumps(summary, indent=1) + "\n")
 
@@ -226,7 +235,7 @@ def main(argv=None) -> int:
     for e in entries:
         mark = "" if e["ok"] else "   FAILED"
         claims = f"{e['claims_passed']}/{e['claims_total']}"
-        print(f"{e['notebook']:<{width}}{claims:>7} claims passed{e['seconds']:>9.1f} s{mark}")
+        print(f"{e['notebook']:<{width}}{claims:>7} claims passed{e['seconds']:>9.1f} s{e['peak_mb']:>7} MB{mark}")
     n_ok = sum(e["ok"] for e in entries)
     passed = sum(e["claims_passed"] for e in entries)
     total = sum(e["claims_total"] for e in entries)

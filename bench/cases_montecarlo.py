@@ -1,0 +1,63 @@
+"""Monte Carlo at scale: 10⁷ north-finding trials through navlib.montecarlo, serial vs 2 workers."""
+from __future__ import annotations
+
+import os
+import time
+from concurrent.futures import ProcessPoolExecutor
+
+import numpy as np
+
+from bench.run import Result
+from navlib import earth, montecarlo, units
+from navlib.papers import north_finding as nf
+
+SEED, BATCH = 2000, 20_000
+GRID = np.stack(np.meshgrid([0.0, 20.0, 28.361735, 45.0, 60.0], np.arange(5.0, 360.0, 10.0), [0.003, 0.01, 0.03],
+                            indexing="ij"), -1).reshape(-1, 3)     # latitude (deg) x heading (deg) x gyro (deg/h)
+SIGMA_ACCEL = units.ug(100)
+
+
+def single_axis_batch(ids, streams, reps):
+    """Notebook 01's sweep: one averaged static reading per trial at grid point ``ids // reps``; heading error (rad)."""
+    lat_d, psi_d, gyro_dph = GRID[ids // reps].T
+    lat, psi = units.deg(lat_d), units.deg(psi_d)
+    w_y = earth.OMEGA_IE * np.cos(lat) * np.cos(psi) + units.deg_per_h(gyro_dph) * streams.normal()
+    g = earth.gravity(lat)
+    f_b = np.stack([np.zeros_like(g), np.zeros_like(g), g], -1) + SIGMA_ACCEL * streams.normal((3,))
+    return {"err": nf.nearest_candidate_error(nf.heading_candidates(w_y, f_b, lat).pair, psi)}
+
+
+def _timed(n, executor=None):
+    t0 = time.perf_counter()
+    out = montecarlo.run(single_axis_batch, n, SEED, batch_size=BATCH, executor=executor, progress=False,
+                         reps=-(-n // len(GRID)))
+    return out["err"], time.perf_counter() - t0
+
+
+def monte_carlo_scale(quick: bool):
+    """10⁷ trials (quick: 2·10⁵) serially, on a 2-process pool and on a 2-worker dask LocalCluster.
+
+    Goal: 2 workers >= 1.7x serial, results bit-identical. One timed run each (no warm-up run: at this
+    scale start-up is part of the cost a user pays)."""
+    n = 200_000 if quick else 10_000_000
+    case = f"Monte Carlo, {n:.0e} north-finding trials"
+    ref, t_serial = _timed(n)
+    rows = [Result(case, "navlib serial", n / t_serial, "trials/s", t_serial)]
+    with ProcessPoolExecutor(2) as pool:
+        err, t = _timed(n, pool)
+    rows.append(Result(case, "navlib 2-process pool", n / t, "trials/s", t, goal=1.7 * n / t_serial,
+                       note=f"goal: 1.7x serial; bit-identical to serial: {np.array_equal(err, ref)}"))
+    try:
+        from distributed import Client, LocalCluster
+    except ImportError:
+        return rows
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
+            Client(cluster) as client:
+        err, t = _timed(n, client.get_executor())
+    rows.append(Result(case, "navlib dask LocalCluster, 2 workers", n / t, "trials/s", t, goal=1.7 * n / t_serial,
+                       note=f"goal: 1.7x serial; bit-identical to serial: {np.array_equal(err, ref)}; "
+                            f"{os.cpu_count()} cores"))
+    return rows
+
+
+CASES = [monte_carlo_scale]
