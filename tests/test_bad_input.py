@@ -1258,6 +1258,7 @@ NOT_APPLICABLE = {
     "timing.TimingReport": "record returned by timing.sanitize, built from validated values",
     "filters.observations.AttitudeResult": "a result record, built by the attitude filters",
     "filters.planar_ekf.EkfResult": "a result record, built by filter_grid",
+    "filters.heading_fusion.FusionResult": "a result record, built by fuse_rtk_heading",
     "filters.observations.AttitudeInputs": "the kernel record, built by prepare_inputs from validated values",
     "filters.observations.Screened": "a record of what prepare_inputs found, built from validated values",
     "filters.observations.attitude_result": "assembles kernel outputs (validated by prepare_inputs)",
