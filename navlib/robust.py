@@ -15,7 +15,8 @@ batch) and, when asked for, per-sample boolean flags. Sensors are named ``"gyro"
 ``"refused"``    a quantity that could not be formed (e.g. a static window with too few samples,
                  a dwell skipped for dropouts);
 ``"jump"``       a time jump (sensor ``"clock"``): a sample interval too long to integrate as motion
-                 (``max_dt`` of the attitude filters and of :class:`navlib.filters.zupt_ins.FilterConfig`);
+                 (``max_dt`` of the attitude filters, the planar EKF and the heading fusion, whose default
+                 is :func:`navlib.timing.jump_limit`, and of :class:`navlib.filters.zupt_ins.FilterConfig`);
                  nothing is integrated over it;
 ``"freefall"``   accelerometer samples reading ``|f|`` near 0 for a while (free fall or a dead sensor:
                  ``("accel", "freefall")``), held from the last good sample;
@@ -24,8 +25,8 @@ batch) and, when asked for, per-sample boolean flags. Sensors are named ``"gyro"
                  (:func:`navlib.alignment.static_means` ``stuck_fraction``; the window refused).
 
 Every filter result carries one: :class:`navlib.filters.observations.AttitudeResult` (Mahony,
-quaternion KF), :class:`navlib.filters.planar_ekf.EkfResult`, :class:`navlib.filters.zupt_ins.FilterResult`,
-and the paper method's ``rotation_bias.Residuals``.
+quaternion KF), :class:`navlib.filters.planar_ekf.EkfResult`, :class:`navlib.filters.heading_fusion.FusionResult`,
+:class:`navlib.filters.zupt_ins.FilterResult`, and the paper method's ``rotation_bias.Residuals``.
 
 :func:`fault_report` counts the NaN and saturated samples of a raw series, e.g. what an
 integrator that returns a plain array (:func:`navlib.strapdown.integrate_attitude`,
