@@ -69,7 +69,8 @@ repeating one value over      sample of the run (``robust.stuck_samples``:     (
 ============================  ==============================================  =====================================
 
 Why the EKF propagates over a clock jump with inflated uncertainty rather than restarting: Eq. (13) is a
-short-step model (an hour of constant v and omega is a spiral, not a prediction), so nothing is integrated
+first-order step (over 3600 s at 1 m/s it moves the robot 3.6 km in a straight line, which is what the EKF
+did before it had the rule: gated, the next fixes were then rejected as outliers), so nothing is integrated
 over the interval, but the state is not discarded either. Its covariance grows by the per-step ``Q`` for
 every nominal step of the interval: the random walk the filter already assumes between epochs, e.g.
 +7200 m^2 of position variance for a 3600 s jump at T = 0.5 s. Because every state is measured (H = I5),
