@@ -72,6 +72,47 @@ def tilt_heading(mx, my, mz, pitch, roll):
     return a * (a < 2 * np.pi)                               # [0, 2 pi): a rounded-up 2 pi is north
 
 
+MAD_TO_SIGMA = 1.4826
+"""Gaussian standard deviations per median absolute deviation (1 / Phi^-1(3/4))."""
+
+
+@njit(cache=True)
+def robust_sigma(mad, step):
+    """Robust sigma of a MAD, floored for a quantised reading: ``max(1.4826 max(MAD, q / 2), 1e-12)``.
+
+    ``step`` is the quantisation step q (:func:`quant_step`; 0 or far below the MAD for continuous
+    readings, where this is the plain 1.4826 MAD). A quantised reading resolves the MAD only to a step: a
+    MAD that reads 0 (more than half of the samples on the median's code, noise sigma below ~0.74 q)
+    means a true MAD anywhere below q / 2, and 1.4826 q / 2 is the largest Gaussian sigma that agrees
+    with it. Without the floor every sample off the median code is an outlier. The one floor of navlib's
+    MAD outlier tests (:mod:`navlib.alignment` static windows, :mod:`navlib.papers.rotation_bias` dwells);
+    scalars or arrays (broadcast).
+    """
+    return np.maximum(MAD_TO_SIGMA * np.maximum(mad, step / 2), 1e-12)
+
+
+@njit(cache=True)
+def quant_step(x):
+    """Quantisation step of the readings ``x`` (1-D): the smallest non-zero difference between two finite
+    values, 0 when there are no two distinct ones."""
+    v = np.sort(x[np.isfinite(x)])
+    q = np.inf
+    for j in range(1, v.shape[0]):
+        d = v[j] - v[j - 1]
+        if 0.0 < d < q:
+            q = d
+    return q if q < np.inf else 0.0
+
+
+@njit(cache=True)
+def quant_steps(x):
+    """:func:`quant_step` of each row of ``x`` (M, n)."""
+    out = np.empty(x.shape[0])
+    for i in range(x.shape[0]):
+        out[i] = quant_step(x[i])
+    return out
+
+
 @njit(cache=True)
 def kalman_predict(x, P, F, Q):
     """Linear prediction ``x = F x``, ``P = F P F^T + Q`` (symmetrised); :func:`navlib.kalman.predict` unvalidated."""

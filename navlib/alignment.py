@@ -205,12 +205,10 @@ class StaticWindow:
 def _outliers(x, valid, k):
     """Samples more than ``k`` robust sigmas from the median of the valid samples (any component).
 
-    The robust sigma is ``1.4826 max(MAD, q / 2)`` per component, with ``q`` the quantisation step:
-    the smallest non-zero difference between two valid readings (0 for continuous readings, where
-    it is far below the MAD and the rule is the plain 1.4826 MAD). A quantised reading resolves the
-    MAD only to a step: a MAD that reads 0 (more than half of the samples on the median's code,
-    noise sigma below ~0.74 q) means a true MAD anywhere below q / 2, and 1.4826 q / 2 is the largest
-    Gaussian sigma that agrees with it. Without the floor every sample off the median code was an
+    The robust sigma is :func:`navlib._kernels.robust_sigma`, ``1.4826 max(MAD, q / 2)`` per component,
+    with ``q`` the quantisation step (:func:`navlib._kernels.quant_step`): the smallest non-zero
+    difference between two valid readings (0 for continuous readings, where it is far below the MAD and
+    the rule is the plain 1.4826 MAD). Without the floor every sample off the median code was an
     outlier (with ``k = 5``, 1,500-2,200 of the 3,000 samples of a good stop quantised at 1.5-3
     noise sigmas; ``tests/faults/test_faults_northfinding.py``); with the quantisation noise
     q / sqrt(12) as the floor, samples two codes out still were (35-110 of 3,000).
@@ -220,10 +218,10 @@ def _outliers(x, valid, k):
         warnings.simplefilter("ignore", RuntimeWarning)          # all-NaN windows: handled as TOO_FEW
         med = np.nanmedian(xv, axis=-2, keepdims=True)
         mad = np.nanmedian(np.abs(xv - med), axis=-2, keepdims=True)
-        step = np.diff(np.sort(xv, axis=-2), axis=-2)           # NaN sorted last: NaN steps
-        q = np.min(np.where(step > 0, step, np.inf), axis=-2, keepdims=True)
-    q = np.where(np.isfinite(q), q, 0.0)                        # no two distinct readings: no step
-    thresh = k * np.maximum(1.4826 * np.maximum(mad, q / 2), 1e-12)
+    columns = np.moveaxis(xv, -2, -1)                           # (..., k, n): one reading series per row
+    q = _kernels.quant_steps(np.ascontiguousarray(columns.reshape(int(np.prod(columns.shape[:-1])), columns.shape[-1])))
+    q = q.reshape(columns.shape[:-1])[..., None, :]
+    thresh = k * _kernels.robust_sigma(mad, q)
     return valid & np.any(np.abs(x - med) > thresh, axis=-1)
 
 

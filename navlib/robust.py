@@ -15,7 +15,8 @@ batch) and, when asked for, per-sample boolean flags. Sensors are named ``"gyro"
 ``"refused"``    a quantity that could not be formed (e.g. a static window with too few samples,
                  a dwell skipped for dropouts);
 ``"jump"``       a time jump (sensor ``"clock"``): a sample interval too long to integrate as motion
-                 (``max_dt`` of the attitude filters and of :class:`navlib.filters.zupt_ins.FilterConfig`);
+                 (``max_dt`` of the attitude filters, the planar EKF and the heading fusion, whose default
+                 is :func:`navlib.timing.jump_limit`, and of :class:`navlib.filters.zupt_ins.FilterConfig`);
                  nothing is integrated over it;
 ``"freefall"``   accelerometer samples reading ``|f|`` near 0 for a while (free fall or a dead sensor:
                  ``("accel", "freefall")``), held from the last good sample;
@@ -24,8 +25,8 @@ batch) and, when asked for, per-sample boolean flags. Sensors are named ``"gyro"
                  (:func:`navlib.alignment.static_means` ``stuck_fraction``; the window refused).
 
 Every filter result carries one: :class:`navlib.filters.observations.AttitudeResult` (Mahony,
-quaternion KF), :class:`navlib.filters.planar_ekf.EkfResult`, :class:`navlib.filters.zupt_ins.FilterResult`,
-and the paper method's ``rotation_bias.Residuals``.
+quaternion KF), :class:`navlib.filters.planar_ekf.EkfResult`, :class:`navlib.filters.heading_fusion.FusionResult`,
+:class:`navlib.filters.zupt_ins.FilterResult`, and the paper method's ``rotation_bias.Residuals``.
 
 :func:`fault_report` counts the NaN and saturated samples of a raw series, e.g. what an
 integrator that returns a plain array (:func:`navlib.strapdown.integrate_attitude`,
@@ -34,7 +35,8 @@ integrator that returns a plain array (:func:`navlib.strapdown.integrate_attitud
 :func:`hold` is the one zero-order hold of NaN samples, with an explicit policy for
 leading NaN samples (there is nothing before them to hold). :func:`despike` marks isolated
 IMU spikes as NaN with the test of :func:`is_spike` (compiled; filters call it per sample).
-:func:`stuck_mask` finds the samples of a sensor that stopped updating (exact repeats).
+:func:`stuck_mask` finds the samples of a sensor that stopped updating (exact repeats); :func:`stuck_samples`
+is that test as the filters apply it to their gyro input (``stuck_run`` from :func:`stuck_run_samples`).
 """
 from __future__ import annotations
 
@@ -48,10 +50,15 @@ from numpy.typing import NDArray
 from ._typing import Array, ArrayLike, Vec3Series
 from ._validate import as_array, booleans, choice, flag, instance, integer, range_limit
 
-__all__ = ["FaultReport", "fault_report", "hold", "despike", "stuck_mask", "longest_repeat", "LEADING"]
+__all__ = ["FaultReport", "fault_report", "hold", "despike", "stuck_mask", "stuck_samples", "stuck_run_samples",
+           "longest_repeat", "LEADING", "STUCK_DURATION"]
 
 LEADING = ("raise", "first", "zero")
 """Policies for NaN samples before the first valid one: raise, take the first valid sample, or 0."""
+
+STUCK_DURATION = 0.1
+"""Default ``stuck_run`` of navlib's filters, in seconds of samples (``stuck_run="auto"``, :func:`stuck_run_samples`:
+this duration over the median interval, at least 5 samples): 5 samples at 50 Hz, 10 at 100 Hz, 100 at 1 kHz."""
 
 
 @dataclass(frozen=True)
@@ -310,3 +317,52 @@ def stuck_mask(x: ArrayLike, run: int, *, name: str = "x", axis: int = -2) -> ND
     s = np.cumsum(starts, axis=-2)
     covered = s - np.concatenate([np.zeros_like(s[..., :run, :]), s[..., :-run, :]], axis=-2)[..., :n, :] > 0
     return covered.any(axis=-1)
+
+
+def stuck_run_samples(stuck_run: int | str | None, dt: float) -> int | None:
+    """A filter's ``stuck_run`` argument as a run length in samples.
+
+    ``"auto"``: :data:`STUCK_DURATION` over the typical (median) interval ``dt`` (s), at least 5 samples;
+    None: no stuck check (returned as None); otherwise an integer >= 2, returned as given.
+    """
+    if isinstance(stuck_run, str) and stuck_run == "auto":
+        return max(5, int(np.ceil(STUCK_DURATION / dt - 1e-9)))
+    return None if stuck_run is None else integer(stuck_run, "stuck_run", minimum=2)
+
+
+def stuck_samples(x: ArrayLike, run: int | None, *, full_scale: float | None = None, name: str = "x",
+                  axis: int = -2) -> NDArray[np.bool_]:
+    """Stuck samples of a filter's sensor input: :func:`stuck_mask`, as every navlib filter applies it.
+
+    Only series (trials) that are noisy from the start are checked: a series whose first value repeats
+    ``run`` times on some component is a noise-free simulation or a quantised sensor at rest, not a
+    frozen one. Values at the rails (``|x| >= full_scale``) are saturated, never stuck.
+
+    Parameters
+    ----------
+    x : array_like, shape (..., N, k) (or (..., N) with ``axis=-1``)
+        Samples; leading axes are trials; NaN is never a repeat. Infinity is rejected.
+    run : int or None
+        Shortest run of equal values that counts (>= 2, e.g. from :func:`stuck_run_samples`); None: no check.
+    full_scale : float, optional
+        Device range (same unit as ``x``).
+    name : str
+        Argument name in error messages.
+    axis : int
+        Time axis: -2 for vector series (default), -1 for scalar series.
+
+    Returns
+    -------
+    stuck : ndarray of bool, shape (..., N)
+    """
+    choice(axis, "axis", (-1, -2))
+    a = as_array(x, name, allow_nan=True, min_ndim=-axis)
+    if axis == -1:
+        a = a[..., None]
+    if run is None:
+        return np.zeros(a.shape[:-1], dtype=bool)
+    run = integer(run, "run", minimum=2)
+    fs = range_limit(full_scale, "full_scale")
+    noisy = np.logical_and.accumulate(a == a[..., :1, :], axis=-2).sum(-2).max(-1) < run
+    probe = a if full_scale is None else np.where(np.abs(a) >= fs, np.nan, a)
+    return stuck_mask(probe, run, name=name) & noisy[..., None]

@@ -6,7 +6,8 @@ filters never guess: :func:`sanitize` puts samples in time order, drops
 exact repeats, and returns a :class:`TimingReport` that says how many of
 each fault it found and how irregular the intervals are. Filters that accept
 per-sample intervals take ``dt = np.diff(time)``-style arrays from
-:func:`intervals`.
+:func:`intervals`. :func:`jump_limit` is the filters' one rule for a clock jump
+(an interval too long to integrate: :data:`JUMP_FACTOR` median intervals by default).
 """
 from __future__ import annotations
 
@@ -15,9 +16,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._typing import Array, ArrayLike, Times
-from ._validate import as_array, integer, time_axis
+from ._validate import as_array, integer, scalar, time_axis
 
-__all__ = ["TimingReport", "sanitize", "intervals"]
+__all__ = ["TimingReport", "sanitize", "intervals", "jump_limit", "JUMP_FACTOR"]
+
+JUMP_FACTOR = 10.0
+"""Default ``max_dt`` of navlib's filters, in median sample intervals (``max_dt=None``): at 100 Hz, an
+interval longer than 0.1 s is a clock jump (a time-stamp jump or a recording gap), which a filter does not
+integrate as motion. With a scalar ``dt`` no interval can exceed it."""
 
 
 @dataclass(frozen=True)
@@ -112,3 +118,24 @@ def intervals(time: Times, n_samples: int | None = None) -> Array:
     if n_samples is not None and dt.size != integer(n_samples, "n_samples"):
         raise ValueError(f"time: expected {n_samples + 1} epochs for {n_samples} samples, got {t.size}")
     return dt
+
+
+def jump_limit(dts: ArrayLike, max_dt: float | None = None) -> float:
+    """The longest interval a filter integrates; longer ones are clock jumps (``("clock", "jump")``).
+
+    Parameters
+    ----------
+    dts : array_like, shape (N,)
+        The filter's sample intervals (s), already validated (positive).
+    max_dt : float, optional
+        The filter's ``max_dt`` argument (s): positive, inf to detect no jump. None (default):
+        :data:`JUMP_FACTOR` times the median interval.
+
+    Returns
+    -------
+    float
+        The limit (s): an interval ``dt > limit`` is a jump.
+    """
+    if max_dt is None:
+        return JUMP_FACTOR * float(np.median(dts))
+    return scalar(max_dt, "max_dt", positive=True, allow_inf=True)

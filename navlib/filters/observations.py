@@ -9,7 +9,8 @@ such filters:
 
 * :func:`prepare_inputs` -- validation of the samples, gains aside, into an :class:`AttitudeInputs`
   record for the compiled kernels (trials flattened; saturated and stuck gyro samples found, clock
-  jumps marked; :data:`STUCK_DURATION`, :data:`JUMP_FACTOR`);
+  jumps marked; :data:`STUCK_DURATION` and :data:`JUMP_FACTOR`, the library's defaults from
+  :mod:`navlib.robust` and :mod:`navlib.timing`);
 * :func:`observe`, :func:`gyro_sample`, :func:`pi_error`, :func:`rtk_gate`, :func:`reinit` -- the compiled
   per-sample steps: unit vectors with their gates (accelerometer norm, :class:`MagGate`, RTK gate with
   re-acquisition), the gyro hold of dropouts, spikes and stuck samples, Mahony's error
@@ -34,7 +35,8 @@ from .. import attitude, earth
 from .._kernels import dcm_heading, euler_to_quat, level, tilt_heading, wrap_pi
 from .._typing import Array, ArrayLike, Interval, Quat, Vec3, Vec3Series
 from .._validate import as_array, as_quat, booleans, instance, integer, intervals, nonempty_array, same_shape, scalar, small_turns
-from ..robust import FaultReport, stuck_mask
+from ..robust import STUCK_DURATION, FaultReport, stuck_run_samples, stuck_samples
+from ..timing import JUMP_FACTOR, jump_limit
 
 __all__ = ["MagGate", "AttitudeResult", "AttitudeInputs", "Screened", "COUNT_NAMES", "FAULT_KEYS", "STUCK_DURATION",
            "JUMP_FACTOR", "SETTLE_TIME_CONSTANTS", "magnetic_reference", "prepare_inputs", "attitude_result", "run_trials"]
@@ -103,10 +105,6 @@ FAULT_KEYS = {"gyro_held": ("gyro", "nan"), "accel_skipped": ("accel", "nan"), "
 (_GYRO_HELD, _ACCEL_SKIPPED, _ACCEL_GATED, _MAG_SKIPPED, _MAG_GATED, _GYRO_SATURATED, _ACCEL_SATURATED,
  _MAG_SATURATED, _RTK_DROPPED, _RTK_REJECTED, _RTK_REACQUIRED, _GYRO_GATED, _GYRO_STUCK, _CLOCK_JUMP) = range(len(COUNT_NAMES))
 
-STUCK_DURATION = 0.1
-"""Default ``stuck_run`` of the attitude filters, in seconds of samples (``stuck_run="auto"``: this
-duration over the median interval, at least 5 samples): 5 samples at 50 Hz, 10 at 100 Hz, 100 at 1 kHz."""
-
 SETTLE_TIME_CONSTANTS = 15.0
 """After a clock jump or a gyro hold of ``stuck_run`` samples or more, the gyro-bias integral of the attitude
 filters stays frozen for this many time constants ``1 / kp`` of the PI loop (15 s at kp = 1 rad/s) while the
@@ -114,10 +112,6 @@ reference removes the attitude error the fault left: learning from that transien
 estimate by ``ki`` times the integral of the error. The magnetometer loop is the slowest (time constant
 about 3.5 / kp); a gyro frozen through a 90 deg turn leaves 55 deg, a re-initialisation from one sample
 with 0.04 G noise up to ~15 deg (tests/faults/test_sensor_health.py: 10 / kp is too short for the latter)."""
-
-JUMP_FACTOR = 10.0
-"""Default ``max_dt`` of the attitude filters, in median sample intervals (``max_dt=None``): at 100 Hz, an
-interval longer than 0.1 s is a clock jump. With a scalar ``dt`` no interval can exceed it."""
 
 
 
@@ -538,13 +532,10 @@ def prepare_inputs(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, 
     jump = 0.0 if gyro_jump is None else scalar(gyro_jump, "gyro_jump", positive=True)
     rtk_par = rtk_params(rtk_hold, rtk_gate, rtk_confirm)
     typical = float(np.median(dts))
-    max_dt = JUMP_FACTOR * typical if max_dt is None else scalar(max_dt, "max_dt", positive=True, allow_inf=True)
+    max_dt = jump_limit(dts, max_dt)
     small_turns(w[..., dts <= max_dt, :], dts[dts <= max_dt])       # clock jumps are not integrated
-    auto = max(5, int(np.ceil(STUCK_DURATION / typical - 1e-9)))
-    if isinstance(stuck_run, str) and stuck_run == "auto":
-        stuck_run = auto
-    elif stuck_run is not None:
-        stuck_run = integer(stuck_run, "stuck_run", minimum=2)
+    auto = stuck_run_samples("auto", typical)
+    stuck_run = stuck_run_samples(stuck_run, typical)
     kp = scalar(kp, "kp", positive=True, allow_zero=True)
     settle = SETTLE_TIME_CONSTANTS / kp if kp > 0 else 0.0
     w, f = w.reshape(T, N, 3), f.reshape(T, N, 3)
@@ -565,14 +556,9 @@ def prepare_inputs(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, 
             f = np.where(rail[..., None], np.nan, f)
         elif i == 2 and sat[:, i].any():
             m = np.where(rail[..., None], np.nan, m)
-    stuck = np.zeros((T, N), dtype=bool)
-    if stuck_run is not None:
-        # only trials whose gyro is noisy from the start are checked: a first run of repeats is a noise-free signal
-        noisy = np.logical_and.accumulate(w == w[:, :1], axis=1).sum(1).max(-1) < stuck_run
-        probe = w if full_scale_gyro is None else np.where(np.abs(w) >= full_scale_gyro, np.nan, w)   # rails: saturated
-        stuck = stuck_mask(probe, stuck_run) & noisy[:, None]
-        if stuck.any():
-            w = np.where(stuck[..., None], np.nan, w)
+    stuck = stuck_samples(w, stuck_run, full_scale=full_scale_gyro, name="w_ib_b")
+    if stuck.any():
+        w = np.where(stuck[..., None], np.nan, w)
     inputs = AttitudeInputs(q, np.ascontiguousarray(w), np.ascontiguousarray(f), np.ascontiguousarray(m), hdg, ok,
                             use_rtk, use_mag, dts, gates, jump, rtk_par, max_dt, stuck_run or auto, settle)
     return lead, inputs, Screened(sat, stuck, dts > max_dt)

@@ -59,11 +59,32 @@ yaw rate at the gyro rails    with ``full_scale_gyro``: a censored sample:      
 repeated / out-of-order t     ``ValueError`` (run ``timing.sanitize`` first,   ``timing.TimingReport``
                               which sorts, drops repeats and counts them)
 irregular sampling            step ``T = t[k] - t[k-1]`` per epoch             --
+clock jump (``T > max_dt``,   nothing integrated over it: the state is held,   ``faults["clock", "jump"]``
+default 10 median steps)      P grows by the process noise of the whole        (flags per epoch)
+                              interval, ``Q T / T_median``; the epoch's
+                              measurements then take over (see below)
+stuck yaw rate (a gyro        skipped like a NaN sample, from the first        ``faults["yaw_rate", "stuck"]``
+repeating one value over      sample of the run (``robust.stuck_samples``:     (flags per epoch)
+``stuck_run`` samples)        noisy series only, rail values are saturated)
 ============================  ==============================================  =====================================
+
+Why the EKF propagates over a clock jump with inflated uncertainty rather than restarting: Eq. (13) is a
+first-order step (over 3600 s at 1 m/s it moves the robot 3.6 km in a straight line, which is what the EKF
+did before it had the rule: gated, the next fixes were then rejected as outliers), so nothing is integrated
+over the interval, but the state is not discarded either. Its covariance grows by the per-step ``Q`` for
+every nominal step of the interval: the random walk the filter already assumes between epochs, e.g.
++7200 m^2 of position variance for a 3600 s jump at T = 0.5 s. Because every state is measured (H = I5),
+the first update after the jump then puts each measured state at its measurement (the gain is
+1 - R / (P + R), about 0.999), which is the re-initialisation from the next measurement in effect, while a
+channel missing at that epoch keeps its last value with a grown, consistent variance (a hard reset would
+need a made-up one) and the gates stay meaningful. A jump that was only a wrong timestamp (the vehicle
+moved one step) costs the same: the measurements take over. The yaw rate is the filter's only gyro input,
+checked for a stuck output as in the attitude filters; heading and speed come from upstream estimators.
 
 :func:`dead_reckoning` holds the previous speed and yaw rate over NaN and
 saturated samples (counted in ``held``); it has no redundancy to detect an
-in-range outlier.
+in-range outlier, and it integrates every interval as given (no clock-jump or
+stuck check: it returns no fault report).
 """
 from __future__ import annotations
 
@@ -77,7 +98,8 @@ from .._deprecate import renamed_keywords
 from .._kernels import wrap_pi
 from .._typing import Array, ArrayLike, Times
 from .._validate import as_array, integer, range_limit, same_shape, scalar, time_axis
-from ..robust import FaultReport
+from ..robust import FaultReport, stuck_run_samples, stuck_samples
+from ..timing import jump_limit
 
 __all__ = ["CHANNELS", "motion_model", "jacobian", "propagate", "dead_reckoning", "filter_grid", "EkfResult",
            "covariance"]
@@ -434,7 +456,7 @@ def _screen(x, P, z, R, gate, gate_on, w_range, zu, rejected_row, streak, reacqu
 
 
 @njit(cache=True)
-def _ekf_kernel(t, Z, x0, P0, Q, R, gate, fast, w_range, reacquire):
+def _ekf_kernel(t, Z, x0, P0, Q, R, gate, fast, w_range, reacquire, jump, t_nominal):
     n = t.shape[0]
     X = np.empty((n, 5))
     Ps = np.empty((n, 5, 5))
@@ -457,11 +479,14 @@ def _ekf_kernel(t, Z, x0, P0, Q, R, gate, fast, w_range, reacquire):
     X[0], Ps[0] = x, P
     for k in range(1, n):
         T = t[k] - t[k - 1]
-        Phi = _phi(x, T)                                   # Eq. (16) at the previous estimate
-        _mul(Phi, P, Phi_P)
-        _mul_bt(Phi_P, Phi, P)
-        P += Q                                             # P = Phi P Phi^T + Gamma Q Gamma^T, Gamma = I
-        x = _f(x, T)                                       # Eq. (13)
+        if jump[k]:                                        # clock jump: state held, Q for every nominal step
+            P += Q * (T / t_nominal)
+        else:
+            Phi = _phi(x, T)                               # Eq. (16) at the previous estimate
+            _mul(Phi, P, Phi_P)
+            _mul_bt(Phi_P, Phi, P)
+            P += Q                                         # P = Phi P Phi^T + Gamma Q Gamma^T, Gamma = I
+            x = _f(x, T)                                   # Eq. (13)
         z = Z[k]
         n_rej, sat = 0, False
         if robust:                                         # gate and/or gyro range given
@@ -531,7 +556,9 @@ class EkfResult:
     faults : FaultReport
         The same counts in navlib's one fault vocabulary, sensors ``gnss``, ``heading``, ``speed``,
         ``yaw_rate`` (:data:`CHANNELS` order) and kinds ``nan``, ``outlier``, ``reacquired``,
-        ``saturated``; flags per epoch for the last three.
+        ``saturated``; flags per epoch for the last three. Only here: clock jumps
+        ``("clock", "jump")`` and stuck yaw-rate samples ``("yaw_rate", "stuck")`` (epochs after
+        the first), with flags per epoch.
     """
     t: np.ndarray
     x: np.ndarray
@@ -575,14 +602,16 @@ def _gate(gate):
 @renamed_keywords(yaw_rate_range="full_scale_gyro")
 def filter_grid(t: Times, z: ArrayLike, x0: ArrayLike, P0: ArrayLike | None = None, Q: ArrayLike | None = None,
                 R: ArrayLike | None = None, gate: float | ArrayLike = np.inf, fast: bool = True,
-                full_scale_gyro: float | None = None, reacquire: int = 3) -> EkfResult:
+                full_scale_gyro: float | None = None, reacquire: int = 3, max_dt: float | None = None,
+                stuck_run: int | str | None = "auto") -> EkfResult:
     """The EKF on measurements already in the grid frame.
 
     Faults: a NaN component is missing and left out of the update (an epoch
     with nothing is prediction only); with a finite ``gate`` each channel
     whose innovation fails its own NIS test is left out and the others are
     fused; yaw-rate samples at the gyro rails are treated as censored (see
-    ``full_scale_gyro``). All are
+    ``full_scale_gyro``); a clock jump is not integrated (``max_dt``) and a
+    stuck yaw rate is skipped (``stuck_run``). All are
     counted in the :class:`EkfResult`. Times must be strictly increasing
     (``ValueError`` otherwise: run :func:`navlib.timing.sanitize` first); the
     step ``T = t[k] - t[k-1]`` may vary from epoch to epoch (``Q`` stays per step).
@@ -626,6 +655,20 @@ def filter_grid(t: Times, z: ArrayLike, x0: ArrayLike, P0: ArrayLike | None = No
         streak restarts (``reacquired``, ``n_reacquired_channels``): isolated outliers stay
         out, a lasting change of the truth (a real step in speed or yaw rate,
         a filter that has lost the heading) cannot lock the channel out.
+    max_dt : float, optional
+        Longest step integrated (s); a longer one is a clock jump (a time-stamp
+        jump or a recording gap; ``faults["clock", "jump"]``): the state is not
+        propagated over it and ``P`` grows by ``Q`` for every median step it
+        spans (module docstring: why not a restart). Default None:
+        ``timing.JUMP_FACTOR`` = 10 median steps, the rule of the attitude
+        filters; inf: off.
+    stuck_run : int, "auto" or None
+        A yaw-rate sample repeating exactly over this many epochs or more is a
+        stuck gyro (``robust.stuck_samples``: checked only when the series is
+        noisy from the start; rail values are saturated): skipped like a NaN
+        sample, counted in ``faults["yaw_rate", "stuck"]``. Default "auto":
+        ``robust.STUCK_DURATION`` (0.1 s) of epochs, at least 5, as in the
+        attitude filters; None: off.
 
     Returns
     -------
@@ -644,8 +687,17 @@ def filter_grid(t: Times, z: ArrayLike, x0: ArrayLike, P0: ArrayLike | None = No
     with np.errstate(invalid="ignore"):
         saturated = np.abs(z[:, 4]) >= fs                   # NaN compares False
     reacquire = integer(reacquire, "reacquire")
-    X, P, nis, status, rejected, reacquired = _ekf_kernel(t, np.ascontiguousarray(z), x0, P0, Q, R, gate,
-                                                          bool(fast), fs, reacquire)
+    dts = np.diff(t)
+    t_nominal = float(np.median(dts))
+    jump = np.concatenate([[False], dts > jump_limit(dts, max_dt)])
+    stuck = stuck_samples(z[:, 4], stuck_run_samples(stuck_run, t_nominal), full_scale=full_scale_gyro,
+                          name="z", axis=-1)
+    z_used = z
+    if stuck.any():                                         # stuck yaw rate: skipped like a NaN sample
+        z_used = z.copy()
+        z_used[stuck, 4] = np.nan
+    X, P, nis, status, rejected, reacquired = _ekf_kernel(t, np.ascontiguousarray(z_used), x0, P0, Q, R, gate,
+                                                          bool(fast), fs, reacquire, jump, t_nominal)
     later = z[1:]
     missing = np.stack([~np.all(np.isfinite(later[:, :2]), axis=1), np.isnan(later[:, 2]),
                         np.isnan(later[:, 3]), np.isnan(later[:, 4])], -1)
@@ -654,14 +706,16 @@ def filter_grid(t: Times, z: ArrayLike, x0: ArrayLike, P0: ArrayLike | None = No
                      rejected=rejected, n_rejected_channels=rejected.sum(axis=0),
                      n_missing_channels=missing.sum(axis=0), reacquired=reacquired,
                      n_reacquired_channels=reacquired.sum(axis=0), saturated=saturated,
-                     n_saturated=int(saturated[1:].sum()), faults=_fault_report(missing, rejected, reacquired, saturated))
+                     n_saturated=int(saturated[1:].sum()),
+                     faults=_fault_report(missing, rejected, reacquired, saturated, stuck, jump))
 
 
-def _fault_report(missing, rejected, reacquired, saturated):
+def _fault_report(missing, rejected, reacquired, saturated, stuck, jump):
     counts, flags = {}, {}
     for i, sensor in enumerate(_FAULT_SENSORS):
         counts[sensor, "nan"] = int(missing[:, i].sum())
         for kind, mask in (("outlier", rejected[:, i]), ("reacquired", reacquired[:, i])):
             counts[sensor, kind], flags[sensor, kind] = int(mask.sum()), mask
-    counts["yaw_rate", "saturated"], flags["yaw_rate", "saturated"] = int(saturated[1:].sum()), saturated
+    for key, mask in ((("yaw_rate", "saturated"), saturated), (("yaw_rate", "stuck"), stuck), (("clock", "jump"), jump)):
+        counts[key], flags[key] = int(mask[1:].sum()), mask
     return FaultReport(counts, flags)

@@ -274,13 +274,14 @@ def _forward_fill(values):
 def ekf(t, gps, heading, speed, yaw_rate, x0, *, origin=None, zone=None, width: int = 3,
         ellipsoid: Ellipsoid = CGCS2000, P0=None, Q=Q_PAPER, R=R_PAPER, gate=np.inf,
         correct_convergence: bool = True, deg: bool = False, full_scale_gyro: float | None = None,
-        reacquire: int = 3):
+        reacquire: int = 3, max_dt: float | None = None, stuck_run: int | str | None = "auto"):
     """The paper's pipeline: GPS lat/lon -> Gauss–Krüger -> EKF with IMU heading, speed, yaw rate.
 
     Faults are handled as in :func:`navlib.filters.planar_ekf.filter_grid` (NaN: skip the component;
     ``gate``: leave out a channel whose innovation fails its NIS test, e.g. a
     50 m GPS jump or an IMU spike; ``full_scale_gyro``: leave out samples at the
-    gyro rails) and counted in the result. Timestamps must be strictly
+    gyro rails; ``max_dt``: integrate nothing over a clock jump; ``stuck_run``: skip
+    a stuck yaw rate) and counted in the result. Timestamps must be strictly
     increasing: for logs with repeated or out-of-order samples the documented
     pipeline is ``navlib.timing.sanitize(t, gps, heading, speed, yaw_rate)``
     then :func:`ekf`; unsanitised times raise ``ValueError``.
@@ -304,7 +305,7 @@ def ekf(t, gps, heading, speed, yaw_rate, x0, *, origin=None, zone=None, width: 
     width, ellipsoid
         As in :func:`navlib.geodesy.geodetic2gk`, but ``ellipsoid`` defaults to
         ``earth.CGCS2000``, the paper's datum.
-    P0, Q, R, gate, reacquire
+    P0, Q, R, gate, reacquire, max_dt, stuck_run
         As in :func:`navlib.filters.planar_ekf.filter_grid` (Q and R default to Eqs. 17–18).
     full_scale_gyro : float, optional  (formerly ``yaw_rate_range``, which warns)
         Gyro full-scale range (rad/s, or deg/s with ``deg=True``); see :func:`navlib.filters.planar_ekf.filter_grid`.
@@ -351,7 +352,8 @@ def ekf(t, gps, heading, speed, yaw_rate, x0, *, origin=None, zone=None, width: 
     if full_scale_gyro is not None:
         full_scale_gyro = range_limit(full_scale_gyro, "full_scale_gyro")
         full_scale_gyro = np.deg2rad(full_scale_gyro) if deg else full_scale_gyro
-    res = filter_grid(t, z, x0, P0, Q, R, gate, full_scale_gyro=full_scale_gyro, reacquire=reacquire)
+    res = filter_grid(t, z, x0, P0, Q, R, gate, full_scale_gyro=full_scale_gyro, reacquire=reacquire, max_dt=max_dt,
+                      stuck_run=stuck_run)
     res.zone, res.origin_gk = zone, origin_gk
     return res
 

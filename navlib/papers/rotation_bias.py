@@ -69,9 +69,11 @@ NaN dropouts       residuals: a dwell with > ``max_missing`` of ``Residuals.n_sk
                    Kalman skip / predict through NaN dwells
                    integration: linear interpolation, a gap     ``robust.fault_report(w, "gyro")``;
                    longer than ``max_gap`` raises               ValueError
-outliers (spikes)  residuals: ``outlier_k`` x MAD from the      ``n_outliers_gyro``/``_accel``;
-                   dwell median replaced (opt-in); Kalman       ``KalmanBias.n_rejected``
-                   gate rejects corrupted dwells
+outliers (spikes)  residuals: ``outlier_k`` robust sigmas (1.4826  ``n_outliers_gyro``/``_accel``;
+                   MAD, at least 1.4826 q/2 for a quantised     ``KalmanBias.n_rejected``
+                   sensor of step q) from the dwell median
+                   replaced (opt-in); Kalman gate rejects
+                   corrupted dwells
 saturation         residuals: dwell with samples at the rails   ``n_saturated``, ``n_skipped_saturated``
                    skipped; integration: unreliable after it    ``fault_report(..., full_scale=)``
 timing             per-sample ``dt`` arrays in                  ``TimingReport`` from
@@ -355,8 +357,9 @@ class Residuals:
 
 
 @njit(cache=True)
-def _median_mad(buf, ok, n, a, want_mad):
-    """Median (and MAD) of column ``a`` of ``buf[:n]`` over rows where ``ok``; NaN when none."""
+def _median_sigma(buf, ok, n, a, want_sigma):
+    """Median (and robust sigma: :func:`navlib._kernels.robust_sigma`, 1.4826 MAD floored at half the
+    quantisation step) of column ``a`` of ``buf[:n]`` over rows where ``ok``; NaN when none."""
     m = 0
     vals = np.empty(n)
     for j in range(n):
@@ -366,11 +369,12 @@ def _median_mad(buf, ok, n, a, want_mad):
     if m == 0:
         return np.nan, np.nan
     med = np.median(vals[:m])
-    if not want_mad:
+    if not want_sigma:
         return med, 0.0
+    q = _kernels.quant_step(vals[:m])
     for j in range(m):
         vals[j] = abs(vals[j] - med)
-    return med, np.median(vals[:m])
+    return med, _kernels.robust_sigma(np.median(vals[:m]), q)
 
 
 @njit(cache=True)
@@ -410,9 +414,9 @@ def _clean_dwell(wb, fb, n, max_missing, outlier_k, fs_gyro, fs_accel, counts):
         bad = np.zeros(n, dtype=np.bool_)
         med = np.empty(3)
         for a in range(3):
-            med[a], mad = _median_mad(buf, ok, n, a, detect)
+            med[a], sigma = _median_sigma(buf, ok, n, a, detect)
             if detect:
-                thresh = outlier_k * max(1.4826 * mad, 1e-12)
+                thresh = outlier_k * sigma
                 for j in range(n):
                     if ok[j] and abs(buf[j, a] - med[a]) > thresh:
                         bad[j] = True
@@ -522,7 +526,12 @@ def tilt_residuals(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = Non
       covers.
     * outliers: with ``outlier_k``, samples more than ``outlier_k`` x
       1.4826 MAD from the dwell median in any component are replaced by the
-      median (``n_outliers_gyro``/``_accel``). Without it a gyro spike of
+      median (``n_outliers_gyro``/``_accel``). The MAD is floored at half the
+      quantisation step q (the smallest non-zero difference between two of the
+      dwell's readings; :func:`navlib._kernels.robust_sigma`, as in
+      :func:`navlib.alignment.static_means`): a quantised gyro at rest has a
+      MAD of 0, and without the floor every sample off the median code was an
+      outlier. Without ``outlier_k`` a gyro spike of
       size s on one sample shifts the integrated tilt by s dt and the residual
       by up to 1.5 s dt (the slope-fit weight), unreported unless a later
       gate (:func:`kalman_bias`) rejects the dwell.

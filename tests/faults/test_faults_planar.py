@@ -261,6 +261,117 @@ def test_ekf_irregular_sampling_uses_the_per_step_interval(clean):
 
 
 # --------------------------------------------------------------------------
+# Sensor health: clock jumps and a stuck yaw-rate gyro
+# --------------------------------------------------------------------------
+
+K_FAULT = 200                                           # epoch of the fault (100 s)
+AFTER = slice(K_FAULT + 60, K_FAULT + 120)              # the 30 s that start 30 s after it
+
+
+def errors(res, truth):
+    """Position (m) and heading (rad) error per epoch."""
+    return analysis.position_error(res.x, truth), np.abs(np.angle(np.exp(1j * (res.x[:, 2] - truth[:, 2]))))
+
+
+def other_faults(res, key):
+    return {k: c for k, c in res.faults.counts.items() if k != key and c}
+
+
+@pytest.mark.parametrize("gate", [np.inf, GATE], ids=["ungated", "gated"])
+def test_ekf_clock_jump_is_not_integrated_counted_and_recovered_from(clean, gate):
+    """One interval of 3600 s at 100 s (the time stamps jump; the data go on, and on this 72 s circle the
+    robot is where it would be after a real hour-long gap too).
+
+    Counted once (``faults["clock", "jump"]``) and flagged at its epoch; nothing else is counted. The
+    state is held over the jump and P grows by Q for each of its 7200 nominal steps, so the epoch's
+    measurements take over: from the jump on the position error stays below 10 m (measured max 3.6 m,
+    6.2 m with other seeds; 4 sigma of the GPS). Recovery, the issue's criterion: the RMS position and heading errors over the
+    30 s that start 30 s after the jump are within 2x the fault-free run's (measured 1.00x). The old
+    EKF integrated the unicycle model over the 3600 s: nothing counted, 14 m off at the jump ungated,
+    and gated 3.6 km off for 3 epochs with the GPS fixes counted as 3 outliers and a re-acquisition.
+    """
+    t, truth, s, _ = clean
+    ref = ekf(t, s.gps, s.heading, s.speed, s.yaw_rate, gate=gate)
+    t_jump = t.copy()
+    t_jump[K_FAULT:] += 3600.0 - T
+    res = ekf(t_jump, s.gps, s.heading, s.speed, s.yaw_rate, gate=gate)
+    assert_healthy(res)
+    assert res.faults["clock", "jump"] == 1 and np.flatnonzero(res.faults.flags["clock", "jump"]).tolist() == [K_FAULT]
+    assert not other_faults(res, ("clock", "jump")) and not ref.faults
+    np.testing.assert_array_equal(res.x[:K_FAULT], ref.x[:K_FAULT])
+    e_pos, e_hdg = errors(res, truth)
+    r_pos, r_hdg = errors(ref, truth)
+    assert e_pos[K_FAULT:].max() < 10.0
+    for e, r in ((e_pos, r_pos), (e_hdg, r_hdg)):
+        assert np.sqrt(np.mean(e[AFTER] ** 2)) < 2.0 * np.sqrt(np.mean(r[AFTER] ** 2))
+
+
+def test_ekf_max_dt_default_is_ten_median_steps():
+    t = np.arange(40) * T
+    z = np.tile([0.0, 0.0, 0.3, 1.0, 0.0], (40, 1))
+    run = dict(x0=z[0], P0=P0, Q=planar.Q_PAPER, R=planar.R_PAPER)
+    for gap, expected in ((10 * T, 0), (10 * T + 1e-6, 1)):
+        t_gap = np.r_[t[:20], t[20:] + gap - T]
+        assert planar_ekf.filter_grid(t_gap, z, **run).faults["clock", "jump"] == expected
+    assert planar_ekf.filter_grid(t_gap, z, **run, max_dt=np.inf).faults["clock", "jump"] == 0
+    assert planar_ekf.filter_grid(t_gap, z, **run, max_dt=6.0).faults["clock", "jump"] == 0
+    with pytest.raises(ValueError, match="^max_dt: "):
+        planar_ekf.filter_grid(t, z, **run, max_dt=0.0)
+
+
+@pytest.mark.parametrize("kind", ["latched", "frozen"])
+def test_ekf_stuck_yaw_rate_is_skipped_and_counted(clean, kind):
+    """The yaw-rate gyro stops updating for 10 s at 100 s: latched at 0.3 rad/s (truth 0.087), or frozen
+    at its last sample (a noise draw). Found by ``robust.stuck_samples`` (runs of 5 epochs and more: the
+    "auto" 0.1 s is below one 0.5 s step), counted in ``faults["yaw_rate", "stuck"]`` (20 and 21 epochs),
+    flagged, skipped like NaN samples; nothing else is counted.
+
+    Bounds: over the run and the 30 s after it the yaw-rate estimate's error stays within 2x the fault-free
+    run's largest (measured 1.00x, both); 30 s after, position and heading RMS within 2x (measured 1.00x).
+    With the check off (``stuck_run=None``) the latched rate is fused (the 1-dof gate passes it: a
+    0.21 rad/s innovation against S = 0.004 rad^2/s^2 is NIS 11 < 15.1) and the estimate is off by
+    0.21 rad/s (2.5x), uncounted; a frozen noise draw is harmless either way, but counted only with the check.
+    """
+    t, truth, s, _ = clean
+    ref = ekf(t, s.gps, s.heading, s.speed, s.yaw_rate, gate=GATE)
+    yaw_rate = s.yaw_rate.copy()
+    stuck = np.zeros(len(t), bool)
+    if kind == "latched":
+        yaw_rate[K_FAULT:K_FAULT + 20] = 0.3
+        stuck[K_FAULT:K_FAULT + 20] = True
+    else:
+        yaw_rate[K_FAULT:K_FAULT + 20] = yaw_rate[K_FAULT - 1]
+        stuck[K_FAULT - 1:K_FAULT + 20] = True
+    res = ekf(t, s.gps, s.heading, s.speed, yaw_rate, gate=GATE)
+    assert_healthy(res)
+    assert res.faults["yaw_rate", "stuck"] == stuck.sum() and np.array_equal(res.faults.flags["yaw_rate", "stuck"], stuck)
+    assert not other_faults(res, ("yaw_rate", "stuck"))
+    during = slice(K_FAULT, K_FAULT + 80)
+
+    def w_err(r):
+        return np.abs(r.x[during, 4] - truth[during, 4]).max()
+
+    assert w_err(res) < 2.0 * w_err(ref)
+    for e, r in zip(errors(res, truth), errors(ref, truth), strict=True):
+        assert np.sqrt(np.mean(e[AFTER] ** 2)) < 2.0 * np.sqrt(np.mean(r[AFTER] ** 2))
+    off = ekf(t, s.gps, s.heading, s.speed, yaw_rate, gate=GATE, stuck_run=None)
+    assert not off.faults
+    if kind == "latched":
+        assert w_err(off) > 2.0 * w_err(ref)
+
+
+def test_ekf_fault_free_results_are_unchanged(clean):
+    """No jump, no stuck sample: bit-identical to the run with both checks off (notebook 03 relies on it)."""
+    t, truth, s, ref = clean
+    for gate in (np.inf, GATE):
+        on = ekf(t, s.gps, s.heading, s.speed, s.yaw_rate, gate=gate)
+        off = ekf(t, s.gps, s.heading, s.speed, s.yaw_rate, gate=gate, max_dt=np.inf, stuck_run=None)
+        assert not on.faults and not on.faults.flags["clock", "jump"].any()
+        np.testing.assert_array_equal(on.x, off.x)
+        np.testing.assert_array_equal(on.P, off.P)
+
+
+# --------------------------------------------------------------------------
 # Saturation
 # --------------------------------------------------------------------------
 
