@@ -356,7 +356,17 @@ def intervals(dt: Interval, n: int, name: str = "dt") -> np.ndarray:
     if arr.min() < MIN_INTERVAL:
         raise ValueError(f"{name}: expected intervals of at least {MIN_INTERVAL:g} s (no IMU samples faster than "
                          f"1 GHz; is dt in seconds?), got {arr.min():g}")
-    return np.ascontiguousarray(arr)
+    return kernel_array(arr)
+
+
+def kernel_array(x: ArrayLike, dtype: Any = None) -> np.ndarray:
+    """``x`` as a C-contiguous, writable array: the form every compiled kernel takes.
+
+    numba types a read-only array (a broadcast view, a pandas column) differently from a writable one and
+    compiles the kernel again for it (up to tens of seconds for a filter); a read-only ``x`` is copied.
+    """
+    arr = np.ascontiguousarray(x, dtype=dtype)
+    return arr if arr.flags.writeable else arr.copy()
 
 
 def imu_samples(w_ib_b: Vec3Series, f_b: Vec3Series, *, allow_nan: bool = True,

@@ -27,7 +27,7 @@ import numpy as np
 
 from . import _kernels, attitude, earth
 from ._typing import Angles, Array, ArrayLike, Dcm, Vec3, Vec3Series
-from ._validate import as_array, in_range, nonempty_array, nonempty_latitude, nonempty_positive, pitch_roll, scalar
+from ._validate import as_array, in_range, kernel_array, nonempty_array, nonempty_latitude, nonempty_positive, pitch_roll, scalar
 from .imu import ImuSamples, unpack
 from .robust import FaultReport, longest_repeat
 
@@ -76,9 +76,9 @@ def magnetic_heading(m_b: Vec3, pitch: Angles, roll: Angles, declination: float 
     D = scalar(declination, "declination")
     shape = np.broadcast_shapes(m.shape[:-1], p.shape, r.shape)
     m = np.broadcast_to(m, shape + (3,)).reshape(-1, 3)
-    p, r = (np.ascontiguousarray(np.broadcast_to(x, shape).reshape(-1)) for x in (p, r))
-    a = _kernels.tilt_heading(np.ascontiguousarray(m[:, 0]), np.ascontiguousarray(m[:, 1]),
-                              np.ascontiguousarray(m[:, 2]), p, r)
+    p, r = (kernel_array(np.broadcast_to(x, shape).reshape(-1)) for x in (p, r))
+    a = _kernels.tilt_heading(kernel_array(m[:, 0]), kernel_array(m[:, 1]),
+                              kernel_array(m[:, 2]), p, r)
     return (attitude.wrap_2pi(a + D) if D else a).reshape(shape)
 
 
@@ -219,7 +219,7 @@ def _outliers(x, valid, k):
         med = np.nanmedian(xv, axis=-2, keepdims=True)
         mad = np.nanmedian(np.abs(xv - med), axis=-2, keepdims=True)
     columns = np.moveaxis(xv, -2, -1)                           # (..., k, n): one reading series per row
-    q = _kernels.quant_steps(np.ascontiguousarray(columns.reshape(int(np.prod(columns.shape[:-1])), columns.shape[-1])))
+    q = _kernels.quant_steps(kernel_array(columns.reshape(int(np.prod(columns.shape[:-1])), columns.shape[-1])))
     q = q.reshape(columns.shape[:-1])[..., None, :]
     thresh = k * _kernels.robust_sigma(mad, q)
     return valid & np.any(np.abs(x - med) > thresh, axis=-1)

@@ -27,6 +27,7 @@ from ._validate import (
     as_array,
     booleans,
     integer,
+    kernel_array,
     last_axis,
     latitude,
     nonempty_array,
@@ -273,7 +274,7 @@ def error_statistics(hpr: Angles, hpr_true: Angles) -> tuple[Array, Array]:
     lead, n = a.shape[:-2], a.shape[-2]
     if b.shape != (n, 3) and b.shape != a.shape:
         raise ValueError(f"hpr_true: expected shape ({n}, 3) or {a.shape}, got {b.shape}")
-    mx, mean = _error_stats_kernel(np.ascontiguousarray(a.reshape(-1, n, 3)), np.ascontiguousarray(b.reshape(-1, n, 3)))
+    mx, mean = _error_stats_kernel(kernel_array(a.reshape(-1, n, 3)), kernel_array(b.reshape(-1, n, 3)))
     return mx.reshape(lead + (3,)), mean.reshape(lead + (3,))
 
 

@@ -18,7 +18,7 @@ import numpy as np
 
 from ._kernels import normal_gravity, radii_mn
 from ._typing import Array, ArrayLike, Dcm, Vec3
-from ._validate import as_array, in_range, latitude, positive, scalar
+from ._validate import as_array, in_range, kernel_array, latitude, positive, scalar
 
 __all__ = ["Ellipsoid", "WGS84", "CGCS2000", "GRS80", "KRASSOVSKY",
            "OMEGA_IE", "earth_rate_n", "earth_rate_b", "gravity", "gravity_n", "radii",
@@ -163,7 +163,7 @@ def gravity(lat: ArrayLike, h: ArrayLike = 0.0, deg: bool = False, ellipsoid: El
     lat = latitude(lat, "lat", deg=deg)
     h = in_range(as_array(h, "h"), "h", -12e3, 100e3, "m")
     shape = np.broadcast_shapes(lat.shape, h.shape)
-    lat, h = (np.ascontiguousarray(np.broadcast_to(x, shape)).reshape(-1) for x in (lat, h))
+    lat, h = (kernel_array(np.broadcast_to(x, shape)).reshape(-1) for x in (lat, h))
     return normal_gravity(lat, h, *ellipsoid.gravity_constants).reshape(shape)
 
 
@@ -183,7 +183,7 @@ def radii(lat: ArrayLike, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> tu
         ``R_N = a / sqrt(1 - e^2 sin^2 lat)``, ``R_M = R_N (1 - e^2) / (1 - e^2 sin^2 lat)``.
     """
     lat = latitude(lat, "lat", deg=deg)
-    R_M, R_N = radii_mn(np.ascontiguousarray(lat).reshape(-1), ellipsoid.a, ellipsoid.e2)
+    R_M, R_N = radii_mn(kernel_array(lat).reshape(-1), ellipsoid.a, ellipsoid.e2)
     return R_M.reshape(lat.shape), R_N.reshape(lat.shape)
 
 

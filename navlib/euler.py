@@ -18,7 +18,7 @@ from numba import njit
 from . import attitude
 from ._deprecate import renamed_keywords
 from ._typing import Angles, Array, ArrayLike, Interval, Vec3, Vec3Series
-from ._validate import flag, intervals, range_limit
+from ._validate import flag, intervals, kernel_array, range_limit
 from ._validate import nonempty_array as as_array
 from ._validate import nonempty_positive as positive
 from .imu import ImuSamples, unpack
@@ -254,7 +254,7 @@ def integrate_euler(hpr0: Angles, w_ib_b: Vec3Series | ImuSamples, dt: Interval 
     w_in = np.zeros(3) if w_in_n is None else as_array(w_in_n, "w_in_n", tail=(3,)).reshape(3)
     bias, idx = _bias_schedule(bias_b, bias_from, lead)
     out, singular, gap_long, held, sat, first = _euler_kernel(
-        np.ascontiguousarray(hpr0), np.ascontiguousarray(w.reshape((-1, n, 3))), dts, w_in, bias, idx,
+        kernel_array(hpr0), kernel_array(w.reshape((-1, n, 3))), dts, w_in, bias, idx,
         PITCH_LIMIT, max_gap, fs)
     if gap_long:
         raise ValueError(f"w_ib_b: a run of NaN samples (dropouts) is longer than max_gap = {max_gap:g} s; the "
@@ -287,4 +287,4 @@ def _bias_schedule(bias_b, bias_from, lead):
         b = np.broadcast_to(b, lead + b.shape[-2:])
     except ValueError:
         raise ValueError(f"bias_b: expected leading axes broadcasting to {lead}, got {b.shape}") from None
-    return np.ascontiguousarray(b.reshape((n_lead,) + b.shape[-2:])), idx.astype(np.int64)
+    return kernel_array(b.reshape((n_lead,) + b.shape[-2:])), idx.astype(np.int64)

@@ -25,7 +25,7 @@ from scipy.linalg import expm
 
 from . import _kernels
 from ._typing import Array, ArrayLike
-from ._validate import as_array, booleans, nonempty_array, positive, same_shape, scalar
+from ._validate import as_array, booleans, kernel_array, nonempty_array, positive, same_shape, scalar
 
 __all__ = ["predict", "update", "discretize", "ACCEPTED", "NO_DATA", "REJECTED"]
 
@@ -35,12 +35,12 @@ ACCEPTED, NO_DATA, REJECTED = 1, 0, -1
 
 def _matrix(a: ArrayLike, name: str, shape: tuple[int | None, ...], **kwargs: bool) -> np.ndarray:
     """``a`` as a C-contiguous float64 array of exactly ``shape``, finite unless ``kwargs`` say otherwise."""
-    return np.ascontiguousarray(as_array(a, name, shape=shape, **kwargs))
+    return kernel_array(as_array(a, name, shape=shape, **kwargs))
 
 
 def _state(x: ArrayLike, P: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """A non-empty state vector ``x`` (n,) and its covariance ``P`` (n, n)."""
-    x = np.ascontiguousarray(nonempty_array(x, "x", shape=(None,)))
+    x = kernel_array(nonempty_array(x, "x", shape=(None,)))
     return x, _matrix(P, "P", (x.shape[0], x.shape[0]))
 
 
@@ -126,7 +126,7 @@ def update(x: ArrayLike, P: ArrayLike, z: ArrayLike, h: ArrayLike, H: ArrayLike,
     h = _matrix(h, "h", (m,))
     H = _matrix(H, "H", (m, n))
     R = _matrix(R, "R", (m, m))
-    angle_mask = np.ascontiguousarray(booleans(angle_mask, "angle_mask", shape=(m,)))
+    angle_mask = kernel_array(booleans(angle_mask, "angle_mask", shape=(m,)))
     gate = scalar(gate, "gate", positive=True, allow_inf=True)
     return _kernels.kalman_update(x, P, z, h, H, R, angle_mask, gate)
 
@@ -160,6 +160,6 @@ def discretize(F: ArrayLike, G: ArrayLike, Qc: ArrayLike, dt: float) -> tuple[Ar
     M[:n, n:] = G @ Qc @ G.T
     M[n:, n:] = F.T
     E = expm(M * dt)
-    Phi = np.ascontiguousarray(E[n:, n:].T)
+    Phi = kernel_array(E[n:, n:].T)
     Qd = Phi @ E[:n, n:]
     return Phi, (Qd + Qd.T) / 2

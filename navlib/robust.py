@@ -48,7 +48,7 @@ from numba import njit
 from numpy.typing import NDArray
 
 from ._typing import Array, ArrayLike, Vec3Series
-from ._validate import as_array, booleans, choice, flag, instance, integer, range_limit
+from ._validate import as_array, booleans, choice, flag, instance, integer, kernel_array, range_limit
 
 __all__ = ["FaultReport", "fault_report", "hold", "despike", "stuck_mask", "stuck_samples", "stuck_run_samples",
            "longest_repeat", "LEADING", "STUCK_DURATION"]
@@ -236,7 +236,7 @@ def despike(w_ib_b: Vec3Series, f_b: Vec3Series, spike_gyro: float,
         raise ValueError(f"spike_gyro: expected a positive threshold (inf: off), got {spike_gyro!r}")
     if not ta > 0:
         raise ValueError(f"spike_accel: expected a positive threshold (inf: off), got {spike_accel!r}")
-    hit = _spike_mask(np.ascontiguousarray(w), np.ascontiguousarray(f), tg, ta)
+    hit = _spike_mask(kernel_array(w), kernel_array(f), tg, ta)
     w, f = w.copy(), f.copy()
     w[hit], f[hit] = np.nan, np.nan
     return w, f, hit

@@ -55,7 +55,19 @@ from numba import njit
 
 from . import _kernels, attitude, earth, robust
 from ._typing import Array, ArrayLike, Dcm, Interval, Quat, Vec3, Vec3Series
-from ._validate import as_array, as_quat, broadcast, choice, flag, instance, intervals, latitude, scalar, small_turns
+from ._validate import (
+    as_array,
+    as_quat,
+    broadcast,
+    choice,
+    flag,
+    instance,
+    intervals,
+    kernel_array,
+    latitude,
+    scalar,
+    small_turns,
+)
 from .attitude import quat_mult_t, rotvec_to_quat_t
 from .imu import ImuSamples, unpack
 from .trajectory import Trajectory
@@ -159,7 +171,7 @@ def integrate_attitude(q0: Quat, w_ib_b: Vec3Series, dt: Interval, w_in_n: Vec3 
     lead = w.shape[:-2]
     q0 = np.broadcast_to(q0, lead + (4,)).reshape(-1, 4)
     w_in = np.zeros(3) if w_in_n is None else as_array(w_in_n, "w_in_n", shape=(3,))
-    q = _attitude_kernel(np.ascontiguousarray(q0), np.ascontiguousarray(w.reshape(-1, *w.shape[-2:])), dt, w_in)
+    q = _attitude_kernel(kernel_array(q0), kernel_array(w.reshape(-1, *w.shape[-2:])), dt, w_in)
     q = q.reshape(lead + q.shape[-2:])
     return (q, held) if old and policy == "hold" else q
 
@@ -216,10 +228,10 @@ def nav_step(lla: Vec3, vel: Vec3, q: Quat, w: Vec3, f: Vec3, dt: float, earth_c
     q = _state_array(q, "q", 4)
     if not q @ q > 0:
         raise ValueError("q: expected a non-zero quaternion")
-    w = np.ascontiguousarray(as_array(w, "w", shape=(3,)))
-    f = np.ascontiguousarray(as_array(f, "f", shape=(3,)))
+    w = kernel_array(as_array(w, "w", shape=(3,)))
+    f = kernel_array(as_array(f, "f", shape=(3,)))
     dt = scalar(dt, "dt", positive=True)
-    c = np.ascontiguousarray(as_array(earth_consts, "earth_consts", shape=(7,)))
+    c = kernel_array(as_array(earth_consts, "earth_consts", shape=(7,)))
     if not (c[0] > 0 and 0 <= c[2] < 1):
         raise ValueError("earth_consts: expected [a > 0, f, 0 <= e2 < 1, m, gamma_e, k, omega] "
                          f"(strapdown.earth_constants), got a = {c[0]:g}, e2 = {c[2]:g}")
@@ -319,7 +331,7 @@ def integrate(lla0: Vec3, vel0: Vec3, q0: Quat, w_ib_b: Vec3Series | ImuSamples,
     vel0 = as_array(vel0, "vel0", tail=(3,))
     q0 = as_quat(q0, "q0")
     def flat(x, k):
-        return np.ascontiguousarray(np.broadcast_to(x, lead + x.shape[-k:]).reshape((-1,) + x.shape[-k:]))
+        return kernel_array(np.broadcast_to(x, lead + x.shape[-k:]).reshape((-1,) + x.shape[-k:]))
 
     lla, vel, q = _nav_kernel(flat(lla0, 1), flat(vel0, 1), flat(q0, 1), flat(w, 2), flat(f, 2), dt,
                               earth_constants(ellipsoid), bool(hold_height))

@@ -19,7 +19,7 @@ from numba import njit
 from . import attitude, earth
 from ._kernels import radii_mn
 from ._typing import Vec3
-from ._validate import as_array, in_range, instance, latitude, positive, time_axis, time_grid
+from ._validate import as_array, in_range, instance, kernel_array, latitude, positive, time_axis, time_grid
 from .robust import FaultReport
 
 __all__ = ["Trajectory", "Segment", "static", "from_profiles", "reciprocating_rotation",
@@ -126,7 +126,7 @@ def from_profiles(time, lla0, hpr, vel_n, ellipsoid: earth.Ellipsoid = earth.WGS
     vel = as_array(vel_n, "vel_n", tail=(3,))
     if hpr.shape != (t.size, 3) or vel.shape != (t.size, 3):
         raise ValueError(f"hpr, vel_n: expected shape ({t.size}, 3), got {hpr.shape} and {vel.shape}")
-    lla = _positions(_lla(lla0), np.ascontiguousarray(vel), t[1] - t[0], ellipsoid.a, ellipsoid.e2)
+    lla = _positions(_lla(lla0), kernel_array(vel), t[1] - t[0], ellipsoid.a, ellipsoid.e2)
     return Trajectory(t, lla, vel, attitude.euler_to_quat(hpr))
 
 

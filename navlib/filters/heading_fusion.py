@@ -36,7 +36,7 @@ from numba import njit
 
 from .._kernels import wrap_pi
 from .._typing import Angles, Array, ArrayLike, Interval, Times
-from .._validate import booleans, in_range, integer, intervals, last_axis, nonempty_array, same_shape, scalar
+from .._validate import booleans, in_range, integer, intervals, kernel_array, last_axis, nonempty_array, same_shape, scalar
 from ..robust import FaultReport
 from ..timing import jump_limit
 from .observations import heading_input, rtk_gate, rtk_params
@@ -195,7 +195,7 @@ def fuse_rtk_heading(heading_mag: Angles, heading_rtk: Angles, rtk_valid: ArrayL
     jump = dts > jump_limit(dts, max_dt)
     rtk_par = rtk_params(rtk_hold, rtk_gate, rtk_confirm)
     out, delta, counts = np.empty((T, N)), np.empty((T, N)), np.zeros((T, len(FUSE_COUNT_NAMES)), dtype=np.int64)
-    _fuse_kernel(np.ascontiguousarray(hm.reshape(T, N)), hr, ok, dts, jump, alpha, rtk_par, out, delta, counts)
+    _fuse_kernel(kernel_array(hm.reshape(T, N)), hr, ok, dts, jump, alpha, rtk_par, out, delta, counts)
     counts[:, FUSE_COUNT_NAMES.index("clock_jump")] = jump.sum()
     lead = hm.shape[:-1]
     named = {name: counts[:, i].reshape(lead) for i, name in enumerate(FUSE_COUNT_NAMES)}

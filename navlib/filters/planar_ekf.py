@@ -97,7 +97,7 @@ from .. import _kernels, kalman
 from .._deprecate import renamed_keywords
 from .._kernels import wrap_pi
 from .._typing import Array, ArrayLike, Times
-from .._validate import as_array, integer, range_limit, same_shape, scalar, time_axis
+from .._validate import as_array, integer, kernel_array, range_limit, same_shape, scalar, time_axis
 from ..robust import FaultReport, stuck_run_samples, stuck_samples
 from ..timing import jump_limit
 
@@ -588,7 +588,7 @@ def covariance(M: ArrayLike, name: str) -> Array:
         M = np.diag(M)
     if M.shape != (5, 5) or not np.allclose(M, M.T) or np.any(np.linalg.eigvalsh(M) < 0):
         raise ValueError(f"{name}: expected a symmetric positive semi-definite (5, 5) matrix or a diagonal (5,)")
-    return np.ascontiguousarray(M)
+    return kernel_array(M)
 
 
 def _gate(gate):
@@ -596,7 +596,7 @@ def _gate(gate):
     if g.shape not in ((), (4,)) or np.any(np.isnan(g)) or not np.all(g > 0):
         raise ValueError(f"gate: expected a positive NIS threshold (inf for none) or 4 of them "
                          f"(gps, heading, speed, yaw_rate), got {gate!r}")
-    return np.ascontiguousarray(np.broadcast_to(g, (4,)), dtype=float)
+    return kernel_array(np.broadcast_to(g, (4,)), dtype=float)
 
 
 @renamed_keywords(yaw_rate_range="full_scale_gyro")
@@ -696,7 +696,7 @@ def filter_grid(t: Times, z: ArrayLike, x0: ArrayLike, P0: ArrayLike | None = No
     if stuck.any():                                         # stuck yaw rate: skipped like a NaN sample
         z_used = z.copy()
         z_used[stuck, 4] = np.nan
-    X, P, nis, status, rejected, reacquired = _ekf_kernel(t, np.ascontiguousarray(z_used), x0, P0, Q, R, gate,
+    X, P, nis, status, rejected, reacquired = _ekf_kernel(t, kernel_array(z_used), x0, P0, Q, R, gate,
                                                           bool(fast), fs, reacquire, jump, t_nominal)
     later = z[1:]
     missing = np.stack([~np.all(np.isfinite(later[:, :2]), axis=1), np.isnan(later[:, 2]),

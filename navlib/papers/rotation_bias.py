@@ -95,7 +95,7 @@ from numba import njit
 from .. import _kernels, attitude, kalman, robust
 from .._kernels import wrap_pi
 from .._typing import Angles, Array, ArrayLike, Interval, Vec3, Vec3Series
-from .._validate import euler_angles, in_range, intervals, range_limit
+from .._validate import euler_angles, in_range, intervals, kernel_array, range_limit
 from .._validate import nonempty_array as as_array
 from .._validate import nonempty_positive as positive
 from ..alignment import level
@@ -599,10 +599,10 @@ def tilt_residuals(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = Non
     except ValueError:
         raise ValueError(f"w_ie_b: expected shape (K={K}, 3) or (..., K, 3), got {w_ie.shape}") from None
     def flat(x):
-        return np.ascontiguousarray(x.reshape((-1, n, 3)))
+        return kernel_array(x.reshape((-1, n, 3)))
 
     r, V, tilt, c, singular = _residual_kernel(flat(w), flat(f), dts, regular, starts.astype(np.int64), int(length),
-                                               np.ascontiguousarray(w_ie), PITCH_LIMIT, max_missing, k_out,
+                                               kernel_array(w_ie), PITCH_LIMIT, max_missing, k_out,
                                                fs_g, fs_a)
     if singular:
         raise ValueError(f"f_b: a dwell's pitch is beyond +-{np.rad2deg(PITCH_LIMIT):g} deg, where Eq. (2) is "
@@ -761,8 +761,8 @@ def running_lsq_bias(r: ArrayLike, V: ArrayLike, forgetting: float = 1.0) -> tup
     if not 0 < lam <= 1:
         raise ValueError(f"forgetting: expected a value in (0, 1], got {lam}")
     lead, K = r.shape[:-2], r.shape[-2]
-    out, skipped = _running_kernel(np.ascontiguousarray(r.reshape(-1, K, 2)),
-                                   np.ascontiguousarray(V.reshape(-1, K, 2, 3)), lam, _MAX_COND)
+    out, skipped = _running_kernel(kernel_array(r.reshape(-1, K, 2)),
+                                   kernel_array(V.reshape(-1, K, 2, 3)), lam, _MAX_COND)
     return out.reshape(lead + (K, 3)), int(skipped)
 
 
@@ -880,8 +880,8 @@ def kalman_bias(r: ArrayLike, V: ArrayLike, R: ArrayLike, interval: Interval, ra
     s0 = float(positive(bias_sigma, "bias_sigma"))
     gate = float(positive(gate, "gate"))
     b, sig, no_data, rejected, P = _kalman_kernel(
-        np.ascontiguousarray(r.reshape(-1, K, 2)), np.ascontiguousarray(V.reshape(-1, K, 2, 3)),
-        np.ascontiguousarray(R.reshape(-1, K, 2, 2)), q * q, np.ascontiguousarray(intervals), s0 * s0 * np.eye(3),
+        kernel_array(r.reshape(-1, K, 2)), kernel_array(V.reshape(-1, K, 2, 3)),
+        kernel_array(R.reshape(-1, K, 2, 2)), q * q, kernel_array(intervals), s0 * s0 * np.eye(3),
         gate)
     return KalmanBias(b.reshape(lead + (K, 3)), sig.reshape(lead + (K, 3)), int(no_data), int(rejected),
                       P.reshape(lead + (K, 3, 3)))

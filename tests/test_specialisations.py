@@ -1,0 +1,48 @@
+"""Read-only inputs do not make numba compile a kernel twice (issue 16: redundant specialisations).
+
+numba types a read-only array (``np.broadcast_to`` views, pandas 3 columns) differently from a writable
+one; every such input reaching a kernel used to cost a second compilation of the whole kernel (measured
+in notebooks 02, 04 and 05: 2-5 signatures of kernels that take 5-40 s each to compile). The wrappers
+pass kernels ``_validate.kernel_array`` copies; these tests call public functions with read-only
+inputs and check that no kernel signature holds a read-only array.
+"""
+import numpy as np
+import pytest
+from numba.core import types
+
+from navlib import _kernels, alignment, earth, euler, strapdown, trajectory, units
+from navlib.papers import rotation_bias
+
+
+def readonly(a):
+    a = np.array(a, dtype=float)
+    a.flags.writeable = False
+    return a
+
+
+def _calls():
+    traj = trajectory.static(2.0, 0.1, [0.5, 0.0, 0.0], [0.1, 0.0, 0.0])
+    w, f = trajectory.ideal_imu(traj)
+    return [
+        ("earth.gravity", lambda: earth.gravity(readonly(0.5), readonly(10.0)), _kernels.normal_gravity),
+        ("alignment.magnetic_heading",
+         lambda: alignment.magnetic_heading(readonly([20.0, 1.0, 40.0]), readonly(0.1), readonly(0.0)),
+         _kernels.tilt_heading),
+        ("euler.integrate_euler",
+         lambda: euler.integrate_euler(np.broadcast_to(units.deg([10.0, 5.0, 0.0]), (3,)), readonly(w), 0.1),
+         euler._euler_kernel),
+        ("strapdown.integrate",
+         lambda: strapdown.integrate(readonly(traj.lla[0]), readonly(traj.vel_n[0]), readonly(traj.q_bn[0]),
+                                     readonly(w), readonly(f), 0.1),
+         strapdown._nav_kernel),
+        ("rotation_bias.tilt_residuals",
+         lambda: rotation_bias.tilt_residuals(readonly(w), readonly(f), 0.1, [0], 10),
+         rotation_bias._residual_kernel),
+    ]
+
+
+@pytest.mark.parametrize("name, call, kernel", _calls(), ids=lambda x: x if isinstance(x, str) else "")
+def test_read_only_inputs_reach_kernels_writable(name, call, kernel):
+    call()
+    readonly_sigs = [s for s in kernel.signatures if any(isinstance(t, types.Array) and not t.mutable for t in s)]
+    assert kernel.signatures and not readonly_sigs, f"{name}: read-only specialisations {readonly_sigs}"
