@@ -398,6 +398,8 @@ def verdict(claim: str, verdict: str, *, checks: Sequence[str] | None = None, ev
     if verdict in _NEEDS_EVIDENCE and not evid:
         raise ValueError(f"evidence: a verdict of {verdict!r} needs a check that asserts the disagreement "
                          "(check_outside, or name it in evidence=)")
+    if verdict == "reproduced with correction" and not set(names) - set(evid):
+        raise ValueError("checks: a verdict of 'reproduced with correction' also rests on a check of the corrected form")
     if verdict in ("differs", "refuted") and (paper is None or ours is None):
         raise ValueError(f"paper, ours: a verdict of {verdict!r} shows both numbers")
     if verdict == "not checkable here" and paper is None and not row["paper_value"]:
@@ -414,22 +416,23 @@ def verdict(claim: str, verdict: str, *, checks: Sequence[str] | None = None, ev
         raise ValueError(f"figure: expected a figure saved in this run ({sorted(_state.figures)}), got {figure!r}")
     if ours is None and names:
         first = recorded[names[0]]
-        ours = first.value
         unit = unit or first.unit
+        # a check against 0 measures a residual: show it as one
+        ours = f"max error {first.value:.1g}{' ' + unit if unit else ''}" if first.expected == 0 else first.value
     v = Verdict(claim, verdict, names, evid, _shown(paper, unit) if paper is not None else None,
                 _shown(ours, unit) if ours is not None else None, reason.strip(), erratum, figure)
     _state.verdicts = [k for k in _state.verdicts if k.claim != claim] + [v]
     _write()
-    print(f"[{verdict.upper()}] {claim}" + (f": paper {v.paper}, ours {v.ours}" if v.paper or v.ours else "")
-          + (f" ({v.reason})" if v.reason else ""))
+    shown = [f"{k} {x}" for k, x in (("paper", v.paper), ("ours", v.ours)) if x is not None]
+    print(f"[{verdict.upper()}] {claim}" + (": " + ", ".join(shown) if shown else "") + (f" ({v.reason})" if v.reason else ""))
     return v
 
 
 def _shown(x, unit: str) -> str:
-    """A value as the ledger shows it: a number to 4 significant digits with its unit, or the text given."""
+    """A value as the ledger shows it: a number to 5 significant digits with its unit, or the text given."""
     if isinstance(x, str):
         return x
-    return f"{_as_float(x, 'value'):.4g}{' ' + unit if unit else ''}"
+    return f"{_as_float(x, 'value'):.5g}{' ' + unit if unit else ''}"
 
 
 def _catalogue() -> dict[str, dict]:

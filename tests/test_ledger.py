@@ -99,7 +99,7 @@ def test_verdict_calls_are_found():
 
 def test_one_vocabulary():
     assert ledger.VERDICTS == repro.VERDICTS
-    doc = (ROOT / "docs" / "claims.md").read_text(encoding="utf-8")
+    doc = (ROOT / "docs/claims.md").read_text(encoding="utf-8")
     for v in (*repro.VERDICTS, ledger.NO_VERDICT):
         assert f"*{v}*" in doc, f"docs/claims.md does not explain the verdict {v!r}"
 

@@ -254,16 +254,16 @@ def test_results_of_a_notebook_without_paper_keep_their_format(fake_root):
 
 
 def test_verdict_reproduced_rests_on_its_checks(paper_root):
-    repro.check("P999-FIG1-RMSE/a", 4.7, 4.77, 0.1, "src", unit="deg")
+    repro.check("P999-FIG1-RMSE/a", 4.7123456, 4.77, 0.1, "src", unit="deg")
     repro.check("P999-FIG1-RMSE/b", 4.8, 4.77, 0.1, "src")
     repro.check("P999-FIG1-RMSEX", 1.0, 1.0, 0.0, "not a check of that claim")
     v = repro.verdict("P999-FIG1-RMSE", "reproduced")
     assert v.checks == ["P999-FIG1-RMSE/a", "P999-FIG1-RMSE/b"] and v.evidence == []
-    assert v.ours == "4.7 deg" and v.paper is None            # the ledger shows the catalogue's paper value
+    assert v.ours == "4.7123 deg" and v.paper is None         # the ledger shows the catalogue's paper value
     data = _results(paper_root)
     assert data["paper"] == "999"
     assert data["verdicts"] == [{"claim": "P999-FIG1-RMSE", "verdict": "reproduced", "checks": v.checks,
-                                 "evidence": [], "paper": None, "ours": "4.7 deg", "reason": "", "erratum": "",
+                                 "evidence": [], "paper": None, "ours": "4.7123 deg", "reason": "", "erratum": "",
                                  "figure": ""}]
     # one verdict per claim: a second call replaces the first
     repro.verdict("P999-FIG1-RMSE", "direction only", reason="stand-in")
@@ -316,6 +316,8 @@ def test_verdict_with_correction_names_a_listed_erratum_and_a_failing_printed_fo
         repro.verdict("P999-EQ2-SIGN", "reproduced with correction", erratum="E999-02")   # not listed for the claim
     v = repro.verdict("P999-EQ2-SIGN", "reproduced with correction", erratum="E999-01")
     assert v.evidence == ["P999-EQ2-SIGN/printed"] and len(v.checks) == 2
+    with pytest.raises(ValueError, match="^checks: .*corrected form"):       # the printed failure alone is not enough
+        repro.verdict("P999-EQ2-SIGN", "reproduced with correction", erratum="E999-01", checks=["P999-EQ2-SIGN/printed"])
 
 
 def test_verdict_not_checkable_here(paper_root):
@@ -323,6 +325,8 @@ def test_verdict_not_checkable_here(paper_root):
         repro.verdict("P999-TAB1-HW", "not checkable here")
     v = repro.verdict("P999-TAB1-HW", "not checkable here", reason="needs the authors' recordings")
     assert v.checks == [] and v.ours is None
+    repro.check("P999-EQ2-SIGN/residual", 3e-16, 0.0, 1e-12, "src", unit="rad")
+    assert repro.verdict("P999-EQ2-SIGN", "reproduced").ours == "max error 3e-16 rad"   # a residual is shown as one
 
 
 def test_verdict_before_setup(fake_root):
