@@ -141,3 +141,26 @@ def test_ledger_joins_results_with_the_catalogue(tmp_path):
 
 def test_chapters_have_no_claims():
     assert not set(CHAPTERS) & {p.notebook for p in PAPERS}
+
+
+def test_index_leads_with_verdicts_and_keeps_checks_and_claims_apart(tmp_path):
+    reproduce = pytest.importorskip("reproduce")              # tools/reproduce.py (needs nbclient, nbconvert)
+    p = PAPERS[0]
+    ids = [c for c, r in CLAIMS.items() if r["paper"] == p.claims_id]
+    check = {"name": ids[0] + "/a", "value": 1.0, "expected": 1.0, "tol": 0.1, "passed": True, "source": "paper Eq. (3)",
+             "paper_value": None, "lower": None, "upper": None, "unit": "", "note": ""}
+    outside = dict(check, name=ids[1] + "/differs", expected=None, tol=None, lower=2.0, upper=3.0, outside=True)
+    _results(tmp_path, p.notebook, [
+        {"claim": ids[0], "verdict": "reproduced", "checks": [check["name"]], "evidence": [], "paper": None,
+         "ours": "1", "reason": "", "erratum": "", "figure": ""},
+        {"claim": ids[1], "verdict": "differs", "checks": [outside["name"]], "evidence": [outside["name"]],
+         "paper": "2.5", "ours": "1", "reason": "hardware", "erratum": "", "figure": ""}], [check, outside])
+    entry = {"notebook": p.notebook, "ok": True, "error": None, "seconds": 1.0, "peak_mb": 1, "checks_passed": 2,
+             "checks_total": 2, "checks": [check, outside], "figures": [], "header": "# paper"}
+    reproduce.write_index(tmp_path, [entry], ROOT)
+    page = (tmp_path / "index.html").read_text(encoding="utf-8")
+    assert page.index("no verdict yet") < page.index("<th>check</th>")        # the claims lead, the checks follow
+    assert "claims passed" not in page and "2/2 checks passed" in page
+    assert "= target" not in page                                         # no invented paper values
+    assert "hardware" in page and ">outside<" in page
+    assert f"{len(ids)} claims of 1 papers; 2 have a verdict that rests on a computation" in page

@@ -48,7 +48,8 @@ GALLERY = [("00_conventions_sensors", "allan_gyros"), ("00_conventions_sensors",
            ("05_pedestrian_ins", "fig4_floor_test"), ("05_pedestrian_ins", "carpark_trajectory_error"),
            ("06_real_recordings", "attitude_real")]
 GALLERY_WIDTH_PX = 480
-THUMB_WIDTH_PX = 120
+THUMB_WIDTH_PX = 120           # shown in the README's claim matrices
+THUMB_FILE_WIDTH_PX = 240      # docs/figures copy of a figure that only a verdict shows
 
 
 def figure_copy(build_path: str) -> str:
@@ -173,17 +174,17 @@ def write_figures(build: Path, leds: list[ledger.PaperLedger]) -> list[str]:
     from PIL import Image  # Pillow comes with matplotlib
 
     FIGURES.mkdir(parents=True, exist_ok=True)
-    wanted = {f"{stem}/figures/{fig}.png" for stem, fig in GALLERY}
-    wanted |= {r.figure for led in leds for r in led.rows if r.figure}
+    wanted = {r.figure: THUMB_FILE_WIDTH_PX for led in leds for r in led.rows if r.figure}
+    wanted |= {f"{stem}/figures/{fig}.png": GALLERY_WIDTH_PX for stem, fig in GALLERY}
     names = []
-    for path in sorted(wanted):
+    for path, width in sorted(wanted.items()):
         src = build / path
         if not src.is_file():
             continue
         img = Image.open(src).convert("RGB")
-        h = round(img.height * GALLERY_WIDTH_PX / img.width)
+        h = round(img.height * width / img.width)
         name = figure_copy(path)
-        img.resize((GALLERY_WIDTH_PX, h), Image.LANCZOS).save(FIGURES / name, optimize=True)
+        img.resize((width, h), Image.LANCZOS).save(FIGURES / name, optimize=True)
         names.append(name)
     return names
 
