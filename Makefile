@@ -20,7 +20,7 @@ PYTEST_FLAGS ?= -q -ra --durations=10 --nbmake-timeout=1800 -n 2 --dist loadgrou
 
 help:
 	@echo "make reproduce  execute every notebook, write build/ (index.html, HTML, figures, results)"
-	@echo "make readme     regenerate the README results table and figure gallery from build/"
+	@echo "make readme     regenerate the README results section (claims by verdict), quoted numbers and figures from build/"
 	@echo "make test       unit/property tests + every notebook executed by nbmake"
 	@echo "make lint       ruff over the code (also part of make test)"
 	@echo "make lab        JupyterLab on notebooks/"

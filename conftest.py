@@ -1,8 +1,9 @@
-"""Session hook: after notebooks ran under nbmake, the README results table must match.
+"""Session hook: after notebooks ran under nbmake, the README's results section must match.
 
 Each notebook writes ``build/<notebook>/results.json``; ``tools/readme.py``
-turns those into the README's results table. When a pytest session executed
-notebooks and they all passed, this hook re-renders the rows of the notebooks
+turns those into the README's results section (claims by verdict, the per-paper
+matrices) and the numbers its prose quotes. When a pytest session executed
+notebooks and they all passed, this hook re-renders the parts of the notebooks
 that ran and fails the session if the committed README disagrees
 (run ``make readme`` and commit). Enabled by ``make test`` (NAVLIB_CHECK_README=1),
 so a developer running one notebook by hand is not stopped by it.
@@ -38,13 +39,11 @@ def pytest_sessionfinish(session, exitstatus):
     sys.path.insert(0, str(ROOT / "tools"))
     import readme
 
-    fresh = {k: v for k, v in readme.table_rows(ROOT / "build").items()
-             if (ROOT / "build" / k / "results.json").stat().st_mtime >= _START}
+    build = ROOT / "build"
+    fresh = {p.parent.name for p in build.glob("*/results.json") if p.stat().st_mtime >= _START}
     if not fresh:
         return
-    committed = readme.readme_rows((ROOT / "README.md").read_text(encoding="utf-8"))
-    stale = sorted(k for k, row in fresh.items() if committed.get(k) != row)
+    stale = readme.stale((ROOT / "README.md").read_text(encoding="utf-8"), build, fresh)
     if stale:
-        print(f"\nREADME results table is stale for {stale}: run `make readme` and commit README.md",
-              file=sys.stderr)
+        print(f"\nREADME is stale ({'; '.join(stale)}): run `make readme` and commit README.md", file=sys.stderr)
         session.exitstatus = 1

@@ -7,18 +7,27 @@ A notebook calls :func:`setup` once with its own name; afterwards
 * :func:`check` compares a reproduced value with its target, records the
   result in ``build/<notebook>/results.json`` and raises
   :class:`ClaimCheckFailed` when it is outside tolerance, so that a failed
-  claim fails the notebook under nbmake.
+  check fails the notebook under nbmake; :func:`check_range` does the same for
+  a bound, :func:`check_outside` asserts a disagreement (the value lies
+  outside an interval);
+* :func:`verdict` records the one verdict of a claim (:data:`VERDICTS`), resting
+  on the checks recorded before it.
 
-Check names start with the claim id from ``data/claims.csv``
+*Checks* and *claims* are different things: a claim is a row of
+``data/claims.csv`` (a statement of the paper); a check is one computed
+comparison. Check names start with the claim id they support
 (e.g. ``P000-FIG4-TRIAD-RMSE/h091``); checks beyond the catalogue use names
-that start with no id.
+that start with no id. ``docs/claims.md`` gives the rules for verdicts.
 """
 from __future__ import annotations
 
+import csv
 import json
 import math
 import os
 import platform
+import re
+from collections.abc import Sequence
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -26,13 +35,17 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ._typing import Scalar
-from ._validate import real
+from ._validate import choice, real
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
-__all__ = ["root", "build_dir", "setup", "savefig", "check", "check_range", "results",
-           "ClaimCheckFailed", "Check", "NoOutputDirectory"]
+__all__ = ["root", "build_dir", "setup", "savefig", "check", "check_range", "check_outside", "verdict", "results",
+           "verdicts", "VERDICTS", "ClaimCheckFailed", "Check", "Verdict", "NoOutputDirectory"]
+
+VERDICTS = ("reproduced", "reproduced with correction", "differs", "refuted", "direction only", "not checkable here")
+"""The verdicts a claim can get (``docs/claims.md``), in the ledger's order."""
+_NEEDS_EVIDENCE = ("reproduced with correction", "differs", "refuted")
 
 
 class ClaimCheckFailed(AssertionError):
@@ -53,13 +66,32 @@ class Check:
     upper: float | None = None
     unit: str = ""
     note: str = ""
+    outside: bool = False      # check_outside: passes when the value lies outside [lower, upper]
+
+
+@dataclass
+class Verdict:
+    """The verdict on one claim of ``data/claims.csv`` (an entry of results.json's ``verdicts``)."""
+    claim: str
+    verdict: str
+    checks: list[str]
+    evidence: list[str]
+    paper: str | None = None
+    ours: str | None = None
+    reason: str = ""
+    erratum: str = ""
+    figure: str = ""
 
 
 @dataclass
 class _State:
     notebook: str | None = None
     out_dir: Path | None = None
+    paper: str | None = None
     checks: list[Check] = field(default_factory=list)
+    verdicts: list[Verdict] = field(default_factory=list)
+    figures: set[str] = field(default_factory=set)
+    catalogue: dict | None = None
 
 
 _state = _State()
@@ -103,7 +135,8 @@ def build_dir(notebook: str | None = None) -> Path:
     return d
 
 
-def setup(notebook: str, *, out_dir: str | os.PathLike | None = None, style: bool = True) -> None:
+def setup(notebook: str, *, paper: str | None = None, out_dir: str | os.PathLike | None = None,
+          style: bool = True) -> None:
     """Start a notebook's run: reset its results file and set the figure style.
 
     Parameters
@@ -111,6 +144,10 @@ def setup(notebook: str, *, out_dir: str | os.PathLike | None = None, style: boo
     notebook : str
         The notebook's stem, e.g. ``"00_conventions_sensors"``. Outputs go to
         ``<out_dir>/<notebook>/``.
+    paper : str, optional
+        The paper the notebook reproduces, as its ``claims_id`` in the registry
+        (``navlib/papers/__init__.py``), e.g. ``"000"``; :func:`verdict` accepts only
+        this paper's claims. Omitted for a notebook that reproduces no paper.
     out_dir : path, optional
         Where outputs go. Default: ``build/`` of the checkout (see :func:`root`);
         required when navlib runs outside a checkout.
@@ -122,9 +159,15 @@ def setup(notebook: str, *, out_dir: str | os.PathLike | None = None, style: boo
         raise ValueError(f"notebook: expected a plain notebook name, got {notebook!r}")
     if out_dir is not None and not isinstance(out_dir, (str, os.PathLike)):
         raise ValueError(f"out_dir: expected a directory path, got {type(out_dir).__name__}")
+    if paper is not None and not (isinstance(paper, str) and re.fullmatch(r"\d{3}", paper)):
+        raise ValueError(f"paper: expected a paper's claims id of three digits such as '000', got {paper!r}")
     _state.notebook = notebook
     _state.out_dir = None if out_dir is None else Path(out_dir).resolve()
+    _state.paper = paper
     _state.checks = []
+    _state.verdicts = []
+    _state.figures = set()
+    _state.catalogue = None
     d = build_dir(notebook)
     (d / "results.json").unlink(missing_ok=True)
     if style:
@@ -165,6 +208,7 @@ def savefig(fig: Figure, name: str) -> Path:
     d.mkdir(exist_ok=True)
     path = d / f"{name}.png"
     fig.savefig(path, metadata={"Software": None}, bbox_inches="tight")
+    _state.figures.add(name)
     return path
 
 
@@ -191,6 +235,8 @@ def _record(c: Check) -> Check:
         target = f"target {c.expected:.6g} ± {c.tol:.3g}"
     else:
         target = f"range [{c.lower if c.lower is not None else '-inf'}, {c.upper if c.upper is not None else 'inf'}]"
+        if c.outside:
+            target = "outside " + target
     print(f"[{status}] {c.name}: {c.value:.6g}{' ' + c.unit if c.unit else ''} ({target}; {c.source})")
     if not c.passed:
         raise ClaimCheckFailed(f"{c.name}: reproduced {c.value:.6g} is outside {target}")
@@ -237,10 +283,36 @@ def check_range(name: str, value: Scalar, source: str, *, lower: float | None = 
     For directional and bound claims, e.g. "the EKF error is smaller than
     dead reckoning's" as ``check_range(name, rmse_ekf / rmse_dr, upper=1)``.
     """
-    if lower is None and upper is None:
-        raise ValueError("lower, upper: give at least one bound")
     _check_name(name)
     v = _as_float(value, "value")
+    lo, hi = _bounds(lower, upper)
+    passed = bool(math.isfinite(v) and (lo is None or v >= lo) and (hi is None or v <= hi))
+    return _record(Check(name, v, None, None, passed, source,
+                         None if paper_value is None else str(paper_value), lo, hi, unit, note))
+
+
+def check_outside(name: str, value: Scalar, source: str, *, lower: float | None = None, upper: float | None = None,
+                  paper_value: str | float | None = None, unit: str = "", note: str = "") -> Check:
+    """Check that ``value`` lies *outside* ``[lower, upper]``; record; raise if it lies inside.
+
+    The assertion of a disagreement, which a :func:`verdict` of ``"differs"`` or
+    ``"refuted"`` (or the printed form of a ``"reproduced with correction"``)
+    rests on: e.g. "our 0.34° lies outside the paper's 4.77° ± 3 × our spread" as
+    ``check_outside(name, ours, src, lower=4.77 - 3 * s, upper=4.77 + 3 * s)``.
+    ``value`` is computed by navlib; the interval holds the paper's value with its
+    stated or derived spread. A non-finite value fails.
+    """
+    _check_name(name)
+    v = _as_float(value, "value")
+    lo, hi = _bounds(lower, upper)
+    passed = bool(math.isfinite(v) and ((lo is not None and v < lo) or (hi is not None and v > hi)))
+    return _record(Check(name, v, None, None, passed, source,
+                         None if paper_value is None else str(paper_value), lo, hi, unit, note, outside=True))
+
+
+def _bounds(lower, upper) -> tuple[float | None, float | None]:
+    if lower is None and upper is None:
+        raise ValueError("lower, upper: give at least one bound")
     lo = None if lower is None else _as_float(lower, "lower")
     hi = None if upper is None else _as_float(upper, "upper")
     for bound, b in (("lower", lo), ("upper", hi)):
@@ -248,9 +320,7 @@ def check_range(name: str, value: Scalar, source: str, *, lower: float | None = 
             raise ValueError(f"{bound}: expected a number (infinite for no bound), got {b}")
     if lo is not None and hi is not None and lo > hi:
         raise ValueError(f"lower: expected lower <= upper, got {lo} > {hi}")
-    passed = bool(math.isfinite(v) and (lo is None or v >= lo) and (hi is None or v <= hi))
-    return _record(Check(name, v, None, None, passed, source,
-                         None if paper_value is None else str(paper_value), lo, hi, unit, note))
+    return lo, hi
 
 
 def results() -> list[Check]:
@@ -258,9 +328,140 @@ def results() -> list[Check]:
     return list(_state.checks)
 
 
+def verdicts() -> list[Verdict]:
+    """Verdicts recorded so far in this notebook run."""
+    return list(_state.verdicts)
+
+
+def verdict(claim: str, verdict: str, *, checks: Sequence[str] | None = None, evidence: Sequence[str] | None = None,
+            paper: str | float | None = None, ours: str | float | None = None, unit: str = "", reason: str = "",
+            erratum: str = "", figure: str = "") -> Verdict:
+    """Record the verdict on a claim of this notebook's paper; raise ``ValueError`` if it is not supported.
+
+    Parameters
+    ----------
+    claim : str
+        A claim id of ``data/claims.csv`` of the paper given to :func:`setup`.
+    verdict : str
+        One of :data:`VERDICTS`: ``"reproduced"`` (our number agrees with the paper's within
+        the checks' tolerance), ``"reproduced with correction"`` (agrees once the named
+        ``erratum`` is fixed, and the printed form is shown to fail), ``"differs"`` (our
+        number disagrees: ``reason`` says why), ``"refuted"`` (the paper's statement is
+        false in its own setting), ``"direction only"`` (a stand-in can show only the sign
+        or ordering), ``"not checkable here"`` (``paper`` gives the paper's number and
+        ``reason`` what would be needed).
+    checks : sequence of str, optional
+        Names of the checks, recorded earlier in this run and passed, that the verdict rests
+        on. Default: every check named ``claim`` or ``claim/...``. Every verdict but
+        ``"not checkable here"`` needs at least one.
+    evidence : sequence of str, optional
+        The checks among ``checks`` that assert the disagreement: for ``"differs"`` and
+        ``"refuted"`` that our value lies outside the paper's, for ``"reproduced with
+        correction"`` that the printed form fails. Default: the :func:`check_outside`
+        checks among ``checks``. Required (non-empty) for those three verdicts.
+    paper, ours : str or float, optional
+        The paper's value and ours as the ledger shows them (a float is shown with
+        ``unit``). Default: the catalogue's ``paper_value`` and the first check's value.
+        ``"differs"`` and ``"refuted"`` need both; ``ours`` must come from a computation.
+    reason : str
+        Why the values differ, why the statement is false, why only the direction can
+        be shown, or what a check would need. Required for every verdict but ``"reproduced"``
+        and ``"reproduced with correction"``.
+    erratum : str
+        For ``"reproduced with correction"``: the erratum id (``data/errata.csv``, listed in
+        the claim's ``erratum`` column) whose correction makes the claim hold.
+    figure : str
+        A figure saved earlier in this run (:func:`savefig` name) shown as the claim's thumbnail.
+    """
+    if _state.notebook is None:
+        raise RuntimeError("call navlib.repro.setup(notebook, paper=...) before verdict()")
+    if _state.paper is None:
+        raise ValueError(f"claim: notebook {_state.notebook} was set up without a paper, so it has no claims")
+    catalogue = _catalogue()
+    row = catalogue["claims"].get(claim)
+    if row is None or row["paper"] != _state.paper:
+        raise ValueError(f"claim: expected a claim id of paper {_state.paper} in data/claims.csv, got {claim!r}")
+    choice(verdict, "verdict", VERDICTS)
+    names = [c.name for c in _state.checks if c.name == claim or c.name.startswith(claim + "/")] \
+        if checks is None else list(checks)
+    recorded = {c.name: c for c in _state.checks}
+    for n in names:
+        if n not in recorded:
+            raise ValueError(f"checks: {n!r} was not recorded in this run")
+        if not recorded[n].passed:
+            raise ValueError(f"checks: {n!r} failed; a verdict cannot rest on it")
+    if verdict != "not checkable here" and not names:
+        raise ValueError(f"checks: a verdict of {verdict!r} rests on at least one check; none is named {claim}[/...]")
+    evid = [n for n in names if recorded[n].outside] if evidence is None else list(evidence)
+    if not set(evid) <= set(names):
+        raise ValueError(f"evidence: expected checks among {names}, got {evid}")
+    if verdict in _NEEDS_EVIDENCE and not evid:
+        raise ValueError(f"evidence: a verdict of {verdict!r} needs a check that asserts the disagreement "
+                         "(check_outside, or name it in evidence=)")
+    if verdict == "reproduced with correction" and not set(names) - set(evid):
+        raise ValueError("checks: a verdict of 'reproduced with correction' also rests on a check of the corrected form")
+    if verdict in ("differs", "refuted") and (paper is None or ours is None):
+        raise ValueError(f"paper, ours: a verdict of {verdict!r} shows both numbers")
+    if verdict == "not checkable here" and paper is None and not row["paper_value"]:
+        raise ValueError("paper: a claim that is not checkable here shows the paper's number")
+    if verdict not in ("reproduced", "reproduced with correction") and not reason.strip():
+        raise ValueError(f"reason: a verdict of {verdict!r} says why")
+    if verdict == "reproduced with correction":
+        listed = row["erratum"].split(";") if row["erratum"] else []
+        if erratum not in catalogue["errata"] or erratum not in listed:
+            raise ValueError(f"erratum: expected an erratum of data/errata.csv listed for {claim} ({listed}), got {erratum!r}")
+    elif erratum and erratum not in catalogue["errata"]:
+        raise ValueError(f"erratum: expected an id of data/errata.csv, got {erratum!r}")
+    if figure and figure not in _state.figures:
+        raise ValueError(f"figure: expected a figure saved in this run ({sorted(_state.figures)}), got {figure!r}")
+    if ours is None and names:
+        first = recorded[names[0]]
+        unit = unit or first.unit
+        # a check against 0 measures a residual: show it as one
+        ours = f"max error {first.value:.1g}{' ' + unit if unit else ''}" if first.expected == 0 else first.value
+    v = Verdict(claim, verdict, names, evid, _shown(paper, unit) if paper is not None else None,
+                _shown(ours, unit) if ours is not None else None, reason.strip(), erratum, figure)
+    _state.verdicts = [k for k in _state.verdicts if k.claim != claim] + [v]
+    _write()
+    shown = [f"{k} {x}" for k, x in (("paper", v.paper), ("ours", v.ours)) if x is not None]
+    print(f"[{verdict.upper()}] {claim}" + (": " + ", ".join(shown) if shown else "") + (f" ({v.reason})" if v.reason else ""))
+    return v
+
+
+def _shown(x, unit: str) -> str:
+    """A value as the ledger shows it: a number to 5 significant digits with its unit, or the text given."""
+    if isinstance(x, str):
+        return x
+    return f"{_as_float(x, 'value'):.5g}{' ' + unit if unit else ''}"
+
+
+def _catalogue() -> dict[str, dict]:
+    """``data/claims.csv`` rows by id and ``data/errata.csv`` ids of the checkout (read once per run)."""
+    if _state.catalogue is None:
+        data = root() / "data"
+        with open(data / "claims.csv", newline="", encoding="utf-8") as fh:
+            claims = {r["id"]: r for r in csv.DictReader(line for line in fh if not line.startswith("#"))}
+        with open(data / "errata.csv", newline="", encoding="utf-8") as fh:
+            errata = {r["id"] for r in csv.DictReader(line for line in fh if not line.startswith("#"))}
+        _state.catalogue = {"claims": claims, "errata": errata}
+    return _state.catalogue
+
+
 def _write() -> None:
     if _state.notebook is None:
         return
-    data = {"notebook": _state.notebook, "checks": [asdict(c) for c in _state.checks]}
+    # Keys and fields beyond the original format are written only when used, so the results of a
+    # notebook without a paper (and of its checks) keep their bytes.
+    data = {"notebook": _state.notebook, "checks": [_row(c) for c in _state.checks]}
+    if _state.paper is not None:
+        data["paper"] = _state.paper
+        data["verdicts"] = [asdict(v) for v in _state.verdicts]
     path = build_dir(_state.notebook) / "results.json"
     path.write_text(json.dumps(data, indent=1, allow_nan=True) + "\n")
+
+
+def _row(c: Check) -> dict:
+    row = asdict(c)
+    if not c.outside:
+        del row["outside"]
+    return row

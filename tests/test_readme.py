@@ -1,13 +1,21 @@
-"""The README's "Your own data" example runs as written, on the committed sample in the app's layout."""
+"""The README: its "Your own data" example runs as written, on the committed sample in the app's layout; its
+results section (claims by verdict, per-paper matrices, quoted numbers) agrees with the notebooks and results."""
 import os
 import re
+import sys
 from pathlib import Path
 
 import matplotlib
+import pytest
+from test_ledger import NOTEBOOKS, static_verdicts
+
+from navlib.papers import PAPERS
 
 matplotlib.use("Agg")
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "tools"))
+import readme  # noqa: E402  (tools/readme.py)
 
 
 def test_your_own_data_snippet_runs_as_written(monkeypatch):
@@ -25,3 +33,86 @@ def test_your_own_data_snippet_runs_as_written(monkeypatch):
     # still ends differ by 84.7 deg (90.1 deg with the true tilt). Most of the error is that, not the filter.
     assert abs(heading[-1] - heading[0] - 90.0) < 10.0
     assert os.path.isdir(ROOT / "data" / "samples" / "sensor-logger")
+
+
+# ---------------------------------------------------------------- the results section (tools/readme.py)
+
+README_TEXT = (ROOT / "README.md").read_text(encoding="utf-8")
+
+
+def matrix_verdicts(text: str) -> dict[str, str]:
+    """claim id -> verdict as the README's per-paper matrices show it."""
+    out = {}
+    for block in readme.LEDGER.finditer(text):
+        for row in block.group(0).splitlines():
+            cells = [c.strip() for c in row.strip("|").split(" | ")]
+            if len(cells) == 6 and cells[0].startswith("`P"):
+                out[cells[0].strip("`")] = cells[4]
+    return out
+
+
+def test_every_paper_has_a_matrix():
+    parts = readme.readme_parts(README_TEXT)
+    for p in PAPERS:
+        assert f"<!-- ledger:{p.notebook} -->" in parts.get(p.notebook, ""), f"no claim matrix for {p.notebook}"
+
+
+def test_matrix_verdicts_agree_with_the_notebooks():
+    """A verdict changed in a notebook and not regenerated into the README fails here, without running anything."""
+    shown = matrix_verdicts(README_TEXT)
+    assert len(shown) > 100
+    for path in NOTEBOOKS:
+        for claim, verdict in static_verdicts(path).items():
+            assert shown.get(claim, "").split(":")[0].split(" (E")[0] == verdict, (
+                f"{claim}: README shows {shown.get(claim)!r}, {path.stem} records {verdict!r}: run `make readme`")
+
+
+def test_claims_without_verdict_are_not_counted_as_reproduced():
+    shown = matrix_verdicts(README_TEXT)
+    written = {c for p in NOTEBOOKS for c in static_verdicts(p)}
+    for claim, verdict in shown.items():
+        if verdict == "no verdict yet":
+            assert claim not in written, claim
+
+
+def test_readme_figures_exist():
+    for name in re.findall(r'(?:src="|\]\()docs/figures/([^")]+)', README_TEXT):
+        assert (ROOT / "docs" / "figures" / name).is_file(), name
+
+
+def test_quoted_values_are_well_formed():
+    quoted = readme.quoted_values(README_TEXT)
+    assert len(quoted) >= 5, "the README quotes its numbers from results"
+    stems = {p.stem for p in NOTEBOOKS}
+    for m in readme.VALUE.finditer(README_TEXT):
+        stem, name, spec, text = m.groups()
+        assert stem in stems, stem
+        scale, _, fmt = spec.rpartition(":")
+        assert not scale or re.fullmatch(r"x\d+(\.\d+)?", scale), spec
+        format(1.0, fmt)                                      # a valid format spec
+
+
+def test_readme_matches_fresh_results():
+    """After the notebooks ran (and wrote results newer than README.md), the README must be regenerated."""
+    build = ROOT / "build"
+    stems = [p.notebook for p in PAPERS] + list(readme.CHAPTERS)
+    paths = [build / s / "results.json" for s in stems]
+    if not all(p.is_file() for p in paths):
+        pytest.skip("build/ holds no results of every notebook: run `make reproduce`")
+    if min(p.stat().st_mtime for p in paths) < (ROOT / "README.md").stat().st_mtime:
+        pytest.skip("some results are older than README.md")
+    assert not readme.stale(README_TEXT, build), "README is stale: run `make readme` and commit"
+
+
+def test_stale_readme_is_detected(tmp_path):
+    """readme.stale notices a changed verdict and a changed quoted value."""
+    build = ROOT / "build"
+    if not all((build / p.notebook / "results.json").is_file() for p in PAPERS):
+        pytest.skip("needs the results of every paper notebook in build/")
+    fresh = README_TEXT
+    if readme.stale(fresh, build):
+        pytest.skip("README is not generated from this build/")
+    edited = fresh.replace("| reproduced |", "| differs |", 1)
+    assert readme.stale(edited, build)
+    m = next(readme.VALUE.finditer(fresh))
+    assert readme.stale(fresh.replace(m.group(0), m.group(0).replace(f"-->{m.group(4)}<!--", "-->9999<!--")), build)

@@ -199,3 +199,138 @@ def test_explicit_output_directory(tmp_path, monkeypatch):
     assert json.loads((tmp_path / "out" / NB / "results.json").read_text())["checks"][0]["name"] == "x"
     with pytest.raises(ValueError, match="^out_dir"):
         repro.setup(NB, out_dir=3)
+
+
+# ---------------------------------------------------------------- check_outside and verdicts
+
+CLAIMS_CSV = """id,paper,item,quantity,paper_value,kind,erratum,note
+P999-FIG1-RMSE,999,Fig. 1,RMSE (deg),4.77,simulation-stand-in,,
+P999-EQ2-SIGN,999,Eq. (2),sign,+1,analytic,E999-01,
+P999-TAB1-HW,999,Table 1,measured value (deg),2.72,hardware-only,,
+P998-EQ1-X,998,Eq. (1),other paper's claim,,analytic,,
+"""
+ERRATA_CSV = """id,paper,item,printed,corrected,numeric,shown_by
+E999-01,999,Eq. (2),+,-,yes,P999-EQ2-SIGN
+E999-02,999,Eq. (3),a,b,yes,
+"""
+
+
+@pytest.fixture
+def paper_root(fake_root):
+    (fake_root / "data").mkdir()
+    (fake_root / "data" / "claims.csv").write_text(CLAIMS_CSV, encoding="utf-8")
+    (fake_root / "data" / "errata.csv").write_text(ERRATA_CSV, encoding="utf-8")
+    repro.setup(NB, paper="999")
+    return fake_root
+
+
+def test_check_outside(fake_root):
+    repro.setup(NB)
+    assert repro.check_outside("out-high", 5.0, "src", lower=1.0, upper=2.0).passed
+    assert repro.check_outside("out-low", 0.5, "src", lower=1.0, upper=2.0).passed
+    assert repro.check_outside("above", 3.0, "src", upper=2.0).passed      # one bound: value > upper
+    with pytest.raises(repro.ClaimCheckFailed, match="outside range"):
+        repro.check_outside("inside", 1.5, "src", lower=1.0, upper=2.0)
+    with pytest.raises(repro.ClaimCheckFailed):
+        repro.check_outside("on-bound", 2.0, "src", lower=1.0, upper=2.0)  # the interval is closed
+    with pytest.raises(repro.ClaimCheckFailed):
+        repro.check_outside("nan", np.nan, "src", lower=1.0, upper=2.0)
+    with pytest.raises(ValueError, match="lower"):
+        repro.check_outside("none", 1.0, "src")
+    rows = {r["name"]: r for r in _results(fake_root)["checks"]}
+    assert rows["out-high"]["outside"] is True and rows["inside"]["passed"] is False
+    assert "outside" not in rows  # ordinary checks carry no 'outside' key (old results keep their bytes)
+
+
+def test_results_of_a_notebook_without_paper_keep_their_format(fake_root):
+    repro.setup(NB)
+    repro.check("x", 1.0, 1.0, 0.0, "src")
+    repro.check_range("y", 1.0, "src", lower=0.0)
+    data = _results(fake_root)
+    assert list(data) == ["notebook", "checks"]
+    assert all("outside" not in r for r in data["checks"])
+    with pytest.raises(ValueError, match="^claim: .*without a paper"):
+        repro.verdict("P999-FIG1-RMSE", "reproduced")
+
+
+def test_verdict_reproduced_rests_on_its_checks(paper_root):
+    repro.check("P999-FIG1-RMSE/a", 4.7123456, 4.77, 0.1, "src", unit="deg")
+    repro.check("P999-FIG1-RMSE/b", 4.8, 4.77, 0.1, "src")
+    repro.check("P999-FIG1-RMSEX", 1.0, 1.0, 0.0, "not a check of that claim")
+    v = repro.verdict("P999-FIG1-RMSE", "reproduced")
+    assert v.checks == ["P999-FIG1-RMSE/a", "P999-FIG1-RMSE/b"] and v.evidence == []
+    assert v.ours == "4.7123 deg" and v.paper is None         # the ledger shows the catalogue's paper value
+    data = _results(paper_root)
+    assert data["paper"] == "999"
+    assert data["verdicts"] == [{"claim": "P999-FIG1-RMSE", "verdict": "reproduced", "checks": v.checks,
+                                 "evidence": [], "paper": None, "ours": "4.7123 deg", "reason": "", "erratum": "",
+                                 "figure": ""}]
+    # one verdict per claim: a second call replaces the first
+    repro.verdict("P999-FIG1-RMSE", "direction only", reason="stand-in")
+    assert [x.verdict for x in repro.verdicts()] == ["direction only"]
+
+
+def test_verdict_refuses_what_it_cannot_rest_on(paper_root):
+    with pytest.raises(ValueError, match="^claim:"):
+        repro.verdict("P999-NOPE", "reproduced")
+    with pytest.raises(ValueError, match="^claim:"):
+        repro.verdict("P998-EQ1-X", "reproduced")                 # another paper's claim
+    with pytest.raises(ValueError, match="^verdict:"):
+        repro.verdict("P999-FIG1-RMSE", "partially reproduced")
+    with pytest.raises(ValueError, match="^checks: .*at least one"):
+        repro.verdict("P999-FIG1-RMSE", "reproduced")             # no check recorded
+    with pytest.raises(ValueError, match="^checks: .*not recorded"):
+        repro.verdict("P999-FIG1-RMSE", "reproduced", checks=["P999-FIG1-RMSE/typo"])
+    with pytest.raises(repro.ClaimCheckFailed):
+        repro.check("P999-FIG1-RMSE/bad", 9.0, 4.77, 0.1, "src")
+    with pytest.raises(ValueError, match="^checks: .*failed"):
+        repro.verdict("P999-FIG1-RMSE", "reproduced")
+    with pytest.raises(ValueError, match="^figure:"):
+        repro.check("P999-EQ2-SIGN/corrected", 1.0, 1.0, 0.0, "src")
+        repro.verdict("P999-EQ2-SIGN", "reproduced", figure="never_saved")
+
+
+def test_verdict_differs_needs_numbers_reason_and_an_asserted_difference(paper_root):
+    repro.check("P999-FIG1-RMSE/rms", 0.34, 0.34, 0.05, "our stand-in against its theory", unit="deg")
+    with pytest.raises(ValueError, match="^evidence:"):
+        repro.verdict("P999-FIG1-RMSE", "differs", paper=4.77, ours=0.34, reason="hardware")
+    repro.check_outside("P999-FIG1-RMSE/differs", 0.34, "paper 4.77 +- 3 sd", lower=3.0, upper=6.5, unit="deg")
+    with pytest.raises(ValueError, match="^paper, ours:"):
+        repro.verdict("P999-FIG1-RMSE", "differs", reason="hardware")
+    with pytest.raises(ValueError, match="^reason:"):
+        repro.verdict("P999-FIG1-RMSE", "differs", paper=4.77, ours=0.34)
+    v = repro.verdict("P999-FIG1-RMSE", "differs", paper=4.77, ours=0.34, unit="°", reason="hardware errors")
+    assert v.evidence == ["P999-FIG1-RMSE/differs"] and (v.paper, v.ours) == ("4.77 °", "0.34 °")
+    with pytest.raises(ValueError, match="^evidence:"):
+        repro.verdict("P999-FIG1-RMSE", "refuted", paper=4.77, ours=0.34, reason="x", evidence=["P999-EQ2-SIGN/x"])
+
+
+def test_verdict_with_correction_names_a_listed_erratum_and_a_failing_printed_form(paper_root):
+    repro.check("P999-EQ2-SIGN/corrected", 1.0, 1.0, 1e-9, "erratum E999-01")
+    with pytest.raises(ValueError, match="^evidence:"):
+        repro.verdict("P999-EQ2-SIGN", "reproduced with correction", erratum="E999-01")
+    repro.check_outside("P999-EQ2-SIGN/printed", -1.0, "printed sign", lower=1 - 1e-9, upper=1 + 1e-9)
+    with pytest.raises(ValueError, match="^erratum:"):
+        repro.verdict("P999-EQ2-SIGN", "reproduced with correction")
+    with pytest.raises(ValueError, match="^erratum:"):
+        repro.verdict("P999-EQ2-SIGN", "reproduced with correction", erratum="E999-02")   # not listed for the claim
+    v = repro.verdict("P999-EQ2-SIGN", "reproduced with correction", erratum="E999-01")
+    assert v.evidence == ["P999-EQ2-SIGN/printed"] and len(v.checks) == 2
+    with pytest.raises(ValueError, match="^checks: .*corrected form"):       # the printed failure alone is not enough
+        repro.verdict("P999-EQ2-SIGN", "reproduced with correction", erratum="E999-01", checks=["P999-EQ2-SIGN/printed"])
+
+
+def test_verdict_not_checkable_here(paper_root):
+    with pytest.raises(ValueError, match="^reason:"):
+        repro.verdict("P999-TAB1-HW", "not checkable here")
+    v = repro.verdict("P999-TAB1-HW", "not checkable here", reason="needs the authors' recordings")
+    assert v.checks == [] and v.ours is None
+    repro.check("P999-EQ2-SIGN/residual", 3e-16, 0.0, 1e-12, "src", unit="rad")
+    assert repro.verdict("P999-EQ2-SIGN", "reproduced").ours == "max error 3e-16 rad"   # a residual is shown as one
+
+
+def test_verdict_before_setup(fake_root):
+    with pytest.raises(RuntimeError, match="setup"):
+        repro.verdict("P999-FIG1-RMSE", "reproduced")
+    with pytest.raises(ValueError, match="^paper:"):
+        repro.setup(NB, paper=0)

@@ -1,127 +1,214 @@
 #!/usr/bin/env python3
-"""Regenerate the README's results table and figure gallery from build/.
+"""Regenerate the README's results section, its quoted numbers and figure gallery from build/.
 
-Reads ``build/<notebook>/results.json`` (written by the notebooks through
-``navlib.repro``) and rewrites the block between the ``results`` markers of
-README.md: one row per notebook with its checks passed / total and how many
-of the paper's checkable claims (``data/claims.csv``) have a check. It also copies the figures listed in
-``GALLERY`` into ``docs/figures/`` at a small size for the README.
+Reads ``build/<notebook>/results.json`` (written by the notebooks through ``navlib.repro``) and
+``data/claims.csv`` (through ``tools/ledger.py``), and rewrites
 
-Only deterministic numbers go into the table (no run times), so the root
-``conftest.py`` can fail ``make test`` when the committed table is stale.
+* the block between the ``results`` markers of README.md: claims by verdict per paper and each
+  notebook's checks passed, the coverage (claims whose verdict rests on a computation), then per
+  paper a matrix of its claims (paper item, paper value, ours, verdict, thumbnail), each between
+  ``<!-- ledger:<notebook> -->`` markers;
+* every number quoted in the README's prose as
+  ``<!-- value <notebook> <check name> <format> -->1.14<!-- /value -->``: the text between the markers
+  is the check's value formatted with the Python format spec (``x100:.0f`` multiplies by 100 first),
+  so a number in prose can never drift from what the notebook computed;
+* small copies of the figures of ``GALLERY`` and of every figure a verdict shows, in ``docs/figures/``.
+
+Only deterministic numbers go into the README (no run times), so it can be checked:
+``--check`` reports what is stale; ``tests/test_readme.py`` and the root ``conftest.py`` (after
+``make test`` ran the notebooks) fail when it is.
 
 Usage: python tools/readme.py [--check]
 """
 from __future__ import annotations
 
 import argparse
-import csv
-import json
 import re
 import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(ROOT / "tools"))
+
+import ledger  # noqa: E402  (tools/ledger.py)
 
 from navlib.papers import CHAPTERS  # noqa: E402  (notebooks without a paper)
-from navlib.papers import PAPERS as REGISTRY  # noqa: E402
 
 README = ROOT / "README.md"
-CLAIMS = ROOT / "data" / "claims.csv"
+FIGURES = ROOT / "docs" / "figures"
 START, END = "<!-- results:start -->", "<!-- results:end -->"
-
-# notebook stem -> (paper id in claims.csv, short citation), from the paper registry
-PAPERS = {stem: (None, title) for stem, title in CHAPTERS.items()}
-PAPERS.update({p.notebook: (p.claims_id, p.citation) for p in REGISTRY})
-# figures shown in the README: (notebook, figure stem)
+VALUE = re.compile(r"<!-- value (\S+) (\S+) (\S+) -->(.*?)<!-- /value -->", re.S)
+LEDGER = re.compile(r"<!-- ledger:(\S+) -->\n.*?<!-- /ledger:\1 -->", re.S)
+SUMMARY_ROW = re.compile(r"^\| `(\d\d_[^`]+)` \|.*\|$", re.M)
+# figures shown in the README gallery: (notebook, figure stem)
 GALLERY = [("00_conventions_sensors", "allan_gyros"), ("00_conventions_sensors", "ins_error_theory"),
            ("01_north_finding", "fig4_rmse_vs_heading"), ("02_rotation_bias", "fig6_heading_error"),
            ("03_gauss_kruger_ekf", "fig4_fig5_tracks"), ("04_mimu_mag_rtk", "fig4_heading_modes"),
            ("05_pedestrian_ins", "fig4_floor_test"), ("05_pedestrian_ins", "carpark_trajectory_error"),
            ("06_real_recordings", "attitude_real")]
 GALLERY_WIDTH_PX = 480
+THUMB_WIDTH_PX = 120           # shown in the README's claim matrices
+THUMB_FILE_WIDTH_PX = 240      # docs/figures copy of a figure that only a verdict shows
 
 
-def coverable_claims() -> dict[str, list[str]]:
-    """Claim ids per paper that count towards coverage (kind != hardware-only)."""
-    out: dict[str, list[str]] = {}
-    with open(CLAIMS, encoding="utf-8") as fh:
-        for row in csv.DictReader(fh):
-            if row["kind"] != "hardware-only":
-                out.setdefault(row["paper"], []).append(row["id"])
-    return out
+def figure_copy(build_path: str) -> str:
+    """The docs/figures/ name of a build/ figure path ``<stem>/figures/<name>.png``."""
+    stem, _, name = build_path.split("/")
+    return f"{stem[:2]}_{name}"
 
 
-def table_rows(build: Path) -> dict[str, str]:
-    """Markdown row per notebook that has results, keyed by notebook stem."""
-    claims = coverable_claims()
+def cell(text: str) -> str:
+    """Text for one markdown table cell."""
+    return " ".join(str(text).split()).replace("|", "\\|")
+
+
+def summary_rows(build: Path, leds: list[ledger.PaperLedger]) -> dict[str, str]:
+    """One markdown row per notebook that has results: claims by verdict and checks passed."""
     rows = {}
-    for stem, (paper, title) in PAPERS.items():
-        path = build / stem / "results.json"
-        if not path.is_file():
+    for led in leds:
+        if not led.ran:
             continue
-        checks = json.loads(path.read_text())["checks"]
-        passed = sum(bool(c["passed"]) for c in checks)
-        covered = "—"
-        if paper is not None and paper in claims:
-            ids = claims[paper]
-            hit = sum(any(c["name"].startswith(i) for c in checks) for i in ids)
-            covered = f"{hit}/{len(ids)}"
-        rows[stem] = f"| `{stem}` | {title} | {passed}/{len(checks)} | {covered} |"
+        counts = led.counts
+        rows[led.stem] = (f"| `{led.stem}` | {cell(led.title)} | {len(led.rows)} | "
+                          + " | ".join(str(counts.get(v, 0)) for v in ledger.COLUMNS)
+                          + f" | {led.checks_passed}/{led.checks_total} |")
+    for stem, title in CHAPTERS.items():
+        res = ledger.results(build, stem)
+        if res is not None:
+            passed = sum(bool(c["passed"]) for c in res["checks"])
+            rows[stem] = (f"| `{stem}` | {cell(title)} | — | " + " | ".join("—" for _ in ledger.COLUMNS)
+                          + f" | {passed}/{len(res['checks'])} |")
     return rows
 
 
-def render(rows: dict[str, str]) -> str:
-    head = ("| notebook | paper | checks passed | paper claims covered |\n"
-            "|---|---|---|---|")
-    return "\n".join([START, head, *[rows[k] for k in sorted(rows)], END])
+def matrix(led: ledger.PaperLedger) -> str:
+    """The claims of one paper as a collapsible markdown table, between its ledger markers."""
+    counts = led.counts
+    summary = ", ".join(f"{counts[v]} {v}" for v in ledger.COLUMNS if counts.get(v))
+    lines = [f"<!-- ledger:{led.stem} -->", f"<details><summary><b>{led.stem}</b> — {led.title}: {len(led.rows)} claims "
+             f"({summary})</summary>", "", "| claim | paper item | paper | ours | verdict | figure |",
+             "|---|---|---|---|---|---|"]
+    for r in led.rows:
+        thumb = (f'<img src="docs/figures/{figure_copy(r.figure)}" width="{THUMB_WIDTH_PX}">' if r.figure else "")
+        lines.append(f"| `{r.claim}` | {cell(r.item)} | {cell(r.paper)} | {cell(r.ours)} | {cell(ledger.verdict_text(r))} "
+                     f"| {thumb} |")
+    lines += ["", "</details>", f"<!-- /ledger:{led.stem} -->"]
+    return "\n".join(lines)
 
 
-def readme_rows(text: str) -> dict[str, str]:
-    """The rows currently in README's results block."""
+def render(build: Path) -> tuple[str, dict[str, str]]:
+    """The README block and, per notebook, the parts of it that depend on that notebook alone."""
+    leds = ledger.ledgers(build)
+    rows = summary_rows(build, leds)
+    ran = [led for led in leds if led.ran]
+    parts = {stem: row for stem, row in rows.items()}
+    for led in ran:
+        parts[led.stem] += "\n" + matrix(led)
+    n_claims = sum(len(led.rows) for led in ran)
+    total = {v: sum(led.counts.get(v, 0) for led in ran) for v in ledger.COLUMNS}
+    head = ("| notebook | paper | claims | " + " | ".join(ledger.COLUMNS) + " | checks passed |\n"
+            + "|---" * (len(ledger.COLUMNS) + 4) + "|")
+    order = sorted(rows)
+    block = [START, "**Claims by verdict.** One verdict per claim of the papers (`data/claims.csv`), recorded by its "
+             "notebook with `navlib.repro.verdict`; a *check* is one computed comparison of a notebook, a *claim* a "
+             "statement of a paper.", "", head, *[rows[k] for k in order],
+             "| **total** | | " + f"{n_claims} | " + " | ".join(str(total[v]) for v in ledger.COLUMNS) + " | |", "",
+             f"**Coverage:** {sum(led.computed for led in ran)} of {n_claims} claims have a verdict that rests on a "
+             f"computation (a check of the notebook); {total['not checkable here']} are not checkable here and "
+             f"{total[ledger.NO_VERDICT]} have no verdict yet (never counted as reproduced).", ""]
+    block += [matrix(led) + "\n" for led in ran]
+    block.append(END)
+    return "\n".join(block), parts
+
+
+def readme_parts(text: str) -> dict[str, str]:
+    """The per-notebook parts currently in README's results block (summary row + matrix)."""
     block = text[text.index(START):text.index(END)] if START in text and END in text else ""
-    return {m.group(1): m.group(0) for m in re.finditer(r"^\| `([^`]+)` \|.*\|$", block, re.M)}
+    parts = {m.group(1): m.group(0) for m in SUMMARY_ROW.finditer(block)}
+    for m in LEDGER.finditer(block):
+        parts[m.group(1)] = parts.get(m.group(1), "") + "\n" + m.group(0)
+    return parts
 
 
-def write_gallery(build: Path) -> list[str]:
-    """Small copies of the GALLERY figures in docs/figures/ (deterministic PNGs)."""
+def fill_values(text: str, build: Path) -> tuple[str, list[str]]:
+    """README text with every quoted value refreshed from the results; and the values that changed."""
+    changed = []
+
+    def sub(m: re.Match) -> str:
+        stem, name, spec, old = m.groups()
+        scale, _, fmt = spec.rpartition(":")
+        value = ledger.check_value(build, stem, name) * (float(scale[1:]) if scale.startswith("x") else 1.0)
+        new = format(value, fmt)
+        if new != old:
+            changed.append(f"{stem} {name}: README {old!r}, results {new!r}")
+        return m.group(0).replace(f"-->{old}<!--", f"-->{new}<!--")
+
+    return VALUE.sub(sub, text), changed
+
+
+def quoted_values(text: str) -> list[tuple[str, str]]:
+    """The (notebook, check name) of every number quoted in the README's prose."""
+    return [(m.group(1), m.group(2)) for m in VALUE.finditer(text)]
+
+
+def stale(text: str, build: Path, notebooks: set[str] | None = None) -> list[str]:
+    """What in README.md differs from build/ (restricted to ``notebooks`` when given)."""
+    _, parts = render(build)
+    committed = readme_parts(text)
+    out = [f"results section of {k}" for k in sorted(parts)
+           if (notebooks is None or k in notebooks) and committed.get(k) != parts[k]]
+    if notebooks is None:
+        block, _ = render(build)
+        if START in text and text[text.index(START):text.index(END) + len(END)] != block:
+            out.append("results section (totals and coverage)")
+    quotable = [q for q in quoted_values(text) if notebooks is None or q[0] in notebooks]
+    if quotable:
+        _, changed = fill_values(text, build)
+        out += [c for c in changed if notebooks is None or c.split()[0] in notebooks]
+    return out
+
+
+def write_figures(build: Path, leds: list[ledger.PaperLedger]) -> list[str]:
+    """Small copies (deterministic PNGs) of the GALLERY figures and of every verdict's figure in docs/figures/."""
     from PIL import Image  # Pillow comes with matplotlib
 
-    out_dir = ROOT / "docs" / "figures"
-    out_dir.mkdir(parents=True, exist_ok=True)
+    FIGURES.mkdir(parents=True, exist_ok=True)
+    wanted = {r.figure: THUMB_FILE_WIDTH_PX for led in leds for r in led.rows if r.figure}
+    wanted |= {f"{stem}/figures/{fig}.png": GALLERY_WIDTH_PX for stem, fig in GALLERY}
     names = []
-    for stem, fig in GALLERY:
-        src = build / stem / "figures" / f"{fig}.png"
+    for path, width in sorted(wanted.items()):
+        src = build / path
         if not src.is_file():
             continue
         img = Image.open(src).convert("RGB")
-        h = round(img.height * GALLERY_WIDTH_PX / img.width)
-        name = f"{stem[:2]}_{fig}.png"
-        img.resize((GALLERY_WIDTH_PX, h), Image.LANCZOS).save(out_dir / name, optimize=True)
+        h = round(img.height * width / img.width)
+        name = figure_copy(path)
+        img.resize((width, h), Image.LANCZOS).save(FIGURES / name, optimize=True)
         names.append(name)
     return names
 
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--check", action="store_true", help="only report whether the README table is stale")
+    ap.add_argument("--check", action="store_true", help="only report whether the README is stale")
     args = ap.parse_args(argv)
     build = ROOT / "build"
-    rows = table_rows(build)
-    if not rows:
+    if not any(ledger.results(build, s) for s in [*CHAPTERS, *(led.stem for led in ledger.ledgers(build))]):
         print("no results in build/: run `make reproduce` first", file=sys.stderr)
         return 1
     text = README.read_text(encoding="utf-8")
     if args.check:
-        stale = {k for k in rows if readme_rows(text).get(k) != rows[k]}
-        print("README results table is " + (f"stale for {sorted(stale)}" if stale else "up to date"))
-        return 1 if stale else 0
-    block = render(rows)
+        found = stale(text, build)
+        print("README is " + ("stale: " + "; ".join(found) if found else "up to date"))
+        return 1 if found else 0
+    block, _ = render(build)
     text = text[:text.index(START)] + block + text[text.index(END) + len(END):] if START in text else text + "\n" + block + "\n"
+    text, changed = fill_values(text, build)
     README.write_text(text, encoding="utf-8")
-    names = write_gallery(build)
-    print(f"README.md: {len(rows)} notebooks; docs/figures: {', '.join(names)}")
+    names = write_figures(build, ledger.ledgers(build))
+    print(f"README.md: results section and {len(quoted_values(text))} quoted values ({len(changed)} changed); "
+          f"docs/figures: {len(names)} figures")
     return 0
 
 

@@ -9,7 +9,8 @@ directory ``notebooks/``) this writes
 
 and reads ``build/<stem>/results.json`` and ``build/<stem>/figures/*.png``,
 which the notebook itself writes through ``navlib.repro``. Then it writes
-``build/index.html`` (paper-vs-reproduction tables and figure thumbnails) and
+``build/index.html`` (per paper: every claim of ``data/claims.csv`` with the paper's value, ours,
+the notebook's verdict and a thumbnail, counts by verdict; per notebook: every check) and
 ``build/summary.json`` and ``build/manifest.json`` (SHA-256 of every
 results file and figure), and prints one line per notebook.
 ``--check-against MANIFEST`` fails the run unless those files are
@@ -37,6 +38,7 @@ import resource
 import shutil
 import sys
 import time
+from collections import Counter
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
 
@@ -47,6 +49,8 @@ from nbconvert.filters.markdown_mistune import markdown2html_mistune
 
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO))
+
+import ledger  # noqa: E402  (tools/ledger.py: claims with their verdicts; no navlib import at module level)
 
 
 def unregistered(notebooks: list[Path]) -> list[str]:
@@ -92,7 +96,7 @@ def run_notebook(path: Path, build: Path, timeout: int) -> dict:
     figures = sorted(p.relative_to(build).as_posix() for p in (build / stem / "figures").glob("*.png"))
     header = next((c.source for c in nb.cells if c.cell_type == "markdown"), "")
     return {"notebook": stem, "ok": error is None and passed == len(checks), "error": error,
-            "seconds": round(seconds, 1), "peak_mb": round(peak_mb), "claims_passed": passed, "claims_total": len(checks),
+            "seconds": round(seconds, 1), "peak_mb": round(peak_mb), "checks_passed": passed, "checks_total": len(checks),
             "checks": checks, "figures": figures, "header": header}
 
 
@@ -103,9 +107,10 @@ def fmt(x, unit: str = "") -> str:
     return f"{s} {unit}".strip()
 
 
-def claims_table(checks: list[dict]) -> str:
+def checks_table(checks: list[dict]) -> str:
+    """Every check of a notebook: what it compares, its target or bound, and whether it passed."""
     if not checks:
-        return "<p><em>No claims recorded.</em></p>"
+        return "<p><em>No checks recorded.</em></p>"
     rows = []
     for c in checks:
         unit = c.get("unit") or ""
@@ -113,47 +118,93 @@ def claims_table(checks: list[dict]) -> str:
             target, tol = fmt(c["expected"], unit), f"± {fmt(c.get('tol'))}"
         else:
             lo, hi = c.get("lower"), c.get("upper")
-            target = f"[{fmt(lo) if lo is not None else '−∞'}, {fmt(hi) if hi is not None else '∞'}] {unit}"
-            tol = "range"
-        paper = c.get("paper_value")
-        if paper is None:
-            paper = "= target" if c.get("expected") is not None else ""
+            target = f"[{fmt(lo) if lo is not None else '−∞'}, {fmt(hi) if hi is not None else '∞'}] {unit}".strip()
+            tol = "outside" if c.get("outside") else "range"
         ok = bool(c.get("passed"))
-        cells = [c["name"], paper, target, fmt(c.get("value"), unit), tol, c.get("source", ""), c.get("note", "")]
+        # the paper's value only where the check names one: a target is not a paper number by default
+        cells = [c["name"], c.get("paper_value") or "", target, fmt(c.get("value"), unit), tol, c.get("source", ""),
+                 c.get("note", "")]
         tds = "".join(f"<td>{html.escape(str(v))}</td>" for v in cells)
-        rows.append(f'<tr>{tds}<td class="{"pass" if ok else "fail"}">{"pass" if ok else "FAIL"}</td></tr>')
+        rows.append(f'<tr id="check-{html.escape(c["name"])}">{tds}<td class="{"pass" if ok else "fail"}">'
+                    f'{"pass" if ok else "FAIL"}</td></tr>')
     head = "".join(f"<th>{h}</th>" for h in
-                   ("claim", "paper value", "target", "reproduced", "tolerance", "source", "note", "result"))
+                   ("check", "paper value", "target or bound", "reproduced", "tolerance", "source", "note", "result"))
     return f"<table><tr>{head}</tr>\n" + "\n".join(rows) + "\n</table>"
 
 
-def write_index(build: Path, entries: list[dict]) -> None:
-    style = ("body{font-family:sans-serif;max-width:80em;margin:2em auto;padding:0 1em}"
-             "table{border-collapse:collapse;font-size:90%}td,th{border:1px solid #ccc;padding:.2em .5em}"
+VERDICT_CLASS = {v: "v" + str(i) for i, v in enumerate(ledger.COLUMNS)}
+
+
+def claims_matrix(led: ledger.PaperLedger) -> str:
+    """Every claim of the paper: paper item, paper value, ours, verdict (with reason) and thumbnail."""
+    rows = []
+    for r in led.rows:
+        checks = ", ".join(f"<a href='#check-{html.escape(n)}'>{html.escape(n.removeprefix(r.claim) or n)}</a>"
+                           for n in r.checks)
+        thumb = (f"<a href='{r.figure}'><img src='{r.figure}' width='120' alt='{html.escape(r.figure)}'></a>"
+                 if r.figure else "")
+        why = ledger.verdict_text(r)[len(r.verdict):].lstrip(": ")
+        verdict = f"<span class='{VERDICT_CLASS[r.verdict]}'>{html.escape(r.verdict)}</span>"
+        cells = [html.escape(r.item), f"<code>{html.escape(r.claim)}</code><br><small>{html.escape(r.quantity)}</small>",
+                 html.escape(r.paper), html.escape(r.ours), verdict + (f"<br><small>{html.escape(why)}</small>" if why else ""),
+                 checks, thumb]
+        rows.append("<tr>" + "".join(f"<td>{c}</td>" for c in cells) + "</tr>")
+    head = "".join(f"<th>{h}</th>" for h in ("paper item", "claim", "paper", "ours", "verdict", "checks", "figure"))
+    return f"<table class='matrix'><tr>{head}</tr>\n" + "\n".join(rows) + "\n</table>"
+
+
+def counts_table(leds: list[ledger.PaperLedger], entries: dict[str, dict]) -> str:
+    """Claims by verdict per paper, and each notebook's checks passed."""
+    head = "".join(f"<th>{h}</th>" for h in ("notebook", "paper", "claims", *ledger.COLUMNS, "checks passed"))
+    rows, total = [], Counter()
+    for led in leds:
+        counts = led.counts
+        total.update(counts)
+        e = entries.get(led.stem)
+        passed = f"{e['checks_passed']}/{e['checks_total']}" if e else "not run"
+        cells = [f"<a href='#{led.stem}'>{led.stem}</a>", html.escape(led.title), str(len(led.rows)),
+                 *(str(counts.get(v, 0)) for v in ledger.COLUMNS), passed]
+        rows.append("<tr>" + "".join(f"<td>{c}</td>" for c in cells) + "</tr>")
+    cells = ["<b>total</b>", "", str(sum(len(led.rows) for led in leds)), *(str(total.get(v, 0)) for v in ledger.COLUMNS), ""]
+    rows.append("<tr>" + "".join(f"<td>{c}</td>" for c in cells) + "</tr>")
+    return f"<table><tr>{head}</tr>\n" + "\n".join(rows) + "\n</table>"
+
+
+def write_index(build: Path, entries: list[dict], root: Path = REPO) -> None:
+    style = ("body{font-family:sans-serif;max-width:90em;margin:2em auto;padding:0 1em}"
+             "table{border-collapse:collapse;font-size:90%}td,th{border:1px solid #ccc;padding:.2em .5em;vertical-align:top}"
              "th{background:#f4f4f4}.pass{background:#d4f4d4}.fail{background:#f8d0d0;font-weight:bold}"
-             ".err{color:#a00}img{margin:4px;border:1px solid #ddd}")
+             ".v0,.v1{background:#d4f4d4}.v2,.v3{background:#f8e0c0}.v4{background:#e0e8f8}.v5{background:#eee}"
+             ".v6{background:#f8d0d0}.err{color:#a00}img{margin:4px;border:1px solid #ddd}")
+    by_stem = {e["notebook"]: e for e in entries}
+    leds = [led for led in ledger.ledgers(build, root) if led.stem in by_stem]
     total_s = sum(e["seconds"] for e in entries)
-    passed = sum(e["claims_passed"] for e in entries)
-    total = sum(e["claims_total"] for e in entries)
+    passed = sum(e["checks_passed"] for e in entries)
+    total = sum(e["checks_total"] for e in entries)
+    n_claims = sum(len(led.rows) for led in leds)
+    computed = sum(led.computed for led in leds)
     parts = [f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>navlib reproduction</title>"
-             f"<style>{style}</style></head><body><h1>navlib: paper claims reproduced</h1>"
-             f"<p>{passed}/{total} checks passed in {len(entries)} notebooks; total run time {total_s:.1f} s.</p><ul>"]
-    for e in entries:
-        status = "ok" if e["ok"] else "FAILED"
-        parts.append(f"<li><a href='#{e['notebook']}'>{e['notebook']}</a>: {e['claims_passed']}/"
-                     f"{e['claims_total']} claims passed, {e['seconds']:.1f} s, {status}</li>")
-    parts.append("</ul>")
+             f"<style>{style}</style></head><body><h1>navlib: the papers' claims and their verdicts</h1>"
+             f"<p>{n_claims} claims of {len(leds)} papers; {computed} have a verdict that rests on a computation "
+             f"(a check of the notebook). A claim is a statement of a paper (<code>data/claims.csv</code>); a check is "
+             f"one computed comparison. {passed}/{total} checks passed in {len(entries)} notebooks; total run time "
+             f"{total_s:.1f} s.</p>", counts_table(leds, by_stem)]
+    for led in leds:
+        parts += [f"<h2 id='{led.stem}-claims'>{html.escape(led.stem)}: {html.escape(led.title)}</h2>",
+                  f"<p><a href='#{led.stem}'>checks and figures</a></p>"]
+        parts += [f"<p class='err'>{html.escape(p)}</p>" for p in led.problems]
+        parts.append(claims_matrix(led))
     for e in entries:
         nb = html.escape(e["notebook"])
         parts.append(f"<h2 id='{nb}'><a href='{nb}.html'>{nb}</a></h2>"
-                     f"<p>run time {e['seconds']:.1f} s; {e['claims_passed']}/{e['claims_total']} claims passed"
+                     f"<p>run time {e['seconds']:.1f} s; {e['checks_passed']}/{e['checks_total']} checks passed"
                      f" (<a href='{nb}.ipynb'>executed notebook</a>)</p>")
         if e["error"]:
             parts.append(f"<p class='err'>Notebook failed: {html.escape(e['error'])}</p>")
         # the notebook's own header: citation, what is reproduced, status table with reasons
         header = markdown2html_mistune(e.get("header", "")).replace("<h1", "<h3").replace("</h1>", "</h3>")
         parts.append(f"<div class='header'>{header}</div>")
-        parts.append(claims_table(e["checks"]))
+        parts.append(checks_table(e["checks"]))
         parts.append("<p>" + "".join(f"<a href='{f}'><img src='{f}' width='240' alt='{html.escape(f)}'></a>"
                                      for f in e["figures"]) + "</p>")
     parts.append("</body></html>\n")
@@ -224,9 +275,9 @@ def main(argv=None) -> int:
     entries = [done[path] for path in notebooks]
     wall = time.perf_counter() - start
 
-    write_index(build, entries)
+    write_index(build, entries, root)
     manifest = write_manifest(build, entries)
-    summary = {e["notebook"]: {k: e[k] for k in ("claims_passed", "claims_total", "seconds", "peak_mb", "ok", "error")}
+    summary = {e["notebook"]: {k: e[k] for k in ("checks_passed", "checks_total", "seconds", "peak_mb", "ok", "error")}
                for e in entries}
     (build / "summary.json").write_text(json.dumps(summary, indent=1) + "\n")
 
@@ -234,14 +285,19 @@ def main(argv=None) -> int:
     print()
     for e in entries:
         mark = "" if e["ok"] else "   FAILED"
-        claims = f"{e['claims_passed']}/{e['claims_total']}"
-        print(f"{e['notebook']:<{width}}{claims:>7} claims passed{e['seconds']:>9.1f} s{e['peak_mb']:>7} MB{mark}")
+        checks = f"{e['checks_passed']}/{e['checks_total']}"
+        print(f"{e['notebook']:<{width}}{checks:>7} checks passed{e['seconds']:>9.1f} s{e['peak_mb']:>7} MB{mark}")
     n_ok = sum(e["ok"] for e in entries)
-    passed = sum(e["claims_passed"] for e in entries)
-    total = sum(e["claims_total"] for e in entries)
+    passed = sum(e["checks_passed"] for e in entries)
+    total = sum(e["checks_total"] for e in entries)
     seconds = sum(e["seconds"] for e in entries)
-    print(f"{'total':<{width}}{f'{passed}/{total}':>7} claims passed{seconds:>9.1f} s"
+    print(f"{'total':<{width}}{f'{passed}/{total}':>7} checks passed{seconds:>9.1f} s"
           f"   ({n_ok}/{len(entries)} notebooks ok; {wall:.1f} s wall with {max(1, args.jobs)} at a time)")
+    for led in ledger.ledgers(build, root):
+        if led.stem in {e["notebook"] for e in entries}:
+            counts = led.counts
+            print(f"{led.stem:<{width}}{len(led.rows):>4} claims: " + ", ".join(
+                f"{counts[v]} {v}" for v in ledger.COLUMNS if counts.get(v)) + "".join(f"\n    {p}" for p in led.problems))
     print(f"report: {build / 'index.html'}")
     if args.check_against:
         changed = compare_manifest(manifest, args.check_against, [p.stem for p in notebooks])

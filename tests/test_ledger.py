@@ -1,0 +1,166 @@
+"""The ledger of claims and verdicts, checked on the committed files (no notebook is run).
+
+* Every paper notebook calls ``repro.setup("<stem>", paper="<claims_id>")`` with its registry entry's
+  claims id; the notebooks without a paper pass none.
+* Every ``repro.verdict(...)`` call written in a notebook names a claim of that notebook's paper, a
+  known verdict, and at most once; a hardware-only claim can only be "not checkable here".
+* ``tools/ledger.py`` and ``navlib.repro`` know the same verdicts, and ``docs/claims.md`` explains each.
+* The ledger joins a results file with the catalogue as documented: every claim appears once, a claim
+  without a verdict is "no verdict yet" and does not count as covered.
+"""
+from __future__ import annotations
+
+import ast
+import csv
+import json
+import sys
+from pathlib import Path
+
+import pytest
+
+from navlib import repro
+from navlib.papers import CHAPTERS, PAPERS, by_notebook
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "tools"))
+import ledger  # noqa: E402
+
+NOTEBOOKS = sorted((ROOT / "notebooks").glob("[0-9][0-9]_*.ipynb"))
+with open(ROOT / "data" / "claims.csv", newline="", encoding="utf-8") as _fh:
+    CLAIMS = {r["id"]: r for r in csv.DictReader(_fh)}
+
+
+def code(path: Path) -> list[str]:
+    nb = json.loads(path.read_text(encoding="utf-8"))
+    return ["".join(c["source"]) for c in nb["cells"] if c["cell_type"] == "code"]
+
+
+def calls(path: Path, name: str) -> list[ast.Call]:
+    """Every call of ``name`` or ``<module>.name`` in the notebook's code cells."""
+    out = []
+    for src in code(path):
+        src = "\n".join(line for line in src.splitlines() if not line.lstrip().startswith(("%", "!")))
+        for node in ast.walk(ast.parse(src)):
+            if isinstance(node, ast.Call):
+                f = node.func
+                if (isinstance(f, ast.Name) and f.id == name) or (isinstance(f, ast.Attribute) and f.attr == name):
+                    out.append(node)
+    return out
+
+
+def literal(node: ast.Call, pos: int, key: str):
+    """The literal value of argument ``pos`` / keyword ``key``, or None when it is not a literal."""
+    arg = node.args[pos] if len(node.args) > pos else next((k.value for k in node.keywords if k.arg == key), None)
+    try:
+        return ast.literal_eval(arg) if arg is not None else None
+    except ValueError:
+        return None
+
+
+def static_verdicts(path: Path) -> dict[str, str]:
+    """claim id -> verdict of the notebook's literal ``verdict(...)`` calls."""
+    out = {}
+    for node in calls(path, "verdict"):
+        claim, verdict = literal(node, 0, "claim"), literal(node, 1, "verdict")
+        if isinstance(claim, str) and isinstance(verdict, str):
+            assert claim not in out, f"{path.stem}: two verdict calls for {claim}"
+            out[claim] = verdict
+    return out
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=[p.stem for p in NOTEBOOKS])
+def test_setup_names_the_registered_paper(path):
+    paper = by_notebook(path.stem)
+    setups = [literal(node, 99, "paper") for node in calls(path, "setup")]
+    assert setups, "no repro.setup call"
+    assert setups == [paper.claims_id if paper else None] * len(setups), (
+        f"repro.setup(..., paper=...) must be the registry's claims_id {paper.claims_id if paper else None!r}")
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=[p.stem for p in NOTEBOOKS])
+def test_verdict_calls_name_claims_of_the_notebooks_paper(path):
+    paper = by_notebook(path.stem)
+    found = static_verdicts(path)
+    if paper is None:
+        assert not found, "a notebook without a paper records no verdicts"
+        return
+    for claim, verdict in found.items():
+        assert claim in CLAIMS, f"{claim}: not in data/claims.csv"
+        assert CLAIMS[claim]["paper"] == paper.claims_id, f"{claim}: not a claim of paper {paper.claims_id}"
+        assert verdict in repro.VERDICTS, f"{claim}: unknown verdict {verdict!r}"
+        if CLAIMS[claim]["kind"] == "hardware-only":
+            assert verdict == "not checkable here", f"{claim} is hardware-only in the catalogue but {verdict!r}"
+
+
+def test_verdict_calls_are_found():
+    """The static reading above sees the notebooks' verdicts (it must not pass by finding none)."""
+    assert sum(len(static_verdicts(p)) for p in NOTEBOOKS) >= 20
+
+
+def test_one_vocabulary():
+    assert ledger.VERDICTS == repro.VERDICTS
+    doc = (ROOT / "docs/claims.md").read_text(encoding="utf-8")
+    for v in (*repro.VERDICTS, ledger.NO_VERDICT):
+        assert f"*{v}*" in doc, f"docs/claims.md does not explain the verdict {v!r}"
+
+
+def test_catalogue_holds_no_second_copy_of_the_verdicts():
+    """The notebook owns the verdict; data/claims.csv has no verdict column that could disagree."""
+    assert "verdict" not in next(iter(CLAIMS.values()))
+
+
+def _results(tmp_path, stem, verdicts, checks=()):
+    (tmp_path / stem).mkdir(parents=True)
+    data = {"notebook": stem, "checks": list(checks), "paper": by_notebook(stem).claims_id, "verdicts": verdicts}
+    (tmp_path / stem / "results.json").write_text(json.dumps(data), encoding="utf-8")
+
+
+def test_ledger_joins_results_with_the_catalogue(tmp_path):
+    p = PAPERS[0]
+    ids = [c for c, r in CLAIMS.items() if r["paper"] == p.claims_id]
+    check = {"name": ids[0] + "/a", "value": 1.0, "passed": True}
+    _results(tmp_path, p.notebook, [
+        {"claim": ids[0], "verdict": "reproduced", "checks": [check["name"]], "evidence": [], "paper": None,
+         "ours": "1 deg", "reason": "", "erratum": "", "figure": "fig"},
+        {"claim": ids[1], "verdict": "not checkable here", "checks": [], "evidence": [], "paper": "4.77",
+         "ours": None, "reason": "hardware", "erratum": "", "figure": ""},
+        {"claim": "P999-NOT-A-CLAIM", "verdict": "reproduced", "checks": [], "evidence": [], "paper": None,
+         "ours": None, "reason": "", "erratum": "", "figure": ""}], [check])
+    leds = {led.stem: led for led in ledger.ledgers(tmp_path)}
+    led = leds[p.notebook]
+    assert [r.claim for r in led.rows] == ids                   # every claim once, in catalogue order
+    assert led.counts["reproduced"] == 1 and led.counts["not checkable here"] == 1
+    assert led.counts[ledger.NO_VERDICT] == len(ids) - 2
+    assert led.computed == 1                                    # only the verdict resting on a check
+    assert led.rows[0].figure == f"{p.notebook}/figures/fig.png" and led.rows[1].paper == "4.77"
+    assert led.problems and "P999-NOT-A-CLAIM" in led.problems[0]
+    assert led.checks_passed == led.checks_total == 1
+    other = leds[PAPERS[1].notebook]
+    assert not other.ran and other.counts[ledger.NO_VERDICT] == len(other.rows)
+
+
+def test_chapters_have_no_claims():
+    assert not set(CHAPTERS) & {p.notebook for p in PAPERS}
+
+
+def test_index_leads_with_verdicts_and_keeps_checks_and_claims_apart(tmp_path):
+    reproduce = pytest.importorskip("reproduce")              # tools/reproduce.py (needs nbclient, nbconvert)
+    p = PAPERS[0]
+    ids = [c for c, r in CLAIMS.items() if r["paper"] == p.claims_id]
+    check = {"name": ids[0] + "/a", "value": 1.0, "expected": 1.0, "tol": 0.1, "passed": True, "source": "paper Eq. (3)",
+             "paper_value": None, "lower": None, "upper": None, "unit": "", "note": ""}
+    outside = dict(check, name=ids[1] + "/differs", expected=None, tol=None, lower=2.0, upper=3.0, outside=True)
+    _results(tmp_path, p.notebook, [
+        {"claim": ids[0], "verdict": "reproduced", "checks": [check["name"]], "evidence": [], "paper": None,
+         "ours": "1", "reason": "", "erratum": "", "figure": ""},
+        {"claim": ids[1], "verdict": "differs", "checks": [outside["name"]], "evidence": [outside["name"]],
+         "paper": "2.5", "ours": "1", "reason": "hardware", "erratum": "", "figure": ""}], [check, outside])
+    entry = {"notebook": p.notebook, "ok": True, "error": None, "seconds": 1.0, "peak_mb": 1, "checks_passed": 2,
+             "checks_total": 2, "checks": [check, outside], "figures": [], "header": "# paper"}
+    reproduce.write_index(tmp_path, [entry], ROOT)
+    page = (tmp_path / "index.html").read_text(encoding="utf-8")
+    assert page.index("no verdict yet") < page.index("<th>check</th>")        # the claims lead, the checks follow
+    assert "claims passed" not in page and "2/2 checks passed" in page
+    assert "= target" not in page                                         # no invented paper values
+    assert "hardware" in page and ">outside<" in page
+    assert f"{len(ids)} claims of 1 papers; 2 have a verdict that rests on a computation" in page

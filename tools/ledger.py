@@ -1,0 +1,142 @@
+"""The paper-vs-reproduction ledger: every claim of ``data/claims.csv`` with its verdict.
+
+Shared by ``tools/reproduce.py`` (``build/index.html``) and ``tools/readme.py`` (the README's
+results section). A claim's verdict is owned by its notebook: the notebook records it with
+``navlib.repro.verdict`` into ``build/<notebook>/results.json``, resting on the checks recorded
+there. ``data/claims.csv`` holds no verdict (one owner, no second copy that could disagree); a
+claim whose notebook records none is shown as *no verdict yet* and never counted as reproduced.
+
+Two words are kept apart everywhere: a *claim* is a statement of a paper (a catalogue row), a
+*check* is one computed comparison of a notebook (a row of results.json). Coverage counts the
+claims whose verdict rests on at least one passed check.
+"""
+from __future__ import annotations
+
+import csv
+import json
+from collections import Counter
+from dataclasses import dataclass, field
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+NO_VERDICT = "no verdict yet"
+VERDICTS = ("reproduced", "reproduced with correction", "differs", "refuted", "direction only", "not checkable here")
+"""The verdicts in the ledger's order (the same tuple as ``navlib.repro.VERDICTS``; tests/test_ledger.py checks)."""
+COLUMNS = (*VERDICTS, NO_VERDICT)
+
+
+def read_csv(path: Path) -> list[dict[str, str]]:
+    with open(path, newline="", encoding="utf-8") as fh:
+        return list(csv.DictReader(line for line in fh if not line.startswith("#")))
+
+
+def claims(root: Path = ROOT) -> list[dict[str, str]]:
+    """The rows of ``data/claims.csv``, in catalogue order."""
+    return read_csv(root / "data" / "claims.csv")
+
+
+def results(build: Path, stem: str) -> dict | None:
+    """``build/<stem>/results.json``, or None when the notebook has not run."""
+    path = build / stem / "results.json"
+    return json.loads(path.read_text(encoding="utf-8")) if path.is_file() else None
+
+
+@dataclass
+class Row:
+    """One claim in the ledger."""
+    claim: str
+    item: str
+    quantity: str
+    kind: str
+    paper: str
+    ours: str = ""
+    verdict: str = NO_VERDICT
+    reason: str = ""
+    erratum: str = ""
+    figure: str = ""           # path relative to build/, or ""
+    checks: list[str] = field(default_factory=list)
+
+    @property
+    def computed(self) -> bool:
+        """The verdict rests on a computation: at least one check of the notebook."""
+        return self.verdict not in (NO_VERDICT, "not checkable here") and bool(self.checks)
+
+
+@dataclass
+class PaperLedger:
+    """The claims of one paper with their verdicts, and the notebook's checks."""
+    stem: str
+    paper: str
+    title: str
+    rows: list[Row]
+    checks_passed: int = 0
+    checks_total: int = 0
+    ran: bool = False
+    problems: list[str] = field(default_factory=list)
+
+    @property
+    def counts(self) -> Counter:
+        return Counter(r.verdict for r in self.rows)
+
+    @property
+    def computed(self) -> int:
+        return sum(r.computed for r in self.rows)
+
+
+def paper_ledger(stem: str, paper: str, title: str, catalogue: list[dict[str, str]], res: dict | None) -> PaperLedger:
+    """Join the catalogue's claims of ``paper`` with the verdicts of its notebook's results."""
+    own = [c for c in catalogue if c["paper"] == paper]
+    rows = {c["id"]: Row(c["id"], c["item"], c["quantity"], c["kind"], c["paper_value"]) for c in own}
+    led = PaperLedger(stem, paper, title, list(rows.values()))
+    if res is None:
+        return led
+    led.ran = True
+    checks = res.get("checks", [])
+    led.checks_passed, led.checks_total = sum(bool(c.get("passed")) for c in checks), len(checks)
+    if res.get("paper") not in (None, paper):
+        led.problems.append(f"results.json names paper {res.get('paper')}, the registry {paper}")
+    for v in res.get("verdicts", []):
+        row = rows.get(v["claim"])
+        if row is None:
+            led.problems.append(f"verdict for {v['claim']}, not a claim of paper {paper}")
+            continue
+        if v["verdict"] not in VERDICTS:
+            led.problems.append(f"{v['claim']}: unknown verdict {v['verdict']!r}")
+            continue
+        row.verdict, row.reason, row.erratum, row.checks = v["verdict"], v["reason"], v["erratum"], v["checks"]
+        row.ours = v["ours"] or ""
+        if v["paper"] is not None:
+            row.paper = v["paper"]
+        if v["figure"]:
+            row.figure = f"{stem}/figures/{v['figure']}.png"
+    return led
+
+
+def ledgers(build: Path, root: Path = ROOT) -> list[PaperLedger]:
+    """One ledger per registered paper, in notebook order."""
+    from navlib.papers import PAPERS  # the registry (imported here: reproduce.py's workers need no navlib)
+
+    catalogue = claims(root)
+    return [paper_ledger(p.notebook, p.claims_id, p.citation, catalogue, results(build, p.notebook))
+            for p in sorted(PAPERS, key=lambda p: p.number)]
+
+
+def verdict_text(row: Row) -> str:
+    """The verdict with its erratum or reason, as one line."""
+    text = row.verdict
+    if row.erratum and row.verdict == "reproduced with correction":
+        text += f" ({row.erratum})"
+    if row.reason:
+        text += f": {row.reason}"
+    return text
+
+
+def check_value(build: Path, stem: str, name: str) -> float:
+    """The value of check ``name`` of notebook ``stem`` (for numbers quoted in prose)."""
+    res = results(build, stem)
+    if res is None:
+        raise KeyError(f"{stem} has no results in {build}")
+    for c in res["checks"]:
+        if c["name"] == name:
+            return c["value"]
+    raise KeyError(f"{stem} recorded no check {name!r}")
