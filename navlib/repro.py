@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ._typing import Scalar
-from ._validate import real
+from ._validate import flag, real, text
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -127,7 +127,7 @@ def setup(notebook: str, *, out_dir: str | os.PathLike | None = None, style: boo
     _state.checks = []
     d = build_dir(notebook)
     (d / "results.json").unlink(missing_ok=True)
-    if style:
+    if flag(style, "style"):
         plt.rcdefaults()
         matplotlib.rcParams.update({
             "figure.figsize": (7.0, 4.0), "figure.dpi": 100, "savefig.dpi": 110,
@@ -183,6 +183,11 @@ def _check_name(name) -> None:
         raise ValueError(f"name: expected a non-empty check name (str), got {name!r}")
 
 
+def _texts(**kw: str) -> None:
+    for name, value in kw.items():
+        text(value, name)
+
+
 def _record(c: Check) -> Check:
     _state.checks = [k for k in _state.checks if k.name != c.name] + [c]
     _write()
@@ -219,12 +224,13 @@ def check(name: str, value: Scalar, expected: float, tol: float, source: str, *,
         The printed value when it differs from ``expected``.
     """
     _check_name(name)
+    _texts(source=source, unit=unit, note=note)
     v = _as_float(value, "value")
     e = _as_float(expected, "expected", finite=True)
     t = _as_float(tol, "tol", finite=True)
     if t < 0:
         raise ValueError(f"tol: expected a non-negative tolerance, got {t}")
-    abs_tol = t * abs(e) if rel else t
+    abs_tol = t * abs(e) if flag(rel, "rel") else t
     passed = bool(math.isfinite(v) and abs(v - e) <= abs_tol)
     return _record(Check(name, v, e, abs_tol, passed, source,
                          None if paper_value is None else str(paper_value), unit=unit, note=note))
@@ -240,6 +246,7 @@ def check_range(name: str, value: Scalar, source: str, *, lower: float | None = 
     if lower is None and upper is None:
         raise ValueError("lower, upper: give at least one bound")
     _check_name(name)
+    _texts(source=source, unit=unit, note=note)
     v = _as_float(value, "value")
     lo = None if lower is None else _as_float(lower, "lower")
     hi = None if upper is None else _as_float(upper, "upper")

@@ -16,7 +16,7 @@ from numba import njit
 
 from .._kernels import wrap_pi
 from .._typing import Angles, Array, ArrayLike, Interval, Times
-from .._validate import booleans, in_range, integer, intervals, last_axis, nonempty_array, same_shape, scalar
+from .._validate import booleans, in_range, integer, intervals, last_axis, nonempty_array, same_shape, scalar, time_axis
 from .observations import heading_input, rtk_gate, rtk_params
 
 __all__ = ["fuse_rtk_heading", "rtk_at_imu_rate", "FUSE_COUNT_NAMES"]
@@ -150,8 +150,8 @@ def rtk_at_imu_rate(time: Times, heading: Angles, valid: ArrayLike, step: int) -
     epoch_valid : ndarray of bool, shape (N,)
         True at valid epochs.
     """
-    t = nonempty_array(time, "time", shape=(None,))
-    h = nonempty_array(heading, "heading", finite=False)
+    t = time_axis(time, "time")
+    h = nonempty_array(heading, "heading", allow_nan=True)
     v = same_shape(booleans(valid, "valid"), "valid", t.shape, of="time")
     step = integer(step, "step")
     last_axis(h, "heading", t.size, of="time")

@@ -76,7 +76,7 @@ from .. import _kernels, kalman
 from .._deprecate import renamed_keywords
 from .._kernels import wrap_pi
 from .._typing import Array, ArrayLike, Times
-from .._validate import as_array, integer, range_limit, same_shape, scalar, time_axis
+from .._validate import as_array, flag, integer, range_limit, same_shape, scalar, text, time_axis
 from ..robust import FaultReport
 
 __all__ = ["CHANNELS", "motion_model", "jacobian", "propagate", "dead_reckoning", "filter_grid", "EkfResult",
@@ -175,6 +175,8 @@ def propagate(x0: ArrayLike, T: float, n_steps: int | None = None, speed: ArrayL
     """
     x0 = as_array(x0, "x0", shape=(5,))
     T = scalar(T, "T", positive=True)
+    if (speed is None) != (yaw_rate is None):
+        raise ValueError("speed, yaw_rate: give both (the measured inputs) or neither (n_steps of constant motion)")
     if speed is None and yaw_rate is None:
         n_steps = integer(n_steps, "n_steps")
         speed, yaw_rate = np.full(n_steps, x0[3]), np.full(n_steps, x0[4])
@@ -556,7 +558,7 @@ class EkfResult:
 
 def covariance(M: ArrayLike, name: str) -> Array:
     """A validated (5, 5) symmetric positive semi-definite matrix from itself or its diagonal (5,)."""
-    M = as_array(M, name)
+    M = as_array(M, text(name, "name", empty=False))
     if M.shape == (5,):
         M = np.diag(M)
     if M.shape != (5, 5) or not np.allclose(M, M.T) or np.any(np.linalg.eigvalsh(M) < 0):
@@ -645,7 +647,7 @@ def filter_grid(t: Times, z: ArrayLike, x0: ArrayLike, P0: ArrayLike | None = No
         saturated = np.abs(z[:, 4]) >= fs                   # NaN compares False
     reacquire = integer(reacquire, "reacquire")
     X, P, nis, status, rejected, reacquired = _ekf_kernel(t, np.ascontiguousarray(z), x0, P0, Q, R, gate,
-                                                          bool(fast), fs, reacquire)
+                                                          flag(fast, "fast"), fs, reacquire)
     later = z[1:]
     missing = np.stack([~np.all(np.isfinite(later[:, :2]), axis=1), np.isnan(later[:, 2]),
                         np.isnan(later[:, 3]), np.isnan(later[:, 4])], -1)
