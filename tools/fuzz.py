@@ -62,6 +62,7 @@ DEPRECATED = {"navlib.northfinding", "navlib.gyrobias", "navlib.planar", "navlib
 
 BAD_CLASSES = ("unnamed", "other_exception", "silent_nan", "silent_accept", "hang", "crash", "modifies_input")
 UNUSUAL_BAD = ("differs", "error")
+BATCH = 3                   # copies on the new leading axis (not 2: no fixture has a leading axis of 3)
 
 
 # ----------------------------------------------------------------------------------------------------------
@@ -84,7 +85,7 @@ NUMERIC = {"number", "quat", "dcm", "time", "interval"}
 
 MUTATIONS = {
     # name: (kinds it applies to, what it is)
-    "wrong_shape": (NUMERIC, "the last axis one longer (a scalar becomes shape (3,), a 1-D array gets an axis)"),
+    "wrong_shape": (NUMERIC, "the last axis one longer (a scalar becomes shape (3,), a series of N > 4 values (N, 2))"),
     "transposed": (NUMERIC, "(N, k) given as (k, N)"),
     "0d": (NUMERIC, "a scalar where an array is expected"),
     "empty": (NUMERIC, "no samples: shape (0,) or (..., 0, k)"),
@@ -103,11 +104,12 @@ MUTATIONS = {
 }
 UNUSUAL = {
     "list": "nested Python lists", "float32": "float32", "int": "integers (the rounded values)",
-    "batch": "two copies on a new leading axis", "n1": "every series cut to its first sample",
+    "batch": "copies on a new leading axis (BATCH)", "n1": "every series cut to its first sample",
 }
-# Arguments for which inf is a documented value ("no limit", "no gate").
+# Arguments for which inf is a documented value ("no limit", "no gate", "off", a singular fit's condition).
 INF_MEANS_NO_LIMIT = re.compile(r"^(full_scale\w*|gate|rtk_gate|max_gap|max_cond|mag_field_tol|mag_dip_tol|"
-                                r"spike_gyro|spike_accel|baro_gate|correlation_time|max_dt|norm_tol|dip_tol)$")
+                                r"spike_gyro|spike_accel|baro_gate|correlation_time|max_dt|norm_tol|dip_tol|lower|upper|"
+                                r"freefall_time|condition)$")
 
 
 def kind(name: str, annotation: str, value) -> str:
@@ -151,6 +153,8 @@ def applies(mutation: str, arg: Arg) -> bool:
         return False        # any shape is valid for an elementwise argument without a vector axis
     if mutation == "empty" and arg.elementwise:
         return False        # an empty batch is valid for elementwise functions (tests/test_bad_input.py)
+    if mutation in ("wrong_shape", "transposed") and arg.any_shape:
+        return False        # data of any width: (N, k) for every k, also (k, N)
     if mutation == "transposed":
         return v.ndim >= 2 and v.shape[-1] != v.shape[-2]
     if mutation == "0d":
@@ -174,10 +178,10 @@ def mutate(mutation: str, arg: Arg):
     """The mutated value of ``arg``."""
     v = arg.value
     a = np.array(v, dtype=float) if arg.kind in NUMERIC else None
-    if mutation == "wrong_shape":
+    if mutation == "wrong_shape":       # a 1-D value of up to 4 entries is a vector (pair, xyz, quaternion)
         if a.ndim == 0:
             return np.full(3, float(a))
-        if a.ndim == 1 and a.size not in (3, 4):
+        if a.ndim == 1 and a.size > 4:
             return np.stack([a, a], -1)
         return np.concatenate([a, a[..., -1:]], -1)
     if mutation == "transposed":
@@ -237,7 +241,7 @@ def unusual(variant: str, arg: Arg):
         r = np.round(a)
         return r.astype(np.int64), r
     if variant == "batch":
-        return (np.stack([a, a]), a) if a.ndim >= 1 or arg.elementwise else None
+        return (np.stack([a] * BATCH), a) if a.ndim >= 1 or arg.elementwise else None
     raise KeyError(variant)
 
 
@@ -246,7 +250,91 @@ def unusual(variant: str, arg: Arg):
 # (callable, argument, mutation, outcome) regular expressions (whole match) -> reason.
 # ----------------------------------------------------------------------------------------------------------
 
+_SENSORS = r"w_ib_b|f_b|m_b"
+_FILTERS = (r"filters\.(mahony\.mahony|quaternion_kf\.quaternion_kf|zupt_ins\.run_filter|zupt\.detect_static)|"
+            r"alignment\.static_means|papers\.north_finding\.(ins_heading_change|stop_solutions)|pdr\.pdr_headings")
+_HEADINGS = r"heading\w*"
 BY_DESIGN: list[tuple[str, str, str, str, str]] = [
+    # NaN marks a dropout (navlib/__init__.py, "Bad input"; tests/test_bad_input.py)
+    (r"units\..*", r"x|value", r"nan|inf|1e300", r"silent_nan|silent_accept",
+     "unit converters pass NaN (dropout) and inf (full_scale = inf) through; a linear conversion is exact at any magnitude"),
+    (r"attitude\.wrap_2?pi", "angle", "nan", "silent_nan", "NaN (a dropout) stays NaN (the wraps' docstrings)"),
+    (r"attitude\.ned_to_enu", "v", "nan", "silent_nan", "a frame swap of logged vectors: a NaN reading stays NaN"),
+    (_FILTERS, _SENSORS, "nan", "silent_accept", "NaN marks a sensor dropout: held or skipped, and counted in the result"),
+    (r"filters\.(mahony\.mahony|quaternion_kf\.quaternion_kf)", r"f_b|m_b", "inf", "silent_accept",
+     "a non-finite accelerometer or magnetometer sample is skipped like a dropout (counted)"),
+    (r"filters\.observations\.prepare_inputs", _SENSORS, r"nan|inf", "silent_nan",
+     "the kernel's input record holds the samples; NaN/inf ones are skipped by the kernel and counted"),
+    (r"imu\.ImuSamples", r"w_ib_b|f_b", "nan", "silent_nan", "the record holds the samples; NaN marks a dropout"),
+    (r"trajectory\.Trajectory", r"lla|vel_n|q_bn", "nan", "silent_nan",
+     "a trajectory also holds filter output, which marks epochs without a solution NaN (tests/test_bad_input.py)"),
+    (r"robust\.(despike|fault_report|hold|longest_repeat|stuck_mask)", r"x|w_ib_b|f_b", "nan", r"silent_nan|silent_accept",
+     "robust-input functions exist to find, count and hold NaN samples"),
+    (r"faults\.(dropouts|gap|heading_flips|position_jumps|saturate|spikes)", r"x|heading|lla", "nan",
+     r"silent_nan|silent_accept", "fault injectors corrupt any record, also one with dropouts already (NaN passes)"),
+    (r"filters\.planar_ekf\.(dead_reckoning|filter_grid)|papers\.gauss_kruger_ekf\.ekf|kalman\.update",
+     r"speed|yaw_rate|z|gps|heading", "nan", r"silent_nan|silent_accept",
+     "a NaN measurement component is skipped (predict only / held); its innovation is NaN (documented)"),
+    (r"filters\.heading_fusion\.(fuse_rtk_heading|rtk_at_imu_rate)", r"heading_rtk|heading", "nan", "silent_accept",
+     "NaN RTK heading: no fix at that epoch (held, then dropped)"),
+    (r"papers\.rotation_bias\.(tilt_residuals|lsq_bias|running_lsq_bias|kalman_bias)", r"w_ib_b|f_b|r|V", "nan",
+     r"silent_nan|silent_accept", "a dwell with dropouts is skipped (NaN residual, counted); NaN residuals are left out"),
+    (r"analysis\.(rmse|position_error)", r"err|estimate", "nan", "silent_nan",
+     "NaN propagates: no silent dropping (docstrings; tests/test_bad_input.py)"),
+    (r"analysis\.condition_number", "V", "nan", "silent_accept", "blocks holding NaN are left out (docstring)"),
+    (r"atmosphere\.(reference_pressure|segment_floors)", r"p|h", "nan", "silent_accept",
+     "NaN samples (no reading) are ignored (docstrings)"),
+    (r"io\.align", "x_source", "nan", "silent_accept", "NaN marks a missing reading (docstring)"),
+    (r"calibration\.(Mag|Accel)Calibration", r"residual|norm_spread_\w+|condition", "nan", "silent_accept",
+     "a fit's quality figure is NaN when it was not computed (the field's default)"),
+    # inf and huge values with a meaning
+    (r"analysis\.(condition_number|cramer_rao_bound)", "V", "wrong_shape", "silent_nan",
+     "inf: the unknowns are not observable from these blocks (docstrings)"),
+    (r"attitude\.(quat_\w+|ned_to_enu_quat)|filters\.(mahony\.mahony|quaternion_kf\.quaternion_kf|observations\.prepare_inputs)|"
+     r"strapdown\.integrate(_attitude)?", r"q|q0|q_ned", "1e300", "silent_accept",
+     "quaternions of any finite magnitude are normalised exactly (tests/test_magnitudes.py)"),
+    (r"imu\.ImuSamples|filters\.heading_fusion\.fuse_rtk_heading", "dt", r"1e300|time_jump", "silent_accept",
+     "nothing is integrated over dt here; an interval too long to integrate is refused where it is (small_turns)"),
+    (r"repro\.check(_range)?", r"value|expected|tol|upper", r"nan|inf|1e300", r"other_exception|silent_accept",
+     "any finite target is a claim; a reproduced value outside it fails the claim (ClaimCheckFailed, tests/test_bad_input.py)"),
+    # quaternion algebra and matrices that need not be rotations
+    (r"attitude\.quat_(mult|conj)", r"p|q", "zero_quat", "silent_accept",
+     "Hamilton algebra on any quaternion: the pure quaternion [0, w] of the kinematics is zero at rest (notebook 04)"),
+    (r"attitude\.orthonormalize|alignment\.triad_heading", r"C|C_bn", "not_rotation", "silent_accept",
+     "made for raw TRIAD matrices, which noise makes non-orthonormal (orthonormalize handles det < 0 on purpose)"),
+    (r"strapdown\.nav_step", r"lla|vel|q", "valid", "modifies_input",
+     "nav_step updates a writeable float64 state in place (documented), the per-sample API of the kernels"),
+    # periodic headings, clock jumps and time axes
+    (r".*", _HEADINGS, "degrees", "silent_accept", "a heading is periodic: 45 rad is a valid unwrapped heading"),
+    (r"analysis\.(attitude_errors|error_statistics)", r"hpr|hpr_true", "degrees", "silent_accept",
+     "compares any angle triples component by component (wrapped), not rotations (tests/test_gyrobias.py: [-4, 4] rad)"),
+    (r"filters\.(mahony\.mahony|quaternion_kf\.quaternion_kf|observations\.prepare_inputs)", "dt", "time_jump",
+     "silent_accept", "an interval above max_dt is a clock jump: not integrated, the attitude re-initialised, counted"),
+    (r"filters\.planar_ekf\.(dead_reckoning|filter_grid)|papers\.gauss_kruger_ekf\.ekf", "t", "time_jump",
+     "silent_accept", "the motion model propagates over any interval; the covariance grows with it"),
+    (r"analysis\.settling_time|atmosphere\.reference_pressure|faults\.\w+|timing\.(intervals|sanitize)|"
+     r"sensors\.(magnetic_disturbances|outage_mask|simulate_barometer)|trajectory\.Trajectory|io\.align|"
+     r"papers\.pedestrian_ins\.hvac_pressure_steps|filters\.heading_fusion\.rtk_at_imu_rate",
+     r"time|t_target|t_source|door_times", "time_jump", "silent_accept",
+     "any increasing time axis is valid here: nothing assumes uniform sampling (timing reports the gap)"),
+    (r"faults\.swap_timestamps|timing\.sanitize", "time", "non_monotonic", "silent_accept",
+     "made for faulty clocks: swap_timestamps composes with other injections, sanitize sorts"),
+    (r"papers\.pedestrian_ins\.hvac_pressure_steps", "door_times", r"empty|non_monotonic", "silent_accept",
+     "door times are a set: none means no offset, any order is sorted"),
+    (r"sensors\.outage_mask", "outages", "empty", "silent_accept", "no outages: every epoch valid"),
+    (r"papers\.north_finding\.simulate_static_outputs", r"gyro_bias|accel_bias", "wrong_shape", "silent_accept",
+     "a bias is one value for every axis or a per-axis (3,) vector (documented)"),
+    (r"imu\.ImuSamples", r"full_scale_\w+", "none", "silent_accept",
+     "None is no range, as everywhere a full_scale_* is taken (range_limit)"),
+    (r"filters\.heading_fusion\.fuse_rtk_heading", "heading_rtk", "0d", "silent_accept",
+     "heading_rtk broadcasts against heading_mag (documented (..., N) broadcasting)"),
+    # valid-unusual calls
+    (r"sensors\.simulate_\w+|faults\.\w+|papers\.north_finding\.simulate_static_outputs", ".*", "batch", "differs",
+     "random draws are made over the whole batch: every trial gets its own noise"),
+    (r"analysis\.rmse", "err", "batch", "differs", "rmse reduces along axis (default 0): a leading batch axis is that axis"),
+    (r"analysis\.moving_mean", "x", "batch", "differs", "the mean moves along axis 0 (documented (N, ...)): a leading axis is N"),
+    (r"imu\.unpack", ".*", ".*", r"silent_accept|silent_nan|differs",
+     "unpack only splits ImuSamples; plain arrays go through unchanged to the filter that calls it, which validates them"),
 ]
 
 
@@ -271,6 +359,7 @@ class Arg:
     kind: str
     none_ok: bool
     elementwise: bool
+    any_shape: bool
     deg: bool
     n: int | None
 
@@ -292,6 +381,15 @@ def public_callables() -> dict[str, object]:
     return out
 
 
+def with_defaults(func, call: Call) -> Call:
+    """``call`` with every keyword parameter it leaves out given its default, so that every argument is fuzzed."""
+    params = inspect.signature(func).parameters.values()
+    defaults = {p.name: p.default for p in params if p.default is not inspect.Parameter.empty
+                and repr(p.default) != "<factory>"          # a dataclass field's default_factory
+                and p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY) and p.name not in call.kwargs}
+    return dataclasses.replace(call, kwargs={**call.kwargs, **defaults})
+
+
 def arguments(key: str, func, call) -> list[Arg]:
     """The arguments of a valid call, with their kinds."""
     sig = inspect.signature(func)
@@ -304,7 +402,7 @@ def arguments(key: str, func, call) -> list[Arg]:
         none_ok = p is not None and (p.default is None or "None" in ann)
         v = value.make() if isinstance(value, Fresh) else value
         out.append(Arg(name, v, ann, "object" if isinstance(value, Fresh) else kind(name, ann, v), none_ok,
-                       name in call.elementwise or call.elementwise == ("*",), deg, n))
+                       name in call.elementwise or call.elementwise == ("*",), name in call.any_shape, deg, n))
     return out
 
 
@@ -327,6 +425,7 @@ class Fresh:
 class Call:
     """One valid call: keyword arguments and how its arguments behave.
 
+    any_shape : names of data arguments of any width, (..., N, k) for every k (a wrong last axis is none).
     elementwise : names of arguments over which the function broadcasts elementwise (``("*",)``: all):
         any leading shape, also empty, is valid for them.
     n : samples of the series (inferred from the first (N, 3) array or time axis when None).
@@ -334,6 +433,7 @@ class Call:
     """
     kwargs: dict
     elementwise: tuple = ()
+    any_shape: tuple = ()
     n: int | None = None
     before: object = None
 
@@ -533,13 +633,20 @@ def _batch_outcome(func, call, kwargs, baseline) -> dict:
 
 
 def _batch(out: dict, baseline: dict) -> str:
-    """'' if every leaf of the batched result is two copies of the valid result's leaf."""
+    """'' if every leaf of the batched result is BATCH copies of the valid result's leaf.
+
+    A leaf of the valid result's shape (one that does not depend on the batched argument, e.g. a time axis)
+    is compared as it is.
+    """
     if out.keys() != baseline.keys():
         return f"fields {sorted(set(out) ^ set(baseline))[:3]}"
     for p, x in out.items():
-        if x.shape != (2,) + baseline[p].shape:
-            return f"{p}: shape {x.shape}, expected {(2,) + baseline[p].shape}"
-        d = same({p: x[0]}, {p: baseline[p]}) or same({p: x[1]}, {p: baseline[p]})
+        if x.shape == baseline[p].shape:
+            d = same({p: x}, {p: baseline[p]})
+        elif x.shape == (BATCH,) + baseline[p].shape:
+            d = next((e for e in (same({p: x[i]}, {p: baseline[p]}) for i in range(BATCH)) if e), "")
+        else:
+            d = f"{p}: shape {x.shape}, expected {(BATCH,) + baseline[p].shape}"
         if d:
             return d
     return ""
@@ -672,17 +779,29 @@ def main(argv=None) -> int:
 
     import matplotlib
     matplotlib.use("Agg")
-    os.environ.setdefault("NAVLIB_ROOT", _sandbox())
     sys.modules.setdefault("fuzz", sys.modules[__name__])     # one Call/Skip class when run as a script
+    root = os.environ.get("NAVLIB_ROOT")
+    os.environ["NAVLIB_ROOT"] = _sandbox()                   # navlib.repro writes there, not to build/
+    try:
+        return _run(opts, t_start)
+    finally:
+        if root is None:
+            del os.environ["NAVLIB_ROOT"]
+        else:
+            os.environ["NAVLIB_ROOT"] = root
+
+
+def _run(opts, t_start: float) -> int:
     import fuzz_calls
     funcs = public_callables()
-    table = fuzz_calls.table()
-    missing = sorted(set(funcs) - set(table))
-    stale = sorted(set(table) - set(funcs))
+    listed = fuzz_calls.table()
+    missing = sorted(set(funcs) - set(listed))
+    stale = sorted(set(listed) - set(funcs))
     if missing or stale:
         print(f"fuzz: public callables without a valid call in tools/fuzz_calls.py: {missing}" if missing else "",
               f"fuzz: entries for names that are not public: {stale}" if stale else "", sep="\n", file=sys.stderr)
         return 2
+    table = {k: c if isinstance(c, Skip) else with_defaults(funcs[k], c) for k, c in listed.items()}
     keys = select(table, opts.only)
     if not keys:
         print(f"fuzz: nothing matches --only {opts.only}", file=sys.stderr)
