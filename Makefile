@@ -16,13 +16,14 @@ reproduce test: export MPLBACKEND := Agg
 PYTEST_FLAGS ?= -q -ra --durations=10 --nbmake-timeout=1800 -n 2 --dist loadgroup
 
 .DEFAULT_GOAL := help
-.PHONY: help venv reproduce readme test lint lab bench strip clean determinism report-screenshot
+.PHONY: help venv reproduce readme test lint lab bench strip clean determinism report-screenshot fuzz
 
 help:
 	@echo "make reproduce  execute every notebook, write build/ (index.html, HTML, figures, results)"
 	@echo "make readme     regenerate the README results section (claims by verdict), quoted numbers and figures from build/"
 	@echo "make test       unit/property tests + every notebook executed by nbmake"
 	@echo "make lint       ruff over the code (also part of make test)"
+	@echo "make fuzz       tools/fuzz.py: every public callable with bad and unusual arguments (build/fuzz.json)"
 	@echo "make lab        JupyterLab on notebooks/"
 	@echo "make bench      install bench-only peers (requirements-bench.txt), run bench/run.py"
 	@echo "make strip      strip outputs from notebooks/*.ipynb before committing"
@@ -77,6 +78,10 @@ test: $(STAMP)
 
 lint: $(STAMP)
 	$(VENV)/bin/ruff check .
+
+# Every public callable, every argument mutated (tools/fuzz.py); fails on a bad outcome not documented as by design.
+fuzz: $(STAMP)
+	$(PY) tools/fuzz.py --jobs 2
 
 lab: $(STAMP)
 	$(PY) -m jupyter lab notebooks/

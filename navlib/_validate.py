@@ -6,7 +6,9 @@ that bad input fails loudly at the boundary instead of producing a
 plausible-looking wrong number deep inside a filter. A value of the wrong
 kind -- a string, complex, object, boolean or date where real numbers are
 expected -- raises :class:`InputTypeError`, which is both a ``TypeError`` and
-a ``ValueError``.
+a ``ValueError``. Magnitudes beyond :data:`MAX_MAGNITUDE` (whose square overflows
+float64) are refused too, except where a function is exact at any magnitude.
+tools/fuzz.py calls every public function with such values.
 """
 from __future__ import annotations
 
@@ -53,8 +55,16 @@ def real(x: ArrayLike, name: str) -> np.ndarray:
     return arr.astype(float, copy=False)
 
 
+MAX_MAGNITUDE = 1e150
+"""Largest magnitude :func:`as_array` accepts: beyond it a square (a norm, a variance, a product of two such
+values) overflows float64, so a result would be inf or NaN, or finite but wrong. Almost always a unit or
+scaling error; the few functions exact at any magnitude (quaternion normalisation, rotation-vector angles,
+unit conversions) opt out with ``huge=True`` or check their own limit."""
+
+
 def as_array(x: ArrayLike, name: str, *, tail: tuple[int, ...] = (), finite: bool = True,
-             allow_nan: bool = False, min_ndim: int = 0, shape: tuple[int | None, ...] | None = None) -> np.ndarray:
+             allow_nan: bool = False, min_ndim: int = 0, shape: tuple[int | None, ...] | None = None,
+             huge: bool = False, of: str = "") -> np.ndarray:
     """Return ``x`` as a float64 array whose trailing shape is ``tail``.
 
     Parameters
@@ -76,13 +86,17 @@ def as_array(x: ArrayLike, name: str, *, tail: tuple[int, ...] = (), finite: boo
     shape : tuple of int or None, optional
         Required exact shape; a ``None`` entry takes any length, e.g. ``(None,)``
         for a 1-D array.
+    huge : bool
+        Accept finite values beyond :data:`MAX_MAGNITUDE` (refused otherwise, also with ``finite=False``).
+    of : str
+        The argument(s) that set the sizes in ``shape``, named in the message (e.g. ``"x"`` for ``P``).
     """
     arr = real(x, name)
     if tail and arr.shape[arr.ndim - len(tail):] != tail or arr.ndim < len(tail) + min_ndim:
         want = "(" + ", ".join(["..."] + [str(t) for t in tail]) + ")"
         raise ValueError(f"{name}: expected shape {want}, got {arr.shape}")
     if shape is not None:
-        _exact_shape(arr, name, shape)
+        _exact_shape(arr, name, shape, of)
     if arr.size == 0 and min_ndim > 0:
         raise ValueError(f"{name}: expected a non-empty array, got shape {arr.shape}")
     if finite:
@@ -90,18 +104,29 @@ def as_array(x: ArrayLike, name: str, *, tail: tuple[int, ...] = (), finite: boo
         if bad.any():
             what = "infinite" if allow_nan else "non-finite (NaN or inf)"
             raise ValueError(f"{name}: contains {what} values")
+    if not huge:
+        _magnitude(arr, name)
     return arr
 
 
-def _exact_shape(arr: np.ndarray, name: str, shape: tuple[int | None, ...]) -> np.ndarray:
+def _magnitude(arr: np.ndarray, name: str) -> None:
+    """Refuse finite values beyond :data:`MAX_MAGNITUDE`."""
+    big = np.abs(arr) > MAX_MAGNITUDE
+    if big.any() and np.isfinite(arr[big]).any():
+        top = np.abs(arr[big & np.isfinite(arr)]).max()
+        raise ValueError(f"{name}: expected magnitudes up to {MAX_MAGNITUDE:g}, got {top:g} (its square overflows "
+                         f"float64; wrong units or scaling?)")
+
+
+def _exact_shape(arr: np.ndarray, name: str, shape: tuple[int | None, ...], of: str = "") -> np.ndarray:
     """Return ``arr`` if its shape is ``shape``; a ``None`` entry takes any length, e.g. ``(None, 3)``."""
     if arr.ndim != len(shape) or any(s not in (None, n) for s, n in zip(shape, arr.shape, strict=True)):
         want = "(" + ", ".join("N" if s is None else str(s) for s in shape) + ("," if len(shape) == 1 else "") + ")"
-        raise ValueError(f"{name}: expected shape {want}, got {arr.shape}")
+        raise ValueError(f"{name}: expected shape {want}{f' (sizes from {of})' if of else ''}, got {arr.shape}")
     return arr
 
 
-def booleans(x: ArrayLike, name: str, *, shape: tuple[int | None, ...] | None = None) -> np.ndarray:
+def booleans(x: ArrayLike, name: str, *, shape: tuple[int | None, ...] | None = None, of: str = "") -> np.ndarray:
     """Return ``x`` as a boolean array (validity flags, masks), optionally of exact ``shape`` (as in :func:`as_array`).
 
     Only booleans are accepted: numbers (``0``/``1``, NaN) are refused with
@@ -113,7 +138,7 @@ def booleans(x: ArrayLike, name: str, *, shape: tuple[int | None, ...] | None = 
         raise InputTypeError(f"{name}: expected booleans, got a ragged {type(x).__name__}") from exc
     if arr.dtype != bool:
         raise InputTypeError(f"{name}: expected booleans, got dtype {arr.dtype}")
-    return arr if shape is None else _exact_shape(arr, name, shape)
+    return arr if shape is None else _exact_shape(arr, name, shape, of)
 
 
 def in_range(arr: np.ndarray, name: str, lo: float, hi: float, unit: str = "",
@@ -160,6 +185,7 @@ def positive(x: ArrayLike, name: str, *, allow_zero: bool = False) -> np.ndarray
 def latitude(lat: ArrayLike, name: str = "lat", deg: bool = False) -> np.ndarray:
     """Validate a geodetic latitude and return it in radians."""
     arr = as_array(lat, name)
+    deg = flag(deg, "deg")
     lim = 90.0 if deg else np.pi / 2
     in_range(arr, name, -lim, lim, "deg" if deg else "rad")
     return np.deg2rad(arr) if deg else arr
@@ -172,11 +198,12 @@ def generator(rng: np.random.Generator, name: str = "rng") -> np.random.Generato
     return rng
 
 
-def time_axis(t: Times, name: str = "time", *, increasing: bool = True) -> np.ndarray:
-    """Return a 1-D time vector (s) of at least 2 samples, strictly increasing unless ``increasing=False``."""
+def time_axis(t: Times, name: str = "time", *, increasing: bool = True, min_samples: int = 2) -> np.ndarray:
+    """Return a 1-D time vector (s) of at least ``min_samples`` samples, strictly increasing unless ``increasing=False``."""
     arr = as_array(t, name)
-    if arr.ndim != 1 or arr.size < 2:
-        raise ValueError(f"{name}: expected a 1-D array of at least 2 samples, got shape {arr.shape}")
+    if arr.ndim != 1 or arr.size < min_samples:
+        raise ValueError(f"{name}: expected a 1-D array of at least {min_samples} sample{'s' * (min_samples > 1)}, "
+                         f"got shape {arr.shape}")
     if increasing and np.any(np.diff(arr) <= 0):
         raise ValueError(f"{name}: expected strictly increasing times (run navlib.timing.sanitize first)")
     return arr
@@ -220,34 +247,57 @@ def as_dcm(C: Dcm, name: str = "C_bn") -> np.ndarray:
     return C
 
 
-def as_quat(q: Quat, name: str = "q") -> np.ndarray:
-    """Return ``q`` as unit quaternions, shape (..., 4), scalar first; a zero quaternion raises."""
-    q = as_array(q, name, tail=(4,))
+QUAT_MIN_NORM = 1e-12
+"""Smallest quaternion norm :func:`as_quat` accepts: a zero quaternion is no rotation."""
+
+
+def as_quat(q: Quat, name: str = "q", *, normalize: bool = True) -> np.ndarray:
+    """Return ``q`` as unit quaternions, shape (..., 4), scalar first; a zero quaternion raises.
+
+    Quaternions of any finite magnitude are normalised exactly. With ``normalize=False`` the values are
+    returned unchanged (for functions defined for any non-zero quaternion, e.g. the quadratic measurement
+    model and its Jacobian, which finite differences evaluate off the unit sphere).
+    """
+    if not normalize:
+        q = as_array(q, name, tail=(4,))
+        _nonzero(np.linalg.norm(q, axis=-1), name)
+        return q
+    q = as_array(q, name, tail=(4,), huge=True)
     big = np.abs(q).max(axis=-1, keepdims=True)
-    if np.any(big > 1e150):                    # |q|^2 would overflow: scale first (exact, a power of two)
-        q = q / np.exp2(np.floor(np.log2(np.where(big > 1e150, big, 1.0))))
+    if np.any(big > MAX_MAGNITUDE):            # |q|^2 would overflow: scale first (exact, a power of two)
+        q = q / np.exp2(np.floor(np.log2(np.where(big > MAX_MAGNITUDE, big, 1.0))))
     n = np.linalg.norm(q, axis=-1, keepdims=True)
-    if np.any(n < 1e-12):
-        raise ValueError(f"{name}: expected non-zero quaternions")
+    _nonzero(n, name)
     return q / n
+
+
+def _nonzero(norm: np.ndarray, name: str) -> None:
+    if np.any(norm < QUAT_MIN_NORM):
+        raise ValueError(f"{name}: expected non-zero quaternions (|q| >= {QUAT_MIN_NORM:g}), got |q| = {norm.min():g}")
 
 
 def time_grid(duration: float, dt: float) -> np.ndarray:
     """Sample times ``0, dt, ..., n dt`` with ``n = round(duration / dt) >= 1`` (s)."""
-    duration = float(positive(duration, "duration"))
-    dt = float(positive(dt, "dt"))
+    duration = scalar(duration, "duration", positive=True)
+    dt = scalar(dt, "dt", positive=True)
     n = int(round(duration / dt))
     if n < 1:
         raise ValueError(f"duration: expected at least one sample interval dt={dt}, got {duration}")
     return dt * np.arange(n + 1)
 
 
-def scalar(x: ArrayLike, name: str, *, positive: bool = False, allow_zero: bool = False, allow_inf: bool = False) -> float:
-    """Return ``x`` as a Python float; optionally > 0 (or >= 0 with ``allow_zero``); inf only if ``allow_inf``."""
-    arr = as_array(x, name, finite=not allow_inf)
+def scalar(x: ArrayLike, name: str, *, positive: bool = False, allow_zero: bool = False, allow_inf: bool = False,
+           huge: bool = False, allow_nan: bool = False) -> float:
+    """Return ``x`` as a Python float; optionally > 0 (or >= 0 with ``allow_zero``); inf only if ``allow_inf``.
+
+    ``allow_nan``: NaN is accepted as such (a figure that was not computed).
+    """
+    arr = as_array(x, name, finite=not allow_inf, allow_nan=allow_nan, huge=huge)
     if arr.ndim != 0:
         raise ValueError(f"{name}: expected a scalar, got shape {arr.shape}")
     value = float(arr)
+    if allow_nan and np.isnan(value):
+        return value
     if np.isnan(value) or (positive or allow_zero) and not (value >= 0 if allow_zero else value > 0):
         raise ValueError(f"{name}: expected a {'non-negative' if allow_zero else 'positive'} value, got {value!r}")
     return value
@@ -275,11 +325,18 @@ def flag(x: bool, name: str) -> bool:
 def choice(x: Any, name: str, options: tuple[Any, ...]) -> Any:
     """Return ``x`` if it is one of ``options`` (strings, or e.g. the allowed integer settings); arrays are refused."""
     try:
-        ok = x in options
+        ok = x in options and (not isinstance(x, (bool, np.bool_)) or any(isinstance(o, bool) for o in options))
     except (TypeError, ValueError):          # an array (no single truth value) or an unhashable value
         ok = False
     if not ok:
         raise ValueError(f"{name}: expected one of {tuple(options)}, got {x!r}")
+    return x
+
+
+def text(x: Any, name: str, *, empty: bool = True) -> str:
+    """Return ``x`` if it is a string (non-empty unless ``empty``): names, labels, titles, sources."""
+    if not isinstance(x, str) or not empty and not x.strip():
+        raise ValueError(f"{name}: expected a {'' if empty else 'non-empty '}string, got {x!r:.60}")
     return x
 
 
@@ -319,6 +376,21 @@ def broadcast(*arrays: np.ndarray, name: str, of: str = "") -> list[np.ndarray]:
         raise ValueError(f"{name}: shapes {shapes}{f' (of {of})' if of else ''} do not broadcast") from None
 
 
+def broadcast_to(arr: np.ndarray, name: str, shape: tuple[int, ...], of: str = "") -> np.ndarray:
+    """``np.broadcast_to(arr, shape)``, blaming ``name`` when ``arr`` does not broadcast to ``shape`` (set by ``of``)."""
+    try:
+        return np.broadcast_to(arr, shape)
+    except ValueError:
+        raise ValueError(f"{name}: expected a shape that broadcasts to {tuple(shape)}{f' (that of {of})' if of else ''}, "
+                         f"got {np.shape(arr)}") from None
+
+
+def ellipsoid(x: Any, name: str = "ellipsoid") -> Any:
+    """Return ``x`` if it is a :class:`navlib.earth.Ellipsoid` (e.g. ``earth.WGS84``)."""
+    from .earth import Ellipsoid  # noqa: PLC0415 -- earth imports this module
+    return instance(x, name, Ellipsoid, "a navlib.earth.Ellipsoid (e.g. earth.WGS84)", error=InputTypeError)
+
+
 def range_limit(x: float | None, name: str) -> float:
     """A device's full-scale range (same unit as its samples): a positive value, or ``None``/inf for no limit."""
     return np.inf if x is None else scalar(x, name, positive=True, allow_inf=True)
@@ -346,9 +418,9 @@ def intervals(dt: Interval, n: int, name: str = "dt") -> np.ndarray:
     This is navlib's one reading of ``dt``: every filter accepts a fixed interval
     or per-sample intervals (e.g. :func:`navlib.timing.intervals` of the epoch times).
     """
-    arr = as_array(dt, name)
+    arr = as_array(dt, name, huge=True)       # an interval too long to integrate over is refused by small_turns
     if arr.ndim == 0:
-        arr = np.full(n, scalar(arr, name, positive=True))
+        arr = np.full(n, scalar(arr, name, positive=True, huge=True))
     elif arr.shape != (n,):
         raise ValueError(f"{name}: expected a positive scalar or per-sample intervals of shape ({n},), got {arr.shape}")
     elif not np.all(arr > 0):

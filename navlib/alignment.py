@@ -27,7 +27,18 @@ import numpy as np
 
 from . import _kernels, attitude, earth
 from ._typing import Angles, Array, ArrayLike, Dcm, Vec3, Vec3Series
-from ._validate import as_array, in_range, kernel_array, nonempty_array, nonempty_latitude, nonempty_positive, pitch_roll, scalar
+from ._validate import (
+    as_array,
+    as_dcm,
+    broadcast,
+    flag,
+    in_range,
+    kernel_array,
+    nonempty_array,
+    nonempty_latitude,
+    pitch_roll,
+    scalar,
+)
 from .imu import ImuSamples, unpack
 from .robust import FaultReport, longest_repeat
 
@@ -326,13 +337,13 @@ def static_means(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None,
     n = w.shape[-2]
     if n < 2:
         raise ValueError(f"w_ib_b: expected a static window of at least 2 samples, got {n}")
-    tol = float(nonempty_positive(accel_tol, "accel_tol"))
-    frac = float(in_range(nonempty_array(min_fraction, "min_fraction"), "min_fraction", 0.0, 1.0, lo_open=True))
-    k_out = None if outlier_k is None else float(nonempty_positive(outlier_k, "outlier_k"))
-    stuck = None if stuck_fraction is None else float(in_range(nonempty_array(stuck_fraction, "stuck_fraction"),
-                                                               "stuck_fraction", 0.0, 1.0, lo_open=True))
-    fs_g = np.inf if full_scale_gyro is None else float(nonempty_positive(full_scale_gyro, "full_scale_gyro"))
-    fs_a = np.inf if full_scale_accel is None else float(nonempty_positive(full_scale_accel, "full_scale_accel"))
+    tol = scalar(accel_tol, "accel_tol", positive=True)
+    frac = scalar(in_range(nonempty_array(min_fraction, "min_fraction"), "min_fraction", 0.0, 1.0, lo_open=True), "min_fraction")
+    k_out = None if outlier_k is None else scalar(outlier_k, "outlier_k", positive=True)
+    stuck = None if stuck_fraction is None else scalar(in_range(nonempty_array(stuck_fraction, "stuck_fraction"),
+                                                               "stuck_fraction", 0.0, 1.0, lo_open=True), "stuck_fraction")
+    fs_g = np.inf if full_scale_gyro is None else scalar(full_scale_gyro, "full_scale_gyro", positive=True)
+    fs_a = np.inf if full_scale_accel is None else scalar(full_scale_accel, "full_scale_accel", positive=True)
     g = earth.gravity(gyrocompass_latitude(lat), nonempty_array(h, "h"))
     lead = w.shape[:-2]
     if np.ndim(g) > len(lead) or any(a not in (1, b) for a, b in zip(np.shape(g)[::-1], lead[::-1], strict=False)):
@@ -365,7 +376,7 @@ def static_means(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None,
             halves = np.abs(_masked_mean(f[..., : n // 2, :], u1, u1.sum(-1))
                             - _masked_mean(f[..., n // 2:, :], u2, u2.sum(-1))).max(-1)
     status[(status == OK) & ((dev > tol) | ~(halves <= tol))] = MOVING
-    if strict and np.any(status != OK):
+    if flag(strict, "strict") and np.any(status != OK):
         if np.any(status == TOO_FEW):
             which = "w_ib_b" if np.any(nu_g < need) else "f_b"
             left = int(min(nu_g.min(), nu_a.min()))
@@ -414,15 +425,15 @@ def triad(f_b: Vec3, w_ib_b: Vec3, lat: ArrayLike, orthonormal: bool = True) -> 
     -------
     C_bn : ndarray, shape (..., 3, 3)
     """
-    f = nonempty_array(f_b, "f_b", tail=(3,))
-    w = nonempty_array(w_ib_b, "w_ib_b", tail=(3,))
+    f, w = broadcast(nonempty_array(f_b, "f_b", tail=(3,)), nonempty_array(w_ib_b, "w_ib_b", tail=(3,)), name="w_ib_b",
+                     of="f_b, w_ib_b")
     lat = gyrocompass_latitude(lat)
     g_n = np.stack(np.broadcast_arrays(0.0, 0.0, -earth.gravity(lat)), -1)
     body = _reference_triad(-f, w)                    # columns: -f, -f x w, (-f x w) x (-f)
     nav = _reference_triad(g_n, earth.earth_rate_n(lat))
     C_nb = body @ np.linalg.inv(nav)
     C_bn = np.swapaxes(C_nb, -1, -2)
-    return attitude.orthonormalize(C_bn) if orthonormal else C_bn
+    return attitude.orthonormalize(C_bn) if flag(orthonormal, "orthonormal") else C_bn
 
 
 def triad_heading(C_bn: Dcm) -> Array:
@@ -470,6 +481,6 @@ def static_gyro_bias(w_ib_b: Vec3Series, C_bn: Dcm, lat: float) -> Array:
         Attitude during the record.
     lat : float  (rad)
     """
-    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1)
-    C = as_array(C_bn, "C_bn", tail=(3, 3)).reshape(3, 3)
-    return w.reshape(-1, 3).mean(0) - C.T @ earth.earth_rate_n(lat)
+    w = as_array(w_ib_b, "w_ib_b", shape=(None, 3), min_ndim=1)
+    C = as_dcm(as_array(C_bn, "C_bn", shape=(3, 3)), "C_bn")
+    return w.mean(0) - C.T @ earth.earth_rate_n(scalar(lat, "lat"))

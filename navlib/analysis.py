@@ -26,6 +26,8 @@ from ._typing import Angles, Array, ArrayLike, Times, Vec3
 from ._validate import (
     as_array,
     booleans,
+    broadcast,
+    flag,
     integer,
     kernel_array,
     last_axis,
@@ -47,6 +49,10 @@ __all__ = ["rmse", "allan_deviation", "allan_deviation_theory", "fit_allan",
 def rmse(err: ArrayLike, axis: int | tuple[int, ...] | None = 0) -> Array:
     """Root mean square of ``err`` along ``axis`` (NaN propagates: no silent dropping)."""
     err = nonempty_array(err, "err", allow_nan=True)
+    if axis is not None:
+        for a in axis if isinstance(axis, tuple) else (axis,):
+            if not -err.ndim <= integer(a, "axis", minimum=None) < err.ndim:
+                raise ValueError(f"axis: expected axes of err (shape {err.shape}), got {axis!r}")
     return np.sqrt(np.mean(err * err, axis=axis))
 
 
@@ -92,9 +98,9 @@ def allan_deviation(x: ArrayLike, dt: float, taus: ArrayLike | None = None) -> t
         Allan deviation in the units of ``x``.
     """
     x = as_array(x, "x")
-    dt = float(positive(dt, "dt"))
-    scalar = x.ndim == 1
-    if scalar:
+    dt = scalar(dt, "dt", positive=True)
+    one_series = x.ndim == 1
+    if one_series:
         x = x[:, None]
     if x.ndim < 2 or x.shape[-2] < 9:
         raise ValueError(f"x: expected at least 9 samples on axis -2, got shape {x.shape}")
@@ -110,7 +116,7 @@ def allan_deviation(x: ArrayLike, dt: float, taus: ArrayLike | None = None) -> t
     mean_sq = _mean_square_second_difference(theta.reshape(-1, n + 1, x.shape[-1]), m)
     tau = m * dt
     out = np.sqrt(mean_sq / (2 * tau * tau)[:, None]).reshape(x.shape[:-2] + (m.size, x.shape[-1]))
-    return tau, (out[:, 0] if scalar else out)
+    return tau, (out[:, 0] if one_series else out)
 
 
 @njit(cache=True)
@@ -154,9 +160,9 @@ def allan_deviation_theory(taus: ArrayLike, white: float = 0.0, bias_instability
     """
     taus = nonempty_positive(taus, "taus")
     white, bias_instability, rate_random_walk = (
-        positive(v, name, allow_zero=True) for v, name in ((white, "white"), (bias_instability, "bias_instability"),
-                                                           (rate_random_walk, "rate_random_walk")))
-    correlation_time = positive(correlation_time, "correlation_time")
+        scalar(v, name, allow_zero=True) for v, name in ((white, "white"), (bias_instability, "bias_instability"),
+                                                         (rate_random_walk, "rate_random_walk")))
+    correlation_time = scalar(correlation_time, "correlation_time", positive=True)
     sigma_gm = bias_instability / GM_ALLAN_PEAK
     var = (white ** 2 / taus + sigma_gm ** 2 * _gm_allan_var_unit(taus / correlation_time)
            + rate_random_walk ** 2 * taus / 3)
@@ -193,7 +199,7 @@ def fit_allan(taus: ArrayLike, adev: ArrayLike, n_samples: int, dt: float, *, ra
         raise ValueError(f"taus: expected a 1-D array of at least 3 averaging times, got shape {taus.shape}")
     same_shape(adev, "adev", taus.shape, of="taus")
     n_samples = integer(n_samples, "n_samples")
-    dt = float(positive(dt, "dt"))
+    dt = scalar(dt, "dt", positive=True)
     w = np.sqrt(np.maximum(n_samples * dt / taus, 1.0))
     i_min = int(np.argmin(adev))
 
@@ -205,7 +211,7 @@ def fit_allan(taus: ArrayLike, adev: ArrayLike, n_samples: int, dt: float, *, ra
 
     p0 = [adev[0] * np.sqrt(taus[0]), adev[i_min], taus[i_min] / GM_ALLAN_PEAK_TAU]
     lb = [0.0, 0.0, taus[0] / 10]
-    if rate_random_walk:
+    if flag(rate_random_walk, "rate_random_walk"):
         p0.append(adev[-1] / np.sqrt(taus[-1]))
         lb.append(0.0)
     sol = least_squares(resid, p0, bounds=(lb, np.inf), x_scale=np.abs(p0) + 1e-300)
@@ -291,6 +297,7 @@ def horizontal_error(lla: Vec3, lla_true: Vec3) -> Array:
     """
     a = as_array(lla, "lla", tail=(3,))
     b = as_array(lla_true, "lla_true", tail=(3,))
+    broadcast(a, b, name="lla_true", of="lla, lla_true")
     latitude(a[..., 0], "lla[..., 0] (lat)")
     latitude(b[..., 0], "lla_true[..., 0] (lat)")
     R_M, R_N = earth.radii(b[..., 0])
@@ -412,12 +419,15 @@ def moving_mean(x: ArrayLike, n: int) -> Array:
 # Stacked linear least squares: r_k = V_k b + v_k, k = 1..K
 # --------------------------------------------------------------------------
 
-def _blocks(V, R=None, allow_nan=False):
+def _blocks(V, R=None, allow_nan=False, *, with_r=True):
     V = nonempty_array(V, "V", min_ndim=3, allow_nan=allow_nan)
-    if R is None:
+    if not with_r:
         return V
     m = V.shape[-2]
-    return V, nonempty_array(R, "R", tail=(m, m), min_ndim=1)
+    R = nonempty_array(R, "R", min_ndim=3)
+    if R.shape[-2:] != (m, m):
+        raise ValueError(f"R: expected shape (..., {m}, {m}) (m = {m} rows of each block of V {V.shape}), got {R.shape}")
+    return V, R
 
 
 def normal_condition(A: ArrayLike) -> Array:
@@ -427,6 +437,8 @@ def normal_condition(A: ArrayLike) -> Array:
     (``n eps eig_max``) counts as zero, whatever its sign (which is machine-dependent noise).
     """
     A = nonempty_array(A, "A", min_ndim=2)
+    if A.shape[-1] != A.shape[-2]:
+        raise ValueError(f"A: expected square matrices (..., n, n), got shape {A.shape}")
     ev = np.linalg.eigvalsh(A)
     zero = ev[..., 0] <= ev[..., -1] * A.shape[-1] * np.finfo(float).eps
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -439,7 +451,7 @@ def condition_number(V: ArrayLike) -> Array:
 
     Blocks holding NaN are left out. ``inf`` when ``b`` is not fully observable from the blocks.
     """
-    V = _blocks(V, allow_nan=True)
+    V = _blocks(V, allow_nan=True, with_r=False)
     ok = np.all(np.isfinite(V), axis=(-2, -1))
     Vz = np.where(ok[..., None, None], V, 0.0)
     A = np.einsum("...kij,...kil->...jl", Vz, Vz)
@@ -462,6 +474,7 @@ def lsq_covariance(V: ArrayLike, R: ArrayLike, max_cond: float = 1e6) -> Array:
     P : ndarray, shape (..., n, n)
     """
     V, R = _blocks(V, R)
+    max_cond = scalar(max_cond, "max_cond", positive=True, allow_inf=True)
     A = np.einsum("...kji,...kjl->...il", V, V)
     if np.any(normal_condition(A) > max_cond):
         raise ValueError("V: the unknowns are not observable from these blocks (rank-deficient V)")
@@ -487,6 +500,7 @@ def cramer_rao_bound(V: ArrayLike, R: ArrayLike, max_cond: float = 1e6) -> Array
         where ``b`` is not observable.
     """
     V, R = _blocks(V, R)
+    max_cond = scalar(max_cond, "max_cond", positive=True, allow_inf=True)
     n = V.shape[-1]
     info = np.einsum("...kji,...kjl,...klm->...im", V, np.linalg.inv(R), V)
     bad = normal_condition(info) ** 2 > max_cond ** 2

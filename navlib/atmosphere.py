@@ -19,7 +19,20 @@ import numpy as np
 
 from . import units
 from ._typing import Array, ArrayLike, Times
-from ._validate import as_array, booleans, choice, in_range, instance, integer, nonempty_positive, positive, same_shape
+from ._validate import (
+    as_array,
+    booleans,
+    broadcast,
+    choice,
+    in_range,
+    instance,
+    integer,
+    nonempty_positive,
+    positive,
+    same_shape,
+    scalar,
+    time_axis,
+)
 from .analysis import segments
 
 __all__ = ["P0", "T0", "LAPSE", "R_AIR", "G0", "isa_altitude", "isa_pressure", "bmp180_altitude", "bmp180_pressure",
@@ -81,6 +94,7 @@ def hypsometric_height(p: ArrayLike, p_ref: ArrayLike, temperature: ArrayLike) -
     """
     p, p_ref = positive(p, "p"), positive(p_ref, "p_ref")
     T = in_range(as_array(temperature, "temperature"), "temperature", 150.0, 350.0, "K")
+    broadcast(p, p_ref, T, name="temperature", of="p, p_ref, temperature")
     return R_AIR * T / G0 * np.log(p_ref / p)
 
 
@@ -162,7 +176,7 @@ def baro_height(p: ArrayLike, p_ref: ArrayLike, temperature: ArrayLike | None = 
         Air temperature (K).
     """
     p = nonempty_positive(p, "p")
-    p_ref = float(positive(p_ref, "p_ref"))
+    p_ref = scalar(p_ref, "p_ref", positive=True)
     if temperature is None:
         return bmp180_altitude(p, p_ref)
     return hypsometric_height(p, p_ref, temperature)
@@ -178,8 +192,9 @@ def reference_pressure(p: ArrayLike, time: Times, until: float) -> float:
     time : array_like, shape (N,)  (s)
     until : float  (s)
     """
-    t = as_array(time, "time", shape=(None,))
+    t = time_axis(time, "time", min_samples=1)
     p = same_shape(as_array(p, "p", allow_nan=True), "p", t.shape, of="time")
+    until = scalar(until, "until")
     sel = p[(t <= until) & np.isfinite(p)]
     if sel.size == 0:
         raise ValueError(f"until: no pressure sample at or before {until} s")
@@ -191,7 +206,7 @@ def reference_pressure(p: ArrayLike, time: Times, until: float) -> float:
 def classify_floor(h: ArrayLike, floor_height: float = 3.0, ref_floor: int = 0) -> np.ndarray:
     """Floor index ``ref_floor + round(h / floor_height)`` from a relative height (m)."""
     h = as_array(h, "h")
-    hf = float(positive(floor_height, "floor_height"))
+    hf = scalar(floor_height, "floor_height", positive=True)
     return integer(ref_floor, "ref_floor", minimum=None) + np.round(h / hf).astype(int)
 
 

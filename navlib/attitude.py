@@ -26,7 +26,7 @@ import numpy as np
 from numba import njit
 
 from ._typing import Angles, Array, Dcm, Quat, Vec3
-from ._validate import as_array, as_dcm, as_quat, in_range
+from ._validate import as_array, as_dcm, as_quat, flag, in_range
 
 __all__ = [
     "wrap_pi", "wrap_2pi", "skew", "rot", "orthonormalize",
@@ -88,7 +88,7 @@ def rot(axis: str, angle: Angles, deg: bool = False) -> Array:
     if axis not in _AXES:
         raise ValueError(f"axis: expected 'x', 'y' or 'z', got {axis!r}")
     a = as_array(angle, "angle")
-    if deg:
+    if flag(deg, "deg"):
         a = np.deg2rad(a)
     c, s = np.cos(a), np.sin(a)
     o, i = np.zeros_like(a), np.ones_like(a)
@@ -122,11 +122,11 @@ def orthonormalize(C: Dcm) -> Array:
     return U @ D @ Vt
 
 
-def _as_hpr(hpr, deg: bool) -> np.ndarray:
-    hpr = as_array(hpr, "hpr", tail=(3,))
-    if deg:
+def _as_hpr(hpr, deg: bool, name: str = "hpr") -> np.ndarray:
+    hpr = as_array(hpr, name, tail=(3,))
+    if flag(deg, "deg"):
         hpr = np.deg2rad(hpr)
-    in_range(hpr[..., 1], "hpr[..., 1] (pitch)", -np.pi / 2 - 1e-12, np.pi / 2 + 1e-12, "rad")
+    in_range(hpr[..., 1], f"{name}[..., 1] (pitch)", -np.pi / 2 - 1e-12, np.pi / 2 + 1e-12, "rad")
     return hpr
 
 
@@ -169,6 +169,7 @@ def dcm_to_euler(C_bn: Dcm, deg: bool = False) -> Array:
         rad, or deg with ``deg=True``.
     """
     C = as_dcm(C_bn)
+    deg = flag(deg, "deg")
     c31, c32, c33 = C[..., 2, 0], C[..., 2, 1], C[..., 2, 2]
     pitch = np.arctan2(c32, np.hypot(c31, c33))
     locked = np.hypot(c31, c33) < 1e-9
@@ -319,7 +320,7 @@ def quat_rotate(q: Quat, v_b: Vec3) -> Array:
 
 def rotvec_to_quat(rv: Vec3) -> Array:
     """Quaternion of the rotation vector ``rv`` (rad), shape (..., 3) -> (..., 4)."""
-    rv = as_array(rv, "rv", tail=(3,))
+    rv = as_array(rv, "rv", tail=(3,), huge=True)
     if np.any(np.abs(rv) > MAX_ROTVEC_ANGLE):
         raise ValueError(f"rv: rotation angle {np.abs(rv).max():.3g} rad is beyond {MAX_ROTVEC_ANGLE:g} rad, where a "
                          f"float no longer resolves the angle modulo 2 pi")
@@ -453,7 +454,7 @@ def ned_to_enu_dcm(C_ned: Dcm) -> Array:
     C_bn : ndarray, shape (..., 3, 3)
         ``M C_ned M`` (:data:`M_NED_ENU`); applied to an ENU/RFU matrix it gives the NED/FRD one.
     """
-    C = as_array(C_ned, "C_ned", tail=(3, 3))
+    C = as_dcm(C_ned, "C_ned")
     return M_NED_ENU @ C @ M_NED_ENU
 
 
@@ -472,7 +473,7 @@ def ned_to_enu_quat(q_ned: Quat) -> Array:
     -------
     q_bn : ndarray, shape (..., 4)
     """
-    q = as_quat(as_array(q_ned, "q_ned", tail=(4,)), "q_ned")
+    q = as_quat(q_ned, "q_ned")
     return np.stack([q[..., 0], q[..., 2], q[..., 1], -q[..., 3]], -1)
 
 
@@ -481,7 +482,7 @@ def ypr_to_hpr(ypr: Angles, deg: bool = False) -> Array:
 
     The angles are the same; the heading is wrapped to [0, 2 pi) (or [0, 360) deg with ``deg=True``).
     """
-    a = np.array(_as_hpr(ypr, deg), dtype=float)
+    a = np.array(_as_hpr(ypr, deg, "ypr"), dtype=float)
     a[..., 0] = wrap_2pi(a[..., 0])
     return np.rad2deg(a) if deg else a
 

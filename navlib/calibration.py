@@ -126,6 +126,13 @@ MIN_RECORD = 100
 # Magnetometer: hard and soft iron
 # --------------------------------------------------------------------------
 
+def _quality(record, names: tuple[str, ...]) -> None:
+    """A fit's quality figures: non-negative scalars, NaN when not computed, inf for a singular fit's condition."""
+    for name in names:
+        object.__setattr__(record, name, scalar(getattr(record, name), name, allow_zero=True, allow_nan=True,
+                                                allow_inf=name == "condition"))
+
+
 @dataclass(frozen=True)
 class MagCalibration:
     """Hard- and soft-iron correction ``m_cal = soft_iron @ (m_raw - offset)``.
@@ -165,6 +172,7 @@ class MagCalibration:
             raise ValueError("soft_iron: expected a symmetric positive-definite correction matrix")
         object.__setattr__(self, "soft_iron", W)
         object.__setattr__(self, "field_strength", scalar(self.field_strength, "field_strength", positive=True))
+        _quality(self, ("residual", "norm_spread_before", "norm_spread_after", "condition"))
 
     def apply(self, m_raw: Vec3) -> Array:
         """Corrected field ``soft_iron @ (m_raw - offset)``, shape (..., 3) like ``m_raw`` (NaN propagates)."""
@@ -309,6 +317,7 @@ class AccelCalibration:
             raise ValueError("matrix: expected a lower-triangular (or diagonal) matrix with a positive diagonal")
         object.__setattr__(self, "matrix", S)
         object.__setattr__(self, "g", scalar(self.g, "g", positive=True))
+        _quality(self, ("residual", "condition"))
 
     @property
     def scale_factor(self) -> Array:

@@ -18,7 +18,8 @@ import numpy as np
 
 from ._kernels import normal_gravity, radii_mn
 from ._typing import Array, ArrayLike, Dcm, Vec3
-from ._validate import as_array, in_range, kernel_array, latitude, positive, scalar
+from ._validate import as_array, as_dcm, flag, in_range, kernel_array, latitude, positive, scalar, text
+from ._validate import ellipsoid as ellipsoid_
 
 __all__ = ["Ellipsoid", "WGS84", "CGCS2000", "GRS80", "KRASSOVSKY",
            "OMEGA_IE", "earth_rate_n", "earth_rate_b", "gravity", "gravity_n", "radii",
@@ -48,6 +49,7 @@ class Ellipsoid:
     omega: float
 
     def __post_init__(self):
+        text(self.name, "name")
         for key, lo, hi in (("a", 6e6, 7e6), ("f", 0.0, 0.01), ("GM", 3e14, 5e14), ("omega", 0.0, 1e-4)):
             in_range(scalar(getattr(self, key), key), key, lo, hi)      # an Earth-like value
 
@@ -119,7 +121,7 @@ def earth_rate_n(lat: ArrayLike, deg: bool = False, ellipsoid: Ellipsoid = WGS84
     w_ie_n : ndarray, shape (..., 3)
     """
     lat = latitude(lat, "lat", deg=deg)
-    w = ellipsoid.omega
+    w = ellipsoid_(ellipsoid).omega
     return np.stack([np.zeros_like(lat), w * np.cos(lat), w * np.sin(lat)], -1)
 
 
@@ -138,7 +140,7 @@ def earth_rate_b(C_bn: Dcm, lat: float, deg: bool = False, ellipsoid: Ellipsoid 
     -------
     w_ie_b : ndarray, shape (..., 3)
     """
-    C = as_array(C_bn, "C_bn", tail=(3, 3))
+    C = as_dcm(C_bn, "C_bn")
     return np.einsum("...ji,j->...i", C, earth_rate_n(scalar(lat, "lat"), deg, ellipsoid))
 
 
@@ -164,7 +166,7 @@ def gravity(lat: ArrayLike, h: ArrayLike = 0.0, deg: bool = False, ellipsoid: El
     h = in_range(as_array(h, "h"), "h", -12e3, 100e3, "m")
     shape = np.broadcast_shapes(lat.shape, h.shape)
     lat, h = (kernel_array(np.broadcast_to(x, shape)).reshape(-1) for x in (lat, h))
-    return normal_gravity(lat, h, *ellipsoid.gravity_constants).reshape(shape)
+    return normal_gravity(lat, h, *ellipsoid_(ellipsoid).gravity_constants).reshape(shape)
 
 
 def gravity_n(lat: ArrayLike, h: ArrayLike = 0.0, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> Array:
@@ -183,6 +185,7 @@ def radii(lat: ArrayLike, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> tu
         ``R_N = a / sqrt(1 - e^2 sin^2 lat)``, ``R_M = R_N (1 - e^2) / (1 - e^2 sin^2 lat)``.
     """
     lat = latitude(lat, "lat", deg=deg)
+    ellipsoid_(ellipsoid)
     R_M, R_N = radii_mn(kernel_array(lat).reshape(-1), ellipsoid.a, ellipsoid.e2)
     return R_M.reshape(lat.shape), R_N.reshape(lat.shape)
 
@@ -291,7 +294,7 @@ def field_from_angles(declination: ArrayLike, inclination: ArrayLike, intensity:
     D = as_array(declination, "declination")
     I = as_array(inclination, "inclination")
     F = positive(intensity, "intensity", allow_zero=True)
-    if deg:
+    if flag(deg, "deg"):
         D, I = np.deg2rad(D), np.deg2rad(I)
     in_range(I, "inclination", -np.pi / 2, np.pi / 2, "rad")
     H = F * np.cos(I)
@@ -314,6 +317,6 @@ def field_angles(B_n: Vec3, deg: bool = True) -> tuple[Array, Array, Array]:
     D = np.arctan2(B[..., 0], B[..., 1])
     I = np.arctan2(-B[..., 2], H)
     F = np.linalg.norm(B, axis=-1)
-    if deg:
+    if flag(deg, "deg"):
         D, I = np.rad2deg(D), np.rad2deg(I)
     return D, I, F

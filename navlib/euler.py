@@ -18,9 +18,8 @@ from numba import njit
 from . import attitude
 from ._deprecate import renamed_keywords
 from ._typing import Angles, Array, ArrayLike, Interval, Vec3, Vec3Series
-from ._validate import flag, intervals, kernel_array, range_limit
+from ._validate import broadcast_to, flag, intervals, kernel_array, range_limit, scalar, small_turns, text
 from ._validate import nonempty_array as as_array
-from ._validate import nonempty_positive as positive
 from .imu import ImuSamples, unpack
 
 __all__ = ["PITCH_LIMIT", "check_pitch", "euler_rates", "integrate_euler", "EulerReport"]
@@ -38,6 +37,7 @@ def _hpr(hpr, name="hpr"):
 
 def check_pitch(pitch: ArrayLike, name: str = "pitch") -> None:
     """Raise ``ValueError`` naming ``name`` if any |pitch| exceeds :data:`PITCH_LIMIT` (Euler rates are singular at 90 deg)."""
+    pitch = as_array(pitch, text(name, "name", empty=False))
     if np.any(np.abs(pitch) > PITCH_LIMIT):
         raise ValueError(f"{name}: expected |pitch| <= {np.rad2deg(PITCH_LIMIT):g} deg; the Euler rates are singular "
                          f"at +-90 deg (got max |pitch| {np.rad2deg(np.nanmax(np.abs(pitch))):.3f} deg)")
@@ -245,13 +245,14 @@ def integrate_euler(hpr0: Angles, w_ib_b: Vec3Series | ImuSamples, dt: Interval 
         report = flag(report, "report")
     if isinstance(w_ib_b, ImuSamples):
         w_ib_b, _, dt, full_scale_gyro, _ = unpack(w_ib_b, dt=dt, full_scale_gyro=full_scale_gyro)
-    max_gap = float(positive(max_gap, "max_gap", allow_zero=True))
+    max_gap = scalar(max_gap, "max_gap", allow_zero=True)
     w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=max_gap > 0)
     lead, n = w.shape[:-2], w.shape[-2]
     dts = intervals(dt, n)
+    small_turns(w, dts)
     fs = range_limit(full_scale_gyro, "full_scale_gyro")
-    hpr0 = np.broadcast_to(_hpr(hpr0, "hpr0"), lead + (3,)).reshape(-1, 3)
-    w_in = np.zeros(3) if w_in_n is None else as_array(w_in_n, "w_in_n", tail=(3,)).reshape(3)
+    hpr0 = broadcast_to(_hpr(hpr0, "hpr0"), "hpr0", lead + (3,), of="the trials of w_ib_b").reshape(-1, 3)
+    w_in = np.zeros(3) if w_in_n is None else as_array(w_in_n, "w_in_n", shape=(3,))
     bias, idx = _bias_schedule(bias_b, bias_from, lead)
     out, singular, gap_long, held, sat, first = _euler_kernel(
         kernel_array(hpr0), kernel_array(w.reshape((-1, n, 3))), dts, w_in, bias, idx,
@@ -271,6 +272,8 @@ def integrate_euler(hpr0: Angles, w_ib_b: Vec3Series | ImuSamples, dt: Interval 
 def _bias_schedule(bias_b, bias_from, lead):
     n_lead = int(np.prod(lead, dtype=int))
     if bias_b is None:
+        if bias_from is not None:
+            raise ValueError("bias_from: given without bias_b")
         return np.zeros((n_lead, 1, 3)), np.zeros(1, dtype=np.int64)
     b = as_array(bias_b, "bias_b", tail=(3,), allow_nan=True)
     if bias_from is None:

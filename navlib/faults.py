@@ -73,7 +73,7 @@ def gap(x: ArrayLike, time: Times, start: float, duration: float) -> tuple[Array
     dropped : ndarray of bool, shape (N,)
     """
     x = _samples(x, "x").copy()
-    t = as_array(time, "time", shape=(_time_axis_len(x),))
+    t = as_array(time_axis(time, "time"), "time", shape=(_time_axis_len(x),), of="x")
     start = scalar(start, "start")
     duration = scalar(duration, "duration", positive=True)
     dropped = (t >= start) & (t < start + duration)
@@ -112,7 +112,7 @@ def spikes(x: ArrayLike, fraction: float, sigma: ArrayLike, rng: np.random.Gener
     hit = rng.random(n) < unit_interval(fraction, "fraction")
     sign = np.where(rng.random(x.shape) < 0.5, -1.0, 1.0)
     mask = hit if x.ndim == 1 else hit[:, None]
-    x = x + np.where(mask, float(positive(k, "k")) * sigma * sign, 0.0)
+    x = x + np.where(mask, scalar(k, "k", positive=True) * sigma * sign, 0.0)
     return x, hit
 
 
@@ -139,7 +139,7 @@ def position_jumps(lla: Vec3Series, fraction: float, rng: np.random.Generator,
     az = rng.uniform(0, 2 * np.pi, lla.shape[-2])
     lat, h = np.nan_to_num(lla[..., 0]), np.nan_to_num(lla[..., 2])
     R_M, R_N = earth.radii(lat)
-    size = float(positive(size_m, "size_m"))
+    size = scalar(size_m, "size_m", positive=True)
     lla[..., 0] += np.where(hit, size * np.cos(az) / (R_M + h), 0.0)
     lla[..., 1] += np.where(hit, size * np.sin(az) / ((R_N + h) * np.cos(lat)), 0.0)
     return lla, hit
@@ -202,8 +202,8 @@ def irregular_times(n: int, dt: float, jitter: float, rng: np.random.Generator, 
     time : ndarray, shape (n,)
     """
     integer(n, "n", minimum=2)
-    dt = float(positive(dt, "dt"))
-    jitter = float(in_range(as_array(jitter, "jitter"), "jitter", 0.0, 0.99))
+    dt = scalar(dt, "dt", positive=True)
+    jitter = scalar(in_range(as_array(jitter, "jitter"), "jitter", 0.0, 0.99), "jitter")
     t0 = scalar(t0, "t0")
     generator(rng)
     steps = dt * (1 + rng.uniform(-jitter, jitter, n - 1))
@@ -226,7 +226,7 @@ def saturate(x: Vec3Series, full_scale: float) -> tuple[Array, np.ndarray]:
         True where any component was clipped.
     """
     x = _samples(x, "x")
-    fs = float(positive(full_scale, "full_scale"))
+    fs = scalar(full_scale, "full_scale", positive=True)
     clipped = np.abs(x) > fs
     if x.ndim >= 2:
         clipped = clipped.any(axis=-1)

@@ -50,7 +50,8 @@ from collections.abc import Callable
 import numpy as np
 
 from ._typing import Array, ArrayLike
-from ._validate import broadcast, choice, in_range, instance, nonempty_array, nonempty_latitude
+from ._validate import broadcast, choice, flag, in_range, nonempty_array, nonempty_latitude, scalar
+from ._validate import ellipsoid as ellipsoid_
 from .earth import WGS84, Ellipsoid, radii
 
 __all__ = ["zone", "central_meridian", "geodetic2gk", "gk2geodetic", "convergence", "scale_factor",
@@ -77,14 +78,14 @@ _PREFIX_UNIT = 1e6              # zone number times 1e6 m prefixed to the eastin
 # --------------------------------------------------------------------------
 
 def _ell(ellipsoid) -> Ellipsoid:
-    return instance(ellipsoid, "ellipsoid", Ellipsoid, "a navlib.earth.Ellipsoid (e.g. earth.WGS84)", error=TypeError)
+    return ellipsoid_(ellipsoid)
 
 
 def _max_offset(max_offset_deg):
     if max_offset_deg is None:
         return None
-    return float(in_range(nonempty_array(max_offset_deg, "max_offset_deg"), "max_offset_deg", 0.0, _MAX_OFFSET_DEG,
-                          lo_open=True))
+    return scalar(in_range(nonempty_array(max_offset_deg, "max_offset_deg"), "max_offset_deg", 0.0, _MAX_OFFSET_DEG,
+                          lo_open=True), "max_offset_deg")
 
 
 # --------------------------------------------------------------------------
@@ -98,7 +99,7 @@ def _width(width) -> int:
 
 def _lon_deg(lon, deg: bool, name: str = "lon") -> np.ndarray:
     arr = nonempty_array(lon, name)
-    return arr if deg else np.rad2deg(arr)
+    return arr if flag(deg, "deg") else np.rad2deg(arr)
 
 
 def zone(lon: ArrayLike, width: int = 3, deg: bool = False) -> np.ndarray:
@@ -150,7 +151,7 @@ def _central_meridian(zone_number, w: int, deg: bool, name: str):
     in_range(n, name, 1, 360 // w)
     L0 = w * n if w == 3 else 6 * n - 3
     L0 = np.where(L0 > 180, L0 - 360, L0)
-    return L0 if deg else np.deg2rad(L0)
+    return L0 if flag(deg, "deg") else np.deg2rad(L0)
 
 
 def _resolve_lon0(lon_deg, zone_number, lon0, width, deg, max_offset_deg):
@@ -342,13 +343,13 @@ def geodetic2gk(lat: ArrayLike, lon: ArrayLike, *, zone: ArrayLike | None = None
     """
     _ell(ellipsoid)
     lat_rad, lon_deg = _validate_lat_lon(lat, lon, deg)
-    k0 = float(in_range(nonempty_array(k0, "k0"), "k0", 0.5, 1.5))
-    fe = float(nonempty_array(false_easting, "false_easting"))
-    fn = float(nonempty_array(false_northing, "false_northing"))
+    k0 = scalar(in_range(nonempty_array(k0, "k0"), "k0", 0.5, 1.5), "k0")
+    fe = scalar(false_easting, "false_easting")
+    fn = scalar(false_northing, "false_northing")
     L0, l_deg = _resolve_lon0(lon_deg, zone, lon0, width, deg, max_offset_deg)
     x, y = _forward(lat_rad, np.deg2rad(l_deg), ellipsoid)
     y = k0 * y + fe
-    if zone_prefix:
+    if flag(zone_prefix, "zone_prefix"):
         if not (y.min(initial=0.0) >= 0 and y.max(initial=0.0) < _PREFIX_UNIT):
             raise ValueError("false_easting: zone_prefix needs eastings in [0, 1e6) m; use false_easting=500e3")
         y = y + _PREFIX_UNIT * _zone_number(L0, width, deg=True)
@@ -379,11 +380,11 @@ def gk2geodetic(x: ArrayLike, y: ArrayLike, *, zone: ArrayLike | None = None, lo
     _ell(ellipsoid)
     x = nonempty_array(x, "x")
     y = nonempty_array(y, "y")
-    k0 = float(in_range(nonempty_array(k0, "k0"), "k0", 0.5, 1.5))
-    fe = float(nonempty_array(false_easting, "false_easting"))
-    fn = float(nonempty_array(false_northing, "false_northing"))
+    k0 = scalar(in_range(nonempty_array(k0, "k0"), "k0", 0.5, 1.5), "k0")
+    fe = scalar(false_easting, "false_easting")
+    fn = scalar(false_northing, "false_northing")
     w = _width(width)
-    if zone_prefix:
+    if flag(zone_prefix, "zone_prefix"):
         if zone is not None or lon0 is not None:
             raise ValueError("zone, lon0: not used with zone_prefix=True (the zone is read from the easting)")
         zone = np.floor(y / _PREFIX_UNIT)
@@ -402,7 +403,7 @@ def gk2geodetic(x: ArrayLike, y: ArrayLike, *, zone: ArrayLike | None = None, lo
     lon_deg = L0 + np.rad2deg(dlon)
     lon_deg = np.mod(lon_deg + 180.0, 360.0) - 180.0
     lon_deg = np.where(lon_deg == -180.0, 180.0, lon_deg)
-    return (np.rad2deg(lat), lon_deg) if deg else (lat, np.deg2rad(lon_deg))
+    return (np.rad2deg(lat), lon_deg) if flag(deg, "deg") else (lat, np.deg2rad(lon_deg))
 
 
 def _factors(lat, lon, zone, lon0, width, ellipsoid, deg, max_offset_deg):
@@ -440,7 +441,7 @@ def scale_factor(lat: ArrayLike, lon: ArrayLike, *, zone: ArrayLike | None = Non
 
     Parameters are those of :func:`geodetic2gk`; returns shape (...).
     """
-    k0 = float(in_range(nonempty_array(k0, "k0"), "k0", 0.5, 1.5))
+    k0 = scalar(in_range(nonempty_array(k0, "k0"), "k0", 0.5, 1.5), "k0")
     _, k = _factors(lat, lon, zone, lon0, width, ellipsoid, deg, max_offset_deg)
     return k0 * k
 
@@ -505,7 +506,7 @@ def local_scales(lat: ArrayLike, lon: ArrayLike, lon0: ArrayLike, ellipsoid: Ell
     elif not callable(project):
         raise TypeError(f"project: expected a callable (lat, lon, lon0, ellipsoid) -> (x, y), "
                         f"got {type(project).__name__}")
-    step = float(in_range(nonempty_array(step, "step"), "step", 0.0, 1e-2, lo_open=True))
+    step = scalar(in_range(nonempty_array(step, "step"), "step", 0.0, 1e-2, lo_open=True), "step")
     lat_r, lon_d = _validate_lat_lon(lat, lon, deg)
     lon0_d = _lon_deg(lon0, deg, "lon0")
     lon_r, lon0_r = np.deg2rad(lon_d), np.deg2rad(lon0_d)
@@ -566,7 +567,7 @@ def ecef2geodetic(x: ArrayLike, y: ArrayLike, z: ArrayLike, ellipsoid: Ellipsoid
     with np.errstate(divide="ignore", invalid="ignore"):      # np.where evaluates both branches
         h = np.where(np.abs(np.cos(lat)) > 0.1, p / np.cos(lat) - R_N, z / np.sin(lat) - R_N * (1 - e2))
     lon = np.arctan2(y, x)
-    return (np.rad2deg(lat), np.rad2deg(lon), h) if deg else (lat, lon, h)
+    return (np.rad2deg(lat), np.rad2deg(lon), h) if flag(deg, "deg") else (lat, lon, h)
 
 
 def _validate_origin(lat0, lon0, h0, deg):

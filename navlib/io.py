@@ -29,6 +29,7 @@ probably meant; ``check_units=False`` skips this).
 """
 from __future__ import annotations
 
+import os
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -38,7 +39,7 @@ import pandas as pd
 
 from . import attitude
 from ._typing import Array, ArrayLike, Dcm, Times
-from ._validate import as_array, choice, flag, scalar, time_axis
+from ._validate import as_array, choice, flag, instance, scalar, text, time_axis
 from .imu import ImuSamples
 from .timing import TimingReport, intervals, sanitize
 from .units import G0
@@ -212,8 +213,16 @@ def from_dataframe(df: pd.DataFrame, *, time: str, time_unit: str = "s", units: 
     choice(timing, "timing", ("raise", "sanitize"))
     check_units = flag(check_units, "check_units")
     C_bs = attitude.mount_matrix(axes)
+    text(time, "time", empty=False)
+    instance(units, "units", Mapping, "a mapping of sensor to unit, e.g. {'gyro': 'deg/s'}")
     columns = {"gyro": gyro, "accel": accel, "mag": mag, "baro": baro}
     present = {s: c for s, c in columns.items() if c is not None}
+    for sensor, cols in present.items():
+        if sensor == "baro":
+            text(cols, "baro", empty=False)
+        elif isinstance(cols, str) or not isinstance(cols, Sequence) or len(cols) != 3 or \
+                not all(isinstance(c, str) for c in cols):
+            raise ValueError(f"{sensor}: expected the names of its x, y, z columns (3 strings), got {cols!r}")
     if not present:
         raise ValueError("gyro, accel, mag, baro: give the columns of at least one sensor")
     missing = [c for c in [time, *[x for c in present.values() for x in ([c] if isinstance(c, str) else c)]]
@@ -247,7 +256,7 @@ def from_dataframe(df: pd.DataFrame, *, time: str, time_unit: str = "s", units: 
         notes.append(f"timing: {report.n_duplicate} repeated timestamps dropped, {report.n_out_of_order} "
                      f"out-of-order samples moved ({report.n_in} -> {report.n_out} samples)")
     time_axis(t, "time")
-    return Recording(t, **data, start=start, source=source, conversions=tuple(notes), timing=report)
+    return Recording(t, **data, start=start, source=text(source, "source"), conversions=tuple(notes), timing=report)
 
 
 def _numeric(df: pd.DataFrame, cols: list[str]) -> np.ndarray:
@@ -278,7 +287,7 @@ def read_csv(path: str | Path, *, sep: str = ",", comment: str | None = None, **
     **kwargs
         The column, unit, axes and timing arguments of :func:`from_dataframe`.
     """
-    df, source = _read_table(path, sep=sep, comment=comment)
+    df, source = _read_table(path, sep=text(sep, "sep", empty=False), comment=comment)
     return from_dataframe(df, source=source, **kwargs)
 
 
@@ -304,9 +313,13 @@ def read_xio(path: str | Path, *, axes: str | Dcm = "x,y,z", timing: str = "rais
                           source=source, **cols)
 
 
+def _path(path: str | os.PathLike, name: str) -> Path:
+    return Path(instance(path, name, (str, os.PathLike), "a file system path (str or pathlib.Path)"))
+
+
 def _read_table(path: str | Path, **read_csv) -> tuple[pd.DataFrame, str]:
     """A CSV file as a DataFrame (spaces after separators ignored), and its path for ``Recording.source``."""
-    path = Path(path)
+    path = _path(path, "path")
     if not path.is_file():
         raise ValueError(f"path: no such file {str(path)!r}")
     return pd.read_csv(path, skipinitialspace=True, **read_csv), str(path)
@@ -347,7 +360,7 @@ def read_sensor_logger(directory: str | Path, *, axes: str | Dcm = "x,y,z", meth
     timing, check_units
         As in :func:`from_dataframe`.
     """
-    d = Path(directory)
+    d = _path(directory, "directory")
     if not d.is_dir():
         raise ValueError(f"directory: no such directory {str(d)!r}")
     if not (d / "Gyroscope.csv").is_file():

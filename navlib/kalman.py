@@ -25,7 +25,7 @@ from scipy.linalg import expm
 
 from . import _kernels
 from ._typing import Array, ArrayLike
-from ._validate import as_array, booleans, kernel_array, nonempty_array, positive, same_shape, scalar
+from ._validate import as_array, booleans, kernel_array, nonempty_array, same_shape, scalar
 
 __all__ = ["predict", "update", "discretize", "ACCEPTED", "NO_DATA", "REJECTED"]
 
@@ -33,7 +33,7 @@ ACCEPTED, NO_DATA, REJECTED = 1, 0, -1
 """Status codes returned by :func:`update`."""
 
 
-def _matrix(a: ArrayLike, name: str, shape: tuple[int | None, ...], **kwargs: bool) -> np.ndarray:
+def _matrix(a: ArrayLike, name: str, shape: tuple[int | None, ...], **kwargs) -> np.ndarray:
     """``a`` as a C-contiguous float64 array of exactly ``shape``, finite unless ``kwargs`` say otherwise."""
     return kernel_array(as_array(a, name, shape=shape, **kwargs))
 
@@ -41,7 +41,7 @@ def _matrix(a: ArrayLike, name: str, shape: tuple[int | None, ...], **kwargs: bo
 def _state(x: ArrayLike, P: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """A non-empty state vector ``x`` (n,) and its covariance ``P`` (n, n)."""
     x = kernel_array(nonempty_array(x, "x", shape=(None,)))
-    return x, _matrix(P, "P", (x.shape[0], x.shape[0]))
+    return x, _matrix(P, "P", (x.shape[0], x.shape[0]), of="x")
 
 
 def predict(x: ArrayLike, P: ArrayLike, F: ArrayLike, Q: ArrayLike) -> tuple[Array, Array]:
@@ -70,7 +70,7 @@ def predict(x: ArrayLike, P: ArrayLike, F: ArrayLike, Q: ArrayLike) -> tuple[Arr
     """
     x, P = _state(x, P)
     n = x.shape[0]
-    return _kernels.kalman_predict(x, P, _matrix(F, "F", (n, n)), _matrix(Q, "Q", (n, n)))
+    return _kernels.kalman_predict(x, P, _matrix(F, "F", (n, n), of="x"), _matrix(Q, "Q", (n, n), of="x"))
 
 
 def update(x: ArrayLike, P: ArrayLike, z: ArrayLike, h: ArrayLike, H: ArrayLike, R: ArrayLike,
@@ -123,9 +123,9 @@ def update(x: ArrayLike, P: ArrayLike, z: ArrayLike, h: ArrayLike, H: ArrayLike,
     x, P = _state(x, P)
     z = _matrix(z, "z", (None,), allow_nan=True)
     m, n = z.shape[0], x.shape[0]
-    h = _matrix(h, "h", (m,))
-    H = _matrix(H, "H", (m, n))
-    R = _matrix(R, "R", (m, m))
+    h = _matrix(h, "h", (m,), of="z")
+    H = _matrix(H, "H", (m, n), of="z, x")
+    R = _matrix(R, "R", (m, m), of="z")
     angle_mask = kernel_array(booleans(angle_mask, "angle_mask", shape=(m,)))
     gate = scalar(gate, "gate", positive=True, allow_inf=True)
     return _kernels.kalman_update(x, P, z, h, H, R, angle_mask, gate)
@@ -152,9 +152,9 @@ def discretize(F: ArrayLike, G: ArrayLike, Qc: ArrayLike, dt: float) -> tuple[Ar
     F = nonempty_array(F, "F", shape=(None, None))
     n = len(F)
     same_shape(F, "F", (n, n))                                   # square
-    G = as_array(G, "G", shape=(n, None))                        # n rows
-    Qc = as_array(Qc, "Qc", shape=(G.shape[1], G.shape[1]))      # (p, p), p the columns of G
-    dt = float(positive(dt, "dt"))
+    G = as_array(G, "G", shape=(n, None), of="F")                # n rows
+    Qc = as_array(Qc, "Qc", shape=(G.shape[1], G.shape[1]), of="G")      # (p, p), p the columns of G
+    dt = scalar(dt, "dt", positive=True)
     M = np.zeros((2 * n, 2 * n))
     M[:n, :n] = -F
     M[:n, n:] = G @ Qc @ G.T

@@ -31,7 +31,7 @@ from typing import Any
 import numpy as np
 
 from ._typing import ArrayLike
-from ._validate import integer
+from ._validate import flag, integer, text
 
 __all__ = ["TrialStreams", "run"]
 
@@ -123,6 +123,8 @@ def run(batch_fn: Callable[..., dict[str, np.ndarray]], n_trials: int, seed: int
     if not callable(batch_fn):
         raise ValueError(f"batch_fn: expected a callable, got {type(batch_fn).__name__}")
     _check_args(n_trials, seed, batch_size)
+    progress = flag(progress, "progress")
+    text(label, "label")
     if executor is not None and not isinstance(executor, Executor) and not hasattr(executor, "submit"):
         raise ValueError(f"executor: expected a concurrent.futures.Executor, got {type(executor).__name__}")
     batches = [np.arange(s, min(s + batch_size, n_trials)) for s in range(0, n_trials, batch_size)]

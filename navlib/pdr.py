@@ -19,7 +19,7 @@ import numpy as np
 
 from . import analysis
 from ._typing import Array, ArrayLike, Vec3Series
-from ._validate import as_array, positive, same_shape
+from ._validate import as_array, positive, same_shape, scalar
 from .alignment import level, magnetic_heading
 from .units import G0
 
@@ -51,13 +51,13 @@ def detect_steps(f_b: Vec3Series, dt: float, threshold: float = 1.0, min_interva
         Local gravity (m/s^2).
     """
     f = as_array(f_b, "f_b", shape=(None, 3), min_ndim=1)
-    dt = float(positive(dt, "dt"))
-    thr = float(positive(threshold, "threshold"))
-    gap = int(round(float(positive(min_interval, "min_interval")) / dt))
+    dt = scalar(dt, "dt", positive=True)
+    thr = scalar(threshold, "threshold", positive=True)
+    gap = int(round(scalar(min_interval, "min_interval", positive=True) / dt))
     n_smooth = max(2, int(round(0.1 / dt)))
     if f.shape[0] < max(gap, n_smooth) + 2:
         raise ValueError(f"f_b: expected (N, 3) with N > {max(gap, n_smooth) + 2} samples, got {f.shape}")
-    a = analysis.moving_mean(np.linalg.norm(f, axis=-1), n_smooth) - float(positive(g, "g"))
+    a = analysis.moving_mean(np.linalg.norm(f, axis=-1), n_smooth) - scalar(g, "g", positive=True)
     peak = (a[1:-1] > a[:-2]) & (a[1:-1] >= a[2:]) & (a[1:-1] > thr)
     idx = []
     for i in np.flatnonzero(peak) + 1:
@@ -72,7 +72,7 @@ def detect_steps(f_b: Vec3Series, dt: float, threshold: float = 1.0, min_interva
 def weinberg_step_length(peak_to_peak: ArrayLike, K: float = 0.45) -> Array:
     """Weinberg (2002) step length ``K (a_max - a_min)^(1/4)`` (m); K is calibrated per person."""
     a = positive(peak_to_peak, "peak_to_peak", allow_zero=True)
-    return float(positive(K, "K")) * a ** 0.25
+    return scalar(K, "K", positive=True) * a ** 0.25
 
 
 def pdr(step_lengths: ArrayLike, step_headings: ArrayLike, start_en: ArrayLike = (0.0, 0.0)) -> Array:
@@ -85,7 +85,7 @@ def pdr(step_lengths: ArrayLike, step_headings: ArrayLike, start_en: ArrayLike =
     """
     L = positive(as_array(step_lengths, "step_lengths", shape=(None,)), "step_lengths", allow_zero=True)
     psi = same_shape(as_array(step_headings, "step_headings"), "step_headings", L.shape, of="step_lengths")
-    start = as_array(start_en, "start_en", tail=(2,)).reshape(2)
+    start = as_array(start_en, "start_en", shape=(2,))
     d = np.stack([L * np.sin(psi), L * np.cos(psi)], -1)
     return start + np.concatenate([np.zeros((1, 2)), np.cumsum(d, 0)])
 

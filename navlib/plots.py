@@ -7,7 +7,7 @@ import numpy as np
 
 from . import attitude, units
 from ._typing import Angles, Array, ArrayLike, Dcm
-from ._validate import as_array, as_dcm, positive, same_shape
+from ._validate import as_dcm, euler_angles, positive, same_shape, text
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -31,6 +31,7 @@ def body_axes(ax: Axes3D, C_bn: Dcm, title: str = "") -> None:
     if not hasattr(ax, "quiver") or not hasattr(ax, "set_zlim"):
         raise ValueError(f"ax: expected a 3-D matplotlib Axes (projection='3d'), got {type(ax).__name__}")
     C = as_dcm(C_bn, "C_bn")
+    text(title, "title")
     for v, name in zip(np.eye(3), "ENU", strict=True):
         ax.quiver(0, 0, 0, *v, color="0.6", arrow_length_ratio=0.08, linewidth=1)
         ax.text(*(1.12 * v), name, color="0.4")
@@ -67,6 +68,10 @@ def allan(ax: Axes, taus: ArrayLike, adev_rad_s: ArrayLike, theory: ArrayLike | 
         raise ValueError(f"adev_rad_s: expected shape ({taus.size},) or ({taus.size}, k) (one row per tau), got {a.shape}")
     if theory is not None:
         theory = same_shape(positive(theory, "theory"), "theory", taus.shape, of="taus")
+    text(label, "label")
+    from matplotlib.colors import is_color_like  # noqa: PLC0415 -- navlib imports without matplotlib
+    if color is not None and not is_color_like(color):
+        raise ValueError(f"color: expected a matplotlib color, got {color!r:.40}")
     lines = ax.loglog(taus, a, color=color, linewidth=1 if a.ndim > 1 else 1.5, alpha=0.8)
     lines[0].set_label(label)
     if theory is not None:
@@ -78,4 +83,4 @@ def allan(ax: Axes, taus: ArrayLike, adev_rad_s: ArrayLike, theory: ArrayLike | 
 
 def heading_deg(hpr: Angles) -> Array:
     """Heading in degrees in [0, 360) from an ``hpr`` array (..., 3)."""
-    return units.to_deg(attitude.wrap_2pi(as_array(hpr, "hpr", tail=(3,))[..., 0]))
+    return units.to_deg(attitude.wrap_2pi(euler_angles(hpr, "hpr")[..., 0]))

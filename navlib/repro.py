@@ -35,7 +35,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ._typing import Scalar
-from ._validate import choice, real
+from ._validate import choice, flag, real, text
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -170,7 +170,7 @@ def setup(notebook: str, *, paper: str | None = None, out_dir: str | os.PathLike
     _state.catalogue = None
     d = build_dir(notebook)
     (d / "results.json").unlink(missing_ok=True)
-    if style:
+    if flag(style, "style"):
         plt.rcdefaults()
         matplotlib.rcParams.update({
             "figure.figsize": (7.0, 4.0), "figure.dpi": 100, "savefig.dpi": 110,
@@ -227,6 +227,11 @@ def _check_name(name) -> None:
         raise ValueError(f"name: expected a non-empty check name (str), got {name!r}")
 
 
+def _texts(**kw: str) -> None:
+    for name, value in kw.items():
+        text(value, name)
+
+
 def _record(c: Check) -> Check:
     _state.checks = [k for k in _state.checks if k.name != c.name] + [c]
     _write()
@@ -265,12 +270,13 @@ def check(name: str, value: Scalar, expected: float, tol: float, source: str, *,
         The printed value when it differs from ``expected``.
     """
     _check_name(name)
+    _texts(source=source, unit=unit, note=note)
     v = _as_float(value, "value")
     e = _as_float(expected, "expected", finite=True)
     t = _as_float(tol, "tol", finite=True)
     if t < 0:
         raise ValueError(f"tol: expected a non-negative tolerance, got {t}")
-    abs_tol = t * abs(e) if rel else t
+    abs_tol = t * abs(e) if flag(rel, "rel") else t
     passed = bool(math.isfinite(v) and abs(v - e) <= abs_tol)
     return _record(Check(name, v, e, abs_tol, passed, source,
                          None if paper_value is None else str(paper_value), unit=unit, note=note))
@@ -284,6 +290,7 @@ def check_range(name: str, value: Scalar, source: str, *, lower: float | None = 
     dead reckoning's" as ``check_range(name, rmse_ekf / rmse_dr, upper=1)``.
     """
     _check_name(name)
+    _texts(source=source, unit=unit, note=note)
     v = _as_float(value, "value")
     lo, hi = _bounds(lower, upper)
     passed = bool(math.isfinite(v) and (lo is None or v >= lo) and (hi is None or v <= hi))

@@ -48,7 +48,7 @@ from numba import njit
 from numpy.typing import NDArray
 
 from ._typing import Array, ArrayLike, Vec3Series
-from ._validate import as_array, booleans, choice, flag, instance, integer, kernel_array, range_limit
+from ._validate import as_array, booleans, choice, flag, instance, integer, kernel_array, range_limit, scalar, text
 
 __all__ = ["FaultReport", "fault_report", "hold", "despike", "stuck_mask", "stuck_samples", "stuck_run_samples",
            "longest_repeat", "LEADING", "STUCK_DURATION"]
@@ -154,7 +154,8 @@ def hold(x: ArrayLike, *, leading: str = "raise", name: str = "x", axis: int = -
         True where a sample was replaced.
     """
     choice(leading, "leading", LEADING)
-    a = as_array(x, name, allow_nan=True, min_ndim=1)
+    choice(axis, "axis", (-1, -2))
+    a = as_array(x, text(name, "name", empty=False), allow_nan=True, min_ndim=1)
     vector = axis == -2
     bad = np.isnan(a).any(axis=-1) if vector else np.isnan(a)
     if not bad.any():
@@ -230,12 +231,8 @@ def despike(w_ib_b: Vec3Series, f_b: Vec3Series, spike_gyro: float,
     f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=True)
     if w.ndim != 2 or f.shape != w.shape:
         raise ValueError(f"f_b: expected the shape (N, 3) of w_ib_b {w.shape}, got {f.shape}")
-    tg = float(as_array(spike_gyro, "spike_gyro", finite=False))
-    ta = float(as_array(spike_accel, "spike_accel", finite=False))
-    if not tg > 0:
-        raise ValueError(f"spike_gyro: expected a positive threshold (inf: off), got {spike_gyro!r}")
-    if not ta > 0:
-        raise ValueError(f"spike_accel: expected a positive threshold (inf: off), got {spike_accel!r}")
+    tg = scalar(spike_gyro, "spike_gyro", positive=True, allow_inf=True)      # inf: off
+    ta = scalar(spike_accel, "spike_accel", positive=True, allow_inf=True)
     hit = _spike_mask(kernel_array(w), kernel_array(f), tg, ta)
     w, f = w.copy(), f.copy()
     w[hit], f[hit] = np.nan, np.nan
@@ -264,7 +261,7 @@ def longest_repeat(x: ArrayLike, valid: ArrayLike | None = None) -> NDArray[np.i
     x = as_array(x, "x", allow_nan=True)
     if x.ndim < 2 or x.shape[-2] == 0:
         raise ValueError(f"x: expected samples of shape (..., N, k), got {x.shape}")
-    valid = np.all(np.isfinite(x), -1) if valid is None else booleans(valid, "valid", shape=x.shape[:-1])
+    valid = np.all(np.isfinite(x), -1) if valid is None else booleans(valid, "valid", shape=x.shape[:-1], of="x")
     idx = _last_valid(valid, fill=-1)
     prev = np.concatenate([np.full(idx.shape[:-1] + (1,), -1), idx[..., :-1]], axis=-1)
     before = np.take_along_axis(x, np.maximum(prev, 0)[..., None], axis=-2)
@@ -303,7 +300,7 @@ def stuck_mask(x: ArrayLike, run: int, *, name: str = "x", axis: int = -2) -> ND
     """
     run = integer(run, "run", minimum=2)
     choice(axis, "axis", (-1, -2))
-    a = as_array(x, name, allow_nan=True, min_ndim=-axis)
+    a = as_array(x, text(name, "name", empty=False), allow_nan=True, min_ndim=-axis)
     if axis == -1:
         a = a[..., None]
     n = a.shape[-2]

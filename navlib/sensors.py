@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import csv
 import functools
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field, fields, replace
 from importlib import resources
 
@@ -43,6 +43,8 @@ from ._typing import Angles, Array, ArrayLike, Quat, Times, Vec3, Vec3Series
 from ._validate import (
     as_array,
     as_quat,
+    booleans,
+    broadcast,
     generator,
     imu_samples,
     in_range,
@@ -52,6 +54,7 @@ from ._validate import (
     positive,
     same_shape,
     scalar,
+    text,
     time_axis,
 )
 from .analysis import GM_ALLAN_PEAK
@@ -130,6 +133,7 @@ class ImuModel:
     def __post_init__(self):
         for key in ("gyro", "accel"):
             instance(getattr(self, key), key, TriadErrors, "TriadErrors")
+        text(self.name, "name")
 
     def replace(self, gyro: dict | None = None, accel: dict | None = None) -> ImuModel:
         """Copy with some parameters changed, e.g. ``m.replace(gyro={"bias": 0.0})``."""
@@ -181,9 +185,9 @@ def gauss_markov(shape: tuple[int, ...], dt: float, sigma: float, correlation_ti
     -------
     ndarray of ``shape``
     """
-    dt = float(positive(dt, "dt"))
-    tc = float(positive(correlation_time, "correlation_time"))
-    sigma = float(positive(sigma, "sigma", allow_zero=True))
+    dt = scalar(dt, "dt", positive=True)
+    tc = scalar(correlation_time, "correlation_time", positive=True)
+    sigma = scalar(sigma, "sigma", allow_zero=True)
     generator(rng)
     if not isinstance(shape, (tuple, list)) or len(shape) < 2:
         raise ValueError(f"shape: expected a tuple (..., N, k) of positive integers, got {shape!r}")
@@ -284,7 +288,7 @@ def simulate_imu(w_ib_b: Vec3Series, f_b: Vec3Series, dt: float, model: ImuModel
     ImuOutput
     """
     w, f = imu_samples(w_ib_b, f_b, allow_nan=False)
-    dt = float(positive(dt, "dt"))
+    dt = scalar(dt, "dt", positive=True)
     instance(model, "model", ImuModel, "an ImuModel")
     generator(rng)
     if n_trials is not None:
@@ -432,7 +436,10 @@ def simulate_magnetometer(q_bn: Quat, B_n: Vec3, model: MagnetometerModel, rng: 
     generator(rng)
     instance(model, "model", MagnetometerModel, "a MagnetometerModel")
     if disturbance_n is not None:
-        B = B + as_array(disturbance_n, "disturbance_n", tail=(3,))
+        B, D = broadcast(B, as_array(disturbance_n, "disturbance_n", tail=(3,)), name="disturbance_n",
+                         of="B_n, disturbance_n")
+        B = B + D
+    broadcast(q[..., 1:], B, name="B_n", of="q_bn, B_n")
     C_nb = np.swapaxes(attitude.quat_to_dcm(q), -1, -2)
     m_true = np.einsum("...ij,...j->...i", C_nb, B)
     lead = m_true.shape[:-2]
@@ -469,10 +476,10 @@ def magnetic_disturbances(time: Times, rng: np.random.Generator, rate: float, am
         Disturbance field in ENU (uT).
     """
     t = time_axis(time)
-    rate = float(positive(rate, "rate", allow_zero=True))
+    rate = scalar(rate, "rate", allow_zero=True)
     generator(rng)
-    for name, (lo, hi) in (("amplitude", amplitude), ("duration", duration)):
-        lo, hi = positive([lo, hi], name)
+    for name, pair in (("amplitude", amplitude), ("duration", duration)):
+        lo, hi = positive(as_array(pair, name, shape=(2,)), name)
         if hi < lo:
             raise ValueError(f"{name}: expected (low, high) with low <= high, got ({lo}, {hi})")
     n_events = rng.poisson(rate * (t[-1] - t[0]))
@@ -541,7 +548,7 @@ def simulate_barometer(h: ArrayLike, time: Times, model: BarometerModel, rng: np
     instance(model, "model", BarometerModel, "a BarometerModel")
     last_axis(h, "h", t.size, of="time")
     r_bias, r_noise = rng.spawn(2)
-    p = atmosphere.isa_pressure(h, p0)
+    p = atmosphere.isa_pressure(h, scalar(p0, "p0", positive=True))
     p = p + model.bias * r_bias.standard_normal(h.shape[:-1] + (1,))
     p = p + model.drift_rate * (t - t[0])
     return p + model.noise * r_noise.standard_normal(h.shape)
@@ -566,7 +573,7 @@ def outage_mask(time: Times, outages: Sequence[tuple[float, float]]) -> np.ndarr
     """
     t = time_axis(time)
     valid = np.ones(t.shape, dtype=bool)
-    if isinstance(outages, (str, bytes)):
+    if isinstance(outages, (str, bytes)) or not isinstance(outages, Iterable):
         raise ValueError(f"outages: expected a sequence of (start, end) pairs, got {outages!r:.40}")
     for iv in outages:
         iv = as_array(iv, "outages", shape=(2,))
@@ -598,8 +605,8 @@ def simulate_gnss_position(lla: Vec3Series, rng: np.random.Generator, sigma_hori
     """
     lla = as_array(lla, "lla", tail=(3,), min_ndim=1)
     in_range(lla[..., 0], "lla[..., 0] (lat)", -np.pi / 2, np.pi / 2, "rad")
-    sh = float(positive(sigma_horizontal, "sigma_horizontal", allow_zero=True))
-    sv = 1.5 * sh if sigma_vertical is None else float(positive(sigma_vertical, "sigma_vertical", allow_zero=True))
+    sh = scalar(sigma_horizontal, "sigma_horizontal", allow_zero=True)
+    sv = 1.5 * sh if sigma_vertical is None else scalar(sigma_vertical, "sigma_vertical", allow_zero=True)
     generator(rng)
     R_M, R_N = earth.radii(lla[..., 0])
     e = rng.standard_normal(lla.shape)
@@ -633,9 +640,10 @@ def simulate_heading(heading: Angles, rng: np.random.Generator, sigma: float,
     valid : ndarray of bool, shape (N,)
     """
     h = as_array(heading, "heading", min_ndim=1)
-    s = float(positive(sigma, "sigma", allow_zero=True))
+    s = scalar(sigma, "sigma", allow_zero=True)
     generator(rng)
     out = attitude.wrap_2pi(h + s * rng.standard_normal(h.shape))
-    v = same_shape(np.ones(h.shape[-1:], dtype=bool) if valid is None else np.asarray(valid, dtype=bool), "valid", h.shape[-1:])
+    v = np.ones(h.shape[-1:], dtype=bool) if valid is None else same_shape(booleans(valid, "valid"), "valid", h.shape[-1:],
+                                                                             of="the last axis of heading")
     out[..., ~v] = np.nan
     return out, v

@@ -57,17 +57,19 @@ from . import _kernels, attitude, earth, robust
 from ._typing import Array, ArrayLike, Dcm, Interval, Quat, Vec3, Vec3Series
 from ._validate import (
     as_array,
+    as_dcm,
     as_quat,
     broadcast,
+    broadcast_to,
     choice,
     flag,
-    instance,
     intervals,
     kernel_array,
     latitude,
     scalar,
     small_turns,
 )
+from ._validate import ellipsoid as ellipsoid_
 from .attitude import quat_mult_t, rotvec_to_quat_t
 from .imu import ImuSamples, unpack
 from .trajectory import Trajectory
@@ -169,7 +171,7 @@ def integrate_attitude(q0: Quat, w_ib_b: Vec3Series, dt: Interval, w_in_n: Vec3 
     small_turns(w, dt)
     q0 = as_quat(q0, "q0")
     lead = w.shape[:-2]
-    q0 = np.broadcast_to(q0, lead + (4,)).reshape(-1, 4)
+    q0 = broadcast_to(q0, "q0", lead + (4,), of="the trials of w_ib_b").reshape(-1, 4)
     w_in = np.zeros(3) if w_in_n is None else as_array(w_in_n, "w_in_n", shape=(3,))
     q = _attitude_kernel(kernel_array(q0), kernel_array(w.reshape(-1, *w.shape[-2:])), dt, w_in)
     q = q.reshape(lead + q.shape[-2:])
@@ -239,13 +241,9 @@ def nav_step(lla: Vec3, vel: Vec3, q: Quat, w: Vec3, f: Vec3, dt: float, earth_c
     return lla, vel, q
 
 
-def _ellipsoid(ellipsoid):
-    return instance(ellipsoid, "ellipsoid", earth.Ellipsoid, "a navlib.earth.Ellipsoid")
-
-
 def earth_constants(ellipsoid: earth.Ellipsoid = earth.WGS84) -> np.ndarray:
     """The ``earth_consts`` array of :func:`nav_step` for an ellipsoid."""
-    _ellipsoid(ellipsoid)
+    ellipsoid_(ellipsoid)
     return np.array(ellipsoid.gravity_constants + (ellipsoid.omega,))
 
 
@@ -322,19 +320,21 @@ def integrate(lla0: Vec3, vel0: Vec3, q0: Quat, w_ib_b: Vec3Series | ImuSamples,
     lead, n = w.shape[:-2], w.shape[-2]
     dt = intervals(dt, n)[:1] if np.ndim(dt) == 0 else intervals(dt, n)
     small_turns(w, dt)
-    t0 = float(as_array(t0, "t0"))
-    _ellipsoid(ellipsoid)
+    t0 = scalar(t0, "t0")
+    ellipsoid_(ellipsoid)
     lla0 = as_array(lla0, "lla0", tail=(3,))
     latitude(lla0[..., 0], "lla0[..., 0] (lat)")
     if np.any(np.abs(lla0[..., 0]) > np.deg2rad(89.9)):
         raise ValueError("lla0[..., 0] (lat): the ENU mechanisation is singular at the poles; expected |lat| <= 89.9 deg")
     vel0 = as_array(vel0, "vel0", tail=(3,))
     q0 = as_quat(q0, "q0")
-    def flat(x, k):
-        return kernel_array(np.broadcast_to(x, lead + x.shape[-k:]).reshape((-1,) + x.shape[-k:]))
+    def flat(x, k, name):
+        x = broadcast_to(x, name, lead + x.shape[-k:], of="the trials of w_ib_b")
+        return kernel_array(x.reshape((-1,) + x.shape[-k:]))
 
-    lla, vel, q = _nav_kernel(flat(lla0, 1), flat(vel0, 1), flat(q0, 1), flat(w, 2), flat(f, 2), dt,
-                              earth_constants(ellipsoid), bool(hold_height))
+    lla, vel, q = _nav_kernel(flat(lla0, 1, "lla0"), flat(vel0, 1, "vel0"), flat(q0, 1, "q0"), flat(w, 2, "w_ib_b"),
+                              flat(f, 2, "f_b"), dt,
+                              earth_constants(ellipsoid), flag(hold_height, "hold_height"))
     if not (np.all(np.isfinite(lla)) and np.all(np.abs(lla[..., 0]) < np.pi / 2)):
         raise ValueError("w_ib_b, f_b, dt: the integrated position diverges (it reaches a pole or overflows); check "
                          "the units of dt and f_b and that f_b is specific force including gravity")
@@ -374,7 +374,7 @@ def error_model(lat: float, h: float, vel_n: Vec3, f_n: Vec3, ellipsoid: earth.E
     if np.cos(lat) < 1e-9:
         raise ValueError("lat: the local-level (ENU) error model is singular at the poles; expected |lat| < 90 deg")
     h = scalar(h, "h")
-    _ellipsoid(ellipsoid)
+    ellipsoid_(ellipsoid)
     v = as_array(vel_n, "vel_n", shape=(3,))
     f = as_array(f_n, "f_n", shape=(3,))
     R_M, R_N = earth.radii(lat, ellipsoid=ellipsoid)
@@ -418,7 +418,7 @@ def error_input(C_bn: Dcm) -> Array:
     -------
     G : ndarray, shape (9, 6)
     """
-    C = as_array(C_bn, "C_bn", shape=(3, 3))
+    C = as_dcm(as_array(C_bn, "C_bn", shape=(3, 3)), "C_bn")
     G = np.zeros((9, 6))
     G[0:3, 0:3] = -C
     G[3:6, 3:6] = C

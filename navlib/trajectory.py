@@ -19,7 +19,8 @@ from numba import njit
 from . import attitude, earth
 from ._kernels import radii_mn
 from ._typing import Vec3
-from ._validate import as_array, in_range, instance, kernel_array, latitude, positive, time_axis, time_grid
+from ._validate import as_array, as_quat, in_range, instance, kernel_array, latitude, scalar, time_axis, time_grid
+from ._validate import ellipsoid as ellipsoid_
 from .robust import FaultReport
 
 __all__ = ["Trajectory", "Segment", "static", "from_profiles", "reciprocating_rotation",
@@ -55,10 +56,14 @@ class Trajectory:
         instance(self.faults, "faults", FaultReport, "a navlib.robust.FaultReport")
         t = time_axis(self.time)
         n = t.size
+        object.__setattr__(self, "time", t)
         for name, tail in (("lla", 3), ("vel_n", 3), ("q_bn", 4)):
             a = as_array(getattr(self, name), name, tail=(tail,), min_ndim=1, allow_nan=True)
             if a.shape[-2] != n:
                 raise ValueError(f"{name}: expected {n} epochs on axis -2, got shape {a.shape}")
+            object.__setattr__(self, name, a)
+        norm = np.linalg.norm(self.q_bn, axis=-1)
+        as_quat(self.q_bn[np.isfinite(norm)], "q_bn", normalize=False)       # NaN rows: epochs without attitude
         lat = np.asarray(self.lla)[..., 0]
         if np.any(np.abs(lat[np.isfinite(lat)]) > np.pi / 2):
             raise ValueError("lla: expected latitudes (lla[..., 0]) within [-pi/2, pi/2] rad")
@@ -100,7 +105,7 @@ def _positions(lla0, vel, dt, a, e2):
 
 
 def _lla(lla):
-    lla = as_array(lla, "lla0", tail=(3,)).reshape(3)
+    lla = as_array(lla, "lla0", shape=(3,))
     latitude(lla[0], "lla0[0] (lat)")
     return lla
 
@@ -126,6 +131,7 @@ def from_profiles(time, lla0, hpr, vel_n, ellipsoid: earth.Ellipsoid = earth.WGS
     vel = as_array(vel_n, "vel_n", tail=(3,))
     if hpr.shape != (t.size, 3) or vel.shape != (t.size, 3):
         raise ValueError(f"hpr, vel_n: expected shape ({t.size}, 3), got {hpr.shape} and {vel.shape}")
+    ellipsoid_(ellipsoid)
     lla = _positions(_lla(lla0), kernel_array(vel), t[1] - t[0], ellipsoid.a, ellipsoid.e2)
     return Trajectory(t, lla, vel, attitude.euler_to_quat(hpr))
 
@@ -134,7 +140,7 @@ def static(duration: float, dt: float, lla0, hpr) -> Trajectory:
     """A stationary IMU at ``lla0`` with constant attitude ``hpr`` (rad)."""
     t = time_grid(duration, dt)
     lla = np.broadcast_to(_lla(lla0), (t.size, 3)).copy()
-    q = np.broadcast_to(attitude.euler_to_quat(hpr), (t.size, 4)).copy()
+    q = np.broadcast_to(attitude.euler_to_quat(as_array(hpr, "hpr", shape=(3,))), (t.size, 4)).copy()
     return Trajectory(t, lla, np.zeros((t.size, 3)), q)
 
 
@@ -168,19 +174,19 @@ def reciprocating_rotation(duration: float, dt: float, lla0, hpr0, axis_b, ampli
         Duration of each rotation (s), less than ``period``.
     """
     t = time_grid(duration, dt)
-    u = as_array(axis_b, "axis_b", tail=(3,)).reshape(3)
+    u = as_array(axis_b, "axis_b", shape=(3,))
     if abs(np.linalg.norm(u) - 1) > 1e-9:
         raise ValueError(f"axis_b: expected a unit vector, got norm {np.linalg.norm(u):.6g}")
-    period = float(positive(period, "period"))
-    rotation_time = float(positive(rotation_time, "rotation_time"))
-    amplitude = float(as_array(amplitude, "amplitude"))
+    period = scalar(period, "period", positive=True)
+    rotation_time = scalar(rotation_time, "rotation_time", positive=True)
+    amplitude = scalar(amplitude, "amplitude")
     if rotation_time >= period:
         raise ValueError(f"rotation_time: expected less than period={period}, got {rotation_time}")
     k = np.floor(t / period)
     s = smooth_ramp((t - k * period - (period - rotation_time)) / rotation_time)
     start = np.where(k % 2 == 0, 0.0, 1.0)
     alpha = amplitude * (start + (1 - 2 * start) * s)
-    hpr0 = as_array(hpr0, "hpr0", tail=(3,))
+    hpr0 = as_array(hpr0, "hpr0", shape=(3,))
     in_range(hpr0[..., 1], "hpr0[1] (pitch)", -np.pi / 2, np.pi / 2, "rad")
     q0 = attitude.euler_to_quat(hpr0)
     q = attitude.quat_mult(q0, attitude.rotvec_to_quat(alpha[:, None] * u))
@@ -220,14 +226,14 @@ class Segment:
     roll: float | None = None
 
     def __post_init__(self):
-        positive(self.duration, "duration")
+        scalar(self.duration, "duration", positive=True)
         if self.speed is not None:
-            positive(self.speed, "speed", allow_zero=True)
-        as_array(self.turn, "turn")
+            scalar(self.speed, "speed", allow_zero=True)
+        scalar(self.turn, "turn")
         if self.pitch is not None:
-            in_range(as_array(self.pitch, "pitch"), "pitch", -np.pi / 2, np.pi / 2, "rad")
+            in_range(scalar(self.pitch, "pitch"), "pitch", -np.pi / 2, np.pi / 2, "rad")
         if self.roll is not None:
-            in_range(as_array(self.roll, "roll"), "roll", -np.pi, np.pi, "rad")
+            in_range(scalar(self.roll, "roll"), "roll", -np.pi, np.pi, "rad")
 
 
 def vehicle(segments, dt: float, lla0, heading0: float, ellipsoid: earth.Ellipsoid = earth.WGS84) -> Trajectory:
@@ -244,10 +250,10 @@ def vehicle(segments, dt: float, lla0, heading0: float, ellipsoid: earth.Ellipso
     lla0 : array_like, shape (3,)
     heading0 : float  (rad)
     """
-    segments = list(segments)
+    segments = _listed(segments)
     if not segments or not all(isinstance(s, Segment) for s in segments):
         raise ValueError("segments: expected a non-empty sequence of Segment")
-    heading0 = float(as_array(heading0, "heading0"))
+    heading0 = scalar(heading0, "heading0")
     total = sum(s.duration for s in segments)
     t = time_grid(total, dt)
     speed, heading, pitch, roll = (np.empty(t.size) for _ in range(4))
@@ -282,10 +288,10 @@ class Leg:
     climb: float = 0.0
 
     def __post_init__(self):
-        positive(self.duration, "duration")
-        positive(self.speed, "speed", allow_zero=True)
-        as_array(self.turn, "turn")
-        as_array(self.climb, "climb")
+        scalar(self.duration, "duration", positive=True)
+        scalar(self.speed, "speed", allow_zero=True)
+        scalar(self.turn, "turn")
+        scalar(self.climb, "climb")
         if self.speed == 0 and (self.turn != 0 or self.climb != 0):
             raise ValueError("turn, climb: expected 0 on a stop (speed == 0)")
 
@@ -333,15 +339,23 @@ class Gait:
 
     def __post_init__(self):
         for name in ("step_frequency", "stand_frequency", "ramp"):
-            positive(getattr(self, name), name)
+            scalar(getattr(self, name), name, positive=True)
         for name in ("bounce", "sway", "surge", "heading_wiggle", "pitch_bob", "roll_sway",
                      "stand_sway", "stand_tilt"):
-            positive(getattr(self, name), name, allow_zero=True)
-        as_array(self.lean, "lean")
+            scalar(getattr(self, name), name, allow_zero=True)
+        scalar(self.lean, "lean")
+
+
+def _listed(items) -> list:
+    """``items`` as a list; [] if it is not iterable (None, a number)."""
+    try:
+        return list(items)
+    except TypeError:
+        return []
 
 
 def _legs(legs):
-    legs = list(legs)
+    legs = _listed(legs)
     if not legs or not all(isinstance(leg, Leg) for leg in legs):
         raise ValueError("legs: expected a non-empty sequence of Leg")
     return legs
@@ -413,7 +427,7 @@ def walk(legs: Sequence[Leg], dt: float, lla0: Vec3, heading0: float, gait: Gait
     legs = _legs(legs)
     if not isinstance(gait, Gait):
         raise ValueError(f"gait: expected a Gait, got {type(gait).__name__}")
-    heading0 = float(as_array(heading0, "heading0"))
+    heading0 = scalar(heading0, "heading0")
     t = time_grid(sum(leg.duration for leg in legs), dt)
     speed, turn, climb, _ = _schedule(legs, t, gait.ramp)
     v_max = max(leg.speed for leg in legs)

@@ -375,6 +375,11 @@ BAD_CALLS = [
     ("printed_eq8_quat", lambda: ahrs.printed_eq8_quat([0.0, 0.0]), "hpr"),
     ("printed_eq18_gamma", lambda: ahrs.printed_eq18_gamma(_Q, -1.0), "dt"),
     ("printed_eq20_jacobian", lambda: ahrs.printed_eq20_jacobian(_Q, [0.5, 1.0, 0.0]), "b"),
+    # found by tools/fuzz.py (issue 15, item 4): the zero quaternion was accepted
+    ("printed_eq2_roll", lambda: ahrs.printed_eq2_roll(np.zeros(4)), "q"),
+    ("printed_eq4", lambda: ahrs.printed_eq4(np.zeros(4)), "q"),
+    ("printed_eq18_gamma", lambda: ahrs.printed_eq18_gamma(np.zeros(4), 0.01), "q"),
+    ("printed_eq20_jacobian", lambda: ahrs.printed_eq20_jacobian(np.zeros(4), [0.0, 20.0, -40.0]), "q"),
 ]
 NOT_APPLICABLE = {"AttitudeResult": "record returned by the filters"}
 

@@ -220,7 +220,7 @@ CASES = [
     bad("attitude.ned_to_enu", "v", "inf", lambda: attitude.ned_to_enu([1.0, INF, 0.0])),
     bad("attitude.ned_to_enu_quat", "q_ned", "zero", lambda: attitude.ned_to_enu_quat(np.zeros(4))),
     bad("attitude.ned_to_enu_quat", "q_ned", "shape3", lambda: attitude.ned_to_enu_quat([1.0, 0.0, 0.0])),
-    bad("attitude.ypr_to_hpr", "hpr", "pitch2rad", lambda: attitude.ypr_to_hpr([0.0, 2.0, 0.0])),
+    bad("attitude.ypr_to_hpr", "ypr", "pitch2rad", lambda: attitude.ypr_to_hpr([0.0, 2.0, 0.0])),
     bad("attitude.hpr_to_ypr", "hpr", "nan", lambda: attitude.hpr_to_ypr([NAN, 0.0, 0.0])),
     bad("attitude.mount_matrix", "axes", "repeated", lambda: attitude.mount_matrix("x,x,z")),
     bad("attitude.mount_matrix", "axes", "mirror", lambda: attitude.mount_matrix("y,x,z")),
@@ -1123,6 +1123,150 @@ CASES += [
     bad("io.align", "max_gap", "negative", lambda: io.align([0.0, 1.0], [0.0, 1.0], [1.0, 2.0], max_gap=-1.0)),
     bad("io.align", "method", "unknown", lambda: io.align([0.0, 1.0], [0.0, 1.0], [1.0, 2.0], method="cubic")),
 ]
+
+# --------------------------------------------- found by tools/fuzz.py (issue 15, item 4)
+# Each row failed before its fix: the call was accepted (silently, or with a wrong answer), or raised an
+# error that named no argument (a numpy/Python message, or another argument's name).
+MIRROR = np.diag([1.0, 1.0, -1.0])                   # orthonormal, det -1: not a rotation
+TAUS5 = np.array([0.1, 0.2, 0.4, 0.8, 1.6])
+ADEV5 = analysis.allan_deviation_theory(TAUS5, white=1e-3, bias_instability=1e-4, correlation_time=10.0)
+V4 = np.stack([np.eye(3)[:2], np.eye(3)[1:], np.eye(3)[[0, 2]], np.eye(3)[:2]]) + 0.01
+R4 = np.tile(np.eye(2), (4, 1, 1))
+CASES += [
+    # flags and texts that were used without a check ("yes" counted as True, None as False)
+    bad("attitude.euler_to_dcm", "deg", "str", lambda: attitude.euler_to_dcm(HPR0, deg="yes")),
+    bad("attitude.rot", "deg", "none", lambda: attitude.rot("x", 0.1, deg=None)),
+    bad("attitude.dcm_to_euler", "deg", "str", lambda: attitude.dcm_to_euler(np.eye(3), deg="no")),
+    bad("earth.gravity", "deg", "none", lambda: earth.gravity(0.5, deg=None)),
+    bad("earth.field_angles", "deg", "int", lambda: earth.field_angles([1.0, 20.0, -40.0], deg=1)),
+    bad("earth.Ellipsoid", "name", "none", lambda: earth.Ellipsoid(None, 6378137.0, 1 / 298.257, 3.986e14, 7.29e-5)),
+    bad("sensors.ImuModel", "name", "none", lambda: sensors.ImuModel(name=None)),
+    bad("alignment.triad", "orthonormal", "none", lambda: alignment.triad([0.0, 0.0, 9.8], [0.0, 5e-5, 5e-5], 0.5,
+                                                                           orthonormal=None)),
+    bad("alignment.static_means", "strict", "str", lambda: alignment.static_means(W, F, 0.5, strict="no")),
+    bad("analysis.fit_allan", "rate_random_walk", "str", lambda: analysis.fit_allan(TAUS5, ADEV5, 1000, 0.1,
+                                                                                    rate_random_walk="yes")),
+    bad("filters.planar_ekf.filter_grid", "fast", "none", lambda: planar_ekf.filter_grid(
+        T10, np.zeros((10, 5)), np.zeros(5), Q=np.eye(5), R=np.eye(5), fast=None)),
+    bad("filters.planar_ekf.covariance", "name", "none", lambda: planar_ekf.covariance(np.eye(5), None)),
+    bad("montecarlo.run", "progress", "str", lambda: montecarlo.run(_mc_batch, 5, 1, progress="no")),
+    bad("montecarlo.run", "label", "none", lambda: montecarlo.run(_mc_batch, 5, 1, progress=False, label=None)),
+    bad("strapdown.integrate", "hold_height", "str", lambda: strapdown.integrate(LLA0, [0, 0, 0], Q1, W, F, 0.01,
+                                                                               hold_height="no")),
+    bad("robust.hold", "name", "none", lambda: robust.hold(np.ones((3, 3)), name=None)),
+    bad("robust.hold", "axis", "zero", lambda: robust.hold(np.ones((3, 3)), axis=0)),
+    bad("euler.check_pitch", "name", "none", lambda: euler.check_pitch(0.1, name=None)),
+    bad("repro.check", "source", "none", lambda: repro.check("T/x", 1.0, 1.0, 0.1, None)),
+    bad("repro.check", "rel", "str", lambda: repro.check("T/x", 1.0, 1.0, 0.1, "src", rel="yes")),
+    bad("repro.check_range", "unit", "none", lambda: repro.check_range("T/x", 1.0, "src", upper=2.0, unit=None)),
+    bad("repro.setup", "style", "str", lambda: repro.setup("zz_bad_input", style="no")),
+    bad("plots.body_axes", "title", "none", lambda: plots.body_axes(axes3d(), np.eye(3), title=None)),
+    bad("plots.allan", "label", "none", lambda: plots.allan(axes2d(), [1.0, 2.0], [1e-5, 1e-5], label=None)),
+    bad("plots.allan", "color", "unknown", lambda: plots.allan(axes2d(), [1.0, 2.0], [1e-5, 1e-5], color="abc")),
+    bad("io.from_dataframe", "time", "none", lambda: io.from_dataframe(IO_TABLE, time=None, units={"gyro": "rad/s"},
+                                                                       gyro=("gx", "gy", "gz"))),
+    bad("io.from_dataframe", "units", "none", lambda: io.from_dataframe(IO_TABLE, time="t", units=None,
+                                                                        gyro=("gx", "gy", "gz"))),
+    bad("io.from_dataframe", "gyro", "one_string", lambda: io.from_dataframe(IO_TABLE, time="t", units={"gyro": "rad/s"},
+                                                                             gyro="abc")),
+    bad("io.from_dataframe", "source", "none", lambda: io.from_dataframe(IO_TABLE, time="t", units={"gyro": "rad/s"},
+                                                                         gyro=("gx", "gy", "gz"), source=None)),
+    bad("io.read_xio", "path", "none", lambda: io.read_xio(None)),
+    bad("io.read_sensor_logger", "directory", "none", lambda: io.read_sensor_logger(None)),
+    bad("atmosphere.bmp180_compensate", "oss", "bool", lambda: atmosphere.bmp180_compensate(27898, 23843, CALIB, oss=True)),
+    # an Earth model that is not one
+    bad("earth.earth_rate_n", "ellipsoid", "none", lambda: earth.earth_rate_n(0.5, ellipsoid=None)),
+    bad("earth.radii", "ellipsoid", "str", lambda: earth.radii(0.5, ellipsoid="WGS84")),
+    bad("trajectory.from_profiles", "ellipsoid", "none", lambda: trajectory.from_profiles(
+        T10, LLA0, np.zeros((10, 3)), np.zeros((10, 3)), ellipsoid=None)),
+    # rotation matrices and quaternions that are none (one check in navlib._validate: as_dcm, as_quat)
+    bad("earth.earth_rate_b", "C_bn", "mirror", lambda: earth.earth_rate_b(MIRROR, 0.5)),
+    bad("attitude.ned_to_enu_dcm", "C_ned", "mirror", lambda: attitude.ned_to_enu_dcm(MIRROR)),
+    bad("alignment.static_gyro_bias", "C_bn", "mirror", lambda: alignment.static_gyro_bias(W, MIRROR, 0.5)),
+    bad("strapdown.error_input", "C_bn", "not_rotation", lambda: strapdown.error_input(2 * np.eye(3))),
+    bad("filters.quaternion_kf.measurement_model", "q", "zero", lambda: quaternion_kf.measurement_model(
+        np.zeros(4), [0.0, 20.0, -40.0])),
+    bad("filters.quaternion_kf.measurement_jacobian", "q", "zero", lambda: quaternion_kf.measurement_jacobian(
+        np.zeros(4), [0.0, 20.0, -40.0])),
+    bad("filters.quaternion_kf.noise_input", "q", "zero", lambda: quaternion_kf.noise_input(np.zeros(4), 0.01)),
+    bad("trajectory.Trajectory", "q_bn", "zero_row", lambda: _traj_with(q_bn=np.where(
+        np.arange(len(TRAJ.time))[:, None] == 3, 0.0, TRAJ.q_bn))),
+    # a scalar given as an array ("only 0-dimensional arrays can be converted to Python scalars")
+    bad("analysis.allan_deviation", "dt", "array", lambda: analysis.allan_deviation(np.ones(100), [0.1, 0.1])),
+    bad("atmosphere.classify_floor", "floor_height", "array", lambda: atmosphere.classify_floor([1.0], [3.0, 3.0])),
+    bad("faults.saturate", "full_scale", "array", lambda: faults.saturate(FS, [1.0, 2.0])),
+    bad("filters.zupt.detect_static", "window", "array", lambda: zupt.detect_static(W, F, 0.01, window=[0.05, 0.05])),
+    bad("pdr.detect_steps", "threshold", "array", lambda: pdr.detect_steps(np.ones((10, 3)), 0.01, threshold=[1.0, 2.0])),
+    bad("robust.despike", "spike_gyro", "array", lambda: robust.despike(W, F, [0.1, 0.1], 1.0)),
+    bad("sensors.gauss_markov", "sigma", "array", lambda: sensors.gauss_markov((10, 3), 0.1, [1.0, 1.0], 10.0, rng())),
+    bad("sensors.simulate_barometer", "p0", "array", lambda: sensors.simulate_barometer(
+        T10, T10, sensors.BarometerModel(), rng(), p0=[1e5, 1e5, 1e5])),
+    bad("trajectory.static", "duration", "array", lambda: trajectory.static([1.0, 2.0], 0.1, LLA0, [0, 0, 0])),
+    bad("trajectory.Segment", "duration", "array", lambda: trajectory.Segment(duration=[1.0, 2.0])),
+    bad("trajectory.Leg", "speed", "array", lambda: trajectory.Leg(1.0, speed=[1.0, 2.0])),
+    bad("trajectory.Gait", "ramp", "array", lambda: trajectory.Gait(ramp=[1.0, 2.0])),
+    bad("analysis.allan_deviation_theory", "white", "array", lambda: analysis.allan_deviation_theory(
+        [1.0, 10.0], white=[1e-3, 1e-3, 1e-3])),
+    bad("analysis.cramer_rao_bound", "max_cond", "str", lambda: analysis.cramer_rao_bound(V4, R4, max_cond=STR)),
+    bad("analysis.lsq_covariance", "max_cond", "nan", lambda: analysis.lsq_covariance(V4, R4, max_cond=NAN)),
+    bad("atmosphere.reference_pressure", "until", "none", lambda: atmosphere.reference_pressure(
+        [1e5, 1e5], [0.0, 1.0], None)),
+    bad("sensors.magnetic_disturbances", "amplitude", "scalar", lambda: sensors.magnetic_disturbances(
+        T10, rng(), 0.1, amplitude=5.0)),
+    bad("sensors.outage_mask", "outages", "none", lambda: sensors.outage_mask(T10, None)),
+    bad("euler.check_pitch", "pitch", "nan", lambda: euler.check_pitch(NAN)),
+    # arrays of the wrong shape or of several trials where one is expected
+    bad("alignment.static_gyro_bias", "lat", "array", lambda: alignment.static_gyro_bias(W, np.eye(3), [0.5, 0.6])),
+    bad("alignment.static_gyro_bias", "w_ib_b", "batch", lambda: alignment.static_gyro_bias(
+        np.zeros((2, 10, 3)), np.eye(3), 0.5)),
+    bad("alignment.triad", "w_ib_b", "batch_mismatch", lambda: alignment.triad(
+        np.tile([0.0, 0.0, 9.8], (2, 1)), np.zeros((3, 3)), 0.5)),
+    bad("analysis.normal_condition", "A", "not_square", lambda: analysis.normal_condition(np.ones((2, 3)))),
+    bad("analysis.lsq_covariance", "R", "none", lambda: analysis.lsq_covariance(V4, None)),
+    bad("analysis.horizontal_error", "lla_true", "epoch_mismatch", lambda: analysis.horizontal_error(
+        np.zeros((0, 3)), with_lat(0.6))),
+    bad("atmosphere.baro_height", "temperature", "shape", lambda: atmosphere.baro_height(
+        [1e5, 9.9e4], 101325.0, [288.0, 288.0, 288.0])),
+    bad("filters.zupt.error_state_matrix", "C_bn", "batch", lambda: zupt.error_state_matrix(
+        np.stack([np.eye(3)] * 2), F[0])),
+    bad("filters.zupt.zupt_zaru_matrix", "w_ie_n", "batch", lambda: zupt.zupt_zaru_matrix(np.eye(3), np.zeros((2, 3)))),
+    bad("filters.mahony.mahony", "q0", "batch_mismatch", lambda: mahony.mahony(W, F, 0.01, np.tile(Q1, (2, 1)))),
+    bad("filters.planar_ekf.propagate", "speed, yaw_rate", "yaw_rate_alone", lambda: planar_ekf.propagate(
+        np.zeros(5), 0.5, yaw_rate=[0.1, 0.1, 0.1])),
+    bad("pdr.pdr", "start_en", "batch", lambda: pdr.pdr([1.0, 2.0], [0.0, 0.0], start_en=[[0.0, 0.0], [0.0, 0.0]])),
+    bad("sensors.simulate_magnetometer", "B_n", "epoch_mismatch", lambda: sensors.simulate_magnetometer(
+        np.tile(Q1, (10, 1)), np.tile([0.0, 20.0, -40.0], (3, 1)), sensors.MagnetometerModel(), rng())),
+    bad("strapdown.integrate", "q0", "batch_mismatch", lambda: strapdown.integrate(
+        LLA0, [0, 0, 0], np.tile(Q1, (2, 1)), W, F, 0.01)),
+    bad("strapdown.integrate_attitude", "q0", "batch_mismatch", lambda: strapdown.integrate_attitude(
+        np.tile(Q1, (2, 1)), W, 0.01)),
+    bad("trajectory.static", "hpr", "batch", lambda: trajectory.static(1.0, 0.1, LLA0, np.zeros((2, 3)))),
+    bad("trajectory.walk", "legs", "none", lambda: trajectory.walk(None, 0.01, LLA0, 0.0)),
+    bad("trajectory.vehicle", "segments", "none", lambda: trajectory.vehicle(None, 0.1, LLA0, 0.0)),
+    # values that were used without a check
+    bad("filters.observations.prepare_inputs", "g", "none", lambda: observations.prepare_inputs(
+        W, F, 0.01, Q1, None, None, None, None, None, None, None, 0.25, None, 5, None, None, None, None)),
+    bad("filters.observations.prepare_inputs", "rtk_valid", "without_heading_rtk", lambda: observations.prepare_inputs(
+        W, F, 0.01, Q1, None, None, np.ones(10, bool), None, None, None, 9.8, 0.25, None, 5, None, None, None, None)),
+    bad("filters.heading_fusion.rtk_at_imu_rate", "time", "decreasing", lambda: heading_fusion.rtk_at_imu_rate(
+        T10[::-1], np.zeros(10), np.ones(10, bool), 2)),
+    bad("filters.heading_fusion.rtk_at_imu_rate", "heading", "inf", lambda: heading_fusion.rtk_at_imu_rate(
+        T10, np.full(10, INF), np.ones(10, bool), 2)),
+    bad("faults.gap", "time", "decreasing", lambda: faults.gap(FS, T20[::-1], 2.0, 3.0)),
+    bad("atmosphere.reference_pressure", "time", "decreasing", lambda: atmosphere.reference_pressure(
+        [1e5, 1e5, 1e5], [2.0, 1.0, 0.0], 5.0)),
+    bad("euler.integrate_euler", "bias_from", "without_bias_b", lambda: euler.integrate_euler(
+        [0.0, 0.0, 0.0], np.zeros((4, 3)), 0.1, bias_from=[0])),
+    bad("euler.integrate_euler", "dt", "time_jump", lambda: euler.integrate_euler(
+        [0.0, 0.0, 0.0], np.full((4, 3), 1e-3), [0.01, 3600.0, 0.01, 0.01])),
+    bad("sensors.simulate_heading", "valid", "numbers", lambda: sensors.simulate_heading(T10, rng(), 0.01,
+                                                                                        valid=np.ones(10))),
+    bad("calibration.MagCalibration", "residual", "negative", lambda: calibration.MagCalibration(
+        np.zeros(3), np.eye(3), 50.0, residual=-1.0)),
+    bad("calibration.AccelCalibration", "condition", "str", lambda: calibration.AccelCalibration(
+        np.zeros(3), np.eye(3), condition=STR)),
+]
+
 
 def names_arg(arg):
     """Regex: the message starts with the argument name ``arg``: "<arg>: expected ...",

@@ -6,8 +6,8 @@ these functions used to return plausible-looking numbers for pitch = 45 "rad".
 import numpy as np
 import pytest
 
-from navlib import alignment, analysis
-from navlib.papers import mimu_mag_rtk, pedestrian_ins, rotation_bias
+from navlib import alignment, analysis, attitude, plots
+from navlib.papers import mimu_mag_rtk, north_finding, pedestrian_ins, rotation_bias
 
 CASES = [
     ("pitch", lambda: alignment.magnetic_heading([1.0, 20.0, -40.0], 45.0, 0.0)),
@@ -18,6 +18,13 @@ CASES = [
     (r"hpr\[\.\.\., 2\] \(roll\)", lambda: mimu_mag_rtk.printed_eq8_quat([0.0, 0.0, 45.0])),
     (r"lla\[\.\.\., 0\] \(lat\)", lambda: analysis.horizontal_error([45.0, 2.0, 0.0], [0.5, 2.0, 0.0])),
     (r"lla_true\[\.\.\., 0\] \(lat\)", lambda: analysis.horizontal_error([0.5, 2.0, 0.0], [45.0, 2.0, 0.0])),
+    # found by tools/fuzz.py (issue 15, item 4): another argument was named, or the call was accepted
+    (r"ypr\[\.\.\., 1\] \(pitch\)", lambda: attitude.ypr_to_hpr([0.0, 45.0, 0.0])),             # was "hpr[..., 1]"
+    ("pitches", lambda: north_finding.stop_and_go([1.0, 2.0], 10.0, 40.0, 5.0, [0.0, 45.0], [0.0, 0.0])),  # was "pitch"
+    ("rolls", lambda: north_finding.stop_and_go([1.0, 2.0], 10.0, 40.0, 5.0, [0.0, 0.0], [0.0, -45.0])),   # was "roll"
+    (r"hpr0\[\.\.\., 1\] \(pitch\)", lambda: rotation_bias.dwell_attitudes([0.0, 45.0, 0.0], [0, 0, 1.0], 1.5, 2)),
+    (r"hpr0\[\.\.\., 1\] \(pitch\)", lambda: rotation_bias.design([0.0, 45.0, 0.0], [0, 0, 1.0], 1.5, 10.0, 0.01, 1e-3)),
+    (r"hpr\[\.\.\., 1\] \(pitch\)", lambda: plots.heading_deg([0.1, 45.0, 0.0])),                 # was accepted
 ]
 
 

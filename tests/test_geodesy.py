@@ -273,6 +273,11 @@ def test_broadcasting():
     (lambda: geodesy.enu2geodetic(0.0, 0.0, 0.0, 95.0, 119.0, 0.0, deg=True), "lat0"),
     (lambda: geodesy.convergence(26.0, 140.0, zone=40, deg=True), "lon"),
     (lambda: geodesy.scale_factor(26.0, 120.0, k0=0.0, deg=True), "k0"),
+    # found by tools/fuzz.py (issue 15, item 4): accepted silently, or an error naming no argument
+    (lambda: geodesy.ecef2geodetic(4e6, 8e5, 4.8e6, deg="no"), "deg"),
+    (lambda: geodesy.gk2geodetic(2.88e6, 2e4, zone=40, deg=None), "deg"),
+    (lambda: geodesy.geodetic2gk(0.45, 2.08, zone=40, zone_prefix=None), "zone_prefix"),
+    (lambda: geodesy.zone(2.08, deg="no"), "deg"),
 ])
 def test_bad_input_raises_value_error_naming_the_argument(call, arg):
     with pytest.raises(ValueError) as info:

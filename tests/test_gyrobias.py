@@ -271,6 +271,10 @@ def test_error_statistics_match_numpy():
                             1.0), "interval"),
     (lambda: gb.kalman_bias(np.zeros((4, 2)), np.zeros((4, 2, 3)), np.tile(np.eye(2), (4, 1, 1)), 0.0, 0.0, 1.0),
      "interval"),
+    # found by tools/fuzz.py (issue 15, item 4): accepted silently, or an error naming no argument
+    (lambda: gb.rodrigues(np.tile([0.0, 0.0, 1.0], (2, 1)), 0.5), "axis_b"),
+    (lambda: gb.dwell_attitudes(np.zeros((2, 3)), [0, 0, 1.0], 1.5, 2), "hpr0"),
+    (lambda: gb.design([0, 0, 0], [0, 0, 1.0], 1.5, 10.0, [0.01, 0.01], 1e-3), "dt"),
 ])
 def test_bad_input_names_the_argument(call, arg):
     with pytest.raises(ValueError) as exc:

@@ -6,8 +6,22 @@ import pytest
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from navlib import atmosphere, attitude, earth, plots, strapdown  # noqa: E402
-from navlib.papers import gauss_kruger_ekf  # noqa: E402
+from navlib import (  # noqa: E402
+    alignment,
+    analysis,
+    atmosphere,
+    attitude,
+    earth,
+    euler,
+    kalman,
+    plots,
+    sensors,
+    strapdown,
+    trajectory,
+    units,
+)
+from navlib.filters import mahony  # noqa: E402
+from navlib.papers import gauss_kruger_ekf, rotation_bias  # noqa: E402
 
 
 @pytest.mark.parametrize("scale", [1e155, 1e300, 1e-9])
@@ -110,3 +124,36 @@ def test_settling_time_refuses_time_that_goes_backwards_and_floors_take_whole_nu
     with pytest.raises(ValueError, match="^ref_floor: "):                                  # 1.5 was truncated to 1
         atmosphere.classify_floor([0.0, 3.0], ref_floor=1.5)
     assert list(atmosphere.classify_floor([0.0, 3.1], ref_floor=np.int64(2))) == [2, 3]
+
+
+# Found by tools/fuzz.py (issue 15, item 4). A value whose square overflows float64 (navlib._validate.MAX_MAGNITUDE)
+# is refused naming the argument: these calls returned inf or a finite wrong answer, or raised an error that
+# named no argument (OverflowError, ZeroDivisionError, numpy's "Maximum allowed size exceeded").
+@pytest.mark.parametrize("arg, call", [
+    ("err", lambda: analysis.rmse([1e300, 1.0])),                  # was inf
+    ("x", lambda: kalman.predict([1e300, 0.0], np.eye(2), np.eye(2), np.eye(2))),
+    ("noise_density", lambda: sensors.TriadErrors(noise_density=1e300)),
+    ("f_b", lambda: alignment.level([0.0, 1e300, 9.8])),
+    ("vel_n", lambda: earth.transport_rate_n(0.5, 0.0, [1e300, 0.0, 0.0])),
+    ("duration", lambda: trajectory.static(1e300, 0.1, [0.5, 0.1, 0.0], [0.0, 0.0, 0.0])),
+    ("max_cond", lambda: analysis.cramer_rao_bound(
+        np.stack([np.eye(3)[:2], np.eye(3)[1:]]), np.tile(np.eye(2), (2, 1, 1)), max_cond=1e300)),
+    ("kp", lambda: mahony.mahony(*_static_marg()[:2], 0.01, [1.0, 0.0, 0.0, 0.0], kp=1e300)),  # was ZeroDivisionError
+])
+def test_values_whose_square_overflows_are_refused_naming_the_argument(arg, call):
+    with pytest.raises(ValueError, match=f"^{arg}: expected magnitudes up to 1e\\+150"):
+        call()
+
+
+def test_functions_exact_at_any_magnitude_still_take_huge_values():
+    assert units.deg(1e300) == pytest.approx(np.deg2rad(1e300))                       # a linear conversion
+    np.testing.assert_allclose(attitude.ned_to_enu_quat([1e300, 0.0, 0.0, 0.0]), [1.0, 0.0, 0.0, 0.0])
+
+
+def test_integrators_name_an_interval_they_cannot_integrate():
+    w = np.full((40, 3), 1e-3)
+    f = np.tile([0.0, 0.0, 9.8], (40, 1))
+    with pytest.raises(ValueError, match="^dt: the gyro turns up to"):          # was "w_ib_b: the integrated pitch ..."
+        euler.integrate_euler([0.0, 0.0, 0.0], w, 1e300)
+    with pytest.raises(ValueError, match="^dt: the gyro turns up to"):          # was accepted: residuals of 1e297 rad
+        rotation_bias.tilt_residuals(w, f, 1e300, [0, 20], 10)

@@ -269,6 +269,16 @@ GOOD_F = np.tile(ideal([1.0, 0.0, 0.0])[1], (10, 1))
     (lambda: nf.stop_solutions(GOOD_W, GOOD_F, [[0.0, 0.05]], LAT, time=np.zeros(10)), "time"),
     (lambda: nf.stop_solutions(GOOD_W, GOOD_F, [[0.05, 0.0]], LAT, time=np.arange(10) * 0.01), "windows"),
     (lambda: nf.stop_solutions(GOOD_W, GOOD_F, [[0.0, 0.005]], LAT, time=np.arange(10) * 0.01), "windows"),
+    # found by tools/fuzz.py (issue 15, item 4): accepted silently, or an error naming no argument
+    (lambda: nf.resolve(np.zeros((2, 2)), np.zeros((3, 2)), 0.0), "pair2"),
+    (lambda: nf.resolve([1.0, 2.0], [1.0, 2.0], 0.0, wrap=None), "wrap"),
+    (lambda: nf.monte_carlo(np.zeros((2, 2)), 0.0, 0.0, LAT, 3, 1e-7, 1e-3, np.random.default_rng(0)), "headings"),
+    (lambda: nf.monte_carlo([0.0], [0.0, 0.1], 0.0, LAT, 3, 1e-7, 1e-3, np.random.default_rng(0)), "pitch"),
+    (lambda: nf.simulate_static_outputs([0, 0, 0], [LAT, LAT], 3, 1e-7, 1e-3, np.random.default_rng(0)), "lat"),
+    (lambda: nf.ins_heading_change(GOOD_W, GOOD_F[0], 0.01, [LAT, LAT]), "lat"),
+    (lambda: nf.ins_heading_change(GOOD_W, np.tile(GOOD_F[0], (2, 1)), 0.01, LAT), "f_start"),
+    (lambda: nf.stop_and_go(np.zeros((2, 2)), 10, 40, 5, np.zeros((2, 2)), np.zeros((2, 2))), "headings"),
+    (lambda: nf.stop_solutions(GOOD_W, GOOD_F, [[0, 5]], LAT, strict="no"), "strict"),
 ])
 def test_bad_input_names_argument(call, arg):
     # (static_means with 3 of 10 samples NaN was refused before issue 9; NaN now marks dropouts, left out and

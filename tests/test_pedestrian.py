@@ -370,6 +370,11 @@ def test_step_detection_and_pdr(carpark):
     (lambda: pdr.detect_steps(np.zeros((5, 3)), 0.01), "f_b"),
     (lambda: pdr.weinberg_step_length([1.0], K=-1.0), "K"),
     (lambda: pdr.pdr([1.0, 2.0], [0.0]), "step_headings"),
+    # found by tools/fuzz.py (issue 15, item 4): accepted silently, or an error naming no argument
+    (lambda: pd.carpark_legs(stops=[[8.0, 5.0]]), "stops"),
+    (lambda: pd.carpark_legs(side=[[40.0, 24.0]] * 2), "side"),
+    (lambda: pd.hvac_pressure_steps([2.0, 1.0, 0.0], [1.0], np.random.default_rng(0)), "time"),
+    (lambda: pd.hvac_pressure_steps([0.0, 1.0], np.zeros((2, 2)), np.random.default_rng(0)), "door_times"),
 ])
 def test_bad_input_names_the_argument(call, arg):
     with pytest.raises(ValueError, match=f"^{arg}: "):

@@ -292,6 +292,12 @@ ONES3 = np.ones(3)
     (lambda: analysis.position_error(np.zeros((3, 1)), np.zeros((3, 1))), "estimate"),
     (lambda: planar.paper_series(26.0, 127.0, 120.0, deg=True), "lon"),
     (lambda: planar.paper_meridian_arc(-100.0, deg=True), "lat"),
+    # found by tools/fuzz.py (issue 15, item 4): accepted silently, or an error naming no argument
+    (lambda: planar.ekf(T3, GPS3, ONES3, ONES3, ONES3, np.zeros(5), origin=[[0.45, 2.08]] * 2), "origin"),
+    (lambda: planar.ekf(T3, GPS3, ONES3, ONES3, ONES3, np.zeros(5), correct_convergence="no"), "correct_convergence"),
+    (lambda: planar.paper_series(0.45, 2.08, 2.094, typos=None), "typos"),
+    (lambda: planar.printed_zone_number(2.08, deg="no"), "deg"),
+    (lambda: planar.simulate_sensors(np.zeros((0, 5)), ORIGIN, planar.R_PAPER, np.random.default_rng(0)), "truth"),
 ])
 def test_bad_input_raises_value_error_naming_the_argument(call, arg):
     with pytest.raises(ValueError) as info:

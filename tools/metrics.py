@@ -25,7 +25,8 @@ ROOT = Path(__file__).resolve().parents[1]
 VALIDATE_NAMES = {"real", "as_array", "in_range", "positive", "latitude", "generator", "time_axis", "as_dcm",
                   "as_quat", "scalar", "integer", "flag", "choice", "full_scale", "intervals", "imu_samples",
                   "nonempty_array", "nonempty_positive", "nonempty_latitude", "instance", "same_shape", "broadcast",
-                  "range_limit", "unit_interval", "booleans", "last_axis", "pitch_roll", "euler_angles", "small_turns"}
+                  "range_limit", "unit_interval", "booleans", "last_axis", "pitch_roll", "euler_angles", "small_turns",
+                  "text", "broadcast_to", "ellipsoid", "ellipsoid_"}
 # One formula, one place: regular expressions that find where each is written out.
 FORMULAS = {
     "levelling": r"arctan2\(\s*-\s*\w+\[\.\.\., 0\]|arctan2\(-ax, az\)|arcsin\(np\.clip\(f\[\.\.\., 1\]",

@@ -36,7 +36,18 @@ from numba import njit
 
 from .._kernels import wrap_pi
 from .._typing import Angles, Array, ArrayLike, Interval, Times
-from .._validate import booleans, in_range, integer, intervals, kernel_array, last_axis, nonempty_array, same_shape, scalar
+from .._validate import (
+    booleans,
+    in_range,
+    integer,
+    intervals,
+    kernel_array,
+    last_axis,
+    nonempty_array,
+    same_shape,
+    scalar,
+    time_axis,
+)
 from ..robust import FaultReport
 from ..timing import jump_limit
 from .observations import heading_input, rtk_gate, rtk_params
@@ -225,8 +236,8 @@ def rtk_at_imu_rate(time: Times, heading: Angles, valid: ArrayLike, step: int) -
     epoch_valid : ndarray of bool, shape (N,)
         True at valid epochs.
     """
-    t = nonempty_array(time, "time", shape=(None,))
-    h = nonempty_array(heading, "heading", finite=False)
+    t = time_axis(time, "time")
+    h = nonempty_array(heading, "heading", allow_nan=True)
     v = same_shape(booleans(valid, "valid"), "valid", t.shape, of="time")
     step = integer(step, "step")
     last_axis(h, "heading", t.size, of="time")

@@ -34,7 +34,19 @@ from numba import njit
 from .. import attitude, earth
 from .._kernels import dcm_heading, euler_to_quat, level, tilt_heading, wrap_pi
 from .._typing import Array, ArrayLike, Interval, Quat, Vec3, Vec3Series
-from .._validate import as_array, as_quat, booleans, instance, integer, intervals, nonempty_array, same_shape, scalar, small_turns
+from .._validate import (
+    as_array,
+    as_quat,
+    booleans,
+    broadcast_to,
+    instance,
+    integer,
+    intervals,
+    nonempty_array,
+    same_shape,
+    scalar,
+    small_turns,
+)
 from ..robust import STUCK_DURATION, FaultReport, stuck_run_samples, stuck_samples
 from ..timing import JUMP_FACTOR, jump_limit
 
@@ -501,10 +513,12 @@ def prepare_inputs(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, 
     dts = intervals(dt, N)
     T = int(np.prod(lead))
     q = as_quat(q0, "q0")
-    q = np.ascontiguousarray(np.broadcast_to(q, lead + (4,)).reshape(T, 4))
+    q = np.ascontiguousarray(broadcast_to(q, "q0", lead + (4,), of="the trials of w_ib_b").reshape(T, 4))
     if B_n is not None:
         magnetic_reference(B_n)                              # validate even where it is not needed
     use_rtk, use_mag = heading_rtk is not None, m_b is not None
+    if rtk_valid is not None and not use_rtk:
+        raise ValueError("rtk_valid: given without heading_rtk")
     if use_rtk and use_mag:
         raise ValueError("m_b, heading_rtk: give at most one heading reference (magnetometer or RTK)")
     if use_rtk:
@@ -518,9 +532,9 @@ def prepare_inputs(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, 
         m = same_shape(nonempty_array(m_b, "m_b", tail=(3,), finite=False), "m_b", w.shape, of="w_ib_b").reshape(T, N, 3)
         hdg, ok = np.zeros((1, 1)), np.zeros((1, 1), dtype=bool)
     gates = np.array([0.0, np.inf, 0.0, np.inf, -2.0, 2.0])
+    g = scalar(g, "g", positive=True)
     if accel_tol is not None:
         tol = scalar(accel_tol, "accel_tol", positive=True)
-        g = scalar(g, "g", positive=True)
         gates[0:2] = (g * max(1 - tol, 0.0)) ** 2, (g * (1 + tol)) ** 2
     if gate is not None:
         instance(gate, "gate", MagGate, "a MagGate")

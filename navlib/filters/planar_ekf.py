@@ -97,7 +97,7 @@ from .. import _kernels, kalman
 from .._deprecate import renamed_keywords
 from .._kernels import wrap_pi
 from .._typing import Array, ArrayLike, Times
-from .._validate import as_array, integer, kernel_array, range_limit, same_shape, scalar, time_axis
+from .._validate import as_array, flag, integer, kernel_array, range_limit, same_shape, scalar, text, time_axis
 from ..robust import FaultReport, stuck_run_samples, stuck_samples
 from ..timing import jump_limit
 
@@ -197,6 +197,8 @@ def propagate(x0: ArrayLike, T: float, n_steps: int | None = None, speed: ArrayL
     """
     x0 = as_array(x0, "x0", shape=(5,))
     T = scalar(T, "T", positive=True)
+    if (speed is None) != (yaw_rate is None):
+        raise ValueError("speed, yaw_rate: give both (the measured inputs) or neither (n_steps of constant motion)")
     if speed is None and yaw_rate is None:
         n_steps = integer(n_steps, "n_steps")
         speed, yaw_rate = np.full(n_steps, x0[3]), np.full(n_steps, x0[4])
@@ -583,7 +585,7 @@ class EkfResult:
 
 def covariance(M: ArrayLike, name: str) -> Array:
     """A validated (5, 5) symmetric positive semi-definite matrix from itself or its diagonal (5,)."""
-    M = as_array(M, name)
+    M = as_array(M, text(name, "name", empty=False))
     if M.shape == (5,):
         M = np.diag(M)
     if M.shape != (5, 5) or not np.allclose(M, M.T) or np.any(np.linalg.eigvalsh(M) < 0):
@@ -697,7 +699,7 @@ def filter_grid(t: Times, z: ArrayLike, x0: ArrayLike, P0: ArrayLike | None = No
         z_used = z.copy()
         z_used[stuck, 4] = np.nan
     X, P, nis, status, rejected, reacquired = _ekf_kernel(t, kernel_array(z_used), x0, P0, Q, R, gate,
-                                                          bool(fast), fs, reacquire, jump, t_nominal)
+                                                          flag(fast, "fast"), fs, reacquire, jump, t_nominal)
     later = z[1:]
     missing = np.stack([~np.all(np.isfinite(later[:, :2]), axis=1), np.isnan(later[:, 2]),
                         np.isnan(later[:, 3]), np.isnan(later[:, 4])], -1)

@@ -27,7 +27,7 @@ from numba import njit
 from .. import _kernels
 from .._deprecate import renamed_keywords
 from .._typing import Array, ArrayLike, Interval, Quat, Vec3, Vec3Series
-from .._validate import flag, nonempty_array, scalar
+from .._validate import as_quat, broadcast, flag, nonempty_array, scalar
 from ..imu import ImuSamples, unpack
 from ..units import G0
 from .observations import (
@@ -110,11 +110,11 @@ def _model_rows(q, b, out_h, out_H):
 
 
 def _model(q, b):
-    q = nonempty_array(q, "q", tail=(4,))
+    q = as_quat(nonempty_array(q, "q", tail=(4,)), "q", normalize=False)
     b = nonempty_array(b, "b", tail=(3,))
     if np.any(b[..., 0] != 0):
         raise ValueError("b: expected reference vectors [0, b_y, b_z] (Eq. 3, magnetic north)")
-    lead = np.broadcast_shapes(q.shape[:-1], b.shape[:-1])
+    lead = broadcast(q[..., 0], b[..., 0], name="b", of="q, b")[0].shape
     qf = np.ascontiguousarray(np.broadcast_to(q, lead + (4,)).reshape(-1, 4))
     bf = np.ascontiguousarray(np.broadcast_to(b, lead + (3,)).reshape(-1, 3))
     h, H = np.empty((qf.shape[0], 6)), np.empty((qf.shape[0], 6, 4))
@@ -159,7 +159,7 @@ def transition(w: Vec3, dt: float) -> Array:
 
 def noise_input(q: Quat, dt: float) -> Array:
     """Gyro-noise input matrix ``Gamma = dt/2 Xi(q)`` (Eq. 18 corrected, E003-11); (..., 4) -> (..., 4, 3)."""
-    q = nonempty_array(q, "q", tail=(4,))
+    q = as_quat(nonempty_array(q, "q", tail=(4,)), "q", normalize=False)
     dt = scalar(dt, "dt", positive=True)
     q0, q1, q2, q3 = np.moveaxis(q, -1, 0)
     rows = [[-q1, -q2, -q3], [q0, -q3, q2], [q3, q0, -q1], [-q2, q1, q0]]

@@ -36,7 +36,7 @@ from numpy.typing import NDArray
 
 from .. import analysis, attitude
 from .._typing import Array, ArrayLike, Dcm, Vec3, Vec3Series
-from .._validate import as_array, as_dcm, positive
+from .._validate import as_array, as_dcm, positive, scalar
 from ..imu import ImuSamples, unpack
 from ..units import G0
 
@@ -91,17 +91,17 @@ def detect_static(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None
     f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=True)
     if w.ndim != 2 or f.shape != w.shape:
         raise ValueError(f"f_b: expected the shape (N, 3) of w_ib_b {w.shape}, got {f.shape}")
-    dt = float(positive(dt, "dt"))
+    dt = scalar(dt, "dt", positive=True)
     valid = np.isfinite(w).all(-1) & np.isfinite(f).all(-1)
     if not valid.all():
         w, f = np.where(valid[:, None], w, 0.0), np.where(valid[:, None], f, 0.0)
-    n = int(round(float(positive(window, "window")) / dt))
+    n = int(round(scalar(window, "window", positive=True) / dt))
     if n < 2 or n > w.shape[0]:
         raise ValueError(f"window: expected 2 samples up to the record length {w.shape[0] * dt:g} s, "
                          f"got {window} s ({n} samples)")
-    b = as_array(gyro_bias, "gyro_bias", tail=(3,)).reshape(3)
-    tw, tf, tg = positive(as_array(thresholds, "thresholds", tail=(3,)).reshape(3), "thresholds")
-    g = float(positive(g, "g"))
+    b = as_array(gyro_bias, "gyro_bias", shape=(3,))
+    tw, tf, tg = positive(as_array(thresholds, "thresholds", shape=(3,)), "thresholds")
+    g = scalar(g, "g", positive=True)
     w2 = np.sum((w - b) ** 2, -1)
     fn = np.linalg.norm(f, axis=-1)
     share = None if valid.all() else analysis.moving_mean(valid.astype(float), n)   # fraction of valid samples per window
@@ -146,8 +146,8 @@ def error_state_matrix(C_bn: Dcm, f_b: Vec3) -> Array:
     f_b : array_like, shape (3,)
         Bias-corrected specific force (m/s^2).
     """
-    C = as_dcm(as_array(C_bn, "C_bn", tail=(3, 3)).reshape(3, 3))
-    f = as_array(f_b, "f_b", tail=(3,)).reshape(3)
+    C = as_dcm(as_array(C_bn, "C_bn", shape=(3, 3)))
+    f = as_array(f_b, "f_b", shape=(3,))
     F = np.zeros((15, 15))
     F[0:3, 3:6] = np.eye(3)
     error_state_into(F, np.ascontiguousarray(C), C @ f)
@@ -187,9 +187,9 @@ def error_model_fd(C_bn: Dcm, f_b: Vec3, eps: float = 1e-6) -> Array:
     -------
     F : ndarray, shape (15, 15)
     """
-    C = as_dcm(as_array(C_bn, "C_bn", tail=(3, 3)).reshape(3, 3))
-    f = as_array(f_b, "f_b", tail=(3,)).reshape(3)
-    eps = float(positive(eps, "eps"))
+    C = as_dcm(as_array(C_bn, "C_bn", shape=(3, 3)))
+    f = as_array(f_b, "f_b", shape=(3,))
+    eps = scalar(eps, "eps", positive=True)
     F = np.empty((15, 15))
     for j in range(15):
         e = np.zeros(15)
@@ -220,9 +220,9 @@ def zupt_zaru_z_into(z, vel, w_mean, b_g, C, w_ie_n):
 
 def zupt_zaru_matrix(C_bn: Dcm, w_ie_n: Vec3) -> Array:
     """H of the ZUPT/ZARU measurement (6 x 15) at the estimated attitude, with the Earth-rate block."""
-    C = as_dcm(as_array(C_bn, "C_bn", tail=(3, 3)).reshape(3, 3))
+    C = as_dcm(as_array(C_bn, "C_bn", shape=(3, 3)))
     H = np.zeros((6, 15))
-    zupt_zaru_rows_into(H, np.ascontiguousarray(C), as_array(w_ie_n, "w_ie_n", tail=(3,)).reshape(3))
+    zupt_zaru_rows_into(H, np.ascontiguousarray(C), as_array(w_ie_n, "w_ie_n", shape=(3,)))
     return H
 
 
@@ -242,9 +242,9 @@ def zupt_zaru_innovation(vel_n: Vec3, w_ib_b: Vec3, b_g: Vec3, C_bn: Dcm, w_ie_n
     w_ie_n : array_like, shape (3,)
         Earth rate in ENU (rad/s).
     """
-    args = [as_array(a, n, tail=(3,)).reshape(3) for a, n in
+    args = [as_array(a, n, shape=(3,)) for a, n in
             ((vel_n, "vel_n"), (w_ib_b, "w_ib_b"), (b_g, "b_g"), (w_ie_n, "w_ie_n"))]
-    C = as_dcm(as_array(C_bn, "C_bn", tail=(3, 3)).reshape(3, 3))
+    C = as_dcm(as_array(C_bn, "C_bn", shape=(3, 3)))
     z = np.empty(6)
     zupt_zaru_z_into(z, args[0], args[1], args[2], np.ascontiguousarray(C), args[3])
     return z

@@ -72,7 +72,8 @@ from numba import njit
 from .. import _kernels, attitude, earth, robust, trajectory
 from .._deprecate import renamed_keywords
 from .._kernels import radii_mn
-from .._validate import as_array, as_quat, booleans, choice, imu_samples, instance, integer, intervals, range_limit, scalar
+from .._validate import as_array, as_quat, booleans, choice, flag, imu_samples, instance, integer, intervals, range_limit, scalar
+from .._validate import ellipsoid as ellipsoid_
 from ..imu import unpack
 from ..strapdown import earth_constants
 from ..units import G0
@@ -572,7 +573,7 @@ class FilterResult:
 def _field_reference(B_n):
     if B_n is None:
         return np.array([0.0, 0.0])
-    D, I, F = earth.field_angles(as_array(B_n, "B_n", tail=(3,)).reshape(3), deg=False)
+    D, I, F = earth.field_angles(as_array(B_n, "B_n", shape=(3,)), deg=False)
     return np.array([float(F), float(I)])
 
 
@@ -648,11 +649,11 @@ def run_filter(w_ib_b, f_b=None, dt=None, lla0=None, vel0=None, q0=None, static=
     if not (np.isfinite(w[0]).all() and np.isfinite(f[0]).all()):
         raise ValueError("w_ib_b, f_b: expected a valid first sample (dropouts are held from the last good one)")
     dts = intervals(dt, n)
-    lla0 = as_array(lla0, "lla0", tail=(3,)).reshape(3)
+    lla0 = as_array(lla0, "lla0", shape=(3,))
     if abs(lla0[0]) > np.deg2rad(89.9):
         raise ValueError("lla0: expected |lat| <= 89.9 deg (ENU mechanisation)")
-    vel0 = as_array(vel0, "vel0", tail=(3,)).reshape(3)
-    q0 = as_quat(as_array(q0, "q0", tail=(4,)).reshape(4), "q0")
+    vel0 = as_array(vel0, "vel0", shape=(3,))
+    q0 = as_quat(as_array(q0, "q0", shape=(4,)), "q0")
     s = booleans(static, "static", shape=(n,))
     hb = np.full(n, np.nan) if h_baro is None else as_array(h_baro, "h_baro", allow_nan=True, shape=(n,))
     mb = np.full((n, 3), np.nan) if m_b is None else as_array(m_b, "m_b", allow_nan=True, shape=(n, 3))
@@ -660,9 +661,9 @@ def run_filter(w_ib_b, f_b=None, dt=None, lla0=None, vel0=None, q0=None, static=
         raise ValueError("m_b: expected non-zero magnetometer vectors (NaN marks a missing sample)")
     choice(walk_aiding, "walk_aiding", tuple(_AIDING))
     instance(config, "config", FilterConfig, "a FilterConfig")
-    instance(ellipsoid, "ellipsoid", earth.Ellipsoid, "a navlib.earth.Ellipsoid")
-    b0 = np.concatenate([as_array(accel_bias0, "accel_bias0", tail=(3,)).reshape(3),
-                         as_array(gyro_bias0, "gyro_bias0", tail=(3,)).reshape(3)])
+    ellipsoid_(ellipsoid)
+    b0 = np.concatenate([as_array(accel_bias0, "accel_bias0", shape=(3,)),
+                         as_array(gyro_bias0, "gyro_bias0", shape=(3,))])
     gyro_fs, accel_fs = range_limit(full_scale_gyro, "full_scale_gyro"), range_limit(full_scale_accel, "full_scale_accel")
     if full_scale is not None:                    # deprecated pair, removed in navlib 0.3
         warnings.warn("run_filter(full_scale=(gyro, accel)) is deprecated; use full_scale_gyro=, full_scale_accel=",
@@ -688,8 +689,8 @@ def run_filter(w_ib_b, f_b=None, dt=None, lla0=None, vel0=None, q0=None, static=
                   + [c.p0_accel_bias] * 3 + [c.p0_gyro_bias] * 3) ** 2
     samples = _Samples(np.ascontiguousarray(w), np.ascontiguousarray(f), dts, s, np.ascontiguousarray(hb),
                        np.ascontiguousarray(mb), freefall)
-    setup = _Setup(lla0, vel0, np.ascontiguousarray(q0), b0, float(as_array(declination, "declination")), field_ref,
-                   bool(zupt), _AIDING[walk_aiding], every, q_rate, p0, float(c.sigma_zupt ** 2),
+    setup = _Setup(lla0, vel0, np.ascontiguousarray(q0), b0, scalar(declination, "declination"), field_ref,
+                   flag(zupt, "zupt"), _AIDING[walk_aiding], every, q_rate, p0, float(c.sigma_zupt ** 2),
                    float(c.sigma_zaru ** 2), float(c.sigma_baro ** 2), float(c.sigma_heading ** 2),
                    float(c.baro_alpha), float(c.baro_beta), float(c.gate), int(c.max_rejected), float(c.mag_field_tol),
                    float(c.mag_dip_tol), gyro_fs, accel_fs, float(c.baro_gate), float(c.spike_gyro),
@@ -697,7 +698,7 @@ def run_filter(w_ib_b, f_b=None, dt=None, lla0=None, vel0=None, q0=None, static=
                    earth_constants(ellipsoid))
     out = _filter_kernel(samples, setup)
     lla, vel, q, b, p_diag, counts, flags, P = out
-    t0 = float(as_array(t0, "t0"))
+    t0 = scalar(t0, "t0")
     time = t0 + (dts[0] * np.arange(n + 1) if np.all(dts == dts[0]) else np.concatenate([[0.0], np.cumsum(dts)]))
     named = dict(zip(_COUNTERS, (int(x) for x in counts), strict=True))
     faults = robust.FaultReport({key: named[name] for name, key in FAULT_KEYS.items()},

@@ -14,6 +14,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from .._validate import integer, text
+
 __all__ = ["Paper", "PAPERS", "CONVENTIONS", "REAL_DATA", "CHAPTERS", "by_notebook"]
 
 
@@ -31,6 +33,13 @@ class Paper:
     number: int
     claims_id: str
     citation: str
+
+    def __post_init__(self):
+        if not isinstance(self.name, str) or not self.name.isidentifier():
+            raise ValueError(f"name: expected the paper's module name (a Python identifier), got {self.name!r}")
+        integer(self.number, "number", minimum=0)
+        text(self.claims_id, "claims_id", empty=False)
+        text(self.citation, "citation", empty=False)
 
     @property
     def notebook(self) -> str:
@@ -62,4 +71,5 @@ PAPERS: tuple[Paper, ...] = (
 
 def by_notebook(stem: str) -> Paper | None:
     """The registered paper of a notebook stem, or None (notebook 00 has no paper)."""
+    text(stem, "stem")
     return next((p for p in PAPERS if p.notebook == stem), None)

@@ -52,14 +52,15 @@ from .._validate import (
     as_array,
     booleans,
     broadcast,
+    flag,
     generator,
-    instance,
     nonempty_array,
     nonempty_latitude,
     range_limit,
     scalar,
     time_axis,
 )
+from .._validate import ellipsoid as ellipsoid_
 from ..earth import CGCS2000, Ellipsoid
 from ..filters.planar_ekf import covariance, filter_grid, propagate
 
@@ -77,12 +78,12 @@ R_PAPER = np.diag([6.25, 6.25, 0.01, 0.0004, 0.0025])
 # --------------------------------------------------------------------------
 
 def _ell(ellipsoid) -> Ellipsoid:
-    return instance(ellipsoid, "ellipsoid", Ellipsoid, "a navlib.earth.Ellipsoid (e.g. earth.CGCS2000)", error=TypeError)
+    return ellipsoid_(ellipsoid)
 
 
 def _lon_deg(lon, deg: bool, name: str = "lon") -> np.ndarray:
     arr = nonempty_array(lon, name)
-    return arr if deg else np.rad2deg(arr)
+    return arr if flag(deg, "deg") else np.rad2deg(arr)
 
 
 def _validate_lat_lon(lat, lon, deg):
@@ -177,6 +178,7 @@ def paper_series(lat: ArrayLike, lon: ArrayLike, lon0: ArrayLike, ellipsoid: Ell
         rad, or deg with ``deg=True``; ``|lon - lon0|`` at most 6°.
     """
     _ell(ellipsoid)
+    typos = flag(typos, "typos")
     W, lon_deg = _validate_lat_lon(lat, lon, deg)
     L0 = _lon_deg(lon0, deg, "lon0")
     l_deg = lon_deg - L0
@@ -327,8 +329,7 @@ def ekf(t, gps, heading, speed, yaw_rate, x0, *, origin=None, zone=None, width: 
     heading, speed, yaw_rate = imu
     fix = np.all(np.isfinite(gps), axis=1)
     if origin is not None:
-        origin = as_array(origin, "origin", tail=(2,))
-        ref = origin.reshape(2)
+        ref = as_array(origin, "origin", shape=(2,))
     elif fix.any():
         ref = gps[np.argmax(fix)]
     else:
@@ -347,7 +348,7 @@ def ekf(t, gps, heading, speed, yaw_rate, x0, *, origin=None, zone=None, width: 
         gamma[:] = geodesy.convergence(ref[0], ref[1], **kw)
     if deg:
         gamma = np.deg2rad(gamma)
-    z[:, 2] = heading - _forward_fill(gamma) if correct_convergence else heading
+    z[:, 2] = heading - _forward_fill(gamma) if flag(correct_convergence, "correct_convergence") else heading
     z[:, 3], z[:, 4] = speed, yaw_rate
     if full_scale_gyro is not None:
         full_scale_gyro = range_limit(full_scale_gyro, "full_scale_gyro")
@@ -407,8 +408,8 @@ def simulate_sensors(truth, origin, R, rng: np.random.Generator, *, zone=None, w
     -------
     Sensors
     """
-    truth = as_array(truth, "truth", shape=(None, 5))
-    origin = as_array(origin, "origin", tail=(2,)).reshape(2)
+    truth = as_array(truth, "truth", shape=(None, 5), min_ndim=1)
+    origin = as_array(origin, "origin", shape=(2,))
     sigma = np.sqrt(np.diag(covariance(R, "R")))
     generator(rng)
     yaw_rate_bias = scalar(yaw_rate_bias, "yaw_rate_bias")

@@ -82,7 +82,7 @@ import numpy as np
 
 from .. import attitude
 from .._typing import Angles, Array, Quat, Vec3
-from .._validate import euler_angles, nonempty_array
+from .._validate import as_quat, euler_angles, nonempty_array
 from ..filters.quaternion_kf import measurement_jacobian, noise_input
 
 __all__ = ["printed_eq2_roll", "printed_eq4", "printed_eq5_tilt",
@@ -95,13 +95,13 @@ __all__ = ["printed_eq2_roll", "printed_eq4", "printed_eq5_tilt",
 
 def printed_eq2_roll(q: Quat) -> Array:
     """Roll as printed in Eq. (2): ``atan(-2(q1 q3 + q0 q2) / (1 - 2(q1^2 + q2^2)))`` (E003-02)."""
-    q0, q1, q2, q3 = np.moveaxis(nonempty_array(q, "q", tail=(4,)), -1, 0)
+    q0, q1, q2, q3 = np.moveaxis(as_quat(nonempty_array(q, "q", tail=(4,)), "q", normalize=False), -1, 0)
     return np.arctan(-2 * (q1 * q3 + q0 * q2) / (1 - 2 * (q1 ** 2 + q2 ** 2)))
 
 
 def printed_eq4(q: Quat) -> Array:
     """Eq. (4) as printed, with ``q0`` instead of ``q0**2`` in the third row (E003-04); (..., 4) -> (..., 3)."""
-    q0, q1, q2, q3 = np.moveaxis(nonempty_array(q, "q", tail=(4,)), -1, 0)
+    q0, q1, q2, q3 = np.moveaxis(as_quat(nonempty_array(q, "q", tail=(4,)), "q", normalize=False), -1, 0)
     return np.stack([2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), q0 + q3 ** 2 - q1 ** 2 - q2 ** 2], -1)
 
 

@@ -97,7 +97,7 @@ from scipy.special import ndtr
 from .. import attitude, earth, robust, strapdown
 from .._deprecate import renamed_keywords
 from .._typing import Angles, Array, ArrayLike, Dcm, Interval, Times, Vec3, Vec3Series
-from .._validate import as_dcm, flag, generator, in_range, intervals, time_axis
+from .._validate import as_dcm, broadcast, broadcast_to, flag, generator, in_range, intervals, pitch_roll, scalar, time_axis
 from .._validate import nonempty_array as as_array
 from .._validate import nonempty_positive as positive
 from ..alignment import gyrocompass_latitude, level, static_means, triad, triad_heading
@@ -277,13 +277,13 @@ def resolve(pair1: ArrayLike, pair2: ArrayLike, dpsi_ins: Angles, wrap: bool = T
     -------
     Resolution
     """
-    p1 = as_array(pair1, "pair1", tail=(2,))
-    p2 = as_array(pair2, "pair2", tail=(2,))
+    p1, p2 = broadcast(as_array(pair1, "pair1", tail=(2,)), as_array(pair2, "pair2", tail=(2,)), name="pair2",
+                       of="pair1, pair2")
     ins = as_array(dpsi_ins, "dpsi_ins")
     cands = (p2[..., :, None] - p1[..., None, :]).reshape(p2.shape[:-1] + (4,))
     cands, ins = np.broadcast_arrays(cands, ins[..., None])
     diff = cands - ins
-    res = attitude.wrap_pi(diff) if wrap else diff
+    res = attitude.wrap_pi(diff) if flag(wrap, "wrap") else diff
     score = np.abs(res)
     index = np.argmin(score, axis=-1)
     best_cand = np.take_along_axis(cands, index[..., None], -1)
@@ -435,11 +435,11 @@ def simulate_static_outputs(hpr: Angles, lat: float, n_trials: int, sigma_gyro: 
     w_ib_b, f_b : ndarray, shape (..., n_trials, 3)
     """
     C_nb = np.swapaxes(attitude.euler_to_dcm(hpr), -1, -2)
-    lat = gyrocompass_latitude(lat)
+    lat = gyrocompass_latitude(scalar(lat, "lat"))
     if not isinstance(n_trials, (int, np.integer)) or isinstance(n_trials, bool) or n_trials < 1:
         raise ValueError(f"n_trials: expected a positive integer, got {n_trials!r}")
-    s_g = float(positive(sigma_gyro, "sigma_gyro", allow_zero=True))
-    s_a = float(positive(sigma_accel, "sigma_accel", allow_zero=True))
+    s_g = scalar(sigma_gyro, "sigma_gyro", allow_zero=True)
+    s_a = scalar(sigma_accel, "sigma_accel", allow_zero=True)
     r_gyro, r_accel = generator(rng).spawn(2)
     w_true = C_nb @ earth.earth_rate_n(lat)
     f_true = C_nb @ np.array([0.0, 0.0, float(earth.gravity(lat))])
@@ -490,9 +490,9 @@ def monte_carlo(headings: Angles, pitch: float, roll: float, lat: float, n_trial
     -------
     MonteCarlo
     """
-    psi = as_array(headings, "headings").reshape(-1)
-    th = float(_pitch(pitch))
-    ro = float(in_range(as_array(roll, "roll"), "roll", -np.pi, np.pi, "rad"))
+    psi = as_array(headings, "headings", shape=(None,))
+    th = float(_pitch(scalar(pitch, "pitch")))
+    ro = scalar(in_range(as_array(roll, "roll"), "roll", -np.pi, np.pi, "rad"), "roll")
     hpr = np.stack(np.broadcast_arrays(psi, th, ro), -1)
     w, f = simulate_static_outputs(hpr, lat, n_trials, sigma_gyro, sigma_accel, rng)
     C_raw = triad(f, w, lat, orthonormal=False)
@@ -591,19 +591,21 @@ def stop_and_go(headings: Angles, stop_duration: float, drive_duration: float, s
     stops : ndarray, shape (S, 2)
         Start and end time of each stop (s).
     """
-    psi = as_array(headings, "headings").reshape(-1)
-    th = as_array(pitches, "pitches").reshape(-1)
-    ro = as_array(rolls, "rolls").reshape(-1)
+    psi = as_array(headings, "headings", shape=(None,))
+    th = as_array(pitches, "pitches", shape=(None,))
+    ro = as_array(rolls, "rolls", shape=(None,))
     if psi.size < 2:
         raise ValueError(f"headings: expected a 1-D array of >= 2 stops, got {psi.shape}")
     for name, x in (("pitches", th), ("rolls", ro)):
         if x.shape != psi.shape:
-            raise ValueError(f"{name}: expected one value per stop, shape {psi.shape}, got {x.shape}")
-    stop_duration = float(positive(stop_duration, "stop_duration"))
-    drive_duration = float(positive(drive_duration, "drive_duration"))
+            raise ValueError(f"{name}: expected one value per stop (per heading of headings), shape {psi.shape}, "
+                             f"got {x.shape}")
+    pitch_roll(th, ro, ("pitches", "rolls"))
+    stop_duration = scalar(stop_duration, "stop_duration", positive=True)
+    drive_duration = scalar(drive_duration, "drive_duration", positive=True)
     if drive_duration < 30:
         raise ValueError(f"drive_duration: expected >= 30 s (accelerate, turn, brake), got {drive_duration}")
-    speed = float(positive(speed, "speed"))
+    speed = scalar(speed, "speed", positive=True)
     ramp = 10.0
     segments = [Segment(stop_duration, speed=0.0, pitch=th[0], roll=ro[0])]
     stops = [(0.0, stop_duration)]
@@ -829,7 +831,7 @@ def ins_heading_change(w_ib_b: Vec3Series | ImuSamples, f_start: Vec3, dt: Inter
         report = flag(report, "report")
     if isinstance(w_ib_b, ImuSamples):
         w_ib_b, _, dt, full_scale_gyro, _ = unpack(w_ib_b, dt=dt, full_scale_gyro=full_scale_gyro)
-    w_ie = earth.earth_rate_n(gyrocompass_latitude(lat))
+    w_ie = earth.earth_rate_n(gyrocompass_latitude(scalar(lat, "lat")))
     rates = {"vertical": w_ie * [0, 0, 1], "none": np.zeros(3), "full": w_ie}
     if earth_rate not in rates:
         raise ValueError(f"earth_rate: expected 'vertical', 'none' or 'full', got {earth_rate!r}")
@@ -837,9 +839,10 @@ def ins_heading_change(w_ib_b: Vec3Series | ImuSamples, f_start: Vec3, dt: Inter
     n = w.shape[-2]
     dts = intervals(dt, n)
     step = float(dts[0]) if np.all(dts == dts[0]) else float(dts.mean())
-    max_gap = float(positive(max_gap, "max_gap", allow_zero=True))
-    fs = np.inf if full_scale_gyro is None else float(positive(full_scale_gyro, "full_scale_gyro"))
-    pitch, roll = level(as_array(f_start, "f_start", tail=(3,)))
+    max_gap = scalar(max_gap, "max_gap", allow_zero=True)
+    fs = np.inf if full_scale_gyro is None else scalar(full_scale_gyro, "full_scale_gyro", positive=True)
+    pitch, roll = level(broadcast_to(as_array(f_start, "f_start", tail=(3,)), "f_start", w.shape[:-2] + (3,),
+                                     of="the trials of w_ib_b"))
     with np.errstate(invalid="ignore"):
         n_sat = np.sum(np.any(np.abs(w) >= fs, -1), -1)             # NaN compares False
     if np.all(np.isfinite(w)):

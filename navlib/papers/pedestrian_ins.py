@@ -77,7 +77,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import attitude
-from .._validate import as_array, generator, integer, pitch_roll, positive, same_shape
+from .._validate import as_array, generator, integer, pitch_roll, positive, same_shape, scalar, time_axis
 from ..trajectory import Leg
 
 __all__ = ["G_LOCAL", "carpark_legs", "floor_test_legs", "tilt_compensate_ned", "tilt_compensate_printed",
@@ -101,11 +101,11 @@ def carpark_legs(speed: float = 1.2, stops=(8.0, 5.0, 20.0, 10.0, 6.0, 15.0, 30.
     taken at 2/3 of the speed over 3 s. Starts with ``initial_stand``
     seconds of standing (calibration, pressure reference).
     """
-    speed = float(positive(speed, "speed"))
-    stops = positive(as_array(stops, "stops", min_ndim=1), "stops").ravel()
-    a, b = positive(as_array(side, "side", tail=(2,)).reshape(2), "side")
+    speed = scalar(speed, "speed", positive=True)
+    stops = positive(as_array(stops, "stops", shape=(None,), min_ndim=1), "stops")
+    a, b = positive(as_array(side, "side", shape=(2,)), "side")
     n_loops = integer(n_loops, "n_loops")
-    legs, k = [Leg(float(positive(initial_stand, "initial_stand")))], 0
+    legs, k = [Leg(scalar(initial_stand, "initial_stand", positive=True))], 0
     corner = 3.0 * 2 / 3 * speed                       # path length of a corner (m)
     for _ in range(n_loops):
         for length in (a, b, a, b):
@@ -127,9 +127,9 @@ def floor_test_legs(stand: float = 60.0, stairs: float = 15.0, floor_height: flo
     4 m of corridor; then a stand of ``stand`` seconds. The first stand is
     on 2F.
     """
-    stand = float(positive(stand, "stand"))
-    stairs = float(positive(stairs, "stairs"))
-    hf = float(positive(floor_height, "floor_height"))
+    stand = scalar(stand, "stand", positive=True)
+    stairs = scalar(stairs, "stairs", positive=True)
+    hf = scalar(floor_height, "floor_height", positive=True)
     n_round_trips = integer(n_round_trips, "n_round_trips")
     legs = [Leg(stand)]
     for trip in range(2 * n_round_trips):
@@ -184,7 +184,7 @@ def heading_from_horizontal(H_X, H_Y, declination: float = 0.0):
     X, Y = as_array(H_X, "H_X"), as_array(H_Y, "H_Y")
     if np.any((X == 0) & (Y == 0)):
         raise ValueError("H_X, H_Y: heading undefined for a zero horizontal field")
-    return attitude.wrap_2pi(np.arctan2(-Y, X) + float(as_array(declination, "declination")))
+    return attitude.wrap_2pi(np.arctan2(-Y, X) + scalar(declination, "declination"))
 
 
 # --------------------------------------------------------------------------
@@ -193,9 +193,9 @@ def heading_from_horizontal(H_X, H_Y, declination: float = 0.0):
 
 def hvac_pressure_steps(time, door_times, rng: np.random.Generator, amplitude: float = 10.0):
     """Pressure offsets of ventilated zones: a new offset in [-a, a] after each door (Pa)."""
-    t = as_array(time, "time")
-    doors = np.sort(as_array(door_times, "door_times").reshape(-1))
-    a = float(positive(amplitude, "amplitude", allow_zero=True))
+    t = time_axis(time, "time", min_samples=1)
+    doors = np.sort(as_array(door_times, "door_times", shape=(None,)))
+    a = scalar(amplitude, "amplitude", allow_zero=True)
     generator(rng)
     levels = np.concatenate([[0.0], rng.uniform(-a, a, doors.size)])
     return levels[np.searchsorted(doors, t, side="right")]
@@ -209,7 +209,7 @@ def simple_covariance_update(P, H, R):
     """The printed last line of Eq. (3): optimal gain K and ``(I - K H) P``."""
     P = as_array(P, "P", shape=(None, None))
     same_shape(P, "P", (len(P), len(P)))                         # square (n, n)
-    H = as_array(H, "H", shape=(None, len(P)))                   # (m, n)
-    R = as_array(R, "R", shape=(len(H), len(H)))                 # (m, m)
+    H = as_array(H, "H", shape=(None, len(P)), of="P")           # (m, n)
+    R = as_array(R, "R", shape=(len(H), len(H)), of="H")         # (m, m)
     K = P @ H.T @ np.linalg.inv(H @ P @ H.T + R)
     return K, (np.eye(P.shape[0]) - K @ H) @ P

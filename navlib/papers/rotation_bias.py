@@ -95,7 +95,7 @@ from numba import njit
 from .. import _kernels, attitude, kalman, robust
 from .._kernels import wrap_pi
 from .._typing import Angles, Array, ArrayLike, Interval, Vec3, Vec3Series
-from .._validate import euler_angles, in_range, intervals, kernel_array, range_limit
+from .._validate import euler_angles, in_range, intervals, kernel_array, range_limit, scalar, small_turns
 from .._validate import nonempty_array as as_array
 from .._validate import nonempty_positive as positive
 from ..alignment import level
@@ -133,7 +133,7 @@ def gravity_body(tilt: ArrayLike, g: float = G0) -> Array:
         Equals ``-f_b`` of a static accelerometer (erratum E001-03).
     """
     tilt = as_array(tilt, "tilt", tail=(2,))
-    g = float(positive(g, "g"))
+    g = scalar(g, "g", positive=True)
     r, p = tilt[..., 0], tilt[..., 1]
     return g * np.stack([np.cos(p) * np.sin(r), -np.sin(p), -np.cos(p) * np.cos(r)], -1)
 
@@ -183,7 +183,7 @@ def tilt_matrix(tilt: ArrayLike) -> Array:
 # --------------------------------------------------------------------------
 
 def _unit_axis(axis_b):
-    u = as_array(axis_b, "axis_b", tail=(3,)).reshape(3)
+    u = as_array(axis_b, "axis_b", shape=(3,))
     if abs(np.linalg.norm(u) - 1) > 1e-9:
         raise ValueError(f"axis_b: expected a unit vector, got norm {np.linalg.norm(u):.6g}")
     return u
@@ -249,10 +249,10 @@ def dwell_attitudes(hpr0: Angles, axis_b: Vec3, amplitude: float, n_dwells: int)
     ValueError
         If a dwell's pitch is within 1 deg of +-90 deg (erratum E001-08).
     """
-    hpr0 = as_array(hpr0, "hpr0", tail=(3,)).reshape(3)
+    hpr0 = euler_angles(as_array(hpr0, "hpr0", shape=(3,)), "hpr0")
     if not isinstance(n_dwells, (int, np.integer)) or isinstance(n_dwells, bool) or n_dwells < 1:
         raise ValueError(f"n_dwells: expected a positive integer, got {n_dwells!r}")
-    pair = np.stack([hpr0, rotate_attitude(hpr0, axis_b, float(as_array(amplitude, "amplitude")))])
+    pair = np.stack([hpr0, rotate_attitude(hpr0, axis_b, scalar(amplitude, "amplitude"))])
     if np.any(np.abs(pair[:, 1]) > PITCH_LIMIT):
         raise ValueError(f"axis_b: rotating by {np.rad2deg(amplitude):g} deg about {np.round(axis_b, 6)} drives "
                          f"pitch to {np.rad2deg(pair[1, 1]):.1f} deg, where Eq. (2) is singular")
@@ -281,9 +281,9 @@ def dwell_windows(n_samples: int, dt: float, period: float, rotation_time: float
     """
     if not isinstance(n_samples, (int, np.integer)) or isinstance(n_samples, bool) or n_samples < 1:
         raise ValueError(f"n_samples: expected a positive integer, got {n_samples!r}")
-    dt, period = float(positive(dt, "dt")), float(positive(period, "period"))
-    rotation_time = float(positive(rotation_time, "rotation_time", allow_zero=True))
-    settle = float(positive(settle, "settle", allow_zero=True))
+    dt, period = scalar(dt, "dt", positive=True), scalar(period, "period", positive=True)
+    rotation_time = scalar(rotation_time, "rotation_time", allow_zero=True)
+    settle = scalar(settle, "settle", allow_zero=True)
     per = int(round(period / dt))
     first = int(round(settle / dt))
     length = int(np.floor((period - rotation_time) / dt + 1e-9)) - first
@@ -582,6 +582,7 @@ def tilt_residuals(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = Non
         raise ValueError(f"f_b: expected the shape of w_ib_b {w.shape}, got {f.shape}")
     lead, n = w.shape[:-2], w.shape[-2]
     dts, regular = intervals(dt, n), np.ndim(dt) == 0
+    small_turns(w, dts)
     if not isinstance(length, (int, np.integer)) or isinstance(length, bool) or length < MIN_DWELL_SAMPLES:
         raise ValueError(f"length: dwell windows too short; expected at least {MIN_DWELL_SAMPLES} samples, "
                          f"got {length!r}")
@@ -589,8 +590,8 @@ def tilt_residuals(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = Non
     if starts.ndim != 1 or starts.size == 0 or not np.issubdtype(starts.dtype, np.integer) \
             or starts.min() < 0 or starts.max() + length > n:
         raise ValueError(f"starts: expected a 1-D array of dwell start indices within [0, {n - length}]")
-    max_missing = float(in_range(as_array(max_missing, "max_missing"), "max_missing", 0.0, 0.5))
-    k_out = 0.0 if outlier_k is None else float(positive(outlier_k, "outlier_k"))
+    max_missing = scalar(in_range(as_array(max_missing, "max_missing"), "max_missing", 0.0, 0.5), "max_missing")
+    k_out = 0.0 if outlier_k is None else scalar(outlier_k, "outlier_k", positive=True)
     fs_g, fs_a = range_limit(full_scale_gyro, "full_scale_gyro"), range_limit(full_scale_accel, "full_scale_accel")
     K = starts.size
     w_ie = np.zeros((K, 3)) if w_ie_b is None else as_array(w_ie_b, "w_ie_b", tail=(3,))
@@ -648,10 +649,10 @@ def residual_covariance(tilt: ArrayLike, length: int, dt: float, gyro_noise: flo
     if not isinstance(length, (int, np.integer)) or isinstance(length, bool) or length < MIN_DWELL_SAMPLES:
         raise ValueError(f"length: dwell windows too short; expected an integer >= {MIN_DWELL_SAMPLES}, got {length!r}")
     n = int(length)
-    dt = float(positive(dt, "dt"))
-    N = float(positive(gyro_noise, "gyro_noise", allow_zero=True))
-    A = float(positive(accel_noise, "accel_noise", allow_zero=True))
-    g = float(positive(g, "g"))
+    dt = scalar(dt, "dt", positive=True)
+    N = scalar(gyro_noise, "gyro_noise", allow_zero=True)
+    A = scalar(accel_noise, "accel_noise", allow_zero=True)
+    g = scalar(g, "g", positive=True)
     j = np.arange(n)
     wts = (j - (n - 1) / 2) / (n * (n * n - 1) / 12.0)          # slope weights per sample index
     c = np.cumsum(wts[::-1])[::-1][1:]                           # sum_{j>i} w_j, i = 0..n-2
@@ -757,7 +758,7 @@ def running_lsq_bias(r: ArrayLike, V: ArrayLike, forgetting: float = 1.0) -> tup
         Dwells skipped for NaN residuals.
     """
     r, V = _rv(r, V)
-    lam = float(as_array(forgetting, "forgetting"))
+    lam = scalar(forgetting, "forgetting")
     if not 0 < lam <= 1:
         raise ValueError(f"forgetting: expected a value in (0, 1], got {lam}")
     lead, K = r.shape[:-2], r.shape[-2]
@@ -876,9 +877,9 @@ def kalman_bias(r: ArrayLike, V: ArrayLike, R: ArrayLike, interval: Interval, ra
         intervals = np.full(K, float(intervals))
     elif intervals.shape != (K,):
         raise ValueError(f"interval: expected a float or shape ({K},), got {intervals.shape}")
-    q = float(positive(rate_random_walk, "rate_random_walk", allow_zero=True))
-    s0 = float(positive(bias_sigma, "bias_sigma"))
-    gate = float(positive(gate, "gate"))
+    q = scalar(rate_random_walk, "rate_random_walk", allow_zero=True)
+    s0 = scalar(bias_sigma, "bias_sigma", positive=True)
+    gate = scalar(gate, "gate", positive=True)
     b, sig, no_data, rejected, P = _kalman_kernel(
         kernel_array(r.reshape(-1, K, 2)), kernel_array(V.reshape(-1, K, 2, 3)),
         kernel_array(R.reshape(-1, K, 2, 2)), q * q, kernel_array(intervals), s0 * s0 * np.eye(3),
@@ -919,7 +920,8 @@ def design(hpr0: Angles, axis_b: Vec3, amplitude: float, dwell_time: float, dt: 
     V : ndarray, shape (n_dwells, 2, 3)
     """
     hpr = dwell_attitudes(hpr0, axis_b, amplitude, n_dwells)
-    n = int(round(float(positive(dwell_time, "dwell_time")) / float(positive(dt, "dt"))))
+    dt = scalar(dt, "dt", positive=True)
+    n = int(round(scalar(dwell_time, "dwell_time", positive=True) / dt))
     if n < MIN_DWELL_SAMPLES:
         raise ValueError(f"dwell_time: dwell windows too short ({n} samples); expected at least {MIN_DWELL_SAMPLES}")
     tilt = hpr[:, [2, 1]]

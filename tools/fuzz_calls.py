@@ -1,0 +1,484 @@
+"""One valid call per public navlib callable, for tools/fuzz.py (keyword arguments, small sizes).
+
+Every name in the ``__all__`` of a public navlib module needs an entry here: a :class:`fuzz.Call` (keyword
+arguments of a call that succeeds in well under a second) or a :class:`fuzz.Skip` with the reason it is not
+fuzzed (records that navlib builds from validated values, exception classes). The fixtures follow
+tests/test_bad_input.py: a static IMU at 100 Hz, ten samples.
+"""
+from __future__ import annotations
+
+import tempfile
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+from fuzz import Call, Fresh, Skip
+
+from navlib import (
+    analysis,
+    attitude,
+    earth,
+    repro,
+    sensors,
+    strapdown,
+    trajectory,
+    units,
+)
+from navlib.filters import planar_ekf
+from navlib.papers import gauss_kruger_ekf
+
+N = 10                                               # samples of every series
+DT = 0.01                                            # s
+T = DT * np.arange(N)                                # a valid time axis (s)
+LLA0 = np.array([0.6, 0.2, 50.0])                    # lat, lon (rad), h (m)
+HPR = np.array([0.3, 0.1, -0.2])                     # heading, pitch, roll (rad)
+Q = attitude.euler_to_quat(HPR)
+C = attitude.quat_to_dcm(Q)
+B_N = np.array([0.0, 20.0, -40.0])                   # ENU field (uT)
+_STATIC = trajectory.static(N * DT, DT, LLA0, HPR)
+_W0, _F0 = trajectory.ideal_imu(_STATIC)
+_k = np.arange(N)[:, None]
+W = _W0 + 1e-3 * np.sin(_k + np.array([0.0, 1.0, 2.0]))          # gyro (rad/s), deterministic "noise"
+F = _F0 + 1e-2 * np.cos(_k + np.array([0.0, 1.0, 2.0]))          # accelerometer (m/s^2)
+M = attitude.quat_rotate(attitude.quat_conj(Q), B_N) + 0.1 * np.sin(_k)   # magnetometer (uT)
+LLA = LLA0 + np.array([1e-7, 1e-7, 0.1]) * _k        # a short track
+HEADINGS = 0.3 + 0.01 * np.arange(N)
+VALID = np.array([True] * 4 + [False] + [True] * 5)
+CALIB = dict(AC1=408, AC2=-72, AC3=-14383, AC4=32741, AC5=32757, AC6=23153, B1=6190, B2=4, MB=-32768, MC=-8711,
+             MD=2868)
+RNG = Fresh(lambda: np.random.default_rng(0))
+
+
+def _axes2d():
+    import matplotlib.pyplot as plt
+    return plt.figure().add_subplot()
+
+
+def _axes3d():
+    import matplotlib.pyplot as plt
+    return plt.figure().add_subplot(projection="3d")
+
+
+def _figure():
+    import matplotlib.pyplot as plt
+    return plt.figure()
+
+
+def _setup():
+    repro.setup("zz_fuzz", style=False)
+
+
+def _mc_batch(ids, streams):
+    return {"x": streams.normal()}
+
+
+def _files() -> Path:
+    """Small logs in each reader's layout, in a temporary folder."""
+    d = Path(tempfile.mkdtemp(prefix="navlib-fuzz-io-"))
+    df = pd.DataFrame({"Time (s)": T})
+    for i, a in enumerate("XYZ"):
+        df[f"Gyroscope {a} (deg/s)"] = np.rad2deg(W[:, i])
+    for i, a in enumerate("XYZ"):
+        df[f"Accelerometer {a} (g)"] = F[:, i] / units.G0
+    df.to_csv(d / "xio.csv", index=False)
+    ns = 1403715523912140000 + np.round(T * 1e9).astype(np.int64)
+    lines = ["#timestamp [ns],w_RS_S_x [rad s^-1],w_RS_S_y [rad s^-1],w_RS_S_z [rad s^-1],"
+             "a_RS_S_x [m s^-2],a_RS_S_y [m s^-2],a_RS_S_z [m s^-2]"]
+    lines += [",".join([str(n)] + [f"{v:.17g}" for v in (*wi, *fi)]) for n, wi, fi in zip(ns, W, F, strict=True)]
+    (d / "euroc.csv").write_text("\n".join(lines) + "\n")
+    (d / "logger").mkdir()
+    for name, x in (("Gyroscope.csv", W), ("TotalAcceleration.csv", F)):
+        t = pd.DataFrame({"time": ns, "seconds_elapsed": T, "z": x[:, 2], "y": x[:, 1], "x": x[:, 0]})
+        t.to_csv(d / "logger" / name, index=False)
+    pd.DataFrame({"t": T, "gx": W[:, 0], "gy": W[:, 1], "gz": W[:, 2]}).to_csv(d / "plain.csv", index=False)
+    return d
+
+
+def table() -> dict:
+    """``module.name`` (relative to navlib) -> Call or Skip."""
+    files = _files()
+    io_table = pd.DataFrame({"t": T, "gx": W[:, 0], "gy": W[:, 1], "gz": W[:, 2]})
+    static_w, static_f = _W0, _F0
+    gk_truth = planar_ekf.propagate(np.array([0.0, 0.0, np.pi / 4, 1.0, 0.0]), 0.5, N - 1)
+    gk_origin = np.deg2rad([26.06, 119.20])
+    gk = gauss_kruger_ekf.simulate_sensors(gk_truth, gk_origin, gauss_kruger_ekf.R_PAPER, np.random.default_rng(0))
+    taus = np.array([0.1, 0.2, 0.4, 0.8, 1.6])
+    adev = analysis.allan_deviation_theory(taus, white=1e-3, bias_instability=1e-4, correlation_time=10.0)
+    V = np.stack([np.eye(3)[:2], np.eye(3)[1:], np.eye(3)[[0, 2]], np.eye(3)[:2]]) + 0.01
+    R2 = np.tile(np.eye(2), (4, 1, 1))
+    dwell = np.concatenate([W, W, W, W]), np.concatenate([F, F, F, F])
+    calls = {
+        # ---------------------------------------------------------------- alignment
+        "alignment.level": Call(dict(f_b=F[0])),
+        "alignment.magnetic_heading": Call(dict(m_b=M[0], pitch=0.1, roll=-0.05, declination=0.02),
+                                           elementwise=("pitch", "roll")),
+        "alignment.tilt_heading": Call(dict(f_b=F[0], m_b=M[0], declination=0.02)),
+        "alignment.initial_attitude": Call(dict(f_b=F[0], m_b=M[0], declination=0.02)),
+        "alignment.gyrocompass_latitude": Call(dict(lat=0.6), elementwise=("*",)),
+        "alignment.StaticWindow": Skip("a result record, built by static_means"),
+        "alignment.static_means": Call(dict(w_ib_b=static_w, f_b=static_f, lat=0.6, h=50.0, accel_tol=0.2)),
+        "alignment.triad": Call(dict(f_b=static_f[0], w_ib_b=static_w[0], lat=0.6, orthonormal=True), elementwise=("lat",)),
+        "alignment.triad_heading": Call(dict(C_bn=C)),
+        "alignment.four_position_heading": Call(dict(w_y=np.array([2e-5, 3e-5, -1e-5, -3e-5]))),
+        "alignment.static_gyro_bias": Call(dict(w_ib_b=static_w, C_bn=C, lat=0.6)),
+        # ----------------------------------------------------------------- analysis
+        "analysis.rmse": Call(dict(err=W, axis=0), any_shape=("err",)),
+        "analysis.allan_deviation": Call(dict(x=np.sin(np.arange(100.0)), dt=0.1, taus=None), any_shape=("x",)),
+        "analysis.allan_deviation_theory": Call(dict(taus=taus, white=1e-3, bias_instability=1e-4,
+                                                     correlation_time=10.0, rate_random_walk=1e-5),
+                                                elementwise=("taus",)),
+        "analysis.fit_allan": Call(dict(taus=taus, adev=adev, n_samples=1000, dt=0.1)),
+        "analysis.attitude_errors": Call(dict(hpr=HPR + 0.01 * _k, hpr_true=np.tile(HPR, (N, 1)))),
+        "analysis.error_statistics": Call(dict(hpr=np.stack([HPR + 0.01 * _k, HPR - 0.01 * _k]),
+                                               hpr_true=np.tile(HPR, (N, 1)))),
+        "analysis.horizontal_error": Call(dict(lla=LLA, lla_true=np.tile(LLA0, (N, 1)))),
+        "analysis.position_error": Call(dict(estimate=W[:, :2], truth=F[:, :2]), any_shape=("estimate", "truth")),
+        "analysis.expanding_std": Call(dict(x=HEADINGS ** 2)),
+        "analysis.detection_rates": Call(dict(detected=VALID, truth=np.roll(VALID, 1))),
+        "analysis.settling_time": Call(dict(time=T, error=np.exp(-T * 50), start=0.0, tol=0.5, end=None)),
+        "analysis.segments": Call(dict(mask=VALID)),
+        "analysis.moving_mean": Call(dict(x=HEADINGS ** 2, n=3), any_shape=("x",)),
+        "analysis.normal_condition": Call(dict(A=np.array([[2.0, 0.5], [0.5, 1.0]]))),
+        "analysis.condition_number": Call(dict(V=V), any_shape=("V",)),
+        "analysis.lsq_covariance": Call(dict(V=V, R=R2, max_cond=1e6)),
+        "analysis.cramer_rao_bound": Call(dict(V=V, R=R2, max_cond=1e6)),
+        # --------------------------------------------------------------- atmosphere
+        "atmosphere.isa_altitude": Call(dict(p=9e4, p0=101325.0), elementwise=("*",)),
+        "atmosphere.isa_pressure": Call(dict(h=100.0, p0=101325.0), elementwise=("*",)),
+        "atmosphere.bmp180_altitude": Call(dict(p=9e4, p0=101325.0), elementwise=("*",)),
+        "atmosphere.bmp180_pressure": Call(dict(h=100.0, p0=101325.0), elementwise=("*",)),
+        "atmosphere.hypsometric_height": Call(dict(p=9e4, p_ref=1e5, temperature=288.0), elementwise=("*",)),
+        "atmosphere.bmp180_compensate": Call(dict(UT=27898, UP=23843, calib=CALIB, oss=0)),
+        "atmosphere.baro_height": Call(dict(p=1e5 - 10 * np.arange(N), p_ref=101325.0, temperature=288.0),
+                                       elementwise=("p",)),
+        "atmosphere.reference_pressure": Call(dict(p=1e5 - 10 * np.arange(N), time=T, until=0.05)),
+        "atmosphere.classify_floor": Call(dict(h=np.array([0.0, 3.1, 6.2, 3.0, -0.1]), floor_height=3.0, ref_floor=0),
+                                          elementwise=("h",)),
+        "atmosphere.segment_floors": Call(dict(h=np.r_[np.zeros(5), np.full(5, 3.1)], static=~VALID | True,
+                                               floor_height=3.0, ref_floor=0)),
+        # ----------------------------------------------------------------- attitude
+        "attitude.wrap_pi": Call(dict(angle=np.array([0.5, 4.0, -4.0, 7.0, -9.0])), elementwise=("*",)),
+        "attitude.wrap_2pi": Call(dict(angle=np.array([0.5, 7.0, -1.0, 13.0, -9.0])), elementwise=("*",)),
+        "attitude.skew": Call(dict(v=np.array([1.0, 2.0, 3.0])), elementwise=("*",)),
+        "attitude.rot": Call(dict(axis="x", angle=0.3, deg=False), elementwise=("*",)),
+        "attitude.orthonormalize": Call(dict(C=C + 1e-3), elementwise=("*",)),
+        "attitude.euler_to_dcm": Call(dict(hpr=HPR, deg=False), elementwise=("*",)),
+        "attitude.dcm_to_euler": Call(dict(C_bn=C, deg=False), elementwise=("*",)),
+        "attitude.euler_to_quat": Call(dict(hpr=HPR, deg=False), elementwise=("*",)),
+        "attitude.quat_to_euler": Call(dict(q=Q, deg=False), elementwise=("*",)),
+        "attitude.quat_to_dcm": Call(dict(q=Q), elementwise=("*",)),
+        "attitude.dcm_to_quat": Call(dict(C_bn=C), elementwise=("*",)),
+        "attitude.quat_mult": Call(dict(p=Q, q=attitude.quat_conj(Q)[[0, 2, 1, 3]]), elementwise=("*",)),
+        "attitude.quat_conj": Call(dict(q=Q), elementwise=("*",)),
+        "attitude.quat_normalize": Call(dict(q=2 * Q), elementwise=("*",)),
+        "attitude.quat_rotate": Call(dict(q=Q, v_b=np.array([1.0, 2.0, 3.0])), elementwise=("*",)),
+        "attitude.rotvec_to_dcm": Call(dict(rv=np.array([0.1, -0.2, 0.3])), elementwise=("*",)),
+        "attitude.dcm_to_rotvec": Call(dict(C=C), elementwise=("*",)),
+        "attitude.rotvec_to_quat": Call(dict(rv=np.array([0.1, -0.2, 0.3])), elementwise=("*",)),
+        "attitude.quat_to_rotvec": Call(dict(q=Q), elementwise=("*",)),
+        "attitude.ned_to_enu": Call(dict(v=np.array([1.0, 2.0, 3.0])), elementwise=("*",)),
+        "attitude.ned_to_enu_dcm": Call(dict(C_ned=C), elementwise=("*",)),
+        "attitude.ned_to_enu_quat": Call(dict(q_ned=Q), elementwise=("*",)),
+        "attitude.ypr_to_hpr": Call(dict(ypr=HPR, deg=False), elementwise=("*",)),
+        "attitude.hpr_to_ypr": Call(dict(hpr=HPR, deg=False), elementwise=("*",)),
+        "attitude.mount_matrix": Call(dict(axes="-y,x,z")),
+        # -------------------------------------------------------------- calibration
+        "calibration.MagCalibration": Call(dict(offset=np.array([1.0, 2.0, 3.0]), soft_iron=np.eye(3) * 1.1,
+                                                field_strength=50.0)),
+        "calibration.fit_magnetometer": Call(dict(m_b=40.0 * attitude.quat_rotate(
+            np.random.default_rng(0).standard_normal((12, 4)), [0.0, 0.0, 1.0]) + [1.0, 2.0, 3.0], field_strength=None)),
+        "calibration.AccelCalibration": Call(dict(bias=np.array([0.01, 0.02, 0.03]), matrix=np.eye(3) * 1.01,
+                                                  g=9.80665)),
+        "calibration.fit_accelerometer": Call(dict(f_means=9.8 * np.array(
+            [[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1.0]]) + 0.01, g=9.80665)),
+        "calibration.gyro_bias_at_rest": Call(dict(w_ib_b=static_w, lat=0.6, C_bn=C)),
+        "calibration.TriadNoise": Skip("a result record, built by characterise"),
+        "calibration.NoiseCharacterisation": Skip("a result record, built by characterise"),
+        "calibration.characterise": Call(dict(w_ib_b=np.tile(W, (20, 1)), f_b=np.tile(F, (20, 1)), dt=0.1)),
+        # -------------------------------------------------------------------- earth
+        "earth.Ellipsoid": Call(dict(name="x", a=6378137.0, f=1 / 298.257, GM=3.986e14, omega=7.29e-5)),
+        "earth.earth_rate_n": Call(dict(lat=0.6, deg=False), elementwise=("*",)),
+        "earth.earth_rate_b": Call(dict(C_bn=C, lat=0.6, deg=False)),
+        "earth.gravity": Call(dict(lat=0.6, h=50.0, deg=False), elementwise=("*",)),
+        "earth.gravity_n": Call(dict(lat=0.6, h=50.0, deg=False), elementwise=("*",)),
+        "earth.radii": Call(dict(lat=0.6, deg=False), elementwise=("*",)),
+        "earth.transport_rate_n": Call(dict(lat=0.6, h=50.0, vel_n=np.array([1.0, 2.0, 0.1])), elementwise=("*",)),
+        "earth.magnetic_field": Call(dict(lat=45.0, lon=10.0, h=100.0, year=2024.0, deg=True), elementwise=("*",)),
+        "earth.field_from_angles": Call(dict(declination=2.0, inclination=60.0, intensity=50.0, deg=True),
+                                        elementwise=("*",)),
+        "earth.field_angles": Call(dict(B_n=B_N, deg=True), elementwise=("*",)),
+        # -------------------------------------------------------------------- euler
+        "euler.check_pitch": Call(dict(pitch=0.3, name="pitch"), elementwise=("*",)),
+        "euler.euler_rates": Call(dict(hpr=HPR, w_nb_b=np.array([0.01, 0.02, 0.03])), elementwise=("*",)),
+        "euler.integrate_euler": Call(dict(hpr0=HPR, w_ib_b=W, dt=DT)),
+        "euler.EulerReport": Skip("a result record, built by integrate_euler"),
+        # ------------------------------------------------------------------- faults
+        "faults.dropouts": Call(dict(x=F, fraction=0.2, rng=RNG), any_shape=("x",)),
+        "faults.gap": Call(dict(x=F, time=T, start=0.02, duration=0.03), any_shape=("x",)),
+        "faults.spikes": Call(dict(x=F, fraction=0.2, sigma=0.01, rng=RNG, k=100.0), elementwise=("sigma",), any_shape=("x",)),
+        "faults.position_jumps": Call(dict(lla=LLA, fraction=0.2, rng=RNG, size_m=50.0)),
+        "faults.heading_flips": Call(dict(heading=HEADINGS, fraction=0.2, rng=RNG), elementwise=("heading",)),
+        "faults.duplicate_timestamps": Call(dict(time=T, fraction=0.2, rng=RNG)),
+        "faults.swap_timestamps": Call(dict(time=T, fraction=0.2, rng=RNG)),
+        "faults.irregular_times": Call(dict(n=N, dt=DT, jitter=0.2, rng=RNG, t0=0.0)),
+        "faults.saturate": Call(dict(x=F, full_scale=9.805), any_shape=("x",)),
+        # ------------------------------------------------------------ filters.*
+        "filters.heading_fusion.fuse_rtk_heading": Call(dict(heading_mag=HEADINGS, heading_rtk=HEADINGS + 0.01,
+                                                             rtk_valid=VALID, dt=DT, alpha=0.1)),
+        "filters.heading_fusion.rtk_at_imu_rate": Call(dict(time=T, heading=HEADINGS, valid=VALID, step=2)),
+        "filters.mahony.mahony": Call(dict(w_ib_b=W, f_b=F, dt=DT, q0=Q, m_b=M, kp=1.0, ki=0.02)),
+        "filters.observations.MagGate": Call(dict(norm_tol=0.1, dip_tol=0.1)),
+        "filters.observations.AttitudeResult": Skip("a result record, built by the attitude filters"),
+        "filters.observations.AttitudeInputs": Skip("the kernel record, built by prepare_inputs from validated values"),
+        "filters.observations.Screened": Skip("a record of what prepare_inputs found, built from validated values"),
+        "filters.observations.magnetic_reference": Call(dict(B_n=B_N)),
+        "filters.observations.prepare_inputs": Call(dict(
+            w_ib_b=W, f_b=F, dt=DT, q0=Q, m_b=M, heading_rtk=None, rtk_valid=None, B_n=None, gate=None,
+            accel_tol=None, g=9.8, rtk_hold=0.25, rtk_gate=None, rtk_confirm=5, full_scale_gyro=None,
+            full_scale_accel=None, full_scale_mag=None, gyro_jump=None)),
+        "filters.observations.attitude_result": Skip("assembles kernel outputs (validated by prepare_inputs)"),
+        "filters.observations.run_trials": Skip("runs a compiled kernel on validated inputs"),
+        "filters.planar_ekf.motion_model": Call(dict(X=np.array([1.0, 2.0, 0.5, 1.0, 0.1]), T=0.5)),
+        "filters.planar_ekf.jacobian": Call(dict(X=np.array([1.0, 2.0, 0.5, 1.0, 0.1]), T=0.5)),
+        "filters.planar_ekf.propagate": Call(dict(x0=np.array([0.0, 0.0, 0.5, 1.0, 0.1]), T=0.5, n_steps=N)),
+        "filters.planar_ekf.dead_reckoning": Call(dict(t=0.5 * np.arange(N), speed=np.full(N, 1.0),
+                                                       yaw_rate=np.full(N, 0.01), x0=np.array([0.0, 0.0, 0.5, 1.0, 0.1]))),
+        "filters.planar_ekf.filter_grid": Call(dict(t=0.5 * np.arange(N), z=gk_truth + 0.1,
+                                                    x0=np.array([0.0, 0.0, np.pi / 4, 1.0, 0.0]), P0=np.eye(5),
+                                                    Q=gauss_kruger_ekf.Q_PAPER, R=gauss_kruger_ekf.R_PAPER)),
+        "filters.planar_ekf.EkfResult": Skip("a result record, built by filter_grid"),
+        "filters.planar_ekf.covariance": Call(dict(M=np.eye(5), name="M")),
+        "filters.quaternion_kf.quaternion_kf": Call(dict(w_ib_b=W, f_b=F, dt=DT, q0=Q, m_b=M, B_n=B_N)),
+        "filters.quaternion_kf.measurement_model": Call(dict(q=Q, b=np.array([0.0, 20.0, -40.0]))),
+        "filters.quaternion_kf.measurement_jacobian": Call(dict(q=Q, b=np.array([0.0, 20.0, -40.0]))),
+        "filters.quaternion_kf.transition": Call(dict(w=W[0], dt=DT)),
+        "filters.quaternion_kf.noise_input": Call(dict(q=Q, dt=DT)),
+        "filters.zupt.detect_static": Call(dict(w_ib_b=W, f_b=F, dt=DT, window=0.05)),
+        "filters.zupt.error_state_matrix": Call(dict(C_bn=C, f_b=F[0])),
+        "filters.zupt.error_model_fd": Call(dict(C_bn=C, f_b=F[0], eps=1e-6)),
+        "filters.zupt.zupt_zaru_matrix": Call(dict(C_bn=C, w_ie_n=earth.earth_rate_n(0.6))),
+        "filters.zupt.zupt_zaru_innovation": Call(dict(vel_n=np.array([0.01, 0.02, 0.0]), w_ib_b=W[0], b_g=W[1] * 0.5,
+                                                       C_bn=C, w_ie_n=earth.earth_rate_n(0.6))),
+        "filters.zupt_ins.FilterConfig": Call(dict(accel_noise=0.02, gate=22.5, max_rejected=5)),
+        "filters.zupt_ins.FilterResult": Skip("a result record, built by run_filter"),
+        "filters.zupt_ins.run_filter": Call(dict(w_ib_b=W, f_b=F, dt=DT, lla0=LLA0, vel0=np.zeros(3), q0=Q,
+                                                 static=VALID | True)),
+        # ------------------------------------------------------------------ geodesy
+        "geodesy.zone": Call(dict(lon=2.08, width=3, deg=False), elementwise=("lon",)),
+        "geodesy.central_meridian": Call(dict(zone_number=40, width=3, deg=False), elementwise=("zone_number",)),
+        "geodesy.geodetic2gk": Call(dict(lat=0.45, lon=2.08, zone=40), elementwise=("lat", "lon", "zone")),
+        "geodesy.gk2geodetic": Call(dict(x=2.88e6, y=2e4, zone=40), elementwise=("x", "y", "zone")),
+        "geodesy.convergence": Call(dict(lat=0.45, lon=2.08, zone=40), elementwise=("lat", "lon", "zone")),
+        "geodesy.scale_factor": Call(dict(lat=0.45, lon=2.08, zone=40), elementwise=("lat", "lon", "zone")),
+        "geodesy.meridian_arc": Call(dict(lat=0.45), elementwise=("*",)),
+        "geodesy.geodetic2ecef": Call(dict(lat=0.6, lon=0.2, h=50.0), elementwise=("*",)),
+        "geodesy.ecef2geodetic": Call(dict(x=4e6, y=8e5, z=4.8e6), elementwise=("*",)),
+        "geodesy.geodetic2enu": Call(dict(lat=0.6 + 1e-6, lon=0.2, h=55.0, lat0=0.6, lon0=0.2, h0=50.0),
+                                     elementwise=("*",)),
+        "geodesy.enu2geodetic": Call(dict(e=10.0, n=20.0, u=3.0, lat0=0.6, lon0=0.2, h0=50.0), elementwise=("*",)),
+        "geodesy.geodetic2ned": Call(dict(lat=0.6 + 1e-6, lon=0.2, h=55.0, lat0=0.6, lon0=0.2, h0=50.0),
+                                     elementwise=("*",)),
+        "geodesy.ned2geodetic": Call(dict(n=20.0, e=10.0, d=-3.0, lat0=0.6, lon0=0.2, h0=50.0), elementwise=("*",)),
+        "geodesy.local_scales": Call(dict(lat=0.45, lon=2.08, lon0=2.0944), elementwise=("*",)),
+        # ---------------------------------------------------------------------- imu
+        "imu.ImuSamples": Call(dict(w_ib_b=W, f_b=F, dt=DT)),
+        "imu.unpack": Call(dict(w_ib_b=W, f_b=F, dt=DT)),
+        # ----------------------------------------------------------------------- io
+        "io.Recording": Skip("a result record, built by the readers"),
+        "io.read_csv": Call(dict(path=str(files / "plain.csv"), time="t", units={"gyro": "rad/s"},
+                                 gyro=("gx", "gy", "gz"))),
+        "io.from_dataframe": Call(dict(df=io_table, time="t", units={"gyro": "rad/s"}, gyro=("gx", "gy", "gz"))),
+        "io.read_xio": Call(dict(path=str(files / "xio.csv"))),
+        "io.read_sensor_logger": Call(dict(directory=str(files / "logger"))),
+        "io.read_euroc": Call(dict(path=str(files / "euroc.csv"))),
+        "io.align": Call(dict(t_target=T, t_source=T[::2] + 0.001, x_source=HEADINGS[::2], method="hold"),
+                         any_shape=("x_source",)),
+        # ------------------------------------------------------------------- kalman
+        "kalman.predict": Call(dict(x=np.array([1.0, 2.0]), P=np.eye(2), F=np.array([[1.0, 0.1], [0.0, 1.0]]),
+                                    Q=0.01 * np.eye(2))),
+        "kalman.update": Call(dict(x=np.array([1.0, 2.0]), P=np.eye(2), z=np.array([1.5, 2.5]), h=np.array([1.0, 2.0]),
+                                   H=np.eye(2), R=np.eye(2), angle_mask=np.array([False, True]), gate=np.inf)),
+        "kalman.discretize": Call(dict(F=np.array([[0.0, 1.0], [0.0, 0.0]]), G=np.eye(2), Qc=0.1 * np.eye(2), dt=0.1)),
+        # --------------------------------------------------------------- montecarlo
+        "montecarlo.TrialStreams": Call(dict(seed=1, ids=np.arange(5))),
+        "montecarlo.run": Call(dict(batch_fn=_mc_batch, n_trials=5, seed=1, batch_size=2, progress=False)),
+        # ------------------------------------------------------------------- papers
+        "papers.Paper": Call(dict(name="x", number=9, claims_id="009", citation="c")),
+        "papers.by_notebook": Call(dict(stem="01_north_finding")),
+        "papers.gauss_kruger_ekf.printed_zone_number": Call(dict(lon=2.08), elementwise=("*",)),
+        "papers.gauss_kruger_ekf.paper_radii": Call(dict(lat=0.45), elementwise=("*",)),
+        "papers.gauss_kruger_ekf.printed_meridian_radius": Call(dict(lat=0.45), elementwise=("*",)),
+        "papers.gauss_kruger_ekf.paper_meridian_arc": Call(dict(lat=0.45), elementwise=("*",)),
+        "papers.gauss_kruger_ekf.paper_series": Call(dict(lat=0.45, lon=2.08, lon0=2.0944), elementwise=("*",)),
+        "papers.gauss_kruger_ekf.waypoint_path": Call(dict(waypoints=np.array([[0.0, 0.0], [10.0, 0.0], [10.0, 10.0]]),
+                                                           speed=5.0, turn_rate=0.5, T=0.5)),
+        "papers.gauss_kruger_ekf.ekf": Call(dict(t=0.5 * np.arange(N), gps=gk.gps, heading=gk.heading,
+                                                 speed=gk.speed, yaw_rate=gk.yaw_rate,
+                                                 x0=np.array([0.0, 0.0, np.pi / 4, 1.0, 0.0]), origin=gk_origin)),
+        "papers.gauss_kruger_ekf.simulate_sensors": Call(dict(truth=gk_truth, origin=gk_origin,
+                                                              R=gauss_kruger_ekf.R_PAPER, rng=RNG)),
+        "papers.gauss_kruger_ekf.Sensors": Skip("a result record, built by simulate_sensors"),
+        "papers.mimu_mag_rtk.printed_eq2_roll": Call(dict(q=Q), elementwise=("*",)),
+        "papers.mimu_mag_rtk.printed_eq4": Call(dict(q=Q), elementwise=("*",)),
+        "papers.mimu_mag_rtk.printed_eq5_tilt": Call(dict(f_b=F[0]), elementwise=("*",)),
+        "papers.mimu_mag_rtk.printed_eq7_heading": Call(dict(m_h=M[0]), elementwise=("*",)),
+        "papers.mimu_mag_rtk.printed_eq8_quat": Call(dict(hpr=HPR), elementwise=("*",)),
+        "papers.mimu_mag_rtk.printed_eq18_gamma": Call(dict(q=Q, dt=DT)),
+        "papers.mimu_mag_rtk.printed_eq20_jacobian": Call(dict(q=Q, b=np.array([0.0, 20.0, -40.0]))),
+        "papers.north_finding.Candidates": Skip("a result record, built by heading_candidates"),
+        "papers.north_finding.heading_candidates": Call(dict(w_y=static_w[0, 1], f_b=static_f[0], lat=0.6, h=50.0),
+                                                         elementwise=("w_y", "lat", "h")),
+        "papers.north_finding.nearest_candidate_error": Call(dict(pair=np.array([0.3, 2.8]), heading=0.31),
+                                                             elementwise=("heading",)),
+        "papers.north_finding.Resolution": Skip("a result record, built by resolve"),
+        "papers.north_finding.resolve": Call(dict(pair1=np.array([0.3, 2.8]), pair2=np.array([1.3, 1.8]),
+                                                  dpsi_ins=1.0), elementwise=("dpsi_ins",)),
+        "papers.north_finding.tilt_from_accel": Call(dict(f_b=F[0], g=None)),
+        "papers.north_finding.triad_heading_error": Call(dict(C_bn=C, dw_b=np.array([1e-6, 2e-6, 0.0]), lat=0.6),
+                                                         elementwise=("lat",)),
+        "papers.north_finding.triad_heading_std": Call(dict(sigma_gyro=1e-6, lat=0.6), elementwise=("*",)),
+        "papers.north_finding.single_axis_heading_std": Call(dict(heading=0.3, sigma_gyro=1e-6, lat=0.6, pitch=0.1,
+                                                                  sigma_accel=1e-3), elementwise=("*",)),
+        "papers.north_finding.single_axis_heading_error": Call(dict(heading=0.3, pitch=0.1, lat=0.6, dw_y=1e-6,
+                                                                    df_y=1e-3), elementwise=("*",)),
+        "papers.north_finding.simulate_static_outputs": Call(dict(hpr=HPR, lat=0.6, n_trials=3, sigma_gyro=1e-6,
+                                                                  sigma_accel=1e-3, rng=RNG)),
+        "papers.north_finding.MonteCarlo": Skip("a result record, built by monte_carlo"),
+        "papers.north_finding.monte_carlo": Call(dict(headings=HEADINGS[:5] * 10, pitch=0.1, roll=-0.05, lat=0.6,
+                                                      n_trials=5, sigma_gyro=1e-6, sigma_accel=1e-3, rng=RNG)),
+        "papers.north_finding.pair_probabilities": Call(dict(heading1=0.3, heading2=1.0, sigma_ins=0.1),
+                                                        elementwise=("*",)),
+        "papers.north_finding.four_position_heading_std": Call(dict(sigma_gyro=1e-6, lat=0.6), elementwise=("*",)),
+        "papers.north_finding.stop_and_go": Call(dict(headings=HEADINGS[:5], stop_duration=2.0, drive_duration=30.0,
+                                                      speed=5.0, pitches=0.01 * np.arange(5.0),
+                                                      rolls=-0.01 * np.arange(5.0))),
+        "papers.north_finding.StopSolutions": Skip("a result record, built by stop_solutions"),
+        "papers.north_finding.stop_solutions": Call(dict(w_ib_b=W, f_b=F, windows=np.array([[0, 5], [5, 10]]),
+                                                         lat=0.6, h=50.0)),
+        "papers.north_finding.InsReport": Skip("a result record, built by ins_heading_change"),
+        "papers.north_finding.ins_heading_change": Call(dict(w_ib_b=W, f_start=F[0], dt=DT, lat=0.6)),
+        "papers.pedestrian_ins.carpark_legs": Call(dict(speed=1.2, stops=(8.0, 5.0, 20.0, 10.0, 6.0), side=(40.0, 24.0),
+                                                        n_loops=1, initial_stand=30.0)),
+        "papers.pedestrian_ins.floor_test_legs": Call(dict(stand=60.0, stairs=15.0, floor_height=3.0,
+                                                           n_round_trips=2)),
+        "papers.pedestrian_ins.tilt_compensate_ned": Call(dict(H_b=np.array([20.0, 1.0, 40.0]), pitch=0.1, roll=-0.05),
+                                                          elementwise=("*",)),
+        "papers.pedestrian_ins.tilt_compensate_printed": Call(dict(H_b=np.array([20.0, 1.0, 40.0]), pitch=0.1,
+                                                                   roll=-0.05), elementwise=("*",)),
+        "papers.pedestrian_ins.heading_from_horizontal": Call(dict(H_X=20.0, H_Y=1.0, declination=0.02),
+                                                              elementwise=("*",)),
+        "papers.pedestrian_ins.hvac_pressure_steps": Call(dict(time=T * 100, door_times=HEADINGS[:5] * 25, rng=RNG,
+                                                               amplitude=10.0)),
+        "papers.pedestrian_ins.simple_covariance_update": Call(dict(P=np.eye(3), H=np.array([[1.0, 0.0, 0.0]]),
+                                                                    R=np.array([[0.5]]))),
+        "papers.rotation_bias.eq1_matrix": Call(dict(hpr=HPR), elementwise=("*",)),
+        "papers.rotation_bias.gravity_body": Call(dict(tilt=np.array([0.1, -0.05]), g=9.80665)),
+        "papers.rotation_bias.tilt_from_accel": Call(dict(f_b=F[0])),
+        "papers.rotation_bias.tilt_matrix": Call(dict(tilt=np.array([0.1, -0.05]))),
+        "papers.rotation_bias.rodrigues": Call(dict(axis_b=np.array([0.0, 0.0, 1.0]), angle=0.5), elementwise=("angle",)),
+        "papers.rotation_bias.rotate_attitude": Call(dict(hpr=HPR, axis_b=np.array([0.0, 0.0, 1.0]), angle=0.5),
+                                                     elementwise=("angle",)),
+        "papers.rotation_bias.dwell_attitudes": Call(dict(hpr0=HPR, axis_b=np.array([0.0, 0.0, 1.0]), amplitude=1.5,
+                                                          n_dwells=2)),
+        "papers.rotation_bias.dwell_windows": Call(dict(n_samples=400, dt=DT, period=2.0, rotation_time=0.5,
+                                                        settle=0.1)),
+        "papers.rotation_bias.Residuals": Skip("a result record, built by tilt_residuals"),
+        "papers.rotation_bias.tilt_residuals": Call(dict(w_ib_b=dwell[0], f_b=dwell[1], dt=DT,
+                                                         starts=np.array([0, 20]), length=10)),
+        "papers.rotation_bias.residual_covariance": Call(dict(tilt=np.array([[0.1, -0.05], [0.2, 0.0]]), length=10,
+                                                              dt=DT, gyro_noise=1e-3, accel_noise=1e-2)),
+        "papers.rotation_bias.lsq_bias": Call(dict(r=np.array([[1e-3, 2e-3]] * 4), V=V)),
+        "papers.rotation_bias.running_lsq_bias": Call(dict(r=np.array([[1e-3, 2e-3]] * 4), V=V, forgetting=0.99)),
+        "papers.rotation_bias.KalmanBias": Skip("a result record, built by kalman_bias"),
+        "papers.rotation_bias.kalman_bias": Call(dict(r=np.array([[1e-3, 2e-3]] * 4), V=V, R=R2 * 1e-6, interval=1.0,
+                                                      rate_random_walk=1e-6, bias_sigma=1e-3)),
+        "papers.rotation_bias.design": Call(dict(hpr0=HPR, axis_b=np.array([0.0, 0.0, 1.0]), amplitude=1.5,
+                                                 dwell_time=10.0, dt=DT, gyro_noise=1e-3, accel_noise=1e-2)),
+        # ---------------------------------------------------------------------- pdr
+        "pdr.StepResult": Skip("a result record, built by detect_steps"),
+        "pdr.detect_steps": Call(dict(f_b=F + 3 * np.sin(_k), dt=0.2, threshold=1.0, min_interval=0.35)),
+        "pdr.weinberg_step_length": Call(dict(peak_to_peak=2.5, K=0.45), elementwise=("peak_to_peak",)),
+        "pdr.pdr": Call(dict(step_lengths=np.array([0.7, 0.8, 0.75, 0.7, 0.6]), step_headings=0.1 * np.arange(5.0),
+                             start_en=np.array([1.0, 2.0]))),
+        "pdr.pdr_headings": Call(dict(f_b=F, m_b=M, step_index=np.array([1, 3, 5, 7, 8]), declination=0.02)),
+        # -------------------------------------------------------------------- plots
+        "plots.body_axes": Call(dict(ax=Fresh(_axes3d), C_bn=C, title="t")),
+        "plots.allan": Call(dict(ax=Fresh(_axes2d), taus=taus, adev_rad_s=adev, theory=adev * 1.1),
+                            any_shape=("adev_rad_s",)),
+        "plots.heading_deg": Call(dict(hpr=HPR), elementwise=("*",)),
+        # -------------------------------------------------------------------- repro
+        "repro.root": Skip("takes no arguments"),
+        "repro.build_dir": Call(dict(notebook="zz_fuzz")),
+        "repro.setup": Call(dict(notebook="zz_fuzz", style=False)),
+        "repro.savefig": Call(dict(fig=Fresh(_figure), name="fig"), before=_setup),
+        "repro.check": Call(dict(name="T/x", value=1.0, expected=1.05, tol=0.1, source="src"), before=_setup),
+        "repro.check_range": Call(dict(name="T/y", value=1.0, source="src", lower=0.5, upper=2.0), before=_setup),
+        "repro.results": Skip("takes no arguments"),
+        "repro.ClaimCheckFailed": Skip("exception class, raised by navlib itself"),
+        "repro.Check": Skip("record of a check, built by check()/check_range() from validated values"),
+        "repro.NoOutputDirectory": Skip("exception class, raised by navlib itself"),
+        # ------------------------------------------------------------------- robust
+        "robust.FaultReport": Skip("a plain record of counts; nothing to validate"),
+        "robust.fault_report": Call(dict(x=W, sensor="gyro", full_scale=1.0, flags=False), any_shape=("x",)),
+        "robust.hold": Call(dict(x=np.where(VALID[:, None], W, np.nan), leading="raise"), any_shape=("x",)),
+        "robust.despike": Call(dict(w_ib_b=W, f_b=F, spike_gyro=0.1, spike_accel=1.0)),
+        "robust.stuck_mask": Call(dict(x=W, run=3), any_shape=("x",)),
+        "robust.longest_repeat": Call(dict(x=W, valid=VALID), any_shape=("x",)),
+        # ------------------------------------------------------------------ sensors
+        "sensors.TriadErrors": Call(dict(noise_density=1e-4, bias=1e-3, bias_instability=1e-5, correlation_time=100.0,
+                                         rate_random_walk=1e-6, scale_factor=1e-3, misalignment=1e-3, full_scale=10.0)),
+        "sensors.ImuModel": Call(dict(gyro=sensors.TriadErrors(noise_density=1e-4), accel=sensors.TriadErrors(bias=1e-3),
+                                      name="m")),
+        "sensors.ImuOutput": Skip("record returned by simulate_imu, not constructed by users"),
+        "sensors.window_mean_std": Call(dict(errors=sensors.TriadErrors(noise_density=1e-4, bias_instability=1e-5),
+                                             duration=10.0, dt=DT)),
+        "sensors.simulate_imu": Call(dict(w_ib_b=W, f_b=F, dt=DT, model=sensors.imu_model("ADIS16475-1"), rng=RNG)),
+        "sensors.imu_model": Call(dict(device="ADIS16475-1")),
+        "sensors.preset": Call(dict(device="ADIS16475-1")),
+        "sensors.devices": Skip("takes no arguments"),
+        "sensors.MagnetometerModel": Call(dict(noise=0.1, hard_iron=1.0, soft_iron=0.01, full_scale=800.0)),
+        "sensors.simulate_magnetometer": Call(dict(q_bn=np.tile(Q, (N, 1)), B_n=B_N,
+                                                   model=sensors.MagnetometerModel(noise=0.1), rng=RNG)),
+        "sensors.magnetic_disturbances": Call(dict(time=T * 100, rng=RNG, rate=0.1)),
+        "sensors.BarometerModel": Call(dict(noise=0.1, bias=1.0, drift_rate=0.01)),
+        "sensors.simulate_barometer": Call(dict(h=50.0 + T, time=T, model=sensors.BarometerModel(noise=0.1), rng=RNG)),
+        "sensors.outage_mask": Call(dict(time=T, outages=[(0.02, 0.04)])),
+        "sensors.simulate_gnss_position": Call(dict(lla=LLA, rng=RNG, sigma_horizontal=3.0, sigma_vertical=5.0,
+                                                    valid=VALID)),
+        "sensors.simulate_heading": Call(dict(heading=HEADINGS, rng=RNG, sigma=0.01, valid=VALID)),
+        "sensors.gauss_markov": Call(dict(shape=(N, 3), dt=DT, sigma=1e-3, correlation_time=10.0, rng=RNG)),
+        # ---------------------------------------------------------------- strapdown
+        "strapdown.integrate": Call(dict(lla0=LLA0, vel0=np.array([0.1, 0.2, 0.0]), q0=Q, w_ib_b=W, f_b=F, dt=DT)),
+        "strapdown.integrate_attitude": Call(dict(q0=Q, w_ib_b=W, dt=DT, w_in_n=earth.earth_rate_n(0.6))),
+        "strapdown.nav_step": Call(dict(lla=LLA0, vel=np.array([0.1, 0.2, 0.0]), q=Q, w=W[0], f=F[0], dt=DT,
+                                        earth_consts=strapdown.earth_constants())),
+        "strapdown.earth_constants": Call(dict(ellipsoid=earth.WGS84)),
+        "strapdown.error_model": Call(dict(lat=0.6, h=50.0, vel_n=np.array([1.0, 2.0, 0.0]), f_n=np.array([0.0, 0.1, 9.8]))),
+        "strapdown.error_input": Call(dict(C_bn=C)),
+        # ------------------------------------------------------------------- timing
+        "timing.TimingReport": Skip("record returned by timing.sanitize, built from validated values"),
+        "timing.sanitize": Call(dict(time=T)),
+        "timing.intervals": Call(dict(time=T, n_samples=N - 1)),
+        # --------------------------------------------------------------- trajectory
+        "trajectory.Trajectory": Call(dict(time=_STATIC.time, lla=_STATIC.lla, vel_n=_STATIC.vel_n, q_bn=_STATIC.q_bn)),
+        "trajectory.Segment": Call(dict(duration=2.0, speed=5.0, turn=0.1, pitch=0.01, roll=0.02)),
+        "trajectory.static": Call(dict(duration=N * DT, dt=DT, lla0=LLA0, hpr=HPR)),
+        "trajectory.from_profiles": Call(dict(time=T, lla0=LLA0, hpr=np.tile(HPR, (N, 1)) + 0.01 * _k,
+                                              vel_n=np.zeros((N, 3)) + 0.1 * _k)),
+        "trajectory.reciprocating_rotation": Call(dict(duration=2.0, dt=0.1, lla0=LLA0, hpr0=HPR,
+                                                       axis_b=np.array([0.0, 0.0, 1.0]), amplitude=1.5, period=1.0,
+                                                       rotation_time=0.5)),
+        "trajectory.vehicle": Call(dict(segments=[trajectory.Segment(0.5, speed=5.0)], dt=0.1, lla0=LLA0, heading0=0.3)),
+        "trajectory.Leg": Call(dict(duration=2.0, speed=1.0, turn=0.1, climb=0.0)),
+        "trajectory.Gait": Call(dict(step_frequency=1.8, bounce=0.025, ramp=1.0)),
+        "trajectory.walk": Call(dict(legs=[trajectory.Leg(0.5, 1.0)], dt=0.05, lla0=LLA0, heading0=0.3)),
+        "trajectory.stance_mask": Call(dict(legs=[trajectory.Leg(0.5, 1.0)], dt=0.05)),
+        "trajectory.ideal_imu": Call(dict(traj=_STATIC)),
+        "trajectory.smooth_ramp": Call(dict(x=np.array([0.2, 0.5, 0.9, 0.0, 1.0])), elementwise=("*",)),
+        # -------------------------------------------------------------------- units
+        "units.to_si": Call(dict(value=np.array([1.0, 2.0]), unit="deg/h"), elementwise=("value",)),
+    }
+    for name in units.__all__:                 # the one-argument converters share one valid call
+        if name not in ("to_si", "G0") and callable(getattr(units, name)):
+            calls[f"units.{name}"] = Call(dict(x=np.array([1.0, 2.0])), elementwise=("*",))
+    return calls
