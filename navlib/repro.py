@@ -310,6 +310,7 @@ def check_outside(name: str, value: Scalar, source: str, *, lower: float | None 
     stated or derived spread. A non-finite value fails.
     """
     _check_name(name)
+    _texts(source=source, unit=unit, note=note)
     v = _as_float(value, "value")
     lo, hi = _bounds(lower, upper)
     passed = bool(math.isfinite(v) and ((lo is not None and v < lo) or (hi is not None and v > hi)))
@@ -389,6 +390,7 @@ def verdict(claim: str, verdict: str, *, checks: Sequence[str] | None = None, ev
     if row is None or row["paper"] != _state.paper:
         raise ValueError(f"claim: expected a claim id of paper {_state.paper} in data/claims.csv, got {claim!r}")
     choice(verdict, "verdict", VERDICTS)
+    _texts(unit=unit, reason=reason, erratum=erratum, figure=figure)
     names = [c.name for c in _state.checks if c.name == claim or c.name.startswith(claim + "/")] \
         if checks is None else list(checks)
     recorded = {c.name: c for c in _state.checks}

@@ -323,7 +323,8 @@ def stuck_run_samples(stuck_run: int | str | None, dt: float) -> int | None:
     None: no stuck check (returned as None); otherwise an integer >= 2, returned as given.
     """
     if isinstance(stuck_run, str) and stuck_run == "auto":
-        return max(5, int(np.ceil(STUCK_DURATION / dt - 1e-9)))
+        dt = scalar(dt, "dt", positive=True)
+        return max(5, int(np.ceil(STUCK_DURATION / dt - 1e-6)))     # 1e-6: a float32 dt gives the same run
     return None if stuck_run is None else integer(stuck_run, "stuck_run", minimum=2)
 
 

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._typing import Array, ArrayLike, Times
-from ._validate import as_array, integer, scalar, time_axis
+from ._validate import as_array, integer, nonempty_array, positive, scalar, text, time_axis
 
 __all__ = ["TimingReport", "sanitize", "intervals", "jump_limit", "JUMP_FACTOR"]
 
@@ -120,22 +120,25 @@ def intervals(time: Times, n_samples: int | None = None) -> Array:
     return dt
 
 
-def jump_limit(dts: ArrayLike, max_dt: float | None = None) -> float:
+def jump_limit(dts: ArrayLike, max_dt: float | None = None, name: str = "dts") -> float:
     """The longest interval a filter integrates; longer ones are clock jumps (``("clock", "jump")``).
 
     Parameters
     ----------
     dts : array_like, shape (N,)
-        The filter's sample intervals (s), already validated (positive).
+        The filter's sample intervals (s): positive and finite.
     max_dt : float, optional
         The filter's ``max_dt`` argument (s): positive, inf to detect no jump. None (default):
         :data:`JUMP_FACTOR` times the median interval.
+    name : str
+        The argument the intervals come from, for error messages (a filter's ``dt`` or ``time``).
 
     Returns
     -------
     float
         The limit (s): an interval ``dt > limit`` is a jump.
     """
+    name = text(name, "name")
     if max_dt is None:
-        return JUMP_FACTOR * float(np.median(dts))
+        return JUMP_FACTOR * float(np.median(positive(nonempty_array(dts, name, shape=(None,), huge=True), name)))
     return scalar(max_dt, "max_dt", positive=True, allow_inf=True)

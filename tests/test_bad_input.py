@@ -729,6 +729,11 @@ CASES = [
     bad("repro.check_range", "value", "shape2", lambda: repro.check_range("T/x", [1.0, 2.0], "src", upper=3.0)),
     bad("repro.check_range", "lower", "shape2", lambda: repro.check_range("T/x", 1.0, "src", lower=[0.0, 0.5])),
     bad("repro.check_range", "upper", "nan", lambda: repro.check_range("T/x", 1.0, "src", upper=NAN)),
+    bad("repro.check_outside", "value", "shape2", lambda: repro.check_outside("T/x", [1.0, 2.0], "src", upper=3.0)),
+    bad("repro.check_outside", "lower", "no_bounds", lambda: repro.check_outside("T/x", 1.0, "src")),
+    bad("repro.check_outside", "source", "none", lambda: repro.check_outside("T/x", 5.0, None, upper=3.0)),
+    bad("repro.verdict", "claim", "no_paper",
+        lambda: (repro.setup("zz_bad_input", style=False), repro.verdict("P000-EQ3-EULER", "reproduced"))),
 
     # ------------------------------------------------------------------- plots
     bad("plots.body_axes", "ax", "str", lambda: plots.body_axes(STR, np.eye(3))),
@@ -1394,6 +1399,8 @@ NOT_APPLICABLE = {
     "pdr.StepResult": "a result record, built by detect_steps",
     "repro.root": "takes no arguments",
     "repro.results": "takes no arguments",
+    "repro.verdicts": "takes no arguments",
+    "repro.Verdict": "record of a verdict, built by verdict() from validated values",
     "sensors.devices": "takes no arguments",
     "repro.ClaimCheckFailed": "exception class, raised by navlib itself",
     "repro.NoOutputDirectory": "exception class, raised by navlib itself",

@@ -43,6 +43,7 @@ import multiprocessing
 import os
 import pkgutil
 import re
+import shutil
 import sys
 import tempfile
 import time
@@ -268,7 +269,8 @@ BY_DESIGN: list[tuple[str, str, str, str, str]] = [
     (r"imu\.ImuSamples", r"w_ib_b|f_b", "nan", "silent_nan", "the record holds the samples; NaN marks a dropout"),
     (r"trajectory\.Trajectory", r"lla|vel_n|q_bn", "nan", "silent_nan",
      "a trajectory also holds filter output, which marks epochs without a solution NaN (tests/test_bad_input.py)"),
-    (r"robust\.(despike|fault_report|hold|longest_repeat|stuck_mask)", r"x|w_ib_b|f_b", "nan", r"silent_nan|silent_accept",
+    (r"robust\.(despike|fault_report|hold|longest_repeat|stuck_(mask|samples))", r"x|w_ib_b|f_b", "nan",
+     r"silent_nan|silent_accept",
      "robust-input functions exist to find, count and hold NaN samples"),
     (r"faults\.(dropouts|gap|heading_flips|position_jumps|saturate|spikes)", r"x|heading|lla", "nan",
      r"silent_nan|silent_accept", "fault injectors corrupt any record, also one with dropouts already (NaN passes)"),
@@ -295,7 +297,7 @@ BY_DESIGN: list[tuple[str, str, str, str, str]] = [
      "quaternions of any finite magnitude are normalised exactly (tests/test_magnitudes.py)"),
     (r"imu\.ImuSamples|filters\.heading_fusion\.fuse_rtk_heading", "dt", r"1e300|time_jump", "silent_accept",
      "nothing is integrated over dt here; an interval too long to integrate is refused where it is (small_turns)"),
-    (r"repro\.check(_range)?", r"value|expected|tol|upper", r"nan|inf|1e300", r"other_exception|silent_accept",
+    (r"repro\.check(_range|_outside)?", r"value|expected|tol|lower|upper", r"nan|inf|1e300", r"other_exception|silent_accept",
      "any finite target is a claim; a reproduced value outside it fails the claim (ClaimCheckFailed, tests/test_bad_input.py)"),
     # quaternion algebra and matrices that need not be rotations
     (r"attitude\.quat_(mult|conj)", r"p|q", "zero_quat", "silent_accept",
@@ -878,6 +880,9 @@ def _sandbox() -> str:
     root = Path(tempfile.mkdtemp(prefix="navlib-fuzz-"))
     (root / "pyproject.toml").write_text("[project]\nname = 'x'\n")
     (root / "navlib").mkdir()
+    (root / "data").mkdir()
+    for name in ("claims.csv", "errata.csv"):                        # repro.verdict reads the catalogue
+        shutil.copy(REPO / "data" / name, root / "data")
     return str(root)
 
 

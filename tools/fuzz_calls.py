@@ -68,6 +68,11 @@ def _setup():
     repro.setup("zz_fuzz", style=False)
 
 
+def _setup_verdict():
+    repro.setup("zz_fuzz", paper="000", style=False)
+    repro.check("P000-EQ3-EULER/fuzz", 1.0, 1.0, 0.1, "src")
+
+
 def _mc_batch(ids, streams):
     return {"x": streams.normal()}
 
@@ -225,6 +230,7 @@ def table() -> dict:
         # ------------------------------------------------------------ filters.*
         "filters.heading_fusion.fuse_rtk_heading": Call(dict(heading_mag=HEADINGS, heading_rtk=HEADINGS + 0.01,
                                                              rtk_valid=VALID, dt=DT, alpha=0.1)),
+        "filters.heading_fusion.FusionResult": Skip("result record of fuse_rtk_heading, built from validated values"),
         "filters.heading_fusion.rtk_at_imu_rate": Call(dict(time=T, heading=HEADINGS, valid=VALID, step=2)),
         "filters.mahony.mahony": Call(dict(w_ib_b=W, f_b=F, dt=DT, q0=Q, m_b=M, kp=1.0, ki=0.02)),
         "filters.observations.MagGate": Call(dict(norm_tol=0.1, dip_tol=0.1)),
@@ -413,6 +419,10 @@ def table() -> dict:
         "repro.savefig": Call(dict(fig=Fresh(_figure), name="fig"), before=_setup),
         "repro.check": Call(dict(name="T/x", value=1.0, expected=1.05, tol=0.1, source="src"), before=_setup),
         "repro.check_range": Call(dict(name="T/y", value=1.0, source="src", lower=0.5, upper=2.0), before=_setup),
+        "repro.check_outside": Call(dict(name="T/z", value=3.0, source="src", lower=0.5, upper=2.0), before=_setup),
+        "repro.verdict": Call(dict(claim="P000-EQ3-EULER", verdict="reproduced"), before=_setup_verdict),
+        "repro.verdicts": Skip("takes no arguments"),
+        "repro.Verdict": Skip("record of a verdict, built by verdict() from validated values"),
         "repro.results": Skip("takes no arguments"),
         "repro.ClaimCheckFailed": Skip("exception class, raised by navlib itself"),
         "repro.Check": Skip("record of a check, built by check()/check_range() from validated values"),
@@ -423,6 +433,8 @@ def table() -> dict:
         "robust.hold": Call(dict(x=np.where(VALID[:, None], W, np.nan), leading="raise"), any_shape=("x",)),
         "robust.despike": Call(dict(w_ib_b=W, f_b=F, spike_gyro=0.1, spike_accel=1.0)),
         "robust.stuck_mask": Call(dict(x=W, run=3), any_shape=("x",)),
+        "robust.stuck_run_samples": Call(dict(stuck_run="auto", dt=0.01)),
+        "robust.stuck_samples": Call(dict(x=W, run=3), any_shape=("x",)),
         "robust.longest_repeat": Call(dict(x=W, valid=VALID), any_shape=("x",)),
         # ------------------------------------------------------------------ sensors
         "sensors.TriadErrors": Call(dict(noise_density=1e-4, bias=1e-3, bias_instability=1e-5, correlation_time=100.0,
@@ -458,6 +470,7 @@ def table() -> dict:
         # ------------------------------------------------------------------- timing
         "timing.TimingReport": Skip("record returned by timing.sanitize, built from validated values"),
         "timing.sanitize": Call(dict(time=T)),
+        "timing.jump_limit": Call(dict(dts=np.diff(T))),
         "timing.intervals": Call(dict(time=T, n_samples=N - 1)),
         # --------------------------------------------------------------- trajectory
         "trajectory.Trajectory": Call(dict(time=_STATIC.time, lla=_STATIC.lla, vel_n=_STATIC.vel_n, q_bn=_STATIC.q_bn)),

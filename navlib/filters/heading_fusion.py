@@ -203,7 +203,7 @@ def fuse_rtk_heading(heading_mag: Angles, heading_rtk: Angles, rtk_valid: ArrayL
     hr, ok = heading_input(heading_rtk, rtk_valid, hm.shape)
     T, N = hr.shape
     dts = intervals(dt, N)
-    jump = dts > jump_limit(dts, max_dt)
+    jump = dts > jump_limit(dts, max_dt, "dt")
     rtk_par = rtk_params(rtk_hold, rtk_gate, rtk_confirm)
     out, delta, counts = np.empty((T, N)), np.empty((T, N)), np.zeros((T, len(FUSE_COUNT_NAMES)), dtype=np.int64)
     _fuse_kernel(kernel_array(hm.reshape(T, N)), hr, ok, dts, jump, alpha, rtk_par, out, delta, counts)

@@ -546,7 +546,7 @@ def prepare_inputs(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, 
     jump = 0.0 if gyro_jump is None else scalar(gyro_jump, "gyro_jump", positive=True)
     rtk_par = rtk_params(rtk_hold, rtk_gate, rtk_confirm)
     typical = float(np.median(dts))
-    max_dt = jump_limit(dts, max_dt)
+    max_dt = jump_limit(dts, max_dt, "dt")
     small_turns(w[..., dts <= max_dt, :], dts[dts <= max_dt])       # clock jumps are not integrated
     auto = stuck_run_samples("auto", typical)
     stuck_run = stuck_run_samples(stuck_run, typical)

@@ -691,7 +691,7 @@ def filter_grid(t: Times, z: ArrayLike, x0: ArrayLike, P0: ArrayLike | None = No
     reacquire = integer(reacquire, "reacquire")
     dts = np.diff(t)
     t_nominal = float(np.median(dts))
-    jump = np.concatenate([[False], dts > jump_limit(dts, max_dt)])
+    jump = np.concatenate([[False], dts > jump_limit(dts, max_dt, "t")])
     stuck = stuck_samples(z[:, 4], stuck_run_samples(stuck_run, t_nominal), full_scale=full_scale_gyro,
                           name="z", axis=-1)
     z_used = z
