@@ -3,16 +3,51 @@
 Each is the one implementation of its formula: the public, validated functions
 (:func:`navlib.earth.gravity`, :func:`navlib.earth.radii`, :func:`navlib.kalman.predict`,
 :func:`navlib.kalman.update`, :func:`navlib.strapdown.nav_step`) and the compiled filters
-(strapdown, Kalman filters, pedestrian, attitude and planar filters) call these. Arguments are plain
+(strapdown, Kalman filters, pedestrian, attitude and planar filters) and the Gauss-Krüger series
+(:func:`fma`) call these. Arguments are plain
 floats or float arrays in SI units, unvalidated: validate at the public boundary. A compiled
 kernel calls the primitive (e.g. :func:`kalman_update`), never the public validated wrapper.
 """
 from __future__ import annotations
 
+import math
+from fractions import Fraction
+
 import numpy as np
-from numba import njit
+from numba import njit, types
+from numba.core.extending import intrinsic, overload
 
 from .attitude import quat_mult_1, quat_normalize_1, quat_to_dcm_1, rotvec_to_quat_1
+
+
+def fma(a, b, c):
+    """``a * b + c`` rounded once (IEEE 754 fused multiply-add) for floats.
+
+    Compiled kernels get one machine instruction (LLVM's ``llvm.fma``); uncompiled
+    (``NUMBA_DISABLE_JIT=1``) it is exact rational arithmetic rounded once.
+    """
+    if not (math.isfinite(a) and math.isfinite(b) and math.isfinite(c)):
+        return a * b + c
+    exact = Fraction(a) * Fraction(b) + Fraction(c)
+    if not exact:
+        return a * b + c                # an exact zero: the product is exact, and IEEE's sign of zero follows
+    try:
+        return float(exact)
+    except OverflowError:
+        return math.copysign(math.inf, exact)
+
+
+@intrinsic
+def _llvm_fma(typingctx, a, b, c):
+    def codegen(context, builder, signature, args):
+        return builder.fma(*args)
+    return types.float64(types.float64, types.float64, types.float64), codegen
+
+
+@overload(fma)
+def _fma_compiled(a, b, c):
+    if a == b == c == types.float64:
+        return lambda a, b, c: _llvm_fma(a, b, c)
 
 
 @njit(cache=True)
