@@ -171,7 +171,7 @@ def _resolve_lon0(lon_deg, zone_number, lon0, width, deg, max_offset_deg):
         max_offset_deg = _max_offset(max_offset_deg)
         limit = float(w if max_offset_deg is None else max_offset_deg)
     l_deg = lon_deg - L0
-    offset = np.abs(l_deg).max(initial=0.0)
+    offset = max(l_deg.max(initial=0.0), -l_deg.min(initial=0.0))     # max |l_deg|, without a temporary
     if offset > 180.0:                       # only then is the (slower) wrap needed
         l_deg = np.mod(l_deg + 180.0, 360.0) - 180.0
         offset = np.abs(l_deg).max(initial=0.0)
@@ -264,12 +264,13 @@ def _double_angles(taup, cos_l, sin_l, D):
 
 
 @njit(cache=True, error_model="numpy")
-def _gauss_schreiber_args(taup, u, cos_l, r):
-    """``cos l`` and ``r = sin l / sqrt(D)`` into ``cos_l``, ``r``: then xi' = atan2(tau', cos l), eta' = asinh(r)."""
-    for i in range(taup.shape[0]):
-        c, s, D = _gauss_schreiber(taup[i], u[i])
-        cos_l[i] = c
-        r[i] = s / np.sqrt(D)
+def _gauss_schreiber_args(tau, sig, u, taup, cos_l, r):
+    """tau' (:func:`_conformal_from`), ``cos l`` and ``r = sin l / sqrt(D)`` into ``taup``, ``cos_l``, ``r``:
+    then xi' = atan2(tau', cos l), eta' = asinh(r)."""
+    for i in range(tau.shape[0]):
+        tp = _conformal_from(tau[i], sig[i])
+        c, s, D = _gauss_schreiber(tp, u[i])
+        taup[i], cos_l[i], r[i] = tp, c, s / np.sqrt(D)
 
 
 @njit(cache=True, error_model="numpy")
@@ -313,11 +314,38 @@ def _series_inverse(xi, eta, sin2xi, cos2xi, sinh2eta, cosh2eta, beta, xi_p, eta
         eta_p[i] = eta[i] - si
 
 
+@njit(cache=True, error_model="numpy")
+def _conformal_arg(tau, e, s):
+    """``s = e tau / sqrt(1 + tau^2)`` (e sin lat), whence ``sigma = sinh(e atanh(s))`` of Karney eq. 7."""
+    for i in range(tau.shape[0]):
+        s[i] = e * tau[i] / np.sqrt(1 + tau[i] * tau[i])
+
+
+@njit(cache=True, inline="always")
+def _conformal_from(tau, sig):
+    """tau' = tan of the conformal latitude from tau = tan(lat) and its sigma (Karney eq. 7)."""
+    return np.sqrt(1 + sig * sig) * tau - sig * np.sqrt(1 + tau * tau)
+
+
+@njit(cache=True, error_model="numpy")
+def _conformal_into(tau, sig, taup):
+    for i in range(tau.shape[0]):
+        taup[i] = _conformal_from(tau[i], sig[i])
+
+
+def _sigma(tau, e):
+    """sigma of Karney eq. 7 for a 1-D tau (numpy's vectorised atanh and sinh)."""
+    s = np.empty(tau.shape)
+    _conformal_arg(tau, e, s)
+    return np.sinh(e * np.arctanh(s))
+
+
 def _conformal_tan(tau, e):
-    """tau' = tan of the conformal latitude, from tau = tan(lat) (Karney eq. 7)."""
-    sec = np.sqrt(1 + tau * tau)
-    sig = np.sinh(e * np.arctanh(e * tau / sec))
-    return np.sqrt(1 + sig * sig) * tau - sig * sec
+    """tau' = tan of the conformal latitude, from tau = tan(lat) (Karney eq. 7); any shape."""
+    t = np.reshape(tau, -1)
+    taup = np.empty(t.shape)
+    _conformal_into(t, _sigma(t, e), taup)
+    return taup.reshape(np.shape(tau))[()]
 
 
 def _geodetic_tan(taup, e, iterations: int = 4):
@@ -347,10 +375,10 @@ def _forward(lat, l, ellipsoid, k0=1.0, fn=-0.0, fe=-0.0, out=None):
             _forward(fl[i:i + _CHUNK], fo[i:i + _CHUNK], ellipsoid, k0, fn, fe, (fx[i:i + _CHUNK], fy[i:i + _CHUNK]))
         return x, y
     A, e, alpha, _ = _kruger(ellipsoid.a, ellipsoid.f)
-    taup = _conformal_tan(np.tan(lat), e).reshape(-1)
+    tau = np.tan(lat).reshape(-1)
     u = np.tan(l / 2).reshape(-1)            # cos l and sin l from one tangent
-    cos_l, r = np.empty(u.shape), np.empty(u.shape)
-    _gauss_schreiber_args(taup, u, cos_l, r)
+    taup, cos_l, r = np.empty(u.shape), np.empty(u.shape), np.empty(u.shape)
+    _gauss_schreiber_args(tau, _sigma(tau, e), u, taup, cos_l, r)
     x, y = (np.empty(lat.shape), np.empty(lat.shape)) if out is None else out
     _series_xy(taup, u, np.arctan2(taup, cos_l), np.arcsinh(r), alpha, A, k0, fn, fe, x.reshape(-1), y.reshape(-1))
     return x[()], y[()]                      # a 0-d input gives scalars, as numpy's arithmetic does
