@@ -314,11 +314,25 @@ def _series_inverse(xi, eta, sin2xi, cos2xi, sinh2eta, cosh2eta, beta, xi_p, eta
         eta_p[i] = eta[i] - si
 
 
+@njit(cache=True, inline="always")
+def _conformal_s(tau, e):
+    """``s = e tau / sqrt(1 + tau^2)`` (e sin lat), whence ``sigma = sinh(e atanh(s))`` of Karney eq. 7."""
+    return e * tau / np.sqrt(1 + tau * tau)
+
+
 @njit(cache=True, error_model="numpy")
 def _conformal_arg(tau, e, s):
-    """``s = e tau / sqrt(1 + tau^2)`` (e sin lat), whence ``sigma = sinh(e atanh(s))`` of Karney eq. 7."""
     for i in range(tau.shape[0]):
-        s[i] = e * tau[i] / np.sqrt(1 + tau[i] * tau[i])
+        s[i] = _conformal_s(tau[i], e)
+
+
+@njit(cache=True, error_model="numpy")
+def _forward_args(tau, l_deg, e, s, h):
+    """``s`` (:func:`_conformal_s`) and ``h = l / 2`` (rad, from l in deg) into ``s``, ``h``: then numpy's
+    vectorised atanh, sinh and tan give sigma and u = tan(l/2)."""
+    for i in range(tau.shape[0]):
+        s[i] = _conformal_s(tau[i], e)
+        h[i] = l_deg[i] * (np.pi / 180) / 2              # np.deg2rad(l_deg) / 2
 
 
 @njit(cache=True, inline="always")
@@ -333,18 +347,17 @@ def _conformal_into(tau, sig, taup):
         taup[i] = _conformal_from(tau[i], sig[i])
 
 
-def _sigma(tau, e):
-    """sigma of Karney eq. 7 for a 1-D tau (numpy's vectorised atanh and sinh)."""
-    s = np.empty(tau.shape)
-    _conformal_arg(tau, e, s)
+def _sigma(s, e):
+    """sigma = sinh(e atanh(s)) of Karney eq. 7 (numpy's vectorised atanh and sinh), s from :func:`_conformal_s`."""
     return np.sinh(e * np.arctanh(s))
 
 
 def _conformal_tan(tau, e):
     """tau' = tan of the conformal latitude, from tau = tan(lat) (Karney eq. 7); any shape."""
     t = np.reshape(tau, -1)
-    taup = np.empty(t.shape)
-    _conformal_into(t, _sigma(t, e), taup)
+    s, taup = np.empty(t.shape), np.empty(t.shape)
+    _conformal_arg(t, e, s)
+    _conformal_into(t, _sigma(s, e), taup)
     return taup.reshape(np.shape(tau))[()]
 
 
@@ -362,36 +375,39 @@ def _geodetic_tan(taup, e, iterations: int = 4):
 _CHUNK = 1 << 15      # points per block: keeps the temporaries in cache (about 2x faster for 1 M points)
 
 
-def _forward(lat, l, ellipsoid, k0=1.0, fn=-0.0, fe=-0.0, out=None):
+def _forward(lat, l_deg, ellipsoid, k0=1.0, fn=-0.0, fe=-0.0, out=None):
     """GK northing and easting (m), ``k0 x + fn`` and ``k0 y + fe``; ``out``: the (x, y) arrays to fill.
 
-    lat, l (longitude minus central meridian) in rad, same shape. (The default -0.0 adds nothing,
-    not even to the sign of a zero.)
+    lat (rad) and l_deg (longitude minus central meridian, deg) of one shape. (The default -0.0 adds
+    nothing, not even to the sign of a zero.)
     """
     if lat.size > _CHUNK:
         x, y = np.empty(lat.shape), np.empty(lat.shape)
-        fx, fy, fl, fo = x.reshape(-1), y.reshape(-1), lat.reshape(-1), l.reshape(-1)
+        fx, fy, fl, fo = x.reshape(-1), y.reshape(-1), lat.reshape(-1), l_deg.reshape(-1)
         for i in range(0, lat.size, _CHUNK):
             _forward(fl[i:i + _CHUNK], fo[i:i + _CHUNK], ellipsoid, k0, fn, fe, (fx[i:i + _CHUNK], fy[i:i + _CHUNK]))
         return x, y
     A, e, alpha, _ = _kruger(ellipsoid.a, ellipsoid.f)
     tau = np.tan(lat).reshape(-1)
-    u = np.tan(l / 2).reshape(-1)            # cos l and sin l from one tangent
+    s, h = np.empty(tau.shape), np.empty(tau.shape)
+    _forward_args(tau, l_deg.reshape(-1), e, s, h)
+    u = np.tan(h)                            # cos l and sin l from one tangent
     taup, cos_l, r = np.empty(u.shape), np.empty(u.shape), np.empty(u.shape)
-    _gauss_schreiber_args(tau, _sigma(tau, e), u, taup, cos_l, r)
+    _gauss_schreiber_args(tau, _sigma(s, e), u, taup, cos_l, r)
     x, y = (np.empty(lat.shape), np.empty(lat.shape)) if out is None else out
     _series_xy(taup, u, np.arctan2(taup, cos_l), np.arcsinh(r), alpha, A, k0, fn, fe, x.reshape(-1), y.reshape(-1))
     return x[()], y[()]                      # a 0-d input gives scalars, as numpy's arithmetic does
 
 
-def _forward_factors(lat, l, ellipsoid):
-    """Grid convergence (rad) and point scale (k0 = 1) at lat, l (rad, same shape)."""
+def _forward_factors(lat, l_deg, ellipsoid):
+    """Grid convergence (rad) and point scale (k0 = 1) at lat (rad), l_deg (deg), of one shape."""
     A, e, alpha, _ = _kruger(ellipsoid.a, ellipsoid.f)
     tau = np.tan(lat)
     taup = _conformal_tan(tau, e)
     slope, cos_l, sin_l, D = (np.empty(lat.shape, dtype=complex), np.empty(lat.shape), np.empty(lat.shape),
                               np.empty(lat.shape))
-    _series_slope(taup.reshape(-1), np.tan(l / 2).reshape(-1), alpha, *(a.reshape(-1) for a in (slope, cos_l, sin_l, D)))
+    _series_slope(taup.reshape(-1), np.tan(np.deg2rad(l_deg) / 2).reshape(-1), alpha,
+                  *(a.reshape(-1) for a in (slope, cos_l, sin_l, D)))
     gamma = np.arctan2(sin_l * taup, cos_l * np.sqrt(1 + taup * taup)) - np.angle(slope)
     k = (A / ellipsoid.a) * np.abs(slope) * np.sqrt(1 - e * e * tau * tau / (1 + tau * tau)) \
         * np.sqrt(1 + tau * tau) / np.sqrt(D)
@@ -463,7 +479,7 @@ def geodetic2gk(lat: ArrayLike, lon: ArrayLike, *, zone: ArrayLike | None = None
     fe = float(nonempty_array(false_easting, "false_easting"))
     fn = float(nonempty_array(false_northing, "false_northing"))
     L0, l_deg = _resolve_lon0(lon_deg, zone, lon0, width, deg, max_offset_deg)
-    x, y = _forward(lat_rad, np.deg2rad(l_deg), ellipsoid, k0, fn, fe)
+    x, y = _forward(lat_rad, l_deg, ellipsoid, k0, fn, fe)
     if zone_prefix:
         if not (y.min(initial=0.0) >= 0 and y.max(initial=0.0) < _PREFIX_UNIT):
             raise ValueError("false_easting: zone_prefix needs eastings in [0, 1e6) m; use false_easting=500e3")
@@ -525,7 +541,7 @@ def _factors(lat, lon, zone, lon0, width, ellipsoid, deg, max_offset_deg):
     _ell(ellipsoid)
     lat_rad, lon_deg = _validate_lat_lon(lat, lon, deg)
     _, l_deg = _resolve_lon0(lon_deg, zone, lon0, width, deg, max_offset_deg)
-    return _forward_factors(lat_rad, np.deg2rad(l_deg), ellipsoid)
+    return _forward_factors(lat_rad, l_deg, ellipsoid)
 
 
 def convergence(lat: ArrayLike, lon: ArrayLike, *, zone: ArrayLike | None = None, lon0: ArrayLike | None = None,
