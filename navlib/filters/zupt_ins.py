@@ -389,13 +389,15 @@ def _filter_kernel(samples, c):
             flags[k] |= FLAG_SPIKE
             good, held = False, True
         else:
-            w_last[:] = w[k]
+            for i in range(3):
+                w_last[i] = w[k, i]
             if freefall[k]:                              # |f| ~ 0: free fall or a dead accelerometer, held
                 counts[_N_FREEFALL] += 1
                 flags[k] |= FLAG_FREEFALL
                 good, f_held = False, True
             else:
-                f_last[:] = f[k]
+                for i in range(3):
+                    f_last[i] = f[k, i]
             clipped = False
             for i in range(3):
                 if abs(w[k, i]) >= c.gyro_fs or abs(f[k, i]) >= c.accel_fs:
@@ -521,7 +523,12 @@ def _filter_kernel(samples, c):
                     z1[0], h1[0], R1[0, 0] = dh, 0.0, c.r_heading
                     x, P, _, _, status = _kernels.kalman_update(x, P, z1, h1, H1, R1, wrap1, np.inf)
                     _feedback(x, lla[0], vel[0], q[0], b, a, e2)
-        lla_out[k + 1], vel_out[k + 1], q_out[k + 1], b_out[k + 1] = lla[0], vel[0], q[0], b
+        for i in range(3):                               # element loops: cheaper than row assignments here
+            lla_out[k + 1, i], vel_out[k + 1, i] = lla[0, i], vel[0, i]
+        for i in range(4):
+            q_out[k + 1, i] = q[0, i]
+        for i in range(6):
+            b_out[k + 1, i] = b[i]
         for i in range(15):
             p_out[k + 1, i] = P[i, i]
     return lla_out, vel_out, q_out, b_out, p_out, counts, flags, P
