@@ -11,20 +11,20 @@ from navlib.papers import gauss_kruger_ekf as planar
 
 
 def gauss_kruger(quick: bool):
-    """Forward GK (CGCS2000, 3° zone 40) of random points in the zone at 0-70° N; goal 2x pyproj."""
+    """Forward GK (CGCS2000, 3° zone 40) of random points in the zone at 0-70° N; goal 3x pyproj."""
     n = 100_000 if quick else 1_000_000
     rng = np.random.default_rng(10)
     lat, lon = rng.uniform(0.0, 70.0, n), rng.uniform(118.5, 121.5, n)
     t_nav = best_time(lambda: geodetic2gk(lat, lon, zone=40, ellipsoid=CGCS2000, deg=True))
-    rows = [Result("Gauss-Kruger forward, 3° zone", "navlib.geodesy (numpy)", n / t_nav, "points/s", t_nav)]
+    rows = [Result("Gauss-Kruger forward, 3° zone", "navlib.geodesy (numba series)", n / t_nav, "points/s", t_nav)]
     try:
         import pyproj
     except ImportError:
         return rows
     proj = pyproj.Proj("+proj=tmerc +ellps=GRS80 +lon_0=120 +k=1 +x_0=0 +y_0=0 +units=m")
     t_proj = best_time(lambda: proj.transform(lon, lat))
-    rows[0].goal = 2 * n / t_proj
-    rows[0].note = "goal: 2x pyproj, measured in this run"
+    rows[0].goal = 3 * n / t_proj
+    rows[0].note = "goal: ≥ 3× pyproj, this run"
     rows.append(Result("Gauss-Kruger forward, 3° zone", "pyproj (PROJ tmerc)", n / t_proj, "points/s", t_proj))
     return rows
 

@@ -3,16 +3,63 @@
 Each is the one implementation of its formula: the public, validated functions
 (:func:`navlib.earth.gravity`, :func:`navlib.earth.radii`, :func:`navlib.kalman.predict`,
 :func:`navlib.kalman.update`, :func:`navlib.strapdown.nav_step`) and the compiled filters
-(strapdown, Kalman filters, pedestrian, attitude and planar filters) call these. Arguments are plain
+(strapdown, Kalman filters, pedestrian, attitude and planar filters) and the Gauss-Krüger series
+(:func:`fma`) call these. Arguments are plain
 floats or float arrays in SI units, unvalidated: validate at the public boundary. A compiled
 kernel calls the primitive (e.g. :func:`kalman_update`), never the public validated wrapper.
 """
 from __future__ import annotations
 
-import numpy as np
-from numba import njit
+import math
+from fractions import Fraction
 
-from .attitude import quat_mult_1, quat_normalize_1, quat_to_dcm_1, rotvec_to_quat_1
+import numpy as np
+from numba import njit, types
+from numba.core.extending import intrinsic, overload
+
+from .attitude import quat_mult_t, quat_to_dcm_t, rotvec_to_quat_t
+
+
+def fma(a, b, c):
+    """``a * b + c`` rounded once (IEEE 754 fused multiply-add) for floats.
+
+    Compiled kernels get one machine instruction (LLVM's ``llvm.fma``); uncompiled
+    (``NUMBA_DISABLE_JIT=1``) it is exact rational arithmetic rounded once.
+    """
+    if not (math.isfinite(a) and math.isfinite(b) and math.isfinite(c)):
+        return a * b + c
+    exact = Fraction(a) * Fraction(b) + Fraction(c)
+    if not exact:
+        return a * b + c                # an exact zero: the product is exact, and IEEE's sign of zero follows
+    try:
+        return float(exact)
+    except OverflowError:
+        return math.copysign(math.inf, exact)
+
+
+@intrinsic
+def _llvm_fma(typingctx, a, b, c):
+    def codegen(context, builder, signature, args):
+        return builder.fma(*args)
+    return types.float64(types.float64, types.float64, types.float64), codegen
+
+
+@overload(fma)
+def _fma_compiled(a, b, c):
+    if a == b == c == types.float64:
+        return lambda a, b, c: _llvm_fma(a, b, c)
+
+
+@njit(cache=True)
+def mat3_vec(C, v):
+    """``C @ v`` of a 3 x 3 matrix (array, or tuple of rows) and a 3-vector, as a tuple; allocates nothing.
+
+    Rounded as numba's ``C @ v`` (OpenBLAS's dgemv for 3 x 3) rounds it, so that either gives the same bits:
+    per row the second product, fused with the first, fused with the third, added to a zeroed output.
+    """
+    return (0.0 + fma(C[0][2], v[2], fma(C[0][0], v[0], C[0][1] * v[1])),
+            0.0 + fma(C[1][2], v[2], fma(C[1][0], v[0], C[1][1] * v[1])),
+            0.0 + fma(C[2][2], v[2], fma(C[2][0], v[0], C[2][1] * v[1])))
 
 
 @njit(cache=True)
@@ -156,25 +203,42 @@ def kalman_update(x, P, z, h, H, R, angle_mask, gate=np.inf):
 
 @njit(cache=True)
 def nav_step(lla, vel, q, w, f, dt, earth_consts, hold_height=False):
-    """One ENU strapdown step updating ``lla``, ``vel``, ``q`` in place; :func:`navlib.strapdown.nav_step` unvalidated."""
+    """One ENU strapdown step updating ``lla``, ``vel``, ``q`` in place; :func:`navlib.strapdown.nav_step` unvalidated.
+
+    Written on scalars and tuples, it allocates nothing; each operation is the one the former array form did
+    (``0.0 + x`` included, the zero component of w_ie), so the results are bit for bit those of that form.
+    """
     a, flat, e2, m, gamma_e, k_som, omega = (earth_consts[0], earth_consts[1], earth_consts[2], earth_consts[3],
                                             earth_consts[4], earth_consts[5], earth_consts[6])
     lat, h = lla[0], lla[2]
     sl, cl = np.sin(lat), np.cos(lat)
     R_M, R_N = radii_mn(lat, a, e2)
-    w_ie = np.array([0.0, omega * cl, omega * sl])
-    w_en = np.array([-vel[1] / (R_M + h), vel[0] / (R_N + h), vel[0] * sl / cl / (R_N + h)])
-    w_in = w_ie + w_en
-    q_mid = quat_mult_1(quat_mult_1(rotvec_to_quat_1(-w_in * (dt / 2)), q), rotvec_to_quat_1(w * (dt / 2)))
-    f_n = quat_to_dcm_1(q_mid) @ f
+    w_ie1, w_ie2 = omega * cl, omega * sl                                       # w_ie = (0, w_ie1, w_ie2)
+    w_en0, w_en1, w_en2 = -vel[1] / (R_M + h), vel[0] / (R_N + h), vel[0] * sl / cl / (R_N + h)
+    w_in0, w_in1, w_in2 = 0.0 + w_en0, w_ie1 + w_en1, w_ie2 + w_en2
+    q0, q1, q2, q3 = q[0], q[1], q[2], q[3]
+    half = dt / 2
+    n0, n1, n2, n3 = rotvec_to_quat_t(-w_in0 * half, -w_in1 * half, -w_in2 * half)
+    b0, b1, b2, b3 = rotvec_to_quat_t(w[0] * half, w[1] * half, w[2] * half)
+    m0, m1, m2, m3 = quat_mult_t(n0, n1, n2, n3, q0, q1, q2, q3)
+    m0, m1, m2, m3 = quat_mult_t(m0, m1, m2, m3, b0, b1, b2, b3)                # mid-interval attitude
+    f_n = mat3_vec(quat_to_dcm_t(m0, m1, m2, m3), f)
     g = normal_gravity(lat, h, a, flat, e2, m, gamma_e, k_som)
-    v_new = vel + (f_n - np.cross(2 * w_ie + w_en, vel)) * dt
-    v_new[2] -= g * dt
+    u0, u1, u2 = 0.0 + w_en0, 2 * w_ie1 + w_en1, 2 * w_ie2 + w_en2             # 2 w_ie + w_en
+    v0, v1, v2 = vel[0], vel[1], vel[2]
+    vn0 = v0 + (f_n[0] - (u1 * v2 - u2 * v1)) * dt                            # v + (f_n - u x v) dt
+    vn1 = v1 + (f_n[1] - (u2 * v0 - u0 * v2)) * dt
+    vn2 = v2 + (f_n[2] - (u0 * v1 - u1 * v0)) * dt
+    vn2 -= g * dt
     if hold_height:
-        v_new[2] = 0.0
-    q[:] = quat_normalize_1(quat_mult_1(quat_mult_1(rotvec_to_quat_1(-w_in * dt), q), rotvec_to_quat_1(w * dt)))
-    vm = (vel + v_new) / 2
-    lla[0] = lat + vm[1] / (R_M + h) * dt
-    lla[1] += vm[0] / ((R_N + h) * cl) * dt
-    lla[2] = h + vm[2] * dt
-    vel[:] = v_new
+        vn2 = 0.0
+    n0, n1, n2, n3 = rotvec_to_quat_t(-w_in0 * dt, -w_in1 * dt, -w_in2 * dt)
+    b0, b1, b2, b3 = rotvec_to_quat_t(w[0] * dt, w[1] * dt, w[2] * dt)
+    m0, m1, m2, m3 = quat_mult_t(n0, n1, n2, n3, q0, q1, q2, q3)
+    m0, m1, m2, m3 = quat_mult_t(m0, m1, m2, m3, b0, b1, b2, b3)
+    s = np.sqrt(m0 * m0 + m1 * m1 + m2 * m2 + m3 * m3)
+    q[0], q[1], q[2], q[3] = m0 / s, m1 / s, m2 / s, m3 / s
+    lla[0] = lat + (v1 + vn1) / 2 / (R_M + h) * dt
+    lla[1] += (v0 + vn0) / 2 / ((R_N + h) * cl) * dt
+    lla[2] = h + (v2 + vn2) / 2 * dt
+    vel[0], vel[1], vel[2] = vn0, vn1, vn2

@@ -403,19 +403,27 @@ def quat_normalize_1(q):
 
 
 @njit(cache=True)
+def quat_to_dcm_t(q0, q1, q2, q3):
+    """C_b^n of one unit quaternion as a tuple of rows (allocation-free kernel helper)."""
+    return ((q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3, 2 * (q1 * q2 - q0 * q3), 2 * (q1 * q3 + q0 * q2)),
+            (2 * (q1 * q2 + q0 * q3), q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3, 2 * (q2 * q3 - q0 * q1)),
+            (2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3))
+
+
+@njit(cache=True)
+def quat_to_dcm_into(C, q):
+    """C_b^n of one unit quaternion ``q`` (4,) written into ``C`` (3, 3) (allocation-free kernel helper)."""
+    r0, r1, r2 = quat_to_dcm_t(q[0], q[1], q[2], q[3])
+    C[0, 0], C[0, 1], C[0, 2] = r0
+    C[1, 0], C[1, 1], C[1, 2] = r1
+    C[2, 0], C[2, 1], C[2, 2] = r2
+
+
+@njit(cache=True)
 def quat_to_dcm_1(q):
     """C_b^n of one unit quaternion (compiled helper)."""
-    q0, q1, q2, q3 = q[0], q[1], q[2], q[3]
     C = np.empty((3, 3))
-    C[0, 0] = q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3
-    C[0, 1] = 2 * (q1 * q2 - q0 * q3)
-    C[0, 2] = 2 * (q1 * q3 + q0 * q2)
-    C[1, 0] = 2 * (q1 * q2 + q0 * q3)
-    C[1, 1] = q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3
-    C[1, 2] = 2 * (q2 * q3 - q0 * q1)
-    C[2, 0] = 2 * (q1 * q3 - q0 * q2)
-    C[2, 1] = 2 * (q2 * q3 + q0 * q1)
-    C[2, 2] = q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3
+    quat_to_dcm_into(C, q)
     return C
 
 

@@ -4,9 +4,11 @@ numba does not check indices by default: a kernel that reads past an array's end
 garbage instead of failing. This test runs :mod:`navlib._kernels`' ``kalman_predict``,
 ``kalman_update`` and ``nav_step``, and their validated public wrappers ``kalman.predict``,
 ``kalman.update`` and ``strapdown.nav_step``, on valid inputs -- also m = 0 measurement rows,
-all-NaN and partly NaN measurements, wrapped angles and a rejecting gate -- in a subprocess
-with ``NUMBA_BOUNDSCHECK=1``, where an out-of-bounds index raises ``IndexError``. A fresh
-``NUMBA_CACHE_DIR`` keeps the cached builds compiled without bounds checks out of it.
+all-NaN and partly NaN measurements, wrapped angles and a rejecting gate --, the 15-state covariance
+prediction ``zupt.error_state_predict_into`` and the compiled Gauss-Krüger series (forward, inverse,
+convergence; scalars, n-D and blocked arrays) in a subprocess with ``NUMBA_BOUNDSCHECK=1``, where an
+out-of-bounds index raises ``IndexError``. A fresh ``NUMBA_CACHE_DIR`` keeps the cached builds compiled
+without bounds checks out of it.
 """
 import os
 import subprocess
@@ -48,6 +50,20 @@ for step in (_kernels.nav_step, strapdown.nav_step):
         for k in range(5):
             step(lla, vel, q, np.array([0.01, -0.02, 0.3]), np.array([0.1, 0.2, 9.8]), 0.01, c, hold)
         assert np.all(np.isfinite(lla)) and np.all(np.isfinite(vel)) and np.all(np.isfinite(q))
+
+from navlib import earth, geodesy
+for n in ((), (3, 4), (2 * geodesy._CHUNK + 5,)):           # scalars, n-D, blocks with a partial last one
+    lat, lon = np.full(n, 26.06), np.full(n, 121.3)
+    x, y = geodesy.geodetic2gk(lat, lon, zone=40, ellipsoid=earth.CGCS2000, deg=True)
+    la, lo = geodesy.gk2geodetic(x, y, zone=40, ellipsoid=earth.CGCS2000, deg=True)
+    assert np.abs(la - lat).max() < 1e-9 and np.abs(lo - lon).max() < 1e-9
+    assert np.all(np.isfinite(geodesy.convergence(lat, lon, zone=40, deg=True)))
+
+from navlib.filters import zupt
+P15 = np.eye(15)
+zupt.error_state_predict_into(P15, np.eye(3) * 0.01, np.array([0.0, 0.0, 0.098]), 0.01, np.full(15, 1e-8),
+                              np.empty((2, 15, 15)))
+assert np.all(np.isfinite(P15))
 
 # The primitives are unvalidated: bounds checking is on, so an empty gyro sample is caught here.
 try:

@@ -86,7 +86,8 @@ def test_paper_test_vector_and_epsg_grids():
 @pytest.mark.parametrize("width", [3, 6])
 @pytest.mark.parametrize("ell", ELLIPSOIDS, ids=lambda e: e.name)
 def test_matches_pyproj_inside_zones(width, ell):
-    """Random points inside each zone at 0-70° latitude agree with PROJ's exact tmerc to < 0.01 mm."""
+    """Random points inside each zone at 0-70° latitude agree with PROJ's exact tmerc to 1e-5 mm (a few ulps of
+    the northing: both evaluate Krüger's n^6 series; the largest difference is about 5e-6 mm)."""
     rng = np.random.default_rng(width)
     zones = np.arange(1, 360 // width + 1)
     for zn in zones:
@@ -95,7 +96,7 @@ def test_matches_pyproj_inside_zones(width, ell):
         lon = lon0 + rng.uniform(-width / 2, width / 2, 200)
         x, y = geodesy.geodetic2gk(lat, lon, zone=zn, width=width, ellipsoid=ell, deg=True)
         east, north = proj_tmerc(ell, lon0).transform(lon, lat)
-        assert np.abs(x - north).max() < 1e-5 and np.abs(y - east).max() < 1e-5, zn
+        assert np.abs(x - north).max() <= 1e-8 and np.abs(y - east).max() <= 1e-8, zn
 
 
 def test_grid_convergence_and_scale_match_pyproj():

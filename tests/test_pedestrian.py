@@ -81,6 +81,47 @@ def test_error_model_matches_finite_differences_of_the_mechanisation():
         np.testing.assert_allclose(F_fd, F, atol=1e-6 * np.abs(F).max())
 
 
+def _dense_fma_covariance(P, Phi, q):
+    """Phi P Phi^T + diag(q), symmetrised: every sum over all k, ascending, one rounding per term (no skipping)."""
+    from navlib._kernels import fma
+
+    def product(A, B):
+        C = np.zeros((15, 15))
+        for i in range(15):
+            for j in range(15):
+                for k in range(15):
+                    C[i, j] = fma(A[i, k], B[k, j], C[i, j])
+        return C
+
+    M = product(product(Phi, P), Phi.T) + np.diag(q)
+    return (M + M.T) / 2
+
+
+def test_block_covariance_predict_is_the_dense_product():
+    """error_state_predict_into multiplies only Phi's non-zero blocks yet equals the dense product summed in order
+    with one rounding per term bit for bit (zero terms skipped, nothing else), and kalman_predict to rounding (bit
+    for bit with OpenBLAS on x86-64). Phi = I + F dt from error_state_into, the model's one definition."""
+    from navlib import _kernels
+    rng = np.random.default_rng(3)
+    work = np.empty((2, 15, 15))
+    for dt in (0.01, 0.0, 1.3):
+        A = rng.standard_normal((15, 15))
+        P = A @ A.T * 1e-3
+        P[4] = P[:, 4] = 0.0
+        C = attitude.euler_to_dcm(random_hpr(rng, 1)[0])
+        C_dt, f_dt = C * dt, C @ np.array([0.1, 0.0, 9.8]) * dt
+        Phi = np.eye(15)
+        Phi[[0, 1, 2], [3, 4, 5]] = dt
+        zupt.error_state_into(Phi, C_dt, f_dt)
+        q = rng.uniform(0.0, 1e-4, 15) * dt
+        got = P.copy()
+        zupt.error_state_predict_into(got, C_dt, f_dt, dt, q, work)
+        np.testing.assert_array_equal(got, _dense_fma_covariance(P, Phi, q))
+        np.testing.assert_array_equal(got, got.T)
+        _, want = _kernels.kalman_predict(np.zeros(15), P, Phi, np.diag(q))
+        np.testing.assert_allclose(got, want, rtol=0, atol=1e-15 * np.abs(want).max())
+
+
 def test_zupt_zaru_innovation_is_H_dx_to_second_order():
     rng = np.random.default_rng(3)
     C = attitude.euler_to_dcm([0.7, 0.05, -0.03])

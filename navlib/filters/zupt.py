@@ -24,7 +24,9 @@ truth`` for r, v, psi and ``truth - estimate`` for the biases).
   The ``-C^T [w_ie x]`` block is the exact first-order Earth-rate term; with it ``z - H dx``
   is second order.
 
-The ``*_into`` functions are the compiled forms that filter kernels call (no validation).
+The ``*_into`` functions are the compiled forms that filter kernels call (no validation), among them
+:func:`error_state_predict_into`, the covariance prediction with ``Phi = I + F dt`` that multiplies only
+Phi's non-zero blocks.
 Used by paper 004 (Wen et al. 2016, :mod:`navlib.papers.pedestrian_ins`), which assembles them
 with barometer and magnetometer aiding into its filter.
 """
@@ -35,6 +37,7 @@ from numba import njit
 from numpy.typing import NDArray
 
 from .. import analysis, attitude
+from .._kernels import fma
 from .._typing import Array, ArrayLike, Dcm, Vec3, Vec3Series
 from .._validate import as_array, as_dcm, positive, scalar
 from ..imu import ImuSamples, unpack
@@ -127,13 +130,67 @@ def skew_1(v):
 
 @njit(cache=True)
 def error_state_into(F, C, f_n):
-    """Write the time-varying blocks of F into ``F`` (15 x 15, constant blocks preset); compiled, unvalidated."""
-    Sf = skew_1(f_n)
+    """Write the time-varying blocks of F into ``F`` (15 x 15, constant blocks preset); compiled, unvalidated.
+
+    ``F[3:6, 6:9] = -[f_n x]`` (its diagonal -0.0), ``F[3:6, 9:12] = F[6:9, 12:15] = C``; allocates nothing.
+    """
+    f0, f1, f2 = f_n[0], f_n[1], f_n[2]
+    F[3, 6], F[3, 7], F[3, 8] = -0.0, f2, -f1
+    F[4, 6], F[4, 7], F[4, 8] = -f2, -0.0, f0
+    F[5, 6], F[5, 7], F[5, 8] = f1, -f0, -0.0
     for i in range(3):
         for j in range(3):
-            F[3 + i, 6 + j] = -Sf[i, j]
             F[3 + i, 9 + j] = C[i, j]
             F[6 + i, 12 + j] = C[i, j]
+
+
+@njit(cache=True)
+def _transition_into(out, A, C_dt, f_dt, dt):
+    """``out = Phi A`` (15 x 15) for ``Phi = I + F dt``, F of :func:`error_state_into` with ``C dt`` and ``f_n dt``.
+
+    Only Phi's non-zero entries are multiplied; each sum keeps the order of a dense product (k ascending,
+    the diagonal 1 first, one fused multiply-add per term, as BLAS's dgemm), so that skipping the zero
+    terms (exact zeros added) changes no bit for finite A.
+    """
+    f0, f1, f2 = f_dt[0], f_dt[1], f_dt[2]
+    for j in range(15):
+        for a in range(3):                          # position rows: I, I dt
+            out[a, j] = fma(dt, A[3 + a, j], A[a, j] + 0.0)
+        # velocity rows: I, -[f_n dt x] (zero diagonal), C dt
+        out[3, j] = fma(C_dt[0, 2], A[11, j], fma(C_dt[0, 1], A[10, j], fma(C_dt[0, 0], A[9, j],
+                        fma(-f1, A[8, j], fma(f2, A[7, j], A[3, j] + 0.0)))))
+        out[4, j] = fma(C_dt[1, 2], A[11, j], fma(C_dt[1, 1], A[10, j], fma(C_dt[1, 0], A[9, j],
+                        fma(f0, A[8, j], fma(-f2, A[6, j], A[4, j] + 0.0)))))
+        out[5, j] = fma(C_dt[2, 2], A[11, j], fma(C_dt[2, 1], A[10, j], fma(C_dt[2, 0], A[9, j],
+                        fma(-f0, A[7, j], fma(f1, A[6, j], A[5, j] + 0.0)))))
+        for a in range(3):                          # attitude rows: I, C dt
+            out[6 + a, j] = fma(C_dt[a, 2], A[14, j], fma(C_dt[a, 1], A[13, j],
+                                fma(C_dt[a, 0], A[12, j], A[6 + a, j] + 0.0)))
+        for i in range(9, 15):                      # bias rows: I
+            out[i, j] = A[i, j] + 0.0
+
+
+@njit(cache=True)
+def error_state_predict_into(P, C_dt, f_dt, dt, q, work):
+    """``P = Phi P Phi^T + diag(q)`` (symmetrised) in place, ``Phi = I + F dt``; compiled, unvalidated.
+
+    ``C_dt`` = C dt (3 x 3), ``f_dt`` = (C f_b) dt (3,), ``q`` the diagonal process noise (15,), ``work`` a
+    (2, 15, 15) scratch: nothing is allocated. Exploits Phi's identity and zero blocks (:func:`_transition_into`)
+    and gives :func:`navlib._kernels.kalman_predict`'s covariance for that Phi and ``Q = diag(q)`` bit for bit
+    where BLAS's dgemm sums in order with fused multiply-adds (OpenBLAS on x86-64), to rounding elsewhere.
+    """
+    FP, FPT = work[0], work[1]
+    _transition_into(FP, P, C_dt, f_dt, dt)                 # Phi P
+    for i in range(15):
+        for j in range(15):
+            FPT[j, i] = FP[i, j]
+    MT = work[0]
+    _transition_into(MT, FPT, C_dt, f_dt, dt)               # (Phi P Phi^T)^T = Phi (Phi P)^T
+    for i in range(15):
+        MT[i, i] += q[i]
+    for i in range(15):                                     # (M + M^T) / 2, one half computed
+        for j in range(i, 15):
+            P[i, j] = P[j, i] = (MT[j, i] + MT[i, j]) / 2
 
 
 def error_state_matrix(C_bn: Dcm, f_b: Vec3) -> Array:

@@ -10,7 +10,10 @@ and the heading from the tilt-compensated compass, either as direct resets ("dir
 scenarios); its defaults (:class:`FilterConfig`) are that paper's sensors.
 
 The filter (:func:`run_filter`, a compiled per-sample kernel) reuses navlib's
-strapdown step, :func:`navlib.kalman.predict` and :func:`navlib.kalman.update`.
+strapdown step, the block covariance prediction of :mod:`navlib.filters.zupt`
+(:func:`~navlib.filters.zupt.error_state_predict_into`, which multiplies only the
+non-zero blocks of the transition matrix) and :func:`navlib.kalman.update`; a step
+without a measurement allocates nothing.
 It holds NaN IMU samples from the last good one, rejects static updates that
 fail a NIS gate (false stances), applies one ungated after repeated
 rejections within a stance (a drifted INS must not lock the filter out),
@@ -77,7 +80,7 @@ from .._validate import ellipsoid as ellipsoid_
 from ..imu import unpack
 from ..strapdown import earth_constants
 from ..units import G0
-from .zupt import error_state_into, zupt_zaru_rows_into, zupt_zaru_z_into
+from .zupt import error_state_predict_into, zupt_zaru_rows_into, zupt_zaru_z_into
 
 __all__ = ["FilterConfig", "FilterResult", "run_filter", "FLAG_DROPOUT", "FLAG_SPIKE", "FLAG_SATURATED",
            "FLAG_STATIC_SKIPPED", "FLAG_TIME_JUMP", "FLAG_FREEFALL", "FAULT_KEYS"]
@@ -317,11 +320,22 @@ def _feedback(x, lla, vel, q, b, a, e2):
     lla[2] -= x[2]
     for i in range(3):
         vel[i] -= x[3 + i]
-    dq = attitude.rotvec_to_quat_1(-x[6:9])                   # C <- (I - [dpsi x]) C
-    q[:] = attitude.quat_normalize_1(attitude.quat_mult_1(dq, q))
+    d0, d1, d2, d3 = attitude.rotvec_to_quat_t(-x[6], -x[7], -x[8])     # C <- (I - [dpsi x]) C
+    m0, m1, m2, m3 = attitude.quat_mult_t(d0, d1, d2, d3, q[0], q[1], q[2], q[3])
+    s = np.sqrt(m0 * m0 + m1 * m1 + m2 * m2 + m3 * m3)
+    q[0], q[1], q[2], q[3] = m0 / s, m1 / s, m2 / s, m3 / s
     for i in range(6):
         b[i] += x[9 + i]
     x[:] = 0.0
+
+
+@njit(cache=True)
+def _finite_row(x, k):
+    """``np.isfinite(x[k]).all()`` without a temporary array."""
+    for i in range(x.shape[1]):
+        if not np.isfinite(x[k, i]):
+            return False
+    return True
 
 
 @njit(cache=True)
@@ -344,8 +358,8 @@ def _filter_kernel(samples, c):
     b_out, p_out = np.empty((n + 1, 6)), np.empty((n + 1, 15))
     lla, vel, q, b = c.lla0.copy().reshape(1, 3), c.vel0.copy().reshape(1, 3), c.q0.copy().reshape(1, 4), c.b0.copy()
     x, P = np.zeros(15), np.diag(c.p0_diag)
-    Phi = np.eye(15)
-    Q = np.zeros((15, 15))
+    q_k, work = np.empty(15), np.empty((2, 15, 15))       # process noise (diagonal) of a step, predict scratch
+    C, C_dt, f_dt = np.empty((3, 3)), np.empty((3, 3)), np.empty(3)
     H6, z6, h6 = np.zeros((6, 15)), np.zeros(6), np.zeros(6)
     R6 = np.diag(np.array([c.r_zupt, c.r_zupt, c.r_zupt, c.r_zaru, c.r_zaru, c.r_zaru]))
     H1, z1, h1, R1 = np.zeros((1, 15)), np.zeros(1), np.zeros(1), np.zeros((1, 1))
@@ -367,7 +381,7 @@ def _filter_kernel(samples, c):
             counts[_N_JUMP] += 1
             flags[k] |= FLAG_TIME_JUMP
             dtk = 0.0
-        if not (np.isfinite(w[k]).all() and np.isfinite(f[k]).all()):
+        if not (_finite_row(w, k) and _finite_row(f, k)):
             counts[_N_IMU_NAN] += 1                      # dropout: hold the last good sample
             flags[k] |= FLAG_DROPOUT
             good, held = False, True
@@ -376,13 +390,15 @@ def _filter_kernel(samples, c):
             flags[k] |= FLAG_SPIKE
             good, held = False, True
         else:
-            w_last[:] = w[k]
+            for i in range(3):
+                w_last[i] = w[k, i]
             if freefall[k]:                              # |f| ~ 0: free fall or a dead accelerometer, held
                 counts[_N_FREEFALL] += 1
                 flags[k] |= FLAG_FREEFALL
                 good, f_held = False, True
             else:
-                f_last[:] = f[k]
+                for i in range(3):
+                    f_last[i] = f[k, i]
             clipped = False
             for i in range(3):
                 if abs(w[k, i]) >= c.gyro_fs or abs(f[k, i]) >= c.accel_fs:
@@ -397,20 +413,24 @@ def _filter_kernel(samples, c):
             wk[i] = w_last[i] - b[3 + i]
             fk[i] = f_last[i] - b[i]
         _kernels.nav_step(lla[0], vel[0], q[0], wk, fk, dtk, c.earth_consts, False)   # the shared mechanisation
-        C = attitude.quat_to_dcm_1(q[0])
+        attitude.quat_to_dcm_into(C, q[0])
+        f_n = _kernels.mat3_vec(C, fk)
         for i in range(3):
-            Phi[i, 3 + i] = dtk
+            f_dt[i] = f_n[i] * dtk
+            for j in range(3):
+                C_dt[i, j] = C[i, j] * dtk
         for i in range(15):
-            Q[i, i] = c.q_rate[i] * dtk
+            q_k[i] = c.q_rate[i] * dtk
         if held:                                         # the held sample is a guess: inflate, don't trust
             for i in range(3):
-                Q[3 + i, 3 + i] += c.hold_accel * c.hold_accel * dtk
-                Q[6 + i, 6 + i] += c.hold_gyro * c.hold_gyro * dtk
+                q_k[3 + i] += c.hold_accel * c.hold_accel * dtk
+                q_k[6 + i] += c.hold_gyro * c.hold_gyro * dtk
         elif f_held:                                     # only the accelerometer is a guess
             for i in range(3):
-                Q[3 + i, 3 + i] += c.hold_accel * c.hold_accel * dtk
-        error_state_into(Phi, C * dtk, C @ fk * dtk)            # Phi = I + F dt (blocks scaled by dt)
-        x, P = _kernels.kalman_predict(x, P, Phi, Q)
+                q_k[3 + i] += c.hold_accel * c.hold_accel * dtk
+        # Phi = I + F dt (blocks C dt, f_n dt). x stays zero between updates (each is fed back and x reset:
+        # closed loop), so x = Phi x = 0 and only P is predicted.
+        error_state_predict_into(P, C_dt, f_dt, dtk, q_k, work)
         if jump:                                         # Phi = I, Q = 0 above: add the whole interval's noise
             for i in range(15):
                 P[i, i] += c.q_rate[i] * dt[k]
@@ -428,7 +448,7 @@ def _filter_kernel(samples, c):
                 zupt_zaru_z_into(z6, vel[0], w_sum / n_sum, b[3:6], C, w_ie)
                 for i in range(3):
                     R6[3 + i, 3 + i] = c.r_zaru / n_sum
-                h6[:] = H6 @ x
+                h6[:] = 0.0                                  # H x, x = 0 between updates (closed loop)
                 # a stance that keeps failing the gate means the INS, not the stance, is wrong
                 forced = n_rejected >= c.max_rejected
                 if forced:                                   # P was too small: widen the velocity rows
@@ -481,7 +501,7 @@ def _filter_kernel(samples, c):
         hb += vb * dtk
         t_baro += dt[k]                                  # (dtk but for a jump, 0: keeps t_baro > 0)
         # --- magnetometer heading while walking (Eqs. 4-6) ---
-        if c.aiding > 0 and not static[k] and np.isfinite(m_b[k]).all():
+        if c.aiding > 0 and not static[k] and _finite_row(m_b, k):
             m_n = C @ m_b[k]
             F_m = np.sqrt(m_n[0] ** 2 + m_n[1] ** 2 + m_n[2] ** 2)
             dip = np.arctan2(-m_n[2], np.sqrt(m_n[0] ** 2 + m_n[1] ** 2))
@@ -504,7 +524,12 @@ def _filter_kernel(samples, c):
                     z1[0], h1[0], R1[0, 0] = dh, 0.0, c.r_heading
                     x, P, _, _, status = _kernels.kalman_update(x, P, z1, h1, H1, R1, wrap1, np.inf)
                     _feedback(x, lla[0], vel[0], q[0], b, a, e2)
-        lla_out[k + 1], vel_out[k + 1], q_out[k + 1], b_out[k + 1] = lla[0], vel[0], q[0], b
+        for i in range(3):                               # element loops: cheaper than row assignments here
+            lla_out[k + 1, i], vel_out[k + 1, i] = lla[0, i], vel[0, i]
+        for i in range(4):
+            q_out[k + 1, i] = q[0, i]
+        for i in range(6):
+            b_out[k + 1, i] = b[i]
         for i in range(15):
             p_out[k + 1, i] = P[i, i]
     return lla_out, vel_out, q_out, b_out, p_out, counts, flags, P
