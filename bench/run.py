@@ -51,7 +51,7 @@ def best_time(fn, repeat: int = 3) -> float:
 
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--only", default="", help="run cases whose name contains this")
+    ap.add_argument("--only", default="", help="run cases whose name contains this (any case)")
     ap.add_argument("--quick", action="store_true", help="smaller problem sizes (smoke test)")
     args = ap.parse_args()
     os.environ.setdefault("NAVLIB_BENCH_QUICK", "1" if args.quick else "0")
@@ -59,7 +59,7 @@ def main() -> int:
     for mod_name in CASE_MODULES:
         mod = importlib.import_module(mod_name)
         for case in mod.CASES:
-            if args.only and args.only not in case.__name__:
+            if args.only and args.only.lower() not in case.__name__.lower():
                 continue
             print(f"running {case.__name__} ...", flush=True)
             results.extend(case(quick=args.quick))
