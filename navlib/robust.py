@@ -299,10 +299,18 @@ def stuck_mask(x: ArrayLike, run: int, *, name: str = "x", axis: int = -2) -> ND
         True where some component of the sample belongs to such a run.
     """
     run = integer(run, "run", minimum=2)
+    return _stuck_runs(_series(x, name, axis), run)
+
+
+def _series(x: ArrayLike, name: str, axis: int) -> np.ndarray:
+    """``x`` validated as samples (..., N, k) with time on ``axis`` (-1: a scalar series, given a k = 1 axis)."""
     choice(axis, "axis", (-1, -2))
     a = as_array(x, text(name, "name", empty=False), allow_nan=True, min_ndim=-axis)
-    if axis == -1:
-        a = a[..., None]
+    return a[..., None] if axis == -1 else a
+
+
+def _stuck_runs(a: np.ndarray, run: int) -> NDArray[np.bool_]:
+    """:func:`stuck_mask` of validated samples ``a`` (..., N, k)."""
     n = a.shape[-2]
     same = a[..., 1:, :] == a[..., :-1, :]                  # sample i equals sample i - 1 (False for NaN)
     c = np.cumsum(np.concatenate([np.zeros_like(same[..., :1, :], dtype=int), same], axis=-2), axis=-2)
@@ -353,14 +361,11 @@ def stuck_samples(x: ArrayLike, run: int | None, *, full_scale: float | None = N
     -------
     stuck : ndarray of bool, shape (..., N)
     """
-    choice(axis, "axis", (-1, -2))
-    a = as_array(x, name, allow_nan=True, min_ndim=-axis)
-    if axis == -1:
-        a = a[..., None]
+    a = _series(x, name, axis)
     if run is None:
         return np.zeros(a.shape[:-1], dtype=bool)
     run = integer(run, "run", minimum=2)
     fs = range_limit(full_scale, "full_scale")
     noisy = np.logical_and.accumulate(a == a[..., :1, :], axis=-2).sum(-2).max(-1) < run
     probe = a if full_scale is None else np.where(np.abs(a) >= fs, np.nan, a)
-    return stuck_mask(probe, run, name=name) & noisy[..., None]
+    return _stuck_runs(probe, run) & noisy[..., None]

@@ -611,12 +611,8 @@ def _unusual(func, call, args, argname, variant, baseline) -> dict:
         except Exception as exc:        # noqa: BLE001 -- the same values in float64 are no valid call
             return {"outcome": "n/a", "message": f"float64 reference: {type(exc).__name__}: {exc}"[:300]}
         out = leaves(call_once(func, dict(call.kwargs, **{argname: given}), call.before))
-    except (ValueError, TypeError) as exc:
-        msg = str(exc)
-        named = any(names(msg, a) for a in args)
-        return {"outcome": "refused" if named else "error", "error": type(exc).__name__, "message": msg[:300]}
     except Exception as exc:            # noqa: BLE001
-        return {"outcome": "error", "error": type(exc).__name__, "message": str(exc)[:300], "where": _where(exc)}
+        return _refusal(exc, args)
     d = same(out, expected)
     return {"outcome": "differs" if d else "equal", "message": d}
 
@@ -624,14 +620,19 @@ def _unusual(func, call, args, argname, variant, baseline) -> dict:
 def _batch_outcome(func, call, kwargs, baseline) -> dict:
     try:
         out = leaves(call_once(func, kwargs, call.before))
-    except (ValueError, TypeError) as exc:
-        msg = str(exc)
-        named = any(names(msg, a) for a in kwargs)
-        return {"outcome": "refused" if named else "error", "error": type(exc).__name__, "message": msg[:300]}
     except Exception as exc:            # noqa: BLE001
-        return {"outcome": "error", "error": type(exc).__name__, "message": str(exc)[:300], "where": _where(exc)}
+        return _refusal(exc, kwargs)
     d = _batch(out, baseline)
     return {"outcome": "differs" if d else "equal", "message": d}
+
+
+def _refusal(exc: Exception, argnames) -> dict:
+    """Outcome of a valid-unusual call that raised: refused (a ValueError/TypeError naming an argument) or error."""
+    msg = str(exc)
+    if isinstance(exc, (ValueError, TypeError)):
+        named = any(names(msg, a) for a in argnames)
+        return {"outcome": "refused" if named else "error", "error": type(exc).__name__, "message": msg[:300]}
+    return {"outcome": "error", "error": type(exc).__name__, "message": msg[:300], "where": _where(exc)}
 
 
 def _batch(out: dict, baseline: dict) -> str:
