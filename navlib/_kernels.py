@@ -2,8 +2,8 @@
 
 Each is the one implementation of its formula: the public, validated functions
 (:func:`navlib.earth.gravity`, :func:`navlib.earth.radii`, :func:`navlib.kalman.predict`,
-:func:`navlib.kalman.update`, :func:`navlib.strapdown.nav_step`) and the compiled filters
-(strapdown, Kalman filters, pedestrian, attitude and planar filters) call these. Arguments are plain
+:func:`navlib.kalman.update`, :func:`navlib.strapdown.nav_step`, :func:`navlib.robust.stuck_mask`) and the
+compiled filters (strapdown, Kalman filters, pedestrian, attitude and planar filters) call these. Arguments are plain
 floats or float arrays in SI units, unvalidated: validate at the public boundary. A compiled
 kernel calls the primitive (e.g. :func:`kalman_update`), never the public validated wrapper.
 """
@@ -137,3 +137,23 @@ def nav_step(lla, vel, q, w, f, dt, earth_consts, hold_height=False):
     lla[1] += vm[0] / ((R_N + h) * cl) * dt
     lla[2] = h + vm[2] * dt
     vel[:] = v_new
+
+
+@njit(cache=True, nogil=True)
+def stuck_runs(t0, t1, x, run, rail, out):
+    """Compiled :func:`navlib.robust.stuck_mask` of series t0 to t1 - 1 of ``x`` (T, N, k): set ``out`` (T, N).
+
+    A maximal run of ``run`` or more exactly equal values of one component marks all its samples.
+    NaN, and values with ``|x| >= rail`` (saturated, not stuck), are never part of a run.
+    """
+    n = x.shape[1]
+    for t in range(t0, t1):
+        for c in range(x.shape[2]):
+            start = 0
+            for i in range(1, n + 1):
+                v = x[t, i - 1, c]
+                if i < n and x[t, i, c] == v and abs(v) < rail:
+                    continue                                # the run goes on
+                if i - start >= run:
+                    out[t, start:i] = True
+                start = i

@@ -38,6 +38,7 @@ IMU spikes as NaN with the test of :func:`is_spike` (compiled; filters call it p
 """
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
@@ -45,6 +46,7 @@ import numpy as np
 from numba import njit
 from numpy.typing import NDArray
 
+from ._kernels import stuck_runs
 from ._typing import Array, ArrayLike, Vec3Series
 from ._validate import as_array, booleans, choice, flag, instance, integer, range_limit
 
@@ -299,14 +301,9 @@ def stuck_mask(x: ArrayLike, run: int, *, name: str = "x", axis: int = -2) -> ND
     a = as_array(x, name, allow_nan=True, min_ndim=-axis)
     if axis == -1:
         a = a[..., None]
-    n = a.shape[-2]
-    same = a[..., 1:, :] == a[..., :-1, :]                  # sample i equals sample i - 1 (False for NaN)
-    c = np.cumsum(np.concatenate([np.zeros_like(same[..., :1, :], dtype=int), same], axis=-2), axis=-2)
-    # a run of `run` equal samples starts at s when samples s + 1 ... s + run - 1 all equal their predecessor
-    starts = np.zeros(a.shape, dtype=int)
-    if n >= run:
-        starts[..., :n - run + 1, :] = c[..., run - 1:, :] - c[..., :n - run + 1, :] == run - 1
-    # sample i is stuck when such a run starts within the run - 1 samples before it (or at it)
-    s = np.cumsum(starts, axis=-2)
-    covered = s - np.concatenate([np.zeros_like(s[..., :run, :]), s[..., :-run, :]], axis=-2)[..., :n, :] > 0
-    return covered.any(axis=-1)
+    lead, (n, k) = a.shape[:-2], a.shape[-2:]
+    flat = np.ascontiguousarray(a.reshape((math.prod(lead), n, k)))
+    out = np.zeros(flat.shape[:2], dtype=bool)
+    stuck_runs(0, flat.shape[0], flat, run, np.inf, out)
+    return out.reshape(lead + (n,))
+
