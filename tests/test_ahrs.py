@@ -211,6 +211,69 @@ def test_batch_of_trials_equals_single_runs():
             np.testing.assert_array_equal(batch.q_bn[i], single.q_bn)
 
 
+def _faulty_batch(trials, n, seed):
+    """A batch of static MARG trials with dropouts, a stuck gyro, a spike and a clock jump in different trials."""
+    rng = np.random.default_rng(seed)
+    runs = [static_marg([0.3 * i, 0.05, -0.1], n, rng, gyro=(0.0, 0.0, 0.01)) for i in range(trials)]
+    w, f, m = (np.stack(x) for x in zip(*runs, strict=True))
+    w[1, 100:105] = np.nan
+    w[2, 300:340, 1] = w[2, 299, 1]
+    w[3, 400, 0] += 2.0
+    f[4, 500:520] = np.nan
+    m[5, 600:700] *= 1.5
+    dts = np.full(n, DT)
+    dts[800] = 0.5
+    return w, f, m, dts, attitude.euler_to_quat(np.stack([[0.3 * i, 0.05, -0.1] for i in range(trials)]))
+
+
+def _outputs(r):
+    """Every output of an AttitudeResult as bytes (bit-for-bit comparison, NaN included)."""
+    arrays = [r.q_bn, r.gyro_bias] + ([] if r.P is None else [r.P]) + [np.asarray(v) for v in r.counts.values()]
+    return [np.ascontiguousarray(a).tobytes() for a in arrays + list(r.faults.flags.values())]
+
+
+def test_batch_outputs_equal_the_per_trial_outputs_bit_for_bit():
+    # more trials than threads x chunks, faults in some: the parallel batch is the trials run one by one
+    w, f, m, dts, q0 = _faulty_batch(11, 1000, 21)
+    kw = dict(gate=obs.MagGate(), B_n=B_N, gyro_jump=1.0, stuck_run=10)
+    for filt in (mh.mahony, qkf.quaternion_kf):
+        batch = filt(w, f, dts, q0, m_b=m, **kw)
+        assert batch.counts["gyro_stuck"][2] > 0 and batch.counts["gyro_held"][1] == 5
+        for i in range(len(w)):
+            single = filt(w[i], f[i], dts, q0[i], m_b=m[i], **kw)
+            one = lambda a, i=i: a[i] if np.ndim(a) else a          # noqa: E731 (the trial's row of a batch output)
+            part = type(batch)(one(batch.q_bn), one(batch.gyro_bias), {k: one(v) for k, v in batch.counts.items()},
+                               None if batch.P is None else one(batch.P),
+                               faults=type(batch.faults)({}, {k: v[i] for k, v in batch.faults.flags.items()}))
+            assert _outputs(part) == _outputs(single), (filt.__name__, i)
+
+
+THREADS = r"""
+import hashlib, sys
+import numpy as np
+sys.path.insert(0, {tests!r})
+from test_ahrs import _faulty_batch, _outputs, B_N, obs
+from navlib.filters import mahony as mh, quaternion_kf as qkf
+w, f, m, dts, q0 = _faulty_batch(9, 1000, 22)
+h = hashlib.sha256()
+for filt in (mh.mahony, qkf.quaternion_kf):
+    for chunk in _outputs(filt(w, f, dts, q0, m_b=m, gate=obs.MagGate(), B_n=B_N, gyro_jump=1.0, stuck_run=10)):
+        h.update(chunk)
+print(h.hexdigest())
+"""
+
+
+def test_batch_results_do_not_depend_on_the_number_of_threads():
+    script = THREADS.format(tests=os.path.dirname(__file__))
+    digests = []
+    for threads in ("1", "2", "3"):
+        env = dict(os.environ, NUMBA_NUM_THREADS=threads)
+        out = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True, text=True, timeout=600)
+        assert out.returncode == 0, out.stderr[-3000:]
+        digests.append(out.stdout.strip())
+    assert len(set(digests)) == 1, digests
+
+
 def test_rtk_mode_ignores_the_value_of_invalid_epochs_and_drifts_without_bias_estimation():
     n = 20_000
     w, f, _ = static_marg([np.pi / 2, 0, 0], n, np.random.default_rng(7), gyro=units.deg_per_s([0, 0, 0.09]),

@@ -200,7 +200,7 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
     ix = iy = iz = 0.0
     for k in range(N):
         dt = dts[k]
-        gx, gy, gz, held, fresh = gyro_sample(t, k, w, gx, gy, gz, held, inp.jump, counts)
+        gx, gy, gz, held, fresh = gyro_sample(t, k, inp, gx, gy, gz, held, counts)
         if dt > inp.max_dt:                             # clock jump: re-initialise, covariance back to p0 I
             x = np.array(reinit(inp, t, k, x[0], x[1], x[2], x[3], rtk))
             P = model.p0 * np.eye(4)
