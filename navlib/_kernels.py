@@ -60,7 +60,7 @@ def _llvm_fma(typingctx, a, b, c):
     return types.float64(a, b, c), codegen
 
 
-@overload(fma, inline="always")
+@overload(fma)
 def _fma_compiled(a, b, c):
     return lambda a, b, c: _llvm_fma(a, b, c)
 

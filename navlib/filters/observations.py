@@ -515,7 +515,7 @@ def prepare_inputs(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, 
     dts = intervals(dt, N)
     T = int(np.prod(lead))
     q = as_quat(q0, "q0")
-    q = np.array(np.broadcast_to(q, lead + (4,)).reshape(T, 4))       # a writable copy: one kernel signature
+    q = np.array(np.broadcast_to(q, lead + (4,)).reshape(T, 4), order="C")       # a writable copy: one signature
     if B_n is not None:
         magnetic_reference(B_n)                              # validate even where it is not needed
     use_rtk, use_mag = heading_rtk is not None, m_b is not None

@@ -176,7 +176,16 @@ def noise_input(q: Quat, dt: float) -> Array:
 def _output(t, k, x, P, q_out, P_hist, keep):
     q_out[t, k, 0], q_out[t, k, 1], q_out[t, k, 2], q_out[t, k, 3] = x[0], x[1], x[2], x[3]
     if keep:
-        P_hist[t, k] = P
+        _copy4(P_hist[t, k], P)
+
+
+@njit(cache=True, inline="always")
+def _copy4(dst, src):
+    """``dst[:4, :4] = src[:4, :4]`` element by element (an array assignment compiles numba's shape-mismatch
+    messages, seconds of a cold start)."""
+    for i in range(4):
+        for j in range(4):
+            dst[i, j] = src[i, j]
 
 
 # --------------------------------------------------------------------------
@@ -345,7 +354,7 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
         gx, gy, gz, held, fresh = gyro_sample(t, k, inp, gx, gy, gz, held, counts)
         if dt > inp.max_dt:                             # clock jump: re-initialise, covariance back to p0 I
             x[0], x[1], x[2], x[3] = reinit(inp, t, k, x[0], x[1], x[2], x[3], rtk)
-            P[:, :] = model.p0 * np.eye(4)
+            _copy4(P, model.p0 * np.eye(4))
             health[1] = 0.0
             _output(t, k, x, P, q_out, P_hist, keep)
             continue
@@ -370,7 +379,7 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
         x[0], x[1], x[2], x[3] = x[0] / s, x[1] / s, x[2] / s, x[3] / s
         _output(t, k, x, P, q_out, P_hist, keep)
     bias_out[t, 0], bias_out[t, 1], bias_out[t, 2] = -ki * ix, -ki * iy, -ki * iz
-    P_out[t] = P
+    _copy4(P_out[t], P)
 
 
 @renamed_keywords(gyro_range="full_scale_gyro", accel_range="full_scale_accel", mag_range="full_scale_mag")
