@@ -406,9 +406,13 @@ attitude updates and linearised transitions are meaningless beyond it (2000 deg/
 
 def small_turns(w: np.ndarray, dts: np.ndarray, name: str = "dt") -> None:
     """Refuse intervals ``dts`` (N,) over which the gyro ``w`` (..., N, 3) turns more than :data:`MAX_TURN_PER_SAMPLE`."""
-    turn = np.linalg.norm(w, axis=-1) * dts
-    if np.nanmax(turn, initial=0.0) > MAX_TURN_PER_SAMPLE:
-        raise ValueError(f"{name}: the gyro turns up to {np.nanmax(turn):.3g} rad within one interval; integrating it "
+    refuse_turn(float(np.nanmax(np.linalg.norm(w, axis=-1) * dts, initial=0.0)), name)
+
+
+def refuse_turn(largest: float, name: str = "dt") -> None:
+    """Refuse ``largest``, the largest gyro turn within one interval (rad), above :data:`MAX_TURN_PER_SAMPLE`."""
+    if largest > MAX_TURN_PER_SAMPLE:
+        raise ValueError(f"{name}: the gyro turns up to {largest:.3g} rad within one interval; integrating it "
                          f"needs less than {MAX_TURN_PER_SAMPLE:g} rad per sample (is {name} in seconds?)")
 
 

@@ -40,6 +40,7 @@ is that test as the filters apply it to their gyro input (``stuck_run`` from :fu
 """
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
@@ -47,6 +48,7 @@ import numpy as np
 from numba import njit
 from numpy.typing import NDArray
 
+from ._kernels import stuck_runs
 from ._typing import Array, ArrayLike, Vec3Series
 from ._validate import as_array, booleans, choice, flag, instance, integer, kernel_array, range_limit, scalar, text
 
@@ -309,19 +311,13 @@ def _series(x: ArrayLike, name: str, axis: int) -> np.ndarray:
     return a[..., None] if axis == -1 else a
 
 
-def _stuck_runs(a: np.ndarray, run: int) -> NDArray[np.bool_]:
-    """:func:`stuck_mask` of validated samples ``a`` (..., N, k)."""
-    n = a.shape[-2]
-    same = a[..., 1:, :] == a[..., :-1, :]                  # sample i equals sample i - 1 (False for NaN)
-    c = np.cumsum(np.concatenate([np.zeros_like(same[..., :1, :], dtype=int), same], axis=-2), axis=-2)
-    # a run of `run` equal samples starts at s when samples s + 1 ... s + run - 1 all equal their predecessor
-    starts = np.zeros(a.shape, dtype=int)
-    if n >= run:
-        starts[..., :n - run + 1, :] = c[..., run - 1:, :] - c[..., :n - run + 1, :] == run - 1
-    # sample i is stuck when such a run starts within the run - 1 samples before it (or at it)
-    s = np.cumsum(starts, axis=-2)
-    covered = s - np.concatenate([np.zeros_like(s[..., :run, :]), s[..., :-run, :]], axis=-2)[..., :n, :] > 0
-    return covered.any(axis=-1)
+def _stuck_runs(a: np.ndarray, run: int, rail: float = np.inf) -> NDArray[np.bool_]:
+    """:func:`stuck_mask` of validated samples ``a`` (..., N, k); values with ``|a| >= rail`` never repeat."""
+    lead, (n, k) = a.shape[:-2], a.shape[-2:]
+    flat = np.ascontiguousarray(a.reshape((math.prod(lead), n, k)))
+    out = np.zeros(flat.shape[:2], dtype=bool)
+    stuck_runs(0, flat.shape[0], flat, run, rail, out)
+    return out.reshape(lead + (n,))
 
 
 def stuck_run_samples(stuck_run: int | str | None, dt: float) -> int | None:
@@ -367,5 +363,4 @@ def stuck_samples(x: ArrayLike, run: int | None, *, full_scale: float | None = N
     run = integer(run, "run", minimum=2)
     fs = range_limit(full_scale, "full_scale")
     noisy = np.logical_and.accumulate(a == a[..., :1, :], axis=-2).sum(-2).max(-1) < run
-    probe = a if full_scale is None else np.where(np.abs(a) >= fs, np.nan, a)
-    return _stuck_runs(probe, run) & noisy[..., None]
+    return _stuck_runs(a, run, np.inf if full_scale is None else fs) & noisy[..., None]

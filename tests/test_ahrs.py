@@ -8,8 +8,9 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from numba import njit
 
-from navlib import alignment, analysis, attitude, earth, units
+from navlib import _kernels, alignment, analysis, attitude, earth, units
 from navlib.filters import heading_fusion as hf
 from navlib.filters import mahony as mh
 from navlib.filters import observations as obs
@@ -209,6 +210,137 @@ def test_batch_of_trials_equals_single_runs():
         for i in range(3):
             single = filt(w[i], f[i], DT, q0[i], m_b=m[i], B_n=B_N)
             np.testing.assert_array_equal(batch.q_bn[i], single.q_bn)
+
+
+def _faulty_batch(trials, n, seed):
+    """A batch of static MARG trials with dropouts, a stuck gyro, a spike and a clock jump in different trials."""
+    rng = np.random.default_rng(seed)
+    runs = [static_marg([0.3 * i, 0.05, -0.1], n, rng, gyro=(0.0, 0.0, 0.01)) for i in range(trials)]
+    w, f, m = (np.stack(x) for x in zip(*runs, strict=True))
+    w[1, 100:105] = np.nan
+    w[2, 300:340, 1] = w[2, 299, 1]
+    w[3, 400, 0] += 2.0
+    f[4, 500:520] = np.nan
+    m[5, 600:700] *= 1.5
+    dts = np.full(n, DT)
+    dts[800] = 0.5
+    return w, f, m, dts, attitude.euler_to_quat(np.stack([[0.3 * i, 0.05, -0.1] for i in range(trials)]))
+
+
+def _outputs(r):
+    """Every output of an AttitudeResult as bytes (bit-for-bit comparison, NaN included)."""
+    arrays = [r.q_bn, r.gyro_bias] + ([] if r.P is None else [r.P]) + [np.asarray(v) for v in r.counts.values()]
+    return [np.ascontiguousarray(a).tobytes() for a in arrays + list(r.faults.flags.values())]
+
+
+def test_batch_outputs_equal_the_per_trial_outputs_bit_for_bit():
+    # more trials than threads x chunks, faults in some: the parallel batch is the trials run one by one
+    w, f, m, dts, q0 = _faulty_batch(11, 1000, 21)
+    kw = dict(gate=obs.MagGate(), B_n=B_N, gyro_jump=1.0, stuck_run=10)
+    for filt in (mh.mahony, qkf.quaternion_kf):
+        batch = filt(w, f, dts, q0, m_b=m, **kw)
+        assert batch.counts["gyro_stuck"][2] > 0 and batch.counts["gyro_held"][1] == 5
+        for i in range(len(w)):
+            single = filt(w[i], f[i], dts, q0[i], m_b=m[i], **kw)
+            one = lambda a, i=i: a[i] if np.ndim(a) else a          # noqa: E731 (the trial's row of a batch output)
+            part = type(batch)(one(batch.q_bn), one(batch.gyro_bias), {k: one(v) for k, v in batch.counts.items()},
+                               None if batch.P is None else one(batch.P),
+                               faults=type(batch.faults)({}, {k: v[i] for k, v in batch.faults.flags.items()}))
+            assert _outputs(part) == _outputs(single), (filt.__name__, i)
+
+
+THREADS = r"""
+import hashlib, sys
+import numpy as np
+sys.path.insert(0, {tests!r})
+from test_ahrs import _faulty_batch, _outputs, B_N, obs
+from navlib.filters import mahony as mh, quaternion_kf as qkf
+w, f, m, dts, q0 = _faulty_batch(9, 1000, 22)
+h = hashlib.sha256()
+for filt in (mh.mahony, qkf.quaternion_kf):
+    for chunk in _outputs(filt(w, f, dts, q0, m_b=m, gate=obs.MagGate(), B_n=B_N, gyro_jump=1.0, stuck_run=10)):
+        h.update(chunk)
+print(h.hexdigest())
+"""
+
+
+def test_batch_results_do_not_depend_on_the_number_of_threads():
+    script = THREADS.format(tests=os.path.dirname(__file__))
+    digests = []
+    for threads in ("1", "2", "3"):
+        env = dict(os.environ, NUMBA_NUM_THREADS=threads)
+        out = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True, text=True, timeout=600)
+        assert out.returncode == 0, out.stderr[-3000:]
+        digests.append(out.stdout.strip())
+    assert len(set(digests)) == 1, digests
+
+
+# --------------------------------------------------------------------------- the fixed-size KF == the generic KF
+
+@njit
+def _blas_products(A, B, S):
+    return A @ B, np.linalg.inv(S)
+
+
+def _emulated_blas():
+    """Is numpy's BLAS the one whose order the fixed-size steps follow (fused chains, OpenBLAS on x86-64)?"""
+    rng = np.random.default_rng(0)
+    A, B = rng.standard_normal((2, 4, 4))
+    AB = _blas_products(A, B, np.eye(2))[0]
+    chain = [[_kernels.fma(A[i, 3], B[3, j], _kernels.fma(A[i, 2], B[2, j], _kernels.fma(
+        A[i, 1], B[1, j], _kernels.fma(A[i, 0], B[0, j], 0.0)))) for j in range(4)] for i in range(4)]
+    return np.array_equal(AB, chain)
+
+
+@njit
+def _fma_compiled(a, b, c):
+    out = np.empty(a.shape)
+    for i in range(a.shape[0]):
+        out[i] = _kernels.fma(a[i], b[i], c[i])
+    return out
+
+
+def test_fma_rounds_once_compiled_and_uncompiled():
+    rng = np.random.default_rng(30)
+    a, b = rng.standard_normal((2, 2000)) * 10.0 ** rng.integers(-5, 5, (2, 2000))
+    c = -a * b * (1 + 1e-12 * rng.standard_normal(2000))          # near-cancellation: a*b + c differs from fma
+    plain = np.array([_kernels.fma(x, y, z) for x, y, z in zip(a, b, c, strict=True)])
+    np.testing.assert_array_equal(_fma_compiled(a, b, c), plain)
+    assert np.mean(plain != a * b + c) > 0.5
+    assert _kernels.fma(0.1, 10.0, -1.0) == 5.551115123125783e-17      # exact 0.1 * 10 - 1, rounded once
+    assert np.isnan(_kernels.fma(np.inf, 0.0, 1.0)) and _kernels.fma(-0.0, 1.0, -0.0) == 0.0
+
+
+@pytest.mark.skipif(not _emulated_blas(), reason="numpy's BLAS is not the OpenBLAS x86-64 build the steps follow")
+def test_fixed_size_kalman_steps_are_the_generic_steps_bit_for_bit():
+    rng = np.random.default_rng(31)
+    for n in range(1, 10):                                       # the inverse: numpy.linalg.inv (getrf + getri)
+        for _ in range(200):
+            A = rng.standard_normal((n, n)) * 10.0 ** rng.uniform(-3, 3)
+            S = A @ A.T + np.diag(rng.uniform(1e-4, 1e-2, n)) if _ % 2 else A
+            a = np.zeros((9, 9))
+            a[:n, :n] = S
+            assert _kernels.lu_inverse(a, n, np.zeros(n, np.int64), np.zeros(n)) == 0
+            assert a[:n, :n].tobytes() == _blas_products(np.eye(1), np.eye(1), S)[1].tobytes()
+    ws = qkf._workspace()
+    R = np.diag([4e-4] * 3 + [6.4e-3] * 3)
+    for trial in range(3000):                                    # the steps: navlib._kernels' generic ones
+        hpr, x = random_quats(1, seed=trial)
+        x, w = x[0], 0.5 * rng.standard_normal(3)
+        Phi, G = qkf.transition(w, DT), qkf.noise_input(x, DT)
+        L = rng.standard_normal((4, 4)) * 10.0 ** rng.uniform(-4, -1)
+        P = L @ L.T
+        x1, P1 = _kernels.kalman_predict(x, P, Phi, G @ (1e-6 * np.eye(3)) @ np.ascontiguousarray(G.T))
+        x2, P2 = x.copy(), P.copy()
+        qkf._predict(x2, P2, Phi, G, 1e-6, ws)
+        assert x1.tobytes() == x2.tobytes() and P1.tobytes() == P2.tobytes()
+        h, H = qkf.measurement_model(x1, B_REF), qkf.measurement_jacobian(x1, B_REF)
+        z = h + 0.05 * rng.standard_normal(6)
+        if trial % 3 < 2:                                        # gravity or heading rows missing, or none
+            z[3 * (trial % 3):3 * (trial % 3) + 3] = np.nan
+        x3, P3, _, _, _ = _kernels.kalman_update(x1, P1, z, h, H, R, np.zeros(6, dtype=bool))
+        qkf._update(x2, P2, z, h, H, np.diag(R).copy(), ws)
+        assert x3.tobytes() == x2.tobytes() and P3.tobytes() == P2.tobytes()
 
 
 def test_rtk_mode_ignores_the_value_of_invalid_epochs_and_drifts_without_bias_estimation():

@@ -8,7 +8,9 @@ all-NaN and partly NaN measurements, wrapped angles and a rejecting gate --, the
 prediction ``zupt.error_state_predict_into`` and the compiled Gauss-Krüger series (forward, inverse,
 convergence; scalars, n-D and blocked arrays) in a subprocess with ``NUMBA_BOUNDSCHECK=1``, where an
 out-of-bounds index raises ``IndexError``. A fresh ``NUMBA_CACHE_DIR`` keeps the cached builds compiled
-without bounds checks out of it.
+without bounds checks out of it. The same for the attitude filters, whose fixed-size Kalman steps index
+small scratch matrices by hand (:func:`navlib._kernels.lu_inverse`, the quaternion KF's update with 3 and 6
+rows, the stuck-run screening).
 """
 import os
 import subprocess
@@ -77,5 +79,45 @@ def test_kernels_stay_in_bounds(tmp_path):
     env = dict(os.environ, NUMBA_BOUNDSCHECK="1", NUMBA_CACHE_DIR=str(tmp_path / "numba-cache"))
     env.pop("NUMBA_DISABLE_JIT", None)
     out = subprocess.run([sys.executable, "-c", SCRIPT], env=env, capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stderr[-3000:]
+    assert out.stdout.strip() == "ok", "bounds checking was not active: " + out.stdout + out.stderr[-2000:]
+
+
+ATTITUDE = r"""
+import numpy as np
+from navlib import _kernels, earth, robust
+from navlib.filters import mahony as mh, quaternion_kf as qkf
+
+rng = np.random.default_rng(7)
+for n in range(1, 10):
+    A = rng.standard_normal((n, n))
+    a = np.zeros((9, 9))
+    a[:n, :n] = A @ A.T + np.eye(n)
+    assert _kernels.lu_inverse(a, n, np.zeros(n, np.int64), np.zeros(n)) == 0
+B = earth.magnetic_field(32.0, 118.8, 0.0, 2022.5)
+N = 300
+w = 0.01 * rng.standard_normal((2, N, 3)); w[0, 5] = np.nan; w[1, 20:40, 1] = w[1, 19, 1]
+f = np.array([0.1, 0.2, 9.8]) + 0.05 * rng.standard_normal((2, N, 3)); f[0, 50:60] = np.nan
+m = B + 0.5 * rng.standard_normal((2, N, 3)); m[1, 70:90] = np.nan
+dt = np.full(N, 0.01); dt[200] = 1.0
+valid = np.zeros(N, dtype=bool); valid[::10] = True
+q0 = [1.0, 0.0, 0.0, 0.0]
+for filt in (mh.mahony, qkf.quaternion_kf):
+    filt(w, f, dt, q0, m_b=m, B_n=B, full_scale_gyro=0.03)
+    filt(w, f, dt, q0, heading_rtk=np.full(N, 0.5), rtk_valid=valid, rtk_gate=0.3)
+    filt(w, f, dt, q0)
+qkf.quaternion_kf(w, f, 0.01, q0, m_b=m, B_n=B, keep_cov=True, linear_innovation=True)
+robust.stuck_mask(w, 5)
+try:                                            # bounds checking is on: a matrix too small for n is caught
+    _kernels.lu_inverse(np.eye(2), 3, np.zeros(3, np.int64), np.zeros(3))
+except IndexError:
+    print("ok")
+"""
+
+
+def test_attitude_kernels_stay_in_bounds(tmp_path):
+    env = dict(os.environ, NUMBA_BOUNDSCHECK="1", NUMBA_CACHE_DIR=str(tmp_path / "numba-cache"))
+    env.pop("NUMBA_DISABLE_JIT", None)
+    out = subprocess.run([sys.executable, "-c", ATTITUDE], env=env, capture_output=True, text=True, timeout=600)
     assert out.returncode == 0, out.stderr[-3000:]
     assert out.stdout.strip() == "ok", "bounds checking was not active: " + out.stdout + out.stderr[-2000:]

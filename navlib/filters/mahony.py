@@ -18,7 +18,7 @@ group", IEEE T-AC 53(5), in the explicit form used by Zhang et al. 2023 (paper 0
 The heading reference is a magnetometer, a dual-antenna RTK heading, or none (gyro + accelerometer:
 heading free); gates, holds and their
 fault counts are those of :mod:`navlib.filters.observations`. Compiled and allocation-free per
-sample; leading axes of the inputs are Monte Carlo trials, one thread per core.
+sample; leading axes of the inputs are Monte Carlo trials, run in parallel (``NUMBA_NUM_THREADS``).
 """
 from __future__ import annotations
 
@@ -66,7 +66,7 @@ def _trial(t, inp, kp, ki, q_out, bias_out, counts):
     health = np.array([0.0, np.inf])
     for k in range(w.shape[1]):
         dt = dts[k]
-        gx, gy, gz, held, fresh = gyro_sample(t, k, w, gx, gy, gz, held, inp.jump, counts)
+        gx, gy, gz, held, fresh = gyro_sample(t, k, inp, gx, gy, gz, held, counts)
         if dt > inp.max_dt:                                            # clock jump: integrate nothing
             q0, q1, q2, q3 = reinit(inp, t, k, q0, q1, q2, q3, rtk)
             health[1] = 0.0

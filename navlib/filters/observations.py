@@ -15,8 +15,8 @@ such filters:
   per-sample steps: unit vectors with their gates (accelerometer norm, :class:`MagGate`, RTK gate with
   re-acquisition), the gyro hold of dropouts, spikes and stuck samples, Mahony's error
   ``e = a_meas x a_est + m_meas x m_est``, and the re-initialisation after a clock jump;
-* :class:`AttitudeResult` with the counts :data:`COUNT_NAMES`; :func:`run_trials` (one thread
-  per core over Monte Carlo trials; the kernels release the GIL).
+* :class:`AttitudeResult` with the counts :data:`COUNT_NAMES`; :func:`run_trials` (Monte Carlo trials
+  in parallel on ``NUMBA_NUM_THREADS`` threads; the kernels release the GIL).
 
 A new attitude filter is a module next to :mod:`navlib.filters.mahony` that calls these.
 """
@@ -29,10 +29,10 @@ from dataclasses import dataclass, field
 from typing import NamedTuple
 
 import numpy as np
-from numba import njit
+from numba import config, njit
 
 from .. import attitude, earth
-from .._kernels import dcm_heading, euler_to_quat, level, tilt_heading, wrap_pi
+from .._kernels import BORROW, dcm_heading, euler_to_quat, level, stuck_runs, tilt_heading, wrap_pi
 from .._typing import Array, ArrayLike, Interval, Quat, Vec3, Vec3Series
 from .._validate import (
     as_array,
@@ -43,11 +43,11 @@ from .._validate import (
     integer,
     intervals,
     nonempty_array,
+    refuse_turn,
     same_shape,
     scalar,
-    small_turns,
 )
-from ..robust import STUCK_DURATION, FaultReport, stuck_run_samples, stuck_samples
+from ..robust import STUCK_DURATION, FaultReport, stuck_run_samples
 from ..timing import JUMP_FACTOR, jump_limit
 
 __all__ = ["MagGate", "AttitudeResult", "AttitudeInputs", "Screened", "COUNT_NAMES", "FAULT_KEYS", "STUCK_DURATION",
@@ -144,12 +144,13 @@ class AttitudeInputs(NamedTuple):
     max_dt: float                   # longest interval integrated (s); longer ones are clock jumps (inf = off)
     long_hold: int                  # gyro holds of at least this many samples are followed by settling
     settle: float                   # bias integral frozen this long (s) after a long hold or a clock jump
+    stuck: np.ndarray               # (T, N) bool: stuck gyro samples (held like dropouts)
 
 
 class Screened(NamedTuple):
     """What :func:`prepare_inputs` found before filtering, for :func:`attitude_result`."""
     saturated: np.ndarray           # (T, 3) gyro, accelerometer, magnetometer samples at the rails
-    stuck: np.ndarray               # (T, N) bool: stuck gyro samples (NaN in the kernel's input)
+    stuck: np.ndarray               # (T, N) bool: stuck gyro samples (also ``AttitudeInputs.stuck``)
     jump: np.ndarray                # (N,) bool: clock jumps (interval > max_dt)
 
 
@@ -278,7 +279,7 @@ def rtk_gate(h, predicted, gate, confirm, state):
     return 2 if state[0] >= confirm else 1
 
 
-@njit(cache=True, inline="always")
+@njit(**BORROW)
 def observe(inp, t, k, q0, q1, q2, q3, dtk, rtk, counts):
     """Read sample k of trial t of ``inp`` (:class:`AttitudeInputs`): unit accelerometer vector and unit
     heading reference at the attitude ``q``, counting skips.
@@ -289,7 +290,8 @@ def observe(inp, t, k, q0, q1, q2, q3, dtk, rtk, counts):
     epoch is updated in place; ``rtk_par = [hold (s), gate (rad), confirm
     (epochs)]``. Saturated accelerometer and magnetometer samples arrive here
     as NaN (set by :func:`_prepare`, which counts them). Returns
-    (ax, ay, az, a_ok, mx, my, mz, m_ok, C) with C the nine elements of C_b^n(q).
+    (ax, ay, az, a_ok, mx, my, mz, m_ok, C) with C the nine elements of C_b^n(q). Called, not inlined,
+    and compiled without reference counting (:data:`navlib._kernels.BORROW`).
     """
     f, m, hdg, hdg_ok, use_rtk, gates, rtk_par = inp.f, inp.m, inp.hdg, inp.hdg_ok, inp.use_rtk, inp.gates, inp.rtk_par
     C = _dcm_t(q0, q1, q2, q3)
@@ -329,17 +331,21 @@ def observe(inp, t, k, q0, q1, q2, q3, dtk, rtk, counts):
 
 
 @njit(cache=True, inline="always")
-def gyro_sample(t, k, w, gx, gy, gz, held, jump, counts):
-    """Gyro sample k, or the last used one (gx, gy, gz) if it is NaN (a dropout, or stuck: see
-    :func:`prepare_inputs`) or a spike (counted).
+def gyro_sample(t, k, inp, gx, gy, gz, held, counts):
+    """Gyro sample k of trial t of ``inp``, or the last used one (gx, gy, gz) if it is NaN (a dropout),
+    stuck (``inp.stuck``, see :func:`prepare_inputs`) or a spike (counted).
 
-    A spike (only when ``jump > 0``) is a sample differing from the last used
-    one by more than ``jump`` on some axis, unless the previous sample was
+    A spike (only when ``inp.jump > 0``) is a sample differing from the last used
+    one by more than ``inp.jump`` on some axis, unless the previous sample was
     already held (``held``): a sustained change is motion, not a spike.
     Returns (wx, wy, wz, held, fresh); ``fresh`` is False when the sample was
     replaced (the kernels then freeze their gyro-bias integral).
     """
+    w, jump = inp.w, inp.jump
     wx, wy, wz = w[t, k, 0], w[t, k, 1], w[t, k, 2]
+    if inp.stuck[t, k]:
+        counts[t, _GYRO_STUCK] += 1
+        return gx, gy, gz, held, False
     if not (np.isfinite(wx) and np.isfinite(wy) and np.isfinite(wz)):
         counts[t, _GYRO_HELD] += 1
         return gx, gy, gz, held, False
@@ -367,7 +373,7 @@ def learning(fresh, dt, state, inp):
     return state[1] >= inp.settle
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def reinit(inp, t, k, q0, q1, q2, q3, rtk):
     """Attitude after a clock jump at sample k of trial t (nothing is integrated over its interval).
 
@@ -377,7 +383,8 @@ def reinit(inp, t, k, q0, q1, q2, q3, rtk):
     heading. An unusable or gated accelerometer sample keeps the attitude
     ``q``. The RTK hold and gate state ``rtk`` (see :func:`observe`) restarts.
     The caller restarts the settling of :func:`learning`.
-    Returns (q0, q1, q2, q3).
+    Returns (q0, q1, q2, q3). (Called, not inlined: inlined, it made every sample pay the reference
+    counting of ``inp``'s arrays.)
     """
     f, m, gates = inp.f, inp.m, inp.gates
     rtk[3], rtk[4] = np.inf, 0.0                                   # the last epoch is stale
@@ -497,7 +504,8 @@ def prepare_inputs(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, 
     flattened to T, and a :class:`Screened` record: the (T, 3) counts of gyro, accelerometer and
     magnetometer samples at the rails (accelerometer and magnetometer samples at the rails are NaN in
     ``inputs``: the kernels skip them like dropouts and :func:`attitude_result` corrects the skip
-    counts), the stuck gyro samples (NaN in ``inputs``: held like dropouts) and the clock jumps.
+    counts), the stuck gyro samples (``inputs.stuck``: held like dropouts) and the clock jumps. The
+    per-sample screening (stuck runs, the largest turn per interval) runs in parallel over the trials.
 
     Stuck gyro samples: :func:`navlib.robust.stuck_mask` with ``stuck_run`` samples ("auto":
     :data:`STUCK_DURATION` over the median interval, at least 5; None: off), in the trials whose gyro is
@@ -513,7 +521,8 @@ def prepare_inputs(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, 
     dts = intervals(dt, N)
     T = int(np.prod(lead))
     q = as_quat(q0, "q0")
-    q = np.ascontiguousarray(broadcast_to(q, "q0", lead + (4,), of="the trials of w_ib_b").reshape(T, 4))
+    q = broadcast_to(q, "q0", lead + (4,), of="the trials of w_ib_b")
+    q = np.array(q.reshape(T, 4), order="C")                  # a writable copy: one kernel signature
     if B_n is not None:
         magnetic_reference(B_n)                              # validate even where it is not needed
     use_rtk, use_mag = heading_rtk is not None, m_b is not None
@@ -547,20 +556,20 @@ def prepare_inputs(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, 
     rtk_par = rtk_params(rtk_hold, rtk_gate, rtk_confirm)
     typical = float(np.median(dts))
     max_dt = jump_limit(dts, max_dt, "dt")
-    small_turns(w[..., dts <= max_dt, :], dts[dts <= max_dt])       # clock jumps are not integrated
     auto = stuck_run_samples("auto", typical)
     stuck_run = stuck_run_samples(stuck_run, typical)
     kp = scalar(kp, "kp", positive=True, allow_zero=True)
     settle = SETTLE_TIME_CONSTANTS / kp if kp > 0 else 0.0
-    w, f = w.reshape(T, N, 3), f.reshape(T, N, 3)
+    w, f = np.ascontiguousarray(w.reshape(T, N, 3)), f.reshape(T, N, 3)
     # Saturation: counted here; accelerometer/magnetometer samples at the rails become NaN (skipped by the
     # kernel exactly like a dropout; the kernel's skip counts are corrected in _result), gyro samples are used.
     sat = np.zeros((T, 3), dtype=np.int64)
+    rails = [np.inf, np.inf, np.inf]
     ranges = ((full_scale_gyro, "full_scale_gyro"), (full_scale_accel, "full_scale_accel"), (full_scale_mag, "full_scale_mag"))
     for i, (r, name) in enumerate(ranges):
         if r is None:
             continue
-        r = scalar(r, name, positive=True)
+        rails[i] = r = scalar(r, name, positive=True)
         if i == 2 and not use_mag:
             continue
         x = (w, f, m)[i]
@@ -570,23 +579,60 @@ def prepare_inputs(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, 
             f = np.where(rail[..., None], np.nan, f)
         elif i == 2 and sat[:, i].any():
             m = np.where(rail[..., None], np.nan, m)
-    stuck = stuck_samples(w, stuck_run, full_scale=full_scale_gyro, name="w_ib_b")
-    if stuck.any():
-        w = np.where(stuck[..., None], np.nan, w)
-    inputs = AttitudeInputs(q, np.ascontiguousarray(w), np.ascontiguousarray(f), np.ascontiguousarray(m), hdg, ok,
-                            use_rtk, use_mag, dts, gates, jump, rtk_par, max_dt, stuck_run or auto, settle)
+    stuck, turn = np.zeros((T, N), dtype=bool), np.zeros(T)
+    run_trials(_screen, T, w, dts, max_dt, stuck_run or 0, rails[0], stuck, turn)       # rails[0]: the gyro's
+    refuse_turn(float(turn.max()))                              # (clock jumps are not integrated)
+    inputs = AttitudeInputs(q, w, np.ascontiguousarray(f), np.ascontiguousarray(m), hdg, ok, use_rtk, use_mag, dts,
+                            gates, jump, rtk_par, max_dt, stuck_run or auto, settle, stuck)
     return lead, inputs, Screened(sat, stuck, dts > max_dt)
 
 
+@njit(cache=True, nogil=True)
+def _screen(t0, t1, w, dts, max_dt, run, rail, stuck, turn):
+    """Trials t0 to t1 - 1 of the gyro ``w`` (T, N, 3) before filtering: ``turn[t]``, the largest turn
+    ``|w| dt`` over an integrated interval (``dt <= max_dt``; NaN samples ignored), and with ``run > 0``
+    the stuck samples ``stuck[t]`` (:func:`navlib._kernels.stuck_runs`, values at ``rail`` excepted) of a
+    trial whose gyro is noisy from the start (no axis repeats its first value ``run`` times)."""
+    N = w.shape[1]
+    for t in range(t0, t1):
+        big = 0.0
+        for k in range(N):
+            if dts[k] <= max_dt:
+                a = np.sqrt(w[t, k, 0] * w[t, k, 0] + w[t, k, 1] * w[t, k, 1] + w[t, k, 2] * w[t, k, 2]) * dts[k]
+                if a > big:
+                    big = a
+        turn[t] = big
+        if run == 0:
+            continue
+        noisy = True
+        for c in range(3):
+            k = 0
+            while k < N and w[t, k, c] == w[t, 0, c]:
+                k += 1
+            noisy = noisy and k < run
+        if noisy:
+            stuck_runs(t, t + 1, w, run, rail, stuck)
+
+
+_POOLS: dict[int, ThreadPoolExecutor] = {}
+os.register_at_fork(after_in_child=_POOLS.clear)            # a forked child has none of the parent's threads
+
+
 def run_trials(kernel: Callable, n_trials: int, *args) -> None:
-    """Run ``kernel(t0, t1, *args)`` over trial chunks, one thread per core (the kernels release the GIL)."""
-    workers = min(n_trials, os.cpu_count() or 1)
-    bounds = np.linspace(0, n_trials, workers + 1).astype(int)
+    """Run ``kernel(t0, t1, *args)`` over trials 0 to ``n_trials`` - 1 on ``NUMBA_NUM_THREADS`` threads.
+
+    The compiled kernels release the GIL; the trials go in chunks (about four per thread, so that a
+    thread slowed by other load takes fewer) to a pool kept for the next call. Each trial writes only
+    its own outputs, so the results do not depend on the number of threads.
+    """
+    workers = min(n_trials, config.NUMBA_NUM_THREADS)
     if workers <= 1:
         kernel(0, n_trials, *args)
         return
-    with ThreadPoolExecutor(workers) as pool:
-        list(pool.map(lambda i: kernel(bounds[i], bounds[i + 1], *args), range(workers)))
+    if workers not in _POOLS:
+        _POOLS[workers] = ThreadPoolExecutor(workers, thread_name_prefix="navlib-trials")
+    step = -(-n_trials // (4 * workers))
+    list(_POOLS[workers].map(lambda t0: kernel(t0, min(t0 + step, n_trials), *args), range(0, n_trials, step)))
 
 
 def attitude_result(lead: tuple[int, ...], q_out: np.ndarray, bias: np.ndarray, counts: np.ndarray,
@@ -596,8 +642,6 @@ def attitude_result(lead: tuple[int, ...], q_out: np.ndarray, bias: np.ndarray, 
     counts[:, _GYRO_SATURATED:_MAG_SATURATED + 1] = sat    # saturated samples (see prepare_inputs) ...
     counts[:, _ACCEL_SKIPPED] -= sat[:, 1]                              # ... were skipped as NaN by the kernel
     counts[:, _MAG_SKIPPED] -= sat[:, 2]
-    counts[:, _GYRO_STUCK] = stuck.sum(-1)                  # stuck samples were held as NaN by the kernel
-    counts[:, _GYRO_HELD] -= counts[:, _GYRO_STUCK]
     counts[:, _CLOCK_JUMP] = jump.sum()
     N = q_out.shape[1]
     named = {name: counts[:, i].reshape(lead) for i, name in enumerate(COUNT_NAMES)}

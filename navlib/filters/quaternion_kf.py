@@ -16,6 +16,11 @@ numbers are quoted, errata corrected). State: the quaternion ``q = q_b^n`` (4,).
 
 Without a heading reference the magnetometer rows are missing at every sample: the gravity rows
 alone correct tilt. Inputs, gates and fault counts are those of :mod:`navlib.filters.observations`.
+
+The Kalman steps are written at their fixed size (4 states, 3 or 6 measurements) without library
+calls or temporary arrays, in the operation order of the BLAS and LAPACK behind the generic
+:func:`navlib.kalman.predict` / :func:`navlib.kalman.update` (:func:`navlib._kernels.fma`,
+:func:`navlib._kernels.lu_inverse`): with numpy's OpenBLAS on x86-64 they return the same bits.
 """
 from __future__ import annotations
 
@@ -26,6 +31,7 @@ from numba import njit
 
 from .. import _kernels
 from .._deprecate import renamed_keywords
+from .._kernels import BORROW, fma
 from .._typing import Array, ArrayLike, Interval, Quat, Vec3, Vec3Series
 from .._validate import as_quat, broadcast, flag, nonempty_array, scalar
 from ..imu import ImuSamples, unpack
@@ -170,7 +176,153 @@ def noise_input(q: Quat, dt: float) -> Array:
 def _output(t, k, x, P, q_out, P_hist, keep):
     q_out[t, k, 0], q_out[t, k, 1], q_out[t, k, 2], q_out[t, k, 3] = x[0], x[1], x[2], x[3]
     if keep:
-        P_hist[t, k] = P
+        _copy4(P_hist[t, k], P)
+
+
+@njit(cache=True, inline="always")
+def _copy4(dst, src):
+    """``dst[:4, :4] = src[:4, :4]`` element by element (an array assignment compiles numba's shape-mismatch
+    messages, seconds of a cold start)."""
+    for i in range(4):
+        for j in range(4):
+            dst[i, j] = src[i, j]
+
+
+# --------------------------------------------------------------------------
+# The Kalman steps at fixed size (4 states, at most 6 measurements), allocation-free
+# --------------------------------------------------------------------------
+# Bit for bit navlib._kernels.kalman_predict / kalman_update (tests/test_ahrs.py), whose matrix
+# products go through BLAS: each product element is the fused chain over k = 0, 1, ... of
+# OpenBLAS's small-matrix kernels, a matrix-vector product is summed as OpenBLAS's gemv does, and
+# the inverse is _kernels.lu_inverse. Written out here, the per-sample cost is arithmetic, not library
+# calls and temporary arrays.
+
+@njit(cache=True, inline="always")
+def _mm(C, A, B, n, kk, m):
+    """``C[:n, :m] = A[:n, :kk] @ B[:kk, :m]``, each element ``fma`` over k = 0 ... kk - 1 (BLAS order)."""
+    for i in range(n):
+        for j in range(m):
+            acc = 0.0
+            for k in range(kk):
+                acc = fma(A[i, k], B[k, j], acc)
+            C[i, j] = acc
+
+
+@njit(cache=True, inline="always")
+def _mm_t(C, A, B, n, kk, m):
+    """``C[:n, :m] = A[:n, :kk] @ B[:m, :kk].T`` in the order of :func:`_mm`."""
+    for i in range(n):
+        for j in range(m):
+            acc = 0.0
+            for k in range(kk):
+                acc = fma(A[i, k], B[j, k], acc)
+            C[i, j] = acc
+
+
+@njit(cache=True, inline="always")
+def _mat_vec(y, A, x, n, m):
+    """``y[:n] = A[:n, :m] @ x[:m]`` summed as OpenBLAS dgemv_t (m < 8, n % 4 in (0, 2)): the first four
+    products pairwise ``(p0 + p2) + (p1 + p3)``, the last ``m % 4`` in one fused expression."""
+    b = m - (m & 3)
+    for j in range(n):
+        yj = 0.0
+        if b == 4:
+            yj = yj + ((A[j, 0] * x[0] + A[j, 2] * x[2]) + (A[j, 1] * x[1] + A[j, 3] * x[3]))
+        if m - b == 3:
+            yj = yj + fma(A[j, b + 2], x[b + 2], fma(A[j, b], x[b], A[j, b + 1] * x[b + 1]))
+        elif m - b == 2:
+            yj = yj + fma(A[j, b], x[b], A[j, b + 1] * x[b + 1])
+        elif m - b == 1:
+            yj = fma(A[j, b], x[b], yj)
+        y[j] = yj
+
+
+@njit(cache=True, inline="always")
+def _symmetrise(P, A, n):
+    """``P[:n, :n] = (A + A^T) / 2``."""
+    for i in range(n):
+        for j in range(n):
+            P[i, j] = (A[i, j] + A[j, i]) / 2
+
+
+@njit(cache=True)
+def _workspace():
+    """Scratch of :func:`_predict` and :func:`_update`: six (6, 6) matrices, three (6,) vectors, two (6,) indices."""
+    mats = (np.empty((6, 6)), np.empty((6, 6)), np.empty((6, 6)), np.empty((6, 6)), np.empty((6, 6)), np.empty((6, 6)))
+    return mats, (np.empty(6), np.empty(6), np.empty(6)), (np.empty(6, np.int64), np.empty(6, np.int64))
+
+
+@njit(**BORROW)
+def _predict(x, P, Phi, G, q_gyro, ws):
+    """Eqs. (16)-(18) in place: ``x = Phi x``, ``P = sym(Phi P Phi^T + Gamma Q Gamma^T)``, ``Q = q_gyro I``."""
+    (A, B, C, D, _, _), (v, _, _), _ = ws
+    for i in range(4):
+        for j in range(3):
+            A[i, j] = G[i, j] * q_gyro + 0.0     # Gamma Q: the zeros of Q add +0
+    _mm_t(B, A, G, 4, 3, 4)                      # Gamma Q Gamma^T
+    _mm(C, Phi, P, 4, 4, 4)
+    _mm_t(D, C, Phi, 4, 4, 4)                    # Phi P Phi^T
+    _mat_vec(v, Phi, x, 4, 4)
+    for i in range(4):
+        x[i] = v[i]
+        for j in range(4):
+            D[i, j] = D[i, j] + B[i, j]
+    _symmetrise(P, D, 4)
+
+
+@njit(**BORROW)
+def _update(x, P, z, h, H, r_diag, ws):
+    """Joseph update of ``x``, ``P`` in place with the finite rows of ``z`` (R diagonal, ``r_diag``).
+
+    The rows come in threes (accelerometer, heading reference): the update is compiled for 6 and for
+    3 rows, all its loops unrolled.
+    """
+    (Hs, _, _, _, _, _), (ys, _, _), (rows, _) = ws
+    m = 0
+    for r in range(6):
+        if np.isfinite(z[r]):
+            rows[m] = r
+            m += 1
+    for a in range(m):
+        ys[a] = z[rows[a]] - h[rows[a]]
+        for k in range(4):
+            Hs[a, k] = H[rows[a], k]
+    if m == 6:
+        _joseph(x, P, r_diag, ws, 6)
+    elif m == 3:
+        _joseph(x, P, r_diag, ws, 3)
+
+
+@njit(cache=True, inline="always")
+def _joseph(x, P, r_diag, ws, m):
+    """:func:`_update` with its m rows selected (``Hs``, ``ys``, ``rows`` of ``ws``)."""
+    (Hs, PHt, S, K, A, B), (ys, v, work), (rows, ipiv) = ws
+    _mm_t(PHt, P, Hs, 4, 4, m)                   # P H^T
+    _mm(S, Hs, PHt, m, 4, m)
+    for a in range(m):
+        for b in range(m):
+            S[a, b] = S[a, b] + (r_diag[rows[a]] if a == b else 0.0)
+    for a in range(m):
+        for b in range(a + 1, m):
+            S[a, b] = S[b, a] = (S[a, b] + S[b, a]) / 2
+    _kernels.lu_inverse(S, m, ipiv, work)        # S^-1 (S is symmetric positive definite)
+    _mm(K, PHt, S, 4, m, m)                      # gain
+    _mm(A, K, Hs, 4, m, 4)
+    for i in range(4):
+        for j in range(4):
+            A[i, j] = (1.0 if i == j else 0.0) - A[i, j]       # I - K H
+    _mm(B, A, P, 4, 4, 4)
+    _mm_t(S, B, A, 4, 4, 4)                      # (I - K H) P (I - K H)^T
+    for i in range(4):
+        for b in range(m):
+            B[i, b] = K[i, b] * r_diag[rows[b]] + 0.0         # K R: the zeros of R add +0
+    _mm_t(A, B, K, 4, m, 4)                      # K R K^T
+    _mat_vec(v, K, ys, 4, m)
+    for i in range(4):
+        x[i] = x[i] + v[i]
+        for j in range(4):
+            S[i, j] = S[i, j] + A[i, j]
+    _symmetrise(P, S, 4)
 
 
 @njit(cache=True, nogil=True)
@@ -189,10 +341,9 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
     by, bz = b_ref[1], b_ref[2]
     x = inp.q_init[t].copy()
     P = model.p0 * np.eye(4)
-    Qg = sg * sg * np.eye(3)
-    R = np.diag(np.array([sa * sa, sa * sa, sa * sa, sm * sm, sm * sm, sm * sm]))
+    r_diag = np.array([sa * sa, sa * sa, sa * sa, sm * sm, sm * sm, sm * sm])
     Phi, G, z, h, H = np.empty((4, 4)), np.empty((4, 3)), np.empty(6), np.empty(6), np.empty((6, 4))
-    no_angles = np.zeros(6, dtype=np.bool_)
+    ws = _workspace()
     gx = gy = gz = 0.0
     held = False
     rtk = np.array([0.0, 1.0, 0.0, np.inf, 0.0, 0.0])
@@ -200,10 +351,10 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
     ix = iy = iz = 0.0
     for k in range(N):
         dt = dts[k]
-        gx, gy, gz, held, fresh = gyro_sample(t, k, w, gx, gy, gz, held, inp.jump, counts)
+        gx, gy, gz, held, fresh = gyro_sample(t, k, inp, gx, gy, gz, held, counts)
         if dt > inp.max_dt:                             # clock jump: re-initialise, covariance back to p0 I
-            x = np.array(reinit(inp, t, k, x[0], x[1], x[2], x[3], rtk))
-            P = model.p0 * np.eye(4)
+            x[0], x[1], x[2], x[3] = reinit(inp, t, k, x[0], x[1], x[2], x[3], rtk)
+            _copy4(P, model.p0 * np.eye(4))
             health[1] = 0.0
             _output(t, k, x, P, q_out, P_hist, keep)
             continue
@@ -215,19 +366,20 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
             iz += ez * dt
         _phi_into(Phi, gx + kp * ex + ki * ix, gy + kp * ey + ki * iy, gz + kp * ez + ki * iz, dt)
         _gamma_into(G, x, dt)
-        x, P = _kernels.kalman_predict(x, P, Phi, G @ Qg @ np.ascontiguousarray(G.T))     # Eqs. (16)-(18)
+        _predict(x, P, Phi, G, sg * sg, ws)                                # Eqs. (16)-(18)
         z[0], z[1], z[2] = (ax, ay, az) if a_ok else (np.nan, np.nan, np.nan)
         z[3], z[4], z[5] = (mx, my, mz) if m_ok else (np.nan, np.nan, np.nan)
         _jacobian_into(H, x, by, bz)                                        # Eq. (20)
         if model.linear_innovation:
-            h[:] = H @ x                                                    # printed Eq. (19): wrong (E003-12)
+            _mat_vec(h, H, x, 6, 4)                                         # printed Eq. (19): wrong (E003-12)
         else:
             _h_into(h, x, by, bz)                                           # z - h(q), Eq. (19) corrected
-        x, P, _, _, _ = _kernels.kalman_update(x, P, z, h, H, R, no_angles)
-        x = x / np.sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2] + x[3] * x[3])
+        _update(x, P, z, h, H, r_diag, ws)
+        s = np.sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2] + x[3] * x[3])
+        x[0], x[1], x[2], x[3] = x[0] / s, x[1] / s, x[2] / s, x[3] / s
         _output(t, k, x, P, q_out, P_hist, keep)
     bias_out[t, 0], bias_out[t, 1], bias_out[t, 2] = -ki * ix, -ki * iy, -ki * iz
-    P_out[t] = P
+    _copy4(P_out[t], P)
 
 
 @renamed_keywords(gyro_range="full_scale_gyro", accel_range="full_scale_accel", mag_range="full_scale_mag")
