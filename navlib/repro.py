@@ -429,6 +429,9 @@ def verdict(claim: str, verdict: str, *, checks: Sequence[str] | None = None, ev
             raise ValueError(f"checks: {n!r} failed; a verdict cannot rest on it")
     if verdict != "not checkable here" and not names:
         raise ValueError(f"checks: a verdict of {verdict!r} rests on at least one check; none is named {claim}[/...]")
+    if verdict != "not checkable here" and all(recorded[n].on_printed for n in names):
+        raise ValueError(f"checks: a verdict of {verdict!r} rests on a computation; the checks of {claim} only re-do "
+                         "arithmetic on the paper's printed numbers (on_printed)")
     evid = [n for n in names if recorded[n].outside] if evidence is None else list(evidence)
     if not set(evid) <= set(names):
         raise ValueError(f"evidence: expected checks among {names}, got {evid}")
@@ -451,7 +454,7 @@ def verdict(claim: str, verdict: str, *, checks: Sequence[str] | None = None, ev
         raise ValueError(f"erratum: expected an id of data/errata.csv, got {erratum!r}")
     if figure and figure not in _state.figures:
         raise ValueError(f"figure: expected a figure saved in this run ({sorted(_state.figures)}), got {figure!r}")
-    if ours is None and names:
+    if ours is None and names and verdict != "not checkable here":     # (a check's value there is no reproduction)
         first = recorded[names[0]]
         unit = unit or first.unit
         # a check against 0 measures a residual: show it as one

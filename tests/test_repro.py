@@ -368,3 +368,14 @@ def test_a_check_on_printed_numbers_is_recorded_as_such(fake_root):
     assert "on_printed" not in rows["P999-SIM"]                 # written only when set
     with pytest.raises(ValueError, match="^on_printed:"):
         repro.check("bad-flag", 1.0, 1.01, 0.1, "src", on_printed="yes")
+
+
+def test_a_verdict_resting_only_on_printed_arithmetic_is_no_reproduction(paper_root):
+    repro.check("P999-EQ2-SIGN/table-sum", 12.0, 12.0, 0.05, "the table's column adds up to its printed total",
+                on_printed=True)
+    with pytest.raises(ValueError, match="^checks: a verdict of 'reproduced' rests on a computation"):
+        repro.verdict("P999-EQ2-SIGN", "reproduced")
+    v = repro.verdict("P999-EQ2-SIGN", "not checkable here", paper="12", reason="hardware only")
+    assert v.ours is None                                     # a printed-arithmetic value is not shown as ours
+    repro.check("P999-EQ2-SIGN/simulated", 3e-16, 0.0, 1e-12, "src", unit="rad")
+    assert repro.verdict("P999-EQ2-SIGN", "reproduced").checks == ["P999-EQ2-SIGN/table-sum", "P999-EQ2-SIGN/simulated"]
