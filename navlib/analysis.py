@@ -133,12 +133,14 @@ def _mean_square_second_difference(theta, m):
         for i in range(m.size):
             mi = m[i]
             count = length - 2 * mi
-            acc[:] = 0.0
+            for j in range(k):
+                acc[j] = 0.0
             for r in range(count):
                 for j in range(k):
                     d = theta[b, r + 2 * mi, j] - 2 * theta[b, r + mi, j] + theta[b, r, j]
                     acc[j] += d * d
-            out[b, i] = acc / count
+            for j in range(k):                  # element by element: no shape-error message to compile
+                out[b, i, j] = acc[j] / count
     return out
 
 
