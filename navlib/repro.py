@@ -67,6 +67,7 @@ class Check:
     unit: str = ""
     note: str = ""
     outside: bool = False      # check_outside: passes when the value lies outside [lower, upper]
+    on_printed: bool = False   # the value is arithmetic on the paper's printed numbers, not a reproduction
 
 
 @dataclass
@@ -249,7 +250,7 @@ def _record(c: Check) -> Check:
 
 
 def check(name: str, value: Scalar, expected: float, tol: float, source: str, *, paper_value: str | float | None = None,
-          rel: bool = False, unit: str = "", note: str = "") -> Check:
+          rel: bool = False, unit: str = "", note: str = "", on_printed: bool = False) -> Check:
     """Check ``|value - expected| <= tol`` and record it; raise if it fails.
 
     Parameters
@@ -257,7 +258,9 @@ def check(name: str, value: Scalar, expected: float, tol: float, source: str, *,
     name : str
         Starts with the claim id from ``data/claims.csv`` when it checks a claim.
     value : float
-        Reproduced value, computed by navlib in the notebook.
+        Reproduced value, computed by navlib in the notebook from simulated or committed data: never the
+        target itself, a rounding of it, a literal or an input (``tests/test_check_values.py`` reads every
+        notebook for these; a value that is the very object passed as ``expected`` is refused here).
     expected : float
         Target: the paper's value or, where the paper is wrong, the corrected
         value (then give the printed one as ``paper_value``).
@@ -268,6 +271,10 @@ def check(name: str, value: Scalar, expected: float, tol: float, source: str, *,
         published reference, or a project file such as an erratum of ``data/errata.csv``.
     paper_value : str or float, optional
         The printed value when it differs from ``expected``.
+    on_printed : bool
+        The value is arithmetic on the paper's own printed numbers (typed in ``data/``), e.g. a
+        table column against the total its text prints: legitimate, but a consistency check of the
+        paper rather than a reproduction. Recorded in results.json.
     """
     _check_name(name)
     _texts(source=source, unit=unit, note=note)
@@ -277,29 +284,34 @@ def check(name: str, value: Scalar, expected: float, tol: float, source: str, *,
     if t < 0:
         raise ValueError(f"tol: expected a non-negative tolerance, got {t}")
     abs_tol = t * abs(e) if flag(rel, "rel") else t
+    printed = flag(on_printed, "on_printed")
+    _not_the_target(value, expected=expected, paper_value=paper_value)
     passed = bool(math.isfinite(v) and abs(v - e) <= abs_tol)
-    return _record(Check(name, v, e, abs_tol, passed, source,
-                         None if paper_value is None else str(paper_value), unit=unit, note=note))
+    return _record(Check(name, v, e, abs_tol, passed, source, None if paper_value is None else str(paper_value),
+                         unit=unit, note=note, on_printed=printed))
 
 
 def check_range(name: str, value: Scalar, source: str, *, lower: float | None = None, upper: float | None = None,
-                paper_value: str | float | None = None, unit: str = "", note: str = "") -> Check:
+                paper_value: str | float | None = None, unit: str = "", note: str = "", on_printed: bool = False) -> Check:
     """Check ``lower <= value <= upper`` (either bound may be omitted); record; raise on failure.
 
     For directional and bound claims, e.g. "the EKF error is smaller than
-    dead reckoning's" as ``check_range(name, rmse_ekf / rmse_dr, upper=1)``.
+    dead reckoning's" as ``check_range(name, rmse_ekf / rmse_dr, upper=1)``. ``value`` and
+    ``on_printed`` as for :func:`check`.
     """
     _check_name(name)
     _texts(source=source, unit=unit, note=note)
     v = _as_float(value, "value")
     lo, hi = _bounds(lower, upper)
+    printed = flag(on_printed, "on_printed")
+    _not_the_target(value, lower=lower, upper=upper, paper_value=paper_value)
     passed = bool(math.isfinite(v) and (lo is None or v >= lo) and (hi is None or v <= hi))
-    return _record(Check(name, v, None, None, passed, source,
-                         None if paper_value is None else str(paper_value), lo, hi, unit, note))
+    return _record(Check(name, v, None, None, passed, source, None if paper_value is None else str(paper_value),
+                         lo, hi, unit, note, on_printed=printed))
 
 
 def check_outside(name: str, value: Scalar, source: str, *, lower: float | None = None, upper: float | None = None,
-                  paper_value: str | float | None = None, unit: str = "", note: str = "") -> Check:
+                  paper_value: str | float | None = None, unit: str = "", note: str = "", on_printed: bool = False) -> Check:
     """Check that ``value`` lies *outside* ``[lower, upper]``; record; raise if it lies inside.
 
     The assertion of a disagreement, which a :func:`verdict` of ``"differs"`` or
@@ -307,15 +319,31 @@ def check_outside(name: str, value: Scalar, source: str, *, lower: float | None 
     rests on: e.g. "our 0.34° lies outside the paper's 4.77° ± 3 × our spread" as
     ``check_outside(name, ours, src, lower=4.77 - 3 * s, upper=4.77 + 3 * s)``.
     ``value`` is computed by navlib; the interval holds the paper's value with its
-    stated or derived spread. A non-finite value fails.
+    stated or derived spread. A non-finite value fails. ``on_printed`` as for :func:`check`.
     """
     _check_name(name)
     _texts(source=source, unit=unit, note=note)
     v = _as_float(value, "value")
     lo, hi = _bounds(lower, upper)
+    printed = flag(on_printed, "on_printed")
+    _not_the_target(value, lower=lower, upper=upper, paper_value=paper_value)
     passed = bool(math.isfinite(v) and ((lo is not None and v < lo) or (hi is not None and v > hi)))
-    return _record(Check(name, v, None, None, passed, source,
-                         None if paper_value is None else str(paper_value), lo, hi, unit, note, outside=True))
+    return _record(Check(name, v, None, None, passed, source, None if paper_value is None else str(paper_value),
+                         lo, hi, unit, note, outside=True, on_printed=printed))
+
+
+def _not_the_target(value, **targets) -> None:
+    """Refuse a value that is the very object passed as its target: such a check cannot fail.
+
+    Only numpy values are compared by identity: Python shares small ints, and equal float literals
+    within one code object, so ``check(name, 0.0 if refused else 1.0, 0.0, ...)`` passes the target's
+    own object as a legitimate computed outcome (the static reading of tests/test_check_values.py
+    judges literals)."""
+    if isinstance(value, (np.floating, np.ndarray)):
+        for name, target in targets.items():
+            if target is value:
+                raise ValueError(f"value: is the very object passed as {name}; a check compares a value computed "
+                                 f"by navlib with an independent target")
 
 
 def _bounds(lower, upper) -> tuple[float | None, float | None]:
@@ -471,6 +499,7 @@ def _write() -> None:
 
 def _row(c: Check) -> dict:
     row = asdict(c)
-    if not c.outside:
-        del row["outside"]
+    for key in ("outside", "on_printed"):          # written only when set: other rows keep their bytes
+        if not row[key]:
+            del row[key]
     return row

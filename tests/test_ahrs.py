@@ -189,6 +189,40 @@ def test_mahony_converges_and_learns_gyro_bias():
     np.testing.assert_allclose(out.gyro_bias, bias, rtol=0.01)
 
 
+def test_printed_eq2_arctan_loses_the_quadrant_and_the_unclipped_arcsin_fails_at_90_deg():
+    hpr, q = random_quats(500)
+    out = ahrs.printed_eq2_arctan(q)
+    np.testing.assert_allclose(out[:, 1], hpr[:, 1], atol=1e-12)                         # pitch below 90 deg: fine
+    same = np.abs(attitude.wrap_pi(out[:, [0, 2]] - hpr[:, [0, 2]]))
+    assert np.all((same < 1e-9) | (np.abs(same - np.pi) < 1e-9))                        # right, or off by 180 deg
+    assert same.max() > 3.0 and np.abs(out[:, [0, 2]]).max() <= np.pi / 2
+    lock = attitude.euler_to_quat(np.stack([hpr[:, 0], np.full(500, np.pi / 2), hpr[:, 2]], -1))
+    assert np.isnan(ahrs.printed_eq2_arctan(lock)[:, 1]).any()
+    assert np.isfinite(attitude.quat_to_euler(lock)).all()
+
+
+def test_printed_eq6_differs_only_in_row_3():
+    _, q = random_quats(500)
+    d = ahrs.printed_eq6(q, B_REF) - qkf.measurement_model(q, B_REF)[:, 3:]
+    assert np.abs(d[:, :2]).max() < 1e-14
+    q0, q1, q2, q3 = q.T
+    np.testing.assert_allclose(d[:, 2], 2 * (q2 ** 2 - q3 ** 2) * B_REF[2], atol=1e-14)
+
+
+def test_printed_mahony_order_is_the_corrected_correction_reversed_and_diverges():
+    hpr = np.array([0.5, 0.05, -0.1])
+    w, f, m = static_marg(hpr, 3000, np.random.default_rng(3), noise=(0.0, 0.0, 0.0))
+    q0 = attitude.euler_to_quat(hpr + [units.deg(20.0), 0, 0])
+    # one step without gyro: the printed increment is minus the corrected one, up to the normalisation (second order)
+    good = mh.mahony(w[:1], f[:1], DT, q0, m_b=m[:1], kp=1.0, ki=0.0).q_bn[0]
+    bad = ahrs.printed_eq12_mahony(w[:1], f[:1], m[:1], DT, q0, kp=1.0, ki=0.0)[0]
+    np.testing.assert_allclose(bad - q0, -(good - q0), atol=4 * np.sum((good - q0) ** 2))
+    assert np.abs(good - q0).max() > 1e-4
+    run = ahrs.printed_eq12_mahony(w, f, m, DT, q0, kp=1.0, ki=0.02)
+    err = np.linalg.norm(attitude.quat_to_rotvec(attitude.quat_mult(attitude.quat_conj(attitude.euler_to_quat(hpr)), run[-1])))
+    assert units.to_deg(err) > 45.0                                                       # driven away
+
+
 def test_kf_innovation_z_minus_h_converges_z_minus_Hq_stalls():
     hpr = np.array([0.0, 0.0, 0.0])
     w, f, m = static_marg(hpr, 30_000, np.random.default_rng(5), noise=(0.0, 0.0, 0.0))
@@ -507,6 +541,11 @@ BAD_CALLS = [
     ("printed_eq8_quat", lambda: ahrs.printed_eq8_quat([0.0, 0.0]), "hpr"),
     ("printed_eq18_gamma", lambda: ahrs.printed_eq18_gamma(_Q, -1.0), "dt"),
     ("printed_eq20_jacobian", lambda: ahrs.printed_eq20_jacobian(_Q, [0.5, 1.0, 0.0]), "b"),
+    ("printed_eq2_arctan", lambda: ahrs.printed_eq2_arctan(np.zeros(4)), "q"),
+    ("printed_eq6", lambda: ahrs.printed_eq6(_Q, [0.0, 1.0]), "b"),
+    ("printed_eq12_mahony", lambda: ahrs.printed_eq12_mahony(_W, _F[:5], _M, 0.01, _Q), "f_b"),
+    ("printed_eq12_mahony", lambda: ahrs.printed_eq12_mahony(_W, _F, np.zeros((10, 3)), 0.01, _Q), "m_b"),
+    ("printed_eq12_mahony", lambda: ahrs.printed_eq12_mahony(_W, _F, _M, 0.0, _Q), "dt"),
     # found by tools/fuzz.py (issue 15, item 4): the zero quaternion was accepted
     ("printed_eq2_roll", lambda: ahrs.printed_eq2_roll(np.zeros(4)), "q"),
     ("printed_eq4", lambda: ahrs.printed_eq4(np.zeros(4)), "q"),
@@ -570,6 +609,10 @@ FUZZ = {
     "printed_eq8_quat": (ahrs.printed_eq8_quat, dict(hpr=[0.1, 0.2, 0.3]), (), ()),
     "printed_eq18_gamma": (ahrs.printed_eq18_gamma, dict(q=_Q, dt=0.01), (), ()),
     "printed_eq20_jacobian": (ahrs.printed_eq20_jacobian, dict(q=_Q, b=B_REF), (), ()),
+    "printed_eq2_arctan": (ahrs.printed_eq2_arctan, dict(q=_Q), (), ()),
+    "printed_eq6": (ahrs.printed_eq6, dict(q=_Q, b=B_REF), (), ()),
+    "printed_eq12_mahony": (ahrs.printed_eq12_mahony, dict(w_ib_b=_W, f_b=_F, m_b=_M, dt=0.01, q0=_Q, kp=1.0, ki=0.02),
+                            (), ()),
     "MagGate": (obs.MagGate, dict(norm_tol=0.1, dip_tol=0.05), (), ()),
 }
 

@@ -157,3 +157,23 @@ def test_integrators_name_an_interval_they_cannot_integrate():
         euler.integrate_euler([0.0, 0.0, 0.0], w, 1e300)
     with pytest.raises(ValueError, match="^dt: the gyro turns up to"):          # was accepted: residuals of 1e297 rad
         rotation_bias.tilt_residuals(w, f, 1e300, [0, 20], 10)
+
+
+@pytest.mark.parametrize("options", [{}, {"allow_nan": True}, {"finite": False}, {"huge": True}])
+@pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf, 1e200, -1e200, None])
+def test_large_arrays_take_the_min_max_shortcut_with_the_same_outcome(options, bad):
+    # as_array skips its element-wise checks on large arrays whose min and max are in range: the outcome
+    # (accepted, or the same message) must be that of the small array with the same bad value
+    from navlib._validate import _SCAN_SIZE, as_array
+
+    def outcome(n):
+        x = np.linspace(-1.0, 1.0, n)
+        if bad is not None:
+            x[n // 2] = bad
+        try:
+            as_array(x, "x", **options)
+        except ValueError as exc:
+            return str(exc)
+        return "accepted"
+
+    assert outcome(4 * _SCAN_SIZE) == outcome(5)

@@ -247,6 +247,49 @@ def test_paper_series_and_its_typos():
         assert abs((xt - tm.transform(120 + off, 26.0)[1]) * 1e3 / mm - 1) < 0.05
 
 
+def test_printed_units_and_a_shorter_arc_series_fail():
+    """Errata E002-04 (l and W in degrees) and E002-05 (the printed arc series is right: one order less is not)."""
+    x, y = planar.paper_series(26.06, 119.2, 120.0, deg=True)
+    x_deg, y_deg = planar.paper_series(26.06, 119.2, 120.0, deg=True, printed_units=True)
+    assert y_deg / y > 50 and x_deg / x > 50                             # (180/pi)^k on every l^k term; A W in x
+    arc = planar.paper_meridian_arc(26.06, deg=True)
+    assert 1e-6 < abs(planar.paper_meridian_arc(26.06, deg=True, order=6) - arc) < 1e-5     # the e^8 terms: micrometres
+    assert abs(planar.paper_meridian_arc(26.06, deg=True, order=2) - arc) > 1.0
+
+
+def test_dead_reckoning_error_ms_matches_monte_carlo():
+    """The closed-form DR error (heading random walk) against simulated dead reckoning, within 4 standard errors."""
+    truth = planar_ekf.propagate([0.0, 0.0, 0.3, 1.0, 0.05], 0.5, 200)
+    R = np.diag([1.0, 1.0, 0.01, 0.02 ** 2, 0.05 ** 2])
+    ms = planar.dead_reckoning_error_ms(truth, 0.5, R, yaw_rate_bias=0.01)
+    rng = np.random.default_rng(7)
+    t = 0.5 * np.arange(len(truth))
+    sq = []
+    for _ in range(400):
+        speed = truth[:, 3] + 0.02 * rng.standard_normal(len(truth))
+        rate = truth[:, 4] + 0.01 + 0.05 * rng.standard_normal(len(truth))
+        dr, _ = planar_ekf.dead_reckoning(t, speed, rate, truth[0])
+        sq.append(analysis.position_error(dr, truth)[[50, -1]] ** 2)
+    sq = np.array(sq)
+    assert np.all(np.abs(sq.mean(0) - ms[[50, -1]]) < 4 * sq.std(0, ddof=1) / np.sqrt(len(sq)))
+    no_turn_noise = planar.dead_reckoning_error_ms(truth, 0.5, np.diag([1, 1, 1, 0.02 ** 2, 0.0]))
+    assert_allclose(no_turn_noise, 0.25 * 0.02 ** 2 * np.arange(len(truth)), atol=1e-9)   # speed noise alone: k T^2 sigma_v^2
+
+
+def test_ekf_error_ms_matches_monte_carlo():
+    """The linear covariance analysis of the EKF against simulated runs of the paper's pipeline, within 4 standard errors."""
+    truth = planar_ekf.propagate([0.0, 0.0, np.pi / 4, 1.0, 0.0], 0.5, 300)
+    t, origin = 0.5 * np.arange(len(truth)), np.deg2rad([26.06, 119.2])
+    ms = planar.ekf_error_ms(truth, 0.5)
+    per_run = []
+    for seed in range(60):
+        sens = planar.simulate_sensors(truth, origin, planar.R_PAPER, np.random.default_rng(seed))
+        est = planar.ekf(t, sens.gps, sens.heading, sens.speed, sens.yaw_rate, truth[0], origin=origin)
+        per_run.append(np.mean(analysis.position_error(est.x, truth) ** 2))
+    assert abs(np.mean(per_run) - ms.mean()) < 4 * np.std(per_run, ddof=1) / np.sqrt(len(per_run))
+    assert np.all(planar.ekf_error_ms(truth, 0.5, Q=np.zeros(5), P0=np.zeros(5)) == 0.0)   # no gain: the known start is kept
+
+
 def test_paper_series_is_conformal_through_local_scales():
     """The corrected Eq. (9) passed to geodesy.local_scales as ``project``: h = k, right angles (1e-8)."""
     lat, lon = np.meshgrid(np.linspace(0, 70, 8), 120 + np.linspace(-3, 3, 7))
@@ -346,6 +389,8 @@ VALID_CALLS = {                                 # one valid call per public func
     "simulate_sensors": dict(truth=Z3, origin=ORIGIN, R=planar.R_PAPER, rng=np.random.default_rng(0),
                              yaw_rate_bias=0.0, gps_valid=np.ones(3, bool)),
     "position_error": dict(estimate=Z3, truth=Z3),
+    "dead_reckoning_error_ms": dict(truth=Z3, T=0.5, R=planar.R_PAPER, yaw_rate_bias=0.0),
+    "ekf_error_ms": dict(truth=Z3, T=0.5, Q=planar.Q_PAPER, R=planar.R_PAPER, P0=np.eye(5), yaw_rate_bias=0.0),
 }
 RECORDS = {"EkfResult", "Sensors"}              # dataclasses filled by navlib from validated values
 CONSTANTS = {"Q_PAPER", "R_PAPER", "CHANNELS", "MAX_STEPS"}

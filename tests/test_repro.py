@@ -67,7 +67,7 @@ def test_passing_check_recorded(fake_root):
 
 def test_failing_check_raises_and_is_recorded(fake_root):
     repro.setup(NB)
-    repro.check("ok", 2.0, 2.0, 0.0, "src")  # |v - e| <= tol with tol 0 passes
+    repro.check("ok", 2.0, 2, 0.0, "src")  # |v - e| <= tol with tol 0 passes
     with pytest.raises(repro.ClaimCheckFailed, match="bad"):
         repro.check("bad", 1.2, 1.0, 0.1, "src")
     assert issubclass(repro.ClaimCheckFailed, AssertionError)
@@ -97,7 +97,7 @@ def test_check_range(fake_root):
     repro.setup(NB)
     assert repro.check_range("ratio", 0.8, "src", upper=1.0).passed
     assert repro.check_range("lo", 3.0, "src", lower=2.0).passed
-    assert repro.check_range("both", 2.0, "src", lower=2.0, upper=2.0).passed  # inclusive bounds
+    assert repro.check_range("both", 2.0, "src", lower=2, upper=2).passed  # inclusive bounds
     with pytest.raises(repro.ClaimCheckFailed):
         repro.check_range("too-high", 1.2, "src", upper=1.0)
     with pytest.raises(repro.ClaimCheckFailed):
@@ -195,7 +195,7 @@ def test_explicit_output_directory(tmp_path, monkeypatch):
     monkeypatch.setattr(repro, "_state", repro._State())
     with matplotlib.rc_context():
         repro.setup(NB, out_dir=tmp_path / "out")
-        repro.check("x", 1.0, 1.0, 0.0, "test")
+        repro.check("x", 1.0, 1, 0.0, "test")
     assert json.loads((tmp_path / "out" / NB / "results.json").read_text())["checks"][0]["name"] == "x"
     with pytest.raises(ValueError, match="^out_dir"):
         repro.setup(NB, out_dir=3)
@@ -232,7 +232,7 @@ def test_check_outside(fake_root):
     with pytest.raises(repro.ClaimCheckFailed, match="outside range"):
         repro.check_outside("inside", 1.5, "src", lower=1.0, upper=2.0)
     with pytest.raises(repro.ClaimCheckFailed):
-        repro.check_outside("on-bound", 2.0, "src", lower=1.0, upper=2.0)  # the interval is closed
+        repro.check_outside("on-bound", 2.0, "src", lower=1.0, upper=2)  # the interval is closed
     with pytest.raises(repro.ClaimCheckFailed):
         repro.check_outside("nan", np.nan, "src", lower=1.0, upper=2.0)
     with pytest.raises(ValueError, match="lower"):
@@ -244,7 +244,7 @@ def test_check_outside(fake_root):
 
 def test_results_of_a_notebook_without_paper_keep_their_format(fake_root):
     repro.setup(NB)
-    repro.check("x", 1.0, 1.0, 0.0, "src")
+    repro.check("x", 1.0, 1, 0.0, "src")
     repro.check_range("y", 1.0, "src", lower=0.0)
     data = _results(fake_root)
     assert list(data) == ["notebook", "checks"]
@@ -256,7 +256,7 @@ def test_results_of_a_notebook_without_paper_keep_their_format(fake_root):
 def test_verdict_reproduced_rests_on_its_checks(paper_root):
     repro.check("P999-FIG1-RMSE/a", 4.7123456, 4.77, 0.1, "src", unit="deg")
     repro.check("P999-FIG1-RMSE/b", 4.8, 4.77, 0.1, "src")
-    repro.check("P999-FIG1-RMSEX", 1.0, 1.0, 0.0, "not a check of that claim")
+    repro.check("P999-FIG1-RMSEX", 1.0, 1, 0.0, "not a check of that claim")
     v = repro.verdict("P999-FIG1-RMSE", "reproduced")
     assert v.checks == ["P999-FIG1-RMSE/a", "P999-FIG1-RMSE/b"] and v.evidence == []
     assert v.ours == "4.7123 deg" and v.paper is None         # the ledger shows the catalogue's paper value
@@ -286,12 +286,12 @@ def test_verdict_refuses_what_it_cannot_rest_on(paper_root):
     with pytest.raises(ValueError, match="^checks: .*failed"):
         repro.verdict("P999-FIG1-RMSE", "reproduced")
     with pytest.raises(ValueError, match="^figure:"):
-        repro.check("P999-EQ2-SIGN/corrected", 1.0, 1.0, 0.0, "src")
+        repro.check("P999-EQ2-SIGN/corrected", 1.0, 1, 0.0, "src")
         repro.verdict("P999-EQ2-SIGN", "reproduced", figure="never_saved")
 
 
 def test_verdict_differs_needs_numbers_reason_and_an_asserted_difference(paper_root):
-    repro.check("P999-FIG1-RMSE/rms", 0.34, 0.34, 0.05, "our stand-in against its theory", unit="deg")
+    repro.check("P999-FIG1-RMSE/rms", 0.34, 0.33, 0.05, "our stand-in against its theory", unit="deg")
     with pytest.raises(ValueError, match="^evidence:"):
         repro.verdict("P999-FIG1-RMSE", "differs", paper=4.77, ours=0.34, reason="hardware")
     repro.check_outside("P999-FIG1-RMSE/differs", 0.34, "paper 4.77 +- 3 sd", lower=3.0, upper=6.5, unit="deg")
@@ -306,7 +306,7 @@ def test_verdict_differs_needs_numbers_reason_and_an_asserted_difference(paper_r
 
 
 def test_verdict_with_correction_names_a_listed_erratum_and_a_failing_printed_form(paper_root):
-    repro.check("P999-EQ2-SIGN/corrected", 1.0, 1.0, 1e-9, "erratum E999-01")
+    repro.check("P999-EQ2-SIGN/corrected", 1.0, 1, 1e-9, "erratum E999-01")
     with pytest.raises(ValueError, match="^evidence:"):
         repro.verdict("P999-EQ2-SIGN", "reproduced with correction", erratum="E999-01")
     repro.check_outside("P999-EQ2-SIGN/printed", -1.0, "printed sign", lower=1 - 1e-9, upper=1 + 1e-9)
@@ -334,3 +334,37 @@ def test_verdict_before_setup(fake_root):
         repro.verdict("P999-FIG1-RMSE", "reproduced")
     with pytest.raises(ValueError, match="^paper:"):
         repro.setup(NB, paper=0)
+
+
+def test_a_value_that_is_its_own_target_is_refused(fake_root):
+    """The run-time half of tests/test_check_values.py: the very object passed as the target."""
+    repro.setup(NB)
+    x = np.float64(0.25)
+    with pytest.raises(ValueError, match="^value: is the very object passed as expected"):
+        repro.check("self", x, x, 0.1, "src")
+    with pytest.raises(ValueError, match="^value: .* as paper_value"):
+        repro.check("self-paper", x, 0.25, 0.1, "src", paper_value=x)
+    with pytest.raises(ValueError, match="^value: .* as lower"):
+        repro.check_range("self-lower", x, "src", lower=x)
+    with pytest.raises(ValueError, match="^value: .* as upper"):
+        repro.check_outside("self-upper", x, "src", lower=-1.0, upper=x)
+    assert repro.check("equal, not the same", np.float64(0.25), x, 0.0, "src").passed     # equal values are not refused
+    n = int(np.sum(np.zeros(3) > 1))
+    assert repro.check_range("count", n, "src", lower=0, upper=0).passed            # small ints are shared: not refused
+    refused = True
+    # a literal chosen by a computed condition is the target's own object in CPython (one constant per code object)
+    assert repro.check("outcome", 0.0 if refused else 1.0, 0.0, 0.0, "src").passed
+    assert [c.name for c in repro.results()] == ["equal, not the same", "count", "outcome"]
+
+
+def test_a_check_on_printed_numbers_is_recorded_as_such(fake_root):
+    repro.setup(NB)
+    tab = np.array([12.5, 20.3, 35.6])
+    repro.check("P999-TAB1-MAX", tab.max(), 35.6, 0.0, "text vs Table 1", on_printed=True)
+    repro.check_range("P999-TAB1-GROWS", np.diff(tab).min(), "Table 1", lower=0.0, on_printed=True)
+    repro.check("P999-SIM", 1.0, 1.01, 0.1, "simulation")
+    rows = {r["name"]: r for r in _results(fake_root)["checks"]}
+    assert rows["P999-TAB1-MAX"]["on_printed"] is True and rows["P999-TAB1-GROWS"]["on_printed"] is True
+    assert "on_printed" not in rows["P999-SIM"]                 # written only when set
+    with pytest.raises(ValueError, match="^on_printed:"):
+        repro.check("bad-flag", 1.0, 1.01, 0.1, "src", on_printed="yes")

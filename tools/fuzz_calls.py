@@ -70,7 +70,7 @@ def _setup():
 
 def _setup_verdict():
     repro.setup("zz_fuzz", paper="000", style=False)
-    repro.check("P000-EQ3-EULER/fuzz", 1.0, 1.0, 0.1, "src")
+    repro.check("P000-EQ3-EULER/fuzz", 1.0, 1.05, 0.1, "src")
 
 
 def _mc_batch(ids, streams):
@@ -324,6 +324,9 @@ def table() -> dict:
         "papers.gauss_kruger_ekf.simulate_sensors": Call(dict(truth=gk_truth, origin=gk_origin,
                                                               R=gauss_kruger_ekf.R_PAPER, rng=RNG)),
         "papers.gauss_kruger_ekf.Sensors": Skip("a result record, built by simulate_sensors"),
+        "papers.gauss_kruger_ekf.dead_reckoning_error_ms": Call(dict(truth=gk_truth, T=0.5, R=gauss_kruger_ekf.R_PAPER)),
+        "papers.gauss_kruger_ekf.ekf_error_ms": Call(dict(truth=gk_truth, T=0.5, Q=gauss_kruger_ekf.Q_PAPER,
+                                                          R=gauss_kruger_ekf.R_PAPER)),
         "papers.mimu_mag_rtk.printed_eq2_roll": Call(dict(q=Q), elementwise=("*",)),
         "papers.mimu_mag_rtk.printed_eq4": Call(dict(q=Q), elementwise=("*",)),
         "papers.mimu_mag_rtk.printed_eq5_tilt": Call(dict(f_b=F[0]), elementwise=("*",)),
@@ -331,6 +334,9 @@ def table() -> dict:
         "papers.mimu_mag_rtk.printed_eq8_quat": Call(dict(hpr=HPR), elementwise=("*",)),
         "papers.mimu_mag_rtk.printed_eq18_gamma": Call(dict(q=Q, dt=DT)),
         "papers.mimu_mag_rtk.printed_eq20_jacobian": Call(dict(q=Q, b=np.array([0.0, 20.0, -40.0]))),
+        "papers.mimu_mag_rtk.printed_eq2_arctan": Call(dict(q=Q), elementwise=("*",)),
+        "papers.mimu_mag_rtk.printed_eq6": Call(dict(q=Q, b=np.array([0.0, 0.6, -0.8]))),
+        "papers.mimu_mag_rtk.printed_eq12_mahony": Call(dict(w_ib_b=W, f_b=F, m_b=M, dt=DT, q0=Q, kp=1.0, ki=0.02)),
         "papers.north_finding.Candidates": Skip("a result record, built by heading_candidates"),
         "papers.north_finding.heading_candidates": Call(dict(w_y=static_w[0, 1], f_b=static_f[0], lat=0.6, h=50.0),
                                                          elementwise=("w_y", "lat", "h")),

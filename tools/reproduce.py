@@ -18,7 +18,7 @@ byte-identical to an earlier run's (``make determinism``).
 
 Notebooks run ``--jobs`` at a time (default 2), each in its own kernel, the longest first (by the
 previous run's times in ``build/summary.json``); each is reported with its wall time and its kernel's
-peak memory (resident set size). A notebook that raises is
+peak memory (resident set size, read from /proc while the kernel runs; "n/a" where there is none). A notebook that raises is
 reported and the run goes on with the others; the
 exit status is non-zero if any notebook failed. ``--only`` runs a subset, and
 the report then covers that subset only. Needs no network.
@@ -34,7 +34,6 @@ import html
 import json
 import multiprocessing
 import os
-import resource
 import shutil
 import sys
 import time
@@ -69,12 +68,26 @@ def error_line(exc: BaseException) -> str:
     return lines[-1] if lines else type(exc).__name__
 
 
+def kernel_peak_mb(client: NotebookClient) -> float | None:
+    """Peak resident memory (MB) of the client's kernel process so far (Linux: VmHWM), or None."""
+    try:
+        status = Path(f"/proc/{client.km.provisioner.process.pid}/status").read_text()
+    except (AttributeError, OSError):
+        return None
+    return next((int(line.split()[1]) / 1024 for line in status.splitlines() if line.startswith("VmHWM:")), None)
+
+
 def run_notebook(path: Path, build: Path, timeout: int) -> dict:
     """Execute one notebook, write its .ipynb/.html, return its summary entry."""
     stem = path.stem
     shutil.rmtree(build / stem, ignore_errors=True)  # no stale results or figures
     nb = nbformat.read(path, as_version=4)
-    client = NotebookClient(nb, kernel_name="python3", timeout=timeout,
+    peak = {"mb": None}
+
+    def after_cell(**_):                    # the kernel's high-water mark, read while it is alive
+        peak["mb"] = kernel_peak_mb(client) or peak["mb"]
+
+    client = NotebookClient(nb, kernel_name="python3", timeout=timeout, on_cell_executed=after_cell,
                             resources={"metadata": {"path": str(path.parent)}})
     error = None
     start = time.perf_counter()
@@ -84,8 +97,7 @@ def run_notebook(path: Path, build: Path, timeout: int) -> dict:
         except Exception as exc:  # report it and go on with the next notebook
             error = error_line(exc)
     seconds = time.perf_counter() - start
-    # This worker runs one notebook (max_tasks_per_child=1): its reaped children are this kernel.
-    peak_mb = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024
+    peak_mb = None if peak["mb"] is None else round(peak["mb"])
     nbformat.write(nb, build / f"{stem}.ipynb")
     body, _ = HTMLExporter().from_notebook_node(nb)
     (build / f"{stem}.html").write_text(body, encoding="utf-8")
@@ -96,8 +108,12 @@ def run_notebook(path: Path, build: Path, timeout: int) -> dict:
     figures = sorted(p.relative_to(build).as_posix() for p in (build / stem / "figures").glob("*.png"))
     header = next((c.source for c in nb.cells if c.cell_type == "markdown"), "")
     return {"notebook": stem, "ok": error is None and passed == len(checks), "error": error,
-            "seconds": round(seconds, 1), "peak_mb": round(peak_mb), "checks_passed": passed, "checks_total": len(checks),
+            "seconds": round(seconds, 1), "peak_mb": peak_mb, "checks_passed": passed, "checks_total": len(checks),
             "checks": checks, "figures": figures, "header": header}
+
+
+def mb(x: float | None) -> str:
+    return "n/a" if x is None else f"{x} MB"
 
 
 def fmt(x, unit: str = "") -> str:
@@ -263,15 +279,15 @@ def main(argv=None) -> int:
     order = sorted(notebooks, key=lambda p: -last.get(p.stem, {}).get("seconds", 0.0))
     start = time.perf_counter()
     done = {}
-    with ProcessPoolExecutor(max(1, args.jobs), mp_context=multiprocessing.get_context("spawn"),
-                             max_tasks_per_child=1) as pool:
+    # Workers are reused (each imports nbclient and nbconvert once, ~3 s); every notebook gets a new kernel.
+    with ProcessPoolExecutor(max(1, args.jobs), mp_context=multiprocessing.get_context("spawn")) as pool:
         futures = {pool.submit(run_notebook, path, build, args.timeout): path for path in order}
         print(f"executing {len(notebooks)} notebooks, {max(1, args.jobs)} at a time ...", flush=True)
         for future in as_completed(futures):
             e = done[futures[future]] = future.result()
             tail = "" if e["error"] is None else f"\n    ERROR: {e['error']}"
             print(f"[{len(done)}/{len(notebooks)}] {e['notebook']} {'done' if e['ok'] else 'FAILED'} "
-                  f"in {e['seconds']:.1f} s, peak memory {e['peak_mb']} MB{tail}", flush=True)
+                  f"in {e['seconds']:.1f} s, peak memory {mb(e['peak_mb'])}{tail}", flush=True)
     entries = [done[path] for path in notebooks]
     wall = time.perf_counter() - start
 
@@ -286,7 +302,7 @@ def main(argv=None) -> int:
     for e in entries:
         mark = "" if e["ok"] else "   FAILED"
         checks = f"{e['checks_passed']}/{e['checks_total']}"
-        print(f"{e['notebook']:<{width}}{checks:>7} checks passed{e['seconds']:>9.1f} s{e['peak_mb']:>7} MB{mark}")
+        print(f"{e['notebook']:<{width}}{checks:>7} checks passed{e['seconds']:>9.1f} s{mb(e['peak_mb']):>10}{mark}")
     n_ok = sum(e["ok"] for e in entries)
     passed = sum(e["checks_passed"] for e in entries)
     total = sum(e["checks_total"] for e in entries)

@@ -42,6 +42,7 @@ from .._validate import (
     instance,
     integer,
     intervals,
+    kernel_array,
     nonempty_array,
     refuse_turn,
     same_shape,
@@ -480,7 +481,7 @@ def heading_input(heading_rtk: ArrayLike, rtk_valid: ArrayLike, shape: tuple[int
     if bad.any():
         raise ValueError(f"{name}: valid epochs must hold headings in [0, 2 pi) rad (or NaN for a dropout); "
                          f"{int(bad.sum())} do not (first: {used[bad][0]!r})")
-    return np.ascontiguousarray(h.reshape(-1, shape[-1])), np.ascontiguousarray(v.reshape(-1, shape[-1]))
+    return kernel_array(h.reshape(-1, shape[-1])), kernel_array(v.reshape(-1, shape[-1]))   # writable: one signature
 
 
 def rtk_params(rtk_hold: float, rtk_gate: float | None, rtk_confirm: int) -> np.ndarray:
@@ -560,7 +561,7 @@ def prepare_inputs(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, 
     stuck_run = stuck_run_samples(stuck_run, typical)
     kp = scalar(kp, "kp", positive=True, allow_zero=True)
     settle = SETTLE_TIME_CONSTANTS / kp if kp > 0 else 0.0
-    w, f = np.ascontiguousarray(w.reshape(T, N, 3)), f.reshape(T, N, 3)
+    w, f = kernel_array(w.reshape(T, N, 3)), f.reshape(T, N, 3)
     # Saturation: counted here; accelerometer/magnetometer samples at the rails become NaN (skipped by the
     # kernel exactly like a dropout; the kernel's skip counts are corrected in _result), gyro samples are used.
     sat = np.zeros((T, 3), dtype=np.int64)
@@ -582,7 +583,7 @@ def prepare_inputs(w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, q0: Quat, 
     stuck, turn = np.zeros((T, N), dtype=bool), np.zeros(T)
     run_trials(_screen, T, w, dts, max_dt, stuck_run or 0, rails[0], stuck, turn)       # rails[0]: the gyro's
     refuse_turn(float(turn.max()))                              # (clock jumps are not integrated)
-    inputs = AttitudeInputs(q, w, np.ascontiguousarray(f), np.ascontiguousarray(m), hdg, ok, use_rtk, use_mag, dts,
+    inputs = AttitudeInputs(q, w, kernel_array(f), kernel_array(m), hdg, ok, use_rtk, use_mag, dts,
                             gates, jump, rtk_par, max_dt, stuck_run or auto, settle, stuck)
     return lead, inputs, Screened(sat, stuck, dts > max_dt)
 

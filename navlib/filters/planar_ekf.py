@@ -458,6 +458,23 @@ def _screen(x, P, z, R, gate, gate_on, w_range, zu, rejected_row, streak, reacqu
 
 
 @njit(cache=True)
+def _add_scaled(P, Q, s):
+    """P += Q * s, element by element (an array expression compiles numba's shape-error message: seconds)."""
+    for i in range(5):
+        for j in range(5):
+            P[i, j] += Q[i, j] * s if s != 1.0 else Q[i, j]
+
+
+@njit(cache=True)
+def _store(X, Ps, k, x, P):
+    """X[k], Ps[k] = x, P element by element."""
+    for i in range(5):
+        X[k, i] = x[i]
+        for j in range(5):
+            Ps[k, i, j] = P[i, j]
+
+
+@njit(cache=True)
 def _ekf_kernel(t, Z, x0, P0, Q, R, gate, fast, w_range, reacquire, jump, t_nominal):
     n = t.shape[0]
     X = np.empty((n, 5))
@@ -478,16 +495,16 @@ def _ekf_kernel(t, Z, x0, P0, Q, R, gate, fast, w_range, reacquire, jump, t_nomi
     Phi_P = np.empty((5, 5))
     zu = np.empty(5)
     x, P = x0.copy(), P0.copy()
-    X[0], Ps[0] = x, P
+    _store(X, Ps, 0, x, P)
     for k in range(1, n):
         T = t[k] - t[k - 1]
         if jump[k]:                                        # clock jump: state held, Q for every nominal step
-            P += Q * (T / t_nominal)
+            _add_scaled(P, Q, T / t_nominal)
         else:
             Phi = _phi(x, T)                               # Eq. (16) at the previous estimate
             _mul(Phi, P, Phi_P)
             _mul_bt(Phi_P, Phi, P)
-            P += Q                                         # P = Phi P Phi^T + Gamma Q Gamma^T, Gamma = I
+            _add_scaled(P, Q, 1.0)                         # P = Phi P Phi^T + Gamma Q Gamma^T, Gamma = I
             x = _f(x, T)                                   # Eq. (13)
         z = Z[k]
         n_rej, sat = 0, False
@@ -502,7 +519,7 @@ def _ekf_kernel(t, Z, x0, P0, Q, R, gate, fast, w_range, reacquire, jump, t_nomi
         else:                                              # dropouts: the general kernel
             x, P, _, nis[k], status[k] = _kernels.kalman_update(x, P, z, x, H, R, _ANGLE_MASK, np.inf)
         x[_HEADING] = np.mod(x[_HEADING], 2 * np.pi)
-        X[k], Ps[k] = x, P
+        _store(X, Ps, k, x, P)
     return X, Ps, nis, status, rejected, reacquired
 
 

@@ -15,7 +15,10 @@ in one zone held for the whole run, so a run crossing a zone boundary stays cont
 heading turned from true to grid north by the convergence the paper omits, erratum E002-09;
 ``theta_IMU`` absolute and ``omega_IMU`` the vertical gyro rate, erratum E002-08), the robot's
 square loop (:func:`waypoint_path`) and its simulated sensors (:func:`simulate_sensors`).
-Faults are handled and counted as in :func:`navlib.filters.planar_ekf.filter_grid`.
+Faults are handled and counted as in :func:`navlib.filters.planar_ekf.filter_grid`. For the
+paper's simulations (Figs. 4-5) the expected errors follow in closed form: of dead reckoning on
+those sensors (:func:`dead_reckoning_error_ms`, a heading random walk) and of the EKF (:func:`ekf_error_ms`,
+a linear covariance analysis of the printed Q and R), against which the Monte Carlo runs are checked.
 
 The paper's own projection equations, kept to check them and to show its errata (default
 ellipsoid ``earth.CGCS2000``, the paper's datum):
@@ -28,12 +31,13 @@ ellipsoid ``earth.CGCS2000``, the paper's datum):
   printed, ``a^2 (1 - e1^2) / sqrt((1 + e2^2 sin^2 W)^(3/2))``, is wrong by
   seven orders of magnitude (erratum E002-02, :func:`printed_meridian_radius`).
 * Eq. (7)–(8) meridian arc ``S`` to e^8 (:func:`paper_meridian_arc`; correct,
-  erratum E002-05).
+  erratum E002-05; ``order`` drops the later terms to show what a missing one would cost).
 * Eq. (9)–(11) sixth-order series in l (:func:`paper_series`). As printed,
   the l^6 term of x has ``R_N/72`` and ``270 eta^4``; the correct values are
   ``R_N/720`` and ``270 eta^2`` (erratum E002-03), ``N`` means ``R_N``, and l, W are
-  in radians (erratum E002-04). ``typos=True`` keeps the printed typos only to show
-  the error they cause. It is a projection ``(lat, lon, lon0, ellipsoid) -> (x, y)``,
+  in radians (erratum E002-04). ``typos=True`` keeps the printed typos and
+  ``printed_units=True`` substitutes l (and the linear W of Eq. 7) in degrees, only to show
+  the error each causes. It is a projection ``(lat, lon, lon0, ellipsoid) -> (x, y)``,
   so :func:`navlib.geodesy.local_scales` takes it as ``project`` to check that it is conformal.
 
 The paper writes L for longitude and W for latitude; the functions take ``lat``, ``lon`` in rad
@@ -52,6 +56,7 @@ from .._validate import (
     as_array,
     booleans,
     broadcast,
+    choice,
     flag,
     generator,
     nonempty_array,
@@ -65,7 +70,8 @@ from ..earth import CGCS2000, Ellipsoid
 from ..filters.planar_ekf import covariance, filter_grid, propagate
 
 __all__ = ["Q_PAPER", "R_PAPER", "MAX_STEPS", "printed_zone_number", "paper_radii", "printed_meridian_radius",
-           "paper_meridian_arc", "paper_series", "waypoint_path", "ekf", "simulate_sensors", "Sensors"]
+           "paper_meridian_arc", "paper_series", "waypoint_path", "ekf", "simulate_sensors", "Sensors",
+           "dead_reckoning_error_ms", "ekf_error_ms"]
 
 Q_PAPER = np.diag([1.0, 1.0, 0.01, 0.0001, 0.0016])
 """Process noise per step, Eq. (17) (SI reading: m², m², rad², m²/s², rad²/s²)."""
@@ -132,7 +138,7 @@ def printed_meridian_radius(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg
     return ellipsoid.a ** 2 * (1 - e1 ** 2) / np.sqrt((1 + e2 ** 2 * np.sin(W) ** 2) ** 1.5)
 
 
-def paper_meridian_arc(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False) -> Array:
+def paper_meridian_arc(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False, order: int = 8) -> Array:
     """Eqs. (7)–(8): meridian arc length S from the equator (m), series to e^8 (correct, erratum E002-05).
 
     ``S = a(1-e^2)[A W - B/2 sin 2W + C/4 sin 4W - D/6 sin 6W + E/8 sin 8W]``:
@@ -143,22 +149,30 @@ def paper_meridian_arc(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: boo
     ----------
     lat : array_like, shape (...)
         Geodetic latitude (rad, or deg with ``deg=True``).
+    order : {8, 6, 4, 2}
+        Highest power of e1 kept in A-E: 8 as printed; a lower order drops the later
+        terms, only to show what a missing term would cost (millimetres for e^8).
     """
     _ell(ellipsoid)
-    lat = nonempty_latitude(lat, "lat", deg=deg)
+    W = nonempty_latitude(lat, "lat", deg=deg)
+    return _meridian_arc(W, W, ellipsoid, choice(order, "order", (8, 6, 4, 2)))
+
+
+def _meridian_arc(W, W_linear, ellipsoid: Ellipsoid, order: int = 8):
+    """Eq. (7) with the latitude ``W_linear`` in its linear term ``A W`` (W itself unless E002-04's degrees are shown)."""
     e2 = ellipsoid.e2
-    e4, e6, e8 = e2 ** 2, e2 ** 3, e2 ** 4
+    e4, e6, e8 = (e2 ** k if 2 * k <= order else 0.0 for k in (2, 3, 4))
     A = 1 + 3 / 4 * e2 + 45 / 64 * e4 + 175 / 256 * e6 + 11025 / 16384 * e8
     B = 3 / 4 * e2 + 15 / 16 * e4 + 525 / 512 * e6 + 2205 / 2048 * e8
     C = 15 / 64 * e4 + 105 / 256 * e6 + 2205 / 4096 * e8
     D = 35 / 512 * e6 + 315 / 2048 * e8
     E = 315 / 16384 * e8
-    return ellipsoid.a * (1 - e2) * (A * lat - B / 2 * np.sin(2 * lat) + C / 4 * np.sin(4 * lat)
-                                     - D / 6 * np.sin(6 * lat) + E / 8 * np.sin(8 * lat))
+    return ellipsoid.a * (1 - e2) * (A * W_linear - B / 2 * np.sin(2 * W) + C / 4 * np.sin(4 * W)
+                                     - D / 6 * np.sin(6 * W) + E / 8 * np.sin(8 * W))
 
 
 def paper_series(lat: ArrayLike, lon: ArrayLike, lon0: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False,
-                 typos: bool = False) -> tuple[Array, Array]:
+                 typos: bool = False, printed_units: bool = False) -> tuple[Array, Array]:
     """The paper's sixth-order GK series, Eqs. (7)–(11): northing x and easting y (m).
 
     With ``t = tan W``, ``eta^2 = e2^2 cos^2 W`` and ``N = R_N``::
@@ -169,7 +183,10 @@ def paper_series(lat: ArrayLike, lon: ArrayLike, lon0: ArrayLike, ellipsoid: Ell
               + N/120 l^5 cos^5W (5 - 18 t^2 + t^4 + 14 eta^2 - 58 eta^2 t^2)
 
     ``typos=True`` uses the printed ``N/72`` and ``270 eta^4`` (erratum E002-03) to
-    show their effect; l and W in radians (erratum E002-04). The production projection
+    show their effect; l and W in radians (erratum E002-04). ``printed_units=True`` shows
+    that erratum's failure instead: l of Eq. (10) and the linear W of Eq. (7) enter in the
+    degrees of Eqs. (1)-(2), as the paper leaves them (the sines and cosines still take the
+    angle), so the l^k terms are (180/pi)^k too large. The production projection
     is :func:`navlib.geodesy.geodetic2gk`.
 
     Parameters
@@ -179,19 +196,20 @@ def paper_series(lat: ArrayLike, lon: ArrayLike, lon0: ArrayLike, ellipsoid: Ell
     """
     _ell(ellipsoid)
     typos = flag(typos, "typos")
+    printed_units = flag(printed_units, "printed_units")
     W, lon_deg = _validate_lat_lon(lat, lon, deg)
     L0 = _lon_deg(lon0, deg, "lon0")
     l_deg = lon_deg - L0
     if np.any(np.abs(l_deg) > 6.0):
         raise ValueError(f"lon: expected |lon - lon0| <= 6°, got {np.abs(l_deg).max():.4g}°")
-    l = np.deg2rad(l_deg)
+    l = l_deg if printed_units else np.deg2rad(l_deg)
     _, e2, N, _ = paper_radii(W, ellipsoid)
     t2 = np.tan(W) ** 2
     eta2 = e2 ** 2 * np.cos(W) ** 2
     s, c = np.sin(W), np.cos(W)
     sixth = (N / 72 if typos else N / 720) * l ** 6 * s * c ** 5 \
         * (61 - 58 * t2 + t2 ** 2 + 270 * (eta2 ** 2 if typos else eta2) - 330 * eta2 * t2)
-    x = (paper_meridian_arc(W, ellipsoid) + N / 2 * l ** 2 * s * c
+    x = (_meridian_arc(W, np.rad2deg(W) if printed_units else W, ellipsoid) + N / 2 * l ** 2 * s * c
          + N / 24 * l ** 4 * s * c ** 3 * (5 - t2 + 9 * eta2 + 4 * eta2 ** 2) + sixth)
     y = (N * l * c + N / 6 * l ** 3 * c ** 3 * (1 - t2 + eta2)
          + N / 120 * l ** 5 * c ** 5 * (5 - 18 * t2 + t2 ** 2 + 14 * eta2 - 58 * eta2 * t2))
@@ -427,3 +445,116 @@ def simulate_sensors(truth, origin, R, rng: np.random.Generator, *, zone=None, w
     return Sensors(gps, heading, truth[:, 3] + noise[:, 3], truth[:, 4] + noise[:, 4] + yaw_rate_bias)
 
 
+
+
+# --------------------------------------------------------------------------
+# Expected errors of the paper's simulations (Figs. 4-5), in closed form
+# --------------------------------------------------------------------------
+
+def _sensor_sigmas(R, name: str = "R") -> np.ndarray:
+    return np.sqrt(np.diag(covariance(R, name)))
+
+
+def dead_reckoning_error_ms(truth, T: float, R, yaw_rate_bias: float = 0.0) -> Array:
+    """Expected squared position error (m²) of dead reckoning on :func:`simulate_sensors`' speed and yaw rate.
+
+    :func:`navlib.filters.planar_ekf.dead_reckoning` integrates the measured speed
+    ``v_j + eps_j`` and yaw rate ``w_j + n_j + b`` from the true initial state, with white
+    noise of sigmas ``sqrt(R[3, 3])`` and ``sqrt(R[4, 4])`` and a constant ``yaw_rate_bias`` b.
+    Its heading error after j steps, ``phi_j = T sum_{m<j} (n_m + b)``, is a Gaussian random
+    walk, so with ``a_j = v_j exp(i theta_j)`` (true speed and heading, grid as x + i y),
+    ``q = exp(i b T - (sigma_w T)^2 / 2)`` and ``u_j = E exp(i phi_j) = q^j`` the error after K
+    steps has, exactly for this discrete model (no small-angle approximation),
+
+        E|e_K|^2 = T^2 [ sum_{j,k<K} a_j conj(a_k) E exp(i(phi_j - phi_k))
+                         - |sum a_j u_j|^2 + |sum a_j (1 - u_j)|^2 + K sigma_v^2 ]
+
+    with ``E exp(i(phi_j - phi_k)) = q^(j-k)`` for j >= k: its variance plus the square of its
+    mean (the bias and the shrinking mean of a wandering heading). Computed in O(N).
+
+    Parameters
+    ----------
+    truth : array_like, shape (N, 5)
+        True states ``[x north, y east, theta, v, omega]`` (a noise-free path, e.g. from
+        :func:`navlib.filters.planar_ekf.propagate`), N >= 2.
+    T : float
+        Step (s).
+    R : array_like, shape (5, 5) or (5,)
+        Sensor noise covariance as in :func:`simulate_sensors` (only the speed and yaw-rate
+        variances are used).
+    yaw_rate_bias : float
+        Constant gyro bias (rad/s).
+
+    Returns
+    -------
+    ms : ndarray, shape (N,)
+        ``E|dr_k - truth_k|^2`` (m²) for every step; 0 at the start.
+    """
+    truth = as_array(truth, "truth", shape=(None, 5))
+    if len(truth) < 2:
+        raise ValueError(f"truth: expected at least 2 states, got {len(truth)}")
+    T = scalar(T, "T", positive=True)
+    sigma = _sensor_sigmas(R)
+    b = scalar(yaw_rate_bias, "yaw_rate_bias")
+    K = len(truth) - 1
+    a = truth[:K, 3] * np.exp(1j * truth[:K, 2])
+    q = np.exp(1j * b * T - (sigma[4] * T) ** 2 / 2)
+    u = q ** np.arange(K)
+    h = np.zeros(K, complex)                                   # h_j = sum_{k<j} conj(a_k) q^(j-k)
+    for j in range(1, K):
+        h[j] = q * (h[j - 1] + np.conj(a[j - 1]))
+    both = np.cumsum(np.abs(a) ** 2 + 2 * np.real(a * h))      # sum over j, k < K of a_j conj(a_k) q^(j-k)
+    A, Au = np.cumsum(a), np.cumsum(a * u)
+    ms = T ** 2 * (both - np.abs(Au) ** 2 + np.abs(A - Au) ** 2 + np.arange(1, K + 1) * sigma[3] ** 2)
+    return np.r_[0.0, np.maximum(ms, 0.0)]
+
+
+def ekf_error_ms(truth, T: float, Q=Q_PAPER, R=R_PAPER, P0=None, yaw_rate_bias: float = 0.0) -> Array:
+    """Expected squared position error (m²) of :func:`ekf` on :func:`simulate_sensors`: a linear covariance analysis.
+
+    Along the true states the filter's own recursion (Eq. 16's Phi at the truth, ``P = Phi P Phi^T + Q``,
+    H = I5, ``K = P (P + R)^-1``) gives its gains; the actual error, on a noise-free path seen
+    through truth + N(0, R) sensors whose yaw rate carries ``yaw_rate_bias``, then obeys to first order
+    ``e- = Phi e+`` and ``e+ = (I - K) e- + K v``, so its covariance and mean follow
+    ``S- = Phi S+ Phi^T``, ``S+ = (I - K) S- (I - K)^T + K R K^T`` and ``m+ = (I - K) Phi m+ + K [0, 0, 0, 0, b]``.
+    The start is known exactly (S = 0, m = 0) and the filter's P starts at ``P0``.
+
+    Parameters
+    ----------
+    truth : array_like, shape (N, 5)
+        True states, N >= 2.
+    T : float
+        Step (s).
+    Q, R : array_like, shape (5, 5) or (5,)
+        The filter's process noise per step and the sensors' (and filter's) measurement noise.
+    P0 : array_like, shape (5, 5) or (5,), optional
+        Initial covariance of the filter; default zeros (the paper's P(0) = 0).
+    yaw_rate_bias : float
+        Constant gyro bias of the sensors (rad/s).
+
+    Returns
+    -------
+    ms : ndarray, shape (N,)
+        ``E|x_k - truth_k|^2`` of the position (m²) at every epoch; 0 at the start.
+    """
+    from ..filters.planar_ekf import jacobian
+
+    truth = as_array(truth, "truth", shape=(None, 5))
+    if len(truth) < 2:
+        raise ValueError(f"truth: expected at least 2 states, got {len(truth)}")
+    T = scalar(T, "T", positive=True)
+    Q, R = covariance(Q, "Q"), covariance(R, "R")
+    P = np.zeros((5, 5)) if P0 is None else covariance(P0, "P0").copy()
+    b = np.array([0.0, 0.0, 0.0, 0.0, scalar(yaw_rate_bias, "yaw_rate_bias")])
+    S, m = np.zeros((5, 5)), np.zeros(5)
+    ms = np.zeros(len(truth))
+    eye = np.eye(5)
+    for k, Phi in enumerate(jacobian(truth[:-1], T), start=1):
+        P = Phi @ P @ Phi.T + Q
+        gain = np.linalg.solve((P + R).T, P.T).T               # P (P + R)^-1
+        A = eye - gain
+        P = A @ P @ A.T + gain @ R @ gain.T
+        S = A @ (Phi @ S @ Phi.T) @ A.T + gain @ R @ gain.T
+        m = A @ (Phi @ m) + gain @ b
+        ms[k] = S[0, 0] + S[1, 1] + m[0] ** 2 + m[1] ** 2
+    return ms

@@ -78,15 +78,18 @@ for Sec. 2.5 is :mod:`navlib.filters.heading_fusion`.
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .. import attitude
-from .._typing import Angles, Array, Quat, Vec3
-from .._validate import as_quat, euler_angles, nonempty_array
+from .._typing import Angles, Array, Interval, Quat, Vec3, Vec3Series
+from .._validate import as_quat, euler_angles, nonempty_array, scalar
 from ..filters.quaternion_kf import measurement_jacobian, noise_input
 
-__all__ = ["printed_eq2_roll", "printed_eq4", "printed_eq5_tilt",
-           "printed_eq7_heading", "printed_eq8_quat", "printed_eq18_gamma", "printed_eq20_jacobian"]
+__all__ = ["printed_eq2_roll", "printed_eq2_arctan", "printed_eq4", "printed_eq5_tilt", "printed_eq6",
+           "printed_eq7_heading", "printed_eq8_quat", "printed_eq12_mahony", "printed_eq18_gamma",
+           "printed_eq20_jacobian"]
 
 
 # --------------------------------------------------------------------------
@@ -97,6 +100,21 @@ def printed_eq2_roll(q: Quat) -> Array:
     """Roll as printed in Eq. (2): ``atan(-2(q1 q3 + q0 q2) / (1 - 2(q1^2 + q2^2)))`` (E003-02)."""
     q0, q1, q2, q3 = np.moveaxis(as_quat(nonempty_array(q, "q", tail=(4,)), "q", normalize=False), -1, 0)
     return np.arctan(-2 * (q1 * q3 + q0 * q2) / (1 - 2 * (q1 ** 2 + q2 ** 2)))
+
+
+def printed_eq2_arctan(q: Quat) -> Array:
+    """Eq. (2) in its printed form, plain ``arctan`` of ratios and an unclipped ``arcsin`` (E003-03); (..., 4) -> (..., 3).
+
+    The roll numerator is the corrected ``2(q0 q2 - q1 q3)`` (E003-02), so that only the quadrant
+    loss of ``arctan`` shows: heading and roll come back within (-90 deg, 90 deg), and a pitch argument
+    that rounding pushes past 1 (at +-90 deg pitch) gives NaN. Returns ``[heading, pitch, roll]``.
+    """
+    q0, q1, q2, q3 = np.moveaxis(as_quat(nonempty_array(q, "q", tail=(4,)), "q"), -1, 0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        pitch = np.arcsin(2 * (q0 * q1 + q2 * q3))
+        roll = np.arctan(2 * (q0 * q2 - q1 * q3) / (1 - 2 * (q1 ** 2 + q2 ** 2)))
+        heading = np.arctan(2 * (q1 * q2 - q0 * q3) / (1 - 2 * (q1 ** 2 + q3 ** 2)))
+    return np.stack([heading, pitch, roll], -1)
 
 
 def printed_eq4(q: Quat) -> Array:
@@ -114,6 +132,19 @@ def printed_eq5_tilt(f_b: Vec3) -> tuple[Array, Array]:
     return np.arctan(-a[..., 1] / a[..., 2]), np.arctan(a[..., 0] / np.hypot(a[..., 1], a[..., 2]))
 
 
+def printed_eq6(q: Quat, b: Vec3) -> Array:
+    """Eq. (6) as printed, ``(q0^2 - q1^2 + q2^2 - q3^2) b_z`` in the third row (E003-06); (..., 4), (3,) -> (..., 3).
+
+    ``b = [0, b_y, b_z]`` is the reference field (Eq. 3); its east component is not used, as in the paper.
+    """
+    q0, q1, q2, q3 = np.moveaxis(as_quat(nonempty_array(q, "q", tail=(4,)), "q", normalize=False), -1, 0)
+    b = nonempty_array(b, "b", tail=(3,))
+    by, bz = b[..., 1], b[..., 2]
+    return np.stack([2 * (q1 * q2 + q0 * q3) * by + 2 * (q1 * q3 - q0 * q2) * bz,
+                     (q0 ** 2 - q1 ** 2 + q2 ** 2 - q3 ** 2) * by + 2 * (q2 * q3 + q0 * q1) * bz,
+                     2 * (q2 * q3 - q0 * q1) * by + (q0 ** 2 - q1 ** 2 + q2 ** 2 - q3 ** 2) * bz], -1)
+
+
 def printed_eq7_heading(m_h: Vec3) -> Array:
     """Eq. (7) as printed, ``atan(m_x / m_y)`` of the levelled field (the CCW yaw, E003-08)."""
     m = nonempty_array(m_h, "m_h", tail=(3,))
@@ -128,6 +159,50 @@ def printed_eq8_quat(hpr: Angles) -> Array:
         return np.stack([np.cos(a / 2)] + [np.sin(a / 2) * (i == j) for j in range(3)], -1)
 
     return attitude.quat_mult(attitude.quat_mult(axis_quat(-h, 2), axis_quat(r, 1)), axis_quat(p, 0))
+
+
+def printed_eq12_mahony(w_ib_b: Vec3Series, f_b: Vec3Series, m_b: Vec3Series, dt: Interval, q0: Quat,
+                        kp: float = 1.0, ki: float = 0.02) -> Array:
+    """Eqs. (12)-(15) with the cross products in the order the printed hat-less ``a x a`` leaves open,
+    estimated x measured (E003-09); returns ``q_b^n`` after each sample, shape (N, 4).
+
+    Otherwise the filter of :func:`navlib.filters.mahony.mahony` (same ``m_est``, PI law and
+    first-order update), one trial, written per sample in plain Python: the reversed order negates
+    the error, so the correction drives the estimate away from the measurements.
+    """
+    w = nonempty_array(w_ib_b, "w_ib_b", shape=(None, 3))
+    f = nonempty_array(f_b, "f_b", shape=(None, 3))
+    m = nonempty_array(m_b, "m_b", shape=(None, 3))
+    for name, x in (("f_b", f), ("m_b", m)):
+        if x.shape != w.shape:
+            raise ValueError(f"{name}: expected the shape of w_ib_b {w.shape}, got {x.shape}")
+        if not np.all(np.linalg.norm(x, axis=-1) > 0):
+            raise ValueError(f"{name}: expected non-zero vectors")
+    dt = scalar(dt, "dt", positive=True)
+    kp, ki = scalar(kp, "kp", positive=True, allow_zero=True), scalar(ki, "ki", positive=True, allow_zero=True)
+    a, b, c, d = (float(x) for x in as_quat(nonempty_array(q0, "q0", shape=(4,)), "q0"))
+    ix = iy = iz = 0.0
+    out = np.empty((len(w), 4))
+    for k, ((gx, gy, gz), (ax, ay, az), (mx, my, mz)) in enumerate(zip(w.tolist(), f.tolist(), m.tolist(), strict=True)):
+        na, nm = math.sqrt(ax * ax + ay * ay + az * az), math.sqrt(mx * mx + my * my + mz * mz)
+        ax, ay, az, mx, my, mz = ax / na, ay / na, az / na, mx / nm, my / nm, mz / nm
+        c00, c01, c02 = a * a + b * b - c * c - d * d, 2 * (b * c - a * d), 2 * (b * d + a * c)      # C_bn
+        c10, c11, c12 = 2 * (b * c + a * d), a * a - b * b + c * c - d * d, 2 * (c * d - a * b)
+        c20, c21, c22 = 2 * (b * d - a * c), 2 * (c * d + a * b), a * a - b * b - c * c + d * d
+        hx, hy, hz = c00 * mx + c01 * my + c02 * mz, c10 * mx + c11 * my + c12 * mz, c20 * mx + c21 * my + c22 * mz
+        bh = math.hypot(hx, hy)
+        ux, uy, uz = c10 * bh + c20 * hz, c11 * bh + c21 * hz, c12 * bh + c22 * hz     # m_est = C_nb [0, |h_xy|, h_z]
+        ex = (c21 * az - c22 * ay) + (uy * mz - uz * my)                           # a_est x a + m_est x m
+        ey = (c22 * ax - c20 * az) + (uz * mx - ux * mz)
+        ez = (c20 * ay - c21 * ax) + (ux * my - uy * mx)
+        ix, iy, iz = ix + ex * dt, iy + ey * dt, iz + ez * dt
+        wx, wy, wz = gx + kp * ex + ki * ix, gy + kp * ey + ki * iy, gz + kp * ez + ki * iz
+        a, b, c, d = (a + 0.5 * dt * (-b * wx - c * wy - d * wz), b + 0.5 * dt * (a * wx + c * wz - d * wy),
+                      c + 0.5 * dt * (a * wy - b * wz + d * wx), d + 0.5 * dt * (a * wz + b * wy - c * wx))
+        s = 1.0 / math.sqrt(a * a + b * b + c * c + d * d)
+        a, b, c, d = a * s, b * s, c * s, d * s
+        out[k] = a, b, c, d
+    return out
 
 
 def printed_eq18_gamma(q: Quat, dt: float) -> Array:
