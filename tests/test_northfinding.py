@@ -146,6 +146,25 @@ def test_monte_carlo_follows_theory():
     assert np.all(np.abs(rms_t / nf.triad_heading_std(s_g, LAT) - 1) < 4 / np.sqrt(8000))
 
 
+def test_clipped_theory_limits_and_monte_carlo():
+    """Away from 0/180 deg it is Eq. (20) with its pitch term; at 0 deg it has a closed form; near 0 deg the Monte Carlo."""
+    s_g, s_a, th = units.deg_per_h(0.01), units.ug(100), np.deg2rad(5)
+    far = np.deg2rad([30.0, 91.0, 250.0])
+    ct = nf.clipped_single_axis_theory(far, s_g, LAT, th, s_a)
+    assert np.allclose(ct.rmse, nf.single_axis_heading_std(far, s_g, LAT, th, s_a), rtol=1e-3)
+    assert np.allclose(ct.rel_sd, 1 / np.sqrt(2), rtol=1e-2) and np.all(ct.p_clip < 1e-12)
+    # psi = 0, gyro noise only: the cosine is 1 + s z; half the trials clip to 0, the rest give acos(1 - s|z|)^2 ~ 2 s|z|
+    at0 = nf.clipped_single_axis_theory(0.0, s_g, LAT)
+    s_c = s_g / (nf.OMEGA_IE * np.cos(LAT))
+    assert at0.rmse == pytest.approx(np.sqrt(s_c * np.sqrt(2 / np.pi)), rel=1e-3)
+    assert at0.p_clip == pytest.approx(0.5, abs=1e-12)
+    mc = nf.monte_carlo(np.deg2rad([1.0, 181.0]), th, th, LAT, 20000, s_g, s_a, np.random.default_rng(11))
+    ct = nf.clipped_single_axis_theory(mc.heading, s_g, LAT, th, s_a)
+    rms = np.sqrt((mc.single ** 2).mean(-1))
+    assert np.all(np.abs(rms / ct.rmse - 1) < 4 * ct.rel_sd / np.sqrt(20000))
+    assert np.all(np.abs(mc.clipped.mean(-1) - ct.p_clip) < 4 * np.sqrt(ct.p_clip * (1 - ct.p_clip) / 20000))
+
+
 def test_monte_carlo_reproducible_with_seed():
     args = (np.deg2rad([1.0, 91.0]), 0.05, 0.05, LAT, 50, units.deg_per_h(0.01), units.ug(100))
     a = nf.monte_carlo(*args, np.random.default_rng(9))
@@ -308,6 +327,8 @@ NF_FUZZ = {   # name: (function, good keyword arguments, arguments where NaN is 
                                 dict(heading=1.0, sigma_gyro=1e-8, lat=LAT, pitch=0.05, sigma_accel=1e-4, g=9.79), set()),
     "single_axis_heading_error": (nf.single_axis_heading_error,
                                   dict(heading=1.0, pitch=0.05, lat=LAT, dw_y=1e-9, df_y=1e-4, g=9.79), set()),
+    "clipped_single_axis_theory": (nf.clipped_single_axis_theory,
+                                   dict(heading=0.02, sigma_gyro=1e-8, lat=LAT, pitch=0.05, sigma_accel=1e-4, g=9.79), set()),
     "simulate_static_outputs": (nf.simulate_static_outputs,
                                 dict(hpr=[1.0, 0.05, 0.02], lat=LAT, n_trials=2, sigma_gyro=1e-8, sigma_accel=1e-4,
                                      rng=np.random.default_rng(0), gyro_bias=[0.0, 0, 0], accel_bias=[0.0, 0, 0]), set()),

@@ -34,7 +34,9 @@ Resolution, Eq. (12) -- :func:`resolve`: the four candidate heading changes
 Error theory -- Eq. (13) with its sign corrected (:func:`triad_heading_error`),
   Eq. (16) (:func:`triad_heading_std`), Eq. (20) and its full linearisation
   with the pitch (accelerometer) term (:func:`single_axis_heading_std`,
-  :func:`single_axis_heading_error`)::
+  :func:`single_axis_heading_error`); where Eq. (20) fails (near 0 and 180
+  deg, E000-03) the clipped estimator's error by quadrature
+  (:func:`clipped_single_axis_theory`)::
 
     d psi = [-d w_y + w_ie (sin lat cos th - cos lat sin th cos psi) d th]
             / (w_ie cos lat cos th sin psi),        d th = d f_y / (g cos th)
@@ -106,7 +108,8 @@ from ..trajectory import Segment
 
 __all__ = ["Candidates", "heading_candidates", "nearest_candidate_error", "Resolution", "resolve", "tilt_from_accel",
            "triad_heading_error", "triad_heading_std", "single_axis_heading_std", "single_axis_heading_error",
-           "simulate_static_outputs", "MonteCarlo", "monte_carlo", "pair_probabilities", "four_position_heading_std",
+           "ClippedTheory", "clipped_single_axis_theory", "simulate_static_outputs", "MonteCarlo", "monte_carlo",
+           "pair_probabilities", "four_position_heading_std",
            "stop_and_go", "StopSolutions", "stop_solutions", "InsReport", "ins_heading_change"]
 
 OMEGA_IE = earth.OMEGA_IE
@@ -403,6 +406,90 @@ def single_axis_heading_error(heading: Angles, pitch: Angles, lat: float, dw_y: 
     coupling = OMEGA_IE * (np.sin(lat) * np.cos(th) - np.cos(lat) * np.sin(th) * np.cos(psi))
     with np.errstate(divide="ignore", invalid="ignore"):
         return (-dw + coupling * d_th) / (OMEGA_IE * np.cos(lat) * np.cos(th) * np.sin(psi))
+
+
+@dataclass(frozen=True)
+class ClippedTheory:
+    """Single-axis heading error with the clipped cosine of Eq. (9), by quadrature (E000-03).
+
+    Attributes
+    ----------
+    rmse : ndarray
+        Root-mean-square error of the candidate nearest the truth (rad).
+    p_clip : ndarray
+        Probability that the cosine of Eq. (9) leaves [-1, 1] and is clipped.
+    rel_sd : ndarray
+        Relative standard deviation of a Monte Carlo RMSE from *one* trial,
+        ``sqrt(E[e^4] / E[e^2]^2 - 1) / 2``; divide by ``sqrt(n)`` for n trials
+        (``1 / sqrt(2 n)`` for Gaussian errors; larger here, where clipping
+        piles errors up at one value).
+    sigma_cos : ndarray
+        Standard deviation of the estimated cosine.
+    """
+    rmse: np.ndarray
+    p_clip: np.ndarray
+    rel_sd: np.ndarray
+    sigma_cos: np.ndarray
+
+
+def clipped_single_axis_theory(heading: Angles, sigma_gyro: float, lat: float, pitch: Angles = 0.0,
+                               sigma_accel: float = 0.0, g: float | None = None, n_sigma: float = 12.0,
+                               n_grid: int = 20001) -> ClippedTheory:
+    """Error of the single-axis estimator where Eq. (20) fails: the cosine clipped, not linearised in psi.
+
+    The cosine of Eq. (9) is linear in the gyro noise and, to first order, in
+    the pitch error, so its estimate is ``cos psi + e`` with Gaussian ``e`` of
+    standard deviation ``sigma_cos`` (the gyro term ``sigma_g / (w_ie cos lat cos th)``
+    and the pitch term ``(cos psi tan th - tan lat) sigma_a / (g cos th)``).
+    The estimator takes ``acos(clip(cos psi + e, -1, 1))`` and its mirror and
+    keeps the candidate nearest the truth (the resolution assumed correct, as
+    in Fig. 4). Its moments are integrated over ``e`` on a grid of ``n_grid``
+    points within ``n_sigma`` standard deviations (trapezoid rule), so the
+    result holds at every heading, including 0 and pi where Eq. (20) is
+    infinite; away from them it tends to :func:`single_axis_heading_std`.
+
+    Parameters
+    ----------
+    heading : array_like  (rad)
+    sigma_gyro : float
+        Std of the averaged forward-gyro error (rad/s).
+    lat : float  (rad)
+    pitch : array_like  (rad)
+    sigma_accel : float
+        Std of the averaged forward-accelerometer error (m/s^2).
+    g : float, optional
+        Gravity (m/s^2); normal gravity at ``lat`` by default.
+    n_sigma : float
+        Half-width of the integration grid in standard deviations.
+    n_grid : int
+        Grid points (odd, at least 101).
+
+    Returns
+    -------
+    ClippedTheory
+    """
+    psi, th = np.broadcast_arrays(as_array(heading, "heading"), _pitch(pitch))
+    s_g = scalar(sigma_gyro, "sigma_gyro", positive=True)
+    s_a = scalar(sigma_accel, "sigma_accel", allow_zero=True)
+    lat = gyrocompass_latitude(scalar(lat, "lat"))
+    g = earth.gravity(lat) if g is None else scalar(g, "g", positive=True)
+    span = scalar(n_sigma, "n_sigma", positive=True)
+    if not isinstance(n_grid, (int, np.integer)) or isinstance(n_grid, bool) or n_grid < 101 or n_grid % 2 == 0:
+        raise ValueError(f"n_grid: expected an odd integer of at least 101, got {n_grid!r}")
+    s_gyro_cos = s_g / (OMEGA_IE * np.cos(lat) * np.cos(th))
+    s_pitch_cos = (np.cos(psi) * np.tan(th) - np.tan(lat)) * s_a / (g * np.cos(th))
+    s_cos = np.hypot(s_gyro_cos, s_pitch_cos)
+    z = np.linspace(-span, span, int(n_grid))
+    weight = np.exp(-0.5 * z ** 2) / np.sqrt(2 * np.pi)
+    c = np.cos(psi)[..., None] + s_cos[..., None] * z
+    alpha = np.arccos(np.clip(c, -1.0, 1.0))
+    err = nearest_candidate_error(np.stack([alpha, attitude.wrap_2pi(2 * np.pi - alpha)], -1), psi[..., None])
+    m2 = np.trapezoid(weight * err ** 2, z, axis=-1)
+    m4 = np.trapezoid(weight * err ** 4, z, axis=-1)
+    p_clip = ndtr((np.cos(psi) - 1.0) / s_cos) + ndtr((-1.0 - np.cos(psi)) / s_cos)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        rel_sd = np.sqrt(np.maximum(m4 / m2 ** 2 - 1.0, 0.0)) / 2
+    return ClippedTheory(np.sqrt(m2), p_clip, rel_sd, s_cos)
 
 
 # --------------------------------------------------------------------------
