@@ -50,11 +50,6 @@ NOTEBOOKS = sorted((ROOT / "notebooks").glob("[0-9][0-9]_*.ipynb"))
 # Legitimate exceptions: (notebook stem, check name pattern) -> why the value may be an input. Keep it tiny.
 ALLOWED: dict[tuple[str, str], str] = {}
 
-# Notebooks whose checks are being reworked on other branches of issue 14 (strict xfail: once a
-# notebook passes, its entry must go).
-PENDING: dict[str, str] = {stem: "checks being reworked on another branch of issue 14" for stem in (
-    "03_gauss_kruger_ekf", "05_pedestrian_ins")}
-
 LITERAL, PARAMETER, DATA, COMPUTED = range(4)
 ORIGIN = {LITERAL: "literals only", PARAMETER: "parameters-cell constants and literals only",
           DATA: "typed inputs only (data/ tables, sensor presets, paper constants, parameters, literals)"}
@@ -568,8 +563,7 @@ def unexplained(stem: str, found: list[Finding]) -> list[Finding]:
 
 # ---------------------------------------------------------------------------------------------- tests
 
-@pytest.mark.parametrize("path", [pytest.param(p, marks=pytest.mark.xfail(reason=PENDING[p.stem], strict=True))
-                                  if p.stem in PENDING else p for p in NOTEBOOKS], ids=[p.stem for p in NOTEBOOKS])
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=[p.stem for p in NOTEBOOKS])
 def test_every_check_value_is_computed(path):
     found, n = read_notebook(path)
     bad = unexplained(path.stem, found)

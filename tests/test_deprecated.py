@@ -24,7 +24,8 @@ def test_alias_warns_and_resolves_every_old_name(old):
     companion = importlib.import_module(f"navlib.papers.{OLD[old]}")
     new_names = {"G_LOCAL", "FAULT_KEYS", "MAX_STEPS",    # names new to a companion need no alias
                  "printed_zone_number", "paper_radii", "printed_meridian_radius", "paper_series", "paper_meridian_arc",
-                 "ClippedTheory", "clipped_single_axis_theory"}
+                 "ClippedTheory", "clipped_single_axis_theory", "printed_eq2_arctan", "printed_eq6",
+                 "printed_eq12_mahony", "dead_reckoning_error_ms", "ekf_error_ms"}
     assert set(companion.__all__) <= set(module.__all__) | new_names
 
 
