@@ -36,11 +36,14 @@ venv: $(STAMP)
 
 # Re-installs only when the pins or the package metadata change. The exact pins of environment.txt are
 # installed with uv (the version pinned there; ~10x faster than pip) when it can be installed, else with pip.
+# --compile-bytecode: uv (unlike pip) writes no .pyc, and where PYTHONDONTWRITEBYTECODE is set nothing
+# else does, so every kernel and test worker compiled numpy/scipy/matplotlib/pandas from source (8.4 s
+# per import of the stack instead of 2.2 s).
 UV_VERSION := $(shell sed -n 's/^uv==//p' environment.txt)
 $(STAMP): environment.txt pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
 	if $(PIP) install -q uv==$(UV_VERSION) && $(VENV)/bin/uv --version; then \
-	  $(VENV)/bin/uv pip install --python $(PY) -r environment.txt && \
+	  $(VENV)/bin/uv pip install --python $(PY) --compile-bytecode -r environment.txt && \
 	  $(VENV)/bin/uv pip install --python $(PY) --no-deps -e . ; \
 	else \
 	  $(PIP) install -r environment.txt && $(PIP) install --no-deps -e . ; \
