@@ -462,7 +462,7 @@ def _add_scaled(P, Q, s):
     """P += Q * s, element by element (an array expression compiles numba's shape-error message: seconds)."""
     for i in range(5):
         for j in range(5):
-            P[i, j] += Q[i, j] * s if s != 1.0 else Q[i, j]
+            P[i, j] += Q[i, j] * s                   # (x * 1.0 is x: the plain sum's bits)
 
 
 @njit(cache=True)
