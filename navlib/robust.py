@@ -314,7 +314,7 @@ def _series(x: ArrayLike, name: str, axis: int) -> np.ndarray:
 def _stuck_runs(a: np.ndarray, run: int, rail: float = np.inf) -> NDArray[np.bool_]:
     """:func:`stuck_mask` of validated samples ``a`` (..., N, k); values with ``|a| >= rail`` never repeat."""
     lead, (n, k) = a.shape[:-2], a.shape[-2:]
-    flat = np.ascontiguousarray(a.reshape((math.prod(lead), n, k)))
+    flat = kernel_array(a.reshape((math.prod(lead), n, k)))        # writable: one kernel signature
     out = np.zeros(flat.shape[:2], dtype=bool)
     stuck_runs(0, flat.shape[0], flat, run, rail, out)
     return out.reshape(lead + (n,))

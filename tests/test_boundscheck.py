@@ -75,12 +75,17 @@ except IndexError:
 """
 
 
-def test_kernels_stay_in_bounds(tmp_path):
+def _run_bounds_checked(script, tmp_path, timeout):
+    """Run ``script`` in a subprocess with bounds checking on and a fresh numba cache; it must print ok."""
     env = dict(os.environ, NUMBA_BOUNDSCHECK="1", NUMBA_CACHE_DIR=str(tmp_path / "numba-cache"))
     env.pop("NUMBA_DISABLE_JIT", None)
-    out = subprocess.run([sys.executable, "-c", SCRIPT], env=env, capture_output=True, text=True, timeout=300)
+    out = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True, text=True, timeout=timeout)
     assert out.returncode == 0, out.stderr[-3000:]
     assert out.stdout.strip() == "ok", "bounds checking was not active: " + out.stdout + out.stderr[-2000:]
+
+
+def test_kernels_stay_in_bounds(tmp_path):
+    _run_bounds_checked(SCRIPT, tmp_path, timeout=300)
 
 
 ATTITUDE = r"""
@@ -116,8 +121,4 @@ except IndexError:
 
 
 def test_attitude_kernels_stay_in_bounds(tmp_path):
-    env = dict(os.environ, NUMBA_BOUNDSCHECK="1", NUMBA_CACHE_DIR=str(tmp_path / "numba-cache"))
-    env.pop("NUMBA_DISABLE_JIT", None)
-    out = subprocess.run([sys.executable, "-c", ATTITUDE], env=env, capture_output=True, text=True, timeout=600)
-    assert out.returncode == 0, out.stderr[-3000:]
-    assert out.stdout.strip() == "ok", "bounds checking was not active: " + out.stdout + out.stderr[-2000:]
+    _run_bounds_checked(ATTITUDE, tmp_path, timeout=600)
