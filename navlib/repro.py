@@ -11,7 +11,17 @@ A notebook calls :func:`setup` once with its own name; afterwards
   a bound, :func:`check_outside` asserts a disagreement (the value lies
   outside an interval);
 * :func:`verdict` records the one verdict of a claim (:data:`VERDICTS`), resting
-  on the checks recorded before it.
+  on the checks recorded before it;
+* :func:`summary` returns the checks and verdicts recorded since the previous
+  summary as one compact table (checks record silently; a section of a
+  notebook ends with its table).
+
+Two switches, set in a notebook's parameters cell through :func:`env_flag` and
+applied by :func:`mode`: *teaching* turns a failed check into a visible
+:class:`ClaimCheckWarning` instead of an exception, so that a student can change
+any parameter and still run to the end; *fast* is read by the notebook to pick its
+smaller parameter set. Results written in either mode carry a ``mode`` entry, and
+the ledger (``tools/reproduce.py``) refuses them.
 
 *Checks* and *claims* are different things: a claim is a row of
 ``data/claims.csv`` (a statement of the paper); a check is one computed
@@ -27,6 +37,7 @@ import math
 import os
 import platform
 import re
+import warnings
 from collections.abc import Sequence
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
@@ -41,7 +52,8 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
 __all__ = ["root", "build_dir", "setup", "savefig", "check", "check_range", "check_outside", "verdict", "results",
-           "verdicts", "VERDICTS", "ClaimCheckFailed", "Check", "Verdict", "NoOutputDirectory"]
+           "verdicts", "summary", "env_flag", "mode", "VERDICTS", "ClaimCheckFailed", "ClaimCheckWarning", "Check",
+           "Verdict", "NoOutputDirectory"]
 
 VERDICTS = ("reproduced", "reproduced with correction", "differs", "refuted", "direction only", "not checkable here")
 """The verdicts a claim can get (``docs/claims.md``), in the ledger's order."""
@@ -50,6 +62,10 @@ _NEEDS_EVIDENCE = ("reproduced with correction", "differs", "refuted")
 
 class ClaimCheckFailed(AssertionError):
     """A reproduced value is outside the tolerance of its target."""
+
+
+class ClaimCheckWarning(UserWarning):
+    """Teaching mode: a check failed (or a verdict could not be recorded); the notebook goes on."""
 
 
 @dataclass
@@ -93,6 +109,10 @@ class _State:
     verdicts: list[Verdict] = field(default_factory=list)
     figures: set[str] = field(default_factory=set)
     catalogue: dict | None = None
+    teaching: bool = False
+    fast: bool = False
+    shown_checks: int = 0       # checks and verdicts already shown by summary()
+    shown_verdicts: int = 0
 
 
 _state = _State()
@@ -124,12 +144,16 @@ def root() -> Path:
 
 
 def build_dir(notebook: str | None = None) -> Path:
-    """The output directory (``<root>/build`` or ``setup``'s ``out_dir``), or its ``<notebook>/`` folder; created."""
+    """The output directory, or its ``<notebook>/`` folder; created.
+
+    ``setup``'s ``out_dir`` when given, else the ``NAVLIB_BUILD_DIR`` environment variable when set,
+    else ``<root>/build``."""
     if notebook is not None and not isinstance(notebook, str):
         raise ValueError(f"notebook: expected a notebook name (str), got {type(notebook).__name__}")
     if notebook and ("/" in notebook or "\\" in notebook or notebook in (".", "..")):
         raise ValueError(f"notebook: expected a plain notebook name, got {notebook!r}")
-    d = _state.out_dir if _state.out_dir is not None else root() / "build"
+    env = os.environ.get("NAVLIB_BUILD_DIR")
+    d = _state.out_dir if _state.out_dir is not None else Path(env).resolve() if env else root() / "build"
     if notebook:
         d = d / notebook
     d.mkdir(parents=True, exist_ok=True)
@@ -169,6 +193,8 @@ def setup(notebook: str, *, paper: str | None = None, out_dir: str | os.PathLike
     _state.verdicts = []
     _state.figures = set()
     _state.catalogue = None
+    _state.teaching = _state.fast = False
+    _state.shown_checks = _state.shown_verdicts = 0
     d = build_dir(notebook)
     (d / "results.json").unlink(missing_ok=True)
     if flag(style, "style"):
@@ -233,19 +259,25 @@ def _texts(**kw: str) -> None:
         text(value, name)
 
 
+def _target(c: Check) -> str:
+    """What a check compares with, as text: ``± tol`` of a target, a range, or outside a range."""
+    if c.expected is not None:
+        return f"target {c.expected:.6g} ± {c.tol:.3g}"
+    lo = "-inf" if c.lower is None else f"{c.lower:.6g}"
+    hi = "inf" if c.upper is None else f"{c.upper:.6g}"
+    return ("outside " if c.outside else "") + f"range [{lo}, {hi}]"
+
+
 def _record(c: Check) -> Check:
+    """Record a check silently (:func:`summary` shows it); a failure raises, or warns in teaching mode."""
     _state.checks = [k for k in _state.checks if k.name != c.name] + [c]
     _write()
-    status = "PASS" if c.passed else "FAIL"
-    if c.expected is not None:
-        target = f"target {c.expected:.6g} ± {c.tol:.3g}"
-    else:
-        target = f"range [{c.lower if c.lower is not None else '-inf'}, {c.upper if c.upper is not None else 'inf'}]"
-        if c.outside:
-            target = "outside " + target
-    print(f"[{status}] {c.name}: {c.value:.6g}{' ' + c.unit if c.unit else ''} ({target}; {c.source})")
     if not c.passed:
-        raise ClaimCheckFailed(f"{c.name}: reproduced {c.value:.6g} is outside {target}")
+        message = f"{c.name}: reproduced {c.value:.6g} is {'not ' if c.outside else 'outside '}{_target(c)} ({c.source})"
+        if not _state.teaching:
+            raise ClaimCheckFailed(message)
+        warnings.warn("check failed (teaching mode, the notebook goes on): " + message, ClaimCheckWarning,
+                      stacklevel=3)
     return c
 
 
@@ -371,8 +403,11 @@ def verdicts() -> list[Verdict]:
 
 def verdict(claim: str, verdict: str, *, checks: Sequence[str] | None = None, evidence: Sequence[str] | None = None,
             paper: str | float | None = None, ours: str | float | None = None, unit: str = "", reason: str = "",
-            erratum: str = "", figure: str = "") -> Verdict:
+            erratum: str = "", figure: str = "") -> Verdict | None:
     """Record the verdict on a claim of this notebook's paper; raise ``ValueError`` if it is not supported.
+
+    Recorded silently (:func:`summary` shows it). In teaching mode a verdict resting on a failed
+    check is not recorded: a :class:`ClaimCheckWarning` says so and ``None`` is returned.
 
     Parameters
     ----------
@@ -426,6 +461,10 @@ def verdict(claim: str, verdict: str, *, checks: Sequence[str] | None = None, ev
         if n not in recorded:
             raise ValueError(f"checks: {n!r} was not recorded in this run")
         if not recorded[n].passed:
+            if _state.teaching:      # the failure was already shown as a warning
+                warnings.warn(f"verdict on {claim} not recorded: its check {n!r} failed (teaching mode)",
+                              ClaimCheckWarning, stacklevel=2)
+                return None
             raise ValueError(f"checks: {n!r} failed; a verdict cannot rest on it")
     if verdict != "not checkable here" and not names:
         raise ValueError(f"checks: a verdict of {verdict!r} rests on at least one check; none is named {claim}[/...]")
@@ -463,8 +502,6 @@ def verdict(claim: str, verdict: str, *, checks: Sequence[str] | None = None, ev
                 _shown(ours, unit) if ours is not None else None, reason.strip(), erratum, figure)
     _state.verdicts = [k for k in _state.verdicts if k.claim != claim] + [v]
     _write()
-    shown = [f"{k} {x}" for k, x in (("paper", v.paper), ("ours", v.ours)) if x is not None]
-    print(f"[{verdict.upper()}] {claim}" + (": " + ", ".join(shown) if shown else "") + (f" ({v.reason})" if v.reason else ""))
     return v
 
 
@@ -493,6 +530,8 @@ def _write() -> None:
     # Keys and fields beyond the original format are written only when used, so the results of a
     # notebook without a paper (and of its checks) keep their bytes.
     data = {"notebook": _state.notebook, "checks": [_row(c) for c in _state.checks]}
+    if _state.teaching or _state.fast:
+        data["mode"] = {"teaching": _state.teaching, "fast": _state.fast}
     if _state.paper is not None:
         data["paper"] = _state.paper
         data["verdicts"] = [asdict(v) for v in _state.verdicts]
@@ -506,3 +545,62 @@ def _row(c: Check) -> dict:
         if not row[key]:
             del row[key]
     return row
+
+
+_TRUE, _FALSE = ("1", "true", "yes", "on"), ("", "0", "false", "no", "off")
+
+
+def env_flag(name: str, default: bool = False) -> bool:
+    """A boolean switch from the environment variable ``name`` (``1/true/yes/on`` or ``0/false/no/off``).
+
+    ``default`` when the variable is unset. For a notebook's parameters cell, e.g.
+    ``TEACHING = repro.env_flag("NAVLIB_TEACHING")``; any other text raises ``ValueError`` naming it.
+    """
+    text(name, "name")
+    raw = os.environ.get(name)
+    if raw is None:
+        return flag(default, "default")
+    value = raw.strip().lower()
+    if value in _TRUE or value in _FALSE:
+        return value in _TRUE
+    raise ValueError(f"{name}: expected one of {', '.join(_TRUE + _FALSE[1:])} (environment variable), got {raw!r}")
+
+
+def mode(*, teaching: bool, fast: bool) -> None:
+    """Apply a notebook's switches (after :func:`setup`): teaching mode and the fast parameter set.
+
+    In teaching mode a failed check warns (:class:`ClaimCheckWarning`) instead of raising. Both are
+    recorded in results.json (``mode``), whose results then do not enter the ledger.
+    """
+    if _state.notebook is None:
+        raise RuntimeError("call navlib.repro.setup(notebook, ...) before mode()")
+    _state.teaching = flag(teaching, "teaching")
+    _state.fast = flag(fast, "fast")
+    _write()
+
+
+def summary():
+    """The checks and verdicts recorded since the previous call, as one compact table.
+
+    A ``pandas.DataFrame`` with a row per check (``check``, ``paper`` value, ``ours``, ``tolerance``,
+    ``result``, and the ``verdict`` of the claim it supports once recorded) and a row per verdict that
+    rests on no check of the table (``not checkable here``). Ends a notebook section: checks record
+    silently, and the table is the section's only output about them.
+    """
+    import pandas as pd
+
+    checks = _state.checks[_state.shown_checks:]
+    new_verdicts = _state.verdicts[_state.shown_verdicts:]
+    _state.shown_checks, _state.shown_verdicts = len(_state.checks), len(_state.verdicts)
+    by_check = {n: v for v in _state.verdicts for n in v.checks}
+    rows = [{"check": c.name,
+             "paper": c.paper_value if c.paper_value is not None else "",
+             "ours": f"{c.value:.4g}{' ' + c.unit if c.unit else ''}",
+             "tolerance": _target(c),
+             "result": "pass" if c.passed else "FAIL",
+             "verdict": by_check[c.name].verdict if c.name in by_check else ""} for c in checks]
+    shown = {c.name for c in checks}
+    rows += [{"check": f"{v.claim} (claim)", "paper": v.paper or "", "ours": v.ours or "", "tolerance": "",
+              "result": "", "verdict": v.verdict} for v in new_verdicts if not set(v.checks) & shown]
+    table = pd.DataFrame(rows, columns=["check", "paper", "ours", "tolerance", "result", "verdict"])
+    return table.set_index("check") if rows else table

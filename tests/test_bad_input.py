@@ -148,6 +148,17 @@ def with_lat(lat, n=11):
     return lla
 
 
+def _env_flag_with(name, value):
+    """repro.env_flag with the environment variable set to ``value`` for the call."""
+    import os
+    old = os.environ.get(name)
+    os.environ[name] = value
+    try:
+        return repro.env_flag(name)
+    finally:
+        os.environ.pop(name) if old is None else os.environ.__setitem__(name, old)
+
+
 def axes2d():
     return plt.figure().add_subplot()
 
@@ -732,6 +743,12 @@ CASES = [
     bad("repro.check_outside", "value", "shape2", lambda: repro.check_outside("T/x", [1.0, 2.0], "src", upper=3.0)),
     bad("repro.check_outside", "lower", "no_bounds", lambda: repro.check_outside("T/x", 1.0, "src")),
     bad("repro.check_outside", "source", "none", lambda: repro.check_outside("T/x", 5.0, None, upper=3.0)),
+    bad("repro.env_flag", "name", "none", lambda: repro.env_flag(None)),
+    bad("repro.env_flag", "NAVLIB_TEST_BAD_FLAG", "text", lambda: _env_flag_with("NAVLIB_TEST_BAD_FLAG", "maybe")),
+    bad("repro.mode", "teaching", "str", lambda: (repro.setup("zz_bad_input", style=False),
+                                                  repro.mode(teaching="yes", fast=False))),
+    bad("repro.mode", "fast", "int", lambda: (repro.setup("zz_bad_input", style=False),
+                                              repro.mode(teaching=False, fast=2))),
     bad("repro.verdict", "claim", "no_paper",
         lambda: (repro.setup("zz_bad_input", style=False), repro.verdict("P000-EQ3-EULER", "reproduced"))),
 
@@ -743,6 +760,21 @@ CASES = [
     bad("plots.allan", "adev_rad_s", "nan", lambda: plots.allan(axes2d(), [1.0, 2.0], [1e-5, NAN])),
     bad("plots.allan", "taus", "negative", lambda: plots.allan(axes2d(), [-1.0, 2.0], [1e-5, 1e-5])),
     bad("plots.heading_deg", "hpr", "shape2", lambda: plots.heading_deg(np.zeros((5, 2)))),
+    bad("plots.paper_value", "value", "nan", lambda: plots.paper_value(axes2d(), NAN, "paper")),
+    bad("plots.paper_value", "axis", "z", lambda: plots.paper_value(axes2d(), 1.0, "paper", axis="z")),
+    bad("plots.paper_value", "label", "none", lambda: plots.paper_value(axes2d(), 1.0, None)),
+    bad("plots.block_diagram", "arrows", "unknown_block",
+        lambda: plots.block_diagram(axes2d(), {"a": (0.2, 0.5, "A")}, [("a", "b")])),
+    bad("plots.block_diagram", "blocks", "short_spec", lambda: plots.block_diagram(axes2d(), {"a": (0.2, 0.5)}, [])),
+    bad("plots.block_diagram", "width", "above_one",
+        lambda: plots.block_diagram(axes2d(), {"a": (0.2, 0.5, "A")}, [], width=2.0)),
+    bad("plots.plane_frame", "origin", "shape3", lambda: plots.plane_frame(axes2d(), (0.0, 0.0, 0.0), 30.0, ("x", "y"))),
+    bad("plots.plane_frame", "labels", "one", lambda: plots.plane_frame(axes2d(), (0.0, 0.0), 30.0, ("x",))),
+    bad("plots.plane_frame", "length", "negative",
+        lambda: plots.plane_frame(axes2d(), (0.0, 0.0), 30.0, ("x", "y"), length=-1.0)),
+    bad("plots.angle_arc", "radius", "zero", lambda: plots.angle_arc(axes2d(), (0.0, 0.0), 0.0, 0.0, 90.0)),
+    bad("plots.angle_arc", "end_deg", "inf", lambda: plots.angle_arc(axes2d(), (0.0, 0.0), 1.0, 0.0, INF)),
+    bad("plots.angle_arc", "color", "none", lambda: plots.angle_arc(axes2d(), (0.0, 0.0), 1.0, 0.0, 90.0, color=None)),
     bad("plots.heading_deg", "hpr", "str", lambda: plots.heading_deg(STR)),
     bad("plots.heading_deg", "hpr", "inf", lambda: plots.heading_deg([INF, 0.0, 0.0])),
 ]
@@ -1400,6 +1432,8 @@ NOT_APPLICABLE = {
     "repro.root": "takes no arguments",
     "repro.results": "takes no arguments",
     "repro.verdicts": "takes no arguments",
+    "repro.summary": "takes no arguments",
+    "repro.ClaimCheckWarning": "warning class, issued by navlib itself",
     "repro.Verdict": "record of a verdict, built by verdict() from validated values",
     "sensors.devices": "takes no arguments",
     "repro.ClaimCheckFailed": "exception class, raised by navlib itself",

@@ -379,3 +379,62 @@ def test_a_verdict_resting_only_on_printed_arithmetic_is_no_reproduction(paper_r
     assert v.ours is None                                     # a printed-arithmetic value is not shown as ours
     repro.check("P999-EQ2-SIGN/simulated", 3e-16, 0.0, 1e-12, "src", unit="rad")
     assert repro.verdict("P999-EQ2-SIGN", "reproduced").checks == ["P999-EQ2-SIGN/table-sum", "P999-EQ2-SIGN/simulated"]
+
+
+def test_checks_record_silently_and_summary_shows_each_once(paper_root, capsys):
+    repro.check("P999-FIG1-RMSE", 4.70, 4.77, 0.1, "Fig. 1", unit="deg")
+    repro.check_range("P999-FIG1-RMSE/bound", 0.5, "Fig. 1", upper=1.0)
+    repro.verdict("P999-FIG1-RMSE", "reproduced")
+    repro.verdict("P999-TAB1-HW", "not checkable here", reason="needs the hardware")
+    assert capsys.readouterr().out == ""
+    table = repro.summary()
+    assert list(table.index) == ["P999-FIG1-RMSE", "P999-FIG1-RMSE/bound", "P999-TAB1-HW (claim)"]
+    assert list(table.columns) == ["paper", "ours", "tolerance", "result", "verdict"]
+    assert table.loc["P999-FIG1-RMSE", "ours"] == "4.7 deg"
+    assert table.loc["P999-FIG1-RMSE", "tolerance"] == "target 4.77 ± 0.1"
+    assert table.loc["P999-FIG1-RMSE/bound", "verdict"] == "reproduced"
+    assert table.loc["P999-TAB1-HW (claim)", "verdict"] == "not checkable here"
+    assert repro.summary().empty                      # nothing new since the last table
+    repro.check("P999-EQ2-SIGN", -1.0, -1.0, 0.0, "Eq. (2)")
+    assert list(repro.summary().index) == ["P999-EQ2-SIGN"]
+
+
+def test_teaching_mode_warns_instead_of_raising(paper_root):
+    repro.mode(teaching=True, fast=True)
+    with pytest.warns(repro.ClaimCheckWarning, match="P999-FIG1-RMSE: reproduced 9"):
+        c = repro.check("P999-FIG1-RMSE", 9.0, 4.77, 0.1, "Fig. 1")
+    assert not c.passed
+    with pytest.warns(repro.ClaimCheckWarning, match="not recorded"):
+        assert repro.verdict("P999-FIG1-RMSE", "reproduced") is None
+    assert repro.summary().loc["P999-FIG1-RMSE", "result"] == "FAIL"
+    data = json.loads((paper_root / "build" / NB / "results.json").read_text())
+    assert data["mode"] == {"teaching": True, "fast": True} and data["verdicts"] == []
+    repro.mode(teaching=False, fast=False)
+    with pytest.raises(repro.ClaimCheckFailed):
+        repro.check("P999-FIG1-RMSE", 9.0, 4.77, 0.1, "Fig. 1")
+
+
+def test_setup_resets_the_switches(paper_root):
+    repro.mode(teaching=True, fast=False)
+    repro.setup(NB, paper="999")
+    with pytest.raises(repro.ClaimCheckFailed):
+        repro.check("P999-FIG1-RMSE", 9.0, 4.77, 0.1, "Fig. 1")
+    assert "mode" not in json.loads((paper_root / "build" / NB / "results.json").read_text())
+
+
+@pytest.mark.parametrize("raw, expected", [("1", True), ("yes", True), (" ON ", True), ("0", False), ("", False),
+                                           ("off", False)])
+def test_env_flag(monkeypatch, raw, expected):
+    monkeypatch.setenv("NAVLIB_TEST_FLAG", raw)
+    assert repro.env_flag("NAVLIB_TEST_FLAG") is expected
+    monkeypatch.delenv("NAVLIB_TEST_FLAG")
+    assert repro.env_flag("NAVLIB_TEST_FLAG", default=True) is True
+    monkeypatch.setenv("NAVLIB_TEST_FLAG", "maybe")
+    with pytest.raises(ValueError, match="NAVLIB_TEST_FLAG"):
+        repro.env_flag("NAVLIB_TEST_FLAG")
+
+
+def test_build_dir_from_the_environment(fake_root, tmp_path, monkeypatch):
+    monkeypatch.setenv("NAVLIB_BUILD_DIR", str(tmp_path / "elsewhere"))
+    repro.setup(NB)
+    assert (tmp_path / "elsewhere" / NB / "results.json").is_file()

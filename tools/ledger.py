@@ -95,6 +95,8 @@ def paper_ledger(stem: str, paper: str, title: str, catalogue: list[dict[str, st
     led.checks_passed, led.checks_total = sum(bool(c.get("passed")) for c in checks), len(checks)
     if res.get("paper") not in (None, paper):
         led.problems.append(f"results.json names paper {res.get('paper')}, the registry {paper}")
+    if res.get("mode"):     # a teaching or fast run: not the ledger's evidence
+        led.problems.append(f"results.json was written in {res['mode']} mode; rerun make reproduce")
     for v in res.get("verdicts", []):
         row = rows.get(v["claim"])
         if row is None:
