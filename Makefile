@@ -11,6 +11,8 @@ BENCH_STAMP := $(VENV)/.bench-installed
 # Headless, deterministic runs.
 export PYTHONHASHSEED := 0
 reproduce test: export MPLBACKEND := Agg
+# Executed notebooks keep no progress bars (navlib.montecarlo reads it).
+export NAVLIB_PROGRESS := 0
 
 # Two workers (this machine has two cores); tests sharing a build/ folder share a group (conftest.py).
 PYTEST_FLAGS ?= -q -ra --durations=10 --nbmake-timeout=1800 -n 2 --dist loadgroup

@@ -21,8 +21,7 @@ Example::
 """
 from __future__ import annotations
 
-import sys
-import time
+import os
 from collections.abc import Callable
 from concurrent.futures import Executor
 from functools import partial
@@ -83,13 +82,18 @@ def _run_batch(batch_fn, seed, ids, kwargs):
     return batch_fn(ids, TrialStreams(seed, ids), **kwargs)
 
 
+def _progress_bar(total: int, label: str):
+    from tqdm.auto import tqdm
+    return tqdm(total=total, desc=label, unit="trials", mininterval=1.0, dynamic_ncols=True)
+
+
 def _check_args(n_trials, seed, batch_size):
     for name, v, lo in (("n_trials", n_trials, 1), ("seed", seed, 0), ("batch_size", batch_size, 1)):
         integer(v, name, minimum=lo)
 
 
 def run(batch_fn: Callable[..., dict[str, np.ndarray]], n_trials: int, seed: int, *, batch_size: int = 1000,
-        executor: Executor | None = None, progress: bool = True, label: str = "trials",
+        executor: Executor | None = None, progress: bool | None = None, label: str = "trials",
         **kwargs: Any) -> dict[str, np.ndarray]:
     """Run ``n_trials`` Monte Carlo trials in batches and concatenate the results.
 
@@ -110,8 +114,10 @@ def run(batch_fn: Callable[..., dict[str, np.ndarray]], n_trials: int, seed: int
     executor : concurrent.futures.Executor, optional
         Runs the batches (e.g. ``ProcessPoolExecutor`` or a dask client's
         ``get_executor()``); default: serially in this process.
-    progress : bool
-        Print a progress line to stderr as batches complete (at most one a second).
+    progress : bool, optional
+        Show a progress bar (``tqdm.auto``: a widget in Jupyter, a line on stderr elsewhere) as
+        batches complete. Default: on, unless the environment variable ``NAVLIB_PROGRESS`` is ``0``
+        (set by ``make reproduce`` and the tests, so executed notebooks keep no progress output).
     **kwargs
         Passed to every ``batch_fn`` call (study parameters).
 
@@ -123,33 +129,27 @@ def run(batch_fn: Callable[..., dict[str, np.ndarray]], n_trials: int, seed: int
     if not callable(batch_fn):
         raise ValueError(f"batch_fn: expected a callable, got {type(batch_fn).__name__}")
     _check_args(n_trials, seed, batch_size)
-    progress = flag(progress, "progress")
+    progress = os.environ.get("NAVLIB_PROGRESS", "1").strip() != "0" if progress is None else flag(progress, "progress")
     text(label, "label")
     if executor is not None and not isinstance(executor, Executor) and not hasattr(executor, "submit"):
         raise ValueError(f"executor: expected a concurrent.futures.Executor, got {type(executor).__name__}")
     batches = [np.arange(s, min(s + batch_size, n_trials)) for s in range(0, n_trials, batch_size)]
     job = partial(_run_batch, batch_fn, int(seed))
-    start = last = time.perf_counter()
     results = [None] * len(batches)
-
-    def report(done):
-        # at most one line a second, and always the last one
-        nonlocal last
-        now = time.perf_counter()
-        if progress and (now - last >= 1.0 or done == len(batches)):
-            last = now
-            n = sum(len(batches[k]) for k in range(done))
-            print(f"{label}: {n}/{n_trials} trials ({n / max(now - start, 1e-9):,.0f}/s)", file=sys.stderr, flush=True)
-
-    if executor is None:
-        for k, ids in enumerate(batches):
-            results[k] = job(ids, kwargs)
-            report(k + 1)
-    else:
-        futures = [executor.submit(job, ids, kwargs) for ids in batches]
-        for k, fut in enumerate(futures):   # in order: results stay in trial order
-            results[k] = fut.result()
-            report(k + 1)
+    bar = _progress_bar(n_trials, label) if progress else None
+    try:
+        if executor is None:
+            outcomes = (job(ids, kwargs) for ids in batches)
+        else:
+            futures = [executor.submit(job, ids, kwargs) for ids in batches]
+            outcomes = (fut.result() for fut in futures)     # in order: results stay in trial order
+        for k, outcome in enumerate(outcomes):
+            results[k] = outcome
+            if bar is not None:
+                bar.update(len(batches[k]))
+    finally:
+        if bar is not None:
+            bar.close()
     keys = results[0].keys()
     for k, r in enumerate(results):
         if r.keys() != keys:

@@ -51,11 +51,23 @@ def test_dask_local_cluster_gives_identical_results():
     np.testing.assert_array_equal(out["mean"], ref["mean"])
 
 
-def test_statistics_and_progress(capsys):
+def test_statistics_and_progress(capsys, monkeypatch):
+    monkeypatch.delenv("NAVLIB_PROGRESS", raising=False)
     out = montecarlo.run(heading_error_batch, 4000, seed=1, batch_size=1000, sigma=1.0, label="demo")
     # mean of 3 unit normals has variance 1/3; std of the estimate from n=4000 draws ~ 1/sqrt(2n)
     assert abs(out["mean"].std() / np.sqrt(1 / 3) - 1) < 4 / np.sqrt(2 * 4000)
-    assert "demo: 4000/4000" in capsys.readouterr().err
+    err = capsys.readouterr().err
+    assert "demo: 100%" in err and "4000/4000" in err
+
+
+def test_progress_off_by_environment(capsys, monkeypatch):
+    """make reproduce and the tests set NAVLIB_PROGRESS=0: executed notebooks keep no progress output."""
+    monkeypatch.setenv("NAVLIB_PROGRESS", "0")
+    quiet = montecarlo.run(heading_error_batch, 2000, seed=1, batch_size=500, sigma=1.0)
+    assert capsys.readouterr().err == ""
+    shown = montecarlo.run(heading_error_batch, 2000, seed=1, batch_size=500, sigma=1.0, progress=True)
+    assert "2000/2000" in capsys.readouterr().err
+    assert all(np.array_equal(quiet[k], shown[k]) for k in quiet)
 
 
 @pytest.mark.parametrize("kw, match", [

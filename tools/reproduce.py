@@ -272,6 +272,11 @@ def main(argv=None) -> int:
     # figures render with the (headless) inline backend so the HTML shows them.
     os.environ["NAVLIB_ROOT"] = str(root)
     os.environ["MPLBACKEND"] = "module://matplotlib_inline.backend_inline"
+    # The ledger's run: the papers' scale, checks that raise, no progress bars kept in the HTML, and
+    # results in build/ (a shell's teaching or fast switches, or another build directory, do not leak in).
+    os.environ["NAVLIB_PROGRESS"] = "0"
+    for name in ("NAVLIB_TEACHING", "NAVLIB_FAST", "NAVLIB_BUILD_DIR"):
+        os.environ.pop(name, None)
 
     # Notebooks are independent (own kernel, own build/<stem>/, own seeds): run --jobs at once, the
     # longest first (by the last run's times) so that the last one to start is a short one.
