@@ -1,4 +1,9 @@
-"""Plot helpers shared by the notebooks (matplotlib; axes labelled with units)."""
+"""Plot helpers shared by the notebooks (matplotlib; axes labelled with units).
+
+Besides data plots, primitives for the schematics the chapters redraw (block diagrams, plane frames,
+angles) and one style for a paper's value on a figure (:data:`PAPER_STYLE`), so that "the paper says"
+looks the same on every figure of every notebook.
+"""
 from __future__ import annotations
 
 from typing import TYPE_CHECKING
@@ -7,14 +12,18 @@ import numpy as np
 
 from . import attitude, units
 from ._typing import Angles, Array, ArrayLike, Dcm
-from ._validate import as_dcm, euler_angles, positive, same_shape, text
+from ._validate import as_array, as_dcm, choice, euler_angles, instance, positive, same_shape, scalar, text, unit_interval
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.typing import ColorType
     from mpl_toolkits.mplot3d import Axes3D
 
-__all__ = ["body_axes", "allan", "heading_deg"]
+__all__ = ["body_axes", "allan", "heading_deg", "PAPER_STYLE", "paper_value", "block_diagram", "plane_frame",
+           "angle_arc"]
+
+PAPER_STYLE = {"color": "black", "linestyle": (0, (5, 3)), "linewidth": 1.2}
+"""How a paper's printed value or curve is drawn: black, long dashes (markers: black open symbols)."""
 
 _AXIS_STYLE = (("x right", "tab:red"), ("y forward", "tab:green"), ("z up", "tab:blue"))
 
@@ -84,3 +93,156 @@ def allan(ax: Axes, taus: ArrayLike, adev_rad_s: ArrayLike, theory: ArrayLike | 
 def heading_deg(hpr: Angles) -> Array:
     """Heading in degrees in [0, 360) from an ``hpr`` array (..., 3)."""
     return units.to_deg(attitude.wrap_2pi(euler_angles(hpr, "hpr")[..., 0]))
+
+
+def _axes(ax, name: str = "ax") -> None:
+    if not hasattr(ax, "plot") or not hasattr(ax, "annotate"):
+        raise ValueError(f"{name}: expected a matplotlib Axes, got {type(ax).__name__}")
+
+
+def _color(c, name: str) -> None:
+    from matplotlib.colors import is_color_like  # noqa: PLC0415 -- navlib imports without matplotlib
+    if c is None or not is_color_like(c):
+        raise ValueError(f"{name}: expected a matplotlib color, got {c!r:.40}")
+
+
+def _point(p, name: str) -> np.ndarray:
+    arr = as_array(p, name, tail=(2,))
+    if arr.ndim != 1:
+        raise ValueError(f"{name}: expected one point (x, y), got shape {arr.shape}")
+    return arr
+
+
+def _fraction(x, name: str) -> float:
+    v = scalar(x, name, positive=True)
+    if v > 1:
+        raise ValueError(f"{name}: expected a fraction of the axes in (0, 1], got {v!r}")
+    return v
+
+
+def paper_value(ax: Axes, value: float, label: str, *, axis: str = "y", text_at: float = 0.02) -> None:
+    """Mark a paper's printed value on ``ax``: a line in :data:`PAPER_STYLE` with its label written on it.
+
+    Parameters
+    ----------
+    value : float
+        The printed value, in the units of the axis it is drawn on.
+    label : str
+        e.g. ``"paper: 1.25°"``; also the legend entry.
+    axis : {"y", "x"}
+        ``"y"``: a horizontal line at y = value; ``"x"``: a vertical line at x = value.
+    text_at : float
+        Where along the line the label sits, as a fraction of the axes in [0, 1] (0 = left/bottom).
+    """
+    _axes(ax)
+    v = scalar(value, "value")
+    text(label, "label")
+    choice(axis, "axis", ("x", "y"))
+    at = unit_interval(text_at, "text_at")
+    if axis == "y":
+        ax.axhline(v, label=label, **PAPER_STYLE)
+        ax.annotate(label, (at, v), xycoords=("axes fraction", "data"), xytext=(0, 3),
+                    textcoords="offset points", fontsize=8, va="bottom")
+    else:
+        ax.axvline(v, label=label, **PAPER_STYLE)
+        ax.annotate(label, (v, at), xycoords=("data", "axes fraction"), xytext=(3, 0),
+                    textcoords="offset points", fontsize=8, rotation=90, va="bottom")
+
+
+def block_diagram(ax: Axes, blocks: dict[str, tuple[float, float, str]],
+                  arrows: list[tuple[str, str] | tuple[str, str, str]], *, width: float = 0.18,
+                  height: float = 0.11, colors: dict[str, ColorType] | None = None) -> None:
+    """Draw a block diagram (signal flow) on ``ax`` in axes coordinates [0, 1] x [0, 1].
+
+    Parameters
+    ----------
+    blocks : dict
+        ``name -> (x, y, text)``: a rounded box centred at (x, y) (axes fractions) holding ``text``
+        (may contain newlines and mathtext).
+    arrows : list
+        ``(from, to)`` or ``(from, to, label)``: a straight arrow between the two boxes, labelled at
+        its middle. Route around a box with an extra (empty-text) block.
+    width, height : float
+        Box size as a fraction of the axes, in (0, 1].
+    colors : dict, optional
+        ``name -> face colour`` for boxes to set apart (e.g. the sensors); default light grey.
+    """
+    _axes(ax)
+    instance(blocks, "blocks", dict, "a dict name -> (x, y, text)")
+    instance(arrows, "arrows", (list, tuple), "a list of (from, to[, label])")
+    w, h = _fraction(width, "width"), _fraction(height, "height")
+    colors = {} if colors is None else dict(instance(colors, "colors", dict, "a dict name -> colour"))
+    boxes = {}
+    for name, spec in blocks.items():
+        if not isinstance(spec, (tuple, list)) or len(spec) != 3:
+            raise ValueError(f"blocks: expected (x, y, text) for {name!r}, got {spec!r:.60}")
+        boxes[name] = (*_point(spec[:2], f"blocks[{name!r}]"), text(spec[2], f"blocks[{name!r}] text"))
+    for arrow in arrows:
+        if not isinstance(arrow, (tuple, list)) or len(arrow) not in (2, 3) or \
+                arrow[0] not in boxes or arrow[1] not in boxes:
+            raise ValueError(f"arrows: expected (from, to[, label]) between blocks {sorted(boxes)}, got {arrow!r:.60}")
+    for name, c in colors.items():
+        _color(c, f"colors[{name!r}]")
+    from matplotlib.patches import FancyBboxPatch  # noqa: PLC0415 -- navlib imports without matplotlib
+    for name, (x, y, label) in boxes.items():
+        ax.add_patch(FancyBboxPatch((x - w / 2, y - h / 2), w, h, transform=ax.transAxes,
+                                    boxstyle="round,pad=0.01", facecolor=colors.get(name, "0.93"),
+                                    edgecolor="0.3", linewidth=1))
+        ax.text(x, y, label, transform=ax.transAxes, ha="center", va="center", fontsize=8.5)
+    for arrow in arrows:
+        (x0, y0, _), (x1, y1, _) = boxes[arrow[0]], boxes[arrow[1]]
+        # leave each box where the line from centre to centre crosses its edge
+        dx, dy = x1 - x0, y1 - y0
+        s = min((w / 2 + 0.01) / abs(dx) if dx else np.inf, (h / 2 + 0.01) / abs(dy) if dy else np.inf, 0.5)
+        start, end = (x0 + s * dx, y0 + s * dy), (x1 - s * dx, y1 - s * dy)
+        ax.annotate("", end, start, xycoords="axes fraction",
+                    arrowprops={"arrowstyle": "-|>", "color": "0.25", "linewidth": 1.1})
+        if len(arrow) == 3:
+            ax.text((start[0] + end[0]) / 2, (start[1] + end[1]) / 2, text(arrow[2], "arrows label"),
+                    transform=ax.transAxes, ha="center", va="bottom", fontsize=7.5, color="0.2",
+                    bbox={"facecolor": "white", "edgecolor": "none", "pad": 0.5})
+    ax.set(xlim=(0, 1), ylim=(0, 1))
+    ax.set_axis_off()
+
+
+def plane_frame(ax: Axes, origin: tuple[float, float], angle_deg: float, labels: tuple[str, str], *,
+                length: float = 1.0, color: ColorType = "0.2") -> None:
+    """Draw a 2-D frame: two perpendicular axes from ``origin``, the first at ``angle_deg``.
+
+    ``angle_deg`` is measured counter-clockwise from the plot's +x axis (for a map with x east and
+    y north, a body forward axis at heading psi has angle 90° - psi). ``labels`` name the first
+    and second axis (the second is 90° counter-clockwise of the first). ``length`` in data units.
+    """
+    _axes(ax)
+    o = _point(origin, "origin")
+    a = np.deg2rad(scalar(angle_deg, "angle_deg"))
+    if not isinstance(labels, (tuple, list)) or len(labels) != 2:
+        raise ValueError(f"labels: expected two axis names, got {labels!r:.60}")
+    names = [text(n, "labels") for n in labels]
+    size = scalar(length, "length", positive=True)
+    _color(color, "color")
+    for k, name in enumerate(names):
+        d = size * np.array([np.cos(a + k * np.pi / 2), np.sin(a + k * np.pi / 2)])
+        ax.annotate("", tuple(o + d), tuple(o), arrowprops={"arrowstyle": "-|>", "color": color, "linewidth": 1.4})
+        ax.text(*(o + 1.12 * d), name, color=color, ha="center", va="center")
+
+
+def angle_arc(ax: Axes, center: tuple[float, float], radius: float, start_deg: float, end_deg: float,
+              label: str = "", *, color: ColorType = "0.2") -> None:
+    """An arc from ``start_deg`` to ``end_deg`` (counter-clockwise from +x) with ``label`` at its middle.
+
+    ``center`` and ``radius`` in data units (use an equal aspect ratio for a circular arc).
+    """
+    _axes(ax)
+    c = _point(center, "center")
+    r = scalar(radius, "radius", positive=True)
+    t0, t1 = scalar(start_deg, "start_deg"), scalar(end_deg, "end_deg")
+    text(label, "label")
+    _color(color, "color")
+    from matplotlib.patches import Arc  # noqa: PLC0415 -- navlib imports without matplotlib
+    lo, hi = min(t0, t1), max(t0, t1)
+    ax.add_patch(Arc(tuple(c), 2 * r, 2 * r, theta1=lo, theta2=hi, color=color, linewidth=1))
+    if label:
+        mid = np.deg2rad((lo + hi) / 2)
+        ax.text(c[0] + 1.25 * r * np.cos(mid), c[1] + 1.25 * r * np.sin(mid), label, color=color,
+                ha="center", va="center")
