@@ -1,0 +1,71 @@
+"""Every notebook runs to the end in teaching + fast mode with one of its parameters changed.
+
+A student changes a parameter (another latitude, another seed, ...) and runs the notebook: with the
+teaching switch on, a check that no longer holds becomes a visible ``ClaimCheckWarning`` instead of
+stopping the notebook, and the fast switch picks the notebook's small parameter set. The changed
+parameter is injected papermill-style: a cell assigning it is inserted right after the cell tagged
+``parameters``. Each notebook names the change it is tested with in its metadata
+(``metadata.navlib.try_parameters``, a mapping of parameter name to a Python literal as text).
+
+Results go to a temporary build directory (``NAVLIB_BUILD_DIR``): the ledger's ``build/`` is not
+touched, and results written in these modes are marked (``mode``) and refused by the ledger anyway.
+Run times are reported (``-rA`` shows them), never asserted.
+"""
+from __future__ import annotations
+
+import ast
+import json
+import time
+from pathlib import Path
+
+import nbformat
+import pytest
+from nbclient import NotebookClient
+
+ROOT = Path(__file__).resolve().parents[1]
+PATHS = sorted((ROOT / "notebooks").glob("[0-9][0-9]_*.ipynb"))
+
+
+def try_parameters(nb) -> dict[str, str]:
+    return nb.metadata.get("navlib", {}).get("try_parameters", {})
+
+
+def inject(nb, assignments: dict[str, str]) -> None:
+    """Insert ``NAME = value`` lines after the ``parameters`` cell (papermill's convention)."""
+    index = next(i for i, c in enumerate(nb.cells) if "parameters" in c.metadata.get("tags", []))
+    code = "\n".join(f"{name} = {value}" for name, value in assignments.items())
+    cell = nbformat.v4.new_code_cell("# injected parameters\n" + code)
+    cell.metadata["tags"] = ["injected-parameters"]
+    nb.cells.insert(index + 1, cell)
+
+
+@pytest.mark.parametrize("path", PATHS, ids=[p.stem for p in PATHS])
+def test_names_a_parameter_to_change(path):
+    nb = nbformat.read(path, as_version=4)
+    params = next(c.source for c in nb.cells if "parameters" in c.metadata.get("tags", []))
+    changes = try_parameters(nb)
+    assert changes, "metadata.navlib.try_parameters names no parameter to change"
+    defined = {t.id for node in ast.parse(params).body if isinstance(node, ast.Assign)
+               for t in ast.walk(node) if isinstance(t, ast.Name)}
+    for name, value in changes.items():
+        assert name in defined, f"{name} is not set in the parameters cell"
+        ast.literal_eval(value)      # a plain literal, so that a reader can type it too
+    for switch in ("TEACHING", "FAST"):
+        assert switch in defined, f"the parameters cell has no {switch} switch"
+
+
+@pytest.mark.parametrize("path", PATHS, ids=[p.stem for p in PATHS])
+def test_runs_in_teaching_and_fast_mode(path, tmp_path, monkeypatch):
+    nb = nbformat.read(path, as_version=4)
+    inject(nb, try_parameters(nb))
+    for name, value in {"NAVLIB_TEACHING": "1", "NAVLIB_FAST": "1", "NAVLIB_PROGRESS": "0",
+                        "NAVLIB_BUILD_DIR": str(tmp_path), "NAVLIB_ROOT": str(ROOT), "MPLBACKEND": "Agg"}.items():
+        monkeypatch.setenv(name, value)
+    start = time.perf_counter()
+    NotebookClient(nb, timeout=600, kernel_name="python3",
+                   resources={"metadata": {"path": str(path.parent)}}).execute()
+    seconds = time.perf_counter() - start
+    results = json.loads((tmp_path / path.stem / "results.json").read_text())
+    assert results["mode"] == {"teaching": True, "fast": True}
+    print(f"{path.stem}: teaching + fast with {try_parameters(nb)}: {seconds:.1f} s, "
+          f"{sum(c['passed'] for c in results['checks'])}/{len(results['checks'])} checks held")
