@@ -52,8 +52,8 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
 __all__ = ["root", "build_dir", "setup", "savefig", "check", "check_range", "check_outside", "verdict", "results",
-           "verdicts", "summary", "env_flag", "mode", "VERDICTS", "ClaimCheckFailed", "ClaimCheckWarning", "Check",
-           "Verdict", "NoOutputDirectory"]
+           "verdicts", "summary", "env_flag", "mode", "caption", "answer", "VERDICTS", "ClaimCheckFailed",
+           "ClaimCheckWarning", "Check", "Verdict", "NoOutputDirectory"]
 
 VERDICTS = ("reproduced", "reproduced with correction", "differs", "refuted", "direction only", "not checkable here")
 """The verdicts a claim can get (``docs/claims.md``), in the ledger's order."""
@@ -604,3 +604,23 @@ def summary():
               "result": "", "verdict": v.verdict} for v in new_verdicts if not set(v.checks) & shown]
     table = pd.DataFrame(rows, columns=["check", "paper", "ours", "tolerance", "result", "verdict"])
     return table.set_index("check") if rows else table
+
+
+def caption(markdown: str):
+    """Text with computed numbers (a figure caption, a sentence quoting results) rendered as Markdown.
+
+    A notebook's markdown cells cannot hold numbers that a run computes; typed copies go stale. Build
+    the text with an f-string from the run's values and make this the last expression of the cell.
+    """
+    from IPython.display import Markdown  # noqa: PLC0415 -- only notebooks need IPython
+    return Markdown(text(markdown, "markdown", empty=False))
+
+
+def answer(markdown: str, label: str = "Answer"):
+    """The answer to a "Try this" exercise, collapsed (an HTML ``<details>`` block) until the reader opens it.
+
+    ``markdown`` is built from values the notebook computed (an f-string), never typed-in results.
+    """
+    from IPython.display import Markdown  # noqa: PLC0415 -- only notebooks need IPython
+    body, title = text(markdown, "markdown", empty=False), text(label, "label", empty=False)
+    return Markdown(f"<details><summary>{title}</summary>\n\n{body}\n\n</details>")

@@ -438,3 +438,9 @@ def test_build_dir_from_the_environment(fake_root, tmp_path, monkeypatch):
     monkeypatch.setenv("NAVLIB_BUILD_DIR", str(tmp_path / "elsewhere"))
     repro.setup(NB)
     assert (tmp_path / "elsewhere" / NB / "results.json").is_file()
+
+
+def test_caption_and_answer_render_markdown():
+    assert repro.caption("**Figure 1**: 1.25°")._repr_markdown_() == "**Figure 1**: 1.25°"
+    shown = repro.answer("It grows 1.7 times.")._repr_markdown_()
+    assert shown.startswith("<details><summary>Answer</summary>") and "It grows 1.7 times." in shown

@@ -439,6 +439,8 @@ def table() -> dict:
         "repro.verdict": Call(dict(claim="P000-EQ3-EULER", verdict="reproduced"), before=_setup_verdict),
         "repro.verdicts": Skip("takes no arguments"),
         "repro.summary": Skip("takes no arguments"),
+        "repro.caption": Call(dict(markdown="**Figure 1** shows 1.25°.")),
+        "repro.answer": Call(dict(markdown="The error grows as 1/cos L: 1.7 times at 60°.", label="Answer")),
         "repro.env_flag": Call(dict(name="NAVLIB_FUZZ_UNSET_FLAG", default=True)),
         "repro.mode": Call(dict(teaching=True, fast=False), before=_setup),
         "repro.ClaimCheckWarning": Skip("warning class, issued by navlib itself"),
