@@ -18,10 +18,10 @@ export NAVLIB_PROGRESS := 0
 PYTEST_FLAGS ?= -q -ra --durations=10 --nbmake-timeout=1800 -n 2 --dist loadgroup
 
 .DEFAULT_GOAL := help
-.PHONY: help venv reproduce readme test lint lab bench strip clean determinism report-screenshot fuzz
+.PHONY: help venv reproduce readme docs test lint lab bench strip clean determinism fuzz
 
 help:
-	@echo "make reproduce  execute every notebook, write build/ (index.html, HTML, figures, results)"
+	@echo "make reproduce  execute every notebook, write build/ (executed notebooks, figures, results)"
 	@echo "make readme     regenerate the README results section (claims by verdict), quoted numbers and figures from build/"
 	@echo "make test       unit/property tests + every notebook executed by nbmake"
 	@echo "make lint       ruff over the code (also part of make test)"
@@ -30,7 +30,7 @@ help:
 	@echo "make bench      install bench-only peers (requirements-bench.txt), run bench/run.py"
 	@echo "make strip      strip outputs from notebooks/*.ipynb before committing"
 	@echo "make determinism  run reproduce twice; fail unless results and PNGs are byte-identical"
-	@echo "make report-screenshot  render build/index.html in headless Chromium to build/index.png"
+	@echo "make docs       the documentation site in build/site/ (from the last make reproduce), checked in headless Chromium"
 	@echo "make venv       create .venv from environment.txt and install navlib (done by all targets)"
 	@echo "make clean      remove build/"
 
@@ -65,15 +65,20 @@ determinism: $(STAMP)
 	cp build/manifest.json build/manifest.run1.json
 	$(PY) tools/reproduce.py --check-against build/manifest.run1.json
 
-# Opens the report in a real browser (Debian's chromium; installed here if missing).
-report-screenshot:
-	test -f build/index.html || $(MAKE) reproduce
+# The documentation site: tools/build_site.py assembles build/site-src/ from the executed notebooks of the last
+# `make reproduce` (run first when there is none) and builds build/site/ with Sphinx (docs/conf.py); MathJax
+# comes from npm (docs/package.json, exact lock), the browser test (tests/test_site.py) from Debian's
+# chromium, installed here when missing.
+DOCS_STAMP := docs/node_modules/.installed
+$(DOCS_STAMP): docs/package.json docs/package-lock.json
+	npm ci --prefix docs --no-audit --no-fund
+	touch $@
+
+docs: $(STAMP) $(DOCS_STAMP)
+	test -f build/summary.json || $(MAKE) reproduce
 	command -v chromium >/dev/null || (apt-get update -qq && apt-get install -y -qq chromium)
-	chromium --headless --no-sandbox --disable-gpu --disable-quic --no-first-run \
-	  --disable-background-networking --disable-component-update --disable-sync \
-	  --user-data-dir=$$(mktemp -d) --window-size=1280,2400 \
-	  --screenshot=$(CURDIR)/build/index.png file://$(CURDIR)/build/index.html
-	@echo "wrote build/index.png"
+	$(PY) tools/build_site.py
+	$(PY) -m pytest -q -p no:cacheprovider tests/test_site.py
 
 # pytest exits 5 when it collected no tests: that is a failure here too.
 test: $(STAMP)

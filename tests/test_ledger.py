@@ -143,8 +143,8 @@ def test_chapters_have_no_claims():
     assert not set(CHAPTERS) & {p.notebook for p in PAPERS}
 
 
-def test_index_leads_with_verdicts_and_keeps_checks_and_claims_apart(tmp_path):
-    reproduce = pytest.importorskip("reproduce")              # tools/reproduce.py (needs nbclient, nbconvert)
+def test_site_pages_lead_with_verdicts_and_keep_checks_and_claims_apart(tmp_path):
+    site = pytest.importorskip("build_site")                 # tools/build_site.py (needs nbformat, sphinx)
     p = PAPERS[0]
     ids = [c for c, r in CLAIMS.items() if r["paper"] == p.claims_id]
     check = {"name": ids[0] + "/a", "value": 1.0, "expected": 1.0, "tol": 0.1, "passed": True, "source": "paper Eq. (3)",
@@ -155,12 +155,11 @@ def test_index_leads_with_verdicts_and_keeps_checks_and_claims_apart(tmp_path):
          "ours": "1", "reason": "", "erratum": "", "figure": ""},
         {"claim": ids[1], "verdict": "differs", "checks": [outside["name"]], "evidence": [outside["name"]],
          "paper": "2.5", "ours": "1", "reason": "hardware", "erratum": "", "figure": ""}], [check, outside])
-    entry = {"notebook": p.notebook, "ok": True, "error": None, "seconds": 1.0, "peak_mb": 1, "checks_passed": 2,
-             "checks_total": 2, "checks": [check, outside], "figures": [], "header": "# paper"}
-    reproduce.write_index(tmp_path, [entry], ROOT)
-    page = (tmp_path / "index.html").read_text(encoding="utf-8")
-    assert page.index("no verdict yet") < page.index("<th>check</th>")        # the claims lead, the checks follow
-    assert "claims passed" not in page and "2/2 checks passed" in page
-    assert "= target" not in page                                         # no invented paper values
-    assert "hardware" in page and ">outside<" in page
-    assert f"{len(ids)} claims of 1 papers; 2 have a verdict that rests on a computation" in page
+    leds = [led for led in ledger.ledgers(tmp_path) if led.stem == p.notebook]
+    home = site.home_page(leds, [p.notebook])
+    assert home.index("no verdict yet") < home.index("## Two commands")  # the verdicts lead
+    assert "claims passed" not in home and "2/2" in home                 # checks passed, counted as checks
+    assert "= target" not in home and "hardware" in home                 # no invented paper values; the reason
+    page = site.ledger_page(leds, tmp_path)
+    assert page.count("<tr data-paper=") == 2 + sum(1 for r in leds[0].rows if not r.checks)
+    assert "data-verdict='differs'" in page and "outside [2, 3]" in page

@@ -127,6 +127,22 @@ def test_ci_workflow_runs_make_test_on_supported_versions():
     assert versions and all(SpecifierSet(PROJECT["requires-python"]).contains(v) for v in versions)
 
 
+def test_docs_workflow_builds_with_make_docs_and_deploys_the_site():
+    """The site's publishing workflow (it cannot run here): valid YAML, builds with make docs from main,
+    uploads build/site and deploys it to GitHub Pages, the address the README links to."""
+    wf = yaml.safe_load((ROOT / ".github" / "workflows" / "docs.yml").read_text())
+    on = wf.get("on", wf.get(True))                 # YAML 1.1 reads a bare `on` key as True
+    assert on["push"]["branches"] == ["main"]
+    steps = [s for job in wf["jobs"].values() for s in job.get("steps", [])]
+    assert any(s.get("run", "").startswith("make docs") for s in steps)
+    upload = next(s for s in steps if s.get("uses", "").startswith("actions/upload-pages-artifact"))
+    assert upload["with"]["path"] == "build/site"
+    assert any(s.get("uses", "").startswith("actions/deploy-pages") for s in steps)
+    assert wf["permissions"]["pages"] == "write"
+    site = yaml.safe_load((ROOT / "CITATION.cff").read_text(encoding="utf-8"))["url"]
+    assert site in (ROOT / "README.md").read_text(encoding="utf-8")
+
+
 def test_ci_entry_point_calls_make_test_in_a_fresh_clone():
     run = (ROOT / ".ci" / "run").read_text()
     assert "git clone" in run and "make test" in run

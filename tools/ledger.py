@@ -1,7 +1,7 @@
 """The paper-vs-reproduction ledger: every claim of ``data/claims.csv`` with its verdict.
 
-Shared by ``tools/reproduce.py`` (``build/index.html``) and ``tools/readme.py`` (the README's
-results section). A claim's verdict is owned by its notebook: the notebook records it with
+Shared by ``tools/build_site.py`` (the site's home page and ledger), ``tools/reproduce.py`` and
+``tools/readme.py`` (the README's results section). A claim's verdict is owned by its notebook: the notebook records it with
 ``navlib.repro.verdict`` into ``build/<notebook>/results.json``, resting on the checks recorded
 there. ``data/claims.csv`` holds no verdict (one owner, no second copy that could disagree); a
 claim whose notebook records none is shown as *no verdict yet* and never counted as reproduced.

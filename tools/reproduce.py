@@ -1,18 +1,17 @@
 #!/usr/bin/env python3
-"""Execute every numbered notebook and build the reproduction report in build/.
+"""Execute every numbered notebook into build/ (the documentation site is built from it: make docs).
 
 For each ``notebooks/NN_*.ipynb`` in name order (kernel ``python3``, working
 directory ``notebooks/``) this writes
 
-* ``build/<stem>.ipynb`` and ``build/<stem>.html`` - the executed notebook,
+* ``build/<stem>.ipynb`` - the executed notebook (``tools/build_site.py`` renders it as a chapter),
 * ``build/<stem>.kernel.log`` - the kernel process's own stderr,
 
 and reads ``build/<stem>/results.json`` and ``build/<stem>/figures/*.png``,
 which the notebook itself writes through ``navlib.repro``. Then it writes
-``build/index.html`` (per paper: every claim of ``data/claims.csv`` with the paper's value, ours,
-the notebook's verdict and a thumbnail, counts by verdict; per notebook: every check) and
 ``build/summary.json`` and ``build/manifest.json`` (SHA-256 of every
-results file and figure), and prints one line per notebook.
+results file and figure), and prints one line per notebook and the claims by verdict per paper
+(the site's home page and ledger show every claim and check: ``make docs``).
 ``--check-against MANIFEST`` fails the run unless those files are
 byte-identical to an earlier run's (``make determinism``).
 
@@ -30,21 +29,17 @@ from __future__ import annotations
 import argparse
 import fnmatch
 import hashlib
-import html
 import json
 import multiprocessing
 import os
 import shutil
 import sys
 import time
-from collections import Counter
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
 
 import nbformat
 from nbclient import NotebookClient
-from nbconvert import HTMLExporter
-from nbconvert.filters.markdown_mistune import markdown2html_mistune
 
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO))
@@ -78,7 +73,7 @@ def kernel_peak_mb(client: NotebookClient) -> float | None:
 
 
 def run_notebook(path: Path, build: Path, timeout: int) -> dict:
-    """Execute one notebook, write its .ipynb/.html, return its summary entry."""
+    """Execute one notebook, write the executed .ipynb, return its summary entry."""
     stem = path.stem
     shutil.rmtree(build / stem, ignore_errors=True)  # no stale results or figures
     nb = nbformat.read(path, as_version=4)
@@ -99,132 +94,19 @@ def run_notebook(path: Path, build: Path, timeout: int) -> dict:
     seconds = time.perf_counter() - start
     peak_mb = None if peak["mb"] is None else round(peak["mb"])
     nbformat.write(nb, build / f"{stem}.ipynb")
-    body, _ = HTMLExporter().from_notebook_node(nb)
-    (build / f"{stem}.html").write_text(body, encoding="utf-8")
+    (build / f"{stem}.html").unlink(missing_ok=True)          # the last report's page (now: make docs)
 
     results = build / stem / "results.json"
     checks = json.loads(results.read_text())["checks"] if results.is_file() else []
     passed = sum(bool(c.get("passed")) for c in checks)
     figures = sorted(p.relative_to(build).as_posix() for p in (build / stem / "figures").glob("*.png"))
-    header = next((c.source for c in nb.cells if c.cell_type == "markdown"), "")
     return {"notebook": stem, "ok": error is None and passed == len(checks), "error": error,
             "seconds": round(seconds, 1), "peak_mb": peak_mb, "checks_passed": passed, "checks_total": len(checks),
-            "checks": checks, "figures": figures, "header": header}
+            "checks": checks, "figures": figures}
 
 
 def mb(x: float | None) -> str:
     return "n/a" if x is None else f"{x} MB"
-
-
-def fmt(x, unit: str = "") -> str:
-    if x is None:
-        return ""
-    s = f"{x:.6g}" if isinstance(x, (int, float)) else str(x)
-    return f"{s} {unit}".strip()
-
-
-def checks_table(checks: list[dict]) -> str:
-    """Every check of a notebook: what it compares, its target or bound, and whether it passed."""
-    if not checks:
-        return "<p><em>No checks recorded.</em></p>"
-    rows = []
-    for c in checks:
-        unit = c.get("unit") or ""
-        if c.get("expected") is not None:
-            target, tol = fmt(c["expected"], unit), f"± {fmt(c.get('tol'))}"
-        else:
-            lo, hi = c.get("lower"), c.get("upper")
-            target = f"[{fmt(lo) if lo is not None else '−∞'}, {fmt(hi) if hi is not None else '∞'}] {unit}".strip()
-            tol = "outside" if c.get("outside") else "range"
-        ok = bool(c.get("passed"))
-        # the paper's value only where the check names one: a target is not a paper number by default
-        cells = [c["name"], c.get("paper_value") or "", target, fmt(c.get("value"), unit), tol, c.get("source", ""),
-                 c.get("note", "")]
-        tds = "".join(f"<td>{html.escape(str(v))}</td>" for v in cells)
-        rows.append(f'<tr id="check-{html.escape(c["name"])}">{tds}<td class="{"pass" if ok else "fail"}">'
-                    f'{"pass" if ok else "FAIL"}</td></tr>')
-    head = "".join(f"<th>{h}</th>" for h in
-                   ("check", "paper value", "target or bound", "reproduced", "tolerance", "source", "note", "result"))
-    return f"<table><tr>{head}</tr>\n" + "\n".join(rows) + "\n</table>"
-
-
-VERDICT_CLASS = {v: "v" + str(i) for i, v in enumerate(ledger.COLUMNS)}
-
-
-def claims_matrix(led: ledger.PaperLedger) -> str:
-    """Every claim of the paper: paper item, paper value, ours, verdict (with reason) and thumbnail."""
-    rows = []
-    for r in led.rows:
-        checks = ", ".join(f"<a href='#check-{html.escape(n)}'>{html.escape(n.removeprefix(r.claim) or n)}</a>"
-                           for n in r.checks)
-        thumb = (f"<a href='{r.figure}'><img src='{r.figure}' width='120' alt='{html.escape(r.figure)}'></a>"
-                 if r.figure else "")
-        why = ledger.verdict_text(r)[len(r.verdict):].lstrip(": ")
-        verdict = f"<span class='{VERDICT_CLASS[r.verdict]}'>{html.escape(r.verdict)}</span>"
-        cells = [html.escape(r.item), f"<code>{html.escape(r.claim)}</code><br><small>{html.escape(r.quantity)}</small>",
-                 html.escape(r.paper), html.escape(r.ours), verdict + (f"<br><small>{html.escape(why)}</small>" if why else ""),
-                 checks, thumb]
-        rows.append("<tr>" + "".join(f"<td>{c}</td>" for c in cells) + "</tr>")
-    head = "".join(f"<th>{h}</th>" for h in ("paper item", "claim", "paper", "ours", "verdict", "checks", "figure"))
-    return f"<table class='matrix'><tr>{head}</tr>\n" + "\n".join(rows) + "\n</table>"
-
-
-def counts_table(leds: list[ledger.PaperLedger], entries: dict[str, dict]) -> str:
-    """Claims by verdict per paper, and each notebook's checks passed."""
-    head = "".join(f"<th>{h}</th>" for h in ("notebook", "paper", "claims", *ledger.COLUMNS, "checks passed"))
-    rows, total = [], Counter()
-    for led in leds:
-        counts = led.counts
-        total.update(counts)
-        e = entries.get(led.stem)
-        passed = f"{e['checks_passed']}/{e['checks_total']}" if e else "not run"
-        cells = [f"<a href='#{led.stem}'>{led.stem}</a>", html.escape(led.title), str(len(led.rows)),
-                 *(str(counts.get(v, 0)) for v in ledger.COLUMNS), passed]
-        rows.append("<tr>" + "".join(f"<td>{c}</td>" for c in cells) + "</tr>")
-    cells = ["<b>total</b>", "", str(sum(len(led.rows) for led in leds)), *(str(total.get(v, 0)) for v in ledger.COLUMNS), ""]
-    rows.append("<tr>" + "".join(f"<td>{c}</td>" for c in cells) + "</tr>")
-    return f"<table><tr>{head}</tr>\n" + "\n".join(rows) + "\n</table>"
-
-
-def write_index(build: Path, entries: list[dict], root: Path = REPO) -> None:
-    style = ("body{font-family:sans-serif;max-width:90em;margin:2em auto;padding:0 1em}"
-             "table{border-collapse:collapse;font-size:90%}td,th{border:1px solid #ccc;padding:.2em .5em;vertical-align:top}"
-             "th{background:#f4f4f4}.pass{background:#d4f4d4}.fail{background:#f8d0d0;font-weight:bold}"
-             ".v0,.v1{background:#d4f4d4}.v2,.v3{background:#f8e0c0}.v4{background:#e0e8f8}.v5{background:#eee}"
-             ".v6{background:#f8d0d0}.err{color:#a00}img{margin:4px;border:1px solid #ddd}")
-    by_stem = {e["notebook"]: e for e in entries}
-    leds = [led for led in ledger.ledgers(build, root) if led.stem in by_stem]
-    total_s = sum(e["seconds"] for e in entries)
-    passed = sum(e["checks_passed"] for e in entries)
-    total = sum(e["checks_total"] for e in entries)
-    n_claims = sum(len(led.rows) for led in leds)
-    computed = sum(led.computed for led in leds)
-    parts = [f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>navlib reproduction</title>"
-             f"<style>{style}</style></head><body><h1>navlib: the papers' claims and their verdicts</h1>"
-             f"<p>{n_claims} claims of {len(leds)} papers; {computed} have a verdict that rests on a computation "
-             f"(a check of the notebook). A claim is a statement of a paper (<code>data/claims.csv</code>); a check is "
-             f"one computed comparison. {passed}/{total} checks passed in {len(entries)} notebooks; total run time "
-             f"{total_s:.1f} s.</p>", counts_table(leds, by_stem)]
-    for led in leds:
-        parts += [f"<h2 id='{led.stem}-claims'>{html.escape(led.stem)}: {html.escape(led.title)}</h2>",
-                  f"<p><a href='#{led.stem}'>checks and figures</a></p>"]
-        parts += [f"<p class='err'>{html.escape(p)}</p>" for p in led.problems]
-        parts.append(claims_matrix(led))
-    for e in entries:
-        nb = html.escape(e["notebook"])
-        parts.append(f"<h2 id='{nb}'><a href='{nb}.html'>{nb}</a></h2>"
-                     f"<p>run time {e['seconds']:.1f} s; {e['checks_passed']}/{e['checks_total']} checks passed"
-                     f" (<a href='{nb}.ipynb'>executed notebook</a>)</p>")
-        if e["error"]:
-            parts.append(f"<p class='err'>Notebook failed: {html.escape(e['error'])}</p>")
-        # the notebook's own header: citation, what is reproduced, status table with reasons
-        header = markdown2html_mistune(e.get("header", "")).replace("<h1", "<h3").replace("</h1>", "</h3>")
-        parts.append(f"<div class='header'>{header}</div>")
-        parts.append(checks_table(e["checks"]))
-        parts.append("<p>" + "".join(f"<a href='{f}'><img src='{f}' width='240' alt='{html.escape(f)}'></a>"
-                                     for f in e["figures"]) + "</p>")
-    parts.append("</body></html>\n")
-    (build / "index.html").write_text("\n".join(parts), encoding="utf-8")
 
 
 def write_manifest(build: Path, entries: list[dict]) -> dict:
@@ -296,7 +178,7 @@ def main(argv=None) -> int:
     entries = [done[path] for path in notebooks]
     wall = time.perf_counter() - start
 
-    write_index(build, entries, root)
+    (build / "index.html").unlink(missing_ok=True)             # the hand-written report: replaced by make docs
     manifest = write_manifest(build, entries)
     summary = {e["notebook"]: {k: e[k] for k in ("checks_passed", "checks_total", "seconds", "peak_mb", "ok", "error")}
                for e in entries}
@@ -319,7 +201,7 @@ def main(argv=None) -> int:
             counts = led.counts
             print(f"{led.stem:<{width}}{len(led.rows):>4} claims: " + ", ".join(
                 f"{counts[v]} {v}" for v in ledger.COLUMNS if counts.get(v)) + "".join(f"\n    {p}" for p in led.problems))
-    print(f"report: {build / 'index.html'}")
+    print("site: make docs (build/site/index.html)")
     if args.check_against:
         changed = compare_manifest(manifest, args.check_against, [p.stem for p in notebooks])
         print(f"determinism: {len(manifest)} files, {len(changed)} differ from {args.check_against.name}"

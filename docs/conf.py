@@ -1,0 +1,72 @@
+"""Sphinx configuration of the navlib site (``make docs``).
+
+The sources are assembled by ``tools/build_site.py`` into ``build/site-src/`` (the executed notebooks of the
+last ``make reproduce``, pages generated from the results files and the README, the API pages) and
+built into ``build/site/`` with this configuration (copied beside the sources). Everything the pages
+load is served from the site itself: MathJax from the npm package pinned in ``docs/package.json``,
+fonts and scripts from the theme; widget JavaScript from a CDN is switched off.
+"""
+from __future__ import annotations
+
+import re
+
+import navlib
+
+project = "navlib"
+author = "The navlib developers"
+copyright = "2026, the navlib developers (MIT licence)"  # noqa: A001 -- Sphinx's name
+release = version = navlib.__version__
+
+extensions = ["myst_nb", "sphinx.ext.autodoc", "sphinx.ext.napoleon", "sphinx.ext.mathjax"]
+exclude_patterns = ["_build", "**.ipynb_checkpoints"]
+# ref.python: docstring types such as "n" match several attributes
+suppress_warnings = ["mystnb.unknown_mime_type", "myst.header", "ref.python"]
+
+# Notebooks are rendered as executed by `make reproduce`, never executed again.
+nb_execution_mode = "off"
+nb_ipywidgets_js = {}                 # no widget JavaScript from a CDN (explorers draw a static default headless)
+nb_merge_streams = True
+myst_enable_extensions = ["dollarmath", "amsmath", "colon_fence", "html_image"]
+myst_heading_anchors = 3
+
+# numpydoc-style docstrings through napoleon; members as listed in each module's __all__.
+napoleon_numpy_docstring = True
+napoleon_google_docstring = False
+autodoc_default_options = {"members": True, "show-inheritance": True}
+autodoc_member_order = "bysource"
+autodoc_typehints = "description"
+autodoc_preserve_defaults = True
+
+# MathJax 3 from the site's own _static (tools/build_site.py copies it from docs/node_modules, pinned in
+# docs/package.json and installed by `make docs` with npm ci): offline, no CDN. myst-parser adds the
+# classes of its math to mathjax3_config.
+mathjax_path = "mathjax/tex-mml-chtml.js"
+
+html_theme = "sphinx_book_theme"
+html_title = "navlib"
+html_static_path = ["_static"]
+html_extra_path = ["_extra"]
+html_js_files = ["ledger.js"]
+html_css_files = ["navlib.css"]
+html_favicon = "_static/favicon.svg"       # the site's own (else the browser asks for /favicon.ico)
+html_last_updated_fmt = None
+html_context = {"default_mode": "light"}      # an explicit mode: the theme logs an error for an unset one
+html_theme_options = {
+    "repository_url": "https://github.com/navlib-repro/navlib",
+    "use_repository_button": True,
+    "use_download_button": True,
+    "home_page_in_toc": True,
+    "show_toc_level": 2,
+}
+
+
+# Docstrings write absolute values as |f| and |w|dt: plain text, not reStructuredText substitutions.
+_BARS = re.compile(r"(?<![\\|])\|(\S[^|\n]{0,40}?\S|\S)\|")
+
+
+def _escape_bars(app, what, name, obj, options, lines):
+    lines[:] = [_BARS.sub(r"\\|\1\\|", line) for line in lines]
+
+
+def setup(app):
+    app.connect("autodoc-process-docstring", _escape_bars)

@@ -1,0 +1,375 @@
+#!/usr/bin/env python3
+"""Build the documentation site into ``build/site/`` (``make docs``).
+
+Assembles ``build/site-src/`` and runs Sphinx on it with ``docs/conf.py``:
+
+* ``index.md`` — what navlib is (``docs/home.md``), the claims by verdict per paper, each paper's verdict
+  matrix with thumbnails (``tools/ledger.py``, from the results files), the two commands, how to cite
+  (``CITATION.cff``);
+* ``chapters/`` — the executed notebooks that ``make reproduce`` wrote to ``build/`` (not executed
+  again), code cells collapsible, names such as ``nf.resolve`` in the text linked to the API reference;
+* ``ledger.md`` — every check of every notebook with its claim's verdict, filterable by paper and verdict;
+* ``api/`` — one page per public module (autodoc over the numpydoc docstrings);
+* ``conventions``, ``claims`` (``docs/``), ``own-data``, ``robustness`` (README sections: one source),
+  ``benchmarks`` (README section and the last ``build/bench.json`` when present).
+
+MathJax 3 is copied from ``docs/node_modules`` (``docs/package.json``, installed with ``npm ci``) into
+the site: nothing is loaded from outside it. ``tests/test_site.py`` opens every page in headless Chromium.
+"""
+from __future__ import annotations
+
+import argparse
+import ast
+import html
+import importlib
+import json
+import pkgutil
+import re
+import shutil
+import sys
+import time
+from collections import Counter
+from pathlib import Path
+
+import nbformat
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "tools"))
+import ledger  # noqa: E402
+
+README_PAGES = {"own-data": "Your own data", "robustness": "Robustness: what each filter does with bad data"}
+WIDGET_MIME = "application/vnd.jupyter.widget-view+json"
+VERDICT_CSS = {v: f"verdict-{i}" for i, v in enumerate(ledger.COLUMNS)}
+
+
+def readme_section(title: str) -> str:
+    """The README section under ``## title`` (up to the next ``## ``), links to repository files made absolute."""
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    start = text.index(f"\n## {title}\n")
+    end = text.find("\n## ", start + 1)
+    body = text[start + 1:end if end > 0 else None]
+    repo = "https://github.com/navlib-repro/navlib/blob/main/"
+    return re.sub(r"\]\((?!https?:|#)([^)]+)\)", lambda m: f"]({repo}{m.group(1)})", body)
+
+
+# ----------------------------------------------------------------------------------------------- chapters
+def aliases(nb) -> dict[str, str]:
+    """Names the notebook's code binds to navlib modules: ``nf`` -> ``navlib.papers.north_finding``."""
+    out = {"navlib": "navlib"}
+    for cell in nb.cells:
+        if cell.cell_type != "code":
+            continue
+        src = "\n".join(line for line in cell.source.splitlines() if not line.lstrip().startswith(("%", "!")))
+        try:
+            tree = ast.parse(src)
+        except SyntaxError:
+            continue
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ImportFrom) and (node.module or "").startswith("navlib"):
+                for a in node.names:
+                    out[a.asname or a.name] = f"{node.module}.{a.name}"
+            elif isinstance(node, ast.Import):
+                out.update({a.asname or a.name: a.name for a in node.names if a.name.startswith("navlib")})
+    return out
+
+
+def public_target(dotted: str) -> str | None:
+    """``dotted`` if it names a public navlib module or a name in its module's ``__all__``."""
+    parts = dotted.split(".")
+    for k in range(len(parts), 0, -1):
+        try:
+            module = importlib.import_module(".".join(parts[:k]))
+        except ImportError:
+            continue
+        rest = parts[k:]
+        if not rest:
+            return dotted
+        if len(rest) == 1 and rest[0] in getattr(module, "__all__", ()):
+            return dotted
+        return None
+    return None
+
+
+CODE_NAME = re.compile(r"`([A-Za-z_][\w]*(?:\.[A-Za-z_]\w*)+)(\(\))?`")
+
+
+def link_names(markdown: str, names: dict[str, str]) -> str:
+    """`` `nf.resolve` `` -> a MyST cross-reference to ``navlib.papers.north_finding.resolve``."""
+    def repl(m):
+        head, _, tail = m.group(1).partition(".")
+        if head not in names:
+            return m.group(0)
+        target = public_target(f"{names[head]}.{tail}")
+        return f"{{py:obj}}`{m.group(1)}{m.group(2) or ''} <{target}>`" if target else m.group(0)
+    return CODE_NAME.sub(repl, markdown)
+
+
+def stage_notebook(src: Path, dest: Path) -> None:
+    """Copy an executed notebook for the site: code collapsible, widget views dropped, API names linked."""
+    nb = nbformat.read(src, as_version=4)
+    names = aliases(nb)
+    for cell in nb.cells:
+        if cell.cell_type == "markdown":
+            cell.source = link_names(cell.source, names)
+        elif cell.cell_type == "code":
+            tags = cell.metadata.setdefault("tags", [])
+            if "hide-input" not in tags:
+                tags.append("hide-input")
+            kept = []
+            for out in cell.get("outputs", []):
+                if WIDGET_MIME in out.get("data", {}):
+                    del out["data"][WIDGET_MIME]      # a live widget: needs a kernel, its static default is drawn
+                    if not out["data"]:
+                        continue
+                kept.append(out)
+            cell.outputs = kept
+    nb.metadata.pop("widgets", None)
+    nbformat.write(nb, dest)
+
+
+# ------------------------------------------------------------------------------------------------- ledger
+def fmt(x, unit: str = "") -> str:
+    if x is None:
+        return ""
+    s = f"{x:.6g}" if isinstance(x, (int, float)) else str(x)
+    return f"{s} {unit}".strip()
+
+
+def counts_table(leds: list[ledger.PaperLedger]) -> str:
+    head = "".join(f"<th>{h}</th>" for h in ("paper", "claims", *ledger.COLUMNS, "checks passed"))
+    rows, total = [], Counter()
+    for led in leds:
+        total.update(led.counts)
+        cells = [f"<a href='chapters/{led.stem}.html'>{html.escape(led.title)}</a>", str(len(led.rows)),
+                 *(str(led.counts.get(v, 0)) for v in ledger.COLUMNS), f"{led.checks_passed}/{led.checks_total}"]
+        rows.append("<tr>" + "".join(f"<td>{c}</td>" for c in cells) + "</tr>")
+    cells = ["<b>all papers</b>", str(sum(len(led.rows) for led in leds)), *(str(total.get(v, 0)) for v in ledger.COLUMNS),
+             f"{sum(led.checks_passed for led in leds)}/{sum(led.checks_total for led in leds)}"]
+    rows.append("<tr>" + "".join(f"<td>{c}</td>" for c in cells) + "</tr>")
+    return f"<table class='counts'><thead><tr>{head}</tr></thead><tbody>\n" + "\n".join(rows) + "\n</tbody></table>"
+
+
+def verdict_span(verdict: str) -> str:
+    return f"<span class='verdict {VERDICT_CSS[verdict]}'>{html.escape(verdict)}</span>"
+
+
+def claims_matrix(led: ledger.PaperLedger) -> str:
+    """Every claim of a paper: paper item, paper value, ours, verdict (with its reason) and thumbnail."""
+    rows = []
+    for r in led.rows:
+        thumb = (f"<a href='{r.figure}'><img src='{r.figure}' width='110' alt='{html.escape(r.claim)}'></a>"
+                 if r.figure else "")
+        why = ledger.verdict_text(r)[len(r.verdict):].lstrip(": ")
+        cells = [html.escape(r.item), f"<code>{html.escape(r.claim)}</code><br><small>{html.escape(r.quantity)}</small>",
+                 html.escape(r.paper), html.escape(r.ours),
+                 verdict_span(r.verdict) + (f"<br><small>{html.escape(why)}</small>" if why else ""), thumb]
+        rows.append("<tr>" + "".join(f"<td>{c}</td>" for c in cells) + "</tr>")
+    head = "".join(f"<th>{h}</th>" for h in ("paper item", "claim", "paper", "ours", "verdict", "figure"))
+    return f"<table class='matrix'><thead><tr>{head}</tr></thead><tbody>\n" + "\n".join(rows) + "\n</tbody></table>"
+
+
+def ledger_rows(led: ledger.PaperLedger, res: dict | None) -> list[str]:
+    """One row per check of the paper's notebook (with its claim's verdict), one per claim without checks."""
+    by_check = {n: r for r in led.rows for n in r.checks}
+    rows = []
+    for c in (res or {}).get("checks", []):
+        claim = by_check.get(c["name"])
+        verdict = claim.verdict if claim else "no claim"
+        unit = c.get("unit") or ""
+        if c.get("expected") is not None:
+            target = f"{fmt(c['expected'], unit)} ± {fmt(c.get('tol'))}"
+        else:
+            lo, hi = c.get("lower"), c.get("upper")
+            target = ("outside " if c.get("outside") else "") + \
+                f"[{fmt(lo) if lo is not None else '−∞'}, {fmt(hi) if hi is not None else '∞'}] {unit}".strip()
+        cells = [html.escape(led.stem[:2]), f"<code>{html.escape(c['name'])}</code>",
+                 html.escape(c.get("paper_value") or ""), html.escape(fmt(c.get("value"), unit)), html.escape(target),
+                 "pass" if c.get("passed") else "<b>FAIL</b>",
+                 verdict_span(verdict) if claim else "<small>(check beyond the catalogue)</small>",
+                 html.escape(c.get("source", ""))]
+        rows.append(f"<tr data-paper='{led.stem[:2]}' data-verdict='{html.escape(verdict)}'>"
+                    + "".join(f"<td>{x}</td>" for x in cells) + "</tr>")
+    for r in led.rows:
+        if not r.checks:
+            cells = [html.escape(led.stem[:2]), f"<code>{html.escape(r.claim)}</code> <small>(claim, no check)</small>",
+                     html.escape(r.paper), html.escape(r.ours), "", "", verdict_span(r.verdict), html.escape(r.reason)]
+            rows.append(f"<tr data-paper='{led.stem[:2]}' data-verdict='{html.escape(r.verdict)}'>"
+                        + "".join(f"<td>{x}</td>" for x in cells) + "</tr>")
+    return rows
+
+
+def ledger_page(leds: list[ledger.PaperLedger], build: Path) -> str:
+    rows = [row for led in leds for row in ledger_rows(led, ledger.results(build, led.stem))]
+    papers = "".join(f"<button data-filter='paper' data-value='{led.stem[:2]}'>{html.escape(led.stem)}</button>"
+                     for led in leds)
+    verdicts = "".join(f"<button data-filter='verdict' data-value='{html.escape(v)}'>{html.escape(v)}</button>"
+                       for v in (*ledger.COLUMNS, "no claim"))
+    head = "".join(f"<th>{h}</th>" for h in ("nb", "check", "paper value", "ours", "target or bound", "result",
+                                              "claim verdict", "source"))
+    return "\n".join([
+        "# The ledger: every check",
+        "",
+        "A *claim* is a statement of a paper; a *check* is one computed comparison in a notebook (its value "
+        "computed by navlib from simulated or committed data). Each row is a check with the verdict of the claim "
+        "it supports; claims that rest on no check (not checkable here) have a row of their own. How verdicts "
+        "are given: [the claims catalogue](claims.md).",
+        "",
+        "<div class='ledger-filters'>",
+        f"<p>Paper: <button data-filter='paper' data-value='' class='active'>all</button>{papers}</p>",
+        f"<p>Verdict: <button data-filter='verdict' data-value='' class='active'>all</button>{verdicts}</p>",
+        "<p><span id='ledger-count'></span> rows shown</p>",
+        "</div>",
+        "",
+        f"<table id='ledger' class='ledger'><thead><tr>{head}</tr></thead><tbody>",
+        *rows,
+        "</tbody></table>",
+        ""])
+
+
+# --------------------------------------------------------------------------------------------------- home
+def citation() -> str:
+    import yaml
+    cff = yaml.safe_load((ROOT / "CITATION.cff").read_text(encoding="utf-8"))
+    lines = [f"{cff['authors'][0]['name']} ({cff['date-released'][:4]}). *{cff['title']}*, version {cff['version']}. "
+             f"<{cff['repository-code']}>", "",
+             "and the paper whose method you use:", ""]
+    for ref in cff.get("references", []):
+        who = ", ".join(f"{a['family-names']} {a['given-names'][0]}." for a in ref["authors"])
+        year = f" ({ref['year']})" if "year" in ref else ""
+        doi = f" doi:{ref['doi']}" if "doi" in ref else ""
+        lines.append(f"* {who}{year}. {ref['title']}. *{ref['journal']}*.{doi} ({ref['notes'].split('.')[0]})")
+    return "\n".join(lines)
+
+
+def home_page(leds: list[ledger.PaperLedger], chapters: list[str]) -> str:
+    matrices = []
+    for led in leds:
+        counts = ", ".join(f"{led.counts[v]} {v}" for v in ledger.COLUMNS if led.counts.get(v))
+        matrices += [f"<details><summary><b>{html.escape(led.title)}</b> — {len(led.rows)} claims: "
+                     f"{html.escape(counts)} (<a href='chapters/{led.stem}.html'>chapter</a>)</summary>",
+                     claims_matrix(led), "</details>", ""]
+    return "\n".join([
+        (ROOT / "docs" / "home.md").read_text(encoding="utf-8").rstrip(), "",
+        "## The papers' claims and their verdicts", "",
+        "Claims by verdict (counted from the results of the last `make reproduce`; the full list of checks is in "
+        "[the ledger](ledger.md)):", "",
+        counts_table(leds), "",
+        "Each paper's verdict matrix (open a paper):", "",
+        *matrices,
+        "## Two commands", "",
+        "```bash",
+        "git clone https://github.com/navlib-repro/navlib.git && cd navlib",
+        "make reproduce   # set up .venv, execute every notebook, write build/ (figures, results, this site's input)",
+        "make test        # unit and property tests, and every notebook executed by nbmake",
+        "```", "",
+        "`make docs` builds this site from the executed notebooks into `build/site/`.", "",
+        "## How to cite", "",
+        citation(), "",
+        "```{toctree}", ":caption: Chapters", ":maxdepth: 1", ":hidden:", "", *[f"chapters/{c}" for c in chapters],
+        "```", "",
+        "```{toctree}", ":caption: Reference", ":maxdepth: 1", ":hidden:", "",
+        "ledger", "claims", "conventions", "own-data", "robustness", "benchmarks", "api/index", "```", ""])
+
+
+# ---------------------------------------------------------------------------------------------------- API
+def public_modules() -> dict[str, list[str]]:
+    import navlib
+    groups = {"Core": [], "Filters": [], "Paper companions": []}
+    for info in pkgutil.walk_packages(navlib.__path__, "navlib."):
+        if any(part.startswith("_") for part in info.name.split(".")) or info.ispkg and info.name != "navlib.papers":
+            continue
+        group = "Filters" if info.name.startswith("navlib.filters.") else \
+            "Paper companions" if info.name.startswith("navlib.papers") else "Core"
+        groups[group].append(info.name)
+    return {g: sorted(m) for g, m in groups.items()}
+
+
+def api_pages(dest: Path) -> None:
+    groups = public_modules()
+    index = ["# API reference", "",
+             "Every public name of navlib, by module, from its docstrings (shapes and units in each). The paper "
+             "companions (`navlib.papers.*`) give the paper's equations with their numbers.", ""]
+    for group, modules in groups.items():
+        index += [f"## {group}", ""] + [f"* [{m}]({m}.md)" for m in modules] + [""]
+        for m in modules:
+            (dest / f"{m}.md").write_text(f"# {m}\n\n```{{eval-rst}}\n.. automodule:: {m}\n```\n", encoding="utf-8")
+    every = [m for modules in groups.values() for m in modules]
+    index += ["```{toctree}", ":hidden:", "", *every, "```", ""]
+    (dest / "index.md").write_text("\n".join(index), encoding="utf-8")
+
+
+def benchmarks_page(build: Path) -> str:
+    parts = [readme_section("Benchmarks").replace("## Benchmarks", "# Benchmarks", 1), ""]
+    bench = build / "bench.json"
+    if bench.is_file():
+        data = json.loads(bench.read_text(encoding="utf-8"))
+        m = data.get("machine", {})
+        parts += ["## The last `make bench` on this machine", "",
+                  f"Python {m.get('python', '?')}, {m.get('cpus', '?')} CPUs, {m.get('platform', '?')}"
+                  + (" (quick run)" if data.get("quick") else "") + ".", "",
+                  "| case | implementation | throughput | goal | note |", "|---|---|---|---|---|"]
+        for r in data.get("results", []):
+            goal = "" if r.get("goal") is None else f"{r['goal']:.4g} {r['unit']}"
+            parts.append(f"| {r['case']} | {r['implementation']} | {r['throughput']:.4g} {r['unit']} | {goal} | "
+                         f"{r.get('note', '')} |")
+    else:
+        parts += ["*No `build/bench.json` yet: run `make bench`.*"]
+    return "\n".join(parts) + "\n"
+
+
+# ------------------------------------------------------------------------------------------------- build
+def stage(build: Path, src: Path) -> list[str]:
+    """Write the site's sources into ``src``; return the chapter names."""
+    notebooks = sorted(p for p in build.glob("[0-9][0-9]_*.ipynb"))
+    if not notebooks or not (build / "summary.json").is_file():
+        raise SystemExit(f"no executed notebooks in {build}: run `make reproduce` first")
+    shutil.rmtree(src, ignore_errors=True)
+    for d in ("chapters", "api", "_static", "_extra"):
+        (src / d).mkdir(parents=True)
+    chapters = []
+    for nb in notebooks:
+        stage_notebook(nb, src / "chapters" / nb.name)
+        chapters.append(nb.stem)
+        if (build / nb.stem / "figures").is_dir():        # thumbnails of the home page and the ledger
+            shutil.copytree(build / nb.stem / "figures", src / "_extra" / nb.stem / "figures")
+    leds = [led for led in ledger.ledgers(build) if led.stem in chapters]
+    for led in leds:
+        for p in led.problems:
+            print(f"warning: {led.stem}: {p}", file=sys.stderr)
+    (src / "index.md").write_text(home_page(leds, chapters), encoding="utf-8")
+    (src / "ledger.md").write_text(ledger_page(leds, build), encoding="utf-8")
+    for name in ("conventions", "claims"):
+        shutil.copy(ROOT / "docs" / f"{name}.md", src / f"{name}.md")
+    for page, title in README_PAGES.items():
+        (src / f"{page}.md").write_text(readme_section(title).replace("## ", "# ", 1), encoding="utf-8")
+    (src / "benchmarks.md").write_text(benchmarks_page(build), encoding="utf-8")
+    api_pages(src / "api")
+    mathjax = ROOT / "docs" / "node_modules" / "mathjax" / "es5"
+    if not mathjax.is_dir():
+        raise SystemExit("no docs/node_modules/mathjax: run `npm ci --prefix docs` (make docs does)")
+    shutil.copytree(mathjax, src / "_static" / "mathjax")
+    for f in ("ledger.js", "navlib.css", "favicon.svg"):
+        shutil.copy(ROOT / "docs" / "_static" / f, src / "_static" / f)
+    shutil.copy(ROOT / "docs" / "conf.py", src / "conf.py")
+    return chapters
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--build", type=Path, default=ROOT / "build", help="where make reproduce wrote its outputs")
+    ap.add_argument("--out", type=Path, default=None, help="the site (default: <build>/site)")
+    args = ap.parse_args(argv)
+    build = args.build.resolve()
+    out = (args.out or build / "site").resolve()
+    src = build / "site-src"
+    start = time.perf_counter()
+    chapters = stage(build, src)
+    from sphinx.cmd.build import build_main
+    shutil.rmtree(out, ignore_errors=True)
+    rc = build_main(["-b", "html", "-q", "-j", "2", str(src), str(out)])
+    print(f"site: {out / 'index.html'} ({len(chapters)} chapters, {time.perf_counter() - start:.1f} s)")
+    return rc
+
+
+if __name__ == "__main__":
+    sys.exit(main())
