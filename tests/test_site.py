@@ -117,6 +117,18 @@ def test_ledger_filter_shows_the_rows_of_one_verdict(browser, server):
     assert page.page.locator("#ledger tbody tr:visible").count() == total
 
 
+def test_cjk_characters_are_in_the_sites_font():
+    """Every CJK character a page shows is in the subset font the site serves (docs/_static/fonts)."""
+    import re
+
+    from fontTools.ttLib import TTFont
+    cmap = TTFont(SITE / "_static" / "fonts" / "NotoSansCJKsc-navlib-subset.woff").getBestCmap()
+    shown = {ch for page in SITE.rglob("*.html")
+             for ch in re.findall(r"[\u3000-\u303f\u3400-\u9fff\uff00-\uffef]", page.read_text(encoding="utf-8"))}
+    missing = sorted(ch for ch in shown if ord(ch) not in cmap)
+    assert shown and not missing, f"CJK characters without a glyph (regenerate the subset): {''.join(missing)}"
+
+
 def test_search_finds_mahony(browser, server):
     page = Watched(browser, server)
     assert page.open("search.html?q=Mahony") == []

@@ -324,8 +324,9 @@ def stage(build: Path, src: Path) -> list[str]:
     if not notebooks or not (build / "summary.json").is_file():
         raise SystemExit(f"no executed notebooks in {build}: run `make reproduce` first")
     shutil.rmtree(src, ignore_errors=True)
-    for d in ("chapters", "api", "_static", "_extra"):
+    for d in ("chapters", "api", "_extra"):
         (src / d).mkdir(parents=True)
+    shutil.copytree(ROOT / "docs" / "_static", src / "_static")          # styles, scripts, favicon, CJK font
     chapters = []
     for nb in notebooks:
         stage_notebook(nb, src / "chapters" / nb.name)
@@ -348,8 +349,6 @@ def stage(build: Path, src: Path) -> list[str]:
     if not mathjax.is_dir():
         raise SystemExit("no docs/node_modules/mathjax: run `npm ci --prefix docs` (make docs does)")
     shutil.copytree(mathjax, src / "_static" / "mathjax")
-    for f in ("ledger.js", "navlib.css", "favicon.svg"):
-        shutil.copy(ROOT / "docs" / "_static" / f, src / "_static" / f)
     shutil.copy(ROOT / "docs" / "conf.py", src / "conf.py")
     return chapters
 
