@@ -66,11 +66,11 @@ class TrialStreams:
         return np.stack([getattr(r, method)(size=shape, **kw) for r in self._rngs])
 
     def normal(self, shape: int | tuple[int, ...] = (), loc: float = 0.0, scale: float = 1.0) -> np.ndarray:
-        """Normal draws, shape (B, *shape)."""
+        """Normal draws, shape ``(B, *shape)``."""
         return self._stack("normal", shape, loc=loc, scale=scale)
 
     def uniform(self, shape: int | tuple[int, ...] = (), low: float = 0.0, high: float = 1.0) -> np.ndarray:
-        """Uniform draws on [low, high), shape (B, *shape)."""
+        """Uniform draws on [low, high), shape ``(B, *shape)``."""
         return self._stack("uniform", shape, low=low, high=high)
 
     def generators(self) -> list[np.random.Generator]:

@@ -42,14 +42,33 @@ WIDGET_MIME = "application/vnd.jupyter.widget-view+json"
 VERDICT_CSS = {v: f"verdict-{i}" for i, v in enumerate(ledger.COLUMNS)}
 
 
+REPO_FILES = "https://github.com/navlib-repro/navlib/blob/main/"
+
+
+def absolute_links(markdown: str, base: str = "") -> str:
+    """Markdown links to repository files (relative to ``base``, a folder of the repository) made absolute."""
+    def repl(m):
+        return f"]({REPO_FILES}{_normalise(f'{base}/{m.group(1)}' if base else m.group(1))})"
+    return re.sub(r"\]\((?!https?:|#|mailto:)([^)\s]+)\)", repl, markdown)
+
+
+def _normalise(path: str) -> str:
+    """``notebooks/../data/x`` -> ``data/x``."""
+    parts = []
+    for part in path.split("/"):
+        if part == "..":
+            parts = parts[:-1]
+        elif part not in ("", "."):
+            parts.append(part)
+    return "/".join(parts)
+
+
 def readme_section(title: str) -> str:
     """The README section under ``## title`` (up to the next ``## ``), links to repository files made absolute."""
     text = (ROOT / "README.md").read_text(encoding="utf-8")
     start = text.index(f"\n## {title}\n")
     end = text.find("\n## ", start + 1)
-    body = text[start + 1:end if end > 0 else None]
-    repo = "https://github.com/navlib-repro/navlib/blob/main/"
-    return re.sub(r"\]\((?!https?:|#)([^)]+)\)", lambda m: f"]({repo}{m.group(1)})", body)
+    return absolute_links(text[start + 1:end if end > 0 else None])
 
 
 # ----------------------------------------------------------------------------------------------- chapters
@@ -110,7 +129,7 @@ def stage_notebook(src: Path, dest: Path) -> None:
     names = aliases(nb)
     for cell in nb.cells:
         if cell.cell_type == "markdown":
-            cell.source = link_names(cell.source, names)
+            cell.source = absolute_links(link_names(cell.source, names), base="notebooks")
         elif cell.cell_type == "code":
             tags = cell.metadata.setdefault("tags", [])
             if "hide-input" not in tags:
@@ -272,11 +291,20 @@ def home_page(leds: list[ledger.PaperLedger], chapters: list[str]) -> str:
 
 
 # ---------------------------------------------------------------------------------------------------- API
+def _deprecated_alias(module: str) -> bool:
+    """A module kept only so that old imports resolve (its docstring says so; importing it warns)."""
+    path = ROOT / Path(*module.split(".")).with_suffix(".py")
+    return path.is_file() and path.read_text(encoding="utf-8").lstrip().startswith('"""Deprecated alias')
+
+
 def public_modules() -> dict[str, list[str]]:
     import navlib
     groups = {"Core": [], "Filters": [], "Paper companions": []}
     for info in pkgutil.walk_packages(navlib.__path__, "navlib."):
         if any(part.startswith("_") for part in info.name.split(".")) or info.ispkg and info.name != "navlib.papers":
+            continue
+        if _deprecated_alias(info.name):
+            groups.setdefault("Deprecated aliases", []).append(info.name)
             continue
         group = "Filters" if info.name.startswith("navlib.filters.") else \
             "Paper companions" if info.name.startswith("navlib.papers") else "Core"
@@ -289,10 +317,15 @@ def api_pages(dest: Path) -> None:
     index = ["# API reference", "",
              "Every public name of navlib, by module, from its docstrings (shapes and units in each). The paper "
              "companions (`navlib.papers.*`) give the paper's equations with their numbers.", ""]
+    aliases = groups.pop("Deprecated aliases", [])
     for group, modules in groups.items():
         index += [f"## {group}", ""] + [f"* [{m}]({m}.md)" for m in modules] + [""]
         for m in modules:
             (dest / f"{m}.md").write_text(f"# {m}\n\n```{{eval-rst}}\n.. automodule:: {m}\n```\n", encoding="utf-8")
+    if aliases:
+        index += ["## Deprecated aliases", "", "Old module names that still import (with a warning) and will be "
+                  "removed in navlib 0.3; each names the new homes of its contents: "
+                  + ", ".join(f"`{m}`" for m in aliases) + ".", ""]
     every = [m for modules in groups.values() for m in modules]
     index += ["```{toctree}", ":hidden:", "", *every, "```", ""]
     (dest / "index.md").write_text("\n".join(index), encoding="utf-8")

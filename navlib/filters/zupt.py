@@ -47,8 +47,8 @@ __all__ = ["STATIC_THRESHOLDS", "detect_static", "error_state_matrix", "error_mo
            "zupt_zaru_innovation"]
 
 STATIC_THRESHOLDS = (0.05, 0.1, 0.3)
-"""Default static-detector thresholds: gyro rms (rad/s), std |f| and |mean |f| - g| (m/s^2); starting values to
-tune per sensor and wearer."""
+"""Default static-detector thresholds: gyro rms (rad/s), std of |f| and the distance of mean |f| from g
+(m/s^2); starting values to tune per sensor and wearer."""
 
 
 def detect_static(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None, dt: float | None = None,
