@@ -96,7 +96,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.special import ndtr
 
-from .. import attitude, earth, robust, strapdown
+from .. import attitude, earth, plots, robust, strapdown
 from .._deprecate import renamed_keywords
 from .._typing import Angles, Array, ArrayLike, Dcm, Interval, Times, Vec3, Vec3Series
 from .._validate import as_dcm, broadcast, broadcast_to, flag, generator, in_range, intervals, pitch_roll, scalar, time_axis
@@ -948,3 +948,137 @@ def ins_heading_change(w_ib_b: Vec3Series | ImuSamples, f_start: Vec3, dt: Inter
     if np.any(refused):
         dpsi = np.where(refused, np.nan, dpsi)
     return (dpsi, InsReport(n_held, longest, n_sat, refused)) if report else dpsi
+
+
+# --------------------------------------------------------------------------
+# the paper's schematics, redrawn (Figs. 2 and 3); matplotlib is imported only here
+# --------------------------------------------------------------------------
+# Not in __all__: drawing helpers for notebook 01, outside the fuzzed numerical API.
+
+_COMPASS = "0.55"               # reference (north, east) axes
+_BODY = "tab:blue"              # body / sensor frame
+_GYRO = "tab:orange"            # the single optical gyro and what it senses
+_MIRROR = "0.45"                # the mirror candidate
+
+
+def _map_angle(heading_deg: float) -> float:
+    """Plot angle (deg, counter-clockwise from +x = east) of a heading (deg, clockwise from north)."""
+    return 90.0 - heading_deg
+
+
+def _unit(angle_deg: float) -> np.ndarray:
+    a = np.deg2rad(angle_deg)
+    return np.array([np.cos(a), np.sin(a)])
+
+
+def _arrow(ax, start, end, color, style="-", width=1.6, label=None):
+    ax.annotate("", tuple(end), tuple(start), arrowprops={"arrowstyle": "-|>", "color": color, "linewidth": width,
+                                                         "linestyle": style, "shrinkA": 0, "shrinkB": 0})
+    if label is not None:
+        ax.plot([], [], color=color, linestyle=style, linewidth=width, label=label)
+
+
+def _check_axes(ax) -> None:
+    if not hasattr(ax, "plot") or not hasattr(ax, "annotate"):
+        raise ValueError(f"ax: expected a matplotlib Axes, got {type(ax).__name__}")
+
+
+def draw_device(ax, heading_deg: float = 30.0) -> None:
+    """Paper Fig. 2 redrawn: the robot seen from above, its body frame b (= the sensor frame s of the
+    calibrated MEMS IMU) and the single optical gyro along the forward axis y_s.
+
+    The map has east to the right and north up; the robot points at ``heading_deg`` (clockwise from
+    north, paper Eq. 3). The horizontal Earth rate omega_ie cos L points north; the y gyro senses its
+    projection on the forward axis, ``omega_ie cos L cos psi`` (level, Eq. 8), drawn in orange.
+
+    Parameters
+    ----------
+    ax : matplotlib Axes
+        Drawn on with an equal aspect ratio and the axes hidden.
+    heading_deg : float
+        Heading of the robot (deg), any finite value (wrapped to [0, 360)).
+    """
+    _check_axes(ax)
+    psi = float(scalar(heading_deg, "heading_deg")) % 360.0
+    from matplotlib.patches import Polygon  # noqa: PLC0415 -- navlib imports without matplotlib
+    fwd, right = _unit(_map_angle(psi)), _unit(_map_angle(psi + 90.0))
+
+    def box(half_width, t0, t1, **kw):          # a rectangle along the forward axis, from t0 to t1
+        ax.add_patch(Polygon([s * half_width * right + t * fwd for s, t in ((-1, t0), (1, t0), (1, t1), (-1, t1))],
+                             closed=True, **kw))
+
+    box(0.45, -0.8, 0.8, facecolor="0.95", edgecolor="0.4", linewidth=1)                  # the robot
+    ax.add_patch(Polygon([0.45 * right + 0.55 * fwd, -0.45 * right + 0.55 * fwd, 0.8 * fwd], closed=True,
+                         facecolor="0.86", edgecolor="0.4", linewidth=0.8))               # its nose
+    plots.plane_frame(ax, (0.0, 0.0), 0.0, ("E", "N"), length=2.0, color=_COMPASS)
+    plots.plane_frame(ax, (0.0, 0.0), _map_angle(psi + 90.0), ("$x_b, x_s$ (right)", "$y_b, y_s$ (forward)"),
+                      length=1.6, color=_BODY)
+    box(0.07, 0.15, 0.5, facecolor=_GYRO, edgecolor="0.2", linewidth=0.8)                 # the optical gyro
+    ax.annotate("optical gyro\n(axis $y_s$)", tuple(0.33 * fwd), tuple(0.33 * fwd - 1.25 * right), fontsize=8,
+                color=_GYRO, ha="center", va="center", arrowprops={"arrowstyle": "-", "color": _GYRO, "linewidth": 0.8})
+    box(0.1, -0.1, 0.1, facecolor="0.3", edgecolor="0.2")                                 # the MEMS IMU
+    ax.annotate("MEMS IMU", (0.0, 0.0), tuple(-1.05 * fwd - 0.75 * right), fontsize=8, color="0.25", ha="center",
+                va="center", arrowprops={"arrowstyle": "-", "color": "0.4", "linewidth": 0.8})
+    # the horizontal Earth rate along north and its projection on the gyro axis
+    r = 1.45
+    tip = r * np.cos(np.deg2rad(psi)) * fwd
+    ax.plot([0.0, tip[0]], [r, tip[1]], ":", color=_GYRO, linewidth=1)
+    ax.plot([0, tip[0]], [0, tip[1]], color=_GYRO, linewidth=4, alpha=0.5, solid_capstyle="butt")
+    ax.plot([0.0], [r], "o", color=_COMPASS, markersize=4)
+    ax.text(-0.08, r, r"$\omega_{ie}\cos L$", fontsize=9, color=_COMPASS, ha="right", va="center")
+    ax.text(*(tip + 0.15 * right), r"$w_y=\omega_{ie}\cos L\,\cos\psi$", fontsize=9, color=_GYRO,
+            ha="left", va="top")
+    plots.angle_arc(ax, (0.0, 0.0), 1.0, _map_angle(psi), 90.0, r"$\psi$", color="tab:red")
+    ax.set(xlim=(-2.3, 2.6), ylim=(-1.5, 2.4), aspect="equal")
+    ax.set_axis_off()
+
+
+def draw_candidate_pairs(ax, heading1_deg: float, heading2_deg: float, dpsi_ins_error_deg: float = 0.0) -> None:
+    """Paper Fig. 3 redrawn: the two mirror-image heading candidates at two stops and how the MEMS INS
+    heading change picks the pair (Eqs. 10-12).
+
+    At each stop the y gyro gives cos psi only (Eq. 9), so psi and its mirror image 2 pi - psi about
+    the north axis fit equally well: alpha = arccos(cos psi1) and 2 pi - alpha at stop 1, beta and
+    2 pi - beta at stop 2. The heading change measured by the MEMS INS between the stops, carried from
+    stop 1's true heading (dotted green), lands next to one candidate at stop 2: that one is kept.
+
+    Parameters
+    ----------
+    ax : matplotlib Axes
+    heading1_deg, heading2_deg : float
+        True headings at the two stops (deg, clockwise from north; wrapped to [0, 360)).
+    dpsi_ins_error_deg : float
+        Error of the INS heading change (deg), drawn into the green arrow.
+    """
+    _check_axes(ax)
+    psis = [float(scalar(h, name)) % 360.0 for h, name in ((heading1_deg, "heading1_deg"), (heading2_deg, "heading2_deg"))]
+    err = float(scalar(dpsi_ins_error_deg, "dpsi_ins_error_deg"))
+    from matplotlib.patches import Circle  # noqa: PLC0415 -- navlib imports without matplotlib
+    centres = [np.array([0.0, 0.0]), np.array([3.2, 0.0])]
+    for k, (c, psi, name) in enumerate(zip(centres, psis, ("α", "β"), strict=True)):
+        ax.add_patch(Circle(tuple(c), 1.0, fill=False, edgecolor="0.8", linewidth=1))
+        ax.plot([c[0], c[0]], [c[1] - 1.15, c[1] + 1.15], ":", color=_COMPASS, linewidth=0.8)   # the mirror axis
+        ax.text(c[0], c[1] + 1.3, "N", ha="center", va="bottom", color=_COMPASS)
+        ax.text(c[0], c[1] - 1.55, f"stop {k + 1}", ha="center", va="top", fontsize=10)
+        a = np.rad2deg(np.arccos(np.cos(np.deg2rad(psi))))          # Eq. (10)/(11): in [0, 180]
+        pair = ((psi, "-", _BODY),) if a < 1e-9 or a > 180.0 - 1e-9 else ((psi, "-", _BODY), (360.0 - psi, "--", _MIRROR))
+        for cand, style, color in pair:            # at 0 and 180 deg the two candidates coincide (Eq. 10)
+            _arrow(ax, c, c + 0.95 * _unit(_map_angle(cand)), color, style)
+            label = (f"{name} = 2π − {name} = {a:.0f}°" if len(pair) == 1 else
+                     f"{name} = {a:.0f}°" if abs(cand - a) < 1e-9 else f"2π − {name} = {360.0 - a:.0f}°")
+            ax.text(*(c + 1.12 * _unit(_map_angle(cand))), label, fontsize=8, color=color,
+                    ha="left" if np.sin(np.deg2rad(cand)) >= 0 else "right", va="center")
+        alpha_is_true = abs(psi - a) < 1e-9           # the arcs take the colour of their candidate's arrow
+        plots.angle_arc(ax, tuple(c), 0.35, _map_angle(a), 90.0, "", color=_BODY if alpha_is_true else _MIRROR)
+        plots.angle_arc(ax, tuple(c), 0.3, 90.0, 90.0 + a, "", color=_MIRROR if alpha_is_true else _BODY)
+    carried = psis[0] + (psis[1] - psis[0]) + err                       # psi1 + dpsi_INS
+    _arrow(ax, centres[1], centres[1] + 0.75 * _unit(_map_angle(carried)), "tab:green", ":", 2.0)
+    ax.annotate("", tuple(centres[1] + [-1.15, 0.9]), tuple(centres[0] + [1.15, 0.9]),
+                arrowprops={"arrowstyle": "-|>", "color": "tab:green", "linewidth": 1.2,
+                            "connectionstyle": "arc3,rad=-0.25"})
+    ax.text(1.6, 1.55, "drive: MEMS INS measures Δψ_INS", fontsize=8, color="tab:green", ha="center")
+    ax.plot([], [], color=_BODY, label="true heading (the pair the INS picks)")
+    ax.plot([], [], "--", color=_MIRROR, label="mirror candidate 2π − ψ")
+    ax.plot([], [], ":", color="tab:green", linewidth=2.0, label="stop 1's heading + Δψ_INS")
+    ax.set(xlim=(-1.9, 5.3), ylim=(-1.9, 1.9), aspect="equal")
+    ax.set_axis_off()
