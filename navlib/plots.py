@@ -41,9 +41,10 @@ def body_axes(ax: Axes3D, C_bn: Dcm, title: str = "") -> None:
         raise ValueError(f"ax: expected a 3-D matplotlib Axes (projection='3d'), got {type(ax).__name__}")
     C = as_dcm(C_bn, "C_bn")
     text(title, "title")
-    for v, name in zip(np.eye(3), "ENU", strict=True):
+    # E, N, U labelled beyond the body axes' labels (a level body's z axis lies on U)
+    for v, at, name in zip(np.eye(3), [(1.3, 0, -0.18), (0, 1.3, -0.18), (0, 0, 1.38)], "ENU", strict=True):
         ax.quiver(0, 0, 0, *v, color="0.6", arrow_length_ratio=0.08, linewidth=1)
-        ax.text(*(1.12 * v), name, color="0.4")
+        ax.text(*at, name, color="0.4")
     for i, (name, color) in enumerate(_AXIS_STYLE):
         ax.quiver(0, 0, 0, *C[:, i], color=color, arrow_length_ratio=0.1, linewidth=2)
         ax.text(*(1.15 * C[:, i]), name, color=color)

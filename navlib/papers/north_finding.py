@@ -110,7 +110,8 @@ __all__ = ["Candidates", "heading_candidates", "nearest_candidate_error", "Resol
            "triad_heading_error", "triad_heading_std", "single_axis_heading_std", "single_axis_heading_error",
            "ClippedTheory", "clipped_single_axis_theory", "simulate_static_outputs", "MonteCarlo", "monte_carlo",
            "pair_probabilities", "four_position_heading_std",
-           "stop_and_go", "StopSolutions", "stop_solutions", "InsReport", "ins_heading_change"]
+           "stop_and_go", "StopSolutions", "stop_solutions", "InsReport", "ins_heading_change", "draw_device",
+           "draw_candidate_pairs"]
 
 OMEGA_IE = earth.OMEGA_IE
 
