@@ -216,3 +216,41 @@ def printed_eq20_jacobian(q: Quat, b: Vec3) -> Array:
     q, b = nonempty_array(q, "q", tail=(4,)), nonempty_array(b, "b", tail=(3,))
     H[..., 3, 3] = 2 * (q[..., 0] * b[..., 1] - q[..., 1] * b[..., 2])
     return H
+
+
+# --------------------------------------------------------------------------
+# The paper's schematic, redrawn
+# --------------------------------------------------------------------------
+
+SENSOR_COLOR = "#dbe9f6"
+"""Face colour of the sensor boxes in the redrawn schematic."""
+
+
+def draw_fusion_structure(ax) -> None:
+    """Redraw the paper's fusion structure (its Fig. 3, the four-block framework) on ``ax``.
+
+    Sensors on the left (gyro, accelerometer, magnetometer, dual-antenna RTK with its validity flag);
+    the initial attitude from accelerometer and magnetometer (Eqs. 5, 7, 1), the PI correction of the
+    gyro rate (Eqs. 12-15), the quaternion Kalman filter with the normalised accelerometer and
+    magnetometer as its measurement (Eqs. 16-20, giving the magnetic heading) and the heading fusion
+    of Sec. 2.5 (reconstructed, E003-15), which outputs the heading. Drawn in axes coordinates with
+    :func:`navlib.plots.block_diagram`; ``ax`` is turned into a schematic (no axes).
+    """
+    from .. import plots  # noqa: PLC0415 -- navlib.papers imports without matplotlib
+
+    blocks = {
+        "gyro": (0.12, 0.86, "gyro\n$\\omega_m$"),
+        "accel": (0.12, 0.62, "accelerometer\n$\\bar{a}$"),
+        "mag": (0.12, 0.38, "magnetometer\n$\\bar{m}$"),
+        "rtk": (0.12, 0.1, "dual-antenna RTK\n$H_{RTK}$ + valid flag"),
+        "init": (0.4, 0.38, "initial attitude $q_0$\nEqs. (5), (7), (1)"),
+        "pi": (0.4, 0.86, "PI correction\nEqs. (12)–(15)"),
+        "kf": (0.66, 0.62, "quaternion KF\nEqs. (16)–(20)"),
+        "fusion": (0.66, 0.1, "heading fusion\n§2.5 (offset $\\delta$)"),
+        "out": (0.89, 0.36, "heading $H$\n(attitude)"),
+    }
+    arrows = [("gyro", "pi", "$\\omega_m$"), ("accel", "pi"), ("mag", "pi"), ("pi", "kf", "$\\omega$"),
+              ("accel", "kf", "$z$"), ("mag", "kf"), ("accel", "init"), ("mag", "init"), ("init", "kf", "$q_0$"),
+              ("kf", "fusion", "$H_{mag}$"), ("rtk", "fusion", "$H_{RTK}$ if valid"), ("fusion", "out", "$H$")]
+    colors = {k: SENSOR_COLOR for k in ("gyro", "accel", "mag", "rtk")}
+    plots.block_diagram(ax, blocks, arrows, width=0.2, height=0.13, colors=colors)

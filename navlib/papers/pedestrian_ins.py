@@ -213,3 +213,49 @@ def simple_covariance_update(P, H, R):
     R = as_array(R, "R", shape=(len(H), len(H)), of="H")         # (m, m)
     K = P @ H.T @ np.linalg.inv(H @ P @ H.T + R)
     return K, (np.eye(P.shape[0]) - K @ H) @ P
+
+
+# --------------------------------------------------------------------------
+# The paper's block diagram, redrawn
+# --------------------------------------------------------------------------
+
+SENSOR_COLOR = "#dbe9f6"
+"""Face colour of the sensor boxes in the redrawn block diagram."""
+
+
+def draw_system(ax) -> None:
+    """Redraw the paper's system block diagram (its Fig. 2) on ``ax``.
+
+    The strapdown INS runs on the MPU-6050 at all times. The static detector splits standing from
+    walking: standing, the ZUPT/ZARU Kalman filter (Eqs. 1-3, reconstructed) measures the INS velocity
+    and the bias-corrected gyro rate and feeds the estimated errors back; walking, the barometric height
+    (BMP180 formula) and the tilt-compensated magnetic heading (Eqs. 4-6, corrected) overwrite the INS
+    height and heading ("direct binding"). Drawn in axes coordinates with
+    :func:`navlib.plots.block_diagram`; ``ax`` is turned into a schematic (no axes).
+    """
+    from .. import plots  # noqa: PLC0415 -- navlib.papers imports without matplotlib
+
+    blocks = {
+        "imu": (0.13, 0.84, "MPU-6050\ngyro $\\tilde\\omega$, accel. $\\tilde f$"),
+        "det": (0.13, 0.6, "static detector\nstanding / walking"),
+        "mag": (0.13, 0.36, "HMC5983\nmagnetometer"),
+        "baro": (0.13, 0.12, "BMP180\nbarometer $p$"),
+        "ins": (0.45, 0.84, "strapdown INS\n(always running)"),
+        "kf": (0.45, 0.6, "ZUPT/ZARU Kalman filter\nEqs. (1)–(3)"),
+        "compass": (0.45, 0.36, "tilt-compensated compass\nEqs. (4)–(6)"),
+        "height": (0.45, 0.12, "barometric height\n$h = 44330\\,[1-(p/p_0)^{1/5.255}]$"),
+        "reset": (0.82, 0.36, "walking: reset $h$ and $H$\n(direct binding)"),
+        "out": (0.82, 0.84, "position, velocity,\nattitude, floor"),
+    }
+    arrows = [("imu", "ins", "$\\tilde\\omega, \\tilde f$"), ("imu", "det"), ("det", "kf", "standing"),
+              ("mag", "compass", "$m$"), ("baro", "height", "$p$"), ("compass", "reset", "$\\alpha$"),
+              ("height", "reset", "$h$"), ("reset", "ins"), ("ins", "out")]
+    colors = {k: SENSOR_COLOR for k in ("imu", "mag", "baro")}
+    plots.block_diagram(ax, blocks, arrows, width=0.23, height=0.13, colors=colors)
+    # INS <-> filter: the measurement down, the error feedback up (two parallel arrows)
+    for dx, (y0, y1), label in ((0.04, (0.77, 0.675), "$z$"), (-0.04, (0.675, 0.77), "feedback $\\delta\\hat x$")):
+        x = 0.45 + dx
+        ax.annotate("", (x, y1), (x, y0), xycoords="axes fraction",
+                    arrowprops={"arrowstyle": "-|>", "color": "0.25", "linewidth": 1.1})
+        ax.text(x + (0.012 if dx > 0 else -0.012), (y0 + y1) / 2, label, transform=ax.transAxes, fontsize=7.5,
+                ha="left" if dx > 0 else "right", va="center", color="0.2")
