@@ -46,13 +46,13 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ._typing import Scalar
-from ._validate import choice, flag, real, text
+from ._validate import choice, flag, instance, real, text
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
 __all__ = ["root", "build_dir", "setup", "savefig", "check", "check_range", "check_outside", "verdict", "results",
-           "verdicts", "summary", "env_flag", "mode", "caption", "answer", "VERDICTS", "ClaimCheckFailed",
+           "verdicts", "summary", "env_flag", "mode", "caption", "answer", "explorer", "VERDICTS", "ClaimCheckFailed",
            "ClaimCheckWarning", "Check", "Verdict", "NoOutputDirectory"]
 
 VERDICTS = ("reproduced", "reproduced with correction", "differs", "refuted", "direction only", "not checkable here")
@@ -624,3 +624,47 @@ def answer(markdown: str, label: str = "Answer"):
     from IPython.display import Markdown  # noqa: PLC0415 -- only notebooks need IPython
     body, title = text(markdown, "markdown", empty=False), text(label, "label", empty=False)
     return Markdown(f"<details><summary>{title}</summary>\n\n{body}\n\n</details>")
+
+
+def explorer(draw, name: str, controls: dict) -> None:
+    """An interactive explorer with a static fallback: ``draw(**values) -> Figure``.
+
+    The figure at the controls' default values is drawn once, saved as ``name`` (:func:`savefig`) and
+    shown: that is all a headless run (``make reproduce``, nbmake, the site) shows. Where ipywidgets is
+    installed the controls follow; moving one redraws below them (nothing is drawn twice at the start).
+
+    Parameters
+    ----------
+    draw : callable
+        Takes the controls' values as keyword arguments, returns a matplotlib Figure.
+    name : str
+        File name of the static figure.
+    controls : dict
+        ``argument -> ipywidgets control`` (e.g. ``FloatSlider(value=..., min=..., max=...)``), or
+        ``argument -> value`` for a fixed argument; a control's ``value`` is its default.
+    """
+    import matplotlib.pyplot as plt
+    from IPython.display import display  # noqa: PLC0415 -- only notebooks need IPython
+    if not callable(draw):
+        raise ValueError(f"draw: expected a function returning a Figure, got {type(draw).__name__}")
+    instance(controls, "controls", dict, "a dict argument -> control")
+    defaults = {k: getattr(c, "value", c) for k, c in controls.items()}
+    fig = draw(**defaults)
+    savefig(fig, name)
+    plt.show()
+    try:
+        import ipywidgets as widgets
+    except ImportError:          # the static figure is all there is
+        return
+    live = {k: c for k, c in controls.items() if isinstance(c, widgets.ValueWidget)}
+    out = widgets.Output()
+
+    def redraw(_change=None):
+        with out:
+            out.clear_output(wait=True)
+            draw(**{**defaults, **{k: c.value for k, c in live.items()}})
+            plt.show()
+
+    for c in live.values():
+        c.observe(redraw, names="value")
+    display(widgets.VBox([*live.values(), out]))

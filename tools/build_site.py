@@ -137,9 +137,7 @@ def stage_notebook(src: Path, dest: Path) -> None:
             kept = []
             for out in cell.get("outputs", []):
                 if WIDGET_MIME in out.get("data", {}):
-                    del out["data"][WIDGET_MIME]      # a live widget: needs a kernel, its static default is drawn
-                    if not out["data"]:
-                        continue
+                    continue        # live controls need a kernel (their text fallback is a repr); the static figure stays
                 kept.append(out)
             cell.outputs = kept
     nb.metadata.pop("widgets", None)

@@ -99,6 +99,13 @@ def _files() -> Path:
     return d
 
 
+def _explorer_figure(a=1.0):
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots()
+    ax.plot([0.0, 1.0], [0.0, a])
+    return fig
+
+
 def table() -> dict:
     """``module.name`` (relative to navlib) -> Call or Skip."""
     files = _files()
@@ -424,6 +431,8 @@ def table() -> dict:
         "papers.north_finding.draw_device": Call(dict(ax=Fresh(_axes2d), heading_deg=30.0)),
         "papers.north_finding.draw_candidate_pairs": Call(dict(ax=Fresh(_axes2d), heading1_deg=40.0, heading2_deg=130.0,
                                                         dpsi_ins_error_deg=2.0)),
+        "papers.mimu_mag_rtk.draw_fusion_structure": Call(dict(ax=Fresh(_axes2d))),
+        "papers.pedestrian_ins.draw_system": Call(dict(ax=Fresh(_axes2d))),
         "plots.paper_value": Call(dict(ax=Fresh(_axes2d), value=1.25, label="paper: 1.25°", axis="y", text_at=0.1)),
         "plots.block_diagram": Call(dict(ax=Fresh(_axes2d), blocks={"a": (0.2, 0.5, "IMU"), "b": (0.7, 0.5, "INS")},
                                          arrows=[("a", "b", "ω")], width=0.2, height=0.1, colors={"a": "0.8"})),
@@ -442,6 +451,7 @@ def table() -> dict:
         "repro.verdict": Call(dict(claim="P000-EQ3-EULER", verdict="reproduced"), before=_setup_verdict),
         "repro.verdicts": Skip("takes no arguments"),
         "repro.summary": Skip("takes no arguments"),
+        "repro.explorer": Call(dict(draw=_explorer_figure, name="explore", controls={"a": 1.0}), before=_setup),
         "repro.caption": Call(dict(markdown="**Figure 1** shows 1.25°.")),
         "repro.answer": Call(dict(markdown="The error grows as 1/cos L: 1.7 times at 60°.", label="Answer")),
         "repro.env_flag": Call(dict(name="NAVLIB_FUZZ_UNSET_FLAG", default=True)),

@@ -89,7 +89,7 @@ from ..filters.quaternion_kf import measurement_jacobian, noise_input
 
 __all__ = ["printed_eq2_roll", "printed_eq2_arctan", "printed_eq4", "printed_eq5_tilt", "printed_eq6",
            "printed_eq7_heading", "printed_eq8_quat", "printed_eq12_mahony", "printed_eq18_gamma",
-           "printed_eq20_jacobian"]
+           "printed_eq20_jacobian", "draw_fusion_structure"]
 
 
 # --------------------------------------------------------------------------

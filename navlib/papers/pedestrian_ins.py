@@ -81,7 +81,7 @@ from .._validate import as_array, generator, integer, pitch_roll, positive, same
 from ..trajectory import Leg
 
 __all__ = ["G_LOCAL", "carpark_legs", "floor_test_legs", "tilt_compensate_ned", "tilt_compensate_printed",
-           "heading_from_horizontal", "hvac_pressure_steps", "simple_covariance_update"]
+           "heading_from_horizontal", "hvac_pressure_steps", "simple_covariance_update", "draw_system"]
 
 
 G_LOCAL = 9.7936
