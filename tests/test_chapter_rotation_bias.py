@@ -109,3 +109,32 @@ def test_rig_experiment_refuses_a_static_case_it_cannot_build():
                                      memory=60.0, extensions=True)
     with pytest.raises((ValueError, TypeError), match="^rng"):
         rotation_bias.rig_experiment(*rig(duration=10.0), DT, LAT, model, 0, n_runs=1, period=5.0, memory=60.0)
+
+
+def white_mti():
+    return sensors.imu_model("MTi-100").replace(gyro={"bias": 0.0, "bias_instability": 0.0},
+                                               accel={"bias": 0.0, "bias_instability": 0.0})
+
+
+def test_pair_spread_follows_the_cramer_rao_bound():
+    hpr0 = units.deg([0.0, 30.0, 0.0])
+    model = white_mti()
+    spread = rotation_bias.pair_spread(hpr0, EY, np.pi / 2, 5.0, 0.5, DT, LAT, model, np.zeros(3), np.random.default_rng(3),
+                                       n_runs=10, duration=120.0)
+    crb = rotation_bias.design(hpr0, EY, np.pi / 2, 4.5, DT, model.gyro.noise_density, model.accel.noise_density)[1]
+    np.testing.assert_allclose(spread, np.sqrt(np.diag(crb)), rtol=0.25)     # 120 pairs: about 6.5 % sd, a 4-sd margin
+
+
+def test_pair_spread_is_nan_where_the_bias_is_unobservable():
+    model, rng = white_mti(), np.random.default_rng(0)
+    vertical = [0.0, np.cos(np.pi / 3), np.sin(np.pi / 3)]            # θ0 = 30°: this axis is vertical
+    kw = dict(n_runs=1, duration=20.0)
+    assert np.isnan(rotation_bias.pair_spread(units.deg([0, 30, 0]), vertical, np.pi / 2, 5.0, 0.5, DT, LAT, model, np.zeros(3),
+                                              rng, **kw)).all()
+    assert np.isnan(rotation_bias.pair_spread([0, 0, 0], [1.0, 0, 0], np.pi / 2, 5.0, 0.5, DT, LAT, model, np.zeros(3),
+                                              rng, **kw)).all()   # pitch driven to 90°
+    with pytest.raises(ValueError, match="^duration"):
+        rotation_bias.pair_spread(units.deg([0, 30, 0]), EY, np.pi / 2, 5.0, 0.5, DT, LAT, model, np.zeros(3), rng,
+                                  n_runs=1, duration=12.0)
+    with pytest.raises((ValueError, TypeError), match="^rng"):
+        rotation_bias.pair_spread(units.deg([0, 30, 0]), EY, np.pi / 2, 5.0, 0.5, DT, LAT, model, np.zeros(3), 1, **kw)

@@ -1048,6 +1048,44 @@ def rig_experiment(traj, w_ib_b: Vec3Series, f_b: Vec3Series, starts, length: in
     return out
 
 
+def pair_spread(hpr0: Angles, axis_b: Vec3, amplitude: float, period: float, rotation_time: float, dt: float, lat: float,
+                model, bias_b: Vec3, rng: np.random.Generator, *, n_runs: int, duration: float) -> Array:
+    """Per-axis standard deviation (rad/s) of the least-squares bias from each pair of dwells, by Monte Carlo.
+
+    Simulates ``n_runs`` runs of ``duration`` seconds of the rig (:func:`navlib.trajectory.reciprocating_rotation`)
+    with ``model``'s errors on top of a constant ``bias_b``, removes Earth rate, solves Eq. (14) for every
+    consecutive pair of dwells and returns the spread of those estimates about ``bias_b``. Where the schedule
+    cannot be estimated (pitch driven to ±90°, or V singular because the axis is vertical) it returns NaN:
+    the quick counterpart of the Cramér–Rao bound of :func:`design` for the chapter's explorer.
+    """
+    from .. import sensors, trajectory  # noqa: PLC0415 -- the driver alone needs them
+
+    generator(rng)
+    n_runs = integer(n_runs, "n_runs")
+    bias_b = as_array(bias_b, "bias_b", shape=(3,))
+    try:
+        hpr_dw = dwell_attitudes(hpr0, axis_b, amplitude, 2)
+        cond = design(hpr0, axis_b, amplitude, period - rotation_time, dt, model.gyro.noise_density)[0]
+    except ValueError:                                  # pitch driven to ±90°: Eq. (2) is singular
+        return np.full(3, np.nan)
+    if not cond < _MAX_COND:                            # the axis is vertical: the bias along it is unobservable
+        return np.full(3, np.nan)
+    traj = trajectory.reciprocating_rotation(duration, dt, [lat, 0, 0], hpr_dw[0], axis_b, amplitude, period, rotation_time)
+    w, f = trajectory.ideal_imu(traj)
+    starts, length = dwell_windows(w.shape[-2], dt, period, rotation_time)
+    w_ie = earth.earth_rate_b(attitude.euler_to_dcm(hpr_dw[np.arange(starts.size) % 2]), lat)
+    imu = sensors.simulate_imu(w + bias_b, f, dt, model, rng, n_trials=n_runs)
+    res = tilt_residuals(imu.w_ib_b, imu.f_b, dt, starts, length, w_ie)
+    k = res.r.shape[-2] // 2
+    if k < 2:
+        raise ValueError(f"duration: expected at least two pairs of dwells, got {k}")
+    try:
+        b = lsq_bias(res.r[:, :2 * k].reshape(n_runs, k, 2, 2), res.V[:, :2 * k].reshape(n_runs, k, 2, 2, 3))
+    except ValueError:                                  # every dwell dropped (a faulty model)
+        return np.full(3, np.nan)
+    return (b - bias_b).reshape(-1, 3).std(axis=0)
+
+
 def rotation_angle(C_bn) -> Array:
     """Angle (rad) by which each attitude of ``C_bn`` (..., 3, 3) is turned from the first one (for the schedule figure)."""
     C = as_array(C_bn, "C_bn", tail=(3, 3))
