@@ -558,3 +558,172 @@ def ekf_error_ms(truth, T: float, Q=Q_PAPER, R=R_PAPER, P0=None, yaw_rate_bias: 
         m = A @ (Phi @ m) + gain @ b
         ms[k] = S[0, 0] + S[1, 1] + m[0] ** 2 + m[1] ** 2
     return ms
+
+
+# --------------------------------------------------------------------------
+# The chapter's inverse series and schematics (notebook 03). Kept out of __all__: they serve the
+# notebook (the textbook inverse it displays, the redrawn Figs. 1-2), not a reader's own data;
+# the production inverse is navlib.geodesy.gk2geodetic.
+# --------------------------------------------------------------------------
+
+def footpoint_latitude(x: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, iterations: int = 8) -> Array:
+    """Latitude W_f (rad) whose meridian arc S(W_f) of Eq. (7) equals the northing ``x`` (m): Newton on dS/dW = R_M."""
+    _ell(ellipsoid)
+    x = nonempty_array(x, "x")
+    n = int(scalar(iterations, "iterations", positive=True))
+    if np.any(np.abs(x) > _meridian_arc(np.pi / 2, np.pi / 2, ellipsoid)):
+        raise ValueError("x: expected a northing within the meridian quadrant")
+    W = x / ellipsoid.a
+    for _ in range(n):
+        W = np.clip(W + (x - _meridian_arc(W, W, ellipsoid)) / paper_radii(W, ellipsoid)[3], -np.pi / 2, np.pi / 2)
+    return W
+
+
+def inverse_series(x: ArrayLike, y: ArrayLike, lon0: ArrayLike, ellipsoid: Ellipsoid = CGCS2000,
+                   deg: bool = False) -> tuple[Array, Array]:
+    """The textbook sixth-order inverse of Eq. (9): latitude and longitude from GK x (north), y (east).
+
+    At the footpoint latitude ``W_f`` (:func:`footpoint_latitude`) with ``t = tan W_f``,
+    ``eta^2 = e2^2 cos^2 W_f``, ``N = R_N(W_f)``, ``M = R_M(W_f)``::
+
+        W = W_f - t/(2MN) y^2 + t/(24MN^3)(5 + 3t^2 + eta^2 - 9 eta^2 t^2) y^4 - t/(720MN^5)(61 + 90t^2 + 45t^4) y^6
+        l = y/(N cos W_f) - (1 + 2t^2 + eta^2) y^3/(6N^3 cos W_f) + (5 + 28t^2 + 24t^4 + 6eta^2 + 8eta^2 t^2) y^5/(120N^5 cos W_f)
+
+    The paper prints only the forward series; this is its standard inverse, shown in the chapter and
+    compared there with :func:`navlib.geodesy.gk2geodetic` (Krüger's series, nm accuracy).
+
+    Parameters
+    ----------
+    x, y : array_like, broadcasting to shape (...)
+        Northing and easting from the central meridian (m), ``|y|`` at most 1000 km.
+    lon0 : array_like
+        Central meridian (rad, or deg with ``deg=True``).
+
+    Returns
+    -------
+    lat, lon : ndarray, shape (...)
+        rad, or deg with ``deg=True``.
+    """
+    _ell(ellipsoid)
+    x, y = broadcast(nonempty_array(x, "x"), nonempty_array(y, "y"), name="x, y")
+    if np.any(np.abs(y) > 1e6):
+        raise ValueError(f"y: expected an easting within 1000 km of the central meridian, got {np.abs(y).max():.4g} m")
+    L0 = np.deg2rad(_lon_deg(lon0, deg, "lon0"))
+    try:
+        np.broadcast_shapes(x.shape, L0.shape)
+    except ValueError:
+        raise ValueError(f"lon0: expected a shape that broadcasts with x, y {x.shape}, got {L0.shape}") from None
+    Wf = footpoint_latitude(x, ellipsoid)
+    _, e2, N, M = paper_radii(Wf, ellipsoid)
+    t, c = np.tan(Wf), np.cos(Wf)
+    t2, eta2 = t * t, e2 ** 2 * c * c
+    lat = (Wf - t / (2 * M * N) * y ** 2 + t / (24 * M * N ** 3) * (5 + 3 * t2 + eta2 - 9 * eta2 * t2) * y ** 4
+           - t / (720 * M * N ** 5) * (61 + 90 * t2 + 45 * t2 ** 2) * y ** 6)
+    lon = L0 + (y / (N * c) - (1 + 2 * t2 + eta2) * y ** 3 / (6 * N ** 3 * c)
+                + (5 + 28 * t2 + 24 * t2 ** 2 + 6 * eta2 + 8 * eta2 * t2) * y ** 5 / (120 * N ** 5 * c))
+    return (np.rad2deg(lat), np.rad2deg(lon)) if flag(deg, "deg") else (lat, lon)
+
+
+def _axes(ax) -> None:
+    if not hasattr(ax, "plot") or not hasattr(ax, "annotate"):
+        raise ValueError(f"ax: expected a matplotlib Axes, got {type(ax).__name__}")
+
+
+def draw_zones(ax, lon_min: float = 112.5, lon_max: float = 127.5, *, mark: tuple[float, float] | None = None) -> None:
+    """3° Gauss–Krüger zones on a longitude axis: boundaries at 3n ± 1.5°, central meridians L0 = 3n, zone numbers.
+
+    Parameters
+    ----------
+    ax : matplotlib Axes
+    lon_min, lon_max : float
+        Longitude range (° E), 0 <= lon_min < lon_max <= 180, at most 30° wide.
+    mark : (lat, lon) in degrees, optional
+        A site drawn as a star with its zone.
+    """
+    _axes(ax)
+    lo, hi = scalar(lon_min, "lon_min", allow_zero=True), scalar(lon_max, "lon_max", positive=True)
+    if not lo < hi <= 180 or hi - lo > 30:
+        raise ValueError(f"lon_min, lon_max: expected 0 <= lon_min < lon_max <= 180 and at most 30° apart, got {lo}, {hi}")
+    first, last = int(np.ceil((lo + 1.5) / 3)), int(np.floor((hi - 1.5) / 3))
+    for n in range(first, last + 1):
+        ax.axvspan(3 * n - 1.5, 3 * n + 1.5, color="0.93" if n % 2 else "0.85", lw=0)
+        ax.axvline(3 * n, color="tab:green", lw=1.4)
+        ax.text(3 * n, 0.93, f"zone {n}", transform=ax.get_xaxis_transform(), ha="center", fontsize=8)
+        ax.text(3 * n + 0.1, 0.05, f"$L_0$ = {3 * n}°", transform=ax.get_xaxis_transform(), fontsize=7,
+                color="tab:green", rotation=90, va="bottom")
+    if mark is not None:
+        lat, lon = as_array(mark, "mark", shape=(2,))
+        ax.plot(lon, lat, "*", color="k", ms=12)
+        ax.annotate(f"site, zone {int(geodesy.zone(lon, deg=True))}", (lon, lat), xytext=(6, 6),
+                    textcoords="offset points", fontsize=8)
+    ax.set(xlim=(lo, hi), xlabel="longitude L (° E)", ylabel="latitude W (° N)")
+
+
+def draw_zone_grid(ax, zone: int, lat_max: float = 60.0, *, step_deg: float = 0.5,
+                   mark: tuple[float, float] | None = None, ellipsoid: Ellipsoid = CGCS2000) -> None:
+    """One 3° zone drawn in its Gauss–Krüger plane: meridians every ``step_deg`` and parallels every 10°.
+
+    The central meridian maps to the straight x axis (north) and the equator to the y axis (east);
+    the other meridians bend toward it as latitude grows (the grid convergence γ), and the whole
+    zone spans ±1.5° of longitude. Eastings in km on the horizontal axis, northings on the vertical.
+
+    Parameters
+    ----------
+    ax : matplotlib Axes
+    zone : int
+        3° zone number, 1-120.
+    lat_max : float
+        Northern limit (°), in (10, 80].
+    step_deg : float
+        Meridian spacing (°), dividing 1.5.
+    mark : (lat, lon) in degrees, optional
+    """
+    _axes(ax)
+    n = int(scalar(zone, "zone", positive=True))
+    if n != zone or n > 120:
+        raise ValueError(f"zone: expected a 3° zone number 1-120, got {zone!r}")
+    top = scalar(lat_max, "lat_max", positive=True)
+    if not 10 < top <= 80:
+        raise ValueError(f"lat_max: expected a latitude in (10°, 80°], got {top!r}")
+    step = scalar(step_deg, "step_deg", positive=True)
+    L0 = float(geodesy.central_meridian(n, deg=True))
+    lats = np.linspace(0.0, top, 121)
+    for k, dl in enumerate(np.arange(-1.5, 1.5 + step / 2, step)):
+        x, y = geodesy.geodetic2gk(lats, np.full_like(lats, L0 + dl), zone=n, ellipsoid=ellipsoid, deg=True)
+        ax.plot(y / 1e3, x / 1e3, color="tab:green" if abs(dl) < 1e-9 else "0.5", lw=1.6 if abs(dl) < 1e-9 else 0.8)
+        if k % 2 == 0:
+            ax.text(y[0] / 1e3, -250, f"{L0 + dl:g}°", ha="center", va="top", fontsize=7)
+    for lat in np.arange(0.0, top + 1e-9, 10.0):
+        lons = np.linspace(L0 - 1.5, L0 + 1.5, 31)
+        x, y = geodesy.geodetic2gk(np.full_like(lons, lat), lons, zone=n, ellipsoid=ellipsoid, deg=True)
+        ax.plot(y / 1e3, x / 1e3, color="0.7", lw=0.8)
+        ax.text(y[-1] / 1e3 + 8, x[-1] / 1e3, f"{lat:g}° N", fontsize=7, va="center")
+    if mark is not None:
+        lat, lon = as_array(mark, "mark", shape=(2,))
+        x, y = geodesy.geodetic2gk(lat, lon, zone=n, ellipsoid=ellipsoid, deg=True)
+        ax.plot(y / 1e3, x / 1e3, "*", color="k", ms=12)
+    top_km = geodesy.geodetic2gk(top, L0, zone=n, ellipsoid=ellipsoid, deg=True)[0] / 1e3
+    ax.annotate(f"central meridian $L_0$ = {L0:g}°:\nthe x axis (north)", (0, 0.8 * top_km), xytext=(-120, 0.6 * top_km),
+                fontsize=7, ha="center", arrowprops={"arrowstyle": "-", "color": "0.5", "lw": 0.6})
+    ax.set(xlabel="GK easting y (km)", ylabel="GK northing x (km)", ylim=(-600, None))
+
+
+def draw_block_diagram(ax) -> None:
+    """Paper Fig. 2 redrawn: GPS through the Gauss–Krüger projection and the IMU into the 5-state EKF."""
+    from ..plots import block_diagram  # noqa: PLC0415 -- plotting only
+
+    _axes(ax)
+    blocks = {"gps": (0.1, 0.82, "GPS\nlatitude W, longitude L"),
+              "zone": (0.33, 0.82, "zone n, central meridian\n$L_0$ = 3n (Eqs. 1–2)"),
+              "gk": (0.57, 0.82, "Gauss–Krüger series\nx north, y east (Eqs. 3–11)"),
+              "imu": (0.1, 0.15, "IMU\nheading θ, speed v,\nyaw rate ω"),
+              "conv": (0.33, 0.15, "grid heading θ − γ\n(convergence, E002-09)"),
+              "predict": (0.57, 0.48, "predict (Eqs. 12–13, 16–17)\n$X^- = f(X)$\n$P^- = \\Phi P \\Phi^T + Q$"),
+              "update": (0.86, 0.48, "update (Eqs. 14–15, 18)\n$Z = HX + v$, $H = I_5$\n$K = P^-(P^- + R)^{-1}$"),
+              "out": (0.86, 0.82, "$\\hat X = [x, y, θ, v, ω]$\n→ robot frame"),
+              "delay": (0.86, 0.14, "next step\nk ← k + 1")}
+    arrows = [("gps", "zone"), ("zone", "gk"), ("gk", "update", "$x_{GPS}, y_{GPS}$"), ("imu", "conv"),
+              ("conv", "update", "$θ_{IMU}, v_{IMU}, ω_{IMU}$"), ("predict", "update"), ("update", "out"),
+              ("update", "delay"), ("delay", "predict")]
+    block_diagram(ax, blocks, arrows, width=0.18, height=0.17,
+                  colors={"gps": "#dbe9f6", "imu": "#dbe9f6", "predict": "#e3f1dc", "update": "#e3f1dc"})

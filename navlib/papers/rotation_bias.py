@@ -92,10 +92,21 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from .. import _kernels, attitude, kalman, robust
+from .. import _kernels, attitude, earth, kalman, robust
 from .._kernels import wrap_pi
 from .._typing import Angles, Array, ArrayLike, Interval, Vec3, Vec3Series
-from .._validate import euler_angles, in_range, intervals, kernel_array, range_limit, scalar, small_turns
+from .._validate import (
+    euler_angles,
+    flag,
+    generator,
+    in_range,
+    integer,
+    intervals,
+    kernel_array,
+    range_limit,
+    scalar,
+    small_turns,
+)
 from .._validate import nonempty_array as as_array
 from .._validate import nonempty_positive as positive
 from ..alignment import level
@@ -949,3 +960,230 @@ def eq1_matrix(hpr: Angles) -> Array:
             [cp * sh, cp * ch, sp],
             [sr * ch - cr * sp * sh, -sr * sh - cr * sp * ch, cr * cp]]
     return np.stack([np.stack(row, -1) for row in rows], -2)
+
+
+# --------------------------------------------------------------------------
+# The chapter's experiment driver and schematics (notebook 02). Kept out of __all__: they serve the
+# notebook (one pitch group of §4, the redrawn Figs. 3-4), not a reader's own data.
+# --------------------------------------------------------------------------
+
+def rig_experiment(traj, w_ib_b: Vec3Series, f_b: Vec3Series, starts, length: int, w_ie_b: Vec3Series, dt: float,
+                   lat: float, model, rng: np.random.Generator, *, n_runs: int, period: float, memory: float,
+                   extensions: bool = False, decimate: int = 100) -> dict:
+    """One pitch group of the paper's experiment (§4): ``n_runs`` noisy runs on one rig trajectory.
+
+    Simulates ``model`` on the exact samples of ``traj`` (all runs in one vectorised call), estimates
+    the bias dwell by dwell with a running least squares of memory ``memory`` (s; forgetting factor
+    ``exp(-period / memory)``) and integrates Eq. (2) with the raw gyros (*uncorrected*) and with each
+    estimate subtracted from the end of its dwell on (*corrected*), both with Earth rate removed
+    (E001-06). ``extensions`` adds a Kalman filter on the same residuals, the paper's own version
+    (Earth rate neglected everywhere) and the same sensor errors on a static IMU (*no rotation*).
+
+    Parameters
+    ----------
+    traj : navlib.trajectory.Trajectory
+        The rig's motion (:func:`navlib.trajectory.reciprocating_rotation`).
+    w_ib_b, f_b : array_like, shape (N, 3)
+        Its exact IMU samples (:func:`navlib.trajectory.ideal_imu`).
+    starts, length
+        Dwell windows (:func:`dwell_windows`).
+    w_ie_b : array_like, shape (K, 3)
+        Earth rate in the body frame at each dwell (rad/s).
+    dt, lat : float
+        Sample interval (s) and latitude (rad).
+    model : navlib.sensors.ImuModel
+        Sensor errors; the no-rotation case needs a model without scale-factor and misalignment errors.
+    rng : numpy.random.Generator
+    n_runs : int
+    period, memory : float  (s)
+    decimate : int
+        Keep every ``decimate``-th sample of the error series returned for figures.
+
+    Returns
+    -------
+    dict
+        ``stats[case]`` with per-run ``max``, ``mean`` and ``final`` errors (°, runs x [heading, pitch, roll]),
+        ``heading_err[case]`` (°, decimated), the estimates ``b_lsq`` at ``t_est``, the true bias, and counts.
+    """
+    from .. import analysis, euler, sensors, trajectory, units  # noqa: PLC0415 -- the driver alone needs them
+
+    generator(rng)
+    n_runs = integer(n_runs, "n_runs")
+    decimate = integer(decimate, "decimate")
+    period, memory = scalar(period, "period", positive=True), scalar(memory, "memory", positive=True)
+    if flag(extensions, "extensions") and (model.gyro.scale_factor != 0 or model.gyro.misalignment != 0):
+        raise ValueError("model: the no-rotation case reuses the sensor errors on a static IMU, which needs a gyro "
+                         "model without scale-factor and misalignment errors")
+    w_ie_n = earth.earth_rate_n(lat)
+    imu = sensors.simulate_imu(w_ib_b, f_b, dt, model, rng, n_trials=n_runs)
+    hpr0, hpr_true = traj.hpr[0], traj.hpr
+    res = tilt_residuals(imu.w_ib_b, imu.f_b, dt, starts, length, w_ie_b)
+    forgetting = np.exp(-period / memory)
+    b_lsq, _ = running_lsq_bias(res.r, res.V, forgetting)
+    cases = {"uncorrected": (imu.w_ib_b, w_ie_n, None, hpr_true),
+             "corrected": (imu.w_ib_b, w_ie_n, b_lsq, hpr_true)}
+    out = {"skipped": res.n_skipped}
+    if extensions:
+        R = residual_covariance(res.tilt, length, dt, model.gyro.noise_density, model.accel.noise_density)
+        rrw = np.sqrt(2 / model.gyro.correlation_time) * model.gyro.gauss_markov_sigma   # RW matching the GM drift
+        kf = kalman_bias(res.r, res.V, R, period, rrw, np.hypot(model.gyro.bias, model.gyro.gauss_markov_sigma))
+        res_paper = tilt_residuals(imu.w_ib_b, imu.f_b, dt, starts, length)             # Earth rate neglected
+        b_paper, _ = running_lsq_bias(res_paper.r, res_paper.V, forgetting)
+        static = trajectory.static(traj.time[-1], dt, [lat, 0, 0], hpr0)
+        w_static = trajectory.ideal_imu(static)[0] + (imu.w_ib_b - w_ib_b)
+        cases.update({"Kalman": (imu.w_ib_b, w_ie_n, kf.b, hpr_true),
+                      "no rotation": (w_static, w_ie_n, None, static.hpr),
+                      "paper uncorrected": (imu.w_ib_b, None, None, hpr_true),
+                      "paper corrected": (imu.w_ib_b, None, b_paper, hpr_true)})
+        out.update(kf_rejected=kf.n_rejected, kf_no_data=kf.n_no_data, b_kf=kf.b)
+    out["stats"], out["heading_err"] = {}, {}
+    for name, (gyro, w_in, b_hat, truth) in cases.items():
+        hpr = euler.integrate_euler(hpr0, gyro, dt, w_in, b_hat, None if b_hat is None else res.end)
+        mx, mean = analysis.error_statistics(hpr, truth)
+        final = analysis.attitude_errors(hpr[:, -1], truth[-1])
+        out["stats"][name] = {"max": units.to_deg(mx), "mean": units.to_deg(mean), "final": units.to_deg(final)}
+        out["heading_err"][name] = units.to_deg(analysis.attitude_errors(hpr[:, ::decimate], truth[::decimate])[..., 0])
+    out.update(time=traj.time[::decimate], time_b=traj.time[:-1:decimate], b_lsq=b_lsq, t_est=traj.time[res.end],
+               b_true_at_est=imu.gyro_bias[:, res.end - 1], b_true=imu.gyro_bias[:, ::decimate])
+    return out
+
+
+def pair_spread(hpr0: Angles, axis_b: Vec3, amplitude: float, period: float, rotation_time: float, dt: float, lat: float,
+                model, bias_b: Vec3, rng: np.random.Generator, *, n_runs: int, duration: float) -> Array:
+    """Per-axis standard deviation (rad/s) of the least-squares bias from each pair of dwells, by Monte Carlo.
+
+    Simulates ``n_runs`` runs of ``duration`` seconds of the rig (:func:`navlib.trajectory.reciprocating_rotation`)
+    with ``model``'s errors on top of a constant ``bias_b``, removes Earth rate, solves Eq. (14) for every
+    consecutive pair of dwells and returns the spread of those estimates about ``bias_b``. Where the schedule
+    cannot be estimated (pitch driven to ±90°, or V singular because the axis is vertical) it returns NaN:
+    the quick counterpart of the Cramér–Rao bound of :func:`design` for the chapter's explorer.
+    """
+    from .. import sensors, trajectory  # noqa: PLC0415 -- the driver alone needs them
+
+    generator(rng)
+    n_runs = integer(n_runs, "n_runs")
+    bias_b = as_array(bias_b, "bias_b", shape=(3,))
+    try:
+        hpr_dw = dwell_attitudes(hpr0, axis_b, amplitude, 2)
+        cond = design(hpr0, axis_b, amplitude, period - rotation_time, dt, model.gyro.noise_density)[0]
+    except ValueError:                                  # pitch driven to ±90°: Eq. (2) is singular
+        return np.full(3, np.nan)
+    if not cond < _MAX_COND:                            # the axis is vertical: the bias along it is unobservable
+        return np.full(3, np.nan)
+    traj = trajectory.reciprocating_rotation(duration, dt, [lat, 0, 0], hpr_dw[0], axis_b, amplitude, period, rotation_time)
+    w, f = trajectory.ideal_imu(traj)
+    starts, length = dwell_windows(w.shape[-2], dt, period, rotation_time)
+    w_ie = earth.earth_rate_b(attitude.euler_to_dcm(hpr_dw[np.arange(starts.size) % 2]), lat)
+    imu = sensors.simulate_imu(w + bias_b, f, dt, model, rng, n_trials=n_runs)
+    res = tilt_residuals(imu.w_ib_b, imu.f_b, dt, starts, length, w_ie)
+    k = res.r.shape[-2] // 2
+    if k < 2:
+        raise ValueError(f"duration: expected at least two pairs of dwells, got {k}")
+    try:
+        b = lsq_bias(res.r[:, :2 * k].reshape(n_runs, k, 2, 2), res.V[:, :2 * k].reshape(n_runs, k, 2, 2, 3))
+    except ValueError:                                  # every dwell dropped (a faulty model)
+        return np.full(3, np.nan)
+    return (b - bias_b).reshape(-1, 3).std(axis=0)
+
+
+def rotation_angle(C_bn) -> Array:
+    """Angle (rad) by which each attitude of ``C_bn`` (..., 3, 3) is turned from the first one (for the schedule figure)."""
+    C = as_array(C_bn, "C_bn", tail=(3, 3))
+    if C.ndim != 3:
+        raise ValueError(f"C_bn: expected a series of DCMs (N, 3, 3), got shape {C.shape}")
+    rel = np.swapaxes(C[:1], -1, -2) @ C
+    return np.arccos(np.clip((np.trace(rel, axis1=-2, axis2=-1) - 1) / 2, -1.0, 1.0))
+
+
+def _axes(ax) -> None:
+    if not hasattr(ax, "plot") or not hasattr(ax, "annotate"):
+        raise ValueError(f"ax: expected a matplotlib Axes, got {type(ax).__name__}")
+
+
+def draw_rotation_scheme(ax, amplitude_deg: float = 90.0, pitch_deg: float = 30.0) -> None:
+    """Paper Fig. 3 redrawn: the IMU turned by Δα about u = y_b, seen along u.
+
+    The plane of the drawing is perpendicular to u (u points into the page). Left, the body axes of
+    dwell k (x_b, z_b, blue); right, those of the next dwell k' after the rotation (x_b', z_b', orange).
+    The vertical (grey, dashed) is fixed in space, so the two dwells see it along body directions Δα
+    apart: the bias component that one dwell cannot observe (along its body vertical) is seen by the other.
+
+    Parameters
+    ----------
+    ax : matplotlib Axes
+    amplitude_deg : float
+        Δα (°), in (0, 180].
+    pitch_deg : float
+        θ0 (°), in (-90, 90): how far u = y_b is pitched out of the horizontal (only written on the figure).
+    """
+    from ..plots import angle_arc, plane_frame  # noqa: PLC0415 -- plotting only
+
+    _axes(ax)
+    alpha = scalar(amplitude_deg, "amplitude_deg", positive=True)
+    if alpha > 180:
+        raise ValueError(f"amplitude_deg: expected at most 180°, got {alpha!r}")
+    pitch = scalar(pitch_deg, "pitch_deg")
+    if abs(pitch) >= 90:
+        raise ValueError(f"pitch_deg: expected a pitch within (-90°, 90°), got {pitch!r}")
+    views = (((0.0, 0.0), 0.0, ("$x_b$", "$z_b$"), "tab:blue", "dwell k"),
+             ((3.0, 0.0), -alpha, ("$x_b'$", "$z_b'$"), "tab:orange", "dwell k′: turned by Δα"))
+    for (ox, oy), angle, names, color, title in views:
+        ax.plot([ox, ox], [oy - 1.2, oy + 1.2], color="0.55", ls="--", lw=1)
+        ax.text(ox, oy + 1.32, "vertical", color="0.45", ha="center", fontsize=8)
+        plane_frame(ax, (ox, oy), angle, names, length=1.0, color=color)
+        ax.plot(ox, oy, "o", ms=11, mfc="white", mec="k", zorder=5)
+        ax.plot(ox, oy, "x", ms=7, color="k", zorder=6)
+        ax.text(ox, oy - 1.55, title, ha="center", fontsize=9, color=color)
+    angle_arc(ax, views[1][0], 0.5, 90.0 - alpha, 90.0, "Δα", color="0.25")
+    ax.annotate("", (2.2, 0.9), (0.8, 0.9), arrowprops={"arrowstyle": "-|>", "color": "0.3",
+                                                        "connectionstyle": "arc3,rad=-0.3"})
+    ax.text(1.5, 1.35, "rotate by Δα\nabout u", ha="center", fontsize=8)
+    ax.text(1.5, -0.25, f"u = $y_b$ into the page\n(pitched up θ0 = {pitch:g}°)", ha="center", va="top", fontsize=8)
+    ax.set(xlim=(-1.4, 4.4), ylim=(-1.8, 2.0), aspect="equal")
+    ax.set_axis_off()
+
+
+def draw_rotation_schedule(ax, time, angle_deg, starts, length: int, dt: float) -> None:
+    """The reciprocating schedule: rotation angle against time with the dwell windows shaded.
+
+    Parameters
+    ----------
+    ax : matplotlib Axes
+    time, angle_deg : array_like, shape (N,)
+        Sample times (s) and the rig's rotation angle (°), e.g. from :func:`rotation_angle`.
+    starts, length
+        Dwell windows (:func:`dwell_windows`); alternate dwells are the two attitudes k and k'.
+    dt : float
+        Sample interval (s).
+    """
+    _axes(ax)
+    t = as_array(time, "time")
+    a = as_array(angle_deg, "angle_deg")
+    if t.ndim != 1 or a.shape != t.shape:
+        raise ValueError(f"angle_deg: expected the shape of time {t.shape}, got {a.shape}")
+    starts = as_array(starts, "starts")
+    length = integer(length, "length")
+    dt = scalar(dt, "dt", positive=True)
+    ax.plot(t, a, color="k", lw=1.5)
+    for k, s in enumerate(starts.astype(int)):
+        ax.axvspan(s * dt, (s + length) * dt, color="tab:blue" if k % 2 == 0 else "tab:orange", alpha=0.15, lw=0)
+        ax.text((s + length / 2) * dt, a.max() * 1.06, f"dwell {k + 1}" + ("" if k % 2 == 0 else " (turned)"),
+                ha="center", fontsize=8)
+    ax.set(xlabel="time (s)", ylabel="rotation angle α (°)", ylim=(-0.1 * a.max(), 1.2 * a.max()))
+
+
+def draw_flow(ax) -> None:
+    """Paper Fig. 4 redrawn: the estimation and compensation loop (§3.3) as a block diagram."""
+    from ..plots import block_diagram  # noqa: PLC0415 -- plotting only
+
+    _axes(ax)
+    blocks = {"imu": (0.12, 0.72, "IMU\ngyros $\\tilde\\Omega$,\naccelerometers"),
+              "dwell": (0.37, 0.72, "dwell k: tilt residual\n$r_k = V_k b$ (Eqs. 6–9)"),
+              "rotate": (0.12, 0.25, "rig: rotate by ±Δα\nabout u every 5 s\n(Eqs. 10–11)"),
+              "stack": (0.62, 0.72, "stack $r$, $V$\n(Eq. 13)"),
+              "lsq": (0.87, 0.72, "least squares\n$\\hat b = (V^TV)^{-1}V^Tr$\n(Eq. 14)"),
+              "int": (0.87, 0.25, "integrate Eq. (2)\nwith $\\tilde\\Omega - \\hat b$"),
+              "att": (0.62, 0.25, "attitude\nψ, θ, φ")}
+    arrows = [("imu", "dwell"), ("dwell", "stack"), ("stack", "lsq"), ("lsq", "int", "$\\hat b$"),
+              ("int", "att"), ("rotate", "imu", "turns")]
+    block_diagram(ax, blocks, arrows, width=0.2, height=0.2, colors={"imu": "#dbe9f6", "att": "#e3f1dc"})
