@@ -25,7 +25,10 @@ def test_alias_warns_and_resolves_every_old_name(old):
     new_names = {"G_LOCAL", "FAULT_KEYS", "MAX_STEPS",    # names new to a companion need no alias
                  "printed_zone_number", "paper_radii", "printed_meridian_radius", "paper_series", "paper_meridian_arc",
                  "ClippedTheory", "clipped_single_axis_theory", "printed_eq2_arctan", "printed_eq6",
-                 "printed_eq12_mahony", "dead_reckoning_error_ms", "ekf_error_ms"}
+                 "printed_eq12_mahony", "dead_reckoning_error_ms", "ekf_error_ms",
+                 # the chapters' schematics (issue 17)
+                 "draw_device", "draw_candidate_pairs", "draw_rotation_scheme", "draw_rotation_schedule", "draw_flow",
+                 "draw_zones", "draw_zone_grid", "draw_block_diagram", "draw_fusion_structure", "draw_system"}
     assert set(companion.__all__) <= set(module.__all__) | new_names
 
 

@@ -295,6 +295,8 @@ BY_DESIGN: list[tuple[str, str, str, str, str]] = [
     (r"attitude\.(quat_\w+|ned_to_enu_quat)|filters\.(mahony\.mahony|quaternion_kf\.quaternion_kf|observations\.prepare_inputs)|"
      r"strapdown\.integrate(_attitude)?", r"q|q0|q_ned", "1e300", "silent_accept",
      "quaternions of any finite magnitude are normalised exactly (tests/test_magnitudes.py)"),
+    (r"papers\.rotation_bias\.draw_rotation_schedule", r"time|starts", r"time_jump|wrong_shape", "silent_accept",
+     "a drawing: any increasing time axis is drawn as given, any number of dwell windows shaded"),
     (r"imu\.ImuSamples|filters\.heading_fusion\.fuse_rtk_heading", "dt", r"1e300|time_jump", "silent_accept",
      "nothing is integrated over dt here; an interval too long to integrate is refused where it is (small_turns)"),
     (r"repro\.check(_range|_outside)?", r"value|expected|tol|lower|upper", r"nan|inf|1e300", r"other_exception|silent_accept",

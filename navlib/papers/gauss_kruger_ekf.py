@@ -71,7 +71,7 @@ from ..filters.planar_ekf import covariance, filter_grid, propagate
 
 __all__ = ["Q_PAPER", "R_PAPER", "MAX_STEPS", "printed_zone_number", "paper_radii", "printed_meridian_radius",
            "paper_meridian_arc", "paper_series", "waypoint_path", "ekf", "simulate_sensors", "Sensors",
-           "dead_reckoning_error_ms", "ekf_error_ms"]
+           "dead_reckoning_error_ms", "ekf_error_ms", "draw_zones", "draw_zone_grid", "draw_block_diagram"]
 
 Q_PAPER = np.diag([1.0, 1.0, 0.01, 0.0001, 0.0016])
 """Process noise per step, Eq. (17) (SI reading: m², m², rad², m²/s², rad²/s²)."""

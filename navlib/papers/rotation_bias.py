@@ -106,6 +106,7 @@ from .._validate import (
     range_limit,
     scalar,
     small_turns,
+    time_axis,
 )
 from .._validate import nonempty_array as as_array
 from .._validate import nonempty_positive as positive
@@ -117,7 +118,8 @@ from ..units import G0
 
 __all__ = ["eq1_matrix", "gravity_body", "tilt_from_accel", "tilt_matrix", "rodrigues", "rotate_attitude", "dwell_attitudes",
            "dwell_windows", "Residuals", "tilt_residuals", "residual_covariance",
-           "lsq_bias", "running_lsq_bias", "KalmanBias", "kalman_bias", "design", "MIN_DWELL_SAMPLES"]
+           "lsq_bias", "running_lsq_bias", "KalmanBias", "kalman_bias", "design", "MIN_DWELL_SAMPLES",
+           "draw_rotation_scheme", "draw_rotation_schedule", "draw_flow"]
 
 MIN_DWELL_SAMPLES = 10
 """Fewest samples in a dwell window for a tilt-rate fit."""
@@ -1157,11 +1159,13 @@ def draw_rotation_schedule(ax, time, angle_deg, starts, length: int, dt: float) 
         Sample interval (s).
     """
     _axes(ax)
-    t = as_array(time, "time")
+    t = time_axis(time, "time")
     a = as_array(angle_deg, "angle_deg")
-    if t.ndim != 1 or a.shape != t.shape:
+    if a.shape != t.shape:
         raise ValueError(f"angle_deg: expected the shape of time {t.shape}, got {a.shape}")
     starts = as_array(starts, "starts")
+    if starts.ndim != 1 or np.any(starts < 0) or np.any(starts != np.round(starts)):
+        raise ValueError(f"starts: expected a 1-D array of sample indices >= 0 (dwell_windows), got shape {starts.shape}")
     length = integer(length, "length")
     dt = scalar(dt, "dt", positive=True)
     ax.plot(t, a, color="k", lw=1.5)
