@@ -379,7 +379,9 @@ def stage(build: Path, src: Path) -> list[str]:
     mathjax = ROOT / "docs" / "node_modules" / "mathjax" / "es5"
     if not mathjax.is_dir():
         raise SystemExit("no docs/node_modules/mathjax: run `npm ci --prefix docs` (make docs does)")
-    shutil.copytree(mathjax, src / "_static" / "mathjax")
+    # the one combined component the site loads (tex-mml-chtml.js) and what it loads on demand
+    other_builds = [p.name for p in mathjax.glob("*.js") if p.name != "tex-mml-chtml.js"]
+    shutil.copytree(mathjax, src / "_static" / "mathjax", ignore=lambda d, names: other_builds if Path(d) == mathjax else [])
     shutil.copy(ROOT / "docs" / "conf.py", src / "conf.py")
     return chapters
 

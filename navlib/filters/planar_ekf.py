@@ -42,31 +42,31 @@ component is present).
 
 Faults (what the filters do, and which counter of :class:`EkfResult` says so)
 -----------------------------------------------------------------------------
-============================  ==============================================  =====================================
-fault                         EKF                                             counter
-============================  ==============================================  =====================================
-NaN sample / outage / gap     skip that component; nothing at all: predict    ``n_missing_channels``,
-                              only (P grows, recovers at the next fix)        ``n_gps_missing``, ``n_predict_only``
-outlier (spike, GPS jump)     with a finite ``gate``: gate each channel        ``rejected``, ``n_rejected_channels``,
-                              (GPS 2 dof, heading, speed, yaw rate 1 dof) on   ``n_rejected`` (status ``REJECTED``)
+============================  ====================================================  =====================================
+fault                         EKF                                                   counter
+============================  ====================================================  =====================================
+NaN sample / outage / gap     skip that component; nothing at all: predict          ``n_missing_channels``,
+                              only (P grows, recovers at the next fix)              ``n_gps_missing``, ``n_predict_only``
+outlier (spike, GPS jump)     with a finite ``gate``: gate each channel             ``rejected``, ``n_rejected_channels``,
+                              (GPS 2 dof, heading, speed, yaw rate 1 dof) on        ``n_rejected`` (status ``REJECTED``)
                               its marginal NIS; fuse the channels that pass;
-                              after ``reacquire`` rejections in a row inflate  ``reacquired``, ``n_reacquired_channels``
+                              after ``reacquire`` rejections in a row inflate       ``reacquired``, ``n_reacquired_channels``
                               P by the squared innovation and fuse the next
                               sample ungated
-yaw rate at the gyro rails    with ``full_scale_gyro``: a censored sample:      ``saturated``, ``n_saturated``
+yaw rate at the gyro rails    with ``full_scale_gyro``: a censored sample:          ``saturated``, ``n_saturated``
                               fuse the rail value while the prediction is
                               inside the rails, else skip; never gated
-repeated / out-of-order t     ``ValueError`` (run ``timing.sanitize`` first,   ``timing.TimingReport``
+repeated / out-of-order t     ``ValueError`` (run ``timing.sanitize`` first,        ``timing.TimingReport``
                               which sorts, drops repeats and counts them)
-irregular sampling            step ``T = t[k] - t[k-1]`` per epoch             --
-clock jump (``T > max_dt``,   nothing integrated over it: the state is held,   ``faults["clock", "jump"]``
-default 10 median steps)      P grows by the process noise of the whole        (flags per epoch)
+irregular sampling            step ``T = t[k] - t[k-1]`` per epoch                  --
+clock jump (``T > max_dt``,   nothing integrated over it: the state is held,        ``faults["clock", "jump"]``
+default 10 median steps)      P grows by the process noise of the whole             (flags per epoch)
                               interval, ``Q T / T_median``; the epoch's
                               measurements then take over (see below)
-stuck yaw rate (a gyro        skipped like a NaN sample, from the first        ``faults["yaw_rate", "stuck"]``
-repeating one value over      sample of the run (``robust.stuck_samples``:     (flags per epoch)
+stuck yaw rate (a gyro        skipped like a NaN sample, from the first             ``faults["yaw_rate", "stuck"]``
+repeating one value over      sample of the run (``robust.stuck_samples``:          (flags per epoch)
 ``stuck_run`` samples)        noisy series only, rail values are saturated)
-============================  ==============================================  =====================================
+============================  ====================================================  =====================================
 
 Why the EKF propagates over a clock jump with inflated uncertainty rather than restarting: Eq. (13) is a
 first-order step (over 3600 s at 1 m/s it moves the robot 3.6 km in a straight line, which is what the EKF

@@ -60,26 +60,26 @@ E001-09  Unstated details (rotation axis, dwell timing, estimator window) are
 
 Faulty data (every fault is counted; nothing is dropped silently)
 -----------------------------------------------------------------
-=================  ===========================================  ======================================
-fault              what happens                                 reported by
-=================  ===========================================  ======================================
-NaN dropouts       residuals: a dwell with > ``max_missing`` of ``Residuals.n_skipped``, ``n_missing``,
-                   its samples NaN is skipped (default: any),   ``n_filled``; Kalman ``n_no_data``;
-                   else filled with the dwell median; LSQ and   ``running_lsq_bias`` ``n_skipped``
+=================  =================================================  ======================================
+fault              what happens                                       reported by
+=================  =================================================  ======================================
+NaN dropouts       residuals: a dwell with > ``max_missing`` of       ``Residuals.n_skipped``, ``n_missing``,
+                   its samples NaN is skipped (default: any),         ``n_filled``; Kalman ``n_no_data``;
+                   else filled with the dwell median; LSQ and         ``running_lsq_bias`` ``n_skipped``
                    Kalman skip / predict through NaN dwells
-                   integration: linear interpolation, a gap     ``robust.fault_report(w, "gyro")``;
-                   longer than ``max_gap`` raises               ValueError
-outliers (spikes)  residuals: ``outlier_k`` robust sigmas (1.4826  ``n_outliers_gyro``/``_accel``;
-                   MAD, at least 1.4826 q/2 for a quantised     ``KalmanBias.n_rejected``
+                   integration: linear interpolation, a gap           ``robust.fault_report(w, "gyro")``;
+                   longer than ``max_gap`` raises                     ValueError
+outliers (spikes)  residuals: ``outlier_k`` robust sigmas (1.4826     ``n_outliers_gyro``/``_accel``;
+                   MAD, at least 1.4826 q/2 for a quantised           ``KalmanBias.n_rejected``
                    sensor of step q) from the dwell median
                    replaced (opt-in); Kalman gate rejects
                    corrupted dwells
-saturation         residuals: dwell with samples at the rails   ``n_saturated``, ``n_skipped_saturated``
-                   skipped; integration: unreliable after it    ``fault_report(..., full_scale=)``
-timing             per-sample ``dt`` arrays in                  ``TimingReport`` from
-                   :func:`tilt_residuals`, :func:`integrate_euler`;  ``timing.sanitize``
+saturation         residuals: dwell with samples at the rails         ``n_saturated``, ``n_skipped_saturated``
+                   skipped; integration: unreliable after it          ``fault_report(..., full_scale=)``
+timing             per-sample ``dt`` arrays in                        ``TimingReport`` from
+                   :func:`tilt_residuals`, :func:`integrate_euler`;   ``timing.sanitize``
                    per-dwell intervals in :func:`kalman_bias`
-=================  ===========================================  ======================================
+=================  =================================================  ======================================
 
 Extensions: a Kalman filter with a random-walk bias state (:func:`kalman_bias`),
 the residual noise model (:func:`residual_covariance`) and the Cramer-Rao
