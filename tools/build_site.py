@@ -157,7 +157,9 @@ def counts_table(leds: list[ledger.PaperLedger]) -> str:
     rows, total = [], Counter()
     for led in leds:
         total.update(led.counts)
-        cells = [f"<a href='chapters/{led.stem}.html'>{html.escape(led.title)}</a>", str(len(led.rows)),
+        short = f"{led.stem[:2]} {led.title.split(' — ')[0]}"           # "01 Tan & Xie"
+        cells = [f"<a href='chapters/{led.stem}.html' title='{html.escape(led.title)}'>{html.escape(short)}</a>",
+                 str(len(led.rows)),
                  *(str(led.counts.get(v, 0)) for v in ledger.COLUMNS), f"{led.checks_passed}/{led.checks_total}"]
         rows.append("<tr>" + "".join(f"<td>{c}</td>" for c in cells) + "</tr>")
     cells = ["<b>all papers</b>", str(sum(len(led.rows) for led in leds)), *(str(total.get(v, 0)) for v in ledger.COLUMNS),
