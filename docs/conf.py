@@ -32,6 +32,7 @@ myst_heading_anchors = 3
 # numpydoc-style docstrings through napoleon; members as listed in each module's __all__.
 napoleon_numpy_docstring = True
 napoleon_google_docstring = False
+napoleon_custom_sections = [("What the filter does with bad samples", "notes_style")]
 autodoc_default_options = {"members": True, "show-inheritance": True}
 autodoc_member_order = "bysource"
 autodoc_typehints = "description"

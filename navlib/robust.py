@@ -5,24 +5,33 @@ counts per ``(sensor, kind)`` (arrays over Monte Carlo trials where a filter run
 batch) and, when asked for, per-sample boolean flags. Sensors are named ``"gyro"``,
 ``"accel"``, ``"mag"``, ``"baro"``, ``"gnss"``, ``"heading"``...; kinds are
 
-``"nan"``        a dropout or unusable sample (NaN; inf or zero where a filter cannot use it),
-                 replaced by :func:`hold` or skipped;
-``"saturated"``  a sample at or beyond the device's full-scale range (rails);
-``"spike"``      an isolated jump replaced by a hold;
-``"outlier"``    a sample rejected by a MAD or innovation (chi-square) gate;
-``"reacquired"`` a sample used although it failed its gate, because a run of them agreed (the
-                 estimate, not the sensor, was wrong), or a forced update after repeated rejections;
-``"refused"``    a quantity that could not be formed (e.g. a static window with too few samples,
-                 a dwell skipped for dropouts);
-``"jump"``       a time jump (sensor ``"clock"``): a sample interval too long to integrate as motion
-                 (``max_dt`` of the attitude filters, the planar EKF and the heading fusion, whose default
-                 is :func:`navlib.timing.jump_limit`, and of :class:`navlib.filters.zupt_ins.FilterConfig`);
-                 nothing is integrated over it;
-``"freefall"``   accelerometer samples reading ``|f|`` near 0 for a while (free fall or a dead sensor:
-                 ``("accel", "freefall")``), held from the last good sample;
-``"stuck"``      a sensor that stopped updating: a component repeating exactly the same value over a run
-                 of samples (:func:`stuck_mask`; held like a dropout), or over most of a static window
-                 (:func:`navlib.alignment.static_means` ``stuck_fraction``; the window refused).
+``"nan"``
+    a dropout or unusable sample (NaN; inf or zero where a filter cannot use it),
+    replaced by :func:`hold` or skipped;
+``"saturated"``
+    a sample at or beyond the device's full-scale range (rails);
+``"spike"``
+    an isolated jump replaced by a hold;
+``"outlier"``
+    a sample rejected by a MAD or innovation (chi-square) gate;
+``"reacquired"``
+    a sample used although it failed its gate, because a run of them agreed (the
+    estimate, not the sensor, was wrong), or a forced update after repeated rejections;
+``"refused"``
+    a quantity that could not be formed (e.g. a static window with too few samples,
+    a dwell skipped for dropouts);
+``"jump"``
+    a time jump (sensor ``"clock"``): a sample interval too long to integrate as motion
+    (``max_dt`` of the attitude filters, the planar EKF and the heading fusion, whose default
+    is :func:`navlib.timing.jump_limit`, and of :class:`navlib.filters.zupt_ins.FilterConfig`);
+    nothing is integrated over it;
+``"freefall"``
+    accelerometer samples reading ``|f|`` near 0 for a while (free fall or a dead sensor:
+    ``("accel", "freefall")``), held from the last good sample;
+``"stuck"``
+    a sensor that stopped updating: a component repeating exactly the same value over a run
+    of samples (:func:`stuck_mask`; held like a dropout), or over most of a static window
+    (:func:`navlib.alignment.static_means` ``stuck_fraction``; the window refused).
 
 Every filter result carries one: :class:`navlib.filters.observations.AttitudeResult` (Mahony,
 quaternion KF), :class:`navlib.filters.planar_ekf.EkfResult`, :class:`navlib.filters.heading_fusion.FusionResult`,
