@@ -7,14 +7,16 @@ garbage instead of failing. This test runs :mod:`navlib._kernels`' ``kalman_pred
 all-NaN and partly NaN measurements, wrapped angles and a rejecting gate --, the 15-state covariance
 prediction ``zupt.error_state_predict_into`` and the compiled Gauss-Krüger series (forward, inverse,
 convergence; scalars, n-D and blocked arrays) in a subprocess with ``NUMBA_BOUNDSCHECK=1``, where an
-out-of-bounds index raises ``IndexError``. A fresh ``NUMBA_CACHE_DIR`` keeps the cached builds compiled
-without bounds checks out of it. The same for the attitude filters, whose fixed-size Kalman steps index
+out-of-bounds index raises ``IndexError``. A separate ``NUMBA_CACHE_DIR`` (``build/numba-boundscheck``,
+holding bounds-checked builds only, so later runs reuse them) keeps the cached builds compiled without
+bounds checks out of it. The same for the attitude filters, whose fixed-size Kalman steps index
 small scratch matrices by hand (:func:`navlib._kernels.lu_inverse`, the quaternion KF's update with 3 and 6
 rows, the stuck-run screening).
 """
 import os
 import subprocess
 import sys
+from pathlib import Path
 
 SCRIPT = r"""
 import numpy as np
@@ -75,17 +77,20 @@ except IndexError:
 """
 
 
-def _run_bounds_checked(script, tmp_path, timeout):
-    """Run ``script`` in a subprocess with bounds checking on and a fresh numba cache; it must print ok."""
-    env = dict(os.environ, NUMBA_BOUNDSCHECK="1", NUMBA_CACHE_DIR=str(tmp_path / "numba-cache"))
+BOUNDS_CACHE = Path(__file__).resolve().parents[1] / "build" / "numba-boundscheck"
+
+
+def _run_bounds_checked(script, timeout):
+    """Run ``script`` in a subprocess with bounds checking on and its own numba cache; it must print ok."""
+    env = dict(os.environ, NUMBA_BOUNDSCHECK="1", NUMBA_CACHE_DIR=str(BOUNDS_CACHE))
     env.pop("NUMBA_DISABLE_JIT", None)
     out = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True, text=True, timeout=timeout)
     assert out.returncode == 0, out.stderr[-3000:]
     assert out.stdout.strip() == "ok", "bounds checking was not active: " + out.stdout + out.stderr[-2000:]
 
 
-def test_kernels_stay_in_bounds(tmp_path):
-    _run_bounds_checked(SCRIPT, tmp_path, timeout=300)
+def test_kernels_stay_in_bounds():
+    _run_bounds_checked(SCRIPT, timeout=300)
 
 
 ATTITUDE = r"""
@@ -120,5 +125,5 @@ except IndexError:
 """
 
 
-def test_attitude_kernels_stay_in_bounds(tmp_path):
-    _run_bounds_checked(ATTITUDE, tmp_path, timeout=600)
+def test_attitude_kernels_stay_in_bounds():
+    _run_bounds_checked(ATTITUDE, timeout=600)

@@ -9,7 +9,8 @@ Assembles ``build/site-src/`` and runs Sphinx on it with ``docs/conf.py``:
 * ``chapters/`` — the executed notebooks that ``make reproduce`` wrote to ``build/`` (not executed
   again), code cells collapsible, names such as ``nf.resolve`` in the text linked to the API reference;
 * ``ledger.md`` — every check of every notebook with its claim's verdict, filterable by paper and verdict;
-* ``api/`` — one page per public module (autodoc over the numpydoc docstrings);
+* ``api/`` — the public modules in three pages (core, filters, paper companions; autodoc over the
+  numpydoc docstrings);
 * ``conventions``, ``claims`` (``docs/``), ``own-data``, ``robustness`` (README sections: one source),
   ``benchmarks`` (README section and the last ``build/bench.json`` when present).
 
@@ -313,21 +314,24 @@ def public_modules() -> dict[str, list[str]]:
 
 
 def api_pages(dest: Path) -> None:
+    """One page per group of modules (core, filters, paper companions), a section per module."""
     groups = public_modules()
+    aliases = groups.pop("Deprecated aliases", [])
     index = ["# API reference", "",
              "Every public name of navlib, by module, from its docstrings (shapes and units in each). The paper "
              "companions (`navlib.papers.*`) give the paper's equations with their numbers.", ""]
-    aliases = groups.pop("Deprecated aliases", [])
+    pages = []
     for group, modules in groups.items():
-        index += [f"## {group}", ""] + [f"* [{m}]({m}.md)" for m in modules] + [""]
-        for m in modules:
-            (dest / f"{m}.md").write_text(f"# {m}\n\n```{{eval-rst}}\n.. automodule:: {m}\n```\n", encoding="utf-8")
+        page = group.lower().replace(" ", "-")
+        pages.append(page)
+        index += [f"## [{group}]({page}.md)", "", ", ".join(f"`{m}`" for m in modules), ""]
+        body = [f"# {group}", ""] + [f"```{{eval-rst}}\n.. automodule:: {m}\n```\n" for m in modules]
+        (dest / f"{page}.md").write_text("\n".join(body), encoding="utf-8")
     if aliases:
         index += ["## Deprecated aliases", "", "Old module names that still import (with a warning) and will be "
                   "removed in navlib 0.3; each names the new homes of its contents: "
                   + ", ".join(f"`{m}`" for m in aliases) + ".", ""]
-    every = [m for modules in groups.values() for m in modules]
-    index += ["```{toctree}", ":hidden:", "", *every, "```", ""]
+    index += ["```{toctree}", ":hidden:", "", *pages, "```", ""]
     (dest / "index.md").write_text("\n".join(index), encoding="utf-8")
 
 
