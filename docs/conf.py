@@ -51,6 +51,7 @@ html_js_files = ["ledger.js"]
 html_css_files = ["navlib.css"]
 html_favicon = "_static/favicon.svg"       # the site's own (else the browser asks for /favicon.ico)
 html_last_updated_fmt = None
+html_copy_source = False                       # the chapters' sources are the notebooks in the repository
 html_context = {"default_mode": "light"}      # an explicit mode: the theme logs an error for an unset one
 html_theme_options = {
     "repository_url": "https://github.com/navlib-repro/navlib",

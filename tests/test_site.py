@@ -82,23 +82,31 @@ def pages() -> list[str]:
                   if not p.relative_to(SITE).as_posix().startswith(("_static/", "_sources/", "_extra/")))
 
 
-def test_every_page_loads_cleanly_offline(browser, server):
-    page = Watched(browser, server)
-    found = {path: page.open(path) for path in pages()}
-    bad = {path: problems for path, problems in found.items() if problems}
-    assert len(found) >= 10, f"only {len(found)} pages"
-    assert not bad, f"{len(bad)} of {len(found)} pages with problems: {dict(list(bad.items())[:5])}"
-
-
-def test_chapter_math_is_rendered_and_screenshots(browser, server):
-    page = Watched(browser, server)
-    assert page.open("chapters/01_north_finding.html") == []
-    assert page.page.locator("mjx-container[display='true']").count() > 0, "no display equation typeset"
-    assert page.page.locator("mjx-container").count() > 10, "inline math not typeset"
+@pytest.fixture(scope="module")
+def visited(browser, server) -> dict[str, dict]:
+    """Every page opened once: its problems and how much math it typeset; screenshots of two pages."""
+    page, seen = Watched(browser, server), {}
     SHOTS.mkdir(parents=True, exist_ok=True)
-    page.page.screenshot(path=str(SHOTS / "chapter-01.png"))
-    assert page.open("index.html") == []
-    page.page.screenshot(path=str(SHOTS / "home.png"))
+    for path in pages():
+        problems = page.open(path)
+        seen[path] = {"problems": problems, "display_math": page.page.locator("mjx-container[display='true']").count(),
+                      "math": page.page.locator("mjx-container").count()}
+        if path in ("index.html", "chapters/01_north_finding.html"):
+            page.page.screenshot(path=str(SHOTS / ("home.png" if path == "index.html" else "chapter-01.png")))
+    return seen
+
+
+def test_every_page_loads_cleanly_offline(visited):
+    bad = {path: v["problems"] for path, v in visited.items() if v["problems"]}
+    assert len(visited) >= 10, f"only {len(visited)} pages"
+    assert not bad, f"{len(bad)} of {len(visited)} pages with problems: {dict(list(bad.items())[:5])}"
+
+
+def test_chapter_math_is_rendered_and_screenshots_are_saved(visited):
+    chapter = visited["chapters/01_north_finding.html"]
+    assert chapter["display_math"] > 0, "no display equation typeset"
+    assert chapter["math"] > 10, "inline math not typeset"
+    assert (SHOTS / "home.png").stat().st_size > 10_000 and (SHOTS / "chapter-01.png").stat().st_size > 10_000
 
 
 def test_ledger_filter_shows_the_rows_of_one_verdict(browser, server):
