@@ -355,6 +355,13 @@ def text(x: Any, name: str, *, empty: bool = True) -> str:
     return x
 
 
+def axes(ax: Any, name: str = "ax") -> Any:
+    """Return ``ax`` if it is a matplotlib Axes (duck-typed: it plots and annotates)."""
+    if not hasattr(ax, "plot") or not hasattr(ax, "annotate"):
+        raise ValueError(f"{name}: expected a matplotlib Axes, got {type(ax).__name__}")
+    return ax
+
+
 def instance(x: Any, name: str, cls: type | tuple[type, ...], what: str, *, error: type[Exception] = ValueError) -> Any:
     """Return ``x`` if it is an instance of ``cls``; else raise ``error`` saying ``what`` was expected (e.g. "an ImuModel")."""
     if not isinstance(x, cls):

@@ -12,7 +12,7 @@ import numpy as np
 
 from . import attitude, units
 from ._typing import Angles, Array, ArrayLike, Dcm
-from ._validate import as_array, as_dcm, choice, euler_angles, instance, positive, same_shape, scalar, text, unit_interval
+from ._validate import as_array, as_dcm, axes, choice, euler_angles, instance, positive, same_shape, scalar, text, unit_interval
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -66,8 +66,7 @@ def allan(ax: Axes, taus: ArrayLike, adev_rad_s: ArrayLike, theory: ArrayLike | 
     theory : array_like, shape (M,), optional
         Model curve (rad/s), drawn dashed.
     """
-    if not hasattr(ax, "loglog"):
-        raise ValueError(f"ax: expected a matplotlib Axes, got {type(ax).__name__}")
+    axes(ax)
     taus = positive(taus, "taus")
     if taus.size == 0:
         raise ValueError("taus: expected at least one averaging time, got an empty array")
@@ -79,9 +78,8 @@ def allan(ax: Axes, taus: ArrayLike, adev_rad_s: ArrayLike, theory: ArrayLike | 
     if theory is not None:
         theory = same_shape(positive(theory, "theory"), "theory", taus.shape, of="taus")
     text(label, "label")
-    from matplotlib.colors import is_color_like  # noqa: PLC0415 -- navlib imports without matplotlib
-    if color is not None and not is_color_like(color):
-        raise ValueError(f"color: expected a matplotlib color, got {color!r:.40}")
+    if color is not None:
+        _color(color, "color")
     lines = ax.loglog(taus, a, color=color, linewidth=1 if a.ndim > 1 else 1.5, alpha=0.8)
     lines[0].set_label(label)
     if theory is not None:
@@ -94,11 +92,6 @@ def allan(ax: Axes, taus: ArrayLike, adev_rad_s: ArrayLike, theory: ArrayLike | 
 def heading_deg(hpr: Angles) -> Array:
     """Heading in degrees in [0, 360) from an ``hpr`` array (..., 3)."""
     return units.to_deg(attitude.wrap_2pi(euler_angles(hpr, "hpr")[..., 0]))
-
-
-def _axes(ax, name: str = "ax") -> None:
-    if not hasattr(ax, "plot") or not hasattr(ax, "annotate"):
-        raise ValueError(f"{name}: expected a matplotlib Axes, got {type(ax).__name__}")
 
 
 def _color(c, name: str) -> None:
@@ -135,7 +128,7 @@ def paper_value(ax: Axes, value: float, label: str, *, axis: str = "y", text_at:
     text_at : float
         Where along the line the label sits, as a fraction of the axes in [0, 1] (0 = left/bottom).
     """
-    _axes(ax)
+    axes(ax)
     v = scalar(value, "value")
     text(label, "label")
     choice(axis, "axis", ("x", "y"))
@@ -168,7 +161,7 @@ def block_diagram(ax: Axes, blocks: dict[str, tuple[float, float, str]],
     colors : dict, optional
         ``name -> face colour`` for boxes to set apart (e.g. the sensors); default light grey.
     """
-    _axes(ax)
+    axes(ax)
     instance(blocks, "blocks", dict, "a dict name -> (x, y, text)")
     instance(arrows, "arrows", (list, tuple), "a list of (from, to[, label])")
     w, h = _fraction(width, "width"), _fraction(height, "height")
@@ -214,7 +207,7 @@ def plane_frame(ax: Axes, origin: tuple[float, float], angle_deg: float, labels:
     y north, a body forward axis at heading psi has angle 90° - psi). ``labels`` name the first
     and second axis (the second is 90° counter-clockwise of the first). ``length`` in data units.
     """
-    _axes(ax)
+    axes(ax)
     o = _point(origin, "origin")
     a = np.deg2rad(scalar(angle_deg, "angle_deg"))
     if not isinstance(labels, (tuple, list)) or len(labels) != 2:
@@ -234,7 +227,7 @@ def angle_arc(ax: Axes, center: tuple[float, float], radius: float, start_deg: f
 
     ``center`` and ``radius`` in data units (use an equal aspect ratio for a circular arc).
     """
-    _axes(ax)
+    axes(ax)
     c = _point(center, "center")
     r = scalar(radius, "radius", positive=True)
     t0, t1 = scalar(start_deg, "start_deg"), scalar(end_deg, "end_deg")

@@ -14,13 +14,6 @@ from navlib import earth, geodesy  # noqa: E402
 from navlib.papers import gauss_kruger_ekf as gk  # noqa: E402
 
 
-@pytest.fixture
-def ax():
-    fig, axes = plt.subplots()
-    yield axes
-    plt.close(fig)
-
-
 def test_inverse_series_matches_kruger_inside_a_zone():
     lat, lon = np.meshgrid(np.linspace(0, 70, 36), 120 + np.linspace(-1.5, 1.5, 13))
     x, y = geodesy.geodetic2gk(lat, lon, zone=40, ellipsoid=earth.CGCS2000, deg=True)

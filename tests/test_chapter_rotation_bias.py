@@ -6,7 +6,6 @@ error, bad input named, the driver's output shapes, its determinism and its refu
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
@@ -16,13 +15,6 @@ from navlib.papers import rotation_bias  # noqa: E402
 DT = 0.01
 LAT = units.deg(40.0)
 EY = np.array([0.0, 1.0, 0.0])
-
-
-@pytest.fixture
-def ax():
-    fig, axes = plt.subplots()
-    yield axes
-    plt.close(fig)
 
 
 def rig(duration=30.0, period=5.0, rotation_time=0.5, pitch_deg=30.0):

@@ -25,6 +25,7 @@ import html
 import importlib
 import json
 import pkgutil
+import posixpath
 import re
 import shutil
 import sys
@@ -49,19 +50,8 @@ REPO_FILES = "https://github.com/navlib-repro/navlib/blob/main/"
 def absolute_links(markdown: str, base: str = "") -> str:
     """Markdown links to repository files (relative to ``base``, a folder of the repository) made absolute."""
     def repl(m):
-        return f"]({REPO_FILES}{_normalise(f'{base}/{m.group(1)}' if base else m.group(1))})"
+        return f"]({REPO_FILES}{posixpath.normpath(f'{base}/{m.group(1)}' if base else m.group(1))})"
     return re.sub(r"\]\((?!https?:|#|mailto:)([^)\s]+)\)", repl, markdown)
-
-
-def _normalise(path: str) -> str:
-    """``notebooks/../data/x`` -> ``data/x``."""
-    parts = []
-    for part in path.split("/"):
-        if part == "..":
-            parts = parts[:-1]
-        elif part not in ("", "."):
-            parts.append(part)
-    return "/".join(parts)
 
 
 def readme_section(title: str) -> str:

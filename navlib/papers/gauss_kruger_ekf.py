@@ -54,6 +54,7 @@ from .._deprecate import renamed_keywords
 from .._typing import Array, ArrayLike
 from .._validate import (
     as_array,
+    axes,
     booleans,
     broadcast,
     choice,
@@ -624,11 +625,6 @@ def inverse_series(x: ArrayLike, y: ArrayLike, lon0: ArrayLike, ellipsoid: Ellip
     return (np.rad2deg(lat), np.rad2deg(lon)) if flag(deg, "deg") else (lat, lon)
 
 
-def _axes(ax) -> None:
-    if not hasattr(ax, "plot") or not hasattr(ax, "annotate"):
-        raise ValueError(f"ax: expected a matplotlib Axes, got {type(ax).__name__}")
-
-
 def draw_zones(ax, lon_min: float = 112.5, lon_max: float = 127.5, *, mark: tuple[float, float] | None = None) -> None:
     """3° Gauss–Krüger zones on a longitude axis: boundaries at 3n ± 1.5°, central meridians L0 = 3n, zone numbers.
 
@@ -640,7 +636,7 @@ def draw_zones(ax, lon_min: float = 112.5, lon_max: float = 127.5, *, mark: tupl
     mark : (lat, lon) in degrees, optional
         A site drawn as a star with its zone.
     """
-    _axes(ax)
+    axes(ax)
     lo, hi = scalar(lon_min, "lon_min", allow_zero=True), scalar(lon_max, "lon_max", positive=True)
     if not lo < hi <= 180 or hi - lo > 30:
         raise ValueError(f"lon_min, lon_max: expected 0 <= lon_min < lon_max <= 180 and at most 30° apart, got {lo}, {hi}")
@@ -678,7 +674,7 @@ def draw_zone_grid(ax, zone: int, lat_max: float = 60.0, *, step_deg: float = 0.
         Meridian spacing (°), dividing 1.5.
     mark : (lat, lon) in degrees, optional
     """
-    _axes(ax)
+    axes(ax)
     n = int(scalar(zone, "zone", positive=True))
     if n != zone or n > 120:
         raise ValueError(f"zone: expected a 3° zone number 1-120, got {zone!r}")
@@ -710,9 +706,8 @@ def draw_zone_grid(ax, zone: int, lat_max: float = 60.0, *, step_deg: float = 0.
 
 def draw_block_diagram(ax) -> None:
     """Paper Fig. 2 redrawn: GPS through the Gauss–Krüger projection and the IMU into the 5-state EKF."""
-    from ..plots import block_diagram  # noqa: PLC0415 -- plotting only
+    from ..plots import block_diagram  # noqa: PLC0415 -- plotting only (it validates ax)
 
-    _axes(ax)
     blocks = {"gps": (0.1, 0.82, "GPS\nlatitude W, longitude L"),
               "zone": (0.33, 0.82, "zone n, central meridian\n$L_0$ = 3n (Eqs. 1–2)"),
               "gk": (0.57, 0.82, "Gauss–Krüger series\nx north, y east (Eqs. 3–11)"),

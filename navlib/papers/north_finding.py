@@ -99,7 +99,7 @@ from scipy.special import ndtr
 from .. import attitude, earth, plots, robust, strapdown
 from .._deprecate import renamed_keywords
 from .._typing import Angles, Array, ArrayLike, Dcm, Interval, Times, Vec3, Vec3Series
-from .._validate import as_dcm, broadcast, broadcast_to, flag, generator, in_range, intervals, pitch_roll, scalar, time_axis
+from .._validate import as_dcm, axes, broadcast, broadcast_to, flag, generator, in_range, intervals, pitch_roll, scalar, time_axis
 from .._validate import nonempty_array as as_array
 from .._validate import nonempty_positive as positive
 from ..alignment import gyrocompass_latitude, level, static_means, triad, triad_heading
@@ -979,11 +979,6 @@ def _arrow(ax, start, end, color, style="-", width=1.6, label=None):
         ax.plot([], [], color=color, linestyle=style, linewidth=width, label=label)
 
 
-def _check_axes(ax) -> None:
-    if not hasattr(ax, "plot") or not hasattr(ax, "annotate"):
-        raise ValueError(f"ax: expected a matplotlib Axes, got {type(ax).__name__}")
-
-
 def draw_device(ax, heading_deg: float = 30.0) -> None:
     """Paper Fig. 2 redrawn: the robot seen from above, its body frame b (= the sensor frame s of the
     calibrated MEMS IMU) and the single optical gyro along the forward axis y_s.
@@ -999,7 +994,7 @@ def draw_device(ax, heading_deg: float = 30.0) -> None:
     heading_deg : float
         Heading of the robot (deg), any finite value (wrapped to [0, 360)).
     """
-    _check_axes(ax)
+    axes(ax)
     psi = float(scalar(heading_deg, "heading_deg")) % 360.0
     from matplotlib.patches import Polygon  # noqa: PLC0415 -- navlib imports without matplotlib
     fwd, right = _unit(_map_angle(psi)), _unit(_map_angle(psi + 90.0))
@@ -1051,7 +1046,7 @@ def draw_candidate_pairs(ax, heading1_deg: float, heading2_deg: float, dpsi_ins_
     dpsi_ins_error_deg : float
         Error of the INS heading change (deg), drawn into the green arrow.
     """
-    _check_axes(ax)
+    axes(ax)
     psis = [float(scalar(h, name)) % 360.0 for h, name in ((heading1_deg, "heading1_deg"), (heading2_deg, "heading2_deg"))]
     err = float(scalar(dpsi_ins_error_deg, "dpsi_ins_error_deg"))
     from matplotlib.patches import Circle  # noqa: PLC0415 -- navlib imports without matplotlib

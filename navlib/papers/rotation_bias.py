@@ -96,6 +96,7 @@ from .. import _kernels, attitude, earth, kalman, robust
 from .._kernels import wrap_pi
 from .._typing import Angles, Array, ArrayLike, Interval, Vec3, Vec3Series
 from .._validate import (
+    axes,
     euler_angles,
     flag,
     generator,
@@ -1097,11 +1098,6 @@ def rotation_angle(C_bn) -> Array:
     return np.arccos(np.clip((np.trace(rel, axis1=-2, axis2=-1) - 1) / 2, -1.0, 1.0))
 
 
-def _axes(ax) -> None:
-    if not hasattr(ax, "plot") or not hasattr(ax, "annotate"):
-        raise ValueError(f"ax: expected a matplotlib Axes, got {type(ax).__name__}")
-
-
 def draw_rotation_scheme(ax, amplitude_deg: float = 90.0, pitch_deg: float = 30.0) -> None:
     """Paper Fig. 3 redrawn: the IMU turned by Δα about u = y_b, seen along u.
 
@@ -1120,7 +1116,7 @@ def draw_rotation_scheme(ax, amplitude_deg: float = 90.0, pitch_deg: float = 30.
     """
     from ..plots import angle_arc, plane_frame  # noqa: PLC0415 -- plotting only
 
-    _axes(ax)
+    axes(ax)
     alpha = scalar(amplitude_deg, "amplitude_deg", positive=True)
     if alpha > 180:
         raise ValueError(f"amplitude_deg: expected at most 180°, got {alpha!r}")
@@ -1158,7 +1154,7 @@ def draw_rotation_schedule(ax, time, angle_deg, starts, length: int, dt: float) 
     dt : float
         Sample interval (s).
     """
-    _axes(ax)
+    axes(ax)
     t = time_axis(time, "time")
     a = as_array(angle_deg, "angle_deg")
     if a.shape != t.shape:
@@ -1178,9 +1174,8 @@ def draw_rotation_schedule(ax, time, angle_deg, starts, length: int, dt: float) 
 
 def draw_flow(ax) -> None:
     """Paper Fig. 4 redrawn: the estimation and compensation loop (§3.3) as a block diagram."""
-    from ..plots import block_diagram  # noqa: PLC0415 -- plotting only
+    from ..plots import block_diagram  # noqa: PLC0415 -- plotting only (it validates ax)
 
-    _axes(ax)
     blocks = {"imu": (0.12, 0.72, "IMU\ngyros $\\tilde\\Omega$,\naccelerometers"),
               "dwell": (0.37, 0.72, "dwell k: tilt residual\n$r_k = V_k b$ (Eqs. 6–9)"),
               "rotate": (0.12, 0.25, "rig: rotate by ±Δα\nabout u every 5 s\n(Eqs. 10–11)"),
