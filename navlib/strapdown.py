@@ -256,11 +256,21 @@ def _nav_kernel(lla0, vel0, q0, w, f, dt, earth_consts, hold_height):
     q = np.empty((T, N + 1, 4))
     for t in range(T):
         lla_k, v_k, q_k = lla0[t].copy(), vel0[t].copy(), q0[t].copy()
-        lla[t, 0], vel[t, 0], q[t, 0] = lla_k, v_k, q_k
+        _store(lla[t, 0], vel[t, 0], q[t, 0], lla_k, v_k, q_k)
         for k in range(N):
             _kernels.nav_step(lla_k, v_k, q_k, w[t, k], f[t, k], dt[k if per_sample else 0], earth_consts, hold_height)
-            lla[t, k + 1], vel[t, k + 1], q[t, k + 1] = lla_k, v_k, q_k
+            _store(lla[t, k + 1], vel[t, k + 1], q[t, k + 1], lla_k, v_k, q_k)
     return lla, vel, q
+
+
+@njit(cache=True)
+def _store(lla_out, vel_out, q_out, lla, vel, q):
+    """Copy one epoch's state element by element (an array assignment compiles numba's shape-mismatch
+    message machinery, seconds of every cold start)."""
+    for i in range(3):
+        lla_out[i], vel_out[i] = lla[i], vel[i]
+    for i in range(4):
+        q_out[i] = q[i]
 
 
 def integrate(lla0: Vec3, vel0: Vec3, q0: Quat, w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None,

@@ -167,10 +167,13 @@ def jacobian(X: ArrayLike, T: float) -> Array:
 @njit(cache=True)
 def _propagate(x0, T, speed, yaw_rate):
     X = np.empty((speed.shape[0] + 1, 5))
-    X[0] = x0
+    for i in range(5):                  # element by element: an array assignment compiles numba's shape messages
+        X[0, i] = x0[i]
     X[0, 3], X[0, 4] = speed[0], yaw_rate[0]
     for k in range(speed.shape[0]):
-        X[k + 1] = _f(X[k], T)
+        x = _f(X[k], T)
+        for i in range(5):
+            X[k + 1, i] = x[i]
         if k + 1 < speed.shape[0]:
             X[k + 1, 3], X[k + 1, 4] = speed[k + 1], yaw_rate[k + 1]
     return X
@@ -216,7 +219,7 @@ def propagate(x0: ArrayLike, T: float, n_steps: int | None = None, speed: ArrayL
 def _dead_reckon(t, speed, yaw_rate, x0, velocity_bias, full_scale_gyro):
     n = t.shape[0]
     out = np.empty((n, 3))
-    out[0] = x0[:3]
+    out[0, 0], out[0, 1], out[0, 2] = x0[0], x0[1], x0[2]
     v, w = x0[3], x0[4]
     held = 0
     for k in range(1, n):

@@ -370,9 +370,7 @@ def _filter_kernel(samples, c):
     hb, vb, hb_init, t_baro = 0.0, 0.0, False, 0.0          # alpha-beta tracker of the baro height
     n_baro_rej = 0
     w_ie = np.zeros(3)
-    lla_out[0], vel_out[0], q_out[0], b_out[0] = lla[0], vel[0], q[0], b
-    for i in range(15):
-        p_out[0, i] = P[i, i]
+    _store(0, lla_out, vel_out, q_out, b_out, p_out, lla[0], vel[0], q[0], b, P)
     for k in range(n):
         dtk = dt[k]
         good, held, f_held = True, False, False          # good: a real, unclipped sample, usable for ZUPT/ZARU
@@ -514,7 +512,9 @@ def _filter_kernel(samples, c):
                 counts[_N_MAG] += 1
                 if c.aiding == 1:                          # C <- rot(z, H_hat - alpha) C
                     rz = np.array([np.cos(dh / 2), 0.0, 0.0, np.sin(dh / 2)])
-                    q[0] = attitude.quat_normalize_1(attitude.quat_mult_1(rz, q[0]))
+                    qn = attitude.quat_normalize_1(attitude.quat_mult_1(rz, q[0]))
+                    for i in range(4):
+                        q[0, i] = qn[i]
                     _reset_state(P, 8, np.sqrt(c.r_heading))
                 else:
                     c1 = C[:, 1]
@@ -524,15 +524,22 @@ def _filter_kernel(samples, c):
                     z1[0], h1[0], R1[0, 0] = dh, 0.0, c.r_heading
                     x, P, _, _, status = _kernels.kalman_update(x, P, z1, h1, H1, R1, wrap1, np.inf)
                     _feedback(x, lla[0], vel[0], q[0], b, a, e2)
-        for i in range(3):                               # element loops: cheaper than row assignments here
-            lla_out[k + 1, i], vel_out[k + 1, i] = lla[0, i], vel[0, i]
-        for i in range(4):
-            q_out[k + 1, i] = q[0, i]
-        for i in range(6):
-            b_out[k + 1, i] = b[i]
-        for i in range(15):
-            p_out[k + 1, i] = P[i, i]
+        _store(k + 1, lla_out, vel_out, q_out, b_out, p_out, lla[0], vel[0], q[0], b, P)
     return lla_out, vel_out, q_out, b_out, p_out, counts, flags, P
+
+
+@njit(cache=True)
+def _store(k, lla_out, vel_out, q_out, b_out, p_out, lla, vel, q, b, P):
+    """Row k of the outputs, element by element (cheaper than row assignments, which also compile numba's
+    shape-mismatch messages: seconds of a cold start)."""
+    for i in range(3):
+        lla_out[k, i], vel_out[k, i] = lla[i], vel[i]
+    for i in range(4):
+        q_out[k, i] = q[i]
+    for i in range(6):
+        b_out[k, i] = b[i]
+    for i in range(15):
+        p_out[k, i] = P[i, i]
 
 
 @dataclass(frozen=True)

@@ -743,7 +743,9 @@ def _running_kernel(r, V, lam, max_cond):
                 skipped += 1
             ev = np.linalg.eigvalsh(A)
             if ev[0] > 0 and ev[2] / ev[0] < max_cond * max_cond:
-                out[t, k] = np.linalg.solve(A, y)
+                b = np.linalg.solve(A, y)
+                for i in range(3):      # element by element: an array assignment compiles numba's shape messages
+                    out[t, k, i] = b[i]
     return out, skipped
 
 
@@ -834,10 +836,11 @@ def _kalman_kernel(r, V, R, qq, intervals, p0, gate):
                 no_data += 1
             elif status == kalman.REJECTED:
                 rejected += 1
-            b[t, k] = x
-            Ps[t, k] = P
-            for i in range(3):
+            for i in range(3):          # element by element: an array assignment compiles numba's shape messages
+                b[t, k, i] = x[i]
                 sig[t, k, i] = np.sqrt(P[i, i])
+                for j in range(3):
+                    Ps[t, k, i, j] = P[i, j]
     return b, sig, no_data, rejected, Ps
 
 
