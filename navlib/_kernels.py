@@ -105,6 +105,13 @@ def wrap_pi(a):
     return np.pi if w == -np.pi else w
 
 
+@njit(cache=True)
+def wrap_2pi(a):
+    """A scalar angle wrapped to [0, 2 pi) (rad): :func:`navlib.attitude.wrap_2pi`, compiled."""
+    w = np.mod(a, 2 * np.pi)
+    return 0.0 if w >= 2 * np.pi else w
+
+
 @njit(cache=True, inline="always")
 def dcm_heading(c12, c22):
     """Heading (rad, (-pi, pi]) of ``C_bn`` from its elements ``C[0, 1]`` and ``C[1, 1]`` (hpr convention)."""

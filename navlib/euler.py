@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from . import attitude
+from . import _kernels
 from ._deprecate import renamed_keywords
 from ._typing import Angles, Array, ArrayLike, Interval, Vec3, Vec3Series
 from ._validate import broadcast_to, flag, intervals, kernel_array, range_limit, scalar, small_turns, text
@@ -92,7 +92,7 @@ def _euler_kernel(hpr0, w, dts, w_in, bias, bias_from, pitch_limit, max_gap, fs)
     nE, nN, nU = w_in[0], w_in[1], w_in[2]
     for t in range(T):
         h, p, r = hpr0[t, 0], hpr0[t, 1], hpr0[t, 2]
-        out[t, 0, 0], out[t, 0, 1], out[t, 0, 2] = h, p, r
+        out[t, 0, 0], out[t, 0, 1], out[t, 0, 2] = _kernels.wrap_2pi(h), p, _kernels.wrap_pi(r)
         k = -1
         bx = by = bz = 0.0
         lx = ly = lz = 0.0           # last valid gyro sample (zero before the first)
@@ -152,7 +152,7 @@ def _euler_kernel(hpr0, w, dts, w_in, bias, bias_from, pitch_limit, max_gap, fs)
                 r += dt * k2r
             if abs(p) > pitch_limit:
                 singular = True
-            out[t, i + 1, 0], out[t, i + 1, 1], out[t, i + 1, 2] = h, p, r
+            out[t, i + 1, 0], out[t, i + 1, 1], out[t, i + 1, 2] = _kernels.wrap_2pi(h), p, _kernels.wrap_pi(r)
     return out, singular, gap_too_long, held, saturated, first_saturated
 
 
@@ -263,8 +263,6 @@ def integrate_euler(hpr0: Angles, w_ib_b: Vec3Series | ImuSamples, dt: Interval 
     if singular:
         raise ValueError(f"w_ib_b: the integrated pitch passed +-{np.rad2deg(PITCH_LIMIT):g} deg, where Eq. (2) "
                          "is singular; integrate this motion with quaternions (strapdown.integrate_attitude)")
-    out[..., 0] = attitude.wrap_2pi(out[..., 0])
-    out[..., 2] = attitude.wrap_pi(out[..., 2])
     out = out.reshape(lead + (n + 1, 3))
     return (out, EulerReport(int(held), int(sat), int(first))) if report else out
 

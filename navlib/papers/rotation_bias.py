@@ -1022,7 +1022,8 @@ def rig_experiment(traj, w_ib_b: Vec3Series, f_b: Vec3Series, starts, length: in
                          "model without scale-factor and misalignment errors")
     w_ie_n = earth.earth_rate_n(lat)
     imu = sensors.simulate_imu(w_ib_b, f_b, dt, model, rng, n_trials=n_runs)
-    hpr0, hpr_true = traj.hpr[0], traj.hpr
+    hpr_true = traj.hpr
+    hpr0 = hpr_true[0]
     res = tilt_residuals(imu.w_ib_b, imu.f_b, dt, starts, length, w_ie_b)
     forgetting = np.exp(-period / memory)
     b_lsq, _ = running_lsq_bias(res.r, res.V, forgetting)
