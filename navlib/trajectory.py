@@ -472,6 +472,12 @@ def ideal_imu(traj: Trajectory, ellipsoid: earth.Ellipsoid = earth.WGS84):
         raise ValueError(f"traj: expected a Trajectory, got {type(traj).__name__}")
     if not all(np.isfinite(a).all() for a in (traj.lla, traj.vel_n, traj.q_bn)):
         raise ValueError("traj: expected a finite trajectory (no NaN positions, velocities or attitudes)")
+    states = (traj.lla, traj.vel_n, traj.q_bn)
+    if len(traj) > 2 and all((a == a[..., :1, :]).all() for a in states):
+        # Every epoch the same (a static record): every interval gives the first one's samples, bit for bit.
+        first = Trajectory(traj.time[:2], *(a[..., :2, :] for a in states))
+        lead_n = traj.lla.shape[:-2] + (len(traj) - 1, 3)
+        return tuple(np.broadcast_to(x, lead_n).copy() for x in ideal_imu(first, ellipsoid))
     dt = traj.dt
     lat, h = traj.lla[..., :-1, 0], traj.lla[..., :-1, 2]
     v0, v1 = traj.vel_n[..., :-1, :], traj.vel_n[..., 1:, :]
