@@ -224,19 +224,43 @@ def _corrupt(x, dt, errors: TriadErrors, rng: np.random.Generator):
     r_matrix, r_on, r_gm, r_rrw, r_white = rng.spawn(5)
     lead, shape = x.shape[:-2], x.shape
     M = _error_matrix(errors, lead, r_matrix)
-    bias = np.broadcast_to(errors.bias * r_on.standard_normal(lead + (1, 3)), shape).copy()
-    if errors.bias_instability > 0:
-        bias += gauss_markov(shape, dt, errors.gauss_markov_sigma, errors.correlation_time, r_gm)
+    turn_on = errors.bias * r_on.standard_normal(lead + (1, 3))
+    if errors.bias_instability > 0:        # turn-on + Gauss-Markov, added in place (addition commutes: same bits)
+        bias = gauss_markov(shape, dt, errors.gauss_markov_sigma, errors.correlation_time, r_gm)
+        bias += turn_on
+    else:
+        bias = np.broadcast_to(turn_on, shape).copy()
     if errors.rate_random_walk > 0:
         bias += np.cumsum(errors.rate_random_walk * np.sqrt(dt) * r_rrw.standard_normal(shape), axis=-2)
-    y = np.einsum("...ij,...nj->...ni", M, x) + bias
-    if errors.noise_density > 0:
-        y += errors.noise_density / np.sqrt(dt) * r_white.standard_normal(shape)
-    clipped = np.abs(y) > errors.full_scale
-    n_clipped = int(np.count_nonzero(clipped))
-    if n_clipped:
-        y = np.clip(y, -errors.full_scale, errors.full_scale)
-    return y, bias, M, n_clipped
+    white = r_white.standard_normal(shape) if errors.noise_density > 0 else bias     # (unused when 0)
+    y = np.empty(shape)
+    n_clipped = _apply_errors(M.reshape(-1, 3, 3), x.reshape(-1, shape[-2], 3), bias.reshape(-1, shape[-2], 3),
+                              white.reshape(-1, shape[-2], 3), errors.noise_density / np.sqrt(dt),
+                              errors.full_scale, y.reshape(-1, shape[-2], 3))
+    return y, bias, M, int(n_clipped)
+
+
+@njit(cache=True)
+def _apply_errors(M, x, bias, white, scale, full_scale, y):
+    """``y = M x + bias + scale * white`` clipped to ``+-full_scale``, in one pass; returns the clipped count.
+
+    Rounded as the former ``np.einsum("...ij,...nj->...ni", M, x) + bias`` followed by ``y += scale * white``
+    and ``np.clip`` (numpy's einsum sums the three products as ``(p0 + p2) + p1``), without their temporaries.
+    ``scale == 0`` skips the white noise.
+    """
+    n_clipped = 0
+    for t in range(y.shape[0]):
+        for n in range(y.shape[1]):
+            x0, x1, x2 = x[t, n, 0], x[t, n, 1], x[t, n, 2]
+            for i in range(3):
+                v = (M[t, i, 0] * x0 + M[t, i, 2] * x2) + M[t, i, 1] * x1 + bias[t, n, i]
+                if scale != 0.0:
+                    v = v + scale * white[t, n, i]
+                if abs(v) > full_scale:
+                    n_clipped += 1
+                    v = full_scale if v > 0 else -full_scale
+                y[t, n, i] = v
+    return n_clipped
 
 
 def window_mean_std(errors: TriadErrors, duration: float, dt: float) -> float:

@@ -157,6 +157,23 @@ def test_imu_scale_misalignment_and_measurement_equation():
     assert np.all(np.std(out.gyro_bias, axis=1) > 0)
 
 
+def test_error_pass_rounds_as_einsum():
+    """The one-pass error kernel gives the bits of the array expressions it replaced (einsum + bias + noise)."""
+    rng = np.random.default_rng(11)
+    for T, N in ((1, 5000), (7, 300)):
+        M = np.eye(3) + 1e-3 * rng.standard_normal((T, 3, 3))
+        x = np.broadcast_to(rng.standard_normal((N, 3)), (T, N, 3)).copy()
+        x[:, ::5] = 0.0
+        x[:, ::7, 1] = -0.0
+        bias, white = 1e-3 * rng.standard_normal((T, N, 3)), rng.standard_normal((T, N, 3))
+        for scale in (0.0, 0.3):
+            ref = np.einsum("...ij,...nj->...ni", M, x) + bias
+            ref += scale * white
+            y = np.empty((T, N, 3))
+            assert sensors._apply_errors(M, x, bias, white, scale, np.inf, y) == 0
+            assert_array_equal(y.view(np.int64), ref.view(np.int64))       # signed zeros included
+
+
 def test_imu_saturation():
     """Outputs are clipped at +-full_scale and the clipped samples are counted."""
     fs_g, fs_a = 1.0, 20.0
