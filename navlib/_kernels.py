@@ -12,15 +12,42 @@ compiled kernel calls the primitive (e.g. :func:`kalman_update`), never the publ
 """
 from __future__ import annotations
 
+import gc
 import math
 from fractions import Fraction
 
 import numpy as np
 from llvmlite import ir
 from numba import njit, types
+from numba.core import event
 from numba.core.extending import intrinsic, overload
 
 from .attitude import quat_mult_t, quat_to_dcm_t, rotvec_to_quat_t
+
+
+class _CollectAfterCompile(event.Listener):
+    """Run the cyclic garbage collector when an outermost numba compilation ends.
+
+    A compilation leaves tens of thousands of objects in reference cycles (typing and LLVM IR objects,
+    and llvmlite modules holding native LLVM memory) that only the collector frees, and after it numba's
+    caches make the collector's full passes rare. In notebook 02's first run (cold cache) that garbage
+    kept its kernel 0.5 GB above the warm run's peak (2.18 GB instead of 1.70 GB). Cache loads are not
+    compilations: a warm run never collects here.
+    """
+
+    def __init__(self):
+        self.depth = 0
+
+    def on_start(self, ev):
+        self.depth += 1
+
+    def on_end(self, ev):
+        self.depth -= 1
+        if self.depth == 0:
+            gc.collect()
+
+
+event.register("numba:compile", _CollectAfterCompile())
 
 BORROW = {"cache": True, "_nrt": False}
 """numba options of a compiled helper that only reads and writes arrays its caller owns (it allocates and
