@@ -168,8 +168,11 @@ def dcm_to_euler(C_bn: Dcm, deg: bool = False) -> Array:
     hpr : ndarray, shape (..., 3)
         rad, or deg with ``deg=True``.
     """
-    C = as_dcm(C_bn)
-    deg = flag(deg, "deg")
+    return _dcm_to_euler(as_dcm(C_bn), flag(deg, "deg"))
+
+
+def _dcm_to_euler(C, deg):
+    """:func:`dcm_to_euler` of rotation matrices already known to be valid (no checks)."""
     c31, c32, c33 = C[..., 2, 0], C[..., 2, 1], C[..., 2, 2]
     pitch = np.arctan2(c32, np.hypot(c31, c33))
     locked = np.hypot(c31, c33) < 1e-9
@@ -209,7 +212,7 @@ def _positive_scalar(q):
 
 def quat_to_euler(q: Quat, deg: bool = False) -> Array:
     """Heading, pitch, roll from a quaternion q_b^n; shape (..., 4) -> (..., 3)."""
-    return dcm_to_euler(quat_to_dcm(q), deg=deg)
+    return _dcm_to_euler(quat_to_dcm(q), flag(deg, "deg"))     # a normalised quaternion's matrix is valid
 
 
 def quat_to_dcm(q: Quat) -> Array:
