@@ -96,7 +96,7 @@ def imu_simulation(quick: bool):
     w, f = trajectory.ideal_imu(traj)
     model = sensors.imu_model("MTi-100")
     t = best_time(lambda: sensors.simulate_imu(w, f, 0.01, model, np.random.default_rng(3)))
-    return [Result("IMU simulation (MTi-100)", "navlib (numpy)", n / t, "samples/s", t)]
+    return [Result("IMU simulation (MTi-100)", "navlib (numpy draws, numba error pass)", n / t, "samples/s", t)]
 
 
 CASES = [strapdown_attitude, strapdown_navigation, kalman_step, imu_simulation]
