@@ -21,6 +21,34 @@ def test_trial_streams_match_seedsequence_spawn():
     np.testing.assert_array_equal(streams.normal((4,)), direct)
 
 
+@pytest.mark.parametrize("seed", [0, 1, 2000, 2 ** 32 + 5, 2 ** 70 + 3])
+def test_trial_states_are_numpys(seed):
+    """The vectorised SeedSequence hash gives the PCG64 states numpy's SeedSequence + PCG64 give."""
+    ids = np.r_[0:200, 10 ** 7, 2 ** 32 - 1]
+    got = montecarlo._pcg64_states(seed, ids)
+    want = [np.random.PCG64(np.random.SeedSequence(seed, spawn_key=(int(i),))).state["state"] for i in ids]
+    assert [{"state": s, "inc": c} for s, c in got] == want
+
+
+def test_streams_continue_across_draw_modes():
+    """Shared-generator draws, the switch to per-trial generators and generators() continue each trial's
+    stream exactly as per-trial generators from the start would; ids beyond 2**32 take the direct path."""
+    for ids in (np.array([3, 0, 17, 5]), np.array([1, 2 ** 33])):
+        direct = [np.random.default_rng(np.random.SeedSequence(7, spawn_key=(int(i),))) for i in ids]
+        streams = montecarlo.TrialStreams(7, ids)
+        for k in range(montecarlo._SHARED_DRAWS + 2):
+            want = np.stack([g.normal(size=(2,)) if k % 2 else g.uniform(size=()) for g in direct])
+            got = streams.normal((2,)) if k % 2 else streams.uniform()
+            np.testing.assert_array_equal(got, want)
+        fresh = montecarlo.TrialStreams(7, ids)
+        fresh.normal(3)
+        gens = fresh.generators()
+        for g, d in zip(gens, [np.random.default_rng(np.random.SeedSequence(7, spawn_key=(int(i),))) for i in ids],
+                        strict=True):
+            d.normal(size=3)
+            assert g.integers(1 << 40) == d.integers(1 << 40)
+
+
 @pytest.mark.parametrize("batch_size", [1, 7, 64, 1000])
 def test_result_independent_of_batch_size(batch_size):
     ref = montecarlo.run(heading_error_batch, 200, seed=3, batch_size=200, progress=False, sigma=0.1)
