@@ -11,7 +11,7 @@ from bench.run import Result
 from navlib import earth, montecarlo, units
 from navlib.papers import north_finding as nf
 
-SEED, BATCH = 2000, 20_000
+SEED, BATCH = 2000, 100_000
 GRID = np.stack(np.meshgrid([0.0, 20.0, 28.361735, 45.0, 60.0], np.arange(5.0, 360.0, 10.0), [0.003, 0.01, 0.03],
                             indexing="ij"), -1).reshape(-1, 3)     # latitude (deg) x heading (deg) x gyro (deg/h)
 SIGMA_ACCEL = units.ug(100)
