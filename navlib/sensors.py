@@ -232,21 +232,19 @@ def _corrupt(x, dt, errors: TriadErrors, rng: np.random.Generator):
         bias = np.broadcast_to(turn_on, shape).copy()
     if errors.rate_random_walk > 0:
         bias += np.cumsum(errors.rate_random_walk * np.sqrt(dt) * r_rrw.standard_normal(shape), axis=-2)
-    white = r_white.standard_normal(shape) if errors.noise_density > 0 else bias     # (unused when 0)
-    y = np.empty(shape)
+    y = r_white.standard_normal(shape) if errors.noise_density > 0 else np.empty(shape)   # the white noise
     n_clipped = _apply_errors(M.reshape(-1, 3, 3), x.reshape(-1, shape[-2], 3), bias.reshape(-1, shape[-2], 3),
-                              white.reshape(-1, shape[-2], 3), errors.noise_density / np.sqrt(dt),
-                              errors.full_scale, y.reshape(-1, shape[-2], 3))
+                              errors.noise_density / np.sqrt(dt), errors.full_scale, y.reshape(-1, shape[-2], 3))
     return y, bias, M, int(n_clipped)
 
 
 @njit(cache=True)
-def _apply_errors(M, x, bias, white, scale, full_scale, y):
-    """``y = M x + bias + scale * white`` clipped to ``+-full_scale``, in one pass; returns the clipped count.
+def _apply_errors(M, x, bias, scale, full_scale, y):
+    """``y = M x + bias + scale * y`` clipped to ``+-full_scale``, in place (``y`` holds the white noise on
+    entry; ``scale == 0`` ignores it); returns the clipped count.
 
     Rounded as the former ``np.einsum("...ij,...nj->...ni", M, x) + bias`` followed by ``y += scale * white``
     and ``np.clip`` (numpy's einsum sums the three products as ``(p0 + p2) + p1``), without their temporaries.
-    ``scale == 0`` skips the white noise.
     """
     n_clipped = 0
     for t in range(y.shape[0]):
@@ -255,7 +253,7 @@ def _apply_errors(M, x, bias, white, scale, full_scale, y):
             for i in range(3):
                 v = (M[t, i, 0] * x0 + M[t, i, 2] * x2) + M[t, i, 1] * x1 + bias[t, n, i]
                 if scale != 0.0:
-                    v = v + scale * white[t, n, i]
+                    v = v + scale * y[t, n, i]
                 if abs(v) > full_scale:
                     n_clipped += 1
                     v = full_scale if v > 0 else -full_scale
