@@ -3,6 +3,7 @@ import json
 import math
 import struct
 import zlib
+from dataclasses import asdict
 
 import numpy as np
 import pytest
@@ -177,6 +178,26 @@ def test_savefig_deterministic(fake_root):
         assert key not in text, key
 
 
+def test_savefig_inline_shows_the_saved_png_and_closes(fake_root, monkeypatch):
+    """Under the inline backend the cell shows the saved file, and the backend has nothing left to render."""
+    display = pytest.importorskip("IPython.display")
+    shown = []
+    monkeypatch.setattr(display, "display", lambda obj: shown.append(obj))
+    monkeypatch.setattr(matplotlib, "get_backend", lambda: "module://matplotlib_inline.backend_inline")
+    repro.setup(NB)
+    fig = _figure()
+    path = repro.savefig(fig, "a")
+    assert len(shown) == 1 and shown[0].data == path.read_bytes()
+    assert not plt.fignum_exists(fig.number)
+
+
+def test_savefig_other_backends_leave_the_figure_open(fake_root):
+    repro.setup(NB)
+    fig = _figure()
+    repro.savefig(fig, "a")
+    assert plt.fignum_exists(fig.number)
+
+
 def test_outside_checkout_needs_an_output_directory(tmp_path, monkeypatch):
     """Outside a checkout repro refuses to guess (it would write beside the installed package)."""
     monkeypatch.delenv("NAVLIB_ROOT", raising=False)
@@ -222,6 +243,25 @@ def paper_root(fake_root):
     (fake_root / "data" / "errata.csv").write_text(ERRATA_CSV, encoding="utf-8")
     repro.setup(NB, paper="999")
     return fake_root
+
+
+def test_results_json_is_the_plain_json_layout(paper_root):
+    """Rows are encoded once, when recorded; the file equals json.dumps of the whole record."""
+    repro.mode(teaching=True, fast=False)
+    repro.check("P999-FIG1-RMSE", 4.8, 4.77, 0.1, "Fig. 1", paper_value="4.77 °", unit="°", note="ü \"q\"\nx")
+    repro.check_outside("P999-FIG1-RMSE/out", 5.0, "src", lower=1.0, upper=2.0)
+    with pytest.warns(repro.ClaimCheckWarning):
+        repro.check("extra-nan", np.nan, 0.0, 1.0, "src")
+    repro.check("P999-FIG1-RMSE", 4.7, 4.77, 0.1, "Fig. 1")           # replaces the first one
+    repro.verdict("P999-FIG1-RMSE", "reproduced")
+    repro.verdict("P999-TAB1-HW", "not checkable here", reason="no hardware")
+    text = (paper_root / "build" / NB / "results.json").read_text()
+    plain = {"notebook": NB, "checks": [repro._row(c) for c in repro.results()],
+             "mode": {"teaching": True, "fast": False}, "paper": "999",
+             "verdicts": [asdict(v) for v in repro.verdicts()]}
+    assert text == json.dumps(plain, indent=1, allow_nan=True) + "\n"
+    assert [r["name"] for r in json.loads(text)["checks"]] == ["P999-FIG1-RMSE/out", "extra-nan", "P999-FIG1-RMSE"]
+    assert len(json.loads(text)["verdicts"]) == 2
 
 
 def test_check_outside(fake_root):
