@@ -1,4 +1,5 @@
-"""The old paper modules are deprecated aliases for one release: every old name resolves, and they warn."""
+"""navlib's module attributes: submodules load on first use; the old paper modules are deprecated aliases
+for one release (every old name resolves, and they warn)."""
 from __future__ import annotations
 
 import importlib
@@ -146,3 +147,11 @@ def test_ins_heading_change_report_keeps_the_tuple_and_warns():
     np.testing.assert_array_equal(rep.n_held, counts["gyro", "nan"])
     np.testing.assert_array_equal(rep.n_saturated, counts["gyro", "saturated"])
     np.testing.assert_allclose(rep.longest_gap, [0.01, 0.3, 0.0])
+
+
+def test_submodules_load_on_first_use():
+    """``import navlib`` loads no submodule; ``navlib.X`` and ``from navlib import X`` load X (and what it imports)."""
+    code = ("import sys, navlib; assert not [m for m in sys.modules if m.startswith('navlib.')], sys.modules.keys(); "
+            "from navlib import units; assert 'scipy.stats' not in sys.modules and 'numba' not in sys.modules; "
+            "assert all(hasattr(navlib, name) for name in navlib.__all__); assert set(navlib.__all__) <= set(dir(navlib))")
+    subprocess.run([sys.executable, "-c", code], check=True)
