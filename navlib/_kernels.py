@@ -127,16 +127,25 @@ def radii_mn(lat, a, e2):
 
 @njit(cache=True)
 def wrap_pi(a):
-    """A scalar angle wrapped to (-pi, pi] (rad)."""
-    w = np.mod(a + np.pi, 2 * np.pi) - np.pi
+    """A scalar angle wrapped to (-pi, pi] (rad): :func:`navlib.attitude.wrap_pi`, compiled, same bits."""
+    w = _mod_2pi(a + np.pi) - np.pi
     return np.pi if w == -np.pi else w
 
 
 @njit(cache=True)
 def wrap_2pi(a):
-    """A scalar angle wrapped to [0, 2 pi) (rad): :func:`navlib.attitude.wrap_2pi`, compiled."""
-    w = np.mod(a, 2 * np.pi)
+    """A scalar angle wrapped to [0, 2 pi) (rad): :func:`navlib.attitude.wrap_2pi`, compiled, same bits."""
+    w = _mod_2pi(a)
     return 0.0 if w >= 2 * np.pi else w
+
+
+@njit(cache=True, inline="always")
+def _mod_2pi(x):
+    """``np.mod(x, 2 pi)``. Inside [0, 2 pi) that is ``x`` itself (fmod is exact; + 0.0 turns -0 into +0
+    as np.mod does), which skips the fmod call for almost every angle a kernel wraps."""
+    if 0.0 <= x < 2 * np.pi:
+        return x + 0.0
+    return np.mod(x, 2 * np.pi)
 
 
 @njit(cache=True, inline="always")

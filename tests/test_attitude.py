@@ -75,6 +75,19 @@ def test_wrap_2pi_endpoints():
     assert_allclose(att.wrap_2pi(-PI / 2), 1.5 * PI)
 
 
+def test_compiled_wraps_equal_the_numpy_wraps_bit_for_bit():
+    """The kernels' scalar wraps (a shortcut inside [0, 2 pi) that skips fmod) give numpy's bits, -0 and NaN included."""
+    from navlib import _kernels
+    edges = [0.0, -0.0, PI, -PI, 2 * PI, -2 * PI, 3 * PI, 1e-300, -1e-300, 5e-324, -5e-324, 1e6, -1e6, np.nan]
+    edges += [np.nextafter(e, d) for e in (PI, -PI, 2 * PI, 0.0) for d in (-9.0, 9.0)]
+    x = np.concatenate([edges, np.random.default_rng(0).uniform(-10, 10, 20_000),
+                        PI + 1e-15 * np.arange(-50, 51), -PI + 1e-15 * np.arange(-50, 51)])
+    for compiled, vectorised in ((_kernels.wrap_pi, att.wrap_pi), (_kernels.wrap_2pi, att.wrap_2pi)):
+        ours = np.array([compiled(v) for v in x])
+        assert np.array_equal(ours.view(np.int64)[~np.isnan(x)], vectorised(x).view(np.int64)[~np.isnan(x)])
+        assert np.isnan(ours[np.isnan(x)]).all()
+
+
 @SETTINGS
 @given(st.floats(-1e4, 1e4))
 def test_wrap_ranges(a):
