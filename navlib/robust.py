@@ -273,14 +273,27 @@ def longest_repeat(x: ArrayLike, valid: ArrayLike | None = None) -> NDArray[np.i
     if x.ndim < 2 or x.shape[-2] == 0:
         raise ValueError(f"x: expected samples of shape (..., N, k), got {x.shape}")
     valid = np.all(np.isfinite(x), -1) if valid is None else booleans(valid, "valid", shape=x.shape[:-1], of="x")
-    idx = _last_valid(valid, fill=-1)
-    prev = np.concatenate([np.full(idx.shape[:-1] + (1,), -1), idx[..., :-1]], axis=-1)
-    before = np.take_along_axis(x, np.maximum(prev, 0)[..., None], axis=-2)
-    same = valid[..., None] & (prev >= 0)[..., None] & (x == before)
-    new = valid[..., None] & ~same                              # a valid reading that starts a run
-    c = np.cumsum(same, axis=-2)
-    start = np.maximum.accumulate(np.where(new, c, 0), axis=-2)
-    return np.where(valid.any(-1)[..., None], (c - start).max(-2) + 1, 0)
+    n, k = x.shape[-2:]
+    runs = _longest_runs(kernel_array(x.reshape(-1, n, k)), kernel_array(valid.reshape(-1, n)))
+    return runs.reshape(x.shape[:-2] + (k,))
+
+
+@njit(cache=True)
+def _longest_runs(x, valid):
+    """:func:`longest_repeat` of ``x`` (B, N, k) over the samples where ``valid`` (B, N)."""
+    out = np.zeros((x.shape[0], x.shape[2]), dtype=np.int64)
+    for b in range(x.shape[0]):
+        for j in range(x.shape[2]):
+            run = longest = 0
+            last = 0.0
+            for i in range(x.shape[1]):
+                if not valid[b, i]:
+                    continue                    # a dropout neither breaks nor extends a run
+                run = run + 1 if run > 0 and x[b, i, j] == last else 1
+                last = x[b, i, j]
+                longest = max(longest, run)
+            out[b, j] = longest
+    return out
 
 
 def stuck_mask(x: ArrayLike, run: int, *, name: str = "x", axis: int = -2) -> NDArray[np.bool_]:

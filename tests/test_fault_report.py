@@ -5,6 +5,8 @@ numbers under ``(sensor, kind)`` keys, so code that inspects faults works across
 """
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
 import pytest
 
@@ -223,6 +225,21 @@ def test_attitude_filters_flag_stuck_and_jump_samples():
     for key in (("gyro", "stuck"), ("clock", "jump")):
         np.testing.assert_array_equal(res.faults.flags[key].sum(-1), res.faults[key])
     assert res.faults["gyro", "nan"].tolist() == [0, 0]                    # stuck is not counted as a dropout
+
+
+def test_longest_repeat_equals_a_plain_loop():
+    """The compiled runs against the definition, on random readings with repeats, NaN and invalid rows."""
+    rng = np.random.default_rng(1)
+    for _ in range(200):
+        x = rng.integers(0, 3, (2, int(rng.integers(1, 30)), 2)).astype(float)
+        x[rng.random(x.shape) < 0.1] = np.nan
+        valid = rng.random(x.shape[:-1]) < 0.8
+        want = np.zeros((2, 2), int)
+        for b, j in np.ndindex(2, 2):
+            seq = [v for v, ok in zip(x[b, :, j], valid[b], strict=True) if ok]
+            want[b, j] = max((len(list(g)) for _, g in itertools.groupby(seq, key=lambda v: v if v == v else object())),
+                             default=0)
+        np.testing.assert_array_equal(robust.longest_repeat(x, valid), want)
 
 
 def test_longest_repeat_counts_runs_over_valid_samples():
