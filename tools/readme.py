@@ -23,6 +23,8 @@ Usage: python tools/readme.py [--check]
 from __future__ import annotations
 
 import argparse
+import hashlib
+import json
 import re
 import sys
 from pathlib import Path
@@ -176,16 +178,23 @@ def write_figures(build: Path, leds: list[ledger.PaperLedger]) -> list[str]:
     FIGURES.mkdir(parents=True, exist_ok=True)
     wanted = {r.figure: THUMB_FILE_WIDTH_PX for led in leds for r in led.rows if r.figure}
     wanted |= {f"{stem}/figures/{fig}.png": GALLERY_WIDTH_PX for stem, fig in GALLERY}
+    # A copy is made again only when its source or width changed (the sources of the last copies: 1 s saved)
+    made_from = build / "readme-figures.json"
+    sources = json.loads(made_from.read_text()) if made_from.is_file() else {}
     names = []
     for path, width in sorted(wanted.items()):
         src = build / path
         if not src.is_file():
             continue
-        img = Image.open(src).convert("RGB")
-        h = round(img.height * width / img.width)
         name = figure_copy(path)
-        img.resize((width, h), Image.LANCZOS).save(FIGURES / name, optimize=True)
+        key = f"{hashlib.sha256(src.read_bytes()).hexdigest()} {width}"
+        if sources.get(name) != key or not (FIGURES / name).is_file():
+            img = Image.open(src).convert("RGB")
+            h = round(img.height * width / img.width)
+            img.resize((width, h), Image.LANCZOS).save(FIGURES / name, optimize=True)
+            sources[name] = key
         names.append(name)
+    made_from.write_text(json.dumps(sources, indent=1, sort_keys=True) + "\n")
     return names
 
 
