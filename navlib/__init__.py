@@ -51,9 +51,10 @@ import warnings
 
 __version__ = "0.1.0"
 
-__all__ = ["alignment", "analysis", "atmosphere", "attitude", "calibration", "earth", "euler", "faults", "filters",
-           "geodesy", "imu", "io", "kalman", "montecarlo", "papers", "pdr", "plots", "repro", "robust", "sensors",
-           "strapdown", "timing", "trajectory", "units", "__version__"]
+_SUBMODULES = ("alignment", "analysis", "atmosphere", "attitude", "calibration", "earth", "euler", "faults", "filters",
+               "geodesy", "imu", "io", "kalman", "montecarlo", "papers", "pdr", "plots", "repro", "robust", "sensors",
+               "strapdown", "timing", "trajectory", "units")
+__all__ = [*_SUBMODULES, "__version__"]
 
 # The old paper modules, kept one release as deprecated aliases (see CONTRIBUTING.md): ``navlib.ahrs``
 # still works after ``import navlib``, and warns.
@@ -63,7 +64,7 @@ _DEPRECATED = {"northfinding", "gyrobias", "planar", "ahrs", "pedestrian"}
 def __getattr__(name: str):
     # Submodules load on first use (``from navlib import analysis`` or ``navlib.analysis``): a notebook or tool
     # pays only for the modules it needs (the whole package, scipy.stats and numba included, takes ~1.3 s).
-    if name in __all__[:-1]:
+    if name in _SUBMODULES:
         return importlib.import_module(f"{__name__}.{name}")
     if name in _DEPRECATED:
         with warnings.catch_warnings():

@@ -130,18 +130,18 @@ def _mean_square_second_difference(theta, m):
     n_b, length, k = theta.shape
     out = np.empty((n_b, m.size, k))
     for b in range(n_b):
+        series = theta[b]
         i = 0
         while i < m.size:
             if k == 3 and i + 1 < m.size:
-                _two_taus_xyz(theta[b], m[i], m[i + 1], out[b, i], out[b, i + 1])
+                _two_taus_xyz(series, m[i], m[i + 1], out[b, i], out[b, i + 1])
                 i += 2
                 continue
-            mi = m[i]
-            count = length - 2 * mi
+            count = length - 2 * m[i]
             for j in range(k):
                 acc = 0.0
                 for r in range(count):
-                    acc += _second_difference_sq(theta[b], r, mi, j)
+                    acc += _second_difference_sq(series, r, m[i], j)
                 out[b, i, j] = acc / count
             i += 1
     return out

@@ -178,7 +178,8 @@ def write_figures(build: Path, leds: list[ledger.PaperLedger]) -> list[str]:
     FIGURES.mkdir(parents=True, exist_ok=True)
     wanted = {r.figure: THUMB_FILE_WIDTH_PX for led in leds for r in led.rows if r.figure}
     wanted |= {f"{stem}/figures/{fig}.png": GALLERY_WIDTH_PX for stem, fig in GALLERY}
-    # A copy is made again only when its source or width changed (the sources of the last copies: 1 s saved)
+    # Copies are remade only when their source PNG or width changed (build/readme-figures.json: the sources
+    # of the last copies); re-encoding all of them took 1 s of every make reproduce.
     made_from = build / "readme-figures.json"
     sources = json.loads(made_from.read_text()) if made_from.is_file() else {}
     names = []
