@@ -14,6 +14,8 @@ from __future__ import annotations
 
 import gc
 import math
+import os
+import time
 from fractions import Fraction
 
 import numpy as np
@@ -25,29 +27,38 @@ from numba.core.extending import intrinsic, overload
 from .attitude import quat_mult_t, quat_to_dcm_t, rotvec_to_quat_t
 
 
-class _CollectAfterCompile(event.Listener):
-    """Run the cyclic garbage collector when an outermost numba compilation ends.
+class _AfterCompile(event.Listener):
+    """When an outermost numba compilation ends: run the cyclic garbage collector, and append the
+    compilation's seconds to the file named by ``NAVLIB_COMPILE_LOG`` when that is set.
 
     A compilation leaves tens of thousands of objects in reference cycles (typing and LLVM IR objects,
     and llvmlite modules holding native LLVM memory) that only the collector frees, and after it numba's
     caches make the collector's full passes rare. In notebook 02's first run (cold cache) that garbage
     kept its kernel 0.5 GB above the warm run's peak (2.18 GB instead of 1.70 GB). Cache loads are not
-    compilations: a warm run never collects here.
+    compilations: a warm run never collects here. The log lets ``tools/reproduce.py`` plan a warm run
+    from a cold run's times (compilation takes 3-60 % of a notebook's first run).
     """
 
     def __init__(self):
         self.depth = 0
+        self.start = 0.0
 
     def on_start(self, ev):
+        if self.depth == 0:
+            self.start = time.perf_counter()
         self.depth += 1
 
     def on_end(self, ev):
         self.depth -= 1
         if self.depth == 0:
             gc.collect()
+            log = os.environ.get("NAVLIB_COMPILE_LOG")
+            if log:
+                with open(log, "a") as fh:
+                    fh.write(f"{time.perf_counter() - self.start:.3f}\n")
 
 
-event.register("numba:compile", _CollectAfterCompile())
+event.register("numba:compile", _AfterCompile())
 
 BORROW = {"cache": True, "_nrt": False}
 """numba options of a compiled helper that only reads and writes arrays its caller owns (it allocates and

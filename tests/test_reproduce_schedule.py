@@ -30,3 +30,9 @@ def test_schedule_without_times_or_with_one_worker_is_longest_first():
     paths = [Path("a"), Path("b"), Path("c")]
     assert reproduce.schedule(paths, {p: 0.0 for p in paths}, 2) == paths
     assert reproduce.schedule(paths, {Path("a"): 1.0, Path("b"): 3.0, Path("c"): 2.0}, 1) == [paths[1], paths[2], paths[0]]
+
+
+def test_a_warm_run_is_planned_without_the_last_runs_compilation():
+    summary = {"00_a": {"seconds": 50.0, "compile_seconds": 30.0}, "01_b": {"seconds": 25.0}}
+    paths = [Path("00_a.ipynb"), Path("01_b.ipynb"), Path("02_new.ipynb")]
+    assert reproduce.expected_seconds(summary, paths) == {paths[0]: 20.0, paths[1]: 25.0, paths[2]: 0.0}

@@ -6,6 +6,8 @@ in notebooks 02, 04 and 05: 2-5 signatures of kernels that take 5-40 s each to c
 pass kernels ``_validate.kernel_array`` copies; these tests call public functions with read-only
 inputs and check that no kernel signature holds a read-only array.
 """
+import os
+
 import numpy as np
 import pytest
 from numba.core import types
@@ -64,6 +66,18 @@ def test_read_only_inputs_reach_kernels_writable(name, call, kernel):
     call()
     readonly_sigs = [s for s in kernel.signatures if any(_readonly(t) for t in s)]
     assert kernel.signatures and not readonly_sigs, f"{name}: read-only specialisations {readonly_sigs}"
+
+
+def test_compilations_are_logged_where_navlib_compile_log_says(tmp_path):
+    """tools/reproduce.py plans a warm run from a cold one's times less the seconds logged here."""
+    import subprocess
+    import sys
+    log = tmp_path / "compile.log"
+    code = ("import numpy as np; from numba import njit; import navlib._kernels; "
+            "f = njit(lambda x: x.sum() + 1.0); f(np.ones(3)); f(np.ones(3))")   # compiled once, then reused
+    subprocess.run([sys.executable, "-c", code], check=True, env={**os.environ, "NAVLIB_COMPILE_LOG": str(log)})
+    seconds = [float(line) for line in log.read_text().split()]
+    assert len(seconds) == 1 and 0 < seconds[0] < 60
 
 
 def test_compilation_garbage_is_collected_at_once():

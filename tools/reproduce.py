@@ -16,7 +16,8 @@ results file and figure), and prints one line per notebook and the claims by ver
 byte-identical to an earlier run's (``make determinism``).
 
 Notebooks run ``--jobs`` at a time (default 2), each in its own kernel, in the order that finishes
-first by the previous run's times in ``build/summary.json`` (:func:`schedule`); each is reported with
+first by the previous run's times in ``build/summary.json`` less their numba compilation (:func:`schedule`,
+:func:`expected_seconds`; the kernels log it to ``build/<stem>.compile.log``); each is reported with
 its wall time and its kernel's peak memory (resident set size, read from /proc while the kernel runs;
 "n/a" where there is none). A notebook that raises is reported and the run goes on with the others; the
 exit status is non-zero if any notebook failed. ``--only`` runs a subset, and
@@ -91,6 +92,9 @@ def run_notebook(path: Path, build: Path, timeout: int) -> dict:
     def after_cell(**_):                    # the kernel's high-water mark, read while it is alive
         peak["mb"] = kernel_peak_mb(client) or peak["mb"]
 
+    compile_log = build / f"{stem}.compile.log"        # numba compilations' seconds, one line each (navlib._kernels)
+    compile_log.unlink(missing_ok=True)
+    os.environ["NAVLIB_COMPILE_LOG"] = str(compile_log)   # the kernel inherits it
     client = NotebookClient(nb, kernel_name="python3", timeout=timeout, on_cell_executed=after_cell,
                             resources={"metadata": {"path": str(path.parent)}})
     error = None
@@ -109,9 +113,17 @@ def run_notebook(path: Path, build: Path, timeout: int) -> dict:
     checks = json.loads(results.read_text())["checks"] if results.is_file() else []
     passed = sum(bool(c.get("passed")) for c in checks)
     figures = sorted(p.relative_to(build).as_posix() for p in (build / stem / "figures").glob("*.png"))
+    compiling = sum(map(float, compile_log.read_text().split())) if compile_log.is_file() else 0.0
     return {"notebook": stem, "ok": error is None and passed == len(checks), "error": error,
-            "seconds": round(seconds, 1), "peak_mb": peak_mb, "checks_passed": passed, "checks_total": len(checks),
+            "seconds": round(seconds, 1), "compile_seconds": round(compiling, 1), "peak_mb": peak_mb,
+            "checks_passed": passed, "checks_total": len(checks),
             "checks": checks, "figures": figures}
+
+
+def expected_seconds(summary: dict, notebooks: list[Path]) -> dict[Path, float]:
+    """Each notebook's time in a run's ``summary.json`` less its numba compilation (0 when not in it)."""
+    return {p: summary.get(p.stem, {}).get("seconds", 0.0) - summary.get(p.stem, {}).get("compile_seconds", 0.0)
+            for p in notebooks}
 
 
 def makespan(seconds: list[float], jobs: int) -> float:
@@ -190,9 +202,9 @@ def main(argv=None) -> int:
         os.environ.pop(name, None)
 
     # Notebooks are independent (own kernel, own build/<stem>/, own seeds): run --jobs at once, in the order
-    # that finishes first by the last run's times.
+    # that finishes first by the last run's times without its numba compilation (cached for this run).
     last = json.loads((build / "summary.json").read_text()) if (build / "summary.json").is_file() else {}
-    order = schedule(notebooks, {p: last.get(p.stem, {}).get("seconds", 0.0) for p in notebooks}, max(1, args.jobs))
+    order = schedule(notebooks, expected_seconds(last, notebooks), max(1, args.jobs))
     start = time.perf_counter()
     done = {}
     # Workers are reused and forked: they start with nbclient and nbformat already imported (spawned ones
@@ -210,7 +222,8 @@ def main(argv=None) -> int:
 
     (build / "index.html").unlink(missing_ok=True)             # the hand-written report: replaced by make docs
     manifest = write_manifest(build, entries)
-    summary = {e["notebook"]: {k: e[k] for k in ("checks_passed", "checks_total", "seconds", "peak_mb", "ok", "error")}
+    summary = {e["notebook"]: {k: e[k] for k in ("checks_passed", "checks_total", "seconds", "compile_seconds", "peak_mb",
+                                                 "ok", "error")}
                for e in entries}
     (build / "summary.json").write_text(json.dumps(summary, indent=1) + "\n")
 
