@@ -540,10 +540,9 @@ def _catalogue() -> dict[str, dict]:
 def _write() -> None:
     if _state.notebook is None:
         return
-    # Keys and fields beyond the original format are written only when used, so the results of a
-    # notebook without a paper (and of its checks) keep their bytes.
-    # The file is json.dumps(data, indent=1) with each row encoded once, when recorded (encoding every
-    # row at every check was quadratic: 3 s of a notebook with 180 checks); the lists are placeholders.
+    # json.dumps(data, indent=1), with the two lists as placeholders for the rows encoded once when
+    # recorded (encoding every row at every check was quadratic: 3 s in a notebook of 180 checks). Keys
+    # beyond the original format are written only when used, so older results keep their bytes.
     data = {"notebook": _state.notebook, "checks": "\0checks"}
     if _state.teaching or _state.fast:
         data["mode"] = {"teaching": _state.teaching, "fast": _state.fast}
