@@ -27,9 +27,9 @@ from ._validate import (
     in_range,
     instance,
     integer,
+    last_axis,
     nonempty_positive,
     positive,
-    same_shape,
     scalar,
     time_axis,
 )
@@ -170,37 +170,49 @@ def baro_height(p: ArrayLike, p_ref: ArrayLike, temperature: ArrayLike | None = 
     ----------
     p : array_like
         Pressure (Pa), finite and positive.
-    p_ref : float
-        Reference pressure (Pa), e.g. :func:`reference_pressure`.
+    p_ref : float or array_like
+        Reference pressure (Pa), e.g. :func:`reference_pressure`; broadcasts against ``p``
+        (one per trial of a (T, N) batch: shape (T, 1)).
     temperature : array_like, optional
         Air temperature (K).
     """
     p = nonempty_positive(p, "p")
-    p_ref = scalar(p_ref, "p_ref", positive=True)
+    p, p_ref = broadcast(p, positive(p_ref, "p_ref"), name="p_ref", of="p")
     if temperature is None:
         return bmp180_altitude(p, p_ref)
     return hypsometric_height(p, p_ref, temperature)
 
 
-def reference_pressure(p: ArrayLike, time: Times, until: float) -> float:
+def reference_pressure(p: ArrayLike, time: Times, until: float) -> float | Array:
     """Mean pressure (Pa) over ``time <= until`` (the initial stand on the start floor).
 
     Parameters
     ----------
-    p : array_like, shape (N,)
+    p : array_like, shape (N,) or (..., N)
         Pressure (Pa); NaN samples (no reading) are ignored.
     time : array_like, shape (N,)  (s)
     until : float  (s)
+
+    Returns
+    -------
+    float, or ndarray of shape (...) for a batch of series
     """
     t = time_axis(time, "time", min_samples=1)
-    p = same_shape(as_array(p, "p", allow_nan=True), "p", t.shape, of="time")
+    p = last_axis(as_array(p, "p", allow_nan=True), "p", t.size, of="time")
     until = scalar(until, "until")
-    sel = p[(t <= until) & np.isfinite(p)]
-    if sel.size == 0:
+    window = p[..., t <= until]
+    valid = np.isfinite(window)
+    if not valid.any(axis=-1).all():
         raise ValueError(f"until: no pressure sample at or before {until} s")
-    if np.any(sel <= 0):
+    if np.any(window[valid] <= 0):
         raise ValueError("p: expected positive pressures (Pa)")
-    return float(sel.mean())
+    if valid.all():
+        ref = window.mean(axis=-1)
+    else:  # each series' valid samples alone, summed as a 1-D mean sums them
+        ref = np.array([w[v].mean() for w, v in zip(window.reshape(-1, window.shape[-1]),
+                                                    valid.reshape(-1, window.shape[-1]), strict=True)])
+        ref = ref.reshape(window.shape[:-1])
+    return float(ref) if ref.ndim == 0 else ref
 
 
 def classify_floor(h: ArrayLike, floor_height: float = 3.0, ref_floor: int = 0) -> np.ndarray:
@@ -216,18 +228,19 @@ def segment_floors(h: ArrayLike, static: ArrayLike, floor_height: float = 3.0,
 
     Parameters
     ----------
-    h : array_like, shape (N,)
+    h : array_like, shape (N,) or (..., N)
         Relative height (m); NaN samples are ignored.
     static : array_like of bool, shape (N,)
 
     Returns
     -------
-    starts, ends : ndarray of int
+    starts, ends : ndarray of int, shape (K,)
         Sample index of each segment's first sample and one past its last.
-    floors : ndarray of int
+    floors : ndarray of int, shape (..., K)
     """
-    h = as_array(h, "h", allow_nan=True, shape=(None,))
-    s = same_shape(booleans(static, "static"), "static", h.shape, of="h")
+    h = as_array(h, "h", allow_nan=True, min_ndim=1)
+    s = booleans(static, "static", shape=(h.shape[-1],), of="the last axis of h")
     starts, ends = segments(s)
-    med = np.array([np.nanmedian(h[a:b]) for a, b in zip(starts, ends, strict=True)])
+    med = np.stack([np.nanmedian(h[..., a:b], axis=-1) for a, b in zip(starts, ends, strict=True)], -1) \
+        if starts.size else np.zeros(h.shape[:-1] + (0,))
     return starts, ends, classify_floor(med, floor_height, ref_floor) if med.size else med.astype(int)

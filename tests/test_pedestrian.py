@@ -365,6 +365,33 @@ def test_baro_height_formula_and_floors():
     assert steps[0] == 0 and np.all(np.abs(steps) <= 10) and len(np.unique(steps)) == 3
 
 
+
+def test_barometer_batches_equal_their_series_bit_for_bit():
+    # A (trials, N) batch through the floor chain gives each trial's 1-D result exactly (notebook 05's
+    # floor Monte Carlo runs as one batch per cell).
+    rng = np.random.default_rng(3)
+    t = np.arange(0.0, 120.0, 0.1)
+    static = (t % 40.0) < 25.0
+    h_true = np.where(t < 40.0, 0.0, np.where(t < 80.0, -3.0, 3.0))
+    p = atmosphere.bmp180_pressure(h_true, 100500.0) + rng.normal(0.0, 6.0, (7, t.size))
+    p[2, [0, 3, 40]] = np.nan                                        # a series with dropouts in the reference window
+    doors = [30.0, 70.0]
+    steps = pd.hvac_pressure_steps(t, doors, np.random.default_rng(4), 10.0, n_trials=7)
+    one_by_one = np.random.default_rng(4)
+    assert np.array_equal(steps, [pd.hvac_pressure_steps(t, doors, one_by_one, 10.0) for _ in range(7)])
+    p = p + steps
+    p_ref = atmosphere.reference_pressure(p, t, 20.0)
+    assert p_ref.shape == (7,)
+    assert np.array_equal(p_ref, [atmosphere.reference_pressure(row, t, 20.0) for row in p])
+    h = atmosphere.baro_height(np.nan_to_num(p, nan=1e5), p_ref[:, None])
+    assert np.array_equal(h, [atmosphere.baro_height(np.nan_to_num(row, nan=1e5), r) for row, r in zip(p, p_ref, strict=True)])
+    h[4, 50:60] = np.nan
+    starts, ends, floors = atmosphere.segment_floors(h, static, ref_floor=2)
+    assert floors.shape == (7, starts.size) and floors.dtype.kind == "i"
+    for row, f in zip(h, floors, strict=True):
+        assert np.array_equal(atmosphere.segment_floors(row, static, ref_floor=2)[2], f)
+    assert atmosphere.segment_floors(h, np.zeros(t.size, bool))[2].shape == (7, 0)
+
 # ---------------------------------------------------------------- PDR
 
 def test_step_detection_and_pdr(carpark):

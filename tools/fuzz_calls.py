@@ -390,7 +390,7 @@ def table() -> dict:
         "papers.pedestrian_ins.heading_from_horizontal": Call(dict(H_X=20.0, H_Y=1.0, declination=0.02),
                                                               elementwise=("*",)),
         "papers.pedestrian_ins.hvac_pressure_steps": Call(dict(time=T * 100, door_times=HEADINGS[:5] * 25, rng=RNG,
-                                                               amplitude=10.0)),
+                                                               amplitude=10.0, n_trials=2)),
         "papers.pedestrian_ins.simple_covariance_update": Call(dict(P=np.eye(3), H=np.array([[1.0, 0.0, 0.0]]),
                                                                     R=np.array([[0.5]]))),
         "papers.rotation_bias.eq1_matrix": Call(dict(hpr=HPR), elementwise=("*",)),

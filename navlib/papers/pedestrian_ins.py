@@ -191,14 +191,20 @@ def heading_from_horizontal(H_X, H_Y, declination: float = 0.0):
 # Barometer and floors
 # --------------------------------------------------------------------------
 
-def hvac_pressure_steps(time, door_times, rng: np.random.Generator, amplitude: float = 10.0):
-    """Pressure offsets of ventilated zones: a new offset in [-a, a] after each door (Pa)."""
+def hvac_pressure_steps(time, door_times, rng: np.random.Generator, amplitude: float = 10.0,
+                        n_trials: int | None = None):
+    """Pressure offsets of ventilated zones: a new offset in [-a, a] after each door (Pa).
+
+    Returns shape (N,), or (n_trials, N) with ``n_trials`` (each trial's offsets drawn in turn: the same
+    numbers as ``n_trials`` calls without it).
+    """
     t = time_axis(time, "time", min_samples=1)
     doors = np.sort(as_array(door_times, "door_times", shape=(None,)))
     a = scalar(amplitude, "amplitude", allow_zero=True)
     generator(rng)
-    levels = np.concatenate([[0.0], rng.uniform(-a, a, doors.size)])
-    return levels[np.searchsorted(doors, t, side="right")]
+    shape = () if n_trials is None else (integer(n_trials, "n_trials"),)
+    levels = np.concatenate([np.zeros(shape + (1,)), rng.uniform(-a, a, shape + (doors.size,))], -1)
+    return levels[..., np.searchsorted(doors, t, side="right")]
 
 
 # --------------------------------------------------------------------------
