@@ -227,11 +227,8 @@ def quat_to_dcm(q: Quat) -> Array:
     -------
     C_bn : ndarray, shape (..., 3, 3)
     """
-    q0, q1, q2, q3 = np.moveaxis(as_quat(q), -1, 0)
-    rows = [[q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3, 2 * (q1 * q2 - q0 * q3), 2 * (q1 * q3 + q0 * q2)],
-            [2 * (q1 * q2 + q0 * q3), q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3, 2 * (q2 * q3 - q0 * q1)],
-            [2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3]]
-    return np.stack([np.stack(r, -1) for r in rows], -2)
+    q = as_quat(q)
+    return _quat_to_dcm_batch(q.reshape(-1, 4)).reshape(q.shape[:-1] + (3, 3))
 
 
 def dcm_to_quat(C_bn: Dcm) -> Array:
@@ -420,6 +417,15 @@ def quat_to_dcm_into(C, q):
     C[0, 0], C[0, 1], C[0, 2] = r0
     C[1, 0], C[1, 1], C[1, 2] = r1
     C[2, 0], C[2, 1], C[2, 2] = r2
+
+
+@njit(cache=True)
+def _quat_to_dcm_batch(q):
+    """:func:`quat_to_dcm` of unit quaternions ``q`` (M, 4): (M, 3, 3), one pass with no temporaries."""
+    C = np.empty((q.shape[0], 3, 3))
+    for i in range(q.shape[0]):
+        quat_to_dcm_into(C[i], q[i])
+    return C
 
 
 @njit(cache=True)
