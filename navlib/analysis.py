@@ -19,7 +19,6 @@ from __future__ import annotations
 
 import numpy as np
 from numba import njit
-from scipy.optimize import least_squares, minimize_scalar
 
 from . import _kernels, attitude, earth
 from ._typing import Angles, Array, ArrayLike, Times, Vec3
@@ -66,14 +65,18 @@ def _gm_allan_var_unit(u):
 
 
 def _peak():
+    from scipy.optimize import minimize_scalar  # noqa: PLC0415 -- tests only (the constants below are its result)
+
     res = minimize_scalar(lambda u: -_gm_allan_var_unit(u), bounds=(0.1, 10.0), method="bounded",
                           options={"xatol": 1e-10})
     return float(np.sqrt(-res.fun)), float(res.x)
 
 
-GM_ALLAN_PEAK, GM_ALLAN_PEAK_TAU = _peak()
+GM_ALLAN_PEAK, GM_ALLAN_PEAK_TAU = 0.6173642831444414, 1.8926178039336263
 """Peak Allan deviation of a unit-variance Gauss-Markov process (~0.6174), and
-the tau of the peak in units of the correlation time (~1.893)."""
+the tau of the peak in units of the correlation time (~1.893): the result of ``_peak()`` (a bounded
+maximisation), written out so that ``import navlib`` does not import scipy.optimize (~0.3 s per kernel;
+tests/test_analysis.py recomputes them)."""
 
 
 def allan_deviation(x: ArrayLike, dt: float, taus: ArrayLike | None = None) -> tuple[Array, Array]:
@@ -225,6 +228,8 @@ def fit_allan(taus: ArrayLike, adev: ArrayLike, n_samples: int, dt: float, *, ra
         ``white`` (N), ``bias_instability`` (B), ``correlation_time`` (s) and
         ``rate_random_walk`` (K; 0 unless fitted), in the units of ``adev``.
     """
+    from scipy.optimize import least_squares  # noqa: PLC0415 -- imported on first use (see GM_ALLAN_PEAK)
+
     taus = positive(taus, "taus")
     adev = positive(adev, "adev")
     if taus.ndim != 1 or taus.size < 3:

@@ -1,4 +1,7 @@
 """Tests of navlib.analysis: RMSE, Allan deviation (estimator, theory, fit)."""
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 from numpy.testing import assert_allclose, assert_array_equal
@@ -127,6 +130,14 @@ def test_gm_peak_constants():
                           options={"xatol": 1e-10})
     assert np.sqrt(-res.fun) == pytest.approx(A.GM_ALLAN_PEAK, rel=1e-9)
     assert res.x == pytest.approx(A.GM_ALLAN_PEAK_TAU, rel=1e-4)
+    # The written-out constants are navlib's own maximisation's result, to the last bit with the pinned scipy.
+    assert A._peak() == pytest.approx((A.GM_ALLAN_PEAK, A.GM_ALLAN_PEAK_TAU), rel=1e-15, abs=0)
+
+
+def test_import_navlib_analysis_leaves_scipy_optimize_unimported():
+    code = "import sys, navlib.analysis, navlib.sensors; print('scipy.optimize' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "False"
 
 
 @pytest.mark.parametrize("tc", [0.5, 100.0, 3600.0])
