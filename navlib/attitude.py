@@ -174,11 +174,14 @@ def dcm_to_euler(C_bn: Dcm, deg: bool = False) -> Array:
 def _dcm_to_euler(C, deg):
     """:func:`dcm_to_euler` of rotation matrices already known to be valid (no checks)."""
     c31, c32, c33 = C[..., 2, 0], C[..., 2, 1], C[..., 2, 2]
-    pitch = np.arctan2(c32, np.hypot(c31, c33))
-    locked = np.hypot(c31, c33) < 1e-9
-    roll = np.where(locked, 0.0, np.arctan2(-c31, c33))
-    heading = np.where(locked, np.arctan2(-C[..., 1, 0], C[..., 0, 0]),
-                       np.arctan2(C[..., 0, 1], C[..., 1, 1]))
+    horizontal = np.hypot(c31, c33)
+    pitch = np.arctan2(c32, horizontal)
+    roll = np.arctan2(-c31, c33)
+    heading = np.arctan2(C[..., 0, 1], C[..., 1, 1])
+    locked = horizontal < 1e-9
+    if locked.any():                       # gimbal lock: the whole turn about the vertical as heading
+        roll = np.where(locked, 0.0, roll)
+        heading = np.where(locked, np.arctan2(-C[..., 1, 0], C[..., 0, 0]), heading)
     hpr = np.stack([wrap_2pi(heading), pitch, wrap_pi(roll)], -1)
     return np.rad2deg(hpr) if deg else hpr
 
