@@ -238,9 +238,11 @@ def segment_floors(h: ArrayLike, static: ArrayLike, floor_height: float = 3.0,
         Sample index of each segment's first sample and one past its last.
     floors : ndarray of int, shape (..., K)
     """
-    h = as_array(h, "h", allow_nan=True, min_ndim=1)
-    s = booleans(static, "static", shape=(h.shape[-1],), of="the last axis of h")
+    h = as_array(h, "h", allow_nan=True)
+    s = booleans(static, "static", shape=h.shape[-1:] or (None,), of="the last axis of h")
+    h = last_axis(h, "h", s.size, of="static")                    # refuses a scalar h
     starts, ends = segments(s)
-    med = np.stack([np.nanmedian(h[..., a:b], axis=-1) for a, b in zip(starts, ends, strict=True)], -1) \
-        if starts.size else np.zeros(h.shape[:-1] + (0,))
-    return starts, ends, classify_floor(med, floor_height, ref_floor) if med.size else med.astype(int)
+    if starts.size == 0:
+        return starts, ends, np.zeros(h.shape[:-1] + (0,), dtype=int)
+    med = np.stack([np.nanmedian(h[..., a:b], axis=-1) for a, b in zip(starts, ends, strict=True)], -1)
+    return starts, ends, classify_floor(med, floor_height, ref_floor)
