@@ -39,7 +39,7 @@ def monte_carlo_scale(quick: bool):
 
     Goal: 2 workers >= 1.7x serial, results bit-identical. One timed run each (no warm-up run: at this
     scale start-up is part of the cost a user pays). The dask workers import navlib and load the compiled
-    kernels when the cluster starts (reported in the note, ~4 s per worker); the pool's forked workers
+    kernels when the cluster starts (reported in the note, 0.6-1.1 s per worker here); the pool's forked workers
     inherit both."""
     n = 200_000 if quick else 10_000_000
     case = f"Monte Carlo, {n:.0e} north-finding trials"

@@ -562,7 +562,7 @@ def _edf(noise: str, n_phase: int, m: np.ndarray) -> np.ndarray:
 
 def _interval(edf: np.ndarray, confidence: float) -> np.ndarray:
     """Factors (..., 2) scaling an Allan deviation with ``edf`` degrees of freedom to its interval."""
-    from scipy.stats import chi2  # noqa: PLC0415 -- scipy.stats takes 0.5 s to import; only intervals need it
+    from scipy.stats import chi2  # noqa: PLC0415 -- scipy.stats takes ~1.3 s to import; only intervals need it
     return np.stack([np.sqrt(edf / chi2.ppf((1 + confidence) / 2, edf)),
                      np.sqrt(edf / chi2.ppf((1 - confidence) / 2, edf))], -1)
 
