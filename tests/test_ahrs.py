@@ -703,3 +703,11 @@ def test_without_a_heading_reference_tilt_converges_and_heading_drifts_with_the_
     drift = units.to_deg(attitude.wrap_pi(est[0] - hpr[0]))
     assert 10.0 < abs(drift) < 20.0
     assert not res.faults                                      # nothing skipped: there was nothing to read
+
+
+@pytest.mark.parametrize("n", [0, 1, 7, 32, 1000])
+def test_run_chunks_covers_the_range_in_order(n):
+    from navlib._threads import run_chunks
+    chunks = run_chunks(lambda i0, i1: (i0, i1), n)
+    assert chunks[0][0] == 0 and chunks[-1][1] == n
+    assert all(a[1] == b[0] and a[0] < a[1] for a, b in zip(chunks, chunks[1:], strict=False))

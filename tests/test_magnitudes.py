@@ -162,18 +162,24 @@ def test_integrators_name_an_interval_they_cannot_integrate():
 @pytest.mark.parametrize("options", [{}, {"allow_nan": True}, {"finite": False}, {"huge": True}])
 @pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf, 1e200, -1e200, None])
 def test_large_arrays_take_the_min_max_shortcut_with_the_same_outcome(options, bad):
-    # as_array skips its element-wise checks on large arrays whose min and max are in range: the outcome
-    # (accepted, or the same message) must be that of the small array with the same bad value
-    from navlib._validate import _SCAN_SIZE, as_array
+    # as_array skips its element-wise checks on large arrays whose min and max are in range (taken in chunks
+    # on threads for the largest): the outcome (accepted, or the same message) must be that of the small
+    # array with the same bad value, wherever the value sits (first or last chunk, a NaN beside an inf)
+    from navlib._validate import _SCAN_SIZE, _THREADED_SCAN, as_array
 
-    def outcome(n):
-        x = np.linspace(-1.0, 1.0, n)
+    def outcome(n, where, step=1):
+        x = np.linspace(-1.0, 1.0, n * step)[::step]
         if bad is not None:
-            x[n // 2] = bad
+            x[where(n)] = bad
+            x[where(n) - 1] = np.nan if bad == np.inf else x[where(n) - 1]
         try:
             as_array(x, "x", **options)
         except ValueError as exc:
             return str(exc)
         return "accepted"
 
-    assert outcome(4 * _SCAN_SIZE) == outcome(5)
+    for where in (lambda n: n // 2, lambda n: 1, lambda n: n - 1):
+        small = outcome(5, where)
+        assert outcome(4 * _SCAN_SIZE, where) == small
+        assert outcome(_THREADED_SCAN + 7, where) == small
+        assert outcome(_THREADED_SCAN + 7, where, step=2) == small          # not contiguous: one thread

@@ -22,17 +22,16 @@ A new attitude filter is a module next to :mod:`navlib.filters.mahony` that call
 """
 from __future__ import annotations
 
-import os
 from collections.abc import Callable
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from typing import NamedTuple
 
 import numpy as np
-from numba import config, njit
+from numba import njit
 
 from .. import attitude, earth
 from .._kernels import BORROW, dcm_heading, euler_to_quat, level, stuck_runs, tilt_heading, wrap_pi
+from .._threads import run_chunks
 from .._typing import Array, ArrayLike, Interval, Quat, Vec3, Vec3Series
 from .._validate import (
     as_array,
@@ -615,25 +614,12 @@ def _screen(t0, t1, w, dts, max_dt, run, rail, stuck, turn):
             stuck_runs(t, t + 1, w, run, rail, stuck)
 
 
-_POOLS: dict[int, ThreadPoolExecutor] = {}
-os.register_at_fork(after_in_child=_POOLS.clear)            # a forked child has none of the parent's threads
-
-
 def run_trials(kernel: Callable, n_trials: int, *args) -> None:
-    """Run ``kernel(t0, t1, *args)`` over trials 0 to ``n_trials`` - 1 on ``NUMBA_NUM_THREADS`` threads.
-
-    The compiled kernels release the GIL; the trials go in chunks (about four per thread, so that a
-    thread slowed by other load takes fewer) to a pool kept for the next call. Each trial writes only
-    its own outputs, so the results do not depend on the number of threads.
+    """Run ``kernel(t0, t1, *args)`` over trials 0 to ``n_trials`` - 1 in parallel
+    (:func:`navlib._threads.run_chunks`). The compiled kernels release the GIL; each trial writes only its
+    own outputs, so the results do not depend on the number of threads.
     """
-    workers = min(n_trials, config.NUMBA_NUM_THREADS)
-    if workers <= 1:
-        kernel(0, n_trials, *args)
-        return
-    if workers not in _POOLS:
-        _POOLS[workers] = ThreadPoolExecutor(workers, thread_name_prefix="navlib-trials")
-    step = -(-n_trials // (4 * workers))
-    list(_POOLS[workers].map(lambda t0: kernel(t0, min(t0 + step, n_trials), *args), range(0, n_trials, step)))
+    run_chunks(lambda t0, t1: kernel(t0, t1, *args), n_trials)
 
 
 def attitude_result(lead: tuple[int, ...], q_out: np.ndarray, bias: np.ndarray, counts: np.ndarray,
