@@ -49,6 +49,22 @@ def best_time(fn, repeat: int = 3) -> float:
     return best
 
 
+def best_times(*fns, rounds: int = 5) -> list[float]:
+    """Best wall time of each of ``fns`` over ``rounds`` rounds that call each once, in turn (after one
+    warm-up call each). For a ratio of two timings: this machine's speed drifts by 10-30 % over seconds,
+    so timing one function and then the other compares different moments; alternating gives both the
+    same chances."""
+    for fn in fns:
+        fn()
+    best = [float("inf")] * len(fns)
+    for _ in range(rounds):
+        for i, fn in enumerate(fns):
+            t0 = time.perf_counter()
+            fn()
+            best[i] = min(best[i], time.perf_counter() - t0)
+    return best
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--only", default="", help="run cases whose name contains this (any case)")
