@@ -25,43 +25,52 @@ def _marg_data(n: int, trials: int | None = None, seed: int = 0):
     return w, f, m, attitude.euler_to_quat(hpr[0])
 
 
-def _peers(case: str, w, f, m, q0, n_total: int, m_peer: int) -> list[Result]:
-    """ahrs Mahony / EKF and imufusion on the first ``m_peer`` samples, scaled to ``n_total``."""
-    rows = []
+def _ahrs_row(case: str, w, f, m, q0, n_total: int, m_peer: int) -> list[Result]:
+    """ahrs's Mahony or EKF on the first ``m_peer`` samples, scaled to ``n_total`` (one timed call: it is slow)."""
     try:
         from ahrs.filters import EKF, Mahony
-        peer = Mahony if "Mahony" in case else EKF
-        kw = dict(k_P=1.0, k_I=0.02) if "Mahony" in case else dict(frame="ENU")
-        t = best_time(lambda: peer(gyr=w[:m_peer], acc=f[:m_peer], mag=m[:m_peer], frequency=1 / DT, q0=q0, **kw),
-                      repeat=1)
-        rows.append(Result(case, f"ahrs 0.4.0 {peer.__name__}", m_peer / t, "samples/s", t * n_total / m_peer,
-                           note=f"timed on {m_peer} samples"))
     except ImportError:
-        pass
+        return []
+    peer = Mahony if "Mahony" in case else EKF
+    kw = dict(k_P=1.0, k_I=0.02) if "Mahony" in case else dict(frame="ENU")
+    t = best_time(lambda: peer(gyr=w[:m_peer], acc=f[:m_peer], mag=m[:m_peer], frequency=1 / DT, q0=q0, **kw), repeat=1)
+    return [Result(case, f"ahrs 0.4.0 {peer.__name__}", m_peer / t, "samples/s", t * n_total / m_peer,
+                   note=f"timed on {m_peer} samples")]
+
+
+def _fusion_loop(w, f, m, m_peer: int):
+    """imufusion's AHRS called per sample over the first ``m_peer`` samples (None without imufusion)."""
     try:
         import imufusion
     except ImportError:
-        return rows
+        return None
     gyro_dps, acc_g = np.rad2deg(w[:m_peer]), f[:m_peer] / 9.80665
 
     def fusion_loop():
         filt = imufusion.Ahrs()
         for k in range(m_peer):
             filt.update(gyro_dps[k], acc_g[k], m[k])
+    return fusion_loop
 
-    t = best_time(fusion_loop)
-    rows.append(Result(case, "imufusion (C, per-sample calls)", m_peer / t, "samples/s", t * n_total / m_peer,
-                       note=f"timed on {m_peer} samples"))
-    return rows
+
+def _with_peers(case: str, navlib_run, w, f, m, q0, n: int, m_peer: int) -> tuple[float, list[Result]]:
+    """navlib's best time (alternating with imufusion's, see best_times) and the peers' rows."""
+    fusion = _fusion_loop(w, f, m, m_peer)
+    t, t_fusion = best_times(navlib_run, fusion) if fusion else (best_time(navlib_run), None)
+    rows = _ahrs_row(case, w, f, m, q0, n, m_peer)
+    if t_fusion is not None:
+        rows.append(Result(case, "imufusion (C, per-sample calls)", m_peer / t_fusion, "samples/s", t_fusion * n / m_peer,
+                           note=f"timed on {m_peer} samples"))
+    return t, rows
 
 
 def mahony_single(quick: bool):
     """One Mahony MARG filter over 1 h at 100 Hz (goal: >= 10 M samples/s)."""
     n = 36_000 if quick else 360_000
     w, f, m, q0 = _marg_data(n)
-    t = best_time(lambda: mh.mahony(w, f, DT, q0, m_b=m))
-    rows = [Result("Mahony MARG, 1 filter", "navlib.filters.mahony.mahony (numba)", n / t, "samples/s", t, goal=10e6)]
-    return rows + _peers("Mahony MARG, 1 filter", w, f, m, q0, n, 2_000 if quick else 10_000)
+    case = "Mahony MARG, 1 filter"
+    t, peers = _with_peers(case, lambda: mh.mahony(w, f, DT, q0, m_b=m), w, f, m, q0, n, 2_000 if quick else 10_000)
+    return [Result(case, "navlib.filters.mahony.mahony (numba)", n / t, "samples/s", t, goal=10e6)] + peers
 
 
 def mahony_batch(quick: bool):
@@ -81,10 +90,11 @@ def quaternion_kf(quick: bool):
     """The paper's PI + quaternion KF (4 states, 6 measurements) against ahrs's EKF and imufusion."""
     n = 36_000 if quick else 360_000
     w, f, m, q0 = _marg_data(n, seed=2)
-    t = best_time(lambda: qkf.quaternion_kf(w, f, DT, q0, m_b=m, B_n=B_N))
-    peers = _peers("quaternion KF (PI + KF)", w, f, m, q0, n, 1_000 if quick else 5_000)
+    case = "quaternion KF (PI + KF)"
+    t, peers = _with_peers(case, lambda: qkf.quaternion_kf(w, f, DT, q0, m_b=m, B_n=B_N), w, f, m, q0, n,
+                           1_000 if quick else 5_000)
     fusion = next((r.throughput for r in peers if r.implementation.startswith("imufusion")), None)
-    return [Result("quaternion KF (PI + KF)", "navlib.filters.quaternion_kf.quaternion_kf (numba)", n / t, "samples/s", t,
+    return [Result(case, "navlib.filters.quaternion_kf.quaternion_kf (numba)", n / t, "samples/s", t,
                    goal=fusion, note="goal: >= 1x imufusion, this run" if fusion else "")] + peers
 
 

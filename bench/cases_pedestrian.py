@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from bench.run import Result, best_time
+from bench.run import Result, best_time, best_times
 from navlib import attitude, sensors, trajectory, units
 from navlib.filters import zupt, zupt_ins
 
@@ -24,18 +24,18 @@ def error_state_filter(quick: bool):
     n = 30_000 if quick else 300_000
     w, f, q0 = _static_imu(n)
     static = np.ones(n, dtype=bool)
-    t_nav = best_time(lambda: zupt_ins.run_filter(w, f, DT, LLA0, np.zeros(3), q0, static), repeat=2)
-    rows = [Result("15-state error-state INS step", "navlib.filters.zupt_ins (numba)", n / t_nav, "steps/s", t_nav,
-                   note="strapdown + predict each step, 6-component update every 10th")]
     try:
         from filterpy.kalman import KalmanFilter
     except ImportError:
-        return rows
+        KalmanFilter = None
     m = 5_000
     C = attitude.quat_to_dcm(q0)
     F = np.eye(15) + DT * zupt.error_state_matrix(C, f[0])
     H = zupt.zupt_zaru_matrix(C, np.zeros(3))
     Q, R = 1e-6 * np.eye(15), np.diag([1e-4] * 3 + [3e-6] * 3)
+
+    def navlib_run():
+        zupt_ins.run_filter(w, f, DT, LLA0, np.zeros(3), q0, static)
 
     def filterpy_loop():
         # The same linear algebra per step (predict every step, update every 10th); the
@@ -47,11 +47,14 @@ def error_state_filter(quick: bool):
             if k % 10 == 9:
                 kf.update(np.zeros(6))
 
-    t_fp = best_time(filterpy_loop, repeat=1)
-    rows[0].goal = 3 * m / t_fp
-    rows[0].note = "goal: ≥ 3× filterpy, this run; " + rows[0].note
-    rows.append(Result("15-state error-state INS step", "filterpy (KF only, no INS)", m / t_fp, "steps/s",
-                       t_fp * n / m, note=f"timed on {m} steps"))
+    t_nav, t_fp = best_times(navlib_run, filterpy_loop) if KalmanFilter else (best_time(navlib_run), None)
+    rows = [Result("15-state error-state INS step", "navlib.filters.zupt_ins (numba)", n / t_nav, "steps/s", t_nav,
+                   note="strapdown + predict each step, 6-component update every 10th")]
+    if t_fp is not None:
+        rows[0].goal = 3 * m / t_fp
+        rows[0].note = "goal: ≥ 3× filterpy, this run; " + rows[0].note
+        rows.append(Result("15-state error-state INS step", "filterpy (KF only, no INS)", m / t_fp, "steps/s",
+                           t_fp * n / m, note=f"timed on {m} steps"))
     return rows
 
 
