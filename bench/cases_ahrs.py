@@ -25,7 +25,7 @@ def _marg_data(n: int, trials: int | None = None, seed: int = 0):
     return w, f, m, attitude.euler_to_quat(hpr[0])
 
 
-def _ahrs_row(case: str, w, f, m, q0, n_total: int, m_peer: int) -> list[Result]:
+def _ahrs_rows(case: str, w, f, m, q0, n_total: int, m_peer: int) -> list[Result]:
     """ahrs's Mahony or EKF on the first ``m_peer`` samples, scaled to ``n_total`` (one timed call: it is slow)."""
     try:
         from ahrs.filters import EKF, Mahony
@@ -57,7 +57,7 @@ def _with_peers(case: str, navlib_run, w, f, m, q0, n: int, m_peer: int) -> tupl
     """navlib's best time (alternating with imufusion's, see best_times) and the peers' rows."""
     fusion = _fusion_loop(w, f, m, m_peer)
     t, t_fusion = best_times(navlib_run, fusion) if fusion else (best_time(navlib_run), None)
-    rows = _ahrs_row(case, w, f, m, q0, n, m_peer)
+    rows = _ahrs_rows(case, w, f, m, q0, n, m_peer)
     if t_fusion is not None:
         rows.append(Result(case, "imufusion (C, per-sample calls)", m_peer / t_fusion, "samples/s", t_fusion * n / m_peer,
                            note=f"timed on {m_peer} samples"))
