@@ -55,8 +55,7 @@ def _fusion_loop(w, f, m, m_peer: int):
 
 def _with_peers(case: str, navlib_run, w, f, m, q0, n: int, m_peer: int) -> tuple[float, list[Result]]:
     """navlib's best time (alternating with imufusion's, see best_times) and the peers' rows."""
-    fusion = _fusion_loop(w, f, m, m_peer)
-    t, t_fusion = best_times(navlib_run, fusion) if fusion else (best_time(navlib_run), None)
+    t, t_fusion = best_times(navlib_run, _fusion_loop(w, f, m, m_peer))
     rows = _ahrs_rows(case, w, f, m, q0, n, m_peer)
     if t_fusion is not None:
         rows.append(Result(case, "imufusion (C, per-sample calls)", m_peer / t_fusion, "samples/s", t_fusion * n / m_peer,

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from bench.run import Result, best_time, best_times
+from bench.run import Result, best_times
 from navlib import attitude, sensors, trajectory, units
 from navlib.filters import zupt, zupt_ins
 
@@ -47,7 +47,7 @@ def error_state_filter(quick: bool):
             if k % 10 == 9:
                 kf.update(np.zeros(6))
 
-    t_nav, t_fp = best_times(navlib_run, filterpy_loop) if KalmanFilter else (best_time(navlib_run), None)
+    t_nav, t_fp = best_times(navlib_run, filterpy_loop if KalmanFilter else None)
     rows = [Result("15-state error-state INS step", "navlib.filters.zupt_ins (numba)", n / t_nav, "steps/s", t_nav,
                    note="strapdown + predict each step, 6-component update every 10th")]
     if t_fp is not None:

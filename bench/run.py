@@ -43,19 +43,20 @@ def best_time(fn, repeat: int = 3) -> float:
     return best_times(fn, rounds=repeat)[0]
 
 
-def best_times(*fns, rounds: int = 5) -> list[float]:
+def best_times(*fns, rounds: int = 5) -> list[float | None]:
     """Best wall time of each of ``fns`` over ``rounds`` rounds that call each once, in turn (after one
-    warm-up call each). Every ratio to a peer or goal uses it: this machine's speed drifts by 10-30 % over
-    seconds, so timing one function and then the other compared different moments (in one run navlib's
-    INS step was timed 33 % slower than in the run before, filterpy's the same); alternating gives both
-    the same chances."""
-    for fn in fns:
-        fn()
-    best = [float("inf")] * len(fns)
+    warm-up call each); None for a ``None`` in ``fns`` (a peer that is not installed). Every ratio to a
+    peer or goal uses it: this machine's speed drifts by 10-30 % over seconds, so timing one function and
+    then the other compared different moments (in one run navlib's INS step was timed 33 % slower than in
+    the run before, filterpy's the same); alternating gives both the same chances."""
+    timed = [i for i, fn in enumerate(fns) if fn is not None]
+    for i in timed:
+        fns[i]()
+    best: list[float | None] = [None if fn is None else float("inf") for fn in fns]
     for _ in range(rounds):
-        for i, fn in enumerate(fns):
+        for i in timed:
             t0 = time.perf_counter()
-            fn()
+            fns[i]()
             best[i] = min(best[i], time.perf_counter() - t0)
     return best
 
