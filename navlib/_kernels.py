@@ -9,6 +9,9 @@ reproduce the operation order of the BLAS and LAPACK that numpy calls, so that a
 written with them returns the bits of the generic one (:func:`kalman_update`) without its library calls.
 Arguments are plain floats or float arrays in SI units, unvalidated: validate at the public boundary. A
 compiled kernel calls the primitive (e.g. :func:`kalman_update`), never the public validated wrapper.
+The per-sample quaternion helpers (:func:`quat_mult_t`, :func:`rotvec_to_quat_t`, :func:`quat_to_dcm_t`, ...)
+are the compiled twins of :mod:`navlib.attitude`'s vectorised functions; this module imports no other
+navlib module.
 """
 from __future__ import annotations
 
@@ -22,26 +25,23 @@ import numpy as np
 from llvmlite import ir
 from numba import njit, types
 from numba.core import event
-from numba.core.extending import intrinsic, overload
-
-from .attitude import quat_mult_t, quat_to_dcm_t, rotvec_to_quat_t
+from numba.extending import intrinsic, overload
 
 
-class _AfterCompile(event.Listener):
-    """When an outermost numba compilation ends: run the cyclic garbage collector, and append the
-    compilation's seconds to the file named by ``NAVLIB_COMPILE_LOG`` when that is set.
+class CompileLog(event.Listener):
+    """When an outermost numba compilation ends: run the cyclic garbage collector and append the
+    compilation's seconds to the file ``path``.
 
-    A compilation leaves tens of thousands of objects in reference cycles (typing and LLVM IR objects,
-    and llvmlite modules holding native LLVM memory) that only the collector frees, and after it numba's
-    caches make the collector's full passes rare. In notebook 02's first run (cold cache) that garbage
-    kept its kernel 0.5 GB above the warm run's peak (2.18 GB instead of 1.70 GB). Cache loads are not
-    compilations: a warm run never collects here. The log lets ``tools/reproduce.py`` plan a warm run
-    from a cold run's times (compilation takes 3-60 % of a notebook's first run).
+    Registered only when ``NAVLIB_COMPILE_LOG`` names that file (``tools/reproduce.py`` sets it for its
+    notebook kernels): importing navlib installs nothing process-wide otherwise. A compilation leaves tens
+    of thousands of objects in reference cycles (typing and LLVM IR objects, llvmlite modules holding
+    native LLVM memory) that only the collector frees, and numba's caches then make its full passes rare,
+    which raised a cold notebook run's peak memory. Cache loads are not compilations. The log lets
+    ``tools/reproduce.py`` plan a warm run from a cold run's times.
     """
 
-    def __init__(self):
-        self.depth = 0
-        self.start = 0.0
+    def __init__(self, path: str):
+        self.path, self.depth, self.start = path, 0, 0.0
 
     def on_start(self, ev):
         if self.depth == 0:
@@ -52,20 +52,16 @@ class _AfterCompile(event.Listener):
         self.depth -= 1
         if self.depth == 0:
             gc.collect()
-            log = os.environ.get("NAVLIB_COMPILE_LOG")
-            if log:
-                with open(log, "a") as fh:
-                    fh.write(f"{time.perf_counter() - self.start:.3f}\n")
+            with open(self.path, "a") as fh:
+                fh.write(f"{time.perf_counter() - self.start:.3f}\n")
 
 
-event.register("numba:compile", _AfterCompile())
+if os.environ.get("NAVLIB_COMPILE_LOG"):          # opt-in only
+    event.register("numba:compile", CompileLog(os.environ["NAVLIB_COMPILE_LOG"]))
 
-BORROW = {"cache": True, "_nrt": False}
+BORROW = {"cache": True}
 """numba options of a compiled helper that only reads and writes arrays its caller owns (it allocates and
-returns none): no reference counting. Otherwise every call of a per-sample helper may increment and
-decrement the reference count of each array it is passed (or reads from a record), atomically, wherever
-numba cannot pair them away (branches that last use different arrays, callees that may raise): tens of
-nanoseconds per array, more than the helper's arithmetic (two thirds of the Mahony filter's time)."""
+returns none). Only public options: kept as a name while modules still spell ``@njit(**BORROW)``."""
 
 
 def fma(a: float, b: float, c: float) -> float:
@@ -273,6 +269,82 @@ def kalman_update(x, P, z, h, H, R, angle_mask, gate=np.inf):
     IKH = np.eye(x.shape[0]) - K @ Hs
     Pn = IKH @ P @ np.ascontiguousarray(IKH.T) + K @ Rs @ np.ascontiguousarray(K.T)
     return x + K @ ys, (Pn + Pn.T) / 2, y, nis, 1
+
+
+# --------------------------------------------------------------------------
+# Per-sample quaternion helpers (scalar first, Hamilton product, the conventions of navlib.attitude)
+# --------------------------------------------------------------------------
+# Per-sample twins of navlib.attitude's vectorised functions for compiled kernels, tested against them.
+
+@njit(cache=True, inline="always")
+def quat_mult_t(a0, a1, a2, a3, b0, b1, b2, b3):
+    """Hamilton product on scalars, returned as a tuple (allocation-free kernel helper)."""
+    return (a0 * b0 - a1 * b1 - a2 * b2 - a3 * b3,
+            a0 * b1 + a1 * b0 + a2 * b3 - a3 * b2,
+            a0 * b2 - a1 * b3 + a2 * b0 + a3 * b1,
+            a0 * b3 + a1 * b2 - a2 * b1 + a3 * b0)
+
+
+@njit(cache=True, inline="always")
+def rotvec_to_quat_t(rx, ry, rz):
+    """Quaternion of a rotation vector, as a tuple (allocation-free kernel helper).
+
+    Below 0.05 rad (every gyro increment at 100 Hz below 5 rad/s) the Taylor
+    series of cos(a/2) and sin(a/2)/a to a^8 is exact in double precision and
+    avoids three transcendental calls per sample.
+    """
+    a2 = rx * rx + ry * ry + rz * rz
+    if a2 < 2.5e-3:
+        c = 1 - a2 / 8 + a2 * a2 / 384 - a2 * a2 * a2 / 46080 + a2 ** 4 / 10321920
+        k = 0.5 - a2 / 48 + a2 * a2 / 3840 - a2 * a2 * a2 / 645120 + a2 ** 4 / 185794560
+    else:
+        a = np.sqrt(a2)
+        c = np.cos(a / 2)
+        k = np.sin(a / 2) / a
+    return c, k * rx, k * ry, k * rz
+
+
+@njit(cache=True)
+def quat_mult_1(p, q):
+    """Hamilton product of two quaternions, shape (4,) (compiled helper)."""
+    return np.array(quat_mult_t(p[0], p[1], p[2], p[3], q[0], q[1], q[2], q[3]))
+
+
+@njit(cache=True)
+def rotvec_to_quat_1(rv):
+    """Quaternion of one rotation vector (compiled helper)."""
+    return np.array(rotvec_to_quat_t(rv[0], rv[1], rv[2]))
+
+
+@njit(cache=True)
+def quat_normalize_1(q):
+    """Unit quaternion (compiled helper)."""
+    return q / np.sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3])
+
+
+@njit(cache=True)
+def quat_to_dcm_t(q0, q1, q2, q3):
+    """C_b^n of one unit quaternion as a tuple of rows (allocation-free kernel helper)."""
+    return ((q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3, 2 * (q1 * q2 - q0 * q3), 2 * (q1 * q3 + q0 * q2)),
+            (2 * (q1 * q2 + q0 * q3), q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3, 2 * (q2 * q3 - q0 * q1)),
+            (2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3))
+
+
+@njit(cache=True)
+def quat_to_dcm_into(C, q):
+    """C_b^n of one unit quaternion ``q`` (4,) written into ``C`` (3, 3) (allocation-free kernel helper)."""
+    r0, r1, r2 = quat_to_dcm_t(q[0], q[1], q[2], q[3])
+    C[0, 0], C[0, 1], C[0, 2] = r0
+    C[1, 0], C[1, 1], C[1, 2] = r1
+    C[2, 0], C[2, 1], C[2, 2] = r2
+
+
+@njit(cache=True)
+def quat_to_dcm_1(q):
+    """C_b^n of one unit quaternion (compiled helper)."""
+    C = np.empty((3, 3))
+    quat_to_dcm_into(C, q)
+    return C
 
 
 @njit(cache=True)

@@ -25,6 +25,16 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from ._kernels import (  # noqa: F401 -- re-exported until callers import them from _kernels
+    quat_mult_1,
+    quat_mult_t,
+    quat_normalize_1,
+    quat_to_dcm_1,
+    quat_to_dcm_into,
+    quat_to_dcm_t,
+    rotvec_to_quat_1,
+    rotvec_to_quat_t,
+)
 from ._typing import Angles, Array, Dcm, Quat, Vec3
 from ._validate import as_array, as_dcm, as_quat, flag, in_range
 
@@ -354,88 +364,12 @@ def dcm_to_rotvec(C: Dcm) -> Array:
     return quat_to_rotvec(dcm_to_quat(as_dcm(C, "C")))
 
 
-# --------------------------------------------------------------------------
-# Per-sample helpers for compiled kernels (strapdown, filters). They take and
-# return small 1-D arrays and are tested against the vectorised functions.
-# --------------------------------------------------------------------------
-
-@njit(cache=True, inline="always")
-def quat_mult_t(a0, a1, a2, a3, b0, b1, b2, b3):
-    """Hamilton product on scalars, returned as a tuple (allocation-free kernel helper)."""
-    return (a0 * b0 - a1 * b1 - a2 * b2 - a3 * b3,
-            a0 * b1 + a1 * b0 + a2 * b3 - a3 * b2,
-            a0 * b2 - a1 * b3 + a2 * b0 + a3 * b1,
-            a0 * b3 + a1 * b2 - a2 * b1 + a3 * b0)
-
-
-@njit(cache=True, inline="always")
-def rotvec_to_quat_t(rx, ry, rz):
-    """Quaternion of a rotation vector, as a tuple (allocation-free kernel helper).
-
-    Below 0.05 rad (every gyro increment at 100 Hz below 5 rad/s) the Taylor
-    series of cos(a/2) and sin(a/2)/a to a^8 is exact in double precision and
-    avoids three transcendental calls per sample.
-    """
-    a2 = rx * rx + ry * ry + rz * rz
-    if a2 < 2.5e-3:
-        c = 1 - a2 / 8 + a2 * a2 / 384 - a2 * a2 * a2 / 46080 + a2 ** 4 / 10321920
-        k = 0.5 - a2 / 48 + a2 * a2 / 3840 - a2 * a2 * a2 / 645120 + a2 ** 4 / 185794560
-    else:
-        a = np.sqrt(a2)
-        c = np.cos(a / 2)
-        k = np.sin(a / 2) / a
-    return c, k * rx, k * ry, k * rz
-
-
-@njit(cache=True)
-def quat_mult_1(p, q):
-    """Hamilton product of two quaternions, shape (4,) (compiled helper)."""
-    return np.array(quat_mult_t(p[0], p[1], p[2], p[3], q[0], q[1], q[2], q[3]))
-
-
-@njit(cache=True)
-def rotvec_to_quat_1(rv):
-    """Quaternion of one rotation vector (compiled helper)."""
-    return np.array(rotvec_to_quat_t(rv[0], rv[1], rv[2]))
-
-
-@njit(cache=True)
-def quat_normalize_1(q):
-    """Unit quaternion (compiled helper)."""
-    return q / np.sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3])
-
-
-@njit(cache=True)
-def quat_to_dcm_t(q0, q1, q2, q3):
-    """C_b^n of one unit quaternion as a tuple of rows (allocation-free kernel helper)."""
-    return ((q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3, 2 * (q1 * q2 - q0 * q3), 2 * (q1 * q3 + q0 * q2)),
-            (2 * (q1 * q2 + q0 * q3), q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3, 2 * (q2 * q3 - q0 * q1)),
-            (2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3))
-
-
-@njit(cache=True)
-def quat_to_dcm_into(C, q):
-    """C_b^n of one unit quaternion ``q`` (4,) written into ``C`` (3, 3) (allocation-free kernel helper)."""
-    r0, r1, r2 = quat_to_dcm_t(q[0], q[1], q[2], q[3])
-    C[0, 0], C[0, 1], C[0, 2] = r0
-    C[1, 0], C[1, 1], C[1, 2] = r1
-    C[2, 0], C[2, 1], C[2, 2] = r2
-
-
 @njit(cache=True)
 def _quat_to_dcm_batch(q):
     """:func:`quat_to_dcm` of unit quaternions ``q`` (M, 4): (M, 3, 3), one pass with no temporaries."""
     C = np.empty((q.shape[0], 3, 3))
     for i in range(q.shape[0]):
         quat_to_dcm_into(C[i], q[i])
-    return C
-
-
-@njit(cache=True)
-def quat_to_dcm_1(q):
-    """C_b^n of one unit quaternion (compiled helper)."""
-    C = np.empty((3, 3))
-    quat_to_dcm_into(C, q)
     return C
 
 

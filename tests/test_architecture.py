@@ -7,10 +7,15 @@
   ``navlib._validate`` (argument validation), ``navlib._kernels`` (compiled primitives) and
   ``navlib._typing`` (shape aliases), or is public.
 * The deprecated aliases of the old paper modules are imported by nothing in navlib.
+* No import cycle: the graph of navlib's imports, at module level or inside functions, is acyclic.
+* Importing navlib's modules changes nothing process-wide (no numba event listener) unless asked to.
 """
 from __future__ import annotations
 
 import ast
+import os
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -99,3 +104,90 @@ def test_the_checks_see_imports():
     assert ("navlib.attitude", None) in found and ("navlib._validate", "as_array") in found
     assert aliases("navlib.alignment")["attitude"] == "navlib.attitude"
     assert COMPANIONS and "navlib.filters" in CORE
+
+
+def type_checking_lines(tree: ast.Module) -> set[int]:
+    """Lines of the imports under ``if TYPE_CHECKING:`` (for type checkers only, never run)."""
+    guarded = [node for node in ast.walk(tree) if isinstance(node, ast.If)
+               and "TYPE_CHECKING" in {n.id if isinstance(n, ast.Name) else getattr(n, "attr", None)
+                                       for n in ast.walk(node.test)}]
+    return {n.lineno for node in guarded for stmt in node.body for n in ast.walk(stmt)
+            if isinstance(n, (ast.Import, ast.ImportFrom))}
+
+
+def import_graph() -> dict[str, set[str]]:
+    """Each navlib module -> the navlib modules it imports when it runs (at module level or deferred in a function)."""
+    graph = {}
+    for module, path in MODULES.items():
+        skip = type_checking_lines(ast.parse(path.read_text(encoding="utf-8")))
+        graph[module] = {src for src, _, line in imports(module) if src in MODULES and src != module and line not in skip}
+    return graph
+
+
+def find_cycle(graph: dict[str, set[str]]) -> list[str]:
+    """One cycle of ``graph`` as a path ``[a, b, ..., a]``, or ``[]`` when there is none (depth-first search)."""
+    done, path = set(), []
+
+    def visit(node):
+        path.append(node)
+        for nxt in sorted(graph.get(node, ())):
+            if nxt in path:
+                return path[path.index(nxt):] + [nxt]
+            if nxt not in done and (cycle := visit(nxt)):
+                return cycle
+        path.pop()
+        done.add(node)
+        return []
+
+    for node in sorted(graph):
+        if node not in done and (cycle := visit(node)):
+            return cycle
+    return []
+
+
+def test_no_import_cycle():
+    cycle = find_cycle(import_graph())
+    assert not cycle, "import cycle: " + " -> ".join(cycle)
+
+
+def test_the_cycle_check_sees_cycles_and_deferred_imports():
+    assert find_cycle({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == ["a", "b", "c", "a"]
+    assert find_cycle({"a": {"b", "c"}, "b": {"c"}, "c": set()}) == []
+    graph = import_graph()
+    assert "navlib.plots" in graph["navlib.papers.pedestrian_ins"]          # imported inside a function
+
+
+IMPORT_ALL = """
+import importlib, sys, warnings
+from numba.core import event
+
+def listeners():
+    return {kind: list(found) for kind, found in event._registered.items() if found}
+
+registered, register = [], event.register
+event.register = lambda kind, listener: (registered.append(kind), register(kind, listener))[1]
+before = listeners()
+with warnings.catch_warnings():
+    warnings.simplefilter("ignore")                  # the deprecated aliases warn
+    for name in sys.argv[1:]:
+        importlib.import_module(name)
+print(registered, listeners() == before)
+"""
+
+
+def import_all_in_a_fresh_process(**env) -> str:
+    """Import every navlib module in a new interpreter; report the numba event kinds registered meanwhile
+    (through ``numba.core.event.register``) and whether numba's listener registry is unchanged."""
+    environ = {k: v for k, v in os.environ.items() if k != "NAVLIB_COMPILE_LOG"} | env
+    done = subprocess.run([sys.executable, "-c", IMPORT_ALL, *sorted(MODULES)], env=environ, cwd=PACKAGE.parent,
+                          capture_output=True, text=True, check=True)
+    return done.stdout.strip().splitlines()[-1]
+
+
+def test_importing_navlib_installs_no_numba_listener():
+    """numba's compile events stay the user's: navlib registers a listener only when NAVLIB_COMPILE_LOG asks."""
+    assert import_all_in_a_fresh_process() == "[] True"
+
+
+def test_the_compile_log_is_opt_in(tmp_path):
+    assert import_all_in_a_fresh_process(NAVLIB_COMPILE_LOG=str(tmp_path / "compile.log")) == "['numba:compile'] False"
