@@ -1,61 +1,122 @@
-"""IMU samples validated once: :class:`ImuSamples`, accepted by navlib's IMU filters beside raw arrays.
+"""IMU samples validated once: :class:`ImuSamples` with the sensors' :class:`SensorLimits`.
 
-Every navlib function that takes IMU samples ``(w_ib_b, f_b, dt)`` also takes an :class:`ImuSamples`
-in place of ``w_ib_b`` with ``f_b`` and ``dt`` left out -- the filters (``mahony``, ``quaternion_kf``,
-``zupt_ins.run_filter``, ``strapdown.integrate``), ``euler.integrate_euler``, ``zupt.detect_static``,
-``alignment.static_means``, ``calibration.characterise`` and the paper companions' IMU functions; the
-device ranges it carries become the function's ``full_scale_gyro`` / ``full_scale_accel`` (where it has
-them). :meth:`navlib.io.Recording.imu` builds one from a real log. E.g.::
+The filters take an :class:`ImuSamples`, screen it once (:func:`navlib.robust.screen`: dropouts, rails,
+stuck outputs, spikes, free fall, clock jumps, per the record's limits) and run their equations on the
+clean samples; the integrators and detectors (``strapdown.integrate``, ``euler.integrate_euler``,
+``zupt.detect_static``, ``alignment.static_means``, ``calibration.characterise``, the paper companions)
+take one in place of ``w_ib_b`` with ``f_b`` and ``dt`` left out (:func:`unpack`).
+:meth:`navlib.io.Recording.imu` builds one from a real log. E.g.::
 
-    imu = ImuSamples(w_ib_b, f_b, dt, full_scale_gyro=model.gyro.full_scale)
-    res = mahony.mahony(imu, q0=q0, m_b=m_b)
-
-The filters call :func:`unpack`; raw arrays pass through it unchanged and are validated by the filter as
-before.
+    imu = ImuSamples(w_ib_b, f_b, dt, SensorLimits(full_scale_gyro=model.gyro.full_scale))
+    res = mahony.mahony(imu, q0, m_b=m_b)
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from ._typing import Interval, Times, Vec3Series
-from ._validate import imu_samples, intervals, range_limit, time_axis
+from ._validate import imu_samples, integer, intervals, range_limit, scalar, time_axis
 
-__all__ = ["ImuSamples", "unpack"]
+__all__ = ["SensorLimits", "ImuSamples", "unpack"]
+
+
+@dataclass(frozen=True)
+class SensorLimits:
+    """What the sensors can measure and what counts as a fault, read once by :func:`navlib.robust.screen`.
+
+    Attributes
+    ----------
+    full_scale_gyro, full_scale_accel, full_scale_mag : float
+        Device ranges (rad/s, m/s^2, uT), e.g. ``sensors.imu_model(name).gyro.full_scale``; ``inf``
+        (default) for none. A sample with a component at or beyond its range is at the rails
+        (``"saturated"``): the best reading available, but not a trustworthy one.
+    stuck_run : int, "auto" or None
+        A gyro whose output stopped updating: some axis repeating exactly the same value over this many
+        samples (``("gyro", "stuck")``, :func:`navlib.robust.stuck_mask`). Sensor noise makes such
+        repeats of a real reading essentially impossible; values at the rails are saturated, not stuck;
+        a trial whose gyro is not noisy from the start (some axis repeats its first value this often: a
+        noise-free simulation, a quantised gyro at rest) is not checked. "auto" (default):
+        :data:`navlib.robust.STUCK_DURATION` (0.1 s) of samples, at least 5; None: off. Quantised gyros
+        whose noise is about one count repeat by chance: use a larger value, or None.
+    gyro_jump : float, optional
+        Step gate (rad/s): a gyro sample differing from the last used one by more than this on some axis
+        is a spike (``("gyro", "spike")``), unless the previous sample was one already (a sustained change
+        is motion). Choose well above the per-sample noise and the largest rate change per sample of the
+        motion. None (default): off.
+    spike_gyro, spike_accel : float
+        Isolated-spike thresholds (rad/s, m/s^2) of :func:`navlib.robust.is_spike` (a sample deviating
+        from the line through its neighbours); ``inf`` (default): off.
+    freefall_accel, freefall_time : float
+        Accelerometer samples with ``|f| < freefall_accel`` (m/s^2) in a run lasting at least
+        ``freefall_time`` (s) are free fall or a dead sensor (``("accel", "freefall")``); defaults 2 m/s^2
+        over 0.05 s; ``freefall_accel = 0``: off.
+    max_dt : float, optional
+        Longest interval integrated (s); a longer one is a clock jump (``("clock", "jump")``): nothing is
+        integrated over it. None (default): :data:`navlib.timing.JUMP_FACTOR` median intervals (no jump
+        with a fixed ``dt``); ``inf``: off.
+    """
+    full_scale_gyro: float = np.inf
+    full_scale_accel: float = np.inf
+    full_scale_mag: float = np.inf
+    stuck_run: int | str | None = "auto"
+    gyro_jump: float | None = None
+    spike_gyro: float = np.inf
+    spike_accel: float = np.inf
+    freefall_accel: float = 2.0
+    freefall_time: float = 0.05
+    max_dt: float | None = None
+
+    def __post_init__(self):
+        for name in ("full_scale_gyro", "full_scale_accel", "full_scale_mag"):
+            object.__setattr__(self, name, range_limit(getattr(self, name), name))
+        if not (self.stuck_run is None or self.stuck_run == "auto"):
+            object.__setattr__(self, "stuck_run", integer(self.stuck_run, "stuck_run", minimum=2))
+        if self.gyro_jump is not None:
+            object.__setattr__(self, "gyro_jump", scalar(self.gyro_jump, "gyro_jump", positive=True))
+        for name in ("spike_gyro", "spike_accel"):
+            object.__setattr__(self, name, scalar(getattr(self, name), name, positive=True, allow_inf=True))
+        object.__setattr__(self, "freefall_accel", scalar(self.freefall_accel, "freefall_accel", positive=True,
+                                                          allow_zero=True))
+        object.__setattr__(self, "freefall_time", scalar(self.freefall_time, "freefall_time", positive=True,
+                                                         allow_zero=True))
+        if self.max_dt is not None:
+            object.__setattr__(self, "max_dt", scalar(self.max_dt, "max_dt", positive=True, allow_inf=True))
 
 
 @dataclass(frozen=True)
 class ImuSamples:
-    """Gyro and accelerometer samples with their intervals and device ranges, validated on construction.
+    """Gyro and accelerometer samples with their intervals and the sensors' limits, validated on construction.
 
     Attributes
     ----------
     w_ib_b, f_b : ndarray, shape (..., N, 3)
         Angular rate (rad/s) and specific force (m/s^2); leading axes are trials; NaN marks a dropout.
     dt : ndarray, shape (N,)
-        Interval covered by each sample (s); a scalar given at construction is repeated.
-    full_scale_gyro, full_scale_accel : float
-        Device ranges (rad/s, m/s^2); ``inf`` (default) for none.
+        Interval covered by each sample (s): ``dt[k] = t[k] - t[k-1]``; a scalar given at construction is
+        repeated. Timestamps with repeats or out of order go through :func:`navlib.timing.sanitize` first.
+    limits : SensorLimits
+        Ranges and fault thresholds (default: no ranges, navlib's default fault tests).
     """
     w_ib_b: np.ndarray
     f_b: np.ndarray
     dt: Interval
-    full_scale_gyro: float = np.inf
-    full_scale_accel: float = np.inf
+    limits: SensorLimits = field(default_factory=SensorLimits)
 
     def __post_init__(self):
         w, f = imu_samples(self.w_ib_b, self.f_b)
         object.__setattr__(self, "w_ib_b", w)
         object.__setattr__(self, "f_b", f)
         object.__setattr__(self, "dt", intervals(self.dt, w.shape[-2]))
-        object.__setattr__(self, "full_scale_gyro", range_limit(self.full_scale_gyro, "full_scale_gyro"))
-        object.__setattr__(self, "full_scale_accel", range_limit(self.full_scale_accel, "full_scale_accel"))
+        if not isinstance(self.limits, SensorLimits):
+            raise TypeError(f"limits: expected a SensorLimits, got {type(self.limits).__name__}")
 
     @classmethod
-    def from_times(cls, time: Times, w_ib_b: Vec3Series, f_b: Vec3Series, **ranges: float) -> ImuSamples:
+    def from_times(cls, time: Times, w_ib_b: Vec3Series, f_b: Vec3Series,
+                   limits: SensorLimits | None = None) -> ImuSamples:
         """Samples stamped at ``time`` (N + 1 epochs: the start, then the end of each sample's interval)."""
-        return cls(w_ib_b, f_b, np.diff(time_axis(time, "time")), **ranges)
+        return cls(w_ib_b, f_b, np.diff(time_axis(time, "time")), limits or SensorLimits())
 
     @property
     def n(self) -> int:
@@ -73,15 +134,17 @@ def unpack(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None, dt: I
            full_scale_gyro: float | None = None, full_scale_accel: float | None = None) -> tuple:
     """``(w_ib_b, f_b, dt, full_scale_gyro, full_scale_accel)`` from an :class:`ImuSamples` or raw arguments.
 
-    With an ImuSamples, ``f_b`` and ``dt`` must be None and a range may be given either there or here,
-    not both; raw arguments are returned unchanged (``f_b`` and ``dt`` are then required).
+    For the integrators and detectors that take either. With an ImuSamples, ``f_b`` and ``dt`` must be None
+    and a range may be given either in its limits or here, not both; raw arguments are returned unchanged
+    (``f_b`` and ``dt`` are then required).
     """
     if isinstance(w_ib_b, ImuSamples):
         for name, value in (("f_b", f_b), ("dt", dt)):
             if value is not None:
                 raise ValueError(f"{name}: given twice (the ImuSamples holds it)")
-        return (w_ib_b.w_ib_b, w_ib_b.f_b, w_ib_b.dt, _one("full_scale_gyro", full_scale_gyro, w_ib_b.full_scale_gyro),
-                _one("full_scale_accel", full_scale_accel, w_ib_b.full_scale_accel))
+        lim = w_ib_b.limits
+        return (w_ib_b.w_ib_b, w_ib_b.f_b, w_ib_b.dt, _one("full_scale_gyro", full_scale_gyro, lim.full_scale_gyro),
+                _one("full_scale_accel", full_scale_accel, lim.full_scale_accel))
     for name, value in (("f_b", f_b), ("dt", dt)):
         if value is None:
             raise ValueError(f"{name}: required (or pass an ImuSamples as w_ib_b)")

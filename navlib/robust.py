@@ -33,6 +33,10 @@ batch) and, when asked for, per-sample boolean flags. Sensors are named ``"gyro"
     of samples (:func:`stuck_mask`; held like a dropout), or over most of a static window
     (:func:`navlib.alignment.static_means` ``stuck_fraction``; the window refused).
 
+:func:`screen` is the one pass over a filter's IMU samples before any filter equation runs: it finds
+every fault the samples' :class:`navlib.imu.SensorLimits` describe, flags and counts it, and holds the
+unusable gyro samples. The filters consume its :class:`Screened` record.
+
 Every filter result carries one: :class:`navlib.filters.observations.AttitudeResult` (Mahony,
 quaternion KF), :class:`navlib.filters.planar_ekf.EkfResult`, :class:`navlib.filters.heading_fusion.FusionResult`,
 :class:`navlib.filters.zupt_ins.FilterResult`, and the paper method's ``rotation_bias.Residuals``.
@@ -52,16 +56,33 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 from numba import njit
 from numpy.typing import NDArray
 
 from ._kernels import stuck_runs
+from ._threads import run_chunks
 from ._typing import Array, ArrayLike, Vec3Series
-from ._validate import as_array, booleans, choice, flag, instance, integer, kernel_array, range_limit, scalar, text
+from ._validate import (
+    as_array,
+    booleans,
+    choice,
+    flag,
+    instance,
+    integer,
+    kernel_array,
+    range_limit,
+    refuse_turn,
+    same_shape,
+    scalar,
+    text,
+)
+from .imu import ImuSamples
+from .timing import jump_limit
 
-__all__ = ["FaultReport", "fault_report", "hold", "despike", "stuck_mask", "stuck_samples", "stuck_run_samples",
+__all__ = ["FaultReport", "Screened", "screen", "fault_report", "hold", "despike", "stuck_mask", "stuck_samples", "stuck_run_samples",
            "longest_repeat", "LEADING", "STUCK_DURATION"]
 
 LEADING = ("raise", "first", "zero")
@@ -386,3 +407,182 @@ def stuck_samples(x: ArrayLike, run: int | None, *, full_scale: float | None = N
     fs = range_limit(full_scale, "full_scale")
     noisy = np.logical_and.accumulate(a == a[..., :1, :], axis=-2).sum(-2).max(-1) < run
     return _stuck_runs(a, run, np.inf if full_scale is None else fs) & noisy[..., None]
+
+
+class Screened(NamedTuple):
+    """IMU samples after :func:`screen`: what a filter's equations consume.
+
+    Attributes
+    ----------
+    imu : ImuSamples
+        The samples as given (the accelerometer is read from ``imu.f_b``, with the flags below).
+    w_ib_b : ndarray, shape (..., N, 3)
+        Gyro with every unusable sample (``("gyro", "nan" | "stuck" | "spike")``) replaced by the last used
+        one, 0 before the first: the attitude filters' hold.
+    fresh : ndarray of bool, shape (..., N)
+        The gyro sample is used as measured (not held); saturated samples are used.
+    m_b : ndarray, shape (..., N, 3), or None
+        Magnetometer (uT) as given, or None.
+    dt : ndarray, shape (N,)
+        Sample intervals (s).
+    max_dt : float
+        Longest interval integrated (s); ``faults.flags["clock", "jump"]`` marks the longer ones.
+    faults : FaultReport
+        Counts, shape (...), and per-sample flags, shape (..., N), of every fault found: ``gyro``
+        ``nan``/``stuck``/``spike``/``saturated``, ``accel`` ``nan``/``spike``/``freefall``/``saturated``, ``mag``
+        ``nan``/``saturated`` (with ``m_b``), ``clock`` ``jump``. Each gyro sample has at most one of
+        stuck, nan, spike (in that order); each accelerometer sample at most one of nan, spike, free fall.
+    """
+    imu: ImuSamples
+    w_ib_b: np.ndarray
+    fresh: np.ndarray
+    m_b: np.ndarray | None
+    dt: np.ndarray
+    max_dt: float
+    faults: FaultReport
+
+
+def screen(imu: ImuSamples, m_b: Vec3Series | None = None) -> Screened:
+    """Find the faults of IMU samples, per their :class:`~navlib.imu.SensorLimits`, before any filter runs.
+
+    Parameters
+    ----------
+    imu : ImuSamples
+        Gyro and accelerometer samples, shape (..., N, 3), with their intervals and limits.
+    m_b : array_like, shape (..., N, 3), optional
+        Magnetometer samples (uT); NaN marks a missing sample.
+
+    Returns
+    -------
+    Screened
+        The held gyro, the magnetometer and the :class:`FaultReport` of the faults found.
+
+    Raises
+    ------
+    ValueError
+        If the gyro turns more than :data:`navlib._validate.MAX_TURN_PER_SAMPLE` within one integrated
+        interval (``dt`` in the wrong unit).
+    """
+    instance(imu, "imu", ImuSamples, "an ImuSamples (navlib.imu)")
+    lim, w, f, dts = imu.limits, imu.w_ib_b, imu.f_b, imu.dt
+    lead, n = w.shape[:-2], w.shape[-2]
+    if m_b is not None:
+        m_b = same_shape(as_array(m_b, "m_b", tail=(3,), finite=False), "m_b", w.shape, of="w_ib_b")
+    max_dt = jump_limit(dts, lim.max_dt, "dt")
+    run = stuck_run_samples(lim.stuck_run, float(np.median(dts))) or 0
+    T = math.prod(lead)
+    flat = kernel_array(w.reshape(T, n, 3))
+    stuck, turn = np.zeros((T, n), dtype=bool), np.zeros(T)
+    run_chunks(lambda t0, t1: _gyro_scan(t0, t1, flat, dts, max_dt, run, lim.full_scale_gyro, stuck, turn), T)
+    refuse_turn(float(turn.max()))                             # (clock jumps are not integrated)
+    finite_w, finite_f = np.isfinite(w).all(-1), np.isfinite(f).all(-1)
+    nan_w = ~finite_w & ~stuck.reshape(lead + (n,))
+    spike_w, spike_f = _spikes(imu, finite_w & finite_f)
+    held, fresh = np.empty_like(flat), np.empty((T, n), dtype=bool)
+    jump_spike = np.zeros((T, n), dtype=bool)
+    gate = lim.gyro_jump or 0.0
+    bad = kernel_array((stuck | ~finite_w.reshape(T, n) | spike_w.reshape(T, n)))
+    run_chunks(lambda t0, t1: _gyro_hold(t0, t1, flat, bad, gate, held, fresh, jump_spike), T)
+    spike_w = spike_w | jump_spike.reshape(lead + (n,))
+    free = _freefall(f, dts, lim.freefall_accel, lim.freefall_time) & finite_f & ~spike_f
+    flags = {("gyro", "stuck"): stuck.reshape(lead + (n,)), ("gyro", "nan"): nan_w, ("gyro", "spike"): spike_w,
+             ("gyro", "saturated"): _rails(w, lim.full_scale_gyro),
+             ("accel", "nan"): ~finite_f, ("accel", "spike"): spike_f & ~spike_w, ("accel", "freefall"): free,
+             ("accel", "saturated"): _rails(f, lim.full_scale_accel)}
+    if m_b is not None:
+        flags["mag", "nan"] = ~np.isfinite(m_b).all(-1)
+        flags["mag", "saturated"] = _rails(m_b, lim.full_scale_mag)
+    flags["clock", "jump"] = np.broadcast_to(dts > max_dt, lead + (n,))
+    report = FaultReport({key: m.sum(-1) for key, m in flags.items()}, flags)
+    return Screened(imu, held.reshape(w.shape), fresh.reshape(lead + (n,)), m_b, dts, max_dt, report)
+
+
+def _rails(x: np.ndarray, full_scale: float) -> np.ndarray:
+    """Valid samples with a component at or beyond ``full_scale``."""
+    return (np.abs(x) >= full_scale).any(-1) & np.isfinite(x).all(-1)
+
+
+def _spikes(imu: ImuSamples, finite: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Isolated gyro and accelerometer spikes (:func:`is_spike`) among the rows where both are finite."""
+    lim, w, f = imu.limits, imu.w_ib_b, imu.f_b
+    if np.isinf(lim.spike_gyro) and np.isinf(lim.spike_accel):
+        return np.zeros(finite.shape, dtype=bool), np.zeros(finite.shape, dtype=bool)
+    n = w.shape[-2]
+    wf, ff = kernel_array(w.reshape(-1, n, 3)), kernel_array(f.reshape(-1, n, 3))
+    sw, sf = np.zeros(wf.shape[:2], dtype=bool), np.zeros(wf.shape[:2], dtype=bool)
+    for t in range(wf.shape[0]):
+        sw[t], sf[t] = _spike_masks(wf[t], ff[t], lim.spike_gyro, lim.spike_accel)
+    return sw.reshape(finite.shape) & finite, sf.reshape(finite.shape) & finite
+
+
+@njit(cache=True)
+def _spike_masks(w, f, spike_gyro, spike_accel):
+    n = w.shape[0]
+    sw, sf = np.zeros(n, dtype=np.bool_), np.zeros(n, dtype=np.bool_)
+    for k in range(2, n - 2):
+        sw[k] = is_spike(w, k, spike_gyro)
+        sf[k] = is_spike(f, k, spike_accel)
+    return sw, sf
+
+
+def _freefall(f: np.ndarray, dts: np.ndarray, threshold: float, min_time: float) -> np.ndarray:
+    """Samples in a run of ``|f| < threshold`` whose intervals sum to at least ``min_time`` (NaN: not in a run)."""
+    with np.errstate(invalid="ignore"):
+        low = np.sqrt(np.sum(f * f, axis=-1)) < threshold          # NaN compares False
+    out = np.zeros_like(low)
+    if not low.any():
+        return out
+    flat, out_flat = low.reshape(-1, low.shape[-1]), out.reshape(-1, low.shape[-1])
+    for row, dst in zip(flat, out_flat, strict=True):
+        edges = np.flatnonzero(np.diff(np.concatenate([[0], row.astype(np.int8), [0]])))
+        for a, b in zip(edges[::2], edges[1::2], strict=True):
+            if dts[a:b].sum() >= min_time:
+                dst[a:b] = True
+    return out
+
+
+@njit(cache=True, nogil=True)
+def _gyro_scan(t0, t1, w, dts, max_dt, run, rail, stuck, turn):
+    """Trials t0 to t1 - 1 of the gyro ``w`` (T, N, 3): ``turn[t]``, the largest turn ``|w| dt`` over an
+    integrated interval (``dt <= max_dt``; NaN ignored), and with ``run > 0`` the stuck samples ``stuck[t]``
+    (values at ``rail`` excepted) of a trial whose gyro is noisy from the start (no axis repeats its first
+    value ``run`` times)."""
+    N = w.shape[1]
+    for t in range(t0, t1):
+        big = 0.0
+        for k in range(N):
+            if dts[k] <= max_dt:
+                a = np.sqrt(w[t, k, 0] * w[t, k, 0] + w[t, k, 1] * w[t, k, 1] + w[t, k, 2] * w[t, k, 2]) * dts[k]
+                if a > big:
+                    big = a
+        turn[t] = big
+        if run == 0:
+            continue
+        noisy = True
+        for c in range(3):
+            k = 0
+            while k < N and w[t, k, c] == w[t, 0, c]:
+                k += 1
+            noisy = noisy and k < run
+        if noisy:
+            stuck_runs(t, t + 1, w, run, rail, stuck)
+
+
+@njit(cache=True, nogil=True)
+def _gyro_hold(t0, t1, w, bad, gate, held, fresh, jumped):
+    """Trials t0 to t1 - 1: hold the last used gyro sample (0 before the first) over the ``bad`` samples and
+    over steps larger than ``gate`` on some axis (``jumped``; ``gate = 0``: off), unless the previous sample
+    was such a step already (a sustained change is motion)."""
+    for t in range(t0, t1):
+        gx = gy = gz = 0.0
+        was_step = False
+        for k in range(w.shape[1]):
+            wx, wy, wz = w[t, k, 0], w[t, k, 1], w[t, k, 2]
+            use = not bad[t, k]
+            if use and gate > 0.0 and not was_step and k > 0 and (
+                    abs(wx - gx) > gate or abs(wy - gy) > gate or abs(wz - gz) > gate):
+                jumped[t, k], was_step, use = True, True, False
+            if use:
+                gx, gy, gz, was_step = wx, wy, wz, False
+            held[t, k, 0], held[t, k, 1], held[t, k, 2] = gx, gy, gz
+            fresh[t, k] = use

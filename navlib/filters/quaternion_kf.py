@@ -15,7 +15,8 @@ numbers are quoted, errata corrected). State: the quaternion ``q = q_b^n`` (4,).
   :func:`navlib.kalman.update` skipping missing rows; normalise.
 
 Without a heading reference the magnetometer rows are missing at every sample: the gravity rows
-alone correct tilt. Inputs, gates and fault counts are those of :mod:`navlib.filters.observations`.
+alone correct tilt. The samples arrive screened and gated (:mod:`navlib.filters.observations`, which also
+says what is done with bad samples): a skipped measurement is a missing row, so a fault never enters P.
 
 The Kalman steps are written at their fixed size (4 states, 3 or 6 measurements) without library
 calls or temporary arrays, in the operation order of the BLAS and LAPACK behind the generic
@@ -24,34 +25,56 @@ calls or temporary arrays, in the operation order of the BLAS and LAPACK behind 
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import NamedTuple
 
 import numpy as np
 from numba import njit
 
 from .. import _kernels
-from .._deprecate import renamed_keywords
-from .._kernels import BORROW, fma
-from .._typing import Array, ArrayLike, Interval, Quat, Vec3, Vec3Series
-from .._validate import as_quat, broadcast, flag, nonempty_array, scalar
-from ..imu import ImuSamples, unpack
-from ..units import G0
+from .._kernels import fma
+from .._typing import Array, ArrayLike, Quat, Vec3, Vec3Series
+from .._validate import as_quat, broadcast, flag, instance, nonempty_array, scalar
+from ..imu import ImuSamples
 from .observations import (
-    COUNT_NAMES,
+    AttitudeGates,
     AttitudeResult,
-    MagGate,
+    RtkHeading,
     attitude_result,
-    gyro_sample,
     learning,
     magnetic_reference,
     observe,
+    pack,
     pi_error,
-    prepare_inputs,
     reinit,
     run_trials,
 )
 
-__all__ = ["quaternion_kf", "measurement_model", "measurement_jacobian", "transition", "noise_input"]
+__all__ = ["quaternion_kf", "KfNoise", "measurement_model", "measurement_jacobian", "transition", "noise_input"]
+
+
+@dataclass(frozen=True)
+class KfNoise:
+    """Noise model of the quaternion KF.
+
+    Attributes
+    ----------
+    sigma_gyro : float
+        Gyro white-noise sigma per sample (rad/s): ``Q = sigma_gyro^2 I``.
+    sigma_accel, sigma_mag : float
+        Noise of the normalised accelerometer and magnetometer vectors: ``R = diag(sigma_accel^2 I,
+        sigma_mag^2 I)``.
+    p0 : float
+        Initial covariance ``p0 I`` (also after a clock jump).
+    """
+    sigma_gyro: float = 1e-3
+    sigma_accel: float = 0.02
+    sigma_mag: float = 0.08
+    p0: float = 1e-4
+
+    def __post_init__(self):
+        for name in ("sigma_gyro", "sigma_accel", "sigma_mag", "p0"):
+            scalar(getattr(self, name), name, positive=True)
 
 
 class _Model(NamedTuple):
@@ -252,7 +275,7 @@ def _workspace():
     return mats, (np.empty(6), np.empty(6), np.empty(6)), (np.empty(6, np.int64), np.empty(6, np.int64))
 
 
-@njit(**BORROW)
+@njit(cache=True)
 def _predict(x, P, Phi, G, q_gyro, ws):
     """Eqs. (16)-(18) in place: ``x = Phi x``, ``P = sym(Phi P Phi^T + Gamma Q Gamma^T)``, ``Q = q_gyro I``."""
     (A, B, C, D, _, _), (v, _, _), _ = ws
@@ -270,7 +293,7 @@ def _predict(x, P, Phi, G, q_gyro, ws):
     _symmetrise(P, D, 4)
 
 
-@njit(**BORROW)
+@njit(cache=True)
 def _update(x, P, z, h, H, r_diag, ws):
     """Joseph update of ``x``, ``P`` in place with the finite rows of ``z`` (R diagonal, ``r_diag``).
 
@@ -344,15 +367,12 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
     r_diag = np.array([sa * sa, sa * sa, sa * sa, sm * sm, sm * sm, sm * sm])
     Phi, G, z, h, H = np.empty((4, 4)), np.empty((4, 3)), np.empty(6), np.empty(6), np.empty((6, 4))
     ws = _workspace()
-    gx = gy = gz = 0.0
-    held = False
     rtk = np.array([0.0, 1.0, 0.0, np.inf, 0.0, 0.0])
     health = np.array([0.0, np.inf])
     ix = iy = iz = 0.0
     for k in range(N):
-        dt = dts[k]
-        gx, gy, gz, held, fresh = gyro_sample(t, k, inp, gx, gy, gz, held, counts)
-        if dt > inp.max_dt:                             # clock jump: re-initialise, covariance back to p0 I
+        dt, gx, gy, gz = dts[k], w[t, k, 0], w[t, k, 1], w[t, k, 2]
+        if inp.jump[k]:                                 # clock jump: re-initialise, covariance back to p0 I
             x[0], x[1], x[2], x[3] = reinit(inp, t, k, x[0], x[1], x[2], x[3], rtk)
             _copy4(P, model.p0 * np.eye(4))
             health[1] = 0.0
@@ -360,7 +380,7 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
             continue
         ax, ay, az, a_ok, mx, my, mz, m_ok, C = observe(inp, t, k, x[0], x[1], x[2], x[3], dt, rtk, counts)
         ex, ey, ez = pi_error(C, ax, ay, az, a_ok, mx, my, mz, m_ok)   # PI-corrected rate, Eq. (15)
-        if learning(fresh, dt, health, inp):                           # Eq. (15), unless settling after a fault
+        if learning(inp.fresh[t, k], dt, health, inp):                           # Eq. (15), unless settling after a fault
             ix += ex * dt
             iy += ey * dt
             iz += ez * dt
@@ -382,18 +402,9 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
     _copy4(P_out[t], P)
 
 
-@renamed_keywords(gyro_range="full_scale_gyro", accel_range="full_scale_accel", mag_range="full_scale_mag")
-def quaternion_kf(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None, dt: Interval | None = None,
-                  q0: Quat | None = None, *, m_b: Vec3Series | None = None,
-                  heading_rtk: ArrayLike | None = None, rtk_valid: ArrayLike | None = None, kp: float = 1.0,
-                  ki: float = 0.02, B_n: Vec3 | None = None, gate: MagGate | None = None, accel_tol: float | None = None,
-                  g: float = G0, rtk_hold: float = 0.25, sigma_gyro: float = 1e-3,
-                  sigma_accel: float = 0.02, sigma_mag: float = 0.08, p0: float = 1e-4,
-                  linear_innovation: bool = False, rtk_gate: float | None = None, rtk_confirm: int = 5,
-                  full_scale_gyro: float | None = None, full_scale_accel: float | None = None,
-                  full_scale_mag: float | None = None,
-                  gyro_jump: float | None = None, keep_cov: bool = False, max_dt: float | None = None,
-                  stuck_run: int | str | None = "auto") -> AttitudeResult:
+def quaternion_kf(imu: ImuSamples, q0: Quat, *, m_b: Vec3Series | None = None, rtk: RtkHeading | None = None,
+                  B_n: Vec3 | None = None, kp: float = 1.0, ki: float = 0.02, gates: AttitudeGates = AttitudeGates(),
+                  noise: KfNoise = KfNoise(), keep_cov: bool = False, linear_innovation: bool = False) -> AttitudeResult:
     """Quaternion Kalman filter driven by the PI-corrected rate (Eqs. 16-20, Fig. 2 of Zhang et al. 2023).
 
     Per sample: the Mahony error of the current estimate gives the rate (Eq. 15);
@@ -401,143 +412,38 @@ def quaternion_kf(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None
     measurement ``z = [a; m]`` (unit vectors) against ``h(q) = [C_nb [0,0,1]; C_nb b]``
     with ``b`` from the local field (or north for RTK), ``R = diag(sigma_accel^2 I,
     sigma_mag^2 I)``; Joseph update of :func:`navlib.kalman.update` skipping
-    missing rows; normalise. ``linear_innovation=True`` uses the printed
-    ``z - H q`` (E003-12), only to show that it fails.
+    missing rows; normalise. The covariance is predicted with ``Phi P Phi^T + Gamma Q Gamma^T`` and
+    updated in Joseph form (both symmetrised). At a clock jump the covariance restarts at ``p0 I``.
 
     Parameters
     ----------
-    w_ib_b : array_like, shape (..., N, 3), or ImuSamples
-        Gyro samples (rad/s); NaN samples are replaced by the last used one (counted). An
-        :class:`navlib.imu.ImuSamples` here supplies ``f_b``, ``dt`` and the gyro and accelerometer ranges.
-        Earth rate is neglected, as in the paper.
-    f_b : array_like, shape (..., N, 3)
-        Accelerometer samples (m/s^2); NaN, infinite or zero samples are skipped (counted).
-    dt : float or array_like, shape (N,)
-        Sample interval (s), or per-sample intervals: sample k covers
-        ``dt[k] = t[k] - t[k-1]`` (irregular sampling). Timestamps with
-        repeats or out of order go through :func:`navlib.timing.sanitize`
-        first; then ``dt = timing.intervals(np.r_[t_before_first, t])``.
-    q0 : array_like, shape (4,) or (..., 4)
-        Attitude before the first sample, e.g. :func:`navlib.alignment.initial_attitude`.
-    m_b : array_like, shape (..., N, 3), optional
-        Magnetometer samples (uT); unusable samples are skipped and gated ones counted. With neither
-        ``m_b`` nor ``heading_rtk`` the filter runs on gyro and accelerometer alone: tilt is corrected,
-        the heading is free (it starts at ``q0``'s heading and drifts with the gyro bias about the
-        vertical, which the accelerometer cannot observe).
-    heading_rtk : array_like, shape (N,) or (..., N), optional
-        Instead of ``m_b``: dual-antenna heading (rad, [0, 2 pi)) at the IMU rate,
-        used as a north pseudo-vector (mode (a) of the paper's Fig. 4). Only samples with
-        ``rtk_valid`` are read; each is held for ``rtk_hold`` seconds.
-    rtk_valid : array_like of bool, same shape as ``heading_rtk``
-        True where a valid RTK epoch arrives (the receiver's status flag).
-        A valid epoch holding NaN is a dropout (ignored, ``rtk_dropped``).
-    kp, ki : float
-        Proportional (rad/s) and integral (rad/s^2) gains of Eq. (15); ``ki = 0``
-        disables gyro-bias estimation.
-    B_n : array_like, shape (3,), optional
-        Local field (uT, ENU); needed by ``gate`` and by the KF (reference b, Eq. 3).
-    gate : MagGate, optional
-        Field-norm and dip-angle gate for the magnetometer.
-    accel_tol : float, optional
-        Skip accelerometer samples whose norm differs from ``g`` by more than this fraction.
-    g : float
-        Gravity for ``accel_tol`` (m/s^2).
-    rtk_hold : float
-        How long an RTK epoch is used (s).
-    rtk_gate : float, optional
-        Reject RTK epochs whose heading differs from the current estimate by
-        more than this (rad, in (0, pi)), e.g. 180 deg ambiguity flips
-        (``rtk_rejected``); None (default) uses every valid epoch.
-    rtk_confirm : int
-        With ``rtk_gate``: after this many consecutive rejected epochs that
-        agree with each other (within ``rtk_gate``), use them (``rtk_reacquired``),
-        so that an estimate that drifted in an outage is pulled back.
-    full_scale_gyro, full_scale_accel, full_scale_mag : float, optional
-        Full-scale ranges (rad/s, m/s^2, uT), e.g. ``sensors.imu_model(name).gyro.full_scale``.
-        Samples with a component at or beyond the range are counted
-        (``*_saturated``); accelerometer and magnetometer corrections are
-        skipped for them, gyro samples are used (the clipped rate is the best
-        available) and flag the attitude after them as suspect. (Formerly ``gyro_range``,
-        ``accel_range``, ``mag_range``: the old names warn.)
-    gyro_jump : float, optional
-        Spike gate (rad/s): a gyro sample differing from the last used one by
-        more than this on some axis is replaced by it (``gyro_gated``) unless
-        the previous sample was already replaced. Choose well above the
-        per-sample noise and the largest rate change per sample of the motion.
-    max_dt : float, optional
-        Longest interval integrated (s). A sample whose ``dt`` exceeds it is a
-        clock jump (``clock_jump``): nothing is integrated over it (gyro, PI
-        integral, covariance), the attitude is re-initialised from that sample's
-        accelerometer (tilt) and magnetometer or RTK epoch (heading; else the
-        heading is kept), or kept if the accelerometer sample is unusable, and the
-        covariance is reset to ``p0 I``. Default None: ``JUMP_FACTOR`` = 10 median
-        intervals (no jump with a scalar ``dt``); ``inf``: off.
-    stuck_run : int, "auto" or None
-        A gyro whose output stopped updating: a sample where some axis repeats
-        exactly the same value over ``stuck_run`` samples or more is stuck
-        (``gyro_stuck``, from the first sample of the run until the value
-        changes) and held like a NaN sample. Sensor noise makes such repeats of a
-        real reading essentially impossible. Values at the ``full_scale_gyro``
-        rails are saturated, not stuck; a trial whose gyro is not noisy from the
-        start (some axis repeats its first value ``stuck_run`` times: a
-        noise-free simulation, a quantised gyro at rest) is not checked.
-        Default "auto": 0.1 s of samples (``STUCK_DURATION``), at least 5.
-        Quantised gyros whose noise is about one count repeat by chance: use a
-        larger value, or None (off).
-
-    What the filter does with bad samples
-    -------------------------------------
-    NaN or stuck gyro: hold the last used sample, and freeze the gyro-bias
-    estimate (the PI integral) while held and, after a hold of ``stuck_run``
-    samples or more or a clock jump, for ``SETTLE_TIME_CONSTANTS / kp`` = 15 s
-    at kp = 1 (the transient the fault left would corrupt it). Gyro spike
-    (``gyro_jump``): hold.
-    NaN/inf/zero accelerometer, or outside ``accel_tol``, or saturated: skip
-    the accelerometer correction. Magnetometer NaN/inf/zero, parallel to
-    gravity, outside the ``gate`` or saturated: skip the heading correction.
-    RTK: invalid epochs and NaN values are not read; epochs outside
-    ``rtk_gate`` are rejected. A gap (any sensor) is a run of such samples: the
-    attitude is propagated by the gyro alone and drifts at the gyro-bias
-    error. A clock jump (``max_dt``): re-initialise. Every case is counted in
-    :attr:`AttitudeResult.counts`; stuck and jump samples are also flagged in
-    ``faults.flags``.
+    imu, q0, m_b, rtk, kp, ki, gates
+        As for :func:`navlib.filters.mahony.mahony`.
+    B_n : array_like, shape (3,)
+        Local field (uT, ENU): the KF's magnetometer reference b (Eq. 3); needed with ``m_b``.
+    noise : KfNoise
+        Process and measurement noise, initial covariance.
+    keep_cov : bool
+        Also return the covariance after every sample (``P_history``).
+    linear_innovation : bool
+        Use the printed innovation ``z - H q`` (E003-12: wrong; only to show that it fails).
 
     Returns
     -------
     AttitudeResult
-
-    sigma_gyro : float
-        Gyro white-noise sigma per sample (rad/s).
-    sigma_accel, sigma_mag : float
-        Noise of the normalised accelerometer and magnetometer vectors.
-    p0 : float
-        Initial covariance ``p0 I``.
-    linear_innovation : bool
-        Use the printed innovation ``z - H q`` (wrong; for the erratum demonstration).
-    keep_cov : bool
-        Also return the covariance after every sample (``P_history``).
-
-    The covariance is predicted with ``Phi P Phi^T + Gamma Q Gamma^T`` and
-    updated in Joseph form (both symmetrised); skipped, gated, rejected and
-    saturated measurements are simply not used, so a fault never enters P.
+        With the final covariance ``P`` (and ``P_history`` with ``keep_cov``).
     """
-    w_ib_b, f_b, dt, full_scale_gyro, full_scale_accel = unpack(w_ib_b, f_b, dt, full_scale_gyro, full_scale_accel)
-    lead, inp, screened = prepare_inputs(w_ib_b, f_b, dt, q0, m_b, heading_rtk, rtk_valid, B_n, gate, accel_tol, g,
-                                         rtk_hold, rtk_gate, rtk_confirm, full_scale_gyro, full_scale_accel,
-                                         full_scale_mag, gyro_jump, max_dt, stuck_run, kp)
     kp, ki = scalar(kp, "kp", positive=True, allow_zero=True), scalar(ki, "ki", positive=True, allow_zero=True)
-    T, N = inp.w.shape[:2]
-    if not inp.use_mag:
-        b = np.array([0.0, 1.0, 0.0])        # RTK pseudo-vector points north (unused without a heading reference)
-    elif B_n is None:
+    instance(noise, "noise", KfNoise, "a KfNoise")
+    if m_b is not None and B_n is None:
         raise ValueError("B_n: the quaternion KF needs the local field for its magnetometer reference")
-    else:
-        b = magnetic_reference(B_n)[0]
-    sig = np.array([scalar(s, n, positive=True) for s, n in ((sigma_gyro, "sigma_gyro"), (sigma_accel, "sigma_accel"),
-                                                (sigma_mag, "sigma_mag"))])
-    model = _Model(b, sig, scalar(p0, "p0", positive=True), flag(linear_innovation, "linear_innovation"))
+    lead, inp, found = pack(imu, q0, m_b, rtk, B_n, gates, kp)
+    T, N = inp.w.shape[:2]
+    b = magnetic_reference(B_n)[0] if inp.use_mag else np.array([0.0, 1.0, 0.0])   # RTK: north
+    sig = np.array([noise.sigma_gyro, noise.sigma_accel, noise.sigma_mag], dtype=float)
+    model = _Model(b, sig, float(noise.p0), flag(linear_innovation, "linear_innovation"))
     keep_cov = flag(keep_cov, "keep_cov")
-    q_out, bias, counts = np.empty((T, N, 4)), np.empty((T, 3)), np.zeros((T, len(COUNT_NAMES)), dtype=np.int64)
+    q_out, bias, counts = np.empty((T, N, 4)), np.empty((T, 3)), np.zeros((T, 4), dtype=np.int64)
     P_out, P_hist = np.empty((T, 4, 4)), np.empty((T, N if keep_cov else 0, 4, 4))
     run_trials(_kernel, T, inp, kp, ki, model, q_out, bias, counts, P_out, P_hist)
-    return attitude_result(lead, q_out, bias, counts, screened, P_out, P_hist if keep_cov else None)
+    return attitude_result(lead, q_out, bias, counts, found, P_out, P_hist if keep_cov else None)
