@@ -12,7 +12,7 @@ take one in place of ``w_ib_b`` with ``f_b`` and ``dt`` left out (:func:`unpack`
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -97,26 +97,28 @@ class ImuSamples:
         Interval covered by each sample (s): ``dt[k] = t[k] - t[k-1]``; a scalar given at construction is
         repeated. Timestamps with repeats or out of order go through :func:`navlib.timing.sanitize` first.
     limits : SensorLimits
-        Ranges and fault thresholds (default: no ranges, navlib's default fault tests).
+        Ranges and fault thresholds (default or None: no ranges, navlib's default fault tests).
     """
     w_ib_b: np.ndarray
     f_b: np.ndarray
     dt: Interval
-    limits: SensorLimits = field(default_factory=SensorLimits)
+    limits: SensorLimits | None = None
 
     def __post_init__(self):
         w, f = imu_samples(self.w_ib_b, self.f_b)
         object.__setattr__(self, "w_ib_b", w)
         object.__setattr__(self, "f_b", f)
         object.__setattr__(self, "dt", intervals(self.dt, w.shape[-2]))
-        if not isinstance(self.limits, SensorLimits):
+        if self.limits is None:
+            object.__setattr__(self, "limits", SensorLimits())
+        elif not isinstance(self.limits, SensorLimits):
             raise TypeError(f"limits: expected a SensorLimits, got {type(self.limits).__name__}")
 
     @classmethod
     def from_times(cls, time: Times, w_ib_b: Vec3Series, f_b: Vec3Series,
                    limits: SensorLimits | None = None) -> ImuSamples:
         """Samples stamped at ``time`` (N + 1 epochs: the start, then the end of each sample's interval)."""
-        return cls(w_ib_b, f_b, np.diff(time_axis(time, "time")), limits or SensorLimits())
+        return cls(w_ib_b, f_b, np.diff(time_axis(time, "time")), limits)
 
     @property
     def n(self) -> int:

@@ -40,7 +40,7 @@ import pandas as pd
 from . import attitude
 from ._typing import Array, ArrayLike, Dcm, Times
 from ._validate import as_array, choice, flag, instance, scalar, text, time_axis
-from .imu import ImuSamples
+from .imu import ImuSamples, SensorLimits
 from .timing import TimingReport, intervals, sanitize
 from .units import G0
 
@@ -107,13 +107,12 @@ class Recording:
         dt = intervals(self.time)
         return np.concatenate([dt[:1], dt])
 
-    def imu(self, full_scale_gyro: float | None = None, full_scale_accel: float | None = None) -> ImuSamples:
-        """The gyro and accelerometer samples with their intervals as :class:`navlib.imu.ImuSamples`."""
+    def imu(self, limits: SensorLimits | None = None) -> ImuSamples:
+        """The gyro and accelerometer samples with their intervals as :class:`navlib.imu.ImuSamples`, with the
+        sensors' ``limits`` (:class:`navlib.imu.SensorLimits`; default: no ranges, navlib's fault tests)."""
         if self.w_ib_b is None or self.f_b is None:
             raise ValueError(f"recording: has no {'gyro' if self.w_ib_b is None else 'accelerometer'} samples")
-        ranges = {k: v for k, v in (("full_scale_gyro", full_scale_gyro), ("full_scale_accel", full_scale_accel))
-                  if v is not None}
-        return ImuSamples(self.w_ib_b, self.f_b, self.dt, **ranges)
+        return ImuSamples(self.w_ib_b, self.f_b, self.dt, limits)
 
     def __str__(self) -> str:
         rate = 1.0 / np.median(np.diff(self.time))
