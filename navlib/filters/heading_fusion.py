@@ -22,53 +22,34 @@ transient into the next outage (there, in an outage 30 s after the jump, the RMS
 that of the run without the jump with delta restarted, 1.1-1.2x with delta kept). A real change of the
 offset is still taken through the gate's re-acquisition.
 
-Stuck sensors: the fusion takes no gyro samples (nothing to check here); a stuck gyro is detected
-upstream by the attitude filter that produced ``heading_mag`` (``stuck_run`` of
-:func:`navlib.filters.mahony.mahony`, :func:`navlib.filters.quaternion_kf.quaternion_kf`), and the RTK
-heading is checked by the gate.
+Stuck sensors: the fusion takes no gyro samples (nothing to check here); a stuck gyro is found
+upstream, by the screening of the attitude filter that produced ``heading_mag``, and the RTK heading is
+checked by the gate.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 from numba import njit
 
 from .._kernels import wrap_pi
 from .._typing import Angles, Array, ArrayLike, Interval, Times
-from .._validate import (
-    booleans,
-    in_range,
-    integer,
-    intervals,
-    kernel_array,
-    last_axis,
-    nonempty_array,
-    same_shape,
-    scalar,
-    time_axis,
-)
+from .._validate import booleans, in_range, instance, integer, intervals, kernel_array, last_axis, nonempty_array, \
+    same_shape, scalar, time_axis
 from ..robust import FaultReport
 from ..timing import jump_limit
-from .observations import heading_input, rtk_gate, rtk_params
+from .observations import RtkHeading, rtk_gate
 
-__all__ = ["fuse_rtk_heading", "rtk_at_imu_rate", "FusionResult", "FUSE_COUNT_NAMES", "FUSE_FAULT_KEYS"]
+__all__ = ["fuse_rtk_heading", "rtk_at_imu_rate", "FusionResult"]
 
-FUSE_COUNT_NAMES = ("rtk", "held", "uncalibrated", "rtk_dropped", "rtk_rejected", "rtk_reacquired", "clock_jump")
-"""Keys of the counts returned by :func:`fuse_rtk_heading`."""
-
-FUSE_FAULT_KEYS = {"rtk_dropped": ("heading", "nan"), "rtk_rejected": ("heading", "outlier"),
-                   "rtk_reacquired": ("heading", "reacquired"), "clock_jump": ("clock", "jump")}
-"""The fault counts among :data:`FUSE_COUNT_NAMES` as ``(sensor, kind)`` keys of :class:`navlib.robust.FaultReport`
-(the same keys as the attitude filters' RTK counts)."""
+_FAULTS = (("heading", "nan"), ("heading", "outlier"), ("heading", "reacquired"))
+"""What the kernel counts, in this order: the same keys as the attitude filters' RTK counts."""
 
 
 @dataclass(frozen=True)
 class FusionResult:
     """Output of :func:`fuse_rtk_heading`.
-
-    Unpacks and indexes as the tuple the function returned before it had ``faults``:
-    ``heading, delta, counts = fuse_rtk_heading(...)``, ``fuse_rtk_heading(...)[0]``.
 
     Attributes
     ----------
@@ -76,28 +57,14 @@ class FusionResult:
         Fused heading (rad, [0, 2 pi)).
     delta : ndarray, shape (..., N)
         Offset estimate ``H_rtk - H_mag`` (rad); NaN before the first used RTK epoch.
-    counts : dict of str -> ndarray of int, shape (...)
-        Keys :data:`FUSE_COUNT_NAMES` (see :func:`fuse_rtk_heading`).
     faults : FaultReport
-        The fault counts (:data:`FUSE_FAULT_KEYS`), and per-sample flags, shape (..., N), of the
-        clock jumps: ``faults.flags["clock", "jump"]``.
+        Per valid epoch ``("heading", "nan")`` (NaN value), ``("heading", "outlier")`` (outside the gate,
+        not fused), ``("heading", "reacquired")`` (used after ``confirm`` agreeing rejections); counts of
+        shape (...); and ``("clock", "jump")`` flagged per sample, shape (..., N).
     """
     heading: np.ndarray
     delta: np.ndarray
-    counts: dict
-    faults: FaultReport = field(default_factory=FaultReport)
-
-    def _legacy(self) -> tuple:
-        return self.heading, self.delta, self.counts
-
-    def __iter__(self):
-        return iter(self._legacy())
-
-    def __getitem__(self, i):
-        return self._legacy()[i]
-
-    def __len__(self) -> int:
-        return 3
+    faults: FaultReport
 
 
 @njit(cache=True)
@@ -115,7 +82,7 @@ def _fuse_kernel(h_mag, h_rtk, ok, dts, jump, alpha, rtk_par, out, delta_out, co
             if ok[t, k]:                                   # RTK epoch flagged valid
                 hk = h_rtk[t, k]
                 if np.isnan(hk):                           # valid flag without a value: dropout
-                    counts[t, 3] += 1
+                    counts[t, 0] += 1
                     code = 1
                 else:
                     if age <= hold:                        # predicted heading: carried RTK, held delta, or none
@@ -126,28 +93,24 @@ def _fuse_kernel(h_mag, h_rtk, ok, dts, jump, alpha, rtk_par, out, delta_out, co
                         pred = hk                          # first epoch: nothing to check it against
                     code = rtk_gate(hk, pred, gate, confirm, state)
                     if code == 1:
-                        counts[t, 4] += 1
+                        counts[t, 1] += 1
                     elif code == 2:
-                        counts[t, 5] += 1
+                        counts[t, 2] += 1
                 if code != 1:
                     d = wrap_pi(hk - h_mag[t, k])
                     delta = d if (np.isnan(delta) or code == 2) else delta + alpha * wrap_pi(d - delta)
                     anchor_rtk, anchor_mag, age = hk, h_mag[t, k], 0.0
             if age <= hold:                                # output the RTK heading, carried between epochs
                 out[t, k] = anchor_rtk + wrap_pi(h_mag[t, k] - anchor_mag)
-                counts[t, 0] += 1
             elif not np.isnan(delta):                      # outage: hold delta
                 out[t, k] = h_mag[t, k] + delta
-                counts[t, 1] += 1
             else:                                          # no RTK yet: uncalibrated magnetic heading
                 out[t, k] = h_mag[t, k]
-                counts[t, 2] += 1
             out[t, k] = out[t, k] % (2 * np.pi)
             delta_out[t, k] = delta
 
 
-def fuse_rtk_heading(heading_mag: Angles, heading_rtk: Angles, rtk_valid: ArrayLike, dt: Interval, alpha: float = 0.01,
-                     rtk_hold: float = 0.25, rtk_gate: float | None = None, rtk_confirm: int = 5,
+def fuse_rtk_heading(heading_mag: Angles, rtk: RtkHeading, dt: Interval, alpha: float = 0.01,
                      max_dt: float | None = None) -> FusionResult:
     """Fuse the magnetic heading with dual-antenna RTK heading (the rule of the module docstring).
 
@@ -155,64 +118,42 @@ def fuse_rtk_heading(heading_mag: Angles, heading_rtk: Angles, rtk_valid: ArrayL
     ----------
     heading_mag : array_like, shape (..., N)
         Heading of the MIMU + magnetometer filter (rad, magnetic north).
-    heading_rtk : array_like, shape (N,) or (..., N)
-        RTK heading (rad, [0, 2 pi)) at the IMU rate; read only where ``rtk_valid``.
-    rtk_valid : array_like of bool
-        True where a valid RTK epoch arrives. An invalid epoch's value (the
-        paper's 0) is never used; a valid epoch holding NaN is a dropout
-        (ignored, counted in ``rtk_dropped``).
+    rtk : RtkHeading
+        RTK heading at the IMU rate, its validity flags (an invalid epoch's value, the paper's 0, is never
+        used), hold and gate. ``rtk.hold``: how long after an epoch its heading is output (carried by the
+        magnetic heading's increments) before falling back to ``H_mag + delta``. ``rtk.gate``: epochs
+        further than this from the predicted heading (the carried RTK heading, else ``H_mag + delta``) are
+        rejected, so 180 deg ambiguity flips are never fused; the first epoch has nothing to be checked
+        against and is used. ``rtk.confirm``: the confirm-th consecutive rejected epoch agreeing with the
+        previous rejected ones is used and restarts delta from it (a wrong first epoch or a real change of
+        the offset is recovered from).
     dt : float or array_like, shape (N,)
         Sample interval (s), or per-sample intervals ``dt[k] = t[k] - t[k-1]``.
     alpha : float
         Smoothing of the offset per RTK epoch (0.01 at 5 Hz: a time constant of about 20 s).
-    rtk_hold : float
-        How long after an epoch its heading is output (carried by the magnetic
-        heading's increments) before falling back to ``H_mag + delta`` (s).
-    rtk_gate : float, optional
-        Reject epochs further than this (rad, in (0, pi)) from the predicted
-        heading (the carried RTK heading, else ``H_mag + delta``): 180 deg
-        ambiguity flips are never fused (``rtk_rejected``). The first epoch
-        has nothing to be checked against and is used.
-    rtk_confirm : int
-        With ``rtk_gate``: the ``rtk_confirm``-th consecutive rejected epoch
-        agreeing with the previous rejected ones within ``rtk_gate`` is used and
-        restarts delta from it (``rtk_reacquired``): a wrong first epoch or a
-        real change of the offset is recovered from.
     max_dt : float, optional
-        Longest interval (s) before a sample that is not a clock jump. At a
-        jump the carried RTK heading is dropped and the gate restarts; delta
-        is kept (module docstring: why). Default None: ``timing.JUMP_FACTOR``
-        = 10 median intervals (none with a scalar ``dt``); inf: off.
+        Longest interval (s) before a sample that is not a clock jump. At a jump the carried RTK heading
+        is dropped and the gate restarts; delta is kept (module docstring: why). Default None:
+        ``timing.JUMP_FACTOR`` = 10 median intervals (none with a scalar ``dt``); inf: off.
 
     Returns
     -------
     FusionResult
-        ``heading`` (..., N), the fused heading (rad, [0, 2 pi)); ``delta`` (..., N), the
-        offset estimate ``H_rtk - H_mag`` (rad), NaN before the first valid epoch; ``counts``,
-        per trial: per sample ``rtk`` (output from RTK), ``held`` (outage samples using
-        the held delta), ``uncalibrated`` (before any used RTK epoch); per
-        valid epoch ``rtk_dropped`` (NaN value), ``rtk_rejected`` (outside
-        ``rtk_gate``, not fused), ``rtk_reacquired`` (used after ``rtk_confirm``
-        agreeing rejections); ``clock_jump`` (samples after an interval above
-        ``max_dt``; the same in every trial); ``faults``, the same fault counts as a
-        :class:`navlib.robust.FaultReport` with the jumps flagged per sample.
-        Unpacks as ``heading, delta, counts``.
     """
     hm = nonempty_array(heading_mag, "heading_mag", min_ndim=1)
     alpha = in_range(scalar(alpha, "alpha"), "alpha", 0.0, 1.0, lo_open=True)
-    hr, ok = heading_input(heading_rtk, rtk_valid, hm.shape)
+    instance(rtk, "rtk", RtkHeading, "an RtkHeading")
+    hr, ok = rtk.at(hm.shape)
     T, N = hr.shape
     dts = intervals(dt, N)
     jump = dts > jump_limit(dts, max_dt, "dt")
-    rtk_par = rtk_params(rtk_hold, rtk_gate, rtk_confirm)
-    out, delta, counts = np.empty((T, N)), np.empty((T, N)), np.zeros((T, len(FUSE_COUNT_NAMES)), dtype=np.int64)
-    _fuse_kernel(kernel_array(hm.reshape(T, N)), hr, ok, dts, jump, alpha, rtk_par, out, delta, counts)
-    counts[:, FUSE_COUNT_NAMES.index("clock_jump")] = jump.sum()
+    out, delta, counts = np.empty((T, N)), np.empty((T, N)), np.zeros((T, len(_FAULTS)), dtype=np.int64)
+    _fuse_kernel(kernel_array(hm.reshape(T, N)), hr, ok, dts, jump, alpha, rtk.params(), out, delta, counts)
     lead = hm.shape[:-1]
-    named = {name: counts[:, i].reshape(lead) for i, name in enumerate(FUSE_COUNT_NAMES)}
-    faults = FaultReport({key: named[name] for name, key in FUSE_FAULT_KEYS.items()},
-                         {("clock", "jump"): np.broadcast_to(jump, hm.shape)})
-    return FusionResult(out.reshape(hm.shape), delta.reshape(hm.shape), named, faults)
+    found = {key: counts[:, i].reshape(lead) for i, key in enumerate(_FAULTS)}
+    found["clock", "jump"] = np.full(lead, jump.sum())
+    faults = FaultReport(found, {("clock", "jump"): np.broadcast_to(jump, hm.shape)})
+    return FusionResult(out.reshape(hm.shape), delta.reshape(hm.shape), faults)
 
 
 def rtk_at_imu_rate(time: Times, heading: Angles, valid: ArrayLike, step: int) -> tuple[Array, np.ndarray]:
