@@ -29,23 +29,25 @@ from numba.extending import intrinsic, overload
 
 
 class CompileLog(event.Listener):
-    """When an outermost numba compilation ends: run the cyclic garbage collector and append the
-    compilation's seconds to the file ``path``.
+    """When an outermost numba compilation ends: run the cyclic garbage collector and append a line
+    ``<seconds> <module.function>`` (the compiled function, its callees' compilation included) to ``path``.
 
     Registered only when ``NAVLIB_COMPILE_LOG`` names that file (``tools/reproduce.py`` sets it for its
     notebook kernels): importing navlib installs nothing process-wide otherwise. A compilation leaves tens
     of thousands of objects in reference cycles (typing and LLVM IR objects, llvmlite modules holding
     native LLVM memory) that only the collector frees, and numba's caches then make its full passes rare,
     which raised a cold notebook run's peak memory. Cache loads are not compilations. The log lets
-    ``tools/reproduce.py`` plan a warm run from a cold run's times.
+    ``tools/reproduce.py`` plan a warm run from a cold run's times and list the kernels by compile time.
     """
 
     def __init__(self, path: str):
-        self.path, self.depth, self.start = path, 0, 0.0
+        self.path, self.depth, self.start, self.name = path, 0, 0.0, ""
 
     def on_start(self, ev):
         if self.depth == 0:
             self.start = time.perf_counter()
+            func = getattr(ev.data.get("dispatcher"), "py_func", None)
+            self.name = f"{getattr(func, '__module__', '?')}.{getattr(func, '__qualname__', '?')}".replace(" ", "_")
         self.depth += 1
 
     def on_end(self, ev):
@@ -53,7 +55,7 @@ class CompileLog(event.Listener):
         if self.depth == 0:
             gc.collect()
             with open(self.path, "a") as fh:
-                fh.write(f"{time.perf_counter() - self.start:.3f}\n")
+                fh.write(f"{time.perf_counter() - self.start:.3f} {self.name}\n")
 
 
 if os.environ.get("NAVLIB_COMPILE_LOG"):          # opt-in only
