@@ -15,30 +15,35 @@ results file and figure), and prints one line per notebook and the claims by ver
 ``--check-against MANIFEST`` fails the run unless those files are
 byte-identical to an earlier run's (``make determinism``).
 
-Notebooks run ``--jobs`` at a time (default 2), each in its own kernel, in the order that finishes
-first by the previous run's times in ``build/summary.json`` less their numba compilation (:func:`schedule`,
-:func:`expected_seconds`; the kernels log it to ``build/<stem>.compile.log``); each is reported with
-its wall time and its kernel's peak memory (resident set size, read from /proc while the kernel runs;
-"n/a" where there is none). A notebook that raises is reported and the run goes on with the others; the
-exit status is non-zero if any notebook failed. ``--only`` runs a subset, and
-the report then covers that subset only. Needs no network.
+Notebooks run ``--jobs`` at a time (default 2), each in its own kernel, longest first by the previous
+run's times in ``build/summary.json`` less their numba compilation (:func:`expected_seconds`; the kernels
+log each compilation to ``build/<stem>.compile.log``, see ``navlib._kernels.CompileLog``); each is
+reported with its wall time and its kernel's peak memory (resident set size, read from /proc while the
+kernel runs; "n/a" where there is none). A notebook that raises is reported and the run goes on with the
+others; the exit status is non-zero if any notebook failed. ``--only`` runs a subset, and the report then
+covers that subset only. Needs no network.
 
-Usage: python tools/reproduce.py [--only PATTERN] [--root DIR] [--timeout S] [--jobs N]
+``--profile`` also says where each notebook's time went: numba compilation against the rest, the
+kernels by compile time and the slowest cells (the first is usually the imports). ``--cold`` gives the
+kernels an empty numba cache (``NUMBA_CACHE_DIR``), as on a fresh clone; without it the repository's
+cache is used (a warm rerun).
+
+Usage: python tools/reproduce.py [--only PATTERN] [--root DIR] [--timeout S] [--jobs N] [--profile] [--cold]
 """
 from __future__ import annotations
 
 import argparse
 import fnmatch
 import hashlib
-import heapq
-import itertools
 import json
 import multiprocessing
 import os
 import shutil
 import sys
+import tempfile
 import time
 from concurrent.futures import ProcessPoolExecutor, as_completed
+from datetime import datetime
 from pathlib import Path
 
 # jsonschema (nbformat's validator) imports its optional IRI format checker, rfc3987_syntax, which builds
@@ -92,7 +97,7 @@ def run_notebook(path: Path, build: Path, timeout: int) -> dict:
     def after_cell(**_):                    # the kernel's high-water mark, read while it is alive
         peak["mb"] = kernel_peak_mb(client) or peak["mb"]
 
-    compile_log = build / f"{stem}.compile.log"        # numba compilations' seconds, one line each (navlib._kernels)
+    compile_log = build / f"{stem}.compile.log"        # one line per numba compilation (navlib._kernels.CompileLog)
     compile_log.unlink(missing_ok=True)
     os.environ["NAVLIB_COMPILE_LOG"] = str(compile_log)   # the kernel inherits it
     # The kernel is killed once the last cell is done: every result, figure and log line is on disk by then,
@@ -115,11 +120,43 @@ def run_notebook(path: Path, build: Path, timeout: int) -> dict:
     checks = json.loads(results.read_text())["checks"] if results.is_file() else []
     passed = sum(bool(c.get("passed")) for c in checks)
     figures = sorted(p.relative_to(build).as_posix() for p in (build / stem / "figures").glob("*.png"))
-    compiling = sum(map(float, compile_log.read_text().split())) if compile_log.is_file() else 0.0
+    compilations = read_compile_log(compile_log)
     return {"notebook": stem, "ok": error is None and passed == len(checks), "error": error,
-            "seconds": round(seconds, 1), "compile_seconds": round(compiling, 1), "peak_mb": peak_mb,
-            "checks_passed": passed, "checks_total": len(checks),
-            "checks": checks, "figures": figures}
+            "seconds": round(seconds, 1), "compile_seconds": round(sum(s for s, _ in compilations), 1),
+            "peak_mb": peak_mb, "checks_passed": passed, "checks_total": len(checks),
+            "checks": checks, "figures": figures, "kernels": kernels_by_compile_time(compilations),
+            "cells": cell_seconds(nb)}
+
+
+def read_compile_log(path: Path) -> list[tuple[float, str]]:
+    """``(seconds, function)`` of each outermost numba compilation a kernel logged (none without the file)."""
+    if not path.is_file():
+        return []
+    lines = [line.split(maxsplit=1) for line in path.read_text().splitlines() if line.strip()]
+    return [(float(parts[0]), parts[1] if len(parts) > 1 else "?") for parts in lines]
+
+
+def kernels_by_compile_time(compilations: list[tuple[float, str]]) -> list[tuple[str, float, int]]:
+    """``(function, seconds, compilations)`` per compiled function, longest compile time first."""
+    total: dict[str, list] = {}
+    for seconds, name in compilations:
+        entry = total.setdefault(name, [0.0, 0])
+        entry[0] += seconds
+        entry[1] += 1
+    return sorted(((name, round(s, 3), n) for name, (s, n) in total.items()), key=lambda k: -k[1])
+
+
+def cell_seconds(nb) -> list[tuple[int, float, str]]:
+    """``(cell index, seconds, first source line)`` of each executed code cell, slowest first (nbclient's timing)."""
+    cells = []
+    for index, cell in enumerate(nb.cells):
+        timing = cell.get("metadata", {}).get("execution", {})
+        if cell.cell_type == "code" and {"iopub.execute_input", "shell.execute_reply"} <= set(timing):
+            seconds = (datetime.fromisoformat(timing["shell.execute_reply"])
+                       - datetime.fromisoformat(timing["iopub.execute_input"])).total_seconds()
+            first_line = next((ln for ln in cell.source.splitlines() if ln.strip()), "")
+            cells.append((index, round(seconds, 3), first_line[:70]))
+    return sorted(cells, key=lambda c: -c[1])
 
 
 def expected_seconds(summary: dict, notebooks: list[Path]) -> dict[Path, float]:
@@ -128,24 +165,18 @@ def expected_seconds(summary: dict, notebooks: list[Path]) -> dict[Path, float]:
             for p in notebooks}
 
 
-def makespan(seconds: list[float], jobs: int) -> float:
-    """When the last of ``seconds`` finishes if each starts, in this order, on the first of ``jobs`` free workers."""
-    free = [0.0] * jobs
-    for s in seconds:
-        heapq.heapreplace(free, free[0] + s)
-    return max(free)
+def longest_first(notebooks: list[Path], seconds: dict[Path, float]) -> list[Path]:
+    """``notebooks`` by expected ``seconds``, longest first (ties and unknown ones, at 0 s, in name order)."""
+    return sorted(notebooks, key=lambda p: -seconds[p])
 
 
-def schedule(notebooks: list[Path], seconds: dict[Path, float], jobs: int) -> list[Path]:
-    """The submission order whose makespan is shortest (all orders of up to 8 notebooks are tried).
-
-    Longest first is the fallback and breaks ties; it leaves a core idle at the end whenever the last
-    notebook happens to be long (7 notebooks: 72 s by longest first where 67 s is possible).
-    """
-    longest_first = sorted(notebooks, key=lambda p: -seconds[p])
-    if len(notebooks) > 8 or jobs == 1:
-        return longest_first
-    return list(min(itertools.permutations(longest_first), key=lambda o: makespan([seconds[p] for p in o], jobs)))
+def profile(e: dict, top: int = 5) -> str:
+    """Where a notebook's time went: compilation against the rest, the kernels by compile time, the slowest cells."""
+    lines = [f"{e['notebook']}: {e['seconds']:.1f} s = compile {e['compile_seconds']:.1f} + "
+             f"other {e['seconds'] - e['compile_seconds']:.1f}; peak memory {mb(e['peak_mb'])}"]
+    lines += [f"    compile {s:6.1f} s  {n} signature(s)  {name}" for name, s, n in e["kernels"][:top]]
+    lines += [f"    cell {i:3d} {s:6.1f} s  {source}" for i, s, source in e["cells"][:top]]
+    return "\n".join(lines)
 
 
 def mb(x: float | None) -> str:
@@ -178,6 +209,9 @@ def main(argv=None) -> int:
                     help="notebooks executed at once, each in its own kernel (default: 2, or 1 on one core)")
     ap.add_argument("--check-against", type=Path, metavar="MANIFEST",
                     help="fail unless every results.json and PNG is byte-identical to this earlier manifest")
+    ap.add_argument("--profile", action="store_true",
+                    help="also report each notebook's compile time, kernels by compile time and slowest cells")
+    ap.add_argument("--cold", action="store_true", help="an empty numba cache for the kernels, as on a fresh clone")
     args = ap.parse_args(argv)
 
     root = args.root.resolve()
@@ -202,11 +236,19 @@ def main(argv=None) -> int:
     os.environ["NAVLIB_PROGRESS"] = "0"
     for name in ("NAVLIB_TEACHING", "NAVLIB_FAST", "NAVLIB_BUILD_DIR"):
         os.environ.pop(name, None)
+    if not args.cold:
+        return run_all(args, root, notebooks, build)
+    with tempfile.TemporaryDirectory(prefix="navlib-numba-cache-") as empty_cache:
+        os.environ["NUMBA_CACHE_DIR"] = empty_cache                  # the kernels compile as on a fresh clone
+        return run_all(args, root, notebooks, build)
 
-    # Notebooks are independent (own kernel, own build/<stem>/, own seeds): run --jobs at once, in the order
-    # that finishes first by the last run's times without its numba compilation (cached for this run).
+
+def run_all(args: argparse.Namespace, root: Path, notebooks: list[Path], build: Path) -> int:
+    """Execute ``notebooks``, write build/'s summary and manifest, print the report; the exit status."""
+    # Notebooks are independent (own kernel, own build/<stem>/, own seeds): run --jobs at once, longest first
+    # by the last run's times without its numba compilation (cached for this run).
     last = json.loads((build / "summary.json").read_text()) if (build / "summary.json").is_file() else {}
-    order = schedule(notebooks, expected_seconds(last, notebooks), max(1, args.jobs))
+    order = longest_first(notebooks, expected_seconds(last, notebooks))
     start = time.perf_counter()
     done = {}
     # Workers are reused and forked: they start with nbclient and nbformat already imported (spawned ones
@@ -246,6 +288,8 @@ def main(argv=None) -> int:
             counts = led.counts
             print(f"{led.stem:<{width}}{len(led.rows):>4} claims: " + ", ".join(
                 f"{counts[v]} {v}" for v in ledger.COLUMNS if counts.get(v)) + "".join(f"\n    {p}" for p in led.problems))
+    if args.profile:
+        print("\n" + "\n".join(profile(e) for e in entries))
     print("site: make docs (build/site/index.html)")
     if args.check_against:
         changed = compare_manifest(manifest, args.check_against, [p.stem for p in notebooks])
