@@ -47,7 +47,6 @@ Compiled kernels
     and run unchanged as plain Python with ``NUMBA_DISABLE_JIT=1``.
 """
 import importlib
-import warnings
 
 __version__ = "0.1.0"
 
@@ -56,23 +55,12 @@ _SUBMODULES = ("alignment", "analysis", "atmosphere", "attitude", "calibration",
                "strapdown", "timing", "trajectory", "units")
 __all__ = [*_SUBMODULES, "__version__"]
 
-# The old paper modules, kept one release as deprecated aliases (see CONTRIBUTING.md): ``navlib.ahrs``
-# still works after ``import navlib``, and warns.
-_DEPRECATED = {"northfinding", "gyrobias", "planar", "ahrs", "pedestrian"}
-
 
 def __getattr__(name: str):
     # Submodules load on first use (``from navlib import analysis`` or ``navlib.analysis``): a notebook or tool
-    # pays only for the modules it needs (the whole package, scipy.stats and numba included, takes ~1.3 s).
+    # pays only for the modules it needs.
     if name in _SUBMODULES:
         return importlib.import_module(f"{__name__}.{name}")
-    if name in _DEPRECATED:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", DeprecationWarning)
-            module = importlib.import_module(f"{__name__}.{name}")
-        warnings.warn(f"navlib.{name} is deprecated and will be removed in navlib 0.3; see CONTRIBUTING.md",
-                      DeprecationWarning, stacklevel=2)
-        return module
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
