@@ -16,7 +16,6 @@ from typing import Any
 
 import numpy as np
 
-from ._threads import run_chunks
 from ._typing import ArrayLike, Dcm, Interval, Quat, Times, Vec3Series
 
 
@@ -65,7 +64,7 @@ unit conversions) opt out with ``huge=True`` or check their own limit."""
 
 def as_array(x: ArrayLike, name: str, *, tail: tuple[int, ...] = (), finite: bool = True,
              allow_nan: bool = False, min_ndim: int = 0, shape: tuple[int | None, ...] | None = None,
-             huge: bool = False, of: str = "") -> np.ndarray:
+             huge: bool = False, of: str = "", nonempty: bool = False) -> np.ndarray:
     """Return ``x`` as a float64 array whose trailing shape is ``tail``.
 
     Parameters
@@ -91,6 +90,11 @@ def as_array(x: ArrayLike, name: str, *, tail: tuple[int, ...] = (), finite: boo
         Accept finite values beyond :data:`MAX_MAGNITUDE` (refused otherwise, also with ``finite=False``).
     of : str
         The argument(s) that set the sizes in ``shape``, named in the message (e.g. ``"x"`` for ``P``).
+    nonempty : bool
+        Reject empty arrays (as ``min_ndim > 0`` does), for arguments that must hold at least one value.
+
+    The array's min and max are taken first: within +-MAX_MAGNITUDE they prove every value finite (NaN
+    aside where it is accepted) and not huge, and the element-wise checks that name the fault are skipped.
     """
     arr = real(x, name)
     if tail and arr.shape[arr.ndim - len(tail):] != tail or arr.ndim < len(tail) + min_ndim:
@@ -98,9 +102,9 @@ def as_array(x: ArrayLike, name: str, *, tail: tuple[int, ...] = (), finite: boo
         raise ValueError(f"{name}: expected shape {want}, got {arr.shape}")
     if shape is not None:
         _exact_shape(arr, name, shape, of)
-    if arr.size == 0 and min_ndim > 0:
+    if arr.size == 0 and (nonempty or min_ndim > 0):
         raise ValueError(f"{name}: expected a non-empty array, got shape {arr.shape}")
-    if arr.size > _SCAN_SIZE and _within_limits(arr, ignore_nan=allow_nan or not finite):
+    if _within_limits(arr, ignore_nan=allow_nan or not finite):
         return arr
     if finite:
         bad = np.isinf(arr) if allow_nan else ~np.isfinite(arr)
@@ -112,28 +116,12 @@ def as_array(x: ArrayLike, name: str, *, tail: tuple[int, ...] = (), finite: boo
     return arr
 
 
-_SCAN_SIZE = 4096
-"""Above this many elements :func:`as_array` first takes the array's min and max (NaN ignored), two
-reductions without temporaries: within +-MAX_MAGNITUDE they prove every value not infinite and not huge,
-and the element-wise checks (three passes, two temporaries) are skipped, unless NaN must be refused. On a
-Monte Carlo batch the element-wise checks were a tenth of a notebook's run."""
-
-_THREADED_SCAN = 1 << 20
-"""From this many elements (8 MB) of a C-contiguous array the min and max are taken in chunks on
-:mod:`navlib._threads`' threads (numpy's reductions release the GIL): scanning the three (32, 180000, 3)
-inputs of ``make bench``'s Mahony batch took 15 % of the batch's run on one thread."""
-
-
 def _within_limits(arr: np.ndarray, ignore_nan: bool) -> bool:
-    """True if every value lies within +-MAX_MAGNITUDE; a NaN makes it False unless ``ignore_nan``."""
+    """True if every value lies within +-MAX_MAGNITUDE (two reductions, no temporaries); a NaN makes it
+    False unless ``ignore_nan``. An empty array is within them."""
     lowest, highest = (np.fmin, np.fmax) if ignore_nan else (np.minimum, np.maximum)
-    if arr.size >= _THREADED_SCAN and arr.flags.c_contiguous:
-        flat = arr.reshape(-1)
-        parts = np.array(run_chunks(lambda i, j: (lowest.reduce(flat[i:j]), highest.reduce(flat[i:j])), flat.size))
-        lo, hi = lowest.reduce(parts[:, 0]), highest.reduce(parts[:, 1])
-    else:
-        lo, hi = lowest.reduce(arr, axis=None), highest.reduce(arr, axis=None)
-    return bool(-MAX_MAGNITUDE <= lo and hi <= MAX_MAGNITUDE)
+    return bool(-MAX_MAGNITUDE <= lowest.reduce(arr, axis=None, initial=0.0)
+                and highest.reduce(arr, axis=None, initial=0.0) <= MAX_MAGNITUDE)
 
 
 def _magnitude(arr: np.ndarray, name: str) -> None:
@@ -200,18 +188,19 @@ def euler_angles(hpr: ArrayLike, name: str = "hpr") -> np.ndarray:
     return a
 
 
-def positive(x: ArrayLike, name: str, *, allow_zero: bool = False) -> np.ndarray:
-    """Return ``x`` as a finite float array that is > 0 (or >= 0)."""
-    arr = as_array(x, name)
+def positive(x: ArrayLike, name: str, *, allow_zero: bool = False, nonempty: bool = False) -> np.ndarray:
+    """Return ``x`` as a finite float array that is > 0 (or >= 0); ``nonempty`` as in :func:`as_array`."""
+    arr = as_array(x, name, nonempty=nonempty)
     ok = arr >= 0 if allow_zero else arr > 0
     if not np.all(ok):
         raise ValueError(f"{name}: expected {'non-negative' if allow_zero else 'positive'} values, got {arr.min():g}")
     return arr
 
 
-def latitude(lat: ArrayLike, name: str = "lat", deg: bool = False) -> np.ndarray:
-    """Validate a geodetic latitude and return it in radians."""
-    arr = as_array(lat, name)
+def latitude(lat: ArrayLike, name: str = "lat", deg: bool = False, *, nonempty: bool = False) -> np.ndarray:
+    """Validate a geodetic latitude (rad, or deg with ``deg``) and return it in radians; ``nonempty`` as in
+    :func:`as_array`."""
+    arr = as_array(lat, name, nonempty=nonempty)
     deg = flag(deg, "deg")
     lim = 90.0 if deg else np.pi / 2
     in_range(arr, name, -lim, lim, "deg" if deg else "rad")
@@ -236,28 +225,21 @@ def time_axis(t: Times, name: str = "time", *, increasing: bool = True, min_samp
     return arr
 
 
-# Variants that also reject empty arrays, for modules where every argument is a
-# measurement or parameter that must hold at least one value.
-
-def _nonempty(arr: np.ndarray, name: str) -> np.ndarray:
-    if arr.size == 0:
-        raise ValueError(f"{name}: expected a non-empty array, got shape {arr.shape}")
-    return arr
-
+# Former names, kept until the modules still importing them switch to ``nonempty=True``.
 
 def nonempty_array(x: ArrayLike, name: str, **kwargs: Any) -> np.ndarray:
-    """:func:`as_array` that also rejects empty arrays."""
-    return _nonempty(as_array(x, name, **kwargs), name)
+    """``as_array(x, name, nonempty=True, ...)``."""
+    return as_array(x, name, nonempty=True, **kwargs)
 
 
 def nonempty_positive(x: ArrayLike, name: str, **kwargs: bool) -> np.ndarray:
-    """:func:`positive` that also rejects empty arrays."""
-    return positive(_nonempty(as_array(x, name), name), name, **kwargs)
+    """``positive(x, name, nonempty=True, ...)``."""
+    return positive(x, name, nonempty=True, **kwargs)
 
 
 def nonempty_latitude(x: ArrayLike, name: str = "lat", deg: bool = False) -> np.ndarray:
-    """:func:`latitude` that also rejects empty arrays."""
-    return latitude(_nonempty(as_array(x, name), name), name, deg=deg)
+    """``latitude(x, name, deg, nonempty=True)``."""
+    return latitude(x, name, deg, nonempty=True)
 
 
 ORTHO_TOL = 1e-6
@@ -303,23 +285,17 @@ def _nonzero(norm: np.ndarray, name: str) -> None:
         raise ValueError(f"{name}: expected non-zero quaternions (|q| >= {QUAT_MIN_NORM:g}), got |q| = {norm.min():g}")
 
 
-def time_grid(duration: float, dt: float) -> np.ndarray:
-    """Sample times ``0, dt, ..., n dt`` with ``n = round(duration / dt) >= 1`` (s)."""
-    duration = scalar(duration, "duration", positive=True)
-    dt = scalar(dt, "dt", positive=True)
-    n = int(round(duration / dt))
-    if n < 1:
-        raise ValueError(f"duration: expected at least one sample interval dt={dt}, got {duration}")
-    return dt * np.arange(n + 1)
-
-
 def scalar(x: ArrayLike, name: str, *, positive: bool = False, allow_zero: bool = False, allow_inf: bool = False,
-           huge: bool = False, allow_nan: bool = False) -> float:
+           huge: bool = False, allow_nan: bool = False, within: tuple[float, float] | None = None,
+           open_ends: tuple[bool, bool] = (False, False)) -> float:
     """Return ``x`` as a Python float; optionally > 0 (or >= 0 with ``allow_zero``); inf only if ``allow_inf``.
 
-    ``allow_nan``: NaN is accepted as such (a figure that was not computed).
+    ``allow_nan``: NaN is accepted as such (a figure that was not computed). ``within``: the bounds
+    ``(lo, hi)`` of :func:`in_range`, open at the ends flagged in ``open_ends``.
     """
     arr = as_array(x, name, finite=not allow_inf, allow_nan=allow_nan, huge=huge)
+    if within is not None:
+        in_range(arr, name, *within, lo_open=open_ends[0], hi_open=open_ends[1])
     if arr.ndim != 0:
         raise ValueError(f"{name}: expected a scalar, got shape {arr.shape}")
     value = float(arr)
@@ -330,9 +306,18 @@ def scalar(x: ArrayLike, name: str, *, positive: bool = False, allow_zero: bool 
     return value
 
 
+def numbers(obj: Any, *, positive: tuple[str, ...] = (), non_negative: tuple[str, ...] = (), real: tuple[str, ...] = (),
+            infinite: tuple[str, ...] = ()) -> None:
+    """Check the named attributes of ``obj`` (a model's fields) as scalars, each named in its message: > 0,
+    >= 0 or any real number; those in ``infinite`` may also be inf (a full-scale range without a limit)."""
+    for names, sign in ((non_negative, {"allow_zero": True}), (positive, {"positive": True}), (real, {})):
+        for name in names:
+            scalar(getattr(obj, name), name, allow_inf=name in infinite, **sign)
+
+
 def unit_interval(x: float, name: str) -> float:
     """Return ``x`` as a float in [0, 1]."""
-    return scalar(in_range(as_array(x, name), name, 0.0, 1.0), name)
+    return scalar(x, name, within=(0.0, 1.0))
 
 
 def integer(x: int, name: str, *, minimum: int | None = 1) -> int:
@@ -419,10 +404,19 @@ def broadcast_to(arr: np.ndarray, name: str, shape: tuple[int, ...], of: str = "
                          f"got {np.shape(arr)}") from None
 
 
+ELLIPSOID_FIELDS = ("a", "f", "GM", "omega", "b", "e2", "gravity_constants")
+"""What :func:`ellipsoid` asks of an ellipsoid: the fields and properties of :class:`navlib.earth.Ellipsoid`."""
+
+
 def ellipsoid(x: Any, name: str = "ellipsoid") -> Any:
-    """Return ``x`` if it is a :class:`navlib.earth.Ellipsoid` (e.g. ``earth.WGS84``)."""
-    from .earth import Ellipsoid  # noqa: PLC0415 -- earth imports this module
-    return instance(x, name, Ellipsoid, "a navlib.earth.Ellipsoid (e.g. earth.WGS84)", error=InputTypeError)
+    """Return ``x`` if it is a :class:`navlib.earth.Ellipsoid` (e.g. ``earth.WGS84``).
+
+    Recognised by :data:`ELLIPSOID_FIELDS`, not by class: earth imports this module, so this one does not
+    import earth.
+    """
+    if not all(hasattr(x, field) for field in ELLIPSOID_FIELDS):
+        raise InputTypeError(f"{name}: expected a navlib.earth.Ellipsoid (e.g. earth.WGS84), got {type(x).__name__}")
+    return x
 
 
 def range_limit(x: float | None, name: str) -> float:
@@ -440,8 +434,8 @@ attitude updates and linearised transitions are meaningless beyond it (2000 deg/
 
 def small_turns(w: np.ndarray, dts: np.ndarray, name: str = "dt") -> None:
     """Refuse intervals ``dts`` (N,) over which the gyro ``w`` (..., N, 3) turns more than :data:`MAX_TURN_PER_SAMPLE`."""
-    if w.size > _SCAN_SIZE and dts.size:            # a bound from two reductions settles the common case
-        peak = max(-np.fmin.reduce(w, axis=None), np.fmax.reduce(w, axis=None))
+    if dts.size:            # a bound from two reductions settles the common case
+        peak = max(-np.fmin.reduce(w, axis=None, initial=0.0), np.fmax.reduce(w, axis=None, initial=0.0))
         if np.sqrt(3.0) * peak * dts.max() <= MAX_TURN_PER_SAMPLE:
             return
     refuse_turn(float(np.nanmax(np.linalg.norm(w, axis=-1) * dts, initial=0.0)), name)

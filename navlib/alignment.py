@@ -27,18 +27,7 @@ import numpy as np
 
 from . import _kernels, attitude, earth
 from ._typing import Angles, Array, ArrayLike, Dcm, Vec3, Vec3Series
-from ._validate import (
-    as_array,
-    as_dcm,
-    broadcast,
-    flag,
-    in_range,
-    kernel_array,
-    nonempty_array,
-    nonempty_latitude,
-    pitch_roll,
-    scalar,
-)
+from ._validate import as_array, as_dcm, broadcast, flag, imu_samples, kernel_array, latitude, pitch_roll, scalar
 from .imu import ImuSamples, unpack
 from .robust import FaultReport, longest_repeat
 
@@ -66,7 +55,11 @@ def level(f_b: Vec3) -> tuple[Array, Array]:
     pitch, roll : ndarray, shape (...)
         Pitch in [-pi/2, pi/2], roll in (-pi, pi] (rad).
     """
-    f = _nonzero(as_array(f_b, "f_b", tail=(3,)), "f_b")
+    return _level(_nonzero(as_array(f_b, "f_b", tail=(3,)), "f_b"))
+
+
+def _level(f: np.ndarray) -> tuple[Array, Array]:
+    """:func:`level` of a checked specific force."""
     return np.arctan2(f[..., 1], np.hypot(f[..., 0], f[..., 2])), np.arctan2(-f[..., 0], f[..., 2])
 
 
@@ -84,7 +77,11 @@ def magnetic_heading(m_b: Vec3, pitch: Angles, roll: Angles, declination: float 
     """
     m = _nonzero(as_array(m_b, "m_b", tail=(3,)), "m_b")
     p, r = pitch_roll(pitch, roll)
-    D = scalar(declination, "declination")
+    return _magnetic_heading(m, p, r, scalar(declination, "declination"))
+
+
+def _magnetic_heading(m: np.ndarray, p: np.ndarray, r: np.ndarray, D: float) -> Array:
+    """:func:`magnetic_heading` of checked arguments."""
     shape = np.broadcast_shapes(m.shape[:-1], p.shape, r.shape)
     m = np.broadcast_to(m, shape + (3,)).reshape(-1, 3)
     p, r = (kernel_array(np.broadcast_to(x, shape).reshape(-1)) for x in (p, r))
@@ -113,8 +110,8 @@ def tilt_heading(f_b: Vec3, m_b: Vec3, declination: float = 0.0) -> Array:
                                     m / np.linalg.norm(m, axis=-1, keepdims=True)), axis=-1)
     if np.any(cross < 1e-6):
         raise ValueError("m_b: magnetometer parallel to gravity; heading is undefined")
-    pitch, roll = level(f)
-    heading = magnetic_heading(m, pitch, roll, declination)
+    pitch, roll = _level(f)
+    heading = _magnetic_heading(m, pitch, roll, scalar(declination, "declination"))
     return np.stack(np.broadcast_arrays(heading, pitch, roll), -1)
 
 
@@ -134,7 +131,7 @@ horizontal Earth rate (< 0.26 deg/h) no longer defines north usefully."""
 
 def gyrocompass_latitude(lat: ArrayLike, deg: bool = False) -> Array:
     """Latitude in rad, rejecting |lat| > 90 deg and near-polar |lat| > MAX_LAT_DEG."""
-    lat = nonempty_latitude(lat, "lat", deg=deg)
+    lat = latitude(lat, "lat", deg=deg, nonempty=True)
     if np.any(np.abs(lat) > np.deg2rad(MAX_LAT_DEG)):
         raise ValueError(f"lat: expected |lat| <= {MAX_LAT_DEG} deg for north finding (cos(lat) -> 0 near "
                          f"the poles), got {np.rad2deg(np.abs(lat).max()):.4g} deg")
@@ -148,8 +145,6 @@ OK, TOO_FEW, SATURATED, MOVING, STUCK = 0, 1, 2, 3, 4
 @dataclass(frozen=True)
 class StaticWindow:
     """Averages of one static window and what was left out (shapes (..., 3) and (...)).
-
-    Unpacks as ``w_mean, f_mean = static_means(...)``.
 
     Attributes
     ----------
@@ -194,9 +189,6 @@ class StaticWindow:
     status: np.ndarray
     n_stuck_gyro: np.ndarray | int = 0
     n_stuck_accel: np.ndarray | int = 0
-
-    def __iter__(self):
-        return iter((self.w_mean, self.f_mean))
 
     @property
     def ok(self) -> np.ndarray:
@@ -314,7 +306,6 @@ def static_means(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None,
     Returns
     -------
     StaticWindow
-        Unpacks as ``(w_mean, f_mean)``, shapes (..., 3).
 
     Raises
     ------
@@ -330,21 +321,18 @@ def static_means(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None,
         raise ValueError("f_b: required (or pass an ImuSamples as w_ib_b)")
     if lat is None:
         raise ValueError("lat: required")
-    w = nonempty_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
-    f = nonempty_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=True)
-    if w.shape != f.shape:
-        raise ValueError(f"f_b: expected the shape of w_ib_b {w.shape}, got {f.shape}")
+    w, f = imu_samples(w_ib_b, f_b)
     n = w.shape[-2]
     if n < 2:
         raise ValueError(f"w_ib_b: expected a static window of at least 2 samples, got {n}")
     tol = scalar(accel_tol, "accel_tol", positive=True)
-    frac = scalar(in_range(nonempty_array(min_fraction, "min_fraction"), "min_fraction", 0.0, 1.0, lo_open=True), "min_fraction")
+    frac = scalar(min_fraction, "min_fraction", within=(0.0, 1.0), open_ends=(True, False))
     k_out = None if outlier_k is None else scalar(outlier_k, "outlier_k", positive=True)
-    stuck = None if stuck_fraction is None else scalar(in_range(nonempty_array(stuck_fraction, "stuck_fraction"),
-                                                               "stuck_fraction", 0.0, 1.0, lo_open=True), "stuck_fraction")
+    stuck = None if stuck_fraction is None else scalar(stuck_fraction, "stuck_fraction", within=(0.0, 1.0),
+                                                       open_ends=(True, False))
     fs_g = np.inf if full_scale_gyro is None else scalar(full_scale_gyro, "full_scale_gyro", positive=True)
     fs_a = np.inf if full_scale_accel is None else scalar(full_scale_accel, "full_scale_accel", positive=True)
-    g = earth.gravity(gyrocompass_latitude(lat), nonempty_array(h, "h"))
+    g = earth.gravity(gyrocompass_latitude(lat), as_array(h, "h", nonempty=True))
     lead = w.shape[:-2]
     if np.ndim(g) > len(lead) or any(a not in (1, b) for a, b in zip(np.shape(g)[::-1], lead[::-1], strict=False)):
         raise ValueError(f"lat, h: expected one value or one per trial (trial shape {lead}), got shape {np.shape(g)}")
@@ -425,8 +413,8 @@ def triad(f_b: Vec3, w_ib_b: Vec3, lat: ArrayLike, orthonormal: bool = True) -> 
     -------
     C_bn : ndarray, shape (..., 3, 3)
     """
-    f, w = broadcast(nonempty_array(f_b, "f_b", tail=(3,)), nonempty_array(w_ib_b, "w_ib_b", tail=(3,)), name="w_ib_b",
-                     of="f_b, w_ib_b")
+    f, w = broadcast(as_array(f_b, "f_b", tail=(3,), nonempty=True), as_array(w_ib_b, "w_ib_b", tail=(3,), nonempty=True),
+                     name="w_ib_b", of="f_b, w_ib_b")
     lat = gyrocompass_latitude(lat)
     g_n = np.stack(np.broadcast_arrays(0.0, 0.0, -earth.gravity(lat)), -1)
     body = _reference_triad(-f, w)                    # columns: -f, -f x w, (-f x w) x (-f)
@@ -443,7 +431,7 @@ def triad_heading(C_bn: Dcm) -> Array:
     :func:`navlib.attitude.dcm_to_euler` it accepts Eq. (2)'s raw,
     slightly non-orthonormal product. Shape (..., 3, 3) -> (...).
     """
-    C = nonempty_array(C_bn, "C_bn", tail=(3, 3))
+    C = as_array(C_bn, "C_bn", tail=(3, 3), nonempty=True)
     return attitude.wrap_2pi(np.arctan2(C[..., 0, 1], C[..., 1, 1]))
 
 def four_position_heading(w_y: ArrayLike) -> Array:
@@ -463,7 +451,7 @@ def four_position_heading(w_y: ArrayLike) -> Array:
     ndarray, shape (...)
         Heading of position 0 (rad, [0, 2 pi)).
     """
-    w = nonempty_array(w_y, "w_y", tail=(4,))
+    w = as_array(w_y, "w_y", tail=(4,), nonempty=True)
     return attitude.wrap_2pi(np.arctan2(w[..., 3] - w[..., 1], w[..., 0] - w[..., 2]))
 
 

@@ -55,7 +55,7 @@ from numba import njit
 
 from ._kernels import fma
 from ._typing import Array, ArrayLike
-from ._validate import broadcast, choice, flag, in_range, nonempty_array, nonempty_latitude, scalar
+from ._validate import as_array, broadcast, choice, flag, in_range, latitude, scalar
 from ._validate import ellipsoid as ellipsoid_
 from .earth import WGS84, Ellipsoid, radii
 
@@ -63,34 +63,20 @@ __all__ = ["zone", "central_meridian", "geodetic2gk", "gk2geodetic", "convergenc
            "meridian_arc", "geodetic2ecef", "ecef2geodetic", "geodetic2enu", "enu2geodetic", "geodetic2ned", "ned2geodetic",
            "local_scales"]
 
-_MOVED = {name: "navlib.papers.gauss_kruger_ekf." + name      # paper 002's own equations, now in its companion
-          for name in ("printed_zone_number", "printed_meridian_radius", "paper_radii", "paper_series")}
-
-
-def __getattr__(name: str):
-    """Name the new home of the paper functions moved out (core may not import a companion, so no aliases)."""
-    if name in _MOVED:
-        raise AttributeError(f"geodesy.{name} moved to {_MOVED[name]}")
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
 ZONE_WIDTHS = (3, 6)
 _MAX_OFFSET_DEG = 60.0          # hard limit from the central meridian (series valid to ~ 3900 km at 35° N)
 _PREFIX_UNIT = 1e6              # zone number times 1e6 m prefixed to the easting
+_K0_RANGE = (0.5, 1.5)          # accepted central-meridian scales k0 (GK 1, UTM 0.9996)
 
 
 # --------------------------------------------------------------------------
 # Validation (every public function: wrong types, NaN/inf, empty, out of range -> error naming the argument)
 # --------------------------------------------------------------------------
 
-def _ell(ellipsoid) -> Ellipsoid:
-    return ellipsoid_(ellipsoid)
-
-
 def _max_offset(max_offset_deg):
     if max_offset_deg is None:
         return None
-    return scalar(in_range(nonempty_array(max_offset_deg, "max_offset_deg"), "max_offset_deg", 0.0, _MAX_OFFSET_DEG,
-                          lo_open=True), "max_offset_deg")
+    return scalar(max_offset_deg, "max_offset_deg", within=(0.0, _MAX_OFFSET_DEG), open_ends=(True, False))
 
 
 # --------------------------------------------------------------------------
@@ -103,7 +89,7 @@ def _width(width) -> int:
 
 
 def _lon_deg(lon, deg: bool, name: str = "lon") -> np.ndarray:
-    arr = nonempty_array(lon, name)
+    arr = as_array(lon, name, nonempty=True)
     return arr if flag(deg, "deg") else np.rad2deg(arr)
 
 
@@ -125,14 +111,15 @@ def zone(lon: ArrayLike, width: int = 3, deg: bool = False) -> np.ndarray:
     -------
     ndarray of int, shape (...)
     """
-    w = _width(width)
-    L = np.mod(_lon_deg(lon, deg), 360.0)
+    return _zone(_lon_deg(lon, deg), _width(width))
+
+
+def _zone(lon_deg, w: int) -> np.ndarray:
+    """:func:`zone` of checked longitudes (deg) and width."""
+    L = np.mod(lon_deg, 360.0)
     n = np.floor((L + 1.5) / 3.0) if w == 3 else np.floor(L / 6.0) + 1
     n = n.astype(int)
     return np.where(n == 0, 360 // w, np.where(n > 360 // w, n - 360 // w, n))
-
-
-_zone_number = zone          # for functions whose ``zone`` argument shadows the function
 
 
 def central_meridian(zone_number: ArrayLike, width: int = 3, deg: bool = False) -> np.ndarray:
@@ -150,22 +137,26 @@ def central_meridian(zone_number: ArrayLike, width: int = 3, deg: bool = False) 
 
 
 def _central_meridian(zone_number, w: int, deg: bool, name: str):
-    n = nonempty_array(zone_number, name)
+    n = as_array(zone_number, name, nonempty=True)
     if np.any(n != np.round(n)):
         raise ValueError(f"{name}: expected integer zone numbers")
     in_range(n, name, 1, 360 // w)
-    L0 = w * n if w == 3 else 6 * n - 3
-    L0 = np.where(L0 > 180, L0 - 360, L0)
+    L0 = _meridian(n, w)
     return L0 if flag(deg, "deg") else np.deg2rad(L0)
 
 
-def _resolve_lon0(lon_deg, zone_number, lon0, width, deg, max_offset_deg):
-    """Central meridian (deg) for every point and the longitude offset l (deg)."""
-    w = _width(width)
+def _meridian(n: np.ndarray, w: int) -> np.ndarray:
+    """Central meridians (deg, in (-180, 180]) of checked zone numbers ``n`` (float) of width ``w``."""
+    L0 = w * n if w == 3 else 6 * n - 3
+    return np.where(L0 > 180, L0 - 360, L0)
+
+
+def _resolve_lon0(lon_deg, zone_number, lon0, w, deg, max_offset_deg):
+    """Central meridian (deg) for every point and the longitude offset l (deg); ``w`` the checked zone width."""
     if lon0 is not None and zone_number is not None:
         raise ValueError("lon0, zone: give at most one of them")
     if lon0 is None and zone_number is None:
-        L0 = central_meridian(_zone_number(lon_deg, w, deg=True), w, deg=True)
+        L0 = _meridian(_zone(lon_deg, w).astype(float), w)
         limit = np.inf
     else:
         L0 = (_central_meridian(zone_number, w, True, "zone") if lon0 is None else _lon_deg(lon0, deg, "lon0"))
@@ -431,10 +422,10 @@ def _inverse(xi, eta, e, beta):
     return np.arctan(_geodetic_tan(taup, e)), np.arctan2(sinh_etap, cos_xip)
 
 
-def _validate_lat_lon(lat, lon, deg):
-    lat_rad = nonempty_latitude(lat, "lat", deg=deg)
-    lon_deg = _lon_deg(lon, deg)
-    return broadcast(lat_rad, lon_deg, name="lat, lon")
+def _validate_lat_lon(lat, lon, deg, names=("lat", "lon")):
+    lat_rad = latitude(lat, names[0], deg=deg, nonempty=True)
+    lon_deg = _lon_deg(lon, deg, names[1])
+    return broadcast(lat_rad, lon_deg, name=", ".join(names))
 
 
 def geodetic2gk(lat: ArrayLike, lon: ArrayLike, *, zone: ArrayLike | None = None, lon0: ArrayLike | None = None,
@@ -474,17 +465,18 @@ def geodetic2gk(lat: ArrayLike, lon: ArrayLike, *, zone: ArrayLike | None = None
     x, y : ndarray, shape (...)
         Northing x and easting y (m), the paper's order.
     """
-    _ell(ellipsoid)
+    ellipsoid_(ellipsoid)
     lat_rad, lon_deg = _validate_lat_lon(lat, lon, deg)
-    k0 = scalar(in_range(nonempty_array(k0, "k0"), "k0", 0.5, 1.5), "k0")
+    k0 = scalar(k0, "k0", within=_K0_RANGE)
     fe = scalar(false_easting, "false_easting")
     fn = scalar(false_northing, "false_northing")
-    L0, l_deg = _resolve_lon0(lon_deg, zone, lon0, width, deg, max_offset_deg)
+    w = _width(width)
+    L0, l_deg = _resolve_lon0(lon_deg, zone, lon0, w, deg, max_offset_deg)
     x, y = _forward(lat_rad, l_deg, ellipsoid, k0, fn, fe)
     if flag(zone_prefix, "zone_prefix"):
         if not (y.min(initial=0.0) >= 0 and y.max(initial=0.0) < _PREFIX_UNIT):
             raise ValueError("false_easting: zone_prefix needs eastings in [0, 1e6) m; use false_easting=500e3")
-        y = y + _PREFIX_UNIT * _zone_number(L0, width, deg=True)
+        y = y + _PREFIX_UNIT * _zone(L0, w)
     return x, y
 
 
@@ -509,10 +501,10 @@ def gk2geodetic(x: ArrayLike, y: ArrayLike, *, zone: ArrayLike | None = None, lo
     lat, lon : ndarray, shape (...)
         rad, or deg with ``deg=True``; lon in (-180°, 180°].
     """
-    _ell(ellipsoid)
-    x = nonempty_array(x, "x")
-    y = nonempty_array(y, "y")
-    k0 = scalar(in_range(nonempty_array(k0, "k0"), "k0", 0.5, 1.5), "k0")
+    ellipsoid_(ellipsoid)
+    x = as_array(x, "x", nonempty=True)
+    y = as_array(y, "y", nonempty=True)
+    k0 = scalar(k0, "k0", within=_K0_RANGE)
     fe = scalar(false_easting, "false_easting")
     fn = scalar(false_northing, "false_northing")
     w = _width(width)
@@ -539,9 +531,9 @@ def gk2geodetic(x: ArrayLike, y: ArrayLike, *, zone: ArrayLike | None = None, lo
 
 
 def _factors(lat, lon, zone, lon0, width, ellipsoid, deg, max_offset_deg):
-    _ell(ellipsoid)
+    ellipsoid_(ellipsoid)
     lat_rad, lon_deg = _validate_lat_lon(lat, lon, deg)
-    _, l_deg = _resolve_lon0(lon_deg, zone, lon0, width, deg, max_offset_deg)
+    _, l_deg = _resolve_lon0(lon_deg, zone, lon0, _width(width), deg, max_offset_deg)
     return _forward_factors(lat_rad, l_deg, ellipsoid)
 
 
@@ -573,7 +565,7 @@ def scale_factor(lat: ArrayLike, lon: ArrayLike, *, zone: ArrayLike | None = Non
 
     Parameters are those of :func:`geodetic2gk`; returns shape (...).
     """
-    k0 = scalar(in_range(nonempty_array(k0, "k0"), "k0", 0.5, 1.5), "k0")
+    k0 = scalar(k0, "k0", within=_K0_RANGE)
     _, k = _factors(lat, lon, zone, lon0, width, ellipsoid, deg, max_offset_deg)
     return k0 * k
 
@@ -592,8 +584,8 @@ def meridian_arc(lat: ArrayLike, ellipsoid: Ellipsoid = WGS84, deg: bool = False
     -------
     S : ndarray, shape (...)
     """
-    _ell(ellipsoid)
-    lat = nonempty_latitude(lat, "lat", deg=deg)
+    ellipsoid_(ellipsoid)
+    lat = latitude(lat, "lat", deg=deg, nonempty=True)
     return _forward(lat, np.zeros_like(lat), ellipsoid)[0]
 
 
@@ -632,13 +624,13 @@ def local_scales(lat: ArrayLike, lon: ArrayLike, lon0: ArrayLike, ellipsoid: Ell
     angle : ndarray, shape (...)
         Angle between the images of the meridian and the parallel (rad; pi/2 if conformal).
     """
-    _ell(ellipsoid)
+    ellipsoid_(ellipsoid)
     if project is None:
         project = _gk_project
     elif not callable(project):
         raise TypeError(f"project: expected a callable (lat, lon, lon0, ellipsoid) -> (x, y), "
                         f"got {type(project).__name__}")
-    step = scalar(in_range(nonempty_array(step, "step"), "step", 0.0, 1e-2, lo_open=True), "step")
+    step = scalar(step, "step", within=(0.0, 1e-2), open_ends=(True, False))
     lat_r, lon_d = _validate_lat_lon(lat, lon, deg)
     lon0_d = _lon_deg(lon0, deg, "lon0")
     lon_r, lon0_r = np.deg2rad(lon_d), np.deg2rad(lon0_d)
@@ -666,11 +658,20 @@ def geodetic2ecef(lat: ArrayLike, lon: ArrayLike, h: ArrayLike, ellipsoid: Ellip
 
     ``ellipsoid``: default WGS84; pass ``earth.CGCS2000`` for China's national grid.
     """
-    _ell(ellipsoid)
-    lat, lon_deg = _validate_lat_lon(lat, lon, deg)
-    lon = np.deg2rad(lon_deg)
-    h = nonempty_array(h, "h")
-    broadcast(h, lat, name="h", of="h and lat, lon")
+    ellipsoid_(ellipsoid)
+    return _ecef(*_geodetic(lat, lon, h, deg), ellipsoid)
+
+
+def _geodetic(lat, lon, h, deg, names=("lat", "lon", "h")):
+    """Latitude (rad), longitude (rad) and height (m) of geodetic points, each checked under its name."""
+    lat_rad, lon_deg = _validate_lat_lon(lat, lon, deg, names[:2])
+    h = as_array(h, names[2], nonempty=True)
+    broadcast(h, lat_rad, name=names[2], of=f"{names[2]} and {names[0]}, {names[1]}")
+    return lat_rad, np.deg2rad(lon_deg), h
+
+
+def _ecef(lat, lon, h, ellipsoid):
+    """:func:`geodetic2ecef` of checked points (rad, rad, m)."""
     R_N = ellipsoid.a / np.sqrt(1 - ellipsoid.e2 * np.sin(lat) ** 2)
     r = (R_N + h) * np.cos(lat)
     return r * np.cos(lon), r * np.sin(lon), (R_N * (1 - ellipsoid.e2) + h) * np.sin(lat)
@@ -684,8 +685,13 @@ def ecef2geodetic(x: ArrayLike, y: ArrayLike, z: ArrayLike, ellipsoid: Ellipsoid
     rad for points within 100 km of the surface). ``ellipsoid``: default WGS84;
     pass ``earth.CGCS2000`` for China's national grid.
     """
-    _ell(ellipsoid)
-    x, y, z = broadcast(nonempty_array(x, "x"), nonempty_array(y, "y"), nonempty_array(z, "z"), name="x, y, z")
+    ellipsoid_(ellipsoid)
+    x, y, z = broadcast(*(as_array(v, k, nonempty=True) for v, k in ((x, "x"), (y, "y"), (z, "z"))), name="x, y, z")
+    return _from_ecef(x, y, z, ellipsoid, deg)
+
+
+def _from_ecef(x, y, z, ellipsoid, deg):
+    """:func:`ecef2geodetic` of checked coordinates (m) of one shape."""
     a, b, e2 = ellipsoid.a, ellipsoid.b, ellipsoid.e2
     ep2 = e2 / (1 - e2)
     p = np.hypot(x, y)
@@ -702,11 +708,7 @@ def ecef2geodetic(x: ArrayLike, y: ArrayLike, z: ArrayLike, ellipsoid: Ellipsoid
     return (np.rad2deg(lat), np.rad2deg(lon), h) if flag(deg, "deg") else (lat, lon, h)
 
 
-def _validate_origin(lat0, lon0, h0, deg):
-    """lat0 (rad), lon0 (rad), h0 (m) of a local frame, each checked under its own name."""
-    return nonempty_latitude(lat0, "lat0", deg=deg), np.deg2rad(_lon_deg(lon0, deg, "lon0")), nonempty_array(h0, "h0")
-
-
+_ORIGIN = ("lat0", "lon0", "h0")
 def _enu_rotation(lat0, lon0):
     sl, cl, so, co = np.sin(lat0), np.cos(lat0), np.sin(lon0), np.cos(lon0)
     # rows: east, north, up written in ECEF
@@ -723,11 +725,10 @@ def geodetic2enu(lat: ArrayLike, lon: ArrayLike, h: ArrayLike, lat0: ArrayLike, 
     e, n, u of shape (...). ``ellipsoid``: default WGS84; pass ``earth.CGCS2000``
     for China's national grid.
     """
-    _ell(ellipsoid)
-    lat0_r, lon0_r, _ = _validate_origin(lat0, lon0, h0, deg)
-    p = np.stack(geodetic2ecef(lat, lon, h, ellipsoid, deg), -1)
-    p0 = np.stack(geodetic2ecef(lat0, lon0, h0, ellipsoid, deg), -1)
-    lat0, lon0 = lat0_r, lon0_r
+    ellipsoid_(ellipsoid)
+    lat0, lon0, h0 = _geodetic(lat0, lon0, h0, deg, _ORIGIN)
+    p = np.stack(_ecef(*_geodetic(lat, lon, h, deg), ellipsoid), -1)
+    p0 = np.stack(_ecef(lat0, lon0, h0, ellipsoid), -1)
     enu = np.einsum("...ij,...j->...i", _enu_rotation(lat0, lon0), p - p0)
     return enu[..., 0], enu[..., 1], enu[..., 2]
 
@@ -735,13 +736,19 @@ def geodetic2enu(lat: ArrayLike, lon: ArrayLike, h: ArrayLike, lat0: ArrayLike, 
 def enu2geodetic(e: ArrayLike, n: ArrayLike, u: ArrayLike, lat0: ArrayLike, lon0: ArrayLike, h0: ArrayLike,
                  ellipsoid: Ellipsoid = WGS84, deg: bool = False) -> tuple[Array, Array, Array]:
     """Inverse of :func:`geodetic2enu`: geodetic lat, lon (rad or deg), h (m) of local ENU points."""
-    _ell(ellipsoid)
-    enu = np.stack(broadcast(nonempty_array(e, "e"), nonempty_array(n, "n"), nonempty_array(u, "u"), name="e, n, u"), -1)
-    lat0_r, lon0_r, _ = _validate_origin(lat0, lon0, h0, deg)
-    p0 = np.stack(geodetic2ecef(lat0, lon0, h0, ellipsoid, deg), -1)
-    lat0, lon0 = lat0_r, lon0_r
+    return _local2geodetic((e, n, u), ("e", "n", "u"), 1.0, (lat0, lon0, h0), ellipsoid, deg)
+
+
+def _local2geodetic(local, names, up, origin, ellipsoid, deg):
+    """Geodetic points of local coordinates ``local`` (east, north, up or down: ``up`` = 1.0 or -1.0)
+    about ``origin`` (lat0, lon0, h0), each argument checked under its name."""
+    ellipsoid_(ellipsoid)
+    e, n, v = broadcast(*(as_array(x, k, nonempty=True) for x, k in zip(local, names, strict=True)), name=", ".join(names))
+    enu = np.stack([e, n, v if up == 1.0 else -v], -1)
+    lat0, lon0, h0 = _geodetic(*origin, deg, _ORIGIN)
+    p0 = np.stack(_ecef(lat0, lon0, h0, ellipsoid), -1)
     p = p0 + np.einsum("...ji,...j->...i", _enu_rotation(lat0, lon0), enu)
-    return ecef2geodetic(p[..., 0], p[..., 1], p[..., 2], ellipsoid, deg)
+    return _from_ecef(p[..., 0], p[..., 1], p[..., 2], ellipsoid, deg)
 
 
 def geodetic2ned(lat: ArrayLike, lon: ArrayLike, h: ArrayLike, lat0: ArrayLike, lon0: ArrayLike, h0: ArrayLike,
@@ -754,5 +761,5 @@ def geodetic2ned(lat: ArrayLike, lon: ArrayLike, h: ArrayLike, lat0: ArrayLike, 
 def ned2geodetic(n: ArrayLike, e: ArrayLike, d: ArrayLike, lat0: ArrayLike, lon0: ArrayLike, h0: ArrayLike,
                  ellipsoid: Ellipsoid = WGS84, deg: bool = False) -> tuple[Array, Array, Array]:
     """Inverse of :func:`geodetic2ned`: geodetic lat, lon (rad or deg), h (m) of local NED points."""
-    return enu2geodetic(e, n, -nonempty_array(d, "d"), lat0, lon0, h0, ellipsoid, deg)
+    return _local2geodetic((e, n, d), ("e", "n", "d"), -1.0, (lat0, lon0, h0), ellipsoid, deg)
 

@@ -19,7 +19,7 @@ from numba import njit
 from . import attitude, earth
 from ._kernels import radii_mn
 from ._typing import Vec3
-from ._validate import as_array, as_quat, in_range, instance, kernel_array, latitude, scalar, time_axis, time_grid
+from ._validate import as_array, as_quat, in_range, instance, kernel_array, latitude, numbers, scalar, time_axis
 from ._validate import ellipsoid as ellipsoid_
 from .robust import FaultReport
 
@@ -104,6 +104,16 @@ def _positions(lla0, vel, dt, a, e2):
     return lla
 
 
+def _time_grid(duration: float, dt: float) -> np.ndarray:
+    """Sample times ``0, dt, ..., n dt`` with ``n = round(duration / dt) >= 1`` (s)."""
+    duration = scalar(duration, "duration", positive=True)
+    dt = scalar(dt, "dt", positive=True)
+    n = int(round(duration / dt))
+    if n < 1:
+        raise ValueError(f"duration: expected at least one sample interval dt={dt}, got {duration}")
+    return dt * np.arange(n + 1)
+
+
 def _lla(lla):
     lla = as_array(lla, "lla0", shape=(3,))
     latitude(lla[0], "lla0[0] (lat)")
@@ -131,6 +141,12 @@ def from_profiles(time, lla0, hpr, vel_n, ellipsoid: earth.Ellipsoid = earth.WGS
     vel = as_array(vel_n, "vel_n", tail=(3,))
     if hpr.shape != (t.size, 3) or vel.shape != (t.size, 3):
         raise ValueError(f"hpr, vel_n: expected shape ({t.size}, 3), got {hpr.shape} and {vel.shape}")
+    return _from_profiles(t, lla0, hpr, vel, ellipsoid)
+
+
+def _from_profiles(t, lla0, hpr, vel, ellipsoid) -> Trajectory:
+    """:func:`from_profiles` on a uniform grid ``t`` and profiles (N, 3) built or checked by the caller;
+    ``lla0`` and ``ellipsoid`` are the user's, checked here."""
     ellipsoid_(ellipsoid)
     lla = _positions(_lla(lla0), kernel_array(vel), t[1] - t[0], ellipsoid.a, ellipsoid.e2)
     return Trajectory(t, lla, vel, attitude.euler_to_quat(hpr))
@@ -138,7 +154,7 @@ def from_profiles(time, lla0, hpr, vel_n, ellipsoid: earth.Ellipsoid = earth.WGS
 
 def static(duration: float, dt: float, lla0, hpr) -> Trajectory:
     """A stationary IMU at ``lla0`` with constant attitude ``hpr`` (rad)."""
-    t = time_grid(duration, dt)
+    t = _time_grid(duration, dt)
     lla = np.broadcast_to(_lla(lla0), (t.size, 3)).copy()
     q = np.broadcast_to(attitude.euler_to_quat(as_array(hpr, "hpr", shape=(3,))), (t.size, 4)).copy()
     return Trajectory(t, lla, np.zeros((t.size, 3)), q)
@@ -173,7 +189,7 @@ def reciprocating_rotation(duration: float, dt: float, lla0, hpr0, axis_b, ampli
     rotation_time : float
         Duration of each rotation (s), less than ``period``.
     """
-    t = time_grid(duration, dt)
+    t = _time_grid(duration, dt)
     u = as_array(axis_b, "axis_b", shape=(3,))
     if abs(np.linalg.norm(u) - 1) > 1e-9:
         raise ValueError(f"axis_b: expected a unit vector, got norm {np.linalg.norm(u):.6g}")
@@ -186,9 +202,7 @@ def reciprocating_rotation(duration: float, dt: float, lla0, hpr0, axis_b, ampli
     s = smooth_ramp((t - k * period - (period - rotation_time)) / rotation_time)
     start = np.where(k % 2 == 0, 0.0, 1.0)
     alpha = amplitude * (start + (1 - 2 * start) * s)
-    hpr0 = as_array(hpr0, "hpr0", shape=(3,))
-    in_range(hpr0[..., 1], "hpr0[1] (pitch)", -np.pi / 2, np.pi / 2, "rad")
-    q0 = attitude.euler_to_quat(hpr0)
+    q0 = attitude.euler_to_quat(as_array(hpr0, "hpr0", shape=(3,)))
     q = attitude.quat_mult(q0, attitude.rotvec_to_quat(alpha[:, None] * u))
     lla = np.broadcast_to(_lla(lla0), (t.size, 3)).copy()
     return Trajectory(t, lla, np.zeros((t.size, 3)), attitude.quat_normalize(q))
@@ -226,10 +240,9 @@ class Segment:
     roll: float | None = None
 
     def __post_init__(self):
-        scalar(self.duration, "duration", positive=True)
+        numbers(self, positive=("duration",), real=("turn",))
         if self.speed is not None:
             scalar(self.speed, "speed", allow_zero=True)
-        scalar(self.turn, "turn")
         if self.pitch is not None:
             in_range(scalar(self.pitch, "pitch"), "pitch", -np.pi / 2, np.pi / 2, "rad")
         if self.roll is not None:
@@ -255,7 +268,7 @@ def vehicle(segments, dt: float, lla0, heading0: float, ellipsoid: earth.Ellipso
         raise ValueError("segments: expected a non-empty sequence of Segment")
     heading0 = scalar(heading0, "heading0")
     total = sum(s.duration for s in segments)
-    t = time_grid(total, dt)
+    t = _time_grid(total, dt)
     speed, heading, pitch, roll = (np.empty(t.size) for _ in range(4))
     cur = {"speed": 0.0, "heading": float(heading0), "pitch": 0.0, "roll": 0.0}
     for seg, (m, tau) in zip(segments, _on_grid(t, [s.duration for s in segments]), strict=True):
@@ -270,7 +283,7 @@ def vehicle(segments, dt: float, lla0, heading0: float, ellipsoid: earth.Ellipso
     vel = speed[:, None] * np.stack([np.sin(heading) * np.cos(pitch), np.cos(heading) * np.cos(pitch),
                                      np.sin(pitch)], -1)
     hpr = np.stack([attitude.wrap_2pi(heading), pitch, roll], -1)
-    return from_profiles(t, lla0, hpr, vel, ellipsoid)
+    return _from_profiles(t, lla0, hpr, vel, ellipsoid)
 
 
 @dataclass(frozen=True)
@@ -288,10 +301,7 @@ class Leg:
     climb: float = 0.0
 
     def __post_init__(self):
-        scalar(self.duration, "duration", positive=True)
-        scalar(self.speed, "speed", allow_zero=True)
-        scalar(self.turn, "turn")
-        scalar(self.climb, "climb")
+        numbers(self, positive=("duration",), non_negative=("speed",), real=("turn", "climb"))
         if self.speed == 0 and (self.turn != 0 or self.climb != 0):
             raise ValueError("turn, climb: expected 0 on a stop (speed == 0)")
 
@@ -338,12 +348,9 @@ class Gait:
     ramp: float = 1.0
 
     def __post_init__(self):
-        for name in ("step_frequency", "stand_frequency", "ramp"):
-            scalar(getattr(self, name), name, positive=True)
-        for name in ("bounce", "sway", "surge", "heading_wiggle", "pitch_bob", "roll_sway",
-                     "stand_sway", "stand_tilt"):
-            scalar(getattr(self, name), name, allow_zero=True)
-        scalar(self.lean, "lean")
+        numbers(self, positive=("step_frequency", "stand_frequency", "ramp"),
+                non_negative=("bounce", "sway", "surge", "heading_wiggle", "pitch_bob", "roll_sway", "stand_sway",
+                              "stand_tilt"), real=("lean",))
 
 
 def _listed(items) -> list:
@@ -354,11 +361,13 @@ def _listed(items) -> list:
         return []
 
 
-def _legs(legs):
+def _walk_grid(legs, gait, dt) -> tuple[list[Leg], np.ndarray]:
+    """The legs of :func:`walk` (or :func:`stance_mask`) as a list, and its time grid; ``gait`` checked."""
     legs = _listed(legs)
     if not legs or not all(isinstance(leg, Leg) for leg in legs):
         raise ValueError("legs: expected a non-empty sequence of Leg")
-    return legs
+    instance(gait, "gait", Gait, "a Gait")
+    return legs, _time_grid(sum(leg.duration for leg in legs), dt)
 
 
 def _schedule(legs, t, ramp):
@@ -392,10 +401,7 @@ def stance_mask(legs: Sequence[Leg], dt: float, gait: Gait = Gait()) -> np.ndarr
     static : ndarray of bool, shape (N,)
         Same length as the trajectory's ``time``.
     """
-    legs = _legs(legs)
-    if not isinstance(gait, Gait):
-        raise ValueError(f"gait: expected a Gait, got {type(gait).__name__}")
-    t = time_grid(sum(leg.duration for leg in legs), dt)
+    legs, t = _walk_grid(legs, gait, dt)
     return _schedule(legs, t, gait.ramp)[3]
 
 
@@ -424,11 +430,8 @@ def walk(legs: Sequence[Leg], dt: float, lla0: Vec3, heading0: float, gait: Gait
     -------
     Trajectory
     """
-    legs = _legs(legs)
-    if not isinstance(gait, Gait):
-        raise ValueError(f"gait: expected a Gait, got {type(gait).__name__}")
+    legs, t = _walk_grid(legs, gait, dt)
     heading0 = scalar(heading0, "heading0")
-    t = time_grid(sum(leg.duration for leg in legs), dt)
     speed, turn, climb, _ = _schedule(legs, t, gait.ramp)
     v_max = max(leg.speed for leg in legs)
     a = speed / v_max if v_max > 0 else np.zeros_like(speed)   # gait envelope, 0 when standing
@@ -446,7 +449,7 @@ def walk(legs: Sequence[Leg], dt: float, lla0: Vec3, heading0: float, gait: Gait
     hpr = np.stack([attitude.wrap_2pi(psi + gait.heading_wiggle * a * np.sin(stride + 0.3)),
                     gait.lean * a + gait.pitch_bob * a * np.sin(step + 0.5) + gait.stand_tilt * still * np.sin(stand),
                     gait.roll_sway * a * np.sin(stride) + gait.stand_tilt * still * np.cos(0.8 * stand)], -1)
-    return from_profiles(t, lla0, hpr, vel, ellipsoid)
+    return _from_profiles(t, lla0, hpr, vel, ellipsoid)
 
 
 def ideal_imu(traj: Trajectory, ellipsoid: earth.Ellipsoid = earth.WGS84):
@@ -468,8 +471,7 @@ def ideal_imu(traj: Trajectory, ellipsoid: earth.Ellipsoid = earth.WGS84):
     f_b : ndarray, shape (..., N - 1, 3)
         Specific force (m/s^2).
     """
-    if not isinstance(traj, Trajectory):
-        raise ValueError(f"traj: expected a Trajectory, got {type(traj).__name__}")
+    instance(traj, "traj", Trajectory, "a Trajectory")
     if not all(np.isfinite(a).all() for a in (traj.lla, traj.vel_n, traj.q_bn)):
         raise ValueError("traj: expected a finite trajectory (no NaN positions, velocities or attitudes)")
     states = (traj.lla, traj.vel_n, traj.q_bn)

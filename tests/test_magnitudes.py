@@ -21,6 +21,7 @@ from navlib import (  # noqa: E402
     units,
 )
 from navlib.filters import mahony  # noqa: E402
+from navlib.imu import ImuSamples  # noqa: E402
 from navlib.papers import gauss_kruger_ekf, rotation_bias  # noqa: E402
 
 
@@ -81,8 +82,8 @@ def test_sample_intervals_below_a_nanosecond_are_refused(filt):
     from navlib.filters import mahony, quaternion_kf, zupt_ins
     w, f, m = _static_marg()
     q0 = [1.0, 0.0, 0.0, 0.0]
-    call = {"mahony": lambda: mahony.mahony(w, f, 1e-300, q0, m_b=m),
-            "quaternion_kf": lambda: quaternion_kf.quaternion_kf(w, f, 1e-300, q0, m_b=m, B_n=[0.0, 20.0, -40.0]),
+    call = {"mahony": lambda: mahony.mahony(ImuSamples(w, f, 1e-300), q0, m_b=m),
+            "quaternion_kf": lambda: quaternion_kf.quaternion_kf(ImuSamples(w, f, 1e-300), q0, m_b=m, B_n=[0.0, 20.0, -40.0]),
             "run_filter": lambda: zupt_ins.run_filter(w, f, 1e-300, lla0=[0.5, 0.1, 0.0], vel0=[0.0, 0.0, 0.0], q0=q0,
                                                       static=np.ones(len(w), bool))}[filt]
     with pytest.raises(ValueError, match="^dt: expected intervals of at least"):      # was a numba TypingError
@@ -93,9 +94,9 @@ def test_attitude_filters_refuse_intervals_the_first_order_update_cannot_integra
     from navlib.filters import mahony, quaternion_kf
     w, f, m = _static_marg()
     with pytest.raises(ValueError, match="^dt: the gyro turns up to"):
-        quaternion_kf.quaternion_kf(w, f, 1e6, [1.0, 0.0, 0.0, 0.0], m_b=m, B_n=[0.0, 20.0, -40.0])   # was LinAlgError
+        quaternion_kf.quaternion_kf(ImuSamples(w, f, 1e6), [1.0, 0.0, 0.0, 0.0], m_b=m, B_n=[0.0, 20.0, -40.0])  # was LinAlgError
     with pytest.raises(ValueError, match="^dt: the gyro turns up to"):
-        mahony.mahony(w, f, 1e6, [1.0, 0.0, 0.0, 0.0], m_b=m)
+        mahony.mahony(ImuSamples(w, f, 1e6), [1.0, 0.0, 0.0, 0.0], m_b=m)
 
 
 def test_static_means_names_a_latitude_that_does_not_match_the_trials():
@@ -138,7 +139,7 @@ def test_settling_time_refuses_time_that_goes_backwards_and_floors_take_whole_nu
     ("duration", lambda: trajectory.static(1e300, 0.1, [0.5, 0.1, 0.0], [0.0, 0.0, 0.0])),
     ("max_cond", lambda: analysis.cramer_rao_bound(
         np.stack([np.eye(3)[:2], np.eye(3)[1:]]), np.tile(np.eye(2), (2, 1, 1)), max_cond=1e300)),
-    ("kp", lambda: mahony.mahony(*_static_marg()[:2], 0.01, [1.0, 0.0, 0.0, 0.0], kp=1e300)),  # was ZeroDivisionError
+    ("kp", lambda: mahony.mahony(ImuSamples(*_static_marg()[:2], 0.01), [1.0, 0.0, 0.0, 0.0], kp=1e300)),  # was ZeroDivisionError
 ])
 def test_values_whose_square_overflows_are_refused_naming_the_argument(arg, call):
     with pytest.raises(ValueError, match=f"^{arg}: expected magnitudes up to 1e\\+150"):
@@ -162,10 +163,10 @@ def test_integrators_name_an_interval_they_cannot_integrate():
 @pytest.mark.parametrize("options", [{}, {"allow_nan": True}, {"finite": False}, {"huge": True}])
 @pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf, 1e200, -1e200, None])
 def test_large_arrays_take_the_min_max_shortcut_with_the_same_outcome(options, bad):
-    # as_array skips its element-wise checks on large arrays whose min and max are in range (taken in chunks
-    # on threads for the largest): the outcome (accepted, or the same message) must be that of the small
-    # array with the same bad value, wherever the value sits (first or last chunk, a NaN beside an inf)
-    from navlib._validate import _SCAN_SIZE, _THREADED_SCAN, as_array
+    # as_array skips its element-wise checks on arrays whose min and max are in range: the outcome
+    # (accepted, or the same message) must be that of the small array with the same bad value, wherever
+    # the value sits (first or last element, a NaN beside an inf), contiguous or not
+    from navlib._validate import as_array
 
     def outcome(n, where, step=1):
         x = np.linspace(-1.0, 1.0, n * step)[::step]
@@ -180,6 +181,6 @@ def test_large_arrays_take_the_min_max_shortcut_with_the_same_outcome(options, b
 
     for where in (lambda n: n // 2, lambda n: 1, lambda n: n - 1):
         small = outcome(5, where)
-        assert outcome(4 * _SCAN_SIZE, where) == small
-        assert outcome(_THREADED_SCAN + 7, where) == small
-        assert outcome(_THREADED_SCAN + 7, where, step=2) == small          # not contiguous: one thread
+        assert outcome(1 << 14, where) == small
+        assert outcome((1 << 20) + 7, where) == small
+        assert outcome((1 << 20) + 7, where, step=2) == small
