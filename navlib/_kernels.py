@@ -61,10 +61,6 @@ class CompileLog(event.Listener):
 if os.environ.get("NAVLIB_COMPILE_LOG"):          # opt-in only
     event.register("numba:compile", CompileLog(os.environ["NAVLIB_COMPILE_LOG"]))
 
-BORROW = {"cache": True}
-"""numba options of a compiled helper that only reads and writes arrays its caller owns (it allocates and
-returns none). Only public options: kept as a name while modules still spell ``@njit(**BORROW)``."""
-
 
 def fma(a: float, b: float, c: float) -> float:
     """``a * b + c`` rounded once (IEEE 754 fused multiply-add) for floats.
@@ -446,7 +442,7 @@ def _dot_row_col(a, i, j, L):
     return t1 + t2
 
 
-@njit(**BORROW)
+@njit(cache=True)
 def _lu(a, n, ipiv, work):
     """LU factors of ``a[:n, :n]`` with partial pivoting, in place (LAPACK getf2, left-looking, as OpenBLAS).
 
@@ -482,7 +478,7 @@ def _lu(a, n, ipiv, work):
     return info
 
 
-@njit(**BORROW)
+@njit(cache=True)
 def _upper_inverse(a, n):
     """Inverse of the upper triangle of ``a[:n, :n]`` in place (LAPACK trti2, as OpenBLAS: trmv by axpy)."""
     for j in range(n):
@@ -497,7 +493,7 @@ def _upper_inverse(a, n):
             a[r, j] *= -ajj
 
 
-@njit(**BORROW)
+@njit(cache=True)
 def lu_inverse(a, n, ipiv, work):
     """Inverse of ``a[:n, :n]`` in place, bit for bit ``numpy.linalg.inv`` on OpenBLAS (getrf + getri), n <= 9.
 
