@@ -23,7 +23,7 @@ def rig(duration=30.0, period=5.0, rotation_time=0.5, pitch_deg=30.0):
     w, f = trajectory.ideal_imu(traj)
     starts, length = rotation_bias.dwell_windows(w.shape[0], DT, period, rotation_time)
     w_ie_b = earth.earth_rate_b(attitude.euler_to_dcm(rotation_bias.dwell_attitudes(hpr0, EY, np.pi / 2, starts.size)), LAT)
-    return traj, w, f, starts, length, w_ie_b
+    return rotation_bias.Rig(traj, w, f, starts, length, w_ie_b)
 
 
 @pytest.mark.parametrize("alpha, pitch", [(90.0, 30.0), (30.0, 0.0), (180.0, -60.0)])
@@ -47,7 +47,8 @@ def test_rotation_scheme_needs_axes():
 
 
 def test_schedule_draws_the_dwells(ax):
-    traj, _, _, starts, length, _ = rig(duration=15.0)
+    r = rig(duration=15.0)
+    traj, starts, length = r.traj, r.starts, r.length
     angle = units.to_deg(rotation_bias.rotation_angle(attitude.quat_to_dcm(traj.q_bn)))
     rotation_bias.draw_rotation_schedule(ax, traj.time, angle, starts, length, DT)
     assert len(ax.patches) == starts.size                  # one shaded window per dwell
@@ -74,7 +75,7 @@ def test_flow_chart_draws(ax):
 
 def test_rig_experiment_shapes_and_determinism():
     model = sensors.imu_model("MTi-100")
-    args = (*rig(), DT, LAT, model)
+    args = (rig(), DT, LAT, model)
     kw = dict(n_runs=2, period=5.0, memory=60.0)
     a = rotation_bias.rig_experiment(*args, np.random.default_rng(1), extensions=True, **kw)
     b = rotation_bias.rig_experiment(*args, np.random.default_rng(1), extensions=True, **kw)
@@ -83,7 +84,7 @@ def test_rig_experiment_shapes_and_determinism():
         assert {k: v.shape for k, v in st.items()} == {"max": (2, 3), "mean": (2, 3), "final": (2, 3)}, case
         np.testing.assert_array_equal(st["max"], b["stats"][case]["max"])
     assert a["b_lsq"].shape == (2, a["t_est"].size, 3) and a["heading_err"]["corrected"].shape == (2, a["time"].size)
-    assert a["skipped"] == 0
+    assert a["faults"]["dwell", "refused"] == 0 and a["kf_faults"]["dwell", "nan"] == 0
 
 
 @pytest.mark.parametrize("change, name", [({"n_runs": 0}, "n_runs"), ({"period": -5.0}, "period"), ({"memory": 0.0}, "memory"),
@@ -91,16 +92,16 @@ def test_rig_experiment_shapes_and_determinism():
 def test_rig_experiment_names_bad_input(change, name):
     kw = {"n_runs": 1, "period": 5.0, "memory": 60.0, **change}
     with pytest.raises(ValueError, match=f"^{name}"):
-        rotation_bias.rig_experiment(*rig(duration=10.0), DT, LAT, sensors.imu_model("MTi-100"), np.random.default_rng(0), **kw)
+        rotation_bias.rig_experiment(rig(duration=10.0), DT, LAT, sensors.imu_model("MTi-100"), np.random.default_rng(0), **kw)
 
 
 def test_rig_experiment_refuses_a_static_case_it_cannot_build():
     model = sensors.imu_model("MTi-100").replace(gyro={"scale_factor": 1e-3})
     with pytest.raises(ValueError, match="^model"):
-        rotation_bias.rig_experiment(*rig(duration=10.0), DT, LAT, model, np.random.default_rng(0), n_runs=1, period=5.0,
+        rotation_bias.rig_experiment(rig(duration=10.0), DT, LAT, model, np.random.default_rng(0), n_runs=1, period=5.0,
                                      memory=60.0, extensions=True)
     with pytest.raises((ValueError, TypeError), match="^rng"):
-        rotation_bias.rig_experiment(*rig(duration=10.0), DT, LAT, model, 0, n_runs=1, period=5.0, memory=60.0)
+        rotation_bias.rig_experiment(rig(duration=10.0), DT, LAT, model, 0, n_runs=1, period=5.0, memory=60.0)
 
 
 def white_mti():

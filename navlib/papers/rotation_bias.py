@@ -61,21 +61,22 @@ E001-09  Unstated details (rotation axis, dwell timing, estimator window) are
 Faulty data (every fault is counted; nothing is dropped silently)
 -----------------------------------------------------------------
 =================  =================================================  ======================================
-fault              what happens                                       reported by
+fault              what happens                                       reported by (``faults`` keys)
 =================  =================================================  ======================================
-NaN dropouts       residuals: a dwell with > ``max_missing`` of       ``Residuals.n_skipped``, ``n_missing``,
-                   its samples NaN is skipped (default: any),         ``n_filled``; Kalman ``n_no_data``;
-                   else filled with the dwell median; LSQ and         ``running_lsq_bias`` ``n_skipped``
-                   Kalman skip / predict through NaN dwells
+NaN dropouts       residuals: a dwell with > ``max_missing`` of       ``Residuals.faults``: ``("imu", "nan")``
+                   its samples NaN is skipped (default: any),         samples, ``("dwell", "refused")``;
+                   else filled with the dwell median; LSQ and         ``KalmanBias.faults`` and
+                   Kalman skip / predict through NaN dwells           ``running_lsq_bias``: ``("dwell", "nan")``
                    integration: linear interpolation, a gap           ``robust.fault_report(w, "gyro")``;
                    longer than ``max_gap`` raises                     ValueError
-outliers (spikes)  residuals: ``outlier_k`` robust sigmas (1.4826     ``n_outliers_gyro``/``_accel``;
-                   MAD, at least 1.4826 q/2 for a quantised           ``KalmanBias.n_rejected``
-                   sensor of step q) from the dwell median
-                   replaced (opt-in); Kalman gate rejects
+outliers (spikes)  residuals: ``outlier_k`` robust sigmas (1.4826     ``("gyro", "outlier")``,
+                   MAD, at least 1.4826 q/2 for a quantised           ``("accel", "outlier")``;
+                   sensor of step q) from the dwell median            ``KalmanBias.faults``
+                   replaced (opt-in); Kalman gate rejects             ``("dwell", "outlier")``
                    corrupted dwells
-saturation         residuals: dwell with samples at the rails         ``n_saturated``, ``n_skipped_saturated``
-                   skipped; integration: unreliable after it          ``fault_report(..., full_scale=)``
+saturation         residuals: dwell with samples at the rails         ``("imu", "saturated")`` samples,
+                   skipped; integration: unreliable after it          ``("dwell", "refused")``;
+                                                                      ``fault_report(..., full_scale=)``
 timing             per-sample ``dt`` arrays in                        ``TimingReport`` from
                    :func:`tilt_residuals`, :func:`integrate_euler`;   ``timing.sanitize``
                    per-dwell intervals in :func:`kalman_bias`
@@ -97,14 +98,16 @@ from .._kernels import wrap_pi
 from .._typing import Angles, Array, ArrayLike, Interval, Vec3, Vec3Series
 from .._validate import (
     axes,
+    broadcast_to,
     euler_angles,
     flag,
-    generator,
+    imu_samples,
     in_range,
     integer,
     intervals,
     kernel_array,
     range_limit,
+    same_shape,
     scalar,
     small_turns,
     time_axis,
@@ -238,8 +241,7 @@ def rotate_attitude(hpr: Angles, axis_b: Vec3, angle: Angles) -> Array:
     -------
     hpr : ndarray, shape (..., 3)
     """
-    C = attitude.euler_to_dcm(as_array(hpr, "hpr", tail=(3,)))
-    return attitude.dcm_to_euler(C @ rodrigues(axis_b, angle))
+    return attitude.dcm_to_euler(attitude.euler_to_dcm(hpr) @ rodrigues(axis_b, angle))
 
 
 def dwell_attitudes(hpr0: Angles, axis_b: Vec3, amplitude: float, n_dwells: int) -> Array:
@@ -264,8 +266,7 @@ def dwell_attitudes(hpr0: Angles, axis_b: Vec3, amplitude: float, n_dwells: int)
         If a dwell's pitch is within 1 deg of +-90 deg (erratum E001-08).
     """
     hpr0 = euler_angles(as_array(hpr0, "hpr0", shape=(3,)), "hpr0")
-    if not isinstance(n_dwells, (int, np.integer)) or isinstance(n_dwells, bool) or n_dwells < 1:
-        raise ValueError(f"n_dwells: expected a positive integer, got {n_dwells!r}")
+    n_dwells = integer(n_dwells, "n_dwells")
     pair = np.stack([hpr0, rotate_attitude(hpr0, axis_b, scalar(amplitude, "amplitude"))])
     if np.any(np.abs(pair[:, 1]) > PITCH_LIMIT):
         raise ValueError(f"axis_b: rotating by {np.rad2deg(amplitude):g} deg about {np.round(axis_b, 6)} drives "
@@ -293,8 +294,7 @@ def dwell_windows(n_samples: int, dt: float, period: float, rotation_time: float
     length : int
         Samples per dwell (at least :data:`MIN_DWELL_SAMPLES`).
     """
-    if not isinstance(n_samples, (int, np.integer)) or isinstance(n_samples, bool) or n_samples < 1:
-        raise ValueError(f"n_samples: expected a positive integer, got {n_samples!r}")
+    n_samples = integer(n_samples, "n_samples")
     dt, period = scalar(dt, "dt", positive=True), scalar(period, "period", positive=True)
     rotation_time = scalar(rotation_time, "rotation_time", allow_zero=True)
     settle = scalar(settle, "settle", allow_zero=True)
@@ -329,45 +329,21 @@ class Residuals:
     duration : float
         Dwell length T (s); with per-sample intervals, the mean over the dwells
         (each dwell's own length is in its ``V``).
-    n_skipped : int
-        Dwells skipped for dropouts: more than ``max_missing`` of their
-        samples NaN (any NaN with the default ``max_missing = 0``).
-    n_missing : int
-        Samples inside dwell windows with a NaN gyro or accelerometer reading
-        (those of skipped dwells included).
-    n_filled : int
-        Of these, samples in kept dwells, replaced by the dwell median.
-    n_outliers_gyro, n_outliers_accel : int
-        Samples of kept dwells rejected as outliers (``outlier_k`` x MAD from
-        the dwell median) and replaced by the median; 0 without ``outlier_k``.
-    n_saturated : int
-        Samples inside dwell windows at the device rails (``full_scale_*``).
-    n_skipped_saturated : int
-        Dwells skipped because they contained saturated samples.
     faults : FaultReport
-        The same counts in navlib's one fault vocabulary: ``("imu", "nan")`` missing samples,
-        ``("gyro", "outlier")``, ``("accel", "outlier")``, ``("imu", "saturated")`` samples and
-        ``("dwell", "refused")`` dwells skipped (for dropouts or saturation).
+        Counts over all trials (ints): ``("imu", "nan")`` samples inside dwell windows with a NaN gyro
+        or accelerometer reading (those of refused dwells included; the others were filled with the
+        dwell median); ``("gyro", "outlier")``, ``("accel", "outlier")`` samples of kept dwells more
+        than ``outlier_k`` x MAD from the dwell median, replaced by it (0 without ``outlier_k``);
+        ``("imu", "saturated")`` samples inside dwell windows at the device rails (``full_scale_*``);
+        ``("dwell", "refused")`` dwells skipped, for dropouts (more than ``max_missing`` of their
+        samples NaN) or for saturated samples.
     """
     r: np.ndarray
     V: np.ndarray
     tilt: np.ndarray
     end: np.ndarray
     duration: float
-    n_skipped: int
-    n_missing: int = 0
-    n_filled: int = 0
-    n_outliers_gyro: int = 0
-    n_outliers_accel: int = 0
-    n_saturated: int = 0
-    n_skipped_saturated: int = 0
-
-    @property
-    def faults(self) -> robust.FaultReport:
-        """The counters above as a :class:`navlib.robust.FaultReport`."""
-        return robust.FaultReport({("imu", "nan"): self.n_missing, ("gyro", "outlier"): self.n_outliers_gyro,
-                                   ("accel", "outlier"): self.n_outliers_accel, ("imu", "saturated"): self.n_saturated,
-                                   ("dwell", "refused"): self.n_skipped + self.n_skipped_saturated})
+    faults: robust.FaultReport
 
 
 @njit(cache=True)
@@ -530,17 +506,17 @@ def tilt_residuals(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = Non
     residual ``delta_k = V_k b + noise`` with ``V_k = M_k T``. M_k is taken
     at the dwell's mean accelerometer tilt. On a static rig Eq. (6) is exact.
 
-    Faults (every one counted in :class:`Residuals`; the IMU is still during a
+    Faults (every one counted in ``Residuals.faults``; the IMU is still during a
     dwell, so its median reading is a good stand-in for a lost sample):
 
     * dropouts (NaN samples): a dwell with more than ``max_missing`` of its
-      samples NaN is skipped (``n_skipped``, residual NaN); otherwise its NaN
-      samples are filled with the dwell median (``n_filled``). The default 0
+      samples NaN is skipped (``("dwell", "refused")``, residual NaN); otherwise its
+      NaN samples (``("imu", "nan")``) are filled with the dwell median. The default 0
       skips any dwell with a NaN, as before; a 30-s gap skips the dwells it
       covers.
     * outliers: with ``outlier_k``, samples more than ``outlier_k`` x
       1.4826 MAD from the dwell median in any component are replaced by the
-      median (``n_outliers_gyro``/``_accel``). The MAD is floored at half the
+      median (``("gyro", "outlier")``, ``("accel", "outlier")``). The MAD is floored at half the
       quantisation step q (the smallest non-zero difference between two of the
       dwell's readings; :func:`navlib._kernels.robust_sigma`, as in
       :func:`navlib.alignment.static_means`): a quantised gyro at rest has a
@@ -551,9 +527,8 @@ def tilt_residuals(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = Non
       gate (:func:`kalman_bias`) rejects the dwell.
     * saturation: with ``full_scale_gyro``/``full_scale_accel`` (the device
       range, rad/s and m/s^2), a dwell with a sample at the rails
-      (``|x| >= full_scale``) is skipped (``n_saturated`` samples,
-      ``n_skipped_saturated`` dwells): the IMU was not still, or its reading
-      is unknown.
+      (``|x| >= full_scale``) is skipped (``("imu", "saturated")`` samples,
+      ``("dwell", "refused")``): the IMU was not still, or its reading is unknown.
     * timing: ``dt`` may be per-sample intervals (``timing.intervals`` of
       timestamps cleaned by ``timing.sanitize``); the gyro is integrated with
       each interval and the slope is fitted against sample time.
@@ -590,16 +565,11 @@ def tilt_residuals(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = Non
     for name, value in (("starts", starts), ("length", length)):
         if value is None:
             raise ValueError(f"{name}: required")
-    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
-    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=True)
-    if w.shape != f.shape:
-        raise ValueError(f"f_b: expected the shape of w_ib_b {w.shape}, got {f.shape}")
+    w, f = imu_samples(w_ib_b, f_b)
     lead, n = w.shape[:-2], w.shape[-2]
     dts, regular = intervals(dt, n), np.ndim(dt) == 0
     small_turns(w, dts)
-    if not isinstance(length, (int, np.integer)) or isinstance(length, bool) or length < MIN_DWELL_SAMPLES:
-        raise ValueError(f"length: dwell windows too short; expected at least {MIN_DWELL_SAMPLES} samples, "
-                         f"got {length!r}")
+    length = integer(length, "length", minimum=MIN_DWELL_SAMPLES)
     starts = np.asarray(starts)
     if starts.ndim != 1 or starts.size == 0 or not np.issubdtype(starts.dtype, np.integer) \
             or starts.min() < 0 or starts.max() + length > n:
@@ -609,15 +579,13 @@ def tilt_residuals(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = Non
     fs_g, fs_a = range_limit(full_scale_gyro, "full_scale_gyro"), range_limit(full_scale_accel, "full_scale_accel")
     K = starts.size
     w_ie = np.zeros((K, 3)) if w_ie_b is None else as_array(w_ie_b, "w_ie_b", tail=(3,))
-    try:
-        w_ie = np.broadcast_to(w_ie, lead + (K, 3)).reshape(-1, K, 3)
-    except ValueError:
-        raise ValueError(f"w_ie_b: expected shape (K={K}, 3) or (..., K, 3), got {w_ie.shape}") from None
+    w_ie = broadcast_to(w_ie, "w_ie_b", lead + (K, 3), of="K = starts.size dwells and the trials of w_ib_b")
+
     def flat(x):
         return kernel_array(x.reshape((-1, n, 3)))
 
-    r, V, tilt, c, singular = _residual_kernel(flat(w), flat(f), dts, regular, starts.astype(np.int64), int(length),
-                                               kernel_array(w_ie), PITCH_LIMIT, max_missing, k_out,
+    r, V, tilt, c, singular = _residual_kernel(flat(w), flat(f), dts, regular, starts.astype(np.int64), length,
+                                               kernel_array(w_ie.reshape(-1, K, 3)), PITCH_LIMIT, max_missing, k_out,
                                                fs_g, fs_a)
     if singular:
         raise ValueError(f"f_b: a dwell's pitch is beyond +-{np.rad2deg(PITCH_LIMIT):g} deg, where Eq. (2) is "
@@ -626,9 +594,11 @@ def tilt_residuals(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = Non
         duration = length * float(dts[0])
     else:
         duration = float(np.mean([dts[s:s + length].sum() for s in starts]))
+    faults = robust.FaultReport({("imu", "nan"): int(c[1]), ("gyro", "outlier"): int(c[3]),
+                                 ("accel", "outlier"): int(c[4]), ("imu", "saturated"): int(c[5]),
+                                 ("dwell", "refused"): int(c[0] + c[6])})
     return Residuals(r.reshape(lead + (K, 2)), V.reshape(lead + (K, 2, 3)), tilt.reshape(lead + (K, 2)),
-                     starts + length, duration, int(c[0]), int(c[1]), int(c[2]), int(c[3]), int(c[4]), int(c[5]),
-                     int(c[6]))
+                     starts + length, duration, faults)
 
 
 def residual_covariance(tilt: ArrayLike, length: int, dt: float, gyro_noise: float, accel_noise: float = 0.0,
@@ -659,20 +629,21 @@ def residual_covariance(tilt: ArrayLike, length: int, dt: float, gyro_noise: flo
     -------
     R : ndarray, shape (..., 2, 2)  (rad^2)
     """
-    M = tilt_matrix(tilt)
-    if not isinstance(length, (int, np.integer)) or isinstance(length, bool) or length < MIN_DWELL_SAMPLES:
-        raise ValueError(f"length: dwell windows too short; expected an integer >= {MIN_DWELL_SAMPLES}, got {length!r}")
-    n = int(length)
+    M = tilt_matrix(tilt)                                        # validates tilt
+    n = integer(length, "length", minimum=MIN_DWELL_SAMPLES)
     dt = scalar(dt, "dt", positive=True)
     N = scalar(gyro_noise, "gyro_noise", allow_zero=True)
     A = scalar(accel_noise, "accel_noise", allow_zero=True)
-    g = scalar(g, "g", positive=True)
+    return _residual_cov(M, np.asarray(tilt, dtype=float)[..., 1], n, dt, N, A, scalar(g, "g", positive=True))
+
+
+def _residual_cov(M, pitch, n, dt, N, A, g):
+    """:func:`residual_covariance` of validated arguments, from the tilt matrices M and the dwell pitches."""
     j = np.arange(n)
     wts = (j - (n - 1) / 2) / (n * (n * n - 1) / 12.0)          # slope weights per sample index
     c = np.cumsum(wts[::-1])[::-1][1:]                           # sum_{j>i} w_j, i = 0..n-2
     gyro_var = N ** 2 * dt * np.sum(c ** 2) * n ** 2             # (N^2/dt)(dt c)^2 summed, times n^2
     accel_var = A ** 2 / dt / g ** 2 * np.sum(wts ** 2) * n ** 2
-    pitch = as_array(tilt, "tilt", tail=(2,))[..., 1]
     D = np.zeros(pitch.shape + (2, 2))
     D[..., 0, 0] = 1 / np.cos(pitch) ** 2
     D[..., 1, 1] = 1.0
@@ -749,7 +720,7 @@ def _running_kernel(r, V, lam, max_cond):
     return out, skipped
 
 
-def running_lsq_bias(r: ArrayLike, V: ArrayLike, forgetting: float = 1.0) -> tuple[Array, int]:
+def running_lsq_bias(r: ArrayLike, V: ArrayLike, forgetting: float = 1.0) -> tuple[Array, robust.FaultReport]:
     """Eq. (14) updated dwell by dwell (recursive least squares).
 
     After dwell k, ``b_k = (sum_i l^(k-i) V_i^T V_i)^-1 sum_i l^(k-i) V_i^T r_i``
@@ -770,8 +741,8 @@ def running_lsq_bias(r: ArrayLike, V: ArrayLike, forgetting: float = 1.0) -> tup
     b : ndarray, shape (..., K, 3)
         Estimate after each dwell (rad/s); NaN until the dwells so far make
         the bias observable (cond(V) <= 1e6).
-    n_skipped : int
-        Dwells skipped for NaN residuals.
+    faults : FaultReport
+        ``("dwell", "nan")``: dwells skipped for a NaN residual (int, over all trials).
     """
     r, V = _rv(r, V)
     lam = scalar(forgetting, "forgetting")
@@ -780,7 +751,7 @@ def running_lsq_bias(r: ArrayLike, V: ArrayLike, forgetting: float = 1.0) -> tup
     lead, K = r.shape[:-2], r.shape[-2]
     out, skipped = _running_kernel(kernel_array(r.reshape(-1, K, 2)),
                                    kernel_array(V.reshape(-1, K, 2, 3)), lam, _MAX_COND)
-    return out.reshape(lead + (K, 3)), int(skipped)
+    return out.reshape(lead + (K, 3)), robust.FaultReport({("dwell", "nan"): int(skipped)})
 
 
 # --------------------------------------------------------------------------
@@ -797,18 +768,17 @@ class KalmanBias:
         Bias estimate after each dwell (rad/s).
     sigma : ndarray, shape (..., K, 3)
         Its standard deviation from the filter covariance (rad/s).
-    n_no_data : int
-        Dwells without a residual (dropouts, skipped dwells), predicted through.
-    n_rejected : int
-        Residuals rejected by the innovation gate (outliers).
+    faults : FaultReport
+        Counts over all trials (ints): ``("dwell", "nan")`` dwells without a residual (dropouts,
+        skipped dwells), predicted through; ``("dwell", "outlier")`` residuals rejected by the
+        innovation gate.
     P : ndarray, shape (..., K, 3, 3)
         Covariance after each dwell (rad^2/s^2); symmetric positive definite
         (Joseph-form update, symmetrised predict).
     """
     b: np.ndarray
     sigma: np.ndarray
-    n_no_data: int
-    n_rejected: int
+    faults: robust.FaultReport
     P: np.ndarray | None = None
 
 
@@ -851,9 +821,9 @@ def kalman_bias(r: ArrayLike, V: ArrayLike, R: ArrayLike, interval: Interval, ra
     State ``b`` (3); between dwells ``b_k = b_k-1 + w`` with
     ``cov(w) = K^2 interval_k I``; measurement ``delta_k = V_k b + v`` with
     ``cov(v) = R_k`` (:func:`residual_covariance`). NaN residuals (dropouts,
-    skipped dwells) are predicted through and counted (``n_no_data``);
+    skipped dwells) are predicted through and counted (``("dwell", "nan")``);
     residuals whose NIS exceeds ``gate`` are rejected and counted
-    (``n_rejected``), e.g. dwells hit by spikes when :func:`tilt_residuals`
+    (``("dwell", "outlier")``), e.g. dwells hit by spikes when :func:`tilt_residuals`
     ran without ``outlier_k``. The covariance stays symmetric positive
     definite (Joseph form, symmetrised; returned as ``P``).
 
@@ -881,28 +851,23 @@ def kalman_bias(r: ArrayLike, V: ArrayLike, R: ArrayLike, interval: Interval, ra
     """
     r, V = _rv(r, V)
     lead, K = r.shape[:-2], r.shape[-2]
-    R = as_array(R, "R", tail=(2, 2), allow_nan=True)
-    try:
-        R = np.broadcast_to(R, lead + (K, 2, 2))
-    except ValueError:
-        raise ValueError(f"R: expected shape {lead + (K, 2, 2)}, got {R.shape}") from None
+    R = broadcast_to(as_array(R, "R", tail=(2, 2), allow_nan=True), "R", lead + (K, 2, 2), of="r")
     ok = np.all(np.isfinite(r), -1)
     if np.any(~np.isfinite(R[ok])):
         raise ValueError("R: expected finite covariances wherever r is finite")
-    intervals = positive(interval, "interval")
-    if intervals.ndim == 0:
-        intervals = np.full(K, float(intervals))
-    elif intervals.shape != (K,):
-        raise ValueError(f"interval: expected a float or shape ({K},), got {intervals.shape}")
+    gaps = positive(interval, "interval")                       # not intervals(): it accepts huge values
+    if gaps.ndim == 0:
+        gaps = np.full(K, float(gaps))
+    elif gaps.shape != (K,):
+        raise ValueError(f"interval: expected a float or shape ({K},), got {gaps.shape}")
     q = scalar(rate_random_walk, "rate_random_walk", allow_zero=True)
     s0 = scalar(bias_sigma, "bias_sigma", positive=True)
     gate = scalar(gate, "gate", positive=True)
     b, sig, no_data, rejected, P = _kalman_kernel(
         kernel_array(r.reshape(-1, K, 2)), kernel_array(V.reshape(-1, K, 2, 3)),
-        kernel_array(R.reshape(-1, K, 2, 2)), q * q, kernel_array(intervals), s0 * s0 * np.eye(3),
-        gate)
-    return KalmanBias(b.reshape(lead + (K, 3)), sig.reshape(lead + (K, 3)), int(no_data), int(rejected),
-                      P.reshape(lead + (K, 3, 3)))
+        kernel_array(R.reshape(-1, K, 2, 2)), q * q, kernel_array(gaps), s0 * s0 * np.eye(3), gate)
+    faults = robust.FaultReport({("dwell", "nan"): int(no_data), ("dwell", "outlier"): int(rejected)})
+    return KalmanBias(b.reshape(lead + (K, 3)), sig.reshape(lead + (K, 3)), faults, P.reshape(lead + (K, 3, 3)))
 
 
 # --------------------------------------------------------------------------
@@ -941,9 +906,11 @@ def design(hpr0: Angles, axis_b: Vec3, amplitude: float, dwell_time: float, dt: 
     n = int(round(scalar(dwell_time, "dwell_time", positive=True) / dt))
     if n < MIN_DWELL_SAMPLES:
         raise ValueError(f"dwell_time: dwell windows too short ({n} samples); expected at least {MIN_DWELL_SAMPLES}")
-    tilt = hpr[:, [2, 1]]
-    V = tilt_matrix(tilt) * (n * dt)
-    R = residual_covariance(tilt, n, dt, gyro_noise, accel_noise)
+    N = scalar(gyro_noise, "gyro_noise", allow_zero=True)
+    A = scalar(accel_noise, "accel_noise", allow_zero=True)
+    M = tilt_matrix(hpr[:, [2, 1]])
+    V = M * (n * dt)
+    R = _residual_cov(M, hpr[:, 1], n, dt, N, A, G0)
     return float(condition_number(V)), cramer_rao_bound(V, R, _MAX_COND), V
 
 
@@ -973,9 +940,31 @@ def eq1_matrix(hpr: Angles) -> Array:
 # notebook (one pitch group of §4, the redrawn Figs. 3-4), not a reader's own data.
 # --------------------------------------------------------------------------
 
-def rig_experiment(traj, w_ib_b: Vec3Series, f_b: Vec3Series, starts, length: int, w_ie_b: Vec3Series, dt: float,
-                   lat: float, model, rng: np.random.Generator, *, n_runs: int, period: float, memory: float,
-                   extensions: bool = False, decimate: int = 100) -> dict:
+@dataclass(frozen=True)
+class Rig:
+    """One simulated rig of the experiment: its motion, exact IMU samples and dwells (for :func:`rig_experiment`).
+
+    Attributes
+    ----------
+    traj : navlib.trajectory.Trajectory
+        The rig's motion (:func:`navlib.trajectory.reciprocating_rotation`).
+    w_ib_b, f_b : array_like, shape (N, 3)
+        Its exact IMU samples (:func:`navlib.trajectory.ideal_imu`).
+    starts, length
+        Dwell windows (:func:`dwell_windows`).
+    w_ie_b : array_like, shape (K, 3)
+        Earth rate in the body frame at each dwell (rad/s).
+    """
+    traj: object
+    w_ib_b: Vec3Series
+    f_b: Vec3Series
+    starts: ArrayLike
+    length: int
+    w_ie_b: Vec3Series
+
+
+def rig_experiment(rig: Rig, dt: float, lat: float, model, rng: np.random.Generator, *, n_runs: int, period: float,
+                   memory: float, extensions: bool = False, decimate: int = 100) -> dict:
     """One pitch group of the paper's experiment (§4): ``n_runs`` noisy runs on one rig trajectory.
 
     Simulates ``model`` on the exact samples of ``traj`` (all runs in one vectorised call), estimates
@@ -987,14 +976,8 @@ def rig_experiment(traj, w_ib_b: Vec3Series, f_b: Vec3Series, starts, length: in
 
     Parameters
     ----------
-    traj : navlib.trajectory.Trajectory
-        The rig's motion (:func:`navlib.trajectory.reciprocating_rotation`).
-    w_ib_b, f_b : array_like, shape (N, 3)
-        Its exact IMU samples (:func:`navlib.trajectory.ideal_imu`).
-    starts, length
-        Dwell windows (:func:`dwell_windows`).
-    w_ie_b : array_like, shape (K, 3)
-        Earth rate in the body frame at each dwell (rad/s).
+    rig : Rig
+        The rig's trajectory, exact samples and dwells.
     dt, lat : float
         Sample interval (s) and latitude (rad).
     model : navlib.sensors.ImuModel
@@ -1009,27 +992,28 @@ def rig_experiment(traj, w_ib_b: Vec3Series, f_b: Vec3Series, starts, length: in
     -------
     dict
         ``stats[case]`` with per-run ``max``, ``mean`` and ``final`` errors (°, runs x [heading, pitch, roll]),
-        ``heading_err[case]`` (°, decimated), the estimates ``b_lsq`` at ``t_est``, the true bias, and counts.
+        ``heading_err[case]`` (°, decimated), the estimates ``b_lsq`` at ``t_est``, the true bias, ``faults``
+        of the residuals (:class:`Residuals`) and, with ``extensions``, ``kf_faults`` of the Kalman filter.
     """
     from .. import analysis, euler, sensors, trajectory, units  # noqa: PLC0415 -- the driver alone needs them
 
-    generator(rng)
-    n_runs = integer(n_runs, "n_runs")
+    n_runs = integer(n_runs, "n_runs")                  # rng: simulate_imu checks it
     decimate = integer(decimate, "decimate")
     period, memory = scalar(period, "period", positive=True), scalar(memory, "memory", positive=True)
     if flag(extensions, "extensions") and (model.gyro.scale_factor != 0 or model.gyro.misalignment != 0):
         raise ValueError("model: the no-rotation case reuses the sensor errors on a static IMU, which needs a gyro "
                          "model without scale-factor and misalignment errors")
+    traj, w_ib_b, starts, length = rig.traj, rig.w_ib_b, rig.starts, rig.length
     w_ie_n = earth.earth_rate_n(lat)
-    imu = sensors.simulate_imu(w_ib_b, f_b, dt, model, rng, n_trials=n_runs)
+    imu = sensors.simulate_imu(w_ib_b, rig.f_b, dt, model, rng, n_trials=n_runs)
     hpr_true = traj.hpr
     hpr0 = hpr_true[0]
-    res = tilt_residuals(imu.w_ib_b, imu.f_b, dt, starts, length, w_ie_b)
+    res = tilt_residuals(imu.w_ib_b, imu.f_b, dt, starts, length, rig.w_ie_b)
     forgetting = np.exp(-period / memory)
     b_lsq, _ = running_lsq_bias(res.r, res.V, forgetting)
     cases = {"uncorrected": (imu.w_ib_b, w_ie_n, None, hpr_true),
              "corrected": (imu.w_ib_b, w_ie_n, b_lsq, hpr_true)}
-    out = {"skipped": res.n_skipped}
+    out = {"faults": res.faults}
     if extensions:
         R = residual_covariance(res.tilt, length, dt, model.gyro.noise_density, model.accel.noise_density)
         rrw = np.sqrt(2 / model.gyro.correlation_time) * model.gyro.gauss_markov_sigma   # RW matching the GM drift
@@ -1042,7 +1026,7 @@ def rig_experiment(traj, w_ib_b: Vec3Series, f_b: Vec3Series, starts, length: in
                       "no rotation": (w_static, w_ie_n, None, static.hpr),
                       "paper uncorrected": (imu.w_ib_b, None, None, hpr_true),
                       "paper corrected": (imu.w_ib_b, None, b_paper, hpr_true)})
-        out.update(kf_rejected=kf.n_rejected, kf_no_data=kf.n_no_data, b_kf=kf.b)
+        out.update(kf_faults=kf.faults, b_kf=kf.b)
     out["stats"], out["heading_err"] = {}, {}
     for name, (gyro, w_in, b_hat, truth) in cases.items():
         hpr = euler.integrate_euler(hpr0, gyro, dt, w_in, b_hat, None if b_hat is None else res.end)
@@ -1067,8 +1051,7 @@ def pair_spread(hpr0: Angles, axis_b: Vec3, amplitude: float, period: float, rot
     """
     from .. import sensors, trajectory  # noqa: PLC0415 -- the driver alone needs them
 
-    generator(rng)
-    n_runs = integer(n_runs, "n_runs")
+    n_runs = integer(n_runs, "n_runs")                  # rng: simulate_imu checks it
     bias_b = as_array(bias_b, "bias_b", shape=(3,))
     try:
         hpr_dw = dwell_attitudes(hpr0, axis_b, amplitude, 2)
@@ -1095,9 +1078,7 @@ def pair_spread(hpr0: Angles, axis_b: Vec3, amplitude: float, period: float, rot
 
 def rotation_angle(C_bn) -> Array:
     """Angle (rad) by which each attitude of ``C_bn`` (..., 3, 3) is turned from the first one (for the schedule figure)."""
-    C = as_array(C_bn, "C_bn", tail=(3, 3))
-    if C.ndim != 3:
-        raise ValueError(f"C_bn: expected a series of DCMs (N, 3, 3), got shape {C.shape}")
+    C = as_array(C_bn, "C_bn", shape=(None, 3, 3))
     rel = np.swapaxes(C[:1], -1, -2) @ C
     return np.arccos(np.clip((np.trace(rel, axis1=-2, axis2=-1) - 1) / 2, -1.0, 1.0))
 
@@ -1160,9 +1141,7 @@ def draw_rotation_schedule(ax, time, angle_deg, starts, length: int, dt: float) 
     """
     axes(ax)
     t = time_axis(time, "time")
-    a = as_array(angle_deg, "angle_deg")
-    if a.shape != t.shape:
-        raise ValueError(f"angle_deg: expected the shape of time {t.shape}, got {a.shape}")
+    a = same_shape(as_array(angle_deg, "angle_deg"), "angle_deg", t.shape, of="time")
     starts = as_array(starts, "starts")
     if starts.ndim != 1 or np.any(starts < 0) or np.any(starts != np.round(starts)):
         raise ValueError(f"starts: expected a 1-D array of sample indices >= 0 (dwell_windows), got shape {starts.shape}")
