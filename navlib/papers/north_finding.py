@@ -50,21 +50,22 @@ gyro) and the Monte Carlo of Fig. 4 (:func:`simulate_static_outputs`,
 Faulty data (every fault is counted; nothing is dropped silently)
 -----------------------------------------------------------------
 =================  ===========================================  ======================================
-fault              what happens                                 reported by
+fault              what happens                                 reported by (``faults`` keys)
 =================  ===========================================  ======================================
-NaN dropouts       stop means: samples left out; a stop with    ``StaticWindow.n_dropped_*``,
-                   < ``min_fraction`` (50 %) left is refused    ``status == TOO_FEW``
+NaN dropouts       stop means: samples left out; a stop with    ``StopSolutions.faults``:
+                   < ``min_fraction`` (50 %) left is refused    ``("gyro", "nan")``, ``("accel", "nan")``,
+                                                                ``("window", "refused")`` per stop
                    INS change: last sample held; a run longer   ``robust.fault_report`` of the gyro
                    than ``max_gap`` (0.1 s) refuses the drive   (``"nan"``); NaN result (refused)
-outliers (spikes)  stop means: ``outlier_k`` robust sigmas      ``StaticWindow.n_outliers_*``
-                   (1.4826 MAD, at least 1.4826 q/2 for a
+outliers (spikes)  stop means: ``outlier_k`` robust sigmas      ``("gyro", "outlier")``,
+                   (1.4826 MAD, at least 1.4826 q/2 for a       ``("accel", "outlier")``
                    quantisation step q) from the median left
                    out (opt-in; without it the error bound is
                    ``k sigma sqrt(p/N)``)
-frozen sensor      stop: refused when one axis repeats a        ``n_stuck_*``, ``STUCK``;
-                   reading over >= ``stuck_fraction`` (50 %)    ``("gyro", "stuck")``
+frozen sensor      stop: refused when one axis repeats a        ``("gyro", "stuck")``,
+                   reading over >= ``stuck_fraction`` (50 %)    ``("accel", "stuck")``
                    of the stop's valid samples
-saturation         stop: refused (``full_scale_*``);            ``n_saturated_*``, ``SATURATED``;
+saturation         stop: refused (``full_scale_*``);            ``("gyro", "saturated")``, ...;
                    INS drive: refused (``full_scale_gyro``)     ``fault_report(..., full_scale=)``
 timing             ``timing.sanitize`` then windows cut by      ``TimingReport``; ``dt`` arrays in
                    time (``stop_solutions(time=...)``); INS     :func:`ins_heading_change`
@@ -90,16 +91,30 @@ Errata corrected (ids of ``data/errata.csv``)
 """
 from __future__ import annotations
 
-import warnings
 from dataclasses import dataclass
 
 import numpy as np
 from scipy.special import ndtr
 
 from .. import attitude, earth, plots, robust, strapdown
-from .._deprecate import renamed_keywords
 from .._typing import Angles, Array, ArrayLike, Dcm, Interval, Times, Vec3, Vec3Series
-from .._validate import as_dcm, axes, broadcast, broadcast_to, flag, generator, in_range, intervals, pitch_roll, scalar, time_axis
+from .._validate import (
+    as_dcm,
+    axes,
+    broadcast,
+    broadcast_to,
+    choice,
+    flag,
+    generator,
+    imu_samples,
+    in_range,
+    integer,
+    intervals,
+    pitch_roll,
+    range_limit,
+    scalar,
+    time_axis,
+)
 from .._validate import nonempty_array as as_array
 from .._validate import nonempty_positive as positive
 from ..alignment import gyrocompass_latitude, level, static_means, triad, triad_heading
@@ -110,15 +125,11 @@ __all__ = ["Candidates", "heading_candidates", "nearest_candidate_error", "Resol
            "triad_heading_error", "triad_heading_std", "single_axis_heading_std", "single_axis_heading_error",
            "ClippedTheory", "clipped_single_axis_theory", "simulate_static_outputs", "MonteCarlo", "monte_carlo",
            "pair_probabilities", "four_position_heading_std",
-           "stop_and_go", "StopSolutions", "stop_solutions", "InsReport", "ins_heading_change", "draw_device",
+           "stop_and_go", "StopSolutions", "stop_solutions", "ins_heading_change", "draw_device",
            "draw_candidate_pairs"]
 
 OMEGA_IE = earth.OMEGA_IE
 
-
-# --------------------------------------------------------------------------
-# validation helpers
-# --------------------------------------------------------------------------
 
 # --------------------------------------------------------------------------
 # TRIAD (Eqs. 1-3)
@@ -142,10 +153,10 @@ def tilt_from_accel(f_b: Vec3, g: float | None = None) -> tuple[Array, Array]:
     -------
     pitch, roll : ndarray, shape (...)  (rad)
     """
-    pitch, roll = level(f_b)
+    pitch, roll = level(f_b)                                       # validates f_b
     if g is None:
         return pitch, roll
-    f_y = as_array(f_b, "f_b", tail=(3,))[..., 1]
+    f_y = np.asarray(f_b, dtype=float)[..., 1]
     return np.arcsin(np.clip(f_y / positive(g, "g"), -1.0, 1.0)), roll
 
 
@@ -206,7 +217,7 @@ def heading_candidates(w_y: ArrayLike, f_b: Vec3, lat: float, h: float = 0.0) ->
     """
     w_y = as_array(w_y, "w_y")
     lat = gyrocompass_latitude(lat)
-    pitch, _ = tilt_from_accel(f_b, earth.gravity(lat, as_array(h, "h")))
+    pitch, _ = tilt_from_accel(f_b, earth.gravity(lat, as_array(h, "h")))      # h non-empty: gravity accepts empty
     cos_h = (w_y - OMEGA_IE * np.sin(lat) * np.sin(pitch)) / (OMEGA_IE * np.cos(lat) * np.cos(pitch))
     clipped = np.abs(cos_h) > 1.0
     alpha = np.arccos(np.clip(cos_h, -1.0, 1.0))
@@ -226,8 +237,12 @@ def nearest_candidate_error(pair: ArrayLike, heading: Angles) -> Array:
     heading : array_like, broadcasting to (...)
         True headings (rad).
     """
-    p = as_array(pair, "pair", tail=(2,))
-    e = attitude.wrap_pi(p - as_array(heading, "heading")[..., None])
+    return _nearest_error(as_array(pair, "pair", tail=(2,)), as_array(heading, "heading"))
+
+
+def _nearest_error(pair: np.ndarray, heading: np.ndarray) -> np.ndarray:
+    """:func:`nearest_candidate_error` of validated arrays."""
+    e = attitude.wrap_pi(pair - heading[..., None])
     return np.take_along_axis(e, np.argmin(np.abs(e), -1)[..., None], -1)[..., 0]
 
 
@@ -475,7 +490,7 @@ def clipped_single_axis_theory(heading: Angles, sigma_gyro: float, lat: float, p
     lat = gyrocompass_latitude(scalar(lat, "lat"))
     g = earth.gravity(lat) if g is None else scalar(g, "g", positive=True)
     span = scalar(n_sigma, "n_sigma", positive=True)
-    if not isinstance(n_grid, (int, np.integer)) or isinstance(n_grid, bool) or n_grid < 101 or n_grid % 2 == 0:
+    if integer(n_grid, "n_grid", minimum=101) % 2 == 0:
         raise ValueError(f"n_grid: expected an odd integer of at least 101, got {n_grid!r}")
     s_gyro_cos = s_g / (OMEGA_IE * np.cos(lat) * np.cos(th))
     s_pitch_cos = (np.cos(psi) * np.tan(th) - np.tan(lat)) * s_a / (g * np.cos(th))
@@ -484,7 +499,7 @@ def clipped_single_axis_theory(heading: Angles, sigma_gyro: float, lat: float, p
     weight = np.exp(-0.5 * z ** 2) / np.sqrt(2 * np.pi)
     c = np.cos(psi)[..., None] + s_cos[..., None] * z
     alpha = np.arccos(np.clip(c, -1.0, 1.0))
-    err = nearest_candidate_error(np.stack([alpha, attitude.wrap_2pi(2 * np.pi - alpha)], -1), psi[..., None])
+    err = _nearest_error(np.stack([alpha, attitude.wrap_2pi(2 * np.pi - alpha)], -1), psi[..., None])
     m2 = np.trapezoid(weight * err ** 2, z, axis=-1)
     m4 = np.trapezoid(weight * err ** 4, z, axis=-1)
     p_clip = ndtr((np.cos(psi) - 1.0) / s_cos) + ndtr((-1.0 - np.cos(psi)) / s_cos)
@@ -524,8 +539,7 @@ def simulate_static_outputs(hpr: Angles, lat: float, n_trials: int, sigma_gyro: 
     """
     C_nb = np.swapaxes(attitude.euler_to_dcm(hpr), -1, -2)
     lat = gyrocompass_latitude(scalar(lat, "lat"))
-    if not isinstance(n_trials, (int, np.integer)) or isinstance(n_trials, bool) or n_trials < 1:
-        raise ValueError(f"n_trials: expected a positive integer, got {n_trials!r}")
+    n_trials = integer(n_trials, "n_trials")
     s_g = scalar(sigma_gyro, "sigma_gyro", allow_zero=True)
     s_a = scalar(sigma_accel, "sigma_accel", allow_zero=True)
     r_gyro, r_accel = generator(rng).spawn(2)
@@ -588,7 +602,7 @@ def monte_carlo(headings: Angles, pitch: float, roll: float, lat: float, n_trial
     err_raw = attitude.wrap_pi(triad_heading(C_raw) - truth)
     err_triad = attitude.wrap_pi(triad_heading(attitude.orthonormalize(C_raw)) - truth)
     cand = heading_candidates(w[..., 1], f, lat)
-    return MonteCarlo(psi, err_triad, err_raw, nearest_candidate_error(cand.pair, truth), cand.clipped)
+    return MonteCarlo(psi, err_triad, err_raw, _nearest_error(cand.pair, truth), cand.clipped)
 
 
 # --------------------------------------------------------------------------
@@ -680,15 +694,10 @@ def stop_and_go(headings: Angles, stop_duration: float, drive_duration: float, s
         Start and end time of each stop (s).
     """
     psi = as_array(headings, "headings", shape=(None,))
-    th = as_array(pitches, "pitches", shape=(None,))
-    ro = as_array(rolls, "rolls", shape=(None,))
     if psi.size < 2:
         raise ValueError(f"headings: expected a 1-D array of >= 2 stops, got {psi.shape}")
-    for name, x in (("pitches", th), ("rolls", ro)):
-        if x.shape != psi.shape:
-            raise ValueError(f"{name}: expected one value per stop (per heading of headings), shape {psi.shape}, "
-                             f"got {x.shape}")
-    pitch_roll(th, ro, ("pitches", "rolls"))
+    th, ro = pitch_roll(as_array(pitches, "pitches", shape=psi.shape, of="headings: one per stop"),
+                        as_array(rolls, "rolls", shape=psi.shape, of="headings: one per stop"), ("pitches", "rolls"))
     stop_duration = scalar(stop_duration, "stop_duration", positive=True)
     drive_duration = scalar(drive_duration, "drive_duration", positive=True)
     if drive_duration < 30:
@@ -713,21 +722,27 @@ class StopSolutions:
     """North finding at each stop of a drive, shapes (..., S) and (..., S, 2).
 
     ``candidates`` are the single-axis pairs (forward gyro + accelerometers),
-    ``triad`` the three-axis TRIAD headings (rad), ``clipped`` the clipping flags.
-    ``windows`` holds each stop's :class:`StaticWindow` (counts of dropped,
-    rejected, saturated and frozen samples and the status); with ``strict=False`` a
-    refused stop has NaN candidates and heading.
+    ``triad`` the three-axis TRIAD headings (rad), ``clipped`` the clipping flags,
+    ``f_mean`` each stop's mean specific force. ``faults`` stacks the faults of the
+    stops' windows (:func:`navlib.alignment.static_means`), counts of shape (..., S):
+    dropped (``"nan"``), rejected (``"outlier"``), saturated and frozen (``"stuck"``)
+    samples per sensor, and ``("window", "refused")`` 1 for a refused stop, which with
+    ``strict=False`` has NaN candidates and heading. ``windows`` holds each stop's
+    :class:`navlib.alignment.StaticWindow`.
     """
     candidates: np.ndarray
     triad: np.ndarray
     clipped: np.ndarray
     f_mean: np.ndarray
+    faults: robust.FaultReport
     windows: tuple = ()
 
-    @property
-    def status(self) -> np.ndarray:
-        """Status of each stop's window, shape (..., S) (:data:`OK`, :data:`TOO_FEW`, ...)."""
-        return np.stack([s.status for s in self.windows], -1)
+
+def _stacked_faults(reports: list[robust.FaultReport]) -> robust.FaultReport:
+    """The stops' fault reports as one, each count stacked on a last (stop) axis."""
+    keys = dict.fromkeys(key for r in reports for key in r.counts)
+    return robust.FaultReport({key: np.stack(np.broadcast_arrays(*(np.asarray(r[key]) for r in reports)), -1)
+                               for key in keys})
 
 
 def stop_solutions(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None, windows: ArrayLike | None = None,
@@ -769,8 +784,7 @@ def stop_solutions(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = Non
         fs_gyro, fs_accel = window_options.pop("full_scale_gyro", None), window_options.pop("full_scale_accel", None)
         w_ib_b, f_b, _, fs_gyro, fs_accel = unpack(w_ib_b, f_b, None, fs_gyro, fs_accel)
         window_options.update(full_scale_gyro=fs_gyro, full_scale_accel=fs_accel)
-    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
-    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=True)
+    w, f = imu_samples(w_ib_b, f_b)
     n = w.shape[-2]
     if time is not None:
         t = time_axis(time, "time")
@@ -797,42 +811,12 @@ def stop_solutions(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = Non
     cand = heading_candidates(w_safe[..., 1], f_safe, lat, h)
     heading = triad_heading(triad(f_safe, w_safe, lat))
     pair = np.where(ok[..., None], cand.pair, np.nan)
-    return StopSolutions(pair, np.where(ok, heading, np.nan), cand.clipped & ok, f_mean, stats)
-
-
-@dataclass(frozen=True)
-class InsReport:
-    """What :func:`ins_heading_change` did with faulty samples, per drive (shape (...)); its deprecated ``report=True``.
-
-    Deprecated with ``report=``: the refused drives are the NaN entries of the heading change and
-    ``robust.fault_report(w_ib_b, "gyro", full_scale=full_scale_gyro)`` counts the held and saturated samples.
-
-    Attributes
-    ----------
-    n_held : ndarray of int
-        NaN gyro samples (dropouts) replaced by the last valid sample.
-    longest_gap : ndarray
-        Longest run of dropouts (s).
-    n_saturated : ndarray of int
-        Samples with a component at the rails (``|w| >= full_scale_gyro``).
-    refused : ndarray of bool
-        Drives whose heading change is NaN: a dropout run longer than
-        ``max_gap``, a saturated sample, or no valid sample at all.
-    """
-    n_held: np.ndarray
-    longest_gap: np.ndarray
-    n_saturated: np.ndarray
-    refused: np.ndarray
-
-    @property
-    def faults(self) -> robust.FaultReport:
-        """The counts above as a :class:`navlib.robust.FaultReport` (``("drive", "refused")`` per drive)."""
-        return robust.FaultReport({("gyro", "nan"): self.n_held, ("gyro", "saturated"): self.n_saturated,
-                                   ("drive", "refused"): self.refused.astype(int)})
+    return StopSolutions(pair, np.where(ok, heading, np.nan), cand.clipped & ok, f_mean,
+                         _stacked_faults([m.faults for m in stats]), stats)
 
 
 def _hold_last(w, dts):
-    """Forward-fill NaN rows along axis -2 (back-fill leading ones); counts and longest run (s)."""
+    """Forward-fill NaN rows along axis -2 (back-fill leading ones); the longest run (s) and the trials without a valid row."""
     bad = ~np.all(np.isfinite(w), -1)
     n = w.shape[-2]
     empty = bad.all(-1)
@@ -846,13 +830,12 @@ def _hold_last(w, dts):
     for i in range(n):
         run = np.where(bad[..., i], run + dts[i], 0.0)
         longest = np.maximum(longest, run)
-    return filled, bad.sum(-1), longest, empty
+    return filled, longest, empty
 
 
-@renamed_keywords(full_scale="full_scale_gyro")
 def ins_heading_change(w_ib_b: Vec3Series | ImuSamples, f_start: Vec3, dt: Interval | None = None,
                        lat: float | None = None, earth_rate: str = "vertical", *, max_gap: float = 0.1,
-                       full_scale_gyro: float | None = None, report: bool | None = None) -> Array:
+                       full_scale_gyro: float | None = None) -> Array:
     """MEMS strapdown heading change over a drive, started with heading 0 (paper step 2).
 
     The attitude starts at heading 0 with pitch and roll from ``f_start``
@@ -899,56 +882,44 @@ def ins_heading_change(w_ib_b: Vec3Series | ImuSamples, f_start: Vec3, dt: Inter
     earth_rate : {"vertical", "none", "full"}
     max_gap : float
         Longest run of dropouts bridged by holding the last sample (s).
-    full_scale_gyro : float, optional  (formerly ``full_scale``, which warns)
+    full_scale_gyro : float, optional
         Gyro range (rad/s); None: no saturation check.
-    report : bool, optional
-        Deprecated (warns; removed in navlib 0.3): ``report=True`` returns
-        ``(dpsi, InsReport)``; the refused drives are the NaN entries of
-        ``dpsi``, the counts come from :func:`navlib.robust.fault_report`.
 
     Returns
     -------
     ndarray, shape (...)
         Heading change, wrapped into (-pi, pi] (rad); NaN for refused drives.
     """
-    if report is not None:
-        warnings.warn("ins_heading_change(report=...) is deprecated and will be removed in navlib 0.3; refused "
-                      'drives are the NaN entries of the result and robust.fault_report(w_ib_b, "gyro", '
-                      "full_scale=full_scale_gyro) counts the held and saturated samples", DeprecationWarning,
-                      stacklevel=3)
-        report = flag(report, "report")
     if isinstance(w_ib_b, ImuSamples):
         w_ib_b, _, dt, full_scale_gyro, _ = unpack(w_ib_b, dt=dt, full_scale_gyro=full_scale_gyro)
     w_ie = earth.earth_rate_n(gyrocompass_latitude(scalar(lat, "lat")))
     rates = {"vertical": w_ie * [0, 0, 1], "none": np.zeros(3), "full": w_ie}
-    if earth_rate not in rates:
-        raise ValueError(f"earth_rate: expected 'vertical', 'none' or 'full', got {earth_rate!r}")
+    choice(earth_rate, "earth_rate", tuple(rates))
     w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
     n = w.shape[-2]
     dts = intervals(dt, n)
     step = float(dts[0]) if np.all(dts == dts[0]) else float(dts.mean())
     max_gap = scalar(max_gap, "max_gap", allow_zero=True)
-    fs = np.inf if full_scale_gyro is None else scalar(full_scale_gyro, "full_scale_gyro", positive=True)
+    fs = range_limit(full_scale_gyro, "full_scale_gyro")
     pitch, roll = level(broadcast_to(as_array(f_start, "f_start", tail=(3,)), "f_start", w.shape[:-2] + (3,),
                                      of="the trials of w_ib_b"))
     with np.errstate(invalid="ignore"):
-        n_sat = np.sum(np.any(np.abs(w) >= fs, -1), -1)             # NaN compares False
+        saturated = np.any(np.abs(w) >= fs, (-2, -1))               # NaN compares False
     if np.all(np.isfinite(w)):
-        n_held = np.zeros(w.shape[:-2], dtype=int)
         longest, empty = np.zeros(w.shape[:-2]), np.zeros(w.shape[:-2], dtype=bool)
     else:
-        w, n_held, longest, empty = _hold_last(w, dts)
+        w, longest, empty = _hold_last(w, dts)
         w = np.where(empty[..., None, None], 0.0, w)
     if not np.all(dts == step):
         w = w * (dts / step)[:, None]                      # w_k dt_k integrated exactly with the mean interval
-    refused = empty | (longest > max_gap) | (n_sat > 0)
+    refused = empty | (longest > max_gap) | saturated
     q0 = attitude.euler_to_quat(np.stack([np.zeros_like(pitch), pitch, roll], -1))
     q = strapdown.integrate_attitude(q0, w, step, rates[earth_rate])
     end = attitude.quat_to_dcm(q[..., -1, :])
     dpsi = attitude.wrap_pi(np.arctan2(end[..., 0, 1], end[..., 1, 1]))
     if np.any(refused):
         dpsi = np.where(refused, np.nan, dpsi)
-    return (dpsi, InsReport(n_held, longest, n_sat, refused)) if report else dpsi
+    return dpsi
 
 
 # --------------------------------------------------------------------------
