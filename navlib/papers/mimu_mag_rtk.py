@@ -98,7 +98,7 @@ __all__ = ["printed_eq2_roll", "printed_eq2_arctan", "printed_eq4", "printed_eq5
 
 def printed_eq2_roll(q: Quat) -> Array:
     """Roll as printed in Eq. (2): ``atan(-2(q1 q3 + q0 q2) / (1 - 2(q1^2 + q2^2)))`` (E003-02)."""
-    q0, q1, q2, q3 = np.moveaxis(as_quat(nonempty_array(q, "q", tail=(4,)), "q", normalize=False), -1, 0)
+    q0, q1, q2, q3 = np.moveaxis(as_quat(q, "q", normalize=False), -1, 0)
     return np.arctan(-2 * (q1 * q3 + q0 * q2) / (1 - 2 * (q1 ** 2 + q2 ** 2)))
 
 
@@ -109,7 +109,7 @@ def printed_eq2_arctan(q: Quat) -> Array:
     loss of ``arctan`` shows: heading and roll come back within (-90 deg, 90 deg), and a pitch argument
     that rounding pushes past 1 (at +-90 deg pitch) gives NaN. Returns ``[heading, pitch, roll]``.
     """
-    q0, q1, q2, q3 = np.moveaxis(as_quat(nonempty_array(q, "q", tail=(4,)), "q"), -1, 0)
+    q0, q1, q2, q3 = np.moveaxis(as_quat(nonempty_array(q, "q", tail=(4,)), "q"), -1, 0)   # as_quat alone takes huge values
     with np.errstate(invalid="ignore", divide="ignore"):
         pitch = np.arcsin(2 * (q0 * q1 + q2 * q3))
         roll = np.arctan(2 * (q0 * q2 - q1 * q3) / (1 - 2 * (q1 ** 2 + q2 ** 2)))
@@ -119,7 +119,7 @@ def printed_eq2_arctan(q: Quat) -> Array:
 
 def printed_eq4(q: Quat) -> Array:
     """Eq. (4) as printed, with ``q0`` instead of ``q0**2`` in the third row (E003-04); (..., 4) -> (..., 3)."""
-    q0, q1, q2, q3 = np.moveaxis(as_quat(nonempty_array(q, "q", tail=(4,)), "q", normalize=False), -1, 0)
+    q0, q1, q2, q3 = np.moveaxis(as_quat(q, "q", normalize=False), -1, 0)
     return np.stack([2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), q0 + q3 ** 2 - q1 ** 2 - q2 ** 2], -1)
 
 
@@ -153,7 +153,7 @@ def printed_eq7_heading(m_h: Vec3) -> Array:
 
 def printed_eq8_quat(hpr: Angles) -> Array:
     """Eq. (8) as printed, with its yaw psi = -heading: ``q_z(psi) q_y(roll) q_x(pitch)`` (E003-01)."""
-    h, p, r = np.moveaxis(euler_angles(nonempty_array(hpr, "hpr", tail=(3,))), -1, 0)
+    h, p, r = np.moveaxis(euler_angles(hpr), -1, 0)
 
     def axis_quat(a, i):
         return np.stack([np.cos(a / 2)] + [np.sin(a / 2) * (i == j) for j in range(3)], -1)
@@ -212,8 +212,8 @@ def printed_eq18_gamma(q: Quat, dt: float) -> Array:
 
 def printed_eq20_jacobian(q: Quat, b: Vec3) -> Array:
     """Eq. (20) as printed: H44 = 2(q0 b_y - q1 b_z) (E003-13)."""
-    H = measurement_jacobian(q, b).copy()
-    q, b = nonempty_array(q, "q", tail=(4,)), nonempty_array(b, "b", tail=(3,))
+    H = measurement_jacobian(q, b).copy()                      # validates q and b
+    q, b = np.asarray(q, dtype=float), np.asarray(b, dtype=float)
     H[..., 3, 3] = 2 * (q[..., 0] * b[..., 1] - q[..., 1] * b[..., 2])
     return H
 
