@@ -31,8 +31,6 @@ from ._validate import (
     kernel_array,
     last_axis,
     latitude,
-    nonempty_array,
-    nonempty_positive,
     positive,
     same_shape,
     scalar,
@@ -47,7 +45,7 @@ __all__ = ["rmse", "allan_deviation", "allan_deviation_theory", "fit_allan",
 
 def rmse(err: ArrayLike, axis: int | tuple[int, ...] | None = 0) -> Array:
     """Root mean square of ``err`` along ``axis`` (NaN propagates: no silent dropping)."""
-    err = nonempty_array(err, "err", allow_nan=True)
+    err = as_array(err, "err", allow_nan=True, nonempty=True)
     if axis is not None:
         for a in axis if isinstance(axis, tuple) else (axis,):
             if not -err.ndim <= integer(a, "axis", minimum=None) < err.ndim:
@@ -75,8 +73,8 @@ def _peak():
 GM_ALLAN_PEAK, GM_ALLAN_PEAK_TAU = 0.6173642831444414, 1.8926178039336263
 """Peak Allan deviation of a unit-variance Gauss-Markov process (~0.6174), and
 the tau of the peak in units of the correlation time (~1.893): the result of ``_peak()`` (a bounded
-maximisation), written out so that ``import navlib`` does not import scipy.optimize (~0.3 s per kernel;
-tests/test_analysis.py recomputes them)."""
+maximisation), written out so that ``import navlib`` does not import scipy.optimize
+(tests/test_analysis.py recomputes them)."""
 
 
 def allan_deviation(x: ArrayLike, dt: float, taus: ArrayLike | None = None) -> tuple[Array, Array]:
@@ -128,7 +126,7 @@ def _mean_square_second_difference(theta, m):
 
     One pass per averaging time and no temporaries (numpy needs four record-sized arrays per ``m``); the
     sum runs over ``r`` in order, as numpy's reduction over a non-contiguous axis does. Vector series
-    (k = 3) take two averaging times per pass with the sums in registers: 2-3x faster, same sums.
+    (k = 3) take two averaging times per pass with the sums in registers (fewer passes over the record, same sums).
     """
     n_b, length, k = theta.shape
     out = np.empty((n_b, m.size, k))
@@ -193,11 +191,16 @@ def allan_deviation_theory(taus: ArrayLike, white: float = 0.0, bias_instability
     rate_random_walk : float
         K (units/s/sqrt(Hz)).
     """
-    taus = nonempty_positive(taus, "taus")
+    taus = positive(taus, "taus", nonempty=True)
     white, bias_instability, rate_random_walk = (
         scalar(v, name, allow_zero=True) for v, name in ((white, "white"), (bias_instability, "bias_instability"),
                                                          (rate_random_walk, "rate_random_walk")))
     correlation_time = scalar(correlation_time, "correlation_time", positive=True)
+    return _adev_theory(taus, white, bias_instability, correlation_time, rate_random_walk)
+
+
+def _adev_theory(taus, white, bias_instability, correlation_time, rate_random_walk):
+    """:func:`allan_deviation_theory` of checked arguments (the model :func:`fit_allan` evaluates)."""
     sigma_gm = bias_instability / GM_ALLAN_PEAK
     var = (white ** 2 / taus + sigma_gm ** 2 * _gm_allan_var_unit(taus / correlation_time)
            + rate_random_walk ** 2 * taus / 3)
@@ -241,7 +244,7 @@ def fit_allan(taus: ArrayLike, adev: ArrayLike, n_samples: int, dt: float, *, ra
     i_min = int(np.argmin(adev))
 
     def model(p):
-        return allan_deviation_theory(taus, p[0], p[1], p[2], p[3] if rate_random_walk else 0.0)
+        return _adev_theory(taus, p[0], p[1], p[2], p[3] if rate_random_walk else 0.0)
 
     def resid(p):
         return w * (np.log(model(p)) - np.log(adev))
@@ -292,8 +295,8 @@ def attitude_errors(hpr: Angles, hpr_true: Angles) -> Array:
     -------
     err : ndarray, shape (..., 3)
     """
-    a = nonempty_array(hpr, "hpr", tail=(3,))
-    b = nonempty_array(hpr_true, "hpr_true", tail=(3,))
+    a = as_array(hpr, "hpr", tail=(3,), nonempty=True)
+    b = as_array(hpr_true, "hpr_true", tail=(3,), nonempty=True)
     return attitude.wrap_pi(a - b)
 
 
@@ -312,8 +315,8 @@ def error_statistics(hpr: Angles, hpr_true: Angles) -> tuple[Array, Array]:
     max_abs, mean_abs : ndarray, shape (..., 3)
         Largest and mean wrapped |error| over time (rad).
     """
-    a = nonempty_array(hpr, "hpr", tail=(3,), min_ndim=1)
-    b = nonempty_array(hpr_true, "hpr_true", tail=(3,), min_ndim=1)
+    a = as_array(hpr, "hpr", tail=(3,), min_ndim=1)
+    b = as_array(hpr_true, "hpr_true", tail=(3,), min_ndim=1)
     lead, n = a.shape[:-2], a.shape[-2]
     if b.shape != (n, 3) and b.shape != a.shape:
         raise ValueError(f"hpr_true: expected shape ({n}, 3) or {a.shape}, got {b.shape}")
@@ -403,7 +406,7 @@ def settling_time(time: Times, error: ArrayLike, start: float, tol: float, end: 
         Last time considered (s), e.g. the start of the next outage; default the end of the record.
     """
     t = time_axis(time, "time")
-    e = last_axis(nonempty_array(error, "error", min_ndim=1), "error", t.size, of="time")
+    e = last_axis(as_array(error, "error", min_ndim=1), "error", t.size, of="time")
     tol = scalar(tol, "tol", positive=True)
     start = scalar(start, "start")
     stop = np.inf if end is None else scalar(end, "end")
@@ -457,11 +460,11 @@ def moving_mean(x: ArrayLike, n: int) -> Array:
 # --------------------------------------------------------------------------
 
 def _blocks(V, R=None, allow_nan=False, *, with_r=True):
-    V = nonempty_array(V, "V", min_ndim=3, allow_nan=allow_nan)
+    V = as_array(V, "V", min_ndim=3, allow_nan=allow_nan)
     if not with_r:
         return V
     m = V.shape[-2]
-    R = nonempty_array(R, "R", min_ndim=3)
+    R = as_array(R, "R", min_ndim=3)
     if R.shape[-2:] != (m, m):
         raise ValueError(f"R: expected shape (..., {m}, {m}) (m = {m} rows of each block of V {V.shape}), got {R.shape}")
     return V, R
@@ -473,9 +476,14 @@ def normal_condition(A: ArrayLike) -> Array:
     ``inf`` when ``A`` is singular: an eigenvalue within the eigensolver's rounding of the largest
     (``n eps eig_max``) counts as zero, whatever its sign (which is machine-dependent noise).
     """
-    A = nonempty_array(A, "A", min_ndim=2)
+    A = as_array(A, "A", min_ndim=2)
     if A.shape[-1] != A.shape[-2]:
         raise ValueError(f"A: expected square matrices (..., n, n), got shape {A.shape}")
+    return _normal_condition(A)
+
+
+def _normal_condition(A: np.ndarray) -> Array:
+    """:func:`normal_condition` of checked matrices (also of the normal matrices built here)."""
     ev = np.linalg.eigvalsh(A)
     zero = ev[..., 0] <= ev[..., -1] * A.shape[-1] * np.finfo(float).eps
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -492,7 +500,7 @@ def condition_number(V: ArrayLike) -> Array:
     ok = np.all(np.isfinite(V), axis=(-2, -1))
     Vz = np.where(ok[..., None, None], V, 0.0)
     A = np.einsum("...kij,...kil->...jl", Vz, Vz)
-    return normal_condition(A)
+    return _normal_condition(A)
 
 
 def lsq_covariance(V: ArrayLike, R: ArrayLike, max_cond: float = 1e6) -> Array:
@@ -513,7 +521,7 @@ def lsq_covariance(V: ArrayLike, R: ArrayLike, max_cond: float = 1e6) -> Array:
     V, R = _blocks(V, R)
     max_cond = scalar(max_cond, "max_cond", positive=True, allow_inf=True)
     A = np.einsum("...kji,...kjl->...il", V, V)
-    if np.any(normal_condition(A) > max_cond):
+    if np.any(_normal_condition(A) > max_cond):
         raise ValueError("V: the unknowns are not observable from these blocks (rank-deficient V)")
     A_inv = np.linalg.inv(A)
     return A_inv @ np.einsum("...kji,...kjl,...klm->...im", V, R, V) @ A_inv
@@ -540,7 +548,7 @@ def cramer_rao_bound(V: ArrayLike, R: ArrayLike, max_cond: float = 1e6) -> Array
     max_cond = scalar(max_cond, "max_cond", positive=True, allow_inf=True)
     n = V.shape[-1]
     info = np.einsum("...kji,...kjl,...klm->...im", V, np.linalg.inv(R), V)
-    bad = normal_condition(info) ** 2 > max_cond ** 2
+    bad = _normal_condition(info) ** 2 > max_cond ** 2
     safe = np.where(bad[..., None, None], np.eye(n), info)
     P = np.linalg.inv(safe)
     return np.where(bad[..., None, None], np.where(np.eye(n, dtype=bool), np.inf, np.nan), P)

@@ -28,7 +28,6 @@ from ._validate import (
     instance,
     integer,
     last_axis,
-    nonempty_positive,
     positive,
     scalar,
     time_axis,
@@ -72,7 +71,10 @@ def isa_pressure(h: ArrayLike, p0: ArrayLike = P0) -> Array:
 
 def bmp180_altitude(p: ArrayLike, p0: ArrayLike = P0) -> Array:
     """Altitude (m) by the BMP180 datasheet formula ``44330 (1 - (p/p0)^(1/5.255))``."""
-    p, p0 = positive(p, "p"), positive(p0, "p0")
+    return _bmp180_altitude(positive(p, "p"), positive(p0, "p0"))
+
+
+def _bmp180_altitude(p: np.ndarray, p0: np.ndarray) -> Array:
     return 44330.0 * (1 - (p / p0) ** (1 / 5.255))
 
 
@@ -93,8 +95,17 @@ def hypsometric_height(p: ArrayLike, p_ref: ArrayLike, temperature: ArrayLike) -
         Mean air temperature of the layer (K).
     """
     p, p_ref = positive(p, "p"), positive(p_ref, "p_ref")
+    return _hypsometric_height(p, p_ref, _temperature(temperature, p, p_ref))
+
+
+def _temperature(temperature: ArrayLike, p: np.ndarray, p_ref: np.ndarray) -> np.ndarray:
+    """The air temperature (K) of a layer between checked pressures ``p`` and ``p_ref``."""
     T = in_range(as_array(temperature, "temperature"), "temperature", 150.0, 350.0, "K")
     broadcast(p, p_ref, T, name="temperature", of="p, p_ref, temperature")
+    return T
+
+
+def _hypsometric_height(p: np.ndarray, p_ref: np.ndarray, T: np.ndarray) -> Array:
     return R_AIR * T / G0 * np.log(p_ref / p)
 
 
@@ -176,11 +187,11 @@ def baro_height(p: ArrayLike, p_ref: ArrayLike, temperature: ArrayLike | None = 
     temperature : array_like, optional
         Air temperature (K).
     """
-    p = nonempty_positive(p, "p")
+    p = positive(p, "p", nonempty=True)
     p, p_ref = broadcast(p, positive(p_ref, "p_ref"), name="p_ref", of="p")
     if temperature is None:
-        return bmp180_altitude(p, p_ref)
-    return hypsometric_height(p, p_ref, temperature)
+        return _bmp180_altitude(p, p_ref)
+    return _hypsometric_height(p, p_ref, _temperature(temperature, p, p_ref))
 
 
 def reference_pressure(p: ArrayLike, time: Times, until: float) -> float | Array:

@@ -51,6 +51,7 @@ from ._validate import (
     instance,
     integer,
     last_axis,
+    numbers,
     positive,
     same_shape,
     scalar,
@@ -66,12 +67,6 @@ __all__ = ["TriadErrors", "ImuModel", "ImuOutput", "window_mean_std", "simulate_
 
 PRESETS_CSV = resources.files("navlib") / "data" / "sensor_presets.csv"
 """The device presets, shipped inside the package (read with ``importlib.resources``)."""
-
-
-def _check_fields(obj, infinite_ok=()) -> None:
-    """Every field of a model dataclass is a non-negative number (finite unless listed)."""
-    for f in fields(obj):
-        scalar(getattr(obj, f.name), f.name, allow_zero=True, allow_inf=f.name in infinite_ok)
 
 
 # --------------------------------------------------------------------------
@@ -113,9 +108,9 @@ class TriadErrors:
     full_scale: float = np.inf
 
     def __post_init__(self):
-        _check_fields(self, infinite_ok=("full_scale",))
-        scalar(self.correlation_time, "correlation_time", positive=True)
-        scalar(self.full_scale, "full_scale", positive=True, allow_inf=True)
+        numbers(self, positive=("correlation_time", "full_scale"), infinite=("full_scale",),
+                non_negative=("noise_density", "bias", "bias_instability", "rate_random_walk", "scale_factor",
+                              "misalignment"))
 
     @property
     def gauss_markov_sigma(self) -> float:
@@ -191,7 +186,11 @@ def gauss_markov(shape: tuple[int, ...], dt: float, sigma: float, correlation_ti
     generator(rng)
     if not isinstance(shape, (tuple, list)) or len(shape) < 2:
         raise ValueError(f"shape: expected a tuple (..., N, k) of positive integers, got {shape!r}")
-    shape = tuple(integer(n, "shape") for n in shape)
+    return _gauss_markov(tuple(integer(n, "shape") for n in shape), dt, sigma, tc, rng)
+
+
+def _gauss_markov(shape: tuple[int, ...], dt: float, sigma: float, tc: float, rng: np.random.Generator) -> Array:
+    """:func:`gauss_markov` of checked arguments."""
     phi = np.exp(-dt / tc)
     x0 = sigma * rng.standard_normal(shape[:-2] + (1, shape[-1]))
     y = rng.standard_normal(out=np.empty(shape))      # the driving noise, filtered in place below
@@ -226,7 +225,7 @@ def _corrupt(x, dt, errors: TriadErrors, rng: np.random.Generator):
     M = _error_matrix(errors, lead, r_matrix)
     turn_on = errors.bias * r_on.standard_normal(lead + (1, 3))
     if errors.bias_instability > 0:        # turn-on + Gauss-Markov, added in place (addition commutes: same bits)
-        bias = gauss_markov(shape, dt, errors.gauss_markov_sigma, errors.correlation_time, r_gm)
+        bias = _gauss_markov(shape, dt, errors.gauss_markov_sigma, errors.correlation_time, r_gm)
         bias += turn_on
     else:
         bias = np.broadcast_to(turn_on, shape).copy()
@@ -381,17 +380,19 @@ def preset(device: str) -> dict[tuple[str, str], float]:
     return {k: v[0] for k, v in table[device].items()}
 
 
+def _preset_fields(device: str, sensor: str, names: set[str], what: str) -> dict[str, float]:
+    """The parameters ``names`` of one sensor of a preset device; ``what`` names the sensor in the error."""
+    kw = {par: v for (s, par), v in preset(device).items() if s == sensor and par in names}
+    if not kw:
+        raise ValueError(f"device: {device!r} has no {what} preset")
+    return kw
+
+
 def imu_model(device: str) -> ImuModel:
     """:class:`ImuModel` of a preset device (``NAV-FOG``, ``MTi-100``, ``ADIS16475-1``, ``MPU-6050``)."""
-    p = preset(device)
     names = {f.name for f in fields(TriadErrors)}
-    triads = {}
-    for sensor in ("gyro", "accel"):
-        kw = {par: v for (s, par), v in p.items() if s == sensor and par in names}
-        if not kw:
-            raise ValueError(f"device: {device!r} has no {sensor} preset")
-        triads[sensor] = TriadErrors(**kw)
-    return ImuModel(triads["gyro"], triads["accel"], device)
+    gyro, accel = (TriadErrors(**_preset_fields(device, sensor, names, sensor)) for sensor in ("gyro", "accel"))
+    return ImuModel(gyro, accel, device)
 
 
 # --------------------------------------------------------------------------
@@ -413,17 +414,12 @@ class MagnetometerModel:
     full_scale: float = np.inf
 
     def __post_init__(self):
-        _check_fields(self, infinite_ok=("full_scale",))
-        scalar(self.full_scale, "full_scale", positive=True, allow_inf=True)
+        numbers(self, positive=("full_scale",), non_negative=("noise", "hard_iron", "soft_iron"), infinite=("full_scale",))
 
     @classmethod
     def from_preset(cls, device: str) -> MagnetometerModel:
         """Model of a preset magnetometer (e.g. ``"HMC5983"``)."""
-        p = preset(device)
-        kw = {par: v for (s, par), v in p.items() if s == "mag"}
-        if not kw:
-            raise ValueError(f"device: {device!r} has no magnetometer preset")
-        return cls(**kw)
+        return cls(**_preset_fields(device, "mag", {f.name for f in fields(cls)}, "magnetometer"))
 
 
 @dataclass(frozen=True)
@@ -531,18 +527,12 @@ class BarometerModel:
     drift_rate: float = 0.0
 
     def __post_init__(self):
-        scalar(self.noise, "noise", allow_zero=True)
-        scalar(self.bias, "bias", allow_zero=True)
-        scalar(self.drift_rate, "drift_rate")
+        numbers(self, non_negative=("noise", "bias"), real=("drift_rate",))
 
     @classmethod
     def from_preset(cls, device: str = "BMP180") -> BarometerModel:
         """Model of a preset barometer."""
-        p = preset(device)
-        kw = {par: v for (s, par), v in p.items() if s == "baro" and par in ("noise", "bias", "drift_rate")}
-        if not kw:
-            raise ValueError(f"device: {device!r} has no barometer preset")
-        return cls(**kw)
+        return cls(**_preset_fields(device, "baro", {"noise", "bias", "drift_rate"}, "barometer"))
 
 
 def simulate_barometer(h: ArrayLike, time: Times, model: BarometerModel, rng: np.random.Generator,
@@ -565,15 +555,13 @@ def simulate_barometer(h: ArrayLike, time: Times, model: BarometerModel, rng: np
     ndarray, shape (..., N)
     """
     t = time_axis(time)
-    h = as_array(h, "h")
     generator(rng)
     instance(model, "model", BarometerModel, "a BarometerModel")
-    last_axis(h, "h", t.size, of="time")
+    p = last_axis(atmosphere.isa_pressure(h, scalar(p0, "p0", positive=True)), "h", t.size, of="time")   # checks h
     r_bias, r_noise = rng.spawn(2)
-    p = atmosphere.isa_pressure(h, scalar(p0, "p0", positive=True))
-    p = p + model.bias * r_bias.standard_normal(h.shape[:-1] + (1,))
+    p = p + model.bias * r_bias.standard_normal(p.shape[:-1] + (1,))
     p = p + model.drift_rate * (t - t[0])
-    return p + model.noise * r_noise.standard_normal(h.shape)
+    return p + model.noise * r_noise.standard_normal(p.shape)
 
 
 # --------------------------------------------------------------------------
