@@ -227,6 +227,25 @@ GOOD_W = np.tile(ideal([1.0, 0.0, 0.0])[0], (10, 1))
 GOOD_F = np.tile(ideal([1.0, 0.0, 0.0])[1], (10, 1))
 
 
+def test_stop_solutions_stack_each_stops_faults():
+    w = GOOD_W.copy()
+    w[2] = np.nan                                        # one dropout in the first stop
+    sol = nf.stop_solutions(np.stack([w, GOOD_W]), np.stack([GOOD_F, GOOD_F]), [[0, 5], [5, 10]], LAT,
+                            stuck_fraction=None)
+    np.testing.assert_array_equal(sol.faults["gyro", "nan"], [[1, 0], [0, 0]])      # (trials, stops)
+    np.testing.assert_array_equal(sol.faults["window", "refused"], 0)
+    for key, count in sol.faults.counts.items():
+        np.testing.assert_array_equal(count, np.stack([np.broadcast_to(s.faults[key], (2,)) for s in sol.windows], -1))
+    assert not hasattr(sol, "status")
+
+
+def test_ins_heading_change_has_no_deprecated_options():
+    with pytest.raises(TypeError):
+        nf.ins_heading_change(GOOD_W, GOOD_F[0], 0.01, LAT, report=True)
+    with pytest.raises(TypeError):
+        nf.ins_heading_change(GOOD_W, GOOD_F[0], 0.01, LAT, full_scale=1.0)
+
+
 @pytest.mark.parametrize("call, arg", [
     (lambda: alignment.triad([0, 0, 9.8], [0, 1e-5, 1e-5], units.deg(95.0)), "lat"),
     (lambda: alignment.triad([0, 0, 9.8], [0, 1e-5, 1e-5], units.deg(89.5)), "lat"),
