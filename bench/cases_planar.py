@@ -67,7 +67,8 @@ def ekf_step(quick: bool):
     z = truth + rng.standard_normal(truth.shape) * np.sqrt(np.diag(planar.R_PAPER))
     t = np.arange(n) * T
     x0 = truth[0]
-    t_nav = best_time(lambda: planar_ekf.filter_grid(t, z, x0, np.eye(5), Q=planar.Q_PAPER, R=planar.R_PAPER))
+    config = planar_ekf.EkfConfig(planar.Q_PAPER, planar.R_PAPER, np.eye(5))
+    t_nav = best_time(lambda: planar_ekf.filter_grid(t, z, x0, config))
     rows = [Result("EKF step, 5 states (paper 002)", "navlib.filters.planar_ekf (numba)", n / t_nav, "steps/s", t_nav,
                    goal=5e5, note="goal 0.5 M/s and 10x filterpy")]
     try:

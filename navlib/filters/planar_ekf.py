@@ -33,38 +33,42 @@ the printed ``X_m`` is the measurement); the heading innovation is wrapped to
     Q = diag(1, 1, 0.01, 0.0001, 0.0016)      R = diag(6.25, 6.25, 0.01, 0.0004, 0.0025)
 
 in SI units (m², rad², m²/s², rad²/s²) in the paper (``gauss_kruger_ekf.Q_PAPER``, ``R_PAPER``);
-:func:`filter_grid` has no default noise. ``theta_IMU`` must be an absolute heading and ``omega_IMU``
+:class:`EkfConfig` has no default noise. ``theta_IMU`` must be an absolute heading and ``omega_IMU``
 the vertical gyro rate.
 
 The predict/update cycle is one compiled kernel (:func:`filter_grid`) that calls
 :func:`navlib.kalman.update` (and a specialised, allocation-free Joseph update for H = I5 when every
 component is present).
 
-Faults (what the filters do, and which counter of :class:`EkfResult` says so)
------------------------------------------------------------------------------
+Faults (what the filters do, and which key of ``EkfResult.faults`` says so)
+--------------------------------------------------------------------------
+All tests on the measurements run once, before the first epoch (:func:`filter_grid`); the kernel fuses
+what they left. Keys are ``(sensor, kind)`` with the sensors ``gnss``, ``heading``, ``speed``,
+``yaw_rate`` (:data:`CHANNELS` order) and ``clock``; every key has its per-epoch flags.
+
 ============================  ====================================================  =====================================
-fault                         EKF                                                   counter
+fault                         EKF                                                   key
 ============================  ====================================================  =====================================
-NaN sample / outage / gap     skip that component; nothing at all: predict          ``n_missing_channels``,
-                              only (P grows, recovers at the next fix)              ``n_gps_missing``, ``n_predict_only``
-outlier (spike, GPS jump)     with a finite ``gate``: gate each channel             ``rejected``, ``n_rejected_channels``,
-                              (GPS 2 dof, heading, speed, yaw rate 1 dof) on        ``n_rejected`` (status ``REJECTED``)
+NaN sample / outage / gap     skip that component; nothing at all: predict          ``(sensor, "nan")``;
+                              only (P grows, recovers at the next fix)              ``EkfResult.prediction_only``
+outlier (spike, GPS jump)     with a finite ``gate``: gate each channel             ``(sensor, "outlier")``
+                              (GPS 2 dof, heading, speed, yaw rate 1 dof) on
                               its marginal NIS; fuse the channels that pass;
-                              after ``reacquire`` rejections in a row inflate       ``reacquired``, ``n_reacquired_channels``
+                              after ``reacquire`` rejections in a row inflate       ``(sensor, "reacquired")``
                               P by the squared innovation and fuse the next
                               sample ungated
-yaw rate at the gyro rails    with ``full_scale_gyro``: a censored sample:          ``saturated``, ``n_saturated``
+yaw rate at the gyro rails    with ``full_scale_gyro``: a censored sample:          ``("yaw_rate", "saturated")``
                               fuse the rail value while the prediction is
                               inside the rails, else skip; never gated
 repeated / out-of-order t     ``ValueError`` (run ``timing.sanitize`` first,        ``timing.TimingReport``
                               which sorts, drops repeats and counts them)
 irregular sampling            step ``T = t[k] - t[k-1]`` per epoch                  --
-clock jump (``T > max_dt``,   nothing integrated over it: the state is held,        ``faults["clock", "jump"]``
-default 10 median steps)      P grows by the process noise of the whole             (flags per epoch)
+clock jump (``T > max_dt``,   nothing integrated over it: the state is held,        ``("clock", "jump")``
+default 10 median steps)      P grows by the process noise of the whole
                               interval, ``Q T / T_median``; the epoch's
                               measurements then take over (see below)
-stuck yaw rate (a gyro        skipped like a NaN sample, from the first             ``faults["yaw_rate", "stuck"]``
-repeating one value over      sample of the run (``robust.stuck_samples``:          (flags per epoch)
+stuck yaw rate (a gyro        skipped like a NaN sample, from the first             ``("yaw_rate", "stuck")``
+repeating one value over      sample of the run (``robust.stuck_samples``:
 ``stuck_run`` samples)        noisy series only, rail values are saturated)
 ============================  ====================================================  =====================================
 
@@ -82,27 +86,39 @@ moved one step) costs the same: the measurements take over. The yaw rate is the 
 checked for a stuck output as in the attitude filters; heading and speed come from upstream estimators.
 
 :func:`dead_reckoning` holds the previous speed and yaw rate over NaN and
-saturated samples (counted in ``held``); it has no redundancy to detect an
+saturated samples (its :class:`~navlib.robust.FaultReport`); it has no redundancy to detect an
 in-range outlier, and it integrates every interval as given (no clock-jump or
-stuck check: it returns no fault report).
+stuck check).
 """
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 from numba import njit
 
 from .. import _kernels, kalman
-from .._deprecate import renamed_keywords
 from .._kernels import wrap_pi
 from .._typing import Array, ArrayLike, Times
-from .._validate import as_array, flag, integer, kernel_array, range_limit, same_shape, scalar, text, time_axis
+from .._validate import (
+    as_array,
+    flag,
+    instance,
+    integer,
+    kernel_array,
+    range_limit,
+    same_shape,
+    scalar,
+    text,
+    time_axis,
+)
+from ..imu import SensorLimits
 from ..robust import FaultReport, stuck_run_samples, stuck_samples
 from ..timing import jump_limit
 
-__all__ = ["CHANNELS", "motion_model", "jacobian", "propagate", "dead_reckoning", "filter_grid", "EkfResult",
-           "covariance"]
+__all__ = ["CHANNELS", "motion_model", "jacobian", "propagate", "dead_reckoning", "filter_grid", "EkfConfig",
+           "EkfResult", "covariance"]
 
 _HEADING = 2
 _FAULT_SENSORS = ("gnss", "heading", "speed", "yaw_rate")        # CHANNELS in the FaultReport vocabulary
@@ -216,33 +232,30 @@ def propagate(x0: ArrayLike, T: float, n_steps: int | None = None, speed: ArrayL
 # --------------------------------------------------------------------------
 
 @njit(cache=True)
-def _dead_reckon(t, speed, yaw_rate, x0, velocity_bias, full_scale_gyro):
+def _dead_reckon(t, speed, yaw_rate, usable, x0, velocity_bias):
     n = t.shape[0]
     out = np.empty((n, 3))
     out[0, 0], out[0, 1], out[0, 2] = x0[0], x0[1], x0[2]
     v, w = x0[3], x0[4]
-    held = 0
     for k in range(1, n):
-        if np.isfinite(speed[k - 1]) and np.isfinite(yaw_rate[k - 1]) and abs(yaw_rate[k - 1]) < full_scale_gyro:
+        if usable[k - 1]:                   # else hold the previous speed and yaw rate
             v, w = speed[k - 1], yaw_rate[k - 1]
-        else:
-            held += 1
         T = t[k] - t[k - 1]
         out[k, 0] = out[k - 1, 0] + (v * np.cos(out[k - 1, 2]) + velocity_bias[0]) * T
         out[k, 1] = out[k - 1, 1] + (v * np.sin(out[k - 1, 2]) + velocity_bias[1]) * T
         out[k, 2] = out[k - 1, 2] + w * T
-    return out, held
+    return out
 
 
-@renamed_keywords(yaw_rate_range="full_scale_gyro")
 def dead_reckoning(t: Times, speed: ArrayLike, yaw_rate: ArrayLike, x0: ArrayLike,
-                   velocity_bias: ArrayLike = (0.0, 0.0), full_scale_gyro: float | None = None) -> tuple[Array, int]:
+                   velocity_bias: ArrayLike = (0.0, 0.0), full_scale_gyro: float | None = None
+                   ) -> tuple[Array, FaultReport]:
     """Integrate measured speed and yaw rate from ``x0`` with the motion model (no GPS).
 
     Dead reckoning has no redundancy, so it cannot detect an outlier inside
     the sensor's range: a speed spike moves the track by ``spike * T``, a
     yaw-rate spike turns it by ``spike * T`` for good. What it can tell is
-    held and counted: NaN samples (dropouts, gaps) and, given the gyro range,
+    held and reported: NaN samples (dropouts, gaps) and, given the gyro range,
     yaw-rate samples at the rails. Times must be strictly increasing
     (``ValueError``; :func:`navlib.timing.sanitize` first); the step follows ``t``.
 
@@ -251,34 +264,40 @@ def dead_reckoning(t: Times, speed: ArrayLike, yaw_rate: ArrayLike, x0: ArrayLik
     t : array_like, shape (N,)
         Strictly increasing times (s).
     speed, yaw_rate : array_like, shape (N,)
-        Measured v (m/s) and omega (rad/s, clockwise positive); a NaN sample
-        holds the previous value (counted in ``held``).
+        Measured v (m/s) and omega (rad/s, clockwise positive); sample k drives the
+        step from ``t[k]`` to ``t[k+1]``. A NaN sample holds the previous speed and yaw rate.
     x0 : array_like, shape (5,)
         Initial state.
     velocity_bias : array_like, shape (2,)
         A constant velocity error in the grid (north, east; m/s) added at every
         step: an error model for simulations (the frame-fixed drift of the
         paper's Table 1), zero for plain dead reckoning.
-    full_scale_gyro : float, optional  (formerly ``yaw_rate_range``, which warns)
+    full_scale_gyro : float, optional
         Gyro full-scale range (rad/s): a sample with ``|omega| >= full_scale_gyro``
         is at the rails, not a measurement, and holds the previous speed and
-        yaw rate (counted in ``held``). Default: no range.
+        yaw rate. Default: no range.
 
     Returns
     -------
     pose : ndarray, shape (N, 3)
         ``[x, y, theta]``.
-    held : int
-        Steps that reused an earlier measurement (NaN or saturated sample at
-        the start of the step; samples ``0 .. N-2`` drive the steps).
+    faults : FaultReport
+        The held samples among those that drive a step (``0 .. N-2``): ``("speed", "nan")``,
+        ``("yaw_rate", "nan")``, ``("yaw_rate", "saturated")``, with their flags (shape (N,)).
     """
     t = time_axis(t, "t")
     speed = same_shape(as_array(speed, "speed", allow_nan=True), "speed", t.shape, of="t")
     yaw_rate = same_shape(as_array(yaw_rate, "yaw_rate", allow_nan=True), "yaw_rate", t.shape, of="t")
     x0 = as_array(x0, "x0", shape=(5,))
     bias = as_array(velocity_bias, "velocity_bias", shape=(2,))
-    fs = range_limit(full_scale_gyro, "full_scale_gyro")
-    return _dead_reckon(t, speed, yaw_rate, x0, bias, fs)
+    with np.errstate(invalid="ignore"):                     # NaN compares False
+        flags = {("speed", "nan"): np.isnan(speed), ("yaw_rate", "nan"): np.isnan(yaw_rate),
+                 ("yaw_rate", "saturated"): np.abs(yaw_rate) >= range_limit(full_scale_gyro, "full_scale_gyro")}
+    for held in flags.values():
+        held[-1] = False                                    # the last sample drives no step
+    usable = ~(flags["speed", "nan"] | flags["yaw_rate", "nan"] | flags["yaw_rate", "saturated"])
+    pose = _dead_reckon(t, speed, yaw_rate, usable, x0, bias)
+    return pose, FaultReport({key: int(held.sum()) for key, held in flags.items()}, flags)
 
 
 # --------------------------------------------------------------------------
@@ -441,23 +460,20 @@ def _gate_groups(x, P, z, R, gate, zu, rejected_row, streak, reacquire, reacquir
 
 
 @njit(cache=True)
-def _screen(x, P, z, R, gate, gate_on, w_range, zu, rejected_row, streak, reacquire, reacquired_row):
-    """Gate the channels and handle a yaw rate at the rails; fills ``zu``. Returns (n_rejected, saturated)."""
-    sat = np.isfinite(w_range) and abs(z[4]) >= w_range   # NaN: False
-    n_rej = 0
-    if not (gate_on or sat):
-        return n_rej, sat
+def _gate_and_censor(x, P, z, R, gate, gate_on, rail, zu, rejected_row, streak, reacquire, reacquired_row):
+    """Gate the channels and fuse a yaw rate at the rails as the rail value ``rail`` (NaN: not at the rails);
+    fills ``zu``. Returns the number of channels rejected."""
+    at_rail = not np.isnan(rail)
     for i in range(5):
         zu[i] = z[i]
-    if sat:
+    if at_rail:
         zu[4] = np.nan                                     # a rail sample is not gated ...
+    n_rej = 0
     if gate_on:                                            # gate each group, fuse the rest
         n_rej = _gate_groups(x, P, zu, R, gate, zu, rejected_row, streak, reacquire, reacquired_row)
-    if sat:                                                # ... it only says |omega| >= range:
-        sign = 1.0 if z[4] > 0 else -1.0
-        if sign * x[4] < w_range:                          # pull a prediction inside the rails to the rail,
-            zu[4] = sign * w_range                         # skip it when the prediction is beyond already
-    return n_rej, sat
+    if at_rail and (x[4] < rail if rail > 0 else x[4] > rail):
+        zu[4] = rail                                       # ... it only says |omega| >= range: pull a prediction
+    return n_rej                                           # inside the rails to the rail, skip one beyond already
 
 
 @njit(cache=True)
@@ -478,7 +494,9 @@ def _store(X, Ps, k, x, P):
 
 
 @njit(cache=True)
-def _ekf_kernel(t, Z, x0, P0, Q, R, gate, fast, w_range, reacquire, jump, t_nominal):
+def _ekf_kernel(t, Z, x0, P0, Q, R, gate, reacquire, fast, rail, jump_steps):
+    """The EKF over the screened measurements ``Z``; ``rail[k]``: the yaw rate's rail value where it is at
+    the rails (NaN elsewhere); ``jump_steps[k]``: nominal steps spanned by a clock jump (0: no jump)."""
     n = t.shape[0]
     X = np.empty((n, 5))
     Ps = np.empty((n, 5, 5))
@@ -491,8 +509,6 @@ def _ekf_kernel(t, Z, x0, P0, Q, R, gate, fast, w_range, reacquire, jump, t_nomi
     for g in range(4):
         if np.isfinite(gate[g]):
             gate_on = True
-    sat_on = np.isfinite(w_range)
-    robust = gate_on or sat_on
     H = np.eye(5)
     w = np.zeros((7, 5, 5))
     Phi_P = np.empty((5, 5))
@@ -501,8 +517,8 @@ def _ekf_kernel(t, Z, x0, P0, Q, R, gate, fast, w_range, reacquire, jump, t_nomi
     _store(X, Ps, 0, x, P)
     for k in range(1, n):
         T = t[k] - t[k - 1]
-        if jump[k]:                                        # clock jump: state held, Q for every nominal step
-            _add_scaled(P, Q, T / t_nominal)
+        if jump_steps[k] > 0.0:                            # clock jump: state held, Q for every nominal step
+            _add_scaled(P, Q, jump_steps[k])
         else:
             Phi = _phi(x, T)                               # Eq. (16) at the previous estimate
             _mul(Phi, P, Phi_P)
@@ -510,10 +526,12 @@ def _ekf_kernel(t, Z, x0, P0, Q, R, gate, fast, w_range, reacquire, jump, t_nomi
             _add_scaled(P, Q, 1.0)                         # P = Phi P Phi^T + Gamma Q Gamma^T, Gamma = I
             x = _f(x, T)                                   # Eq. (13)
         z = Z[k]
-        n_rej, sat = 0, False
-        if robust:                                         # gate and/or gyro range given
-            n_rej, sat = _screen(x, P, z, R, gate, gate_on, w_range, zu, rejected[k], streak, reacquire, reacquired[k])
-        if n_rej > 0 or sat:                               # gated or saturated: the general kernel on zu
+        at_rail = not np.isnan(rail[k])
+        n_rej = 0
+        if gate_on or at_rail:
+            n_rej = _gate_and_censor(x, P, z, R, gate, gate_on, rail[k], zu, rejected[k], streak, reacquire,
+                                     reacquired[k])
+        if n_rej > 0 or at_rail:                           # gated or saturated: the general kernel on zu
             x, P, _, nis[k], status[k] = _kernels.kalman_update(x, P, zu, x, H, R, _ANGLE_MASK, np.inf)
             if n_rej > 0:
                 status[k] = kalman.REJECTED
@@ -527,80 +545,7 @@ def _ekf_kernel(t, Z, x0, P0, Q, R, gate, fast, w_range, reacquire, jump, t_nomi
 
 
 CHANNELS = ("gps", "heading", "speed", "yaw_rate")
-"""Measurement groups of the EKF, in the order of ``gate`` and of the per-channel counters."""
-
-
-@dataclass
-class EkfResult:
-    """Output of :func:`filter_grid` (and of the paper pipeline :func:`navlib.papers.gauss_kruger_ekf.ekf`).
-
-    Every epoch after the first is accounted for: each channel of it was fused,
-    missing (NaN), gated out (``rejected``) or at the gyro rails
-    (``saturated``); the counters below count these epochs.
-
-    Attributes
-    ----------
-    t : ndarray, shape (N,)  (s)
-    x : ndarray, shape (N, 5)
-        Filtered states ``[x north, y east, heading (grid, rad), v, omega]``.
-    P : ndarray, shape (N, 5, 5)
-    nis : ndarray, shape (N,)
-        Normalised innovation squared of the components fused (NaN where
-        nothing was fused).
-    status : ndarray of int, shape (N,)
-        ``kalman.ACCEPTED``; ``NO_DATA`` (nothing measured: prediction only);
-        ``REJECTED`` (at least one channel gated out; the others were fused).
-    z : ndarray, shape (N, 5)
-        Measurements in the grid frame as given to the filter (projected GPS,
-        grid heading); saturated or gated samples are still shown here.
-    n_predict_only, n_gps_missing, n_rejected : int
-        Epochs (after the first) with no measurement at all, without a GPS
-        fix, and with at least one channel rejected by the gate.
-    zone : int or None
-        Zone held by :func:`navlib.papers.gauss_kruger_ekf.ekf` (None from :func:`filter_grid`).
-    origin_gk : ndarray, shape (2,)
-        GK coordinates (north, east; m) subtracted from the projected fixes.
-    rejected : ndarray of bool, shape (N, 4)
-        Channel (``CHANNELS``: GPS position, heading, speed, yaw rate) gated out at each epoch.
-    n_rejected_channels : ndarray of int, shape (4,)
-        ``rejected.sum(axis=0)``: gated samples per channel.
-    n_missing_channels : ndarray of int, shape (4,)
-        Epochs after the first with the channel missing (NaN; GPS: either coordinate).
-    reacquired : ndarray of bool, shape (N, 4)
-        Channel fused without the gate after ``reacquire`` consecutive rejections.
-    n_reacquired_channels : ndarray of int, shape (4,)
-        ``reacquired.sum(axis=0)``.
-    saturated : ndarray of bool, shape (N,)
-        Yaw-rate samples at or beyond the gyro rails (``|omega| >= full_scale_gyro``),
-        never fused at face value (see :func:`filter_grid`).
-    n_saturated : int
-        Saturated yaw-rate samples in epochs after the first (``saturated[1:].sum()``).
-    faults : FaultReport
-        The same counts in navlib's one fault vocabulary, sensors ``gnss``, ``heading``, ``speed``,
-        ``yaw_rate`` (:data:`CHANNELS` order) and kinds ``nan``, ``outlier``, ``reacquired``,
-        ``saturated``; flags per epoch for the last three. Only here: clock jumps
-        ``("clock", "jump")`` and stuck yaw-rate samples ``("yaw_rate", "stuck")`` (epochs after
-        the first), with flags per epoch.
-    """
-    t: np.ndarray
-    x: np.ndarray
-    P: np.ndarray
-    nis: np.ndarray
-    status: np.ndarray
-    z: np.ndarray
-    n_predict_only: int
-    n_gps_missing: int
-    n_rejected: int
-    zone: int | None = None
-    origin_gk: np.ndarray | None = None
-    rejected: np.ndarray | None = None
-    n_rejected_channels: np.ndarray | None = None
-    n_missing_channels: np.ndarray | None = None
-    reacquired: np.ndarray | None = None
-    n_reacquired_channels: np.ndarray | None = None
-    saturated: np.ndarray | None = None
-    n_saturated: int = 0
-    faults: FaultReport = field(default_factory=FaultReport)
+"""Measurement groups of the EKF, in the order of ``gate`` (fault sensors ``gnss``, ``heading``, ``speed``, ``yaw_rate``)."""
 
 
 def covariance(M: ArrayLike, name: str) -> Array:
@@ -621,22 +566,118 @@ def _gate(gate):
     return kernel_array(np.broadcast_to(g, (4,)), dtype=float)
 
 
-@renamed_keywords(yaw_rate_range="full_scale_gyro")
-def filter_grid(t: Times, z: ArrayLike, x0: ArrayLike, P0: ArrayLike | None = None, Q: ArrayLike | None = None,
-                R: ArrayLike | None = None, gate: float | ArrayLike = np.inf, fast: bool = True,
-                full_scale_gyro: float | None = None, reacquire: int = 3, max_dt: float | None = None,
-                stuck_run: int | str | None = "auto") -> EkfResult:
+@dataclass(frozen=True, eq=False)
+class EkfConfig:
+    """Noise model and fault handling of :func:`filter_grid`, validated on construction.
+
+    Attributes
+    ----------
+    Q, R : array_like, shape (5, 5) or (5,)
+        Per-step process noise and measurement noise (required: the filter has no default noise; e.g. the
+        values of Zhao et al. 2023, ``navlib.papers.gauss_kruger_ekf.Q_PAPER`` and ``R_PAPER``). Stored (5, 5).
+    P0 : array_like, shape (5, 5) or (5,), optional
+        Initial covariance; default zeros (the paper's P(0)). Stored (5, 5).
+    gate : float or array_like, shape (4,)
+        NIS thresholds per channel (:data:`CHANNELS`: GPS position, 2 dof; heading,
+        speed, yaw rate, 1 dof each), each tested on its marginal innovation
+        ``y_g^T S_gg^-1 y_g``; a scalar applies to all; ``inf`` (default): never gate.
+        E.g. ``[18.4, 15.1, 15.1, 15.1]`` (chi-square, 1e-4 false alarms).
+        A manoeuvre the process noise ``Q`` does not allow for (the paper's Q:
+        0.04 rad/s and 0.01 m/s per step) fails the test like an outlier; see
+        ``reacquire``. Stored (4,).
+    reacquire : int
+        A channel gated out on this many consecutive epochs (with data) is
+        fused without the test at its next sample, its states' variance
+        inflated by the squared innovation (the sample takes over), and the
+        streak restarts (``faults[sensor, "reacquired"]``): isolated outliers stay
+        out, a lasting change of the truth (a real step in speed or yaw rate,
+        a filter that has lost the heading) cannot lock the channel out. Default 3.
+    limits : SensorLimits
+        The yaw-rate gyro's limits; the EKF reads three of them (the others concern raw IMU samples).
+        ``full_scale_gyro`` (rad/s): a yaw-rate sample with ``|omega| >= full_scale_gyro`` is at the
+        rails and only says ``|omega| >= range``; it is never gated and never fused at face value: while
+        the predicted omega is inside the rails the rail value ``±range`` is fused (the nearest rate the
+        sample allows), once the prediction is beyond the rail the sample is skipped.
+        ``stuck_run``: a yaw rate repeating exactly over this many epochs (checked only when the series
+        is noisy from the start) is skipped like a NaN sample. ``max_dt``: a longer step is a clock jump
+        (a time-stamp jump or a recording gap): the state is not propagated over it and ``P`` grows by
+        ``Q`` for every median step it spans (module docstring: why not a restart).
+    fast : bool
+        Use the specialised H = I5 update when every component is present (default; False:
+        :func:`navlib.kalman.update` at every epoch; same result).
+    """
+    Q: ArrayLike
+    R: ArrayLike
+    P0: ArrayLike | None = None
+    gate: float | ArrayLike = np.inf
+    reacquire: int = 3
+    limits: SensorLimits = field(default_factory=SensorLimits)
+    fast: bool = True
+
+    def __post_init__(self):
+        for name in ("Q", "R"):
+            object.__setattr__(self, name, covariance(getattr(self, name), name))
+        object.__setattr__(self, "P0", np.zeros((5, 5)) if self.P0 is None else covariance(self.P0, "P0"))
+        object.__setattr__(self, "gate", _gate(self.gate))
+        object.__setattr__(self, "reacquire", integer(self.reacquire, "reacquire"))
+        instance(self.limits, "limits", SensorLimits, "a SensorLimits (navlib.imu)")
+        object.__setattr__(self, "fast", flag(self.fast, "fast"))
+
+
+@dataclass
+class EkfResult:
+    """Output of :func:`filter_grid` (and of the paper pipeline :func:`navlib.papers.gauss_kruger_ekf.ekf`).
+
+    Every epoch after the first is accounted for: each channel of it was fused,
+    missing (NaN), gated out, reacquired or at the gyro rails, as ``faults`` says.
+
+    Attributes
+    ----------
+    t : ndarray, shape (N,)  (s)
+    x : ndarray, shape (N, 5)
+        Filtered states ``[x north, y east, heading (grid, rad), v, omega]``.
+    P : ndarray, shape (N, 5, 5)
+    nis : ndarray, shape (N,)
+        Normalised innovation squared of the components fused (NaN where
+        nothing was fused).
+    z : ndarray, shape (N, 5)
+        Measurements in the grid frame as given to the filter (projected GPS,
+        grid heading); saturated or gated samples are still shown here.
+    prediction_only : ndarray of bool, shape (N,)
+        Epochs with no measurement at all to fuse: the filter only predicted (False at the first epoch).
+    faults : FaultReport
+        Per ``(sensor, kind)``, counts over the epochs after the first and flags per epoch, shape (N,):
+        sensors ``gnss``, ``heading``, ``speed``, ``yaw_rate`` (:data:`CHANNELS` order) with kinds
+        ``nan`` (missing; GPS: either coordinate), ``outlier`` (gated out) and ``reacquired`` (fused
+        without the gate after ``reacquire`` rejections); ``("yaw_rate", "saturated")`` (at or beyond
+        the gyro rails, never fused at face value; its flags also cover the first epoch),
+        ``("yaw_rate", "stuck")`` and the clock jumps ``("clock", "jump")``.
+    zone : int or None
+        Zone held by :func:`navlib.papers.gauss_kruger_ekf.ekf` (None from :func:`filter_grid`).
+    origin_gk : ndarray, shape (2,), or None
+        GK coordinates (north, east; m) subtracted from the projected fixes (None from :func:`filter_grid`).
+    """
+    t: np.ndarray
+    x: np.ndarray
+    P: np.ndarray
+    nis: np.ndarray
+    z: np.ndarray
+    prediction_only: np.ndarray
+    faults: FaultReport
+    zone: int | None = None
+    origin_gk: np.ndarray | None = None
+
+
+def filter_grid(t: Times, z: ArrayLike, x0: ArrayLike, config: EkfConfig) -> EkfResult:
     """The EKF on measurements already in the grid frame.
 
-    Faults: a NaN component is missing and left out of the update (an epoch
-    with nothing is prediction only); with a finite ``gate`` each channel
-    whose innovation fails its own NIS test is left out and the others are
-    fused; yaw-rate samples at the gyro rails are treated as censored (see
-    ``full_scale_gyro``); a clock jump is not integrated (``max_dt``) and a
-    stuck yaw rate is skipped (``stuck_run``). All are
-    counted in the :class:`EkfResult`. Times must be strictly increasing
-    (``ValueError`` otherwise: run :func:`navlib.timing.sanitize` first); the
-    step ``T = t[k] - t[k-1]`` may vary from epoch to epoch (``Q`` stays per step).
+    The measurements are screened once (:class:`EkfConfig`: yaw rate at the rails, stuck
+    yaw rate, clock jumps), then filtered: a NaN component is missing and left out of the
+    update (an epoch with nothing is prediction only); with a finite ``gate`` each channel
+    whose innovation fails its own NIS test is left out and the others are fused. All are
+    reported in ``EkfResult.faults``. Times must be strictly increasing (``ValueError``
+    otherwise: run :func:`navlib.timing.sanitize` first); the step ``T = t[k] - t[k-1]``
+    may vary from epoch to epoch (``Q`` stays per step).
 
     Parameters
     ----------
@@ -646,51 +687,8 @@ def filter_grid(t: Times, z: ArrayLike, x0: ArrayLike, P0: ArrayLike | None = No
         ``[x_GPS, y_GPS, theta, v, omega]`` per epoch; NaN components are
         missing (the row of ``t[0]`` is not used: ``x0`` holds there).
     x0 : array_like, shape (5,)
-    P0 : array_like, shape (5, 5) or (5,), optional
-        Initial covariance; default zeros (the paper's P(0)).
-    Q, R : array_like, shape (5, 5) or (5,)
-        Per-step process noise and measurement noise (required; e.g. the values of Zhao et al. 2023,
-        ``navlib.papers.gauss_kruger_ekf.Q_PAPER`` and ``R_PAPER``).
-    gate : float or array_like, shape (4,)
-        NIS thresholds per channel (``CHANNELS``: GPS position, 2 dof; heading,
-        speed, yaw rate, 1 dof each), each tested on its marginal innovation
-        ``y_g^T S_gg^-1 y_g``; a scalar applies to all; ``inf``: never gate.
-        E.g. ``[18.4, 15.1, 15.1, 15.1]`` (chi-square, 1e-4 false alarms).
-        A manoeuvre the process noise ``Q`` does not allow for (the paper's Q:
-        0.04 rad/s and 0.01 m/s per step) fails the test like an outlier; see
-        ``reacquire``.
-    fast : bool
-        Use the specialised H = I5 update when every component is present
-        (False: :func:`navlib.kalman.update` at every epoch; same result).
-    full_scale_gyro : float, optional  (formerly ``yaw_rate_range``, which warns)
-        Gyro full-scale range (rad/s): a yaw-rate sample with ``|omega| >=
-        full_scale_gyro`` is at the rails and only says ``|omega| >= range``.
-        It is never gated and never fused at face value: while the predicted
-        omega is inside the rails the rail value ``±range`` is fused (the
-        nearest rate the sample allows), once the prediction is beyond the
-        rail the sample is skipped. Counted in ``saturated``, ``n_saturated``.
-        Default: no range.
-    reacquire : int
-        A channel gated out on this many consecutive epochs (with data) is
-        fused without the test at its next sample, its states' variance
-        inflated by the squared innovation (the sample takes over), and the
-        streak restarts (``reacquired``, ``n_reacquired_channels``): isolated outliers stay
-        out, a lasting change of the truth (a real step in speed or yaw rate,
-        a filter that has lost the heading) cannot lock the channel out.
-    max_dt : float, optional
-        Longest step integrated (s); a longer one is a clock jump (a time-stamp
-        jump or a recording gap; ``faults["clock", "jump"]``): the state is not
-        propagated over it and ``P`` grows by ``Q`` for every median step it
-        spans (module docstring: why not a restart). Default None:
-        ``timing.JUMP_FACTOR`` = 10 median steps, the rule of the attitude
-        filters; inf: off.
-    stuck_run : int, "auto" or None
-        A yaw-rate sample repeating exactly over this many epochs or more is a
-        stuck gyro (``robust.stuck_samples``: checked only when the series is
-        noisy from the start; rail values are saturated): skipped like a NaN
-        sample, counted in ``faults["yaw_rate", "stuck"]``. Default "auto":
-        ``robust.STUCK_DURATION`` (0.1 s) of epochs, at least 5, as in the
-        attitude filters; None: off.
+    config : EkfConfig
+        Noise, gates and the yaw-rate gyro's limits.
 
     Returns
     -------
@@ -699,45 +697,51 @@ def filter_grid(t: Times, z: ArrayLike, x0: ArrayLike, P0: ArrayLike | None = No
     t = time_axis(t, "t")
     z = as_array(z, "z", allow_nan=True, shape=(t.size, 5))
     x0 = as_array(x0, "x0", shape=(5,))
-    P0 = np.zeros((5, 5)) if P0 is None else covariance(P0, "P0")
-    for name, M in (("Q", Q), ("R", R)):
-        if M is None:
-            raise ValueError(f"{name}: required (the filter has no default noise; e.g. gauss_kruger_ekf.{name}_PAPER)")
-    Q, R = covariance(Q, "Q"), covariance(R, "R")
-    gate = _gate(gate)
-    fs = range_limit(full_scale_gyro, "full_scale_gyro")
-    with np.errstate(invalid="ignore"):
-        saturated = np.abs(z[:, 4]) >= fs                   # NaN compares False
-    reacquire = integer(reacquire, "reacquire")
+    instance(config, "config", EkfConfig, "an EkfConfig (navlib.filters.planar_ekf)")
+    epochs = _screen_epochs(t, z, config.limits)
+    X, P, nis, status, rejected, reacquired = _ekf_kernel(
+        t, epochs.z, x0, config.P0, config.Q, config.R, config.gate, config.reacquire, config.fast, epochs.rail,
+        epochs.jump_steps)
+    missing = np.stack([~np.all(np.isfinite(z[:, :2]), axis=1), np.isnan(z[:, 2]), np.isnan(z[:, 3]),
+                        np.isnan(z[:, 4])], -1)
+    missing[0] = False                                      # x0 holds at the first epoch
+    flags = {}
+    for i, sensor in enumerate(_FAULT_SENSORS):
+        flags[sensor, "nan"], flags[sensor, "outlier"], flags[sensor, "reacquired"] = \
+            missing[:, i], rejected[:, i], reacquired[:, i]
+    flags["yaw_rate", "saturated"], flags["yaw_rate", "stuck"], flags["clock", "jump"] = \
+        epochs.saturated, epochs.stuck, epochs.jump
+    faults = FaultReport({key: int(mask[1:].sum()) for key, mask in flags.items()}, flags)
+    prediction_only = status == kalman.NO_DATA
+    prediction_only[0] = False
+    return EkfResult(t, X, P, nis, z, prediction_only, faults)
+
+
+class _Epochs(NamedTuple):
+    """The measurements after :func:`_screen_epochs`: what the kernel fuses, and the faults found."""
+    z: np.ndarray               # stuck yaw-rate samples set to NaN (skipped)
+    rail: np.ndarray            # the rail value +-full_scale_gyro where the yaw rate is at the rails, else NaN
+    jump_steps: np.ndarray      # nominal steps spanned by a clock jump, 0 elsewhere
+    saturated: np.ndarray
+    stuck: np.ndarray
+    jump: np.ndarray
+
+
+def _screen_epochs(t, z, limits: SensorLimits) -> _Epochs:
+    """The one pass over the validated measurements before the filter runs (yaw-rate rails and stuck
+    output, clock jumps)."""
     dts = np.diff(t)
     t_nominal = float(np.median(dts))
-    jump = np.concatenate([[False], dts > jump_limit(dts, max_dt, "t")])
-    stuck = stuck_samples(z[:, 4], stuck_run_samples(stuck_run, t_nominal), full_scale=full_scale_gyro,
-                          name="z", axis=-1)
+    jump = np.concatenate([[False], dts > jump_limit(dts, limits.max_dt, "t")])
+    jump_steps = np.zeros(t.size)
+    jump_steps[jump] = dts[jump[1:]] / t_nominal
+    fs = limits.full_scale_gyro
+    with np.errstate(invalid="ignore"):
+        saturated = np.abs(z[:, 4]) >= fs                   # NaN compares False
+    rail = np.where(saturated, np.copysign(fs, z[:, 4]), np.nan)
+    stuck = stuck_samples(z[:, 4], stuck_run_samples(limits.stuck_run, t_nominal), full_scale=fs, name="z", axis=-1)
     z_used = z
     if stuck.any():                                         # stuck yaw rate: skipped like a NaN sample
         z_used = z.copy()
         z_used[stuck, 4] = np.nan
-    X, P, nis, status, rejected, reacquired = _ekf_kernel(t, kernel_array(z_used), x0, P0, Q, R, gate,
-                                                          flag(fast, "fast"), fs, reacquire, jump, t_nominal)
-    later = z[1:]
-    missing = np.stack([~np.all(np.isfinite(later[:, :2]), axis=1), np.isnan(later[:, 2]),
-                        np.isnan(later[:, 3]), np.isnan(later[:, 4])], -1)
-    return EkfResult(t, X, P, nis, status, z, int(np.sum(status[1:] == kalman.NO_DATA)),
-                     int(missing[:, 0].sum()), int(np.sum(status == kalman.REJECTED)),
-                     rejected=rejected, n_rejected_channels=rejected.sum(axis=0),
-                     n_missing_channels=missing.sum(axis=0), reacquired=reacquired,
-                     n_reacquired_channels=reacquired.sum(axis=0), saturated=saturated,
-                     n_saturated=int(saturated[1:].sum()),
-                     faults=_fault_report(missing, rejected, reacquired, saturated, stuck, jump))
-
-
-def _fault_report(missing, rejected, reacquired, saturated, stuck, jump):
-    counts, flags = {}, {}
-    for i, sensor in enumerate(_FAULT_SENSORS):
-        counts[sensor, "nan"] = int(missing[:, i].sum())
-        for kind, mask in (("outlier", rejected[:, i]), ("reacquired", reacquired[:, i])):
-            counts[sensor, kind], flags[sensor, kind] = int(mask.sum()), mask
-    for key, mask in ((("yaw_rate", "saturated"), saturated), (("yaw_rate", "stuck"), stuck), (("clock", "jump"), jump)):
-        counts[key], flags[key] = int(mask[1:].sum()), mask
-    return FaultReport(counts, flags)
+    return _Epochs(kernel_array(z_used), rail, jump_steps, saturated, stuck, jump)

@@ -15,7 +15,7 @@ in one zone held for the whole run, so a run crossing a zone boundary stays cont
 heading turned from true to grid north by the convergence the paper omits, erratum E002-09;
 ``theta_IMU`` absolute and ``omega_IMU`` the vertical gyro rate, erratum E002-08), the robot's
 square loop (:func:`waypoint_path`) and its simulated sensors (:func:`simulate_sensors`).
-Faults are handled and counted as in :func:`navlib.filters.planar_ekf.filter_grid`. For the
+Faults are handled and reported as in :func:`navlib.filters.planar_ekf.filter_grid`. For the
 paper's simulations (Figs. 4-5) the expected errors follow in closed form: of dead reckoning on
 those sensors (:func:`dead_reckoning_error_ms`, a heading random walk) and of the EKF (:func:`ekf_error_ms`,
 a linear covariance analysis of the printed Q and R), against which the Monte Carlo runs are checked.
@@ -50,7 +50,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import geodesy, robust
-from .._deprecate import renamed_keywords
 from .._typing import Array, ArrayLike
 from .._validate import (
     as_array,
@@ -60,17 +59,17 @@ from .._validate import (
     choice,
     flag,
     generator,
+    instance,
     nonempty_array,
     nonempty_latitude,
-    range_limit,
     scalar,
     time_axis,
 )
 from .._validate import ellipsoid as ellipsoid_
 from ..earth import CGCS2000, Ellipsoid
-from ..filters.planar_ekf import covariance, filter_grid, propagate
+from ..filters.planar_ekf import EkfConfig, EkfResult, covariance, filter_grid, propagate
 
-__all__ = ["Q_PAPER", "R_PAPER", "MAX_STEPS", "printed_zone_number", "paper_radii", "printed_meridian_radius",
+__all__ = ["Q_PAPER", "R_PAPER", "PAPER_CONFIG", "MAX_STEPS", "printed_zone_number", "paper_radii", "printed_meridian_radius",
            "paper_meridian_arc", "paper_series", "waypoint_path", "ekf", "simulate_sensors", "Sensors",
            "dead_reckoning_error_ms", "ekf_error_ms", "draw_zones", "draw_zone_grid", "draw_block_diagram"]
 
@@ -291,18 +290,19 @@ def _forward_fill(values):
     return robust.hold(values, leading="first", name="values", axis=-1)[0]
 
 
-@renamed_keywords(yaw_rate_range="full_scale_gyro")
-def ekf(t, gps, heading, speed, yaw_rate, x0, *, origin=None, zone=None, width: int = 3,
-        ellipsoid: Ellipsoid = CGCS2000, P0=None, Q=Q_PAPER, R=R_PAPER, gate=np.inf,
-        correct_convergence: bool = True, deg: bool = False, full_scale_gyro: float | None = None,
-        reacquire: int = 3, max_dt: float | None = None, stuck_run: int | str | None = "auto"):
+PAPER_CONFIG = EkfConfig(Q_PAPER, R_PAPER)
+"""The paper's noise, Eqs. (17)-(18), with navlib's default fault handling: the default of :func:`ekf`."""
+
+
+def ekf(t, sensors: Sensors, x0, *, origin=None, zone=None, width: int = 3, ellipsoid: Ellipsoid = CGCS2000,
+        config: EkfConfig = PAPER_CONFIG, correct_convergence: bool = True, deg: bool = False) -> EkfResult:
     """The paper's pipeline: GPS lat/lon -> Gauss–Krüger -> EKF with IMU heading, speed, yaw rate.
 
     Faults are handled as in :func:`navlib.filters.planar_ekf.filter_grid` (NaN: skip the component;
-    ``gate``: leave out a channel whose innovation fails its NIS test, e.g. a
-    50 m GPS jump or an IMU spike; ``full_scale_gyro``: leave out samples at the
-    gyro rails; ``max_dt``: integrate nothing over a clock jump; ``stuck_run``: skip
-    a stuck yaw rate) and counted in the result. Timestamps must be strictly
+    ``config.gate``: leave out a channel whose innovation fails its NIS test, e.g. a
+    50 m GPS jump or an IMU spike; ``config.limits``: censor samples at the
+    gyro rails, integrate nothing over a clock jump, skip a stuck yaw rate) and
+    reported in the result's ``faults``. Timestamps must be strictly
     increasing: for logs with repeated or out-of-order samples the documented
     pipeline is ``navlib.timing.sanitize(t, gps, heading, speed, yaw_rate)``
     then :func:`ekf`; unsanitised times raise ``ValueError``.
@@ -311,12 +311,9 @@ def ekf(t, gps, heading, speed, yaw_rate, x0, *, origin=None, zone=None, width: 
     ----------
     t : array_like, shape (N,)
         Strictly increasing times (s).
-    gps : array_like, shape (N, 2)
-        GPS ``[lat, lon]`` (rad, or deg with ``deg=True``); NaN rows are outages.
-    heading : array_like, shape (N,)
-        IMU heading clockwise from **true** north (rad, or deg); NaN = missing.
-    speed, yaw_rate : array_like, shape (N,)
-        Measured speed (m/s) and yaw rate (rad/s or deg/s, clockwise positive); NaN = missing.
+    sensors : Sensors
+        The measurements (:class:`Sensors`: GPS fixes, IMU heading from true north, speed, yaw rate; NaN:
+        missing), angles in rad, or in deg (deg/s) with ``deg=True``.
     x0 : array_like, shape (5,)
         Initial state in the grid relative to ``origin`` (heading in rad).
     origin : array_like, shape (2,), optional
@@ -326,13 +323,14 @@ def ekf(t, gps, heading, speed, yaw_rate, x0, *, origin=None, zone=None, width: 
     width, ellipsoid
         As in :func:`navlib.geodesy.geodetic2gk`, but ``ellipsoid`` defaults to
         ``earth.CGCS2000``, the paper's datum.
-    P0, Q, R, gate, reacquire, max_dt, stuck_run
-        As in :func:`navlib.filters.planar_ekf.filter_grid` (Q and R default to Eqs. 17–18).
-    full_scale_gyro : float, optional  (formerly ``yaw_rate_range``, which warns)
-        Gyro full-scale range (rad/s, or deg/s with ``deg=True``); see :func:`navlib.filters.planar_ekf.filter_grid`.
+    config : EkfConfig
+        Noise, gates and the yaw-rate gyro's limits (SI units, whatever ``deg`` says); default
+        :data:`PAPER_CONFIG` (Q and R of Eqs. 17–18).
     correct_convergence : bool
         Subtract the grid convergence at the latest fix from the heading (True);
         False fuses the true-north heading with grid coordinates as the paper does.
+    deg : bool
+        The sensors' angles and ``origin`` in degrees (rates in deg/s).
 
     Returns
     -------
@@ -340,10 +338,12 @@ def ekf(t, gps, heading, speed, yaw_rate, x0, *, origin=None, zone=None, width: 
     """
     t = time_axis(t, "t")
     n = t.size
-    gps = as_array(gps, "gps", allow_nan=True, shape=(n, 2))
+    instance(sensors, "sensors", Sensors, "a gauss_kruger_ekf.Sensors")
+    deg = flag(deg, "deg")
+    gps = as_array(sensors.gps, "gps", allow_nan=True, shape=(n, 2))
     imu = []
-    for name, val in (("heading", heading), ("speed", speed), ("yaw_rate", yaw_rate)):
-        arr = as_array(val, name, allow_nan=True, shape=(n,))
+    for name in ("heading", "speed", "yaw_rate"):
+        arr = as_array(getattr(sensors, name), name, allow_nan=True, shape=(n,))
         imu.append(np.deg2rad(arr) if deg and name != "speed" else arr)
     heading, speed, yaw_rate = imu
     fix = np.all(np.isfinite(gps), axis=1)
@@ -369,11 +369,7 @@ def ekf(t, gps, heading, speed, yaw_rate, x0, *, origin=None, zone=None, width: 
         gamma = np.deg2rad(gamma)
     z[:, 2] = heading - _forward_fill(gamma) if flag(correct_convergence, "correct_convergence") else heading
     z[:, 3], z[:, 4] = speed, yaw_rate
-    if full_scale_gyro is not None:
-        full_scale_gyro = range_limit(full_scale_gyro, "full_scale_gyro")
-        full_scale_gyro = np.deg2rad(full_scale_gyro) if deg else full_scale_gyro
-    res = filter_grid(t, z, x0, P0, Q, R, gate, full_scale_gyro=full_scale_gyro, reacquire=reacquire, max_dt=max_dt,
-                      stuck_run=stuck_run)
+    res = filter_grid(t, z, x0, config)
     res.zone, res.origin_gk = zone, origin_gk
     return res
 
@@ -384,11 +380,12 @@ def ekf(t, gps, heading, speed, yaw_rate, x0, *, origin=None, zone=None, width: 
 
 @dataclass
 class Sensors:
-    """Simulated measurements in the form the robot gets them.
+    """The robot's measurements, as :func:`ekf` takes them and :func:`simulate_sensors` makes them.
 
     gps : (N, 2) ``[lat, lon]`` (rad), NaN rows during outages;
-    heading : (N,) clockwise from true north (rad, [0, 2 pi));
+    heading : (N,) IMU heading clockwise from true north (rad, [0, 2 pi));
     speed : (N,) (m/s); yaw_rate : (N,) (rad/s, clockwise positive).
+    NaN marks a missing sample; :func:`ekf` reads the angles in degrees with ``deg=True``.
     """
     gps: np.ndarray
     heading: np.ndarray
