@@ -33,8 +33,7 @@ Dropouts
     flags); for :func:`integrate_attitude` they are the NaN rows of its input,
     :func:`navlib.robust.fault_report`. A trial whose first sample is NaN cannot be
     held and raises. The error of a hold grows with the gap like any dead reckoning:
-    attitude error ~ |dw| * gap, position error ~ |df| * gap^2 / 2. (The keyword
-    ``on_nan`` is deprecated: it returns ``(result, held)`` on ``"hold"`` and warns.)
+    attitude error ~ |dw| * gap, position error ~ |df| * gap^2 / 2.
 Outliers, saturation
     Not detectable by a free INS (no redundancy): spikes and clipped samples are
     integrated as given. Saturation is counted where it happens, in
@@ -47,8 +46,6 @@ Timing
     out-of-order timestamps is :func:`navlib.timing.sanitize` first.
 """
 from __future__ import annotations
-
-import warnings
 
 import numpy as np
 from numba import njit
@@ -110,19 +107,8 @@ def _samples(x, name):
     return as_array(x, name, tail=(3,), min_ndim=1, allow_nan=True)
 
 
-def _policy(nan_policy, on_nan, func, where):
-    """``(policy, old)``: the dropout policy, and whether the deprecated ``on_nan`` gave it (tuple result)."""
-    if on_nan is None:
-        return choice("raise" if nan_policy is None else nan_policy, "nan_policy", _NAN_POLICIES), False
-    if nan_policy is not None:
-        raise ValueError("nan_policy, on_nan: give nan_policy only (on_nan is deprecated)")
-    warnings.warn(f"{func}: on_nan is deprecated; use nan_policy=..., {where}; removed in navlib 0.3",
-                  DeprecationWarning, stacklevel=3)
-    return choice(on_nan, "on_nan", _NAN_POLICIES), True
-
-
 def _dropouts(x, name, policy):
-    """Apply the dropout policy to samples x; return (x, held mask)."""
+    """Apply the dropout policy to validated samples x; return (x, held mask)."""
     if policy == "raise":
         if np.isnan(x).any():
             raise ValueError(f"{name}: contains NaN samples (use nan_policy='hold' to hold the last good sample)")
@@ -130,8 +116,14 @@ def _dropouts(x, name, policy):
     return robust.hold(x, leading="raise", name=name)
 
 
-def integrate_attitude(q0: Quat, w_ib_b: Vec3Series, dt: Interval, w_in_n: Vec3 | None = None,
-                       on_nan: str | None = None, *, nan_policy: str | None = None) -> Array:
+def _sample_intervals(dt, n):
+    """``dt`` as the kernels take it: one element for a fixed interval (the time axis is then ``dt * k``),
+    else one per sample."""
+    return intervals(dt, n)[:1] if np.ndim(dt) == 0 else intervals(dt, n)
+
+
+def integrate_attitude(q0: Quat, w_ib_b: Vec3Series, dt: Interval, w_in_n: Vec3 | None = None, *,
+                       nan_policy: str = "raise") -> Array:
     """Integrate gyro samples into an attitude history.
 
     ``q_k+1 = q(-w_in_n dt_k) (x) q_k (x) q(w_k dt_k)`` with a constant
@@ -151,31 +143,23 @@ def integrate_attitude(q0: Quat, w_ib_b: Vec3Series, dt: Interval, w_in_n: Vec3 
         Rotation rate of the navigation frame (rad/s); default zero.
     nan_policy : {"raise", "hold"}, default "raise"
         Dropout policy: raise ``ValueError`` on NaN samples, or hold the last
-        good sample of the trial. The held samples are exactly the NaN rows of
-        ``w_ib_b``: ``robust.fault_report(w_ib_b, "gyro", flags=True)`` counts
-        and flags them.
-    on_nan : {"raise", "hold"}, optional
-        Deprecated spelling of ``nan_policy`` (warns; removed in navlib 0.3):
-        ``on_nan="hold"`` returns ``(q_bn, held)``, ``held`` a bool ndarray of
-        shape (..., N).
+        good sample of the trial (:func:`navlib.robust.hold`). The held samples are exactly the NaN
+        rows of ``w_ib_b``: ``robust.fault_report(w_ib_b, "gyro", flags=True)`` counts and flags them.
 
     Returns
     -------
     q_bn : ndarray, shape (..., N + 1, 4)
     """
-    policy, old = _policy(nan_policy, on_nan, "integrate_attitude",
-                          'the held samples are robust.fault_report(w_ib_b, "gyro", flags=True)')
-    w = _samples(w_ib_b, "w_ib_b")
-    w, held = _dropouts(w, "w_ib_b", policy)
-    dt = intervals(dt, w.shape[-2])[:1] if np.ndim(dt) == 0 else intervals(dt, w.shape[-2])
+    policy = choice(nan_policy, "nan_policy", _NAN_POLICIES)
+    w, _ = _dropouts(_samples(w_ib_b, "w_ib_b"), "w_ib_b", policy)
+    dt = _sample_intervals(dt, w.shape[-2])
     small_turns(w, dt)
     q0 = as_quat(q0, "q0")
     lead = w.shape[:-2]
     q0 = broadcast_to(q0, "q0", lead + (4,), of="the trials of w_ib_b").reshape(-1, 4)
     w_in = np.zeros(3) if w_in_n is None else as_array(w_in_n, "w_in_n", shape=(3,))
     q = _attitude_kernel(kernel_array(q0), kernel_array(w.reshape(-1, *w.shape[-2:])), dt, w_in)
-    q = q.reshape(lead + q.shape[-2:])
-    return (q, held) if old and policy == "hold" else q
+    return q.reshape(lead + q.shape[-2:])
 
 
 def _state_array(x: ArrayLike, name: str, size: int) -> np.ndarray:
@@ -275,8 +259,8 @@ def _store(lla_out, vel_out, q_out, lla, vel, q):
 
 def integrate(lla0: Vec3, vel0: Vec3, q0: Quat, w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None,
               dt: Interval | None = None, t0: float = 0.0,
-              hold_height: bool = False, ellipsoid: earth.Ellipsoid = earth.WGS84,
-              on_nan: str | None = None, *, nan_policy: str | None = None) -> Trajectory:
+              hold_height: bool = False, ellipsoid: earth.Ellipsoid = earth.WGS84, *,
+              nan_policy: str = "raise") -> Trajectory:
     """Full strapdown navigation: attitude, ENU velocity and geodetic position.
 
     Parameters
@@ -290,7 +274,8 @@ def integrate(lla0: Vec3, vel0: Vec3, q0: Quat, w_ib_b: Vec3Series | ImuSamples,
     w_ib_b, f_b : array_like, shape (..., N, 3)
         Gyro (rad/s) and accelerometer (m/s^2) samples. NaN marks a dropout
         (see ``nan_policy``); inf is rejected. An :class:`navlib.imu.ImuSamples` as
-        ``w_ib_b`` supplies ``f_b`` and ``dt`` (its ranges are not used here).
+        ``w_ib_b`` supplies ``f_b`` and ``dt`` (its limits are not used here: a free INS has no
+        redundancy to act on them).
     dt : float or array_like, shape (N,)
         Sample interval (s), or per-sample intervals for irregular sampling
         (``dt[k]`` is the interval covered by sample k, shared by all trials;
@@ -304,13 +289,8 @@ def integrate(lla0: Vec3, vel0: Vec3, q0: Quat, w_ib_b: Vec3Series | ImuSamples,
     nan_policy : {"raise", "hold"}, default "raise"
         Dropout policy. ``"raise"``: NaN samples raise ValueError.
         ``"hold"``: a NaN gyro or accelerometer sample is replaced by the last
-        good sample of the same sensor and trial (zero-order hold) and reported
-        in ``faults``.
-    on_nan : {"raise", "hold"}, optional
-        Deprecated spelling of ``nan_policy`` (warns; removed in navlib 0.3):
-        ``on_nan="hold"`` returns ``(Trajectory, held)``, ``held`` a bool
-        ndarray of shape (..., N), True where the gyro or the accelerometer
-        sample (or both) was held.
+        good sample of the same sensor and trial (zero-order hold, :func:`navlib.robust.hold`) and
+        reported in ``faults``.
 
     Returns
     -------
@@ -320,15 +300,16 @@ def integrate(lla0: Vec3, vel0: Vec3, q0: Quat, w_ib_b: Vec3Series | ImuSamples,
         per trial under ``("gyro", "nan")`` and ``("accel", "nan")`` (int arrays
         of shape (...), zero with ``"raise"``) with their flags (bool, shape (..., N)).
     """
-    w_ib_b, f_b, dt, _, _ = unpack(w_ib_b, f_b, dt)
-    policy, old = _policy(nan_policy, on_nan, "integrate", "the held samples are in traj.faults")
-    w = _samples(w_ib_b, "w_ib_b")
-    f = _samples(f_b, "f_b")
-    w, f = broadcast(w, f, name="f_b", of="w_ib_b, f_b")
+    policy = choice(nan_policy, "nan_policy", _NAN_POLICIES)
+    validated = isinstance(w_ib_b, ImuSamples)                  # by the record
+    w, f, dt, _, _ = unpack(w_ib_b, f_b, dt)
+    if not validated:
+        w, f = broadcast(_samples(w, "w_ib_b"), _samples(f, "f_b"), name="f_b", of="w_ib_b, f_b")
     w, held_w = _dropouts(w, "w_ib_b", policy)
     f, held_f = _dropouts(f, "f_b", policy)
     lead, n = w.shape[:-2], w.shape[-2]
-    dt = intervals(dt, n)[:1] if np.ndim(dt) == 0 else intervals(dt, n)
+    if not validated:
+        dt = _sample_intervals(dt, n)
     small_turns(w, dt)
     t0 = scalar(t0, "t0")
     ellipsoid_(ellipsoid)
@@ -351,8 +332,7 @@ def integrate(lla0: Vec3, vel0: Vec3, q0: Quat, w_ib_b: Vec3Series | ImuSamples,
     time = t0 + (dt[0] * np.arange(n + 1) if dt.size == 1 else np.concatenate([[0.0], np.cumsum(dt)]))
     held = {("gyro", "nan"): held_w, ("accel", "nan"): held_f}
     faults = robust.FaultReport({key: m.sum(axis=-1) for key, m in held.items()}, held)
-    traj = Trajectory(time, *(x.reshape(lead + x.shape[-2:]) for x in (lla, vel, q)), faults)
-    return (traj, held_w | held_f) if old and policy == "hold" else traj
+    return Trajectory(time, *(x.reshape(lead + x.shape[-2:]) for x in (lla, vel, q)), faults)
 
 
 def error_model(lat: float, h: float, vel_n: Vec3, f_n: Vec3, ellipsoid: earth.Ellipsoid = earth.WGS84) -> Array:
