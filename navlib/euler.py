@@ -3,26 +3,22 @@
 In navlib's ``hpr`` convention (:mod:`navlib`): ``C_bn = rot(z, -heading) rot(x, pitch) rot(y, roll)``.
 :func:`euler_rates` gives ``[heading', pitch', roll']`` of a body turning at ``w_nb_b`` (Wu et al. 2014,
 Eq. (2), in this convention); it divides by cos(pitch), so |pitch| must stay below :data:`PITCH_LIMIT`.
-:func:`integrate_euler` integrates gyro samples (RK4 above a step angle, Euler below) with an optional
-bias schedule and the navigation-frame rate ``w_in_n``; it fills dropouts up to ``max_gap``, and
+:func:`integrate_euler` integrates gyro samples (RK4 above a step angle, the midpoint rule below) with an
+optional bias schedule and the navigation-frame rate ``w_in_n``; it fills dropouts up to ``max_gap``, and
 :func:`navlib.robust.fault_report` counts the filled (NaN) and saturated samples.
 """
 from __future__ import annotations
-
-import warnings
-from dataclasses import dataclass
 
 import numpy as np
 from numba import njit
 
 from . import _kernels
-from ._deprecate import renamed_keywords
 from ._typing import Angles, Array, ArrayLike, Interval, Vec3, Vec3Series
-from ._validate import broadcast_to, flag, intervals, kernel_array, range_limit, scalar, small_turns, text
+from ._validate import broadcast_to, intervals, kernel_array, scalar, small_turns, text
 from ._validate import nonempty_array as as_array
 from .imu import ImuSamples, unpack
 
-__all__ = ["PITCH_LIMIT", "check_pitch", "euler_rates", "integrate_euler", "EulerReport"]
+__all__ = ["PITCH_LIMIT", "check_pitch", "euler_rates", "integrate_euler"]
 
 PITCH_LIMIT = np.deg2rad(89.0)
 """Largest |pitch| (rad) accepted where the Euler rates divide by cos(pitch)."""
@@ -80,15 +76,12 @@ def _hpr_dot(h, p, r, wx, wy, wz, nE, nN, nU):
 
 
 @njit(cache=True)
-def _euler_kernel(hpr0, w, dts, w_in, bias, bias_from, pitch_limit, max_gap, fs):
+def _euler_kernel(hpr0, w, dts, w_in, bias, bias_from, pitch_limit, max_gap):
     T, N = w.shape[0], w.shape[1]
     K = bias_from.shape[0]
     out = np.empty((T, N + 1, 3))
     singular = False
     gap_too_long = False
-    held = 0
-    saturated = 0
-    first_saturated = -1
     nE, nN, nU = w_in[0], w_in[1], w_in[2]
     for t in range(T):
         h, p, r = hpr0[t, 0], hpr0[t, 1], hpr0[t, 2]
@@ -110,10 +103,6 @@ def _euler_kernel(hpr0, w, dts, w_in, bias, bias_from, pitch_limit, max_gap, fs)
                 lx, ly, lz = sx, sy, sz
                 li = i
                 gap = 0.0
-                if abs(sx) >= fs or abs(sy) >= fs or abs(sz) >= fs:
-                    saturated += 1
-                    if first_saturated < 0 or i < first_saturated:
-                        first_saturated = i
             else:                                           # dropout: interpolate between valid neighbours
                 if nj <= i:
                     nj = i + 1
@@ -129,7 +118,6 @@ def _euler_kernel(hpr0, w, dts, w_in, bias, bias_from, pitch_limit, max_gap, fs)
                     sx = lx + c * (w[t, nj, 0] - lx)
                     sy = ly + c * (w[t, nj, 1] - ly)
                     sz = lz + c * (w[t, nj, 2] - lz)
-                held += 1
                 gap += dt
                 if gap > max_gap:
                     gap_too_long = True
@@ -153,38 +141,12 @@ def _euler_kernel(hpr0, w, dts, w_in, bias, bias_from, pitch_limit, max_gap, fs)
             if abs(p) > pitch_limit:
                 singular = True
             out[t, i + 1, 0], out[t, i + 1, 1], out[t, i + 1, 2] = _kernels.wrap_2pi(h), p, _kernels.wrap_pi(r)
-    return out, singular, gap_too_long, held, saturated, first_saturated
+    return out, singular, gap_too_long
 
 
-@dataclass(frozen=True)
-class EulerReport:
-    """What :func:`integrate_euler` did with faulty gyro samples (its deprecated ``report=True``).
-
-    Deprecated with ``report=``: ``robust.fault_report(w_ib_b, "gyro", full_scale=full_scale_gyro,
-    flags=True)`` gives the same counts (per trial) and flags.
-
-    Attributes
-    ----------
-    n_filled : int
-        NaN samples (dropouts) replaced by linear interpolation between the
-        neighbouring valid samples (the nearest valid sample at the ends),
-        summed over runs.
-    n_saturated : int
-        Samples with a component at the rails (``|w| >= full_scale_gyro``); the
-        true rate was larger, so the attitude from ``first_saturated`` on is
-        unreliable. 0 without ``full_scale_gyro``.
-    first_saturated : int
-        Earliest saturated sample index over all runs (-1: none).
-    """
-    n_filled: int
-    n_saturated: int
-    first_saturated: int
-
-
-@renamed_keywords(full_scale="full_scale_gyro")
 def integrate_euler(hpr0: Angles, w_ib_b: Vec3Series | ImuSamples, dt: Interval | None = None,
                     w_in_n: Vec3 | None = None, bias_b: ArrayLike | None = None, bias_from: ArrayLike | None = None, *,
-                    max_gap: float = 0.0, full_scale_gyro: float | None = None, report: bool | None = None) -> Array:
+                    max_gap: float = 0.0) -> Array:
     """Integrate Eq. (2) from gyro samples, optionally bias-compensated.
 
     Each sample is the mean rate over ``[t_k, t_k + dt_k]``; the Euler-angle
@@ -199,7 +161,7 @@ def integrate_euler(hpr0: Angles, w_ib_b: Vec3Series | ImuSamples, dt: Interval 
     samples) and a run of dropouts longer than ``max_gap`` seconds raises
     ValueError (the rotation over it is unknown). Samples at the rails of the
     gyro range cannot be corrected: the attitude after them is unreliable.
-    ``robust.fault_report(w_ib_b, "gyro", full_scale=full_scale_gyro, flags=True)``
+    ``robust.fault_report(w_ib_b, "gyro", full_scale=..., flags=True)``
     counts and flags the filled (``"nan"``) and saturated samples. Irregular
     sampling: pass per-sample intervals ``dt`` (``timing.intervals`` after
     ``timing.sanitize``).
@@ -210,7 +172,7 @@ def integrate_euler(hpr0: Angles, w_ib_b: Vec3Series | ImuSamples, dt: Interval 
         Initial ``[heading, pitch, roll]`` (rad).
     w_ib_b : array_like, shape (..., N, 3), or ImuSamples
         Gyro samples (rad/s); NaN only with ``max_gap > 0``. An
-        :class:`navlib.imu.ImuSamples` here supplies ``dt`` and ``full_scale_gyro``.
+        :class:`navlib.imu.ImuSamples` here supplies ``dt`` (its limits are not used here).
     dt : float or array_like, shape (N,)
         Sample interval (s), or the interval after each sample; required with arrays.
     w_in_n : array_like, shape (3,), optional
@@ -226,45 +188,32 @@ def integrate_euler(hpr0: Angles, w_ib_b: Vec3Series | ImuSamples, dt: Interval 
     max_gap : float
         Longest run of dropouts (s) bridged by interpolation; default 0:
         NaN is not accepted.
-    full_scale_gyro : float, optional  (formerly ``full_scale``, which warns)
-        Gyro range (rad/s); only the deprecated ``report=True`` counts saturated samples with it
-        (:func:`navlib.robust.fault_report` does that now).
-    report : bool, optional
-        Deprecated (warns; removed in navlib 0.3): ``report=True`` returns
-        ``(hpr, EulerReport)``; use :func:`navlib.robust.fault_report` instead.
 
     Returns
     -------
     hpr : ndarray, shape (..., N + 1, 3)
         Heading wrapped to [0, 2 pi), roll to (-pi, pi].
     """
-    if report is not None:
-        warnings.warn("integrate_euler(report=...) is deprecated and will be removed in navlib 0.3; the angles are "
-                      'returned alone and robust.fault_report(w_ib_b, "gyro", full_scale=full_scale_gyro) counts '
-                      "the filled and saturated samples", DeprecationWarning, stacklevel=3)
-        report = flag(report, "report")
-    if isinstance(w_ib_b, ImuSamples):
-        w_ib_b, _, dt, full_scale_gyro, _ = unpack(w_ib_b, dt=dt, full_scale_gyro=full_scale_gyro)
     max_gap = scalar(max_gap, "max_gap", allow_zero=True)
-    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=max_gap > 0)
+    if isinstance(w_ib_b, ImuSamples):                          # validated by the record
+        w, _, dts, _, _ = unpack(w_ib_b, dt=dt)                 # (NaN with max_gap = 0: refused by the gap check)
+    else:
+        w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=max_gap > 0)
+        dts = intervals(dt, w.shape[-2])
     lead, n = w.shape[:-2], w.shape[-2]
-    dts = intervals(dt, n)
     small_turns(w, dts)
-    fs = range_limit(full_scale_gyro, "full_scale_gyro")
     hpr0 = broadcast_to(_hpr(hpr0, "hpr0"), "hpr0", lead + (3,), of="the trials of w_ib_b").reshape(-1, 3)
     w_in = np.zeros(3) if w_in_n is None else as_array(w_in_n, "w_in_n", shape=(3,))
     bias, idx = _bias_schedule(bias_b, bias_from, lead)
-    out, singular, gap_long, held, sat, first = _euler_kernel(
-        kernel_array(hpr0), kernel_array(w.reshape((-1, n, 3))), dts, w_in, bias, idx,
-        PITCH_LIMIT, max_gap, fs)
+    out, singular, gap_long = _euler_kernel(kernel_array(hpr0), kernel_array(w.reshape((-1, n, 3))), dts, w_in, bias,
+                                            idx, PITCH_LIMIT, max_gap)
     if gap_long:
         raise ValueError(f"w_ib_b: a run of NaN samples (dropouts) is longer than max_gap = {max_gap:g} s; the "
                          "rotation over it is unknown")
     if singular:
         raise ValueError(f"w_ib_b: the integrated pitch passed +-{np.rad2deg(PITCH_LIMIT):g} deg, where Eq. (2) "
                          "is singular; integrate this motion with quaternions (strapdown.integrate_attitude)")
-    out = out.reshape(lead + (n + 1, 3))
-    return (out, EulerReport(int(held), int(sat), int(first))) if report else out
+    return out.reshape(lead + (n + 1, 3))
 
 
 def _bias_schedule(bias_b, bias_from, lead):
