@@ -239,7 +239,7 @@ def test_stop_solutions_stack_each_stops_faults():
     assert not hasattr(sol, "status")
 
 
-def test_ins_heading_change_has_no_deprecated_options():
+def test_ins_heading_change_old_options_are_gone():
     with pytest.raises(TypeError):
         nf.ins_heading_change(GOOD_W, GOOD_F[0], 0.01, LAT, report=True)
     with pytest.raises(TypeError):
