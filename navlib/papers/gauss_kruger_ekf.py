@@ -304,8 +304,8 @@ def ekf(t, sensors: Sensors, x0, *, origin=None, zone=None, width: int = 3, elli
     gyro rails, integrate nothing over a clock jump, skip a stuck yaw rate) and
     reported in the result's ``faults``. Timestamps must be strictly
     increasing: for logs with repeated or out-of-order samples the documented
-    pipeline is ``navlib.timing.sanitize(t, gps, heading, speed, yaw_rate)``
-    then :func:`ekf`; unsanitised times raise ``ValueError``.
+    pipeline is ``t, gps, heading, speed, yaw_rate, _ = navlib.timing.sanitize(t, gps, heading, speed, yaw_rate)``
+    then ``ekf(t, Sensors(gps, heading, speed, yaw_rate), ...)``; unsanitised times raise ``ValueError``.
 
     Parameters
     ----------
