@@ -10,6 +10,7 @@ from scipy.spatial.transform import Rotation
 
 from navlib import alignment, analysis, atmosphere, attitude, earth, kalman, pdr, sensors, strapdown, trajectory, units
 from navlib.filters import zupt, zupt_ins
+from navlib.imu import ImuSamples
 from navlib.papers import pedestrian_ins as pd
 
 LAT = units.deg(30.55)
@@ -212,6 +213,11 @@ def test_floor_test_legs_round_trip():
 
 # ---------------------------------------------------------------- filter
 
+def run(w, f, q0, static, vel_n=(0.0, 0.0, 0.0), **kw):
+    """The ZUPT/ZARU filter on samples at DT from LLA0."""
+    return zupt_ins.run_filter(ImuSamples(w, f, DT), zupt_ins.Start(LLA0, q0, vel_n), static, **kw)
+
+
 @pytest.fixture(scope="module")
 def static_run():
     traj = trajectory.static(120.0, DT, LLA0, [0.3, 0.0, 0.0])
@@ -224,9 +230,9 @@ def static_run():
 
 def test_static_zupt_zaru_holds_position_and_finds_gyro_bias(static_run):
     traj, imu, q0 = static_run
-    res = zupt_ins.run_filter(imu.w_ib_b, imu.f_b, DT, LLA0, np.zeros(3), q0, np.ones(len(imu.f_b), bool))
+    res = run(imu.w_ib_b, imu.f_b, q0, np.ones(len(imu.f_b), bool))
     R_M, _ = earth.radii(LAT)
-    assert res.updated and res.counts["zupt_updates"] == 1200
+    assert res.updated and res.zupt_updates == 1200
     assert np.std(res.nav.lla[:, 0]) * R_M < 0.01
     assert np.abs(res.gyro_bias[-1] - imu.gyro_bias[-1]).max() < units.deg_per_s(0.005)
     free = strapdown.integrate(LLA0, np.zeros(3), q0, imu.w_ib_b, imu.f_b, DT)
@@ -236,7 +242,7 @@ def test_static_zupt_zaru_holds_position_and_finds_gyro_bias(static_run):
 def test_no_static_interval_is_reported_not_hidden(static_run):
     traj, imu, q0 = static_run
     with pytest.warns(RuntimeWarning, match="no ZUPT/ZARU update"):
-        res = zupt_ins.run_filter(imu.w_ib_b, imu.f_b, DT, LLA0, np.zeros(3), q0, np.zeros(len(imu.f_b), bool))
+        res = run(imu.w_ib_b, imu.f_b, q0, np.zeros(len(imu.f_b), bool))
     assert not res.updated
     free = strapdown.integrate(LLA0, np.zeros(3), q0, imu.w_ib_b, imu.f_b, DT)
     np.testing.assert_array_equal(res.nav.lla, free.lla)             # exactly the free INS: same mechanisation
@@ -244,9 +250,9 @@ def test_no_static_interval_is_reported_not_hidden(static_run):
 
 def test_repeated_rejections_force_an_update_instead_of_locking_out(static_run):
     traj, imu, q0 = static_run
-    res = zupt_ins.run_filter(imu.w_ib_b, imu.f_b, DT, LLA0, [3.0, 0.0, 0.0], q0, np.ones(len(imu.f_b), bool))
-    assert res.counts["zupt_rejected"] == zupt_ins.FilterConfig().max_rejected
-    assert res.counts["zupt_forced"] == 1
+    res = run(imu.w_ib_b, imu.f_b, q0, np.ones(len(imu.f_b), bool), vel_n=[3.0, 0.0, 0.0])
+    assert res.faults["zupt", "outlier"] == zupt_ins.Gates().max_rejected
+    assert res.faults["zupt", "reacquired"] == 1
     assert np.abs(res.nav.vel_n[-1]).max() < 0.01
 
 
@@ -256,8 +262,8 @@ def test_filter_survives_dropouts_and_gates_false_zupts(static_run):
     w[500:520] = np.nan
     f[700] = np.nan
     static = np.ones(len(f), bool)
-    res = zupt_ins.run_filter(w, f, DT, LLA0, np.zeros(3), q0, static)
-    assert res.counts["imu_dropouts"] == 21
+    res = run(w, f, q0, static)
+    assert res.faults["gyro", "nan"] == 20 and res.faults["accel", "nan"] == 1
     assert np.all(np.isfinite(res.nav.lla))
     # a walker flagged static for 1 s in the middle of a walk: the NIS gate rejects most of those updates
     legs = [trajectory.Leg(20.0), trajectory.Leg(20.0, 1.2), trajectory.Leg(10.0)]
@@ -266,8 +272,8 @@ def test_filter_survives_dropouts_and_gates_false_zupts(static_run):
     imu_w = sensors.simulate_imu(ww, fw, DT, RESIDUAL, np.random.default_rng(7))
     flags = trajectory.stance_mask(legs, DT)[:-1].copy()
     flags[3000:3100] = True
-    res = zupt_ins.run_filter(imu_w.w_ib_b, imu_w.f_b, DT, LLA0, np.zeros(3), walk.q_bn[0], flags)
-    assert res.counts["zupt_rejected"] >= 5
+    res = run(imu_w.w_ib_b, imu_w.f_b, walk.q_bn[0], flags)
+    assert res.faults["zupt", "outlier"] >= 5
 
 
 def test_walking_aids_bound_heading_and_height(carpark):
@@ -287,25 +293,24 @@ def test_walking_aids_bound_heading_and_height(carpark):
     det = zupt.detect_static(imu.w_ib_b, imu.f_b, DT)
     out = {}
     for mode in ("reset", "filter", "none"):
-        res = zupt_ins.run_filter(imu.w_ib_b, imu.f_b, DT, LLA0, np.zeros(3), traj.q_bn[0], det, h_baro=h, m_b=m,
-                            declination=float(D), walk_aiding=mode)
+        res = run(imu.w_ib_b, imu.f_b, traj.q_bn[0], det, h_baro=h, m_b=m,
+                  aiding=zupt_ins.Aiding(mode, declination=float(D)))
         out[mode] = (np.abs(attitude.wrap_pi(res.nav.hpr[:, 0] - traj.hpr[:, 0])).max(),
                      np.abs(res.nav.lla[:, 2] - traj.lla[:, 2]).max(), res)
     assert out["reset"][0] < np.deg2rad(3) and out["filter"][0] < np.deg2rad(3)
     assert out["reset"][1] < 1.0 and out["filter"][1] < 1.0
-    assert out["reset"][2].counts["mag_aidings"] > 1000
-    assert out["none"][2].counts["mag_aidings"] == 0
+    assert out["reset"][2].mag_aidings > 1000
+    assert out["none"][2].mag_aidings == 0
     # ENU sign of the heading reset: a 10-degree initial heading error is removed while walking
     q_off = attitude.euler_to_quat(traj.hpr[0] + [np.deg2rad(10.0), 0.0, 0.0])
-    res = zupt_ins.run_filter(imu.w_ib_b, imu.f_b, DT, LLA0, np.zeros(3), q_off, det, h_baro=h, m_b=m,
-                        declination=float(D))
+    res = run(imu.w_ib_b, imu.f_b, q_off, det, h_baro=h, m_b=m, aiding=zupt_ins.Aiding(declination=float(D)))
     err = np.abs(attitude.wrap_pi(res.nav.hpr[:, 0] - traj.hpr[:, 0]))
     assert err[0] > np.deg2rad(9.9) and err[int(40 / DT):].max() < np.deg2rad(3)
     # a strong disturbance everywhere: the gate on field magnitude and dip rejects it
-    cfg = zupt_ins.FilterConfig(mag_field_tol=5.0, mag_dip_tol=np.deg2rad(5))
-    res = zupt_ins.run_filter(imu.w_ib_b, imu.f_b, DT, LLA0, np.zeros(3), traj.q_bn[0], det, h_baro=h,
-                        m_b=m + np.array([0.0, 0.0, 30.0]), declination=float(D), B_n=B, config=cfg)
-    assert res.counts["mag_gated"] > 0 and res.counts["mag_aidings"] == 0
+    cfg = zupt_ins.FilterConfig(gates=zupt_ins.Gates(mag_field=5.0, mag_dip=np.deg2rad(5)))
+    res = run(imu.w_ib_b, imu.f_b, traj.q_bn[0], det, h_baro=h, m_b=m + np.array([0.0, 0.0, 30.0]),
+              aiding=zupt_ins.Aiding(declination=float(D), B_n=B), config=cfg)
+    assert res.faults["mag", "outlier"] > 0 and res.mag_aidings == 0
 
 
 def test_kernel_runs_uncompiled_with_the_same_result():
@@ -313,14 +318,14 @@ def test_kernel_runs_uncompiled_with_the_same_result():
 import json, numpy as np, warnings
 from navlib import trajectory, units
 from navlib.filters import zupt, zupt_ins
-from navlib.papers import pedestrian_ins as pd
+from navlib.imu import ImuSamples, SensorLimits
 legs = [trajectory.Leg(3.0), trajectory.Leg(3.0, 1.0, turn=0.5), trajectory.Leg(2.0)]
 traj = trajectory.walk(legs, 0.02, [0.5, 1.9, 10.0], 0.2)
 w, f = trajectory.ideal_imu(traj)
 static = trajectory.stance_mask(legs, 0.02)[:-1]
 m = np.tile([10.0, 20.0, -30.0], (len(w), 1))
-res = zupt_ins.run_filter(w + 1e-3, f, 0.02, traj.lla[0], traj.vel_n[0], traj.q_bn[0], static,
-                    h_baro=traj.lla[:-1, 2], m_b=m)
+start = zupt_ins.Start(traj.lla[0], traj.q_bn[0], traj.vel_n[0])
+res = zupt_ins.run_filter(ImuSamples(w + 1e-3, f, 0.02), start, static, h_baro=traj.lla[:-1, 2], m_b=m)
 # the fault paths: a dropout, a spike, clipping, a baro spike, per-sample intervals, a time jump, free fall
 w2, f2, h2 = w + 1e-3, f.copy(), traj.lla[:-1, 2].copy()
 w2[50] = np.nan
@@ -329,11 +334,11 @@ f2[250:255] = 0.0
 h2[300] += 50.0
 dt = 0.02 * (1 + 0.1 * np.sin(np.arange(len(w))))
 dt[200] = 5.0
-cfg = zupt_ins.FilterConfig(spike_gyro=0.02, spike_accel=0.5)
-res2 = zupt_ins.run_filter(w2, f2, dt, traj.lla[0], traj.vel_n[0], traj.q_bn[0], static, h_baro=h2, m_b=m,
-                     config=cfg, full_scale_gyro=0.3, full_scale_accel=11.0)
-print(json.dumps({"lla": res.nav.lla.tolist(), "counts": res.counts, "lla2": res2.nav.lla.tolist(),
-                  "counts2": res2.counts, "flags2": res2.flags.tolist()}))
+limits = SensorLimits(full_scale_gyro=0.3, full_scale_accel=11.0, spike_gyro=0.02, spike_accel=0.5)
+res2 = zupt_ins.run_filter(ImuSamples(w2, f2, dt, limits), start, static, h_baro=h2, m_b=m)
+counts = lambda r: dict(r.faults.as_dict(), zupt=r.zupt_updates, baro=r.baro_aidings, mag=r.mag_aidings)
+print(json.dumps({"lla": res.nav.lla.tolist(), "counts": counts(res), "lla2": res2.nav.lla.tolist(),
+                  "counts2": counts(res2), "flags2": {f"{s}.{k}": v.tolist() for (s, k), v in res2.faults.flags.items()}}))
 """
     runs = []
     for flag in ("0", "1"):
@@ -345,8 +350,8 @@ print(json.dumps({"lla": res.nav.lla.tolist(), "counts": res.counts, "lla2": res
     np.testing.assert_allclose(runs[0]["lla2"], runs[1]["lla2"], rtol=0, atol=1e-12)
     assert runs[0]["counts2"] == runs[1]["counts2"] and runs[0]["flags2"] == runs[1]["flags2"]
     c = runs[0]["counts2"]
-    assert c["imu_dropouts"] == 1 and c["imu_spikes"] == 1 and c["baro_rejected"] == 1 and c["imu_saturated"] > 0
-    assert c["time_jumps"] == 1 and c["imu_freefall"] == 5
+    assert c["gyro.nan"] == 1 and c["accel.spike"] == 1 and c["baro.outlier"] == 1
+    assert c["gyro.saturated"] + c["accel.saturated"] > 0 and c["clock.jump"] == 1 and c["accel.freefall"] == 5
 
 
 # ---------------------------------------------------------------- barometer and floors
@@ -425,16 +430,14 @@ def test_step_detection_and_pdr(carpark):
     (lambda: trajectory.Leg(-1.0), "duration"),
     (lambda: trajectory.Leg(5.0, 0.0, turn=1.0), "turn, climb"),
     (lambda: trajectory.Gait(step_frequency=0.0), "step_frequency"),
-    (lambda: zupt_ins.FilterConfig(sigma_zupt=0.0), "sigma_zupt"),
+    (lambda: zupt_ins.MeasurementNoise(zupt=0.0), "zupt"),
     (lambda: alignment.level([0.0, 0.0, 0.0]), "f_b"),
     (lambda: atmosphere.reference_pressure([np.nan, np.nan], [0.0, 1.0], 5.0), "until"),
     (lambda: atmosphere.classify_floor([1.0], floor_height=0.0), "floor_height"),
-    (lambda: zupt_ins.run_filter(np.zeros((5, 3)), np.zeros((5, 3)), 0.01, LLA0, np.zeros(3), [1, 0, 0, 0],
-                           np.ones(4, bool)), "static"),
-    (lambda: zupt_ins.run_filter(np.zeros((5, 3)), np.zeros((5, 3)), 0.01, LLA0, np.zeros(3), [1, 0, 0, 0],
-                           np.ones(5, bool), m_b=np.zeros((5, 3))), "m_b"),
-    (lambda: zupt_ins.run_filter(np.zeros((5, 3)), np.zeros((5, 3)), 0.01, LLA0, np.zeros(3), [1, 0, 0, 0],
-                           np.ones(5, bool), walk_aiding="magic"), "walk_aiding"),
+    (lambda: run(np.zeros((5, 3)), np.tile([0, 0, 9.8], (5, 1)), [1, 0, 0, 0], np.ones(4, bool)), "static"),
+    (lambda: run(np.zeros((5, 3)), np.tile([0, 0, 9.8], (5, 1)), [1, 0, 0, 0], np.ones(5, bool), m_b=np.zeros((5, 3))),
+     "m_b"),
+    (lambda: zupt_ins.Aiding(walk="magic"), "walk"),
     (lambda: pdr.detect_steps(np.zeros((5, 3)), 0.01), "f_b"),
     (lambda: pdr.weinberg_step_length([1.0], K=-1.0), "K"),
     (lambda: pdr.pdr([1.0, 2.0], [0.0]), "step_headings"),
