@@ -95,7 +95,7 @@ from scipy.optimize import least_squares
 
 from . import analysis, earth, units
 from ._typing import Array, Dcm, Interval, Vec3, Vec3Series
-from ._validate import as_array, as_dcm, choice, flag, imu_samples, in_range, instance, intervals, scalar
+from ._validate import as_array, as_dcm, choice, flag, imu_samples, intervals, scalar
 from .imu import ImuSamples, unpack
 from .sensors import ImuModel, TriadErrors
 
@@ -543,7 +543,6 @@ class NoiseCharacterisation:
 
         See :meth:`TriadNoise.to_triad_errors` for ``combine`` and what stays at its default.
         """
-        instance(name, "name", str, "a string")
         return ImuModel(self.gyro.to_triad_errors(combine), self.accel.to_triad_errors(combine), name)
 
 
@@ -562,7 +561,7 @@ def _edf(noise: str, n_phase: int, m: np.ndarray) -> np.ndarray:
 
 def _interval(edf: np.ndarray, confidence: float) -> np.ndarray:
     """Factors (..., 2) scaling an Allan deviation with ``edf`` degrees of freedom to its interval."""
-    from scipy.stats import chi2  # noqa: PLC0415 -- scipy.stats takes ~1.3 s to import; only intervals need it
+    from scipy.stats import chi2  # noqa: PLC0415 -- scipy.stats is slow to import; only intervals need it
     return np.stack([np.sqrt(edf / chi2.ppf((1 + confidence) / 2, edf)),
                      np.sqrt(edf / chi2.ppf((1 - confidence) / 2, edf))], -1)
 
@@ -647,15 +646,12 @@ def characterise(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None,
         irregular sampling.
     """
     w, f, dt, _, _ = unpack(w_ib_b, f_b, dt)
-    w, f = imu_samples(w, f, allow_nan=False)
-    if w.ndim != 2:
-        raise ValueError(f"w_ib_b: expected one record of shape (N, 3), got {w.shape}")
+    w, f = imu_samples(w, f, allow_nan=False, shape=(None, 3))           # one record
     n = w.shape[0]
     if n < MIN_RECORD:
         raise ValueError(f"w_ib_b: expected a static record of at least {MIN_RECORD} samples, got {n}")
     dt = _fixed_interval(dt, n)
     rate_random_walk = flag(rate_random_walk, "rate_random_walk")
-    confidence = scalar(in_range(as_array(confidence, "confidence"), "confidence", 0.0, 1.0, lo_open=True,
-                                 hi_open=True), "confidence")
+    confidence = scalar(confidence, "confidence", within=(0.0, 1.0), open_ends=(True, True))
     return NoiseCharacterisation(_triad_noise(w, dt, rate_random_walk, confidence),
                                  _triad_noise(f, dt, rate_random_walk, confidence), dt, n, confidence)

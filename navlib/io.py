@@ -207,8 +207,7 @@ def from_dataframe(df: pd.DataFrame, *, time: str, time_unit: str = "s", units: 
     -------
     Recording
     """
-    if not isinstance(df, pd.DataFrame):
-        raise ValueError(f"df: expected a pandas.DataFrame, got {type(df).__name__}")
+    instance(df, "df", pd.DataFrame, "a pandas.DataFrame")
     choice(timing, "timing", ("raise", "sanitize"))
     check_units = flag(check_units, "check_units")
     C_bs = attitude.mount_matrix(axes)
@@ -237,9 +236,7 @@ def from_dataframe(df: pd.DataFrame, *, time: str, time_unit: str = "s", units: 
         factor = _unit(sensor, units[sensor])
         if sensor == "baro":
             x = _numeric(df, [cols])[:, 0] * factor
-        else:
-            if isinstance(cols, str) or len(cols) != 3:
-                raise ValueError(f"{sensor}: expected three column names (x, y, z), got {cols!r}")
+        else:                                   # three column names, checked above
             x = _numeric(df, list(cols)) * factor @ C_bs.T
         if check_units:
             _check_magnitude(sensor, x, units[sensor])

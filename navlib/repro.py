@@ -227,8 +227,7 @@ def savefig(fig: Figure, name: str) -> Path:
     The PNG carries no timestamp or software version, so two runs give
     byte-identical files. Under Jupyter's inline backend the cell shows this
     PNG and the figure is closed: it is rendered once, not a second time by
-    the backend at the end of the cell (each render of a paper figure costs
-    ~0.5 s). Other backends leave the figure open for ``plt.show()``.
+    the backend at the end of the cell. Other backends leave the figure open for ``plt.show()``.
     """
     import matplotlib
     import matplotlib.pyplot as plt
@@ -260,9 +259,11 @@ def _as_float(x, name: str, finite: bool = False) -> float:
     return v
 
 
-def _check_name(name) -> None:
-    if not isinstance(name, str) or not name.strip():
-        raise ValueError(f"name: expected a non-empty check name (str), got {name!r}")
+def _check_args(name, value, source, unit, note, on_printed) -> tuple[float, bool]:
+    """The arguments every check takes, checked: returns the value as a float and ``on_printed``."""
+    text(name, "name", empty=False)
+    _texts(source=source, unit=unit, note=note)
+    return _as_float(value, "value"), flag(on_printed, "on_printed")
 
 
 def _texts(**kw: str) -> None:
@@ -320,15 +321,12 @@ def check(name: str, value: Scalar, expected: float, tol: float, source: str, *,
         table column against the total its text prints: legitimate, but a consistency check of the
         paper rather than a reproduction. Recorded in results.json.
     """
-    _check_name(name)
-    _texts(source=source, unit=unit, note=note)
-    v = _as_float(value, "value")
+    v, printed = _check_args(name, value, source, unit, note, on_printed)
     e = _as_float(expected, "expected", finite=True)
     t = _as_float(tol, "tol", finite=True)
     if t < 0:
         raise ValueError(f"tol: expected a non-negative tolerance, got {t}")
     abs_tol = t * abs(e) if flag(rel, "rel") else t
-    printed = flag(on_printed, "on_printed")
     _not_the_target(value, expected=expected, paper_value=paper_value)
     passed = bool(math.isfinite(v) and abs(v - e) <= abs_tol)
     return _record(Check(name, v, e, abs_tol, passed, source, None if paper_value is None else str(paper_value),
@@ -343,15 +341,7 @@ def check_range(name: str, value: Scalar, source: str, *, lower: float | None = 
     dead reckoning's" as ``check_range(name, rmse_ekf / rmse_dr, upper=1)``. ``value`` and
     ``on_printed`` as for :func:`check`.
     """
-    _check_name(name)
-    _texts(source=source, unit=unit, note=note)
-    v = _as_float(value, "value")
-    lo, hi = _bounds(lower, upper)
-    printed = flag(on_printed, "on_printed")
-    _not_the_target(value, lower=lower, upper=upper, paper_value=paper_value)
-    passed = bool(math.isfinite(v) and (lo is None or v >= lo) and (hi is None or v <= hi))
-    return _record(Check(name, v, None, None, passed, source, None if paper_value is None else str(paper_value),
-                         lo, hi, unit, note, on_printed=printed))
+    return _interval_check(name, value, source, (lower, upper), paper_value, unit, note, on_printed, outside=False)
 
 
 def check_outside(name: str, value: Scalar, source: str, *, lower: float | None = None, upper: float | None = None,
@@ -365,15 +355,18 @@ def check_outside(name: str, value: Scalar, source: str, *, lower: float | None 
     ``value`` is computed by navlib; the interval holds the paper's value with its
     stated or derived spread. A non-finite value fails. ``on_printed`` as for :func:`check`.
     """
-    _check_name(name)
-    _texts(source=source, unit=unit, note=note)
-    v = _as_float(value, "value")
-    lo, hi = _bounds(lower, upper)
-    printed = flag(on_printed, "on_printed")
-    _not_the_target(value, lower=lower, upper=upper, paper_value=paper_value)
-    passed = bool(math.isfinite(v) and ((lo is not None and v < lo) or (hi is not None and v > hi)))
+    return _interval_check(name, value, source, (lower, upper), paper_value, unit, note, on_printed, outside=True)
+
+
+def _interval_check(name, value, source, bounds, paper_value, unit, note, on_printed, *, outside: bool) -> Check:
+    """:func:`check_range` (``value`` within ``bounds``) or :func:`check_outside` (``value`` outside them)."""
+    v, printed = _check_args(name, value, source, unit, note, on_printed)
+    lo, hi = _bounds(*bounds)
+    _not_the_target(value, lower=bounds[0], upper=bounds[1], paper_value=paper_value)
+    inside = (lo is None or v >= lo) and (hi is None or v <= hi)
+    passed = bool(math.isfinite(v) and inside != outside)
     return _record(Check(name, v, None, None, passed, source, None if paper_value is None else str(paper_value),
-                         lo, hi, unit, note, outside=True, on_printed=printed))
+                         lo, hi, unit, note, outside=outside, on_printed=printed))
 
 
 def _not_the_target(value, **targets) -> None:
