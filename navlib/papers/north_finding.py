@@ -217,7 +217,7 @@ def heading_candidates(w_y: ArrayLike, f_b: Vec3, lat: float, h: float = 0.0) ->
     """
     w_y = as_array(w_y, "w_y")
     lat = gyrocompass_latitude(lat)
-    pitch, _ = tilt_from_accel(f_b, earth.gravity(lat, as_array(h, "h")))      # h non-empty: gravity accepts empty
+    pitch, _ = tilt_from_accel(f_b, earth.gravity(lat, as_array(h, "h")))   # as_array: gravity takes an empty h
     cos_h = (w_y - OMEGA_IE * np.sin(lat) * np.sin(pitch)) / (OMEGA_IE * np.cos(lat) * np.cos(pitch))
     clipped = np.abs(cos_h) > 1.0
     alpha = np.arccos(np.clip(cos_h, -1.0, 1.0))
@@ -816,7 +816,8 @@ def stop_solutions(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = Non
 
 
 def _hold_last(w, dts):
-    """Forward-fill NaN rows along axis -2 (back-fill leading ones); the longest run (s) and the trials without a valid row."""
+    """Forward-fill NaN rows along axis -2 (back-fill leading ones); the longest dropout run (s) and the
+    trials without any valid row."""
     bad = ~np.all(np.isfinite(w), -1)
     n = w.shape[-2]
     empty = bad.all(-1)
