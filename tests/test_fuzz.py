@@ -1,5 +1,6 @@
-"""The fuzzing harness tools/fuzz.py stays usable (issue 15, item 4): its table covers every public callable,
-it runs on a small fixed subset, and it tells the outcome classes apart. The full run is ``make fuzz``."""
+"""The fuzzing harness tools/fuzz.py stays usable (issue 15, item 4): it runs on a small fixed subset and tells
+the outcome classes apart. The full run is ``make fuzz``; that its registry tools/fuzz_calls.py lists every public
+callable is tests/test_bad_input.py's."""
 import json
 import sys
 import time
@@ -14,14 +15,6 @@ import fuzz  # noqa: E402
 
 SUBSET = ["attitude.quat_to_dcm", "attitude.dcm_to_euler", "kalman.predict", "atmosphere.isa_altitude",
           "trajectory.Segment", "analysis.settling_time"]
-
-
-def test_every_public_callable_has_a_valid_call():
-    import fuzz_calls
-    public, table = fuzz.public_callables(), fuzz_calls.table()
-    assert not set(public) - set(table), "public callables without a valid call in tools/fuzz_calls.py"
-    assert not set(table) - set(public), "tools/fuzz_calls.py entries for names that are not public"
-    assert all(isinstance(c, fuzz.Skip) and c.reason or isinstance(c, fuzz.Call) for c in table.values())
 
 
 def test_by_design_rules_have_reasons_and_match_real_outcomes():
