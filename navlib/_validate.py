@@ -188,9 +188,10 @@ def euler_angles(hpr: ArrayLike, name: str = "hpr") -> np.ndarray:
     return a
 
 
-def positive(x: ArrayLike, name: str, *, allow_zero: bool = False, nonempty: bool = False) -> np.ndarray:
-    """Return ``x`` as a finite float array that is > 0 (or >= 0); ``nonempty`` as in :func:`as_array`."""
-    arr = as_array(x, name, nonempty=nonempty)
+def positive(x: ArrayLike, name: str, *, allow_zero: bool = False, **shape: Any) -> np.ndarray:
+    """Return ``x`` as a finite float array that is > 0 (or >= 0); ``shape`` takes the shape options of
+    :func:`as_array` (``tail``, ``shape``, ``min_ndim``, ``nonempty``, ``of``)."""
+    arr = as_array(x, name, **shape)
     ok = arr >= 0 if allow_zero else arr > 0
     if not np.all(ok):
         raise ValueError(f"{name}: expected {'non-negative' if allow_zero else 'positive'} values, got {arr.min():g}")
@@ -246,9 +247,11 @@ ORTHO_TOL = 1e-6
 """Largest ``|C^T C - I|`` accepted for a rotation matrix."""
 
 
-def as_dcm(C: Dcm, name: str = "C_bn") -> np.ndarray:
-    """Return ``C`` as float rotation matrices, shape (..., 3, 3): orthonormal to ``ORTHO_TOL``, det +1."""
-    C = as_array(C, name, tail=(3, 3))
+def as_dcm(C: Dcm, name: str = "C_bn", **shape: Any) -> np.ndarray:
+    """Return ``C`` as float rotation matrices, shape (..., 3, 3): orthonormal to ``ORTHO_TOL``, det +1.
+
+    ``shape`` takes the shape options of :func:`as_array`, e.g. ``shape=(3, 3)`` for one matrix."""
+    C = as_array(C, name, tail=(3, 3), **shape)
     err = np.abs(np.swapaxes(C, -1, -2) @ C - np.eye(3)).max(initial=0.0)
     if err > ORTHO_TOL or np.any(np.linalg.det(C) < 0):
         raise ValueError(f"{name}: expected proper rotation matrices (orthonormal, det +1); "
@@ -260,18 +263,19 @@ QUAT_MIN_NORM = 1e-12
 """Smallest quaternion norm :func:`as_quat` accepts: a zero quaternion is no rotation."""
 
 
-def as_quat(q: Quat, name: str = "q", *, normalize: bool = True) -> np.ndarray:
+def as_quat(q: Quat, name: str = "q", *, normalize: bool = True, **shape: Any) -> np.ndarray:
     """Return ``q`` as unit quaternions, shape (..., 4), scalar first; a zero quaternion raises.
 
     Quaternions of any finite magnitude are normalised exactly. With ``normalize=False`` the values are
     returned unchanged (for functions defined for any non-zero quaternion, e.g. the quadratic measurement
-    model and its Jacobian, which finite differences evaluate off the unit sphere).
+    model and its Jacobian, which finite differences evaluate off the unit sphere). ``shape`` takes the
+    shape options of :func:`as_array` (``min_ndim``, ``nonempty``, ...).
     """
     if not normalize:
-        q = as_array(q, name, tail=(4,))
+        q = as_array(q, name, tail=(4,), **shape)
         _nonzero(np.linalg.norm(q, axis=-1), name)
         return q
-    q = as_array(q, name, tail=(4,), huge=True)
+    q = as_array(q, name, tail=(4,), huge=True, **shape)
     big = np.abs(q).max(axis=-1, keepdims=True)
     if np.any(big > MAX_MAGNITUDE):            # |q|^2 would overflow: scale first (exact, a power of two)
         q = q / np.exp2(np.floor(np.log2(np.where(big > MAX_MAGNITUDE, big, 1.0))))

@@ -470,5 +470,5 @@ def static_gyro_bias(w_ib_b: Vec3Series, C_bn: Dcm, lat: float) -> Array:
     lat : float  (rad)
     """
     w = as_array(w_ib_b, "w_ib_b", shape=(None, 3), min_ndim=1)
-    C = as_dcm(as_array(C_bn, "C_bn", shape=(3, 3)), "C_bn")
+    C = as_dcm(C_bn, "C_bn", shape=(3, 3))
     return w.mean(0) - C.T @ earth.earth_rate_n(scalar(lat, "lat"))

@@ -22,7 +22,7 @@ import numpy as np
 
 from . import attitude, earth
 from ._typing import Angles, Array, ArrayLike, Times, Vec3Series
-from ._validate import as_array, generator, in_range, integer, positive, scalar, time_axis, unit_interval
+from ._validate import as_array, generator, integer, positive, same_shape, scalar, time_axis, unit_interval
 
 __all__ = ["dropouts", "gap", "spikes", "position_jumps", "heading_flips", "duplicate_timestamps",
            "swap_timestamps", "irregular_times", "saturate"]
@@ -35,6 +35,12 @@ def _samples(x, name):
 
 def _time_axis_len(a):
     return a.shape[-2] if a.ndim >= 2 else a.shape[-1]
+
+
+def _hits(rng: np.random.Generator, fraction: float, n: int) -> np.ndarray:
+    """Which of ``n`` samples a fault hits, each with probability ``fraction`` (both arguments checked)."""
+    generator(rng)
+    return rng.random(n) < unit_interval(fraction, "fraction")
 
 
 def dropouts(x: ArrayLike, fraction: float, rng: np.random.Generator) -> tuple[Array, np.ndarray]:
@@ -54,9 +60,7 @@ def dropouts(x: ArrayLike, fraction: float, rng: np.random.Generator) -> tuple[A
     dropped : ndarray of bool, shape (N,)
     """
     x = _samples(x, "x").copy()
-    generator(rng)
-    n = _time_axis_len(x)
-    dropped = rng.random(n) < unit_interval(fraction, "fraction")
+    dropped = _hits(rng, fraction, _time_axis_len(x))
     if x.ndim == 1:
         x[dropped] = np.nan
     else:
@@ -73,7 +77,7 @@ def gap(x: ArrayLike, time: Times, start: float, duration: float) -> tuple[Array
     dropped : ndarray of bool, shape (N,)
     """
     x = _samples(x, "x").copy()
-    t = as_array(time_axis(time, "time"), "time", shape=(_time_axis_len(x),), of="x")
+    t = same_shape(time_axis(time, "time"), "time", (_time_axis_len(x),), of="x")
     start = scalar(start, "start")
     duration = scalar(duration, "duration", positive=True)
     dropped = (t >= start) & (t < start + duration)
@@ -103,13 +107,11 @@ def spikes(x: ArrayLike, fraction: float, sigma: ArrayLike, rng: np.random.Gener
     hit : ndarray of bool, shape (N,)
     """
     x = _samples(x, "x").copy()
-    generator(rng)
     sigma = positive(sigma, "sigma")
     k_comp = x.shape[-1] if x.ndim >= 2 else 1
     if sigma.ndim > 1 or sigma.size not in (1, k_comp):
         raise ValueError(f"sigma: expected a scalar or one value per component ({k_comp}), got shape {sigma.shape}")
-    n = _time_axis_len(x)
-    hit = rng.random(n) < unit_interval(fraction, "fraction")
+    hit = _hits(rng, fraction, _time_axis_len(x))
     sign = np.where(rng.random(x.shape) < 0.5, -1.0, 1.0)
     mask = hit if x.ndim == 1 else hit[:, None]
     x = x + np.where(mask, scalar(k, "k", positive=True) * sigma * sign, 0.0)
@@ -134,8 +136,7 @@ def position_jumps(lla: Vec3Series, fraction: float, rng: np.random.Generator,
     lat_ok = np.isnan(lla[..., 0]) | (np.abs(lla[..., 0]) <= np.pi / 2)
     if not lat_ok.all():
         raise ValueError("lla[..., 0] (lat): expected latitudes in [-pi/2, pi/2] rad")
-    generator(rng)
-    hit = rng.random(lla.shape[-2]) < unit_interval(fraction, "fraction")
+    hit = _hits(rng, fraction, lla.shape[-2])
     az = rng.uniform(0, 2 * np.pi, lla.shape[-2])
     lat, h = np.nan_to_num(lla[..., 0]), np.nan_to_num(lla[..., 2])
     R_M, R_N = earth.radii(lat)
@@ -154,8 +155,7 @@ def heading_flips(heading: Angles, fraction: float, rng: np.random.Generator) ->
     hit : ndarray of bool, shape (N,)
     """
     h = as_array(heading, "heading", allow_nan=True, min_ndim=1).copy()
-    generator(rng)
-    hit = rng.random(h.shape[-1]) < unit_interval(fraction, "fraction")
+    hit = _hits(rng, fraction, h.shape[-1])
     return np.where(hit, attitude.wrap_2pi(h + np.pi), h), hit
 
 
@@ -168,8 +168,7 @@ def duplicate_timestamps(time: Times, fraction: float, rng: np.random.Generator)
     hit : ndarray of bool, shape (N,)
     """
     t = time_axis(time).copy()
-    generator(rng)
-    hit = rng.random(t.size) < unit_interval(fraction, "fraction")
+    hit = _hits(rng, fraction, t.size)
     hit[0] = False
     t[hit] = t[np.flatnonzero(hit) - 1]
     return t, hit
@@ -187,9 +186,8 @@ def swap_timestamps(time: Times, fraction: float, rng: np.random.Generator) -> t
         ``time_faulty = time[order]``; apply it to the data as well.
     """
     t = time_axis(time, increasing=False)
-    generator(rng)
     order = np.arange(t.size)
-    for i in np.flatnonzero(rng.random(t.size - 1) < unit_interval(fraction, "fraction")):
+    for i in np.flatnonzero(_hits(rng, fraction, t.size - 1)):
         order[i], order[i + 1] = order[i + 1], order[i]
     return t[order], order
 
@@ -203,7 +201,7 @@ def irregular_times(n: int, dt: float, jitter: float, rng: np.random.Generator, 
     """
     integer(n, "n", minimum=2)
     dt = scalar(dt, "dt", positive=True)
-    jitter = scalar(in_range(as_array(jitter, "jitter"), "jitter", 0.0, 0.99), "jitter")
+    jitter = scalar(jitter, "jitter", within=(0.0, 0.99))
     t0 = scalar(t0, "t0")
     generator(rng)
     steps = dt * (1 + rng.uniform(-jitter, jitter, n - 1))

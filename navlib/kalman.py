@@ -25,7 +25,7 @@ from scipy.linalg import expm
 
 from . import _kernels
 from ._typing import Array, ArrayLike
-from ._validate import as_array, booleans, kernel_array, nonempty_array, same_shape, scalar
+from ._validate import as_array, booleans, kernel_array, same_shape, scalar
 
 __all__ = ["predict", "update", "discretize", "ACCEPTED", "NO_DATA", "REJECTED"]
 
@@ -40,7 +40,7 @@ def _matrix(a: ArrayLike, name: str, shape: tuple[int | None, ...], **kwargs) ->
 
 def _state(x: ArrayLike, P: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """A non-empty state vector ``x`` (n,) and its covariance ``P`` (n, n)."""
-    x = kernel_array(nonempty_array(x, "x", shape=(None,)))
+    x = kernel_array(as_array(x, "x", shape=(None,), nonempty=True))
     return x, _matrix(P, "P", (x.shape[0], x.shape[0]), of="x")
 
 
@@ -149,7 +149,7 @@ def discretize(F: ArrayLike, G: ArrayLike, Qc: ArrayLike, dt: float) -> tuple[Ar
     -------
     Phi, Qd : ndarray, shape (n, n)
     """
-    F = nonempty_array(F, "F", shape=(None, None))
+    F = as_array(F, "F", shape=(None, None), nonempty=True)
     n = len(F)
     same_shape(F, "F", (n, n))                                   # square
     G = as_array(G, "G", shape=(n, None), of="F")                # n rows

@@ -83,7 +83,7 @@ def pdr(step_lengths: ArrayLike, step_headings: ArrayLike, start_en: ArrayLike =
     en : ndarray, shape (n_steps + 1, 2)
         Positions (m), starting at ``start_en``.
     """
-    L = positive(as_array(step_lengths, "step_lengths", shape=(None,)), "step_lengths", allow_zero=True)
+    L = positive(step_lengths, "step_lengths", allow_zero=True, shape=(None,))
     psi = same_shape(as_array(step_headings, "step_headings"), "step_headings", L.shape, of="step_lengths")
     start = as_array(start_en, "start_en", shape=(2,))
     d = np.stack([L * np.sin(psi), L * np.cos(psi)], -1)

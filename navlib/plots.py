@@ -67,12 +67,8 @@ def allan(ax: Axes, taus: ArrayLike, adev_rad_s: ArrayLike, theory: ArrayLike | 
         Model curve (rad/s), drawn dashed.
     """
     axes(ax)
-    taus = positive(taus, "taus")
-    if taus.size == 0:
-        raise ValueError("taus: expected at least one averaging time, got an empty array")
+    taus = positive(taus, "taus", shape=(None,), nonempty=True)
     a = units.to_deg_per_h(positive(adev_rad_s, "adev_rad_s"))
-    if taus.ndim != 1:
-        raise ValueError(f"taus: expected a 1-D array of averaging times, got shape {taus.shape}")
     if a.ndim not in (1, 2) or a.shape[0] != taus.size:
         raise ValueError(f"adev_rad_s: expected shape ({taus.size},) or ({taus.size}, k) (one row per tau), got {a.shape}")
     if theory is not None:
@@ -100,18 +96,9 @@ def _color(c, name: str) -> None:
         raise ValueError(f"{name}: expected a matplotlib color, got {c!r:.40}")
 
 
-def _point(p, name: str) -> np.ndarray:
-    arr = as_array(p, name, tail=(2,))
-    if arr.ndim != 1:
-        raise ValueError(f"{name}: expected one point (x, y), got shape {arr.shape}")
-    return arr
-
-
 def _fraction(x, name: str) -> float:
-    v = scalar(x, name, positive=True)
-    if v > 1:
-        raise ValueError(f"{name}: expected a fraction of the axes in (0, 1], got {v!r}")
-    return v
+    """A size as a fraction of the axes, in (0, 1]."""
+    return scalar(x, name, within=(0.0, 1.0), open_ends=(True, False))
 
 
 def paper_value(ax: Axes, value: float, label: str, *, axis: str = "y", text_at: float = 0.02) -> None:
@@ -170,7 +157,7 @@ def block_diagram(ax: Axes, blocks: dict[str, tuple[float, float, str]],
     for name, spec in blocks.items():
         if not isinstance(spec, (tuple, list)) or len(spec) != 3:
             raise ValueError(f"blocks: expected (x, y, text) for {name!r}, got {spec!r:.60}")
-        boxes[name] = (*_point(spec[:2], f"blocks[{name!r}]"), text(spec[2], f"blocks[{name!r}] text"))
+        boxes[name] = (*as_array(spec[:2], f"blocks[{name!r}]", shape=(2,)), text(spec[2], f"blocks[{name!r}] text"))
     for arrow in arrows:
         if not isinstance(arrow, (tuple, list)) or len(arrow) not in (2, 3) or \
                 arrow[0] not in boxes or arrow[1] not in boxes:
@@ -208,7 +195,7 @@ def plane_frame(ax: Axes, origin: tuple[float, float], angle_deg: float, labels:
     and second axis (the second is 90° counter-clockwise of the first). ``length`` in data units.
     """
     axes(ax)
-    o = _point(origin, "origin")
+    o = as_array(origin, "origin", shape=(2,))
     a = np.deg2rad(scalar(angle_deg, "angle_deg"))
     if not isinstance(labels, (tuple, list)) or len(labels) != 2:
         raise ValueError(f"labels: expected two axis names, got {labels!r:.60}")
@@ -228,7 +215,7 @@ def angle_arc(ax: Axes, center: tuple[float, float], radius: float, start_deg: f
     ``center`` and ``radius`` in data units (use an equal aspect ratio for a circular arc).
     """
     axes(ax)
-    c = _point(center, "center")
+    c = as_array(center, "center", shape=(2,))
     r = scalar(radius, "radius", positive=True)
     t0, t1 = scalar(start_deg, "start_deg"), scalar(end_deg, "end_deg")
     text(label, "label")

@@ -449,7 +449,7 @@ def simulate_magnetometer(q_bn: Quat, B_n: Vec3, model: MagnetometerModel, rng: 
     -------
     MagnetometerOutput
     """
-    q = as_quat(as_array(q_bn, "q_bn", tail=(4,), min_ndim=1), "q_bn")
+    q = as_quat(q_bn, "q_bn", min_ndim=1)
     B = as_array(B_n, "B_n", tail=(3,))
     generator(rng)
     instance(model, "model", MagnetometerModel, "a MagnetometerModel")
@@ -497,7 +497,7 @@ def magnetic_disturbances(time: Times, rng: np.random.Generator, rate: float, am
     rate = scalar(rate, "rate", allow_zero=True)
     generator(rng)
     for name, pair in (("amplitude", amplitude), ("duration", duration)):
-        lo, hi = positive(as_array(pair, name, shape=(2,)), name)
+        lo, hi = positive(pair, name, shape=(2,))
         if hi < lo:
             raise ValueError(f"{name}: expected (low, high) with low <= high, got ({lo}, {hi})")
     n_events = rng.poisson(rate * (t[-1] - t[0]))

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._typing import Array, ArrayLike, Times
-from ._validate import as_array, integer, nonempty_array, positive, scalar, text, time_axis
+from ._validate import as_array, integer, positive, scalar, text, time_axis
 
 __all__ = ["TimingReport", "sanitize", "intervals", "jump_limit", "JUMP_FACTOR"]
 
@@ -140,5 +140,5 @@ def jump_limit(dts: ArrayLike, max_dt: float | None = None, name: str = "dts") -
     """
     name = text(name, "name")
     if max_dt is None:
-        return JUMP_FACTOR * float(np.median(positive(nonempty_array(dts, name, shape=(None,), huge=True), name)))
+        return JUMP_FACTOR * float(np.median(positive(dts, name, shape=(None,), nonempty=True)))
     return scalar(max_dt, "max_dt", positive=True, allow_inf=True)
