@@ -210,9 +210,7 @@ def latitude(lat: ArrayLike, name: str = "lat", deg: bool = False, *, nonempty: 
 
 def generator(rng: np.random.Generator, name: str = "rng") -> np.random.Generator:
     """Check that ``rng`` is a ``numpy.random.Generator`` (no legacy global state)."""
-    if not isinstance(rng, np.random.Generator):
-        raise ValueError(f"{name}: expected a numpy.random.Generator, got {type(rng).__name__}")
-    return rng
+    return instance(rng, name, np.random.Generator, "a numpy.random.Generator")
 
 
 def time_axis(t: Times, name: str = "time", *, increasing: bool = True, min_samples: int = 2) -> np.ndarray:
@@ -317,11 +315,6 @@ def numbers(obj: Any, *, positive: tuple[str, ...] = (), non_negative: tuple[str
     for names, sign in ((non_negative, {"allow_zero": True}), (positive, {"positive": True}), (real, {})):
         for name in names:
             scalar(getattr(obj, name), name, allow_inf=name in infinite, **sign)
-
-
-def unit_interval(x: float, name: str) -> float:
-    """Return ``x`` as a float in [0, 1]."""
-    return scalar(x, name, within=(0.0, 1.0))
 
 
 def integer(x: int, name: str, *, minimum: int | None = 1) -> int:

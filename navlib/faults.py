@@ -22,7 +22,7 @@ import numpy as np
 
 from . import attitude, earth
 from ._typing import Angles, Array, ArrayLike, Times, Vec3Series
-from ._validate import as_array, generator, integer, positive, same_shape, scalar, time_axis, unit_interval
+from ._validate import as_array, generator, integer, positive, same_shape, scalar, time_axis
 
 __all__ = ["dropouts", "gap", "spikes", "position_jumps", "heading_flips", "duplicate_timestamps",
            "swap_timestamps", "irregular_times", "saturate"]
@@ -40,7 +40,7 @@ def _time_axis_len(a):
 def _hits(rng: np.random.Generator, fraction: float, n: int) -> np.ndarray:
     """Which of ``n`` samples a fault hits, each with probability ``fraction`` (both arguments checked)."""
     generator(rng)
-    return rng.random(n) < unit_interval(fraction, "fraction")
+    return rng.random(n) < scalar(fraction, "fraction", within=(0.0, 1.0))
 
 
 def dropouts(x: ArrayLike, fraction: float, rng: np.random.Generator) -> tuple[Array, np.ndarray]:

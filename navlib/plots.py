@@ -12,7 +12,7 @@ import numpy as np
 
 from . import attitude, units
 from ._typing import Angles, Array, ArrayLike, Dcm
-from ._validate import as_array, as_dcm, axes, choice, euler_angles, instance, positive, same_shape, scalar, text, unit_interval
+from ._validate import as_array, as_dcm, axes, choice, euler_angles, instance, positive, same_shape, scalar, text
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -119,7 +119,7 @@ def paper_value(ax: Axes, value: float, label: str, *, axis: str = "y", text_at:
     v = scalar(value, "value")
     text(label, "label")
     choice(axis, "axis", ("x", "y"))
-    at = unit_interval(text_at, "text_at")
+    at = scalar(text_at, "text_at", within=(0.0, 1.0))
     if axis == "y":
         ax.axhline(v, label=label, **PAPER_STYLE)
         ax.annotate(label, (at, v), xycoords=("axes fraction", "data"), xytext=(0, 3),

@@ -278,8 +278,6 @@ def vehicle(segments, dt: float, lla0, heading0: float, ellipsoid: earth.Ellipso
             new = cur[key] if targets[key] is None else float(targets[key])
             arr[m] = cur[key] + (new - cur[key]) * r
             cur[key] = new
-    if np.any(speed < 0):
-        raise ValueError("segments[].speed: expected non-negative speeds")
     vel = speed[:, None] * np.stack([np.sin(heading) * np.cos(pitch), np.cos(heading) * np.cos(pitch),
                                      np.sin(pitch)], -1)
     hpr = np.stack([attitude.wrap_2pi(heading), pitch, roll], -1)
