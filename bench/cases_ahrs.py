@@ -7,6 +7,7 @@ from bench.run import Result, best_time, best_times
 from navlib import attitude, earth
 from navlib.filters import mahony as mh
 from navlib.filters import quaternion_kf as qkf
+from navlib.imu import ImuSamples
 
 DT = 0.01
 B_N = earth.magnetic_field(32.03, 118.85, 20.0, 2022.5)
@@ -68,7 +69,7 @@ def mahony_single(quick: bool):
     n = 36_000 if quick else 360_000
     w, f, m, q0 = _marg_data(n)
     case = "Mahony MARG, 1 filter"
-    t, peers = _with_peers(case, lambda: mh.mahony(w, f, DT, q0, m_b=m), w, f, m, q0, n, 2_000 if quick else 10_000)
+    t, peers = _with_peers(case, lambda: mh.mahony(ImuSamples(w, f, DT), q0, m_b=m), w, f, m, q0, n, 2_000 if quick else 10_000)
     return [Result(case, "navlib.filters.mahony.mahony (numba)", n / t, "samples/s", t, goal=10e6)] + peers
 
 
@@ -78,7 +79,8 @@ def mahony_batch(quick: bool):
     The batch and one filter (its first trial) are timed alternately, best of five rounds each."""
     trials, n = (8, 36_000) if quick else (32, 180_000)
     w, f, m, q0 = _marg_data(n, trials, seed=1)
-    t, t_one = best_times(lambda: mh.mahony(w, f, DT, q0, m_b=m), lambda: mh.mahony(w[0], f[0], DT, q0, m_b=m[0]))
+    t, t_one = best_times(lambda: mh.mahony(ImuSamples(w, f, DT), q0, m_b=m),
+                          lambda: mh.mahony(ImuSamples(w[0], f[0], DT), q0, m_b=m[0]))
     single = n / t_one
     return [Result(f"Mahony MARG, {trials} trials", "navlib.filters.mahony.mahony (numba)", trials * n / t, "samples/s", t,
                    goal=1.8 * single, note=f"aggregate over the batch; goal: >= 1.8x one filter on 2 cores "
@@ -90,7 +92,7 @@ def quaternion_kf(quick: bool):
     n = 36_000 if quick else 360_000
     w, f, m, q0 = _marg_data(n, seed=2)
     case = "quaternion KF (PI + KF)"
-    t, peers = _with_peers(case, lambda: qkf.quaternion_kf(w, f, DT, q0, m_b=m, B_n=B_N), w, f, m, q0, n,
+    t, peers = _with_peers(case, lambda: qkf.quaternion_kf(ImuSamples(w, f, DT), q0, m_b=m, B_n=B_N), w, f, m, q0, n,
                            1_000 if quick else 5_000)
     fusion = next((r.throughput for r in peers if r.implementation.startswith("imufusion")), None)
     return [Result(case, "navlib.filters.quaternion_kf.quaternion_kf (numba)", n / t, "samples/s", t,

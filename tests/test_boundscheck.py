@@ -97,6 +97,8 @@ ATTITUDE = r"""
 import numpy as np
 from navlib import _kernels, earth, robust
 from navlib.filters import mahony as mh, quaternion_kf as qkf
+from navlib.filters.observations import RtkHeading
+from navlib.imu import ImuSamples, SensorLimits
 
 rng = np.random.default_rng(7)
 for n in range(1, 10):
@@ -113,10 +115,10 @@ dt = np.full(N, 0.01); dt[200] = 1.0
 valid = np.zeros(N, dtype=bool); valid[::10] = True
 q0 = [1.0, 0.0, 0.0, 0.0]
 for filt in (mh.mahony, qkf.quaternion_kf):
-    filt(w, f, dt, q0, m_b=m, B_n=B, full_scale_gyro=0.03)
-    filt(w, f, dt, q0, heading_rtk=np.full(N, 0.5), rtk_valid=valid, rtk_gate=0.3)
-    filt(w, f, dt, q0)
-qkf.quaternion_kf(w, f, 0.01, q0, m_b=m, B_n=B, keep_cov=True, linear_innovation=True)
+    filt(ImuSamples(w, f, dt, SensorLimits(full_scale_gyro=0.03)), q0, m_b=m, B_n=B)
+    filt(ImuSamples(w, f, dt), q0, rtk=RtkHeading(np.full(N, 0.5), valid, gate=0.3))
+    filt(ImuSamples(w, f, dt), q0)
+qkf.quaternion_kf(ImuSamples(w, f, 0.01), q0, m_b=m, B_n=B, keep_cov=True, linear_innovation=True)
 robust.stuck_mask(w, 5)
 try:                                            # bounds checking is on: a matrix too small for n is caught
     _kernels.lu_inverse(np.eye(2), 3, np.zeros(3, np.int64), np.zeros(3))

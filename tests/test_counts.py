@@ -9,6 +9,7 @@ import pytest
 
 from navlib import analysis, sensors
 from navlib.filters import heading_fusion, planar_ekf, zupt_ins
+from navlib.filters.observations import RtkHeading
 from navlib.papers import pedestrian_ins
 
 W = np.zeros((10, 3))
@@ -24,8 +25,8 @@ COUNTS = {  # (function, count argument) -> call with the count n
         lambda n: sensors.simulate_imu(W, F, 0.01, sensors.ImuModel(), np.random.default_rng(0), n_trials=n),
     ("sensors.gauss_markov", "shape"): lambda n: sensors.gauss_markov((n, 3), 0.1, 1.0, 10.0, np.random.default_rng(0)),
     ("analysis.fit_allan", "n_samples"): lambda n: analysis.fit_allan([1.0, 2.0, 4.0], [3e-3, 2e-3, 1.5e-3], n, 0.1),
-    ("heading_fusion.fuse_rtk_heading", "rtk_confirm"):
-        lambda n: heading_fusion.fuse_rtk_heading(H10, H10, VALID, 0.1, rtk_confirm=n),
+    ("observations.RtkHeading", "confirm"):
+        lambda n: heading_fusion.fuse_rtk_heading(H10, RtkHeading(H10, VALID, confirm=n), 0.1),
     ("heading_fusion.rtk_at_imu_rate", "step"): lambda n: heading_fusion.rtk_at_imu_rate(T10, H10, VALID, n),
     ("planar_ekf.propagate", "n_steps"): lambda n: planar_ekf.propagate(X5, 0.5, n),
     ("planar_ekf.filter_grid", "reacquire"):

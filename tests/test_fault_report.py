@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from navlib import imu, robust, strapdown, trajectory
-from navlib.filters import mahony, observations, planar_ekf, zupt_ins
+from navlib.filters import mahony, planar_ekf, zupt_ins
 from navlib.papers import gauss_kruger_ekf, rotation_bias
 
 KINDS = {"nan", "saturated", "spike", "outlier", "reacquired", "refused", "jump", "freefall", "stuck"}
@@ -31,10 +31,11 @@ def test_attitude_filters():
     f = np.tile([0.0, 0.0, 9.8], (n, 1))
     m = np.tile([0.0, 20.0, -40.0], (n, 1))
     w[10], f[20], m[30] = np.nan, np.nan, np.nan
-    res = mahony.mahony(w, f, 0.01, [1.0, 0, 0, 0], m_b=m, full_scale_gyro=0.02)
+    res = mahony.mahony(imu.ImuSamples(w, f, 0.01, imu.SensorLimits(full_scale_gyro=0.02)), [1.0, 0, 0, 0], m_b=m)
     check_vocabulary(res.faults)
-    for name, key in observations.FAULT_KEYS.items():
-        assert res.faults[key] == res.counts[name]
+    assert set(res.faults.counts) == set(res.faults.flags)          # every key flagged per sample (no RTK here)
+    for key, mask in res.faults.flags.items():
+        assert res.faults[key] == mask.sum()
     assert res.faults["gyro", "nan"] == 1 and res.faults["accel", "nan"] == 1 and res.faults["mag", "nan"] == 1
     assert res.faults["gyro", "saturated"] == np.sum(np.any(np.abs(w) >= 0.02, axis=-1) & np.isfinite(w).all(-1))
 
@@ -218,7 +219,7 @@ def test_attitude_filters_flag_stuck_and_jump_samples():
     w[0, 100:120] = w[0, 100]
     dt = np.full(300, 0.01)
     dt[250] = 2.0
-    res = mahony.mahony(w, np.tile([0.0, 0.0, 9.8], (2, 300, 1)), dt, [1.0, 0, 0, 0])
+    res = mahony.mahony(imu.ImuSamples(w, np.tile([0.0, 0.0, 9.8], (2, 300, 1)), dt), [1.0, 0, 0, 0])
     check_vocabulary(res.faults)
     np.testing.assert_array_equal(res.faults["gyro", "stuck"], [20, 0])
     np.testing.assert_array_equal(res.faults["clock", "jump"], [1, 1])

@@ -1,4 +1,5 @@
-"""navlib.imu.ImuSamples: validated once, accepted by the IMU filters beside raw arrays, same results."""
+"""navlib.imu.ImuSamples: validated once with its SensorLimits; taken by the attitude filters, and by the other IMU
+filters beside raw arrays with the same results."""
 from __future__ import annotations
 
 import dataclasses
@@ -24,25 +25,32 @@ def walk():
 
 
 def test_construction_validates_and_stores_arrays():
-    s = imu.ImuSamples(np.zeros((2, 5, 3)), np.ones((2, 5, 3)), 0.1, full_scale_gyro=3.0)
+    s = imu.ImuSamples(np.zeros((2, 5, 3)), np.ones((2, 5, 3)), 0.1, limits=imu.SensorLimits(full_scale_gyro=3.0))
     assert s.n == 5 and s.dt.shape == (5,) and np.all(s.dt == 0.1)
-    assert s.full_scale_gyro == 3.0 and np.isinf(s.full_scale_accel)
+    assert s.limits.full_scale_gyro == 3.0 and np.isinf(s.limits.full_scale_accel)
+    assert imu.ImuSamples(np.zeros((5, 3)), np.ones((5, 3)), 0.1).limits == imu.SensorLimits()   # default limits
     t = np.array([0.0, 0.1, 0.25, 0.3, 0.5, 0.6])
     np.testing.assert_array_equal(imu.ImuSamples.from_times(t, np.zeros((5, 3)), np.ones((5, 3))).dt, np.diff(t))
+
+
+def test_attitude_filters_give_the_same_result_with_a_scalar_or_per_sample_dt(walk):
+    traj, w, f, _ = walk
+    dts = np.full(len(w), DT)
+    limits = imu.SensorLimits(full_scale_gyro=0.5, full_scale_accel=20.0)
+    m = np.tile([0.0, 20.0, -40.0], (len(w), 1))
+    raw = mahony.mahony(imu.ImuSamples(w, f, dts, limits), traj.q_bn[0], m_b=m)
+    new = mahony.mahony(imu.ImuSamples(w, f, DT, limits), q0=traj.q_bn[0], m_b=m)
+    np.testing.assert_array_equal(raw.q_bn, new.q_bn)
+    assert raw.faults.as_dict() == new.faults.as_dict()
+    raw = quaternion_kf.quaternion_kf(imu.ImuSamples(w, f, dts), traj.q_bn[0], m_b=m, B_n=[0.0, 20.0, -40.0])
+    new = quaternion_kf.quaternion_kf(imu.ImuSamples(w, f, DT), q0=traj.q_bn[0], m_b=m, B_n=[0.0, 20.0, -40.0])
+    np.testing.assert_array_equal(raw.q_bn, new.q_bn)
 
 
 def test_filters_give_the_same_result_with_samples_or_arrays(walk):
     traj, w, f, static = walk
     dts = np.full(len(w), DT)
-    samples = imu.ImuSamples(w, f, DT, full_scale_gyro=0.5, full_scale_accel=20.0)
-    m = np.tile([0.0, 20.0, -40.0], (len(w), 1))
-    raw = mahony.mahony(w, f, dts, traj.q_bn[0], m_b=m, full_scale_gyro=0.5, full_scale_accel=20.0)
-    new = mahony.mahony(samples, q0=traj.q_bn[0], m_b=m)
-    np.testing.assert_array_equal(raw.q_bn, new.q_bn)
-    assert raw.counts == new.counts
-    raw = quaternion_kf.quaternion_kf(w, f, dts, traj.q_bn[0], m_b=m, B_n=[0.0, 20.0, -40.0])
-    new = quaternion_kf.quaternion_kf(imu.ImuSamples(w, f, DT), q0=traj.q_bn[0], m_b=m, B_n=[0.0, 20.0, -40.0])
-    np.testing.assert_array_equal(raw.q_bn, new.q_bn)
+    samples = imu.ImuSamples(w, f, DT, imu.SensorLimits(full_scale_gyro=0.5, full_scale_accel=20.0))
     raw = strapdown.integrate(traj.lla[0], traj.vel_n[0], traj.q_bn[0], w, f, dts)
     new = strapdown.integrate(traj.lla[0], traj.vel_n[0], traj.q_bn[0], samples)
     np.testing.assert_array_equal(raw.lla, new.lla)
@@ -53,15 +61,19 @@ def test_filters_give_the_same_result_with_samples_or_arrays(walk):
     assert raw.counts == new.counts
 
 
-def test_a_range_is_given_once(walk):
+def test_the_attitude_filters_take_samples_ranges_and_intervals_once(walk):
+    """Only an ImuSamples: the accelerometer, the intervals and the ranges cannot be given beside it."""
     _, w, f, _ = walk
-    samples = imu.ImuSamples(w, f, DT, full_scale_gyro=0.5)
-    with pytest.raises(ValueError, match="^full_scale_gyro: given twice"):
-        mahony.mahony(samples, q0=[1.0, 0, 0, 0], m_b=np.ones_like(w), full_scale_gyro=0.4)
-    with pytest.raises(ValueError, match="^f_b: given twice"):
-        mahony.mahony(samples, f, q0=[1.0, 0, 0, 0], m_b=np.ones_like(w))
-    with pytest.raises(ValueError, match="^dt: required"):
-        mahony.mahony(w, f, q0=[1.0, 0, 0, 0], m_b=np.ones_like(w))
+    samples = imu.ImuSamples(w, f, DT, imu.SensorLimits(full_scale_gyro=0.5))
+    for filt in (mahony.mahony, quaternion_kf.quaternion_kf):
+        with pytest.raises(TypeError, match="full_scale_gyro"):
+            filt(samples, q0=[1.0, 0, 0, 0], full_scale_gyro=0.4)
+        with pytest.raises(TypeError):
+            filt(samples, f, q0=[1.0, 0, 0, 0])
+        with pytest.raises(ValueError, match="^imu: "):
+            filt(w, [1.0, 0, 0, 0])
+    with pytest.raises(TypeError, match="^limits: "):
+        imu.ImuSamples(w, f, DT, 0.5)
 
 
 def assert_same(a, b):
@@ -101,7 +113,8 @@ def test_static_means_gives_the_same_window_with_samples_or_arrays(walk):
     w, f = w[first], f[first]
     for ranges in ({}, dict(full_scale_gyro=0.5, full_scale_accel=9.0)):   # 9 m/s^2: the accelerometer saturates
         raw = alignment.static_means(w, f, LLA0[0], LLA0[2], 0.5, strict=False, **ranges)
-        new = alignment.static_means(imu.ImuSamples(w, f, DT, **ranges), lat=LLA0[0], h=LLA0[2], accel_tol=0.5,
+        new = alignment.static_means(imu.ImuSamples(w, f, DT, imu.SensorLimits(**ranges)), lat=LLA0[0], h=LLA0[2],
+                                     accel_tol=0.5,
                                      strict=False)
         assert_same(raw, new)
     assert raw.n_saturated_accel > 0 and raw.status == alignment.SATURATED
@@ -112,7 +125,8 @@ def test_tilt_residuals_give_the_same_residuals_with_samples_or_arrays(rig):
     dts = np.full(len(w), DT)
     for ranges in ({}, dict(full_scale_gyro=10.0, full_scale_accel=40.0)):
         raw = rotation_bias.tilt_residuals(w, f, dts, starts, length, w_ie_b, outlier_k=6.0, **ranges)
-        new = rotation_bias.tilt_residuals(imu.ImuSamples(w, f, DT, **ranges), starts=starts, length=length,
+        new = rotation_bias.tilt_residuals(imu.ImuSamples(w, f, DT, imu.SensorLimits(**ranges)), starts=starts,
+                                           length=length,
                                            w_ie_b=w_ie_b, outlier_k=6.0)
         assert_same(raw, new)
     assert raw.n_skipped_saturated == 1
@@ -125,7 +139,7 @@ def test_tilt_residuals_give_the_same_residuals_with_samples_or_arrays(rig):
 
 def test_the_new_functions_take_f_b_and_dt_once(walk, rig):
     _, w, f, _ = walk
-    samples = imu.ImuSamples(w, f, DT, full_scale_accel=20.0)
+    samples = imu.ImuSamples(w, f, DT, imu.SensorLimits(full_scale_accel=20.0))
     with pytest.raises(ValueError, match="^f_b: given twice"):
         zupt.detect_static(samples, f)
     with pytest.raises(ValueError, match="^dt: given twice"):
@@ -141,7 +155,7 @@ def test_the_new_functions_take_f_b_and_dt_once(walk, rig):
     with pytest.raises(ValueError, match="^lat: required"):
         alignment.static_means(samples)
     wr, fr, starts, length, _ = rig
-    rig_samples = imu.ImuSamples(wr, fr, DT, full_scale_gyro=3.0)
+    rig_samples = imu.ImuSamples(wr, fr, DT, imu.SensorLimits(full_scale_gyro=3.0))
     with pytest.raises(ValueError, match="^f_b: given twice"):
         rotation_bias.tilt_residuals(rig_samples, fr, starts=starts, length=length)
     with pytest.raises(ValueError, match="^dt: given twice"):
@@ -157,7 +171,7 @@ def test_the_new_functions_take_f_b_and_dt_once(walk, rig):
 def test_integrate_euler_takes_samples(walk):
     traj, w, f, _ = walk
     dts = DT * (1 + 0.1 * np.sin(np.arange(len(w))))
-    samples = imu.ImuSamples(w, f, dts, full_scale_gyro=0.5)
+    samples = imu.ImuSamples(w, f, dts, imu.SensorLimits(full_scale_gyro=0.5))
     raw = euler.integrate_euler(traj.hpr[0], w, dts, full_scale_gyro=0.5)
     np.testing.assert_array_equal(euler.integrate_euler(traj.hpr[0], samples), raw)
     with pytest.raises(ValueError, match="^dt: given twice"):
@@ -171,10 +185,10 @@ def test_integrate_euler_takes_samples(walk):
 def test_ins_heading_change_takes_samples(walk):
     _, w, f, _ = walk
     dts = DT * (1 + 0.1 * np.sin(np.arange(len(w))))
-    samples = imu.ImuSamples(w, f, dts, full_scale_gyro=0.5)
+    samples = imu.ImuSamples(w, f, dts, imu.SensorLimits(full_scale_gyro=0.5))
     raw = north_finding.ins_heading_change(w, f[0], dts, 0.5, full_scale_gyro=0.5)
     np.testing.assert_array_equal(north_finding.ins_heading_change(samples, f[0], lat=0.5), raw)
-    clipped = imu.ImuSamples(w, f, dts, full_scale_gyro=0.01)                 # the range is used: refused
+    clipped = imu.ImuSamples(w, f, dts, imu.SensorLimits(full_scale_gyro=0.01))                 # the range is used: refused
     assert np.isnan(north_finding.ins_heading_change(clipped, f[0], lat=0.5))
     with pytest.raises(ValueError, match="^dt: given twice"):
         north_finding.ins_heading_change(samples, f[0], DT, 0.5)
@@ -186,17 +200,17 @@ def test_stop_solutions_take_samples(walk):
     _, w, f, _ = walk
     win = np.array([[0, 250], [550, 800]])
     raw = north_finding.stop_solutions(w, f, win, 0.5, strict=False, full_scale_gyro=0.5, full_scale_accel=20.0)
-    new = north_finding.stop_solutions(imu.ImuSamples(w, f, DT, full_scale_gyro=0.5, full_scale_accel=20.0),
+    new = north_finding.stop_solutions(imu.ImuSamples(w, f, DT, imu.SensorLimits(full_scale_gyro=0.5, full_scale_accel=20.0)),
                                        windows=win, lat=0.5, strict=False)
     np.testing.assert_array_equal(new.candidates, raw.candidates)
     np.testing.assert_array_equal(new.triad, raw.triad)
     np.testing.assert_array_equal(new.status, raw.status)
-    sat = north_finding.stop_solutions(imu.ImuSamples(w, f, DT, full_scale_accel=9.0), windows=win, lat=0.5,
+    sat = north_finding.stop_solutions(imu.ImuSamples(w, f, DT, imu.SensorLimits(full_scale_accel=9.0)), windows=win, lat=0.5,
                                        strict=False)                      # the range reaches static_means
     assert np.isnan(sat.triad).all() and np.all(sat.status == alignment.SATURATED)
     assert all(s.n_saturated_accel > 0 for s in sat.windows)
     with pytest.raises(ValueError, match="^f_b: given twice"):
         north_finding.stop_solutions(imu.ImuSamples(w, f, DT), f, win, 0.5)
     with pytest.raises(ValueError, match="^full_scale_accel: given twice"):
-        north_finding.stop_solutions(imu.ImuSamples(w, f, DT, full_scale_accel=20.0), windows=win, lat=0.5,
+        north_finding.stop_solutions(imu.ImuSamples(w, f, DT, imu.SensorLimits(full_scale_accel=20.0)), windows=win, lat=0.5,
                                      full_scale_accel=30.0)

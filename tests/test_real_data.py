@@ -66,11 +66,11 @@ def test_attitude_filters_on_the_marg_recording(fusion):
     st = still_start(fusion)
     q0 = alignment.initial_attitude(fusion.f_b[st].mean(0), fusion.m_b[st].mean(0))
     B_ref = attitude.quat_to_dcm(q0) @ fusion.m_b[st].mean(0)
-    gate = observations.MagGate()
+    gates = observations.AttitudeGates(mag=observations.MagGate())
     runs = {"mag": mahony.mahony(fusion.imu(), q0=q0, m_b=fusion.m_b),
-            "gated": mahony.mahony(fusion.imu(), q0=q0, m_b=fusion.m_b, B_n=B_ref, gate=gate),
+            "gated": mahony.mahony(fusion.imu(), q0=q0, m_b=fusion.m_b, B_n=B_ref, gates=gates),
             "none": mahony.mahony(fusion.imu(), q0=q0),
-            "qkf": quaternion_kf.quaternion_kf(fusion.imu(), q0=q0, m_b=fusion.m_b, B_n=B_ref, gate=gate)}
+            "qkf": quaternion_kf.quaternion_kf(fusion.imu(), q0=q0, m_b=fusion.m_b, B_n=B_ref, gates=gates)}
     for res in runs.values():
         assert np.all(np.isfinite(res.q_bn))
         np.testing.assert_allclose(np.linalg.norm(res.q_bn, axis=-1), 1.0, atol=1e-12)

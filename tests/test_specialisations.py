@@ -14,6 +14,8 @@ from numba.core import types
 
 from navlib import _kernels, alignment, earth, euler, strapdown, trajectory, units
 from navlib.filters import mahony, quaternion_kf
+from navlib.filters.observations import RtkHeading
+from navlib.imu import ImuSamples
 from navlib.papers import rotation_bias
 
 
@@ -39,14 +41,13 @@ def _calls():
                                      readonly(w), readonly(f), 0.1),
          strapdown._nav_kernel),
         ("quaternion_kf, RTK heading",
-         lambda: quaternion_kf.quaternion_kf(readonly([w, w]), readonly([f, f]), 0.1, readonly([1.0, 0, 0, 0]),
-                                             heading_rtk=readonly(np.full((2, len(w)), 0.1)),
-                                             rtk_valid=np.ones((2, len(w)), dtype=bool)),
+         lambda: quaternion_kf.quaternion_kf(ImuSamples(readonly([w, w]), readonly([f, f]), 0.1), readonly([1.0, 0, 0, 0]),
+                                             rtk=RtkHeading(readonly(np.full((2, len(w)), 0.1)),
+                                                            np.ones((2, len(w)), dtype=bool))),
          quaternion_kf._kernel),
         ("mahony, RTK heading",
-         lambda: mahony.mahony(readonly([w, w]), readonly([f, f]), 0.1, readonly([1.0, 0, 0, 0]),
-                               heading_rtk=readonly(np.full((2, len(w)), 0.1)),
-                               rtk_valid=np.ones((2, len(w)), dtype=bool)),
+         lambda: mahony.mahony(ImuSamples(readonly([w, w]), readonly([f, f]), 0.1), readonly([1.0, 0, 0, 0]),
+                               rtk=RtkHeading(readonly(np.full((2, len(w)), 0.1)), np.ones((2, len(w)), dtype=bool))),
          mahony._kernel),
         ("rotation_bias.tilt_residuals",
          lambda: rotation_bias.tilt_residuals(readonly(w), readonly(f), 0.1, [0], 10),
@@ -76,18 +77,20 @@ def test_compilations_are_logged_where_navlib_compile_log_says(tmp_path):
     code = ("import numpy as np; from numba import njit; import navlib._kernels; "
             "f = njit(lambda x: x.sum() + 1.0); f(np.ones(3)); f(np.ones(3))")   # compiled once, then reused
     subprocess.run([sys.executable, "-c", code], check=True, env={**os.environ, "NAVLIB_COMPILE_LOG": str(log)})
-    seconds = [float(line) for line in log.read_text().split()]
-    assert len(seconds) == 1 and 0 < seconds[0] < 60
+    lines = [line.split() for line in log.read_text().splitlines()]          # "<seconds> <module.function>"
+    assert len(lines) == 1 and 0 < float(lines[0][0]) < 60 and lines[0][1] == "__main__.<lambda>"
 
 
-def test_compilation_garbage_is_collected_at_once():
+def test_compilation_garbage_is_collected_at_once(tmp_path):
     """A compilation's reference cycles (typing objects, llvmlite modules holding native memory) are freed
-    when it ends (navlib._kernels' compile listener), not at the collector's next full pass: they kept
-    notebook 02's first run 0.5 GB above its warm peak."""
-    import gc
-
-    from numba import njit
-
-    fresh = njit(lambda A, y: np.linalg.solve(A, y) @ A)    # a new function: compiled by this call
-    fresh(np.eye(3), np.ones(3))
-    assert gc.collect() < 100                                # without the listener: ~35,000 objects
+    when it ends (navlib._kernels' compile listener, registered where NAVLIB_COMPILE_LOG is set, as
+    tools/reproduce.py does), not at the collector's next full pass: they kept notebook 02's first run
+    0.5 GB above its warm peak."""
+    import subprocess
+    import sys
+    code = ("import gc, numpy as np; from numba import njit; import navlib._kernels; "
+            "fresh = njit(lambda A, y: np.linalg.solve(A, y) @ A); "      # a new function: compiled by this call
+            "fresh(np.eye(3), np.ones(3)); print(gc.collect())")
+    out = subprocess.run([sys.executable, "-c", code], check=True, capture_output=True, text=True,
+                         env={**os.environ, "NAVLIB_COMPILE_LOG": str(tmp_path / "compile.log")}).stdout
+    assert int(out.split()[-1]) < 100                        # without the listener: ~35,000 objects

@@ -8,8 +8,8 @@ exact answer is known.
 
 Every test checks: output finite; the quaternion KF's covariance symmetric
 positive definite after every sample; the heading within a stated bound of
-the fault-free run on the same data; and each injected fault counted in
-:data:`navlib.papers.mimu_mag_rtk.COUNT_NAMES` (or bounded, with the reason).
+the fault-free run on the same data; and each injected fault counted in the
+result's ``faults`` (:class:`navlib.robust.FaultReport`; or bounded, with the reason).
 """
 import numpy as np
 import pytest
@@ -19,6 +19,8 @@ from navlib.filters import heading_fusion as hf
 from navlib.filters import mahony as mh
 from navlib.filters import observations as obs
 from navlib.filters import quaternion_kf as qkf
+from navlib.filters.observations import AttitudeGates, RtkHeading
+from navlib.imu import ImuSamples, SensorLimits
 
 B_N = earth.magnetic_field(32.03, 118.85, 20.0, 2022.5)
 LLA0 = [units.deg(32.03), units.deg(118.85), 20.0]
@@ -30,7 +32,7 @@ DURATION = 300.0
 SIGMA_GYRO = IMU.gyro.noise_density / np.sqrt(DT)        # per-sample gyro noise (rad/s)
 SIGMA_ACCEL = IMU.accel.noise_density / np.sqrt(DT)      # per-sample accelerometer noise (m/s^2)
 SIGMA_MAG = units.gauss(0.04)                            # magnetometer noise (uT)
-KF = dict(kp=1.0, ki=0.02, sigma_gyro=SIGMA_GYRO, sigma_accel=0.02, sigma_mag=0.08)
+KF = dict(kp=1.0, ki=0.02, noise=qkf.KfNoise(sigma_gyro=SIGMA_GYRO, sigma_accel=0.02, sigma_mag=0.08))
 FILTERS = {"mahony": (mh.mahony, dict(kp=1.0, ki=0.02)),
            "kf": (qkf.quaternion_kf, dict(KF, keep_cov=True))}
 
@@ -57,15 +59,16 @@ def fig4():
     return fig4_trial(2023)
 
 
-def run(name, d, mode, **kw):
-    """One filter on the Fig. 4 data; ``kw`` overrides inputs (w, f, m, rtk, epoch, dt) and options."""
+def run(name, d, mode, limits=None, rtk_gate=None, **kw):
+    """One filter on the Fig. 4 data; ``kw`` overrides inputs (w, f, m, rtk, epoch, dt) and options; ``limits``
+    (SensorLimits) and ``rtk_gate`` (the RtkHeading's gate) set the records that hold them."""
     filt, opts = FILTERS[name]
     inputs = {k: kw.pop(k, d[k]) for k in ("w", "f", "m", "rtk", "epoch")}
-    dt = kw.pop("dt", DT)
+    imu = ImuSamples(inputs["w"], inputs["f"], kw.pop("dt", DT), limits)
     kw = dict(opts, **kw)
     if mode == "mag":
-        return filt(inputs["w"], inputs["f"], dt, d["q0_mag"], m_b=inputs["m"], B_n=B_N, **kw)
-    return filt(inputs["w"], inputs["f"], dt, d["q0_rtk"], heading_rtk=inputs["rtk"], rtk_valid=inputs["epoch"], **kw)
+        return filt(imu, d["q0_mag"], m_b=inputs["m"], B_n=B_N, **kw)
+    return filt(imu, d["q0_rtk"], rtk=RtkHeading(inputs["rtk"], inputs["epoch"], gate=rtk_gate), **kw)
 
 
 def assert_healthy(res):
@@ -91,7 +94,7 @@ def heading_rms(a, b):
 
 
 def counts(res):
-    return {k: int(v) for k, v in res.counts.items() if int(v)}
+    return {k: int(v) for k, v in res.faults.counts.items() if int(v)}
 
 
 @pytest.fixture(scope="module")
@@ -107,7 +110,7 @@ def clean(fig4):
 # per-sample magnetic heading noise filtered (mag mode) or the 0.2 deg RTK
 # noise (RTK mode); measured values are below half these bounds.
 DROPOUT_BOUND = {"mag": 1.0, "rtk": 0.5}
-SENSOR_COUNT = {"w": "gyro_held", "f": "accel_skipped", "m": "mag_skipped", "rtk": "rtk_dropped"}
+SENSOR_COUNT = {"w": ("gyro", "nan"), "f": ("accel", "nan"), "m": ("mag", "nan"), "rtk": ("heading", "nan")}
 
 
 @pytest.mark.parametrize("name", FILTERS)
@@ -161,11 +164,12 @@ def test_thirty_second_gap_is_counted_and_bounded(fig4, clean, name, sensor, mod
 def test_accelerometer_spikes_are_gated_exactly(fig4, clean, name):
     """100 sigma (0.24 m/s^2 per axis) changes |f| by 2.4 % > accel_tol = 1 %; clean noise moves it < 0.1 %."""
     f, hit = faults.spikes(fig4["f"], 0.01, SIGMA_ACCEL, np.random.default_rng(2))
-    ref = run(name, fig4, "mag", accel_tol=0.01)
-    res = run(name, fig4, "mag", f=f, accel_tol=0.01)
+    gates = AttitudeGates(accel_tol=0.01)
+    ref = run(name, fig4, "mag", gates=gates)
+    res = run(name, fig4, "mag", f=f, gates=gates)
     assert_healthy(res)
-    assert counts(ref).get("accel_gated", 0) == 0
-    assert counts(res)["accel_gated"] == hit.sum() > 100
+    assert counts(ref).get(("accel", "outlier"), 0) == 0
+    assert counts(res)[("accel", "outlier")] == hit.sum() > 100
     dh, dtilt = heading_diff(res, ref)
     assert dh < 0.3 and dtilt < 0.05        # only the skipped corrections differ (kp dt = 2 % each)
 
@@ -173,13 +177,13 @@ def test_accelerometer_spikes_are_gated_exactly(fig4, clean, name):
 @pytest.mark.parametrize("name", FILTERS)
 def test_magnetometer_spikes_are_gated_exactly(fig4, clean, name):
     """100 sigma = 400 uT per axis: |m| ~ 14 F, far outside a 50 % norm gate that clean 8 %-noise samples pass."""
-    gate = obs.MagGate(norm_tol=0.5, dip_tol=units.deg(45.0))
+    gates = AttitudeGates(mag=obs.MagGate(norm_tol=0.5, dip_tol=units.deg(45.0)))
     m, hit = faults.spikes(fig4["m"], 0.01, SIGMA_MAG, np.random.default_rng(3))
-    ref = run(name, fig4, "mag", gate=gate)
-    res = run(name, fig4, "mag", m=m, gate=gate)
+    ref = run(name, fig4, "mag", gates=gates)
+    res = run(name, fig4, "mag", m=m, gates=gates)
     assert_healthy(res)
-    assert counts(ref).get("mag_gated", 0) == 0
-    assert counts(res)["mag_gated"] == hit.sum() > 100
+    assert counts(ref).get(("mag", "outlier"), 0) == 0
+    assert counts(res)[("mag", "outlier")] == hit.sum() > 100
     dh, _ = heading_diff(res, ref)
     assert dh < 1.0                         # skipped 1 % of 7-deg-noise corrections
     ungated = run(name, fig4, "mag", m=m)  # without the gate the spikes are fused: far worse
@@ -202,13 +206,13 @@ def test_gyro_spikes_are_gated_or_bounded(fig4, clean, name):
     w, hit = faults.spikes(fig4["w"], 0.01, SIGMA_GYRO, np.random.default_rng(4))
     ref = clean[name, "rtk"]
     plain = run(name, fig4, "rtk", w=w)
-    gated = run(name, fig4, "rtk", w=w, gyro_jump=20 * SIGMA_GYRO)
-    clean_gated = run(name, fig4, "rtk", gyro_jump=20 * SIGMA_GYRO)
+    gated = run(name, fig4, "rtk", w=w, limits=SensorLimits(gyro_jump=20 * SIGMA_GYRO))
+    clean_gated = run(name, fig4, "rtk", limits=SensorLimits(gyro_jump=20 * SIGMA_GYRO))
     for res in (plain, gated):
         assert_healthy(res)
-    assert counts(clean_gated).get("gyro_gated", 0) == 0 and counts(plain).get("gyro_gated", 0) == 0
+    assert counts(clean_gated).get(("gyro", "spike"), 0) == 0 and counts(plain).get(("gyro", "spike"), 0) == 0
     pairs = int((hit[1:] & hit[:-1]).sum())
-    assert abs(counts(gated)["gyro_gated"] - hit.sum()) <= pairs
+    assert abs(counts(gated)[("gyro", "spike")] - hit.sum()) <= pairs
     assert heading_diff(plain, ref)[0] < 0.3 and heading_diff(gated, ref)[0] < 0.1
     assert heading_rms(gated, ref) < 0.5 * heading_rms(plain, ref)
 
@@ -227,8 +231,8 @@ def test_rtk_heading_flips_are_rejected_never_fused(fig4, clean, name):
     ref = run(name, fig4, "rtk", rtk_gate=units.deg(10.0))
     res = run(name, fig4, "rtk", rtk=rtk, rtk_gate=units.deg(10.0))
     assert_healthy(res)
-    assert counts(ref).get("rtk_rejected", 0) == 0
-    assert counts(res)["rtk_rejected"] == flipped.sum() and counts(res).get("rtk_reacquired", 0) == 0
+    assert counts(ref).get(("heading", "outlier"), 0) == 0
+    assert counts(res)[("heading", "outlier")] == flipped.sum() and counts(res).get(("heading", "reacquired"), 0) == 0
     assert runs.max() < 5                    # no run of rtk_confirm flips: none can be re-acquired
     dh, _ = heading_diff(res, ref)
     assert dh < 0.5                          # only the rejected epochs' corrections are missing (RTK noise 0.2)
@@ -236,7 +240,7 @@ def test_rtk_heading_flips_are_rejected_never_fused(fig4, clean, name):
     # KF's linearised update) an exactly antiparallel reference gives ~zero
     # correction, so here they cost little -- but nothing says they happened.
     fused = run(name, fig4, "rtk", rtk=rtk)
-    assert counts(fused).get("rtk_rejected", 0) == 0
+    assert counts(fused).get(("heading", "outlier"), 0) == 0
 
 
 def test_rtk_gate_reacquires_after_a_drifting_outage(fig4):
@@ -252,7 +256,7 @@ def test_rtk_gate_reacquires_after_a_drifting_outage(fig4):
         res = run(name, fig4, "rtk", rtk=rtk, epoch=epoch, ki=0.0, rtk_gate=units.deg(10.0))
         assert_healthy(res)
         c = counts(res)
-        assert c["rtk_rejected"] == 4 and c["rtk_reacquired"] >= 1
+        assert c["heading", "outlier"] == 4 and c["heading", "reacquired"] >= 1
         err = units.to_deg(attitude.wrap_pi(res.hpr[:, 0] - H_TRUE))
         assert abs(err[fig4["t"] < 250.0][-1]) > 15.0
         assert np.abs(err[fig4["t"] > 270.0]).max() < 0.5
@@ -265,18 +269,19 @@ def test_fusion_rejects_flips_and_counts_dropouts(fig4, clean):
     rtk, drop = faults.dropouts(rtk, 0.10, np.random.default_rng(7))
     epoch = fig4["epoch"]
     gate = units.deg(10.0)
-    ref, _, _ = hf.fuse_rtk_heading(h_mag, fig4["rtk"], epoch, DT, rtk_gate=gate)
-    out, delta, c = hf.fuse_rtk_heading(h_mag, rtk, epoch, DT, rtk_gate=gate)
+    ref = hf.fuse_rtk_heading(h_mag, RtkHeading(fig4["rtk"], epoch, gate=gate), DT).heading
+    res = hf.fuse_rtk_heading(h_mag, RtkHeading(rtk, epoch, gate=gate), DT)
+    out, delta, c = res.heading, res.delta, res.faults
     assert np.isfinite(out).all() and np.isfinite(delta).all()
-    assert int(c["rtk_dropped"]) == (drop & epoch).sum()
+    assert int(c["heading", "nan"]) == (drop & epoch).sum()
     first = np.flatnonzero(epoch)[0]
     assert not flip[first] and not drop[first]               # the first epoch cannot be checked (documented)
-    assert int(c["rtk_rejected"]) == (flip & ~drop & epoch).sum() and int(c["rtk_reacquired"]) == 0
+    assert int(c["heading", "outlier"]) == (flip & ~drop & epoch).sum() and int(c["heading", "reacquired"]) == 0
     err = units.to_deg(np.abs(attitude.wrap_pi(out - ref)))
     # a dropped/rejected epoch: the previous one is carried 0.25 s, then H_mag + delta,
     # whose error is mode (b)'s (0.4 deg std, peaks ~1.5 deg): bound 2 deg
     assert err.max() < 2.0
-    fused, _, _ = hf.fuse_rtk_heading(h_mag, rtk, epoch, DT)  # no gate: flips are output as the heading
+    fused = hf.fuse_rtk_heading(h_mag, RtkHeading(rtk, epoch), DT).heading   # no gate: flips are output as the heading
     assert units.to_deg(np.abs(attitude.wrap_pi(fused - ref))).max() > 170.0
 
 
@@ -285,8 +290,9 @@ def test_fusion_gate_recovers_from_a_flipped_first_epoch(fig4, clean):
     rtk = fig4["rtk"].copy()
     first = np.flatnonzero(fig4["epoch"])[0]
     rtk[first] = (rtk[first] + np.pi) % (2 * np.pi)
-    out, _, c = hf.fuse_rtk_heading(h_mag, rtk, fig4["epoch"], DT, rtk_gate=units.deg(10.0))
-    assert int(c["rtk_rejected"]) == 4 and int(c["rtk_reacquired"]) >= 1
+    res = hf.fuse_rtk_heading(h_mag, RtkHeading(rtk, fig4["epoch"], gate=units.deg(10.0)), DT)
+    out, c = res.heading, res.faults
+    assert int(c["heading", "outlier"]) == 4 and int(c["heading", "reacquired"]) >= 1
     assert units.to_deg(np.abs(attitude.wrap_pi(out[fig4["t"] > 5.0] - H_TRUE))).max() < 1.0
 
 
@@ -337,7 +343,7 @@ def test_irregular_sampling_is_integrated_with_per_sample_intervals(name):
     for key, d, dt in [("irregular", irregular, np.diff(np.r_[0.0, irregular["t"]])),
                        ("regular", regular, DT), ("nominal", irregular, DT)]:
         epoch = d["epoch"] & (d["t"] < 60.0)
-        res = filt(d["w"], d["f"], dt, d["q0"], heading_rtk=np.where(epoch, d["rtk"], np.nan), rtk_valid=epoch,
+        res = filt(ImuSamples(d["w"], d["f"], dt), d["q0"], rtk=RtkHeading(np.where(epoch, d["rtk"], np.nan), epoch),
                    **dict(opts, ki=0.0))
         assert_healthy(res)
         out[key] = heading_error(res, d)
@@ -369,24 +375,32 @@ def test_duplicated_and_out_of_order_timestamps_go_through_sanitize(name):
     assert report.n_duplicate == repeats > 0.8 * dup.sum() and report.n_out_of_order > 0
     assert report.n_out == n - repeats
     dt = timing.intervals(np.r_[0.0, t_ok])
-    res = filt(w, f, dt, d["q0"], heading_rtk=rtk_ok, rtk_valid=ep_ok > 0.5, **dict(opts, ki=0.0))
+    res = filt(ImuSamples(w, f, dt), d["q0"], rtk=RtkHeading(rtk_ok, ep_ok > 0.5), **dict(opts, ki=0.0))
     assert_healthy(res)
-    ref = filt(d["w"], d["f"], DT, d["q0"], heading_rtk=rtk, rtk_valid=epoch, **dict(opts, ki=0.0))
+    ref = filt(ImuSamples(d["w"], d["f"], DT), d["q0"], rtk=RtkHeading(rtk, epoch), **dict(opts, ki=0.0))
     err = units.to_deg(np.abs(attitude.wrap_pi(res.hpr[:, 0] - H_ok)))
     assert err.max() < heading_error(ref, d).max() + 0.05
 
 
 def test_fusion_accepts_per_sample_intervals():
-    """fuse_rtk_heading with dt per sample: the 0.25 s hold is measured in seconds, not samples."""
+    """fuse_rtk_heading with dt per sample: the 0.25 s hold is measured in seconds, not samples.
+
+    The epoch at 10 reads 0.6 and the offset is smoothed to 0.5 + 0.01 x 0.1: the samples output from the
+    carried RTK heading read 0.6, those of the held offset (H_mag + delta) 0.501."""
     n = 100
     dt = np.full(n, 0.01)
     dt[10:] = 0.05                                   # 10 samples at 100 Hz, then 20 Hz
     valid = np.zeros(n, bool)
     valid[[0, 10]] = True
-    _, _, c = hf.fuse_rtk_heading(np.zeros(n), np.full(n, 0.5), valid, dt)
-    assert int(c["rtk"]) == 10 + 6                  # epoch at 10 held for 5 x 50 ms = 0.25 s
-    _, _, c_scalar = hf.fuse_rtk_heading(np.zeros(n), np.full(n, 0.5), valid, 0.01)
-    assert int(c_scalar["rtk"]) == 10 + 26
+    rtk = RtkHeading(np.where(np.arange(n) < 10, 0.5, 0.6), valid)
+    out = hf.fuse_rtk_heading(np.zeros(n), rtk, dt).heading
+    np.testing.assert_allclose(out[:10], 0.5, atol=1e-15)            # the epoch at 0, carried
+    assert int(np.isclose(out, 0.6, rtol=0, atol=1e-12).sum()) == 6  # epoch at 10 held for 5 x 50 ms = 0.25 s
+    np.testing.assert_allclose(out[16:], 0.501, atol=1e-12)
+    out_scalar = hf.fuse_rtk_heading(np.zeros(n), rtk, 0.01).heading
+    np.testing.assert_allclose(out_scalar[:10], 0.5, atol=1e-15)
+    assert int(np.isclose(out_scalar, 0.6, rtol=0, atol=1e-12).sum()) == 26
+    np.testing.assert_allclose(out_scalar[36:], 0.501, atol=1e-12)
 
 
 # Clock jump in the fusion: 4 trials of the Fig. 4 data, a 3600 s interval at 100 s, RTK only before 130 s.
@@ -407,7 +421,7 @@ def fusion_jump():
 @pytest.mark.parametrize("name", FILTERS)
 def test_fusion_clock_jump_is_counted_flagged_and_recovered_from(fusion_jump, name):
     """A 3600 s interval (the attitude filter upstream sees it too and re-initialises its heading from
-    one magnetometer sample) is counted once per trial (``clock_jump``, ``faults["clock", "jump"]``),
+    one magnetometer sample) is counted once per trial (``faults["clock", "jump"]``),
     flagged at its sample, and nothing else is counted.
 
     Recovery (the issue's criterion): in the RTK outage that starts 30 s after the jump the output is
@@ -423,12 +437,11 @@ def test_fusion_clock_jump_is_counted_flagged_and_recovered_from(fusion_jump, na
     gate = units.deg(10.0)
     out = {}
     for key, step in (("ref", DT), ("jump", dt)):
-        h_mag = filt(d["w"], d["f"], step, d["q0_mag"], m_b=d["m"], B_n=B_N, **opts).hpr[..., 0]
-        out[key] = hf.fuse_rtk_heading(h_mag, rtk, epoch, step, rtk_gate=gate)
+        h_mag = filt(ImuSamples(d["w"], d["f"], step), d["q0_mag"], m_b=d["m"], B_n=B_N, **opts).hpr[..., 0]
+        out[key] = hf.fuse_rtk_heading(h_mag, RtkHeading(rtk, epoch, gate=gate), step)
     res, ref = out["jump"], out["ref"]
     flags = np.zeros(t.size, bool)
     flags[k] = True
-    np.testing.assert_array_equal(res.counts["clock_jump"], [1] * 4)
     np.testing.assert_array_equal(res.faults["clock", "jump"], [1] * 4)
     np.testing.assert_array_equal(res.faults.flags["clock", "jump"], np.broadcast_to(flags, (4, t.size)))
     assert not any(np.any(res.faults[key]) for key in res.faults.counts if key != ("clock", "jump"))
@@ -444,43 +457,50 @@ def test_fusion_clock_jump_is_counted_flagged_and_recovered_from(fusion_jump, na
 
 
 def test_fusion_drops_the_carried_rtk_heading_at_a_jump():
-    """A jump shorter than ``rtk_hold`` (0.2 s at 100 Hz: above max_dt = 10 x 10 ms): the epoch before it is
-    stale, so the output falls back to ``H_mag + delta`` at once (``held``); without the jump rule (or with
-    ``max_dt=inf``) the epoch was carried across it. The gate's run of agreeing rejections restarts there."""
+    """A jump shorter than ``rtk.hold`` (0.2 s at 100 Hz: above max_dt = 10 x 10 ms): the epoch before it is
+    stale, so the output falls back to ``H_mag + delta`` at once; without the jump rule (or with
+    ``max_dt=inf``) the epoch was carried across it. The gate's run of agreeing rejections restarts there.
+
+    Epochs at 0 (0.5) and 1 (0.7): the offset is smoothed to 0.5 + 0.01 x 0.2, so the samples carried from
+    the epoch at 1 read 0.7 and those of the held offset 0.502."""
     n = 100
+    dt = np.full(n, 0.01)
+    dt[6] = 0.2
+    valid = np.zeros(n, bool)
+    valid[[0, 1]] = True
+    rtk = RtkHeading(np.where(np.arange(n) == 0, 0.5, 0.7), valid)
+    res = hf.fuse_rtk_heading(np.zeros(n), rtk, dt)
+    np.testing.assert_allclose(res.heading[1:6], 0.7, atol=1e-12)          # carried: 5 samples, up to the jump
+    np.testing.assert_allclose(res.heading[6:], 0.502, atol=1e-12)         # held from the jump on
+    assert int(res.faults["clock", "jump"]) == 1 and res.faults.flags["clock", "jump"][6]
+    off = hf.fuse_rtk_heading(np.zeros(n), rtk, dt, max_dt=np.inf)
+    np.testing.assert_allclose(off.heading[1:8], 0.7, atol=1e-12)          # 0.04 + 0.2 + 0.01 s <= 0.25 s
+    np.testing.assert_allclose(off.heading[8:], 0.502, atol=1e-12)
+    assert not off.faults
+    # gate: epochs at 0 (used), then 4 flipped ones (confirm = 4): 2 before the jump, 2 after
     dt = np.full(n, 0.01)
     dt[5] = 0.2
     valid = np.zeros(n, bool)
-    valid[0] = True
-    res = hf.fuse_rtk_heading(np.zeros(n), np.full(n, 0.5), valid, dt)
-    assert int(res.counts["rtk"]) == 5 and int(res.counts["held"]) == n - 5
-    assert int(res.counts["clock_jump"]) == 1 and res.faults.flags["clock", "jump"][5]
-    off = hf.fuse_rtk_heading(np.zeros(n), np.full(n, 0.5), valid, dt, max_dt=np.inf)
-    assert int(off.counts["rtk"]) == 7 and not off.faults                 # 0.04 + 0.2 + 0.01 s <= 0.25 s
-    # gate: epochs at 0 (used), then 4 flipped ones (rtk_confirm = 5): 2 before the jump, 2 after
     valid[[0, 2, 4, 6, 8]] = True
-    rtk = np.where(np.arange(n) == 0, 0.5, 0.5 + np.pi)
-    gated = hf.fuse_rtk_heading(np.zeros(n), rtk, valid, dt, rtk_gate=0.3, rtk_confirm=4)
-    assert int(gated.counts["rtk_rejected"]) == 4 and int(gated.counts["rtk_reacquired"]) == 0
-    no_rule = hf.fuse_rtk_heading(np.zeros(n), rtk, valid, dt, rtk_gate=0.3, rtk_confirm=4, max_dt=np.inf)
-    assert int(no_rule.counts["rtk_rejected"]) == 3 and int(no_rule.counts["rtk_reacquired"]) == 1
+    rtk = RtkHeading(np.where(np.arange(n) == 0, 0.5, 0.5 + np.pi), valid, gate=0.3, confirm=4)
+    gated = hf.fuse_rtk_heading(np.zeros(n), rtk, dt)
+    assert int(gated.faults["heading", "outlier"]) == 4 and int(gated.faults["heading", "reacquired"]) == 0
+    no_rule = hf.fuse_rtk_heading(np.zeros(n), rtk, dt, max_dt=np.inf)
+    assert int(no_rule.faults["heading", "outlier"]) == 3 and int(no_rule.faults["heading", "reacquired"]) == 1
 
 
-def test_fusion_max_dt_default_and_legacy_tuple():
-    """max_dt: 10 median intervals by default (as the attitude filters), inf = off, none with a scalar dt;
-    the result still unpacks and indexes as the old (heading, delta, counts) tuple."""
+def test_fusion_max_dt_default():
+    """max_dt: 10 median intervals by default (as the attitude filters), inf = off, none with a scalar dt."""
     n = 50
     dt = np.full(n, 0.01)
     valid = np.zeros(n, bool)
     valid[0] = True
+    rtk = RtkHeading(np.full(n, 0.5), valid)
     for interval, expected in ((0.1, 0), (0.1001, 1)):
         dt[20] = interval
-        assert int(hf.fuse_rtk_heading(np.zeros(n), np.full(n, 0.5), valid, dt).counts["clock_jump"]) == expected
-    assert int(hf.fuse_rtk_heading(np.zeros(n), np.full(n, 0.5), valid, dt, max_dt=0.2).counts["clock_jump"]) == 0
-    assert int(hf.fuse_rtk_heading(np.zeros(n), np.full(n, 0.5), valid, 3600.0).counts["clock_jump"]) == 0
-    res = hf.fuse_rtk_heading(np.zeros(n), np.full(n, 0.5), valid, 0.01)
-    heading, delta, c = res
-    assert heading is res.heading and delta is res[1] and c is res.counts and len(res) == 3
+        assert int(hf.fuse_rtk_heading(np.zeros(n), rtk, dt).faults["clock", "jump"]) == expected
+    assert int(hf.fuse_rtk_heading(np.zeros(n), rtk, dt, max_dt=0.2).faults["clock", "jump"]) == 0
+    assert int(hf.fuse_rtk_heading(np.zeros(n), rtk, 3600.0).faults["clock", "jump"]) == 0
 
 
 # --------------------------------------------------------------------------- saturation
@@ -500,12 +520,12 @@ def test_gyro_saturation_is_counted_and_the_reference_recovers(name):
     d = turning(np.arange(n + 1) * DT, spin)
     fs = IMU.gyro.full_scale
     w, clipped = faults.saturate(d["w"], fs)
-    kw = dict(opts, ki=0.0, rtk_gate=units.deg(10.0), full_scale_gyro=fs)
-    res = filt(w, d["f"], DT, d["q0"], heading_rtk=d["rtk"], rtk_valid=d["epoch"], **kw)
+    res = filt(ImuSamples(w, d["f"], DT, SensorLimits(full_scale_gyro=fs)), d["q0"],
+               rtk=RtkHeading(d["rtk"], d["epoch"], gate=units.deg(10.0)), **dict(opts, ki=0.0))
     assert_healthy(res)
     c = counts(res)
-    assert c["gyro_saturated"] == clipped.sum() and 89 <= clipped.sum() <= 91     # 1.8 s at 50 Hz
-    assert c["rtk_rejected"] >= 4 and c["rtk_reacquired"] >= 1
+    assert c["gyro", "saturated"] == clipped.sum() and 89 <= clipped.sum() <= 91     # 1.8 s at 50 Hz
+    assert c["heading", "outlier"] >= 4 and c["heading", "reacquired"] >= 1
     err = heading_error(res, d)
     assert err[(d["t"] > 21.8) & (d["t"] < 22.0)].max() > 100.0      # the clipped spin
     assert err[d["t"] > 30.0].max() < 0.5                           # recovered
@@ -527,10 +547,10 @@ def test_saturated_accelerometer_and_magnetometer_samples_are_not_used(fig4, nam
     x[shock] += [0.0, 0.3 * fs, 1.5 * fs] if sensor == "f" else [2000.0, -500.0, 0.0]
     x, clipped = faults.saturate(x, fs)
     assert (clipped == shock).all()
-    kw = {"full_scale_accel": fs} if sensor == "f" else {"full_scale_mag": fs}
-    res = run(name, fig4, "mag", **{sensor: x}, **kw)
+    limits = SensorLimits(full_scale_accel=fs) if sensor == "f" else SensorLimits(full_scale_mag=fs)
+    res = run(name, fig4, "mag", limits=limits, **{sensor: x})
     assert_healthy(res)
-    key = "accel_saturated" if sensor == "f" else "mag_saturated"
+    key = ("accel", "saturated") if sensor == "f" else ("mag", "saturated")
     assert counts(res)[key] == shock.sum()
     missing = run(name, fig4, "mag", **{sensor: np.where(shock[:, None], np.nan, fig4[sensor])})
     np.testing.assert_array_equal(res.q_bn, missing.q_bn)

@@ -1,4 +1,5 @@
-"""navlib.papers.mimu_mag_rtk (paper 003): equations, filters, bad input, and the cross-check against ahrs (AHRS 0.4.0)."""
+"""The attitude filters (navlib.filters: mahony, quaternion_kf, heading_fusion) and navlib.papers.mimu_mag_rtk
+(paper 003): equations, filters, bad input, and the cross-check against ahrs (AHRS 0.4.0)."""
 import json
 import os
 import subprocess
@@ -15,7 +16,10 @@ from navlib.filters import heading_fusion as hf
 from navlib.filters import mahony as mh
 from navlib.filters import observations as obs
 from navlib.filters import quaternion_kf as qkf
-from navlib.papers import mimu_mag_rtk as ahrs
+from navlib.filters.observations import AttitudeGates, MagGate, RtkHeading
+from navlib.filters.quaternion_kf import KfNoise
+from navlib.imu import ImuSamples, SensorLimits
+from navlib.papers import mimu_mag_rtk
 
 B_N = earth.magnetic_field(32.03, 118.85, 20.0, 2022.5)        # Nanjing, the paper's site
 B_REF, DECL, INCL, INTENSITY = obs.magnetic_reference(B_N)
@@ -57,7 +61,7 @@ def test_measurement_model_and_jacobian_match_rotation_and_finite_differences():
 
 def test_printed_jacobian_differs_only_at_h44():
     _, q = random_quats(200, seed=1)
-    d = ahrs.printed_eq20_jacobian(q, B_REF) - qkf.measurement_jacobian(q, B_REF)
+    d = mimu_mag_rtk.printed_eq20_jacobian(q, B_REF) - qkf.measurement_jacobian(q, B_REF)
     np.testing.assert_allclose(d[:, 3, 3], -4 * q[:, 1] * B_REF[2], atol=1e-15)
     d[:, 3, 3] = 0
     assert np.abs(d).max() == 0
@@ -69,7 +73,7 @@ def test_transition_and_noise_input_are_the_quaternion_kinematics():
     inc = 0.5 * DT * attitude.quat_mult(q, np.concatenate([np.zeros((300, 1)), w], -1))
     np.testing.assert_allclose(np.einsum("nij,nj->ni", qkf.transition(w, DT), q), q + inc, atol=1e-15)
     np.testing.assert_allclose(np.einsum("nij,nj->ni", qkf.noise_input(q, DT), w), inc, atol=1e-15)
-    np.testing.assert_allclose(ahrs.printed_eq18_gamma(q, DT), -2 * qkf.noise_input(q, DT), atol=0)
+    np.testing.assert_allclose(mimu_mag_rtk.printed_eq18_gamma(q, DT), -2 * qkf.noise_input(q, DT), atol=0)
 
 
 @settings(max_examples=200, deadline=None)
@@ -84,7 +88,7 @@ def test_tilt_heading_inverts_the_measurement_model(heading, pitch, roll):
 
 
 def test_printed_eq8_is_a_different_rotation():
-    q8 = ahrs.printed_eq8_quat(units.deg([30.0, 10.0, 20.0]))
+    q8 = mimu_mag_rtk.printed_eq8_quat(units.deg([30.0, 10.0, 20.0]))
     np.testing.assert_allclose(units.to_deg(attitude.quat_to_euler(q8)), [33.45, 9.39, 20.28], atol=0.01)
 
 
@@ -106,29 +110,33 @@ def test_filters_reject_bad_arguments():
     rng = np.random.default_rng(0)
     w, f, m = static_marg([0.5, 0, 0], 100, rng)
     q0 = attitude.euler_to_quat([0.5, 0, 0])
+    imu = ImuSamples(w, f, DT)
     valid = np.ones(100, dtype=bool)
-    with pytest.raises(ValueError, match="^m_b, heading_rtk: "):
-        mh.mahony(w, f, DT, q0, m_b=m, heading_rtk=np.zeros(100), rtk_valid=valid)   # two heading references
-    with pytest.raises(ValueError, match="^gate: "):
-        mh.mahony(w, f, DT, q0, B_n=B_N, gate=obs.MagGate())                        # a gate but no magnetometer
+    with pytest.raises(ValueError, match="^m_b, rtk: "):
+        mh.mahony(imu, q0, m_b=m, rtk=RtkHeading(np.zeros(100), valid))              # two heading references
+    with pytest.raises(ValueError, match="^gates: "):
+        mh.mahony(imu, q0, B_n=B_N, gates=AttitudeGates(mag=MagGate()))             # a gate but no magnetometer
     with pytest.raises(ValueError, match="^heading_rtk: "):
-        mh.mahony(w, f, DT, q0, heading_rtk=np.full(100, 7.0), rtk_valid=valid)   # out of [0, 2 pi)
+        mh.mahony(imu, q0, rtk=RtkHeading(np.full(100, 7.0), valid))               # out of [0, 2 pi)
     with pytest.raises(ValueError, match="^heading_rtk: "):
-        hf.fuse_rtk_heading(np.zeros(100), np.full(100, np.inf), valid, DT)       # valid but infinite
-    _, _, c = hf.fuse_rtk_heading(np.zeros(100), np.full(100, np.nan), valid, DT)  # valid but NaN: dropout
-    assert int(c["rtk_dropped"]) == 100 and int(c["uncalibrated"]) == 100
+        hf.fuse_rtk_heading(np.zeros(100), RtkHeading(np.full(100, np.inf), valid), DT)   # valid but infinite
+    res = hf.fuse_rtk_heading(np.zeros(100), RtkHeading(np.full(100, np.nan), valid), DT)   # valid but NaN: dropout
+    assert int(res.faults["heading", "nan"]) == 100
+    assert np.isnan(res.delta).all() and np.array_equal(res.heading, np.zeros(100))     # uncalibrated throughout
     with pytest.raises(ValueError, match="^rtk_valid: "):
-        mh.mahony(w, f, DT, q0, heading_rtk=np.zeros(100), rtk_valid=None)
+        mh.mahony(imu, q0, rtk=RtkHeading(np.zeros(100), None))
     with pytest.raises(ValueError, match="^rtk_valid: "):
-        hf.fuse_rtk_heading(np.zeros(100), np.zeros(100), np.ones(100), DT)       # flags must be booleans
+        hf.fuse_rtk_heading(np.zeros(100), RtkHeading(np.zeros(100), np.ones(100)), DT)   # flags must be booleans
     with pytest.raises(ValueError, match="^kp: "):
-        mh.mahony(w, f, DT, q0, m_b=m, kp=-1.0)
+        mh.mahony(imu, q0, m_b=m, kp=-1.0)
     with pytest.raises(ValueError, match="^B_n: "):
-        qkf.quaternion_kf(w, f, DT, q0, m_b=m)
+        qkf.quaternion_kf(imu, q0, m_b=m)
     with pytest.raises(ValueError, match="^w_ib_b: "):
-        mh.mahony(np.where(np.arange(100)[:, None] == 3, np.inf, w), f, DT, q0, m_b=m)
+        mh.mahony(ImuSamples(np.where(np.arange(100)[:, None] == 3, np.inf, w), f, DT), q0, m_b=m)
     with pytest.raises(ValueError, match="^B_n: "):
-        mh.mahony(w, f, DT, q0, m_b=m, gate=obs.MagGate())
+        mh.mahony(imu, q0, m_b=m, gates=AttitudeGates(mag=MagGate()))
+    with pytest.raises(ValueError, match="^imu: "):
+        mh.mahony(w, q0, m_b=m)                                                      # raw arrays: an ImuSamples
 
 
 @pytest.mark.parametrize("filt", [mh.mahony, qkf.quaternion_kf])
@@ -143,12 +151,10 @@ def test_dropouts_are_skipped_and_counted_never_poisoning_the_state(filt):
     m[500] = np.inf
     m[600] = 0.0
     m[700] = f[700]                          # magnetometer parallel to gravity
-    out = filt(w, f, DT, attitude.euler_to_quat(hpr), m_b=m, B_n=B_N)
+    out = filt(ImuSamples(w, f, DT), attitude.euler_to_quat(hpr), m_b=m, B_n=B_N)
     assert np.isfinite(out.q_bn).all()
-    assert {k: int(v) for k, v in out.counts.items()} == {
-        "gyro_held": 10, "accel_skipped": 6, "accel_gated": 0, "mag_skipped": 20 + 3, "mag_gated": 0,
-        "gyro_saturated": 0, "accel_saturated": 0, "mag_saturated": 0, "rtk_dropped": 0, "rtk_rejected": 0,
-        "rtk_reacquired": 0, "gyro_gated": 0, "gyro_stuck": 0, "clock_jump": 0}
+    assert {k: int(v) for k, v in out.faults.counts.items() if v} == {   # every other count 0
+        ("gyro", "nan"): 10, ("accel", "nan"): 6, ("mag", "nan"): 20 + 3}
     assert abs(attitude.wrap_pi(out.hpr[-1, 0] - hpr[0])) < units.deg(1.0)
 
 
@@ -158,10 +164,11 @@ def test_magnetic_gate_skips_disturbed_samples_and_counts_them():
     w, f, m = static_marg(hpr, 2000, rng)
     m[1000:1200] += [10.0, 0.0, -15.0]       # 0.18 G disturbance for 2 s: changes norm and dip
     q0 = attitude.euler_to_quat(hpr)
-    plain = mh.mahony(w, f, DT, q0, m_b=m)
-    gated = mh.mahony(w, f, DT, q0, m_b=m, B_n=B_N, gate=obs.MagGate(norm_tol=0.1, dip_tol=units.deg(3.0)))
-    assert int(plain.counts["mag_gated"]) == 0
-    assert 195 <= int(gated.counts["mag_gated"]) <= 210         # the disturbance, plus a few noisy samples
+    plain = mh.mahony(ImuSamples(w, f, DT), q0, m_b=m)
+    gated = mh.mahony(ImuSamples(w, f, DT), q0, m_b=m, B_n=B_N,
+                      gates=AttitudeGates(mag=MagGate(norm_tol=0.1, dip_tol=units.deg(3.0))))
+    assert int(plain.faults["mag", "outlier"]) == 0
+    assert 195 <= int(gated.faults["mag", "outlier"]) <= 210    # the disturbance, plus a few noisy samples
     def err(r):
         return np.abs(attitude.wrap_pi(r.hpr[1000:1300, 0] - hpr[0])).max()
 
@@ -172,8 +179,8 @@ def test_accelerometer_gate_counts():
     rng = np.random.default_rng(3)
     w, f, m = static_marg([0.0, 0.0, 0.0], 500, rng)
     f[100:150] *= 1.5
-    out = mh.mahony(w, f, DT, [1.0, 0, 0, 0], m_b=m, accel_tol=0.1)
-    assert int(out.counts["accel_gated"]) == 50
+    out = mh.mahony(ImuSamples(w, f, DT), [1.0, 0, 0, 0], m_b=m, gates=AttitudeGates(accel_tol=0.1))
+    assert int(out.faults["accel", "outlier"]) == 50
 
 
 # --------------------------------------------------------------------------- filter behaviour
@@ -184,26 +191,26 @@ def test_mahony_converges_and_learns_gyro_bias():
     bias = units.deg_per_s([0.09, -0.05, 0.09])
     w, f, m = static_marg(hpr, 30_000, rng, gyro=bias, noise=(0.0, 0.0, 0.0))
     q0 = attitude.euler_to_quat(hpr + [units.deg(20.0), 0, 0])
-    out = mh.mahony(w, f, DT, q0, m_b=m, kp=1.0, ki=0.02)
+    out = mh.mahony(ImuSamples(w, f, DT), q0, m_b=m, kp=1.0, ki=0.02)
     assert abs(attitude.wrap_pi(out.hpr[-1, 0] - hpr[0])) < units.deg(0.01)
     np.testing.assert_allclose(out.gyro_bias, bias, rtol=0.01)
 
 
 def test_printed_eq2_arctan_loses_the_quadrant_and_the_unclipped_arcsin_fails_at_90_deg():
     hpr, q = random_quats(500)
-    out = ahrs.printed_eq2_arctan(q)
+    out = mimu_mag_rtk.printed_eq2_arctan(q)
     np.testing.assert_allclose(out[:, 1], hpr[:, 1], atol=1e-12)                         # pitch below 90 deg: fine
     same = np.abs(attitude.wrap_pi(out[:, [0, 2]] - hpr[:, [0, 2]]))
     assert np.all((same < 1e-9) | (np.abs(same - np.pi) < 1e-9))                        # right, or off by 180 deg
     assert same.max() > 3.0 and np.abs(out[:, [0, 2]]).max() <= np.pi / 2
     lock = attitude.euler_to_quat(np.stack([hpr[:, 0], np.full(500, np.pi / 2), hpr[:, 2]], -1))
-    assert np.isnan(ahrs.printed_eq2_arctan(lock)[:, 1]).any()
+    assert np.isnan(mimu_mag_rtk.printed_eq2_arctan(lock)[:, 1]).any()
     assert np.isfinite(attitude.quat_to_euler(lock)).all()
 
 
 def test_printed_eq6_differs_only_in_row_3():
     _, q = random_quats(500)
-    d = ahrs.printed_eq6(q, B_REF) - qkf.measurement_model(q, B_REF)[:, 3:]
+    d = mimu_mag_rtk.printed_eq6(q, B_REF) - qkf.measurement_model(q, B_REF)[:, 3:]
     assert np.abs(d[:, :2]).max() < 1e-14
     q0, q1, q2, q3 = q.T
     np.testing.assert_allclose(d[:, 2], 2 * (q2 ** 2 - q3 ** 2) * B_REF[2], atol=1e-14)
@@ -214,11 +221,11 @@ def test_printed_mahony_order_is_the_corrected_correction_reversed_and_diverges(
     w, f, m = static_marg(hpr, 3000, np.random.default_rng(3), noise=(0.0, 0.0, 0.0))
     q0 = attitude.euler_to_quat(hpr + [units.deg(20.0), 0, 0])
     # one step without gyro: the printed increment is minus the corrected one, up to the normalisation (second order)
-    good = mh.mahony(w[:1], f[:1], DT, q0, m_b=m[:1], kp=1.0, ki=0.0).q_bn[0]
-    bad = ahrs.printed_eq12_mahony(w[:1], f[:1], m[:1], DT, q0, kp=1.0, ki=0.0)[0]
+    good = mh.mahony(ImuSamples(w[:1], f[:1], DT), q0, m_b=m[:1], kp=1.0, ki=0.0).q_bn[0]
+    bad = mimu_mag_rtk.printed_eq12_mahony(w[:1], f[:1], m[:1], DT, q0, kp=1.0, ki=0.0)[0]
     np.testing.assert_allclose(bad - q0, -(good - q0), atol=4 * np.sum((good - q0) ** 2))
     assert np.abs(good - q0).max() > 1e-4
-    run = ahrs.printed_eq12_mahony(w, f, m, DT, q0, kp=1.0, ki=0.02)
+    run = mimu_mag_rtk.printed_eq12_mahony(w, f, m, DT, q0, kp=1.0, ki=0.02)
     err = np.linalg.norm(attitude.quat_to_rotvec(attitude.quat_mult(attitude.quat_conj(attitude.euler_to_quat(hpr)), run[-1])))
     assert units.to_deg(err) > 45.0                                                       # driven away
 
@@ -227,9 +234,9 @@ def test_kf_innovation_z_minus_h_converges_z_minus_Hq_stalls():
     hpr = np.array([0.0, 0.0, 0.0])
     w, f, m = static_marg(hpr, 30_000, np.random.default_rng(5), noise=(0.0, 0.0, 0.0))
     q0 = attitude.euler_to_quat(hpr + [units.deg(20.0), 0, 0])
-    kw = dict(kp=0.0, ki=0.0, B_n=B_N, sigma_gyro=1e-3, p0=1e-2)
-    good = qkf.quaternion_kf(w, f, DT, q0, m_b=m, **kw)
-    bad = qkf.quaternion_kf(w, f, DT, q0, m_b=m, linear_innovation=True, **kw)
+    kw = dict(kp=0.0, ki=0.0, B_n=B_N, noise=KfNoise(sigma_gyro=1e-3, p0=1e-2))
+    good = qkf.quaternion_kf(ImuSamples(w, f, DT), q0, m_b=m, **kw)
+    bad = qkf.quaternion_kf(ImuSamples(w, f, DT), q0, m_b=m, linear_innovation=True, **kw)
     assert abs(attitude.wrap_pi(good.hpr[-1, 0])) < units.deg(0.1)
     assert abs(attitude.wrap_pi(bad.hpr[-1, 0])) > units.deg(5.0)
 
@@ -240,9 +247,9 @@ def test_batch_of_trials_equals_single_runs():
     w, f, m = (np.stack(x) for x in zip(*runs, strict=True))
     q0 = attitude.euler_to_quat(np.stack([[0.4 * i, 0.0, 0.1] for i in range(3)]))
     for filt in (mh.mahony, qkf.quaternion_kf):
-        batch = filt(w, f, DT, q0, m_b=m, B_n=B_N)
+        batch = filt(ImuSamples(w, f, DT), q0, m_b=m, B_n=B_N)
         for i in range(3):
-            single = filt(w[i], f[i], DT, q0[i], m_b=m[i], B_n=B_N)
+            single = filt(ImuSamples(w[i], f[i], DT), q0[i], m_b=m[i], B_n=B_N)
             np.testing.assert_array_equal(batch.q_bn[i], single.q_bn)
 
 
@@ -263,23 +270,24 @@ def _faulty_batch(trials, n, seed):
 
 def _outputs(r):
     """Every output of an AttitudeResult as bytes (bit-for-bit comparison, NaN included)."""
-    arrays = [r.q_bn, r.gyro_bias] + ([] if r.P is None else [r.P]) + [np.asarray(v) for v in r.counts.values()]
+    arrays = [r.q_bn, r.gyro_bias] + ([] if r.P is None else [r.P]) + [np.asarray(v) for v in r.faults.counts.values()]
     return [np.ascontiguousarray(a).tobytes() for a in arrays + list(r.faults.flags.values())]
 
 
 def test_batch_outputs_equal_the_per_trial_outputs_bit_for_bit():
     # more trials than threads x chunks, faults in some: the parallel batch is the trials run one by one
     w, f, m, dts, q0 = _faulty_batch(11, 1000, 21)
-    kw = dict(gate=obs.MagGate(), B_n=B_N, gyro_jump=1.0, stuck_run=10)
+    limits = SensorLimits(gyro_jump=1.0, stuck_run=10)
+    kw = dict(gates=AttitudeGates(mag=MagGate()), B_n=B_N)
     for filt in (mh.mahony, qkf.quaternion_kf):
-        batch = filt(w, f, dts, q0, m_b=m, **kw)
-        assert batch.counts["gyro_stuck"][2] > 0 and batch.counts["gyro_held"][1] == 5
+        batch = filt(ImuSamples(w, f, dts, limits), q0, m_b=m, **kw)
+        assert batch.faults["gyro", "stuck"][2] > 0 and batch.faults["gyro", "nan"][1] == 5
         for i in range(len(w)):
-            single = filt(w[i], f[i], dts, q0[i], m_b=m[i], **kw)
+            single = filt(ImuSamples(w[i], f[i], dts, limits), q0[i], m_b=m[i], **kw)
             one = lambda a, i=i: a[i] if np.ndim(a) else a          # noqa: E731 (the trial's row of a batch output)
-            part = type(batch)(one(batch.q_bn), one(batch.gyro_bias), {k: one(v) for k, v in batch.counts.items()},
-                               None if batch.P is None else one(batch.P),
-                               faults=type(batch.faults)({}, {k: v[i] for k, v in batch.faults.flags.items()}))
+            faults = type(batch.faults)({k: one(v) for k, v in batch.faults.counts.items()},
+                                        {k: v[i] for k, v in batch.faults.flags.items()})
+            part = type(batch)(one(batch.q_bn), one(batch.gyro_bias), faults, None if batch.P is None else one(batch.P))
             assert _outputs(part) == _outputs(single), (filt.__name__, i)
 
 
@@ -287,12 +295,15 @@ THREADS = r"""
 import hashlib, sys
 import numpy as np
 sys.path.insert(0, {tests!r})
-from test_ahrs import _faulty_batch, _outputs, B_N, obs
+from test_filters_attitude import _faulty_batch, _outputs, B_N
 from navlib.filters import mahony as mh, quaternion_kf as qkf
+from navlib.filters.observations import AttitudeGates, MagGate
+from navlib.imu import ImuSamples, SensorLimits
 w, f, m, dts, q0 = _faulty_batch(9, 1000, 22)
+imu = ImuSamples(w, f, dts, SensorLimits(gyro_jump=1.0, stuck_run=10))
 h = hashlib.sha256()
 for filt in (mh.mahony, qkf.quaternion_kf):
-    for chunk in _outputs(filt(w, f, dts, q0, m_b=m, gate=obs.MagGate(), B_n=B_N, gyro_jump=1.0, stuck_run=10)):
+    for chunk in _outputs(filt(imu, q0, m_b=m, gates=AttitudeGates(mag=MagGate()), B_n=B_N)):
         h.update(chunk)
 print(h.hexdigest())
 """
@@ -384,8 +395,8 @@ def test_rtk_mode_ignores_the_value_of_invalid_epochs_and_drifts_without_bias_es
     valid = np.zeros(n, dtype=bool)
     valid[:10_000:20] = True                                       # 5 Hz RTK, lost after 100 s
     q0 = attitude.euler_to_quat([np.pi / 2, 0, 0])
-    zeros = mh.mahony(w, f, DT, q0, heading_rtk=np.where(valid, np.pi / 2, 0.0), rtk_valid=valid, ki=0.0)
-    nans = mh.mahony(w, f, DT, q0, heading_rtk=np.where(valid, np.pi / 2, np.nan), rtk_valid=valid, ki=0.0)
+    zeros = mh.mahony(ImuSamples(w, f, DT), q0, rtk=RtkHeading(np.where(valid, np.pi / 2, 0.0), valid), ki=0.0)
+    nans = mh.mahony(ImuSamples(w, f, DT), q0, rtk=RtkHeading(np.where(valid, np.pi / 2, np.nan), valid), ki=0.0)
     np.testing.assert_array_equal(zeros.q_bn, nans.q_bn)
     drift = attitude.wrap_pi(zeros.hpr[-1, 0] - np.pi / 2)
     assert drift == pytest.approx(-units.deg_per_s(0.09) * 100.0, rel=0.02)
@@ -397,14 +408,16 @@ def test_fusion_outputs_rtk_when_valid_holds_delta_in_outages():
     h_rtk = np.full(n, 1.1)
     valid = np.zeros(n, dtype=bool)
     valid[1000:3000:20] = True
-    fused, delta, counts = hf.fuse_rtk_heading(h_mag, np.where(valid, h_rtk, 0.0), valid, DT)
-    assert int(counts["uncalibrated"]) == 1000 and np.isnan(delta[:1000]).all()
+    res = hf.fuse_rtk_heading(h_mag, RtkHeading(np.where(valid, h_rtk, 0.0), valid), DT)
+    fused, delta = res.heading, res.delta
+    assert np.isnan(delta).sum() == 1000 and np.isnan(delta[:1000]).all()      # uncalibrated before the first epoch
+    np.testing.assert_array_equal(fused[:1000], h_mag[:1000])
     np.testing.assert_allclose(fused[1000:3000], 1.1, atol=1e-12)
     np.testing.assert_allclose(delta[3000:], 0.1, atol=1e-12)
     np.testing.assert_allclose(fused[3100:], 1.1, atol=1e-12)      # H_mag + held delta
     every = np.zeros(n, dtype=bool)
     every[1000::20] = True                                          # the paper's 0 fused as a value: wrong
-    as_value, _, _ = hf.fuse_rtk_heading(h_mag, np.where(valid, h_rtk, 0.0), every, DT)
+    as_value = hf.fuse_rtk_heading(h_mag, RtkHeading(np.where(valid, h_rtk, 0.0), every), DT).heading
     assert np.abs(as_value[3100:]).max() < 0.01
 
 
@@ -434,7 +447,7 @@ def test_mahony_matches_ahrs_package_to_rounding():
     w = np.array([0.0, 0.0, 0.5]) + 0.01 * rng.standard_normal((n, 3))
     q0 = attitude.euler_to_quat(hpr[0] + [0.3, 0.05, -0.05])
     peer = ahrs_pkg.filters.Mahony(gyr=w, acc=f, mag=m, frequency=1 / DT, k_P=1.5, k_I=0.1, q0=q0)
-    ours = mh.mahony(w[1:], f[1:], DT, q0, m_b=m[1:], kp=1.5, ki=0.1)
+    ours = mh.mahony(ImuSamples(w[1:], f[1:], DT), q0, m_b=m[1:], kp=1.5, ki=0.1)
     np.testing.assert_allclose(ours.q_bn, peer.Q[1:], atol=1e-12)
 
 
@@ -447,29 +460,28 @@ from navlib.filters import heading_fusion as hf
 from navlib.filters import mahony as mh
 from navlib.filters import observations as obs
 from navlib.filters import quaternion_kf as qkf
-from navlib.papers import mimu_mag_rtk as ahrs
+from navlib.imu import ImuSamples, SensorLimits
 rng = np.random.default_rng(0)
 B = earth.magnetic_field(32.0, 118.8, 0.0, 2022.5)
 w = 0.01 * rng.standard_normal((2, 200, 3)); w[0, 5] = np.nan
 f = np.array([0.1, 0.2, 9.8]) + 0.05 * rng.standard_normal((2, 200, 3))
 m = B + 0.5 * rng.standard_normal((2, 200, 3)); m[1, 7] = 0.0
 q0 = [1.0, 0.0, 0.0, 0.0]
-a = mh.mahony(w, f, 0.01, q0, m_b=m, B_n=B, gate=obs.MagGate())
-k = qkf.quaternion_kf(w, f, 0.01, q0, m_b=m, B_n=B)
+a = mh.mahony(ImuSamples(w, f, 0.01), q0, m_b=m, B_n=B, gates=obs.AttitudeGates(mag=obs.MagGate()))
+k = qkf.quaternion_kf(ImuSamples(w, f, 0.01), q0, m_b=m, B_n=B)
 valid = np.zeros(200, dtype=bool); valid[::20] = True
-h, d, c = hf.fuse_rtk_heading(k.hpr[..., 0], np.full(200, 0.5), valid, 0.01)
+h = hf.fuse_rtk_heading(k.hpr[..., 0], obs.RtkHeading(np.full(200, 0.5), valid), 0.01).heading
 # the robustness paths: per-sample dt, spike gate, saturation, RTK dropouts, flips and re-acquisition
 dt = 0.01 * (1 + 0.2 * rng.uniform(-1, 1, 200))
 w[1, 50] += 1.0; f[0, 60] = [0.0, 0.0, 80.0]
 rtk = np.where(valid, 0.5, np.nan); rtk[40] = 0.5 + np.pi; rtk[60] = np.nan; rtk[100:] = 2.0
-r = qkf.quaternion_kf(w, f, dt, q0, heading_rtk=rtk, rtk_valid=valid, gyro_jump=0.5, full_scale_accel=78.0,
-                       full_scale_gyro=0.02, rtk_gate=0.3, rtk_confirm=2, keep_cov=True)
-hr, _, cr = hf.fuse_rtk_heading(r.hpr[..., 0], rtk, valid, dt, rtk_gate=0.3, rtk_confirm=2)
+limits = SensorLimits(gyro_jump=0.5, full_scale_accel=78.0, full_scale_gyro=0.02)
+reference = obs.RtkHeading(rtk, valid, gate=0.3, confirm=2)
+r = qkf.quaternion_kf(ImuSamples(w, f, dt, limits), q0, rtk=reference, keep_cov=True)
+fr = hf.fuse_rtk_heading(r.hpr[..., 0], reference, dt)
 print(json.dumps({"a": a.q_bn.tolist(), "k": k.q_bn.tolist(), "h": h.tolist(), "r": r.q_bn.tolist(),
-                  "P": r.P_history.tolist(), "hr": hr.tolist(),
-                  "c": {key: v.tolist() for key, v in a.counts.items()},
-                  "cr": {key: v.tolist() for key, v in r.counts.items()},
-                  "cf": {key: v.tolist() for key, v in cr.items()}}))
+                  "P": r.P_history.tolist(), "hr": fr.heading.tolist(),
+                  "c": a.faults.as_dict(), "cr": r.faults.as_dict(), "cf": fr.faults.as_dict()}))
 """
 
 
@@ -486,9 +498,9 @@ def test_kernels_run_uncompiled_with_the_same_results():
     for key in ("c", "cr", "cf"):
         assert plain[key] == jit[key]
     cr, cf = jit["cr"], jit["cf"]                   # every robustness path was taken
-    assert cr["gyro_gated"][1] >= 1 and cr["accel_saturated"][0] == 1 and min(cr["gyro_saturated"]) > 0
-    assert min(cr["rtk_rejected"]) >= 1 and cr["rtk_dropped"] == [1, 1] and min(cr["rtk_reacquired"]) >= 1
-    assert min(cf["rtk_rejected"]) >= 1 and cf["rtk_dropped"] == [1, 1] and min(cf["rtk_reacquired"]) >= 1
+    assert cr["gyro.spike"][1] >= 1 and cr["accel.saturated"][0] == 1 and min(cr["gyro.saturated"]) > 0
+    assert min(cr["heading.outlier"]) >= 1 and cr["heading.nan"] == [1, 1] and min(cr["heading.reacquired"]) >= 1
+    assert min(cf["heading.outlier"]) >= 1 and cf["heading.nan"] == [1, 1] and min(cf["heading.reacquired"]) >= 1
 
 
 def test_scalar_dt_and_a_constant_dt_array_give_identical_results():
@@ -496,19 +508,20 @@ def test_scalar_dt_and_a_constant_dt_array_give_identical_results():
     w, f, m = static_marg([0.7, 0.05, -0.1], 500, rng)
     q0 = attitude.euler_to_quat([0.7, 0.05, -0.1])
     for filt in (mh.mahony, qkf.quaternion_kf):
-        a = filt(w, f, DT, q0, m_b=m, B_n=B_N)
-        b = filt(w, f, np.full(500, DT), q0, m_b=m, B_n=B_N)
+        a = filt(ImuSamples(w, f, DT), q0, m_b=m, B_n=B_N)
+        b = filt(ImuSamples(w, f, np.full(500, DT)), q0, m_b=m, B_n=B_N)
         np.testing.assert_array_equal(a.q_bn, b.q_bn)
 
 
 def test_kf_returns_a_symmetric_positive_definite_covariance():
     rng = np.random.default_rng(10)
     w, f, m = static_marg([0.7, 0.05, -0.1], 2000, rng)
-    out = qkf.quaternion_kf(w, f, DT, attitude.euler_to_quat([0.7, 0.05, -0.1]), m_b=m, B_n=B_N, keep_cov=True)
+    out = qkf.quaternion_kf(ImuSamples(w, f, DT), attitude.euler_to_quat([0.7, 0.05, -0.1]), m_b=m, B_n=B_N,
+                            keep_cov=True)
     P = out.P_history
     assert P.shape == (2000, 4, 4) and np.array_equal(out.P, P[-1])
     assert np.array_equal(P, np.swapaxes(P, -1, -2)) and np.linalg.eigvalsh(P).min() > 0
-    assert mh.mahony(w, f, DT, [1.0, 0, 0, 0], m_b=m).P is None
+    assert mh.mahony(ImuSamples(w, f, DT), [1.0, 0, 0, 0], m_b=m).P is None
 
 
 # --------------------------------------------------------------------------- bad input, every public callable
@@ -527,30 +540,35 @@ BAD_CALLS = [
     ("noise_input", lambda: qkf.noise_input([1.0, 0.0, 0.0], 0.01), "q"),
     ("measurement_model", lambda: qkf.measurement_model(_Q, [1.0, 0.0, 0.0]), "b"),
     ("measurement_jacobian", lambda: qkf.measurement_jacobian([np.inf, 0, 0, 0], [0.0, 1.0, 0.0]), "q"),
-    ("mahony", lambda: mh.mahony(_W, _F[:5], 0.01, _Q, m_b=_M), "f_b"),
-    ("mahony", lambda: mh.mahony(_W, _F, 0.01, [0.0, 0.0, 0.0, 0.0], m_b=_M), "q0"),
-    ("quaternion_kf", lambda: qkf.quaternion_kf(_W, _F, 0.01, _Q, m_b=_M, B_n=B_N, sigma_mag=0.0), "sigma_mag"),
-    ("fuse_rtk_heading", lambda: hf.fuse_rtk_heading(np.zeros(10), np.zeros(10), np.ones(10, bool), 0.01,
+    ("ImuSamples", lambda: ImuSamples(_W, _F[:5], 0.01), "f_b"),
+    ("SensorLimits", lambda: SensorLimits(full_scale_gyro=0.0), "full_scale_gyro"),
+    ("mahony", lambda: mh.mahony(ImuSamples(_W, _F, 0.01), _Q, m_b=_M[:5]), "m_b"),
+    ("mahony", lambda: mh.mahony(ImuSamples(_W, _F, 0.01), [0.0, 0.0, 0.0, 0.0], m_b=_M), "q0"),
+    ("quaternion_kf", lambda: qkf.quaternion_kf(ImuSamples(_W, _F, 0.01), _Q, m_b=_M, B_n=B_N, kp=np.nan), "kp"),
+    ("KfNoise", lambda: KfNoise(sigma_mag=0.0), "sigma_mag"),
+    ("AttitudeGates", lambda: AttitudeGates(accel_tol=-0.1), "accel_tol"),
+    ("RtkHeading", lambda: RtkHeading(np.zeros(10), np.ones(10, bool), hold=-1.0), "hold"),
+    ("fuse_rtk_heading", lambda: hf.fuse_rtk_heading(np.zeros(10), RtkHeading(np.zeros(10), np.ones(10, bool)), 0.01,
                                                        alpha=1.5), "alpha"),
     ("rtk_at_imu_rate", lambda: hf.rtk_at_imu_rate(np.arange(10.0), np.zeros(10), np.ones(10, bool), 0), "step"),
     ("MagGate", lambda: obs.MagGate(norm_tol=-0.1), "norm_tol"),
-    ("printed_eq2_roll", lambda: ahrs.printed_eq2_roll([1.0, 0.0]), "q"),
-    ("printed_eq4", lambda: ahrs.printed_eq4("abc"), "q"),
-    ("printed_eq5_tilt", lambda: ahrs.printed_eq5_tilt([0.0, np.nan, 1.0]), "f_b"),
-    ("printed_eq7_heading", lambda: ahrs.printed_eq7_heading([1.0]), "m_h"),
-    ("printed_eq8_quat", lambda: ahrs.printed_eq8_quat([0.0, 0.0]), "hpr"),
-    ("printed_eq18_gamma", lambda: ahrs.printed_eq18_gamma(_Q, -1.0), "dt"),
-    ("printed_eq20_jacobian", lambda: ahrs.printed_eq20_jacobian(_Q, [0.5, 1.0, 0.0]), "b"),
-    ("printed_eq2_arctan", lambda: ahrs.printed_eq2_arctan(np.zeros(4)), "q"),
-    ("printed_eq6", lambda: ahrs.printed_eq6(_Q, [0.0, 1.0]), "b"),
-    ("printed_eq12_mahony", lambda: ahrs.printed_eq12_mahony(_W, _F[:5], _M, 0.01, _Q), "f_b"),
-    ("printed_eq12_mahony", lambda: ahrs.printed_eq12_mahony(_W, _F, np.zeros((10, 3)), 0.01, _Q), "m_b"),
-    ("printed_eq12_mahony", lambda: ahrs.printed_eq12_mahony(_W, _F, _M, 0.0, _Q), "dt"),
+    ("printed_eq2_roll", lambda: mimu_mag_rtk.printed_eq2_roll([1.0, 0.0]), "q"),
+    ("printed_eq4", lambda: mimu_mag_rtk.printed_eq4("abc"), "q"),
+    ("printed_eq5_tilt", lambda: mimu_mag_rtk.printed_eq5_tilt([0.0, np.nan, 1.0]), "f_b"),
+    ("printed_eq7_heading", lambda: mimu_mag_rtk.printed_eq7_heading([1.0]), "m_h"),
+    ("printed_eq8_quat", lambda: mimu_mag_rtk.printed_eq8_quat([0.0, 0.0]), "hpr"),
+    ("printed_eq18_gamma", lambda: mimu_mag_rtk.printed_eq18_gamma(_Q, -1.0), "dt"),
+    ("printed_eq20_jacobian", lambda: mimu_mag_rtk.printed_eq20_jacobian(_Q, [0.5, 1.0, 0.0]), "b"),
+    ("printed_eq2_arctan", lambda: mimu_mag_rtk.printed_eq2_arctan(np.zeros(4)), "q"),
+    ("printed_eq6", lambda: mimu_mag_rtk.printed_eq6(_Q, [0.0, 1.0]), "b"),
+    ("printed_eq12_mahony", lambda: mimu_mag_rtk.printed_eq12_mahony(_W, _F[:5], _M, 0.01, _Q), "f_b"),
+    ("printed_eq12_mahony", lambda: mimu_mag_rtk.printed_eq12_mahony(_W, _F, np.zeros((10, 3)), 0.01, _Q), "m_b"),
+    ("printed_eq12_mahony", lambda: mimu_mag_rtk.printed_eq12_mahony(_W, _F, _M, 0.0, _Q), "dt"),
     # found by tools/fuzz.py (issue 15, item 4): the zero quaternion was accepted
-    ("printed_eq2_roll", lambda: ahrs.printed_eq2_roll(np.zeros(4)), "q"),
-    ("printed_eq4", lambda: ahrs.printed_eq4(np.zeros(4)), "q"),
-    ("printed_eq18_gamma", lambda: ahrs.printed_eq18_gamma(np.zeros(4), 0.01), "q"),
-    ("printed_eq20_jacobian", lambda: ahrs.printed_eq20_jacobian(np.zeros(4), [0.0, 20.0, -40.0]), "q"),
+    ("printed_eq2_roll", lambda: mimu_mag_rtk.printed_eq2_roll(np.zeros(4)), "q"),
+    ("printed_eq4", lambda: mimu_mag_rtk.printed_eq4(np.zeros(4)), "q"),
+    ("printed_eq18_gamma", lambda: mimu_mag_rtk.printed_eq18_gamma(np.zeros(4), 0.01), "q"),
+    ("printed_eq20_jacobian", lambda: mimu_mag_rtk.printed_eq20_jacobian(np.zeros(4), [0.0, 20.0, -40.0]), "q"),
 ]
 NOT_APPLICABLE = {"AttitudeResult": "record returned by the filters",
                   "draw_fusion_structure": "a schematic for the chapter (tests/test_chapter_mimu_mag_rtk.py, tools/fuzz.py)"}
@@ -562,14 +580,15 @@ def test_bad_input_names_the_argument(name, call, arg):
         call()
 
 
-# moved to navlib.alignment / navlib.analysis, still covered here
+# in navlib.filters, navlib.imu, navlib.alignment and navlib.analysis, covered here
 MOVED_TO_CORE = {"tilt_heading", "initial_attitude", "settling_time", "mahony", "quaternion_kf", "MagGate", "AttitudeResult",
                  "magnetic_reference", "transition", "noise_input", "measurement_model", "measurement_jacobian",
-                 "fuse_rtk_heading", "rtk_at_imu_rate"}
+                 "fuse_rtk_heading", "rtk_at_imu_rate", "ImuSamples", "SensorLimits", "AttitudeGates", "RtkHeading",
+                 "KfNoise"}
 
 
 def test_every_public_callable_has_a_bad_input_case():
-    public = {n for n in ahrs.__all__ if callable(getattr(ahrs, n))} | MOVED_TO_CORE
+    public = {n for n in mimu_mag_rtk.__all__ if callable(getattr(mimu_mag_rtk, n))} | MOVED_TO_CORE
     assert public == {c[0] for c in BAD_CALLS} | set(NOT_APPLICABLE)
 
 
@@ -590,29 +609,39 @@ FUZZ = {
     "noise_input": (qkf.noise_input, dict(q=_Q, dt=0.01), (), ()),
     "measurement_model": (qkf.measurement_model, dict(q=_Q, b=B_REF), (), ()),
     "measurement_jacobian": (qkf.measurement_jacobian, dict(q=_Q, b=B_REF), (), ()),
-    "mahony": (mh.mahony, dict(w_ib_b=_W, f_b=_F, dt=0.01, q0=_Q, m_b=_M, kp=1.0, ki=0.02, B_n=B_N,
-                                 accel_tol=0.1, rtk_hold=0.25, full_scale_gyro=2.0, full_scale_accel=80.0, full_scale_mag=800.0,
-                                 gyro_jump=0.5), ("w_ib_b", "f_b", "m_b"), ("f_b", "m_b")),
-    "mahony/rtk": (mh.mahony, dict(w_ib_b=_W, f_b=_F, dt=np.full(_N, 0.01), q0=_Q, heading_rtk=np.full(_N, 0.5),
-                                     rtk_valid=_VALID, rtk_gate=0.3), ("w_ib_b", "f_b", "heading_rtk"), ("f_b",)),
-    "quaternion_kf": (qkf.quaternion_kf, dict(w_ib_b=_W, f_b=_F, dt=0.01, q0=_Q, m_b=_M, B_n=B_N, sigma_gyro=1e-3,
-                                               sigma_accel=0.02, sigma_mag=0.08, p0=1e-4),
-                      ("w_ib_b", "f_b", "m_b"), ("f_b", "m_b")),
-    "fuse_rtk_heading": (hf.fuse_rtk_heading, dict(heading_mag=np.zeros(_N), heading_rtk=np.full(_N, 0.5),
-                                                     rtk_valid=_VALID, dt=0.01, alpha=0.01, rtk_hold=0.25,
-                                                     rtk_gate=0.3), ("heading_rtk",), ()),
+    "ImuSamples": (ImuSamples, dict(w_ib_b=_W, f_b=_F, dt=0.01), ("w_ib_b", "f_b"), ()),
+    "ImuSamples/irregular": (ImuSamples, dict(w_ib_b=_W, f_b=_F, dt=np.full(_N, 0.01)), ("w_ib_b", "f_b"), ()),
+    "SensorLimits": (SensorLimits, dict(full_scale_gyro=2.0, full_scale_accel=80.0, full_scale_mag=800.0, gyro_jump=0.5),
+                     (), ("full_scale_gyro", "full_scale_accel", "full_scale_mag")),     # inf: no range
+    "mahony": (mh.mahony, dict(imu=ImuSamples(_W, _F, 0.01, SensorLimits(full_scale_gyro=2.0, full_scale_accel=80.0,
+                                                                          full_scale_mag=800.0, gyro_jump=0.5)),
+                               q0=_Q, m_b=_M, kp=1.0, ki=0.02, B_n=B_N, gates=AttitudeGates(accel_tol=0.1)),
+               ("m_b",), ("m_b",)),
+    "AttitudeGates": (AttitudeGates, dict(accel_tol=0.1, g=9.8), (), ()),
+    # the RTK reference through the filter that reads it (its arrays are checked there; the messages name them
+    # heading_rtk and rtk_valid)
+    "RtkHeading/mahony": (lambda heading_rtk, rtk_valid, **kw: mh.mahony(ImuSamples(_W, _F, np.full(_N, 0.01)), _Q,
+                                                                          rtk=RtkHeading(heading_rtk, rtk_valid, **kw)),
+                          dict(heading_rtk=np.full(_N, 0.5), rtk_valid=_VALID, hold=0.25, gate=0.3), ("heading_rtk",), ()),
+    "quaternion_kf": (qkf.quaternion_kf, dict(imu=ImuSamples(_W, _F, 0.01), q0=_Q, m_b=_M, B_n=B_N, kp=1.0, ki=0.02,
+                                               noise=KfNoise()), ("m_b",), ("m_b",)),
+    "KfNoise": (KfNoise, dict(sigma_gyro=1e-3, sigma_accel=0.02, sigma_mag=0.08, p0=1e-4), (), ()),
+    "fuse_rtk_heading": (lambda heading_mag, heading_rtk, rtk_valid, dt, alpha, **kw: hf.fuse_rtk_heading(
+                             heading_mag, RtkHeading(heading_rtk, rtk_valid, **kw), dt, alpha),
+                         dict(heading_mag=np.zeros(_N), heading_rtk=np.full(_N, 0.5), rtk_valid=_VALID, dt=0.01,
+                              alpha=0.01, hold=0.25, gate=0.3), ("heading_rtk",), ()),
     "rtk_at_imu_rate": (hf.rtk_at_imu_rate, dict(time=np.arange(_N, dtype=float), heading=np.zeros(_N),
                                                    valid=np.ones(_N, bool), step=2), ("heading",), ("heading",)),
-    "printed_eq2_roll": (ahrs.printed_eq2_roll, dict(q=_Q), (), ()),
-    "printed_eq4": (ahrs.printed_eq4, dict(q=_Q), (), ()),
-    "printed_eq5_tilt": (ahrs.printed_eq5_tilt, dict(f_b=[0.1, 0.2, 9.8]), (), ()),
-    "printed_eq7_heading": (ahrs.printed_eq7_heading, dict(m_h=[1.0, 2.0, 3.0]), (), ()),
-    "printed_eq8_quat": (ahrs.printed_eq8_quat, dict(hpr=[0.1, 0.2, 0.3]), (), ()),
-    "printed_eq18_gamma": (ahrs.printed_eq18_gamma, dict(q=_Q, dt=0.01), (), ()),
-    "printed_eq20_jacobian": (ahrs.printed_eq20_jacobian, dict(q=_Q, b=B_REF), (), ()),
-    "printed_eq2_arctan": (ahrs.printed_eq2_arctan, dict(q=_Q), (), ()),
-    "printed_eq6": (ahrs.printed_eq6, dict(q=_Q, b=B_REF), (), ()),
-    "printed_eq12_mahony": (ahrs.printed_eq12_mahony, dict(w_ib_b=_W, f_b=_F, m_b=_M, dt=0.01, q0=_Q, kp=1.0, ki=0.02),
+    "printed_eq2_roll": (mimu_mag_rtk.printed_eq2_roll, dict(q=_Q), (), ()),
+    "printed_eq4": (mimu_mag_rtk.printed_eq4, dict(q=_Q), (), ()),
+    "printed_eq5_tilt": (mimu_mag_rtk.printed_eq5_tilt, dict(f_b=[0.1, 0.2, 9.8]), (), ()),
+    "printed_eq7_heading": (mimu_mag_rtk.printed_eq7_heading, dict(m_h=[1.0, 2.0, 3.0]), (), ()),
+    "printed_eq8_quat": (mimu_mag_rtk.printed_eq8_quat, dict(hpr=[0.1, 0.2, 0.3]), (), ()),
+    "printed_eq18_gamma": (mimu_mag_rtk.printed_eq18_gamma, dict(q=_Q, dt=0.01), (), ()),
+    "printed_eq20_jacobian": (mimu_mag_rtk.printed_eq20_jacobian, dict(q=_Q, b=B_REF), (), ()),
+    "printed_eq2_arctan": (mimu_mag_rtk.printed_eq2_arctan, dict(q=_Q), (), ()),
+    "printed_eq6": (mimu_mag_rtk.printed_eq6, dict(q=_Q, b=B_REF), (), ()),
+    "printed_eq12_mahony": (mimu_mag_rtk.printed_eq12_mahony, dict(w_ib_b=_W, f_b=_F, m_b=_M, dt=0.01, q0=_Q, kp=1.0, ki=0.02),
                             (), ()),
     "MagGate": (obs.MagGate, dict(norm_tol=0.1, dip_tol=0.05), (), ()),
 }
@@ -633,8 +662,9 @@ def _variants(value, nan_ok, inf_ok):
     return out
 
 
+RECORDS = (str, ImuSamples, SensorLimits, AttitudeGates, RtkHeading, KfNoise)   # fuzzed by their own entries
 FUZZ_CASES = [(fn, arg, kind, bad) for fn, (_, good, nan_ok, inf_ok) in FUZZ.items() for arg in good
-              if not isinstance(good[arg], str)
+              if not isinstance(good[arg], RECORDS)
               for kind, bad in _variants(good[arg], arg in nan_ok, arg in inf_ok)
               if not (kind == "shape" and fn == "settling_time" and arg == "error")]   # (trials, N) is valid
 
@@ -653,19 +683,26 @@ def test_fuzz_bad_input_names_the_argument(fn, arg, kind, bad):
 
 
 OUT_OF_RANGE = [
-    ("mahony", lambda: mh.mahony(_W, _F, np.full(_N, -0.01), _Q, m_b=_M), "dt"),
-    ("mahony", lambda: mh.mahony(_W, _F, np.full(_N - 1, 0.01), _Q, m_b=_M), "dt"),
-    ("mahony", lambda: mh.mahony(_W, _F, 0.01, _Q, heading_rtk=np.zeros(_N), rtk_valid=_VALID, rtk_gate=4.0), "rtk_gate"),
-    ("mahony", lambda: mh.mahony(_W, _F, 0.01, _Q, heading_rtk=np.zeros(_N), rtk_valid=_VALID, rtk_confirm=0), "rtk_confirm"),
-    ("mahony", lambda: mh.mahony(_W, _F, 0.01, _Q, m_b=_M, full_scale_gyro=-1.0), "full_scale_gyro"),
-    ("mahony", lambda: mh.mahony(_W, _F, 0.01, _Q, m_b=_M, gyro_jump=0.0), "gyro_jump"),
-    ("mahony", lambda: mh.mahony(_W, _F, 0.01, _Q, m_b=_M, rtk_hold=-1.0), "rtk_hold"),
-    ("mahony", lambda: mh.mahony(_W, _F, 0.01, _Q, m_b=_M, gate="tight"), "gate"),
-    ("quaternion_kf", lambda: qkf.quaternion_kf(_W, _F, 0.01, _Q, m_b=_M, B_n=B_N, keep_cov="yes"), "keep_cov"),
-    ("quaternion_kf", lambda: qkf.quaternion_kf(_W, _F, 0.01, _Q, m_b=_M, B_n=B_N, p0=-1.0), "p0"),
-    ("fuse_rtk_heading", lambda: hf.fuse_rtk_heading(np.zeros(_N), np.full(_N, 7.0), _VALID, 0.01), "heading_rtk"),
-    ("fuse_rtk_heading", lambda: hf.fuse_rtk_heading(np.zeros(_N), np.zeros(_N), _VALID, 0.01, rtk_confirm=1.5),
-     "rtk_confirm"),
+    ("ImuSamples", lambda: ImuSamples(_W, _F, np.full(_N, -0.01)), "dt"),
+    ("ImuSamples", lambda: ImuSamples(_W, _F, np.full(_N - 1, 0.01)), "dt"),
+    ("ImuSamples", lambda: ImuSamples(_W, _F, 0.01, limits=dict(full_scale_gyro=2.0)), "limits"),
+    ("RtkHeading", lambda: RtkHeading(np.zeros(_N), _VALID, gate=4.0), "gate"),
+    ("RtkHeading", lambda: RtkHeading(np.zeros(_N), _VALID, confirm=0), "confirm"),
+    ("RtkHeading", lambda: RtkHeading(np.zeros(_N), _VALID, hold=-1.0), "hold"),
+    ("SensorLimits", lambda: SensorLimits(full_scale_gyro=-1.0), "full_scale_gyro"),
+    ("SensorLimits", lambda: SensorLimits(gyro_jump=0.0), "gyro_jump"),
+    ("mahony", lambda: mh.mahony(ImuSamples(_W, _F, 0.01), _Q, m_b=_M, gates="tight"), "gates"),
+    ("mahony", lambda: mh.mahony(ImuSamples(_W, _F, 0.01), _Q, rtk=(np.zeros(_N), _VALID)), "rtk"),
+    ("mahony", lambda: mh.mahony(_W, _Q, m_b=_M), "imu"),
+    ("AttitudeGates", lambda: AttitudeGates(mag="tight"), "mag"),
+    ("quaternion_kf", lambda: qkf.quaternion_kf(ImuSamples(_W, _F, 0.01), _Q, m_b=_M, B_n=B_N, keep_cov="yes"), "keep_cov"),
+    ("quaternion_kf", lambda: qkf.quaternion_kf(ImuSamples(_W, _F, 0.01), _Q, m_b=_M, B_n=B_N, noise=1e-3), "noise"),
+    ("KfNoise", lambda: KfNoise(p0=-1.0), "p0"),
+    ("fuse_rtk_heading", lambda: hf.fuse_rtk_heading(np.zeros(_N), RtkHeading(np.full(_N, 7.0), _VALID), 0.01),
+     "heading_rtk"),
+    ("fuse_rtk_heading", lambda: hf.fuse_rtk_heading(np.zeros(_N), RtkHeading(np.zeros(_N), _VALID, confirm=1.5), 0.01),
+     "confirm"),
+    ("fuse_rtk_heading", lambda: hf.fuse_rtk_heading(np.zeros(_N), np.zeros(_N), 0.01), "rtk"),
     ("rtk_at_imu_rate", lambda: hf.rtk_at_imu_rate(np.arange(10.0), np.zeros(10), np.ones(10), 2), "valid"),
     ("settling_time", lambda: analysis.settling_time(np.arange(10.0), np.ones(10), "2", 1.0), "start"),
     ("MagGate", lambda: obs.MagGate(dip_tol=np.inf), "dip_tol"),
@@ -679,15 +716,15 @@ def test_out_of_range_values_name_the_argument(name, call, arg):
 
 
 def test_every_public_callable_is_fuzzed():
-    public = {n for n in ahrs.__all__ if callable(getattr(ahrs, n))} | MOVED_TO_CORE
+    public = {n for n in mimu_mag_rtk.__all__ if callable(getattr(mimu_mag_rtk, n))} | MOVED_TO_CORE
     assert public == {k.split("/")[0] for k in FUZZ} | set(NOT_APPLICABLE)
 
 
 # --------------------------------------------------------------------------- gyro + accelerometer only
 
 @pytest.mark.parametrize("run", [
-    lambda w, f, q0: mh.mahony(w, f, DT, q0, kp=2.0),
-    lambda w, f, q0: qkf.quaternion_kf(w, f, DT, q0, kp=2.0),
+    lambda w, f, q0: mh.mahony(ImuSamples(w, f, DT), q0, kp=2.0),
+    lambda w, f, q0: qkf.quaternion_kf(ImuSamples(w, f, DT), q0, kp=2.0),
 ], ids=["mahony", "quaternion_kf"])
 def test_without_a_heading_reference_tilt_converges_and_heading_drifts_with_the_bias(run):
     rng = np.random.default_rng(7)
