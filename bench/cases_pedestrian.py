@@ -6,6 +6,7 @@ import numpy as np
 from bench.run import Result, best_times
 from navlib import attitude, sensors, trajectory, units
 from navlib.filters import zupt, zupt_ins
+from navlib.imu import ImuSamples
 
 LLA0 = [units.deg(30.55), units.deg(114.30), 20.0]
 DT = 0.01
@@ -34,8 +35,10 @@ def error_state_filter(quick: bool):
     H = zupt.zupt_zaru_matrix(C, np.zeros(3))
     Q, R = 1e-6 * np.eye(15), np.diag([1e-4] * 3 + [3e-6] * 3)
 
-    def navlib_run():
-        zupt_ins.run_filter(w, f, DT, LLA0, np.zeros(3), q0, static)
+    start = zupt_ins.Start(LLA0, q0)
+
+    def navlib_run():                                   # validation and screening included, as a user calls it
+        zupt_ins.run_filter(ImuSamples(w, f, DT), start, static)
 
     def filterpy_loop():
         # The same linear algebra per step (predict every step, update every 10th); the

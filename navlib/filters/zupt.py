@@ -39,7 +39,7 @@ from numpy.typing import NDArray
 from .. import analysis, attitude
 from .._kernels import fma
 from .._typing import Array, ArrayLike, Dcm, Vec3, Vec3Series
-from .._validate import as_array, as_dcm, positive, scalar
+from .._validate import as_array, as_dcm, imu_samples, positive, scalar
 from ..imu import ImuSamples, unpack
 from ..units import G0
 
@@ -86,15 +86,14 @@ def detect_static(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None
     -------
     static : ndarray of bool, shape (N,)
     """
-    held = isinstance(w_ib_b, ImuSamples)
-    w_ib_b, f_b, dt, _, _ = unpack(w_ib_b, f_b, dt)
-    if held:
-        dt = np.median(dt)                         # the nominal interval of its per-sample intervals
-    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
-    f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=True)
-    if w.ndim != 2 or f.shape != w.shape:
-        raise ValueError(f"f_b: expected the shape (N, 3) of w_ib_b {w.shape}, got {f.shape}")
-    dt = scalar(dt, "dt", positive=True)
+    w, f, dt, _, _ = unpack(w_ib_b, f_b, dt)
+    if isinstance(w_ib_b, ImuSamples):                # validated on construction
+        if w.ndim != 2:
+            raise ValueError(f"w_ib_b: expected one record of shape (N, 3), got {w.shape}")
+        dt = float(np.median(dt))                  # the nominal interval of its per-sample intervals
+    else:
+        w, f = imu_samples(w, f, shape=(None, 3))
+        dt = scalar(dt, "dt", positive=True)
     valid = np.isfinite(w).all(-1) & np.isfinite(f).all(-1)
     if not valid.all():
         w, f = np.where(valid[:, None], w, 0.0), np.where(valid[:, None], f, 0.0)
