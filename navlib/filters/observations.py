@@ -490,7 +490,7 @@ def pack(imu: ImuSamples, q0: Quat, m_b: ArrayLike | None, rtk: RtkHeading | Non
         m = np.zeros((1, 1, 3))
     codes = np.zeros((2, T, N), dtype=np.int8)
     run_trials(_gate, T, f, m, use_mag, limits, codes)
-    jump = flags["clock", "jump"].reshape(-1, N)[0]
+    jump = kernel_array(flags["clock", "jump"].reshape(-1, N)[0])
     found = {key: v for key, v in flags.items() if key[0] not in ("accel", "mag") or key[1] not in ("nan",)}
     observed = ~jump
     for i, sensor in enumerate(("accel", "mag")):
