@@ -100,6 +100,11 @@ def allan_deviation(x: ArrayLike, dt: float, taus: ArrayLike | None = None) -> t
     """
     x = as_array(x, "x")
     dt = scalar(dt, "dt", positive=True)
+    return _allan_deviation(x, dt, taus)
+
+
+def _allan_deviation(x: np.ndarray, dt: float, taus: ArrayLike | None) -> tuple[Array, Array]:
+    """:func:`allan_deviation` of a checked series and interval (also :func:`navlib.calibration.characterise`'s)."""
     one_series = x.ndim == 1
     if one_series:
         x = x[:, None]
@@ -231,8 +236,6 @@ def fit_allan(taus: ArrayLike, adev: ArrayLike, n_samples: int, dt: float, *, ra
         ``white`` (N), ``bias_instability`` (B), ``correlation_time`` (s) and
         ``rate_random_walk`` (K; 0 unless fitted), in the units of ``adev``.
     """
-    from scipy.optimize import least_squares  # noqa: PLC0415 -- imported on first use (see GM_ALLAN_PEAK)
-
     taus = positive(taus, "taus")
     adev = positive(adev, "adev")
     if taus.ndim != 1 or taus.size < 3:
@@ -240,6 +243,13 @@ def fit_allan(taus: ArrayLike, adev: ArrayLike, n_samples: int, dt: float, *, ra
     same_shape(adev, "adev", taus.shape, of="taus")
     n_samples = integer(n_samples, "n_samples")
     dt = scalar(dt, "dt", positive=True)
+    return _fit_allan(taus, adev, n_samples, dt, flag(rate_random_walk, "rate_random_walk"))
+
+
+def _fit_allan(taus: np.ndarray, adev: np.ndarray, n_samples: int, dt: float, rate_random_walk: bool) -> dict:
+    """:func:`fit_allan` of checked arguments (also :func:`navlib.calibration.characterise`'s)."""
+    from scipy.optimize import least_squares  # noqa: PLC0415 -- imported on first use (see GM_ALLAN_PEAK)
+
     w = np.sqrt(np.maximum(n_samples * dt / taus, 1.0))
     i_min = int(np.argmin(adev))
 
@@ -251,7 +261,7 @@ def fit_allan(taus: ArrayLike, adev: ArrayLike, n_samples: int, dt: float, *, ra
 
     p0 = [adev[0] * np.sqrt(taus[0]), adev[i_min], taus[i_min] / GM_ALLAN_PEAK_TAU]
     lb = [0.0, 0.0, taus[0] / 10]
-    if flag(rate_random_walk, "rate_random_walk"):
+    if rate_random_walk:
         p0.append(adev[-1] / np.sqrt(taus[-1]))
         lb.append(0.0)
     sol = least_squares(resid, p0, bounds=(lb, np.inf), x_scale=np.abs(p0) + 1e-300)
@@ -449,6 +459,11 @@ def moving_mean(x: ArrayLike, n: int) -> Array:
     n = integer(n, "n")
     if n > x.shape[0]:
         raise ValueError(f"n: expected a window of at most {x.shape[0]} samples (the length of x), got {n}")
+    return _moving_mean(x, n)
+
+
+def _moving_mean(x: np.ndarray, n: int) -> np.ndarray:
+    """:func:`moving_mean` of a checked series and window (1 <= n <= N)."""
     c = np.cumsum(np.concatenate([np.zeros((1,) + x.shape[1:]), x]), axis=0)
     valid = (c[n:] - c[:-n]) / n                       # windows starting at 0 .. N - n
     start = np.clip(np.arange(x.shape[0]) - n // 2, 0, x.shape[0] - n)

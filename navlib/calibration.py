@@ -585,10 +585,12 @@ def _fold_unobserved_peaks(terms: dict, tau_min: float, tau_max: float, rate_ran
     return (peak >= tau_min) & (peak <= tau_max)
 
 
-def _triad_noise(x: np.ndarray, dt: float, rate_random_walk: bool, confidence: float) -> TriadNoise:
+def _triad_noise(x: np.ndarray, dt: float, rate_random_walk: bool, confidence: float, name: str) -> TriadNoise:
     n = x.shape[0]
-    taus, adev = analysis.allan_deviation(x - x.mean(0), dt)
-    fits = [analysis.fit_allan(taus, adev[:, k], n, dt, rate_random_walk=rate_random_walk) for k in range(3)]
+    taus, adev = analysis._allan_deviation(x - x.mean(0), dt, None)            # x, dt checked by characterise
+    if not np.all(adev > 0):
+        raise ValueError(f"{name}: an axis without noise (a constant record) has no noise terms to characterise")
+    fits = [analysis._fit_allan(taus, adev[:, k], n, dt, rate_random_walk) for k in range(3)]
     terms = {key: np.array([f[key] for f in fits]) for key in fits[0]}
     observed = _fold_unobserved_peaks(terms, taus[0], taus[-1], rate_random_walk)
 
@@ -653,5 +655,5 @@ def characterise(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None,
     dt = _fixed_interval(dt, n)
     rate_random_walk = flag(rate_random_walk, "rate_random_walk")
     confidence = scalar(confidence, "confidence", within=(0.0, 1.0), open_ends=(True, True))
-    return NoiseCharacterisation(_triad_noise(w, dt, rate_random_walk, confidence),
-                                 _triad_noise(f, dt, rate_random_walk, confidence), dt, n, confidence)
+    return NoiseCharacterisation(_triad_noise(w, dt, rate_random_walk, confidence, "w_ib_b"),
+                                 _triad_noise(f, dt, rate_random_walk, confidence, "f_b"), dt, n, confidence)

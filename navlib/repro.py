@@ -153,6 +153,11 @@ def build_dir(notebook: str | None = None) -> Path:
         raise ValueError(f"notebook: expected a notebook name (str), got {type(notebook).__name__}")
     if notebook and ("/" in notebook or "\\" in notebook or notebook in (".", "..")):
         raise ValueError(f"notebook: expected a plain notebook name, got {notebook!r}")
+    return _build_dir(notebook)
+
+
+def _build_dir(notebook: str | None) -> Path:
+    """:func:`build_dir` of a checked notebook name (the one :func:`setup` recorded)."""
     env = os.environ.get("NAVLIB_BUILD_DIR")
     d = _state.out_dir if _state.out_dir is not None else Path(env).resolve() if env else root() / "build"
     if notebook:
@@ -197,7 +202,7 @@ def setup(notebook: str, *, paper: str | None = None, out_dir: str | os.PathLike
     _state.catalogue = None
     _state.teaching = _state.fast = False
     _state.shown_checks = _state.shown_verdicts = 0
-    d = build_dir(notebook)
+    d = _build_dir(notebook)
     (d / "results.json").unlink(missing_ok=True)
     if flag(style, "style"):
         plt.rcdefaults()
@@ -237,7 +242,7 @@ def savefig(fig: Figure, name: str) -> Path:
         raise ValueError(f"fig: expected a matplotlib Figure, got {type(fig).__name__}")
     if not isinstance(name, str) or not name or "/" in name or "\\" in name:
         raise ValueError(f"name: expected a plain file name without directories, got {name!r}")
-    d = build_dir(_state.notebook) / "figures"
+    d = _build_dir(_state.notebook) / "figures"
     d.mkdir(exist_ok=True)
     path = d / f"{name}.png"
     fig.savefig(path, metadata={"Software": None}, bbox_inches="tight")
@@ -545,7 +550,7 @@ def _write() -> None:
     text = json.dumps(data, indent=1, allow_nan=True)
     text = text.replace('"\\u0000checks"', _rows([_state.encoded["check", c.name] for c in _state.checks]))
     text = text.replace('"\\u0000verdicts"', _rows([_state.encoded["verdict", v.claim] for v in _state.verdicts]))
-    (build_dir(_state.notebook) / "results.json").write_text(text + "\n")
+    (_build_dir(_state.notebook) / "results.json").write_text(text + "\n")
 
 
 def _encode(row: dict) -> str:

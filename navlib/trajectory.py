@@ -162,7 +162,12 @@ def static(duration: float, dt: float, lla0, hpr) -> Trajectory:
 
 def smooth_ramp(x):
     """``x - sin(2 pi x) / (2 pi)`` on [0, 1]: 0 to 1 with zero slope at both ends."""
-    x = np.clip(as_array(x, "x"), 0.0, 1.0)
+    return _ramp(as_array(x, "x"))
+
+
+def _ramp(x: np.ndarray) -> np.ndarray:
+    """:func:`smooth_ramp` of a checked array (the legs' local times)."""
+    x = np.clip(x, 0.0, 1.0)
     return x - np.sin(2 * np.pi * x) / (2 * np.pi)
 
 
@@ -199,7 +204,7 @@ def reciprocating_rotation(duration: float, dt: float, lla0, hpr0, axis_b, ampli
     if rotation_time >= period:
         raise ValueError(f"rotation_time: expected less than period={period}, got {rotation_time}")
     k = np.floor(t / period)
-    s = smooth_ramp((t - k * period - (period - rotation_time)) / rotation_time)
+    s = _ramp((t - k * period - (period - rotation_time)) / rotation_time)
     start = np.where(k % 2 == 0, 0.0, 1.0)
     alpha = amplitude * (start + (1 - 2 * start) * s)
     q0 = attitude.euler_to_quat(as_array(hpr0, "hpr0", shape=(3,)))
@@ -272,7 +277,7 @@ def vehicle(segments, dt: float, lla0, heading0: float, ellipsoid: earth.Ellipso
     speed, heading, pitch, roll = (np.empty(t.size) for _ in range(4))
     cur = {"speed": 0.0, "heading": float(heading0), "pitch": 0.0, "roll": 0.0}
     for seg, (m, tau) in zip(segments, _on_grid(t, [s.duration for s in segments]), strict=True):
-        r = smooth_ramp(tau / seg.duration)
+        r = _ramp(tau / seg.duration)
         targets = {"speed": seg.speed, "heading": cur["heading"] + seg.turn, "pitch": seg.pitch, "roll": seg.roll}
         for key, arr in (("speed", speed), ("heading", heading), ("pitch", pitch), ("roll", roll)):
             new = cur[key] if targets[key] is None else float(targets[key])
@@ -375,8 +380,8 @@ def _schedule(legs, t, ramp):
     v_prev, psi, h = 0.0, 0.0, 0.0
     for leg, (m, tau) in zip(legs, _on_grid(t, [leg.duration for leg in legs]), strict=True):
         r = min(ramp, leg.duration)
-        speed[m] = v_prev + (leg.speed - v_prev) * smooth_ramp(tau / r)
-        frac = smooth_ramp(tau / leg.duration)
+        speed[m] = v_prev + (leg.speed - v_prev) * _ramp(tau / r)
+        frac = _ramp(tau / leg.duration)
         turn[m] = psi + leg.turn * frac
         climb[m] = h + leg.climb * frac
         static[m] = (leg.speed == 0) & ((v_prev == 0) | (tau >= r - 1e-9))
