@@ -84,7 +84,7 @@ import numpy as np
 
 from .. import attitude
 from .._typing import Angles, Array, Interval, Quat, Vec3, Vec3Series
-from .._validate import as_quat, euler_angles, nonempty_array, scalar
+from .._validate import as_array, as_quat, euler_angles, scalar
 from ..filters.quaternion_kf import measurement_jacobian, noise_input
 
 __all__ = ["printed_eq2_roll", "printed_eq2_arctan", "printed_eq4", "printed_eq5_tilt", "printed_eq6",
@@ -109,7 +109,7 @@ def printed_eq2_arctan(q: Quat) -> Array:
     loss of ``arctan`` shows: heading and roll come back within (-90 deg, 90 deg), and a pitch argument
     that rounding pushes past 1 (at +-90 deg pitch) gives NaN. Returns ``[heading, pitch, roll]``.
     """
-    q0, q1, q2, q3 = np.moveaxis(as_quat(nonempty_array(q, "q", tail=(4,)), "q"), -1, 0)   # as_quat alone takes huge values
+    q0, q1, q2, q3 = np.moveaxis(as_quat(as_array(q, "q", tail=(4,), nonempty=True), "q"), -1, 0)   # as_array: no huge q
     with np.errstate(invalid="ignore", divide="ignore"):
         pitch = np.arcsin(2 * (q0 * q1 + q2 * q3))
         roll = np.arctan(2 * (q0 * q2 - q1 * q3) / (1 - 2 * (q1 ** 2 + q2 ** 2)))
@@ -128,7 +128,7 @@ def printed_eq5_tilt(f_b: Vec3) -> tuple[Array, Array]:
 
     Returns (pitch, roll).
     """
-    a = nonempty_array(f_b, "f_b", tail=(3,))
+    a = as_array(f_b, "f_b", tail=(3,), nonempty=True)
     return np.arctan(-a[..., 1] / a[..., 2]), np.arctan(a[..., 0] / np.hypot(a[..., 1], a[..., 2]))
 
 
@@ -137,8 +137,8 @@ def printed_eq6(q: Quat, b: Vec3) -> Array:
 
     ``b = [0, b_y, b_z]`` is the reference field (Eq. 3); its east component is not used, as in the paper.
     """
-    q0, q1, q2, q3 = np.moveaxis(as_quat(nonempty_array(q, "q", tail=(4,)), "q", normalize=False), -1, 0)
-    b = nonempty_array(b, "b", tail=(3,))
+    q0, q1, q2, q3 = np.moveaxis(as_quat(q, "q", normalize=False, nonempty=True), -1, 0)
+    b = as_array(b, "b", tail=(3,), nonempty=True)
     by, bz = b[..., 1], b[..., 2]
     return np.stack([2 * (q1 * q2 + q0 * q3) * by + 2 * (q1 * q3 - q0 * q2) * bz,
                      (q0 ** 2 - q1 ** 2 + q2 ** 2 - q3 ** 2) * by + 2 * (q2 * q3 + q0 * q1) * bz,
@@ -147,7 +147,7 @@ def printed_eq6(q: Quat, b: Vec3) -> Array:
 
 def printed_eq7_heading(m_h: Vec3) -> Array:
     """Eq. (7) as printed, ``atan(m_x / m_y)`` of the levelled field (the CCW yaw, E003-08)."""
-    m = nonempty_array(m_h, "m_h", tail=(3,))
+    m = as_array(m_h, "m_h", tail=(3,), nonempty=True)
     return np.arctan(m[..., 0] / m[..., 1])
 
 
@@ -170,9 +170,9 @@ def printed_eq12_mahony(w_ib_b: Vec3Series, f_b: Vec3Series, m_b: Vec3Series, dt
     first-order update), one trial, written per sample in plain Python: the reversed order negates
     the error, so the correction drives the estimate away from the measurements.
     """
-    w = nonempty_array(w_ib_b, "w_ib_b", shape=(None, 3))
-    f = nonempty_array(f_b, "f_b", shape=(None, 3))
-    m = nonempty_array(m_b, "m_b", shape=(None, 3))
+    w = as_array(w_ib_b, "w_ib_b", shape=(None, 3), nonempty=True)
+    f = as_array(f_b, "f_b", shape=(None, 3), nonempty=True)
+    m = as_array(m_b, "m_b", shape=(None, 3), nonempty=True)
     for name, x in (("f_b", f), ("m_b", m)):
         if x.shape != w.shape:
             raise ValueError(f"{name}: expected the shape of w_ib_b {w.shape}, got {x.shape}")
@@ -180,7 +180,7 @@ def printed_eq12_mahony(w_ib_b: Vec3Series, f_b: Vec3Series, m_b: Vec3Series, dt
             raise ValueError(f"{name}: expected non-zero vectors")
     dt = scalar(dt, "dt", positive=True)
     kp, ki = scalar(kp, "kp", positive=True, allow_zero=True), scalar(ki, "ki", positive=True, allow_zero=True)
-    a, b, c, d = (float(x) for x in as_quat(nonempty_array(q0, "q0", shape=(4,)), "q0"))
+    a, b, c, d = (float(x) for x in as_quat(as_array(q0, "q0", shape=(4,)), "q0"))
     ix = iy = iz = 0.0
     out = np.empty((len(w), 4))
     for k, ((gx, gy, gz), (ax, ay, az), (mx, my, mz)) in enumerate(zip(w.tolist(), f.tolist(), m.tolist(), strict=True)):

@@ -99,6 +99,7 @@ from scipy.special import ndtr
 from .. import attitude, earth, plots, robust, strapdown
 from .._typing import Angles, Array, ArrayLike, Dcm, Interval, Times, Vec3, Vec3Series
 from .._validate import (
+    as_array,
     as_dcm,
     axes,
     broadcast,
@@ -111,12 +112,11 @@ from .._validate import (
     integer,
     intervals,
     pitch_roll,
+    positive,
     range_limit,
     scalar,
     time_axis,
 )
-from .._validate import nonempty_array as as_array
-from .._validate import nonempty_positive as positive
 from ..alignment import gyrocompass_latitude, level, static_means, triad, triad_heading
 from ..imu import ImuSamples, unpack
 from ..trajectory import Segment
@@ -157,7 +157,7 @@ def tilt_from_accel(f_b: Vec3, g: float | None = None) -> tuple[Array, Array]:
     if g is None:
         return pitch, roll
     f_y = np.asarray(f_b, dtype=float)[..., 1]
-    return np.arcsin(np.clip(f_y / positive(g, "g"), -1.0, 1.0)), roll
+    return np.arcsin(np.clip(f_y / positive(g, "g", nonempty=True), -1.0, 1.0)), roll
 
 
 # --------------------------------------------------------------------------
@@ -215,9 +215,9 @@ def heading_candidates(w_y: ArrayLike, f_b: Vec3, lat: float, h: float = 0.0) ->
     -------
     Candidates
     """
-    w_y = as_array(w_y, "w_y")
+    w_y = as_array(w_y, "w_y", nonempty=True)
     lat = gyrocompass_latitude(lat)
-    pitch, _ = tilt_from_accel(f_b, earth.gravity(lat, as_array(h, "h")))   # as_array: gravity takes an empty h
+    pitch, _ = tilt_from_accel(f_b, earth.gravity(lat, as_array(h, "h", nonempty=True)))   # as_array: gravity takes an empty h
     cos_h = (w_y - OMEGA_IE * np.sin(lat) * np.sin(pitch)) / (OMEGA_IE * np.cos(lat) * np.cos(pitch))
     clipped = np.abs(cos_h) > 1.0
     alpha = np.arccos(np.clip(cos_h, -1.0, 1.0))
@@ -237,7 +237,7 @@ def nearest_candidate_error(pair: ArrayLike, heading: Angles) -> Array:
     heading : array_like, broadcasting to (...)
         True headings (rad).
     """
-    return _nearest_error(as_array(pair, "pair", tail=(2,)), as_array(heading, "heading"))
+    return _nearest_error(as_array(pair, "pair", tail=(2,), nonempty=True), as_array(heading, "heading", nonempty=True))
 
 
 def _nearest_error(pair: np.ndarray, heading: np.ndarray) -> np.ndarray:
@@ -296,9 +296,9 @@ def resolve(pair1: ArrayLike, pair2: ArrayLike, dpsi_ins: Angles, wrap: bool = T
     -------
     Resolution
     """
-    p1, p2 = broadcast(as_array(pair1, "pair1", tail=(2,)), as_array(pair2, "pair2", tail=(2,)), name="pair2",
-                       of="pair1, pair2")
-    ins = as_array(dpsi_ins, "dpsi_ins")
+    p1, p2 = broadcast(as_array(pair1, "pair1", tail=(2,), nonempty=True),
+                       as_array(pair2, "pair2", tail=(2,), nonempty=True), name="pair2", of="pair1, pair2")
+    ins = as_array(dpsi_ins, "dpsi_ins", nonempty=True)
     cands = (p2[..., :, None] - p1[..., None, :]).reshape(p2.shape[:-1] + (4,))
     cands, ins = np.broadcast_arrays(cands, ins[..., None])
     diff = cands - ins
@@ -337,7 +337,7 @@ def triad_heading_error(C_bn: Dcm, dw_b: Vec3, lat: float) -> Array:
     ndarray, shape (...)  (rad)
     """
     C = as_dcm(C_bn)
-    dw = as_array(dw_b, "dw_b", tail=(3,))
+    dw = as_array(dw_b, "dw_b", tail=(3,), nonempty=True)
     dw_east = np.einsum("...j,...j->...", C[..., 0, :], dw)
     return -dw_east / (OMEGA_IE * np.cos(gyrocompass_latitude(lat)))
 
@@ -348,12 +348,12 @@ def triad_heading_std(sigma_gyro: float, lat: float) -> Array:
     ``sigma_gyro`` (rad/s) is the std of each horizontal gyro error (equal and
     uncorrelated, as the paper assumes); independent of heading.
     """
-    s = positive(sigma_gyro, "sigma_gyro", allow_zero=True)
+    s = positive(sigma_gyro, "sigma_gyro", allow_zero=True, nonempty=True)
     return s / (OMEGA_IE * np.cos(gyrocompass_latitude(lat)))
 
 
 def _pitch(pitch):
-    return in_range(as_array(pitch, "pitch"), "pitch", -np.pi / 2, np.pi / 2, "rad", lo_open=True, hi_open=True)
+    return in_range(as_array(pitch, "pitch", nonempty=True), "pitch", -np.pi / 2, np.pi / 2, "rad", lo_open=True, hi_open=True)
 
 
 def single_axis_heading_std(heading: Angles, sigma_gyro: float, lat: float, pitch: Angles = 0.0, sigma_accel: float = 0.0,
@@ -381,12 +381,12 @@ def single_axis_heading_std(heading: Angles, sigma_gyro: float, lat: float, pitc
     g : float, optional
         Gravity (m/s^2); normal gravity at ``lat`` by default.
     """
-    psi = as_array(heading, "heading")
+    psi = as_array(heading, "heading", nonempty=True)
     th = _pitch(pitch)
-    s_g = positive(sigma_gyro, "sigma_gyro", allow_zero=True)
-    s_a = positive(sigma_accel, "sigma_accel", allow_zero=True)
+    s_g = positive(sigma_gyro, "sigma_gyro", allow_zero=True, nonempty=True)
+    s_a = positive(sigma_accel, "sigma_accel", allow_zero=True, nonempty=True)
     lat = gyrocompass_latitude(lat)
-    g = earth.gravity(lat) if g is None else positive(g, "g")
+    g = earth.gravity(lat) if g is None else positive(g, "g", nonempty=True)
     s_th = s_a / (g * np.cos(th))
     coupling = OMEGA_IE * (np.sin(lat) * np.cos(th) - np.cos(lat) * np.sin(th) * np.cos(psi))
     with np.errstate(divide="ignore"):
@@ -412,12 +412,12 @@ def single_axis_heading_error(heading: Angles, pitch: Angles, lat: float, dw_y: 
     g : float, optional
         Gravity (m/s^2); normal gravity at ``lat`` by default.
     """
-    psi = as_array(heading, "heading")
+    psi = as_array(heading, "heading", nonempty=True)
     th = _pitch(pitch)
-    dw = as_array(dw_y, "dw_y")
-    df = as_array(df_y, "df_y")
+    dw = as_array(dw_y, "dw_y", nonempty=True)
+    df = as_array(df_y, "df_y", nonempty=True)
     lat = gyrocompass_latitude(lat)
-    g = earth.gravity(lat) if g is None else positive(g, "g")
+    g = earth.gravity(lat) if g is None else positive(g, "g", nonempty=True)
     d_th = df / (g * np.cos(th))
     coupling = OMEGA_IE * (np.sin(lat) * np.cos(th) - np.cos(lat) * np.sin(th) * np.cos(psi))
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -484,7 +484,7 @@ def clipped_single_axis_theory(heading: Angles, sigma_gyro: float, lat: float, p
     -------
     ClippedTheory
     """
-    psi, th = np.broadcast_arrays(as_array(heading, "heading"), _pitch(pitch))
+    psi, th = np.broadcast_arrays(as_array(heading, "heading", nonempty=True), _pitch(pitch))
     s_g = scalar(sigma_gyro, "sigma_gyro", positive=True)
     s_a = scalar(sigma_accel, "sigma_accel", allow_zero=True)
     lat = gyrocompass_latitude(scalar(lat, "lat"))
@@ -552,8 +552,8 @@ def simulate_static_outputs(hpr: Angles, lat: float, n_trials: int, sigma_gyro: 
 
 
 def _bias(x, name):
-    b = as_array(x, name)
-    return b if b.ndim == 0 else as_array(b, name, tail=(3,))
+    b = as_array(x, name, nonempty=True)
+    return b if b.ndim == 0 else as_array(b, name, tail=(3,), nonempty=True)
 
 
 @dataclass(frozen=True)
@@ -592,9 +592,9 @@ def monte_carlo(headings: Angles, pitch: float, roll: float, lat: float, n_trial
     -------
     MonteCarlo
     """
-    psi = as_array(headings, "headings", shape=(None,))
-    th = float(_pitch(scalar(pitch, "pitch")))
-    ro = scalar(in_range(as_array(roll, "roll"), "roll", -np.pi, np.pi, "rad"), "roll")
+    psi = as_array(headings, "headings", shape=(None,), nonempty=True)
+    th = scalar(pitch, "pitch", within=(-np.pi / 2, np.pi / 2), open_ends=(True, True))
+    ro = scalar(roll, "roll", within=(-np.pi, np.pi))
     hpr = np.stack(np.broadcast_arrays(psi, th, ro), -1)
     w, f = simulate_static_outputs(hpr, lat, n_trials, sigma_gyro, sigma_accel, rng)
     C_raw = triad(f, w, lat, orthonormal=False)
@@ -632,8 +632,8 @@ def pair_probabilities(heading1: Angles, heading2: Angles, sigma_ins: ArrayLike)
         ``[true pair, position 1 swapped, position 2 swapped, both swapped]``;
         heading 2 is wrong in the last two (by 2 dist(psi2, {0, pi})).
     """
-    p1, p2 = as_array(heading1, "heading1"), as_array(heading2, "heading2")
-    sigma = positive(sigma_ins, "sigma_ins")
+    p1, p2 = as_array(heading1, "heading1", nonempty=True), as_array(heading2, "heading2", nonempty=True)
+    sigma = positive(sigma_ins, "sigma_ins", nonempty=True)
     p1, p2, sigma = np.broadcast_arrays(p1, p2, sigma)
     shifts = attitude.wrap_pi(np.stack([np.zeros_like(p1), 2 * p1, -2 * p2, -2 * (p2 - p1)], -1))
     # periodic images so that every Voronoi arc is bounded on both sides
@@ -693,7 +693,7 @@ def stop_and_go(headings: Angles, stop_duration: float, drive_duration: float, s
     stops : ndarray, shape (S, 2)
         Start and end time of each stop (s).
     """
-    psi = as_array(headings, "headings", shape=(None,))
+    psi = as_array(headings, "headings", shape=(None,), nonempty=True)
     if psi.size < 2:
         raise ValueError(f"headings: expected a 1-D array of >= 2 stops, got {psi.shape}")
     th, ro = pitch_roll(as_array(pitches, "pitches", shape=psi.shape, of="headings: one per stop"),
@@ -790,7 +790,7 @@ def stop_solutions(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = Non
         t = time_axis(time, "time")
         if t.size != n:
             raise ValueError(f"time: expected {n} sample times, got {t.size}")
-        tw = as_array(windows, "windows")
+        tw = as_array(windows, "windows", nonempty=True)
         if tw.ndim != 2 or tw.shape[1] != 2 or np.any(tw[:, 1] <= tw[:, 0]):
             raise ValueError(f"windows: expected (S, 2) [start, end) times in s with end > start, got {tw.tolist()}")
         win = np.searchsorted(t, tw, side="left")
@@ -902,7 +902,7 @@ def ins_heading_change(w_ib_b: Vec3Series | ImuSamples, f_start: Vec3, dt: Inter
     step = float(dts[0]) if np.all(dts == dts[0]) else float(dts.mean())
     max_gap = scalar(max_gap, "max_gap", allow_zero=True)
     fs = range_limit(full_scale_gyro, "full_scale_gyro")
-    pitch, roll = level(broadcast_to(as_array(f_start, "f_start", tail=(3,)), "f_start", w.shape[:-2] + (3,),
+    pitch, roll = level(broadcast_to(as_array(f_start, "f_start", tail=(3,), nonempty=True), "f_start", w.shape[:-2] + (3,),
                                      of="the trials of w_ib_b"))
     with np.errstate(invalid="ignore"):
         saturated = np.any(np.abs(w) >= fs, (-2, -1))               # NaN compares False

@@ -102,8 +102,8 @@ def carpark_legs(speed: float = 1.2, stops=(8.0, 5.0, 20.0, 10.0, 6.0, 15.0, 30.
     seconds of standing (calibration, pressure reference).
     """
     speed = scalar(speed, "speed", positive=True)
-    stops = positive(as_array(stops, "stops", shape=(None,), min_ndim=1), "stops")
-    a, b = positive(as_array(side, "side", shape=(2,)), "side")
+    stops = positive(stops, "stops", shape=(None,), min_ndim=1)
+    a, b = positive(side, "side", shape=(2,))
     n_loops = integer(n_loops, "n_loops")
     legs, k = [Leg(scalar(initial_stand, "initial_stand", positive=True))], 0
     corner = 3.0 * 2 / 3 * speed                       # path length of a corner (m)

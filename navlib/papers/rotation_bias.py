@@ -97,23 +97,22 @@ from .. import _kernels, attitude, earth, kalman, robust
 from .._kernels import wrap_pi
 from .._typing import Angles, Array, ArrayLike, Interval, Vec3, Vec3Series
 from .._validate import (
+    as_array,
     axes,
     broadcast_to,
     euler_angles,
     flag,
     imu_samples,
-    in_range,
     integer,
     intervals,
     kernel_array,
+    positive,
     range_limit,
     same_shape,
     scalar,
     small_turns,
     time_axis,
 )
-from .._validate import nonempty_array as as_array
-from .._validate import nonempty_positive as positive
 from ..alignment import level
 from ..analysis import condition_number, cramer_rao_bound, normal_condition
 from ..euler import PITCH_LIMIT, check_pitch
@@ -149,7 +148,7 @@ def gravity_body(tilt: ArrayLike, g: float = G0) -> Array:
     a_m : ndarray, shape (..., 3)
         Equals ``-f_b`` of a static accelerometer (erratum E001-03).
     """
-    tilt = as_array(tilt, "tilt", tail=(2,))
+    tilt = as_array(tilt, "tilt", tail=(2,), nonempty=True)
     g = scalar(g, "g", positive=True)
     r, p = tilt[..., 0], tilt[..., 1]
     return g * np.stack([np.cos(p) * np.sin(r), -np.sin(p), -np.cos(p) * np.cos(r)], -1)
@@ -187,7 +186,7 @@ def tilt_matrix(tilt: ArrayLike) -> Array:
     M : ndarray, shape (..., 2, 3)
         Its null space is the body vertical ``a_m`` (section 3.1).
     """
-    tilt = as_array(tilt, "tilt", tail=(2,))
+    tilt = as_array(tilt, "tilt", tail=(2,), nonempty=True)
     check_pitch(tilt[..., 1], "tilt[..., 1] (pitch)")
     r, p = tilt[..., 0], tilt[..., 1]
     tp, cr, sr = np.tan(p), np.cos(r), np.sin(r)
@@ -221,7 +220,7 @@ def rodrigues(axis_b: Vec3, angle: Angles) -> Array:
     dR : ndarray, shape (..., 3, 3)
     """
     u = _unit_axis(axis_b)
-    a = as_array(angle, "angle")[..., None, None]
+    a = as_array(angle, "angle", nonempty=True)[..., None, None]
     return np.cos(a) * np.eye(3) + np.sin(a) * attitude.skew(u) + (1 - np.cos(a)) * np.outer(u, u)
 
 
@@ -574,11 +573,11 @@ def tilt_residuals(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = Non
     if starts.ndim != 1 or starts.size == 0 or not np.issubdtype(starts.dtype, np.integer) \
             or starts.min() < 0 or starts.max() + length > n:
         raise ValueError(f"starts: expected a 1-D array of dwell start indices within [0, {n - length}]")
-    max_missing = scalar(in_range(as_array(max_missing, "max_missing"), "max_missing", 0.0, 0.5), "max_missing")
+    max_missing = scalar(max_missing, "max_missing", within=(0.0, 0.5))
     k_out = 0.0 if outlier_k is None else scalar(outlier_k, "outlier_k", positive=True)
     fs_g, fs_a = range_limit(full_scale_gyro, "full_scale_gyro"), range_limit(full_scale_accel, "full_scale_accel")
     K = starts.size
-    w_ie = np.zeros((K, 3)) if w_ie_b is None else as_array(w_ie_b, "w_ie_b", tail=(3,))
+    w_ie = np.zeros((K, 3)) if w_ie_b is None else as_array(w_ie_b, "w_ie_b", tail=(3,), nonempty=True)
     w_ie = broadcast_to(w_ie, "w_ie_b", lead + (K, 3), of="K = starts.size dwells and the trials of w_ib_b")
 
     def flat(x):
@@ -851,11 +850,11 @@ def kalman_bias(r: ArrayLike, V: ArrayLike, R: ArrayLike, interval: Interval, ra
     """
     r, V = _rv(r, V)
     lead, K = r.shape[:-2], r.shape[-2]
-    R = broadcast_to(as_array(R, "R", tail=(2, 2), allow_nan=True), "R", lead + (K, 2, 2), of="r")
+    R = broadcast_to(as_array(R, "R", tail=(2, 2), allow_nan=True, nonempty=True), "R", lead + (K, 2, 2), of="r")
     ok = np.all(np.isfinite(r), -1)
     if np.any(~np.isfinite(R[ok])):
         raise ValueError("R: expected finite covariances wherever r is finite")
-    gaps = positive(interval, "interval")                       # not intervals(): it accepts huge values
+    gaps = positive(interval, "interval", nonempty=True)        # not intervals(): it accepts huge values
     if gaps.ndim == 0:
         gaps = np.full(K, float(gaps))
     elif gaps.shape != (K,):
@@ -927,7 +926,7 @@ def eq1_matrix(hpr: Angles) -> Array:
     R : ndarray, shape (..., 3, 3)
         Equals ``attitude.euler_to_dcm(hpr).T`` (erratum E001-01: heading clockwise).
     """
-    h, p, r = np.moveaxis(euler_angles(as_array(hpr, "hpr", tail=(3,))), -1, 0)
+    h, p, r = np.moveaxis(euler_angles(as_array(hpr, "hpr", tail=(3,), nonempty=True)), -1, 0)
     ch, sh, cp, sp, cr, sr = np.cos(h), np.sin(h), np.cos(p), np.sin(p), np.cos(r), np.sin(r)
     rows = [[cr * ch + sr * sp * sh, -cr * sh + sr * sp * ch, -sr * cp],
             [cp * sh, cp * ch, sp],
@@ -1078,7 +1077,7 @@ def pair_spread(hpr0: Angles, axis_b: Vec3, amplitude: float, period: float, rot
 
 def rotation_angle(C_bn) -> Array:
     """Angle (rad) by which each attitude of ``C_bn`` (..., 3, 3) is turned from the first one (for the schedule figure)."""
-    C = as_array(C_bn, "C_bn", shape=(None, 3, 3))
+    C = as_array(C_bn, "C_bn", shape=(None, 3, 3), nonempty=True)
     rel = np.swapaxes(C[:1], -1, -2) @ C
     return np.arccos(np.clip((np.trace(rel, axis1=-2, axis2=-1) - 1) / 2, -1.0, 1.0))
 
@@ -1102,12 +1101,8 @@ def draw_rotation_scheme(ax, amplitude_deg: float = 90.0, pitch_deg: float = 30.
     from ..plots import angle_arc, plane_frame  # noqa: PLC0415 -- plotting only
 
     axes(ax)
-    alpha = scalar(amplitude_deg, "amplitude_deg", positive=True)
-    if alpha > 180:
-        raise ValueError(f"amplitude_deg: expected at most 180°, got {alpha!r}")
-    pitch = scalar(pitch_deg, "pitch_deg")
-    if abs(pitch) >= 90:
-        raise ValueError(f"pitch_deg: expected a pitch within (-90°, 90°), got {pitch!r}")
+    alpha = scalar(amplitude_deg, "amplitude_deg", within=(0.0, 180.0), open_ends=(True, False))
+    pitch = scalar(pitch_deg, "pitch_deg", within=(-90.0, 90.0), open_ends=(True, True))
     views = (((0.0, 0.0), 0.0, ("$x_b$", "$z_b$"), "tab:blue", "dwell k"),
              ((3.0, 0.0), -alpha, ("$x_b'$", "$z_b'$"), "tab:orange", "dwell k′: turned by Δα"))
     for (ox, oy), angle, names, color, title in views:
@@ -1142,7 +1137,7 @@ def draw_rotation_schedule(ax, time, angle_deg, starts, length: int, dt: float) 
     axes(ax)
     t = time_axis(time, "time")
     a = same_shape(as_array(angle_deg, "angle_deg"), "angle_deg", t.shape, of="time")
-    starts = as_array(starts, "starts")
+    starts = as_array(starts, "starts", nonempty=True)
     if starts.ndim != 1 or np.any(starts < 0) or np.any(starts != np.round(starts)):
         raise ValueError(f"starts: expected a 1-D array of sample indices >= 0 (dwell_windows), got shape {starts.shape}")
     length = integer(length, "length")
