@@ -269,22 +269,15 @@ def as_quat(q: Quat, name: str = "q", *, normalize: bool = True, **shape: Any) -
     model and its Jacobian, which finite differences evaluate off the unit sphere). ``shape`` takes the
     shape options of :func:`as_array` (``min_ndim``, ``nonempty``, ...).
     """
-    if not normalize:
-        q = as_array(q, name, tail=(4,), **shape)
-        _nonzero(np.linalg.norm(q, axis=-1), name)
-        return q
-    q = as_array(q, name, tail=(4,), huge=True, **shape)
-    big = np.abs(q).max(axis=-1, keepdims=True)
-    if np.any(big > MAX_MAGNITUDE):            # |q|^2 would overflow: scale first (exact, a power of two)
-        q = q / np.exp2(np.floor(np.log2(np.where(big > MAX_MAGNITUDE, big, 1.0))))
+    q = as_array(q, name, tail=(4,), huge=normalize, **shape)
+    if normalize:
+        big = np.abs(q).max(axis=-1, keepdims=True)
+        if np.any(big > MAX_MAGNITUDE):            # |q|^2 would overflow: scale first (exact, a power of two)
+            q = q / np.exp2(np.floor(np.log2(np.where(big > MAX_MAGNITUDE, big, 1.0))))
     n = np.linalg.norm(q, axis=-1, keepdims=True)
-    _nonzero(n, name)
-    return q / n
-
-
-def _nonzero(norm: np.ndarray, name: str) -> None:
-    if np.any(norm < QUAT_MIN_NORM):
-        raise ValueError(f"{name}: expected non-zero quaternions (|q| >= {QUAT_MIN_NORM:g}), got |q| = {norm.min():g}")
+    if np.any(n < QUAT_MIN_NORM):
+        raise ValueError(f"{name}: expected non-zero quaternions (|q| >= {QUAT_MIN_NORM:g}), got |q| = {n.min():g}")
+    return q / n if normalize else q
 
 
 def scalar(x: ArrayLike, name: str, *, positive: bool = False, allow_zero: bool = False, allow_inf: bool = False,
