@@ -231,11 +231,6 @@ def nonempty_array(x: ArrayLike, name: str, **kwargs: Any) -> np.ndarray:
     return as_array(x, name, nonempty=True, **kwargs)
 
 
-def nonempty_positive(x: ArrayLike, name: str, **kwargs: bool) -> np.ndarray:
-    """``positive(x, name, nonempty=True, ...)``."""
-    return positive(x, name, nonempty=True, **kwargs)
-
-
 def nonempty_latitude(x: ArrayLike, name: str = "lat", deg: bool = False) -> np.ndarray:
     """``latitude(x, name, deg, nonempty=True)``."""
     return latitude(x, name, deg, nonempty=True)
