@@ -61,7 +61,7 @@ from .zupt import error_state_predict_into, zupt_zaru_rows_into, zupt_zaru_z_int
 __all__ = ["Start", "Aiding", "ProcessNoise", "MeasurementNoise", "InitialSigma", "Gates", "BaroTracker",
            "FilterConfig", "FilterResult", "run_filter"]
 
-MAX_LATITUDE = np.deg2rad(89.9)
+_MAX_LATITUDE = np.deg2rad(89.9)
 """Largest |latitude| of :class:`Start` (rad): the ENU mechanisation is singular at the poles."""
 
 
@@ -95,7 +95,7 @@ class Start:
 
     def __post_init__(self):
         lla = _vector(self.lla, "lla")
-        if abs(lla[0]) > MAX_LATITUDE:
+        if abs(lla[0]) > _MAX_LATITUDE:
             raise ValueError("lla: expected |lat| <= 89.9 deg (ENU mechanisation)")
         object.__setattr__(self, "lla", lla)
         object.__setattr__(self, "q_bn", np.ascontiguousarray(as_quat(_vector(self.q_bn, "q_bn", 4), "q_bn")))
