@@ -22,9 +22,8 @@ batch) and, when asked for, per-sample boolean flags. Sensors are named ``"gyro"
     a dwell skipped for dropouts);
 ``"jump"``
     a time jump (sensor ``"clock"``): a sample interval too long to integrate as motion
-    (``max_dt`` of the attitude filters, the planar EKF and the heading fusion, whose default
-    is :func:`navlib.timing.jump_limit`, and of :class:`navlib.filters.zupt_ins.FilterConfig`);
-    nothing is integrated over it;
+    (:attr:`navlib.imu.SensorLimits.max_dt`, default :func:`navlib.timing.jump_limit`; the heading
+    fusion's ``max_dt``); nothing is integrated over it;
 ``"freefall"``
     accelerometer samples reading ``|f|`` near 0 for a while (free fall or a dead sensor:
     ``("accel", "freefall")``), held from the last good sample;
@@ -47,7 +46,7 @@ integrator that returns a plain array (:func:`navlib.strapdown.integrate_attitud
 
 :func:`hold` is the one zero-order hold of NaN samples, with an explicit policy for
 leading NaN samples (there is nothing before them to hold). :func:`despike` marks isolated
-IMU spikes as NaN with the test of :func:`is_spike` (compiled; filters call it per sample).
+IMU spikes as NaN with the test of :func:`is_spike` (:func:`screen` applies it with the limits' thresholds).
 :func:`stuck_mask` finds the samples of a sensor that stopped updating (exact repeats); :func:`stuck_samples`
 is that test as the filters apply it to their gyro input (``stuck_run`` from :func:`stuck_run_samples`).
 """
@@ -239,8 +238,7 @@ def despike(w_ib_b: Vec3Series, f_b: Vec3Series, spike_gyro: float,
             spike_accel: float) -> tuple[Array, Array, NDArray[np.bool_]]:
     """Mark isolated IMU spikes as dropouts (NaN), e.g. before :func:`navlib.filters.zupt.detect_static`.
 
-    The test of :func:`is_spike` (also run inside
-    :func:`navlib.filters.zupt_ins.run_filter`): a sample deviating from the line through its neighbours by more
+    The test of :func:`is_spike` (also applied by :func:`screen`): a sample deviating from the line through its neighbours by more
     than the threshold, and by 1.5 times more than either neighbour does.
     Two adjacent spikes are not found (each hides the other). Spiky samples
     inflate the detector's variance test and hide stances; as NaN they are
