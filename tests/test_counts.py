@@ -2,7 +2,7 @@
 
 One row per count argument that used a hand-written check; ``simulate_imu(n_trials=True)``,
 ``fit_allan(n_samples=True)``, ``carpark_legs(n_loops=True)`` and ``floor_test_legs(n_round_trips=True)``
-used to run as a count of 1, ``FilterConfig(max_rejected=2.0)`` used to be accepted as a float.
+used to run as a count of 1, ``Gates(max_rejected=2.0)`` used to be accepted as a float.
 """
 import numpy as np
 import pytest
@@ -29,9 +29,8 @@ COUNTS = {  # (function, count argument) -> call with the count n
         lambda n: heading_fusion.fuse_rtk_heading(H10, RtkHeading(H10, VALID, confirm=n), 0.1),
     ("heading_fusion.rtk_at_imu_rate", "step"): lambda n: heading_fusion.rtk_at_imu_rate(T10, H10, VALID, n),
     ("planar_ekf.propagate", "n_steps"): lambda n: planar_ekf.propagate(X5, 0.5, n),
-    ("planar_ekf.filter_grid", "reacquire"):
-        lambda n: planar_ekf.filter_grid(T10, Z, X5, Q=np.eye(5), R=np.eye(5), reacquire=n),
-    ("zupt_ins.FilterConfig", "max_rejected"): lambda n: zupt_ins.FilterConfig(max_rejected=n),
+    ("planar_ekf.EkfConfig", "reacquire"): lambda n: planar_ekf.EkfConfig(np.eye(5), np.eye(5), reacquire=n),
+    ("zupt_ins.Gates", "max_rejected"): lambda n: zupt_ins.Gates(max_rejected=n),
     ("pedestrian_ins.carpark_legs", "n_loops"): lambda n: pedestrian_ins.carpark_legs(n_loops=n),
     ("pedestrian_ins.floor_test_legs", "n_round_trips"): lambda n: pedestrian_ins.floor_test_legs(n_round_trips=n),
 }

@@ -84,8 +84,8 @@ def test_sample_intervals_below_a_nanosecond_are_refused(filt):
     q0 = [1.0, 0.0, 0.0, 0.0]
     call = {"mahony": lambda: mahony.mahony(ImuSamples(w, f, 1e-300), q0, m_b=m),
             "quaternion_kf": lambda: quaternion_kf.quaternion_kf(ImuSamples(w, f, 1e-300), q0, m_b=m, B_n=[0.0, 20.0, -40.0]),
-            "run_filter": lambda: zupt_ins.run_filter(w, f, 1e-300, lla0=[0.5, 0.1, 0.0], vel0=[0.0, 0.0, 0.0], q0=q0,
-                                                      static=np.ones(len(w), bool))}[filt]
+            "run_filter": lambda: zupt_ins.run_filter(ImuSamples(w, f, 1e-300), zupt_ins.Start([0.5, 0.1, 0.0], q0),
+                                                      np.ones(len(w), bool))}[filt]
     with pytest.raises(ValueError, match="^dt: expected intervals of at least"):      # was a numba TypingError
         call()
 

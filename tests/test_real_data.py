@@ -101,10 +101,11 @@ def test_zupt_filter_closes_the_real_walks(name, bound):
     stance = zupt.detect_static(rec.imu(), window=0.05, thresholds=(0.15, 0.2, 0.3))    # notebook 06's choice
     st = rec.time < 5.0
     pitch, roll = alignment.level(rec.f_b[st].mean(0))
-    cfg = zupt_ins.FilterConfig(update_rate=400.0, gate=np.inf, gyro_noise=np.deg2rad(0.02))
+    cfg = zupt_ins.FilterConfig(process=zupt_ins.ProcessNoise(gyro=np.deg2rad(0.02)), gates=zupt_ins.Gates(zupt=np.inf),
+                                update_rate=400.0)
     lla0 = [np.deg2rad(51.5), 0.0, 0.0]
-    res = zupt_ins.run_filter(rec.imu(), lla0=lla0, vel0=[0.0, 0.0, 0.0], q0=attitude.euler_to_quat([0.0, pitch, roll]),
-                              static=stance, config=cfg, walk_aiding="none", gyro_bias0=rec.w_ib_b[st].mean(0))
+    start = zupt_ins.Start(lla0, attitude.euler_to_quat([0.0, pitch, roll]), gyro_bias=rec.w_ib_b[st].mean(0))
+    res = zupt_ins.run_filter(rec.imu(), start, stance, aiding=zupt_ins.Aiding("none"), config=cfg)
     assert np.all(np.isfinite(res.nav.lla)) and np.all(res.P_diag >= 0)
     e, n, _ = geodesy.geodetic2enu(*res.nav.lla[-1], *lla0)
     loop = {"short": 25.0, "long": 60.0}[name]                                       # the source's "about" lengths
