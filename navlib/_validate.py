@@ -321,9 +321,10 @@ def flag(x: bool, name: str) -> bool:
 
 def choice(x: Any, name: str, options: tuple[Any, ...]) -> Any:
     """Return ``x`` if it is one of ``options`` (strings, or e.g. the allowed integer settings); arrays are refused."""
-    try:
-        ok = x in options and (not isinstance(x, (bool, np.bool_)) or any(isinstance(o, bool) for o in options))
-    except (TypeError, ValueError):          # an array (no single truth value) or an unhashable value
+    try:                                     # an array, even 0-d (which compares like its element), is refused
+        ok = not isinstance(x, np.ndarray) and x in options and (
+            not isinstance(x, (bool, np.bool_)) or any(isinstance(o, bool) for o in options))
+    except (TypeError, ValueError):          # an unhashable value
         ok = False
     if not ok:
         raise ValueError(f"{name}: expected one of {tuple(options)}, got {x!r}")

@@ -465,11 +465,8 @@ def geodetic2gk(lat: ArrayLike, lon: ArrayLike, *, zone: ArrayLike | None = None
     x, y : ndarray, shape (...)
         Northing x and easting y (m), the paper's order.
     """
-    ellipsoid_(ellipsoid)
     lat_rad, lon_deg = _validate_lat_lon(lat, lon, deg)
-    k0 = scalar(k0, "k0", within=_K0_RANGE)
-    fe = scalar(false_easting, "false_easting")
-    fn = scalar(false_northing, "false_northing")
+    k0, fe, fn = _grid(ellipsoid, k0, false_easting, false_northing)
     w = _width(width)
     L0, l_deg = _resolve_lon0(lon_deg, zone, lon0, w, deg, max_offset_deg)
     x, y = _forward(lat_rad, l_deg, ellipsoid, k0, fn, fe)
@@ -501,12 +498,9 @@ def gk2geodetic(x: ArrayLike, y: ArrayLike, *, zone: ArrayLike | None = None, lo
     lat, lon : ndarray, shape (...)
         rad, or deg with ``deg=True``; lon in (-180°, 180°].
     """
-    ellipsoid_(ellipsoid)
     x = as_array(x, "x", nonempty=True)
     y = as_array(y, "y", nonempty=True)
-    k0 = scalar(k0, "k0", within=_K0_RANGE)
-    fe = scalar(false_easting, "false_easting")
-    fn = scalar(false_northing, "false_northing")
+    k0, fe, fn = _grid(ellipsoid, k0, false_easting, false_northing)
     w = _width(width)
     if flag(zone_prefix, "zone_prefix"):
         if zone is not None or lon0 is not None:
@@ -528,6 +522,13 @@ def gk2geodetic(x: ArrayLike, y: ArrayLike, *, zone: ArrayLike | None = None, lo
     lon_deg = np.mod(lon_deg + 180.0, 360.0) - 180.0
     lon_deg = np.where(lon_deg == -180.0, 180.0, lon_deg)
     return (np.rad2deg(lat), lon_deg) if flag(deg, "deg") else (lat, np.deg2rad(lon_deg))
+
+
+def _grid(ellipsoid, k0, false_easting, false_northing) -> tuple[float, float, float]:
+    """The grid of :func:`geodetic2gk` and :func:`gk2geodetic`: ellipsoid checked, k0 and the false offsets."""
+    ellipsoid_(ellipsoid)
+    return scalar(k0, "k0", within=_K0_RANGE), scalar(false_easting, "false_easting"), \
+        scalar(false_northing, "false_northing")
 
 
 def _factors(lat, lon, zone, lon0, width, ellipsoid, deg, max_offset_deg):

@@ -207,7 +207,9 @@ def reciprocating_rotation(duration: float, dt: float, lla0, hpr0, axis_b, ampli
     s = _ramp((t - k * period - (period - rotation_time)) / rotation_time)
     start = np.where(k % 2 == 0, 0.0, 1.0)
     alpha = amplitude * (start + (1 - 2 * start) * s)
-    q0 = attitude.euler_to_quat(as_array(hpr0, "hpr0", shape=(3,)))
+    hpr0 = as_array(hpr0, "hpr0", shape=(3,))
+    in_range(hpr0[..., 1], "hpr0[1] (pitch)", -np.pi / 2, np.pi / 2, "rad")      # named here: euler_to_quat says hpr
+    q0 = attitude.euler_to_quat(hpr0)
     q = attitude.quat_mult(q0, attitude.rotvec_to_quat(alpha[:, None] * u))
     lla = np.broadcast_to(_lla(lla0), (t.size, 3)).copy()
     return Trajectory(t, lla, np.zeros((t.size, 3)), attitude.quat_normalize(q))
