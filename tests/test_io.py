@@ -9,6 +9,7 @@ import pytest
 
 from navlib import attitude, io, trajectory, units
 from navlib.filters import mahony
+from navlib.filters.observations import RtkHeading
 
 G = units.G0
 LLA0 = np.array([units.deg(45.0), units.deg(7.0), 100.0])
@@ -63,7 +64,7 @@ def test_recording_feeds_the_filters(tmp_path, motion):
     imu = rec.imu()
     assert imu.n == t.size and np.allclose(imu.dt, 0.01)
     res = mahony.mahony(imu, q0=attitude.euler_to_quat(units.deg([30.0, 5.0, -3.0])),
-                        heading_rtk=np.full(t.size, units.deg(30.0)), rtk_valid=np.zeros(t.size, bool))
+                        rtk=RtkHeading(np.full(t.size, units.deg(30.0)), np.zeros(t.size, bool)))
     assert np.all(np.isfinite(res.q_bn))
 
 
