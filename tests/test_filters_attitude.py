@@ -116,16 +116,16 @@ def test_filters_reject_bad_arguments():
         mh.mahony(imu, q0, m_b=m, rtk=RtkHeading(np.zeros(100), valid))              # two heading references
     with pytest.raises(ValueError, match="^gates: "):
         mh.mahony(imu, q0, B_n=B_N, gates=AttitudeGates(mag=MagGate()))             # a gate but no magnetometer
-    with pytest.raises(ValueError, match="^heading_rtk: "):
+    with pytest.raises(ValueError, match="^heading: "):
         mh.mahony(imu, q0, rtk=RtkHeading(np.full(100, 7.0), valid))               # out of [0, 2 pi)
-    with pytest.raises(ValueError, match="^heading_rtk: "):
+    with pytest.raises(ValueError, match="^heading: "):
         hf.fuse_rtk_heading(np.zeros(100), RtkHeading(np.full(100, np.inf), valid), DT)   # valid but infinite
     res = hf.fuse_rtk_heading(np.zeros(100), RtkHeading(np.full(100, np.nan), valid), DT)   # valid but NaN: dropout
     assert int(res.faults["heading", "nan"]) == 100
     assert np.isnan(res.delta).all() and np.array_equal(res.heading, np.zeros(100))     # uncalibrated throughout
-    with pytest.raises(ValueError, match="^rtk_valid: "):
+    with pytest.raises(ValueError, match="^valid: "):
         mh.mahony(imu, q0, rtk=RtkHeading(np.zeros(100), None))
-    with pytest.raises(ValueError, match="^rtk_valid: "):
+    with pytest.raises(ValueError, match="^valid: "):
         hf.fuse_rtk_heading(np.zeros(100), RtkHeading(np.zeros(100), np.ones(100)), DT)   # flags must be booleans
     with pytest.raises(ValueError, match="^kp: "):
         mh.mahony(imu, q0, m_b=m, kp=-1.0)
@@ -641,18 +641,18 @@ FUZZ = {
                                q0=_Q, m_b=_M, kp=1.0, ki=0.02, B_n=B_N, gates=AttitudeGates(accel_tol=0.1)),
                ("m_b",), ("m_b",)),
     "AttitudeGates": (AttitudeGates, dict(accel_tol=0.1, g=9.8), (), ()),
-    # the RTK reference through the filter that reads it (its arrays are checked there; the messages name them
-    # heading_rtk and rtk_valid)
-    "RtkHeading/mahony": (lambda heading_rtk, rtk_valid, **kw: mh.mahony(ImuSamples(_W, _F, np.full(_N, 0.01)), _Q,
-                                                                          rtk=RtkHeading(heading_rtk, rtk_valid, **kw)),
-                          dict(heading_rtk=np.full(_N, 0.5), rtk_valid=_VALID, hold=0.25, gate=0.3), ("heading_rtk",), ()),
+    # the RTK reference through the filter that reads it (its arrays are checked on construction, their shape
+    # against the samples by the filter)
+    "RtkHeading/mahony": (lambda heading, valid, **kw: mh.mahony(ImuSamples(_W, _F, np.full(_N, 0.01)), _Q,
+                                                                  rtk=RtkHeading(heading, valid, **kw)),
+                          dict(heading=np.full(_N, 0.5), valid=_VALID, hold=0.25, gate=0.3), ("heading",), ()),
     "quaternion_kf": (qkf.quaternion_kf, dict(imu=ImuSamples(_W, _F, 0.01), q0=_Q, m_b=_M, B_n=B_N, kp=1.0, ki=0.02,
                                                noise=KfNoise()), ("m_b",), ("m_b",)),
     "KfNoise": (KfNoise, dict(sigma_gyro=1e-3, sigma_accel=0.02, sigma_mag=0.08, p0=1e-4), (), ()),
-    "fuse_rtk_heading": (lambda heading_mag, heading_rtk, rtk_valid, dt, alpha, **kw: hf.fuse_rtk_heading(
-                             heading_mag, RtkHeading(heading_rtk, rtk_valid, **kw), dt, alpha),
-                         dict(heading_mag=np.zeros(_N), heading_rtk=np.full(_N, 0.5), rtk_valid=_VALID, dt=0.01,
-                              alpha=0.01, hold=0.25, gate=0.3), ("heading_rtk",), ()),
+    "fuse_rtk_heading": (lambda heading_mag, heading, valid, dt, alpha, **kw: hf.fuse_rtk_heading(
+                             heading_mag, RtkHeading(heading, valid, **kw), dt, alpha),
+                         dict(heading_mag=np.zeros(_N), heading=np.full(_N, 0.5), valid=_VALID, dt=0.01,
+                              alpha=0.01, hold=0.25, gate=0.3), ("heading",), ()),
     "rtk_at_imu_rate": (hf.rtk_at_imu_rate, dict(time=np.arange(_N, dtype=float), heading=np.zeros(_N),
                                                    valid=np.ones(_N, bool), step=2), ("heading",), ("heading",)),
     "printed_eq2_roll": (mimu_mag_rtk.printed_eq2_roll, dict(q=_Q), (), ()),
@@ -722,7 +722,7 @@ OUT_OF_RANGE = [
     ("quaternion_kf", lambda: qkf.quaternion_kf(ImuSamples(_W, _F, 0.01), _Q, m_b=_M, B_n=B_N, noise=1e-3), "noise"),
     ("KfNoise", lambda: KfNoise(p0=-1.0), "p0"),
     ("fuse_rtk_heading", lambda: hf.fuse_rtk_heading(np.zeros(_N), RtkHeading(np.full(_N, 7.0), _VALID), 0.01),
-     "heading_rtk"),
+     "heading"),
     ("fuse_rtk_heading", lambda: hf.fuse_rtk_heading(np.zeros(_N), RtkHeading(np.zeros(_N), _VALID, confirm=1.5), 0.01),
      "confirm"),
     ("fuse_rtk_heading", lambda: hf.fuse_rtk_heading(np.zeros(_N), np.zeros(_N), 0.01), "rtk"),

@@ -143,7 +143,7 @@ def fuse_rtk_heading(heading_mag: Angles, rtk: RtkHeading, dt: Interval, alpha: 
     hm = nonempty_array(heading_mag, "heading_mag", min_ndim=1)
     alpha = in_range(scalar(alpha, "alpha"), "alpha", 0.0, 1.0, lo_open=True)
     instance(rtk, "rtk", RtkHeading, "an RtkHeading")
-    hr, ok = rtk.at(hm.shape)
+    hr, ok = rtk.at(hm.shape, "heading_mag")
     T, N = hr.shape
     dts = intervals(dt, N)
     jump = dts > jump_limit(dts, max_dt, "dt")

@@ -379,6 +379,19 @@ class RtkHeading:
     confirm: int = 5
 
     def __post_init__(self):
+        h = nonempty_array(self.heading, "heading", finite=False)
+        v = booleans(self.valid, "valid")
+        try:
+            shape = np.broadcast_shapes(h.shape, v.shape)
+        except ValueError:
+            raise ValueError(f"valid: expected a shape broadcastable to that of heading {h.shape}, got {v.shape}") from None
+        used = np.broadcast_to(h, shape)[np.broadcast_to(v, shape)]
+        bad = ~np.isnan(used) & ~((used >= 0) & (used < 2 * np.pi))
+        if bad.any():
+            raise ValueError(f"heading: valid epochs must hold headings in [0, 2 pi) rad (or NaN for a dropout); "
+                             f"{int(bad.sum())} do not (first: {used[bad][0]!r})")
+        object.__setattr__(self, "heading", h)
+        object.__setattr__(self, "valid", v)
         scalar(self.hold, "hold", positive=True, allow_zero=True)
         if self.gate is not None and not 0 < scalar(self.gate, "gate", positive=True) < np.pi:
             raise ValueError(f"gate: expected a value in (0, pi) rad, got {self.gate!r}")
@@ -389,9 +402,15 @@ class RtkHeading:
         return np.array([float(self.hold) + 1e-9, np.inf if self.gate is None else float(self.gate),
                          float(self.confirm)])
 
-    def at(self, shape: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray]:
-        """Heading and validity broadcast to ``shape`` (..., N), flattened to (T, N) for the kernels."""
-        return heading_input(self.heading, self.valid, shape)
+    def at(self, shape: tuple[int, ...], of: str) -> tuple[np.ndarray, np.ndarray]:
+        """Heading and validity broadcast to ``shape`` (..., N) of the samples ``of``, flattened to (T, N) for the
+        kernels."""
+        try:
+            h, v = np.broadcast_to(self.heading, shape), np.broadcast_to(self.valid, shape)
+        except ValueError:
+            raise ValueError(f"rtk: expected heading and valid broadcastable to the shape {shape} of {of}, got "
+                             f"{self.heading.shape} and {self.valid.shape}") from None
+        return kernel_array(h.reshape(-1, shape[-1])), kernel_array(v.reshape(-1, shape[-1]))   # writable
 
 
 @dataclass(frozen=True)
@@ -424,30 +443,6 @@ class AttitudeResult:
     def hpr(self) -> np.ndarray:
         """Heading, pitch, roll (rad), shape (..., N, 3)."""
         return attitude.quat_to_euler(self.q_bn)
-
-
-def heading_input(heading_rtk: ArrayLike, rtk_valid: ArrayLike, shape: tuple[int, ...],
-                  name: str = "heading_rtk") -> tuple[np.ndarray, np.ndarray]:
-    """Validate RTK heading and validity flags at the IMU rate; broadcast to ``shape`` (..., N)."""
-    if rtk_valid is None:
-        raise ValueError("rtk_valid: expected validity flags with the RTK heading (never infer validity "
-                         "from the value)")
-    v = booleans(rtk_valid, "rtk_valid")
-    h = nonempty_array(heading_rtk, name, finite=False)
-    for arr, label in ((h, name), (v, "rtk_valid")):
-        try:
-            np.broadcast_to(arr, shape)
-        except ValueError:
-            raise ValueError(f"{label}: expected a shape broadcastable to {shape} (the samples of heading_mag "
-                             f"or w_ib_b), got {arr.shape}") from None
-    h, v = np.broadcast_to(h, shape), np.broadcast_to(v, shape)
-    used = h[v]
-    bad = ~np.isnan(used) & ~((used >= 0) & (used < 2 * np.pi))
-    if bad.any():
-        raise ValueError(f"{name}: valid epochs must hold headings in [0, 2 pi) rad (or NaN for a dropout); "
-                         f"{int(bad.sum())} do not (first: {used[bad][0]!r})")
-    return kernel_array(h.reshape(-1, shape[-1])), kernel_array(v.reshape(-1, shape[-1]))   # writable: one signature
-
 
 
 def pack(imu: ImuSamples, q0: Quat, m_b: ArrayLike | None, rtk: RtkHeading | None, B_n: Vec3 | None,
@@ -503,7 +498,7 @@ def pack(imu: ImuSamples, q0: Quat, m_b: ArrayLike | None, rtk: RtkHeading | Non
     if use_mag:
         m[codes[1] != 0] = np.nan
     if rtk is not None:
-        hdg, ok = rtk.at(lead + (N,))
+        hdg, ok = rtk.at(lead + (N,), "imu's samples")
         rtk_par = rtk.params()
     else:
         hdg, ok, rtk_par = np.zeros((1, 1)), np.zeros((1, 1), dtype=bool), np.array([0.0, np.inf, 0.0])
