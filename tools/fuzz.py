@@ -312,6 +312,8 @@ BY_DESIGN: list[tuple[str, str, str, str, str]] = [
      "a drawing: any increasing time axis is drawn as given, any number of dwell windows shaded"),
     (r"imu\.ImuSamples|filters\.heading_fusion\.fuse_rtk_heading", "dt", r"1e300|time_jump", "silent_accept",
      "nothing is integrated over dt here; an interval too long to integrate is refused where it is (small_turns)"),
+    (r"filters\.zupt_ins\.Gates", r"zupt|baro|mag_field|mag_dip", r"inf|1e300", r"silent_nan|silent_accept",
+     "inf disables a gate, any finite value is one (Gates docstring)"),
     (r"repro\.check(_range|_outside)?", r"value|expected|tol|lower|upper", r"nan|inf|1e300", r"other_exception|silent_accept",
      "any finite target is a claim; a reproduced value outside it fails the claim (ClaimCheckFailed, tests/test_bad_input.py)"),
     # quaternion algebra and matrices that need not be rotations
