@@ -137,10 +137,8 @@ def from_profiles(time, lla0, hpr, vel_n, ellipsoid: earth.Ellipsoid = earth.WGS
     t = time_axis(time)
     if not np.allclose(np.diff(t), t[1] - t[0], rtol=1e-9, atol=0):
         raise ValueError("time: expected a uniform time grid")
-    hpr = as_array(hpr, "hpr", tail=(3,))
-    vel = as_array(vel_n, "vel_n", tail=(3,))
-    if hpr.shape != (t.size, 3) or vel.shape != (t.size, 3):
-        raise ValueError(f"hpr, vel_n: expected shape ({t.size}, 3), got {hpr.shape} and {vel.shape}")
+    hpr = as_array(hpr, "hpr", shape=(t.size, 3), of="time")
+    vel = as_array(vel_n, "vel_n", shape=(t.size, 3), of="time")
     return _from_profiles(t, lla0, hpr, vel, ellipsoid)
 
 
