@@ -225,7 +225,7 @@ def _corrupt(x, dt, errors: TriadErrors, rng: np.random.Generator):
     M = _error_matrix(errors, lead, r_matrix)
     turn_on = errors.bias * r_on.standard_normal(lead + (1, 3))
     if errors.bias_instability > 0:        # turn-on + Gauss-Markov, added in place (addition commutes: same bits)
-        bias = _gauss_markov(shape, dt, errors.gauss_markov_sigma, errors.correlation_time, r_gm)
+        bias = _gauss_markov(shape, dt, float(errors.gauss_markov_sigma), float(errors.correlation_time), r_gm)
         bias += turn_on
     else:
         bias = np.broadcast_to(turn_on, shape).copy()
