@@ -82,23 +82,24 @@ DEGREE_ARGS = {"pitch": None, "roll": None, "pitches": None, "rolls": None, "lat
                "heading_mag": None, "heading_rtk": None,
                "hpr": 1, "hpr0": 1, "hpr_true": 1, "ypr": 1, "lla": 0, "lla0": 0, "lla_true": 0}
 NUMERIC = {"number", "quat", "dcm", "time", "interval"}
+NUMBERS = NUMERIC | {"count"}          # the kinds held as numbers (counts too)
 
 MUTATIONS = {
     # name: (kinds it applies to, what it is)
     "wrong_shape": (NUMERIC, "the last axis one longer (a scalar becomes shape (3,), a series of N > 4 values (N, 2))"),
     "transposed": (NUMERIC, "(N, k) given as (k, N)"),
     "0d": (NUMERIC, "a scalar where an array is expected"),
-    "empty": (NUMERIC, "no samples: shape (0,) or (..., 0, k)"),
-    "nan": (NUMERIC | {"count"}, "one element NaN"),
-    "inf": (NUMERIC | {"count"}, "one element inf (not where inf means 'no limit': INF_MEANS_NO_LIMIT)"),
+    "empty": (NUMBERS, "no samples: shape (0,) or (..., 0, k)"),
+    "nan": (NUMBERS, "one element NaN"),
+    "inf": (NUMBERS, "one element inf (not where inf means 'no limit': INF_MEANS_NO_LIMIT)"),
     "1e300": (NUMERIC, "one element 1e300"),
     "none": ({"number", "quat", "dcm", "time", "interval", "count", "flag", "text", "object"},
              "None (not where None is a documented value)"),
     "string": ({"number", "quat", "dcm", "time", "interval", "count", "flag", "object"}, "the string 'abc'"),
-    "numeric_str": (NUMERIC | {"count"}, "the string '1.5' (numpy would parse it)"),
-    "complex": (NUMERIC | {"count"}, "the values plus 1j (numpy would drop the imaginary part)"),
-    "object": (NUMERIC | {"count"}, "the values as an object array"),
-    "bool": (NUMERIC | {"count"}, "True, or an all-True mask of the value's shape"),
+    "numeric_str": (NUMBERS, "the string '1.5' (numpy would parse it)"),
+    "complex": (NUMBERS, "the values plus 1j (numpy would drop the imaginary part)"),
+    "object": (NUMBERS, "the values as an object array"),
+    "bool": (NUMBERS, "True, or an all-True mask of the value's shape"),
     "true_count": ({"count"}, "True where a count is expected"),
     "degrees": ({"number"}, "45 for an angle in radians (DEGREE_ARGS)"),
     "non_monotonic": ({"time"}, "two epochs swapped"),
@@ -152,7 +153,7 @@ def applies(mutation: str, arg: Arg) -> bool:
     kinds, _ = MUTATIONS[mutation]
     if arg.kind not in kinds:
         return False
-    v = np.asarray(arg.value) if arg.kind in NUMERIC else None
+    v = np.asarray(arg.value) if arg.kind in NUMBERS else None
     if mutation in ("wrong_shape", "0d", "empty") and arg.elementwise and v.shape[-1:] not in ((3,), (4,)):
         return False        # any shape is valid for an elementwise argument without a vector axis
     if mutation == "empty" and arg.elementwise:
@@ -181,7 +182,7 @@ def applies(mutation: str, arg: Arg) -> bool:
 def mutate(mutation: str, arg: Arg):
     """The mutated value of ``arg``."""
     v = arg.value
-    a = np.array(v, dtype=float) if arg.kind in NUMERIC | {"count"} else None
+    a = np.array(v, dtype=float) if arg.kind in NUMBERS else None
     if mutation == "wrong_shape":       # a 1-D value of up to 4 entries is a vector (pair, xyz, quaternion)
         if a.ndim == 0:
             return np.full(3, float(a))
@@ -280,6 +281,8 @@ BY_DESIGN: list[tuple[str, str, str, str, str]] = [
     (r"filters\.observations\.RtkHeading", "heading", "nan", "silent_nan",
      "NaN in a valid epoch is a dropout (RtkHeading docstring)"),
     (r"imu\.ImuSamples", r"w_ib_b|f_b", "nan", "silent_nan", "the record holds the samples; NaN marks a dropout"),
+    (r"euler\.integrate_euler", "bias_b", "nan", "silent_nan",
+     "a NaN bias estimate means 'not yet observable' (docstring); a constant one has no earlier estimate to keep"),
     (r"trajectory\.Trajectory", r"lla|vel_n|q_bn", "nan", "silent_nan",
      "a trajectory also holds filter output, which marks epochs without a solution NaN (tests/test_bad_input.py)"),
     (r"robust\.(despike|fault_report|hold|longest_repeat|stuck_(mask|samples))", r"x|w_ib_b|f_b", "nan",
