@@ -81,27 +81,11 @@ class Skip:
 
 # Bad calls that navlib does not refuse yet: "callable-arg-mutation" -> what it does instead. The tests mark
 # them xfail(strict=True), make fuzz lists them apart; remove the entry when navlib is fixed.
-_INT_AS_OBJECT = "an integer parameter given as an object array is accepted"
 KNOWN_GAPS: dict[str, str] = {
-    **{f"{name}-width-object": _INT_AS_OBJECT for name in (
-        "geodesy.central_meridian", "geodesy.convergence", "geodesy.geodetic2gk", "geodesy.gk2geodetic",
-        "geodesy.scale_factor", "geodesy.zone", "papers.gauss_kruger_ekf.ekf", "papers.gauss_kruger_ekf.simulate_sensors")},
-    "papers.gauss_kruger_ekf.paper_meridian_arc-order-object": _INT_AS_OBJECT,
-    "robust.stuck_mask-axis-object": _INT_AS_OBJECT,
-    "robust.stuck_samples-axis-object": _INT_AS_OBJECT,
-    "robust.hold-axis-object": "numpy's 'only integer scalar arrays can be converted to a scalar index', naming no argument",
-    "atmosphere.bmp180_compensate-oss-object": "numpy's 'unsupported operand type(s) for <<', naming no argument",
     "calibration.characterise-dt-1e300": "the error names w_ib_b (a record without noise), not dt",
     "imu.SensorLimits-stuck_run-empty": "numpy's 'truth value of an empty array is ambiguous', naming no argument",
     "papers.north_finding.tilt_from_accel-g-wrong_shape": "a (3,) array as g is accepted",
-    "trajectory.reciprocating_rotation-hpr0-pitch2rad": "the error names hpr, not hpr0",
-    "trajectory.reciprocating_rotation-hpr0-degrees": "the error names hpr, not hpr0",
     "sensors.simulate_magnetometer-q_bn-1e300": "accepted since e9159b5 (refused before): by design, as for other quaternions?",
-    "filters.heading_fusion.fuse_rtk_heading-heading_mag-wrong_shape": "the error names heading_rtk, not heading_mag",
-    **{f"filters.observations.RtkHeading-{case}": "not checked until a filter uses the record, then named heading_rtk"
-       for case in ("heading-wrong_shape", "heading-empty", "heading-inf", "heading-none", "heading-string",
-                    "heading-numeric_str", "heading-complex", "heading-object", "heading-bool", "heading-1e300",
-                    "heading-list", "valid-none", "valid-string")},
 }
 
 
