@@ -75,7 +75,7 @@ PUBLIC = fuzz_calls.public_callables()
 REGISTRY = fuzz_calls.table()
 CALLS = {k: fuzz.with_defaults(PUBLIC[k], c) for k, c in REGISTRY.items() if isinstance(c, fuzz_calls.Call) and k in PUBLIC}
 IN_PROCESS = ("string", "numeric_str", "complex", "object", "bool", "none", "nan", "inf", "empty", "wrong_shape")
-"""The mutations run here; the others (1e300, time jumps, degrees, ...) can hang and run in ``make fuzz`` with a timeout."""
+"""The mutations run here; ``make fuzz`` runs all, in workers with a timeout (1e300 or a time jump can hang a call)."""
 
 IO_TABLE = __import__("pandas").DataFrame({"t": [0.0, 0.01, 0.02], "gx": [0.0] * 3, "gy": [0.0] * 3, "gz": [0.0] * 3})
 NAN, INF = np.nan, np.inf
@@ -699,7 +699,6 @@ CASES += [
     bad("calibration.MagCalibration", "residual", "negative", lambda: calibration.MagCalibration(
         np.zeros(3), np.eye(3), 50.0, residual=-1.0)),
 ]
-
 
 
 def _registry_row(name, row):
