@@ -254,6 +254,7 @@ def test_ins_heading_change_old_options_are_gone():
     (lambda: nf.heading_candidates(1e-5, [0, 0, 9.8], units.deg(-90.0)), "lat"),
     (lambda: nf.heading_candidates(np.inf, [0, 0, 9.8], LAT), "w_y"),
     (lambda: nf.tilt_from_accel([0.0, 0.0, 0.0]), "f_b"),
+    (lambda: nf.tilt_from_accel([0.0, 0.0, 9.8], g=[9.8, 9.8, 9.8]), "g"),      # one gravity, not three trials
     (lambda: alignment.static_means(np.zeros((0, 3)), np.zeros((0, 3)), LAT), "w_ib_b"),
     (lambda: alignment.static_means(GOOD_W[:1], GOOD_F[:1], LAT), "w_ib_b"),
     (lambda: alignment.static_means(GOOD_W, GOOD_F * 1.2, LAT), "f_b"),

@@ -154,10 +154,12 @@ def tilt_from_accel(f_b: Vec3, g: float | None = None) -> tuple[Array, Array]:
     pitch, roll : ndarray, shape (...)  (rad)
     """
     pitch, roll = level(f_b)                                       # validates f_b
-    if g is None:
-        return pitch, roll
-    f_y = np.asarray(f_b, dtype=float)[..., 1]
-    return np.arcsin(np.clip(f_y / positive(g, "g", nonempty=True), -1.0, 1.0)), roll
+    return (pitch, roll) if g is None else (_asin_pitch(f_b, scalar(g, "g", positive=True)), roll)
+
+
+def _asin_pitch(f_b: Vec3, g: ArrayLike) -> Array:
+    """Eq. (5) as printed, ``asin(f_y / g)`` with the argument clipped to [-1, 1], of checked ``f_b`` and ``g``."""
+    return np.arcsin(np.clip(np.asarray(f_b, dtype=float)[..., 1] / g, -1.0, 1.0))
 
 
 # --------------------------------------------------------------------------
@@ -217,7 +219,8 @@ def heading_candidates(w_y: ArrayLike, f_b: Vec3, lat: float, h: float = 0.0) ->
     """
     w_y = as_array(w_y, "w_y", nonempty=True)
     lat = gyrocompass_latitude(lat)
-    pitch, _ = tilt_from_accel(f_b, earth.gravity(lat, as_array(h, "h", nonempty=True)))   # as_array: gravity takes an empty h
+    level(f_b)                                                     # checks f_b as tilt_from_accel does
+    pitch = _asin_pitch(f_b, earth.gravity(lat, as_array(h, "h", nonempty=True)))   # as_array: gravity takes an empty h
     cos_h = (w_y - OMEGA_IE * np.sin(lat) * np.sin(pitch)) / (OMEGA_IE * np.cos(lat) * np.cos(pitch))
     clipped = np.abs(cos_h) > 1.0
     alpha = np.arccos(np.clip(cos_h, -1.0, 1.0))
