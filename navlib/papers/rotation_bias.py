@@ -366,11 +366,16 @@ def _median_sigma(buf, ok, n, a, want_sigma):
     return med, _kernels.robust_sigma(np.median(vals[:m]), q)
 
 
+_RESIDUAL_FAULTS = (("dwell", "refused"), ("imu", "nan"), ("gyro", "outlier"), ("accel", "outlier"), ("imu", "saturated"))
+"""The keys of ``Residuals.faults``, in the order of the residual kernel's ``counts``."""
+_N_RESIDUAL_FAULTS = len(_RESIDUAL_FAULTS)
+
+
 @njit(cache=True)
 def _clean_dwell(wb, fb, n, max_missing, outlier_k, fs_gyro, fs_accel, counts):
     """Fill dropouts and replace outliers of one dwell in place; False when the dwell must be skipped.
 
-    counts: [skipped_nan, missing, filled, outliers_gyro, outliers_accel, saturated, skipped_saturated]
+    counts (added to): the faults of :data:`_RESIDUAL_FAULTS`, in that order (dwells for the first, samples else)
     """
     ok_w = np.ones(n, dtype=np.bool_)
     ok_f = np.ones(n, dtype=np.bool_)
@@ -389,17 +394,16 @@ def _clean_dwell(wb, fb, n, max_missing, outlier_k, fs_gyro, fs_accel, counts):
             saturated += 1
     counts[1] += missing
     if saturated > 0:                    # at the rails: the IMU was not still, or the reading is unknown
-        counts[5] += saturated
-        counts[6] += 1
+        counts[4] += saturated
+        counts[0] += 1
         return False
     if missing > max_missing * n or missing == n:
         counts[0] += 1
         return False
     if missing == 0 and outlier_k <= 0:
         return True                      # the common case: untouched
-    counts[2] += missing
     detect = outlier_k > 0
-    for buf, ok, c in ((wb, ok_w, 3), (fb, ok_f, 4)):
+    for buf, ok, c in ((wb, ok_w, 2), (fb, ok_f, 3)):
         bad = np.zeros(n, dtype=np.bool_)
         med = np.empty(3)
         for a in range(3):
@@ -423,7 +427,7 @@ def _residual_kernel(w, f, dts, regular, starts, n, w_ie, pitch_limit, max_missi
     r = np.full((T, K, 2), np.nan)
     V = np.full((T, K, 2, 3), np.nan)
     tilt = np.full((T, K, 2), np.nan)
-    counts = np.zeros(7, dtype=np.int64)
+    counts = np.zeros(_N_RESIDUAL_FAULTS, dtype=np.int64)
     singular = False
     jbar = (n - 1) / 2
     s_jj = n * (n * n - 1) / 12.0                 # sum of (j - jbar)^2
@@ -593,9 +597,7 @@ def tilt_residuals(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = Non
         duration = length * float(dts[0])
     else:
         duration = float(np.mean([dts[s:s + length].sum() for s in starts]))
-    faults = robust.FaultReport({("imu", "nan"): int(c[1]), ("gyro", "outlier"): int(c[3]),
-                                 ("accel", "outlier"): int(c[4]), ("imu", "saturated"): int(c[5]),
-                                 ("dwell", "refused"): int(c[0] + c[6])})
+    faults = robust.FaultReport({key: int(count) for key, count in zip(_RESIDUAL_FAULTS, c, strict=True)})
     return Residuals(r.reshape(lead + (K, 2)), V.reshape(lead + (K, 2, 3)), tilt.reshape(lead + (K, 2)),
                      starts + length, duration, faults)
 
