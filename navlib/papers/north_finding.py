@@ -778,7 +778,7 @@ def stop_solutions(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = Non
         ``full_scale_accel``, ``stuck_fraction`` for :func:`static_means`.
         ``stuck_fraction`` defaults to 0.5 here: a stop in which a gyro or
         accelerometer axis repeats one reading over half of its valid samples
-        is refused (``STUCK``; a frozen gyro otherwise passes as OK with a
+        is refused (``("gyro", "stuck")``; a frozen gyro otherwise passes with a
         heading error of many degrees). Pass ``stuck_fraction=None`` for
         noise-free simulated data, whose readings repeat exactly.
     """
