@@ -464,122 +464,123 @@ def screen(imu: ImuSamples, m_b: Vec3Series | None = None) -> Screened:
     instance(imu, "imu", ImuSamples, "an ImuSamples (navlib.imu)")
     lim, w, f, dts = imu.limits, imu.w_ib_b, imu.f_b, imu.dt
     lead, n = w.shape[:-2], w.shape[-2]
+    T = math.prod(lead)
     if m_b is not None:
         m_b = same_shape(as_array(m_b, "m_b", tail=(3,), finite=False), "m_b", w.shape, of="w_ib_b")
     max_dt = jump_limit(dts, lim.max_dt, "dt")
     run = stuck_run_samples(lim.stuck_run, float(np.median(dts))) or 0
-    T = math.prod(lead)
-    flat = kernel_array(w.reshape(T, n, 3))
-    stuck, turn = np.zeros((T, n), dtype=bool), np.zeros(T)
-    run_chunks(lambda t0, t1: _gyro_scan(t0, t1, flat, dts, max_dt, run, lim.full_scale_gyro, stuck, turn), T)
+    tests = np.array([max_dt, run, lim.full_scale_gyro, lim.full_scale_accel, lim.full_scale_mag, lim.spike_gyro,
+                      lim.spike_accel, lim.freefall_accel])
+    wf, ff = kernel_array(w.reshape(T, n, 3)), kernel_array(f.reshape(T, n, 3))
+    mf = np.zeros((1, 1, 3)) if m_b is None else kernel_array(m_b.reshape(T, n, 3))
+    flags, turn = np.zeros((len(_KEYS), T, n), dtype=bool), np.zeros(T)
+    run_chunks(lambda t0, t1: _scan(t0, t1, wf, ff, mf, dts, tests, flags, turn), T)
     refuse_turn(float(turn.max()))                             # (clock jumps are not integrated)
-    finite_w, finite_f = np.isfinite(w).all(-1), np.isfinite(f).all(-1)
-    nan_w = ~finite_w & ~stuck.reshape(lead + (n,))
-    spike_w, spike_f = _spikes(imu, finite_w & finite_f)
-    held, fresh = np.empty_like(flat), np.empty((T, n), dtype=bool)
-    jump_spike = np.zeros((T, n), dtype=bool)
-    gate = lim.gyro_jump or 0.0
-    bad = kernel_array((stuck | ~finite_w.reshape(T, n) | spike_w.reshape(T, n)))
-    run_chunks(lambda t0, t1: _gyro_hold(t0, t1, flat, bad, gate, held, fresh, jump_spike), T)
-    spike_w = spike_w | jump_spike.reshape(lead + (n,))
-    free = _freefall(f, dts, lim.freefall_accel, lim.freefall_time) & finite_f & ~spike_f
-    flags = {("gyro", "stuck"): stuck.reshape(lead + (n,)), ("gyro", "nan"): nan_w, ("gyro", "spike"): spike_w,
-             ("gyro", "saturated"): _rails(w, lim.full_scale_gyro),
-             ("accel", "nan"): ~finite_f, ("accel", "spike"): spike_f & ~spike_w, ("accel", "freefall"): free,
-             ("accel", "saturated"): _rails(f, lim.full_scale_accel)}
-    if m_b is not None:
-        flags["mag", "nan"] = ~np.isfinite(m_b).all(-1)
-        flags["mag", "saturated"] = _rails(m_b, lim.full_scale_mag)
-    flags["clock", "jump"] = np.broadcast_to(dts > max_dt, lead + (n,))
-    report = FaultReport({key: m.sum(-1) for key, m in flags.items()}, flags)
+    _freefall_runs(flags[6], dts, lim.freefall_time)
+    flags[6] &= ~flags[5]                                      # a spike is a spike, not free fall
+    held, fresh = np.empty_like(wf), np.empty((T, n), dtype=bool)
+    run_chunks(lambda t0, t1: _gyro_hold(t0, t1, wf, flags, lim.gyro_jump or 0.0, held, fresh), T)
+    keys = _KEYS if m_b is not None else [key for key in _KEYS if key[0] != "mag"]
+    found = {key: flags[_KEYS.index(key)].reshape(lead + (n,)) for key in keys}
+    report = FaultReport({key: v.sum(-1) for key, v in found.items()}, found)
     return Screened(imu, held.reshape(w.shape), fresh.reshape(lead + (n,)), m_b, dts, max_dt, report)
 
 
-def _rails(x: np.ndarray, full_scale: float) -> np.ndarray:
-    """Valid samples with a component at or beyond ``full_scale``."""
-    return (np.abs(x) >= full_scale).any(-1) & np.isfinite(x).all(-1)
+_KEYS = [("gyro", "stuck"), ("gyro", "nan"), ("gyro", "spike"), ("gyro", "saturated"), ("accel", "nan"),
+         ("accel", "spike"), ("accel", "freefall"), ("accel", "saturated"), ("mag", "nan"), ("mag", "saturated"),
+         ("clock", "jump")]
+"""What :func:`screen` flags, in the order of its flag array."""
 
 
-def _spikes(imu: ImuSamples, finite: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Isolated gyro and accelerometer spikes (:func:`is_spike`) among the rows where both are finite."""
-    lim, w, f = imu.limits, imu.w_ib_b, imu.f_b
-    if np.isinf(lim.spike_gyro) and np.isinf(lim.spike_accel):
-        return np.zeros(finite.shape, dtype=bool), np.zeros(finite.shape, dtype=bool)
-    n = w.shape[-2]
-    wf, ff = kernel_array(w.reshape(-1, n, 3)), kernel_array(f.reshape(-1, n, 3))
-    sw, sf = np.zeros(wf.shape[:2], dtype=bool), np.zeros(wf.shape[:2], dtype=bool)
-    for t in range(wf.shape[0]):
-        sw[t], sf[t] = _spike_masks(wf[t], ff[t], lim.spike_gyro, lim.spike_accel)
-    return sw.reshape(finite.shape) & finite, sf.reshape(finite.shape) & finite
-
-
-@njit(cache=True)
-def _spike_masks(w, f, spike_gyro, spike_accel):
-    n = w.shape[0]
-    sw, sf = np.zeros(n, dtype=np.bool_), np.zeros(n, dtype=np.bool_)
-    for k in range(2, n - 2):
-        sw[k] = is_spike(w, k, spike_gyro)
-        sf[k] = is_spike(f, k, spike_accel)
-    return sw, sf
-
-
-def _freefall(f: np.ndarray, dts: np.ndarray, threshold: float, min_time: float) -> np.ndarray:
-    """Samples in a run of ``|f| < threshold`` whose intervals sum to at least ``min_time`` (NaN: not in a run)."""
-    with np.errstate(invalid="ignore"):
-        low = np.sqrt(np.sum(f * f, axis=-1)) < threshold          # NaN compares False
-    out = np.zeros_like(low)
-    if not low.any():
-        return out
-    flat, out_flat = low.reshape(-1, low.shape[-1]), out.reshape(-1, low.shape[-1])
-    for row, dst in zip(flat, out_flat, strict=True):
-        edges = np.flatnonzero(np.diff(np.concatenate([[0], row.astype(np.int8), [0]])))
+def _freefall_runs(low: np.ndarray, dts: np.ndarray, min_time: float) -> None:
+    """Keep, in place, only the runs of ``low`` (T, N) samples whose intervals sum to at least ``min_time``."""
+    for t in np.flatnonzero(low.any(-1)):
+        edges = np.flatnonzero(np.diff(np.concatenate([[0], low[t].astype(np.int8), [0]])))
         for a, b in zip(edges[::2], edges[1::2], strict=True):
-            if dts[a:b].sum() >= min_time:
-                dst[a:b] = True
-    return out
+            if dts[a:b].sum() < min_time:
+                low[t, a:b] = False
 
 
 @njit(cache=True, nogil=True)
-def _gyro_scan(t0, t1, w, dts, max_dt, run, rail, stuck, turn):
-    """Trials t0 to t1 - 1 of the gyro ``w`` (T, N, 3): ``turn[t]``, the largest turn ``|w| dt`` over an
-    integrated interval (``dt <= max_dt``; NaN ignored), and with ``run > 0`` the stuck samples ``stuck[t]``
-    (values at ``rail`` excepted) of a trial whose gyro is noisy from the start (no axis repeats its first
-    value ``run`` times)."""
-    N = w.shape[1]
+def _scan(t0, t1, w, f, m, dts, tests, flags, turn):
+    """Trials t0 to t1 - 1 of the samples ``w``, ``f`` (T, N, 3) and ``m`` ((T, N, 3), or (1, 1, 3): none):
+    every flag of :data:`_KEYS` into ``flags`` (K, T, N), but for free fall the samples of low norm (the
+    caller keeps the long runs), and ``turn[t]``, the largest turn ``|w| dt`` over an integrated interval.
+    ``tests = [max_dt, stuck run (0: off), full scales (gyro, accel, mag), spike thresholds (gyro, accel),
+    free-fall threshold]``."""
+    max_dt, run, fs_w, fs_f, fs_m, low = tests[0], int(tests[1]), tests[2], tests[3], tests[4], tests[7]
+    N, use_mag, spikes = w.shape[1], m.shape[1] == w.shape[1], tests[5] < np.inf or tests[6] < np.inf
     for t in range(t0, t1):
-        big = 0.0
+        _gyro_scan(t, w, dts, max_dt, run, fs_w, flags[0], turn)
+        wt, ft, mt = w[t], f[t], m[t if use_mag else 0]
+        stuck, nan_w, spike_w, rails_w = flags[0, t], flags[1, t], flags[2, t], flags[3, t]
+        nan_f, spike_f, free, rails_f = flags[4, t], flags[5, t], flags[6, t], flags[7, t]
+        nan_m, rails_m, jump = flags[8, t], flags[9, t], flags[10, t]
         for k in range(N):
-            if dts[k] <= max_dt:
-                a = np.sqrt(w[t, k, 0] * w[t, k, 0] + w[t, k, 1] * w[t, k, 1] + w[t, k, 2] * w[t, k, 2]) * dts[k]
-                if a > big:
-                    big = a
-        turn[t] = big
-        if run == 0:
-            continue
-        noisy = True
-        for c in range(3):
-            k = 0
-            while k < N and w[t, k, c] == w[t, 0, c]:
-                k += 1
-            noisy = noisy and k < run
-        if noisy:
-            stuck_runs(t, t + 1, w, run, rail, stuck)
+            wx, wy, wz, fx, fy, fz = wt[k, 0], wt[k, 1], wt[k, 2], ft[k, 0], ft[k, 1], ft[k, 2]
+            ok_w, ok_f = _finite3(wx, wy, wz), _finite3(fx, fy, fz)
+            nan_w[k], nan_f[k] = not ok_w and not stuck[k], not ok_f
+            rails_w[k], rails_f[k] = ok_w and _at_rails(wx, wy, wz, fs_w), ok_f and _at_rails(fx, fy, fz, fs_f)
+            if spikes and ok_w and ok_f and 2 <= k < N - 2:
+                spike_w[k] = is_spike(wt, k, tests[5])
+                spike_f[k] = is_spike(ft, k, tests[6]) and not spike_w[k]
+            free[k] = np.sqrt(fx * fx + fy * fy + fz * fz) < low             # NaN compares False
+            if use_mag:
+                mx, my, mz = mt[k, 0], mt[k, 1], mt[k, 2]
+                ok_m = _finite3(mx, my, mz)
+                nan_m[k], rails_m[k] = not ok_m, ok_m and _at_rails(mx, my, mz, fs_m)
+            jump[k] = dts[k] > max_dt
+
+
+@njit(cache=True, inline="always")
+def _finite3(x, y, z):
+    return np.isfinite(x) and np.isfinite(y) and np.isfinite(z)
+
+
+@njit(cache=True, inline="always")
+def _at_rails(x, y, z, full_scale):
+    return abs(x) >= full_scale or abs(y) >= full_scale or abs(z) >= full_scale
+
+
+@njit(cache=True, inline="always")
+def _gyro_scan(t, w, dts, max_dt, run, rail, stuck, turn):
+    """Trial t of the gyro ``w`` (T, N, 3): ``turn[t]``, the largest turn ``|w| dt`` over an integrated interval
+    (``dt <= max_dt``; NaN ignored), and with ``run > 0`` the stuck samples ``stuck[t]`` (values at ``rail``
+    excepted) of a trial whose gyro is noisy from the start (no axis repeats its first value ``run`` times)."""
+    N = w.shape[1]
+    big = 0.0
+    for k in range(N):
+        if dts[k] <= max_dt:
+            a = np.sqrt(w[t, k, 0] * w[t, k, 0] + w[t, k, 1] * w[t, k, 1] + w[t, k, 2] * w[t, k, 2]) * dts[k]
+            if a > big:
+                big = a
+    turn[t] = big
+    if run == 0:
+        return
+    noisy = True
+    for c in range(3):
+        k = 0
+        while k < N and w[t, k, c] == w[t, 0, c]:
+            k += 1
+        noisy = noisy and k < run
+    if noisy:
+        stuck_runs(t, t + 1, w, run, rail, stuck)
 
 
 @njit(cache=True, nogil=True)
-def _gyro_hold(t0, t1, w, bad, gate, held, fresh, jumped):
-    """Trials t0 to t1 - 1: hold the last used gyro sample (0 before the first) over the ``bad`` samples and
-    over steps larger than ``gate`` on some axis (``jumped``; ``gate = 0``: off), unless the previous sample
-    was such a step already (a sustained change is motion)."""
+def _gyro_hold(t0, t1, w, flags, gate, held, fresh):
+    """Trials t0 to t1 - 1: hold the last used gyro sample (0 before the first) over the stuck, NaN and spike
+    samples of ``flags`` (:data:`_KEYS`) and over steps larger than ``gate`` on some axis (flagged as spikes;
+    ``gate = 0``: off), unless the previous sample was such a step already (a sustained change is motion)."""
     for t in range(t0, t1):
         gx = gy = gz = 0.0
         was_step = False
         for k in range(w.shape[1]):
             wx, wy, wz = w[t, k, 0], w[t, k, 1], w[t, k, 2]
-            use = not bad[t, k]
+            use = not (flags[0, t, k] or flags[1, t, k] or flags[2, t, k])
             if use and gate > 0.0 and not was_step and k > 0 and (
                     abs(wx - gx) > gate or abs(wy - gy) > gate or abs(wz - gz) > gate):
-                jumped[t, k], was_step, use = True, True, False
+                flags[2, t, k], was_step, use = True, True, False
             if use:
                 gx, gy, gz, was_step = wx, wy, wz, False
             held[t, k, 0], held[t, k, 1], held[t, k, 2] = gx, gy, gz

@@ -30,8 +30,8 @@ def madgwick(imu: ImuSamples, q0, *, m_b=None, B_n=None, beta: float = 0.1,
         if not inp.jump[k]:                             # a clock jump: nothing integrated over it
             dt = inp.dts[k]
             q_dot = 0.5 * attitude.quat_mult(q, np.concatenate([np.zeros((T, 1)), inp.w[:, k]], -1))
-            z = np.concatenate([_unit(inp.f[:, k]), _unit(inp.m[:, k]) if inp.use_mag else np.full((T, 3), np.nan)], -1)
-            used = np.isfinite(z)                       # skipped (screened or gated) rows do not pull
+            z = inp.z[:, k]                             # unit vectors; NaN: skipped (screened or gated)
+            used = np.isfinite(z)
             error = np.where(used, measurement_model(q, b) - z, 0.0)
             grad = np.einsum("tij,ti->tj", measurement_jacobian(q, b), error)
             norm = np.linalg.norm(grad, axis=-1, keepdims=True)
@@ -40,10 +40,6 @@ def madgwick(imu: ImuSamples, q0, *, m_b=None, B_n=None, beta: float = 0.1,
             q /= np.linalg.norm(q, axis=-1, keepdims=True)
         q_out[:, k] = q
     return observations.attitude_result(lead, q_out, np.zeros((T, 3)), np.zeros((T, 4), np.int64), found)
-
-
-def _unit(x):
-    return x / np.linalg.norm(x, axis=-1, keepdims=True)
 
 # ---------------------------------------------------------------- tests
 

@@ -31,7 +31,7 @@ from .._typing import Quat, Vec3, Vec3Series
 from .._validate import scalar
 from ..imu import ImuSamples
 from .observations import AttitudeGates, AttitudeResult, RtkHeading, attitude_result, learning, observe, pack, \
-    pi_error, reinit, run_trials
+    pi_error, reinit, rtk_north, run_trials
 
 __all__ = ["mahony"]
 
@@ -45,7 +45,7 @@ def _kernel(t0, t1, inp, kp, ki, q_out, bias_out, counts):
 
 @njit(cache=True)
 def _trial(t, inp, kp, ki, q_out, bias_out, counts):
-    w, dts = inp.w, inp.dts
+    w, z, dts = inp.w, inp.z, inp.dts
     q0, q1, q2, q3 = inp.q_init[t, 0], inp.q_init[t, 1], inp.q_init[t, 2], inp.q_init[t, 3]
     ix = iy = iz = 0.0
     rtk = np.array([0.0, 1.0, 0.0, np.inf, 0.0, 0.0])
@@ -56,8 +56,10 @@ def _trial(t, inp, kp, ki, q_out, bias_out, counts):
             q0, q1, q2, q3 = reinit(inp, t, k, q0, q1, q2, q3, rtk)
             health[1] = 0.0
         else:
-            ax, ay, az, a_ok, mx, my, mz, m_ok, C = observe(inp, t, k, q0, q1, q2, q3, dt, rtk, counts)
-            ex, ey, ez = pi_error(C, ax, ay, az, a_ok, mx, my, mz, m_ok)      # Eqs. (12)-(14)
+            ax, ay, az, mx, my, mz, C = observe(z, t, k, q0, q1, q2, q3)
+            if inp.use_rtk:
+                mx, my, mz = rtk_north(inp, t, k, C, dt, rtk, counts)
+            ex, ey, ez = pi_error(C, ax, ay, az, mx, my, mz)                 # Eqs. (12)-(14)
             if learning(inp.fresh[t, k], dt, health, inp):                 # Eq. (15), unless settling after a fault
                 ix += ex * dt
                 iy += ey * dt

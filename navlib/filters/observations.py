@@ -11,8 +11,8 @@ such filters:
   :class:`RtkHeading` (the RTK heading reference with its hold, gate and re-acquisition);
 * :func:`pack` -- :func:`navlib.robust.screen`'s clean samples with the gates applied, as the
   :class:`AttitudeInputs` record of the compiled kernels (trials flattened);
-* :func:`observe`, :func:`pi_error`, :func:`rtk_gate`, :func:`learning`, :func:`reinit` -- the compiled
-  per-sample steps: unit vectors (the RTK pseudo-vector with its state-dependent gate), Mahony's error
+* :func:`observe`, :func:`rtk_north`, :func:`pi_error`, :func:`rtk_gate`, :func:`learning`, :func:`reinit` --
+  the compiled per-sample steps: unit vectors (the RTK pseudo-vector with its state-dependent gate), Mahony's error
   ``e = a_meas x a_est + m_meas x m_est``, when the gyro-bias integral may learn, and the
   re-initialisation after a clock jump;
 * :class:`AttitudeResult` and :func:`run_trials` (Monte Carlo trials in parallel; the kernels release
@@ -69,8 +69,7 @@ class AttitudeInputs(NamedTuple):
     q_init: np.ndarray              # (T, 4) attitude before the first sample
     w: np.ndarray                   # (T, N, 3) gyro (rad/s), held over unusable samples
     fresh: np.ndarray               # (T, N) bool: the gyro sample is used as measured
-    f: np.ndarray                   # (T, N, 3) accelerometer (m/s^2), NaN = skip
-    m: np.ndarray                   # (T, N, 3) magnetometer (uT), NaN = skip, or (1, 1, 3) unused
+    z: np.ndarray                   # (T, N, 6) unit accelerometer and magnetometer vectors, NaN = skipped or none
     hdg: np.ndarray                 # (T, N) RTK heading (rad), or (1, 1) unused
     hdg_ok: np.ndarray              # (T, N) bool: a valid RTK epoch, or (1, 1) unused
     use_rtk: bool                   # heading reference: RTK (True) or magnetometer
@@ -125,12 +124,6 @@ def _accel_obs(fx, fy, fz, lo2, hi2):
 
 
 @njit(cache=True, inline="always")
-def _unit(x, y, z):
-    """Unit vector of a sample and a code: 0 used, 1 unusable (NaN, inf, zero)."""
-    return _accel_obs(x, y, z, 0.0, np.inf)
-
-
-@njit(cache=True, inline="always")
 def _mag_obs(mx, my, mz, ax, ay, az, a_code, gate):
     """Unit magnetometer vector and a code (0 used, 1 unusable, 2 gated by norm or dip angle).
 
@@ -170,15 +163,15 @@ def _rtk_north(C31, C32, C33, sh, ch):
 
 
 @njit(cache=True, inline="always")
-def pi_error(C, ax, ay, az, a_ok, mx, my, mz, m_ok):
-    """Eqs. (12)-(14): e = a_meas x a_est + m_meas x m_est (measured x estimated)."""
+def pi_error(C, ax, ay, az, mx, my, mz):
+    """Eqs. (12)-(14): e = a_meas x a_est + m_meas x m_est (measured x estimated); a NaN vector is skipped."""
     C11, C12, C13, C21, C22, C23, C31, C32, C33 = C
     ex = ey = ez = 0.0
-    if a_ok:
+    if not np.isnan(ax):
         ex += ay * C33 - az * C32
         ey += az * C31 - ax * C33
         ez += ax * C32 - ay * C31
-    if m_ok:
+    if not np.isnan(mx):
         hx = C11 * mx + C12 * my + C13 * mz           # h = C_bn m (Mahony: rebuild b from h)
         hy = C21 * mx + C22 * my + C23 * mz
         hz = C31 * mx + C32 * my + C33 * mz
@@ -213,48 +206,44 @@ def rtk_gate(h, predicted, gate, confirm, state):
     return 2 if state[0] >= confirm else 1
 
 
-@njit(cache=True)
-def observe(inp, t, k, q0, q1, q2, q3, dtk, rtk, counts):
-    """Unit accelerometer vector and unit heading reference of sample k of trial t at the attitude ``q``.
+@njit(cache=True, inline="always")
+def observe(z, t, k, q0, q1, q2, q3):
+    """Unit accelerometer and magnetometer vectors of sample k of trial t of ``z`` (:attr:`AttitudeInputs.z`;
+    NaN where skipped or absent) and C_b^n(q) as nine elements: (ax, ay, az, mx, my, mz, C)."""
+    return z[t, k, 0], z[t, k, 1], z[t, k, 2], z[t, k, 3], z[t, k, 4], z[t, k, 5], _dcm_t(q0, q1, q2, q3)
 
-    The heading reference is the magnetometer, or with ``inp.use_rtk`` the RTK north pseudo-vector:
-    ``rtk = [sin H, cos H, heading estimate at the epoch, age (s), gate run length, last rejected
-    heading]`` of the last used RTK epoch is updated in place and its gate's outcomes counted in
-    ``counts[t]`` (:data:`_RTK_COUNTS`). Returns (ax, ay, az, a_ok, mx, my, mz, m_ok, C) with C the nine
-    elements of C_b^n(q).
+
+@njit(cache=True, inline="always")
+def rtk_north(inp, t, k, C, dt, rtk, counts):
+    """Mode (a) of Fig. 4: the RTK heading as a north pseudo-vector in the body frame (NaN without a used epoch
+    within ``inp.rtk_par[0]`` s), at the attitude whose C_b^n elements are ``C``.
+
+    ``rtk = [sin H, cos H, heading estimate at the epoch, age (s), gate run length, last rejected heading]``
+    of the last used RTK epoch is updated in place and the gate's outcomes counted in ``counts[t]``
+    (:data:`_RTK_COUNTS`).
     """
-    f, m, rtk_par = inp.f, inp.m, inp.rtk_par
-    C = _dcm_t(q0, q1, q2, q3)
-    ax, ay, az, ca = _unit(f[t, k, 0], f[t, k, 1], f[t, k, 2])
-    if inp.use_rtk:
-        rtk[3] += dtk
-        if inp.hdg_ok[t, k]:
-            hk = inp.hdg[t, k]
-            if np.isnan(hk):                                           # valid flag but no value: dropout
-                counts[t, 1] += 1
-            else:
-                est = dcm_heading(C[1], C[4])
-                code = rtk_gate(hk, est, rtk_par[1], rtk_par[2], rtk[4:6])
-                if code == 1:
-                    counts[t, 2] += 1
-                else:
-                    if code == 2:
-                        counts[t, 3] += 1
-                    rtk[0], rtk[1], rtk[2], rtk[3] = np.sin(hk), np.cos(hk), est, 0.0
-        if rtk[3] <= rtk_par[0] and C[6] * C[6] + C[8] * C[8] > 1e-12:     # (no heading at pitch +-90 deg)
-            # carry the epoch's heading forward with the estimate's own heading change
-            d = dcm_heading(C[1], C[4]) - rtk[2]
-            sd, cd = np.sin(d), np.cos(d)
-            mx, my, mz = _rtk_north(C[6], C[7], C[8], rtk[0] * cd + rtk[1] * sd, rtk[1] * cd - rtk[0] * sd)
-            cm = 0
+    hdg, hdg_ok, rtk_par = inp.hdg, inp.hdg_ok, inp.rtk_par
+    rtk[3] += dt
+    if hdg_ok[t, k]:
+        hk = hdg[t, k]
+        if np.isnan(hk):                                               # valid flag but no value: dropout
+            counts[t, 1] += 1
         else:
-            mx, my, mz, cm = 0.0, 0.0, 0.0, 1
-            counts[t, 0] += 1
-    elif inp.use_mag:
-        mx, my, mz, cm = _unit(m[t, k, 0], m[t, k, 1], m[t, k, 2])
-    else:                                               # no heading reference
-        mx, my, mz, cm = 0.0, 0.0, 0.0, -1
-    return ax, ay, az, ca == 0, mx, my, mz, cm == 0, C
+            est = dcm_heading(C[1], C[4])
+            code = rtk_gate(hk, est, rtk_par[1], rtk_par[2], rtk[4:6])
+            if code == 1:
+                counts[t, 2] += 1
+            else:
+                if code == 2:
+                    counts[t, 3] += 1
+                rtk[0], rtk[1], rtk[2], rtk[3] = np.sin(hk), np.cos(hk), est, 0.0
+    if rtk[3] <= rtk_par[0] and C[6] * C[6] + C[8] * C[8] > 1e-12:         # (no heading at pitch +-90 deg)
+        # carry the epoch's heading forward with the estimate's own heading change
+        d = dcm_heading(C[1], C[4]) - rtk[2]
+        sd, cd = np.sin(d), np.cos(d)
+        return _rtk_north(C[6], C[7], C[8], rtk[0] * cd + rtk[1] * sd, rtk[1] * cd - rtk[0] * sd)
+    counts[t, 0] += 1
+    return np.nan, np.nan, np.nan
 
 
 @njit(cache=True, inline="always")
@@ -285,10 +274,10 @@ def reinit(inp, t, k, q0, q1, q2, q3, rtk):
     hold and gate state ``rtk`` (see :func:`observe`) restarts. The caller restarts the settling of
     :func:`learning`. Returns (q0, q1, q2, q3).
     """
-    f, m = inp.f, inp.m
+    z = inp.z
     rtk[3], rtk[4] = np.inf, 0.0                                   # the last epoch is stale
-    ax, ay, az, ca = _unit(f[t, k, 0], f[t, k, 1], f[t, k, 2])
-    if ca != 0:
+    ax, ay, az = z[t, k, 0], z[t, k, 1], z[t, k, 2]
+    if np.isnan(ax):
         return q0, q1, q2, q3
     pitch, roll = level(ax, ay, az)
     C = _dcm_t(q0, q1, q2, q3)
@@ -297,10 +286,8 @@ def reinit(inp, t, k, q0, q1, q2, q3, rtk):
         if inp.hdg_ok[t, k] and not np.isnan(inp.hdg[t, k]):
             h = inp.hdg[t, k]
             rtk[0], rtk[1], rtk[2], rtk[3] = np.sin(h), np.cos(h), h, 0.0
-    elif inp.use_mag:
-        mx, my, mz, cm = _unit(m[t, k, 0], m[t, k, 1], m[t, k, 2])
-        if cm == 0:
-            h = tilt_heading(mx, my, mz, pitch, roll)
+    elif not np.isnan(z[t, k, 3]):
+        h = tilt_heading(z[t, k, 3], z[t, k, 4], z[t, k, 5], pitch, roll)
     return euler_to_quat(h, pitch, roll)
 
 
@@ -477,26 +464,16 @@ def pack(imu: ImuSamples, q0: Quat, m_b: ArrayLike | None, rtk: RtkHeading | Non
         limits[4:6] = np.sin(max(incl - gates.mag.dip_tol, -np.pi / 2)), np.sin(min(incl + gates.mag.dip_tol, np.pi / 2))
     flags = s.faults.flags
     skip_f = flags["accel", "saturated"] | flags["accel", "freefall"] | flags["accel", "spike"]
-    f = kernel_array(np.where(skip_f[..., None], np.nan, imu.f_b).reshape(T, N, 3))
     use_mag = s.m_b is not None
-    if use_mag:
-        m = kernel_array(np.where(flags["mag", "saturated"][..., None], np.nan, s.m_b).reshape(T, N, 3))
-    else:
-        m = np.zeros((1, 1, 3))
-    codes = np.zeros((2, T, N), dtype=np.int8)
-    run_trials(_gate, T, f, m, use_mag, limits, codes)
+    m, skip_m = (s.m_b, flags["mag", "saturated"]) if use_mag else (np.zeros((1, 1, 3)), np.zeros((1, 1), bool))
+    z, codes = np.empty((T, N, 6)), np.empty((2, T, N), dtype=np.int8)
+    run_trials(_gate, T, kernel_array(imu.f_b.reshape(T, N, 3)), kernel_array(m.reshape(-1, m.shape[-2], 3)),
+               kernel_array(skip_f.reshape(T, N)), kernel_array(skip_m.reshape(-1, skip_m.shape[-1])), limits, z, codes)
     jump = kernel_array(flags["clock", "jump"].reshape(-1, N)[0])
-    found = {key: v for key, v in flags.items() if key[0] not in ("accel", "mag") or key[1] not in ("nan",)}
-    observed = ~jump
-    for i, sensor in enumerate(("accel", "mag")):
-        if sensor == "mag" and not use_mag:
-            continue
-        unflagged = ~(skip_f if sensor == "accel" else flags["mag", "saturated"]).reshape(T, N)
-        found[sensor, "nan"] = ((codes[i] == 1) & unflagged & observed).reshape(lead + (N,))
-        found[sensor, "outlier"] = ((codes[i] == 2) & observed).reshape(lead + (N,))
-    f[codes[0] != 0] = np.nan
-    if use_mag:
-        m[codes[1] != 0] = np.nan
+    found = {key: v for key, v in flags.items() if key not in (("accel", "nan"), ("mag", "nan"))}
+    for i, sensor in enumerate(("accel", "mag")[:1 + use_mag]):        # the screen's skips are counted there
+        found[sensor, "nan"] = ((codes[i] == 1) & ~jump).reshape(lead + (N,))
+        found[sensor, "outlier"] = ((codes[i] == 2) & ~jump).reshape(lead + (N,))
     if rtk is not None:
         hdg, ok = rtk.at(lead + (N,), "imu's samples")
         rtk_par = rtk.params()
@@ -504,22 +481,31 @@ def pack(imu: ImuSamples, q0: Quat, m_b: ArrayLike | None, rtk: RtkHeading | Non
         hdg, ok, rtk_par = np.zeros((1, 1)), np.zeros((1, 1), dtype=bool), np.array([0.0, np.inf, 0.0])
     typical = float(np.median(s.dt))
     long_hold = stuck_run_samples(imu.limits.stuck_run, typical) or stuck_run_samples("auto", typical)
-    inputs = AttitudeInputs(q, kernel_array(s.w_ib_b.reshape(T, N, 3)), kernel_array(s.fresh.reshape(T, N)), f, m,
+    inputs = AttitudeInputs(q, kernel_array(s.w_ib_b.reshape(T, N, 3)), kernel_array(s.fresh.reshape(T, N)), z,
                             hdg, ok, rtk is not None, use_mag, s.dt, jump, rtk_par, long_hold,
                             SETTLE_TIME_CONSTANTS / kp if kp > 0 else 0.0)
     return lead, inputs, FaultReport({key: v.sum(-1) for key, v in found.items()}, found)
 
 
 @njit(cache=True, nogil=True)
-def _gate(t0, t1, f, m, use_mag, limits, codes):
-    """Trials t0 to t1 - 1: the codes (0 used, 1 unusable, 2 gated) of each accelerometer and magnetometer
-    sample under the norm and dip-angle gates ``limits`` (see :func:`pack`)."""
+def _gate(t0, t1, f, m, skip_f, skip_m, limits, z, codes):
+    """Trials t0 to t1 - 1: the unit accelerometer and magnetometer vectors of ``f`` and ``m`` (T, N, 3; ``m``
+    (1, 1, 3): none) into ``z`` (T, N, 6), NaN where skipped, with their codes in ``codes`` (2, T, N): 0 used,
+    1 unusable, 2 outside the norm and dip-angle gates ``limits`` (see :func:`pack`), 3 skipped by the screen
+    (``skip_f``, ``skip_m``)."""
+    nan, use_mag = np.nan, m.shape[1] == f.shape[1]
     for t in range(t0, t1):
         for k in range(f.shape[1]):
             ax, ay, az, ca = _accel_obs(f[t, k, 0], f[t, k, 1], f[t, k, 2], limits[0], limits[1])
-            codes[0, t, k] = ca
+            ca = 3 if skip_f[t, k] else ca
+            mx = my = mz = nan
+            cm = 1
             if use_mag:
-                codes[1, t, k] = _mag_obs(m[t, k, 0], m[t, k, 1], m[t, k, 2], ax, ay, az, ca, limits[2:])[3]
+                mx, my, mz, cm = _mag_obs(m[t, k, 0], m[t, k, 1], m[t, k, 2], ax, ay, az, ca, limits[2:])
+                cm = 3 if skip_m[t, k] else cm
+            codes[0, t, k], codes[1, t, k] = ca, cm
+            z[t, k, 0], z[t, k, 1], z[t, k, 2] = (ax, ay, az) if ca == 0 else (nan, nan, nan)
+            z[t, k, 3], z[t, k, 4], z[t, k, 5] = (mx, my, mz) if cm == 0 else (nan, nan, nan)
 
 
 def run_trials(kernel: Callable, n_trials: int, *args) -> None:

@@ -47,6 +47,7 @@ from .observations import (
     pack,
     pi_error,
     reinit,
+    rtk_north,
     run_trials,
 )
 
@@ -275,7 +276,7 @@ def _workspace():
     return mats, (np.empty(6), np.empty(6), np.empty(6)), (np.empty(6, np.int64), np.empty(6, np.int64))
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _predict(x, P, Phi, G, q_gyro, ws):
     """Eqs. (16)-(18) in place: ``x = Phi x``, ``P = sym(Phi P Phi^T + Gamma Q Gamma^T)``, ``Q = q_gyro I``."""
     (A, B, C, D, _, _), (v, _, _), _ = ws
@@ -293,7 +294,7 @@ def _predict(x, P, Phi, G, q_gyro, ws):
     _symmetrise(P, D, 4)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _update(x, P, z, h, H, r_diag, ws):
     """Joseph update of ``x``, ``P`` in place with the finite rows of ``z`` (R diagonal, ``r_diag``).
 
@@ -378,8 +379,10 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
             health[1] = 0.0
             _output(t, k, x, P, q_out, P_hist, keep)
             continue
-        ax, ay, az, a_ok, mx, my, mz, m_ok, C = observe(inp, t, k, x[0], x[1], x[2], x[3], dt, rtk, counts)
-        ex, ey, ez = pi_error(C, ax, ay, az, a_ok, mx, my, mz, m_ok)   # PI-corrected rate, Eq. (15)
+        ax, ay, az, mx, my, mz, C = observe(inp.z, t, k, x[0], x[1], x[2], x[3])
+        if inp.use_rtk:
+            mx, my, mz = rtk_north(inp, t, k, C, dt, rtk, counts)
+        ex, ey, ez = pi_error(C, ax, ay, az, mx, my, mz)                # PI-corrected rate, Eq. (15)
         if learning(inp.fresh[t, k], dt, health, inp):                           # Eq. (15), unless settling after a fault
             ix += ex * dt
             iy += ey * dt
@@ -387,8 +390,7 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
         _phi_into(Phi, gx + kp * ex + ki * ix, gy + kp * ey + ki * iy, gz + kp * ez + ki * iz, dt)
         _gamma_into(G, x, dt)
         _predict(x, P, Phi, G, sg * sg, ws)                                # Eqs. (16)-(18)
-        z[0], z[1], z[2] = (ax, ay, az) if a_ok else (np.nan, np.nan, np.nan)
-        z[3], z[4], z[5] = (mx, my, mz) if m_ok else (np.nan, np.nan, np.nan)
+        z[0], z[1], z[2], z[3], z[4], z[5] = ax, ay, az, mx, my, mz         # NaN rows: skipped
         _jacobian_into(H, x, by, bz)                                        # Eq. (20)
         if model.linear_innovation:
             _mat_vec(h, H, x, 6, 4)                                         # printed Eq. (19): wrong (E003-12)
