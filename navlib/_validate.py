@@ -224,18 +224,6 @@ def time_axis(t: Times, name: str = "time", *, increasing: bool = True, min_samp
     return arr
 
 
-# Former names, kept until the modules still importing them switch to ``nonempty=True``.
-
-def nonempty_array(x: ArrayLike, name: str, **kwargs: Any) -> np.ndarray:
-    """``as_array(x, name, nonempty=True, ...)``."""
-    return as_array(x, name, nonempty=True, **kwargs)
-
-
-def nonempty_latitude(x: ArrayLike, name: str = "lat", deg: bool = False) -> np.ndarray:
-    """``latitude(x, name, deg, nonempty=True)``."""
-    return latitude(x, name, deg, nonempty=True)
-
-
 ORTHO_TOL = 1e-6
 """Largest ``|C^T C - I|`` accepted for a rotation matrix."""
 

@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import units
 from ._typing import Array, ArrayLike, Times
 from ._validate import (
     as_array,
@@ -33,8 +32,9 @@ from ._validate import (
     time_axis,
 )
 from .analysis import segments
+from .units import G0
 
-__all__ = ["P0", "T0", "LAPSE", "R_AIR", "G0", "isa_altitude", "isa_pressure", "bmp180_altitude", "bmp180_pressure",
+__all__ = ["P0", "T0", "LAPSE", "R_AIR", "isa_altitude", "isa_pressure", "bmp180_altitude", "bmp180_pressure",
            "hypsometric_height", "bmp180_compensate", "baro_height", "reference_pressure", "classify_floor",
            "segment_floors"]
 
@@ -46,8 +46,6 @@ LAPSE = 0.0065
 """ISA tropospheric lapse rate (K/m)."""
 R_AIR = 287.05287
 """Specific gas constant of dry air (J/(kg K))."""
-G0 = units.G0
-"""Standard gravity (m/s^2): :data:`navlib.units.G0`, the one definition."""
 
 _EXP = R_AIR * LAPSE / G0
 _P_11KM = P0 * (1 - LAPSE * 11000.0 / T0) ** (1 / _EXP)  # tropopause pressure, 22632.04 Pa

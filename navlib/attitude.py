@@ -25,16 +25,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ._kernels import (  # noqa: F401 -- re-exported until callers import them from _kernels
-    quat_mult_1,
-    quat_mult_t,
-    quat_normalize_1,
-    quat_to_dcm_1,
-    quat_to_dcm_into,
-    quat_to_dcm_t,
-    rotvec_to_quat_1,
-    rotvec_to_quat_t,
-)
+from ._kernels import quat_to_dcm_into
 from ._typing import Angles, Array, Dcm, Quat, Vec3
 from ._validate import as_array, as_dcm, as_quat, flag, in_range
 

@@ -14,8 +14,7 @@ from numba import njit
 
 from . import _kernels
 from ._typing import Angles, Array, ArrayLike, Interval, Vec3, Vec3Series
-from ._validate import broadcast_to, intervals, kernel_array, scalar, small_turns, text
-from ._validate import nonempty_array as as_array
+from ._validate import as_array, broadcast_to, intervals, kernel_array, scalar, small_turns, text
 from .imu import ImuSamples, unpack
 
 __all__ = ["PITCH_LIMIT", "check_pitch", "euler_rates", "integrate_euler"]
@@ -26,14 +25,14 @@ _RK4_ANGLE2 = 1e-6          # squared step angle (rad^2) above which integrate_e
 
 
 def _hpr(hpr, name="hpr"):
-    hpr = as_array(hpr, name, tail=(3,))
+    hpr = as_array(hpr, name, tail=(3,), nonempty=True)
     check_pitch(hpr[..., 1], f"{name}[..., 1] (pitch)")
     return hpr
 
 
 def check_pitch(pitch: ArrayLike, name: str = "pitch") -> None:
     """Raise ``ValueError`` naming ``name`` if any |pitch| exceeds :data:`PITCH_LIMIT` (Euler rates are singular at 90 deg)."""
-    pitch = as_array(pitch, text(name, "name", empty=False))
+    pitch = as_array(pitch, text(name, "name", empty=False), nonempty=True)
     if np.any(np.abs(pitch) > PITCH_LIMIT):
         raise ValueError(f"{name}: expected |pitch| <= {np.rad2deg(PITCH_LIMIT):g} deg; the Euler rates are singular "
                          f"at +-90 deg (got max |pitch| {np.rad2deg(np.nanmax(np.abs(pitch))):.3f} deg)")

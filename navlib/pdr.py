@@ -57,7 +57,7 @@ def detect_steps(f_b: Vec3Series, dt: float, threshold: float = 1.0, min_interva
     n_smooth = max(2, int(round(0.1 / dt)))
     if f.shape[0] < max(gap, n_smooth) + 2:
         raise ValueError(f"f_b: expected (N, 3) with N > {max(gap, n_smooth) + 2} samples, got {f.shape}")
-    a = analysis._moving_mean(np.linalg.norm(f, axis=-1), n_smooth) - scalar(g, "g", positive=True)   # N > n_smooth
+    a = analysis.moving_mean(np.linalg.norm(f, axis=-1), n_smooth) - scalar(g, "g", positive=True)   # N > n_smooth
     peak = (a[1:-1] > a[:-2]) & (a[1:-1] >= a[2:]) & (a[1:-1] > thr)
     idx = []
     for i in np.flatnonzero(peak) + 1:

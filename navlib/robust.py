@@ -81,8 +81,8 @@ from ._validate import (
 from .imu import ImuSamples
 from .timing import jump_limit
 
-__all__ = ["FaultReport", "Screened", "screen", "fault_report", "hold", "despike", "stuck_mask", "stuck_samples", "stuck_run_samples",
-           "longest_repeat", "LEADING", "STUCK_DURATION"]
+__all__ = ["FaultReport", "Screened", "screen", "fault_report", "hold", "despike", "stuck_mask", "stuck_samples",
+           "stuck_run_samples", "longest_repeat", "LEADING", "STUCK_DURATION"]
 
 LEADING = ("raise", "first", "zero")
 """Policies for NaN samples before the first valid one: raise, take the first valid sample, or 0."""

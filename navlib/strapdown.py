@@ -51,6 +51,7 @@ import numpy as np
 from numba import njit
 
 from . import _kernels, attitude, earth, robust
+from ._kernels import quat_mult_t, rotvec_to_quat_t
 from ._typing import Array, ArrayLike, Dcm, Interval, Quat, Vec3, Vec3Series
 from ._validate import (
     as_array,
@@ -67,7 +68,6 @@ from ._validate import (
     small_turns,
 )
 from ._validate import ellipsoid as ellipsoid_
-from .attitude import quat_mult_t, rotvec_to_quat_t
 from .imu import ImuSamples, unpack
 from .trajectory import Trajectory
 

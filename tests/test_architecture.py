@@ -21,7 +21,6 @@ from pathlib import Path
 import pytest
 
 PACKAGE = Path(__file__).resolve().parents[1] / "navlib"
-DEPRECATED = {"navlib.northfinding", "navlib.gyrobias", "navlib.planar", "navlib.ahrs", "navlib.pedestrian"}
 
 
 def dotted(path: Path) -> str:
@@ -31,7 +30,7 @@ def dotted(path: Path) -> str:
 
 MODULES = {dotted(p): p for p in sorted(PACKAGE.rglob("*.py")) if "__pycache__" not in p.parts}
 COMPANIONS = {m for m in MODULES if m.startswith("navlib.papers.")}
-CORE = {m for m in MODULES if not m.startswith("navlib.papers") and m not in DEPRECATED}
+CORE = {m for m in MODULES if not m.startswith("navlib.papers")}
 
 
 def package_of(module: str) -> str:
@@ -88,14 +87,14 @@ def test_no_private_names_of_other_modules(module):
 @pytest.mark.parametrize("module", sorted(CORE))
 def test_core_never_imports_a_paper(module):
     bad = [f"line {line}: {src}" for src, _, line in imports(module)
-           if src.startswith("navlib.papers.") or src in DEPRECATED]
+           if src.startswith("navlib.papers.")]
     assert not bad, f"core module {module} imports paper code:\n" + "\n".join(bad)
 
 
 @pytest.mark.parametrize("module", sorted(COMPANIONS))
 def test_companions_import_core_only(module):
     bad = [f"line {line}: {src}" for src, _, line in imports(module)
-           if (src in COMPANIONS and src != module) or src in DEPRECATED]
+           if src in COMPANIONS and src != module]
     assert not bad, f"companion {module} imports another paper's code:\n" + "\n".join(bad)
 
 
@@ -191,3 +190,38 @@ def test_importing_navlib_installs_no_numba_listener():
 
 def test_the_compile_log_is_opt_in(tmp_path):
     assert import_all_in_a_fresh_process(NAVLIB_COMPILE_LOG=str(tmp_path / "compile.log")) == "['numba:compile'] False"
+
+
+MAX_PARAMETERS = 12
+"""No function (public, private or compiled) takes more: options go into small frozen records."""
+
+
+def test_no_function_takes_more_than_twelve_parameters():
+    wide = []
+    for module, path in MODULES.items():
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                a = node.args
+                n = len(a.posonlyargs) + len(a.args) + len(a.kwonlyargs) + (a.vararg is not None) + (a.kwarg is not None)
+                if n > MAX_PARAMETERS:
+                    wide.append(f"{module}.{node.name}: {n}")
+    assert not wide, "functions with more than 12 parameters:\n" + "\n".join(wide)
+
+
+def test_no_public_name_is_defined_twice():
+    """A name in the ``__all__`` of two public modules is one concept with two owners (``_kernels``' compiled
+    twins are private and do not count)."""
+    owners = {}
+    for module, path in MODULES.items():
+        if any(part.startswith("_") for part in module.split(".")[1:]):
+            continue
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        defined = {n.name for n in tree.body if isinstance(n, (ast.FunctionDef, ast.ClassDef))}
+        defined |= {t.id for n in tree.body if isinstance(n, ast.Assign) for t in n.targets if isinstance(t, ast.Name)}
+        exported = next((n.value for n in tree.body if isinstance(n, ast.Assign)
+                         and any(isinstance(t, ast.Name) and t.id == "__all__" for t in n.targets)), None)
+        names = {e.value for e in getattr(exported, "elts", []) if isinstance(e, ast.Constant)}
+        for name in names & defined:
+            owners.setdefault(name, []).append(module)
+    twice = {name: mods for name, mods in owners.items() if len(mods) > 1}
+    assert not twice, f"public names defined in more than one module: {twice}"

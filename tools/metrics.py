@@ -26,7 +26,7 @@ VALIDATE_NAMES = {"real", "as_array", "in_range", "positive", "latitude", "gener
                   "as_quat", "scalar", "integer", "flag", "choice", "full_scale", "intervals", "imu_samples",
                   "nonempty_array", "nonempty_positive", "nonempty_latitude", "instance", "same_shape", "broadcast",
                   "range_limit", "unit_interval", "booleans", "last_axis", "pitch_roll", "euler_angles", "small_turns",
-                  "text", "broadcast_to", "ellipsoid", "ellipsoid_"}
+                  "text", "broadcast_to", "ellipsoid", "ellipsoid_", "numbers"}
 # One formula, one place: regular expressions that find where each is written out.
 FORMULAS = {
     "levelling": r"arctan2\(\s*-\s*\w+\[\.\.\., 0\]|arctan2\(-ax, az\)|arcsin\(np\.clip\(f\[\.\.\., 1\]",
@@ -46,8 +46,12 @@ def statement_lines(node: ast.stmt) -> set[int]:
 
 
 def called(node: ast.AST) -> str:
+    """The name of a function called by name (``scalar(...)``) or through ``_validate`` (``_validate.scalar(...)``);
+    a method of another object (``ax.text(...)``, ``np.broadcast_to(...)``) is not a validator."""
     f = node.func if isinstance(node, ast.Call) else None
-    return f.id if isinstance(f, ast.Name) else f.attr if isinstance(f, ast.Attribute) else ""
+    if isinstance(f, ast.Attribute) and isinstance(f.value, ast.Name) and f.value.id == "_validate":
+        return f.attr
+    return f.id if isinstance(f, ast.Name) else ""
 
 
 def validates(node: ast.stmt, validators: set[str]) -> bool:

@@ -35,8 +35,19 @@ from numba import njit
 
 from .._kernels import wrap_pi
 from .._typing import Angles, Array, ArrayLike, Interval, Times
-from .._validate import booleans, in_range, instance, integer, intervals, kernel_array, last_axis, nonempty_array, \
-    same_shape, scalar, time_axis
+from .._validate import (
+    as_array,
+    booleans,
+    in_range,
+    instance,
+    integer,
+    intervals,
+    kernel_array,
+    last_axis,
+    same_shape,
+    scalar,
+    time_axis,
+)
 from ..robust import FaultReport
 from ..timing import jump_limit
 from .observations import RtkHeading, rtk_gate
@@ -140,7 +151,7 @@ def fuse_rtk_heading(heading_mag: Angles, rtk: RtkHeading, dt: Interval, alpha: 
     -------
     FusionResult
     """
-    hm = nonempty_array(heading_mag, "heading_mag", min_ndim=1)
+    hm = as_array(heading_mag, "heading_mag", min_ndim=1, nonempty=True)
     alpha = in_range(scalar(alpha, "alpha"), "alpha", 0.0, 1.0, lo_open=True)
     instance(rtk, "rtk", RtkHeading, "an RtkHeading")
     hr, ok = rtk.at(hm.shape, "heading_mag")
@@ -178,7 +189,7 @@ def rtk_at_imu_rate(time: Times, heading: Angles, valid: ArrayLike, step: int) -
         True at valid epochs.
     """
     t = time_axis(time, "time")
-    h = nonempty_array(heading, "heading", allow_nan=True)
+    h = as_array(heading, "heading", allow_nan=True, nonempty=True)
     v = same_shape(booleans(valid, "valid"), "valid", t.shape, of="time")
     step = integer(step, "step")
     last_axis(h, "heading", t.size, of="time")

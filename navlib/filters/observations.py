@@ -44,9 +44,9 @@ from .. import attitude, earth
 from .._kernels import dcm_heading, euler_to_quat, level, tilt_heading, wrap_pi
 from .._threads import run_chunks
 from .._typing import Array, ArrayLike, Quat, Vec3
-from .._validate import as_array, as_quat, booleans, broadcast_to, instance, integer, kernel_array, nonempty_array, scalar
+from .._validate import as_array, as_quat, booleans, broadcast_to, instance, integer, kernel_array, scalar
 from ..imu import ImuSamples
-from ..robust import FaultReport, Screened, screen, stuck_run_samples
+from ..robust import FaultReport, screen, stuck_run_samples
 from ..units import G0
 
 __all__ = ["MagGate", "AttitudeGates", "RtkHeading", "AttitudeResult", "AttitudeInputs", "SETTLE_TIME_CONSTANTS",
@@ -366,7 +366,7 @@ class RtkHeading:
     confirm: int = 5
 
     def __post_init__(self):
-        h = nonempty_array(self.heading, "heading", finite=False)
+        h = as_array(self.heading, "heading", finite=False, nonempty=True)
         v = booleans(self.valid, "valid")
         try:
             shape = np.broadcast_shapes(h.shape, v.shape)

@@ -33,8 +33,8 @@ from numba import njit
 
 from .. import _kernels
 from .._kernels import fma
-from .._typing import Array, ArrayLike, Quat, Vec3, Vec3Series
-from .._validate import as_quat, broadcast, flag, instance, nonempty_array, scalar
+from .._typing import Array, Quat, Vec3, Vec3Series
+from .._validate import as_array, as_quat, broadcast, flag, instance, scalar
 from ..imu import ImuSamples
 from .observations import (
     AttitudeGates,
@@ -140,8 +140,8 @@ def _model_rows(q, b, out_h, out_H):
 
 
 def _model(q, b):
-    q = as_quat(nonempty_array(q, "q", tail=(4,)), "q", normalize=False)
-    b = nonempty_array(b, "b", tail=(3,))
+    q = as_quat(as_array(q, "q", tail=(4,), nonempty=True), "q", normalize=False)
+    b = as_array(b, "b", tail=(3,), nonempty=True)
     if np.any(b[..., 0] != 0):
         raise ValueError("b: expected reference vectors [0, b_y, b_z] (Eq. 3, magnetic north)")
     lead = broadcast(q[..., 0], b[..., 0], name="b", of="q, b")[0].shape
@@ -177,7 +177,7 @@ def measurement_jacobian(q: Quat, b: Vec3) -> Array:
 
 def transition(w: Vec3, dt: float) -> Array:
     """Quaternion transition ``Phi = I + dt/2 Omega(w)`` (Eq. 17); w (..., 3) rad/s -> (..., 4, 4)."""
-    w = nonempty_array(w, "w", tail=(3,))
+    w = as_array(w, "w", tail=(3,), nonempty=True)
     dt = scalar(dt, "dt", positive=True)
     c = 0.5 * dt
     wx, wy, wz = np.moveaxis(w, -1, 0)
@@ -189,7 +189,7 @@ def transition(w: Vec3, dt: float) -> Array:
 
 def noise_input(q: Quat, dt: float) -> Array:
     """Gyro-noise input matrix ``Gamma = dt/2 Xi(q)`` (Eq. 18 corrected, E003-11); (..., 4) -> (..., 4, 3)."""
-    q = as_quat(nonempty_array(q, "q", tail=(4,)), "q", normalize=False)
+    q = as_quat(as_array(q, "q", tail=(4,), nonempty=True), "q", normalize=False)
     dt = scalar(dt, "dt", positive=True)
     q0, q1, q2, q3 = np.moveaxis(q, -1, 0)
     rows = [[-q1, -q2, -q3], [q0, -q3, q2], [q3, q0, -q1], [-q2, q1, q0]]

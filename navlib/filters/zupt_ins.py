@@ -50,7 +50,7 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit
 
-from .. import _kernels, attitude, earth, robust, trajectory
+from .. import _kernels, earth, robust, trajectory
 from .._kernels import radii_mn
 from .._validate import as_array, as_quat, booleans, choice, flag, instance, integer, kernel_array, scalar
 from ..imu import ImuSamples
@@ -371,8 +371,8 @@ def _feedback(x, lla, vel, q, b, a, e2):
     lla[2] -= x[2]
     for i in range(3):
         vel[i] -= x[3 + i]
-    d0, d1, d2, d3 = attitude.rotvec_to_quat_t(-x[6], -x[7], -x[8])     # C <- (I - [dpsi x]) C
-    m0, m1, m2, m3 = attitude.quat_mult_t(d0, d1, d2, d3, q[0], q[1], q[2], q[3])
+    d0, d1, d2, d3 = _kernels.rotvec_to_quat_t(-x[6], -x[7], -x[8])     # C <- (I - [dpsi x]) C
+    m0, m1, m2, m3 = _kernels.quat_mult_t(d0, d1, d2, d3, q[0], q[1], q[2], q[3])
     s = np.sqrt(m0 * m0 + m1 * m1 + m2 * m2 + m3 * m3)
     q[0], q[1], q[2], q[3] = m0 / s, m1 / s, m2 / s, m3 / s
     for i in range(6):
@@ -495,7 +495,7 @@ def _heading_aid(x, P, lla, vel, q, b, m_b, c, ws):
     dh = _kernels.wrap_pi(_kernels.dcm_heading(C[0, 1], C[1, 1]) - alpha_h)
     if c.walk == 1:
         rz = np.array([np.cos(dh / 2), 0.0, 0.0, np.sin(dh / 2)])
-        qn = attitude.quat_normalize_1(attitude.quat_mult_1(rz, q))
+        qn = _kernels.quat_normalize_1(_kernels.quat_mult_1(rz, q))
         for i in range(4):
             q[i] = qn[i]
         _reset_state(P, 8, np.sqrt(c.r_heading))
@@ -534,7 +534,7 @@ def _filter_kernel(samples, s0, c):
             f_k[i] = f[k, i] - b[i]
         _kernels.nav_step(lla, vel, q, w_k, f_k, dtk, c.earth_consts, False)   # the shared mechanisation
         # --- P = Phi P Phi^T + Q, Phi = I + F dt; x = Phi x stays 0 (fed back and reset at each update) ---
-        attitude.quat_to_dcm_into(C, q)
+        _kernels.quat_to_dcm_into(C, q)
         f_n = _kernels.mat3_vec(C, f_k)
         for i in range(3):
             f_dt[i] = f_n[i] * dtk

@@ -60,8 +60,7 @@ from .._validate import (
     flag,
     generator,
     instance,
-    nonempty_array,
-    nonempty_latitude,
+    latitude,
     scalar,
     time_axis,
 )
@@ -88,12 +87,12 @@ def _ell(ellipsoid) -> Ellipsoid:
 
 
 def _lon_deg(lon, deg: bool, name: str = "lon") -> np.ndarray:
-    arr = nonempty_array(lon, name)
+    arr = as_array(lon, name, nonempty=True)
     return arr if flag(deg, "deg") else np.rad2deg(arr)
 
 
 def _validate_lat_lon(lat, lon, deg):
-    lat_rad = nonempty_latitude(lat, "lat", deg=deg)
+    lat_rad = latitude(lat, "lat", deg=deg, nonempty=True)
     lon_deg = _lon_deg(lon, deg)
     return broadcast(lat_rad, lon_deg, name="lat, lon")
 
@@ -121,7 +120,7 @@ def paper_radii(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = Fal
     R_N, R_M : ndarray, shape (...)
     """
     _ell(ellipsoid)
-    W = nonempty_latitude(lat, "lat", deg=deg)
+    W = latitude(lat, "lat", deg=deg, nonempty=True)
     a, b = ellipsoid.a, ellipsoid.b
     e1 = np.sqrt(a * a - b * b) / a
     e2 = np.sqrt(a * a - b * b) / b
@@ -133,7 +132,7 @@ def paper_radii(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = Fal
 def printed_meridian_radius(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False) -> Array:
     """Eq. (6) exactly as printed, ``a^2 (1 - e1^2)/sqrt((1 + e2^2 sin^2 W)^(3/2))`` (m): wrong (erratum E002-02)."""
     _ell(ellipsoid)
-    W = nonempty_latitude(lat, "lat", deg=deg)
+    W = latitude(lat, "lat", deg=deg, nonempty=True)
     e1, e2, _, _ = paper_radii(0.0, ellipsoid)
     return ellipsoid.a ** 2 * (1 - e1 ** 2) / np.sqrt((1 + e2 ** 2 * np.sin(W) ** 2) ** 1.5)
 
@@ -154,7 +153,7 @@ def paper_meridian_arc(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: boo
         terms, only to show what a missing term would cost (millimetres for e^8).
     """
     _ell(ellipsoid)
-    W = nonempty_latitude(lat, "lat", deg=deg)
+    W = latitude(lat, "lat", deg=deg, nonempty=True)
     return _meridian_arc(W, W, ellipsoid, choice(order, "order", (8, 6, 4, 2)))
 
 
@@ -567,7 +566,7 @@ def ekf_error_ms(truth, T: float, Q=Q_PAPER, R=R_PAPER, P0=None, yaw_rate_bias: 
 def footpoint_latitude(x: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, iterations: int = 8) -> Array:
     """Latitude W_f (rad) whose meridian arc S(W_f) of Eq. (7) equals the northing ``x`` (m): Newton on dS/dW = R_M."""
     _ell(ellipsoid)
-    x = nonempty_array(x, "x")
+    x = as_array(x, "x", nonempty=True)
     n = int(scalar(iterations, "iterations", positive=True))
     if np.any(np.abs(x) > _meridian_arc(np.pi / 2, np.pi / 2, ellipsoid)):
         raise ValueError("x: expected a northing within the meridian quadrant")
@@ -603,7 +602,7 @@ def inverse_series(x: ArrayLike, y: ArrayLike, lon0: ArrayLike, ellipsoid: Ellip
         rad, or deg with ``deg=True``.
     """
     _ell(ellipsoid)
-    x, y = broadcast(nonempty_array(x, "x"), nonempty_array(y, "y"), name="x, y")
+    x, y = broadcast(as_array(x, "x", nonempty=True), as_array(y, "y", nonempty=True), name="x, y")
     if np.any(np.abs(y) > 1e6):
         raise ValueError(f"y: expected an easting within 1000 km of the central meridian, got {np.abs(y).max():.4g} m")
     L0 = np.deg2rad(_lon_deg(lon0, deg, "lon0"))
