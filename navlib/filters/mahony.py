@@ -30,8 +30,19 @@ from .._kernels import quat_mult_t
 from .._typing import Quat, Vec3, Vec3Series
 from .._validate import scalar
 from ..imu import ImuSamples
-from .observations import AttitudeGates, AttitudeResult, RtkHeading, attitude_result, learning, observe, pack, \
-    pi_error, reinit, rtk_north, run_trials
+from .observations import (
+    AttitudeGates,
+    AttitudeResult,
+    RtkHeading,
+    attitude_result,
+    learning,
+    observe,
+    pack,
+    pi_error,
+    reinit,
+    rtk_north,
+    run_trials,
+)
 
 __all__ = ["mahony"]
 
