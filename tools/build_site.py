@@ -282,20 +282,11 @@ def home_page(leds: list[ledger.PaperLedger], chapters: list[str]) -> str:
 
 
 # ---------------------------------------------------------------------------------------------------- API
-def _deprecated_alias(module: str) -> bool:
-    """A module kept only so that old imports resolve (its docstring says so; importing it warns)."""
-    path = ROOT / Path(*module.split(".")).with_suffix(".py")
-    return path.is_file() and path.read_text(encoding="utf-8").lstrip().startswith('"""Deprecated alias')
-
-
 def public_modules() -> dict[str, list[str]]:
     import navlib
     groups = {"Core": [], "Filters": [], "Paper companions": []}
     for info in pkgutil.walk_packages(navlib.__path__, "navlib."):
         if any(part.startswith("_") for part in info.name.split(".")) or info.ispkg and info.name != "navlib.papers":
-            continue
-        if _deprecated_alias(info.name):
-            groups.setdefault("Deprecated aliases", []).append(info.name)
             continue
         group = "Filters" if info.name.startswith("navlib.filters.") else \
             "Paper companions" if info.name.startswith("navlib.papers") else "Core"
