@@ -71,7 +71,10 @@ class SensorLimits:
     def __post_init__(self):
         for name in ("full_scale_gyro", "full_scale_accel", "full_scale_mag"):
             object.__setattr__(self, name, range_limit(getattr(self, name), name))
-        if not (self.stuck_run is None or self.stuck_run == "auto"):
+        if isinstance(self.stuck_run, str):
+            if self.stuck_run != "auto":
+                raise ValueError(f"stuck_run: expected 'auto', None or an integer >= 2, got {self.stuck_run!r}")
+        elif self.stuck_run is not None:
             object.__setattr__(self, "stuck_run", integer(self.stuck_run, "stuck_run", minimum=2))
         if self.gyro_jump is not None:
             object.__setattr__(self, "gyro_jump", scalar(self.gyro_jump, "gyro_jump", positive=True))
