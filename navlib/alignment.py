@@ -31,9 +31,8 @@ from ._validate import as_array, as_dcm, broadcast, flag, imu_samples, kernel_ar
 from .imu import ImuSamples, unpack
 from .robust import FaultReport, longest_repeat
 
-__all__ = ["level", "magnetic_heading", "tilt_heading", "initial_attitude", "MAX_LAT_DEG", "gyrocompass_latitude", "OK",
-           "TOO_FEW", "SATURATED", "MOVING", "STUCK", "StaticWindow", "static_means", "triad", "triad_heading",
-           "four_position_heading", "static_gyro_bias"]
+__all__ = ["level", "magnetic_heading", "tilt_heading", "initial_attitude", "MAX_LAT_DEG", "gyrocompass_latitude",
+           "StaticWindow", "static_means", "triad", "triad_heading", "four_position_heading", "static_gyro_bias"]
 
 
 def _nonzero(v: np.ndarray, name: str) -> np.ndarray:
@@ -138,71 +137,52 @@ def gyrocompass_latitude(lat: ArrayLike, deg: bool = False) -> Array:
     return lat
 
 
-OK, TOO_FEW, SATURATED, MOVING, STUCK = 0, 1, 2, 3, 4
-"""Status codes of a static window (:class:`StaticWindow`)."""
-
-
 @dataclass(frozen=True)
 class StaticWindow:
-    """Averages of one static window and what was left out (shapes (..., 3) and (...)).
+    """Averages of one static window, the samples used and what was left out (shapes (..., 3) and (...)).
 
     Attributes
     ----------
     w_mean, f_mean : ndarray, shape (..., 3)
         Means of the samples used (rad/s, m/s^2); NaN where the window was
-        refused (``status != OK``).
+        refused (``faults["window", "refused"] == 1``).
     n_samples : int
         Samples in the window (N).
     n_used_gyro, n_used_accel : ndarray of int, shape (...)
         Samples averaged.
-    n_dropped_gyro, n_dropped_accel : ndarray of int, shape (...)
-        Samples with a NaN component (dropouts), left out.
-    n_outliers_gyro, n_outliers_accel : ndarray of int, shape (...)
-        Samples more than ``outlier_k`` robust sigmas (1.4826 MAD, floored at the
-        quantisation step: see :func:`static_means`) from the window median in
-        any component, left out (0 without ``outlier_k``).
-    n_saturated_gyro, n_saturated_accel : ndarray of int, shape (...)
-        Samples with a component at the device rails (``|x| >= full_scale``).
-    status : ndarray of int, shape (...)
-        ``OK`` (0); ``TOO_FEW`` (1): fewer than ``min_fraction`` of the samples
-        (and 2) left; ``SATURATED`` (2): saturated samples, the robot was not
-        still or the reading is unknown; ``MOVING`` (3): the accelerometer
-        shows motion (``accel_tol``); ``STUCK`` (4): a sensor axis repeated
-        one reading over at least ``stuck_fraction`` of the valid samples
-        (a frozen output).
-    n_stuck_gyro, n_stuck_accel : ndarray of int, shape (...)
-        Samples in the longest run of identical readings on any axis, where it
-        reached ``stuck_fraction`` of the valid samples (0 otherwise, and without
-        ``stuck_fraction``).
+    faults : FaultReport
+        Counts of shape (...) per :class:`navlib.robust.FaultReport` key:
+
+        * ``(sensor, "nan")``, sensor ``"gyro"`` or ``"accel"``: samples with a NaN
+          component (dropouts), left out;
+        * ``(sensor, "outlier")``: samples more than ``outlier_k`` robust sigmas
+          (1.4826 MAD, floored at the quantisation step: see :func:`static_means`)
+          from the window median in any component, left out (0 without ``outlier_k``);
+        * ``(sensor, "saturated")``: samples with a component at the device rails
+          (``|x| >= full_scale``);
+        * ``(sensor, "stuck")``: samples in the longest run of identical readings on
+          any axis, where it reached ``stuck_fraction`` of the valid samples (0
+          otherwise, and without ``stuck_fraction``);
+        * ``("window", "refused")``: 1 where the window was refused, 0 where accepted.
+
+        Why a window was refused is read from the same counts (each reason refuses it,
+        and more than one may hold):
+
+        * too few samples: ``n_used_gyro`` or ``n_used_accel`` below
+          ``max(2, ceil(min_fraction N))`` (dropouts and outliers left out too many);
+        * saturation: ``("gyro", "saturated")`` or ``("accel", "saturated")`` > 0,
+          the robot was not still or the reading is unknown;
+        * a frozen sensor: ``("gyro", "stuck")`` or ``("accel", "stuck")`` > 0;
+        * motion: refused with none of the three above -- the mean specific-force
+          norm or the difference of the two half-window means exceeded ``accel_tol``
+          (only tested when the window passed the other checks).
     """
     w_mean: np.ndarray
     f_mean: np.ndarray
     n_samples: int
     n_used_gyro: np.ndarray
     n_used_accel: np.ndarray
-    n_dropped_gyro: np.ndarray
-    n_dropped_accel: np.ndarray
-    n_outliers_gyro: np.ndarray
-    n_outliers_accel: np.ndarray
-    n_saturated_gyro: np.ndarray
-    n_saturated_accel: np.ndarray
-    status: np.ndarray
-    n_stuck_gyro: np.ndarray | int = 0
-    n_stuck_accel: np.ndarray | int = 0
-
-    @property
-    def ok(self) -> np.ndarray:
-        """True where the window was accepted."""
-        return self.status == OK
-
-    @property
-    def faults(self) -> FaultReport:
-        """The counts above as a :class:`navlib.robust.FaultReport` (``("window", "refused")``: status != OK)."""
-        return FaultReport({("gyro", "nan"): self.n_dropped_gyro, ("accel", "nan"): self.n_dropped_accel,
-                            ("gyro", "outlier"): self.n_outliers_gyro, ("accel", "outlier"): self.n_outliers_accel,
-                            ("gyro", "saturated"): self.n_saturated_gyro, ("accel", "saturated"): self.n_saturated_accel,
-                            ("gyro", "stuck"): self.n_stuck_gyro, ("accel", "stuck"): self.n_stuck_accel,
-                            ("window", "refused"): (self.status != OK).astype(int)})
+    faults: FaultReport
 
 
 def _outliers(x, valid, k):
@@ -218,7 +198,7 @@ def _outliers(x, valid, k):
     """
     xv = np.where(valid[..., None], x, np.nan)
     with np.errstate(all="ignore"), warnings.catch_warnings():
-        warnings.simplefilter("ignore", RuntimeWarning)          # all-NaN windows: handled as TOO_FEW
+        warnings.simplefilter("ignore", RuntimeWarning)          # all-NaN windows: refused for too few samples
         med = np.nanmedian(xv, axis=-2, keepdims=True)
         mad = np.nanmedian(np.abs(xv - med), axis=-2, keepdims=True)
     columns = np.moveaxis(xv, -2, -1)                           # (..., k, n): one reading series per row
@@ -243,15 +223,17 @@ def static_means(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None,
                  strict: bool = True) -> StaticWindow:
     """Average a static window of gyro and accelerometer samples (paper step 1).
 
-    Faults, each counted in the returned :class:`StaticWindow`:
+    Faults, each counted in the returned :class:`StaticWindow`'s ``faults`` (a refused
+    window: ``("window", "refused")``; the reason is read from the counts, see
+    :class:`StaticWindow`):
 
     * dropouts: samples with a NaN component are left out of that sensor's
-      mean (``n_dropped_*``); a window with fewer than
-      ``max(2, min_fraction N)`` samples left is refused (``TOO_FEW``). A
+      mean (``("gyro", "nan")``, ``("accel", "nan")``); a window with fewer than
+      ``max(2, min_fraction N)`` samples left is refused. A
       30-s gap in a 3-min stop leaves 150 s: the mean's white-noise std grows
       by sqrt(180/150) = 1.10.
     * outliers: with ``outlier_k``, samples more than ``outlier_k`` robust
-      sigmas from the window median are left out (``n_outliers_*``); the
+      sigmas from the window median are left out (``(sensor, "outlier")``); the
       robust sigma is ``1.4826 max(MAD, q / 2)`` per component, ``q`` the
       quantisation step (the smallest non-zero difference between two
       readings): a quantised sensor whose MAD reads 0 keeps its good samples
@@ -261,15 +243,15 @@ def static_means(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None,
       white-noise std for p = 1 %, k = 100), unreported.
     * frozen output: with ``stuck_fraction``, a window in which one axis
       repeats a single reading over at least that fraction of its valid
-      samples (consecutive, dropouts skipped) is refused (``STUCK``,
-      ``n_stuck_*``): a live sensor's noise changes every reading, and a
+      samples (consecutive, dropouts skipped) is refused
+      (``(sensor, "stuck")``): a live sensor's noise changes every reading, and a
       frozen gyro's mean is one old sample (a stop then gave a heading
-      13-20 deg off with status OK). A quantised sensor whose noise is far
+      13-20 deg off, accepted). A quantised sensor whose noise is far
       below its step looks the same and is refused too (it resolves nothing
       below the step); so is noise-free simulated data (pass None).
     * saturation: with ``full_scale_gyro``/``full_scale_accel`` (device
       ranges, rad/s and m/s^2), samples at the rails are counted and the
-      window is refused (``SATURATED``): a static robot never reaches them.
+      window is refused (``(sensor, "saturated")``): a static robot never reaches them.
     * timing: the mean does not depend on sample order; duplicated
       timestamps are removed by ``timing.sanitize`` before windows are cut
       by time (:func:`stop_solutions` with ``time``).
@@ -287,7 +269,7 @@ def static_means(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None,
     accel_tol : float
         Largest accepted deviation (m/s^2) of the mean specific-force norm
         from normal gravity, and of the two half-window means from each
-        other. Larger deviations mean the robot was not static (``MOVING``).
+        other. Larger deviations mean the robot was not static (refused).
     min_fraction : float
         Smallest fraction of the window, in (0, 1], that must remain per sensor.
     outlier_k : float, optional
@@ -301,7 +283,7 @@ def static_means(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None,
         0.5); None (default): no check.
     strict : bool
         Raise ValueError for a refused window (default); ``False`` returns NaN
-        means with its ``status`` instead.
+        means with its ``faults`` instead.
 
     Returns
     -------
@@ -350,11 +332,9 @@ def static_means(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None,
             n_stuck = np.where((run >= stuck * valid.sum(-1)) & (run >= 2), run, 0)
         out[name] = (_masked_mean(x, used, n_used), n_used, n - valid.sum(-1), outl.sum(-1), sat.sum(-1), used, n_stuck)
     (w_mean, nu_g, nd_g, no_g, ns_g, _, nk_g), (f_mean, nu_a, nd_a, no_a, ns_a, used_f, nk_a) = out["gyro"], out["accel"]
-    status = np.zeros(w_mean.shape[:-1], dtype=int)
     too_few = (nu_g < need) | (nu_a < need)
-    status[too_few] = TOO_FEW
-    status[(status == OK) & ((ns_g > 0) | (ns_a > 0))] = SATURATED
-    status[(status == OK) & ((nk_g > 0) | (nk_a > 0))] = STUCK
+    saturated = ~too_few & ((ns_g > 0) | (ns_a > 0))
+    frozen = ~too_few & ~saturated & ((nk_g > 0) | (nk_a > 0))
     with np.errstate(invalid="ignore"):
         dev = np.abs(np.linalg.norm(f_mean, axis=-1) - g)
         if used_f.all():
@@ -363,30 +343,36 @@ def static_means(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None,
             u1, u2 = used_f[..., : n // 2], used_f[..., n // 2:]
             halves = np.abs(_masked_mean(f[..., : n // 2, :], u1, u1.sum(-1))
                             - _masked_mean(f[..., n // 2:, :], u2, u2.sum(-1))).max(-1)
-    status[(status == OK) & ((dev > tol) | ~(halves <= tol))] = MOVING
-    if flag(strict, "strict") and np.any(status != OK):
-        if np.any(status == TOO_FEW):
+    moving = ~too_few & ~saturated & ~frozen & ((dev > tol) | ~(halves <= tol))
+    bad = too_few | saturated | frozen | moving
+    if flag(strict, "strict") and np.any(bad):
+        if np.any(too_few):
             which = "w_ib_b" if np.any(nu_g < need) else "f_b"
             left = int(min(nu_g.min(), nu_a.min()))
             raise ValueError(f"{which}: only {left} of {n} samples left after dropouts/outliers; expected at least "
                              f"{need} (min_fraction = {frac:g})")
-        if np.any(status == SATURATED):
+        if np.any(saturated):
             which = "w_ib_b" if np.any(ns_g > 0) else "f_b"
             raise ValueError(f"{which}: {int(ns_g.sum() + ns_a.sum())} samples at the full-scale range: the robot "
                              "was not static during the stop")
-        if np.any(status == STUCK):
+        if np.any(frozen):
             which, run = ("w_ib_b", nk_g) if np.any(nk_g > 0) else ("f_b", nk_a)
             raise ValueError(f"{which}: one reading repeated over {int(run.max())} consecutive samples of {n} "
                              f"(stuck_fraction = {stuck:g}): the sensor output is frozen")
-        if np.any(dev[status == MOVING] > tol):
+        if np.any(dev[moving] > tol):
             raise ValueError(f"f_b: mean specific-force norm differs from gravity by {np.nanmax(dev):.3g} m/s^2 "
                              f"(> accel_tol = {tol:g}): the robot is not static")
         raise ValueError(f"f_b: the two halves of the window differ by {np.nanmax(halves):.3g} m/s^2 "
                          f"(> accel_tol = {tol:g}): the robot moved during the stop")
-    bad = status != OK
     w_mean = np.where(bad[..., None], np.nan, w_mean)
     f_mean = np.where(bad[..., None], np.nan, f_mean)
-    return StaticWindow(w_mean, f_mean, n, nu_g, nu_a, nd_g, nd_a, no_g, no_a, ns_g, ns_a, status, nk_g, nk_a)
+    faults = FaultReport({("gyro", "nan"): nd_g, ("accel", "nan"): nd_a,
+                          ("gyro", "outlier"): no_g, ("accel", "outlier"): no_a,
+                          ("gyro", "saturated"): ns_g, ("accel", "saturated"): ns_a,
+                          ("gyro", "stuck"): nk_g, ("accel", "stuck"): nk_a,
+                          ("window", "refused"): bad.astype(int)})
+    return StaticWindow(w_mean, f_mean, n, nu_g, nu_a, faults)
+
 
 def _reference_triad(g_n, w_ie_n):
     a = g_n

@@ -1,7 +1,7 @@
 """Every filter result reports its faults in the one vocabulary of navlib.robust.FaultReport.
 
-Each filter's own counters stay (documented per filter); ``result.faults`` must carry the same
-numbers under ``(sensor, kind)`` keys, so code that inspects faults works across filters.
+``result.faults`` is the one place a filter reports what it held, rejected or refused, under
+``(sensor, kind)`` keys, so code that inspects faults works across filters.
 """
 from __future__ import annotations
 
@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 from navlib import imu, robust, strapdown, trajectory
-from navlib.imu import ImuSamples, SensorLimits
 from navlib.filters import mahony, planar_ekf, zupt_ins
+from navlib.imu import ImuSamples, SensorLimits
 from navlib.papers import gauss_kruger_ekf, rotation_bias
 
 KINDS = {"nan", "saturated", "spike", "outlier", "reacquired", "refused", "jump", "freefall", "stuck"}
@@ -70,7 +70,7 @@ def test_pedestrian_filter():
 
 def test_rotation_bias_residuals():
     res = rotation_bias.Residuals(np.zeros((1, 2)), np.zeros((1, 2, 3)), np.zeros((1, 2)), np.array([10]), 1.0,
-                                  n_skipped=2, n_missing=5, n_outliers_gyro=1, n_saturated=3, n_skipped_saturated=1)
+                                  robust.FaultReport({("dwell", "refused"): 3, ("imu", "nan"): 5}))
     check_vocabulary(res.faults)
     assert res.faults["dwell", "refused"] == 3 and res.faults["imu", "nan"] == 5
 
@@ -85,6 +85,11 @@ def test_static_window_and_ins_report():
     win = alignment.static_means(w, f, 0.5)
     check_vocabulary(win.faults)
     assert win.faults["gyro", "nan"] == 1 and win.faults["window", "refused"] == 0
+    assert {key for key in win.faults.counts} == {(s, k) for s in ("gyro", "accel")
+                                                 for k in ("nan", "outlier", "saturated", "stuck")} | {("window", "refused")}
+    assert not any(name.startswith(("n_dropped", "n_outliers", "n_saturated", "n_stuck")) or name == "status"
+                   for name in vars(win))                                 # faults only: no second set of counters
+    assert win.n_used_gyro == 99 and win.n_used_accel == 100               # what was used: results, not faults
     dpsi = north_finding.ins_heading_change(w, f[0], 0.01, 0.5)
     rep = robust.fault_report(w, "gyro")
     check_vocabulary(rep)

@@ -7,7 +7,7 @@ import dataclasses
 import numpy as np
 import pytest
 
-from navlib import alignment, attitude, earth, euler, imu, strapdown, trajectory
+from navlib import alignment, attitude, earth, euler, imu, robust, strapdown, trajectory
 from navlib.filters import mahony, quaternion_kf, zupt, zupt_ins
 from navlib.papers import north_finding, rotation_bias
 
@@ -77,9 +77,17 @@ def test_the_attitude_filters_take_samples_ranges_and_intervals_once(walk):
 
 
 def assert_same(a, b):
-    """Every field of two result records equal, bit for bit."""
+    """Every field of two result records equal, bit for bit (a FaultReport: its keys, counts and flags)."""
     for field in dataclasses.fields(a):
-        np.testing.assert_array_equal(getattr(a, field.name), getattr(b, field.name), err_msg=field.name)
+        x, y = getattr(a, field.name), getattr(b, field.name)
+        if isinstance(x, robust.FaultReport):
+            assert x.counts.keys() == y.counts.keys() and x.flags.keys() == y.flags.keys(), field.name
+            for key in x.counts:
+                np.testing.assert_array_equal(x[key], y[key], err_msg=f"{field.name}{key}")
+            for key in x.flags:
+                np.testing.assert_array_equal(x.flags[key], y.flags[key], err_msg=f"{field.name}.flags{key}")
+        else:
+            np.testing.assert_array_equal(x, y, err_msg=field.name)
 
 
 @pytest.fixture(scope="module")
@@ -117,7 +125,9 @@ def test_static_means_gives_the_same_window_with_samples_or_arrays(walk):
                                      accel_tol=0.5,
                                      strict=False)
         assert_same(raw, new)
-    assert raw.n_saturated_accel > 0 and raw.status == alignment.SATURATED
+        # accepted without the ranges; with them refused, for the saturated accelerometer samples
+        assert raw.faults["window", "refused"] == (1 if ranges else 0)
+        assert (raw.faults["accel", "saturated"] > 0) == bool(ranges) and raw.faults["gyro", "saturated"] == 0
 
 
 def test_tilt_residuals_give_the_same_residuals_with_samples_or_arrays(rig):
@@ -129,7 +139,7 @@ def test_tilt_residuals_give_the_same_residuals_with_samples_or_arrays(rig):
                                            length=length,
                                            w_ie_b=w_ie_b, outlier_k=6.0)
         assert_same(raw, new)
-    assert raw.n_skipped_saturated == 1
+    assert raw.faults["dwell", "refused"] == 1 and raw.faults["imu", "saturated"] == 1     # the shock's dwell
     # a fixed interval given as a scalar fits the slope against the sample index: equal to rounding
     fixed = rotation_bias.tilt_residuals(w, f, DT, starts, length, w_ie_b, outlier_k=6.0)
     np.testing.assert_allclose(fixed.r, rotation_bias.tilt_residuals(imu.ImuSamples(w, f, DT), starts=starts,
@@ -202,11 +212,15 @@ def test_stop_solutions_take_samples(walk):
                                        windows=win, lat=0.5, strict=False)
     np.testing.assert_array_equal(new.candidates, raw.candidates)
     np.testing.assert_array_equal(new.triad, raw.triad)
-    np.testing.assert_array_equal(new.status, raw.status)
+    assert new.faults.as_dict() == raw.faults.as_dict()
+    # the second window is not a stance: refused for motion (no sample saturated, frozen or left out)
+    np.testing.assert_array_equal(new.faults["window", "refused"], [0, 1])
+    assert not np.any(new.faults["accel", "saturated"]) and not np.any(new.faults["gyro", "stuck"])
+    assert new.windows[1].n_used_accel == 250
     sat = north_finding.stop_solutions(imu.ImuSamples(w, f, DT, imu.SensorLimits(full_scale_accel=9.0)), windows=win, lat=0.5,
                                        strict=False)                      # the range reaches static_means
-    assert np.isnan(sat.triad).all() and np.all(sat.status == alignment.SATURATED)
-    assert all(s.n_saturated_accel > 0 for s in sat.windows)
+    assert np.isnan(sat.triad).all() and np.all(sat.faults["window", "refused"] == 1)
+    assert np.all(sat.faults["accel", "saturated"] > 0) and all(s.faults["accel", "saturated"] > 0 for s in sat.windows)
     with pytest.raises(ValueError, match="^f_b: given twice"):
         north_finding.stop_solutions(imu.ImuSamples(w, f, DT), f, win, 0.5)
     with pytest.raises(ValueError, match="^full_scale_accel: given twice"):

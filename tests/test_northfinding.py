@@ -3,7 +3,6 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from helpers import check_fuzz, fuzz_cases
 
 from navlib import alignment, attitude, sensors, trajectory, units
 from navlib.papers import north_finding as nf
@@ -326,56 +325,3 @@ def test_bad_input_names_argument(call, arg):
         call()
     assert str(exc.value).split(":")[0].strip().startswith(arg), str(exc.value)
 
-
-# API fuzzing: helpers.fuzz_cases / helpers.check_fuzz (every numeric argument mutated).
-
-
-_W1, _F1 = ideal([1.0, 0.05, 0.02])
-_C = attitude.euler_to_dcm([1.0, 0.05, 0.02])
-_PAIR = np.array([1.0, 2 * np.pi - 1.0])
-NF_FUZZ = {   # name: (function, good keyword arguments, arguments where NaN is a documented dropout marker)
-    "static_means": (alignment.static_means, dict(w_ib_b=GOOD_W, f_b=GOOD_F, lat=LAT, h=0.0, accel_tol=0.2), {"w_ib_b", "f_b"}),
-    "triad": (alignment.triad, dict(f_b=_F1, w_ib_b=_W1, lat=LAT), set()),
-    "triad_heading": (alignment.triad_heading, dict(C_bn=_C), set()),
-    "tilt_from_accel": (nf.tilt_from_accel, dict(f_b=_F1, g=9.79), set()),
-    "heading_candidates": (nf.heading_candidates, dict(w_y=_W1[1], f_b=_F1, lat=LAT, h=0.0), set()),
-    "nearest_candidate_error": (nf.nearest_candidate_error, dict(pair=_PAIR, heading=1.0), set()),
-    "resolve": (nf.resolve, dict(pair1=_PAIR, pair2=_PAIR + 0.1, dpsi_ins=0.1), set()),
-    "triad_heading_error": (nf.triad_heading_error, dict(C_bn=_C, dw_b=[1e-9, 0, 0], lat=LAT), set()),
-    "triad_heading_std": (nf.triad_heading_std, dict(sigma_gyro=1e-8, lat=LAT), set()),
-    "single_axis_heading_std": (nf.single_axis_heading_std,
-                                dict(heading=1.0, sigma_gyro=1e-8, lat=LAT, pitch=0.05, sigma_accel=1e-4, g=9.79), set()),
-    "single_axis_heading_error": (nf.single_axis_heading_error,
-                                  dict(heading=1.0, pitch=0.05, lat=LAT, dw_y=1e-9, df_y=1e-4, g=9.79), set()),
-    "clipped_single_axis_theory": (nf.clipped_single_axis_theory,
-                                   dict(heading=0.02, sigma_gyro=1e-8, lat=LAT, pitch=0.05, sigma_accel=1e-4, g=9.79), set()),
-    "simulate_static_outputs": (nf.simulate_static_outputs,
-                                dict(hpr=[1.0, 0.05, 0.02], lat=LAT, n_trials=2, sigma_gyro=1e-8, sigma_accel=1e-4,
-                                     rng=np.random.default_rng(0), gyro_bias=[0.0, 0, 0], accel_bias=[0.0, 0, 0]), set()),
-    "monte_carlo": (nf.monte_carlo, dict(headings=[1.0, 2.0], pitch=0.05, roll=0.02, lat=LAT, n_trials=2,
-                                         sigma_gyro=1e-8, sigma_accel=1e-4, rng=np.random.default_rng(0)), set(),
-                    {"headings"}),
-    "pair_probabilities": (nf.pair_probabilities, dict(heading1=1.0, heading2=2.0, sigma_ins=0.1), set()),
-    "four_position_heading": (alignment.four_position_heading, dict(w_y=[1e-5, 0.0, -1e-5, 0.0]), set()),
-    "four_position_heading_std": (nf.four_position_heading_std, dict(sigma_gyro=1e-8, lat=LAT), set()),
-    "window_mean_std": (sensors.window_mean_std, dict(errors=sensors.imu_model("NAV-FOG").gyro, duration=180.0, dt=0.01),
-                        set()),
-    "stop_and_go": (nf.stop_and_go, dict(headings=[1.0, 2.0], stop_duration=10.0, drive_duration=40.0, speed=5.0,
-                                         pitches=[0.0, 0.01], rolls=[0.0, 0.01]), set(), {"headings"}),
-    "stop_solutions": (nf.stop_solutions, dict(w_ib_b=GOOD_W, f_b=GOOD_F, windows=[[0, 5], [5, 10]], lat=LAT, h=0.0,
-                                               stuck_fraction=None), {"w_ib_b", "f_b"}),     # noise-free: not frozen
-    "ins_heading_change": (nf.ins_heading_change, dict(w_ib_b=GOOD_W, f_start=GOOD_F[0], dt=0.01, lat=LAT),
-                           {"w_ib_b"}),
-}
-
-
-@pytest.mark.parametrize("func, good, arg, how", fuzz_cases(NF_FUZZ))
-def test_fuzz_public_api(func, good, arg, how):
-    check_fuzz(func, good, arg, how)
-
-
-def test_fuzz_table_covers_every_public_function():
-    funcs = {n for n in nf.__all__ if callable(getattr(nf, n)) and not isinstance(getattr(nf, n), type)
-             and not n.startswith("draw_")}   # the chapter's schematics: tools/fuzz.py, tests/test_chapter_*.py
-    funcs |= {"static_means", "triad", "triad_heading", "four_position_heading", "window_mean_std"}  # now in core
-    assert funcs == set(NF_FUZZ), funcs ^ set(NF_FUZZ)
