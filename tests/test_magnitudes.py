@@ -104,7 +104,7 @@ def test_static_means_names_a_latitude_that_does_not_match_the_trials():
     w, f, _ = _static_marg()
     with pytest.raises(ValueError, match="^lat, h: "):                                    # was IndexError
         alignment.static_means(w, f, [0.6, 0.6])
-    assert alignment.static_means(np.stack([w, w]), np.stack([f, f]), [0.6, 0.6]).status.shape == (2,)
+    assert alignment.static_means(np.stack([w, w]), np.stack([f, f]), [0.6, 0.6]).faults["window", "refused"].shape == (2,)
 
 
 def test_strapdown_refuses_what_it_cannot_integrate():

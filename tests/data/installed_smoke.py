@@ -12,6 +12,7 @@ import numpy as np
 import navlib
 from navlib import attitude, earth, repro, sensors, strapdown, trajectory
 from navlib.filters import mahony as mh
+from navlib.imu import ImuSamples
 
 here = Path.cwd()
 pkg = Path(navlib.__file__).resolve().parent
@@ -30,7 +31,7 @@ print("simulated", imu.w_ib_b.shape[0], "static samples; |f| =", float(np.linalg
 
 B_n = earth.magnetic_field(40.0, 116.0, 50.0, 2024.0)
 m_b = np.einsum("nji,j->ni", attitude.quat_to_dcm(traj.q_bn[1:]), B_n)   # one per IMU interval
-res = mh.mahony(imu.w_ib_b, imu.f_b, 0.01, traj.q_bn[0], m_b=m_b, B_n=B_n)
+res = mh.mahony(ImuSamples(imu.w_ib_b, imu.f_b, 0.01), traj.q_bn[0], m_b=m_b, B_n=B_n)
 declination = np.arctan2(B_n[0], B_n[1])            # the filter's heading is magnetic
 heading_err = np.rad2deg(attitude.wrap_pi(attitude.quat_to_euler(res.q_bn[-1])[0] + declination - 0.3))
 print(f"mahony magnetic heading error after 20 s: {heading_err:.3f} deg")
