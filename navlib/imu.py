@@ -19,7 +19,16 @@ import numpy as np
 from ._typing import Interval, Times, Vec3Series
 from ._validate import imu_samples, integer, intervals, range_limit, scalar, time_axis
 
-__all__ = ["SensorLimits", "ImuSamples", "unpack"]
+__all__ = ["SensorLimits", "ImuSamples", "unpack", "JUMP_FACTOR", "STUCK_DURATION"]
+
+JUMP_FACTOR = 10.0
+"""Default ``max_dt``, in median sample intervals (``max_dt=None``): at 100 Hz, an interval longer than 0.1 s is
+a clock jump (a time-stamp jump or a recording gap), which a filter does not integrate as motion. With a fixed
+``dt`` no interval can exceed it."""
+
+STUCK_DURATION = 0.1
+"""Default ``stuck_run`` (``"auto"``), in seconds of samples at the median interval, at least 5 samples: 5 samples
+at 50 Hz, 10 at 100 Hz, 100 at 1 kHz."""
 
 
 @dataclass(frozen=True)
@@ -38,7 +47,7 @@ class SensorLimits:
         repeats of a real reading essentially impossible; values at the rails are saturated, not stuck;
         a trial whose gyro is not noisy from the start (some axis repeats its first value this often: a
         noise-free simulation, a quantised gyro at rest) is not checked. "auto" (default):
-        :data:`navlib.robust.STUCK_DURATION` (0.1 s) of samples, at least 5; None: off. Quantised gyros
+        :data:`STUCK_DURATION` (0.1 s) of samples, at least 5; None: off. Quantised gyros
         whose noise is about one count repeat by chance: use a larger value, or None.
     gyro_jump : float, optional
         Step gate (rad/s): a gyro sample differing from the last used one by more than this on some axis
@@ -54,7 +63,7 @@ class SensorLimits:
         over 0.05 s; ``freefall_accel = 0``: off.
     max_dt : float, optional
         Longest interval integrated (s); a longer one is a clock jump (``("clock", "jump")``): nothing is
-        integrated over it. None (default): :data:`navlib.timing.JUMP_FACTOR` median intervals (no jump
+        integrated over it. None (default): :data:`JUMP_FACTOR` median intervals (no jump
         with a fixed ``dt``); ``inf``: off.
     """
     full_scale_gyro: float = np.inf
@@ -86,6 +95,17 @@ class SensorLimits:
                                                          allow_zero=True))
         if self.max_dt is not None:
             object.__setattr__(self, "max_dt", scalar(self.max_dt, "max_dt", positive=True, allow_inf=True))
+
+    def jump_limit(self, typical_dt: float) -> float:
+        """The longest interval integrated (s) at the typical (median) interval ``typical_dt`` (s): ``max_dt``, or
+        :data:`JUMP_FACTOR` typical intervals."""
+        return JUMP_FACTOR * typical_dt if self.max_dt is None else self.max_dt
+
+    def stuck_samples(self, typical_dt: float) -> int:
+        """``stuck_run`` in samples at the typical (median) interval ``typical_dt`` (s); 0: no stuck check."""
+        if self.stuck_run == "auto":
+            return max(5, int(np.ceil(STUCK_DURATION / typical_dt - 1e-6)))   # 1e-6: a float32 dt gives the same run
+        return self.stuck_run or 0
 
 
 @dataclass(frozen=True)

@@ -78,8 +78,7 @@ from ._validate import (
     scalar,
     text,
 )
-from .imu import ImuSamples
-from .timing import jump_limit
+from .imu import STUCK_DURATION, ImuSamples, SensorLimits
 
 __all__ = ["FaultReport", "Screened", "screen", "fault_report", "hold", "despike", "stuck_mask", "stuck_samples",
            "stuck_run_samples", "longest_repeat", "LEADING", "STUCK_DURATION"]
@@ -87,9 +86,6 @@ __all__ = ["FaultReport", "Screened", "screen", "fault_report", "hold", "despike
 LEADING = ("raise", "first", "zero")
 """Policies for NaN samples before the first valid one: raise, take the first valid sample, or 0."""
 
-STUCK_DURATION = 0.1
-"""Default ``stuck_run`` of navlib's filters, in seconds of samples (``stuck_run="auto"``, :func:`stuck_run_samples`:
-this duration over the median interval, at least 5 samples): 5 samples at 50 Hz, 10 at 100 Hz, 100 at 1 kHz."""
 
 
 @dataclass(frozen=True)
@@ -365,12 +361,13 @@ def stuck_run_samples(stuck_run: int | str | None, dt: float) -> int | None:
     """A filter's ``stuck_run`` argument as a run length in samples.
 
     ``"auto"``: :data:`STUCK_DURATION` over the typical (median) interval ``dt`` (s), at least 5 samples;
-    None: no stuck check (returned as None); otherwise an integer >= 2, returned as given.
+    None: no stuck check (returned as None); otherwise an integer >= 2, returned as given
+    (:meth:`navlib.imu.SensorLimits.stuck_samples`).
     """
-    if isinstance(stuck_run, str) and stuck_run == "auto":
-        dt = scalar(dt, "dt", positive=True)
-        return max(5, int(np.ceil(STUCK_DURATION / dt - 1e-6)))     # 1e-6: a float32 dt gives the same run
-    return None if stuck_run is None else integer(stuck_run, "stuck_run", minimum=2)
+    limits = SensorLimits(stuck_run=stuck_run)
+    if limits.stuck_run != "auto":
+        return limits.stuck_run
+    return limits.stuck_samples(scalar(dt, "dt", positive=True))
 
 
 def stuck_samples(x: ArrayLike, run: int | None, *, full_scale: float | None = None, name: str = "x",
@@ -467,8 +464,8 @@ def screen(imu: ImuSamples, m_b: Vec3Series | None = None) -> Screened:
     T = math.prod(lead)
     if m_b is not None:
         m_b = same_shape(as_array(m_b, "m_b", tail=(3,), finite=False), "m_b", w.shape, of="w_ib_b")
-    max_dt = jump_limit(dts, lim.max_dt, "dt")
-    run = stuck_run_samples(lim.stuck_run, float(np.median(dts))) or 0
+    typical = float(np.median(dts))
+    max_dt, run = lim.jump_limit(typical), lim.stuck_samples(typical)
     tests = np.array([max_dt, run, lim.full_scale_gyro, lim.full_scale_accel, lim.full_scale_mag, lim.spike_gyro,
                       lim.spike_accel, lim.freefall_accel])
     wf, ff = kernel_array(w.reshape(T, n, 3)), kernel_array(f.reshape(T, n, 3))

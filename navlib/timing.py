@@ -16,14 +16,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._typing import Array, ArrayLike, Times
-from ._validate import as_array, integer, positive, scalar, text, time_axis
+from ._validate import as_array, integer, positive, text, time_axis
+from .imu import JUMP_FACTOR, SensorLimits
 
 __all__ = ["TimingReport", "sanitize", "intervals", "jump_limit", "JUMP_FACTOR"]
-
-JUMP_FACTOR = 10.0
-"""Default ``max_dt`` of navlib's filters, in median sample intervals (``max_dt=None``): at 100 Hz, an
-interval longer than 0.1 s is a clock jump (a time-stamp jump or a recording gap), which a filter does not
-integrate as motion. With a scalar ``dt`` no interval can exceed it."""
 
 
 @dataclass(frozen=True)
@@ -139,6 +135,5 @@ def jump_limit(dts: ArrayLike, max_dt: float | None = None, name: str = "dts") -
         The limit (s): an interval ``dt > limit`` is a jump.
     """
     name = text(name, "name")
-    if max_dt is None:
-        return JUMP_FACTOR * float(np.median(positive(dts, name, shape=(None,), nonempty=True)))
-    return scalar(max_dt, "max_dt", positive=True, allow_inf=True)
+    limits = SensorLimits(max_dt=max_dt)
+    return limits.jump_limit(float(np.median(positive(dts, name, shape=(None,), nonempty=True))) if max_dt is None else 0.0)

@@ -48,8 +48,8 @@ from .._validate import (
     scalar,
     time_axis,
 )
+from ..imu import SensorLimits
 from ..robust import FaultReport
-from ..timing import jump_limit
 from .observations import RtkHeading, rtk_gate
 
 __all__ = ["fuse_rtk_heading", "rtk_at_imu_rate", "FusionResult"]
@@ -157,7 +157,7 @@ def fuse_rtk_heading(heading_mag: Angles, rtk: RtkHeading, dt: Interval, alpha: 
     hr, ok = rtk.at(hm.shape, "heading_mag")
     T, N = hr.shape
     dts = intervals(dt, N)
-    jump = dts > jump_limit(dts, max_dt, "dt")
+    jump = dts > SensorLimits(max_dt=max_dt).jump_limit(float(np.median(dts)))
     out, delta, counts = np.empty((T, N)), np.empty((T, N)), np.zeros((T, len(_FAULTS)), dtype=np.int64)
     _fuse_kernel(kernel_array(hm.reshape(T, N)), hr, ok, dts, jump, alpha, rtk.params(), out, delta, counts)
     lead = hm.shape[:-1]

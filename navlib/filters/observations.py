@@ -45,8 +45,8 @@ from .._kernels import dcm_heading, euler_to_quat, level, tilt_heading, wrap_pi
 from .._threads import run_chunks
 from .._typing import Array, ArrayLike, Quat, Vec3
 from .._validate import as_array, as_quat, booleans, broadcast_to, instance, integer, kernel_array, scalar
-from ..imu import ImuSamples
-from ..robust import FaultReport, screen, stuck_run_samples
+from ..imu import ImuSamples, SensorLimits
+from ..robust import FaultReport, screen
 from ..units import G0
 
 __all__ = ["MagGate", "AttitudeGates", "RtkHeading", "AttitudeResult", "AttitudeInputs", "SETTLE_TIME_CONSTANTS",
@@ -480,7 +480,7 @@ def pack(imu: ImuSamples, q0: Quat, m_b: ArrayLike | None, rtk: RtkHeading | Non
     else:
         hdg, ok, rtk_par = np.zeros((1, 1)), np.zeros((1, 1), dtype=bool), np.array([0.0, np.inf, 0.0])
     typical = float(np.median(s.dt))
-    long_hold = stuck_run_samples(imu.limits.stuck_run, typical) or stuck_run_samples("auto", typical)
+    long_hold = imu.limits.stuck_samples(typical) or SensorLimits().stuck_samples(typical)
     inputs = AttitudeInputs(q, kernel_array(s.w_ib_b.reshape(T, N, 3)), kernel_array(s.fresh.reshape(T, N)), z,
                             hdg, ok, rtk is not None, use_mag, s.dt, jump, rtk_par, long_hold,
                             SETTLE_TIME_CONSTANTS / kp if kp > 0 else 0.0)

@@ -114,8 +114,7 @@ from .._validate import (
     time_axis,
 )
 from ..imu import SensorLimits
-from ..robust import FaultReport, stuck_run_samples, stuck_samples
-from ..timing import jump_limit
+from ..robust import FaultReport, stuck_samples
 
 __all__ = ["CHANNELS", "motion_model", "jacobian", "propagate", "dead_reckoning", "filter_grid", "EkfConfig",
            "EkfResult", "covariance"]
@@ -732,14 +731,14 @@ def _screen_epochs(t, z, limits: SensorLimits) -> _Epochs:
     output, clock jumps)."""
     dts = np.diff(t)
     t_nominal = float(np.median(dts))
-    jump = np.concatenate([[False], dts > jump_limit(dts, limits.max_dt, "t")])
+    jump = np.concatenate([[False], dts > limits.jump_limit(t_nominal)])
     jump_steps = np.zeros(t.size)
     jump_steps[jump] = dts[jump[1:]] / t_nominal
     fs = limits.full_scale_gyro
     with np.errstate(invalid="ignore"):
         saturated = np.abs(z[:, 4]) >= fs                   # NaN compares False
     rail = np.where(saturated, np.copysign(fs, z[:, 4]), np.nan)
-    stuck = stuck_samples(z[:, 4], stuck_run_samples(limits.stuck_run, t_nominal), full_scale=fs, name="z", axis=-1)
+    stuck = stuck_samples(z[:, 4], limits.stuck_samples(t_nominal) or None, full_scale=fs, name="z", axis=-1)
     z_used = z
     if stuck.any():                                         # stuck yaw rate: skipped like a NaN sample
         z_used = z.copy()
