@@ -1,10 +1,9 @@
-"""Helpers shared by the test modules: reference values and argument fuzzing."""
+"""Helpers shared by the test modules: reference values and the project's files.
+
+Bad input to every public callable: the registry tools/fuzz_calls.py, run by tests/test_bad_input.py."""
 import csv
 import subprocess
 from pathlib import Path
-
-import numpy as np
-import pytest
 
 REFERENCE = Path(__file__).resolve().parents[1] / "data" / "reference"
 """Published reference values committed with the project (each file names its source and tolerance)."""
@@ -38,56 +37,3 @@ def project_files() -> list[Path]:
                 if p.is_file() and not _NOT_SOURCE & set(p.relative_to(ROOT).parts) and p.suffix != ".egg-info"
                 and not any(part.endswith(".egg-info") for part in p.relative_to(ROOT).parts)]
 
-
-# ---------------------------------------------------------------- API fuzzing
-# Every public function is called with each of its numeric arguments replaced by a string, a complex
-# value, an object array, a boolean, NaN, inf, an empty array and (for vector arguments) a wrong trailing shape;
-# each call must raise ValueError/TypeError whose message starts with the argument's name. NaN is
-# skipped where the docstring makes it a dropout marker.
-
-MUTATIONS = ("str", "complex", "object", "bool", "nan", "inf", "empty", "shape")
-
-
-def mutate(value, how):
-    v = np.asarray(value, dtype=float)
-    if how == "str":
-        return "abc"
-    if how == "complex":
-        return v + 1j
-    if how == "object":
-        return v.astype(object)
-    if how == "bool":
-        return True if v.ndim == 0 else np.ones(v.shape, dtype=bool)
-    if how in ("nan", "inf"):
-        v = v.copy()
-        v.reshape(-1)[0] = np.nan if how == "nan" else np.inf
-        return v
-    if how == "empty":
-        return np.zeros((0,) + v.shape[1:]) if v.ndim > 1 else np.zeros(0)
-    if how == "shape":
-        return np.zeros(v.shape[:-1] + (v.shape[-1] + 1,)) if v.ndim >= 1 else None
-    raise AssertionError(how)
-
-
-def fuzz_cases(table):
-    cases = []
-    for name, (func, good, nan_ok, *free) in table.items():
-        for arg, value in good.items():
-            if not isinstance(value, (int, float, list, np.ndarray)) or isinstance(value, bool):
-                continue                                   # generators, records, options: not numeric
-            for how in MUTATIONS:
-                if how == "nan" and arg in nan_ok:
-                    continue
-                if how == "shape" and (np.ndim(value) == 0 or (free and arg in free[0])):
-                    continue                               # scalars and free-length 1-D arrays have no wrong tail
-                cases.append(pytest.param(func, good, arg, how, id=f"{name}-{arg}-{how}"))
-    return cases
-
-
-def check_fuzz(func, good, arg, how):
-    func(**good)                                           # the unmutated call works
-    kwargs = dict(good)
-    kwargs[arg] = mutate(good[arg], how)
-    with pytest.raises((ValueError, TypeError)) as exc:
-        func(**kwargs)
-    assert str(exc.value).startswith(arg), str(exc.value)

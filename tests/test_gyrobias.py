@@ -6,7 +6,6 @@ import sys
 
 import numpy as np
 import pytest
-from helpers import check_fuzz, fuzz_cases
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation
@@ -312,59 +311,6 @@ def test_kernels_run_uncompiled_with_the_same_results():
     jit, plain = run(False), run(True)
     for key in jit:
         np.testing.assert_allclose(plain[key], jit[key], rtol=1e-12, atol=1e-15)
-
-
-# API fuzzing: helpers.fuzz_cases / helpers.check_fuzz (every numeric argument mutated).
-
-
-_HPR = [0.1, 0.5, 0.2]
-_WS = np.full((1000, 3), 1e-4)
-_FS = np.tile([0.0, 0.0, 9.8], (1000, 1))
-_COND, _CRB, _V2 = gb.design([0.0, 0.5, 0.0], EY, np.pi / 2, 4.5, DT, 1e-4, 1e-3, 4)
-_R2 = gb.residual_covariance(np.stack([[0.0, 0.5]] * 4), 450, DT, 1e-4, 1e-3)
-_r2 = _V2 @ B
-GB_FUZZ = {   # name: (function, good keyword arguments, NaN-marker arguments[, free-length 1-D arguments])
-    "eq1_matrix": (gb.eq1_matrix, dict(hpr=_HPR), set()),
-    "euler_rates": (euler.euler_rates, dict(hpr=_HPR, w_nb_b=[0.01, 0.02, 0.03]), set()),
-    "integrate_euler": (euler.integrate_euler, dict(hpr0=_HPR, w_ib_b=np.full((20, 3), 0.01), dt=DT, w_in_n=[0, 0, 1e-5],
-                                                 bias_b=[1e-5, 0, 0]), {"bias_b"}),     # NaN: keep the previous estimate
-    "gravity_body": (gb.gravity_body, dict(tilt=[0.1, 0.2], g=9.8), set()),
-    "tilt_from_accel": (gb.tilt_from_accel, dict(f_b=[0.1, 0.2, 9.8]), set()),
-    "tilt_matrix": (gb.tilt_matrix, dict(tilt=[0.1, 0.2]), set()),
-    "rodrigues": (gb.rodrigues, dict(axis_b=EY, angle=0.5), set()),
-    "rotate_attitude": (gb.rotate_attitude, dict(hpr=_HPR, axis_b=EY, angle=0.5), set()),
-    "dwell_attitudes": (gb.dwell_attitudes, dict(hpr0=_HPR, axis_b=EY, amplitude=1.5, n_dwells=4), set()),
-    "dwell_windows": (gb.dwell_windows, dict(n_samples=1000, dt=DT, period=5.0, rotation_time=0.5, settle=0.1), set()),
-    "earth_rate_b": (earth.earth_rate_b, dict(C_bn=np.eye(3), lat=LAT), set()),
-    "tilt_residuals": (gb.tilt_residuals, dict(w_ib_b=_WS, f_b=_FS, dt=DT, starts=np.array([0, 500]), length=450,
-                                               w_ie_b=np.zeros((2, 3))), {"w_ib_b", "f_b"}, {"starts"}),
-    "residual_covariance": (gb.residual_covariance, dict(tilt=[0.1, 0.2], length=450, dt=DT, gyro_noise=1e-4,
-                                                         accel_noise=1e-3, g=9.8), set()),
-    "lsq_bias": (gb.lsq_bias, dict(r=_r2, V=_V2), {"r", "V"}),
-    "running_lsq_bias": (gb.running_lsq_bias, dict(r=_r2, V=_V2, forgetting=0.9), {"r", "V"}),
-    "kalman_bias": (gb.kalman_bias, dict(r=_r2, V=_V2, R=_R2, interval=5.0, rate_random_walk=1e-6, bias_sigma=1e-4,
-                                         gate=13.8), {"r", "V"}),
-    "condition_number": (analysis.condition_number, dict(V=_V2), {"V"}, {"V"}),      # any (m, n) blocks
-    "lsq_covariance": (analysis.lsq_covariance, dict(V=_V2, R=_R2), set()),
-    "cramer_rao_bound": (analysis.cramer_rao_bound, dict(V=_V2, R=_R2), set(), {"V"}),
-    "design": (gb.design, dict(hpr0=[0.0, 0.5, 0.0], axis_b=EY, amplitude=1.5, dwell_time=4.5, dt=DT, gyro_noise=1e-4,
-                               accel_noise=1e-3, n_dwells=4), set()),
-    "attitude_errors": (analysis.attitude_errors, dict(hpr=_HPR, hpr_true=_HPR), set()),
-    "error_statistics": (analysis.error_statistics, dict(hpr=np.zeros((5, 3)), hpr_true=np.zeros((5, 3))), set()),
-}
-
-
-@pytest.mark.parametrize("func, good, arg, how", fuzz_cases(GB_FUZZ))
-def test_fuzz_public_api(func, good, arg, how):
-    check_fuzz(func, good, arg, how)
-
-
-def test_fuzz_table_covers_every_public_function():
-    funcs = {n for n in gb.__all__ if callable(getattr(gb, n)) and not isinstance(getattr(gb, n), type)
-             and not n.startswith("draw_")}   # the chapter's schematics: tools/fuzz.py, tests/test_chapter_*.py
-    funcs |= {"attitude_errors", "error_statistics", "euler_rates", "integrate_euler", "earth_rate_b",
-              "condition_number", "lsq_covariance", "cramer_rao_bound"}  # moved to core
-    assert funcs == set(GB_FUZZ), funcs ^ set(GB_FUZZ)
 
 
 FAULT_SCRIPT = r"""

@@ -89,7 +89,7 @@ MUTATIONS = {
     "wrong_shape": (NUMERIC, "the last axis one longer (a scalar becomes shape (3,), a series of N > 4 values (N, 2))"),
     "transposed": (NUMERIC, "(N, k) given as (k, N)"),
     "0d": (NUMERIC, "a scalar where an array is expected"),
-    "empty": (NUMBERS, "no samples: shape (0,) or (..., 0, k)"),
+    "empty": (NUMBERS, "no samples: shape (0,) or (..., 0, k); a (3,) or (4,) vector without components"),
     "nan": (NUMBERS, "one element NaN"),
     "inf": (NUMBERS, "one element inf (not where inf means 'no limit': INF_MEANS_NO_LIMIT)"),
     "1e300": (NUMERIC, "one element 1e300"),
@@ -156,8 +156,9 @@ def applies(mutation: str, arg: Arg) -> bool:
     v = np.asarray(arg.value) if arg.kind in NUMBERS else None
     if mutation in ("wrong_shape", "0d", "empty") and arg.elementwise and v.shape[-1:] not in ((3,), (4,)):
         return False        # any shape is valid for an elementwise argument without a vector axis
-    if mutation == "empty" and arg.elementwise:
-        return False        # an empty batch is valid for elementwise functions (tests/test_bad_input.py)
+    if mutation == "empty" and arg.elementwise and v.ndim != 1:
+        return False        # an empty batch is valid for elementwise functions (tests/test_bad_input.py);
+                            # a (0,) vector, a vector without components, is none
     if mutation in ("wrong_shape", "transposed") and arg.any_shape:
         return False        # data of any width: (N, k) for every k, also (k, N)
     if mutation == "transposed":
