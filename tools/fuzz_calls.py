@@ -302,7 +302,7 @@ def table() -> dict:
         # -------------------------------------------------------------------- earth
         "earth.Ellipsoid": Call(dict(name="x", a=6378137.0, f=1 / 298.257, GM=3.986e14, omega=7.29e-5)),
         "earth.earth_rate_n": Call(dict(lat=0.6, deg=False), elementwise=("*",)),
-        "earth.earth_rate_b": Call(dict(C_bn=C, lat=0.6, deg=False)),
+        "earth.earth_rate_b": Call(dict(C_bn=C, lat=0.6, deg=False), bad=(Bad("lat", "lat2rad", lat=2.0),)),
         "earth.gravity": Call(dict(lat=0.6, h=50.0, deg=False), elementwise=("*",)),
         "earth.gravity_n": Call(dict(lat=0.6, h=50.0, deg=False), elementwise=("*",)),
         "earth.radii": Call(dict(lat=0.6, deg=False), elementwise=("*",)),
@@ -313,9 +313,15 @@ def table() -> dict:
         "earth.field_angles": Call(dict(B_n=B_N, deg=True), elementwise=("*",)),
         # -------------------------------------------------------------------- euler
         "euler.check_pitch": Call(dict(pitch=0.3, name="pitch"), elementwise=("*",)),
-        "euler.euler_rates": Call(dict(hpr=HPR, w_nb_b=np.array([0.01, 0.02, 0.03])), elementwise=("*",)),
+        "euler.euler_rates": Call(dict(hpr=HPR, w_nb_b=np.array([0.01, 0.02, 0.03])), elementwise=("*",),
+                                  bad=(Bad("hpr[..., 1] (pitch)", "pitch_90deg", hpr=np.array([0.0, np.pi / 2, 0.0])),)),
         "euler.integrate_euler": Call(dict(hpr0=HPR, w_ib_b=W, dt=DT, w_in_n=earth.earth_rate_n(0.6),
-                                           bias_b=np.array([1e-5, 0.0, 0.0]))),
+                                           bias_b=np.array([1e-5, 0.0, 0.0])), bad=(
+            Bad("hpr0[..., 1] (pitch)", "pitch_90deg", hpr0=np.array([0.0, np.pi / 2, 0.0])),
+            Bad("w_ib_b", "through_pitch_90deg", hpr0=np.array([0.0, 1.5, 0.0]), w_ib_b=np.tile([1.0, 0.0, 0.0], (100, 1))),
+            Bad("w_ib_b", "all_nan", w_ib_b=np.full((N, 3), np.nan)), Bad("dt", "zero", dt=0.0),
+            Bad("dt", "length", dt=DTS[1:]), Bad("max_gap", "negative", max_gap=-0.1),
+            Bad("bias_from", "decreasing", bias_b=np.zeros((2, 3)), bias_from=np.array([3, 1])))),
         # ------------------------------------------------------------------- faults
         "faults.dropouts": Call(dict(x=F, fraction=0.2, rng=RNG), any_shape=("x",)),
         "faults.gap": Call(dict(x=F, time=T, start=0.02, duration=0.03), any_shape=("x",)),
@@ -557,28 +563,44 @@ def table() -> dict:
         "papers.rotation_bias.eq1_matrix": Call(dict(hpr=HPR), elementwise=("*",)),
         "papers.rotation_bias.gravity_body": Call(dict(tilt=np.array([0.1, -0.05]), g=9.80665)),
         "papers.rotation_bias.tilt_from_accel": Call(dict(f_b=F[0])),
-        "papers.rotation_bias.tilt_matrix": Call(dict(tilt=np.array([0.1, -0.05]))),
-        "papers.rotation_bias.rodrigues": Call(dict(axis_b=np.array([0.0, 0.0, 1.0]), angle=0.5), elementwise=("angle",),
-                                               bad=(Bad("angle", "empty", angle=np.zeros(0)),)),
+        "papers.rotation_bias.tilt_matrix": Call(dict(tilt=np.array([0.1, -0.05])), bad=(
+            Bad("tilt[..., 1] (pitch)", "pitch_-90deg", tilt=np.array([0.0, -np.pi / 2])),)),
+        "papers.rotation_bias.rodrigues": Call(dict(axis_b=np.array([0.0, 0.0, 1.0]), angle=0.5), elementwise=("angle",), bad=(
+            Bad("angle", "empty", angle=np.zeros(0)), Bad("axis_b", "not_unit", axis_b=np.array([1.0, 1.0, 0.0])),
+            Bad("axis_b", "batch", axis_b=np.tile([0.0, 0.0, 1.0], (2, 1))))),
         "papers.rotation_bias.rotate_attitude": Call(dict(hpr=HPR, axis_b=np.array([0.0, 0.0, 1.0]), angle=0.5),
-                                                     elementwise=("angle",), bad=(Bad("angle", "empty", angle=np.zeros(0)),)),
+                                                     elementwise=("angle",), bad=(
+            Bad("angle", "empty", angle=np.zeros(0)), Bad("axis_b", "not_unit", axis_b=np.array([0.0, 0.0, 2.0])))),
         "papers.rotation_bias.dwell_attitudes": Call(dict(hpr0=HPR, axis_b=np.array([0.0, 0.0, 1.0]), amplitude=1.5,
-                                                          n_dwells=2)),
+                                                          n_dwells=2), bad=(
+            Bad("axis_b", "through_pitch_90deg", hpr0=np.zeros(3), axis_b=np.array([1.0, 0.0, 0.0]), amplitude=np.pi / 2),
+            Bad("hpr0", "batch", hpr0=np.zeros((2, 3))))),
         "papers.rotation_bias.dwell_windows": Call(dict(n_samples=400, dt=DT, period=2.0, rotation_time=0.5,
-                                                        settle=0.1)),
+                                                        settle=0.1), bad=(
+            Bad("period, rotation_time, settle", "no_dwell", period=5.0, rotation_time=4.95),)),
         "papers.rotation_bias.Residuals": Skip("a result record, built by tilt_residuals"),
         "papers.rotation_bias.tilt_residuals": Call(dict(w_ib_b=dwell[0], f_b=dwell[1], dt=DT,
-                                                         starts=np.array([0, 20]), length=10, w_ie_b=np.zeros((2, 3)))),
+                                                         starts=np.array([0, 20]), length=10, w_ie_b=np.zeros((2, 3))), bad=(
+            Bad("length", "too_short", length=5), Bad("starts", "beyond_the_data", starts=np.array([0, 35])),
+            Bad("f_b", "length", f_b=dwell[1][:30]), Bad("f_b", "pitch_90deg", f_b=np.tile([0.0, 9.8, 0.0], (40, 1))),
+            Bad("w_ie_b", "per_dwell", w_ie_b=np.zeros((3, 3))), Bad("dt", "length", dt=np.full(39, DT)),
+            Bad("max_missing", "above_half", max_missing=0.6), Bad("outlier_k", "zero", outlier_k=0.0),
+            Bad("full_scale_gyro", "negative", full_scale_gyro=-1.0), Bad("full_scale_accel", "zero", full_scale_accel=0.0))),
         "papers.rotation_bias.residual_covariance": Call(dict(tilt=np.array([[0.1, -0.05], [0.2, 0.0]]), length=10,
-                                                              dt=DT, gyro_noise=1e-3, accel_noise=1e-2)),
-        "papers.rotation_bias.lsq_bias": Call(dict(r=np.array([[1e-3, 2e-3]] * 4), V=V)),
-        "papers.rotation_bias.running_lsq_bias": Call(dict(r=np.array([[1e-3, 2e-3]] * 4), V=V, forgetting=0.99)),
+                                                              dt=DT, gyro_noise=1e-3, accel_noise=1e-2),
+                                                         bad=(Bad("length", "three", length=3),)),
+        "papers.rotation_bias.lsq_bias": Call(dict(r=np.array([[1e-3, 2e-3]] * 4), V=V), bad=(
+            Bad("V", "dwell_mismatch", V=V[:3]), Bad("V", "all_nan", r=np.full((4, 2), np.nan), V=np.full((4, 2, 3), np.nan)))),
+        "papers.rotation_bias.running_lsq_bias": Call(dict(r=np.array([[1e-3, 2e-3]] * 4), V=V, forgetting=0.99),
+                                                      bad=(Bad("forgetting", "zero", forgetting=0.0),)),
         "papers.rotation_bias.KalmanBias": Skip("a result record, built by kalman_bias"),
         "papers.rotation_bias.kalman_bias": Call(dict(r=np.array([[1e-3, 2e-3]] * 4), V=V, R=R2 * 1e-6, interval=1.0,
-                                                      rate_random_walk=1e-6, bias_sigma=1e-3),
-                                                 bad=(Bad("gate", "inf", gate=np.inf),)),
+                                                      rate_random_walk=1e-6, bias_sigma=1e-3), bad=(
+            Bad("gate", "inf", gate=np.inf), Bad("R", "nan", R=np.full((4, 2, 2), np.nan)),
+            Bad("interval", "length", interval=np.ones(3)), Bad("interval", "zero", interval=0.0))),
         "papers.rotation_bias.design": Call(dict(hpr0=HPR, axis_b=np.array([0.0, 0.0, 1.0]), amplitude=1.5,
-                                                 dwell_time=10.0, dt=DT, gyro_noise=1e-3, accel_noise=1e-2)),
+                                                 dwell_time=10.0, dt=DT, gyro_noise=1e-3, accel_noise=1e-2), bad=(
+            Bad("dwell_time", "too_short", dwell_time=0.05), Bad("dt", "array", dt=np.array([0.01, 0.01])))),
         # ---------------------------------------------------------------------- pdr
         "pdr.StepResult": Skip("a result record, built by detect_steps"),
         "pdr.detect_steps": Call(dict(f_b=F + 3 * np.sin(_k), dt=0.2, threshold=1.0, min_interval=0.35)),
