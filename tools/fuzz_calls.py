@@ -345,7 +345,9 @@ def table() -> dict:
         "filters.mahony.mahony": Call(dict(imu=IMU, q0=Q, m_b=M, kp=1.0, ki=0.02, B_n=B_N), bad=(
             Bad("kp", "negative", kp=-1.0), Bad("q0", "batch_mismatch", q0=np.tile(Q, (2, 1))),
             Bad("m_b", "both_references", rtk=RTK, B_n=None), Bad("m_b", "length", m_b=M[:5]), Bad("q0", "zero", q0=Q0),
-            Bad("rtk", "tuple", m_b=None, B_n=None, rtk=(HEADINGS, VALID)), Bad("imu", "array", imu=W))),
+            Bad("rtk", "tuple", m_b=None, B_n=None, rtk=(HEADINGS, VALID)), Bad("imu", "array", imu=W),
+            Bad("gates", "mag_without_m_b", m_b=None, gates=observations.AttitudeGates(mag=observations.MagGate())),
+            Bad("B_n", "mag_gate_without_B_n", B_n=None, gates=observations.AttitudeGates(mag=observations.MagGate())))),
         "filters.observations.MagGate": Call(dict(norm_tol=0.1, dip_tol=0.1), bad=(
             Bad("norm_tol", "negative", norm_tol=-0.1), Bad("norm_tol", "inf", norm_tol=np.inf),
             Bad("dip_tol", "inf", dip_tol=np.inf))),
