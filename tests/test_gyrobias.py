@@ -87,9 +87,9 @@ def test_constant_and_scheduled_bias_compensation():
 def test_tilt_round_trip_and_static_specific_force():
     traj = trajectory.static(1.0, DT, [LAT, 0, 0], units.deg([40.0, 25.0, -70.0]))
     _, f = trajectory.ideal_imu(traj)
-    np.testing.assert_allclose(gb.tilt_from_accel(f), np.broadcast_to(units.deg([-70.0, 25.0]), (100, 2)), atol=1e-6)
+    np.testing.assert_allclose(gb.roll_pitch_from_accel(f), np.broadcast_to(units.deg([-70.0, 25.0]), (100, 2)), atol=1e-6)
     tilt = np.array([[0.3, -0.4], [-2.5, 1.2]])
-    np.testing.assert_allclose(gb.tilt_from_accel(-gb.gravity_body(tilt)), tilt, atol=1e-14)
+    np.testing.assert_allclose(gb.roll_pitch_from_accel(-gb.gravity_body(tilt)), tilt, atol=1e-14)
 
 
 def test_tilt_matrix_null_space_is_the_vertical():

@@ -35,7 +35,7 @@ def test_tilt_recovers_pitch_and_roll():
     rng = np.random.default_rng(2)
     hpr = random_hpr(rng, 500)
     _, f = ideal(hpr)
-    pitch, roll = nf.tilt_from_accel(f)
+    pitch, roll = nf.pitch_roll_from_accel(f)
     assert np.abs(pitch - hpr[:, 1]).max() < 1e-12
     assert np.abs(attitude.wrap_pi(roll - hpr[:, 2])).max() < 1e-12
 
@@ -252,8 +252,8 @@ def test_ins_heading_change_old_options_are_gone():
     (lambda: alignment.triad([0, 0, 9.8], [0, 1e-5], LAT), "w_ib_b"),
     (lambda: nf.heading_candidates(1e-5, [0, 0, 9.8], units.deg(-90.0)), "lat"),
     (lambda: nf.heading_candidates(np.inf, [0, 0, 9.8], LAT), "w_y"),
-    (lambda: nf.tilt_from_accel([0.0, 0.0, 0.0]), "f_b"),
-    (lambda: nf.tilt_from_accel([0.0, 0.0, 9.8], g=[9.8, 9.8, 9.8]), "g"),      # one gravity, not three trials
+    (lambda: nf.pitch_roll_from_accel([0.0, 0.0, 0.0]), "f_b"),
+    (lambda: nf.pitch_roll_from_accel([0.0, 0.0, 9.8], g=[9.8, 9.8, 9.8]), "g"),      # one gravity, not three trials
     (lambda: alignment.static_means(np.zeros((0, 3)), np.zeros((0, 3)), LAT), "w_ib_b"),
     (lambda: alignment.static_means(GOOD_W[:1], GOOD_F[:1], LAT), "w_ib_b"),
     (lambda: alignment.static_means(GOOD_W, GOOD_F * 1.2, LAT), "f_b"),

@@ -522,7 +522,7 @@ def table() -> dict:
         "papers.north_finding.Resolution": Skip("a result record, built by resolve"),
         "papers.north_finding.resolve": Call(dict(pair1=np.array([0.3, 2.8]), pair2=np.array([1.3, 1.8]),
                                                   dpsi_ins=1.0), elementwise=("dpsi_ins",)),
-        "papers.north_finding.tilt_from_accel": Call(dict(f_b=F[0], g=9.79)),
+        "papers.north_finding.pitch_roll_from_accel": Call(dict(f_b=F[0], g=9.79)),
         "papers.north_finding.triad_heading_error": Call(dict(C_bn=C, dw_b=np.array([1e-6, 2e-6, 0.0]), lat=0.6),
                                                          elementwise=("lat",)),
         "papers.north_finding.triad_heading_std": Call(dict(sigma_gyro=1e-6, lat=0.6), elementwise=("*",)),
@@ -564,7 +564,7 @@ def table() -> dict:
                                                                     R=np.array([[0.5]]))),
         "papers.rotation_bias.eq1_matrix": Call(dict(hpr=HPR), elementwise=("*",)),
         "papers.rotation_bias.gravity_body": Call(dict(tilt=np.array([0.1, -0.05]), g=9.80665)),
-        "papers.rotation_bias.tilt_from_accel": Call(dict(f_b=F[0])),
+        "papers.rotation_bias.roll_pitch_from_accel": Call(dict(f_b=F[0])),
         "papers.rotation_bias.tilt_matrix": Call(dict(tilt=np.array([0.1, -0.05])), bad=(
             Bad("tilt[..., 1] (pitch)", "pitch_-90deg", tilt=np.array([0.0, -np.pi / 2])),)),
         "papers.rotation_bias.rodrigues": Call(dict(axis_b=np.array([0.0, 0.0, 1.0]), angle=0.5), elementwise=("angle",), bad=(

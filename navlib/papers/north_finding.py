@@ -19,7 +19,7 @@ TRIAD, Eqs. (1)-(2) -- :func:`triad`::
   what it does about that); :func:`triad` projects it onto the nearest
   rotation with :func:`navlib.attitude.orthonormalize` (SVD) unless asked for
   the raw product.
-Tilt, Eqs. (4)-(6) -- :func:`tilt_from_accel`: ``pitch = asin(f_y / g)``,
+Tilt, Eqs. (4)-(6) -- :func:`pitch_roll_from_accel`: ``pitch = asin(f_y / g)``,
   ``roll = atan2(-f_x, f_z)``.
 Single-axis candidates, Eqs. (8)-(11) -- :func:`heading_candidates`::
 
@@ -121,7 +121,7 @@ from ..alignment import gyrocompass_latitude, level, static_means, triad, triad_
 from ..imu import ImuSamples, unpack
 from ..trajectory import Segment
 
-__all__ = ["Candidates", "heading_candidates", "nearest_candidate_error", "Resolution", "resolve", "tilt_from_accel",
+__all__ = ["Candidates", "heading_candidates", "nearest_candidate_error", "Resolution", "resolve", "pitch_roll_from_accel",
            "triad_heading_error", "triad_heading_std", "single_axis_heading_std", "single_axis_heading_error",
            "ClippedTheory", "clipped_single_axis_theory", "simulate_static_outputs", "MonteCarlo", "monte_carlo",
            "pair_probabilities", "four_position_heading_std",
@@ -135,7 +135,7 @@ OMEGA_IE = earth.OMEGA_IE
 # TRIAD (Eqs. 1-3)
 # --------------------------------------------------------------------------
 
-def tilt_from_accel(f_b: Vec3, g: float | None = None) -> tuple[Array, Array]:
+def pitch_roll_from_accel(f_b: Vec3, g: float | None = None) -> tuple[Array, Array]:
     """Pitch and roll from averaged specific force (paper Eqs. 5-6).
 
     ``pitch = asin(f_y / g)``, ``roll = atan2(-f_x, f_z)``. Without ``g`` the
@@ -219,7 +219,7 @@ def heading_candidates(w_y: ArrayLike, f_b: Vec3, lat: float, h: float = 0.0) ->
     """
     w_y = as_array(w_y, "w_y", nonempty=True)
     lat = gyrocompass_latitude(lat)
-    level(f_b)                                                     # checks f_b as tilt_from_accel does
+    level(f_b)                                                     # checks f_b as pitch_roll_from_accel does
     pitch = _asin_pitch(f_b, earth.gravity(lat, as_array(h, "h", nonempty=True)))   # as_array: gravity takes an empty h
     cos_h = (w_y - OMEGA_IE * np.sin(lat) * np.sin(pitch)) / (OMEGA_IE * np.cos(lat) * np.cos(pitch))
     clipped = np.abs(cos_h) > 1.0

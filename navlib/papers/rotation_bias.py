@@ -29,7 +29,7 @@ Eq. (2)  Euler-angle kinematics, Omega = body rate relative to n::
          rate held over each sample) by :func:`integrate_euler`.
 Eq. (3)  measured rate = Omega + b.
 Eq. (4)  ``a_m = R [0, 0, -g] = g [cos(th) sin(phi), -sin(th), -cos(th) cos(phi)]``  :func:`gravity_body`
-Eq. (5)  ``phi = atan2(a_mx, -a_mz)``, ``theta = atan2(-a_my, hypot(a_mx, a_mz))``     :func:`tilt_from_accel`
+Eq. (5)  ``phi = atan2(a_mx, -a_mz)``, ``theta = atan2(-a_my, hypot(a_mx, a_mz))``     :func:`roll_pitch_from_accel`
 Eqs. (6)-(9)  per dwell k, ``delta_k = (gyro tilt change) - (accelerometer tilt
          change) = M(phi_k, theta_k) dT b = V_k b`` with M the first two rows
          of Eq. (2)                                                  :func:`tilt_matrix`, :func:`tilt_residuals`
@@ -119,7 +119,7 @@ from ..euler import PITCH_LIMIT, check_pitch
 from ..imu import ImuSamples, unpack
 from ..units import G0
 
-__all__ = ["eq1_matrix", "gravity_body", "tilt_from_accel", "tilt_matrix", "rodrigues", "rotate_attitude", "dwell_attitudes",
+__all__ = ["eq1_matrix", "gravity_body", "roll_pitch_from_accel", "tilt_matrix", "rodrigues", "rotate_attitude", "dwell_attitudes",
            "dwell_windows", "Residuals", "tilt_residuals", "residual_covariance",
            "lsq_bias", "running_lsq_bias", "KalmanBias", "kalman_bias", "design", "MIN_DWELL_SAMPLES",
            "draw_rotation_scheme", "draw_rotation_schedule", "draw_flow"]
@@ -154,7 +154,7 @@ def gravity_body(tilt: ArrayLike, g: float = G0) -> Array:
     return g * np.stack([np.cos(p) * np.sin(r), -np.sin(p), -np.cos(p) * np.cos(r)], -1)
 
 
-def tilt_from_accel(f_b: Vec3) -> Array:
+def roll_pitch_from_accel(f_b: Vec3) -> Array:
     """Eq. (5) on specific force: ``[roll, pitch]`` of a static IMU (rad).
 
     With ``a_m = -f_b`` this is the accelerometer levelling :func:`navlib.alignment.level`
