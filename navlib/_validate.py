@@ -400,7 +400,7 @@ def range_limit(x: float | None, name: str) -> float:
 
 
 MIN_INTERVAL = 1e-9
-"""Shortest sample interval (s) :func:`intervals` accepts."""
+"""Shortest sample interval (s) :func:`sample_intervals` accepts."""
 
 MAX_TURN_PER_SAMPLE = 1.0
 """Largest rotation (rad) a gyro may report within one integrated interval (:func:`small_turns`): first-order
@@ -423,7 +423,7 @@ def refuse_turn(largest: float, name: str = "dt") -> None:
                          f"needs less than {MAX_TURN_PER_SAMPLE:g} rad per sample (is {name} in seconds?)")
 
 
-def intervals(dt: Interval, n: int, name: str = "dt") -> np.ndarray:
+def sample_intervals(dt: Interval, n: int, name: str = "dt") -> np.ndarray:
     """Per-sample intervals of shape (n,) from a positive scalar or an (n,) array of positive intervals (s).
 
     This is navlib's one reading of ``dt``: every filter accepts a fixed interval

@@ -95,7 +95,7 @@ from scipy.optimize import least_squares
 
 from . import analysis, earth, units
 from ._typing import Array, Dcm, Interval, Vec3, Vec3Series
-from ._validate import as_array, as_dcm, choice, flag, imu_samples, intervals, scalar
+from ._validate import as_array, as_dcm, choice, flag, imu_samples, sample_intervals, scalar
 from .imu import ImuSamples, unpack
 from .sensors import ImuModel, TriadErrors
 
@@ -610,7 +610,7 @@ def _triad_noise(x: np.ndarray, dt: float, rate_random_walk: bool, confidence: f
 
 def _fixed_interval(dt: Interval, n: int) -> float:
     """The one sample interval of ``dt`` (scalar, or per-sample intervals that agree to 1e-6)."""
-    d = intervals(dt, n)
+    d = sample_intervals(dt, n)
     if np.ptp(d) > 1e-6 * d.mean():
         raise ValueError(f"dt: expected a fixed sample interval for the Allan deviation, got intervals from "
                          f"{d.min():g} to {d.max():g} s (resample first)")

@@ -14,7 +14,7 @@ from numba import njit
 
 from . import _kernels
 from ._typing import Angles, Array, ArrayLike, Interval, Vec3, Vec3Series
-from ._validate import as_array, broadcast_to, intervals, kernel_array, scalar, small_turns, text
+from ._validate import as_array, broadcast_to, kernel_array, sample_intervals, scalar, small_turns, text
 from .imu import ImuSamples, unpack
 
 __all__ = ["PITCH_LIMIT", "check_pitch", "euler_rates", "integrate_euler"]
@@ -198,7 +198,7 @@ def integrate_euler(hpr0: Angles, w_ib_b: Vec3Series | ImuSamples, dt: Interval 
         w, _, dts, _, _ = unpack(w_ib_b, dt=dt)                 # (NaN with max_gap = 0: refused by the gap check)
     else:
         w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=max_gap > 0)
-        dts = intervals(dt, w.shape[-2])
+        dts = sample_intervals(dt, w.shape[-2])
     lead, n = w.shape[:-2], w.shape[-2]
     small_turns(w, dts)
     hpr0 = broadcast_to(_hpr(hpr0, "hpr0"), "hpr0", lead + (3,), of="the trials of w_ib_b").reshape(-1, 3)

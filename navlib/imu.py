@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._typing import Interval, Times, Vec3Series
-from ._validate import imu_samples, integer, intervals, range_limit, scalar, time_axis
+from ._validate import imu_samples, integer, range_limit, sample_intervals, scalar, time_axis
 
 __all__ = ["SensorLimits", "ImuSamples", "unpack", "JUMP_FACTOR", "STUCK_DURATION"]
 
@@ -131,7 +131,7 @@ class ImuSamples:
         w, f = imu_samples(self.w_ib_b, self.f_b)
         object.__setattr__(self, "w_ib_b", w)
         object.__setattr__(self, "f_b", f)
-        object.__setattr__(self, "dt", intervals(self.dt, w.shape[-2]))
+        object.__setattr__(self, "dt", sample_intervals(self.dt, w.shape[-2]))
         if self.limits is None:
             object.__setattr__(self, "limits", SensorLimits())
         elif not isinstance(self.limits, SensorLimits):

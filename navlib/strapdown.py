@@ -61,9 +61,9 @@ from ._validate import (
     broadcast_to,
     choice,
     flag,
-    intervals,
     kernel_array,
     latitude,
+    sample_intervals,
     scalar,
     small_turns,
 )
@@ -119,7 +119,7 @@ def _dropouts(x, name, policy):
 def _sample_intervals(dt, n):
     """``dt`` as the kernels take it: one element for a fixed interval (the time axis is then ``dt * k``),
     else one per sample."""
-    return intervals(dt, n)[:1] if np.ndim(dt) == 0 else intervals(dt, n)
+    return sample_intervals(dt, n)[:1] if np.ndim(dt) == 0 else sample_intervals(dt, n)
 
 
 def integrate_attitude(q0: Quat, w_ib_b: Vec3Series, dt: Interval, w_in_n: Vec3 | None = None, *,

@@ -41,10 +41,10 @@ from .._validate import (
     in_range,
     instance,
     integer,
-    intervals,
     kernel_array,
     last_axis,
     same_shape,
+    sample_intervals,
     scalar,
     time_axis,
 )
@@ -156,7 +156,7 @@ def fuse_rtk_heading(heading_mag: Angles, rtk: RtkHeading, dt: Interval, alpha: 
     instance(rtk, "rtk", RtkHeading, "an RtkHeading")
     hr, ok = rtk.at(hm.shape, "heading_mag")
     T, N = hr.shape
-    dts = intervals(dt, N)
+    dts = sample_intervals(dt, N)
     jump = dts > SensorLimits(max_dt=max_dt).jump_limit(float(np.median(dts)))
     out, delta, counts = np.empty((T, N)), np.empty((T, N)), np.zeros((T, len(_FAULTS)), dtype=np.int64)
     _fuse_kernel(kernel_array(hm.reshape(T, N)), hr, ok, dts, jump, alpha, rtk.params(), out, delta, counts)

@@ -110,10 +110,10 @@ from .._validate import (
     imu_samples,
     in_range,
     integer,
-    intervals,
     pitch_roll,
     positive,
     range_limit,
+    sample_intervals,
     scalar,
     time_axis,
 )
@@ -901,7 +901,7 @@ def ins_heading_change(w_ib_b: Vec3Series | ImuSamples, f_start: Vec3, dt: Inter
     choice(earth_rate, "earth_rate", tuple(rates))
     w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
     n = w.shape[-2]
-    dts = intervals(dt, n)
+    dts = sample_intervals(dt, n)
     step = float(dts[0]) if np.all(dts == dts[0]) else float(dts.mean())
     max_gap = scalar(max_gap, "max_gap", allow_zero=True)
     fs = range_limit(full_scale_gyro, "full_scale_gyro")

@@ -104,11 +104,11 @@ from .._validate import (
     flag,
     imu_samples,
     integer,
-    intervals,
     kernel_array,
     positive,
     range_limit,
     same_shape,
+    sample_intervals,
     scalar,
     small_turns,
     time_axis,
@@ -119,8 +119,8 @@ from ..euler import PITCH_LIMIT, check_pitch
 from ..imu import ImuSamples, unpack
 from ..units import G0
 
-__all__ = ["eq1_matrix", "gravity_body", "roll_pitch_from_accel", "tilt_matrix", "rodrigues", "rotate_attitude", "dwell_attitudes",
-           "dwell_windows", "Residuals", "tilt_residuals", "residual_covariance",
+__all__ = ["eq1_matrix", "gravity_body", "roll_pitch_from_accel", "tilt_matrix", "rodrigues", "rotate_attitude",
+           "dwell_attitudes", "dwell_windows", "Residuals", "tilt_residuals", "residual_covariance",
            "lsq_bias", "running_lsq_bias", "KalmanBias", "kalman_bias", "design", "MIN_DWELL_SAMPLES",
            "draw_rotation_scheme", "draw_rotation_schedule", "draw_flow"]
 
@@ -570,7 +570,7 @@ def tilt_residuals(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = Non
             raise ValueError(f"{name}: required")
     w, f = imu_samples(w_ib_b, f_b)
     lead, n = w.shape[:-2], w.shape[-2]
-    dts, regular = intervals(dt, n), np.ndim(dt) == 0
+    dts, regular = sample_intervals(dt, n), np.ndim(dt) == 0
     small_turns(w, dts)
     length = integer(length, "length", minimum=MIN_DWELL_SAMPLES)
     starts = np.asarray(starts)
@@ -856,7 +856,7 @@ def kalman_bias(r: ArrayLike, V: ArrayLike, R: ArrayLike, interval: Interval, ra
     ok = np.all(np.isfinite(r), -1)
     if np.any(~np.isfinite(R[ok])):
         raise ValueError("R: expected finite covariances wherever r is finite")
-    gaps = positive(interval, "interval", nonempty=True)        # not intervals(): it accepts huge values
+    gaps = positive(interval, "interval", nonempty=True)        # not sample_intervals(): it accepts huge values
     if gaps.ndim == 0:
         gaps = np.full(K, float(gaps))
     elif gaps.shape != (K,):
