@@ -13,8 +13,8 @@ Every public callable is listed once, in the registry ``tools/fuzz_calls.py``
 * ``test_registry_call_refuses_bad_values``: the valid call works, and each of
   its arguments replaced by each bad value of tools/fuzz.py's ``MUTATIONS``
   in :data:`IN_PROCESS` (a string, a numeric string, complex, an object array,
-  a boolean, None, NaN, inf, no samples, a wrong last axis) raises an error
-  naming the argument -- unless tools/fuzz.py's ``BY_DESIGN`` documents the
+  a ragged nested list, a boolean, None, NaN, inf, no samples, a wrong last
+  axis) raises an error naming the argument -- unless tools/fuzz.py's ``BY_DESIGN`` documents the
   outcome (NaN as a dropout marker, inf as "no limit", empty batches of the
   elementwise functions, ...).
 * ``test_registry_bad_row``: the registry rows' ``bad`` calls (a valid call
@@ -74,7 +74,7 @@ import fuzz_calls  # noqa: E402  (the registry: every public callable, one valid
 PUBLIC = fuzz_calls.public_callables()
 REGISTRY = fuzz_calls.table()
 CALLS = {k: fuzz.with_defaults(PUBLIC[k], c) for k, c in REGISTRY.items() if isinstance(c, fuzz_calls.Call) and k in PUBLIC}
-IN_PROCESS = ("string", "numeric_str", "complex", "object", "bool", "none", "nan", "inf", "empty", "wrong_shape")
+IN_PROCESS = ("string", "numeric_str", "complex", "object", "ragged", "bool", "none", "nan", "inf", "empty", "wrong_shape")
 """The mutations run here; ``make fuzz`` runs all, in workers with a timeout (1e300 or a time jump can hang a call)."""
 
 IO_TABLE = __import__("pandas").DataFrame({"t": [0.0, 0.01, 0.02], "gx": [0.0] * 3, "gy": [0.0] * 3, "gz": [0.0] * 3})

@@ -99,6 +99,7 @@ MUTATIONS = {
     "numeric_str": (NUMBERS, "the string '1.5' (numpy would parse it)"),
     "complex": (NUMBERS, "the values plus 1j (numpy would drop the imaginary part)"),
     "object": (NUMBERS, "the values as an object array"),
+    "ragged": (NUMBERS, "a ragged nested list, [1.0, [2.0, 3.0]] (no array can hold it)"),
     "bool": (NUMBERS, "True, or an all-True mask of the value's shape"),
     "true_count": ({"count"}, "True where a count is expected"),
     "degrees": ({"number"}, "45 for an angle in radians (DEGREE_ARGS)"),
@@ -212,6 +213,8 @@ def mutate(mutation: str, arg: Arg):
         return a + 1j
     if mutation == "object":
         return a.astype(object)
+    if mutation == "ragged":
+        return [1.0, [2.0, 3.0]]
     if mutation == "bool":
         return True if a.ndim == 0 else np.ones(a.shape, dtype=bool)
     if mutation == "true_count":
