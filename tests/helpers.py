@@ -2,7 +2,10 @@
 
 Bad input to every public callable: the registry tools/fuzz_calls.py, run by tests/test_bad_input.py."""
 import csv
+import json
+import os
 import subprocess
+import sys
 from pathlib import Path
 
 REFERENCE = Path(__file__).resolve().parents[1] / "data" / "reference"
@@ -37,3 +40,10 @@ def project_files() -> list[Path]:
                 if p.is_file() and not _NOT_SOURCE & set(p.relative_to(ROOT).parts) and p.suffix != ".egg-info"
                 and not any(part.endswith(".egg-info") for part in p.relative_to(ROOT).parts)]
 
+
+
+def run_json_script(script: str, disable_jit: bool) -> dict:
+    """Run ``script`` (which prints one JSON object) in a fresh interpreter, compiled or with ``NUMBA_DISABLE_JIT``."""
+    env = dict(os.environ, NUMBA_DISABLE_JIT="1" if disable_jit else "0")
+    out = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True, text=True, check=True)
+    return json.loads(out.stdout)

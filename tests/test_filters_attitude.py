@@ -1,12 +1,12 @@
 """The attitude filters (navlib.filters: mahony, quaternion_kf, heading_fusion) and navlib.papers.mimu_mag_rtk
 (paper 003): equations, filters, bad input, and the cross-check against ahrs (AHRS 0.4.0)."""
-import json
 import os
 import subprocess
 import sys
 
 import numpy as np
 import pytest
+from helpers import run_json_script
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from numba import njit
@@ -473,9 +473,7 @@ print(json.dumps({"a": a.q_bn.tolist(), "k": k.q_bn.tolist(), "h": h.tolist(), "
 
 
 def _run(disable_jit: bool) -> dict:
-    env = dict(os.environ, NUMBA_DISABLE_JIT="1" if disable_jit else "0")
-    out = subprocess.run([sys.executable, "-c", SCRIPT], env=env, capture_output=True, text=True, check=True)
-    return json.loads(out.stdout)
+    return run_json_script(SCRIPT, disable_jit)
 
 
 def test_kernels_run_uncompiled_with_the_same_results():

@@ -4,12 +4,9 @@ The kernels are written once, as readable numeric Python compiled by numba; a
 teacher or a debugger can step through them uncompiled. This test runs the
 same computations in a subprocess with the JIT disabled and compares.
 """
-import json
-import os
-import subprocess
-import sys
 
 import numpy as np
+from helpers import run_json_script
 
 SCRIPT = r"""
 import json, numpy as np
@@ -33,9 +30,7 @@ print(json.dumps({"lla": nav.lla.tolist(), "q": q.tolist(), "x": x.tolist(), "st
 
 
 def _run(disable_jit: bool) -> dict:
-    env = dict(os.environ, NUMBA_DISABLE_JIT="1" if disable_jit else "0")
-    out = subprocess.run([sys.executable, "-c", SCRIPT], env=env, capture_output=True, text=True, check=True)
-    return json.loads(out.stdout)
+    return run_json_script(SCRIPT, disable_jit)
 
 
 def test_kernels_run_uncompiled_with_the_same_results():
