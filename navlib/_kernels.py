@@ -520,7 +520,8 @@ def lu_inverse(a, n, ipiv, work):
 
 @njit(cache=True, nogil=True)
 def stuck_runs(t0, t1, x, run, rail, out):
-    """Compiled :func:`navlib.robust.stuck_mask` of series t0 to t1 - 1 of ``x`` (T, N, k): set ``out`` (T, N).
+    """Compiled :func:`navlib.robust.stuck_mask` of series t0 to t1 - 1 of ``x`` (T, N, k), per component: set
+    ``out`` (T, N, k).
 
     A maximal run of ``run`` or more exactly equal values of one component marks all its samples.
     NaN, and values with ``|x| >= rail`` (saturated, not stuck), are never part of a run.
@@ -534,5 +535,5 @@ def stuck_runs(t0, t1, x, run, rail, out):
                 if i < n and x[t, i, c] == v and abs(v) < rail:
                     continue                                # the run goes on
                 if i - start >= run:
-                    out[t, start:i] = True
+                    out[t, start:i, c] = True
                 start = i

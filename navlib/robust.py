@@ -29,7 +29,7 @@ batch) and, when asked for, per-sample boolean flags. Sensors are named ``"gyro"
     ``("accel", "freefall")``), held from the last good sample;
 ``"stuck"``
     a sensor that stopped updating: a component repeating exactly the same value over a run
-    of samples (:func:`stuck_mask`; held like a dropout), or over most of a static window
+    of samples (:func:`stuck_mask`; the stuck axis held, the live ones used), or over most of a static window
     (:func:`navlib.alignment.static_means` ``stuck_fraction``; the window refused).
 
 :func:`screen` is the one pass over a filter's IMU samples before any filter equation runs: it finds
@@ -352,9 +352,9 @@ def _stuck_runs(a: np.ndarray, run: int, rail: float = np.inf) -> NDArray[np.boo
     """:func:`stuck_mask` of validated samples ``a`` (..., N, k); values with ``|a| >= rail`` never repeat."""
     lead, (n, k) = a.shape[:-2], a.shape[-2:]
     flat = kernel_array(a.reshape((math.prod(lead), n, k)))        # writable: one kernel signature
-    out = np.zeros(flat.shape[:2], dtype=bool)
+    out = np.zeros(flat.shape, dtype=bool)
     stuck_runs(0, flat.shape[0], flat, run, rail, out)
-    return out.reshape(lead + (n,))
+    return out.any(-1).reshape(lead + (n,))
 
 
 def stuck_run_samples(stuck_run: int | str | None, dt: float) -> int | None:
@@ -412,10 +412,11 @@ class Screened(NamedTuple):
     imu : ImuSamples
         The samples as given (the accelerometer is read from ``imu.f_b``, with the flags below).
     w_ib_b : ndarray, shape (..., N, 3)
-        Gyro with every unusable sample (``("gyro", "nan" | "stuck" | "spike")``) replaced by the last used
-        one, 0 before the first: the attitude filters' hold.
+        Gyro with every unusable sample (``("gyro", "nan" | "spike")``) replaced by the last used one, 0
+        before the first, and the stuck axes of a stuck sample (``("gyro", "stuck")``) held alone: the
+        attitude filters' hold.
     fresh : ndarray of bool, shape (..., N)
-        The gyro sample is used as measured (not held); saturated samples are used.
+        The gyro sample measures the motion (at least one live axis); saturated samples are used.
     m_b : ndarray, shape (..., N, 3), or None
         Magnetometer (uT) as given, or None.
     dt : ndarray, shape (N,)
@@ -470,13 +471,13 @@ def screen(imu: ImuSamples, m_b: Vec3Series | None = None) -> Screened:
                       lim.spike_accel, lim.freefall_accel])
     wf, ff = kernel_array(w.reshape(T, n, 3)), kernel_array(f.reshape(T, n, 3))
     mf = np.zeros((1, 1, 3)) if m_b is None else kernel_array(m_b.reshape(T, n, 3))
-    flags, turn = np.zeros((len(_KEYS), T, n), dtype=bool), np.zeros(T)
-    run_chunks(lambda t0, t1: _scan(t0, t1, wf, ff, mf, dts, tests, flags, turn), T)
+    flags, turn, stuck_axes = np.zeros((len(_KEYS), T, n), dtype=bool), np.zeros(T), np.zeros((T, n, 3), dtype=bool)
+    run_chunks(lambda t0, t1: _scan(t0, t1, wf, ff, mf, dts, tests, flags, turn, stuck_axes), T)
     refuse_turn(float(turn.max()))                             # (clock jumps are not integrated)
     _freefall_runs(flags[6], dts, lim.freefall_time)
     flags[6] &= ~flags[5]                                      # a spike is a spike, not free fall
     held, fresh = np.empty_like(wf), np.empty((T, n), dtype=bool)
-    run_chunks(lambda t0, t1: _gyro_hold(t0, t1, wf, flags, lim.gyro_jump or 0.0, held, fresh), T)
+    run_chunks(lambda t0, t1: _gyro_hold(t0, t1, wf, flags, stuck_axes, lim.gyro_jump or 0.0, held, fresh), T)
     keys = _KEYS if m_b is not None else [key for key in _KEYS if key[0] != "mag"]
     found = {key: flags[_KEYS.index(key)].reshape(lead + (n,)) for key in keys}
     report = FaultReport({key: v.sum(-1) for key, v in found.items()}, found)
@@ -499,21 +500,24 @@ def _freefall_runs(low: np.ndarray, dts: np.ndarray, min_time: float) -> None:
 
 
 @njit(cache=True, nogil=True)
-def _scan(t0, t1, w, f, m, dts, tests, flags, turn):
+def _scan(t0, t1, w, f, m, dts, tests, flags, turn, stuck_axes):
     """Trials t0 to t1 - 1 of the samples ``w``, ``f`` (T, N, 3) and ``m`` ((T, N, 3), or (1, 1, 3): none):
     every flag of :data:`_KEYS` into ``flags`` (K, T, N), but for free fall the samples of low norm (the
-    caller keeps the long runs), and ``turn[t]``, the largest turn ``|w| dt`` over an integrated interval.
+    caller keeps the long runs), ``stuck_axes`` (T, N, 3): which gyro axes are stuck, and ``turn[t]``, the
+    largest turn ``|w| dt`` over an integrated interval.
     ``tests = [max_dt, stuck run (0: off), full scales (gyro, accel, mag), spike thresholds (gyro, accel),
     free-fall threshold]``."""
     max_dt, run, fs_w, fs_f, fs_m, low = tests[0], int(tests[1]), tests[2], tests[3], tests[4], tests[7]
     N, use_mag, spikes = w.shape[1], m.shape[1] == w.shape[1], tests[5] < np.inf or tests[6] < np.inf
     for t in range(t0, t1):
-        _gyro_scan(t, w, dts, max_dt, run, fs_w, flags[0], turn)
+        _gyro_scan(t, w, dts, max_dt, run, fs_w, stuck_axes, turn)
         wt, ft, mt = w[t], f[t], m[t if use_mag else 0]
         stuck, nan_w, spike_w, rails_w = flags[0, t], flags[1, t], flags[2, t], flags[3, t]
         nan_f, spike_f, free, rails_f = flags[4, t], flags[5, t], flags[6, t], flags[7, t]
         nan_m, rails_m, jump = flags[8, t], flags[9, t], flags[10, t]
+        axes = stuck_axes[t]
         for k in range(N):
+            stuck[k] = axes[k, 0] or axes[k, 1] or axes[k, 2]
             wx, wy, wz, fx, fy, fz = wt[k, 0], wt[k, 1], wt[k, 2], ft[k, 0], ft[k, 1], ft[k, 2]
             ok_w, ok_f = _finite3(wx, wy, wz), _finite3(fx, fy, fz)
             nan_w[k], nan_f[k] = not ok_w and not stuck[k], not ok_f
@@ -542,7 +546,7 @@ def _at_rails(x, y, z, full_scale):
 @njit(cache=True, inline="always")
 def _gyro_scan(t, w, dts, max_dt, run, rail, stuck, turn):
     """Trial t of the gyro ``w`` (T, N, 3): ``turn[t]``, the largest turn ``|w| dt`` over an integrated interval
-    (``dt <= max_dt``; NaN ignored), and with ``run > 0`` the stuck samples ``stuck[t]`` (values at ``rail``
+    (``dt <= max_dt``; NaN ignored), and with ``run > 0`` the stuck axes ``stuck[t]`` (N, 3) (values at ``rail``
     excepted) of a trial whose gyro is noisy from the start (no axis repeats its first value ``run`` times)."""
     N = w.shape[1]
     big = 0.0
@@ -565,15 +569,24 @@ def _gyro_scan(t, w, dts, max_dt, run, rail, stuck, turn):
 
 
 @njit(cache=True, nogil=True)
-def _gyro_hold(t0, t1, w, flags, gate, held, fresh):
-    """Trials t0 to t1 - 1: hold the last used gyro sample (0 before the first) over the stuck, NaN and spike
-    samples of ``flags`` (:data:`_KEYS`) and over steps larger than ``gate`` on some axis (flagged as spikes;
-    ``gate = 0``: off), unless the previous sample was such a step already (a sustained change is motion)."""
+def _gyro_hold(t0, t1, w, flags, stuck_axes, gate, held, fresh):
+    """Trials t0 to t1 - 1: hold the last used gyro sample (0 before the first) over the NaN and spike samples
+    of ``flags`` (:data:`_KEYS`) and over steps larger than ``gate`` on some axis (flagged as spikes;
+    ``gate = 0``: off), unless the previous sample was such a step already (a sustained change is motion).
+    A stuck sample holds only its stuck axes (``stuck_axes``): the live axes still measure the motion."""
     for t in range(t0, t1):
         gx = gy = gz = 0.0
         was_step = False
         for k in range(w.shape[1]):
             wx, wy, wz = w[t, k, 0], w[t, k, 1], w[t, k, 2]
+            if flags[0, t, k]:                                         # stuck: keep the live axes
+                axes = stuck_axes[t, k]
+                gx = wx if not axes[0] and np.isfinite(wx) else gx
+                gy = wy if not axes[1] and np.isfinite(wy) else gy
+                gz = wz if not axes[2] and np.isfinite(wz) else gz
+                held[t, k, 0], held[t, k, 1], held[t, k, 2] = gx, gy, gz
+                fresh[t, k] = not (axes[0] and axes[1] and axes[2])    # all stuck: nothing measured
+                continue
             use = not (flags[0, t, k] or flags[1, t, k] or flags[2, t, k])
             if use and gate > 0.0 and not was_step and k > 0 and (
                     abs(wx - gx) > gate or abs(wy - gy) > gate or abs(wz - gz) > gate):

@@ -18,9 +18,10 @@ such filters:
 * :class:`AttitudeResult` and :func:`run_trials` (Monte Carlo trials in parallel; the kernels release
   the GIL).
 
-What the filters do with bad samples, once for all of them: the gyro is held over dropouts, stuck
-runs and spikes (:func:`navlib.robust.screen`; the gyro-bias integral is frozen meanwhile and, after a
-hold of ``stuck_run`` samples or more or a clock jump, for :data:`SETTLE_TIME_CONSTANTS` / kp seconds);
+What the filters do with bad samples, once for all of them: the gyro is held over dropouts and spikes,
+and a stuck axis over its stuck run while the live axes go on measuring (:func:`navlib.robust.screen`;
+the gyro-bias integral is frozen while nothing is measured and, after a hold of ``stuck_run`` samples or
+more or a clock jump, for :data:`SETTLE_TIME_CONSTANTS` / kp seconds);
 saturated gyro samples are used (the best reading available) and flagged; accelerometer and
 magnetometer samples that are missing, at the rails, in free fall, spikes or outside their gate are
 skipped: the attitude is propagated by the gyro alone over them. At a clock jump nothing is integrated

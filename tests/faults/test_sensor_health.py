@@ -292,3 +292,33 @@ def test_batch_counts_and_flags_per_trial():
     assert res.faults.flags["gyro", "stuck"].shape == res.faults.flags["clock", "jump"].shape == (2, 300)
     np.testing.assert_array_equal(np.flatnonzero(res.faults.flags["gyro", "stuck"][1]), np.arange(50, 70))
     np.testing.assert_array_equal(res.faults.flags["clock", "jump"].sum(-1), [1, 1])
+
+
+def test_a_stuck_axis_in_a_fast_turn_costs_no_more_than_ignoring_it():
+    """One gyro axis frozen for 2 s in the fastest turn of the real x-io recording (209 deg/s): the stuck axis
+    is held, the live axes go on measuring, so handling the fault costs about what ignoring it costs (largest
+    attitude difference to the fault-free run, deg: x 0.31 vs 0.48 ignored, y 0.48 vs 0.36, z 5.11 vs 7.74).
+    Holding all three axes, as before, cost 11.9 deg on x."""
+    from pathlib import Path
+
+    from navlib import alignment, io
+
+    rec = io.read_xio(Path(__file__).resolve().parents[2] / "data/real/xio-fusion/sensor_data.csv", timing="sanitize")
+    imu = rec.imu()
+    n = int(round(2.0 / float(np.median(imu.dt))))
+    k0 = int(np.argmax(np.convolve(np.linalg.norm(imu.w_ib_b, axis=-1), np.ones(n), "valid")))
+    still = rec.time < 1.0
+    q0 = alignment.initial_attitude(np.nanmean(rec.f_b[still], 0), np.nanmean(rec.m_b[still], 0))
+    ref = mh.mahony(imu, q0, m_b=rec.m_b)
+
+    def worst(res):
+        d = attitude.quat_mult(res.q_bn, attitude.quat_conj(ref.q_bn))
+        return np.rad2deg(2 * np.arccos(np.clip(np.abs(d[..., 0]), 0.0, 1.0))).max()
+
+    for axis in range(3):
+        w = imu.w_ib_b.copy()
+        w[k0:k0 + n, axis] = w[k0, axis]
+        handled = mh.mahony(ImuSamples(w, imu.f_b, imu.dt), q0, m_b=rec.m_b)
+        ignored = mh.mahony(ImuSamples(w, imu.f_b, imu.dt, SensorLimits(stuck_run=None)), q0, m_b=rec.m_b)
+        assert int(handled.faults["gyro", "stuck"]) == n and not ignored.faults
+        assert worst(handled) < worst(ignored) + 0.15, axis          # the margin: 0.12 deg on y
