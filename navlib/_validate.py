@@ -293,6 +293,14 @@ def numbers(obj: Any, *, positive: tuple[str, ...] = (), non_negative: tuple[str
             scalar(getattr(obj, name), name, allow_inf=name in infinite, **sign)
 
 
+def indices(x: ArrayLike, name: str) -> np.ndarray:
+    """``x`` as an array (of sample indices or trial ids, checked by the caller), a ragged sequence refused by name."""
+    try:
+        return np.asarray(x)
+    except ValueError:
+        raise ValueError(f"{name}: expected an array of integer indices, got a ragged sequence") from None
+
+
 def integer(x: int, name: str, *, minimum: int | None = 1) -> int:
     """Return ``x`` as an int >= ``minimum`` (any int with ``minimum=None``). ``bool`` is refused (``True`` is not a count)."""
     if isinstance(x, (bool, np.bool_)) or not isinstance(x, (int, np.integer)) or minimum is not None and x < minimum:

@@ -30,7 +30,7 @@ from typing import Any
 import numpy as np
 
 from ._typing import ArrayLike
-from ._validate import flag, integer, text
+from ._validate import flag, indices, integer, text
 
 __all__ = ["TrialStreams", "run"]
 
@@ -52,7 +52,7 @@ class TrialStreams:
 
     def __init__(self, seed: int, ids: ArrayLike) -> None:
         _check_args(1, seed, 1)
-        ids = np.asarray(ids)
+        ids = indices(ids, "ids")
         if ids.ndim != 1 or ids.size == 0 or not np.issubdtype(ids.dtype, np.integer) or ids.min() < 0:
             raise ValueError(f"ids: expected a non-empty 1-D array of non-negative trial indices, got {ids!r:.60}")
         self.ids = ids.astype(np.int64)

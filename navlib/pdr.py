@@ -19,7 +19,7 @@ import numpy as np
 
 from . import analysis
 from ._typing import Array, ArrayLike, Vec3Series
-from ._validate import as_array, positive, same_shape, scalar
+from ._validate import as_array, indices, positive, same_shape, scalar
 from .alignment import level, magnetic_heading
 from .units import G0
 
@@ -113,7 +113,7 @@ def pdr_headings(f_b: Vec3Series, m_b: Vec3Series, step_index: ArrayLike, declin
     """
     f = as_array(f_b, "f_b", shape=(None, 3), min_ndim=1)
     m = same_shape(as_array(m_b, "m_b", allow_nan=True), "m_b", f.shape, of="f_b")
-    idx = np.asarray(step_index)
+    idx = indices(step_index, "step_index")
     if idx.ndim != 1 or idx.size < 2 or not np.issubdtype(idx.dtype, np.integer) or np.any(np.diff(idx) <= 0) \
             or idx[0] < 1 or idx[-1] > f.shape[0]:
         raise ValueError("step_index: expected at least two increasing sample indices within the record")

@@ -119,7 +119,8 @@ def _dropouts(x, name, policy):
 def _sample_intervals(dt, n):
     """``dt`` as the kernels take it: one element for a fixed interval (the time axis is then ``dt * k``),
     else one per sample."""
-    return sample_intervals(dt, n)[:1] if np.ndim(dt) == 0 else sample_intervals(dt, n)
+    dts = sample_intervals(dt, n)
+    return dts[:1] if np.ndim(dt) == 0 else dts
 
 
 def integrate_attitude(q0: Quat, w_ib_b: Vec3Series, dt: Interval, w_in_n: Vec3 | None = None, *,

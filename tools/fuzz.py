@@ -313,7 +313,7 @@ BY_DESIGN: list[tuple[str, str, str, str, str]] = [
     (r"analysis\.(condition_number|cramer_rao_bound)", "V", "wrong_shape", "silent_nan",
      "inf: the unknowns are not observable from these blocks (docstrings)"),
     (r"attitude\.(quat_\w+|ned_to_enu_quat)|filters\.(mahony\.mahony|quaternion_kf\.quaternion_kf|observations\.pack)|"
-     r"strapdown\.integrate(_attitude)?", r"q|q0|q_ned", "1e300", "silent_accept",
+     r"strapdown\.integrate(_attitude)?|sensors\.simulate_magnetometer", r"q|q0|q_ned|q_bn", "1e300", "silent_accept",
      "quaternions of any finite magnitude are normalised exactly (tests/test_magnitudes.py)"),
     (r"papers\.rotation_bias\.draw_rotation_schedule", r"time|starts", r"time_jump|wrong_shape", "silent_accept",
      "a drawing: any increasing time axis is drawn as given, any number of dwell windows shaded"),

@@ -94,17 +94,7 @@ class Skip:
 
 # Bad calls that navlib does not refuse yet: "callable-arg-mutation" -> what it does instead. The tests mark
 # them xfail(strict=True), make fuzz lists them apart; remove the entry when navlib is fixed.
-KNOWN_GAPS: dict[str, str] = {
-    "sensors.simulate_magnetometer-q_bn-1e300": "accepted since e9159b5 (refused before): by design, as for other quaternions?",
-    # a ragged list ([1.0, [2.0, 3.0]]) where integers (indices, ids) or a time step are converted without as_array:
-    # numpy's "setting an array element with a sequence", naming no argument
-    "montecarlo.TrialStreams-ids-ragged": "numpy's error, naming no argument",
-    "papers.north_finding.stop_solutions-windows-ragged": "numpy's error, naming no argument",
-    "papers.rotation_bias.tilt_residuals-starts-ragged": "numpy's error, naming no argument",
-    "pdr.pdr_headings-step_index-ragged": "numpy's error, naming no argument",
-    "strapdown.integrate-dt-ragged": "numpy's error, naming no argument",
-    "strapdown.integrate_attitude-dt-ragged": "numpy's error, naming no argument",
-}
+KNOWN_GAPS: dict[str, str] = {}
 
 
 def public_callables() -> dict[str, object]:

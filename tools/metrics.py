@@ -26,7 +26,7 @@ VALIDATE_NAMES = {"real", "as_array", "in_range", "positive", "latitude", "gener
                   "as_quat", "scalar", "integer", "flag", "choice", "full_scale", "intervals", "sample_intervals", "imu_samples",
                   "nonempty_array", "nonempty_positive", "nonempty_latitude", "instance", "same_shape", "broadcast",
                   "range_limit", "unit_interval", "booleans", "last_axis", "pitch_roll", "euler_angles", "small_turns",
-                  "text", "broadcast_to", "ellipsoid", "ellipsoid_", "numbers"}
+                  "text", "broadcast_to", "ellipsoid", "ellipsoid_", "numbers", "indices"}
 # One formula, one place: regular expressions that find where each is written out.
 FORMULAS = {
     "levelling": r"arctan2\(\s*-\s*\w+\[\.\.\., 0\]|arctan2\(-ax, az\)|arcsin\(np\.clip\(f\[\.\.\., 1\]",

@@ -109,6 +109,7 @@ from .._validate import (
     generator,
     imu_samples,
     in_range,
+    indices,
     integer,
     pitch_roll,
     positive,
@@ -798,7 +799,7 @@ def stop_solutions(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = Non
             raise ValueError(f"windows: expected (S, 2) [start, end) times in s with end > start, got {tw.tolist()}")
         win = np.searchsorted(t, tw, side="left")
     else:
-        win = np.asarray(windows)
+        win = indices(windows, "windows")
         if win.ndim != 2 or win.shape[1] != 2 or not np.issubdtype(win.dtype, np.integer):
             raise ValueError(f"windows: expected (S, 2) integer [start, end) sample indices, got {win.tolist()}")
     if np.any(win[:, 0] < 0) or np.any(win[:, 1] > n) or np.any(win[:, 1] - win[:, 0] < 2):

@@ -103,6 +103,7 @@ from .._validate import (
     euler_angles,
     flag,
     imu_samples,
+    indices,
     integer,
     kernel_array,
     positive,
@@ -573,7 +574,7 @@ def tilt_residuals(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = Non
     dts, regular = sample_intervals(dt, n), np.ndim(dt) == 0
     small_turns(w, dts)
     length = integer(length, "length", minimum=MIN_DWELL_SAMPLES)
-    starts = np.asarray(starts)
+    starts = indices(starts, "starts")
     if starts.ndim != 1 or starts.size == 0 or not np.issubdtype(starts.dtype, np.integer) \
             or starts.min() < 0 or starts.max() + length > n:
         raise ValueError(f"starts: expected a 1-D array of dwell start indices within [0, {n - length}]")
