@@ -10,7 +10,7 @@ group", IEEE T-AC 53(5), in the explicit form used by Zhang et al. 2023 (paper 0
   ``h x [0, |h_xy|, h_z] = [h_z (h_y - |h_xy|), -h_x h_z, h_x |h_xy|]``, whose horizontal part grows with
   the vertical field times the heading error. A large heading error -- a magnetic disturbance -- therefore
   also tilts the estimate (13 deg on the real recording of notebook 06, where x-io's Fusion, which
-  corrects heading only, stays within 0.2 deg); the field-norm and dip ``gate`` is the defence;
+  corrects heading only, stays within 0.2 deg); the field-norm and dip gate (``AttitudeGates(mag=MagGate())``) is the defence;
 * Eq. (15): ``w = w_m + kp e + ki sum(e dt)`` with kp in rad/s and ki in rad/s^2 (the full cross
   product, not MahonyAHRS.c's half error "twoKp");
 * Eq. (17): first-order update ``q <- normalise(q + dt/2 q (x) [0, w])``.

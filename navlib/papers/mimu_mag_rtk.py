@@ -45,26 +45,27 @@ Sec. 2.5  heading fusion, reconstructed (the paper gives no rule; E003-15, E003-
           paper's 0) is never used: :func:`navlib.filters.heading_fusion.fuse_rtk_heading`.
 
 Extensions: the magnetometer gate (field norm and dip angle against the
-local field, :class:`navlib.filters.observations.MagGate`) and an accelerometer-norm gate. Every
-skipped or gated update is counted in ``AttitudeResult.counts``; NaN gyro samples
-are replaced by the last valid one (counted), so a dropout never reaches the
-state.
+local field, :class:`navlib.filters.observations.MagGate`) and an accelerometer-norm gate, both in
+:class:`navlib.filters.observations.AttitudeGates`. Every skipped or gated update is counted in
+``AttitudeResult.faults``; NaN gyro samples are replaced by the last used one (counted), so a dropout never
+reaches the state.
 
-Robustness (what the filters do with bad data; all counted, keys ``observations.COUNT_NAMES``)
-------------------------------------------------------------------------------------
+Robustness (what the filters do with bad data; all counted in ``faults``)
+-------------------------------------------------------------------------
+* the samples are screened once (:func:`navlib.robust.screen`, with the :class:`navlib.imu.SensorLimits` of
+  the ``ImuSamples``): dropouts, stuck axes, spikes, rails, free fall and clock jumps;
 * dropouts and gaps (NaN): gyro -> hold the last used sample; accelerometer,
   magnetometer, RTK -> skip that correction (a gap is a run of these: the
   gyro alone carries the attitude);
 * outliers: accelerometer -> ``accel_tol`` norm gate; magnetometer ->
-  ``MagGate``; gyro -> ``gyro_jump`` spike gate (hold); RTK heading ->
-  ``rtk_gate`` against the current heading estimate, so 180 deg ambiguity
-  flips are rejected and never fused, with re-acquisition after
-  ``rtk_confirm`` consistent epochs (a drifted estimate is pulled back). The
-  gates are opt-in (defaults keep the paper's filter);
+  ``MagGate``; gyro -> ``gyro_jump`` step gate (hold); RTK heading ->
+  the :class:`navlib.filters.observations.RtkHeading` gate against the current heading estimate, so 180 deg
+  ambiguity flips are rejected and never fused, with re-acquisition after ``confirm`` consistent epochs (a
+  drifted estimate is pulled back). The gates are opt-in (defaults keep the paper's filter);
 * timing: ``dt`` may be per-sample intervals of shape (N,) (irregular
   sampling, used in the compiled kernels); repeated or out-of-order
   timestamps go through :func:`navlib.timing.sanitize` first;
-* saturation: with ``gyro_range``/``accel_range``/``mag_range`` samples at the
+* saturation: with the full scales of ``SensorLimits`` samples at the
   rails are counted; accelerometer and magnetometer corrections are skipped
   for them, gyro samples are used (nothing better exists);
 * the quaternion KF's covariance stays symmetric positive definite under all
