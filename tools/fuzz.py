@@ -335,7 +335,8 @@ BY_DESIGN: list[tuple[str, str, str, str, str]] = [
     (r"analysis\.(attitude_errors|error_statistics)", r"hpr|hpr_true", "degrees", "silent_accept",
      "compares any angle triples component by component (wrapped), not rotations (tests/test_gyrobias.py: [-4, 4] rad)"),
     (r"filters\.planar_ekf\.(dead_reckoning|filter_grid)|papers\.gauss_kruger_ekf\.ekf", "t", "time_jump",
-     "silent_accept", "the motion model propagates over any interval; the covariance grows with it"),
+     "silent_accept", "a clock jump in t is not integrated (the state is held) and is reported in "
+     "faults['clock', 'jump'] (tests/faults/test_faults_planar.py)"),
     (r"analysis\.settling_time|atmosphere\.reference_pressure|faults\.\w+|timing\.(intervals|sanitize)|"
      r"sensors\.(magnetic_disturbances|outage_mask|simulate_barometer)|trajectory\.Trajectory|io\.align|"
      r"papers\.pedestrian_ins\.hvac_pressure_steps|filters\.heading_fusion\.rtk_at_imu_rate",

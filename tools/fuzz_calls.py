@@ -401,7 +401,8 @@ def table() -> dict:
                                                        yaw_rate=np.full(N, 0.01), x0=np.array([0.0, 0.0, 0.5, 1.0, 0.1])), bad=(
             Bad("speed", "shape", speed=np.ones(N - 1)),
             Bad("t", "repeated", t=np.array([0.0, 0.0, 1.0]), speed=ones3, yaw_rate=ones3, x0=np.zeros(5)),
-            Bad("full_scale_gyro", "negative", full_scale_gyro=-2.0), *each(("full_scale_gyro",), numeric))),
+            Bad("full_scale_gyro", "negative", full_scale_gyro=-2.0), Bad("max_dt", "negative", max_dt=-1.0),
+            *each(("full_scale_gyro", "max_dt"), numeric))),
         "filters.planar_ekf.filter_grid": Call(dict(t=0.5 * np.arange(N), z=gk_truth + 0.1,
                                                     x0=np.array([0.0, 0.0, np.pi / 4, 1.0, 0.0]), config=EKF), bad=(
             Bad("t", "repeated", t=np.array([0.0, 1.0, 1.0]), z=np.tile(x5, (3, 1)), x0=x5),

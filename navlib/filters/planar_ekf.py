@@ -231,7 +231,7 @@ def propagate(x0: ArrayLike, T: float, n_steps: int | None = None, speed: ArrayL
 # --------------------------------------------------------------------------
 
 @njit(cache=True)
-def _dead_reckon(t, speed, yaw_rate, usable, x0, velocity_bias):
+def _dead_reckon(t, speed, yaw_rate, usable, x0, velocity_bias, jump, t_nominal):
     n = t.shape[0]
     out = np.empty((n, 3))
     out[0, 0], out[0, 1], out[0, 2] = x0[0], x0[1], x0[2]
@@ -239,7 +239,7 @@ def _dead_reckon(t, speed, yaw_rate, usable, x0, velocity_bias):
     for k in range(1, n):
         if usable[k - 1]:                   # else hold the previous speed and yaw rate
             v, w = speed[k - 1], yaw_rate[k - 1]
-        T = t[k] - t[k - 1]
+        T = t_nominal if jump[k] else t[k] - t[k - 1]     # a clock jump: one typical step, not the jump
         out[k, 0] = out[k - 1, 0] + (v * np.cos(out[k - 1, 2]) + velocity_bias[0]) * T
         out[k, 1] = out[k - 1, 1] + (v * np.sin(out[k - 1, 2]) + velocity_bias[1]) * T
         out[k, 2] = out[k - 1, 2] + w * T
@@ -247,8 +247,8 @@ def _dead_reckon(t, speed, yaw_rate, usable, x0, velocity_bias):
 
 
 def dead_reckoning(t: Times, speed: ArrayLike, yaw_rate: ArrayLike, x0: ArrayLike,
-                   velocity_bias: ArrayLike = (0.0, 0.0), full_scale_gyro: float | None = None
-                   ) -> tuple[Array, FaultReport]:
+                   velocity_bias: ArrayLike = (0.0, 0.0), full_scale_gyro: float | None = None,
+                   max_dt: float | None = None) -> tuple[Array, FaultReport]:
     """Integrate measured speed and yaw rate from ``x0`` with the motion model (no GPS).
 
     Dead reckoning has no redundancy, so it cannot detect an outlier inside
@@ -256,7 +256,9 @@ def dead_reckoning(t: Times, speed: ArrayLike, yaw_rate: ArrayLike, x0: ArrayLik
     yaw-rate spike turns it by ``spike * T`` for good. What it can tell is
     held and reported: NaN samples (dropouts, gaps) and, given the gyro range,
     yaw-rate samples at the rails. Times must be strictly increasing
-    (``ValueError``; :func:`navlib.timing.sanitize` first); the step follows ``t``.
+    (``ValueError``; :func:`navlib.timing.sanitize` first); the step follows ``t``. A clock jump (a step
+    longer than ``max_dt``) is not integrated: it counts as one typical (median) step, so a time-stamp glitch
+    between contiguous samples costs nothing and a gap in the data adds no motion that was not measured.
 
     Parameters
     ----------
@@ -275,6 +277,8 @@ def dead_reckoning(t: Times, speed: ArrayLike, yaw_rate: ArrayLike, x0: ArrayLik
         Gyro full-scale range (rad/s): a sample with ``|omega| >= full_scale_gyro``
         is at the rails, not a measurement, and holds the previous speed and
         yaw rate. Default: no range.
+    max_dt : float, optional
+        Longest step integrated (s); default :data:`navlib.imu.JUMP_FACTOR` median steps; ``inf``: off.
 
     Returns
     -------
@@ -282,7 +286,8 @@ def dead_reckoning(t: Times, speed: ArrayLike, yaw_rate: ArrayLike, x0: ArrayLik
         ``[x, y, theta]``.
     faults : FaultReport
         The held samples among those that drive a step (``0 .. N-2``): ``("speed", "nan")``,
-        ``("yaw_rate", "nan")``, ``("yaw_rate", "saturated")``, with their flags (shape (N,)).
+        ``("yaw_rate", "nan")``, ``("yaw_rate", "saturated")``, and the epochs after a clock jump,
+        ``("clock", "jump")``, with their flags (shape (N,)).
     """
     t = time_axis(t, "t")
     speed = same_shape(as_array(speed, "speed", allow_nan=True), "speed", t.shape, of="t")
@@ -295,7 +300,10 @@ def dead_reckoning(t: Times, speed: ArrayLike, yaw_rate: ArrayLike, x0: ArrayLik
     for held in flags.values():
         held[-1] = False                                    # the last sample drives no step
     usable = ~(flags["speed", "nan"] | flags["yaw_rate", "nan"] | flags["yaw_rate", "saturated"])
-    pose = _dead_reckon(t, speed, yaw_rate, usable, x0, bias)
+    dts = np.diff(t)
+    t_nominal = float(np.median(dts))
+    flags["clock", "jump"] = np.concatenate([[False], dts > SensorLimits(max_dt=max_dt).jump_limit(t_nominal)])
+    pose = _dead_reckon(t, speed, yaw_rate, usable, x0, bias, flags["clock", "jump"], t_nominal)
     return pose, FaultReport({key: int(held.sum()) for key, held in flags.items()}, flags)
 
 

@@ -526,3 +526,20 @@ def test_dead_reckoning_spikes_stated_bounds(clean):
     assert np.array_equal(at_rail, m_w)
     _, held = planar_ekf.dead_reckoning(t, s.speed, yaw_rate, X0_CURVE, full_scale_gyro=GYRO_RANGE)
     assert held["yaw_rate", "saturated"] == m_w[:-1].sum() > 0
+
+
+def test_dead_reckoning_counts_a_clock_jump_and_does_not_integrate_it():
+    """A 1-h time-stamp jump between contiguous samples (issue 33: before, a 7.2 km position jump, unreported):
+    counted, flagged at the epoch after it, integrated as one typical step, so the track is the jump-free one."""
+    t = np.arange(0.0, 100.0, 0.1)
+    speed, yaw_rate = np.full(t.size, 1.0), np.full(t.size, 0.01)
+    x0 = np.array([0.0, 0.0, 0.3, 1.0, 0.01])
+    ref, clean = planar_ekf.dead_reckoning(t, speed, yaw_rate, x0)
+    t_jump = t.copy()
+    t_jump[500:] += 3600.0
+    pose, faults = planar_ekf.dead_reckoning(t_jump, speed, yaw_rate, x0)
+    assert clean["clock", "jump"] == 0 and faults["clock", "jump"] == 1
+    np.testing.assert_array_equal(np.flatnonzero(faults.flags["clock", "jump"]), [500])
+    np.testing.assert_allclose(pose, ref, rtol=0, atol=1e-9)
+    integrated, off = planar_ekf.dead_reckoning(t_jump, speed, yaw_rate, x0, max_dt=np.inf)   # detection off
+    assert off["clock", "jump"] == 0 and np.hypot(*(integrated[-1, :2] - ref[-1, :2])) > 1000.0
