@@ -325,3 +325,16 @@ def test_bad_input_names_argument(call, arg):
         call()
     assert str(exc.value).split(":")[0].strip().startswith(arg), str(exc.value)
 
+
+
+def test_resolve_reports_no_margin_where_the_hypotheses_cannot_be_separated():
+    """When position 1's pair mirrors position 2's (alpha1 + alpha2 = 180 deg: a U-turn or a straight drive), two
+    candidates give the same heading change but point position 2 in opposite directions: no INS measurement can
+    separate them, and the margin is 0 (it was 178 deg). Off the mirror, the margin is what the INS can tell."""
+    p2 = np.deg2rad([89.0, 271.0])
+    for dpsi in (180.0, 179.5, 175.0):
+        assert nf.resolve(np.deg2rad([91.0, 269.0]), p2, np.deg2rad(dpsi)).margin == 0.0
+    near = nf.resolve(np.deg2rad([91.5, 268.5]), p2, np.deg2rad(179.8))      # candidates -179.5 and 179.5 deg
+    np.testing.assert_allclose(np.rad2deg(near.margin), 0.4, atol=1e-9)
+    clear = nf.resolve(np.deg2rad([10.0, 350.0]), np.deg2rad([100.0, 260.0]), np.deg2rad(90.0))
+    assert np.rad2deg(clear.margin) > 100.0 and np.isclose(np.rad2deg(clear.heading), 100.0)

@@ -266,8 +266,10 @@ class Resolution:
     index : ndarray of int, shape (...)
         Winning candidate (0..3); ``index // 2`` is position 2's candidate.
     margin : ndarray, shape (...)
-        |residual| of the nearest candidate with a *different* value minus the
-        winner's (rad); ``inf`` when all four coincide (alpha = beta = pi).
+        |residual| of the nearest candidate giving a *different* heading minus the winner's (rad): 0 when two
+        candidates fit equally well but point position 2 in different directions (a U-turn or a straight
+        drive between headings whose pairs coincide: the hypotheses cannot be separated); ``inf`` when every
+        candidate gives the same heading.
     """
     heading: np.ndarray
     dpsi_candidates: np.ndarray
@@ -309,12 +311,13 @@ def resolve(pair1: ArrayLike, pair2: ArrayLike, dpsi_ins: Angles, wrap: bool = T
     res = attitude.wrap_pi(diff) if flag(wrap, "wrap") else diff
     score = np.abs(res)
     index = np.argmin(score, axis=-1)
-    best_cand = np.take_along_axis(cands, index[..., None], -1)
     best = np.take_along_axis(score, index[..., None], -1)
-    distinct = np.abs(attitude.wrap_pi(cands - best_cand)) > 1e-9
-    margin = np.where(distinct, score, np.inf).min(-1) - best[..., 0]
     p2b = np.broadcast_to(p2, cands.shape[:-1] + (2,))
-    heading = np.take_along_axis(p2b, (index // 2)[..., None], -1)[..., 0]
+    headings = np.repeat(p2b, 2, axis=-1)                     # candidate j points position 2 at p2[j // 2]
+    heading = np.take_along_axis(headings, index[..., None], -1)[..., 0]
+    distinct = np.abs(attitude.wrap_pi(headings - heading[..., None])) > 1e-9
+    margin = np.where(distinct, score, np.inf).min(-1) - best[..., 0]
+    margin = np.where(margin < 1e-9, 0.0, margin)              # equal fits to rounding: not separable
     return Resolution(heading, cands, res, index, margin)
 
 
