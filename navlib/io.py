@@ -318,7 +318,10 @@ def _read_table(path: str | Path, **read_csv) -> tuple[pd.DataFrame, str]:
     path = _path(path, "path")
     if not path.is_file():
         raise ValueError(f"path: no such file {str(path)!r}")
-    return pd.read_csv(path, skipinitialspace=True, **read_csv), str(path)
+    df = pd.read_csv(path, skipinitialspace=True, **read_csv)
+    if df.empty:
+        raise ValueError(f"path: {str(path)!r} has a header but no samples")
+    return df, str(path)
 
 
 def _stamps(df: pd.DataFrame) -> np.ndarray:

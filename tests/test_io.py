@@ -200,3 +200,11 @@ def test_align_hold_and_interpolate():
         io.align(tt, ts, x[:3])
     with pytest.raises(ValueError, match="method"):
         io.align(tt, ts, x, method="spline")
+
+
+def test_a_file_with_a_header_and_no_samples_is_refused_by_name(tmp_path):
+    header = ",".join(["Time (s)"] + [f"Gyroscope {a} (deg/s)" for a in "XYZ"] + [f"Accelerometer {a} (g)" for a in "XYZ"])
+    path = tmp_path / "empty.csv"
+    path.write_text(header + "\n")
+    with pytest.raises(ValueError, match="^path: .*has a header but no samples"):      # was a bare IndexError
+        io.read_xio(path)

@@ -514,7 +514,7 @@ def run_trials(kernel: Callable, n_trials: int, *args) -> None:
     (:func:`navlib._threads.run_chunks`). The compiled kernels release the GIL; each trial writes only its
     own outputs, so the results do not depend on the number of threads.
     """
-    run_chunks(lambda t0, t1: kernel(t0, t1, *args), n_trials)
+    run_chunks(lambda t0, t1: kernel(t0, t1, *args), integer(n_trials, "n_trials"))
 
 
 def attitude_result(lead: tuple[int, ...], q_out: np.ndarray, bias: np.ndarray, counts: np.ndarray,
