@@ -421,6 +421,8 @@ class Screened(NamedTuple):
         Magnetometer (uT) as given, or None.
     dt : ndarray, shape (N,)
         Sample intervals (s).
+    typical_dt : float
+        Their median (s): the interval the limits' defaults are scaled by.
     max_dt : float
         Longest interval integrated (s); ``faults.flags["clock", "jump"]`` marks the longer ones.
     faults : FaultReport
@@ -434,6 +436,7 @@ class Screened(NamedTuple):
     fresh: np.ndarray
     m_b: np.ndarray | None
     dt: np.ndarray
+    typical_dt: float
     max_dt: float
     faults: FaultReport
 
@@ -481,7 +484,7 @@ def screen(imu: ImuSamples, m_b: Vec3Series | None = None) -> Screened:
     keys = _KEYS if m_b is not None else [key for key in _KEYS if key[0] != "mag"]
     found = {key: flags[_KEYS.index(key)].reshape(lead + (n,)) for key in keys}
     report = FaultReport({key: v.sum(-1) for key, v in found.items()}, found)
-    return Screened(imu, held.reshape(w.shape), fresh.reshape(lead + (n,)), m_b, dts, max_dt, report)
+    return Screened(imu, held.reshape(w.shape), fresh.reshape(lead + (n,)), m_b, dts, typical, max_dt, report)
 
 
 _KEYS = [("gyro", "stuck"), ("gyro", "nan"), ("gyro", "spike"), ("gyro", "saturated"), ("accel", "nan"),

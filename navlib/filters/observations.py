@@ -480,8 +480,7 @@ def pack(imu: ImuSamples, q0: Quat, m_b: ArrayLike | None, rtk: RtkHeading | Non
         rtk_par = rtk.params()
     else:
         hdg, ok, rtk_par = np.zeros((1, 1)), np.zeros((1, 1), dtype=bool), np.array([0.0, np.inf, 0.0])
-    typical = float(np.median(s.dt))
-    long_hold = imu.limits.stuck_samples(typical) or SensorLimits().stuck_samples(typical)
+    long_hold = imu.limits.stuck_samples(s.typical_dt) or SensorLimits().stuck_samples(s.typical_dt)
     inputs = AttitudeInputs(q, kernel_array(s.w_ib_b.reshape(T, N, 3)), kernel_array(s.fresh.reshape(T, N)), z,
                             hdg, ok, rtk is not None, use_mag, s.dt, jump, rtk_par, long_hold,
                             SETTLE_TIME_CONSTANTS / kp if kp > 0 else 0.0)

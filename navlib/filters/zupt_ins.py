@@ -698,11 +698,11 @@ def _faults(s: robust.Screened, refused: np.ndarray, counts: np.ndarray) -> robu
     return robust.FaultReport(totals, flags)
 
 
-def _tuning(aiding: Aiding, config: FilterConfig, dts: np.ndarray, ellipsoid: earth.Ellipsoid) -> _Tuning:
+def _tuning(aiding: Aiding, config: FilterConfig, typical_dt: float, ellipsoid: earth.Ellipsoid) -> _Tuning:
     p, r, g = config.process, config.measurement, config.gates
     return _Tuning(
         walk=_WALK[aiding.walk], declination=aiding.declination, field_ref=aiding.field_reference(),
-        every=max(1, int(round(1.0 / (config.update_rate * float(np.median(dts)))))),
+        every=max(1, int(round(1.0 / (config.update_rate * typical_dt)))),
         q_rate=np.concatenate([np.zeros(3), np.full(3, p.accel ** 2), np.full(3, p.gyro ** 2),
                                np.full(3, p.accel_bias_rw ** 2), np.full(3, p.gyro_bias_rw ** 2)]),
         held_accel=p.held_accel, held_gyro=p.held_gyro,
@@ -758,14 +758,14 @@ def run_filter(imu: ImuSamples, start: Start, static, *, h_baro=None, m_b=None, 
     n, dts = imu.n, imu.dt
     if imu.w_ib_b.ndim != 2:
         raise ValueError(f"imu: expected one record of shape (N, 3), got {imu.w_ib_b.shape}")
-    if np.median(dts) > s.max_dt:
+    if s.typical_dt > s.max_dt:
         raise ValueError(f"imu: expected a median interval below limits.max_dt = {s.max_dt:g} s (longer intervals "
-                         f"are clock jumps, not integrated), got {np.median(dts):g} s")
+                         f"are clock jumps, not integrated), got {s.typical_dt:g} s")
     static = kernel_array(booleans(static, "static", shape=(n,)))
     h_baro = np.full(n, np.nan) if h_baro is None else as_array(h_baro, "h_baro", allow_nan=True, shape=(n,))
     samples, refused = _samples(s, static, kernel_array(h_baro), aiding.zupt)
     lla, vel, q, b, p_diag, counts, P = _filter_kernel(samples, _state(start, config.initial),
-                                                       _tuning(aiding, config, dts, ellipsoid))
+                                                       _tuning(aiding, config, s.typical_dt, ellipsoid))
     time = start.time + (dts[0] * np.arange(n + 1) if np.all(dts == dts[0]) else np.concatenate([[0.0], np.cumsum(dts)]))
     result = FilterResult(trajectory.Trajectory(time, lla, vel, q), b[:, :3], b[:, 3:], p_diag, P,
                           zupt_updates=int(counts[_ZUPT]), baro_aidings=int(counts[_BARO_AIDED]),
