@@ -22,7 +22,7 @@ batch) and, when asked for, per-sample boolean flags. Sensors are named ``"gyro"
     a dwell skipped for dropouts);
 ``"jump"``
     a time jump (sensor ``"clock"``): a sample interval too long to integrate as motion
-    (:attr:`navlib.imu.SensorLimits.max_dt`, default :func:`navlib.timing.jump_limit`; the heading
+    (:attr:`navlib.imu.SensorLimits.max_dt`, default :meth:`navlib.imu.SensorLimits.jump_limit`; the heading
     fusion's ``max_dt``); nothing is integrated over it;
 ``"freefall"``
     accelerometer samples reading ``|f|`` near 0 for a while (free fall or a dead sensor:
@@ -48,7 +48,8 @@ integrator that returns a plain array (:func:`navlib.strapdown.integrate_attitud
 leading NaN samples (there is nothing before them to hold). :func:`despike` marks isolated
 IMU spikes as NaN with the test of :func:`is_spike` (:func:`screen` applies it with the limits' thresholds).
 :func:`stuck_mask` finds the samples of a sensor that stopped updating (exact repeats); :func:`stuck_samples`
-is that test as the filters apply it to their gyro input (``stuck_run`` from :func:`stuck_run_samples`).
+is that test as the filters apply it to their inputs (``stuck_run`` from
+:meth:`navlib.imu.SensorLimits.stuck_samples`).
 """
 from __future__ import annotations
 
@@ -78,10 +79,10 @@ from ._validate import (
     scalar,
     text,
 )
-from .imu import STUCK_DURATION, ImuSamples, SensorLimits
+from .imu import ImuSamples
 
 __all__ = ["FaultReport", "Screened", "screen", "fault_report", "hold", "despike", "stuck_mask", "stuck_samples",
-           "stuck_run_samples", "longest_repeat", "LEADING", "STUCK_DURATION"]
+           "longest_repeat", "LEADING"]
 
 LEADING = ("raise", "first", "zero")
 """Policies for NaN samples before the first valid one: raise, take the first valid sample, or 0."""
@@ -357,19 +358,6 @@ def _stuck_runs(a: np.ndarray, run: int, rail: float = np.inf) -> NDArray[np.boo
     return out.any(-1).reshape(lead + (n,))
 
 
-def stuck_run_samples(stuck_run: int | str | None, dt: float) -> int | None:
-    """A filter's ``stuck_run`` argument as a run length in samples.
-
-    ``"auto"``: :data:`STUCK_DURATION` over the typical (median) interval ``dt`` (s), at least 5 samples;
-    None: no stuck check (returned as None); otherwise an integer >= 2, returned as given
-    (:meth:`navlib.imu.SensorLimits.stuck_samples`).
-    """
-    limits = SensorLimits(stuck_run=stuck_run)
-    if limits.stuck_run != "auto":
-        return limits.stuck_run
-    return limits.stuck_samples(scalar(dt, "dt", positive=True))
-
-
 def stuck_samples(x: ArrayLike, run: int | None, *, full_scale: float | None = None, name: str = "x",
                   axis: int = -2) -> NDArray[np.bool_]:
     """Stuck samples of a filter's sensor input: :func:`stuck_mask`, as every navlib filter applies it.
@@ -383,7 +371,7 @@ def stuck_samples(x: ArrayLike, run: int | None, *, full_scale: float | None = N
     x : array_like, shape (..., N, k) (or (..., N) with ``axis=-1``)
         Samples; leading axes are trials; NaN is never a repeat. Infinity is rejected.
     run : int or None
-        Shortest run of equal values that counts (>= 2, e.g. from :func:`stuck_run_samples`); None: no check.
+        Shortest run of equal values that counts (>= 2, e.g. from :meth:`navlib.imu.SensorLimits.stuck_samples`); None: no check.
     full_scale : float, optional
         Device range (same unit as ``x``).
     name : str

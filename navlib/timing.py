@@ -6,8 +6,8 @@ filters never guess: :func:`sanitize` puts samples in time order, drops
 exact repeats, and returns a :class:`TimingReport` that says how many of
 each fault it found and how irregular the intervals are. Filters that accept
 per-sample intervals take ``dt = np.diff(time)``-style arrays from
-:func:`intervals`. :func:`jump_limit` is the filters' one rule for a clock jump
-(an interval too long to integrate: :data:`JUMP_FACTOR` median intervals by default).
+:func:`intervals`. A clock jump (an interval too long to integrate: :data:`navlib.imu.JUMP_FACTOR` median intervals
+by default) is the rule of :meth:`navlib.imu.SensorLimits.jump_limit`.
 """
 from __future__ import annotations
 
@@ -16,10 +16,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._typing import Array, ArrayLike, Times
-from ._validate import as_array, integer, positive, text, time_axis
-from .imu import JUMP_FACTOR, SensorLimits
+from ._validate import as_array, integer, time_axis
 
-__all__ = ["TimingReport", "sanitize", "intervals", "jump_limit", "JUMP_FACTOR"]
+__all__ = ["TimingReport", "sanitize", "intervals"]
 
 
 @dataclass(frozen=True)
@@ -114,26 +113,3 @@ def intervals(time: Times, n_samples: int | None = None) -> Array:
     if n_samples is not None and dt.size != integer(n_samples, "n_samples"):
         raise ValueError(f"time: expected {n_samples + 1} epochs for {n_samples} samples, got {t.size}")
     return dt
-
-
-def jump_limit(dts: ArrayLike, max_dt: float | None = None, name: str = "dts") -> float:
-    """The longest interval a filter integrates; longer ones are clock jumps (``("clock", "jump")``).
-
-    Parameters
-    ----------
-    dts : array_like, shape (N,)
-        The filter's sample intervals (s): positive and finite.
-    max_dt : float, optional
-        The filter's ``max_dt`` argument (s): positive, inf to detect no jump. None (default):
-        :data:`JUMP_FACTOR` times the median interval.
-    name : str
-        The argument the intervals come from, for error messages (a filter's ``dt`` or ``time``).
-
-    Returns
-    -------
-    float
-        The limit (s): an interval ``dt > limit`` is a jump.
-    """
-    name = text(name, "name")
-    limits = SensorLimits(max_dt=max_dt)
-    return limits.jump_limit(float(np.median(positive(dts, name, shape=(None,), nonempty=True))) if max_dt is None else 0.0)

@@ -764,7 +764,6 @@ def table() -> dict:
         "robust.hold": Call(dict(x=np.where(VALID[:, None], W, np.nan), leading="raise"), any_shape=("x",)),
         "robust.despike": Call(dict(w_ib_b=W, f_b=F, spike_gyro=0.1, spike_accel=1.0)),
         "robust.stuck_mask": Call(dict(x=W, run=3), any_shape=("x",)),
-        "robust.stuck_run_samples": Call(dict(stuck_run="auto", dt=0.01)),
         "robust.stuck_samples": Call(dict(x=W, run=3), any_shape=("x",)),
         "robust.longest_repeat": Call(dict(x=W, valid=VALID), any_shape=("x",)),
         # ------------------------------------------------------------------ sensors
@@ -810,7 +809,6 @@ def table() -> dict:
         # ------------------------------------------------------------------- timing
         "timing.TimingReport": Skip("record returned by timing.sanitize, built from validated values"),
         "timing.sanitize": Call(dict(time=T)),
-        "timing.jump_limit": Call(dict(dts=np.diff(T))),
         "timing.intervals": Call(dict(time=T, n_samples=N - 1)),
         # --------------------------------------------------------------- trajectory
         "trajectory.Trajectory": Call(dict(time=_STATIC.time, lla=_STATIC.lla, vel_n=_STATIC.vel_n, q_bn=_STATIC.q_bn)),

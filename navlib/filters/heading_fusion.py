@@ -9,7 +9,7 @@ invalid epoch (the paper's 0) is never used. RTK epochs are gated against the pr
 re-acquisition (:func:`navlib.filters.observations.rtk_gate`), so 180 deg ambiguity flips are never
 fused. :func:`rtk_at_imu_rate` places receiver epochs on the IMU time axis.
 
-Clock jumps (an interval ``dt > max_dt``, by default ``timing.JUMP_FACTOR`` = 10 median intervals, the
+Clock jumps (an interval ``dt > max_dt``, by default ``imu.JUMP_FACTOR`` = 10 median intervals, the
 rule of the attitude filters; counted ``("clock", "jump")`` and flagged): the last RTK epoch is stale
 (the time since it is unknown), so its carried heading is dropped and the output is ``H_mag + delta``
 until the next used epoch; the gate's run of rejections restarts; the offset ``delta`` is kept and goes
@@ -145,7 +145,7 @@ def fuse_rtk_heading(heading_mag: Angles, rtk: RtkHeading, dt: Interval, alpha: 
     max_dt : float, optional
         Longest interval (s) before a sample that is not a clock jump. At a jump the carried RTK heading
         is dropped and the gate restarts; delta is kept (module docstring: why). Default None:
-        ``timing.JUMP_FACTOR`` = 10 median intervals (none with a scalar ``dt``); inf: off.
+        ``imu.JUMP_FACTOR`` = 10 median intervals (none with a scalar ``dt``); inf: off.
 
     Returns
     -------
