@@ -829,7 +829,7 @@ def resample(rec: Recording, rate: float, *, method: str = "mean") -> Recording:
         if x is None:
             continue
         if method == "interpolate":
-            out[name] = align(t_new, rec.time, x, method="interpolate", max_gap=np.inf)
+            out[name] = align(t_new, rec.time, x, method="interpolate", max_gap=2 * rec.time[-1])
             continue
         x2 = x.reshape(rec.n, -1)
         ok = np.all(np.isfinite(x2), axis=1) & (bins < t_new.size)
