@@ -39,16 +39,16 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from . import attitude, strapdown
+from . import alignment, attitude, calibration, strapdown
 from ._typing import Array, ArrayLike, Dcm, Times
-from ._validate import as_array, choice, flag, instance, scalar, text, time_axis
+from ._validate import as_array, booleans, choice, flag, instance, scalar, text, time_axis
 from .imu import ImuSamples, SensorLimits
 from .timing import TimingReport, intervals, sanitize
 from .units import G0
 
 __all__ = ["UNITS", "TIME_UNITS", "Recording", "read_csv", "from_dataframe", "read_xio", "read_sensor_logger",
            "read_phyphox", "read_euroc", "align", "resample", "AxisCheck", "check_axes", "AXIS_CHECK_WINDOW",
-           "AXIS_CHECK_RATIO"]
+           "AXIS_CHECK_RATIO", "STILL_LIMITS", "start_at_rest"]
 
 UNITS: dict[str, tuple[str, float]] = {
     "rad/s": ("gyro", 1.0), "deg/s": ("gyro", np.pi / 180), "dps": ("gyro", np.pi / 180),
@@ -892,7 +892,8 @@ def _window_means(t: np.ndarray, x: np.ndarray, window: float) -> tuple[np.ndarr
 def check_axes(rec: Recording, *, on_fail: str = "warn") -> AxisCheck:
     """Test the gyro against the accelerometer and magnetometer kinematically; name an axis that looks flipped.
 
-    The gyro is integrated into an attitude ``C_bn(t)`` (from an arbitrary start). Gravity and the Earth's
+    The gyro, less its mean over the stillest second when that second is still (:data:`STILL_LIMITS`), is
+    integrated into an attitude ``C_bn(t)`` (from an arbitrary start); a dropout adds no rotation. Gravity and the Earth's
     field are fixed in space, so their directions measured in the body and turned by ``C_bn`` must stay put
     from one window (:data:`AXIS_CHECK_WINDOW`, means over it) to the next, while in the body they move. The
     residual of a hypothesis is ``sum |dU_n|^2 / sum |du_b|^2`` over steps that turn by more than 3 deg.
@@ -918,7 +919,8 @@ def check_axes(rec: Recording, *, on_fail: str = "warn") -> AxisCheck:
     if rec.w_ib_b is None or (rec.f_b is None and rec.m_b is None):
         raise ValueError("rec: the axis check needs the gyro and an accelerometer or magnetometer")
     flips = np.array([np.ones(3), _flip(0), _flip(1), _flip(2)])
-    w = np.nan_to_num(rec.w_ib_b)                       # a dropout adds no rotation
+    still, moved = _stillest_second(rec)                # a MEMS gyro bias (up to 20 deg/s) would swamp the test
+    w = np.nan_to_num(rec.w_ib_b - (0.0 if moved else np.nanmean(rec.w_ib_b[still], axis=0)))
     q_bn = strapdown.integrate_attitude([1.0, 0.0, 0.0, 0.0], w[None] * flips[:, None], rec.dt)[:, 1:]
     _, k = _window_means(rec.time, rec.w_ib_b, AXIS_CHECK_WINDOW)
     counts = np.bincount(k)
@@ -964,6 +966,11 @@ def check_axes(rec: Recording, *, on_fail: str = "warn") -> AxisCheck:
                    f"against {as_read:.2f} as read. Fix: reverse the sign of the {body} entry of the "
                    f"{sensor}'s mapping, e.g. axes={{'{sensor}': "
                    f"'{','.join(('-' if a == axis else '') + a for a in 'xyz')}'}} with mirror=True")
+        second = ranking[1]
+        if second[0] != "as read" and second[1] < 2 * best[1]:
+            message += (f". The {second[0].removesuffix(' flipped')} axis flipped fits almost as well "
+                        f"({second[1]:.2f}): gravity alone cannot tell a mirrored accelerometer from a mirrored "
+                        f"gyro, nor see turns about the vertical; a magnetometer or a turn about each axis can")
     else:
         runner_up = ranking[1] if best[0] == "as read" else best
         message = (f"gyro consistent with the {' and '.join(sensors)} as read (residual {as_read:.2f}; best "
@@ -980,3 +987,104 @@ def _flip(axis: int) -> np.ndarray:
     out = np.ones(3)
     out[axis] = -1.0
     return out
+
+
+# ----------------------------------------------------------------------------------- a still start
+
+STILL_LIMITS = (0.02, 0.35, 0.3)
+"""Largest gyro standard deviation (rad/s, about 1 deg/s), gyro mean (rad/s: 20 deg/s, the widest zero-rate
+tolerance of common MEMS gyros, the MPU-6050's) and accelerometer standard deviation (m/s^2) accepted over
+samples marked still."""
+
+def start_at_rest(rec: Recording, still: ArrayLike | None = None) -> tuple[Recording, Array]:
+    """Use a still stretch: gyro bias at rest removed, the magnetometer calibrated when the recording allows,
+    and the initial attitude from the mean specific force (and field) over the still samples.
+
+    * Gyro bias: :func:`navlib.calibration.gyro_bias_at_rest` over ``still`` (Earth rate included: below
+      0.005 deg/s, far under a phone gyro's bias).
+    * Magnetometer: :func:`navlib.calibration.fit_magnetometer` over all readings; when it refuses (the sensor
+      was not turned through enough orientations, a degenerate fit, an implausible field), the field is used
+      as read and ``conversions`` says why.
+    * Initial attitude: levelled from the mean specific force; heading from the mean field
+      (:func:`navlib.alignment.initial_attitude`, magnetic north), or 0 without a magnetometer (noted).
+
+    Parameters
+    ----------
+    rec : Recording
+        With gyro and accelerometer.
+    still : array_like of bool, shape (N,), optional
+        The samples during which the sensor lay still (at least 2), e.g. ``rec.time < 2.5``; refused when the
+        data show it moving (:data:`STILL_LIMITS`). Default: the stillest second of the recording if it passes
+        :data:`STILL_LIMITS` (else the bias is left in, noted), and the initial attitude from the first
+        0.5 s (the filter converges from it if the sensor was moving).
+
+    Returns
+    -------
+    rec : Recording
+        Corrected; ``conversions`` lists the corrections.
+    q_bn0 : ndarray, shape (4,)
+        Initial attitude.
+    """
+    instance(rec, "rec", Recording, "a navlib.io.Recording")
+    if rec.w_ib_b is None or rec.f_b is None:
+        raise ValueError("rec: start_at_rest needs the gyro and the accelerometer")
+    notes = []
+    if still is None:
+        still, moved = _stillest_second(rec)
+        start = rec.time < rec.time[0] + 0.5
+        if moved:
+            notes.append(f"gyro bias left in: no still second in the recording ({moved}); record 2 s untouched "
+                         f"at the start")
+    else:
+        still = booleans(still, "still", shape=(rec.n,))
+        if np.count_nonzero(still) < 2:
+            raise ValueError("still: fewer than 2 samples marked still; mark the first seconds the sensor lay still")
+        moved = _movement(rec, still)
+        if moved:
+            raise ValueError(f"still: the sensor was not still in the samples marked still ({moved}); mark a "
+                             f"stretch where it lay untouched (e.g. rec.time < 2), or leave still out")
+        start = still
+    bias = np.zeros(3)
+    if not moved:
+        w_still = rec.w_ib_b[still]
+        bias, _ = calibration.gyro_bias_at_rest(w_still[np.all(np.isfinite(w_still), axis=1)])
+        notes.append(f"gyro bias at rest removed: {np.round(np.rad2deg(bias), 4).tolist()} deg/s (mean over "
+                     f"{rec.time[still][0]:.2f}..{rec.time[still][-1]:.2f} s)")
+    m_b = rec.m_b
+    if m_b is not None:
+        try:
+            cal = calibration.fit_magnetometer(m_b[np.all(np.isfinite(m_b), axis=1)])
+            m_b = cal.apply(m_b)
+            notes.append(f"magnetometer calibrated: field {cal.field_strength:.1f} uT, |m| spread "
+                         f"{cal.norm_spread_before:.2f} -> {cal.norm_spread_after:.2f} uT")
+        except ValueError as err:
+            notes.append(f"magnetometer used as read, not calibrated: {err}")
+    f0 = np.nanmean(rec.f_b[start], axis=0)
+    if m_b is None:
+        pitch, roll = alignment.level(f0)
+        q0 = attitude.euler_to_quat([0.0, float(pitch), float(roll)])
+        notes.append("initial attitude: levelled; heading 0 at the start (no magnetometer: relative heading)")
+    else:
+        q0 = alignment.initial_attitude(f0, np.nanmean(m_b[start], axis=0))
+        notes.append("initial attitude: levelled, heading from the field (magnetic north)")
+    out = replace(rec, w_ib_b=rec.w_ib_b - bias, m_b=m_b, conversions=rec.conversions + tuple(notes))
+    return out, q0
+
+
+def _movement(rec: Recording, still: np.ndarray) -> str:
+    """'' when the samples look still (:data:`STILL_LIMITS`), else what moved."""
+    w = rec.w_ib_b[still]
+    figures = {"gyro std": (np.nanmax(np.nanstd(w, axis=0)), STILL_LIMITS[0], "rad/s"),
+               "gyro mean": (np.nanmax(np.abs(np.nanmean(w, axis=0))), STILL_LIMITS[1], "rad/s")}
+    if rec.f_b is not None:
+        figures["accel std"] = (np.nanmax(np.nanstd(rec.f_b[still], axis=0)), STILL_LIMITS[2], "m/s^2")
+    return ", ".join(f"{k} {v:.3g} > {lim:g} {u}" for k, (v, lim, u) in figures.items() if not v <= lim)
+
+
+def _stillest_second(rec: Recording) -> tuple[np.ndarray, str]:
+    """The 1-s window (on a 0.5-s grid) with the smallest gyro spread, and '' or what moved in it."""
+    starts = np.arange(rec.time[0], max(rec.time[-1] - 1.0, rec.time[0]) + 1e-9, 0.5)
+    windows = [(rec.time >= a) & (rec.time < a + 1.0) for a in starts]
+    spread = [np.nanmax(np.nanstd(rec.w_ib_b[w], axis=0)) if np.count_nonzero(w) > 1 else np.inf for w in windows]
+    best = windows[int(np.argmin(spread))]
+    return best, _movement(rec, best)
