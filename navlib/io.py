@@ -8,24 +8,27 @@ column in ``conversions`` (unit factor, axis mapping, timing repairs). ``recordi
 
 * :func:`read_csv` / :func:`from_dataframe`: any table, columns named per sensor, a unit per sensor
   (:data:`UNITS`), the time column in s, ms, us, ns or ISO timestamps, and the sensor-to-body axes as a
-  signed mapping (``"-y,x,z"``) or a matrix (:func:`navlib.attitude.mount_matrix`).
-* :func:`read_xio`: x-io Technologies CSV (Fusion examples, NGIMU / Gait-Tracking): ``Time (s)``,
-  ``Gyroscope X (deg/s)``, ``Accelerometer X (g)``, optional ``Magnetometer X (uT)``.
-* :func:`read_sensor_logger`: the Sensor Logger phone app's per-sensor CSV export (``Gyroscope.csv``,
-  ``TotalAcceleration.csv`` or ``Accelerometer.csv``, ``Magnetometer.csv``, ``Barometer.csv``; columns
-  ``time`` (ns since the epoch), ``seconds_elapsed``, ``z``, ``y``, ``x``). The Android convention is
-  supported: specific force in m/s^2 including gravity (``TotalAcceleration.csv``), rad/s, uT, hPa; the
-  phone's axes (x right, y up the screen, z out of the screen) are right-front-up for a phone lying
-  face up with its top pointing forward. ``Accelerometer.csv`` without gravity is refused. iOS exports
-  are read the same way; check the accelerometer's sign at rest (+9.8 on the up axis) before trusting them.
-* :func:`read_euroc`: the EuRoC MAV dataset's ``imu0/data.csv`` (ns timestamps, rad/s, m/s^2).
+  signed mapping (``"-y,x,z"``) or a matrix (:func:`navlib.attitude.mount_matrix`), for all sensors or per
+  sensor; a mirror-image mapping only with ``mirror=True``.
+* :func:`read_sensor_logger`: the Sensor Logger phone app's export, iOS and Android, every app version
+  (platform from ``Metadata.csv`` or ``platform=``; iOS's reversed accelerometer signs and g units turned
+  into specific force; ``Orientation.csv`` as the reference attitude ``q_bn_ref``).
+* :func:`read_phyphox`: phyphox CSV exports. :func:`read_xio`: x-io NGIMU / Fusion CSV and the older
+  x-IMU layout (``Packet number``, gauss; ``rate=``). :func:`read_euroc`: EuRoC's ``imu0/data.csv``.
+* :func:`check_axes` (run by every reader): the gyro against the gravity and field directions; names an
+  axis that looks flipped. ``str(recording)`` summarises the timing (median and mean rate, 99th-percentile
+  interval, largest gap, repaired stamps).
 * :func:`align`: a sensor logged at its own rate put on the IMU clock, NaN where there is no reading
-  (the filters skip NaN samples), with the hold or interpolation made explicit.
+  (the filters skip NaN samples). :func:`resample`: a uniform clock by the mean over each interval
+  (noise densities survive) or by interpolation.
+* :func:`start_at_rest`: gyro bias over a still stretch, magnetometer calibration when the recording
+  allows, initial attitude.
 
-Readers refuse, with the column named: a missing column, an unknown unit, repeated or out-of-order
-timestamps (with counts; ``timing="sanitize"`` sorts and drops repeats instead, reported), and a unit
-that the magnitudes contradict (e.g. a gyro in deg/s declared as rad/s: the message says what was
-probably meant; ``check_units=False`` skips this).
+Readers refuse, naming the file, the column and the fix: a missing column or file, an unknown unit,
+repeated or out-of-order timestamps (with counts; ``timing="sanitize"`` sorts and drops repeats instead,
+reported), and a unit that the magnitudes contradict (e.g. a gyro in deg/s declared as rad/s: the message
+says what was probably meant; ``check_units=False`` skips this). What a reader had to assume (a platform
+guessed from the files) is in ``conversions``.
 """
 from __future__ import annotations
 
