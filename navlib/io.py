@@ -385,9 +385,10 @@ def read_xio(path: str | Path, *, rate: float | None = None, axes: str | Dcm | M
     * NGIMU and x-io's Fusion example data: ``Time (s)``, ``Gyroscope X/Y/Z (deg/s)``, ``Accelerometer X/Y/Z (g)``,
       optional ``Magnetometer X/Y/Z (uT)`` and ``Barometer (hPa)``.
     * x-IMU (``*_CalInertialAndMag.csv``): ``Packet number`` and no time column, the same gyro and
-      accelerometer columns, ``Magnetometer X/Y/Z (G)`` in gauss. Time is the packet number divided by
-      ``rate`` (the rate the board was set to, e.g. 256 Hz); a skipped packet number is a lost sample and
-      shows as a gap. The counter's wrap-around at 65536 is undone.
+      accelerometer columns, ``Magnetometer X/Y/Z (G)`` in gauss. Time is the row number divided by ``rate``
+      (the inertial data rate the board was set to, e.g. 256 Hz), as x-io's own scripts do: the packet number
+      counts every packet the board sends (quaternions, battery, ...), so it skips between inertial rows and
+      is not a clock.
 
     The accelerometer is specific force in g (+1 g on z lying flat).
 
@@ -410,15 +411,9 @@ def read_xio(path: str | Path, *, rate: float | None = None, axes: str | Dcm | M
             raise ValueError(f"rate: {source} has a column {packet!r} and no 'Time (s)': an x-IMU file, whose "
                              f"samples carry no time; pass rate= (the board's sample rate in Hz, e.g. rate=256)")
         rate = scalar(rate, "rate", positive=True)
-        n = pd.to_numeric(df[packet], errors="coerce").to_numpy(dtype=float)
-        if not np.all(np.isfinite(n)):
-            raise ValueError(f"path: {source}: column {packet!r}: non-numeric packet numbers")
-        steps = np.diff(n)
-        steps[steps < -32768] += 65536                      # the 16-bit counter wrapped
-        df["Time (s)"] = np.concatenate([[0.0], np.cumsum(steps)]) / rate
-        lost = int(np.sum(np.clip(steps - 1, 0, None)))
-        notes.append(f"time: x-IMU layout; column {packet!r} / rate {rate:g} Hz -> s ({lost} lost packets "
-                     f"show as gaps)")
+        df["Time (s)"] = np.arange(len(df)) / rate
+        notes.append(f"time: x-IMU layout; row number / rate {rate:g} Hz -> s (the x-IMU numbers every packet it "
+                     f"sends, of all kinds, so column {packet!r} skips numbers between inertial rows: not time)")
     elif rate is not None:
         raise ValueError(f"rate: {source} has its own time column 'Time (s)'; leave rate out")
     cols = {"gyro": [f"Gyroscope {a} (deg/s)" for a in "XYZ"], "accel": [f"Accelerometer {a} (g)" for a in "XYZ"]}
@@ -856,6 +851,7 @@ AXIS_CHECK_RATIO = 0.8
 at most this fraction of the as-read residual."""
 _MIN_STEP = np.deg2rad(3.0)           # rotation between two windows below which the noise dominates
 _MIN_TURN = np.deg2rad(90.0)          # total rotation over the windows used, needed for a verdict
+_MIN_STEPS = 20                       # usable window steps needed for a verdict (a short violent log misleads)
 
 
 @dataclass(frozen=True)
@@ -924,15 +920,19 @@ def check_axes(rec: Recording, *, on_fail: str = "warn") -> AxisCheck:
     flips = np.array([np.ones(3), _flip(0), _flip(1), _flip(2)])
     still, moved = _stillest_second(rec)                # a MEMS gyro bias (up to 20 deg/s) would swamp the test
     w = np.nan_to_num(rec.w_ib_b - (0.0 if moved else np.nanmean(rec.w_ib_b[still], axis=0)))
+    gap = rec.dt > 5.0 * np.median(rec.dt)              # a pause in the log: no rotation known across it
+    w[gap] = 0.0
     q_bn = strapdown.integrate_attitude([1.0, 0.0, 0.0, 0.0], w[None] * flips[:, None], rec.dt)[:, 1:]
     _, k = _window_means(rec.time, rec.w_ib_b, AXIS_CHECK_WINDOW)
     counts = np.bincount(k)
     mid = np.round(np.bincount(k, weights=np.arange(rec.n)) / np.maximum(counts, 1)).astype(np.int64)
     C_bn = attitude.quat_to_dcm(q_bn[:, mid])                        # (gyro hypothesis, window, 3, 3)
     step = np.linalg.norm(attitude.dcm_to_rotvec(np.swapaxes(C_bn[0, :-1], -1, -2) @ C_bn[0, 1:]), axis=-1)
-    use = (step > _MIN_STEP) & (counts[1:] > 0) & (counts[:-1] > 0)
+    gap_in = np.bincount(k, weights=gap, minlength=counts.size) > 0
+    use = (step > _MIN_STEP) & (counts[1:] > 0) & (counts[:-1] > 0) & ~gap_in[1:] & ~gap_in[:-1]
     scores = dict.fromkeys(["as read"] + [f"{s} {a} flipped" for s in ("gyro", "accel", "mag") for a in "xyz"], 0.0)
     sensors = {s: x for s, x in (("accel", rec.f_b), ("mag", rec.m_b)) if x is not None}
+    n_steps = 0
     for sensor, x in sensors.items():
         mean, _ = _window_means(rec.time, x, AXIS_CHECK_WINDOW)
         u_b = mean / np.linalg.norm(mean, axis=1, keepdims=True)
@@ -941,6 +941,7 @@ def check_axes(rec: Recording, *, on_fail: str = "warn") -> AxisCheck:
             size = np.linalg.norm(mean, axis=1)
             near_g = np.abs(size - np.nanmedian(size)) < 0.1 * np.nanmedian(size)
             ok &= near_g[1:] & near_g[:-1]
+        n_steps = max(n_steps, int(np.count_nonzero(ok)))
         moved = np.sum((u_b[1:] - u_b[:-1])[ok] ** 2)
         for hyp in scores:
             words = hyp.split()
@@ -953,7 +954,10 @@ def check_axes(rec: Recording, *, on_fail: str = "warn") -> AxisCheck:
     best, as_read = ranking[0], scores["as read"]
     turn = float(step[use].sum())
     suspect = None
-    if turn < _MIN_TURN:
+    if n_steps < _MIN_STEPS:
+        message = (f"inconclusive: {n_steps} window steps usable (turning, near 1 g), fewer than {_MIN_STEPS}: "
+                   f"too little to judge the axes; turn the sensor slowly by hand for 15 s to have them checked")
+    elif turn < _MIN_TURN:
         message = (f"inconclusive: the sensor turned by {np.rad2deg(turn):.0f} deg in steps the check can use, "
                    f"too little to compare the gyro with the {' and '.join(sensors)}; turn it by hand through "
                    f"a few orientations (in the first seconds, say) to have the axes checked")
