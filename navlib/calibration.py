@@ -264,6 +264,7 @@ def fit_magnetometer(m_b: Vec3Series, field_strength: float | None = None, *,
     if m.shape[0] < 9:
         raise ValueError(f"m_b: expected at least 9 samples (an ellipsoid has 9 parameters), got {m.shape[0]}")
     F = None if field_strength is None else scalar(field_strength, "field_strength", positive=True)
+    plausible = None if field_range is None else _field_range(field_range)
     thick = _thickness(m)
     if thick < MIN_THICKNESS:
         raise ValueError(f"m_b: the samples lie (nearly) in one plane (thickness {thick:.3g} < {MIN_THICKNESS}): "
@@ -286,9 +287,16 @@ def fit_magnetometer(m_b: Vec3Series, field_strength: float | None = None, *,
                          "ideally pointing each axis up and down")
     norm_raw = np.linalg.norm(m, axis=-1)
     norm_cal = np.linalg.norm((m - centre) @ W_inv.T, axis=-1)
-    _refuse_degenerate(norm_raw.std(), norm_cal.std(), F, field_range if field_strength is None else None)
+    _refuse_degenerate(norm_raw.std(), norm_cal.std(), F, plausible if field_strength is None else None)
     return MagCalibration(centre, W_inv, F, float(np.sqrt(np.mean((norm_cal - F) ** 2))),
                           float(norm_raw.std()), float(norm_cal.std()), cond)
+
+
+def _field_range(field_range) -> tuple[float, float]:
+    lo, hi = as_array(field_range, "field_range", shape=(2,))
+    if not 0 < lo < hi:
+        raise ValueError(f"field_range: expected (low, high) with 0 < low < high, got ({lo:g}, {hi:g})")
+    return float(lo), float(hi)
 
 
 def _refuse_degenerate(spread_raw: float, spread_cal: float, F: float,
@@ -301,7 +309,7 @@ def _refuse_degenerate(spread_raw: float, spread_cal: float, F: float,
         raise ValueError(f"m_b: the fit leaves |m| no more constant than the raw samples (spread {spread_cal:.3g} "
                          f"after, {spread_raw:.3g} before): a degenerate fit; {record}")
     if field_range is not None:
-        lo, hi = (scalar(v, "field_range", positive=True) for v in field_range)
+        lo, hi = field_range
         if not lo <= F <= hi:
             raise ValueError(f"m_b: fitted field strength {F:.3g} outside the plausible {lo:g}..{hi:g} (uT for the "
                              f"Earth's field): a degenerate fit, a disturbed recording or another unit; {record}; "
