@@ -511,26 +511,27 @@ def _logger_platform(d: Path, platform: str | None) -> tuple[str, bool, list[str
                      f"platform='ios' or platform='android'")
 
 
-def _logger_accel(d: Path, ios_signs: bool, ios_g: bool) -> tuple[np.ndarray, np.ndarray, str]:
-    """(time ns, specific force m/s^2 in the phone's axes, note) from the files the export has."""
+def _logger_accel(d: Path, ios_signs: bool, ios_g: bool) -> tuple[np.ndarray, np.ndarray, Path, str]:
+    """(time ns, specific force m/s^2 in the phone's axes, the file whose clock it is on, note) from the files
+    the export has."""
     sign = -1.0 if ios_signs else 1.0
     flipped = "; x -1 (iOS sign convention)" if ios_signs else ""
     if (d / "TotalAcceleration.csv").is_file():
         df = _phone_file(d / "TotalAcceleration.csv")
         return _stamps(df, d / "TotalAcceleration.csv"), sign * _file_xyz(df, d / "TotalAcceleration.csv"), \
-            "accel: TotalAcceleration.csv (m/s^2, with gravity)" + flipped
+            d / "TotalAcceleration.csv", "accel: TotalAcceleration.csv (m/s^2, with gravity)" + flipped
     if (d / "Accelerometer.csv").is_file() and (d / "Gravity.csv").is_file():
         acc, grav = _phone_file(d / "Accelerometer.csv"), _phone_file(d / "Gravity.csv")
         t, tg = _stamps(acc, d / "Accelerometer.csv"), _stamps(grav, d / "Gravity.csv")
         g = _file_xyz(grav, d / "Gravity.csv")
         g_on_t = np.column_stack([np.interp(t, tg, g[:, i], left=np.nan, right=np.nan) for i in range(3)])
-        return t, sign * (_file_xyz(acc, d / "Accelerometer.csv") + g_on_t), \
+        return t, sign * (_file_xyz(acc, d / "Accelerometer.csv") + g_on_t), d / "Accelerometer.csv", \
             "accel: Accelerometer.csv + Gravity.csv (gravity-free acceleration plus gravity, m/s^2)" + flipped
     if (d / "AccelerometerUncalibrated.csv").is_file():
         df = _phone_file(d / "AccelerometerUncalibrated.csv")
         scale = G0 if ios_g else 1.0
         return _stamps(df, d / "AccelerometerUncalibrated.csv"), \
-            sign * scale * _file_xyz(df, d / "AccelerometerUncalibrated.csv"), \
+            sign * scale * _file_xyz(df, d / "AccelerometerUncalibrated.csv"), d / "AccelerometerUncalibrated.csv", \
             f"accel: AccelerometerUncalibrated.csv ({'g' if ios_g else 'm/s^2'}){flipped}"
     if (d / "Accelerometer.csv").is_file():
         raise ValueError(f"{d / 'Accelerometer.csv'}: gravity is removed from it and the export has no "
@@ -627,9 +628,9 @@ def read_sensor_logger(directory: str | Path, *, platform: str | None = None,
     t_gyro = (t_ns - t_ns[0]) * 1e-9
     frame = pd.DataFrame({"time": t_ns, "gx": w[:, 0], "gy": w[:, 1], "gz": w[:, 2]})
     kw, units = {"gyro": ("gx", "gy", "gz")}, {"gyro": "rad/s"}
-    t_acc, f_acc, note = _logger_accel(d, ios, ios)
+    t_acc, f_acc, acc_file, note = _logger_accel(d, ios, ios)
     notes.append(note)
-    sensors = {"accel": (t_acc, f_acc, d / "TotalAcceleration.csv", "m/s^2")}
+    sensors = {"accel": (t_acc, f_acc, acc_file, "m/s^2")}
     if (d / "Magnetometer.csv").is_file():
         df = _phone_file(d / "Magnetometer.csv")
         sensors["mag"] = (_stamps(df, d / "Magnetometer.csv"), _file_xyz(df, d / "Magnetometer.csv"),
