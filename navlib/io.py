@@ -933,7 +933,7 @@ def check_axes(rec: Recording, *, on_fail: str = "warn") -> AxisCheck:
     use = (step > _MIN_STEP) & (counts[1:] > 0) & (counts[:-1] > 0) & ~gap_in[1:] & ~gap_in[:-1]
     scores = dict.fromkeys(["as read"] + [f"{s} {a} flipped" for s in ("gyro", "accel", "mag") for a in "xyz"], 0.0)
     sensors = {s: x for s, x in (("accel", rec.f_b), ("mag", rec.m_b)) if x is not None}
-    n_steps = 0
+    usable = {}                                  # sensor -> (body directions, usable steps)
     for sensor, x in sensors.items():
         mean, _ = _window_means(rec.time, x, AXIS_CHECK_WINDOW)
         u_b = mean / np.linalg.norm(mean, axis=1, keepdims=True)
@@ -942,22 +942,27 @@ def check_axes(rec: Recording, *, on_fail: str = "warn") -> AxisCheck:
             size = np.linalg.norm(mean, axis=1)
             near_g = np.abs(size - np.nanmedian(size)) < 0.1 * np.nanmedian(size)
             ok &= near_g[1:] & near_g[:-1]
-        n_steps = max(n_steps, int(np.count_nonzero(ok)))
+        if np.count_nonzero(ok) >= _MIN_STEPS:
+            usable[sensor] = (u_b, ok)
+    n_steps = max([int(np.count_nonzero(ok)) for _, ok in usable.values()], default=0)
+    for sensor, (u_b, ok) in usable.items():
         moved = np.sum((u_b[1:] - u_b[:-1])[ok] ** 2)
         for hyp in scores:
             words = hyp.split()
             g = "xyz".index(words[1]) + 1 if words[0] == "gyro" else 0
             u = u_b * _flip("xyz".index(words[1])) if words[0] == sensor else u_b
             u_n = np.einsum("nij,nj->ni", C_bn[g], u)
-            scores[hyp] += np.sum((u_n[1:] - u_n[:-1])[ok] ** 2) / max(moved, 1e-300) / len(sensors)
+            scores[hyp] += np.sum((u_n[1:] - u_n[:-1])[ok] ** 2) / moved / len(usable)
+    sensors = {s: sensors[s] for s in usable} or sensors     # name only the sensors the verdict rests on
     scores = {h: float(v) for h, v in scores.items() if h.split()[0] in ("as", "gyro", *sensors)}
     ranking = tuple(sorted(scores.items(), key=lambda kv: kv[1]))
     best, as_read = ranking[0], scores["as read"]
     turn = float(step[use].sum())
     suspect = None
     if n_steps < _MIN_STEPS:
-        message = (f"inconclusive: {n_steps} window steps usable (turning, near 1 g), fewer than {_MIN_STEPS}: "
-                   f"too little to judge the axes; turn the sensor slowly by hand for 15 s to have them checked")
+        message = (f"inconclusive: fewer than {_MIN_STEPS} usable window steps (turning, and near 1 g for the "
+                   f"accelerometer) for any sensor: too little to judge the axes; turn the sensor slowly by hand "
+                   f"for 15 s to have them checked")
     elif turn < _MIN_TURN:
         message = (f"inconclusive: the sensor turned by {np.rad2deg(turn):.0f} deg in steps the check can use, "
                    f"too little to compare the gyro with the {' and '.join(sensors)}; turn it by hand through "
