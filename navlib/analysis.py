@@ -40,7 +40,7 @@ from ._validate import (
 __all__ = ["rmse", "allan_deviation", "allan_deviation_theory", "fit_allan",
            "GM_ALLAN_PEAK", "GM_ALLAN_PEAK_TAU", "attitude_errors", "error_statistics", "horizontal_error",
            "position_error", "expanding_std", "detection_rates", "settling_time", "segments", "moving_mean",
-           "normal_condition", "condition_number", "lsq_covariance", "cramer_rao_bound"]
+           "normal_condition", "condition_number", "lsq_covariance", "cramer_rao_bound", "footfall_path_length"]
 
 
 def rmse(err: ArrayLike, axis: int | tuple[int, ...] | None = 0) -> Array:
@@ -567,3 +567,38 @@ def cramer_rao_bound(V: ArrayLike, R: ArrayLike, max_cond: float = 1e6) -> Array
     safe = np.where(bad[..., None, None], np.eye(n), info)
     P = np.linalg.inv(safe)
     return np.where(bad[..., None, None], np.where(np.eye(n, dtype=bool), np.inf, np.nan), P)
+
+
+def footfall_path_length(pos_n: ArrayLike, stance: ArrayLike, *, min_samples: int = 1) -> tuple[float, Array]:
+    """Horizontal path length of a foot-mounted track measured from footfall to footfall.
+
+    The foot stands still during each stance: the track's mean position over a stance is where the foot
+    landed. The path is the sum of the horizontal distances between successive footfalls, i.e. the stride
+    lengths. Summing the track sample by sample instead adds the swing's sideways and up-down wiggle and
+    the filter's small corrections at every update, and comes out longer.
+
+    Parameters
+    ----------
+    pos_n : array_like, shape (N, 2) or (N, 3)
+        Positions (m) in a local level frame (east, north[, up]); only the horizontal part is used.
+    stance : array_like of bool, shape (N,)
+        Stance samples (e.g. from :func:`navlib.filters.zupt.detect_static`).
+    min_samples : int
+        Shortest run of stance samples counted as a footfall (shorter runs are ignored).
+
+    Returns
+    -------
+    length : float
+        Sum of the stride lengths (m); 0 with fewer than two footfalls.
+    footfalls : ndarray, shape (K, 2)
+        Horizontal position of each footfall (m).
+    """
+    p = as_array(pos_n, "pos_n", min_ndim=2)
+    if p.ndim != 2 or p.shape[1] not in (2, 3):
+        raise ValueError(f"pos_n: expected shape (N, 2) or (N, 3) (east, north[, up]), got {p.shape}")
+    m = booleans(stance, "stance", shape=(p.shape[0],))
+    n_min = integer(min_samples, "min_samples")
+    starts, ends = segments(m)
+    keep = ends - starts >= n_min
+    footfalls = np.array([p[a:b, :2].mean(0) for a, b in zip(starts[keep], ends[keep], strict=True)]).reshape(-1, 2)
+    return float(np.sum(np.linalg.norm(np.diff(footfalls, axis=0), axis=1))), footfalls

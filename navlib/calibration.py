@@ -227,7 +227,13 @@ def _sqrtm_spd(A: np.ndarray) -> np.ndarray:
     return (V * np.sqrt(ev)) @ V.T
 
 
-def fit_magnetometer(m_b: Vec3Series, field_strength: float | None = None) -> MagCalibration:
+EARTH_FIELD_RANGE = (15.0, 80.0)
+"""Plausible strength (uT) of the Earth's field at the surface: about 22 (South Atlantic) to 67 (near the
+magnetic poles); a fitted strength outside it means the fit, the unit or the surroundings are wrong."""
+
+
+def fit_magnetometer(m_b: Vec3Series, field_strength: float | None = None, *,
+                     field_range: tuple[float, float] | None = EARTH_FIELD_RANGE) -> MagCalibration:
     """Hard- and soft-iron calibration by an ellipsoid fit (Li & Griffiths 2004; module docstring).
 
     Parameters
@@ -238,6 +244,9 @@ def fit_magnetometer(m_b: Vec3Series, field_strength: float | None = None) -> Ma
     field_strength : float, optional
         Known field strength (unit of ``m_b``), e.g. ``|earth.magnetic_field(...)|``; default: fitted,
         with ``det W = 1``.
+    field_range : (float, float) or None
+        Plausible fitted field strength, in the unit of ``m_b``: default :data:`EARTH_FIELD_RANGE` (uT);
+        None skips the test (samples in another unit, or a field that is not the Earth's).
 
     Returns
     -------
@@ -247,12 +256,15 @@ def fit_magnetometer(m_b: Vec3Series, field_strength: float | None = None) -> Ma
     ------
     ValueError
         Fewer than 9 samples, NaN or inf, samples (nearly) in one plane (``MIN_THICKNESS``), too small a
-        range of orientations (``MAX_MAG_CONDITION``), or samples that no ellipsoid fits.
+        range of orientations (``MAX_MAG_CONDITION``), samples that no ellipsoid fits, a fit that leaves
+        ``|m|`` no more constant than it was (a degenerate fit), or a fitted field strength outside
+        ``field_range``. Each message says what to record instead.
     """
     m = as_array(m_b, "m_b", shape=(None, 3))
     if m.shape[0] < 9:
         raise ValueError(f"m_b: expected at least 9 samples (an ellipsoid has 9 parameters), got {m.shape[0]}")
     F = None if field_strength is None else scalar(field_strength, "field_strength", positive=True)
+    plausible = None if field_range is None else _field_range(field_range)
     thick = _thickness(m)
     if thick < MIN_THICKNESS:
         raise ValueError(f"m_b: the samples lie (nearly) in one plane (thickness {thick:.3g} < {MIN_THICKNESS}): "
@@ -275,8 +287,33 @@ def fit_magnetometer(m_b: Vec3Series, field_strength: float | None = None) -> Ma
                          "ideally pointing each axis up and down")
     norm_raw = np.linalg.norm(m, axis=-1)
     norm_cal = np.linalg.norm((m - centre) @ W_inv.T, axis=-1)
+    _refuse_degenerate(norm_raw.std(), norm_cal.std(), F, plausible if field_strength is None else None)
     return MagCalibration(centre, W_inv, F, float(np.sqrt(np.mean((norm_cal - F) ** 2))),
                           float(norm_raw.std()), float(norm_cal.std()), cond)
+
+
+def _field_range(field_range) -> tuple[float, float]:
+    lo, hi = as_array(field_range, "field_range", shape=(2,))
+    if not 0 < lo < hi:
+        raise ValueError(f"field_range: expected (low, high) with 0 < low < high, got ({lo:g}, {hi:g})")
+    return float(lo), float(hi)
+
+
+def _refuse_degenerate(spread_raw: float, spread_cal: float, F: float,
+                       field_range: tuple[float, float] | None) -> None:
+    """A fit must make ``|m|`` more constant (unless it already is, to 1 % of the field) and, when the field
+    strength was fitted, give a plausible one."""
+    record = ("record again away from steel, cars and electronics, turning the sensor slowly through all "
+              "orientations (each axis up and down)")
+    if spread_cal >= spread_raw and spread_cal > 0.01 * F:
+        raise ValueError(f"m_b: the fit leaves |m| no more constant than the raw samples (spread {spread_cal:.3g} "
+                         f"after, {spread_raw:.3g} before): a degenerate fit; {record}")
+    if field_range is not None:
+        lo, hi = field_range
+        if not lo <= F <= hi:
+            raise ValueError(f"m_b: fitted field strength {F:.3g} outside the plausible {lo:g}..{hi:g} (uT for the "
+                             f"Earth's field): a degenerate fit, a disturbed recording or another unit; {record}; "
+                             f"field_range=None if the samples are not in uT")
 
 
 # --------------------------------------------------------------------------

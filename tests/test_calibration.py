@@ -348,3 +348,22 @@ def test_to_imu_model_bad_input(noise):
         noise.to_imu_model(combine="mean")
     with pytest.raises(ValueError, match="^name: "):
         noise.to_imu_model(name=3)
+
+
+def test_fit_magnetometer_refuses_a_degenerate_or_implausible_fit():
+    """Issue 34: a fit giving 3.3 uT, spread worse after than before, was accepted. A sphere of 3 uT is refused
+    by the plausible range; a noisy cap (the sensor tilted less than 73 deg from one pose, 6 uT of disturbance)
+    fits an ellipsoid that makes |m| no more constant than it was, and is refused too."""
+    rng = np.random.default_rng(3434)
+    dirs = attitude.quat_rotate(rng.standard_normal((400, 4)), [0.0, 0.0, 1.0])
+    small = 3.0 * dirs + 0.05 * rng.standard_normal((400, 3))
+    with pytest.raises(ValueError, match=r"m_b: fitted field strength 3.* outside the plausible 15\.\.80.*record again"):
+        calibration.fit_magnetometer(small)
+    assert calibration.fit_magnetometer(small, field_range=None).field_strength == pytest.approx(3.0, rel=0.02)
+    good = 45.0 * dirs + 0.3 * rng.standard_normal((400, 3)) + [5.0, -8.0, 3.0]
+    cal = calibration.fit_magnetometer(good)
+    assert cal.norm_spread_after < cal.norm_spread_before and 40 < cal.field_strength < 50
+    cap = dirs[:, 2] > 0.3
+    disturbed = 45.0 * dirs[cap] + 6.0 * rng.standard_normal((int(cap.sum()), 3))
+    with pytest.raises(ValueError, match=r"m_b: the fit leaves \|m\| no more constant .*each axis up and down"):
+        calibration.fit_magnetometer(disturbed)

@@ -184,8 +184,10 @@ def test_sensor_logger_export_is_aligned_on_the_gyro_clock(tmp_path, motion):
     np.testing.assert_allclose(rec.pressure[0], 1e5)
     assert rec.start == np.datetime64(t0 + round(t[0] * 1e9), "ns")
     (tmp_path / "TotalAcceleration.csv").rename(tmp_path / "Accelerometer.csv")
-    with pytest.raises(ValueError, match="gravity removed"):
+    with pytest.raises(ValueError, match="no Metadata.csv.*platform="):
         io.read_sensor_logger(tmp_path)
+    with pytest.raises(ValueError, match="Accelerometer.csv: gravity is removed.*Gravity"):
+        io.read_sensor_logger(tmp_path, platform="android")
 
 
 def test_align_hold_and_interpolate():

@@ -1,11 +1,12 @@
 """The README: its "Your own data" example runs as written, on the committed sample in the app's layout; its
 results section (claims by verdict, per-paper matrices, quoted numbers) agrees with the notebooks and results."""
-import os
 import re
 import sys
+import warnings
 from pathlib import Path
 
 import matplotlib
+import numpy as np
 import pytest
 from test_ledger import NOTEBOOKS, static_verdicts
 
@@ -18,21 +19,46 @@ sys.path.insert(0, str(ROOT / "tools"))
 import readme  # noqa: E402  (tools/readme.py)
 
 
-def test_your_own_data_snippet_runs_as_written(monkeypatch):
-    readme = (ROOT / "README.md").read_text(encoding="utf-8")
-    section = readme.split("## Your own data", 1)[1].split("\n## ", 1)[0]
-    code = re.search(r"```python\n(.*?)```", section, re.S).group(1)
+def _your_own_data() -> tuple[str, str]:
+    """The README's "Your own data" example block, and its generic-CSV reader line."""
+    section = (ROOT / "README.md").read_text(encoding="utf-8").split("## Your own data", 1)[1].split("\n## ", 1)[0]
+    blocks = re.findall(r"```python\n(.*?)```", section, re.S)
+    return blocks[0], blocks[1].strip()
+
+
+SAMPLE = 'io.read_sensor_logger("data/samples/sensor-logger")'
+
+
+@pytest.mark.parametrize("sample", ["sensor-logger", "sensor-logger-ios", "sensor-logger-ios-nomag", "board.csv"])
+def test_your_own_data_snippet_runs_as_written(monkeypatch, sample):
+    """The block as written on each committed sample (Android and iOS with magnetometer, iOS without one,
+    a generic board CSV with its reader line from the README). Each simulated phone turns by 90 deg
+    clockwise (tools/make_sample_log.py): the heading plotted must turn by that much, and where the export
+    carries the phone's own attitude (Orientation.csv) the filter's tilt must agree with it."""
+    code, board_line = _your_own_data()
     assert len(code.strip().splitlines()) <= 12            # "a few lines" (import lines included)
+    assert SAMPLE in code
+    if sample == "board.csv":
+        code = re.sub(r"rec = io\.read_sensor_logger\(.*?\)", lambda _: board_line.split("  #")[0], code, count=1)
+    else:
+        code = code.replace(SAMPLE, f'io.read_sensor_logger("data/samples/{sample}")')
     monkeypatch.chdir(ROOT)
     scope = {}
-    exec(compile(code, "README.md", "exec"), scope)        # noqa: S102 - the README's own example
-    heading = scope["np"].rad2deg(scope["attitude"].quat_to_euler(scope["res"].q_bn)[:, 0])
-    # The simulated phone turns by 90 deg (tools/make_sample_log.py). Its MPU-6050-class accelerometer bias
-    # (0.16 m/s^2) tilts the levelled attitude by 1.9 deg, which enters a magnetic heading through the dip
-    # (tan(dip) = 2.3 at 51.5 deg N), differently at each heading: the tilt-compensated headings of the two
-    # still ends differ by 84.7 deg (90.1 deg with the true tilt). Most of the error is that, not the filter.
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")                      # no axis looks flipped in a correct recording
+        exec(compile(code, "README.md", "exec"), scope)    # noqa: S102 - the README's own example
+    rec, res, attitude = scope["rec"], scope["res"], scope["attitude"]
+    hpr = attitude.quat_to_euler(res.q_bn)
+    heading = np.rad2deg(np.unwrap(hpr[:, 0]))
+    # The MPU-6050-class accelerometer bias (0.16 m/s^2) tilts the levelled start by up to 1.9 deg, which enters
+    # a magnetic heading through the dip (tan(dip) = 2.3 at 51.5 deg N), differently at each heading; without a
+    # magnetometer the heading is the bias-corrected gyro's alone.
     assert abs(heading[-1] - heading[0] - 90.0) < 10.0
-    assert os.path.isdir(ROOT / "data" / "samples" / "sensor-logger")
+    assert any(c.startswith("gyro bias at rest removed") for c in rec.conversions)
+    if rec.q_bn_ref is not None:                           # the phone's own attitude, in navlib's frame
+        ref = attitude.quat_to_euler(rec.q_bn_ref)
+        tilt = np.rad2deg(np.abs(attitude.wrap_pi(hpr[:, 1:] - ref[:, 1:])))
+        assert np.max(tilt) < 3.0
 
 
 # ---------------------------------------------------------------- the results section (tools/readme.py)
