@@ -9,8 +9,8 @@ Assembles ``build/site-src/`` and runs Sphinx on it with ``docs/conf.py``:
 * ``chapters/`` — the executed notebooks that ``make reproduce`` wrote to ``build/`` (not executed
   again), code cells collapsible, names such as ``nf.resolve`` in the text linked to the API reference;
 * ``ledger.md`` — every check of every notebook with its claim's verdict, filterable by paper and verdict;
-* ``api/`` — the public modules in three pages (core, filters, paper companions; autodoc over the
-  numpydoc docstrings);
+* ``api/`` — one page per public module (autodoc over the numpydoc docstrings), an index by group (core,
+  filters, paper companions);
 * ``conventions``, ``claims`` (``docs/``), ``own-data``, ``robustness`` (README sections: one source),
   ``benchmarks`` (README section and the last ``build/bench.json`` when present).
 
@@ -47,11 +47,22 @@ VERDICT_CSS = {v: f"verdict-{i}" for i, v in enumerate(ledger.COLUMNS)}
 REPO_FILES = "https://github.com/navlib-repro/navlib/blob/main/"
 
 
-def absolute_links(markdown: str, base: str = "") -> str:
-    """Markdown links to repository files (relative to ``base``, a folder of the repository) made absolute."""
+def absolute_links(markdown: str, base: str = "", anchors: str = "") -> str:
+    """Markdown links to repository files (relative to ``base``, a folder of the repository) made absolute; with
+    ``anchors`` (a file of the repository), links to its sections (``#...``) too."""
     def repl(m):
         return f"]({REPO_FILES}{posixpath.normpath(f'{base}/{m.group(1)}' if base else m.group(1))})"
-    return re.sub(r"\]\((?!https?:|#|mailto:)([^)\s]+)\)", repl, markdown)
+    markdown = re.sub(r"\]\((?!https?:|#|mailto:)([^)\s]+)\)", repl, markdown)
+    if not anchors:
+        return markdown
+    here = {slug(h) for h in re.findall(r"^#+ (.*)$", markdown, re.M)}
+    return re.sub(r"\]\(#([^)\s]+)\)", lambda m: m.group(0) if m.group(1) in here else f"]({REPO_FILES}{anchors}#{m.group(1)})",
+                  markdown)
+
+
+def slug(heading: str) -> str:
+    """The anchor of a Markdown heading (GitHub's and myst's rule: lower case, punctuation dropped, spaces to -)."""
+    return re.sub(r"[^\w\- ]", "", heading.strip().lower()).replace(" ", "-")
 
 
 def readme_section(title: str) -> str:
@@ -59,7 +70,7 @@ def readme_section(title: str) -> str:
     text = (ROOT / "README.md").read_text(encoding="utf-8")
     start = text.index(f"\n## {title}\n")
     end = text.find("\n## ", start + 1)
-    return absolute_links(text[start + 1:end if end > 0 else None])
+    return absolute_links(text[start + 1:end if end > 0 else None], anchors="README.md")
 
 
 # ----------------------------------------------------------------------------------------------- chapters
@@ -114,10 +125,50 @@ def link_names(markdown: str, names: dict[str, str]) -> str:
     return CODE_NAME.sub(repl, markdown)
 
 
+BINDER = "https://mybinder.org/v2/gh/navlib-repro/navlib/HEAD?labpath=notebooks%2F"
+CAPTION = re.compile(r"^\*(Figure[^*]+)\*", re.M)
+
+
+def plain(markdown: str) -> str:
+    """Markdown and TeX marks removed: text for an image's alt attribute."""
+    return re.sub(r"[*_`$\\]|\{[^}]*\}|\[([^]]*)\]\([^)]*\)", lambda m: m.group(1) or "", markdown).strip()
+
+
+def markdown_of(cell) -> list[str]:
+    """A cell's Markdown: its source (a text cell) or its Markdown outputs (a code cell, e.g. ``repro.caption``)."""
+    if cell.cell_type == "markdown":
+        return [cell.source]
+    return ["".join(o["data"]["text/markdown"]) for o in cell.get("outputs", []) if "text/markdown" in o.get("data", {})]
+
+
+def figure_alt(cells: list, i: int) -> str:
+    """Alt text of the figure code cell ``i`` draws: its caption (``*Figure ...*``, printed by the cell or by the
+    next cell, or written in the next text cell), else the cell's first comment or title."""
+    for text in markdown_of(cells[i]) + (markdown_of(cells[i + 1]) if i + 1 < len(cells) else []):
+        m = CAPTION.search(text)
+        if m:
+            return plain(m.group(1))
+    title = re.search(r"set_title\(\s*f?[\"']([^\"']+)|suptitle\(\s*f?[\"']([^\"']+)|^# (.+)$", cells[i].source, re.M)
+    return plain("Figure: " + next(g for g in title.groups() if g)) if title else "Figure: see the text around it"
+
+
+def launch_links(stem: str) -> str:
+    """Links under a chapter's title: run it in Binder (JupyterLab, the repository's binder/ environment) or download it."""
+    return (f"<p class='launch-links'><a href='{BINDER}{stem}.ipynb'>Run this chapter in Binder</a>"
+            f"<a href='../_sources/chapters/{stem}.ipynb' download>Download the notebook (.ipynb)</a></p>")
+
+
 def stage_notebook(src: Path, dest: Path) -> None:
-    """Copy an executed notebook for the site: code collapsible, widget views dropped, API names linked."""
+    """Copy an executed notebook for the site: code collapsible, widget views dropped, API names linked, figures
+    given their caption as alt text, launch and download links under the title."""
     nb = nbformat.read(src, as_version=4)
     names = aliases(nb)
+    for i, cell in enumerate(nb.cells):
+        if cell.cell_type == "code" and any("image/png" in o.get("data", {}) for o in cell.get("outputs", [])):
+            cell.metadata.setdefault("mystnb", {})["image"] = {"alt": figure_alt(nb.cells, i)}
+    title = next(c for c in nb.cells if c.cell_type == "markdown")
+    title.source = re.sub(r"^(# .*)$", lambda m: f"{m.group(1)}\n\n{launch_links(src.stem)}", title.source, count=1,
+                          flags=re.M)
     for cell in nb.cells:
         if cell.cell_type == "markdown":
             cell.source = absolute_links(link_names(cell.source, names), base="notebooks")
@@ -156,7 +207,12 @@ def counts_table(leds: list[ledger.PaperLedger]) -> str:
     cells = ["<b>all papers</b>", str(sum(len(led.rows) for led in leds)), *(str(total.get(v, 0)) for v in ledger.COLUMNS),
              f"{sum(led.checks_passed for led in leds)}/{sum(led.checks_total for led in leds)}"]
     rows.append("<tr>" + "".join(f"<td>{c}</td>" for c in cells) + "</tr>")
-    return f"<table class='counts'><thead><tr>{head}</tr></thead><tbody>\n" + "\n".join(rows) + "\n</tbody></table>"
+    return scroll_x(f"<table class='counts'><thead><tr>{head}</tr></thead><tbody>\n" + "\n".join(rows) + "\n</tbody></table>")
+
+
+def scroll_x(table: str) -> str:
+    """An HTML table in a box that scrolls sideways when the table is wider than the column (a phone)."""
+    return f"<div class='scroll-x'>{table}</div>"
 
 
 def verdict_span(verdict: str) -> str:
@@ -175,7 +231,7 @@ def claims_matrix(led: ledger.PaperLedger) -> str:
                  verdict_span(r.verdict) + (f"<br><small>{html.escape(why)}</small>" if why else ""), thumb]
         rows.append("<tr>" + "".join(f"<td>{c}</td>" for c in cells) + "</tr>")
     head = "".join(f"<th>{h}</th>" for h in ("paper item", "claim", "paper", "ours", "verdict", "figure"))
-    return f"<table class='matrix'><thead><tr>{head}</tr></thead><tbody>\n" + "\n".join(rows) + "\n</tbody></table>"
+    return scroll_x(f"<table class='matrix'><thead><tr>{head}</tr></thead><tbody>\n" + "\n".join(rows) + "\n</tbody></table>")
 
 
 def ledger_rows(led: ledger.PaperLedger, res: dict | None) -> list[str]:
@@ -230,9 +286,9 @@ def ledger_page(leds: list[ledger.PaperLedger], build: Path) -> str:
         "<p><span id='ledger-count'></span> rows shown</p>",
         "</div>",
         "",
-        f"<table id='ledger' class='ledger'><thead><tr>{head}</tr></thead><tbody>",
+        f"<div class='scroll-x'><table id='ledger' class='ledger'><thead><tr>{head}</tr></thead><tbody>",
         *rows,
-        "</tbody></table>",
+        "</tbody></table></div>",
         ""])
 
 
@@ -295,23 +351,20 @@ def public_modules() -> dict[str, list[str]]:
 
 
 def api_pages(dest: Path) -> None:
-    """One page per group of modules (core, filters, paper companions), a section per module."""
-    groups = public_modules()
-    aliases = groups.pop("Deprecated aliases", [])
+    """One page per public module (autodoc over its numpydoc docstrings), listed by group on the index."""
     index = ["# API reference", "",
-             "Every public name of navlib, by module, from its docstrings (shapes and units in each). The paper "
-             "companions (`navlib.papers.*`) give the paper's equations with their numbers.", ""]
+             "Every public name of navlib, one page per module, from its docstrings (shapes and units in each). The "
+             "paper companions (`navlib.papers.*`) give the paper's equations with their numbers.", ""]
     pages = []
-    for group, modules in groups.items():
-        page = group.lower().replace(" ", "-")
-        pages.append(page)
-        index += [f"## [{group}]({page}.md)", "", ", ".join(f"`{m}`" for m in modules), ""]
-        body = [f"# {group}", ""] + [f"```{{eval-rst}}\n.. automodule:: {m}\n```\n" for m in modules]
-        (dest / f"{page}.md").write_text("\n".join(body), encoding="utf-8")
-    if aliases:
-        index += ["## Deprecated aliases", "", "Old module names that still import (with a warning) and will be "
-                  "removed in navlib 0.3; each names the new homes of its contents: "
-                  + ", ".join(f"`{m}`" for m in aliases) + ".", ""]
+    for group, modules in public_modules().items():
+        index += [f"## {group}", ""]
+        for module in modules:
+            pages.append(module)
+            summary = (importlib.import_module(module).__doc__ or "").strip().splitlines()[0]
+            index.append(f"* [`{module}`]({module}.md): {summary}")
+            (dest / f"{module}.md").write_text(f"# `{module}`\n\n```{{eval-rst}}\n.. automodule:: {module}\n```\n",
+                                               encoding="utf-8")
+        index.append("")
     index += ["```{toctree}", ":hidden:", "", *pages, "```", ""]
     (dest / "index.md").write_text("\n".join(index), encoding="utf-8")
 
@@ -385,7 +438,8 @@ def main(argv=None) -> int:
     chapters = stage(build, src)
     from sphinx.cmd.build import build_main
     shutil.rmtree(out, ignore_errors=True)
-    rc = build_main(["-b", "html", "-q", "-j", "2", str(src), str(out)])
+    warnings = build / "site-warnings.txt"
+    rc = build_main(["-b", "html", "-q", "-j", "2", "-W", "--keep-going", "-w", str(warnings), str(src), str(out)])
     print(f"site: {out / 'index.html'} ({len(chapters)} chapters, {time.perf_counter() - start:.1f} s)")
     return rc
 
