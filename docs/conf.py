@@ -60,6 +60,7 @@ html_js_files = ["ledger.js"]
 html_css_files = ["navlib.css"]
 html_favicon = "_static/favicon.svg"       # the site's own (else the browser asks for /favicon.ico)
 html_last_updated_fmt = None
+html_domain_indices = False                    # the API index (api/index) lists the modules by group
 html_copy_source = True                        # the download button serves each chapter's .ipynb
 html_sourcelink_suffix = ""
 html_context = {"default_mode": "light"}      # an explicit mode: the theme logs an error for an unset one

@@ -2,7 +2,7 @@
 // Returns {mathErrors, literalTex, placeholders, pageWidth, overflowing, badAlt}: each a list, empty when the page is sound.
 () => {
   const CODE = "pre, code, script, style, mjx-container, textarea, kbd, samp, .highlight";
-  const shown = el => el && (el.offsetParent !== null || getComputedStyle(el).position === "fixed");
+  const shown = el => el && el.checkVisibility({visibilityProperty: true});   // false inside a closed <details> too
   const texts = [];
   const walker = document.createTreeWalker(document.body, NodeFilter.SHOW_TEXT);
   while (walker.nextNode()) {
@@ -20,7 +20,7 @@
   const overflowing = [];
   for (const el of document.querySelectorAll("table, mjx-container[display='true'], pre, img")) {
     if (!shown(el)) continue;
-    let box = el;
+    let box = ["auto", "scroll"].includes(getComputedStyle(el).overflowX) ? el : el.parentElement;
     while (box !== document.body && getComputedStyle(box).overflowX === "visible") box = box.parentElement;
     const scrolls = ["auto", "scroll"].includes(getComputedStyle(box).overflowX);
     const what = `${el.tagName.toLowerCase()} "${(el.textContent || el.getAttribute("alt") || "").trim().slice(0, 50)}"`;
