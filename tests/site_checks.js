@@ -26,6 +26,8 @@
     const what = `${el.tagName.toLowerCase()} "${(el.textContent || el.getAttribute("alt") || "").trim().slice(0, 50)}"`;
     if (box === document.body ? el.getBoundingClientRect().right > column.right + 1 : !scrolls && el.scrollWidth > box.clientWidth + 1) {
       overflowing.push(`${what} is cut or wider than the column`);
+    } else if (box !== document.body && el.getBoundingClientRect().left < box.getBoundingClientRect().left - box.scrollLeft - 1) {
+      overflowing.push(`${what} overflows to the left of its box, where no scroll bar reaches`);
     } else if (box !== document.body && box.getBoundingClientRect().right > column.right + 1) {
       overflowing.push(`${what} scrolls in a box wider than the column`);
     }

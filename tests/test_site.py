@@ -144,6 +144,8 @@ def test_the_checks_find_what_a_reader_would_see(browser, server):
     page.page.set_content(
         f"<html><head><script src='{server}_static/mathjax/tex-mml-chtml.js'></script></head><body>"
         "<main><div class='math'>\\[\\begin{split}a = b \\tag{1}\\end{split}\\]</div>"
+        "<div style='display: flex; flex-direction: row-reverse; overflow-x: auto'>"
+        f"<pre style='flex: none; overflow: visible'>{'left-cut ' * 80}</pre></div>"
         "<p>the bias $b$ after {N_TRIALS_LAT // N_TRIALS} trials</p>"
         f"<table><tr><td style='white-space: nowrap'>{'wide cell ' * 80}</td></tr></table>"
         "<img src='data:image/gif;base64,R0lGODlhAQABAAAAACw=' alt='../_images/abc.png'></main></body></html>")
@@ -151,7 +153,8 @@ def test_the_checks_find_what_a_reader_would_see(browser, server):
     found = page.page.evaluate(CHECKS)
     assert found["mathErrors"] and "split" in found["mathErrors"][0]
     assert found["literalTex"] and found["placeholders"] == ["{N_TRIALS_LAT // N_TRIALS}"]
-    assert found["pageWidth"] and found["overflowing"] and found["badAlt"]
+    assert found["pageWidth"] and found["badAlt"]
+    assert any("left of its box" in o for o in found["overflowing"]) and any("wider than" in o for o in found["overflowing"])
 
 
 class _Links(html.parser.HTMLParser):
