@@ -32,6 +32,7 @@ that start with no id. ``docs/claims.md`` gives the rules for verdicts.
 from __future__ import annotations
 
 import csv
+import functools
 import json
 import math
 import os
@@ -283,6 +284,16 @@ def _target(c: Check) -> str:
     lo = "-inf" if c.lower is None else f"{c.lower:.6g}"
     hi = "inf" if c.upper is None else f"{c.upper:.6g}"
     return ("outside " if c.outside else "") + f"range [{lo}, {hi}]"
+
+
+def _ours(c: Check) -> str:
+    """A check's value with the digits its target's tolerance resolves (at least 4 significant), so that a value
+    within a tight tolerance never looks like a mismatch (196.25 against target 196.25 +- 1e-9, not 196.2)."""
+    digits = 4
+    if c.expected is not None and c.tol and np.isfinite(c.tol) and np.isfinite(c.value):
+        scale = max(abs(c.value), abs(c.expected))
+        digits = int(np.clip(np.ceil(np.log10(scale / c.tol)) + 1, 4, 12)) if scale > c.tol else 4
+    return f"{c.value:.{digits}g}{' ' + c.unit if c.unit else ''}"
 
 
 def _record(c: Check) -> Check:
@@ -610,23 +621,42 @@ def summary():
     rests on no check of the table (``not checkable here``). Ends a notebook section: checks record
     silently, and the table is the section's only output about them.
     """
-    import pandas as pd
-
     checks = _state.checks[_state.shown_checks:]
     new_verdicts = _state.verdicts[_state.shown_verdicts:]
     _state.shown_checks, _state.shown_verdicts = len(_state.checks), len(_state.verdicts)
     by_check = {n: v for v in _state.verdicts for n in v.checks}
     rows = [{"check": c.name,
              "paper": c.paper_value if c.paper_value is not None else "",
-             "ours": f"{c.value:.4g}{' ' + c.unit if c.unit else ''}",
+             "ours": _ours(c),
              "tolerance": _target(c),
              "result": "pass" if c.passed else "FAIL",
              "verdict": by_check[c.name].verdict if c.name in by_check else ""} for c in checks]
     shown = {c.name for c in checks}
     rows += [{"check": f"{v.claim} (claim)", "paper": v.paper or "", "ours": v.ours or "", "tolerance": "",
               "result": "", "verdict": v.verdict} for v in new_verdicts if not set(v.checks) & shown]
-    table = pd.DataFrame(rows, columns=["check", "paper", "ours", "tolerance", "result", "verdict"])
-    return table.set_index("check") if rows else table
+    table = _whole_table()(rows, columns=["check", "paper", "ours", "tolerance", "result", "verdict"])
+    if not rows:
+        return table
+    table = table.set_index("check")
+    table.index.name, table.columns.name = None, "check"        # one header row: "check" in its corner
+    return table
+
+
+@functools.cache
+def _whole_table() -> type:
+    """A DataFrame shown with all its rows (a check table is never cut to its head and tail)."""
+    import pandas as pd
+
+    class CheckTable(pd.DataFrame):
+        @property
+        def _constructor(self):
+            return CheckTable
+
+        def _repr_html_(self):
+            with pd.option_context("display.max_rows", None, "display.max_colwidth", None):
+                return super()._repr_html_()
+
+    return CheckTable
 
 
 def caption(markdown: str):

@@ -439,6 +439,16 @@ def test_checks_record_silently_and_summary_shows_each_once(paper_root, capsys):
     assert list(repro.summary().index) == ["P999-EQ2-SIGN"]
 
 
+def test_summary_shows_every_row_and_the_digits_its_tolerance_resolves(paper_root):
+    for k in range(80):                              # more rows than pandas shows by default (60)
+        repro.check(f"P999-FIG1-RMSE/h{k:02d}", 196.25 + k, 196.25 + k, 1e-9, "Fig. 1", unit="deg")
+    table = repro.summary()
+    assert table.loc["P999-FIG1-RMSE/h00", "ours"] == "196.25 deg"      # not 196.2 against a 1e-9 tolerance
+    shown = table._repr_html_()
+    assert all(f"P999-FIG1-RMSE/h{k:02d}" in shown for k in range(80)) and "…" not in shown
+    assert shown.count("<tr") == 81                  # one header row ("check" in its corner) and 80 checks
+
+
 def test_teaching_mode_warns_instead_of_raising(paper_root):
     repro.mode(teaching=True, fast=True)
     with pytest.warns(repro.ClaimCheckWarning, match="P999-FIG1-RMSE: reproduced 9"):
