@@ -152,20 +152,57 @@ def figure_alt(cells: list, i: int) -> str:
     return plain("Figure: " + next(g for g in title.groups() if g)) if title else "Figure: see the text around it"
 
 
+def anchor(kind: str, name: str) -> str:
+    """The HTML id of a check, claim or figure (``check-P000-FIG4-BANDS-all``): letters, digits, - and _ only."""
+    return f"{kind}-" + re.sub(r"[^A-Za-z0-9_-]", "-", name)
+
+
+CHECK_ROW = re.compile(r"<th>((?:P\d{3}|NB\d\d|[A-Z][A-Z0-9]+)-[^<\s]*)</th>")
+SAVEFIG = re.compile(r"savefig\(\s*\w+\s*,\s*f?[\"']([^\"']+)[\"']")
+
+
+def link_check_rows(table_html: str, seen: set[str]) -> str:
+    """A chapter's check table with each check linked to its ledger row (and the first row of a check given the
+    anchor the ledger links back to)."""
+    def repl(m):
+        name = m.group(1)
+        ident = "" if name in seen else f" id='{anchor('check', name)}'"
+        seen.add(name)
+        return f"<th{ident}><a href='../ledger.html#{anchor('check', name)}'>{name}</a></th>"
+    return CHECK_ROW.sub(repl, table_html)
+
+
+def figure_links(name: str, claims: list[str]) -> str:
+    """Under a chapter figure: its anchor and the ledger rows of the claims it shows."""
+    links = ", ".join(f"<a href='../ledger.html#{anchor('claim', c)}'>{c}</a>" for c in claims)
+    return f"<p class='ledger-links' id='{anchor('fig', name)}'>{'Ledger: ' + links if links else ''}</p>"
+
+
 def launch_links(stem: str) -> str:
     """Links under a chapter's title: run it in Binder (JupyterLab, the repository's binder/ environment) or download it."""
     return (f"<p class='launch-links'><a href='{BINDER}{stem}.ipynb'>Run this chapter in Binder</a>"
             f"<a href='../_sources/chapters/{stem}.ipynb' download>Download the notebook (.ipynb)</a></p>")
 
 
-def stage_notebook(src: Path, dest: Path) -> None:
+def stage_notebook(src: Path, dest: Path, claims_by_figure: dict[str, list[str]]) -> None:
     """Copy an executed notebook for the site: code collapsible, widget views dropped, API names linked, figures
-    given their caption as alt text, launch and download links under the title."""
+    given their caption as alt text and linked to the ledger rows of their claims, check tables linked to the
+    ledger, launch and download links under the title."""
     nb = nbformat.read(src, as_version=4)
     names = aliases(nb)
+    cells, seen = [], set()
     for i, cell in enumerate(nb.cells):
-        if cell.cell_type == "code" and any("image/png" in o.get("data", {}) for o in cell.get("outputs", [])):
+        cells.append(cell)
+        if cell.cell_type != "code":
+            continue
+        for out in cell.get("outputs", []):
+            if "text/html" in out.get("data", {}):
+                out["data"]["text/html"] = link_check_rows("".join(out["data"]["text/html"]), seen)
+        if any("image/png" in o.get("data", {}) for o in cell.get("outputs", [])):
             cell.metadata.setdefault("mystnb", {})["image"] = {"alt": figure_alt(nb.cells, i)}
+            for name in SAVEFIG.findall(cell.source):
+                cells.append(nbformat.v4.new_markdown_cell(figure_links(name, claims_by_figure.get(name, []))))
+    nb.cells = cells
     title = next(c for c in nb.cells if c.cell_type == "markdown")
     title.source = re.sub(r"^(# .*)$", lambda m: f"{m.group(1)}\n\n{launch_links(src.stem)}", title.source, count=1,
                           flags=re.M)
@@ -223,8 +260,8 @@ def claims_matrix(led: ledger.PaperLedger) -> str:
     """Every claim of a paper: paper item, paper value, ours, verdict (with its reason) and thumbnail."""
     rows = []
     for r in led.rows:
-        thumb = (f"<a href='{r.figure}'><img src='{r.figure}' width='110' alt='{html.escape(r.claim)}'></a>"
-                 if r.figure else "")
+        thumb = (f"<a href='chapters/{led.stem}.html#{anchor('fig', Path(r.figure).stem)}'><img src='{r.figure}' width='110' "
+                 f"alt='{html.escape(r.claim)}: figure in the chapter'></a>" if r.figure else "")
         why = ledger.verdict_text(r)[len(r.verdict):].lstrip(": ")
         cells = [html.escape(r.item), f"<code>{html.escape(r.claim)}</code><br><small>{html.escape(r.quantity)}</small>",
                  html.escape(r.paper), html.escape(r.ours),
@@ -237,7 +274,7 @@ def claims_matrix(led: ledger.PaperLedger) -> str:
 def ledger_rows(led: ledger.PaperLedger, res: dict | None) -> list[str]:
     """One row per check of the paper's notebook (with its claim's verdict), one per claim without checks."""
     by_check = {n: r for r in led.rows for n in r.checks}
-    rows = []
+    rows, claimed = [], set()
     for c in (res or {}).get("checks", []):
         claim = by_check.get(c["name"])
         verdict = claim.verdict if claim else "no claim"
@@ -248,16 +285,21 @@ def ledger_rows(led: ledger.PaperLedger, res: dict | None) -> list[str]:
             lo, hi = c.get("lower"), c.get("upper")
             target = ("outside " if c.get("outside") else "") + \
                 f"[{fmt(lo) if lo is not None else '−∞'}, {fmt(hi) if hi is not None else '∞'}] {unit}".strip()
-        cells = [html.escape(led.stem[:2]), f"<code>{html.escape(c['name'])}</code>",
+        first = claim is not None and claim.claim not in claimed
+        claimed.add(claim.claim if claim else "")
+        back = f"chapters/{led.stem}.html#{anchor('check', c['name'])}"
+        cells = [html.escape(led.stem[:2]), f"<a href='{back}'><code>{html.escape(c['name'])}</code></a>",
                  html.escape(c.get("paper_value") or ""), html.escape(fmt(c.get("value"), unit)), html.escape(target),
                  "pass" if c.get("passed") else "<b>FAIL</b>",
-                 verdict_span(verdict) if claim else "<small>(check beyond the catalogue)</small>",
+                 (f"<span id='{anchor('claim', claim.claim)}'></span>" if first else "")
+                 + (verdict_span(verdict) if claim else "<small>(check beyond the catalogue)</small>"),
                  html.escape(c.get("source", ""))]
-        rows.append(f"<tr data-paper='{led.stem[:2]}' data-verdict='{html.escape(verdict)}'>"
+        rows.append(f"<tr id='{anchor('check', c['name'])}' data-paper='{led.stem[:2]}' data-verdict='{html.escape(verdict)}'>"
                     + "".join(f"<td>{x}</td>" for x in cells) + "</tr>")
     for r in led.rows:
         if not r.checks:
-            cells = [html.escape(led.stem[:2]), f"<code>{html.escape(r.claim)}</code> <small>(claim, no check)</small>",
+            cells = [html.escape(led.stem[:2]), f"<code id='{anchor('claim', r.claim)}'>{html.escape(r.claim)}</code> "
+                     "<small>(claim, no check)</small>",
                      html.escape(r.paper), html.escape(r.ours), "", "", verdict_span(r.verdict), html.escape(r.reason)]
             rows.append(f"<tr data-paper='{led.stem[:2]}' data-verdict='{html.escape(r.verdict)}'>"
                         + "".join(f"<td>{x}</td>" for x in cells) + "</tr>")
@@ -399,12 +441,17 @@ def stage(build: Path, src: Path) -> list[str]:
         (src / d).mkdir(parents=True)
     shutil.copytree(ROOT / "docs" / "_static", src / "_static")          # styles, scripts, favicon, CJK font
     chapters = []
+    leds = [led for led in ledger.ledgers(build) if led.stem in {nb.stem for nb in notebooks}]
     for nb in notebooks:
-        stage_notebook(nb, src / "chapters" / nb.name)
+        claims_by_figure: dict[str, list[str]] = {}
+        for led in leds:
+            for r in led.rows:
+                if led.stem == nb.stem and r.figure:
+                    claims_by_figure.setdefault(Path(r.figure).stem, []).append(r.claim)
+        stage_notebook(nb, src / "chapters" / nb.name, claims_by_figure)
         chapters.append(nb.stem)
         if (build / nb.stem / "figures").is_dir():        # thumbnails of the home page and the ledger
             shutil.copytree(build / nb.stem / "figures", src / "_extra" / nb.stem / "figures")
-    leds = [led for led in ledger.ledgers(build) if led.stem in chapters]
     for led in leds:
         for p in led.problems:
             print(f"warning: {led.stem}: {p}", file=sys.stderr)
