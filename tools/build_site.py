@@ -11,6 +11,7 @@ Assembles ``build/site-src/`` and runs Sphinx on it with ``docs/conf.py``:
 * ``ledger.md`` — every check of every notebook with its claim's verdict, filterable by paper and verdict;
 * ``api/`` — one page per public module (autodoc over the numpydoc docstrings), an index by group (core,
   filters, paper companions);
+* ``course`` — the course guide for teachers (``docs/course.md``, with the run times of the last runs);
 * ``conventions``, ``claims`` (``docs/``), ``own-data``, ``robustness`` (README sections: one source),
   ``benchmarks`` (README section and the last ``build/bench.json`` when present).
 
@@ -358,6 +359,8 @@ def home_page(leds: list[ledger.PaperLedger], chapters: list[str]) -> str:
                      claims_matrix(led), "</details>", ""]
     return "\n".join([
         (ROOT / "docs" / "home.md").read_text(encoding="utf-8").rstrip(), "",
+        "**Teaching with these chapters?** [The course guide](course.md) gives an order, 45- and 90-minute lesson "
+        "plans, parameters to hand out and the run times.", "",
         "## The papers' claims and their verdicts", "",
         "Claims by verdict (counted from the results of the last `make reproduce`; the full list of checks is in "
         "[the ledger](ledger.md)):", "",
@@ -376,7 +379,7 @@ def home_page(leds: list[ledger.PaperLedger], chapters: list[str]) -> str:
         "```{toctree}", ":caption: Chapters", ":maxdepth: 1", ":hidden:", "", *[f"chapters/{c}" for c in chapters],
         "```", "",
         "```{toctree}", ":caption: Reference", ":maxdepth: 1", ":hidden:", "",
-        "ledger", "claims", "conventions", "own-data", "robustness", "benchmarks", "api/index", "```", ""])
+        "course", "ledger", "claims", "conventions", "own-data", "robustness", "benchmarks", "api/index", "```", ""])
 
 
 # ---------------------------------------------------------------------------------------------------- API
@@ -409,6 +412,28 @@ def api_pages(dest: Path) -> None:
         index.append("")
     index += ["```{toctree}", ":hidden:", "", *pages, "```", ""]
     (dest / "index.md").write_text("\n".join(index), encoding="utf-8")
+
+
+def course_page(build: Path) -> str:
+    """``docs/course.md`` with the run times of the last ``make reproduce`` (``build/summary.json``) and of the
+    teaching-mode runs of ``tests/test_teaching.py`` (``build/teaching/``) filled in."""
+    summary = json.loads((build / "summary.json").read_text(encoding="utf-8"))
+    rows = ["Full runs, from the last `make reproduce` (numba's compilation on a first run is counted apart; "
+            "later runs load the compiled code from the cache):", "",
+            "| chapter | full run | of which compiling | peak memory |", "| --- | --- | --- | --- |"]
+    rows += [f"| {stem} | {r['seconds']:.0f} s | {r.get('compile_seconds', 0):.0f} s | {r.get('peak_mb', 0):.0f} MB |"
+             for stem, r in sorted(summary.items())]
+    runs = sorted((json.loads(p.read_text(encoding="utf-8")) for p in (build / "teaching").glob("*.json")),
+                  key=lambda r: r["notebook"]) if (build / "teaching").is_dir() else []
+    rows += ["", "Teaching + fast mode with a parameter changed, from the last `make test` (tests/test_teaching.py):", ""]
+    if runs:
+        rows += ["| chapter | change | run | checks held |", "| --- | --- | --- | --- |"]
+        rows += [f"| {r['notebook']} | {', '.join(f'`{k} = {v}`' for k, v in r['parameters'].items())} | "
+                 f"{r['seconds']:.0f} s | {r['checks_held']} |" for r in runs]
+    else:
+        rows.append("*No teaching-mode runs recorded in this build: `make test` records them.*")
+    text = (ROOT / "docs" / "course.md").read_text(encoding="utf-8")
+    return text.replace("@RUN_TIMES@", "\n".join(rows))
 
 
 def benchmarks_page(build: Path) -> str:
@@ -459,6 +484,7 @@ def stage(build: Path, src: Path) -> list[str]:
     (src / "ledger.md").write_text(ledger_page(leds, build), encoding="utf-8")
     for name in ("conventions", "claims"):
         shutil.copy(ROOT / "docs" / f"{name}.md", src / f"{name}.md")
+    (src / "course.md").write_text(course_page(build), encoding="utf-8")
     for page, title in README_PAGES.items():
         (src / f"{page}.md").write_text(readme_section(title).replace("## ", "# ", 1), encoding="utf-8")
     (src / "benchmarks.md").write_text(benchmarks_page(build), encoding="utf-8")
