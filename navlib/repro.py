@@ -243,16 +243,37 @@ def savefig(fig: Figure, name: str) -> Path:
         raise ValueError(f"fig: expected a matplotlib Figure, got {type(fig).__name__}")
     if not isinstance(name, str) or not name or "/" in name or "\\" in name:
         raise ValueError(f"name: expected a plain file name without directories, got {name!r}")
+    path = _write_png(fig, name)
+    if matplotlib.get_backend() == _INLINE:
+        from IPython.display import Image, display  # noqa: PLC0415 -- only notebooks need IPython
+        display(Image(data=path.read_bytes(), format="png"))
+        plt.close(fig)
+    return path
+
+
+_INLINE = "module://matplotlib_inline.backend_inline"
+
+
+def _write_png(fig: Figure, name: str) -> Path:
+    """Write ``build/<notebook>/figures/<name>.png`` (no timestamp, no software version) and return its path."""
     d = _build_dir(_state.notebook) / "figures"
     d.mkdir(exist_ok=True)
     path = d / f"{name}.png"
     fig.savefig(path, metadata={"Software": None}, bbox_inches="tight")
     _state.figures.add(name)
-    if matplotlib.get_backend() == "module://matplotlib_inline.backend_inline":
-        from IPython.display import Image, display  # noqa: PLC0415 -- only notebooks need IPython
-        display(Image(data=path.read_bytes(), format="png"))
-        plt.close(fig)
     return path
+
+
+def _png(fig: Figure):
+    """``fig`` as an IPython PNG image (as :func:`savefig` writes it), the figure closed."""
+    import io
+
+    import matplotlib.pyplot as plt
+    from IPython.display import Image  # noqa: PLC0415 -- only notebooks need IPython
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png", metadata={"Software": None}, bbox_inches="tight")
+    plt.close(fig)
+    return Image(data=buffer.getvalue(), format="png")
 
 
 def _as_float(x, name: str, finite: bool = False) -> float:
@@ -684,7 +705,8 @@ def explorer(draw, name: str, controls: dict) -> None:
 
     The figure at the controls' default values is drawn once, saved as ``name`` (:func:`savefig`) and
     shown: that is all a headless run (``make reproduce``, nbmake, the site) shows. Where ipywidgets is
-    installed the controls follow; moving one redraws below them (nothing is drawn twice at the start).
+    installed the controls follow, and moving one redraws that same figure in place (one figure on the page,
+    never a stale copy above a live one). Slider readouts show three significant digits.
 
     Parameters
     ----------
@@ -696,28 +718,34 @@ def explorer(draw, name: str, controls: dict) -> None:
         ``argument -> ipywidgets control`` (e.g. ``FloatSlider(value=..., min=..., max=...)``), or
         ``argument -> value`` for a fixed argument; a control's ``value`` is its default.
     """
+    import matplotlib
     import matplotlib.pyplot as plt
-    from IPython.display import display  # noqa: PLC0415 -- only notebooks need IPython
+    from IPython.display import Image, display  # noqa: PLC0415 -- only notebooks need IPython
     if not callable(draw):
         raise ValueError(f"draw: expected a function returning a Figure, got {type(draw).__name__}")
     instance(controls, "controls", dict, "a dict argument -> control")
     defaults = {k: getattr(c, "value", c) for k, c in controls.items()}
     fig = draw(**defaults)
-    savefig(fig, name)
-    plt.show()
+    if matplotlib.get_backend() != _INLINE:      # a script or another backend: the saved figure, nothing live
+        savefig(fig, name)
+        plt.show()
+        return
+    if _state.notebook is None:
+        raise RuntimeError("call navlib.repro.setup(notebook) before explorer()")
+    shown = display(Image(data=_write_png(fig, name).read_bytes(), format="png"), display_id=True)
+    plt.close(fig)
     try:
         import ipywidgets as widgets
     except ImportError:          # the static figure is all there is
         return
     live = {k: c for k, c in controls.items() if isinstance(c, widgets.ValueWidget)}
-    out = widgets.Output()
+    for c in live.values():
+        if isinstance(c, (widgets.FloatSlider, widgets.FloatLogSlider)):
+            c.readout_format = ".3g"
 
     def redraw(_change=None):
-        with out:
-            out.clear_output(wait=True)
-            draw(**{**defaults, **{k: c.value for k, c in live.items()}})
-            plt.show()
+        shown.update(_png(draw(**{**defaults, **{k: c.value for k, c in live.items()}})))
 
     for c in live.values():
         c.observe(redraw, names="value")
-    display(widgets.VBox([*live.values(), out]))
+    display(widgets.VBox(list(live.values())))

@@ -191,6 +191,36 @@ def test_savefig_inline_shows_the_saved_png_and_closes(fake_root, monkeypatch):
     assert not plt.fignum_exists(fig.number)
 
 
+def test_explorer_redraws_its_one_figure_in_place(fake_root, monkeypatch):
+    """Inline: the default figure is saved and shown once with a display id; a slider redraws that output
+    (no second figure below the controls); float readouts show three significant digits."""
+    display = pytest.importorskip("IPython.display")
+    widgets = pytest.importorskip("ipywidgets")
+    shown, updates = [], []
+
+    class Handle:
+        def update(self, obj):
+            updates.append(obj)
+
+    monkeypatch.setattr(display, "display", lambda obj, display_id=False: shown.append(obj) or (Handle() if display_id else None))
+    monkeypatch.setattr(matplotlib, "get_backend", lambda: "module://matplotlib_inline.backend_inline")
+    repro.setup(NB)
+    drawn = []
+
+    def draw(noise, label):
+        drawn.append(noise)
+        return _figure()
+
+    slider = widgets.FloatLogSlider(value=0.0398107, min=-2, max=0)
+    repro.explorer(draw, "explore", {"noise": slider, "label": "fixed"})
+    saved = fake_root.resolve() / "build" / NB / "figures" / "explore.png"
+    assert shown[0].data == saved.read_bytes() and isinstance(shown[1], widgets.VBox) and len(shown) == 2
+    assert slider.readout_format == ".3g" and not plt.get_fignums()
+    slider.value = 0.1
+    assert drawn == [0.0398107, 0.1] and len(updates) == 1 and updates[0].format == "png" and len(shown) == 2
+    assert not plt.get_fignums()
+
+
 def test_savefig_other_backends_leave_the_figure_open(fake_root):
     repro.setup(NB)
     fig = _figure()
