@@ -53,8 +53,8 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
 __all__ = ["root", "build_dir", "setup", "savefig", "check", "check_range", "check_outside", "verdict", "results",
-           "verdicts", "summary", "env_flag", "mode", "caption", "answer", "explorer", "VERDICTS", "ClaimCheckFailed",
-           "ClaimCheckWarning", "Check", "Verdict", "NoOutputDirectory"]
+           "verdicts", "summary", "env_flag", "mode", "caption", "answer", "exercise", "Exercise", "explorer", "VERDICTS",
+           "ClaimCheckFailed", "ClaimCheckWarning", "Check", "Verdict", "NoOutputDirectory"]
 
 VERDICTS = ("reproduced", "reproduced with correction", "differs", "refuted", "direction only", "not checkable here")
 """The verdicts a claim can get (``docs/claims.md``), in the ledger's order."""
@@ -688,6 +688,41 @@ def caption(markdown: str):
     """
     from IPython.display import Markdown  # noqa: PLC0415 -- only notebooks need IPython
     return Markdown(text(markdown, "markdown", empty=False))
+
+
+@dataclass
+class Exercise:
+    """The outcome of :func:`exercise`: ``passed`` is None while the stub is not written yet."""
+    passed: bool | None
+    message: str
+
+    def _repr_markdown_(self) -> str:
+        return self.message
+
+
+def exercise(student, reference, cases: Sequence[tuple], tol: float = 1e-9) -> Exercise:
+    """Check a student's function against navlib's ``reference`` on each argument tuple of ``cases``.
+
+    A coding exercise gives a stub that returns ``None`` ("your code here"); until it is written the result
+    says so and nothing fails, so the notebook still runs to the end. Once written, its values must agree
+    with ``reference`` within ``tol`` (absolute) on every case; the first case that does not is shown. The
+    chapter tests its own hidden solution the same way (``assert exercise(solution, ...).passed``), so an
+    exercise whose solution is wrong cannot pass.
+    """
+    if not callable(student) or not callable(reference):
+        raise ValueError("student, reference: expected functions")
+    name = getattr(student, "__name__", "your function")
+    for args in cases:
+        got = student(*args)
+        if got is None:
+            return Exercise(None, f"*`{name}` is not written yet: fill in the stub above and run this cell again.*")
+        want = np.asarray(reference(*args), dtype=float)
+        got = np.asarray(got, dtype=float)
+        if got.shape != want.shape or not np.allclose(got, want, rtol=0.0, atol=tol):
+            call = f"{name}({', '.join(map(repr, args))})"
+            return Exercise(False, f"**Not yet:** `{call}` gives {np.array2string(got, precision=6)}, "
+                                   f"navlib gives {np.array2string(want, precision=6)}.")
+    return Exercise(True, f"**Correct:** `{name}` agrees with navlib on all {len(cases)} cases (to {tol:g}).")
 
 
 def answer(markdown: str, label: str = "Answer"):

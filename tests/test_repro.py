@@ -524,3 +524,24 @@ def test_caption_and_answer_render_markdown():
     assert repro.caption("**Figure 1**: 1.25°")._repr_markdown_() == "**Figure 1**: 1.25°"
     shown = repro.answer("It grows 1.7 times.")._repr_markdown_()
     assert shown.startswith("<details><summary>Answer</summary>") and "It grows 1.7 times." in shown
+
+
+def test_exercise_waits_for_the_stub_then_compares_with_navlib():
+    reference = lambda x: np.sin(x)                      # noqa: E731 -- a one-line stand-in for a navlib function
+
+    def stub(x):
+        return None                                      # your code here
+
+    def wrong(x):
+        return x
+
+    def right(x):
+        return np.sin(x)
+
+    cases = [(0.1,), (1.0,)]
+    assert repro.exercise(stub, reference, cases).passed is None
+    missed = repro.exercise(wrong, reference, cases)
+    assert missed.passed is False and "wrong(0.1)" in missed._repr_markdown_()
+    assert repro.exercise(right, reference, cases).passed is True
+    with pytest.raises(ValueError, match="functions"):
+        repro.exercise(None, reference, cases)
