@@ -102,6 +102,15 @@ def tilt_heading(f_b: Vec3, m_b: Vec3, declination: float = 0.0) -> Array:
     Returns
     -------
     hpr : ndarray, shape (..., 3)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import alignment
+    >>> f_b = [0.0, 0.0, 9.81]                      # level
+    >>> m_b = [0.0, 20.0, -40.0]                    # field ahead and down: facing magnetic north
+    >>> np.round(np.rad2deg(alignment.tilt_heading(f_b, m_b)), 6) + 0.0    # [heading, pitch, roll] in deg
+    array([0., 0., 0.])
     """
     f = _nonzero(as_array(f_b, "f_b", tail=(3,)), "f_b")
     m = _nonzero(as_array(m_b, "m_b", tail=(3,)), "m_b")

@@ -200,6 +200,16 @@ def euler_to_quat(hpr: Angles, deg: bool = False) -> Array:
     Returns
     -------
     q : ndarray, shape (..., 4), scalar first, q0 >= 0.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> q = attitude.euler_to_quat([30.0, 10.0, 0.0], deg=True)    # heading 30 deg, pitch 10 deg
+    >>> np.round(q, 4)
+    array([ 0.9623,  0.0842, -0.0226, -0.2578])
+    >>> np.round(attitude.quat_to_euler(q, deg=True), 6)
+    array([30., 10.,  0.])
     """
     h, p, r = np.moveaxis(_as_hpr(hpr, deg), -1, 0) / 2
     ch, sh, cp, sp, cr, sr = np.cos(h), np.sin(h), np.cos(p), np.sin(p), np.cos(r), np.sin(r)
@@ -312,6 +322,14 @@ def quat_rotate(q: Quat, v_b: Vec3) -> Array:
     Returns
     -------
     v_n : ndarray, shape (..., 3)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> q = attitude.euler_to_quat([90.0, 0.0, 0.0], deg=True)     # facing east
+    >>> np.round(attitude.quat_rotate(q, [0.0, 1.0, 0.0]), 12)   # the forward axis, in ENU
+    array([1., 0., 0.])
     """
     v_b = as_array(v_b, "v_b", tail=(3,))
     C = quat_to_dcm(q)

@@ -119,6 +119,13 @@ def earth_rate_n(lat: ArrayLike, deg: bool = False, ellipsoid: Ellipsoid = WGS84
     Returns
     -------
     w_ie_n : ndarray, shape (..., 3)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import earth
+    >>> np.round(earth.earth_rate_n(60.0, deg=True) * 180 / np.pi * 3600, 3)   # deg/h: [east, north, up]
+    array([ 0.   ,  7.521, 13.026])
     """
     lat = latitude(lat, "lat", deg=deg)
     w = ellipsoid_(ellipsoid).omega
@@ -161,6 +168,12 @@ def gravity(lat: ArrayLike, h: ArrayLike = 0.0, deg: bool = False, ellipsoid: El
     Returns
     -------
     ndarray, shape (...)
+
+    Examples
+    --------
+    >>> from navlib import earth
+    >>> round(float(earth.gravity(45.0, deg=True)), 4)   # m/s^2 at sea level
+    9.8062
     """
     lat = latitude(lat, "lat", deg=deg)
     h = in_range(as_array(h, "h"), "h", -12e3, 100e3, "m")

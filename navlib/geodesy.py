@@ -110,6 +110,12 @@ def zone(lon: ArrayLike, width: int = 3, deg: bool = False) -> np.ndarray:
     Returns
     -------
     ndarray of int, shape (...)
+
+    Examples
+    --------
+    >>> from navlib import geodesy
+    >>> int(geodesy.zone(114.3, deg=True)), int(geodesy.zone(114.3, width=6, deg=True))
+    (38, 20)
     """
     return _zone(_lon_deg(lon, deg), _width(width))
 
@@ -464,6 +470,13 @@ def geodetic2gk(lat: ArrayLike, lon: ArrayLike, *, zone: ArrayLike | None = None
     -------
     x, y : ndarray, shape (...)
         Northing x and easting y (m), the paper's order.
+
+    Examples
+    --------
+    >>> from navlib import geodesy
+    >>> x, y = geodesy.geodetic2gk(30.0, 114.3, deg=True)                 # 3-degree zone 38
+    >>> round(float(x), 3), round(float(y), 3)
+    (3320151.288, 28945.951)
     """
     lat_rad, lon_deg = _validate_lat_lon(lat, lon, deg)
     k0, fe, fn = _grid(ellipsoid, k0, false_easting, false_northing)

@@ -32,6 +32,7 @@ that start with no id. ``docs/claims.md`` gives the rules for verdicts.
 from __future__ import annotations
 
 import csv
+import functools
 import json
 import math
 import os
@@ -52,8 +53,8 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
 __all__ = ["root", "build_dir", "setup", "savefig", "check", "check_range", "check_outside", "verdict", "results",
-           "verdicts", "summary", "env_flag", "mode", "caption", "answer", "explorer", "VERDICTS", "ClaimCheckFailed",
-           "ClaimCheckWarning", "Check", "Verdict", "NoOutputDirectory"]
+           "verdicts", "summary", "env_flag", "mode", "caption", "answer", "exercise", "Exercise", "explorer", "VERDICTS",
+           "ClaimCheckFailed", "ClaimCheckWarning", "Check", "Verdict", "NoOutputDirectory"]
 
 VERDICTS = ("reproduced", "reproduced with correction", "differs", "refuted", "direction only", "not checkable here")
 """The verdicts a claim can get (``docs/claims.md``), in the ledger's order."""
@@ -242,16 +243,37 @@ def savefig(fig: Figure, name: str) -> Path:
         raise ValueError(f"fig: expected a matplotlib Figure, got {type(fig).__name__}")
     if not isinstance(name, str) or not name or "/" in name or "\\" in name:
         raise ValueError(f"name: expected a plain file name without directories, got {name!r}")
+    path = _write_png(fig, name)
+    if matplotlib.get_backend() == _INLINE:
+        from IPython.display import Image, display  # noqa: PLC0415 -- only notebooks need IPython
+        display(Image(data=path.read_bytes(), format="png"))
+        plt.close(fig)
+    return path
+
+
+_INLINE = "module://matplotlib_inline.backend_inline"
+
+
+def _write_png(fig: Figure, name: str) -> Path:
+    """Write ``build/<notebook>/figures/<name>.png`` (no timestamp, no software version) and return its path."""
     d = _build_dir(_state.notebook) / "figures"
     d.mkdir(exist_ok=True)
     path = d / f"{name}.png"
     fig.savefig(path, metadata={"Software": None}, bbox_inches="tight")
     _state.figures.add(name)
-    if matplotlib.get_backend() == "module://matplotlib_inline.backend_inline":
-        from IPython.display import Image, display  # noqa: PLC0415 -- only notebooks need IPython
-        display(Image(data=path.read_bytes(), format="png"))
-        plt.close(fig)
     return path
+
+
+def _png(fig: Figure):
+    """``fig`` as an IPython PNG image (as :func:`savefig` writes it), the figure closed."""
+    import io
+
+    import matplotlib.pyplot as plt
+    from IPython.display import Image  # noqa: PLC0415 -- only notebooks need IPython
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png", metadata={"Software": None}, bbox_inches="tight")
+    plt.close(fig)
+    return Image(data=buffer.getvalue(), format="png")
 
 
 def _as_float(x, name: str, finite: bool = False) -> float:
@@ -283,6 +305,16 @@ def _target(c: Check) -> str:
     lo = "-inf" if c.lower is None else f"{c.lower:.6g}"
     hi = "inf" if c.upper is None else f"{c.upper:.6g}"
     return ("outside " if c.outside else "") + f"range [{lo}, {hi}]"
+
+
+def _ours(c: Check) -> str:
+    """A check's value with the digits its target's tolerance resolves (at least 4 significant), so that a value
+    within a tight tolerance never looks like a mismatch (196.25 against target 196.25 +- 1e-9, not 196.2)."""
+    digits = 4
+    if c.expected is not None and c.tol and np.isfinite(c.tol) and np.isfinite(c.value):
+        scale = max(abs(c.value), abs(c.expected))
+        digits = int(np.clip(np.ceil(np.log10(scale / c.tol)) + 1, 4, 12)) if scale > c.tol else 4
+    return f"{c.value:.{digits}g}{' ' + c.unit if c.unit else ''}"
 
 
 def _record(c: Check) -> Check:
@@ -610,23 +642,42 @@ def summary():
     rests on no check of the table (``not checkable here``). Ends a notebook section: checks record
     silently, and the table is the section's only output about them.
     """
-    import pandas as pd
-
     checks = _state.checks[_state.shown_checks:]
     new_verdicts = _state.verdicts[_state.shown_verdicts:]
     _state.shown_checks, _state.shown_verdicts = len(_state.checks), len(_state.verdicts)
     by_check = {n: v for v in _state.verdicts for n in v.checks}
     rows = [{"check": c.name,
              "paper": c.paper_value if c.paper_value is not None else "",
-             "ours": f"{c.value:.4g}{' ' + c.unit if c.unit else ''}",
+             "ours": _ours(c),
              "tolerance": _target(c),
              "result": "pass" if c.passed else "FAIL",
              "verdict": by_check[c.name].verdict if c.name in by_check else ""} for c in checks]
     shown = {c.name for c in checks}
     rows += [{"check": f"{v.claim} (claim)", "paper": v.paper or "", "ours": v.ours or "", "tolerance": "",
               "result": "", "verdict": v.verdict} for v in new_verdicts if not set(v.checks) & shown]
-    table = pd.DataFrame(rows, columns=["check", "paper", "ours", "tolerance", "result", "verdict"])
-    return table.set_index("check") if rows else table
+    table = _whole_table()(rows, columns=["check", "paper", "ours", "tolerance", "result", "verdict"])
+    if not rows:
+        return table
+    table = table.set_index("check")
+    table.index.name, table.columns.name = None, "check"        # one header row: "check" in its corner
+    return table
+
+
+@functools.cache
+def _whole_table() -> type:
+    """A DataFrame shown with all its rows (a check table is never cut to its head and tail)."""
+    import pandas as pd
+
+    class CheckTable(pd.DataFrame):
+        @property
+        def _constructor(self):
+            return CheckTable
+
+        def _repr_html_(self):
+            with pd.option_context("display.max_rows", None, "display.max_colwidth", None):
+                return super()._repr_html_()
+
+    return CheckTable
 
 
 def caption(markdown: str):
@@ -637,6 +688,41 @@ def caption(markdown: str):
     """
     from IPython.display import Markdown  # noqa: PLC0415 -- only notebooks need IPython
     return Markdown(text(markdown, "markdown", empty=False))
+
+
+@dataclass
+class Exercise:
+    """The outcome of :func:`exercise`: ``passed`` is None while the stub is not written yet."""
+    passed: bool | None
+    message: str
+
+    def _repr_markdown_(self) -> str:
+        return self.message
+
+
+def exercise(student, reference, cases: Sequence[tuple], tol: float = 1e-9) -> Exercise:
+    """Check a student's function against navlib's ``reference`` on each argument tuple of ``cases``.
+
+    A coding exercise gives a stub that returns ``None`` ("your code here"); until it is written the result
+    says so and nothing fails, so the notebook still runs to the end. Once written, its values must agree
+    with ``reference`` within ``tol`` (absolute) on every case; the first case that does not is shown. The
+    chapter tests its own hidden solution the same way (``assert exercise(solution, ...).passed``), so an
+    exercise whose solution is wrong cannot pass.
+    """
+    if not callable(student) or not callable(reference):
+        raise ValueError("student, reference: expected functions")
+    name = getattr(student, "__name__", "your function")
+    for args in cases:
+        got = student(*args)
+        if got is None:
+            return Exercise(None, f"*`{name}` is not written yet: fill in the stub above and run this cell again.*")
+        want = np.asarray(reference(*args), dtype=float)
+        got = np.asarray(got, dtype=float)
+        if got.shape != want.shape or not np.allclose(got, want, rtol=0.0, atol=tol):
+            call = f"{name}({', '.join(map(repr, args))})"
+            return Exercise(False, f"**Not yet:** `{call}` gives {np.array2string(got, precision=6)}, "
+                                   f"navlib gives {np.array2string(want, precision=6)}.")
+    return Exercise(True, f"**Correct:** `{name}` agrees with navlib on all {len(cases)} cases (to {tol:g}).")
 
 
 def answer(markdown: str, label: str = "Answer"):
@@ -654,7 +740,8 @@ def explorer(draw, name: str, controls: dict) -> None:
 
     The figure at the controls' default values is drawn once, saved as ``name`` (:func:`savefig`) and
     shown: that is all a headless run (``make reproduce``, nbmake, the site) shows. Where ipywidgets is
-    installed the controls follow; moving one redraws below them (nothing is drawn twice at the start).
+    installed the controls follow, and moving one redraws that same figure in place (one figure on the page,
+    never a stale copy above a live one). Slider readouts show three significant digits.
 
     Parameters
     ----------
@@ -666,28 +753,34 @@ def explorer(draw, name: str, controls: dict) -> None:
         ``argument -> ipywidgets control`` (e.g. ``FloatSlider(value=..., min=..., max=...)``), or
         ``argument -> value`` for a fixed argument; a control's ``value`` is its default.
     """
+    import matplotlib
     import matplotlib.pyplot as plt
-    from IPython.display import display  # noqa: PLC0415 -- only notebooks need IPython
+    from IPython.display import Image, display  # noqa: PLC0415 -- only notebooks need IPython
     if not callable(draw):
         raise ValueError(f"draw: expected a function returning a Figure, got {type(draw).__name__}")
     instance(controls, "controls", dict, "a dict argument -> control")
     defaults = {k: getattr(c, "value", c) for k, c in controls.items()}
     fig = draw(**defaults)
-    savefig(fig, name)
-    plt.show()
+    if matplotlib.get_backend() != _INLINE:      # a script or another backend: the saved figure, nothing live
+        savefig(fig, name)
+        plt.show()
+        return
+    if _state.notebook is None:
+        raise RuntimeError("call navlib.repro.setup(notebook) before explorer()")
+    shown = display(Image(data=_write_png(fig, name).read_bytes(), format="png"), display_id=True)
+    plt.close(fig)
     try:
         import ipywidgets as widgets
     except ImportError:          # the static figure is all there is
         return
     live = {k: c for k, c in controls.items() if isinstance(c, widgets.ValueWidget)}
-    out = widgets.Output()
+    for c in live.values():
+        if isinstance(c, (widgets.FloatSlider, widgets.FloatLogSlider)):
+            c.readout_format = ".3g"
 
     def redraw(_change=None):
-        with out:
-            out.clear_output(wait=True)
-            draw(**{**defaults, **{k: c.value for k, c in live.items()}})
-            plt.show()
+        shown.update(_png(draw(**{**defaults, **{k: c.value for k, c in live.items()}})))
 
     for c in live.values():
         c.observe(redraw, names="value")
-    display(widgets.VBox([*live.values(), out]))
+    display(widgets.VBox(list(live.values())))

@@ -307,6 +307,15 @@ def simulate_imu(w_ib_b: Vec3Series, f_b: Vec3Series, dt: float, model: ImuModel
     Returns
     -------
     ImuOutput
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import sensors
+    >>> w_ib_b, f_b = np.zeros((1000, 3)), np.tile([0.0, 0.0, 9.81], (1000, 1))   # 10 s at rest, level
+    >>> out = sensors.simulate_imu(w_ib_b, f_b, 0.01, sensors.imu_model('MPU-6050'), np.random.default_rng(1))
+    >>> out.w_ib_b.shape, out.f_b.shape
+    ((1000, 3), (1000, 3))
     """
     w, f = imu_samples(w_ib_b, f_b, allow_nan=False)
     dt = scalar(dt, "dt", positive=True)

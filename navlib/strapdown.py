@@ -300,6 +300,16 @@ def integrate(lla0: Vec3, vel0: Vec3, q0: Quat, w_ib_b: Vec3Series | ImuSamples,
         ``time = t0 + [0, cumsum(dt)]``. Its ``faults`` counts the held samples
         per trial under ``("gyro", "nan")`` and ``("accel", "nan")`` (int arrays
         of shape (...), zero with ``"raise"``) with their flags (bool, shape (..., N)).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import strapdown, trajectory
+    >>> traj = trajectory.static(10.0, 0.01, [np.deg2rad(30.0), 0.0, 0.0], [0.0, 0.0, 0.0])
+    >>> w_ib_b, f_b = trajectory.ideal_imu(traj)
+    >>> nav = strapdown.integrate(traj.lla[0], np.zeros(3), traj.q_bn[0], w_ib_b, f_b, 0.01)
+    >>> bool(np.abs(nav.lla - traj.lla).max() < 1e-9)   # ideal samples reproduce the trajectory
+    True
     """
     policy = choice(nan_policy, "nan_policy", _NAN_POLICIES)
     validated = isinstance(w_ib_b, ImuSamples)                  # by the record

@@ -151,7 +151,16 @@ def _from_profiles(t, lla0, hpr, vel, ellipsoid) -> Trajectory:
 
 
 def static(duration: float, dt: float, lla0, hpr) -> Trajectory:
-    """A stationary IMU at ``lla0`` with constant attitude ``hpr`` (rad)."""
+    """A stationary IMU at ``lla0`` with constant attitude ``hpr`` (rad).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import trajectory
+    >>> traj = trajectory.static(60.0, 0.01, [np.deg2rad(30.0), np.deg2rad(114.0), 0.0], [0.0, 0.0, 0.0])
+    >>> len(traj), traj.lla.shape
+    (6001, (6001, 3))
+    """
     t = _time_grid(duration, dt)
     lla = np.broadcast_to(_lla(lla0), (t.size, 3)).copy()
     q = np.broadcast_to(attitude.euler_to_quat(as_array(hpr, "hpr", shape=(3,))), (t.size, 4)).copy()

@@ -54,7 +54,16 @@ def to_deg_per_s(x: ArrayLike) -> Array:
 
 
 def deg_per_h(x: ArrayLike) -> Array:
-    """deg/h to rad/s."""
+    """deg/h to rad/s.
+
+    Examples
+    --------
+    >>> from navlib import units
+    >>> float(units.deg_per_h(15.0))   # rad/s
+    7.27220521664304e-05
+    >>> float(units.to_deg_per_h(units.deg_per_h(15.0)))
+    14.999999999999998
+    """
     return _num(x) * _DEG / 3600.0
 
 

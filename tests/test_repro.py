@@ -191,6 +191,36 @@ def test_savefig_inline_shows_the_saved_png_and_closes(fake_root, monkeypatch):
     assert not plt.fignum_exists(fig.number)
 
 
+def test_explorer_redraws_its_one_figure_in_place(fake_root, monkeypatch):
+    """Inline: the default figure is saved and shown once with a display id; a slider redraws that output
+    (no second figure below the controls); float readouts show three significant digits."""
+    display = pytest.importorskip("IPython.display")
+    widgets = pytest.importorskip("ipywidgets")
+    shown, updates = [], []
+
+    class Handle:
+        def update(self, obj):
+            updates.append(obj)
+
+    monkeypatch.setattr(display, "display", lambda obj, display_id=False: shown.append(obj) or (Handle() if display_id else None))
+    monkeypatch.setattr(matplotlib, "get_backend", lambda: "module://matplotlib_inline.backend_inline")
+    repro.setup(NB)
+    drawn = []
+
+    def draw(noise, label):
+        drawn.append(noise)
+        return _figure()
+
+    slider = widgets.FloatLogSlider(value=0.0398107, min=-2, max=0)
+    repro.explorer(draw, "explore", {"noise": slider, "label": "fixed"})
+    saved = fake_root.resolve() / "build" / NB / "figures" / "explore.png"
+    assert shown[0].data == saved.read_bytes() and isinstance(shown[1], widgets.VBox) and len(shown) == 2
+    assert slider.readout_format == ".3g" and not plt.get_fignums()
+    slider.value = 0.1
+    assert drawn == [0.0398107, 0.1] and len(updates) == 1 and updates[0].format == "png" and len(shown) == 2
+    assert not plt.get_fignums()
+
+
 def test_savefig_other_backends_leave_the_figure_open(fake_root):
     repro.setup(NB)
     fig = _figure()
@@ -439,6 +469,16 @@ def test_checks_record_silently_and_summary_shows_each_once(paper_root, capsys):
     assert list(repro.summary().index) == ["P999-EQ2-SIGN"]
 
 
+def test_summary_shows_every_row_and_the_digits_its_tolerance_resolves(paper_root):
+    for k in range(80):                              # more rows than pandas shows by default (60)
+        repro.check(f"P999-FIG1-RMSE/h{k:02d}", 196.25 + k, 196.25 + k, 1e-9, "Fig. 1", unit="deg")
+    table = repro.summary()
+    assert table.loc["P999-FIG1-RMSE/h00", "ours"] == "196.25 deg"      # not 196.2 against a 1e-9 tolerance
+    shown = table._repr_html_()
+    assert all(f"P999-FIG1-RMSE/h{k:02d}" in shown for k in range(80)) and "…" not in shown
+    assert shown.count("<tr") == 81                  # one header row ("check" in its corner) and 80 checks
+
+
 def test_teaching_mode_warns_instead_of_raising(paper_root):
     repro.mode(teaching=True, fast=True)
     with pytest.warns(repro.ClaimCheckWarning, match="P999-FIG1-RMSE: reproduced 9"):
@@ -484,3 +524,24 @@ def test_caption_and_answer_render_markdown():
     assert repro.caption("**Figure 1**: 1.25°")._repr_markdown_() == "**Figure 1**: 1.25°"
     shown = repro.answer("It grows 1.7 times.")._repr_markdown_()
     assert shown.startswith("<details><summary>Answer</summary>") and "It grows 1.7 times." in shown
+
+
+def test_exercise_waits_for_the_stub_then_compares_with_navlib():
+    reference = lambda x: np.sin(x)                      # noqa: E731 -- a one-line stand-in for a navlib function
+
+    def stub(x):
+        return None                                      # your code here
+
+    def wrong(x):
+        return x
+
+    def right(x):
+        return np.sin(x)
+
+    cases = [(0.1,), (1.0,)]
+    assert repro.exercise(stub, reference, cases).passed is None
+    missed = repro.exercise(wrong, reference, cases)
+    assert missed.passed is False and "wrong(0.1)" in missed._repr_markdown_()
+    assert repro.exercise(right, reference, cases).passed is True
+    with pytest.raises(ValueError, match="functions"):
+        repro.exercise(None, reference, cases)

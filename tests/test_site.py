@@ -2,10 +2,14 @@
 
 Runs when the site exists (``make docs`` runs it itself; ``make test`` after ``make docs``). The site is
 served from a local HTTP server on 127.0.0.1; every page is opened once and must have no console
-errors, no failed requests, no request leaving the server and no image that fails to load. A chapter
-page must show rendered math (MathJax, served by the site), the ledger's verdict filter must show
-exactly the rows of the verdict clicked, and the search page must find "Mahony". Screenshots of the
-home page and chapter 01 go to ``build/site-screenshots/``.
+errors, no failed requests, no request leaving the server and no image that fails to load. At 1280 and 390
+px (a phone) every page must show what a reader expects (``tests/site_checks.js``): no MathJax error, no
+literal ``$`` or ``\\(`` in the text, no unformatted ``{placeholder}``, nothing wider than the screen or
+cut (wide tables and equations scroll inside their own box), real alt text on every image. Every link
+inside the site resolves (file and anchor), and the build had no Sphinx warning. A chapter page must show
+rendered math (MathJax, served by the site), the ledger's verdict filter must show exactly the rows of the
+verdict clicked, and the search page must find "Mahony". Screenshots of every page at both widths go to
+``build/site-screenshots/``.
 
 The browser is Debian's ``chromium`` (``make docs`` installs it when missing), driven by Playwright's
 Python client; ``NAVLIB_CHROMIUM`` names another binary.
@@ -13,17 +17,22 @@ Python client; ``NAVLIB_CHROMIUM`` names another binary.
 from __future__ import annotations
 
 import functools
+import html.parser
 import http.server
 import os
+import posixpath
 import shutil
 import threading
 from pathlib import Path
+from urllib.parse import unquote, urlsplit
 
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 SITE = ROOT / "build" / "site"
 SHOTS = ROOT / "build" / "site-screenshots"
+CHECKS = (Path(__file__).parent / "site_checks.js").read_text(encoding="utf-8")
+WIDTHS = (1280, 390)
 
 pytestmark = pytest.mark.skipif(not (SITE / "index.html").is_file(), reason="no build/site: run `make docs`")
 
@@ -83,30 +92,120 @@ def pages() -> list[str]:
 
 
 @pytest.fixture(scope="module")
-def visited(browser, server) -> dict[str, dict]:
-    """Every page opened once: its problems and how much math it typeset; screenshots of two pages."""
-    page, seen = Watched(browser, server), {}
+def visited(browser, server) -> dict[tuple[str, int], dict]:
+    """Every page opened once per width: its load problems, what tests/site_checks.js finds, how much math it
+    typeset; a screenshot of each."""
+    seen = {}
     SHOTS.mkdir(parents=True, exist_ok=True)
-    for path in pages():
-        problems = page.open(path)
-        seen[path] = {"problems": problems, "display_math": page.page.locator("mjx-container[display='true']").count(),
-                      "math": page.page.locator("mjx-container").count()}
-        if path in ("index.html", "chapters/01_north_finding.html"):
-            page.page.screenshot(path=str(SHOTS / ("home.png" if path == "index.html" else "chapter-01.png")))
+    for width in WIDTHS:
+        page = Watched(browser, server)
+        page.page.set_viewport_size({"width": width, "height": 1400 if width > 600 else 844})
+        for path in pages():
+            problems = page.open(path)
+            seen[path, width] = {"problems": problems, **page.page.evaluate(CHECKS),
+                                 "display_math": page.page.locator("mjx-container[display='true']").count(),
+                                 "math": page.page.locator("mjx-container").count()}
+            page.page.screenshot(path=str(SHOTS / f"{path.replace('/', '-').removesuffix('.html')}-{width}.png"))
     return seen
 
 
+def failing(visited, key: str) -> dict:
+    return {f"{path} @ {width} px": v[key][:5] for (path, width), v in visited.items() if v[key]}
+
+
 def test_every_page_loads_cleanly_offline(visited):
-    bad = {path: v["problems"] for path, v in visited.items() if v["problems"]}
-    assert len(visited) >= 10, f"only {len(visited)} pages"
-    assert not bad, f"{len(bad)} of {len(visited)} pages with problems: {dict(list(bad.items())[:5])}"
+    bad = failing(visited, "problems")
+    assert len(visited) >= 20, f"only {len(visited)} page views"
+    assert not bad, f"{len(bad)} page views with problems: {dict(list(bad.items())[:5])}"
+
+
+@pytest.mark.parametrize("defect", ["mathErrors", "literalTex", "placeholders", "pageWidth", "overflowing", "badAlt"])
+def test_no_page_shows_a_defect(visited, defect):
+    """MathJax errors, TeX left as text, unformatted placeholders, a page wider than the screen, content cut
+    or wider than the column, images without real alt text: none on any page at any width."""
+    bad = failing(visited, defect)
+    assert not bad, f"{defect} on {len(bad)} page views: {dict(list(bad.items())[:4])}"
 
 
 def test_chapter_math_is_rendered_and_screenshots_are_saved(visited):
-    chapter = visited["chapters/01_north_finding.html"]
-    assert chapter["display_math"] > 0, "no display equation typeset"
-    assert chapter["math"] > 10, "inline math not typeset"
-    assert (SHOTS / "home.png").stat().st_size > 10_000 and (SHOTS / "chapter-01.png").stat().st_size > 10_000
+    for chapter in (p for p, w in visited if p.startswith("chapters/0") and w == WIDTHS[0]):
+        shown = visited[chapter, WIDTHS[0]]["display_math"]
+        assert shown > 0 or chapter.startswith("chapters/06"), f"{chapter}: no display equation"
+    assert visited["chapters/01_north_finding.html", WIDTHS[0]]["math"] > 10, "inline math not typeset"
+    for shot in ("index-1280.png", "chapters-01_north_finding-390.png"):
+        assert (SHOTS / shot).stat().st_size > 10_000
+
+
+def test_the_checks_find_what_a_reader_would_see(browser, server):
+    """tests/site_checks.js on a page made broken on purpose: a \\tag inside split (MathJax's error), dollars left
+    as text, an unformatted f-string field, an over-wide table and an image whose alt text is its path."""
+    page = Watched(browser, server)
+    page.page.set_viewport_size({"width": 390, "height": 844})
+    page.page.set_content(
+        f"<html><head><script src='{server}_static/mathjax/tex-mml-chtml.js'></script></head><body>"
+        "<main><div class='math'>\\[\\begin{split}a = b \\tag{1}\\end{split}\\]</div>"
+        "<div style='display: flex; flex-direction: row-reverse; overflow-x: auto'>"
+        f"<pre style='flex: none; overflow: visible'>{'left-cut ' * 80}</pre></div>"
+        "<p>the bias $b$ after {N_TRIALS_LAT // N_TRIALS} trials</p>"
+        f"<table><tr><td style='white-space: nowrap'>{'wide cell ' * 80}</td></tr></table>"
+        "<img src='data:image/gif;base64,R0lGODlhAQABAAAAACw=' alt='../_images/abc.png'></main></body></html>")
+    page.page.evaluate("async () => { await MathJax.startup.promise; }")
+    found = page.page.evaluate(CHECKS)
+    assert found["mathErrors"] and "split" in found["mathErrors"][0]
+    assert found["literalTex"] and found["placeholders"] == ["{N_TRIALS_LAT // N_TRIALS}"]
+    assert found["pageWidth"] and found["badAlt"]
+    assert any("left of its box" in o for o in found["overflowing"]) and any("wider than" in o for o in found["overflowing"])
+
+
+class _Links(html.parser.HTMLParser):
+    def __init__(self):
+        super().__init__()
+        self.hrefs, self.ids = [], set()
+
+    def handle_starttag(self, tag, attrs):
+        a = dict(attrs)
+        if a.get("id"):
+            self.ids.add(a["id"])
+        for key in ("href", "src"):
+            if a.get(key) and not (tag == "link" and key == "href" and "stylesheet" not in (a.get("rel") or "")):
+                self.hrefs.append(a[key])
+
+
+def test_every_link_inside_the_site_resolves():
+    """Every relative link and source of every page names a file of the site, and its anchor exists there."""
+    parsed = {}
+
+    def read(page: Path) -> _Links:
+        if page not in parsed:
+            parsed[page] = _Links()
+            parsed[page].feed(page.read_text(encoding="utf-8"))
+        return parsed[page]
+
+    broken = []
+    for page in SITE.rglob("*.html"):
+        if page.relative_to(SITE).parts[0] in ("_static", "_sources"):
+            continue
+        for href in read(page).hrefs:
+            url = urlsplit(href)
+            if url.scheme or url.netloc or href.startswith(("mailto:", "javascript:", "data:")):
+                continue
+            target = page if not url.path else (page.parent / unquote(url.path))
+            target = Path(posixpath.normpath(target))
+            if target.is_dir():
+                target = target / "index.html"
+            if not target.is_file():
+                broken.append(f"{page.relative_to(SITE)}: {href}")
+            elif url.fragment and target.suffix == ".html" and unquote(url.fragment) not in read(target).ids:
+                broken.append(f"{page.relative_to(SITE)}: {href} (no such anchor)")
+    assert not broken, f"{len(broken)} broken links: {broken[:8]}"
+
+
+def test_the_site_built_without_warnings():
+    """tools/build_site.py runs Sphinx with -W and writes what it warned about to build/site-warnings.txt."""
+    warnings = ROOT / "build" / "site-warnings.txt"
+    assert warnings.is_file(), "no build/site-warnings.txt: build the site with tools/build_site.py"
+    text = warnings.read_text(encoding="utf-8").strip()
+    assert not text, f"Sphinx warnings:\n{text[:2000]}"
 
 
 def test_ledger_filter_shows_the_rows_of_one_verdict(browser, server):

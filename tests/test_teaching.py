@@ -4,12 +4,14 @@ A student changes a parameter (another latitude, another seed, ...) and runs the
 teaching switch on, a check that no longer holds becomes a visible ``ClaimCheckWarning`` instead of
 stopping the notebook, and the fast switch picks the notebook's small parameter set. The changed
 parameter is injected papermill-style: a cell assigning it is inserted right after the cell tagged
-``parameters``. Each notebook names the change it is tested with in its metadata
-(``metadata.navlib.try_parameters``, a mapping of parameter name to a Python literal as text).
+``parameters``. Each notebook names the changes it invites in its metadata
+(``metadata.navlib.try_parameters``: a mapping of parameter name to a Python literal as text, or a list of
+such mappings, one run each: e.g. chapter 04's ``KI = 0.0``, the baseline its text discusses).
 
 Results go to a temporary build directory (``NAVLIB_BUILD_DIR``): the ledger's ``build/`` is not
 touched, and results written in these modes are marked (``mode``) and refused by the ledger anyway.
-Run times are reported (``-rA`` shows them), never asserted.
+Run times are reported (``-rA`` shows them) and written to ``build/teaching/<notebook>.json`` for the
+course page of the site, never asserted.
 """
 from __future__ import annotations
 
@@ -26,8 +28,13 @@ ROOT = Path(__file__).resolve().parents[1]
 PATHS = sorted((ROOT / "notebooks").glob("[0-9][0-9]_*.ipynb"))
 
 
-def try_parameters(nb) -> dict[str, str]:
-    return nb.metadata.get("navlib", {}).get("try_parameters", {})
+def try_parameters(nb) -> list[dict[str, str]]:
+    """The parameter changes a notebook invites: one mapping per run."""
+    changes = nb.metadata.get("navlib", {}).get("try_parameters", {})
+    return [changes] if isinstance(changes, dict) else list(changes)
+
+
+RUNS = [(p, k) for p in PATHS for k in range(len(try_parameters(nbformat.read(p, as_version=4))))]
 
 
 def inject(nb, assignments: dict[str, str]) -> None:
@@ -43,21 +50,22 @@ def inject(nb, assignments: dict[str, str]) -> None:
 def test_names_a_parameter_to_change(path):
     nb = nbformat.read(path, as_version=4)
     params = next(c.source for c in nb.cells if "parameters" in c.metadata.get("tags", []))
-    changes = try_parameters(nb)
-    assert changes, "metadata.navlib.try_parameters names no parameter to change"
+    runs = try_parameters(nb)
+    assert runs and all(runs), "metadata.navlib.try_parameters names no parameter to change"
     defined = {t.id for node in ast.parse(params).body if isinstance(node, ast.Assign)
                for t in ast.walk(node) if isinstance(t, ast.Name)}
-    for name, value in changes.items():
+    for name, value in (item for changes in runs for item in changes.items()):
         assert name in defined, f"{name} is not set in the parameters cell"
         ast.literal_eval(value)      # a plain literal, so that a reader can type it too
     for switch in ("TEACHING", "FAST"):
         assert switch in defined, f"the parameters cell has no {switch} switch"
 
 
-@pytest.mark.parametrize("path", PATHS, ids=[p.stem for p in PATHS])
-def test_runs_in_teaching_and_fast_mode(path, tmp_path, monkeypatch):
+@pytest.mark.parametrize(("path", "run"), RUNS, ids=[f"{p.stem}-{k}" for p, k in RUNS])
+def test_runs_in_teaching_and_fast_mode(path, run, tmp_path, monkeypatch):
     nb = nbformat.read(path, as_version=4)
-    inject(nb, try_parameters(nb))
+    changes = try_parameters(nb)[run]
+    inject(nb, changes)
     for name, value in {"NAVLIB_TEACHING": "1", "NAVLIB_FAST": "1", "NAVLIB_PROGRESS": "0",
                         "NAVLIB_BUILD_DIR": str(tmp_path), "NAVLIB_ROOT": str(ROOT), "MPLBACKEND": "Agg"}.items():
         monkeypatch.setenv(name, value)
@@ -67,5 +75,9 @@ def test_runs_in_teaching_and_fast_mode(path, tmp_path, monkeypatch):
     seconds = time.perf_counter() - start
     results = json.loads((tmp_path / path.stem / "results.json").read_text())
     assert results["mode"] == {"teaching": True, "fast": True}
-    print(f"{path.stem}: teaching + fast with {try_parameters(nb)}: {seconds:.1f} s, "
-          f"{sum(c['passed'] for c in results['checks'])}/{len(results['checks'])} checks held")
+    held = f"{sum(c['passed'] for c in results['checks'])}/{len(results['checks'])}"
+    print(f"{path.stem}: teaching + fast with {changes}: {seconds:.1f} s, {held} checks held")
+    record = ROOT / "build" / "teaching" / f"{path.stem}-{run}.json"
+    record.parent.mkdir(parents=True, exist_ok=True)
+    record.write_text(json.dumps({"notebook": path.stem, "parameters": changes, "seconds": round(seconds, 1),
+                                  "checks_held": held}), encoding="utf-8")

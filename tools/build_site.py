@@ -9,8 +9,9 @@ Assembles ``build/site-src/`` and runs Sphinx on it with ``docs/conf.py``:
 * ``chapters/`` — the executed notebooks that ``make reproduce`` wrote to ``build/`` (not executed
   again), code cells collapsible, names such as ``nf.resolve`` in the text linked to the API reference;
 * ``ledger.md`` — every check of every notebook with its claim's verdict, filterable by paper and verdict;
-* ``api/`` — the public modules in three pages (core, filters, paper companions; autodoc over the
-  numpydoc docstrings);
+* ``api/`` — one page per public module (autodoc over the numpydoc docstrings), an index by group (core,
+  filters, paper companions);
+* ``course`` — the course guide for teachers (``docs/course.md``, with the run times of the last runs);
 * ``conventions``, ``claims`` (``docs/``), ``own-data``, ``robustness`` (README sections: one source),
   ``benchmarks`` (README section and the last ``build/bench.json`` when present).
 
@@ -47,11 +48,22 @@ VERDICT_CSS = {v: f"verdict-{i}" for i, v in enumerate(ledger.COLUMNS)}
 REPO_FILES = "https://github.com/navlib-repro/navlib/blob/main/"
 
 
-def absolute_links(markdown: str, base: str = "") -> str:
-    """Markdown links to repository files (relative to ``base``, a folder of the repository) made absolute."""
+def absolute_links(markdown: str, base: str = "", anchors: str = "") -> str:
+    """Markdown links to repository files (relative to ``base``, a folder of the repository) made absolute; with
+    ``anchors`` (a file of the repository), links to its sections (``#...``) too."""
     def repl(m):
         return f"]({REPO_FILES}{posixpath.normpath(f'{base}/{m.group(1)}' if base else m.group(1))})"
-    return re.sub(r"\]\((?!https?:|#|mailto:)([^)\s]+)\)", repl, markdown)
+    markdown = re.sub(r"\]\((?!https?:|#|mailto:)([^)\s]+)\)", repl, markdown)
+    if not anchors:
+        return markdown
+    here = {slug(h) for h in re.findall(r"^#+ (.*)$", markdown, re.M)}
+    return re.sub(r"\]\(#([^)\s]+)\)", lambda m: m.group(0) if m.group(1) in here else f"]({REPO_FILES}{anchors}#{m.group(1)})",
+                  markdown)
+
+
+def slug(heading: str) -> str:
+    """The anchor of a Markdown heading (GitHub's and myst's rule: lower case, punctuation dropped, spaces to -)."""
+    return re.sub(r"[^\w\- ]", "", heading.strip().lower()).replace(" ", "-")
 
 
 def readme_section(title: str) -> str:
@@ -59,7 +71,7 @@ def readme_section(title: str) -> str:
     text = (ROOT / "README.md").read_text(encoding="utf-8")
     start = text.index(f"\n## {title}\n")
     end = text.find("\n## ", start + 1)
-    return absolute_links(text[start + 1:end if end > 0 else None])
+    return absolute_links(text[start + 1:end if end > 0 else None], anchors="README.md")
 
 
 # ----------------------------------------------------------------------------------------------- chapters
@@ -114,10 +126,87 @@ def link_names(markdown: str, names: dict[str, str]) -> str:
     return CODE_NAME.sub(repl, markdown)
 
 
-def stage_notebook(src: Path, dest: Path) -> None:
-    """Copy an executed notebook for the site: code collapsible, widget views dropped, API names linked."""
+BINDER = "https://mybinder.org/v2/gh/navlib-repro/navlib/HEAD?labpath=notebooks%2F"
+CAPTION = re.compile(r"^\*(Figure[^*]+)\*", re.M)
+
+
+def plain(markdown: str) -> str:
+    """Markdown and TeX marks removed: text for an image's alt attribute."""
+    return re.sub(r"[*_`$\\]|\{[^}]*\}|\[([^]]*)\]\([^)]*\)", lambda m: m.group(1) or "", markdown).strip()
+
+
+def markdown_of(cell) -> list[str]:
+    """A cell's Markdown: its source (a text cell) or its Markdown outputs (a code cell, e.g. ``repro.caption``)."""
+    if cell.cell_type == "markdown":
+        return [cell.source]
+    return ["".join(o["data"]["text/markdown"]) for o in cell.get("outputs", []) if "text/markdown" in o.get("data", {})]
+
+
+def figure_alt(cells: list, i: int) -> str:
+    """Alt text of the figure code cell ``i`` draws: its caption (``*Figure ...*``, printed by the cell or by the
+    next cell, or written in the next text cell), else the cell's first comment or title."""
+    for text in markdown_of(cells[i]) + (markdown_of(cells[i + 1]) if i + 1 < len(cells) else []):
+        m = CAPTION.search(text)
+        if m:
+            return plain(m.group(1))
+    title = re.search(r"set_title\(\s*f?[\"']([^\"']+)|suptitle\(\s*f?[\"']([^\"']+)|^# (.+)$", cells[i].source, re.M)
+    return plain("Figure: " + next(g for g in title.groups() if g)) if title else "Figure: see the text around it"
+
+
+def anchor(kind: str, name: str) -> str:
+    """The HTML id of a check, claim or figure (``check-P000-FIG4-BANDS-all``): letters, digits, - and _ only."""
+    return f"{kind}-" + re.sub(r"[^A-Za-z0-9_-]", "-", name)
+
+
+CHECK_ROW = re.compile(r"<th>((?:P\d{3}|NB\d\d|[A-Z][A-Z0-9]+)-[^<\s]*)</th>")
+SAVEFIG = re.compile(r"savefig\(\s*\w+\s*,\s*f?[\"']([^\"']+)[\"']")
+
+
+def link_check_rows(table_html: str, seen: set[str]) -> str:
+    """A chapter's check table with each check linked to its ledger row (and the first row of a check given the
+    anchor the ledger links back to)."""
+    def repl(m):
+        name = m.group(1)
+        ident = "" if name in seen else f" id='{anchor('check', name)}'"
+        seen.add(name)
+        return f"<th{ident}><a href='../ledger.html#{anchor('check', name)}'>{name}</a></th>"
+    return CHECK_ROW.sub(repl, table_html)
+
+
+def figure_links(name: str, claims: list[str]) -> str:
+    """Under a chapter figure: its anchor and the ledger rows of the claims it shows."""
+    links = ", ".join(f"<a href='../ledger.html#{anchor('claim', c)}'>{c}</a>" for c in claims)
+    return f"<p class='ledger-links' id='{anchor('fig', name)}'>{'Ledger: ' + links if links else ''}</p>"
+
+
+def launch_links(stem: str) -> str:
+    """Links under a chapter's title: run it in Binder (JupyterLab, the repository's binder/ environment) or download it."""
+    return (f"<p class='launch-links'><a href='{BINDER}{stem}.ipynb'>Run this chapter in Binder</a>"
+            f"<a href='../_sources/chapters/{stem}.ipynb' download>Download the notebook (.ipynb)</a></p>")
+
+
+def stage_notebook(src: Path, dest: Path, claims_by_figure: dict[str, list[str]]) -> None:
+    """Copy an executed notebook for the site: code collapsible, widget views dropped, API names linked, figures
+    given their caption as alt text and linked to the ledger rows of their claims, check tables linked to the
+    ledger, launch and download links under the title."""
     nb = nbformat.read(src, as_version=4)
     names = aliases(nb)
+    cells, seen = [], set()
+    for i, cell in enumerate(nb.cells):
+        cells.append(cell)
+        if cell.cell_type != "code":
+            continue
+        for out in cell.get("outputs", []):
+            if "text/html" in out.get("data", {}):
+                out["data"]["text/html"] = link_check_rows("".join(out["data"]["text/html"]), seen)
+        if any("image/png" in o.get("data", {}) for o in cell.get("outputs", [])):
+            cell.metadata.setdefault("mystnb", {})["image"] = {"alt": figure_alt(nb.cells, i)}
+            for name in SAVEFIG.findall(cell.source):
+                cells.append(nbformat.v4.new_markdown_cell(figure_links(name, claims_by_figure.get(name, []))))
+    nb.cells = cells
+    title = next(c for c in nb.cells if c.cell_type == "markdown")
+    title.source = re.sub(r"^(# .*)$", lambda m: f"{m.group(1)}\n\n{launch_links(src.stem)}", title.source, count=1,
+                          flags=re.M)
     for cell in nb.cells:
         if cell.cell_type == "markdown":
             cell.source = absolute_links(link_names(cell.source, names), base="notebooks")
@@ -156,7 +245,12 @@ def counts_table(leds: list[ledger.PaperLedger]) -> str:
     cells = ["<b>all papers</b>", str(sum(len(led.rows) for led in leds)), *(str(total.get(v, 0)) for v in ledger.COLUMNS),
              f"{sum(led.checks_passed for led in leds)}/{sum(led.checks_total for led in leds)}"]
     rows.append("<tr>" + "".join(f"<td>{c}</td>" for c in cells) + "</tr>")
-    return f"<table class='counts'><thead><tr>{head}</tr></thead><tbody>\n" + "\n".join(rows) + "\n</tbody></table>"
+    return scroll_x(f"<table class='counts'><thead><tr>{head}</tr></thead><tbody>\n" + "\n".join(rows) + "\n</tbody></table>")
+
+
+def scroll_x(table: str) -> str:
+    """An HTML table in a box that scrolls sideways when the table is wider than the column (a phone)."""
+    return f"<div class='scroll-x'>{table}</div>"
 
 
 def verdict_span(verdict: str) -> str:
@@ -167,21 +261,21 @@ def claims_matrix(led: ledger.PaperLedger) -> str:
     """Every claim of a paper: paper item, paper value, ours, verdict (with its reason) and thumbnail."""
     rows = []
     for r in led.rows:
-        thumb = (f"<a href='{r.figure}'><img src='{r.figure}' width='110' alt='{html.escape(r.claim)}'></a>"
-                 if r.figure else "")
+        thumb = (f"<a href='chapters/{led.stem}.html#{anchor('fig', Path(r.figure).stem)}'><img src='{r.figure}' width='110' "
+                 f"alt='{html.escape(r.claim)}: figure in the chapter'></a>" if r.figure else "")
         why = ledger.verdict_text(r)[len(r.verdict):].lstrip(": ")
         cells = [html.escape(r.item), f"<code>{html.escape(r.claim)}</code><br><small>{html.escape(r.quantity)}</small>",
                  html.escape(r.paper), html.escape(r.ours),
                  verdict_span(r.verdict) + (f"<br><small>{html.escape(why)}</small>" if why else ""), thumb]
         rows.append("<tr>" + "".join(f"<td>{c}</td>" for c in cells) + "</tr>")
     head = "".join(f"<th>{h}</th>" for h in ("paper item", "claim", "paper", "ours", "verdict", "figure"))
-    return f"<table class='matrix'><thead><tr>{head}</tr></thead><tbody>\n" + "\n".join(rows) + "\n</tbody></table>"
+    return scroll_x(f"<table class='matrix'><thead><tr>{head}</tr></thead><tbody>\n" + "\n".join(rows) + "\n</tbody></table>")
 
 
 def ledger_rows(led: ledger.PaperLedger, res: dict | None) -> list[str]:
     """One row per check of the paper's notebook (with its claim's verdict), one per claim without checks."""
     by_check = {n: r for r in led.rows for n in r.checks}
-    rows = []
+    rows, claimed = [], set()
     for c in (res or {}).get("checks", []):
         claim = by_check.get(c["name"])
         verdict = claim.verdict if claim else "no claim"
@@ -192,16 +286,21 @@ def ledger_rows(led: ledger.PaperLedger, res: dict | None) -> list[str]:
             lo, hi = c.get("lower"), c.get("upper")
             target = ("outside " if c.get("outside") else "") + \
                 f"[{fmt(lo) if lo is not None else '−∞'}, {fmt(hi) if hi is not None else '∞'}] {unit}".strip()
-        cells = [html.escape(led.stem[:2]), f"<code>{html.escape(c['name'])}</code>",
+        first = claim is not None and claim.claim not in claimed
+        claimed.add(claim.claim if claim else "")
+        back = f"chapters/{led.stem}.html#{anchor('check', c['name'])}"
+        cells = [html.escape(led.stem[:2]), f"<a href='{back}'><code>{html.escape(c['name'])}</code></a>",
                  html.escape(c.get("paper_value") or ""), html.escape(fmt(c.get("value"), unit)), html.escape(target),
                  "pass" if c.get("passed") else "<b>FAIL</b>",
-                 verdict_span(verdict) if claim else "<small>(check beyond the catalogue)</small>",
+                 (f"<span id='{anchor('claim', claim.claim)}'></span>" if first else "")
+                 + (verdict_span(verdict) if claim else "<small>(check beyond the catalogue)</small>"),
                  html.escape(c.get("source", ""))]
-        rows.append(f"<tr data-paper='{led.stem[:2]}' data-verdict='{html.escape(verdict)}'>"
+        rows.append(f"<tr id='{anchor('check', c['name'])}' data-paper='{led.stem[:2]}' data-verdict='{html.escape(verdict)}'>"
                     + "".join(f"<td>{x}</td>" for x in cells) + "</tr>")
     for r in led.rows:
         if not r.checks:
-            cells = [html.escape(led.stem[:2]), f"<code>{html.escape(r.claim)}</code> <small>(claim, no check)</small>",
+            cells = [html.escape(led.stem[:2]), f"<code id='{anchor('claim', r.claim)}'>{html.escape(r.claim)}</code> "
+                     "<small>(claim, no check)</small>",
                      html.escape(r.paper), html.escape(r.ours), "", "", verdict_span(r.verdict), html.escape(r.reason)]
             rows.append(f"<tr data-paper='{led.stem[:2]}' data-verdict='{html.escape(r.verdict)}'>"
                         + "".join(f"<td>{x}</td>" for x in cells) + "</tr>")
@@ -230,9 +329,9 @@ def ledger_page(leds: list[ledger.PaperLedger], build: Path) -> str:
         "<p><span id='ledger-count'></span> rows shown</p>",
         "</div>",
         "",
-        f"<table id='ledger' class='ledger'><thead><tr>{head}</tr></thead><tbody>",
+        f"<div class='scroll-x'><table id='ledger' class='ledger'><thead><tr>{head}</tr></thead><tbody>",
         *rows,
-        "</tbody></table>",
+        "</tbody></table></div>",
         ""])
 
 
@@ -260,6 +359,8 @@ def home_page(leds: list[ledger.PaperLedger], chapters: list[str]) -> str:
                      claims_matrix(led), "</details>", ""]
     return "\n".join([
         (ROOT / "docs" / "home.md").read_text(encoding="utf-8").rstrip(), "",
+        "**Teaching with these chapters?** [The course guide](course.md) gives an order, 45- and 90-minute lesson "
+        "plans, parameters to hand out and the run times.", "",
         "## The papers' claims and their verdicts", "",
         "Claims by verdict (counted from the results of the last `make reproduce`; the full list of checks is in "
         "[the ledger](ledger.md)):", "",
@@ -278,7 +379,7 @@ def home_page(leds: list[ledger.PaperLedger], chapters: list[str]) -> str:
         "```{toctree}", ":caption: Chapters", ":maxdepth: 1", ":hidden:", "", *[f"chapters/{c}" for c in chapters],
         "```", "",
         "```{toctree}", ":caption: Reference", ":maxdepth: 1", ":hidden:", "",
-        "ledger", "claims", "conventions", "own-data", "robustness", "benchmarks", "api/index", "```", ""])
+        "course", "ledger", "claims", "conventions", "own-data", "robustness", "benchmarks", "api/index", "```", ""])
 
 
 # ---------------------------------------------------------------------------------------------------- API
@@ -295,25 +396,44 @@ def public_modules() -> dict[str, list[str]]:
 
 
 def api_pages(dest: Path) -> None:
-    """One page per group of modules (core, filters, paper companions), a section per module."""
-    groups = public_modules()
-    aliases = groups.pop("Deprecated aliases", [])
+    """One page per public module (autodoc over its numpydoc docstrings), listed by group on the index."""
     index = ["# API reference", "",
-             "Every public name of navlib, by module, from its docstrings (shapes and units in each). The paper "
-             "companions (`navlib.papers.*`) give the paper's equations with their numbers.", ""]
+             "Every public name of navlib, one page per module, from its docstrings (shapes and units in each). The "
+             "paper companions (`navlib.papers.*`) give the paper's equations with their numbers.", ""]
     pages = []
-    for group, modules in groups.items():
-        page = group.lower().replace(" ", "-")
-        pages.append(page)
-        index += [f"## [{group}]({page}.md)", "", ", ".join(f"`{m}`" for m in modules), ""]
-        body = [f"# {group}", ""] + [f"```{{eval-rst}}\n.. automodule:: {m}\n```\n" for m in modules]
-        (dest / f"{page}.md").write_text("\n".join(body), encoding="utf-8")
-    if aliases:
-        index += ["## Deprecated aliases", "", "Old module names that still import (with a warning) and will be "
-                  "removed in navlib 0.3; each names the new homes of its contents: "
-                  + ", ".join(f"`{m}`" for m in aliases) + ".", ""]
+    for group, modules in public_modules().items():
+        index += [f"## {group}", ""]
+        for module in modules:
+            pages.append(module)
+            summary = (importlib.import_module(module).__doc__ or "").strip().splitlines()[0]
+            index.append(f"* [`{module}`]({module}.md): {summary}")
+            (dest / f"{module}.md").write_text(f"# `{module}`\n\n```{{eval-rst}}\n.. automodule:: {module}\n```\n",
+                                               encoding="utf-8")
+        index.append("")
     index += ["```{toctree}", ":hidden:", "", *pages, "```", ""]
     (dest / "index.md").write_text("\n".join(index), encoding="utf-8")
+
+
+def course_page(build: Path) -> str:
+    """``docs/course.md`` with the run times of the last ``make reproduce`` (``build/summary.json``) and of the
+    teaching-mode runs of ``tests/test_teaching.py`` (``build/teaching/``) filled in."""
+    summary = json.loads((build / "summary.json").read_text(encoding="utf-8"))
+    rows = ["Full runs, from the last `make reproduce` (numba's compilation on a first run is counted apart; "
+            "later runs load the compiled code from the cache):", "",
+            "| chapter | full run | of which compiling | peak memory |", "| --- | --- | --- | --- |"]
+    rows += [f"| {stem} | {r['seconds']:.0f} s | {r.get('compile_seconds', 0):.0f} s | {r.get('peak_mb', 0):.0f} MB |"
+             for stem, r in sorted(summary.items())]
+    runs = sorted((json.loads(p.read_text(encoding="utf-8")) for p in (build / "teaching").glob("*.json")),
+                  key=lambda r: r["notebook"]) if (build / "teaching").is_dir() else []
+    rows += ["", "Teaching + fast mode with a parameter changed, from the last `make test` (tests/test_teaching.py):", ""]
+    if runs:
+        rows += ["| chapter | change | run | checks held |", "| --- | --- | --- | --- |"]
+        rows += [f"| {r['notebook']} | {', '.join(f'`{k} = {v}`' for k, v in r['parameters'].items())} | "
+                 f"{r['seconds']:.0f} s | {r['checks_held']} |" for r in runs]
+    else:
+        rows.append("*No teaching-mode runs recorded in this build: `make test` records them.*")
+    text = (ROOT / "docs" / "course.md").read_text(encoding="utf-8")
+    return text.replace("@RUN_TIMES@", "\n".join(rows))
 
 
 def benchmarks_page(build: Path) -> str:
@@ -346,12 +466,17 @@ def stage(build: Path, src: Path) -> list[str]:
         (src / d).mkdir(parents=True)
     shutil.copytree(ROOT / "docs" / "_static", src / "_static")          # styles, scripts, favicon, CJK font
     chapters = []
+    leds = [led for led in ledger.ledgers(build) if led.stem in {nb.stem for nb in notebooks}]
     for nb in notebooks:
-        stage_notebook(nb, src / "chapters" / nb.name)
+        claims_by_figure: dict[str, list[str]] = {}
+        for led in leds:
+            for r in led.rows:
+                if led.stem == nb.stem and r.figure:
+                    claims_by_figure.setdefault(Path(r.figure).stem, []).append(r.claim)
+        stage_notebook(nb, src / "chapters" / nb.name, claims_by_figure)
         chapters.append(nb.stem)
         if (build / nb.stem / "figures").is_dir():        # thumbnails of the home page and the ledger
             shutil.copytree(build / nb.stem / "figures", src / "_extra" / nb.stem / "figures")
-    leds = [led for led in ledger.ledgers(build) if led.stem in chapters]
     for led in leds:
         for p in led.problems:
             print(f"warning: {led.stem}: {p}", file=sys.stderr)
@@ -359,6 +484,7 @@ def stage(build: Path, src: Path) -> list[str]:
     (src / "ledger.md").write_text(ledger_page(leds, build), encoding="utf-8")
     for name in ("conventions", "claims"):
         shutil.copy(ROOT / "docs" / f"{name}.md", src / f"{name}.md")
+    (src / "course.md").write_text(course_page(build), encoding="utf-8")
     for page, title in README_PAGES.items():
         (src / f"{page}.md").write_text(readme_section(title).replace("## ", "# ", 1), encoding="utf-8")
     (src / "benchmarks.md").write_text(benchmarks_page(build), encoding="utf-8")
@@ -385,7 +511,8 @@ def main(argv=None) -> int:
     chapters = stage(build, src)
     from sphinx.cmd.build import build_main
     shutil.rmtree(out, ignore_errors=True)
-    rc = build_main(["-b", "html", "-q", "-j", "2", str(src), str(out)])
+    warnings = build / "site-warnings.txt"
+    rc = build_main(["-b", "html", "-q", "-j", "2", "-W", "--keep-going", "-w", str(warnings), str(src), str(out)])
     print(f"site: {out / 'index.html'} ({len(chapters)} chapters, {time.perf_counter() - start:.1f} s)")
     return rc
 

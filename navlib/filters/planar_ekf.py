@@ -41,7 +41,7 @@ The predict/update cycle is one compiled kernel (:func:`filter_grid`) that calls
 component is present).
 
 Faults (what the filters do, and which key of ``EkfResult.faults`` says so)
---------------------------------------------------------------------------
+---------------------------------------------------------------------------
 All tests on the measurements run once, before the first epoch (:func:`filter_grid`); the kernel fuses
 what they left. Keys are ``(sensor, kind)`` with the sensors ``gnss``, ``heading``, ``speed``,
 ``yaw_rate`` (:data:`CHANNELS` order) and ``clock``; every key has its per-epoch flags.

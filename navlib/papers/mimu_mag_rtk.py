@@ -12,37 +12,37 @@ corrected Eq. (2) is :func:`navlib.attitude.quat_to_euler`.
 
 Equations implemented (paper numbering, errata E003-nn corrected; see data/errata.csv)
 --------------------------------------------------------------------------------------
-Eq. (3)   reference directions ``a_n = [0, 0, 1]``, ``b = [0, cos I, -sin I]``
-          (magnetic north; b normalised, ``b_u < 0`` in the north; E003-07):
-          :func:`navlib.filters.observations.magnetic_reference`.
-Eq. (4)   ``a = C_nb [0, 0, 1]`` with ``q0**2`` in the third row (E003-04), and
-Eq. (6)   ``m = C_nb b`` with ``(q0^2 - q1^2 - q2^2 + q3^2) b_z`` in row 3 (E003-06):
-          :func:`navlib.filters.quaternion_kf.measurement_model`.
-Eq. (5)   ``roll = atan2(-a_x, a_z)``, ``pitch = atan2(a_y, hypot(a_x, a_z))`` (E003-05);
-Eq. (7)   levelled field ``m_h = R_x(pitch) R_y(roll) m_b`` and
-          ``heading = atan2(-m_h,x, m_h,y)`` (E003-08);
-Eq. (8)   replaced by Eq. (1) (E003-01): :func:`navlib.alignment.tilt_heading`, :func:`navlib.alignment.initial_attitude`.
-Eqs. (9)-(15)  Mahony PI filter: ``e = a_meas x a_est + m_meas x m_est``
-          (measured x estimated, hats restored, E003-09), ``m_est = C_nb [0, |h_xy|, h_z]``
-          with ``h = C_bn m_meas`` (the magnetometer corrects heading only),
-          ``w = w_m + Kp e + Ki sum(e dt)`` with Kp in rad/s and Ki in rad/s^2
-          (the full cross product, not MahonyAHRS.c's half error "twoKp", E003-10):
-          :func:`navlib.filters.mahony.mahony`.
-Eqs. (16)-(17) ``Phi = I + dt/2 Omega(w)`` with the PI-corrected rate:
-          :func:`navlib.filters.quaternion_kf.transition`.
-Eq. (18)  ``Gamma = dt/2 Xi(q)`` (printed ``-dt Xi``, E003-11): :func:`navlib.filters.quaternion_kf.noise_input`.
-Eq. (19)  ``z = h(q) + v`` with innovation ``z - h(q_pred)``; the printed
-          ``z - H q`` is wrong because ``H q = 2 h(q)`` (E003-12).
-Eq. (20)  Jacobian with ``H44 = 2(q0 b_y + q1 b_z)`` (E003-13):
-          :func:`navlib.filters.quaternion_kf.measurement_jacobian`; the filter is
-          :func:`navlib.filters.quaternion_kf.quaternion_kf` (Joseph update from :mod:`navlib.kalman`).
-Sec. 2.5  heading fusion, reconstructed (the paper gives no rule; E003-15, E003-16): while RTK is
-          valid the offset ``delta = wrap(H_rtk - H_mag)`` is smoothed with
-          ``delta += alpha wrap(delta_k - delta)`` per epoch and the output is
-          the RTK heading (carried between 5 Hz epochs by the filter's heading
-          increments); during outages the output is ``H_mag + delta`` with
-          delta held. Validity is a flag; the value of an invalid epoch (the
-          paper's 0) is never used: :func:`navlib.filters.heading_fusion.fuse_rtk_heading`.
+* Eq. (3)  reference directions ``a_n = [0, 0, 1]``, ``b = [0, cos I, -sin I]``
+  (magnetic north; b normalised, ``b_u < 0`` in the north; E003-07):
+  :func:`navlib.filters.observations.magnetic_reference`.
+* Eq. (4)  ``a = C_nb [0, 0, 1]`` with ``q0**2`` in the third row (E003-04), and
+* Eq. (6)  ``m = C_nb b`` with ``(q0^2 - q1^2 - q2^2 + q3^2) b_z`` in row 3 (E003-06):
+  :func:`navlib.filters.quaternion_kf.measurement_model`.
+* Eq. (5)  ``roll = atan2(-a_x, a_z)``, ``pitch = atan2(a_y, hypot(a_x, a_z))`` (E003-05);
+* Eq. (7)  levelled field ``m_h = R_x(pitch) R_y(roll) m_b`` and
+  ``heading = atan2(-m_h,x, m_h,y)`` (E003-08);
+* Eq. (8)  replaced by Eq. (1) (E003-01): :func:`navlib.alignment.tilt_heading`, :func:`navlib.alignment.initial_attitude`.
+* Eqs. (9)-(15)  Mahony PI filter: ``e = a_meas x a_est + m_meas x m_est``
+  (measured x estimated, hats restored, E003-09), ``m_est = C_nb [0, |h_xy|, h_z]``
+  with ``h = C_bn m_meas`` (the magnetometer corrects heading only),
+  ``w = w_m + Kp e + Ki sum(e dt)`` with Kp in rad/s and Ki in rad/s^2
+  (the full cross product, not MahonyAHRS.c's half error "twoKp", E003-10):
+  :func:`navlib.filters.mahony.mahony`.
+* Eqs. (16)-(17) ``Phi = I + dt/2 Omega(w)`` with the PI-corrected rate:
+  :func:`navlib.filters.quaternion_kf.transition`.
+* Eq. (18)  ``Gamma = dt/2 Xi(q)`` (printed ``-dt Xi``, E003-11): :func:`navlib.filters.quaternion_kf.noise_input`.
+* Eq. (19)  ``z = h(q) + v`` with innovation ``z - h(q_pred)``; the printed
+  ``z - H q`` is wrong because ``H q = 2 h(q)`` (E003-12).
+* Eq. (20)  Jacobian with ``H44 = 2(q0 b_y + q1 b_z)`` (E003-13):
+  :func:`navlib.filters.quaternion_kf.measurement_jacobian`; the filter is
+  :func:`navlib.filters.quaternion_kf.quaternion_kf` (Joseph update from :mod:`navlib.kalman`).
+* Sec. 2.5  heading fusion, reconstructed (the paper gives no rule; E003-15, E003-16): while RTK is
+  valid the offset ``delta = wrap(H_rtk - H_mag)`` is smoothed with
+  ``delta += alpha wrap(delta_k - delta)`` per epoch and the output is
+  the RTK heading (carried between 5 Hz epochs by the filter's heading
+  increments); during outages the output is ``H_mag + delta`` with
+  delta held. Validity is a flag; the value of an invalid epoch (the
+  paper's 0) is never used: :func:`navlib.filters.heading_fusion.fuse_rtk_heading`.
 
 Extensions: the magnetometer gate (field norm and dip angle against the
 local field, :class:`navlib.filters.observations.MagGate`) and an accelerometer-norm gate, both in

@@ -11,35 +11,35 @@ Latitude is ``lat`` (the paper's L). omega_ie = 7.292115e-5 rad/s.
 
 Equations implemented
 ---------------------
-TRIAD, Eqs. (1)-(2) -- :func:`triad`::
+* TRIAD, Eqs. (1)-(2) -- :func:`triad`::
 
-    C_n^s = [-f, -f x w, (-f x w) x (-f)] [g_n, g_n x w_ie, (g_n x w_ie) x g_n]^-1
+      C_n^s = [-f, -f x w, (-f x w) x (-f)] [g_n, g_n x w_ie, (g_n x w_ie) x g_n]^-1
 
   With noisy inputs the product is not orthonormal (the paper does not say
   what it does about that); :func:`triad` projects it onto the nearest
   rotation with :func:`navlib.attitude.orthonormalize` (SVD) unless asked for
   the raw product.
-Tilt, Eqs. (4)-(6) -- :func:`pitch_roll_from_accel`: ``pitch = asin(f_y / g)``,
+* Tilt, Eqs. (4)-(6) -- :func:`pitch_roll_from_accel`: ``pitch = asin(f_y / g)``,
   ``roll = atan2(-f_x, f_z)``.
-Single-axis candidates, Eqs. (8)-(11) -- :func:`heading_candidates`::
+* Single-axis candidates, Eqs. (8)-(11) -- :func:`heading_candidates`::
 
-    cos psi = (w_y - w_ie sin(lat) sin(pitch)) / (w_ie cos(lat) cos(pitch))
-    psi(1) = alpha = acos(clip(cos psi, -1, 1)),   psi(2) = 2 pi - alpha
+      cos psi = (w_y - w_ie sin(lat) sin(pitch)) / (w_ie cos(lat) cos(pitch))
+      psi(1) = alpha = acos(clip(cos psi, -1, 1)),   psi(2) = 2 pi - alpha
 
   The clipping is reported per trial (``clipped``).
-Resolution, Eq. (12) -- :func:`resolve`: the four candidate heading changes
+* Resolution, Eq. (12) -- :func:`resolve`: the four candidate heading changes
   ``psi2(i) - psi1(j)`` are compared with the MEMS INS heading change through
   ``wrap_pi``; the nearest one gives the heading at position 2, and the margin
   to the nearest *different* candidate is returned.
-Error theory -- Eq. (13) with its sign corrected (:func:`triad_heading_error`),
+* Error theory -- Eq. (13) with its sign corrected (:func:`triad_heading_error`),
   Eq. (16) (:func:`triad_heading_std`), Eq. (20) and its full linearisation
   with the pitch (accelerometer) term (:func:`single_axis_heading_std`,
   :func:`single_axis_heading_error`); where Eq. (20) fails (near 0 and 180
   deg, E000-03) the clipped estimator's error by quadrature
   (:func:`clipped_single_axis_theory`)::
 
-    d psi = [-d w_y + w_ie (sin lat cos th - cos lat sin th cos psi) d th]
-            / (w_ie cos lat cos th sin psi),        d th = d f_y / (g cos th)
+      d psi = [-d w_y + w_ie (sin lat cos th - cos lat sin th cos psi) d th]
+              / (w_ie cos lat cos th sin psi),        d th = d f_y / (g cos th)
 
 Extensions: :func:`pair_probabilities` (exact probability of each candidate
 pair winning for a Gaussian INS error; paper's "any second position" claim),
@@ -47,8 +47,8 @@ pair winning for a Gaussian INS error; paper's "any second position" claim),
 gyro) and the Monte Carlo of Fig. 4 (:func:`simulate_static_outputs`,
 :func:`monte_carlo`) vectorised over headings and trials.
 
-Faulty data (every fault is counted; nothing is dropped silently)
------------------------------------------------------------------
+Faulty data in north finding (every fault is counted; nothing is dropped silently)
+----------------------------------------------------------------------------------
 =================  ===========================================  ======================================
 fault              what happens                                 reported by (``faults`` keys)
 =================  ===========================================  ======================================
@@ -76,7 +76,7 @@ A refused stop or drive raises ValueError (``strict=True``, the default) or
 gives NaN, which :func:`resolve` rejects, so it cannot be used by mistake.
 
 Errata corrected (ids of ``data/errata.csv``)
---------------------------------------------
+---------------------------------------------
 * E000-01: omega_ic in Eqs. (13), (16)-(20) is omega_ie.
 * E000-02: with clockwise heading, Eq. (13) has the wrong sign:
   ``psi_hat - psi = -dw_E / (w_ie cos lat)``.

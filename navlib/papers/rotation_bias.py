@@ -18,48 +18,47 @@ specific force ``f_b`` (+g up); the paper's gravity vector is ``a_m = -f_b``.
 
 Equations (paper numbering)
 ---------------------------
-Eq. (1)  ``R = R_y(phi) R_x(theta) R_z(-psi) = C_bn.T``             :func:`eq1_matrix`
-Eq. (2)  Euler-angle kinematics, Omega = body rate relative to n::
+* Eq. (1)  ``R = R_y(phi) R_x(theta) R_z(-psi) = C_bn.T``  :func:`eq1_matrix`
+* Eq. (2)  Euler-angle kinematics, Omega = body rate relative to n, :func:`euler_rates`; integrated sample
+  by sample (RK4 with the rate held over each sample) by :func:`integrate_euler`::
 
-             roll'    = sin(phi) tan(theta) Wx + Wy - cos(phi) tan(theta) Wz
-             pitch'   = cos(phi) Wx + sin(phi) Wz
-             heading' = (sin(phi) Wx - cos(phi) Wz) / cos(theta)
+      roll'    = sin(phi) tan(theta) Wx + Wy - cos(phi) tan(theta) Wz
+      pitch'   = cos(phi) Wx + sin(phi) Wz
+      heading' = (sin(phi) Wx - cos(phi) Wz) / cos(theta)
 
-         :func:`euler_rates`; integrated sample by sample (RK4 with the
-         rate held over each sample) by :func:`integrate_euler`.
-Eq. (3)  measured rate = Omega + b.
-Eq. (4)  ``a_m = R [0, 0, -g] = g [cos(th) sin(phi), -sin(th), -cos(th) cos(phi)]``  :func:`gravity_body`
-Eq. (5)  ``phi = atan2(a_mx, -a_mz)``, ``theta = atan2(-a_my, hypot(a_mx, a_mz))``     :func:`roll_pitch_from_accel`
-Eqs. (6)-(9)  per dwell k, ``delta_k = (gyro tilt change) - (accelerometer tilt
-         change) = M(phi_k, theta_k) dT b = V_k b`` with M the first two rows
-         of Eq. (2)                                                  :func:`tilt_matrix`, :func:`tilt_residuals`
-Eq. (10) ``dR = I cos(da) + sin(da) [u x] + (1 - cos(da)) u u^T``    :func:`rodrigues`
-Eq. (11) ``R' = dR^T R`` (``C_bn' = C_bn dR``)                       :func:`rotate_attitude`
-Eqs. (12)-(14) stacked ``r = V b``, ``b = (V^T V)^-1 V^T r``          :func:`lsq_bias`,
-         :func:`running_lsq_bias` (recursive, optional forgetting)
+* Eq. (3)  measured rate = Omega + b.
+* Eq. (4)  ``a_m = R [0, 0, -g] = g [cos(th) sin(phi), -sin(th), -cos(th) cos(phi)]``  :func:`gravity_body`
+* Eq. (5)  ``phi = atan2(a_mx, -a_mz)``, ``theta = atan2(-a_my, hypot(a_mx, a_mz))``  :func:`roll_pitch_from_accel`
+* Eqs. (6)-(9)  per dwell k, ``delta_k = (gyro tilt change) - (accelerometer tilt
+  change) = M(phi_k, theta_k) dT b = V_k b`` with M the first two rows
+  of Eq. (2): :func:`tilt_matrix`, :func:`tilt_residuals`
+* Eq. (10) ``dR = I cos(da) + sin(da) [u x] + (1 - cos(da)) u u^T``  :func:`rodrigues`
+* Eq. (11) ``R' = dR^T R`` (``C_bn' = C_bn dR``)  :func:`rotate_attitude`
+* Eqs. (12)-(14) stacked ``r = V b``, ``b = (V^T V)^-1 V^T r``  :func:`lsq_bias`,
+  :func:`running_lsq_bias` (recursive, optional forgetting)
 
 Paper's numbers: MTi-100 (bias stability 10 deg/h, noise 0.01 deg/s/sqrt(Hz)),
 Delta alpha = 90 deg reciprocating every 5 s, 100 Hz, 3600 s, pitch 0/30/60 deg.
 
 Errata (ids of ``data/errata.csv``)
 -----------------------------------
-E001-01  Heading is clockwise: the first rotation is -psi.
-E001-02  The third row of Eq. (2) is ``(sin(phi) Wx - cos(phi) Wz) / cos(theta)``.
-E001-03  Row 2 of Eq. (4) is ``-g sin(theta)``; a_m is gravity, i.e. ``-f_b``.
-E001-04  Eq. (11) is ``R' = dR^T R`` (``dR R`` flips the sign of Delta alpha).
-E001-05  ``u (x) u`` in Eq. (10) is the outer product ``u u^T``.
-E001-06  Earth rate (15.04 deg/h) is not negligible against a 10 deg/h bias: with
-         ``w_ie_b`` given, :func:`tilt_residuals` subtracts ``R w_ie_n`` and
-         :func:`integrate_euler` integrates the rate relative to the ENU frame.
-E001-07  Eq. (6) is a first-order step; here each dwell's tilt residual is the
-         least-squares slope of (integrated gyro tilt - accelerometer tilt).
-E001-08  Two attitudes suffice only if their body verticals differ (axis not
-         vertical) and pitch stays away from +-90 deg; violations raise ValueError.
-E001-09  Unstated details (rotation axis, dwell timing, estimator window) are
-         arguments here; E001-10 (Fig. 5 axis) does not affect the module.
+* E001-01  Heading is clockwise: the first rotation is -psi.
+* E001-02  The third row of Eq. (2) is ``(sin(phi) Wx - cos(phi) Wz) / cos(theta)``.
+* E001-03  Row 2 of Eq. (4) is ``-g sin(theta)``; a_m is gravity, i.e. ``-f_b``.
+* E001-04  Eq. (11) is ``R' = dR^T R`` (``dR R`` flips the sign of Delta alpha).
+* E001-05  ``u (x) u`` in Eq. (10) is the outer product ``u u^T``.
+* E001-06  Earth rate (15.04 deg/h) is not negligible against a 10 deg/h bias: with
+  ``w_ie_b`` given, :func:`tilt_residuals` subtracts ``R w_ie_n`` and
+  :func:`integrate_euler` integrates the rate relative to the ENU frame.
+* E001-07  Eq. (6) is a first-order step; here each dwell's tilt residual is the
+  least-squares slope of (integrated gyro tilt - accelerometer tilt).
+* E001-08  Two attitudes suffice only if their body verticals differ (axis not
+  vertical) and pitch stays away from +-90 deg; violations raise ValueError.
+* E001-09  Unstated details (rotation axis, dwell timing, estimator window) are
+  arguments here; E001-10 (Fig. 5 axis) does not affect the module.
 
-Faulty data (every fault is counted; nothing is dropped silently)
------------------------------------------------------------------
+Faulty data in rotation bias estimation (every fault is counted; nothing is dropped silently)
+---------------------------------------------------------------------------------------------
 =================  =================================================  ======================================
 fault              what happens                                       reported by (``faults`` keys)
 =================  =================================================  ======================================
