@@ -650,7 +650,8 @@ def _fixed_interval(dt: Interval, n: int) -> float:
     d = sample_intervals(dt, n)
     if np.ptp(d) > 1e-6 * d.mean():
         raise ValueError(f"dt: expected a fixed sample interval for the Allan deviation, got intervals from "
-                         f"{d.min():g} to {d.max():g} s (resample first)")
+                         f"{d.min():g} to {d.max():g} s (resample first by averaging, navlib.io.resample(rec, rate); "
+                         "interpolation changes the white-noise level)")
     return float(d.mean())
 
 

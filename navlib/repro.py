@@ -47,7 +47,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ._typing import Scalar
-from ._validate import choice, flag, instance, real, text
+from ._validate import choice, flag, instance, real, scalar, text
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -711,6 +711,9 @@ def exercise(student, reference, cases: Sequence[tuple], tol: float = 1e-9) -> E
     """
     if not callable(student) or not callable(reference):
         raise ValueError("student, reference: expected functions")
+    if not isinstance(cases, (list, tuple)) or not cases or not all(isinstance(c, tuple) for c in cases):
+        raise ValueError(f"cases: expected a non-empty list of argument tuples such as [(0.1,), (1.0,)], got {cases!r:.60}")
+    tol = scalar(tol, "tol", positive=True)
     name = getattr(student, "__name__", "your function")
     for args in cases:
         got = student(*args)

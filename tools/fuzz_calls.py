@@ -29,6 +29,7 @@ from navlib import (
     attitude,
     earth,
     imu,
+    io,
     repro,
     sensors,
     strapdown,
@@ -195,6 +196,9 @@ def _files() -> Path:
         t = pd.DataFrame({"time": ns, "seconds_elapsed": T, "z": x[:, 2], "y": x[:, 1], "x": x[:, 0]})
         t.to_csv(d / "logger" / name, index=False)
     pd.DataFrame({"t": T, "gx": W[:, 0], "gy": W[:, 1], "gz": W[:, 2]}).to_csv(d / "plain.csv", index=False)
+    phyphox = {"Time (s)": T} | {f"Gyroscope {a} (rad/s)": W[:, i] for i, a in enumerate("xyz")}
+    pd.DataFrame(phyphox | {f"Acceleration {a} (m/s^2)": F[:, i] for i, a in enumerate("xyz")}).to_csv(
+        d / "Raw Data.csv", index=False)
     return d
 
 
@@ -264,6 +268,7 @@ def table() -> dict:
                                        bad=(Bad("start, end", "after_the_data", start=5.0, end=None),
                                             Bad("time", "length", time=np.r_[T, 0.0]))),
         "analysis.segments": Call(dict(mask=VALID)),
+        "analysis.footfall_path_length": Call(dict(pos_n=np.column_stack([T, HEADINGS, 0 * T]), stance=VALID, min_samples=1)),
         "analysis.moving_mean": Call(dict(x=HEADINGS ** 2, n=3), any_shape=("x",)),
         "analysis.normal_condition": Call(dict(A=np.array([[2.0, 0.5], [0.5, 1.0]]))),
         "analysis.condition_number": Call(dict(V=V), any_shape=("V",)),
@@ -365,6 +370,8 @@ def table() -> dict:
             Bad("valid", "numbers", valid=VALID.astype(float)), Bad("valid", "empty", valid=np.zeros(0, bool)),
             Bad("valid", "length", valid=np.ones(N + 1, bool)), Bad("heading", "length", heading=np.r_[HEADINGS, 0.3]),
             Bad("time", "length", time=np.r_[T, 0.0]))),
+        "filters.presets.foot_mounted": Call(dict(imu=IMU, still=T < 0.5)),
+        "filters.presets.FootMounted": Skip("a result record, built by foot_mounted"),
         "filters.mahony.mahony": Call(dict(imu=IMU, q0=Q, m_b=M, kp=1.0, ki=0.02, B_n=B_N), bad=(
             Bad("kp", "negative", kp=-1.0), Bad("q0", "batch_mismatch", q0=np.tile(Q, (2, 1))),
             Bad("m_b", "both_references", rtk=RTK, B_n=None), Bad("m_b", "length", m_b=M[:5]), Bad("q0", "zero", q0=Q0),
@@ -529,6 +536,11 @@ def table() -> dict:
         "io.read_euroc": Call(dict(path=str(files / "euroc.csv"))),
         "io.align": Call(dict(t_target=T, t_source=T[::2] + 0.001, x_source=HEADINGS[::2], method="hold"),
                          any_shape=("x_source",)),
+        "io.read_phyphox": Call(dict(path=str(files / "Raw Data.csv"))),
+        "io.resample": Call(dict(rec=io.Recording(T, W, F), rate=20.0)),
+        "io.check_axes": Call(dict(rec=io.Recording(T, W, F), on_fail="ignore")),
+        "io.AxisCheck": Skip("a result record, built by check_axes"),
+        "io.start_at_rest": Call(dict(rec=io.Recording(T, W, F), still=T < 0.5)),
         # ------------------------------------------------------------------- kalman
         "kalman.predict": Call(dict(x=np.array([1.0, 2.0]), P=np.eye(2), F=np.array([[1.0, 0.1], [0.0, 1.0]]),
                                     Q=0.01 * np.eye(2)), bad=(
@@ -747,6 +759,8 @@ def table() -> dict:
         "repro.summary": Skip("takes no arguments"),
         "repro.explorer": Call(dict(draw=_explorer_figure, name="explore", controls={"a": 1.0}), before=_setup),
         "repro.caption": Call(dict(markdown="**Figure 1** shows 1.25°.")),
+        "repro.exercise": Call(dict(student=np.sin, reference=np.sin, cases=[(0.1,), (1.0,)])),
+        "repro.Exercise": Skip("a result record, built by exercise"),
         "repro.answer": Call(dict(markdown="The error grows as 1/cos L: 1.7 times at 60°.", label="Answer")),
         "repro.env_flag": Call(dict(name="NAVLIB_FUZZ_UNSET_FLAG", default=True)),
         "repro.mode": Call(dict(teaching=True, fast=False), before=_setup),
