@@ -674,8 +674,15 @@ def _whole_table() -> type:
             return CheckTable
 
         def _repr_html_(self):
+            """The whole table, folded under a one-line count (the reproduction details of a section)."""
             with pd.option_context("display.max_rows", None, "display.max_colwidth", None):
-                return super()._repr_html_()
+                table = super()._repr_html_()
+            results = self["result"].value_counts() if "result" in self else {}
+            counts = ", ".join(f"{n} {'passed' if r == 'pass' else 'failed' if r == 'FAIL' else r}"
+                               for r, n in results.items() if r)
+            opened = " open" if "FAIL" in results else ""              # a failed check is never folded away
+            return (f"<details class='checks'{opened}><summary>Reproduction details: {len(self)} checks and claims"
+                    f"{' (' + counts + ')' if counts else ''}</summary>\n{table}\n</details>")
 
     return CheckTable
 

@@ -185,6 +185,24 @@ def launch_links(stem: str) -> str:
             f"<a href='../_sources/chapters/{stem}.ipynb' download>Download the notebook (.ipynb)</a></p>")
 
 
+ERRATUM = re.compile(r"^> \*\*(Erratum [^*]+?)\.?\*\*(.*?)(?=\n(?!>)|\Z)", re.M | re.S)
+
+
+def inline_math_html(text: str) -> str:
+    """``$x$`` as the HTML Sphinx writes for inline maths (MathJax typesets it inside raw HTML too)."""
+    return re.sub(r"\$([^$]+)\$", lambda m: f"<span class='math notranslate nohighlight'>\\({html.escape(m.group(1))}\\)</span>",
+                  text)
+
+
+def fold_errata(markdown: str) -> str:
+    """Each erratum box (a quote opening with **Erratum ...**) folded under its title: the reproduction details
+    stay complete, one click away."""
+    def repl(m):
+        body = re.sub(r"^> ?", "", m.group(2), flags=re.M).strip()
+        return (f"<details class='erratum'><summary>{inline_math_html(m.group(1))}</summary>\n\n{body}\n\n</details>")
+    return ERRATUM.sub(repl, markdown)
+
+
 def stage_notebook(src: Path, dest: Path, claims_by_figure: dict[str, list[str]]) -> None:
     """Copy an executed notebook for the site: code collapsible, widget views dropped, API names linked, figures
     given their caption as alt text and linked to the ledger rows of their claims, check tables linked to the
@@ -209,7 +227,7 @@ def stage_notebook(src: Path, dest: Path, claims_by_figure: dict[str, list[str]]
                           flags=re.M)
     for cell in nb.cells:
         if cell.cell_type == "markdown":
-            cell.source = absolute_links(link_names(cell.source, names), base="notebooks")
+            cell.source = fold_errata(absolute_links(link_names(cell.source, names), base="notebooks"))
         elif cell.cell_type == "code":
             tags = cell.metadata.setdefault("tags", [])
             if "hide-input" not in tags:
