@@ -841,6 +841,7 @@ def table() -> dict:
         "trajectory.ideal_imu": Call(dict(traj=_STATIC)),
         "trajectory.smooth_ramp": Call(dict(x=np.array([0.2, 0.5, 0.9, 0.0, 1.0])), elementwise=("*",)),
         # -------------------------------------------------------------------- units
+        "warmup.warmup": Skip("compiles every main kernel (half a minute on an empty cache): bench/cases_firstcall.py runs it"),
         "units.to_si": Call(dict(value=np.array([1.0, 2.0]), unit="deg/h"), elementwise=("value",)),
     }
     for name in units.__all__:                 # the one-argument converters share one valid call
