@@ -720,7 +720,7 @@ def exercise(student, reference, cases: Sequence[tuple], tol: float = 1e-9) -> E
         raise ValueError("student, reference: expected functions")
     if not isinstance(cases, (list, tuple)) or not cases or not all(isinstance(c, tuple) for c in cases):
         raise ValueError(f"cases: expected a non-empty list of argument tuples such as [(0.1,), (1.0,)], got {cases!r:.60}")
-    tol = scalar(tol, "tol", positive=True)
+    tol = scalar(tol, "tol", allow_zero=True)
     name = getattr(student, "__name__", "your function")
     for args in cases:
         got = student(*args)
