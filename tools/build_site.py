@@ -35,6 +35,7 @@ from collections import Counter
 from pathlib import Path
 
 import nbformat
+import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tools"))
@@ -454,7 +455,7 @@ def course_page(build: Path) -> str:
     return text.replace("@RUN_TIMES@", "\n".join(rows))
 
 
-def benchmarks_page(build: Path) -> str:
+def benchmarks_page(build: Path, out_dir: Path) -> str:
     parts = [readme_section("Benchmarks").replace("## Benchmarks", "# Benchmarks", 1), ""]
     bench = build / "bench.json"
     if bench.is_file():
@@ -470,7 +471,31 @@ def benchmarks_page(build: Path) -> str:
                          f"{r.get('note', '')} |")
     else:
         parts += ["*No `build/bench.json` yet: run `make bench`.*"]
+    growth = build / "bench-growth.json"
+    if growth.is_file():
+        parts += ["", "## Cost growth", "", "Time of each kernel against its size, each size in a fresh interpreter "
+                  "(`bench/cases_growth.py`); the dashed line has slope 1 (linear in the work).", "",
+                  f"```{{image}} {growth_figure(json.loads(growth.read_text(encoding='utf-8')), out_dir)}",
+                  ":alt: Run time against problem size for each main kernel, on log-log axes, with a slope-1 line",
+                  "```"]
     return "\n".join(parts) + "\n"
+
+
+def growth_figure(curves: dict, out_dir: Path) -> str:
+    """The growth curves of ``make bench`` as a log-log figure in the site's sources; returns its file name."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(7, 4.2), layout="constrained")
+    for name, c in curves.items():
+        ax.loglog(c["sizes"], c["seconds"], "o-", ms=3, label=f"{name} (N^{c['exponent']:.2f})")
+    n = np.array([1e3, 1e7])
+    ax.loglog(n, 1e-7 * n, "k--", lw=0.8, label="slope 1")
+    ax.set(xlabel="samples (or trials) N", ylabel="time (s)", title="Cost growth of the main kernels")
+    ax.legend(fontsize=7)
+    fig.savefig(out_dir / "growth.png", dpi=110, metadata={"Software": None})
+    plt.close(fig)
+    return "growth.png"
 
 
 # ------------------------------------------------------------------------------------------------- build
@@ -505,7 +530,7 @@ def stage(build: Path, src: Path) -> list[str]:
     (src / "course.md").write_text(course_page(build), encoding="utf-8")
     for page, title in README_PAGES.items():
         (src / f"{page}.md").write_text(readme_section(title).replace("## ", "# ", 1), encoding="utf-8")
-    (src / "benchmarks.md").write_text(benchmarks_page(build), encoding="utf-8")
+    (src / "benchmarks.md").write_text(benchmarks_page(build, src), encoding="utf-8")
     api_pages(src / "api")
     mathjax = ROOT / "docs" / "node_modules" / "mathjax" / "es5"
     if not mathjax.is_dir():
