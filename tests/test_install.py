@@ -52,7 +52,7 @@ def dist(tmp_path_factory) -> dict[str, Path]:
 def installed(dist, tmp_path_factory):
     env_dir = tmp_path_factory.mktemp("fresh") / "venv"
     venv.create(env_dir, with_pip=UV is None)
-    py = env_dir / "bin" / "python"
+    py = env_dir / ("Scripts/python.exe" if os.name == "nt" else "bin/python")
     pip = ([UV, "pip", "install", "--quiet", "--python", str(py)] if UV else
            [str(py), "-m", "pip", "install", "--quiet", "--disable-pip-version-check"])
     subprocess.run([*pip, "-c", str(ROOT / "environment.txt"), str(dist["wheel"])], check=True)
