@@ -40,9 +40,11 @@ def own_numba_cache(session: nox.Session) -> dict[str, str]:
 
 def pinned(*names: str) -> list[str]:
     """``name==version`` of each named package as environment.txt pins it."""
-    pins = dict(line.split("==") for line in (ROOT / "environment.txt").read_text().split("\n")
-                if "==" in line and not line.startswith("#"))
-    pins = {k.lower(): v.split("#")[0].strip() for k, v in pins.items()}
+    pins = {}
+    for line in (ROOT / "environment.txt").read_text().splitlines():
+        name, sep, version = line.partition("==")
+        if sep and not line.startswith("#"):
+            pins[name.lower()] = version.split("#")[0].strip()
     return [f"{n}=={pins[n.lower()]}" for n in names]
 
 
@@ -64,7 +66,7 @@ def tests(session: nox.Session) -> None:
 @nox.session(python=PYTHONS[-1], default=False)
 def tests_latest(session: nox.Session) -> None:
     """The newest versions the declared requirements allow (what `pip install navlib-repro[test]` gets today)."""
-    session.install("--upgrade", "--resolution=highest", "-e", ".[test]")
+    session.install("-e", ".[test]")
     session.run("python", "-m", "pytest", *UNIT, "-n", "2", *session.posargs, env=own_numba_cache(session))
 
 

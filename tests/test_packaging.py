@@ -294,7 +294,7 @@ def test_publish_workflow_uses_trusted_publishing_on_version_tags():
     assert build["permissions"] == {"contents": "read"}
     check = next(s["run"] for s in build["steps"] if "navlib/__init__.py" in s.get("run", ""))
     assert "CITATION.cff" in check and "CHANGELOG.md" in check and "$TAG" in check
-    assert any("nox -s build" in s.get("run", "") for s in build["steps"])
+    assert any(f'"nox=={ENV["nox"]}" nox -s build' in s.get("run", "") for s in build["steps"]), "the pinned nox builds"
     assert publish["needs"] == "build" and publish["environment"]["name"] == "pypi"
     assert publish["permissions"] == {"id-token": "write"}
     upload = publish["steps"][-1]
