@@ -18,7 +18,7 @@ export NAVLIB_PROGRESS := 0
 PYTEST_FLAGS ?= -q -ra --durations=10 --nbmake-timeout=1800 -n 2 --dist loadgroup
 
 .DEFAULT_GOAL := help
-.PHONY: help venv reproduce readme docs test lint lab bench strip clean determinism fuzz
+.PHONY: help venv reproduce readme docs test lint lab bench strip clean determinism fuzz test-min build-check
 
 help:
 	@echo "make reproduce  execute every notebook, write build/ (executed notebooks, figures, results)"
@@ -28,7 +28,9 @@ help:
 	@echo "make fuzz       tools/fuzz.py: every public callable with bad and unusual arguments (build/fuzz.json)"
 	@echo "make lab        JupyterLab on notebooks/"
 	@echo "make bench      install bench-only peers (requirements-bench.txt), run bench/run.py"
-	@echo "make strip      strip outputs from notebooks/*.ipynb before committing"
+	@echo "make strip      strip outputs from notebooks/*.ipynb before committing (nbstripout)"
+	@echo "make test-min   unit tests at the declared lowest versions of every requirement (nox -s tests_min)"
+	@echo "make build-check  sdist + wheel in dist/, twine check --strict, check-manifest (nox -s build)"
 	@echo "make determinism  run reproduce twice; fail unless results and PNGs are byte-identical"
 	@echo "make docs       the documentation site in build/site/ (from the last make reproduce), checked in headless Chromium"
 	@echo "make venv       create .venv from environment.txt and install navlib (done by all targets)"
@@ -104,8 +106,17 @@ $(BENCH_STAMP): requirements-bench.txt environment.txt $(STAMP)
 bench: $(BENCH_STAMP)
 	$(PY) bench/run.py
 
+# The flags of the pre-commit hook: keep the meaningful cell ids, drop execution timing and widget state.
+NBSTRIPOUT_FLAGS := --keep-id --extra-keys "cell.metadata.execution metadata.widgets"
 strip: $(STAMP)
-	$(PY) tools/strip_notebooks.py
+	$(VENV)/bin/nbstripout $(NBSTRIPOUT_FLAGS) notebooks/*.ipynb
+
+# noxfile.py's sessions, in environments of their own under .nox/ (made with uv).
+test-min: $(STAMP)
+	$(VENV)/bin/nox -s tests_min
+
+build-check: $(STAMP)
+	$(VENV)/bin/nox -s build
 
 clean:
 	rm -rf build/

@@ -184,8 +184,11 @@ def setup(notebook: str, *, paper: str | None = None, out_dir: str | os.PathLike
         Where outputs go. Default: ``build/`` of the checkout (see :func:`root`);
         required when navlib runs outside a checkout.
     """
-    import matplotlib
-    import matplotlib.pyplot as plt
+    try:
+        import matplotlib
+        import matplotlib.pyplot as plt
+    except ModuleNotFoundError as e:  # matplotlib is the optional `plots` extra
+        raise ModuleNotFoundError(f"navlib.repro draws with matplotlib ({e}): pip install 'navlib-repro[plots]'") from e
 
     if not isinstance(notebook, str) or not notebook or "/" in notebook:
         raise ValueError(f"notebook: expected a plain notebook name, got {notebook!r}")

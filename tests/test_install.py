@@ -1,14 +1,16 @@
-"""A non-editable install works on its own (issue: a newcomer's clone works).
+"""The distributions as they would be published: built, checked, installed and tested away from the checkout.
 
-``pip install .`` of this checkout into a fresh virtual environment (dependencies pinned by
-environment.txt), then ``tests/data/installed_smoke.py`` runs with
-that environment's Python from an empty directory outside the checkout: core API, sensor presets
-shipped as package data, a filter, and repro's refusal to write beside the installed package.
-Needs the package index (or the installer's cache) during set-up only.
+From a copy of the checkout's tracked files: the sdist is built, then the wheel from the unpacked sdist
+(as ``python -m build`` and the publish workflow do); ``twine check --strict`` passes both; the sdist holds
+exactly the tracked files (what check-manifest compares); the wheel holds the package, its data and
+``py.typed``. The wheel goes into a fresh virtual environment (dependencies pinned by environment.txt):
+without extras navlib imports and runs with no matplotlib; with ``[plots]`` ``tests/data/installed_smoke.py``
+runs from an empty directory outside the checkout. The sdist's own tests are collected and a sample run
+from the unpacked archive. Needs the package index (or the installer's cache) during set-up only.
 
-The installer is ``uv pip`` (pinned in environment.txt) when it is on the path beside this Python:
-the same PEP 517 build and non-editable install as ``pip install .``, in about 5 s instead of about
-60 s with a warm cache. Without uv it falls back to pip.
+The builder and installer are ``uv`` (pinned in environment.txt) when it is on the path beside this Python:
+the same PEP 517 build and non-editable install as ``python -m build`` and ``pip install``, in seconds.
+Without uv they fall back to ``python -m build`` and pip.
 """
 from __future__ import annotations
 
@@ -16,47 +18,118 @@ import os
 import shutil
 import subprocess
 import sys
+import tarfile
 import venv
+import zipfile
 from pathlib import Path
 
 import pytest
 from helpers import project_files
 
+import navlib
+
 ROOT = Path(__file__).resolve().parents[1]
 SMOKE = ROOT / "tests" / "data" / "installed_smoke.py"
+UV = shutil.which("uv", path=str(Path(sys.executable).parent))
+CLEAN_ENV = {k: v for k, v in os.environ.items() if k not in ("NAVLIB_ROOT", "PYTHONPATH")}
 
 
 @pytest.fixture(scope="module")
-def installed(tmp_path_factory):
-    env_dir = tmp_path_factory.mktemp("fresh") / "venv"
-    uv = shutil.which("uv", path=str(Path(sys.executable).parent))
-    venv.create(env_dir, with_pip=uv is None)
-    py = env_dir / "bin" / "python"
-    # A copy of the checkout's tracked files, so nothing the build writes (build/, *.egg-info) lands
-    # in the checkout and untracked local files cannot leak into the wheel.
+def dist(tmp_path_factory) -> dict[str, Path]:
+    """sdist and wheel built from a copy of the tracked files (nothing the build writes lands in the checkout)."""
     src = tmp_path_factory.mktemp("src")
     for path in project_files():
         (src / path.relative_to(ROOT)).parent.mkdir(parents=True, exist_ok=True)
         shutil.copy2(path, src / path.relative_to(ROOT))
-    pip = ([uv, "pip", "install", "--quiet", "--python", str(py)] if uv else
+    out = tmp_path_factory.mktemp("dist")
+    build = [UV, "build", "--quiet"] if UV else [sys.executable, "-m", "build"]
+    subprocess.run([*build, "--out-dir" if UV else "--outdir", str(out), str(src)], check=True, capture_output=True)
+    files = {p.suffix: p for p in out.iterdir()}
+    return {"sdist": files[".gz"], "wheel": files[".whl"]}
+
+
+@pytest.fixture(scope="module")
+def installed(dist, tmp_path_factory):
+    env_dir = tmp_path_factory.mktemp("fresh") / "venv"
+    venv.create(env_dir, with_pip=UV is None)
+    py = env_dir / ("Scripts/python.exe" if os.name == "nt" else "bin/python")
+    pip = ([UV, "pip", "install", "--quiet", "--python", str(py)] if UV else
            [str(py), "-m", "pip", "install", "--quiet", "--disable-pip-version-check"])
-    subprocess.run([*pip, "-c", str(ROOT / "environment.txt"), str(src)], check=True)
-    return py
+    subprocess.run([*pip, "-c", str(ROOT / "environment.txt"), str(dist["wheel"])], check=True)
+    return py, pip
 
 
-def test_non_editable_install_runs_outside_checkout(installed, tmp_path):
+def test_twine_check_strict(dist):
+    out = subprocess.run([sys.executable, "-m", "twine", "check", "--strict", str(dist["sdist"]), str(dist["wheel"])],
+                         capture_output=True, text=True)
+    assert out.returncode == 0, out.stdout + out.stderr
+
+
+def test_sdist_holds_exactly_the_tracked_files(dist):
+    """The check-manifest comparison: every file in version control is in the sdist, and nothing else but the
+    metadata the build adds. CITATION.cff, LICENSE, the tests and their data are in it."""
+    with tarfile.open(dist["sdist"]) as tar:
+        names = {m.name.split("/", 1)[1] for m in tar.getmembers() if m.isfile()}
+    added = {n for n in names if n in ("PKG-INFO", "setup.cfg") or ".egg-info/" in n}
+    tracked = {p.relative_to(ROOT).as_posix() for p in project_files()}
+    assert names - added == tracked, (sorted(tracked - names), sorted(names - added - tracked))
+    assert {"CITATION.cff", "LICENSE", "tests/conftest.py", "tests/helpers.py", "conftest.py"} <= names
+
+
+def test_wheel_holds_the_package_only(dist):
+    names = zipfile.ZipFile(dist["wheel"]).namelist()
+    assert {"navlib/__init__.py", "navlib/py.typed", "navlib/data/sensor_presets.csv"} <= set(names)
+    assert all(n.startswith(("navlib/", "navlib_repro-")) for n in names), [n for n in names if not n.startswith("navlib")]
+    assert not [n for n in names if "__pycache__" in n or n.endswith((".pyc", ".nbi", ".nbc"))]
+    assert f"navlib_repro-{navlib.__version__}-py3-none-any.whl" == dist["wheel"].name
+
+
+def test_runs_without_the_plots_extra(installed, tmp_path):
+    py, _ = installed
+    code = ("import importlib.util, numpy as np, navlib; from navlib.filters import mahony; from navlib.imu import ImuSamples; "
+            "assert importlib.util.find_spec('matplotlib') is None, 'matplotlib was installed without [plots]'; "
+            "n = 50; f = np.tile([0.0, 0.0, 9.8], (n, 1)); "
+            "res = mahony.mahony(ImuSamples(np.zeros((n, 3)), f, 0.01), np.array([1.0, 0, 0, 0])); "
+            "assert np.all(np.isfinite(res.q_bn)); print(navlib.__version__)")
+    out = subprocess.run([str(py), "-c", code], cwd=tmp_path, env=CLEAN_ENV, capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip() == navlib.__version__
+
+
+def test_non_editable_install_runs_outside_checkout(installed, dist, tmp_path):
+    py, pip = installed
+    subprocess.run([*pip, "-c", str(ROOT / "environment.txt"), f"{dist['wheel']}[plots]"], check=True)
     work = tmp_path / "elsewhere"
     work.mkdir()
-    env = {k: v for k, v in os.environ.items() if k not in ("NAVLIB_ROOT", "PYTHONPATH")}
-    out = subprocess.run([str(installed), str(SMOKE)], cwd=work, env=env, capture_output=True, text=True)
+    out = subprocess.run([str(py), str(SMOKE)], cwd=work, env=CLEAN_ENV, capture_output=True, text=True)
     assert out.returncode == 0, out.stdout + out.stderr
     assert out.stdout.rstrip().endswith("ok"), out.stdout
     assert not any(work.iterdir()), "the smoke run wrote into its working directory"
 
 
 def test_installed_distribution_metadata(installed):
+    py, _ = installed
     code = ("import importlib.metadata as m; d = m.distribution('navlib-repro'); "
             "print(d.version, d.metadata['Requires-Python'], sorted(set(d.metadata.get_all('Provides-Extra'))))")
-    out = subprocess.run([str(installed), "-c", code], capture_output=True, text=True, check=True).stdout.split(maxsplit=2)
-    assert out[0] == "0.1.0" and out[1] == ">=3.11"
-    assert out[2].strip() == "['bench', 'docs', 'notebooks', 'test']"
+    out = subprocess.run([str(py), "-c", code], capture_output=True, text=True, check=True).stdout.split(maxsplit=2)
+    assert out[0] == navlib.__version__ and out[1] == ">=3.11"
+    assert out[2].strip() == "['bench', 'docs', 'notebooks', 'plots', 'test']"
+
+
+def test_sdist_tests_run_unpacked(dist, tmp_path):
+    """The unpacked sdist's tests import the sdist's navlib: all of them collect, and a sample reading the data,
+    notebooks and ledger passes. Plain Python kernels (NUMBA_DISABLE_JIT): compiling them for a copy of navlib
+    would double the cost of collecting."""
+    with tarfile.open(dist["sdist"]) as tar:
+        tar.extractall(tmp_path, filter="data")
+    unpacked = next(tmp_path.iterdir())
+    env = {**CLEAN_ENV, "PYTHONPATH": str(unpacked), "NUMBA_DISABLE_JIT": "1"}
+    where = subprocess.run([sys.executable, "-c", "import navlib; print(navlib.__file__)"], cwd=unpacked, env=env,
+                           capture_output=True, text=True, check=True).stdout
+    assert Path(where.strip()).is_relative_to(unpacked), where
+    pytest_ = [sys.executable, "-m", "pytest", "-p", "no:cacheprovider", "-n", "0", "-q"]
+    collect = subprocess.run([*pytest_, "--collect-only", "tests"], cwd=unpacked, env=env, capture_output=True, text=True)
+    assert collect.returncode == 0, collect.stdout[-3000:] + collect.stderr[-3000:]
+    sample = ["tests/test_units.py", "tests/test_notebooks.py", "tests/test_ledger.py", "tests/test_self_contained.py"]
+    run = subprocess.run([*pytest_, *sample], cwd=unpacked, env=env, capture_output=True, text=True)
+    assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
