@@ -71,7 +71,10 @@ def fma(a: float, b: float, c: float) -> float:
     else exact rational arithmetic rounded once.
     """
     if hasattr(math, "fma"):
-        return math.fma(a, b, c)
+        try:
+            return math.fma(a, b, c)
+        except (ValueError, OverflowError):   # Python 3.13 raises where IEEE gives nan / inf
+            return a * b + c
     if not (math.isfinite(a) and math.isfinite(b) and math.isfinite(c)):
         return a * b + c
     exact = Fraction(a) * Fraction(b) + Fraction(c)

@@ -776,4 +776,3 @@ def ned2geodetic(n: ArrayLike, e: ArrayLike, d: ArrayLike, lat0: ArrayLike, lon0
                  ellipsoid: Ellipsoid = WGS84, deg: bool = False) -> tuple[Array, Array, Array]:
     """Inverse of :func:`geodetic2ned`: geodetic lat, lon (rad or deg), h (m) of local NED points."""
     return _local2geodetic((e, n, d), ("e", "n", "d"), -1.0, (lat0, lon0, h0), ellipsoid, deg)
-
