@@ -205,6 +205,7 @@ def test_explorer_redraws_its_one_figure_in_place(fake_root, monkeypatch):
     monkeypatch.setattr(display, "display", lambda obj, display_id=False: shown.append(obj) or (Handle() if display_id else None))
     monkeypatch.setattr(matplotlib, "get_backend", lambda: "module://matplotlib_inline.backend_inline")
     repro.setup(NB)
+    plt.close("all")                                 # figures other tests left open
     drawn = []
 
     def draw(noise, label):

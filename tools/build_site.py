@@ -11,7 +11,7 @@ Assembles ``build/site-src/`` and runs Sphinx on it with ``docs/conf.py``:
 * ``ledger.md`` — every check of every notebook with its claim's verdict, filterable by paper and verdict;
 * ``api/`` — one page per public module (autodoc over the numpydoc docstrings), an index by group (core,
   filters, paper companions);
-* ``course`` — the course guide for teachers (``docs/course.md``, with the run times of the last runs);
+* ``course`` — the course page for teachers (``docs/course.md``, with the run times of the last runs);
 * ``conventions``, ``claims`` (``docs/``), ``own-data``, ``robustness`` (README sections: one source),
   ``benchmarks`` (README section and the last ``build/bench.json`` when present).
 
@@ -314,7 +314,7 @@ def ledger_rows(led: ledger.PaperLedger, res: dict | None) -> list[str]:
                  (f"<span id='{anchor('claim', claim.claim)}'></span>" if first else "")
                  + (verdict_span(verdict) if claim else "<small>(check beyond the catalogue)</small>"),
                  html.escape(c.get("source", ""))]
-        rows.append(f"<tr id='{anchor('check', c['name'])}' data-paper='{led.stem[:2]}' data-verdict='{html.escape(verdict)}'>"
+        rows.append(f"<tr data-paper='{led.stem[:2]}' data-verdict='{html.escape(verdict)}' id='{anchor('check', c['name'])}'>"
                     + "".join(f"<td>{x}</td>" for x in cells) + "</tr>")
     for r in led.rows:
         if not r.checks:
@@ -378,7 +378,7 @@ def home_page(leds: list[ledger.PaperLedger], chapters: list[str]) -> str:
                      claims_matrix(led), "</details>", ""]
     return "\n".join([
         (ROOT / "docs" / "home.md").read_text(encoding="utf-8").rstrip(), "",
-        "**Teaching with these chapters?** [The course guide](course.md) gives an order, 45- and 90-minute lesson "
+        "**Teaching with these chapters?** [The course page](course.md) gives an order, 45- and 90-minute lesson "
         "plans, parameters to hand out and the run times.", "",
         "## The papers' claims and their verdicts", "",
         "Claims by verdict (counted from the results of the last `make reproduce`; the full list of checks is in "
