@@ -21,7 +21,8 @@ such filters:
 What the filters do with bad samples, once for all of them: the gyro is held over dropouts and spikes,
 and a stuck axis over its stuck run while the live axes go on measuring (:func:`navlib.robust.screen`;
 the gyro-bias integral is frozen while nothing is measured and, after a hold of ``stuck_run`` samples or
-more or a clock jump, for :data:`SETTLE_TIME_CONSTANTS` / kp seconds);
+more or a clock jump, for :data:`SETTLE_TIME_CONSTANTS` / kp seconds, unless the jump was a stamp glitch:
+:func:`learning`);
 saturated gyro samples are used (the best reading available) and flagged; accelerometer and
 magnetometer samples that are missing, at the rails, in free fall, spikes or outside their gate are
 skipped: the attitude is propagated by the gyro alone over them. A clock jump is integrated as one typical
@@ -291,7 +292,8 @@ def rtk_north(inp, t, k, C, dt, rtk, counts):
 @njit(cache=True, inline="always")
 def learning(fresh, dt, state, inp):
     """May the gyro-bias (PI) integral learn from this sample? Not while the gyro is held (``fresh`` False),
-    nor for ``inp.settle`` seconds after a hold of ``inp.long_hold`` samples or more or a clock jump.
+    nor for ``inp.settle`` seconds after a hold of ``inp.long_hold`` samples or more or a clock jump (unless
+    :func:`relock` finds the attitude kept: a stamp glitch left no transient).
 
     ``state = [samples held in a row, time since the last long hold or jump (s)]`` (start ``[0, inf]``;
     a clock jump sets ``state[1] = 0``).
@@ -307,7 +309,7 @@ def learning(fresh, dt, state, inp):
 
 
 @njit(cache=True)
-def relock(inp, t, k, q0, q1, q2, q3, state, rtk):
+def relock(inp, t, k, q0, q1, q2, q3, state, rtk, health):
     """After a clock jump: re-initialise the attitude only once the data show it is lost, from a quasi-static window.
 
     A clock jump may be a pure stamp glitch (the samples on either side are contiguous: the filter has already
@@ -317,7 +319,9 @@ def relock(inp, t, k, q0, q1, q2, q3, state, rtk):
     accelerometer (and magnetometer) direction is compared with the estimate: a tilt off by more than
     :data:`LOST_TILT` or a magnetic heading off by more than :data:`LOST_HEADING` means the state is lost, and the
     attitude is re-initialised from the window's means (tilt, tilt-compensated magnetic heading; in RTK mode the
-    heading of a valid epoch in the window, else the estimate's); otherwise it is kept. Either way the check ends.
+    heading of a valid epoch in the window, else the estimate's) and the settling of :func:`learning` restarts;
+    otherwise the attitude is kept and the bias integral learns again at once (``health``, the state of
+    :func:`learning`): there is no transient to keep out of it. Either way the check ends.
 
     ``state = [checking (1/0), samples in the window, sum of the unit accelerometer (3), of the unit magnetometer (3),
     magnetometer samples, last valid RTK heading in the window (NaN: none)]`` (10 values; a jump sets ``state[0] = 1``
@@ -356,7 +360,9 @@ def relock(inp, t, k, q0, q1, q2, q3, state, rtk):
         h = tilt_heading(state[5], state[6], state[7], pitch, roll)
         lost = lost or abs(wrap_pi(h - h_est)) > LOST_HEADING
     if not lost:
+        health[1] = np.inf
         return q0, q1, q2, q3, False
+    health[1] = 0.0
     if inp.use_rtk and not np.isnan(state[9]):
         rtk[0], rtk[1], rtk[2], rtk[3], rtk[4] = np.sin(h), np.cos(h), h, 0.0, 0.0
     r0, r1, r2, r3 = euler_to_quat(h, pitch, roll)

@@ -42,12 +42,12 @@ from .observations import (
     RtkHeading,
     attitude_result,
     integral_gain,
+    jump_step,
     learning,
     magnetic_reference,
     observe,
     pack,
     pi_error,
-    jump_step,
     relock,
     rtk_north,
     run_trials,
@@ -382,7 +382,7 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
         if inp.use_rtk:
             mx, my, mz = rtk_north(inp, t, k, C, dt, rtk, counts)
         ex, ey, ez = pi_error(C, ax, ay, az, mx, my, mz)                # PI-corrected rate, Eq. (15)
-        if learning(inp.fresh[t, k], dt, health, inp):                           # Eq. (15), unless settling after a fault
+        if learning(inp.fresh[t, k], dt, health, inp):                 # Eq. (15), unless settling after a fault
             ix += ex * dt
             iy += ey * dt
             iz += ez * dt
@@ -398,7 +398,7 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
         _update(x, P, z, h, H, r_diag, ws)
         s = np.sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2] + x[3] * x[3])
         x[0], x[1], x[2], x[3] = x[0] / s, x[1] / s, x[2] / s, x[3] / s
-        x[0], x[1], x[2], x[3], lost = relock(inp, t, k, x[0], x[1], x[2], x[3], check, rtk)
+        x[0], x[1], x[2], x[3], lost = relock(inp, t, k, x[0], x[1], x[2], x[3], check, rtk, health)
         if lost:                                        # re-initialised after a jump: covariance back to p0 I
             _copy4(P, model.p0 * np.eye(4))
         _output(t, k, x, P, q_out, P_hist, keep)
@@ -417,8 +417,8 @@ def quaternion_kf(imu: ImuSamples, q0: Quat, *, m_b: Vec3Series | None = None, r
     with ``b`` from the local field (or north for RTK), ``R = diag(sigma_accel^2 I,
     sigma_mag^2 I)``; Joseph update of :func:`navlib.kalman.update` skipping
     missing rows; normalise. The covariance is predicted with ``Phi P Phi^T + Gamma Q Gamma^T`` and
-    updated in Joseph form (both symmetrised). When the attitude is re-initialised after a clock jump (:func:`navlib.filters.observations.relock`) the
-    covariance restarts at ``p0 I``.
+    updated in Joseph form (both symmetrised). When the attitude is re-initialised after a clock jump
+    (:func:`navlib.filters.observations.relock`) the covariance restarts at ``p0 I``.
 
     Parameters
     ----------

@@ -271,7 +271,7 @@ def test_stuck_run_default_is_a_tenth_of_a_second():
 
 def test_noise_free_and_saturated_gyros_are_not_stuck():
     """A gyro that repeats its first value (noise-free simulation) is not checked; values at the rails are
-    saturated (counted as such), not stuck; a stuck sample is held like a NaN one."""
+    saturated (counted as such), not stuck; a latched sample (a step into the run) is held like a NaN one."""
     _, f, m, q = level(400)
     w = np.zeros((400, 3))
     w[100:200, 2] = 0.2                                                   # noise-free turn, back to exactly 0
@@ -283,7 +283,7 @@ def test_noise_free_and_saturated_gyros_are_not_stuck():
     rails = SensorLimits(full_scale_gyro=0.5)
     res = mh.mahony(ImuSamples(w, f, 0.01, rails), q, m_b=m)
     assert int(res.faults["gyro", "saturated"]) == 100 and int(res.faults["gyro", "stuck"]) == 0
-    w[300:320] = w[300]
+    w[300:320] = 0.3
     stuck = mh.mahony(ImuSamples(w, f, 0.01, rails), q, m_b=m)
     w[300:320] = np.nan
     held = mh.mahony(ImuSamples(w, f, 0.01, rails), q, m_b=m)
