@@ -111,7 +111,8 @@ MUTATIONS = {
     "time_jump": ({"time", "interval"}, "a one-hour jump in the middle of the time axis (one 3600 s interval)"),
     "empty_elementwise": (NUMBERS, "no elements for an elementwise argument: shape (0,), or (0, k) with its vector "
                                    "axis (valid: an empty result, or refused by name)"),
-    "tiny_dt": ({"interval", "number"}, "a sample interval of 1e-300 s (DT_NAMES and Interval arguments)"),
+    "tiny_dt": ({"interval", "number"}, "a sample interval of 1e-300 s (DT_NAMES and Interval arguments; valid if the "
+                                        "result stays below 1e100, else a named refusal is expected)"),
     "negative_count": ({"count"}, "-4 where a count is expected"),
     "stuck_axis": ({"object"}, "an ImuSamples turning at 1 rad/s whose x gyro repeats one value over 7 of its samples "
                                "(stuck_run 5): valid, but the result's faults must count ('gyro', 'stuck')"),
@@ -359,8 +360,12 @@ BY_DESIGN: list[tuple[str, str, str, str, str]] = [
      "quaternions of any finite magnitude are normalised exactly (tests/test_magnitudes.py)"),
     (r"papers\.rotation_bias\.draw_rotation_schedule", r"time|starts", r"time_jump|wrong_shape", "silent_accept",
      "a drawing: any increasing time axis is drawn as given, any number of dwell windows shaded"),
-    (r"imu\.ImuSamples|filters\.heading_fusion\.fuse_rtk_heading", "dt", r"1e300|time_jump", "silent_accept",
-     "nothing is integrated over dt here; an interval too long to integrate is refused where it is (small_turns)"),
+    (r"imu\.ImuSamples", "dt", r"1e300|time_jump", "silent_accept",
+     "the record only holds the intervals; an interval too long to integrate is refused (small_turns) or counted as a "
+     "clock jump by the filter that screens it"),
+    (r"filters\.heading_fusion\.fuse_rtk_heading", "dt", r"1e300|time_jump", "silent_accept",
+     "dt only ages the last RTK epoch: a long interval is a clock jump, counted in faults['clock', 'jump'], over which "
+     "the carried epoch is dropped (tests/faults/test_faults_ahrs.py)"),
     (r"filters\.zupt_ins\.Gates", r"zupt|baro|mag_field|mag_dip", r"inf|1e300", r"silent_nan|silent_accept",
      "inf disables a gate, any finite value is one (Gates docstring)"),
     (r"repro\.check(_range|_outside)?", r"value|expected|tol|lower|upper", r"nan|inf|1e300", r"other_exception|silent_accept",
@@ -376,9 +381,14 @@ BY_DESIGN: list[tuple[str, str, str, str, str]] = [
     (r".*", _HEADINGS, "degrees", "silent_accept", "a heading is periodic: 45 rad is a valid unwrapped heading"),
     (r"analysis\.(attitude_errors|error_statistics)", r"hpr|hpr_true", "degrees", "silent_accept",
      "compares any angle triples component by component (wrapped), not rotations (tests/test_gyrobias.py: [-4, 4] rad)"),
-    (r"filters\.planar_ekf\.(dead_reckoning|filter_grid)|papers\.gauss_kruger_ekf\.ekf", "t", "time_jump",
-     "silent_accept", "a clock jump in t is not integrated (the state is held) and is reported in "
+    (r"filters\.planar_ekf\.filter_grid|papers\.gauss_kruger_ekf\.ekf", "t", "time_jump",
+     "silent_accept", "a clock jump in t is not propagated over (the state is held, P grows) and is reported in "
      "faults['clock', 'jump'] (tests/faults/test_faults_planar.py)"),
+    (r"filters\.planar_ekf\.dead_reckoning", "t", "time_jump", "silent_accept",
+     "a clock jump in t is integrated as one typical step (a stamp glitch costs nothing, a gap adds no unmeasured "
+     "motion) and reported in faults['clock', 'jump'] (tests/faults/test_faults_planar.py)"),
+    (r"atmosphere\.(classify_floor|segment_floors)", "ref_floor", "negative_count", "silent_accept",
+     "a floor number, not a count: basements are negative floors"),
     (r"analysis\.settling_time|atmosphere\.reference_pressure|faults\.\w+|timing\.(intervals|sanitize)|"
      r"sensors\.(magnetic_disturbances|outage_mask|simulate_barometer)|trajectory\.Trajectory|io\.align|"
      r"papers\.pedestrian_ins\.hvac_pressure_steps|filters\.heading_fusion\.rtk_at_imu_rate",
@@ -611,9 +621,15 @@ def _bad(func, kwargs, call, argname, baseline, others, mutation) -> dict:
             return {"outcome": "clean", "message": "accepted: the stuck axis is counted in faults"}
         return {"outcome": "silent_accept", "message": "stuck gyro axis " + ("not counted in faults" if counted is False
                                                                                 else "and no FaultReport returned")}
-    bad = nonfinite(leaves(out), baseline)
+    found = leaves(out)
+    bad = nonfinite(found, baseline)
     if bad:
         return {"outcome": "silent_nan", "message": f"non-finite in {', '.join(bad[:3])}"}
+    if mutation == "tiny_dt":                 # a positive interval, however short, is valid if the result stays physical
+        huge = [p for p, x in found.items() if x.dtype.kind in "fc" and x.size and np.max(np.abs(x)) > 1e100]
+        if not huge:
+            return {"outcome": "clean", "message": "accepted: a short interval, a finite result"}
+        return {"outcome": "silent_accept", "message": f"values beyond 1e100 in {', '.join(huge[:3])}"}
     return {"outcome": "silent_accept"}
 
 
