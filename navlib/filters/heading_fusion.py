@@ -15,10 +15,11 @@ rule of the attitude filters; counted ``("clock", "jump")`` and flagged): the la
 until the next used epoch; the gate's run of rejections restarts; the offset ``delta`` is kept and goes
 on being smoothed. Kept, not re-initialised from the next epoch, because delta is a calibration (the
 declination plus the magnetic heading's slowly varying error) that a gap in time does not change, while
-the magnetic heading itself steps at the jump: the attitude filter upstream re-initialises from one
-magnetometer sample (-4 to +7 deg off the run without the jump in tests/faults/test_faults_ahrs.py,
-removed over a few 1 / kp) and a delta restarted from the first epoch after the jump carries that
-transient into the next outage (there, in an outage 30 s after the jump, the RMS heading error is 2.6-2.9x
+the magnetic heading itself may step after the jump: over a real gap the attitude filter upstream
+re-initialises once a quasi-static window shows its state lost (:func:`navlib.filters.observations.relock`),
+and a delta restarted from the first epoch after the jump carries such a transient into the next outage
+(measured when the filters re-initialised from the jump's one sample, -4 to +7 deg off the run without the
+jump in tests/faults/test_faults_ahrs.py: in an outage 30 s after the jump the RMS heading error was 2.6-2.9x
 that of the run without the jump with delta restarted, 1.1-1.2x with delta kept). A real change of the
 offset is still taken through the gate's re-acquisition.
 
