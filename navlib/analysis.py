@@ -221,9 +221,9 @@ def fit_allan(taus: ArrayLike, adev: ArrayLike, n_samples: int, dt: float, *, ra
     the models with and without the bias instability (and, with ``rate_random_walk``, with and without K) are
     compared where the term shows (the bias instability's peak, the last decade of averaging times): a term
     whose removal leaves the curve within :data:`ALLAN_EVIDENCE` standard errors of the measured deviation
-    there is not identifiable and is left out, 0 (:func:`navlib.calibration.characterise` reports the
-    margin: ``TriadNoise.evidence``). Without this, a fit of every term trades a random walk or white noise
-    for an invented bias instability where their curves are alike.
+    there is not identifiable and is left out, 0 (the margin is returned as ``evidence``; per axis in
+    :func:`navlib.calibration.characterise`'s ``TriadNoise.evidence``). Without this, a fit of every term
+    trades a random walk or white noise for an invented bias instability where their curves are alike.
 
     Parameters
     ----------
@@ -241,7 +241,9 @@ def fit_allan(taus: ArrayLike, adev: ArrayLike, n_samples: int, dt: float, *, ra
     dict
         ``white`` (N), ``bias_instability`` (B; 0 when left out), ``correlation_time`` (s; meaningless when B
         is 0: the full model's) and ``rate_random_walk`` (K; 0 unless fitted and chosen), in the units of
-        ``adev``.
+        ``adev``; ``evidence``: (B, K), how many standard errors of the measured deviation the fit without the
+        term misses it by where the term shows (kept above :data:`ALLAN_EVIDENCE`; ``-inf`` for K when it is
+        not fitted).
     """
     taus = positive(taus, "taus")
     adev = positive(adev, "adev")
@@ -250,16 +252,11 @@ def fit_allan(taus: ArrayLike, adev: ArrayLike, n_samples: int, dt: float, *, ra
     same_shape(adev, "adev", taus.shape, of="taus")
     n_samples = integer(n_samples, "n_samples")
     dt = scalar(dt, "dt", positive=True)
-    fit = _fit_allan(taus, adev, n_samples, dt, flag(rate_random_walk, "rate_random_walk"))
-    del fit["evidence"]
-    return fit
+    return _fit_allan(taus, adev, n_samples, dt, flag(rate_random_walk, "rate_random_walk"))
 
 
 def _fit_allan(taus: np.ndarray, adev: np.ndarray, n_samples: int, dt: float, rate_random_walk: bool) -> dict:
-    """:func:`fit_allan` of checked arguments (also :func:`navlib.calibration.characterise`'s), with ``evidence``:
-    for the bias instability and the rate random walk, how far (in standard errors of the measured deviation) the
-    curve without the term misses the measured one where the term shows (its peak, the last decade):
-    above :data:`ALLAN_EVIDENCE` the term is kept; ``-inf`` for K when it is not fitted."""
+    """:func:`fit_allan` of checked arguments."""
     gm, rrw = True, rate_random_walk
     p = _fit_terms(taus, adev, n_samples, dt, gm, rrw)
     evidence = [0.0, -np.inf]

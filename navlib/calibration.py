@@ -596,7 +596,7 @@ def _triad_noise(x: np.ndarray, dt: float, rate_random_walk: bool, confidence: f
     taus, adev = analysis.allan_deviation(x - x.mean(0), dt)
     if not np.all(adev > 0):
         raise ValueError(f"{name}: an axis without noise (a constant record) has no noise terms to characterise")
-    fits = [analysis._fit_allan(taus, adev[:, k], n, dt, rate_random_walk) for k in range(3)]
+    fits = [analysis.fit_allan(taus, adev[:, k], n, dt, rate_random_walk=rate_random_walk) for k in range(3)]
     terms = {key: np.array([f[key] for f in fits]) for key in fits[0]}
     evidence = terms.pop("evidence")
     observed = _fold_unobserved_peaks(terms, taus[0], taus[-1], rate_random_walk)

@@ -185,7 +185,7 @@ def test_fit_allan_noise_free_curve(rrw):
     p = dict(white=1.7e-4, bias_instability=0.0 if rrw else 4.8e-5, correlation_time=100.0,
              rate_random_walk=2e-6 if rrw else 0.0)
     fit = A.fit_allan(taus, A.allan_deviation_theory(taus, **p), n, dt, rate_random_walk=rrw)
-    assert set(fit) == {"white", "bias_instability", "correlation_time", "rate_random_walk"}
+    assert set(fit) == {"white", "bias_instability", "correlation_time", "rate_random_walk", "evidence"}
     keys = ("white", "rate_random_walk") if rrw else ("white", "bias_instability", "correlation_time")
     for k in keys:
         assert fit[k] == pytest.approx(p[k], rel=1e-3), k
