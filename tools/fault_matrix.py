@@ -131,7 +131,7 @@ def inject(fault: str, r: Rig, k0: int = K0) -> Injected | None:
     elif fault == "dropout":
         w[k0:k0 + 20], f[k0:k0 + 20], m[k0:k0 + 20] = np.nan, np.nan, np.nan
         zero = Rig(np.nan_to_num(w), np.nan_to_num(f), np.nan_to_num(m), dt, r.q)
-        return Injected(Rig(w, f, m, dt, r.q), SensorLimits(), SensorLimits(), ignored_rig=zero)
+        return Injected(Rig(w, f, m, dt, r.q), SensorLimits(), SensorLimits(**OFF), ignored_rig=zero)
     elif fault == "spike":
         w[k0:k1:20, 1] += 5.0
         return Injected(Rig(w, f, m, dt, r.q), SensorLimits(spike_gyro=1.0), SensorLimits())
