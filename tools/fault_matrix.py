@@ -14,9 +14,9 @@ Simulation: 100 Hz, 20 s; the rig rotates about a fixed body axis (1, 1, 2)/sqrt
 (slow) or 200 deg/s (fast turn), starting at heading 90 deg, pitch 5, roll -3 deg; gyro noise 0.005 rad/s
 and a bias drawn per seed (0.002 rad/s per axis, 1 sigma), accelerometer noise 0.02 m/s^2, magnetometer
 noise 0.3 uT in a field of (0, 20, -40) uT (ENU). Faults start at 4 s; the error is the RMS attitude error
-(deg) over the 16 s that follow. The planar EKF and dead reckoning run on the motion model of Zhao et al. 2023 (10 Hz, 60 s; speed 0,
-5 or 10 m/s, turn rate 0, 10 or 60 deg/s; the paper's R for the noise); their error is the RMS position
-error (m) over the 30 s after the fault. Heading fusion fuses a 100 Hz magnetic heading with 5 Hz RTK
+(deg) over the 16 s that follow. The planar EKF and dead reckoning run on the motion model of Zhao et al.
+2023 (10 Hz, 60 s; speed 0, 5 or 10 m/s, turn rate 0, 10 or 60 deg/s; the paper's R for the noise); their
+error is the RMS position error (m) over the 30 s after the fault. Heading fusion fuses a 100 Hz magnetic heading with 5 Hz RTK
 heading; its error is the RMS heading error (deg) over the 16 s after the fault.
 
 Usage: python tools/fault_matrix.py [--seeds 3] [--out build/fault_matrix.md] [--readme]
