@@ -38,7 +38,7 @@ from ._validate import (
 )
 
 __all__ = ["rmse", "allan_deviation", "allan_deviation_theory", "fit_allan",
-           "GM_ALLAN_PEAK", "GM_ALLAN_PEAK_TAU", "attitude_errors", "error_statistics", "horizontal_error",
+           "GM_ALLAN_PEAK", "GM_ALLAN_PEAK_TAU", "ALLAN_EVIDENCE", "attitude_errors", "error_statistics", "horizontal_error",
            "position_error", "expanding_std", "detection_rates", "settling_time", "segments", "moving_mean",
            "normal_condition", "condition_number", "lsq_covariance", "cramer_rao_bound", "footfall_path_length"]
 
@@ -217,7 +217,13 @@ def fit_allan(taus: ArrayLike, adev: ArrayLike, n_samples: int, dt: float, *, ra
 
     The residuals are log-deviations weighted by the approximate number of
     independent clusters, ``sqrt(n_samples / m)``, so long averaging times
-    (few clusters, large scatter) count less.
+    (few clusters, large scatter) count less. Each term beyond white noise is kept only if the data ask for it:
+    the models with and without the bias instability (and, with ``rate_random_walk``, with and without K) are
+    compared where the term shows (the bias instability's peak, the last decade of averaging times): a term
+    whose removal leaves the curve within :data:`ALLAN_EVIDENCE` standard errors of the measured deviation
+    there is not identifiable and is left out, 0 (the margin is returned as ``evidence``; per axis in
+    :func:`navlib.calibration.characterise`'s ``TriadNoise.evidence``). Without this, a fit of every term
+    trades a random walk or white noise for an invented bias instability where their curves are alike.
 
     Parameters
     ----------
@@ -233,8 +239,11 @@ def fit_allan(taus: ArrayLike, adev: ArrayLike, n_samples: int, dt: float, *, ra
     Returns
     -------
     dict
-        ``white`` (N), ``bias_instability`` (B), ``correlation_time`` (s) and
-        ``rate_random_walk`` (K; 0 unless fitted), in the units of ``adev``.
+        ``white`` (N), ``bias_instability`` (B; 0 when left out), ``correlation_time`` (s; meaningless when B
+        is 0: the full model's) and ``rate_random_walk`` (K; 0 unless fitted and chosen), in the units of
+        ``adev``; ``evidence``: (B, K), how many standard errors of the measured deviation the fit without the
+        term misses it by where the term shows (kept above :data:`ALLAN_EVIDENCE`; ``-inf`` for K when it is
+        not fitted).
     """
     taus = positive(taus, "taus")
     adev = positive(adev, "adev")
@@ -247,27 +256,60 @@ def fit_allan(taus: ArrayLike, adev: ArrayLike, n_samples: int, dt: float, *, ra
 
 
 def _fit_allan(taus: np.ndarray, adev: np.ndarray, n_samples: int, dt: float, rate_random_walk: bool) -> dict:
-    """:func:`fit_allan` of checked arguments (also :func:`navlib.calibration.characterise`'s)."""
+    """:func:`fit_allan` of checked arguments."""
+    gm, rrw = True, rate_random_walk
+    p = _fit_terms(taus, adev, n_samples, dt, gm, rrw)
+    evidence = [0.0, -np.inf]
+    for term in (0, 1) if rrw else (0,):
+        without = _fit_terms(taus, adev, n_samples, dt, gm and term != 0, rrw and term != 1)
+        if term == 0:                                                  # at the bias instability's peak
+            at = np.array([np.argmin(np.abs(np.log(taus / (GM_ALLAN_PEAK_TAU * p[2]))))])
+        else:                                                          # over the last decade
+            at = np.flatnonzero(taus >= taus[-1] / 10)
+        edf = _edf_random_walk(n_samples + 1.0, taus[at] / dt)
+        miss = float(np.max(np.abs(np.log(_adev_theory(taus[at], *without) / adev[at])) * np.sqrt(2 * edf)))
+        evidence[term] = miss
+        if miss <= ALLAN_EVIDENCE:
+            gm, rrw, p = gm and term != 0, rrw and term != 1, without
+    full = _fit_terms(taus, adev, n_samples, dt, True, rate_random_walk)
+    return {"white": p[0], "bias_instability": p[1], "correlation_time": p[2] if gm else full[2],
+            "rate_random_walk": p[3], "evidence": tuple(evidence)}
+
+
+ALLAN_EVIDENCE = 2.0
+"""A term beyond white noise is kept only if the fit without it misses the measured Allan deviation, where the term
+shows, by more than this many standard errors (:func:`fit_allan`)."""
+
+
+def _edf_random_walk(big_n: float, m: np.ndarray) -> np.ndarray:
+    """Equivalent degrees of freedom of the overlapping Allan variance for random-walk noise (Riley 2008, Table 5;
+    ``big_n`` = samples + 1): the smallest of the noise types, so the widest standard error."""
+    return (big_n - 2) * ((big_n - 1) ** 2 - 3 * m * (big_n - 1) + 4 * m * m) / (m * (big_n - 3) ** 2)
+
+
+def _fit_terms(taus, adev, n_samples, dt, gm: bool, rrw: bool) -> np.ndarray:
+    """Weighted least squares of white noise with (``gm``) a Gauss-Markov bias and (``rrw``) rate random walk:
+    parameters ``[N, B, T_c, K]`` (absent terms 0)."""
     from scipy.optimize import least_squares  # noqa: PLC0415 -- imported on first use (see GM_ALLAN_PEAK)
 
     w = np.sqrt(np.maximum(n_samples * dt / taus, 1.0))
     i_min = int(np.argmin(adev))
+    free = np.array([True, gm, gm, rrw])
+    p0 = np.array([adev[0] * np.sqrt(taus[0]), adev[i_min], taus[i_min] / GM_ALLAN_PEAK_TAU,
+                   adev[-1] / np.sqrt(taus[-1])])
+    lb = np.array([0.0, 0.0, taus[0] / 10, 0.0])
 
-    def model(p):
-        return _adev_theory(taus, p[0], p[1], p[2], p[3] if rate_random_walk else 0.0)
+    def full(q):
+        p = np.array([0.0, 0.0, p0[2], 0.0])            # without the bias term its correlation time is moot
+        p[free] = q
+        return p
 
-    def resid(p):
-        return w * (np.log(model(p)) - np.log(adev))
+    def resid(q):
+        p = full(q)
+        return w * (np.log(_adev_theory(taus, p[0], p[1], p[2], p[3])) - np.log(adev))
 
-    p0 = [adev[0] * np.sqrt(taus[0]), adev[i_min], taus[i_min] / GM_ALLAN_PEAK_TAU]
-    lb = [0.0, 0.0, taus[0] / 10]
-    if rate_random_walk:
-        p0.append(adev[-1] / np.sqrt(taus[-1]))
-        lb.append(0.0)
-    sol = least_squares(resid, p0, bounds=(lb, np.inf), x_scale=np.abs(p0) + 1e-300)
-    p = sol.x
-    return {"white": p[0], "bias_instability": p[1], "correlation_time": p[2],
-            "rate_random_walk": p[3] if rate_random_walk else 0.0}
+    sol = least_squares(resid, p0[free], bounds=(lb[free], np.inf), x_scale=np.abs(p0[free]) + 1e-300)
+    return full(sol.x)
 
 
 # --------------------------------------------------------------------------

@@ -512,6 +512,11 @@ class TriadNoise:
         Averaging times (s).
     adev : ndarray, shape (M, 3)
         Measured Allan deviation (u).
+    evidence : ndarray, shape (3, 2)
+        Identifiability of B and K per axis: how much the information criterion of the fit drops when the term
+        is added (:func:`navlib.analysis.fit_allan` chooses the model with the lowest): positive, the term is
+        kept (above 6: strong evidence); negative, the curve is explained without it and the term is 0 (its
+        upper limit still says how large it could be); ``-inf`` for K when it is not fitted.
     """
     noise_density: np.ndarray
     bias_instability: np.ndarray
@@ -522,6 +527,7 @@ class TriadNoise:
     rate_random_walk_ci: np.ndarray
     taus: np.ndarray
     adev: np.ndarray
+    evidence: np.ndarray
 
     def to_triad_errors(self, combine: str = "rms") -> TriadErrors:
         """The :class:`navlib.sensors.TriadErrors` these terms feed (one value for the three axes).
@@ -629,6 +635,7 @@ def _triad_noise(x: np.ndarray, dt: float, rate_random_walk: bool, confidence: f
         raise ValueError(f"{name}: an axis without noise (a constant record) has no noise terms to characterise")
     fits = [analysis.fit_allan(taus, adev[:, k], n, dt, rate_random_walk=rate_random_walk) for k in range(3)]
     terms = {key: np.array([f[key] for f in fits]) for key in fits[0]}
+    evidence = terms.pop("evidence")
     observed = _fold_unobserved_peaks(terms, taus[0], taus[-1], rate_random_walk)
 
     def factors(noise: str, tau: np.ndarray) -> np.ndarray:
@@ -642,7 +649,7 @@ def _triad_noise(x: np.ndarray, dt: float, rate_random_walk: bool, confidence: f
     K_end = adev[-1] / np.sqrt(taus[-1] / 3)             # the largest K the longest averaging time allows
     return TriadNoise(terms["white"], B, terms["correlation_time"], K, terms["white"][:, None] * f_N,
                       np.stack([B * f_B[:, 0], np.where(observed & (B > 0), B * f_B[:, 1], np.inf)], -1),
-                      np.stack([K * f_K[:, 0], np.maximum(K, K_end) * f_K[:, 1]], -1), taus, adev)
+                      np.stack([K * f_K[:, 0], np.maximum(K, K_end) * f_K[:, 1]], -1), taus, adev, evidence)
 
 
 def _fixed_interval(dt: Interval, n: int) -> float:

@@ -43,8 +43,9 @@ class SensorLimits:
         (``"saturated"``): the best reading available, but not a trustworthy one.
     stuck_run : int, "auto" or None
         A gyro whose output stopped updating: some axis repeating exactly the same value over this many
-        samples (``("gyro", "stuck")``, :func:`navlib.robust.stuck_mask`): that axis is held at its last
-        used value while the live axes go on measuring. Sensor noise makes such
+        samples (``("gyro", "stuck")``, :func:`navlib.robust.stuck_mask`): that axis is held -- at the run's
+        value if the run continues the signal (an output frozen at its last reading), else at its last used value
+        (an output latched at another value) -- while the live axes go on measuring. Sensor noise makes such
         repeats of a real reading essentially impossible; values at the rails are saturated, not stuck;
         a trial whose gyro is not noisy from the start (some axis repeats its first value this often: a
         noise-free simulation, a quantised gyro at rest) is not checked. "auto" (default):

@@ -401,8 +401,9 @@ class Screened(NamedTuple):
         The samples as given (the accelerometer is read from ``imu.f_b``, with the flags below).
     w_ib_b : ndarray, shape (..., N, 3)
         Gyro with every unusable sample (``("gyro", "nan" | "spike")``) replaced by the last used one, 0
-        before the first, and the stuck axes of a stuck sample (``("gyro", "stuck")``) held alone: the
-        attitude filters' hold.
+        before the first, and the stuck axes of a stuck sample (``("gyro", "stuck")``) held alone, at the run's
+        value when the run continues the signal (frozen at its last reading), else at the last used value
+        (latched elsewhere): the attitude filters' hold.
     fresh : ndarray of bool, shape (..., N)
         The gyro sample measures the motion (at least one live axis); saturated samples are used.
     m_b : ndarray, shape (..., N, 3), or None
@@ -559,30 +560,45 @@ def _gyro_scan(t, w, dts, max_dt, run, rail, stuck, turn):
         stuck_runs(t, t + 1, w, run, rail, stuck)
 
 
+@njit(cache=True, inline="always")
+def _axis(v, stuck, starts, g, p):
+    """One gyro axis of a stuck sample: (value held, the one before it) from the last used ``g`` and the one before,
+    ``p``. A live axis is used. A stuck run that continues the signal (its first value within 3 times the last step
+    of ``g``: an output frozen at its last reading) keeps that reading; one that starts with a step (an output
+    latched at another value) is held at ``g``."""
+    if not np.isfinite(v):
+        return g, p
+    if not stuck or starts and abs(v - g) <= 3.0 * abs(g - p):
+        return v, g
+    return g, p
+
+
 @njit(cache=True, nogil=True)
 def _gyro_hold(t0, t1, w, flags, stuck_axes, gate, held, fresh):
     """Trials t0 to t1 - 1: hold the last used gyro sample (0 before the first) over the NaN and spike samples
     of ``flags`` (:data:`_KEYS`) and over steps larger than ``gate`` on some axis (flagged as spikes;
     ``gate = 0``: off), unless the previous sample was such a step already (a sustained change is motion).
-    A stuck sample holds only its stuck axes (``stuck_axes``): the live axes still measure the motion."""
+    A stuck sample holds only its stuck axes (``stuck_axes``; :func:`_axis`): the live axes still measure the
+    motion."""
     for t in range(t0, t1):
-        gx = gy = gz = 0.0
+        gx = gy = gz = px = py = pz = 0.0
         was_step = False
         for k in range(w.shape[1]):
             wx, wy, wz = w[t, k, 0], w[t, k, 1], w[t, k, 2]
             if flags[0, t, k]:                                         # stuck: keep the live axes
-                axes = stuck_axes[t, k]
-                gx = wx if not axes[0] and np.isfinite(wx) else gx
-                gy = wy if not axes[1] and np.isfinite(wy) else gy
-                gz = wz if not axes[2] and np.isfinite(wz) else gz
+                new = k == 0 or not flags[0, t, k - 1]
+                sx, sy, sz = stuck_axes[t, k, 0], stuck_axes[t, k, 1], stuck_axes[t, k, 2]
+                gx, px = _axis(wx, sx, new or not stuck_axes[t, k - 1, 0], gx, px)
+                gy, py = _axis(wy, sy, new or not stuck_axes[t, k - 1, 1], gy, py)
+                gz, pz = _axis(wz, sz, new or not stuck_axes[t, k - 1, 2], gz, pz)
                 held[t, k, 0], held[t, k, 1], held[t, k, 2] = gx, gy, gz
-                fresh[t, k] = not (axes[0] and axes[1] and axes[2])    # all stuck: nothing measured
+                fresh[t, k] = not (sx and sy and sz)                   # all stuck: nothing measured
                 continue
             use = not (flags[0, t, k] or flags[1, t, k] or flags[2, t, k])
             if use and gate > 0.0 and not was_step and k > 0 and (
                     abs(wx - gx) > gate or abs(wy - gy) > gate or abs(wz - gz) > gate):
                 flags[2, t, k], was_step, use = True, True, False
             if use:
-                gx, gy, gz, was_step = wx, wy, wz, False
+                gx, gy, gz, px, py, pz, was_step = wx, wy, wz, gx, gy, gz, False
             held[t, k, 0], held[t, k, 1], held[t, k, 2] = gx, gy, gz
             fresh[t, k] = use

@@ -60,6 +60,9 @@ sys.path.insert(0, str(REPO / "tools"))
 import fuzz_calls  # noqa: E402  (the registry)
 from fuzz_calls import KNOWN_GAPS, Call, Fresh, Skip, public_callables  # noqa: E402
 
+from navlib.imu import ImuSamples  # noqa: E402
+from navlib.robust import FaultReport  # noqa: E402
+
 BAD_CLASSES = ("unnamed", "other_exception", "silent_nan", "silent_accept", "hang", "crash", "modifies_input")
 UNUSUAL_BAD = ("differs", "error")
 BATCH = 3                   # copies on the new leading axis (not 2: no fixture has a leading axis of 3)
@@ -81,6 +84,7 @@ DEGREE_ARGS = {"pitch": None, "roll": None, "pitches": None, "rolls": None, "lat
                "heading": None, "headings": None, "heading0": None, "heading1": None, "heading2": None,
                "heading_mag": None, "heading_rtk": None,
                "hpr": 1, "hpr0": 1, "hpr_true": 1, "ypr": 1, "lla": 0, "lla0": 0, "lla_true": 0}
+DT_NAMES = {"dt", "dts", "dt_gyro", "dt_imu", "time_step"}
 NUMERIC = {"number", "quat", "dcm", "time", "interval"}
 NUMBERS = NUMERIC | {"count"}          # the kinds held as numbers (counts too)
 
@@ -105,6 +109,13 @@ MUTATIONS = {
     "degrees": ({"number"}, "45 for an angle in radians (DEGREE_ARGS)"),
     "non_monotonic": ({"time"}, "two epochs swapped"),
     "time_jump": ({"time", "interval"}, "a one-hour jump in the middle of the time axis (one 3600 s interval)"),
+    "empty_elementwise": (NUMBERS, "no elements for an elementwise argument: shape (0,), or (0, k) with its vector "
+                                   "axis (valid: an empty result, or refused by name)"),
+    "tiny_dt": ({"interval", "number"}, "a sample interval of 1e-300 s (DT_NAMES and Interval arguments; valid if the "
+                                        "result stays below 1e100, else a named refusal is expected)"),
+    "negative_count": ({"count"}, "-4 where a count is expected"),
+    "stuck_axis": ({"object"}, "an ImuSamples turning at 1 rad/s whose x gyro repeats one value over 7 of its samples "
+                               "(stuck_run 5): valid, but the result's faults must count ('gyro', 'stuck')"),
     "zero_quat": ({"quat"}, "the zero quaternion"),
     "not_rotation": ({"dcm"}, "a mirror image (orthonormal, det -1)"),
 }
@@ -160,6 +171,12 @@ def applies(mutation: str, arg: Arg) -> bool:
     if mutation == "empty" and arg.elementwise and v.ndim != 1:
         return False        # an empty batch is valid for elementwise functions (tests/test_bad_input.py);
                             # a (0,) vector, a vector without components, is none
+    if mutation == "empty_elementwise":
+        return arg.elementwise and not (v.ndim == 1 and v.shape[-1:] not in ((3,), (4,)))   # not "empty" already
+    if mutation == "tiny_dt":
+        return arg.kind == "interval" or arg.name in DT_NAMES
+    if mutation == "stuck_axis":
+        return isinstance(arg.value, ImuSamples) and arg.value.n >= 10 and arg.value.w_ib_b.ndim == 2
     if mutation in ("wrong_shape", "transposed") and arg.any_shape:
         return False        # data of any width: (N, k) for every k, also (k, N)
     if mutation == "transposed":
@@ -235,11 +252,37 @@ def mutate(mutation: str, arg: Arg):
         d = np.full(arg.n, float(a)) if a.ndim == 0 else a
         d[d.size // 2] = 3600.0
         return d
+    if mutation == "empty_elementwise":
+        return np.zeros((0,) + a.shape[-1:]) if a.shape[-1:] in ((3,), (4,)) else np.zeros(0)
+    if mutation == "tiny_dt":
+        return 1e-300 if a.ndim == 0 else np.full_like(a, 1e-300)
+    if mutation == "negative_count":
+        return -4
+    if mutation == "stuck_axis":
+        return stuck_inside_motion(v)
     if mutation == "zero_quat":
         return np.zeros_like(a)
     if mutation == "not_rotation":
         return a * np.array([1.0, 1.0, -1.0])          # last column negated: a mirror image
     raise KeyError(mutation)
+
+
+def stuck_inside_motion(imu: ImuSamples) -> ImuSamples:
+    """``imu`` turning at 1 rad/s about every axis (a moving record, noisy from the start), its x gyro frozen over 7
+    samples in the middle, with ``stuck_run = 5`` so that a short record holds a stuck run."""
+    k = np.arange(imu.n)
+    w = imu.w_ib_b + 1.0 + 0.01 * np.sin(1.7 * k)[:, None] * np.array([1.0, -1.0, 0.5])
+    lo = max(1, imu.n // 2 - 3)
+    w[lo:lo + 7, 0] = w[lo, 0]
+    return ImuSamples(w, imu.f_b, imu.dt, dataclasses.replace(imu.limits, stuck_run=5))
+
+
+def counted_stuck(out) -> bool | None:
+    """Whether a result's FaultReport counts a stuck gyro (None: the result carries no FaultReport)."""
+    fields = [getattr(out, f.name) for f in dataclasses.fields(out)] if dataclasses.is_dataclass(out) else []
+    parts = [out, *fields, *(out if isinstance(out, tuple) else ())]
+    reports = [x for x in parts if isinstance(x, FaultReport)]
+    return bool(np.any(reports[0]["gyro", "stuck"])) if reports else None
 
 
 def unusual(variant: str, arg: Arg):
@@ -317,8 +360,12 @@ BY_DESIGN: list[tuple[str, str, str, str, str]] = [
      "quaternions of any finite magnitude are normalised exactly (tests/test_magnitudes.py)"),
     (r"papers\.rotation_bias\.draw_rotation_schedule", r"time|starts", r"time_jump|wrong_shape", "silent_accept",
      "a drawing: any increasing time axis is drawn as given, any number of dwell windows shaded"),
-    (r"imu\.ImuSamples|filters\.heading_fusion\.fuse_rtk_heading", "dt", r"1e300|time_jump", "silent_accept",
-     "nothing is integrated over dt here; an interval too long to integrate is refused where it is (small_turns)"),
+    (r"imu\.ImuSamples", "dt", r"1e300|time_jump", "silent_accept",
+     "the record only holds the intervals; an interval too long to integrate is refused (small_turns) or counted as a "
+     "clock jump by the filter that screens it"),
+    (r"filters\.heading_fusion\.fuse_rtk_heading", "dt", r"1e300|time_jump", "silent_accept",
+     "dt only ages the last RTK epoch: a long interval is a clock jump, counted in faults['clock', 'jump'], over which "
+     "the carried epoch is dropped (tests/faults/test_faults_ahrs.py)"),
     (r"filters\.zupt_ins\.Gates", r"zupt|baro|mag_field|mag_dip", r"inf|1e300", r"silent_nan|silent_accept",
      "inf disables a gate, any finite value is one (Gates docstring)"),
     (r"repro\.check(_range|_outside)?", r"value|expected|tol|lower|upper", r"nan|inf|1e300", r"other_exception|silent_accept",
@@ -334,9 +381,14 @@ BY_DESIGN: list[tuple[str, str, str, str, str]] = [
     (r".*", _HEADINGS, "degrees", "silent_accept", "a heading is periodic: 45 rad is a valid unwrapped heading"),
     (r"analysis\.(attitude_errors|error_statistics)", r"hpr|hpr_true", "degrees", "silent_accept",
      "compares any angle triples component by component (wrapped), not rotations (tests/test_gyrobias.py: [-4, 4] rad)"),
-    (r"filters\.planar_ekf\.(dead_reckoning|filter_grid)|papers\.gauss_kruger_ekf\.ekf", "t", "time_jump",
-     "silent_accept", "a clock jump in t is not integrated (the state is held) and is reported in "
+    (r"filters\.planar_ekf\.filter_grid|papers\.gauss_kruger_ekf\.ekf", "t", "time_jump",
+     "silent_accept", "a clock jump in t is not propagated over (the state is held, P grows) and is reported in "
      "faults['clock', 'jump'] (tests/faults/test_faults_planar.py)"),
+    (r"filters\.planar_ekf\.dead_reckoning", "t", "time_jump", "silent_accept",
+     "a clock jump in t is integrated as one typical step (a stamp glitch costs nothing, a gap adds no unmeasured "
+     "motion) and reported in faults['clock', 'jump'] (tests/faults/test_faults_planar.py)"),
+    (r"atmosphere\.(classify_floor|segment_floors)", "ref_floor", "negative_count", "silent_accept",
+     "a floor number, not a count: basements are negative floors"),
     (r"analysis\.settling_time|atmosphere\.reference_pressure|faults\.\w+|timing\.(intervals|sanitize)|"
      r"sensors\.(magnetic_disturbances|outage_mask|simulate_barometer)|trajectory\.Trajectory|io\.align|"
      r"papers\.pedestrian_ins\.hvac_pressure_steps|filters\.heading_fusion\.rtk_at_imu_rate",
@@ -543,7 +595,7 @@ def run_case(case: tuple, table: dict, funcs: dict, baselines: dict) -> dict:
         try:
             if mutation in MUTATIONS:
                 kwargs = dict(call.kwargs, **{argname: mutate(mutation, args[argname])})
-                rec.update(_bad(func, kwargs, call, argname, baselines[key], tuple(args)))
+                rec.update(_bad(func, kwargs, call, argname, baselines[key], tuple(args), mutation))
             else:
                 rec.update(_unusual(func, call, args, argname, mutation, baselines[key]))
         finally:
@@ -551,7 +603,7 @@ def run_case(case: tuple, table: dict, funcs: dict, baselines: dict) -> dict:
     return rec
 
 
-def _bad(func, kwargs, call, argname, baseline, others) -> dict:
+def _bad(func, kwargs, call, argname, baseline, others, mutation) -> dict:
     try:
         out = call_once(func, kwargs, call.before)
     except (ValueError, TypeError) as exc:
@@ -561,9 +613,23 @@ def _bad(func, kwargs, call, argname, baseline, others) -> dict:
     except Exception as exc:            # noqa: BLE001 -- any other exception is the finding
         return {"outcome": "other_exception", "error": type(exc).__name__, "message": str(exc)[:300],
                 "where": _where(exc)}
-    bad = nonfinite(leaves(out), baseline)
+    if mutation == "empty_elementwise" and not any(x.size for x in leaves(out).values() if x.ndim):
+        return {"outcome": "clean", "message": "accepted: an empty result"}       # an empty batch is valid
+    if mutation == "stuck_axis":
+        counted = counted_stuck(out)
+        if counted:
+            return {"outcome": "clean", "message": "accepted: the stuck axis is counted in faults"}
+        return {"outcome": "silent_accept", "message": "stuck gyro axis " + ("not counted in faults" if counted is False
+                                                                                else "and no FaultReport returned")}
+    found = leaves(out)
+    bad = nonfinite(found, baseline)
     if bad:
         return {"outcome": "silent_nan", "message": f"non-finite in {', '.join(bad[:3])}"}
+    if mutation == "tiny_dt":                 # a positive interval, however short, is valid if the result stays physical
+        huge = [p for p, x in found.items() if x.dtype.kind in "fc" and x.size and np.max(np.abs(x)) > 1e100]
+        if not huge:
+            return {"outcome": "clean", "message": "accepted: a short interval, a finite result"}
+        return {"outcome": "silent_accept", "message": f"values beyond 1e100 in {', '.join(huge[:3])}"}
     return {"outcome": "silent_accept"}
 
 

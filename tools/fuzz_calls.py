@@ -392,6 +392,7 @@ def table() -> dict:
             Bad("hold", "negative", hold=-1.0),
             Bad("gate", "above_pi", gate=4.0), Bad("gate", "inf", gate=np.inf), Bad("confirm", "zero", confirm=0),
             Bad("confirm", "fractional", confirm=1.5))),
+        "filters.observations.integral_gain": Call(dict(ki=None, heading_reference=True)),
         "filters.observations.magnetic_reference": Call(dict(B_n=B_N), bad=(Bad("B_n", "zero", B_n=np.zeros(3)),)),
         "filters.observations.pack": Call(dict(imu=IMU, q0=Q, m_b=M, rtk=None, B_n=None,
                                                gates=observations.AttitudeGates(), kp=1.0)),

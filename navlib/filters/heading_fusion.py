@@ -15,12 +15,19 @@ rule of the attitude filters; counted ``("clock", "jump")`` and flagged): the la
 until the next used epoch; the gate's run of rejections restarts; the offset ``delta`` is kept and goes
 on being smoothed. Kept, not re-initialised from the next epoch, because delta is a calibration (the
 declination plus the magnetic heading's slowly varying error) that a gap in time does not change, while
-the magnetic heading itself steps at the jump: the attitude filter upstream re-initialises from one
-magnetometer sample (-4 to +7 deg off the run without the jump in tests/faults/test_faults_ahrs.py,
-removed over a few 1 / kp) and a delta restarted from the first epoch after the jump carries that
-transient into the next outage (there, in an outage 30 s after the jump, the RMS heading error is 2.6-2.9x
+the magnetic heading itself may step after the jump: over a real gap the attitude filter upstream
+re-initialises once a quasi-static window shows its state lost (:func:`navlib.filters.observations.relock`),
+and a delta restarted from the first epoch after the jump carries such a transient into the next outage
+(measured when the filters re-initialised from the jump's one sample, -4 to +7 deg off the run without the
+jump in tests/faults/test_faults_ahrs.py: in an outage 30 s after the jump the RMS heading error was 2.6-2.9x
 that of the run without the jump with delta restarted, 1.1-1.2x with delta kept). A real change of the
 offset is still taken through the gate's re-acquisition.
+
+Magnetic steps: with a gate, a change of the magnetic heading's increment from one sample to the next larger
+than the gate (a step no motion makes: a magnetic disturbance switching on or off, a re-initialisation upstream) is
+not carried to the RTK heading between epochs (counted ``("mag", "outlier")``); otherwise the carried heading would
+take the step and the gate would reject the correct RTK epochs after it until ``confirm`` of them re-acquire
+(tools/fault_matrix.py: a 30 deg step for 2 s cost 8-9 deg RMS with the gate, 0 without it).
 
 Stuck sensors: the fusion takes no gyro samples (nothing to check here); a stuck gyro is found
 upstream, by the screening of the attitude filter that produced ``heading_mag``, and the RTK heading is
@@ -54,7 +61,7 @@ from .observations import RtkHeading, rtk_gate
 
 __all__ = ["fuse_rtk_heading", "rtk_at_imu_rate", "FusionResult"]
 
-_FAULTS = (("heading", "nan"), ("heading", "outlier"), ("heading", "reacquired"))
+_FAULTS = (("heading", "nan"), ("heading", "outlier"), ("heading", "reacquired"), ("mag", "outlier"))
 """What the kernel counts, in this order: the same keys as the attitude filters' RTK counts."""
 
 
@@ -70,8 +77,9 @@ class FusionResult:
         Offset estimate ``H_rtk - H_mag`` (rad); NaN before the first used RTK epoch.
     faults : FaultReport
         Per valid epoch ``("heading", "nan")`` (NaN value), ``("heading", "outlier")`` (outside the gate,
-        not fused), ``("heading", "reacquired")`` (used after ``confirm`` agreeing rejections); counts of
-        shape (...); and ``("clock", "jump")`` flagged per sample, shape (..., N).
+        not fused), ``("heading", "reacquired")`` (used after ``confirm`` agreeing rejections); with a gate
+        ``("mag", "outlier")`` (magnetic steps not carried, module docstring); counts of shape (...); and
+        ``("clock", "jump")`` flagged per sample, shape (..., N).
     """
     heading: np.ndarray
     delta: np.ndarray
@@ -85,10 +93,18 @@ def _fuse_kernel(h_mag, h_rtk, ok, dts, jump, alpha, rtk_par, out, delta_out, co
     state = np.zeros(2)
     for t in range(T):
         delta, age, anchor_rtk, anchor_mag = np.nan, np.inf, 0.0, 0.0
+        step, skipped = 0.0, 0.0                           # steady magnetic increment; steps left out of the carry
         state[0] = 0.0
         for k in range(N):
             if jump[k]:                                    # clock jump: nothing carried over it, the gate restarts
                 age, state[0] = np.inf, 0.0
+            elif k > 0:
+                inc = wrap_pi(h_mag[t, k] - h_mag[t, k - 1])
+                if abs(inc - step) > gate:                 # a magnetic step no motion makes: not carried
+                    skipped += inc - step
+                    counts[t, 3] += 1
+                else:
+                    step = inc
             age += dts[k]
             if ok[t, k]:                                   # RTK epoch flagged valid
                 hk = h_rtk[t, k]
@@ -97,7 +113,7 @@ def _fuse_kernel(h_mag, h_rtk, ok, dts, jump, alpha, rtk_par, out, delta_out, co
                     code = 1
                 else:
                     if age <= hold:                        # predicted heading: carried RTK, held delta, or none
-                        pred = anchor_rtk + wrap_pi(h_mag[t, k] - anchor_mag)
+                        pred = anchor_rtk + wrap_pi(h_mag[t, k] - anchor_mag) - skipped
                     elif not np.isnan(delta):
                         pred = h_mag[t, k] + delta
                     else:
@@ -110,9 +126,9 @@ def _fuse_kernel(h_mag, h_rtk, ok, dts, jump, alpha, rtk_par, out, delta_out, co
                 if code != 1:
                     d = wrap_pi(hk - h_mag[t, k])
                     delta = d if (np.isnan(delta) or code == 2) else delta + alpha * wrap_pi(d - delta)
-                    anchor_rtk, anchor_mag, age = hk, h_mag[t, k], 0.0
+                    anchor_rtk, anchor_mag, age, skipped = hk, h_mag[t, k], 0.0, 0.0
             if age <= hold:                                # output the RTK heading, carried between epochs
-                out[t, k] = anchor_rtk + wrap_pi(h_mag[t, k] - anchor_mag)
+                out[t, k] = anchor_rtk + wrap_pi(h_mag[t, k] - anchor_mag) - skipped
             elif not np.isnan(delta):                      # outage: hold delta
                 out[t, k] = h_mag[t, k] + delta
             else:                                          # no RTK yet: uncalibrated magnetic heading
@@ -161,7 +177,7 @@ def fuse_rtk_heading(heading_mag: Angles, rtk: RtkHeading, dt: Interval, alpha: 
     out, delta, counts = np.empty((T, N)), np.empty((T, N)), np.zeros((T, len(_FAULTS)), dtype=np.int64)
     _fuse_kernel(kernel_array(hm.reshape(T, N)), hr, ok, dts, jump, alpha, rtk.params(), out, delta, counts)
     lead = hm.shape[:-1]
-    found = {key: counts[:, i].reshape(lead) for i, key in enumerate(_FAULTS)}
+    found = {key: counts[:, i].reshape(lead) for i, key in enumerate(_FAULTS) if key[0] == "heading" or rtk.gate}
     found["clock", "jump"] = np.full(lead, jump.sum())
     faults = FaultReport(found, {("clock", "jump"): np.broadcast_to(jump, hm.shape)})
     return FusionResult(out.reshape(hm.shape), delta.reshape(hm.shape), faults)

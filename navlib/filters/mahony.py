@@ -35,11 +35,13 @@ from .observations import (
     AttitudeResult,
     RtkHeading,
     attitude_result,
+    integral_gain,
+    jump_step,
     learning,
     observe,
     pack,
     pi_error,
-    reinit,
+    relock,
     rtk_north,
     run_trials,
 )
@@ -61,31 +63,31 @@ def _trial(t, inp, kp, ki, q_out, bias_out, counts):
     ix = iy = iz = 0.0
     rtk = np.array([0.0, 1.0, 0.0, np.inf, 0.0, 0.0])
     health = np.array([0.0, np.inf])
+    check = np.zeros(10)
     for k in range(w.shape[1]):
         dt, gx, gy, gz = dts[k], w[t, k, 0], w[t, k, 1], w[t, k, 2]
-        if inp.jump[k]:                                                # clock jump: integrate nothing
-            q0, q1, q2, q3 = reinit(inp, t, k, q0, q1, q2, q3, rtk)
-            health[1] = 0.0
-        else:
-            ax, ay, az, mx, my, mz, C = observe(z, t, k, q0, q1, q2, q3)
-            if inp.use_rtk:
-                mx, my, mz = rtk_north(inp, t, k, C, dt, rtk, counts)
-            ex, ey, ez = pi_error(C, ax, ay, az, mx, my, mz)                 # Eqs. (12)-(14)
-            if learning(inp.fresh[t, k], dt, health, inp):                 # Eq. (15), unless settling after a fault
-                ix += ex * dt
-                iy += ey * dt
-                iz += ez * dt
-            wx, wy, wz = gx + kp * ex + ki * ix, gy + kp * ey + ki * iy, gz + kp * ez + ki * iz
-            d0, d1, d2, d3 = quat_mult_t(q0, q1, q2, q3, 0.0, wx, wy, wz)  # Eq. (17): q + dt/2 q (x) [0, w]
-            q0, q1, q2, q3 = q0 + 0.5 * dt * d0, q1 + 0.5 * dt * d1, q2 + 0.5 * dt * d2, q3 + 0.5 * dt * d3
-            s = 1.0 / np.sqrt(q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
-            q0, q1, q2, q3 = q0 * s, q1 * s, q2 * s, q3 * s
+        if inp.jump[k]:                                                # clock jump: one typical interval, then check
+            dt = jump_step(inp, check, rtk, health)
+        ax, ay, az, mx, my, mz, C = observe(z, t, k, q0, q1, q2, q3)
+        if inp.use_rtk:
+            mx, my, mz = rtk_north(inp, t, k, C, dt, rtk, counts)
+        ex, ey, ez = pi_error(C, ax, ay, az, mx, my, mz)                 # Eqs. (12)-(14)
+        if learning(inp.fresh[t, k], dt, health, inp):                 # Eq. (15), unless settling after a fault
+            ix += ex * dt
+            iy += ey * dt
+            iz += ez * dt
+        wx, wy, wz = gx + kp * ex + ki * ix, gy + kp * ey + ki * iy, gz + kp * ez + ki * iz
+        d0, d1, d2, d3 = quat_mult_t(q0, q1, q2, q3, 0.0, wx, wy, wz)  # Eq. (17): q + dt/2 q (x) [0, w]
+        q0, q1, q2, q3 = q0 + 0.5 * dt * d0, q1 + 0.5 * dt * d1, q2 + 0.5 * dt * d2, q3 + 0.5 * dt * d3
+        s = 1.0 / np.sqrt(q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
+        q0, q1, q2, q3 = q0 * s, q1 * s, q2 * s, q3 * s
+        q0, q1, q2, q3, _ = relock(inp, t, k, q0, q1, q2, q3, check, rtk, health)   # after a jump: only if the state is lost
         q_out[t, k, 0], q_out[t, k, 1], q_out[t, k, 2], q_out[t, k, 3] = q0, q1, q2, q3
     bias_out[t, 0], bias_out[t, 1], bias_out[t, 2] = -ki * ix, -ki * iy, -ki * iz
 
 
 def mahony(imu: ImuSamples, q0: Quat, *, m_b: Vec3Series | None = None, rtk: RtkHeading | None = None,
-           B_n: Vec3 | None = None, kp: float = 1.0, ki: float = 0.02,
+           B_n: Vec3 | None = None, kp: float = 1.0, ki: float | None = None,
            gates: AttitudeGates = AttitudeGates()) -> AttitudeResult:
     """Mahony PI complementary filter (Eqs. 9-15 of Zhang et al. 2023), per sample:
     ``e = a x a_est + m x m_est``, ``w = w_m + kp e + ki sum(e dt)``,
@@ -112,9 +114,12 @@ def mahony(imu: ImuSamples, q0: Quat, *, m_b: Vec3Series | None = None, rtk: Rtk
         of the paper's Fig. 4).
     B_n : array_like, shape (3,), optional
         Local field (uT, ENU); needed by a magnetometer gate.
-    kp, ki : float
-        Proportional (rad/s) and integral (rad/s^2) gains of Eq. (15); ``ki = 0`` disables gyro-bias
-        estimation.
+    kp : float
+        Proportional gain of Eq. (15) (rad/s).
+    ki : float, optional
+        Integral gain of Eq. (15) (rad/s^2); ``ki = 0`` disables gyro-bias estimation. None (default):
+        0.02 with a heading reference (``m_b`` or ``rtk``), 0 without one, where the integral would learn the
+        linear accelerations of the motion as bias (:func:`navlib.filters.observations.integral_gain`).
     gates : AttitudeGates
         Accelerometer-norm and magnetometer gates (default: none).
 
@@ -124,7 +129,7 @@ def mahony(imu: ImuSamples, q0: Quat, *, m_b: Vec3Series | None = None, rtk: Rtk
         With ``faults``: what was held, skipped, gated or re-initialised
         (:mod:`navlib.filters.observations`).
     """
-    kp, ki = scalar(kp, "kp", positive=True, allow_zero=True), scalar(ki, "ki", positive=True, allow_zero=True)
+    kp, ki = scalar(kp, "kp", positive=True, allow_zero=True), integral_gain(ki, m_b is not None or rtk is not None)
     lead, inp, found = pack(imu, q0, m_b, rtk, B_n, gates, kp)
     T, N = inp.w.shape[:2]
     q_out, bias, counts = np.empty((T, N, 4)), np.empty((T, 3)), np.zeros((T, 4), dtype=np.int64)

@@ -11,21 +11,23 @@ such filters:
   :class:`RtkHeading` (the RTK heading reference with its hold, gate and re-acquisition);
 * :func:`pack` -- :func:`navlib.robust.screen`'s clean samples with the gates applied, as the
   :class:`AttitudeInputs` record of the compiled kernels (trials flattened);
-* :func:`observe`, :func:`rtk_north`, :func:`pi_error`, :func:`rtk_gate`, :func:`learning`, :func:`reinit` --
-  the compiled per-sample steps: unit vectors (the RTK pseudo-vector with its state-dependent gate), Mahony's error
-  ``e = a_meas x a_est + m_meas x m_est``, when the gyro-bias integral may learn, and the
-  re-initialisation after a clock jump;
+* :func:`observe`, :func:`rtk_north`, :func:`pi_error`, :func:`rtk_gate`, :func:`learning`, :func:`jump_step`,
+  :func:`relock` -- the compiled per-sample steps: unit vectors (the RTK pseudo-vector with its state-dependent
+  gate), Mahony's error ``e = a_meas x a_est + m_meas x m_est``, when the gyro-bias integral may learn, and what
+  follows a clock jump (re-initialisation only when earned);
 * :class:`AttitudeResult` and :func:`run_trials` (Monte Carlo trials in parallel; the kernels release
   the GIL).
 
 What the filters do with bad samples, once for all of them: the gyro is held over dropouts and spikes,
 and a stuck axis over its stuck run while the live axes go on measuring (:func:`navlib.robust.screen`;
 the gyro-bias integral is frozen while nothing is measured and, after a hold of ``stuck_run`` samples or
-more or a clock jump, for :data:`SETTLE_TIME_CONSTANTS` / kp seconds);
+more or a clock jump, for :data:`SETTLE_TIME_CONSTANTS` / kp seconds, unless the jump was a stamp glitch:
+:func:`learning`);
 saturated gyro samples are used (the best reading available) and flagged; accelerometer and
 magnetometer samples that are missing, at the rails, in free fall, spikes or outside their gate are
-skipped: the attitude is propagated by the gyro alone over them. At a clock jump nothing is integrated
-and the attitude is re-initialised from that sample (:func:`reinit`). Every case is counted in the
+skipped: the attitude is propagated by the gyro alone over them. A clock jump is integrated as one typical
+interval (a stamp glitch leaves the samples contiguous); the attitude is re-initialised only if the next
+quasi-static window shows it is lost, and then from that window's means (:func:`relock`). Every case is counted in the
 result's ``faults`` (:class:`navlib.robust.FaultReport`): the screen's keys, plus ``("accel" | "mag",
 "outlier")`` for gated samples and ``("heading", "nan" | "outlier" | "reacquired")`` for RTK epochs
 (``mag`` is the heading reference: the RTK pseudo-vector in RTK mode).
@@ -45,13 +47,17 @@ from .. import attitude, earth
 from .._kernels import dcm_heading, euler_to_quat, level, tilt_heading, wrap_pi
 from .._threads import run_chunks
 from .._typing import Array, ArrayLike, Quat, Vec3
-from .._validate import as_array, as_quat, booleans, broadcast_to, instance, integer, kernel_array, scalar
+from .._validate import as_array, as_quat, booleans, broadcast_to, flag, instance, integer, kernel_array, scalar
 from ..imu import ImuSamples, SensorLimits
 from ..robust import FaultReport, screen
 from ..units import G0
 
 __all__ = ["MagGate", "AttitudeGates", "RtkHeading", "AttitudeResult", "AttitudeInputs", "SETTLE_TIME_CONSTANTS",
-           "magnetic_reference", "pack", "attitude_result", "run_trials"]
+           "KI_WITH_REFERENCE", "integral_gain", "magnetic_reference", "pack", "attitude_result", "run_trials"]
+
+KI_WITH_REFERENCE = 0.02
+"""Default integral gain ``ki`` (rad/s^2) of the attitude filters' PI loop when they have a heading reference
+(magnetometer or RTK heading); without one the default is 0 (:func:`integral_gain`)."""
 
 SETTLE_TIME_CONSTANTS = 15.0
 """After a clock jump or a gyro hold of ``stuck_run`` samples or more, the gyro-bias integral of the attitude
@@ -60,6 +66,24 @@ reference removes the attitude error the fault left: learning from that transien
 estimate by ``ki`` times the integral of the error. The magnetometer loop is the slowest (time constant
 about 3.5 / kp); a gyro frozen through a 90 deg turn leaves 55 deg, a re-initialisation from one sample
 with 0.04 G noise up to ~15 deg (tests/faults/test_sensor_health.py: 10 / kp is too short for the latter)."""
+
+STILL_WINDOW = 0.5
+"""Length (s) of the quasi-static window from which :func:`relock` judges and re-initialises the attitude after a clock
+jump: 50 samples at 100 Hz average the accelerometer noise down sevenfold."""
+
+STILL_RATE = 0.1
+"""A quasi-static sample (:func:`relock`): gyro norm below this (rad/s, 5.7 deg/s: hand-held at rest, not turning) ..."""
+
+STILL_ACCEL = 0.05
+"""... and accelerometer norm within this fraction of g (no linear acceleration to mistake for tilt)."""
+
+LOST_TILT = np.deg2rad(5.0)
+"""Tilt error (rad) above which :func:`relock` takes the attitude to be lost: a tracking filter stays within about
+1 deg at rest, a quasi-static window's mean is good to about 0.1 deg (0.01 g noise over 50 samples)."""
+
+LOST_HEADING = np.deg2rad(15.0)
+"""Heading error (rad) against the window's magnetic (or RTK) heading above which the attitude is lost: wider than the
+tilt's, for the field disturbances of everyday places (a few degrees to ten)."""
 
 _RTK_COUNTS = (("mag", "nan"), ("heading", "nan"), ("heading", "outlier"), ("heading", "reacquired"))
 """What the kernels count themselves (the RTK reference's state-dependent gate), in this order."""
@@ -76,7 +100,10 @@ class AttitudeInputs(NamedTuple):
     use_rtk: bool                   # heading reference: RTK (True) or magnetometer
     use_mag: bool                   # False with RTK or without a heading reference (gyro + accelerometer only)
     dts: np.ndarray                 # (N,) interval covered by each sample (s)
-    jump: np.ndarray                # (N,) bool: clock jump (nothing integrated; re-initialise)
+    jump: np.ndarray                # (N,) bool: clock jump (integrated as typical_dt; relock checks the state)
+    typical_dt: float               # median interval (s)
+    still: np.ndarray               # (T, N) bool quasi-static samples (STILL_RATE, STILL_ACCEL), or (1, 1) without a jump
+    window: int                     # quasi-static samples that relock needs (STILL_WINDOW)
     rtk_par: np.ndarray             # (3,) hold (s), gate (rad), confirm (epochs)
     long_hold: int                  # gyro holds of at least this many samples are followed by settling
     settle: float                   # bias integral frozen this long (s) after a long hold or a clock jump
@@ -85,6 +112,21 @@ class AttitudeInputs(NamedTuple):
 # --------------------------------------------------------------------------
 # Reference field
 # --------------------------------------------------------------------------
+
+def integral_gain(ki: float | None, heading_reference: bool) -> float:
+    """The PI loop's integral gain (rad/s^2): ``ki`` as given, or by default (None) :data:`KI_WITH_REFERENCE` with a
+    heading reference (a magnetometer or RTK heading: ``heading_reference``) and 0 without one.
+
+    Why off without a heading reference: the integral then learns only from the accelerometer's tilt error, which
+    during hand or vehicle motion is mostly linear acceleration, not gyro bias; the vertical-axis bias is not
+    observable at all. On the x-io hand-motion recording (data/real/xio-fusion, no magnetometer) ``ki = 0.02``
+    learns (-0.27, 0.89, 0.70) deg/s where the true bias is about 0.01 deg/s, and the heading then drifts 10 deg in
+    15 s at rest. With a heading reference every axis is observed and the default learns the bias.
+    """
+    if ki is None:
+        return KI_WITH_REFERENCE if flag(heading_reference, "heading_reference") else 0.0
+    return scalar(ki, "ki", positive=True, allow_zero=True)
+
 
 def magnetic_reference(B_n: Vec3) -> tuple[Array, float, float, float]:
     """Normalised magnetic reference ``b = [0, cos I, -sin I]`` (Eq. 3) and the field's angles.
@@ -250,7 +292,8 @@ def rtk_north(inp, t, k, C, dt, rtk, counts):
 @njit(cache=True, inline="always")
 def learning(fresh, dt, state, inp):
     """May the gyro-bias (PI) integral learn from this sample? Not while the gyro is held (``fresh`` False),
-    nor for ``inp.settle`` seconds after a hold of ``inp.long_hold`` samples or more or a clock jump.
+    nor for ``inp.settle`` seconds after a hold of ``inp.long_hold`` samples or more or a clock jump (unless
+    :func:`relock` finds the attitude kept: a stamp glitch left no transient).
 
     ``state = [samples held in a row, time since the last long hold or jump (s)]`` (start ``[0, inf]``;
     a clock jump sets ``state[1] = 0``).
@@ -266,30 +309,84 @@ def learning(fresh, dt, state, inp):
 
 
 @njit(cache=True)
-def reinit(inp, t, k, q0, q1, q2, q3, rtk):
-    """Attitude after a clock jump at sample k of trial t (nothing is integrated over its interval).
+def relock(inp, t, k, q0, q1, q2, q3, state, rtk, health):
+    """After a clock jump: re-initialise the attitude only once the data show it is lost, from a quasi-static window.
 
-    Tilt from the sample's accelerometer (pitch ``atan2(a_y, |a_xz|)``, roll ``atan2(-a_x, a_z)``),
-    heading from its magnetometer (tilt-compensated), or in RTK mode from a valid RTK epoch at k, else
-    the current estimate's heading. A skipped accelerometer sample keeps the attitude ``q``. The RTK
-    hold and gate state ``rtk`` (see :func:`observe`) restarts. The caller restarts the settling of
-    :func:`learning`. Returns (q0, q1, q2, q3).
+    A clock jump may be a pure stamp glitch (the samples on either side are contiguous: the filter has already
+    propagated through it as one typical interval) or a real gap, over which the device may have turned. The
+    filter cannot tell at the jump; it keeps propagating and collects the next quasi-static samples
+    (:attr:`AttitudeInputs.still`). When :data:`STILL_WINDOW` seconds of them in a row are at hand, their mean
+    accelerometer (and magnetometer) direction is compared with the estimate: a tilt off by more than
+    :data:`LOST_TILT` or a magnetic heading off by more than :data:`LOST_HEADING` means the state is lost, and the
+    attitude is re-initialised from the window's means (tilt, tilt-compensated magnetic heading; in RTK mode the
+    heading of a valid epoch in the window, else the estimate's) and the settling of :func:`learning` restarts;
+    otherwise the attitude is kept and the bias integral learns again at once (``health``, the state of
+    :func:`learning`): there is no transient to keep out of it. Either way the check ends.
+
+    ``state = [checking (1/0), samples in the window, sum of the unit accelerometer (3), of the unit magnetometer (3),
+    magnetometer samples, last valid RTK heading in the window (NaN: none)]`` (10 values; a jump sets ``state[0] = 1``
+    and clears the rest: :func:`start_relock`). Returns ``(q0, q1, q2, q3, re-initialised)``.
     """
+    if state[0] == 0.0:
+        return q0, q1, q2, q3, False
     z = inp.z
-    rtk[3], rtk[4] = np.inf, 0.0                                   # the last epoch is stale
-    ax, ay, az = z[t, k, 0], z[t, k, 1], z[t, k, 2]
-    if np.isnan(ax):
-        return q0, q1, q2, q3
-    pitch, roll = level(ax, ay, az)
+    if not inp.still[t, k] or np.isnan(z[t, k, 0]):
+        start_relock(state)                                            # the window must be quasi-static throughout
+        return q0, q1, q2, q3, False
+    state[1] += 1.0
+    for i in range(3):
+        state[2 + i] += z[t, k, i]
+    if not np.isnan(z[t, k, 3]):
+        for i in range(3):
+            state[5 + i] += z[t, k, 3 + i]
+        state[8] += 1.0
+    if inp.use_rtk and inp.hdg_ok[t, k] and not np.isnan(inp.hdg[t, k]):
+        state[9] = inp.hdg[t, k]
+    if state[1] < inp.window:
+        return q0, q1, q2, q3, False
+    state[0] = 0.0                                                     # one verdict per jump
+    pitch, roll = level(state[2], state[3], state[4])
     C = _dcm_t(q0, q1, q2, q3)
-    h = dcm_heading(C[1], C[4])
+    h_est = dcm_heading(C[1], C[4])
+    n = np.sqrt(state[2] * state[2] + state[3] * state[3] + state[4] * state[4])
+    cos_tilt = (state[2] * C[6] + state[3] * C[7] + state[4] * C[8]) / n     # measured vs estimated up, body frame
+    lost = cos_tilt < np.cos(LOST_TILT)
+    h = h_est
     if inp.use_rtk:
-        if inp.hdg_ok[t, k] and not np.isnan(inp.hdg[t, k]):
-            h = inp.hdg[t, k]
-            rtk[0], rtk[1], rtk[2], rtk[3] = np.sin(h), np.cos(h), h, 0.0
-    elif not np.isnan(z[t, k, 3]):
-        h = tilt_heading(z[t, k, 3], z[t, k, 4], z[t, k, 5], pitch, roll)
-    return euler_to_quat(h, pitch, roll)
+        if not np.isnan(state[9]):
+            h = state[9]
+            lost = lost or abs(wrap_pi(h - h_est)) > LOST_HEADING
+    elif state[8] >= inp.window:                                       # a magnetometer sample at every window sample
+        h = tilt_heading(state[5], state[6], state[7], pitch, roll)
+        lost = lost or abs(wrap_pi(h - h_est)) > LOST_HEADING
+    if not lost:
+        health[1] = np.inf
+        return q0, q1, q2, q3, False
+    health[1] = 0.0
+    if inp.use_rtk and not np.isnan(state[9]):
+        rtk[0], rtk[1], rtk[2], rtk[3], rtk[4] = np.sin(h), np.cos(h), h, 0.0, 0.0
+    r0, r1, r2, r3 = euler_to_quat(h, pitch, roll)
+    return r0, r1, r2, r3, True
+
+
+@njit(cache=True, inline="always")
+def start_relock(state):
+    """(Re)start the quasi-static window of :func:`relock`: checking, nothing collected."""
+    state[0] = 1.0
+    for i in range(1, 9):
+        state[i] = 0.0
+    state[9] = np.nan
+
+
+@njit(cache=True, inline="always")
+def jump_step(inp, state, rtk, health):
+    """At a clock jump: the interval integrated (one typical interval: the samples of a stamp glitch are contiguous,
+    and over a real gap nothing is known), the check of :func:`relock` started, the last RTK epoch stale and the
+    settling of :func:`learning` restarted."""
+    start_relock(state)
+    rtk[3], rtk[4] = np.inf, 0.0
+    health[1] = 0.0
+    return inp.typical_dt
 
 
 # --------------------------------------------------------------------------
@@ -473,18 +570,27 @@ def pack(imu: ImuSamples, q0: Quat, m_b: ArrayLike | None, rtk: RtkHeading | Non
     jump = kernel_array(flags["clock", "jump"].reshape(-1, N)[0])
     found = {key: v for key, v in flags.items() if key not in (("accel", "nan"), ("mag", "nan"))}
     for i, sensor in enumerate(("accel", "mag")[:1 + use_mag]):        # the screen's skips are counted there
-        found[sensor, "nan"] = ((codes[i] == 1) & ~jump).reshape(lead + (N,))
-        found[sensor, "outlier"] = ((codes[i] == 2) & ~jump).reshape(lead + (N,))
+        found[sensor, "nan"] = (codes[i] == 1).reshape(lead + (N,))
+        found[sensor, "outlier"] = (codes[i] == 2).reshape(lead + (N,))
     if rtk is not None:
         hdg, ok = rtk.at(lead + (N,), "imu's samples")
         rtk_par = rtk.params()
     else:
         hdg, ok, rtk_par = np.zeros((1, 1)), np.zeros((1, 1), dtype=bool), np.array([0.0, np.inf, 0.0])
     long_hold = imu.limits.stuck_samples(s.typical_dt) or SensorLimits().stuck_samples(s.typical_dt)
-    inputs = AttitudeInputs(q, kernel_array(s.w_ib_b.reshape(T, N, 3)), kernel_array(s.fresh.reshape(T, N)), z,
-                            hdg, ok, rtk is not None, use_mag, s.dt, jump, rtk_par, long_hold,
-                            SETTLE_TIME_CONSTANTS / kp if kp > 0 else 0.0)
+    w = kernel_array(s.w_ib_b.reshape(T, N, 3))
+    inputs = AttitudeInputs(q, w, kernel_array(s.fresh.reshape(T, N)), z, hdg, ok, rtk is not None, use_mag, s.dt,
+                            jump, s.typical_dt, _still(w, imu.f_b.reshape(T, N, 3), gates.g) if jump.any() else
+                            np.zeros((1, 1), dtype=bool), max(1, round(STILL_WINDOW / s.typical_dt)), rtk_par,
+                            long_hold, SETTLE_TIME_CONSTANTS / kp if kp > 0 else 0.0)
     return lead, inputs, FaultReport({key: v.sum(-1) for key, v in found.items()}, found)
+
+
+def _still(w: np.ndarray, f: np.ndarray, g: float) -> np.ndarray:
+    """Quasi-static samples (T, N) of the held gyro ``w`` and the accelerometer ``f`` (T, N, 3): :data:`STILL_RATE`,
+    :data:`STILL_ACCEL` (NaN is not still)."""
+    rate, norm = np.linalg.norm(w, axis=-1), np.linalg.norm(f, axis=-1)
+    return np.ascontiguousarray((rate < STILL_RATE) & (np.abs(norm - g) < STILL_ACCEL * g))
 
 
 @njit(cache=True, nogil=True)

@@ -41,12 +41,14 @@ from .observations import (
     AttitudeResult,
     RtkHeading,
     attitude_result,
+    integral_gain,
+    jump_step,
     learning,
     magnetic_reference,
     observe,
     pack,
     pi_error,
-    reinit,
+    relock,
     rtk_north,
     run_trials,
 )
@@ -66,7 +68,7 @@ class KfNoise:
         Noise of the normalised accelerometer and magnetometer vectors: ``R = diag(sigma_accel^2 I,
         sigma_mag^2 I)``.
     p0 : float
-        Initial covariance ``p0 I`` (also after a clock jump).
+        Initial covariance ``p0 I`` (also after a re-initialisation following a clock jump).
     """
     sigma_gyro: float = 1e-3
     sigma_accel: float = 0.02
@@ -370,20 +372,17 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
     ws = _workspace()
     rtk = np.array([0.0, 1.0, 0.0, np.inf, 0.0, 0.0])
     health = np.array([0.0, np.inf])
+    check = np.zeros(10)
     ix = iy = iz = 0.0
     for k in range(N):
         dt, gx, gy, gz = dts[k], w[t, k, 0], w[t, k, 1], w[t, k, 2]
-        if inp.jump[k]:                                 # clock jump: re-initialise, covariance back to p0 I
-            x[0], x[1], x[2], x[3] = reinit(inp, t, k, x[0], x[1], x[2], x[3], rtk)
-            _copy4(P, model.p0 * np.eye(4))
-            health[1] = 0.0
-            _output(t, k, x, P, q_out, P_hist, keep)
-            continue
+        if inp.jump[k]:                                 # clock jump: one typical interval, then check
+            dt = jump_step(inp, check, rtk, health)
         ax, ay, az, mx, my, mz, C = observe(inp.z, t, k, x[0], x[1], x[2], x[3])
         if inp.use_rtk:
             mx, my, mz = rtk_north(inp, t, k, C, dt, rtk, counts)
         ex, ey, ez = pi_error(C, ax, ay, az, mx, my, mz)                # PI-corrected rate, Eq. (15)
-        if learning(inp.fresh[t, k], dt, health, inp):                           # Eq. (15), unless settling after a fault
+        if learning(inp.fresh[t, k], dt, health, inp):                 # Eq. (15), unless settling after a fault
             ix += ex * dt
             iy += ey * dt
             iz += ez * dt
@@ -399,13 +398,16 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
         _update(x, P, z, h, H, r_diag, ws)
         s = np.sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2] + x[3] * x[3])
         x[0], x[1], x[2], x[3] = x[0] / s, x[1] / s, x[2] / s, x[3] / s
+        x[0], x[1], x[2], x[3], lost = relock(inp, t, k, x[0], x[1], x[2], x[3], check, rtk, health)
+        if lost:                                        # re-initialised after a jump: covariance back to p0 I
+            _copy4(P, model.p0 * np.eye(4))
         _output(t, k, x, P, q_out, P_hist, keep)
     bias_out[t, 0], bias_out[t, 1], bias_out[t, 2] = -ki * ix, -ki * iy, -ki * iz
     _copy4(P_out[t], P)
 
 
 def quaternion_kf(imu: ImuSamples, q0: Quat, *, m_b: Vec3Series | None = None, rtk: RtkHeading | None = None,
-                  B_n: Vec3 | None = None, kp: float = 1.0, ki: float = 0.02, gates: AttitudeGates = AttitudeGates(),
+                  B_n: Vec3 | None = None, kp: float = 1.0, ki: float | None = None, gates: AttitudeGates = AttitudeGates(),
                   noise: KfNoise = KfNoise(), keep_cov: bool = False, linear_innovation: bool = False) -> AttitudeResult:
     """Quaternion Kalman filter driven by the PI-corrected rate (Eqs. 16-20, Fig. 2 of Zhang et al. 2023).
 
@@ -415,7 +417,8 @@ def quaternion_kf(imu: ImuSamples, q0: Quat, *, m_b: Vec3Series | None = None, r
     with ``b`` from the local field (or north for RTK), ``R = diag(sigma_accel^2 I,
     sigma_mag^2 I)``; Joseph update of :func:`navlib.kalman.update` skipping
     missing rows; normalise. The covariance is predicted with ``Phi P Phi^T + Gamma Q Gamma^T`` and
-    updated in Joseph form (both symmetrised). At a clock jump the covariance restarts at ``p0 I``.
+    updated in Joseph form (both symmetrised). When the attitude is re-initialised after a clock jump
+    (:func:`navlib.filters.observations.relock`) the covariance restarts at ``p0 I``.
 
     Parameters
     ----------
@@ -435,7 +438,7 @@ def quaternion_kf(imu: ImuSamples, q0: Quat, *, m_b: Vec3Series | None = None, r
     AttitudeResult
         With the final covariance ``P`` (and ``P_history`` with ``keep_cov``).
     """
-    kp, ki = scalar(kp, "kp", positive=True, allow_zero=True), scalar(ki, "ki", positive=True, allow_zero=True)
+    kp, ki = scalar(kp, "kp", positive=True, allow_zero=True), integral_gain(ki, m_b is not None or rtk is not None)
     instance(noise, "noise", KfNoise, "a KfNoise")
     if m_b is not None and B_n is None:
         raise ValueError("B_n: the quaternion KF needs the local field for its magnetometer reference")

@@ -99,8 +99,8 @@ def detect_static(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None
         w, f = np.where(valid[:, None], w, 0.0), np.where(valid[:, None], f, 0.0)
     n = int(round(scalar(window, "window", positive=True) / dt))
     if n < 2 or n > w.shape[0]:
-        raise ValueError(f"window: expected 2 samples up to the record length {w.shape[0] * dt:g} s, "
-                         f"got {window} s ({n} samples)")
+        raise ValueError(f"window: expected 2 samples up to the record's {w.shape[0]}, got {window} s at "
+                         f"dt = {dt:g} s ({n:g} samples)")
     b = as_array(gyro_bias, "gyro_bias", shape=(3,))
     tw, tf, tg = positive(as_array(thresholds, "thresholds", shape=(3,)), "thresholds")
     g = scalar(g, "g", positive=True)

@@ -19,9 +19,13 @@ filter runs (:func:`navlib.robust.screen`, per the :class:`navlib.imu.SensorLimi
 :class:`~navlib.imu.ImuSamples`); the filter acts on the screen's flags and reports them in
 ``FilterResult.faults`` with what it found itself:
 
-* a row with a gyro or accelerometer dropout (``"nan"``), a stuck gyro (``("gyro", "stuck")``) or a spike
-  (``"spike"``): both sensors are held from the last good row, the process noise is inflated while holding
-  (:class:`ProcessNoise` ``held_*``), and the row never feeds ZUPT/ZARU;
+* a row with a gyro or accelerometer dropout (``"nan"``) or a spike (``"spike"``): both sensors are held from
+  the last good row, the process noise is inflated while holding (:class:`ProcessNoise` ``held_*``), and the row
+  never feeds ZUPT/ZARU;
+* a stuck gyro (``("gyro", "stuck")``): the stuck axes are held like the attitude filters hold them
+  (:func:`navlib.robust.screen`) and the accelerometer is used; with all three axes stuck outside a stance the
+  gyro's process noise is inflated and the row never feeds ZUPT/ZARU (in a stance the rate is known to be about
+  0). Holding such rows whole cost 0.1-0.5 deg of attitude over 16 s in tools/fault_matrix.py;
 * free fall or a dead accelerometer (``("accel", "freefall")``): the accelerometer alone is held;
 * a sample at the rails (``"saturated"``): integrated as measured, never used for ZUPT/ZARU;
 * a clock jump (``("clock", "jump")``): not integrated as motion: the INS and the barometer tracker are held
@@ -309,8 +313,8 @@ class FilterConfig:
 
 # --------------------------------------------------------------------------- the compiled filter
 
-_HOLD_ACCEL, _HOLD_BOTH = 1, 2
-"""Codes of :attr:`_Samples.hold`: the accelerometer, or both sensors, held from the last good row."""
+_HOLD_ACCEL, _HOLD_GYRO = 1, 2
+"""Bits of :attr:`_Samples.hold`: the accelerometer, the gyro held (process noise inflated)."""
 
 (_ZUPT, _ZUPT_REJECTED, _ZUPT_FORCED, _BARO_AIDED, _MAG_AIDED, _MAG_GATED, _BARO_REJECTED,
  _BARO_REINIT) = range(8)
@@ -319,11 +323,11 @@ _HOLD_ACCEL, _HOLD_BOTH = 1, 2
 
 class _Samples(NamedTuple):
     """Per-sample inputs of :func:`_filter_kernel`: N rows each, SI units, NaN = no reading."""
-    w: np.ndarray                   # (N, 3) gyro (rad/s), held over the rows with hold = _HOLD_BOTH
+    w: np.ndarray                   # (N, 3) gyro (rad/s), held over the rows with the _HOLD_GYRO bit
     f: np.ndarray                   # (N, 3) accelerometer (m/s^2), held over the rows with hold > 0
     dt: np.ndarray                  # (N,) interval covered by each sample (s)
     jump: np.ndarray                # (N,) bool: clock jump, nothing integrated
-    hold: np.ndarray                # (N,) int8: 0, _HOLD_ACCEL or _HOLD_BOTH (process noise inflated)
+    hold: np.ndarray                # (N,) int8: _HOLD_ACCEL | _HOLD_GYRO bits (process noise inflated)
     static: np.ndarray              # (N,) bool: standing still (no walking aids)
     zupt: np.ndarray                # (N,) bool: static and usable for ZUPT/ZARU
     h_baro: np.ndarray              # (N,) barometric height (m)
@@ -544,8 +548,9 @@ def _filter_kernel(samples, s0, c):
             q_k[i] = c.q_rate[i] * dtk
         if hold[k] > 0:                                  # a held sample is a guess: inflate, don't trust
             for i in range(3):
-                q_k[3 + i] += c.held_accel * c.held_accel * dtk
-                if hold[k] == _HOLD_BOTH:
+                if hold[k] & _HOLD_ACCEL:
+                    q_k[3 + i] += c.held_accel * c.held_accel * dtk
+                if hold[k] & _HOLD_GYRO:
                     q_k[6 + i] += c.held_gyro * c.held_gyro * dtk
         error_state_predict_into(P, C_dt, f_dt, dtk, q_k, ws.predict)
         if jump[k]:                                      # Phi = I, Q = 0 above: add the whole interval's noise
@@ -655,22 +660,24 @@ def _held(x: np.ndarray, keep: np.ndarray) -> np.ndarray:
 def _samples(s: robust.Screened, static: np.ndarray, h_baro: np.ndarray, zupt: bool) -> tuple[_Samples, np.ndarray]:
     """The kernel's samples from the screen's flags, and the static rows refused for ZUPT/ZARU.
 
-    A gyro or accelerometer dropout, stuck gyro or spike holds both sensors (the row is one measurement);
-    free fall holds the accelerometer; those rows, saturated ones and clock jumps never feed ZUPT/ZARU.
+    A gyro or accelerometer dropout or spike holds both sensors (the row is one measurement); a gyro with all three
+    axes stuck outside a stance holds the gyro (:func:`navlib.robust.screen`'s hold; in a stance the rate is known to
+    be about 0), a stuck axis beside a live one is held alone; free fall holds the accelerometer; those rows,
+    saturated ones and clock jumps never feed ZUPT/ZARU.
     """
     flags = s.faults.flags
-    held = (flags["gyro", "nan"] | flags["gyro", "stuck"] | flags["gyro", "spike"] | flags["accel", "nan"]
-            | flags["accel", "spike"])
-    falling = flags["accel", "freefall"] & ~held
-    if held[0]:
+    both = flags["gyro", "nan"] | flags["gyro", "spike"] | flags["accel", "nan"] | flags["accel", "spike"]
+    frozen = ~s.fresh & ~both & ~static
+    falling = flags["accel", "freefall"] & ~both
+    if both[0]:
         raise ValueError("imu: expected a valid first sample (dropouts are held from the last good one)")
     if falling[0]:
         raise ValueError(f"imu: expected a valid first sample, got |f| = {np.linalg.norm(s.imu.f_b[0]):.3g} m/s^2 "
                          f"< freefall_accel = {s.imu.limits.freefall_accel:g} (free fall is held from the last good one)")
     jump = flags["clock", "jump"]
-    usable = ~(held | falling | flags["gyro", "saturated"] | flags["accel", "saturated"] | jump)
-    hold = np.where(held, _HOLD_BOTH, np.where(falling, _HOLD_ACCEL, 0)).astype(np.int8)
-    samples = _Samples(w=_held(s.imu.w_ib_b, ~held), f=_held(s.imu.f_b, ~(held | falling)), dt=s.dt,
+    usable = ~(both | frozen | falling | flags["gyro", "saturated"] | flags["accel", "saturated"] | jump)
+    hold = (np.where(both | frozen, _HOLD_GYRO, 0) | np.where(both | falling, _HOLD_ACCEL, 0)).astype(np.int8)
+    samples = _Samples(w=_held(s.w_ib_b, ~both), f=_held(s.imu.f_b, ~(both | falling)), dt=s.dt,
                        jump=kernel_array(jump), hold=hold, static=static, zupt=static & usable & zupt,
                        h_baro=h_baro, m_b=_mag_samples(s))
     return samples, static & ~usable & zupt

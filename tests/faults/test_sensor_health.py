@@ -168,42 +168,65 @@ def level(n, heading=0.3):
     return np.zeros((n, 3)), np.tile(C_nb @ [0.0, 0.0, 9.8], (n, 1)), np.tile(C_nb @ b, (n, 1)), q
 
 
+def gap(heading_after, pitch_after=0.0, n=400, at=100, moving_until=None):
+    """Level static samples with a 1-hour clock jump at ``at``; after it the device rests at another attitude (a real
+    gap) or the same one (a stamp glitch), optionally turning at 1 rad/s about z until ``moving_until``."""
+    w, f, m, q = level(n)
+    q2 = attitude.euler_to_quat([heading_after, pitch_after, 0.0])
+    C_nb = attitude.quat_to_dcm(q2).T
+    f[at:] = C_nb @ [0.0, 0.0, 9.8]
+    m[at:] = C_nb @ (obs.magnetic_reference(B_N)[0] * 50.0)
+    if moving_until is not None:
+        w[at:moving_until, 2] = 1.0
+    dt = np.full(n, 0.01)
+    dt[at] = 3600.0
+    return ImuSamples(w, f, dt), m, q, q2
+
+
 @pytest.mark.parametrize("filt", [mh.mahony, qkf.quaternion_kf])
-def test_jump_reinitialises_from_the_sample(filt):
-    """At the jump the attitude is the sample's tilt and magnetic heading (not integrated over 3600 s)."""
-    w, f, m, q_true = level(200)
-    w[:] = 0.05                                                            # a rate that 3600 s would wrap many times
-    dt = np.full(200, 0.01)
-    dt[100] = 3600.0
-    q0 = attitude.euler_to_quat([1.3, 0.2, -0.1])                          # far from the truth
-    res = filt(ImuSamples(w, f, dt), q0, m_b=m, B_n=B_N, kp=0.0, ki=0.0)
+def test_a_stamp_glitch_is_propagated_through(filt):
+    """Contiguous samples across a 1-hour stamp jump: counted, integrated as one typical interval, nothing reset."""
+    imu, m, q, _ = gap(0.3)
+    imu.w_ib_b[:, 2] = 0.05
+    res = filt(imu, q, m_b=m, B_n=B_N, kp=0.0, ki=0.0)
+    plain = filt(ImuSamples(imu.w_ib_b, imu.f_b, 0.01), q, m_b=m, B_n=B_N, kp=0.0, ki=0.0)
     assert int(res.faults["clock", "jump"]) == 1 and res.faults.flags["clock", "jump"][100]
-    assert abs(attitude.wrap_pi(res.hpr[99, 0] - 0.3)) > 0.2                # not converged before the jump
-    np.testing.assert_allclose(abs(res.q_bn[100] @ q_true), 1.0, atol=1e-12)   # the same rotation
-    bad_f = f.copy()
-    bad_f[100] = np.nan                                                    # unusable: the attitude is kept
-    kept = filt(ImuSamples(w, bad_f, dt), q0, m_b=m, B_n=B_N, kp=0.0, ki=0.0)
-    np.testing.assert_array_equal(kept.q_bn[100], kept.q_bn[99])
-    if filt is qkf.quaternion_kf:
-        res = filt(ImuSamples(w, f, dt), q0, m_b=m, B_n=B_N, noise=qkf.KfNoise(p0=1e-3), keep_cov=True)
-        np.testing.assert_array_equal(res.P_history[100], 1e-3 * np.eye(4))   # uncertainty back to its start
-        assert res.P_history[99][0, 0] != 1e-3
+    np.testing.assert_allclose(res.hpr[:, 0], plain.hpr[:, 0], atol=1e-9)       # 0.05 rad/s over 4 s, no reset
 
 
 @pytest.mark.parametrize("filt", [mh.mahony, qkf.quaternion_kf])
-def test_jump_heading_from_rtk_epoch_or_kept(filt):
-    """RTK mode: a valid epoch at the jump sets the heading; without one (or without a reference) it is kept."""
-    w, f, _, _ = level(200)
-    dt = np.full(200, 0.01)
-    dt[100] = 3600.0
-    q0 = attitude.euler_to_quat([1.0, 0.1, 0.0])
-    valid = np.zeros(200, bool)
-    for epoch_at_jump, heading in ((True, 2.5), (False, 1.0)):
-        valid[100] = epoch_at_jump
-        res = filt(ImuSamples(w, f, dt), q0, rtk=RtkHeading(np.full(200, 2.5), valid), kp=0.0, ki=0.0)
-        np.testing.assert_allclose(res.hpr[100], [heading, 0.0, 0.0], atol=1e-12)
-    res = filt(ImuSamples(w, f, dt), q0, kp=0.0, ki=0.0)                 # gyro + accelerometer only
-    np.testing.assert_allclose(res.hpr[100], [1.0, 0.0, 0.0], atol=1e-12)
+def test_a_lost_state_is_reinitialised_from_a_quasi_static_window(filt):
+    """A real gap (the device turned 1.2 rad and pitched 0.3 rad while the clock jumped): the attitude is propagated
+    until a quasi-static window of STILL_WINDOW s shows it lost, then set from the window (here: exactly)."""
+    imu, m, q, q2 = gap(1.5, 0.3)
+    res = filt(imu, q, m_b=m, B_n=B_N, kp=0.0, ki=0.0)
+    window = round(obs.STILL_WINDOW / 0.01)
+    assert abs(res.q_bn[100] @ q) > 0.9999                                      # not from the jump's one sample
+    assert abs(res.q_bn[100 + window - 2] @ q2) < 0.99
+    np.testing.assert_allclose(abs(res.q_bn[100 + window - 1] @ q2), 1.0, atol=1e-12)
+    moving, m2, _, _ = gap(1.5, 0.3, moving_until=250)                         # turning after the gap: wait for rest
+    turned = filt(moving, q, m_b=m2, B_n=B_N, kp=0.0, ki=0.0)
+    assert abs(turned.q_bn[249] @ q2) < 0.99
+    np.testing.assert_allclose(abs(turned.q_bn[250 + window - 1] @ q2), 1.0, atol=1e-12)
+
+
+@pytest.mark.parametrize("filt", [mh.mahony, qkf.quaternion_kf])
+def test_relock_heading_from_rtk_epoch_or_kept(filt):
+    """RTK mode: a lost tilt is re-initialised with the heading of a valid epoch in the window, or the estimate's;
+    a heading off by more than LOST_HEADING against a valid epoch is lost too; without a reference: kept."""
+    imu, _, q, _ = gap(0.3, 0.3)
+    window = round(obs.STILL_WINDOW / 0.01)
+    end = 100 + window - 1
+    valid = np.zeros(imu.n, bool)
+    for epoch_in_window, heading in ((True, 2.5), (False, 0.3)):
+        valid[120] = epoch_in_window
+        res = filt(imu, q, rtk=RtkHeading(np.full(imu.n, 2.5), valid), kp=0.0, ki=0.0)
+        np.testing.assert_allclose(res.hpr[end], [heading, 0.3, 0.0], atol=1e-12)
+    flat, _, _, _ = gap(0.3)                                                    # tilt kept, heading lost against RTK
+    res = filt(flat, q, rtk=RtkHeading(np.full(imu.n, 2.5), valid | (np.arange(imu.n) == 120)), kp=0.0, ki=0.0)
+    np.testing.assert_allclose(res.hpr[end], [2.5, 0.0, 0.0], atol=1e-12)
+    res = filt(imu, q, kp=0.0, ki=0.0)                                          # gyro + accelerometer only
+    np.testing.assert_allclose(res.hpr[end], [0.3, 0.3, 0.0], atol=1e-12)
 
 
 def test_max_dt_default_is_ten_median_intervals():
@@ -248,7 +271,7 @@ def test_stuck_run_default_is_a_tenth_of_a_second():
 
 def test_noise_free_and_saturated_gyros_are_not_stuck():
     """A gyro that repeats its first value (noise-free simulation) is not checked; values at the rails are
-    saturated (counted as such), not stuck; a stuck sample is held like a NaN one."""
+    saturated (counted as such), not stuck; a latched sample (a step into the run) is held like a NaN one."""
     _, f, m, q = level(400)
     w = np.zeros((400, 3))
     w[100:200, 2] = 0.2                                                   # noise-free turn, back to exactly 0
@@ -260,7 +283,7 @@ def test_noise_free_and_saturated_gyros_are_not_stuck():
     rails = SensorLimits(full_scale_gyro=0.5)
     res = mh.mahony(ImuSamples(w, f, 0.01, rails), q, m_b=m)
     assert int(res.faults["gyro", "saturated"]) == 100 and int(res.faults["gyro", "stuck"]) == 0
-    w[300:320] = w[300]
+    w[300:320] = 0.3
     stuck = mh.mahony(ImuSamples(w, f, 0.01, rails), q, m_b=m)
     w[300:320] = np.nan
     held = mh.mahony(ImuSamples(w, f, 0.01, rails), q, m_b=m)
