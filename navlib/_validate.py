@@ -410,6 +410,15 @@ def range_limit(x: float | None, name: str) -> float:
 MIN_INTERVAL = 1e-9
 """Shortest sample interval (s) :func:`sample_intervals` accepts."""
 
+def interval(dt: float, name: str = "dt") -> float:
+    """A fixed sample interval (s): a positive scalar of at least :data:`MIN_INTERVAL`."""
+    value = scalar(dt, name, positive=True)
+    if value < MIN_INTERVAL:
+        raise ValueError(f"{name}: expected a sample interval of at least {MIN_INTERVAL:g} s (no IMU samples faster than "
+                         f"1 GHz; is {name} in seconds?), got {value:g}")
+    return value
+
+
 MAX_TURN_PER_SAMPLE = 1.0
 """Largest rotation (rad) a gyro may report within one integrated interval (:func:`small_turns`): first-order
 attitude updates and linearised transitions are meaningless beyond it (2000 deg/s at 100 Hz is 0.35 rad)."""

@@ -28,6 +28,7 @@ from ._validate import (
     broadcast,
     flag,
     integer,
+    interval,
     kernel_array,
     last_axis,
     latitude,
@@ -99,7 +100,7 @@ def allan_deviation(x: ArrayLike, dt: float, taus: ArrayLike | None = None) -> t
         Allan deviation in the units of ``x``.
     """
     x = as_array(x, "x")
-    dt = scalar(dt, "dt", positive=True)
+    dt = interval(dt)
     return _allan_deviation(x, dt, taus)
 
 
@@ -251,7 +252,7 @@ def fit_allan(taus: ArrayLike, adev: ArrayLike, n_samples: int, dt: float, *, ra
         raise ValueError(f"taus: expected a 1-D array of at least 3 averaging times, got shape {taus.shape}")
     same_shape(adev, "adev", taus.shape, of="taus")
     n_samples = integer(n_samples, "n_samples")
-    dt = scalar(dt, "dt", positive=True)
+    dt = interval(dt)
     return _fit_allan(taus, adev, n_samples, dt, flag(rate_random_walk, "rate_random_walk"))
 
 

@@ -18,7 +18,7 @@ import numpy as np
 
 from ._kernels import normal_gravity, radii_mn
 from ._typing import Array, ArrayLike, Dcm, Vec3
-from ._validate import as_array, as_dcm, flag, in_range, kernel_array, latitude, positive, scalar, text
+from ._validate import as_array, as_dcm, broadcast, flag, in_range, kernel_array, latitude, positive, scalar, text
 from ._validate import ellipsoid as ellipsoid_
 
 __all__ = ["Ellipsoid", "WGS84", "CGCS2000", "GRS80", "KRASSOVSKY",
@@ -304,9 +304,9 @@ def field_from_angles(declination: ArrayLike, inclination: ArrayLike, intensity:
     -------
     B_n : ndarray, shape (..., 3)  (uT)
     """
-    D = as_array(declination, "declination")
-    I = as_array(inclination, "inclination")
-    F = positive(intensity, "intensity", allow_zero=True)
+    D, I, F = broadcast(as_array(declination, "declination"), as_array(inclination, "inclination"),
+                        positive(intensity, "intensity", allow_zero=True), name="declination",
+                        of="declination, inclination, intensity")
     if flag(deg, "deg"):
         D, I = np.deg2rad(D), np.deg2rad(I)
     in_range(I, "inclination", -np.pi / 2, np.pi / 2, "rad")

@@ -22,7 +22,7 @@ import numpy as np
 
 from . import attitude, earth
 from ._typing import Angles, Array, ArrayLike, Times, Vec3Series
-from ._validate import as_array, generator, integer, positive, same_shape, scalar, time_axis
+from ._validate import as_array, generator, integer, interval, positive, same_shape, scalar, time_axis
 
 __all__ = ["dropouts", "gap", "spikes", "position_jumps", "heading_flips", "duplicate_timestamps",
            "swap_timestamps", "irregular_times", "saturate"]
@@ -200,7 +200,7 @@ def irregular_times(n: int, dt: float, jitter: float, rng: np.random.Generator, 
     time : ndarray, shape (n,)
     """
     integer(n, "n", minimum=2)
-    dt = scalar(dt, "dt", positive=True)
+    dt = interval(dt)
     jitter = scalar(jitter, "jitter", within=(0.0, 0.99))
     t0 = scalar(t0, "t0")
     generator(rng)

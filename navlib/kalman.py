@@ -25,7 +25,7 @@ from scipy.linalg import expm
 
 from . import _kernels
 from ._typing import Array, ArrayLike
-from ._validate import as_array, booleans, kernel_array, same_shape, scalar
+from ._validate import as_array, booleans, interval, kernel_array, same_shape, scalar
 
 __all__ = ["predict", "update", "discretize", "ACCEPTED", "NO_DATA", "REJECTED"]
 
@@ -154,7 +154,7 @@ def discretize(F: ArrayLike, G: ArrayLike, Qc: ArrayLike, dt: float) -> tuple[Ar
     same_shape(F, "F", (n, n))                                   # square
     G = as_array(G, "G", shape=(n, None), of="F")                # n rows
     Qc = as_array(Qc, "Qc", shape=(G.shape[1], G.shape[1]), of="G")      # (p, p), p the columns of G
-    dt = scalar(dt, "dt", positive=True)
+    dt = interval(dt)
     M = np.zeros((2 * n, 2 * n))
     M[:n, :n] = -F
     M[:n, n:] = G @ Qc @ G.T

@@ -19,7 +19,7 @@ import numpy as np
 
 from . import analysis
 from ._typing import Array, ArrayLike, Vec3Series
-from ._validate import as_array, indices, positive, same_shape, scalar
+from ._validate import as_array, indices, interval, positive, same_shape, scalar
 from .alignment import level, magnetic_heading
 from .units import G0
 
@@ -51,7 +51,7 @@ def detect_steps(f_b: Vec3Series, dt: float, threshold: float = 1.0, min_interva
         Local gravity (m/s^2).
     """
     f = as_array(f_b, "f_b", shape=(None, 3), min_ndim=1)
-    dt = scalar(dt, "dt", positive=True)
+    dt = interval(dt)
     thr = scalar(threshold, "threshold", positive=True)
     gap = int(round(scalar(min_interval, "min_interval", positive=True) / dt))
     n_smooth = max(2, int(round(0.1 / dt)))

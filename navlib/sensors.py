@@ -50,6 +50,7 @@ from ._validate import (
     in_range,
     instance,
     integer,
+    interval,
     last_axis,
     numbers,
     positive,
@@ -180,7 +181,7 @@ def gauss_markov(shape: tuple[int, ...], dt: float, sigma: float, correlation_ti
     -------
     ndarray of ``shape``
     """
-    dt = scalar(dt, "dt", positive=True)
+    dt = interval(dt)
     tc = scalar(correlation_time, "correlation_time", positive=True)
     sigma = scalar(sigma, "sigma", allow_zero=True)
     generator(rng)
@@ -278,7 +279,7 @@ def window_mean_std(errors: TriadErrors, duration: float, dt: float) -> float:
         Sample interval (s), for the discrete white-noise mean ``N / sqrt(n dt)``.
     """
     instance(errors, "errors", TriadErrors, "TriadErrors")
-    T, dt = scalar(duration, "duration", positive=True), scalar(dt, "dt", positive=True)
+    T, dt = scalar(duration, "duration", positive=True), interval(dt)
     n = max(int(round(T / dt)), 1)
     r = errors.correlation_time / T
     gm = errors.gauss_markov_sigma ** 2 * 2 * r * (1 - r * (1 - np.exp(-1 / r)))
@@ -318,7 +319,7 @@ def simulate_imu(w_ib_b: Vec3Series, f_b: Vec3Series, dt: float, model: ImuModel
     ((1000, 3), (1000, 3))
     """
     w, f = imu_samples(w_ib_b, f_b, allow_nan=False)
-    dt = scalar(dt, "dt", positive=True)
+    dt = interval(dt)
     instance(model, "model", ImuModel, "an ImuModel")
     generator(rng)
     if n_trials is not None:

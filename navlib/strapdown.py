@@ -61,6 +61,7 @@ from ._validate import (
     broadcast_to,
     choice,
     flag,
+    interval,
     kernel_array,
     latitude,
     sample_intervals,
@@ -217,7 +218,7 @@ def nav_step(lla: Vec3, vel: Vec3, q: Quat, w: Vec3, f: Vec3, dt: float, earth_c
         raise ValueError("q: expected a non-zero quaternion")
     w = kernel_array(as_array(w, "w", shape=(3,)))
     f = kernel_array(as_array(f, "f", shape=(3,)))
-    dt = scalar(dt, "dt", positive=True)
+    dt = interval(dt)
     c = kernel_array(as_array(earth_consts, "earth_consts", shape=(7,)))
     if not (c[0] > 0 and 0 <= c[2] < 1):
         raise ValueError("earth_consts: expected [a > 0, f, 0 <= e2 < 1, m, gamma_e, k, omega] "

@@ -19,7 +19,7 @@ from numba import njit
 from . import attitude, earth
 from ._kernels import radii_mn
 from ._typing import Vec3
-from ._validate import as_array, as_quat, in_range, instance, kernel_array, latitude, numbers, scalar, time_axis
+from ._validate import as_array, as_quat, in_range, instance, interval, kernel_array, latitude, numbers, scalar, time_axis
 from ._validate import ellipsoid as ellipsoid_
 from .robust import FaultReport
 
@@ -104,13 +104,20 @@ def _positions(lla0, vel, dt, a, e2):
     return lla
 
 
+MAX_SAMPLES = 10**9
+"""Most samples one simulated trajectory holds (about 100 GB of states beyond it)."""
+
+
 def _time_grid(duration: float, dt: float) -> np.ndarray:
     """Sample times ``0, dt, ..., n dt`` with ``n = round(duration / dt) >= 1`` (s)."""
     duration = scalar(duration, "duration", positive=True)
-    dt = scalar(dt, "dt", positive=True)
-    n = int(round(duration / dt))
+    dt = interval(dt)
+    n = round(duration / dt)
     if n < 1:
         raise ValueError(f"duration: expected at least one sample interval dt={dt}, got {duration}")
+    if n > MAX_SAMPLES:
+        raise ValueError(f"dt: {duration:g} s at dt = {dt:g} s is {n:.3g} samples, more than one trajectory holds "
+                         f"({MAX_SAMPLES:.0e}); is dt in seconds?")
     return dt * np.arange(n + 1)
 
 

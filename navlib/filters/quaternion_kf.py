@@ -34,7 +34,7 @@ from numba import njit
 from .. import _kernels
 from .._kernels import fma
 from .._typing import Array, Quat, Vec3, Vec3Series
-from .._validate import as_array, as_quat, broadcast, flag, instance, scalar
+from .._validate import as_array, as_quat, broadcast, flag, instance, interval, scalar
 from ..imu import ImuSamples
 from .observations import (
     AttitudeGates,
@@ -180,7 +180,7 @@ def measurement_jacobian(q: Quat, b: Vec3) -> Array:
 def transition(w: Vec3, dt: float) -> Array:
     """Quaternion transition ``Phi = I + dt/2 Omega(w)`` (Eq. 17); w (..., 3) rad/s -> (..., 4, 4)."""
     w = as_array(w, "w", tail=(3,), nonempty=True)
-    dt = scalar(dt, "dt", positive=True)
+    dt = interval(dt)
     c = 0.5 * dt
     wx, wy, wz = np.moveaxis(w, -1, 0)
     o = np.ones_like(wx)
@@ -192,7 +192,7 @@ def transition(w: Vec3, dt: float) -> Array:
 def noise_input(q: Quat, dt: float) -> Array:
     """Gyro-noise input matrix ``Gamma = dt/2 Xi(q)`` (Eq. 18 corrected, E003-11); (..., 4) -> (..., 4, 3)."""
     q = as_quat(as_array(q, "q", tail=(4,), nonempty=True), "q", normalize=False)
-    dt = scalar(dt, "dt", positive=True)
+    dt = interval(dt)
     q0, q1, q2, q3 = np.moveaxis(q, -1, 0)
     rows = [[-q1, -q2, -q3], [q0, -q3, q2], [q3, q0, -q1], [-q2, q1, q0]]
     return dt / 2 * np.stack([np.stack(r, -1) for r in rows], -2)

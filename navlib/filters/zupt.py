@@ -39,7 +39,7 @@ from numpy.typing import NDArray
 from .. import analysis, attitude
 from .._kernels import fma
 from .._typing import Array, ArrayLike, Dcm, Vec3, Vec3Series
-from .._validate import as_array, as_dcm, imu_samples, positive, scalar
+from .._validate import as_array, as_dcm, imu_samples, interval, positive, scalar
 from ..imu import ImuSamples, unpack
 from ..units import G0
 
@@ -93,7 +93,7 @@ def detect_static(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None
         dt = float(np.median(dt))                  # the nominal interval of its per-sample intervals
     else:
         w, f = imu_samples(w, f, shape=(None, 3))
-        dt = scalar(dt, "dt", positive=True)
+        dt = interval(dt)
     valid = np.isfinite(w).all(-1) & np.isfinite(f).all(-1)
     if not valid.all():
         w, f = np.where(valid[:, None], w, 0.0), np.where(valid[:, None], f, 0.0)

@@ -85,7 +85,7 @@ import numpy as np
 
 from .. import attitude
 from .._typing import Angles, Array, Interval, Quat, Vec3, Vec3Series
-from .._validate import as_array, as_quat, euler_angles, scalar
+from .._validate import as_array, as_quat, euler_angles, interval, scalar
 from ..filters.quaternion_kf import measurement_jacobian, noise_input
 
 __all__ = ["printed_eq2_roll", "printed_eq2_arctan", "printed_eq4", "printed_eq5_tilt", "printed_eq6",
@@ -179,7 +179,7 @@ def printed_eq12_mahony(w_ib_b: Vec3Series, f_b: Vec3Series, m_b: Vec3Series, dt
             raise ValueError(f"{name}: expected the shape of w_ib_b {w.shape}, got {x.shape}")
         if not np.all(np.linalg.norm(x, axis=-1) > 0):
             raise ValueError(f"{name}: expected non-zero vectors")
-    dt = scalar(dt, "dt", positive=True)
+    dt = interval(dt)
     kp, ki = scalar(kp, "kp", positive=True, allow_zero=True), scalar(ki, "ki", positive=True, allow_zero=True)
     a, b, c, d = (float(x) for x in as_quat(as_array(q0, "q0", shape=(4,)), "q0"))
     ix = iy = iz = 0.0

@@ -104,6 +104,7 @@ from .._validate import (
     imu_samples,
     indices,
     integer,
+    interval,
     kernel_array,
     positive,
     range_limit,
@@ -294,7 +295,7 @@ def dwell_windows(n_samples: int, dt: float, period: float, rotation_time: float
         Samples per dwell (at least :data:`MIN_DWELL_SAMPLES`).
     """
     n_samples = integer(n_samples, "n_samples")
-    dt, period = scalar(dt, "dt", positive=True), scalar(period, "period", positive=True)
+    dt, period = interval(dt), scalar(period, "period", positive=True)
     rotation_time = scalar(rotation_time, "rotation_time", allow_zero=True)
     settle = scalar(settle, "settle", allow_zero=True)
     per = int(round(period / dt))
@@ -632,7 +633,7 @@ def residual_covariance(tilt: ArrayLike, length: int, dt: float, gyro_noise: flo
     """
     M = tilt_matrix(tilt)                                        # validates tilt
     n = integer(length, "length", minimum=MIN_DWELL_SAMPLES)
-    dt = scalar(dt, "dt", positive=True)
+    dt = interval(dt)
     N = scalar(gyro_noise, "gyro_noise", allow_zero=True)
     A = scalar(accel_noise, "accel_noise", allow_zero=True)
     return _residual_cov(M, np.asarray(tilt, dtype=float)[..., 1], n, dt, N, A, scalar(g, "g", positive=True))
@@ -903,7 +904,7 @@ def design(hpr0: Angles, axis_b: Vec3, amplitude: float, dwell_time: float, dt: 
     V : ndarray, shape (n_dwells, 2, 3)
     """
     hpr = dwell_attitudes(hpr0, axis_b, amplitude, n_dwells)
-    dt = scalar(dt, "dt", positive=True)
+    dt = interval(dt)
     n = int(round(scalar(dwell_time, "dwell_time", positive=True) / dt))
     if n < MIN_DWELL_SAMPLES:
         raise ValueError(f"dwell_time: dwell windows too short ({n} samples); expected at least {MIN_DWELL_SAMPLES}")
@@ -1143,7 +1144,7 @@ def draw_rotation_schedule(ax, time, angle_deg, starts, length: int, dt: float) 
     if starts.ndim != 1 or np.any(starts < 0) or np.any(starts != np.round(starts)):
         raise ValueError(f"starts: expected a 1-D array of sample indices >= 0 (dwell_windows), got shape {starts.shape}")
     length = integer(length, "length")
-    dt = scalar(dt, "dt", positive=True)
+    dt = interval(dt)
     ax.plot(t, a, color="k", lw=1.5)
     for k, s in enumerate(starts.astype(int)):
         ax.axvspan(s * dt, (s + length) * dt, color="tab:blue" if k % 2 == 0 else "tab:orange", alpha=0.15, lw=0)
