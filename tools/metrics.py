@@ -23,7 +23,8 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 VALIDATE_NAMES = {"real", "as_array", "in_range", "positive", "latitude", "generator", "time_axis", "as_dcm",
-                  "as_quat", "scalar", "interval", "integer", "flag", "choice", "full_scale", "intervals", "sample_intervals", "imu_samples",
+                  "as_quat", "scalar", "interval", "integer", "flag", "choice", "full_scale", "intervals", "sample_intervals",
+                  "imu_samples",
                   "nonempty_array", "nonempty_positive", "nonempty_latitude", "instance", "same_shape", "broadcast",
                   "range_limit", "unit_interval", "booleans", "last_axis", "pitch_roll", "euler_angles", "small_turns",
                   "text", "broadcast_to", "ellipsoid", "ellipsoid_", "numbers", "indices"}
