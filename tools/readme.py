@@ -95,6 +95,11 @@ def matrix(led: ledger.PaperLedger) -> str:
         thumb = (f'<img src="docs/figures/{figure_copy(r.figure)}" width="{THUMB_WIDTH_PX}">' if r.figure else "")
         lines.append(f"| `{r.claim}` | {cell(r.item)} | {cell(r.paper)} | {cell(r.ours)} | {cell(ledger.verdict_text(r))} "
                      f"| {thumb} |")
+    if led.extensions:
+        lines += ["", f"Extensions ({len(led.extensions)}): the project's own quantities, test vectors and reconstructions, "
+                  "checked but not paper claims, so without a verdict word on the paper.", "",
+                  "| extension | item | ours | checked |", "|---|---|---|---|"]
+        lines += [f"| `{r.claim}` | {cell(r.item)} | {cell(r.ours)} | {cell(ledger.verdict_text(r))} |" for r in led.extensions]
     lines += ["", "</details>", f"<!-- /ledger:{led.stem} -->"]
     return "\n".join(lines)
 
@@ -118,7 +123,9 @@ def render(build: Path) -> tuple[str, dict[str, str]]:
              "| **total** | | " + f"{n_claims} | " + " | ".join(str(total[v]) for v in ledger.COLUMNS) + " | |", "",
              f"**Coverage:** {sum(led.computed for led in ran)} of {n_claims} claims have a verdict that rests on a "
              f"computation (a check of the notebook); {total['not checkable here']} are not checkable here and "
-             f"{total[ledger.NO_VERDICT]} have no verdict yet (never counted as reproduced).", ""]
+             f"{total[ledger.NO_VERDICT]} have no verdict yet (never counted as reproduced). "
+             f"{sum(len(led.extensions) for led in ran)} extensions (the project's own quantities) are listed apart, "
+             "under each paper.", ""]
     block += [matrix(led) + "\n" for led in ran]
     block.append(END)
     return "\n".join(block), parts
