@@ -53,7 +53,7 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
 __all__ = ["root", "build_dir", "setup", "savefig", "check", "check_range", "check_outside", "check_study", "seed_spread",
-           "SeedSpread", "STUDY_K", "verdict", "results",
+           "SeedSpread", "STUDY_K", "EXTENSION", "verdict", "results",
            "verdicts", "summary", "env_flag", "mode", "caption", "answer", "explorer", "VERDICTS", "ClaimCheckFailed",
            "ClaimCheckWarning", "Check", "Verdict", "NoOutputDirectory"]
 
