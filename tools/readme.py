@@ -84,6 +84,12 @@ def summary_rows(build: Path, leds: list[ledger.PaperLedger]) -> dict[str, str]:
     return rows
 
 
+def row_line(r: ledger.Row) -> str:
+    """One claim as a markdown table row: id, item, paper, ours, verdict with its reason, thumbnail."""
+    thumb = f'<img src="docs/figures/{figure_copy(r.figure)}" width="{THUMB_WIDTH_PX}">' if r.figure else ""
+    return f"| `{r.claim}` | {cell(r.item)} | {cell(r.paper)} | {cell(r.ours)} | {cell(ledger.verdict_text(r))} | {thumb} |"
+
+
 def matrix(led: ledger.PaperLedger) -> str:
     """The claims of one paper as a collapsible markdown table, between its ledger markers."""
     counts = led.counts
@@ -91,15 +97,12 @@ def matrix(led: ledger.PaperLedger) -> str:
     lines = [f"<!-- ledger:{led.stem} -->", f"<details><summary><b>{led.stem}</b> — {led.title}: {len(led.rows)} claims "
              f"({summary})</summary>", "", "| claim | paper item | paper | ours | verdict | figure |",
              "|---|---|---|---|---|---|"]
-    for r in led.rows:
-        thumb = (f'<img src="docs/figures/{figure_copy(r.figure)}" width="{THUMB_WIDTH_PX}">' if r.figure else "")
-        lines.append(f"| `{r.claim}` | {cell(r.item)} | {cell(r.paper)} | {cell(r.ours)} | {cell(ledger.verdict_text(r))} "
-                     f"| {thumb} |")
+    lines += [row_line(r) for r in led.rows]
     if led.extensions:
         lines += ["", f"Extensions ({len(led.extensions)}): the project's own quantities, test vectors and reconstructions, "
                   "checked but not paper claims, so without a verdict word on the paper.", "",
-                  "| extension | item | ours | checked |", "|---|---|---|---|"]
-        lines += [f"| `{r.claim}` | {cell(r.item)} | {cell(r.ours)} | {cell(ledger.verdict_text(r))} |" for r in led.extensions]
+                  "| extension | item | paper | ours | checked | figure |", "|---|---|---|---|---|---|"]
+        lines += [row_line(r) for r in led.extensions]
     lines += ["", "</details>", f"<!-- /ledger:{led.stem} -->"]
     return "\n".join(lines)
 
@@ -183,7 +186,7 @@ def write_figures(build: Path, leds: list[ledger.PaperLedger]) -> list[str]:
     from PIL import Image  # Pillow comes with matplotlib
 
     FIGURES.mkdir(parents=True, exist_ok=True)
-    wanted = {r.figure: THUMB_FILE_WIDTH_PX for led in leds for r in led.rows if r.figure}
+    wanted = {r.figure: THUMB_FILE_WIDTH_PX for led in leds for r in (*led.rows, *led.extensions) if r.figure}
     wanted |= {f"{stem}/figures/{fig}.png": GALLERY_WIDTH_PX for stem, fig in GALLERY}
     # Copies are remade only when their source PNG or width changed (build/readme-figures.json: the sources
     # of the last copies); re-encoding all of them took 1 s of every make reproduce.
