@@ -61,6 +61,13 @@ reproduce: $(STAMP)
 readme: $(STAMP)
 	$(PY) tools/readme.py
 
+# The seed sweep: every Monte Carlo notebook at full scale once per seed (the first SEEDS of tools/reproduce.py's
+# SWEEP_SEEDS, or SEED_LIST=7,123,9999); fails on any failed check or verdict flip; writes build/seeds.json.
+.PHONY: seeds
+SEEDS ?= 5
+seeds: $(STAMP)
+	$(PY) tools/reproduce.py $(if $(SEED_LIST),--seed-list $(SEED_LIST),--seeds $(SEEDS))
+
 # Two full runs; the second compares SHA-256 of every results.json and PNG with the first.
 determinism: $(STAMP)
 	$(PY) tools/reproduce.py

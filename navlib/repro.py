@@ -9,7 +9,8 @@ A notebook calls :func:`setup` once with its own name; afterwards
   :class:`ClaimCheckFailed` when it is outside tolerance, so that a failed
   check fails the notebook under nbmake; :func:`check_range` does the same for
   a bound, :func:`check_outside` asserts a disagreement (the value lies
-  outside an interval);
+  outside an interval); :func:`check_study` takes its tolerance from a
+  recorded seed study (``data/seed_studies/``);
 * :func:`verdict` records the one verdict of a claim (:data:`VERDICTS`), resting
   on the checks recorded before it;
 * :func:`summary` returns the checks and verdicts recorded since the previous
@@ -52,12 +53,22 @@ from ._validate import choice, flag, instance, real, scalar, text
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
-__all__ = ["root", "build_dir", "setup", "savefig", "check", "check_range", "check_outside", "verdict", "results",
-           "verdicts", "summary", "env_flag", "mode", "caption", "answer", "exercise", "Exercise", "explorer", "VERDICTS",
-           "ClaimCheckFailed", "ClaimCheckWarning", "Check", "Verdict", "NoOutputDirectory"]
+__all__ = ["root", "build_dir", "setup", "savefig", "check", "check_range", "check_outside", "check_study", "seed_spread",
+           "SeedSpread", "STUDY_K", "EXTENSION", "verdict", "results", "verdicts", "summary", "env_flag", "mode", "caption",
+           "answer", "exercise", "Exercise", "explorer", "VERDICTS", "ClaimCheckFailed", "ClaimCheckWarning", "Check",
+           "Verdict", "NoOutputDirectory"]
 
-VERDICTS = ("reproduced", "reproduced with correction", "differs", "refuted", "direction only", "not checkable here")
-"""The verdicts a claim can get (``docs/claims.md``), in the ledger's order."""
+VERDICTS = ("reproduced", "reproduced with correction", "differs", "refuted", "direction only",
+            "undecided at this scale", "not checkable here", "extension")
+"""The verdicts a claim can get (``docs/claims.md``), in the ledger's order. The last, *extension*, is the only one
+of a catalogue row of kind ``extension`` (the project's own quantity, test vector or reconstruction: no paper
+statement to judge) and only it gets it; *undecided at this scale* is a paper claim whose test straddles its cut
+within the seed-to-seed spread (both numbers shown), never a coin toss."""
+EXTENSION = "extension"
+STUDY_K = 4.5
+"""A studied tolerance is STUDY_K times the RMS of ``value - target`` (or the sd of a value) over the study's
+calibration seeds: with 12 seeds the RMS is known to about 20 %, so a new seed exceeds it with probability below
+1e-3 even where the RMS came out one standard error low."""
 _NEEDS_EVIDENCE = ("reproduced with correction", "differs", "refuted")
 
 
@@ -85,6 +96,7 @@ class Check:
     note: str = ""
     outside: bool = False      # check_outside: passes when the value lies outside [lower, upper]
     on_printed: bool = False   # the value is arithmetic on the paper's printed numbers, not a reproduction
+    study: dict | None = None  # check_study: {"name": study, "target": target or None}
 
 
 @dataclass
@@ -409,6 +421,76 @@ def _interval_check(name, value, source, bounds, paper_value, unit, note, on_pri
                          lo, hi, unit, note, outside=outside, on_printed=printed))
 
 
+@dataclass(frozen=True)
+class SeedSpread:
+    """One check's spread over a recorded seed study: ``data/seed_studies/<study>.csv`` (its script: ``run.py``)."""
+    study: str
+    check: str
+    seeds: tuple[int, ...]
+    mean: float     # of value - target (of the value where there is no target)
+    sd: float
+    rms: float      # root mean square of value - target (the bias included)
+
+    @property
+    def tol(self) -> float:
+        """STUDY_K x the RMS (about a target) or x the sd (about the study's mean)."""
+        return STUDY_K * self.rms
+
+    def describe(self) -> str:
+        return (f"seed study {self.study} ({len(self.seeds)} calibration seeds {min(self.seeds)}-{max(self.seeds)}: mean "
+                f"{self.mean:.4g}, sd {self.sd:.3g}, RMS {self.rms:.3g}); tolerance {STUDY_K:g} x RMS")
+
+
+def seed_spread(study: str, check: str, *, about_mean: bool = False) -> SeedSpread | None:
+    """The recorded spread of ``check`` in seed study ``study``, or None if the study has no row for it.
+
+    ``about_mean``: the rows are plain values, spread about their own mean (the RMS is then the sd).
+    """
+    rows = _study_rows(text(study, "study", empty=False)).get(text(check, "check", empty=False))
+    if not rows:
+        return None
+    seeds, x = zip(*rows, strict=True)
+    x = np.asarray(x, float)
+    mean, sd = float(x.mean()), float(x.std(ddof=1)) if x.size > 1 else math.inf
+    rms = sd if about_mean else float(np.sqrt(np.mean(x ** 2)))
+    return SeedSpread(study, check, tuple(seeds), mean, sd, rms)
+
+
+def _study_rows(study: str) -> dict[str, list[tuple[int, float]]]:
+    """``check -> [(seed, value - target or value)]`` of ``data/seed_studies/<study>.csv`` (empty when absent)."""
+    path = root() / "data" / "seed_studies" / f"{study}.csv"
+    if not path.is_file():
+        return {}
+    out: dict[str, list[tuple[int, float]]] = {}
+    with open(path, newline="", encoding="utf-8") as fh:
+        for r in csv.DictReader(line for line in fh if not line.startswith("#")):
+            x = float(r["value"]) - (float(r["target"]) if r["target"] else 0.0)
+            out.setdefault(r["check"], []).append((int(r["seed"]), x))
+    return out
+
+
+def check_study(name: str, value: Scalar, target: float | None, study: str, source: str, *, unit: str = "",
+                note: str = "", paper_value: str | float | None = None) -> Check:
+    """Check ``value`` against ``target`` within the spread a recorded seed study measured; record; raise on failure.
+
+    With a ``target`` (a prediction computed in this run) the tolerance is STUDY_K x the RMS of ``value - target``
+    over the study's calibration seeds, and a bias of the prediction shows as the study's mean. With ``target=None``
+    the value is a regression of the stand-in: it must lie within STUDY_K sd of the study's mean. Two-sided: a value
+    too large is as wrong as one too small. Before the study has a row for ``name`` (``data/seed_studies/run.py``
+    writes it from these very checks) the check fails: in teaching mode it is recorded with its value.
+    """
+    v, _ = _check_args(name, value, source, unit, note, False)
+    spread = seed_spread(study, name, about_mean=target is None)
+    t = None if target is None else _as_float(target, "target", finite=True)
+    _not_the_target(value, target=target)
+    centre = (spread.mean if spread else math.nan) if t is None else t
+    tol = spread.tol if spread else math.nan
+    passed = bool(spread is not None and math.isfinite(v) and abs(v - centre) <= tol)
+    full = f"{source}; {spread.describe()}" if spread else f"{source}; no seed study row yet (data/seed_studies/run.py)"
+    return _record(Check(name, v, centre, tol, passed, full, None if paper_value is None else str(paper_value),
+                         unit=unit, note=note, study={"name": study, "target": t}))
+
+
 def _not_the_target(value, **targets) -> None:
     """Refuse a value that is the very object passed as its target: such a check cannot fail.
 
@@ -464,8 +546,11 @@ def verdict(claim: str, verdict: str, *, checks: Sequence[str] | None = None, ev
         ``erratum`` is fixed, and the printed form is shown to fail), ``"differs"`` (our
         number disagrees: ``reason`` says why), ``"refuted"`` (the paper's statement is
         false in its own setting), ``"direction only"`` (a stand-in can show only the sign
-        or ordering), ``"not checkable here"`` (``paper`` gives the paper's number and
-        ``reason`` what would be needed).
+        or ordering), ``"undecided at this scale"`` (the test straddles its cut within the
+        seed-to-seed spread: ``paper`` and ``ours`` show both numbers, ``reason`` the cut),
+        ``"not checkable here"`` (``paper`` gives the paper's number and ``reason`` what would
+        be needed), ``"extension"`` (the only verdict of a catalogue row of kind ``extension``:
+        the project's own quantity, checked, with no paper statement to judge).
     checks : sequence of str, optional
         Names of the checks, recorded earlier in this run and passed, that the verdict rests
         on. Default: every check named ``claim`` or ``claim/...``. Every verdict but
@@ -499,6 +584,9 @@ def verdict(claim: str, verdict: str, *, checks: Sequence[str] | None = None, ev
         raise ValueError(f"claim: expected a claim id of paper {_state.paper} in data/claims.csv, got {claim!r}")
     choice(verdict, "verdict", VERDICTS)
     _texts(unit=unit, reason=reason, erratum=erratum, figure=figure)
+    if (row["kind"] == EXTENSION) != (verdict == EXTENSION):
+        raise ValueError(f"verdict: {claim} is of kind {row['kind']!r} in data/claims.csv; verdict words judge a paper "
+                         f"statement, and {EXTENSION!r} is the one word of (and only of) the project's own quantities")
     names = [c.name for c in _state.checks if c.name == claim or c.name.startswith(claim + "/")] \
         if checks is None else list(checks)
     recorded = {c.name: c for c in _state.checks}
@@ -524,7 +612,7 @@ def verdict(claim: str, verdict: str, *, checks: Sequence[str] | None = None, ev
                          "(check_outside, or name it in evidence=)")
     if verdict == "reproduced with correction" and not set(names) - set(evid):
         raise ValueError("checks: a verdict of 'reproduced with correction' also rests on a check of the corrected form")
-    if verdict in ("differs", "refuted") and (paper is None or ours is None):
+    if verdict in ("differs", "refuted", "undecided at this scale") and (paper is None or ours is None):
         raise ValueError(f"paper, ours: a verdict of {verdict!r} shows both numbers")
     if verdict == "not checkable here" and paper is None and not row["paper_value"]:
         raise ValueError("paper: a claim that is not checkable here shows the paper's number")
@@ -599,7 +687,7 @@ def _rows(encoded: list[str]) -> str:
 
 def _row(c: Check) -> dict:
     row = asdict(c)
-    for key in ("outside", "on_printed"):          # written only when set: other rows keep their bytes
+    for key in ("outside", "on_printed", "study"):  # written only when set: other rows keep their bytes
         if not row[key]:
             del row[key]
     return row

@@ -12,7 +12,14 @@ value argument
   between (a drift compared with the drift that was injected; a typed table value checked against the
   same number typed again);
 * is the **same expression as its target** (``expected``, ``paper_value``, ``lower``, ``upper``), or a
-  rounding of it, or the target a rounding of the value (``check(name, err, round(err, 2), ...)``).
+  rounding of it, or the target a rounding of the value (``check(name, err, round(err, 2), ...)``);
+* is a **simulation recovering its own input**: the spread (std, var) of simulated samples, with nothing but
+  the truth subtracted (no estimator, filter or other navlib computation in between), against a target built
+  from the very input the simulation was given (the sd of an injected 0.04 G noise against 0.04 G);
+* asserts a disagreement (``check_outside``) with a **band around the project's own assumed number**: a bound
+  built from a constant of the parameters cell, which the paper never stated;
+* is checked against a **band that contains every possible value**: a share (the mean of a comparison) within
+  [0, 1] or wider.
 
 Arithmetic on the paper's own printed numbers (a column against the total the text prints, a formula's
 constant against the published constants it comes from) is legitimate but is not a reproduction: such a
@@ -21,7 +28,7 @@ data (a ``data/`` table, a paper or navlib constant) through arithmetic — not 
 literals or parameters alone, not a single typed number.
 
 What counts as a computation: a call into navlib other than the unit conversions of ``navlib.units``,
-``repro``'s paths and the sensor presets; a draw from ``numpy.random``; a third-party library (scipy,
+``repro``'s paths and the sensor presets (``repro.seed_spread``, a recorded seed study of the simulation, is one); a draw from ``numpy.random``; a third-party library (scipy,
 ahrs, imufusion, ...); data read from ``data/real`` or ``data/samples`` (recordings). numpy, pandas,
 ``math`` and the builtins only transform what they are given. Calls go through local aliases
 (``chk = repro.check``), helper functions and lambdas (their body is read with the caller's arguments),
@@ -55,8 +62,12 @@ ORIGIN = {LITERAL: "literals only", PARAMETER: "parameters-cell constants and li
           DATA: "typed inputs only (data/ tables, sensor presets, paper constants, parameters, literals)"}
 
 SIGNATURES = {"check": ("name", "value", "expected", "tol", "source"),
-              "check_range": ("name", "value", "source"), "check_outside": ("name", "value", "source")}
-TARGETS = ("expected", "paper_value", "lower", "upper")
+              "check_range": ("name", "value", "source"), "check_outside": ("name", "value", "source"),
+              "check_study": ("name", "value", "target", "study", "source")}
+TARGETS = ("expected", "target", "paper_value", "lower", "upper")
+DRAWS = ("numpy.random", "navlib.sensors.simulate_")          # where simulated samples come from
+TRUTH = ("navlib.attitude.", "navlib.trajectory.", "navlib.earth.", "navlib.units.", "navlib.repro.")  # no estimator
+SPREADS = {"std", "var", "nanstd", "nanvar"}
 TRANSPARENT = ("numpy.", "pandas.", "math.", "builtins.", "statistics.", "itertools.", "functools.", "collections.",
                "operator.", "navlib.units.", "navlib.repro.", "navlib.attitude.wrap_pi", "navlib.attitude.wrap_2pi")
 LOADERS = {"pandas.read_csv", "pandas.read_table", "pandas.read_json", "numpy.loadtxt", "numpy.genfromtxt", "numpy.load",
@@ -141,6 +152,7 @@ class Reader:
         self.returns: list[list[int]] = []
         self.cell = self.line = 0
         self.in_parameters = False
+        self.parameter_names: set[str] = set()
 
     # -- driving
     def read(self, cells: list[tuple[int, str, bool]]) -> list[Finding]:
@@ -237,8 +249,9 @@ class Reader:
                 if alias is not None:
                     scope.set(target.id, alias)
                     return
-            if self.in_parameters and scope is self.top and origin <= PARAMETER:
-                origin = PARAMETER
+            if self.in_parameters and scope is self.top:
+                self.parameter_names.add(target.id)
+                origin = min(origin, PARAMETER) if origin <= PARAMETER else origin
             scope.set(target.id, Value(origin, expr, scope), merge)
         elif isinstance(target, (ast.Tuple, ast.List)):
             parts = expr.elts if isinstance(expr, (ast.Tuple, ast.List)) else None
@@ -328,7 +341,7 @@ class Reader:
             return COMPUTED if any(RECORDINGS.search(s) for s in strings(e, scope)) else DATA
         if path in PRESETS:
             return max(DATA, args)
-        if path.startswith("numpy.random"):
+        if path.startswith("numpy.random") or path == "navlib.repro.seed_spread":   # a seed study: simulated values
             return COMPUTED
         if path.startswith(TRANSPARENT):
             return args
@@ -409,6 +422,7 @@ class Reader:
                            "from data/ (or a paper constant), not typed into the notebook")
         elif printed and bare(args["value"], scope):
             reasons.append("on_printed=True, but its value is one typed number, not arithmetic on printed numbers")
+        reasons += self.cannot_fail(kind, args, scope)
         mine = forms(args["value"], scope)
         for key in TARGETS:
             if key in args:
@@ -420,6 +434,80 @@ class Reader:
             key = (self.cell, self.line, name)
             found = self.findings.setdefault(key, Finding(self.cell, self.line, name))
             found.reasons += [r for r in reasons if r not in found.reasons]
+
+
+    def cannot_fail(self, kind: str, args: dict, scope) -> list[str]:
+        """The three patterns of a check that cannot fail whatever navlib computes (module docstring)."""
+        reasons = []
+        value = Closure(args["value"], scope)
+        targets = [Closure(args[k], scope) for k in ("expected", "target", "lower", "upper") if k in args]
+        if any(raw.draw_inputs & t.inputs for raw in value.raw_spreads for t in targets):
+            reasons.append("a simulation recovering its own input: the spread of simulated samples against the noise "
+                           "it was given")
+        centres = {self.centre(args[k], scope) for k in ("lower", "upper") if k in args}
+        if kind == "check_outside" and len(centres) == 1 and None not in centres and "lower" in args and "upper" in args:
+            reasons.append("a disagreement asserted against a band around the project's own assumed number "
+                           "(a parameters-cell constant)")
+        lo, hi = (args.get(k) for k in ("lower", "upper"))
+        if kind == "check_range" and value.share and all(isinstance(b, ast.Constant) for b in (lo, hi)) \
+                and lo.value <= 0 and hi.value >= 1:
+            reasons.append("a band that contains every possible value (a share within [0, 1])")
+        return reasons
+
+
+    def centre(self, e, scope) -> str | None:
+        """The parameters-cell constant a bound is built around (``RTK_SIGMA_DEG - band``), or None."""
+        e = strip(e, scope)
+        if isinstance(e, ast.BinOp) and isinstance(e.op, (ast.Add, ast.Sub)):
+            for side in (e.left, e.right):
+                if isinstance(side, ast.Name) and side.id in self.parameter_names:
+                    return side.id
+        return None
+
+
+class Closure:
+    """What an expression depends on, following names: the names, the typed inputs, the draws and their inputs."""
+
+    def __init__(self, e, scope, depth: int = 0):
+        self.inputs: set[str] = set()          # parameters-cell names and typed-data subscripts, as source text
+        self.draw_inputs: set[str] = set()     # ... of them given to a random draw or a sensor simulation
+        self.processing = False                # a navlib computation other than a draw or the truth's geometry
+        self.raw_spreads: list[Closure] = []   # std / var taken of simulated samples with no such computation between
+        top = strip(e, scope)
+        self.share = (isinstance(top, ast.Call) and (qualname(top.func, scope) or "").endswith(".mean")
+                      and any(isinstance(n, ast.Compare) for a in top.args for n in ast.walk(a)))
+        self.walk(e, scope, depth, in_draw=False)
+
+    def walk(self, e, scope, depth: int, in_draw: bool) -> None:
+        if e is None or depth > 10:
+            return
+        if isinstance(e, ast.Call):
+            path = qualname(e.func, scope) or ""
+            last = e.func.attr if isinstance(e.func, ast.Attribute) else path.rpartition(".")[2]
+            if last in SPREADS:
+                operand = Closure(e.func.value if isinstance(e.func, ast.Attribute) and not path else
+                                  (e.args[0] if e.args else None), scope, depth + 1)
+                if operand.draw_inputs and not operand.processing:
+                    self.raw_spreads.append(operand)
+            draw = path.startswith(DRAWS) or last in ("normal", "standard_normal")
+            if path.startswith("navlib.") and not path.startswith(TRUTH) and not (draw or in_draw):
+                self.processing = True
+            for a in [e.func, *e.args, *(k.value for k in e.keywords)]:
+                self.walk(a, scope, depth, in_draw or draw)
+            return
+        if isinstance(e, (ast.Name, ast.Subscript)):
+            name = base_name(e)
+            b = scope.get(name) if name else None
+            if isinstance(b, Value) and b.origin <= DATA:
+                self.inputs.add(ast.unparse(e))
+                if in_draw:
+                    self.draw_inputs.add(ast.unparse(e))
+            if isinstance(e, ast.Name) and isinstance(b, Value) and b.expr is not None:
+                self.walk(b.expr, b.scope, depth + 1, in_draw)
+                return
+        for child in ast.iter_child_nodes(e):
+            if isinstance(child, ast.expr):
+                self.walk(child, scope, depth, in_draw)
 
 
 # -------------------------------------------------------------------------------------------- helpers
@@ -588,7 +676,8 @@ def test_allowed_entries_are_used_and_explained():
 
 
 def findings(*cells: str, parameters: int | None = None) -> list[Finding]:
-    head = "from navlib import repro, units, sensors, earth\nfrom navlib.repro import check, check_range, check_outside\n" \
+    head = "from navlib import repro, units, sensors, earth, attitude\n" \
+           "from navlib.repro import check, check_range, check_outside, check_study\n" \
            "import numpy as np\nimport pandas as pd\n"
     code = [(0, head, False)] + [(i + 1, src, i == parameters) for i, src in enumerate(cells)]
     return Reader().read(code)
@@ -630,6 +719,17 @@ BAD = {
                                  "check('X', units.to_deg_per_h(m.gyro.bias_instability), 10.0, 1e-9, 's', on_printed=True)",
     "printed, value is the target": "tab = pd.read_csv('../data/t.csv')\n"
                                     "check('X', tab.dl.max(), tab.dl.max(), 0, 's', on_printed=True)",
+    # checks that cannot fail whatever navlib computes (issue 35)
+    "recovers its injected noise": "rng = np.random.default_rng(1)\ne = rng.normal(0, DRIFT_DEG_S, 1000)\n"
+                                   "check('X', np.std(e), DRIFT_DEG_S, 0.01, 's')",
+    "recovers it, truth removed": "rng = np.random.default_rng(1)\nm = sensors.simulate_magnetometer(q, B, "
+                                  "sensors.MagnetometerModel(noise=units.gauss(DRIFT_DEG_S)), rng).m_b\n"
+                                  "check('X', (m - attitude.quat_to_dcm(q) @ B).std(), units.gauss(DRIFT_DEG_S), 0.1, 's')",
+    "band around an assumption": "v = earth.gravity(0.3)\ncheck_outside('X', v, 's', lower=T_START - 0.1, upper=T_START + 0.1)",
+    "band holding every share": "e = earth.gravity(np.linspace(0, 1, 9))\n"
+                                "check_range('X', np.mean(e > 9.8), 's', lower=0, upper=1)",
+    "study against its own input": "rng = np.random.default_rng(1)\ne = rng.normal(0, DRIFT_DEG_S, 1000)\n"
+                                   "check_study('X', e.std(), DRIFT_DEG_S, 'nb', 's')",
 }
 PARAMS = "DRIFT_DEG_S = 0.09\nT_START, T_END = 1000.0, 2000.0\n"
 
@@ -644,7 +744,10 @@ GOOD = {
     "navlib computation": "x = earth.gravity(0.5)\ncheck('X', x, 9.78, 0.01, 'paper')",
     "computed against an input": "g = earth.gravity(0.5)\ncheck('X', g * T_END, 9780.0, 10.0, 's')",
     "simulated": "rng = np.random.default_rng(1)\ne = rng.normal(0, DRIFT_DEG_S, 1000)\n"
-                 "check('X', np.std(e), DRIFT_DEG_S, 0.01, 's')",
+                 "check('X', np.mean(e), 0.0, 3 * DRIFT_DEG_S / np.sqrt(1000), 's')",
+    "noise through an estimator": "from navlib import alignment\nrng = np.random.default_rng(1)\n"
+                                  "e = rng.normal(0, DRIFT_DEG_S, (1000, 3))\n"
+                                  "check('X', np.std(alignment.tilt_heading(e, e)), DRIFT_DEG_S, 0.01, 's')",
     "recording": "raw = pd.read_csv(repro.root() / 'data' / 'real' / 'walk.csv')\n"
                  "check_range('X', raw.ax.mean(), 's', upper=1.0)",
     "helper with computed argument": "def close(name, v, t):\n    return check(name, v, t, 0.1, 'src')\n"

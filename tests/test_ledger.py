@@ -117,7 +117,7 @@ def _results(tmp_path, stem, verdicts, checks=()):
 
 def test_ledger_joins_results_with_the_catalogue(tmp_path):
     p = PAPERS[0]
-    ids = [c for c, r in CLAIMS.items() if r["paper"] == p.claims_id]
+    ids = [c for c, r in CLAIMS.items() if r["paper"] == p.claims_id and r["kind"] != "extension"]
     check = {"name": ids[0] + "/a", "value": 1.0, "passed": True}
     _results(tmp_path, p.notebook, [
         {"claim": ids[0], "verdict": "reproduced", "checks": [check["name"]], "evidence": [], "paper": None,
@@ -163,3 +163,47 @@ def test_site_pages_lead_with_verdicts_and_keep_checks_and_claims_apart(tmp_path
     page = site.ledger_page(leds, tmp_path)
     assert page.count("<tr data-paper=") == 2 + sum(1 for r in leds[0].rows if not r.checks)
     assert "data-verdict='differs'" in page and "outside [2, 3]" in page
+
+
+# Verdict words judge what a paper states (issue 35): the catalogue marks the project's own quantities, test
+# vectors and reconstructions of what the paper does not print as kind "extension", and only they get the
+# verdict "extension".
+OWN_QUANTITY = ("the project's own", "not a paper claim", "the paper gives no number", "the paper gives no coordinates",
+                "the paper does not show", "absent from the text", "prints none")
+
+
+def test_the_projects_own_quantities_are_extensions():
+    for cid, row in CLAIMS.items():
+        text = f"{row['item']} {row['note']}".lower()
+        marked = [m for m in OWN_QUANTITY if m in text]
+        if marked and not row["paper_value"]:
+            assert row["kind"] == "extension", f"{cid}: the catalogue calls it {marked[0]!r} but its kind is {row['kind']!r}"
+        if row["kind"] == "extension":
+            assert marked, f"{cid}: an extension says in its note whose quantity it is (e.g. {OWN_QUANTITY[0]!r})"
+
+
+def test_a_paper_verdict_rests_on_a_paper_statement():
+    """A paper verdict word needs a catalogue row that quotes the paper: a printed value, or an item naming where."""
+    where = ("Eq", "Fig", "Table", "§", "text", "abstract", "conclusion")
+    for cid, row in CLAIMS.items():
+        if row["kind"] != "extension":
+            assert row["paper_value"] or any(w in row["item"] for w in where), f"{cid}: no paper statement quoted"
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=[p.stem for p in NOTEBOOKS])
+def test_extensions_and_paper_claims_get_their_own_words(path):
+    for claim, verdict in static_verdicts(path).items():
+        extension = CLAIMS[claim]["kind"] == repro.EXTENSION
+        assert extension == (verdict == repro.EXTENSION), (
+            f"{claim}: kind {CLAIMS[claim]['kind']!r} with verdict {verdict!r}; the project's own quantities get "
+            f"{repro.EXTENSION!r}, paper statements a verdict word")
+
+
+def test_the_ledger_lists_extensions_apart(tmp_path):
+    stem, paper = "03_gauss_kruger_ekf", "002"
+    ext = next(cid for cid, r in CLAIMS.items() if r["paper"] == paper and r["kind"] == "extension")
+    _results(tmp_path, stem, [{"claim": ext, "verdict": "extension", "checks": ["x"], "evidence": [], "paper": None,
+                               "ours": "1", "reason": "own", "erratum": "", "figure": ""}])
+    led = next(led for led in ledger.ledgers(tmp_path) if led.stem == stem)
+    assert ext in [r.claim for r in led.extensions] and ext not in [r.claim for r in led.rows]
+    assert not led.problems and "extension" not in led.counts

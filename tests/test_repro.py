@@ -546,3 +546,43 @@ def test_exercise_waits_for_the_stub_then_compares_with_navlib():
     assert repro.exercise(right, reference, cases).passed is True
     with pytest.raises(ValueError, match="functions"):
         repro.exercise(None, reference, cases)
+
+
+STUDY_CSV = ("# a seed study\nseed,check,value,target\n"
+             "3001,X/pred,1.10,1.0\n3002,X/pred,0.95,1.0\n3003,X/pred,1.02,1.0\n"
+             "3001,X/plain,5.0,\n3002,X/plain,6.0,\n3003,X/plain,7.0,\n")
+
+
+def test_a_studied_tolerance_is_k_times_the_rms_over_the_seeds(fake_root):
+    (fake_root / "data" / "seed_studies").mkdir(parents=True)
+    (fake_root / "data" / "seed_studies" / "nb.csv").write_text(STUDY_CSV, encoding="utf-8")
+    repro.setup(NB)
+    pred = repro.seed_spread("nb", "X/pred")
+    assert pred.seeds == (3001, 3002, 3003)
+    assert pred.rms == pytest.approx(np.sqrt((0.1 ** 2 + 0.05 ** 2 + 0.02 ** 2) / 3))
+    assert pred.mean == pytest.approx(0.07 / 3)
+    c = repro.check_study("X/pred", 1.0 + 0.9 * pred.tol, 1.0, "nb", "prediction")
+    assert c.passed and c.tol == pytest.approx(repro.STUDY_K * pred.rms) and c.study == {"name": "nb", "target": 1.0}
+    with pytest.raises(repro.ClaimCheckFailed):                  # two-sided: too small fails as well
+        repro.check_study("X/pred", 1.0 - 1.1 * pred.tol, 1.0, "nb", "prediction")
+    plain = repro.seed_spread("nb", "X/plain", about_mean=True)
+    assert (plain.mean, plain.sd, plain.rms) == pytest.approx((6.0, 1.0, 1.0))
+    assert repro.check_study("X/plain", 6.0 + 4.0, None, "nb", "regression").passed     # within 4.5 sd of the mean
+
+
+def test_a_check_without_its_study_row_fails(fake_root):
+    repro.setup(NB)
+    with pytest.raises(repro.ClaimCheckFailed, match="no seed study row"):
+        repro.check_study("X/none", 1.0, 1.0, "nb", "prediction")
+    repro.mode(teaching=True, fast=False)
+    with pytest.warns(repro.ClaimCheckWarning):
+        c = repro.check_study("X/none", 1.0, 1.0, "nb", "prediction")
+    assert not c.passed and c.value == 1.0 and c.study == {"name": "nb", "target": 1.0}
+
+
+def test_verdict_words_follow_the_catalogue_kind(paper_root):
+    repro.check("P999-FIG1-RMSE", 4.8, 4.77, 0.1, "Fig. 1")
+    with pytest.raises(ValueError, match="extension"):
+        repro.verdict("P999-FIG1-RMSE", "extension", reason="own")
+    with pytest.raises(ValueError, match="paper, ours"):
+        repro.verdict("P999-FIG1-RMSE", "undecided at this scale", reason="straddles the cut")

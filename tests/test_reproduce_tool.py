@@ -55,3 +55,45 @@ def test_the_profile_splits_compilation_from_the_rest():
         "02_x: 40.0 s = compile 12.5 + other 27.5; peak memory 900 MB",
         "    compile   12.5 s  3 signature(s)  navlib.m.k",
         "    cell   4   30.0 s  run()"]
+
+
+def run(seed, checks, verdicts, error=None):
+    return {"notebook": "04_x", "seed": seed, "seconds": 1.0, "error": error,
+            "checks": {n: {"value": v, "passed": p} for n, (v, p) in checks.items()}, "verdicts": verdicts}
+
+
+def test_the_sweep_names_every_failed_check_and_verdict_flip():
+    runs = [run(11, {"A/x": (1.0, True), "B": (2.0, True)}, {"A": "reproduced", "B": "differs"}),
+            run(29, {"A/x": (1.5, False), "B": (2.1, True)}, {"B": "differs"}),
+            run(47, {"B": (2.2, True)}, {"A": "reproduced", "B": "differs"})]
+    table = reproduce.sweep_table(runs, [11, 29, 47])
+    assert table["checks"]["A/x"]["values"] == [1.0, 1.5, None]
+    assert table["failures"] == {"A/x": [29, 47]}            # failed on 29, missing on 47
+    assert table["flips"] == {"A": ["reproduced", "no verdict", "reproduced"]}
+    assert table["verdicts"]["B"] == ["differs"] * 3
+
+
+def test_a_stable_sweep_has_no_failure_and_no_flip():
+    runs = [run(s, {"A": (s / 10, True)}, {"A": "undecided at this scale"}) for s in (11, 29, 47)]
+    table = reproduce.sweep_table(runs, [11, 29, 47])
+    assert table["failures"] == {} and table["flips"] == {} and table["errors"] == {}
+
+
+def test_only_notebooks_that_set_a_seed_are_swept(tmp_path):
+    for name, source in (("01_mc", "SEED = 3\nN = 5"), ("02_fixed", "N = 5")):
+        nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell("import numpy"), nbformat.v4.new_code_cell(source)])
+        nb.cells[1].metadata["tags"] = ["parameters"]
+        nbformat.write(nb, tmp_path / f"{name}.ipynb")
+    paths = sorted(tmp_path.glob("*.ipynb"))
+    assert reproduce.seeded_notebooks(paths) == [paths[0]]
+
+
+def test_the_sweep_refuses_the_seeds_that_set_a_tolerance():
+    used = reproduce.calibration_seeds(ROOT)
+    assert used, "data/seed_studies/calibration_seeds.csv lists no calibration seeds"
+    for stem, seeds in used.items():
+        assert not seeds & set(reproduce.SWEEP_SEEDS), f"{stem}: a default sweep seed set a tolerance"
+    stem, seeds = next(iter(used.items()))
+    args = reproduce.argparse.Namespace(seeds=None, seed_list=str(min(seeds)), jobs=1, timeout=10)
+    paths = sorted((ROOT / "notebooks").glob(f"{stem}.ipynb"))
+    assert reproduce.sweep(args, ROOT, paths, ROOT / "build") == 1

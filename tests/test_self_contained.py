@@ -30,7 +30,7 @@ OUTSIDE = re.compile("|".join([
     r"\bgui" + r"des?\b",                         # the per-paper working notes, cited as "<that word> Err 4"
     r"(?<!docs/)(?<!\]\()" + "claims" + r"\.md",  # the old catalogue's explanation (now docs/claims.md)
 ]), re.IGNORECASE)
-KINDS = {"analytic", "deterministic", "monte-carlo", "simulation-stand-in", "qualitative", "hardware-only"}
+KINDS = {"analytic", "deterministic", "monte-carlo", "simulation-stand-in", "qualitative", "hardware-only", "extension"}
 PAPERS = {p.claims_id for p in REGISTRY}
 ERRATUM_ID = re.compile(r"\bE(?:" + "|".join(sorted(PAPERS)) + r")-\d\d\b")
 

@@ -43,7 +43,7 @@ import ledger  # noqa: E402
 
 README_PAGES = {"own-data": "Your own data", "robustness": "Robustness: what each filter does with bad data"}
 WIDGET_MIME = "application/vnd.jupyter.widget-view+json"
-VERDICT_CSS = {v: f"verdict-{i}" for i, v in enumerate(ledger.COLUMNS)}
+VERDICT_CSS = {v: f"verdict-{i}" for i, v in enumerate(ledger.COLUMNS)} | {ledger.EXTENSION: "verdict-ext"}
 
 
 REPO_FILES = "https://github.com/navlib-repro/navlib/blob/main/"
@@ -276,10 +276,11 @@ def verdict_span(verdict: str) -> str:
     return f"<span class='verdict {VERDICT_CSS[verdict]}'>{html.escape(verdict)}</span>"
 
 
-def claims_matrix(led: ledger.PaperLedger) -> str:
-    """Every claim of a paper: paper item, paper value, ours, verdict (with its reason) and thumbnail."""
+def claims_matrix(led: ledger.PaperLedger, rows_of: str = "rows") -> str:
+    """Every claim of a paper (or, with ``rows_of="extensions"``, the project's own quantities around it): paper
+    item, paper value, ours, verdict (with its reason) and thumbnail."""
     rows = []
-    for r in led.rows:
+    for r in getattr(led, rows_of):
         thumb = (f"<a href='chapters/{led.stem}.html#{anchor('fig', Path(r.figure).stem)}'><img src='{r.figure}' width='110' "
                  f"alt='{html.escape(r.claim)}: figure in the chapter'></a>" if r.figure else "")
         why = ledger.verdict_text(r)[len(r.verdict):].lstrip(": ")
@@ -293,7 +294,7 @@ def claims_matrix(led: ledger.PaperLedger) -> str:
 
 def ledger_rows(led: ledger.PaperLedger, res: dict | None) -> list[str]:
     """One row per check of the paper's notebook (with its claim's verdict), one per claim without checks."""
-    by_check = {n: r for r in led.rows for n in r.checks}
+    by_check = {n: r for r in (*led.rows, *led.extensions) for n in r.checks}
     rows, claimed = [], set()
     for c in (res or {}).get("checks", []):
         claim = by_check.get(c["name"])
@@ -376,6 +377,9 @@ def home_page(leds: list[ledger.PaperLedger], chapters: list[str]) -> str:
         matrices += [f"<details><summary><b>{html.escape(led.title)}</b> — {len(led.rows)} claims: "
                      f"{html.escape(counts)} (<a href='chapters/{led.stem}.html'>chapter</a>)</summary>",
                      claims_matrix(led), "</details>", ""]
+        if led.extensions:
+            matrices += [f"<details><summary>{html.escape(led.stem[:2])}: {len(led.extensions)} extensions (the project's "
+                         "own quantities, no paper verdict)</summary>", claims_matrix(led, "extensions"), "</details>", ""]
     return "\n".join([
         (ROOT / "docs" / "home.md").read_text(encoding="utf-8").rstrip(), "",
         "**Teaching with these chapters?** [The course page](course.md) gives an order, 45- and 90-minute lesson "

@@ -9,6 +9,10 @@ claim whose notebook records none is shown as *no verdict yet* and never counted
 Two words are kept apart everywhere: a *claim* is a statement of a paper (a catalogue row), a
 *check* is one computed comparison of a notebook (a row of results.json). Coverage counts the
 claims whose verdict rests on at least one passed check.
+
+Verdict words judge what a paper states. A catalogue row of kind ``extension`` (the project's own quantity, a
+test vector, a reconstruction of something the paper does not print) is not a paper claim: it sits in the
+ledger's separate *extensions* list with the one verdict ``extension`` (its checks passed), outside the counts.
 """
 from __future__ import annotations
 
@@ -20,9 +24,12 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 NO_VERDICT = "no verdict yet"
-VERDICTS = ("reproduced", "reproduced with correction", "differs", "refuted", "direction only", "not checkable here")
+VERDICTS = ("reproduced", "reproduced with correction", "differs", "refuted", "direction only",
+            "undecided at this scale", "not checkable here", "extension")
 """The verdicts in the ledger's order (the same tuple as ``navlib.repro.VERDICTS``; tests/test_ledger.py checks)."""
-COLUMNS = (*VERDICTS, NO_VERDICT)
+EXTENSION = "extension"
+COLUMNS = (*(v for v in VERDICTS if v != EXTENSION), NO_VERDICT)
+"""The verdict columns of the paper claims (an extension is not one)."""
 
 
 def read_csv(path: Path) -> list[dict[str, str]]:
@@ -69,6 +76,7 @@ class PaperLedger:
     paper: str
     title: str
     rows: list[Row]
+    extensions: list[Row] = field(default_factory=list)      # the project's own quantities (kind extension)
     checks_passed: int = 0
     checks_total: int = 0
     ran: bool = False
@@ -87,7 +95,8 @@ def paper_ledger(stem: str, paper: str, title: str, catalogue: list[dict[str, st
     """Join the catalogue's claims of ``paper`` with the verdicts of its notebook's results."""
     own = [c for c in catalogue if c["paper"] == paper]
     rows = {c["id"]: Row(c["id"], c["item"], c["quantity"], c["kind"], c["paper_value"]) for c in own}
-    led = PaperLedger(stem, paper, title, list(rows.values()))
+    led = PaperLedger(stem, paper, title, [r for r in rows.values() if r.kind != EXTENSION],
+                      [r for r in rows.values() if r.kind == EXTENSION])
     if res is None:
         return led
     led.ran = True
@@ -104,6 +113,9 @@ def paper_ledger(stem: str, paper: str, title: str, catalogue: list[dict[str, st
             continue
         if v["verdict"] not in VERDICTS:
             led.problems.append(f"{v['claim']}: unknown verdict {v['verdict']!r}")
+            continue
+        if (row.kind == EXTENSION) != (v["verdict"] == EXTENSION):
+            led.problems.append(f"{v['claim']}: verdict {v['verdict']!r} on a row of kind {row.kind!r}")
             continue
         row.verdict, row.reason, row.erratum, row.checks = v["verdict"], v["reason"], v["erratum"], v["checks"]
         row.ours = v["ours"] or ""

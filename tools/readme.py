@@ -84,6 +84,12 @@ def summary_rows(build: Path, leds: list[ledger.PaperLedger]) -> dict[str, str]:
     return rows
 
 
+def row_line(r: ledger.Row) -> str:
+    """One claim as a markdown table row: id, item, paper, ours, verdict with its reason, thumbnail."""
+    thumb = f'<img src="docs/figures/{figure_copy(r.figure)}" width="{THUMB_WIDTH_PX}">' if r.figure else ""
+    return f"| `{r.claim}` | {cell(r.item)} | {cell(r.paper)} | {cell(r.ours)} | {cell(ledger.verdict_text(r))} | {thumb} |"
+
+
 def matrix(led: ledger.PaperLedger) -> str:
     """The claims of one paper as a collapsible markdown table, between its ledger markers."""
     counts = led.counts
@@ -91,10 +97,12 @@ def matrix(led: ledger.PaperLedger) -> str:
     lines = [f"<!-- ledger:{led.stem} -->", f"<details><summary><b>{led.stem}</b> — {led.title}: {len(led.rows)} claims "
              f"({summary})</summary>", "", "| claim | paper item | paper | ours | verdict | figure |",
              "|---|---|---|---|---|---|"]
-    for r in led.rows:
-        thumb = (f'<img src="docs/figures/{figure_copy(r.figure)}" width="{THUMB_WIDTH_PX}">' if r.figure else "")
-        lines.append(f"| `{r.claim}` | {cell(r.item)} | {cell(r.paper)} | {cell(r.ours)} | {cell(ledger.verdict_text(r))} "
-                     f"| {thumb} |")
+    lines += [row_line(r) for r in led.rows]
+    if led.extensions:
+        lines += ["", f"Extensions ({len(led.extensions)}): the project's own quantities, test vectors and reconstructions, "
+                  "checked but not paper claims, so without a verdict word on the paper.", "",
+                  "| extension | item | paper | ours | checked | figure |", "|---|---|---|---|---|---|"]
+        lines += [row_line(r) for r in led.extensions]
     lines += ["", "</details>", f"<!-- /ledger:{led.stem} -->"]
     return "\n".join(lines)
 
@@ -118,7 +126,9 @@ def render(build: Path) -> tuple[str, dict[str, str]]:
              "| **total** | | " + f"{n_claims} | " + " | ".join(str(total[v]) for v in ledger.COLUMNS) + " | |", "",
              f"**Coverage:** {sum(led.computed for led in ran)} of {n_claims} claims have a verdict that rests on a "
              f"computation (a check of the notebook); {total['not checkable here']} are not checkable here and "
-             f"{total[ledger.NO_VERDICT]} have no verdict yet (never counted as reproduced).", ""]
+             f"{total[ledger.NO_VERDICT]} have no verdict yet (never counted as reproduced). "
+             f"{sum(len(led.extensions) for led in ran)} extensions (the project's own quantities) are listed apart, "
+             "under each paper.", ""]
     block += [matrix(led) + "\n" for led in ran]
     block.append(END)
     return "\n".join(block), parts
@@ -176,7 +186,7 @@ def write_figures(build: Path, leds: list[ledger.PaperLedger]) -> list[str]:
     from PIL import Image  # Pillow comes with matplotlib
 
     FIGURES.mkdir(parents=True, exist_ok=True)
-    wanted = {r.figure: THUMB_FILE_WIDTH_PX for led in leds for r in led.rows if r.figure}
+    wanted = {r.figure: THUMB_FILE_WIDTH_PX for led in leds for r in (*led.rows, *led.extensions) if r.figure}
     wanted |= {f"{stem}/figures/{fig}.png": GALLERY_WIDTH_PX for stem, fig in GALLERY}
     # Copies are remade only when their source PNG or width changed (build/readme-figures.json: the sources
     # of the last copies); re-encoding all of them took 1 s of every make reproduce.

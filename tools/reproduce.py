@@ -23,16 +23,27 @@ kernel runs; "n/a" where there is none). A notebook that raises is reported and 
 others; the exit status is non-zero if any notebook failed. ``--only`` runs a subset, and the report then
 covers that subset only. Needs no network.
 
+``--seeds N`` (or ``--seed-list 7,123,9999``) is the seed sweep (``make seeds``): every notebook whose
+parameters cell sets ``SEED`` (the Monte Carlo ones) runs at full scale once per seed, the seed injected
+papermill-style after that cell, in teaching mode (a failed check is recorded, not raised) with results in
+``build/seeds/<seed>/``. It prints, per notebook, every check's values across the seeds and every claim's
+verdicts, names each failed check and each verdict that is not the same on every seed (a flip), writes
+``build/seeds.json`` and fails on any. A sweep seed inside a range used to set a tolerance
+(``data/seed_studies/calibration_seeds.csv``) is refused: a tolerance is never tested on its own seeds.
+
 ``--profile`` also says where each notebook's time went: numba compilation against the rest, the
 kernels by compile time and the slowest cells (the first is usually the imports). ``--cold`` gives the
 kernels an empty numba cache (``NUMBA_CACHE_DIR``), as on a fresh clone; without it the repository's
 cache is used (a warm rerun).
 
 Usage: python tools/reproduce.py [--only PATTERN] [--root DIR] [--timeout S] [--jobs N] [--profile] [--cold]
+                                 [--seeds N | --seed-list S1,S2,...]
 """
 from __future__ import annotations
 
 import argparse
+import ast
+import csv
 import fnmatch
 import hashlib
 import json
@@ -58,6 +69,9 @@ REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO))
 
 import ledger  # noqa: E402  (tools/ledger.py: claims with their verdicts; no navlib import at module level)
+
+SWEEP_SEEDS = (11, 29, 47, 83, 131, 257, 521, 1031, 5003, 8191)
+"""The sweep's seeds, first ``--seeds N`` of them: outside every calibration range (calibration_seeds.csv)."""
 
 START_METHOD = "fork" if "fork" in multiprocessing.get_all_start_methods() else "spawn"
 
@@ -200,6 +214,130 @@ def compare_manifest(manifest: dict, reference: Path, notebooks: list[str]) -> l
     return sorted(k for k in set(ref) | set(manifest) if ref.get(k) != manifest.get(k))
 
 
+# ---------------------------------------------------------------------------------------------- seed sweep
+
+def parameters_cell(nb) -> int:
+    """Index of the cell tagged ``parameters``."""
+    return next(i for i, c in enumerate(nb.cells) if "parameters" in c.metadata.get("tags", []))
+
+
+def seeded_notebooks(notebooks: list[Path]) -> list[Path]:
+    """The notebooks whose parameters cell assigns ``SEED`` (the Monte Carlo ones)."""
+    def sets_seed(path: Path) -> bool:
+        nb = nbformat.read(path, as_version=4)
+        tree = ast.parse(nb.cells[parameters_cell(nb)].source)
+        return any(isinstance(t, ast.Name) and t.id == "SEED" for node in tree.body if isinstance(node, ast.Assign)
+                   for t in node.targets)
+    return [p for p in notebooks if sets_seed(p)]
+
+
+def calibration_seeds(root: Path) -> dict[str, set[int]]:
+    """Seeds used to set tolerances, per notebook stem (``data/seed_studies/calibration_seeds.csv``)."""
+    used: dict[str, set[int]] = {}
+    path = root / "data" / "seed_studies" / "calibration_seeds.csv"
+    if path.is_file():
+        for row in csv.DictReader(line for line in path.open(encoding="utf-8") if not line.startswith("#")):
+            used.setdefault(row["notebook"], set()).update(range(int(row["first"]), int(row["last"]) + 1))
+    return used
+
+
+def run_seed(path: Path, seed: int, out: Path, timeout: int) -> dict:
+    """Execute one notebook with ``SEED = seed`` in teaching mode into ``out``; its checks and verdicts."""
+    nb = nbformat.read(path, as_version=4)
+    cell = nbformat.v4.new_code_cell(f"# injected by tools/reproduce.py --seeds\nSEED = {seed}")
+    cell.metadata["tags"] = ["injected-parameters"]
+    nb.cells.insert(parameters_cell(nb) + 1, cell)
+    os.environ.update(NAVLIB_TEACHING="1", NAVLIB_BUILD_DIR=str(out))   # the kernel inherits them
+    client = NotebookClient(nb, kernel_name="python3", timeout=timeout, shutdown_kernel="immediate",
+                            resources={"metadata": {"path": str(path.parent)}})
+    error, start = None, time.perf_counter()
+    try:
+        client.execute()
+    except Exception as exc:  # reported with the run; the sweep goes on
+        error = error_line(exc)
+    seconds = time.perf_counter() - start
+    res = ledger.results(out, path.stem) or {}
+    return {"notebook": path.stem, "seed": seed, "seconds": round(seconds, 1), "error": error,
+            "checks": {c["name"]: {"value": c["value"], "passed": bool(c["passed"])} for c in res.get("checks", [])},
+            "verdicts": {v["claim"]: v["verdict"] for v in res.get("verdicts", [])}}
+
+
+def sweep_table(runs: list[dict], seeds: list[int]) -> dict:
+    """One notebook's runs gathered per check and per claim, with the failures and flips."""
+    by_seed = {r["seed"]: r for r in runs}
+    names = list(dict.fromkeys(n for r in runs for n in r["checks"]))
+    claims = list(dict.fromkeys(c for r in runs for c in r["verdicts"]))
+    checks = {n: {"values": [by_seed[s]["checks"].get(n, {}).get("value") for s in seeds],
+                  "failed": [s for s in seeds if not by_seed[s]["checks"].get(n, {}).get("passed", False)]}
+              for n in names}
+    verdicts = {c: [by_seed[s]["verdicts"].get(c, "no verdict") for s in seeds] for c in claims}
+    return {"seconds": [by_seed[s]["seconds"] for s in seeds],
+            "errors": {s: by_seed[s]["error"] for s in seeds if by_seed[s]["error"]}, "checks": checks, "verdicts": verdicts,
+            "failures": {n: c["failed"] for n, c in checks.items() if c["failed"]},
+            "flips": {c: v for c, v in verdicts.items() if len(set(v)) > 1}}
+
+
+def number(x) -> str:
+    return "missing" if x is None else f"{x:.5g}"
+
+
+def print_sweep(stem: str, table: dict, seeds: list[int]) -> None:
+    """Every check's values and every claim's verdicts across the seeds; failures and flips marked."""
+    print(f"\n== {stem}: seeds {', '.join(map(str, seeds))}; {sum(table['seconds']):.0f} s")
+    width = max([len(n) for n in table["checks"]] + [len(c) for c in table["verdicts"]] + [10])
+    for name, c in table["checks"].items():
+        mark = f"   FAILED on {', '.join(map(str, c['failed']))}" if c["failed"] else ""
+        print(f"  {name:<{width}}  " + "  ".join(f"{number(v):>10}" for v in c["values"]) + mark)
+    for claim, words in table["verdicts"].items():
+        print(f"  {claim:<{width}}  " + (" | ".join(words) + "   FLIP" if len(set(words)) > 1 else words[0]))
+    for seed, error in table["errors"].items():
+        print(f"  seed {seed}: ERROR {error}")
+
+
+def sweep(args: argparse.Namespace, root: Path, notebooks: list[Path], build: Path) -> int:
+    """The seed sweep: every seeded notebook once per seed; prints and writes build/seeds.json; the exit status."""
+    seeds = [int(s) for s in args.seed_list.split(",")] if args.seed_list else list(SWEEP_SEEDS[:args.seeds])
+    notebooks = seeded_notebooks(notebooks)
+    used = calibration_seeds(root)
+    clash = {p.stem: sorted(set(seeds) & used.get(p.stem, set())) for p in notebooks}
+    if any(clash.values()):
+        print("seeds used to set tolerances (data/seed_studies/calibration_seeds.csv), not a test of them: "
+              + "; ".join(f"{k}: {v}" for k, v in clash.items() if v), file=sys.stderr)
+        return 1
+    os.environ.pop("NAVLIB_FAST", None)
+    last = json.loads((build / "summary.json").read_text()) if (build / "summary.json").is_file() else {}
+    order = longest_first(notebooks, expected_seconds(last, notebooks))
+    print(f"seed sweep: {len(notebooks)} notebooks x {len(seeds)} seeds ({', '.join(map(str, seeds))}), "
+          f"{max(1, args.jobs)} at a time ...", flush=True)
+    start, runs = time.perf_counter(), []
+    with ProcessPoolExecutor(max(1, args.jobs), mp_context=multiprocessing.get_context(START_METHOD)) as pool:
+        futures = [pool.submit(run_seed, p, s, build / "seeds" / str(s), args.timeout) for p in order for s in seeds]
+        for future in as_completed(futures):
+            r = future.result()
+            runs.append(r)
+            bad = sum(not c["passed"] for c in r["checks"].values())
+            print(f"[{len(runs)}/{len(futures)}] {r['notebook']} seed {r['seed']}: {r['seconds']:.1f} s, "
+                  f"{len(r['checks']) - bad}/{len(r['checks'])} checks passed" + (f", ERROR {r['error']}" if r["error"] else ""),
+                  flush=True)
+    wall = time.perf_counter() - start
+    tables = {p.stem: sweep_table([r for r in runs if r["notebook"] == p.stem], seeds) for p in notebooks}
+    for stem, table in tables.items():
+        print_sweep(stem, table, seeds)
+    failures = sum(len(t["failures"]) for t in tables.values())
+    flips = sum(len(t["flips"]) for t in tables.values())
+    errors = sum(len(t["errors"]) for t in tables.values())
+    (build / "seeds.json").write_text(json.dumps({"seeds": seeds, "wall_seconds": round(wall, 1), "notebooks": tables},
+                                                 indent=1) + "\n")
+    print(f"\nseed sweep: {len(notebooks)} notebooks x {len(seeds)} seeds in {wall:.0f} s wall: {failures} failed "
+          f"checks, {flips} verdict flips, {errors} notebook errors (build/seeds.json)")
+    for stem, t in tables.items():
+        for name, failed in t["failures"].items():
+            print(f"    {stem}: check {name} failed on seed {', '.join(map(str, failed))}")
+        for claim, words in t["flips"].items():
+            print(f"    {stem}: verdict of {claim} flips: " + ", ".join(f"{s} {w}" for s, w in zip(seeds, words, strict=True)))
+    return 0 if failures == flips == errors == 0 else 1
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--only", metavar="PATTERN", help="run only notebooks whose name matches (substring or glob)")
@@ -212,6 +350,10 @@ def main(argv=None) -> int:
     ap.add_argument("--profile", action="store_true",
                     help="also report each notebook's compile time, kernels by compile time and slowest cells")
     ap.add_argument("--cold", action="store_true", help="an empty numba cache for the kernels, as on a fresh clone")
+    seeds = ap.add_mutually_exclusive_group()
+    seeds.add_argument("--seeds", type=int, metavar="N", choices=range(1, len(SWEEP_SEEDS) + 1),
+                       help=f"seed sweep with the first N of {SWEEP_SEEDS} (make seeds)")
+    seeds.add_argument("--seed-list", metavar="S1,S2,...", help="seed sweep with these seeds")
     args = ap.parse_args(argv)
 
     root = args.root.resolve()
@@ -236,6 +378,8 @@ def main(argv=None) -> int:
     os.environ["NAVLIB_PROGRESS"] = "0"
     for name in ("NAVLIB_TEACHING", "NAVLIB_FAST", "NAVLIB_BUILD_DIR"):
         os.environ.pop(name, None)
+    if args.seeds or args.seed_list:
+        return sweep(args, root, notebooks, build)
     if not args.cold:
         return run_all(args, root, notebooks, build)
     with tempfile.TemporaryDirectory(prefix="navlib-numba-cache-") as empty_cache:
