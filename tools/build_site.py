@@ -159,15 +159,17 @@ def anchor(kind: str, name: str) -> str:
     return f"{kind}-" + re.sub(r"[^A-Za-z0-9_-]", "-", name)
 
 
-CHECK_ROW = re.compile(r"<th>((?:P\d{3}|NB\d\d|[A-Z][A-Z0-9]+)-[^<\s]*)</th>")
+CHECK_ROW = re.compile(r"<th>([A-Z][A-Z0-9]*[-/][^<\s]*)</th>")
 SAVEFIG = re.compile(r"savefig\(\s*\w+\s*,\s*f?[\"']([^\"']+)[\"']")
 
 
-def link_check_rows(table_html: str, seen: set[str]) -> str:
-    """A chapter's check table with each check linked to its ledger row (and the first row of a check given the
-    anchor the ledger links back to)."""
+def link_check_rows(table_html: str, seen: set[str], checks: set[str]) -> str:
+    """A chapter's check table with each of the notebook's ``checks`` linked to its ledger row (and the first row of
+    a check given the anchor the ledger links back to)."""
     def repl(m):
         name = m.group(1)
+        if name not in checks:
+            return m.group(0)
         ident = "" if name in seen else f" id='{anchor('check', name)}'"
         seen.add(name)
         return f"<th{ident}><a href='../ledger.html#{anchor('check', name)}'>{name}</a></th>"
@@ -204,7 +206,7 @@ def fold_errata(markdown: str) -> str:
     return ERRATUM.sub(repl, markdown)
 
 
-def stage_notebook(src: Path, dest: Path, claims_by_figure: dict[str, list[str]]) -> None:
+def stage_notebook(src: Path, dest: Path, claims_by_figure: dict[str, list[str]], checks: set[str]) -> None:
     """Copy an executed notebook for the site: code collapsible, widget views dropped, API names linked, figures
     given their caption as alt text and linked to the ledger rows of their claims, check tables linked to the
     ledger, launch and download links under the title."""
@@ -217,7 +219,7 @@ def stage_notebook(src: Path, dest: Path, claims_by_figure: dict[str, list[str]]
             continue
         for out in cell.get("outputs", []):
             if "text/html" in out.get("data", {}):
-                out["data"]["text/html"] = link_check_rows("".join(out["data"]["text/html"]), seen)
+                out["data"]["text/html"] = link_check_rows("".join(out["data"]["text/html"]), seen, checks)
         if any("image/png" in o.get("data", {}) for o in cell.get("outputs", [])):
             cell.metadata.setdefault("mystnb", {})["image"] = {"alt": figure_alt(nb.cells, i)}
             for name in SAVEFIG.findall(cell.source):
@@ -520,7 +522,9 @@ def stage(build: Path, src: Path) -> list[str]:
             for r in led.rows:
                 if led.stem == nb.stem and r.figure:
                     claims_by_figure.setdefault(Path(r.figure).stem, []).append(r.claim)
-        stage_notebook(nb, src / "chapters" / nb.name, claims_by_figure)
+        in_ledger = any(led.stem == nb.stem for led in leds)           # chapters of a paper; 00 and 06 have none
+        checks = {c["name"] for c in (ledger.results(build, nb.stem) or {}).get("checks", [])} if in_ledger else set()
+        stage_notebook(nb, src / "chapters" / nb.name, claims_by_figure, checks)
         chapters.append(nb.stem)
         if (build / nb.stem / "figures").is_dir():        # thumbnails of the home page and the ledger
             shutil.copytree(build / nb.stem / "figures", src / "_extra" / nb.stem / "figures")
