@@ -145,7 +145,7 @@ def _trial(t, w, f, m, dts, p, c_acc, c_rest, q_out, bias_out, rejected, rest_ou
     b, e, r = np.zeros(3), np.zeros(3), np.zeros(3)          # bias estimate, innovation, measurement variances
     P, H, work = np.eye(3) * sig_init2, np.empty((3, 3)), np.empty((3, 3, 3))
     lp = np.full((3 + 9 + 3 + 6, 2), np.nan)                  # filter states: a_I, R, R b, rest gyro + accel
-    rest_for = 0.0
+    rest_for, aligned = 0.0, False
     w_lp = np.zeros(3)                                        # low-pass gyro: the bias at rest
     cur = np.full(2, np.nan)                                  # low-pass field norm, dip
     ref = np.array([0.0, 0.0, 0.0])                           # reference norm, dip, known (1) or not (0)
@@ -177,7 +177,9 @@ def _trial(t, w, f, m, dts, p, c_acc, c_rest, q_out, bias_out, rejected, rest_ou
             h = np.sqrt(0.5 * (ez + 1.0)) if ez > -1.0 + 1e-12 else 1e-6
             c0, c1, c2 = h, ey / (2 * h), -ex / (2 * h)                 # rotates (ex, ey, ez) onto (0, 0, 1)
             i0, i1, i2, i3 = _unit(quat_mult_t(c0, c1, c2, 0.0, i0, i1, i2, i3))
-            cx, cy = 2 * c1 * c0, 2 * c2 * c0                           # correction angle about E' x, y (rad)
+            if aligned:                                                 # (the first sample aligns: not a drift)
+                cx, cy = 2 * c1 * c0, 2 * c2 * c0                       # correction angle about E' x, y (rad)
+            aligned = True
         # 3. gyro bias: Kalman filter, measured at rest or through the inclination correction in motion
         a0, a1, a2, a3 = quat_mult_t(i0, i1, i2, i3, g0, g1, g2, g3)
         R = quat_to_dcm_t(a0, a1, a2, a3)                              # body -> E'
