@@ -130,9 +130,11 @@ def _unit(q):
 
 
 @njit(cache=True, nogil=True)
-def _kernel(t0, t1, w, f, m, dts, p, c_acc, c_rest, q_out, bias_out, rejected, rest_out):
+def _kernel(t0, t1, w, f, m, dts, p, coef, q_out, bias_out, flags):
+    """Trials t0 to t1 - 1; ``coef`` (2, 5): the accelerometer's and the rest detector's low-pass filters;
+    ``flags`` (2, T, N): magnetometer sample rejected, sample at rest."""
     for t in range(t0, t1):
-        _trial(t, w, f, m, dts, p, c_acc, c_rest, q_out, bias_out, rejected, rest_out)
+        _trial(t, w, f, m, dts, p, coef[0], coef[1], q_out, bias_out, flags[0], flags[1])
 
 
 @njit(cache=True)
@@ -332,9 +334,10 @@ def inertial_lowpass(imu: ImuSamples, m_b: Vec3Series | None = None, *, declinat
          st.mag_new_min_gyro, st.mag_max_rejection, st.mag_rejection_factor, 1 - np.exp(-dt / st.tau_mag),
          st.mag_settle_time, use_mag)
     q_out, bias = np.empty((T, N, 4)), np.empty((T, N, 3))
-    rejected, rest = np.zeros((T, N), dtype=bool), np.zeros((T, N), dtype=bool)
-    run_trials(_kernel, T, w, np.ascontiguousarray(f), np.ascontiguousarray(m), s.dt, p, _butter2(st.tau_acc, dt),
-               _butter2(st.rest_tau, dt), q_out, bias, rejected, rest)
+    flags_out = np.zeros((2, T, N), dtype=bool)
+    run_trials(_kernel, T, w, np.ascontiguousarray(f), np.ascontiguousarray(m), s.dt, p,
+               np.stack([_butter2(st.tau_acc, dt), _butter2(st.rest_tau, dt)]), q_out, bias, flags_out)
+    rejected, rest = flags_out
     if declination != 0.0:
         q_out = np.stack(quat_mult_t(np.cos(declination / 2), 0.0, 0.0, -np.sin(declination / 2),
                                      *np.moveaxis(q_out, -1, 0)), -1)
