@@ -97,3 +97,29 @@ def test_mask_and_missing_reference():
     q[55] = np.nan
     with pytest.raises(ValueError, match="q_bn"):
         analysis.orientation_errors(q, q_ref, mask)
+
+
+@pytest.fixture(scope="module")
+def drive():
+    return datasets.read_comma2k19(Path(__file__).resolve().parents[1] / "data" / "real" / "comma2k19")
+
+
+def test_drive_reference_frames_agree_with_the_motion(drive):
+    """The reference attitude's heading follows its velocity, and it rotates the specific force to vertical."""
+    heading = attitude.quat_to_euler(drive.ref_q_bn)[:, 0]
+    course = np.arctan2(drive.ref_v_n[:, 0], drive.ref_v_n[:, 1])
+    assert np.median(np.abs(attitude.wrap_pi(heading - course))) < np.deg2rad(2)
+    q = attitude.quat_normalize(np.stack([np.interp(drive.imu.time, drive.ref_time, drive.ref_q_bn[:, i])
+                                          for i in range(4)], -1))
+    f_n = attitude.quat_rotate(q, drive.imu.f_b).mean(0)
+    assert np.rad2deg(np.arctan2(np.hypot(f_n[0], f_n[1]), f_n[2])) < 1.0          # mean tilt of f_n from up
+
+
+def test_drive_series_agree_with_the_reference(drive):
+    assert drive.imu.time[0] == 0 and drive.imu.n == 6256 and 59 < drive.imu.time[-1] < 61
+    speed = np.interp(drive.can_time, drive.ref_time, np.linalg.norm(drive.ref_v_n, axis=1))
+    assert np.median(np.abs(drive.can_speed - speed)) < 0.3                        # m/s
+    lat = np.interp(drive.gnss_time, drive.ref_time, drive.ref_lla[:, 0])
+    assert np.median(np.abs(np.deg2rad(drive.gnss[:, 0]) - lat)) * 6.4e6 < 5.0    # m north-south
+    with pytest.raises(FileNotFoundError, match="comma2k19"):
+        datasets.read_comma2k19(BROAD)
