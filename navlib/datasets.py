@@ -36,7 +36,7 @@ import numpy as np
 from . import attitude, geodesy
 from ._validate import text
 from .imu import ImuSamples
-from .io import Recording
+from .io import Recording, align
 
 __all__ = ["ReferenceTrial", "read_broad", "broad_split", "DriveLog", "read_comma2k19"]
 
@@ -74,8 +74,8 @@ class ReferenceTrial:
 
     @property
     def rate(self) -> float:
-        """Sampling rate (Hz)."""
-        return 1.0 / float(self.recording.dt[0])
+        """Sampling rate (Hz): one over the median interval."""
+        return 1.0 / float(np.median(self.recording.dt))
 
 
 def read_broad(path: str | os.PathLike) -> ReferenceTrial:
@@ -165,6 +165,20 @@ class DriveLog:
     ref_lla: np.ndarray
     ref_v_n: np.ndarray
     ref_q_bn: np.ndarray
+
+    def attitude_trial(self) -> ReferenceTrial:
+        """The drive as an attitude benchmark: the IMU with the magnetometer held between its readings (the
+        latest reading, as a real-time filter has it; the first reading also before it) and the reference
+        attitude interpolated to the IMU's times (component-wise, normalised: 20 Hz against a car's rates);
+        scored over the reference's time span."""
+        t = self.imu.time
+        held = align(t, self.mag_time, self.m_b, max_gap=float(t[-1] - t[0]) + 1.0)
+        held[np.isnan(held[:, 0])] = self.m_b[0]
+        q = np.stack([np.interp(t, self.ref_time, self.ref_q_bn[:, i]) for i in range(4)], -1)
+        recording = Recording(t, self.imu.w_ib_b, self.imu.f_b, held, start=self.imu.start, source=self.imu.source,
+                              conversions=self.imu.conversions + ("magnetometer held between readings",))
+        inside = (t >= self.ref_time[0]) & (t <= self.ref_time[-1])
+        return ReferenceTrial("comma2k19 Example_1", recording, attitude.quat_normalize(q), inside)
 
 
 def _ecef_to_enu(lat: np.ndarray, lon: np.ndarray) -> np.ndarray:
