@@ -123,3 +123,12 @@ def test_drive_series_agree_with_the_reference(drive):
     assert np.median(np.abs(np.deg2rad(drive.gnss[:, 0]) - lat)) * 6.4e6 < 5.0    # m north-south
     with pytest.raises(FileNotFoundError, match="comma2k19"):
         datasets.read_comma2k19(BROAD)
+
+
+def test_drive_as_an_attitude_trial(drive):
+    trial = drive.attitude_trial()
+    assert trial.recording.n == drive.imu.n and np.isfinite(trial.m_b).all()
+    scored = trial.recording.time[trial.movement]
+    assert scored[0] >= drive.ref_time[0] and scored[-1] <= drive.ref_time[-1] and trial.movement.mean() > 0.95
+    assert np.allclose(np.linalg.norm(trial.q_ref, axis=1), 1)
+    assert trial.rate == pytest.approx(104, abs=1)
