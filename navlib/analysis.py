@@ -17,6 +17,8 @@ a Gauss-Markov process.
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 from numba import njit
 
@@ -41,7 +43,8 @@ from ._validate import (
 __all__ = ["rmse", "allan_deviation", "allan_deviation_theory", "fit_allan",
            "GM_ALLAN_PEAK", "GM_ALLAN_PEAK_TAU", "ALLAN_EVIDENCE", "attitude_errors", "error_statistics", "horizontal_error",
            "position_error", "expanding_std", "detection_rates", "settling_time", "segments", "moving_mean",
-           "normal_condition", "condition_number", "lsq_covariance", "cramer_rao_bound", "footfall_path_length"]
+           "normal_condition", "condition_number", "lsq_covariance", "cramer_rao_bound", "footfall_path_length",
+           "OrientationErrors", "orientation_errors"]
 
 
 def rmse(err: ArrayLike, axis: int | tuple[int, ...] | None = 0) -> Array:
@@ -645,3 +648,81 @@ def footfall_path_length(pos_n: ArrayLike, stance: ArrayLike, *, min_samples: in
     keep = ends - starts >= n_min
     footfalls = np.array([p[a:b, :2].mean(0) for a, b in zip(starts[keep], ends[keep], strict=True)]).reshape(-1, 2)
     return float(np.sum(np.linalg.norm(np.diff(footfalls, axis=0), axis=1))), footfalls
+
+
+@dataclass(frozen=True)
+class OrientationErrors:
+    """RMS orientation errors over the scored samples (rad), as defined by the BROAD benchmark.
+
+    Attributes
+    ----------
+    total : float
+        RMS of the angle of the error rotation ``q_bn (x) q_ref*``.
+    heading : float
+        RMS of its rotation about the vertical (the twist about ENU's up axis).
+    inclination : float
+        RMS of the rest (the swing: the angle between estimated and reference up axes).
+    heading_offset : float
+        The constant heading offset removed before scoring (rad; 0 when not removed).
+    samples : int
+        Number of samples scored (masked in, with a reference).
+    """
+    total: float
+    heading: float
+    inclination: float
+    heading_offset: float
+    samples: int
+
+
+def orientation_errors(q_bn: ArrayLike, q_ref: ArrayLike, mask: ArrayLike | None = None, *,
+                       remove_heading_offset: bool = True) -> OrientationErrors:
+    """Total, heading and inclination RMS errors of an attitude estimate against a reference.
+
+    The error measures of the BROAD benchmark (Laidig et al., *Data* 6(7):72, 2021, Sec. 4): the error
+    rotation expressed in the navigation frame, ``e = q_bn (x) q_ref*``, is split into a rotation about
+    the vertical (heading error ``2 atan(|e3 / e0|)``) and the remaining tilt of the up axis (inclination
+    error ``2 acos(sqrt(e0^2 + e3^2))``); the total error is its angle ``2 acos(|e0|)``. With
+    ``remove_heading_offset`` (the usual practice for 6D filters, whose heading is arbitrary, and for
+    9D ones whose north differs from the reference's by a constant) the circular mean of the signed
+    heading error over the scored samples is first removed from ``e``.
+
+    Parameters
+    ----------
+    q_bn, q_ref : array_like, shape (N, 4)
+        Estimated and reference attitudes (scalar first, body to navigation frame, z up). Reference rows
+        with NaN are left out.
+    mask : array_like of bool, shape (N,), optional
+        The samples to score (e.g. the benchmark's movement phases); default all.
+    remove_heading_offset : bool
+        Remove the run's constant heading offset first.
+
+    Returns
+    -------
+    OrientationErrors
+
+    Raises
+    ------
+    ValueError
+        If no sample is both masked in and has a reference, or ``q_bn`` has NaN there.
+    """
+    q_bn = as_array(q_bn, "q_bn", tail=(4,), shape=(None, 4), allow_nan=True)
+    q_ref = as_array(q_ref, "q_ref", tail=(4,), shape=(q_bn.shape[0], 4), allow_nan=True, of="q_bn")
+    mask = np.ones(q_bn.shape[0], bool) if mask is None else booleans(mask, "mask", shape=(q_bn.shape[0],), of="q_bn")
+    remove_heading_offset = flag(remove_heading_offset, "remove_heading_offset")
+    use = mask & np.isfinite(q_ref).all(1)
+    if not use.any():
+        raise ValueError("mask, q_ref: no sample is both masked in and has a reference")
+    if not np.isfinite(q_bn[use]).all():
+        raise ValueError("q_bn: NaN on scored samples (the estimate must cover every scored sample)")
+    e = attitude.quat_mult(attitude.quat_normalize(q_bn[use]), attitude.quat_conj(attitude.quat_normalize(q_ref[use])))
+    offset = 0.0
+    if remove_heading_offset:
+        twist = 2 * np.arctan2(e[:, 3], e[:, 0])                  # signed heading error
+        offset = float(np.arctan2(np.sin(twist).mean(), np.cos(twist).mean()))
+        e = attitude.quat_mult(np.array([np.cos(offset / 2), 0.0, 0.0, -np.sin(offset / 2)]), e)
+    w, z = np.abs(e[:, 0]), e[:, 3]
+    total = 2 * np.arccos(np.clip(w, 0.0, 1.0))
+    heading = 2 * np.arctan2(np.abs(z), w)
+    inclination = 2 * np.arccos(np.clip(np.sqrt(w * w + z * z), 0.0, 1.0))
+    return OrientationErrors(*(float(np.sqrt(np.mean(x * x))) for x in (total, heading, inclination)),
+                             offset, int(use.sum()))

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 from .._validate import integer, text
 
-__all__ = ["Paper", "PAPERS", "CONVENTIONS", "REAL_DATA", "CHAPTERS", "by_notebook"]
+__all__ = ["Paper", "PAPERS", "CONVENTIONS", "REAL_DATA", "REAL_REFERENCES", "CHAPTERS", "by_notebook"]
 
 
 @dataclass(frozen=True)
@@ -56,8 +56,11 @@ CONVENTIONS = "00_conventions_sensors"
 """Notebook 00: conventions and sensor-model validation (no paper)."""
 REAL_DATA = "06_real_recordings"
 """Notebook 06: the methods on public real recordings (no paper)."""
+REAL_REFERENCES = "07_real_references"
+"""Notebook 07: attitude filters against an optical reference (BROAD benchmark; no paper)."""
 CHAPTERS: dict[str, str] = {CONVENTIONS: "conventions, sensor models, strapdown error theory",
-                            REAL_DATA: "the methods on public real recordings (data/real/)"}
+                            REAL_DATA: "the methods on public real recordings (data/real/)",
+                            REAL_REFERENCES: "attitude filters against motion-capture references (BROAD)"}
 """The notebooks that reproduce no paper, with their one-line titles."""
 
 PAPERS: tuple[Paper, ...] = (
