@@ -28,9 +28,9 @@ data (a ``data/`` table, a paper or navlib constant) through arithmetic — not 
 literals or parameters alone, not a single typed number.
 
 What counts as a computation: a call into navlib other than the unit conversions of ``navlib.units``,
-``repro``'s paths and the sensor presets (``repro.seed_spread``, a recorded seed study of the simulation, is one); a draw from ``numpy.random``; a third-party library (scipy,
-ahrs, imufusion, ...); data read from ``data/real`` or ``data/samples`` (recordings). numpy, pandas,
-``math`` and the builtins only transform what they are given. Calls go through local aliases
+``repro``'s paths and the sensor presets (``repro.seed_spread``, a recorded seed study of the simulation, is
+one); a draw from ``numpy.random``; a third-party library (scipy, ahrs, imufusion, ...); data read from
+``data/real`` or ``data/samples`` (recordings). numpy, pandas, ``math`` and the builtins only transform what they are given. Calls go through local aliases
 (``chk = repro.check``), helper functions and lambdas (their body is read with the caller's arguments),
 loops and comprehensions.
 
