@@ -30,8 +30,8 @@ literals or parameters alone, not a single typed number.
 What counts as a computation: a call into navlib other than the unit conversions of ``navlib.units``,
 ``repro``'s paths and the sensor presets (``repro.seed_spread``, a recorded seed study of the simulation, is
 one); a draw from ``numpy.random``; a third-party library (scipy, ahrs, imufusion, ...); data read from
-``data/real`` or ``data/samples`` (recordings). numpy, pandas, ``math`` and the builtins only transform what they are given. Calls go through local aliases
-(``chk = repro.check``), helper functions and lambdas (their body is read with the caller's arguments),
+``data/real`` or ``data/samples`` (recordings). numpy, pandas, ``math`` and the builtins only transform what
+they are given. Calls go through local aliases (``chk = repro.check``), helper functions and lambdas (their body is read with the caller's arguments),
 loops and comprehensions.
 
 A legitimate exception is declared in ``ALLOWED`` — notebook stem, check name (``*`` for the formatted
