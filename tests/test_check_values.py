@@ -27,12 +27,12 @@ check says so with ``on_printed=True`` (recorded in results.json), and then its 
 data (a ``data/`` table, a paper or navlib constant) through arithmetic — not from a computation, not from
 literals or parameters alone, not a single typed number.
 
-What counts as a computation: a call into navlib other than the unit conversions of ``navlib.units``,
-``repro``'s paths and the sensor presets (``repro.seed_spread``, a recorded seed study of the simulation, is
-one); a draw from ``numpy.random``; a third-party library (scipy, ahrs, imufusion, ...); data read from
-``data/real`` or ``data/samples`` (recordings). numpy, pandas, ``math`` and the builtins only transform what
-they are given. Calls go through local aliases (``chk = repro.check``), helper functions and lambdas (their body is read with the caller's arguments),
-loops and comprehensions.
+What counts as a computation: a call into navlib other than the unit conversions of ``navlib.units``, ``repro``'s
+paths and the sensor presets (``repro.seed_spread``, a recorded seed study of the simulation, is one); a draw from
+``numpy.random``; a third-party library (scipy, ahrs, imufusion, ...); data read from ``data/real`` or
+``data/samples`` (recordings). numpy, pandas, ``math`` and the builtins only transform what they are given. Calls go
+through local aliases (``chk = repro.check``), helper functions and lambdas (their body is read with the caller's
+arguments), loops and comprehensions.
 
 A legitimate exception is declared in ``ALLOWED`` — notebook stem, check name (``*`` for the formatted
 part of an f-string name) and the reason, one line each; an entry that matches nothing fails, so the
