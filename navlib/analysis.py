@@ -15,6 +15,7 @@ calls that peak the *bias instability* B, which is how the in-run bias
 stability of a datasheet (the flat part of the Allan curve) is mapped onto
 a Gauss-Markov process.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -40,11 +41,31 @@ from ._validate import (
     time_axis,
 )
 
-__all__ = ["rmse", "allan_deviation", "allan_deviation_theory", "fit_allan",
-           "GM_ALLAN_PEAK", "GM_ALLAN_PEAK_TAU", "ALLAN_EVIDENCE", "attitude_errors", "error_statistics", "horizontal_error",
-           "position_error", "expanding_std", "detection_rates", "settling_time", "segments", "moving_mean",
-           "normal_condition", "condition_number", "lsq_covariance", "cramer_rao_bound", "footfall_path_length",
-           "OrientationErrors", "orientation_errors"]
+__all__ = [
+    "rmse",
+    "allan_deviation",
+    "allan_deviation_theory",
+    "fit_allan",
+    "GM_ALLAN_PEAK",
+    "GM_ALLAN_PEAK_TAU",
+    "ALLAN_EVIDENCE",
+    "attitude_errors",
+    "error_statistics",
+    "horizontal_error",
+    "position_error",
+    "expanding_std",
+    "detection_rates",
+    "settling_time",
+    "segments",
+    "moving_mean",
+    "normal_condition",
+    "condition_number",
+    "lsq_covariance",
+    "cramer_rao_bound",
+    "footfall_path_length",
+    "OrientationErrors",
+    "orientation_errors",
+]
 
 
 def rmse(err: ArrayLike, axis: int | tuple[int, ...] | None = 0) -> Array:
@@ -69,8 +90,7 @@ def _gm_allan_var_unit(u):
 def _peak():
     from scipy.optimize import minimize_scalar  # noqa: PLC0415 -- tests only (the constants below are its result)
 
-    res = minimize_scalar(lambda u: -_gm_allan_var_unit(u), bounds=(0.1, 10.0), method="bounded",
-                          options={"xatol": 1e-10})
+    res = minimize_scalar(lambda u: -_gm_allan_var_unit(u), bounds=(0.1, 10.0), method="bounded", options={"xatol": 1e-10})
     return float(np.sqrt(-res.fun)), float(res.x)
 
 
@@ -184,8 +204,13 @@ def _second_difference_sq(theta, r, m, j):
     return d * d
 
 
-def allan_deviation_theory(taus: ArrayLike, white: float = 0.0, bias_instability: float = 0.0,
-                           correlation_time: float = 1.0, rate_random_walk: float = 0.0) -> Array:
+def allan_deviation_theory(
+    taus: ArrayLike,
+    white: float = 0.0,
+    bias_instability: float = 0.0,
+    correlation_time: float = 1.0,
+    rate_random_walk: float = 0.0,
+) -> Array:
     """Allan deviation of navlib's sensor noise model (module docstring).
 
     Parameters
@@ -202,8 +227,9 @@ def allan_deviation_theory(taus: ArrayLike, white: float = 0.0, bias_instability
     """
     taus = positive(taus, "taus", nonempty=True)
     white, bias_instability, rate_random_walk = (
-        scalar(v, name, allow_zero=True) for v, name in ((white, "white"), (bias_instability, "bias_instability"),
-                                                         (rate_random_walk, "rate_random_walk")))
+        scalar(v, name, allow_zero=True)
+        for v, name in ((white, "white"), (bias_instability, "bias_instability"), (rate_random_walk, "rate_random_walk"))
+    )
     correlation_time = scalar(correlation_time, "correlation_time", positive=True)
     return _adev_theory(taus, white, bias_instability, correlation_time, rate_random_walk)
 
@@ -211,8 +237,7 @@ def allan_deviation_theory(taus: ArrayLike, white: float = 0.0, bias_instability
 def _adev_theory(taus, white, bias_instability, correlation_time, rate_random_walk):
     """:func:`allan_deviation_theory` of checked arguments (the model :func:`fit_allan` evaluates)."""
     sigma_gm = bias_instability / GM_ALLAN_PEAK
-    var = (white ** 2 / taus + sigma_gm ** 2 * _gm_allan_var_unit(taus / correlation_time)
-           + rate_random_walk ** 2 * taus / 3)
+    var = white**2 / taus + sigma_gm**2 * _gm_allan_var_unit(taus / correlation_time) + rate_random_walk**2 * taus / 3
     return np.sqrt(var)
 
 
@@ -266,9 +291,9 @@ def _fit_allan(taus: np.ndarray, adev: np.ndarray, n_samples: int, dt: float, ra
     evidence = [0.0, -np.inf]
     for term in (0, 1) if rrw else (0,):
         without = _fit_terms(taus, adev, n_samples, dt, gm and term != 0, rrw and term != 1)
-        if term == 0:                                                  # at the bias instability's peak
+        if term == 0:  # at the bias instability's peak
             at = np.array([np.argmin(np.abs(np.log(taus / (GM_ALLAN_PEAK_TAU * p[2]))))])
-        else:                                                          # over the last decade
+        else:  # over the last decade
             at = np.flatnonzero(taus >= taus[-1] / 10)
         edf = _edf_random_walk(n_samples + 1.0, taus[at] / dt)
         miss = float(np.max(np.abs(np.log(_adev_theory(taus[at], *without) / adev[at])) * np.sqrt(2 * edf)))
@@ -276,8 +301,13 @@ def _fit_allan(taus: np.ndarray, adev: np.ndarray, n_samples: int, dt: float, ra
         if miss <= ALLAN_EVIDENCE:
             gm, rrw, p = gm and term != 0, rrw and term != 1, without
     full = _fit_terms(taus, adev, n_samples, dt, True, rate_random_walk)
-    return {"white": p[0], "bias_instability": p[1], "correlation_time": p[2] if gm else full[2],
-            "rate_random_walk": p[3], "evidence": tuple(evidence)}
+    return {
+        "white": p[0],
+        "bias_instability": p[1],
+        "correlation_time": p[2] if gm else full[2],
+        "rate_random_walk": p[3],
+        "evidence": tuple(evidence),
+    }
 
 
 ALLAN_EVIDENCE = 2.0
@@ -288,6 +318,8 @@ shows, by more than this many standard errors (:func:`fit_allan`)."""
 def _edf_random_walk(big_n: float, m: np.ndarray) -> np.ndarray:
     """Equivalent degrees of freedom of the overlapping Allan variance for random-walk noise (Riley 2008, Table 5;
     ``big_n`` = samples + 1): the smallest of the noise types, so the widest standard error."""
+    if big_n <= 3:  # the formula needs more than two samples; one degree of freedom is all two give
+        return np.ones_like(m, dtype=float)
     return (big_n - 2) * ((big_n - 1) ** 2 - 3 * m * (big_n - 1) + 4 * m * m) / (m * (big_n - 3) ** 2)
 
 
@@ -299,12 +331,11 @@ def _fit_terms(taus, adev, n_samples, dt, gm: bool, rrw: bool) -> np.ndarray:
     w = np.sqrt(np.maximum(n_samples * dt / taus, 1.0))
     i_min = int(np.argmin(adev))
     free = np.array([True, gm, gm, rrw])
-    p0 = np.array([adev[0] * np.sqrt(taus[0]), adev[i_min], taus[i_min] / GM_ALLAN_PEAK_TAU,
-                   adev[-1] / np.sqrt(taus[-1])])
+    p0 = np.array([adev[0] * np.sqrt(taus[0]), adev[i_min], taus[i_min] / GM_ALLAN_PEAK_TAU, adev[-1] / np.sqrt(taus[-1])])
     lb = np.array([0.0, 0.0, taus[0] / 10, 0.0])
 
     def full(q):
-        p = np.array([0.0, 0.0, p0[2], 0.0])            # without the bias term its correlation time is moot
+        p = np.array([0.0, 0.0, p0[2], 0.0])  # without the bias term its correlation time is moot
         p[free] = q
         return p
 
@@ -320,13 +351,14 @@ def _fit_terms(taus, adev, n_samples, dt, gm: bool, rrw: bool) -> np.ndarray:
 # Error statistics of estimated attitude and position
 # --------------------------------------------------------------------------
 
+
 @njit(cache=True)
 def _error_stats_kernel(hpr, truth):
     T, N = hpr.shape[0], hpr.shape[1]
     mx = np.zeros((T, 3))
     mean = np.zeros((T, 3))
     for t in range(T):
-        tt = t if truth.shape[0] > 1 else 0          # one truth shared by all runs, or one per run
+        tt = t if truth.shape[0] > 1 else 0  # one truth shared by all runs, or one per run
         for i in range(N):
             for a in range(3):
                 e = hpr[t, i, a] - truth[tt, i, a]
@@ -397,14 +429,15 @@ def horizontal_error(lla: Vec3, lla_true: Vec3) -> Array:
     latitude(a[..., 0], "lla[..., 0] (lat)")
     latitude(b[..., 0], "lla_true[..., 0] (lat)")
     R_M, R_N = earth.radii(b[..., 0])
-    return np.stack([(a[..., 1] - b[..., 1]) * (R_N + b[..., 2]) * np.cos(b[..., 0]),
-                     (a[..., 0] - b[..., 0]) * (R_M + b[..., 2])], -1)
+    return np.stack(
+        [(a[..., 1] - b[..., 1]) * (R_N + b[..., 2]) * np.cos(b[..., 0]), (a[..., 0] - b[..., 0]) * (R_M + b[..., 2])], -1
+    )
 
 
 def expanding_std(x: ArrayLike) -> Array:
     """Standard deviation of ``x[:k+1]`` for every k (population std), e.g. of latitude over [0, t]."""
     x = as_array(x, "x", min_ndim=1, shape=(None,))
-    x = x - x[0]                                             # conditioning
+    x = x - x[0]  # conditioning
     n = np.arange(1, x.size + 1)
     m1, m2 = np.cumsum(x) / n, np.cumsum(x * x) / n
     return np.sqrt(np.maximum(m2 - m1 * m1, 0.0))
@@ -480,6 +513,7 @@ def settling_time(time: Times, error: ArrayLike, start: float, tol: float, end: 
 # Runs of a boolean mask
 # --------------------------------------------------------------------------
 
+
 def segments(mask: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """Contiguous runs of True: first index and one-past-last index of each.
 
@@ -511,7 +545,7 @@ def moving_mean(x: ArrayLike, n: int) -> Array:
 def _moving_mean(x: np.ndarray, n: int) -> np.ndarray:
     """:func:`moving_mean` of a checked series and window (1 <= n <= N)."""
     c = np.cumsum(np.concatenate([np.zeros((1,) + x.shape[1:]), x]), axis=0)
-    valid = (c[n:] - c[:-n]) / n                       # windows starting at 0 .. N - n
+    valid = (c[n:] - c[:-n]) / n  # windows starting at 0 .. N - n
     start = np.clip(np.arange(x.shape[0]) - n // 2, 0, x.shape[0] - n)
     return valid[start]
 
@@ -519,6 +553,7 @@ def _moving_mean(x: np.ndarray, n: int) -> np.ndarray:
 # --------------------------------------------------------------------------
 # Stacked linear least squares: r_k = V_k b + v_k, k = 1..K
 # --------------------------------------------------------------------------
+
 
 def _blocks(V, R=None, allow_nan=False, *, with_r=True):
     V = as_array(V, "V", min_ndim=3, allow_nan=allow_nan)
@@ -609,7 +644,7 @@ def cramer_rao_bound(V: ArrayLike, R: ArrayLike, max_cond: float = 1e6) -> Array
     max_cond = scalar(max_cond, "max_cond", positive=True, allow_inf=True)
     n = V.shape[-1]
     info = np.einsum("...kji,...kjl,...klm->...im", V, np.linalg.inv(R), V)
-    bad = _normal_condition(info) ** 2 > max_cond ** 2
+    bad = _normal_condition(info) ** 2 > max_cond**2
     safe = np.where(bad[..., None, None], np.eye(n), info)
     P = np.linalg.inv(safe)
     return np.where(bad[..., None, None], np.where(np.eye(n, dtype=bool), np.inf, np.nan), P)
@@ -667,6 +702,7 @@ class OrientationErrors:
     samples : int
         Number of samples scored (masked in, with a reference).
     """
+
     total: float
     heading: float
     inclination: float
@@ -674,8 +710,9 @@ class OrientationErrors:
     samples: int
 
 
-def orientation_errors(q_bn: ArrayLike, q_ref: ArrayLike, mask: ArrayLike | None = None, *,
-                       remove_heading_offset: bool = True) -> OrientationErrors:
+def orientation_errors(
+    q_bn: ArrayLike, q_ref: ArrayLike, mask: ArrayLike | None = None, *, remove_heading_offset: bool = True
+) -> OrientationErrors:
     """Total, heading and inclination RMS errors of an attitude estimate against a reference.
 
     The error measures of the BROAD benchmark (Laidig et al., *Data* 6(7):72, 2021, Sec. 4): the error
@@ -717,12 +754,11 @@ def orientation_errors(q_bn: ArrayLike, q_ref: ArrayLike, mask: ArrayLike | None
     e = attitude.quat_mult(attitude.quat_normalize(q_bn[use]), attitude.quat_conj(attitude.quat_normalize(q_ref[use])))
     offset = 0.0
     if remove_heading_offset:
-        twist = 2 * np.arctan2(e[:, 3], e[:, 0])                  # signed heading error
+        twist = 2 * np.arctan2(e[:, 3], e[:, 0])  # signed heading error
         offset = float(np.arctan2(np.sin(twist).mean(), np.cos(twist).mean()))
         e = attitude.quat_mult(np.array([np.cos(offset / 2), 0.0, 0.0, -np.sin(offset / 2)]), e)
     w, z = np.abs(e[:, 0]), e[:, 3]
     total = 2 * np.arccos(np.clip(w, 0.0, 1.0))
     heading = 2 * np.arctan2(np.abs(z), w)
     inclination = 2 * np.arccos(np.clip(np.sqrt(w * w + z * z), 0.0, 1.0))
-    return OrientationErrors(*(float(np.sqrt(np.mean(x * x))) for x in (total, heading, inclination)),
-                             offset, int(use.sum()))
+    return OrientationErrors(*(float(np.sqrt(np.mean(x * x))) for x in (total, heading, inclination)), offset, int(use.sum()))

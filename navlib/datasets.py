@@ -24,12 +24,14 @@ camera's forward axis so rotated points along the reference velocity). navlib's 
 axis swap and ``C_en`` ECEF to the local ENU frame of each reference point. All times are the logs' boot clock
 less the first IMU sample's time.
 """
+
 from __future__ import annotations
 
 import os
 import re
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -57,6 +59,7 @@ class ReferenceTrial:
     movement : ndarray, shape (N,), bool
         The samples over which the benchmark's errors are taken (its movement phases).
     """
+
     name: str
     recording: Recording
     q_ref: np.ndarray
@@ -76,6 +79,13 @@ class ReferenceTrial:
     def rate(self) -> float:
         """Sampling rate (Hz): one over the median interval."""
         return 1.0 / float(np.median(self.recording.dt))
+
+
+def _path(x: Any, name: str) -> str | os.PathLike:
+    """``x`` if it names a file or folder (a string or a path), else a ValueError naming the argument."""
+    if not isinstance(x, (str, os.PathLike)):
+        raise ValueError(f"{name}: expected a file or folder path (str or pathlib.Path), got {type(x).__name__}")
+    return x
 
 
 def read_broad(path: str | os.PathLike) -> ReferenceTrial:
@@ -98,22 +108,29 @@ def read_broad(path: str | os.PathLike) -> ReferenceTrial:
     ValueError
         If the file lacks one of BROAD's arrays or their lengths differ.
     """
-    path = Path(path)
+    path = Path(_path(path, "path"))
     with np.load(path, allow_pickle=False) as z:
         missing = {"gyr", "acc", "mag", "opt_quat", "movement", "sampling_rate"} - set(z.files)
         if missing:
-            raise ValueError(f"path: {path.name} is not a converted BROAD trial (no {sorted(missing)}); "
-                             f"convert the source .mat with tools/broad_to_npz.py")
+            raise ValueError(
+                f"path: {path.name} is not a converted BROAD trial (no {sorted(missing)}); "
+                f"convert the source .mat with tools/broad_to_npz.py"
+            )
         w, f, m = (np.ascontiguousarray(z[k], dtype=float) for k in ("gyr", "acc", "mag"))
         q, movement, rate = z["opt_quat"].astype(float), z["movement"].astype(bool), float(z["sampling_rate"].reshape(-1)[0])
     n = w.shape[0]
     if not (f.shape == m.shape == (n, 3) and q.shape == (n, 4) and movement.shape == (n,)):
         raise ValueError(f"path: {path.name} has arrays of different lengths")
-    q /= np.linalg.norm(q, axis=1, keepdims=True)     # float32-rounded in the file; NaN rows stay NaN
-    q *= np.where(q[:, :1] < 0, -1.0, 1.0)            # navlib's sign: q0 >= 0
-    recording = Recording(np.arange(n) / rate, w, f, m, source=str(path),
-                          conversions=("BROAD sensor axes = body axes, reference sensor-to-ENU = q_bn; "
-                                       "rad/s, m/s^2, uT as stored",))
+    q /= np.linalg.norm(q, axis=1, keepdims=True)  # float32-rounded in the file; NaN rows stay NaN
+    q *= np.where(q[:, :1] < 0, -1.0, 1.0)  # navlib's sign: q0 >= 0
+    recording = Recording(
+        np.arange(n) / rate,
+        w,
+        f,
+        m,
+        source=str(path),
+        conversions=("BROAD sensor axes = body axes, reference sensor-to-ENU = q_bn; rad/s, m/s^2, uT as stored",),
+    )
     return ReferenceTrial(path.stem, recording, q, movement)
 
 
@@ -122,17 +139,23 @@ def broad_split(names: list[str]) -> tuple[list[str], list[str]]:
 
     On the 30 trials of the source repository this gives 16 and 14 (4 of them with a magnetic disturbance).
     """
+    if not isinstance(names, (list, tuple)):
+        raise ValueError(
+            f"names: expected a list of trial names such as ['07_undisturbed_fast_rotation_B'], got {type(names).__name__}"
+        )
     numbers = []
     for name in names:
         match = re.match(r"(\d+)_", text(name, "names"))
         if match is None:
             raise ValueError(f"names: {name!r} does not start with a BROAD trial number like '07_'")
         numbers.append(int(match.group(1)))
-    return ([n for n, k in zip(names, numbers, strict=True) if k % 2 == 0],
-            [n for n, k in zip(names, numbers, strict=True) if k % 2 == 1])
+    return (
+        [n for n, k in zip(names, numbers, strict=True) if k % 2 == 0],
+        [n for n, k in zip(names, numbers, strict=True) if k % 2 == 1],
+    )
 
 
-_FRD_TO_RFU = np.array([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]])    # v_rfu = M v_frd (and back)
+_FRD_TO_RFU = np.array([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]])  # v_rfu = M v_frd (and back)
 
 
 @dataclass(frozen=True)
@@ -153,6 +176,7 @@ class DriveLog:
         Reference pose: latitude, longitude (rad), height (m, WGS84); ENU velocity (m/s); attitude ``q_bn``
         of the right-front-up body (camera axes) in the local ENU frame.
     """
+
     imu: Recording
     mag_time: np.ndarray
     m_b: np.ndarray
@@ -175,8 +199,15 @@ class DriveLog:
         held = align(t, self.mag_time, self.m_b, max_gap=float(t[-1] - t[0]) + 1.0)
         held[np.isnan(held[:, 0])] = self.m_b[0]
         q = np.stack([np.interp(t, self.ref_time, self.ref_q_bn[:, i]) for i in range(4)], -1)
-        recording = Recording(t, self.imu.w_ib_b, self.imu.f_b, held, start=self.imu.start, source=self.imu.source,
-                              conversions=self.imu.conversions + ("magnetometer held between readings",))
+        recording = Recording(
+            t,
+            self.imu.w_ib_b,
+            self.imu.f_b,
+            held,
+            start=self.imu.start,
+            source=self.imu.source,
+            conversions=self.imu.conversions + ("magnetometer held between readings",),
+        )
         inside = (t >= self.ref_time[0]) & (t <= self.ref_time[-1])
         return ReferenceTrial("comma2k19 Example_1", recording, attitude.quat_normalize(q), inside)
 
@@ -185,8 +216,9 @@ def _ecef_to_enu(lat: np.ndarray, lon: np.ndarray) -> np.ndarray:
     """C_en (..., 3, 3): ECEF vectors to the local ENU frame at (lat, lon) (rad)."""
     sl, cl, so, co = np.sin(lat), np.cos(lat), np.sin(lon), np.cos(lon)
     z = np.zeros_like(lat)
-    return np.stack([np.stack([-so, co, z], -1), np.stack([-sl * co, -sl * so, cl], -1),
-                     np.stack([cl * co, cl * so, sl], -1)], -2)
+    return np.stack(
+        [np.stack([-so, co, z], -1), np.stack([-sl * co, -sl * so, cl], -1), np.stack([cl * co, cl * so, sl], -1)], -2
+    )
 
 
 def read_comma2k19(folder: str | os.PathLike) -> DriveLog:
@@ -202,7 +234,7 @@ def read_comma2k19(folder: str | os.PathLike) -> DriveLog:
     DriveLog
         In navlib's frames and units (module docstring).
     """
-    folder = Path(folder)
+    folder = Path(_path(folder, "folder"))
 
     def load(name):
         path = folder / f"{name}.npy"
@@ -214,15 +246,29 @@ def read_comma2k19(folder: str | os.PathLike) -> DriveLog:
     if not np.array_equal(t_imu, load("IMU.accelerometer.t")):
         raise ValueError("folder: gyro and accelerometer logs have different times")
     t0 = float(t_imu[0])
-    imu = Recording(t_imu - t0, load("IMU.gyro.value") @ _FRD_TO_RFU.T, load("IMU.accelerometer.value") @ _FRD_TO_RFU.T,
-                    start=t0, source=str(folder),
-                    conversions=("forward-right-down -> right-front-up: (x, y, z) -> (y, x, -z)",))
+    imu = Recording(
+        t_imu - t0,
+        load("IMU.gyro.value") @ _FRD_TO_RFU.T,
+        load("IMU.accelerometer.value") @ _FRD_TO_RFU.T,
+        start=t0,
+        source=str(folder),
+        conversions=("forward-right-down -> right-front-up: (x, y, z) -> (y, x, -z)",),
+    )
     pos = load("global_pose.frame_positions")
     lat, lon, h = geodesy.ecef2geodetic(pos[:, 0], pos[:, 1], pos[:, 2])
     C_en = _ecef_to_enu(lat, lon)
     C_bn = C_en @ attitude.quat_to_dcm(load("global_pose.frame_orientations")) @ _FRD_TO_RFU
-    return DriveLog(imu, load("IMU.magnetometer.t") - t0, load("IMU.magnetometer.value") @ _FRD_TO_RFU.T,
-                    load("GNSS.live_gnss_ublox.t") - t0, load("GNSS.live_gnss_ublox.value"),
-                    load("CAN.speed.t") - t0, load("CAN.speed.value")[:, 0], load("CAN.wheel_speed.value"),
-                    load("global_pose.frame_times") - t0, np.stack([lat, lon, h], -1),
-                    np.einsum("kij,kj->ki", C_en, load("global_pose.frame_velocities")), attitude.dcm_to_quat(C_bn))
+    return DriveLog(
+        imu,
+        load("IMU.magnetometer.t") - t0,
+        load("IMU.magnetometer.value") @ _FRD_TO_RFU.T,
+        load("GNSS.live_gnss_ublox.t") - t0,
+        load("GNSS.live_gnss_ublox.value"),
+        load("CAN.speed.t") - t0,
+        load("CAN.speed.value")[:, 0],
+        load("CAN.wheel_speed.value"),
+        load("global_pose.frame_times") - t0,
+        np.stack([lat, lon, h], -1),
+        np.einsum("kij,kj->ki", C_en, load("global_pose.frame_velocities")),
+        attitude.dcm_to_quat(C_bn),
+    )

@@ -39,6 +39,7 @@ cache is used (a warm rerun).
 Usage: python tools/reproduce.py [--only PATTERN] [--root DIR] [--timeout S] [--jobs N] [--profile] [--cold]
                                  [--seeds N | --seed-list S1,S2,...]
 """
+
 from __future__ import annotations
 
 import argparse
@@ -108,16 +109,22 @@ def run_notebook(path: Path, build: Path, timeout: int) -> dict:
     nb = nbformat.read(path, as_version=4)
     peak = {"mb": None}
 
-    def after_cell(**_):                    # the kernel's high-water mark, read while it is alive
+    def after_cell(**_):  # the kernel's high-water mark, read while it is alive
         peak["mb"] = kernel_peak_mb(client) or peak["mb"]
 
-    compile_log = build / f"{stem}.compile.log"        # one line per numba compilation (navlib._kernels.CompileLog)
+    compile_log = build / f"{stem}.compile.log"  # one line per numba compilation (navlib._kernels.CompileLog)
     compile_log.unlink(missing_ok=True)
-    os.environ["NAVLIB_COMPILE_LOG"] = str(compile_log)   # the kernel inherits it
+    os.environ["NAVLIB_COMPILE_LOG"] = str(compile_log)  # the kernel inherits it
     # The kernel is killed once the last cell is done: every result, figure and log line is on disk by then,
     # and a graceful shutdown (the interpreter freeing a notebook's gigabyte) kept this worker ~1 s from the next.
-    client = NotebookClient(nb, kernel_name="python3", timeout=timeout, on_cell_executed=after_cell,
-                            shutdown_kernel="immediate", resources={"metadata": {"path": str(path.parent)}})
+    client = NotebookClient(
+        nb,
+        kernel_name="python3",
+        timeout=timeout,
+        on_cell_executed=after_cell,
+        shutdown_kernel="immediate",
+        resources={"metadata": {"path": str(path.parent)}},
+    )
     error = None
     start = time.perf_counter()
     with open(build / f"{stem}.kernel.log", "w") as log:
@@ -128,18 +135,27 @@ def run_notebook(path: Path, build: Path, timeout: int) -> dict:
     seconds = time.perf_counter() - start
     peak_mb = None if peak["mb"] is None else round(peak["mb"])
     nbformat.write(nb, build / f"{stem}.ipynb")
-    (build / f"{stem}.html").unlink(missing_ok=True)          # the last report's page (now: make docs)
+    (build / f"{stem}.html").unlink(missing_ok=True)  # the last report's page (now: make docs)
 
     results = build / stem / "results.json"
     checks = json.loads(results.read_text())["checks"] if results.is_file() else []
     passed = sum(bool(c.get("passed")) for c in checks)
     figures = sorted(p.relative_to(build).as_posix() for p in (build / stem / "figures").glob("*.png"))
     compilations = read_compile_log(compile_log)
-    return {"notebook": stem, "ok": error is None and passed == len(checks), "error": error,
-            "seconds": round(seconds, 1), "compile_seconds": round(sum(s for s, _ in compilations), 1),
-            "peak_mb": peak_mb, "checks_passed": passed, "checks_total": len(checks),
-            "checks": checks, "figures": figures, "kernels": kernels_by_compile_time(compilations),
-            "cells": cell_seconds(nb)}
+    return {
+        "notebook": stem,
+        "ok": error is None and passed == len(checks),
+        "error": error,
+        "seconds": round(seconds, 1),
+        "compile_seconds": round(sum(s for s, _ in compilations), 1),
+        "peak_mb": peak_mb,
+        "checks_passed": passed,
+        "checks_total": len(checks),
+        "checks": checks,
+        "figures": figures,
+        "kernels": kernels_by_compile_time(compilations),
+        "cells": cell_seconds(nb),
+    }
 
 
 def read_compile_log(path: Path) -> list[tuple[float, str]]:
@@ -166,8 +182,9 @@ def cell_seconds(nb) -> list[tuple[int, float, str]]:
     for index, cell in enumerate(nb.cells):
         timing = cell.get("metadata", {}).get("execution", {})
         if cell.cell_type == "code" and {"iopub.execute_input", "shell.execute_reply"} <= set(timing):
-            seconds = (datetime.fromisoformat(timing["shell.execute_reply"])
-                       - datetime.fromisoformat(timing["iopub.execute_input"])).total_seconds()
+            seconds = (
+                datetime.fromisoformat(timing["shell.execute_reply"]) - datetime.fromisoformat(timing["iopub.execute_input"])
+            ).total_seconds()
             first_line = next((ln for ln in cell.source.splitlines() if ln.strip()), "")
             cells.append((index, round(seconds, 3), first_line[:70]))
     return sorted(cells, key=lambda c: -c[1])
@@ -175,8 +192,9 @@ def cell_seconds(nb) -> list[tuple[int, float, str]]:
 
 def expected_seconds(summary: dict, notebooks: list[Path]) -> dict[Path, float]:
     """Each notebook's time in a run's ``summary.json`` less its numba compilation (0 when not in it)."""
-    return {p: summary.get(p.stem, {}).get("seconds", 0.0) - summary.get(p.stem, {}).get("compile_seconds", 0.0)
-            for p in notebooks}
+    return {
+        p: summary.get(p.stem, {}).get("seconds", 0.0) - summary.get(p.stem, {}).get("compile_seconds", 0.0) for p in notebooks
+    }
 
 
 def longest_first(notebooks: list[Path], seconds: dict[Path, float]) -> list[Path]:
@@ -186,8 +204,10 @@ def longest_first(notebooks: list[Path], seconds: dict[Path, float]) -> list[Pat
 
 def profile(e: dict, top: int = 5) -> str:
     """Where a notebook's time went: compilation against the rest, the kernels by compile time, the slowest cells."""
-    lines = [f"{e['notebook']}: {e['seconds']:.1f} s = compile {e['compile_seconds']:.1f} + "
-             f"other {e['seconds'] - e['compile_seconds']:.1f}; peak memory {mb(e['peak_mb'])}"]
+    lines = [
+        f"{e['notebook']}: {e['seconds']:.1f} s = compile {e['compile_seconds']:.1f} + "
+        f"other {e['seconds'] - e['compile_seconds']:.1f}; peak memory {mb(e['peak_mb'])}"
+    ]
     lines += [f"    compile {s:6.1f} s  {n} signature(s)  {name}" for name, s, n in e["kernels"][:top]]
     lines += [f"    cell {i:3d} {s:6.1f} s  {source}" for i, s, source in e["cells"][:top]]
     return "\n".join(lines)
@@ -202,8 +222,7 @@ def write_manifest(build: Path, entries: list[dict]) -> dict:
     files = []
     for e in entries:
         files += [build / e["notebook"] / "results.json"] + [build / f for f in e["figures"]]
-    manifest = {p.relative_to(build).as_posix(): hashlib.sha256(p.read_bytes()).hexdigest()
-                for p in files if p.is_file()}
+    manifest = {p.relative_to(build).as_posix(): hashlib.sha256(p.read_bytes()).hexdigest() for p in files if p.is_file()}
     (build / "manifest.json").write_text(json.dumps(manifest, indent=1, sort_keys=True) + "\n")
     return manifest
 
@@ -216,6 +235,7 @@ def compare_manifest(manifest: dict, reference: Path, notebooks: list[str]) -> l
 
 # ---------------------------------------------------------------------------------------------- seed sweep
 
+
 def parameters_cell(nb) -> int:
     """Index of the cell tagged ``parameters``."""
     return next(i for i, c in enumerate(nb.cells) if "parameters" in c.metadata.get("tags", []))
@@ -223,11 +243,14 @@ def parameters_cell(nb) -> int:
 
 def seeded_notebooks(notebooks: list[Path]) -> list[Path]:
     """The notebooks whose parameters cell assigns ``SEED`` (the Monte Carlo ones)."""
+
     def sets_seed(path: Path) -> bool:
         nb = nbformat.read(path, as_version=4)
         tree = ast.parse(nb.cells[parameters_cell(nb)].source)
-        return any(isinstance(t, ast.Name) and t.id == "SEED" for node in tree.body if isinstance(node, ast.Assign)
-                   for t in node.targets)
+        return any(
+            isinstance(t, ast.Name) and t.id == "SEED" for node in tree.body if isinstance(node, ast.Assign) for t in node.targets
+        )
+
     return [p for p in notebooks if sets_seed(p)]
 
 
@@ -236,7 +259,8 @@ def calibration_seeds(root: Path) -> dict[str, set[int]]:
     used: dict[str, set[int]] = {}
     path = root / "data" / "seed_studies" / "calibration_seeds.csv"
     if path.is_file():
-        for row in csv.DictReader(line for line in path.open(encoding="utf-8") if not line.startswith("#")):
+        lines = [line for line in path.read_text(encoding="utf-8").splitlines() if not line.startswith("#")]
+        for row in csv.DictReader(lines):
             used.setdefault(row["notebook"], set()).update(range(int(row["first"]), int(row["last"]) + 1))
     return used
 
@@ -247,9 +271,14 @@ def run_seed(path: Path, seed: int, out: Path, timeout: int) -> dict:
     cell = nbformat.v4.new_code_cell(f"# injected by tools/reproduce.py --seeds\nSEED = {seed}")
     cell.metadata["tags"] = ["injected-parameters"]
     nb.cells.insert(parameters_cell(nb) + 1, cell)
-    os.environ.update(NAVLIB_TEACHING="1", NAVLIB_BUILD_DIR=str(out))   # the kernel inherits them
-    client = NotebookClient(nb, kernel_name="python3", timeout=timeout, shutdown_kernel="immediate",
-                            resources={"metadata": {"path": str(path.parent)}})
+    os.environ.update(NAVLIB_TEACHING="1", NAVLIB_BUILD_DIR=str(out))  # the kernel inherits them
+    client = NotebookClient(
+        nb,
+        kernel_name="python3",
+        timeout=timeout,
+        shutdown_kernel="immediate",
+        resources={"metadata": {"path": str(path.parent)}},
+    )
     error, start = None, time.perf_counter()
     try:
         client.execute()
@@ -257,9 +286,14 @@ def run_seed(path: Path, seed: int, out: Path, timeout: int) -> dict:
         error = error_line(exc)
     seconds = time.perf_counter() - start
     res = ledger.results(out, path.stem) or {}
-    return {"notebook": path.stem, "seed": seed, "seconds": round(seconds, 1), "error": error,
-            "checks": {c["name"]: {"value": c["value"], "passed": bool(c["passed"])} for c in res.get("checks", [])},
-            "verdicts": {v["claim"]: v["verdict"] for v in res.get("verdicts", [])}}
+    return {
+        "notebook": path.stem,
+        "seed": seed,
+        "seconds": round(seconds, 1),
+        "error": error,
+        "checks": {c["name"]: {"value": c["value"], "passed": bool(c["passed"])} for c in res.get("checks", [])},
+        "verdicts": {v["claim"]: v["verdict"] for v in res.get("verdicts", [])},
+    }
 
 
 def sweep_table(runs: list[dict], seeds: list[int]) -> dict:
@@ -267,14 +301,22 @@ def sweep_table(runs: list[dict], seeds: list[int]) -> dict:
     by_seed = {r["seed"]: r for r in runs}
     names = list(dict.fromkeys(n for r in runs for n in r["checks"]))
     claims = list(dict.fromkeys(c for r in runs for c in r["verdicts"]))
-    checks = {n: {"values": [by_seed[s]["checks"].get(n, {}).get("value") for s in seeds],
-                  "failed": [s for s in seeds if not by_seed[s]["checks"].get(n, {}).get("passed", False)]}
-              for n in names}
+    checks = {
+        n: {
+            "values": [by_seed[s]["checks"].get(n, {}).get("value") for s in seeds],
+            "failed": [s for s in seeds if not by_seed[s]["checks"].get(n, {}).get("passed", False)],
+        }
+        for n in names
+    }
     verdicts = {c: [by_seed[s]["verdicts"].get(c, "no verdict") for s in seeds] for c in claims}
-    return {"seconds": [by_seed[s]["seconds"] for s in seeds],
-            "errors": {s: by_seed[s]["error"] for s in seeds if by_seed[s]["error"]}, "checks": checks, "verdicts": verdicts,
-            "failures": {n: c["failed"] for n, c in checks.items() if c["failed"]},
-            "flips": {c: v for c, v in verdicts.items() if len(set(v)) > 1}}
+    return {
+        "seconds": [by_seed[s]["seconds"] for s in seeds],
+        "errors": {s: by_seed[s]["error"] for s in seeds if by_seed[s]["error"]},
+        "checks": checks,
+        "verdicts": verdicts,
+        "failures": {n: c["failed"] for n, c in checks.items() if c["failed"]},
+        "flips": {c: v for c, v in verdicts.items() if len(set(v)) > 1},
+    }
 
 
 def number(x) -> str:
@@ -296,19 +338,25 @@ def print_sweep(stem: str, table: dict, seeds: list[int]) -> None:
 
 def sweep(args: argparse.Namespace, root: Path, notebooks: list[Path], build: Path) -> int:
     """The seed sweep: every seeded notebook once per seed; prints and writes build/seeds.json; the exit status."""
-    seeds = [int(s) for s in args.seed_list.split(",")] if args.seed_list else list(SWEEP_SEEDS[:args.seeds])
+    seeds = [int(s) for s in args.seed_list.split(",")] if args.seed_list else list(SWEEP_SEEDS[: args.seeds])
     notebooks = seeded_notebooks(notebooks)
     used = calibration_seeds(root)
     clash = {p.stem: sorted(set(seeds) & used.get(p.stem, set())) for p in notebooks}
     if any(clash.values()):
-        print("seeds used to set tolerances (data/seed_studies/calibration_seeds.csv), not a test of them: "
-              + "; ".join(f"{k}: {v}" for k, v in clash.items() if v), file=sys.stderr)
+        print(
+            "seeds used to set tolerances (data/seed_studies/calibration_seeds.csv), not a test of them: "
+            + "; ".join(f"{k}: {v}" for k, v in clash.items() if v),
+            file=sys.stderr,
+        )
         return 1
     os.environ.pop("NAVLIB_FAST", None)
     last = json.loads((build / "summary.json").read_text()) if (build / "summary.json").is_file() else {}
     order = longest_first(notebooks, expected_seconds(last, notebooks))
-    print(f"seed sweep: {len(notebooks)} notebooks x {len(seeds)} seeds ({', '.join(map(str, seeds))}), "
-          f"{max(1, args.jobs)} at a time ...", flush=True)
+    print(
+        f"seed sweep: {len(notebooks)} notebooks x {len(seeds)} seeds ({', '.join(map(str, seeds))}), "
+        f"{max(1, args.jobs)} at a time ...",
+        flush=True,
+    )
     start, runs = time.perf_counter(), []
     with ProcessPoolExecutor(max(1, args.jobs), mp_context=multiprocessing.get_context(START_METHOD)) as pool:
         futures = [pool.submit(run_seed, p, s, build / "seeds" / str(s), args.timeout) for p in order for s in seeds]
@@ -316,9 +364,11 @@ def sweep(args: argparse.Namespace, root: Path, notebooks: list[Path], build: Pa
             r = future.result()
             runs.append(r)
             bad = sum(not c["passed"] for c in r["checks"].values())
-            print(f"[{len(runs)}/{len(futures)}] {r['notebook']} seed {r['seed']}: {r['seconds']:.1f} s, "
-                  f"{len(r['checks']) - bad}/{len(r['checks'])} checks passed" + (f", ERROR {r['error']}" if r["error"] else ""),
-                  flush=True)
+            print(
+                f"[{len(runs)}/{len(futures)}] {r['notebook']} seed {r['seed']}: {r['seconds']:.1f} s, "
+                f"{len(r['checks']) - bad}/{len(r['checks'])} checks passed" + (f", ERROR {r['error']}" if r["error"] else ""),
+                flush=True,
+            )
     wall = time.perf_counter() - start
     tables = {p.stem: sweep_table([r for r in runs if r["notebook"] == p.stem], seeds) for p in notebooks}
     for stem, table in tables.items():
@@ -326,10 +376,13 @@ def sweep(args: argparse.Namespace, root: Path, notebooks: list[Path], build: Pa
     failures = sum(len(t["failures"]) for t in tables.values())
     flips = sum(len(t["flips"]) for t in tables.values())
     errors = sum(len(t["errors"]) for t in tables.values())
-    (build / "seeds.json").write_text(json.dumps({"seeds": seeds, "wall_seconds": round(wall, 1), "notebooks": tables},
-                                                 indent=1) + "\n")
-    print(f"\nseed sweep: {len(notebooks)} notebooks x {len(seeds)} seeds in {wall:.0f} s wall: {failures} failed "
-          f"checks, {flips} verdict flips, {errors} notebook errors (build/seeds.json)")
+    (build / "seeds.json").write_text(
+        json.dumps({"seeds": seeds, "wall_seconds": round(wall, 1), "notebooks": tables}, indent=1) + "\n"
+    )
+    print(
+        f"\nseed sweep: {len(notebooks)} notebooks x {len(seeds)} seeds in {wall:.0f} s wall: {failures} failed "
+        f"checks, {flips} verdict flips, {errors} notebook errors (build/seeds.json)"
+    )
     for stem, t in tables.items():
         for name, failed in t["failures"].items():
             print(f"    {stem}: check {name} failed on seed {', '.join(map(str, failed))}")
@@ -343,16 +396,32 @@ def main(argv=None) -> int:
     ap.add_argument("--only", metavar="PATTERN", help="run only notebooks whose name matches (substring or glob)")
     ap.add_argument("--root", type=Path, default=REPO, help="repository root holding notebooks/ (default: this repo)")
     ap.add_argument("--timeout", type=int, default=1800, help="per-cell timeout in seconds (default 1800)")
-    ap.add_argument("--jobs", type=int, default=min(2, os.cpu_count() or 1),
-                    help="notebooks executed at once, each in its own kernel (default: 2, or 1 on one core)")
-    ap.add_argument("--check-against", type=Path, metavar="MANIFEST",
-                    help="fail unless every results.json and PNG is byte-identical to this earlier manifest")
-    ap.add_argument("--profile", action="store_true",
-                    help="also report each notebook's compile time, kernels by compile time and slowest cells")
+    ap.add_argument(
+        "--jobs",
+        type=int,
+        default=min(2, os.cpu_count() or 1),
+        help="notebooks executed at once, each in its own kernel (default: 2, or 1 on one core)",
+    )
+    ap.add_argument(
+        "--check-against",
+        type=Path,
+        metavar="MANIFEST",
+        help="fail unless every results.json and PNG is byte-identical to this earlier manifest",
+    )
+    ap.add_argument(
+        "--profile",
+        action="store_true",
+        help="also report each notebook's compile time, kernels by compile time and slowest cells",
+    )
     ap.add_argument("--cold", action="store_true", help="an empty numba cache for the kernels, as on a fresh clone")
     seeds = ap.add_mutually_exclusive_group()
-    seeds.add_argument("--seeds", type=int, metavar="N", choices=range(1, len(SWEEP_SEEDS) + 1),
-                       help=f"seed sweep with the first N of {SWEEP_SEEDS} (make seeds)")
+    seeds.add_argument(
+        "--seeds",
+        type=int,
+        metavar="N",
+        choices=range(1, len(SWEEP_SEEDS) + 1),
+        help=f"seed sweep with the first N of {SWEEP_SEEDS} (make seeds)",
+    )
     seeds.add_argument("--seed-list", metavar="S1,S2,...", help="seed sweep with these seeds")
     args = ap.parse_args(argv)
 
@@ -383,7 +452,7 @@ def main(argv=None) -> int:
     if not args.cold:
         return run_all(args, root, notebooks, build)
     with tempfile.TemporaryDirectory(prefix="navlib-numba-cache-") as empty_cache:
-        os.environ["NUMBA_CACHE_DIR"] = empty_cache                  # the kernels compile as on a fresh clone
+        os.environ["NUMBA_CACHE_DIR"] = empty_cache  # the kernels compile as on a fresh clone
         return run_all(args, root, notebooks, build)
 
 
@@ -403,16 +472,22 @@ def run_all(args: argparse.Namespace, root: Path, notebooks: list[Path], build: 
         for future in as_completed(futures):
             e = done[futures[future]] = future.result()
             tail = "" if e["error"] is None else f"\n    ERROR: {e['error']}"
-            print(f"[{len(done)}/{len(notebooks)}] {e['notebook']} {'done' if e['ok'] else 'FAILED'} "
-                  f"in {e['seconds']:.1f} s, peak memory {mb(e['peak_mb'])}{tail}", flush=True)
+            print(
+                f"[{len(done)}/{len(notebooks)}] {e['notebook']} {'done' if e['ok'] else 'FAILED'} "
+                f"in {e['seconds']:.1f} s, peak memory {mb(e['peak_mb'])}{tail}",
+                flush=True,
+            )
     entries = [done[path] for path in notebooks]
     wall = time.perf_counter() - start
 
-    (build / "index.html").unlink(missing_ok=True)             # the hand-written report: replaced by make docs
+    (build / "index.html").unlink(missing_ok=True)  # the hand-written report: replaced by make docs
     manifest = write_manifest(build, entries)
-    summary = {e["notebook"]: {k: e[k] for k in ("checks_passed", "checks_total", "seconds", "compile_seconds", "peak_mb",
-                                                 "ok", "error")}
-               for e in entries}
+    summary = {
+        e["notebook"]: {
+            k: e[k] for k in ("checks_passed", "checks_total", "seconds", "compile_seconds", "peak_mb", "ok", "error")
+        }
+        for e in entries
+    }
     (build / "summary.json").write_text(json.dumps(summary, indent=1) + "\n")
 
     width = max(len(e["notebook"]) for e in entries) + 3
@@ -425,20 +500,27 @@ def run_all(args: argparse.Namespace, root: Path, notebooks: list[Path], build: 
     passed = sum(e["checks_passed"] for e in entries)
     total = sum(e["checks_total"] for e in entries)
     seconds = sum(e["seconds"] for e in entries)
-    print(f"{'total':<{width}}{f'{passed}/{total}':>7} checks passed{seconds:>9.1f} s"
-          f"   ({n_ok}/{len(entries)} notebooks ok; {wall:.1f} s wall with {max(1, args.jobs)} at a time)")
+    print(
+        f"{'total':<{width}}{f'{passed}/{total}':>7} checks passed{seconds:>9.1f} s"
+        f"   ({n_ok}/{len(entries)} notebooks ok; {wall:.1f} s wall with {max(1, args.jobs)} at a time)"
+    )
     for led in ledger.ledgers(build, root):
         if led.stem in {e["notebook"] for e in entries}:
             counts = led.counts
-            print(f"{led.stem:<{width}}{len(led.rows):>4} claims: " + ", ".join(
-                f"{counts[v]} {v}" for v in ledger.COLUMNS if counts.get(v)) + "".join(f"\n    {p}" for p in led.problems))
+            print(
+                f"{led.stem:<{width}}{len(led.rows):>4} claims: "
+                + ", ".join(f"{counts[v]} {v}" for v in ledger.COLUMNS if counts.get(v))
+                + "".join(f"\n    {p}" for p in led.problems)
+            )
     if args.profile:
         print("\n" + "\n".join(profile(e) for e in entries))
     print("site: make docs (build/site/index.html)")
     if args.check_against:
         changed = compare_manifest(manifest, args.check_against, [p.stem for p in notebooks])
-        print(f"determinism: {len(manifest)} files, {len(changed)} differ from {args.check_against.name}"
-              + "".join(f"\n    {c}" for c in changed))
+        print(
+            f"determinism: {len(manifest)} files, {len(changed)} differ from {args.check_against.name}"
+            + "".join(f"\n    {c}" for c in changed)
+        )
         if changed:
             return 1
     return 0 if n_ok == len(entries) else 1

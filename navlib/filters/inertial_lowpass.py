@@ -35,6 +35,7 @@ first field) becomes the reference. The first magnetometer samples set the headi
 The initial attitude is automatic (first accelerometer and magnetometer samples); ``declination`` (rad, east
 positive) turns the magnetic heading into a true one. Without ``m_b`` the heading is free (6D).
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass, fields
@@ -68,6 +69,7 @@ class InertialLowpassSettings:
       for this long before it corrects the heading again (a field swinging through the reference norm while a
       magnet moves past would otherwise pass the test now and then; on BROAD trial 33 that cost 4.6 deg).
     """
+
     tau_acc: float = 3.0
     tau_mag: float = 9.0
     bias_sigma_init: float = 0.5 * _DEG
@@ -93,7 +95,7 @@ class InertialLowpassSettings:
 
     def __post_init__(self):
         for f in fields(self):
-            scalar(getattr(self, f.name), f"settings.{f.name}", positive=True)
+            scalar(getattr(self, f.name), f.name, positive=True)
 
 
 def _butter2(tau: float, dt: float) -> np.ndarray:
@@ -109,7 +111,7 @@ def _butter2(tau: float, dt: float) -> np.ndarray:
 def _lowpass(c, x, s, j):
     """One step of the Butterworth ``c`` on input ``x``, state ``s[j]`` (2 values; NaN: start at ``x``)."""
     if np.isnan(s[j, 0]):
-        s[j, 0], s[j, 1] = (1 - c[0]) * x, (c[2] - c[4]) * x       # the steady state of a constant x
+        s[j, 0], s[j, 1] = (1 - c[0]) * x, (c[2] - c[4]) * x  # the steady state of a constant x
     y = c[0] * x + s[j, 0]
     s[j, 0], s[j, 1] = c[1] * x - c[3] * y + s[j, 1], c[2] * x - c[4] * y
     return y
@@ -139,19 +141,39 @@ def _kernel(t0, t1, w, f, m, dts, p, coef, q_out, bias_out, flags):
 
 @njit(cache=True)
 def _trial(t, w, f, m, dts, p, c_acc, c_rest, q_out, bias_out, rejected, rest_out):
-    (sig_init2, forget, clip, r_motion, r_rest, rest_time, rest_gyro2, rest_accel2, k_cur, k_ref, norm_tol, dip_tol,
-     new_time, new_first, new_gyro, max_reject, factor, k_mag, settle, use_mag) = p
-    g0, g1, g2, g3 = 1.0, 0.0, 0.0, 0.0                       # q_gyr: body -> I
-    i0, i1, i2, i3 = 1.0, 0.0, 0.0, 0.0                       # q_incl: I -> E'
-    delta, n_mag = 0.0, 0.0                                   # heading correction about up (rad), samples used
-    b, e, r = np.zeros(3), np.zeros(3), np.zeros(3)          # bias estimate, innovation, measurement variances
+    (
+        sig_init2,
+        forget,
+        clip,
+        r_motion,
+        r_rest,
+        rest_time,
+        rest_gyro2,
+        rest_accel2,
+        k_cur,
+        k_ref,
+        norm_tol,
+        dip_tol,
+        new_time,
+        new_first,
+        new_gyro,
+        max_reject,
+        factor,
+        k_mag,
+        settle,
+        use_mag,
+    ) = p
+    g0, g1, g2, g3 = 1.0, 0.0, 0.0, 0.0  # q_gyr: body -> I
+    i0, i1, i2, i3 = 1.0, 0.0, 0.0, 0.0  # q_incl: I -> E'
+    delta, n_mag = 0.0, 0.0  # heading correction about up (rad), samples used
+    b, e, r = np.zeros(3), np.zeros(3), np.zeros(3)  # bias estimate, innovation, measurement variances
     P, H, work = np.eye(3) * sig_init2, np.empty((3, 3)), np.empty((3, 3, 3))
-    lp = np.full((3 + 9 + 3 + 6, 2), np.nan)                  # filter states: a_I, R, R b, rest gyro + accel
+    lp = np.full((3 + 9 + 3 + 6, 2), np.nan)  # filter states: a_I, R, R b, rest gyro + accel
     rest_for, aligned = 0.0, False
-    w_lp = np.zeros(3)                                        # low-pass gyro: the bias at rest
-    cur = np.full(2, np.nan)                                  # low-pass field norm, dip
-    ref = np.array([0.0, 0.0, 0.0])                           # reference norm, dip, known (1) or not (0)
-    cand = np.array([np.nan, np.nan, 0.0])                    # candidate norm, dip, time steady (s)
+    w_lp = np.zeros(3)  # low-pass gyro: the bias at rest
+    cur = np.full(2, np.nan)  # low-pass field norm, dip
+    ref = np.array([0.0, 0.0, 0.0])  # reference norm, dip, known (1) or not (0)
+    cand = np.array([np.nan, np.nan, 0.0])  # candidate norm, dip, time steady (s)
     reject_for = ok_for = 0.0
     rejected_before = False
     for k in range(w.shape[1]):
@@ -177,31 +199,31 @@ def _trial(t, w, f, m, dts, p, c_acc, c_rest, q_out, bias_out, rejected, rest_ou
             s = 1.0 / np.sqrt(ex * ex + ey * ey + ez * ez)
             ex, ey, ez = ex * s, ey * s, ez * s
             h = np.sqrt(0.5 * (ez + 1.0)) if ez > -1.0 + 1e-12 else 1e-6
-            c0, c1, c2 = h, ey / (2 * h), -ex / (2 * h)                 # rotates (ex, ey, ez) onto (0, 0, 1)
+            c0, c1, c2 = h, ey / (2 * h), -ex / (2 * h)  # rotates (ex, ey, ez) onto (0, 0, 1)
             i0, i1, i2, i3 = _unit(quat_mult_t(c0, c1, c2, 0.0, i0, i1, i2, i3))
-            if aligned:                                                 # (the first sample aligns: not a drift)
-                cx, cy = 2 * c1 * c0, 2 * c2 * c0                       # correction angle about E' x, y (rad)
+            if aligned:  # (the first sample aligns: not a drift)
+                cx, cy = 2 * c1 * c0, 2 * c2 * c0  # correction angle about E' x, y (rad)
             aligned = True
         # 3. gyro bias: Kalman filter, measured at rest or through the inclination correction in motion
         a0, a1, a2, a3 = quat_mult_t(i0, i1, i2, i3, g0, g1, g2, g3)
-        R = quat_to_dcm_t(a0, a1, a2, a3)                              # body -> E'
+        R = quat_to_dcm_t(a0, a1, a2, a3)  # body -> E'
         for i in range(3):
             P[i, i] += sig_init2 * dt / forget
-            e[i] = _lowpass(c_acc, R[i][0] * b[0] + R[i][1] * b[1] + R[i][2] * b[2], lp, 12 + i)   # low-pass R b
+            e[i] = _lowpass(c_acc, R[i][0] * b[0] + R[i][1] * b[1] + R[i][2] * b[2], lp, 12 + i)  # low-pass R b
             for j in range(3):
-                H[i, j] = _lowpass(c_acc, R[i][j], lp, 3 + 3 * i + j)                          # low-pass R
-        if rest:                                                       # measured: the low-pass gyro
+                H[i, j] = _lowpass(c_acc, R[i][j], lp, 3 + 3 * i + j)  # low-pass R
+        if rest:  # measured: the low-pass gyro
             for i in range(3):
                 e[i] = w_lp[i] - b[i]
                 r[i] = r_rest
                 for j in range(3):
                     H[i, j] = 1.0 if i == j else 0.0
             _kalman(P, H, r, e, b, work)
-        elif cx != 0.0 or cy != 0.0:                                   # the correction per second: -LP(R) (b - b_hat)
+        elif cx != 0.0 or cy != 0.0:  # the correction per second: -LP(R) (b - b_hat)
             e[0] += -cx / dt - (H[0, 0] * b[0] + H[0, 1] * b[1] + H[0, 2] * b[2])
             e[1] += -cy / dt - (H[1, 0] * b[0] + H[1, 1] * b[1] + H[1, 2] * b[2])
             e[2] = 0.0
-            r[0], r[1], r[2] = r_motion, r_motion, 1e12 * r_motion    # no vertical measurement in motion
+            r[0], r[1], r[2] = r_motion, r_motion, 1e12 * r_motion  # no vertical measurement in motion
             _kalman(P, H, r, e, b, work)
         for j in range(3):
             b[j] = min(max(b[j], -clip), clip)
@@ -225,9 +247,9 @@ def _trial(t, w, f, m, dts, p, c_acc, c_rest, q_out, bias_out, rejected, rest_ou
                     cand[0], cand[1], cand[2] = cur[0], cur[1], 0.0
                 ok = ref[2] == 1.0 and abs(cur[0] - ref[0]) < norm_tol * ref[0] and abs(cur[1] - ref[1]) < dip_tol
                 ok_for = ok_for + dt if ok else 0.0
-                ok = ok and (ok_for >= settle or not rejected_before)   # after a rejection: undisturbed for settle s
+                ok = ok and (ok_for >= settle or not rejected_before)  # after a rejection: undisturbed for settle s
                 if not ok and cand[2] >= (new_time if ref[2] == 1.0 else new_first):
-                    ref[0], ref[1], ref[2], ok = cand[0], cand[1], 1.0, True     # a new steady field
+                    ref[0], ref[1], ref[2], ok = cand[0], cand[1], 1.0, True  # a new steady field
                 gain = max(k_mag, 1.0 / (n_mag + 1.0))
                 if ok:
                     ref[0] += k_ref * (cur[0] - ref[0])
@@ -260,21 +282,39 @@ def _kalman(P, H, r, e, b, work):
     for i in range(3):
         for j in range(3):
             S[i, j] = H[i, 0] * PHt[0, j] + H[i, 1] * PHt[1, j] + H[i, 2] * PHt[2, j] + (r[i] if i == j else 0.0)
-    c00, c01, c02 = (S[1, 1] * S[2, 2] - S[1, 2] * S[2, 1], S[0, 2] * S[2, 1] - S[0, 1] * S[2, 2],
-                     S[0, 1] * S[1, 2] - S[0, 2] * S[1, 1])
-    c10, c11, c12 = (S[1, 2] * S[2, 0] - S[1, 0] * S[2, 2], S[0, 0] * S[2, 2] - S[0, 2] * S[2, 0],
-                     S[0, 2] * S[1, 0] - S[0, 0] * S[1, 2])
-    c20, c21, c22 = (S[1, 0] * S[2, 1] - S[1, 1] * S[2, 0], S[0, 1] * S[2, 0] - S[0, 0] * S[2, 1],
-                     S[0, 0] * S[1, 1] - S[0, 1] * S[1, 0])
+    c00, c01, c02 = (
+        S[1, 1] * S[2, 2] - S[1, 2] * S[2, 1],
+        S[0, 2] * S[2, 1] - S[0, 1] * S[2, 2],
+        S[0, 1] * S[1, 2] - S[0, 2] * S[1, 1],
+    )
+    c10, c11, c12 = (
+        S[1, 2] * S[2, 0] - S[1, 0] * S[2, 2],
+        S[0, 0] * S[2, 2] - S[0, 2] * S[2, 0],
+        S[0, 2] * S[1, 0] - S[0, 0] * S[1, 2],
+    )
+    c20, c21, c22 = (
+        S[1, 0] * S[2, 1] - S[1, 1] * S[2, 0],
+        S[0, 1] * S[2, 0] - S[0, 0] * S[2, 1],
+        S[0, 0] * S[1, 1] - S[0, 1] * S[1, 0],
+    )
     d = 1.0 / (S[0, 0] * c00 + S[0, 1] * c10 + S[0, 2] * c20)
     S[0, 0], S[0, 1], S[0, 2], S[1, 0], S[1, 1], S[1, 2], S[2, 0], S[2, 1], S[2, 2] = (
-        c00 * d, c01 * d, c02 * d, c10 * d, c11 * d, c12 * d, c20 * d, c21 * d, c22 * d)      # S^-1
+        c00 * d,
+        c01 * d,
+        c02 * d,
+        c10 * d,
+        c11 * d,
+        c12 * d,
+        c20 * d,
+        c21 * d,
+        c22 * d,
+    )  # S^-1
     for i in range(3):
         for j in range(3):
             K[i, j] = PHt[i, 0] * S[0, j] + PHt[i, 1] * S[1, j] + PHt[i, 2] * S[2, j]
     for i in range(3):
         b[i] += K[i, 0] * e[0] + K[i, 1] * e[1] + K[i, 2] * e[2]
-    for i in range(3):                                     # P <- P - K (H P) = P - K PHt^T
+    for i in range(3):  # P <- P - K (H P) = P - K PHt^T
         for j in range(3):
             S[i, j] = P[i, j] - (K[i, 0] * PHt[j, 0] + K[i, 1] * PHt[j, 1] + K[i, 2] * PHt[j, 2])
     for i in range(3):
@@ -287,8 +327,13 @@ def _wrap(a):
     return (a + np.pi) % (2 * np.pi) - np.pi
 
 
-def inertial_lowpass(imu: ImuSamples, m_b: Vec3Series | None = None, *, declination: float = 0.0,
-                     settings: InertialLowpassSettings = InertialLowpassSettings()) -> AttitudeResult:
+def inertial_lowpass(
+    imu: ImuSamples,
+    m_b: Vec3Series | None = None,
+    *,
+    declination: float = 0.0,
+    settings: InertialLowpassSettings = InertialLowpassSettings(),
+) -> AttitudeResult:
     """Attitude of every sample (module docstring), causal, with automatic initial attitude.
 
     Parameters
@@ -327,20 +372,46 @@ def inertial_lowpass(imu: ImuSamples, m_b: Vec3Series | None = None, *, declinat
         m = np.zeros((T, N, 3))
     dt = float(s.typical_dt)
     st = settings
-    p = (st.bias_sigma_init ** 2, st.bias_forget_time, st.bias_clip,
-         st.bias_sigma_motion ** 2 * st.bias_motion_scale * st.tau_acc / dt, st.bias_sigma_rest ** 2 * st.rest_time / dt,
-         st.rest_time, st.rest_gyro ** 2, st.rest_accel ** 2, 1 - np.exp(-dt / st.mag_current_tau),
-         1 - np.exp(-dt / st.mag_ref_tau), st.mag_norm_tol, st.mag_dip_tol, st.mag_new_time, st.mag_new_first_time,
-         st.mag_new_min_gyro, st.mag_max_rejection, st.mag_rejection_factor, 1 - np.exp(-dt / st.tau_mag),
-         st.mag_settle_time, use_mag)
+    p = (
+        st.bias_sigma_init**2,
+        st.bias_forget_time,
+        st.bias_clip,
+        st.bias_sigma_motion**2 * st.bias_motion_scale * st.tau_acc / dt,
+        st.bias_sigma_rest**2 * st.rest_time / dt,
+        st.rest_time,
+        st.rest_gyro**2,
+        st.rest_accel**2,
+        1 - np.exp(-dt / st.mag_current_tau),
+        1 - np.exp(-dt / st.mag_ref_tau),
+        st.mag_norm_tol,
+        st.mag_dip_tol,
+        st.mag_new_time,
+        st.mag_new_first_time,
+        st.mag_new_min_gyro,
+        st.mag_max_rejection,
+        st.mag_rejection_factor,
+        1 - np.exp(-dt / st.tau_mag),
+        st.mag_settle_time,
+        use_mag,
+    )
     q_out, bias = np.empty((T, N, 4)), np.empty((T, N, 3))
     flags_out = np.zeros((2, T, N), dtype=bool)
-    run_trials(_kernel, T, w, np.ascontiguousarray(f), np.ascontiguousarray(m), s.dt, p,
-               np.stack([_butter2(st.tau_acc, dt), _butter2(st.rest_tau, dt)]), q_out, bias, flags_out)
+    run_trials(
+        _kernel,
+        T,
+        w,
+        np.ascontiguousarray(f),
+        np.ascontiguousarray(m),
+        s.dt,
+        p,
+        np.stack([_butter2(st.tau_acc, dt), _butter2(st.rest_tau, dt)]),
+        q_out,
+        bias,
+        flags_out,
+    )
     rejected, rest = flags_out
     if declination != 0.0:
-        q_out = np.stack(quat_mult_t(np.cos(declination / 2), 0.0, 0.0, -np.sin(declination / 2),
-                                     *np.moveaxis(q_out, -1, 0)), -1)
+        q_out = np.stack(quat_mult_t(np.cos(declination / 2), 0.0, 0.0, -np.sin(declination / 2), *np.moveaxis(q_out, -1, 0)), -1)
     found = dict(s.faults.flags)
     counts = dict(s.faults.counts)
     if use_mag:
