@@ -8,6 +8,7 @@ that ran and fails the session if the committed README disagrees
 (run ``make readme`` and commit). Enabled by ``make test`` (NAVLIB_CHECK_README=1),
 so a developer running one notebook by hand is not stopped by it.
 """
+
 import os
 import sys
 import time
@@ -32,7 +33,7 @@ def pytest_collection_modifyitems(config, items):
 
 
 def pytest_sessionfinish(session, exitstatus):
-    if hasattr(session.config, "workerinput"):            # an xdist worker: the controller checks
+    if hasattr(session.config, "workerinput"):  # an xdist worker: the controller checks
         return
     if exitstatus != 0 or os.environ.get("NAVLIB_CHECK_README") != "1":  # set by `make test`
         return

@@ -13,6 +13,7 @@
 
 Environments are made with uv (``pip install nox uv``); extra arguments after ``--`` go to pytest.
 """
+
 from __future__ import annotations
 
 import tomllib
@@ -29,8 +30,14 @@ ENV = {"PYTHONHASHSEED": "0", "MPLBACKEND": "Agg", "NAVLIB_PROGRESS": "0"}
 # Unit tests only: the notebooks (nbmake, test_teaching, test_isolation) are checked against the pins, whose
 # results the README quotes; test_install installs the pins; test_site needs the built site; test_packaging
 # checks the repository's configuration against the pins and runs the contributor tools.
-UNIT = ["tests", "--ignore=tests/test_teaching.py", "--ignore=tests/test_isolation.py", "--ignore=tests/test_install.py",
-        "--ignore=tests/test_site.py", "--ignore=tests/test_packaging.py"]
+UNIT = [
+    "tests",
+    "--ignore=tests/test_teaching.py",
+    "--ignore=tests/test_isolation.py",
+    "--ignore=tests/test_install.py",
+    "--ignore=tests/test_site.py",
+    "--ignore=tests/test_packaging.py",
+]
 
 
 def own_numba_cache(session: nox.Session) -> dict[str, str]:
@@ -59,8 +66,21 @@ def tests(session: nox.Session) -> None:
     """The pinned environment of `make test`: unit tests and every notebook."""
     session.install("-r", "environment.txt")
     session.install("--no-deps", "-e", ".")
-    session.run("python", "-m", "pytest", "tests", "notebooks", "--nbmake", "--nbmake-timeout=1800", "-n", "2",
-                "--dist", "loadgroup", *session.posargs, env=ENV)
+    session.run(
+        "python",
+        "-m",
+        "pytest",
+        "tests",
+        "notebooks",
+        "--nbmake",
+        "--nbmake-timeout=1800",
+        "-n",
+        "2",
+        "--dist",
+        "loadgroup",
+        *session.posargs,
+        env=ENV,
+    )
 
 
 @nox.session(python=PYTHONS[-1], default=False)

@@ -1,4 +1,5 @@
 """Attitude filters of navlib.filters (Mahony, quaternion KF) against ahrs (AHRS 0.4.0) and imufusion, same data, same run."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -35,8 +36,11 @@ def _ahrs_rows(case: str, w, f, m, q0, n_total: int, m_peer: int) -> list[Result
     peer = Mahony if "Mahony" in case else EKF
     kw = dict(k_P=1.0, k_I=0.02) if "Mahony" in case else dict(frame="ENU")
     t = best_time(lambda: peer(gyr=w[:m_peer], acc=f[:m_peer], mag=m[:m_peer], frequency=1 / DT, q0=q0, **kw), repeat=1)
-    return [Result(case, f"ahrs 0.4.0 {peer.__name__}", m_peer / t, "samples/s", t * n_total / m_peer,
-                   note=f"timed on {m_peer} samples")]
+    return [
+        Result(
+            case, f"ahrs 0.4.0 {peer.__name__}", m_peer / t, "samples/s", t * n_total / m_peer, note=f"timed on {m_peer} samples"
+        )
+    ]
 
 
 def _fusion_loop(w, f, m, m_peer: int):
@@ -51,6 +55,7 @@ def _fusion_loop(w, f, m, m_peer: int):
         filt = imufusion.Ahrs()
         for k in range(m_peer):
             filt.update(gyro_dps[k], acc_g[k], m[k])
+
     return fusion_loop
 
 
@@ -59,8 +64,16 @@ def _with_peers(case: str, navlib_run, w, f, m, q0, n: int, m_peer: int) -> tupl
     t, t_fusion = best_times(navlib_run, _fusion_loop(w, f, m, m_peer))
     rows = _ahrs_rows(case, w, f, m, q0, n, m_peer)
     if t_fusion is not None:
-        rows.append(Result(case, "imufusion (C, per-sample calls)", m_peer / t_fusion, "samples/s", t_fusion * n / m_peer,
-                           note=f"timed on {m_peer} samples"))
+        rows.append(
+            Result(
+                case,
+                "imufusion (C, per-sample calls)",
+                m_peer / t_fusion,
+                "samples/s",
+                t_fusion * n / m_peer,
+                note=f"timed on {m_peer} samples",
+            )
+        )
     return t, rows
 
 
@@ -79,12 +92,21 @@ def mahony_batch(quick: bool):
     The batch and one filter (its first trial) are timed alternately, best of five rounds each."""
     trials, n = (8, 36_000) if quick else (32, 180_000)
     w, f, m, q0 = _marg_data(n, trials, seed=1)
-    t, t_one = best_times(lambda: mh.mahony(ImuSamples(w, f, DT), q0, m_b=m),
-                          lambda: mh.mahony(ImuSamples(w[0], f[0], DT), q0, m_b=m[0]))
+    t, t_one = best_times(
+        lambda: mh.mahony(ImuSamples(w, f, DT), q0, m_b=m), lambda: mh.mahony(ImuSamples(w[0], f[0], DT), q0, m_b=m[0])
+    )
     single = n / t_one
-    return [Result(f"Mahony MARG, {trials} trials", "navlib.filters.mahony.mahony (numba)", trials * n / t, "samples/s", t,
-                   goal=1.8 * single, note=f"aggregate over the batch; goal: >= 1.8x one filter on 2 cores "
-                                           f"({single:.3g} samples/s, this run)")]
+    return [
+        Result(
+            f"Mahony MARG, {trials} trials",
+            "navlib.filters.mahony.mahony (numba)",
+            trials * n / t,
+            "samples/s",
+            t,
+            goal=1.8 * single,
+            note=f"aggregate over the batch; goal: >= 1.8x one filter on 2 cores ({single:.3g} samples/s, this run)",
+        )
+    ]
 
 
 def quaternion_kf(quick: bool):
@@ -92,11 +114,21 @@ def quaternion_kf(quick: bool):
     n = 36_000 if quick else 360_000
     w, f, m, q0 = _marg_data(n, seed=2)
     case = "quaternion KF (PI + KF)"
-    t, peers = _with_peers(case, lambda: qkf.quaternion_kf(ImuSamples(w, f, DT), q0, m_b=m, B_n=B_N), w, f, m, q0, n,
-                           1_000 if quick else 5_000)
+    t, peers = _with_peers(
+        case, lambda: qkf.quaternion_kf(ImuSamples(w, f, DT), q0, m_b=m, B_n=B_N), w, f, m, q0, n, 1_000 if quick else 5_000
+    )
     fusion = next((r.throughput for r in peers if r.implementation.startswith("imufusion")), None)
-    return [Result(case, "navlib.filters.quaternion_kf.quaternion_kf (numba)", n / t, "samples/s", t,
-                   goal=fusion, note="goal: >= 1x imufusion, this run" if fusion else "")] + peers
+    return [
+        Result(
+            case,
+            "navlib.filters.quaternion_kf.quaternion_kf (numba)",
+            n / t,
+            "samples/s",
+            t,
+            goal=fusion,
+            note="goal: >= 1x imufusion, this run" if fusion else "",
+        )
+    ] + peers
 
 
 CASES = [mahony_single, mahony_batch, quaternion_kf]

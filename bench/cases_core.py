@@ -1,4 +1,5 @@
 """Core cases: strapdown attitude and navigation, the Kalman step, IMU simulation."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -25,18 +26,40 @@ def strapdown_attitude(quick: bool):
             dq = np.concatenate([np.cos(a / 2), np.sinc(a / (2 * np.pi)) / 2 * rv], -1)
             q0_, q1, q2, q3 = q.T
             p0, p1, p2, p3 = dq.T
-            q = np.stack([q0_ * p0 - q1 * p1 - q2 * p2 - q3 * p3, q0_ * p1 + q1 * p0 + q2 * p3 - q3 * p2,
-                          q0_ * p2 - q1 * p3 + q2 * p0 + q3 * p1, q0_ * p3 + q1 * p2 - q2 * p1 + q3 * p0], -1)
+            q = np.stack(
+                [
+                    q0_ * p0 - q1 * p1 - q2 * p2 - q3 * p3,
+                    q0_ * p1 + q1 * p0 + q2 * p3 - q3 * p2,
+                    q0_ * p2 - q1 * p3 + q2 * p0 + q3 * p1,
+                    q0_ * p3 + q1 * p2 - q2 * p1 + q3 * p0,
+                ],
+                -1,
+            )
             q /= np.linalg.norm(q, axis=-1, keepdims=True)
         return q
 
-    m_ref = n // 20                                   # a slice is enough to time a Python loop
+    m_ref = n // 20  # a slice is enough to time a Python loop
     t_ref = best_time(lambda: numpy_over_trials(m_ref), repeat=1)
     total = trials * n
-    return [Result("strapdown attitude, 30 trials", "navlib (numba)", total / t_nav, "samples/s", t_nav,
-                   goal=30 * 360_000 / 0.5, note="goal: 30 trials x 1 h x 100 Hz in 0.5 s"),
-            Result("strapdown attitude, 30 trials", "numpy over trials", trials * m_ref / t_ref, "samples/s",
-                   t_ref * n / m_ref, note=f"timed on {m_ref} steps, scaled")]
+    return [
+        Result(
+            "strapdown attitude, 30 trials",
+            "navlib (numba)",
+            total / t_nav,
+            "samples/s",
+            t_nav,
+            goal=30 * 360_000 / 0.5,
+            note="goal: 30 trials x 1 h x 100 Hz in 0.5 s",
+        ),
+        Result(
+            "strapdown attitude, 30 trials",
+            "numpy over trials",
+            trials * m_ref / t_ref,
+            "samples/s",
+            t_ref * n / m_ref,
+            note=f"timed on {m_ref} steps, scaled",
+        ),
+    ]
 
 
 def strapdown_navigation(quick: bool):
@@ -84,8 +107,7 @@ def kalman_step(quick: bool):
             kf.update(z[k])
 
     t_fp = best_time(filterpy_loop, repeat=1)
-    rows.append(Result("Kalman step, 5 states", "filterpy", m / t_fp, "steps/s", t_fp * n / m,
-                       note=f"timed on {m} steps"))
+    rows.append(Result("Kalman step, 5 states", "filterpy", m / t_fp, "steps/s", t_fp * n / m, note=f"timed on {m} steps"))
     return rows
 
 

@@ -1,5 +1,6 @@
 """The first call of the main entry points in a fresh interpreter with an empty numba cache: compiled on the
 call, and after ``python -m navlib.warmup`` (each in its own interpreter, one cache directory per case)."""
+
 from __future__ import annotations
 
 import os
@@ -28,7 +29,7 @@ start = time.perf_counter()
 {call}
 print(time.perf_counter() - start)
 """
-GOAL_S = 1.0          # issue 38: each first call within 1 s
+GOAL_S = 1.0  # issue 38: each first call within 1 s
 
 
 def _run(code: str, cache: str) -> float:
@@ -42,13 +43,26 @@ def first_calls(quick: bool = False) -> list[Result]:
     for name, call in CALLS.items():
         with tempfile.TemporaryDirectory() as cache:
             cold = _run(SETUP.format(call=call), cache)
-            subprocess.run([sys.executable, "-m", "navlib.warmup"], env=dict(os.environ, NUMBA_CACHE_DIR=cache),
-                           capture_output=True, check=True, cwd=cache)
+            subprocess.run(
+                [sys.executable, "-m", "navlib.warmup"],
+                env=dict(os.environ, NUMBA_CACHE_DIR=cache),
+                capture_output=True,
+                check=True,
+                cwd=cache,
+            )
             warm = _run(SETUP.format(call=call), cache)
-        rows += [Result(f"first call: {name}", "navlib, after python -m navlib.warmup", 1 / warm, "calls/s", warm,
-                        goal=1 / GOAL_S, note=f"{warm:.2f} s in a fresh interpreter (goal <= {GOAL_S:g} s)"),
-                 Result(f"first call: {name}", "navlib, empty cache (compiles)", 1 / cold, "calls/s", cold,
-                        note=f"{cold:.2f} s")]
+        rows += [
+            Result(
+                f"first call: {name}",
+                "navlib, after python -m navlib.warmup",
+                1 / warm,
+                "calls/s",
+                warm,
+                goal=1 / GOAL_S,
+                note=f"{warm:.2f} s in a fresh interpreter (goal <= {GOAL_S:g} s)",
+            ),
+            Result(f"first call: {name}", "navlib, empty cache (compiles)", 1 / cold, "calls/s", cold, note=f"{cold:.2f} s"),
+        ]
     return rows
 
 

@@ -3,6 +3,7 @@ own interpreter so that its peak memory (maximum resident set) is its own. Repor
 size fitted over the sizes >= 10^4 (1 = linear in the work; the smallest size is mostly call overhead) and the
 peak memory beyond the interpreter's after import and a warm-up call, in bytes per sample (the call's inputs, about
 100 B per sample, included). The curves go to build/bench-growth.json, which the site's benchmarks page draws."""
+
 from __future__ import annotations
 
 import json
@@ -47,7 +48,7 @@ KERNELS = {
     "filters.mahony (MARG)": "mahony.mahony(ImuSamples(w, f, 0.01), q0, m_b=m_b)",
     "filters.quaternion_kf (MARG)": "quaternion_kf.quaternion_kf(ImuSamples(w, f, 0.01), q0, m_b=m_b, B_n=B_n)",
     "filters.zupt_ins.run_filter": "zupt_ins.run_filter(ImuSamples(w, f, 0.01), zupt_ins.Start(lla0, q0), "
-                                   "np.arange(n) % 100 < 30)",
+    "np.arange(n) % 100 < 30)",
     "strapdown.integrate": "strapdown.integrate(lla0, np.zeros(3), q0, w, f, 0.01)",
     "geodesy.geodetic2gk": "geodesy.geodetic2gk(np.full(n, 30.0) + w[:, 0], np.full(n, 114.3) + w[:, 1], deg=True)",
     "analysis.allan_deviation": "analysis.allan_deviation(w[:, 0], 0.01)",
@@ -59,8 +60,14 @@ MAX_SIZE = {"filters.zupt_ins.run_filter": 10**6, "montecarlo.run (trials)": 10*
 
 def _one(call: str, n: int) -> dict:
     code = SETUP.format(call=call, n=n)
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=ROOT,
-                         env=dict(os.environ, NAVLIB_PROGRESS="0"))
+    out = subprocess.run(
+        [sys.executable, "-c", code],
+        capture_output=True,
+        text=True,
+        check=True,
+        cwd=ROOT,
+        env=dict(os.environ, NAVLIB_PROGRESS="0"),
+    )
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
@@ -74,11 +81,17 @@ def growth(quick: bool = False) -> list[Result]:
         fit = np.array(sizes) >= 10**4
         exponent = float(np.polyfit(np.log(np.array(sizes)[fit]), np.log(t[fit]), 1)[0])
         per_sample = max(r["extra_kb"] for r in runs) * 1024 / sizes[-1]
-        curves[name] = {"sizes": sizes, "seconds": t.tolist(), "extra_kb": [r["extra_kb"] for r in runs],
-                        "exponent": exponent}
-        rows.append(Result(f"growth: {name}", "navlib", sizes[-1] / t[-1], "samples/s", float(t[-1]),
-                           note=f"time ~ N^{exponent:.2f} over 1e4..{sizes[-1]:.0e}; peak +{per_sample:.0f} B/sample "
-                                f"at N = {sizes[-1]:.0e}"))
+        curves[name] = {"sizes": sizes, "seconds": t.tolist(), "extra_kb": [r["extra_kb"] for r in runs], "exponent": exponent}
+        rows.append(
+            Result(
+                f"growth: {name}",
+                "navlib",
+                sizes[-1] / t[-1],
+                "samples/s",
+                float(t[-1]),
+                note=f"time ~ N^{exponent:.2f} over 1e4..{sizes[-1]:.0e}; peak +{per_sample:.0f} B/sample at N = {sizes[-1]:.0e}",
+            )
+        )
     (ROOT / "build").mkdir(exist_ok=True)
     (ROOT / "build" / "bench-growth.json").write_text(json.dumps(curves, indent=1) + "\n", encoding="utf-8")
     return rows

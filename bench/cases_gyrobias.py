@@ -1,4 +1,5 @@
 """Paper 001 cases: IMU samples per second through the rotation bias estimator and Eq. (2) integration."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -14,8 +15,7 @@ LAT = units.deg(40.0)
 def _rig(trials: int, duration: float):
     """MTi-100 on the reciprocating rig of paper 001 (pitch 30 deg, u = y_b), `trials` runs."""
     hpr0 = units.deg([0.0, 30.0, 0.0])
-    traj = trajectory.reciprocating_rotation(duration, DT, [LAT, 0, 0], hpr0, [0, 1, 0], np.pi / 2,
-                                             PERIOD, ROTATION_TIME)
+    traj = trajectory.reciprocating_rotation(duration, DT, [LAT, 0, 0], hpr0, [0, 1, 0], np.pi / 2, PERIOD, ROTATION_TIME)
     w, f = trajectory.ideal_imu(traj)
     imu = sensors.simulate_imu(w, f, DT, sensors.imu_model("MTi-100"), np.random.default_rng(0), n_trials=trials)
     starts, length = gyrobias.dwell_windows(w.shape[0], DT, PERIOD, ROTATION_TIME)
@@ -60,17 +60,37 @@ def estimator_and_integration(quick: bool):
     t_all = best_time(lambda: euler.integrate_euler(hpr0, imu.w_ib_b, DT, w_ie_n, estimate()[1], res.end))
     q0 = np.array([1.0, 0.0, 0.0, 0.0])
     t_quat = best_time(lambda: strapdown.integrate_attitude(q0, imu.w_ib_b, DT, w_ie_n))
-    m = 2000                                              # a slice is enough to time Python loops
+    m = 2000  # a slice is enough to time Python loops
     t_np = best_time(lambda: _euler_numpy(hpr0, imu.w_ib_b, DT, m), repeat=1)
     case = f"gyrobias, 30 runs x {duration / 3600:g} h"
-    rows = [Result(case, "navlib estimator + integration", total / t_all, "samples/s", t_all,
-                   note="tilt_residuals + running_lsq_bias + integrate_euler (bias-compensated)"),
-            Result(case, "navlib estimator only", total / t_est, "samples/s", t_est),
-            Result(case, "navlib Eq. (2) integration only", total / t_int, "samples/s", t_int),
-            Result(case, "navlib quaternion strapdown", total / t_quat, "samples/s", t_quat,
-                   note="strapdown.integrate_attitude, same samples (reference)"),
-            Result(case, "numpy Eq. (2) RK4 over trials", trials * m / t_np, "samples/s",
-                   t_np * imu.w_ib_b.shape[1] / m, note=f"timed on {m} steps, scaled")]
+    rows = [
+        Result(
+            case,
+            "navlib estimator + integration",
+            total / t_all,
+            "samples/s",
+            t_all,
+            note="tilt_residuals + running_lsq_bias + integrate_euler (bias-compensated)",
+        ),
+        Result(case, "navlib estimator only", total / t_est, "samples/s", t_est),
+        Result(case, "navlib Eq. (2) integration only", total / t_int, "samples/s", t_int),
+        Result(
+            case,
+            "navlib quaternion strapdown",
+            total / t_quat,
+            "samples/s",
+            t_quat,
+            note="strapdown.integrate_attitude, same samples (reference)",
+        ),
+        Result(
+            case,
+            "numpy Eq. (2) RK4 over trials",
+            trials * m / t_np,
+            "samples/s",
+            t_np * imu.w_ib_b.shape[1] / m,
+            note=f"timed on {m} steps, scaled",
+        ),
+    ]
     try:
         from ahrs.filters import AngularRate
     except ImportError:
@@ -78,8 +98,16 @@ def estimator_and_integration(quick: bool):
     n_ahrs = 20_000
     gyr = np.ascontiguousarray(imu.w_ib_b[0, :n_ahrs])
     t_ahrs = best_time(lambda: AngularRate(gyr=gyr, q0=q0, frequency=1 / DT), repeat=1)
-    rows.append(Result(case, "ahrs AngularRate (quaternion)", n_ahrs / t_ahrs, "samples/s",
-                       t_ahrs * total / n_ahrs, note=f"one run, {n_ahrs} samples, scaled"))
+    rows.append(
+        Result(
+            case,
+            "ahrs AngularRate (quaternion)",
+            n_ahrs / t_ahrs,
+            "samples/s",
+            t_ahrs * total / n_ahrs,
+            note=f"one run, {n_ahrs} samples, scaled",
+        )
+    )
     return rows
 
 

@@ -1,4 +1,5 @@
 """Monte Carlo at scale: 10⁷ north-finding trials through navlib.montecarlo, serial vs 2 workers."""
+
 from __future__ import annotations
 
 import os
@@ -12,8 +13,9 @@ from navlib import earth, montecarlo, units
 from navlib.papers import north_finding as nf
 
 SEED, BATCH = 2000, 100_000
-GRID = np.stack(np.meshgrid([0.0, 20.0, 28.361735, 45.0, 60.0], np.arange(5.0, 360.0, 10.0), [0.003, 0.01, 0.03],
-                            indexing="ij"), -1).reshape(-1, 3)     # latitude (deg) x heading (deg) x gyro (deg/h)
+GRID = np.stack(
+    np.meshgrid([0.0, 20.0, 28.361735, 45.0, 60.0], np.arange(5.0, 360.0, 10.0), [0.003, 0.01, 0.03], indexing="ij"), -1
+).reshape(-1, 3)  # latitude (deg) x heading (deg) x gyro (deg/h)
 SIGMA_ACCEL = units.ug(100)
 
 
@@ -29,16 +31,15 @@ def single_axis_batch(ids, streams, reps):
 
 def _timed(n, executor=None):
     t0 = time.perf_counter()
-    out = montecarlo.run(single_axis_batch, n, SEED, batch_size=BATCH, executor=executor, progress=False,
-                         reps=-(-n // len(GRID)))
+    out = montecarlo.run(single_axis_batch, n, SEED, batch_size=BATCH, executor=executor, progress=False, reps=-(-n // len(GRID)))
     return out["err"], time.perf_counter() - t0
 
 
-QUIET = {          # dask's own sampling (default period), each waking the worker's event loop and taking the GIL
-    "distributed.worker.profile.enabled": False,          # stacks of the running task (10 ms)
-    "distributed.admin.tick.interval": "1s",              # event-loop watchdog (20 ms)
-    "distributed.admin.system-monitor.interval": "5s",    # CPU, memory and network metrics (500 ms)
-    "distributed.worker.memory.monitor-interval": "1s",   # memory-limit checks (100 ms)
+QUIET = {  # dask's own sampling (default period), each waking the worker's event loop and taking the GIL
+    "distributed.worker.profile.enabled": False,  # stacks of the running task (10 ms)
+    "distributed.admin.tick.interval": "1s",  # event-loop watchdog (20 ms)
+    "distributed.admin.system-monitor.interval": "5s",  # CPU, memory and network metrics (500 ms)
+    "distributed.worker.memory.monitor-interval": "1s",  # memory-limit checks (100 ms)
 }
 """dask settings for CPU-bound batches on workers that occupy every core: with the defaults the workers'
 event loops took 3-10 % of a core beside each task and the tasks ran 15-25 % slower (three alternating
@@ -68,26 +69,49 @@ def monte_carlo_scale(quick: bool):
         dask = None
     configs = [("dask defaults", {}), ("QUIET settings", QUIET)] if dask else []
     for name, settings in configs:
-        with dask.config.set(settings), \
-                LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
-                Client(cluster) as client:
+        with (
+            dask.config.set(settings),
+            LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster,
+            Client(cluster) as client,
+        ):
             # Part of the cluster's start-up, like the workers' own: each worker imports navlib and loads the
             # compiled kernels once (the pool's forked workers inherit both from this process).
             t0 = time.perf_counter()
             client.run(_ready)
             t_ready = time.perf_counter() - t0
-            parallel.append((f"navlib dask 2 workers, {name}", *_timed(n, client.get_executor()),
-                             f"; LocalCluster; worker start-up (imports, kernel loads) {t_ready:.1f} s, not in the time",
-                             settings is QUIET))
+            parallel.append(
+                (
+                    f"navlib dask 2 workers, {name}",
+                    *_timed(n, client.get_executor()),
+                    f"; LocalCluster; worker start-up (imports, kernel loads) {t_ready:.1f} s, not in the time",
+                    settings is QUIET,
+                )
+            )
     again, t_after = _timed(n)
     serial = 2 * n / (t_before + t_after)
-    rows = [Result(case, "navlib serial", serial, "trials/s", (t_before + t_after) / 2,
-                   note=f"mean of a run before ({n / t_before:.3g} trials/s) and after ({n / t_after:.3g}) the "
-                        f"parallel ones; bit-identical: {np.array_equal(again, ref)}; {os.cpu_count()} cores")]
+    rows = [
+        Result(
+            case,
+            "navlib serial",
+            serial,
+            "trials/s",
+            (t_before + t_after) / 2,
+            note=f"mean of a run before ({n / t_before:.3g} trials/s) and after ({n / t_after:.3g}) the "
+            f"parallel ones; bit-identical: {np.array_equal(again, ref)}; {os.cpu_count()} cores",
+        )
+    ]
     for name, err, t, extra, goal in parallel:
-        rows.append(Result(case, name, n / t, "trials/s", t, goal=1.7 * serial if goal else None,
-                           note=f"{'goal: 1.7x serial; ' if goal else ''}bit-identical to serial: "
-                                f"{np.array_equal(err, ref)}{extra}"))
+        rows.append(
+            Result(
+                case,
+                name,
+                n / t,
+                "trials/s",
+                t,
+                goal=1.7 * serial if goal else None,
+                note=f"{'goal: 1.7x serial; ' if goal else ''}bit-identical to serial: {np.array_equal(err, ref)}{extra}",
+            )
+        )
     return rows
 
 

@@ -1,4 +1,5 @@
 """North-finding cases (paper 000): single-axis Monte Carlo trials per second."""
+
 from __future__ import annotations
 
 import math
@@ -41,15 +42,28 @@ def single_axis_monte_carlo(quick: bool):
     w_y, f_y = w[..., 1].tolist(), f[..., 1].tolist()
 
     def python_loop():
-        return [[_python_trial(w_y[h][k], f_y[h][k], norm[h, k], headings[h]) for k in range(1000)]
-                for h in range(len(headings))]
+        return [[_python_trial(w_y[h][k], f_y[h][k], norm[h, k], headings[h]) for k in range(1000)] for h in range(len(headings))]
 
     t_py = best_time(python_loop, repeat=1)
     total = len(headings) * n_trials
-    return [Result("single-axis Monte Carlo (Fig. 4)", "navlib (numpy, vectorised)", total / t_nav, "trials/s", t_nav,
-                   note=f"{len(headings)} headings x {n_trials} trials incl. simulation"),
-            Result("single-axis Monte Carlo (Fig. 4)", "plain Python loop", len(headings) * 1000 / t_py, "trials/s", t_py,
-                   note="estimation only (outputs pre-simulated)")]
+    return [
+        Result(
+            "single-axis Monte Carlo (Fig. 4)",
+            "navlib (numpy, vectorised)",
+            total / t_nav,
+            "trials/s",
+            t_nav,
+            note=f"{len(headings)} headings x {n_trials} trials incl. simulation",
+        ),
+        Result(
+            "single-axis Monte Carlo (Fig. 4)",
+            "plain Python loop",
+            len(headings) * 1000 / t_py,
+            "trials/s",
+            t_py,
+            note="estimation only (outputs pre-simulated)",
+        ),
+    ]
 
 
 CASES = [single_axis_monte_carlo]

@@ -1,4 +1,5 @@
 """Pedestrian case: the 15-state ZUPT/ZARU error-state filter of paper 004, per IMU step."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -37,7 +38,7 @@ def error_state_filter(quick: bool):
 
     start = zupt_ins.Start(LLA0, q0)
 
-    def navlib_run():                                   # validation and screening included, as a user calls it
+    def navlib_run():  # validation and screening included, as a user calls it
         zupt_ins.run_filter(ImuSamples(w, f, DT), start, static)
 
     def filterpy_loop():
@@ -51,13 +52,29 @@ def error_state_filter(quick: bool):
                 kf.update(np.zeros(6))
 
     t_nav, t_fp = best_times(navlib_run, filterpy_loop if KalmanFilter else None)
-    rows = [Result("15-state error-state INS step", "navlib.filters.zupt_ins (numba)", n / t_nav, "steps/s", t_nav,
-                   note="strapdown + predict each step, 6-component update every 10th")]
+    rows = [
+        Result(
+            "15-state error-state INS step",
+            "navlib.filters.zupt_ins (numba)",
+            n / t_nav,
+            "steps/s",
+            t_nav,
+            note="strapdown + predict each step, 6-component update every 10th",
+        )
+    ]
     if t_fp is not None:
         rows[0].goal = 3 * m / t_fp
         rows[0].note = "goal: ≥ 3× filterpy, this run; " + rows[0].note
-        rows.append(Result("15-state error-state INS step", "filterpy (KF only, no INS)", m / t_fp, "steps/s",
-                           t_fp * n / m, note=f"timed on {m} steps"))
+        rows.append(
+            Result(
+                "15-state error-state INS step",
+                "filterpy (KF only, no INS)",
+                m / t_fp,
+                "steps/s",
+                t_fp * n / m,
+                note=f"timed on {m} steps",
+            )
+        )
     return rows
 
 

@@ -1,4 +1,5 @@
 """Paper 002 cases: Gauss–Krüger projection vs pyproj, the 5-state EKF step vs filterpy."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -21,6 +22,7 @@ def gauss_kruger(quick: bool):
 
     try:
         import pyproj
+
         proj = pyproj.Proj("+proj=tmerc +ellps=GRS80 +lon_0=120 +k=1 +x_0=0 +y_0=0 +units=m")
     except ImportError:
         proj = None
@@ -69,8 +71,17 @@ def ekf_step(quick: bool):
     x0 = truth[0]
     config = planar_ekf.EkfConfig(planar.Q_PAPER, planar.R_PAPER, np.eye(5))
     t_nav = best_time(lambda: planar_ekf.filter_grid(t, z, x0, config))
-    rows = [Result("EKF step, 5 states (paper 002)", "navlib.filters.planar_ekf (numba)", n / t_nav, "steps/s", t_nav,
-                   goal=5e5, note="goal 0.5 M/s and 10x filterpy")]
+    rows = [
+        Result(
+            "EKF step, 5 states (paper 002)",
+            "navlib.filters.planar_ekf (numba)",
+            n / t_nav,
+            "steps/s",
+            t_nav,
+            goal=5e5,
+            note="goal 0.5 M/s and 10x filterpy",
+        )
+    ]
     try:
         import filterpy  # noqa: F401
     except ImportError:
@@ -78,8 +89,16 @@ def ekf_step(quick: bool):
     m = 5_000 if quick else 20_000
     t_fp = best_time(lambda: _filterpy_ekf(t[:m], z[:m], x0, planar.Q_PAPER, planar.R_PAPER), repeat=1)
     rows[0].goal = max(5e5, 10 * m / t_fp)
-    rows.append(Result("EKF step, 5 states (paper 002)", "filterpy ExtendedKalmanFilter", m / t_fp, "steps/s",
-                       t_fp * n / m, note=f"timed on {m} steps, scaled"))
+    rows.append(
+        Result(
+            "EKF step, 5 states (paper 002)",
+            "filterpy ExtendedKalmanFilter",
+            m / t_fp,
+            "steps/s",
+            t_fp * n / m,
+            note=f"timed on {m} steps, scaled",
+        )
+    )
     return rows
 
 

@@ -10,6 +10,7 @@ case (e.g. the strapdown batch: 30 trials x 1 h x 100 Hz in 0.5 s); a goal relat
 
     .venv/bin/python bench/run.py [--only SUBSTRING] [--quick]
 """
+
 from __future__ import annotations
 
 import argparse
@@ -31,10 +32,10 @@ CASE_MODULES = sorted(f"bench.{p.stem}" for p in Path(__file__).parent.glob("cas
 class Result:
     case: str
     implementation: str
-    throughput: float           # work units per second
-    unit: str                   # e.g. "samples/s"
-    seconds: float              # best wall time of one run
-    goal: float | None = None   # the case's goal in the same unit (navlib rows)
+    throughput: float  # work units per second
+    unit: str  # e.g. "samples/s"
+    seconds: float  # best wall time of one run
+    goal: float | None = None  # the case's goal in the same unit (navlib rows)
     note: str = ""
 
 
@@ -76,8 +77,7 @@ def main() -> int:
             print(f"running {case.__name__} ...", flush=True)
             results.extend(case(quick=args.quick))
     print()
-    print(f"{'case':42s} {'implementation':40s} {'throughput':>11s} {'unit':10s} {'vs navlib':>9s} {'vs goal':>8s}"
-          "  note (goal)")
+    print(f"{'case':42s} {'implementation':40s} {'throughput':>11s} {'unit':10s} {'vs navlib':>9s} {'vs goal':>8s}  note (goal)")
     for r in results:
         ref = next((x for x in results if x.case == r.case and x.implementation.startswith("navlib")), None)
         ratio = f"{r.throughput / ref.throughput:9.3g}" if ref else " " * 9
@@ -85,9 +85,17 @@ def main() -> int:
         print(f"{r.case:42.42s} {r.implementation:40.40s} {r.throughput:11.4g} {r.unit:10s} {ratio} {goal}  {r.note}")
     out = ROOT / "build" / "bench.json"
     out.parent.mkdir(exist_ok=True)
-    out.write_text(json.dumps({"machine": {"python": platform.python_version(), "cpus": os.cpu_count(),
-                                           "platform": platform.platform()},
-                               "quick": args.quick, "results": [asdict(r) for r in results]}, indent=1) + "\n")
+    out.write_text(
+        json.dumps(
+            {
+                "machine": {"python": platform.python_version(), "cpus": os.cpu_count(), "platform": platform.platform()},
+                "quick": args.quick,
+                "results": [asdict(r) for r in results],
+            },
+            indent=1,
+        )
+        + "\n"
+    )
     print(f"\nwrote {out.relative_to(ROOT)}")
     return 0
 

@@ -6,6 +6,7 @@ built into ``build/site/`` with this configuration (copied beside the sources). 
 load is served from the site itself: MathJax from the npm package pinned in ``docs/package.json``,
 fonts and scripts from the theme; widget JavaScript from a CDN is switched off.
 """
+
 from __future__ import annotations
 
 import re
@@ -26,9 +27,9 @@ suppress_warnings = ["mystnb.unknown_mime_type", "myst.header", "ref.python"]
 
 # Notebooks are rendered as executed by `make reproduce`, never executed again.
 nb_execution_mode = "off"
-nb_ipywidgets_js = {}                 # no widget JavaScript from a CDN (explorers draw a static default headless)
+nb_ipywidgets_js = {}  # no widget JavaScript from a CDN (explorers draw a static default headless)
 nb_merge_streams = True
-nb_render_markdown_format = "myst"     # computed captions and answers hold maths ($K_i = 0$) like the text cells
+nb_render_markdown_format = "myst"  # computed captions and answers hold maths ($K_i = 0$) like the text cells
 myst_enable_extensions = ["dollarmath", "amsmath", "colon_fence", "html_image"]
 myst_heading_anchors = 3
 # The chapters write display maths as Jupyter does: $$...$$ may open inside a paragraph.
@@ -37,15 +38,17 @@ myst_dmath_double_inline = True
 # numpydoc-style docstrings through napoleon; members as listed in each module's __all__.
 napoleon_numpy_docstring = True
 napoleon_google_docstring = False
-napoleon_use_ivar = True              # "Attributes" as a field list: autodoc documents the fields themselves
+napoleon_use_ivar = True  # "Attributes" as a field list: autodoc documents the fields themselves
 napoleon_custom_sections = [("What the filter does with bad samples", "notes_style")]
 autodoc_default_options = {"members": True, "show-inheritance": True}
 autodoc_member_order = "bysource"
 autodoc_typehints = "description"
 autodoc_preserve_defaults = True
 # numpy's ArrayLike is a long Union: show the alias names of navlib._typing instead.
-autodoc_type_aliases = {name: f"navlib._typing.{name}" for name in
-                        ("ArrayLike", "Array", "Scalar", "Vec3", "Vec3Series", "Quat", "Dcm", "Angles", "Times", "Interval")}
+autodoc_type_aliases = {
+    name: f"navlib._typing.{name}"
+    for name in ("ArrayLike", "Array", "Scalar", "Vec3", "Vec3Series", "Quat", "Dcm", "Angles", "Times", "Interval")
+}
 
 # MathJax 3 from the site's own _static (tools/build_site.py copies it from docs/node_modules, pinned in
 # docs/package.json and installed by `make docs` with npm ci): offline, no CDN. myst-parser adds the
@@ -58,12 +61,12 @@ html_static_path = ["_static"]
 html_extra_path = ["_extra"]
 html_js_files = ["ledger.js"]
 html_css_files = ["navlib.css"]
-html_favicon = "_static/favicon.svg"       # the site's own (else the browser asks for /favicon.ico)
+html_favicon = "_static/favicon.svg"  # the site's own (else the browser asks for /favicon.ico)
 html_last_updated_fmt = None
-html_domain_indices = False                    # the API index (api/index) lists the modules by group
-html_copy_source = True                        # the download button serves each chapter's .ipynb
+html_domain_indices = False  # the API index (api/index) lists the modules by group
+html_copy_source = True  # the download button serves each chapter's .ipynb
 html_sourcelink_suffix = ""
-html_context = {"default_mode": "light"}      # an explicit mode: the theme logs an error for an unset one
+html_context = {"default_mode": "light"}  # an explicit mode: the theme logs an error for an unset one
 html_theme_options = {
     "repository_url": "https://github.com/navlib-repro/navlib",
     "use_repository_button": True,

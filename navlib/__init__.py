@@ -46,13 +46,37 @@ Compiled kernels
     Sequential per-sample loops are compiled with numba (``@njit(cache=True)``)
     and run unchanged as plain Python with ``NUMBA_DISABLE_JIT=1``.
 """
+
 import importlib
 
 __version__ = "0.1.0"
 
-_SUBMODULES = ("alignment", "analysis", "atmosphere", "attitude", "calibration", "earth", "euler", "faults", "filters",
-               "geodesy", "imu", "io", "kalman", "montecarlo", "papers", "pdr", "plots", "repro", "robust", "sensors",
-               "strapdown", "timing", "trajectory", "units")
+_SUBMODULES = (
+    "alignment",
+    "analysis",
+    "atmosphere",
+    "attitude",
+    "calibration",
+    "earth",
+    "euler",
+    "faults",
+    "filters",
+    "geodesy",
+    "imu",
+    "io",
+    "kalman",
+    "montecarlo",
+    "papers",
+    "pdr",
+    "plots",
+    "repro",
+    "robust",
+    "sensors",
+    "strapdown",
+    "timing",
+    "trajectory",
+    "units",
+)
 __all__ = [*_SUBMODULES, "__version__"]
 
 

@@ -13,6 +13,7 @@ The per-sample quaternion helpers (:func:`quat_mult_t`, :func:`rotvec_to_quat_t`
 are the compiled twins of :mod:`navlib.attitude`'s vectorised functions; this module imports no other
 navlib module.
 """
+
 from __future__ import annotations
 
 import gc
@@ -58,7 +59,7 @@ class CompileLog(event.Listener):
                 fh.write(f"{time.perf_counter() - self.start:.3f} {self.name}\n")
 
 
-if os.environ.get("NAVLIB_COMPILE_LOG"):          # opt-in only
+if os.environ.get("NAVLIB_COMPILE_LOG"):  # opt-in only
     event.register("numba:compile", CompileLog(os.environ["NAVLIB_COMPILE_LOG"]))
 
 
@@ -73,13 +74,13 @@ def fma(a: float, b: float, c: float) -> float:
     if hasattr(math, "fma"):
         try:
             return math.fma(a, b, c)
-        except (ValueError, OverflowError):   # Python 3.13 raises where IEEE gives nan / inf
+        except (ValueError, OverflowError):  # Python 3.13 raises where IEEE gives nan / inf
             return a * b + c
     if not (math.isfinite(a) and math.isfinite(b) and math.isfinite(c)):
         return a * b + c
     exact = Fraction(a) * Fraction(b) + Fraction(c)
     if not exact:
-        return a * b + c                # an exact zero: the product is exact, and IEEE's sign of zero follows
+        return a * b + c  # an exact zero: the product is exact, and IEEE's sign of zero follows
     try:
         return float(exact)
     except OverflowError:
@@ -94,8 +95,7 @@ def _llvm_fma(typingctx, a, b, c):
     def codegen(context, builder, signature, args):
         d = ir.DoubleType()
         fn = builder.module.declare_intrinsic("llvm.fma", [d], ir.FunctionType(d, [d, d, d]))
-        return builder.call(fn, [context.cast(builder, v, t, types.float64)
-                                 for v, t in zip(args, signature.args, strict=True)])
+        return builder.call(fn, [context.cast(builder, v, t, types.float64) for v, t in zip(args, signature.args, strict=True)])
 
     return types.float64(a, b, c), codegen
 
@@ -112,9 +112,11 @@ def mat3_vec(C, v):
     Rounded as numba's ``C @ v`` (OpenBLAS's dgemv for 3 x 3) rounds it, so that either gives the same bits:
     per row the second product, fused with the first, fused with the third, added to a zeroed output.
     """
-    return (0.0 + fma(C[0][2], v[2], fma(C[0][0], v[0], C[0][1] * v[1])),
-            0.0 + fma(C[1][2], v[2], fma(C[1][0], v[0], C[1][1] * v[1])),
-            0.0 + fma(C[2][2], v[2], fma(C[2][0], v[0], C[2][1] * v[1])))
+    return (
+        0.0 + fma(C[0][2], v[2], fma(C[0][0], v[0], C[0][1] * v[1])),
+        0.0 + fma(C[1][2], v[2], fma(C[1][0], v[0], C[1][1] * v[1])),
+        0.0 + fma(C[2][2], v[2], fma(C[2][0], v[0], C[2][1] * v[1])),
+    )
 
 
 @njit(cache=True)
@@ -172,8 +174,7 @@ def level(ax, ay, az):
 def euler_to_quat(h, p, r):
     """q_b^n of heading, pitch, roll (rad): :func:`navlib.attitude.euler_to_quat`, compiled (no sign fix-up)."""
     ch, sh, cp, sp, cr, sr = np.cos(h / 2), np.sin(h / 2), np.cos(p / 2), np.sin(p / 2), np.cos(r / 2), np.sin(r / 2)
-    return (ch * cp * cr + sh * sp * sr, ch * sp * cr + sh * cp * sr, ch * cp * sr - sh * sp * cr,
-            -sh * cp * cr + ch * sp * sr)
+    return (ch * cp * cr + sh * sp * sr, ch * sp * cr + sh * cp * sr, ch * cp * sr - sh * sp * cr, -sh * cp * cr + ch * sp * sr)
 
 
 @njit(cache=True)
@@ -187,7 +188,7 @@ def tilt_heading(mx, my, mz, pitch, roll):
     mhx = mx * cr + mz * sr
     mhy = my * cp + mx * sp * sr - mz * sp * cr
     a = np.mod(np.arctan2(-mhx, mhy), 2 * np.pi)
-    return a * (a < 2 * np.pi)                               # [0, 2 pi): a rounded-up 2 pi is north
+    return a * (a < 2 * np.pi)  # [0, 2 pi): a rounded-up 2 pi is north
 
 
 MAD_TO_SIGMA = 1.4826
@@ -253,7 +254,7 @@ def kalman_update(x, P, z, h, H, R, angle_mask, gate=np.inf):
     for j in range(m):
         if angle_mask[j] and finite[j]:
             y[j] = wrap_pi(y[j])
-    if n_used == m:                      # common case: no dropout, no copies
+    if n_used == m:  # common case: no dropout, no copies
         Hs, Rs, ys = H, R, y
     else:
         idx = np.nonzero(finite)[0]
@@ -277,13 +278,16 @@ def kalman_update(x, P, z, h, H, R, angle_mask, gate=np.inf):
 # --------------------------------------------------------------------------
 # Per-sample twins of navlib.attitude's vectorised functions for compiled kernels, tested against them.
 
+
 @njit(cache=True, inline="always")
 def quat_mult_t(a0, a1, a2, a3, b0, b1, b2, b3):
     """Hamilton product on scalars, returned as a tuple (allocation-free kernel helper)."""
-    return (a0 * b0 - a1 * b1 - a2 * b2 - a3 * b3,
-            a0 * b1 + a1 * b0 + a2 * b3 - a3 * b2,
-            a0 * b2 - a1 * b3 + a2 * b0 + a3 * b1,
-            a0 * b3 + a1 * b2 - a2 * b1 + a3 * b0)
+    return (
+        a0 * b0 - a1 * b1 - a2 * b2 - a3 * b3,
+        a0 * b1 + a1 * b0 + a2 * b3 - a3 * b2,
+        a0 * b2 - a1 * b3 + a2 * b0 + a3 * b1,
+        a0 * b3 + a1 * b2 - a2 * b1 + a3 * b0,
+    )
 
 
 @njit(cache=True, inline="always")
@@ -296,8 +300,8 @@ def rotvec_to_quat_t(rx, ry, rz):
     """
     a2 = rx * rx + ry * ry + rz * rz
     if a2 < 2.5e-3:
-        c = 1 - a2 / 8 + a2 * a2 / 384 - a2 * a2 * a2 / 46080 + a2 ** 4 / 10321920
-        k = 0.5 - a2 / 48 + a2 * a2 / 3840 - a2 * a2 * a2 / 645120 + a2 ** 4 / 185794560
+        c = 1 - a2 / 8 + a2 * a2 / 384 - a2 * a2 * a2 / 46080 + a2**4 / 10321920
+        k = 0.5 - a2 / 48 + a2 * a2 / 3840 - a2 * a2 * a2 / 645120 + a2**4 / 185794560
     else:
         a = np.sqrt(a2)
         c = np.cos(a / 2)
@@ -326,9 +330,11 @@ def quat_normalize_1(q):
 @njit(cache=True)
 def quat_to_dcm_t(q0, q1, q2, q3):
     """C_b^n of one unit quaternion as a tuple of rows (allocation-free kernel helper)."""
-    return ((q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3, 2 * (q1 * q2 - q0 * q3), 2 * (q1 * q3 + q0 * q2)),
-            (2 * (q1 * q2 + q0 * q3), q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3, 2 * (q2 * q3 - q0 * q1)),
-            (2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3))
+    return (
+        (q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3, 2 * (q1 * q2 - q0 * q3), 2 * (q1 * q3 + q0 * q2)),
+        (2 * (q1 * q2 + q0 * q3), q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3, 2 * (q2 * q3 - q0 * q1)),
+        (2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3),
+    )
 
 
 @njit(cache=True)
@@ -355,12 +361,19 @@ def nav_step(lla, vel, q, w, f, dt, earth_consts, hold_height=False):
     Written on scalars and tuples, it allocates nothing; each operation is the one the former array form did
     (``0.0 + x`` included, the zero component of w_ie), so the results are bit for bit those of that form.
     """
-    a, flat, e2, m, gamma_e, k_som, omega = (earth_consts[0], earth_consts[1], earth_consts[2], earth_consts[3],
-                                            earth_consts[4], earth_consts[5], earth_consts[6])
+    a, flat, e2, m, gamma_e, k_som, omega = (
+        earth_consts[0],
+        earth_consts[1],
+        earth_consts[2],
+        earth_consts[3],
+        earth_consts[4],
+        earth_consts[5],
+        earth_consts[6],
+    )
     lat, h = lla[0], lla[2]
     sl, cl = np.sin(lat), np.cos(lat)
     R_M, R_N = radii_mn(lat, a, e2)
-    w_ie1, w_ie2 = omega * cl, omega * sl                                       # w_ie = (0, w_ie1, w_ie2)
+    w_ie1, w_ie2 = omega * cl, omega * sl  # w_ie = (0, w_ie1, w_ie2)
     w_en0, w_en1, w_en2 = -vel[1] / (R_M + h), vel[0] / (R_N + h), vel[0] * sl / cl / (R_N + h)
     w_in0, w_in1, w_in2 = 0.0 + w_en0, w_ie1 + w_en1, w_ie2 + w_en2
     q0, q1, q2, q3 = q[0], q[1], q[2], q[3]
@@ -368,12 +381,12 @@ def nav_step(lla, vel, q, w, f, dt, earth_consts, hold_height=False):
     n0, n1, n2, n3 = rotvec_to_quat_t(-w_in0 * half, -w_in1 * half, -w_in2 * half)
     b0, b1, b2, b3 = rotvec_to_quat_t(w[0] * half, w[1] * half, w[2] * half)
     m0, m1, m2, m3 = quat_mult_t(n0, n1, n2, n3, q0, q1, q2, q3)
-    m0, m1, m2, m3 = quat_mult_t(m0, m1, m2, m3, b0, b1, b2, b3)                # mid-interval attitude
+    m0, m1, m2, m3 = quat_mult_t(m0, m1, m2, m3, b0, b1, b2, b3)  # mid-interval attitude
     f_n = mat3_vec(quat_to_dcm_t(m0, m1, m2, m3), f)
     g = normal_gravity(lat, h, a, flat, e2, m, gamma_e, k_som)
-    u0, u1, u2 = 0.0 + w_en0, 2 * w_ie1 + w_en1, 2 * w_ie2 + w_en2             # 2 w_ie + w_en
+    u0, u1, u2 = 0.0 + w_en0, 2 * w_ie1 + w_en1, 2 * w_ie2 + w_en2  # 2 w_ie + w_en
     v0, v1, v2 = vel[0], vel[1], vel[2]
-    vn0 = v0 + (f_n[0] - (u1 * v2 - u2 * v1)) * dt                            # v + (f_n - u x v) dt
+    vn0 = v0 + (f_n[0] - (u1 * v2 - u2 * v1)) * dt  # v + (f_n - u x v) dt
     vn1 = v1 + (f_n[1] - (u2 * v0 - u0 * v2)) * dt
     vn2 = v2 + (f_n[2] - (u0 * v1 - u1 * v0)) * dt
     vn2 -= g * dt
@@ -400,6 +413,7 @@ def nav_step(lla, vel, q, w, f, dt, earth_consts, hold_height=False):
 # n <= 9 (getf2, trti2, the unblocked getri, and the gemv_n / dot kernels of its x86-64 SkylakeX
 # build), so that it returns numpy.linalg.inv's bits (tests/test_ahrs.py checks it).
 
+
 @njit(cache=True, inline="always")
 def _gemv_sub(a, lda, M, N, r0, c0, x, ycol, y0):
     """``a[y0 + r, ycol] -= sum_c a[r0 + r, c0 + c] x[c]`` for r < M, c < N: OpenBLAS dgemv_n with alpha = -1.
@@ -422,7 +436,7 @@ def _gemv_sub(a, lda, M, N, r0, c0, x, ycol, y0):
                 c += 2
             if c < N:
                 y = y - a[r0 + r, c0 + c] * x[c]
-        else:                                       # (for n <= 3, lda == M % 4 takes no other branch: N < 4)
+        else:  # (for n <= 3, lda == M % 4 takes no other branch: N < 4)
             t = 0.0
             for c in range(N):
                 t = fma(a[r0 + r, c0 + c], x[c], t)
@@ -453,7 +467,7 @@ def _lu(a, n, ipiv, work):
     """
     info = 0
     for j in range(n):
-        for i in range(j):                              # earlier row swaps, on this column
+        for i in range(j):  # earlier row swaps, on this column
             p = ipiv[i]
             if p != i:
                 a[i, j], a[p, j] = a[p, j], a[i, j]
@@ -471,7 +485,7 @@ def _lu(a, n, ipiv, work):
         if pivot == 0.0:
             if info == 0:
                 info = j + 1
-        elif abs(pivot) >= 2.2250738585072014e-308:     # DBL_MIN
+        elif abs(pivot) >= 2.2250738585072014e-308:  # DBL_MIN
             inv = 1.0 / pivot
             if p != j:
                 for c in range(j + 1):
@@ -536,7 +550,7 @@ def stuck_runs(t0, t1, x, run, rail, out):
             for i in range(1, n + 1):
                 v = x[t, i - 1, c]
                 if i < n and x[t, i, c] == v and abs(v) < rail:
-                    continue                                # the run goes on
+                    continue  # the run goes on
                 if i - start >= run:
                     out[t, start:i, c] = True
                 start = i

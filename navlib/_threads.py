@@ -5,6 +5,7 @@ load takes fewer), and runs them on ``NUMBA_NUM_THREADS`` threads of a pool kept
 Callers make each chunk write only its own outputs (or return its own partial result), so results do
 not depend on the number of threads.
 """
+
 from __future__ import annotations
 
 import os
@@ -15,7 +16,7 @@ from typing import TypeVar
 R = TypeVar("R")
 
 _POOLS: dict[int, ThreadPoolExecutor] = {}
-os.register_at_fork(after_in_child=_POOLS.clear)            # a forked child has none of the parent's threads
+os.register_at_fork(after_in_child=_POOLS.clear)  # a forked child has none of the parent's threads
 
 
 def run_chunks(fn: Callable[[int, int], R], n: int) -> list[R]:

@@ -3,6 +3,7 @@
 Trailing dimensions follow the conventions in :mod:`navlib`: vectors on the
 last axis, time on the axis before it, leading axes free (trials).
 """
+
 from __future__ import annotations
 
 import numpy as np

@@ -10,6 +10,7 @@ a ``ValueError``. Magnitudes beyond :data:`MAX_MAGNITUDE` (whose square overflow
 float64) are refused too, except where a function is exact at any magnitude.
 tools/fuzz.py calls every public function with such values.
 """
+
 from __future__ import annotations
 
 from typing import Any
@@ -31,8 +32,16 @@ class InputTypeError(TypeError, ValueError):
 
 # numpy dtype kinds that are not real numbers: bool, complex, object, bytes,
 # str, void (records), datetime64, timedelta64.
-_NOT_REAL = {"b": "a boolean", "c": "a complex", "O": "an object", "S": "a bytes", "U": "a string",
-             "V": "a record", "M": "a datetime", "m": "a timedelta"}
+_NOT_REAL = {
+    "b": "a boolean",
+    "c": "a complex",
+    "O": "an object",
+    "S": "a bytes",
+    "U": "a string",
+    "V": "a record",
+    "M": "a datetime",
+    "m": "a timedelta",
+}
 
 
 def real(x: ArrayLike, name: str) -> np.ndarray:
@@ -46,12 +55,13 @@ def real(x: ArrayLike, name: str) -> np.ndarray:
         raise InputTypeError(f"{name}: expected a real numeric array, got {type(x).__name__} {x!r:.40}")
     try:
         arr = np.asarray(x)
-    except (TypeError, ValueError) as exc:   # ragged nested sequences
+    except (TypeError, ValueError) as exc:  # ragged nested sequences
         raise InputTypeError(f"{name}: expected a real numeric array, got {type(x).__name__}") from exc
     kind = _NOT_REAL.get(arr.dtype.kind)
     if kind is not None:
-        raise InputTypeError(f"{name}: expected a real numeric array, got {kind} {'array' if arr.ndim else 'value'}"
-                             f" (dtype {arr.dtype})")
+        raise InputTypeError(
+            f"{name}: expected a real numeric array, got {kind} {'array' if arr.ndim else 'value'} (dtype {arr.dtype})"
+        )
     return arr.astype(float, copy=False)
 
 
@@ -62,9 +72,19 @@ scaling error; the few functions exact at any magnitude (quaternion normalisatio
 unit conversions) opt out with ``huge=True`` or check their own limit."""
 
 
-def as_array(x: ArrayLike, name: str, *, tail: tuple[int, ...] = (), finite: bool = True,
-             allow_nan: bool = False, min_ndim: int = 0, shape: tuple[int | None, ...] | None = None,
-             huge: bool = False, of: str = "", nonempty: bool = False) -> np.ndarray:
+def as_array(
+    x: ArrayLike,
+    name: str,
+    *,
+    tail: tuple[int, ...] = (),
+    finite: bool = True,
+    allow_nan: bool = False,
+    min_ndim: int = 0,
+    shape: tuple[int | None, ...] | None = None,
+    huge: bool = False,
+    of: str = "",
+    nonempty: bool = False,
+) -> np.ndarray:
     """Return ``x`` as a float64 array whose trailing shape is ``tail``.
 
     Parameters
@@ -97,7 +117,7 @@ def as_array(x: ArrayLike, name: str, *, tail: tuple[int, ...] = (), finite: boo
     aside where it is accepted) and not huge, and the element-wise checks that name the fault are skipped.
     """
     arr = real(x, name)
-    if tail and arr.shape[arr.ndim - len(tail):] != tail or arr.ndim < len(tail) + min_ndim:
+    if tail and arr.shape[arr.ndim - len(tail) :] != tail or arr.ndim < len(tail) + min_ndim:
         want = "(" + ", ".join(["..."] + [str(t) for t in tail]) + ")"
         raise ValueError(f"{name}: expected shape {want}, got {arr.shape}")
     if shape is not None:
@@ -120,8 +140,10 @@ def _within_limits(arr: np.ndarray, ignore_nan: bool) -> bool:
     """True if every value lies within +-MAX_MAGNITUDE (two reductions, no temporaries); a NaN makes it
     False unless ``ignore_nan``. An empty array is within them."""
     lowest, highest = (np.fmin, np.fmax) if ignore_nan else (np.minimum, np.maximum)
-    return bool(-MAX_MAGNITUDE <= lowest.reduce(arr, axis=None, initial=0.0)
-                and highest.reduce(arr, axis=None, initial=0.0) <= MAX_MAGNITUDE)
+    return bool(
+        -MAX_MAGNITUDE <= lowest.reduce(arr, axis=None, initial=0.0)
+        and highest.reduce(arr, axis=None, initial=0.0) <= MAX_MAGNITUDE
+    )
 
 
 def _magnitude(arr: np.ndarray, name: str) -> None:
@@ -129,8 +151,10 @@ def _magnitude(arr: np.ndarray, name: str) -> None:
     big = np.abs(arr) > MAX_MAGNITUDE
     if big.any() and np.isfinite(arr[big]).any():
         top = np.abs(arr[big & np.isfinite(arr)]).max()
-        raise ValueError(f"{name}: expected magnitudes up to {MAX_MAGNITUDE:g}, got {top:g} (its square overflows "
-                         f"float64; wrong units or scaling?)")
+        raise ValueError(
+            f"{name}: expected magnitudes up to {MAX_MAGNITUDE:g}, got {top:g} (its square overflows "
+            f"float64; wrong units or scaling?)"
+        )
 
 
 def _exact_shape(arr: np.ndarray, name: str, shape: tuple[int | None, ...], of: str = "") -> np.ndarray:
@@ -149,23 +173,26 @@ def booleans(x: ArrayLike, name: str, *, shape: tuple[int | None, ...] | None = 
     """
     try:
         arr = np.asarray(x)
-    except (TypeError, ValueError) as exc:   # ragged nested sequences
+    except (TypeError, ValueError) as exc:  # ragged nested sequences
         raise InputTypeError(f"{name}: expected booleans, got a ragged {type(x).__name__}") from exc
     if arr.dtype != bool:
         raise InputTypeError(f"{name}: expected booleans, got dtype {arr.dtype}")
     return arr if shape is None else _exact_shape(arr, name, shape, of)
 
 
-def in_range(arr: np.ndarray, name: str, lo: float, hi: float, unit: str = "",
-             *, lo_open: bool = False, hi_open: bool = False) -> np.ndarray:
+def in_range(
+    arr: np.ndarray, name: str, lo: float, hi: float, unit: str = "", *, lo_open: bool = False, hi_open: bool = False
+) -> np.ndarray:
     """Check ``lo <= arr <= hi`` (with optional open ends) elementwise."""
     ok_lo = arr > lo if lo_open else arr >= lo
     ok_hi = arr < hi if hi_open else arr <= hi
     if not np.all(ok_lo & ok_hi):
         lb = "(" if lo_open else "["
         rb = ")" if hi_open else "]"
-        raise ValueError(f"{name}: expected values in {lb}{lo:g}, {hi:g}{rb}{' ' + unit if unit else ''}, "
-                         f"got min {np.nanmin(arr):g}, max {np.nanmax(arr):g}")
+        raise ValueError(
+            f"{name}: expected values in {lb}{lo:g}, {hi:g}{rb}{' ' + unit if unit else ''}, "
+            f"got min {np.nanmin(arr):g}, max {np.nanmax(arr):g}"
+        )
     return arr
 
 
@@ -175,8 +202,10 @@ def pitch_roll(pitch: ArrayLike, roll: ArrayLike, names: tuple[str, str] = ("pit
     for x, name, limit in ((pitch, names[0], np.pi / 2), (roll, names[1], np.pi)):
         a = as_array(x, name)
         if np.any(np.abs(a) > limit + 1e-12):
-            raise ValueError(f"{name}: expected radians within [{-limit:.4g}, {limit:.4g}], got max |{name}| "
-                             f"{np.max(np.abs(a)):g} (degrees? convert with np.deg2rad)")
+            raise ValueError(
+                f"{name}: expected radians within [{-limit:.4g}, {limit:.4g}], got max |{name}| "
+                f"{np.max(np.abs(a)):g} (degrees? convert with np.deg2rad)"
+            )
         out.append(a)
     return out[0], out[1]
 
@@ -217,8 +246,9 @@ def time_axis(t: Times, name: str = "time", *, increasing: bool = True, min_samp
     """Return a 1-D time vector (s) of at least ``min_samples`` samples, strictly increasing unless ``increasing=False``."""
     arr = as_array(t, name)
     if arr.ndim != 1 or arr.size < min_samples:
-        raise ValueError(f"{name}: expected a 1-D array of at least {min_samples} sample{'s' * (min_samples > 1)}, "
-                         f"got shape {arr.shape}")
+        raise ValueError(
+            f"{name}: expected a 1-D array of at least {min_samples} sample{'s' * (min_samples > 1)}, got shape {arr.shape}"
+        )
     if increasing and np.any(np.diff(arr) <= 0):
         raise ValueError(f"{name}: expected strictly increasing times (run navlib.timing.sanitize first)")
     return arr
@@ -235,8 +265,7 @@ def as_dcm(C: Dcm, name: str = "C_bn", **shape: Any) -> np.ndarray:
     C = as_array(C, name, tail=(3, 3), **shape)
     err = np.abs(np.swapaxes(C, -1, -2) @ C - np.eye(3)).max(initial=0.0)
     if err > ORTHO_TOL or np.any(np.linalg.det(C) < 0):
-        raise ValueError(f"{name}: expected proper rotation matrices (orthonormal, det +1); "
-                         f"max |C^T C - I| = {err:.2e}")
+        raise ValueError(f"{name}: expected proper rotation matrices (orthonormal, det +1); max |C^T C - I| = {err:.2e}")
     return C
 
 
@@ -255,7 +284,7 @@ def as_quat(q: Quat, name: str = "q", *, normalize: bool = True, **shape: Any) -
     q = as_array(q, name, tail=(4,), huge=normalize, **shape)
     if normalize:
         big = np.abs(q).max(axis=-1, keepdims=True)
-        if np.any(big > MAX_MAGNITUDE):            # |q|^2 would overflow: scale first (exact, a power of two)
+        if np.any(big > MAX_MAGNITUDE):  # |q|^2 would overflow: scale first (exact, a power of two)
             q = q / np.exp2(np.floor(np.log2(np.where(big > MAX_MAGNITUDE, big, 1.0))))
     n = np.linalg.norm(q, axis=-1, keepdims=True)
     if np.any(n < QUAT_MIN_NORM):
@@ -263,9 +292,18 @@ def as_quat(q: Quat, name: str = "q", *, normalize: bool = True, **shape: Any) -
     return q / n if normalize else q
 
 
-def scalar(x: ArrayLike, name: str, *, positive: bool = False, allow_zero: bool = False, allow_inf: bool = False,
-           huge: bool = False, allow_nan: bool = False, within: tuple[float, float] | None = None,
-           open_ends: tuple[bool, bool] = (False, False)) -> float:
+def scalar(
+    x: ArrayLike,
+    name: str,
+    *,
+    positive: bool = False,
+    allow_zero: bool = False,
+    allow_inf: bool = False,
+    huge: bool = False,
+    allow_nan: bool = False,
+    within: tuple[float, float] | None = None,
+    open_ends: tuple[bool, bool] = (False, False),
+) -> float:
     """Return ``x`` as a Python float; optionally > 0 (or >= 0 with ``allow_zero``); inf only if ``allow_inf``.
 
     ``allow_nan``: NaN is accepted as such (a figure that was not computed). ``within``: the bounds
@@ -284,8 +322,14 @@ def scalar(x: ArrayLike, name: str, *, positive: bool = False, allow_zero: bool 
     return value
 
 
-def numbers(obj: Any, *, positive: tuple[str, ...] = (), non_negative: tuple[str, ...] = (), real: tuple[str, ...] = (),
-            infinite: tuple[str, ...] = ()) -> None:
+def numbers(
+    obj: Any,
+    *,
+    positive: tuple[str, ...] = (),
+    non_negative: tuple[str, ...] = (),
+    real: tuple[str, ...] = (),
+    infinite: tuple[str, ...] = (),
+) -> None:
     """Check the named attributes of ``obj`` (a model's fields) as scalars, each named in its message: > 0,
     >= 0 or any real number; those in ``infinite`` may also be inf (a full-scale range without a limit)."""
     for names, sign in ((non_negative, {"allow_zero": True}), (positive, {"positive": True}), (real, {})):
@@ -317,10 +361,13 @@ def flag(x: bool, name: str) -> bool:
 
 def choice(x: Any, name: str, options: tuple[Any, ...]) -> Any:
     """Return ``x`` if it is one of ``options`` (strings, or e.g. the allowed integer settings); arrays are refused."""
-    try:                                     # an array, even 0-d (which compares like its element), is refused
-        ok = not isinstance(x, np.ndarray) and x in options and (
-            not isinstance(x, (bool, np.bool_)) or any(isinstance(o, bool) for o in options))
-    except (TypeError, ValueError):          # an unhashable value
+    try:  # an array, even 0-d (which compares like its element), is refused
+        ok = (
+            not isinstance(x, np.ndarray)
+            and x in options
+            and (not isinstance(x, (bool, np.bool_)) or any(isinstance(o, bool) for o in options))
+        )
+    except (TypeError, ValueError):  # an unhashable value
         ok = False
     if not ok:
         raise ValueError(f"{name}: expected one of {tuple(options)}, got {x!r}")
@@ -382,8 +429,9 @@ def broadcast_to(arr: np.ndarray, name: str, shape: tuple[int, ...], of: str = "
     try:
         return np.broadcast_to(arr, shape)
     except ValueError:
-        raise ValueError(f"{name}: expected a shape that broadcasts to {tuple(shape)}{f' (that of {of})' if of else ''}, "
-                         f"got {np.shape(arr)}") from None
+        raise ValueError(
+            f"{name}: expected a shape that broadcasts to {tuple(shape)}{f' (that of {of})' if of else ''}, got {np.shape(arr)}"
+        ) from None
 
 
 ELLIPSOID_FIELDS = ("a", "f", "GM", "omega")
@@ -410,12 +458,15 @@ def range_limit(x: float | None, name: str) -> float:
 MIN_INTERVAL = 1e-9
 """Shortest sample interval (s) :func:`sample_intervals` accepts."""
 
+
 def interval(dt: float, name: str = "dt") -> float:
     """A fixed sample interval (s): a positive scalar of at least :data:`MIN_INTERVAL`."""
     value = scalar(dt, name, positive=True)
     if value < MIN_INTERVAL:
-        raise ValueError(f"{name}: expected a sample interval of at least {MIN_INTERVAL:g} s (no IMU samples faster than "
-                         f"1 GHz; is {name} in seconds?), got {value:g}")
+        raise ValueError(
+            f"{name}: expected a sample interval of at least {MIN_INTERVAL:g} s (no IMU samples faster than "
+            f"1 GHz; is {name} in seconds?), got {value:g}"
+        )
     return value
 
 
@@ -426,7 +477,7 @@ attitude updates and linearised transitions are meaningless beyond it (2000 deg/
 
 def small_turns(w: np.ndarray, dts: np.ndarray, name: str = "dt") -> None:
     """Refuse intervals ``dts`` (N,) over which the gyro ``w`` (..., N, 3) turns more than :data:`MAX_TURN_PER_SAMPLE`."""
-    if dts.size:            # a bound from two reductions settles the common case
+    if dts.size:  # a bound from two reductions settles the common case
         peak = max(-np.fmin.reduce(w, axis=None, initial=0.0), np.fmax.reduce(w, axis=None, initial=0.0))
         if np.sqrt(3.0) * peak * dts.max() <= MAX_TURN_PER_SAMPLE:
             return
@@ -436,8 +487,10 @@ def small_turns(w: np.ndarray, dts: np.ndarray, name: str = "dt") -> None:
 def refuse_turn(largest: float, name: str = "dt") -> None:
     """Refuse ``largest``, the largest gyro turn within one interval (rad), above :data:`MAX_TURN_PER_SAMPLE`."""
     if largest > MAX_TURN_PER_SAMPLE:
-        raise ValueError(f"{name}: the gyro turns up to {largest:.3g} rad within one interval; integrating it "
-                         f"needs less than {MAX_TURN_PER_SAMPLE:g} rad per sample (is {name} in seconds?)")
+        raise ValueError(
+            f"{name}: the gyro turns up to {largest:.3g} rad within one interval; integrating it "
+            f"needs less than {MAX_TURN_PER_SAMPLE:g} rad per sample (is {name} in seconds?)"
+        )
 
 
 def sample_intervals(dt: Interval, n: int, name: str = "dt") -> np.ndarray:
@@ -446,7 +499,7 @@ def sample_intervals(dt: Interval, n: int, name: str = "dt") -> np.ndarray:
     This is navlib's one reading of ``dt``: every filter accepts a fixed interval
     or per-sample intervals (e.g. :func:`navlib.timing.intervals` of the epoch times).
     """
-    arr = as_array(dt, name, huge=True)       # an interval too long to integrate over is refused by small_turns
+    arr = as_array(dt, name, huge=True)  # an interval too long to integrate over is refused by small_turns
     if arr.ndim == 0:
         arr = np.full(n, scalar(arr, name, positive=True, huge=True))
     elif arr.shape != (n,):
@@ -454,8 +507,10 @@ def sample_intervals(dt: Interval, n: int, name: str = "dt") -> np.ndarray:
     elif not np.all(arr > 0):
         raise ValueError(f"{name}: expected positive intervals, got min {arr.min():g} (run timing.sanitize first)")
     if arr.min() < MIN_INTERVAL:
-        raise ValueError(f"{name}: expected intervals of at least {MIN_INTERVAL:g} s (no IMU samples faster than "
-                         f"1 GHz; is dt in seconds?), got {arr.min():g}")
+        raise ValueError(
+            f"{name}: expected intervals of at least {MIN_INTERVAL:g} s (no IMU samples faster than "
+            f"1 GHz; is dt in seconds?), got {arr.min():g}"
+        )
     return kernel_array(arr)
 
 
@@ -469,8 +524,9 @@ def kernel_array(x: ArrayLike, dtype: Any = None) -> np.ndarray:
     return arr if arr.flags.writeable else arr.copy()
 
 
-def imu_samples(w_ib_b: Vec3Series, f_b: Vec3Series, *, allow_nan: bool = True,
-                shape: tuple[int | None, ...] | None = None) -> tuple[np.ndarray, np.ndarray]:
+def imu_samples(
+    w_ib_b: Vec3Series, f_b: Vec3Series, *, allow_nan: bool = True, shape: tuple[int | None, ...] | None = None
+) -> tuple[np.ndarray, np.ndarray]:
     """Gyro and accelerometer samples, each (..., N, 3) with the same shape; NaN marks a dropout.
 
     ``shape`` fixes the shape exactly (as in :func:`as_array`), e.g. ``(None, 3)`` for one record;

@@ -18,6 +18,7 @@ One implementation of each concept, imported by every paper companion and notebo
 Conventions are stated once in :mod:`navlib`: ENU navigation frame, right-front-up body,
 heading clockwise from north in [0, 2 pi).
 """
+
 from __future__ import annotations
 
 import warnings
@@ -31,8 +32,20 @@ from ._validate import as_array, as_dcm, broadcast, flag, imu_samples, kernel_ar
 from .imu import ImuSamples, unpack
 from .robust import FaultReport, longest_repeat
 
-__all__ = ["level", "magnetic_heading", "tilt_heading", "initial_attitude", "MAX_LAT_DEG", "gyrocompass_latitude",
-           "StaticWindow", "static_means", "triad", "triad_heading", "four_position_heading", "static_gyro_bias"]
+__all__ = [
+    "level",
+    "magnetic_heading",
+    "tilt_heading",
+    "initial_attitude",
+    "MAX_LAT_DEG",
+    "gyrocompass_latitude",
+    "StaticWindow",
+    "static_means",
+    "triad",
+    "triad_heading",
+    "four_position_heading",
+    "static_gyro_bias",
+]
 
 
 def _nonzero(v: np.ndarray, name: str) -> np.ndarray:
@@ -84,8 +97,7 @@ def _magnetic_heading(m: np.ndarray, p: np.ndarray, r: np.ndarray, D: float) -> 
     shape = np.broadcast_shapes(m.shape[:-1], p.shape, r.shape)
     m = np.broadcast_to(m, shape + (3,)).reshape(-1, 3)
     p, r = (kernel_array(np.broadcast_to(x, shape).reshape(-1)) for x in (p, r))
-    a = _kernels.tilt_heading(kernel_array(m[:, 0]), kernel_array(m[:, 1]),
-                              kernel_array(m[:, 2]), p, r)
+    a = _kernels.tilt_heading(kernel_array(m[:, 0]), kernel_array(m[:, 1]), kernel_array(m[:, 2]), p, r)
     return (attitude.wrap_2pi(a + D) if D else a).reshape(shape)
 
 
@@ -114,8 +126,9 @@ def tilt_heading(f_b: Vec3, m_b: Vec3, declination: float = 0.0) -> Array:
     """
     f = _nonzero(as_array(f_b, "f_b", tail=(3,)), "f_b")
     m = _nonzero(as_array(m_b, "m_b", tail=(3,)), "m_b")
-    cross = np.linalg.norm(np.cross(f / np.linalg.norm(f, axis=-1, keepdims=True),
-                                    m / np.linalg.norm(m, axis=-1, keepdims=True)), axis=-1)
+    cross = np.linalg.norm(
+        np.cross(f / np.linalg.norm(f, axis=-1, keepdims=True), m / np.linalg.norm(m, axis=-1, keepdims=True)), axis=-1
+    )
     if np.any(cross < 1e-6):
         raise ValueError("m_b: magnetometer parallel to gravity; heading is undefined")
     pitch, roll = _level(f)
@@ -141,8 +154,10 @@ def gyrocompass_latitude(lat: ArrayLike, deg: bool = False) -> Array:
     """Latitude in rad, rejecting |lat| > 90 deg and near-polar |lat| > MAX_LAT_DEG."""
     lat = latitude(lat, "lat", deg=deg, nonempty=True)
     if np.any(np.abs(lat) > np.deg2rad(MAX_LAT_DEG)):
-        raise ValueError(f"lat: expected |lat| <= {MAX_LAT_DEG} deg for north finding (cos(lat) -> 0 near "
-                         f"the poles), got {np.rad2deg(np.abs(lat).max()):.4g} deg")
+        raise ValueError(
+            f"lat: expected |lat| <= {MAX_LAT_DEG} deg for north finding (cos(lat) -> 0 near "
+            f"the poles), got {np.rad2deg(np.abs(lat).max()):.4g} deg"
+        )
     return lat
 
 
@@ -186,6 +201,7 @@ class StaticWindow:
           norm or the difference of the two half-window means exceeded ``accel_tol``
           (only tested when the window passed the other checks).
     """
+
     w_mean: np.ndarray
     f_mean: np.ndarray
     n_samples: int
@@ -207,10 +223,10 @@ def _outliers(x, valid, k):
     """
     xv = np.where(valid[..., None], x, np.nan)
     with np.errstate(all="ignore"), warnings.catch_warnings():
-        warnings.simplefilter("ignore", RuntimeWarning)          # all-NaN windows: refused for too few samples
+        warnings.simplefilter("ignore", RuntimeWarning)  # all-NaN windows: refused for too few samples
         med = np.nanmedian(xv, axis=-2, keepdims=True)
         mad = np.nanmedian(np.abs(xv - med), axis=-2, keepdims=True)
-    columns = np.moveaxis(xv, -2, -1)                           # (..., k, n): one reading series per row
+    columns = np.moveaxis(xv, -2, -1)  # (..., k, n): one reading series per row
     q = _kernels.quant_steps(kernel_array(columns.reshape(int(np.prod(columns.shape[:-1])), columns.shape[-1])))
     q = q.reshape(columns.shape[:-1])[..., None, :]
     thresh = k * _kernels.robust_sigma(mad, q)
@@ -219,17 +235,25 @@ def _outliers(x, valid, k):
 
 def _masked_mean(x, used, n_used):
     if used.all():
-        return x.mean(-2)                    # the fault-free path, bit-identical to a plain mean
+        return x.mean(-2)  # the fault-free path, bit-identical to a plain mean
     with np.errstate(invalid="ignore", divide="ignore"):
         return np.where(used[..., None], x, 0.0).sum(-2) / n_used[..., None]
 
 
-def static_means(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None, lat: ArrayLike | None = None,
-                 h: ArrayLike = 0.0, accel_tol: float = 0.2, *,
-                 min_fraction: float = 0.5,
-                 outlier_k: float | None = None, full_scale_gyro: float | None = None,
-                 full_scale_accel: float | None = None, stuck_fraction: float | None = None,
-                 strict: bool = True) -> StaticWindow:
+def static_means(
+    w_ib_b: Vec3Series | ImuSamples,
+    f_b: Vec3Series | None = None,
+    lat: ArrayLike | None = None,
+    h: ArrayLike = 0.0,
+    accel_tol: float = 0.2,
+    *,
+    min_fraction: float = 0.5,
+    outlier_k: float | None = None,
+    full_scale_gyro: float | None = None,
+    full_scale_accel: float | None = None,
+    stuck_fraction: float | None = None,
+    strict: bool = True,
+) -> StaticWindow:
     """Average a static window of gyro and accelerometer samples (paper step 1).
 
     Faults, each counted in the returned :class:`StaticWindow`'s ``faults`` (a refused
@@ -305,9 +329,8 @@ def static_means(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None,
         window (too few samples, saturated, a frozen sensor, or the robot
         evidently moving).
     """
-    if isinstance(w_ib_b, ImuSamples):          # no dt here: unpack's dt is left None and its intervals unused
-        w_ib_b, f_b, _, full_scale_gyro, full_scale_accel = unpack(w_ib_b, f_b, None, full_scale_gyro,
-                                                                   full_scale_accel)
+    if isinstance(w_ib_b, ImuSamples):  # no dt here: unpack's dt is left None and its intervals unused
+        w_ib_b, f_b, _, full_scale_gyro, full_scale_accel = unpack(w_ib_b, f_b, None, full_scale_gyro, full_scale_accel)
     elif f_b is None:
         raise ValueError("f_b: required (or pass an ImuSamples as w_ib_b)")
     if lat is None:
@@ -319,8 +342,9 @@ def static_means(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None,
     tol = scalar(accel_tol, "accel_tol", positive=True)
     frac = scalar(min_fraction, "min_fraction", within=(0.0, 1.0), open_ends=(True, False))
     k_out = None if outlier_k is None else scalar(outlier_k, "outlier_k", positive=True)
-    stuck = None if stuck_fraction is None else scalar(stuck_fraction, "stuck_fraction", within=(0.0, 1.0),
-                                                       open_ends=(True, False))
+    stuck = (
+        None if stuck_fraction is None else scalar(stuck_fraction, "stuck_fraction", within=(0.0, 1.0), open_ends=(True, False))
+    )
     fs_g = np.inf if full_scale_gyro is None else scalar(full_scale_gyro, "full_scale_gyro", positive=True)
     fs_a = np.inf if full_scale_accel is None else scalar(full_scale_accel, "full_scale_accel", positive=True)
     g = earth.gravity(gyrocompass_latitude(lat), as_array(h, "h", nonempty=True))
@@ -347,39 +371,58 @@ def static_means(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None,
     with np.errstate(invalid="ignore"):
         dev = np.abs(np.linalg.norm(f_mean, axis=-1) - g)
         if used_f.all():
-            halves = np.abs(f[..., : n // 2, :].mean(-2) - f[..., n // 2:, :].mean(-2)).max(-1)
+            halves = np.abs(f[..., : n // 2, :].mean(-2) - f[..., n // 2 :, :].mean(-2)).max(-1)
         else:
-            u1, u2 = used_f[..., : n // 2], used_f[..., n // 2:]
-            halves = np.abs(_masked_mean(f[..., : n // 2, :], u1, u1.sum(-1))
-                            - _masked_mean(f[..., n // 2:, :], u2, u2.sum(-1))).max(-1)
+            u1, u2 = used_f[..., : n // 2], used_f[..., n // 2 :]
+            halves = np.abs(
+                _masked_mean(f[..., : n // 2, :], u1, u1.sum(-1)) - _masked_mean(f[..., n // 2 :, :], u2, u2.sum(-1))
+            ).max(-1)
     moving = ~too_few & ~saturated & ~frozen & ((dev > tol) | ~(halves <= tol))
     bad = too_few | saturated | frozen | moving
     if flag(strict, "strict") and np.any(bad):
         if np.any(too_few):
             which = "w_ib_b" if np.any(nu_g < need) else "f_b"
             left = int(min(nu_g.min(), nu_a.min()))
-            raise ValueError(f"{which}: only {left} of {n} samples left after dropouts/outliers; expected at least "
-                             f"{need} (min_fraction = {frac:g})")
+            raise ValueError(
+                f"{which}: only {left} of {n} samples left after dropouts/outliers; expected at least "
+                f"{need} (min_fraction = {frac:g})"
+            )
         if np.any(saturated):
             which = "w_ib_b" if np.any(ns_g > 0) else "f_b"
-            raise ValueError(f"{which}: {int(ns_g.sum() + ns_a.sum())} samples at the full-scale range: the robot "
-                             "was not static during the stop")
+            raise ValueError(
+                f"{which}: {int(ns_g.sum() + ns_a.sum())} samples at the full-scale range: the robot "
+                "was not static during the stop"
+            )
         if np.any(frozen):
             which, run = ("w_ib_b", nk_g) if np.any(nk_g > 0) else ("f_b", nk_a)
-            raise ValueError(f"{which}: one reading repeated over {int(run.max())} consecutive samples of {n} "
-                             f"(stuck_fraction = {stuck:g}): the sensor output is frozen")
+            raise ValueError(
+                f"{which}: one reading repeated over {int(run.max())} consecutive samples of {n} "
+                f"(stuck_fraction = {stuck:g}): the sensor output is frozen"
+            )
         if np.any(dev[moving] > tol):
-            raise ValueError(f"f_b: mean specific-force norm differs from gravity by {np.nanmax(dev):.3g} m/s^2 "
-                             f"(> accel_tol = {tol:g}): the robot is not static")
-        raise ValueError(f"f_b: the two halves of the window differ by {np.nanmax(halves):.3g} m/s^2 "
-                         f"(> accel_tol = {tol:g}): the robot moved during the stop")
+            raise ValueError(
+                f"f_b: mean specific-force norm differs from gravity by {np.nanmax(dev):.3g} m/s^2 "
+                f"(> accel_tol = {tol:g}): the robot is not static"
+            )
+        raise ValueError(
+            f"f_b: the two halves of the window differ by {np.nanmax(halves):.3g} m/s^2 "
+            f"(> accel_tol = {tol:g}): the robot moved during the stop"
+        )
     w_mean = np.where(bad[..., None], np.nan, w_mean)
     f_mean = np.where(bad[..., None], np.nan, f_mean)
-    faults = FaultReport({("gyro", "nan"): nd_g, ("accel", "nan"): nd_a,
-                          ("gyro", "outlier"): no_g, ("accel", "outlier"): no_a,
-                          ("gyro", "saturated"): ns_g, ("accel", "saturated"): ns_a,
-                          ("gyro", "stuck"): nk_g, ("accel", "stuck"): nk_a,
-                          ("window", "refused"): bad.astype(int)})
+    faults = FaultReport(
+        {
+            ("gyro", "nan"): nd_g,
+            ("accel", "nan"): nd_a,
+            ("gyro", "outlier"): no_g,
+            ("accel", "outlier"): no_a,
+            ("gyro", "saturated"): ns_g,
+            ("accel", "saturated"): ns_a,
+            ("gyro", "stuck"): nk_g,
+            ("accel", "stuck"): nk_a,
+            ("window", "refused"): bad.astype(int),
+        }
+    )
     return StaticWindow(w_mean, f_mean, n, nu_g, nu_a, faults)
 
 
@@ -408,11 +451,15 @@ def triad(f_b: Vec3, w_ib_b: Vec3, lat: ArrayLike, orthonormal: bool = True) -> 
     -------
     C_bn : ndarray, shape (..., 3, 3)
     """
-    f, w = broadcast(as_array(f_b, "f_b", tail=(3,), nonempty=True), as_array(w_ib_b, "w_ib_b", tail=(3,), nonempty=True),
-                     name="w_ib_b", of="f_b, w_ib_b")
+    f, w = broadcast(
+        as_array(f_b, "f_b", tail=(3,), nonempty=True),
+        as_array(w_ib_b, "w_ib_b", tail=(3,), nonempty=True),
+        name="w_ib_b",
+        of="f_b, w_ib_b",
+    )
     lat = gyrocompass_latitude(lat)
     g_n = np.stack(np.broadcast_arrays(0.0, 0.0, -earth.gravity(lat)), -1)
-    body = _reference_triad(-f, w)                    # columns: -f, -f x w, (-f x w) x (-f)
+    body = _reference_triad(-f, w)  # columns: -f, -f x w, (-f x w) x (-f)
     nav = _reference_triad(g_n, earth.earth_rate_n(lat))
     C_nb = body @ np.linalg.inv(nav)
     C_bn = np.swapaxes(C_nb, -1, -2)
@@ -428,6 +475,7 @@ def triad_heading(C_bn: Dcm) -> Array:
     """
     C = as_array(C_bn, "C_bn", tail=(3, 3), nonempty=True)
     return attitude.wrap_2pi(np.arctan2(C[..., 0, 1], C[..., 1, 1]))
+
 
 def four_position_heading(w_y: ArrayLike) -> Array:
     """Heading from a level gyro turned to four positions 90 deg apart (turntable).
@@ -453,6 +501,7 @@ def four_position_heading(w_y: ArrayLike) -> Array:
 # --------------------------------------------------------------------------
 # Static gyro bias
 # --------------------------------------------------------------------------
+
 
 def static_gyro_bias(w_ib_b: Vec3Series, C_bn: Dcm, lat: float) -> Array:
     """Gyro bias from a static record: ``mean(w) - C_bn^T w_ie_n`` (rad/s).

@@ -13,6 +13,7 @@
 
 Heights are geopotential metres, pressures Pa, temperatures K.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -34,9 +35,22 @@ from ._validate import (
 from .analysis import segments
 from .units import G0
 
-__all__ = ["P0", "T0", "LAPSE", "R_AIR", "isa_altitude", "isa_pressure", "bmp180_altitude", "bmp180_pressure",
-           "hypsometric_height", "bmp180_compensate", "baro_height", "reference_pressure", "classify_floor",
-           "segment_floors"]
+__all__ = [
+    "P0",
+    "T0",
+    "LAPSE",
+    "R_AIR",
+    "isa_altitude",
+    "isa_pressure",
+    "bmp180_altitude",
+    "bmp180_pressure",
+    "hypsometric_height",
+    "bmp180_compensate",
+    "baro_height",
+    "reference_pressure",
+    "classify_floor",
+    "segment_floors",
+]
 
 P0 = 101325.0
 """ISA sea-level pressure (Pa)."""
@@ -168,6 +182,7 @@ def bmp180_compensate(UT: int, UP: int, calib: dict[str, int], oss: int = 0) -> 
 # Barometric height and floors
 # --------------------------------------------------------------------------
 
+
 def baro_height(p: ArrayLike, p_ref: ArrayLike, temperature: ArrayLike | None = None) -> Array:
     """Height above the reference level from pressure (m).
 
@@ -218,8 +233,9 @@ def reference_pressure(p: ArrayLike, time: Times, until: float) -> float | Array
     if valid.all():
         ref = window.mean(axis=-1)
     else:  # each series' valid samples alone, summed as a 1-D mean sums them
-        ref = np.array([w[v].mean() for w, v in zip(window.reshape(-1, window.shape[-1]),
-                                                    valid.reshape(-1, window.shape[-1]), strict=True)])
+        ref = np.array(
+            [w[v].mean() for w, v in zip(window.reshape(-1, window.shape[-1]), valid.reshape(-1, window.shape[-1]), strict=True)]
+        )
         ref = ref.reshape(window.shape[:-1])
     return float(ref) if ref.ndim == 0 else ref
 
@@ -231,8 +247,9 @@ def classify_floor(h: ArrayLike, floor_height: float = 3.0, ref_floor: int = 0) 
     return integer(ref_floor, "ref_floor", minimum=None) + np.round(h / hf).astype(int)
 
 
-def segment_floors(h: ArrayLike, static: ArrayLike, floor_height: float = 3.0,
-                   ref_floor: int = 0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def segment_floors(
+    h: ArrayLike, static: ArrayLike, floor_height: float = 3.0, ref_floor: int = 0
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Floor of every static segment from the median height over the segment.
 
     Parameters
@@ -249,7 +266,7 @@ def segment_floors(h: ArrayLike, static: ArrayLike, floor_height: float = 3.0,
     """
     h = as_array(h, "h", allow_nan=True)
     s = booleans(static, "static", shape=h.shape[-1:] or (None,), of="the last axis of h")
-    h = last_axis(h, "h", s.size, of="static")                    # refuses a scalar h
+    h = last_axis(h, "h", s.size, of="static")  # refuses a scalar h
     starts, ends = segments(s)
     if starts.size == 0:
         return starts, ends, np.zeros(h.shape[:-1] + (0,), dtype=int)

@@ -20,6 +20,7 @@ All functions broadcast over leading axes: vectors are ``(..., 3)``, matrices
 ``(..., 3, 3)``, quaternions ``(..., 4)``, Euler triplets ``(..., 3)``.
 Functions taking or returning angles in degrees say so with ``deg=True``.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -30,11 +31,33 @@ from ._typing import Angles, Array, Dcm, Quat, Vec3
 from ._validate import as_array, as_dcm, as_quat, flag, in_range
 
 __all__ = [
-    "wrap_pi", "wrap_2pi", "skew", "rot", "orthonormalize",
-    "euler_to_dcm", "dcm_to_euler", "euler_to_quat", "quat_to_euler",
-    "quat_to_dcm", "dcm_to_quat", "quat_mult", "quat_conj", "quat_normalize",
-    "quat_rotate", "rotvec_to_dcm", "dcm_to_rotvec", "rotvec_to_quat", "quat_to_rotvec",
-    "M_NED_ENU", "ned_to_enu", "ned_to_enu_dcm", "ned_to_enu_quat", "ypr_to_hpr", "hpr_to_ypr", "mount_matrix"]
+    "wrap_pi",
+    "wrap_2pi",
+    "skew",
+    "rot",
+    "orthonormalize",
+    "euler_to_dcm",
+    "dcm_to_euler",
+    "euler_to_quat",
+    "quat_to_euler",
+    "quat_to_dcm",
+    "dcm_to_quat",
+    "quat_mult",
+    "quat_conj",
+    "quat_normalize",
+    "quat_rotate",
+    "rotvec_to_dcm",
+    "dcm_to_rotvec",
+    "rotvec_to_quat",
+    "quat_to_rotvec",
+    "M_NED_ENU",
+    "ned_to_enu",
+    "ned_to_enu_dcm",
+    "ned_to_enu_quat",
+    "ypr_to_hpr",
+    "hpr_to_ypr",
+    "mount_matrix",
+]
 
 _AXES = {"x": 0, "y": 1, "z": 2}
 MAX_ROTVEC_ANGLE = 1e12
@@ -68,9 +91,7 @@ def skew(v: Vec3) -> Array:
     v = as_array(v, "v", tail=(3,))
     x, y, z = v[..., 0], v[..., 1], v[..., 2]
     o = np.zeros_like(x)
-    return np.stack([np.stack([o, -z, y], -1),
-                     np.stack([z, o, -x], -1),
-                     np.stack([-y, x, o], -1)], -2)
+    return np.stack([np.stack([o, -z, y], -1), np.stack([z, o, -x], -1), np.stack([-y, x, o], -1)], -2)
 
 
 def rot(axis: str, angle: Angles, deg: bool = False) -> Array:
@@ -146,9 +167,11 @@ def euler_to_dcm(hpr: Angles, deg: bool = False) -> Array:
     """
     h, p, r = np.moveaxis(_as_hpr(hpr, deg), -1, 0)
     ch, sh, cp, sp, cr, sr = np.cos(h), np.sin(h), np.cos(p), np.sin(p), np.cos(r), np.sin(r)
-    rows = [[cr * ch + sr * sp * sh, cp * sh, sr * ch - cr * sp * sh],
-            [-cr * sh + sr * sp * ch, cp * ch, -sr * sh - cr * sp * ch],
-            [-sr * cp, sp, cr * cp]]
+    rows = [
+        [cr * ch + sr * sp * sh, cp * sh, sr * ch - cr * sp * sh],
+        [-cr * sh + sr * sp * ch, cp * ch, -sr * sh - cr * sp * ch],
+        [-sr * cp, sp, cr * cp],
+    ]
     return np.stack([np.stack(row, -1) for row in rows], -2)
 
 
@@ -180,7 +203,7 @@ def _dcm_to_euler(C, deg):
     roll = np.arctan2(-c31, c33)
     heading = np.arctan2(C[..., 0, 1], C[..., 1, 1])
     locked = horizontal < 1e-9
-    if locked.any():                       # gimbal lock: the whole turn about the vertical as heading
+    if locked.any():  # gimbal lock: the whole turn about the vertical as heading
         roll = np.where(locked, 0.0, roll)
         heading = np.where(locked, np.arctan2(-C[..., 1, 0], C[..., 0, 0]), heading)
     hpr = np.stack([wrap_2pi(heading), pitch, wrap_pi(roll)], -1)
@@ -213,10 +236,9 @@ def euler_to_quat(hpr: Angles, deg: bool = False) -> Array:
     """
     h, p, r = np.moveaxis(_as_hpr(hpr, deg), -1, 0) / 2
     ch, sh, cp, sp, cr, sr = np.cos(h), np.sin(h), np.cos(p), np.sin(p), np.cos(r), np.sin(r)
-    q = np.stack([ch * cp * cr + sh * sp * sr,
-                  ch * sp * cr + sh * cp * sr,
-                  ch * cp * sr - sh * sp * cr,
-                  -sh * cp * cr + ch * sp * sr], -1)
+    q = np.stack(
+        [ch * cp * cr + sh * sp * sr, ch * sp * cr + sh * cp * sr, ch * cp * sr - sh * sp * cr, -sh * cp * cr + ch * sp * sr], -1
+    )
     return _positive_scalar(q)
 
 
@@ -226,7 +248,7 @@ def _positive_scalar(q):
 
 def quat_to_euler(q: Quat, deg: bool = False) -> Array:
     """Heading, pitch, roll from a quaternion q_b^n; shape (..., 4) -> (..., 3)."""
-    return _dcm_to_euler(quat_to_dcm(q), flag(deg, "deg"))     # a normalised quaternion's matrix is valid
+    return _dcm_to_euler(quat_to_dcm(q), flag(deg, "deg"))  # a normalised quaternion's matrix is valid
 
 
 def quat_to_dcm(q: Quat) -> Array:
@@ -263,14 +285,30 @@ def dcm_to_quat(C_bn: Dcm) -> Array:
     q = np.empty(C.shape[:-2] + (4,))
     # Each branch divides by the largest of the four candidate components.
     cases = {
-        0: lambda C, s: (s / 4, (C[..., 2, 1] - C[..., 1, 2]) / s, (C[..., 0, 2] - C[..., 2, 0]) / s,
-                         (C[..., 1, 0] - C[..., 0, 1]) / s),
-        1: lambda C, s: ((C[..., 2, 1] - C[..., 1, 2]) / s, s / 4, (C[..., 0, 1] + C[..., 1, 0]) / s,
-                         (C[..., 0, 2] + C[..., 2, 0]) / s),
-        2: lambda C, s: ((C[..., 0, 2] - C[..., 2, 0]) / s, (C[..., 0, 1] + C[..., 1, 0]) / s, s / 4,
-                         (C[..., 1, 2] + C[..., 2, 1]) / s),
-        3: lambda C, s: ((C[..., 1, 0] - C[..., 0, 1]) / s, (C[..., 0, 2] + C[..., 2, 0]) / s,
-                         (C[..., 1, 2] + C[..., 2, 1]) / s, s / 4),
+        0: lambda C, s: (
+            s / 4,
+            (C[..., 2, 1] - C[..., 1, 2]) / s,
+            (C[..., 0, 2] - C[..., 2, 0]) / s,
+            (C[..., 1, 0] - C[..., 0, 1]) / s,
+        ),
+        1: lambda C, s: (
+            (C[..., 2, 1] - C[..., 1, 2]) / s,
+            s / 4,
+            (C[..., 0, 1] + C[..., 1, 0]) / s,
+            (C[..., 0, 2] + C[..., 2, 0]) / s,
+        ),
+        2: lambda C, s: (
+            (C[..., 0, 2] - C[..., 2, 0]) / s,
+            (C[..., 0, 1] + C[..., 1, 0]) / s,
+            s / 4,
+            (C[..., 1, 2] + C[..., 2, 1]) / s,
+        ),
+        3: lambda C, s: (
+            (C[..., 1, 0] - C[..., 0, 1]) / s,
+            (C[..., 0, 2] + C[..., 2, 0]) / s,
+            (C[..., 1, 2] + C[..., 2, 1]) / s,
+            s / 4,
+        ),
     }
     for case, f in cases.items():
         m = k == case
@@ -294,10 +332,15 @@ def quat_mult(p: Quat, q: Quat) -> Array:
     q = as_array(q, "q", tail=(4,))
     p0, p1, p2, p3 = np.moveaxis(p, -1, 0)
     q0, q1, q2, q3 = np.moveaxis(q, -1, 0)
-    return np.stack([p0 * q0 - p1 * q1 - p2 * q2 - p3 * q3,
-                     p0 * q1 + p1 * q0 + p2 * q3 - p3 * q2,
-                     p0 * q2 - p1 * q3 + p2 * q0 + p3 * q1,
-                     p0 * q3 + p1 * q2 - p2 * q1 + p3 * q0], -1)
+    return np.stack(
+        [
+            p0 * q0 - p1 * q1 - p2 * q2 - p3 * q3,
+            p0 * q1 + p1 * q0 + p2 * q3 - p3 * q2,
+            p0 * q2 - p1 * q3 + p2 * q0 + p3 * q1,
+            p0 * q3 + p1 * q2 - p2 * q1 + p3 * q0,
+        ],
+        -1,
+    )
 
 
 def quat_conj(q: Quat) -> Array:
@@ -344,13 +387,14 @@ def rotvec_to_quat(rv: Vec3) -> Array:
     """Quaternion of the rotation vector ``rv`` (rad), shape (..., 3) -> (..., 4)."""
     rv = as_array(rv, "rv", tail=(3,), huge=True)
     if np.any(np.abs(rv) > MAX_ROTVEC_ANGLE):
-        raise ValueError(f"rv: rotation angle {np.abs(rv).max():.3g} rad is beyond {MAX_ROTVEC_ANGLE:g} rad, where a "
-                         f"float no longer resolves the angle modulo 2 pi")
+        raise ValueError(
+            f"rv: rotation angle {np.abs(rv).max():.3g} rad is beyond {MAX_ROTVEC_ANGLE:g} rad, where a "
+            f"float no longer resolves the angle modulo 2 pi"
+        )
     angle = np.linalg.norm(rv, axis=-1, keepdims=True)
     half = angle / 2
     # sin(x/2)/x with its Taylor series near 0 to keep full precision.
-    k = np.where(angle > 1e-4, np.sin(half) / np.where(angle > 0, angle, 1.0),
-                 0.5 - angle ** 2 / 48 + angle ** 4 / 3840)
+    k = np.where(angle > 1e-4, np.sin(half) / np.where(angle > 0, angle, 1.0), 0.5 - angle**2 / 48 + angle**4 / 3840)
     return np.concatenate([np.cos(half), k * rv], -1)
 
 
@@ -359,7 +403,7 @@ def quat_to_rotvec(q: Quat) -> Array:
     q = quat_normalize(q)
     s = np.linalg.norm(q[..., 1:], axis=-1, keepdims=True)
     angle = 2 * np.arctan2(s, q[..., :1])
-    k = np.where(s > 1e-8, angle / np.where(s > 0, s, 1.0), 2 + s ** 2 / 3)
+    k = np.where(s > 1e-8, angle / np.where(s > 0, s, 1.0), 2 + s**2 / 3)
     return k * q[..., 1:]
 
 

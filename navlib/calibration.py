@@ -86,6 +86,7 @@ References
 * D. A. Howe, D. W. Allan, J. A. Barnes, "Properties of signal sources and measurement methods",
   Proc. 35th Annual Symposium on Frequency Control, 1981.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -99,9 +100,20 @@ from ._validate import as_array, as_dcm, choice, flag, imu_samples, sample_inter
 from .imu import ImuSamples, unpack
 from .sensors import ImuModel, TriadErrors
 
-__all__ = ["MIN_THICKNESS", "MAX_MAG_CONDITION", "MAX_ACCEL_CONDITION", "MIN_RECORD", "MagCalibration",
-           "fit_magnetometer", "AccelCalibration", "fit_accelerometer", "gyro_bias_at_rest", "TriadNoise",
-           "NoiseCharacterisation", "characterise"]
+__all__ = [
+    "MIN_THICKNESS",
+    "MAX_MAG_CONDITION",
+    "MAX_ACCEL_CONDITION",
+    "MIN_RECORD",
+    "MagCalibration",
+    "fit_magnetometer",
+    "AccelCalibration",
+    "fit_accelerometer",
+    "gyro_bias_at_rest",
+    "TriadNoise",
+    "NoiseCharacterisation",
+    "characterise",
+]
 
 MIN_THICKNESS = 0.1
 """Smallest accepted ``sqrt(lambda_min / lambda_max)`` of the covariance of the magnetometer samples: a
@@ -125,11 +137,13 @@ MIN_RECORD = 100
 # Magnetometer: hard and soft iron
 # --------------------------------------------------------------------------
 
+
 def _quality(record, names: tuple[str, ...]) -> None:
     """A fit's quality figures: non-negative scalars, NaN when not computed, inf for a singular fit's condition."""
     for name in names:
-        object.__setattr__(record, name, scalar(getattr(record, name), name, allow_zero=True, allow_nan=True,
-                                                allow_inf=name == "condition"))
+        object.__setattr__(
+            record, name, scalar(getattr(record, name), name, allow_zero=True, allow_nan=True, allow_inf=name == "condition")
+        )
 
 
 @dataclass(frozen=True)
@@ -156,6 +170,7 @@ class MagCalibration:
         Condition number of the fit at the solution (``MAX_MAG_CONDITION``): how well the samples' coverage
         of orientations determines offset and soft iron.
     """
+
     offset: np.ndarray
     soft_iron: np.ndarray
     field_strength: float
@@ -192,7 +207,7 @@ def _quadric_li_griffiths(x: np.ndarray) -> np.ndarray:
     S = D @ D.T
     S11, S12, S22 = S[:6, :6], S[:6, 6:], S[6:, 6:]
     C = np.zeros((6, 6))
-    C[:3, :3] = 1.0                      # k/2 - 1 = 1 off the diagonal
+    C[:3, :3] = 1.0  # k/2 - 1 = 1 off the diagonal
     np.fill_diagonal(C[:3, :3], -1.0)
     C[3:, 3:] = -4.0 * np.eye(3)
     reduced = S11 - S12 @ np.linalg.solve(S22, S12.T)
@@ -218,7 +233,7 @@ def _mag_condition(m: np.ndarray, offset: np.ndarray, W_inv: np.ndarray, F: floa
     y = d @ W_inv.T
     u = y / np.linalg.norm(y, axis=-1, keepdims=True)
     dW = u[:, :, None] * d[:, None, :]
-    dW = dW + np.swapaxes(dW, 1, 2) * (1 - np.eye(3))          # symmetric: W_jk = W_kj, one parameter
+    dW = dW + np.swapaxes(dW, 1, 2) * (1 - np.eye(3))  # symmetric: W_jk = W_kj, one parameter
     return float(np.linalg.cond(np.concatenate([-u @ W_inv, dW[:, _UPPER[0], _UPPER[1]] / F], 1)))
 
 
@@ -232,8 +247,9 @@ EARTH_FIELD_RANGE = (15.0, 80.0)
 magnetic poles); a fitted strength outside it means the fit, the unit or the surroundings are wrong."""
 
 
-def fit_magnetometer(m_b: Vec3Series, field_strength: float | None = None, *,
-                     field_range: tuple[float, float] | None = EARTH_FIELD_RANGE) -> MagCalibration:
+def fit_magnetometer(
+    m_b: Vec3Series, field_strength: float | None = None, *, field_range: tuple[float, float] | None = EARTH_FIELD_RANGE
+) -> MagCalibration:
     """Hard- and soft-iron calibration by an ellipsoid fit (Li & Griffiths 2004; module docstring).
 
     Parameters
@@ -267,29 +283,34 @@ def fit_magnetometer(m_b: Vec3Series, field_strength: float | None = None, *,
     plausible = None if field_range is None else _field_range(field_range)
     thick = _thickness(m)
     if thick < MIN_THICKNESS:
-        raise ValueError(f"m_b: the samples lie (nearly) in one plane (thickness {thick:.3g} < {MIN_THICKNESS}): "
-                         "turning about one axis traces an ellipse, not the ellipsoid; turn the sensor through "
-                         "all orientations (e.g. each axis pointing up and down, or a figure eight in 3-D)")
+        raise ValueError(
+            f"m_b: the samples lie (nearly) in one plane (thickness {thick:.3g} < {MIN_THICKNESS}): "
+            "turning about one axis traces an ellipse, not the ellipsoid; turn the sensor through "
+            "all orientations (e.g. each axis pointing up and down, or a figure eight in 3-D)"
+        )
     c0 = m.mean(0)
     s0 = float(np.sqrt(np.mean(np.sum((m - c0) ** 2, -1))))
     fit = _ellipsoid(_quadric_li_griffiths((m - c0) / s0))
     if fit is None:
         raise ValueError("m_b: no ellipsoid fits the samples (too noisy or disturbed for their coverage)")
-    centre, A = c0 + s0 * fit[0], fit[1] / s0 ** 2
+    centre, A = c0 + s0 * fit[0], fit[1] / s0**2
     if F is None:
         F = float(np.linalg.det(A) ** (-1 / 6))
     W_inv = F * _sqrtm_spd(A)
     W_inv = (W_inv + W_inv.T) / 2
     cond = _mag_condition(m, centre, W_inv, F)
     if not cond <= MAX_MAG_CONDITION:
-        raise ValueError(f"m_b: the orientations cover too little of the sphere to determine hard and soft iron "
-                         f"(condition number {cond:.3g} > {MAX_MAG_CONDITION:g}); tilt the sensor further, "
-                         "ideally pointing each axis up and down")
+        raise ValueError(
+            f"m_b: the orientations cover too little of the sphere to determine hard and soft iron "
+            f"(condition number {cond:.3g} > {MAX_MAG_CONDITION:g}); tilt the sensor further, "
+            "ideally pointing each axis up and down"
+        )
     norm_raw = np.linalg.norm(m, axis=-1)
     norm_cal = np.linalg.norm((m - centre) @ W_inv.T, axis=-1)
     _refuse_degenerate(norm_raw.std(), norm_cal.std(), F, plausible if field_strength is None else None)
-    return MagCalibration(centre, W_inv, F, float(np.sqrt(np.mean((norm_cal - F) ** 2))),
-                          float(norm_raw.std()), float(norm_cal.std()), cond)
+    return MagCalibration(
+        centre, W_inv, F, float(np.sqrt(np.mean((norm_cal - F) ** 2))), float(norm_raw.std()), float(norm_cal.std()), cond
+    )
 
 
 def _field_range(field_range) -> tuple[float, float]:
@@ -299,26 +320,32 @@ def _field_range(field_range) -> tuple[float, float]:
     return float(lo), float(hi)
 
 
-def _refuse_degenerate(spread_raw: float, spread_cal: float, F: float,
-                       field_range: tuple[float, float] | None) -> None:
+def _refuse_degenerate(spread_raw: float, spread_cal: float, F: float, field_range: tuple[float, float] | None) -> None:
     """A fit must make ``|m|`` more constant (unless it already is, to 1 % of the field) and, when the field
     strength was fitted, give a plausible one."""
-    record = ("record again away from steel, cars and electronics, turning the sensor slowly through all "
-              "orientations (each axis up and down)")
+    record = (
+        "record again away from steel, cars and electronics, turning the sensor slowly through all "
+        "orientations (each axis up and down)"
+    )
     if spread_cal >= spread_raw and spread_cal > 0.01 * F:
-        raise ValueError(f"m_b: the fit leaves |m| no more constant than the raw samples (spread {spread_cal:.3g} "
-                         f"after, {spread_raw:.3g} before): a degenerate fit; {record}")
+        raise ValueError(
+            f"m_b: the fit leaves |m| no more constant than the raw samples (spread {spread_cal:.3g} "
+            f"after, {spread_raw:.3g} before): a degenerate fit; {record}"
+        )
     if field_range is not None:
         lo, hi = field_range
         if not lo <= F <= hi:
-            raise ValueError(f"m_b: fitted field strength {F:.3g} outside the plausible {lo:g}..{hi:g} (uT for the "
-                             f"Earth's field): a degenerate fit, a disturbed recording or another unit; {record}; "
-                             f"field_range=None if the samples are not in uT")
+            raise ValueError(
+                f"m_b: fitted field strength {F:.3g} outside the plausible {lo:g}..{hi:g} (uT for the "
+                f"Earth's field): a degenerate fit, a disturbed recording or another unit; {record}; "
+                f"field_range=None if the samples are not in uT"
+            )
 
 
 # --------------------------------------------------------------------------
 # Accelerometer: multi-position
 # --------------------------------------------------------------------------
+
 
 @dataclass(frozen=True)
 class AccelCalibration:
@@ -340,6 +367,7 @@ class AccelCalibration:
     condition : float
         Condition number of the fit's Jacobian (bias in units of g); see ``MAX_ACCEL_CONDITION``.
     """
+
     bias: np.ndarray
     matrix: np.ndarray
     g: float = units.G0
@@ -366,7 +394,7 @@ class AccelCalibration:
         return (f - self.bias) @ self.matrix.T
 
 
-_LOWER = np.tril_indices(3)      # (0,0), (1,0), (1,1), (2,0), (2,1), (2,2)
+_LOWER = np.tril_indices(3)  # (0,0), (1,0), (1,1), (2,0), (2,1), (2,2)
 
 
 def _unpack_params(p: np.ndarray, misalignment: bool) -> tuple[np.ndarray, np.ndarray]:
@@ -395,7 +423,7 @@ def _accel_jacobian(p: np.ndarray, f: np.ndarray, g: float, misalignment: bool) 
 
 def _condition(p: np.ndarray, f: np.ndarray, g: float, misalignment: bool) -> float:
     J = _accel_jacobian(p, f, g, misalignment)
-    J[:, :3] *= g                                   # bias in units of g: all parameters dimensionless
+    J[:, :3] *= g  # bias in units of g: all parameters dimensionless
     return float(np.linalg.cond(J))
 
 
@@ -437,19 +465,28 @@ def fit_accelerometer(f_means: Vec3Series, g: float = units.G0, *, misalignment:
     p0 = np.concatenate([np.zeros(3), s0 * (np.eye(3)[_LOWER] if misalignment else np.ones(3))])
     cond = _condition(p0, f, g, misalignment)
     if not cond <= MAX_ACCEL_CONDITION:
-        raise ValueError(f"f_means: the orientations do not determine bias and scale (condition number {cond:.3g} "
-                         f"> {MAX_ACCEL_CONDITION:g}); use positions that point each axis up and down, e.g. the six "
-                         "faces of a cube")
-    sol = least_squares(_accel_residual, p0, jac=_accel_jacobian, args=(f, g, misalignment), method="lm",
-                        x_scale=np.concatenate([np.full(3, g), np.abs(p0[3:]) + s0]))
+        raise ValueError(
+            f"f_means: the orientations do not determine bias and scale (condition number {cond:.3g} "
+            f"> {MAX_ACCEL_CONDITION:g}); use positions that point each axis up and down, e.g. the six "
+            "faces of a cube"
+        )
+    sol = least_squares(
+        _accel_residual,
+        p0,
+        jac=_accel_jacobian,
+        args=(f, g, misalignment),
+        method="lm",
+        x_scale=np.concatenate([np.full(3, g), np.abs(p0[3:]) + s0]),
+    )
     b, S = _unpack_params(sol.x, misalignment)
-    S = np.sign(np.diag(S))[:, None] * S            # |S (f - b)| is blind to the signs of S's rows
-    return AccelCalibration(b, S, g, float(np.sqrt(np.mean(sol.fun ** 2))), _condition(sol.x, f, g, misalignment))
+    S = np.sign(np.diag(S))[:, None] * S  # |S (f - b)| is blind to the signs of S's rows
+    return AccelCalibration(b, S, g, float(np.sqrt(np.mean(sol.fun**2))), _condition(sol.x, f, g, misalignment))
 
 
 # --------------------------------------------------------------------------
 # Gyro bias at rest
 # --------------------------------------------------------------------------
+
 
 def gyro_bias_at_rest(w_ib_b: Vec3Series, lat: float | None = None, C_bn: Dcm | None = None) -> tuple[Array, Array]:
     """Gyro bias from a static record, and its standard error (module docstring).
@@ -481,13 +518,14 @@ def gyro_bias_at_rest(w_ib_b: Vec3Series, lat: float | None = None, C_bn: Dcm | 
         given, missing = ("lat", "C_bn") if C_bn is None else ("C_bn", "lat")
         raise ValueError(f"{missing}: required with {given} to remove Earth rate (give both or neither)")
     if lat is not None:
-        mean = mean - earth.earth_rate_b(as_dcm(C_bn, "C_bn"), lat)      # validates lat (rad, scalar)
+        mean = mean - earth.earth_rate_b(as_dcm(C_bn, "C_bn"), lat)  # validates lat (rad, scalar)
     return mean, w.std(-2, ddof=1) / np.sqrt(n)
 
 
 # --------------------------------------------------------------------------
 # Noise characterisation from a static record
 # --------------------------------------------------------------------------
+
 
 @dataclass(frozen=True)
 class TriadNoise:
@@ -518,6 +556,7 @@ class TriadNoise:
         kept (above 6: strong evidence); negative, the curve is explained without it and the term is 0 (its
         upper limit still says how large it could be); ``-inf`` for K when it is not fitted.
     """
+
     noise_density: np.ndarray
     bias_instability: np.ndarray
     correlation_time: np.ndarray
@@ -545,9 +584,12 @@ class TriadNoise:
             return float(np.sqrt(np.mean(x * x)) if combine == "rms" else np.max(x))
 
         tc = self.correlation_time[self.bias_instability > 0]
-        return TriadErrors(noise_density=one(self.noise_density), bias_instability=one(self.bias_instability),
-                           correlation_time=float(np.exp(np.mean(np.log(tc)))) if tc.size else TriadErrors.correlation_time,
-                           rate_random_walk=one(self.rate_random_walk))
+        return TriadErrors(
+            noise_density=one(self.noise_density),
+            bias_instability=one(self.bias_instability),
+            correlation_time=float(np.exp(np.mean(np.log(tc)))) if tc.size else TriadErrors.correlation_time,
+            rate_random_walk=one(self.rate_random_walk),
+        )
 
 
 @dataclass(frozen=True)
@@ -565,6 +607,7 @@ class NoiseCharacterisation:
     confidence : float
         Confidence level of the intervals.
     """
+
     gyro: TriadNoise
     accel: TriadNoise
     dt: float
@@ -593,11 +636,11 @@ def _edf(noise: str, n_phase: int, m: np.ndarray) -> np.ndarray:
     """Equivalent degrees of freedom of an overlapping Allan variance at cluster length ``m`` from ``n_phase``
     integrated samples, by dominant noise (Howe, Allan & Barnes 1981; NIST SP 1065, Table 5)."""
     N = float(n_phase)
-    if noise == "white":                                 # white rate noise (white FM)
+    if noise == "white":  # white rate noise (white FM)
         edf = (3 * (N - 1) / (2 * m) - 2 * (N - 2) / N) * 4 * m * m / (4 * m * m + 5)
-    elif noise == "flicker":                             # flat floor of the bias instability (flicker FM)
+    elif noise == "flicker":  # flat floor of the bias instability (flicker FM)
         edf = np.where(m < 2, 2 * (N - 2) ** 2 / (2.3 * N - 4.9), 5 * N * N / (4 * m * (N + 3 * m)))
-    else:                                                # rate random walk (random-walk FM)
+    else:  # rate random walk (random-walk FM)
         edf = (N - 2) / (m * (N - 3) ** 2) * ((N - 1) ** 2 - 3 * m * (N - 1) + 4 * m * m)
     return np.maximum(edf, 1.0)
 
@@ -605,8 +648,8 @@ def _edf(noise: str, n_phase: int, m: np.ndarray) -> np.ndarray:
 def _interval(edf: np.ndarray, confidence: float) -> np.ndarray:
     """Factors (..., 2) scaling an Allan deviation with ``edf`` degrees of freedom to its interval."""
     from scipy.stats import chi2  # noqa: PLC0415 -- scipy.stats is slow to import; only intervals need it
-    return np.stack([np.sqrt(edf / chi2.ppf((1 + confidence) / 2, edf)),
-                     np.sqrt(edf / chi2.ppf((1 - confidence) / 2, edf))], -1)
+
+    return np.stack([np.sqrt(edf / chi2.ppf((1 + confidence) / 2, edf)), np.sqrt(edf / chi2.ppf((1 - confidence) / 2, edf))], -1)
 
 
 def _fold_unobserved_peaks(terms: dict, tau_min: float, tau_max: float, rate_random_walk: bool) -> np.ndarray:
@@ -622,8 +665,9 @@ def _fold_unobserved_peaks(terms: dict, tau_min: float, tau_max: float, rate_ran
     var = (terms["bias_instability"] / analysis.GM_ALLAN_PEAK) ** 2
     below, beyond = peak < tau_min, (peak > tau_max) & rate_random_walk
     terms["white"] = np.where(below, np.sqrt(terms["white"] ** 2 + 2 * var * tc), terms["white"])
-    terms["rate_random_walk"] = np.where(beyond, np.sqrt(terms["rate_random_walk"] ** 2 + 2 * var / tc),
-                                         terms["rate_random_walk"])
+    terms["rate_random_walk"] = np.where(
+        beyond, np.sqrt(terms["rate_random_walk"] ** 2 + 2 * var / tc), terms["rate_random_walk"]
+    )
     terms["bias_instability"] = np.where(below | beyond, 0.0, terms["bias_instability"])
     return (peak >= tau_min) & (peak <= tau_max)
 
@@ -646,24 +690,41 @@ def _triad_noise(x: np.ndarray, dt: float, rate_random_walk: bool, confidence: f
     f_N = factors("white", np.full(3, 1.0))
     f_B = factors("flicker", analysis.GM_ALLAN_PEAK_TAU * terms["correlation_time"])
     f_K = factors("rrw", np.full(3, taus[-1]))
-    K_end = adev[-1] / np.sqrt(taus[-1] / 3)             # the largest K the longest averaging time allows
-    return TriadNoise(terms["white"], B, terms["correlation_time"], K, terms["white"][:, None] * f_N,
-                      np.stack([B * f_B[:, 0], np.where(observed & (B > 0), B * f_B[:, 1], np.inf)], -1),
-                      np.stack([K * f_K[:, 0], np.maximum(K, K_end) * f_K[:, 1]], -1), taus, adev, evidence)
+    K_end = adev[-1] / np.sqrt(taus[-1] / 3)  # the largest K the longest averaging time allows
+    return TriadNoise(
+        terms["white"],
+        B,
+        terms["correlation_time"],
+        K,
+        terms["white"][:, None] * f_N,
+        np.stack([B * f_B[:, 0], np.where(observed & (B > 0), B * f_B[:, 1], np.inf)], -1),
+        np.stack([K * f_K[:, 0], np.maximum(K, K_end) * f_K[:, 1]], -1),
+        taus,
+        adev,
+        evidence,
+    )
 
 
 def _fixed_interval(dt: Interval, n: int) -> float:
     """The one sample interval of ``dt`` (scalar, or per-sample intervals that agree to 1e-6)."""
     d = sample_intervals(dt, n)
     if np.ptp(d) > 1e-6 * d.mean():
-        raise ValueError(f"dt: expected a fixed sample interval for the Allan deviation, got intervals from "
-                         f"{d.min():g} to {d.max():g} s (resample first by averaging, navlib.io.resample(rec, rate); "
-                         "interpolation changes the white-noise level)")
+        raise ValueError(
+            f"dt: expected a fixed sample interval for the Allan deviation, got intervals from "
+            f"{d.min():g} to {d.max():g} s (resample first by averaging, navlib.io.resample(rec, rate); "
+            "interpolation changes the white-noise level)"
+        )
     return float(d.mean())
 
 
-def characterise(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None, dt: Interval | None = None, *,
-                 rate_random_walk: bool = False, confidence: float = 0.95) -> NoiseCharacterisation:
+def characterise(
+    w_ib_b: Vec3Series | ImuSamples,
+    f_b: Vec3Series | None = None,
+    dt: Interval | None = None,
+    *,
+    rate_random_walk: bool = False,
+    confidence: float = 0.95,
+) -> NoiseCharacterisation:
     """Characterise an IMU from a static record: per-axis Allan deviation and noise terms (module docstring).
 
     Parameters
@@ -693,12 +754,17 @@ def characterise(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None,
         irregular sampling.
     """
     w, f, dt, _, _ = unpack(w_ib_b, f_b, dt)
-    w, f = imu_samples(w, f, allow_nan=False, shape=(None, 3))           # one record
+    w, f = imu_samples(w, f, allow_nan=False, shape=(None, 3))  # one record
     n = w.shape[0]
     if n < MIN_RECORD:
         raise ValueError(f"w_ib_b: expected a static record of at least {MIN_RECORD} samples, got {n}")
     dt = _fixed_interval(dt, n)
     rate_random_walk = flag(rate_random_walk, "rate_random_walk")
     confidence = scalar(confidence, "confidence", within=(0.0, 1.0), open_ends=(True, True))
-    return NoiseCharacterisation(_triad_noise(w, dt, rate_random_walk, confidence, "w_ib_b"),
-                                 _triad_noise(f, dt, rate_random_walk, confidence, "f_b"), dt, n, confidence)
+    return NoiseCharacterisation(
+        _triad_noise(w, dt, rate_random_walk, confidence, "w_ib_b"),
+        _triad_noise(f, dt, rate_random_walk, confidence, "f_b"),
+        dt,
+        n,
+        confidence,
+    )

@@ -9,6 +9,7 @@ reproduce the printed WGS84 and GRS80 values to 1e-10 m/s^2 (tested against
 Vectors are in the ENU navigation frame. Latitude is ``lat``, longitude
 ``lon`` (rad unless ``deg=True``), height ``h`` above the ellipsoid (m).
 """
+
 from __future__ import annotations
 
 import functools
@@ -21,9 +22,23 @@ from ._typing import Array, ArrayLike, Dcm, Vec3
 from ._validate import as_array, as_dcm, broadcast, flag, in_range, kernel_array, latitude, positive, scalar, text
 from ._validate import ellipsoid as ellipsoid_
 
-__all__ = ["Ellipsoid", "WGS84", "CGCS2000", "GRS80", "KRASSOVSKY",
-           "OMEGA_IE", "earth_rate_n", "earth_rate_b", "gravity", "gravity_n", "radii",
-           "transport_rate_n", "magnetic_field", "field_from_angles", "field_angles"]
+__all__ = [
+    "Ellipsoid",
+    "WGS84",
+    "CGCS2000",
+    "GRS80",
+    "KRASSOVSKY",
+    "OMEGA_IE",
+    "earth_rate_n",
+    "earth_rate_b",
+    "gravity",
+    "gravity_n",
+    "radii",
+    "transport_rate_n",
+    "magnetic_field",
+    "field_from_angles",
+    "field_angles",
+]
 
 
 @dataclass(frozen=True)
@@ -42,6 +57,7 @@ class Ellipsoid:
     omega : float
         Angular velocity (rad/s).
     """
+
     name: str
     a: float
     f: float
@@ -51,7 +67,7 @@ class Ellipsoid:
     def __post_init__(self):
         text(self.name, "name")
         for key, lo, hi in (("a", 6e6, 7e6), ("f", 0.0, 0.01), ("GM", 3e14, 5e14), ("omega", 0.0, 1e-4)):
-            in_range(scalar(getattr(self, key), key), key, lo, hi)      # an Earth-like value
+            in_range(scalar(getattr(self, key), key), key, lo, hi)  # an Earth-like value
 
     @property
     def b(self) -> float:
@@ -68,9 +84,9 @@ class Ellipsoid:
         # Moritz closed form (Heiskanen & Moritz 2-61/2-62; TR8350.2 ch. 4).
         a, b = self.a, self.b
         ep = np.sqrt(a * a - b * b) / b
-        m = self.omega ** 2 * a * a * b / self.GM
-        q0 = 0.5 * ((1 + 3 / ep ** 2) * np.arctan(ep) - 3 / ep)
-        q0p = 3 * (1 + 1 / ep ** 2) * (1 - np.arctan(ep) / ep) - 1
+        m = self.omega**2 * a * a * b / self.GM
+        q0 = 0.5 * ((1 + 3 / ep**2) * np.arctan(ep) - 3 / ep)
+        q0p = 3 * (1 + 1 / ep**2) * (1 - np.arctan(ep) / ep) - 1
         gamma_e = self.GM / (a * b) * (1 - m - m / 6 * ep * q0p / q0)
         gamma_p = self.GM / (a * a) * (1 + m / 3 * ep * q0p / q0)
         return float(gamma_e), float(gamma_p)
@@ -94,7 +110,7 @@ class Ellipsoid:
     @property
     def m(self) -> float:
         """omega^2 a^2 b / GM."""
-        return self.omega ** 2 * self.a ** 2 * self.b / self.GM
+        return self.omega**2 * self.a**2 * self.b / self.GM
 
 
 OMEGA_IE = 7.292115e-5
@@ -130,7 +146,6 @@ def earth_rate_n(lat: ArrayLike, deg: bool = False, ellipsoid: Ellipsoid = WGS84
     lat = latitude(lat, "lat", deg=deg)
     w = ellipsoid_(ellipsoid).omega
     return np.stack([np.zeros_like(lat), w * np.cos(lat), w * np.sin(lat)], -1)
-
 
 
 def earth_rate_b(C_bn: Dcm, lat: float, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> Array:
@@ -220,8 +235,9 @@ def transport_rate_n(lat: ArrayLike, h: ArrayLike, vel_n: Vec3, ellipsoid: Ellip
     """
     lat = latitude(lat)
     if np.any(np.cos(lat) < 1e-9):
-        raise ValueError("lat: the ENU transport rate is singular at the poles (east is undefined there); "
-                         "expected |lat| < 90 deg")
+        raise ValueError(
+            "lat: the ENU transport rate is singular at the poles (east is undefined there); expected |lat| < 90 deg"
+        )
     h = in_range(as_array(h, "h"), "h", -12e3, 1e6, "m")
     vel_n = as_array(vel_n, "vel_n", tail=(3,))
     R_M, R_N = radii(lat, ellipsoid=ellipsoid)
@@ -234,20 +250,24 @@ def transport_rate_n(lat: ArrayLike, h: ArrayLike, vel_n: Vec3, ellipsoid: Ellip
 # --------------------------------------------------------------------------
 
 # World Magnetic Model epochs shipped with pygeomag: (first year, file).
-_WMM_MODELS = [(2010.0, "wmm/WMM_2010.COF"), (2015.0, "wmm/WMM_2015v2.COF"),
-               (2020.0, "wmm/WMM_2020.COF"), (2025.0, "wmm/WMM_2025.COF")]
+_WMM_MODELS = [
+    (2010.0, "wmm/WMM_2010.COF"),
+    (2015.0, "wmm/WMM_2015v2.COF"),
+    (2020.0, "wmm/WMM_2020.COF"),
+    (2025.0, "wmm/WMM_2025.COF"),
+]
 
 
 @functools.cache
 def _geomag(coefficients_file: str):
     from pygeomag import GeoMag  # imported lazily: only magnetometer users need it
+
     return GeoMag(coefficients_file=coefficients_file)
 
 
 def _wmm_file(year: float) -> str:
     if not 2010.0 <= year < 2030.0:
-        raise ValueError(f"year: expected a decimal year in [2010, 2030) covered by the "
-                         f"World Magnetic Model, got {year}")
+        raise ValueError(f"year: expected a decimal year in [2010, 2030) covered by the World Magnetic Model, got {year}")
     return [f for start, f in _WMM_MODELS if year >= start][-1]
 
 
@@ -282,8 +302,9 @@ def magnetic_field(lat: ArrayLike, lon: ArrayLike, h: ArrayLike = 0.0, year: flo
     lat, lon, h = np.broadcast_arrays(lat, lon, h)
     out = np.empty(lat.shape + (3,))
     for idx in np.ndindex(lat.shape):
-        r = gm.calculate(glat=float(np.rad2deg(lat[idx])), glon=float(np.rad2deg(lon[idx])),
-                         alt=float(h[idx]) / 1000.0, time=float(year))
+        r = gm.calculate(
+            glat=float(np.rad2deg(lat[idx])), glon=float(np.rad2deg(lon[idx])), alt=float(h[idx]) / 1000.0, time=float(year)
+        )
         out[idx] = (r.y / 1000.0, r.x / 1000.0, -r.z / 1000.0)  # NED nT -> ENU uT
     return out
 
@@ -304,9 +325,13 @@ def field_from_angles(declination: ArrayLike, inclination: ArrayLike, intensity:
     -------
     B_n : ndarray, shape (..., 3)  (uT)
     """
-    D, I, F = broadcast(as_array(declination, "declination"), as_array(inclination, "inclination"),
-                        positive(intensity, "intensity", allow_zero=True), name="declination",
-                        of="declination, inclination, intensity")
+    D, I, F = broadcast(
+        as_array(declination, "declination"),
+        as_array(inclination, "inclination"),
+        positive(intensity, "intensity", allow_zero=True),
+        name="declination",
+        of="declination, inclination, intensity",
+    )
     if flag(deg, "deg"):
         D, I = np.deg2rad(D), np.deg2rad(I)
     in_range(I, "inclination", -np.pi / 2, np.pi / 2, "rad")

@@ -7,6 +7,7 @@ Eq. (2), in this convention); it divides by cos(pitch), so |pitch| must stay bel
 optional bias schedule and the navigation-frame rate ``w_in_n``; it fills dropouts up to ``max_gap``, and
 :func:`navlib.robust.fault_report` counts the filled (NaN) and saturated samples.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -21,7 +22,7 @@ __all__ = ["PITCH_LIMIT", "check_pitch", "euler_rates", "integrate_euler"]
 
 PITCH_LIMIT = np.deg2rad(89.0)
 """Largest |pitch| (rad) accepted where the Euler rates divide by cos(pitch)."""
-_RK4_ANGLE2 = 1e-6          # squared step angle (rad^2) above which integrate_euler uses RK4
+_RK4_ANGLE2 = 1e-6  # squared step angle (rad^2) above which integrate_euler uses RK4
 
 
 def _hpr(hpr, name="hpr"):
@@ -34,8 +35,10 @@ def check_pitch(pitch: ArrayLike, name: str = "pitch") -> None:
     """Raise ``ValueError`` naming ``name`` if any |pitch| exceeds :data:`PITCH_LIMIT` (Euler rates are singular at 90 deg)."""
     pitch = as_array(pitch, text(name, "name", empty=False), nonempty=True)
     if np.any(np.abs(pitch) > PITCH_LIMIT):
-        raise ValueError(f"{name}: expected |pitch| <= {np.rad2deg(PITCH_LIMIT):g} deg; the Euler rates are singular "
-                         f"at +-90 deg (got max |pitch| {np.rad2deg(np.nanmax(np.abs(pitch))):.3f} deg)")
+        raise ValueError(
+            f"{name}: expected |pitch| <= {np.rad2deg(PITCH_LIMIT):g} deg; the Euler rates are singular "
+            f"at +-90 deg (got max |pitch| {np.rad2deg(np.nanmax(np.abs(pitch))):.3f} deg)"
+        )
 
 
 def euler_rates(hpr: Angles, w_nb_b: Vec3) -> Array:
@@ -87,13 +90,13 @@ def _euler_kernel(hpr0, w, dts, w_in, bias, bias_from, pitch_limit, max_gap):
         out[t, 0, 0], out[t, 0, 1], out[t, 0, 2] = _kernels.wrap_2pi(h), p, _kernels.wrap_pi(r)
         k = -1
         bx = by = bz = 0.0
-        lx = ly = lz = 0.0           # last valid gyro sample (zero before the first)
-        li = -1                      # its index
-        nj = -1                      # next valid sample after a dropout (-1: none found yet / none left)
+        lx = ly = lz = 0.0  # last valid gyro sample (zero before the first)
+        li = -1  # its index
+        nj = -1  # next valid sample after a dropout (-1: none found yet / none left)
         gap = 0.0
         for i in range(N):
             dt = dts[i]
-            while k + 1 < K and bias_from[k + 1] <= i:      # newest estimate available at sample i
+            while k + 1 < K and bias_from[k + 1] <= i:  # newest estimate available at sample i
                 k += 1
                 if np.isfinite(bias[t, k, 0]):
                     bx, by, bz = bias[t, k, 0], bias[t, k, 1], bias[t, k, 2]
@@ -102,15 +105,14 @@ def _euler_kernel(hpr0, w, dts, w_in, bias, bias_from, pitch_limit, max_gap):
                 lx, ly, lz = sx, sy, sz
                 li = i
                 gap = 0.0
-            else:                                           # dropout: interpolate between valid neighbours
+            else:  # dropout: interpolate between valid neighbours
                 if nj <= i:
                     nj = i + 1
-                    while nj < N and not (np.isfinite(w[t, nj, 0]) and np.isfinite(w[t, nj, 1])
-                                          and np.isfinite(w[t, nj, 2])):
+                    while nj < N and not (np.isfinite(w[t, nj, 0]) and np.isfinite(w[t, nj, 1]) and np.isfinite(w[t, nj, 2])):
                         nj += 1
-                if nj >= N:                                 # trailing dropouts: hold the last valid sample
+                if nj >= N:  # trailing dropouts: hold the last valid sample
                     sx, sy, sz = lx, ly, lz
-                elif li < 0:                                # leading dropouts: the first valid sample
+                elif li < 0:  # leading dropouts: the first valid sample
                     sx, sy, sz = w[t, nj, 0], w[t, nj, 1], w[t, nj, 2]
                 else:
                     c = (i - li) / (nj - li)
@@ -143,9 +145,16 @@ def _euler_kernel(hpr0, w, dts, w_in, bias, bias_from, pitch_limit, max_gap):
     return out, singular, gap_too_long
 
 
-def integrate_euler(hpr0: Angles, w_ib_b: Vec3Series | ImuSamples, dt: Interval | None = None,
-                    w_in_n: Vec3 | None = None, bias_b: ArrayLike | None = None, bias_from: ArrayLike | None = None, *,
-                    max_gap: float = 0.0) -> Array:
+def integrate_euler(
+    hpr0: Angles,
+    w_ib_b: Vec3Series | ImuSamples,
+    dt: Interval | None = None,
+    w_in_n: Vec3 | None = None,
+    bias_b: ArrayLike | None = None,
+    bias_from: ArrayLike | None = None,
+    *,
+    max_gap: float = 0.0,
+) -> Array:
     """Integrate Eq. (2) from gyro samples, optionally bias-compensated.
 
     Each sample is the mean rate over ``[t_k, t_k + dt_k]``; the Euler-angle
@@ -194,8 +203,8 @@ def integrate_euler(hpr0: Angles, w_ib_b: Vec3Series | ImuSamples, dt: Interval 
         Heading wrapped to [0, 2 pi), roll to (-pi, pi].
     """
     max_gap = scalar(max_gap, "max_gap", allow_zero=True)
-    if isinstance(w_ib_b, ImuSamples):                          # validated by the record
-        w, _, dts, _, _ = unpack(w_ib_b, dt=dt)                 # (NaN with max_gap = 0: refused by the gap check)
+    if isinstance(w_ib_b, ImuSamples):  # validated by the record
+        w, _, dts, _, _ = unpack(w_ib_b, dt=dt)  # (NaN with max_gap = 0: refused by the gap check)
     else:
         w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=max_gap > 0)
         dts = sample_intervals(dt, w.shape[-2])
@@ -204,14 +213,18 @@ def integrate_euler(hpr0: Angles, w_ib_b: Vec3Series | ImuSamples, dt: Interval 
     hpr0 = broadcast_to(_hpr(hpr0, "hpr0"), "hpr0", lead + (3,), of="the trials of w_ib_b").reshape(-1, 3)
     w_in = np.zeros(3) if w_in_n is None else as_array(w_in_n, "w_in_n", shape=(3,))
     bias, idx = _bias_schedule(bias_b, bias_from, lead)
-    out, singular, gap_long = _euler_kernel(kernel_array(hpr0), kernel_array(w.reshape((-1, n, 3))), dts, w_in, bias,
-                                            idx, PITCH_LIMIT, max_gap)
+    out, singular, gap_long = _euler_kernel(
+        kernel_array(hpr0), kernel_array(w.reshape((-1, n, 3))), dts, w_in, bias, idx, PITCH_LIMIT, max_gap
+    )
     if gap_long:
-        raise ValueError(f"w_ib_b: a run of NaN samples (dropouts) is longer than max_gap = {max_gap:g} s; the "
-                         "rotation over it is unknown")
+        raise ValueError(
+            f"w_ib_b: a run of NaN samples (dropouts) is longer than max_gap = {max_gap:g} s; the rotation over it is unknown"
+        )
     if singular:
-        raise ValueError(f"w_ib_b: the integrated pitch passed +-{np.rad2deg(PITCH_LIMIT):g} deg, where Eq. (2) "
-                         "is singular; integrate this motion with quaternions (strapdown.integrate_attitude)")
+        raise ValueError(
+            f"w_ib_b: the integrated pitch passed +-{np.rad2deg(PITCH_LIMIT):g} deg, where Eq. (2) "
+            "is singular; integrate this motion with quaternions (strapdown.integrate_attitude)"
+        )
     return out.reshape(lead + (n + 1, 3))
 
 
@@ -227,8 +240,7 @@ def _bias_schedule(bias_b, bias_from, lead):
         b = b[..., None, :]
     else:
         idx = np.asarray(bias_from)
-        if idx.ndim != 1 or not np.issubdtype(idx.dtype, np.integer) or np.any(np.diff(idx) < 0) \
-                or np.any(idx < 0):
+        if idx.ndim != 1 or not np.issubdtype(idx.dtype, np.integer) or np.any(np.diff(idx) < 0) or np.any(idx < 0):
             raise ValueError("bias_from: expected a non-decreasing 1-D array of non-negative sample indices")
         if b.ndim < 2 or b.shape[-2] != idx.size:
             raise ValueError(f"bias_b: expected shape (..., {idx.size}, 3) to match bias_from, got {b.shape}")

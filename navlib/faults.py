@@ -16,6 +16,7 @@ Faults covered (navlib's robustness suite, ``tests/faults/``):
   (:func:`duplicate_timestamps`, :func:`swap_timestamps`, :func:`irregular_times`);
 * saturation: clipping at a device's full-scale range (:func:`saturate`).
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -24,8 +25,17 @@ from . import attitude, earth
 from ._typing import Angles, Array, ArrayLike, Times, Vec3Series
 from ._validate import as_array, generator, integer, interval, positive, same_shape, scalar, time_axis
 
-__all__ = ["dropouts", "gap", "spikes", "position_jumps", "heading_flips", "duplicate_timestamps",
-           "swap_timestamps", "irregular_times", "saturate"]
+__all__ = [
+    "dropouts",
+    "gap",
+    "spikes",
+    "position_jumps",
+    "heading_flips",
+    "duplicate_timestamps",
+    "swap_timestamps",
+    "irregular_times",
+    "saturate",
+]
 
 
 def _samples(x, name):
@@ -88,8 +98,9 @@ def gap(x: ArrayLike, time: Times, start: float, duration: float) -> tuple[Array
     return x, dropped
 
 
-def spikes(x: ArrayLike, fraction: float, sigma: ArrayLike, rng: np.random.Generator,
-           k: float = 100.0) -> tuple[Array, np.ndarray]:
+def spikes(
+    x: ArrayLike, fraction: float, sigma: ArrayLike, rng: np.random.Generator, k: float = 100.0
+) -> tuple[Array, np.ndarray]:
     """Add ``±k sigma`` spikes to a random ``fraction`` of samples (each component).
 
     Parameters
@@ -118,8 +129,7 @@ def spikes(x: ArrayLike, fraction: float, sigma: ArrayLike, rng: np.random.Gener
     return x, hit
 
 
-def position_jumps(lla: Vec3Series, fraction: float, rng: np.random.Generator,
-                   size_m: float = 50.0) -> tuple[Array, np.ndarray]:
+def position_jumps(lla: Vec3Series, fraction: float, rng: np.random.Generator, size_m: float = 50.0) -> tuple[Array, np.ndarray]:
     """Move a random ``fraction`` of GNSS fixes by ``size_m`` metres horizontally.
 
     Parameters

@@ -45,6 +45,7 @@ NaN as a marker), empty arrays, shapes that do not broadcast, and out-of-range
 values (|lat| > 90°, a longitude too far from the zone, zone numbers, ``k0``,
 ``width``...).
 """
+
 from __future__ import annotations
 
 import functools
@@ -59,19 +60,33 @@ from ._validate import as_array, broadcast, choice, flag, in_range, latitude, sc
 from ._validate import ellipsoid as ellipsoid_
 from .earth import WGS84, Ellipsoid, radii
 
-__all__ = ["zone", "central_meridian", "geodetic2gk", "gk2geodetic", "convergence", "scale_factor",
-           "meridian_arc", "geodetic2ecef", "ecef2geodetic", "geodetic2enu", "enu2geodetic", "geodetic2ned", "ned2geodetic",
-           "local_scales"]
+__all__ = [
+    "zone",
+    "central_meridian",
+    "geodetic2gk",
+    "gk2geodetic",
+    "convergence",
+    "scale_factor",
+    "meridian_arc",
+    "geodetic2ecef",
+    "ecef2geodetic",
+    "geodetic2enu",
+    "enu2geodetic",
+    "geodetic2ned",
+    "ned2geodetic",
+    "local_scales",
+]
 
 ZONE_WIDTHS = (3, 6)
-_MAX_OFFSET_DEG = 60.0          # hard limit from the central meridian (series valid to ~ 3900 km at 35° N)
-_PREFIX_UNIT = 1e6              # zone number times 1e6 m prefixed to the easting
-_K0_RANGE = (0.5, 1.5)          # accepted central-meridian scales k0 (GK 1, UTM 0.9996)
+_MAX_OFFSET_DEG = 60.0  # hard limit from the central meridian (series valid to ~ 3900 km at 35° N)
+_PREFIX_UNIT = 1e6  # zone number times 1e6 m prefixed to the easting
+_K0_RANGE = (0.5, 1.5)  # accepted central-meridian scales k0 (GK 1, UTM 0.9996)
 
 
 # --------------------------------------------------------------------------
 # Validation (every public function: wrong types, NaN/inf, empty, out of range -> error naming the argument)
 # --------------------------------------------------------------------------
+
 
 def _max_offset(max_offset_deg):
     if max_offset_deg is None:
@@ -82,6 +97,7 @@ def _max_offset(max_offset_deg):
 # --------------------------------------------------------------------------
 # Zones
 # --------------------------------------------------------------------------
+
 
 def _width(width) -> int:
     """The zone width (deg) as an int: 3 or 6."""
@@ -165,18 +181,20 @@ def _resolve_lon0(lon_deg, zone_number, lon0, w, deg, max_offset_deg):
         L0 = _meridian(_zone(lon_deg, w).astype(float), w)
         limit = np.inf
     else:
-        L0 = (_central_meridian(zone_number, w, True, "zone") if lon0 is None else _lon_deg(lon0, deg, "lon0"))
+        L0 = _central_meridian(zone_number, w, True, "zone") if lon0 is None else _lon_deg(lon0, deg, "lon0")
         max_offset_deg = _max_offset(max_offset_deg)
         limit = float(w if max_offset_deg is None else max_offset_deg)
     l_deg = lon_deg - L0
-    offset = max(l_deg.max(initial=0.0), -l_deg.min(initial=0.0))     # max |l_deg|, without a temporary
-    if offset > 180.0:                       # only then is the (slower) wrap needed
+    offset = max(l_deg.max(initial=0.0), -l_deg.min(initial=0.0))  # max |l_deg|, without a temporary
+    if offset > 180.0:  # only then is the (slower) wrap needed
         l_deg = np.mod(l_deg + 180.0, 360.0) - 180.0
         offset = np.abs(l_deg).max(initial=0.0)
     if offset > min(limit, _MAX_OFFSET_DEG):
-        raise ValueError(f"lon: expected longitudes within {min(limit, _MAX_OFFSET_DEG):g}° of the central meridian "
-                         f"(zone width {w}°; pass max_offset_deg to allow more), got offsets up to "
-                         f"{np.abs(l_deg).max():.4g}°")
+        raise ValueError(
+            f"lon: expected longitudes within {min(limit, _MAX_OFFSET_DEG):g}° of the central meridian "
+            f"(zone width {w}°; pass max_offset_deg to allow more), got offsets up to "
+            f"{np.abs(l_deg).max():.4g}°"
+        )
     return L0, l_deg
 
 
@@ -184,32 +202,42 @@ def _resolve_lon0(lon_deg, zone_number, lon0, w, deg, max_offset_deg):
 # Krüger n-series (Karney 2011)
 # --------------------------------------------------------------------------
 
+
 @functools.lru_cache(maxsize=16)
 def _kruger(a: float, f: float):
     """Rectifying radius A, eccentricity e and the alpha/beta coefficients to order n^6 (tuples of 6 floats)."""
     n = f / (2 - f)
-    n2, n3, n4, n5, n6 = n ** 2, n ** 3, n ** 4, n ** 5, n ** 6
+    n2, n3, n4, n5, n6 = n**2, n**3, n**4, n**5, n**6
     A = a / (1 + n) * (1 + n2 / 4 + n4 / 64 + n6 / 256)
-    alpha = tuple(float(c) for c in (
-        n / 2 - 2 * n2 / 3 + 5 * n3 / 16 + 41 * n4 / 180 - 127 * n5 / 288 + 7891 * n6 / 37800,
-        13 * n2 / 48 - 3 * n3 / 5 + 557 * n4 / 1440 + 281 * n5 / 630 - 1983433 * n6 / 1935360,
-        61 * n3 / 240 - 103 * n4 / 140 + 15061 * n5 / 26880 + 167603 * n6 / 181440,
-        49561 * n4 / 161280 - 179 * n5 / 168 + 6601661 * n6 / 7257600,
-        34729 * n5 / 80640 - 3418889 * n6 / 1995840,
-        212378941 * n6 / 319334400))
-    beta = tuple(float(c) for c in (
-        n / 2 - 2 * n2 / 3 + 37 * n3 / 96 - n4 / 360 - 81 * n5 / 512 + 96199 * n6 / 604800,
-        n2 / 48 + n3 / 15 - 437 * n4 / 1440 + 46 * n5 / 105 - 1118711 * n6 / 3870720,
-        17 * n3 / 480 - 37 * n4 / 840 - 209 * n5 / 4480 + 5569 * n6 / 90720,
-        4397 * n4 / 161280 - 11 * n5 / 504 - 830251 * n6 / 7257600,
-        4583 * n5 / 161280 - 108847 * n6 / 3991680,
-        20648693 * n6 / 638668800))
+    alpha = tuple(
+        float(c)
+        for c in (
+            n / 2 - 2 * n2 / 3 + 5 * n3 / 16 + 41 * n4 / 180 - 127 * n5 / 288 + 7891 * n6 / 37800,
+            13 * n2 / 48 - 3 * n3 / 5 + 557 * n4 / 1440 + 281 * n5 / 630 - 1983433 * n6 / 1935360,
+            61 * n3 / 240 - 103 * n4 / 140 + 15061 * n5 / 26880 + 167603 * n6 / 181440,
+            49561 * n4 / 161280 - 179 * n5 / 168 + 6601661 * n6 / 7257600,
+            34729 * n5 / 80640 - 3418889 * n6 / 1995840,
+            212378941 * n6 / 319334400,
+        )
+    )
+    beta = tuple(
+        float(c)
+        for c in (
+            n / 2 - 2 * n2 / 3 + 37 * n3 / 96 - n4 / 360 - 81 * n5 / 512 + 96199 * n6 / 604800,
+            n2 / 48 + n3 / 15 - 437 * n4 / 1440 + 46 * n5 / 105 - 1118711 * n6 / 3870720,
+            17 * n3 / 480 - 37 * n4 / 840 - 209 * n5 / 4480 + 5569 * n6 / 90720,
+            4397 * n4 / 161280 - 11 * n5 / 504 - 830251 * n6 / 7257600,
+            4583 * n5 / 161280 - 108847 * n6 / 3991680,
+            20648693 * n6 / 638668800,
+        )
+    )
     return A, np.sqrt(f * (2 - f)), alpha, beta
 
 
 # The compiled series works on (re, im) pairs. Complex products round as numpy's vectorised complex
 # multiply does (one fused multiply-add per component) and zero signs follow numpy's complex arithmetic
 # (the 0.0 terms below), so the results are those of the former all-numpy evaluation, bit for bit.
+
 
 @njit(cache=True, inline="always")
 def _cmul(ar, ai, br, bi):
@@ -257,8 +285,12 @@ def _gauss_schreiber(taup, u):
 @njit(cache=True, inline="always")
 def _double_angles(taup, cos_l, sin_l, D):
     """sin 2xi', cos 2xi', sinh 2eta', cosh 2eta' of the Gauss-Schreiber zeta', algebraically."""
-    return (2 * taup * cos_l / D, (cos_l * cos_l - taup * taup) / D, 2 * sin_l * np.sqrt(1 + taup * taup) / D,
-            1 + 2 * sin_l * sin_l / D)
+    return (
+        2 * taup * cos_l / D,
+        (cos_l * cos_l - taup * taup) / D,
+        2 * sin_l * np.sqrt(1 + taup * taup) / D,
+        1 + 2 * sin_l * sin_l / D,
+    )
 
 
 @njit(cache=True, error_model="numpy")
@@ -330,7 +362,7 @@ def _forward_args(tau, l_deg, e, s, h):
     vectorised atanh, sinh and tan give sigma and u = tan(l/2)."""
     for i in range(tau.shape[0]):
         s[i] = _conformal_s(tau[i], e)
-        h[i] = l_deg[i] * (np.pi / 180) / 2              # np.deg2rad(l_deg) / 2
+        h[i] = l_deg[i] * (np.pi / 180) / 2  # np.deg2rad(l_deg) / 2
 
 
 @njit(cache=True, inline="always")
@@ -365,12 +397,11 @@ def _geodetic_tan(taup, e, iterations: int = 4):
     tau = taup / e2m
     for _ in range(iterations):
         taupa = _conformal_tan(tau, e)
-        tau = tau + (taup - taupa) * (1 + e2m * tau * tau) / (
-            e2m * np.sqrt((1 + tau * tau) * (1 + taupa * taupa)))
+        tau = tau + (taup - taupa) * (1 + e2m * tau * tau) / (e2m * np.sqrt((1 + tau * tau) * (1 + taupa * taupa)))
     return tau
 
 
-_CHUNK = 1 << 15      # points per block: keeps the temporaries in cache
+_CHUNK = 1 << 15  # points per block: keeps the temporaries in cache
 
 
 def _forward(lat, l_deg, ellipsoid, k0=1.0, fn=-0.0, fe=-0.0, out=None):
@@ -383,18 +414,18 @@ def _forward(lat, l_deg, ellipsoid, k0=1.0, fn=-0.0, fe=-0.0, out=None):
         x, y = np.empty(lat.shape), np.empty(lat.shape)
         fx, fy, fl, fo = x.reshape(-1), y.reshape(-1), lat.reshape(-1), l_deg.reshape(-1)
         for i in range(0, lat.size, _CHUNK):
-            _forward(fl[i:i + _CHUNK], fo[i:i + _CHUNK], ellipsoid, k0, fn, fe, (fx[i:i + _CHUNK], fy[i:i + _CHUNK]))
+            _forward(fl[i : i + _CHUNK], fo[i : i + _CHUNK], ellipsoid, k0, fn, fe, (fx[i : i + _CHUNK], fy[i : i + _CHUNK]))
         return x, y
     A, e, alpha, _ = _kruger(ellipsoid.a, ellipsoid.f)
     tau = np.tan(lat).reshape(-1)
     s, h = np.empty(tau.shape), np.empty(tau.shape)
     _forward_args(tau, l_deg.reshape(-1), e, s, h)
-    u = np.tan(h)                            # cos l and sin l from one tangent
+    u = np.tan(h)  # cos l and sin l from one tangent
     taup, cos_l, r = np.empty(u.shape), np.empty(u.shape), np.empty(u.shape)
     _gauss_schreiber_args(tau, _sigma(s, e), u, taup, cos_l, r)
     x, y = (np.empty(lat.shape), np.empty(lat.shape)) if out is None else out
     _series_xy(taup, u, np.arctan2(taup, cos_l), np.arcsinh(r), alpha, A, k0, fn, fe, x.reshape(-1), y.reshape(-1))
-    return x[()], y[()]                      # a 0-d input gives scalars, as numpy's arithmetic does
+    return x[()], y[()]  # a 0-d input gives scalars, as numpy's arithmetic does
 
 
 def _forward_factors(lat, l_deg, ellipsoid):
@@ -402,13 +433,12 @@ def _forward_factors(lat, l_deg, ellipsoid):
     A, e, alpha, _ = _kruger(ellipsoid.a, ellipsoid.f)
     tau = np.tan(lat)
     taup = _conformal_tan(tau, e)
-    slope, cos_l, sin_l, D = (np.empty(lat.shape, dtype=complex), np.empty(lat.shape), np.empty(lat.shape),
-                              np.empty(lat.shape))
-    _series_slope(taup.reshape(-1), np.tan(np.deg2rad(l_deg) / 2).reshape(-1), alpha,
-                  *(a.reshape(-1) for a in (slope, cos_l, sin_l, D)))
+    slope, cos_l, sin_l, D = (np.empty(lat.shape, dtype=complex), np.empty(lat.shape), np.empty(lat.shape), np.empty(lat.shape))
+    _series_slope(
+        taup.reshape(-1), np.tan(np.deg2rad(l_deg) / 2).reshape(-1), alpha, *(a.reshape(-1) for a in (slope, cos_l, sin_l, D))
+    )
     gamma = np.arctan2(sin_l * taup, cos_l * np.sqrt(1 + taup * taup)) - np.angle(slope)
-    k = (A / ellipsoid.a) * np.abs(slope) * np.sqrt(1 - e * e * tau * tau / (1 + tau * tau)) \
-        * np.sqrt(1 + tau * tau) / np.sqrt(D)
+    k = (A / ellipsoid.a) * np.abs(slope) * np.sqrt(1 - e * e * tau * tau / (1 + tau * tau)) * np.sqrt(1 + tau * tau) / np.sqrt(D)
     return gamma, k
 
 
@@ -418,11 +448,15 @@ def _inverse(xi, eta, e, beta):
         lat, dlon = np.empty(xi.shape), np.empty(xi.shape)
         fl, fd, fx, fe = lat.reshape(-1), dlon.reshape(-1), xi.reshape(-1), eta.reshape(-1)
         for i in range(0, xi.size, _CHUNK):
-            fl[i:i + _CHUNK], fd[i:i + _CHUNK] = _inverse(fx[i:i + _CHUNK], fe[i:i + _CHUNK], e, beta)
+            fl[i : i + _CHUNK], fd[i : i + _CHUNK] = _inverse(fx[i : i + _CHUNK], fe[i : i + _CHUNK], e, beta)
         return lat, dlon
     xip, etap = np.empty(xi.shape), np.empty(xi.shape)
-    _series_inverse(*(a.reshape(-1) for a in (xi, eta, np.sin(2 * xi), np.cos(2 * xi), np.sinh(2 * eta),
-                                               np.cosh(2 * eta))), beta, xip.reshape(-1), etap.reshape(-1))
+    _series_inverse(
+        *(a.reshape(-1) for a in (xi, eta, np.sin(2 * xi), np.cos(2 * xi), np.sinh(2 * eta), np.cosh(2 * eta))),
+        beta,
+        xip.reshape(-1),
+        etap.reshape(-1),
+    )
     sinh_etap, cos_xip = np.sinh(etap), np.cos(xip)
     taup = np.sin(xip) / np.sqrt(sinh_etap * sinh_etap + cos_xip * cos_xip)
     return np.arctan(_geodetic_tan(taup, e)), np.arctan2(sinh_etap, cos_xip)
@@ -434,10 +468,21 @@ def _validate_lat_lon(lat, lon, deg, names=("lat", "lon")):
     return broadcast(lat_rad, lon_deg, name=", ".join(names))
 
 
-def geodetic2gk(lat: ArrayLike, lon: ArrayLike, *, zone: ArrayLike | None = None, lon0: ArrayLike | None = None,
-                width: int = 3, ellipsoid: Ellipsoid = WGS84, deg: bool = False, k0: float = 1.0,
-                false_easting: float = 0.0, false_northing: float = 0.0, zone_prefix: bool = False,
-                max_offset_deg: float | None = None) -> tuple[Array, Array]:
+def geodetic2gk(
+    lat: ArrayLike,
+    lon: ArrayLike,
+    *,
+    zone: ArrayLike | None = None,
+    lon0: ArrayLike | None = None,
+    width: int = 3,
+    ellipsoid: Ellipsoid = WGS84,
+    deg: bool = False,
+    k0: float = 1.0,
+    false_easting: float = 0.0,
+    false_northing: float = 0.0,
+    zone_prefix: bool = False,
+    max_offset_deg: float | None = None,
+) -> tuple[Array, Array]:
     """Gauss–Krüger forward projection (Eq. 9, by Krüger's n-series).
 
     Parameters
@@ -490,9 +535,20 @@ def geodetic2gk(lat: ArrayLike, lon: ArrayLike, *, zone: ArrayLike | None = None
     return x, y
 
 
-def gk2geodetic(x: ArrayLike, y: ArrayLike, *, zone: ArrayLike | None = None, lon0: ArrayLike | None = None,
-                width: int = 3, ellipsoid: Ellipsoid = WGS84, deg: bool = False, k0: float = 1.0,
-                false_easting: float = 0.0, false_northing: float = 0.0, zone_prefix: bool = False) -> tuple[Array, Array]:
+def gk2geodetic(
+    x: ArrayLike,
+    y: ArrayLike,
+    *,
+    zone: ArrayLike | None = None,
+    lon0: ArrayLike | None = None,
+    width: int = 3,
+    ellipsoid: Ellipsoid = WGS84,
+    deg: bool = False,
+    k0: float = 1.0,
+    false_easting: float = 0.0,
+    false_northing: float = 0.0,
+    zone_prefix: bool = False,
+) -> tuple[Array, Array]:
     """Gauss–Krüger inverse projection.
 
     Parameters
@@ -522,8 +578,7 @@ def gk2geodetic(x: ArrayLike, y: ArrayLike, *, zone: ArrayLike | None = None, lo
         y = y - _PREFIX_UNIT * zone
     if (zone is None) == (lon0 is None):
         raise ValueError("zone, lon0: give exactly one of them (or zone_prefix=True)")
-    L0 = (_central_meridian(zone, w, True, "y" if zone_prefix else "zone") if lon0 is None
-          else _lon_deg(lon0, deg, "lon0"))
+    L0 = _central_meridian(zone, w, True, "y" if zone_prefix else "zone") if lon0 is None else _lon_deg(lon0, deg, "lon0")
     x, y, L0 = broadcast(x, y, L0, name="x, y", of="x, y and the central meridian")
     A, e, _, beta = _kruger(ellipsoid.a, ellipsoid.f)
     xi = (x - fn) / (k0 * A)
@@ -540,8 +595,7 @@ def gk2geodetic(x: ArrayLike, y: ArrayLike, *, zone: ArrayLike | None = None, lo
 def _grid(ellipsoid, k0, false_easting, false_northing) -> tuple[float, float, float]:
     """The grid of :func:`geodetic2gk` and :func:`gk2geodetic`: ellipsoid checked, k0 and the false offsets."""
     ellipsoid_(ellipsoid)
-    return scalar(k0, "k0", within=_K0_RANGE), scalar(false_easting, "false_easting"), \
-        scalar(false_northing, "false_northing")
+    return scalar(k0, "k0", within=_K0_RANGE), scalar(false_easting, "false_easting"), scalar(false_northing, "false_northing")
 
 
 def _factors(lat, lon, zone, lon0, width, ellipsoid, deg, max_offset_deg):
@@ -551,9 +605,17 @@ def _factors(lat, lon, zone, lon0, width, ellipsoid, deg, max_offset_deg):
     return _forward_factors(lat_rad, l_deg, ellipsoid)
 
 
-def convergence(lat: ArrayLike, lon: ArrayLike, *, zone: ArrayLike | None = None, lon0: ArrayLike | None = None,
-                width: int = 3, ellipsoid: Ellipsoid = WGS84, deg: bool = False,
-                max_offset_deg: float | None = None) -> Array:
+def convergence(
+    lat: ArrayLike,
+    lon: ArrayLike,
+    *,
+    zone: ArrayLike | None = None,
+    lon0: ArrayLike | None = None,
+    width: int = 3,
+    ellipsoid: Ellipsoid = WGS84,
+    deg: bool = False,
+    max_offset_deg: float | None = None,
+) -> Array:
     """Grid (meridian) convergence gamma: the grid bearing of true north is ``-gamma``.
 
     Positive east of the central meridian in the northern hemisphere
@@ -572,9 +634,18 @@ def convergence(lat: ArrayLike, lon: ArrayLike, *, zone: ArrayLike | None = None
     return np.rad2deg(gamma) if deg else gamma
 
 
-def scale_factor(lat: ArrayLike, lon: ArrayLike, *, zone: ArrayLike | None = None, lon0: ArrayLike | None = None,
-                 width: int = 3, ellipsoid: Ellipsoid = WGS84, deg: bool = False, k0: float = 1.0,
-                 max_offset_deg: float | None = None) -> Array:
+def scale_factor(
+    lat: ArrayLike,
+    lon: ArrayLike,
+    *,
+    zone: ArrayLike | None = None,
+    lon0: ArrayLike | None = None,
+    width: int = 3,
+    ellipsoid: Ellipsoid = WGS84,
+    deg: bool = False,
+    k0: float = 1.0,
+    max_offset_deg: float | None = None,
+) -> Array:
     """Point scale factor k of the projection (1 on the central meridian for GK).
 
     Parameters are those of :func:`geodetic2gk`; returns shape (...).
@@ -608,9 +679,15 @@ def _gk_project(lat, lon, lon0, ellipsoid):
     return geodetic2gk(lat, lon, lon0=lon0, ellipsoid=ellipsoid, max_offset_deg=_MAX_OFFSET_DEG)
 
 
-def local_scales(lat: ArrayLike, lon: ArrayLike, lon0: ArrayLike, ellipsoid: Ellipsoid = WGS84, deg: bool = False,
-                 project: Callable[..., tuple[Array, Array]] | None = None,
-                 step: float = 1e-6) -> tuple[Array, Array, Array]:
+def local_scales(
+    lat: ArrayLike,
+    lon: ArrayLike,
+    lon0: ArrayLike,
+    ellipsoid: Ellipsoid = WGS84,
+    deg: bool = False,
+    project: Callable[..., tuple[Array, Array]] | None = None,
+    step: float = 1e-6,
+) -> tuple[Array, Array, Array]:
     """Meridian and parallel scale factors and the angle between their images, by central differences.
 
     A conformal projection has equal scales ``h = k`` and images of meridian
@@ -642,8 +719,7 @@ def local_scales(lat: ArrayLike, lon: ArrayLike, lon0: ArrayLike, ellipsoid: Ell
     if project is None:
         project = _gk_project
     elif not callable(project):
-        raise TypeError(f"project: expected a callable (lat, lon, lon0, ellipsoid) -> (x, y), "
-                        f"got {type(project).__name__}")
+        raise TypeError(f"project: expected a callable (lat, lon, lon0, ellipsoid) -> (x, y), got {type(project).__name__}")
     step = scalar(step, "step", within=(0.0, 1e-2), open_ends=(True, False))
     lat_r, lon_d = _validate_lat_lon(lat, lon, deg)
     lon0_d = _lon_deg(lon0, deg, "lon0")
@@ -666,8 +742,10 @@ def local_scales(lat: ArrayLike, lon: ArrayLike, lon0: ArrayLike, ellipsoid: Ell
 # Geodetic <-> ECEF <-> local ENU (pymap3d-style)
 # --------------------------------------------------------------------------
 
-def geodetic2ecef(lat: ArrayLike, lon: ArrayLike, h: ArrayLike, ellipsoid: Ellipsoid = WGS84,
-                  deg: bool = False) -> tuple[Array, Array, Array]:
+
+def geodetic2ecef(
+    lat: ArrayLike, lon: ArrayLike, h: ArrayLike, ellipsoid: Ellipsoid = WGS84, deg: bool = False
+) -> tuple[Array, Array, Array]:
     """Earth-centred Earth-fixed coordinates (m) of geodetic points; returns x, y, z of shape (...).
 
     ``ellipsoid``: default WGS84; pass ``earth.CGCS2000`` for China's national grid.
@@ -691,8 +769,9 @@ def _ecef(lat, lon, h, ellipsoid):
     return r * np.cos(lon), r * np.sin(lon), (R_N * (1 - ellipsoid.e2) + h) * np.sin(lat)
 
 
-def ecef2geodetic(x: ArrayLike, y: ArrayLike, z: ArrayLike, ellipsoid: Ellipsoid = WGS84,
-                  deg: bool = False) -> tuple[Array, Array, Array]:
+def ecef2geodetic(
+    x: ArrayLike, y: ArrayLike, z: ArrayLike, ellipsoid: Ellipsoid = WGS84, deg: bool = False
+) -> tuple[Array, Array, Array]:
     """Geodetic latitude, longitude (rad or deg) and height (m) of ECEF points (m).
 
     Bowring's iteration on the parametric latitude (three steps reach 1e-15
@@ -716,23 +795,38 @@ def _from_ecef(x, y, z, ellipsoid, deg):
         lat = np.arctan2(z + ep2 * b * np.sin(beta) ** 3, p - e2 * a * np.cos(beta) ** 3)
         beta = np.arctan2(b * np.sin(lat), a * np.cos(lat))
     R_N = a / np.sqrt(1 - e2 * np.sin(lat) ** 2)
-    with np.errstate(divide="ignore", invalid="ignore"):      # np.where evaluates both branches
+    with np.errstate(divide="ignore", invalid="ignore"):  # np.where evaluates both branches
         h = np.where(np.abs(np.cos(lat)) > 0.1, p / np.cos(lat) - R_N, z / np.sin(lat) - R_N * (1 - e2))
     lon = np.arctan2(y, x)
     return (np.rad2deg(lat), np.rad2deg(lon), h) if flag(deg, "deg") else (lat, lon, h)
 
 
 _ORIGIN = ("lat0", "lon0", "h0")
+
+
 def _enu_rotation(lat0, lon0):
     sl, cl, so, co = np.sin(lat0), np.cos(lat0), np.sin(lon0), np.cos(lon0)
     # rows: east, north, up written in ECEF
-    return np.stack([np.stack([-so, co, np.zeros_like(so)], -1),
-                     np.stack([-sl * co, -sl * so, cl], -1),
-                     np.stack([cl * co, cl * so, sl], -1)], -2)
+    return np.stack(
+        [
+            np.stack([-so, co, np.zeros_like(so)], -1),
+            np.stack([-sl * co, -sl * so, cl], -1),
+            np.stack([cl * co, cl * so, sl], -1),
+        ],
+        -2,
+    )
 
 
-def geodetic2enu(lat: ArrayLike, lon: ArrayLike, h: ArrayLike, lat0: ArrayLike, lon0: ArrayLike, h0: ArrayLike,
-                 ellipsoid: Ellipsoid = WGS84, deg: bool = False) -> tuple[Array, Array, Array]:
+def geodetic2enu(
+    lat: ArrayLike,
+    lon: ArrayLike,
+    h: ArrayLike,
+    lat0: ArrayLike,
+    lon0: ArrayLike,
+    h0: ArrayLike,
+    ellipsoid: Ellipsoid = WGS84,
+    deg: bool = False,
+) -> tuple[Array, Array, Array]:
     """East, north, up (m) of geodetic points in the local tangent frame at (lat0, lon0, h0).
 
     All arguments broadcast; angles in rad (deg with ``deg=True``). Returns
@@ -747,8 +841,16 @@ def geodetic2enu(lat: ArrayLike, lon: ArrayLike, h: ArrayLike, lat0: ArrayLike, 
     return enu[..., 0], enu[..., 1], enu[..., 2]
 
 
-def enu2geodetic(e: ArrayLike, n: ArrayLike, u: ArrayLike, lat0: ArrayLike, lon0: ArrayLike, h0: ArrayLike,
-                 ellipsoid: Ellipsoid = WGS84, deg: bool = False) -> tuple[Array, Array, Array]:
+def enu2geodetic(
+    e: ArrayLike,
+    n: ArrayLike,
+    u: ArrayLike,
+    lat0: ArrayLike,
+    lon0: ArrayLike,
+    h0: ArrayLike,
+    ellipsoid: Ellipsoid = WGS84,
+    deg: bool = False,
+) -> tuple[Array, Array, Array]:
     """Inverse of :func:`geodetic2enu`: geodetic lat, lon (rad or deg), h (m) of local ENU points."""
     return _local2geodetic((e, n, u), ("e", "n", "u"), 1.0, (lat0, lon0, h0), ellipsoid, deg)
 
@@ -765,14 +867,30 @@ def _local2geodetic(local, names, up, origin, ellipsoid, deg):
     return _from_ecef(p[..., 0], p[..., 1], p[..., 2], ellipsoid, deg)
 
 
-def geodetic2ned(lat: ArrayLike, lon: ArrayLike, h: ArrayLike, lat0: ArrayLike, lon0: ArrayLike, h0: ArrayLike,
-                 ellipsoid: Ellipsoid = WGS84, deg: bool = False) -> tuple[Array, Array, Array]:
+def geodetic2ned(
+    lat: ArrayLike,
+    lon: ArrayLike,
+    h: ArrayLike,
+    lat0: ArrayLike,
+    lon0: ArrayLike,
+    h0: ArrayLike,
+    ellipsoid: Ellipsoid = WGS84,
+    deg: bool = False,
+) -> tuple[Array, Array, Array]:
     """North, east, down (m) of geodetic points in the local frame at (lat0, lon0, h0): :func:`geodetic2enu` reordered."""
     e, n, u = geodetic2enu(lat, lon, h, lat0, lon0, h0, ellipsoid, deg)
     return n, e, -u
 
 
-def ned2geodetic(n: ArrayLike, e: ArrayLike, d: ArrayLike, lat0: ArrayLike, lon0: ArrayLike, h0: ArrayLike,
-                 ellipsoid: Ellipsoid = WGS84, deg: bool = False) -> tuple[Array, Array, Array]:
+def ned2geodetic(
+    n: ArrayLike,
+    e: ArrayLike,
+    d: ArrayLike,
+    lat0: ArrayLike,
+    lon0: ArrayLike,
+    h0: ArrayLike,
+    ellipsoid: Ellipsoid = WGS84,
+    deg: bool = False,
+) -> tuple[Array, Array, Array]:
     """Inverse of :func:`geodetic2ned`: geodetic lat, lon (rad or deg), h (m) of local NED points."""
     return _local2geodetic((e, n, d), ("e", "n", "d"), -1.0, (lat0, lon0, h0), ellipsoid, deg)

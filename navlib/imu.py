@@ -10,6 +10,7 @@ take one in place of ``w_ib_b`` with ``f_b`` and ``dt`` left out (:func:`unpack`
     imu = ImuSamples(w_ib_b, f_b, dt, SensorLimits(full_scale_gyro=model.gyro.full_scale))
     res = mahony.mahony(imu, q0, m_b=m_b)
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -68,6 +69,7 @@ class SensorLimits:
         integrated over it. None (default): :data:`JUMP_FACTOR` median intervals (no jump
         with a fixed ``dt``); ``inf``: off.
     """
+
     full_scale_gyro: float = np.inf
     full_scale_accel: float = np.inf
     full_scale_mag: float = np.inf
@@ -91,10 +93,8 @@ class SensorLimits:
             object.__setattr__(self, "gyro_jump", scalar(self.gyro_jump, "gyro_jump", positive=True))
         for name in ("spike_gyro", "spike_accel"):
             object.__setattr__(self, name, scalar(getattr(self, name), name, positive=True, allow_inf=True))
-        object.__setattr__(self, "freefall_accel", scalar(self.freefall_accel, "freefall_accel", positive=True,
-                                                          allow_zero=True))
-        object.__setattr__(self, "freefall_time", scalar(self.freefall_time, "freefall_time", positive=True,
-                                                         allow_zero=True))
+        object.__setattr__(self, "freefall_accel", scalar(self.freefall_accel, "freefall_accel", positive=True, allow_zero=True))
+        object.__setattr__(self, "freefall_time", scalar(self.freefall_time, "freefall_time", positive=True, allow_zero=True))
         if self.max_dt is not None:
             object.__setattr__(self, "max_dt", scalar(self.max_dt, "max_dt", positive=True, allow_inf=True))
 
@@ -106,7 +106,7 @@ class SensorLimits:
     def stuck_samples(self, typical_dt: float) -> int:
         """``stuck_run`` in samples at the typical (median) interval ``typical_dt`` (s); 0: no stuck check."""
         if self.stuck_run == "auto":
-            return max(5, int(np.ceil(STUCK_DURATION / typical_dt - 1e-6)))   # 1e-6: a float32 dt gives the same run
+            return max(5, int(np.ceil(STUCK_DURATION / typical_dt - 1e-6)))  # 1e-6: a float32 dt gives the same run
         return self.stuck_run or 0
 
 
@@ -124,6 +124,7 @@ class ImuSamples:
     limits : SensorLimits
         Ranges and fault thresholds (default or None: no ranges, navlib's default fault tests).
     """
+
     w_ib_b: np.ndarray
     f_b: np.ndarray
     dt: Interval
@@ -140,8 +141,7 @@ class ImuSamples:
             raise TypeError(f"limits: expected a SensorLimits, got {type(self.limits).__name__}")
 
     @classmethod
-    def from_times(cls, time: Times, w_ib_b: Vec3Series, f_b: Vec3Series,
-                   limits: SensorLimits | None = None) -> ImuSamples:
+    def from_times(cls, time: Times, w_ib_b: Vec3Series, f_b: Vec3Series, limits: SensorLimits | None = None) -> ImuSamples:
         """Samples stamped at ``time`` (N + 1 epochs: the start, then the end of each sample's interval)."""
         return cls(w_ib_b, f_b, np.diff(time_axis(time, "time")), limits)
 
@@ -157,8 +157,13 @@ def _one(name: str, given, held: float):
     return given if given is not None else (None if np.isinf(held) else held)
 
 
-def unpack(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None, dt: Interval | None = None,
-           full_scale_gyro: float | None = None, full_scale_accel: float | None = None) -> tuple:
+def unpack(
+    w_ib_b: Vec3Series | ImuSamples,
+    f_b: Vec3Series | None = None,
+    dt: Interval | None = None,
+    full_scale_gyro: float | None = None,
+    full_scale_accel: float | None = None,
+) -> tuple:
     """``(w_ib_b, f_b, dt, full_scale_gyro, full_scale_accel)`` from an :class:`ImuSamples` or raw arguments.
 
     For the integrators and detectors that take either. With an ImuSamples, ``f_b`` and ``dt`` must be None
@@ -170,8 +175,13 @@ def unpack(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None, dt: I
             if value is not None:
                 raise ValueError(f"{name}: given twice (the ImuSamples holds it)")
         lim = w_ib_b.limits
-        return (w_ib_b.w_ib_b, w_ib_b.f_b, w_ib_b.dt, _one("full_scale_gyro", full_scale_gyro, lim.full_scale_gyro),
-                _one("full_scale_accel", full_scale_accel, lim.full_scale_accel))
+        return (
+            w_ib_b.w_ib_b,
+            w_ib_b.f_b,
+            w_ib_b.dt,
+            _one("full_scale_gyro", full_scale_gyro, lim.full_scale_gyro),
+            _one("full_scale_accel", full_scale_accel, lim.full_scale_accel),
+        )
     for name, value in (("f_b", f_b), ("dt", dt)):
         if value is None:
             raise ValueError(f"{name}: required (or pass an ImuSamples as w_ib_b)")

@@ -30,6 +30,7 @@ reported), and a unit that the magnitudes contradict (e.g. a gyro in deg/s decla
 says what was probably meant; ``check_units=False`` skips this). What a reader had to assume (a platform
 guessed from the files) is in ``conversions``.
 """
+
 from __future__ import annotations
 
 import os
@@ -49,16 +50,45 @@ from .imu import ImuSamples, SensorLimits
 from .timing import TimingReport, intervals, sanitize
 from .units import G0
 
-__all__ = ["UNITS", "TIME_UNITS", "Recording", "read_csv", "from_dataframe", "read_xio", "read_sensor_logger",
-           "read_phyphox", "read_euroc", "align", "resample", "AxisCheck", "check_axes", "AXIS_CHECK_WINDOW",
-           "AXIS_CHECK_RATIO", "STILL_LIMITS", "start_at_rest"]
+__all__ = [
+    "UNITS",
+    "TIME_UNITS",
+    "Recording",
+    "read_csv",
+    "from_dataframe",
+    "read_xio",
+    "read_sensor_logger",
+    "read_phyphox",
+    "read_euroc",
+    "align",
+    "resample",
+    "AxisCheck",
+    "check_axes",
+    "AXIS_CHECK_WINDOW",
+    "AXIS_CHECK_RATIO",
+    "STILL_LIMITS",
+    "start_at_rest",
+]
 
 UNITS: dict[str, tuple[str, float]] = {
-    "rad/s": ("gyro", 1.0), "deg/s": ("gyro", np.pi / 180), "dps": ("gyro", np.pi / 180),
-    "m/s^2": ("accel", 1.0), "m/s2": ("accel", 1.0), "g": ("accel", G0), "mg": ("accel", G0 / 1000),
-    "uT": ("mag", 1.0), "µT": ("mag", 1.0), "nT": ("mag", 1e-3), "mT": ("mag", 1e3), "gauss": ("mag", 100.0),
-    "G": ("mag", 100.0), "mG": ("mag", 0.1),
-    "Pa": ("baro", 1.0), "hPa": ("baro", 100.0), "mbar": ("baro", 100.0), "kPa": ("baro", 1000.0),
+    "rad/s": ("gyro", 1.0),
+    "deg/s": ("gyro", np.pi / 180),
+    "dps": ("gyro", np.pi / 180),
+    "m/s^2": ("accel", 1.0),
+    "m/s2": ("accel", 1.0),
+    "g": ("accel", G0),
+    "mg": ("accel", G0 / 1000),
+    "uT": ("mag", 1.0),
+    "µT": ("mag", 1.0),
+    "nT": ("mag", 1e-3),
+    "mT": ("mag", 1e3),
+    "gauss": ("mag", 100.0),
+    "G": ("mag", 100.0),
+    "mG": ("mag", 0.1),
+    "Pa": ("baro", 1.0),
+    "hPa": ("baro", 100.0),
+    "mbar": ("baro", 100.0),
+    "kPa": ("baro", 1000.0),
 }
 """Unit name -> (sensor it belongs to, factor to navlib's unit: rad/s, m/s^2, uT, Pa)."""
 TIME_UNITS: dict[str, float | None] = {"s": 1.0, "ms": 1e-3, "us": 1e-6, "ns": 1e-9, "iso": None}
@@ -67,7 +97,7 @@ TIME_UNITS: dict[str, float | None] = {"s": 1.0, "ms": 1e-3, "us": 1e-6, "ns": 1
 _FIELDS = {"gyro": "w_ib_b", "accel": "f_b", "mag": "m_b", "baro": "pressure"}
 # Plausible medians of |x| in navlib units, and the largest physical value (MEMS ranges, Earth's surface).
 _MEDIAN = {"accel": (3.0, 30.0), "mag": (5.0, 500.0), "baro": (3e4, 1.2e5)}
-_MAX = {"gyro": 40.0}          # rad/s: the widest MEMS gyro range, +-2000 deg/s, is 34.9 rad/s
+_MAX = {"gyro": 40.0}  # rad/s: the widest MEMS gyro range, +-2000 deg/s, is 34.9 rad/s
 
 
 @dataclass(frozen=True)
@@ -95,6 +125,7 @@ class Recording:
         The source's own attitude estimate (e.g. a phone's ``Orientation.csv``) as navlib's ``q_bn``
         (body right-front-up to ENU, scalar first); which north it refers to is in ``conversions``.
     """
+
     time: np.ndarray
     w_ib_b: np.ndarray | None = None
     f_b: np.ndarray | None = None
@@ -126,8 +157,11 @@ class Recording:
 
     def __str__(self) -> str:
         sensors = ", ".join(k for k, v in _FIELDS.items() if getattr(self, v) is not None)
-        lines = [f"Recording of {self.n} samples over {self.time[-1]:.3f} s: {sensors}", f"  source: {self.source}",
-                 _timing_summary(self.time, self.timing)] + [f"  {c}" for c in self.conversions]
+        lines = [
+            f"Recording of {self.n} samples over {self.time[-1]:.3f} s: {sensors}",
+            f"  source: {self.source}",
+            _timing_summary(self.time, self.timing),
+        ] + [f"  {c}" for c in self.conversions]
         return "\n".join(lines)
 
 
@@ -136,11 +170,14 @@ def _timing_summary(t: np.ndarray, report: TimingReport | None) -> str:
     a mean rate well below the median one and a 99th percentile far above the median interval."""
     dt = np.diff(t)
     k = int(np.argmax(dt))
-    repaired = "none" if report is None else (f"{report.n_duplicate} repeated dropped, "
-                                               f"{report.n_out_of_order} out of order moved")
-    return (f"  timing: median {1 / np.median(dt):.4g} Hz, mean {(t.size - 1) / (t[-1] - t[0]):.4g} Hz, "
-            f"99th-percentile interval {1e3 * np.percentile(dt, 99):.4g} ms, largest gap {1e3 * dt[k]:.4g} ms "
-            f"at {t[k]:.3f} s; repaired stamps: {repaired}")
+    repaired = (
+        "none" if report is None else (f"{report.n_duplicate} repeated dropped, {report.n_out_of_order} out of order moved")
+    )
+    return (
+        f"  timing: median {1 / np.median(dt):.4g} Hz, mean {(t.size - 1) / (t[-1] - t[0]):.4g} Hz, "
+        f"99th-percentile interval {1e3 * np.percentile(dt, 99):.4g} ms, largest gap {1e3 * dt[k]:.4g} ms "
+        f"at {t[k]:.3f} s; repaired stamps: {repaired}"
+    )
 
 
 def _unit(sensor: str, unit: str) -> float:
@@ -157,17 +194,24 @@ def _check_magnitude(sensor: str, x: np.ndarray, unit: str) -> None:
     if norm.size == 0:
         return
     if sensor == "gyro" and norm.max() > _MAX["gyro"]:
-        raise ValueError(f"units['gyro']: |w| reaches {norm.max():.4g} rad/s read as {unit!r}, beyond any MEMS "
-                         f"gyro (+-2000 deg/s = 34.9 rad/s); is the column in deg/s? (check_units=False to accept)")
+        raise ValueError(
+            f"units['gyro']: |w| reaches {norm.max():.4g} rad/s read as {unit!r}, beyond any MEMS "
+            f"gyro (+-2000 deg/s = 34.9 rad/s); is the column in deg/s? (check_units=False to accept)"
+        )
     if sensor in _MEDIAN:
         lo, hi = _MEDIAN[sensor]
         med = float(np.median(norm))
         if not lo <= med <= hi:
-            hint = {"accel": "g or m/s^2 (or gravity removed: navlib needs specific force including gravity)",
-                    "mag": "uT, nT or gauss", "baro": "Pa or hPa"}[sensor]
-            raise ValueError(f"units[{sensor!r}]: median magnitude {med:.4g} in navlib units after reading the "
-                             f"column as {unit!r}, expected {lo:g}..{hi:g}; check the unit ({hint}); "
-                             f"check_units=False to accept")
+            hint = {
+                "accel": "g or m/s^2 (or gravity removed: navlib needs specific force including gravity)",
+                "mag": "uT, nT or gauss",
+                "baro": "Pa or hPa",
+            }[sensor]
+            raise ValueError(
+                f"units[{sensor!r}]: median magnitude {med:.4g} in navlib units after reading the "
+                f"column as {unit!r}, expected {lo:g}..{hi:g}; check the unit ({hint}); "
+                f"check_units=False to accept"
+            )
 
 
 def _seconds(values: pd.Series, unit: str) -> tuple[np.ndarray, float | np.datetime64]:
@@ -179,7 +223,7 @@ def _seconds(values: pd.Series, unit: str) -> tuple[np.ndarray, float | np.datet
     raw = pd.to_numeric(values, errors="coerce").to_numpy(dtype=float)
     if not np.all(np.isfinite(raw)):
         raise ValueError(f"time: {int(np.sum(~np.isfinite(raw)))} non-numeric or missing timestamps")
-    if unit == "ns":                                   # epoch nanoseconds: subtract in integers, keep precision
+    if unit == "ns":  # epoch nanoseconds: subtract in integers, keep precision
         stamps = pd.to_numeric(values).to_numpy(dtype=np.int64)
         return (stamps - stamps[0]) * 1e-9, np.datetime64(int(stamps[0]), "ns")
     return (raw - raw[0]) * factor, float(raw[0] * factor)
@@ -190,16 +234,28 @@ def _check_timing(t: np.ndarray, policy: str, name: str = "time") -> None:
     n_back = int(np.count_nonzero(np.diff(t) < 0))
     n_same = int(np.count_nonzero(np.diff(np.sort(t)) == 0))
     if policy == "raise" and (n_back or n_same):
-        raise ValueError(f"{name}: {n_same} repeated and {n_back} out-of-order timestamps in {t.size} samples; "
-                         f"timing='sanitize' sorts them and drops repeats (keeping the first), reported in "
-                         f"Recording.timing")
+        raise ValueError(
+            f"{name}: {n_same} repeated and {n_back} out-of-order timestamps in {t.size} samples; "
+            f"timing='sanitize' sorts them and drops repeats (keeping the first), reported in "
+            f"Recording.timing"
+        )
 
 
-def from_dataframe(df: pd.DataFrame, *, time: str, time_unit: str = "s", units: Mapping[str, str],
-                   gyro: Sequence[str] | None = None, accel: Sequence[str] | None = None,
-                   mag: Sequence[str] | None = None, baro: str | None = None,
-                   axes: str | Dcm | Mapping[str, str | Dcm] = "x,y,z", mirror: bool = False,
-                   timing: str = "raise", check_units: bool = True) -> Recording:
+def from_dataframe(
+    df: pd.DataFrame,
+    *,
+    time: str,
+    time_unit: str = "s",
+    units: Mapping[str, str],
+    gyro: Sequence[str] | None = None,
+    accel: Sequence[str] | None = None,
+    mag: Sequence[str] | None = None,
+    baro: str | None = None,
+    axes: str | Dcm | Mapping[str, str | Dcm] = "x,y,z",
+    mirror: bool = False,
+    timing: str = "raise",
+    check_units: bool = True,
+) -> Recording:
     """A :class:`Recording` from a table with one row per sample.
 
     Parameters
@@ -244,13 +300,15 @@ def from_dataframe(df: pd.DataFrame, *, time: str, time_unit: str = "s", units: 
     for sensor, cols in present.items():
         if sensor == "baro":
             text(cols, "baro", empty=False)
-        elif isinstance(cols, str) or not isinstance(cols, Sequence) or len(cols) != 3 or \
-                not all(isinstance(c, str) for c in cols):
+        elif (
+            isinstance(cols, str) or not isinstance(cols, Sequence) or len(cols) != 3 or not all(isinstance(c, str) for c in cols)
+        ):
             raise ValueError(f"{sensor}: expected the names of its x, y, z columns (3 strings), got {cols!r}")
     if not present:
         raise ValueError("gyro, accel, mag, baro: give the columns of at least one sensor")
-    missing = [c for c in [time, *[x for c in present.values() for x in ([c] if isinstance(c, str) else c)]]
-               if c not in df.columns]
+    missing = [
+        c for c in [time, *[x for c in present.values() for x in ([c] if isinstance(c, str) else c)]] if c not in df.columns
+    ]
     if missing:
         raise ValueError(f"columns: {missing} not in the table; it has {list(df.columns)}")
     t, start = _seconds(df[time], time_unit)
@@ -262,21 +320,25 @@ def from_dataframe(df: pd.DataFrame, *, time: str, time_unit: str = "s", units: 
         factor = _unit(sensor, units[sensor])
         if sensor == "baro":
             x = _numeric(df, [cols])[:, 0] * factor
-        else:                                   # three column names, checked above
+        else:  # three column names, checked above
             x = _numeric(df, list(cols)) * factor @ mounts[sensor][0].T
         if check_units:
             _check_magnitude(sensor, x, units[sensor])
         data[_FIELDS[sensor]] = x
-        notes.append(f"{sensor}: columns {cols} in {units[sensor]} x {factor:.6g} -> {_target(sensor)}"
-                     + ("" if sensor == "baro" else f", axes {mounts[sensor][1]}"))
+        notes.append(
+            f"{sensor}: columns {cols} in {units[sensor]} x {factor:.6g} -> {_target(sensor)}"
+            + ("" if sensor == "baro" else f", axes {mounts[sensor][1]}")
+        )
     report = None
     if timing == "sanitize":
         keys = list(data)
         t, *values, report = sanitize(t, *(data[k] for k in keys))
         data = dict(zip(keys, values, strict=True))
         t = t - t[0]
-        notes.append(f"timing: {report.n_duplicate} repeated timestamps dropped, {report.n_out_of_order} "
-                     f"out-of-order samples moved ({report.n_in} -> {report.n_out} samples)")
+        notes.append(
+            f"timing: {report.n_duplicate} repeated timestamps dropped, {report.n_out_of_order} "
+            f"out-of-order samples moved ({report.n_in} -> {report.n_out} samples)"
+        )
     time_axis(t, "time")
     return Recording(t, **data, start=start, source="DataFrame", conversions=tuple(notes), timing=report)
 
@@ -305,7 +367,7 @@ def _mount(spec: str | Dcm, mirror: bool, name: str) -> np.ndarray:
         if not (mirror and is_mirror):
             hint = "; if the board really is mirrored, pass mirror=True" if is_mirror else ""
             raise ValueError(f"{name}: {str(err).split(': ', 1)[-1]}{hint}") from None
-    if isinstance(spec, str):                    # a mirror string: flip one sign, build, flip the row back
+    if isinstance(spec, str):  # a mirror string: flip one sign, build, flip the row back
         head, _, rest = spec.partition(",")
         head = head.strip()
         C = attitude.mount_matrix((head[1:] if head.startswith("-") else "-" + head.lstrip("+")) + "," + rest)
@@ -343,8 +405,7 @@ def _finish(rec: Recording, source: str, check: str, notes: Sequence[str] = (), 
     return rec
 
 
-def read_csv(path: str | Path, *, sep: str = ",", comment: str | None = None, check: str = "warn",
-             **kwargs) -> Recording:
+def read_csv(path: str | Path, *, sep: str = ",", comment: str | None = None, check: str = "warn", **kwargs) -> Recording:
     """A :class:`Recording` from a CSV file: ``pandas.read_csv(path, sep, comment)`` then :func:`from_dataframe`.
 
     Parameters
@@ -374,12 +435,19 @@ def _in_file(source: str, reader, *args, **kwargs) -> Recording:
         raise ValueError(f"{err} (in {source})") from None
 
 
-_XIO_OLD = "Packet number"          # x-IMU (older x-io board, CalInertialAndMag.csv): no time column
+_XIO_OLD = "Packet number"  # x-IMU (older x-io board, CalInertialAndMag.csv): no time column
 
 
-def read_xio(path: str | Path, *, rate: float | None = None, axes: str | Dcm | Mapping[str, str | Dcm] = "x,y,z",
-             mirror: bool = False, timing: str = "raise", check_units: bool = True,
-             check: str = "warn") -> Recording:
+def read_xio(
+    path: str | Path,
+    *,
+    rate: float | None = None,
+    axes: str | Dcm | Mapping[str, str | Dcm] = "x,y,z",
+    mirror: bool = False,
+    timing: str = "raise",
+    check_units: bool = True,
+    check: str = "warn",
+) -> Recording:
     """An x-io Technologies CSV: NGIMU / Fusion examples (``Time (s)``), or the older x-IMU layout.
 
     * NGIMU and x-io's Fusion example data: ``Time (s)``, ``Gyroscope X/Y/Z (deg/s)``, ``Accelerometer X/Y/Z (g)``,
@@ -408,12 +476,16 @@ def read_xio(path: str | Path, *, rate: float | None = None, axes: str | Dcm | M
     packet = next((c for c in df.columns if c.lower() == _XIO_OLD.lower()), None)
     if packet is not None:
         if rate is None:
-            raise ValueError(f"rate: {source} has a column {packet!r} and no 'Time (s)': an x-IMU file, whose "
-                             f"samples carry no time; pass rate= (the board's sample rate in Hz, e.g. rate=256)")
+            raise ValueError(
+                f"rate: {source} has a column {packet!r} and no 'Time (s)': an x-IMU file, whose "
+                f"samples carry no time; pass rate= (the board's sample rate in Hz, e.g. rate=256)"
+            )
         rate = scalar(rate, "rate", positive=True)
         df["Time (s)"] = np.arange(len(df)) / rate
-        notes.append(f"time: x-IMU layout; row number / rate {rate:g} Hz -> s (the x-IMU numbers every packet it "
-                     f"sends, of all kinds, so column {packet!r} skips numbers between inertial rows: not time)")
+        notes.append(
+            f"time: x-IMU layout; row number / rate {rate:g} Hz -> s (the x-IMU numbers every packet it "
+            f"sends, of all kinds, so column {packet!r} skips numbers between inertial rows: not time)"
+        )
     elif rate is not None:
         raise ValueError(f"rate: {source} has its own time column 'Time (s)'; leave rate out")
     cols = {"gyro": [f"Gyroscope {a} (deg/s)" for a in "XYZ"], "accel": [f"Accelerometer {a} (g)" for a in "XYZ"]}
@@ -423,8 +495,18 @@ def read_xio(path: str | Path, *, rate: float | None = None, axes: str | Dcm | M
             cols["mag"], units["mag"] = [f"Magnetometer {a} ({unit})" for a in "XYZ"], name
     if "Barometer (hPa)" in df.columns:
         cols["baro"], units["baro"] = "Barometer (hPa)", "hPa"
-    rec = _in_file(source, from_dataframe, df, time="Time (s)", units=units, axes=axes, mirror=mirror,
-                   timing=timing, check_units=check_units, **cols)
+    rec = _in_file(
+        source,
+        from_dataframe,
+        df,
+        time="Time (s)",
+        units=units,
+        axes=axes,
+        mirror=mirror,
+        timing=timing,
+        check_units=check_units,
+        **cols,
+    )
     return _finish(rec, source, _check_option(check), notes)
 
 
@@ -445,6 +527,7 @@ def _read_table(path: str | Path, **read_csv) -> tuple[pd.DataFrame, str]:
 
 # ----------------------------------------------------------------------------------- phone apps
 
+
 def _file_xyz(df: pd.DataFrame, path: Path, prefix: str = "") -> np.ndarray:
     """The x, y, z columns of a phone app's per-sensor file: ``x``, ``y``, ``z`` (Sensor Logger), or
     ``<NAME> X (<unit>)`` in any case (older Sensor Logger exports, phyphox), as floats."""
@@ -455,8 +538,10 @@ def _file_xyz(df: pd.DataFrame, path: Path, prefix: str = "") -> np.ndarray:
         for a in "xyz":
             found = [c for c in df.columns if re.fullmatch(rf"{prefix}.*\b{a} \(.*\)", c.strip(), re.IGNORECASE)]
             if len(found) != 1:
-                raise ValueError(f"{path}: no single column for the {a} axis (expected 'x', 'y', 'z' or "
-                                 f"'<sensor> {a.upper()} (<unit>)'); it has {list(df.columns)}")
+                raise ValueError(
+                    f"{path}: no single column for the {a} axis (expected 'x', 'y', 'z' or "
+                    f"'<sensor> {a.upper()} (<unit>)'); it has {list(df.columns)}"
+                )
             cols += found
     return _in_file(str(path), _numeric, df, cols)
 
@@ -471,8 +556,7 @@ def _phone_file(path: Path) -> pd.DataFrame:
 def _stamps(df: pd.DataFrame, path: Path) -> np.ndarray:
     """A Sensor Logger file's ``time`` column: integer nanoseconds since the epoch."""
     if "time" not in df.columns:
-        raise ValueError(f"{path}: no column 'time' (ns since the epoch) of a Sensor Logger export; "
-                         f"it has {list(df.columns)}")
+        raise ValueError(f"{path}: no column 'time' (ns since the epoch) of a Sensor Logger export; it has {list(df.columns)}")
     return pd.to_numeric(df["time"]).to_numpy(dtype=np.int64)
 
 
@@ -493,22 +577,30 @@ def _logger_platform(d: Path, platform: str | None) -> tuple[str, bool, list[str
     if platform is not None:
         platform = choice(platform, "platform", ("ios", "android"))
         if written not in (None, platform):
-            raise ValueError(f"platform: {platform!r} given, but {d / 'Metadata.csv'} says {written!r}; "
-                             f"leave platform out to use the file's")
+            raise ValueError(
+                f"platform: {platform!r} given, but {d / 'Metadata.csv'} says {written!r}; leave platform out to use the file's"
+            )
     if written is not None and written not in ("ios", "android"):
         raise ValueError(f"{d / 'Metadata.csv'}: column 'platform': unknown value {written!r}; pass platform=")
     standardised = meta.get("standardisation", "false") == "true"
     if written:
-        notes = [f"platform: {written} (Metadata.csv, app {meta.get('appVersion', '?')}"
-                 f"{', units and frames standardised' if standardised else ''})"]
+        notes = [
+            f"platform: {written} (Metadata.csv, app {meta.get('appVersion', '?')}"
+            f"{', units and frames standardised' if standardised else ''})"
+        ]
         return written, standardised, notes
     if platform:
         return platform, False, [f"platform: {platform} (given; no Metadata.csv, assumed not standardised)"]
     if (d / "TotalAcceleration.csv").is_file():
-        return "android", False, ["platform: android GUESSED (no Metadata.csv; only Android writes "
-                                  "TotalAcceleration.csv); pass platform= to be sure"]
-    raise ValueError(f"{d}: no Metadata.csv to tell iOS from Android (their accelerometer signs differ); pass "
-                     f"platform='ios' or platform='android'")
+        return (
+            "android",
+            False,
+            ["platform: android GUESSED (no Metadata.csv; only Android writes TotalAcceleration.csv); pass platform= to be sure"],
+        )
+    raise ValueError(
+        f"{d}: no Metadata.csv to tell iOS from Android (their accelerometer signs differ); pass "
+        f"platform='ios' or platform='android'"
+    )
 
 
 def _logger_accel(d: Path, ios_signs: bool, ios_g: bool) -> tuple[np.ndarray, np.ndarray, Path, str]:
@@ -518,38 +610,56 @@ def _logger_accel(d: Path, ios_signs: bool, ios_g: bool) -> tuple[np.ndarray, np
     flipped = "; x -1 (iOS sign convention)" if ios_signs else ""
     if (d / "TotalAcceleration.csv").is_file():
         df = _phone_file(d / "TotalAcceleration.csv")
-        return _stamps(df, d / "TotalAcceleration.csv"), sign * _file_xyz(df, d / "TotalAcceleration.csv"), \
-            d / "TotalAcceleration.csv", "accel: TotalAcceleration.csv (m/s^2, with gravity)" + flipped
+        return (
+            _stamps(df, d / "TotalAcceleration.csv"),
+            sign * _file_xyz(df, d / "TotalAcceleration.csv"),
+            d / "TotalAcceleration.csv",
+            "accel: TotalAcceleration.csv (m/s^2, with gravity)" + flipped,
+        )
     if (d / "Accelerometer.csv").is_file() and (d / "Gravity.csv").is_file():
         acc, grav = _phone_file(d / "Accelerometer.csv"), _phone_file(d / "Gravity.csv")
         t, tg = _stamps(acc, d / "Accelerometer.csv"), _stamps(grav, d / "Gravity.csv")
         g = _file_xyz(grav, d / "Gravity.csv")
         g_on_t = np.column_stack([np.interp(t, tg, g[:, i], left=np.nan, right=np.nan) for i in range(3)])
-        return t, sign * (_file_xyz(acc, d / "Accelerometer.csv") + g_on_t), d / "Accelerometer.csv", \
-            "accel: Accelerometer.csv + Gravity.csv (gravity-free acceleration plus gravity, m/s^2)" + flipped
+        return (
+            t,
+            sign * (_file_xyz(acc, d / "Accelerometer.csv") + g_on_t),
+            d / "Accelerometer.csv",
+            "accel: Accelerometer.csv + Gravity.csv (gravity-free acceleration plus gravity, m/s^2)" + flipped,
+        )
     if (d / "AccelerometerUncalibrated.csv").is_file():
         df = _phone_file(d / "AccelerometerUncalibrated.csv")
         scale = G0 if ios_g else 1.0
-        return _stamps(df, d / "AccelerometerUncalibrated.csv"), \
-            sign * scale * _file_xyz(df, d / "AccelerometerUncalibrated.csv"), d / "AccelerometerUncalibrated.csv", \
-            f"accel: AccelerometerUncalibrated.csv ({'g' if ios_g else 'm/s^2'}){flipped}"
+        return (
+            _stamps(df, d / "AccelerometerUncalibrated.csv"),
+            sign * scale * _file_xyz(df, d / "AccelerometerUncalibrated.csv"),
+            d / "AccelerometerUncalibrated.csv",
+            f"accel: AccelerometerUncalibrated.csv ({'g' if ios_g else 'm/s^2'}){flipped}",
+        )
     if (d / "Accelerometer.csv").is_file():
-        raise ValueError(f"{d / 'Accelerometer.csv'}: gravity is removed from it and the export has no "
-                         f"Gravity.csv, TotalAcceleration.csv or AccelerometerUncalibrated.csv to restore it; "
-                         f"record again with Gravity (or Uncalibrated Accelerometer) switched on")
-    raise ValueError(f"{d}: no accelerometer file (TotalAcceleration.csv, Accelerometer.csv with Gravity.csv, or "
-                     f"AccelerometerUncalibrated.csv)")
+        raise ValueError(
+            f"{d / 'Accelerometer.csv'}: gravity is removed from it and the export has no "
+            f"Gravity.csv, TotalAcceleration.csv or AccelerometerUncalibrated.csv to restore it; "
+            f"record again with Gravity (or Uncalibrated Accelerometer) switched on"
+        )
+    raise ValueError(
+        f"{d}: no accelerometer file (TotalAcceleration.csv, Accelerometer.csv with Gravity.csv, or "
+        f"AccelerometerUncalibrated.csv)"
+    )
 
 
-def _logger_reference(d: Path, platform: str, standardised: bool, t_ns: np.ndarray,
-                      C_bs: np.ndarray) -> tuple[np.ndarray | None, str | None]:
+def _logger_reference(
+    d: Path, platform: str, standardised: bool, t_ns: np.ndarray, C_bs: np.ndarray
+) -> tuple[np.ndarray | None, str | None]:
     """Orientation.csv as navlib's q_bn on the gyro clock (body = the mapped axes), and its note."""
     path = d / "Orientation.csv"
     if not path.is_file():
         return None, None
     if platform == "ios" and standardised:
-        return None, ("reference: Orientation.csv not used (a standardised iOS quaternion's convention is not "
-                      "documented precisely enough to convert it)")
+        return None, (
+            "reference: Orientation.csv not used (a standardised iOS quaternion's convention is not "
+            "documented precisely enough to convert it)"
+        )
     if np.linalg.det(C_bs) < 0:
         return None, "reference: Orientation.csv not used (a mirrored body frame has no attitude)"
     df = _phone_file(path)
@@ -560,19 +670,29 @@ def _logger_reference(d: Path, platform: str, standardised: bool, t_ns: np.ndarr
     q_ps = align(t_ns * 1e-9, _stamps(df, path) * 1e-9, q_ps, method="hold")
     ok = np.all(np.isfinite(q_ps), axis=-1)
     C = np.full((t_ns.size, 3, 3), np.nan)
-    C[ok] = attitude.quat_to_dcm(q_ps[ok]) @ C_bs.T       # body -> phone -> the app's reference frame
+    C[ok] = attitude.quat_to_dcm(q_ps[ok]) @ C_bs.T  # body -> phone -> the app's reference frame
     if platform == "ios":
         C[ok] = _NWU_TO_ENU @ C[ok]
     q = np.full((t_ns.size, 4), np.nan)
     q[ok] = attitude.dcm_to_quat(C[ok])
-    return q, (f"reference: Orientation.csv quaternion -> q_bn_ref (ENU, heading from {_LOGGER_NORTH[platform]}"
-               f"{'; x-north-y-west-z-up reference turned to ENU' if platform == 'ios' else ''})")
+    return q, (
+        f"reference: Orientation.csv quaternion -> q_bn_ref (ENU, heading from {_LOGGER_NORTH[platform]}"
+        f"{'; x-north-y-west-z-up reference turned to ENU' if platform == 'ios' else ''})"
+    )
 
 
-def read_sensor_logger(directory: str | Path, *, platform: str | None = None,
-                       axes: str | Dcm | Mapping[str, str | Dcm] = "x,y,z", mirror: bool = False,
-                       method: str = "hold", max_gap: float | None = None, timing: str = "raise",
-                       check_units: bool = True, check: str = "warn") -> Recording:
+def read_sensor_logger(
+    directory: str | Path,
+    *,
+    platform: str | None = None,
+    axes: str | Dcm | Mapping[str, str | Dcm] = "x,y,z",
+    mirror: bool = False,
+    method: str = "hold",
+    max_gap: float | None = None,
+    timing: str = "raise",
+    check_units: bool = True,
+    check: str = "warn",
+) -> Recording:
     """A Sensor Logger (phone app) CSV export, iOS or Android, any app version: put on the gyroscope's clock.
 
     The platform (and the app's "Standardise Units & Frames" setting) comes from ``Metadata.csv``, or
@@ -622,7 +742,7 @@ def read_sensor_logger(directory: str | Path, *, platform: str | None = None,
     t_ns = _stamps(gyro, d / "Gyroscope.csv")
     _check_timing(t_ns, timing, str(d / "Gyroscope.csv"))
     w = _file_xyz(gyro, d / "Gyroscope.csv")
-    if timing == "sanitize":                 # the other sensors are put on this clock: repair it first
+    if timing == "sanitize":  # the other sensors are put on this clock: repair it first
         order = np.unique(t_ns, return_index=True)[1]
         t_ns, w = t_ns[order], w[order]
     t_gyro = (t_ns - t_ns[0]) * 1e-9
@@ -633,29 +753,47 @@ def read_sensor_logger(directory: str | Path, *, platform: str | None = None,
     sensors = {"accel": (t_acc, f_acc, acc_file, "m/s^2")}
     if (d / "Magnetometer.csv").is_file():
         df = _phone_file(d / "Magnetometer.csv")
-        sensors["mag"] = (_stamps(df, d / "Magnetometer.csv"), _file_xyz(df, d / "Magnetometer.csv"),
-                          d / "Magnetometer.csv", "uT")
+        sensors["mag"] = (
+            _stamps(df, d / "Magnetometer.csv"),
+            _file_xyz(df, d / "Magnetometer.csv"),
+            d / "Magnetometer.csv",
+            "uT",
+        )
     if (d / "Barometer.csv").is_file():
         df = _phone_file(d / "Barometer.csv")
         if "pressure" not in df.columns:
             raise ValueError(f"{d / 'Barometer.csv'}: no column 'pressure' (hPa); it has {list(df.columns)}")
-        sensors["baro"] = (_stamps(df, d / "Barometer.csv"), _in_file(str(d), _numeric, df, ["pressure"]),
-                           d / "Barometer.csv", "hPa")
+        sensors["baro"] = (
+            _stamps(df, d / "Barometer.csv"),
+            _in_file(str(d), _numeric, df, ["pressure"]),
+            d / "Barometer.csv",
+            "hPa",
+        )
     for sensor, (stamps, x, path, unit) in sensors.items():
         _check_timing(stamps, timing, str(path))
         t_s = (stamps - t_ns[0]) * 1e-9
         if timing == "sanitize":
             t_s, x, _ = sanitize(t_s, x)
-        names = [f"{sensor}_{c}" for c in "xyz"][:x.shape[1]]
+        names = [f"{sensor}_{c}" for c in "xyz"][: x.shape[1]]
         frame[names] = align(t_gyro, t_s, x, method=method, max_gap=max_gap)
         kw[sensor] = names[0] if sensor == "baro" else tuple(names)
         units[sensor] = unit
-    missing = [s for s, f in (("magnetometer", "Magnetometer.csv"), ("barometer", "Barometer.csv"))
-               if not (d / f).is_file()]
+    missing = [s for s, f in (("magnetometer", "Magnetometer.csv"), ("barometer", "Barometer.csv")) if not (d / f).is_file()]
     if missing:
         notes.append(f"not in the export: {', '.join(missing)}")
-    rec = _in_file(str(d), from_dataframe, frame, time="time", time_unit="ns", units=units, axes=axes,
-                   mirror=mirror, timing=timing, check_units=check_units, **kw)
+    rec = _in_file(
+        str(d),
+        from_dataframe,
+        frame,
+        time="time",
+        time_unit="ns",
+        units=units,
+        axes=axes,
+        mirror=mirror,
+        timing=timing,
+        check_units=check_units,
+        **kw,
+    )
     q_ref, note = _logger_reference(d, platform, standardised, t_ns, _mounts(axes, mirror)["gyro"][0])
     return _finish(rec, str(d), _check_option(check), notes + ([note] if note else []), q_bn_ref=q_ref)
 
@@ -663,9 +801,16 @@ def read_sensor_logger(directory: str | Path, *, platform: str | None = None,
 _PHYPHOX = {"gyro": ("Gyroscope", "rad/s"), "accel": ("Acceleration", "m/s^2"), "mag": ("Magnetic field", "uT")}
 
 
-def read_phyphox(path: str | Path, *, axes: str | Dcm | Mapping[str, str | Dcm] = "x,y,z", mirror: bool = False,
-                 method: str = "hold", max_gap: float | None = None, check_units: bool = True,
-                 check: str = "warn") -> Recording:
+def read_phyphox(
+    path: str | Path,
+    *,
+    axes: str | Dcm | Mapping[str, str | Dcm] = "x,y,z",
+    mirror: bool = False,
+    method: str = "hold",
+    max_gap: float | None = None,
+    check_units: bool = True,
+    check: str = "warn",
+) -> Recording:
     """A phyphox CSV export: one experiment's ``Raw Data.csv``, or the folder of a multi-sensor export
     (``Gyroscope.csv``, ``Accelerometer.csv``, ``Magnetometer.csv``), put on the gyroscope's clock.
 
@@ -696,14 +841,18 @@ def read_phyphox(path: str | Path, *, axes: str | Dcm | Mapping[str, str | Dcm] 
         if "Time (s)" not in df.columns:
             continue
         if any(c.lower().startswith("linear acceleration") for c in df.columns) and len(files) == 1:
-            raise ValueError(f"{f}: 'Linear Acceleration' has gravity removed; record phyphox's "
-                             f"'Acceleration with g' (navlib needs specific force)")
+            raise ValueError(
+                f"{f}: 'Linear Acceleration' has gravity removed; record phyphox's "
+                f"'Acceleration with g' (navlib needs specific force)"
+            )
         for sensor, (name, _) in _PHYPHOX.items():
             if sensor not in found and f"{name} x" in " ".join(df.columns):
                 found[sensor] = (df["Time (s)"].to_numpy(dtype=float), _file_xyz(df, f, name), f)
     if "gyro" not in found:
-        raise ValueError(f"{p}: no column 'Gyroscope x (rad/s)' with 'Time (s)'; record phyphox's Gyroscope "
-                         f"(and 'Acceleration with g') and export CSV")
+        raise ValueError(
+            f"{p}: no column 'Gyroscope x (rad/s)' with 'Time (s)'; record phyphox's Gyroscope "
+            f"(and 'Acceleration with g') and export CSV"
+        )
     t_gyro = found["gyro"][0]
     frame = pd.DataFrame({"t": t_gyro})
     kw, units, notes = {}, {}, []
@@ -712,13 +861,13 @@ def read_phyphox(path: str | Path, *, axes: str | Dcm | Mapping[str, str | Dcm] 
         frame[names] = x if sensor == "gyro" else align(t_gyro, t_s, x, method=method, max_gap=max_gap)
         kw[sensor], units[sensor] = tuple(names), _PHYPHOX[sensor][1]
         notes.append(f"{sensor}: {f.name}")
-    rec = _in_file(str(p), from_dataframe, frame, time="t", units=units, axes=axes, mirror=mirror,
-                   check_units=check_units, **kw)
+    rec = _in_file(str(p), from_dataframe, frame, time="t", units=units, axes=axes, mirror=mirror, check_units=check_units, **kw)
     return _finish(rec, str(p), _check_option(check), notes)
 
 
-def read_euroc(path: str | Path, *, axes: str | Dcm = "x,y,z", timing: str = "raise",
-               check_units: bool = True, check: str = "warn") -> Recording:
+def read_euroc(
+    path: str | Path, *, axes: str | Dcm = "x,y,z", timing: str = "raise", check_units: bool = True, check: str = "warn"
+) -> Recording:
     """The EuRoC MAV dataset's IMU file (``mav0/imu0/data.csv``): ns timestamps, rad/s, m/s^2.
 
     Columns ``#timestamp [ns]``, ``w_RS_S_x [rad s^-1]`` ... ``a_RS_S_z [m s^-2]`` in the sensor frame S;
@@ -728,13 +877,24 @@ def read_euroc(path: str | Path, *, axes: str | Dcm = "x,y,z", timing: str = "ra
     df.columns = [c.strip() for c in df.columns]
     gyro = [f"w_RS_S_{a} [rad s^-1]" for a in "xyz"]
     accel = [f"a_RS_S_{a} [m s^-2]" for a in "xyz"]
-    rec = _in_file(source, from_dataframe, df, time="#timestamp [ns]", time_unit="ns",
-                   units={"gyro": "rad/s", "accel": "m/s^2"}, gyro=gyro, accel=accel, axes=axes, timing=timing,
-                   check_units=check_units)
+    rec = _in_file(
+        source,
+        from_dataframe,
+        df,
+        time="#timestamp [ns]",
+        time_unit="ns",
+        units={"gyro": "rad/s", "accel": "m/s^2"},
+        gyro=gyro,
+        accel=accel,
+        axes=axes,
+        timing=timing,
+        check_units=check_units,
+    )
     return _finish(rec, source, _check_option(check))
 
 
 # ----------------------------------------------------------------------------------- clocks
+
 
 def _default_gap(ts: np.ndarray) -> float:
     """:func:`align`'s default ``max_gap``: 1.5 times the source's 99th-percentile interval. A bursty sensor
@@ -743,8 +903,9 @@ def _default_gap(ts: np.ndarray) -> float:
     return 1.5 * float(np.percentile(np.diff(ts), 99))
 
 
-def align(t_target: Times, t_source: ArrayLike, x_source: ArrayLike, *, method: str = "hold",
-          max_gap: float | None = None) -> Array:
+def align(
+    t_target: Times, t_source: ArrayLike, x_source: ArrayLike, *, method: str = "hold", max_gap: float | None = None
+) -> Array:
     """Readings of one sensor on another sensor's clock; NaN where there is no reading to use.
 
     Parameters
@@ -776,7 +937,7 @@ def align(t_target: Times, t_source: ArrayLike, x_source: ArrayLike, *, method: 
         raise ValueError(f"x_source: expected {ts.size} readings on axis 0 (one per t_source), got shape {x.shape}")
     gap = _default_gap(ts) if max_gap is None else scalar(max_gap, "max_gap", positive=True)
     x2 = x.reshape(ts.size, -1)
-    k = np.searchsorted(ts, tt, side="right") - 1           # latest reading at or before each target time
+    k = np.searchsorted(ts, tt, side="right") - 1  # latest reading at or before each target time
     before = k < 0
     k = np.clip(k, 0, ts.size - 1)
     if method == "hold":
@@ -834,7 +995,7 @@ def resample(rec: Recording, rate: float, *, method: str = "mean") -> Recording:
         ok = np.all(np.isfinite(x2), axis=1) & (bins < t_new.size)
         sums = np.zeros((t_new.size, x2.shape[1]))
         np.add.at(sums, bins[ok], x2[ok])
-        counts = np.bincount(bins[ok], minlength=t_new.size)[:t_new.size]
+        counts = np.bincount(bins[ok], minlength=t_new.size)[: t_new.size]
         with np.errstate(invalid="ignore"):
             mean = sums / counts[:, None]
         out[name] = mean.reshape((t_new.size,) + x.shape[1:])
@@ -850,9 +1011,9 @@ out the linear acceleration of hand-held or vehicle motion)."""
 AXIS_CHECK_RATIO = 0.8
 """A flip is named when its residual is below 1 (the gyro explains most of the motion of the directions) and
 at most this fraction of the as-read residual."""
-_MIN_STEP = np.deg2rad(3.0)           # rotation between two windows below which the noise dominates
-_MIN_TURN = np.deg2rad(90.0)          # total rotation over the windows used, needed for a verdict
-_MIN_STEPS = 20                       # usable window steps needed for a verdict (a short violent log misleads)
+_MIN_STEP = np.deg2rad(3.0)  # rotation between two windows below which the noise dominates
+_MIN_TURN = np.deg2rad(90.0)  # total rotation over the windows used, needed for a verdict
+_MIN_STEPS = 20  # usable window steps needed for a verdict (a short violent log misleads)
 
 
 @dataclass(frozen=True)
@@ -872,6 +1033,7 @@ class AxisCheck:
         Rotation (rad) summed over the window steps the check used: it needs turning to see anything.
     message : str
     """
+
     ranking: tuple[tuple[str, float], ...]
     suspect: str | None
     turn: float
@@ -919,26 +1081,26 @@ def check_axes(rec: Recording, *, on_fail: str = "warn") -> AxisCheck:
     if rec.w_ib_b is None or (rec.f_b is None and rec.m_b is None):
         raise ValueError("rec: the axis check needs the gyro and an accelerometer or magnetometer")
     flips = np.array([np.ones(3), _flip(0), _flip(1), _flip(2)])
-    still, moved = _stillest_second(rec)                # a MEMS gyro bias (up to 20 deg/s) would swamp the test
+    still, moved = _stillest_second(rec)  # a MEMS gyro bias (up to 20 deg/s) would swamp the test
     w = np.nan_to_num(rec.w_ib_b - (0.0 if moved else np.nanmean(rec.w_ib_b[still], axis=0)))
-    gap = rec.dt > 5.0 * np.median(rec.dt)              # a pause in the log: no rotation known across it
+    gap = rec.dt > 5.0 * np.median(rec.dt)  # a pause in the log: no rotation known across it
     w[gap] = 0.0
     q_bn = strapdown.integrate_attitude([1.0, 0.0, 0.0, 0.0], w[None] * flips[:, None], rec.dt)[:, 1:]
     _, k = _window_means(rec.time, rec.w_ib_b, AXIS_CHECK_WINDOW)
     counts = np.bincount(k)
     mid = np.round(np.bincount(k, weights=np.arange(rec.n)) / np.maximum(counts, 1)).astype(np.int64)
-    C_bn = attitude.quat_to_dcm(q_bn[:, mid])                        # (gyro hypothesis, window, 3, 3)
+    C_bn = attitude.quat_to_dcm(q_bn[:, mid])  # (gyro hypothesis, window, 3, 3)
     step = np.linalg.norm(attitude.dcm_to_rotvec(np.swapaxes(C_bn[0, :-1], -1, -2) @ C_bn[0, 1:]), axis=-1)
     gap_in = np.bincount(k, weights=gap, minlength=counts.size) > 0
     use = (step > _MIN_STEP) & (counts[1:] > 0) & (counts[:-1] > 0) & ~gap_in[1:] & ~gap_in[:-1]
     scores = dict.fromkeys(["as read"] + [f"{s} {a} flipped" for s in ("gyro", "accel", "mag") for a in "xyz"], 0.0)
     sensors = {s: x for s, x in (("accel", rec.f_b), ("mag", rec.m_b)) if x is not None}
-    usable = {}                                  # sensor -> (body directions, usable steps)
+    usable = {}  # sensor -> (body directions, usable steps)
     for sensor, x in sensors.items():
         mean, _ = _window_means(rec.time, x, AXIS_CHECK_WINDOW)
         u_b = mean / np.linalg.norm(mean, axis=1, keepdims=True)
         ok = use & np.all(np.isfinite(u_b[1:]), axis=1) & np.all(np.isfinite(u_b[:-1]), axis=1)
-        if sensor == "accel":          # linear acceleration bends the gravity direction: near-1-g windows only
+        if sensor == "accel":  # linear acceleration bends the gravity direction: near-1-g windows only
             size = np.linalg.norm(mean, axis=1)
             near_g = np.abs(size - np.nanmedian(size)) < 0.1 * np.nanmedian(size)
             ok &= near_g[1:] & near_g[:-1]
@@ -953,41 +1115,53 @@ def check_axes(rec: Recording, *, on_fail: str = "warn") -> AxisCheck:
             u = u_b * _flip("xyz".index(words[1])) if words[0] == sensor else u_b
             u_n = np.einsum("nij,nj->ni", C_bn[g], u)
             scores[hyp] += np.sum((u_n[1:] - u_n[:-1])[ok] ** 2) / moved / len(usable)
-    sensors = {s: sensors[s] for s in usable} or sensors     # name only the sensors the verdict rests on
+    sensors = {s: sensors[s] for s in usable} or sensors  # name only the sensors the verdict rests on
     scores = {h: float(v) for h, v in scores.items() if h.split()[0] in ("as", "gyro", *sensors)}
     ranking = tuple(sorted(scores.items(), key=lambda kv: kv[1]))
     best, as_read = ranking[0], scores["as read"]
     turn = float(step[use].sum())
     suspect = None
     if n_steps < _MIN_STEPS:
-        message = (f"inconclusive: fewer than {_MIN_STEPS} usable window steps (turning, and near 1 g for the "
-                   f"accelerometer) for any sensor: too little to judge the axes; turn the sensor slowly by hand "
-                   f"for 15 s to have them checked")
+        message = (
+            f"inconclusive: fewer than {_MIN_STEPS} usable window steps (turning, and near 1 g for the "
+            f"accelerometer) for any sensor: too little to judge the axes; turn the sensor slowly by hand "
+            f"for 15 s to have them checked"
+        )
     elif turn < _MIN_TURN:
-        message = (f"inconclusive: the sensor turned by {np.rad2deg(turn):.0f} deg in steps the check can use, "
-                   f"too little to compare the gyro with the {' and '.join(sensors)}; turn it by hand through "
-                   f"a few orientations (in the first seconds, say) to have the axes checked")
+        message = (
+            f"inconclusive: the sensor turned by {np.rad2deg(turn):.0f} deg in steps the check can use, "
+            f"too little to compare the gyro with the {' and '.join(sensors)}; turn it by hand through "
+            f"a few orientations (in the first seconds, say) to have the axes checked"
+        )
     elif best[1] > 1.0:
-        message = (f"inconclusive: the {' and '.join(sensors)} directions move more than any gyro hypothesis "
-                   f"explains (best residual {best[1]:.2f}): strong linear acceleration or vibration (e.g. a "
-                   f"foot-mounted sensor); record a few slow turns by hand to have the axes checked")
+        message = (
+            f"inconclusive: the {' and '.join(sensors)} directions move more than any gyro hypothesis "
+            f"explains (best residual {best[1]:.2f}): strong linear acceleration or vibration (e.g. a "
+            f"foot-mounted sensor); record a few slow turns by hand to have the axes checked"
+        )
     elif best[0] != "as read" and best[1] < AXIS_CHECK_RATIO * as_read:
         sensor, axis = best[0].split()[:2]
         suspect = f"{sensor} {axis}"
         body = {"x": "right (1st)", "y": "front (2nd)", "z": "up (3rd)"}[axis]
-        message = (f"the {sensor}'s {axis} axis looks flipped: with it reversed the residual is {best[1]:.2f} "
-                   f"against {as_read:.2f} as read. Fix: reverse the sign of the {body} entry of the "
-                   f"{sensor}'s mapping, e.g. axes={{'{sensor}': "
-                   f"'{','.join(('-' if a == axis else '') + a for a in 'xyz')}'}} with mirror=True")
+        message = (
+            f"the {sensor}'s {axis} axis looks flipped: with it reversed the residual is {best[1]:.2f} "
+            f"against {as_read:.2f} as read. Fix: reverse the sign of the {body} entry of the "
+            f"{sensor}'s mapping, e.g. axes={{'{sensor}': "
+            f"'{','.join(('-' if a == axis else '') + a for a in 'xyz')}'}} with mirror=True"
+        )
         second = ranking[1]
         if second[0] != "as read" and second[1] < 2 * best[1]:
-            message += (f". The {second[0].removesuffix(' flipped')} axis flipped fits almost as well "
-                        f"({second[1]:.2f}): gravity alone cannot tell a mirrored accelerometer from a mirrored "
-                        f"gyro, nor see turns about the vertical; a magnetometer or a turn about each axis can")
+            message += (
+                f". The {second[0].removesuffix(' flipped')} axis flipped fits almost as well "
+                f"({second[1]:.2f}): gravity alone cannot tell a mirrored accelerometer from a mirrored "
+                f"gyro, nor see turns about the vertical; a magnetometer or a turn about each axis can"
+            )
     else:
         runner_up = ranking[1] if best[0] == "as read" else best
-        message = (f"gyro consistent with the {' and '.join(sensors)} as read (residual {as_read:.2f}; best "
-                   f"single flip, {runner_up[0]}: {runner_up[1]:.2f})")
+        message = (
+            f"gyro consistent with the {' and '.join(sensors)} as read (residual {as_read:.2f}; best "
+            f"single flip, {runner_up[0]}: {runner_up[1]:.2f})"
+        )
     result = AxisCheck(ranking, suspect, turn, message)
     if suspect is not None and on_fail == "raise":
         raise ValueError(f"{rec.source}: {message}; check='off' (or on_fail='ignore') to accept as read")
@@ -1008,6 +1182,7 @@ STILL_LIMITS = (0.02, 0.35, 0.3)
 """Largest gyro standard deviation (rad/s, about 1 deg/s), gyro mean (rad/s: 20 deg/s, the widest zero-rate
 tolerance of common MEMS gyros, the MPU-6050's) and accelerometer standard deviation (m/s^2) accepted over
 samples marked still."""
+
 
 def start_at_rest(rec: Recording, still: ArrayLike | None = None) -> tuple[Recording, Array]:
     """Use a still stretch: gyro bias at rest removed, the magnetometer calibrated when the recording allows,
@@ -1046,30 +1221,35 @@ def start_at_rest(rec: Recording, still: ArrayLike | None = None) -> tuple[Recor
         still, moved = _stillest_second(rec)
         start = rec.time < rec.time[0] + 0.5
         if moved:
-            notes.append(f"gyro bias left in: no still second in the recording ({moved}); record 2 s untouched "
-                         f"at the start")
+            notes.append(f"gyro bias left in: no still second in the recording ({moved}); record 2 s untouched at the start")
     else:
         still = booleans(still, "still", shape=(rec.n,))
         if np.count_nonzero(still) < 2:
             raise ValueError("still: fewer than 2 samples marked still; mark the first seconds the sensor lay still")
         moved = _movement(rec, still)
         if moved:
-            raise ValueError(f"still: the sensor was not still in the samples marked still ({moved}); mark a "
-                             f"stretch where it lay untouched (e.g. rec.time < 2), or leave still out")
+            raise ValueError(
+                f"still: the sensor was not still in the samples marked still ({moved}); mark a "
+                f"stretch where it lay untouched (e.g. rec.time < 2), or leave still out"
+            )
         start = still
     bias = np.zeros(3)
     if not moved:
         w_still = rec.w_ib_b[still]
         bias, _ = calibration.gyro_bias_at_rest(w_still[np.all(np.isfinite(w_still), axis=1)])
-        notes.append(f"gyro bias at rest removed: {np.round(np.rad2deg(bias), 4).tolist()} deg/s (mean over "
-                     f"{rec.time[still][0]:.2f}..{rec.time[still][-1]:.2f} s)")
+        notes.append(
+            f"gyro bias at rest removed: {np.round(np.rad2deg(bias), 4).tolist()} deg/s (mean over "
+            f"{rec.time[still][0]:.2f}..{rec.time[still][-1]:.2f} s)"
+        )
     m_b = rec.m_b
     if m_b is not None:
         try:
             cal = calibration.fit_magnetometer(m_b[np.all(np.isfinite(m_b), axis=1)])
             m_b = cal.apply(m_b)
-            notes.append(f"magnetometer calibrated: field {cal.field_strength:.1f} uT, |m| spread "
-                         f"{cal.norm_spread_before:.2f} -> {cal.norm_spread_after:.2f} uT")
+            notes.append(
+                f"magnetometer calibrated: field {cal.field_strength:.1f} uT, |m| spread "
+                f"{cal.norm_spread_before:.2f} -> {cal.norm_spread_after:.2f} uT"
+            )
         except ValueError as err:
             notes.append(f"magnetometer used as read, not calibrated: {err}")
     f0 = np.nanmean(rec.f_b[start], axis=0)
@@ -1087,8 +1267,10 @@ def start_at_rest(rec: Recording, still: ArrayLike | None = None) -> tuple[Recor
 def _movement(rec: Recording, still: np.ndarray) -> str:
     """'' when the samples look still (:data:`STILL_LIMITS`), else what moved."""
     w = rec.w_ib_b[still]
-    figures = {"gyro std": (np.nanmax(np.nanstd(w, axis=0)), STILL_LIMITS[0], "rad/s"),
-               "gyro mean": (np.nanmax(np.abs(np.nanmean(w, axis=0))), STILL_LIMITS[1], "rad/s")}
+    figures = {
+        "gyro std": (np.nanmax(np.nanstd(w, axis=0)), STILL_LIMITS[0], "rad/s"),
+        "gyro mean": (np.nanmax(np.abs(np.nanmean(w, axis=0))), STILL_LIMITS[1], "rad/s"),
+    }
     if rec.f_b is not None:
         figures["accel std"] = (np.nanmax(np.nanstd(rec.f_b[still], axis=0)), STILL_LIMITS[2], "m/s^2")
     return ", ".join(f"{k} {v:.3g} > {lim:g} {u}" for k, (v, lim, u) in figures.items() if not v <= lim)

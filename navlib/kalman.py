@@ -18,6 +18,7 @@ Measurement components that are NaN (sensor dropouts) are left out of the
 update; an innovation whose normalised squared size (NIS) exceeds ``gate``
 is rejected and reported, never silently applied.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -73,8 +74,16 @@ def predict(x: ArrayLike, P: ArrayLike, F: ArrayLike, Q: ArrayLike) -> tuple[Arr
     return _kernels.kalman_predict(x, P, _matrix(F, "F", (n, n), of="x"), _matrix(Q, "Q", (n, n), of="x"))
 
 
-def update(x: ArrayLike, P: ArrayLike, z: ArrayLike, h: ArrayLike, H: ArrayLike, R: ArrayLike,
-           angle_mask: ArrayLike, gate: float = np.inf) -> tuple[Array, Array, Array, float, int]:
+def update(
+    x: ArrayLike,
+    P: ArrayLike,
+    z: ArrayLike,
+    h: ArrayLike,
+    H: ArrayLike,
+    R: ArrayLike,
+    angle_mask: ArrayLike,
+    gate: float = np.inf,
+) -> tuple[Array, Array, Array, float, int]:
     """Joseph-form measurement update that skips NaN components.
 
     Validates its arguments, then runs the compiled primitive
@@ -151,9 +160,9 @@ def discretize(F: ArrayLike, G: ArrayLike, Qc: ArrayLike, dt: float) -> tuple[Ar
     """
     F = as_array(F, "F", shape=(None, None), nonempty=True)
     n = len(F)
-    same_shape(F, "F", (n, n))                                   # square
-    G = as_array(G, "G", shape=(n, None), of="F")                # n rows
-    Qc = as_array(Qc, "Qc", shape=(G.shape[1], G.shape[1]), of="G")      # (p, p), p the columns of G
+    same_shape(F, "F", (n, n))  # square
+    G = as_array(G, "G", shape=(n, None), of="F")  # n rows
+    Qc = as_array(Qc, "Qc", shape=(G.shape[1], G.shape[1]), of="G")  # (p, p), p the columns of G
     dt = interval(dt)
     M = np.zeros((2 * n, 2 * n))
     M[:n, :n] = -F

@@ -19,6 +19,7 @@ Example::
     out = montecarlo.run(trial_batch, 10_000, seed=1, batch_size=1000, heading=0.3)
     out["err"].shape   # (10000,)
 """
+
 from __future__ import annotations
 
 import os
@@ -57,18 +58,20 @@ class TrialStreams:
             raise ValueError(f"ids: expected a non-empty 1-D array of non-negative trial indices, got {ids!r:.60}")
         self.ids = ids.astype(np.int64)
         self._seed = int(seed)
-        self._rngs = None                 # per-trial generators, made on demand (generators(), many draws)
+        self._rngs = None  # per-trial generators, made on demand (generators(), many draws)
         self._draws = 0
-        if self.ids.max() < 2 ** 32:      # one spawn-key word: the states straight from the seed (see _pcg64_states)
-            self._states = [{"bit_generator": "PCG64", "state": {"state": s, "inc": c}, "has_uint32": 0,
-                             "uinteger": 0} for s, c in _pcg64_states(self._seed, self.ids)]
+        if self.ids.max() < 2**32:  # one spawn-key word: the states straight from the seed (see _pcg64_states)
+            self._states = [
+                {"bit_generator": "PCG64", "state": {"state": s, "inc": c}, "has_uint32": 0, "uinteger": 0}
+                for s, c in _pcg64_states(self._seed, self.ids)
+            ]
             self._shared = np.random.Generator(np.random.PCG64(0))
         else:
             self._materialize()
 
     def _materialize(self) -> None:
         rngs = [np.random.default_rng(np.random.SeedSequence(self._seed, spawn_key=(int(i),))) for i in self.ids]
-        if self._rngs is None and self._draws:            # continue where the shared generator left each stream
+        if self._rngs is None and self._draws:  # continue where the shared generator left each stream
             for r, state in zip(rngs, self._states, strict=True):
                 r.bit_generator.state = state
         self._rngs = rngs
@@ -84,7 +87,7 @@ class TrialStreams:
         if self._rngs is not None:
             return np.stack([getattr(r, method)(size=shape, **kw) for r in self._rngs])
         draw, bits, rows = getattr(self._shared, method), self._shared.bit_generator, []
-        for j, state in enumerate(self._states):           # each trial's stream in turn on one generator
+        for j, state in enumerate(self._states):  # each trial's stream in turn on one generator
             bits.state = state
             rows.append(draw(size=shape, **kw))
             self._states[j] = bits.state
@@ -129,7 +132,7 @@ def _pcg64_states(seed: int, ids: np.ndarray) -> list[tuple[int, int]]:
         seed >>= 32
         if seed == 0:
             break
-    run += [0] * (4 - len(run))                      # the pool size, as SeedSequence pads with a spawn key
+    run += [0] * (4 - len(run))  # the pool size, as SeedSequence pads with a spawn key
     entropy = [np.full(ids.size, w, np.uint32) for w in run] + [ids.astype(np.uint32)]
     const = [_HASH_A]
 
@@ -143,7 +146,7 @@ def _pcg64_states(seed: int, ids: np.ndarray) -> list[tuple[int, int]]:
         r = np.uint32(_MIX_L) * x - np.uint32(_MIX_R) * y
         return r ^ (r >> np.uint32(16))
 
-    with np.errstate(over="ignore"):                 # uint32 arithmetic wraps, as in SeedSequence
+    with np.errstate(over="ignore"):  # uint32 arithmetic wraps, as in SeedSequence
         pool = [hashmix(entropy[i]) for i in range(4)]
         for s in range(4):
             for d in range(4):
@@ -172,6 +175,7 @@ def _run_batch(batch_fn, seed, ids, kwargs):
 
 def _progress_bar(total: int, label: str):
     from tqdm.auto import tqdm
+
     return tqdm(total=total, desc=label, unit="trials", mininterval=1.0, dynamic_ncols=True)
 
 
@@ -180,9 +184,17 @@ def _check_args(n_trials, seed, batch_size):
         integer(v, name, minimum=lo)
 
 
-def run(batch_fn: Callable[..., dict[str, np.ndarray]], n_trials: int, seed: int, *, batch_size: int = 1000,
-        executor: Executor | None = None, progress: bool | None = None, label: str = "trials",
-        **kwargs: Any) -> dict[str, np.ndarray]:
+def run(
+    batch_fn: Callable[..., dict[str, np.ndarray]],
+    n_trials: int,
+    seed: int,
+    *,
+    batch_size: int = 1000,
+    executor: Executor | None = None,
+    progress: bool | None = None,
+    label: str = "trials",
+    **kwargs: Any,
+) -> dict[str, np.ndarray]:
     """Run ``n_trials`` Monte Carlo trials in batches and concatenate the results.
 
     Parameters
@@ -230,7 +242,7 @@ def run(batch_fn: Callable[..., dict[str, np.ndarray]], n_trials: int, seed: int
             outcomes = (job(ids, kwargs) for ids in batches)
         else:
             futures = [executor.submit(job, ids, kwargs) for ids in batches]
-            outcomes = (fut.result() for fut in futures)     # in order: results stay in trial order
+            outcomes = (fut.result() for fut in futures)  # in order: results stay in trial order
         for k, outcome in enumerate(outcomes):
             results[k] = outcome
             if bar is not None:

@@ -11,6 +11,7 @@
 
 Used by paper 004 (Wen et al. 2016) as the baseline its INS is compared with.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -30,12 +31,12 @@ __all__ = ["StepResult", "detect_steps", "weinberg_step_length", "pdr", "pdr_hea
 class StepResult:
     """Detected steps: sample index of each step's end, and the accelerometer
     peak-to-peak of |f| within it (m/s^2), the input of Weinberg's model."""
+
     index: np.ndarray
     peak_to_peak: np.ndarray
 
 
-def detect_steps(f_b: Vec3Series, dt: float, threshold: float = 1.0, min_interval: float = 0.35,
-                 g: float = G0) -> StepResult:
+def detect_steps(f_b: Vec3Series, dt: float, threshold: float = 1.0, min_interval: float = 0.35, g: float = G0) -> StepResult:
     """Steps as peaks of the smoothed specific-force magnitude above ``g + threshold``.
 
     Parameters
@@ -57,7 +58,7 @@ def detect_steps(f_b: Vec3Series, dt: float, threshold: float = 1.0, min_interva
     n_smooth = max(2, int(round(0.1 / dt)))
     if f.shape[0] < max(gap, n_smooth) + 2:
         raise ValueError(f"f_b: expected (N, 3) with N > {max(gap, n_smooth) + 2} samples, got {f.shape}")
-    a = analysis.moving_mean(np.linalg.norm(f, axis=-1), n_smooth) - scalar(g, "g", positive=True)   # N > n_smooth
+    a = analysis.moving_mean(np.linalg.norm(f, axis=-1), n_smooth) - scalar(g, "g", positive=True)  # N > n_smooth
     peak = (a[1:-1] > a[:-2]) & (a[1:-1] >= a[2:]) & (a[1:-1] > thr)
     idx = []
     for i in np.flatnonzero(peak) + 1:
@@ -65,14 +66,14 @@ def detect_steps(f_b: Vec3Series, dt: float, threshold: float = 1.0, min_interva
             idx.append(i)
     idx = np.array(idx, dtype=int)
     bounds = np.concatenate([[max(0, idx[0] - gap)], idx]) if idx.size else np.zeros(1, dtype=int)
-    p2p = np.array([a[lo:hi + 1].max() - a[lo:hi + 1].min() for lo, hi in zip(bounds[:-1], bounds[1:], strict=True)])
+    p2p = np.array([a[lo : hi + 1].max() - a[lo : hi + 1].min() for lo, hi in zip(bounds[:-1], bounds[1:], strict=True)])
     return StepResult(idx, p2p)
 
 
 def weinberg_step_length(peak_to_peak: ArrayLike, K: float = 0.45) -> Array:
     """Weinberg (2002) step length ``K (a_max - a_min)^(1/4)`` (m); K is calibrated per person."""
     a = positive(peak_to_peak, "peak_to_peak", allow_zero=True)
-    return scalar(K, "K", positive=True) * a ** 0.25
+    return scalar(K, "K", positive=True) * a**0.25
 
 
 def pdr(step_lengths: ArrayLike, step_headings: ArrayLike, start_en: ArrayLike = (0.0, 0.0)) -> Array:
@@ -114,13 +115,20 @@ def pdr_headings(f_b: Vec3Series, m_b: Vec3Series, step_index: ArrayLike, declin
     f = as_array(f_b, "f_b", shape=(None, 3), min_ndim=1)
     m = same_shape(as_array(m_b, "m_b", allow_nan=True), "m_b", f.shape, of="f_b")
     idx = indices(step_index, "step_index")
-    if idx.ndim != 1 or idx.size < 2 or not np.issubdtype(idx.dtype, np.integer) or np.any(np.diff(idx) <= 0) \
-            or idx[0] < 1 or idx[-1] > f.shape[0]:
+    if (
+        idx.ndim != 1
+        or idx.size < 2
+        or not np.issubdtype(idx.dtype, np.integer)
+        or np.any(np.diff(idx) <= 0)
+        or idx[0] < 1
+        or idx[-1] > f.shape[0]
+    ):
         raise ValueError("step_index: expected at least two increasing sample indices within the record")
     starts = np.concatenate([[max(0, idx[0] - (idx[1] - idx[0]))], idx[:-1]])
     f_mean = np.stack([f[a:b].mean(0) for a, b in zip(starts, idx, strict=True)])
-    m_mean = np.stack([np.nanmean(m[a:b], 0) if np.isfinite(m[a:b, 0]).any() else np.full(3, np.nan)
-                       for a, b in zip(starts, idx, strict=True)])
+    m_mean = np.stack(
+        [np.nanmean(m[a:b], 0) if np.isfinite(m[a:b, 0]).any() else np.full(3, np.nan) for a, b in zip(starts, idx, strict=True)]
+    )
     if not np.isfinite(m_mean).all():
         raise ValueError("m_b: a step without any magnetometer sample")
     pitch, roll = level(f_mean)

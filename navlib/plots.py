@@ -4,6 +4,7 @@ Besides data plots, primitives for the schematics the chapters redraw (block dia
 angles) and one style for a paper's value on a figure (:data:`PAPER_STYLE`), so that "the paper says"
 looks the same on every figure of every notebook.
 """
+
 from __future__ import annotations
 
 from typing import TYPE_CHECKING
@@ -19,8 +20,7 @@ if TYPE_CHECKING:
     from matplotlib.typing import ColorType
     from mpl_toolkits.mplot3d import Axes3D
 
-__all__ = ["body_axes", "allan", "heading_deg", "PAPER_STYLE", "paper_value", "block_diagram", "plane_frame",
-           "angle_arc"]
+__all__ = ["body_axes", "allan", "heading_deg", "PAPER_STYLE", "paper_value", "block_diagram", "plane_frame", "angle_arc"]
 
 PAPER_STYLE = {"color": "black", "linestyle": (0, (5, 3)), "linewidth": 1.2}
 """How a paper's printed value or curve is drawn: black, long dashes (markers: black open symbols)."""
@@ -54,8 +54,14 @@ def body_axes(ax: Axes3D, C_bn: Dcm, title: str = "") -> None:
         ax.set_title(title)
 
 
-def allan(ax: Axes, taus: ArrayLike, adev_rad_s: ArrayLike, theory: ArrayLike | None = None, label: str = "",
-          color: ColorType | None = None) -> None:
+def allan(
+    ax: Axes,
+    taus: ArrayLike,
+    adev_rad_s: ArrayLike,
+    theory: ArrayLike | None = None,
+    label: str = "",
+    color: ColorType | None = None,
+) -> None:
     """Log-log Allan deviation of a gyro in deg/h against averaging time in s.
 
     Parameters
@@ -79,8 +85,14 @@ def allan(ax: Axes, taus: ArrayLike, adev_rad_s: ArrayLike, theory: ArrayLike | 
     lines = ax.loglog(taus, a, color=color, linewidth=1 if a.ndim > 1 else 1.5, alpha=0.8)
     lines[0].set_label(label)
     if theory is not None:
-        ax.loglog(taus, units.to_deg_per_h(theory), "--", color=lines[0].get_color(), linewidth=1.5,
-                  label=f"{label} model" if label else "model")
+        ax.loglog(
+            taus,
+            units.to_deg_per_h(theory),
+            "--",
+            color=lines[0].get_color(),
+            linewidth=1.5,
+            label=f"{label} model" if label else "model",
+        )
     ax.set(xlabel="averaging time τ (s)", ylabel="Allan deviation (°/h)")
     ax.grid(True, which="both", alpha=0.3)
 
@@ -92,6 +104,7 @@ def heading_deg(hpr: Angles) -> Array:
 
 def _color(c, name: str) -> None:
     from matplotlib.colors import is_color_like  # noqa: PLC0415 -- navlib imports without matplotlib
+
     if c is None or not is_color_like(c):
         raise ValueError(f"{name}: expected a matplotlib color, got {c!r:.40}")
 
@@ -122,17 +135,32 @@ def paper_value(ax: Axes, value: float, label: str, *, axis: str = "y", text_at:
     at = scalar(text_at, "text_at", within=(0.0, 1.0))
     if axis == "y":
         ax.axhline(v, label=label, **PAPER_STYLE)
-        ax.annotate(label, (at, v), xycoords=("axes fraction", "data"), xytext=(0, 3),
-                    textcoords="offset points", fontsize=8, va="bottom")
+        ax.annotate(
+            label, (at, v), xycoords=("axes fraction", "data"), xytext=(0, 3), textcoords="offset points", fontsize=8, va="bottom"
+        )
     else:
         ax.axvline(v, label=label, **PAPER_STYLE)
-        ax.annotate(label, (v, at), xycoords=("data", "axes fraction"), xytext=(3, 0),
-                    textcoords="offset points", fontsize=8, rotation=90, va="bottom")
+        ax.annotate(
+            label,
+            (v, at),
+            xycoords=("data", "axes fraction"),
+            xytext=(3, 0),
+            textcoords="offset points",
+            fontsize=8,
+            rotation=90,
+            va="bottom",
+        )
 
 
-def block_diagram(ax: Axes, blocks: dict[str, tuple[float, float, str]],
-                  arrows: list[tuple[str, str] | tuple[str, str, str]], *, width: float = 0.18,
-                  height: float = 0.11, colors: dict[str, ColorType] | None = None) -> None:
+def block_diagram(
+    ax: Axes,
+    blocks: dict[str, tuple[float, float, str]],
+    arrows: list[tuple[str, str] | tuple[str, str, str]],
+    *,
+    width: float = 0.18,
+    height: float = 0.11,
+    colors: dict[str, ColorType] | None = None,
+) -> None:
     """Draw a block diagram (signal flow) on ``ax`` in axes coordinates [0, 1] x [0, 1].
 
     Parameters
@@ -159,16 +187,25 @@ def block_diagram(ax: Axes, blocks: dict[str, tuple[float, float, str]],
             raise ValueError(f"blocks: expected (x, y, text) for {name!r}, got {spec!r:.60}")
         boxes[name] = (*as_array(spec[:2], f"blocks[{name!r}]", shape=(2,)), text(spec[2], f"blocks[{name!r}] text"))
     for arrow in arrows:
-        if not isinstance(arrow, (tuple, list)) or len(arrow) not in (2, 3) or \
-                arrow[0] not in boxes or arrow[1] not in boxes:
+        if not isinstance(arrow, (tuple, list)) or len(arrow) not in (2, 3) or arrow[0] not in boxes or arrow[1] not in boxes:
             raise ValueError(f"arrows: expected (from, to[, label]) between blocks {sorted(boxes)}, got {arrow!r:.60}")
     for name, c in colors.items():
         _color(c, f"colors[{name!r}]")
     from matplotlib.patches import FancyBboxPatch  # noqa: PLC0415 -- navlib imports without matplotlib
+
     for name, (x, y, label) in boxes.items():
-        ax.add_patch(FancyBboxPatch((x - w / 2, y - h / 2), w, h, transform=ax.transAxes,
-                                    boxstyle="round,pad=0.01", facecolor=colors.get(name, "0.93"),
-                                    edgecolor="0.3", linewidth=1))
+        ax.add_patch(
+            FancyBboxPatch(
+                (x - w / 2, y - h / 2),
+                w,
+                h,
+                transform=ax.transAxes,
+                boxstyle="round,pad=0.01",
+                facecolor=colors.get(name, "0.93"),
+                edgecolor="0.3",
+                linewidth=1,
+            )
+        )
         ax.text(x, y, label, transform=ax.transAxes, ha="center", va="center", fontsize=8.5)
     for arrow in arrows:
         (x0, y0, _), (x1, y1, _) = boxes[arrow[0]], boxes[arrow[1]]
@@ -176,18 +213,32 @@ def block_diagram(ax: Axes, blocks: dict[str, tuple[float, float, str]],
         dx, dy = x1 - x0, y1 - y0
         s = min((w / 2 + 0.01) / abs(dx) if dx else np.inf, (h / 2 + 0.01) / abs(dy) if dy else np.inf, 0.5)
         start, end = (x0 + s * dx, y0 + s * dy), (x1 - s * dx, y1 - s * dy)
-        ax.annotate("", end, start, xycoords="axes fraction",
-                    arrowprops={"arrowstyle": "-|>", "color": "0.25", "linewidth": 1.1})
+        ax.annotate("", end, start, xycoords="axes fraction", arrowprops={"arrowstyle": "-|>", "color": "0.25", "linewidth": 1.1})
         if len(arrow) == 3:
-            ax.text((start[0] + end[0]) / 2, (start[1] + end[1]) / 2, text(arrow[2], "arrows label"),
-                    transform=ax.transAxes, ha="center", va="bottom", fontsize=7.5, color="0.2",
-                    bbox={"facecolor": "white", "edgecolor": "none", "pad": 0.5})
+            ax.text(
+                (start[0] + end[0]) / 2,
+                (start[1] + end[1]) / 2,
+                text(arrow[2], "arrows label"),
+                transform=ax.transAxes,
+                ha="center",
+                va="bottom",
+                fontsize=7.5,
+                color="0.2",
+                bbox={"facecolor": "white", "edgecolor": "none", "pad": 0.5},
+            )
     ax.set(xlim=(0, 1), ylim=(0, 1))
     ax.set_axis_off()
 
 
-def plane_frame(ax: Axes, origin: tuple[float, float], angle_deg: float, labels: tuple[str, str], *,
-                length: float = 1.0, color: ColorType = "0.2") -> None:
+def plane_frame(
+    ax: Axes,
+    origin: tuple[float, float],
+    angle_deg: float,
+    labels: tuple[str, str],
+    *,
+    length: float = 1.0,
+    color: ColorType = "0.2",
+) -> None:
     """Draw a 2-D frame: two perpendicular axes from ``origin``, the first at ``angle_deg``.
 
     ``angle_deg`` is measured counter-clockwise from the plot's +x axis (for a map with x east and
@@ -208,8 +259,16 @@ def plane_frame(ax: Axes, origin: tuple[float, float], angle_deg: float, labels:
         ax.text(*(o + 1.12 * d), name, color=color, ha="center", va="center")
 
 
-def angle_arc(ax: Axes, center: tuple[float, float], radius: float, start_deg: float, end_deg: float,
-              label: str = "", *, color: ColorType = "0.2") -> None:
+def angle_arc(
+    ax: Axes,
+    center: tuple[float, float],
+    radius: float,
+    start_deg: float,
+    end_deg: float,
+    label: str = "",
+    *,
+    color: ColorType = "0.2",
+) -> None:
     """An arc from ``start_deg`` to ``end_deg`` (counter-clockwise from +x) with ``label`` at its middle.
 
     ``center`` and ``radius`` in data units (use an equal aspect ratio for a circular arc).
@@ -221,9 +280,9 @@ def angle_arc(ax: Axes, center: tuple[float, float], radius: float, start_deg: f
     text(label, "label")
     _color(color, "color")
     from matplotlib.patches import Arc  # noqa: PLC0415 -- navlib imports without matplotlib
+
     lo, hi = min(t0, t1), max(t0, t1)
     ax.add_patch(Arc(tuple(c), 2 * r, 2 * r, theta1=lo, theta2=hi, color=color, linewidth=1))
     if label:
         mid = np.deg2rad((lo + hi) / 2)
-        ax.text(c[0] + 1.25 * r * np.cos(mid), c[1] + 1.25 * r * np.sin(mid), label, color=color,
-                ha="center", va="center")
+        ax.text(c[0] + 1.25 * r * np.cos(mid), c[1] + 1.25 * r * np.sin(mid), label, color=color, ha="center", va="center")

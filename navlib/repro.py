@@ -30,6 +30,7 @@ comparison. Check names start with the claim id they support
 (e.g. ``P000-FIG4-TRIAD-RMSE/h091``); checks beyond the catalogue use names
 that start with no id. ``docs/claims.md`` gives the rules for verdicts.
 """
+
 from __future__ import annotations
 
 import csv
@@ -53,13 +54,48 @@ from ._validate import choice, flag, instance, real, scalar, text
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
-__all__ = ["root", "build_dir", "setup", "savefig", "check", "check_range", "check_outside", "check_study", "seed_spread",
-           "SeedSpread", "STUDY_K", "EXTENSION", "verdict", "results", "verdicts", "summary", "env_flag", "mode", "caption",
-           "answer", "exercise", "Exercise", "explorer", "VERDICTS", "ClaimCheckFailed", "ClaimCheckWarning", "Check",
-           "Verdict", "NoOutputDirectory"]
+__all__ = [
+    "root",
+    "build_dir",
+    "setup",
+    "savefig",
+    "check",
+    "check_range",
+    "check_outside",
+    "check_study",
+    "seed_spread",
+    "SeedSpread",
+    "STUDY_K",
+    "EXTENSION",
+    "verdict",
+    "results",
+    "verdicts",
+    "summary",
+    "env_flag",
+    "mode",
+    "caption",
+    "answer",
+    "exercise",
+    "Exercise",
+    "explorer",
+    "VERDICTS",
+    "ClaimCheckFailed",
+    "ClaimCheckWarning",
+    "Check",
+    "Verdict",
+    "NoOutputDirectory",
+]
 
-VERDICTS = ("reproduced", "reproduced with correction", "differs", "refuted", "direction only",
-            "undecided at this scale", "not checkable here", "extension")
+VERDICTS = (
+    "reproduced",
+    "reproduced with correction",
+    "differs",
+    "refuted",
+    "direction only",
+    "undecided at this scale",
+    "not checkable here",
+    "extension",
+)
 """The verdicts a claim can get (``docs/claims.md``), in the ledger's order. The last, *extension*, is the only one
 of a catalogue row of kind ``extension`` (the project's own quantity, test vector or reconstruction: no paper
 statement to judge) and only it gets it; *undecided at this scale* is a paper claim whose test straddles its cut
@@ -83,6 +119,7 @@ class ClaimCheckWarning(UserWarning):
 @dataclass
 class Check:
     """One recorded claim check (a row of results.json)."""
+
     name: str
     value: float
     expected: float | None
@@ -94,14 +131,15 @@ class Check:
     upper: float | None = None
     unit: str = ""
     note: str = ""
-    outside: bool = False      # check_outside: passes when the value lies outside [lower, upper]
-    on_printed: bool = False   # the value is arithmetic on the paper's printed numbers, not a reproduction
+    outside: bool = False  # check_outside: passes when the value lies outside [lower, upper]
+    on_printed: bool = False  # the value is arithmetic on the paper's printed numbers, not a reproduction
     study: dict | None = None  # check_study: {"name": study, "target": target or None}
 
 
 @dataclass
 class Verdict:
     """The verdict on one claim of ``data/claims.csv`` (an entry of results.json's ``verdicts``)."""
+
     claim: str
     verdict: str
     checks: list[str]
@@ -124,9 +162,9 @@ class _State:
     catalogue: dict | None = None
     teaching: bool = False
     fast: bool = False
-    shown_checks: int = 0       # checks and verdicts already shown by summary()
+    shown_checks: int = 0  # checks and verdicts already shown by summary()
     shown_verdicts: int = 0
-    encoded: dict[tuple[str, str], str] = field(default_factory=dict)   # results.json rows, by check / claim
+    encoded: dict[tuple[str, str], str] = field(default_factory=dict)  # results.json rows, by check / claim
 
 
 _state = _State()
@@ -154,7 +192,8 @@ def root() -> Path:
             return p
     raise NoOutputDirectory(
         f"navlib.repro: {here} is not inside a navlib checkout, so there is no build/ to write to; "
-        "set the NAVLIB_ROOT environment variable or call repro.setup(notebook, out_dir=...)")
+        "set the NAVLIB_ROOT environment variable or call repro.setup(notebook, out_dir=...)"
+    )
 
 
 def build_dir(notebook: str | None = None) -> Path:
@@ -179,8 +218,7 @@ def _build_dir(notebook: str | None) -> Path:
     return d
 
 
-def setup(notebook: str, *, paper: str | None = None, out_dir: str | os.PathLike | None = None,
-          style: bool = True) -> None:
+def setup(notebook: str, *, paper: str | None = None, out_dir: str | os.PathLike | None = None, style: bool = True) -> None:
     """Start a notebook's run: reset its results file and set the figure style.
 
     Parameters
@@ -222,12 +260,21 @@ def setup(notebook: str, *, paper: str | None = None, out_dir: str | os.PathLike
     (d / "results.json").unlink(missing_ok=True)
     if flag(style, "style"):
         plt.rcdefaults()
-        matplotlib.rcParams.update({
-            "figure.figsize": (7.0, 4.0), "figure.dpi": 100, "savefig.dpi": 110,
-            "axes.grid": True, "grid.alpha": 0.3, "axes.spines.top": False,
-            "axes.spines.right": False, "legend.frameon": False, "font.size": 10,
-            "svg.hashsalt": "navlib", "image.cmap": "viridis",
-        })
+        matplotlib.rcParams.update(
+            {
+                "figure.figsize": (7.0, 4.0),
+                "figure.dpi": 100,
+                "savefig.dpi": 110,
+                "axes.grid": True,
+                "grid.alpha": 0.3,
+                "axes.spines.top": False,
+                "axes.spines.right": False,
+                "legend.frameon": False,
+                "font.size": 10,
+                "svg.hashsalt": "navlib",
+                "image.cmap": "viridis",
+            }
+        )
     _write()
 
 
@@ -238,8 +285,15 @@ def versions() -> dict[str, str]:
     import scipy
 
     import navlib
-    return {"python": platform.python_version(), "numpy": np.__version__, "scipy": scipy.__version__,
-            "matplotlib": matplotlib.__version__, "numba": numba.__version__, "navlib": navlib.__version__}
+
+    return {
+        "python": platform.python_version(),
+        "numpy": np.__version__,
+        "scipy": scipy.__version__,
+        "matplotlib": matplotlib.__version__,
+        "numba": numba.__version__,
+        "navlib": navlib.__version__,
+    }
 
 
 def savefig(fig: Figure, name: str) -> Path:
@@ -252,6 +306,7 @@ def savefig(fig: Figure, name: str) -> Path:
     """
     import matplotlib
     import matplotlib.pyplot as plt
+
     if _state.notebook is None:
         raise RuntimeError("call navlib.repro.setup(notebook) before savefig()")
     if not hasattr(fig, "savefig"):
@@ -261,6 +316,7 @@ def savefig(fig: Figure, name: str) -> Path:
     path = _write_png(fig, name)
     if matplotlib.get_backend() == _INLINE:
         from IPython.display import Image, display  # noqa: PLC0415 -- only notebooks need IPython
+
         display(Image(data=path.read_bytes(), format="png"))
         plt.close(fig)
     return path
@@ -285,6 +341,7 @@ def _png(fig: Figure):
 
     import matplotlib.pyplot as plt
     from IPython.display import Image  # noqa: PLC0415 -- only notebooks need IPython
+
     buffer = io.BytesIO()
     fig.savefig(buffer, format="png", metadata={"Software": None}, bbox_inches="tight")
     plt.close(fig)
@@ -341,13 +398,23 @@ def _record(c: Check) -> Check:
         message = f"{c.name}: reproduced {c.value:.6g} is {'not ' if c.outside else 'outside '}{_target(c)} ({c.source})"
         if not _state.teaching:
             raise ClaimCheckFailed(message)
-        warnings.warn("check failed (teaching mode, the notebook goes on): " + message, ClaimCheckWarning,
-                      stacklevel=3)
+        warnings.warn("check failed (teaching mode, the notebook goes on): " + message, ClaimCheckWarning, stacklevel=3)
     return c
 
 
-def check(name: str, value: Scalar, expected: float, tol: float, source: str, *, paper_value: str | float | None = None,
-          rel: bool = False, unit: str = "", note: str = "", on_printed: bool = False) -> Check:
+def check(
+    name: str,
+    value: Scalar,
+    expected: float,
+    tol: float,
+    source: str,
+    *,
+    paper_value: str | float | None = None,
+    rel: bool = False,
+    unit: str = "",
+    note: str = "",
+    on_printed: bool = False,
+) -> Check:
     """Check ``|value - expected| <= tol`` and record it; raise if it fails.
 
     Parameters
@@ -381,12 +448,34 @@ def check(name: str, value: Scalar, expected: float, tol: float, source: str, *,
     abs_tol = t * abs(e) if flag(rel, "rel") else t
     _not_the_target(value, expected=expected, paper_value=paper_value)
     passed = bool(math.isfinite(v) and abs(v - e) <= abs_tol)
-    return _record(Check(name, v, e, abs_tol, passed, source, None if paper_value is None else str(paper_value),
-                         unit=unit, note=note, on_printed=printed))
+    return _record(
+        Check(
+            name,
+            v,
+            e,
+            abs_tol,
+            passed,
+            source,
+            None if paper_value is None else str(paper_value),
+            unit=unit,
+            note=note,
+            on_printed=printed,
+        )
+    )
 
 
-def check_range(name: str, value: Scalar, source: str, *, lower: float | None = None, upper: float | None = None,
-                paper_value: str | float | None = None, unit: str = "", note: str = "", on_printed: bool = False) -> Check:
+def check_range(
+    name: str,
+    value: Scalar,
+    source: str,
+    *,
+    lower: float | None = None,
+    upper: float | None = None,
+    paper_value: str | float | None = None,
+    unit: str = "",
+    note: str = "",
+    on_printed: bool = False,
+) -> Check:
     """Check ``lower <= value <= upper`` (either bound may be omitted); record; raise on failure.
 
     For directional and bound claims, e.g. "the EKF error is smaller than
@@ -396,8 +485,18 @@ def check_range(name: str, value: Scalar, source: str, *, lower: float | None = 
     return _interval_check(name, value, source, (lower, upper), paper_value, unit, note, on_printed, outside=False)
 
 
-def check_outside(name: str, value: Scalar, source: str, *, lower: float | None = None, upper: float | None = None,
-                  paper_value: str | float | None = None, unit: str = "", note: str = "", on_printed: bool = False) -> Check:
+def check_outside(
+    name: str,
+    value: Scalar,
+    source: str,
+    *,
+    lower: float | None = None,
+    upper: float | None = None,
+    paper_value: str | float | None = None,
+    unit: str = "",
+    note: str = "",
+    on_printed: bool = False,
+) -> Check:
     """Check that ``value`` lies *outside* ``[lower, upper]``; record; raise if it lies inside.
 
     The assertion of a disagreement, which a :func:`verdict` of ``"differs"`` or
@@ -417,19 +516,35 @@ def _interval_check(name, value, source, bounds, paper_value, unit, note, on_pri
     _not_the_target(value, lower=bounds[0], upper=bounds[1], paper_value=paper_value)
     inside = (lo is None or v >= lo) and (hi is None or v <= hi)
     passed = bool(math.isfinite(v) and inside != outside)
-    return _record(Check(name, v, None, None, passed, source, None if paper_value is None else str(paper_value),
-                         lo, hi, unit, note, outside=outside, on_printed=printed))
+    return _record(
+        Check(
+            name,
+            v,
+            None,
+            None,
+            passed,
+            source,
+            None if paper_value is None else str(paper_value),
+            lo,
+            hi,
+            unit,
+            note,
+            outside=outside,
+            on_printed=printed,
+        )
+    )
 
 
 @dataclass(frozen=True)
 class SeedSpread:
     """One check's spread over a recorded seed study: ``data/seed_studies/<study>.csv`` (its script: ``run.py``)."""
+
     study: str
     check: str
     seeds: tuple[int, ...]
-    mean: float     # of value - target (of the value where there is no target)
+    mean: float  # of value - target (of the value where there is no target)
     sd: float
-    rms: float      # root mean square of value - target (the bias included)
+    rms: float  # root mean square of value - target (the bias included)
 
     @property
     def tol(self) -> float:
@@ -437,8 +552,10 @@ class SeedSpread:
         return STUDY_K * self.rms
 
     def describe(self) -> str:
-        return (f"seed study {self.study} ({len(self.seeds)} calibration seeds {min(self.seeds)}-{max(self.seeds)}: mean "
-                f"{self.mean:.4g}, sd {self.sd:.3g}, RMS {self.rms:.3g}); tolerance {STUDY_K:g} x RMS")
+        return (
+            f"seed study {self.study} ({len(self.seeds)} calibration seeds {min(self.seeds)}-{max(self.seeds)}: mean "
+            f"{self.mean:.4g}, sd {self.sd:.3g}, RMS {self.rms:.3g}); tolerance {STUDY_K:g} x RMS"
+        )
 
 
 def seed_spread(study: str, check: str, *, about_mean: bool = False) -> SeedSpread | None:
@@ -452,7 +569,7 @@ def seed_spread(study: str, check: str, *, about_mean: bool = False) -> SeedSpre
     seeds, x = zip(*rows, strict=True)
     x = np.asarray(x, float)
     mean, sd = float(x.mean()), float(x.std(ddof=1)) if x.size > 1 else math.inf
-    rms = sd if about_mean else float(np.sqrt(np.mean(x ** 2)))
+    rms = sd if about_mean else float(np.sqrt(np.mean(x**2)))
     return SeedSpread(study, check, tuple(seeds), mean, sd, rms)
 
 
@@ -469,8 +586,17 @@ def _study_rows(study: str) -> dict[str, list[tuple[int, float]]]:
     return out
 
 
-def check_study(name: str, value: Scalar, target: float | None, study: str, source: str, *, unit: str = "",
-                note: str = "", paper_value: str | float | None = None) -> Check:
+def check_study(
+    name: str,
+    value: Scalar,
+    target: float | None,
+    study: str,
+    source: str,
+    *,
+    unit: str = "",
+    note: str = "",
+    paper_value: str | float | None = None,
+) -> Check:
     """Check ``value`` against ``target`` within the spread a recorded seed study measured; record; raise on failure.
 
     With a ``target`` (a prediction computed in this run) the tolerance is STUDY_K x the RMS of ``value - target``
@@ -487,8 +613,20 @@ def check_study(name: str, value: Scalar, target: float | None, study: str, sour
     tol = spread.tol if spread else math.nan
     passed = bool(spread is not None and math.isfinite(v) and abs(v - centre) <= tol)
     full = f"{source}; {spread.describe()}" if spread else f"{source}; no seed study row yet (data/seed_studies/run.py)"
-    return _record(Check(name, v, centre, tol, passed, full, None if paper_value is None else str(paper_value),
-                         unit=unit, note=note, study={"name": study, "target": t}))
+    return _record(
+        Check(
+            name,
+            v,
+            centre,
+            tol,
+            passed,
+            full,
+            None if paper_value is None else str(paper_value),
+            unit=unit,
+            note=note,
+            study={"name": study, "target": t},
+        )
+    )
 
 
 def _not_the_target(value, **targets) -> None:
@@ -501,8 +639,10 @@ def _not_the_target(value, **targets) -> None:
     if isinstance(value, (np.floating, np.ndarray)):
         for name, target in targets.items():
             if target is value:
-                raise ValueError(f"value: is the very object passed as {name}; a check compares a value computed "
-                                 f"by navlib with an independent target")
+                raise ValueError(
+                    f"value: is the very object passed as {name}; a check compares a value computed "
+                    f"by navlib with an independent target"
+                )
 
 
 def _bounds(lower, upper) -> tuple[float | None, float | None]:
@@ -528,9 +668,19 @@ def verdicts() -> list[Verdict]:
     return list(_state.verdicts)
 
 
-def verdict(claim: str, verdict: str, *, checks: Sequence[str] | None = None, evidence: Sequence[str] | None = None,
-            paper: str | float | None = None, ours: str | float | None = None, unit: str = "", reason: str = "",
-            erratum: str = "", figure: str = "") -> Verdict | None:
+def verdict(
+    claim: str,
+    verdict: str,
+    *,
+    checks: Sequence[str] | None = None,
+    evidence: Sequence[str] | None = None,
+    paper: str | float | None = None,
+    ours: str | float | None = None,
+    unit: str = "",
+    reason: str = "",
+    erratum: str = "",
+    figure: str = "",
+) -> Verdict | None:
     """Record the verdict on a claim of this notebook's paper; raise ``ValueError`` if it is not supported.
 
     Recorded silently (:func:`summary` shows it). In teaching mode a verdict resting on a failed
@@ -585,31 +735,39 @@ def verdict(claim: str, verdict: str, *, checks: Sequence[str] | None = None, ev
     choice(verdict, "verdict", VERDICTS)
     _texts(unit=unit, reason=reason, erratum=erratum, figure=figure)
     if (row["kind"] == EXTENSION) != (verdict == EXTENSION):
-        raise ValueError(f"verdict: {claim} is of kind {row['kind']!r} in data/claims.csv; verdict words judge a paper "
-                         f"statement, and {EXTENSION!r} is the one word of (and only of) the project's own quantities")
-    names = [c.name for c in _state.checks if c.name == claim or c.name.startswith(claim + "/")] \
-        if checks is None else list(checks)
+        raise ValueError(
+            f"verdict: {claim} is of kind {row['kind']!r} in data/claims.csv; verdict words judge a paper "
+            f"statement, and {EXTENSION!r} is the one word of (and only of) the project's own quantities"
+        )
+    names = (
+        [c.name for c in _state.checks if c.name == claim or c.name.startswith(claim + "/")] if checks is None else list(checks)
+    )
     recorded = {c.name: c for c in _state.checks}
     for n in names:
         if n not in recorded:
             raise ValueError(f"checks: {n!r} was not recorded in this run")
         if not recorded[n].passed:
-            if _state.teaching:      # the failure was already shown as a warning
-                warnings.warn(f"verdict on {claim} not recorded: its check {n!r} failed (teaching mode)",
-                              ClaimCheckWarning, stacklevel=2)
+            if _state.teaching:  # the failure was already shown as a warning
+                warnings.warn(
+                    f"verdict on {claim} not recorded: its check {n!r} failed (teaching mode)", ClaimCheckWarning, stacklevel=2
+                )
                 return None
             raise ValueError(f"checks: {n!r} failed; a verdict cannot rest on it")
     if verdict != "not checkable here" and not names:
         raise ValueError(f"checks: a verdict of {verdict!r} rests on at least one check; none is named {claim}[/...]")
     if verdict != "not checkable here" and all(recorded[n].on_printed for n in names):
-        raise ValueError(f"checks: a verdict of {verdict!r} rests on a computation; the checks of {claim} only re-do "
-                         "arithmetic on the paper's printed numbers (on_printed)")
+        raise ValueError(
+            f"checks: a verdict of {verdict!r} rests on a computation; the checks of {claim} only re-do "
+            "arithmetic on the paper's printed numbers (on_printed)"
+        )
     evid = [n for n in names if recorded[n].outside] if evidence is None else list(evidence)
     if not set(evid) <= set(names):
         raise ValueError(f"evidence: expected checks among {names}, got {evid}")
     if verdict in _NEEDS_EVIDENCE and not evid:
-        raise ValueError(f"evidence: a verdict of {verdict!r} needs a check that asserts the disagreement "
-                         "(check_outside, or name it in evidence=)")
+        raise ValueError(
+            f"evidence: a verdict of {verdict!r} needs a check that asserts the disagreement "
+            "(check_outside, or name it in evidence=)"
+        )
     if verdict == "reproduced with correction" and not set(names) - set(evid):
         raise ValueError("checks: a verdict of 'reproduced with correction' also rests on a check of the corrected form")
     if verdict in ("differs", "refuted", "undecided at this scale") and (paper is None or ours is None):
@@ -626,13 +784,22 @@ def verdict(claim: str, verdict: str, *, checks: Sequence[str] | None = None, ev
         raise ValueError(f"erratum: expected an id of data/errata.csv, got {erratum!r}")
     if figure and figure not in _state.figures:
         raise ValueError(f"figure: expected a figure saved in this run ({sorted(_state.figures)}), got {figure!r}")
-    if ours is None and names and verdict != "not checkable here":     # (a check's value there is no reproduction)
+    if ours is None and names and verdict != "not checkable here":  # (a check's value there is no reproduction)
         first = recorded[names[0]]
         unit = unit or first.unit
         # a check against 0 measures a residual: show it as one
         ours = f"max error {first.value:.1g}{' ' + unit if unit else ''}" if first.expected == 0 else first.value
-    v = Verdict(claim, verdict, names, evid, _shown(paper, unit) if paper is not None else None,
-                _shown(ours, unit) if ours is not None else None, reason.strip(), erratum, figure)
+    v = Verdict(
+        claim,
+        verdict,
+        names,
+        evid,
+        _shown(paper, unit) if paper is not None else None,
+        _shown(ours, unit) if ours is not None else None,
+        reason.strip(),
+        erratum,
+        figure,
+    )
     _state.verdicts = [k for k in _state.verdicts if k.claim != claim] + [v]
     _state.encoded["verdict", claim] = _encode(asdict(v))
     _write()
@@ -733,24 +900,39 @@ def summary():
     rests on no check of the table (``not checkable here``). Ends a notebook section: checks record
     silently, and the table is the section's only output about them.
     """
-    checks = _state.checks[_state.shown_checks:]
-    new_verdicts = _state.verdicts[_state.shown_verdicts:]
+    checks = _state.checks[_state.shown_checks :]
+    new_verdicts = _state.verdicts[_state.shown_verdicts :]
     _state.shown_checks, _state.shown_verdicts = len(_state.checks), len(_state.verdicts)
     by_check = {n: v for v in _state.verdicts for n in v.checks}
-    rows = [{"check": c.name,
-             "paper": c.paper_value if c.paper_value is not None else "",
-             "ours": _ours(c),
-             "tolerance": _target(c),
-             "result": "pass" if c.passed else "FAIL",
-             "verdict": by_check[c.name].verdict if c.name in by_check else ""} for c in checks]
+    rows = [
+        {
+            "check": c.name,
+            "paper": c.paper_value if c.paper_value is not None else "",
+            "ours": _ours(c),
+            "tolerance": _target(c),
+            "result": "pass" if c.passed else "FAIL",
+            "verdict": by_check[c.name].verdict if c.name in by_check else "",
+        }
+        for c in checks
+    ]
     shown = {c.name for c in checks}
-    rows += [{"check": f"{v.claim} (claim)", "paper": v.paper or "", "ours": v.ours or "", "tolerance": "",
-              "result": "", "verdict": v.verdict} for v in new_verdicts if not set(v.checks) & shown]
+    rows += [
+        {
+            "check": f"{v.claim} (claim)",
+            "paper": v.paper or "",
+            "ours": v.ours or "",
+            "tolerance": "",
+            "result": "",
+            "verdict": v.verdict,
+        }
+        for v in new_verdicts
+        if not set(v.checks) & shown
+    ]
     table = _whole_table()(rows, columns=["check", "paper", "ours", "tolerance", "result", "verdict"])
     if not rows:
         return table
     table = table.set_index("check")
-    table.index.name, table.columns.name = None, "check"        # one header row: "check" in its corner
+    table.index.name, table.columns.name = None, "check"  # one header row: "check" in its corner
     return table
 
 
@@ -769,11 +951,14 @@ def _whole_table() -> type:
             with pd.option_context("display.max_rows", None, "display.max_colwidth", None):
                 table = super()._repr_html_()
             results = self["result"].value_counts() if "result" in self else {}
-            counts = ", ".join(f"{n} {'passed' if r == 'pass' else 'failed' if r == 'FAIL' else r}"
-                               for r, n in results.items() if r)
-            opened = " open" if "FAIL" in results else ""              # a failed check is never folded away
-            return (f"<details class='checks'{opened}><summary>Reproduction details: {len(self)} checks and claims"
-                    f"{' (' + counts + ')' if counts else ''}</summary>\n{table}\n</details>")
+            counts = ", ".join(
+                f"{n} {'passed' if r == 'pass' else 'failed' if r == 'FAIL' else r}" for r, n in results.items() if r
+            )
+            opened = " open" if "FAIL" in results else ""  # a failed check is never folded away
+            return (
+                f"<details class='checks'{opened}><summary>Reproduction details: {len(self)} checks and claims"
+                f"{' (' + counts + ')' if counts else ''}</summary>\n{table}\n</details>"
+            )
 
     return CheckTable
 
@@ -785,12 +970,14 @@ def caption(markdown: str):
     the text with an f-string from the run's values and make this the last expression of the cell.
     """
     from IPython.display import Markdown  # noqa: PLC0415 -- only notebooks need IPython
+
     return Markdown(text(markdown, "markdown", empty=False))
 
 
 @dataclass
 class Exercise:
     """The outcome of :func:`exercise`: ``passed`` is None while the stub is not written yet."""
+
     passed: bool | None
     message: str
 
@@ -821,8 +1008,11 @@ def exercise(student, reference, cases: Sequence[tuple], tol: float = 1e-9) -> E
         got = np.asarray(got, dtype=float)
         if got.shape != want.shape or not np.allclose(got, want, rtol=0.0, atol=tol):
             call = f"{name}({', '.join(map(repr, args))})"
-            return Exercise(False, f"**Not yet:** `{call}` gives {np.array2string(got, precision=6)}, "
-                                   f"navlib gives {np.array2string(want, precision=6)}.")
+            return Exercise(
+                False,
+                f"**Not yet:** `{call}` gives {np.array2string(got, precision=6)}, "
+                f"navlib gives {np.array2string(want, precision=6)}.",
+            )
     return Exercise(True, f"**Correct:** `{name}` agrees with navlib on all {len(cases)} cases (to {tol:g}).")
 
 
@@ -832,6 +1022,7 @@ def answer(markdown: str, label: str = "Answer"):
     ``markdown`` is built from values the notebook computed (an f-string), never typed-in results.
     """
     from IPython.display import Markdown  # noqa: PLC0415 -- only notebooks need IPython
+
     body, title = text(markdown, "markdown", empty=False), text(label, "label", empty=False)
     return Markdown(f"<details><summary>{title}</summary>\n\n{body}\n\n</details>")
 
@@ -857,12 +1048,13 @@ def explorer(draw, name: str, controls: dict) -> None:
     import matplotlib
     import matplotlib.pyplot as plt
     from IPython.display import Image, display  # noqa: PLC0415 -- only notebooks need IPython
+
     if not callable(draw):
         raise ValueError(f"draw: expected a function returning a Figure, got {type(draw).__name__}")
     instance(controls, "controls", dict, "a dict argument -> control")
     defaults = {k: getattr(c, "value", c) for k, c in controls.items()}
     fig = draw(**defaults)
-    if matplotlib.get_backend() != _INLINE:      # a script or another backend: the saved figure, nothing live
+    if matplotlib.get_backend() != _INLINE:  # a script or another backend: the saved figure, nothing live
         savefig(fig, name)
         plt.show()
         return
@@ -872,7 +1064,7 @@ def explorer(draw, name: str, controls: dict) -> None:
     plt.close(fig)
     try:
         import ipywidgets as widgets
-    except ImportError:          # the static figure is all there is
+    except ImportError:  # the static figure is all there is
         return
     live = {k: c for k, c in controls.items() if isinstance(c, widgets.ValueWidget)}
     for c in live.values():

@@ -51,6 +51,7 @@ IMU spikes as NaN with the test of :func:`is_spike` (:func:`screen` applies it w
 is that test as the filters apply it to their inputs (``stuck_run`` from
 :meth:`navlib.imu.SensorLimits.stuck_samples`).
 """
+
 from __future__ import annotations
 
 import math
@@ -81,12 +82,21 @@ from ._validate import (
 )
 from .imu import ImuSamples
 
-__all__ = ["FaultReport", "Screened", "screen", "fault_report", "hold", "despike", "stuck_mask", "stuck_samples",
-           "longest_repeat", "LEADING"]
+__all__ = [
+    "FaultReport",
+    "Screened",
+    "screen",
+    "fault_report",
+    "hold",
+    "despike",
+    "stuck_mask",
+    "stuck_samples",
+    "longest_repeat",
+    "LEADING",
+]
 
 LEADING = ("raise", "first", "zero")
 """Policies for NaN samples before the first valid one: raise, take the first valid sample, or 0."""
-
 
 
 @dataclass(frozen=True)
@@ -231,8 +241,7 @@ def _spike_mask(w, f, spike_gyro, spike_accel):
     return hit
 
 
-def despike(w_ib_b: Vec3Series, f_b: Vec3Series, spike_gyro: float,
-            spike_accel: float) -> tuple[Array, Array, NDArray[np.bool_]]:
+def despike(w_ib_b: Vec3Series, f_b: Vec3Series, spike_gyro: float, spike_accel: float) -> tuple[Array, Array, NDArray[np.bool_]]:
     """Mark isolated IMU spikes as dropouts (NaN), e.g. before :func:`navlib.filters.zupt.detect_static`.
 
     The test of :func:`is_spike` (also applied by :func:`screen`): a sample deviating from the line through its neighbours by more
@@ -258,7 +267,7 @@ def despike(w_ib_b: Vec3Series, f_b: Vec3Series, spike_gyro: float,
     f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=True)
     if w.ndim != 2 or f.shape != w.shape:
         raise ValueError(f"f_b: expected the shape (N, 3) of w_ib_b {w.shape}, got {f.shape}")
-    tg = scalar(spike_gyro, "spike_gyro", positive=True, allow_inf=True)      # inf: off
+    tg = scalar(spike_gyro, "spike_gyro", positive=True, allow_inf=True)  # inf: off
     ta = scalar(spike_accel, "spike_accel", positive=True, allow_inf=True)
     hit = _spike_mask(kernel_array(w), kernel_array(f), tg, ta)
     w, f = w.copy(), f.copy()
@@ -304,7 +313,7 @@ def _longest_runs(x, valid):
             last = 0.0
             for i in range(x.shape[1]):
                 if not valid[b, i]:
-                    continue                    # a dropout neither breaks nor extends a run
+                    continue  # a dropout neither breaks nor extends a run
                 run = run + 1 if run > 0 and x[b, i, j] == last else 1
                 last = x[b, i, j]
                 longest = max(longest, run)
@@ -352,14 +361,15 @@ def _series(x: ArrayLike, name: str, axis: int) -> np.ndarray:
 def _stuck_runs(a: np.ndarray, run: int, rail: float = np.inf) -> NDArray[np.bool_]:
     """:func:`stuck_mask` of validated samples ``a`` (..., N, k); values with ``|a| >= rail`` never repeat."""
     lead, (n, k) = a.shape[:-2], a.shape[-2:]
-    flat = kernel_array(a.reshape((math.prod(lead), n, k)))        # writable: one kernel signature
+    flat = kernel_array(a.reshape((math.prod(lead), n, k)))  # writable: one kernel signature
     out = np.zeros(flat.shape, dtype=bool)
     stuck_runs(0, flat.shape[0], flat, run, rail, out)
     return out.any(-1).reshape(lead + (n,))
 
 
-def stuck_samples(x: ArrayLike, run: int | None, *, full_scale: float | None = None, name: str = "x",
-                  axis: int = -2) -> NDArray[np.bool_]:
+def stuck_samples(
+    x: ArrayLike, run: int | None, *, full_scale: float | None = None, name: str = "x", axis: int = -2
+) -> NDArray[np.bool_]:
     """Stuck samples of a filter's sensor input: :func:`stuck_mask`, as every navlib filter applies it.
 
     Only series (trials) that are noisy from the start are checked: a series whose first value repeats
@@ -420,6 +430,7 @@ class Screened(NamedTuple):
         ``nan``/``saturated`` (with ``m_b``), ``clock`` ``jump``. Each gyro sample has at most one of
         stuck, nan, spike (in that order); each accelerometer sample at most one of nan, spike, free fall.
     """
+
     imu: ImuSamples
     w_ib_b: np.ndarray
     fresh: np.ndarray
@@ -459,15 +470,25 @@ def screen(imu: ImuSamples, m_b: Vec3Series | None = None) -> Screened:
         m_b = same_shape(as_array(m_b, "m_b", tail=(3,), finite=False), "m_b", w.shape, of="w_ib_b")
     typical = float(np.median(dts))
     max_dt, run = lim.jump_limit(typical), lim.stuck_samples(typical)
-    tests = np.array([max_dt, run, lim.full_scale_gyro, lim.full_scale_accel, lim.full_scale_mag, lim.spike_gyro,
-                      lim.spike_accel, lim.freefall_accel])
+    tests = np.array(
+        [
+            max_dt,
+            run,
+            lim.full_scale_gyro,
+            lim.full_scale_accel,
+            lim.full_scale_mag,
+            lim.spike_gyro,
+            lim.spike_accel,
+            lim.freefall_accel,
+        ]
+    )
     wf, ff = kernel_array(w.reshape(T, n, 3)), kernel_array(f.reshape(T, n, 3))
     mf = np.zeros((1, 1, 3)) if m_b is None else kernel_array(m_b.reshape(T, n, 3))
     flags, turn, stuck_axes = np.zeros((len(_KEYS), T, n), dtype=bool), np.zeros(T), np.zeros((T, n, 3), dtype=bool)
     run_chunks(lambda t0, t1: _scan(t0, t1, wf, ff, mf, dts, tests, flags, turn, stuck_axes), T)
-    refuse_turn(float(turn.max()))                             # (clock jumps are not integrated)
+    refuse_turn(float(turn.max()))  # (clock jumps are not integrated)
     _freefall_runs(flags[6], dts, lim.freefall_time)
-    flags[6] &= ~flags[5]                                      # a spike is a spike, not free fall
+    flags[6] &= ~flags[5]  # a spike is a spike, not free fall
     held, fresh = np.empty_like(wf), np.empty((T, n), dtype=bool)
     run_chunks(lambda t0, t1: _gyro_hold(t0, t1, wf, flags, stuck_axes, lim.gyro_jump or 0.0, held, fresh), T)
     keys = _KEYS if m_b is not None else [key for key in _KEYS if key[0] != "mag"]
@@ -476,9 +497,19 @@ def screen(imu: ImuSamples, m_b: Vec3Series | None = None) -> Screened:
     return Screened(imu, held.reshape(w.shape), fresh.reshape(lead + (n,)), m_b, dts, typical, max_dt, report)
 
 
-_KEYS = [("gyro", "stuck"), ("gyro", "nan"), ("gyro", "spike"), ("gyro", "saturated"), ("accel", "nan"),
-         ("accel", "spike"), ("accel", "freefall"), ("accel", "saturated"), ("mag", "nan"), ("mag", "saturated"),
-         ("clock", "jump")]
+_KEYS = [
+    ("gyro", "stuck"),
+    ("gyro", "nan"),
+    ("gyro", "spike"),
+    ("gyro", "saturated"),
+    ("accel", "nan"),
+    ("accel", "spike"),
+    ("accel", "freefall"),
+    ("accel", "saturated"),
+    ("mag", "nan"),
+    ("mag", "saturated"),
+    ("clock", "jump"),
+]
 """What :func:`screen` flags, in the order of its flag array."""
 
 
@@ -517,7 +548,7 @@ def _scan(t0, t1, w, f, m, dts, tests, flags, turn, stuck_axes):
             if spikes and ok_w and ok_f and 2 <= k < N - 2:
                 spike_w[k] = is_spike(wt, k, tests[5])
                 spike_f[k] = is_spike(ft, k, tests[6]) and not spike_w[k]
-            free[k] = np.sqrt(fx * fx + fy * fy + fz * fz) < low             # NaN compares False
+            free[k] = np.sqrt(fx * fx + fy * fy + fz * fz) < low  # NaN compares False
             if use_mag:
                 mx, my, mz = mt[k, 0], mt[k, 1], mt[k, 2]
                 ok_m = _finite3(mx, my, mz)
@@ -585,18 +616,23 @@ def _gyro_hold(t0, t1, w, flags, stuck_axes, gate, held, fresh):
         was_step = False
         for k in range(w.shape[1]):
             wx, wy, wz = w[t, k, 0], w[t, k, 1], w[t, k, 2]
-            if flags[0, t, k]:                                         # stuck: keep the live axes
+            if flags[0, t, k]:  # stuck: keep the live axes
                 new = k == 0 or not flags[0, t, k - 1]
                 sx, sy, sz = stuck_axes[t, k, 0], stuck_axes[t, k, 1], stuck_axes[t, k, 2]
                 gx, px = _axis(wx, sx, new or not stuck_axes[t, k - 1, 0], gx, px)
                 gy, py = _axis(wy, sy, new or not stuck_axes[t, k - 1, 1], gy, py)
                 gz, pz = _axis(wz, sz, new or not stuck_axes[t, k - 1, 2], gz, pz)
                 held[t, k, 0], held[t, k, 1], held[t, k, 2] = gx, gy, gz
-                fresh[t, k] = not (sx and sy and sz)                   # all stuck: nothing measured
+                fresh[t, k] = not (sx and sy and sz)  # all stuck: nothing measured
                 continue
             use = not (flags[0, t, k] or flags[1, t, k] or flags[2, t, k])
-            if use and gate > 0.0 and not was_step and k > 0 and (
-                    abs(wx - gx) > gate or abs(wy - gy) > gate or abs(wz - gz) > gate):
+            if (
+                use
+                and gate > 0.0
+                and not was_step
+                and k > 0
+                and (abs(wx - gx) > gate or abs(wy - gy) > gate or abs(wz - gz) > gate)
+            ):
                 flags[2, t, k], was_step, use = True, True, False
             if use:
                 gx, gy, gz, px, py, pz, was_step = wx, wy, wz, gx, gy, gz, False

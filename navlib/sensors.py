@@ -27,6 +27,7 @@ Presets for the papers' devices are read from ``navlib/data/sensor_presets.csv``
 (package data, so an installed navlib has them), which gives every number with
 its source.
 """
+
 from __future__ import annotations
 
 import csv
@@ -61,10 +62,25 @@ from ._validate import (
 )
 from .analysis import GM_ALLAN_PEAK
 
-__all__ = ["TriadErrors", "ImuModel", "ImuOutput", "window_mean_std", "simulate_imu", "imu_model", "preset", "devices",
-           "MagnetometerModel", "simulate_magnetometer", "magnetic_disturbances",
-           "BarometerModel", "simulate_barometer", "outage_mask", "simulate_gnss_position",
-           "simulate_heading", "gauss_markov"]
+__all__ = [
+    "TriadErrors",
+    "ImuModel",
+    "ImuOutput",
+    "window_mean_std",
+    "simulate_imu",
+    "imu_model",
+    "preset",
+    "devices",
+    "MagnetometerModel",
+    "simulate_magnetometer",
+    "magnetic_disturbances",
+    "BarometerModel",
+    "simulate_barometer",
+    "outage_mask",
+    "simulate_gnss_position",
+    "simulate_heading",
+    "gauss_markov",
+]
 
 PRESETS_CSV = resources.files("navlib") / "data" / "sensor_presets.csv"
 """The device presets, shipped inside the package (read with ``importlib.resources``)."""
@@ -73,6 +89,7 @@ PRESETS_CSV = resources.files("navlib") / "data" / "sensor_presets.csv"
 # --------------------------------------------------------------------------
 # IMU
 # --------------------------------------------------------------------------
+
 
 @dataclass(frozen=True)
 class TriadErrors:
@@ -99,6 +116,7 @@ class TriadErrors:
     full_scale : float
         Saturation limit (rad/s or m/s^2); ``inf`` for none.
     """
+
     noise_density: float = 0.0
     bias: float = 0.0
     bias_instability: float = 0.0
@@ -109,9 +127,12 @@ class TriadErrors:
     full_scale: float = np.inf
 
     def __post_init__(self):
-        numbers(self, positive=("correlation_time", "full_scale"), infinite=("full_scale",),
-                non_negative=("noise_density", "bias", "bias_instability", "rate_random_walk", "scale_factor",
-                              "misalignment"))
+        numbers(
+            self,
+            positive=("correlation_time", "full_scale"),
+            infinite=("full_scale",),
+            non_negative=("noise_density", "bias", "bias_instability", "rate_random_walk", "scale_factor", "misalignment"),
+        )
 
     @property
     def gauss_markov_sigma(self) -> float:
@@ -122,6 +143,7 @@ class TriadErrors:
 @dataclass(frozen=True)
 class ImuModel:
     """Gyro and accelerometer error models of one IMU."""
+
     gyro: TriadErrors = field(default_factory=TriadErrors)
     accel: TriadErrors = field(default_factory=TriadErrors)
     name: str = "custom"
@@ -151,6 +173,7 @@ class ImuOutput:
     gyro_saturated, accel_saturated : int
         Number of clipped samples (all axes and trials).
     """
+
     w_ib_b: np.ndarray
     f_b: np.ndarray
     gyro_bias: np.ndarray
@@ -161,8 +184,7 @@ class ImuOutput:
     accel_saturated: int
 
 
-def gauss_markov(shape: tuple[int, ...], dt: float, sigma: float, correlation_time: float,
-                 rng: np.random.Generator) -> Array:
+def gauss_markov(shape: tuple[int, ...], dt: float, sigma: float, correlation_time: float, rng: np.random.Generator) -> Array:
     """First-order Gauss-Markov sequences, stationary from the first sample.
 
     Parameters
@@ -194,7 +216,7 @@ def _gauss_markov(shape: tuple[int, ...], dt: float, sigma: float, tc: float, rn
     """:func:`gauss_markov` of checked arguments."""
     phi = np.exp(-dt / tc)
     x0 = sigma * rng.standard_normal(shape[:-2] + (1, shape[-1]))
-    y = rng.standard_normal(out=np.empty(shape))      # the driving noise, filtered in place below
+    y = rng.standard_normal(out=np.empty(shape))  # the driving noise, filtered in place below
     y *= sigma * np.sqrt(1 - phi * phi)
     _ar1_in_place(y.reshape(-1, shape[-2], shape[-1]), phi, (phi * x0).reshape(-1, shape[-1]))
     return y
@@ -225,16 +247,22 @@ def _corrupt(x, dt, errors: TriadErrors, rng: np.random.Generator):
     lead, shape = x.shape[:-2], x.shape
     M = _error_matrix(errors, lead, r_matrix)
     turn_on = errors.bias * r_on.standard_normal(lead + (1, 3))
-    if errors.bias_instability > 0:        # turn-on + Gauss-Markov, added in place (addition commutes: same bits)
+    if errors.bias_instability > 0:  # turn-on + Gauss-Markov, added in place (addition commutes: same bits)
         bias = _gauss_markov(shape, dt, float(errors.gauss_markov_sigma), float(errors.correlation_time), r_gm)
         bias += turn_on
     else:
         bias = np.broadcast_to(turn_on, shape).copy()
     if errors.rate_random_walk > 0:
         bias += np.cumsum(errors.rate_random_walk * np.sqrt(dt) * r_rrw.standard_normal(shape), axis=-2)
-    y = r_white.standard_normal(shape) if errors.noise_density > 0 else np.empty(shape)   # the white noise
-    n_clipped = _apply_errors(M.reshape(-1, 3, 3), x.reshape(-1, shape[-2], 3), bias.reshape(-1, shape[-2], 3),
-                              errors.noise_density / np.sqrt(dt), errors.full_scale, y.reshape(-1, shape[-2], 3))
+    y = r_white.standard_normal(shape) if errors.noise_density > 0 else np.empty(shape)  # the white noise
+    n_clipped = _apply_errors(
+        M.reshape(-1, 3, 3),
+        x.reshape(-1, shape[-2], 3),
+        bias.reshape(-1, shape[-2], 3),
+        errors.noise_density / np.sqrt(dt),
+        errors.full_scale,
+        y.reshape(-1, shape[-2], 3),
+    )
     return y, bias, M, int(n_clipped)
 
 
@@ -282,12 +310,13 @@ def window_mean_std(errors: TriadErrors, duration: float, dt: float) -> float:
     T, dt = scalar(duration, "duration", positive=True), interval(dt)
     n = max(int(round(T / dt)), 1)
     r = errors.correlation_time / T
-    gm = errors.gauss_markov_sigma ** 2 * 2 * r * (1 - r * (1 - np.exp(-1 / r)))
-    return float(np.sqrt(errors.noise_density ** 2 / (n * dt) + errors.bias ** 2 + gm))
+    gm = errors.gauss_markov_sigma**2 * 2 * r * (1 - r * (1 - np.exp(-1 / r)))
+    return float(np.sqrt(errors.noise_density**2 / (n * dt) + errors.bias**2 + gm))
 
 
-def simulate_imu(w_ib_b: Vec3Series, f_b: Vec3Series, dt: float, model: ImuModel, rng: np.random.Generator,
-                 n_trials: int | None = None) -> ImuOutput:
+def simulate_imu(
+    w_ib_b: Vec3Series, f_b: Vec3Series, dt: float, model: ImuModel, rng: np.random.Generator, n_trials: int | None = None
+) -> ImuOutput:
     """Corrupt ideal IMU samples with an :class:`ImuModel`.
 
     Parameters
@@ -336,12 +365,18 @@ def simulate_imu(w_ib_b: Vec3Series, f_b: Vec3Series, dt: float, model: ImuModel
 # Presets
 # --------------------------------------------------------------------------
 
+
 def _preset_parameters() -> dict[str, set[str]]:
     """The parameters a preset row may name, per sensor (the fields of the model it feeds)."""
     triad = {f.name for f in fields(TriadErrors)}
-    return {"gyro": triad, "accel": triad, "mag": {f.name for f in fields(MagnetometerModel)},
-            "baro": {f.name for f in fields(BarometerModel)} | {"noise_ultra_low_power"},
-            "heading": {"noise"}, "gnss": {"rtk_horizontal", "single_point_horizontal"}}
+    return {
+        "gyro": triad,
+        "accel": triad,
+        "mag": {f.name for f in fields(MagnetometerModel)},
+        "baro": {f.name for f in fields(BarometerModel)} | {"noise_ultra_low_power"},
+        "heading": {"noise"},
+        "gnss": {"rtk_horizontal", "single_point_horizontal"},
+    }
 
 
 def _read_presets(path) -> dict[str, dict[tuple[str, str], tuple[float, str, str]]]:
@@ -409,6 +444,7 @@ def imu_model(device: str) -> ImuModel:
 # Magnetometer
 # --------------------------------------------------------------------------
 
+
 @dataclass(frozen=True)
 class MagnetometerModel:
     """Magnetometer errors (uT).
@@ -418,6 +454,7 @@ class MagnetometerModel:
     h with sigma ``hard_iron`` (constant per run), white noise n with sigma
     ``noise``, and an optional external disturbance field ``d_n``.
     """
+
     noise: float = 0.0
     hard_iron: float = 0.0
     soft_iron: float = 0.0
@@ -435,13 +472,15 @@ class MagnetometerModel:
 @dataclass(frozen=True)
 class MagnetometerOutput:
     """Simulated magnetometer samples ``m_b`` (..., N, 3) in uT and the true errors."""
+
     m_b: np.ndarray
     hard_iron: np.ndarray
     soft_iron: np.ndarray
 
 
-def simulate_magnetometer(q_bn: Quat, B_n: Vec3, model: MagnetometerModel, rng: np.random.Generator,
-                          disturbance_n: Vec3Series | None = None) -> MagnetometerOutput:
+def simulate_magnetometer(
+    q_bn: Quat, B_n: Vec3, model: MagnetometerModel, rng: np.random.Generator, disturbance_n: Vec3Series | None = None
+) -> MagnetometerOutput:
     """Magnetometer readings along an attitude history.
 
     Parameters
@@ -464,8 +503,7 @@ def simulate_magnetometer(q_bn: Quat, B_n: Vec3, model: MagnetometerModel, rng: 
     generator(rng)
     instance(model, "model", MagnetometerModel, "a MagnetometerModel")
     if disturbance_n is not None:
-        B, D = broadcast(B, as_array(disturbance_n, "disturbance_n", tail=(3,)), name="disturbance_n",
-                         of="B_n, disturbance_n")
+        B, D = broadcast(B, as_array(disturbance_n, "disturbance_n", tail=(3,)), name="disturbance_n", of="B_n, disturbance_n")
         B = B + D
     broadcast(q[..., 1:], B, name="B_n", of="q_bn, B_n")
     C_nb = np.swapaxes(attitude.quat_to_dcm(q), -1, -2)
@@ -480,8 +518,13 @@ def simulate_magnetometer(q_bn: Quat, B_n: Vec3, model: MagnetometerModel, rng: 
     return MagnetometerOutput(np.clip(m, -model.full_scale, model.full_scale), h, S)
 
 
-def magnetic_disturbances(time: Times, rng: np.random.Generator, rate: float, amplitude: tuple[float, float] = (5.0, 10.0),
-                          duration: tuple[float, float] = (2.0, 5.0)) -> Array:
+def magnetic_disturbances(
+    time: Times,
+    rng: np.random.Generator,
+    rate: float,
+    amplitude: tuple[float, float] = (5.0, 10.0),
+    duration: tuple[float, float] = (2.0, 5.0),
+) -> Array:
     """Localised magnetic disturbances (steel structures, passing cars).
 
     Events arrive as a Poisson process; each is a Hann-shaped bump of random
@@ -528,10 +571,12 @@ def magnetic_disturbances(time: Times, rng: np.random.Generator, rate: float, am
 # Barometer
 # --------------------------------------------------------------------------
 
+
 @dataclass(frozen=True)
 class BarometerModel:
     """Barometer errors (Pa): white ``noise`` sigma, constant ``bias`` sigma,
     and a deterministic weather ``drift_rate`` (Pa/s)."""
+
     noise: float = 0.0
     bias: float = 0.0
     drift_rate: float = 0.0
@@ -545,8 +590,9 @@ class BarometerModel:
         return cls(**_preset_fields(device, "baro", {"noise", "bias", "drift_rate"}, "barometer"))
 
 
-def simulate_barometer(h: ArrayLike, time: Times, model: BarometerModel, rng: np.random.Generator,
-                       p0: float = atmosphere.P0) -> Array:
+def simulate_barometer(
+    h: ArrayLike, time: Times, model: BarometerModel, rng: np.random.Generator, p0: float = atmosphere.P0
+) -> Array:
     """Barometric pressure (Pa) at heights ``h`` (m) with the ISA as truth.
 
     Parameters
@@ -567,7 +613,7 @@ def simulate_barometer(h: ArrayLike, time: Times, model: BarometerModel, rng: np
     t = time_axis(time)
     generator(rng)
     instance(model, "model", BarometerModel, "a BarometerModel")
-    p = last_axis(atmosphere.isa_pressure(h, scalar(p0, "p0", positive=True)), "h", t.size, of="time")   # checks h
+    p = last_axis(atmosphere.isa_pressure(h, scalar(p0, "p0", positive=True)), "h", t.size, of="time")  # checks h
     r_bias, r_noise = rng.spawn(2)
     p = p + model.bias * r_bias.standard_normal(p.shape[:-1] + (1,))
     p = p + model.drift_rate * (t - t[0])
@@ -577,6 +623,7 @@ def simulate_barometer(h: ArrayLike, time: Times, model: BarometerModel, rng: np
 # --------------------------------------------------------------------------
 # GNSS position and dual-antenna heading
 # --------------------------------------------------------------------------
+
 
 def outage_mask(time: Times, outages: Sequence[tuple[float, float]]) -> np.ndarray:
     """Validity flags: False inside any ``[start, end)`` outage interval.
@@ -603,8 +650,13 @@ def outage_mask(time: Times, outages: Sequence[tuple[float, float]]) -> np.ndarr
     return valid
 
 
-def simulate_gnss_position(lla: Vec3Series, rng: np.random.Generator, sigma_horizontal: float,
-                           sigma_vertical: float | None = None, valid: ArrayLike | None = None) -> Array:
+def simulate_gnss_position(
+    lla: Vec3Series,
+    rng: np.random.Generator,
+    sigma_horizontal: float,
+    sigma_vertical: float | None = None,
+    valid: ArrayLike | None = None,
+) -> Array:
     """GNSS positions: truth plus white noise in metres, NaN during outages.
 
     Parameters
@@ -640,8 +692,9 @@ def simulate_gnss_position(lla: Vec3Series, rng: np.random.Generator, sigma_hori
     return out
 
 
-def simulate_heading(heading: Angles, rng: np.random.Generator, sigma: float,
-                     valid: ArrayLike | None = None) -> tuple[Array, np.ndarray]:
+def simulate_heading(
+    heading: Angles, rng: np.random.Generator, sigma: float, valid: ArrayLike | None = None
+) -> tuple[Array, np.ndarray]:
     """Dual-antenna heading: truth plus white noise, wrapped to [0, 2 pi).
 
     Parameters
@@ -663,7 +716,10 @@ def simulate_heading(heading: Angles, rng: np.random.Generator, sigma: float,
     s = scalar(sigma, "sigma", allow_zero=True)
     generator(rng)
     out = attitude.wrap_2pi(h + s * rng.standard_normal(h.shape))
-    v = np.ones(h.shape[-1:], dtype=bool) if valid is None else same_shape(booleans(valid, "valid"), "valid", h.shape[-1:],
-                                                                             of="the last axis of heading")
+    v = (
+        np.ones(h.shape[-1:], dtype=bool)
+        if valid is None
+        else same_shape(booleans(valid, "valid"), "valid", h.shape[-1:], of="the last axis of heading")
+    )
     out[..., ~v] = np.nan
     return out, v

@@ -45,6 +45,7 @@ Timing
     epoch times); the documented pipeline for logs with repeated or
     out-of-order timestamps is :func:`navlib.timing.sanitize` first.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -124,8 +125,9 @@ def _sample_intervals(dt, n):
     return dts[:1] if np.ndim(dt) == 0 else dts
 
 
-def integrate_attitude(q0: Quat, w_ib_b: Vec3Series, dt: Interval, w_in_n: Vec3 | None = None, *,
-                       nan_policy: str = "raise") -> Array:
+def integrate_attitude(
+    q0: Quat, w_ib_b: Vec3Series, dt: Interval, w_in_n: Vec3 | None = None, *, nan_policy: str = "raise"
+) -> Array:
     """Integrate gyro samples into an attitude history.
 
     ``q_k+1 = q(-w_in_n dt_k) (x) q_k (x) q(w_k dt_k)`` with a constant
@@ -171,8 +173,9 @@ def _state_array(x: ArrayLike, name: str, size: int) -> np.ndarray:
     return x if arr is x and arr.flags.writeable else arr.copy()
 
 
-def nav_step(lla: Vec3, vel: Vec3, q: Quat, w: Vec3, f: Vec3, dt: float, earth_consts: ArrayLike,
-             hold_height: bool = False) -> tuple[Array, Array, Array]:
+def nav_step(
+    lla: Vec3, vel: Vec3, q: Quat, w: Vec3, f: Vec3, dt: float, earth_consts: ArrayLike, hold_height: bool = False
+) -> tuple[Array, Array, Array]:
     """One mechanisation step (module docstring), updating ``lla``, ``vel``, ``q`` in place.
 
     Validates its arguments, then runs the compiled primitive
@@ -221,8 +224,10 @@ def nav_step(lla: Vec3, vel: Vec3, q: Quat, w: Vec3, f: Vec3, dt: float, earth_c
     dt = interval(dt)
     c = kernel_array(as_array(earth_consts, "earth_consts", shape=(7,)))
     if not (c[0] > 0 and 0 <= c[2] < 1):
-        raise ValueError("earth_consts: expected [a > 0, f, 0 <= e2 < 1, m, gamma_e, k, omega] "
-                         f"(strapdown.earth_constants), got a = {c[0]:g}, e2 = {c[2]:g}")
+        raise ValueError(
+            "earth_consts: expected [a > 0, f, 0 <= e2 < 1, m, gamma_e, k, omega] "
+            f"(strapdown.earth_constants), got a = {c[0]:g}, e2 = {c[2]:g}"
+        )
     _kernels.nav_step(lla, vel, q, w, f, dt, c, flag(hold_height, "hold_height"))
     return lla, vel, q
 
@@ -259,10 +264,19 @@ def _store(lla_out, vel_out, q_out, lla, vel, q):
         q_out[i] = q[i]
 
 
-def integrate(lla0: Vec3, vel0: Vec3, q0: Quat, w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None,
-              dt: Interval | None = None, t0: float = 0.0,
-              hold_height: bool = False, ellipsoid: earth.Ellipsoid = earth.WGS84, *,
-              nan_policy: str = "raise") -> Trajectory:
+def integrate(
+    lla0: Vec3,
+    vel0: Vec3,
+    q0: Quat,
+    w_ib_b: Vec3Series | ImuSamples,
+    f_b: Vec3Series | None = None,
+    dt: Interval | None = None,
+    t0: float = 0.0,
+    hold_height: bool = False,
+    ellipsoid: earth.Ellipsoid = earth.WGS84,
+    *,
+    nan_policy: str = "raise",
+) -> Trajectory:
     """Full strapdown navigation: attitude, ENU velocity and geodetic position.
 
     Parameters
@@ -313,7 +327,7 @@ def integrate(lla0: Vec3, vel0: Vec3, q0: Quat, w_ib_b: Vec3Series | ImuSamples,
     True
     """
     policy = choice(nan_policy, "nan_policy", _NAN_POLICIES)
-    validated = isinstance(w_ib_b, ImuSamples)                  # by the record
+    validated = isinstance(w_ib_b, ImuSamples)  # by the record
     w, f, dt, _, _ = unpack(w_ib_b, f_b, dt)
     if not validated:
         w, f = broadcast(_samples(w, "w_ib_b"), _samples(f, "f_b"), name="f_b", of="w_ib_b, f_b")
@@ -331,16 +345,26 @@ def integrate(lla0: Vec3, vel0: Vec3, q0: Quat, w_ib_b: Vec3Series | ImuSamples,
         raise ValueError("lla0[..., 0] (lat): the ENU mechanisation is singular at the poles; expected |lat| <= 89.9 deg")
     vel0 = as_array(vel0, "vel0", tail=(3,))
     q0 = as_quat(q0, "q0")
+
     def flat(x, k, name):
         x = broadcast_to(x, name, lead + x.shape[-k:], of="the trials of w_ib_b")
         return kernel_array(x.reshape((-1,) + x.shape[-k:]))
 
-    lla, vel, q = _nav_kernel(flat(lla0, 1, "lla0"), flat(vel0, 1, "vel0"), flat(q0, 1, "q0"), flat(w, 2, "w_ib_b"),
-                              flat(f, 2, "f_b"), dt,
-                              earth_constants(ellipsoid), flag(hold_height, "hold_height"))
+    lla, vel, q = _nav_kernel(
+        flat(lla0, 1, "lla0"),
+        flat(vel0, 1, "vel0"),
+        flat(q0, 1, "q0"),
+        flat(w, 2, "w_ib_b"),
+        flat(f, 2, "f_b"),
+        dt,
+        earth_constants(ellipsoid),
+        flag(hold_height, "hold_height"),
+    )
     if not (np.all(np.isfinite(lla)) and np.all(np.abs(lla[..., 0]) < np.pi / 2)):
-        raise ValueError("w_ib_b, f_b, dt: the integrated position diverges (it reaches a pole or overflows); check "
-                         "the units of dt and f_b and that f_b is specific force including gravity")
+        raise ValueError(
+            "w_ib_b, f_b, dt: the integrated position diverges (it reaches a pole or overflows); check "
+            "the units of dt and f_b and that f_b is specific force including gravity"
+        )
     time = t0 + (dt[0] * np.arange(n + 1) if dt.size == 1 else np.concatenate([[0.0], np.cumsum(dt)]))
     held = {("gyro", "nan"): held_w, ("accel", "nan"): held_f}
     faults = robust.FaultReport({key: m.sum(axis=-1) for key, m in held.items()}, held)
@@ -391,15 +415,14 @@ def error_model(lat: float, h: float, vel_n: Vec3, f_n: Vec3, ellipsoid: earth.E
     Maa = -sk(w_ie + w_en)
     Mav = np.array([[0, -1 / RMh, 0], [1 / RNh, 0, 0], [tl / RNh, 0, 0]])
     M1 = np.array([[0, 0, 0], [-W * sl, 0, 0], [W * cl, 0, 0]])
-    M2 = np.array([[0, 0, vN / RMh ** 2], [0, 0, -vE / RNh ** 2],
-                   [vE / (cl * cl * RNh), 0, -vE * tl / RNh ** 2]])
+    M2 = np.array([[0, 0, vN / RMh**2], [0, 0, -vE / RNh**2], [vE / (cl * cl * RNh), 0, -vE * tl / RNh**2]])
     Map = M1 + M2
     Mva = sk(f)
     Mvv = sk(v) @ Mav - sk(2 * w_ie + w_en)
     Mvp = sk(v) @ (2 * M1 + M2)
     Mvp[2, 2] += 2 * g / RNh
     Mpv = np.array([[0, 1 / RMh, 0], [1 / (cl * RNh), 0, 0], [0, 0, 1]])
-    Mpp = np.array([[0, 0, -vN / RMh ** 2], [vE * tl / (cl * RNh), 0, -vE / (cl * RNh ** 2)], [0, 0, 0]])
+    Mpp = np.array([[0, 0, -vN / RMh**2], [vE * tl / (cl * RNh), 0, -vE / (cl * RNh**2)], [0, 0, 0]])
     F = np.zeros((9, 9))
     F[0:3, 0:3], F[0:3, 3:6], F[0:3, 6:9] = Maa, Mav, Map
     F[3:6, 0:3], F[3:6, 3:6], F[3:6, 6:9] = Mva, Mvv, Mvp

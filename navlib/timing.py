@@ -9,6 +9,7 @@ per-sample intervals take ``dt = np.diff(time)``-style arrays from
 :func:`intervals`. A clock jump (an interval too long to integrate: :data:`navlib.imu.JUMP_FACTOR` median intervals
 by default) is the rule of :meth:`navlib.imu.SensorLimits.jump_limit`.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -38,6 +39,7 @@ class TimingReport:
     dt_median, dt_min, dt_max : float
         Interval statistics after cleaning (s).
     """
+
     n_in: int
     n_out: int
     n_out_of_order: int
@@ -88,8 +90,9 @@ def sanitize(time: ArrayLike, *series: ArrayLike) -> tuple[Array | TimingReport,
     dt = np.diff(t[keep])
     if dt.size == 0:
         raise ValueError("time: all timestamps are equal")
-    report = TimingReport(t.size, int(keep.size), n_late, int(np.count_nonzero(~first)),
-                          float(np.median(dt)), float(dt.min()), float(dt.max()))
+    report = TimingReport(
+        t.size, int(keep.size), n_late, int(np.count_nonzero(~first)), float(np.median(dt)), float(dt.min()), float(dt.max())
+    )
     out = [_reindex(x, keep, t.size, f"series[{i}]") for i, x in enumerate(series)]
     return (t[keep], *out, report)
 

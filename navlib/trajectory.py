@@ -8,6 +8,7 @@ turns, a pedestrian walking with a shoulder-worn IMU), integrating position from
 step exactly, so error-free samples integrate back to the trajectory to
 rounding error and every simulated error is due to the sensor model alone.
 """
+
 from __future__ import annotations
 
 from collections.abc import Sequence
@@ -23,8 +24,20 @@ from ._validate import as_array, as_quat, in_range, instance, interval, kernel_a
 from ._validate import ellipsoid as ellipsoid_
 from .robust import FaultReport
 
-__all__ = ["Trajectory", "Segment", "static", "from_profiles", "reciprocating_rotation",
-           "vehicle", "Leg", "Gait", "walk", "stance_mask", "ideal_imu", "smooth_ramp"]
+__all__ = [
+    "Trajectory",
+    "Segment",
+    "static",
+    "from_profiles",
+    "reciprocating_rotation",
+    "vehicle",
+    "Leg",
+    "Gait",
+    "walk",
+    "stance_mask",
+    "ideal_imu",
+    "smooth_ramp",
+]
 
 
 @dataclass(frozen=True)
@@ -46,6 +59,7 @@ class Trajectory:
         dropouts (``faults["gyro", "nan"]``, counts of shape (...), flags of shape (..., N - 1));
         empty for generated trajectories.
     """
+
     time: np.ndarray
     lla: np.ndarray
     vel_n: np.ndarray
@@ -63,7 +77,7 @@ class Trajectory:
                 raise ValueError(f"{name}: expected {n} epochs on axis -2, got shape {a.shape}")
             object.__setattr__(self, name, a)
         norm = np.linalg.norm(self.q_bn, axis=-1)
-        as_quat(self.q_bn[np.isfinite(norm)], "q_bn", normalize=False)       # NaN rows: epochs without attitude
+        as_quat(self.q_bn[np.isfinite(norm)], "q_bn", normalize=False)  # NaN rows: epochs without attitude
         lat = np.asarray(self.lla)[..., 0]
         if np.any(np.abs(lat[np.isfinite(lat)]) > np.pi / 2):
             raise ValueError("lla: expected latitudes (lla[..., 0]) within [-pi/2, pi/2] rad")
@@ -116,8 +130,10 @@ def _time_grid(duration: float, dt: float) -> np.ndarray:
     if n < 1:
         raise ValueError(f"duration: expected at least one sample interval dt={dt}, got {duration}")
     if n > MAX_SAMPLES:
-        raise ValueError(f"dt: {duration:g} s at dt = {dt:g} s is {n:.3g} samples, more than one trajectory holds "
-                         f"({MAX_SAMPLES:.0e}); is dt in seconds?")
+        raise ValueError(
+            f"dt: {duration:g} s at dt = {dt:g} s is {n:.3g} samples, more than one trajectory holds "
+            f"({MAX_SAMPLES:.0e}); is dt in seconds?"
+        )
     return dt * np.arange(n + 1)
 
 
@@ -185,8 +201,9 @@ def _ramp(x: np.ndarray) -> np.ndarray:
     return x - np.sin(2 * np.pi * x) / (2 * np.pi)
 
 
-def reciprocating_rotation(duration: float, dt: float, lla0, hpr0, axis_b, amplitude: float,
-                           period: float, rotation_time: float = 1.0) -> Trajectory:
+def reciprocating_rotation(
+    duration: float, dt: float, lla0, hpr0, axis_b, amplitude: float, period: float, rotation_time: float = 1.0
+) -> Trajectory:
     """An IMU rotated back and forth about a body-fixed axis (paper 001 §3.2).
 
     The rotation angle alternates between 0 and ``amplitude``: each
@@ -222,7 +239,7 @@ def reciprocating_rotation(duration: float, dt: float, lla0, hpr0, axis_b, ampli
     start = np.where(k % 2 == 0, 0.0, 1.0)
     alpha = amplitude * (start + (1 - 2 * start) * s)
     hpr0 = as_array(hpr0, "hpr0", shape=(3,))
-    in_range(hpr0[..., 1], "hpr0[1] (pitch)", -np.pi / 2, np.pi / 2, "rad")      # named here: euler_to_quat says hpr
+    in_range(hpr0[..., 1], "hpr0[1] (pitch)", -np.pi / 2, np.pi / 2, "rad")  # named here: euler_to_quat says hpr
     q0 = attitude.euler_to_quat(hpr0)
     q = attitude.quat_mult(q0, attitude.rotvec_to_quat(alpha[:, None] * u))
     lla = np.broadcast_to(_lla(lla0), (t.size, 3)).copy()
@@ -254,6 +271,7 @@ class Segment:
     here (``None`` keeps them), and the heading changes by ``turn``.
     Units: s, m/s, rad.
     """
+
     duration: float
     speed: float | None = None
     turn: float = 0.0
@@ -299,8 +317,7 @@ def vehicle(segments, dt: float, lla0, heading0: float, ellipsoid: earth.Ellipso
             new = cur[key] if targets[key] is None else float(targets[key])
             arr[m] = cur[key] + (new - cur[key]) * r
             cur[key] = new
-    vel = speed[:, None] * np.stack([np.sin(heading) * np.cos(pitch), np.cos(heading) * np.cos(pitch),
-                                     np.sin(pitch)], -1)
+    vel = speed[:, None] * np.stack([np.sin(heading) * np.cos(pitch), np.cos(heading) * np.cos(pitch), np.sin(pitch)], -1)
     hpr = np.stack([attitude.wrap_2pi(heading), pitch, roll], -1)
     return _from_profiles(t, lla0, hpr, vel, ellipsoid)
 
@@ -314,6 +331,7 @@ class Leg:
     smoothly from the previous leg's within the first ``ramp`` seconds of
     the walk (see :func:`walk`); a stop is static once that ramp is over.
     """
+
     duration: float
     speed: float = 0.0
     turn: float = 0.0
@@ -353,6 +371,7 @@ class Gait:
     ramp : float
         Time to start or stop walking (s).
     """
+
     step_frequency: float = 1.8
     bounce: float = 0.025
     sway: float = 0.02
@@ -367,9 +386,12 @@ class Gait:
     ramp: float = 1.0
 
     def __post_init__(self):
-        numbers(self, positive=("step_frequency", "stand_frequency", "ramp"),
-                non_negative=("bounce", "sway", "surge", "heading_wiggle", "pitch_bob", "roll_sway", "stand_sway",
-                              "stand_tilt"), real=("lean",))
+        numbers(
+            self,
+            positive=("step_frequency", "stand_frequency", "ramp"),
+            non_negative=("bounce", "sway", "surge", "heading_wiggle", "pitch_bob", "roll_sway", "stand_sway", "stand_tilt"),
+            real=("lean",),
+        )
 
 
 def _listed(items) -> list:
@@ -424,8 +446,9 @@ def stance_mask(legs: Sequence[Leg], dt: float, gait: Gait = Gait()) -> np.ndarr
     return _schedule(legs, t, gait.ramp)[3]
 
 
-def walk(legs: Sequence[Leg], dt: float, lla0: Vec3, heading0: float, gait: Gait = Gait(),
-         ellipsoid: earth.Ellipsoid = earth.WGS84) -> Trajectory:
+def walk(
+    legs: Sequence[Leg], dt: float, lla0: Vec3, heading0: float, gait: Gait = Gait(), ellipsoid: earth.Ellipsoid = earth.WGS84
+) -> Trajectory:
     """A pedestrian walking and stopping, as seen by a shoulder-worn IMU.
 
     The shoulder follows a smooth path (speed ramps, turns, stairs) plus
@@ -453,21 +476,31 @@ def walk(legs: Sequence[Leg], dt: float, lla0: Vec3, heading0: float, gait: Gait
     heading0 = scalar(heading0, "heading0")
     speed, turn, climb, _ = _schedule(legs, t, gait.ramp)
     v_max = max(leg.speed for leg in legs)
-    a = speed / v_max if v_max > 0 else np.zeros_like(speed)   # gait envelope, 0 when standing
+    a = speed / v_max if v_max > 0 else np.zeros_like(speed)  # gait envelope, 0 when standing
     psi = heading0 + turn
     fwd = np.stack([np.sin(psi), np.cos(psi), np.zeros_like(psi)], -1)
     right = np.stack([np.cos(psi), -np.sin(psi), np.zeros_like(psi)], -1)
     up = np.array([0.0, 0.0, 1.0])
-    step, stride, stand = (2 * np.pi * gait.step_frequency * t, np.pi * gait.step_frequency * t,
-                           2 * np.pi * gait.stand_frequency * t)
+    step, stride, stand = (
+        2 * np.pi * gait.step_frequency * t,
+        np.pi * gait.step_frequency * t,
+        2 * np.pi * gait.stand_frequency * t,
+    )
     still = 1 - np.clip(a, 0, 1)
-    osc = ((gait.sway * a * np.sin(stride) + gait.stand_sway * still * np.sin(stand))[:, None] * right
-           + (gait.surge * a * np.sin(step) + gait.stand_sway * still * np.cos(0.7 * stand))[:, None] * fwd
-           + (gait.bounce * a * np.cos(step))[:, None] * up)
-    vel = (speed[:, None] * fwd + np.gradient(climb, dt)[:, None] * up + np.gradient(osc, dt, axis=0))
-    hpr = np.stack([attitude.wrap_2pi(psi + gait.heading_wiggle * a * np.sin(stride + 0.3)),
-                    gait.lean * a + gait.pitch_bob * a * np.sin(step + 0.5) + gait.stand_tilt * still * np.sin(stand),
-                    gait.roll_sway * a * np.sin(stride) + gait.stand_tilt * still * np.cos(0.8 * stand)], -1)
+    osc = (
+        (gait.sway * a * np.sin(stride) + gait.stand_sway * still * np.sin(stand))[:, None] * right
+        + (gait.surge * a * np.sin(step) + gait.stand_sway * still * np.cos(0.7 * stand))[:, None] * fwd
+        + (gait.bounce * a * np.cos(step))[:, None] * up
+    )
+    vel = speed[:, None] * fwd + np.gradient(climb, dt)[:, None] * up + np.gradient(osc, dt, axis=0)
+    hpr = np.stack(
+        [
+            attitude.wrap_2pi(psi + gait.heading_wiggle * a * np.sin(stride + 0.3)),
+            gait.lean * a + gait.pitch_bob * a * np.sin(step + 0.5) + gait.stand_tilt * still * np.sin(stand),
+            gait.roll_sway * a * np.sin(stride) + gait.stand_tilt * still * np.cos(0.8 * stand),
+        ],
+        -1,
+    )
     return _from_profiles(t, lla0, hpr, vel, ellipsoid)
 
 
@@ -508,8 +541,9 @@ def ideal_imu(traj: Trajectory, ellipsoid: earth.Ellipsoid = earth.WGS84):
     w_in = w_ie + w_en
     dq = attitude.quat_mult(attitude.quat_mult(attitude.quat_conj(q0), attitude.rotvec_to_quat(w_in * dt)), q1)
     w_ib_b = attitude.quat_to_rotvec(dq) / dt
-    q_mid = attitude.quat_mult(attitude.quat_mult(attitude.rotvec_to_quat(-w_in * dt / 2), q0),
-                               attitude.rotvec_to_quat(w_ib_b * dt / 2))
+    q_mid = attitude.quat_mult(
+        attitude.quat_mult(attitude.rotvec_to_quat(-w_in * dt / 2), q0), attitude.rotvec_to_quat(w_ib_b * dt / 2)
+    )
     C_mid = attitude.quat_to_dcm(q_mid)
     a_n = (v1 - v0) / dt - earth.gravity_n(lat, h, ellipsoid=ellipsoid) + np.cross(2 * w_ie + w_en, v0)
     f_b = np.einsum("...ji,...j->...i", C_mid, a_n)

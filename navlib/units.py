@@ -10,6 +10,7 @@ back. Noise densities follow the usual identities:
 * 1 deg/s/sqrt(Hz) = pi/180 rad/s/sqrt(Hz);
 * velocity random walk 1 m/s/sqrt(h) = 1/60 m/s/sqrt(s) (= m/s^2/sqrt(Hz)).
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -17,10 +18,34 @@ import numpy as np
 from ._typing import Array, ArrayLike
 from ._validate import real
 
-__all__ = ["G0", "CONVERTERS", "to_si", "deg", "to_deg", "deg_per_s", "to_deg_per_s", "deg_per_h", "to_deg_per_h",
-           "deg_per_sqrt_h", "to_deg_per_sqrt_h", "deg_per_s_sqrt_hz", "to_deg_per_s_sqrt_hz", "deg_per_h_sqrt_h",
-           "mg", "ug", "to_ug", "ug_per_sqrt_hz", "m_per_s_sqrt_h", "gauss", "to_gauss", "nanotesla", "hpa",
-           "to_hpa", "percent", "ppm"]
+__all__ = [
+    "G0",
+    "CONVERTERS",
+    "to_si",
+    "deg",
+    "to_deg",
+    "deg_per_s",
+    "to_deg_per_s",
+    "deg_per_h",
+    "to_deg_per_h",
+    "deg_per_sqrt_h",
+    "to_deg_per_sqrt_h",
+    "deg_per_s_sqrt_hz",
+    "to_deg_per_s_sqrt_hz",
+    "deg_per_h_sqrt_h",
+    "mg",
+    "ug",
+    "to_ug",
+    "ug_per_sqrt_hz",
+    "m_per_s_sqrt_h",
+    "gauss",
+    "to_gauss",
+    "nanotesla",
+    "hpa",
+    "to_hpa",
+    "percent",
+    "ppm",
+]
 
 G0 = 9.80665
 """Standard gravity (m/s^2) used to convert g, mg and ug (ISO 80000-3)."""

@@ -8,6 +8,7 @@ the main entry points in the forms their public functions call them, so that a l
 process loads the compiled code instead (a fraction of a second). ``make reproduce`` and ``make test`` need
 no warm-up: they compile as they go.
 """
+
 from __future__ import annotations
 
 import time
@@ -32,8 +33,9 @@ def _calls() -> dict[str, Callable[[], object]]:
         "filters.mahony (IMU)": lambda: mahony.mahony(imu, q0),
         "filters.mahony (MARG)": lambda: mahony.mahony(imu, q0, m_b=m_b),
         "filters.quaternion_kf (MARG)": lambda: quaternion_kf.quaternion_kf(imu, q0, m_b=m_b, B_n=B_n),
-        "sensors.simulate_imu": lambda: sensors.simulate_imu(w_ib_b, f_b, 0.01, sensors.imu_model("MPU-6050"),
-                                                             np.random.default_rng(0)),
+        "sensors.simulate_imu": lambda: sensors.simulate_imu(
+            w_ib_b, f_b, 0.01, sensors.imu_model("MPU-6050"), np.random.default_rng(0)
+        ),
         "strapdown.integrate": lambda: strapdown.integrate(np.array([0.5, 0.1, 0.0]), np.zeros(3), q0, w_ib_b, f_b, 0.01),
     }
 

@@ -4,6 +4,7 @@ Property tests draw their examples from a fixed seed (``derandomize=True``), so 
 ``make test`` exercise the same cases and CI cannot fail by chance. To explore new random
 examples locally: ``pytest --hypothesis-profile=explore tests/test_properties.py``.
 """
+
 import pytest
 from hypothesis import settings
 
@@ -16,8 +17,10 @@ settings.load_profile("navlib")
 def ax():
     """A fresh 2-D matplotlib Axes on the Agg backend, closed afterwards (the chapters' drawing tests)."""
     import matplotlib
+
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+
     fig, axes = plt.subplots()
     yield axes
     plt.close(fig)

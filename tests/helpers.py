@@ -1,6 +1,7 @@
 """Helpers shared by the test modules: reference values and the project's files.
 
 Bad input to every public callable: the registry tools/fuzz_calls.py, run by tests/test_bad_input.py."""
+
 import csv
 import json
 import os
@@ -36,10 +37,14 @@ def project_files() -> list[Path]:
         out = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, check=True).stdout
         return [ROOT / p for p in out.decode().split("\0") if p]
     except (OSError, subprocess.CalledProcessError):
-        return [p for p in sorted(ROOT.rglob("*"))
-                if p.is_file() and not _NOT_SOURCE & set(p.relative_to(ROOT).parts) and p.suffix != ".egg-info"
-                and not any(part.endswith(".egg-info") for part in p.relative_to(ROOT).parts)]
-
+        return [
+            p
+            for p in sorted(ROOT.rglob("*"))
+            if p.is_file()
+            and not _NOT_SOURCE & set(p.relative_to(ROOT).parts)
+            and p.suffix != ".egg-info"
+            and not any(part.endswith(".egg-info") for part in p.relative_to(ROOT).parts)
+        ]
 
 
 def run_json_script(script: str, disable_jit: bool) -> dict:

@@ -3,6 +3,7 @@
 Bad-input cases of these functions are also run by tests/test_ahrs.py and
 tests/faults/test_faults_pedestrian.py (their former homes).
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -20,7 +21,7 @@ def static_readings(hpr, B_n=(0.0, 22.0, -40.0)):
     return C_bn.T @ np.array([0.0, 0.0, 9.8]), C_bn.T @ np.asarray(B_n)
 
 
-@settings(deadline=None)              # the first call compiles the heading kernel
+@settings(deadline=None)  # the first call compiles the heading kernel
 @given(angles)
 def test_level_and_heading_recover_the_attitude(hpr):
     f_b, m_b = static_readings(np.array(hpr))
@@ -46,15 +47,18 @@ def test_broadcasting_and_quaternion():
     assert pitch.shape == roll.shape == (2,)
 
 
-@pytest.mark.parametrize("call, arg", [
-    (lambda: alignment.level([0.0, 0.0, 0.0]), "f_b"),
-    (lambda: alignment.level([1.0, 2.0]), "f_b"),
-    (lambda: alignment.magnetic_heading([0.0, 0.0, 0.0], 0.0, 0.0), "m_b"),
-    (lambda: alignment.magnetic_heading([1.0, 0.0, 0.0], "flat", 0.0), "pitch"),
-    (lambda: alignment.magnetic_heading([1.0, 0.0, 0.0], 0.0, 0.0, declination=[0.1, 0.2]), "declination"),
-    (lambda: alignment.tilt_heading([0.0, 0.0, 9.8], [0.0, 0.0, 40.0]), "m_b"),
-    (lambda: alignment.initial_attitude([0.0, 0.0, np.nan], [0.0, 20.0, 0.0]), "f_b"),
-])
+@pytest.mark.parametrize(
+    "call, arg",
+    [
+        (lambda: alignment.level([0.0, 0.0, 0.0]), "f_b"),
+        (lambda: alignment.level([1.0, 2.0]), "f_b"),
+        (lambda: alignment.magnetic_heading([0.0, 0.0, 0.0], 0.0, 0.0), "m_b"),
+        (lambda: alignment.magnetic_heading([1.0, 0.0, 0.0], "flat", 0.0), "pitch"),
+        (lambda: alignment.magnetic_heading([1.0, 0.0, 0.0], 0.0, 0.0, declination=[0.1, 0.2]), "declination"),
+        (lambda: alignment.tilt_heading([0.0, 0.0, 9.8], [0.0, 0.0, 40.0]), "m_b"),
+        (lambda: alignment.initial_attitude([0.0, 0.0, np.nan], [0.0, 20.0, 0.0]), "f_b"),
+    ],
+)
 def test_bad_input_names_the_argument(call, arg):
     with pytest.raises(ValueError, match=f"^{arg}: "):
         call()

@@ -1,4 +1,5 @@
 """Tests of navlib.analysis: RMSE, Allan deviation (estimator, theory, fit)."""
+
 import subprocess
 import sys
 
@@ -13,6 +14,7 @@ from navlib import sensors
 # --------------------------------------------------------------------------
 # rmse
 # --------------------------------------------------------------------------
+
 
 def test_rmse_basic():
     err = np.array([[3.0, 1.0], [-3.0, -1.0], [3.0, 1.0], [-3.0, 1.0]])
@@ -31,6 +33,7 @@ def test_rmse_nan_propagates_and_inf_rejected():
 # --------------------------------------------------------------------------
 # allan_deviation on white noise
 # --------------------------------------------------------------------------
+
 
 def _white_tol(taus, dt, n):
     """4 standard errors of a white-noise Allan deviation: relative sd <= ~1/sqrt(M)
@@ -82,7 +85,7 @@ def test_allan_three_axes_equal_each_axis_alone_bit_for_bit():
     for taus in (None, [0.01, 0.02, 0.05, 0.2, 1.0]):
         _, adev = A.allan_deviation(x, 0.01, taus=taus)
         for j in range(3):
-            assert_array_equal(adev[..., j:j + 1], A.allan_deviation(x[..., j:j + 1], 0.01, taus=taus)[1])
+            assert_array_equal(adev[..., j : j + 1], A.allan_deviation(x[..., j : j + 1], 0.01, taus=taus)[1])
 
 
 def test_allan_of_gauss_markov_matches_theory():
@@ -103,13 +106,16 @@ def test_allan_of_gauss_markov_matches_theory():
 # allan_deviation_theory
 # --------------------------------------------------------------------------
 
+
 def _gm_avar_independent(tau, sigma, tc):
     """Allan variance of a Gauss-Markov process from the variance of its integral,
     V(tau) = 2 sigma^2 T^2 (u - 1 + e^-u): AVAR = (4 V(tau) - V(2 tau)) / (2 tau^2)."""
+
     def V(t):
         u = t / tc
-        return 2 * sigma ** 2 * tc ** 2 * (u - 1 + np.exp(-u))
-    return (4 * V(tau) - V(2 * tau)) / (2 * tau ** 2)
+        return 2 * sigma**2 * tc**2 * (u - 1 + np.exp(-u))
+
+    return (4 * V(tau) - V(2 * tau)) / (2 * tau**2)
 
 
 def test_theory_white_only():
@@ -126,8 +132,9 @@ def test_gm_peak_constants():
     assert A.GM_ALLAN_PEAK == pytest.approx(0.6174, abs=5e-4)
     assert A.GM_ALLAN_PEAK_TAU == pytest.approx(1.893, abs=1e-3)
     # Independent derivation of the peak of a unit Gauss-Markov Allan deviation.
-    res = minimize_scalar(lambda u: -_gm_avar_independent(u, 1.0, 1.0), bounds=(0.5, 5), method="bounded",
-                          options={"xatol": 1e-10})
+    res = minimize_scalar(
+        lambda u: -_gm_avar_independent(u, 1.0, 1.0), bounds=(0.5, 5), method="bounded", options={"xatol": 1e-10}
+    )
     assert np.sqrt(-res.fun) == pytest.approx(A.GM_ALLAN_PEAK, rel=1e-9)
     assert res.x == pytest.approx(A.GM_ALLAN_PEAK_TAU, rel=1e-4)
     # The written-out constants are navlib's own maximisation's result, to the last bit with the pinned scipy.
@@ -150,7 +157,7 @@ def test_theory_gauss_markov_peak_is_bias_instability(tc):
     curve = A.allan_deviation_theory(taus, bias_instability=B, correlation_time=tc)
     assert curve.max() <= B * (1 + 1e-12)
     # And the whole curve agrees with the independent closed form (sigma = B / peak).
-    assert_allclose(curve ** 2, _gm_avar_independent(taus, B / A.GM_ALLAN_PEAK, tc), rtol=1e-6)
+    assert_allclose(curve**2, _gm_avar_independent(taus, B / A.GM_ALLAN_PEAK, tc), rtol=1e-6)
 
 
 def test_theory_small_tau_series_branch():
@@ -159,22 +166,26 @@ def test_theory_small_tau_series_branch():
     a = A.allan_deviation_theory([0.999e-3, 1.001e-3], bias_instability=1.0, correlation_time=tc)
     assert a[0] == pytest.approx(a[1], rel=2e-3)
     assert A.allan_deviation_theory(1e-6, bias_instability=1.0, correlation_time=tc) ** 2 == pytest.approx(
-        (1 / A.GM_ALLAN_PEAK) ** 2 * 2 * 1e-6 / 3, rel=1e-5)
+        (1 / A.GM_ALLAN_PEAK) ** 2 * 2 * 1e-6 / 3, rel=1e-5
+    )
 
 
 def test_theory_terms_add_in_variance():
     taus = np.logspace(-1, 3, 9)
     kw = dict(white=1e-3, bias_instability=2e-4, correlation_time=50.0, rate_random_walk=1e-6)
     total = A.allan_deviation_theory(taus, **kw)
-    parts = [A.allan_deviation_theory(taus, white=1e-3),
-             A.allan_deviation_theory(taus, bias_instability=2e-4, correlation_time=50.0),
-             A.allan_deviation_theory(taus, rate_random_walk=1e-6)]
-    assert_allclose(total ** 2, sum(p ** 2 for p in parts), rtol=1e-13)
+    parts = [
+        A.allan_deviation_theory(taus, white=1e-3),
+        A.allan_deviation_theory(taus, bias_instability=2e-4, correlation_time=50.0),
+        A.allan_deviation_theory(taus, rate_random_walk=1e-6),
+    ]
+    assert_allclose(total**2, sum(p**2 for p in parts), rtol=1e-13)
 
 
 # --------------------------------------------------------------------------
 # fit_allan
 # --------------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("rrw", [False, True])
 def test_fit_allan_noise_free_curve(rrw):
@@ -182,8 +193,7 @@ def test_fit_allan_noise_free_curve(rrw):
     one absent is not invented (fit_allan keeps a term only if the information criterion asks for it)."""
     dt, n = 0.01, 720_000
     taus = np.unique(np.round(np.logspace(0, np.log10(n // 3), 60))) * dt
-    p = dict(white=1.7e-4, bias_instability=0.0 if rrw else 4.8e-5, correlation_time=100.0,
-             rate_random_walk=2e-6 if rrw else 0.0)
+    p = dict(white=1.7e-4, bias_instability=0.0 if rrw else 4.8e-5, correlation_time=100.0, rate_random_walk=2e-6 if rrw else 0.0)
     fit = A.fit_allan(taus, A.allan_deviation_theory(taus, **p), n, dt, rate_random_walk=rrw)
     assert set(fit) == {"white", "bias_instability", "correlation_time", "rate_random_walk", "evidence"}
     keys = ("white", "rate_random_walk") if rrw else ("white", "bias_instability", "correlation_time")
@@ -196,20 +206,36 @@ def test_fit_allan_noise_free_curve(rrw):
 # Bad input
 # --------------------------------------------------------------------------
 
-@pytest.mark.parametrize("arg, call", [
-    ("x", lambda: A.allan_deviation(np.ones(5), 0.1)),
-    ("x", lambda: A.allan_deviation(np.array([1.0, np.nan] * 20), 0.1)),
-    ("dt", lambda: A.allan_deviation(np.ones(100), -0.1)),
-    ("dt", lambda: A.allan_deviation(np.ones(100), 0.0)),
-    ("taus", lambda: A.allan_deviation(np.ones(100), 0.1, taus=[100.0])),
-    ("taus", lambda: A.allan_deviation(np.ones(100), 0.1, taus=[-1.0])),
-    ("taus", lambda: A.allan_deviation(np.ones(100), 0.1, taus=[0.01])),  # rounds to 0 samples
-    ("taus", lambda: A.allan_deviation_theory([-1.0, 1.0], white=1.0)),
-    ("taus", lambda: A.fit_allan([0.0, 1.0], [1.0, 1.0], 100, 0.1)),
-    ("adev", lambda: A.fit_allan([0.1, 1.0], [1.0, -1.0], 100, 0.1)),
-    ("adev", lambda: A.fit_allan([0.1, 1.0, 2.0], [1.0, 0.5], 100, 0.1)),
-], ids=["x-short", "x-nan", "dt-neg", "dt-zero", "tau-long", "tau-neg", "tau-sub-dt",
-        "theory-tau", "fit-tau", "fit-adev-neg", "fit-shape"])
+
+@pytest.mark.parametrize(
+    "arg, call",
+    [
+        ("x", lambda: A.allan_deviation(np.ones(5), 0.1)),
+        ("x", lambda: A.allan_deviation(np.array([1.0, np.nan] * 20), 0.1)),
+        ("dt", lambda: A.allan_deviation(np.ones(100), -0.1)),
+        ("dt", lambda: A.allan_deviation(np.ones(100), 0.0)),
+        ("taus", lambda: A.allan_deviation(np.ones(100), 0.1, taus=[100.0])),
+        ("taus", lambda: A.allan_deviation(np.ones(100), 0.1, taus=[-1.0])),
+        ("taus", lambda: A.allan_deviation(np.ones(100), 0.1, taus=[0.01])),  # rounds to 0 samples
+        ("taus", lambda: A.allan_deviation_theory([-1.0, 1.0], white=1.0)),
+        ("taus", lambda: A.fit_allan([0.0, 1.0], [1.0, 1.0], 100, 0.1)),
+        ("adev", lambda: A.fit_allan([0.1, 1.0], [1.0, -1.0], 100, 0.1)),
+        ("adev", lambda: A.fit_allan([0.1, 1.0, 2.0], [1.0, 0.5], 100, 0.1)),
+    ],
+    ids=[
+        "x-short",
+        "x-nan",
+        "dt-neg",
+        "dt-zero",
+        "tau-long",
+        "tau-neg",
+        "tau-sub-dt",
+        "theory-tau",
+        "fit-tau",
+        "fit-adev-neg",
+        "fit-shape",
+    ],
+)
 def test_bad_input(arg, call):
     with pytest.raises(ValueError, match=f"^{arg}:"):
         call()

@@ -10,6 +10,7 @@
 * No import cycle: the graph of navlib's imports, at module level or inside functions, is acyclic.
 * Importing navlib's modules changes nothing process-wide (no numba event listener) unless asked to.
 """
+
 from __future__ import annotations
 
 import ast
@@ -46,7 +47,7 @@ def imports(module: str) -> list[tuple[str, str | None, int]]:
         elif isinstance(node, ast.ImportFrom):
             if node.level:
                 base = package_of(module).split(".")
-                base = base[:len(base) - (node.level - 1)]
+                base = base[: len(base) - (node.level - 1)]
                 source = ".".join(base + ([node.module] if node.module else []))
             elif (node.module or "").startswith("navlib"):
                 source = node.module
@@ -74,27 +75,34 @@ def aliases(module: str) -> dict[str, str]:
 @pytest.mark.parametrize("module", sorted(MODULES))
 def test_no_private_names_of_other_modules(module):
     own = {module, package_of(module)}
-    bad = [f"line {line}: {name} from {src}" for src, name, line in imports(module)
-           if name and name.startswith("_") and src not in own]
+    bad = [
+        f"line {line}: {name} from {src}"
+        for src, name, line in imports(module)
+        if name and name.startswith("_") and src not in own
+    ]
     names = aliases(module)
     tree = ast.parse(MODULES[module].read_text(encoding="utf-8"))
-    bad += [f"line {node.lineno}: {node.value.id}.{node.attr}" for node in ast.walk(tree)
-            if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and node.value.id in names
-            and node.attr.startswith("_") and not node.attr.startswith("__")]
+    bad += [
+        f"line {node.lineno}: {node.value.id}.{node.attr}"
+        for node in ast.walk(tree)
+        if isinstance(node, ast.Attribute)
+        and isinstance(node.value, ast.Name)
+        and node.value.id in names
+        and node.attr.startswith("_")
+        and not node.attr.startswith("__")
+    ]
     assert not bad, f"{module} uses private names of other modules:\n" + "\n".join(bad)
 
 
 @pytest.mark.parametrize("module", sorted(CORE))
 def test_core_never_imports_a_paper(module):
-    bad = [f"line {line}: {src}" for src, _, line in imports(module)
-           if src.startswith("navlib.papers.")]
+    bad = [f"line {line}: {src}" for src, _, line in imports(module) if src.startswith("navlib.papers.")]
     assert not bad, f"core module {module} imports paper code:\n" + "\n".join(bad)
 
 
 @pytest.mark.parametrize("module", sorted(COMPANIONS))
 def test_companions_import_core_only(module):
-    bad = [f"line {line}: {src}" for src, _, line in imports(module)
-           if src in COMPANIONS and src != module]
+    bad = [f"line {line}: {src}" for src, _, line in imports(module) if src in COMPANIONS and src != module]
     assert not bad, f"companion {module} imports another paper's code:\n" + "\n".join(bad)
 
 
@@ -107,11 +115,15 @@ def test_the_checks_see_imports():
 
 def type_checking_lines(tree: ast.Module) -> set[int]:
     """Lines of the imports under ``if TYPE_CHECKING:`` (for type checkers only, never run)."""
-    guarded = [node for node in ast.walk(tree) if isinstance(node, ast.If)
-               and "TYPE_CHECKING" in {n.id if isinstance(n, ast.Name) else getattr(n, "attr", None)
-                                       for n in ast.walk(node.test)}]
-    return {n.lineno for node in guarded for stmt in node.body for n in ast.walk(stmt)
-            if isinstance(n, (ast.Import, ast.ImportFrom))}
+    guarded = [
+        node
+        for node in ast.walk(tree)
+        if isinstance(node, ast.If)
+        and "TYPE_CHECKING" in {n.id if isinstance(n, ast.Name) else getattr(n, "attr", None) for n in ast.walk(node.test)}
+    ]
+    return {
+        n.lineno for node in guarded for stmt in node.body for n in ast.walk(stmt) if isinstance(n, (ast.Import, ast.ImportFrom))
+    }
 
 
 def import_graph() -> dict[str, set[str]]:
@@ -131,7 +143,7 @@ def find_cycle(graph: dict[str, set[str]]) -> list[str]:
         path.append(node)
         for nxt in sorted(graph.get(node, ())):
             if nxt in path:
-                return path[path.index(nxt):] + [nxt]
+                return path[path.index(nxt) :] + [nxt]
             if nxt not in done and (cycle := visit(nxt)):
                 return cycle
         path.pop()
@@ -153,7 +165,7 @@ def test_the_cycle_check_sees_cycles_and_deferred_imports():
     assert find_cycle({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == ["a", "b", "c", "a"]
     assert find_cycle({"a": {"b", "c"}, "b": {"c"}, "c": set()}) == []
     graph = import_graph()
-    assert "navlib.plots" in graph["navlib.papers.pedestrian_ins"]          # imported inside a function
+    assert "navlib.plots" in graph["navlib.papers.pedestrian_ins"]  # imported inside a function
 
 
 IMPORT_ALL = """
@@ -178,8 +190,14 @@ def import_all_in_a_fresh_process(**env) -> str:
     """Import every navlib module in a new interpreter; report the numba event kinds registered meanwhile
     (through ``numba.core.event.register``) and whether numba's listener registry is unchanged."""
     environ = {k: v for k, v in os.environ.items() if k != "NAVLIB_COMPILE_LOG"} | env
-    done = subprocess.run([sys.executable, "-c", IMPORT_ALL, *sorted(MODULES)], env=environ, cwd=PACKAGE.parent,
-                          capture_output=True, text=True, check=True)
+    done = subprocess.run(
+        [sys.executable, "-c", IMPORT_ALL, *sorted(MODULES)],
+        env=environ,
+        cwd=PACKAGE.parent,
+        capture_output=True,
+        text=True,
+        check=True,
+    )
     return done.stdout.strip().splitlines()[-1]
 
 
@@ -218,8 +236,14 @@ def test_no_public_name_is_defined_twice():
         tree = ast.parse(path.read_text(encoding="utf-8"))
         defined = {n.name for n in tree.body if isinstance(n, (ast.FunctionDef, ast.ClassDef))}
         defined |= {t.id for n in tree.body if isinstance(n, ast.Assign) for t in n.targets if isinstance(t, ast.Name)}
-        exported = next((n.value for n in tree.body if isinstance(n, ast.Assign)
-                         and any(isinstance(t, ast.Name) and t.id == "__all__" for t in n.targets)), None)
+        exported = next(
+            (
+                n.value
+                for n in tree.body
+                if isinstance(n, ast.Assign) and any(isinstance(t, ast.Name) and t.id == "__all__" for t in n.targets)
+            ),
+            None,
+        )
         names = {e.value for e in getattr(exported, "elts", []) if isinstance(e, ast.Constant)}
         for name in names & defined:
             owners.setdefault(name, []).append(module)

@@ -33,6 +33,7 @@ def bmp180_example():
 # Reference tables
 # --------------------------------------------------------------------------
 
+
 def test_bmp180_formula_matches_column(baro_table):
     h = atm.bmp180_altitude(baro_table["pressure_Pa"])
     assert_allclose(h, baro_table["bmp180_formula_altitude_m"], rtol=0, atol=1e-6 + 5e-5)
@@ -71,6 +72,7 @@ def test_bmp180_compensate_datasheet_example(bmp180_example):
 # Inverse pairs and derived quantities
 # --------------------------------------------------------------------------
 
+
 @settings(max_examples=60, deadline=None)
 @given(h=st.floats(-1000.0, 10999.0), p0=st.floats(95000.0, 105000.0))
 def test_isa_round_trip(h, p0):
@@ -107,11 +109,14 @@ def test_bmp180_sensitivity_at_sea_level():
     assert abs(dhdp - 8.43) > 0.09
 
 
-@pytest.mark.parametrize("h_base, temperature", [
-    (0.0, atm.T0),                                   # sea level at 288.15 K
-    (0.0, atm.T0 - atm.LAPSE * 5.0),                 # layer-mean ISA temperature
-    (3000.0, atm.T0 - atm.LAPSE * 3005.0),           # higher up with the layer-mean temperature
-])
+@pytest.mark.parametrize(
+    "h_base, temperature",
+    [
+        (0.0, atm.T0),  # sea level at 288.15 K
+        (0.0, atm.T0 - atm.LAPSE * 5.0),  # layer-mean ISA temperature
+        (3000.0, atm.T0 - atm.LAPSE * 3005.0),  # higher up with the layer-mean temperature
+    ],
+)
 def test_hypsometric_matches_isa_over_10_m(h_base, temperature):
     """Over 10 m the hypsometric height with the layer temperature equals the
     ISA height difference to < 1 cm (at 288.15 K the lapse over the layer gives ~1 mm)."""
@@ -130,26 +135,42 @@ def test_hypsometric_sign_and_zero():
 # Bad input
 # --------------------------------------------------------------------------
 
+
 def _calib():
-    return dict(AC1=408, AC2=-72, AC3=-14383, AC4=32741, AC5=32757, AC6=23153,
-                B1=6190, B2=4, MB=-32768, MC=-8711, MD=2868)
+    return dict(AC1=408, AC2=-72, AC3=-14383, AC4=32741, AC5=32757, AC6=23153, B1=6190, B2=4, MB=-32768, MC=-8711, MD=2868)
 
 
-@pytest.mark.parametrize("arg, call", [
-    ("p", lambda: atm.isa_altitude(-100.0)),
-    ("p", lambda: atm.isa_altitude(0.0)),
-    ("p", lambda: atm.bmp180_altitude(-100.0)),
-    ("p0", lambda: atm.isa_altitude(90000.0, p0=-1.0)),
-    ("p", lambda: atm.isa_altitude(10000.0)),          # above the troposphere
-    ("h", lambda: atm.isa_pressure(20000.0)),
-    ("h", lambda: atm.bmp180_pressure(np.nan)),
-    ("p", lambda: atm.hypsometric_height(-1.0, atm.P0, 288.15)),
-    ("p_ref", lambda: atm.hypsometric_height(atm.P0, -1.0, 288.15)),
-    ("temperature", lambda: atm.hypsometric_height(atm.P0, atm.P0, 15.0)),  # Celsius by mistake
-    ("oss", lambda: atm.bmp180_compensate(27898, 23843, _calib(), oss=5)),
-    ("calib", lambda: atm.bmp180_compensate(27898, 23843, {k: v for k, v in _calib().items() if k != "MD"})),
-], ids=["p-neg", "p-zero", "bmp-p-neg", "p0-neg", "p-stratosphere", "h-high", "h-nan", "hyps-p",
-        "hyps-pref", "hyps-T", "oss", "calib"])
+@pytest.mark.parametrize(
+    "arg, call",
+    [
+        ("p", lambda: atm.isa_altitude(-100.0)),
+        ("p", lambda: atm.isa_altitude(0.0)),
+        ("p", lambda: atm.bmp180_altitude(-100.0)),
+        ("p0", lambda: atm.isa_altitude(90000.0, p0=-1.0)),
+        ("p", lambda: atm.isa_altitude(10000.0)),  # above the troposphere
+        ("h", lambda: atm.isa_pressure(20000.0)),
+        ("h", lambda: atm.bmp180_pressure(np.nan)),
+        ("p", lambda: atm.hypsometric_height(-1.0, atm.P0, 288.15)),
+        ("p_ref", lambda: atm.hypsometric_height(atm.P0, -1.0, 288.15)),
+        ("temperature", lambda: atm.hypsometric_height(atm.P0, atm.P0, 15.0)),  # Celsius by mistake
+        ("oss", lambda: atm.bmp180_compensate(27898, 23843, _calib(), oss=5)),
+        ("calib", lambda: atm.bmp180_compensate(27898, 23843, {k: v for k, v in _calib().items() if k != "MD"})),
+    ],
+    ids=[
+        "p-neg",
+        "p-zero",
+        "bmp-p-neg",
+        "p0-neg",
+        "p-stratosphere",
+        "h-high",
+        "h-nan",
+        "hyps-p",
+        "hyps-pref",
+        "hyps-T",
+        "oss",
+        "calib",
+    ],
+)
 def test_bad_input(arg, call):
     with pytest.raises(ValueError, match=f"^{arg}:"):
         call()
@@ -162,8 +183,7 @@ def test_missing_calib_names_the_coefficient():
 
 def test_bmp180_compensate_uses_c_division():
     """Negative MC: C truncates toward zero where Python's // floors (datasheet calibration)."""
-    calib = dict(AC1=408, AC2=-72, AC3=-14383, AC4=32741, AC5=32757, AC6=23153, B1=6190, B2=4,
-                 MB=-32768, MC=-8711, MD=2868)
+    calib = dict(AC1=408, AC2=-72, AC3=-14383, AC4=32741, AC5=32757, AC6=23153, B1=6190, B2=4, MB=-32768, MC=-8711, MD=2868)
     # Reference values from the datasheet integer algorithm with C semantics (truncating division).
     assert atm.bmp180_compensate(27898, 23843, calib, 0) == (150, 69964)
     assert atm.bmp180_compensate(30000, 23843, calib, 0)[1] == 72532

@@ -1,4 +1,5 @@
 """Tests of navlib.attitude: conventions, scipy cross-checks, round trips, bad input."""
+
 import numpy as np
 import pytest
 from hypothesis import assume, given, settings
@@ -80,10 +81,17 @@ def test_wrap_2pi_endpoints():
 def test_compiled_wraps_equal_the_numpy_wraps_bit_for_bit():
     """The kernels' scalar wraps (a shortcut inside [0, 2 pi) that skips fmod) give numpy's bits, -0 and NaN included."""
     from navlib import _kernels
+
     edges = [0.0, -0.0, PI, -PI, 2 * PI, -2 * PI, 3 * PI, 1e-300, -1e-300, 5e-324, -5e-324, 1e6, -1e6, np.nan]
     edges += [np.nextafter(e, d) for e in (PI, -PI, 2 * PI, 0.0) for d in (-9.0, 9.0)]
-    x = np.concatenate([edges, np.random.default_rng(0).uniform(-10, 10, 20_000),
-                        PI + 1e-15 * np.arange(-50, 51), -PI + 1e-15 * np.arange(-50, 51)])
+    x = np.concatenate(
+        [
+            edges,
+            np.random.default_rng(0).uniform(-10, 10, 20_000),
+            PI + 1e-15 * np.arange(-50, 51),
+            -PI + 1e-15 * np.arange(-50, 51),
+        ]
+    )
     for compiled, vectorised in ((_kernels.wrap_pi, att.wrap_pi), (_kernels.wrap_2pi, att.wrap_2pi)):
         ours = np.array([compiled(v) for v in x])
         assert np.array_equal(ours.view(np.int64)[~np.isnan(x)], vectorised(x).view(np.int64)[~np.isnan(x)])
@@ -131,8 +139,7 @@ def test_rot_matches_scipy(axis):
     """rot(axis, t) is the active right-handed rotation, as scipy's from_euler(axis, t)."""
     t = np.array([-2.0, -0.3, 0.0, 0.7, 3.0])
     assert_allclose(att.rot(axis, t), Rotation.from_euler(axis, t[:, None]).as_matrix(), atol=1e-15)
-    assert_allclose(att.rot(axis, 30.0, deg=True), Rotation.from_euler(axis, 30, degrees=True).as_matrix(),
-                    atol=1e-15)
+    assert_allclose(att.rot(axis, 30.0, deg=True), Rotation.from_euler(axis, 30, degrees=True).as_matrix(), atol=1e-15)
 
 
 def test_rot_z_turns_x_into_y():
@@ -211,10 +218,12 @@ def test_quat_to_dcm_matches_scipy(q):
 def test_quat_to_dcm_batch_equals_the_elementwise_formula_bit_for_bit():
     # The compiled pass rounds as the numpy expressions it replaced (same operations, same order).
     q = np.random.default_rng(11).normal(size=(3, 500, 4))
-    q0, q1, q2, q3 = np.moveaxis(as_quat(q), -1, 0)                 # normalised as quat_to_dcm does
-    rows = [[q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3, 2 * (q1 * q2 - q0 * q3), 2 * (q1 * q3 + q0 * q2)],
-            [2 * (q1 * q2 + q0 * q3), q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3, 2 * (q2 * q3 - q0 * q1)],
-            [2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3]]
+    q0, q1, q2, q3 = np.moveaxis(as_quat(q), -1, 0)  # normalised as quat_to_dcm does
+    rows = [
+        [q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3, 2 * (q1 * q2 - q0 * q3), 2 * (q1 * q3 + q0 * q2)],
+        [2 * (q1 * q2 + q0 * q3), q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3, 2 * (q2 * q3 - q0 * q1)],
+        [2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3],
+    ]
     assert_array_equal(att.quat_to_dcm(q), np.stack([np.stack(r, -1) for r in rows], -2))
     assert att.quat_to_dcm(q[0, 0]).shape == (3, 3) and att.quat_to_dcm(np.zeros((2, 0, 4))).shape == (2, 0, 3, 3)
 
@@ -324,16 +333,14 @@ def test_quat_dcm_round_trip(q):
 @given(quats(), quats(), quats())
 def test_quat_mult_associative(p, q, r):
     """(p q) r == p (q r)."""
-    assert_allclose(att.quat_mult(att.quat_mult(p, q), r), att.quat_mult(p, att.quat_mult(q, r)),
-                    atol=1e-14)
+    assert_allclose(att.quat_mult(att.quat_mult(p, q), r), att.quat_mult(p, att.quat_mult(q, r)), atol=1e-14)
 
 
 @SETTINGS
 @given(quats(), quats())
 def test_quat_mult_composes_dcms(p, q):
     """quat_to_dcm(p (x) q) == quat_to_dcm(p) @ quat_to_dcm(q)."""
-    assert_allclose(att.quat_to_dcm(att.quat_mult(p, q)), att.quat_to_dcm(p) @ att.quat_to_dcm(q),
-                    atol=1e-14)
+    assert_allclose(att.quat_to_dcm(att.quat_mult(p, q)), att.quat_to_dcm(p) @ att.quat_to_dcm(q), atol=1e-14)
 
 
 @SETTINGS
@@ -388,8 +395,7 @@ def test_exact_gimbal_lock(pitch):
 
 
 @settings(max_examples=100, deadline=None)
-@given(st.sampled_from([np.deg2rad(359.9999), 2 * PI - 1e-12, 2 * PI - 1e-15, 0.0, 1e-9, 1e-15, -1e-9]),
-       pitches_free, rolls)
+@given(st.sampled_from([np.deg2rad(359.9999), 2 * PI - 1e-12, 2 * PI - 1e-15, 0.0, 1e-9, 1e-15, -1e-9]), pitches_free, rolls)
 def test_heading_wrap(h, p, r):
     """Headings just below 2 pi and just above 0 come back in [0, 2 pi), wrap-close to truth."""
     back = att.dcm_to_euler(att.euler_to_dcm([h, p, r]))
@@ -426,8 +432,7 @@ def test_rotvec_to_quat_1_small_angles(angle):
 @pytest.fixture
 def hpr_stack():
     rng = np.random.default_rng(42)
-    return np.stack([rng.uniform(0, 2 * PI, (4, 5)), rng.uniform(-1.5, 1.5, (4, 5)),
-                     rng.uniform(-PI, PI, (4, 5))], -1)
+    return np.stack([rng.uniform(0, 2 * PI, (4, 5)), rng.uniform(-1.5, 1.5, (4, 5)), rng.uniform(-PI, PI, (4, 5))], -1)
 
 
 def test_broadcast_euler(hpr_stack):

@@ -30,6 +30,7 @@ Tested here as by design: ``kalman.update`` with an all-NaN ``z`` reports
 fail the claim (``ClaimCheckFailed``) rather than raise ValueError; the wraps
 and unit converters pass NaN through; empty *batches* give empty results.
 """
+
 import re
 import shutil
 import sys
@@ -79,14 +80,25 @@ IN_PROCESS = ("string", "numeric_str", "complex", "object", "ragged", "bool", "n
 
 IO_TABLE = __import__("pandas").DataFrame({"t": [0.0, 0.01, 0.02], "gx": [0.0] * 3, "gy": [0.0] * 3, "gz": [0.0] * 3})
 NAN, INF = np.nan, np.inf
-Q1 = [1.0, 0.0, 0.0, 0.0]        # identity quaternion
-LLA0 = [0.6, 0.2, 50.0]          # lat, lon (rad), h (m)
-W = np.zeros((10, 3))            # gyro samples (rad/s)
+Q1 = [1.0, 0.0, 0.0, 0.0]  # identity quaternion
+LLA0 = [0.6, 0.2, 50.0]  # lat, lon (rad), h (m)
+W = np.zeros((10, 3))  # gyro samples (rad/s)
 F = np.tile([0.0, 0.0, 9.8], (10, 1))  # accelerometer samples (m/s^2)
-T10 = np.arange(10.0)            # a valid time axis (s)
+T10 = np.arange(10.0)  # a valid time axis (s)
 TRAJ = trajectory.static(1.0, 0.1, LLA0, [0.0, 0.0, 0.0])
-CALIB = dict(AC1=408, AC2=-72, AC3=-14383, AC4=32741, AC5=32757, AC6=23153,  # BMP180 datasheet example
-             B1=6190, B2=4, MB=-32768, MC=-8711, MD=2868)
+CALIB = dict(
+    AC1=408,
+    AC2=-72,
+    AC3=-14383,
+    AC4=32741,
+    AC5=32757,
+    AC6=23153,  # BMP180 datasheet example
+    B1=6190,
+    B2=4,
+    MB=-32768,
+    MC=-8711,
+    MD=2868,
+)
 
 
 def rng():
@@ -114,6 +126,7 @@ def with_lat(lat, n=11):
 def _env_flag_with(name, value):
     """repro.env_flag with the environment variable set to ``value`` for the call."""
     import os
+
     old = os.environ.get(name)
     os.environ[name] = value
     try:
@@ -179,7 +192,6 @@ CASES = [
     bad("attitude.dcm_to_rotvec", "C", "not_rotation", lambda: attitude.dcm_to_rotvec(np.ones((3, 3)))),
     bad("attitude.rotvec_to_quat", "rv", "shape2", lambda: attitude.rotvec_to_quat([0.1, 0.2])),
     bad("attitude.quat_to_rotvec", "q", "shape3", lambda: attitude.quat_to_rotvec([1.0, 0.0, 0.0])),
-
     # --------------------------------------------------------------------- earth
     bad("earth.Ellipsoid", "a", "negative", lambda: earth.Ellipsoid("bad", -6378137.0, 1 / 298.257, 3.986e14, 7.29e-5)),
     bad("earth.earth_rate_n", "lat", "lat91deg", lambda: earth.earth_rate_n(91.0, deg=True)),
@@ -196,73 +208,154 @@ CASES = [
     bad("earth.field_from_angles", "inclination", "incl91deg", lambda: earth.field_from_angles(0.0, 91.0, 50.0)),
     bad("earth.field_from_angles", "intensity", "negative", lambda: earth.field_from_angles(0.0, 60.0, -50.0)),
     bad("earth.field_angles", "B_n", "shape2", lambda: earth.field_angles([20.0, -40.0])),
-
     # ------------------------------------------------------------------- units
     bad("units.to_si", "unit", "unknown_unit", lambda: units.to_si(1.0, "furlong")),
     bad("units.to_si", "unit", "unit_not_str", lambda: units.to_si(1.0, 5)),
-
     # ----------------------------------------------------------------- sensors
     bad("sensors.TriadErrors", "noise_density", "negative", lambda: sensors.TriadErrors(noise_density=-1.0)),
     bad("sensors.TriadErrors", "correlation_time", "zero", lambda: sensors.TriadErrors(correlation_time=0.0)),
     bad("sensors.TriadErrors", "full_scale", "zero", lambda: sensors.TriadErrors(full_scale=0.0)),
     bad("sensors.simulate_imu", "w_ib_b", "shape2", lambda: sensors.simulate_imu(W[:, :2], F, 0.01, sensors.ImuModel(), rng())),
-    bad("sensors.simulate_imu", "w_ib_b", "empty",
-        lambda: sensors.simulate_imu(np.zeros((0, 3)), np.zeros((0, 3)), 0.01, sensors.ImuModel(), rng())),
+    bad(
+        "sensors.simulate_imu",
+        "w_ib_b",
+        "empty",
+        lambda: sensors.simulate_imu(np.zeros((0, 3)), np.zeros((0, 3)), 0.01, sensors.ImuModel(), rng()),
+    ),
     bad("sensors.simulate_imu", "f_b", "shape_mismatch", lambda: sensors.simulate_imu(W, F[:5], 0.01, sensors.ImuModel(), rng())),
     bad("sensors.simulate_imu", "dt", "zero", lambda: sensors.simulate_imu(W, F, 0.0, sensors.ImuModel(), rng())),
     bad("sensors.simulate_imu", "rng", "legacy_rng", lambda: sensors.simulate_imu(W, F, 0.01, sensors.ImuModel(), legacy_rng())),
     bad("sensors.simulate_imu", "rng", "int", lambda: sensors.simulate_imu(W, F, 0.01, sensors.ImuModel(), 42)),
-    bad("sensors.simulate_imu", "n_trials", "zero", lambda: sensors.simulate_imu(W, F, 0.01, sensors.ImuModel(), rng(), n_trials=0)),
+    bad(
+        "sensors.simulate_imu",
+        "n_trials",
+        "zero",
+        lambda: sensors.simulate_imu(W, F, 0.01, sensors.ImuModel(), rng(), n_trials=0),
+    ),
     bad("sensors.imu_model", "device", "unknown", lambda: sensors.imu_model("NO-SUCH-IMU")),
     bad("sensors.imu_model", "device", "no_imu_preset", lambda: sensors.imu_model("BMP180")),
     bad("sensors.preset", "device", "unknown", lambda: sensors.preset("NO-SUCH-DEVICE")),
     bad("sensors.preset", "device", "list", lambda: sensors.preset(["MTi-100"])),
     bad("sensors.MagnetometerModel", "noise", "negative", lambda: sensors.MagnetometerModel(noise=-1.0)),
-    bad("sensors.simulate_magnetometer", "q_bn", "shape3",
-        lambda: sensors.simulate_magnetometer(np.ones((10, 3)), [0.0, 20.0, -40.0], sensors.MagnetometerModel(), rng())),
-    bad("sensors.simulate_magnetometer", "q_bn", "empty",
-        lambda: sensors.simulate_magnetometer(np.zeros((0, 4)), [0.0, 20.0, -40.0], sensors.MagnetometerModel(), rng())),
-    bad("sensors.simulate_magnetometer", "q_bn", "zero_quat",
-        lambda: sensors.simulate_magnetometer(np.zeros((10, 4)), [0.0, 20.0, -40.0], sensors.MagnetometerModel(), rng())),
-    bad("sensors.simulate_magnetometer", "B_n", "shape2",
-        lambda: sensors.simulate_magnetometer(np.tile(Q1, (10, 1)), [20.0, -40.0], sensors.MagnetometerModel(), rng())),
-    bad("sensors.simulate_magnetometer", "disturbance_n", "inf",
-        lambda: sensors.simulate_magnetometer(np.tile(Q1, (10, 1)), [0.0, 20.0, -40.0], sensors.MagnetometerModel(), rng(),
-                                              disturbance_n=np.full((10, 3), INF))),
-    bad("sensors.simulate_magnetometer", "rng", "legacy_rng",
-        lambda: sensors.simulate_magnetometer(np.tile(Q1, (10, 1)), [0.0, 20.0, -40.0], sensors.MagnetometerModel(), legacy_rng())),
+    bad(
+        "sensors.simulate_magnetometer",
+        "q_bn",
+        "shape3",
+        lambda: sensors.simulate_magnetometer(np.ones((10, 3)), [0.0, 20.0, -40.0], sensors.MagnetometerModel(), rng()),
+    ),
+    bad(
+        "sensors.simulate_magnetometer",
+        "q_bn",
+        "empty",
+        lambda: sensors.simulate_magnetometer(np.zeros((0, 4)), [0.0, 20.0, -40.0], sensors.MagnetometerModel(), rng()),
+    ),
+    bad(
+        "sensors.simulate_magnetometer",
+        "q_bn",
+        "zero_quat",
+        lambda: sensors.simulate_magnetometer(np.zeros((10, 4)), [0.0, 20.0, -40.0], sensors.MagnetometerModel(), rng()),
+    ),
+    bad(
+        "sensors.simulate_magnetometer",
+        "B_n",
+        "shape2",
+        lambda: sensors.simulate_magnetometer(np.tile(Q1, (10, 1)), [20.0, -40.0], sensors.MagnetometerModel(), rng()),
+    ),
+    bad(
+        "sensors.simulate_magnetometer",
+        "disturbance_n",
+        "inf",
+        lambda: sensors.simulate_magnetometer(
+            np.tile(Q1, (10, 1)), [0.0, 20.0, -40.0], sensors.MagnetometerModel(), rng(), disturbance_n=np.full((10, 3), INF)
+        ),
+    ),
+    bad(
+        "sensors.simulate_magnetometer",
+        "rng",
+        "legacy_rng",
+        lambda: sensors.simulate_magnetometer(
+            np.tile(Q1, (10, 1)), [0.0, 20.0, -40.0], sensors.MagnetometerModel(), legacy_rng()
+        ),
+    ),
     bad("sensors.magnetic_disturbances", "time", "one_sample", lambda: sensors.magnetic_disturbances([0.0], rng(), 0.1)),
     bad("sensors.magnetic_disturbances", "time", "decreasing", lambda: sensors.magnetic_disturbances(T10[::-1], rng(), 0.1)),
     bad("sensors.magnetic_disturbances", "rate", "negative", lambda: sensors.magnetic_disturbances(T10, rng(), -0.1)),
     bad("sensors.magnetic_disturbances", "rng", "legacy_rng", lambda: sensors.magnetic_disturbances(T10, legacy_rng(), 0.1)),
-    bad("sensors.magnetic_disturbances", "duration", "negative",
-        lambda: sensors.magnetic_disturbances(T10, rng(), 1.0, duration=(-5.0, -2.0))),
+    bad(
+        "sensors.magnetic_disturbances",
+        "duration",
+        "negative",
+        lambda: sensors.magnetic_disturbances(T10, rng(), 1.0, duration=(-5.0, -2.0)),
+    ),
     bad("sensors.BarometerModel", "noise", "negative", lambda: sensors.BarometerModel(noise=-1.0)),
-    bad("sensors.simulate_barometer", "h", "length_mismatch", lambda: sensors.simulate_barometer(T10[:5], T10, sensors.BarometerModel(), rng())),
-    bad("sensors.simulate_barometer", "h", "h_20km", lambda: sensors.simulate_barometer(T10 + 20e3, T10, sensors.BarometerModel(), rng())),
-    bad("sensors.simulate_barometer", "time", "one_sample", lambda: sensors.simulate_barometer([0.0], [0.0], sensors.BarometerModel(), rng())),
-    bad("sensors.simulate_barometer", "p0", "negative", lambda: sensors.simulate_barometer(T10, T10, sensors.BarometerModel(), rng(), p0=-1.0)),
-    bad("sensors.simulate_barometer", "rng", "legacy_rng", lambda: sensors.simulate_barometer(T10, T10, sensors.BarometerModel(), legacy_rng())),
+    bad(
+        "sensors.simulate_barometer",
+        "h",
+        "length_mismatch",
+        lambda: sensors.simulate_barometer(T10[:5], T10, sensors.BarometerModel(), rng()),
+    ),
+    bad(
+        "sensors.simulate_barometer",
+        "h",
+        "h_20km",
+        lambda: sensors.simulate_barometer(T10 + 20e3, T10, sensors.BarometerModel(), rng()),
+    ),
+    bad(
+        "sensors.simulate_barometer",
+        "time",
+        "one_sample",
+        lambda: sensors.simulate_barometer([0.0], [0.0], sensors.BarometerModel(), rng()),
+    ),
+    bad(
+        "sensors.simulate_barometer",
+        "p0",
+        "negative",
+        lambda: sensors.simulate_barometer(T10, T10, sensors.BarometerModel(), rng(), p0=-1.0),
+    ),
+    bad(
+        "sensors.simulate_barometer",
+        "rng",
+        "legacy_rng",
+        lambda: sensors.simulate_barometer(T10, T10, sensors.BarometerModel(), legacy_rng()),
+    ),
     bad("sensors.outage_mask", "time", "empty", lambda: sensors.outage_mask([], [(2.0, 3.0)])),
     bad("sensors.outage_mask", "outages", "end_before_start", lambda: sensors.outage_mask(T10, [(5.0, 1.0)])),
     bad("sensors.outage_mask", "outages", "not_pairs", lambda: sensors.outage_mask(T10, [(5.0,)])),
     bad("sensors.simulate_gnss_position", "lla", "shape2", lambda: sensors.simulate_gnss_position(np.zeros((10, 2)), rng(), 3.0)),
     bad("sensors.simulate_gnss_position", "lla", "empty", lambda: sensors.simulate_gnss_position(np.zeros((0, 3)), rng(), 3.0)),
     bad("sensors.simulate_gnss_position", "lla", "lat2rad", lambda: sensors.simulate_gnss_position(with_lat(2.0), rng(), 3.0)),
-    bad("sensors.simulate_gnss_position", "sigma_horizontal", "negative", lambda: sensors.simulate_gnss_position(with_lat(0.6), rng(), -3.0)),
-    bad("sensors.simulate_gnss_position", "rng", "legacy_rng", lambda: sensors.simulate_gnss_position(with_lat(0.6), legacy_rng(), 3.0)),
-    bad("sensors.simulate_gnss_position", "valid", "length_mismatch",
-        lambda: sensors.simulate_gnss_position(with_lat(0.6), rng(), 3.0, valid=np.ones(4, dtype=bool))),
+    bad(
+        "sensors.simulate_gnss_position",
+        "sigma_horizontal",
+        "negative",
+        lambda: sensors.simulate_gnss_position(with_lat(0.6), rng(), -3.0),
+    ),
+    bad(
+        "sensors.simulate_gnss_position",
+        "rng",
+        "legacy_rng",
+        lambda: sensors.simulate_gnss_position(with_lat(0.6), legacy_rng(), 3.0),
+    ),
+    bad(
+        "sensors.simulate_gnss_position",
+        "valid",
+        "length_mismatch",
+        lambda: sensors.simulate_gnss_position(with_lat(0.6), rng(), 3.0, valid=np.ones(4, dtype=bool)),
+    ),
     bad("sensors.simulate_heading", "heading", "empty", lambda: sensors.simulate_heading([], rng(), 0.01)),
     bad("sensors.simulate_heading", "sigma", "negative", lambda: sensors.simulate_heading(T10, rng(), -0.01)),
-    bad("sensors.simulate_heading", "valid", "length_mismatch", lambda: sensors.simulate_heading(T10, rng(), 0.01, valid=[True] * 3)),
+    bad(
+        "sensors.simulate_heading",
+        "valid",
+        "length_mismatch",
+        lambda: sensors.simulate_heading(T10, rng(), 0.01, valid=[True] * 3),
+    ),
     bad("sensors.simulate_heading", "rng", "legacy_rng", lambda: sensors.simulate_heading(T10, legacy_rng(), 0.01)),
     bad("sensors.gauss_markov", "shape", "1d", lambda: sensors.gauss_markov((10,), 0.1, 1.0, 10.0, rng())),
     bad("sensors.gauss_markov", "dt", "zero", lambda: sensors.gauss_markov((10, 3), 0.0, 1.0, 10.0, rng())),
     bad("sensors.gauss_markov", "correlation_time", "negative", lambda: sensors.gauss_markov((10, 3), 0.1, 1.0, -10.0, rng())),
     bad("sensors.gauss_markov", "sigma", "negative", lambda: sensors.gauss_markov((10, 3), 0.1, -1.0, 10.0, rng())),
     bad("sensors.gauss_markov", "rng", "legacy_rng", lambda: sensors.gauss_markov((10, 3), 0.1, 1.0, 10.0, legacy_rng())),
-
     # -------------------------------------------------------------- atmosphere
     bad("atmosphere.isa_altitude", "p", "negative", lambda: atmosphere.isa_altitude(-100.0)),
     bad("atmosphere.isa_altitude", "p", "above_troposphere", lambda: atmosphere.isa_altitude(1000.0)),
@@ -274,17 +367,33 @@ CASES = [
     bad("atmosphere.hypsometric_height", "p", "negative", lambda: atmosphere.hypsometric_height(-1.0, 1e5, 288.0)),
     bad("atmosphere.hypsometric_height", "temperature", "400K", lambda: atmosphere.hypsometric_height(9e4, 1e5, 400.0)),
     bad("atmosphere.bmp180_compensate", "oss", "oss4", lambda: atmosphere.bmp180_compensate(27898, 23843, CALIB, oss=4)),
-    bad("atmosphere.bmp180_compensate", "calib", "missing_key",
-        lambda: atmosphere.bmp180_compensate(27898, 23843, {k: v for k, v in CALIB.items() if k != "MD"})),
-    bad("atmosphere.bmp180_compensate", "calib", "nan_coefficient",
-        lambda: atmosphere.bmp180_compensate(27898, 23843, {**CALIB, "AC1": NAN})),
+    bad(
+        "atmosphere.bmp180_compensate",
+        "calib",
+        "missing_key",
+        lambda: atmosphere.bmp180_compensate(27898, 23843, {k: v for k, v in CALIB.items() if k != "MD"}),
+    ),
+    bad(
+        "atmosphere.bmp180_compensate",
+        "calib",
+        "nan_coefficient",
+        lambda: atmosphere.bmp180_compensate(27898, 23843, {**CALIB, "AC1": NAN}),
+    ),
     bad("atmosphere.bmp180_compensate", "UT", "nan", lambda: atmosphere.bmp180_compensate(NAN, 23843, CALIB)),
-
     # -------------------------------------------------------------- trajectory
     bad("trajectory.Trajectory", "time", "one_sample", lambda: trajectory.Trajectory([0.0], [LLA0], [[0, 0, 0]], [Q1])),
-    bad("trajectory.Trajectory", "lla", "shape2", lambda: trajectory.Trajectory(TRAJ.time, TRAJ.lla[:, :2], TRAJ.vel_n, TRAJ.q_bn)),
-    bad("trajectory.Trajectory", "q_bn", "epoch_mismatch", lambda: trajectory.Trajectory(TRAJ.time, TRAJ.lla, TRAJ.vel_n, TRAJ.q_bn[:5])),
-    bad("trajectory.Trajectory", "lla", "lat2rad", lambda: trajectory.Trajectory(TRAJ.time, with_lat(2.0), TRAJ.vel_n, TRAJ.q_bn)),
+    bad(
+        "trajectory.Trajectory", "lla", "shape2", lambda: trajectory.Trajectory(TRAJ.time, TRAJ.lla[:, :2], TRAJ.vel_n, TRAJ.q_bn)
+    ),
+    bad(
+        "trajectory.Trajectory",
+        "q_bn",
+        "epoch_mismatch",
+        lambda: trajectory.Trajectory(TRAJ.time, TRAJ.lla, TRAJ.vel_n, TRAJ.q_bn[:5]),
+    ),
+    bad(
+        "trajectory.Trajectory", "lla", "lat2rad", lambda: trajectory.Trajectory(TRAJ.time, with_lat(2.0), TRAJ.vel_n, TRAJ.q_bn)
+    ),
     bad("trajectory.Trajectory", "faults", "dict", lambda: trajectory.Trajectory(TRAJ.time, TRAJ.lla, TRAJ.vel_n, TRAJ.q_bn, {})),
     bad("trajectory.Segment", "duration", "negative", lambda: trajectory.Segment(duration=-1.0)),
     bad("trajectory.Segment", "pitch", "pitch2rad", lambda: trajectory.Segment(duration=1.0, pitch=2.0)),
@@ -294,36 +403,87 @@ CASES = [
     bad("trajectory.static", "lla0", "lat2rad", lambda: trajectory.static(1.0, 0.1, [2.0, 0.0, 0.0], [0, 0, 0])),
     bad("trajectory.static", "hpr", "shape2", lambda: trajectory.static(1.0, 0.1, LLA0, [0, 0])),
     bad("trajectory.static", "hpr", "pitch2rad", lambda: trajectory.static(1.0, 0.1, LLA0, [0.0, 2.0, 0.0])),
-    bad("trajectory.from_profiles", "time", "non_uniform",
-        lambda: trajectory.from_profiles(T10 ** 2, LLA0, np.zeros((10, 3)), np.zeros((10, 3)))),
-    bad("trajectory.from_profiles", "time", "empty",
-        lambda: trajectory.from_profiles([], LLA0, np.zeros((0, 3)), np.zeros((0, 3)))),
-    bad("trajectory.from_profiles", "hpr", "epoch_mismatch",
-        lambda: trajectory.from_profiles(T10, LLA0, np.zeros((9, 3)), np.zeros((10, 3)))),
-    bad("trajectory.from_profiles", "hpr", "pitch2rad",
-        lambda: trajectory.from_profiles(T10, LLA0, np.tile([0.0, 2.0, 0.0], (10, 1)), np.zeros((10, 3)))),
-    bad("trajectory.from_profiles", "lla0", "lat91deg_in_rad_call",
-        lambda: trajectory.from_profiles(T10, [np.deg2rad(91.0), 0.0, 0.0], np.zeros((10, 3)), np.zeros((10, 3)))),
-    bad("trajectory.reciprocating_rotation", "duration", "negative",
-        lambda: trajectory.reciprocating_rotation(-10.0, 0.1, LLA0, [0, 0, 0], [0, 0, 1], np.pi / 2, 4.0)),
-    bad("trajectory.reciprocating_rotation", "axis_b", "not_unit",
-        lambda: trajectory.reciprocating_rotation(10.0, 0.1, LLA0, [0, 0, 0], [0, 0, 2], np.pi / 2, 4.0)),
-    bad("trajectory.reciprocating_rotation", "axis_b", "shape2",
-        lambda: trajectory.reciprocating_rotation(10.0, 0.1, LLA0, [0, 0, 0], [0, 1], np.pi / 2, 4.0)),
-    bad("trajectory.reciprocating_rotation", "period", "zero",
-        lambda: trajectory.reciprocating_rotation(10.0, 0.1, LLA0, [0, 0, 0], [0, 0, 1], np.pi / 2, 0.0)),
-    bad("trajectory.reciprocating_rotation", "rotation_time", "longer_than_period",
-        lambda: trajectory.reciprocating_rotation(10.0, 0.1, LLA0, [0, 0, 0], [0, 0, 1], np.pi / 2, 4.0, 5.0)),
-    bad("trajectory.reciprocating_rotation", "hpr0", "pitch2rad",
-        lambda: trajectory.reciprocating_rotation(10.0, 0.1, LLA0, [0, 2.0, 0], [0, 0, 1], np.pi / 2, 4.0)),
+    bad(
+        "trajectory.from_profiles",
+        "time",
+        "non_uniform",
+        lambda: trajectory.from_profiles(T10**2, LLA0, np.zeros((10, 3)), np.zeros((10, 3))),
+    ),
+    bad(
+        "trajectory.from_profiles",
+        "time",
+        "empty",
+        lambda: trajectory.from_profiles([], LLA0, np.zeros((0, 3)), np.zeros((0, 3))),
+    ),
+    bad(
+        "trajectory.from_profiles",
+        "hpr",
+        "epoch_mismatch",
+        lambda: trajectory.from_profiles(T10, LLA0, np.zeros((9, 3)), np.zeros((10, 3))),
+    ),
+    bad(
+        "trajectory.from_profiles",
+        "hpr",
+        "pitch2rad",
+        lambda: trajectory.from_profiles(T10, LLA0, np.tile([0.0, 2.0, 0.0], (10, 1)), np.zeros((10, 3))),
+    ),
+    bad(
+        "trajectory.from_profiles",
+        "lla0",
+        "lat91deg_in_rad_call",
+        lambda: trajectory.from_profiles(T10, [np.deg2rad(91.0), 0.0, 0.0], np.zeros((10, 3)), np.zeros((10, 3))),
+    ),
+    bad(
+        "trajectory.reciprocating_rotation",
+        "duration",
+        "negative",
+        lambda: trajectory.reciprocating_rotation(-10.0, 0.1, LLA0, [0, 0, 0], [0, 0, 1], np.pi / 2, 4.0),
+    ),
+    bad(
+        "trajectory.reciprocating_rotation",
+        "axis_b",
+        "not_unit",
+        lambda: trajectory.reciprocating_rotation(10.0, 0.1, LLA0, [0, 0, 0], [0, 0, 2], np.pi / 2, 4.0),
+    ),
+    bad(
+        "trajectory.reciprocating_rotation",
+        "axis_b",
+        "shape2",
+        lambda: trajectory.reciprocating_rotation(10.0, 0.1, LLA0, [0, 0, 0], [0, 1], np.pi / 2, 4.0),
+    ),
+    bad(
+        "trajectory.reciprocating_rotation",
+        "period",
+        "zero",
+        lambda: trajectory.reciprocating_rotation(10.0, 0.1, LLA0, [0, 0, 0], [0, 0, 1], np.pi / 2, 0.0),
+    ),
+    bad(
+        "trajectory.reciprocating_rotation",
+        "rotation_time",
+        "longer_than_period",
+        lambda: trajectory.reciprocating_rotation(10.0, 0.1, LLA0, [0, 0, 0], [0, 0, 1], np.pi / 2, 4.0, 5.0),
+    ),
+    bad(
+        "trajectory.reciprocating_rotation",
+        "hpr0",
+        "pitch2rad",
+        lambda: trajectory.reciprocating_rotation(10.0, 0.1, LLA0, [0, 2.0, 0], [0, 0, 1], np.pi / 2, 4.0),
+    ),
     bad("trajectory.vehicle", "segments", "empty", lambda: trajectory.vehicle([], 0.1, LLA0, 0.0)),
     bad("trajectory.vehicle", "segments", "not_segments", lambda: trajectory.vehicle([(10.0, 5.0)], 0.1, LLA0, 0.0)),
     bad("trajectory.vehicle", "dt", "zero", lambda: trajectory.vehicle([trajectory.Segment(2.0, speed=5.0)], 0.0, LLA0, 0.0)),
-    bad("trajectory.vehicle", "lla0", "lat2rad",
-        lambda: trajectory.vehicle([trajectory.Segment(2.0, speed=5.0)], 0.1, [2.0, 0.0, 0.0], 0.0)),
-    bad("trajectory.ideal_imu", "traj", "nan_position",
-        lambda: trajectory.ideal_imu(trajectory.Trajectory(TRAJ.time, with_nan(TRAJ.lla, (3, 0)), TRAJ.vel_n, TRAJ.q_bn))),
-
+    bad(
+        "trajectory.vehicle",
+        "lla0",
+        "lat2rad",
+        lambda: trajectory.vehicle([trajectory.Segment(2.0, speed=5.0)], 0.1, [2.0, 0.0, 0.0], 0.0),
+    ),
+    bad(
+        "trajectory.ideal_imu",
+        "traj",
+        "nan_position",
+        lambda: trajectory.ideal_imu(trajectory.Trajectory(TRAJ.time, with_nan(TRAJ.lla, (3, 0)), TRAJ.vel_n, TRAJ.q_bn)),
+    ),
     # --------------------------------------------------------------- strapdown
     bad("strapdown.integrate_attitude", "q0", "shape3", lambda: strapdown.integrate_attitude([1.0, 0.0, 0.0], W, 0.01)),
     bad("strapdown.integrate_attitude", "q0", "zero", lambda: strapdown.integrate_attitude(np.zeros(4), W, 0.01)),
@@ -332,25 +492,34 @@ CASES = [
     bad("strapdown.integrate_attitude", "dt", "zero", lambda: strapdown.integrate_attitude(Q1, W, 0.0)),
     bad("strapdown.integrate_attitude", "w_in_n", "shape2", lambda: strapdown.integrate_attitude(Q1, W, 0.01, [0.0, 1e-5])),
     bad("strapdown.integrate", "lla0", "lat2rad", lambda: strapdown.integrate([2.0, 0.0, 0.0], [0, 0, 0], Q1, W, F, 0.01)),
-    bad("strapdown.integrate", "lla0", "pole", lambda: strapdown.integrate([np.deg2rad(89.95), 0.0, 0.0], [0, 0, 0], Q1, W, F, 0.01)),
+    bad(
+        "strapdown.integrate",
+        "lla0",
+        "pole",
+        lambda: strapdown.integrate([np.deg2rad(89.95), 0.0, 0.0], [0, 0, 0], Q1, W, F, 0.01),
+    ),
     bad("strapdown.integrate", "vel0", "shape2", lambda: strapdown.integrate(LLA0, [0, 0], Q1, W, F, 0.01)),
     bad("strapdown.integrate", "q0", "shape3", lambda: strapdown.integrate(LLA0, [0, 0, 0], [1.0, 0, 0], W, F, 0.01)),
-    bad("strapdown.integrate", "w_ib_b", "empty", lambda: strapdown.integrate(LLA0, [0, 0, 0], Q1, np.zeros((0, 3)), np.zeros((0, 3)), 0.01)),
+    bad(
+        "strapdown.integrate",
+        "w_ib_b",
+        "empty",
+        lambda: strapdown.integrate(LLA0, [0, 0, 0], Q1, np.zeros((0, 3)), np.zeros((0, 3)), 0.01),
+    ),
     bad("strapdown.integrate", "f_b", "shape2", lambda: strapdown.integrate(LLA0, [0, 0, 0], Q1, W, F[:, :2], 0.01)),
     bad("strapdown.integrate", "f_b", "epoch_mismatch", lambda: strapdown.integrate(LLA0, [0, 0, 0], Q1, W, F[:7], 0.01)),
     bad("strapdown.integrate", "dt", "negative", lambda: strapdown.integrate(LLA0, [0, 0, 0], Q1, W, F, -0.01)),
     bad("strapdown.error_model", "lat", "lat2rad", lambda: strapdown.error_model(2.0, 0.0, [0, 0, 0], [0, 0, 9.8])),
     bad("strapdown.error_model", "vel_n", "shape2", lambda: strapdown.error_model(0.6, 0.0, [0, 0], [0, 0, 9.8])),
     bad("strapdown.error_input", "C_bn", "shape3x2", lambda: strapdown.error_input(np.ones((3, 2)))),
-
     # ------------------------------------------------------------------ kalman
-
     # ---------------------------------------------------------------- analysis
     bad("analysis.rmse", "err", "empty", lambda: analysis.rmse([])),
     bad("analysis.rmse", "axis", "out_of_bounds", lambda: analysis.rmse([1.0, 2.0], axis=3)),
     bad("analysis.attitude_errors", "hpr", "shape", lambda: analysis.attitude_errors([0.0, 1.0], [0.0, 0.0, 0.0])),
-    bad("analysis.error_statistics", "hpr_true", "shape",
-        lambda: analysis.error_statistics(np.zeros((2, 5, 3)), np.zeros((4, 3)))),
+    bad(
+        "analysis.error_statistics", "hpr_true", "shape", lambda: analysis.error_statistics(np.zeros((2, 5, 3)), np.zeros((4, 3)))
+    ),
     bad("analysis.expanding_std", "x", "empty", lambda: analysis.expanding_std([])),
     bad("analysis.settling_time", "tol", "zero", lambda: analysis.settling_time([0.0, 1.0], [1.0, 0.0], 0.0, 0.0)),
     bad("alignment.level", "f_b", "zero", lambda: alignment.level([0.0, 0.0, 0.0])),
@@ -365,7 +534,9 @@ CASES = [
     bad("alignment.static_gyro_bias", "C_bn", "shape", lambda: alignment.static_gyro_bias(np.zeros((5, 3)), np.eye(2), 0.5)),
     bad("analysis.segments", "mask", "not_bool", lambda: analysis.segments([0.0, 1.0])),
     bad("atmosphere.baro_height", "p", "negative", lambda: atmosphere.baro_height([100000.0, -5.0], 101325.0)),
-    bad("atmosphere.reference_pressure", "until", "no_sample", lambda: atmosphere.reference_pressure([NAN, NAN], [0.0, 1.0], 5.0)),
+    bad(
+        "atmosphere.reference_pressure", "until", "no_sample", lambda: atmosphere.reference_pressure([NAN, NAN], [0.0, 1.0], 5.0)
+    ),
     bad("atmosphere.classify_floor", "floor_height", "zero", lambda: atmosphere.classify_floor([1.0], floor_height=0.0)),
     bad("attitude.ned_to_enu_dcm", "C_ned", "shape", lambda: attitude.ned_to_enu_dcm(np.eye(2))),
     bad("euler.check_pitch", "pitch", "at_90_deg", lambda: euler.check_pitch(np.pi / 2)),
@@ -418,25 +589,36 @@ CASES = [
     bad("analysis.allan_deviation", "taus", "negative", lambda: analysis.allan_deviation(np.ones(100), 0.1, taus=[-1.0])),
     bad("analysis.allan_deviation", "taus", "too_long", lambda: analysis.allan_deviation(np.ones(100), 0.1, taus=[100.0])),
     bad("analysis.allan_deviation_theory", "taus", "zero", lambda: analysis.allan_deviation_theory([0.0, 1.0], white=1e-3)),
-    bad("analysis.allan_deviation_theory", "bias_instability", "negative",
-        lambda: analysis.allan_deviation_theory([1.0, 10.0], bias_instability=-1e-4)),
-    bad("analysis.allan_deviation_theory", "correlation_time", "zero",
-        lambda: analysis.allan_deviation_theory([1.0, 10.0], bias_instability=1e-4, correlation_time=0.0)),
+    bad(
+        "analysis.allan_deviation_theory",
+        "bias_instability",
+        "negative",
+        lambda: analysis.allan_deviation_theory([1.0, 10.0], bias_instability=-1e-4),
+    ),
+    bad(
+        "analysis.allan_deviation_theory",
+        "correlation_time",
+        "zero",
+        lambda: analysis.allan_deviation_theory([1.0, 10.0], bias_instability=1e-4, correlation_time=0.0),
+    ),
     bad("analysis.fit_allan", "taus", "negative", lambda: analysis.fit_allan([-1.0, 2.0], [1e-3, 1e-3], 1000, 0.1)),
     bad("analysis.fit_allan", "taus", "empty", lambda: analysis.fit_allan([], [], 1000, 0.1)),
     bad("analysis.fit_allan", "adev", "zero", lambda: analysis.fit_allan([1.0, 2.0], [0.0, 1e-3], 1000, 0.1)),
     bad("analysis.fit_allan", "adev", "length_mismatch", lambda: analysis.fit_allan([1.0, 2.0, 4.0], [1e-3, 1e-3], 1000, 0.1)),
     bad("analysis.fit_allan", "n_samples", "zero", lambda: analysis.fit_allan([1.0, 2.0, 4.0], [3e-3, 2e-3, 1.5e-3], 0, 0.1)),
     bad("analysis.fit_allan", "dt", "negative", lambda: analysis.fit_allan([1.0, 2.0, 4.0], [3e-3, 2e-3, 1.5e-3], 1000, -0.1)),
-
     # ------------------------------------------------------------------- repro
     # (run inside the ``sandbox`` fixture: throw-away root and module state)
     bad("repro.build_dir", "notebook", "int", lambda: repro.build_dir(123)),
     bad("repro.setup", "notebook", "empty", lambda: repro.setup("", style=False)),
     bad("repro.setup", "notebook", "path", lambda: repro.setup("a/b", style=False)),
     bad("repro.setup", "notebook", "int", lambda: repro.setup(123, style=False)),
-    bad("repro.savefig", "name", "path",
-        lambda: (repro.setup("zz_bad_input", style=False), repro.savefig(plt.figure(), "no/such/dir"))),
+    bad(
+        "repro.savefig",
+        "name",
+        "path",
+        lambda: (repro.setup("zz_bad_input", style=False), repro.savefig(plt.figure(), "no/such/dir")),
+    ),
     bad("repro.check", "value", "shape2", lambda: repro.check("T/x", [1.0, 2.0], 1.0, 0.1, "src")),
     bad("repro.check", "expected", "shape2", lambda: repro.check("T/x", 1.0, [1.0, 2.0], 0.1, "src")),
     bad("repro.check", "expected", "nan", lambda: repro.check("T/x", 1.0, NAN, 0.1, "src")),
@@ -450,32 +632,45 @@ CASES = [
     bad("repro.check_outside", "value", "shape2", lambda: repro.check_outside("T/x", [1.0, 2.0], "src", upper=3.0)),
     bad("repro.check_outside", "lower", "no_bounds", lambda: repro.check_outside("T/x", 1.0, "src")),
     bad("repro.caption", "markdown", "empty", lambda: repro.caption("  ")),
-    bad("repro.explorer", "draw", "not_callable",
-        lambda: (repro.setup("zz_bad_input", style=False), repro.explorer(3.0, "x", {}))),
-    bad("repro.explorer", "controls", "list",
-        lambda: (repro.setup("zz_bad_input", style=False), repro.explorer(lambda: None, "x", [1.0]))),
+    bad(
+        "repro.explorer", "draw", "not_callable", lambda: (repro.setup("zz_bad_input", style=False), repro.explorer(3.0, "x", {}))
+    ),
+    bad(
+        "repro.explorer",
+        "controls",
+        "list",
+        lambda: (repro.setup("zz_bad_input", style=False), repro.explorer(lambda: None, "x", [1.0])),
+    ),
     bad("repro.answer", "label", "empty", lambda: repro.answer("42", label="")),
     bad("repro.env_flag", "NAVLIB_TEST_BAD_FLAG", "text", lambda: _env_flag_with("NAVLIB_TEST_BAD_FLAG", "maybe")),
-    bad("repro.mode", "fast", "int", lambda: (repro.setup("zz_bad_input", style=False),
-                                              repro.mode(teaching=False, fast=2))),
-    bad("repro.verdict", "claim", "no_paper",
-        lambda: (repro.setup("zz_bad_input", style=False), repro.verdict("P000-EQ3-EULER", "reproduced"))),
-
+    bad("repro.mode", "fast", "int", lambda: (repro.setup("zz_bad_input", style=False), repro.mode(teaching=False, fast=2))),
+    bad(
+        "repro.verdict",
+        "claim",
+        "no_paper",
+        lambda: (repro.setup("zz_bad_input", style=False), repro.verdict("P000-EQ3-EULER", "reproduced")),
+    ),
     # ------------------------------------------------------------------- plots
     bad("plots.body_axes", "C_bn", "shape2x2", lambda: plots.body_axes(axes3d(), np.eye(2))),
     bad("plots.allan", "adev_rad_s", "length_mismatch", lambda: plots.allan(axes2d(), [1.0, 2.0, 4.0], [1e-5, 1e-5])),
     bad("plots.allan", "taus", "negative", lambda: plots.allan(axes2d(), [-1.0, 2.0], [1e-5, 1e-5])),
     bad("plots.heading_deg", "hpr", "shape2", lambda: plots.heading_deg(np.zeros((5, 2)))),
     bad("plots.paper_value", "axis", "z", lambda: plots.paper_value(axes2d(), 1.0, "paper", axis="z")),
-    bad("plots.block_diagram", "arrows", "unknown_block",
-        lambda: plots.block_diagram(axes2d(), {"a": (0.2, 0.5, "A")}, [("a", "b")])),
+    bad(
+        "plots.block_diagram",
+        "arrows",
+        "unknown_block",
+        lambda: plots.block_diagram(axes2d(), {"a": (0.2, 0.5, "A")}, [("a", "b")]),
+    ),
     bad("plots.block_diagram", "blocks", "short_spec", lambda: plots.block_diagram(axes2d(), {"a": (0.2, 0.5)}, [])),
-    bad("plots.block_diagram", "width", "above_one",
-        lambda: plots.block_diagram(axes2d(), {"a": (0.2, 0.5, "A")}, [], width=2.0)),
+    bad(
+        "plots.block_diagram", "width", "above_one", lambda: plots.block_diagram(axes2d(), {"a": (0.2, 0.5, "A")}, [], width=2.0)
+    ),
     bad("plots.plane_frame", "origin", "shape3", lambda: plots.plane_frame(axes2d(), (0.0, 0.0, 0.0), 30.0, ("x", "y"))),
     bad("plots.plane_frame", "labels", "one", lambda: plots.plane_frame(axes2d(), (0.0, 0.0), 30.0, ("x",))),
-    bad("plots.plane_frame", "length", "negative",
-        lambda: plots.plane_frame(axes2d(), (0.0, 0.0), 30.0, ("x", "y"), length=-1.0)),
+    bad(
+        "plots.plane_frame", "length", "negative", lambda: plots.plane_frame(axes2d(), (0.0, 0.0), 30.0, ("x", "y"), length=-1.0)
+    ),
     bad("plots.angle_arc", "radius", "zero", lambda: plots.angle_arc(axes2d(), (0.0, 0.0), 0.0, 0.0, 90.0)),
 ]
 
@@ -520,7 +715,9 @@ CASES += [
     bad("sensors.preset", "device", "empty", lambda: sensors.preset("")),
     bad("sensors.MagnetometerModel", "full_scale", "zero", lambda: sensors.MagnetometerModel(full_scale=0.0)),
     bad("sensors.magnetic_disturbances", "time", "empty", lambda: sensors.magnetic_disturbances([], rng(), 0.1)),
-    bad("sensors.simulate_barometer", "time", "empty", lambda: sensors.simulate_barometer([], [], sensors.BarometerModel(), rng())),
+    bad(
+        "sensors.simulate_barometer", "time", "empty", lambda: sensors.simulate_barometer([], [], sensors.BarometerModel(), rng())
+    ),
     bad("sensors.gauss_markov", "shape", "empty", lambda: sensors.gauss_markov((0, 3), 0.1, 1.0, 10.0, rng())),
     bad("sensors.gauss_markov", "correlation_time", "inf", lambda: sensors.gauss_markov((10, 3), 0.1, 1.0, INF, rng())),
     # atmosphere
@@ -530,7 +727,12 @@ CASES += [
     # analysis
     bad("analysis.allan_deviation", "taus", "complex", lambda: analysis.allan_deviation(np.ones(100), 0.1, taus=[1j])),
     bad("analysis.allan_deviation_theory", "taus", "empty", lambda: analysis.allan_deviation_theory([], white=1e-3)),
-    bad("analysis.fit_allan", "n_samples", "fractional", lambda: analysis.fit_allan([1.0, 2.0, 4.0], [3e-3, 2e-3, 1.5e-3], 10.5, 0.1)),
+    bad(
+        "analysis.fit_allan",
+        "n_samples",
+        "fractional",
+        lambda: analysis.fit_allan([1.0, 2.0, 4.0], [3e-3, 2e-3, 1.5e-3], 10.5, 0.1),
+    ),
     # repro
     bad("repro.check", "name", "int", lambda: repro.check(5, 1.0, 1.0, 0.1, "src")),
     bad("repro.check", "name", "empty", lambda: repro.check("", 1.0, 1.0, 0.1, "src")),
@@ -603,7 +805,9 @@ CASES += [
     bad("calibration.MagCalibration", "offset", "shape", lambda: calibration.MagCalibration([0.0, 0.0], np.eye(3), 50.0)),
     bad("calibration.MagCalibration", "soft_iron", "not_spd", lambda: calibration.MagCalibration(np.zeros(3), -np.eye(3), 50.0)),
     bad("calibration.fit_accelerometer", "f_means", "too_few", lambda: calibration.fit_accelerometer(F_SIX[:5])),
-    bad("calibration.fit_accelerometer", "f_means", "all_level", lambda: calibration.fit_accelerometer(np.tile(F_SIX[4], (6, 1)))),
+    bad(
+        "calibration.fit_accelerometer", "f_means", "all_level", lambda: calibration.fit_accelerometer(np.tile(F_SIX[4], (6, 1)))
+    ),
     bad("calibration.fit_accelerometer", "g", "negative", lambda: calibration.fit_accelerometer(F_SIX, g=-9.8)),
     bad("calibration.AccelCalibration", "matrix", "upper", lambda: calibration.AccelCalibration(np.zeros(3), np.ones((3, 3)))),
     bad("calibration.gyro_bias_at_rest", "w_ib_b", "one_sample", lambda: calibration.gyro_bias_at_rest(W[:1])),
@@ -611,17 +815,38 @@ CASES += [
     bad("calibration.gyro_bias_at_rest", "lat", "out_of_range", lambda: calibration.gyro_bias_at_rest(W, 2.0, np.eye(3))),
     bad("calibration.characterise", "w_ib_b", "too_short", lambda: calibration.characterise(W, F, 0.01)),
     bad("calibration.characterise", "f_b", "shape", lambda: calibration.characterise(W_REC, F_REC[:150], 0.1)),
-    bad("calibration.characterise", "dt", "irregular", lambda: calibration.characterise(W_REC, F_REC, np.linspace(0.09, 0.11, 200))),
+    bad(
+        "calibration.characterise",
+        "dt",
+        "irregular",
+        lambda: calibration.characterise(W_REC, F_REC, np.linspace(0.09, 0.11, 200)),
+    ),
     bad("calibration.characterise", "confidence", "one", lambda: calibration.characterise(W_REC, F_REC, 0.1, confidence=1.0)),
     bad("io.from_dataframe", "df", "not_a_frame", lambda: io.from_dataframe({"t": [0, 1]}, time="t", units={})),
-    bad("io.from_dataframe", "columns", "missing", lambda: io.from_dataframe(IO_TABLE, time="t", units={"gyro": "rad/s"},
-                                                                             gyro=("gx", "gy", "nope"))),
-    bad("io.from_dataframe", "units['gyro']", "unknown", lambda: io.from_dataframe(IO_TABLE, time="t", units={"gyro": "rpm"},
-                                                                                   gyro=("gx", "gy", "gz"))),
-    bad("io.from_dataframe", "time_unit", "unknown", lambda: io.from_dataframe(IO_TABLE, time="t", time_unit="min",
-                                                                               units={"gyro": "rad/s"}, gyro=("gx", "gy", "gz"))),
-    bad("io.from_dataframe", "axes", "mirror", lambda: io.from_dataframe(IO_TABLE, time="t", units={"gyro": "rad/s"},
-                                                                         gyro=("gx", "gy", "gz"), axes="y,x,z")),
+    bad(
+        "io.from_dataframe",
+        "columns",
+        "missing",
+        lambda: io.from_dataframe(IO_TABLE, time="t", units={"gyro": "rad/s"}, gyro=("gx", "gy", "nope")),
+    ),
+    bad(
+        "io.from_dataframe",
+        "units['gyro']",
+        "unknown",
+        lambda: io.from_dataframe(IO_TABLE, time="t", units={"gyro": "rpm"}, gyro=("gx", "gy", "gz")),
+    ),
+    bad(
+        "io.from_dataframe",
+        "time_unit",
+        "unknown",
+        lambda: io.from_dataframe(IO_TABLE, time="t", time_unit="min", units={"gyro": "rad/s"}, gyro=("gx", "gy", "gz")),
+    ),
+    bad(
+        "io.from_dataframe",
+        "axes",
+        "mirror",
+        lambda: io.from_dataframe(IO_TABLE, time="t", units={"gyro": "rad/s"}, gyro=("gx", "gy", "gz"), axes="y,x,z"),
+    ),
     bad("io.read_csv", "path", "missing", lambda: io.read_csv("no/such/file.csv", time="t", units={})),
     bad("io.read_xio", "path", "missing", lambda: io.read_xio("no/such/file.csv")),
     bad("io.read_euroc", "path", "missing", lambda: io.read_euroc("no/such/data.csv")),
@@ -635,21 +860,29 @@ CASES += [
 # --------------------------------------------- found by tools/fuzz.py (issue 15, item 4)
 # Each row failed before its fix: the call was accepted (silently, or with a wrong answer), or raised an
 # error that named no argument (a numpy/Python message, or another argument's name).
-MIRROR = np.diag([1.0, 1.0, -1.0])                   # orthonormal, det -1: not a rotation
+MIRROR = np.diag([1.0, 1.0, -1.0])  # orthonormal, det -1: not a rotation
 CASES += [
     # flags and texts that were used without a check ("yes" counted as True, None as False)
     bad("earth.field_angles", "deg", "int", lambda: earth.field_angles([1.0, 20.0, -40.0], deg=1)),
     bad("robust.hold", "axis", "zero", lambda: robust.hold(np.ones((3, 3)), axis=0)),
     bad("plots.allan", "color", "unknown", lambda: plots.allan(axes2d(), [1.0, 2.0], [1e-5, 1e-5], color="abc")),
-    bad("io.from_dataframe", "gyro", "one_string", lambda: io.from_dataframe(IO_TABLE, time="t", units={"gyro": "rad/s"},
-                                                                             gyro="abc")),
+    bad(
+        "io.from_dataframe",
+        "gyro",
+        "one_string",
+        lambda: io.from_dataframe(IO_TABLE, time="t", units={"gyro": "rad/s"}, gyro="abc"),
+    ),
     # rotation matrices and quaternions that are none (one check in navlib._validate: as_dcm, as_quat)
     bad("earth.earth_rate_b", "C_bn", "mirror", lambda: earth.earth_rate_b(MIRROR, 0.5)),
     bad("attitude.ned_to_enu_dcm", "C_ned", "mirror", lambda: attitude.ned_to_enu_dcm(MIRROR)),
     bad("alignment.static_gyro_bias", "C_bn", "mirror", lambda: alignment.static_gyro_bias(W, MIRROR, 0.5)),
     bad("strapdown.error_input", "C_bn", "not_rotation", lambda: strapdown.error_input(2 * np.eye(3))),
-    bad("trajectory.Trajectory", "q_bn", "zero_row", lambda: _traj_with(q_bn=np.where(
-        np.arange(len(TRAJ.time))[:, None] == 3, 0.0, TRAJ.q_bn))),
+    bad(
+        "trajectory.Trajectory",
+        "q_bn",
+        "zero_row",
+        lambda: _traj_with(q_bn=np.where(np.arange(len(TRAJ.time))[:, None] == 3, 0.0, TRAJ.q_bn)),
+    ),
     # a scalar given as an array ("only 0-dimensional arrays can be converted to Python scalars")
     bad("analysis.allan_deviation", "dt", "array", lambda: analysis.allan_deviation(np.ones(100), [0.1, 0.1])),
     bad("atmosphere.classify_floor", "floor_height", "array", lambda: atmosphere.classify_floor([1.0], [3.0, 3.0])),
@@ -657,47 +890,98 @@ CASES += [
     bad("pdr.detect_steps", "threshold", "array", lambda: pdr.detect_steps(np.ones((10, 3)), 0.01, threshold=[1.0, 2.0])),
     bad("robust.despike", "spike_gyro", "array", lambda: robust.despike(W, F, [0.1, 0.1], 1.0)),
     bad("sensors.gauss_markov", "sigma", "array", lambda: sensors.gauss_markov((10, 3), 0.1, [1.0, 1.0], 10.0, rng())),
-    bad("sensors.simulate_barometer", "p0", "array", lambda: sensors.simulate_barometer(
-        T10, T10, sensors.BarometerModel(), rng(), p0=[1e5, 1e5, 1e5])),
+    bad(
+        "sensors.simulate_barometer",
+        "p0",
+        "array",
+        lambda: sensors.simulate_barometer(T10, T10, sensors.BarometerModel(), rng(), p0=[1e5, 1e5, 1e5]),
+    ),
     bad("trajectory.static", "duration", "array", lambda: trajectory.static([1.0, 2.0], 0.1, LLA0, [0, 0, 0])),
     bad("trajectory.Segment", "duration", "array", lambda: trajectory.Segment(duration=[1.0, 2.0])),
     bad("trajectory.Leg", "speed", "array", lambda: trajectory.Leg(1.0, speed=[1.0, 2.0])),
     bad("trajectory.Gait", "ramp", "array", lambda: trajectory.Gait(ramp=[1.0, 2.0])),
-    bad("analysis.allan_deviation_theory", "white", "array", lambda: analysis.allan_deviation_theory(
-        [1.0, 10.0], white=[1e-3, 1e-3, 1e-3])),
-    bad("sensors.magnetic_disturbances", "amplitude", "scalar", lambda: sensors.magnetic_disturbances(
-        T10, rng(), 0.1, amplitude=5.0)),
+    bad(
+        "analysis.allan_deviation_theory",
+        "white",
+        "array",
+        lambda: analysis.allan_deviation_theory([1.0, 10.0], white=[1e-3, 1e-3, 1e-3]),
+    ),
+    bad(
+        "sensors.magnetic_disturbances",
+        "amplitude",
+        "scalar",
+        lambda: sensors.magnetic_disturbances(T10, rng(), 0.1, amplitude=5.0),
+    ),
     # arrays of the wrong shape or of several trials where one is expected
     bad("alignment.static_gyro_bias", "lat", "array", lambda: alignment.static_gyro_bias(W, np.eye(3), [0.5, 0.6])),
-    bad("alignment.static_gyro_bias", "w_ib_b", "batch", lambda: alignment.static_gyro_bias(
-        np.zeros((2, 10, 3)), np.eye(3), 0.5)),
-    bad("alignment.triad", "w_ib_b", "batch_mismatch", lambda: alignment.triad(
-        np.tile([0.0, 0.0, 9.8], (2, 1)), np.zeros((3, 3)), 0.5)),
+    bad(
+        "alignment.static_gyro_bias", "w_ib_b", "batch", lambda: alignment.static_gyro_bias(np.zeros((2, 10, 3)), np.eye(3), 0.5)
+    ),
+    bad(
+        "alignment.triad",
+        "w_ib_b",
+        "batch_mismatch",
+        lambda: alignment.triad(np.tile([0.0, 0.0, 9.8], (2, 1)), np.zeros((3, 3)), 0.5),
+    ),
     bad("analysis.normal_condition", "A", "not_square", lambda: analysis.normal_condition(np.ones((2, 3)))),
-    bad("analysis.horizontal_error", "lla_true", "epoch_mismatch", lambda: analysis.horizontal_error(
-        np.zeros((0, 3)), with_lat(0.6))),
-    bad("atmosphere.baro_height", "temperature", "shape", lambda: atmosphere.baro_height(
-        [1e5, 9.9e4], 101325.0, [288.0, 288.0, 288.0])),
+    bad(
+        "analysis.horizontal_error",
+        "lla_true",
+        "epoch_mismatch",
+        lambda: analysis.horizontal_error(np.zeros((0, 3)), with_lat(0.6)),
+    ),
+    bad(
+        "atmosphere.baro_height",
+        "temperature",
+        "shape",
+        lambda: atmosphere.baro_height([1e5, 9.9e4], 101325.0, [288.0, 288.0, 288.0]),
+    ),
     bad("pdr.pdr", "start_en", "batch", lambda: pdr.pdr([1.0, 2.0], [0.0, 0.0], start_en=[[0.0, 0.0], [0.0, 0.0]])),
-    bad("sensors.simulate_magnetometer", "B_n", "epoch_mismatch", lambda: sensors.simulate_magnetometer(
-        np.tile(Q1, (10, 1)), np.tile([0.0, 20.0, -40.0], (3, 1)), sensors.MagnetometerModel(), rng())),
-    bad("strapdown.integrate", "q0", "batch_mismatch", lambda: strapdown.integrate(
-        LLA0, [0, 0, 0], np.tile(Q1, (2, 1)), W, F, 0.01)),
-    bad("strapdown.integrate_attitude", "q0", "batch_mismatch", lambda: strapdown.integrate_attitude(
-        np.tile(Q1, (2, 1)), W, 0.01)),
+    bad(
+        "sensors.simulate_magnetometer",
+        "B_n",
+        "epoch_mismatch",
+        lambda: sensors.simulate_magnetometer(
+            np.tile(Q1, (10, 1)), np.tile([0.0, 20.0, -40.0], (3, 1)), sensors.MagnetometerModel(), rng()
+        ),
+    ),
+    bad(
+        "strapdown.integrate",
+        "q0",
+        "batch_mismatch",
+        lambda: strapdown.integrate(LLA0, [0, 0, 0], np.tile(Q1, (2, 1)), W, F, 0.01),
+    ),
+    bad(
+        "strapdown.integrate_attitude", "q0", "batch_mismatch", lambda: strapdown.integrate_attitude(np.tile(Q1, (2, 1)), W, 0.01)
+    ),
     bad("trajectory.static", "hpr", "batch", lambda: trajectory.static(1.0, 0.1, LLA0, np.zeros((2, 3)))),
     # values that were used without a check
     bad("faults.gap", "time", "decreasing", lambda: faults.gap(FS, T20[::-1], 2.0, 3.0)),
-    bad("atmosphere.reference_pressure", "time", "decreasing", lambda: atmosphere.reference_pressure(
-        [1e5, 1e5, 1e5], [2.0, 1.0, 0.0], 5.0)),
-    bad("euler.integrate_euler", "bias_from", "without_bias_b", lambda: euler.integrate_euler(
-        [0.0, 0.0, 0.0], np.zeros((4, 3)), 0.1, bias_from=[0])),
-    bad("euler.integrate_euler", "dt", "time_jump", lambda: euler.integrate_euler(
-        [0.0, 0.0, 0.0], np.full((4, 3), 1e-3), [0.01, 3600.0, 0.01, 0.01])),
-    bad("sensors.simulate_heading", "valid", "numbers", lambda: sensors.simulate_heading(T10, rng(), 0.01,
-                                                                                        valid=np.ones(10))),
-    bad("calibration.MagCalibration", "residual", "negative", lambda: calibration.MagCalibration(
-        np.zeros(3), np.eye(3), 50.0, residual=-1.0)),
+    bad(
+        "atmosphere.reference_pressure",
+        "time",
+        "decreasing",
+        lambda: atmosphere.reference_pressure([1e5, 1e5, 1e5], [2.0, 1.0, 0.0], 5.0),
+    ),
+    bad(
+        "euler.integrate_euler",
+        "bias_from",
+        "without_bias_b",
+        lambda: euler.integrate_euler([0.0, 0.0, 0.0], np.zeros((4, 3)), 0.1, bias_from=[0]),
+    ),
+    bad(
+        "euler.integrate_euler",
+        "dt",
+        "time_jump",
+        lambda: euler.integrate_euler([0.0, 0.0, 0.0], np.full((4, 3), 1e-3), [0.01, 3600.0, 0.01, 0.01]),
+    ),
+    bad("sensors.simulate_heading", "valid", "numbers", lambda: sensors.simulate_heading(T10, rng(), 0.01, valid=np.ones(10))),
+    bad(
+        "calibration.MagCalibration",
+        "residual",
+        "negative",
+        lambda: calibration.MagCalibration(np.zeros(3), np.eye(3), 50.0, residual=-1.0),
+    ),
 ]
 
 
@@ -722,7 +1006,7 @@ def sandbox(tmp_path, monkeypatch):
     (tmp_path / "pyproject.toml").write_text("[project]\nname = 'x'\n")
     (tmp_path / "navlib").mkdir()
     (tmp_path / "data").mkdir()
-    for name in ("claims.csv", "errata.csv"):            # repro.verdict reads the catalogue
+    for name in ("claims.csv", "errata.csv"):  # repro.verdict reads the catalogue
         shutil.copy(ROOT / "data" / name, tmp_path / "data")
     monkeypatch.setenv("NAVLIB_ROOT", str(tmp_path))
     monkeypatch.setattr(repro, "_state", repro._State())
@@ -757,8 +1041,11 @@ def test_registry_call_refuses_bad_values(name, request):
     call, func = CALLS[name], PUBLIC[name]
     baseline = {name: fuzz.leaves(fuzz.call_once(func, call.kwargs, call.before))}
     cases = [case for case in fuzz.cases_of(name, call, func) if case[2] in IN_PROCESS]
-    found = {fuzz.case_id(r): f"{r['outcome']} {r.get('message', '')}" for r in
-             (fuzz.run_case(case, CALLS, PUBLIC, baseline) for case in cases) if fuzz.failing(r)}
+    found = {
+        fuzz.case_id(r): f"{r['outcome']} {r.get('message', '')}"
+        for r in (fuzz.run_case(case, CALLS, PUBLIC, baseline) for case in cases)
+        if fuzz.failing(r)
+    }
     gaps = {"-".join(case) for case in cases} & set(fuzz_calls.KNOWN_GAPS)
     assert {k: v for k, v in found.items() if k not in gaps} == {}
     assert gaps <= set(found), f"navlib refuses these now; remove them from KNOWN_GAPS: {sorted(gaps - set(found))}"
@@ -767,6 +1054,7 @@ def test_registry_call_refuses_bad_values(name, request):
 
 
 # ---------------------------------------------------------------- by design
+
 
 def _e(*shape):
     return np.zeros(shape)
@@ -814,9 +1102,11 @@ def test_wrong_dtype_error_is_type_and_value_error():
         earth.gravity(True)
 
 
-@pytest.mark.parametrize("func", [attitude.wrap_pi, attitude.wrap_2pi]
-                         + [PUBLIC[k] for k in sorted(CALLS) if k.startswith("units.") and k != "units.to_si"],
-                         ids=lambda f: f.__name__)
+@pytest.mark.parametrize(
+    "func",
+    [attitude.wrap_pi, attitude.wrap_2pi] + [PUBLIC[k] for k in sorted(CALLS) if k.startswith("units.") and k != "units.to_si"],
+    ids=lambda f: f.__name__,
+)
 def test_nan_propagates_by_design(func):
     """NaN marks sensor dropouts: wraps and unit converters pass it through."""
     out = func(np.array([0.5, np.nan]))
@@ -839,10 +1129,14 @@ def test_kalman_update_all_nan_measurement_is_no_data():
     np.testing.assert_array_equal(Pn, P)
 
 
-@pytest.mark.parametrize("call", [
-    lambda: repro.check("T/nan", np.nan, 1.0, 0.1, "src"),
-    lambda: repro.check_range("T/nan", np.nan, "src", upper=1.0),
-], ids=["check", "check_range"])
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda: repro.check("T/nan", np.nan, 1.0, 0.1, "src"),
+        lambda: repro.check_range("T/nan", np.nan, "src", upper=1.0),
+    ],
+    ids=["check", "check_range"],
+)
 def test_repro_nan_value_fails_the_claim(call, sandbox):
     """A NaN reproduced value is a failed claim, not a usage error."""
     with pytest.raises(repro.ClaimCheckFailed):
@@ -850,6 +1144,7 @@ def test_repro_nan_value_fails_the_claim(call, sandbox):
 
 
 # ----------------------------------------------------------------- the registry
+
 
 def test_registry_lists_every_public_callable():
     """A new public function or class needs a row in tools/fuzz_calls.py (a valid call, or a Skip and why)."""
@@ -859,8 +1154,9 @@ def test_registry_lists_every_public_callable():
     assert all(isinstance(c, fuzz_calls.Skip) and c.reason or isinstance(c, fuzz_calls.Call) for c in REGISTRY.values())
 
 
-@pytest.mark.parametrize("module", [m for m in fuzz_calls.public_modules() if not hasattr(m, "__path__")],
-                         ids=lambda m: m.__name__)
+@pytest.mark.parametrize(
+    "module", [m for m in fuzz_calls.public_modules() if not hasattr(m, "__path__")], ids=lambda m: m.__name__
+)
 def test_every_module_declares_all(module):
     assert hasattr(module, "__all__")
 

@@ -13,6 +13,7 @@ bounds checks out of it. The same for the attitude filters, whose fixed-size Kal
 small scratch matrices by hand (:func:`navlib._kernels.lu_inverse`, the quaternion KF's update with 3 and 6
 rows, the stuck-run screening).
 """
+
 import os
 import subprocess
 import sys

@@ -4,6 +4,7 @@ Allan-deviation noise characterisation, each on simulated data with known errors
 Tolerances are a few standard errors of each estimate, derived in the comments from the simulated noise and
 sample counts; the empirical spreads quoted were measured over 40-100 seeds when the tests were written.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -12,26 +13,26 @@ import pytest
 from navlib import attitude, calibration, earth, sensors, units
 from navlib.imu import ImuSamples
 
-B_N = np.array([0.0, 20.0, -45.0])          # local field, ENU (uT); |B_N| = 49.2 uT
+B_N = np.array([0.0, 20.0, -45.0])  # local field, ENU (uT); |B_N| = 49.2 uT
 MAG = sensors.MagnetometerModel(noise=0.3, hard_iron=20.0, soft_iron=0.1)
 SIX = np.array([[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]], dtype=float)
 
 
 def random_quats(rng, n):
     q = rng.standard_normal((n, 4))
-    return q / np.linalg.norm(q, axis=-1, keepdims=True)       # uniform over rotations
+    return q / np.linalg.norm(q, axis=-1, keepdims=True)  # uniform over rotations
 
 
 def tilted_quats(rng, n, max_tilt):
     """Any heading, pitch and roll within +-max_tilt (rad)."""
-    hpr = np.stack([rng.uniform(0, 2 * np.pi, n), rng.uniform(-max_tilt, max_tilt, n),
-                    rng.uniform(-max_tilt, max_tilt, n)], -1)
+    hpr = np.stack([rng.uniform(0, 2 * np.pi, n), rng.uniform(-max_tilt, max_tilt, n), rng.uniform(-max_tilt, max_tilt, n)], -1)
     return attitude.euler_to_quat(hpr)
 
 
 # --------------------------------------------------------------------------
 # Magnetometer
 # --------------------------------------------------------------------------
+
 
 @pytest.fixture(scope="module")
 def mag():
@@ -55,15 +56,15 @@ def test_magnetometer_recovers_hard_and_soft_iron(mag):
     expected = MAG.noise * np.sqrt(np.mean(np.sum((u @ np.linalg.inv(mag.soft_iron).T) ** 2, -1)))
     assert cal.residual == pytest.approx(expected, rel=0.1)
     assert cal.norm_spread_after == pytest.approx(expected, rel=0.1)
-    assert cal.norm_spread_before > 10 * cal.norm_spread_after         # about 60 here
-    assert cal.condition < 5                                           # a full sphere: about 2
+    assert cal.norm_spread_before > 10 * cal.norm_spread_after  # about 60 here
+    assert cal.condition < 5  # a full sphere: about 2
     norm = np.linalg.norm(cal.apply(mag.m_b), axis=-1)
     assert np.sqrt(np.mean((norm - F) ** 2)) == pytest.approx(cal.residual, rel=1e-12)
 
 
 def test_magnetometer_without_field_strength_keeps_det_one(mag):
     cal = calibration.fit_magnetometer(mag.m_b)
-    scale = np.linalg.det(mag.soft_iron) ** (1 / 3)                   # W = S / scale has det 1
+    scale = np.linalg.det(mag.soft_iron) ** (1 / 3)  # W = S / scale has det 1
     assert np.linalg.det(cal.soft_iron) == pytest.approx(1.0, abs=1e-12)
     assert cal.field_strength == pytest.approx(np.linalg.norm(B_N) * scale, rel=2e-3)
     np.testing.assert_allclose(cal.soft_iron @ mag.soft_iron, scale * np.eye(3), atol=4e-3)
@@ -76,7 +77,7 @@ def test_mag_calibration_from_stored_values_applies_to_any_batch():
     m = np.arange(24.0).reshape(2, 4, 3)
     np.testing.assert_allclose(cal.apply(m), np.einsum("ij,...j->...i", W, m - [1.0, 2.0, 3.0]))
     assert np.isnan(cal.residual)
-    out = cal.apply([[np.nan, 0.0, 0.0], [1.0, 2.0, 3.0]])               # NaN (a dropout) propagates
+    out = cal.apply([[np.nan, 0.0, 0.0], [1.0, 2.0, 3.0]])  # NaN (a dropout) propagates
     assert np.isnan(out[0]).all() and np.all(out[1] == 0.0)
 
 
@@ -98,16 +99,17 @@ def test_magnetometer_refuses_planar_and_small_cap_coverage():
 # Accelerometer
 # --------------------------------------------------------------------------
 
-VRW = units.ug_per_sqrt_hz(100.0)            # 9.8e-4 m/s^2/sqrt(Hz)
-DT_ACC, N_POS = 0.01, 1000                   # 10 s per position at 100 Hz
+VRW = units.ug_per_sqrt_hz(100.0)  # 9.8e-4 m/s^2/sqrt(Hz)
+DT_ACC, N_POS = 0.01, 1000  # 10 s per position at 100 Hz
 
 
 def positions(directions, model, seed):
     """Static means of an IMU held still with -gravity along each body direction, one simulated record."""
     up_b = directions / np.linalg.norm(directions, axis=-1, keepdims=True)
     f_ideal = np.repeat(units.G0 * up_b, N_POS, axis=0)
-    out = sensors.simulate_imu(np.zeros_like(f_ideal), f_ideal, DT_ACC, sensors.ImuModel(accel=model),
-                               np.random.default_rng(seed))
+    out = sensors.simulate_imu(
+        np.zeros_like(f_ideal), f_ideal, DT_ACC, sensors.ImuModel(accel=model), np.random.default_rng(seed)
+    )
     return out.f_b.reshape(len(up_b), N_POS, 3).mean(1), out.accel_bias[0], out.accel_matrix
 
 
@@ -156,12 +158,13 @@ def test_accel_calibration_from_stored_values():
     np.testing.assert_allclose(cal.apply([[0.1, 0.0, 9.7]]), [[0.0, 0.0, 9.8]])
     np.testing.assert_allclose(cal.scale_factor, [1 / 1.01 - 1, 1 / 0.99 - 1, 0.0])
     with pytest.raises(ValueError, match="^matrix: "):
-        calibration.AccelCalibration(np.zeros(3), np.ones((3, 3)))    # not triangular: not a calibration
+        calibration.AccelCalibration(np.zeros(3), np.ones((3, 3)))  # not triangular: not a calibration
 
 
 # --------------------------------------------------------------------------
 # Gyro bias at rest
 # --------------------------------------------------------------------------
+
 
 def test_gyro_bias_at_rest_removes_earth_rate():
     lat, hpr = np.deg2rad(48.0), np.array([1.0, 0.1, -0.2])
@@ -186,12 +189,13 @@ def test_gyro_bias_at_rest_removes_earth_rate():
 # Characterise my IMU
 # --------------------------------------------------------------------------
 
-DT, N = 0.1, 100_000                          # 2.8 h at 10 Hz
+DT, N = 0.1, 100_000  # 2.8 h at 10 Hz
 TRUTH = sensors.ImuModel(
-    gyro=sensors.TriadErrors(noise_density=units.deg_per_sqrt_h(0.3), bias_instability=units.deg_per_h(10.0),
-                             correlation_time=30.0),
-    accel=sensors.TriadErrors(noise_density=units.ug_per_sqrt_hz(100.0), bias_instability=units.ug(50.0),
-                              correlation_time=30.0))
+    gyro=sensors.TriadErrors(
+        noise_density=units.deg_per_sqrt_h(0.3), bias_instability=units.deg_per_h(10.0), correlation_time=30.0
+    ),
+    accel=sensors.TriadErrors(noise_density=units.ug_per_sqrt_hz(100.0), bias_instability=units.ug(50.0), correlation_time=30.0),
+)
 
 
 def static_record(model, seed):
@@ -219,9 +223,8 @@ def test_characterise_recovers_the_noise_model(noise):
         # (measured over 100 seeds: max error 13 %, rms 4 %).
         np.testing.assert_allclose(tri.bias_instability, truth.bias_instability, rtol=0.25)
         # Correlation time: flat near the peak, so looser (measured 25 to 37 s for 30 s).
-        assert np.all((tri.correlation_time > truth.correlation_time / 2)
-                      & (tri.correlation_time < 2 * truth.correlation_time))
-        assert np.all(tri.rate_random_walk == 0.0)                        # not fitted
+        assert np.all((tri.correlation_time > truth.correlation_time / 2) & (tri.correlation_time < 2 * truth.correlation_time))
+        assert np.all(tri.rate_random_walk == 0.0)  # not fitted
         assert tri.adev.shape == (tri.taus.size, 3)
     np.testing.assert_array_equal(noise.angle_random_walk, noise.gyro.noise_density)
     np.testing.assert_array_equal(noise.velocity_random_walk, noise.accel.noise_density)
@@ -239,8 +242,10 @@ def test_characterise_intervals_contain_the_truth(noise, noise99):
     # coverage over 100 seeds (600 axes): at 95 %, 100 % for the white noise (its edf is conservative for
     # a fitted value) and 96-97 % for the bias instability; at 99 %, 100 % for both. So 99 % here.
     for tri, truth in ((noise99.gyro, TRUTH.gyro), (noise99.accel, TRUTH.accel)):
-        for ci, value, true in ((tri.noise_density_ci, tri.noise_density, truth.noise_density),
-                                (tri.bias_instability_ci, tri.bias_instability, truth.bias_instability)):
+        for ci, value, true in (
+            (tri.noise_density_ci, tri.noise_density, truth.noise_density),
+            (tri.bias_instability_ci, tri.bias_instability, truth.bias_instability),
+        ):
             assert ci.shape == (3, 2)
             assert np.all(ci[:, 0] < value) and np.all(value < ci[:, 1])
             assert np.all(ci[:, 0] <= true) and np.all(true <= ci[:, 1])
@@ -249,8 +254,7 @@ def test_characterise_intervals_contain_the_truth(noise, noise99):
     # Higher confidence, wider intervals around the same estimates.
     for narrow, wide in ((noise.gyro, noise99.gyro), (noise.accel, noise99.accel)):
         np.testing.assert_array_equal(wide.bias_instability, narrow.bias_instability)
-        for a, b in ((narrow.noise_density_ci, wide.noise_density_ci),
-                     (narrow.bias_instability_ci, wide.bias_instability_ci)):
+        for a, b in ((narrow.noise_density_ci, wide.noise_density_ci), (narrow.bias_instability_ci, wide.bias_instability_ci)):
             assert np.all(b[:, 0] < a[:, 0]) and np.all(b[:, 1] > a[:, 1])
 
 
@@ -258,7 +262,7 @@ def test_to_imu_model_feeds_the_simulator(noise):
     model = noise.to_imu_model()
     assert isinstance(model, sensors.ImuModel) and model.name == "characterised"
     for triad, tri, truth in ((model.gyro, noise.gyro, TRUTH.gyro), (model.accel, noise.accel, TRUTH.accel)):
-        assert triad.noise_density == pytest.approx(np.sqrt(np.mean(tri.noise_density ** 2)))
+        assert triad.noise_density == pytest.approx(np.sqrt(np.mean(tri.noise_density**2)))
         assert triad.noise_density == pytest.approx(truth.noise_density, rel=0.05)
         assert triad.bias_instability == pytest.approx(truth.bias_instability, rel=0.25)
         assert triad.correlation_time == pytest.approx(np.exp(np.mean(np.log(tri.correlation_time))))
@@ -281,9 +285,14 @@ def test_characterise_takes_imu_samples(record, noise):
 
 def test_characterise_rate_random_walk():
     truth = sensors.ImuModel(
-        gyro=sensors.TriadErrors(noise_density=units.deg_per_sqrt_h(0.3), bias_instability=units.deg_per_h(10.0),
-                                 correlation_time=30.0, rate_random_walk=3e-6),
-        accel=sensors.TriadErrors(noise_density=units.ug_per_sqrt_hz(100.0), rate_random_walk=3e-5))
+        gyro=sensors.TriadErrors(
+            noise_density=units.deg_per_sqrt_h(0.3),
+            bias_instability=units.deg_per_h(10.0),
+            correlation_time=30.0,
+            rate_random_walk=3e-6,
+        ),
+        accel=sensors.TriadErrors(noise_density=units.ug_per_sqrt_hz(100.0), rate_random_walk=3e-5),
+    )
     rec = static_record(truth, 42)
     res = calibration.characterise(rec.w_ib_b, rec.f_b, DT, rate_random_walk=True)
     for tri, tr in ((res.gyro, truth.gyro), (res.accel, truth.accel)):
@@ -308,37 +317,40 @@ W_REC = np.zeros((200, 3))
 F_REC = np.tile([0.0, 0.0, 9.8], (200, 1))
 
 
-@pytest.mark.parametrize("arg, call", [
-    ("m_b", lambda: calibration.fit_magnetometer(M9[:8])),
-    ("m_b", lambda: calibration.fit_magnetometer(M9[:, :2])),
-    ("m_b", lambda: calibration.fit_magnetometer(np.where(np.arange(60).reshape(20, 3) == 7, np.nan, M9))),
-    ("field_strength", lambda: calibration.fit_magnetometer(M9, field_strength=-1.0)),
-    ("offset", lambda: calibration.MagCalibration([0.0, 0.0], np.eye(3), 50.0)),
-    ("soft_iron", lambda: calibration.MagCalibration(np.zeros(3), [[1.0, 0.2, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], 50.0)),
-    ("m_raw", lambda: calibration.MagCalibration(np.zeros(3), np.eye(3), 50.0).apply([1.0, 2.0])),
-    ("f_means", lambda: calibration.fit_accelerometer(units.G0 * SIX[:5])),
-    ("f_means", lambda: calibration.fit_accelerometer(units.G0 * np.concatenate([SIX, SIX[:2]]), misalignment=True)),
-    ("f_means", lambda: calibration.fit_accelerometer(np.where(SIX == 1, np.nan, SIX))),
-    ("f_means", lambda: calibration.fit_accelerometer(units.G0 * SIX[:, :2])),
-    ("g", lambda: calibration.fit_accelerometer(units.G0 * SIX, g=0.0)),
-    ("misalignment", lambda: calibration.fit_accelerometer(units.G0 * SIX, misalignment=1)),
-    ("w_ib_b", lambda: calibration.gyro_bias_at_rest(np.zeros((1, 3)))),
-    ("w_ib_b", lambda: calibration.gyro_bias_at_rest([[0.0, np.nan, 0.0], [0.0, 0.0, 0.0]])),
-    ("C_bn", lambda: calibration.gyro_bias_at_rest(np.zeros((5, 3)), lat=0.5)),
-    ("lat", lambda: calibration.gyro_bias_at_rest(np.zeros((5, 3)), C_bn=np.eye(3))),
-    ("lat", lambda: calibration.gyro_bias_at_rest(np.zeros((5, 3)), lat=2.0, C_bn=np.eye(3))),
-    ("C_bn", lambda: calibration.gyro_bias_at_rest(np.zeros((5, 3)), lat=0.5, C_bn=2 * np.eye(3))),
-    ("w_ib_b", lambda: calibration.characterise(W_REC[:50], F_REC[:50], 0.1)),
-    ("w_ib_b", lambda: calibration.characterise(np.where(np.arange(600).reshape(200, 3) == 5, np.nan, W_REC), F_REC, 0.1)),
-    ("w_ib_b", lambda: calibration.characterise(np.stack([W_REC, W_REC]), np.stack([F_REC, F_REC]), 0.1)),
-    ("f_b", lambda: calibration.characterise(W_REC, F_REC[:100], 0.1)),
-    ("f_b", lambda: calibration.characterise(W_REC, None, 0.1)),
-    ("f_b", lambda: calibration.characterise(ImuSamples(W_REC, F_REC, 0.1), F_REC)),
-    ("dt", lambda: calibration.characterise(W_REC, F_REC, 0.0)),
-    ("dt", lambda: calibration.characterise(W_REC, F_REC, np.linspace(0.09, 0.11, 200))),
-    ("confidence", lambda: calibration.characterise(W_REC, F_REC, 0.1, confidence=1.0)),
-    ("rate_random_walk", lambda: calibration.characterise(W_REC, F_REC, 0.1, rate_random_walk="yes")),
-])
+@pytest.mark.parametrize(
+    "arg, call",
+    [
+        ("m_b", lambda: calibration.fit_magnetometer(M9[:8])),
+        ("m_b", lambda: calibration.fit_magnetometer(M9[:, :2])),
+        ("m_b", lambda: calibration.fit_magnetometer(np.where(np.arange(60).reshape(20, 3) == 7, np.nan, M9))),
+        ("field_strength", lambda: calibration.fit_magnetometer(M9, field_strength=-1.0)),
+        ("offset", lambda: calibration.MagCalibration([0.0, 0.0], np.eye(3), 50.0)),
+        ("soft_iron", lambda: calibration.MagCalibration(np.zeros(3), [[1.0, 0.2, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], 50.0)),
+        ("m_raw", lambda: calibration.MagCalibration(np.zeros(3), np.eye(3), 50.0).apply([1.0, 2.0])),
+        ("f_means", lambda: calibration.fit_accelerometer(units.G0 * SIX[:5])),
+        ("f_means", lambda: calibration.fit_accelerometer(units.G0 * np.concatenate([SIX, SIX[:2]]), misalignment=True)),
+        ("f_means", lambda: calibration.fit_accelerometer(np.where(SIX == 1, np.nan, SIX))),
+        ("f_means", lambda: calibration.fit_accelerometer(units.G0 * SIX[:, :2])),
+        ("g", lambda: calibration.fit_accelerometer(units.G0 * SIX, g=0.0)),
+        ("misalignment", lambda: calibration.fit_accelerometer(units.G0 * SIX, misalignment=1)),
+        ("w_ib_b", lambda: calibration.gyro_bias_at_rest(np.zeros((1, 3)))),
+        ("w_ib_b", lambda: calibration.gyro_bias_at_rest([[0.0, np.nan, 0.0], [0.0, 0.0, 0.0]])),
+        ("C_bn", lambda: calibration.gyro_bias_at_rest(np.zeros((5, 3)), lat=0.5)),
+        ("lat", lambda: calibration.gyro_bias_at_rest(np.zeros((5, 3)), C_bn=np.eye(3))),
+        ("lat", lambda: calibration.gyro_bias_at_rest(np.zeros((5, 3)), lat=2.0, C_bn=np.eye(3))),
+        ("C_bn", lambda: calibration.gyro_bias_at_rest(np.zeros((5, 3)), lat=0.5, C_bn=2 * np.eye(3))),
+        ("w_ib_b", lambda: calibration.characterise(W_REC[:50], F_REC[:50], 0.1)),
+        ("w_ib_b", lambda: calibration.characterise(np.where(np.arange(600).reshape(200, 3) == 5, np.nan, W_REC), F_REC, 0.1)),
+        ("w_ib_b", lambda: calibration.characterise(np.stack([W_REC, W_REC]), np.stack([F_REC, F_REC]), 0.1)),
+        ("f_b", lambda: calibration.characterise(W_REC, F_REC[:100], 0.1)),
+        ("f_b", lambda: calibration.characterise(W_REC, None, 0.1)),
+        ("f_b", lambda: calibration.characterise(ImuSamples(W_REC, F_REC, 0.1), F_REC)),
+        ("dt", lambda: calibration.characterise(W_REC, F_REC, 0.0)),
+        ("dt", lambda: calibration.characterise(W_REC, F_REC, np.linspace(0.09, 0.11, 200))),
+        ("confidence", lambda: calibration.characterise(W_REC, F_REC, 0.1, confidence=1.0)),
+        ("rate_random_walk", lambda: calibration.characterise(W_REC, F_REC, 0.1, rate_random_walk="yes")),
+    ],
+)
 def test_bad_input_names_the_argument(arg, call):
     with pytest.raises(ValueError, match=f"^{arg}: "):
         call()

@@ -1,5 +1,6 @@
 """Every chapter in one frame (issue 39): it opens with the question, what you will learn, prerequisites and time,
 closes with key points apart from the discussion, and has a coding exercise whose collapsed solution is checked."""
+
 from __future__ import annotations
 
 from pathlib import Path

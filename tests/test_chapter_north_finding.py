@@ -1,4 +1,5 @@
 """The schematics notebook 01 redraws from paper 000 (Figs. 2 and 3): drawn without error, inputs validated."""
+
 from __future__ import annotations
 
 import matplotlib
@@ -14,7 +15,7 @@ from navlib.papers import north_finding as nf  # noqa: E402
 @pytest.mark.parametrize("heading", [0.0, 30.0, 179.0, 181.0, 359.9, -45.0, 725.0])
 def test_device_is_drawn_at_any_heading(ax, heading):
     nf.draw_device(ax, heading)
-    assert len(ax.patches) >= 4 and ax.texts                  # robot, nose, gyro, IMU, the arc; the labels
+    assert len(ax.patches) >= 4 and ax.texts  # robot, nose, gyro, IMU, the arc; the labels
     assert ax.get_aspect() == 1.0 and not ax.axison
 
 
@@ -43,30 +44,39 @@ def test_candidate_pairs_are_mirror_images(ax, h1, h2):
     assert any("mirror" in label for label in legend)
 
 
-@pytest.mark.parametrize("call", [
-    lambda: nf.draw_device("not an axes"),
-    lambda: nf.draw_candidate_pairs(None, 10.0, 20.0),
-])
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda: nf.draw_device("not an axes"),
+        lambda: nf.draw_candidate_pairs(None, 10.0, 20.0),
+    ],
+)
 def test_refuses_a_non_axes(call):
     with pytest.raises(ValueError, match="ax"):
         call()
 
 
-@pytest.mark.parametrize("kwargs, name", [
-    (dict(heading_deg=np.nan), "heading_deg"),
-    (dict(heading_deg="30"), "heading_deg"),
-    (dict(heading_deg=[10.0, 20.0]), "heading_deg"),
-])
+@pytest.mark.parametrize(
+    "kwargs, name",
+    [
+        (dict(heading_deg=np.nan), "heading_deg"),
+        (dict(heading_deg="30"), "heading_deg"),
+        (dict(heading_deg=[10.0, 20.0]), "heading_deg"),
+    ],
+)
 def test_device_validates_the_heading(ax, kwargs, name):
     with pytest.raises((ValueError, TypeError), match=name):
         nf.draw_device(ax, **kwargs)
 
 
-@pytest.mark.parametrize("args, name", [
-    ((np.inf, 10.0), "heading1_deg"),
-    ((10.0, np.nan), "heading2_deg"),
-    ((10.0, 20.0, np.nan), "dpsi_ins_error_deg"),
-])
+@pytest.mark.parametrize(
+    "args, name",
+    [
+        ((np.inf, 10.0), "heading1_deg"),
+        ((10.0, np.nan), "heading2_deg"),
+        ((10.0, 20.0, np.nan), "dpsi_ins_error_deg"),
+    ],
+)
 def test_candidate_pairs_validate_their_angles(ax, args, name):
     with pytest.raises((ValueError, TypeError), match=name):
         nf.draw_candidate_pairs(ax, *args)

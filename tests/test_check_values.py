@@ -39,6 +39,7 @@ part of an f-string name) and the reason, one line each; an entry that matches n
 list cannot go stale. ``navlib.repro`` adds the run-time half: ``check`` refuses a value that is the very
 object passed as its target.
 """
+
 from __future__ import annotations
 
 import ast
@@ -58,25 +59,69 @@ NOTEBOOKS = sorted((ROOT / "notebooks").glob("[0-9][0-9]_*.ipynb"))
 ALLOWED: dict[tuple[str, str], str] = {}
 
 LITERAL, PARAMETER, DATA, COMPUTED = range(4)
-ORIGIN = {LITERAL: "literals only", PARAMETER: "parameters-cell constants and literals only",
-          DATA: "typed inputs only (data/ tables, sensor presets, paper constants, parameters, literals)"}
+ORIGIN = {
+    LITERAL: "literals only",
+    PARAMETER: "parameters-cell constants and literals only",
+    DATA: "typed inputs only (data/ tables, sensor presets, paper constants, parameters, literals)",
+}
 
-SIGNATURES = {"check": ("name", "value", "expected", "tol", "source"),
-              "check_range": ("name", "value", "source"), "check_outside": ("name", "value", "source"),
-              "check_study": ("name", "value", "target", "study", "source")}
+SIGNATURES = {
+    "check": ("name", "value", "expected", "tol", "source"),
+    "check_range": ("name", "value", "source"),
+    "check_outside": ("name", "value", "source"),
+    "check_study": ("name", "value", "target", "study", "source"),
+}
 TARGETS = ("expected", "target", "paper_value", "lower", "upper")
-DRAWS = ("numpy.random", "navlib.sensors.simulate_")          # where simulated samples come from
+DRAWS = ("numpy.random", "navlib.sensors.simulate_")  # where simulated samples come from
 TRUTH = ("navlib.attitude.", "navlib.trajectory.", "navlib.earth.", "navlib.units.", "navlib.repro.")  # no estimator
 SPREADS = {"std", "var", "nanstd", "nanvar"}
-TRANSPARENT = ("numpy.", "pandas.", "math.", "builtins.", "statistics.", "itertools.", "functools.", "collections.",
-               "operator.", "navlib.units.", "navlib.repro.", "navlib.attitude.wrap_pi", "navlib.attitude.wrap_2pi")
-LOADERS = {"pandas.read_csv", "pandas.read_table", "pandas.read_json", "numpy.loadtxt", "numpy.genfromtxt", "numpy.load",
-           "json.load", "json.loads", "csv.reader", "csv.DictReader", "builtins.open"}
+TRANSPARENT = (
+    "numpy.",
+    "pandas.",
+    "math.",
+    "builtins.",
+    "statistics.",
+    "itertools.",
+    "functools.",
+    "collections.",
+    "operator.",
+    "navlib.units.",
+    "navlib.repro.",
+    "navlib.attitude.wrap_pi",
+    "navlib.attitude.wrap_2pi",
+)
+LOADERS = {
+    "pandas.read_csv",
+    "pandas.read_table",
+    "pandas.read_json",
+    "numpy.loadtxt",
+    "numpy.genfromtxt",
+    "numpy.load",
+    "json.load",
+    "json.loads",
+    "csv.reader",
+    "csv.DictReader",
+    "builtins.open",
+}
 PRESETS = {"navlib.sensors.imu_model"}
-RECORDINGS = re.compile(r"\b(real|samples)\b")          # data/real, data/samples: committed measurements
-ROUNDERS = {"builtins.round", "builtins.float", "builtins.int", "builtins.format", "numpy.round", "numpy.around",
-            "numpy.rint", "numpy.floor", "numpy.ceil", "numpy.float64", "numpy.float32", "numpy.asarray", "numpy.array",
-            "math.floor", "math.ceil"}
+RECORDINGS = re.compile(r"\b(real|samples)\b")  # data/real, data/samples: committed measurements
+ROUNDERS = {
+    "builtins.round",
+    "builtins.float",
+    "builtins.int",
+    "builtins.format",
+    "numpy.round",
+    "numpy.around",
+    "numpy.rint",
+    "numpy.floor",
+    "numpy.ceil",
+    "numpy.float64",
+    "numpy.float32",
+    "numpy.asarray",
+    "numpy.array",
+    "math.floor",
+    "math.ceil",
+}
 ROUNDING_METHODS = {"round", "item", "astype", "copy", "squeeze"}
 ACCESSORS = {"to_numpy", "set_index", "reset_index", "item", "squeeze", "astype", "copy", "loc", "iloc"}
 MUTATORS = {"append", "extend", "insert", "update", "setdefault", "add", "fill", "put", "__setitem__"}
@@ -86,9 +131,11 @@ CONSTANT = re.compile(r"_*[A-Z][A-Z0-9_]*")
 
 # ------------------------------------------------------------------------------------------- bindings
 
+
 @dataclass
 class Value:
     """A name bound to a value: its origin (LITERAL..COMPUTED) and the expression it came from."""
+
     origin: int
     expr: ast.expr | None = None
     scope: Scope | None = None
@@ -97,6 +144,7 @@ class Value:
 @dataclass
 class Module:
     """A name bound to a module or to an object imported from one (dotted path)."""
+
     path: str
 
 
@@ -122,7 +170,7 @@ class Scope:
 
     def set(self, name: str, b, merge: bool = False) -> None:
         old = self.names.get(name)
-        if merge and isinstance(old, Value) and isinstance(b, Value):   # a branch or loop body may not run
+        if merge and isinstance(old, Value) and isinstance(b, Value):  # a branch or loop body may not run
             b = Value(max(old.origin, b.origin), b.expr, b.scope)
         self.names[name] = b
 
@@ -139,6 +187,7 @@ class Finding:
 
 
 # --------------------------------------------------------------------------------------------- reader
+
 
 class Reader:
     """Reads a notebook's code cells in order and collects the checks whose value is not computed."""
@@ -163,7 +212,7 @@ class Reader:
                 self.line = node.lineno
                 self.stmt(node, self.top, merge=False)
         self.in_parameters = False
-        for f in self.functions:                      # never called (or only handed to widgets): read once
+        for f in self.functions:  # never called (or only handed to widgets): read once
             if not f.called:
                 self.call_function(f, None, self.top)
         return list(self.findings.values())
@@ -238,8 +287,9 @@ class Reader:
             name = base_name(e.func.value)
             old = scope.get(name) if name else None
             if isinstance(old, Value):
-                origin = max([old.origin] + [self.value(a, scope) for a in e.args]
-                             + [self.value(k.value, scope) for k in e.keywords])
+                origin = max(
+                    [old.origin] + [self.value(a, scope) for a in e.args] + [self.value(k.value, scope) for k in e.keywords]
+                )
                 scope.set(name, Value(origin, None, scope))
 
     def bind(self, target, expr, origin, scope, merge):
@@ -297,11 +347,11 @@ class Reader:
                 return module_object(b.path)
             if isinstance(b, Function):
                 return LITERAL
-            return LITERAL if e.id in BUILTINS else COMPUTED        # unknown names are not held against a check
+            return LITERAL if e.id in BUILTINS else COMPUTED  # unknown names are not held against a check
         if isinstance(e, ast.Attribute):
             path = qualname(e, scope)
             return module_object(path) if path is not None else self.value(e.value, scope)
-        if isinstance(e, ast.Subscript):                  # a computed index (argmax) makes the selection a result
+        if isinstance(e, ast.Subscript):  # a computed index (argmax) makes the selection a result
             return max(self.value(e.value, scope), self.value(e.slice, scope))
         if isinstance(e, ast.Call):
             return self.call(e, scope)
@@ -332,20 +382,19 @@ class Reader:
         b = scope.get(e.func.id) if isinstance(e.func, ast.Name) else None
         if isinstance(b, Function):
             return self.call_function(b, e, scope)
-        args = max([self.value(a, scope) for a in e.args] + [self.value(k.value, scope) for k in e.keywords],
-                   default=LITERAL)
+        args = max([self.value(a, scope) for a in e.args] + [self.value(k.value, scope) for k in e.keywords], default=LITERAL)
         path = qualname(e.func, scope)
-        if path is None:                     # a method of a value (x.mean()) or a call of a computed callable
+        if path is None:  # a method of a value (x.mean()) or a call of a computed callable
             return max(args, self.value(e.func.value if isinstance(e.func, ast.Attribute) else e.func, scope))
         if path in LOADERS:
             return COMPUTED if any(RECORDINGS.search(s) for s in strings(e, scope)) else DATA
         if path in PRESETS:
             return max(DATA, args)
-        if path.startswith("numpy.random") or path == "navlib.repro.seed_spread":   # a seed study: simulated values
+        if path.startswith("numpy.random") or path == "navlib.repro.seed_spread":  # a seed study: simulated values
             return COMPUTED
         if path.startswith(TRANSPARENT):
             return args
-        return COMPUTED                      # navlib, scipy, ahrs, time, ...: a computation
+        return COMPUTED  # navlib, scipy, ahrs, time, ...: a computation
 
     def call_function(self, f: Function, e: ast.Call | None, scope) -> int:
         """Read a local function's body with the caller's arguments bound to its parameters."""
@@ -355,10 +404,10 @@ class Reader:
         inner = Scope(f.scope)
         a = f.node.args
         positional = a.posonlyargs + a.args
-        defaults = dict(zip([p.arg for p in positional[len(positional) - len(a.defaults):]], a.defaults, strict=True))
+        defaults = dict(zip([p.arg for p in positional[len(positional) - len(a.defaults) :]], a.defaults, strict=True))
         defaults.update({p.arg: d for p, d in zip(a.kwonlyargs, a.kw_defaults, strict=True) if d is not None})
         bound: dict[str, Value] = {}
-        if e is None:                        # no call site: parameters are unknown
+        if e is None:  # no call site: parameters are unknown
             bound = {p.arg: Value(COMPUTED) for p in positional + a.kwonlyargs}
         else:
             rest = []
@@ -375,8 +424,13 @@ class Reader:
             for p in positional + a.kwonlyargs:
                 if p.arg not in bound:
                     d = defaults.get(p.arg)
-                    bound[p.arg] = (Value(max(rest), None, scope) if rest else
-                                    Value(self.value(d, f.scope), d, f.scope) if d is not None else Value(COMPUTED))
+                    bound[p.arg] = (
+                        Value(max(rest), None, scope)
+                        if rest
+                        else Value(self.value(d, f.scope), d, f.scope)
+                        if d is not None
+                        else Value(COMPUTED)
+                    )
         for p in (a.vararg, a.kwarg):
             if p is not None:
                 bound[p.arg] = Value(COMPUTED)
@@ -400,7 +454,7 @@ class Reader:
         args = {}
         for i, a in enumerate(e.args):
             if isinstance(a, ast.Starred):
-                return                                       # unreadable call: nothing to hold against it
+                return  # unreadable call: nothing to hold against it
             if i < len(sig):
                 args[sig[i]] = a
         for k in e.keywords:
@@ -418,8 +472,10 @@ class Reader:
         elif printed and origin == COMPUTED:
             reasons.append("on_printed=True, but its value is computed: drop on_printed")
         elif printed and origin < DATA:
-            reasons.append(f"on_printed=True, but its value comes from {ORIGIN[origin]}: the paper's numbers are read "
-                           "from data/ (or a paper constant), not typed into the notebook")
+            reasons.append(
+                f"on_printed=True, but its value comes from {ORIGIN[origin]}: the paper's numbers are read "
+                "from data/ (or a paper constant), not typed into the notebook"
+            )
         elif printed and bare(args["value"], scope):
             reasons.append("on_printed=True, but its value is one typed number, not arithmetic on printed numbers")
         reasons += self.cannot_fail(kind, args, scope)
@@ -435,25 +491,30 @@ class Reader:
             found = self.findings.setdefault(key, Finding(self.cell, self.line, name))
             found.reasons += [r for r in reasons if r not in found.reasons]
 
-
     def cannot_fail(self, kind: str, args: dict, scope) -> list[str]:
         """The three patterns of a check that cannot fail whatever navlib computes (module docstring)."""
         reasons = []
         value = Closure(args["value"], scope)
         targets = [Closure(args[k], scope) for k in ("expected", "target", "lower", "upper") if k in args]
         if any(raw.draw_inputs & t.inputs for raw in value.raw_spreads for t in targets):
-            reasons.append("a simulation recovering its own input: the spread of simulated samples against the noise "
-                           "it was given")
+            reasons.append(
+                "a simulation recovering its own input: the spread of simulated samples against the noise it was given"
+            )
         centres = {self.centre(args[k], scope) for k in ("lower", "upper") if k in args}
         if kind == "check_outside" and len(centres) == 1 and None not in centres and "lower" in args and "upper" in args:
-            reasons.append("a disagreement asserted against a band around the project's own assumed number "
-                           "(a parameters-cell constant)")
+            reasons.append(
+                "a disagreement asserted against a band around the project's own assumed number (a parameters-cell constant)"
+            )
         lo, hi = (args.get(k) for k in ("lower", "upper"))
-        if kind == "check_range" and value.share and all(isinstance(b, ast.Constant) for b in (lo, hi)) \
-                and lo.value <= 0 and hi.value >= 1:
+        if (
+            kind == "check_range"
+            and value.share
+            and all(isinstance(b, ast.Constant) for b in (lo, hi))
+            and lo.value <= 0
+            and hi.value >= 1
+        ):
             reasons.append("a band that contains every possible value (a share within [0, 1])")
         return reasons
-
 
     def centre(self, e, scope) -> str | None:
         """The parameters-cell constant a bound is built around (``RTK_SIGMA_DEG - band``), or None."""
@@ -469,13 +530,16 @@ class Closure:
     """What an expression depends on, following names: the names, the typed inputs, the draws and their inputs."""
 
     def __init__(self, e, scope, depth: int = 0):
-        self.inputs: set[str] = set()          # parameters-cell names and typed-data subscripts, as source text
-        self.draw_inputs: set[str] = set()     # ... of them given to a random draw or a sensor simulation
-        self.processing = False                # a navlib computation other than a draw or the truth's geometry
-        self.raw_spreads: list[Closure] = []   # std / var taken of simulated samples with no such computation between
+        self.inputs: set[str] = set()  # parameters-cell names and typed-data subscripts, as source text
+        self.draw_inputs: set[str] = set()  # ... of them given to a random draw or a sensor simulation
+        self.processing = False  # a navlib computation other than a draw or the truth's geometry
+        self.raw_spreads: list[Closure] = []  # std / var taken of simulated samples with no such computation between
         top = strip(e, scope)
-        self.share = (isinstance(top, ast.Call) and (qualname(top.func, scope) or "").endswith(".mean")
-                      and any(isinstance(n, ast.Compare) for a in top.args for n in ast.walk(a)))
+        self.share = (
+            isinstance(top, ast.Call)
+            and (qualname(top.func, scope) or "").endswith(".mean")
+            and any(isinstance(n, ast.Compare) for a in top.args for n in ast.walk(a))
+        )
         self.walk(e, scope, depth, in_draw=False)
 
     def walk(self, e, scope, depth: int, in_draw: bool) -> None:
@@ -485,8 +549,11 @@ class Closure:
             path = qualname(e.func, scope) or ""
             last = e.func.attr if isinstance(e.func, ast.Attribute) else path.rpartition(".")[2]
             if last in SPREADS:
-                operand = Closure(e.func.value if isinstance(e.func, ast.Attribute) and not path else
-                                  (e.args[0] if e.args else None), scope, depth + 1)
+                operand = Closure(
+                    e.func.value if isinstance(e.func, ast.Attribute) and not path else (e.args[0] if e.args else None),
+                    scope,
+                    depth + 1,
+                )
                 if operand.draw_inputs and not operand.processing:
                     self.raw_spreads.append(operand)
             draw = path.startswith(DRAWS) or last in ("normal", "standard_normal")
@@ -511,6 +578,7 @@ class Closure:
 
 
 # -------------------------------------------------------------------------------------------- helpers
+
 
 def base_name(node) -> str | None:
     while isinstance(node, (ast.Subscript, ast.Attribute, ast.Starred)):
@@ -556,11 +624,18 @@ def bare(e, scope, depth: int = 0) -> bool:
         e = strip(e, scope)
         if isinstance(e, ast.UnaryOp):
             e = e.operand
-        elif isinstance(e, ast.Call) and len(e.args) == 1 and (qualname(e.func, scope) or "").startswith(
-                ("navlib.units.", "numpy.abs", "builtins.abs")):
+        elif (
+            isinstance(e, ast.Call)
+            and len(e.args) == 1
+            and (qualname(e.func, scope) or "").startswith(("navlib.units.", "numpy.abs", "builtins.abs"))
+        ):
             e = e.args[0]
-        elif isinstance(e, ast.Call) and isinstance(e.func, ast.Attribute) and e.func.attr in ACCESSORS \
-                and qualname(e.func, scope) is None:
+        elif (
+            isinstance(e, ast.Call)
+            and isinstance(e.func, ast.Attribute)
+            and e.func.attr in ACCESSORS
+            and qualname(e.func, scope) is None
+        ):
             e = e.func.value
         else:
             break
@@ -568,7 +643,8 @@ def bare(e, scope, depth: int = 0) -> bool:
         return qualname(e.func, scope) in LOADERS | PRESETS
     if isinstance(e, ast.Subscript):
         fixed = isinstance(e.slice, ast.Constant) or (
-            isinstance(e.slice, ast.Tuple) and all(isinstance(x, ast.Constant) for x in e.slice.elts))
+            isinstance(e.slice, ast.Tuple) and all(isinstance(x, ast.Constant) for x in e.slice.elts)
+        )
         return fixed and bare(e.value, scope, depth)
     if isinstance(e, ast.Attribute):
         return qualname(e, scope) is not None or bare(e.value, scope, depth)
@@ -598,8 +674,12 @@ def strip(e, scope):
     while True:
         if isinstance(e, ast.Call) and e.args and qualname(e.func, scope) in ROUNDERS:
             e = e.args[0]
-        elif (isinstance(e, ast.Call) and isinstance(e.func, ast.Attribute) and e.func.attr in ROUNDING_METHODS
-              and qualname(e.func, scope) is None):
+        elif (
+            isinstance(e, ast.Call)
+            and isinstance(e.func, ast.Attribute)
+            and e.func.attr in ROUNDING_METHODS
+            and qualname(e.func, scope) is None
+        ):
             e = e.func.value
         elif isinstance(e, ast.JoinedStr) and len(e.values) == 1 and isinstance(e.values[0], ast.FormattedValue):
             e = e.values[0].value
@@ -635,8 +715,11 @@ def name_pattern(e, scope) -> str:
 
 def cells_of(path: Path) -> list[tuple[int, str, bool]]:
     nb = json.loads(path.read_text(encoding="utf-8"))
-    return [(i, "".join(c["source"]), "parameters" in c.get("metadata", {}).get("tags", []))
-            for i, c in enumerate(nb["cells"]) if c["cell_type"] == "code"]
+    return [
+        (i, "".join(c["source"]), "parameters" in c.get("metadata", {}).get("tags", []))
+        for i, c in enumerate(nb["cells"])
+        if c["cell_type"] == "code"
+    ]
 
 
 def read_notebook(path: Path) -> tuple[list[Finding], int]:
@@ -650,6 +733,7 @@ def unexplained(stem: str, found: list[Finding]) -> list[Finding]:
 
 
 # ---------------------------------------------------------------------------------------------- tests
+
 
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=[p.stem for p in NOTEBOOKS])
 def test_every_check_value_is_computed(path):
@@ -676,9 +760,11 @@ def test_allowed_entries_are_used_and_explained():
 
 
 def findings(*cells: str, parameters: int | None = None) -> list[Finding]:
-    head = "from navlib import repro, units, sensors, earth, attitude\n" \
-           "from navlib.repro import check, check_range, check_outside, check_study\n" \
-           "import numpy as np\nimport pandas as pd\n"
+    head = (
+        "from navlib import repro, units, sensors, earth, attitude\n"
+        "from navlib.repro import check, check_range, check_outside, check_study\n"
+        "import numpy as np\nimport pandas as pd\n"
+    )
     code = [(0, head, False)] + [(i + 1, src, i == parameters) for i, src in enumerate(cells)]
     return Reader().read(code)
 
@@ -694,17 +780,17 @@ BAD = {
     "literal through names": "b_up = 0.01 * 9.80665\ncheck('X', 0.5 * b_up * 100 ** 2, 490.0, 1.0, 'src')",
     "injected drift": "drift = DRIFT_DEG_S * (T_END - T_START)\ncheck('X-DRIFT', drift, -90.0, 2.0, 'src')",
     "injected drift, slope of the input": "t = np.arange(0, 1000, 0.1)\n"
-                                          "check('X-DRIFT/slope', np.polyfit(t, DRIFT_DEG_S * t, 1)[0], 0.09, 0.01, 's')",
+    "check('X-DRIFT/slope', np.polyfit(t, DRIFT_DEG_S * t, 1)[0], 0.09, 0.01, 's')",
     "typed table value": "t1 = pd.read_csv('../data/p000_table1.csv')\ncheck('P000-TAB1', t1.loc[0, 'err'], 4.77, 0.01, 's')",
     "preset value": "model = sensors.imu_model('MTi-100')\n"
-                    "check('P001-TAB1-NOISE', units.to_deg_per_s(model.gyro.noise_density), 0.01, 1e-15, 's')",
+    "check('P001-TAB1-NOISE', units.to_deg_per_s(model.gyro.noise_density), 0.01, 1e-15, 's')",
     "paper constant": "import navlib.papers.gauss_kruger_ekf as gk\nV = pd.read_csv('../data/v.csv')\n"
-                      "Q = np.diag(V[['a', 'b']].to_numpy())\ncheck('QR/Q', np.abs(Q - gk.Q_PAPER).max(), 0, 0, 's')",
+    "Q = np.diag(V[['a', 'b']].to_numpy())\ncheck('QR/Q', np.abs(Q - gk.Q_PAPER).max(), 0, 0, 's')",
     "alias": "chk = repro.check\nchk('X', 1.0, 1.0, 0.0, 's')",
     "imported alias": "from navlib.repro import check_range as within\nwithin('X', 3.0, 's', upper=5.0)",
     "module alias": "import navlib.repro as rp\nrp.check_outside('X', 7.0, 's', upper=5.0)",
     "helper passing through": "def close(name, v, t):\n    return check(name, v, t, 0.1, 'src')\n"
-                              "close('X', DRIFT_DEG_S * 2, 0.18)",
+    "close('X', DRIFT_DEG_S * 2, 0.18)",
     "helper, f-string name": "def row(k, v):\n    check(f'X/{k}', v, 1.0, 0.1, 's')\nfor k in range(3):\n    row(k, 1.0 + k)",
     "lambda": "f = lambda v: check('X', v, 1.0, 0.1, 's')\nf(DRIFT_DEG_S)",
     "loop over literals": "for k, v in enumerate([1.0, 2.0]):\n    check(f'X/{k}', v, 1.5, 1.0, 's')",
@@ -714,22 +800,22 @@ BAD = {
     "printed, but literals": "check('X', 0.5 * 0.01 * 9.80665 * 100 ** 2, 490.0, 1.0, 's', on_printed=True)",
     "printed, but parameters": "check('X', DRIFT_DEG_S * (T_END - T_START), 90.0, 1.0, 's', on_printed=True)",
     "printed, one typed number": "t1 = pd.read_csv('../data/p000_table1.csv')\n"
-                                 "check('X', units.deg(t1.loc[0, 'err']), 0.08, 0.01, 's', on_printed=True)",
+    "check('X', units.deg(t1.loc[0, 'err']), 0.08, 0.01, 's', on_printed=True)",
     "printed, one preset value": "m = sensors.imu_model('MTi-100')\n"
-                                 "check('X', units.to_deg_per_h(m.gyro.bias_instability), 10.0, 1e-9, 's', on_printed=True)",
+    "check('X', units.to_deg_per_h(m.gyro.bias_instability), 10.0, 1e-9, 's', on_printed=True)",
     "printed, value is the target": "tab = pd.read_csv('../data/t.csv')\n"
-                                    "check('X', tab.dl.max(), tab.dl.max(), 0, 's', on_printed=True)",
+    "check('X', tab.dl.max(), tab.dl.max(), 0, 's', on_printed=True)",
     # checks that cannot fail whatever navlib computes (issue 35)
     "recovers its injected noise": "rng = np.random.default_rng(1)\ne = rng.normal(0, DRIFT_DEG_S, 1000)\n"
-                                   "check('X', np.std(e), DRIFT_DEG_S, 0.01, 's')",
+    "check('X', np.std(e), DRIFT_DEG_S, 0.01, 's')",
     "recovers it, truth removed": "rng = np.random.default_rng(1)\nm = sensors.simulate_magnetometer(q, B, "
-                                  "sensors.MagnetometerModel(noise=units.gauss(DRIFT_DEG_S)), rng).m_b\n"
-                                  "check('X', (m - attitude.quat_to_dcm(q) @ B).std(), units.gauss(DRIFT_DEG_S), 0.1, 's')",
+    "sensors.MagnetometerModel(noise=units.gauss(DRIFT_DEG_S)), rng).m_b\n"
+    "check('X', (m - attitude.quat_to_dcm(q) @ B).std(), units.gauss(DRIFT_DEG_S), 0.1, 's')",
     "band around an assumption": "v = earth.gravity(0.3)\ncheck_outside('X', v, 's', lower=T_START - 0.1, upper=T_START + 0.1)",
     "band holding every share": "e = earth.gravity(np.linspace(0, 1, 9))\n"
-                                "check_range('X', np.mean(e > 9.8), 's', lower=0, upper=1)",
+    "check_range('X', np.mean(e > 9.8), 's', lower=0, upper=1)",
     "study against its own input": "rng = np.random.default_rng(1)\ne = rng.normal(0, DRIFT_DEG_S, 1000)\n"
-                                   "check_study('X', e.std(), DRIFT_DEG_S, 'nb', 's')",
+    "check_study('X', e.std(), DRIFT_DEG_S, 'nb', 's')",
 }
 PARAMS = "DRIFT_DEG_S = 0.09\nT_START, T_END = 1000.0, 2000.0\n"
 
@@ -744,31 +830,31 @@ GOOD = {
     "navlib computation": "x = earth.gravity(0.5)\ncheck('X', x, 9.78, 0.01, 'paper')",
     "computed against an input": "g = earth.gravity(0.5)\ncheck('X', g * T_END, 9780.0, 10.0, 's')",
     "simulated": "rng = np.random.default_rng(1)\ne = rng.normal(0, DRIFT_DEG_S, 1000)\n"
-                 "check('X', np.mean(e), 0.0, 3 * DRIFT_DEG_S / np.sqrt(1000), 's')",
+    "check('X', np.mean(e), 0.0, 3 * DRIFT_DEG_S / np.sqrt(1000), 's')",
     "noise through an estimator": "from navlib import alignment\nrng = np.random.default_rng(1)\n"
-                                  "e = rng.normal(0, DRIFT_DEG_S, (1000, 3))\n"
-                                  "check('X', np.std(alignment.tilt_heading(e, e)), DRIFT_DEG_S, 0.01, 's')",
+    "e = rng.normal(0, DRIFT_DEG_S, (1000, 3))\n"
+    "check('X', np.std(alignment.tilt_heading(e, e)), DRIFT_DEG_S, 0.01, 's')",
     "recording": "raw = pd.read_csv(repro.root() / 'data' / 'real' / 'walk.csv')\n"
-                 "check_range('X', raw.ax.mean(), 's', upper=1.0)",
+    "check_range('X', raw.ax.mean(), 's', upper=1.0)",
     "helper with computed argument": "def close(name, v, t):\n    return check(name, v, t, 0.1, 'src')\n"
-                                     "close('X', earth.gravity(0.1), 9.78)",
+    "close('X', earth.gravity(0.1), 9.78)",
     "loop over computed": "errs = [earth.gravity(p) for p in (0.1, 0.2)]\nfor k, e in enumerate(errs):\n"
-                          "    check(f'X/{k}', e, 9.78, 0.01, 's')",
+    "    check(f'X/{k}', e, 9.78, 0.01, 's')",
     "count of a computed mask": "e = earth.gravity(np.linspace(0, 1, 9))\ncheck('X', int((e > 10).sum()), 0, 0, 's')",
     "lambda of computed": "rms = lambda e: np.sqrt(np.mean(e ** 2))\nerr = earth.gravity(np.zeros(3)) - 9.78\n"
-                          "check_range('X', rms(err), 's', upper=0.1)",
+    "check_range('X', rms(err), 's', upper=0.1)",
     "third-party reference": "from scipy.spatial.transform import Rotation\n"
-                             "q = Rotation.from_euler('z', DRIFT_DEG_S).as_quat()\ncheck('X', q[3], 1.0, 0.01, 's')",
+    "q = Rotation.from_euler('z', DRIFT_DEG_S).as_quat()\ncheck('X', q[3], 1.0, 0.01, 's')",
     "printed form computed": "x = earth.gravity(0.5)\ncheck('X', x, 9.8, 0.1, 's', paper_value=f'printed {x:.1f}')",
     "rebinding after a computation": "x = 1.0\nx = earth.gravity(x)\ncheck('X', x, 9.8, 0.1, 's')",
     "computed index": "grid = np.arange(0, 360, 10)\nworst = int(np.argmax(earth.gravity(np.radians(grid))))\n"
-                      "check_range('X', grid[worst] % 180, 's', lower=80, upper=100)",
+    "check_range('X', grid[worst] % 180, 's', lower=80, upper=100)",
     "printed columns": "t1 = pd.read_csv('../data/p000_table1.csv')\n"
-                       "check('X', np.abs(t1.single - t1.triad - t1.err).max(), 0.0, 0.015, 's', on_printed=True)",
+    "check('X', np.abs(t1.single - t1.triad - t1.err).max(), 0.0, 0.015, 's', on_printed=True)",
     "printed text against its table": "tab = pd.read_csv('../data/t.csv')\nV = pd.read_csv('../data/v.csv')\n"
-                                      "check('X', tab.dl.max(), V.loc['dl_max', 'value'], 0, 's', on_printed=True)",
+    "check('X', tab.dl.max(), V.loc['dl_max', 'value'], 0, 's', on_printed=True)",
     "published constants": "from navlib import atmosphere\n"
-                           "check('X', atmosphere.T0 / atmosphere.LAPSE, 44330.0, 1.0, 's', on_printed=True)",
+    "check('X', atmosphere.T0 / atmosphere.LAPSE, 44330.0, 1.0, 's', on_printed=True)",
 }
 
 
@@ -779,5 +865,5 @@ def test_computed_values_pass(src):
 
 def test_a_parameter_is_an_input_only_in_the_parameters_cell():
     assert findings("K = 2.0", "check('X', K * 3, 6.0, 0.1, 's')", parameters=0)
-    assert findings("K = 2.0", "check('X', K * 3, 6.0, 0.1, 's')", parameters=None)    # a literal all the same
+    assert findings("K = 2.0", "check('X', K * 3, 6.0, 0.1, 's')", parameters=None)  # a literal all the same
     assert not findings("K = earth.gravity(0.1)", "check('X', K * 3, 29.3, 0.1, 's')", parameters=0)

@@ -1,4 +1,5 @@
 """navlib.datasets (BROAD reader) and navlib.analysis.orientation_errors (BROAD's error measures)."""
+
 from __future__ import annotations
 
 from pathlib import Path
@@ -22,10 +23,10 @@ def test_reads_a_trial_in_si_units(trial):
     assert trial.name == "07_undisturbed_fast_rotation_B"
     assert trial.rate == pytest.approx(2000 / 7)
     assert r.w_ib_b.shape == r.f_b.shape == r.m_b.shape == (r.n, 3) and trial.q_ref.shape == (r.n, 4)
-    still = slice(0, int(trial.rate))                                 # every trial starts at rest
+    still = slice(0, int(trial.rate))  # every trial starts at rest
     assert np.linalg.norm(r.f_b[still].mean(0)) == pytest.approx(9.81, abs=0.1)
-    assert 20 < np.linalg.norm(r.m_b[still].mean(0)) < 70             # uT
-    assert np.abs(r.w_ib_b[still]).max() < np.deg2rad(3)             # rad/s
+    assert 20 < np.linalg.norm(r.m_b[still].mean(0)) < 70  # uT
+    assert np.abs(r.w_ib_b[still]).max() < np.deg2rad(3)  # rad/s
     ok = np.isfinite(trial.q_ref).all(1)
     assert ok.mean() > 0.9 and np.allclose(np.linalg.norm(trial.q_ref[ok], axis=1), 1)
     assert (trial.q_ref[ok, 0] >= 0).all()
@@ -37,7 +38,7 @@ def test_reference_is_navlibs_q_bn(trial):
     """At rest the specific force points up: the reference's up axis seen in the body agrees with it."""
     r, ok = trial.recording, np.isfinite(trial.q_ref).all(1)
     rest = np.flatnonzero(ok & ~trial.movement)[:2000]
-    up_b = attitude.quat_to_dcm(trial.q_ref[rest])[:, 2, :]           # row 3 of C_bn: ENU up in body axes
+    up_b = attitude.quat_to_dcm(trial.q_ref[rest])[:, 2, :]  # row 3 of C_bn: ENU up in body axes
     f_b = r.f_b[rest] / np.linalg.norm(r.f_b[rest], axis=1, keepdims=True)
     angle = np.rad2deg(np.arccos(np.clip(np.sum(up_b * f_b, axis=1), -1, 1)))
     assert np.median(angle) < 2.0
@@ -76,11 +77,11 @@ def test_inclination_is_the_angle_between_up_axes():
     q_ref = _random_q(rng, 400)
     tilt = attitude.rotvec_to_quat(rng.normal(0, 0.05, (400, 3)) * [1, 1, 0])
     q = attitude.quat_mult(tilt, q_ref)
-    up_est = attitude.quat_to_dcm(q)[:, 2, :]                          # ENU up in body axes
+    up_est = attitude.quat_to_dcm(q)[:, 2, :]  # ENU up in body axes
     up_ref = attitude.quat_to_dcm(q_ref)[:, 2, :]
     angle = np.arccos(np.clip(np.sum(up_est * up_ref, axis=1), -1, 1))
     e = analysis.orientation_errors(q, q_ref, remove_heading_offset=False)
-    assert e.inclination == pytest.approx(np.sqrt(np.mean(angle ** 2)), rel=1e-6)
+    assert e.inclination == pytest.approx(np.sqrt(np.mean(angle**2)), rel=1e-6)
 
 
 def test_mask_and_missing_reference():
@@ -109,18 +110,17 @@ def test_drive_reference_frames_agree_with_the_motion(drive):
     heading = attitude.quat_to_euler(drive.ref_q_bn)[:, 0]
     course = np.arctan2(drive.ref_v_n[:, 0], drive.ref_v_n[:, 1])
     assert np.median(np.abs(attitude.wrap_pi(heading - course))) < np.deg2rad(2)
-    q = attitude.quat_normalize(np.stack([np.interp(drive.imu.time, drive.ref_time, drive.ref_q_bn[:, i])
-                                          for i in range(4)], -1))
+    q = attitude.quat_normalize(np.stack([np.interp(drive.imu.time, drive.ref_time, drive.ref_q_bn[:, i]) for i in range(4)], -1))
     f_n = attitude.quat_rotate(q, drive.imu.f_b).mean(0)
-    assert np.rad2deg(np.arctan2(np.hypot(f_n[0], f_n[1]), f_n[2])) < 1.0          # mean tilt of f_n from up
+    assert np.rad2deg(np.arctan2(np.hypot(f_n[0], f_n[1]), f_n[2])) < 1.0  # mean tilt of f_n from up
 
 
 def test_drive_series_agree_with_the_reference(drive):
     assert drive.imu.time[0] == 0 and drive.imu.n == 6256 and 59 < drive.imu.time[-1] < 61
     speed = np.interp(drive.can_time, drive.ref_time, np.linalg.norm(drive.ref_v_n, axis=1))
-    assert np.median(np.abs(drive.can_speed - speed)) < 0.3                        # m/s
+    assert np.median(np.abs(drive.can_speed - speed)) < 0.3  # m/s
     lat = np.interp(drive.gnss_time, drive.ref_time, drive.ref_lla[:, 0])
-    assert np.median(np.abs(np.deg2rad(drive.gnss[:, 0]) - lat)) * 6.4e6 < 5.0    # m north-south
+    assert np.median(np.abs(np.deg2rad(drive.gnss[:, 0]) - lat)) * 6.4e6 < 5.0  # m north-south
     with pytest.raises(FileNotFoundError, match="comma2k19"):
         datasets.read_comma2k19(BROAD)
 

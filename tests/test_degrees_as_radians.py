@@ -3,6 +3,7 @@
 A pitch beyond pi/2, a roll beyond pi or a latitude beyond pi/2 "rad" is almost always a value in degrees;
 these functions used to return plausible-looking numbers for pitch = 45 "rad".
 """
+
 import numpy as np
 import pytest
 
@@ -19,12 +20,12 @@ CASES = [
     (r"lla\[\.\.\., 0\] \(lat\)", lambda: analysis.horizontal_error([45.0, 2.0, 0.0], [0.5, 2.0, 0.0])),
     (r"lla_true\[\.\.\., 0\] \(lat\)", lambda: analysis.horizontal_error([0.5, 2.0, 0.0], [45.0, 2.0, 0.0])),
     # found by tools/fuzz.py (issue 15, item 4): another argument was named, or the call was accepted
-    (r"ypr\[\.\.\., 1\] \(pitch\)", lambda: attitude.ypr_to_hpr([0.0, 45.0, 0.0])),             # was "hpr[..., 1]"
+    (r"ypr\[\.\.\., 1\] \(pitch\)", lambda: attitude.ypr_to_hpr([0.0, 45.0, 0.0])),  # was "hpr[..., 1]"
     ("pitches", lambda: north_finding.stop_and_go([1.0, 2.0], 10.0, 40.0, 5.0, [0.0, 45.0], [0.0, 0.0])),  # was "pitch"
-    ("rolls", lambda: north_finding.stop_and_go([1.0, 2.0], 10.0, 40.0, 5.0, [0.0, 0.0], [0.0, -45.0])),   # was "roll"
+    ("rolls", lambda: north_finding.stop_and_go([1.0, 2.0], 10.0, 40.0, 5.0, [0.0, 0.0], [0.0, -45.0])),  # was "roll"
     (r"hpr0\[\.\.\., 1\] \(pitch\)", lambda: rotation_bias.dwell_attitudes([0.0, 45.0, 0.0], [0, 0, 1.0], 1.5, 2)),
     (r"hpr0\[\.\.\., 1\] \(pitch\)", lambda: rotation_bias.design([0.0, 45.0, 0.0], [0, 0, 1.0], 1.5, 10.0, 0.01, 1e-3)),
-    (r"hpr\[\.\.\., 1\] \(pitch\)", lambda: plots.heading_deg([0.1, 45.0, 0.0])),                 # was accepted
+    (r"hpr\[\.\.\., 1\] \(pitch\)", lambda: plots.heading_deg([0.1, 45.0, 0.0])),  # was accepted
 ]
 
 
@@ -36,4 +37,4 @@ def test_degrees_for_radians_raise_naming_the_argument(arg, call):
 
 def test_radians_at_the_limits_are_accepted():
     assert np.isfinite(alignment.magnetic_heading([1.0, 20.0, -40.0], np.pi / 2 - 1e-9, np.pi))
-    assert np.all(np.isfinite(rotation_bias.eq1_matrix([7.0, -np.pi / 2, -np.pi])))     # heading may be unwrapped
+    assert np.all(np.isfinite(rotation_bias.eq1_matrix([7.0, -np.pi / 2, -np.pi])))  # heading may be unwrapped

@@ -1,4 +1,5 @@
 """Tests of navlib.earth against published reference values in data/reference/."""
+
 import time
 from decimal import Decimal
 
@@ -61,8 +62,15 @@ def test_gravity_vector_and_broadcast():
 # --------------------------------------------------------------------------
 # Geodetic constants
 # --------------------------------------------------------------------------
-CONSTANT_ATTR = {"a": "a", "1/f": "inv_f", "e^2": "e2", "gamma_e": "gamma_e", "gamma_p": "gamma_p",
-                 "omega_ie": "omega", "GM": "GM"}
+CONSTANT_ATTR = {
+    "a": "a",
+    "1/f": "inv_f",
+    "e^2": "e2",
+    "gamma_e": "gamma_e",
+    "gamma_p": "gamma_p",
+    "omega_ie": "omega",
+    "GM": "GM",
+}
 
 
 def constant_of(ellipsoid, name):
@@ -103,7 +111,7 @@ def test_ellipsoid_identities():
     """b = a(1-f), e^2 = f(2-f), and Somigliana k matches TR8350.2."""
     E = earth.WGS84
     assert E.b == pytest.approx(E.a * (1 - E.f), rel=1e-15)
-    assert E.e2 == pytest.approx(2 * E.f - E.f ** 2, rel=1e-14)
+    assert E.e2 == pytest.approx(2 * E.f - E.f**2, rel=1e-14)
     k = E.b * E.gamma_p / (E.a * E.gamma_e) - 1
     assert k == pytest.approx(0.00193185265241, abs=5e-15)
     assert E.m == pytest.approx(0.00344978650684, abs=5e-15)
@@ -141,8 +149,8 @@ def test_radii_equator_and_pole(ellipsoid):
     assert R_M == pytest.approx(E.a * (1 - E.e2), rel=1e-15)
     for lat in (90.0, -90.0):
         R_M, R_N = earth.radii(lat, deg=True, ellipsoid=E)
-        assert R_M == pytest.approx(E.a ** 2 / E.b, rel=1e-14)
-        assert R_N == pytest.approx(E.a ** 2 / E.b, rel=1e-14)
+        assert R_M == pytest.approx(E.a**2 / E.b, rel=1e-14)
+        assert R_N == pytest.approx(E.a**2 / E.b, rel=1e-14)
 
 
 def test_radii_ordering():
@@ -188,8 +196,14 @@ def wmm():
     """The WMM test rows and navlib's field at each (computed once, timed)."""
     rows = read_vectors("wmm_test_values.csv")
     t0 = time.perf_counter()
-    B = np.array([earth.magnetic_field(float(r["lat_deg"]), float(r["lon_deg"]), float(r["height_km"]) * 1e3,
-                                       year=float(r["decimal_year"])) for r in rows])
+    B = np.array(
+        [
+            earth.magnetic_field(
+                float(r["lat_deg"]), float(r["lon_deg"]), float(r["height_km"]) * 1e3, year=float(r["decimal_year"])
+            )
+            for r in rows
+        ]
+    )
     return rows, B, time.perf_counter() - t0
 
 

@@ -1,4 +1,5 @@
 """navlib.faults (fault injection) and navlib.timing (timestamp sanitising)."""
+
 import numpy as np
 import pytest
 
@@ -13,10 +14,10 @@ def test_dropouts_and_gap_mark_exactly_what_they_change():
     x = np.ones((1000, 3))
     y, dropped = faults.dropouts(x, 0.1, rng())
     assert np.array_equal(np.isnan(y).all(axis=1), dropped) and not np.isnan(y[~dropped]).any()
-    assert abs(dropped.mean() - 0.1) < 4 * np.sqrt(0.1 * 0.9 / 1000)     # binomial, 4 sigma
+    assert abs(dropped.mean() - 0.1) < 4 * np.sqrt(0.1 * 0.9 / 1000)  # binomial, 4 sigma
     t = np.arange(1000) * 0.1
     z, gap = faults.gap(x, t, 20.0, 30.0)
-    assert gap.sum() == 300 and np.isnan(z[gap]).all() and x[0, 0] == 1.0   # input untouched
+    assert gap.sum() == 300 and np.isnan(z[gap]).all() and x[0, 0] == 1.0  # input untouched
 
 
 def test_spikes_are_k_sigma():
@@ -60,19 +61,22 @@ def test_saturate():
     np.testing.assert_array_equal(clipped, [True, False])
 
 
-@pytest.mark.parametrize("call, match", [
-    (lambda: faults.dropouts(np.ones(5), 1.5, rng()), "fraction"),
-    (lambda: faults.dropouts(np.ones(5), 0.1, None), "rng"),
-    (lambda: faults.gap(np.ones(5), np.arange(4.0), 0.0, 1.0), "time"),
-    (lambda: faults.spikes(np.ones(5), 0.1, -1.0, rng()), "sigma"),
-    (lambda: faults.position_jumps(np.ones((5, 2)), 0.1, rng()), "lla"),
-    (lambda: faults.irregular_times(1, 0.1, 0.2, rng()), "n"),
-    (lambda: faults.irregular_times(10, 0.1, 1.5, rng()), "jitter"),
-    (lambda: faults.saturate(np.ones(3), 0.0), "full_scale"),
-    (lambda: timing.sanitize([1.0]), "time"),
-    (lambda: timing.sanitize([0.0, 1.0], np.ones(3)), "series"),
-    (lambda: timing.intervals([0.0, 0.0, 1.0]), "time"),
-])
+@pytest.mark.parametrize(
+    "call, match",
+    [
+        (lambda: faults.dropouts(np.ones(5), 1.5, rng()), "fraction"),
+        (lambda: faults.dropouts(np.ones(5), 0.1, None), "rng"),
+        (lambda: faults.gap(np.ones(5), np.arange(4.0), 0.0, 1.0), "time"),
+        (lambda: faults.spikes(np.ones(5), 0.1, -1.0, rng()), "sigma"),
+        (lambda: faults.position_jumps(np.ones((5, 2)), 0.1, rng()), "lla"),
+        (lambda: faults.irregular_times(1, 0.1, 0.2, rng()), "n"),
+        (lambda: faults.irregular_times(10, 0.1, 1.5, rng()), "jitter"),
+        (lambda: faults.saturate(np.ones(3), 0.0), "full_scale"),
+        (lambda: timing.sanitize([1.0]), "time"),
+        (lambda: timing.sanitize([0.0, 1.0], np.ones(3)), "series"),
+        (lambda: timing.intervals([0.0, 0.0, 1.0]), "time"),
+    ],
+)
 def test_bad_input(call, match):
     with pytest.raises(ValueError, match=match):
         call()

@@ -1,5 +1,6 @@
 """The attitude filters (navlib.filters: mahony, quaternion_kf, heading_fusion) and navlib.papers.mimu_mag_rtk
 (paper 003): equations, filters, bad input, and the cross-check against ahrs (AHRS 0.4.0)."""
+
 import os
 import subprocess
 import sys
@@ -21,7 +22,7 @@ from navlib.filters.quaternion_kf import KfNoise
 from navlib.imu import ImuSamples, SensorLimits
 from navlib.papers import mimu_mag_rtk
 
-B_N = earth.magnetic_field(32.03, 118.85, 20.0, 2022.5)        # Nanjing, the paper's site
+B_N = earth.magnetic_field(32.03, 118.85, 20.0, 2022.5)  # Nanjing, the paper's site
 B_REF, DECL, INCL, INTENSITY = obs.magnetic_reference(B_N)
 G = 9.8
 DT = 0.01
@@ -45,18 +46,21 @@ def static_marg(hpr_mag, n, rng, gyro=(0.0, 0.0, 0.0), noise=(1e-3, 0.02, 0.3)):
 
 # --------------------------------------------------------------------------- equations
 
+
 def test_measurement_model_and_jacobian_match_rotation_and_finite_differences():
     _, q = random_quats(500)
     C_nb = np.swapaxes(attitude.quat_to_dcm(q), -1, -2)
     h = qkf.measurement_model(q, B_REF)
-    np.testing.assert_allclose(h[:, :3], C_nb @ [0, 0, 1], atol=1e-15)          # Eq. (4) corrected
-    np.testing.assert_allclose(h[:, 3:], C_nb @ B_REF, atol=1e-15)              # Eq. (6) corrected
+    np.testing.assert_allclose(h[:, :3], C_nb @ [0, 0, 1], atol=1e-15)  # Eq. (4) corrected
+    np.testing.assert_allclose(h[:, 3:], C_nb @ B_REF, atol=1e-15)  # Eq. (6) corrected
     eps = 1e-6
-    num = np.stack([(qkf.measurement_model(q + eps * e, B_REF) - qkf.measurement_model(q - eps * e, B_REF)) / (2 * eps)
-                    for e in np.eye(4)], -1)
-    np.testing.assert_allclose(qkf.measurement_jacobian(q, B_REF), num, atol=1e-8)   # Eq. (20), H44 corrected
+    num = np.stack(
+        [(qkf.measurement_model(q + eps * e, B_REF) - qkf.measurement_model(q - eps * e, B_REF)) / (2 * eps) for e in np.eye(4)],
+        -1,
+    )
+    np.testing.assert_allclose(qkf.measurement_jacobian(q, B_REF), num, atol=1e-8)  # Eq. (20), H44 corrected
     Hq = np.einsum("nij,nj->ni", qkf.measurement_jacobian(q, B_REF), q)
-    np.testing.assert_allclose(Hq, 2 * h, atol=1e-14)                           # why z - Hq is wrong (E003-12)
+    np.testing.assert_allclose(Hq, 2 * h, atol=1e-14)  # why z - Hq is wrong (E003-12)
 
 
 def test_printed_jacobian_differs_only_at_h44():
@@ -82,7 +86,7 @@ def test_tilt_heading_inverts_the_measurement_model(heading, pitch, roll):
     hpr = np.array([heading, pitch, roll])
     q = attitude.euler_to_quat(hpr)
     h = qkf.measurement_model(q, B_REF)
-    back = alignment.tilt_heading(3.7 * h[:3], 42.0 * h[3:])            # any scale: Eqs. (5), (7) normalise
+    back = alignment.tilt_heading(3.7 * h[:3], 42.0 * h[3:])  # any scale: Eqs. (5), (7) normalise
     np.testing.assert_allclose(attitude.wrap_pi(back - hpr), 0, atol=1e-9)
     np.testing.assert_allclose(np.abs(alignment.initial_attitude(h[:3], h[3:]) @ q), 1, atol=1e-12)
 
@@ -96,11 +100,12 @@ def test_printed_eq8_is_a_different_rotation():
 # Bad input to every public callable: its row in tools/fuzz_calls.py, run by tests/test_bad_input.py. Here: what is
 # not bad input.
 
+
 def test_a_nan_rtk_heading_in_a_valid_epoch_is_a_dropout():
     valid = np.ones(100, dtype=bool)
     res = hf.fuse_rtk_heading(np.zeros(100), RtkHeading(np.full(100, np.nan), valid), DT)
     assert int(res.faults["heading", "nan"]) == 100
-    assert np.isnan(res.delta).all() and np.array_equal(res.heading, np.zeros(100))     # uncalibrated throughout
+    assert np.isnan(res.delta).all() and np.array_equal(res.heading, np.zeros(100))  # uncalibrated throughout
 
 
 @pytest.mark.parametrize("filt", [mh.mahony, qkf.quaternion_kf])
@@ -108,17 +113,20 @@ def test_dropouts_are_skipped_and_counted_never_poisoning_the_state(filt):
     rng = np.random.default_rng(1)
     hpr = np.array([1.0, 0.1, -0.2])
     w, f, m = static_marg(hpr, 3000, rng)
-    w[100:110] = np.nan                      # gyro dropout: last valid sample held
-    f[200:205] = np.nan                      # accelerometer dropout
-    f[300] = 0.0                             # zero vector
-    m[400:420] = np.nan                      # magnetometer dropout
+    w[100:110] = np.nan  # gyro dropout: last valid sample held
+    f[200:205] = np.nan  # accelerometer dropout
+    f[300] = 0.0  # zero vector
+    m[400:420] = np.nan  # magnetometer dropout
     m[500] = np.inf
     m[600] = 0.0
-    m[700] = f[700]                          # magnetometer parallel to gravity
+    m[700] = f[700]  # magnetometer parallel to gravity
     out = filt(ImuSamples(w, f, DT), attitude.euler_to_quat(hpr), m_b=m, B_n=B_N)
     assert np.isfinite(out.q_bn).all()
-    assert {k: int(v) for k, v in out.faults.counts.items() if v} == {   # every other count 0
-        ("gyro", "nan"): 10, ("accel", "nan"): 6, ("mag", "nan"): 20 + 3}
+    assert {k: int(v) for k, v in out.faults.counts.items() if v} == {  # every other count 0
+        ("gyro", "nan"): 10,
+        ("accel", "nan"): 6,
+        ("mag", "nan"): 20 + 3,
+    }
     assert abs(attitude.wrap_pi(out.hpr[-1, 0] - hpr[0])) < units.deg(1.0)
 
 
@@ -126,13 +134,15 @@ def test_magnetic_gate_skips_disturbed_samples_and_counts_them():
     rng = np.random.default_rng(2)
     hpr = np.array([0.3, 0.0, 0.0])
     w, f, m = static_marg(hpr, 2000, rng)
-    m[1000:1200] += [10.0, 0.0, -15.0]       # 0.18 G disturbance for 2 s: changes norm and dip
+    m[1000:1200] += [10.0, 0.0, -15.0]  # 0.18 G disturbance for 2 s: changes norm and dip
     q0 = attitude.euler_to_quat(hpr)
     plain = mh.mahony(ImuSamples(w, f, DT), q0, m_b=m)
-    gated = mh.mahony(ImuSamples(w, f, DT), q0, m_b=m, B_n=B_N,
-                      gates=AttitudeGates(mag=MagGate(norm_tol=0.1, dip_tol=units.deg(3.0))))
+    gated = mh.mahony(
+        ImuSamples(w, f, DT), q0, m_b=m, B_n=B_N, gates=AttitudeGates(mag=MagGate(norm_tol=0.1, dip_tol=units.deg(3.0)))
+    )
     assert int(plain.faults["mag", "outlier"]) == 0
-    assert 195 <= int(gated.faults["mag", "outlier"]) <= 210    # the disturbance, plus a few noisy samples
+    assert 195 <= int(gated.faults["mag", "outlier"]) <= 210  # the disturbance, plus a few noisy samples
+
     def err(r):
         return np.abs(attitude.wrap_pi(r.hpr[1000:1300, 0] - hpr[0])).max()
 
@@ -149,6 +159,7 @@ def test_accelerometer_gate_counts():
 
 # --------------------------------------------------------------------------- filter behaviour
 
+
 def test_mahony_converges_and_learns_gyro_bias():
     rng = np.random.default_rng(4)
     hpr = np.array([2.0, 0.05, 0.1])
@@ -163,9 +174,9 @@ def test_mahony_converges_and_learns_gyro_bias():
 def test_printed_eq2_arctan_loses_the_quadrant_and_the_unclipped_arcsin_fails_at_90_deg():
     hpr, q = random_quats(500)
     out = mimu_mag_rtk.printed_eq2_arctan(q)
-    np.testing.assert_allclose(out[:, 1], hpr[:, 1], atol=1e-12)                         # pitch below 90 deg: fine
+    np.testing.assert_allclose(out[:, 1], hpr[:, 1], atol=1e-12)  # pitch below 90 deg: fine
     same = np.abs(attitude.wrap_pi(out[:, [0, 2]] - hpr[:, [0, 2]]))
-    assert np.all((same < 1e-9) | (np.abs(same - np.pi) < 1e-9))                        # right, or off by 180 deg
+    assert np.all((same < 1e-9) | (np.abs(same - np.pi) < 1e-9))  # right, or off by 180 deg
     assert same.max() > 3.0 and np.abs(out[:, [0, 2]]).max() <= np.pi / 2
     lock = attitude.euler_to_quat(np.stack([hpr[:, 0], np.full(500, np.pi / 2), hpr[:, 2]], -1))
     assert np.isnan(mimu_mag_rtk.printed_eq2_arctan(lock)[:, 1]).any()
@@ -177,7 +188,7 @@ def test_printed_eq6_differs_only_in_row_3():
     d = mimu_mag_rtk.printed_eq6(q, B_REF) - qkf.measurement_model(q, B_REF)[:, 3:]
     assert np.abs(d[:, :2]).max() < 1e-14
     q0, q1, q2, q3 = q.T
-    np.testing.assert_allclose(d[:, 2], 2 * (q2 ** 2 - q3 ** 2) * B_REF[2], atol=1e-14)
+    np.testing.assert_allclose(d[:, 2], 2 * (q2**2 - q3**2) * B_REF[2], atol=1e-14)
 
 
 def test_printed_mahony_order_is_the_corrected_correction_reversed_and_diverges():
@@ -191,7 +202,7 @@ def test_printed_mahony_order_is_the_corrected_correction_reversed_and_diverges(
     assert np.abs(good - q0).max() > 1e-4
     run = mimu_mag_rtk.printed_eq12_mahony(w, f, m, DT, q0, kp=1.0, ki=0.02)
     err = np.linalg.norm(attitude.quat_to_rotvec(attitude.quat_mult(attitude.quat_conj(attitude.euler_to_quat(hpr)), run[-1])))
-    assert units.to_deg(err) > 45.0                                                       # driven away
+    assert units.to_deg(err) > 45.0  # driven away
 
 
 def test_kf_innovation_z_minus_h_converges_z_minus_Hq_stalls():
@@ -248,9 +259,10 @@ def test_batch_outputs_equal_the_per_trial_outputs_bit_for_bit():
         assert batch.faults["gyro", "stuck"][2] > 0 and batch.faults["gyro", "nan"][1] == 5
         for i in range(len(w)):
             single = filt(ImuSamples(w[i], f[i], dts, limits), q0[i], m_b=m[i], **kw)
-            one = lambda a, i=i: a[i] if np.ndim(a) else a          # noqa: E731 (the trial's row of a batch output)
-            faults = type(batch.faults)({k: one(v) for k, v in batch.faults.counts.items()},
-                                        {k: v[i] for k, v in batch.faults.flags.items()})
+            one = lambda a, i=i: a[i] if np.ndim(a) else a  # noqa: E731 (the trial's row of a batch output)
+            faults = type(batch.faults)(
+                {k: one(v) for k, v in batch.faults.counts.items()}, {k: v[i] for k, v in batch.faults.flags.items()}
+            )
             part = type(batch)(one(batch.q_bn), one(batch.gyro_bias), faults, None if batch.P is None else one(batch.P))
             assert _outputs(part) == _outputs(single), (filt.__name__, i)
 
@@ -286,6 +298,7 @@ def test_batch_results_do_not_depend_on_the_number_of_threads():
 
 # --------------------------------------------------------------------------- the fixed-size KF == the generic KF
 
+
 @njit
 def _blas_products(A, B, S):
     return A @ B, np.linalg.inv(S)
@@ -296,8 +309,17 @@ def _emulated_blas():
     rng = np.random.default_rng(0)
     A, B = rng.standard_normal((2, 4, 4))
     AB = _blas_products(A, B, np.eye(2))[0]
-    chain = [[_kernels.fma(A[i, 3], B[3, j], _kernels.fma(A[i, 2], B[2, j], _kernels.fma(
-        A[i, 1], B[1, j], _kernels.fma(A[i, 0], B[0, j], 0.0)))) for j in range(4)] for i in range(4)]
+    chain = [
+        [
+            _kernels.fma(
+                A[i, 3],
+                B[3, j],
+                _kernels.fma(A[i, 2], B[2, j], _kernels.fma(A[i, 1], B[1, j], _kernels.fma(A[i, 0], B[0, j], 0.0))),
+            )
+            for j in range(4)
+        ]
+        for i in range(4)
+    ]
     return np.array_equal(AB, chain)
 
 
@@ -326,18 +348,18 @@ def _fma_compiled(a, b, c):
 def test_fma_rounds_once_compiled_and_uncompiled():
     rng = np.random.default_rng(30)
     a, b = rng.standard_normal((2, 2000)) * 10.0 ** rng.integers(-5, 5, (2, 2000))
-    c = -a * b * (1 + 1e-12 * rng.standard_normal(2000))          # near-cancellation: a*b + c differs from fma
+    c = -a * b * (1 + 1e-12 * rng.standard_normal(2000))  # near-cancellation: a*b + c differs from fma
     plain = np.array([_kernels.fma(x, y, z) for x, y, z in zip(a, b, c, strict=True)])
     np.testing.assert_array_equal(_fma_compiled(a, b, c), plain)
     assert np.mean(plain != a * b + c) > 0.5
-    assert _kernels.fma(0.1, 10.0, -1.0) == 5.551115123125783e-17      # exact 0.1 * 10 - 1, rounded once
+    assert _kernels.fma(0.1, 10.0, -1.0) == 5.551115123125783e-17  # exact 0.1 * 10 - 1, rounded once
     assert np.isnan(_kernels.fma(np.inf, 0.0, 1.0)) and _kernels.fma(-0.0, 1.0, -0.0) == 0.0
 
 
 @pytest.mark.skipif(not _emulated_getri(), reason="numpy's getri is not the OpenBLAS kernel lu_inverse follows")
 def test_the_fixed_size_inverse_is_numpys_bit_for_bit():
     rng = np.random.default_rng(31)
-    for n in range(1, 10):                                       # the inverse: numpy.linalg.inv (getrf + getri)
+    for n in range(1, 10):  # the inverse: numpy.linalg.inv (getrf + getri)
         for _ in range(200):
             A = rng.standard_normal((n, n)) * 10.0 ** rng.uniform(-3, 3)
             S = A @ A.T + np.diag(rng.uniform(1e-4, 1e-2, n)) if _ % 2 else A
@@ -352,7 +374,7 @@ def test_fixed_size_kalman_steps_are_the_generic_steps_bit_for_bit():
     rng, same_inverse = np.random.default_rng(31), _emulated_getri()
     ws = qkf._workspace()
     R = np.diag([4e-4] * 3 + [6.4e-3] * 3)
-    for trial in range(3000):                                    # the steps: navlib._kernels' generic ones
+    for trial in range(3000):  # the steps: navlib._kernels' generic ones
         hpr, x = random_quats(1, seed=trial)
         x, w = x[0], 0.5 * rng.standard_normal(3)
         Phi, G = qkf.transition(w, DT), qkf.noise_input(x, DT)
@@ -364,11 +386,11 @@ def test_fixed_size_kalman_steps_are_the_generic_steps_bit_for_bit():
         assert x1.tobytes() == x2.tobytes() and P1.tobytes() == P2.tobytes()
         h, H = qkf.measurement_model(x1, B_REF), qkf.measurement_jacobian(x1, B_REF)
         z = h + 0.05 * rng.standard_normal(6)
-        if trial % 3 < 2:                                        # gravity or heading rows missing, or none
-            z[3 * (trial % 3):3 * (trial % 3) + 3] = np.nan
+        if trial % 3 < 2:  # gravity or heading rows missing, or none
+            z[3 * (trial % 3) : 3 * (trial % 3) + 3] = np.nan
         x3, P3, _, _, _ = _kernels.kalman_update(x1, P1, z, h, H, R, np.zeros(6, dtype=bool))
         qkf._update(x2, P2, z, h, H, np.diag(R).copy(), ws)
-        if same_inverse:                                         # the update inverts S as numpy does
+        if same_inverse:  # the update inverts S as numpy does
             assert x3.tobytes() == x2.tobytes() and P3.tobytes() == P2.tobytes()
         else:
             np.testing.assert_allclose(x2, x3, rtol=1e-12, atol=1e-15)
@@ -377,10 +399,11 @@ def test_fixed_size_kalman_steps_are_the_generic_steps_bit_for_bit():
 
 def test_rtk_mode_ignores_the_value_of_invalid_epochs_and_drifts_without_bias_estimation():
     n = 20_000
-    w, f, _ = static_marg([np.pi / 2, 0, 0], n, np.random.default_rng(7), gyro=units.deg_per_s([0, 0, 0.09]),
-                          noise=(0.0, 0.0, 0.0))
+    w, f, _ = static_marg(
+        [np.pi / 2, 0, 0], n, np.random.default_rng(7), gyro=units.deg_per_s([0, 0, 0.09]), noise=(0.0, 0.0, 0.0)
+    )
     valid = np.zeros(n, dtype=bool)
-    valid[:10_000:20] = True                                       # 5 Hz RTK, lost after 100 s
+    valid[:10_000:20] = True  # 5 Hz RTK, lost after 100 s
     q0 = attitude.euler_to_quat([np.pi / 2, 0, 0])
     zeros = mh.mahony(ImuSamples(w, f, DT), q0, rtk=RtkHeading(np.where(valid, np.pi / 2, 0.0), valid), ki=0.0)
     nans = mh.mahony(ImuSamples(w, f, DT), q0, rtk=RtkHeading(np.where(valid, np.pi / 2, np.nan), valid), ki=0.0)
@@ -397,13 +420,13 @@ def test_fusion_outputs_rtk_when_valid_holds_delta_in_outages():
     valid[1000:3000:20] = True
     res = hf.fuse_rtk_heading(h_mag, RtkHeading(np.where(valid, h_rtk, 0.0), valid), DT)
     fused, delta = res.heading, res.delta
-    assert np.isnan(delta).sum() == 1000 and np.isnan(delta[:1000]).all()      # uncalibrated before the first epoch
+    assert np.isnan(delta).sum() == 1000 and np.isnan(delta[:1000]).all()  # uncalibrated before the first epoch
     np.testing.assert_array_equal(fused[:1000], h_mag[:1000])
     np.testing.assert_allclose(fused[1000:3000], 1.1, atol=1e-12)
     np.testing.assert_allclose(delta[3000:], 0.1, atol=1e-12)
-    np.testing.assert_allclose(fused[3100:], 1.1, atol=1e-12)      # H_mag + held delta
+    np.testing.assert_allclose(fused[3100:], 1.1, atol=1e-12)  # H_mag + held delta
     every = np.zeros(n, dtype=bool)
-    every[1000::20] = True                                          # the paper's 0 fused as a value: wrong
+    every[1000::20] = True  # the paper's 0 fused as a value: wrong
     as_value = hf.fuse_rtk_heading(h_mag, RtkHeading(np.where(valid, h_rtk, 0.0), every), DT).heading
     assert np.abs(as_value[3100:]).max() < 0.01
 
@@ -418,6 +441,7 @@ def test_settling_time():
 
 
 # --------------------------------------------------------------------------- cross-check
+
 
 def test_mahony_matches_ahrs_package_to_rounding():
     """ahrs 0.4.0 Mahony.updateMARG: ENU (mag reference [0, |h_xy|, h_z]), q = body->nav (h = R m),
@@ -482,7 +506,7 @@ def test_kernels_run_uncompiled_with_the_same_results():
         np.testing.assert_allclose(plain[key], jit[key], rtol=0, atol=1e-12)
     for key in ("c", "cr", "cf"):
         assert plain[key] == jit[key]
-    cr, cf = jit["cr"], jit["cf"]                   # every robustness path was taken
+    cr, cf = jit["cr"], jit["cf"]  # every robustness path was taken
     assert cr["gyro.spike"][1] >= 1 and cr["accel.saturated"][0] == 1 and min(cr["gyro.saturated"]) > 0
     assert min(cr["heading.outlier"]) >= 1 and cr["heading.nan"] == [1, 1] and min(cr["heading.reacquired"]) >= 1
     assert min(cf["heading.outlier"]) >= 1 and cf["heading.nan"] == [1, 1] and min(cf["heading.reacquired"]) >= 1
@@ -501,8 +525,7 @@ def test_scalar_dt_and_a_constant_dt_array_give_identical_results():
 def test_kf_returns_a_symmetric_positive_definite_covariance():
     rng = np.random.default_rng(10)
     w, f, m = static_marg([0.7, 0.05, -0.1], 2000, rng)
-    out = qkf.quaternion_kf(ImuSamples(w, f, DT), attitude.euler_to_quat([0.7, 0.05, -0.1]), m_b=m, B_n=B_N,
-                            keep_cov=True)
+    out = qkf.quaternion_kf(ImuSamples(w, f, DT), attitude.euler_to_quat([0.7, 0.05, -0.1]), m_b=m, B_n=B_N, keep_cov=True)
     P = out.P_history
     assert P.shape == (2000, 4, 4) and np.array_equal(out.P, P[-1])
     assert np.array_equal(P, np.swapaxes(P, -1, -2)) and np.linalg.eigvalsh(P).min() > 0
@@ -511,29 +534,35 @@ def test_kf_returns_a_symmetric_positive_definite_covariance():
 
 # --------------------------------------------------------------------------- gyro + accelerometer only
 
-@pytest.mark.parametrize("run", [
-    lambda w, f, q0: mh.mahony(ImuSamples(w, f, DT), q0, kp=2.0),
-    lambda w, f, q0: qkf.quaternion_kf(ImuSamples(w, f, DT), q0, kp=2.0),
-], ids=["mahony", "quaternion_kf"])
+
+@pytest.mark.parametrize(
+    "run",
+    [
+        lambda w, f, q0: mh.mahony(ImuSamples(w, f, DT), q0, kp=2.0),
+        lambda w, f, q0: qkf.quaternion_kf(ImuSamples(w, f, DT), q0, kp=2.0),
+    ],
+    ids=["mahony", "quaternion_kf"],
+)
 def test_without_a_heading_reference_tilt_converges_and_heading_drifts_with_the_bias(run):
     rng = np.random.default_rng(7)
     hpr = units.deg([40.0, 8.0, -5.0])
-    bias_z = units.deg(0.5)                                   # deg/s about the body z axis
+    bias_z = units.deg(0.5)  # deg/s about the body z axis
     w, f, _ = static_marg(hpr, 3000, rng, gyro=(0.0, 0.0, bias_z))
-    q0 = attitude.euler_to_quat(units.deg([40.0, 0.0, 0.0]))   # level start: 9.4 deg of tilt error
+    q0 = attitude.euler_to_quat(units.deg([40.0, 0.0, 0.0]))  # level start: 9.4 deg of tilt error
     res = run(w, f, q0)
     est = attitude.quat_to_euler(res.q_bn[-1])
     tilt = np.hypot(attitude.wrap_pi(est[1] - hpr[1]), attitude.wrap_pi(est[2] - hpr[2]))
-    assert units.to_deg(tilt) < 0.3                          # levelled by the accelerometer alone
+    assert units.to_deg(tilt) < 0.3  # levelled by the accelerometer alone
     # heading: no reference, so it integrates the z bias (about 0.5 deg/s * 30 s, projected on the vertical)
     drift = units.to_deg(attitude.wrap_pi(est[0] - hpr[0]))
     assert 10.0 < abs(drift) < 20.0
-    assert not res.faults                                      # nothing skipped: there was nothing to read
+    assert not res.faults  # nothing skipped: there was nothing to read
 
 
 @pytest.mark.parametrize("n", [0, 1, 7, 32, 1000])
 def test_run_chunks_covers_the_range_in_order(n):
     from navlib._threads import run_chunks
+
     chunks = run_chunks(lambda i0, i1: (i0, i1), n)
     assert chunks[0][0] == 0 and chunks[-1][1] == n
     assert all(a[1] == b[0] and a[0] < a[1] for a, b in zip(chunks, chunks[1:], strict=False))

@@ -1,4 +1,5 @@
 """navlib.filters.inertial_lowpass on synthetic motion with known truth (the real-data comparison is notebook 07)."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -9,7 +10,7 @@ from navlib.filters.inertial_lowpass import InertialLowpassSettings, inertial_lo
 from navlib.imu import ImuSamples
 
 DT, G = 0.01, 9.81
-B_N = np.array([0.0, 20.0, -40.0])                         # uT, ENU: north and down
+B_N = np.array([0.0, 20.0, -40.0])  # uT, ENU: north and down
 HPR = np.deg2rad([70.0, -10.0, 20.0])
 
 
@@ -30,8 +31,8 @@ def test_starts_at_the_right_attitude_and_learns_the_bias_at_rest():
     bias = np.deg2rad([0.3, -0.2, 0.4])
     w, f, m, q_true = _static(3000, bias)
     res = inertial_lowpass(ImuSamples(w, f, DT), m)
-    assert _angle(res.q_bn[10:20], q_true) < 0.5                          # automatic initial attitude, 9D
-    assert np.abs(np.rad2deg(res.gyro_bias - bias)).max() < 0.03          # deg/s, a tenth of the bias
+    assert _angle(res.q_bn[10:20], q_true) < 0.5  # automatic initial attitude, 9D
+    assert np.abs(np.rad2deg(res.gyro_bias - bias)).max() < 0.03  # deg/s, a tenth of the bias
     assert res.faults.flags["imu", "rest"][500:].all()
     assert res.faults["mag", "rejected"] == 0
 
@@ -61,7 +62,7 @@ def test_a_disturbed_field_is_rejected_and_reported():
     n = 4000
     w, f, m, q_true = _static(n)
     disturbed = (np.arange(n) >= 2000) & (np.arange(n) < 3000)
-    m[disturbed] += [25.0, -10.0, 0.0]                                     # a magnet near the sensor: 10 s
+    m[disturbed] += [25.0, -10.0, 0.0]  # a magnet near the sensor: 10 s
     res = inertial_lowpass(ImuSamples(w, f, DT), m)
     rejected = res.faults.flags["mag", "rejected"]
     assert rejected[disturbed].mean() > 0.95 and rejected[:2000].sum() == 0

@@ -6,6 +6,7 @@ algorithm", IEEE ICORR: per sample, ``q_dot = 1/2 q (x) [0, w] - beta grad / |gr
 ``grad = J^T (h(q) - z)`` the gradient of the objective ``|h(q) - z|^2 / 2`` (Eqs. 20-21, 33-34; gravity
 and the field's reference direction in place of his ``d``), then ``q <- normalise(q + q_dot dt)``.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -19,18 +20,19 @@ from navlib.imu import ImuSamples
 # ---------------------------------------------------------------- the filter: 25 lines of algorithm code
 
 
-def madgwick(imu: ImuSamples, q0, *, m_b=None, B_n=None, beta: float = 0.1,
-             gates: AttitudeGates = AttitudeGates()) -> AttitudeResult:
+def madgwick(
+    imu: ImuSamples, q0, *, m_b=None, B_n=None, beta: float = 0.1, gates: AttitudeGates = AttitudeGates()
+) -> AttitudeResult:
     """Madgwick's gradient-descent filter on screened samples; leading axes of ``imu`` are trials."""
     lead, inp, found = observations.pack(imu, q0, m_b, None, B_n, gates, kp=1.0)
     b = observations.magnetic_reference(B_n)[0] if inp.use_mag else np.zeros(3)
     q, (T, N) = inp.q_init.copy(), inp.w.shape[:2]
     q_out = np.empty((T, N, 4))
     for k in range(N):
-        if not inp.jump[k]:                             # a clock jump: nothing integrated over it
+        if not inp.jump[k]:  # a clock jump: nothing integrated over it
             dt = inp.dts[k]
             q_dot = 0.5 * attitude.quat_mult(q, np.concatenate([np.zeros((T, 1)), inp.w[:, k]], -1))
-            z = inp.z[:, k]                             # unit vectors; NaN: skipped (screened or gated)
+            z = inp.z[:, k]  # unit vectors; NaN: skipped (screened or gated)
             used = np.isfinite(z)
             error = np.where(used, measurement_model(q, b) - z, 0.0)
             grad = np.einsum("tij,ti->tj", measurement_jacobian(q, b), error)
@@ -40,6 +42,7 @@ def madgwick(imu: ImuSamples, q0, *, m_b=None, B_n=None, beta: float = 0.1,
             q /= np.linalg.norm(q, axis=-1, keepdims=True)
         q_out[:, k] = q
     return observations.attitude_result(lead, q_out, np.zeros((T, 3)), np.zeros((T, 4), np.int64), found)
+
 
 # ---------------------------------------------------------------- tests
 
@@ -72,7 +75,7 @@ def test_madgwick_converges_from_a_wrong_start_and_tracks_the_motion():
 
 def test_madgwick_skips_screened_samples_and_reports_them():
     q_true, w, f, m, dt = _rotating(20.0)
-    f[500:600] = np.nan                                  # accelerometer dropout: the gyro carries the attitude
+    f[500:600] = np.nan  # accelerometer dropout: the gyro carries the attitude
     w[700:705] = np.nan
     res = madgwick(ImuSamples(w, f, dt), q_true[0], m_b=m, B_n=B_N)
     assert res.faults["accel", "nan"] == 100 and res.faults["gyro", "nan"] == 5

@@ -4,6 +4,7 @@ The filter's numbers under faults are tested in tests/faults/test_faults_pedestr
 the ImuSamples is screened once and not validated again, every public function and kernel takes at most
 12 parameters, every option is documented in its record, and the faults use the per-sensor keys.
 """
+
 from __future__ import annotations
 
 import dataclasses
@@ -20,8 +21,16 @@ from navlib.imu import ImuSamples, SensorLimits
 
 LLA0 = [units.deg(30.55), units.deg(114.30), 20.0]
 DT = 0.01
-RECORDS = (zupt_ins.Start, zupt_ins.Aiding, zupt_ins.ProcessNoise, zupt_ins.MeasurementNoise, zupt_ins.InitialSigma,
-           zupt_ins.Gates, zupt_ins.BaroTracker, zupt_ins.FilterConfig)
+RECORDS = (
+    zupt_ins.Start,
+    zupt_ins.Aiding,
+    zupt_ins.ProcessNoise,
+    zupt_ins.MeasurementNoise,
+    zupt_ins.InitialSigma,
+    zupt_ins.Gates,
+    zupt_ins.BaroTracker,
+    zupt_ins.FilterConfig,
+)
 SENSORS = {"gyro", "accel", "mag", "baro", "clock", "zupt"}
 
 
@@ -37,8 +46,7 @@ def walk():
 
 
 def run(traj, w, f, static, limits=None, **kw):
-    return zupt_ins.run_filter(ImuSamples(w, f, DT, limits or SensorLimits()), zupt_ins.Start(LLA0, traj.q_bn[0]),
-                               static, **kw)
+    return zupt_ins.run_filter(ImuSamples(w, f, DT, limits or SensorLimits()), zupt_ins.Start(LLA0, traj.q_bn[0]), static, **kw)
 
 
 def assert_same(a, b):
@@ -69,13 +77,13 @@ def test_the_samples_are_screened_once_and_not_validated_again(walk, monkeypatch
     monkeypatch.setattr(zupt_ins, "as_array", lambda x, name, **kw: checked.append(name) or real_as_array(x, name, **kw))
     res = zupt_ins.run_filter(imu, start, static, h_baro=np.full(len(w), np.nan))
     assert len(screens) == 1 and checked == ["h_baro"] and res.updated
-    zupt.detect_static(imu)                                 # the detector takes the validated arrays as they are
+    zupt.detect_static(imu)  # the detector takes the validated arrays as they are
 
 
 def test_no_public_function_or_kernel_takes_more_than_12_parameters():
     for module in (zupt_ins, zupt):
         for name, obj in vars(module).items():
-            func = getattr(obj, "py_func", obj)               # a numba kernel's Python function
+            func = getattr(obj, "py_func", obj)  # a numba kernel's Python function
             if inspect.isfunction(func) and func.__module__ == module.__name__:
                 assert len(inspect.signature(func).parameters) <= 12, f"{module.__name__}.{name}"
     for record in RECORDS:
@@ -84,8 +92,7 @@ def test_no_public_function_or_kernel_takes_more_than_12_parameters():
 
 def documented(doc: str) -> set[str]:
     """The names of a numpydoc ``name, other : type`` section's entries."""
-    return {name for line in doc.splitlines() if re.match(r"^\w+(, \w+)* :", line)
-            for name in line.split(" :")[0].split(", ")}
+    return {name for line in doc.splitlines() if re.match(r"^\w+(, \w+)* :", line) for name in line.split(" :")[0].split(", ")}
 
 
 def test_every_option_is_documented_once_in_its_record():
@@ -112,9 +119,9 @@ def test_faults_use_the_per_sensor_keys_and_counts_are_the_flags_sums(walk):
     traj, w, f, static = walk
     w, f = w.copy(), f.copy()
     w[300:305] = np.nan
-    f[800:810] = 0.0                                        # free fall
+    f[800:810] = 0.0  # free fall
     m = np.tile([0.0, 30.0, -40.0], (len(w), 1))
-    m[::2] = np.nan                                         # a compass at half the IMU rate: NaN is no reading
+    m[::2] = np.nan  # a compass at half the IMU rate: NaN is no reading
     res = run(traj, w, f, static, SensorLimits(full_scale_gyro=1.0), m_b=m, h_baro=np.full(len(w), 20.0))
     assert {s for s, _ in res.faults.counts} <= SENSORS and ("mag", "nan") not in res.faults.counts
     for key, mask in res.faults.flags.items():
@@ -128,17 +135,17 @@ def test_faults_use_the_per_sensor_keys_and_counts_are_the_flags_sums(walk):
 def test_a_stuck_gyro_holds_the_gyro_alone_and_a_spike_is_held_exactly_like_a_dropout(walk):
     traj, w, f, static = walk
     stuck = w.copy()
-    stuck[400:420] = 0.3                                     # the gyro latched at 0.3 rad/s
+    stuck[400:420] = 0.3  # the gyro latched at 0.3 rad/s
     res = run(traj, stuck, f, static)
     rows = res.faults.flags["gyro", "stuck"]
     assert np.flatnonzero(rows).tolist() == list(range(400, 420))
     held = stuck.copy()
-    held[rows] = w[399]                                      # the last good reading, the accelerometer used
+    held[rows] = w[399]  # the last good reading, the accelerometer used
     free = run(traj, held, f, static, SensorLimits(stuck_run=None))
-    if static[rows].all():                                   # in a stance: nothing else is done
+    if static[rows].all():  # in a stance: nothing else is done
         assert_same(res, free)
     else:
-        assert not np.array_equal(res.nav.q_bn, free.nav.q_bn)     # outside one: the gyro's uncertainty inflated
+        assert not np.array_equal(res.nav.q_bn, free.nav.q_bn)  # outside one: the gyro's uncertainty inflated
         np.testing.assert_allclose(res.nav.q_bn[-1], free.nav.q_bn[-1], atol=1e-3)
     spiky = w.copy()
     spiky[500, 0] += 1.0

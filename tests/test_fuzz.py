@@ -1,6 +1,7 @@
 """The fuzzing harness tools/fuzz.py stays usable (issue 15, item 4): it runs on a small fixed subset and tells
 the outcome classes apart. The full run is ``make fuzz``; that its registry tools/fuzz_calls.py lists every public
 callable is tests/test_bad_input.py's."""
+
 import json
 import sys
 import time
@@ -13,8 +14,14 @@ TOOLS = Path(__file__).resolve().parents[1] / "tools"
 sys.path.insert(0, str(TOOLS))
 import fuzz  # noqa: E402
 
-SUBSET = ["attitude.quat_to_dcm", "attitude.dcm_to_euler", "kalman.predict", "atmosphere.isa_altitude",
-          "trajectory.Segment", "analysis.settling_time"]
+SUBSET = [
+    "attitude.quat_to_dcm",
+    "attitude.dcm_to_euler",
+    "kalman.predict",
+    "atmosphere.isa_altitude",
+    "trajectory.Segment",
+    "analysis.settling_time",
+]
 
 
 def test_by_design_rules_have_reasons_and_match_real_outcomes():
@@ -60,14 +67,18 @@ def _slow(x):
     time.sleep(30)
 
 
-@pytest.mark.parametrize("func, mutation, outcome", [
-    (_silent, "nan", "silent_nan"),
-    (_silent, "wrong_shape", "silent_accept"),
-    (_clean, "nan", "clean"),
-    (_clean, "wrong_shape", "clean"),
-    (_unnamed, "nan", "unnamed"),
-    (_crashing, "nan", "other_exception"),
-], ids=lambda v: getattr(v, "__name__", v))
+@pytest.mark.parametrize(
+    "func, mutation, outcome",
+    [
+        (_silent, "nan", "silent_nan"),
+        (_silent, "wrong_shape", "silent_accept"),
+        (_clean, "nan", "clean"),
+        (_clean, "wrong_shape", "clean"),
+        (_unnamed, "nan", "unnamed"),
+        (_crashing, "nan", "other_exception"),
+    ],
+    ids=lambda v: getattr(v, "__name__", v),
+)
 def test_outcomes_are_told_apart(func, mutation, outcome):
     call = fuzz.Call(dict(x=np.array([1.0, 2.0, 3.0])))
     baseline = fuzz.leaves(_silent(call.kwargs["x"]))
@@ -85,9 +96,11 @@ def test_a_call_that_does_not_return_is_a_hang_and_the_run_goes_on():
 
 def test_a_float32_variant_that_differs_from_float64_is_reported():
     call = fuzz.Call(dict(x=np.array([0.1, 0.2, 0.3])))
+
     def keeps_dtype(x):
         x = np.asarray(x)
-        return x * x.dtype.type(1.1)              # float32 arithmetic for float32 input
+        return x * x.dtype.type(1.1)  # float32 arithmetic for float32 input
+
     baseline = fuzz.leaves(keeps_dtype(call.kwargs["x"]))
     rec = fuzz.run_case(("t.f", "x", "float32"), {"t.f": call}, {"t.f": keeps_dtype}, {"t.f": baseline})
     assert rec["outcome"] == "differs"

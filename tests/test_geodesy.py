@@ -3,6 +3,7 @@
 The paper's own equations (printed zone number, radii, e^8 arc, sixth-order series) are the companion's:
 tests/test_planar.py. navlib.geodesy defaults to WGS84; CGCS2000 references pass ``ellipsoid=CGCS2000``.
 """
+
 import inspect
 import re
 
@@ -19,8 +20,8 @@ from navlib.papers import gauss_kruger_ekf
 pyproj = pytest.importorskip("pyproj")
 
 ELLIPSOIDS = [earth.CGCS2000, earth.WGS84, earth.KRASSOVSKY]
-M_PER_DEG = 111_320.0           # metres per degree of arc, to express angular errors as distances
-CGCS = dict(ellipsoid=earth.CGCS2000)     # China's datum (EPSG:4490 grids); geodesy defaults to WGS84
+M_PER_DEG = 111_320.0  # metres per degree of arc, to express angular errors as distances
+CGCS = dict(ellipsoid=earth.CGCS2000)  # China's datum (EPSG:4490 grids); geodesy defaults to WGS84
 
 
 def tolerance_m(text):
@@ -30,13 +31,15 @@ def tolerance_m(text):
 
 
 def proj_tmerc(ell, lon0, k0=1.0):
-    return pyproj.Proj(f"+proj=tmerc +a={ell.a} +rf={1 / ell.f!r} +lon_0={lon0} +k={k0} +x_0=0 +y_0=0 "
-                       "+algo=poder_engsager +units=m")
+    return pyproj.Proj(
+        f"+proj=tmerc +a={ell.a} +rf={1 / ell.f!r} +lon_0={lon0} +k={k0} +x_0=0 +y_0=0 +algo=poder_engsager +units=m"
+    )
 
 
 # --------------------------------------------------------------------------
 # PROJ reference vectors
 # --------------------------------------------------------------------------
+
 
 def vector_rows():
     return read_vectors("tmerc_gauss_kruger.csv")
@@ -49,8 +52,15 @@ def test_proj_vectors_within_stated_tolerances():
         ell = earth.Ellipsoid(r["ellps"], float(r["a_m"]), 1 / float(r["rf"]), earth.WGS84.GM, earth.OMEGA_IE)
         k0 = float(r["k_0"])
         fn = float(r["y_0"]) - k0 * geodesy.meridian_arc(float(r["lat_0"]), ell, deg=True)
-        kw = dict(lon0=float(r["lon_0"]), ellipsoid=ell, deg=True, k0=k0, false_easting=float(r["x_0"]),
-                  false_northing=fn, max_offset_deg=60.0)
+        kw = dict(
+            lon0=float(r["lon_0"]),
+            ellipsoid=ell,
+            deg=True,
+            k0=k0,
+            false_easting=float(r["x_0"]),
+            false_northing=fn,
+            max_offset_deg=60.0,
+        )
         tol = tolerance_m(r["tolerance"])
         lon, lat, east, north = (float(r[k]) for k in ("lon_deg", "lat_deg", "x_m", "y_m"))
         if r["direction"] == "forward":
@@ -82,6 +92,7 @@ def test_paper_test_vector_and_epsg_grids():
 # --------------------------------------------------------------------------
 # pyproj cross-check inside zones
 # --------------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("width", [3, 6])
 @pytest.mark.parametrize("ell", ELLIPSOIDS, ids=lambda e: e.name)
@@ -124,9 +135,9 @@ def test_grid_convergence_is_the_grid_bearing_of_true_north():
 # Round trips and the paper's equations
 # --------------------------------------------------------------------------
 
+
 @settings(max_examples=300, deadline=None)
-@given(lat=st.floats(-89.0, 89.0), offset=st.floats(-3.0, 3.0), zn=st.integers(1, 60),
-       ell=st.sampled_from(ELLIPSOIDS))
+@given(lat=st.floats(-89.0, 89.0), offset=st.floats(-3.0, 3.0), zn=st.integers(1, 60), ell=st.sampled_from(ELLIPSOIDS))
 def test_round_trip_inverse_of_forward(lat, offset, zn, ell):
     lon0 = float(geodesy.central_meridian(zn, 6, deg=True))
     lon = lon0 + offset
@@ -143,7 +154,7 @@ def test_zone_numbers_corrected_formula():
     assert geodesy.central_meridian(120, deg=True) == 0
     assert geodesy.zone([117.0, 0.5, -3.0], width=6, deg=True).tolist() == [20, 1, 60]
     assert_allclose(geodesy.central_meridian([20, 60], 6, deg=True), [117, -3])
-    assert geodesy.zone(np.deg2rad(119.2)) == 40                   # radians by default
+    assert geodesy.zone(np.deg2rad(119.2)) == 40  # radians by default
 
 
 def test_per_point_zones_and_prefix():
@@ -170,8 +181,7 @@ def test_meridian_arc_against_quadrature(ell):
 
 def test_default_ellipsoid_is_wgs84():
     """Every ``ellipsoid`` of navlib.geodesy defaults to WGS84 (CGCS2000 differs by 0.1 mm in b)."""
-    defaults = {name: inspect.signature(getattr(geodesy, name)).parameters.get("ellipsoid")
-                for name in geodesy.__all__}
+    defaults = {name: inspect.signature(getattr(geodesy, name)).parameters.get("ellipsoid") for name in geodesy.__all__}
     defaults = {name: p.default for name, p in defaults.items() if p is not None}
     assert len(defaults) == 12 and all(d is earth.WGS84 for d in defaults.values()), defaults
     x, y = geodesy.geodetic2gk(26.06, 119.2, deg=True)
@@ -187,7 +197,7 @@ def test_paper_functions_live_in_the_companion(name):
     assert not hasattr(geodesy, name)
     assert name not in geodesy.__all__ and name in gauss_kruger_ekf.__all__
     with pytest.raises(TypeError):
-        geodesy.meridian_arc(0.45, series="paper")                    # the e^8 series: gauss_kruger_ekf.paper_meridian_arc
+        geodesy.meridian_arc(0.45, series="paper")  # the e^8 series: gauss_kruger_ekf.paper_meridian_arc
 
 
 def test_local_scales_of_any_projection():
@@ -213,6 +223,7 @@ def test_local_scales_of_any_projection():
 # Geodetic <-> ECEF <-> ENU
 # --------------------------------------------------------------------------
 
+
 def test_ecef_matches_pyproj_and_round_trips():
     rng = np.random.default_rng(3)
     lat, lon, h = rng.uniform(-89, 89, 500), rng.uniform(-180, 180, 500), rng.uniform(-100, 9000, 500)
@@ -226,7 +237,7 @@ def test_ecef_matches_pyproj_and_round_trips():
 def test_enu_round_trip_and_axes():
     lat0, lon0, h0 = 26.06, 119.2, 10.0
     e, n, u = geodesy.geodetic2enu(lat0 + 1e-3, lon0, h0, lat0, lon0, h0, deg=True)
-    assert abs(e) < 1e-6 and 100 < n < 120 and abs(u) < 0.01          # a step north is +n
+    assert abs(e) < 1e-6 and 100 < n < 120 and abs(u) < 0.01  # a step north is +n
     e, n, u = geodesy.geodetic2enu(lat0, lon0 + 1e-3, h0, lat0, lon0, h0, deg=True)
     assert e > 90 and abs(n) < 0.01
     enu = np.array([[100.0, -250.0, 3.0], [5e3, 2e3, -40.0]])
@@ -236,8 +247,7 @@ def test_enu_round_trip_and_axes():
 
 
 def test_broadcasting():
-    x, y = geodesy.geodetic2gk(np.array([[20.0], [30.0], [40.0]]), 120 + np.array([-1.0, 0.0, 0.5, 1.0]),
-                               zone=40, deg=True)
+    x, y = geodesy.geodetic2gk(np.array([[20.0], [30.0], [40.0]]), 120 + np.array([-1.0, 0.0, 0.5, 1.0]), zone=40, deg=True)
     assert x.shape == y.shape == (3, 4)
     la, lo = geodesy.gk2geodetic(x, y, zone=40, deg=True)
     assert la.shape == (3, 4)
@@ -263,7 +273,7 @@ def test_gk_is_conformal_and_scale_factor_matches_the_local_scales(lat, offset, 
     h, k, angle = geodesy.local_scales(lat, lon0 + offset, lon0, ell, deg=True)
     assert abs(h / k - 1) < 1e-8 and abs(angle - np.pi / 2) < 1e-8
     kk = geodesy.scale_factor(lat, lon0 + offset, lon0=lon0, ellipsoid=ell, deg=True)
-    assert abs(kk / h - 1) < 1e-8 and kk >= 1 - 1e-12                     # GK: k0 = 1 on the meridian
+    assert abs(kk / h - 1) < 1e-8 and kk >= 1 - 1e-12  # GK: k0 = 1 on the meridian
 
 
 @settings(max_examples=150, deadline=None)
@@ -286,7 +296,7 @@ def test_convergence_is_the_grid_bearing_of_true_north(lat, offset, ell):
     d = 1e-7
     xa, ya = geodesy.geodetic2gk(lat - d, 120.0 + offset, **kw)
     xb, yb = geodesy.geodetic2gk(lat + d, 120.0 + offset, **kw)
-    gamma = np.radians(geodesy.convergence(lat, 120.0 + offset, **kw))           # deg=True: degrees
+    gamma = np.radians(geodesy.convergence(lat, 120.0 + offset, **kw))  # deg=True: degrees
     bearing = np.arctan2(yb - ya, xb - xa)
     assert abs(np.angle(np.exp(1j * (bearing + gamma)))) < 1e-6
 
@@ -302,8 +312,7 @@ def test_every_longitude_lies_in_its_zone(lon, width):
 
 
 @settings(max_examples=200, deadline=None)
-@given(lat=st.floats(-89.9, 89.9), lon=st.floats(-180.0, 180.0), h=st.floats(-500.0, 1e5),
-       ell=st.sampled_from(ELLIPSOIDS))
+@given(lat=st.floats(-89.9, 89.9), lon=st.floats(-180.0, 180.0), h=st.floats(-500.0, 1e5), ell=st.sampled_from(ELLIPSOIDS))
 def test_ecef_round_trip(lat, lon, h, ell):
     """geodetic -> ECEF -> geodetic: 1e-9 deg and 1e-6 m up to 100 km height."""
     la, lo, hh = geodesy.ecef2geodetic(*geodesy.geodetic2ecef(lat, lon, h, ell, deg=True), ell, deg=True)
@@ -312,8 +321,9 @@ def test_ecef_round_trip(lat, lon, h, ell):
 
 
 @settings(max_examples=200, deadline=None)
-@given(lat0=st.floats(-85.0, 85.0), lon0=st.floats(-180.0, 180.0),
-       enu=st.tuples(*[st.floats(-5e4, 5e4)] * 2, st.floats(-1e3, 1e3)))
+@given(
+    lat0=st.floats(-85.0, 85.0), lon0=st.floats(-180.0, 180.0), enu=st.tuples(*[st.floats(-5e4, 5e4)] * 2, st.floats(-1e3, 1e3))
+)
 def test_enu_round_trip_and_isometry(lat0, lon0, enu):
     """ENU -> geodetic -> ENU to 1e-6 m within 50 km; the ENU frame is a rotation: |enu| equals
     the ECEF distance to the origin (1e-6 m)."""

@@ -1,5 +1,6 @@
 """Tests of navlib.papers.rotation_bias (paper 001): equations, closed loops, noise model (bad input: the rows of
 the registry tools/fuzz_calls.py, run by tests/test_bad_input.py)."""
+
 import json
 import os
 import subprocess
@@ -32,6 +33,7 @@ def rig(pitch_deg=30.0, axis=EY, duration=60.0, period=5.0, rotation_time=0.5):
 
 
 # --- Eqs. (1)-(2) ----------------------------------------------------------
+
 
 @given(angles)
 @settings(max_examples=50, deadline=None)
@@ -71,8 +73,9 @@ def test_constant_and_scheduled_bias_compensation():
     w = 0.01 * rng.standard_normal((2, 500, 3))
     b = np.array([[1e-3, -2e-3, 3e-3], [0.0, 1e-3, 0.0]])
     hpr0 = [0.0, 0.2, 0.1]
-    np.testing.assert_allclose(euler.integrate_euler(hpr0, w, DT, bias_b=b), euler.integrate_euler(hpr0, w - b[:, None], DT),
-                               atol=1e-15)
+    np.testing.assert_allclose(
+        euler.integrate_euler(hpr0, w, DT, bias_b=b), euler.integrate_euler(hpr0, w - b[:, None], DT), atol=1e-15
+    )
     # estimate 0 applies from sample 100, estimate 1 (NaN: not available) keeps it, estimate 2 from 300
     sched = np.array([[1e-3, 0, 0], [np.nan] * 3, [0, 2e-3, 0]])
     hpr = euler.integrate_euler(hpr0, w[0], DT, bias_b=sched, bias_from=np.array([100, 200, 300]))
@@ -83,6 +86,7 @@ def test_constant_and_scheduled_bias_compensation():
 
 
 # --- Eqs. (4)-(5), (6)-(9) -------------------------------------------------
+
 
 def test_tilt_round_trip_and_static_specific_force():
     traj = trajectory.static(1.0, DT, [LAT, 0, 0], units.deg([40.0, 25.0, -70.0]))
@@ -124,6 +128,7 @@ def test_dropouts_skip_the_dwell_and_are_counted():
 
 # --- Eqs. (10)-(14) ---------------------------------------------------------
 
+
 def test_rodrigues_matches_scipy_and_eq11_adds_roll():
     u = np.array([1.0, -2.0, 0.5]) / np.linalg.norm([1.0, -2.0, 0.5])
     np.testing.assert_allclose(gb.rodrigues(u, 0.7), Rotation.from_rotvec(0.7 * u).as_matrix(), atol=1e-15)
@@ -137,16 +142,16 @@ def test_rodrigues_matches_scipy_and_eq11_adds_roll():
 def test_noise_free_least_squares_recovers_the_bias(pitch, axis):
     traj, w, f, starts, length, w_ie_b = rig(pitch, np.array(axis))
     res = gb.tilt_residuals(w + B, f, DT, starts, length, w_ie_b)
-    np.testing.assert_allclose(gb.lsq_bias(res.r, res.V), B, atol=1e-13)      # B ~ 5e-5 rad/s
+    np.testing.assert_allclose(gb.lsq_bias(res.r, res.V), B, atol=1e-13)  # B ~ 5e-5 rad/s
     b_run, _ = gb.running_lsq_bias(res.r, res.V)
     np.testing.assert_allclose(b_run[-1], B, atol=1e-13)
-    assert np.isnan(b_run[0]).all()                     # one dwell: not observable yet
+    assert np.isnan(b_run[0]).all()  # one dwell: not observable yet
     assert 1.4 <= analysis.condition_number(res.V) <= 4.0
 
 
 def test_earth_rate_neglected_biases_the_estimate():
     traj, w, f, starts, length, w_ie_b = rig(30.0, duration=120.0)
-    res = gb.tilt_residuals(w + B, f, DT, starts, length)          # w_ie_b not given: Earth rate neglected
+    res = gb.tilt_residuals(w + B, f, DT, starts, length)  # w_ie_b not given: Earth rate neglected
     b_neglect = gb.lsq_bias(res.r, res.V)
     assert units.to_deg_per_h(b_neglect[1]) == pytest.approx(6.305, abs=0.01)
 
@@ -173,15 +178,17 @@ def test_forgetting_tracks_a_step_in_the_bias():
 
 # --- noise model, CRB, Kalman filter -----------------------------------------
 
+
 def test_residual_covariance_matches_monte_carlo():
     traj, w, f, starts, length, w_ie_b = rig(30.0, duration=600.0)
-    model = sensors.imu_model("MTi-100").replace(gyro={"bias": 0.0, "bias_instability": 0.0},
-                                                  accel={"bias": 0.0, "bias_instability": 0.0})
+    model = sensors.imu_model("MTi-100").replace(
+        gyro={"bias": 0.0, "bias_instability": 0.0}, accel={"bias": 0.0, "bias_instability": 0.0}
+    )
     imu = sensors.simulate_imu(w, f, DT, model, np.random.default_rng(3), n_trials=20)
     res = gb.tilt_residuals(imu.w_ib_b, imu.f_b, DT, starts, length, w_ie_b)
     R = gb.residual_covariance(res.tilt[0, :2], length, DT, model.gyro.noise_density, model.accel.noise_density)
     for k in (0, 1):
-        r = res.r[:, k::2].reshape(-1, 2)                  # 2400 dwells at each attitude
+        r = res.r[:, k::2].reshape(-1, 2)  # 2400 dwells at each attitude
         np.testing.assert_allclose(np.cov(r.T), R[k], rtol=0.15, atol=0.15 * np.sqrt(R[k, 0, 0] * R[k, 1, 1]))
 
 
@@ -190,13 +197,13 @@ def test_crb_gyro_only_is_n_over_sqrt_t():
     N, T = units.deg_per_s(0.01), 4.5
     _, crb, V = gb.design([0, 0, 0], EY, np.pi / 2, T, DT, N)
     n = int(round(T / DT))
-    c = np.sqrt(gb.residual_covariance(np.zeros((1, 2)), n, DT, N)[0, 1, 1] / (N ** 2 * T))   # slope-fit factor
+    c = np.sqrt(gb.residual_covariance(np.zeros((1, 2)), n, DT, N)[0, 1, 1] / (N**2 * T))  # slope-fit factor
     assert c == pytest.approx(np.sqrt(6 / 5), rel=0.01)
     np.testing.assert_allclose(np.sqrt(np.diag(crb)), c * N / np.sqrt(T) * np.array([1, 1 / np.sqrt(2), 1]), rtol=1e-9)
     tilt = gb.dwell_attitudes([0, 0, 0], EY, np.pi / 2, 2)[:, [2, 1]]
     R = gb.residual_covariance(tilt, n, DT, N)
-    np.testing.assert_allclose(R, c ** 2 * N ** 2 * T * np.broadcast_to(np.eye(2), (2, 2, 2)), rtol=1e-12)
-    np.testing.assert_allclose(analysis.lsq_covariance(V, R), crb, rtol=1e-9)   # R ∝ I here: OLS is efficient
+    np.testing.assert_allclose(R, c**2 * N**2 * T * np.broadcast_to(np.eye(2), (2, 2, 2)), rtol=1e-12)
+    np.testing.assert_allclose(analysis.lsq_covariance(V, R), crb, rtol=1e-9)  # R ∝ I here: OLS is efficient
 
 
 def test_kalman_filter_converges_and_survives_dropouts_and_outliers():
@@ -205,8 +212,8 @@ def test_kalman_filter_converges_and_survives_dropouts_and_outliers():
     imu = sensors.simulate_imu(w + B, f, DT, model, np.random.default_rng(4))
     res = gb.tilt_residuals(imu.w_ib_b, imu.f_b, DT, starts, length, w_ie_b)
     r = res.r.copy()
-    r[10] = np.nan                                           # dropout
-    r[20] += 0.05                                            # outlier (0.05 rad over a dwell)
+    r[10] = np.nan  # dropout
+    r[20] += 0.05  # outlier (0.05 rad over a dwell)
     R = gb.residual_covariance(res.tilt, length, DT, model.gyro.noise_density, model.accel.noise_density)
     kf = gb.kalman_bias(r, res.V, R, 5.0, 0.0, units.deg_per_h(50.0))
     assert kf.faults["dwell", "nan"] == 1 and kf.faults["dwell", "outlier"] == 1
@@ -254,6 +261,7 @@ def test_kernels_run_uncompiled_with_the_same_results():
         env = dict(os.environ, NUMBA_DISABLE_JIT="1" if disable else "0")
         out = subprocess.run([sys.executable, "-c", SCRIPT], env=env, capture_output=True, text=True, check=True)
         return json.loads(out.stdout)
+
     jit, plain = run(False), run(True)
     for key in jit:
         np.testing.assert_allclose(plain[key], jit[key], rtol=1e-12, atol=1e-15)
@@ -292,6 +300,7 @@ def test_fault_paths_run_uncompiled_with_the_same_results():
         env = dict(os.environ, NUMBA_DISABLE_JIT="1" if disable else "0")
         out = subprocess.run([sys.executable, "-c", FAULT_SCRIPT], env=env, capture_output=True, text=True, check=True)
         return json.loads(out.stdout)
+
     jit, plain = run(False), run(True)
     assert jit["counts"] == plain["counts"]
     assert jit["counts"][1] > 0 and jit["counts"][2] > 0 and jit["counts"][3] > 0 and jit["counts"][5] > 0

@@ -12,6 +12,7 @@ The builder and installer are ``uv`` (pinned in environment.txt) when it is on t
 the same PEP 517 build and non-editable install as ``python -m build`` and ``pip install``, in seconds.
 Without uv they fall back to ``python -m build`` and pip.
 """
+
 from __future__ import annotations
 
 import os
@@ -53,15 +54,21 @@ def installed(dist, tmp_path_factory):
     env_dir = tmp_path_factory.mktemp("fresh") / "venv"
     venv.create(env_dir, with_pip=UV is None)
     py = env_dir / ("Scripts/python.exe" if os.name == "nt" else "bin/python")
-    pip = ([UV, "pip", "install", "--quiet", "--python", str(py)] if UV else
-           [str(py), "-m", "pip", "install", "--quiet", "--disable-pip-version-check"])
+    pip = (
+        [UV, "pip", "install", "--quiet", "--python", str(py)]
+        if UV
+        else [str(py), "-m", "pip", "install", "--quiet", "--disable-pip-version-check"]
+    )
     subprocess.run([*pip, "-c", str(ROOT / "environment.txt"), str(dist["wheel"])], check=True)
     return py, pip
 
 
 def test_twine_check_strict(dist):
-    out = subprocess.run([sys.executable, "-m", "twine", "check", "--strict", str(dist["sdist"]), str(dist["wheel"])],
-                         capture_output=True, text=True)
+    out = subprocess.run(
+        [sys.executable, "-m", "twine", "check", "--strict", str(dist["sdist"]), str(dist["wheel"])],
+        capture_output=True,
+        text=True,
+    )
     assert out.returncode == 0, out.stdout + out.stderr
 
 
@@ -86,11 +93,13 @@ def test_wheel_holds_the_package_only(dist):
 
 def test_runs_without_the_plots_extra(installed, tmp_path):
     py, _ = installed
-    code = ("import importlib.util, numpy as np, navlib; from navlib.filters import mahony; from navlib.imu import ImuSamples; "
-            "assert importlib.util.find_spec('matplotlib') is None, 'matplotlib was installed without [plots]'; "
-            "n = 50; f = np.tile([0.0, 0.0, 9.8], (n, 1)); "
-            "res = mahony.mahony(ImuSamples(np.zeros((n, 3)), f, 0.01), np.array([1.0, 0, 0, 0])); "
-            "assert np.all(np.isfinite(res.q_bn)); print(navlib.__version__)")
+    code = (
+        "import importlib.util, numpy as np, navlib; from navlib.filters import mahony; from navlib.imu import ImuSamples; "
+        "assert importlib.util.find_spec('matplotlib') is None, 'matplotlib was installed without [plots]'; "
+        "n = 50; f = np.tile([0.0, 0.0, 9.8], (n, 1)); "
+        "res = mahony.mahony(ImuSamples(np.zeros((n, 3)), f, 0.01), np.array([1.0, 0, 0, 0])); "
+        "assert np.all(np.isfinite(res.q_bn)); print(navlib.__version__)"
+    )
     out = subprocess.run([str(py), "-c", code], cwd=tmp_path, env=CLEAN_ENV, capture_output=True, text=True)
     assert out.returncode == 0, out.stderr
     assert out.stdout.strip() == navlib.__version__
@@ -109,8 +118,10 @@ def test_non_editable_install_runs_outside_checkout(installed, dist, tmp_path):
 
 def test_installed_distribution_metadata(installed):
     py, _ = installed
-    code = ("import importlib.metadata as m; d = m.distribution('navlib-repro'); "
-            "print(d.version, d.metadata['Requires-Python'], sorted(set(d.metadata.get_all('Provides-Extra'))))")
+    code = (
+        "import importlib.metadata as m; d = m.distribution('navlib-repro'); "
+        "print(d.version, d.metadata['Requires-Python'], sorted(set(d.metadata.get_all('Provides-Extra'))))"
+    )
     out = subprocess.run([str(py), "-c", code], capture_output=True, text=True, check=True).stdout.split(maxsplit=2)
     assert out[0] == navlib.__version__ and out[1] == ">=3.11"
     assert out[2].strip() == "['bench', 'docs', 'notebooks', 'plots', 'test']"
@@ -124,8 +135,14 @@ def test_sdist_tests_run_unpacked(dist, tmp_path):
         tar.extractall(tmp_path, filter="data")
     unpacked = next(tmp_path.iterdir())
     env = {**CLEAN_ENV, "PYTHONPATH": str(unpacked), "NUMBA_DISABLE_JIT": "1"}
-    where = subprocess.run([sys.executable, "-c", "import navlib; print(navlib.__file__)"], cwd=unpacked, env=env,
-                           capture_output=True, text=True, check=True).stdout
+    where = subprocess.run(
+        [sys.executable, "-c", "import navlib; print(navlib.__file__)"],
+        cwd=unpacked,
+        env=env,
+        capture_output=True,
+        text=True,
+        check=True,
+    ).stdout
     assert Path(where.strip()).is_relative_to(unpacked), where
     pytest_ = [sys.executable, "-m", "pytest", "-p", "no:cacheprovider", "-n", "0", "-q"]
     collect = subprocess.run([*pytest_, "--collect-only", "tests"], cwd=unpacked, env=env, capture_output=True, text=True)

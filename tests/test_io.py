@@ -3,6 +3,7 @@
 Each reader is run on a small file written here in the source's exact layout (header lines as the
 sources publish them), filled with navlib-simulated samples whose true values are known.
 """
+
 import numpy as np
 import pandas as pd
 import pytest
@@ -67,14 +68,16 @@ def test_recording_feeds_the_filters(tmp_path, motion):
     rec = io.read_xio(tmp_path / "a.csv")
     imu = rec.imu()
     assert imu.n == t.size and np.allclose(imu.dt, 0.01)
-    res = mahony.mahony(imu, q0=attitude.euler_to_quat(units.deg([30.0, 5.0, -3.0])),
-                        rtk=RtkHeading(np.full(t.size, units.deg(30.0)), np.zeros(t.size, bool)))
+    res = mahony.mahony(
+        imu,
+        q0=attitude.euler_to_quat(units.deg([30.0, 5.0, -3.0])),
+        rtk=RtkHeading(np.full(t.size, units.deg(30.0)), np.zeros(t.size, bool)),
+    )
     assert np.all(np.isfinite(res.q_bn))
 
 
 def table(t, w, f):
-    return pd.DataFrame({"t": t, "gx": w[:, 0], "gy": w[:, 1], "gz": w[:, 2],
-                         "ax": f[:, 0], "ay": f[:, 1], "az": f[:, 2]})
+    return pd.DataFrame({"t": t, "gx": w[:, 0], "gy": w[:, 1], "gz": w[:, 2], "ax": f[:, 0], "ay": f[:, 1], "az": f[:, 2]})
 
 
 COLS = {"time": "t", "gyro": ("gx", "gy", "gz"), "accel": ("ax", "ay", "az")}
@@ -83,8 +86,7 @@ COLS = {"time": "t", "gyro": ("gx", "gy", "gz"), "accel": ("ax", "ay", "az")}
 @pytest.mark.parametrize("time_unit, scale", [("s", 1.0), ("ms", 1e3), ("us", 1e6)])
 def test_time_units(motion, time_unit, scale):
     t, w, f = motion
-    rec = io.from_dataframe(table(t * scale, w, f), time_unit=time_unit, units={"gyro": "rad/s", "accel": "m/s^2"},
-                            **COLS)
+    rec = io.from_dataframe(table(t * scale, w, f), time_unit=time_unit, units={"gyro": "rad/s", "accel": "m/s^2"}, **COLS)
     np.testing.assert_allclose(rec.time, t - t[0], atol=1e-9)
 
 
@@ -99,8 +101,8 @@ def test_iso_timestamps(motion):
 def test_repeated_and_out_of_order_times_are_counted(motion):
     t, w, f = motion
     df = table(t, w, f)
-    df.loc[10, "t"] = df.loc[9, "t"]                     # a repeat
-    df = pd.concat([df, df.iloc[[5]]])                   # a late, repeated sample
+    df.loc[10, "t"] = df.loc[9, "t"]  # a repeat
+    df = pd.concat([df, df.iloc[[5]]])  # a late, repeated sample
     kw = dict(units={"gyro": "rad/s", "accel": "m/s^2"}, **COLS)
     with pytest.raises(ValueError, match=r"time: 2 repeated and 1 out-of-order"):
         io.from_dataframe(df, **kw)
@@ -109,15 +111,18 @@ def test_repeated_and_out_of_order_times_are_counted(motion):
     assert any("2 repeated timestamps dropped" in c for c in rec.conversions)
 
 
-@pytest.mark.parametrize("change, message", [
-    (dict(units={"gyro": "rad/s", "accel": "furlong"}), r"units\['accel'\]: unknown unit 'furlong'"),
-    (dict(units={"gyro": "g", "accel": "m/s^2"}), r"units\['gyro'\]: unknown unit 'g' for the gyro"),
-    (dict(units={"gyro": "rad/s"}), r"units: no unit given for the accel"),
-    (dict(gyro=("gx", "gy", "wz")), r"columns: \['wz'\] not in the table"),
-    (dict(time="time"), r"columns: \['time'\] not in the table"),
-    (dict(axes="y,x,z"), r"axes: .* mirror"),
-    (dict(timing="fix"), r"timing"),
-])
+@pytest.mark.parametrize(
+    "change, message",
+    [
+        (dict(units={"gyro": "rad/s", "accel": "furlong"}), r"units\['accel'\]: unknown unit 'furlong'"),
+        (dict(units={"gyro": "g", "accel": "m/s^2"}), r"units\['gyro'\]: unknown unit 'g' for the gyro"),
+        (dict(units={"gyro": "rad/s"}), r"units: no unit given for the accel"),
+        (dict(gyro=("gx", "gy", "wz")), r"columns: \['wz'\] not in the table"),
+        (dict(time="time"), r"columns: \['time'\] not in the table"),
+        (dict(axes="y,x,z"), r"axes: .* mirror"),
+        (dict(timing="fix"), r"timing"),
+    ],
+)
 def test_clear_errors(motion, change, message):
     t, w, f = motion
     kw = {**dict(units={"gyro": "rad/s", "accel": "m/s^2"}, **COLS), **change}
@@ -138,7 +143,7 @@ def test_non_numeric_cells_are_refused_and_empty_cells_are_missing(motion):
 
 def test_implausible_magnitudes_say_what_was_probably_meant(motion):
     t, w, f = motion
-    fast = np.rad2deg(w * 30)                        # a 30x faster turn logged in deg/s (up to ~150 deg/s)
+    fast = np.rad2deg(w * 30)  # a 30x faster turn logged in deg/s (up to ~150 deg/s)
     with pytest.raises(ValueError, match=r"units\['gyro'\].*deg/s"):
         io.from_dataframe(table(t, fast, f), units={"gyro": "rad/s", "accel": "m/s^2"}, **COLS)
     with pytest.raises(ValueError, match=r"units\['accel'\].*g or m/s\^2"):
@@ -152,8 +157,10 @@ def test_implausible_magnitudes_say_what_was_probably_meant(motion):
 def test_euroc_layout(tmp_path, motion):
     t, w, f = motion
     ns = 1403715523912140000 + np.round(t * 1e9).astype(np.int64)
-    lines = ["#timestamp [ns],w_RS_S_x [rad s^-1],w_RS_S_y [rad s^-1],w_RS_S_z [rad s^-1],"
-             "a_RS_S_x [m s^-2],a_RS_S_y [m s^-2],a_RS_S_z [m s^-2]"]
+    lines = [
+        "#timestamp [ns],w_RS_S_x [rad s^-1],w_RS_S_y [rad s^-1],w_RS_S_z [rad s^-1],"
+        "a_RS_S_x [m s^-2],a_RS_S_y [m s^-2],a_RS_S_z [m s^-2]"
+    ]
     lines += [",".join([str(n)] + [f"{v:.17g}" for v in (*wi, *fi)]) for n, wi, fi in zip(ns, w, f, strict=True)]
     (tmp_path / "data.csv").write_text("\n".join(lines) + "\n")
     rec = io.read_euroc(tmp_path / "data.csv")
@@ -165,7 +172,7 @@ def test_euroc_layout(tmp_path, motion):
 def write_logger(d, t0_ns, t, x, name, cols=("x", "y", "z")):
     ns = t0_ns + np.round(t * 1e9).astype(np.int64)
     df = pd.DataFrame({"time": ns, "seconds_elapsed": t})
-    for c, i in zip(("z", "y", "x"), (2, 1, 0), strict=True):        # the app writes z, y, x
+    for c, i in zip(("z", "y", "x"), (2, 1, 0), strict=True):  # the app writes z, y, x
         if c in cols:
             df[c] = x[:, i]
     if cols == ("pressure",):
@@ -177,13 +184,13 @@ def test_sensor_logger_export_is_aligned_on_the_gyro_clock(tmp_path, motion):
     t, w, f = motion
     t0 = 1_700_000_000_000_000_000
     write_logger(tmp_path, t0, t, w, "Gyroscope.csv")
-    write_logger(tmp_path, t0, t[1::2], f[1::2], "TotalAcceleration.csv")          # 50 Hz, starts later
+    write_logger(tmp_path, t0, t[1::2], f[1::2], "TotalAcceleration.csv")  # 50 Hz, starts later
     m_t = t[::10] + 0.003
     write_logger(tmp_path, t0, m_t, np.tile([1.0, 30.0, -30.0], (m_t.size, 1)), "Magnetometer.csv")
     write_logger(tmp_path, t0, t[::25], np.full(t[::25].size, 1000.0), "Barometer.csv", cols=("pressure",))
     rec = io.read_sensor_logger(tmp_path)
     assert rec.n == t.size
-    assert np.isnan(rec.f_b[0]).all() and np.allclose(rec.f_b[1:3], f[[1, 1]])      # held, NaN before the first
+    assert np.isnan(rec.f_b[0]).all() and np.allclose(rec.f_b[1:3], f[[1, 1]])  # held, NaN before the first
     np.testing.assert_allclose(rec.m_b[np.isfinite(rec.m_b[:, 0])][0], [1.0, 30.0, -30.0])
     np.testing.assert_allclose(rec.pressure[0], 1e5)
     assert rec.start == np.datetime64(t0 + round(t[0] * 1e9), "ns")
@@ -212,5 +219,5 @@ def test_a_file_with_a_header_and_no_samples_is_refused_by_name(tmp_path):
     header = ",".join(["Time (s)"] + [f"Gyroscope {a} (deg/s)" for a in "XYZ"] + [f"Accelerometer {a} (g)" for a in "XYZ"])
     path = tmp_path / "empty.csv"
     path.write_text(header + "\n")
-    with pytest.raises(ValueError, match="^path: .*has a header but no samples"):      # was a bare IndexError
+    with pytest.raises(ValueError, match="^path: .*has a header but no samples"):  # was a bare IndexError
         io.read_xio(path)

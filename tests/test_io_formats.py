@@ -6,6 +6,7 @@ Files are written here with the headers, units and signs the apps and vendors pu
 UNITS.md / CROSSPLATFORM.md / COORDINATES.md; phyphox's CSV export; x-io's x-IMU GUI), filled with
 navlib-simulated samples whose true values are known.
 """
+
 import warnings
 from pathlib import Path
 
@@ -34,27 +35,46 @@ def phone():
 def write_logger(d, name, t, x, header=("z", "y", "x")):
     d.mkdir(exist_ok=True)
     df = pd.DataFrame({"time": T0 + np.round(t * 1e9).astype(np.int64), "seconds_elapsed": t})
-    for h in header:                                       # the app writes z, y, x in that order
+    for h in header:  # the app writes z, y, x in that order
         df[h] = x[:, "xyz".index(h[0].lower() if len(h) == 1 else h.split()[-2].lower())]
     df.to_csv(d / name, index=False, float_format="%.17g")
 
 
 def write_metadata(d, platform, standardisation=None):
-    cols = {"version": 3, "device name": "phone", "recording time": "2025-01-01_10-00-00", "platform": platform,
-            "appVersion": "1.28", "device id": "x", "sensors": "Accelerometer|Gravity|Gyroscope", "sampleRateMs": "10"}
+    cols = {
+        "version": 3,
+        "device name": "phone",
+        "recording time": "2025-01-01_10-00-00",
+        "platform": platform,
+        "appVersion": "1.28",
+        "device id": "x",
+        "sensors": "Accelerometer|Gravity|Gyroscope",
+        "sampleRateMs": "10",
+    }
     if standardisation is not None:
         cols["standardisation"] = standardisation
     pd.DataFrame([cols]).to_csv(d / "Metadata.csv", index=False)
 
 
 def write_orientation(d, t, q):
-    df = pd.DataFrame({"time": T0 + np.round(t * 1e9).astype(np.int64), "seconds_elapsed": t, "yaw": 0.0,
-                       "qx": q[:, 1], "qz": q[:, 3], "roll": 0.0, "qw": q[:, 0], "qy": q[:, 2], "pitch": 0.0})
+    df = pd.DataFrame(
+        {
+            "time": T0 + np.round(t * 1e9).astype(np.int64),
+            "seconds_elapsed": t,
+            "yaw": 0.0,
+            "qx": q[:, 1],
+            "qz": q[:, 3],
+            "roll": 0.0,
+            "qw": q[:, 0],
+            "qy": q[:, 2],
+            "pitch": 0.0,
+        }
+    )
     df.to_csv(d / "Orientation.csv", index=False, float_format="%.17g")
 
 
 def same_attitude(q1, q2):
-    return np.abs(np.sum(q1 * q2, -1))                    # |cos(angle / 2)|: 1 when equal up to sign
+    return np.abs(np.sum(q1 * q2, -1))  # |cos(angle / 2)|: 1 when equal up to sign
 
 
 def test_sensor_logger_ios_accelerometer_plus_gravity(tmp_path, phone):
@@ -85,7 +105,7 @@ def test_sensor_logger_ios_uncalibrated_in_g_and_standardised(tmp_path, phone):
     write_logger(d, "AccelerometerUncalibrated.csv", t, -f / G)
     write_metadata(d, "ios")
     np.testing.assert_allclose(io.read_sensor_logger(d).f_b, f, rtol=1e-12)
-    write_logger(d, "AccelerometerUncalibrated.csv", t, f)           # "Standardise Units & Frames": Android's
+    write_logger(d, "AccelerometerUncalibrated.csv", t, f)  # "Standardise Units & Frames": Android's
     write_metadata(d, "ios", "true")
     rec = io.read_sensor_logger(d)
     np.testing.assert_allclose(rec.f_b, f, rtol=1e-12)
@@ -109,7 +129,7 @@ def test_sensor_logger_android_orientation_and_older_layouts(tmp_path, phone):
     assert np.min(same_attitude(rec.q_bn_ref, q)) > 1 - 1e-12
     write_logger(d, "TotalAcceleration.csv", t, f)
     (d / "Orientation.csv").unlink()
-    rec = io.read_sensor_logger(d)                                  # only Android writes TotalAcceleration.csv
+    rec = io.read_sensor_logger(d)  # only Android writes TotalAcceleration.csv
     assert any("GUESSED" in c for c in rec.conversions) and rec.q_bn_ref is None
     write_metadata(d, "ios")
     with pytest.raises(ValueError, match="platform: 'android' given, but .*Metadata.csv says 'ios'"):
@@ -123,7 +143,7 @@ def test_sensor_logger_reference_follows_the_axes_mapping(tmp_path, phone):
     write_logger(d, "TotalAcceleration.csv", t, f)
     write_metadata(d, "android")
     write_orientation(d, t, q)
-    rec = io.read_sensor_logger(d, axes="-y,x,z")                   # body right = phone -y: turned 90 deg
+    rec = io.read_sensor_logger(d, axes="-y,x,z")  # body right = phone -y: turned 90 deg
     C_bs = attitude.mount_matrix("-y,x,z")
     expected = attitude.dcm_to_quat(attitude.quat_to_dcm(q) @ C_bs.T)
     assert np.min(same_attitude(rec.q_bn_ref, expected)) > 1 - 1e-12
@@ -134,9 +154,11 @@ def test_phyphox_folder_and_single_file(tmp_path, phone):
     t, w, f, m, _ = phone
     d = tmp_path / "phyphox"
     d.mkdir()
-    for name, x, label, unit in (("Gyroscope.csv", w, "Gyroscope", "rad/s"),
-                                 ("Accelerometer.csv", f, "Acceleration", "m/s^2"),
-                                 ("Magnetometer.csv", m, "Magnetic field", "µT")):
+    for name, x, label, unit in (
+        ("Gyroscope.csv", w, "Gyroscope", "rad/s"),
+        ("Accelerometer.csv", f, "Acceleration", "m/s^2"),
+        ("Magnetometer.csv", m, "Magnetic field", "µT"),
+    ):
         df = pd.DataFrame({"Time (s)": t} | {f"{label} {a} ({unit})": x[:, i] for i, a in enumerate("xyz")})
         df.to_csv(d / name, index=False, float_format="%.10E")
     rec = io.read_phyphox(d)
@@ -188,10 +210,19 @@ def test_ngimu_barometer_and_rate_refused(tmp_path, phone):
 
 def test_per_sensor_axes_and_explicit_mirror(phone):
     t, w, f, m, _ = phone
-    df = pd.DataFrame({"t": t} | {f"g{a}": w[:, i] for i, a in enumerate("xyz")}
-                      | {f"a{a}": f[:, i] for i, a in enumerate("xyz")} | {f"m{a}": m[:, i] for i, a in enumerate("xyz")})
-    kw = dict(time="t", units={"gyro": "rad/s", "accel": "m/s^2", "mag": "uT"}, gyro=("gx", "gy", "gz"),
-              accel=("ax", "ay", "az"), mag=("mx", "my", "mz"))
+    df = pd.DataFrame(
+        {"t": t}
+        | {f"g{a}": w[:, i] for i, a in enumerate("xyz")}
+        | {f"a{a}": f[:, i] for i, a in enumerate("xyz")}
+        | {f"m{a}": m[:, i] for i, a in enumerate("xyz")}
+    )
+    kw = dict(
+        time="t",
+        units={"gyro": "rad/s", "accel": "m/s^2", "mag": "uT"},
+        gyro=("gx", "gy", "gz"),
+        accel=("ax", "ay", "az"),
+        mag=("mx", "my", "mz"),
+    )
     with pytest.raises(ValueError, match=r"axes\['mag'\]: .*mirror image.*mirror=True"):
         io.from_dataframe(df, axes={"mag": "x,y,-z"}, **kw)
     rec = io.from_dataframe(df, axes={"accel": "-y,x,z", "mag": "x,y,-z"}, mirror=True, **kw)
@@ -204,6 +235,7 @@ def test_per_sensor_axes_and_explicit_mirror(phone):
 
 
 # ---------------------------------------------------------------------- axis check on a real recording
+
 
 def fusion(**kw):
     return io.read_xio(FUSION, timing="sanitize", check="off", **kw)
@@ -246,6 +278,7 @@ def test_axis_check_is_inconclusive_without_turning(phone):
 
 # ---------------------------------------------------------------------- clocks
 
+
 def test_averaging_resampler_keeps_the_white_noise_density():
     """White noise of a 400-Hz sensor delivered in bursts (four stamps 0.5 ms apart, then an 8.5-ms pause, with
     0.1 ms jitter: a median rate of 2000 Hz) resampled to 50 Hz: the mean keeps sigma^2 * dt within 5 %,
@@ -256,7 +289,7 @@ def test_averaging_resampler_keeps_the_white_noise_density():
     sigma = 0.01
     x = sigma * rng.standard_normal((t.size, 3))
     rec = io.Recording(t, x, x.copy())
-    density = sigma ** 2 * np.mean(np.diff(t))
+    density = sigma**2 * np.mean(np.diff(t))
     out = io.resample(rec, 50.0)
     measured = np.nanvar(out.w_ib_b, axis=0) / 50.0
     np.testing.assert_allclose(measured, density, rtol=0.05)

@@ -1,5 +1,6 @@
 """Tests of navlib.kalman: predict, Joseph-form update, discretisation, and a
 closed-loop consistency (NEES) check."""
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -82,10 +83,8 @@ def test_angle_mask_wraps_innovation():
     _, _, y_raw, _, _ = _update(x, P, z, h, H, R)
     assert y_raw[0] == pytest.approx(2 * np.pi - 0.02, abs=1e-12)
     # pi exactly stays pi (interval (-pi, pi]); -pi maps to pi.
-    _, _, y_pi, _, _ = _update(x, P, np.array([np.pi, 0.0]), np.array([0.0, 0.0]), H, R,
-                               angle_mask=np.array([True, False]))
-    _, _, y_mpi, _, _ = _update(x, P, np.array([-np.pi, 0.0]), np.array([0.0, 0.0]), H, R,
-                                angle_mask=np.array([True, False]))
+    _, _, y_pi, _, _ = _update(x, P, np.array([np.pi, 0.0]), np.array([0.0, 0.0]), H, R, angle_mask=np.array([True, False]))
+    _, _, y_mpi, _, _ = _update(x, P, np.array([-np.pi, 0.0]), np.array([0.0, 0.0]), H, R, angle_mask=np.array([True, False]))
     assert y_pi[0] == pytest.approx(np.pi) and y_mpi[0] == pytest.approx(np.pi)
 
 
@@ -99,7 +98,7 @@ def test_gate_rejects_outlier_and_accepts_normal():
     z_out = H @ x + np.array([100 * np.sqrt(5.0), 0.0])
     xo, Po, yo, niso, so = _update(x, P, z_out, H @ x, H, R, gate=gate)
     assert so == kalman.REJECTED
-    assert niso > gate and niso == pytest.approx(100.0 ** 2)
+    assert niso > gate and niso == pytest.approx(100.0**2)
     assert_array_equal(xo, x)
     assert_array_equal(Po, P)
     assert_allclose(yo, z_out - H @ x)  # the innovation is still reported
@@ -144,7 +143,7 @@ def test_discretize_double_integrator(dt):
     G = np.array([[0.0], [1.0]])
     Phi, Qd = kalman.discretize(F, G, [[q]], dt)
     assert_allclose(Phi, [[1.0, dt], [0.0, 1.0]], rtol=1e-12, atol=1e-14)
-    assert_allclose(Qd, q * np.array([[dt ** 3 / 3, dt ** 2 / 2], [dt ** 2 / 2, dt]]), rtol=1e-10, atol=1e-16)
+    assert_allclose(Qd, q * np.array([[dt**3 / 3, dt**2 / 2], [dt**2 / 2, dt]]), rtol=1e-10, atol=1e-16)
 
 
 def test_discretize_first_order_markov():
@@ -155,14 +154,18 @@ def test_discretize_first_order_markov():
     assert Qd[0, 0] == pytest.approx(q * T / 2 * (1 - np.exp(-2 * dt / T)), rel=1e-10)
 
 
-@pytest.mark.parametrize("F, G, Qc, dt, match", [
-    (np.zeros((2, 3)), np.zeros((2, 1)), np.eye(1), 0.1, "F"),
-    (np.zeros((2, 2)), np.zeros((3, 1)), np.eye(1), 0.1, "G"),
-    (np.zeros((2, 2)), np.zeros((2, 1)), np.eye(2), 0.1, "Qc"),
-    (np.zeros((2, 2)), np.zeros(2), np.eye(1), 0.1, "G"),
-    (np.zeros((2, 2)), np.zeros((2, 1)), np.eye(1), -0.1, "^dt:"),
-    (np.full((2, 2), np.nan), np.zeros((2, 1)), np.eye(1), 0.1, "^F:"),
-], ids=["F-not-square", "G-rows", "Qc-size", "G-1d", "dt-neg", "F-nan"])
+@pytest.mark.parametrize(
+    "F, G, Qc, dt, match",
+    [
+        (np.zeros((2, 3)), np.zeros((2, 1)), np.eye(1), 0.1, "F"),
+        (np.zeros((2, 2)), np.zeros((3, 1)), np.eye(1), 0.1, "G"),
+        (np.zeros((2, 2)), np.zeros((2, 1)), np.eye(2), 0.1, "Qc"),
+        (np.zeros((2, 2)), np.zeros(2), np.eye(1), 0.1, "G"),
+        (np.zeros((2, 2)), np.zeros((2, 1)), np.eye(1), -0.1, "^dt:"),
+        (np.full((2, 2), np.nan), np.zeros((2, 1)), np.eye(1), 0.1, "^F:"),
+    ],
+    ids=["F-not-square", "G-rows", "Qc-size", "G-1d", "dt-neg", "F-nan"],
+)
 def test_discretize_bad_input(F, G, Qc, dt, match):
     with pytest.raises(ValueError, match=match):
         kalman.discretize(F, G, Qc, dt)
@@ -233,6 +236,7 @@ def test_discretize_scalar_F_is_value_error():
 def test_wrappers_equal_the_compiled_primitives():
     """kalman.predict / update validate and then give exactly what navlib's kernels get from _kernels."""
     from navlib import _kernels
+
     x, P, z, h, H, R = _random_problem(7, 4, 3)
     F, Q = np.eye(4) + 0.1 * np.ones((4, 4)), 0.01 * np.eye(4)
     for a, b in zip(kalman.predict(x, P, F, Q), _kernels.kalman_predict(x, P, F, Q), strict=True):
@@ -258,15 +262,22 @@ def test_integer_and_list_arguments_give_the_float_result_and_are_not_modified()
     assert_array_equal(Pp, Pf)
     assert_array_equal(xp, [-1.0, -2.0, 3.0])
     xu, Pu, y, nis, status = kalman.update(x_i, P_i, z_l, h_l, H_l, R_l, [False, False])
-    want = kalman.update(x_i.astype(float), P_i.astype(float), np.array(z_l, float), np.array(h_l, float),
-                         np.array(H_l, float), np.array(R_l, float), np.zeros(2, bool))
+    want = kalman.update(
+        x_i.astype(float),
+        P_i.astype(float),
+        np.array(z_l, float),
+        np.array(h_l, float),
+        np.array(H_l, float),
+        np.array(R_l, float),
+        np.zeros(2, bool),
+    )
     assert status == want[4] == kalman.ACCEPTED and nis == want[3]
     for a, b in zip((xu, Pu, y), want[:3], strict=True):
         assert a.dtype == np.float64
         assert_array_equal(a, b)
-    assert not np.array_equal(xu, x_i)   # a real (non-integer) update ...
+    assert not np.array_equal(xu, x_i)  # a real (non-integer) update ...
     for a, b in zip((x_i, P_i, F_i, Q_f32), copies, strict=True):
-        assert a.dtype == b.dtype        # ... of which the caller's arrays see nothing
+        assert a.dtype == b.dtype  # ... of which the caller's arrays see nothing
         assert_array_equal(a, b)
     assert H_l == [[1, 0, 0], [0, 0, 1]] and z_l == [3, -1]
 
@@ -277,7 +288,7 @@ def test_shape_mistakes_are_errors_not_broadcasts():
     for Q in (0.01, np.full((2, 1), 0.01), [0.01, 0.01]):
         with pytest.raises(ValueError, match="^Q: expected shape"):
             kalman.predict(x, P, np.eye(2), Q)
-    z_out = np.array([100 * np.sqrt(2.0), 0.0])   # a 100-sigma outlier
+    z_out = np.array([100 * np.sqrt(2.0), 0.0])  # a 100-sigma outlier
     with pytest.raises(ValueError, match="^gate:"):
         _update(x, P, z_out, np.zeros(2), np.eye(2), np.eye(2), gate=np.nan)
     assert _update(x, P, z_out, np.zeros(2), np.eye(2), np.eye(2), gate=13.8)[4] == kalman.REJECTED

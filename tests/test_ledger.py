@@ -8,6 +8,7 @@
 * The ledger joins a results file with the catalogue as documented: every claim appears once, a claim
   without a verdict is "no verdict yet" and does not count as covered.
 """
+
 from __future__ import annotations
 
 import ast
@@ -74,7 +75,8 @@ def test_setup_names_the_registered_paper(path):
     setups = [literal(node, 99, "paper") for node in calls(path, "setup")]
     assert setups, "no repro.setup call"
     assert setups == [paper.claims_id if paper else None] * len(setups), (
-        f"repro.setup(..., paper=...) must be the registry's claims_id {paper.claims_id if paper else None!r}")
+        f"repro.setup(..., paper=...) must be the registry's claims_id {paper.claims_id if paper else None!r}"
+    )
 
 
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=[p.stem for p in NOTEBOOKS])
@@ -119,19 +121,52 @@ def test_ledger_joins_results_with_the_catalogue(tmp_path):
     p = PAPERS[0]
     ids = [c for c, r in CLAIMS.items() if r["paper"] == p.claims_id and r["kind"] != "extension"]
     check = {"name": ids[0] + "/a", "value": 1.0, "passed": True}
-    _results(tmp_path, p.notebook, [
-        {"claim": ids[0], "verdict": "reproduced", "checks": [check["name"]], "evidence": [], "paper": None,
-         "ours": "1 deg", "reason": "", "erratum": "", "figure": "fig"},
-        {"claim": ids[1], "verdict": "not checkable here", "checks": [], "evidence": [], "paper": "4.77",
-         "ours": None, "reason": "hardware", "erratum": "", "figure": ""},
-        {"claim": "P999-NOT-A-CLAIM", "verdict": "reproduced", "checks": [], "evidence": [], "paper": None,
-         "ours": None, "reason": "", "erratum": "", "figure": ""}], [check])
+    _results(
+        tmp_path,
+        p.notebook,
+        [
+            {
+                "claim": ids[0],
+                "verdict": "reproduced",
+                "checks": [check["name"]],
+                "evidence": [],
+                "paper": None,
+                "ours": "1 deg",
+                "reason": "",
+                "erratum": "",
+                "figure": "fig",
+            },
+            {
+                "claim": ids[1],
+                "verdict": "not checkable here",
+                "checks": [],
+                "evidence": [],
+                "paper": "4.77",
+                "ours": None,
+                "reason": "hardware",
+                "erratum": "",
+                "figure": "",
+            },
+            {
+                "claim": "P999-NOT-A-CLAIM",
+                "verdict": "reproduced",
+                "checks": [],
+                "evidence": [],
+                "paper": None,
+                "ours": None,
+                "reason": "",
+                "erratum": "",
+                "figure": "",
+            },
+        ],
+        [check],
+    )
     leds = {led.stem: led for led in ledger.ledgers(tmp_path)}
     led = leds[p.notebook]
-    assert [r.claim for r in led.rows] == ids                   # every claim once, in catalogue order
+    assert [r.claim for r in led.rows] == ids  # every claim once, in catalogue order
     assert led.counts["reproduced"] == 1 and led.counts["not checkable here"] == 1
     assert led.counts[ledger.NO_VERDICT] == len(ids) - 2
-    assert led.computed == 1                                    # only the verdict resting on a check
+    assert led.computed == 1  # only the verdict resting on a check
     assert led.rows[0].figure == f"{p.notebook}/figures/fig.png" and led.rows[1].paper == "4.77"
     assert led.problems and "P999-NOT-A-CLAIM" in led.problems[0]
     assert led.checks_passed == led.checks_total == 1
@@ -144,22 +179,57 @@ def test_chapters_have_no_claims():
 
 
 def test_site_pages_lead_with_verdicts_and_keep_checks_and_claims_apart(tmp_path):
-    site = pytest.importorskip("build_site")                 # tools/build_site.py (needs nbformat, sphinx)
+    site = pytest.importorskip("build_site")  # tools/build_site.py (needs nbformat, sphinx)
     p = PAPERS[0]
     ids = [c for c, r in CLAIMS.items() if r["paper"] == p.claims_id]
-    check = {"name": ids[0] + "/a", "value": 1.0, "expected": 1.0, "tol": 0.1, "passed": True, "source": "paper Eq. (3)",
-             "paper_value": None, "lower": None, "upper": None, "unit": "", "note": ""}
+    check = {
+        "name": ids[0] + "/a",
+        "value": 1.0,
+        "expected": 1.0,
+        "tol": 0.1,
+        "passed": True,
+        "source": "paper Eq. (3)",
+        "paper_value": None,
+        "lower": None,
+        "upper": None,
+        "unit": "",
+        "note": "",
+    }
     outside = dict(check, name=ids[1] + "/differs", expected=None, tol=None, lower=2.0, upper=3.0, outside=True)
-    _results(tmp_path, p.notebook, [
-        {"claim": ids[0], "verdict": "reproduced", "checks": [check["name"]], "evidence": [], "paper": None,
-         "ours": "1", "reason": "", "erratum": "", "figure": ""},
-        {"claim": ids[1], "verdict": "differs", "checks": [outside["name"]], "evidence": [outside["name"]],
-         "paper": "2.5", "ours": "1", "reason": "hardware", "erratum": "", "figure": ""}], [check, outside])
+    _results(
+        tmp_path,
+        p.notebook,
+        [
+            {
+                "claim": ids[0],
+                "verdict": "reproduced",
+                "checks": [check["name"]],
+                "evidence": [],
+                "paper": None,
+                "ours": "1",
+                "reason": "",
+                "erratum": "",
+                "figure": "",
+            },
+            {
+                "claim": ids[1],
+                "verdict": "differs",
+                "checks": [outside["name"]],
+                "evidence": [outside["name"]],
+                "paper": "2.5",
+                "ours": "1",
+                "reason": "hardware",
+                "erratum": "",
+                "figure": "",
+            },
+        ],
+        [check, outside],
+    )
     leds = [led for led in ledger.ledgers(tmp_path) if led.stem == p.notebook]
     home = site.home_page(leds, [p.notebook])
     assert home.index("no verdict yet") < home.index("## Two commands")  # the verdicts lead
-    assert "claims passed" not in home and "2/2" in home                 # checks passed, counted as checks
-    assert "= target" not in home and "hardware" in home                 # no invented paper values; the reason
+    assert "claims passed" not in home and "2/2" in home  # checks passed, counted as checks
+    assert "= target" not in home and "hardware" in home  # no invented paper values; the reason
     page = site.ledger_page(leds, tmp_path)
     assert page.count("<tr data-paper=") == 2 + sum(1 for r in leds[0].rows if not r.checks)
     assert "data-verdict='differs'" in page and "outside [2, 3]" in page
@@ -168,8 +238,15 @@ def test_site_pages_lead_with_verdicts_and_keep_checks_and_claims_apart(tmp_path
 # Verdict words judge what a paper states (issue 35): the catalogue marks the project's own quantities, test
 # vectors and reconstructions of what the paper does not print as kind "extension", and only they get the
 # verdict "extension".
-OWN_QUANTITY = ("the project's own", "not a paper claim", "the paper gives no number", "the paper gives no coordinates",
-                "the paper does not show", "absent from the text", "prints none")
+OWN_QUANTITY = (
+    "the project's own",
+    "not a paper claim",
+    "the paper gives no number",
+    "the paper gives no coordinates",
+    "the paper does not show",
+    "absent from the text",
+    "prints none",
+)
 
 
 def test_the_projects_own_quantities_are_extensions():
@@ -196,14 +273,30 @@ def test_extensions_and_paper_claims_get_their_own_words(path):
         extension = CLAIMS[claim]["kind"] == repro.EXTENSION
         assert extension == (verdict == repro.EXTENSION), (
             f"{claim}: kind {CLAIMS[claim]['kind']!r} with verdict {verdict!r}; the project's own quantities get "
-            f"{repro.EXTENSION!r}, paper statements a verdict word")
+            f"{repro.EXTENSION!r}, paper statements a verdict word"
+        )
 
 
 def test_the_ledger_lists_extensions_apart(tmp_path):
     stem, paper = "03_gauss_kruger_ekf", "002"
     ext = next(cid for cid, r in CLAIMS.items() if r["paper"] == paper and r["kind"] == "extension")
-    _results(tmp_path, stem, [{"claim": ext, "verdict": "extension", "checks": ["x"], "evidence": [], "paper": None,
-                               "ours": "1", "reason": "own", "erratum": "", "figure": ""}])
+    _results(
+        tmp_path,
+        stem,
+        [
+            {
+                "claim": ext,
+                "verdict": "extension",
+                "checks": ["x"],
+                "evidence": [],
+                "paper": None,
+                "ours": "1",
+                "reason": "own",
+                "erratum": "",
+                "figure": "",
+            }
+        ],
+    )
     led = next(led for led in ledger.ledgers(tmp_path) if led.stem == stem)
     assert ext in [r.claim for r in led.extensions] and ext not in [r.claim for r in led.rows]
     assert not led.problems and "extension" not in led.counts

@@ -1,4 +1,5 @@
 """Extreme magnitudes and out-of-range raw values give a clear error or the right answer (issue 15, items 7-8)."""
+
 import matplotlib
 import numpy as np
 import pytest
@@ -58,11 +59,14 @@ def test_a_path_with_too_many_steps_is_refused_naming_T():
         gauss_kruger_ekf.waypoint_path([[0.0, 0.0], [100.0, 0.0], [100.0, 100.0]], 5.0, 0.2, 1e-300)
 
 
-@pytest.mark.parametrize("taus, adev, theory, arg", [
-    ([[1.0, 2.0]], [1.0, 2.0], None, "taus"),
-    ([1.0, 2.0], np.ones((2, 3, 2)), None, "adev_rad_s"),
-    ([1.0, 2.0], [1.0, 2.0], [1.0], "theory"),
-])
+@pytest.mark.parametrize(
+    "taus, adev, theory, arg",
+    [
+        ([[1.0, 2.0]], [1.0, 2.0], None, "taus"),
+        ([1.0, 2.0], np.ones((2, 3, 2)), None, "adev_rad_s"),
+        ([1.0, 2.0], [1.0, 2.0], [1.0], "theory"),
+    ],
+)
 def test_allan_plot_shapes_name_the_argument(taus, adev, theory, arg):
     fig, ax = plt.subplots()
     with pytest.raises(ValueError, match=f"^{arg}: "):
@@ -80,18 +84,23 @@ def _static_marg(n=200, seed=0):
 @pytest.mark.parametrize("filt", ["mahony", "quaternion_kf", "run_filter"])
 def test_sample_intervals_below_a_nanosecond_are_refused(filt):
     from navlib.filters import mahony, quaternion_kf, zupt_ins
+
     w, f, m = _static_marg()
     q0 = [1.0, 0.0, 0.0, 0.0]
-    call = {"mahony": lambda: mahony.mahony(ImuSamples(w, f, 1e-300), q0, m_b=m),
-            "quaternion_kf": lambda: quaternion_kf.quaternion_kf(ImuSamples(w, f, 1e-300), q0, m_b=m, B_n=[0.0, 20.0, -40.0]),
-            "run_filter": lambda: zupt_ins.run_filter(ImuSamples(w, f, 1e-300), zupt_ins.Start([0.5, 0.1, 0.0], q0),
-                                                      np.ones(len(w), bool))}[filt]
-    with pytest.raises(ValueError, match="^dt: expected intervals of at least"):      # was a numba TypingError
+    call = {
+        "mahony": lambda: mahony.mahony(ImuSamples(w, f, 1e-300), q0, m_b=m),
+        "quaternion_kf": lambda: quaternion_kf.quaternion_kf(ImuSamples(w, f, 1e-300), q0, m_b=m, B_n=[0.0, 20.0, -40.0]),
+        "run_filter": lambda: zupt_ins.run_filter(
+            ImuSamples(w, f, 1e-300), zupt_ins.Start([0.5, 0.1, 0.0], q0), np.ones(len(w), bool)
+        ),
+    }[filt]
+    with pytest.raises(ValueError, match="^dt: expected intervals of at least"):  # was a numba TypingError
         call()
 
 
 def test_attitude_filters_refuse_intervals_the_first_order_update_cannot_integrate():
     from navlib.filters import mahony, quaternion_kf
+
     w, f, m = _static_marg()
     with pytest.raises(ValueError, match="^dt: the gyro turns up to"):
         quaternion_kf.quaternion_kf(ImuSamples(w, f, 1e6), [1.0, 0.0, 0.0, 0.0], m_b=m, B_n=[0.0, 20.0, -40.0])  # was LinAlgError
@@ -101,8 +110,9 @@ def test_attitude_filters_refuse_intervals_the_first_order_update_cannot_integra
 
 def test_static_means_names_a_latitude_that_does_not_match_the_trials():
     from navlib import alignment
+
     w, f, _ = _static_marg()
-    with pytest.raises(ValueError, match="^lat, h: "):                                    # was IndexError
+    with pytest.raises(ValueError, match="^lat, h: "):  # was IndexError
         alignment.static_means(w, f, [0.6, 0.6])
     assert alignment.static_means(np.stack([w, w]), np.stack([f, f]), [0.6, 0.6]).faults["window", "refused"].shape == (2,)
 
@@ -110,19 +120,20 @@ def test_static_means_names_a_latitude_that_does_not_match_the_trials():
 def test_strapdown_refuses_what_it_cannot_integrate():
     w = 1e-3 * np.ones((10, 3))
     f = np.tile([0.0, 0.0, 9.8], (10, 1))
-    with pytest.raises(ValueError, match="^dt: the gyro turns up to"):                  # was silent NaN
+    with pytest.raises(ValueError, match="^dt: the gyro turns up to"):  # was silent NaN
         strapdown.integrate_attitude([1.0, 0.0, 0.0, 0.0], w, 1e300)
     with pytest.raises(ValueError, match="^dt: the gyro turns up to"):
         strapdown.integrate([0.5, 0.1, 0.0], [0.0, 0.0, 0.0], [1.0, 0.0, 0.0, 0.0], w, f, 1e300)
-    with pytest.raises(ValueError, match="^w_ib_b, f_b, dt: the integrated position diverges"):   # was "lla: ..."
+    with pytest.raises(ValueError, match="^w_ib_b, f_b, dt: the integrated position diverges"):  # was "lla: ..."
         strapdown.integrate([0.5, 0.1, 0.0], [0.0, 0.0, 0.0], [1.0, 0.0, 0.0, 0.0], np.zeros((10, 3)), 0 * f, 1e3)
 
 
 def test_settling_time_refuses_time_that_goes_backwards_and_floors_take_whole_numbers():
     from navlib import analysis
-    with pytest.raises(ValueError, match="^time: expected strictly increasing"):          # was accepted
+
+    with pytest.raises(ValueError, match="^time: expected strictly increasing"):  # was accepted
         analysis.settling_time([0.0, 2.0, 1.0, 3.0], [1.0, 1.0, 0.0, 0.0], 0.0, 0.5)
-    with pytest.raises(ValueError, match="^ref_floor: "):                                  # 1.5 was truncated to 1
+    with pytest.raises(ValueError, match="^ref_floor: "):  # 1.5 was truncated to 1
         atmosphere.classify_floor([0.0, 3.0], ref_floor=1.5)
     assert list(atmosphere.classify_floor([0.0, 3.1], ref_floor=np.int64(2))) == [2, 3]
 
@@ -130,33 +141,43 @@ def test_settling_time_refuses_time_that_goes_backwards_and_floors_take_whole_nu
 # Found by tools/fuzz.py (issue 15, item 4). A value whose square overflows float64 (navlib._validate.MAX_MAGNITUDE)
 # is refused naming the argument: these calls returned inf or a finite wrong answer, or raised an error that
 # named no argument (OverflowError, ZeroDivisionError, numpy's "Maximum allowed size exceeded").
-@pytest.mark.parametrize("arg, call", [
-    ("err", lambda: analysis.rmse([1e300, 1.0])),                  # was inf
-    ("x", lambda: kalman.predict([1e300, 0.0], np.eye(2), np.eye(2), np.eye(2))),
-    ("noise_density", lambda: sensors.TriadErrors(noise_density=1e300)),
-    ("f_b", lambda: alignment.level([0.0, 1e300, 9.8])),
-    ("vel_n", lambda: earth.transport_rate_n(0.5, 0.0, [1e300, 0.0, 0.0])),
-    ("duration", lambda: trajectory.static(1e300, 0.1, [0.5, 0.1, 0.0], [0.0, 0.0, 0.0])),
-    ("max_cond", lambda: analysis.cramer_rao_bound(
-        np.stack([np.eye(3)[:2], np.eye(3)[1:]]), np.tile(np.eye(2), (2, 1, 1)), max_cond=1e300)),
-    ("kp", lambda: mahony.mahony(ImuSamples(*_static_marg()[:2], 0.01), [1.0, 0.0, 0.0, 0.0], kp=1e300)),  # was ZeroDivisionError
-])
+@pytest.mark.parametrize(
+    "arg, call",
+    [
+        ("err", lambda: analysis.rmse([1e300, 1.0])),  # was inf
+        ("x", lambda: kalman.predict([1e300, 0.0], np.eye(2), np.eye(2), np.eye(2))),
+        ("noise_density", lambda: sensors.TriadErrors(noise_density=1e300)),
+        ("f_b", lambda: alignment.level([0.0, 1e300, 9.8])),
+        ("vel_n", lambda: earth.transport_rate_n(0.5, 0.0, [1e300, 0.0, 0.0])),
+        ("duration", lambda: trajectory.static(1e300, 0.1, [0.5, 0.1, 0.0], [0.0, 0.0, 0.0])),
+        (
+            "max_cond",
+            lambda: analysis.cramer_rao_bound(
+                np.stack([np.eye(3)[:2], np.eye(3)[1:]]), np.tile(np.eye(2), (2, 1, 1)), max_cond=1e300
+            ),
+        ),
+        (
+            "kp",
+            lambda: mahony.mahony(ImuSamples(*_static_marg()[:2], 0.01), [1.0, 0.0, 0.0, 0.0], kp=1e300),
+        ),  # was ZeroDivisionError
+    ],
+)
 def test_values_whose_square_overflows_are_refused_naming_the_argument(arg, call):
     with pytest.raises(ValueError, match=f"^{arg}: expected magnitudes up to 1e\\+150"):
         call()
 
 
 def test_functions_exact_at_any_magnitude_still_take_huge_values():
-    assert units.deg(1e300) == pytest.approx(np.deg2rad(1e300))                       # a linear conversion
+    assert units.deg(1e300) == pytest.approx(np.deg2rad(1e300))  # a linear conversion
     np.testing.assert_allclose(attitude.ned_to_enu_quat([1e300, 0.0, 0.0, 0.0]), [1.0, 0.0, 0.0, 0.0])
 
 
 def test_integrators_name_an_interval_they_cannot_integrate():
     w = np.full((40, 3), 1e-3)
     f = np.tile([0.0, 0.0, 9.8], (40, 1))
-    with pytest.raises(ValueError, match="^dt: the gyro turns up to"):          # was "w_ib_b: the integrated pitch ..."
+    with pytest.raises(ValueError, match="^dt: the gyro turns up to"):  # was "w_ib_b: the integrated pitch ..."
         euler.integrate_euler([0.0, 0.0, 0.0], w, 1e300)
-    with pytest.raises(ValueError, match="^dt: the gyro turns up to"):          # was accepted: residuals of 1e297 rad
+    with pytest.raises(ValueError, match="^dt: the gyro turns up to"):  # was accepted: residuals of 1e297 rad
         rotation_bias.tilt_residuals(w, f, 1e300, [0, 20], 10)
 
 

@@ -1,4 +1,5 @@
 """navlib.montecarlo: results depend only on the seed and the trial index."""
+
 from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
 
 import numpy as np
@@ -21,10 +22,10 @@ def test_trial_streams_match_seedsequence_spawn():
     np.testing.assert_array_equal(streams.normal((4,)), direct)
 
 
-@pytest.mark.parametrize("seed", [0, 1, 2000, 2 ** 32 + 5, 2 ** 70 + 3])
+@pytest.mark.parametrize("seed", [0, 1, 2000, 2**32 + 5, 2**70 + 3])
 def test_trial_states_are_numpys(seed):
     """The vectorised SeedSequence hash gives the PCG64 states numpy's SeedSequence + PCG64 give."""
-    ids = np.r_[0:200, 10 ** 7, 2 ** 32 - 1]
+    ids = np.r_[0:200, 10**7, 2**32 - 1]
     got = montecarlo._pcg64_states(seed, ids)
     want = [np.random.PCG64(np.random.SeedSequence(seed, spawn_key=(int(i),))).state["state"] for i in ids]
     assert [{"state": s, "inc": c} for s, c in got] == want
@@ -33,7 +34,7 @@ def test_trial_states_are_numpys(seed):
 def test_streams_continue_across_draw_modes():
     """Shared-generator draws, the switch to per-trial generators and generators() continue each trial's
     stream exactly as per-trial generators from the start would; ids beyond 2**32 take the direct path."""
-    for ids in (np.array([3, 0, 17, 5]), np.array([1, 2 ** 33])):
+    for ids in (np.array([3, 0, 17, 5]), np.array([1, 2**33])):
         direct = [np.random.default_rng(np.random.SeedSequence(7, spawn_key=(int(i),))) for i in ids]
         streams = montecarlo.TrialStreams(7, ids)
         for k in range(montecarlo._SHARED_DRAWS + 2):
@@ -43,8 +44,7 @@ def test_streams_continue_across_draw_modes():
         fresh = montecarlo.TrialStreams(7, ids)
         fresh.normal(3)
         gens = fresh.generators()
-        for g, d in zip(gens, [np.random.default_rng(np.random.SeedSequence(7, spawn_key=(int(i),))) for i in ids],
-                        strict=True):
+        for g, d in zip(gens, [np.random.default_rng(np.random.SeedSequence(7, spawn_key=(int(i),))) for i in ids], strict=True):
             d.normal(size=3)
             assert g.integers(1 << 40) == d.integers(1 << 40)
 
@@ -60,11 +60,9 @@ def test_result_independent_of_batch_size(batch_size):
 def test_result_independent_of_executor():
     ref = montecarlo.run(heading_error_batch, 300, seed=9, batch_size=50, progress=False, sigma=2.0)
     with ThreadPoolExecutor(2) as ex:
-        threads = montecarlo.run(heading_error_batch, 300, seed=9, batch_size=17, executor=ex, progress=False,
-                                 sigma=2.0)
+        threads = montecarlo.run(heading_error_batch, 300, seed=9, batch_size=17, executor=ex, progress=False, sigma=2.0)
     with ProcessPoolExecutor(2) as ex:
-        procs = montecarlo.run(heading_error_batch, 300, seed=9, batch_size=100, executor=ex, progress=False,
-                               sigma=2.0)
+        procs = montecarlo.run(heading_error_batch, 300, seed=9, batch_size=100, executor=ex, progress=False, sigma=2.0)
     np.testing.assert_array_equal(threads["mean"], ref["mean"])
     np.testing.assert_array_equal(procs["mean"], ref["mean"])
 
@@ -72,10 +70,13 @@ def test_result_independent_of_executor():
 def test_dask_local_cluster_gives_identical_results():
     distributed = pytest.importorskip("distributed")
     ref = montecarlo.run(heading_error_batch, 120, seed=5, batch_size=40, progress=False, sigma=1.0)
-    with distributed.LocalCluster(n_workers=1, threads_per_worker=2, processes=False,
-                                  dashboard_address=None) as cluster, distributed.Client(cluster) as client:
-        out = montecarlo.run(heading_error_batch, 120, seed=5, batch_size=13, executor=client.get_executor(),
-                             progress=False, sigma=1.0)
+    with (
+        distributed.LocalCluster(n_workers=1, threads_per_worker=2, processes=False, dashboard_address=None) as cluster,
+        distributed.Client(cluster) as client,
+    ):
+        out = montecarlo.run(
+            heading_error_batch, 120, seed=5, batch_size=13, executor=client.get_executor(), progress=False, sigma=1.0
+        )
     np.testing.assert_array_equal(out["mean"], ref["mean"])
 
 
@@ -98,10 +99,16 @@ def test_progress_off_by_environment(capsys, monkeypatch):
     assert all(np.array_equal(quiet[k], shown[k]) for k in quiet)
 
 
-@pytest.mark.parametrize("kw, match", [
-    (dict(n_trials=0), "n_trials"), (dict(seed=-1), "seed"), (dict(batch_size=0), "batch_size"),
-    (dict(batch_fn=3), "batch_fn"), (dict(executor="pool"), "executor"),
-])
+@pytest.mark.parametrize(
+    "kw, match",
+    [
+        (dict(n_trials=0), "n_trials"),
+        (dict(seed=-1), "seed"),
+        (dict(batch_size=0), "batch_size"),
+        (dict(batch_fn=3), "batch_fn"),
+        (dict(executor="pool"), "executor"),
+    ],
+)
 def test_bad_input(kw, match):
     args = dict(batch_fn=heading_error_batch, n_trials=10, seed=1, sigma=1.0, progress=False)
     args.update(kw)

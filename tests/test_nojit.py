@@ -39,5 +39,5 @@ def test_kernels_run_uncompiled_with_the_same_results():
     np.testing.assert_allclose(plain["q"], jit["q"], rtol=0, atol=1e-12)
     np.testing.assert_allclose(plain["x"], jit["x"], rtol=0, atol=1e-15)
     assert plain["status"] == jit["status"] == 1
-    np.testing.assert_array_equal(plain["gk"], jit["gk"])              # the GK series, bit for bit
-    assert plain["fma"] == jit["fma"] == -2.0 ** -60                    # one rounding: a * b + c would give 0
+    np.testing.assert_array_equal(plain["gk"], jit["gk"])  # the GK series, bit for bit
+    assert plain["fma"] == jit["fma"] == -(2.0**-60)  # one rounding: a * b + c would give 0

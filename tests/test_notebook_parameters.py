@@ -8,6 +8,7 @@ of the same name — or that changes its contents in place (``NAME[...] = ...``,
 reader of that cell cannot see it: this test fails on it. Names bound inside functions are local
 and not affected.
 """
+
 from __future__ import annotations
 
 import ast
@@ -17,9 +18,31 @@ from pathlib import Path
 import pytest
 
 NOTEBOOKS = sorted((Path(__file__).resolve().parents[1] / "notebooks").glob("[0-9][0-9]_*.ipynb"))
-MUTATORS = {"append", "extend", "insert", "update", "setdefault", "pop", "popitem", "remove", "clear", "sort",
-            "reverse", "add", "discard", "fill", "resize", "put", "itemset", "sort_values", "drop", "rename",
-            "set_index", "reset_index", "__setitem__"}
+MUTATORS = {
+    "append",
+    "extend",
+    "insert",
+    "update",
+    "setdefault",
+    "pop",
+    "popitem",
+    "remove",
+    "clear",
+    "sort",
+    "reverse",
+    "add",
+    "discard",
+    "fill",
+    "resize",
+    "put",
+    "itemset",
+    "sort_values",
+    "drop",
+    "rename",
+    "set_index",
+    "reset_index",
+    "__setitem__",
+}
 
 
 def parse(src: str) -> ast.Module:
@@ -88,8 +111,13 @@ def parameter_cells(nb: dict) -> tuple[int, list[tuple[int, str]]]:
 def violations(nb: dict) -> list[str]:
     tagged, cells = parameter_cells(nb)
     params = {n for n, _, _ in changed_names(parse(dict(cells)[tagged]))}
-    return [f"cell {i}, line {line}: parameter {name} {what} outside the parameters cell"
-            for i, src in cells if i > tagged for name, line, what in changed_names(parse(src)) if name in params]
+    return [
+        f"cell {i}, line {line}: parameter {name} {what} outside the parameters cell"
+        for i, src in cells
+        if i > tagged
+        for name, line, what in changed_names(parse(src))
+        if name in params
+    ]
 
 
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=[p.stem for p in NOTEBOOKS])
@@ -99,24 +127,49 @@ def test_parameters_change_only_in_the_parameters_cell(path):
 
 
 def _nb(*sources: str, tagged: int = 0) -> dict:
-    return {"cells": [{"cell_type": "code", "source": s, "metadata": {"tags": ["parameters"]} if i == tagged else {}}
-                      for i, s in enumerate(sources)]}
+    return {
+        "cells": [
+            {"cell_type": "code", "source": s, "metadata": {"tags": ["parameters"]} if i == tagged else {}}
+            for i, s in enumerate(sources)
+        ]
+    }
 
 
-@pytest.mark.parametrize("later", [
-    "SEED = 3", "SEED += 1", "SEED: int = 3", "A, (B, SEED) = 1, (2, 3)", "for SEED in range(3):\n    pass",
-    "with open('x') as SEED:\n    pass", "import numpy as SEED", "def SEED():\n    pass", "GRID[0] = 5",
-    "GRID.sort()", "del GRID[0]", "CFG.rate = 2", "if True:\n    SEED = 4",
-    "try:\n    pass\nexcept ValueError:\n    SEED = 1", "for k in range(2):\n    GRID.append(k)",
-])
+@pytest.mark.parametrize(
+    "later",
+    [
+        "SEED = 3",
+        "SEED += 1",
+        "SEED: int = 3",
+        "A, (B, SEED) = 1, (2, 3)",
+        "for SEED in range(3):\n    pass",
+        "with open('x') as SEED:\n    pass",
+        "import numpy as SEED",
+        "def SEED():\n    pass",
+        "GRID[0] = 5",
+        "GRID.sort()",
+        "del GRID[0]",
+        "CFG.rate = 2",
+        "if True:\n    SEED = 4",
+        "try:\n    pass\nexcept ValueError:\n    SEED = 1",
+        "for k in range(2):\n    GRID.append(k)",
+    ],
+)
 def test_a_later_change_fails(later):
     assert violations(_nb("SEED = 2000\nGRID = [1, 2]\nCFG = object()", later))
 
 
-@pytest.mark.parametrize("later", [
-    "x = SEED + 1", "def f(SEED):\n    SEED = 1\n    return SEED", "grid = list(GRID)\ngrid[0] = 5",
-    "print(GRID.count(1))", "lambda SEED: SEED", "[SEED for SEED in range(3)]",
-])
+@pytest.mark.parametrize(
+    "later",
+    [
+        "x = SEED + 1",
+        "def f(SEED):\n    SEED = 1\n    return SEED",
+        "grid = list(GRID)\ngrid[0] = 5",
+        "print(GRID.count(1))",
+        "lambda SEED: SEED",
+        "[SEED for SEED in range(3)]",
+    ],
+)
 def test_uses_and_local_names_pass(later):
     assert not violations(_nb("SEED = 2000\nGRID = [1, 2]", later))
 

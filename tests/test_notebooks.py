@@ -5,6 +5,7 @@ kernel, has a code cell tagged ``parameters``, and calls
 ``repro.setup("<its own stem>")``; the paper notebooks 01-05 open with a
 markdown cell giving the citation.
 """
+
 from __future__ import annotations
 
 import json

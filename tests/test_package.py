@@ -1,4 +1,5 @@
 """navlib's module attributes: submodules load on first use, importing warns of nothing, no old names."""
+
 from __future__ import annotations
 
 import subprocess
@@ -11,8 +12,9 @@ import navlib
 
 
 def test_importing_navlib_does_not_warn():
-    out = subprocess.run([sys.executable, "-W", "error::DeprecationWarning", "-c", "import navlib, navlib.papers"],
-                         capture_output=True, text=True)
+    out = subprocess.run(
+        [sys.executable, "-W", "error::DeprecationWarning", "-c", "import navlib, navlib.papers"], capture_output=True, text=True
+    )
     assert out.returncode == 0, out.stderr
 
 
@@ -24,9 +26,11 @@ def test_the_unreleased_alias_modules_are_gone(old):
 
 def test_submodules_load_on_first_use():
     """``import navlib`` loads no submodule; ``navlib.X`` and ``from navlib import X`` load X (and what it imports)."""
-    code = ("import sys, navlib; assert not [m for m in sys.modules if m.startswith('navlib.')], sys.modules.keys(); "
-            "from navlib import units; assert 'scipy.stats' not in sys.modules and 'numba' not in sys.modules; "
-            "assert all(hasattr(navlib, name) for name in navlib.__all__); assert set(navlib.__all__) <= set(dir(navlib))")
+    code = (
+        "import sys, navlib; assert not [m for m in sys.modules if m.startswith('navlib.')], sys.modules.keys(); "
+        "from navlib import units; assert 'scipy.stats' not in sys.modules and 'numba' not in sys.modules; "
+        "assert all(hasattr(navlib, name) for name in navlib.__all__); assert set(navlib.__all__) <= set(dir(navlib))"
+    )
     subprocess.run([sys.executable, "-c", code], check=True)
 
 
@@ -35,9 +39,11 @@ _NO_MATPLOTLIB = "import sys; sys.modules['matplotlib'] = None; sys.modules['mpl
 
 
 def test_every_module_imports_without_matplotlib():
-    code = _NO_MATPLOTLIB + ("import importlib, pkgutil, navlib; "
-                             "names = [m.name for m in pkgutil.walk_packages(navlib.__path__, 'navlib.')]; "
-                             "[importlib.import_module(n) for n in names]; print(len(names))")
+    code = _NO_MATPLOTLIB + (
+        "import importlib, pkgutil, navlib; "
+        "names = [m.name for m in pkgutil.walk_packages(navlib.__path__, 'navlib.')]; "
+        "[importlib.import_module(n) for n in names]; print(len(names))"
+    )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert out.returncode == 0, out.stderr
     assert int(out.stdout) > 30

@@ -4,6 +4,7 @@ None of the configuration files here can be exercised on this machine (no Binder
 so these tests check what can be checked: that each file parses, says what it must, and agrees with
 the single source of truth for versions, ``environment.txt``.
 """
+
 from __future__ import annotations
 
 import ast
@@ -46,8 +47,7 @@ BENCH = pins(ROOT / "requirements-bench.txt")
 
 def declared() -> list[Requirement]:
     """Every requirement of pyproject.toml: run time, extras and dependency groups (not an extra naming another)."""
-    groups = [PROJECT["dependencies"], *PROJECT["optional-dependencies"].values(),
-              *PYPROJECT["dependency-groups"].values()]
+    groups = [PROJECT["dependencies"], *PROJECT["optional-dependencies"].values(), *PYPROJECT["dependency-groups"].values()]
     return [r for r in map(Requirement, (x for g in groups for x in g)) if canonicalize_name(r.name) != PROJECT["name"]]
 
 
@@ -64,8 +64,9 @@ def extra(name: str) -> set[str]:
 
 # ---------------------------------------------------------------- metadata and pins
 
+
 def test_distribution_name_and_metadata():
-    assert PROJECT["name"] == "navlib-repro"        # `navlib` on the package index is another project
+    assert PROJECT["name"] == "navlib-repro"  # `navlib` on the package index is another project
     assert PROJECT["requires-python"] == ">=3.11"
     assert PROJECT["license"] == "MIT" and (ROOT / "LICENSE").read_text().startswith("MIT License")
     assert set(PROJECT["optional-dependencies"]) == {"plots", "test", "notebooks", "docs", "bench"}
@@ -81,6 +82,7 @@ def test_package_data_is_shipped():
 
 
 # ---------------------------------------------------------------- one version, release notes, package page
+
 
 def test_version_is_written_once():
     """navlib.__version__ is the only version; pyproject reads it, CITATION.cff must repeat it."""
@@ -151,7 +153,7 @@ def test_every_top_level_pin_is_declared():
     for name in ENV:
         for r in active(name):
             required.add(canonicalize_name(r.name))
-            for extra in r.extras:                  # e.g. jsonschema[format-nongpl] brings its own pins
+            for extra in r.extras:  # e.g. jsonschema[format-nongpl] brings its own pins
                 required.update(canonicalize_name(x.name) for x in active(r.name, extra))
     top_level = set(ENV) - required
     missing = top_level - {canonicalize_name(r.name) for r in declared()}
@@ -183,13 +185,17 @@ def imported_distributions(sources: list[str]) -> set[str]:
 
 def test_notebooks_extra_covers_every_notebook_import():
     """`pip install navlib-repro[notebooks]` must be enough to run every notebook."""
-    cells = ["".join(c["source"]) for p in sorted((ROOT / "notebooks").glob("*.ipynb"))
-             for c in json.loads(p.read_text(encoding="utf-8"))["cells"] if c["cell_type"] == "code"]
+    cells = [
+        "".join(c["source"])
+        for p in sorted((ROOT / "notebooks").glob("*.ipynb"))
+        for c in json.loads(p.read_text(encoding="utf-8"))["cells"]
+        if c["cell_type"] == "code"
+    ]
     needed = imported_distributions(cells)
     # ipykernel brings IPython; the notebooks display through it.
     missing = needed - extra("notebooks") - {"ipython"}
     assert not missing, f"the notebooks import {sorted(missing)}, which [notebooks] does not declare"
-    assert {"ahrs", "imufusion", "pyproj", "matplotlib"} <= needed         # the check cannot pass vacuously
+    assert {"ahrs", "imufusion", "pyproj", "matplotlib"} <= needed  # the check cannot pass vacuously
 
 
 def test_extras_exclude_the_ipykernel_that_hung():
@@ -208,6 +214,7 @@ def test_matplotlib_is_an_extra():
 
 
 # ---------------------------------------------------------------- Binder
+
 
 def test_binder_pins_agree_with_environment():
     """Binder runs the notebooks: its pins are environment.txt's (contributor tools may be left out), and every
@@ -238,7 +245,7 @@ def steps(wf: dict) -> list[dict]:
 
 
 def on(wf: dict) -> dict:
-    return wf.get("on", wf.get(True))               # YAML 1.1 reads a bare `on` key as True
+    return wf.get("on", wf.get(True))  # YAML 1.1 reads a bare `on` key as True
 
 
 def nox_sessions() -> set[str]:
@@ -332,32 +339,47 @@ def test_pre_commit_hooks_are_local():
     for hook in hooks.values():
         assert hook["language"] == "system" and "additional_dependencies" not in hook, hook["id"]
         tool = hook["entry"].split()[0]
-        dist = {"check-yaml": "pre-commit-hooks", "check-toml": "pre-commit-hooks", "end-of-file-fixer": "pre-commit-hooks",
-                "check-added-large-files": "pre-commit-hooks"}.get(tool, tool)
+        dist = {
+            "check-yaml": "pre-commit-hooks",
+            "check-toml": "pre-commit-hooks",
+            "end-of-file-fixer": "pre-commit-hooks",
+            "check-added-large-files": "pre-commit-hooks",
+        }.get(tool, tool)
         assert canonicalize_name(dist) in ENV, f"{hook['id']}: {dist} is not pinned in environment.txt"
     flags = re.search(r"^NBSTRIPOUT_FLAGS := (.*)$", (ROOT / "Makefile").read_text(encoding="utf-8"), flags=re.M).group(1)
     assert hooks["nbstripout"]["entry"] == f"nbstripout {flags}"
 
 
 def test_committed_notebooks_are_stripped_as_the_hook_strips():
-    out = subprocess.run([sys.executable, "-m", "nbstripout", "--verify", *shlex.split(
-        re.search(r"^NBSTRIPOUT_FLAGS := (.*)$", (ROOT / "Makefile").read_text(encoding="utf-8"), flags=re.M).group(1)),
-        *map(str, sorted((ROOT / "notebooks").glob("*.ipynb")))], capture_output=True, text=True)
+    out = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "nbstripout",
+            "--verify",
+            *shlex.split(
+                re.search(r"^NBSTRIPOUT_FLAGS := (.*)$", (ROOT / "Makefile").read_text(encoding="utf-8"), flags=re.M).group(1)
+            ),
+            *map(str, sorted((ROOT / "notebooks").glob("*.ipynb"))),
+        ],
+        capture_output=True,
+        text=True,
+    )
     assert out.returncode == 0, "run `make strip`: " + out.stdout + out.stderr
 
 
 def test_ruff_passes():
-    out = subprocess.run([sys.executable, "-m", "ruff", "check", "--no-cache", "."], cwd=ROOT,
-                         capture_output=True, text=True)
+    out = subprocess.run([sys.executable, "-m", "ruff", "check", "--no-cache", "."], cwd=ROOT, capture_output=True, text=True)
     assert out.returncode == 0, out.stdout + out.stderr
 
 
 # ---------------------------------------------------------------- licence and citation
 
+
 def test_citation_file():
     cff = yaml.safe_load((ROOT / "CITATION.cff").read_text(encoding="utf-8"))
     assert cff["cff-version"] == "1.2.0" and cff["type"] == "software"
-    assert cff["license"] == "MIT"                  # its version: test_version_is_written_once
+    assert cff["license"] == "MIT"  # its version: test_version_is_written_once
     refs = cff["references"]
     assert len(refs) == 5 and all(r["type"] == "article" and r["title"] and r["authors"] for r in refs)
     dois = [r["doi"] for r in refs if "doi" in r]

@@ -1,4 +1,5 @@
 """analysis.footfall_path_length: the distance walked by a foot-mounted track, from footfall to footfall."""
+
 import numpy as np
 import pytest
 
@@ -32,14 +33,14 @@ def test_footfall_path_length_equals_the_strides():
     length, falls = analysis.footfall_path_length(pos, stance, min_samples=20)
     assert falls.shape == (21, 2)
     assert length == pytest.approx(truth, rel=0.005)
-    summed = np.sum(np.linalg.norm(np.diff(pos[:, :2], axis=0), axis=1))      # sample by sample: longer
+    summed = np.sum(np.linalg.norm(np.diff(pos[:, :2], axis=0), axis=1))  # sample by sample: longer
     assert summed > 1.05 * truth
 
 
 def test_footfall_path_length_ignores_short_stance_flickers_and_refuses_bad_input():
     pos, stance, truth = foot_track(np.random.default_rng(35))
     flicker = stance.copy()
-    flicker[np.flatnonzero(~stance)[::97]] = True                   # single-sample false stances mid-swing
+    flicker[np.flatnonzero(~stance)[::97]] = True  # single-sample false stances mid-swing
     assert analysis.footfall_path_length(pos, flicker, min_samples=20)[0] == pytest.approx(truth, rel=0.005)
     assert analysis.footfall_path_length(pos, np.zeros(len(pos), bool))[0] == 0.0
     with pytest.raises(ValueError, match="pos_n"):

@@ -28,6 +28,7 @@ tests/test_geodesy.py (geodesy owner).
 Tolerances are relative to the size of the quantities (float64 rounding,
 ~1e-16, amplified by the few operations involved); each test states its own.
 """
+
 import numpy as np
 import pytest
 from hypothesis import assume, given, settings
@@ -48,7 +49,7 @@ I3 = np.eye(3)
 finite = st.one_of(st.just(0.0), st.floats(1e-290, 1e6), st.floats(-1e6, -1e-290))
 angles = st.floats(-10.0, 10.0)
 headings = st.floats(0.0, 2 * PI, exclude_max=True)
-pitches_free = st.floats(-PI / 2 + 1e-2, PI / 2 - 1e-2)     # away from gimbal lock
+pitches_free = st.floats(-PI / 2 + 1e-2, PI / 2 - 1e-2)  # away from gimbal lock
 rolls = st.floats(-PI, PI)
 lats = st.floats(-PI / 2, PI / 2)
 
@@ -106,7 +107,7 @@ def test_quat_conj_is_inverse_and_transposes_dcm(q):
 def test_quat_sign_invariance(q):
     """q and -q are the same rotation: same DCM, Euler angles and rotation vector."""
     assert_allclose(att.quat_to_dcm(-q), att.quat_to_dcm(q), atol=0)
-    if np.linalg.norm(att.quat_to_rotvec(q)) < PI - 1e-6:   # at pi, +-axis are the same rotation
+    if np.linalg.norm(att.quat_to_rotvec(q)) < PI - 1e-6:  # at pi, +-axis are the same rotation
         assert_allclose(att.quat_to_rotvec(-q), att.quat_to_rotvec(q), atol=1e-12)
     C = att.quat_to_dcm(q)
     assume(abs(C[2, 1]) < 1 - 1e-6)  # pitch away from +-90 deg, where heading/roll are not unique
@@ -153,7 +154,7 @@ def test_rotvec_is_principal(q):
     """quat_to_rotvec and dcm_to_rotvec return the principal rotation vector, |rv| <= pi, and agree."""
     rv = att.quat_to_rotvec(q)
     assert np.linalg.norm(rv) <= PI + 1e-12
-    assume(np.linalg.norm(rv) < PI - 1e-6)   # at pi the sign of the axis is arbitrary
+    assume(np.linalg.norm(rv) < PI - 1e-6)  # at pi the sign of the axis is arbitrary
     assert_allclose(att.dcm_to_rotvec(att.quat_to_dcm(q)), rv, atol=1e-7)
     assert_allclose(att.quat_to_dcm(att.rotvec_to_quat(rv)), att.quat_to_dcm(q), atol=1e-13)
 
@@ -227,9 +228,16 @@ def test_wraps_relation_and_idempotence(a):
 # --------------------------------------------------------------------------
 # units
 # --------------------------------------------------------------------------
-PAIRS = [(units.to_deg, units.deg), (units.to_deg_per_s, units.deg_per_s), (units.to_deg_per_h, units.deg_per_h),
-         (units.to_deg_per_sqrt_h, units.deg_per_sqrt_h), (units.to_deg_per_s_sqrt_hz, units.deg_per_s_sqrt_hz),
-         (units.to_ug, units.ug), (units.to_gauss, units.gauss), (units.to_hpa, units.hpa)]
+PAIRS = [
+    (units.to_deg, units.deg),
+    (units.to_deg_per_s, units.deg_per_s),
+    (units.to_deg_per_h, units.deg_per_h),
+    (units.to_deg_per_sqrt_h, units.deg_per_sqrt_h),
+    (units.to_deg_per_s_sqrt_hz, units.deg_per_s_sqrt_hz),
+    (units.to_ug, units.ug),
+    (units.to_gauss, units.gauss),
+    (units.to_hpa, units.hpa),
+]
 
 
 @settings(max_examples=60, deadline=None)
@@ -326,7 +334,7 @@ P_LOW, P_HIGH = float(atmosphere.isa_pressure(11000.0)), float(atmosphere.isa_pr
 
 
 @SETTINGS
-@given(frac=st.floats(1e-9, 1.0 - 1e-9), p0=st.floats(95000.0, 105000.0))   # inside the valid range
+@given(frac=st.floats(1e-9, 1.0 - 1e-9), p0=st.floats(95000.0, 105000.0))  # inside the valid range
 def test_isa_and_bmp180_pressure_round_trips(frac, p0):
     """p -> h -> p for the ISA and BMP180 formulas, over the -1 km .. 11 km range of each (rtol 1e-12)."""
     p = p0 / atmosphere.P0 * (P_LOW + frac * (P_HIGH - P_LOW))
@@ -372,12 +380,12 @@ def update_problems(draw, max_n=6, max_m=5, decades=12):
     R = Qr @ np.diag(10.0 ** rng.uniform(-3, 3, m)) @ Qr.T
     R = (R + R.T) / 2
     H = rng.standard_normal((m, n)) * 10.0 ** rng.uniform(-2, 2, (m, 1))
-    H[rng.random(m) < 0.15] = 0.0                      # a measurement that sees no state
+    H[rng.random(m) < 0.15] = 0.0  # a measurement that sees no state
     x = rng.standard_normal(n)
     z = H @ x + rng.standard_normal(m) * np.sqrt(np.diag(R))
     z[rng.random(m) < draw(st.sampled_from([0.0, 0.3]))] = np.nan
     angle_mask = rng.random(m) < 0.3
-    z = np.where(angle_mask, z + 2 * PI * rng.integers(-3, 4, m), z)   # angles off by whole turns
+    z = np.where(angle_mask, z + 2 * PI * rng.integers(-3, 4, m), z)  # angles off by whole turns
     gate = draw(st.sampled_from([np.inf, 9.0, 1.0]))
     return x, P, z, H @ x, H, R, angle_mask, gate
 
@@ -406,7 +414,7 @@ def test_update_covariance_symmetric_psd(problem):
         assert status == (kalman.REJECTED if nis > gate else kalman.ACCEPTED)
     if status != kalman.ACCEPTED:
         assert np.array_equal(Pn, P) and np.array_equal(xn, x)
-    else:   # information never lost: P - Pn is PSD
+    else:  # information never lost: P - Pn is PSD
         assert np.linalg.eigvalsh(P - Pn).min() >= -_psd_tol(P)
 
 

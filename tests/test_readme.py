@@ -1,5 +1,6 @@
 """The README: its "Your own data" example runs as written, on the committed sample in the app's layout; its
 results section (claims by verdict, per-paper matrices, quoted numbers) agrees with the notebooks and results."""
+
 import re
 import sys
 import warnings
@@ -36,7 +37,7 @@ def test_your_own_data_snippet_runs_as_written(monkeypatch, sample):
     clockwise (tools/make_sample_log.py): the heading plotted must turn by that much, and where the export
     carries the phone's own attitude (Orientation.csv) the filter's tilt must agree with it."""
     code, board_line = _your_own_data()
-    assert len(code.strip().splitlines()) <= 12            # "a few lines" (import lines included)
+    assert len(code.strip().splitlines()) <= 12  # "a few lines" (import lines included)
     assert SAMPLE in code
     if sample == "board.csv":
         code = re.sub(r"rec = io\.read_sensor_logger\(.*?\)", lambda _: board_line.split("  #")[0], code, count=1)
@@ -45,8 +46,8 @@ def test_your_own_data_snippet_runs_as_written(monkeypatch, sample):
     monkeypatch.chdir(ROOT)
     scope = {}
     with warnings.catch_warnings():
-        warnings.simplefilter("error")                      # no axis looks flipped in a correct recording
-        exec(compile(code, "README.md", "exec"), scope)    # noqa: S102 - the README's own example
+        warnings.simplefilter("error")  # no axis looks flipped in a correct recording
+        exec(compile(code, "README.md", "exec"), scope)  # noqa: S102 - the README's own example
     rec, res, attitude = scope["rec"], scope["res"], scope["attitude"]
     hpr = attitude.quat_to_euler(res.q_bn)
     heading = np.rad2deg(np.unwrap(hpr[:, 0]))
@@ -55,7 +56,7 @@ def test_your_own_data_snippet_runs_as_written(monkeypatch, sample):
     # magnetometer the heading is the bias-corrected gyro's alone.
     assert abs(heading[-1] - heading[0] - 90.0) < 10.0
     assert any(c.startswith("gyro bias at rest removed") for c in rec.conversions)
-    if rec.q_bn_ref is not None:                           # the phone's own attitude, in navlib's frame
+    if rec.q_bn_ref is not None:  # the phone's own attitude, in navlib's frame
         ref = attitude.quat_to_euler(rec.q_bn_ref)
         tilt = np.rad2deg(np.abs(attitude.wrap_pi(hpr[:, 1:] - ref[:, 1:])))
         assert np.max(tilt) < 3.0
@@ -90,7 +91,8 @@ def test_matrix_verdicts_agree_with_the_notebooks():
     for path in NOTEBOOKS:
         for claim, verdict in static_verdicts(path).items():
             assert shown.get(claim, "").split(":")[0].split(" (E")[0] == verdict, (
-                f"{claim}: README shows {shown.get(claim)!r}, {path.stem} records {verdict!r}: run `make readme`")
+                f"{claim}: README shows {shown.get(claim)!r}, {path.stem} records {verdict!r}: run `make readme`"
+            )
 
 
 def test_claims_without_verdict_are_not_counted_as_reproduced():
@@ -115,7 +117,7 @@ def test_quoted_values_are_well_formed():
         assert stem in stems, stem
         scale, _, fmt = spec.rpartition(":")
         assert not scale or re.fullmatch(r"x\d+(\.\d+)?", scale), spec
-        format(1.0, fmt)                                      # a valid format spec
+        format(1.0, fmt)  # a valid format spec
 
 
 def test_readme_matches_fresh_results():

@@ -4,6 +4,7 @@ Every notebook is notebook 00 or a registered paper, so a new notebook cannot be
 skipped silently; every registered paper has its notebook, its companion module,
 its claims and errata, and a row in the README table.
 """
+
 from __future__ import annotations
 
 import csv
@@ -41,10 +42,12 @@ def test_names_numbers_and_claim_ids_are_unique():
 def test_notebook_exists_and_imports_its_companion(p):
     path = ROOT / "notebooks" / f"{p.notebook}.ipynb"
     assert path.is_file(), f"{p.name}: no notebook {path.name}"
-    code = "\n".join("".join(c["source"]) for c in json.loads(path.read_text(encoding="utf-8"))["cells"]
-                     if c["cell_type"] == "code")
-    assert re.search(rf"from navlib\.papers import [^\n]*\b{p.name}\b|import navlib\.papers\.{p.name}\b", code), \
+    code = "\n".join(
+        "".join(c["source"]) for c in json.loads(path.read_text(encoding="utf-8"))["cells"] if c["cell_type"] == "code"
+    )
+    assert re.search(rf"from navlib\.papers import [^\n]*\b{p.name}\b|import navlib\.papers\.{p.name}\b", code), (
         f"{path.name} does not import its companion navlib.papers.{p.name}"
+    )
 
 
 @paper
@@ -69,5 +72,6 @@ def test_data_files_name_only_registered_papers():
 
 @paper
 def test_readme_lists_the_notebook(p):
-    assert f"`{p.notebook}`" in (ROOT / "README.md").read_text(encoding="utf-8"), \
+    assert f"`{p.notebook}`" in (ROOT / "README.md").read_text(encoding="utf-8"), (
         f"README results table has no row for {p.notebook} (run `make readme`)"
+    )

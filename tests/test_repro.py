@@ -1,4 +1,5 @@
 """Tests of navlib.repro: claim checks, results.json and deterministic figures."""
+
 import json
 import math
 import struct
@@ -141,10 +142,10 @@ def _png_chunks(data):
     assert data[:8] == b"\x89PNG\r\n\x1a\n"
     pos, chunks = 8, []
     while pos < len(data):
-        (length,) = struct.unpack(">I", data[pos:pos + 4])
-        ctype = data[pos + 4:pos + 8]
-        body = data[pos + 8:pos + 8 + length]
-        (crc,) = struct.unpack(">I", data[pos + 8 + length:pos + 12 + length])
+        (length,) = struct.unpack(">I", data[pos : pos + 4])
+        ctype = data[pos + 4 : pos + 8]
+        body = data[pos + 8 : pos + 8 + length]
+        (crc,) = struct.unpack(">I", data[pos + 8 + length : pos + 12 + length])
         assert crc == zlib.crc32(ctype + body) & 0xFFFFFFFF
         chunks.append((ctype, body))
         pos += 12 + length
@@ -205,7 +206,7 @@ def test_explorer_redraws_its_one_figure_in_place(fake_root, monkeypatch):
     monkeypatch.setattr(display, "display", lambda obj, display_id=False: shown.append(obj) or (Handle() if display_id else None))
     monkeypatch.setattr(matplotlib, "get_backend", lambda: "module://matplotlib_inline.backend_inline")
     repro.setup(NB)
-    plt.close("all")                                 # figures other tests left open
+    plt.close("all")  # figures other tests left open
     drawn = []
 
     def draw(noise, label):
@@ -279,17 +280,21 @@ def paper_root(fake_root):
 def test_results_json_is_the_plain_json_layout(paper_root):
     """Rows are encoded once, when recorded; the file equals json.dumps of the whole record."""
     repro.mode(teaching=True, fast=False)
-    repro.check("P999-FIG1-RMSE", 4.8, 4.77, 0.1, "Fig. 1", paper_value="4.77 °", unit="°", note="ü \"q\"\nx")
+    repro.check("P999-FIG1-RMSE", 4.8, 4.77, 0.1, "Fig. 1", paper_value="4.77 °", unit="°", note='ü "q"\nx')
     repro.check_outside("P999-FIG1-RMSE/out", 5.0, "src", lower=1.0, upper=2.0)
     with pytest.warns(repro.ClaimCheckWarning):
         repro.check("extra-nan", np.nan, 0.0, 1.0, "src")
-    repro.check("P999-FIG1-RMSE", 4.7, 4.77, 0.1, "Fig. 1")           # replaces the first one
+    repro.check("P999-FIG1-RMSE", 4.7, 4.77, 0.1, "Fig. 1")  # replaces the first one
     repro.verdict("P999-FIG1-RMSE", "reproduced")
     repro.verdict("P999-TAB1-HW", "not checkable here", reason="no hardware")
     text = (paper_root / "build" / NB / "results.json").read_text()
-    plain = {"notebook": NB, "checks": [repro._row(c) for c in repro.results()],
-             "mode": {"teaching": True, "fast": False}, "paper": "999",
-             "verdicts": [asdict(v) for v in repro.verdicts()]}
+    plain = {
+        "notebook": NB,
+        "checks": [repro._row(c) for c in repro.results()],
+        "mode": {"teaching": True, "fast": False},
+        "paper": "999",
+        "verdicts": [asdict(v) for v in repro.verdicts()],
+    }
     assert text == json.dumps(plain, indent=1, allow_nan=True) + "\n"
     assert [r["name"] for r in json.loads(text)["checks"]] == ["P999-FIG1-RMSE/out", "extra-nan", "P999-FIG1-RMSE"]
     assert len(json.loads(text)["verdicts"]) == 2
@@ -299,7 +304,7 @@ def test_check_outside(fake_root):
     repro.setup(NB)
     assert repro.check_outside("out-high", 5.0, "src", lower=1.0, upper=2.0).passed
     assert repro.check_outside("out-low", 0.5, "src", lower=1.0, upper=2.0).passed
-    assert repro.check_outside("above", 3.0, "src", upper=2.0).passed      # one bound: value > upper
+    assert repro.check_outside("above", 3.0, "src", upper=2.0).passed  # one bound: value > upper
     with pytest.raises(repro.ClaimCheckFailed, match="outside range"):
         repro.check_outside("inside", 1.5, "src", lower=1.0, upper=2.0)
     with pytest.raises(repro.ClaimCheckFailed):
@@ -330,12 +335,22 @@ def test_verdict_reproduced_rests_on_its_checks(paper_root):
     repro.check("P999-FIG1-RMSEX", 1.0, 1, 0.0, "not a check of that claim")
     v = repro.verdict("P999-FIG1-RMSE", "reproduced")
     assert v.checks == ["P999-FIG1-RMSE/a", "P999-FIG1-RMSE/b"] and v.evidence == []
-    assert v.ours == "4.7123 deg" and v.paper is None         # the ledger shows the catalogue's paper value
+    assert v.ours == "4.7123 deg" and v.paper is None  # the ledger shows the catalogue's paper value
     data = _results(paper_root)
     assert data["paper"] == "999"
-    assert data["verdicts"] == [{"claim": "P999-FIG1-RMSE", "verdict": "reproduced", "checks": v.checks,
-                                 "evidence": [], "paper": None, "ours": "4.7123 deg", "reason": "", "erratum": "",
-                                 "figure": ""}]
+    assert data["verdicts"] == [
+        {
+            "claim": "P999-FIG1-RMSE",
+            "verdict": "reproduced",
+            "checks": v.checks,
+            "evidence": [],
+            "paper": None,
+            "ours": "4.7123 deg",
+            "reason": "",
+            "erratum": "",
+            "figure": "",
+        }
+    ]
     # one verdict per claim: a second call replaces the first
     repro.verdict("P999-FIG1-RMSE", "direction only", reason="stand-in")
     assert [x.verdict for x in repro.verdicts()] == ["direction only"]
@@ -345,11 +360,11 @@ def test_verdict_refuses_what_it_cannot_rest_on(paper_root):
     with pytest.raises(ValueError, match="^claim:"):
         repro.verdict("P999-NOPE", "reproduced")
     with pytest.raises(ValueError, match="^claim:"):
-        repro.verdict("P998-EQ1-X", "reproduced")                 # another paper's claim
+        repro.verdict("P998-EQ1-X", "reproduced")  # another paper's claim
     with pytest.raises(ValueError, match="^verdict:"):
         repro.verdict("P999-FIG1-RMSE", "partially reproduced")
     with pytest.raises(ValueError, match="^checks: .*at least one"):
-        repro.verdict("P999-FIG1-RMSE", "reproduced")             # no check recorded
+        repro.verdict("P999-FIG1-RMSE", "reproduced")  # no check recorded
     with pytest.raises(ValueError, match="^checks: .*not recorded"):
         repro.verdict("P999-FIG1-RMSE", "reproduced", checks=["P999-FIG1-RMSE/typo"])
     with pytest.raises(repro.ClaimCheckFailed):
@@ -384,10 +399,10 @@ def test_verdict_with_correction_names_a_listed_erratum_and_a_failing_printed_fo
     with pytest.raises(ValueError, match="^erratum:"):
         repro.verdict("P999-EQ2-SIGN", "reproduced with correction")
     with pytest.raises(ValueError, match="^erratum:"):
-        repro.verdict("P999-EQ2-SIGN", "reproduced with correction", erratum="E999-02")   # not listed for the claim
+        repro.verdict("P999-EQ2-SIGN", "reproduced with correction", erratum="E999-02")  # not listed for the claim
     v = repro.verdict("P999-EQ2-SIGN", "reproduced with correction", erratum="E999-01")
     assert v.evidence == ["P999-EQ2-SIGN/printed"] and len(v.checks) == 2
-    with pytest.raises(ValueError, match="^checks: .*corrected form"):       # the printed failure alone is not enough
+    with pytest.raises(ValueError, match="^checks: .*corrected form"):  # the printed failure alone is not enough
         repro.verdict("P999-EQ2-SIGN", "reproduced with correction", erratum="E999-01", checks=["P999-EQ2-SIGN/printed"])
 
 
@@ -397,7 +412,7 @@ def test_verdict_not_checkable_here(paper_root):
     v = repro.verdict("P999-TAB1-HW", "not checkable here", reason="needs the authors' recordings")
     assert v.checks == [] and v.ours is None
     repro.check("P999-EQ2-SIGN/residual", 3e-16, 0.0, 1e-12, "src", unit="rad")
-    assert repro.verdict("P999-EQ2-SIGN", "reproduced").ours == "max error 3e-16 rad"   # a residual is shown as one
+    assert repro.verdict("P999-EQ2-SIGN", "reproduced").ours == "max error 3e-16 rad"  # a residual is shown as one
 
 
 def test_verdict_before_setup(fake_root):
@@ -419,9 +434,9 @@ def test_a_value_that_is_its_own_target_is_refused(fake_root):
         repro.check_range("self-lower", x, "src", lower=x)
     with pytest.raises(ValueError, match="^value: .* as upper"):
         repro.check_outside("self-upper", x, "src", lower=-1.0, upper=x)
-    assert repro.check("equal, not the same", np.float64(0.25), x, 0.0, "src").passed     # equal values are not refused
+    assert repro.check("equal, not the same", np.float64(0.25), x, 0.0, "src").passed  # equal values are not refused
     n = int(np.sum(np.zeros(3) > 1))
-    assert repro.check_range("count", n, "src", lower=0, upper=0).passed            # small ints are shared: not refused
+    assert repro.check_range("count", n, "src", lower=0, upper=0).passed  # small ints are shared: not refused
     refused = True
     # a literal chosen by a computed condition is the target's own object in CPython (one constant per code object)
     assert repro.check("outcome", 0.0 if refused else 1.0, 0.0, 0.0, "src").passed
@@ -436,18 +451,17 @@ def test_a_check_on_printed_numbers_is_recorded_as_such(fake_root):
     repro.check("P999-SIM", 1.0, 1.01, 0.1, "simulation")
     rows = {r["name"]: r for r in _results(fake_root)["checks"]}
     assert rows["P999-TAB1-MAX"]["on_printed"] is True and rows["P999-TAB1-GROWS"]["on_printed"] is True
-    assert "on_printed" not in rows["P999-SIM"]                 # written only when set
+    assert "on_printed" not in rows["P999-SIM"]  # written only when set
     with pytest.raises(ValueError, match="^on_printed:"):
         repro.check("bad-flag", 1.0, 1.01, 0.1, "src", on_printed="yes")
 
 
 def test_a_verdict_resting_only_on_printed_arithmetic_is_no_reproduction(paper_root):
-    repro.check("P999-EQ2-SIGN/table-sum", 12.0, 12.0, 0.05, "the table's column adds up to its printed total",
-                on_printed=True)
+    repro.check("P999-EQ2-SIGN/table-sum", 12.0, 12.0, 0.05, "the table's column adds up to its printed total", on_printed=True)
     with pytest.raises(ValueError, match="^checks: a verdict of 'reproduced' rests on a computation"):
         repro.verdict("P999-EQ2-SIGN", "reproduced")
     v = repro.verdict("P999-EQ2-SIGN", "not checkable here", paper="12", reason="hardware only")
-    assert v.ours is None                                     # a printed-arithmetic value is not shown as ours
+    assert v.ours is None  # a printed-arithmetic value is not shown as ours
     repro.check("P999-EQ2-SIGN/simulated", 3e-16, 0.0, 1e-12, "src", unit="rad")
     assert repro.verdict("P999-EQ2-SIGN", "reproduced").checks == ["P999-EQ2-SIGN/table-sum", "P999-EQ2-SIGN/simulated"]
 
@@ -465,19 +479,19 @@ def test_checks_record_silently_and_summary_shows_each_once(paper_root, capsys):
     assert table.loc["P999-FIG1-RMSE", "tolerance"] == "target 4.77 ± 0.1"
     assert table.loc["P999-FIG1-RMSE/bound", "verdict"] == "reproduced"
     assert table.loc["P999-TAB1-HW (claim)", "verdict"] == "not checkable here"
-    assert repro.summary().empty                      # nothing new since the last table
+    assert repro.summary().empty  # nothing new since the last table
     repro.check("P999-EQ2-SIGN", -1.0, -1.0, 0.0, "Eq. (2)")
     assert list(repro.summary().index) == ["P999-EQ2-SIGN"]
 
 
 def test_summary_shows_every_row_and_the_digits_its_tolerance_resolves(paper_root):
-    for k in range(80):                              # more rows than pandas shows by default (60)
+    for k in range(80):  # more rows than pandas shows by default (60)
         repro.check(f"P999-FIG1-RMSE/h{k:02d}", 196.25 + k, 196.25 + k, 1e-9, "Fig. 1", unit="deg")
     table = repro.summary()
-    assert table.loc["P999-FIG1-RMSE/h00", "ours"] == "196.25 deg"      # not 196.2 against a 1e-9 tolerance
+    assert table.loc["P999-FIG1-RMSE/h00", "ours"] == "196.25 deg"  # not 196.2 against a 1e-9 tolerance
     shown = table._repr_html_()
     assert all(f"P999-FIG1-RMSE/h{k:02d}" in shown for k in range(80)) and "…" not in shown
-    assert shown.count("<tr") == 81                  # one header row ("check" in its corner) and 80 checks
+    assert shown.count("<tr") == 81  # one header row ("check" in its corner) and 80 checks
 
 
 def test_teaching_mode_warns_instead_of_raising(paper_root):
@@ -503,8 +517,7 @@ def test_setup_resets_the_switches(paper_root):
     assert "mode" not in json.loads((paper_root / "build" / NB / "results.json").read_text())
 
 
-@pytest.mark.parametrize("raw, expected", [("1", True), ("yes", True), (" ON ", True), ("0", False), ("", False),
-                                           ("off", False)])
+@pytest.mark.parametrize("raw, expected", [("1", True), ("yes", True), (" ON ", True), ("0", False), ("", False), ("off", False)])
 def test_env_flag(monkeypatch, raw, expected):
     monkeypatch.setenv("NAVLIB_TEST_FLAG", raw)
     assert repro.env_flag("NAVLIB_TEST_FLAG") is expected
@@ -528,10 +541,10 @@ def test_caption_and_answer_render_markdown():
 
 
 def test_exercise_waits_for_the_stub_then_compares_with_navlib():
-    reference = lambda x: np.sin(x)                      # noqa: E731 -- a one-line stand-in for a navlib function
+    reference = lambda x: np.sin(x)  # noqa: E731 -- a one-line stand-in for a navlib function
 
     def stub(x):
-        return None                                      # your code here
+        return None  # your code here
 
     def wrong(x):
         return x
@@ -548,9 +561,11 @@ def test_exercise_waits_for_the_stub_then_compares_with_navlib():
         repro.exercise(None, reference, cases)
 
 
-STUDY_CSV = ("# a seed study\nseed,check,value,target\n"
-             "3001,X/pred,1.10,1.0\n3002,X/pred,0.95,1.0\n3003,X/pred,1.02,1.0\n"
-             "3001,X/plain,5.0,\n3002,X/plain,6.0,\n3003,X/plain,7.0,\n")
+STUDY_CSV = (
+    "# a seed study\nseed,check,value,target\n"
+    "3001,X/pred,1.10,1.0\n3002,X/pred,0.95,1.0\n3003,X/pred,1.02,1.0\n"
+    "3001,X/plain,5.0,\n3002,X/plain,6.0,\n3003,X/plain,7.0,\n"
+)
 
 
 def test_a_studied_tolerance_is_k_times_the_rms_over_the_seeds(fake_root):
@@ -559,15 +574,15 @@ def test_a_studied_tolerance_is_k_times_the_rms_over_the_seeds(fake_root):
     repro.setup(NB)
     pred = repro.seed_spread("nb", "X/pred")
     assert pred.seeds == (3001, 3002, 3003)
-    assert pred.rms == pytest.approx(np.sqrt((0.1 ** 2 + 0.05 ** 2 + 0.02 ** 2) / 3))
+    assert pred.rms == pytest.approx(np.sqrt((0.1**2 + 0.05**2 + 0.02**2) / 3))
     assert pred.mean == pytest.approx(0.07 / 3)
     c = repro.check_study("X/pred", 1.0 + 0.9 * pred.tol, 1.0, "nb", "prediction")
     assert c.passed and c.tol == pytest.approx(repro.STUDY_K * pred.rms) and c.study == {"name": "nb", "target": 1.0}
-    with pytest.raises(repro.ClaimCheckFailed):                  # two-sided: too small fails as well
+    with pytest.raises(repro.ClaimCheckFailed):  # two-sided: too small fails as well
         repro.check_study("X/pred", 1.0 - 1.1 * pred.tol, 1.0, "nb", "prediction")
     plain = repro.seed_spread("nb", "X/plain", about_mean=True)
     assert (plain.mean, plain.sd, plain.rms) == pytest.approx((6.0, 1.0, 1.0))
-    assert repro.check_study("X/plain", 6.0 + 4.0, None, "nb", "regression").passed     # within 4.5 sd of the mean
+    assert repro.check_study("X/plain", 6.0 + 4.0, None, "nb", "regression").passed  # within 4.5 sd of the mean
 
 
 def test_a_check_without_its_study_row_fails(fake_root):

@@ -1,5 +1,6 @@
 """tools/reproduce.py's plan and profile: notebooks longest first by the last run's times less their
 compilation, and where a notebook's time went (compile log, cell timing)."""
+
 import sys
 from pathlib import Path
 
@@ -29,46 +30,68 @@ def test_a_warm_run_is_planned_without_the_last_runs_compilation():
 
 
 def test_the_compile_log_gives_seconds_per_kernel(tmp_path):
-    log = tmp_path / "00_a.compile.log"            # as navlib._kernels.CompileLog writes it
+    log = tmp_path / "00_a.compile.log"  # as navlib._kernels.CompileLog writes it
     assert reproduce.read_compile_log(log) == []
     log.write_text("1.500 navlib.strapdown._nav_kernel\n0.250 navlib.kalman.f\n2.000 navlib.strapdown._nav_kernel\n3.0\n")
     compilations = reproduce.read_compile_log(log)
     assert sum(s for s, _ in compilations) == 6.75
     assert reproduce.kernels_by_compile_time(compilations) == [
-        ("navlib.strapdown._nav_kernel", 3.5, 2), ("?", 3.0, 1), ("navlib.kalman.f", 0.25, 1)]
+        ("navlib.strapdown._nav_kernel", 3.5, 2),
+        ("?", 3.0, 1),
+        ("navlib.kalman.f", 0.25, 1),
+    ]
 
 
 def test_cells_are_timed_from_nbclients_metadata():
-    nb = nbformat.v4.new_notebook(cells=[
-        nbformat.v4.new_code_cell("import numpy as np"), nbformat.v4.new_markdown_cell("# text"),
-        nbformat.v4.new_code_cell("\nslow()"), nbformat.v4.new_code_cell("never_run()")])
+    nb = nbformat.v4.new_notebook(
+        cells=[
+            nbformat.v4.new_code_cell("import numpy as np"),
+            nbformat.v4.new_markdown_cell("# text"),
+            nbformat.v4.new_code_cell("\nslow()"),
+            nbformat.v4.new_code_cell("never_run()"),
+        ]
+    )
     for cell, (begin, end) in zip(nb.cells[::2], (("00:00:00.5", "00:00:01.75"), ("00:00:02", "00:00:12")), strict=True):
-        cell.metadata["execution"] = {"iopub.execute_input": f"2026-01-01T{begin}Z",
-                                      "shell.execute_reply": f"2026-01-01T{end}Z"}
+        cell.metadata["execution"] = {"iopub.execute_input": f"2026-01-01T{begin}Z", "shell.execute_reply": f"2026-01-01T{end}Z"}
     assert reproduce.cell_seconds(nb) == [(2, 10.0, "slow()"), (0, 1.25, "import numpy as np")]
 
 
 def test_the_profile_splits_compilation_from_the_rest():
-    entry = {"notebook": "02_x", "seconds": 40.0, "compile_seconds": 12.5, "peak_mb": 900,
-             "kernels": [("navlib.m.k", 12.5, 3)], "cells": [(4, 30.0, "run()")]}
+    entry = {
+        "notebook": "02_x",
+        "seconds": 40.0,
+        "compile_seconds": 12.5,
+        "peak_mb": 900,
+        "kernels": [("navlib.m.k", 12.5, 3)],
+        "cells": [(4, 30.0, "run()")],
+    }
     assert reproduce.profile(entry).splitlines() == [
         "02_x: 40.0 s = compile 12.5 + other 27.5; peak memory 900 MB",
         "    compile   12.5 s  3 signature(s)  navlib.m.k",
-        "    cell   4   30.0 s  run()"]
+        "    cell   4   30.0 s  run()",
+    ]
 
 
 def run(seed, checks, verdicts, error=None):
-    return {"notebook": "04_x", "seed": seed, "seconds": 1.0, "error": error,
-            "checks": {n: {"value": v, "passed": p} for n, (v, p) in checks.items()}, "verdicts": verdicts}
+    return {
+        "notebook": "04_x",
+        "seed": seed,
+        "seconds": 1.0,
+        "error": error,
+        "checks": {n: {"value": v, "passed": p} for n, (v, p) in checks.items()},
+        "verdicts": verdicts,
+    }
 
 
 def test_the_sweep_names_every_failed_check_and_verdict_flip():
-    runs = [run(11, {"A/x": (1.0, True), "B": (2.0, True)}, {"A": "reproduced", "B": "differs"}),
-            run(29, {"A/x": (1.5, False), "B": (2.1, True)}, {"B": "differs"}),
-            run(47, {"B": (2.2, True)}, {"A": "reproduced", "B": "differs"})]
+    runs = [
+        run(11, {"A/x": (1.0, True), "B": (2.0, True)}, {"A": "reproduced", "B": "differs"}),
+        run(29, {"A/x": (1.5, False), "B": (2.1, True)}, {"B": "differs"}),
+        run(47, {"B": (2.2, True)}, {"A": "reproduced", "B": "differs"}),
+    ]
     table = reproduce.sweep_table(runs, [11, 29, 47])
     assert table["checks"]["A/x"]["values"] == [1.0, 1.5, None]
-    assert table["failures"] == {"A/x": [29, 47]}            # failed on 29, missing on 47
+    assert table["failures"] == {"A/x": [29, 47]}  # failed on 29, missing on 47
     assert table["flips"] == {"A": ["reproduced", "no verdict", "reproduced"]}
     assert table["verdicts"]["B"] == ["differs"] * 3
 

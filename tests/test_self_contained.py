@@ -7,6 +7,7 @@
 * The published reference files in ``data/reference/`` carry their source and tolerance and match
   the checksums of ``data/reference/README.md``.
 """
+
 from __future__ import annotations
 
 import csv
@@ -23,13 +24,18 @@ ROOT = Path(__file__).resolve().parents[1]
 DATA = ROOT / "data"
 
 # Assembled from pieces so that this file does not match its own patterns.
-OUTSIDE = re.compile("|".join([
-    r"\.\./" + "sha" + "red",                     # the sibling folder
-    "sha" + r"red/(vectors|papers|reviews)",       # its sub-folders, however reached
-    "DESIGN" + r"\.md|DESIGN" + " §",             # the old design notes
-    r"\bgui" + r"des?\b",                         # the per-paper working notes, cited as "<that word> Err 4"
-    r"(?<!docs/)(?<!\]\()" + "claims" + r"\.md",  # the old catalogue's explanation (now docs/claims.md)
-]), re.IGNORECASE)
+OUTSIDE = re.compile(
+    "|".join(
+        [
+            r"\.\./" + "sha" + "red",  # the sibling folder
+            "sha" + r"red/(vectors|papers|reviews)",  # its sub-folders, however reached
+            "DESIGN" + r"\.md|DESIGN" + " §",  # the old design notes
+            r"\bgui" + r"des?\b",  # the per-paper working notes, cited as "<that word> Err 4"
+            r"(?<!docs/)(?<!\]\()" + "claims" + r"\.md",  # the old catalogue's explanation (now docs/claims.md)
+        ]
+    ),
+    re.IGNORECASE,
+)
 KINDS = {"analytic", "deterministic", "monte-carlo", "simulation-stand-in", "qualitative", "hardware-only", "extension"}
 PAPERS = {p.claims_id for p in REGISTRY}
 ERRATUM_ID = re.compile(r"\bE(?:" + "|".join(sorted(PAPERS)) + r")-\d\d\b")
@@ -41,7 +47,7 @@ def text_files() -> dict[Path, str]:
         try:
             out[path] = path.read_text(encoding="utf-8")
         except (UnicodeDecodeError, FileNotFoundError):
-            continue                               # images; files deleted in the work tree
+            continue  # images; files deleted in the work tree
     return out
 
 
@@ -51,16 +57,24 @@ def read_csv(path: Path) -> list[dict[str, str]]:
 
 
 def test_no_file_refers_outside_the_repository():
-    hits = [f"{p.relative_to(ROOT)}:{n}: {line.strip()[:120]}"
-            for p, text in text_files().items()
-            for n, line in enumerate(text.splitlines(), 1) if OUTSIDE.search(line)]
+    hits = [
+        f"{p.relative_to(ROOT)}:{n}: {line.strip()[:120]}"
+        for p, text in text_files().items()
+        for n, line in enumerate(text.splitlines(), 1)
+        if OUTSIDE.search(line)
+    ]
     assert not hits, "references to files outside the repository:\n" + "\n".join(hits)
 
 
 def test_the_pattern_catches_what_it_must():
     word = "gui" + "de"
-    for line in ("see ../" + "sha" + "red/vec" + "tors/x.csv", f"({word} Err 4)", "DESIGN" + ".md §2",
-                 f"{word}-derived", "claims" + ".md rule"):
+    for line in (
+        "see ../" + "sha" + "red/vec" + "tors/x.csv",
+        f"({word} Err 4)",
+        "DESIGN" + ".md §2",
+        f"{word}-derived",
+        "claims" + ".md rule",
+    ):
         assert OUTSIDE.search(line), line
     assert not OUTSIDE.search("EPSG Guidance Note 7-2; gyrobias.design(); a shared stream; docs/claims.md")
     assert not OUTSIDE.search("[the catalogue format](claims.md)")
@@ -136,5 +150,10 @@ def test_reference_file_has_source_tolerance_and_checksum(path):
 
 def test_reference_files_present():
     assert {p.name for p in REFERENCE_FILES} == {
-        "barometric_altitude.csv", "bmp180_datasheet_example.csv", "geodetic_constants.csv",
-        "normal_gravity.csv", "tmerc_gauss_kruger.csv", "wmm_test_values.csv"}
+        "barometric_altitude.csv",
+        "bmp180_datasheet_example.csv",
+        "geodetic_constants.csv",
+        "normal_gravity.csv",
+        "tmerc_gauss_kruger.csv",
+        "wmm_test_values.csv",
+    }

@@ -7,6 +7,7 @@ relative standard deviation of about 1/sqrt(2 n); the tests allow four of
 those (``std_tol(n)``), so a correct implementation fails with probability
 ~1e-4 per check, and every test uses a fixed seed anyway.
 """
+
 import csv
 
 import numpy as np
@@ -40,10 +41,14 @@ def random_quaternions(rng, shape):
 # Gauss-Markov sequences
 # --------------------------------------------------------------------------
 
-@pytest.mark.parametrize("dt, n_samples, n_chunks, shape_chunk", [
-    (1.0, 500, 1, (2000, 3)),     # 500 s = 10 T_c: far into the stationary regime
-    (0.01, 20000, 4, (500, 1)),   # 200 s = 4 T_c at 100 Hz (chunked to limit memory)
-])
+
+@pytest.mark.parametrize(
+    "dt, n_samples, n_chunks, shape_chunk",
+    [
+        (1.0, 500, 1, (2000, 3)),  # 500 s = 10 T_c: far into the stationary regime
+        (0.01, 20000, 4, (500, 1)),  # 200 s = 4 T_c at 100 Hz (chunked to limit memory)
+    ],
+)
 def test_gauss_markov_std_independent_of_dt(dt, n_samples, n_chunks, shape_chunk):
     """Stationary sigma is the requested sigma at dt = 1 s and 0.01 s, at the
     first sample (stationary from the start) and after several T_c."""
@@ -93,6 +98,7 @@ def test_gauss_markov_reproducible_and_bad_input():
 # simulate_imu
 # --------------------------------------------------------------------------
 
+
 def _ideal(rng, n, shape=()):
     """Smooth-ish ideal rates (rad/s) and specific forces (m/s^2)."""
     t = np.arange(n)[:, None]
@@ -104,8 +110,7 @@ def _ideal(rng, n, shape=()):
 @pytest.mark.parametrize("dt", [0.01, 0.2])
 def test_imu_white_noise_std(dt):
     """Per-sample sigma of the white noise is noise_density / sqrt(dt)."""
-    model = sensors.ImuModel(sensors.TriadErrors(noise_density=2e-3),
-                             sensors.TriadErrors(noise_density=5e-4))
+    model = sensors.ImuModel(sensors.TriadErrors(noise_density=2e-3), sensors.TriadErrors(noise_density=5e-4))
     n = 20000
     w, f = _ideal(np.random.default_rng(1), n)
     out = sensors.simulate_imu(w, f, dt, model, np.random.default_rng(11))
@@ -126,7 +131,7 @@ def test_imu_turn_on_bias():
     out = sensors.simulate_imu(z, z, 0.01, model, np.random.default_rng(5), n_trials=n_trials)
     assert out.w_ib_b.shape == (n_trials, n, 3)
     for y, bias, sigma in ((out.w_ib_b, out.gyro_bias, b_g), (out.f_b, out.accel_bias, b_a)):
-        assert_array_equal(y, bias)                            # zero input, no noise: output is the bias
+        assert_array_equal(y, bias)  # zero input, no noise: output is the bias
         assert_array_equal(y, np.broadcast_to(y[:, :1, :], y.shape))  # constant within each run
         assert abs(rms(y[:, 0, :]) / sigma - 1) < std_tol(n_trials * 3)
 
@@ -134,10 +139,12 @@ def test_imu_turn_on_bias():
 def test_imu_scale_misalignment_and_measurement_equation():
     """Matrix errors have the configured sigmas and the output is exactly M x + bias."""
     sf, mis = 0.01, units.deg(0.5)
-    gyro = sensors.TriadErrors(bias=1e-3, bias_instability=1e-4, correlation_time=10.0,
-                               rate_random_walk=1e-5, scale_factor=sf, misalignment=float(mis))
-    accel = sensors.TriadErrors(bias=0.02, bias_instability=1e-3, correlation_time=20.0,
-                                scale_factor=2 * sf, misalignment=float(2 * mis))
+    gyro = sensors.TriadErrors(
+        bias=1e-3, bias_instability=1e-4, correlation_time=10.0, rate_random_walk=1e-5, scale_factor=sf, misalignment=float(mis)
+    )
+    accel = sensors.TriadErrors(
+        bias=0.02, bias_instability=1e-3, correlation_time=20.0, scale_factor=2 * sf, misalignment=float(2 * mis)
+    )
     model = sensors.ImuModel(gyro, accel)
     n_trials, n = 2000, 30
     w, f = _ideal(np.random.default_rng(2), n)
@@ -146,13 +153,11 @@ def test_imu_scale_misalignment_and_measurement_equation():
     for M, s, m in ((out.gyro_matrix, sf, mis), (out.accel_matrix, 2 * sf, 2 * mis)):
         assert M.shape == (n_trials, 3, 3)
         diag = np.diagonal(M, axis1=-2, axis2=-1) - 1.0
-        assert abs(rms(diag) / s - 1) < std_tol(diag.size)          # 6000 samples
+        assert abs(rms(diag) / s - 1) < std_tol(diag.size)  # 6000 samples
         assert abs(rms(M[:, off]) / m - 1) < std_tol(M[:, off].size)  # 12000 samples
     # Reconstruct the measurement from the error realisation (noise_density = 0).
-    assert_allclose(out.w_ib_b, np.einsum("tij,nj->tni", out.gyro_matrix, w) + out.gyro_bias,
-                    rtol=0, atol=1e-15)
-    assert_allclose(out.f_b, np.einsum("tij,nj->tni", out.accel_matrix, f) + out.accel_bias,
-                    rtol=0, atol=1e-13)
+    assert_allclose(out.w_ib_b, np.einsum("tij,nj->tni", out.gyro_matrix, w) + out.gyro_bias, rtol=0, atol=1e-15)
+    assert_allclose(out.f_b, np.einsum("tij,nj->tni", out.accel_matrix, f) + out.accel_bias, rtol=0, atol=1e-13)
     # The bias varies in time (Gauss-Markov + random walk) but not across the matrix.
     assert np.all(np.std(out.gyro_bias, axis=1) > 0)
 
@@ -171,7 +176,7 @@ def test_error_pass_rounds_as_einsum():
             ref += scale * white
             y = white.copy()
             assert sensors._apply_errors(M, x, bias, scale, np.inf, y) == 0
-            assert_array_equal(y.view(np.int64), ref.view(np.int64))       # signed zeros included
+            assert_array_equal(y.view(np.int64), ref.view(np.int64))  # signed zeros included
 
 
 def test_imu_saturation():
@@ -260,9 +265,11 @@ def _bad_imu_cases():
     ]
 
 
-@pytest.mark.parametrize("arg, kwargs", _bad_imu_cases(),
-                         ids=["w-shape", "f-shape", "w-nan", "dt-neg", "dt-zero", "rng-RandomState",
-                              "rng-int", "model", "n_trials"])
+@pytest.mark.parametrize(
+    "arg, kwargs",
+    _bad_imu_cases(),
+    ids=["w-shape", "f-shape", "w-nan", "dt-neg", "dt-zero", "rng-RandomState", "rng-int", "model", "n_trials"],
+)
 def test_imu_bad_input(arg, kwargs):
     with pytest.raises(ValueError, match=f"^{arg}:"):
         sensors.simulate_imu(**kwargs)
@@ -278,6 +285,7 @@ def test_triad_errors_reject_negative():
 # --------------------------------------------------------------------------
 # Allan deviation of simulated gyros
 # --------------------------------------------------------------------------
+
 
 def test_allan_of_white_gyro_noise():
     """White noise only: adev(tau) = N / sqrt(tau).
@@ -319,6 +327,7 @@ def test_allan_fit_recovers_mti100_gyro():
 # --------------------------------------------------------------------------
 # Presets
 # --------------------------------------------------------------------------
+
 
 def test_devices_listed():
     names = set(sensors.devices())
@@ -374,8 +383,9 @@ def test_magnetometer_ideal_is_rotated_field():
     assert_allclose(out.m_b, C_nb @ B_N, rtol=0, atol=1e-12)
     assert_allclose(np.linalg.norm(out.m_b, axis=-1), np.linalg.norm(B_N), rtol=1e-13)
     # Identity attitude: body = ENU.
-    out0 = sensors.simulate_magnetometer(np.tile([1.0, 0, 0, 0], (5, 1)), B_N, sensors.MagnetometerModel(),
-                                         np.random.default_rng(1))
+    out0 = sensors.simulate_magnetometer(
+        np.tile([1.0, 0, 0, 0], (5, 1)), B_N, sensors.MagnetometerModel(), np.random.default_rng(1)
+    )
     assert_allclose(out0.m_b, np.tile(B_N, (5, 1)), atol=1e-12)
 
 
@@ -406,8 +416,8 @@ def test_magnetometer_soft_iron_symmetric():
 
 def test_hmc5983_preset():
     m = sensors.MagnetometerModel.from_preset("HMC5983")
-    assert m.noise == pytest.approx(0.2, rel=1e-12)          # 2 mG = 0.2 uT
-    assert m.full_scale == pytest.approx(800.0, rel=1e-12)   # 8 G
+    assert m.noise == pytest.approx(0.2, rel=1e-12)  # 2 mG = 0.2 uT
+    assert m.full_scale == pytest.approx(800.0, rel=1e-12)  # 8 G
 
 
 def test_magnetic_disturbances():
@@ -420,13 +430,13 @@ def test_magnetic_disturbances():
     # Split the 'on' samples into contiguous segments (events).
     edges = np.flatnonzero(np.diff(np.concatenate([[0], on.astype(int), [0]])))
     segments = list(zip(edges[::2], edges[1::2], strict=True))
-    assert 5 <= len(segments) <= 40            # Poisson mean 20 events
-    assert on.mean() < 0.1                     # exactly zero outside the events
+    assert 5 <= len(segments) <= 40  # Poisson mean 20 events
+    assert on.mean() < 0.1  # exactly zero outside the events
     # Single events (no overlap), not cut off by the end of the record.
     single = [(a, b) for a, b in segments if (b - a) * dt <= dur[1] and b < t.size]
     assert len(single) >= 0.8 * len(segments)  # overlaps are rare at this rate
     for a, b in single:
-        assert dur[0] - 2 * dt <= (b - a) * dt <= dur[1]   # nonzero only inside the event window
+        assert dur[0] - 2 * dt <= (b - a) * dt <= dur[1]  # nonzero only inside the event window
         seg = d[a:b]
         norm = np.linalg.norm(seg, axis=1)
         assert norm.max() <= amp[1] * (1 + 1e-12)
@@ -444,14 +454,18 @@ def test_magnetic_disturbances():
 # Barometer
 # --------------------------------------------------------------------------
 
+
 def test_barometer_ideal_and_drift():
     t = np.arange(100.0, 700.0, 0.5)
     h = 50.0 + 30.0 * np.sin(t / 60.0)
     ideal = sensors.simulate_barometer(h, t, sensors.BarometerModel(), np.random.default_rng(0))
     assert_allclose(ideal, atmosphere.isa_pressure(h), rtol=1e-15)
     p0 = 100500.0
-    assert_allclose(sensors.simulate_barometer(h, t, sensors.BarometerModel(), np.random.default_rng(0), p0=p0),
-                    atmosphere.isa_pressure(h, p0), rtol=1e-15)
+    assert_allclose(
+        sensors.simulate_barometer(h, t, sensors.BarometerModel(), np.random.default_rng(0), p0=p0),
+        atmosphere.isa_pressure(h, p0),
+        rtol=1e-15,
+    )
     rate = 0.5 * 100 / 3600  # 0.5 hPa/h
     drift = sensors.simulate_barometer(h, t, sensors.BarometerModel(drift_rate=rate), np.random.default_rng(0))
     assert_allclose(drift - ideal, rate * (t - t[0]), rtol=0, atol=1e-9)
@@ -472,7 +486,7 @@ def test_barometer_noise_and_bias():
 
 def test_bmp180_preset():
     m = sensors.BarometerModel.from_preset("BMP180")
-    assert m.noise == pytest.approx(2.0, rel=1e-12)              # 0.02 hPa
+    assert m.noise == pytest.approx(2.0, rel=1e-12)  # 0.02 hPa
     assert m.drift_rate == pytest.approx(50.0 / 3600.0, rel=1e-12)  # 0.5 hPa/h
     with pytest.raises(ValueError, match="^h:"):
         sensors.simulate_barometer(np.zeros(5), np.arange(4.0), m, np.random.default_rng(0))
@@ -481,6 +495,7 @@ def test_bmp180_preset():
 # --------------------------------------------------------------------------
 # GNSS position and dual-antenna heading
 # --------------------------------------------------------------------------
+
 
 def test_outage_mask():
     t = np.arange(0.0, 10.0, 0.5)
@@ -509,9 +524,9 @@ def test_gnss_position_noise_and_outages():
     assert abs(rms(dn) / sigma - 1) < std_tol(n)
     assert abs(rms(de) / sigma - 1) < std_tol(n)
     # The east noise must not depend on latitude (the cos(lat) is right): split the record.
-    assert abs(rms(de[n // 2:]) / sigma - 1) < std_tol(n // 2)
+    assert abs(rms(de[n // 2 :]) / sigma - 1) < std_tol(n // 2)
     assert abs(rms(du) / (1.5 * sigma) - 1) < std_tol(n)  # default vertical sigma
-    assert abs(np.mean(dn * de)) / sigma ** 2 < 4 / np.sqrt(n)  # independent axes
+    assert abs(np.mean(dn * de)) / sigma**2 < 4 / np.sqrt(n)  # independent axes
     # Explicit vertical sigma and outages.
     valid = sensors.outage_mask(t, [(100.0, 200.0)])
     m2 = sensors.simulate_gnss_position(lla, np.random.default_rng(9), sigma, sigma_vertical=0.5, valid=valid)
@@ -538,7 +553,7 @@ def test_heading_wrap_noise_and_validity():
     assert abs(rms(e) / sigma - 1) < std_tol(n)
     assert np.abs(e).max() < 6 * sigma  # wrap differences are small, never ~2 pi
     # Near north both sides of the wrap occur.
-    assert np.any(meas[n - 200:n - 100] < 1) and np.any(meas[n - 200:n - 100] > 6)
+    assert np.any(meas[n - 200 : n - 100] < 1) and np.any(meas[n - 200 : n - 100] > 6)
     # Invalid epochs are NaN (not a fused zero) and the flags are returned.
     mask = np.ones(n, dtype=bool)
     mask[500:800] = False
@@ -558,6 +573,7 @@ def test_heading_wrap_noise_and_validity():
 # reminder to drop the marker.
 # --------------------------------------------------------------------------
 
+
 def test_gnss_position_bad_valid_shape():
     lla = np.zeros((10, 3))
     with pytest.raises(ValueError, match="^valid:"):
@@ -568,11 +584,9 @@ def test_gnss_position_bad_valid_shape():
 def test_mag_baro_reject_non_generator_rng(which):
     with pytest.raises(ValueError, match="^rng:"):
         if which == "magnetometer":
-            sensors.simulate_magnetometer(np.array([[1.0, 0, 0, 0]]), B_N, sensors.MagnetometerModel(),
-                                          np.random.RandomState(0))
+            sensors.simulate_magnetometer(np.array([[1.0, 0, 0, 0]]), B_N, sensors.MagnetometerModel(), np.random.RandomState(0))
         else:
-            sensors.simulate_barometer(np.zeros(3), [0.0, 1.0, 2.0], sensors.BarometerModel(),
-                                       np.random.RandomState(0))
+            sensors.simulate_barometer(np.zeros(3), [0.0, 1.0, 2.0], sensors.BarometerModel(), np.random.RandomState(0))
 
 
 # ---------------------------------------------------------------- presets are read strictly
@@ -580,12 +594,15 @@ def test_mag_baro_reject_non_generator_rng(which):
 _HEADER = "# comment\ndevice,sensor,parameter,value,unit,source\n"
 
 
-@pytest.mark.parametrize("row, message", [
-    ("X,gyro,noise_densty,0.01,deg/s/sqrt(Hz),typo", "line 3: unknown gyro parameter 'noise_densty'"),
-    ("X,gyroscope,noise_density,0.01,deg/s/sqrt(Hz),typo", "line 3: unknown sensor 'gyroscope'"),
-    ("X,gyro,noise_density,0.01,furlong,bad unit", "line 3: bad value or unit"),
-    ("X,gyro,noise_density,abc,deg/s/sqrt(Hz),bad value", "line 3: bad value or unit"),
-])
+@pytest.mark.parametrize(
+    "row, message",
+    [
+        ("X,gyro,noise_densty,0.01,deg/s/sqrt(Hz),typo", "line 3: unknown gyro parameter 'noise_densty'"),
+        ("X,gyroscope,noise_density,0.01,deg/s/sqrt(Hz),typo", "line 3: unknown sensor 'gyroscope'"),
+        ("X,gyro,noise_density,0.01,furlong,bad unit", "line 3: bad value or unit"),
+        ("X,gyro,noise_density,abc,deg/s/sqrt(Hz),bad value", "line 3: bad value or unit"),
+    ],
+)
 def test_presets_reject_unknown_names_and_bad_values(tmp_path, row, message):
     path = tmp_path / "presets.csv"
     path.write_text(_HEADER + row + "\n", encoding="utf-8")

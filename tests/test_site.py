@@ -14,6 +14,7 @@ verdict clicked, and the search page must find "Mahony". Screenshots of every pa
 The browser is Debian's ``chromium`` (``make docs`` installs it when missing), driven by Playwright's
 Python client; ``NAVLIB_CHROMIUM`` names another binary.
 """
+
 from __future__ import annotations
 
 import functools
@@ -56,6 +57,7 @@ def browser():
     executable = os.environ.get("NAVLIB_CHROMIUM") or shutil.which("chromium") or shutil.which("chromium-browser")
     assert executable, "no chromium on PATH: install Debian's chromium package (make docs does) or set NAVLIB_CHROMIUM"
     from playwright.sync_api import sync_playwright
+
     with sync_playwright() as p:
         b = p.chromium.launch(executable_path=executable, args=["--no-sandbox", "--disable-gpu"])
         yield b
@@ -73,23 +75,30 @@ class Watched:
         self.page.on("pageerror", lambda e: self.problems.append(f"script error: {e}"))
         self.page.on("requestfailed", lambda r: self.problems.append(f"failed: {r.url}"))
         self.page.on("response", lambda r: r.status >= 400 and self.problems.append(f"HTTP {r.status}: {r.url}"))
-        self.page.on("request", lambda r: not r.url.startswith((base, "data:", "blob:"))
-                     and self.problems.append(f"external request: {r.url}"))
+        self.page.on(
+            "request",
+            lambda r: not r.url.startswith((base, "data:", "blob:")) and self.problems.append(f"external request: {r.url}"),
+        )
 
     def open(self, path: str) -> list[str]:
         self.problems.clear()
         self.page.goto(self.base + path, wait_until="load")
         # math typeset and web fonts loaded (each a promise that settles at once on a page without them)
-        self.page.evaluate("async () => { if (window.MathJax && MathJax.startup) await MathJax.startup.promise;"
-                           " await document.fonts.ready; }")
+        self.page.evaluate(
+            "async () => { if (window.MathJax && MathJax.startup) await MathJax.startup.promise; await document.fonts.ready; }"
+        )
         broken = self.page.eval_on_selector_all(
-            "img", "imgs => imgs.filter(i => !(i.complete && i.naturalWidth > 0)).map(i => i.getAttribute('src'))")
+            "img", "imgs => imgs.filter(i => !(i.complete && i.naturalWidth > 0)).map(i => i.getAttribute('src'))"
+        )
         return self.problems + [f"image not loaded: {src}" for src in broken]
 
 
 def pages() -> list[str]:
-    return sorted(p.relative_to(SITE).as_posix() for p in SITE.rglob("*.html")
-                  if not p.relative_to(SITE).as_posix().startswith(("_static/", "_sources/", "_extra/")))
+    return sorted(
+        p.relative_to(SITE).as_posix()
+        for p in SITE.rglob("*.html")
+        if not p.relative_to(SITE).as_posix().startswith(("_static/", "_sources/", "_extra/"))
+    )
 
 
 @pytest.fixture(scope="module")
@@ -103,9 +112,12 @@ def visited(browser, server) -> dict[tuple[str, int], dict]:
         page.page.set_viewport_size({"width": width, "height": 1400 if width > 600 else 844})
         for path in pages():
             problems = page.open(path)
-            seen[path, width] = {"problems": problems, **page.page.evaluate(CHECKS),
-                                 "display_math": page.page.locator("mjx-container[display='true']").count(),
-                                 "math": page.page.locator("mjx-container").count()}
+            seen[path, width] = {
+                "problems": problems,
+                **page.page.evaluate(CHECKS),
+                "display_math": page.page.locator("mjx-container[display='true']").count(),
+                "math": page.page.locator("mjx-container").count(),
+            }
             page.page.screenshot(path=str(SHOTS / f"{path.replace('/', '-').removesuffix('.html')}-{width}.png"))
     return seen
 
@@ -149,7 +161,8 @@ def test_the_checks_find_what_a_reader_would_see(browser, server):
         f"<pre style='flex: none; overflow: visible'>{'left-cut ' * 80}</pre></div>"
         "<p>the bias $b$ after {N_TRIALS_LAT // N_TRIALS} trials</p>"
         f"<table><tr><td style='white-space: nowrap'>{'wide cell ' * 80}</td></tr></table>"
-        "<img src='data:image/gif;base64,R0lGODlhAQABAAAAACw=' alt='../_images/abc.png'></main></body></html>")
+        "<img src='data:image/gif;base64,R0lGODlhAQABAAAAACw=' alt='../_images/abc.png'></main></body></html>"
+    )
     page.page.evaluate("async () => { await MathJax.startup.promise; }")
     found = page.page.evaluate(CHECKS)
     assert found["mathErrors"] and "split" in found["mathErrors"][0]
@@ -230,9 +243,13 @@ def test_cjk_characters_are_in_the_sites_font():
     import re
 
     from fontTools.ttLib import TTFont
+
     cmap = TTFont(SITE / "_static" / "fonts" / "NotoSansCJKsc-navlib-subset.woff").getBestCmap()
-    shown = {ch for page in SITE.rglob("*.html")
-             for ch in re.findall(r"[\u3000-\u303f\u3400-\u9fff\uff00-\uffef]", page.read_text(encoding="utf-8"))}
+    shown = {
+        ch
+        for page in SITE.rglob("*.html")
+        for ch in re.findall(r"[\u3000-\u303f\u3400-\u9fff\uff00-\uffef]", page.read_text(encoding="utf-8"))
+    }
     missing = sorted(ch for ch in shown if ord(ch) not in cmap)
     assert shown and not missing, f"CJK characters without a glyph (regenerate the subset): {''.join(missing)}"
 

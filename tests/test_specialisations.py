@@ -6,6 +6,7 @@ in notebooks 02, 04 and 05: 2-5 signatures of kernels that take 5-40 s each to c
 pass kernels ``_validate.kernel_array`` copies; these tests call public functions with read-only
 inputs and check that no kernel signature holds a read-only array.
 """
+
 import os
 
 import numpy as np
@@ -30,28 +31,46 @@ def _calls():
     w, f = trajectory.ideal_imu(traj)
     return [
         ("earth.gravity", lambda: earth.gravity(readonly(0.5), readonly(10.0)), _kernels.normal_gravity),
-        ("alignment.magnetic_heading",
-         lambda: alignment.magnetic_heading(readonly([20.0, 1.0, 40.0]), readonly(0.1), readonly(0.0)),
-         _kernels.tilt_heading),
-        ("euler.integrate_euler",
-         lambda: euler.integrate_euler(np.broadcast_to(units.deg([10.0, 5.0, 0.0]), (3,)), readonly(w), 0.1),
-         euler._euler_kernel),
-        ("strapdown.integrate",
-         lambda: strapdown.integrate(readonly(traj.lla[0]), readonly(traj.vel_n[0]), readonly(traj.q_bn[0]),
-                                     readonly(w), readonly(f), 0.1),
-         strapdown._nav_kernel),
-        ("quaternion_kf, RTK heading",
-         lambda: quaternion_kf.quaternion_kf(ImuSamples(readonly([w, w]), readonly([f, f]), 0.1), readonly([1.0, 0, 0, 0]),
-                                             rtk=RtkHeading(readonly(np.full((2, len(w)), 0.1)),
-                                                            np.ones((2, len(w)), dtype=bool))),
-         quaternion_kf._kernel),
-        ("mahony, RTK heading",
-         lambda: mahony.mahony(ImuSamples(readonly([w, w]), readonly([f, f]), 0.1), readonly([1.0, 0, 0, 0]),
-                               rtk=RtkHeading(readonly(np.full((2, len(w)), 0.1)), np.ones((2, len(w)), dtype=bool))),
-         mahony._kernel),
-        ("rotation_bias.tilt_residuals",
-         lambda: rotation_bias.tilt_residuals(readonly(w), readonly(f), 0.1, [0], 10),
-         rotation_bias._residual_kernel),
+        (
+            "alignment.magnetic_heading",
+            lambda: alignment.magnetic_heading(readonly([20.0, 1.0, 40.0]), readonly(0.1), readonly(0.0)),
+            _kernels.tilt_heading,
+        ),
+        (
+            "euler.integrate_euler",
+            lambda: euler.integrate_euler(np.broadcast_to(units.deg([10.0, 5.0, 0.0]), (3,)), readonly(w), 0.1),
+            euler._euler_kernel,
+        ),
+        (
+            "strapdown.integrate",
+            lambda: strapdown.integrate(
+                readonly(traj.lla[0]), readonly(traj.vel_n[0]), readonly(traj.q_bn[0]), readonly(w), readonly(f), 0.1
+            ),
+            strapdown._nav_kernel,
+        ),
+        (
+            "quaternion_kf, RTK heading",
+            lambda: quaternion_kf.quaternion_kf(
+                ImuSamples(readonly([w, w]), readonly([f, f]), 0.1),
+                readonly([1.0, 0, 0, 0]),
+                rtk=RtkHeading(readonly(np.full((2, len(w)), 0.1)), np.ones((2, len(w)), dtype=bool)),
+            ),
+            quaternion_kf._kernel,
+        ),
+        (
+            "mahony, RTK heading",
+            lambda: mahony.mahony(
+                ImuSamples(readonly([w, w]), readonly([f, f]), 0.1),
+                readonly([1.0, 0, 0, 0]),
+                rtk=RtkHeading(readonly(np.full((2, len(w)), 0.1)), np.ones((2, len(w)), dtype=bool)),
+            ),
+            mahony._kernel,
+        ),
+        (
+            "rotation_bias.tilt_residuals",
+            lambda: rotation_bias.tilt_residuals(readonly(w), readonly(f), 0.1, [0], 10),
+            rotation_bias._residual_kernel,
+        ),
     ]
 
 
@@ -73,11 +92,14 @@ def test_compilations_are_logged_where_navlib_compile_log_says(tmp_path):
     """tools/reproduce.py plans a warm run from a cold one's times less the seconds logged here."""
     import subprocess
     import sys
+
     log = tmp_path / "compile.log"
-    code = ("import numpy as np; from numba import njit; import navlib._kernels; "
-            "f = njit(lambda x: x.sum() + 1.0); f(np.ones(3)); f(np.ones(3))")   # compiled once, then reused
+    code = (
+        "import numpy as np; from numba import njit; import navlib._kernels; "
+        "f = njit(lambda x: x.sum() + 1.0); f(np.ones(3)); f(np.ones(3))"
+    )  # compiled once, then reused
     subprocess.run([sys.executable, "-c", code], check=True, env={**os.environ, "NAVLIB_COMPILE_LOG": str(log)})
-    lines = [line.split() for line in log.read_text().splitlines()]          # "<seconds> <module.function>"
+    lines = [line.split() for line in log.read_text().splitlines()]  # "<seconds> <module.function>"
     assert len(lines) == 1 and 0 < float(lines[0][0]) < 60 and lines[0][1] == "__main__.<lambda>"
 
 
@@ -88,9 +110,17 @@ def test_compilation_garbage_is_collected_at_once(tmp_path):
     0.5 GB above its warm peak."""
     import subprocess
     import sys
-    code = ("import gc, numpy as np; from numba import njit; import navlib._kernels; "
-            "fresh = njit(lambda A, y: np.linalg.solve(A, y) @ A); "      # a new function: compiled by this call
-            "fresh(np.eye(3), np.ones(3)); print(gc.collect())")
-    out = subprocess.run([sys.executable, "-c", code], check=True, capture_output=True, text=True,
-                         env={**os.environ, "NAVLIB_COMPILE_LOG": str(tmp_path / "compile.log")}).stdout
-    assert int(out.split()[-1]) < 100                        # without the listener: ~35,000 objects
+
+    code = (
+        "import gc, numpy as np; from numba import njit; import navlib._kernels; "
+        "fresh = njit(lambda A, y: np.linalg.solve(A, y) @ A); "  # a new function: compiled by this call
+        "fresh(np.eye(3), np.ones(3)); print(gc.collect())"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", code],
+        check=True,
+        capture_output=True,
+        text=True,
+        env={**os.environ, "NAVLIB_COMPILE_LOG": str(tmp_path / "compile.log")},
+    ).stdout
+    assert int(out.split()[-1]) < 100  # without the listener: ~35,000 objects

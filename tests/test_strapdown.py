@@ -4,6 +4,7 @@ Three tiers: analytic invariants (a static IMU senses g and Earth rate),
 closed loops (ideal samples integrate back to the trajectory), and error
 theory (biased sensors over 1 h follow the linear error model).
 """
+
 import numpy as np
 import pytest
 from scipy.linalg import expm
@@ -23,16 +24,19 @@ def test_static_imu_senses_gravity_and_earth_rate():
     np.testing.assert_allclose(f, np.broadcast_to(C_nb @ [0, 0, g], f.shape), atol=1e-12)
     # Level, heading north: the y gyro reads W cos(lat), the z gyro W sin(lat), z accelerometer +g.
     w0, f0 = trajectory.ideal_imu(trajectory.static(1.0, 0.1, LLA0, [0, 0, 0]))
-    np.testing.assert_allclose(w0[0], [0, earth.OMEGA_IE * np.cos(LLA0[0]), earth.OMEGA_IE * np.sin(LLA0[0])],
-                               atol=1e-18)
+    np.testing.assert_allclose(w0[0], [0, earth.OMEGA_IE * np.cos(LLA0[0]), earth.OMEGA_IE * np.sin(LLA0[0])], atol=1e-18)
     np.testing.assert_allclose(f0[0], [0, 0, g], atol=1e-12)
 
 
 def _drive():
-    segs = [trajectory.Segment(20), trajectory.Segment(15, speed=12.0),
-            trajectory.Segment(25, turn=units.deg(120), pitch=units.deg(3), roll=units.deg(-2)),
-            trajectory.Segment(30, speed=20.0, turn=units.deg(-200)),
-            trajectory.Segment(15, speed=0.0, pitch=0.0, roll=0.0), trajectory.Segment(10)]
+    segs = [
+        trajectory.Segment(20),
+        trajectory.Segment(15, speed=12.0),
+        trajectory.Segment(25, turn=units.deg(120), pitch=units.deg(3), roll=units.deg(-2)),
+        trajectory.Segment(30, speed=20.0, turn=units.deg(-200)),
+        trajectory.Segment(15, speed=0.0, pitch=0.0, roll=0.0),
+        trajectory.Segment(10),
+    ]
     return trajectory.vehicle(segs, 0.01, LLA0, units.deg(30.0))
 
 
@@ -112,7 +116,7 @@ def test_free_vertical_channel_is_unstable_as_predicted():
     dh = nav.lla[idx, 2] - LLA0[2]
     np.testing.assert_allclose(dh[1:], lin[1:, 8], rtol=5e-3)
     # cosh growth: b/(2g/R) (cosh(sqrt(2g/R) t) - 1) is 1.4x the 0.5 b t^2 of a plain double integrator at 1200 s
-    assert dh[-1] > 1.3 * 0.5 * df[2] * T ** 2
+    assert dh[-1] > 1.3 * 0.5 * df[2] * T**2
 
 
 def test_integrate_attitude_batches_and_earth_rate():
@@ -139,8 +143,9 @@ def test_integrate_batch_matches_single_runs():
 
 
 def test_reciprocating_rotation_alternates():
-    traj = trajectory.reciprocating_rotation(20.0, 0.01, LLA0, units.deg([0, 30, 0]), [1, 0, 0],
-                                             np.pi / 2, period=5.0, rotation_time=1.0)
+    traj = trajectory.reciprocating_rotation(
+        20.0, 0.01, LLA0, units.deg([0, 30, 0]), [1, 0, 0], np.pi / 2, period=5.0, rotation_time=1.0
+    )
     pitch = units.to_deg(traj.hpr[:, 1])
     t = traj.time
     assert np.allclose(pitch[(t > 0.5) & (t < 3.9)], 30.0)
@@ -148,16 +153,18 @@ def test_reciprocating_rotation_alternates():
     assert np.allclose(pitch[(t > 10.5) & (t < 13.9)], 30.0)
 
 
-@pytest.mark.parametrize("bad, match", [
-    (dict(w_ib_b=np.full((10, 3), np.nan)), "w_ib_b"),
-    (dict(f_b=np.zeros((9, 3))), "f_b"),
-    (dict(lla0=[np.pi / 2, 0, 0]), "lat"),
-    (dict(dt=-0.1), "dt"),
-    (dict(q0=[0, 0, 0, 0]), "q0"),
-])
+@pytest.mark.parametrize(
+    "bad, match",
+    [
+        (dict(w_ib_b=np.full((10, 3), np.nan)), "w_ib_b"),
+        (dict(f_b=np.zeros((9, 3))), "f_b"),
+        (dict(lla0=[np.pi / 2, 0, 0]), "lat"),
+        (dict(dt=-0.1), "dt"),
+        (dict(q0=[0, 0, 0, 0]), "q0"),
+    ],
+)
 def test_integrate_rejects_bad_input(bad, match):
-    args = dict(lla0=LLA0, vel0=np.zeros(3), q0=[1, 0, 0, 0], w_ib_b=np.zeros((10, 3)),
-                f_b=np.zeros((10, 3)), dt=0.1)
+    args = dict(lla0=LLA0, vel0=np.zeros(3), q0=[1, 0, 0, 0], w_ib_b=np.zeros((10, 3)), f_b=np.zeros((10, 3)), dt=0.1)
     args.update(bad)
     with pytest.raises(ValueError, match=match):
         strapdown.integrate(**args)
@@ -198,6 +205,7 @@ def test_mat3_vec_is_the_matrix_product():
     from numba import njit
 
     from navlib import _kernels
+
     blas = njit(lambda C, v: C @ v)
     rng = np.random.default_rng(8)
     for _ in range(200):
@@ -222,17 +230,28 @@ def test_nav_step_integer_state_is_not_modified_and_gives_the_float_result():
     np.testing.assert_array_equal(lla_i, [0, 0, 100])
     np.testing.assert_array_equal(vel_i, [3, 4, 0])
     assert q_l == [1, 0, 0, 0] and lla_i.dtype.kind == vel_i.dtype.kind == "i"
-    assert abs(lla[0]) > 0 and vel[1] != 4.0      # the step did move the state
+    assert abs(lla[0]) > 0 and vel[1] != 4.0  # the step did move the state
 
 
-@pytest.mark.parametrize("kw, match", [
-    (dict(w=np.zeros(0)), "^w: expected shape"),
-    (dict(lla=[45.0, 0.0, 0.0]), r"^lla\[0\] \(lat\): expected values in"),
-    (dict(dt=-0.01), "^dt: expected a positive value"),
-    (dict(q=np.zeros(4, dtype=np.float32)), "^q: expected a non-zero quaternion"),
-], ids=["empty-gyro", "lat45", "dt-negative", "q-zero"])
+@pytest.mark.parametrize(
+    "kw, match",
+    [
+        (dict(w=np.zeros(0)), "^w: expected shape"),
+        (dict(lla=[45.0, 0.0, 0.0]), r"^lla\[0\] \(lat\): expected values in"),
+        (dict(dt=-0.01), "^dt: expected a positive value"),
+        (dict(q=np.zeros(4, dtype=np.float32)), "^q: expected a non-zero quaternion"),
+    ],
+    ids=["empty-gyro", "lat45", "dt-negative", "q-zero"],
+)
 def test_nav_step_rejects_what_the_kernel_would_misread(kw, match):
-    args = dict(lla=LLA0.copy(), vel=np.zeros(3), q=np.array([1.0, 0, 0, 0]), w=np.zeros(3), f=[0, 0, 9.8],
-                dt=0.01, earth_consts=strapdown.earth_constants())
+    args = dict(
+        lla=LLA0.copy(),
+        vel=np.zeros(3),
+        q=np.array([1.0, 0, 0, 0]),
+        w=np.zeros(3),
+        f=[0, 0, 9.8],
+        dt=0.01,
+        earth_consts=strapdown.earth_constants(),
+    )
     with pytest.raises(ValueError, match=match):
         strapdown.nav_step(**{**args, **kw})

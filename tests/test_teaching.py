@@ -13,6 +13,7 @@ touched, and results written in these modes are marked (``mode``) and refused by
 Run times are reported (``-rA`` shows them) and written to ``build/teaching/<notebook>.json`` for the
 course page of the site, never asserted.
 """
+
 from __future__ import annotations
 
 import ast
@@ -52,11 +53,12 @@ def test_names_a_parameter_to_change(path):
     params = next(c.source for c in nb.cells if "parameters" in c.metadata.get("tags", []))
     runs = try_parameters(nb)
     assert runs and all(runs), "metadata.navlib.try_parameters names no parameter to change"
-    defined = {t.id for node in ast.parse(params).body if isinstance(node, ast.Assign)
-               for t in ast.walk(node) if isinstance(t, ast.Name)}
+    defined = {
+        t.id for node in ast.parse(params).body if isinstance(node, ast.Assign) for t in ast.walk(node) if isinstance(t, ast.Name)
+    }
     for name, value in (item for changes in runs for item in changes.items()):
         assert name in defined, f"{name} is not set in the parameters cell"
-        ast.literal_eval(value)      # a plain literal, so that a reader can type it too
+        ast.literal_eval(value)  # a plain literal, so that a reader can type it too
     for switch in ("TEACHING", "FAST"):
         assert switch in defined, f"the parameters cell has no {switch} switch"
 
@@ -66,12 +68,17 @@ def test_runs_in_teaching_and_fast_mode(path, run, tmp_path, monkeypatch):
     nb = nbformat.read(path, as_version=4)
     changes = try_parameters(nb)[run]
     inject(nb, changes)
-    for name, value in {"NAVLIB_TEACHING": "1", "NAVLIB_FAST": "1", "NAVLIB_PROGRESS": "0",
-                        "NAVLIB_BUILD_DIR": str(tmp_path), "NAVLIB_ROOT": str(ROOT), "MPLBACKEND": "Agg"}.items():
+    for name, value in {
+        "NAVLIB_TEACHING": "1",
+        "NAVLIB_FAST": "1",
+        "NAVLIB_PROGRESS": "0",
+        "NAVLIB_BUILD_DIR": str(tmp_path),
+        "NAVLIB_ROOT": str(ROOT),
+        "MPLBACKEND": "Agg",
+    }.items():
         monkeypatch.setenv(name, value)
     start = time.perf_counter()
-    NotebookClient(nb, timeout=600, kernel_name="python3",
-                   resources={"metadata": {"path": str(path.parent)}}).execute()
+    NotebookClient(nb, timeout=600, kernel_name="python3", resources={"metadata": {"path": str(path.parent)}}).execute()
     seconds = time.perf_counter() - start
     results = json.loads((tmp_path / path.stem / "results.json").read_text())
     assert results["mode"] == {"teaching": True, "fast": True}
@@ -79,5 +86,7 @@ def test_runs_in_teaching_and_fast_mode(path, run, tmp_path, monkeypatch):
     print(f"{path.stem}: teaching + fast with {changes}: {seconds:.1f} s, {held} checks held")
     record = ROOT / "build" / "teaching" / f"{path.stem}-{run}.json"
     record.parent.mkdir(parents=True, exist_ok=True)
-    record.write_text(json.dumps({"notebook": path.stem, "parameters": changes, "seconds": round(seconds, 1),
-                                  "checks_held": held}), encoding="utf-8")
+    record.write_text(
+        json.dumps({"notebook": path.stem, "parameters": changes, "seconds": round(seconds, 1), "checks_held": held}),
+        encoding="utf-8",
+    )

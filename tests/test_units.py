@@ -1,4 +1,5 @@
 """Tests of navlib.units (datasheet units <-> SI) and navlib._validate."""
+
 import numpy as np
 import pytest
 from numpy.testing import assert_allclose
@@ -34,8 +35,7 @@ HAND_VALUES = [
 ]
 
 
-@pytest.mark.parametrize("func, value, expected", HAND_VALUES,
-                         ids=[f"{f.__name__}({x})" for f, x, _ in HAND_VALUES])
+@pytest.mark.parametrize("func, value, expected", HAND_VALUES, ids=[f"{f.__name__}({x})" for f, x, _ in HAND_VALUES])
 def test_hand_values(func, value, expected):
     """Each converter against a value worked out by hand."""
     rtol = 1e-5 if expected == 7.2921e-5 else 1e-15
@@ -56,9 +56,16 @@ def test_converters_keep_shape():
 
 
 # (inverse, forward) pairs
-PAIRS = [(u.to_deg, u.deg), (u.to_deg_per_s, u.deg_per_s), (u.to_deg_per_h, u.deg_per_h),
-         (u.to_deg_per_sqrt_h, u.deg_per_sqrt_h), (u.to_deg_per_s_sqrt_hz, u.deg_per_s_sqrt_hz),
-         (u.to_ug, u.ug), (u.to_gauss, u.gauss), (u.to_hpa, u.hpa)]
+PAIRS = [
+    (u.to_deg, u.deg),
+    (u.to_deg_per_s, u.deg_per_s),
+    (u.to_deg_per_h, u.deg_per_h),
+    (u.to_deg_per_sqrt_h, u.deg_per_sqrt_h),
+    (u.to_deg_per_s_sqrt_hz, u.deg_per_s_sqrt_hz),
+    (u.to_ug, u.ug),
+    (u.to_gauss, u.gauss),
+    (u.to_hpa, u.hpa),
+]
 
 
 @pytest.mark.parametrize("inverse, forward", PAIRS, ids=[f.__name__ for _, f in PAIRS])
@@ -84,13 +91,32 @@ def test_inverse_hand_values():
 # --------------------------------------------------------------------------
 # SI value of 1 <unit>, by hand
 SI_OF_ONE = {
-    "rad": 1.0, "deg": DEG, "deg/s": DEG, "deg/h": DEG / 3600, "deg/sqrt(h)": DEG / 60,
-    "deg/s/sqrt(Hz)": DEG, "deg/h/sqrt(h)": DEG / 3600 / 60,
-    "m/s^2": 1.0, "g": G0, "mg": G0 * 1e-3, "ug": G0 * 1e-6, "ug/sqrt(Hz)": G0 * 1e-6,
-    "m/s/sqrt(h)": 1 / 60, "m/s^2/sqrt(Hz)": 1.0,
-    "uT": 1.0, "G": 100.0, "mG": 0.1,
-    "Pa": 1.0, "hPa": 100.0, "Pa/s": 1.0, "hPa/h": 100 / 3600,
-    "%": 0.01, "ppm": 1e-6, "m": 1.0, "s": 1.0, "-": 1.0,
+    "rad": 1.0,
+    "deg": DEG,
+    "deg/s": DEG,
+    "deg/h": DEG / 3600,
+    "deg/sqrt(h)": DEG / 60,
+    "deg/s/sqrt(Hz)": DEG,
+    "deg/h/sqrt(h)": DEG / 3600 / 60,
+    "m/s^2": 1.0,
+    "g": G0,
+    "mg": G0 * 1e-3,
+    "ug": G0 * 1e-6,
+    "ug/sqrt(Hz)": G0 * 1e-6,
+    "m/s/sqrt(h)": 1 / 60,
+    "m/s^2/sqrt(Hz)": 1.0,
+    "uT": 1.0,
+    "G": 100.0,
+    "mG": 0.1,
+    "Pa": 1.0,
+    "hPa": 100.0,
+    "Pa/s": 1.0,
+    "hPa/h": 100 / 3600,
+    "%": 0.01,
+    "ppm": 1e-6,
+    "m": 1.0,
+    "s": 1.0,
+    "-": 1.0,
 }
 
 

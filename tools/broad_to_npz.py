@@ -13,6 +13,7 @@ What is kept, and how (data/real/README.md says the same):
 The arrays are stored column-major in a zip with LZMA compression, which ``numpy.load`` reads as an npz.
 Usage: ``python tools/broad_to_npz.py OUT_DIR TRIAL.mat ...`` (prints the SHA-256 of input and output).
 """
+
 from __future__ import annotations
 
 import argparse
@@ -30,15 +31,20 @@ def convert(mat: Path, out_dir: Path, tail: float) -> Path:
     rate = float(d["sampling_rate"].item())
     movement = d["movement"].ravel().astype(bool)
     end = min(movement.size, int(np.flatnonzero(movement)[-1]) + 1 + int(round(tail * rate)))
-    arrays = {"gyr": d["imu_gyr"][:end], "acc": d["imu_acc"][:end], "mag": d["imu_mag"][:end],
-              "opt_quat": d["opt_quat"][:end].astype(np.float32), "movement": movement[:end],
-              "sampling_rate": np.array(rate)}
+    arrays = {
+        "gyr": d["imu_gyr"][:end],
+        "acc": d["imu_acc"][:end],
+        "mag": d["imu_mag"][:end],
+        "opt_quat": d["opt_quat"][:end].astype(np.float32),
+        "movement": movement[:end],
+        "sampling_rate": np.array(rate),
+    }
     out = out_dir / (mat.stem + ".npz")
     with zipfile.ZipFile(out, "w", compression=zipfile.ZIP_LZMA) as z:
         for name, a in arrays.items():
             buf = io.BytesIO()
             np.save(buf, np.asfortranarray(a), allow_pickle=False)
-            info = zipfile.ZipInfo(name + ".npy", date_time=(1980, 1, 1, 0, 0, 0))   # fixed: byte-identical reruns
+            info = zipfile.ZipInfo(name + ".npy", date_time=(1980, 1, 1, 0, 0, 0))  # fixed: byte-identical reruns
             info.compress_type = zipfile.ZIP_LZMA
             z.writestr(info, buf.getvalue())
     return out
@@ -53,8 +59,14 @@ def main() -> None:
     args.out_dir.mkdir(parents=True, exist_ok=True)
     for mat in args.mats:
         out = convert(mat, args.out_dir, args.tail)
-        print(hashlib.sha256(mat.read_bytes()).hexdigest(), mat.name, "->",
-              hashlib.sha256(out.read_bytes()).hexdigest(), out.name, f"{out.stat().st_size / 1e6:.2f} MB")
+        print(
+            hashlib.sha256(mat.read_bytes()).hexdigest(),
+            mat.name,
+            "->",
+            hashlib.sha256(out.read_bytes()).hexdigest(),
+            out.name,
+            f"{out.stat().st_size / 1e6:.2f} MB",
+        )
 
 
 if __name__ == "__main__":

@@ -18,6 +18,7 @@ Assembles ``build/site-src/`` and runs Sphinx on it with ``docs/conf.py``:
 MathJax 3 is copied from ``docs/node_modules`` (``docs/package.json``, installed with ``npm ci``) into
 the site: nothing is loaded from outside it. ``tests/test_site.py`` opens every page in headless Chromium.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -52,14 +53,17 @@ REPO_FILES = "https://github.com/navlib-repro/navlib/blob/main/"
 def absolute_links(markdown: str, base: str = "", anchors: str = "") -> str:
     """Markdown links to repository files (relative to ``base``, a folder of the repository) made absolute; with
     ``anchors`` (a file of the repository), links to its sections (``#...``) too."""
+
     def repl(m):
         return f"]({REPO_FILES}{posixpath.normpath(f'{base}/{m.group(1)}' if base else m.group(1))})"
+
     markdown = re.sub(r"\]\((?!https?:|#|mailto:)([^)\s]+)\)", repl, markdown)
     if not anchors:
         return markdown
     here = {slug(h) for h in re.findall(r"^#+ (.*)$", markdown, re.M)}
-    return re.sub(r"\]\(#([^)\s]+)\)", lambda m: m.group(0) if m.group(1) in here else f"]({REPO_FILES}{anchors}#{m.group(1)})",
-                  markdown)
+    return re.sub(
+        r"\]\(#([^)\s]+)\)", lambda m: m.group(0) if m.group(1) in here else f"]({REPO_FILES}{anchors}#{m.group(1)})", markdown
+    )
 
 
 def slug(heading: str) -> str:
@@ -72,7 +76,7 @@ def readme_section(title: str) -> str:
     text = (ROOT / "README.md").read_text(encoding="utf-8")
     start = text.index(f"\n## {title}\n")
     end = text.find("\n## ", start + 1)
-    return absolute_links(text[start + 1:end if end > 0 else None], anchors="README.md")
+    return absolute_links(text[start + 1 : end if end > 0 else None], anchors="README.md")
 
 
 # ----------------------------------------------------------------------------------------------- chapters
@@ -118,12 +122,14 @@ CODE_NAME = re.compile(r"`([A-Za-z_][\w]*(?:\.[A-Za-z_]\w*)+)(\(\))?`")
 
 def link_names(markdown: str, names: dict[str, str]) -> str:
     """`` `nf.resolve` `` -> a MyST cross-reference to ``navlib.papers.north_finding.resolve``."""
+
     def repl(m):
         head, _, tail = m.group(1).partition(".")
         if head not in names:
             return m.group(0)
         target = public_target(f"{names[head]}.{tail}")
         return f"{{py:obj}}`{m.group(1)}{m.group(2) or ''} <{target}>`" if target else m.group(0)
+
     return CODE_NAME.sub(repl, markdown)
 
 
@@ -166,6 +172,7 @@ SAVEFIG = re.compile(r"savefig\(\s*\w+\s*,\s*f?[\"']([^\"']+)[\"']")
 def link_check_rows(table_html: str, seen: set[str], checks: set[str]) -> str:
     """A chapter's check table with each of the notebook's ``checks`` linked to its ledger row (and the first row of
     a check given the anchor the ledger links back to)."""
+
     def repl(m):
         name = m.group(1)
         if name not in checks:
@@ -173,6 +180,7 @@ def link_check_rows(table_html: str, seen: set[str], checks: set[str]) -> str:
         ident = "" if name in seen else f" id='{anchor('check', name)}'"
         seen.add(name)
         return f"<th{ident}><a href='../ledger.html#{anchor('check', name)}'>{name}</a></th>"
+
     return CHECK_ROW.sub(repl, table_html)
 
 
@@ -184,8 +192,10 @@ def figure_links(name: str, claims: list[str]) -> str:
 
 def launch_links(stem: str) -> str:
     """Links under a chapter's title: run it in Binder (JupyterLab, the repository's binder/ environment) or download it."""
-    return (f"<p class='launch-links'><a href='{BINDER}{stem}.ipynb'>Run this chapter in Binder</a>"
-            f"<a href='../_sources/chapters/{stem}.ipynb' download>Download the notebook (.ipynb)</a></p>")
+    return (
+        f"<p class='launch-links'><a href='{BINDER}{stem}.ipynb'>Run this chapter in Binder</a>"
+        f"<a href='../_sources/chapters/{stem}.ipynb' download>Download the notebook (.ipynb)</a></p>"
+    )
 
 
 ERRATUM = re.compile(r"^> \*\*(Erratum [^*]+?)\.?\*\*(.*?)(?=\n(?!>)|\Z)", re.M | re.S)
@@ -193,16 +203,19 @@ ERRATUM = re.compile(r"^> \*\*(Erratum [^*]+?)\.?\*\*(.*?)(?=\n(?!>)|\Z)", re.M 
 
 def inline_math_html(text: str) -> str:
     """``$x$`` as the HTML Sphinx writes for inline maths (MathJax typesets it inside raw HTML too)."""
-    return re.sub(r"\$([^$]+)\$", lambda m: f"<span class='math notranslate nohighlight'>\\({html.escape(m.group(1))}\\)</span>",
-                  text)
+    return re.sub(
+        r"\$([^$]+)\$", lambda m: f"<span class='math notranslate nohighlight'>\\({html.escape(m.group(1))}\\)</span>", text
+    )
 
 
 def fold_errata(markdown: str) -> str:
     """Each erratum box (a quote opening with **Erratum ...**) folded under its title: the reproduction details
     stay complete, one click away."""
+
     def repl(m):
         body = re.sub(r"^> ?", "", m.group(2), flags=re.M).strip()
-        return (f"<details class='erratum'><summary>{inline_math_html(m.group(1))}</summary>\n\n{body}\n\n</details>")
+        return f"<details class='erratum'><summary>{inline_math_html(m.group(1))}</summary>\n\n{body}\n\n</details>"
+
     return ERRATUM.sub(repl, markdown)
 
 
@@ -226,8 +239,7 @@ def stage_notebook(src: Path, dest: Path, claims_by_figure: dict[str, list[str]]
                 cells.append(nbformat.v4.new_markdown_cell(figure_links(name, claims_by_figure.get(name, []))))
     nb.cells = cells
     title = next(c for c in nb.cells if c.cell_type == "markdown")
-    title.source = re.sub(r"^(# .*)$", lambda m: f"{m.group(1)}\n\n{launch_links(src.stem)}", title.source, count=1,
-                          flags=re.M)
+    title.source = re.sub(r"^(# .*)$", lambda m: f"{m.group(1)}\n\n{launch_links(src.stem)}", title.source, count=1, flags=re.M)
     for cell in nb.cells:
         if cell.cell_type == "markdown":
             cell.source = fold_errata(absolute_links(link_names(cell.source, names), base="notebooks"))
@@ -238,7 +250,7 @@ def stage_notebook(src: Path, dest: Path, claims_by_figure: dict[str, list[str]]
             kept = []
             for out in cell.get("outputs", []):
                 if WIDGET_MIME in out.get("data", {}):
-                    continue        # live controls need a kernel (their text fallback is a repr); the static figure stays
+                    continue  # live controls need a kernel (their text fallback is a repr); the static figure stays
                 kept.append(out)
             cell.outputs = kept
     nb.metadata.pop("widgets", None)
@@ -258,13 +270,20 @@ def counts_table(leds: list[ledger.PaperLedger]) -> str:
     rows, total = [], Counter()
     for led in leds:
         total.update(led.counts)
-        short = f"{led.stem[:2]} {led.title.split(' — ')[0]}"           # "01 Tan & Xie"
-        cells = [f"<a href='chapters/{led.stem}.html' title='{html.escape(led.title)}'>{html.escape(short)}</a>",
-                 str(len(led.rows)),
-                 *(str(led.counts.get(v, 0)) for v in ledger.COLUMNS), f"{led.checks_passed}/{led.checks_total}"]
+        short = f"{led.stem[:2]} {led.title.split(' — ')[0]}"  # "01 Tan & Xie"
+        cells = [
+            f"<a href='chapters/{led.stem}.html' title='{html.escape(led.title)}'>{html.escape(short)}</a>",
+            str(len(led.rows)),
+            *(str(led.counts.get(v, 0)) for v in ledger.COLUMNS),
+            f"{led.checks_passed}/{led.checks_total}",
+        ]
         rows.append("<tr>" + "".join(f"<td>{c}</td>" for c in cells) + "</tr>")
-    cells = ["<b>all papers</b>", str(sum(len(led.rows) for led in leds)), *(str(total.get(v, 0)) for v in ledger.COLUMNS),
-             f"{sum(led.checks_passed for led in leds)}/{sum(led.checks_total for led in leds)}"]
+    cells = [
+        "<b>all papers</b>",
+        str(sum(len(led.rows) for led in leds)),
+        *(str(total.get(v, 0)) for v in ledger.COLUMNS),
+        f"{sum(led.checks_passed for led in leds)}/{sum(led.checks_total for led in leds)}",
+    ]
     rows.append("<tr>" + "".join(f"<td>{c}</td>" for c in cells) + "</tr>")
     return scroll_x(f"<table class='counts'><thead><tr>{head}</tr></thead><tbody>\n" + "\n".join(rows) + "\n</tbody></table>")
 
@@ -283,12 +302,21 @@ def claims_matrix(led: ledger.PaperLedger, rows_of: str = "rows") -> str:
     item, paper value, ours, verdict (with its reason) and thumbnail."""
     rows = []
     for r in getattr(led, rows_of):
-        thumb = (f"<a href='chapters/{led.stem}.html#{anchor('fig', Path(r.figure).stem)}'><img src='{r.figure}' width='110' "
-                 f"alt='{html.escape(r.claim)}: figure in the chapter'></a>" if r.figure else "")
-        why = ledger.verdict_text(r)[len(r.verdict):].lstrip(": ")
-        cells = [html.escape(r.item), f"<code>{html.escape(r.claim)}</code><br><small>{html.escape(r.quantity)}</small>",
-                 html.escape(r.paper), html.escape(r.ours),
-                 verdict_span(r.verdict) + (f"<br><small>{html.escape(why)}</small>" if why else ""), thumb]
+        thumb = (
+            f"<a href='chapters/{led.stem}.html#{anchor('fig', Path(r.figure).stem)}'><img src='{r.figure}' width='110' "
+            f"alt='{html.escape(r.claim)}: figure in the chapter'></a>"
+            if r.figure
+            else ""
+        )
+        why = ledger.verdict_text(r)[len(r.verdict) :].lstrip(": ")
+        cells = [
+            html.escape(r.item),
+            f"<code>{html.escape(r.claim)}</code><br><small>{html.escape(r.quantity)}</small>",
+            html.escape(r.paper),
+            html.escape(r.ours),
+            verdict_span(r.verdict) + (f"<br><small>{html.escape(why)}</small>" if why else ""),
+            thumb,
+        ]
         rows.append("<tr>" + "".join(f"<td>{c}</td>" for c in cells) + "</tr>")
     head = "".join(f"<th>{h}</th>" for h in ("paper item", "claim", "paper", "ours", "verdict", "figure"))
     return scroll_x(f"<table class='matrix'><thead><tr>{head}</tr></thead><tbody>\n" + "\n".join(rows) + "\n</tbody></table>")
@@ -306,64 +334,93 @@ def ledger_rows(led: ledger.PaperLedger, res: dict | None) -> list[str]:
             target = f"{fmt(c['expected'], unit)} ± {fmt(c.get('tol'))}"
         else:
             lo, hi = c.get("lower"), c.get("upper")
-            target = ("outside " if c.get("outside") else "") + \
-                f"[{fmt(lo) if lo is not None else '−∞'}, {fmt(hi) if hi is not None else '∞'}] {unit}".strip()
+            target = (
+                "outside " if c.get("outside") else ""
+            ) + f"[{fmt(lo) if lo is not None else '−∞'}, {fmt(hi) if hi is not None else '∞'}] {unit}".strip()
         first = claim is not None and claim.claim not in claimed
         claimed.add(claim.claim if claim else "")
         back = f"chapters/{led.stem}.html#{anchor('check', c['name'])}"
-        cells = [html.escape(led.stem[:2]), f"<a href='{back}'><code>{html.escape(c['name'])}</code></a>",
-                 html.escape(c.get("paper_value") or ""), html.escape(fmt(c.get("value"), unit)), html.escape(target),
-                 "pass" if c.get("passed") else "<b>FAIL</b>",
-                 (f"<span id='{anchor('claim', claim.claim)}'></span>" if first else "")
-                 + (verdict_span(verdict) if claim else "<small>(check beyond the catalogue)</small>"),
-                 html.escape(c.get("source", ""))]
-        rows.append(f"<tr data-paper='{led.stem[:2]}' data-verdict='{html.escape(verdict)}' id='{anchor('check', c['name'])}'>"
-                    + "".join(f"<td>{x}</td>" for x in cells) + "</tr>")
+        cells = [
+            html.escape(led.stem[:2]),
+            f"<a href='{back}'><code>{html.escape(c['name'])}</code></a>",
+            html.escape(c.get("paper_value") or ""),
+            html.escape(fmt(c.get("value"), unit)),
+            html.escape(target),
+            "pass" if c.get("passed") else "<b>FAIL</b>",
+            (f"<span id='{anchor('claim', claim.claim)}'></span>" if first else "")
+            + (verdict_span(verdict) if claim else "<small>(check beyond the catalogue)</small>"),
+            html.escape(c.get("source", "")),
+        ]
+        rows.append(
+            f"<tr data-paper='{led.stem[:2]}' data-verdict='{html.escape(verdict)}' id='{anchor('check', c['name'])}'>"
+            + "".join(f"<td>{x}</td>" for x in cells)
+            + "</tr>"
+        )
     for r in led.rows:
         if not r.checks:
-            cells = [html.escape(led.stem[:2]), f"<code id='{anchor('claim', r.claim)}'>{html.escape(r.claim)}</code> "
-                     "<small>(claim, no check)</small>",
-                     html.escape(r.paper), html.escape(r.ours), "", "", verdict_span(r.verdict), html.escape(r.reason)]
-            rows.append(f"<tr data-paper='{led.stem[:2]}' data-verdict='{html.escape(r.verdict)}'>"
-                        + "".join(f"<td>{x}</td>" for x in cells) + "</tr>")
+            cells = [
+                html.escape(led.stem[:2]),
+                f"<code id='{anchor('claim', r.claim)}'>{html.escape(r.claim)}</code> <small>(claim, no check)</small>",
+                html.escape(r.paper),
+                html.escape(r.ours),
+                "",
+                "",
+                verdict_span(r.verdict),
+                html.escape(r.reason),
+            ]
+            rows.append(
+                f"<tr data-paper='{led.stem[:2]}' data-verdict='{html.escape(r.verdict)}'>"
+                + "".join(f"<td>{x}</td>" for x in cells)
+                + "</tr>"
+            )
     return rows
 
 
 def ledger_page(leds: list[ledger.PaperLedger], build: Path) -> str:
     rows = [row for led in leds for row in ledger_rows(led, ledger.results(build, led.stem))]
-    papers = "".join(f"<button data-filter='paper' data-value='{led.stem[:2]}'>{html.escape(led.stem)}</button>"
-                     for led in leds)
-    verdicts = "".join(f"<button data-filter='verdict' data-value='{html.escape(v)}'>{html.escape(v)}</button>"
-                       for v in (*ledger.COLUMNS, "no claim"))
-    head = "".join(f"<th>{h}</th>" for h in ("nb", "check", "paper value", "ours", "target or bound", "result",
-                                              "claim verdict", "source"))
-    return "\n".join([
-        "# The ledger: every check",
-        "",
-        "A *claim* is a statement of a paper; a *check* is one computed comparison in a notebook (its value "
-        "computed by navlib from simulated or committed data). Each row is a check with the verdict of the claim "
-        "it supports; claims that rest on no check (not checkable here) have a row of their own. How verdicts "
-        "are given: [the claims catalogue](claims.md).",
-        "",
-        "<div class='ledger-filters'>",
-        f"<p>Paper: <button data-filter='paper' data-value='' class='active'>all</button>{papers}</p>",
-        f"<p>Verdict: <button data-filter='verdict' data-value='' class='active'>all</button>{verdicts}</p>",
-        "<p><span id='ledger-count'></span> rows shown</p>",
-        "</div>",
-        "",
-        f"<div class='scroll-x'><table id='ledger' class='ledger'><thead><tr>{head}</tr></thead><tbody>",
-        *rows,
-        "</tbody></table></div>",
-        ""])
+    papers = "".join(f"<button data-filter='paper' data-value='{led.stem[:2]}'>{html.escape(led.stem)}</button>" for led in leds)
+    verdicts = "".join(
+        f"<button data-filter='verdict' data-value='{html.escape(v)}'>{html.escape(v)}</button>"
+        for v in (*ledger.COLUMNS, "no claim")
+    )
+    head = "".join(
+        f"<th>{h}</th>" for h in ("nb", "check", "paper value", "ours", "target or bound", "result", "claim verdict", "source")
+    )
+    return "\n".join(
+        [
+            "# The ledger: every check",
+            "",
+            "A *claim* is a statement of a paper; a *check* is one computed comparison in a notebook (its value "
+            "computed by navlib from simulated or committed data). Each row is a check with the verdict of the claim "
+            "it supports; claims that rest on no check (not checkable here) have a row of their own. How verdicts "
+            "are given: [the claims catalogue](claims.md).",
+            "",
+            "<div class='ledger-filters'>",
+            f"<p>Paper: <button data-filter='paper' data-value='' class='active'>all</button>{papers}</p>",
+            f"<p>Verdict: <button data-filter='verdict' data-value='' class='active'>all</button>{verdicts}</p>",
+            "<p><span id='ledger-count'></span> rows shown</p>",
+            "</div>",
+            "",
+            f"<div class='scroll-x'><table id='ledger' class='ledger'><thead><tr>{head}</tr></thead><tbody>",
+            *rows,
+            "</tbody></table></div>",
+            "",
+        ]
+    )
 
 
 # --------------------------------------------------------------------------------------------------- home
 def citation() -> str:
     import yaml
+
     cff = yaml.safe_load((ROOT / "CITATION.cff").read_text(encoding="utf-8"))
-    lines = [f"{cff['authors'][0]['name']} ({cff['date-released'][:4]}). *{cff['title']}*, version {cff['version']}. "
-             f"<{cff['repository-code']}>", "",
-             "and the paper whose method you use:", ""]
+    lines = [
+        f"{cff['authors'][0]['name']} ({cff['date-released'][:4]}). *{cff['title']}*, version {cff['version']}. "
+        f"<{cff['repository-code']}>",
+        "",
+        "and the paper whose method you use:",
+        "",
+    ]
     for ref in cff.get("references", []):
         who = ", ".join(f"{a['family-names']} {a['given-names'][0]}." for a in ref["authors"])
         year = f" ({ref['year']})" if "year" in ref else ""
@@ -376,55 +433,107 @@ def home_page(leds: list[ledger.PaperLedger], chapters: list[str]) -> str:
     matrices = []
     for led in leds:
         counts = ", ".join(f"{led.counts[v]} {v}" for v in ledger.COLUMNS if led.counts.get(v))
-        matrices += [f"<details><summary><b>{html.escape(led.title)}</b> — {len(led.rows)} claims: "
-                     f"{html.escape(counts)} (<a href='chapters/{led.stem}.html'>chapter</a>)</summary>",
-                     claims_matrix(led), "</details>", ""]
+        matrices += [
+            f"<details><summary><b>{html.escape(led.title)}</b> — {len(led.rows)} claims: "
+            f"{html.escape(counts)} (<a href='chapters/{led.stem}.html'>chapter</a>)</summary>",
+            claims_matrix(led),
+            "</details>",
+            "",
+        ]
         if led.extensions:
-            matrices += [f"<details><summary>{html.escape(led.stem[:2])}: {len(led.extensions)} extensions (the project's "
-                         "own quantities, no paper verdict)</summary>", claims_matrix(led, "extensions"), "</details>", ""]
-    return "\n".join([
-        (ROOT / "docs" / "home.md").read_text(encoding="utf-8").rstrip(), "",
-        "**Teaching with these chapters?** [The course page](course.md) gives an order, 45- and 90-minute lesson "
-        "plans, parameters to hand out and the run times.", "",
-        "## The papers' claims and their verdicts", "",
-        "Claims by verdict (counted from the results of the last `make reproduce`; the full list of checks is in "
-        "[the ledger](ledger.md)):", "",
-        counts_table(leds), "",
-        "Each paper's verdict matrix (open a paper):", "",
-        *matrices,
-        "## Two commands", "",
-        "```bash",
-        "git clone https://github.com/navlib-repro/navlib.git && cd navlib",
-        "make reproduce   # set up .venv, execute every notebook, write build/ (figures, results, this site's input)",
-        "make test        # unit and property tests, and every notebook executed by nbmake",
-        "```", "",
-        "`make docs` builds this site from the executed notebooks into `build/site/`.", "",
-        "## How to cite", "",
-        citation(), "",
-        "```{toctree}", ":caption: Chapters", ":maxdepth: 1", ":hidden:", "", *[f"chapters/{c}" for c in chapters],
-        "```", "",
-        "```{toctree}", ":caption: Reference", ":maxdepth: 1", ":hidden:", "",
-        "course", "ledger", "claims", "conventions", "own-data", "robustness", "benchmarks", "api/index", "```", ""])
+            matrices += [
+                f"<details><summary>{html.escape(led.stem[:2])}: {len(led.extensions)} extensions (the project's "
+                "own quantities, no paper verdict)</summary>",
+                claims_matrix(led, "extensions"),
+                "</details>",
+                "",
+            ]
+    return "\n".join(
+        [
+            (ROOT / "docs" / "home.md").read_text(encoding="utf-8").rstrip(),
+            "",
+            "**Teaching with these chapters?** [The course page](course.md) gives an order, 45- and 90-minute lesson "
+            "plans, parameters to hand out and the run times.",
+            "",
+            "## The papers' claims and their verdicts",
+            "",
+            "Claims by verdict (counted from the results of the last `make reproduce`; the full list of checks is in "
+            "[the ledger](ledger.md)):",
+            "",
+            counts_table(leds),
+            "",
+            "Each paper's verdict matrix (open a paper):",
+            "",
+            *matrices,
+            "## Two commands",
+            "",
+            "```bash",
+            "git clone https://github.com/navlib-repro/navlib.git && cd navlib",
+            "make reproduce   # set up .venv, execute every notebook, write build/ (figures, results, this site's input)",
+            "make test        # unit and property tests, and every notebook executed by nbmake",
+            "```",
+            "",
+            "`make docs` builds this site from the executed notebooks into `build/site/`.",
+            "",
+            "## How to cite",
+            "",
+            citation(),
+            "",
+            "```{toctree}",
+            ":caption: Chapters",
+            ":maxdepth: 1",
+            ":hidden:",
+            "",
+            *[f"chapters/{c}" for c in chapters],
+            "```",
+            "",
+            "```{toctree}",
+            ":caption: Reference",
+            ":maxdepth: 1",
+            ":hidden:",
+            "",
+            "course",
+            "ledger",
+            "claims",
+            "conventions",
+            "own-data",
+            "robustness",
+            "benchmarks",
+            "api/index",
+            "```",
+            "",
+        ]
+    )
 
 
 # ---------------------------------------------------------------------------------------------------- API
 def public_modules() -> dict[str, list[str]]:
     import navlib
+
     groups = {"Core": [], "Filters": [], "Paper companions": []}
     for info in pkgutil.walk_packages(navlib.__path__, "navlib."):
         if any(part.startswith("_") for part in info.name.split(".")) or info.ispkg and info.name != "navlib.papers":
             continue
-        group = "Filters" if info.name.startswith("navlib.filters.") else \
-            "Paper companions" if info.name.startswith("navlib.papers") else "Core"
+        group = (
+            "Filters"
+            if info.name.startswith("navlib.filters.")
+            else "Paper companions"
+            if info.name.startswith("navlib.papers")
+            else "Core"
+        )
         groups[group].append(info.name)
     return {g: sorted(m) for g, m in groups.items()}
 
 
 def api_pages(dest: Path) -> None:
     """One page per public module (autodoc over its numpydoc docstrings), listed by group on the index."""
-    index = ["# API reference", "",
-             "Every public name of navlib, one page per module, from its docstrings (shapes and units in each). The "
-             "paper companions (`navlib.papers.*`) give the paper's equations with their numbers.", ""]
+    index = [
+        "# API reference",
+        "",
+        "Every public name of navlib, one page per module, from its docstrings (shapes and units in each). The "
+        "paper companions (`navlib.papers.*`) give the paper's equations with their numbers.",
+        "",
+    ]
     pages = []
     for group, modules in public_modules().items():
         index += [f"## {group}", ""]
@@ -432,8 +541,9 @@ def api_pages(dest: Path) -> None:
             pages.append(module)
             summary = (importlib.import_module(module).__doc__ or "").strip().splitlines()[0]
             index.append(f"* [`{module}`]({module}.md): {summary}")
-            (dest / f"{module}.md").write_text(f"# `{module}`\n\n```{{eval-rst}}\n.. automodule:: {module}\n```\n",
-                                               encoding="utf-8")
+            (dest / f"{module}.md").write_text(
+                f"# `{module}`\n\n```{{eval-rst}}\n.. automodule:: {module}\n```\n", encoding="utf-8"
+            )
         index.append("")
     index += ["```{toctree}", ":hidden:", "", *pages, "```", ""]
     (dest / "index.md").write_text("\n".join(index), encoding="utf-8")
@@ -443,18 +553,32 @@ def course_page(build: Path) -> str:
     """``docs/course.md`` with the run times of the last ``make reproduce`` (``build/summary.json``) and of the
     teaching-mode runs of ``tests/test_teaching.py`` (``build/teaching/``) filled in."""
     summary = json.loads((build / "summary.json").read_text(encoding="utf-8"))
-    rows = ["Full runs, from the last `make reproduce` (numba's compilation on a first run is counted apart; "
-            "later runs load the compiled code from the cache):", "",
-            "| chapter | full run | of which compiling | peak memory |", "| --- | --- | --- | --- |"]
-    rows += [f"| {stem} | {r['seconds']:.0f} s | {r.get('compile_seconds', 0):.0f} s | {r.get('peak_mb', 0):.0f} MB |"
-             for stem, r in sorted(summary.items())]
-    runs = sorted((json.loads(p.read_text(encoding="utf-8")) for p in (build / "teaching").glob("*.json")),
-                  key=lambda r: r["notebook"]) if (build / "teaching").is_dir() else []
+    rows = [
+        "Full runs, from the last `make reproduce` (numba's compilation on a first run is counted apart; "
+        "later runs load the compiled code from the cache):",
+        "",
+        "| chapter | full run | of which compiling | peak memory |",
+        "| --- | --- | --- | --- |",
+    ]
+    rows += [
+        f"| {stem} | {r['seconds']:.0f} s | {r.get('compile_seconds', 0):.0f} s | {r.get('peak_mb', 0):.0f} MB |"
+        for stem, r in sorted(summary.items())
+    ]
+    runs = (
+        sorted(
+            (json.loads(p.read_text(encoding="utf-8")) for p in (build / "teaching").glob("*.json")), key=lambda r: r["notebook"]
+        )
+        if (build / "teaching").is_dir()
+        else []
+    )
     rows += ["", "Teaching + fast mode with a parameter changed, from the last `make test` (tests/test_teaching.py):", ""]
     if runs:
         rows += ["| chapter | change | run | checks held |", "| --- | --- | --- | --- |"]
-        rows += [f"| {r['notebook']} | {', '.join(f'`{k} = {v}`' for k, v in r['parameters'].items())} | "
-                 f"{r['seconds']:.0f} s | {r['checks_held']} |" for r in runs]
+        rows += [
+            f"| {r['notebook']} | {', '.join(f'`{k} = {v}`' for k, v in r['parameters'].items())} | "
+            f"{r['seconds']:.0f} s | {r['checks_held']} |"
+            for r in runs
+        ]
     else:
         rows.append("*No teaching-mode runs recorded in this build: `make test` records them.*")
     text = (ROOT / "docs" / "course.md").read_text(encoding="utf-8")
@@ -467,31 +591,46 @@ def benchmarks_page(build: Path, out_dir: Path) -> str:
     if bench.is_file():
         data = json.loads(bench.read_text(encoding="utf-8"))
         m = data.get("machine", {})
-        parts += ["## The last `make bench` on this machine", "",
-                  f"Python {m.get('python', '?')}, {m.get('cpus', '?')} CPUs, {m.get('platform', '?')}"
-                  + (" (quick run)" if data.get("quick") else "") + ".", "",
-                  "| case | implementation | throughput | goal | note |", "|---|---|---|---|---|"]
+        parts += [
+            "## The last `make bench` on this machine",
+            "",
+            f"Python {m.get('python', '?')}, {m.get('cpus', '?')} CPUs, {m.get('platform', '?')}"
+            + (" (quick run)" if data.get("quick") else "")
+            + ".",
+            "",
+            "| case | implementation | throughput | goal | note |",
+            "|---|---|---|---|---|",
+        ]
         for r in data.get("results", []):
             goal = "" if r.get("goal") is None else f"{r['goal']:.4g} {r['unit']}"
-            parts.append(f"| {r['case']} | {r['implementation']} | {r['throughput']:.4g} {r['unit']} | {goal} | "
-                         f"{r.get('note', '')} |")
+            parts.append(
+                f"| {r['case']} | {r['implementation']} | {r['throughput']:.4g} {r['unit']} | {goal} | {r.get('note', '')} |"
+            )
     else:
         parts += ["*No `build/bench.json` yet: run `make bench`.*"]
     growth = build / "bench-growth.json"
     if growth.is_file():
-        parts += ["", "## Cost growth", "", "Time of each kernel against its size, each size in a fresh interpreter "
-                  "(`bench/cases_growth.py`); the dashed line has slope 1 (linear in the work).", "",
-                  f"```{{image}} {growth_figure(json.loads(growth.read_text(encoding='utf-8')), out_dir)}",
-                  ":alt: Run time against problem size for each main kernel, on log-log axes, with a slope-1 line",
-                  "```"]
+        parts += [
+            "",
+            "## Cost growth",
+            "",
+            "Time of each kernel against its size, each size in a fresh interpreter "
+            "(`bench/cases_growth.py`); the dashed line has slope 1 (linear in the work).",
+            "",
+            f"```{{image}} {growth_figure(json.loads(growth.read_text(encoding='utf-8')), out_dir)}",
+            ":alt: Run time against problem size for each main kernel, on log-log axes, with a slope-1 line",
+            "```",
+        ]
     return "\n".join(parts) + "\n"
 
 
 def growth_figure(curves: dict, out_dir: Path) -> str:
     """The growth curves of ``make bench`` as a log-log figure in the site's sources; returns its file name."""
     import matplotlib
+
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+
     fig, ax = plt.subplots(figsize=(7, 4.2), layout="constrained")
     for name, c in curves.items():
         ax.loglog(c["sizes"], c["seconds"], "o-", ms=3, label=f"{name} (N^{c['exponent']:.2f})")
@@ -513,7 +652,7 @@ def stage(build: Path, src: Path) -> list[str]:
     shutil.rmtree(src, ignore_errors=True)
     for d in ("chapters", "api", "_extra"):
         (src / d).mkdir(parents=True)
-    shutil.copytree(ROOT / "docs" / "_static", src / "_static")          # styles, scripts, favicon, CJK font
+    shutil.copytree(ROOT / "docs" / "_static", src / "_static")  # styles, scripts, favicon, CJK font
     chapters = []
     leds = [led for led in ledger.ledgers(build) if led.stem in {nb.stem for nb in notebooks}]
     for nb in notebooks:
@@ -522,11 +661,11 @@ def stage(build: Path, src: Path) -> list[str]:
             for r in led.rows:
                 if led.stem == nb.stem and r.figure:
                     claims_by_figure.setdefault(Path(r.figure).stem, []).append(r.claim)
-        in_ledger = any(led.stem == nb.stem for led in leds)           # chapters of a paper; 00 and 06 have none
+        in_ledger = any(led.stem == nb.stem for led in leds)  # chapters of a paper; 00 and 06 have none
         checks = {c["name"] for c in (ledger.results(build, nb.stem) or {}).get("checks", [])} if in_ledger else set()
         stage_notebook(nb, src / "chapters" / nb.name, claims_by_figure, checks)
         chapters.append(nb.stem)
-        if (build / nb.stem / "figures").is_dir():        # thumbnails of the home page and the ledger
+        if (build / nb.stem / "figures").is_dir():  # thumbnails of the home page and the ledger
             shutil.copytree(build / nb.stem / "figures", src / "_extra" / nb.stem / "figures")
     for led in leds:
         for p in led.problems:
@@ -561,6 +700,7 @@ def main(argv=None) -> int:
     start = time.perf_counter()
     chapters = stage(build, src)
     from sphinx.cmd.build import build_main
+
     shutil.rmtree(out, ignore_errors=True)
     warnings = build / "site-warnings.txt"
     rc = build_main(["-b", "html", "-q", "-j", "2", "-W", "--keep-going", "-w", str(warnings), str(src), str(out)])

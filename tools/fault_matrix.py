@@ -22,6 +22,7 @@ heading; its error is the RMS heading error (deg) over the 16 s after the fault.
 Usage: python tools/fault_matrix.py [--seeds 3] [--out build/fault_matrix.md] [--readme]
 (``--readme`` also writes the table into README.md between the ``fault-matrix`` markers.)
 """
+
 from __future__ import annotations
 
 import argparse
@@ -51,20 +52,37 @@ either way (handling and ignoring hold different samples, e.g. the last reading 
 own), the gyro noise times the 1 s fault, 0.29 deg, and for the planar filters the speed noise times the 3 s fault,
 0.06 m."""
 
-DT, N, K0 = 0.01, 2000, 400                       # 100 Hz, 20 s, fault at 4 s
-AFTER = slice(K0, N)                              # the 16 s after the fault starts
+DT, N, K0 = 0.01, 2000, 400  # 100 Hz, 20 s, fault at 4 s
+AFTER = slice(K0, N)  # the 16 s after the fault starts
 AXIS = np.array([1.0, 1.0, 2.0]) / np.sqrt(6.0)
 MOTIONS = {"still": 0.0, "slow": units.deg(20.0), "fast turn": units.deg(200.0)}
-B_N = np.array([0.0, 20.0, -40.0])               # uT, ENU (no declination: magnetic north is north)
+B_N = np.array([0.0, 20.0, -40.0])  # uT, ENU (no declination: magnetic north is north)
 G = 9.80665
 HPR0 = units.deg(np.array([90.0, 5.0, -3.0]))
-FULL_SCALE = units.deg(150.0)                     # the gyro range of the saturation cells (rad/s)
+FULL_SCALE = units.deg(150.0)  # the gyro range of the saturation cells (rad/s)
 
-FAULTS = ("stuck 1 axis", "stuck 3 axes", "dropout", "spike", "saturation", "clock jump +", "clock jump -",
-          "duplicate stamps", "free fall", "magnetic disturbance")
-KEYS = {"stuck 1 axis": ("gyro", "stuck"), "stuck 3 axes": ("gyro", "stuck"), "dropout": ("gyro", "nan"),
-        "spike": ("gyro", "spike"), "saturation": ("gyro", "saturated"), "clock jump +": ("clock", "jump"),
-        "free fall": ("accel", "freefall"), "magnetic disturbance": ("mag", "outlier")}
+FAULTS = (
+    "stuck 1 axis",
+    "stuck 3 axes",
+    "dropout",
+    "spike",
+    "saturation",
+    "clock jump +",
+    "clock jump -",
+    "duplicate stamps",
+    "free fall",
+    "magnetic disturbance",
+)
+KEYS = {
+    "stuck 1 axis": ("gyro", "stuck"),
+    "stuck 3 axes": ("gyro", "stuck"),
+    "dropout": ("gyro", "nan"),
+    "spike": ("gyro", "spike"),
+    "saturation": ("gyro", "saturated"),
+    "clock jump +": ("clock", "jump"),
+    "free fall": ("accel", "freefall"),
+    "magnetic disturbance": ("mag", "outlier"),
+}
 """The ``faults`` key that must count each fault (the timing faults - and + are refused by ImuSamples and
 repaired by :func:`navlib.timing.sanitize`, which reports them)."""
 
@@ -72,6 +90,7 @@ repaired by :func:`navlib.timing.sanitize`, which reports them)."""
 @dataclasses.dataclass
 class Rig:
     """Samples of the rotating rig: gyro, accelerometer, magnetometer (N, 3), intervals (N,), truth q (N, 4)."""
+
     w: np.ndarray
     f: np.ndarray
     m: np.ndarray
@@ -106,31 +125,32 @@ def rms(x) -> float:
 # Faults: the faulty rig, the limits/gates of the handled and the ignored run, or None where it cannot occur
 # ----------------------------------------------------------------------------------------------------------
 
-OFF = dict(stuck_run=None, max_dt=np.inf, freefall_accel=0.0)      # every default detection off
+OFF = dict(stuck_run=None, max_dt=np.inf, freefall_accel=0.0)  # every default detection off
 
 
 @dataclasses.dataclass
 class Injected:
     """A faulty rig with the handled run's limits and gates, and the ignored run's (``ignored_rig``: data as a filter
     without the handling would see them, e.g. dropouts filled with 0)."""
+
     rig: Rig
     handled: SensorLimits
     ignored: SensorLimits
     gated: bool = False
     ignored_rig: Rig | None = None
-    truth: np.ndarray | None = None            # truth after timing repairs (sanitize drops samples)
+    truth: np.ndarray | None = None  # truth after timing repairs (sanitize drops samples)
 
 
 def inject(fault: str, r: Rig, k0: int = K0) -> Injected | None:
     """``fault`` injected into ``r`` from sample ``k0`` (1 s; dropouts 0.2 s, free fall 0.3 s, disturbance 2 s)."""
     w, f, m, dt = r.w.copy(), r.f.copy(), r.m.copy(), r.dt.copy()
     k1 = k0 + 100
-    if fault == "stuck 1 axis":                                        # the output freezes at its last reading
+    if fault == "stuck 1 axis":  # the output freezes at its last reading
         w[k0:k1, 0] = w[k0 - 1, 0]
     elif fault == "stuck 3 axes":
         w[k0:k1] = w[k0 - 1]
     elif fault == "dropout":
-        w[k0:k0 + 20], f[k0:k0 + 20], m[k0:k0 + 20] = np.nan, np.nan, np.nan
+        w[k0 : k0 + 20], f[k0 : k0 + 20], m[k0 : k0 + 20] = np.nan, np.nan, np.nan
         zero = Rig(np.nan_to_num(w), np.nan_to_num(f), np.nan_to_num(m), dt, r.q)
         return Injected(Rig(w, f, m, dt, r.q), SensorLimits(), SensorLimits(**OFF), ignored_rig=zero)
     elif fault == "spike":
@@ -138,17 +158,17 @@ def inject(fault: str, r: Rig, k0: int = K0) -> Injected | None:
         return Injected(Rig(w, f, m, dt, r.q), SensorLimits(spike_gyro=1.0), SensorLimits())
     elif fault == "saturation":
         if np.max(np.abs(w)) < FULL_SCALE:
-            return None                                                # the motion never reaches the rails
+            return None  # the motion never reaches the rails
         w = np.clip(w, -FULL_SCALE, FULL_SCALE)
         return Injected(Rig(w, f, m, dt, r.q), SensorLimits(full_scale_gyro=FULL_SCALE), SensorLimits())
     elif fault == "clock jump +":
-        dt[k0] = 0.2                                                   # a stamp glitch: the samples are contiguous
+        dt[k0] = 0.2  # a stamp glitch: the samples are contiguous
     elif fault in ("clock jump -", "duplicate stamps"):
-        return None                                                    # refused by ImuSamples: see timing_cells
+        return None  # refused by ImuSamples: see timing_cells
     elif fault == "free fall":
-        f[k0:k0 + 30] = np.random.default_rng(k0).normal(0.0, 0.3, (30, 3))        # |f| ~ 0.5 m/s^2
+        f[k0 : k0 + 30] = np.random.default_rng(k0).normal(0.0, 0.3, (30, 3))  # |f| ~ 0.5 m/s^2
     elif fault == "magnetic disturbance":
-        m[k0:k0 + 200] += [30.0, 0.0, 0.0]
+        m[k0 : k0 + 200] += [30.0, 0.0, 0.0]
         return Injected(Rig(w, f, m, dt, r.q), SensorLimits(), SensorLimits(), gated=True)
     return Injected(Rig(w, f, m, dt, r.q), SensorLimits(), SensorLimits(**OFF))
 
@@ -157,31 +177,42 @@ def inject(fault: str, r: Rig, k0: int = K0) -> Injected | None:
 # The IMU filters
 # ----------------------------------------------------------------------------------------------------------
 
+
 def _attitude(filt, **gains):
     def run(r: Rig, limits: SensorLimits, gated: bool):
         gates = AttitudeGates(mag=MagGate()) if gated else AttitudeGates()
         res = filt(ImuSamples(r.w, r.f, r.dt, limits), r.q[0], m_b=r.m, B_n=B_N, gates=gates, **gains)
         return res.q_bn, res.faults
+
     return run
 
 
 def _zupt_ins(r: Rig, limits: SensorLimits, gated: bool):
     still = np.linalg.norm(r.w, axis=-1) < 0.05
-    with warnings.catch_warnings():      # a rig that never stands still has no ZUPT: the warning says so, as expected
+    with warnings.catch_warnings():  # a rig that never stands still has no ZUPT: the warning says so, as expected
         warnings.filterwarnings("ignore", "run_filter: no ZUPT/ZARU update", RuntimeWarning)
-        res = zupt_ins.run_filter(ImuSamples(r.w, r.f, r.dt, limits), zupt_ins.Start(np.array([0.5, 0.2, 10.0]), r.q[0]),
-                                  np.nan_to_num(still, nan=0.0).astype(bool), aiding=zupt_ins.Aiding("none"))
+        res = zupt_ins.run_filter(
+            ImuSamples(r.w, r.f, r.dt, limits),
+            zupt_ins.Start(np.array([0.5, 0.2, 10.0]), r.q[0]),
+            np.nan_to_num(still, nan=0.0).astype(bool),
+            aiding=zupt_ins.Aiding("none"),
+        )
     return res.nav.q_bn[1:], res.faults
 
 
 def _strapdown(r: Rig, limits: SensorLimits, gated: bool):
-    nav = strapdown.integrate(np.array([0.5, 0.2, 10.0]), np.zeros(3), r.q[0], ImuSamples(r.w, r.f, r.dt, limits),
-                              nan_policy="hold")
+    nav = strapdown.integrate(
+        np.array([0.5, 0.2, 10.0]), np.zeros(3), r.q[0], ImuSamples(r.w, r.f, r.dt, limits), nan_policy="hold"
+    )
     return nav.q_bn[1:], nav.faults
 
 
-IMU_FILTERS = {"Mahony": _attitude(mh.mahony), "quaternion KF": _attitude(qkf.quaternion_kf),
-               "ZUPT INS": _zupt_ins, "strapdown": _strapdown}
+IMU_FILTERS = {
+    "Mahony": _attitude(mh.mahony),
+    "quaternion KF": _attitude(qkf.quaternion_kf),
+    "ZUPT INS": _zupt_ins,
+    "strapdown": _strapdown,
+}
 HANDLES = {"strapdown": ("dropout",)}
 """Faults a filter can act on at all (default: every IMU fault; strapdown.integrate is a free INS that holds
 dropouts and uses no limits)."""
@@ -189,8 +220,12 @@ dropouts and uses no limits)."""
 
 def imu_cell(name: str, fault: str, motion: str, seeds) -> dict | None:
     """Errors (deg) fault-free / handled / ignored, averaged over ``seeds``, and whether every run counted the fault."""
-    if name in HANDLES and fault not in HANDLES[name] or fault == "magnetic disturbance" and name not in (
-            "Mahony", "quaternion KF"):
+    if (
+        name in HANDLES
+        and fault not in HANDLES[name]
+        or fault == "magnetic disturbance"
+        and name not in ("Mahony", "quaternion KF")
+    ):
         return None
     run = IMU_FILTERS[name]
     out = {"free": [], "handled": [], "ignored": [], "counted": True}
@@ -212,10 +247,10 @@ def imu_cell(name: str, fault: str, motion: str, seeds) -> dict | None:
 # Planar EKF and dead reckoning (yaw-rate faults)
 # ----------------------------------------------------------------------------------------------------------
 
-PT, PN, PK0 = 0.1, 600, 200                                            # 10 Hz, 60 s, fault at 20 s
+PT, PN, PK0 = 0.1, 600, 200  # 10 Hz, 60 s, fault at 20 s
 P_AFTER = slice(PK0, PK0 + 300)
 PLANAR_MOTIONS = {"still": (0.0, 0.0), "slow": (5.0, units.deg(10.0)), "fast turn": (10.0, units.deg(60.0))}
-PLANAR_RANGE = units.deg(50.0)                                         # yaw-rate gyro range of the saturation cells
+PLANAR_RANGE = units.deg(50.0)  # yaw-rate gyro range of the saturation cells
 
 
 def planar_data(motion: str, seed: int):
@@ -239,7 +274,7 @@ def planar_inject(fault: str, t, z, motion):
         return t, z, limits, limits, np.nan_to_num(z)
     elif fault == "spike":
         z[k0:k1:10, 4] += 2.0
-        return t, z, limits, limits, None                          # the gate (handled) vs none (ignored)
+        return t, z, limits, limits, None  # the gate (handled) vs none (ignored)
     elif fault == "saturation":
         if np.max(np.abs(z[:, 4])) < PLANAR_RANGE:
             return None
@@ -266,8 +301,13 @@ def _planar_run(name: str, t, z, x0, limits: SensorLimits, gate):
     return x[:, :2], faults
 
 
-PLANAR_KEYS = {"stuck 1 axis": ("yaw_rate", "stuck"), "dropout": ("yaw_rate", "nan"), "spike": ("yaw_rate", "outlier"),
-               "saturation": ("yaw_rate", "saturated"), "clock jump +": ("clock", "jump")}
+PLANAR_KEYS = {
+    "stuck 1 axis": ("yaw_rate", "stuck"),
+    "dropout": ("yaw_rate", "nan"),
+    "spike": ("yaw_rate", "outlier"),
+    "saturation": ("yaw_rate", "saturated"),
+    "clock jump +": ("clock", "jump"),
+}
 
 
 def planar_cell(name: str, fault: str, motion: str, seeds) -> dict | None:
@@ -295,6 +335,7 @@ def planar_cell(name: str, fault: str, motion: str, seeds) -> dict | None:
 # Heading fusion (magnetic heading + RTK heading)
 # ----------------------------------------------------------------------------------------------------------
 
+
 def fusion_cell(fault: str, motion: str, seeds) -> dict | None:
     if fault not in ("spike", "dropout", "clock jump +", "magnetic disturbance"):
         return None
@@ -303,7 +344,7 @@ def fusion_cell(fault: str, motion: str, seeds) -> dict | None:
     for seed in seeds:
         rng = np.random.default_rng(seed)
         H = attitude.wrap_2pi(1.0 + rate * DT * np.arange(N))
-        h_mag = H + 0.05 + rng.normal(0.0, units.deg(1.0), N)          # a magnetic heading 3 deg off, noisy
+        h_mag = H + 0.05 + rng.normal(0.0, units.deg(1.0), N)  # a magnetic heading 3 deg off, noisy
         epoch = np.arange(N) % 20 == 0
         rtk = attitude.wrap_2pi(H + rng.normal(0.0, units.deg(0.2), N))
         dt = np.full(N, DT)
@@ -311,21 +352,22 @@ def fusion_cell(fault: str, motion: str, seeds) -> dict | None:
         gate, key = None, None
         if fault == "spike":
             k = np.arange(N) - K0
-            flips = (k % 60 == 0) & (k >= 0) & (k < 200)                # every third epoch: isolated flips
+            flips = (k % 60 == 0) & (k >= 0) & (k < 200)  # every third epoch: isolated flips
             hr[flips] = attitude.wrap_2pi(hr[flips] + np.pi)
             gate, key = units.deg(20.0), ("heading", "outlier")
         elif fault == "dropout":
-            hr[K0:K0 + 200] = np.nan
+            hr[K0 : K0 + 200] = np.nan
             key = ("heading", "nan")
         elif fault == "clock jump +":
             dts[K0] = 0.2
             key = ("clock", "jump")
         else:
-            hm[K0:K0 + 200] += units.deg(30.0)
+            hm[K0 : K0 + 200] += units.deg(30.0)
             gate, key = units.deg(20.0), ("mag", "outlier")
 
         def run(h, r, v, d, g, max_dt=None):
             return heading_fusion.fuse_rtk_heading(h, RtkHeading(r, v, gate=g), d, max_dt=max_dt)
+
         free = run(h_mag, rtk, epoch, dt, None)
         handled = run(hm, hr, ok, dts, gate)
         ignored = run(hm, np.nan_to_num(hr), ok, dts, None, np.inf)
@@ -339,6 +381,7 @@ def fusion_cell(fault: str, motion: str, seeds) -> dict | None:
 # ----------------------------------------------------------------------------------------------------------
 # The real recording
 # ----------------------------------------------------------------------------------------------------------
+
 
 @functools.lru_cache(maxsize=1)
 def _recording():
@@ -367,9 +410,12 @@ def real_cells(fault: str) -> dict:
         q_h, faults = run(inj.rig, inj.handled, inj.gated)
         q_i, _ = run(inj.ignored_rig or inj.rig, inj.ignored, False)
         after = slice(k0, k0 + 1600)
-        out[motion] = {"free": 0.0, "handled": rms(angle_deg(q_h[after], q_free[after])),
-                       "ignored": rms(angle_deg(q_i[after], q_free[after])),
-                       "counted": bool(np.any(faults[KEYS[fault]]))}
+        out[motion] = {
+            "free": 0.0,
+            "handled": rms(angle_deg(q_h[after], q_free[after])),
+            "ignored": rms(angle_deg(q_i[after], q_free[after])),
+            "counted": bool(np.any(faults[KEYS[fault]])),
+        }
     return out
 
 
@@ -409,16 +455,21 @@ def unit(name: str) -> str:
 
 def table(rows: list[dict], seeds) -> str:
     """Every cell: errors fault-free / handled / ignored, the margin ignored - handled, counted."""
-    lines = [f"Error after the fault (mean over seeds {list(seeds)}; deg, m for the planar filters): fault-free, with "
-             "the handling, with it off; margin = ignored - handled (the rule: >= -MARGIN, "
-             f"{MARGIN['deg']:.2f} deg / {MARGIN['m']:.2f} m); counted: the fault is in `faults`. "
-             "Generated by `tools/fault_matrix.py`.", "",
-             "| fault | filter | motion | fault-free | handled | ignored | margin | counted |",
-             "|---|---|---|---:|---:|---:|---:|:---:|"]
+    lines = [
+        f"Error after the fault (mean over seeds {list(seeds)}; deg, m for the planar filters): fault-free, with "
+        "the handling, with it off; margin = ignored - handled (the rule: >= -MARGIN, "
+        f"{MARGIN['deg']:.2f} deg / {MARGIN['m']:.2f} m); counted: the fault is in `faults`. "
+        "Generated by `tools/fault_matrix.py`.",
+        "",
+        "| fault | filter | motion | fault-free | handled | ignored | margin | counted |",
+        "|---|---|---|---:|---:|---:|---:|:---:|",
+    ]
     for r in rows:
-        lines.append(f"| {r['fault']} | {r['filter']} | {r['motion']} | {r['free']:.2f} | {r['handled']:.2f} | "
-                     f"{r['ignored']:.2f} | {r['ignored'] - r['handled']:+.2f} {unit(r['filter'])} | "
-                     f"{'yes' if r['counted'] else 'NO'} |")
+        lines.append(
+            f"| {r['fault']} | {r['filter']} | {r['motion']} | {r['free']:.2f} | {r['handled']:.2f} | "
+            f"{r['ignored']:.2f} | {r['ignored'] - r['handled']:+.2f} {unit(r['filter'])} | "
+            f"{'yes' if r['counted'] else 'NO'} |"
+        )
     return "\n".join(lines) + "\n"
 
 
@@ -456,7 +507,7 @@ def main(argv=None) -> int:
         if a not in s or b not in s:
             print("README.md has no fault-matrix markers", file=sys.stderr)
             return 1
-        readme.write_text(s[:s.index(a) + len(a)] + summary(rows) + s[s.index(b):])
+        readme.write_text(s[: s.index(a) + len(a)] + summary(rows) + s[s.index(b) :])
     return 0
 
 

@@ -29,6 +29,7 @@ a full run also fails when a :data:`BY_DESIGN` rule or a known gap matches nothi
 
 Usage: python tools/fuzz.py [--only MODULE_OR_CALLABLE ...] [--jobs 2] [--timeout S] [--verbose] [--out PATH]
 """
+
 from __future__ import annotations
 
 import argparse
@@ -65,7 +66,7 @@ from navlib.robust import FaultReport  # noqa: E402
 
 BAD_CLASSES = ("unnamed", "other_exception", "silent_nan", "silent_accept", "hang", "crash", "modifies_input")
 UNUSUAL_BAD = ("differs", "error")
-BATCH = 3                   # copies on the new leading axis (not 2: no fixture has a leading axis of 3)
+BATCH = 3  # copies on the new leading axis (not 2: no fixture has a leading axis of 3)
 
 
 # ----------------------------------------------------------------------------------------------------------
@@ -75,18 +76,54 @@ BATCH = 3                   # copies on the new leading axis (not 2: no fixture 
 QUAT_NAMES = {"q", "p", "q0", "q_bn", "q_ned"}
 DCM_NAMES = {"C", "C_bn", "C_ned"}
 TIME_NAMES = {"time", "t", "t_target", "t_source", "door_times"}
-COUNT_NAMES = {"n", "n_trials", "n_steps", "n_samples", "n_dwells", "length", "step", "run", "rtk_confirm",
-               "reacquire", "oss", "width", "ref_floor", "max_rejected", "n_loops", "n_round_trips", "batch_size",
-               "seed", "stuck_run"}
+COUNT_NAMES = {
+    "n",
+    "n_trials",
+    "n_steps",
+    "n_samples",
+    "n_dwells",
+    "length",
+    "step",
+    "run",
+    "rtk_confirm",
+    "reacquire",
+    "oss",
+    "width",
+    "ref_floor",
+    "max_rejected",
+    "n_loops",
+    "n_round_trips",
+    "batch_size",
+    "seed",
+    "stuck_run",
+}
 # Angles in radians that a value in degrees would most likely be mistaken for: argument -> the component of
 # an (..., 3) triplet that holds it (None: the whole argument). Not where the function takes degrees (deg=True).
-DEGREE_ARGS = {"pitch": None, "roll": None, "pitches": None, "rolls": None, "lat": None, "lat0": None,
-               "heading": None, "headings": None, "heading0": None, "heading1": None, "heading2": None,
-               "heading_mag": None, "heading_rtk": None,
-               "hpr": 1, "hpr0": 1, "hpr_true": 1, "ypr": 1, "lla": 0, "lla0": 0, "lla_true": 0}
+DEGREE_ARGS = {
+    "pitch": None,
+    "roll": None,
+    "pitches": None,
+    "rolls": None,
+    "lat": None,
+    "lat0": None,
+    "heading": None,
+    "headings": None,
+    "heading0": None,
+    "heading1": None,
+    "heading2": None,
+    "heading_mag": None,
+    "heading_rtk": None,
+    "hpr": 1,
+    "hpr0": 1,
+    "hpr_true": 1,
+    "ypr": 1,
+    "lla": 0,
+    "lla0": 0,
+    "lla_true": 0,
+}
 DT_NAMES = {"dt", "dts", "dt_gyro", "dt_imu", "time_step"}
 NUMERIC = {"number", "quat", "dcm", "time", "interval"}
-NUMBERS = NUMERIC | {"count"}          # the kinds held as numbers (counts too)
+NUMBERS = NUMERIC | {"count"}  # the kinds held as numbers (counts too)
 
 MUTATIONS = {
     # name: (kinds it applies to, what it is)
@@ -97,8 +134,10 @@ MUTATIONS = {
     "nan": (NUMBERS, "one element NaN"),
     "inf": (NUMBERS, "one element inf (not where inf means 'no limit': INF_MEANS_NO_LIMIT)"),
     "1e300": (NUMERIC, "one element 1e300"),
-    "none": ({"number", "quat", "dcm", "time", "interval", "count", "flag", "text", "object"},
-             "None (not where None is a documented value)"),
+    "none": (
+        {"number", "quat", "dcm", "time", "interval", "count", "flag", "text", "object"},
+        "None (not where None is a documented value)",
+    ),
     "string": ({"number", "quat", "dcm", "time", "interval", "count", "flag", "object"}, "the string 'abc'"),
     "numeric_str": (NUMBERS, "the string '1.5' (numpy would parse it)"),
     "complex": (NUMBERS, "the values plus 1j (numpy would drop the imaginary part)"),
@@ -109,24 +148,38 @@ MUTATIONS = {
     "degrees": ({"number"}, "45 for an angle in radians (DEGREE_ARGS)"),
     "non_monotonic": ({"time"}, "two epochs swapped"),
     "time_jump": ({"time", "interval"}, "a one-hour jump in the middle of the time axis (one 3600 s interval)"),
-    "empty_elementwise": (NUMBERS, "no elements for an elementwise argument: shape (0,), or (0, k) with its vector "
-                                   "axis (valid: an empty result, or refused by name)"),
-    "tiny_dt": ({"interval", "number"}, "a sample interval of 1e-300 s (DT_NAMES and Interval arguments; valid if the "
-                                        "result stays below 1e100, else a named refusal is expected)"),
+    "empty_elementwise": (
+        NUMBERS,
+        "no elements for an elementwise argument: shape (0,), or (0, k) with its vector "
+        "axis (valid: an empty result, or refused by name)",
+    ),
+    "tiny_dt": (
+        {"interval", "number"},
+        "a sample interval of 1e-300 s (DT_NAMES and Interval arguments; valid if the "
+        "result stays below 1e100, else a named refusal is expected)",
+    ),
     "negative_count": ({"count"}, "-4 where a count is expected"),
-    "stuck_axis": ({"object"}, "an ImuSamples turning at 1 rad/s whose x gyro repeats one value over 7 of its samples "
-                               "(stuck_run 5): valid, but the result's faults must count ('gyro', 'stuck')"),
+    "stuck_axis": (
+        {"object"},
+        "an ImuSamples turning at 1 rad/s whose x gyro repeats one value over 7 of its samples "
+        "(stuck_run 5): valid, but the result's faults must count ('gyro', 'stuck')",
+    ),
     "zero_quat": ({"quat"}, "the zero quaternion"),
     "not_rotation": ({"dcm"}, "a mirror image (orthonormal, det -1)"),
 }
 UNUSUAL = {
-    "list": "nested Python lists", "float32": "float32", "int": "integers (the rounded values)",
-    "batch": "copies on a new leading axis (BATCH)", "n1": "every series cut to its first sample",
+    "list": "nested Python lists",
+    "float32": "float32",
+    "int": "integers (the rounded values)",
+    "batch": "copies on a new leading axis (BATCH)",
+    "n1": "every series cut to its first sample",
 }
 # Arguments for which inf is a documented value ("no limit", "no gate", "off", a singular fit's condition).
-INF_MEANS_NO_LIMIT = re.compile(r"^(full_scale\w*|gate|rtk_gate|max_gap|max_cond|mag_field_tol|mag_dip_tol|"
-                                r"spike_gyro|spike_accel|baro_gate|correlation_time|max_dt|norm_tol|dip_tol|lower|upper|"
-                                r"freefall_time|condition)$")
+INF_MEANS_NO_LIMIT = re.compile(
+    r"^(full_scale\w*|gate|rtk_gate|max_gap|max_cond|mag_field_tol|mag_dip_tol|"
+    r"spike_gyro|spike_accel|baro_gate|correlation_time|max_dt|norm_tol|dip_tol|lower|upper|"
+    r"freefall_time|condition)$"
+)
 
 
 def kind(name: str, annotation: str, value) -> str:
@@ -167,18 +220,18 @@ def applies(mutation: str, arg: Arg) -> bool:
         return False
     v = np.asarray(arg.value) if arg.kind in NUMBERS else None
     if mutation in ("wrong_shape", "0d", "empty") and arg.elementwise and v.shape[-1:] not in ((3,), (4,)):
-        return False        # any shape is valid for an elementwise argument without a vector axis
+        return False  # any shape is valid for an elementwise argument without a vector axis
     if mutation == "empty" and arg.elementwise and v.ndim != 1:
-        return False        # an empty batch is valid for elementwise functions (tests/test_bad_input.py);
-                            # a (0,) vector, a vector without components, is none
+        return False  # an empty batch is valid for elementwise functions (tests/test_bad_input.py);
+        # a (0,) vector, a vector without components, is none
     if mutation == "empty_elementwise":
-        return arg.elementwise and not (v.ndim == 1 and v.shape[-1:] not in ((3,), (4,)))   # not "empty" already
+        return arg.elementwise and not (v.ndim == 1 and v.shape[-1:] not in ((3,), (4,)))  # not "empty" already
     if mutation == "tiny_dt":
         return arg.kind == "interval" or arg.name in DT_NAMES
     if mutation == "stuck_axis":
         return isinstance(arg.value, ImuSamples) and arg.value.n >= 10 and arg.value.w_ib_b.ndim == 2
     if mutation in ("wrong_shape", "transposed") and arg.any_shape:
-        return False        # data of any width: (N, k) for every k, also (k, N)
+        return False  # data of any width: (N, k) for every k, also (k, N)
     if mutation == "transposed":
         return v.ndim >= 2 and v.shape[-1] != v.shape[-2]
     if mutation == "0d":
@@ -202,7 +255,7 @@ def mutate(mutation: str, arg: Arg):
     """The mutated value of ``arg``."""
     v = arg.value
     a = np.array(v, dtype=float) if arg.kind in NUMBERS else None
-    if mutation == "wrong_shape":       # a 1-D value of up to 4 entries is a vector (pair, xyz, quaternion)
+    if mutation == "wrong_shape":  # a 1-D value of up to 4 entries is a vector (pair, xyz, quaternion)
         if a.ndim == 0:
             return np.full(3, float(a))
         if a.ndim == 1 and a.size > 4:
@@ -247,7 +300,7 @@ def mutate(mutation: str, arg: Arg):
         return a
     if mutation == "time_jump":
         if arg.kind == "time":
-            a[a.size // 2:] += 3600.0
+            a[a.size // 2 :] += 3600.0
             return a
         d = np.full(arg.n, float(a)) if a.ndim == 0 else a
         d[d.size // 2] = 3600.0
@@ -263,7 +316,7 @@ def mutate(mutation: str, arg: Arg):
     if mutation == "zero_quat":
         return np.zeros_like(a)
     if mutation == "not_rotation":
-        return a * np.array([1.0, 1.0, -1.0])          # last column negated: a mirror image
+        return a * np.array([1.0, 1.0, -1.0])  # last column negated: a mirror image
     raise KeyError(mutation)
 
 
@@ -273,7 +326,7 @@ def stuck_inside_motion(imu: ImuSamples) -> ImuSamples:
     k = np.arange(imu.n)
     w = imu.w_ib_b + 1.0 + 0.01 * np.sin(1.7 * k)[:, None] * np.array([1.0, -1.0, 0.5])
     lo = max(1, imu.n // 2 - 3)
-    w[lo:lo + 7, 0] = w[lo, 0]
+    w[lo : lo + 7, 0] = w[lo, 0]
     return ImuSamples(w, imu.f_b, imu.dt, dataclasses.replace(imu.limits, stuck_run=5))
 
 
@@ -311,107 +364,286 @@ def unusual(variant: str, arg: Arg):
 # ----------------------------------------------------------------------------------------------------------
 
 _SENSORS = r"w_ib_b|f_b|m_b"
-_FILTERS = (r"filters\.(mahony\.mahony|quaternion_kf\.quaternion_kf|zupt_ins\.run_filter|zupt\.detect_static)|"
-            r"alignment\.static_means|papers\.north_finding\.(ins_heading_change|stop_solutions)|pdr\.pdr_headings")
+_FILTERS = (
+    r"filters\.(mahony\.mahony|quaternion_kf\.quaternion_kf|zupt_ins\.run_filter|zupt\.detect_static)|"
+    r"alignment\.static_means|papers\.north_finding\.(ins_heading_change|stop_solutions)|pdr\.pdr_headings"
+)
 _HEADINGS = r"heading\w*"
 BY_DESIGN: list[tuple[str, str, str, str, str]] = [
     # NaN marks a dropout (navlib/__init__.py, "Bad input"; tests/test_bad_input.py)
-    (r"units\..*", r"x|value", r"nan|inf|1e300", r"silent_nan|silent_accept",
-     "unit converters pass NaN (dropout) and inf (full_scale = inf) through; a linear conversion is exact at any magnitude"),
+    (
+        r"units\..*",
+        r"x|value",
+        r"nan|inf|1e300",
+        r"silent_nan|silent_accept",
+        "unit converters pass NaN (dropout) and inf (full_scale = inf) through; a linear conversion is exact at any magnitude",
+    ),
     (r"attitude\.wrap_2?pi", "angle", "nan", "silent_nan", "NaN (a dropout) stays NaN (the wraps' docstrings)"),
     (r"attitude\.ned_to_enu", "v", "nan", "silent_nan", "a frame swap of logged vectors: a NaN reading stays NaN"),
     (_FILTERS, _SENSORS, "nan", "silent_accept", "NaN marks a sensor dropout: held or skipped, and counted in the result"),
-    (r"filters\.(mahony\.mahony|quaternion_kf\.quaternion_kf)", r"f_b|m_b", "inf", "silent_accept",
-     "a non-finite accelerometer or magnetometer sample is skipped like a dropout (counted)"),
-    (r"filters\.observations\.pack|robust\.screen", "m_b", r"nan|inf", "silent_nan",
-     "the screened record holds the samples; NaN/inf ones are skipped by the kernel and counted"),
-    (r"filters\.observations\.RtkHeading", "heading", "nan", "silent_nan",
-     "NaN in a valid epoch is a dropout (RtkHeading docstring)"),
+    (
+        r"filters\.(mahony\.mahony|quaternion_kf\.quaternion_kf)",
+        r"f_b|m_b",
+        "inf",
+        "silent_accept",
+        "a non-finite accelerometer or magnetometer sample is skipped like a dropout (counted)",
+    ),
+    (
+        r"filters\.observations\.pack|robust\.screen",
+        "m_b",
+        r"nan|inf",
+        "silent_nan",
+        "the screened record holds the samples; NaN/inf ones are skipped by the kernel and counted",
+    ),
+    (
+        r"filters\.observations\.RtkHeading",
+        "heading",
+        "nan",
+        "silent_nan",
+        "NaN in a valid epoch is a dropout (RtkHeading docstring)",
+    ),
     (r"imu\.ImuSamples", r"w_ib_b|f_b", "nan", "silent_nan", "the record holds the samples; NaN marks a dropout"),
-    (r"euler\.integrate_euler", "bias_b", "nan", "silent_nan",
-     "a NaN bias estimate means 'not yet observable' (docstring); a constant one has no earlier estimate to keep"),
-    (r"trajectory\.Trajectory", r"lla|vel_n|q_bn", "nan", "silent_nan",
-     "a trajectory also holds filter output, which marks epochs without a solution NaN (tests/test_bad_input.py)"),
-    (r"robust\.(despike|fault_report|hold|longest_repeat|stuck_(mask|samples))", r"x|w_ib_b|f_b", "nan",
-     r"silent_nan|silent_accept",
-     "robust-input functions exist to find, count and hold NaN samples"),
-    (r"faults\.(dropouts|gap|heading_flips|position_jumps|saturate|spikes)", r"x|heading|lla", "nan",
-     r"silent_nan|silent_accept", "fault injectors corrupt any record, also one with dropouts already (NaN passes)"),
-    (r"filters\.planar_ekf\.(dead_reckoning|filter_grid)|papers\.gauss_kruger_ekf\.ekf|kalman\.update",
-     r"speed|yaw_rate|z|gps|heading", "nan", r"silent_nan|silent_accept",
-     "a NaN measurement component is skipped (predict only / held); its innovation is NaN (documented)"),
-    (r"filters\.heading_fusion\.(fuse_rtk_heading|rtk_at_imu_rate)", r"heading_rtk|heading", "nan", "silent_accept",
-     "NaN RTK heading: no fix at that epoch (held, then dropped)"),
-    (r"papers\.rotation_bias\.(tilt_residuals|lsq_bias|running_lsq_bias|kalman_bias)", r"w_ib_b|f_b|r|V", "nan",
-     r"silent_nan|silent_accept", "a dwell with dropouts is skipped (NaN residual, counted); NaN residuals are left out"),
-    (r"analysis\.(rmse|position_error)", r"err|estimate", "nan", "silent_nan",
-     "NaN propagates: no silent dropping (docstrings; tests/test_bad_input.py)"),
+    (
+        r"euler\.integrate_euler",
+        "bias_b",
+        "nan",
+        "silent_nan",
+        "a NaN bias estimate means 'not yet observable' (docstring); a constant one has no earlier estimate to keep",
+    ),
+    (
+        r"trajectory\.Trajectory",
+        r"lla|vel_n|q_bn",
+        "nan",
+        "silent_nan",
+        "a trajectory also holds filter output, which marks epochs without a solution NaN (tests/test_bad_input.py)",
+    ),
+    (
+        r"robust\.(despike|fault_report|hold|longest_repeat|stuck_(mask|samples))",
+        r"x|w_ib_b|f_b",
+        "nan",
+        r"silent_nan|silent_accept",
+        "robust-input functions exist to find, count and hold NaN samples",
+    ),
+    (
+        r"faults\.(dropouts|gap|heading_flips|position_jumps|saturate|spikes)",
+        r"x|heading|lla",
+        "nan",
+        r"silent_nan|silent_accept",
+        "fault injectors corrupt any record, also one with dropouts already (NaN passes)",
+    ),
+    (
+        r"filters\.planar_ekf\.(dead_reckoning|filter_grid)|papers\.gauss_kruger_ekf\.ekf|kalman\.update",
+        r"speed|yaw_rate|z|gps|heading",
+        "nan",
+        r"silent_nan|silent_accept",
+        "a NaN measurement component is skipped (predict only / held); its innovation is NaN (documented)",
+    ),
+    (
+        r"filters\.heading_fusion\.(fuse_rtk_heading|rtk_at_imu_rate)",
+        r"heading_rtk|heading",
+        "nan",
+        "silent_accept",
+        "NaN RTK heading: no fix at that epoch (held, then dropped)",
+    ),
+    (
+        r"papers\.rotation_bias\.(tilt_residuals|lsq_bias|running_lsq_bias|kalman_bias)",
+        r"w_ib_b|f_b|r|V",
+        "nan",
+        r"silent_nan|silent_accept",
+        "a dwell with dropouts is skipped (NaN residual, counted); NaN residuals are left out",
+    ),
+    (
+        r"analysis\.(rmse|position_error)",
+        r"err|estimate",
+        "nan",
+        "silent_nan",
+        "NaN propagates: no silent dropping (docstrings; tests/test_bad_input.py)",
+    ),
     (r"analysis\.condition_number", "V", "nan", "silent_accept", "blocks holding NaN are left out (docstring)"),
-    (r"atmosphere\.(reference_pressure|segment_floors)", r"p|h", "nan", "silent_accept",
-     "NaN samples (no reading) are ignored (docstrings)"),
+    (
+        r"atmosphere\.(reference_pressure|segment_floors)",
+        r"p|h",
+        "nan",
+        "silent_accept",
+        "NaN samples (no reading) are ignored (docstrings)",
+    ),
     (r"io\.align", "x_source", "nan", "silent_accept", "NaN marks a missing reading (docstring)"),
-    (r"calibration\.(Mag|Accel)Calibration", r"residual|norm_spread_\w+|condition", "nan", "silent_accept",
-     "a fit's quality figure is NaN when it was not computed (the field's default)"),
+    (
+        r"calibration\.(Mag|Accel)Calibration",
+        r"residual|norm_spread_\w+|condition",
+        "nan",
+        "silent_accept",
+        "a fit's quality figure is NaN when it was not computed (the field's default)",
+    ),
     # inf and huge values with a meaning
-    (r"analysis\.(condition_number|cramer_rao_bound)", "V", "wrong_shape", "silent_nan",
-     "inf: the unknowns are not observable from these blocks (docstrings)"),
-    (r"attitude\.(quat_\w+|ned_to_enu_quat)|filters\.(mahony\.mahony|quaternion_kf\.quaternion_kf|observations\.pack)|"
-     r"strapdown\.integrate(_attitude)?|sensors\.simulate_magnetometer", r"q|q0|q_ned|q_bn", "1e300", "silent_accept",
-     "quaternions of any finite magnitude are normalised exactly (tests/test_magnitudes.py)"),
-    (r"papers\.rotation_bias\.draw_rotation_schedule", r"time|starts", r"time_jump|wrong_shape", "silent_accept",
-     "a drawing: any increasing time axis is drawn as given, any number of dwell windows shaded"),
-    (r"imu\.ImuSamples", "dt", r"1e300|time_jump", "silent_accept",
-     "the record only holds the intervals; an interval too long to integrate is refused (small_turns) or counted as a "
-     "clock jump by the filter that screens it"),
-    (r"filters\.heading_fusion\.fuse_rtk_heading", "dt", r"1e300|time_jump", "silent_accept",
-     "dt only ages the last RTK epoch: a long interval is a clock jump, counted in faults['clock', 'jump'], over which "
-     "the carried epoch is dropped (tests/faults/test_faults_ahrs.py)"),
-    (r"filters\.zupt_ins\.Gates", r"zupt|baro|mag_field|mag_dip", r"inf|1e300", r"silent_nan|silent_accept",
-     "inf disables a gate, any finite value is one (Gates docstring)"),
-    (r"repro\.check(_range|_outside)?", r"value|expected|tol|lower|upper", r"nan|inf|1e300", r"other_exception|silent_accept",
-     "any finite target is a claim; a reproduced value outside it fails the claim (ClaimCheckFailed, tests/test_bad_input.py)"),
+    (
+        r"analysis\.(condition_number|cramer_rao_bound)",
+        "V",
+        "wrong_shape",
+        "silent_nan",
+        "inf: the unknowns are not observable from these blocks (docstrings)",
+    ),
+    (
+        r"attitude\.(quat_\w+|ned_to_enu_quat)|filters\.(mahony\.mahony|quaternion_kf\.quaternion_kf|observations\.pack)|"
+        r"strapdown\.integrate(_attitude)?|sensors\.simulate_magnetometer",
+        r"q|q0|q_ned|q_bn",
+        "1e300",
+        "silent_accept",
+        "quaternions of any finite magnitude are normalised exactly (tests/test_magnitudes.py)",
+    ),
+    (
+        r"papers\.rotation_bias\.draw_rotation_schedule",
+        r"time|starts",
+        r"time_jump|wrong_shape",
+        "silent_accept",
+        "a drawing: any increasing time axis is drawn as given, any number of dwell windows shaded",
+    ),
+    (
+        r"imu\.ImuSamples",
+        "dt",
+        r"1e300|time_jump",
+        "silent_accept",
+        "the record only holds the intervals; an interval too long to integrate is refused (small_turns) or counted as a "
+        "clock jump by the filter that screens it",
+    ),
+    (
+        r"filters\.heading_fusion\.fuse_rtk_heading",
+        "dt",
+        r"1e300|time_jump",
+        "silent_accept",
+        "dt only ages the last RTK epoch: a long interval is a clock jump, counted in faults['clock', 'jump'], over which "
+        "the carried epoch is dropped (tests/faults/test_faults_ahrs.py)",
+    ),
+    (
+        r"filters\.zupt_ins\.Gates",
+        r"zupt|baro|mag_field|mag_dip",
+        r"inf|1e300",
+        r"silent_nan|silent_accept",
+        "inf disables a gate, any finite value is one (Gates docstring)",
+    ),
+    (
+        r"repro\.check(_range|_outside)?",
+        r"value|expected|tol|lower|upper",
+        r"nan|inf|1e300",
+        r"other_exception|silent_accept",
+        "any finite target is a claim; a reproduced value outside it fails the claim (ClaimCheckFailed, tests/test_bad_input.py)",
+    ),
     # quaternion algebra and matrices that need not be rotations
-    (r"attitude\.quat_(mult|conj)", r"p|q", "zero_quat", "silent_accept",
-     "Hamilton algebra on any quaternion: the pure quaternion [0, w] of the kinematics is zero at rest (notebook 04)"),
-    (r"attitude\.orthonormalize|alignment\.triad_heading", r"C|C_bn", "not_rotation", "silent_accept",
-     "made for raw TRIAD matrices, which noise makes non-orthonormal (orthonormalize handles det < 0 on purpose)"),
-    (r"strapdown\.nav_step", r"lla|vel|q", "valid", "modifies_input",
-     "nav_step updates a writeable float64 state in place (documented), the per-sample API of the kernels"),
+    (
+        r"attitude\.quat_(mult|conj)",
+        r"p|q",
+        "zero_quat",
+        "silent_accept",
+        "Hamilton algebra on any quaternion: the pure quaternion [0, w] of the kinematics is zero at rest (notebook 04)",
+    ),
+    (
+        r"attitude\.orthonormalize|alignment\.triad_heading",
+        r"C|C_bn",
+        "not_rotation",
+        "silent_accept",
+        "made for raw TRIAD matrices, which noise makes non-orthonormal (orthonormalize handles det < 0 on purpose)",
+    ),
+    (
+        r"strapdown\.nav_step",
+        r"lla|vel|q",
+        "valid",
+        "modifies_input",
+        "nav_step updates a writeable float64 state in place (documented), the per-sample API of the kernels",
+    ),
     # periodic headings, clock jumps and time axes
     (r".*", _HEADINGS, "degrees", "silent_accept", "a heading is periodic: 45 rad is a valid unwrapped heading"),
-    (r"analysis\.(attitude_errors|error_statistics)", r"hpr|hpr_true", "degrees", "silent_accept",
-     "compares any angle triples component by component (wrapped), not rotations (tests/test_gyrobias.py: [-4, 4] rad)"),
-    (r"filters\.planar_ekf\.filter_grid|papers\.gauss_kruger_ekf\.ekf", "t", "time_jump",
-     "silent_accept", "a clock jump in t is not propagated over (the state is held, P grows) and is reported in "
-     "faults['clock', 'jump'] (tests/faults/test_faults_planar.py)"),
-    (r"filters\.planar_ekf\.dead_reckoning", "t", "time_jump", "silent_accept",
-     "a clock jump in t is integrated as one typical step (a stamp glitch costs nothing, a gap adds no unmeasured "
-     "motion) and reported in faults['clock', 'jump'] (tests/faults/test_faults_planar.py)"),
-    (r"atmosphere\.(classify_floor|segment_floors)", "ref_floor", "negative_count", "silent_accept",
-     "a floor number, not a count: basements are negative floors"),
-    (r"analysis\.settling_time|atmosphere\.reference_pressure|faults\.\w+|timing\.(intervals|sanitize)|"
-     r"sensors\.(magnetic_disturbances|outage_mask|simulate_barometer)|trajectory\.Trajectory|io\.align|"
-     r"papers\.pedestrian_ins\.hvac_pressure_steps|filters\.heading_fusion\.rtk_at_imu_rate",
-     r"time|t_target|t_source|door_times", "time_jump", "silent_accept",
-     "any increasing time axis is valid here: nothing assumes uniform sampling (timing reports the gap)"),
-    (r"faults\.swap_timestamps|timing\.sanitize", "time", "non_monotonic", "silent_accept",
-     "made for faulty clocks: swap_timestamps composes with other injections, sanitize sorts"),
-    (r"papers\.pedestrian_ins\.hvac_pressure_steps", "door_times", r"empty|non_monotonic", "silent_accept",
-     "door times are a set: none means no offset, any order is sorted"),
+    (
+        r"analysis\.(attitude_errors|error_statistics)",
+        r"hpr|hpr_true",
+        "degrees",
+        "silent_accept",
+        "compares any angle triples component by component (wrapped), not rotations (tests/test_gyrobias.py: [-4, 4] rad)",
+    ),
+    (
+        r"filters\.planar_ekf\.filter_grid|papers\.gauss_kruger_ekf\.ekf",
+        "t",
+        "time_jump",
+        "silent_accept",
+        "a clock jump in t is not propagated over (the state is held, P grows) and is reported in "
+        "faults['clock', 'jump'] (tests/faults/test_faults_planar.py)",
+    ),
+    (
+        r"filters\.planar_ekf\.dead_reckoning",
+        "t",
+        "time_jump",
+        "silent_accept",
+        "a clock jump in t is integrated as one typical step (a stamp glitch costs nothing, a gap adds no unmeasured "
+        "motion) and reported in faults['clock', 'jump'] (tests/faults/test_faults_planar.py)",
+    ),
+    (
+        r"atmosphere\.(classify_floor|segment_floors)",
+        "ref_floor",
+        "negative_count",
+        "silent_accept",
+        "a floor number, not a count: basements are negative floors",
+    ),
+    (
+        r"analysis\.settling_time|atmosphere\.reference_pressure|faults\.\w+|timing\.(intervals|sanitize)|"
+        r"sensors\.(magnetic_disturbances|outage_mask|simulate_barometer)|trajectory\.Trajectory|io\.align|"
+        r"papers\.pedestrian_ins\.hvac_pressure_steps|filters\.heading_fusion\.rtk_at_imu_rate",
+        r"time|t_target|t_source|door_times",
+        "time_jump",
+        "silent_accept",
+        "any increasing time axis is valid here: nothing assumes uniform sampling (timing reports the gap)",
+    ),
+    (
+        r"faults\.swap_timestamps|timing\.sanitize",
+        "time",
+        "non_monotonic",
+        "silent_accept",
+        "made for faulty clocks: swap_timestamps composes with other injections, sanitize sorts",
+    ),
+    (
+        r"papers\.pedestrian_ins\.hvac_pressure_steps",
+        "door_times",
+        r"empty|non_monotonic",
+        "silent_accept",
+        "door times are a set: none means no offset, any order is sorted",
+    ),
     (r"sensors\.outage_mask", "outages", "empty", "silent_accept", "no outages: every epoch valid"),
-    (r"papers\.north_finding\.simulate_static_outputs", r"gyro_bias|accel_bias", "wrong_shape", "silent_accept",
-     "a bias is one value for every axis or a per-axis (3,) vector (documented)"),
-    (r"imu\.SensorLimits", r"full_scale_\w+", "none", "silent_nan",
-     "None is no range, as everywhere a full_scale_* is taken (range_limit)"),
-    (r"filters\.observations\.RtkHeading", "heading", "0d", "silent_accept",
-     "the RTK heading broadcasts against the filter's samples (documented (..., N) broadcasting)"),
+    (
+        r"papers\.north_finding\.simulate_static_outputs",
+        r"gyro_bias|accel_bias",
+        "wrong_shape",
+        "silent_accept",
+        "a bias is one value for every axis or a per-axis (3,) vector (documented)",
+    ),
+    (
+        r"imu\.SensorLimits",
+        r"full_scale_\w+",
+        "none",
+        "silent_nan",
+        "None is no range, as everywhere a full_scale_* is taken (range_limit)",
+    ),
+    (
+        r"filters\.observations\.RtkHeading",
+        "heading",
+        "0d",
+        "silent_accept",
+        "the RTK heading broadcasts against the filter's samples (documented (..., N) broadcasting)",
+    ),
     # valid-unusual calls
-    (r"sensors\.simulate_\w+|faults\.\w+|papers\.north_finding\.simulate_static_outputs", ".*", "batch", "differs",
-     "random draws are made over the whole batch: every trial gets its own noise"),
+    (
+        r"sensors\.simulate_\w+|faults\.\w+|papers\.north_finding\.simulate_static_outputs",
+        ".*",
+        "batch",
+        "differs",
+        "random draws are made over the whole batch: every trial gets its own noise",
+    ),
     (r"analysis\.rmse", "err", "batch", "differs", "rmse reduces along axis (default 0): a leading batch axis is that axis"),
     (r"analysis\.moving_mean", "x", "batch", "differs", "the mean moves along axis 0 (documented (N, ...)): a leading axis is N"),
-    (r"imu\.unpack", ".*", ".*", r"silent_accept|silent_nan|differs",
-     "unpack only splits ImuSamples; plain arrays go through unchanged to the filter that calls it, which validates them"),
+    (
+        r"imu\.unpack",
+        ".*",
+        ".*",
+        r"silent_accept|silent_nan|differs",
+        "unpack only splits ImuSamples; plain arrays go through unchanged to the filter that calls it, which validates them",
+    ),
 ]
 
 
@@ -427,6 +659,7 @@ def _matches(rule, case) -> bool:
 # ----------------------------------------------------------------------------------------------------------
 # The table of valid calls and the public callables it must cover
 # ----------------------------------------------------------------------------------------------------------
+
 
 @dataclasses.dataclass
 class Arg:
@@ -444,9 +677,14 @@ class Arg:
 def with_defaults(func, call: Call) -> Call:
     """``call`` with every keyword parameter it leaves out given its default, so that every argument is fuzzed."""
     params = inspect.signature(func).parameters.values()
-    defaults = {p.name: p.default for p in params if p.default is not inspect.Parameter.empty
-                and repr(p.default) != "<factory>"          # a dataclass field's default_factory
-                and p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY) and p.name not in call.kwargs}
+    defaults = {
+        p.name: p.default
+        for p in params
+        if p.default is not inspect.Parameter.empty
+        and repr(p.default) != "<factory>"  # a dataclass field's default_factory
+        and p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY)
+        and p.name not in call.kwargs
+    }
     return dataclasses.replace(call, kwargs={**call.kwargs, **defaults})
 
 
@@ -461,8 +699,19 @@ def arguments(key: str, func, call) -> list[Arg]:
         ann = "" if p is None or p.annotation is inspect.Parameter.empty else str(p.annotation)
         none_ok = p is not None and (p.default is None or "None" in ann)
         v = value.make() if isinstance(value, Fresh) else value
-        out.append(Arg(name, v, ann, "object" if isinstance(value, Fresh) else kind(name, ann, v), none_ok,
-                       name in call.elementwise or call.elementwise == ("*",), name in call.any_shape, deg, n))
+        out.append(
+            Arg(
+                name,
+                v,
+                ann,
+                "object" if isinstance(value, Fresh) else kind(name, ann, v),
+                none_ok,
+                name in call.elementwise or call.elementwise == ("*",),
+                name in call.any_shape,
+                deg,
+                n,
+            )
+        )
     return out
 
 
@@ -478,6 +727,7 @@ def _samples(kwargs: dict) -> int | None:
 # ----------------------------------------------------------------------------------------------------------
 # Running one case
 # ----------------------------------------------------------------------------------------------------------
+
 
 def leaves(obj, path="", depth=0) -> dict[str, np.ndarray]:
     """Numeric leaves of a result (arrays, numbers, fields of tuples, dicts, dataclasses), by path."""
@@ -608,24 +858,28 @@ def _bad(func, kwargs, call, argname, baseline, others, mutation) -> dict:
         out = call_once(func, kwargs, call.before)
     except (ValueError, TypeError) as exc:
         msg = str(exc)
-        return {"outcome": "clean" if names(msg, argname, others) else "unnamed", "error": type(exc).__name__,
-                "message": msg[:300]}
-    except Exception as exc:            # noqa: BLE001 -- any other exception is the finding
-        return {"outcome": "other_exception", "error": type(exc).__name__, "message": str(exc)[:300],
-                "where": _where(exc)}
+        return {
+            "outcome": "clean" if names(msg, argname, others) else "unnamed",
+            "error": type(exc).__name__,
+            "message": msg[:300],
+        }
+    except Exception as exc:  # noqa: BLE001 -- any other exception is the finding
+        return {"outcome": "other_exception", "error": type(exc).__name__, "message": str(exc)[:300], "where": _where(exc)}
     if mutation == "empty_elementwise" and not any(x.size for x in leaves(out).values() if x.ndim):
-        return {"outcome": "clean", "message": "accepted: an empty result"}       # an empty batch is valid
+        return {"outcome": "clean", "message": "accepted: an empty result"}  # an empty batch is valid
     if mutation == "stuck_axis":
         counted = counted_stuck(out)
         if counted:
             return {"outcome": "clean", "message": "accepted: the stuck axis is counted in faults"}
-        return {"outcome": "silent_accept", "message": "stuck gyro axis " + ("not counted in faults" if counted is False
-                                                                                else "and no FaultReport returned")}
+        return {
+            "outcome": "silent_accept",
+            "message": "stuck gyro axis " + ("not counted in faults" if counted is False else "and no FaultReport returned"),
+        }
     found = leaves(out)
     bad = nonfinite(found, baseline)
     if bad:
         return {"outcome": "silent_nan", "message": f"non-finite in {', '.join(bad[:3])}"}
-    if mutation == "tiny_dt":                 # a positive interval, however short, is valid if the result stays physical
+    if mutation == "tiny_dt":  # a positive interval, however short, is valid if the result stays physical
         huge = [p for p, x in found.items() if x.dtype.kind in "fc" and x.size and np.max(np.abs(x)) > 1e100]
         if not huge:
             return {"outcome": "clean", "message": "accepted: a short interval, a finite result"}
@@ -642,18 +896,17 @@ def _unusual(func, call, args, argname, variant, baseline) -> dict:
             d = prefix(out, baseline, n)
             return {"outcome": "equal" if d in ("", "not compared") else "differs", "message": d}
         if variant == "batch" and argname == "*":
-            stacked = {k: unusual("batch", a)[0] if unusual("batch", a) is not None else call.kwargs[k]
-                       for k, a in args.items()}
+            stacked = {k: unusual("batch", a)[0] if unusual("batch", a) is not None else call.kwargs[k] for k, a in args.items()}
             return _batch_outcome(func, call, stacked, baseline)
         given, ref = unusual(variant, args[argname])
         if variant == "batch":
             return _batch_outcome(func, call, dict(call.kwargs, **{argname: given}), baseline)
         try:
             expected = leaves(call_once(func, dict(call.kwargs, **{argname: ref}), call.before))
-        except Exception as exc:        # noqa: BLE001 -- the same values in float64 are no valid call
+        except Exception as exc:  # noqa: BLE001 -- the same values in float64 are no valid call
             return {"outcome": "n/a", "message": f"float64 reference: {type(exc).__name__}: {exc}"[:300]}
         out = leaves(call_once(func, dict(call.kwargs, **{argname: given}), call.before))
-    except Exception as exc:            # noqa: BLE001
+    except Exception as exc:  # noqa: BLE001
         return _refusal(exc, args)
     d = same(out, expected)
     return {"outcome": "differs" if d else "equal", "message": d}
@@ -662,7 +915,7 @@ def _unusual(func, call, args, argname, variant, baseline) -> dict:
 def _batch_outcome(func, call, kwargs, baseline) -> dict:
     try:
         out = leaves(call_once(func, kwargs, call.before))
-    except Exception as exc:            # noqa: BLE001
+    except Exception as exc:  # noqa: BLE001
         return _refusal(exc, kwargs)
     d = _batch(out, baseline)
     return {"outcome": "differs" if d else "equal", "message": d}
@@ -720,8 +973,9 @@ def _close_figures():
 # Forked workers with a timeout
 # ----------------------------------------------------------------------------------------------------------
 
+
 def _worker(conn, table, funcs, baselines, cases):
-    sys.stdout = sys.stderr = open(os.devnull, "w")      # noqa: SIM115 -- a worker's prints are noise here
+    sys.stdout = sys.stderr = open(os.devnull, "w")  # noqa: SIM115 -- a worker's prints are noise here
     while True:
         i = conn.recv()
         if i is None:
@@ -734,7 +988,7 @@ def run_all(cases: list, table: dict, funcs: dict, baselines: dict, jobs: int, t
     ctx = multiprocessing.get_context("fork")
     results: list[dict | None] = [None] * len(cases)
     todo = list(range(len(cases)))[::-1]
-    workers: dict = {}           # connection -> [process, case index or None, start time]
+    workers: dict = {}  # connection -> [process, case index or None, start time]
 
     def start():
         parent, child = ctx.Pipe()
@@ -763,14 +1017,20 @@ def run_all(cases: list, table: dict, funcs: dict, baselines: dict, jobs: int, t
                 results[i] = conn.recv()
                 assign(conn)
             except (EOFError, OSError):
-                results[i] = dict(zip(("callable", "arg", "mutation"), cases[i], strict=True), outcome="crash",
-                                  message=f"worker exit code {proc.exitcode}")
+                results[i] = dict(
+                    zip(("callable", "arg", "mutation"), cases[i], strict=True),
+                    outcome="crash",
+                    message=f"worker exit code {proc.exitcode}",
+                )
                 _replace(workers, conn, start, assign)
         now = time.monotonic()
         for conn, (_, i, t0) in list(workers.items()):
             if i is not None and now - t0 > timeout:
-                results[i] = dict(zip(("callable", "arg", "mutation"), cases[i], strict=True), outcome="hang",
-                                  message=f"no answer within {timeout:g} s")
+                results[i] = dict(
+                    zip(("callable", "arg", "mutation"), cases[i], strict=True),
+                    outcome="hang",
+                    message=f"no answer within {timeout:g} s",
+                )
                 _replace(workers, conn, start, assign)
     for conn, (proc, _, _) in workers.items():
         conn.send(None)
@@ -792,13 +1052,17 @@ def _replace(workers, conn, start, assign):
 # Main
 # ----------------------------------------------------------------------------------------------------------
 
+
 def cases_of(key: str, call: Call, func) -> list[tuple]:
     out = []
     args = arguments(key, func, call)
     for arg in args:
         out += [(key, arg.name, m) for m in MUTATIONS if applies(m, arg)]
-        out += [(key, arg.name, v) for v in ("list", "float32", "int", "batch") if unusual(v, arg) is not None
-                and not (v == "batch" and call.elementwise == ("*",))]
+        out += [
+            (key, arg.name, v)
+            for v in ("list", "float32", "int", "batch")
+            if unusual(v, arg) is not None and not (v == "batch" and call.elementwise == ("*",))
+        ]
     if call.elementwise == ("*",):
         out.append((key, "*", "batch"))
     if args and args[0].n is not None:
@@ -823,9 +1087,10 @@ def main(argv=None) -> int:
     t_start = time.monotonic()
 
     import matplotlib
+
     matplotlib.use("Agg")
     root = os.environ.get("NAVLIB_ROOT")
-    os.environ["NAVLIB_ROOT"] = _sandbox()                   # navlib.repro writes there, not to build/
+    os.environ["NAVLIB_ROOT"] = _sandbox()  # navlib.repro writes there, not to build/
     try:
         return _run(opts, t_start)
     finally:
@@ -841,8 +1106,12 @@ def _run(opts, t_start: float) -> int:
     missing = sorted(set(funcs) - set(listed))
     stale = sorted(set(listed) - set(funcs))
     if missing or stale:
-        print(f"fuzz: public callables without a valid call in tools/fuzz_calls.py: {missing}" if missing else "",
-              f"fuzz: entries for names that are not public: {stale}" if stale else "", sep="\n", file=sys.stderr)
+        print(
+            f"fuzz: public callables without a valid call in tools/fuzz_calls.py: {missing}" if missing else "",
+            f"fuzz: entries for names that are not public: {stale}" if stale else "",
+            sep="\n",
+            file=sys.stderr,
+        )
         return 2
     table = {k: c if isinstance(c, Skip) else with_defaults(funcs[k], c) for k, c in listed.items()}
     keys = select(table, opts.only)
@@ -855,15 +1124,23 @@ def _run(opts, t_start: float) -> int:
     baselines, broken, inplace = {}, [], []
     with warnings.catch_warnings(), contextlib.redirect_stdout(io.StringIO()):
         warnings.simplefilter("ignore")
-        for k in keys:                       # the valid calls (also compiles the kernels before the fork)
+        for k in keys:  # the valid calls (also compiles the kernels before the fork)
             try:
                 baselines[k] = leaves(call_once(funcs[k], table[k].kwargs, table[k].before))
                 changed = modified_inputs(funcs[k], table[k].kwargs, table[k].before)
-            except Exception as exc:         # noqa: BLE001
+            except Exception as exc:  # noqa: BLE001
                 broken.append(f"{k}: {type(exc).__name__}: {exc}")
                 changed = []
-            inplace += [{"callable": k, "arg": a, "mutation": "valid", "outcome": "modifies_input",
-                         "message": "the valid call changes this argument in place"} for a in changed]
+            inplace += [
+                {
+                    "callable": k,
+                    "arg": a,
+                    "mutation": "valid",
+                    "outcome": "modifies_input",
+                    "message": "the valid call changes this argument in place",
+                }
+                for a in changed
+            ]
             _close_figures()
     if broken:
         print("fuzz: valid calls that fail:\n  " + "\n  ".join(broken), file=sys.stderr)
@@ -902,17 +1179,25 @@ def report(results: list[dict], keys, skipped, opts, full: bool, seconds: float)
     if gaps:
         print(f"  known gaps (tools/fuzz_calls.py KNOWN_GAPS): {', '.join(sorted(case_id(r) for r in gaps))}")
     fixed = sorted(set(KNOWN_GAPS) - {case_id(r) for r in gaps}) if full else []
-    fixed = [g for g in fixed if g.rsplit("-", 1)[1] in {*MUTATIONS, *UNUSUAL}]     # the others are rows of the tests
+    fixed = [g for g in fixed if g.rsplit("-", 1)[1] in {*MUTATIONS, *UNUSUAL}]  # the others are rows of the tests
     for g in fixed:
         print(f"  stale known gap (navlib refuses it now; remove it from KNOWN_GAPS): {g}")
     out = Path(opts.out)
     out.parent.mkdir(parents=True, exist_ok=True)
     noteworthy = [r for r in results if r["outcome"] not in ("clean", "equal", "n/a")]
-    out.write_text(json.dumps({"seconds": round(seconds, 1), "callables": len(keys), "calls": len(results),
-                               "cases": noteworthy}, indent=1, default=str) + "\n")
+    out.write_text(
+        json.dumps(
+            {"seconds": round(seconds, 1), "callables": len(keys), "calls": len(results), "cases": noteworthy},
+            indent=1,
+            default=str,
+        )
+        + "\n"
+    )
     for r in fails[:40]:
-        print(f"  FAIL {r['callable']}({r['arg']}) {r['mutation']}: {r['outcome']}"
-              f"{' -- ' + r['message'][:140] if r.get('message') else ''}")
+        print(
+            f"  FAIL {r['callable']}({r['arg']}) {r['mutation']}: {r['outcome']}"
+            f"{' -- ' + r['message'][:140] if r.get('message') else ''}"
+        )
     if len(fails) > 40:
         print(f"  ... {len(fails) - 40} more in {out}")
     return 1 if fails or unused or fixed else 0
@@ -940,7 +1225,7 @@ def _sandbox() -> str:
     (root / "pyproject.toml").write_text("[project]\nname = 'x'\n")
     (root / "navlib").mkdir()
     (root / "data").mkdir()
-    for name in ("claims.csv", "errata.csv"):                        # repro.verdict reads the catalogue
+    for name in ("claims.csv", "errata.csv"):  # repro.verdict reads the catalogue
         shutil.copy(REPO / "data" / name, root / "data")
     return str(root)
 

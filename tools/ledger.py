@@ -14,6 +14,7 @@ Verdict words judge what a paper states. A catalogue row of kind ``extension`` (
 test vector, a reconstruction of something the paper does not print) is not a paper claim: it sits in the
 ledger's separate *extensions* list with the one verdict ``extension`` (its checks passed), outside the counts.
 """
+
 from __future__ import annotations
 
 import csv
@@ -24,8 +25,16 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 NO_VERDICT = "no verdict yet"
-VERDICTS = ("reproduced", "reproduced with correction", "differs", "refuted", "direction only",
-            "undecided at this scale", "not checkable here", "extension")
+VERDICTS = (
+    "reproduced",
+    "reproduced with correction",
+    "differs",
+    "refuted",
+    "direction only",
+    "undecided at this scale",
+    "not checkable here",
+    "extension",
+)
 """The verdicts in the ledger's order (the same tuple as ``navlib.repro.VERDICTS``; tests/test_ledger.py checks)."""
 EXTENSION = "extension"
 COLUMNS = (*(v for v in VERDICTS if v != EXTENSION), NO_VERDICT)
@@ -51,6 +60,7 @@ def results(build: Path, stem: str) -> dict | None:
 @dataclass
 class Row:
     """One claim in the ledger."""
+
     claim: str
     item: str
     quantity: str
@@ -60,7 +70,7 @@ class Row:
     verdict: str = NO_VERDICT
     reason: str = ""
     erratum: str = ""
-    figure: str = ""           # path relative to build/, or ""
+    figure: str = ""  # path relative to build/, or ""
     checks: list[str] = field(default_factory=list)
 
     @property
@@ -72,11 +82,12 @@ class Row:
 @dataclass
 class PaperLedger:
     """The claims of one paper with their verdicts, and the notebook's checks."""
+
     stem: str
     paper: str
     title: str
     rows: list[Row]
-    extensions: list[Row] = field(default_factory=list)      # the project's own quantities (kind extension)
+    extensions: list[Row] = field(default_factory=list)  # the project's own quantities (kind extension)
     checks_passed: int = 0
     checks_total: int = 0
     ran: bool = False
@@ -95,8 +106,9 @@ def paper_ledger(stem: str, paper: str, title: str, catalogue: list[dict[str, st
     """Join the catalogue's claims of ``paper`` with the verdicts of its notebook's results."""
     own = [c for c in catalogue if c["paper"] == paper]
     rows = {c["id"]: Row(c["id"], c["item"], c["quantity"], c["kind"], c["paper_value"]) for c in own}
-    led = PaperLedger(stem, paper, title, [r for r in rows.values() if r.kind != EXTENSION],
-                      [r for r in rows.values() if r.kind == EXTENSION])
+    led = PaperLedger(
+        stem, paper, title, [r for r in rows.values() if r.kind != EXTENSION], [r for r in rows.values() if r.kind == EXTENSION]
+    )
     if res is None:
         return led
     led.ran = True
@@ -104,7 +116,7 @@ def paper_ledger(stem: str, paper: str, title: str, catalogue: list[dict[str, st
     led.checks_passed, led.checks_total = sum(bool(c.get("passed")) for c in checks), len(checks)
     if res.get("paper") not in (None, paper):
         led.problems.append(f"results.json names paper {res.get('paper')}, the registry {paper}")
-    if res.get("mode"):     # a teaching or fast run: not the ledger's evidence
+    if res.get("mode"):  # a teaching or fast run: not the ledger's evidence
         led.problems.append(f"results.json was written in {res['mode']} mode; rerun make reproduce")
     for v in res.get("verdicts", []):
         row = rows.get(v["claim"])
@@ -131,8 +143,10 @@ def ledgers(build: Path, root: Path = ROOT) -> list[PaperLedger]:
     from navlib.papers import PAPERS  # the registry (imported here: reproduce.py's workers need no navlib)
 
     catalogue = claims(root)
-    return [paper_ledger(p.notebook, p.claims_id, p.citation, catalogue, results(build, p.notebook))
-            for p in sorted(PAPERS, key=lambda p: p.number)]
+    return [
+        paper_ledger(p.notebook, p.claims_id, p.citation, catalogue, results(build, p.notebook))
+        for p in sorted(PAPERS, key=lambda p: p.number)
+    ]
 
 
 def verdict_text(row: Row) -> str:

@@ -19,6 +19,7 @@ while tilted up to 15 deg, still for 4 s; MPU-6050-class IMU at 100 Hz and HMC59
 
 Usage: python tools/make_sample_log.py   (rewrites data/samples/; byte-identical for the same navlib)
 """
+
 from __future__ import annotations
 
 from pathlib import Path
@@ -29,11 +30,11 @@ import pandas as pd
 from navlib import attitude, earth, sensors, trajectory, units
 
 OUT = Path(__file__).resolve().parents[1] / "data" / "samples"
-T0_NS = 1_764_151_200_000_000_000           # 2025-11-26 10:00:00 UTC
+T0_NS = 1_764_151_200_000_000_000  # 2025-11-26 10:00:00 UTC
 DT = 0.01
 LLA0 = np.array([units.deg(51.5), units.deg(-0.1), 20.0])
 HEADING0 = units.deg(20.0)
-M_ENU_NWU = np.array([[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])     # ENU vector -> NWU vector
+M_ENU_NWU = np.array([[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])  # ENU vector -> NWU vector
 
 
 def phone_turned_on_a_desk():
@@ -53,15 +54,37 @@ def write(folder: Path, name: str, t: np.ndarray, x: np.ndarray) -> None:
 def write_orientation(folder: Path, t: np.ndarray, q: np.ndarray) -> None:
     """Sensor Logger's Orientation.csv columns, in the app's order (Euler columns left at 0: unused)."""
     ns = T0_NS + np.round(t * 1e9).astype(np.int64)
-    df = pd.DataFrame({"time": ns, "seconds_elapsed": np.round(t, 6), "yaw": 0.0, "qx": q[:, 1], "qz": q[:, 3],
-                       "roll": 0.0, "qw": q[:, 0], "qy": q[:, 2], "pitch": 0.0})
+    df = pd.DataFrame(
+        {
+            "time": ns,
+            "seconds_elapsed": np.round(t, 6),
+            "yaw": 0.0,
+            "qx": q[:, 1],
+            "qz": q[:, 3],
+            "roll": 0.0,
+            "qw": q[:, 0],
+            "qy": q[:, 2],
+            "pitch": 0.0,
+        }
+    )
     df.to_csv(folder / "Orientation.csv", index=False, float_format="%.9g")
 
 
 def write_metadata(folder: Path, platform: str, sensors_: str) -> None:
-    pd.DataFrame([{"version": 3, "device name": "simulated", "recording time": "2025-11-26_10-00-00",
-                   "platform": platform, "appVersion": "1.28", "device id": "simulated", "sensors": sensors_,
-                   "sampleRateMs": "10"}]).to_csv(folder / "Metadata.csv", index=False)
+    pd.DataFrame(
+        [
+            {
+                "version": 3,
+                "device name": "simulated",
+                "recording time": "2025-11-26_10-00-00",
+                "platform": platform,
+                "appVersion": "1.28",
+                "device id": "simulated",
+                "sensors": sensors_,
+                "sampleRateMs": "10",
+            }
+        ]
+    ).to_csv(folder / "Metadata.csv", index=False)
 
 
 def main() -> None:
@@ -72,7 +95,7 @@ def main() -> None:
     B_n = earth.magnetic_field(units.to_deg(LLA0[0]), units.to_deg(LLA0[1]), LLA0[2], 2025.9)
     mag = sensors.simulate_magnetometer(traj.q_bn[1::2], B_n, sensors.MagnetometerModel(noise=0.3), rng_mag)
     t, t_mag, q = traj.time[1:], traj.time[1::2] + 0.004, traj.q_bn[1:]
-    gravity = attitude.quat_rotate(attitude.quat_conj(q), [0.0, 0.0, units.G0])     # what a phone calls gravity
+    gravity = attitude.quat_rotate(attitude.quat_conj(q), [0.0, 0.0, units.G0])  # what a phone calls gravity
 
     android = OUT / "sensor-logger"
     android.mkdir(parents=True, exist_ok=True)
@@ -97,7 +120,7 @@ def main() -> None:
     write(ios_nomag, "Gyroscope.csv", t, imu.w_ib_b)
     write(ios_nomag, "AccelerometerUncalibrated.csv", t, -imu.f_b / units.G0)
 
-    C_sb = attitude.mount_matrix("-y,x,z").T                   # body -> board axes (board x forward, y left)
+    C_sb = attitude.mount_matrix("-y,x,z").T  # body -> board axes (board x forward, y left)
     m_board = np.full((t.size, 3), np.nan)
     m_board[1::2] = mag.m_b[: t[1::2].size] @ C_sb.T * [1.0, 1.0, -1.0]
     board = pd.DataFrame({"t_ms": np.round(1000 * t, 3)})

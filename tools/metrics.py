@@ -13,6 +13,7 @@
 
 Usage: python tools/metrics.py [PATH_TO_NAVLIB]  (default: navlib/ of this checkout); prints JSON.
 """
+
 from __future__ import annotations
 
 import ast
@@ -22,12 +23,45 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-VALIDATE_NAMES = {"real", "as_array", "in_range", "positive", "latitude", "generator", "time_axis", "as_dcm",
-                  "as_quat", "scalar", "interval", "integer", "flag", "choice", "full_scale", "intervals", "sample_intervals",
-                  "imu_samples",
-                  "nonempty_array", "nonempty_positive", "nonempty_latitude", "instance", "same_shape", "broadcast",
-                  "range_limit", "unit_interval", "booleans", "last_axis", "pitch_roll", "euler_angles", "small_turns",
-                  "text", "broadcast_to", "ellipsoid", "ellipsoid_", "numbers", "indices"}
+VALIDATE_NAMES = {
+    "real",
+    "as_array",
+    "in_range",
+    "positive",
+    "latitude",
+    "generator",
+    "time_axis",
+    "as_dcm",
+    "as_quat",
+    "scalar",
+    "interval",
+    "integer",
+    "flag",
+    "choice",
+    "full_scale",
+    "intervals",
+    "sample_intervals",
+    "imu_samples",
+    "nonempty_array",
+    "nonempty_positive",
+    "nonempty_latitude",
+    "instance",
+    "same_shape",
+    "broadcast",
+    "range_limit",
+    "unit_interval",
+    "booleans",
+    "last_axis",
+    "pitch_roll",
+    "euler_angles",
+    "small_turns",
+    "text",
+    "broadcast_to",
+    "ellipsoid",
+    "ellipsoid_",
+    "numbers",
+    "indices",
+}
 # One formula, one place: regular expressions that find where each is written out.
 FORMULAS = {
     "levelling": r"arctan2\(\s*-\s*\w+\[\.\.\., 0\]|arctan2\(-ax, az\)|arcsin\(np\.clip\(f\[\.\.\., 1\]",
@@ -73,9 +107,12 @@ def local_validators(tree: ast.Module) -> set[str]:
         changed = False
         for fn in funcs:
             body = [s for s in fn.body if not (isinstance(s, ast.Expr) and isinstance(s.value, ast.Constant))]
-            if fn.name not in found and body and all(
-                    validates(s, found) or isinstance(s, ast.Return) for s in body) and any(
-                    validates(s, found) for s in body):
+            if (
+                fn.name not in found
+                and body
+                and all(validates(s, found) or isinstance(s, ast.Return) for s in body)
+                and any(validates(s, found) for s in body)
+            ):
                 found.add(fn.name)
                 changed = True
     return found
@@ -91,13 +128,13 @@ def file_metrics(path: Path) -> dict:
         for node in body:
             if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
                 kernel = in_kernel or is_kernel(node)
-                if node.name in validators and node.name not in VALIDATE_NAMES:   # a private validator clone
+                if node.name in validators and node.name not in VALIDATE_NAMES:  # a private validator clone
                     check.update(range(node.body[0].lineno, node.end_lineno + 1))
                 if is_kernel(node) and isinstance(node, ast.FunctionDef):
                     kernels.append((node.name, len(node.args.args) + len(node.args.kwonlyargs)))
                 inner = node.body
                 if inner and isinstance(inner[0], ast.Expr) and isinstance(getattr(inner[0], "value", None), ast.Constant):
-                    inner = inner[1:]                                    # docstring
+                    inner = inner[1:]  # docstring
                 visit(inner, kernel)
                 continue
             if in_kernel or (isinstance(node, ast.Expr) and isinstance(node.value, ast.Constant)):
@@ -123,21 +160,32 @@ def file_metrics(path: Path) -> dict:
             total += len(params)
             hinted += sum(a.annotation is not None for a in params)
     text = path.read_text(encoding="utf-8")
-    return {"code": len(code), "validation": len(check & code), "hinted": hinted, "params": total,
-            "kernels": kernels, "formulas": {k: len(re.findall(p, text)) for k, p in FORMULAS.items()}}
+    return {
+        "code": len(code),
+        "validation": len(check & code),
+        "hinted": hinted,
+        "params": total,
+        "kernels": kernels,
+        "formulas": {k: len(re.findall(p, text)) for k, p in FORMULAS.items()},
+    }
 
 
 def metrics(package: Path) -> dict:
-    files = {p.relative_to(package).as_posix(): file_metrics(p) for p in sorted(package.rglob("*.py"))
-             if "__pycache__" not in p.parts}
+    files = {
+        p.relative_to(package).as_posix(): file_metrics(p) for p in sorted(package.rglob("*.py")) if "__pycache__" not in p.parts
+    }
     code = sum(f["code"] for f in files.values())
     check = sum(f["validation"] for f in files.values())
     hinted = sum(f["hinted"] for f in files.values())
     params = sum(f["params"] for f in files.values())
     kernels = sorted(((n, k, f) for f, m in files.items() for k, n in m["kernels"]), reverse=True)
     return {
-        "validation_share": round(check / code, 3), "validation_lines": check, "code_lines": code,
-        "hinted_share": round(hinted / params, 3), "hinted": hinted, "public_params": params,
+        "validation_share": round(check / code, 3),
+        "validation_lines": check,
+        "code_lines": code,
+        "hinted_share": round(hinted / params, 3),
+        "hinted": hinted,
+        "public_params": params,
         "largest_kernels": [f"{f}:{k} ({n})" for n, k, f in kernels[:5]],
         "implementations": {k: {f: m["formulas"][k] for f, m in files.items() if m["formulas"][k]} for k in FORMULAS},
         "validation_by_file": {f: f"{m['validation']}/{m['code']}" for f, m in files.items() if m["code"]},

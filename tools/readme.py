@@ -20,6 +20,7 @@ Only deterministic numbers go into the README (no run times), so it can be check
 
 Usage: python tools/readme.py [--check]
 """
+
 from __future__ import annotations
 
 import argparse
@@ -44,14 +45,20 @@ VALUE = re.compile(r"<!-- value (\S+) (\S+) (\S+) -->(.*?)<!-- /value -->", re.S
 LEDGER = re.compile(r"<!-- ledger:(\S+) -->\n.*?<!-- /ledger:\1 -->", re.S)
 SUMMARY_ROW = re.compile(r"^\| `(\d\d_[^`]+)` \|.*\|$", re.M)
 # figures shown in the README gallery: (notebook, figure stem)
-GALLERY = [("00_conventions_sensors", "allan_gyros"), ("00_conventions_sensors", "ins_error_theory"),
-           ("01_north_finding", "fig4_rmse_vs_heading"), ("02_rotation_bias", "fig6_heading_error"),
-           ("03_gauss_kruger_ekf", "fig4_fig5_tracks"), ("04_mimu_mag_rtk", "fig4_heading_modes"),
-           ("05_pedestrian_ins", "fig4_floor_test"), ("05_pedestrian_ins", "carpark_trajectory_error"),
-           ("06_real_recordings", "attitude_real")]
+GALLERY = [
+    ("00_conventions_sensors", "allan_gyros"),
+    ("00_conventions_sensors", "ins_error_theory"),
+    ("01_north_finding", "fig4_rmse_vs_heading"),
+    ("02_rotation_bias", "fig6_heading_error"),
+    ("03_gauss_kruger_ekf", "fig4_fig5_tracks"),
+    ("04_mimu_mag_rtk", "fig4_heading_modes"),
+    ("05_pedestrian_ins", "fig4_floor_test"),
+    ("05_pedestrian_ins", "carpark_trajectory_error"),
+    ("06_real_recordings", "attitude_real"),
+]
 GALLERY_WIDTH_PX = 480
-THUMB_WIDTH_PX = 120           # shown in the README's claim matrices
-THUMB_FILE_WIDTH_PX = 240      # docs/figures copy of a figure that only a verdict shows
+THUMB_WIDTH_PX = 120  # shown in the README's claim matrices
+THUMB_FILE_WIDTH_PX = 240  # docs/figures copy of a figure that only a verdict shows
 
 
 def figure_copy(build_path: str) -> str:
@@ -72,15 +79,20 @@ def summary_rows(build: Path, leds: list[ledger.PaperLedger]) -> dict[str, str]:
         if not led.ran:
             continue
         counts = led.counts
-        rows[led.stem] = (f"| `{led.stem}` | {cell(led.title)} | {len(led.rows)} | "
-                          + " | ".join(str(counts.get(v, 0)) for v in ledger.COLUMNS)
-                          + f" | {led.checks_passed}/{led.checks_total} |")
+        rows[led.stem] = (
+            f"| `{led.stem}` | {cell(led.title)} | {len(led.rows)} | "
+            + " | ".join(str(counts.get(v, 0)) for v in ledger.COLUMNS)
+            + f" | {led.checks_passed}/{led.checks_total} |"
+        )
     for stem, title in CHAPTERS.items():
         res = ledger.results(build, stem)
         if res is not None:
             passed = sum(bool(c["passed"]) for c in res["checks"])
-            rows[stem] = (f"| `{stem}` | {cell(title)} | — | " + " | ".join("—" for _ in ledger.COLUMNS)
-                          + f" | {passed}/{len(res['checks'])} |")
+            rows[stem] = (
+                f"| `{stem}` | {cell(title)} | — | "
+                + " | ".join("—" for _ in ledger.COLUMNS)
+                + f" | {passed}/{len(res['checks'])} |"
+            )
     return rows
 
 
@@ -94,14 +106,23 @@ def matrix(led: ledger.PaperLedger) -> str:
     """The claims of one paper as a collapsible markdown table, between its ledger markers."""
     counts = led.counts
     summary = ", ".join(f"{counts[v]} {v}" for v in ledger.COLUMNS if counts.get(v))
-    lines = [f"<!-- ledger:{led.stem} -->", f"<details><summary><b>{led.stem}</b> — {led.title}: {len(led.rows)} claims "
-             f"({summary})</summary>", "", "| claim | paper item | paper | ours | verdict | figure |",
-             "|---|---|---|---|---|---|"]
+    lines = [
+        f"<!-- ledger:{led.stem} -->",
+        f"<details><summary><b>{led.stem}</b> — {led.title}: {len(led.rows)} claims ({summary})</summary>",
+        "",
+        "| claim | paper item | paper | ours | verdict | figure |",
+        "|---|---|---|---|---|---|",
+    ]
     lines += [row_line(r) for r in led.rows]
     if led.extensions:
-        lines += ["", f"Extensions ({len(led.extensions)}): the project's own quantities, test vectors and reconstructions, "
-                  "checked but not paper claims, so without a verdict word on the paper.", "",
-                  "| extension | item | paper | ours | checked | figure |", "|---|---|---|---|---|---|"]
+        lines += [
+            "",
+            f"Extensions ({len(led.extensions)}): the project's own quantities, test vectors and reconstructions, "
+            "checked but not paper claims, so without a verdict word on the paper.",
+            "",
+            "| extension | item | paper | ours | checked | figure |",
+            "|---|---|---|---|---|---|",
+        ]
         lines += [row_line(r) for r in led.extensions]
     lines += ["", "</details>", f"<!-- /ledger:{led.stem} -->"]
     return "\n".join(lines)
@@ -117,18 +138,31 @@ def render(build: Path) -> tuple[str, dict[str, str]]:
         parts[led.stem] += "\n" + matrix(led)
     n_claims = sum(len(led.rows) for led in ran)
     total = {v: sum(led.counts.get(v, 0) for led in ran) for v in ledger.COLUMNS}
-    head = ("| notebook | paper | claims | " + " | ".join(ledger.COLUMNS) + " | checks passed |\n"
-            + "|---" * (len(ledger.COLUMNS) + 4) + "|")
+    head = (
+        "| notebook | paper | claims | "
+        + " | ".join(ledger.COLUMNS)
+        + " | checks passed |\n"
+        + "|---" * (len(ledger.COLUMNS) + 4)
+        + "|"
+    )
     order = sorted(rows)
-    block = [START, "**Claims by verdict.** One verdict per claim of the papers (`data/claims.csv`), recorded by its "
-             "notebook with `navlib.repro.verdict`; a *check* is one computed comparison of a notebook, a *claim* a "
-             "statement of a paper.", "", head, *[rows[k] for k in order],
-             "| **total** | | " + f"{n_claims} | " + " | ".join(str(total[v]) for v in ledger.COLUMNS) + " | |", "",
-             f"**Coverage:** {sum(led.computed for led in ran)} of {n_claims} claims have a verdict that rests on a "
-             f"computation (a check of the notebook); {total['not checkable here']} are not checkable here and "
-             f"{total[ledger.NO_VERDICT]} have no verdict yet (never counted as reproduced). "
-             f"{sum(len(led.extensions) for led in ran)} extensions (the project's own quantities) are listed apart, "
-             "under each paper.", ""]
+    block = [
+        START,
+        "**Claims by verdict.** One verdict per claim of the papers (`data/claims.csv`), recorded by its "
+        "notebook with `navlib.repro.verdict`; a *check* is one computed comparison of a notebook, a *claim* a "
+        "statement of a paper.",
+        "",
+        head,
+        *[rows[k] for k in order],
+        "| **total** | | " + f"{n_claims} | " + " | ".join(str(total[v]) for v in ledger.COLUMNS) + " | |",
+        "",
+        f"**Coverage:** {sum(led.computed for led in ran)} of {n_claims} claims have a verdict that rests on a "
+        f"computation (a check of the notebook); {total['not checkable here']} are not checkable here and "
+        f"{total[ledger.NO_VERDICT]} have no verdict yet (never counted as reproduced). "
+        f"{sum(len(led.extensions) for led in ran)} extensions (the project's own quantities) are listed apart, "
+        "under each paper.",
+        "",
+    ]
     block += [matrix(led) + "\n" for led in ran]
     block.append(END)
     return "\n".join(block), parts
@@ -136,7 +170,7 @@ def render(build: Path) -> tuple[str, dict[str, str]]:
 
 def readme_parts(text: str) -> dict[str, str]:
     """The per-notebook parts currently in README's results block (summary row + matrix)."""
-    block = text[text.index(START):text.index(END)] if START in text and END in text else ""
+    block = text[text.index(START) : text.index(END)] if START in text and END in text else ""
     parts = {m.group(1): m.group(0) for m in SUMMARY_ROW.finditer(block)}
     for m in LEDGER.finditer(block):
         parts[m.group(1)] = parts.get(m.group(1), "") + "\n" + m.group(0)
@@ -168,11 +202,12 @@ def stale(text: str, build: Path, notebooks: set[str] | None = None) -> list[str
     """What in README.md differs from build/ (restricted to ``notebooks`` when given)."""
     _, parts = render(build)
     committed = readme_parts(text)
-    out = [f"results section of {k}" for k in sorted(parts)
-           if (notebooks is None or k in notebooks) and committed.get(k) != parts[k]]
+    out = [
+        f"results section of {k}" for k in sorted(parts) if (notebooks is None or k in notebooks) and committed.get(k) != parts[k]
+    ]
     if notebooks is None:
         block, _ = render(build)
-        if START in text and text[text.index(START):text.index(END) + len(END)] != block:
+        if START in text and text[text.index(START) : text.index(END) + len(END)] != block:
             out.append("results section (totals and coverage)")
     quotable = [q for q in quoted_values(text) if notebooks is None or q[0] in notebooks]
     if quotable:
@@ -223,12 +258,14 @@ def main(argv=None) -> int:
         print("README is " + ("stale: " + "; ".join(found) if found else "up to date"))
         return 1 if found else 0
     block, _ = render(build)
-    text = text[:text.index(START)] + block + text[text.index(END) + len(END):] if START in text else text + "\n" + block + "\n"
+    text = text[: text.index(START)] + block + text[text.index(END) + len(END) :] if START in text else text + "\n" + block + "\n"
     text, changed = fill_values(text, build)
     README.write_text(text, encoding="utf-8")
     names = write_figures(build, ledger.ledgers(build))
-    print(f"README.md: results section and {len(quoted_values(text))} quoted values ({len(changed)} changed); "
-          f"docs/figures: {len(names)} figures")
+    print(
+        f"README.md: results section and {len(quoted_values(text))} quoted values ({len(changed)} changed); "
+        f"docs/figures: {len(names)} figures"
+    )
     return 0
 
 

@@ -11,6 +11,7 @@ regression of the stand-in rather than a prediction). ``navlib.repro.seed_spread
 rule (``navlib.repro.STUDY_K`` x the RMS of value - target, or x the sd of a value) is stated in the header with
 each check's mean, sd, RMS and tolerance. The seeds go to ``calibration_seeds.csv``: the seed sweep refuses them.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -52,8 +53,14 @@ def table(stem: str, runs: list[tuple[int, list[dict]]], also: list[str]) -> lis
             study = c.get("study")
             if study and study["name"] == stem or c["name"] in also:
                 target = study["target"] if study else None
-                rows.append({"seed": seed, "check": c["name"], "value": repr(c["value"]),
-                             "target": "" if target is None else repr(target)})
+                rows.append(
+                    {
+                        "seed": seed,
+                        "check": c["name"],
+                        "value": repr(c["value"]),
+                        "target": "" if target is None else repr(target),
+                    }
+                )
     return rows
 
 
@@ -62,11 +69,13 @@ def summary(rows: list[dict]) -> list[str]:
     for name in dict.fromkeys(r["check"] for r in rows):
         x = np.array([float(r["value"]) - float(r["target"] or 0.0) for r in rows if r["check"] == name])
         about_target = any(r["target"] for r in rows if r["check"] == name)
-        rms = np.sqrt(np.mean(x ** 2)) if about_target else x.std(ddof=1)
+        rms = np.sqrt(np.mean(x**2)) if about_target else x.std(ddof=1)
         what = "value - target" if about_target else "value"
-        lines.append(f"# {name}: {what} over {x.size} seeds: mean {x.mean():.5g}, sd {x.std(ddof=1):.4g}, "
-                     f"min {x.min():.5g}, max {x.max():.5g}; tolerance {STUDY_K:g} x {'RMS' if about_target else 'sd'} "
-                     f"= {STUDY_K * rms:.4g}")
+        lines.append(
+            f"# {name}: {what} over {x.size} seeds: mean {x.mean():.5g}, sd {x.std(ddof=1):.4g}, "
+            f"min {x.min():.5g}, max {x.max():.5g}; tolerance {STUDY_K:g} x {'RMS' if about_target else 'sd'} "
+            f"= {STUDY_K * rms:.4g}"
+        )
     return lines
 
 
@@ -99,12 +108,14 @@ def main(argv=None) -> int:
     writer = csv.DictWriter(buf, ["seed", "check", "value", "target"], lineterminator="\n")
     writer.writeheader()
     writer.writerows(rows)
-    head = [f"# Seed study of notebooks/{args.notebook}.ipynb: data/seed_studies/run.py {args.notebook} --seeds "
-            f"{min(args.seeds)}-{max(args.seeds)}" + (f" --also {' '.join(args.also)}" if args.also else ""),
-            "# Full scale, one run per seed (SEED injected after the parameters cell); value and target as recorded.",
-            f"# Rule (navlib.repro.check_study): |value - target| <= {STUDY_K:g} x the RMS of value - target over these seeds;",
-            f"# without a target, |value - mean| <= {STUDY_K:g} x the sd. Two-sided. Per check:",
-            *summary(rows)]
+    head = [
+        f"# Seed study of notebooks/{args.notebook}.ipynb: data/seed_studies/run.py {args.notebook} --seeds "
+        f"{min(args.seeds)}-{max(args.seeds)}" + (f" --also {' '.join(args.also)}" if args.also else ""),
+        "# Full scale, one run per seed (SEED injected after the parameters cell); value and target as recorded.",
+        f"# Rule (navlib.repro.check_study): |value - target| <= {STUDY_K:g} x the RMS of value - target over these seeds;",
+        f"# without a target, |value - mean| <= {STUDY_K:g} x the sd. Two-sided. Per check:",
+        *summary(rows),
+    ]
     out = HERE / f"{args.notebook}.csv"
     out.write_text("\n".join(head) + "\n" + buf.getvalue(), encoding="utf-8")
     record_seeds(args.notebook, args.seeds)

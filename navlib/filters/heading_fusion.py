@@ -33,6 +33,7 @@ Stuck sensors: the fusion takes no gyro samples (nothing to check here); a stuck
 upstream, by the screening of the attitude filter that produced ``heading_mag``, and the RTK heading is
 checked by the gate.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -81,6 +82,7 @@ class FusionResult:
         ``("mag", "outlier")`` (magnetic steps not carried, module docstring); counts of shape (...); and
         ``("clock", "jump")`` flagged per sample, shape (..., N).
     """
+
     heading: np.ndarray
     delta: np.ndarray
     faults: FaultReport
@@ -93,31 +95,31 @@ def _fuse_kernel(h_mag, h_rtk, ok, dts, jump, alpha, rtk_par, out, delta_out, co
     state = np.zeros(2)
     for t in range(T):
         delta, age, anchor_rtk, anchor_mag = np.nan, np.inf, 0.0, 0.0
-        step, skipped = 0.0, 0.0                           # steady magnetic increment; steps left out of the carry
+        step, skipped = 0.0, 0.0  # steady magnetic increment; steps left out of the carry
         state[0] = 0.0
         for k in range(N):
-            if jump[k]:                                    # clock jump: nothing carried over it, the gate restarts
+            if jump[k]:  # clock jump: nothing carried over it, the gate restarts
                 age, state[0] = np.inf, 0.0
             elif k > 0:
                 inc = wrap_pi(h_mag[t, k] - h_mag[t, k - 1])
-                if abs(inc - step) > gate:                 # a magnetic step no motion makes: not carried
+                if abs(inc - step) > gate:  # a magnetic step no motion makes: not carried
                     skipped += inc - step
                     counts[t, 3] += 1
                 else:
                     step = inc
             age += dts[k]
-            if ok[t, k]:                                   # RTK epoch flagged valid
+            if ok[t, k]:  # RTK epoch flagged valid
                 hk = h_rtk[t, k]
-                if np.isnan(hk):                           # valid flag without a value: dropout
+                if np.isnan(hk):  # valid flag without a value: dropout
                     counts[t, 0] += 1
                     code = 1
                 else:
-                    if age <= hold:                        # predicted heading: carried RTK, held delta, or none
+                    if age <= hold:  # predicted heading: carried RTK, held delta, or none
                         pred = anchor_rtk + wrap_pi(h_mag[t, k] - anchor_mag) - skipped
                     elif not np.isnan(delta):
                         pred = h_mag[t, k] + delta
                     else:
-                        pred = hk                          # first epoch: nothing to check it against
+                        pred = hk  # first epoch: nothing to check it against
                     code = rtk_gate(hk, pred, gate, confirm, state)
                     if code == 1:
                         counts[t, 1] += 1
@@ -127,18 +129,19 @@ def _fuse_kernel(h_mag, h_rtk, ok, dts, jump, alpha, rtk_par, out, delta_out, co
                     d = wrap_pi(hk - h_mag[t, k])
                     delta = d if (np.isnan(delta) or code == 2) else delta + alpha * wrap_pi(d - delta)
                     anchor_rtk, anchor_mag, age, skipped = hk, h_mag[t, k], 0.0, 0.0
-            if age <= hold:                                # output the RTK heading, carried between epochs
+            if age <= hold:  # output the RTK heading, carried between epochs
                 out[t, k] = anchor_rtk + wrap_pi(h_mag[t, k] - anchor_mag) - skipped
-            elif not np.isnan(delta):                      # outage: hold delta
+            elif not np.isnan(delta):  # outage: hold delta
                 out[t, k] = h_mag[t, k] + delta
-            else:                                          # no RTK yet: uncalibrated magnetic heading
+            else:  # no RTK yet: uncalibrated magnetic heading
                 out[t, k] = h_mag[t, k]
             out[t, k] = out[t, k] % (2 * np.pi)
             delta_out[t, k] = delta
 
 
-def fuse_rtk_heading(heading_mag: Angles, rtk: RtkHeading, dt: Interval, alpha: float = 0.01,
-                     max_dt: float | None = None) -> FusionResult:
+def fuse_rtk_heading(
+    heading_mag: Angles, rtk: RtkHeading, dt: Interval, alpha: float = 0.01, max_dt: float | None = None
+) -> FusionResult:
     """Fuse the magnetic heading with dual-antenna RTK heading (the rule of the module docstring).
 
     Parameters

@@ -21,6 +21,7 @@ heading free). The samples arrive screened (:func:`navlib.robust.screen`) and ga
 only the equations. Compiled and allocation-free per sample; leading axes of the inputs are Monte Carlo
 trials, run in parallel.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -66,13 +67,13 @@ def _trial(t, inp, kp, ki, q_out, bias_out, counts):
     check = np.zeros(10)
     for k in range(w.shape[1]):
         dt, gx, gy, gz = dts[k], w[t, k, 0], w[t, k, 1], w[t, k, 2]
-        if inp.jump[k]:                                                # clock jump: one typical interval, then check
+        if inp.jump[k]:  # clock jump: one typical interval, then check
             dt = jump_step(inp, check, rtk, health)
         ax, ay, az, mx, my, mz, C = observe(z, t, k, q0, q1, q2, q3)
         if inp.use_rtk:
             mx, my, mz = rtk_north(inp, t, k, C, dt, rtk, counts)
-        ex, ey, ez = pi_error(C, ax, ay, az, mx, my, mz)                 # Eqs. (12)-(14)
-        if learning(inp.fresh[t, k], dt, health, inp):                 # Eq. (15), unless settling after a fault
+        ex, ey, ez = pi_error(C, ax, ay, az, mx, my, mz)  # Eqs. (12)-(14)
+        if learning(inp.fresh[t, k], dt, health, inp):  # Eq. (15), unless settling after a fault
             ix += ex * dt
             iy += ey * dt
             iz += ez * dt
@@ -81,14 +82,22 @@ def _trial(t, inp, kp, ki, q_out, bias_out, counts):
         q0, q1, q2, q3 = q0 + 0.5 * dt * d0, q1 + 0.5 * dt * d1, q2 + 0.5 * dt * d2, q3 + 0.5 * dt * d3
         s = 1.0 / np.sqrt(q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
         q0, q1, q2, q3 = q0 * s, q1 * s, q2 * s, q3 * s
-        q0, q1, q2, q3, _ = relock(inp, t, k, q0, q1, q2, q3, check, rtk, health)   # after a jump: only if the state is lost
+        q0, q1, q2, q3, _ = relock(inp, t, k, q0, q1, q2, q3, check, rtk, health)  # after a jump: only if the state is lost
         q_out[t, k, 0], q_out[t, k, 1], q_out[t, k, 2], q_out[t, k, 3] = q0, q1, q2, q3
     bias_out[t, 0], bias_out[t, 1], bias_out[t, 2] = -ki * ix, -ki * iy, -ki * iz
 
 
-def mahony(imu: ImuSamples, q0: Quat, *, m_b: Vec3Series | None = None, rtk: RtkHeading | None = None,
-           B_n: Vec3 | None = None, kp: float = 1.0, ki: float | None = None,
-           gates: AttitudeGates = AttitudeGates()) -> AttitudeResult:
+def mahony(
+    imu: ImuSamples,
+    q0: Quat,
+    *,
+    m_b: Vec3Series | None = None,
+    rtk: RtkHeading | None = None,
+    B_n: Vec3 | None = None,
+    kp: float = 1.0,
+    ki: float | None = None,
+    gates: AttitudeGates = AttitudeGates(),
+) -> AttitudeResult:
     """Mahony PI complementary filter (Eqs. 9-15 of Zhang et al. 2023), per sample:
     ``e = a x a_est + m x m_est``, ``w = w_m + kp e + ki sum(e dt)``,
     ``q <- normalise(q + dt/2 q (x) [0, w])``.

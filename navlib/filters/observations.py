@@ -34,6 +34,7 @@ result's ``faults`` (:class:`navlib.robust.FaultReport`): the screen's keys, plu
 
 A new attitude filter is a module next to :mod:`navlib.filters.mahony` that calls these.
 """
+
 from __future__ import annotations
 
 from collections.abc import Callable
@@ -52,8 +53,20 @@ from ..imu import ImuSamples, SensorLimits
 from ..robust import FaultReport, screen
 from ..units import G0
 
-__all__ = ["MagGate", "AttitudeGates", "RtkHeading", "AttitudeResult", "AttitudeInputs", "SETTLE_TIME_CONSTANTS",
-           "KI_WITH_REFERENCE", "integral_gain", "magnetic_reference", "pack", "attitude_result", "run_trials"]
+__all__ = [
+    "MagGate",
+    "AttitudeGates",
+    "RtkHeading",
+    "AttitudeResult",
+    "AttitudeInputs",
+    "SETTLE_TIME_CONSTANTS",
+    "KI_WITH_REFERENCE",
+    "integral_gain",
+    "magnetic_reference",
+    "pack",
+    "attitude_result",
+    "run_trials",
+]
 
 KI_WITH_REFERENCE = 0.02
 """Default integral gain ``ki`` (rad/s^2) of the attitude filters' PI loop when they have a heading reference
@@ -91,27 +104,29 @@ _RTK_COUNTS = (("mag", "nan"), ("heading", "nan"), ("heading", "outlier"), ("hea
 
 class AttitudeInputs(NamedTuple):
     """Inputs of the attitude kernels, T trials of N samples (from :func:`pack`)."""
-    q_init: np.ndarray              # (T, 4) attitude before the first sample
-    w: np.ndarray                   # (T, N, 3) gyro (rad/s), held over unusable samples
-    fresh: np.ndarray               # (T, N) bool: the gyro sample is used as measured
-    z: np.ndarray                   # (T, N, 6) unit accelerometer and magnetometer vectors, NaN = skipped or none
-    hdg: np.ndarray                 # (T, N) RTK heading (rad), or (1, 1) unused
-    hdg_ok: np.ndarray              # (T, N) bool: a valid RTK epoch, or (1, 1) unused
-    use_rtk: bool                   # heading reference: RTK (True) or magnetometer
-    use_mag: bool                   # False with RTK or without a heading reference (gyro + accelerometer only)
-    dts: np.ndarray                 # (N,) interval covered by each sample (s)
-    jump: np.ndarray                # (N,) bool: clock jump (integrated as typical_dt; relock checks the state)
-    typical_dt: float               # median interval (s)
-    still: np.ndarray               # (T, N) bool quasi-static samples (STILL_RATE, STILL_ACCEL), or (1, 1) without a jump
-    window: int                     # quasi-static samples that relock needs (STILL_WINDOW)
-    rtk_par: np.ndarray             # (3,) hold (s), gate (rad), confirm (epochs)
-    long_hold: int                  # gyro holds of at least this many samples are followed by settling
-    settle: float                   # bias integral frozen this long (s) after a long hold or a clock jump
+
+    q_init: np.ndarray  # (T, 4) attitude before the first sample
+    w: np.ndarray  # (T, N, 3) gyro (rad/s), held over unusable samples
+    fresh: np.ndarray  # (T, N) bool: the gyro sample is used as measured
+    z: np.ndarray  # (T, N, 6) unit accelerometer and magnetometer vectors, NaN = skipped or none
+    hdg: np.ndarray  # (T, N) RTK heading (rad), or (1, 1) unused
+    hdg_ok: np.ndarray  # (T, N) bool: a valid RTK epoch, or (1, 1) unused
+    use_rtk: bool  # heading reference: RTK (True) or magnetometer
+    use_mag: bool  # False with RTK or without a heading reference (gyro + accelerometer only)
+    dts: np.ndarray  # (N,) interval covered by each sample (s)
+    jump: np.ndarray  # (N,) bool: clock jump (integrated as typical_dt; relock checks the state)
+    typical_dt: float  # median interval (s)
+    still: np.ndarray  # (T, N) bool quasi-static samples (STILL_RATE, STILL_ACCEL), or (1, 1) without a jump
+    window: int  # quasi-static samples that relock needs (STILL_WINDOW)
+    rtk_par: np.ndarray  # (3,) hold (s), gate (rad), confirm (epochs)
+    long_hold: int  # gyro holds of at least this many samples are followed by settling
+    settle: float  # bias integral frozen this long (s) after a long hold or a clock jump
 
 
 # --------------------------------------------------------------------------
 # Reference field
 # --------------------------------------------------------------------------
+
 
 def integral_gain(ki: float | None, heading_reference: bool) -> float:
     """The PI loop's integral gain (rad/s^2): ``ki`` as given, or by default (None) :data:`KI_WITH_REFERENCE` with a
@@ -154,6 +169,7 @@ def magnetic_reference(B_n: Vec3) -> tuple[Array, float, float, float]:
 # Per-sample kernel helpers (scalar tuples, allocation-free)
 # --------------------------------------------------------------------------
 
+
 @njit(cache=True, inline="always")
 def _accel_obs(fx, fy, fz, lo2, hi2):
     """Unit accelerometer vector and a code: 0 used, 1 unusable, 2 gated (norm test)."""
@@ -180,7 +196,7 @@ def _mag_obs(mx, my, mz, ax, ay, az, a_code, gate):
     ux, uy, uz = mx * s, my * s, mz * s
     if a_code == 0:
         sin_dip = -(ax * ux + ay * uy + az * uz)
-        if 1.0 - sin_dip * sin_dip < 1e-12:           # parallel to gravity: no heading
+        if 1.0 - sin_dip * sin_dip < 1e-12:  # parallel to gravity: no heading
             return 0.0, 0.0, 0.0, 1
         if sin_dip < gate[2] or sin_dip > gate[3]:
             return 0.0, 0.0, 0.0, 2
@@ -192,9 +208,17 @@ def _mag_obs(mx, my, mz, ax, ay, az, a_code, gate):
 @njit(cache=True, inline="always")
 def _dcm_t(q0, q1, q2, q3):
     """The nine elements of C_b^n, row by row."""
-    return (q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3, 2 * (q1 * q2 - q0 * q3), 2 * (q1 * q3 + q0 * q2),
-            2 * (q1 * q2 + q0 * q3), q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3, 2 * (q2 * q3 - q0 * q1),
-            2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3)
+    return (
+        q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3,
+        2 * (q1 * q2 - q0 * q3),
+        2 * (q1 * q3 + q0 * q2),
+        2 * (q1 * q2 + q0 * q3),
+        q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3,
+        2 * (q2 * q3 - q0 * q1),
+        2 * (q1 * q3 - q0 * q2),
+        2 * (q2 * q3 + q0 * q1),
+        q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3,
+    )
 
 
 @njit(cache=True, inline="always")
@@ -215,11 +239,11 @@ def pi_error(C, ax, ay, az, mx, my, mz):
         ey += az * C31 - ax * C33
         ez += ax * C32 - ay * C31
     if not np.isnan(mx):
-        hx = C11 * mx + C12 * my + C13 * mz           # h = C_bn m (Mahony: rebuild b from h)
+        hx = C11 * mx + C12 * my + C13 * mz  # h = C_bn m (Mahony: rebuild b from h)
         hy = C21 * mx + C22 * my + C23 * mz
         hz = C31 * mx + C32 * my + C33 * mz
         bn = np.sqrt(hx * hx + hy * hy)
-        vx = bn * C21 + hz * C31                      # m_est = C_nb [0, bn, hz]
+        vx = bn * C21 + hz * C31  # m_est = C_nb [0, bn, hz]
         vy = bn * C22 + hz * C32
         vz = bn * C23 + hz * C33
         ex += my * vz - mz * vy
@@ -269,7 +293,7 @@ def rtk_north(inp, t, k, C, dt, rtk, counts):
     rtk[3] += dt
     if hdg_ok[t, k]:
         hk = hdg[t, k]
-        if np.isnan(hk):                                               # valid flag but no value: dropout
+        if np.isnan(hk):  # valid flag but no value: dropout
             counts[t, 1] += 1
         else:
             est = dcm_heading(C[1], C[4])
@@ -280,7 +304,7 @@ def rtk_north(inp, t, k, C, dt, rtk, counts):
                 if code == 2:
                     counts[t, 3] += 1
                 rtk[0], rtk[1], rtk[2], rtk[3] = np.sin(hk), np.cos(hk), est, 0.0
-    if rtk[3] <= rtk_par[0] and C[6] * C[6] + C[8] * C[8] > 1e-12:         # (no heading at pitch +-90 deg)
+    if rtk[3] <= rtk_par[0] and C[6] * C[6] + C[8] * C[8] > 1e-12:  # (no heading at pitch +-90 deg)
         # carry the epoch's heading forward with the estimate's own heading change
         d = dcm_heading(C[1], C[4]) - rtk[2]
         sd, cd = np.sin(d), np.cos(d)
@@ -331,7 +355,7 @@ def relock(inp, t, k, q0, q1, q2, q3, state, rtk, health):
         return q0, q1, q2, q3, False
     z = inp.z
     if not inp.still[t, k] or np.isnan(z[t, k, 0]):
-        start_relock(state)                                            # the window must be quasi-static throughout
+        start_relock(state)  # the window must be quasi-static throughout
         return q0, q1, q2, q3, False
     state[1] += 1.0
     for i in range(3):
@@ -344,19 +368,19 @@ def relock(inp, t, k, q0, q1, q2, q3, state, rtk, health):
         state[9] = inp.hdg[t, k]
     if state[1] < inp.window:
         return q0, q1, q2, q3, False
-    state[0] = 0.0                                                     # one verdict per jump
+    state[0] = 0.0  # one verdict per jump
     pitch, roll = level(state[2], state[3], state[4])
     C = _dcm_t(q0, q1, q2, q3)
     h_est = dcm_heading(C[1], C[4])
     n = np.sqrt(state[2] * state[2] + state[3] * state[3] + state[4] * state[4])
-    cos_tilt = (state[2] * C[6] + state[3] * C[7] + state[4] * C[8]) / n     # measured vs estimated up, body frame
+    cos_tilt = (state[2] * C[6] + state[3] * C[7] + state[4] * C[8]) / n  # measured vs estimated up, body frame
     lost = cos_tilt < np.cos(LOST_TILT)
     h = h_est
     if inp.use_rtk:
         if not np.isnan(state[9]):
             h = state[9]
             lost = lost or abs(wrap_pi(h - h_est)) > LOST_HEADING
-    elif state[8] >= inp.window:                                       # a magnetometer sample at every window sample
+    elif state[8] >= inp.window:  # a magnetometer sample at every window sample
         h = tilt_heading(state[5], state[6], state[7], pitch, roll)
         lost = lost or abs(wrap_pi(h - h_est)) > LOST_HEADING
     if not lost:
@@ -393,6 +417,7 @@ def jump_step(inp, state, rtk, health):
 # Input and output
 # --------------------------------------------------------------------------
 
+
 @dataclass(frozen=True)
 class MagGate:
     """Magnetometer gate: skip samples whose field disagrees with the local field.
@@ -401,6 +426,7 @@ class MagGate:
     (against the accelerometer's up direction) is within ``dip_tol`` (rad) of
     the local inclination I. F and I come from the ``B_n`` given to the filter.
     """
+
     norm_tol: float = 0.1
     dip_tol: float = np.deg2rad(5.0)
 
@@ -424,6 +450,7 @@ class AttitudeGates:
         Field-norm and dip-angle gate for the magnetometer (``("mag", "outlier")``); needs the filter's
         ``B_n``. None (default): no gate.
     """
+
     accel_tol: float | None = None
     g: float = G0
     mag: MagGate | None = None
@@ -457,6 +484,7 @@ class RtkHeading:
         ``gate``), use them (``("heading", "reacquired")``), so that an estimate that drifted in an outage
         is pulled back.
     """
+
     heading: ArrayLike
     valid: ArrayLike
     hold: float = 0.25
@@ -473,8 +501,10 @@ class RtkHeading:
         used = np.broadcast_to(h, shape)[np.broadcast_to(v, shape)]
         bad = ~np.isnan(used) & ~((used >= 0) & (used < 2 * np.pi))
         if bad.any():
-            raise ValueError(f"heading: valid epochs must hold headings in [0, 2 pi) rad (or NaN for a dropout); "
-                             f"{int(bad.sum())} do not (first: {used[bad][0]!r})")
+            raise ValueError(
+                f"heading: valid epochs must hold headings in [0, 2 pi) rad (or NaN for a dropout); "
+                f"{int(bad.sum())} do not (first: {used[bad][0]!r})"
+            )
         object.__setattr__(self, "heading", h)
         object.__setattr__(self, "valid", v)
         scalar(self.hold, "hold", positive=True, allow_zero=True)
@@ -484,8 +514,7 @@ class RtkHeading:
 
     def params(self) -> np.ndarray:
         """``[hold (s, + 1 ns rounding allowance), gate (rad, inf = off), confirm (epochs)]`` for the kernels."""
-        return np.array([float(self.hold) + 1e-9, np.inf if self.gate is None else float(self.gate),
-                         float(self.confirm)])
+        return np.array([float(self.hold) + 1e-9, np.inf if self.gate is None else float(self.gate), float(self.confirm)])
 
     def at(self, shape: tuple[int, ...], of: str) -> tuple[np.ndarray, np.ndarray]:
         """Heading and validity broadcast to ``shape`` (..., N) of the samples ``of``, flattened to (T, N) for the
@@ -493,9 +522,11 @@ class RtkHeading:
         try:
             h, v = np.broadcast_to(self.heading, shape), np.broadcast_to(self.valid, shape)
         except ValueError:
-            raise ValueError(f"rtk: expected heading and valid broadcastable to the shape {shape} of {of}, got "
-                             f"{self.heading.shape} and {self.valid.shape}") from None
-        return kernel_array(h.reshape(-1, shape[-1])), kernel_array(v.reshape(-1, shape[-1]))   # writable
+            raise ValueError(
+                f"rtk: expected heading and valid broadcastable to the shape {shape} of {of}, got "
+                f"{self.heading.shape} and {self.valid.shape}"
+            ) from None
+        return kernel_array(h.reshape(-1, shape[-1])), kernel_array(v.reshape(-1, shape[-1]))  # writable
 
 
 @dataclass(frozen=True)
@@ -518,6 +549,7 @@ class AttitudeResult:
     P_history : ndarray, shape (..., N, 4, 4) or None
         Covariance after every sample (``quaternion_kf(..., keep_cov=True)``).
     """
+
     q_bn: np.ndarray
     gyro_bias: np.ndarray
     faults: FaultReport
@@ -530,8 +562,9 @@ class AttitudeResult:
         return attitude.quat_to_euler(self.q_bn)
 
 
-def pack(imu: ImuSamples, q0: Quat, m_b: ArrayLike | None, rtk: RtkHeading | None, B_n: Vec3 | None,
-         gates: AttitudeGates, kp: float) -> tuple[tuple[int, ...], AttitudeInputs, FaultReport]:
+def pack(
+    imu: ImuSamples, q0: Quat, m_b: ArrayLike | None, rtk: RtkHeading | None, B_n: Vec3 | None, gates: AttitudeGates, kp: float
+) -> tuple[tuple[int, ...], AttitudeInputs, FaultReport]:
     """Screen the samples once (:func:`navlib.robust.screen`), apply the gates, and build the kernels' record.
 
     The arguments are those of :func:`navlib.filters.mahony.mahony`. Returns ``(lead, inputs, faults)``:
@@ -553,7 +586,7 @@ def pack(imu: ImuSamples, q0: Quat, m_b: ArrayLike | None, rtk: RtkHeading | Non
     s = screen(imu, m_b)
     lead, (N, T) = imu.w_ib_b.shape[:-2], (imu.n, int(np.prod(imu.w_ib_b.shape[:-2])))
     q = broadcast_to(as_quat(q0, "q0"), "q0", lead + (4,), of="the trials of imu")
-    q = np.array(q.reshape(T, 4), order="C")                  # a writable copy: one kernel signature
+    q = np.array(q.reshape(T, 4), order="C")  # a writable copy: one kernel signature
     limits = np.array([0.0, np.inf, 0.0, np.inf, -2.0, 2.0])  # |f|^2 low/high, |m|^2 low/high, sin(dip) low/high
     if gates.accel_tol is not None:
         limits[0:2] = (gates.g * max(1 - gates.accel_tol, 0.0)) ** 2, (gates.g * (1 + gates.accel_tol)) ** 2
@@ -565,11 +598,20 @@ def pack(imu: ImuSamples, q0: Quat, m_b: ArrayLike | None, rtk: RtkHeading | Non
     use_mag = s.m_b is not None
     m, skip_m = (s.m_b, flags["mag", "saturated"]) if use_mag else (np.zeros((1, 1, 3)), np.zeros((1, 1), bool))
     z, codes = np.empty((T, N, 6)), np.empty((2, T, N), dtype=np.int8)
-    run_trials(_gate, T, kernel_array(imu.f_b.reshape(T, N, 3)), kernel_array(m.reshape(-1, m.shape[-2], 3)),
-               kernel_array(skip_f.reshape(T, N)), kernel_array(skip_m.reshape(-1, skip_m.shape[-1])), limits, z, codes)
+    run_trials(
+        _gate,
+        T,
+        kernel_array(imu.f_b.reshape(T, N, 3)),
+        kernel_array(m.reshape(-1, m.shape[-2], 3)),
+        kernel_array(skip_f.reshape(T, N)),
+        kernel_array(skip_m.reshape(-1, skip_m.shape[-1])),
+        limits,
+        z,
+        codes,
+    )
     jump = kernel_array(flags["clock", "jump"].reshape(-1, N)[0])
     found = {key: v for key, v in flags.items() if key not in (("accel", "nan"), ("mag", "nan"))}
-    for i, sensor in enumerate(("accel", "mag")[:1 + use_mag]):        # the screen's skips are counted there
+    for i, sensor in enumerate(("accel", "mag")[: 1 + use_mag]):  # the screen's skips are counted there
         found[sensor, "nan"] = (codes[i] == 1).reshape(lead + (N,))
         found[sensor, "outlier"] = (codes[i] == 2).reshape(lead + (N,))
     if rtk is not None:
@@ -579,10 +621,24 @@ def pack(imu: ImuSamples, q0: Quat, m_b: ArrayLike | None, rtk: RtkHeading | Non
         hdg, ok, rtk_par = np.zeros((1, 1)), np.zeros((1, 1), dtype=bool), np.array([0.0, np.inf, 0.0])
     long_hold = imu.limits.stuck_samples(s.typical_dt) or SensorLimits().stuck_samples(s.typical_dt)
     w = kernel_array(s.w_ib_b.reshape(T, N, 3))
-    inputs = AttitudeInputs(q, w, kernel_array(s.fresh.reshape(T, N)), z, hdg, ok, rtk is not None, use_mag, s.dt,
-                            jump, s.typical_dt, _still(w, imu.f_b.reshape(T, N, 3), gates.g) if jump.any() else
-                            np.zeros((1, 1), dtype=bool), max(1, round(STILL_WINDOW / s.typical_dt)), rtk_par,
-                            long_hold, SETTLE_TIME_CONSTANTS / kp if kp > 0 else 0.0)
+    inputs = AttitudeInputs(
+        q,
+        w,
+        kernel_array(s.fresh.reshape(T, N)),
+        z,
+        hdg,
+        ok,
+        rtk is not None,
+        use_mag,
+        s.dt,
+        jump,
+        s.typical_dt,
+        _still(w, imu.f_b.reshape(T, N, 3), gates.g) if jump.any() else np.zeros((1, 1), dtype=bool),
+        max(1, round(STILL_WINDOW / s.typical_dt)),
+        rtk_par,
+        long_hold,
+        SETTLE_TIME_CONSTANTS / kp if kp > 0 else 0.0,
+    )
     return lead, inputs, FaultReport({key: v.sum(-1) for key, v in found.items()}, found)
 
 
@@ -622,8 +678,15 @@ def run_trials(kernel: Callable, n_trials: int, *args) -> None:
     run_chunks(lambda t0, t1: kernel(t0, t1, *args), integer(n_trials, "n_trials"))
 
 
-def attitude_result(lead: tuple[int, ...], q_out: np.ndarray, bias: np.ndarray, counts: np.ndarray,
-                    found: FaultReport, P: np.ndarray | None = None, P_hist: np.ndarray | None = None) -> AttitudeResult:
+def attitude_result(
+    lead: tuple[int, ...],
+    q_out: np.ndarray,
+    bias: np.ndarray,
+    counts: np.ndarray,
+    found: FaultReport,
+    P: np.ndarray | None = None,
+    P_hist: np.ndarray | None = None,
+) -> AttitudeResult:
     """Assemble an :class:`AttitudeResult` from kernel outputs over T flattened trials (leading shape ``lead``):
     the faults :func:`pack` found, plus the kernel's RTK ``counts`` (T, 4)."""
     N = q_out.shape[1]
@@ -631,6 +694,10 @@ def attitude_result(lead: tuple[int, ...], q_out: np.ndarray, bias: np.ndarray, 
     for i, key in enumerate(_RTK_COUNTS):
         if counts[:, i].any():
             total[key] = total.get(key, 0) + counts[:, i].reshape(lead)
-    return AttitudeResult(q_out.reshape(lead + (N, 4)), bias.reshape(lead + (3,)), FaultReport(total, found.flags),
-                          None if P is None else P.reshape(lead + (4, 4)),
-                          None if P_hist is None else P_hist.reshape(lead + (N, 4, 4)))
+    return AttitudeResult(
+        q_out.reshape(lead + (N, 4)),
+        bias.reshape(lead + (3,)),
+        FaultReport(total, found.flags),
+        None if P is None else P.reshape(lead + (4, 4)),
+        None if P_hist is None else P_hist.reshape(lead + (N, 4, 4)),
+    )

@@ -90,6 +90,7 @@ saturated samples (its :class:`~navlib.robust.FaultReport`); it has no redundanc
 in-range outlier, and it integrates every interval as given (no clock-jump or
 stuck check).
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -116,17 +117,27 @@ from .._validate import (
 from ..imu import SensorLimits
 from ..robust import FaultReport, stuck_samples
 
-__all__ = ["CHANNELS", "motion_model", "jacobian", "propagate", "dead_reckoning", "filter_grid", "EkfConfig",
-           "EkfResult", "covariance"]
+__all__ = [
+    "CHANNELS",
+    "motion_model",
+    "jacobian",
+    "propagate",
+    "dead_reckoning",
+    "filter_grid",
+    "EkfConfig",
+    "EkfResult",
+    "covariance",
+]
 
 _HEADING = 2
-_FAULT_SENSORS = ("gnss", "heading", "speed", "yaw_rate")        # CHANNELS in the FaultReport vocabulary
+_FAULT_SENSORS = ("gnss", "heading", "speed", "yaw_rate")  # CHANNELS in the FaultReport vocabulary
 _ANGLE_MASK = np.array([False, False, True, False, False])
 
 
 # --------------------------------------------------------------------------
 # Motion model, Eqs. (13) and (16)
 # --------------------------------------------------------------------------
+
 
 @njit(cache=True)
 def _f(X, T):
@@ -179,10 +190,11 @@ def jacobian(X: ArrayLike, T: float) -> Array:
 # Propagation
 # --------------------------------------------------------------------------
 
+
 @njit(cache=True)
 def _propagate(x0, T, speed, yaw_rate):
     X = np.empty((speed.shape[0] + 1, 5))
-    for i in range(5):                  # element by element: an array assignment compiles numba's shape messages
+    for i in range(5):  # element by element: an array assignment compiles numba's shape messages
         X[0, i] = x0[i]
     X[0, 3], X[0, 4] = speed[0], yaw_rate[0]
     for k in range(speed.shape[0]):
@@ -194,8 +206,9 @@ def _propagate(x0, T, speed, yaw_rate):
     return X
 
 
-def propagate(x0: ArrayLike, T: float, n_steps: int | None = None, speed: ArrayLike | None = None,
-              yaw_rate: ArrayLike | None = None) -> Array:
+def propagate(
+    x0: ArrayLike, T: float, n_steps: int | None = None, speed: ArrayLike | None = None, yaw_rate: ArrayLike | None = None
+) -> Array:
     """Noise-free states from Eq. (13): ``X_k+1 = f(X_k)``.
 
     Parameters
@@ -230,6 +243,7 @@ def propagate(x0: ArrayLike, T: float, n_steps: int | None = None, speed: ArrayL
 # Dead reckoning
 # --------------------------------------------------------------------------
 
+
 @njit(cache=True)
 def _dead_reckon(t, speed, yaw_rate, usable, x0, velocity_bias, jump, t_nominal):
     n = t.shape[0]
@@ -237,18 +251,24 @@ def _dead_reckon(t, speed, yaw_rate, usable, x0, velocity_bias, jump, t_nominal)
     out[0, 0], out[0, 1], out[0, 2] = x0[0], x0[1], x0[2]
     v, w = x0[3], x0[4]
     for k in range(1, n):
-        if usable[k - 1]:                   # else hold the previous speed and yaw rate
+        if usable[k - 1]:  # else hold the previous speed and yaw rate
             v, w = speed[k - 1], yaw_rate[k - 1]
-        T = t_nominal if jump[k] else t[k] - t[k - 1]     # a clock jump: one typical step, not the jump
+        T = t_nominal if jump[k] else t[k] - t[k - 1]  # a clock jump: one typical step, not the jump
         out[k, 0] = out[k - 1, 0] + (v * np.cos(out[k - 1, 2]) + velocity_bias[0]) * T
         out[k, 1] = out[k - 1, 1] + (v * np.sin(out[k - 1, 2]) + velocity_bias[1]) * T
         out[k, 2] = out[k - 1, 2] + w * T
     return out
 
 
-def dead_reckoning(t: Times, speed: ArrayLike, yaw_rate: ArrayLike, x0: ArrayLike,
-                   velocity_bias: ArrayLike = (0.0, 0.0), full_scale_gyro: float | None = None,
-                   max_dt: float | None = None) -> tuple[Array, FaultReport]:
+def dead_reckoning(
+    t: Times,
+    speed: ArrayLike,
+    yaw_rate: ArrayLike,
+    x0: ArrayLike,
+    velocity_bias: ArrayLike = (0.0, 0.0),
+    full_scale_gyro: float | None = None,
+    max_dt: float | None = None,
+) -> tuple[Array, FaultReport]:
     """Integrate measured speed and yaw rate from ``x0`` with the motion model (no GPS).
 
     Dead reckoning has no redundancy, so it cannot detect an outlier inside
@@ -294,11 +314,14 @@ def dead_reckoning(t: Times, speed: ArrayLike, yaw_rate: ArrayLike, x0: ArrayLik
     yaw_rate = same_shape(as_array(yaw_rate, "yaw_rate", allow_nan=True), "yaw_rate", t.shape, of="t")
     x0 = as_array(x0, "x0", shape=(5,))
     bias = as_array(velocity_bias, "velocity_bias", shape=(2,))
-    with np.errstate(invalid="ignore"):                     # NaN compares False
-        flags = {("speed", "nan"): np.isnan(speed), ("yaw_rate", "nan"): np.isnan(yaw_rate),
-                 ("yaw_rate", "saturated"): np.abs(yaw_rate) >= range_limit(full_scale_gyro, "full_scale_gyro")}
+    with np.errstate(invalid="ignore"):  # NaN compares False
+        flags = {
+            ("speed", "nan"): np.isnan(speed),
+            ("yaw_rate", "nan"): np.isnan(yaw_rate),
+            ("yaw_rate", "saturated"): np.abs(yaw_rate) >= range_limit(full_scale_gyro, "full_scale_gyro"),
+        }
     for held in flags.values():
-        held[-1] = False                                    # the last sample drives no step
+        held[-1] = False  # the last sample drives no step
     usable = ~(flags["speed", "nan"] | flags["yaw_rate", "nan"] | flags["yaw_rate", "saturated"])
     dts = np.diff(t)
     t_nominal = float(np.median(dts))
@@ -314,6 +337,7 @@ def dead_reckoning(t: Times, speed: ArrayLike, yaw_rate: ArrayLike, x0: ArrayLik
 # A specialised update for the common epoch (H = I5, every component present): the same
 # Joseph-form update as kalman.update, written with fixed-size loops and preallocated work
 # arrays (about 5x faster than the general kernel, which handles dropouts and any H).
+
 
 @njit(cache=True)
 def _mul(A, B, out):
@@ -351,12 +375,12 @@ def _cholesky_solve(S, B, L, out):
                 acc -= L[i, m] * L[j, m]
             L[i, j] = acc / L[j, j]
     for c in range(B.shape[1]):
-        for i in range(5):                  # forward: L w = b
+        for i in range(5):  # forward: L w = b
             acc = B[i, c]
             for m in range(i):
                 acc -= L[i, m] * out[m, c]
             out[i, c] = acc / L[i, i]
-        for i in range(4, -1, -1):          # back: L^T u = w
+        for i in range(4, -1, -1):  # back: L^T u = w
             acc = out[i, c]
             for m in range(i + 1, 5):
                 acc -= L[m, i] * out[m, c]
@@ -372,31 +396,31 @@ def _update_identity_h(x, P, z, R, gate, w):
         for j in range(5):
             S[i, j] = 0.5 * (P[i, j] + P[j, i]) + R[i, j]
     y[_HEADING, 0] = wrap_pi(y[_HEADING, 0])
-    _cholesky_solve(S, y[:, :1], L, tmp)                 # S^-1 y
+    _cholesky_solve(S, y[:, :1], L, tmp)  # S^-1 y
     nis = 0.0
     for i in range(5):
         nis += y[i, 0] * tmp[i, 0]
     if nis > gate:
         return nis, kalman.REJECTED
-    _cholesky_solve(S, P, L, Kt)                         # K^T = S^-1 P  (K = P S^-1)
+    _cholesky_solve(S, P, L, Kt)  # K^T = S^-1 P  (K = P S^-1)
     for i in range(5):
         for j in range(5):
             x[i] += Kt[j, i] * y[j, 0]
             A[i, j] = (1.0 if i == j else 0.0) - Kt[j, i]  # I - K
     _mul(A, P, tmp)
-    _mul_bt(tmp, A, P)                                   # (I - K) P (I - K)^T
+    _mul_bt(tmp, A, P)  # (I - K) P (I - K)^T
     for i in range(5):
         for j in range(5):
             acc = 0.0
             for m in range(5):
                 acc += Kt[m, i] * R[m, j]
-            KR[i, j] = acc                               # K R
+            KR[i, j] = acc  # K R
     for i in range(5):
         for j in range(5):
             acc = 0.0
             for m in range(5):
                 acc += KR[i, m] * Kt[m, j]
-            tmp[i, j] = acc                              # K R K^T
+            tmp[i, j] = acc  # K R K^T
     for i in range(5):
         for j in range(i, 5):
             v = 0.5 * (P[i, j] + P[j, i] + tmp[i, j] + tmp[j, i])
@@ -433,7 +457,7 @@ def _gate_groups(x, P, z, R, gate, zu, rejected_row, streak, reacquire, reacquir
             nis = y1 * y1 / s11
         if nis <= gate[0]:
             streak[0] = 0
-        elif streak[0] >= reacquire:                       # inflate P so the sample takes over
+        elif streak[0] >= reacquire:  # inflate P so the sample takes over
             streak[0] = 0
             reacquired_row[0] = True
             if f0:
@@ -474,13 +498,13 @@ def _gate_and_censor(x, P, z, R, gate, gate_on, rail, zu, rejected_row, streak, 
     for i in range(5):
         zu[i] = z[i]
     if at_rail:
-        zu[4] = np.nan                                     # a rail sample is not gated ...
+        zu[4] = np.nan  # a rail sample is not gated ...
     n_rej = 0
-    if gate_on:                                            # gate each group, fuse the rest
+    if gate_on:  # gate each group, fuse the rest
         n_rej = _gate_groups(x, P, zu, R, gate, zu, rejected_row, streak, reacquire, reacquired_row)
     if at_rail and (x[4] < rail if rail > 0 else x[4] > rail):
-        zu[4] = rail                                       # ... it only says |omega| >= range: pull a prediction
-    return n_rej                                           # inside the rails to the rail, skip one beyond already
+        zu[4] = rail  # ... it only says |omega| >= range: pull a prediction
+    return n_rej  # inside the rails to the rail, skip one beyond already
 
 
 @njit(cache=True)
@@ -488,7 +512,7 @@ def _add_scaled(P, Q, s):
     """P += Q * s, element by element (an array expression compiles numba's shape-error message: seconds)."""
     for i in range(5):
         for j in range(5):
-            P[i, j] += Q[i, j] * s                   # (x * 1.0 is x: the plain sum's bits)
+            P[i, j] += Q[i, j] * s  # (x * 1.0 is x: the plain sum's bits)
 
 
 @njit(cache=True)
@@ -524,27 +548,26 @@ def _ekf_kernel(t, Z, x0, P0, Q, R, gate, reacquire, fast, rail, jump_steps):
     _store(X, Ps, 0, x, P)
     for k in range(1, n):
         T = t[k] - t[k - 1]
-        if jump_steps[k] > 0.0:                            # clock jump: state held, Q for every nominal step
+        if jump_steps[k] > 0.0:  # clock jump: state held, Q for every nominal step
             _add_scaled(P, Q, jump_steps[k])
         else:
-            Phi = _phi(x, T)                               # Eq. (16) at the previous estimate
+            Phi = _phi(x, T)  # Eq. (16) at the previous estimate
             _mul(Phi, P, Phi_P)
             _mul_bt(Phi_P, Phi, P)
-            _add_scaled(P, Q, 1.0)                         # P = Phi P Phi^T + Gamma Q Gamma^T, Gamma = I
-            x = _f(x, T)                                   # Eq. (13)
+            _add_scaled(P, Q, 1.0)  # P = Phi P Phi^T + Gamma Q Gamma^T, Gamma = I
+            x = _f(x, T)  # Eq. (13)
         z = Z[k]
         at_rail = not np.isnan(rail[k])
         n_rej = 0
         if gate_on or at_rail:
-            n_rej = _gate_and_censor(x, P, z, R, gate, gate_on, rail[k], zu, rejected[k], streak, reacquire,
-                                     reacquired[k])
-        if n_rej > 0 or at_rail:                           # gated or saturated: the general kernel on zu
+            n_rej = _gate_and_censor(x, P, z, R, gate, gate_on, rail[k], zu, rejected[k], streak, reacquire, reacquired[k])
+        if n_rej > 0 or at_rail:  # gated or saturated: the general kernel on zu
             x, P, _, nis[k], status[k] = _kernels.kalman_update(x, P, zu, x, H, R, _ANGLE_MASK, np.inf)
             if n_rej > 0:
                 status[k] = kalman.REJECTED
         elif fast and np.all(np.isfinite(z)):
             nis[k], status[k] = _update_identity_h(x, P, z, R, np.inf, w)
-        else:                                              # dropouts: the general kernel
+        else:  # dropouts: the general kernel
             x, P, _, nis[k], status[k] = _kernels.kalman_update(x, P, z, x, H, R, _ANGLE_MASK, np.inf)
         x[_HEADING] = np.mod(x[_HEADING], 2 * np.pi)
         _store(X, Ps, k, x, P)
@@ -568,8 +591,9 @@ def covariance(M: ArrayLike, name: str) -> Array:
 def _gate(gate):
     g = as_array(gate, "gate", finite=False)
     if g.shape not in ((), (4,)) or np.any(np.isnan(g)) or not np.all(g > 0):
-        raise ValueError(f"gate: expected a positive NIS threshold (inf for none) or 4 of them "
-                         f"(gps, heading, speed, yaw_rate), got {gate!r}")
+        raise ValueError(
+            f"gate: expected a positive NIS threshold (inf for none) or 4 of them (gps, heading, speed, yaw_rate), got {gate!r}"
+        )
     return kernel_array(np.broadcast_to(g, (4,)), dtype=float)
 
 
@@ -613,6 +637,7 @@ class EkfConfig:
         Use the specialised H = I5 update when every component is present (default; False:
         :func:`navlib.kalman.update` at every epoch; same result).
     """
+
     Q: ArrayLike
     R: ArrayLike
     P0: ArrayLike | None = None
@@ -664,6 +689,7 @@ class EkfResult:
     origin_gk : ndarray, shape (2,), or None
         GK coordinates (north, east; m) subtracted from the projected fixes (None from :func:`filter_grid`).
     """
+
     t: np.ndarray
     x: np.ndarray
     P: np.ndarray
@@ -707,17 +733,22 @@ def filter_grid(t: Times, z: ArrayLike, x0: ArrayLike, config: EkfConfig) -> Ekf
     instance(config, "config", EkfConfig, "an EkfConfig (navlib.filters.planar_ekf)")
     epochs = _screen_epochs(t, z, config.limits)
     X, P, nis, status, rejected, reacquired = _ekf_kernel(
-        t, epochs.z, x0, config.P0, config.Q, config.R, config.gate, config.reacquire, config.fast, epochs.rail,
-        epochs.jump_steps)
-    missing = np.stack([~np.all(np.isfinite(z[:, :2]), axis=1), np.isnan(z[:, 2]), np.isnan(z[:, 3]),
-                        np.isnan(z[:, 4])], -1)
-    missing[0] = False                                      # x0 holds at the first epoch
+        t, epochs.z, x0, config.P0, config.Q, config.R, config.gate, config.reacquire, config.fast, epochs.rail, epochs.jump_steps
+    )
+    missing = np.stack([~np.all(np.isfinite(z[:, :2]), axis=1), np.isnan(z[:, 2]), np.isnan(z[:, 3]), np.isnan(z[:, 4])], -1)
+    missing[0] = False  # x0 holds at the first epoch
     flags = {}
     for i, sensor in enumerate(_FAULT_SENSORS):
-        flags[sensor, "nan"], flags[sensor, "outlier"], flags[sensor, "reacquired"] = \
-            missing[:, i], rejected[:, i], reacquired[:, i]
-    flags["yaw_rate", "saturated"], flags["yaw_rate", "stuck"], flags["clock", "jump"] = \
-        epochs.saturated, epochs.stuck, epochs.jump
+        flags[sensor, "nan"], flags[sensor, "outlier"], flags[sensor, "reacquired"] = (
+            missing[:, i],
+            rejected[:, i],
+            reacquired[:, i],
+        )
+    flags["yaw_rate", "saturated"], flags["yaw_rate", "stuck"], flags["clock", "jump"] = (
+        epochs.saturated,
+        epochs.stuck,
+        epochs.jump,
+    )
     faults = FaultReport({key: int(mask[1:].sum()) for key, mask in flags.items()}, flags)
     prediction_only = status == kalman.NO_DATA
     prediction_only[0] = False
@@ -726,9 +757,10 @@ def filter_grid(t: Times, z: ArrayLike, x0: ArrayLike, config: EkfConfig) -> Ekf
 
 class _Epochs(NamedTuple):
     """The measurements after :func:`_screen_epochs`: what the kernel fuses, and the faults found."""
-    z: np.ndarray               # stuck yaw-rate samples set to NaN (skipped)
-    rail: np.ndarray            # the rail value +-full_scale_gyro where the yaw rate is at the rails, else NaN
-    jump_steps: np.ndarray      # nominal steps spanned by a clock jump, 0 elsewhere
+
+    z: np.ndarray  # stuck yaw-rate samples set to NaN (skipped)
+    rail: np.ndarray  # the rail value +-full_scale_gyro where the yaw rate is at the rails, else NaN
+    jump_steps: np.ndarray  # nominal steps spanned by a clock jump, 0 elsewhere
     saturated: np.ndarray
     stuck: np.ndarray
     jump: np.ndarray
@@ -744,11 +776,11 @@ def _screen_epochs(t, z, limits: SensorLimits) -> _Epochs:
     jump_steps[jump] = dts[jump[1:]] / t_nominal
     fs = limits.full_scale_gyro
     with np.errstate(invalid="ignore"):
-        saturated = np.abs(z[:, 4]) >= fs                   # NaN compares False
+        saturated = np.abs(z[:, 4]) >= fs  # NaN compares False
     rail = np.where(saturated, np.copysign(fs, z[:, 4]), np.nan)
     stuck = stuck_samples(z[:, 4], limits.stuck_samples(t_nominal) or None, full_scale=fs, name="z", axis=-1)
     z_used = z
-    if stuck.any():                                         # stuck yaw rate: skipped like a NaN sample
+    if stuck.any():  # stuck yaw rate: skipped like a NaN sample
         z_used = z.copy()
         z_used[stuck, 4] = np.nan
     return _Epochs(kernel_array(z_used), rail, jump_steps, saturated, stuck, jump)

@@ -21,6 +21,7 @@ error over factors 5, 10, 20, 40 and noises 0.02, 0.1, 0.5 deg/s/sqrt(Hz)) and t
 which they close to 0.9 % (``tests/test_presets.py``); two walks of one wearer and one sensor are thin
 evidence: check the closing error of a loop of your own.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -58,6 +59,7 @@ class FootMounted:
         Gyro bias over the still start (rad/s); give it to :class:`navlib.filters.zupt_ins.Start` too.
     config : navlib.filters.zupt_ins.FilterConfig
     """
+
     window: float
     thresholds: tuple[float, float, float]
     gyro_bias: np.ndarray
@@ -72,8 +74,8 @@ def _statistics(w: np.ndarray, f: np.ndarray, n: int) -> tuple[Array, Array, Arr
     """The detector's statistics over centred windows of n samples: rms|w|, std|f|, |mean|f| - g|."""
     f_norm = np.linalg.norm(f, axis=1)
     mean = analysis.moving_mean(f_norm, n)
-    std = np.sqrt(np.maximum(analysis.moving_mean(f_norm ** 2, n) - mean ** 2, 0.0))
-    return np.sqrt(analysis.moving_mean(np.sum(w ** 2, axis=1), n)), std, np.abs(mean - G0)
+    std = np.sqrt(np.maximum(analysis.moving_mean(f_norm**2, n) - mean**2, 0.0))
+    return np.sqrt(analysis.moving_mean(np.sum(w**2, axis=1), n)), std, np.abs(mean - G0)
 
 
 def foot_mounted(imu: ImuSamples, still: ArrayLike) -> FootMounted:
@@ -95,12 +97,15 @@ def foot_mounted(imu: ImuSamples, still: ArrayLike) -> FootMounted:
     rate = 1.0 / float(np.median(imu.dt))
     n = max(5, int(round(FOOT_WINDOW * rate)))
     if np.count_nonzero(mask) < 2 * n:
-        raise ValueError(f"still: {np.count_nonzero(mask)} still samples, fewer than two detector windows "
-                         f"({2 * n}); stand still for 2 s at the start of the recording")
+        raise ValueError(
+            f"still: {np.count_nonzero(mask)} still samples, fewer than two detector windows "
+            f"({2 * n}); stand still for 2 s at the start of the recording"
+        )
     w, f = imu.w_ib_b[mask], imu.f_b[mask]
     bias = np.nanmean(w, axis=0)
     s_w, s_f, s_g = (float(np.nanmedian(s)) for s in _statistics(w - bias, f, n))
     thresholds = (FOOT_THRESHOLD_FACTOR * s_w, FOOT_THRESHOLD_FACTOR * s_f, s_g + FOOT_THRESHOLD_FACTOR * s_f)
-    config = zupt_ins.FilterConfig(process=zupt_ins.ProcessNoise(gyro=FOOT_GYRO_NOISE),
-                                   gates=zupt_ins.Gates(zupt=np.inf), update_rate=rate)
+    config = zupt_ins.FilterConfig(
+        process=zupt_ins.ProcessNoise(gyro=FOOT_GYRO_NOISE), gates=zupt_ins.Gates(zupt=np.inf), update_rate=rate
+    )
     return FootMounted(n / rate, thresholds, bias, config)

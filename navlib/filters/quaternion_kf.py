@@ -23,6 +23,7 @@ calls or temporary arrays, in the operation order of the BLAS and LAPACK behind 
 :func:`navlib.kalman.predict` / :func:`navlib.kalman.update` (:func:`navlib._kernels.fma`,
 :func:`navlib._kernels.lu_inverse`): with numpy's OpenBLAS on x86-64 they return the same bits.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -70,6 +71,7 @@ class KfNoise:
     p0 : float
         Initial covariance ``p0 I`` (also after a re-initialisation following a clock jump).
     """
+
     sigma_gyro: float = 1e-3
     sigma_accel: float = 0.02
     sigma_mag: float = 0.08
@@ -82,10 +84,11 @@ class KfNoise:
 
 class _Model(NamedTuple):
     """Measurement and noise model of the kernel."""
-    b_ref: np.ndarray               # (3,) reference [0, b_y, b_z]
-    sigmas: np.ndarray              # (3,) gyro, accelerometer, magnetometer noise
-    p0: float                       # initial covariance p0 I
-    linear_innovation: bool         # the printed z - H q (erratum E003-12), for its demonstration only
+
+    b_ref: np.ndarray  # (3,) reference [0, b_y, b_z]
+    sigmas: np.ndarray  # (3,) gyro, accelerometer, magnetometer noise
+    p0: float  # initial covariance p0 I
+    linear_innovation: bool  # the printed z - H q (erratum E003-12), for its demonstration only
 
 
 @njit(cache=True, inline="always")
@@ -184,8 +187,12 @@ def transition(w: Vec3, dt: float) -> Array:
     c = 0.5 * dt
     wx, wy, wz = np.moveaxis(w, -1, 0)
     o = np.ones_like(wx)
-    rows = [[o, -c * wx, -c * wy, -c * wz], [c * wx, o, c * wz, -c * wy],
-            [c * wy, -c * wz, o, c * wx], [c * wz, c * wy, -c * wx, o]]
+    rows = [
+        [o, -c * wx, -c * wy, -c * wz],
+        [c * wx, o, c * wz, -c * wy],
+        [c * wy, -c * wz, o, c * wx],
+        [c * wz, c * wy, -c * wx, o],
+    ]
     return np.stack([np.stack(r, -1) for r in rows], -2)
 
 
@@ -222,6 +229,7 @@ def _copy4(dst, src):
 # OpenBLAS's small-matrix kernels, a matrix-vector product is summed as OpenBLAS's gemv does, and
 # the inverse is _kernels.lu_inverse. Written out here, the per-sample cost is arithmetic, not library
 # calls and temporary arrays.
+
 
 @njit(cache=True, inline="always")
 def _mm(C, A, B, n, kk, m):
@@ -284,10 +292,10 @@ def _predict(x, P, Phi, G, q_gyro, ws):
     (A, B, C, D, _, _), (v, _, _), _ = ws
     for i in range(4):
         for j in range(3):
-            A[i, j] = G[i, j] * q_gyro + 0.0     # Gamma Q: the zeros of Q add +0
-    _mm_t(B, A, G, 4, 3, 4)                      # Gamma Q Gamma^T
+            A[i, j] = G[i, j] * q_gyro + 0.0  # Gamma Q: the zeros of Q add +0
+    _mm_t(B, A, G, 4, 3, 4)  # Gamma Q Gamma^T
     _mm(C, Phi, P, 4, 4, 4)
-    _mm_t(D, C, Phi, 4, 4, 4)                    # Phi P Phi^T
+    _mm_t(D, C, Phi, 4, 4, 4)  # Phi P Phi^T
     _mat_vec(v, Phi, x, 4, 4)
     for i in range(4):
         x[i] = v[i]
@@ -323,7 +331,7 @@ def _update(x, P, z, h, H, r_diag, ws):
 def _joseph(x, P, r_diag, ws, m):
     """:func:`_update` with its m rows selected (``Hs``, ``ys``, ``rows`` of ``ws``)."""
     (Hs, PHt, S, K, A, B), (ys, v, work), (rows, ipiv) = ws
-    _mm_t(PHt, P, Hs, 4, 4, m)                   # P H^T
+    _mm_t(PHt, P, Hs, 4, 4, m)  # P H^T
     _mm(S, Hs, PHt, m, 4, m)
     for a in range(m):
         for b in range(m):
@@ -331,18 +339,18 @@ def _joseph(x, P, r_diag, ws, m):
     for a in range(m):
         for b in range(a + 1, m):
             S[a, b] = S[b, a] = (S[a, b] + S[b, a]) / 2
-    _kernels.lu_inverse(S, m, ipiv, work)        # S^-1 (S is symmetric positive definite)
-    _mm(K, PHt, S, 4, m, m)                      # gain
+    _kernels.lu_inverse(S, m, ipiv, work)  # S^-1 (S is symmetric positive definite)
+    _mm(K, PHt, S, 4, m, m)  # gain
     _mm(A, K, Hs, 4, m, 4)
     for i in range(4):
         for j in range(4):
-            A[i, j] = (1.0 if i == j else 0.0) - A[i, j]       # I - K H
+            A[i, j] = (1.0 if i == j else 0.0) - A[i, j]  # I - K H
     _mm(B, A, P, 4, 4, 4)
-    _mm_t(S, B, A, 4, 4, 4)                      # (I - K H) P (I - K H)^T
+    _mm_t(S, B, A, 4, 4, 4)  # (I - K H) P (I - K H)^T
     for i in range(4):
         for b in range(m):
-            B[i, b] = K[i, b] * r_diag[rows[b]] + 0.0         # K R: the zeros of R add +0
-    _mm_t(A, B, K, 4, m, 4)                      # K R K^T
+            B[i, b] = K[i, b] * r_diag[rows[b]] + 0.0  # K R: the zeros of R add +0
+    _mm_t(A, B, K, 4, m, 4)  # K R K^T
     _mat_vec(v, K, ys, 4, m)
     for i in range(4):
         x[i] = x[i] + v[i]
@@ -376,39 +384,50 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
     ix = iy = iz = 0.0
     for k in range(N):
         dt, gx, gy, gz = dts[k], w[t, k, 0], w[t, k, 1], w[t, k, 2]
-        if inp.jump[k]:                                 # clock jump: one typical interval, then check
+        if inp.jump[k]:  # clock jump: one typical interval, then check
             dt = jump_step(inp, check, rtk, health)
         ax, ay, az, mx, my, mz, C = observe(inp.z, t, k, x[0], x[1], x[2], x[3])
         if inp.use_rtk:
             mx, my, mz = rtk_north(inp, t, k, C, dt, rtk, counts)
-        ex, ey, ez = pi_error(C, ax, ay, az, mx, my, mz)                # PI-corrected rate, Eq. (15)
-        if learning(inp.fresh[t, k], dt, health, inp):                 # Eq. (15), unless settling after a fault
+        ex, ey, ez = pi_error(C, ax, ay, az, mx, my, mz)  # PI-corrected rate, Eq. (15)
+        if learning(inp.fresh[t, k], dt, health, inp):  # Eq. (15), unless settling after a fault
             ix += ex * dt
             iy += ey * dt
             iz += ez * dt
         _phi_into(Phi, gx + kp * ex + ki * ix, gy + kp * ey + ki * iy, gz + kp * ez + ki * iz, dt)
         _gamma_into(G, x, dt)
-        _predict(x, P, Phi, G, sg * sg, ws)                                # Eqs. (16)-(18)
-        z[0], z[1], z[2], z[3], z[4], z[5] = ax, ay, az, mx, my, mz         # NaN rows: skipped
-        _jacobian_into(H, x, by, bz)                                        # Eq. (20)
+        _predict(x, P, Phi, G, sg * sg, ws)  # Eqs. (16)-(18)
+        z[0], z[1], z[2], z[3], z[4], z[5] = ax, ay, az, mx, my, mz  # NaN rows: skipped
+        _jacobian_into(H, x, by, bz)  # Eq. (20)
         if model.linear_innovation:
-            _mat_vec(h, H, x, 6, 4)                                         # printed Eq. (19): wrong (E003-12)
+            _mat_vec(h, H, x, 6, 4)  # printed Eq. (19): wrong (E003-12)
         else:
-            _h_into(h, x, by, bz)                                           # z - h(q), Eq. (19) corrected
+            _h_into(h, x, by, bz)  # z - h(q), Eq. (19) corrected
         _update(x, P, z, h, H, r_diag, ws)
         s = np.sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2] + x[3] * x[3])
         x[0], x[1], x[2], x[3] = x[0] / s, x[1] / s, x[2] / s, x[3] / s
         x[0], x[1], x[2], x[3], lost = relock(inp, t, k, x[0], x[1], x[2], x[3], check, rtk, health)
-        if lost:                                        # re-initialised after a jump: covariance back to p0 I
+        if lost:  # re-initialised after a jump: covariance back to p0 I
             _copy4(P, model.p0 * np.eye(4))
         _output(t, k, x, P, q_out, P_hist, keep)
     bias_out[t, 0], bias_out[t, 1], bias_out[t, 2] = -ki * ix, -ki * iy, -ki * iz
     _copy4(P_out[t], P)
 
 
-def quaternion_kf(imu: ImuSamples, q0: Quat, *, m_b: Vec3Series | None = None, rtk: RtkHeading | None = None,
-                  B_n: Vec3 | None = None, kp: float = 1.0, ki: float | None = None, gates: AttitudeGates = AttitudeGates(),
-                  noise: KfNoise = KfNoise(), keep_cov: bool = False, linear_innovation: bool = False) -> AttitudeResult:
+def quaternion_kf(
+    imu: ImuSamples,
+    q0: Quat,
+    *,
+    m_b: Vec3Series | None = None,
+    rtk: RtkHeading | None = None,
+    B_n: Vec3 | None = None,
+    kp: float = 1.0,
+    ki: float | None = None,
+    gates: AttitudeGates = AttitudeGates(),
+    noise: KfNoise = KfNoise(),
+    keep_cov: bool = False,
+    linear_innovation: bool = False,
+) -> AttitudeResult:
     """Quaternion Kalman filter driven by the PI-corrected rate (Eqs. 16-20, Fig. 2 of Zhang et al. 2023).
 
     Per sample: the Mahony error of the current estimate gives the rate (Eq. 15);
@@ -444,7 +463,7 @@ def quaternion_kf(imu: ImuSamples, q0: Quat, *, m_b: Vec3Series | None = None, r
         raise ValueError("B_n: the quaternion KF needs the local field for its magnetometer reference")
     lead, inp, found = pack(imu, q0, m_b, rtk, B_n, gates, kp)
     T, N = inp.w.shape[:2]
-    b = magnetic_reference(B_n)[0] if inp.use_mag else np.array([0.0, 1.0, 0.0])   # RTK: north
+    b = magnetic_reference(B_n)[0] if inp.use_mag else np.array([0.0, 1.0, 0.0])  # RTK: north
     sig = np.array([noise.sigma_gyro, noise.sigma_accel, noise.sigma_mag], dtype=float)
     model = _Model(b, sig, float(noise.p0), flag(linear_innovation, "linear_innovation"))
     keep_cov = flag(keep_cov, "keep_cov")

@@ -30,6 +30,7 @@ Phi's non-zero blocks.
 Used by paper 004 (Wen et al. 2016, :mod:`navlib.papers.pedestrian_ins`), which assembles them
 with barometer and magnetometer aiding into its filter.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -43,17 +44,29 @@ from .._validate import as_array, as_dcm, imu_samples, interval, positive, scala
 from ..imu import ImuSamples, unpack
 from ..units import G0
 
-__all__ = ["STATIC_THRESHOLDS", "detect_static", "error_state_matrix", "error_model_fd", "zupt_zaru_matrix",
-           "zupt_zaru_innovation"]
+__all__ = [
+    "STATIC_THRESHOLDS",
+    "detect_static",
+    "error_state_matrix",
+    "error_model_fd",
+    "zupt_zaru_matrix",
+    "zupt_zaru_innovation",
+]
 
 STATIC_THRESHOLDS = (0.05, 0.1, 0.3)
 """Default static-detector thresholds: gyro rms (rad/s), std of |f| and the distance of mean |f| from g
 (m/s^2); starting values to tune per sensor and wearer."""
 
 
-def detect_static(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None, dt: float | None = None,
-                  window: float = 0.5, gyro_bias: Vec3 = (0.0, 0.0, 0.0), thresholds: ArrayLike = STATIC_THRESHOLDS,
-                  g: float = G0) -> NDArray[np.bool_]:
+def detect_static(
+    w_ib_b: Vec3Series | ImuSamples,
+    f_b: Vec3Series | None = None,
+    dt: float | None = None,
+    window: float = 0.5,
+    gyro_bias: Vec3 = (0.0, 0.0, 0.0),
+    thresholds: ArrayLike = STATIC_THRESHOLDS,
+    g: float = G0,
+) -> NDArray[np.bool_]:
     """Static (standing) detector from gyro and accelerometer statistics.
 
     Static when, over a centred window of ``window`` seconds, all hold:
@@ -87,10 +100,10 @@ def detect_static(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None
     static : ndarray of bool, shape (N,)
     """
     w, f, dt, _, _ = unpack(w_ib_b, f_b, dt)
-    if isinstance(w_ib_b, ImuSamples):                # validated on construction
+    if isinstance(w_ib_b, ImuSamples):  # validated on construction
         if w.ndim != 2:
             raise ValueError(f"w_ib_b: expected one record of shape (N, 3), got {w.shape}")
-        dt = float(np.median(dt))                  # the nominal interval of its per-sample intervals
+        dt = float(np.median(dt))  # the nominal interval of its per-sample intervals
     else:
         w, f = imu_samples(w, f, shape=(None, 3))
         dt = interval(dt)
@@ -99,14 +112,15 @@ def detect_static(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None
         w, f = np.where(valid[:, None], w, 0.0), np.where(valid[:, None], f, 0.0)
     n = int(round(scalar(window, "window", positive=True) / dt))
     if n < 2 or n > w.shape[0]:
-        raise ValueError(f"window: expected 2 samples up to the record's {w.shape[0]}, got {window} s at "
-                         f"dt = {dt:g} s ({n:g} samples)")
+        raise ValueError(
+            f"window: expected 2 samples up to the record's {w.shape[0]}, got {window} s at dt = {dt:g} s ({n:g} samples)"
+        )
     b = as_array(gyro_bias, "gyro_bias", shape=(3,))
     tw, tf, tg = positive(as_array(thresholds, "thresholds", shape=(3,)), "thresholds")
     g = scalar(g, "g", positive=True)
     w2 = np.sum((w - b) ** 2, -1)
     fn = np.linalg.norm(f, axis=-1)
-    share = None if valid.all() else analysis.moving_mean(valid.astype(float), n)   # fraction of valid samples per window
+    share = None if valid.all() else analysis.moving_mean(valid.astype(float), n)  # fraction of valid samples per window
 
     def mean(x):
         if share is None:
@@ -114,7 +128,7 @@ def detect_static(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None
         return analysis.moving_mean(np.where(valid, x, 0.0), n) / np.maximum(share, 0.5 / n)
 
     f_mean = mean(fn)
-    f_var = np.maximum(mean(fn ** 2) - f_mean ** 2, 0.0)
+    f_var = np.maximum(mean(fn**2) - f_mean**2, 0.0)
     static = (np.sqrt(mean(w2)) < tw) & (np.sqrt(f_var) < tf) & (np.abs(f_mean - g) < tg)
     if not valid.all():
         static &= share >= 0.5
@@ -153,19 +167,27 @@ def _transition_into(out, A, C_dt, f_dt, dt):
     """
     f0, f1, f2 = f_dt[0], f_dt[1], f_dt[2]
     for j in range(15):
-        for a in range(3):                          # position rows: I, I dt
+        for a in range(3):  # position rows: I, I dt
             out[a, j] = fma(dt, A[3 + a, j], A[a, j] + 0.0)
         # velocity rows: I, -[f_n dt x] (zero diagonal), C dt
-        out[3, j] = fma(C_dt[0, 2], A[11, j], fma(C_dt[0, 1], A[10, j], fma(C_dt[0, 0], A[9, j],
-                        fma(-f1, A[8, j], fma(f2, A[7, j], A[3, j] + 0.0)))))
-        out[4, j] = fma(C_dt[1, 2], A[11, j], fma(C_dt[1, 1], A[10, j], fma(C_dt[1, 0], A[9, j],
-                        fma(f0, A[8, j], fma(-f2, A[6, j], A[4, j] + 0.0)))))
-        out[5, j] = fma(C_dt[2, 2], A[11, j], fma(C_dt[2, 1], A[10, j], fma(C_dt[2, 0], A[9, j],
-                        fma(-f0, A[7, j], fma(f1, A[6, j], A[5, j] + 0.0)))))
-        for a in range(3):                          # attitude rows: I, C dt
-            out[6 + a, j] = fma(C_dt[a, 2], A[14, j], fma(C_dt[a, 1], A[13, j],
-                                fma(C_dt[a, 0], A[12, j], A[6 + a, j] + 0.0)))
-        for i in range(9, 15):                      # bias rows: I
+        out[3, j] = fma(
+            C_dt[0, 2],
+            A[11, j],
+            fma(C_dt[0, 1], A[10, j], fma(C_dt[0, 0], A[9, j], fma(-f1, A[8, j], fma(f2, A[7, j], A[3, j] + 0.0)))),
+        )
+        out[4, j] = fma(
+            C_dt[1, 2],
+            A[11, j],
+            fma(C_dt[1, 1], A[10, j], fma(C_dt[1, 0], A[9, j], fma(f0, A[8, j], fma(-f2, A[6, j], A[4, j] + 0.0)))),
+        )
+        out[5, j] = fma(
+            C_dt[2, 2],
+            A[11, j],
+            fma(C_dt[2, 1], A[10, j], fma(C_dt[2, 0], A[9, j], fma(-f0, A[7, j], fma(f1, A[6, j], A[5, j] + 0.0)))),
+        )
+        for a in range(3):  # attitude rows: I, C dt
+            out[6 + a, j] = fma(C_dt[a, 2], A[14, j], fma(C_dt[a, 1], A[13, j], fma(C_dt[a, 0], A[12, j], A[6 + a, j] + 0.0)))
+        for i in range(9, 15):  # bias rows: I
             out[i, j] = A[i, j] + 0.0
 
 
@@ -179,15 +201,15 @@ def error_state_predict_into(P, C_dt, f_dt, dt, q, work):
     where BLAS's dgemm sums in order with fused multiply-adds (OpenBLAS on x86-64), to rounding elsewhere.
     """
     FP, FPT = work[0], work[1]
-    _transition_into(FP, P, C_dt, f_dt, dt)                 # Phi P
+    _transition_into(FP, P, C_dt, f_dt, dt)  # Phi P
     for i in range(15):
         for j in range(15):
             FPT[j, i] = FP[i, j]
     MT = work[0]
-    _transition_into(MT, FPT, C_dt, f_dt, dt)               # (Phi P Phi^T)^T = Phi (Phi P)^T
+    _transition_into(MT, FPT, C_dt, f_dt, dt)  # (Phi P Phi^T)^T = Phi (Phi P)^T
     for i in range(15):
         MT[i, i] += q[i]
-    for i in range(15):                                     # (M + M^T) / 2, one half computed
+    for i in range(15):  # (M + M^T) / 2, one half computed
         for j in range(i, 15):
             P[i, j] = P[j, i] = (MT[j, i] + MT[i, j]) / 2
 
@@ -222,7 +244,7 @@ def _error_rate(dx, C_true, f_true):
     C_hat = attitude.rotvec_to_dcm(dpsi) @ C_true
     dv_rate = C_hat @ (f_true + dba) - C_true @ f_true
     th = np.linalg.norm(dpsi)
-    c = 1 / 12 + th * th / 720 if th < 1e-4 else 1 / th ** 2 - (1 + np.cos(th)) / (2 * th * np.sin(th))
+    c = 1 / 12 + th * th / 720 if th < 1e-4 else 1 / th**2 - (1 + np.cos(th)) / (2 * th * np.sin(th))
     S = attitude.skew(dpsi)
     dpsi_rate = (np.eye(3) - S / 2 + c * S @ S) @ (C_hat @ dbg)
     return np.concatenate([dx[3:6], dv_rate, dpsi_rate, np.zeros(6)])
@@ -298,8 +320,7 @@ def zupt_zaru_innovation(vel_n: Vec3, w_ib_b: Vec3, b_g: Vec3, C_bn: Dcm, w_ie_n
     w_ie_n : array_like, shape (3,)
         Earth rate in ENU (rad/s).
     """
-    args = [as_array(a, n, shape=(3,)) for a, n in
-            ((vel_n, "vel_n"), (w_ib_b, "w_ib_b"), (b_g, "b_g"), (w_ie_n, "w_ie_n"))]
+    args = [as_array(a, n, shape=(3,)) for a, n in ((vel_n, "vel_n"), (w_ib_b, "w_ib_b"), (b_g, "b_g"), (w_ie_n, "w_ie_n"))]
     C = as_dcm(as_array(C_bn, "C_bn", shape=(3, 3)))
     z = np.empty(6)
     zupt_zaru_z_into(z, args[0], args[1], args[2], np.ascontiguousarray(C), args[3])

@@ -45,6 +45,7 @@ Beyond the paper: the Earth-rate block ``-C^T [w_ie x]`` of H (:mod:`navlib.filt
 accelerometer process noise five times the MPU-6050 density to cover the scale-factor and cross-axis
 errors the 15-state model leaves out (:class:`ProcessNoise`).
 """
+
 from __future__ import annotations
 
 import warnings
@@ -62,8 +63,18 @@ from ..strapdown import earth_constants
 from ..units import G0
 from .zupt import error_state_predict_into, zupt_zaru_rows_into, zupt_zaru_z_into
 
-__all__ = ["Start", "Aiding", "ProcessNoise", "MeasurementNoise", "InitialSigma", "Gates", "BaroTracker",
-           "FilterConfig", "FilterResult", "run_filter"]
+__all__ = [
+    "Start",
+    "Aiding",
+    "ProcessNoise",
+    "MeasurementNoise",
+    "InitialSigma",
+    "Gates",
+    "BaroTracker",
+    "FilterConfig",
+    "FilterResult",
+    "run_filter",
+]
 
 _MAX_LATITUDE = np.deg2rad(89.9)
 """Largest |latitude| of :class:`Start` (rad): the ENU mechanisation is singular at the poles."""
@@ -90,6 +101,7 @@ class Start:
     time : float
         Time of the first epoch (s).
     """
+
     lla: np.ndarray
     q_bn: np.ndarray
     vel_n: np.ndarray = (0.0, 0.0, 0.0)
@@ -128,6 +140,7 @@ class Aiding:
         Reference field in ENU (uT, e.g. :func:`navlib.earth.magnetic_field`) of the compass gate
         (:class:`Gates` ``mag_field``, ``mag_dip``).
     """
+
     walk: str = "reset"
     zupt: bool = True
     declination: float = 0.0
@@ -151,8 +164,7 @@ class Aiding:
 def _check(record, names: tuple[str, ...], may_be_inf: tuple[str, ...] = ()) -> None:
     """Store each named field of a frozen record as a positive float (inf where allowed)."""
     for name in names:
-        object.__setattr__(record, name, scalar(getattr(record, name), name, positive=True,
-                                                allow_inf=name in may_be_inf))
+        object.__setattr__(record, name, scalar(getattr(record, name), name, positive=True, allow_inf=name in may_be_inf))
 
 
 @dataclass(frozen=True)
@@ -173,6 +185,7 @@ class ProcessNoise:
         sample, the velocity and attitude process noise grow by ``sigma^2 dt`` per held sample, so the
         covariance admits the guess and the next stance's ZUPT/ZARU is not gated out.
     """
+
     accel: float = 0.02
     gyro: float = np.deg2rad(0.005)
     accel_bias_rw: float = 1e-4
@@ -199,6 +212,7 @@ class MeasurementNoise:
     heading : float
         Magnetic heading sigma (rad); default the HMC5983's 2 deg.
     """
+
     zupt: float = 0.01
     zaru: float = np.deg2rad(0.1)
     baro: float = 0.17
@@ -218,6 +232,7 @@ class InitialSigma:
         (m, m/s, rad, rad, m/s^2, rad/s). The bias defaults are the residual biases after a static
         calibration (10 mg, 0.05 deg/s).
     """
+
     pos: float = 0.01
     vel: float = 0.01
     tilt: float = np.deg2rad(0.5)
@@ -256,6 +271,7 @@ class Gates:
         against magnetometer spikes (a 100-sigma spike changes |m| by tens of uT). Default inf: every sample
         is used.
     """
+
     zupt: float = 22.5
     max_rejected: int = 5
     baro: float = 5.0
@@ -276,6 +292,7 @@ class BaroTracker:
     alpha, beta : float
         Gains of the height and of its rate (dimensionless).
     """
+
     alpha: float = 0.2
     beta: float = 0.02
 
@@ -297,6 +314,7 @@ class FilterConfig:
     update_rate : float
         ZUPT/ZARU update rate while static (Hz): the static samples are averaged over ``1 / update_rate``.
     """
+
     process: ProcessNoise = field(default_factory=ProcessNoise)
     measurement: MeasurementNoise = field(default_factory=MeasurementNoise)
     initial: InitialSigma = field(default_factory=InitialSigma)
@@ -305,8 +323,13 @@ class FilterConfig:
     update_rate: float = 10.0
 
     def __post_init__(self):
-        for name, cls in (("process", ProcessNoise), ("measurement", MeasurementNoise), ("initial", InitialSigma),
-                          ("gates", Gates), ("tracker", BaroTracker)):
+        for name, cls in (
+            ("process", ProcessNoise),
+            ("measurement", MeasurementNoise),
+            ("initial", InitialSigma),
+            ("gates", Gates),
+            ("tracker", BaroTracker),
+        ):
             instance(getattr(self, name), name, cls, f"a {cls.__name__}")
         _check(self, ("update_rate",))
 
@@ -316,40 +339,42 @@ class FilterConfig:
 _HOLD_ACCEL, _HOLD_GYRO = 1, 2
 """Bits of :attr:`_Samples.hold`: the accelerometer, the gyro held (process noise inflated)."""
 
-(_ZUPT, _ZUPT_REJECTED, _ZUPT_FORCED, _BARO_AIDED, _MAG_AIDED, _MAG_GATED, _BARO_REJECTED,
- _BARO_REINIT) = range(8)
+(_ZUPT, _ZUPT_REJECTED, _ZUPT_FORCED, _BARO_AIDED, _MAG_AIDED, _MAG_GATED, _BARO_REJECTED, _BARO_REINIT) = range(8)
 """What the kernel counts (its ``counts`` array)."""
 
 
 class _Samples(NamedTuple):
     """Per-sample inputs of :func:`_filter_kernel`: N rows each, SI units, NaN = no reading."""
-    w: np.ndarray                   # (N, 3) gyro (rad/s), held over the rows with the _HOLD_GYRO bit
-    f: np.ndarray                   # (N, 3) accelerometer (m/s^2), held over the rows with hold > 0
-    dt: np.ndarray                  # (N,) interval covered by each sample (s)
-    jump: np.ndarray                # (N,) bool: clock jump, nothing integrated
-    hold: np.ndarray                # (N,) int8: _HOLD_ACCEL | _HOLD_GYRO bits (process noise inflated)
-    static: np.ndarray              # (N,) bool: standing still (no walking aids)
-    zupt: np.ndarray                # (N,) bool: static and usable for ZUPT/ZARU
-    h_baro: np.ndarray              # (N,) barometric height (m)
-    m_b: np.ndarray                 # (N, 3) magnetometer (uT)
+
+    w: np.ndarray  # (N, 3) gyro (rad/s), held over the rows with the _HOLD_GYRO bit
+    f: np.ndarray  # (N, 3) accelerometer (m/s^2), held over the rows with hold > 0
+    dt: np.ndarray  # (N,) interval covered by each sample (s)
+    jump: np.ndarray  # (N,) bool: clock jump, nothing integrated
+    hold: np.ndarray  # (N,) int8: _HOLD_ACCEL | _HOLD_GYRO bits (process noise inflated)
+    static: np.ndarray  # (N,) bool: standing still (no walking aids)
+    zupt: np.ndarray  # (N,) bool: static and usable for ZUPT/ZARU
+    h_baro: np.ndarray  # (N,) barometric height (m)
+    m_b: np.ndarray  # (N, 3) magnetometer (uT)
 
 
 class _State(NamedTuple):
     """The INS state before the first sample (:class:`Start`) and its covariance."""
-    lla: np.ndarray                 # (3,) rad, rad, m
-    vel: np.ndarray                 # (3,) m/s ENU
-    q: np.ndarray                   # (4,)
-    b: np.ndarray                   # (6,) accelerometer then gyro bias
-    p0_diag: np.ndarray             # (15,) initial variances
+
+    lla: np.ndarray  # (3,) rad, rad, m
+    vel: np.ndarray  # (3,) m/s ENU
+    q: np.ndarray  # (4,)
+    b: np.ndarray  # (6,) accelerometer then gyro bias
+    p0_diag: np.ndarray  # (15,) initial variances
 
 
 class _Tuning(NamedTuple):
     """The options of :func:`_filter_kernel` (``r_*`` are variances; see the option records)."""
-    walk: int                       # _WALK code
+
+    walk: int  # _WALK code
     declination: float
-    field_ref: np.ndarray           # (2,) reference intensity (uT) and dip (rad)
-    every: int                      # static samples averaged per ZUPT/ZARU update
-    q_rate: np.ndarray              # (15,) process-noise densities squared (Q = q_rate dt_k)
+    field_ref: np.ndarray  # (2,) reference intensity (uT) and dip (rad)
+    every: int  # static samples averaged per ZUPT/ZARU update
+    q_rate: np.ndarray  # (15,) process-noise densities squared (Q = q_rate dt_k)
     held_accel: float
     held_gyro: float
     r_zupt: float
@@ -363,7 +388,7 @@ class _Tuning(NamedTuple):
     baro_gate: float
     field_tol: float
     dip_tol: float
-    earth_consts: np.ndarray        # (7,) navlib.strapdown.earth_constants
+    earth_consts: np.ndarray  # (7,) navlib.strapdown.earth_constants
 
 
 @njit(cache=True)
@@ -375,7 +400,7 @@ def _feedback(x, lla, vel, q, b, a, e2):
     lla[2] -= x[2]
     for i in range(3):
         vel[i] -= x[3 + i]
-    d0, d1, d2, d3 = _kernels.rotvec_to_quat_t(-x[6], -x[7], -x[8])     # C <- (I - [dpsi x]) C
+    d0, d1, d2, d3 = _kernels.rotvec_to_quat_t(-x[6], -x[7], -x[8])  # C <- (I - [dpsi x]) C
     m0, m1, m2, m3 = _kernels.quat_mult_t(d0, d1, d2, d3, q[0], q[1], q[2], q[3])
     s = np.sqrt(m0 * m0 + m1 * m1 + m2 * m2 + m3 * m3)
     q[0], q[1], q[2], q[3] = m0 / s, m1 / s, m2 / s, m3 / s
@@ -404,20 +429,21 @@ def _reset_state(P, i, sigma):
 class _Work(NamedTuple):
     """Scratch arrays of :func:`_filter_kernel` and its measurement updates: a step without a measurement
     allocates nothing."""
-    q_k: np.ndarray                 # (15,) process noise (diagonal) of a step
-    predict: np.ndarray             # (2, 15, 15) scratch of error_state_predict_into
-    C: np.ndarray                   # (3, 3) C_bn after the step
-    C_dt: np.ndarray                # (3, 3)
-    f_dt: np.ndarray                # (3,) f_n dt
-    w_k: np.ndarray                 # (3,) bias-corrected gyro
-    f_k: np.ndarray                 # (3,) bias-corrected accelerometer
-    w_sum: np.ndarray               # (3,) sum of the static gyro samples since the last ZUPT/ZARU
-    w_ie: np.ndarray                # (3,) Earth rate (ENU)
-    H6: np.ndarray                  # ZUPT/ZARU: H, z, H x, R
+
+    q_k: np.ndarray  # (15,) process noise (diagonal) of a step
+    predict: np.ndarray  # (2, 15, 15) scratch of error_state_predict_into
+    C: np.ndarray  # (3, 3) C_bn after the step
+    C_dt: np.ndarray  # (3, 3)
+    f_dt: np.ndarray  # (3,) f_n dt
+    w_k: np.ndarray  # (3,) bias-corrected gyro
+    f_k: np.ndarray  # (3,) bias-corrected accelerometer
+    w_sum: np.ndarray  # (3,) sum of the static gyro samples since the last ZUPT/ZARU
+    w_ie: np.ndarray  # (3,) Earth rate (ENU)
+    H6: np.ndarray  # ZUPT/ZARU: H, z, H x, R
     z6: np.ndarray
     h6: np.ndarray
     R6: np.ndarray
-    H1: np.ndarray                  # one scalar measurement (height, heading): H, z, H x, R
+    H1: np.ndarray  # one scalar measurement (height, heading): H, z, H x, R
     z1: np.ndarray
     h1: np.ndarray
     R1: np.ndarray
@@ -426,9 +452,25 @@ class _Work(NamedTuple):
 @njit(cache=True)
 def _work(c):
     R6 = np.diag(np.array([c.r_zupt, c.r_zupt, c.r_zupt, c.r_zaru, c.r_zaru, c.r_zaru]))
-    return _Work(np.empty(15), np.empty((2, 15, 15)), np.empty((3, 3)), np.empty((3, 3)), np.empty(3), np.zeros(3),
-                 np.zeros(3), np.zeros(3), np.zeros(3), np.zeros((6, 15)), np.zeros(6), np.zeros(6), R6,
-                 np.zeros((1, 15)), np.zeros(1), np.zeros(1), np.zeros((1, 1)))
+    return _Work(
+        np.empty(15),
+        np.empty((2, 15, 15)),
+        np.empty((3, 3)),
+        np.empty((3, 3)),
+        np.empty(3),
+        np.zeros(3),
+        np.zeros(3),
+        np.zeros(3),
+        np.zeros(3),
+        np.zeros((6, 15)),
+        np.zeros(6),
+        np.zeros(6),
+        R6,
+        np.zeros((1, 15)),
+        np.zeros(1),
+        np.zeros(1),
+        np.zeros((1, 1)),
+    )
 
 
 @njit(cache=True)
@@ -441,12 +483,13 @@ def _zupt_zaru(x, P, lla, vel, q, b, n_sum, forced, c, ws):
     zupt_zaru_z_into(ws.z6, vel, ws.w_sum / n_sum, b[3:6], ws.C, ws.w_ie)
     for i in range(3):
         ws.R6[3 + i, 3 + i] = c.r_zaru / n_sum
-    ws.h6[:] = 0.0                                       # H x, x = 0 between updates (closed loop)
+    ws.h6[:] = 0.0  # H x, x = 0 between updates (closed loop)
     if forced:
         for i in range(3):
             _reset_state(P, 3 + i, max(np.sqrt(P[3 + i, 3 + i]), abs(ws.z6[i] - ws.h6[i])))
-    x, P, _, _, status = _kernels.kalman_update(x, P, ws.z6, ws.h6, ws.H6, ws.R6, np.zeros(6, dtype=np.bool_),
-                                                np.inf if forced else c.gate)
+    x, P, _, _, status = _kernels.kalman_update(
+        x, P, ws.z6, ws.h6, ws.H6, ws.R6, np.zeros(6, dtype=np.bool_), np.inf if forced else c.gate
+    )
     if status == 1:
         _feedback(x, lla, vel, q, b, c.earth_consts[0], c.earth_consts[2])
     return x, P, status
@@ -527,16 +570,16 @@ def _filter_kernel(samples, s0, c):
     x, P = np.zeros(15), np.diag(s0.p0_diag)
     ws = _work(c)
     w_k, f_k, C, C_dt, f_dt, q_k = ws.w_k, ws.f_k, ws.C, ws.C_dt, ws.f_dt, ws.q_k
-    n_sum, n_rejected = 0, 0                             # static samples summed, ZUPTs rejected in this stance
+    n_sum, n_rejected = 0, 0  # static samples summed, ZUPTs rejected in this stance
     hb, vb, tracking, t_baro, n_baro_rejected = 0.0, 0.0, False, 0.0, 0
     _store(0, lla_out, vel_out, q_out, b_out, p_out, lla, vel, q, b, P)
     for k in range(n):
-        dtk = 0.0 if jump[k] else dt[k]                  # a clock jump: no motion integrated over it
+        dtk = 0.0 if jump[k] else dt[k]  # a clock jump: no motion integrated over it
         # --- strapdown INS on the bias-corrected samples ---
         for i in range(3):
             w_k[i] = w[k, i] - b[3 + i]
             f_k[i] = f[k, i] - b[i]
-        _kernels.nav_step(lla, vel, q, w_k, f_k, dtk, c.earth_consts, False)   # the shared mechanisation
+        _kernels.nav_step(lla, vel, q, w_k, f_k, dtk, c.earth_consts, False)  # the shared mechanisation
         # --- P = Phi P Phi^T + Q, Phi = I + F dt; x = Phi x stays 0 (fed back and reset at each update) ---
         _kernels.quat_to_dcm_into(C, q)
         f_n = _kernels.mat3_vec(C, f_k)
@@ -546,14 +589,14 @@ def _filter_kernel(samples, s0, c):
                 C_dt[i, j] = C[i, j] * dtk
         for i in range(15):
             q_k[i] = c.q_rate[i] * dtk
-        if hold[k] > 0:                                  # a held sample is a guess: inflate, don't trust
+        if hold[k] > 0:  # a held sample is a guess: inflate, don't trust
             for i in range(3):
                 if hold[k] & _HOLD_ACCEL:
                     q_k[3 + i] += c.held_accel * c.held_accel * dtk
                 if hold[k] & _HOLD_GYRO:
                     q_k[6 + i] += c.held_gyro * c.held_gyro * dtk
         error_state_predict_into(P, C_dt, f_dt, dtk, q_k, ws.predict)
-        if jump[k]:                                      # Phi = I, Q = 0 above: add the whole interval's noise
+        if jump[k]:  # Phi = I, Q = 0 above: add the whole interval's noise
             for i in range(15):
                 P[i, i] += c.q_rate[i] * dt[k]
         # --- standing still: ZUPT/ZARU every `every` usable samples ---
@@ -577,8 +620,7 @@ def _filter_kernel(samples, s0, c):
             ws.w_sum[:], n_sum, n_rejected = 0.0, 0, 0
         # --- barometer: the tracker always, the height aid while walking ---
         if np.isfinite(h_baro[k]):
-            hb, vb, tracking, n_baro_rejected, used, event = _track_baro(h_baro[k], hb, vb, tracking, t_baro,
-                                                                         n_baro_rejected, c)
+            hb, vb, tracking, n_baro_rejected, used, event = _track_baro(h_baro[k], hb, vb, tracking, t_baro, n_baro_rejected, c)
             if event == 1:
                 counts[_BARO_REJECTED] += 1
             elif event == 2:
@@ -589,7 +631,7 @@ def _filter_kernel(samples, s0, c):
                     counts[_BARO_AIDED] += 1
                     x, P = _height_aid(x, P, lla, vel, q, b, hb, vb, h_baro[k], c, ws)
         hb += vb * dtk
-        t_baro += dt[k]                                  # (dtk but for a jump, 0: keeps t_baro > 0)
+        t_baro += dt[k]  # (dtk but for a jump, 0: keeps t_baro > 0)
         # --- compass heading while walking ---
         if c.walk > 0 and not static[k] and _finite_row(m_b, k):
             x, P, used = _heading_aid(x, P, lla, vel, q, b, m_b[k], c, ws)
@@ -635,6 +677,7 @@ class FilterResult:
         filter's own (``zupt``, ``baro``, ``mag``; see the module's list), e.g. ``result.faults["gyro", "nan"]``,
         ``result.faults.flags["zupt", "refused"]``.
     """
+
     nav: trajectory.Trajectory
     accel_bias: np.ndarray
     gyro_bias: np.ndarray
@@ -672,14 +715,24 @@ def _samples(s: robust.Screened, static: np.ndarray, h_baro: np.ndarray, zupt: b
     if both[0]:
         raise ValueError("imu: expected a valid first sample (dropouts are held from the last good one)")
     if falling[0]:
-        raise ValueError(f"imu: expected a valid first sample, got |f| = {np.linalg.norm(s.imu.f_b[0]):.3g} m/s^2 "
-                         f"< freefall_accel = {s.imu.limits.freefall_accel:g} (free fall is held from the last good one)")
+        raise ValueError(
+            f"imu: expected a valid first sample, got |f| = {np.linalg.norm(s.imu.f_b[0]):.3g} m/s^2 "
+            f"< freefall_accel = {s.imu.limits.freefall_accel:g} (free fall is held from the last good one)"
+        )
     jump = flags["clock", "jump"]
     usable = ~(both | frozen | falling | flags["gyro", "saturated"] | flags["accel", "saturated"] | jump)
     hold = (np.where(both | frozen, _HOLD_GYRO, 0) | np.where(both | falling, _HOLD_ACCEL, 0)).astype(np.int8)
-    samples = _Samples(w=_held(s.w_ib_b, ~both), f=_held(s.imu.f_b, ~(both | falling)), dt=s.dt,
-                       jump=kernel_array(jump), hold=hold, static=static, zupt=static & usable & zupt,
-                       h_baro=h_baro, m_b=_mag_samples(s))
+    samples = _Samples(
+        w=_held(s.w_ib_b, ~both),
+        f=_held(s.imu.f_b, ~(both | falling)),
+        dt=s.dt,
+        jump=kernel_array(jump),
+        hold=hold,
+        static=static,
+        zupt=static & usable & zupt,
+        h_baro=h_baro,
+        m_b=_mag_samples(s),
+    )
     return samples, static & ~usable & zupt
 
 
@@ -698,9 +751,13 @@ def _faults(s: robust.Screened, refused: np.ndarray, counts: np.ndarray) -> robu
     flags = {key: v for key, v in s.faults.flags.items() if key != ("mag", "nan")}
     flags["zupt", "refused"] = refused
     totals = {key: v.sum(-1) for key, v in flags.items()}
-    for key, i in ((("zupt", "outlier"), _ZUPT_REJECTED), (("zupt", "reacquired"), _ZUPT_FORCED),
-                   (("baro", "outlier"), _BARO_REJECTED), (("baro", "reacquired"), _BARO_REINIT),
-                   (("mag", "outlier"), _MAG_GATED)):
+    for key, i in (
+        (("zupt", "outlier"), _ZUPT_REJECTED),
+        (("zupt", "reacquired"), _ZUPT_FORCED),
+        (("baro", "outlier"), _BARO_REJECTED),
+        (("baro", "reacquired"), _BARO_REINIT),
+        (("mag", "outlier"), _MAG_GATED),
+    ):
         totals[key] = int(counts[i])
     return robust.FaultReport(totals, flags)
 
@@ -708,26 +765,62 @@ def _faults(s: robust.Screened, refused: np.ndarray, counts: np.ndarray) -> robu
 def _tuning(aiding: Aiding, config: FilterConfig, typical_dt: float, ellipsoid: earth.Ellipsoid) -> _Tuning:
     p, r, g = config.process, config.measurement, config.gates
     return _Tuning(
-        walk=_WALK[aiding.walk], declination=aiding.declination, field_ref=aiding.field_reference(),
+        walk=_WALK[aiding.walk],
+        declination=aiding.declination,
+        field_ref=aiding.field_reference(),
         every=max(1, int(round(1.0 / (config.update_rate * typical_dt)))),
-        q_rate=np.concatenate([np.zeros(3), np.full(3, p.accel ** 2), np.full(3, p.gyro ** 2),
-                               np.full(3, p.accel_bias_rw ** 2), np.full(3, p.gyro_bias_rw ** 2)]),
-        held_accel=p.held_accel, held_gyro=p.held_gyro,
-        r_zupt=r.zupt ** 2, r_zaru=r.zaru ** 2, r_baro=r.baro ** 2, r_heading=r.heading ** 2,
-        alpha=config.tracker.alpha, beta=config.tracker.beta,
-        gate=g.zupt, max_rejected=g.max_rejected, baro_gate=g.baro, field_tol=g.mag_field, dip_tol=g.mag_dip,
-        earth_consts=earth_constants(ellipsoid))
+        q_rate=np.concatenate(
+            [
+                np.zeros(3),
+                np.full(3, p.accel**2),
+                np.full(3, p.gyro**2),
+                np.full(3, p.accel_bias_rw**2),
+                np.full(3, p.gyro_bias_rw**2),
+            ]
+        ),
+        held_accel=p.held_accel,
+        held_gyro=p.held_gyro,
+        r_zupt=r.zupt**2,
+        r_zaru=r.zaru**2,
+        r_baro=r.baro**2,
+        r_heading=r.heading**2,
+        alpha=config.tracker.alpha,
+        beta=config.tracker.beta,
+        gate=g.zupt,
+        max_rejected=g.max_rejected,
+        baro_gate=g.baro,
+        field_tol=g.mag_field,
+        dip_tol=g.mag_dip,
+        earth_consts=earth_constants(ellipsoid),
+    )
 
 
 def _state(start: Start, sigma: InitialSigma) -> _State:
-    p0 = np.array([sigma.pos] * 3 + [sigma.vel] * 3 + [sigma.tilt] * 2 + [sigma.heading]
-                  + [sigma.accel_bias] * 3 + [sigma.gyro_bias] * 3) ** 2
-    return _State(lla=start.lla, vel=start.vel_n, q=start.q_bn, b=np.concatenate([start.accel_bias, start.gyro_bias]),
-                  p0_diag=p0)
+    p0 = (
+        np.array(
+            [sigma.pos] * 3
+            + [sigma.vel] * 3
+            + [sigma.tilt] * 2
+            + [sigma.heading]
+            + [sigma.accel_bias] * 3
+            + [sigma.gyro_bias] * 3
+        )
+        ** 2
+    )
+    return _State(lla=start.lla, vel=start.vel_n, q=start.q_bn, b=np.concatenate([start.accel_bias, start.gyro_bias]), p0_diag=p0)
 
 
-def run_filter(imu: ImuSamples, start: Start, static, *, h_baro=None, m_b=None, aiding: Aiding = Aiding(),
-               config: FilterConfig = FilterConfig(), ellipsoid: earth.Ellipsoid = earth.WGS84) -> FilterResult:
+def run_filter(
+    imu: ImuSamples,
+    start: Start,
+    static,
+    *,
+    h_baro=None,
+    m_b=None,
+    aiding: Aiding = Aiding(),
+    config: FilterConfig = FilterConfig(),
+    ellipsoid: earth.Ellipsoid = earth.WGS84,
+) -> FilterResult:
     """The paper's system: strapdown INS + ZUPT/ZARU Kalman filter + walking aids.
 
     Parameters
@@ -766,18 +859,33 @@ def run_filter(imu: ImuSamples, start: Start, static, *, h_baro=None, m_b=None, 
     if imu.w_ib_b.ndim != 2:
         raise ValueError(f"imu: expected one record of shape (N, 3), got {imu.w_ib_b.shape}")
     if s.typical_dt > s.max_dt:
-        raise ValueError(f"imu: expected a median interval below limits.max_dt = {s.max_dt:g} s (longer intervals "
-                         f"are clock jumps, not integrated), got {s.typical_dt:g} s")
+        raise ValueError(
+            f"imu: expected a median interval below limits.max_dt = {s.max_dt:g} s (longer intervals "
+            f"are clock jumps, not integrated), got {s.typical_dt:g} s"
+        )
     static = kernel_array(booleans(static, "static", shape=(n,)))
     h_baro = np.full(n, np.nan) if h_baro is None else as_array(h_baro, "h_baro", allow_nan=True, shape=(n,))
     samples, refused = _samples(s, static, kernel_array(h_baro), aiding.zupt)
-    lla, vel, q, b, p_diag, counts, P = _filter_kernel(samples, _state(start, config.initial),
-                                                       _tuning(aiding, config, s.typical_dt, ellipsoid))
+    lla, vel, q, b, p_diag, counts, P = _filter_kernel(
+        samples, _state(start, config.initial), _tuning(aiding, config, s.typical_dt, ellipsoid)
+    )
     time = start.time + (dts[0] * np.arange(n + 1) if np.all(dts == dts[0]) else np.concatenate([[0.0], np.cumsum(dts)]))
-    result = FilterResult(trajectory.Trajectory(time, lla, vel, q), b[:, :3], b[:, 3:], p_diag, P,
-                          zupt_updates=int(counts[_ZUPT]), baro_aidings=int(counts[_BARO_AIDED]),
-                          mag_aidings=int(counts[_MAG_AIDED]), faults=_faults(s, refused, counts))
+    result = FilterResult(
+        trajectory.Trajectory(time, lla, vel, q),
+        b[:, :3],
+        b[:, 3:],
+        p_diag,
+        P,
+        zupt_updates=int(counts[_ZUPT]),
+        baro_aidings=int(counts[_BARO_AIDED]),
+        mag_aidings=int(counts[_MAG_AIDED]),
+        faults=_faults(s, refused, counts),
+    )
     if aiding.zupt and not result.updated:
-        warnings.warn("run_filter: no ZUPT/ZARU update was applied (no static interval detected); "
-                      "the output is a free INS with walking aids only", RuntimeWarning, stacklevel=2)
+        warnings.warn(
+            "run_filter: no ZUPT/ZARU update was applied (no static interval detected); "
+            "the output is a free INS with walking aids only",
+            RuntimeWarning,
+            stacklevel=2,
+        )
     return result

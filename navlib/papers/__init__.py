@@ -10,6 +10,7 @@ imports core modules only -- never another companion -- and generic machinery go
 core (see CONTRIBUTING.md). ``tools/reproduce.py``, ``tools/readme.py`` and the tests read
 :data:`PAPERS`; a notebook that is not registered fails the tests.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -58,9 +59,11 @@ REAL_DATA = "06_real_recordings"
 """Notebook 06: the methods on public real recordings (no paper)."""
 REAL_REFERENCES = "07_real_references"
 """Notebook 07: attitude filters against an optical reference (BROAD benchmark; no paper)."""
-CHAPTERS: dict[str, str] = {CONVENTIONS: "conventions, sensor models, strapdown error theory",
-                            REAL_DATA: "the methods on public real recordings (data/real/)",
-                            REAL_REFERENCES: "attitude filters against motion-capture references (BROAD)"}
+CHAPTERS: dict[str, str] = {
+    CONVENTIONS: "conventions, sensor models, strapdown error theory",
+    REAL_DATA: "the methods on public real recordings (data/real/)",
+    REAL_REFERENCES: "attitude filters against motion-capture references (BROAD)",
+}
 """The notebooks that reproduce no paper, with their one-line titles."""
 
 PAPERS: tuple[Paper, ...] = (

@@ -43,6 +43,7 @@ ellipsoid ``earth.CGCS2000``, the paper's datum):
 The paper writes L for longitude and W for latitude; the functions take ``lat``, ``lon`` in rad
 unless ``deg=True`` and return metres.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -68,9 +69,26 @@ from .._validate import ellipsoid as ellipsoid_
 from ..earth import CGCS2000, Ellipsoid
 from ..filters.planar_ekf import EkfConfig, EkfResult, covariance, filter_grid, propagate
 
-__all__ = ["Q_PAPER", "R_PAPER", "PAPER_CONFIG", "MAX_STEPS", "printed_zone_number", "paper_radii", "printed_meridian_radius",
-           "paper_meridian_arc", "paper_series", "waypoint_path", "ekf", "simulate_sensors", "Sensors",
-           "dead_reckoning_error_ms", "ekf_error_ms", "draw_zones", "draw_zone_grid", "draw_block_diagram"]
+__all__ = [
+    "Q_PAPER",
+    "R_PAPER",
+    "PAPER_CONFIG",
+    "MAX_STEPS",
+    "printed_zone_number",
+    "paper_radii",
+    "printed_meridian_radius",
+    "paper_meridian_arc",
+    "paper_series",
+    "waypoint_path",
+    "ekf",
+    "simulate_sensors",
+    "Sensors",
+    "dead_reckoning_error_ms",
+    "ekf_error_ms",
+    "draw_zones",
+    "draw_zone_grid",
+    "draw_block_diagram",
+]
 
 Q_PAPER = np.diag([1.0, 1.0, 0.01, 0.0001, 0.0016])
 """Process noise per step, Eq. (17) (SI reading: m², m², rad², m²/s², rad²/s²)."""
@@ -81,6 +99,7 @@ R_PAPER = np.diag([6.25, 6.25, 0.01, 0.0004, 0.0025])
 # --------------------------------------------------------------------------
 # The paper's projection equations, Eqs. (1)-(11) (checks and errata demonstrations)
 # --------------------------------------------------------------------------
+
 
 def _ell(ellipsoid) -> Ellipsoid:
     return ellipsoid_(ellipsoid)
@@ -124,8 +143,8 @@ def paper_radii(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = Fal
     a, b = ellipsoid.a, ellipsoid.b
     e1 = np.sqrt(a * a - b * b) / a
     e2 = np.sqrt(a * a - b * b) / b
-    R_N = (a * a / b) / np.sqrt(1 + e2 ** 2 * np.cos(W) ** 2)
-    R_M = a * (1 - e1 ** 2) / (1 - e1 ** 2 * np.sin(W) ** 2) ** 1.5
+    R_N = (a * a / b) / np.sqrt(1 + e2**2 * np.cos(W) ** 2)
+    R_M = a * (1 - e1**2) / (1 - e1**2 * np.sin(W) ** 2) ** 1.5
     return e1, e2, R_N, R_M
 
 
@@ -134,7 +153,7 @@ def printed_meridian_radius(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg
     _ell(ellipsoid)
     W = latitude(lat, "lat", deg=deg, nonempty=True)
     e1, e2, _, _ = paper_radii(0.0, ellipsoid)
-    return ellipsoid.a ** 2 * (1 - e1 ** 2) / np.sqrt((1 + e2 ** 2 * np.sin(W) ** 2) ** 1.5)
+    return ellipsoid.a**2 * (1 - e1**2) / np.sqrt((1 + e2**2 * np.sin(W) ** 2) ** 1.5)
 
 
 def paper_meridian_arc(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False, order: int = 8) -> Array:
@@ -160,18 +179,28 @@ def paper_meridian_arc(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: boo
 def _meridian_arc(W, W_linear, ellipsoid: Ellipsoid, order: int = 8):
     """Eq. (7) with the latitude ``W_linear`` in its linear term ``A W`` (W itself unless E002-04's degrees are shown)."""
     e2 = ellipsoid.e2
-    e4, e6, e8 = (e2 ** k if 2 * k <= order else 0.0 for k in (2, 3, 4))
+    e4, e6, e8 = (e2**k if 2 * k <= order else 0.0 for k in (2, 3, 4))
     A = 1 + 3 / 4 * e2 + 45 / 64 * e4 + 175 / 256 * e6 + 11025 / 16384 * e8
     B = 3 / 4 * e2 + 15 / 16 * e4 + 525 / 512 * e6 + 2205 / 2048 * e8
     C = 15 / 64 * e4 + 105 / 256 * e6 + 2205 / 4096 * e8
     D = 35 / 512 * e6 + 315 / 2048 * e8
     E = 315 / 16384 * e8
-    return ellipsoid.a * (1 - e2) * (A * W_linear - B / 2 * np.sin(2 * W) + C / 4 * np.sin(4 * W)
-                                     - D / 6 * np.sin(6 * W) + E / 8 * np.sin(8 * W))
+    return (
+        ellipsoid.a
+        * (1 - e2)
+        * (A * W_linear - B / 2 * np.sin(2 * W) + C / 4 * np.sin(4 * W) - D / 6 * np.sin(6 * W) + E / 8 * np.sin(8 * W))
+    )
 
 
-def paper_series(lat: ArrayLike, lon: ArrayLike, lon0: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False,
-                 typos: bool = False, printed_units: bool = False) -> tuple[Array, Array]:
+def paper_series(
+    lat: ArrayLike,
+    lon: ArrayLike,
+    lon0: ArrayLike,
+    ellipsoid: Ellipsoid = CGCS2000,
+    deg: bool = False,
+    typos: bool = False,
+    printed_units: bool = False,
+) -> tuple[Array, Array]:
     """The paper's sixth-order GK series, Eqs. (7)–(11): northing x and easting y (m).
 
     With ``t = tan W``, ``eta^2 = e2^2 cos^2 W`` and ``N = R_N``::
@@ -204,14 +233,26 @@ def paper_series(lat: ArrayLike, lon: ArrayLike, lon0: ArrayLike, ellipsoid: Ell
     l = l_deg if printed_units else np.deg2rad(l_deg)
     _, e2, N, _ = paper_radii(W, ellipsoid)
     t2 = np.tan(W) ** 2
-    eta2 = e2 ** 2 * np.cos(W) ** 2
+    eta2 = e2**2 * np.cos(W) ** 2
     s, c = np.sin(W), np.cos(W)
-    sixth = (N / 72 if typos else N / 720) * l ** 6 * s * c ** 5 \
-        * (61 - 58 * t2 + t2 ** 2 + 270 * (eta2 ** 2 if typos else eta2) - 330 * eta2 * t2)
-    x = (_meridian_arc(W, np.rad2deg(W) if printed_units else W, ellipsoid) + N / 2 * l ** 2 * s * c
-         + N / 24 * l ** 4 * s * c ** 3 * (5 - t2 + 9 * eta2 + 4 * eta2 ** 2) + sixth)
-    y = (N * l * c + N / 6 * l ** 3 * c ** 3 * (1 - t2 + eta2)
-         + N / 120 * l ** 5 * c ** 5 * (5 - 18 * t2 + t2 ** 2 + 14 * eta2 - 58 * eta2 * t2))
+    sixth = (
+        (N / 72 if typos else N / 720)
+        * l**6
+        * s
+        * c**5
+        * (61 - 58 * t2 + t2**2 + 270 * (eta2**2 if typos else eta2) - 330 * eta2 * t2)
+    )
+    x = (
+        _meridian_arc(W, np.rad2deg(W) if printed_units else W, ellipsoid)
+        + N / 2 * l**2 * s * c
+        + N / 24 * l**4 * s * c**3 * (5 - t2 + 9 * eta2 + 4 * eta2**2)
+        + sixth
+    )
+    y = (
+        N * l * c
+        + N / 6 * l**3 * c**3 * (1 - t2 + eta2)
+        + N / 120 * l**5 * c**5 * (5 - 18 * t2 + t2**2 + 14 * eta2 - 58 * eta2 * t2)
+    )
     return x, y
 
 
@@ -282,6 +323,7 @@ def waypoint_path(waypoints, speed: float, turn_rate: float, T: float):
 # The paper's pipeline: GPS lat/lon -> Gauss–Krüger -> EKF
 # --------------------------------------------------------------------------
 
+
 def _forward_fill(values):
     """Replace NaN by the last finite value (the first finite one before it)."""
     if not np.isfinite(values).any():
@@ -293,8 +335,19 @@ PAPER_CONFIG = EkfConfig(Q_PAPER, R_PAPER)
 """The paper's noise, Eqs. (17)-(18), with navlib's default fault handling: the default of :func:`ekf`."""
 
 
-def ekf(t, sensors: Sensors, x0, *, origin=None, zone=None, width: int = 3, ellipsoid: Ellipsoid = CGCS2000,
-        config: EkfConfig = PAPER_CONFIG, correct_convergence: bool = True, deg: bool = False) -> EkfResult:
+def ekf(
+    t,
+    sensors: Sensors,
+    x0,
+    *,
+    origin=None,
+    zone=None,
+    width: int = 3,
+    ellipsoid: Ellipsoid = CGCS2000,
+    config: EkfConfig = PAPER_CONFIG,
+    correct_convergence: bool = True,
+    deg: bool = False,
+) -> EkfResult:
     """The paper's pipeline: GPS lat/lon -> Gauss–Krüger -> EKF with IMU heading, speed, yaw rate.
 
     Faults are handled as in :func:`navlib.filters.planar_ekf.filter_grid` (NaN: skip the component;
@@ -377,6 +430,7 @@ def ekf(t, sensors: Sensors, x0, *, origin=None, zone=None, width: int = 3, elli
 # Simulated sensors for the paper's scenarios
 # --------------------------------------------------------------------------
 
+
 @dataclass
 class Sensors:
     """The robot's measurements, as :func:`ekf` takes them and :func:`simulate_sensors` makes them.
@@ -386,14 +440,25 @@ class Sensors:
     speed : (N,) (m/s); yaw_rate : (N,) (rad/s, clockwise positive).
     NaN marks a missing sample; :func:`ekf` reads the angles in degrees with ``deg=True``.
     """
+
     gps: np.ndarray
     heading: np.ndarray
     speed: np.ndarray
     yaw_rate: np.ndarray
 
 
-def simulate_sensors(truth, origin, R, rng: np.random.Generator, *, zone=None, width: int = 3,
-                     ellipsoid: Ellipsoid = CGCS2000, yaw_rate_bias: float = 0.0, gps_valid=None):
+def simulate_sensors(
+    truth,
+    origin,
+    R,
+    rng: np.random.Generator,
+    *,
+    zone=None,
+    width: int = 3,
+    ellipsoid: Ellipsoid = CGCS2000,
+    yaw_rate_bias: float = 0.0,
+    gps_valid=None,
+):
     """GPS, IMU heading, speed and yaw rate from true grid states: truth + N(0, R).
 
     The GPS noise (sigmas ``sqrt(R[0,0])``, ``sqrt(R[1,1])`` in m) is added in
@@ -442,11 +507,10 @@ def simulate_sensors(truth, origin, R, rng: np.random.Generator, *, zone=None, w
     return Sensors(gps, heading, truth[:, 3] + noise[:, 3], truth[:, 4] + noise[:, 4] + yaw_rate_bias)
 
 
-
-
 # --------------------------------------------------------------------------
 # Expected errors of the paper's simulations (Figs. 4-5), in closed form
 # --------------------------------------------------------------------------
+
 
 def _sensor_sigmas(R, name: str = "R") -> np.ndarray:
     return np.sqrt(np.diag(covariance(R, name)))
@@ -497,12 +561,12 @@ def dead_reckoning_error_ms(truth, T: float, R, yaw_rate_bias: float = 0.0) -> A
     a = truth[:K, 3] * np.exp(1j * truth[:K, 2])
     q = np.exp(1j * b * T - (sigma[4] * T) ** 2 / 2)
     u = q ** np.arange(K)
-    h = np.zeros(K, complex)                                   # h_j = sum_{k<j} conj(a_k) q^(j-k)
+    h = np.zeros(K, complex)  # h_j = sum_{k<j} conj(a_k) q^(j-k)
     for j in range(1, K):
         h[j] = q * (h[j - 1] + np.conj(a[j - 1]))
-    both = np.cumsum(np.abs(a) ** 2 + 2 * np.real(a * h))      # sum over j, k < K of a_j conj(a_k) q^(j-k)
+    both = np.cumsum(np.abs(a) ** 2 + 2 * np.real(a * h))  # sum over j, k < K of a_j conj(a_k) q^(j-k)
     A, Au = np.cumsum(a), np.cumsum(a * u)
-    ms = T ** 2 * (both - np.abs(Au) ** 2 + np.abs(A - Au) ** 2 + np.arange(1, K + 1) * sigma[3] ** 2)
+    ms = T**2 * (both - np.abs(Au) ** 2 + np.abs(A - Au) ** 2 + np.arange(1, K + 1) * sigma[3] ** 2)
     return np.r_[0.0, np.maximum(ms, 0.0)]
 
 
@@ -548,7 +612,7 @@ def ekf_error_ms(truth, T: float, Q=Q_PAPER, R=R_PAPER, P0=None, yaw_rate_bias: 
     eye = np.eye(5)
     for k, Phi in enumerate(jacobian(truth[:-1], T), start=1):
         P = Phi @ P @ Phi.T + Q
-        gain = np.linalg.solve((P + R).T, P.T).T               # P (P + R)^-1
+        gain = np.linalg.solve((P + R).T, P.T).T  # P (P + R)^-1
         A = eye - gain
         P = A @ P @ A.T + gain @ R @ gain.T
         S = A @ (Phi @ S @ Phi.T) @ A.T + gain @ R @ gain.T
@@ -563,6 +627,7 @@ def ekf_error_ms(truth, T: float, Q=Q_PAPER, R=R_PAPER, P0=None, yaw_rate_bias: 
 # the production inverse is navlib.geodesy.gk2geodetic.
 # --------------------------------------------------------------------------
 
+
 def footpoint_latitude(x: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, iterations: int = 8) -> Array:
     """Latitude W_f (rad) whose meridian arc S(W_f) of Eq. (7) equals the northing ``x`` (m): Newton on dS/dW = R_M."""
     _ell(ellipsoid)
@@ -576,8 +641,9 @@ def footpoint_latitude(x: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, iterations
     return W
 
 
-def inverse_series(x: ArrayLike, y: ArrayLike, lon0: ArrayLike, ellipsoid: Ellipsoid = CGCS2000,
-                   deg: bool = False) -> tuple[Array, Array]:
+def inverse_series(
+    x: ArrayLike, y: ArrayLike, lon0: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False
+) -> tuple[Array, Array]:
     """The textbook sixth-order inverse of Eq. (9): latitude and longitude from GK x (north), y (east).
 
     At the footpoint latitude ``W_f`` (:func:`footpoint_latitude`) with ``t = tan W_f``,
@@ -613,11 +679,18 @@ def inverse_series(x: ArrayLike, y: ArrayLike, lon0: ArrayLike, ellipsoid: Ellip
     Wf = footpoint_latitude(x, ellipsoid)
     _, e2, N, M = paper_radii(Wf, ellipsoid)
     t, c = np.tan(Wf), np.cos(Wf)
-    t2, eta2 = t * t, e2 ** 2 * c * c
-    lat = (Wf - t / (2 * M * N) * y ** 2 + t / (24 * M * N ** 3) * (5 + 3 * t2 + eta2 - 9 * eta2 * t2) * y ** 4
-           - t / (720 * M * N ** 5) * (61 + 90 * t2 + 45 * t2 ** 2) * y ** 6)
-    lon = L0 + (y / (N * c) - (1 + 2 * t2 + eta2) * y ** 3 / (6 * N ** 3 * c)
-                + (5 + 28 * t2 + 24 * t2 ** 2 + 6 * eta2 + 8 * eta2 * t2) * y ** 5 / (120 * N ** 5 * c))
+    t2, eta2 = t * t, e2**2 * c * c
+    lat = (
+        Wf
+        - t / (2 * M * N) * y**2
+        + t / (24 * M * N**3) * (5 + 3 * t2 + eta2 - 9 * eta2 * t2) * y**4
+        - t / (720 * M * N**5) * (61 + 90 * t2 + 45 * t2**2) * y**6
+    )
+    lon = L0 + (
+        y / (N * c)
+        - (1 + 2 * t2 + eta2) * y**3 / (6 * N**3 * c)
+        + (5 + 28 * t2 + 24 * t2**2 + 6 * eta2 + 8 * eta2 * t2) * y**5 / (120 * N**5 * c)
+    )
     return (np.rad2deg(lat), np.rad2deg(lon)) if flag(deg, "deg") else (lat, lon)
 
 
@@ -641,18 +714,34 @@ def draw_zones(ax, lon_min: float = 112.5, lon_max: float = 127.5, *, mark: tupl
         ax.axvspan(3 * n - 1.5, 3 * n + 1.5, color="0.93" if n % 2 else "0.85", lw=0)
         ax.axvline(3 * n, color="tab:green", lw=1.4)
         ax.text(3 * n, 0.93, f"zone {n}", transform=ax.get_xaxis_transform(), ha="center", fontsize=8)
-        ax.text(3 * n + 0.1, 0.05, f"$L_0$ = {3 * n}°", transform=ax.get_xaxis_transform(), fontsize=7,
-                color="tab:green", rotation=90, va="bottom")
+        ax.text(
+            3 * n + 0.1,
+            0.05,
+            f"$L_0$ = {3 * n}°",
+            transform=ax.get_xaxis_transform(),
+            fontsize=7,
+            color="tab:green",
+            rotation=90,
+            va="bottom",
+        )
     if mark is not None:
         lat, lon = as_array(mark, "mark", shape=(2,))
         ax.plot(lon, lat, "*", color="k", ms=12)
-        ax.annotate(f"site, zone {int(geodesy.zone(lon, deg=True))}", (lon, lat), xytext=(6, 6),
-                    textcoords="offset points", fontsize=8)
+        ax.annotate(
+            f"site, zone {int(geodesy.zone(lon, deg=True))}", (lon, lat), xytext=(6, 6), textcoords="offset points", fontsize=8
+        )
     ax.set(xlim=(lo, hi), xlabel="longitude L (° E)", ylabel="latitude W (° N)")
 
 
-def draw_zone_grid(ax, zone: int, lat_max: float = 60.0, *, step_deg: float = 0.5,
-                   mark: tuple[float, float] | None = None, ellipsoid: Ellipsoid = CGCS2000) -> None:
+def draw_zone_grid(
+    ax,
+    zone: int,
+    lat_max: float = 60.0,
+    *,
+    step_deg: float = 0.5,
+    mark: tuple[float, float] | None = None,
+    ellipsoid: Ellipsoid = CGCS2000,
+) -> None:
     """One 3° zone drawn in its Gauss–Krüger plane: meridians every ``step_deg`` and parallels every 10°.
 
     The central meridian maps to the straight x axis (north) and the equator to the y axis (east);
@@ -695,8 +784,14 @@ def draw_zone_grid(ax, zone: int, lat_max: float = 60.0, *, step_deg: float = 0.
         x, y = geodesy.geodetic2gk(lat, lon, zone=n, ellipsoid=ellipsoid, deg=True)
         ax.plot(y / 1e3, x / 1e3, "*", color="k", ms=12)
     top_km = geodesy.geodetic2gk(top, L0, zone=n, ellipsoid=ellipsoid, deg=True)[0] / 1e3
-    ax.annotate(f"central meridian $L_0$ = {L0:g}°:\nthe x axis (north)", (0, 0.8 * top_km), xytext=(-120, 0.6 * top_km),
-                fontsize=7, ha="center", arrowprops={"arrowstyle": "-", "color": "0.5", "lw": 0.6})
+    ax.annotate(
+        f"central meridian $L_0$ = {L0:g}°:\nthe x axis (north)",
+        (0, 0.8 * top_km),
+        xytext=(-120, 0.6 * top_km),
+        fontsize=7,
+        ha="center",
+        arrowprops={"arrowstyle": "-", "color": "0.5", "lw": 0.6},
+    )
     ax.set(xlabel="GK easting y (km)", ylabel="GK northing x (km)", ylim=(-600, None))
 
 
@@ -704,17 +799,33 @@ def draw_block_diagram(ax) -> None:
     """Paper Fig. 2 redrawn: GPS through the Gauss–Krüger projection and the IMU into the 5-state EKF."""
     from ..plots import block_diagram  # noqa: PLC0415 -- plotting only (it validates ax)
 
-    blocks = {"gps": (0.1, 0.82, "GPS\nlatitude W, longitude L"),
-              "zone": (0.33, 0.82, "zone n, central meridian\n$L_0$ = 3n (Eqs. 1–2)"),
-              "gk": (0.57, 0.82, "Gauss–Krüger series\nx north, y east (Eqs. 3–11)"),
-              "imu": (0.1, 0.15, "IMU\nheading θ, speed v,\nyaw rate ω"),
-              "conv": (0.33, 0.15, "grid heading θ − γ\n(convergence, E002-09)"),
-              "predict": (0.57, 0.48, "predict (Eqs. 12–13, 16–17)\n$X^- = f(X)$\n$P^- = \\Phi P \\Phi^T + Q$"),
-              "update": (0.86, 0.48, "update (Eqs. 14–15, 18)\n$Z = HX + v$, $H = I_5$\n$K = P^-(P^- + R)^{-1}$"),
-              "out": (0.86, 0.82, "$\\hat X = [x, y, θ, v, ω]$\n→ robot frame"),
-              "delay": (0.86, 0.14, "next step\nk ← k + 1")}
-    arrows = [("gps", "zone"), ("zone", "gk"), ("gk", "update", "$x_{GPS}, y_{GPS}$"), ("imu", "conv"),
-              ("conv", "update", "$θ_{IMU}, v_{IMU}, ω_{IMU}$"), ("predict", "update"), ("update", "out"),
-              ("update", "delay"), ("delay", "predict")]
-    block_diagram(ax, blocks, arrows, width=0.18, height=0.17,
-                  colors={"gps": "#dbe9f6", "imu": "#dbe9f6", "predict": "#e3f1dc", "update": "#e3f1dc"})
+    blocks = {
+        "gps": (0.1, 0.82, "GPS\nlatitude W, longitude L"),
+        "zone": (0.33, 0.82, "zone n, central meridian\n$L_0$ = 3n (Eqs. 1–2)"),
+        "gk": (0.57, 0.82, "Gauss–Krüger series\nx north, y east (Eqs. 3–11)"),
+        "imu": (0.1, 0.15, "IMU\nheading θ, speed v,\nyaw rate ω"),
+        "conv": (0.33, 0.15, "grid heading θ − γ\n(convergence, E002-09)"),
+        "predict": (0.57, 0.48, "predict (Eqs. 12–13, 16–17)\n$X^- = f(X)$\n$P^- = \\Phi P \\Phi^T + Q$"),
+        "update": (0.86, 0.48, "update (Eqs. 14–15, 18)\n$Z = HX + v$, $H = I_5$\n$K = P^-(P^- + R)^{-1}$"),
+        "out": (0.86, 0.82, "$\\hat X = [x, y, θ, v, ω]$\n→ robot frame"),
+        "delay": (0.86, 0.14, "next step\nk ← k + 1"),
+    }
+    arrows = [
+        ("gps", "zone"),
+        ("zone", "gk"),
+        ("gk", "update", "$x_{GPS}, y_{GPS}$"),
+        ("imu", "conv"),
+        ("conv", "update", "$θ_{IMU}, v_{IMU}, ω_{IMU}$"),
+        ("predict", "update"),
+        ("update", "out"),
+        ("update", "delay"),
+        ("delay", "predict"),
+    ]
+    block_diagram(
+        ax,
+        blocks,
+        arrows,
+        width=0.18,
+        height=0.17,
+        colors={"gps": "#dbe9f6", "imu": "#dbe9f6", "predict": "#e3f1dc", "update": "#e3f1dc"},
+    )

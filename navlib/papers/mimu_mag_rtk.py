@@ -77,6 +77,7 @@ the shared ``observations``); this companion holds what only this paper names:
 the printed forms of the misprinted equations. The heading fusion reconstructed
 for Sec. 2.5 is :mod:`navlib.filters.heading_fusion`.
 """
+
 from __future__ import annotations
 
 import math
@@ -88,19 +89,30 @@ from .._typing import Angles, Array, Interval, Quat, Vec3, Vec3Series
 from .._validate import as_array, as_quat, euler_angles, interval, scalar
 from ..filters.quaternion_kf import measurement_jacobian, noise_input
 
-__all__ = ["printed_eq2_roll", "printed_eq2_arctan", "printed_eq4", "printed_eq5_tilt", "printed_eq6",
-           "printed_eq7_heading", "printed_eq8_quat", "printed_eq12_mahony", "printed_eq18_gamma",
-           "printed_eq20_jacobian", "draw_fusion_structure"]
+__all__ = [
+    "printed_eq2_roll",
+    "printed_eq2_arctan",
+    "printed_eq4",
+    "printed_eq5_tilt",
+    "printed_eq6",
+    "printed_eq7_heading",
+    "printed_eq8_quat",
+    "printed_eq12_mahony",
+    "printed_eq18_gamma",
+    "printed_eq20_jacobian",
+    "draw_fusion_structure",
+]
 
 
 # --------------------------------------------------------------------------
 # The printed equations, kept to show the errata (never used by the filters)
 # --------------------------------------------------------------------------
 
+
 def printed_eq2_roll(q: Quat) -> Array:
     """Roll as printed in Eq. (2): ``atan(-2(q1 q3 + q0 q2) / (1 - 2(q1^2 + q2^2)))`` (E003-02)."""
     q0, q1, q2, q3 = np.moveaxis(as_quat(q, "q", normalize=False), -1, 0)
-    return np.arctan(-2 * (q1 * q3 + q0 * q2) / (1 - 2 * (q1 ** 2 + q2 ** 2)))
+    return np.arctan(-2 * (q1 * q3 + q0 * q2) / (1 - 2 * (q1**2 + q2**2)))
 
 
 def printed_eq2_arctan(q: Quat) -> Array:
@@ -110,18 +122,18 @@ def printed_eq2_arctan(q: Quat) -> Array:
     loss of ``arctan`` shows: heading and roll come back within (-90 deg, 90 deg), and a pitch argument
     that rounding pushes past 1 (at +-90 deg pitch) gives NaN. Returns ``[heading, pitch, roll]``.
     """
-    q0, q1, q2, q3 = np.moveaxis(as_quat(as_array(q, "q", tail=(4,), nonempty=True), "q"), -1, 0)   # as_array: no huge q
+    q0, q1, q2, q3 = np.moveaxis(as_quat(as_array(q, "q", tail=(4,), nonempty=True), "q"), -1, 0)  # as_array: no huge q
     with np.errstate(invalid="ignore", divide="ignore"):
         pitch = np.arcsin(2 * (q0 * q1 + q2 * q3))
-        roll = np.arctan(2 * (q0 * q2 - q1 * q3) / (1 - 2 * (q1 ** 2 + q2 ** 2)))
-        heading = np.arctan(2 * (q1 * q2 - q0 * q3) / (1 - 2 * (q1 ** 2 + q3 ** 2)))
+        roll = np.arctan(2 * (q0 * q2 - q1 * q3) / (1 - 2 * (q1**2 + q2**2)))
+        heading = np.arctan(2 * (q1 * q2 - q0 * q3) / (1 - 2 * (q1**2 + q3**2)))
     return np.stack([heading, pitch, roll], -1)
 
 
 def printed_eq4(q: Quat) -> Array:
     """Eq. (4) as printed, with ``q0`` instead of ``q0**2`` in the third row (E003-04); (..., 4) -> (..., 3)."""
     q0, q1, q2, q3 = np.moveaxis(as_quat(q, "q", normalize=False), -1, 0)
-    return np.stack([2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), q0 + q3 ** 2 - q1 ** 2 - q2 ** 2], -1)
+    return np.stack([2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), q0 + q3**2 - q1**2 - q2**2], -1)
 
 
 def printed_eq5_tilt(f_b: Vec3) -> tuple[Array, Array]:
@@ -141,9 +153,14 @@ def printed_eq6(q: Quat, b: Vec3) -> Array:
     q0, q1, q2, q3 = np.moveaxis(as_quat(q, "q", normalize=False, nonempty=True), -1, 0)
     b = as_array(b, "b", tail=(3,), nonempty=True)
     by, bz = b[..., 1], b[..., 2]
-    return np.stack([2 * (q1 * q2 + q0 * q3) * by + 2 * (q1 * q3 - q0 * q2) * bz,
-                     (q0 ** 2 - q1 ** 2 + q2 ** 2 - q3 ** 2) * by + 2 * (q2 * q3 + q0 * q1) * bz,
-                     2 * (q2 * q3 - q0 * q1) * by + (q0 ** 2 - q1 ** 2 + q2 ** 2 - q3 ** 2) * bz], -1)
+    return np.stack(
+        [
+            2 * (q1 * q2 + q0 * q3) * by + 2 * (q1 * q3 - q0 * q2) * bz,
+            (q0**2 - q1**2 + q2**2 - q3**2) * by + 2 * (q2 * q3 + q0 * q1) * bz,
+            2 * (q2 * q3 - q0 * q1) * by + (q0**2 - q1**2 + q2**2 - q3**2) * bz,
+        ],
+        -1,
+    )
 
 
 def printed_eq7_heading(m_h: Vec3) -> Array:
@@ -162,8 +179,9 @@ def printed_eq8_quat(hpr: Angles) -> Array:
     return attitude.quat_mult(attitude.quat_mult(axis_quat(-h, 2), axis_quat(r, 1)), axis_quat(p, 0))
 
 
-def printed_eq12_mahony(w_ib_b: Vec3Series, f_b: Vec3Series, m_b: Vec3Series, dt: Interval, q0: Quat,
-                        kp: float = 1.0, ki: float = 0.02) -> Array:
+def printed_eq12_mahony(
+    w_ib_b: Vec3Series, f_b: Vec3Series, m_b: Vec3Series, dt: Interval, q0: Quat, kp: float = 1.0, ki: float = 0.02
+) -> Array:
     """Eqs. (12)-(15) with the cross products in the order the printed hat-less ``a x a`` leaves open,
     estimated x measured (E003-09); returns ``q_b^n`` after each sample, shape (N, 4).
 
@@ -187,19 +205,23 @@ def printed_eq12_mahony(w_ib_b: Vec3Series, f_b: Vec3Series, m_b: Vec3Series, dt
     for k, ((gx, gy, gz), (ax, ay, az), (mx, my, mz)) in enumerate(zip(w.tolist(), f.tolist(), m.tolist(), strict=True)):
         na, nm = math.sqrt(ax * ax + ay * ay + az * az), math.sqrt(mx * mx + my * my + mz * mz)
         ax, ay, az, mx, my, mz = ax / na, ay / na, az / na, mx / nm, my / nm, mz / nm
-        c00, c01, c02 = a * a + b * b - c * c - d * d, 2 * (b * c - a * d), 2 * (b * d + a * c)      # C_bn
+        c00, c01, c02 = a * a + b * b - c * c - d * d, 2 * (b * c - a * d), 2 * (b * d + a * c)  # C_bn
         c10, c11, c12 = 2 * (b * c + a * d), a * a - b * b + c * c - d * d, 2 * (c * d - a * b)
         c20, c21, c22 = 2 * (b * d - a * c), 2 * (c * d + a * b), a * a - b * b - c * c + d * d
         hx, hy, hz = c00 * mx + c01 * my + c02 * mz, c10 * mx + c11 * my + c12 * mz, c20 * mx + c21 * my + c22 * mz
         bh = math.hypot(hx, hy)
-        ux, uy, uz = c10 * bh + c20 * hz, c11 * bh + c21 * hz, c12 * bh + c22 * hz     # m_est = C_nb [0, |h_xy|, h_z]
-        ex = (c21 * az - c22 * ay) + (uy * mz - uz * my)                           # a_est x a + m_est x m
+        ux, uy, uz = c10 * bh + c20 * hz, c11 * bh + c21 * hz, c12 * bh + c22 * hz  # m_est = C_nb [0, |h_xy|, h_z]
+        ex = (c21 * az - c22 * ay) + (uy * mz - uz * my)  # a_est x a + m_est x m
         ey = (c22 * ax - c20 * az) + (uz * mx - ux * mz)
         ez = (c20 * ay - c21 * ax) + (ux * my - uy * mx)
         ix, iy, iz = ix + ex * dt, iy + ey * dt, iz + ez * dt
         wx, wy, wz = gx + kp * ex + ki * ix, gy + kp * ey + ki * iy, gz + kp * ez + ki * iz
-        a, b, c, d = (a + 0.5 * dt * (-b * wx - c * wy - d * wz), b + 0.5 * dt * (a * wx + c * wz - d * wy),
-                      c + 0.5 * dt * (a * wy - b * wz + d * wx), d + 0.5 * dt * (a * wz + b * wy - c * wx))
+        a, b, c, d = (
+            a + 0.5 * dt * (-b * wx - c * wy - d * wz),
+            b + 0.5 * dt * (a * wx + c * wz - d * wy),
+            c + 0.5 * dt * (a * wy - b * wz + d * wx),
+            d + 0.5 * dt * (a * wz + b * wy - c * wx),
+        )
         s = 1.0 / math.sqrt(a * a + b * b + c * c + d * d)
         a, b, c, d = a * s, b * s, c * s, d * s
         out[k] = a, b, c, d
@@ -213,7 +235,7 @@ def printed_eq18_gamma(q: Quat, dt: float) -> Array:
 
 def printed_eq20_jacobian(q: Quat, b: Vec3) -> Array:
     """Eq. (20) as printed: H44 = 2(q0 b_y - q1 b_z) (E003-13)."""
-    H = measurement_jacobian(q, b).copy()                      # validates q and b
+    H = measurement_jacobian(q, b).copy()  # validates q and b
     q, b = np.asarray(q, dtype=float), np.asarray(b, dtype=float)
     H[..., 3, 3] = 2 * (q[..., 0] * b[..., 1] - q[..., 1] * b[..., 2])
     return H
@@ -250,8 +272,19 @@ def draw_fusion_structure(ax) -> None:
         "fusion": (0.66, 0.1, "heading fusion\n§2.5 (offset $\\delta$)"),
         "out": (0.89, 0.36, "heading $H$\n(attitude)"),
     }
-    arrows = [("gyro", "pi", "$\\omega_m$"), ("accel", "pi"), ("mag", "pi"), ("pi", "kf", "$\\omega$"),
-              ("accel", "kf", "$z$"), ("mag", "kf"), ("accel", "init"), ("mag", "init"), ("init", "kf", "$q_0$"),
-              ("kf", "fusion", "$H_{mag}$"), ("rtk", "fusion", "$H_{RTK}$ if valid"), ("fusion", "out", "$H$")]
+    arrows = [
+        ("gyro", "pi", "$\\omega_m$"),
+        ("accel", "pi"),
+        ("mag", "pi"),
+        ("pi", "kf", "$\\omega$"),
+        ("accel", "kf", "$z$"),
+        ("mag", "kf"),
+        ("accel", "init"),
+        ("mag", "init"),
+        ("init", "kf", "$q_0$"),
+        ("kf", "fusion", "$H_{mag}$"),
+        ("rtk", "fusion", "$H_{RTK}$ if valid"),
+        ("fusion", "out", "$H$"),
+    ]
     colors = {k: SENSOR_COLOR for k in ("gyro", "accel", "mag", "rtk")}
     plots.block_diagram(ax, blocks, arrows, width=0.2, height=0.13, colors=colors)

@@ -89,6 +89,7 @@ Errata corrected (ids of ``data/errata.csv``)
   rate correctly; :func:`ins_heading_change` removes only the vertical part
   ``w_ie sin(lat)`` by default (or none / the full, misdirected rate).
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -122,12 +123,31 @@ from ..alignment import gyrocompass_latitude, level, static_means, triad, triad_
 from ..imu import ImuSamples, unpack
 from ..trajectory import Segment
 
-__all__ = ["Candidates", "heading_candidates", "nearest_candidate_error", "Resolution", "resolve", "pitch_roll_from_accel",
-           "triad_heading_error", "triad_heading_std", "single_axis_heading_std", "single_axis_heading_error",
-           "ClippedTheory", "clipped_single_axis_theory", "simulate_static_outputs", "MonteCarlo", "monte_carlo",
-           "pair_probabilities", "four_position_heading_std",
-           "stop_and_go", "StopSolutions", "stop_solutions", "ins_heading_change", "draw_device",
-           "draw_candidate_pairs"]
+__all__ = [
+    "Candidates",
+    "heading_candidates",
+    "nearest_candidate_error",
+    "Resolution",
+    "resolve",
+    "pitch_roll_from_accel",
+    "triad_heading_error",
+    "triad_heading_std",
+    "single_axis_heading_std",
+    "single_axis_heading_error",
+    "ClippedTheory",
+    "clipped_single_axis_theory",
+    "simulate_static_outputs",
+    "MonteCarlo",
+    "monte_carlo",
+    "pair_probabilities",
+    "four_position_heading_std",
+    "stop_and_go",
+    "StopSolutions",
+    "stop_solutions",
+    "ins_heading_change",
+    "draw_device",
+    "draw_candidate_pairs",
+]
 
 OMEGA_IE = earth.OMEGA_IE
 
@@ -135,6 +155,7 @@ OMEGA_IE = earth.OMEGA_IE
 # --------------------------------------------------------------------------
 # TRIAD (Eqs. 1-3)
 # --------------------------------------------------------------------------
+
 
 def pitch_roll_from_accel(f_b: Vec3, g: float | None = None) -> tuple[Array, Array]:
     """Pitch and roll from averaged specific force (paper Eqs. 5-6).
@@ -154,7 +175,7 @@ def pitch_roll_from_accel(f_b: Vec3, g: float | None = None) -> tuple[Array, Arr
     -------
     pitch, roll : ndarray, shape (...)  (rad)
     """
-    pitch, roll = level(f_b)                                       # validates f_b
+    pitch, roll = level(f_b)  # validates f_b
     return (pitch, roll) if g is None else (_asin_pitch(f_b, scalar(g, "g", positive=True)), roll)
 
 
@@ -166,6 +187,7 @@ def _asin_pitch(f_b: Vec3, g: ArrayLike) -> Array:
 # --------------------------------------------------------------------------
 # single-axis candidates and their resolution (Eqs. 8-12)
 # --------------------------------------------------------------------------
+
 
 @dataclass(frozen=True)
 class Candidates:
@@ -184,6 +206,7 @@ class Candidates:
     pitch : ndarray, shape (...)
         Pitch from Eq. (5) (rad).
     """
+
     pair: np.ndarray
     alpha: np.ndarray
     cos_heading: np.ndarray
@@ -220,8 +243,8 @@ def heading_candidates(w_y: ArrayLike, f_b: Vec3, lat: float, h: float = 0.0) ->
     """
     w_y = as_array(w_y, "w_y", nonempty=True)
     lat = gyrocompass_latitude(lat)
-    level(f_b)                                                     # checks f_b as pitch_roll_from_accel does
-    pitch = _asin_pitch(f_b, earth.gravity(lat, as_array(h, "h", nonempty=True)))   # as_array: gravity takes an empty h
+    level(f_b)  # checks f_b as pitch_roll_from_accel does
+    pitch = _asin_pitch(f_b, earth.gravity(lat, as_array(h, "h", nonempty=True)))  # as_array: gravity takes an empty h
     cos_h = (w_y - OMEGA_IE * np.sin(lat) * np.sin(pitch)) / (OMEGA_IE * np.cos(lat) * np.cos(pitch))
     clipped = np.abs(cos_h) > 1.0
     alpha = np.arccos(np.clip(cos_h, -1.0, 1.0))
@@ -271,6 +294,7 @@ class Resolution:
         drive between headings whose pairs coincide: the hypotheses cannot be separated); ``inf`` when every
         candidate gives the same heading.
     """
+
     heading: np.ndarray
     dpsi_candidates: np.ndarray
     residuals: np.ndarray
@@ -302,8 +326,12 @@ def resolve(pair1: ArrayLike, pair2: ArrayLike, dpsi_ins: Angles, wrap: bool = T
     -------
     Resolution
     """
-    p1, p2 = broadcast(as_array(pair1, "pair1", tail=(2,), nonempty=True),
-                       as_array(pair2, "pair2", tail=(2,), nonempty=True), name="pair2", of="pair1, pair2")
+    p1, p2 = broadcast(
+        as_array(pair1, "pair1", tail=(2,), nonempty=True),
+        as_array(pair2, "pair2", tail=(2,), nonempty=True),
+        name="pair2",
+        of="pair1, pair2",
+    )
     ins = as_array(dpsi_ins, "dpsi_ins", nonempty=True)
     cands = (p2[..., :, None] - p1[..., None, :]).reshape(p2.shape[:-1] + (4,))
     cands, ins = np.broadcast_arrays(cands, ins[..., None])
@@ -313,17 +341,18 @@ def resolve(pair1: ArrayLike, pair2: ArrayLike, dpsi_ins: Angles, wrap: bool = T
     index = np.argmin(score, axis=-1)
     best = np.take_along_axis(score, index[..., None], -1)
     p2b = np.broadcast_to(p2, cands.shape[:-1] + (2,))
-    headings = np.repeat(p2b, 2, axis=-1)                     # candidate j points position 2 at p2[j // 2]
+    headings = np.repeat(p2b, 2, axis=-1)  # candidate j points position 2 at p2[j // 2]
     heading = np.take_along_axis(headings, index[..., None], -1)[..., 0]
     distinct = np.abs(attitude.wrap_pi(headings - heading[..., None])) > 1e-9
     margin = np.where(distinct, score, np.inf).min(-1) - best[..., 0]
-    margin = np.where(margin < 1e-9, 0.0, margin)              # equal fits to rounding: not separable
+    margin = np.where(margin < 1e-9, 0.0, margin)  # equal fits to rounding: not separable
     return Resolution(heading, cands, res, index, margin)
 
 
 # --------------------------------------------------------------------------
 # error theory (Eqs. 13-20, errata E000-02 and E000-04)
 # --------------------------------------------------------------------------
+
 
 def triad_heading_error(C_bn: Dcm, dw_b: Vec3, lat: float) -> Array:
     """TRIAD heading error caused by a gyro error, Eq. (13) with its sign corrected.
@@ -363,8 +392,9 @@ def _pitch(pitch):
     return in_range(as_array(pitch, "pitch", nonempty=True), "pitch", -np.pi / 2, np.pi / 2, "rad", lo_open=True, hi_open=True)
 
 
-def single_axis_heading_std(heading: Angles, sigma_gyro: float, lat: float, pitch: Angles = 0.0, sigma_accel: float = 0.0,
-                            g: float | None = None) -> Array:
+def single_axis_heading_std(
+    heading: Angles, sigma_gyro: float, lat: float, pitch: Angles = 0.0, sigma_accel: float = 0.0, g: float | None = None
+) -> Array:
     """Single-axis heading error std (rad): Eq. (20) or its full linearisation.
 
     With ``pitch = 0`` and ``sigma_accel = 0`` this is Eq. (20),
@@ -397,11 +427,12 @@ def single_axis_heading_std(heading: Angles, sigma_gyro: float, lat: float, pitc
     s_th = s_a / (g * np.cos(th))
     coupling = OMEGA_IE * (np.sin(lat) * np.cos(th) - np.cos(lat) * np.sin(th) * np.cos(psi))
     with np.errstate(divide="ignore"):
-        return np.sqrt(s_g ** 2 + (coupling * s_th) ** 2) / np.abs(OMEGA_IE * np.cos(lat) * np.cos(th) * np.sin(psi))
+        return np.sqrt(s_g**2 + (coupling * s_th) ** 2) / np.abs(OMEGA_IE * np.cos(lat) * np.cos(th) * np.sin(psi))
 
 
-def single_axis_heading_error(heading: Angles, pitch: Angles, lat: float, dw_y: ArrayLike, df_y: ArrayLike = 0.0,
-                              g: float | None = None) -> Array:
+def single_axis_heading_error(
+    heading: Angles, pitch: Angles, lat: float, dw_y: ArrayLike, df_y: ArrayLike = 0.0, g: float | None = None
+) -> Array:
     """Linearised single-axis heading error for given sensor errors (rad, E000-04).
 
     ``d psi = [-dw_y + w_ie (sin lat cos th - cos lat sin th cos psi) d th]
@@ -449,15 +480,23 @@ class ClippedTheory:
     sigma_cos : ndarray
         Standard deviation of the estimated cosine.
     """
+
     rmse: np.ndarray
     p_clip: np.ndarray
     rel_sd: np.ndarray
     sigma_cos: np.ndarray
 
 
-def clipped_single_axis_theory(heading: Angles, sigma_gyro: float, lat: float, pitch: Angles = 0.0,
-                               sigma_accel: float = 0.0, g: float | None = None, n_sigma: float = 12.0,
-                               n_grid: int = 20001) -> ClippedTheory:
+def clipped_single_axis_theory(
+    heading: Angles,
+    sigma_gyro: float,
+    lat: float,
+    pitch: Angles = 0.0,
+    sigma_accel: float = 0.0,
+    g: float | None = None,
+    n_sigma: float = 12.0,
+    n_grid: int = 20001,
+) -> ClippedTheory:
     """Error of the single-axis estimator where Eq. (20) fails: the cosine clipped, not linearised in psi.
 
     The cosine of Eq. (9) is linear in the gyro noise and, to first order, in
@@ -503,15 +542,15 @@ def clipped_single_axis_theory(heading: Angles, sigma_gyro: float, lat: float, p
     s_pitch_cos = (np.cos(psi) * np.tan(th) - np.tan(lat)) * s_a / (g * np.cos(th))
     s_cos = np.hypot(s_gyro_cos, s_pitch_cos)
     z = np.linspace(-span, span, int(n_grid))
-    weight = np.exp(-0.5 * z ** 2) / np.sqrt(2 * np.pi)
+    weight = np.exp(-0.5 * z**2) / np.sqrt(2 * np.pi)
     c = np.cos(psi)[..., None] + s_cos[..., None] * z
     alpha = np.arccos(np.clip(c, -1.0, 1.0))
     err = _nearest_error(np.stack([alpha, attitude.wrap_2pi(2 * np.pi - alpha)], -1), psi[..., None])
-    m2 = np.trapezoid(weight * err ** 2, z, axis=-1)
-    m4 = np.trapezoid(weight * err ** 4, z, axis=-1)
+    m2 = np.trapezoid(weight * err**2, z, axis=-1)
+    m4 = np.trapezoid(weight * err**4, z, axis=-1)
     p_clip = ndtr((np.cos(psi) - 1.0) / s_cos) + ndtr((-1.0 - np.cos(psi)) / s_cos)
     with np.errstate(divide="ignore", invalid="ignore"):
-        rel_sd = np.sqrt(np.maximum(m4 / m2 ** 2 - 1.0, 0.0)) / 2
+        rel_sd = np.sqrt(np.maximum(m4 / m2**2 - 1.0, 0.0)) / 2
     return ClippedTheory(np.sqrt(m2), p_clip, rel_sd, s_cos)
 
 
@@ -519,8 +558,17 @@ def clipped_single_axis_theory(heading: Angles, sigma_gyro: float, lat: float, p
 # Monte Carlo of Fig. 4
 # --------------------------------------------------------------------------
 
-def simulate_static_outputs(hpr: Angles, lat: float, n_trials: int, sigma_gyro: float, sigma_accel: float,
-                            rng: np.random.Generator, gyro_bias: Vec3 = 0.0, accel_bias: Vec3 = 0.0) -> tuple[Array, Array]:
+
+def simulate_static_outputs(
+    hpr: Angles,
+    lat: float,
+    n_trials: int,
+    sigma_gyro: float,
+    sigma_accel: float,
+    rng: np.random.Generator,
+    gyro_bias: Vec3 = 0.0,
+    accel_bias: Vec3 = 0.0,
+) -> tuple[Array, Array]:
     """Averaged outputs of a static IMU plus white noise, as in the paper's Monte Carlo.
 
     ``w = C_nb w_ie_n + b_g + sigma_gyro n``, ``f = C_nb [0, 0, g] + b_a + sigma_accel n``
@@ -571,6 +619,7 @@ class MonteCarlo:
     assumed correct, as in Fig. 4); ``triad_raw`` uses Eq. (2) without
     orthonormalisation; ``clipped`` marks trials whose cosine was clipped.
     """
+
     heading: np.ndarray
     triad: np.ndarray
     triad_raw: np.ndarray
@@ -578,8 +627,16 @@ class MonteCarlo:
     clipped: np.ndarray
 
 
-def monte_carlo(headings: Angles, pitch: float, roll: float, lat: float, n_trials: int, sigma_gyro: float, sigma_accel: float,
-                rng: np.random.Generator) -> MonteCarlo:
+def monte_carlo(
+    headings: Angles,
+    pitch: float,
+    roll: float,
+    lat: float,
+    n_trials: int,
+    sigma_gyro: float,
+    sigma_accel: float,
+    rng: np.random.Generator,
+) -> MonteCarlo:
     """TRIAD and single-axis heading errors over a heading grid (paper Fig. 4).
 
     Parameters
@@ -615,6 +672,7 @@ def monte_carlo(headings: Angles, pitch: float, roll: float, lat: float, n_trial
 # --------------------------------------------------------------------------
 # ambiguity of the resolution (extension, erratum E000-06)
 # --------------------------------------------------------------------------
+
 
 def pair_probabilities(heading1: Angles, heading2: Angles, sigma_ins: ArrayLike) -> Array:
     """Probability that each candidate wins the resolution, for a Gaussian INS error.
@@ -662,6 +720,7 @@ def pair_probabilities(heading1: Angles, heading2: Angles, sigma_ins: ArrayLike)
 # four-position north finding on a turntable (extension)
 # --------------------------------------------------------------------------
 
+
 def four_position_heading_std(sigma_gyro: float, lat: float) -> Array:
     """Four-position heading std ``sigma / (sqrt(2) w_ie cos lat)`` (rad), any heading.
 
@@ -674,8 +733,10 @@ def four_position_heading_std(sigma_gyro: float, lat: float) -> Array:
 # the vehicle test (Table 1 stand-in)
 # --------------------------------------------------------------------------
 
-def stop_and_go(headings: Angles, stop_duration: float, drive_duration: float, speed: float, pitches: Angles,
-                rolls: Angles) -> tuple[list[Segment], Array]:
+
+def stop_and_go(
+    headings: Angles, stop_duration: float, drive_duration: float, speed: float, pitches: Angles, rolls: Angles
+) -> tuple[list[Segment], Array]:
     """Segments of a drive with stops at given headings (Table 1 stand-in).
 
     The vehicle starts at rest at ``headings[0]``; each drive accelerates,
@@ -703,8 +764,11 @@ def stop_and_go(headings: Angles, stop_duration: float, drive_duration: float, s
     psi = as_array(headings, "headings", shape=(None,), nonempty=True)
     if psi.size < 2:
         raise ValueError(f"headings: expected a 1-D array of >= 2 stops, got {psi.shape}")
-    th, ro = pitch_roll(as_array(pitches, "pitches", shape=psi.shape, of="headings: one per stop"),
-                        as_array(rolls, "rolls", shape=psi.shape, of="headings: one per stop"), ("pitches", "rolls"))
+    th, ro = pitch_roll(
+        as_array(pitches, "pitches", shape=psi.shape, of="headings: one per stop"),
+        as_array(rolls, "rolls", shape=psi.shape, of="headings: one per stop"),
+        ("pitches", "rolls"),
+    )
     stop_duration = scalar(stop_duration, "stop_duration", positive=True)
     drive_duration = scalar(drive_duration, "drive_duration", positive=True)
     if drive_duration < 30:
@@ -716,8 +780,12 @@ def stop_and_go(headings: Angles, stop_duration: float, drive_duration: float, s
     t = stop_duration
     for k in range(1, psi.size):
         turn = float(attitude.wrap_pi(psi[k] - psi[k - 1]))
-        segments += [Segment(ramp, speed=speed), Segment(drive_duration - 2 * ramp, turn=turn),
-                     Segment(ramp, speed=0.0, pitch=th[k], roll=ro[k]), Segment(stop_duration)]
+        segments += [
+            Segment(ramp, speed=speed),
+            Segment(drive_duration - 2 * ramp, turn=turn),
+            Segment(ramp, speed=0.0, pitch=th[k], roll=ro[k]),
+            Segment(stop_duration),
+        ]
         t += drive_duration
         stops.append((t, t + stop_duration))
         t += stop_duration
@@ -737,6 +805,7 @@ class StopSolutions:
     ``strict=False`` has NaN candidates and heading. ``windows`` holds each stop's
     :class:`navlib.alignment.StaticWindow`.
     """
+
     candidates: np.ndarray
     triad: np.ndarray
     clipped: np.ndarray
@@ -748,13 +817,20 @@ class StopSolutions:
 def _stacked_faults(reports: list[robust.FaultReport]) -> robust.FaultReport:
     """The stops' fault reports as one, each count stacked on a last (stop) axis."""
     keys = dict.fromkeys(key for r in reports for key in r.counts)
-    return robust.FaultReport({key: np.stack(np.broadcast_arrays(*(np.asarray(r[key]) for r in reports)), -1)
-                               for key in keys})
+    return robust.FaultReport({key: np.stack(np.broadcast_arrays(*(np.asarray(r[key]) for r in reports)), -1) for key in keys})
 
 
-def stop_solutions(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None, windows: ArrayLike | None = None,
-                   lat: float | None = None, h: float = 0.0, *, time: Times | None = None, strict: bool = True,
-                   **window_options: float | None) -> StopSolutions:
+def stop_solutions(
+    w_ib_b: Vec3Series | ImuSamples,
+    f_b: Vec3Series | None = None,
+    windows: ArrayLike | None = None,
+    lat: float | None = None,
+    h: float = 0.0,
+    *,
+    time: Times | None = None,
+    strict: bool = True,
+    **window_options: float | None,
+) -> StopSolutions:
     """Average each stop window and solve it with TRIAD and the single-axis method.
 
     Parameters
@@ -806,20 +882,21 @@ def stop_solutions(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = Non
         if win.ndim != 2 or win.shape[1] != 2 or not np.issubdtype(win.dtype, np.integer):
             raise ValueError(f"windows: expected (S, 2) integer [start, end) sample indices, got {win.tolist()}")
     if np.any(win[:, 0] < 0) or np.any(win[:, 1] > n) or np.any(win[:, 1] - win[:, 0] < 2):
-        raise ValueError(f"windows: expected (S, 2) [start, end) sample indices within {n} samples, each >= 2 "
-                         f"long, got {win.tolist()}")
-    stats = tuple(static_means(w[..., a:b, :], f[..., a:b, :], lat, h, strict=strict, **window_options)
-                  for a, b in win)
+        raise ValueError(
+            f"windows: expected (S, 2) [start, end) sample indices within {n} samples, each >= 2 long, got {win.tolist()}"
+        )
+    stats = tuple(static_means(w[..., a:b, :], f[..., a:b, :], lat, h, strict=strict, **window_options) for a, b in win)
     w_mean = np.stack([m.w_mean for m in stats], -2)
     f_mean = np.stack([m.f_mean for m in stats], -2)
     ok = np.all(np.isfinite(f_mean), -1)
-    f_safe = np.where(ok[..., None], f_mean, [0.0, 0.0, 9.8])           # refused stops: solved on a dummy, set NaN
+    f_safe = np.where(ok[..., None], f_mean, [0.0, 0.0, 9.8])  # refused stops: solved on a dummy, set NaN
     w_safe = np.where(ok[..., None], w_mean, 1e-5)
     cand = heading_candidates(w_safe[..., 1], f_safe, lat, h)
     heading = triad_heading(triad(f_safe, w_safe, lat))
     pair = np.where(ok[..., None], cand.pair, np.nan)
-    return StopSolutions(pair, np.where(ok, heading, np.nan), cand.clipped & ok, f_mean,
-                         _stacked_faults([m.faults for m in stats]), stats)
+    return StopSolutions(
+        pair, np.where(ok, heading, np.nan), cand.clipped & ok, f_mean, _stacked_faults([m.faults for m in stats]), stats
+    )
 
 
 def _hold_last(w, dts):
@@ -841,9 +918,16 @@ def _hold_last(w, dts):
     return filled, longest, empty
 
 
-def ins_heading_change(w_ib_b: Vec3Series | ImuSamples, f_start: Vec3, dt: Interval | None = None,
-                       lat: float | None = None, earth_rate: str = "vertical", *, max_gap: float = 0.1,
-                       full_scale_gyro: float | None = None) -> Array:
+def ins_heading_change(
+    w_ib_b: Vec3Series | ImuSamples,
+    f_start: Vec3,
+    dt: Interval | None = None,
+    lat: float | None = None,
+    earth_rate: str = "vertical",
+    *,
+    max_gap: float = 0.1,
+    full_scale_gyro: float | None = None,
+) -> Array:
     """MEMS strapdown heading change over a drive, started with heading 0 (paper step 2).
 
     The attitude starts at heading 0 with pitch and roll from ``f_start``
@@ -909,17 +993,20 @@ def ins_heading_change(w_ib_b: Vec3Series | ImuSamples, f_start: Vec3, dt: Inter
     step = float(dts[0]) if np.all(dts == dts[0]) else float(dts.mean())
     max_gap = scalar(max_gap, "max_gap", allow_zero=True)
     fs = range_limit(full_scale_gyro, "full_scale_gyro")
-    pitch, roll = level(broadcast_to(as_array(f_start, "f_start", tail=(3,), nonempty=True), "f_start", w.shape[:-2] + (3,),
-                                     of="the trials of w_ib_b"))
+    pitch, roll = level(
+        broadcast_to(
+            as_array(f_start, "f_start", tail=(3,), nonempty=True), "f_start", w.shape[:-2] + (3,), of="the trials of w_ib_b"
+        )
+    )
     with np.errstate(invalid="ignore"):
-        saturated = np.any(np.abs(w) >= fs, (-2, -1))               # NaN compares False
+        saturated = np.any(np.abs(w) >= fs, (-2, -1))  # NaN compares False
     if np.all(np.isfinite(w)):
         longest, empty = np.zeros(w.shape[:-2]), np.zeros(w.shape[:-2], dtype=bool)
     else:
         w, longest, empty = _hold_last(w, dts)
         w = np.where(empty[..., None, None], 0.0, w)
     if not np.all(dts == step):
-        w = w * (dts / step)[:, None]                      # w_k dt_k integrated exactly with the mean interval
+        w = w * (dts / step)[:, None]  # w_k dt_k integrated exactly with the mean interval
     refused = empty | (longest > max_gap) | saturated
     q0 = attitude.euler_to_quat(np.stack([np.zeros_like(pitch), pitch, roll], -1))
     q = strapdown.integrate_attitude(q0, w, step, rates[earth_rate])
@@ -935,10 +1022,10 @@ def ins_heading_change(w_ib_b: Vec3Series | ImuSamples, f_start: Vec3, dt: Inter
 # --------------------------------------------------------------------------
 # Not in __all__: drawing helpers for notebook 01, outside the fuzzed numerical API.
 
-_COMPASS = "0.55"               # reference (north, east) axes
-_BODY = "tab:blue"              # body / sensor frame
-_GYRO = "tab:orange"            # the single optical gyro and what it senses
-_MIRROR = "0.45"                # the mirror candidate
+_COMPASS = "0.55"  # reference (north, east) axes
+_BODY = "tab:blue"  # body / sensor frame
+_GYRO = "tab:orange"  # the single optical gyro and what it senses
+_MIRROR = "0.45"  # the mirror candidate
 
 
 def _map_angle(heading_deg: float) -> float:
@@ -952,8 +1039,12 @@ def _unit(angle_deg: float) -> np.ndarray:
 
 
 def _arrow(ax, start, end, color, style="-", width=1.6, label=None):
-    ax.annotate("", tuple(end), tuple(start), arrowprops={"arrowstyle": "-|>", "color": color, "linewidth": width,
-                                                         "linestyle": style, "shrinkA": 0, "shrinkB": 0})
+    ax.annotate(
+        "",
+        tuple(end),
+        tuple(start),
+        arrowprops={"arrowstyle": "-|>", "color": color, "linewidth": width, "linestyle": style, "shrinkA": 0, "shrinkB": 0},
+    )
     if label is not None:
         ax.plot([], [], color=color, linestyle=style, linewidth=width, label=label)
 
@@ -976,24 +1067,50 @@ def draw_device(ax, heading_deg: float = 30.0) -> None:
     axes(ax)
     psi = float(scalar(heading_deg, "heading_deg")) % 360.0
     from matplotlib.patches import Polygon  # noqa: PLC0415 -- navlib imports without matplotlib
+
     fwd, right = _unit(_map_angle(psi)), _unit(_map_angle(psi + 90.0))
 
-    def box(half_width, t0, t1, **kw):          # a rectangle along the forward axis, from t0 to t1
-        ax.add_patch(Polygon([s * half_width * right + t * fwd for s, t in ((-1, t0), (1, t0), (1, t1), (-1, t1))],
-                             closed=True, **kw))
+    def box(half_width, t0, t1, **kw):  # a rectangle along the forward axis, from t0 to t1
+        ax.add_patch(
+            Polygon([s * half_width * right + t * fwd for s, t in ((-1, t0), (1, t0), (1, t1), (-1, t1))], closed=True, **kw)
+        )
 
-    box(0.45, -0.8, 0.8, facecolor="0.95", edgecolor="0.4", linewidth=1)                  # the robot
-    ax.add_patch(Polygon([0.45 * right + 0.55 * fwd, -0.45 * right + 0.55 * fwd, 0.8 * fwd], closed=True,
-                         facecolor="0.86", edgecolor="0.4", linewidth=0.8))               # its nose
+    box(0.45, -0.8, 0.8, facecolor="0.95", edgecolor="0.4", linewidth=1)  # the robot
+    ax.add_patch(
+        Polygon(
+            [0.45 * right + 0.55 * fwd, -0.45 * right + 0.55 * fwd, 0.8 * fwd],
+            closed=True,
+            facecolor="0.86",
+            edgecolor="0.4",
+            linewidth=0.8,
+        )
+    )  # its nose
     plots.plane_frame(ax, (0.0, 0.0), 0.0, ("E", "N"), length=2.0, color=_COMPASS)
-    plots.plane_frame(ax, (0.0, 0.0), _map_angle(psi + 90.0), ("$x_b, x_s$ (right)", "$y_b, y_s$ (forward)"),
-                      length=1.6, color=_BODY)
-    box(0.07, 0.15, 0.5, facecolor=_GYRO, edgecolor="0.2", linewidth=0.8)                 # the optical gyro
-    ax.annotate("optical gyro\n(axis $y_s$)", tuple(0.33 * fwd), tuple(0.33 * fwd - 1.25 * right), fontsize=8,
-                color=_GYRO, ha="center", va="center", arrowprops={"arrowstyle": "-", "color": _GYRO, "linewidth": 0.8})
-    box(0.1, -0.1, 0.1, facecolor="0.3", edgecolor="0.2")                                 # the MEMS IMU
-    ax.annotate("MEMS IMU", (0.0, 0.0), tuple(-1.05 * fwd - 0.75 * right), fontsize=8, color="0.25", ha="center",
-                va="center", arrowprops={"arrowstyle": "-", "color": "0.4", "linewidth": 0.8})
+    plots.plane_frame(
+        ax, (0.0, 0.0), _map_angle(psi + 90.0), ("$x_b, x_s$ (right)", "$y_b, y_s$ (forward)"), length=1.6, color=_BODY
+    )
+    box(0.07, 0.15, 0.5, facecolor=_GYRO, edgecolor="0.2", linewidth=0.8)  # the optical gyro
+    ax.annotate(
+        "optical gyro\n(axis $y_s$)",
+        tuple(0.33 * fwd),
+        tuple(0.33 * fwd - 1.25 * right),
+        fontsize=8,
+        color=_GYRO,
+        ha="center",
+        va="center",
+        arrowprops={"arrowstyle": "-", "color": _GYRO, "linewidth": 0.8},
+    )
+    box(0.1, -0.1, 0.1, facecolor="0.3", edgecolor="0.2")  # the MEMS IMU
+    ax.annotate(
+        "MEMS IMU",
+        (0.0, 0.0),
+        tuple(-1.05 * fwd - 0.75 * right),
+        fontsize=8,
+        color="0.25",
+        ha="center",
+        va="center",
+        arrowprops={"arrowstyle": "-", "color": "0.4", "linewidth": 0.8},
+    )
     # the horizontal Earth rate along north and its projection on the gyro axis
     r = 1.45
     tip = r * np.cos(np.deg2rad(psi)) * fwd
@@ -1001,8 +1118,7 @@ def draw_device(ax, heading_deg: float = 30.0) -> None:
     ax.plot([0, tip[0]], [0, tip[1]], color=_GYRO, linewidth=4, alpha=0.5, solid_capstyle="butt")
     ax.plot([0.0], [r], "o", color=_COMPASS, markersize=4)
     ax.text(-0.08, r, r"$\omega_{ie}\cos L$", fontsize=9, color=_COMPASS, ha="right", va="center")
-    ax.text(*(tip + 0.15 * right), r"$w_y=\omega_{ie}\cos L\,\cos\psi$", fontsize=9, color=_GYRO,
-            ha="left", va="top")
+    ax.text(*(tip + 0.15 * right), r"$w_y=\omega_{ie}\cos L\,\cos\psi$", fontsize=9, color=_GYRO, ha="left", va="top")
     plots.angle_arc(ax, (0.0, 0.0), 1.0, _map_angle(psi), 90.0, r"$\psi$", color="tab:red")
     ax.set(xlim=(-2.3, 2.6), ylim=(-1.5, 2.4), aspect="equal")
     ax.set_axis_off()
@@ -1029,28 +1145,43 @@ def draw_candidate_pairs(ax, heading1_deg: float, heading2_deg: float, dpsi_ins_
     psis = [float(scalar(h, name)) % 360.0 for h, name in ((heading1_deg, "heading1_deg"), (heading2_deg, "heading2_deg"))]
     err = float(scalar(dpsi_ins_error_deg, "dpsi_ins_error_deg"))
     from matplotlib.patches import Circle  # noqa: PLC0415 -- navlib imports without matplotlib
+
     centres = [np.array([0.0, 0.0]), np.array([3.2, 0.0])]
     for k, (c, psi, name) in enumerate(zip(centres, psis, ("α", "β"), strict=True)):
         ax.add_patch(Circle(tuple(c), 1.0, fill=False, edgecolor="0.8", linewidth=1))
-        ax.plot([c[0], c[0]], [c[1] - 1.15, c[1] + 1.15], ":", color=_COMPASS, linewidth=0.8)   # the mirror axis
+        ax.plot([c[0], c[0]], [c[1] - 1.15, c[1] + 1.15], ":", color=_COMPASS, linewidth=0.8)  # the mirror axis
         ax.text(c[0], c[1] + 1.3, "N", ha="center", va="bottom", color=_COMPASS)
         ax.text(c[0], c[1] - 1.55, f"stop {k + 1}", ha="center", va="top", fontsize=10)
-        a = np.rad2deg(np.arccos(np.cos(np.deg2rad(psi))))          # Eq. (10)/(11): in [0, 180]
+        a = np.rad2deg(np.arccos(np.cos(np.deg2rad(psi))))  # Eq. (10)/(11): in [0, 180]
         pair = ((psi, "-", _BODY),) if a < 1e-9 or a > 180.0 - 1e-9 else ((psi, "-", _BODY), (360.0 - psi, "--", _MIRROR))
-        for cand, style, color in pair:            # at 0 and 180 deg the two candidates coincide (Eq. 10)
+        for cand, style, color in pair:  # at 0 and 180 deg the two candidates coincide (Eq. 10)
             _arrow(ax, c, c + 0.95 * _unit(_map_angle(cand)), color, style)
-            label = (f"{name} = 2π − {name} = {a:.0f}°" if len(pair) == 1 else
-                     f"{name} = {a:.0f}°" if abs(cand - a) < 1e-9 else f"2π − {name} = {360.0 - a:.0f}°")
-            ax.text(*(c + 1.12 * _unit(_map_angle(cand))), label, fontsize=8, color=color,
-                    ha="left" if np.sin(np.deg2rad(cand)) >= 0 else "right", va="center")
-        alpha_is_true = abs(psi - a) < 1e-9           # the arcs take the colour of their candidate's arrow
+            label = (
+                f"{name} = 2π − {name} = {a:.0f}°"
+                if len(pair) == 1
+                else f"{name} = {a:.0f}°"
+                if abs(cand - a) < 1e-9
+                else f"2π − {name} = {360.0 - a:.0f}°"
+            )
+            ax.text(
+                *(c + 1.12 * _unit(_map_angle(cand))),
+                label,
+                fontsize=8,
+                color=color,
+                ha="left" if np.sin(np.deg2rad(cand)) >= 0 else "right",
+                va="center",
+            )
+        alpha_is_true = abs(psi - a) < 1e-9  # the arcs take the colour of their candidate's arrow
         plots.angle_arc(ax, tuple(c), 0.35, _map_angle(a), 90.0, "", color=_BODY if alpha_is_true else _MIRROR)
         plots.angle_arc(ax, tuple(c), 0.3, 90.0, 90.0 + a, "", color=_MIRROR if alpha_is_true else _BODY)
-    carried = psis[0] + (psis[1] - psis[0]) + err                       # psi1 + dpsi_INS
+    carried = psis[0] + (psis[1] - psis[0]) + err  # psi1 + dpsi_INS
     _arrow(ax, centres[1], centres[1] + 0.75 * _unit(_map_angle(carried)), "tab:green", ":", 2.0)
-    ax.annotate("", tuple(centres[1] + [-1.15, 0.9]), tuple(centres[0] + [1.15, 0.9]),
-                arrowprops={"arrowstyle": "-|>", "color": "tab:green", "linewidth": 1.2,
-                            "connectionstyle": "arc3,rad=-0.25"})
+    ax.annotate(
+        "",
+        tuple(centres[1] + [-1.15, 0.9]),
+        tuple(centres[0] + [1.15, 0.9]),
+        arrowprops={"arrowstyle": "-|>", "color": "tab:green", "linewidth": 1.2, "connectionstyle": "arc3,rad=-0.25"},
+    )
     ax.text(1.6, 1.55, "drive: MEMS INS measures Δψ_INS", fontsize=8, color="tab:green", ha="center")
     ax.plot([], [], color=_BODY, label="true heading (the pair the INS picks)")
     ax.plot([], [], "--", color=_MIRROR, label="mirror candidate 2π − ψ")

@@ -72,6 +72,7 @@ scale-factor and cross-axis errors the 15-state model leaves out
 Also here: the paper's walks (:func:`carpark_legs`, :func:`floor_test_legs`) for the walking-trajectory
 generator :func:`navlib.trajectory.walk`, and the HVAC pressure steps of its building.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -80,8 +81,17 @@ from .. import attitude
 from .._validate import as_array, generator, integer, pitch_roll, positive, same_shape, scalar, time_axis
 from ..trajectory import Leg
 
-__all__ = ["G_LOCAL", "carpark_legs", "floor_test_legs", "tilt_compensate_ned", "tilt_compensate_printed",
-           "heading_from_horizontal", "hvac_pressure_steps", "simple_covariance_update", "draw_system"]
+__all__ = [
+    "G_LOCAL",
+    "carpark_legs",
+    "floor_test_legs",
+    "tilt_compensate_ned",
+    "tilt_compensate_printed",
+    "heading_from_horizontal",
+    "hvac_pressure_steps",
+    "simple_covariance_update",
+    "draw_system",
+]
 
 
 G_LOCAL = 9.7936
@@ -92,8 +102,14 @@ and :func:`navlib.pdr.detect_steps` for the paper's detectors."""
 # The paper's walks
 # --------------------------------------------------------------------------
 
-def carpark_legs(speed: float = 1.2, stops=(8.0, 5.0, 20.0, 10.0, 6.0, 15.0, 30.0, 4.0, 12.0, 25.0),
-                 side=(40.0, 24.0), n_loops: int = 1, initial_stand: float = 30.0) -> list[Leg]:
+
+def carpark_legs(
+    speed: float = 1.2,
+    stops=(8.0, 5.0, 20.0, 10.0, 6.0, 15.0, 30.0, 4.0, 12.0, 25.0),
+    side=(40.0, 24.0),
+    n_loops: int = 1,
+    initial_stand: float = 30.0,
+) -> list[Leg]:
     """A rectangular walk in an underground car park with stops between the pillars.
 
     Each side is walked in two halves with a stop after each half (the stop
@@ -106,7 +122,7 @@ def carpark_legs(speed: float = 1.2, stops=(8.0, 5.0, 20.0, 10.0, 6.0, 15.0, 30.
     a, b = positive(side, "side", shape=(2,))
     n_loops = integer(n_loops, "n_loops")
     legs, k = [Leg(scalar(initial_stand, "initial_stand", positive=True))], 0
-    corner = 3.0 * 2 / 3 * speed                       # path length of a corner (m)
+    corner = 3.0 * 2 / 3 * speed  # path length of a corner (m)
     for _ in range(n_loops):
         for length in (a, b, a, b):
             for _ in range(2):
@@ -118,8 +134,7 @@ def carpark_legs(speed: float = 1.2, stops=(8.0, 5.0, 20.0, 10.0, 6.0, 15.0, 30.
     return legs
 
 
-def floor_test_legs(stand: float = 60.0, stairs: float = 15.0, floor_height: float = 3.0,
-                    n_round_trips: int = 2) -> list[Leg]:
+def floor_test_legs(stand: float = 60.0, stairs: float = 15.0, floor_height: float = 3.0, n_round_trips: int = 2) -> list[Leg]:
     """The paper's floor test 2F -> 1F -> 2F (x ``n_round_trips``): stands, corridor walks and stairs.
 
     Each transition: 8 m of corridor at 1.2 m/s, the stairs (``stairs`` s at
@@ -134,14 +149,14 @@ def floor_test_legs(stand: float = 60.0, stairs: float = 15.0, floor_height: flo
     legs = [Leg(stand)]
     for trip in range(2 * n_round_trips):
         climb = -hf if trip % 2 == 0 else hf
-        legs += [Leg(8 / 1.2, 1.2), Leg(stairs, 0.35, turn=np.pi, climb=climb), Leg(4 / 1.2, 1.2, turn=np.pi),
-                 Leg(stand)]
+        legs += [Leg(8 / 1.2, 1.2), Leg(stairs, 0.35, turn=np.pi, climb=climb), Leg(4 / 1.2, 1.2, turn=np.pi), Leg(stand)]
     return legs
 
 
 # --------------------------------------------------------------------------
 # Magnetic heading (Eqs. 4-6)
 # --------------------------------------------------------------------------
+
 
 def tilt_compensate_ned(H_b, pitch, roll):
     """Corrected Eq. (4) in the paper's NED / forward-right-down frame.
@@ -175,8 +190,7 @@ def tilt_compensate_printed(H_b, pitch, roll):
     H = as_array(H_b, "H_b", tail=(3,))
     th, ph = pitch_roll(pitch, roll)
     Hx, Hy, Hz = H[..., 0], H[..., 1], H[..., 2]
-    return (Hx * np.sin(th) * np.sin(ph) + Hy * np.cos(ph) - Hz * np.cos(th) * np.sin(ph),
-            Hx * np.cos(th) + Hz * np.sin(th))
+    return (Hx * np.sin(th) * np.sin(ph) + Hy * np.cos(ph) - Hz * np.cos(th) * np.sin(ph), Hx * np.cos(th) + Hz * np.sin(th))
 
 
 def heading_from_horizontal(H_X, H_Y, declination: float = 0.0):
@@ -191,8 +205,8 @@ def heading_from_horizontal(H_X, H_Y, declination: float = 0.0):
 # Barometer and floors
 # --------------------------------------------------------------------------
 
-def hvac_pressure_steps(time, door_times, rng: np.random.Generator, amplitude: float = 10.0,
-                        n_trials: int | None = None):
+
+def hvac_pressure_steps(time, door_times, rng: np.random.Generator, amplitude: float = 10.0, n_trials: int | None = None):
     """Pressure offsets of ventilated zones: a new offset in [-a, a] after each door (Pa).
 
     Returns shape (N,), or (n_trials, N) with ``n_trials`` (each trial's offsets drawn in turn: the same
@@ -211,12 +225,13 @@ def hvac_pressure_steps(time, door_times, rng: np.random.Generator, amplitude: f
 # Error-state filter: the printed covariance update (Eq. 3)
 # --------------------------------------------------------------------------
 
+
 def simple_covariance_update(P, H, R):
     """The printed last line of Eq. (3): optimal gain K and ``(I - K H) P``."""
     P = as_array(P, "P", shape=(None, None))
-    same_shape(P, "P", (len(P), len(P)))                         # square (n, n)
-    H = as_array(H, "H", shape=(None, len(P)), of="P")           # (m, n)
-    R = as_array(R, "R", shape=(len(H), len(H)), of="H")         # (m, m)
+    same_shape(P, "P", (len(P), len(P)))  # square (n, n)
+    H = as_array(H, "H", shape=(None, len(P)), of="P")  # (m, n)
+    R = as_array(R, "R", shape=(len(H), len(H)), of="H")  # (m, m)
     K = P @ H.T @ np.linalg.inv(H @ P @ H.T + R)
     return K, (np.eye(P.shape[0]) - K @ H) @ P
 
@@ -253,15 +268,32 @@ def draw_system(ax) -> None:
         "reset": (0.82, 0.36, "walking: reset $h$ and $H$\n(direct binding)"),
         "out": (0.82, 0.84, "position, velocity,\nattitude, floor"),
     }
-    arrows = [("imu", "ins", "$\\tilde\\omega, \\tilde f$"), ("imu", "det"), ("det", "kf", "standing"),
-              ("mag", "compass", "$m$"), ("baro", "height", "$p$"), ("compass", "reset", "$\\alpha$"),
-              ("height", "reset", "$h$"), ("reset", "ins"), ("ins", "out")]
+    arrows = [
+        ("imu", "ins", "$\\tilde\\omega, \\tilde f$"),
+        ("imu", "det"),
+        ("det", "kf", "standing"),
+        ("mag", "compass", "$m$"),
+        ("baro", "height", "$p$"),
+        ("compass", "reset", "$\\alpha$"),
+        ("height", "reset", "$h$"),
+        ("reset", "ins"),
+        ("ins", "out"),
+    ]
     colors = {k: SENSOR_COLOR for k in ("imu", "mag", "baro")}
     plots.block_diagram(ax, blocks, arrows, width=0.23, height=0.13, colors=colors)
     # INS <-> filter: the measurement down, the error feedback up (two parallel arrows)
     for dx, (y0, y1), label in ((0.04, (0.77, 0.675), "$z$"), (-0.04, (0.675, 0.77), "feedback $\\delta\\hat x$")):
         x = 0.45 + dx
-        ax.annotate("", (x, y1), (x, y0), xycoords="axes fraction",
-                    arrowprops={"arrowstyle": "-|>", "color": "0.25", "linewidth": 1.1})
-        ax.text(x + (0.012 if dx > 0 else -0.012), (y0 + y1) / 2, label, transform=ax.transAxes, fontsize=7.5,
-                ha="left" if dx > 0 else "right", va="center", color="0.2")
+        ax.annotate(
+            "", (x, y1), (x, y0), xycoords="axes fraction", arrowprops={"arrowstyle": "-|>", "color": "0.25", "linewidth": 1.1}
+        )
+        ax.text(
+            x + (0.012 if dx > 0 else -0.012),
+            (y0 + y1) / 2,
+            label,
+            transform=ax.transAxes,
+            fontsize=7.5,
+            ha="left" if dx > 0 else "right",
+            va="center",
+            color="0.2",
+        )

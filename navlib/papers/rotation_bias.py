@@ -85,6 +85,7 @@ Extensions: a Kalman filter with a random-walk bias state (:func:`kalman_bias`),
 the residual noise model (:func:`residual_covariance`) and the Cramer-Rao
 bound (:func:`navlib.analysis.cramer_rao_bound`, :func:`design`).
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -120,10 +121,28 @@ from ..euler import PITCH_LIMIT, check_pitch
 from ..imu import ImuSamples, unpack
 from ..units import G0
 
-__all__ = ["eq1_matrix", "gravity_body", "roll_pitch_from_accel", "tilt_matrix", "rodrigues", "rotate_attitude",
-           "dwell_attitudes", "dwell_windows", "Residuals", "tilt_residuals", "residual_covariance",
-           "lsq_bias", "running_lsq_bias", "KalmanBias", "kalman_bias", "design", "MIN_DWELL_SAMPLES",
-           "draw_rotation_scheme", "draw_rotation_schedule", "draw_flow"]
+__all__ = [
+    "eq1_matrix",
+    "gravity_body",
+    "roll_pitch_from_accel",
+    "tilt_matrix",
+    "rodrigues",
+    "rotate_attitude",
+    "dwell_attitudes",
+    "dwell_windows",
+    "Residuals",
+    "tilt_residuals",
+    "residual_covariance",
+    "lsq_bias",
+    "running_lsq_bias",
+    "KalmanBias",
+    "kalman_bias",
+    "design",
+    "MIN_DWELL_SAMPLES",
+    "draw_rotation_scheme",
+    "draw_rotation_schedule",
+    "draw_flow",
+]
 
 MIN_DWELL_SAMPLES = 10
 """Fewest samples in a dwell window for a tilt-rate fit."""
@@ -133,6 +152,7 @@ _MAX_COND = 1e6
 # --------------------------------------------------------------------------
 # Eqs. (4)-(5): accelerometer tilt
 # --------------------------------------------------------------------------
+
 
 def gravity_body(tilt: ArrayLike, g: float = G0) -> Array:
     """Eq. (4): gravity vector in the body frame, ``a_m = R [0, 0, -g]``.
@@ -198,6 +218,7 @@ def tilt_matrix(tilt: ArrayLike) -> Array:
 # --------------------------------------------------------------------------
 # Eqs. (10)-(11): rotation of the IMU
 # --------------------------------------------------------------------------
+
 
 def _unit_axis(axis_b):
     u = as_array(axis_b, "axis_b", shape=(3,))
@@ -269,13 +290,14 @@ def dwell_attitudes(hpr0: Angles, axis_b: Vec3, amplitude: float, n_dwells: int)
     n_dwells = integer(n_dwells, "n_dwells")
     pair = np.stack([hpr0, rotate_attitude(hpr0, axis_b, scalar(amplitude, "amplitude"))])
     if np.any(np.abs(pair[:, 1]) > PITCH_LIMIT):
-        raise ValueError(f"axis_b: rotating by {np.rad2deg(amplitude):g} deg about {np.round(axis_b, 6)} drives "
-                         f"pitch to {np.rad2deg(pair[1, 1]):.1f} deg, where Eq. (2) is singular")
+        raise ValueError(
+            f"axis_b: rotating by {np.rad2deg(amplitude):g} deg about {np.round(axis_b, 6)} drives "
+            f"pitch to {np.rad2deg(pair[1, 1]):.1f} deg, where Eq. (2) is singular"
+        )
     return pair[np.arange(n_dwells) % 2]
 
 
-def dwell_windows(n_samples: int, dt: float, period: float, rotation_time: float,
-                  settle: float = 0.0) -> tuple[np.ndarray, int]:
+def dwell_windows(n_samples: int, dt: float, period: float, rotation_time: float, settle: float = 0.0) -> tuple[np.ndarray, int]:
     """Dwell windows of :func:`navlib.trajectory.reciprocating_rotation`.
 
     Period k holds still over ``[k period, (k+1) period - rotation_time)``;
@@ -302,8 +324,9 @@ def dwell_windows(n_samples: int, dt: float, period: float, rotation_time: float
     first = int(round(settle / dt))
     length = int(np.floor((period - rotation_time) / dt + 1e-9)) - first
     if length < MIN_DWELL_SAMPLES:
-        raise ValueError(f"period, rotation_time, settle: dwell windows too short ({length} samples); "
-                         f"expected at least {MIN_DWELL_SAMPLES}")
+        raise ValueError(
+            f"period, rotation_time, settle: dwell windows too short ({length} samples); expected at least {MIN_DWELL_SAMPLES}"
+        )
     starts = np.arange(0, n_samples - length - first + 1, per) + first
     return starts.astype(np.int64), length
 
@@ -311,6 +334,7 @@ def dwell_windows(n_samples: int, dt: float, period: float, rotation_time: float
 # --------------------------------------------------------------------------
 # Eqs. (6)-(9): tilt-difference residuals per dwell
 # --------------------------------------------------------------------------
+
 
 @dataclass(frozen=True)
 class Residuals:
@@ -338,6 +362,7 @@ class Residuals:
         ``("dwell", "refused")`` dwells skipped, for dropouts (more than ``max_missing`` of their
         samples NaN) or for saturated samples.
     """
+
     r: np.ndarray
     V: np.ndarray
     tilt: np.ndarray
@@ -390,11 +415,17 @@ def _clean_dwell(wb, fb, n, max_missing, outlier_k, fs_gyro, fs_accel, counts):
                 ok_f[j] = False
         if not (ok_w[j] and ok_f[j]):
             missing += 1
-        elif (abs(wb[j, 0]) >= fs_gyro or abs(wb[j, 1]) >= fs_gyro or abs(wb[j, 2]) >= fs_gyro
-              or abs(fb[j, 0]) >= fs_accel or abs(fb[j, 1]) >= fs_accel or abs(fb[j, 2]) >= fs_accel):
+        elif (
+            abs(wb[j, 0]) >= fs_gyro
+            or abs(wb[j, 1]) >= fs_gyro
+            or abs(wb[j, 2]) >= fs_gyro
+            or abs(fb[j, 0]) >= fs_accel
+            or abs(fb[j, 1]) >= fs_accel
+            or abs(fb[j, 2]) >= fs_accel
+        ):
             saturated += 1
     counts[1] += missing
-    if saturated > 0:                    # at the rails: the IMU was not still, or the reading is unknown
+    if saturated > 0:  # at the rails: the IMU was not still, or the reading is unknown
         counts[4] += saturated
         counts[0] += 1
         return False
@@ -402,7 +433,7 @@ def _clean_dwell(wb, fb, n, max_missing, outlier_k, fs_gyro, fs_accel, counts):
         counts[0] += 1
         return False
     if missing == 0 and outlier_k <= 0:
-        return True                      # the common case: untouched
+        return True  # the common case: untouched
     detect = outlier_k > 0
     for buf, ok, c in ((wb, ok_w, 2), (fb, ok_f, 3)):
         bad = np.zeros(n, dtype=np.bool_)
@@ -431,7 +462,7 @@ def _residual_kernel(w, f, dts, regular, starts, n, w_ie, pitch_limit, max_missi
     counts = np.zeros(_N_RESIDUAL_FAULTS, dtype=np.int64)
     singular = False
     jbar = (n - 1) / 2
-    s_jj = n * (n * n - 1) / 12.0                 # sum of (j - jbar)^2
+    s_jj = n * (n * n - 1) / 12.0  # sum of (j - jbar)^2
     dt = dts[0]
     wb = np.empty((n, 3))
     fb = np.empty((n, 3))
@@ -455,11 +486,11 @@ def _residual_kernel(w, f, dts, regular, starts, n, w_ie, pitch_limit, max_missi
                 singular = True
                 continue
             tp, cr, sr = np.tan(pitch_k), np.cos(roll_k), np.sin(roll_k)
-            m00, m01, m02, m10, m12 = sr * tp, 1.0, -cr * tp, cr, sr        # M (m11 = 0)
+            m00, m01, m02, m10, m12 = sr * tp, 1.0, -cr * tp, cr, sr  # M (m11 = 0)
             wex, wey, wez = w_ie[t, k, 0], w_ie[t, k, 1], w_ie[t, k, 2]
             if regular:
                 Td = n * dt
-            else:                          # sample times within the dwell for the slope fit
+            else:  # sample times within the dwell for the slope fit
                 Td = 0.0
                 for j in range(n):
                     tj[j] = Td
@@ -471,14 +502,14 @@ def _residual_kernel(w, f, dts, regular, starts, n, w_ie, pitch_limit, max_missi
                 s_tt = 0.0
                 for j in range(n):
                     s_tt += (tj[j] - tbar) ** 2
-            g_r = g_p = 0.0            # gyro tilt change since the dwell start, M sum(w dt) (Eq. 6)
-            sum_r = sum_p = 0.0        # sum (j - jbar) d_j for the slope fit
+            g_r = g_p = 0.0  # gyro tilt change since the dwell start, M sum(w dt) (Eq. 6)
+            sum_r = sum_p = 0.0  # sum (j - jbar) d_j for the slope fit
             for j in range(n):
-                a_r = np.arctan2(-fb[j, 0], fb[j, 2]) - roll_k               # Eq. (5), about the dwell tilt
+                a_r = np.arctan2(-fb[j, 0], fb[j, 2]) - roll_k  # Eq. (5), about the dwell tilt
                 a_r = wrap_pi(a_r)
                 a_p = np.arctan2(fb[j, 1], np.hypot(fb[j, 0], fb[j, 2])) - pitch_k
                 x = (j - jbar) if regular else (tj[j] - tbar)
-                sum_r += x * (g_r - a_r)                                     # Eq. (7)
+                sum_r += x * (g_r - a_r)  # Eq. (7)
                 sum_p += x * (g_p - a_p)
                 wx, wy, wz = wb[j, 0] - wex, wb[j, 1] - wey, wb[j, 2] - wez
                 h = dt if regular else dts[s + j]
@@ -497,11 +528,19 @@ def _residual_kernel(w, f, dts, regular, starts, n, w_ie, pitch_limit, max_missi
     return r, V, tilt, counts, singular
 
 
-def tilt_residuals(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = None, dt: Interval | None = None,
-                   starts: ArrayLike | None = None, length: int | None = None,
-                   w_ie_b: Vec3Series | None = None, *, max_missing: float = 0.0,
-                   outlier_k: float | None = None, full_scale_gyro: float | None = None,
-                   full_scale_accel: float | None = None) -> Residuals:
+def tilt_residuals(
+    w_ib_b: Vec3Series | ImuSamples,
+    f_b: Vec3Series | None = None,
+    dt: Interval | None = None,
+    starts: ArrayLike | None = None,
+    length: int | None = None,
+    w_ie_b: Vec3Series | None = None,
+    *,
+    max_missing: float = 0.0,
+    outlier_k: float | None = None,
+    full_scale_gyro: float | None = None,
+    full_scale_accel: float | None = None,
+) -> Residuals:
     """Eqs. (6)-(9): gyro-minus-accelerometer tilt change over each dwell.
 
     Over dwell k the sequence ``d_j = M_k sum_{i<j} w_i dt - (tilt_j - tilt_k)``
@@ -575,8 +614,13 @@ def tilt_residuals(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = Non
     small_turns(w, dts)
     length = integer(length, "length", minimum=MIN_DWELL_SAMPLES)
     starts = indices(starts, "starts")
-    if starts.ndim != 1 or starts.size == 0 or not np.issubdtype(starts.dtype, np.integer) \
-            or starts.min() < 0 or starts.max() + length > n:
+    if (
+        starts.ndim != 1
+        or starts.size == 0
+        or not np.issubdtype(starts.dtype, np.integer)
+        or starts.min() < 0
+        or starts.max() + length > n
+    ):
         raise ValueError(f"starts: expected a 1-D array of dwell start indices within [0, {n - length}]")
     max_missing = scalar(max_missing, "max_missing", within=(0.0, 0.5))
     k_out = 0.0 if outlier_k is None else scalar(outlier_k, "outlier_k", positive=True)
@@ -588,23 +632,38 @@ def tilt_residuals(w_ib_b: Vec3Series | ImuSamples, f_b: Vec3Series | None = Non
     def flat(x):
         return kernel_array(x.reshape((-1, n, 3)))
 
-    r, V, tilt, c, singular = _residual_kernel(flat(w), flat(f), dts, regular, starts.astype(np.int64), length,
-                                               kernel_array(w_ie.reshape(-1, K, 3)), PITCH_LIMIT, max_missing, k_out,
-                                               fs_g, fs_a)
+    r, V, tilt, c, singular = _residual_kernel(
+        flat(w),
+        flat(f),
+        dts,
+        regular,
+        starts.astype(np.int64),
+        length,
+        kernel_array(w_ie.reshape(-1, K, 3)),
+        PITCH_LIMIT,
+        max_missing,
+        k_out,
+        fs_g,
+        fs_a,
+    )
     if singular:
-        raise ValueError(f"f_b: a dwell's pitch is beyond +-{np.rad2deg(PITCH_LIMIT):g} deg, where Eq. (2) is "
-                         "singular; choose a rotation that keeps pitch away from +-90 deg")
+        raise ValueError(
+            f"f_b: a dwell's pitch is beyond +-{np.rad2deg(PITCH_LIMIT):g} deg, where Eq. (2) is "
+            "singular; choose a rotation that keeps pitch away from +-90 deg"
+        )
     if regular:
         duration = length * float(dts[0])
     else:
-        duration = float(np.mean([dts[s:s + length].sum() for s in starts]))
+        duration = float(np.mean([dts[s : s + length].sum() for s in starts]))
     faults = robust.FaultReport({key: int(count) for key, count in zip(_RESIDUAL_FAULTS, c, strict=True)})
-    return Residuals(r.reshape(lead + (K, 2)), V.reshape(lead + (K, 2, 3)), tilt.reshape(lead + (K, 2)),
-                     starts + length, duration, faults)
+    return Residuals(
+        r.reshape(lead + (K, 2)), V.reshape(lead + (K, 2, 3)), tilt.reshape(lead + (K, 2)), starts + length, duration, faults
+    )
 
 
-def residual_covariance(tilt: ArrayLike, length: int, dt: float, gyro_noise: float, accel_noise: float = 0.0,
-                        g: float = G0) -> Array:
+def residual_covariance(
+    tilt: ArrayLike, length: int, dt: float, gyro_noise: float, accel_noise: float = 0.0, g: float = G0
+) -> Array:
     """Covariance of each dwell residual of :func:`tilt_residuals` from white sensor noise.
 
     Gyro white noise of density N integrates into a random walk; the slope
@@ -631,7 +690,7 @@ def residual_covariance(tilt: ArrayLike, length: int, dt: float, gyro_noise: flo
     -------
     R : ndarray, shape (..., 2, 2)  (rad^2)
     """
-    M = tilt_matrix(tilt)                                        # validates tilt
+    M = tilt_matrix(tilt)  # validates tilt
     n = integer(length, "length", minimum=MIN_DWELL_SAMPLES)
     dt = interval(dt)
     N = scalar(gyro_noise, "gyro_noise", allow_zero=True)
@@ -642,10 +701,10 @@ def residual_covariance(tilt: ArrayLike, length: int, dt: float, gyro_noise: flo
 def _residual_cov(M, pitch, n, dt, N, A, g):
     """:func:`residual_covariance` of validated arguments, from the tilt matrices M and the dwell pitches."""
     j = np.arange(n)
-    wts = (j - (n - 1) / 2) / (n * (n * n - 1) / 12.0)          # slope weights per sample index
-    c = np.cumsum(wts[::-1])[::-1][1:]                           # sum_{j>i} w_j, i = 0..n-2
-    gyro_var = N ** 2 * dt * np.sum(c ** 2) * n ** 2             # (N^2/dt)(dt c)^2 summed, times n^2
-    accel_var = A ** 2 / dt / g ** 2 * np.sum(wts ** 2) * n ** 2
+    wts = (j - (n - 1) / 2) / (n * (n * n - 1) / 12.0)  # slope weights per sample index
+    c = np.cumsum(wts[::-1])[::-1][1:]  # sum_{j>i} w_j, i = 0..n-2
+    gyro_var = N**2 * dt * np.sum(c**2) * n**2  # (N^2/dt)(dt c)^2 summed, times n^2
+    accel_var = A**2 / dt / g**2 * np.sum(wts**2) * n**2
     D = np.zeros(pitch.shape + (2, 2))
     D[..., 0, 0] = 1 / np.cos(pitch) ** 2
     D[..., 1, 1] = 1.0
@@ -655,6 +714,7 @@ def _residual_cov(M, pitch, n, dt, N, A, g):
 # --------------------------------------------------------------------------
 # Eqs. (12)-(14): stacked least squares, batch and running
 # --------------------------------------------------------------------------
+
 
 def _rv(r, V):
     r = as_array(r, "r", tail=(2,), min_ndim=1, allow_nan=True)
@@ -692,8 +752,10 @@ def lsq_bias(r: ArrayLike, V: ArrayLike) -> Array:
     y = np.einsum("...kij,...ki->...j", Vz, rz)
     cond = normal_condition(A)
     if np.any(cond > _MAX_COND):
-        raise ValueError(f"V: the bias is not observable from these dwells (cond(V) = {np.max(cond):.3g}): their "
-                         "body verticals do not differ (is the rotation axis vertical?) or all dwells were dropped")
+        raise ValueError(
+            f"V: the bias is not observable from these dwells (cond(V) = {np.max(cond):.3g}): their "
+            "body verticals do not differ (is the rotation axis vertical?) or all dwells were dropped"
+        )
     return np.linalg.solve(A, y[..., None])[..., 0]
 
 
@@ -717,7 +779,7 @@ def _running_kernel(r, V, lam, max_cond):
             ev = np.linalg.eigvalsh(A)
             if ev[0] > 0 and ev[2] / ev[0] < max_cond * max_cond:
                 b = np.linalg.solve(A, y)
-                for i in range(3):      # element by element: an array assignment compiles numba's shape messages
+                for i in range(3):  # element by element: an array assignment compiles numba's shape messages
                     out[t, k, i] = b[i]
     return out, skipped
 
@@ -751,14 +813,14 @@ def running_lsq_bias(r: ArrayLike, V: ArrayLike, forgetting: float = 1.0) -> tup
     if not 0 < lam <= 1:
         raise ValueError(f"forgetting: expected a value in (0, 1], got {lam}")
     lead, K = r.shape[:-2], r.shape[-2]
-    out, skipped = _running_kernel(kernel_array(r.reshape(-1, K, 2)),
-                                   kernel_array(V.reshape(-1, K, 2, 3)), lam, _MAX_COND)
+    out, skipped = _running_kernel(kernel_array(r.reshape(-1, K, 2)), kernel_array(V.reshape(-1, K, 2, 3)), lam, _MAX_COND)
     return out.reshape(lead + (K, 3)), robust.FaultReport({("dwell", "nan"): int(skipped)})
 
 
 # --------------------------------------------------------------------------
 # Extension: Kalman filter with a random-walk bias state
 # --------------------------------------------------------------------------
+
 
 @dataclass(frozen=True)
 class KalmanBias:
@@ -778,6 +840,7 @@ class KalmanBias:
         Covariance after each dwell (rad^2/s^2); symmetric positive definite
         (Joseph-form update, symmetrised predict).
     """
+
     b: np.ndarray
     sigma: np.ndarray
     faults: robust.FaultReport
@@ -802,13 +865,13 @@ def _kalman_kernel(r, V, R, qq, intervals, p0, gate):
             H = V[t, k]
             if np.all(np.isfinite(H)):
                 x, P, _, _, status = _kernels.kalman_update(x, P, r[t, k], H @ x, H, R[t, k], mask, gate)
-            else:                                   # a skipped dwell: no V either
+            else:  # a skipped dwell: no V either
                 status = kalman.NO_DATA
             if status == kalman.NO_DATA:
                 no_data += 1
             elif status == kalman.REJECTED:
                 rejected += 1
-            for i in range(3):          # element by element: an array assignment compiles numba's shape messages
+            for i in range(3):  # element by element: an array assignment compiles numba's shape messages
                 b[t, k, i] = x[i]
                 sig[t, k, i] = np.sqrt(P[i, i])
                 for j in range(3):
@@ -816,8 +879,9 @@ def _kalman_kernel(r, V, R, qq, intervals, p0, gate):
     return b, sig, no_data, rejected, Ps
 
 
-def kalman_bias(r: ArrayLike, V: ArrayLike, R: ArrayLike, interval: Interval, rate_random_walk: float, bias_sigma: float,
-                gate: float = 13.8) -> KalmanBias:
+def kalman_bias(
+    r: ArrayLike, V: ArrayLike, R: ArrayLike, interval: Interval, rate_random_walk: float, bias_sigma: float, gate: float = 13.8
+) -> KalmanBias:
     """Kalman filter on the dwell residuals with a random-walk bias state.
 
     State ``b`` (3); between dwells ``b_k = b_k-1 + w`` with
@@ -857,7 +921,7 @@ def kalman_bias(r: ArrayLike, V: ArrayLike, R: ArrayLike, interval: Interval, ra
     ok = np.all(np.isfinite(r), -1)
     if np.any(~np.isfinite(R[ok])):
         raise ValueError("R: expected finite covariances wherever r is finite")
-    gaps = positive(interval, "interval", nonempty=True)        # not sample_intervals(): it accepts huge values
+    gaps = positive(interval, "interval", nonempty=True)  # not sample_intervals(): it accepts huge values
     if gaps.ndim == 0:
         gaps = np.full(K, float(gaps))
     elif gaps.shape != (K,):
@@ -866,8 +930,14 @@ def kalman_bias(r: ArrayLike, V: ArrayLike, R: ArrayLike, interval: Interval, ra
     s0 = scalar(bias_sigma, "bias_sigma", positive=True)
     gate = scalar(gate, "gate", positive=True)
     b, sig, no_data, rejected, P = _kalman_kernel(
-        kernel_array(r.reshape(-1, K, 2)), kernel_array(V.reshape(-1, K, 2, 3)),
-        kernel_array(R.reshape(-1, K, 2, 2)), q * q, kernel_array(gaps), s0 * s0 * np.eye(3), gate)
+        kernel_array(r.reshape(-1, K, 2)),
+        kernel_array(V.reshape(-1, K, 2, 3)),
+        kernel_array(R.reshape(-1, K, 2, 2)),
+        q * q,
+        kernel_array(gaps),
+        s0 * s0 * np.eye(3),
+        gate,
+    )
     faults = robust.FaultReport({("dwell", "nan"): int(no_data), ("dwell", "outlier"): int(rejected)})
     return KalmanBias(b.reshape(lead + (K, 3)), sig.reshape(lead + (K, 3)), faults, P.reshape(lead + (K, 3, 3)))
 
@@ -876,8 +946,17 @@ def kalman_bias(r: ArrayLike, V: ArrayLike, R: ArrayLike, interval: Interval, ra
 # Observability
 # --------------------------------------------------------------------------
 
-def design(hpr0: Angles, axis_b: Vec3, amplitude: float, dwell_time: float, dt: float, gyro_noise: float,
-           accel_noise: float = 0.0, n_dwells: int = 2) -> tuple[float, Array, Array]:
+
+def design(
+    hpr0: Angles,
+    axis_b: Vec3,
+    amplitude: float,
+    dwell_time: float,
+    dt: float,
+    gyro_noise: float,
+    accel_noise: float = 0.0,
+    n_dwells: int = 2,
+) -> tuple[float, Array, Array]:
     """Observability of a rotation schedule without simulation.
 
     Builds V (Eq. 13) for ``n_dwells`` dwells of :func:`dwell_attitudes` and
@@ -931,9 +1010,11 @@ def eq1_matrix(hpr: Angles) -> Array:
     """
     h, p, r = np.moveaxis(euler_angles(as_array(hpr, "hpr", tail=(3,), nonempty=True)), -1, 0)
     ch, sh, cp, sp, cr, sr = np.cos(h), np.sin(h), np.cos(p), np.sin(p), np.cos(r), np.sin(r)
-    rows = [[cr * ch + sr * sp * sh, -cr * sh + sr * sp * ch, -sr * cp],
-            [cp * sh, cp * ch, sp],
-            [sr * ch - cr * sp * sh, -sr * sh - cr * sp * ch, cr * cp]]
+    rows = [
+        [cr * ch + sr * sp * sh, -cr * sh + sr * sp * ch, -sr * cp],
+        [cp * sh, cp * ch, sp],
+        [sr * ch - cr * sp * sh, -sr * sh - cr * sp * ch, cr * cp],
+    ]
     return np.stack([np.stack(row, -1) for row in rows], -2)
 
 
@@ -941,6 +1022,7 @@ def eq1_matrix(hpr: Angles) -> Array:
 # The chapter's experiment driver and schematics (notebook 02). Kept out of __all__: they serve the
 # notebook (one pitch group of §4, the redrawn Figs. 3-4), not a reader's own data.
 # --------------------------------------------------------------------------
+
 
 @dataclass(frozen=True)
 class Rig:
@@ -957,6 +1039,7 @@ class Rig:
     w_ie_b : array_like, shape (K, 3)
         Earth rate in the body frame at each dwell (rad/s).
     """
+
     traj: object
     w_ib_b: Vec3Series
     f_b: Vec3Series
@@ -965,8 +1048,19 @@ class Rig:
     w_ie_b: Vec3Series
 
 
-def rig_experiment(rig: Rig, dt: float, lat: float, model, rng: np.random.Generator, *, n_runs: int, period: float,
-                   memory: float, extensions: bool = False, decimate: int = 100) -> dict:
+def rig_experiment(
+    rig: Rig,
+    dt: float,
+    lat: float,
+    model,
+    rng: np.random.Generator,
+    *,
+    n_runs: int,
+    period: float,
+    memory: float,
+    extensions: bool = False,
+    decimate: int = 100,
+) -> dict:
     """One pitch group of the paper's experiment (§4): ``n_runs`` noisy runs on one rig trajectory.
 
     Simulates ``model`` on the exact samples of ``traj`` (all runs in one vectorised call), estimates
@@ -999,12 +1093,14 @@ def rig_experiment(rig: Rig, dt: float, lat: float, model, rng: np.random.Genera
     """
     from .. import analysis, euler, sensors, trajectory, units  # noqa: PLC0415 -- the driver alone needs them
 
-    n_runs = integer(n_runs, "n_runs")                  # rng: simulate_imu checks it
+    n_runs = integer(n_runs, "n_runs")  # rng: simulate_imu checks it
     decimate = integer(decimate, "decimate")
     period, memory = scalar(period, "period", positive=True), scalar(memory, "memory", positive=True)
     if flag(extensions, "extensions") and (model.gyro.scale_factor != 0 or model.gyro.misalignment != 0):
-        raise ValueError("model: the no-rotation case reuses the sensor errors on a static IMU, which needs a gyro "
-                         "model without scale-factor and misalignment errors")
+        raise ValueError(
+            "model: the no-rotation case reuses the sensor errors on a static IMU, which needs a gyro "
+            "model without scale-factor and misalignment errors"
+        )
     traj, w_ib_b, starts, length = rig.traj, rig.w_ib_b, rig.starts, rig.length
     w_ie_n = earth.earth_rate_n(lat)
     imu = sensors.simulate_imu(w_ib_b, rig.f_b, dt, model, rng, n_trials=n_runs)
@@ -1013,21 +1109,24 @@ def rig_experiment(rig: Rig, dt: float, lat: float, model, rng: np.random.Genera
     res = tilt_residuals(imu.w_ib_b, imu.f_b, dt, starts, length, rig.w_ie_b)
     forgetting = np.exp(-period / memory)
     b_lsq, _ = running_lsq_bias(res.r, res.V, forgetting)
-    cases = {"uncorrected": (imu.w_ib_b, w_ie_n, None, hpr_true),
-             "corrected": (imu.w_ib_b, w_ie_n, b_lsq, hpr_true)}
+    cases = {"uncorrected": (imu.w_ib_b, w_ie_n, None, hpr_true), "corrected": (imu.w_ib_b, w_ie_n, b_lsq, hpr_true)}
     out = {"faults": res.faults}
     if extensions:
         R = residual_covariance(res.tilt, length, dt, model.gyro.noise_density, model.accel.noise_density)
-        rrw = np.sqrt(2 / model.gyro.correlation_time) * model.gyro.gauss_markov_sigma   # RW matching the GM drift
+        rrw = np.sqrt(2 / model.gyro.correlation_time) * model.gyro.gauss_markov_sigma  # RW matching the GM drift
         kf = kalman_bias(res.r, res.V, R, period, rrw, np.hypot(model.gyro.bias, model.gyro.gauss_markov_sigma))
-        res_paper = tilt_residuals(imu.w_ib_b, imu.f_b, dt, starts, length)             # Earth rate neglected
+        res_paper = tilt_residuals(imu.w_ib_b, imu.f_b, dt, starts, length)  # Earth rate neglected
         b_paper, _ = running_lsq_bias(res_paper.r, res_paper.V, forgetting)
         static = trajectory.static(traj.time[-1], dt, [lat, 0, 0], hpr0)
         w_static = trajectory.ideal_imu(static)[0] + (imu.w_ib_b - w_ib_b)
-        cases.update({"Kalman": (imu.w_ib_b, w_ie_n, kf.b, hpr_true),
-                      "no rotation": (w_static, w_ie_n, None, static.hpr),
-                      "paper uncorrected": (imu.w_ib_b, None, None, hpr_true),
-                      "paper corrected": (imu.w_ib_b, None, b_paper, hpr_true)})
+        cases.update(
+            {
+                "Kalman": (imu.w_ib_b, w_ie_n, kf.b, hpr_true),
+                "no rotation": (w_static, w_ie_n, None, static.hpr),
+                "paper uncorrected": (imu.w_ib_b, None, None, hpr_true),
+                "paper corrected": (imu.w_ib_b, None, b_paper, hpr_true),
+            }
+        )
         out.update(kf_faults=kf.faults, b_kf=kf.b)
     out["stats"], out["heading_err"] = {}, {}
     for name, (gyro, w_in, b_hat, truth) in cases.items():
@@ -1036,13 +1135,32 @@ def rig_experiment(rig: Rig, dt: float, lat: float, model, rng: np.random.Genera
         final = analysis.attitude_errors(hpr[:, -1], truth[-1])
         out["stats"][name] = {"max": units.to_deg(mx), "mean": units.to_deg(mean), "final": units.to_deg(final)}
         out["heading_err"][name] = units.to_deg(analysis.attitude_errors(hpr[:, ::decimate], truth[::decimate])[..., 0])
-    out.update(time=traj.time[::decimate], time_b=traj.time[:-1:decimate], b_lsq=b_lsq, t_est=traj.time[res.end],
-               b_true_at_est=imu.gyro_bias[:, res.end - 1], b_true=imu.gyro_bias[:, ::decimate])
+    out.update(
+        time=traj.time[::decimate],
+        time_b=traj.time[:-1:decimate],
+        b_lsq=b_lsq,
+        t_est=traj.time[res.end],
+        b_true_at_est=imu.gyro_bias[:, res.end - 1],
+        b_true=imu.gyro_bias[:, ::decimate],
+    )
     return out
 
 
-def pair_spread(hpr0: Angles, axis_b: Vec3, amplitude: float, period: float, rotation_time: float, dt: float, lat: float,
-                model, bias_b: Vec3, rng: np.random.Generator, *, n_runs: int, duration: float) -> Array:
+def pair_spread(
+    hpr0: Angles,
+    axis_b: Vec3,
+    amplitude: float,
+    period: float,
+    rotation_time: float,
+    dt: float,
+    lat: float,
+    model,
+    bias_b: Vec3,
+    rng: np.random.Generator,
+    *,
+    n_runs: int,
+    duration: float,
+) -> Array:
     """Per-axis standard deviation (rad/s) of the least-squares bias from each pair of dwells, by Monte Carlo.
 
     Simulates ``n_runs`` runs of ``duration`` seconds of the rig (:func:`navlib.trajectory.reciprocating_rotation`)
@@ -1053,14 +1171,14 @@ def pair_spread(hpr0: Angles, axis_b: Vec3, amplitude: float, period: float, rot
     """
     from .. import sensors, trajectory  # noqa: PLC0415 -- the driver alone needs them
 
-    n_runs = integer(n_runs, "n_runs")                  # rng: simulate_imu checks it
+    n_runs = integer(n_runs, "n_runs")  # rng: simulate_imu checks it
     bias_b = as_array(bias_b, "bias_b", shape=(3,))
     try:
         hpr_dw = dwell_attitudes(hpr0, axis_b, amplitude, 2)
         cond = design(hpr0, axis_b, amplitude, period - rotation_time, dt, model.gyro.noise_density)[0]
-    except ValueError:                                  # pitch driven to ±90°: Eq. (2) is singular
+    except ValueError:  # pitch driven to ±90°: Eq. (2) is singular
         return np.full(3, np.nan)
-    if not cond < _MAX_COND:                            # the axis is vertical: the bias along it is unobservable
+    if not cond < _MAX_COND:  # the axis is vertical: the bias along it is unobservable
         return np.full(3, np.nan)
     traj = trajectory.reciprocating_rotation(duration, dt, [lat, 0, 0], hpr_dw[0], axis_b, amplitude, period, rotation_time)
     w, f = trajectory.ideal_imu(traj)
@@ -1072,8 +1190,8 @@ def pair_spread(hpr0: Angles, axis_b: Vec3, amplitude: float, period: float, rot
     if k < 2:
         raise ValueError(f"duration: expected at least two pairs of dwells, got {k}")
     try:
-        b = lsq_bias(res.r[:, :2 * k].reshape(n_runs, k, 2, 2), res.V[:, :2 * k].reshape(n_runs, k, 2, 2, 3))
-    except ValueError:                                  # every dwell dropped (a faulty model)
+        b = lsq_bias(res.r[:, : 2 * k].reshape(n_runs, k, 2, 2), res.V[:, : 2 * k].reshape(n_runs, k, 2, 2, 3))
+    except ValueError:  # every dwell dropped (a faulty model)
         return np.full(3, np.nan)
     return (b - bias_b).reshape(-1, 3).std(axis=0)
 
@@ -1106,8 +1224,10 @@ def draw_rotation_scheme(ax, amplitude_deg: float = 90.0, pitch_deg: float = 30.
     axes(ax)
     alpha = scalar(amplitude_deg, "amplitude_deg", within=(0.0, 180.0), open_ends=(True, False))
     pitch = scalar(pitch_deg, "pitch_deg", within=(-90.0, 90.0), open_ends=(True, True))
-    views = (((0.0, 0.0), 0.0, ("$x_b$", "$z_b$"), "tab:blue", "dwell k"),
-             ((3.0, 0.0), -alpha, ("$x_b'$", "$z_b'$"), "tab:orange", "dwell k′: turned by Δα"))
+    views = (
+        ((0.0, 0.0), 0.0, ("$x_b$", "$z_b$"), "tab:blue", "dwell k"),
+        ((3.0, 0.0), -alpha, ("$x_b'$", "$z_b'$"), "tab:orange", "dwell k′: turned by Δα"),
+    )
     for (ox, oy), angle, names, color, title in views:
         ax.plot([ox, ox], [oy - 1.2, oy + 1.2], color="0.55", ls="--", lw=1)
         ax.text(ox, oy + 1.32, "vertical", color="0.45", ha="center", fontsize=8)
@@ -1116,8 +1236,7 @@ def draw_rotation_scheme(ax, amplitude_deg: float = 90.0, pitch_deg: float = 30.
         ax.plot(ox, oy, "x", ms=7, color="k", zorder=6)
         ax.text(ox, oy - 1.55, title, ha="center", fontsize=9, color=color)
     angle_arc(ax, views[1][0], 0.5, 90.0 - alpha, 90.0, "Δα", color="0.25")
-    ax.annotate("", (2.2, 0.9), (0.8, 0.9), arrowprops={"arrowstyle": "-|>", "color": "0.3",
-                                                        "connectionstyle": "arc3,rad=-0.3"})
+    ax.annotate("", (2.2, 0.9), (0.8, 0.9), arrowprops={"arrowstyle": "-|>", "color": "0.3", "connectionstyle": "arc3,rad=-0.3"})
     ax.text(1.5, 1.35, "rotate by Δα\nabout u", ha="center", fontsize=8)
     ax.text(1.5, -0.25, f"u = $y_b$ into the page\n(pitched up θ0 = {pitch:g}°)", ha="center", va="top", fontsize=8)
     ax.set(xlim=(-1.4, 4.4), ylim=(-1.8, 2.0), aspect="equal")
@@ -1148,8 +1267,9 @@ def draw_rotation_schedule(ax, time, angle_deg, starts, length: int, dt: float) 
     ax.plot(t, a, color="k", lw=1.5)
     for k, s in enumerate(starts.astype(int)):
         ax.axvspan(s * dt, (s + length) * dt, color="tab:blue" if k % 2 == 0 else "tab:orange", alpha=0.15, lw=0)
-        ax.text((s + length / 2) * dt, a.max() * 1.06, f"dwell {k + 1}" + ("" if k % 2 == 0 else " (turned)"),
-                ha="center", fontsize=8)
+        ax.text(
+            (s + length / 2) * dt, a.max() * 1.06, f"dwell {k + 1}" + ("" if k % 2 == 0 else " (turned)"), ha="center", fontsize=8
+        )
     ax.set(xlabel="time (s)", ylabel="rotation angle α (°)", ylim=(-0.1 * a.max(), 1.2 * a.max()))
 
 
@@ -1157,13 +1277,21 @@ def draw_flow(ax) -> None:
     """Paper Fig. 4 redrawn: the estimation and compensation loop (§3.3) as a block diagram."""
     from ..plots import block_diagram  # noqa: PLC0415 -- plotting only (it validates ax)
 
-    blocks = {"imu": (0.12, 0.72, "IMU\ngyros $\\tilde\\Omega$,\naccelerometers"),
-              "dwell": (0.37, 0.72, "dwell k: tilt residual\n$r_k = V_k b$ (Eqs. 6–9)"),
-              "rotate": (0.12, 0.25, "rig: rotate by ±Δα\nabout u every 5 s\n(Eqs. 10–11)"),
-              "stack": (0.62, 0.72, "stack $r$, $V$\n(Eq. 13)"),
-              "lsq": (0.87, 0.72, "least squares\n$\\hat b = (V^TV)^{-1}V^Tr$\n(Eq. 14)"),
-              "int": (0.87, 0.25, "integrate Eq. (2)\nwith $\\tilde\\Omega - \\hat b$"),
-              "att": (0.62, 0.25, "attitude\nψ, θ, φ")}
-    arrows = [("imu", "dwell"), ("dwell", "stack"), ("stack", "lsq"), ("lsq", "int", "$\\hat b$"),
-              ("int", "att"), ("rotate", "imu", "turns")]
+    blocks = {
+        "imu": (0.12, 0.72, "IMU\ngyros $\\tilde\\Omega$,\naccelerometers"),
+        "dwell": (0.37, 0.72, "dwell k: tilt residual\n$r_k = V_k b$ (Eqs. 6–9)"),
+        "rotate": (0.12, 0.25, "rig: rotate by ±Δα\nabout u every 5 s\n(Eqs. 10–11)"),
+        "stack": (0.62, 0.72, "stack $r$, $V$\n(Eq. 13)"),
+        "lsq": (0.87, 0.72, "least squares\n$\\hat b = (V^TV)^{-1}V^Tr$\n(Eq. 14)"),
+        "int": (0.87, 0.25, "integrate Eq. (2)\nwith $\\tilde\\Omega - \\hat b$"),
+        "att": (0.62, 0.25, "attitude\nψ, θ, φ"),
+    }
+    arrows = [
+        ("imu", "dwell"),
+        ("dwell", "stack"),
+        ("stack", "lsq"),
+        ("lsq", "int", "$\\hat b$"),
+        ("int", "att"),
+        ("rotate", "imu", "turns"),
+    ]
     block_diagram(ax, blocks, arrows, width=0.2, height=0.2, colors={"imu": "#dbe9f6", "att": "#e3f1dc"})

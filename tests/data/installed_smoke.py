@@ -4,6 +4,7 @@ Uses only the installed package (the working directory is outside the checkout):
 the sensor presets shipped as package data, one filter, and repro's refusal to write beside the
 installed package. Prints one line per step; exits non-zero on any failure.
 """
+
 import sys
 from pathlib import Path
 
@@ -30,9 +31,9 @@ imu = sensors.simulate_imu(w_ib_b, f_b, 0.01, model, np.random.default_rng(1))
 print("simulated", imu.w_ib_b.shape[0], "static samples; |f| =", float(np.linalg.norm(imu.f_b, axis=-1).mean()))
 
 B_n = earth.magnetic_field(40.0, 116.0, 50.0, 2024.0)
-m_b = np.einsum("nji,j->ni", attitude.quat_to_dcm(traj.q_bn[1:]), B_n)   # one per IMU interval
+m_b = np.einsum("nji,j->ni", attitude.quat_to_dcm(traj.q_bn[1:]), B_n)  # one per IMU interval
 res = mh.mahony(ImuSamples(imu.w_ib_b, imu.f_b, 0.01), traj.q_bn[0], m_b=m_b, B_n=B_n)
-declination = np.arctan2(B_n[0], B_n[1])            # the filter's heading is magnetic
+declination = np.arctan2(B_n[0], B_n[1])  # the filter's heading is magnetic
 heading_err = np.rad2deg(attitude.wrap_pi(attitude.quat_to_euler(res.q_bn[-1])[0] + declination - 0.3))
 print(f"mahony magnetic heading error after 20 s: {heading_err:.3f} deg")
 assert abs(heading_err) < 1.0

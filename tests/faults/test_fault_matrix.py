@@ -6,6 +6,7 @@ after the fault exceeds the ignored one by at most MARGIN (what holding one nois
 either way: 0.29 deg, 0.06 m), and the handled run's ``faults`` counts the fault. Cells where a fault cannot occur
 (a free INS has no limits to act on, the motion never reaches the rails) are skipped with the reason.
 """
+
 import sys
 from pathlib import Path
 
@@ -26,7 +27,7 @@ def test_handling_costs_no_more_than_ignoring(fault, name, motion):
         pytest.skip(f"{fault} does not apply to {name} ({motion})")
     assert cell["counted"], "the fault is not counted in faults"
     assert cell["handled"] <= cell["ignored"] + fm.MARGIN[fm.unit(name)], cell
-    assert cell["handled"] < 2 * cell["free"] + 5.0 or fault == "saturation", cell     # recovered (not lost for good)
+    assert cell["handled"] < 2 * cell["free"] + 5.0 or fault == "saturation", cell  # recovered (not lost for good)
 
 
 @pytest.mark.parametrize("fault", [f for f in fm.FAULTS if f in fm.KEYS and f != "saturation"])
@@ -42,7 +43,7 @@ def test_a_lasting_latch_is_held_not_used():
     """The hold that makes a stuck axis cost nothing when the output froze at its last reading is not the run's value
     when the output latched elsewhere (a step into the run): 0.3 rad/s latched on z at rest for 1 s."""
     r = fm.rig(0.0, 0)
-    r.w[fm.K0:fm.K0 + 100, 2] = 0.3
+    r.w[fm.K0 : fm.K0 + 100, 2] = 0.3
     run = fm.IMU_FILTERS["Mahony"]
     q_h, faults = run(r, fm.SensorLimits(), False)
     q_i, _ = run(r, fm.SensorLimits(stuck_run=None), False)
@@ -60,7 +61,7 @@ def test_stamps_that_do_not_increase_are_refused_by_name_and_sanitized(fault):
     r = fm.rig(0.0, 0)
     t = fm.DT * fm.np.arange(fm.N + 1)
     if fault == "clock jump -":
-        t[fm.K0:] -= 0.2
+        t[fm.K0 :] -= 0.2
     else:
         t[fm.K0] = t[fm.K0 - 1]
     with pytest.raises(ValueError, match="^time: "):

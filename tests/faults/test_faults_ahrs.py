@@ -11,6 +11,7 @@ positive definite after every sample; the heading within a stated bound of
 the fault-free run on the same data; and each injected fault counted in the
 result's ``faults`` (:class:`navlib.robust.FaultReport`; or bounded, with the reason).
 """
+
 import numpy as np
 import pytest
 
@@ -25,16 +26,15 @@ from navlib.imu import ImuSamples, SensorLimits
 B_N = earth.magnetic_field(32.03, 118.85, 20.0, 2022.5)
 LLA0 = [units.deg(32.03), units.deg(118.85), 20.0]
 IMU = sensors.imu_model("ADIS16475-1")
-DT = 0.02                                    # 50 Hz, notebook 04's Fig. 4 rate
-STEP = 10                                    # 5 Hz RTK
+DT = 0.02  # 50 Hz, notebook 04's Fig. 4 rate
+STEP = 10  # 5 Hz RTK
 H_TRUE = units.deg(90.0)
 DURATION = 300.0
-SIGMA_GYRO = IMU.gyro.noise_density / np.sqrt(DT)        # per-sample gyro noise (rad/s)
-SIGMA_ACCEL = IMU.accel.noise_density / np.sqrt(DT)      # per-sample accelerometer noise (m/s^2)
-SIGMA_MAG = units.gauss(0.04)                            # magnetometer noise (uT)
+SIGMA_GYRO = IMU.gyro.noise_density / np.sqrt(DT)  # per-sample gyro noise (rad/s)
+SIGMA_ACCEL = IMU.accel.noise_density / np.sqrt(DT)  # per-sample accelerometer noise (m/s^2)
+SIGMA_MAG = units.gauss(0.04)  # magnetometer noise (uT)
 KF = dict(kp=1.0, ki=0.02, noise=qkf.KfNoise(sigma_gyro=SIGMA_GYRO, sigma_accel=0.02, sigma_mag=0.08))
-FILTERS = {"mahony": (mh.mahony, dict(kp=1.0, ki=0.02)),
-           "kf": (qkf.quaternion_kf, dict(KF, keep_cov=True))}
+FILTERS = {"mahony": (mh.mahony, dict(kp=1.0, ki=0.02)), "kf": (qkf.quaternion_kf, dict(KF, keep_cov=True))}
 
 
 def fig4_trial(seed):
@@ -114,8 +114,7 @@ SENSOR_COUNT = {"w": ("gyro", "nan"), "f": ("accel", "nan"), "m": ("mag", "nan")
 
 
 @pytest.mark.parametrize("name", FILTERS)
-@pytest.mark.parametrize("sensor, mode", [("w", "mag"), ("f", "mag"), ("m", "mag"), ("w", "rtk"), ("f", "rtk"),
-                                          ("rtk", "rtk")])
+@pytest.mark.parametrize("sensor, mode", [("w", "mag"), ("f", "mag"), ("m", "mag"), ("w", "rtk"), ("f", "rtk"), ("rtk", "rtk")])
 def test_ten_percent_dropouts_are_counted_and_bounded(fig4, clean, name, sensor, mode):
     x, dropped = faults.dropouts(fig4[sensor], 0.10, np.random.default_rng(1))
     res = run(name, fig4, mode, **{sensor: x})
@@ -160,6 +159,7 @@ def test_thirty_second_gap_is_counted_and_bounded(fig4, clean, name, sensor, mod
 
 # --------------------------------------------------------------------------- spikes
 
+
 @pytest.mark.parametrize("name", FILTERS)
 def test_accelerometer_spikes_are_gated_exactly(fig4, clean, name):
     """100 sigma (0.24 m/s^2 per axis) changes |f| by 2.4 % > accel_tol = 1 %; clean noise moves it < 0.1 %."""
@@ -171,7 +171,7 @@ def test_accelerometer_spikes_are_gated_exactly(fig4, clean, name):
     assert counts(ref).get(("accel", "outlier"), 0) == 0
     assert counts(res)[("accel", "outlier")] == hit.sum() > 100
     dh, dtilt = heading_diff(res, ref)
-    assert dh < 0.3 and dtilt < 0.05        # only the skipped corrections differ (kp dt = 2 % each)
+    assert dh < 0.3 and dtilt < 0.05  # only the skipped corrections differ (kp dt = 2 % each)
 
 
 @pytest.mark.parametrize("name", FILTERS)
@@ -185,7 +185,7 @@ def test_magnetometer_spikes_are_gated_exactly(fig4, clean, name):
     assert counts(ref).get(("mag", "outlier"), 0) == 0
     assert counts(res)[("mag", "outlier")] == hit.sum() > 100
     dh, _ = heading_diff(res, ref)
-    assert dh < 1.0                         # skipped 1 % of 7-deg-noise corrections
+    assert dh < 1.0  # skipped 1 % of 7-deg-noise corrections
     ungated = run(name, fig4, "mag", m=m)  # without the gate the spikes are fused: far worse
     assert heading_diff(ungated, ref)[0] > 5 * dh
 
@@ -219,6 +219,7 @@ def test_gyro_spikes_are_gated_or_bounded(fig4, clean, name):
 
 # --------------------------------------------------------------------------- RTK heading flips
 
+
 @pytest.mark.parametrize("name", FILTERS)
 def test_rtk_heading_flips_are_rejected_never_fused(fig4, clean, name):
     """5 % of epochs flipped by 180 deg; rtk_gate = 10 deg (50 sigma of the RTK noise, far below 180 deg)."""
@@ -233,9 +234,9 @@ def test_rtk_heading_flips_are_rejected_never_fused(fig4, clean, name):
     assert_healthy(res)
     assert counts(ref).get(("heading", "outlier"), 0) == 0
     assert counts(res)[("heading", "outlier")] == flipped.sum() and counts(res).get(("heading", "reacquired"), 0) == 0
-    assert runs.max() < 5                    # no run of rtk_confirm flips: none can be re-acquired
+    assert runs.max() < 5  # no run of rtk_confirm flips: none can be re-acquired
     dh, _ = heading_diff(res, ref)
-    assert dh < 0.5                          # only the rejected epochs' corrections are missing (RTK noise 0.2)
+    assert dh < 0.5  # only the rejected epochs' corrections are missing (RTK noise 0.2)
     # Without the gate the flips are fused unreported. In the PI error (and the
     # KF's linearised update) an exactly antiparallel reference gives ~zero
     # correction, so here they cost little -- but nothing says they happened.
@@ -275,13 +276,13 @@ def test_fusion_rejects_flips_and_counts_dropouts(fig4, clean):
     assert np.isfinite(out).all() and np.isfinite(delta).all()
     assert int(c["heading", "nan"]) == (drop & epoch).sum()
     first = np.flatnonzero(epoch)[0]
-    assert not flip[first] and not drop[first]               # the first epoch cannot be checked (documented)
+    assert not flip[first] and not drop[first]  # the first epoch cannot be checked (documented)
     assert int(c["heading", "outlier"]) == (flip & ~drop & epoch).sum() and int(c["heading", "reacquired"]) == 0
     err = units.to_deg(np.abs(attitude.wrap_pi(out - ref)))
     # a dropped/rejected epoch: the previous one is carried 0.25 s, then H_mag + delta,
     # whose error is mode (b)'s (0.4 deg std, peaks ~1.5 deg): bound 2 deg
     assert err.max() < 2.0
-    fused = hf.fuse_rtk_heading(h_mag, RtkHeading(rtk, epoch), DT).heading   # no gate: flips are output as the heading
+    fused = hf.fuse_rtk_heading(h_mag, RtkHeading(rtk, epoch), DT).heading  # no gate: flips are output as the heading
     assert units.to_deg(np.abs(attitude.wrap_pi(fused - ref))).max() > 170.0
 
 
@@ -298,6 +299,7 @@ def test_fusion_gate_recovers_from_a_flipped_first_epoch(fig4, clean):
 
 # --------------------------------------------------------------------------- timing
 
+
 def turning(time, rate_of_t, rtk_step=STEP):
     """Noise-free level IMU turning at ``rate_of_t(t)`` (rad/s, heading rate) at sample times ``time`` (N + 1,).
 
@@ -313,8 +315,7 @@ def turning(time, rate_of_t, rtk_step=STEP):
     epoch = np.zeros(time.size - 1, bool)
     epoch[::rtk_step] = True
     rtk = np.where(epoch, attitude.wrap_2pi(H[1:]), np.nan)
-    return dict(t=time[1:], w=w, f=f, rtk=rtk, epoch=epoch, H=H[1:],
-                q0=attitude.euler_to_quat([H[0], 0.0, 0.0]))
+    return dict(t=time[1:], w=w, f=f, rtk=rtk, epoch=epoch, H=H[1:], q0=attitude.euler_to_quat([H[0], 0.0, 0.0]))
 
 
 def _rate(t):
@@ -340,11 +341,18 @@ def test_irregular_sampling_is_integrated_with_per_sample_intervals(name):
     irregular = turning(faults.irregular_times(n + 1, DT, 0.2, np.random.default_rng(8)), _rate)
     regular = turning(np.arange(n + 1) * DT, _rate)
     out = {}
-    for key, d, dt in [("irregular", irregular, np.diff(np.r_[0.0, irregular["t"]])),
-                       ("regular", regular, DT), ("nominal", irregular, DT)]:
+    for key, d, dt in [
+        ("irregular", irregular, np.diff(np.r_[0.0, irregular["t"]])),
+        ("regular", regular, DT),
+        ("nominal", irregular, DT),
+    ]:
         epoch = d["epoch"] & (d["t"] < 60.0)
-        res = filt(ImuSamples(d["w"], d["f"], dt), d["q0"], rtk=RtkHeading(np.where(epoch, d["rtk"], np.nan), epoch),
-                   **dict(opts, ki=0.0))
+        res = filt(
+            ImuSamples(d["w"], d["f"], dt),
+            d["q0"],
+            rtk=RtkHeading(np.where(epoch, d["rtk"], np.nan), epoch),
+            **dict(opts, ki=0.0),
+        )
         assert_healthy(res)
         out[key] = heading_error(res, d)
     assert out["irregular"].max() < out["regular"].max() + 0.05
@@ -369,9 +377,10 @@ def test_duplicated_and_out_of_order_timestamps_go_through_sanitize(name):
     t_bad, order = faults.swap_timestamps(t_dup, 0.02, np.random.default_rng(10))
     epoch = d["epoch"] & (d["t"] < 60.0)
     rtk = np.where(epoch, d["rtk"], np.nan)
-    t_ok, w, f, rtk_ok, ep_ok, H_ok, report = timing.sanitize(t_bad, d["w"][order], d["f"][order], rtk[order],
-                                                              epoch[order].astype(float), d["H"][order])
-    repeats = t_dup.size - np.unique(t_dup).size      # a hit right after a hit repeats no time (faults docs)
+    t_ok, w, f, rtk_ok, ep_ok, H_ok, report = timing.sanitize(
+        t_bad, d["w"][order], d["f"][order], rtk[order], epoch[order].astype(float), d["H"][order]
+    )
+    repeats = t_dup.size - np.unique(t_dup).size  # a hit right after a hit repeats no time (faults docs)
     assert report.n_duplicate == repeats > 0.8 * dup.sum() and report.n_out_of_order > 0
     assert report.n_out == n - repeats
     dt = timing.intervals(np.r_[0.0, t_ok])
@@ -389,12 +398,12 @@ def test_fusion_accepts_per_sample_intervals():
     carried RTK heading read 0.6, those of the held offset (H_mag + delta) 0.501."""
     n = 100
     dt = np.full(n, 0.01)
-    dt[10:] = 0.05                                   # 10 samples at 100 Hz, then 20 Hz
+    dt[10:] = 0.05  # 10 samples at 100 Hz, then 20 Hz
     valid = np.zeros(n, bool)
     valid[[0, 10]] = True
     rtk = RtkHeading(np.where(np.arange(n) < 10, 0.5, 0.6), valid)
     out = hf.fuse_rtk_heading(np.zeros(n), rtk, dt).heading
-    np.testing.assert_allclose(out[:10], 0.5, atol=1e-15)            # the epoch at 0, carried
+    np.testing.assert_allclose(out[:10], 0.5, atol=1e-15)  # the epoch at 0, carried
     assert int(np.isclose(out, 0.6, rtol=0, atol=1e-12).sum()) == 6  # epoch at 10 held for 5 x 50 ms = 0.25 s
     np.testing.assert_allclose(out[16:], 0.501, atol=1e-12)
     out_scalar = hf.fuse_rtk_heading(np.zeros(n), rtk, 0.01).heading
@@ -448,7 +457,7 @@ def test_fusion_clock_jump_is_counted_flagged_and_recovered_from(fusion_jump, na
     assert not ref.faults and not ref.faults.flags["clock", "jump"].any()
     assert np.isfinite(res.heading).all()
     window = (t >= t[k] + 30.0) & (t < t[k] + 60.0)
-    assert t[window][0] >= OUTAGE_FROM                                  # in the outage: H_mag + delta
+    assert t[window][0] >= OUTAGE_FROM  # in the outage: H_mag + delta
 
     def rms(r):
         return np.sqrt(np.mean(units.to_deg(attitude.wrap_pi(r.heading[:, window] - H_TRUE)) ** 2))
@@ -470,11 +479,11 @@ def test_fusion_drops_the_carried_rtk_heading_at_a_jump():
     valid[[0, 1]] = True
     rtk = RtkHeading(np.where(np.arange(n) == 0, 0.5, 0.7), valid)
     res = hf.fuse_rtk_heading(np.zeros(n), rtk, dt)
-    np.testing.assert_allclose(res.heading[1:6], 0.7, atol=1e-12)          # carried: 5 samples, up to the jump
-    np.testing.assert_allclose(res.heading[6:], 0.502, atol=1e-12)         # held from the jump on
+    np.testing.assert_allclose(res.heading[1:6], 0.7, atol=1e-12)  # carried: 5 samples, up to the jump
+    np.testing.assert_allclose(res.heading[6:], 0.502, atol=1e-12)  # held from the jump on
     assert int(res.faults["clock", "jump"]) == 1 and res.faults.flags["clock", "jump"][6]
     off = hf.fuse_rtk_heading(np.zeros(n), rtk, dt, max_dt=np.inf)
-    np.testing.assert_allclose(off.heading[1:8], 0.7, atol=1e-12)          # 0.04 + 0.2 + 0.01 s <= 0.25 s
+    np.testing.assert_allclose(off.heading[1:8], 0.7, atol=1e-12)  # 0.04 + 0.2 + 0.01 s <= 0.25 s
     np.testing.assert_allclose(off.heading[8:], 0.502, atol=1e-12)
     assert not off.faults
     # gate: epochs at 0 (used), then 4 flipped ones (confirm = 4): 2 before the jump, 2 after
@@ -505,6 +514,7 @@ def test_fusion_max_dt_default():
 
 # --------------------------------------------------------------------------- saturation
 
+
 @pytest.mark.parametrize("name", FILTERS)
 def test_gyro_saturation_is_counted_and_the_reference_recovers(name):
     """A 1.8 s spin at 200 deg/s, clipped at the ADIS16475's 125 deg/s: 135 deg lost, counted, then recovered.
@@ -514,21 +524,26 @@ def test_gyro_saturation_is_counted_and_the_reference_recovers(name):
     """
     filt, opts = FILTERS[name]
     n = 3000
+
     def spin(t):
         return np.where((t >= 20.0) & (t < 21.8), units.deg(200.0), 0.0)
 
     d = turning(np.arange(n + 1) * DT, spin)
     fs = IMU.gyro.full_scale
     w, clipped = faults.saturate(d["w"], fs)
-    res = filt(ImuSamples(w, d["f"], DT, SensorLimits(full_scale_gyro=fs)), d["q0"],
-               rtk=RtkHeading(d["rtk"], d["epoch"], gate=units.deg(10.0)), **dict(opts, ki=0.0))
+    res = filt(
+        ImuSamples(w, d["f"], DT, SensorLimits(full_scale_gyro=fs)),
+        d["q0"],
+        rtk=RtkHeading(d["rtk"], d["epoch"], gate=units.deg(10.0)),
+        **dict(opts, ki=0.0),
+    )
     assert_healthy(res)
     c = counts(res)
-    assert c["gyro", "saturated"] == clipped.sum() and 89 <= clipped.sum() <= 91     # 1.8 s at 50 Hz
+    assert c["gyro", "saturated"] == clipped.sum() and 89 <= clipped.sum() <= 91  # 1.8 s at 50 Hz
     assert c["heading", "outlier"] >= 4 and c["heading", "reacquired"] >= 1
     err = heading_error(res, d)
-    assert err[(d["t"] > 21.8) & (d["t"] < 22.0)].max() > 100.0      # the clipped spin
-    assert err[d["t"] > 30.0].max() < 0.5                           # recovered
+    assert err[(d["t"] > 21.8) & (d["t"] < 22.0)].max() > 100.0  # the clipped spin
+    assert err[d["t"] > 30.0].max() < 0.5  # recovered
 
 
 @pytest.mark.parametrize("name", FILTERS)

@@ -8,6 +8,7 @@ estimate must stay within a stated bound of the fault-free run on the same
 samples. ``SIGMA`` below is the predicted std of the fault-free least-squares
 estimate (``lsq_covariance``), about 3.3 deg/h per axis here.
 """
+
 import numpy as np
 import pytest
 
@@ -20,8 +21,8 @@ HPR0 = units.deg([0.0, 30.0, 0.0])
 EY = [0.0, 1.0, 0.0]
 W_IE_N = earth.earth_rate_n(LAT)
 MODEL = sensors.imu_model("MTi-100")
-SIG_G = MODEL.gyro.noise_density / np.sqrt(DT)          # per-sample white noise (rad/s)
-SIG_A = MODEL.accel.noise_density / np.sqrt(DT)         # (m/s^2)
+SIG_G = MODEL.gyro.noise_density / np.sqrt(DT)  # per-sample white noise (rad/s)
+SIG_A = MODEL.accel.noise_density / np.sqrt(DT)  # (m/s^2)
 B_SIGMA0 = units.deg_per_h(50.0)
 
 
@@ -33,7 +34,7 @@ def _rig(duration=300.0, seed=7):
     w_ie_b = earth.earth_rate_b(attitude.euler_to_dcm(gb.dwell_attitudes(HPR0, EY, np.pi / 2, starts.size)), LAT)
     in_dwell = np.zeros(w.shape[0], bool)
     for s in starts:
-        in_dwell[s:s + length] = True
+        in_dwell[s : s + length] = True
     return traj, w, f, imu, starts, length, w_ie_b, in_dwell
 
 
@@ -51,8 +52,9 @@ def assert_spd(P):
 
 
 def kalman(res, interval=PERIOD):
-    Rk = gb.residual_covariance(np.where(np.isfinite(res.tilt), res.tilt, 0.0), LENGTH, DT,
-                                MODEL.gyro.noise_density, MODEL.accel.noise_density)
+    Rk = gb.residual_covariance(
+        np.where(np.isfinite(res.tilt), res.tilt, 0.0), LENGTH, DT, MODEL.gyro.noise_density, MODEL.accel.noise_density
+    )
     kf = gb.kalman_bias(res.r, res.V, Rk, interval, 0.0, B_SIGMA0)
     assert np.isfinite(kf.b).all() and np.isfinite(kf.sigma).all()
     assert_spd(kf.P)
@@ -60,7 +62,7 @@ def kalman(res, interval=PERIOD):
 
 
 def dwells_hit(mask):
-    return np.array([mask[s:s + LENGTH].any() for s in STARTS])
+    return np.array([mask[s : s + LENGTH].any() for s in STARTS])
 
 
 def test_fault_free_baseline():
@@ -79,7 +81,7 @@ def test_random_dropouts_are_filled_or_skipped_and_counted():
     strict = gb.tilt_residuals(w, f, DT, STARTS, LENGTH, W_IE_B)
     assert strict.faults["dwell", "refused"] == dwells_hit(drop).sum() == STARTS.size
     assert strict.faults["imu", "nan"] == (drop & IN_DWELL).sum() and np.isnan(strict.r).all()
-    with pytest.raises(ValueError, match="^V: "):                       # says so instead of guessing
+    with pytest.raises(ValueError, match="^V: "):  # says so instead of guessing
         gb.lsq_bias(strict.r, strict.V)
     assert kalman(strict).faults["dwell", "nan"] == STARTS.size
     # max_missing = 0.5: dropouts filled with the dwell median, every one counted
@@ -98,9 +100,9 @@ def test_gap_of_30_s_skips_the_dwells_it_covers():
     w, gap = faults.gap(IMU.w_ib_b, TRAJ.time[:-1], 100.0, 30.0)
     f = np.where(gap[:, None], np.nan, IMU.f_b)
     res = gb.tilt_residuals(w, f, DT, STARTS, LENGTH, W_IE_B, max_missing=0.5)
-    missing = np.array([gap[s:s + LENGTH].sum() for s in STARTS])
+    missing = np.array([gap[s : s + LENGTH].sum() for s in STARTS])
     skipped = missing > 0.5 * LENGTH
-    assert res.faults["dwell", "refused"] == skipped.sum() == 6                           # 30 s = 6 periods
+    assert res.faults["dwell", "refused"] == skipped.sum() == 6  # 30 s = 6 periods
     assert res.faults["imu", "nan"] == (gap & IN_DWELL).sum()
     assert res.faults["imu", "nan"] - missing[skipped].sum() == missing[~skipped].sum()
     assert np.isnan(res.r[skipped]).all() and np.isfinite(res.r[~skipped]).all()
@@ -108,7 +110,7 @@ def test_gap_of_30_s_skips_the_dwells_it_covers():
     # R ~ equal per dwell) -> 5 sigma of that difference per axis
     b = gb.lsq_bias(res.r, res.V)
     P_sub = analysis.lsq_covariance(CLEAN.V[~skipped], R[~skipped])
-    d_sigma = np.sqrt(np.clip(np.diag(P_sub) - SIGMA ** 2, 0, None))
+    d_sigma = np.sqrt(np.clip(np.diag(P_sub) - SIGMA**2, 0, None))
     assert np.all(np.abs(b - B_CLEAN) < 5 * d_sigma + 0.05 * SIGMA)
     kf = kalman(res)
     assert kf.faults["dwell", "nan"] == skipped.sum()
@@ -179,8 +181,8 @@ def test_irregular_sampling_is_integrated_exactly_with_per_sample_intervals():
     B = units.deg_per_h(np.array([10.0, -7.0, 12.0]))
     hpr_true, t, w, f = _irregular_rig(0.2)
     dts = np.diff(t)
-    starts = np.searchsorted(t, np.arange(0, 55, PERIOD) + 0.05)         # first sample inside each dwell
-    length = int(min(np.searchsorted(t, t[s] + 4.35) - s for s in starts))    # ends before the rotation
+    starts = np.searchsorted(t, np.arange(0, 55, PERIOD) + 0.05)  # first sample inside each dwell
+    length = int(min(np.searchsorted(t, t[s] + 4.35) - s for s in starts))  # ends before the rotation
     w_ie_b = earth.earth_rate_b(attitude.euler_to_dcm(gb.dwell_attitudes(HPR0, EY, np.pi / 2, starts.size)), LAT)
     res = gb.tilt_residuals(w + B, f, dts, starts, length, w_ie_b)
     # bound: exact up to the linear-trend model of the dwell (noise-free), 1e-3 deg/h
@@ -200,9 +202,9 @@ def test_duplicated_and_out_of_order_timestamps_through_sanitize():
     t_dup, dup = faults.duplicate_timestamps(t, 0.01, np.random.default_rng(8))
     t_bad, order = faults.swap_timestamps(t_dup, 0.01, np.random.default_rng(9))
     t_ok, w, f, rep = timing.sanitize(t_bad, IMU.w_ib_b[order], IMU.f_b[order])
-    n_dup = t_dup.size - np.unique(t_dup).size            # runs of hits repeat one time once (dup.sum() >= n_dup)
+    n_dup = t_dup.size - np.unique(t_dup).size  # runs of hits repeat one time once (dup.sum() >= n_dup)
     assert rep.n_duplicate == n_dup and rep.n_out_of_order > 0 and rep.n_out == t.size - n_dup
-    dts = np.append(timing.intervals(t_ok), DT)                  # interval after each sample
+    dts = np.append(timing.intervals(t_ok), DT)  # interval after each sample
     starts = np.searchsorted(t_ok, TRAJ.time[STARTS] - 1e-9)
     length = int(np.min(np.searchsorted(t_ok, TRAJ.time[STARTS + LENGTH] - 1e-9) - starts))
     res = gb.tilt_residuals(w, f, dts, starts, length, W_IE_B)
@@ -210,7 +212,7 @@ def test_duplicated_and_out_of_order_timestamps_through_sanitize():
     # bound: ~1 % of the dwell samples lost (their interval joins the previous sample's) -> 0.5 SIGMA
     assert np.all(np.abs(gb.lsq_bias(res.r, res.V) - B_CLEAN) < 0.5 * SIGMA)
     end_t = t_ok[np.minimum(res.end, t_ok.size - 1)]
-    kf = kalman(res, np.diff(end_t, prepend=end_t[0] - PERIOD))     # per-dwell intervals from the timestamps
+    kf = kalman(res, np.diff(end_t, prepend=end_t[0] - PERIOD))  # per-dwell intervals from the timestamps
     assert kf.faults["dwell", "nan"] == 0
 
 
@@ -218,7 +220,7 @@ def test_integrator_fills_dropouts_by_interpolation_within_a_stated_bound():
     w, drop = faults.dropouts(IMU.w_ib_b, 0.1, np.random.default_rng(1))
     clean = euler.integrate_euler(HPR0, IMU.w_ib_b, DT, W_IE_N)
     hpr = euler.integrate_euler(HPR0, w, DT, W_IE_N, max_gap=0.1)
-    rep = robust.fault_report(w, "gyro", full_scale=MODEL.gyro.full_scale, flags=True)   # what it filled
+    rep = robust.fault_report(w, "gyro", full_scale=MODEL.gyro.full_scale, flags=True)  # what it filled
     assert rep["gyro", "nan"] == drop.sum() and rep["gyro", "saturated"] == 0 and np.isfinite(hpr).all()
     np.testing.assert_array_equal(rep.flags["gyro", "nan"], drop)
     # bound (first order): the attitude error is the integral of the interpolation error, mapped by Eq. (2)
@@ -255,17 +257,16 @@ def test_accelerometer_saturation_skips_the_dwell():
     f = IMU.f_b.copy()
     knocked = [4, 17, 40]
     for k in knocked:
-        f[STARTS[k] + 100:STARTS[k] + 103, 0] += 30 * 9.80665
+        f[STARTS[k] + 100 : STARTS[k] + 103, 0] += 30 * 9.80665
     fs = MODEL.accel.full_scale
     f, clipped = faults.saturate(f, fs)
-    res = gb.tilt_residuals(IMU.w_ib_b, f, DT, STARTS, LENGTH, W_IE_B, full_scale_accel=fs,
-                            full_scale_gyro=MODEL.gyro.full_scale)
+    res = gb.tilt_residuals(IMU.w_ib_b, f, DT, STARTS, LENGTH, W_IE_B, full_scale_accel=fs, full_scale_gyro=MODEL.gyro.full_scale)
     assert res.faults["imu", "saturated"] == (clipped & IN_DWELL).sum() == 9 and res.faults["dwell", "refused"] == len(knocked)
     assert np.isnan(res.r[knocked]).all()
     kf = kalman(res)
     assert kf.faults["dwell", "nan"] == len(knocked)
     keep = np.setdiff1d(np.arange(STARTS.size), knocked)
-    np.testing.assert_array_equal(res.r[keep], CLEAN.r[keep])           # other dwells untouched
+    np.testing.assert_array_equal(res.r[keep], CLEAN.r[keep])  # other dwells untouched
 
 
 def test_kalman_covariance_stays_spd_under_all_faults_at_once():

@@ -13,6 +13,7 @@ Eq. (20) linearisation (single-axis). The tests assert 5 times that
 (``leave_out_bound``); with 24 headings compared per test a 5-sigma bound
 fails by chance with p ~ 1e-5.
 """
+
 import numpy as np
 import pytest
 
@@ -30,7 +31,7 @@ SIG_A = FOG.accel.noise_density / np.sqrt(DT)
 SEGS, STOPS = nf.stop_and_go(HEADS, 180.0, 40.0, 5.0, PITCH, ROLL)
 TRAJ = trajectory.vehicle(SEGS, DT, [LAT, units.deg(112.9), 50.0], HEADS[0])
 W_TRUE, F_TRUE = trajectory.ideal_imu(TRAJ)
-T = TRAJ.time[:-1]                                       # time of each sample
+T = TRAJ.time[:-1]  # time of each sample
 WIN = np.round(STOPS / DT).astype(int)
 IMU = sensors.simulate_imu(W_TRUE, F_TRUE, DT, FOG, np.random.default_rng(0), n_trials=4)
 CLEAN = nf.stop_solutions(IMU.w_ib_b, IMU.f_b, WIN, LAT, 50.0)
@@ -45,7 +46,7 @@ def leave_out_bound(n_left_out, sig_g=SIG_G, sig_a=SIG_A):
     N = np.diff(WIN, axis=1)[:, 0]
     scale = np.sqrt(1.0 / (N - n_left_out) - 1.0 / N)
     g, a = sig_g * scale, sig_a * scale
-    triad = np.hypot(nf.triad_heading_std(g, LAT), np.tan(LAT) * a / 9.79)    # gyro + levelling term
+    triad = np.hypot(nf.triad_heading_std(g, LAT), np.tan(LAT) * a / 9.79)  # gyro + levelling term
     single = nf.single_axis_heading_std(HEADS, g, LAT, PITCH, a)
     return 5 * triad, 5 * single
 
@@ -56,7 +57,7 @@ def heading_change(sol, ref=CLEAN):
 
 
 def counts(sol, name):
-    return np.stack([getattr(s, name) for s in sol.windows], -1)          # (trials, stops)
+    return np.stack([getattr(s, name) for s in sol.windows], -1)  # (trials, stops)
 
 
 def test_fault_free_baseline():
@@ -86,11 +87,11 @@ def test_gap_of_30_s_inside_a_stop():
     d_triad, d_single = heading_change(sol)
     b_triad, b_single = leave_out_bound(window_counts(gap))
     assert np.all(d_triad <= b_triad) and np.all(d_single <= b_single)
-    assert np.all(d_triad[:, [0, 2]] == 0)                              # the other stops are untouched
+    assert np.all(d_triad[:, [0, 2]] == 0)  # the other stops are untouched
 
 
 def test_a_stop_mostly_lost_is_refused():
-    w, gap = faults.gap(IMU.w_ib_b, T, STOPS[1, 0] + 30.0, 120.0)       # 60 s of 180 s left
+    w, gap = faults.gap(IMU.w_ib_b, T, STOPS[1, 0] + 30.0, 120.0)  # 60 s of 180 s left
     with pytest.raises(ValueError, match="^w_ib_b: only 6000 of 18000 samples"):
         nf.stop_solutions(w, IMU.f_b, WIN, LAT, 50.0)
     sol = nf.stop_solutions(w, IMU.f_b, WIN, LAT, 50.0, strict=False)
@@ -124,7 +125,7 @@ def test_spikes_are_rejected_by_mad_and_counted():
     r_triad, _ = heading_change(raw)
     bound = 5 * np.hypot(nf.triad_heading_std(spike_g, LAT), np.tan(LAT) * spike_a / 9.79)
     assert np.all(r_triad < bound)
-    assert np.sqrt(np.mean(r_triad ** 2)) > 3 * np.sqrt(np.mean(d_triad ** 2))
+    assert np.sqrt(np.mean(r_triad**2)) > 3 * np.sqrt(np.mean(d_triad**2))
     # and outlier rejection leaves clean stops alone
     rob = nf.stop_solutions(IMU.w_ib_b, IMU.f_b, WIN, LAT, 50.0, outlier_k=6.0)
     assert np.all(rob.faults["gyro", "outlier"] == 0) and np.all(rob.faults["accel", "outlier"] == 0)
@@ -137,12 +138,12 @@ def test_duplicated_and_out_of_order_timestamps_through_sanitize():
     t_ok, w, f, rep = timing.sanitize(t_bad, IMU.w_ib_b[..., order, :], IMU.f_b[..., order, :])
     vals, reps = np.unique(t_dup, return_counts=True)
     assert rep.n_duplicate == (reps - 1).sum() and rep.n_out_of_order > 0
-    ref = nf.stop_solutions(IMU.w_ib_b, IMU.f_b, STOPS, LAT, 50.0, time=T)   # windows cut by time
+    ref = nf.stop_solutions(IMU.w_ib_b, IMU.f_b, STOPS, LAT, 50.0, time=T)  # windows cut by time
     sol = nf.stop_solutions(w, f, STOPS, LAT, 50.0, time=t_ok)
     lost = np.array([(reps - 1)[(vals >= a - 1e-9) & (vals < b - 1e-9)].sum() for a, b in STOPS])
     n_ref = np.array([s.n_samples for s in ref.windows])
     n_sol = np.array([s.n_samples for s in sol.windows])
-    np.testing.assert_array_equal(n_ref - n_sol, lost)                   # every removed sample accounted for
+    np.testing.assert_array_equal(n_ref - n_sol, lost)  # every removed sample accounted for
     d_triad, d_single = heading_change(sol, ref)
     b_triad, b_single = leave_out_bound(lost)
     assert np.all(d_triad <= b_triad) and np.all(d_single <= b_single)
@@ -151,7 +152,7 @@ def test_duplicated_and_out_of_order_timestamps_through_sanitize():
 def test_saturated_stop_is_refused_and_counted():
     """A 30-g knock (3 samples) during stop 2, clipped at the NAV-FOG's 20-g range."""
     f = IMU.f_b.copy()
-    f[..., WIN[1, 0] + 5000:WIN[1, 0] + 5003, 2] += 30 * 9.80665
+    f[..., WIN[1, 0] + 5000 : WIN[1, 0] + 5003, 2] += 30 * 9.80665
     fs = FOG.accel.full_scale
     f, clipped = faults.saturate(f, fs)
     opts = dict(full_scale_gyro=FOG.gyro.full_scale, full_scale_accel=fs)
@@ -159,7 +160,7 @@ def test_saturated_stop_is_refused_and_counted():
         nf.stop_solutions(IMU.w_ib_b, f, WIN, LAT, 50.0, **opts)
     sol = nf.stop_solutions(IMU.w_ib_b, f, WIN, LAT, 50.0, strict=False, **opts)
     np.testing.assert_array_equal(sol.faults["accel", "saturated"], [[0, 3, 0]] * 4)
-    assert clipped[:, WIN[1, 0]:WIN[1, 1]].sum() == 12
+    assert clipped[:, WIN[1, 0] : WIN[1, 1]].sum() == 12
     assert np.all(sol.faults["window", "refused"] == [0, 1, 0]) and np.isnan(sol.triad[:, 1]).all()
     np.testing.assert_array_equal(sol.triad[:, [0, 2]], CLEAN.triad[:, [0, 2]])
     # with the device ranges and no clipping nothing changes
@@ -172,7 +173,7 @@ def test_frozen_gyro_stop_is_refused_and_counted():
     """Stop 2's gyro repeats its first sample (campaign: accepted, heading 19.5 deg off; here 13 deg)."""
     a, b = WIN[1]
     w = IMU.w_ib_b.copy()
-    w[..., a:b, :] = w[..., a:a + 1, :]
+    w[..., a:b, :] = w[..., a : a + 1, :]
     with pytest.raises(ValueError, match="^w_ib_b: one reading repeated over 18000 consecutive samples"):
         nf.stop_solutions(w, IMU.f_b, WIN, LAT, 50.0)
     sol = nf.stop_solutions(w, IMU.f_b, WIN, LAT, 50.0, strict=False)
@@ -186,14 +187,14 @@ def test_frozen_gyro_stop_is_refused_and_counted():
     assert np.all(raw.faults["window", "refused"] == 0) and np.abs(attitude.wrap_pi(raw.triad - CLEAN.triad)).max() > 0.1
     # frozen on one axis after 60 s of the 180 s (2/3 of the stop), with 10 % dropouts: still refused
     w = IMU.w_ib_b.copy()
-    w[..., a + 6000:b, 0] = w[..., a + 6000:a + 6001, 0]
+    w[..., a + 6000 : b, 0] = w[..., a + 6000 : a + 6001, 0]
     w, drop = faults.dropouts(w, 0.1, np.random.default_rng(12))
     sol = nf.stop_solutions(w, IMU.f_b, WIN, LAT, 50.0, strict=False)
     assert np.all(sol.faults["window", "refused"][:, 1] == 1)
-    np.testing.assert_array_equal(sol.faults["gyro", "stuck"][:, 1], 12000 - drop[a + 6000:b].sum())
+    np.testing.assert_array_equal(sol.faults["gyro", "stuck"][:, 1], 12000 - drop[a + 6000 : b].sum())
     # below stuck_fraction (0.5 by default) a frozen stretch is not refused: 1/4 of the stop here
     w = IMU.w_ib_b.copy()
-    w[..., a:a + 4500, :] = w[..., a:a + 1, :]
+    w[..., a : a + 4500, :] = w[..., a : a + 1, :]
     assert np.all(nf.stop_solutions(w, IMU.f_b, WIN, LAT, 50.0).faults["window", "refused"] == 0)
 
 
@@ -205,7 +206,7 @@ def test_quantised_gyro_keeps_its_good_samples_under_mad_rejection():
     """
     q = 2 * SIG_G
     a = WIN[1, 0]
-    w, f = IMU.w_ib_b[..., a:a + 3000, :], IMU.f_b[..., a:a + 3000, :]
+    w, f = IMU.w_ib_b[..., a : a + 3000, :], IMU.f_b[..., a : a + 3000, :]
     wq = np.round(w / q) * q
     assert np.all(np.median(np.abs(wq - np.median(wq, axis=-2, keepdims=True)), axis=-2) == 0)
     win = alignment.static_means(wq, f, LAT, 50.0, outlier_k=5.0)
@@ -246,7 +247,7 @@ def test_ins_gap_of_30_s_is_refused():
     w, gap = faults.gap(W_DRIVE, np.arange(W_DRIVE.shape[-2]) * DT, 5.0, 30.0)
     dpsi = nf.ins_heading_change(w, F_START, DT, LAT)
     assert np.isnan(dpsi).all() and np.all(robust.fault_report(w, "gyro")["gyro", "nan"] == 3000)
-    with pytest.raises(ValueError, match="^dpsi_ins: "):                # cannot be used by mistake
+    with pytest.raises(ValueError, match="^dpsi_ins: "):  # cannot be used by mistake
         nf.resolve(CLEAN.candidates[:, 0], CLEAN.candidates[:, 1], dpsi)
 
 
@@ -278,7 +279,7 @@ def _irregular_drive(jitter, seed):
     k = k[k <= b]
     cw = np.concatenate([np.zeros((1, 3)), np.cumsum(wf, 0)])
     w = (cw[k[1:]] - cw[k[:-1]]) / np.diff(k)[:, None]
-    return w, (k[1:] - k[:-1]) * fine, ff[a - 10000:a].mean(0), attitude.wrap_pi(HEADS[1] - HEADS[0])
+    return w, (k[1:] - k[:-1]) * fine, ff[a - 10000 : a].mean(0), attitude.wrap_pi(HEADS[1] - HEADS[0])
 
 
 def test_ins_irregular_sampling_with_per_sample_intervals():
@@ -287,4 +288,4 @@ def test_ins_irregular_sampling_with_per_sample_intervals():
     err = np.rad2deg(abs(attitude.wrap_pi(nf.ins_heading_change(w, f0, dts, LAT) - true)))
     assert err < 0.01
     err_mean_dt = np.rad2deg(abs(attitude.wrap_pi(nf.ins_heading_change(w, f0, float(dts.mean()), LAT) - true)))
-    assert err_mean_dt > 5 * err                           # pretending the samples were regular costs accuracy
+    assert err_mean_dt > 5 * err  # pretending the samples were regular costs accuracy

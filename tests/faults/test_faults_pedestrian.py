@@ -11,6 +11,7 @@ Every fault must be reported: the counts and per-sample flags of
 ``FilterResult.faults`` are compared with the masks that ``navlib.faults``
 returns.
 """
+
 import warnings
 
 import numpy as np
@@ -26,9 +27,9 @@ DT = 0.01
 MODEL = sensors.imu_model("MPU-6050").replace(gyro={"bias": units.deg_per_s(0.05)}, accel={"bias": units.mg(10)})
 Leg = trajectory.Leg
 LEGS = [Leg(20.0), Leg(15.0, 1.2), Leg(8.0), Leg(15.0, 1.2, turn=np.pi / 2), Leg(10.0), Leg(10.0, 1.2, climb=-1.0), Leg(40.0)]
-SIGMA_GYRO = units.deg_per_s(0.005) / np.sqrt(DT)        # MPU-6050 noise per 100-Hz sample (rad/s)
-SIGMA_ACCEL = units.ug(400) / np.sqrt(DT)                # (m/s^2)
-SPIKE_GYRO, SPIKE_ACCEL = 0.02, 0.5                      # spike-test thresholds: safe on a walking shoulder at 100 Hz
+SIGMA_GYRO = units.deg_per_s(0.005) / np.sqrt(DT)  # MPU-6050 noise per 100-Hz sample (rad/s)
+SIGMA_ACCEL = units.ug(400) / np.sqrt(DT)  # (m/s^2)
+SPIKE_GYRO, SPIKE_ACCEL = 0.02, 0.5  # spike-test thresholds: safe on a walking shoulder at 100 Hz
 
 
 @pytest.fixture(scope="module")
@@ -40,12 +41,14 @@ def walk():
     B = earth.magnetic_field(30.55, 114.30, 20.0, 2016.5)
     D = float(earth.field_angles(B, deg=False)[0])
     t = traj.time[:-1]
-    m = sensors.simulate_magnetometer(traj.q_bn[:-1], B, sensors.MagnetometerModel.from_preset("HMC5983"),
-                                      np.random.default_rng(ss[1])).m_b
-    p = sensors.simulate_barometer(traj.lla[:-1, 2], t, sensors.BarometerModel.from_preset("BMP180"),
-                                   np.random.default_rng(ss[2]))
+    m = sensors.simulate_magnetometer(
+        traj.q_bn[:-1], B, sensors.MagnetometerModel.from_preset("HMC5983"), np.random.default_rng(ss[1])
+    ).m_b
+    p = sensors.simulate_barometer(
+        traj.lla[:-1, 2], t, sensors.BarometerModel.from_preset("BMP180"), np.random.default_rng(ss[2])
+    )
     h = 20.0 + atmosphere.baro_height(p, atmosphere.reference_pressure(p, t, 15.0))
-    off = np.arange(t.size) % 10 != 0                                   # 10 Hz aiding sensors
+    off = np.arange(t.size) % 10 != 0  # 10 Hz aiding sensors
     h[off], m[off] = np.nan, np.nan
     static = zupt.detect_static(imu.w_ib_b, imu.f_b, DT)
     data = dict(traj=traj, t=t, w=imu.w_ib_b, f=imu.f_b, h=h, m=m, B=B, D=D, static=static)
@@ -59,9 +62,15 @@ def run(d, w=None, f=None, dt=DT, static=None, h=None, m=None, limits=None, B_n=
     w = d["w"] if w is None else w
     f = d["f"] if f is None else f
     static = zupt.detect_static(w, f, DT) if static is None else static
-    res = zupt_ins.run_filter(ImuSamples(w, f, dt, limits or SensorLimits()), zupt_ins.Start(LLA0, d["traj"].q_bn[0]),
-                              static, h_baro=d["h"] if h is None else h, m_b=d["m"] if m is None else m,
-                              aiding=zupt_ins.Aiding(declination=d["D"], B_n=B_n), config=config or zupt_ins.FilterConfig())
+    res = zupt_ins.run_filter(
+        ImuSamples(w, f, dt, limits or SensorLimits()),
+        zupt_ins.Start(LLA0, d["traj"].q_bn[0]),
+        static,
+        h_baro=d["h"] if h is None else h,
+        m_b=d["m"] if m is None else m,
+        aiding=zupt_ins.Aiding(declination=d["D"], B_n=B_n),
+        config=config or zupt_ins.FilterConfig(),
+    )
     assert np.isfinite(res.nav.lla).all() and np.isfinite(res.nav.q_bn).all() and np.isfinite(res.P_diag).all()
     np.testing.assert_allclose(res.P, res.P.T, rtol=0, atol=1e-12 * np.abs(res.P).max())
     assert np.linalg.eigvalsh(res.P).min() > 0 and res.P_diag.min() > 0
@@ -79,6 +88,7 @@ def flagged(res, *keys):
 
 # ---------------------------------------------------------------- IMU dropouts
 
+
 def test_random_dropouts_are_held_counted_and_bounded(walk):
     rng = np.random.default_rng(1)
     w, drop = faults.dropouts(walk["w"], 0.1, rng)
@@ -86,7 +96,7 @@ def test_random_dropouts_are_held_counted_and_bounded(walk):
     w[0] = walk["w"][0]
     f = walk["f"].copy()
     f[drop] = np.nan
-    static = zupt.detect_static(w, f, DT)          # NaN-tolerant: windows with >= half their samples valid
+    static = zupt.detect_static(w, f, DT)  # NaN-tolerant: windows with >= half their samples valid
     res = run(walk, w, f, static=static)
     assert res.faults["gyro", "nan"] == res.faults["accel", "nan"] == drop.sum() > 1000
     np.testing.assert_array_equal(flagged(res, ("gyro", "nan")), drop)
@@ -101,7 +111,7 @@ def test_random_dropouts_are_held_counted_and_bounded(walk):
 
 
 def test_30s_gap_in_a_stand_is_held_counted_and_recovered(walk):
-    w, gap = faults.gap(walk["w"], walk["t"], 82.0, 30.0)               # inside the final 40-s stand
+    w, gap = faults.gap(walk["w"], walk["t"], 82.0, 30.0)  # inside the final 40-s stand
     f = walk["f"].copy()
     f[gap] = np.nan
     res = run(walk, w, f)
@@ -121,7 +131,7 @@ def test_30s_gap_in_a_stand_is_held_counted_and_recovered(walk):
 
 
 def test_30s_gap_while_walking_is_reported_not_hidden(walk):
-    w, gap = faults.gap(walk["w"], walk["t"], 22.0, 30.0)               # walking, stop, walking
+    w, gap = faults.gap(walk["w"], walk["t"], 22.0, 30.0)  # walking, stop, walking
     f = walk["f"].copy()
     f[gap] = np.nan
     res = run(walk, w, f)
@@ -145,6 +155,7 @@ def test_first_sample_must_be_valid(walk):
 
 # ---------------------------------------------------------------- IMU spikes
 
+
 def _spiky(walk, seed=3):
     rng = np.random.default_rng(seed)
     w, hw = faults.spikes(walk["w"], 0.01, SIGMA_GYRO, rng)
@@ -158,8 +169,8 @@ def test_despike_finds_the_spikes_and_the_pipeline_stays_near_the_clean_run(walk
     # No false alarm; misses only where two spikes are adjacent (each hides the other) or at the ends.
     assert not (found & ~hit).any()
     assert found.sum() >= 0.95 * hit.sum() and hit.sum() > 150, (found.sum(), hit.sum())
-    assert not robust.despike(walk["w"], walk["f"], SPIKE_GYRO, SPIKE_ACCEL)[2].any()   # clean data: none
-    res = run(walk, wd, fd)                     # despike -> detect_static -> run_filter (spikes held)
+    assert not robust.despike(walk["w"], walk["f"], SPIKE_GYRO, SPIKE_ACCEL)[2].any()  # clean data: none
+    res = run(walk, wd, fd)  # despike -> detect_static -> run_filter (spikes held)
     assert res.faults["gyro", "nan"] == res.faults["accel", "nan"] == found.sum()
     # Stated bound: the undetected adjacent spikes (2 of 235) and the held samples: within 3 m of the
     # clean run (measured 1.9 m) and 1.5 m at the end (measured 0.8 m). Without the spike test the detector
@@ -179,15 +190,16 @@ def test_spike_test_inside_the_filter_flags_the_same_samples(walk):
     np.testing.assert_array_equal(flagged(res, ("gyro", "spike"), ("accel", "spike")), found)
     assert res.faults["gyro", "spike"] + res.faults["accel", "spike"] == found.sum()
     assert res.faults["gyro", "nan"] == res.faults["accel", "nan"] == 0
-    assert not (res.faults.flags["zupt", "refused"] & ~found).any()        # only the spikes are refused
+    assert not (res.faults.flags["zupt", "refused"] & ~found).any()  # only the spikes are refused
     clean = run(walk, limits=limits)
-    assert clean.faults["gyro", "spike"] == clean.faults["accel", "spike"] == 0     # no false alarm on the walk
+    assert clean.faults["gyro", "spike"] == clean.faults["accel", "spike"] == 0  # no false alarm on the walk
 
 
 # ---------------------------------------------------------------- saturation
 
+
 def test_saturated_samples_are_counted_and_never_used_for_zupt(walk):
-    gyro_fs, accel_fs = 0.3, 12.0                 # a range the walk exceeds (turn, gait peaks)
+    gyro_fs, accel_fs = 0.3, 12.0  # a range the walk exceeds (turn, gait peaks)
     w, cw = faults.saturate(walk["w"], gyro_fs)
     f, cf = faults.saturate(walk["f"], accel_fs)
     res = run(walk, w, f, limits=SensorLimits(full_scale_gyro=gyro_fs, full_scale_accel=accel_fs))
@@ -202,8 +214,7 @@ def test_saturated_samples_are_counted_and_never_used_for_zupt(walk):
     # A range below gravity: every sample is at the rails, none may feed ZUPT/ZARU.
     f_low, low = faults.saturate(walk["f"], 9.0)
     with pytest.warns(RuntimeWarning, match="no ZUPT/ZARU update"):
-        res = run(walk, walk["w"], f_low, static=walk["static"],
-                  limits=SensorLimits(full_scale_gyro=10.0, full_scale_accel=9.0))
+        res = run(walk, walk["w"], f_low, static=walk["static"], limits=SensorLimits(full_scale_gyro=10.0, full_scale_accel=9.0))
     assert res.zupt_updates == 0 and res.faults["accel", "saturated"] == low.sum()
     assert low[walk["static"]].all()
     assert res.faults["zupt", "refused"] == walk["static"].sum()
@@ -229,13 +240,14 @@ def test_saturation_counts_match_the_sensor_model(walk):
 
 # ---------------------------------------------------------------- barometer and magnetometer
 
+
 def test_baro_spikes_are_gated_and_dropouts_coast(walk):
     rng = np.random.default_rng(5)
-    h, hit = faults.spikes(walk["h"], 0.01, units.hpa(0.06) * 8.3, rng)   # 100 x 0.5 m (BMP180)
+    h, hit = faults.spikes(walk["h"], 0.01, units.hpa(0.06) * 8.3, rng)  # 100 x 0.5 m (BMP180)
     hit &= np.isfinite(walk["h"])
     res = run(walk, h=h)
-    first = np.flatnonzero(np.isfinite(walk["h"]))[0]                     # the tracker starts on it
-    assert res.faults["baro", "outlier"] == hit[first + 1:].sum() > 5 and res.faults["baro", "reacquired"] == 0
+    first = np.flatnonzero(np.isfinite(walk["h"]))[0]  # the tracker starts on it
+    assert res.faults["baro", "outlier"] == hit[first + 1 :].sum() > 5 and res.faults["baro", "reacquired"] == 0
     assert res.baro_aidings == walk["ref"].baro_aidings - (hit & ~walk["static"]).sum()
     # Every spike gated: the height differs from the clean run only by the skipped resets (the next
     # reading comes 0.1 s later). Stated bound 0.25 m, half a BMP180 sigma (measured 0.10 m); a 50-m spike
@@ -257,15 +269,15 @@ def test_baro_spikes_are_gated_and_dropouts_coast(walk):
 
 
 def test_baro_step_reinitialises_the_tracker(walk):
-    h = walk["h"] + np.where(walk["t"] > 60.0, 20.0, 0.0)               # a real 20-m jump (e.g. a new datum)
+    h = walk["h"] + np.where(walk["t"] > 60.0, 20.0, 0.0)  # a real 20-m jump (e.g. a new datum)
     res = run(walk, h=h)
     assert res.faults["baro", "reacquired"] == 1 and res.faults["baro", "outlier"] == zupt_ins.Gates().max_rejected
 
 
 def test_mag_spikes_are_gated_by_field_and_dip(walk):
     rng = np.random.default_rng(6)
-    m, hit = faults.spikes(walk["m"], 0.01, 0.2, rng)                     # 100 x 2 mG = 20 uT per axis
-    used = np.isfinite(walk["m"][:, 0]) & ~walk["static"]                 # compass samples used (walking)
+    m, hit = faults.spikes(walk["m"], 0.01, 0.2, rng)  # 100 x 2 mG = 20 uT per axis
+    used = np.isfinite(walk["m"][:, 0]) & ~walk["static"]  # compass samples used (walking)
     cfg = zupt_ins.FilterConfig(gates=zupt_ins.Gates(mag_field=3.0, mag_dip=np.deg2rad(3.0)))
     clean = run(walk, B_n=walk["B"], config=cfg)
     assert clean.faults["mag", "outlier"] == 0
@@ -300,6 +312,7 @@ def test_mag_dropouts_and_gap(walk):
 
 # ---------------------------------------------------------------- timing
 
+
 def test_per_sample_dt_equal_to_the_scalar_is_bit_identical(walk):
     res = run(walk, dt=np.full(len(walk["w"]), DT))
     np.testing.assert_array_equal(res.nav.lla, walk["ref"].nav.lla)
@@ -310,7 +323,7 @@ def test_irregular_sampling_is_integrated_as_well_as_regular():
     fine = 0.002
     traj = trajectory.walk(LEGS, fine, LLA0, 0.0)
     w, f = trajectory.ideal_imu(traj)
-    imu = sensors.simulate_imu(w, f, fine, MODEL, np.random.default_rng(8))   # 500 Hz, averaged below
+    imu = sensors.simulate_imu(w, f, fine, MODEL, np.random.default_rng(8))  # 500 Hz, averaged below
     stance = trajectory.stance_mask(LEGS, fine)[:-1]
     rng = np.random.default_rng(9)
     err = {}
@@ -318,9 +331,9 @@ def test_irregular_sampling_is_integrated_as_well_as_regular():
         edges = np.concatenate([[0], np.cumsum(sizes)])
         edges = edges[edges <= len(w)]
         n = np.diff(edges)
-        W = np.add.reduceat(imu.w_ib_b, edges[:-1], axis=0)[:n.size] / n[:, None]
-        F = np.add.reduceat(imu.f_b, edges[:-1], axis=0)[:n.size] / n[:, None]
-        dts = n * fine                                                  # 10 ms +-20 %
+        W = np.add.reduceat(imu.w_ib_b, edges[:-1], axis=0)[: n.size] / n[:, None]
+        F = np.add.reduceat(imu.f_b, edges[:-1], axis=0)[: n.size] / n[:, None]
+        dts = n * fine  # 10 ms +-20 %
         start = zupt_ins.Start(LLA0, traj.q_bn[0])
         res = zupt_ins.run_filter(ImuSamples(W, F, dts), start, stance[edges[:-1]])
         np.testing.assert_allclose(res.nav.time, traj.time[edges], atol=1e-9)
@@ -338,17 +351,17 @@ def test_irregular_sampling_is_integrated_as_well_as_regular():
 def test_out_of_order_and_duplicated_timestamps_via_sanitize(walk):
     t, w, f, h, m, static = walk["t"], walk["w"], walk["f"], walk["h"], walk["m"], walk["static"]
     ts, order = faults.swap_timestamps(t, 0.01, np.random.default_rng(10))
-    static = static.astype(float)                                      # sanitize takes numeric series
+    static = static.astype(float)  # sanitize takes numeric series
     t2, w2, f2, h2, m2, s2, rep = timing.sanitize(ts, w[order], f[order], h[order], m[order], static[order])
     assert rep.n_out_of_order > 50 and rep.n_duplicate == 0
     dts = timing.intervals(np.r_[t2, t2[-1] + DT], len(t2))
     res = run(walk, w2, f2, dt=dts, static=s2.astype(bool), h=h2, m=m2)
-    np.testing.assert_allclose(res.nav.lla, walk["ref"].nav.lla, rtol=0, atol=1e-9)   # order restored
+    np.testing.assert_allclose(res.nav.lla, walk["ref"].nav.lla, rtol=0, atol=1e-9)  # order restored
     td, hit = faults.duplicate_timestamps(t, 0.01, np.random.default_rng(11))
     t3, w3, f3, h3, m3, s3, rep = timing.sanitize(td, w, f, h, m, static)
     # a repeat right after a repeat copies a different stamp, so duplicates <= hits (all counted)
     assert 50 < rep.n_duplicate <= hit.sum() and len(t3) == len(t) - rep.n_duplicate
-    hit = np.isin(np.arange(len(t)), np.flatnonzero(np.diff(td) == 0) + 1)   # the samples sanitize dropped
+    hit = np.isin(np.arange(len(t)), np.flatnonzero(np.diff(td) == 0) + 1)  # the samples sanitize dropped
     dts = timing.intervals(np.r_[t3, t3[-1] + DT], len(t3))
     res = run(walk, w3, f3, dt=dts, static=s3.astype(bool), h=h3, m=m3)
     keep = np.r_[~hit, True]
@@ -361,15 +374,15 @@ def test_out_of_order_and_duplicated_timestamps_via_sanitize(walk):
 def test_time_jump_is_held_counted_and_the_filter_goes_on(walk):
     """A clock step of one hour in one interval (campaign: ran to the end, then raised 'lla: expected latitudes')."""
     n = len(walk["w"])
-    for k, bound_max, bound_end in ((8200, 0.5, 0.5), (2500, 6.0, 1.5)):          # in the final stand; walking
+    for k, bound_max, bound_end in ((8200, 0.5, 0.5), (2500, 6.0, 1.5)):  # in the final stand; walking
         dt = np.full(n, DT)
         dt[k] = 3600.0
-        res = run(walk, dt=dt)                          # finite, SPD covariance (run checks both)
+        res = run(walk, dt=dt)  # finite, SPD covariance (run checks both)
         assert res.faults["clock", "jump"] == 1
         np.testing.assert_array_equal(res.faults.flags["clock", "jump"], np.arange(n) == k)
         assert res.nav.time[-1] == pytest.approx(walk["ref"].nav.time[-1] + 3600.0 - DT)
-        np.testing.assert_array_equal(res.nav.lla[:k + 1], walk["ref"].nav.lla[:k + 1])    # untouched before it
-        np.testing.assert_array_equal(res.nav.lla[k + 1, :2], res.nav.lla[k, :2])           # held over it
+        np.testing.assert_array_equal(res.nav.lla[: k + 1], walk["ref"].nav.lla[: k + 1])  # untouched before it
+        np.testing.assert_array_equal(res.nav.lla[k + 1, :2], res.nav.lla[k, :2])  # held over it
         # the covariance grows by the process noise of the hour: horizontal velocity sigma >= 0.02 sqrt(3600)
         # = 1.2 m/s (the vertical one is reset by the barometer while walking)
         assert np.sqrt(res.P_diag[k + 1, 3:5]).min() >= zupt_ins.ProcessNoise().accel * 60.0
@@ -394,17 +407,17 @@ def test_free_fall_in_a_stand_is_held_counted_and_never_used_for_zupt(walk):
         warnings.simplefilter("ignore", RuntimeWarning)
         clean = run(walk, h=no_baro, static=walk["static"])
     dz_clean = clean.nav.lla[:, 2] - walk["traj"].lla[:, 2]
-    for static in (walk["static"], None):        # a given stance mask (the fall inside it); the detector's
+    for static in (walk["static"], None):  # a given stance mask (the fall inside it); the detector's
         res = run(walk, f=f, h=no_baro, static=static)
         assert res.faults["accel", "freefall"] == fall.sum()
         np.testing.assert_array_equal(flagged(res, ("accel", "freefall")), fall)
         st = walk["static"] if static is not None else zupt.detect_static(walk["w"], f, DT)
-        np.testing.assert_array_equal(flagged(res, ("zupt", "refused")), fall & st)   # never a ZUPT
+        np.testing.assert_array_equal(flagged(res, ("zupt", "refused")), fall & st)  # never a ZUPT
         # Stated bound: the held accelerometer reads the stance's g, so the height stays within 0.1 m of
         # the clean run's (measured 0.03 m); integrated, the fall costs 12.9 m here (13.2 m in the campaign).
         dz = res.nav.lla[:, 2] - walk["traj"].lla[:, 2]
         assert np.abs(dz - dz_clean).max() < 0.1, np.abs(dz - dz_clean).max()
-    raw = run(walk, f=f, h=no_baro, limits=SensorLimits(freefall_accel=0.0))   # test off
+    raw = run(walk, f=f, h=no_baro, limits=SensorLimits(freefall_accel=0.0))  # test off
     assert raw.faults["accel", "freefall"] == 0 and abs(raw.nav.lla[-1, 2] - walk["traj"].lla[-1, 2]) > 10.0
 
 
@@ -413,7 +426,7 @@ def test_free_fall_needs_a_run_of_freefall_time(walk):
     assert walk["ref"].faults["accel", "freefall"] == 0 and np.linalg.norm(walk["f"], axis=-1).min() > 6.0
     for length, held in ((3, 0), (5, 5)):
         f = walk["f"].copy()
-        f[8200:8200 + length] = 0.0
+        f[8200 : 8200 + length] = 0.0
         assert run(walk, f=f).faults["accel", "freefall"] == held
     f = walk["f"].copy()
     f[0] = 0.0
@@ -507,8 +520,7 @@ FUZZ = [
     ("zupt_zaru_matrix", "w_ie_n", lambda: zupt.zupt_zaru_matrix(np.eye(3), [0.0, 1j, 0.0])),
     ("zupt_zaru_innovation", "vel_n", lambda: zupt.zupt_zaru_innovation([np.nan] * 3, Z3[0], Z3[0], np.eye(3), Z3[0])),
     ("zupt_zaru_innovation", "b_g", lambda: zupt.zupt_zaru_innovation(Z3[0], Z3[0], [0, 0], np.eye(3), Z3[0])),
-    ("simple_covariance_update", "P",
-     lambda: pd.simple_covariance_update(np.full((2, 2), np.nan), np.eye(2), np.eye(2))),
+    ("simple_covariance_update", "P", lambda: pd.simple_covariance_update(np.full((2, 2), np.nan), np.eye(2), np.eye(2))),
     ("simple_covariance_update", "H", lambda: pd.simple_covariance_update(np.eye(2), np.eye(3), np.eye(2))),
     ("Start", "lla", lambda: zupt_ins.Start([np.pi, 0.0, 0.0], Q1)),
     ("Start", "lla", lambda: zupt_ins.Start([0.5, 0.0], Q1)),
@@ -536,8 +548,8 @@ FUZZ = [
     ("FilterConfig", "update_rate", lambda: zupt_ins.FilterConfig(update_rate=0.0)),
     ("run_filter", "imu", lambda: RF(imu=Z3)),
     ("run_filter", "imu", lambda: RF(imu=ImuSamples(np.zeros((2, 50, 3)), np.tile(F3, (2, 1, 1)), DT))),
-    ("run_filter", "imu", lambda: RF(imu=ImuSamples(Z3, F3, DT, SensorLimits(max_dt=DT / 2)))),   # every sample a jump
-    ("run_filter", "imu", lambda: RF(imu=ImuSamples(np.r_[[[np.nan] * 3], Z3[1:]], F3, DT))),     # first sample held
+    ("run_filter", "imu", lambda: RF(imu=ImuSamples(Z3, F3, DT, SensorLimits(max_dt=DT / 2)))),  # every sample a jump
+    ("run_filter", "imu", lambda: RF(imu=ImuSamples(np.r_[[[np.nan] * 3], Z3[1:]], F3, DT))),  # first sample held
     ("run_filter", "start", lambda: RF(start=LLA0)),
     ("run_filter", "static", lambda: RF(static=np.ones(50))),
     ("run_filter", "static", lambda: RF(static=ST[1:])),
@@ -566,8 +578,14 @@ FUZZ = [
 ]
 
 # Constants and result records: no arguments to fuzz (built by navlib from validated values).
-NOT_FUZZED = {"G_LOCAL", "M_NED_ENU", "STATIC_THRESHOLDS", "FilterResult", "StepResult",
-              "draw_system"}   # a schematic for the chapter: tests/test_chapter_pedestrian_ins.py, tools/fuzz.py
+NOT_FUZZED = {
+    "G_LOCAL",
+    "M_NED_ENU",
+    "STATIC_THRESHOLDS",
+    "FilterResult",
+    "StepResult",
+    "draw_system",
+}  # a schematic for the chapter: tests/test_chapter_pedestrian_ins.py, tools/fuzz.py
 
 
 @pytest.mark.parametrize("func, arg, call", FUZZ, ids=[f"{f}-{a}-{i}" for i, (f, a, _) in enumerate(FUZZ)])
@@ -582,11 +600,39 @@ def test_bad_input_raises_naming_the_argument(func, arg, call):
 def test_every_public_function_is_fuzzed():
     covered = {f for f, _, _ in FUZZ}
     # plus the functions that moved to core modules, still fuzzed here
-    public = set(pd.__all__) | set(zupt_ins.__all__) | {"walk", "Leg", "Gait", "stance_mask",
-                                "detect_static", "despike", "error_state_matrix", "error_model_fd", "zupt_zaru_matrix",
-                                "zupt_zaru_innovation", "STATIC_THRESHOLDS",
-                                "level", "magnetic_heading", "horizontal_error", "expanding_std", "detection_rates",
-                                "baro_height", "reference_pressure", "classify_floor", "segment_floors", "segments",
-                                "static_gyro_bias", "ned_to_enu_dcm", "M_NED_ENU", "StepResult", "detect_steps",
-                                "weinberg_step_length", "pdr", "pdr_headings"}
+    public = (
+        set(pd.__all__)
+        | set(zupt_ins.__all__)
+        | {
+            "walk",
+            "Leg",
+            "Gait",
+            "stance_mask",
+            "detect_static",
+            "despike",
+            "error_state_matrix",
+            "error_model_fd",
+            "zupt_zaru_matrix",
+            "zupt_zaru_innovation",
+            "STATIC_THRESHOLDS",
+            "level",
+            "magnetic_heading",
+            "horizontal_error",
+            "expanding_std",
+            "detection_rates",
+            "baro_height",
+            "reference_pressure",
+            "classify_floor",
+            "segment_floors",
+            "segments",
+            "static_gyro_bias",
+            "ned_to_enu_dcm",
+            "M_NED_ENU",
+            "StepResult",
+            "detect_steps",
+            "weinberg_step_length",
+            "pdr",
+            "pdr_headings",
+        }
+    )
     assert covered | NOT_FUZZED == public, public - covered - NOT_FUZZED

@@ -14,6 +14,7 @@ The gate used is the chi-square quantile for 1e-4 false alarms per channel
 (GPS 2 dof: 18.4; heading, speed, yaw rate 1 dof: 15.1); the fault-free runs
 check that it raises no false alarm on this data.
 """
+
 import numpy as np
 import pytest
 
@@ -22,15 +23,15 @@ from navlib.filters import planar_ekf
 from navlib.imu import SensorLimits
 from navlib.papers import gauss_kruger_ekf as planar
 
-ORIGIN = np.deg2rad([26.06, 119.20])            # Fuzhou, GK zone 40 (notebook 03's site)
+ORIGIN = np.deg2rad([26.06, 119.20])  # Fuzhou, GK zone 40 (notebook 03's site)
 T = 0.5
-N = 600                                         # 300 s
+N = 600  # 300 s
 X0_CURVE = np.array([0.0, 0.0, np.pi / 4, 1.0, np.deg2rad(5.0)])
-P0 = np.diag(np.diag(planar.R_PAPER))           # initialised from the first fix (PD from the start)
+P0 = np.diag(np.diag(planar.R_PAPER))  # initialised from the first fix (PD from the start)
 GATE = [18.4, 15.1, 15.1, 15.1]
-GATE_GPS = [18.4, np.inf, np.inf, np.inf]         # gate the GPS channel only
-SIGMA = np.sqrt(np.diag(planar.R_PAPER))        # 2.5 m, 2.5 m, 0.1 rad, 0.02 m/s, 0.05 rad/s
-GYRO_RANGE = sensors.imu_model("ADIS16475-1").gyro.full_scale    # ±125 deg/s = 2.18 rad/s (datasheet)
+GATE_GPS = [18.4, np.inf, np.inf, np.inf]  # gate the GPS channel only
+SIGMA = np.sqrt(np.diag(planar.R_PAPER))  # 2.5 m, 2.5 m, 0.1 rad, 0.02 m/s, 0.05 rad/s
+GYRO_RANGE = sensors.imu_model("ADIS16475-1").gyro.full_scale  # ±125 deg/s = 2.18 rad/s (datasheet)
 
 
 def curve_run(seed=1):
@@ -40,7 +41,7 @@ def curve_run(seed=1):
     return t, truth, s
 
 
-SENSORS = ("gnss", "heading", "speed", "yaw_rate")     # the channels' fault sensors
+SENSORS = ("gnss", "heading", "speed", "yaw_rate")  # the channels' fault sensors
 
 
 def config(gate=np.inf, reacquire=3, **limits):
@@ -92,13 +93,14 @@ def clean():
     assert_healthy(res)
     # The gate is silent on fault-free data: same result, no rejection.
     assert not rejected(gated).any() and np.array_equal(gated.x, res.x)
-    assert rmse(res, truth) < 2.5                   # below the GPS sigma
+    assert rmse(res, truth) < 2.5  # below the GPS sigma
     return t, truth, s, res
 
 
 # --------------------------------------------------------------------------
 # Dropouts
 # --------------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("seed", [10, 11, 12])
 def test_ekf_random_dropouts_are_skipped_and_counted(clean, seed):
@@ -158,6 +160,7 @@ def test_ekf_30_s_gap_predicts_and_recovers(clean, channels):
 # Outliers
 # --------------------------------------------------------------------------
 
+
 @pytest.mark.parametrize("seed", [20, 21, 22])
 def test_ekf_imu_spikes_are_gated_and_counted(clean, seed):
     """1 % of heading, speed and yaw-rate samples get ±100 sigma spikes (per channel).
@@ -176,15 +179,15 @@ def test_ekf_imu_spikes_are_gated_and_counted(clean, seed):
     res = ekf(t, s.gps, heading, speed, yaw_rate, gate=GATE)
     assert_healthy(res)
     injected = np.column_stack([np.zeros_like(m_h), m_h, m_v, m_w])
-    injected[0] = False                                     # the first row is never fused
+    injected[0] = False  # the first row is never fused
     assert np.array_equal(rejected(res), injected)
     assert counts(res, "outlier") == list(injected.sum(axis=0))
     assert np.abs(res.x[:, :2] - ref.x[:, :2]).max() < 0.2
-    assert heading_gap(res, ref).max() < 0.3                # measured 0.09-0.14 rad (sigma 0.1 rad)
-    assert np.all(np.isfinite(res.nis[1:]))                 # GPS always fused here
+    assert heading_gap(res, ref).max() < 0.3  # measured 0.09-0.14 rad (sigma 0.1 rad)
+    assert np.all(np.isfinite(res.nis[1:]))  # GPS always fused here
     # Without the gate a heading spike (10 rad, 2.56 rad after wrapping) is fused silently.
     blind = ekf(t, s.gps, heading, speed, yaw_rate)
-    assert not blind.faults and heading_gap(blind, ref).max() > 1.0         # measured 1.6 rad
+    assert not blind.faults and heading_gap(blind, ref).max() > 1.0  # measured 1.6 rad
 
 
 @pytest.mark.parametrize("seed", [30, 31, 32])
@@ -201,7 +204,7 @@ def test_ekf_gps_jumps_of_50_m_are_gated_and_counted(clean, seed):
     rng = np.random.default_rng(seed)
     lla = np.column_stack([s.gps, np.zeros(len(t))])
     jumped, hit = faults.position_jumps(lla, 0.02, rng, size_m=50.0)
-    hit[0] = False                                          # the first row is never fused
+    hit[0] = False  # the first row is never fused
     res = ekf(t, jumped[:, :2], s.heading, s.speed, s.yaw_rate, gate=GATE)
     assert_healthy(res)
     assert hit.sum() >= 5
@@ -216,6 +219,7 @@ def test_ekf_gps_jumps_of_50_m_are_gated_and_counted(clean, seed):
 # --------------------------------------------------------------------------
 # Timing
 # --------------------------------------------------------------------------
+
 
 def test_ekf_rejects_unsanitised_timestamps_and_sanitize_pipeline_works(clean):
     """Repeated and out-of-order timestamps: ``ekf`` raises ValueError naming ``t``; the
@@ -286,8 +290,8 @@ def test_ekf_irregular_sampling_uses_the_per_step_interval(clean):
 # Sensor health: clock jumps and a stuck yaw-rate gyro
 # --------------------------------------------------------------------------
 
-K_FAULT = 200                                           # epoch of the fault (100 s)
-AFTER = slice(K_FAULT + 60, K_FAULT + 120)              # the 30 s that start 30 s after it
+K_FAULT = 200  # epoch of the fault (100 s)
+AFTER = slice(K_FAULT + 60, K_FAULT + 120)  # the 30 s that start 30 s after it
 
 
 def errors(res, truth):
@@ -358,11 +362,11 @@ def test_ekf_stuck_yaw_rate_is_skipped_and_counted(clean, kind):
     yaw_rate = s.yaw_rate.copy()
     stuck = np.zeros(len(t), bool)
     if kind == "latched":
-        yaw_rate[K_FAULT:K_FAULT + 20] = 0.3
-        stuck[K_FAULT:K_FAULT + 20] = True
+        yaw_rate[K_FAULT : K_FAULT + 20] = 0.3
+        stuck[K_FAULT : K_FAULT + 20] = True
     else:
-        yaw_rate[K_FAULT:K_FAULT + 20] = yaw_rate[K_FAULT - 1]
-        stuck[K_FAULT - 1:K_FAULT + 20] = True
+        yaw_rate[K_FAULT : K_FAULT + 20] = yaw_rate[K_FAULT - 1]
+        stuck[K_FAULT - 1 : K_FAULT + 20] = True
     res = ekf(t, s.gps, s.heading, s.speed, yaw_rate, gate=GATE)
     assert_healthy(res)
     assert res.faults["yaw_rate", "stuck"] == stuck.sum() and np.array_equal(res.faults.flags["yaw_rate", "stuck"], stuck)
@@ -396,11 +400,12 @@ def test_ekf_fault_free_results_are_unchanged(clean):
 # Saturation
 # --------------------------------------------------------------------------
 
+
 def fast_turns_run(seed=3, spin_steps=4):
     """Drive at 1 m/s with three turns at 3 rad/s (172 deg/s) of ``spin_steps`` epochs each."""
     v, w = np.ones(N), np.zeros(N)
     for k in (120, 300, 450):
-        w[k:k + spin_steps], v[k:k + spin_steps] = 3.0, 0.3
+        w[k : k + spin_steps], v[k : k + spin_steps] = 3.0, 0.3
     x0 = np.array([0.0, 0.0, 0.3, 1.0, 0.0])
     truth = planar_ekf.propagate(x0, T, speed=v, yaw_rate=w)
     s = planar.simulate_sensors(truth, ORIGIN, planar.R_PAPER, np.random.default_rng(seed))
@@ -431,7 +436,7 @@ def test_ekf_gyro_saturation_is_counted_and_never_taken_at_face_value():
     assert err.max() < 0.6
     assert np.abs(res.x[:, :2] - ref.x[:, :2]).max() < 0.5
     unaware = ekf(t, s.gps, s.heading, s.speed, clipped, x0=x0, gate=GATE_GPS)
-    assert unaware.faults["yaw_rate", "saturated"] == 0     # not told the range: nothing to count
+    assert unaware.faults["yaw_rate", "saturated"] == 0  # not told the range: nothing to count
 
 
 def test_ekf_gate_cannot_lock_out_a_manoeuvre_beyond_q():
@@ -455,9 +460,8 @@ def test_ekf_gate_cannot_lock_out_a_manoeuvre_beyond_q():
     assert counts(res, "outlier") == list(rejected(res).sum(axis=0))
     err = np.abs(np.angle(np.exp(1j * (res.x[:, 2] - truth[:, 2]))))
     for k in starts:
-        assert err[k + 20:k + 100].max() < 0.3
-    locked = ekf(t, s.gps, s.heading, s.speed, clipped, x0=x0, gate=GATE, full_scale_gyro=GYRO_RANGE,
-                 reacquire=10 ** 9)
+        assert err[k + 20 : k + 100].max() < 0.3
+    locked = ekf(t, s.gps, s.heading, s.speed, clipped, x0=x0, gate=GATE, full_scale_gyro=GYRO_RANGE, reacquire=10**9)
     assert locked.faults["yaw_rate", "outlier"] > 100 and sum(counts(locked, "reacquired")) == 0
 
 
@@ -484,6 +488,7 @@ def test_accelerometer_saturation_not_applicable():
 # --------------------------------------------------------------------------
 # Dead reckoning
 # --------------------------------------------------------------------------
+
 
 def test_dead_reckoning_dropouts_gap_and_saturation_are_held_and_counted(clean):
     """DR holds the previous speed and yaw rate over NaN and rail samples; its fault report flags
@@ -541,5 +546,5 @@ def test_dead_reckoning_counts_a_clock_jump_and_does_not_integrate_it():
     assert clean["clock", "jump"] == 0 and faults["clock", "jump"] == 1
     np.testing.assert_array_equal(np.flatnonzero(faults.flags["clock", "jump"]), [500])
     np.testing.assert_allclose(pose, ref, rtol=0, atol=1e-9)
-    integrated, off = planar_ekf.dead_reckoning(t_jump, speed, yaw_rate, x0, max_dt=np.inf)   # detection off
+    integrated, off = planar_ekf.dead_reckoning(t_jump, speed, yaw_rate, x0, max_dt=np.inf)  # detection off
     assert off["clock", "jump"] == 0 and np.hypot(*(integrated[-1, :2] - ref[-1, :2])) > 1000.0

@@ -9,6 +9,7 @@ spikes and clipping cannot be detected and are integrated, with an error
 bounded by the injected fault itself; irregular sampling is integrated with
 per-sample intervals.
 """
+
 import numpy as np
 import pytest
 
@@ -35,13 +36,19 @@ def static_imu():
 
 @pytest.fixture(scope="module")
 def drive():
-    segs = [trajectory.Segment(10), trajectory.Segment(15, speed=12.0),
-            trajectory.Segment(20, turn=units.deg(90)), trajectory.Segment(15, speed=0.0), trajectory.Segment(5)]
+    segs = [
+        trajectory.Segment(10),
+        trajectory.Segment(15, speed=12.0),
+        trajectory.Segment(20, turn=units.deg(90)),
+        trajectory.Segment(15, speed=0.0),
+        trajectory.Segment(5),
+    ]
     traj = trajectory.vehicle(segs, DT, LLA0, units.deg(30.0))
     return traj, *trajectory.ideal_imu(traj)
 
 
 # ---------------------------------------------------------------- dropouts
+
 
 def test_nan_raises_by_default_and_names_the_sensor(static_imu):
     traj, imu = static_imu
@@ -59,10 +66,10 @@ def test_hold_reports_every_dropout_and_stays_near_the_clean_run(static_imu):
     rng = np.random.default_rng(2)
     w, dw = faults.dropouts(imu.w_ib_b, 0.1, rng)
     f, df = faults.dropouts(imu.f_b, 0.1, rng)
-    w[0], f[0], dw[0], df[0] = imu.w_ib_b[0], imu.f_b[0], False, False     # hold needs a first sample
+    w[0], f[0], dw[0], df[0] = imu.w_ib_b[0], imu.f_b[0], False, False  # hold needs a first sample
     clean = strapdown.integrate(LLA0, np.zeros(3), traj.q_bn[0], imu.w_ib_b, imu.f_b, DT)
     nav = strapdown.integrate(LLA0, np.zeros(3), traj.q_bn[0], w, f, DT, nan_policy="hold")
-    np.testing.assert_array_equal(nav.faults.flags["gyro", "nan"], dw)      # exactly the injected samples
+    np.testing.assert_array_equal(nav.faults.flags["gyro", "nan"], dw)  # exactly the injected samples
     np.testing.assert_array_equal(nav.faults.flags["accel", "nan"], df)
     assert nav.faults["gyro", "nan"] == dw.sum() > 0.05 * len(w) and nav.faults["accel", "nan"] == df.sum()
     assert clean.faults.total() == 0 and clean.faults.flags["gyro", "nan"].shape == (len(w),)
@@ -108,18 +115,18 @@ def test_hold_needs_a_first_sample_and_works_per_trial():
     w[1, 3:] = np.nan
     q = strapdown.integrate_attitude([1.0, 0, 0, 0], w, DT, nan_policy="hold")
     np.testing.assert_allclose(q, strapdown.integrate_attitude([1.0, 0, 0, 0], 0.1 * np.ones((2, 5, 3)), DT))
-    nav = strapdown.integrate(LLA0, np.zeros(3), [1.0, 0, 0, 0], w, np.tile([0.0, 0.0, 9.8], (5, 1)), DT,
-                              nan_policy="hold")
+    nav = strapdown.integrate(LLA0, np.zeros(3), [1.0, 0, 0, 0], w, np.tile([0.0, 0.0, 9.8], (5, 1)), DT, nan_policy="hold")
     assert nav.faults.flags["gyro", "nan"].shape == (2, 5) and nav.faults.flags["accel", "nan"].shape == (2, 5)
-    np.testing.assert_array_equal(nav.faults["gyro", "nan"], [1, 2])                      # per trial
+    np.testing.assert_array_equal(nav.faults["gyro", "nan"], [1, 2])  # per trial
     np.testing.assert_array_equal(nav.faults["accel", "nan"], [0, 0])
 
 
 # ---------------------------------------------------------------- outliers and saturation
 
+
 def test_spikes_are_integrated_with_an_error_bounded_by_the_spikes(drive):
     traj, w, f = drive
-    sigma = units.deg_per_s(0.01) / np.sqrt(DT)                              # MTi-100 gyro, one sample
+    sigma = units.deg_per_s(0.01) / np.sqrt(DT)  # MTi-100 gyro, one sample
     ws, hit = faults.spikes(w, 0.01, sigma, np.random.default_rng(3))
     q_clean = strapdown.integrate_attitude(traj.q_bn[0], w, DT)
     q_spiky = strapdown.integrate_attitude(traj.q_bn[0], ws, DT)
@@ -133,12 +140,25 @@ def test_spikes_are_integrated_with_an_error_bounded_by_the_spikes(drive):
 
 def test_saturation_is_counted_by_the_sensor_model_and_bounded(drive):
     traj, w, f = drive
-    fs = 0.05                                                                 # rad/s: clips the 90-deg turn
+    fs = 0.05  # rad/s: clips the 90-deg turn
     wc, clipped = faults.saturate(w, fs)
-    imu = sensors.simulate_imu(w, f, DT, sensors.imu_model("MTi-100").replace(
-        gyro={"full_scale": fs, "noise_density": 0.0, "bias": 0.0, "bias_instability": 0.0,
-              "scale_factor": 0.0, "misalignment": 0.0}), np.random.default_rng(4))
-    assert imu.gyro_saturated > 0 and clipped.sum() > 0                     # the counters report it
+    imu = sensors.simulate_imu(
+        w,
+        f,
+        DT,
+        sensors.imu_model("MTi-100").replace(
+            gyro={
+                "full_scale": fs,
+                "noise_density": 0.0,
+                "bias": 0.0,
+                "bias_instability": 0.0,
+                "scale_factor": 0.0,
+                "misalignment": 0.0,
+            }
+        ),
+        np.random.default_rng(4),
+    )
+    assert imu.gyro_saturated > 0 and clipped.sum() > 0  # the counters report it
     q_clip = strapdown.integrate_attitude(traj.q_bn[0], wc, DT)
     q_true = strapdown.integrate_attitude(traj.q_bn[0], w, DT)
     # The heading lost is at most the clipped excess, sum (|w| - fs)+ dt per axis.
@@ -149,6 +169,7 @@ def test_saturation_is_counted_by_the_sensor_model_and_bounded(drive):
 
 # ---------------------------------------------------------------- timing
 
+
 def test_per_sample_dt_equal_to_the_scalar_is_bit_identical(drive):
     traj, w, f = drive
     dts = np.full(len(w), DT)
@@ -158,8 +179,9 @@ def test_per_sample_dt_equal_to_the_scalar_is_bit_identical(drive):
     np.testing.assert_array_equal(a.q_bn, b.q_bn)
     np.testing.assert_allclose(a.time, b.time, rtol=0, atol=1e-9)
     w_in = earth.earth_rate_n(LLA0[0])
-    np.testing.assert_array_equal(strapdown.integrate_attitude(traj.q_bn[0], w, DT, w_in),
-                                  strapdown.integrate_attitude(traj.q_bn[0], w, dts, w_in))
+    np.testing.assert_array_equal(
+        strapdown.integrate_attitude(traj.q_bn[0], w, DT, w_in), strapdown.integrate_attitude(traj.q_bn[0], w, dts, w_in)
+    )
     with pytest.raises(ValueError, match="^dt: "):
         strapdown.integrate(traj.lla[0], traj.vel_n[0], traj.q_bn[0], w, f, dts[:-1])
     with pytest.raises(ValueError, match="^dt: "):
@@ -169,8 +191,12 @@ def test_per_sample_dt_equal_to_the_scalar_is_bit_identical(drive):
 @pytest.fixture(scope="module")
 def fine_drive():
     """The drive at 500 Hz, ideal; grouped into coarser samples by averaging (mean rate, mean force)."""
-    segs = [trajectory.Segment(5), trajectory.Segment(10, speed=12.0),
-            trajectory.Segment(15, turn=units.deg(90), pitch=units.deg(2)), trajectory.Segment(10, speed=0.0)]
+    segs = [
+        trajectory.Segment(5),
+        trajectory.Segment(10, speed=12.0),
+        trajectory.Segment(15, turn=units.deg(90), pitch=units.deg(2)),
+        trajectory.Segment(10, speed=0.0),
+    ]
     traj = trajectory.vehicle(segs, 0.002, LLA0, units.deg(30.0))
     return traj, *trajectory.ideal_imu(traj)
 
@@ -179,8 +205,8 @@ def _group(w, f, sizes):
     edges = np.concatenate([[0], np.cumsum(sizes)])
     edges = edges[edges <= len(w)]
     n = np.diff(edges)
-    W = np.add.reduceat(w, edges[:-1], axis=0)[:n.size] / n[:, None]
-    F = np.add.reduceat(f, edges[:-1], axis=0)[:n.size] / n[:, None]
+    W = np.add.reduceat(w, edges[:-1], axis=0)[: n.size] / n[:, None]
+    F = np.add.reduceat(f, edges[:-1], axis=0)[: n.size] / n[:, None]
     return edges, W, F, n * 0.002
 
 
@@ -189,7 +215,7 @@ def test_irregular_sampling_is_integrated_as_well_as_regular(fine_drive):
     rng = np.random.default_rng(5)
     out = {}
     for name, sizes in (("regular", np.full(len(w) // 5, 5)), ("irregular", rng.integers(4, 7, len(w) // 4))):
-        edges, W, F, dts = _group(w, f, sizes)                    # 10 ms +-20 % (4..6 fine samples)
+        edges, W, F, dts = _group(w, f, sizes)  # 10 ms +-20 % (4..6 fine samples)
         nav = strapdown.integrate(traj.lla[0], traj.vel_n[0], traj.q_bn[0], W, F, dts)
         np.testing.assert_allclose(nav.time, traj.time[edges], atol=1e-9)
         pos = np.abs(nav.lla[:, :2] - traj.lla[edges, :2]).max() * R_M
@@ -242,8 +268,15 @@ OBJ = np.array([[None, 1.0, 2.0]] * 10, dtype=object)
 
 def _step(**kw):
     """``strapdown.nav_step`` on a valid state and sample, with the arguments in ``kw`` replaced."""
-    args = dict(lla=np.array(LL), vel=np.zeros(3), q=np.array(Q1), w=np.zeros(3), f=[0.0, 0.0, 9.8], dt=DT,
-                earth_consts=strapdown.earth_constants())
+    args = dict(
+        lla=np.array(LL),
+        vel=np.zeros(3),
+        q=np.array(Q1),
+        w=np.zeros(3),
+        f=[0.0, 0.0, 9.8],
+        dt=DT,
+        earth_consts=strapdown.earth_constants(),
+    )
     return strapdown.nav_step(**{**args, **kw})
 
 
@@ -252,8 +285,7 @@ FUZZ = [
     ("integrate_attitude", "w_ib_b", lambda: strapdown.integrate_attitude(Q1, CPLX, DT)),
     ("integrate_attitude", "w_ib_b", lambda: strapdown.integrate_attitude(Q1, OBJ, DT)),
     ("integrate_attitude", "w_ib_b", lambda: strapdown.integrate_attitude(Q1, "abc", DT)),
-    ("integrate_attitude", "w_ib_b",
-     lambda: strapdown.integrate_attitude(Q1, np.full((10, 3), np.inf), DT, nan_policy="hold")),
+    ("integrate_attitude", "w_ib_b", lambda: strapdown.integrate_attitude(Q1, np.full((10, 3), np.inf), DT, nan_policy="hold")),
     ("integrate_attitude", "w_ib_b", lambda: strapdown.integrate_attitude(Q1, np.zeros((0, 3)), DT)),
     ("integrate_attitude", "w_ib_b", lambda: strapdown.integrate_attitude(Q1, np.zeros((10, 4)), DT)),
     ("integrate_attitude", "q0", lambda: strapdown.integrate_attitude(np.array(Q1, complex), W, DT)),
@@ -279,8 +311,7 @@ FUZZ = [
     ("integrate", "w_ib_b", lambda: strapdown.integrate(LL, [0, 0, 0], Q1, np.zeros((0, 3)), np.zeros((0, 3)), DT)),
     ("integrate", "f_b", lambda: strapdown.integrate(LL, [0, 0, 0], Q1, W, OBJ, DT)),
     ("integrate", "f_b", lambda: strapdown.integrate(LL, [0, 0, 0], Q1, W, np.full((10, 3), np.nan), DT)),
-    ("integrate", "f_b",
-     lambda: strapdown.integrate(LL, [0, 0, 0], Q1, W, np.full((10, 3), -np.inf), DT, nan_policy="hold")),
+    ("integrate", "f_b", lambda: strapdown.integrate(LL, [0, 0, 0], Q1, W, np.full((10, 3), -np.inf), DT, nan_policy="hold")),
     ("integrate", "dt", lambda: strapdown.integrate(LL, [0, 0, 0], Q1, W, F, "abc")),
     ("integrate", "dt", lambda: strapdown.integrate(LL, [0, 0, 0], Q1, W, F, np.full((2, 10), DT))),
     ("integrate", "t0", lambda: strapdown.integrate(LL, [0, 0, 0], Q1, W, F, DT, t0=np.inf)),
@@ -310,7 +341,7 @@ FUZZ = [
     # nav_step (the validated wrapper of the compiled _kernels.nav_step)
     ("nav_step", "lla", lambda: _step(lla=[0.6, 0.2])),
     ("nav_step", "lla", lambda: _step(lla=[np.nan, 0.2, 50.0])),
-    ("nav_step", "lla", lambda: _step(lla=[45.0, 0.2, 50.0])),                 # degrees given as radians
+    ("nav_step", "lla", lambda: _step(lla=[45.0, 0.2, 50.0])),  # degrees given as radians
     ("nav_step", "vel", lambda: _step(vel=[0.0, 0.0, np.inf])),
     ("nav_step", "vel", lambda: _step(vel="abc")),
     ("nav_step", "q", lambda: _step(q=[0.0, 0.0, 0.0, 0.0])),

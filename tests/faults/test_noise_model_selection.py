@@ -6,16 +6,17 @@ records with a known truth: a bias instability is not invented on white noise + 
 kept, and the stated 95 % intervals hold the truth at least 95 % of the time. The Allan deviation itself agrees
 with allantools' overlapping Allan deviation.
 """
+
 import numpy as np
 import pytest
 from scipy.signal import lfilter
 
 from navlib import analysis, calibration
 
-DT, N = 0.1, 72_000                      # 2 h at 10 Hz
-WHITE, RRW = 1e-3, 8.7e-6               # crossover of the two near tau = sqrt(3) N / K = 200 s: K shows late
-SIGMA_GM, TC = 3e-4, 10.0                # a Gauss-Markov bias peaking at 19 s: B = 0.617 sigma
-SEEDS = range(12)                        # 12 records x 2 triads x 3 axes = 72 axes per case
+DT, N = 0.1, 72_000  # 2 h at 10 Hz
+WHITE, RRW = 1e-3, 8.7e-6  # crossover of the two near tau = sqrt(3) N / K = 200 s: K shows late
+SIGMA_GM, TC = 3e-4, 10.0  # a Gauss-Markov bias peaking at 19 s: B = 0.617 sigma
+SEEDS = range(12)  # 12 records x 2 triads x 3 axes = 72 axes per case
 
 
 def record(seed, gm):
@@ -25,8 +26,8 @@ def record(seed, gm):
     if gm:
         a = np.exp(-DT / TC)
         drive = SIGMA_GM * np.sqrt(1 - a * a) * rng.standard_normal((2, N, 3))
-        drive[:, 0] = SIGMA_GM * rng.standard_normal((2, 3))                  # the stationary start
-        x += lfilter([1.0], [1.0, -a], drive, axis=1)                         # b[k] = a b[k-1] + drive[k]
+        drive[:, 0] = SIGMA_GM * rng.standard_normal((2, 3))  # the stationary start
+        x += lfilter([1.0], [1.0, -a], drive, axis=1)  # b[k] = a b[k-1] + drive[k]
     else:
         x += np.cumsum(RRW * np.sqrt(DT) * rng.standard_normal((2, N, 3)), axis=1)
     return x[0], x[1] + 9.8
@@ -69,11 +70,14 @@ def test_a_bias_instability_that_is_there_is_kept(gauss_markov):
     assert fraction(t.bias_instability > 0 for t in gauss_markov) >= 0.95
     assert fraction(np.abs(t.bias_instability / B - 1) < 0.25 for t in gauss_markov) >= 0.95
     assert fraction(inside(t.noise_density_ci, WHITE) for t in gauss_markov) >= 0.95
-    assert fraction(t.rate_random_walk == 0 for t in gauss_markov) >= 0.95       # and no random walk invented
+    assert fraction(t.rate_random_walk == 0 for t in gauss_markov) >= 0.95  # and no random walk invented
 
 
-@pytest.mark.xfail(strict=True, reason="B's interval is that of the Allan deviation at the peak (flicker edf ~ 475 "
-                   "here: +-6.5 %), narrower than the fitted B's scatter (0.83 to 1.13 of the truth): 69 % coverage")
+@pytest.mark.xfail(
+    strict=True,
+    reason="B's interval is that of the Allan deviation at the peak (flicker edf ~ 475 "
+    "here: +-6.5 %), narrower than the fitted B's scatter (0.83 to 1.13 of the truth): 69 % coverage",
+)
 def test_bias_instability_intervals_hold_the_truth(gauss_markov):
     B = analysis.GM_ALLAN_PEAK * SIGMA_GM
     assert fraction(inside(t.bias_instability_ci, B) for t in gauss_markov) >= 0.95

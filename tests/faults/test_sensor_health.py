@@ -18,6 +18,7 @@ filters before it existed) reproduces the findings: nothing counted, ratios 67-2
 The frozen turn's peak heading error (53 deg magnetometer, 20 deg RTK) is the same either way: a held
 gyro has nothing better to offer; detection reports it and keeps it out of the bias estimate.
 """
+
 import numpy as np
 import pytest
 
@@ -32,26 +33,27 @@ B_N = earth.magnetic_field(32.03, 118.85, 20.0, 2022.5)
 DECL = obs.magnetic_reference(B_N)[1]
 IMU = sensors.imu_model("ADIS16475-1")
 DT, STEP, TRIALS = 0.02, 10, 8
-N = 7000                                                  # 140 s
-K0 = 5000                                                 # 100 s
+N = 7000  # 140 s
+K0 = 5000  # 100 s
 H0 = units.deg(90.0)
 BIAS = units.deg_per_s(0.09)
 SIGMA_GYRO = IMU.gyro.noise_density / np.sqrt(DT)
 SIGMA_ACCEL = IMU.accel.noise_density / np.sqrt(DT)
-FILTERS = {"mahony": (mh.mahony, dict(kp=1.0, ki=0.02)),
-           "kf": (qkf.quaternion_kf, dict(kp=1.0, ki=0.02,
-                                          noise=qkf.KfNoise(sigma_gyro=SIGMA_GYRO, sigma_accel=0.02, sigma_mag=0.08)))}
-OFF = SensorLimits(max_dt=np.inf, stuck_run=None)          # detection off
+FILTERS = {
+    "mahony": (mh.mahony, dict(kp=1.0, ki=0.02)),
+    "kf": (qkf.quaternion_kf, dict(kp=1.0, ki=0.02, noise=qkf.KfNoise(sigma_gyro=SIGMA_GYRO, sigma_accel=0.02, sigma_mag=0.08))),
+}
+OFF = SensorLimits(max_dt=np.inf, stuck_run=None)  # detection off
 
 
 def trial(seed, moving):
     """One trial: samples (N, 3), true heading after each sample, RTK heading and epochs."""
     rng = np.random.default_rng(seed)
-    t = np.arange(N) * DT                                                  # start of each sample's interval
-    rate = np.where(moving & (t >= 100.0) & (t < 104.5), units.deg(20.0), 0.0)   # heading rate, clockwise
+    t = np.arange(N) * DT  # start of each sample's interval
+    rate = np.where(moving & (t >= 100.0) & (t < 104.5), units.deg(20.0), 0.0)  # heading rate, clockwise
     H = H0 + np.cumsum(rate * DT)
     w = np.zeros((N, 3))
-    w[:, 2] = -rate                                                         # z up: w_z = -dH/dt
+    w[:, 2] = -rate  # z up: w_z = -dH/dt
     w += BIAS + rng.normal(0.0, SIGMA_GYRO, (N, 3))
     f = np.array([0.0, 0.0, 9.8]) + rng.normal(0.0, SIGMA_ACCEL, (N, 3))
     q = attitude.euler_to_quat(np.stack([H, 0 * H, 0 * H], -1))
@@ -78,8 +80,7 @@ def run(name, d, mode, n, limits=None, **kw):
     imu = ImuSamples(w, d["f"][:, :n], dt, limits)
     if mode == "mag":
         return filt(imu, attitude.euler_to_quat([H0 - DECL, 0.0, 0.0]), m_b=d["m"][:, :n], B_n=B_N, **opts, **kw)
-    return filt(imu, attitude.euler_to_quat([H0, 0.0, 0.0]), rtk=RtkHeading(d["rtk"][:, :n], d["epoch"][:, :n]),
-                **opts, **kw)
+    return filt(imu, attitude.euler_to_quat([H0, 0.0, 0.0]), rtk=RtkHeading(d["rtk"][:, :n], d["epoch"][:, :n]), **opts, **kw)
 
 
 def bias_rms(res):
@@ -99,23 +100,23 @@ def inject(d, kind):
     """Faulty inputs, the fault's end (sample), the fault key, the expected flags (N,) and count per trial."""
     flags = np.zeros(N, bool)
     if kind in ("jump", "jump-moving"):
-        k = K0 + (100 if kind == "jump-moving" else 0)                    # moving: mid-turn, 102 s
+        k = K0 + (100 if kind == "jump-moving" else 0)  # moving: mid-turn, 102 s
         dt = np.full(N, DT)
         dt[k] = 3600.0
         flags[k] = True
         return dict(dt=dt), k + 1, ("clock", "jump"), flags
     w = d["w"].copy()
     if kind == "stuck":
-        w[:, K0:K0 + 500, 2] = 0.3
-        flags[K0:K0 + 500] = True
-    else:                                                                  # frozen: 99 s to 109 s
-        w[:, K0 - 50:K0 + 450] = w[:, K0 - 50:K0 - 49]
-        flags[K0 - 50:K0 + 450] = True
+        w[:, K0 : K0 + 500, 2] = 0.3
+        flags[K0 : K0 + 500] = True
+    else:  # frozen: 99 s to 109 s
+        w[:, K0 - 50 : K0 + 450] = w[:, K0 - 50 : K0 - 49]
+        flags[K0 - 50 : K0 + 450] = True
     return dict(w=w), int(np.flatnonzero(flags)[-1]) + 1, ("gyro", "stuck"), flags
 
 
 SCENARIOS = {"jump": False, "jump-moving": True, "stuck": False, "frozen": True}
-RATIO_OFF = 10.0          # without detection the bias error is 67x (frozen turn, KF, magnetometer) to 21000x larger
+RATIO_OFF = 10.0  # without detection the bias error is 67x (frozen turn, KF, magnetometer) to 21000x larger
 
 
 @pytest.mark.parametrize("name", FILTERS)
@@ -124,28 +125,29 @@ RATIO_OFF = 10.0          # without detection the bias error is 67x (frozen turn
 def test_fault_is_counted_flagged_and_recovered_from(data, name, mode, kind):
     d = data[SCENARIOS[kind]]
     faulty, end, key, flags = inject(d, kind)
-    n = end + int(round(30.0 / DT))                                       # 30 s after the fault
+    n = end + int(round(30.0 / DT))  # 30 s after the fault
     ref = run(name, d, mode, n)
     res = run(name, d, mode, n, **faulty)
     assert np.isfinite(res.q_bn).all() and np.isfinite(res.gyro_bias).all()
     expected = int(flags.sum())
     np.testing.assert_array_equal(res.faults[key], expected)
-    assert not any(np.any(c) for k, c in res.faults.counts.items() if k != key)   # nothing else: a stuck gyro is not NaN
+    assert not any(np.any(c) for k, c in res.faults.counts.items() if k != key)  # nothing else: a stuck gyro is not NaN
     assert not any(np.any(c) for c in ref.faults.counts.values())
     np.testing.assert_array_equal(res.faults.flags[key], np.broadcast_to(flags[:n], (TRIALS, n)))
-    assert bias_rms(res) < 2.0 * bias_rms(ref)                             # recovered: the issue's criterion
+    assert bias_rms(res) < 2.0 * bias_rms(ref)  # recovered: the issue's criterion
     for e_res, e_ref in zip(final_errors(res, d, mode), final_errors(ref, d, mode), strict=True):
         assert abs(e_res - e_ref) < 0.1
-    if kind.startswith("jump"):                       # detection off: the jump cannot be integrated and is refused
+    if kind.startswith("jump"):  # detection off: the jump cannot be integrated and is refused
         with pytest.raises(ValueError, match="^dt: the gyro turns up to"):
             run(name, d, mode, n, limits=OFF, **faulty)
         return
     off = run(name, d, mode, n, limits=OFF, **faulty)
-    assert not off.faults                                                  # the finding: unreported ...
-    assert bias_rms(off) > RATIO_OFF * bias_rms(ref)                      # ... and the bias estimate corrupted
+    assert not off.faults  # the finding: unreported ...
+    assert bias_rms(off) > RATIO_OFF * bias_rms(ref)  # ... and the bias estimate corrupted
 
 
 # --------------------------------------------------------------------------- behaviour in detail
+
 
 @pytest.mark.parametrize("name", FILTERS)
 def test_fault_free_results_are_unchanged(data, name):
@@ -191,7 +193,7 @@ def test_a_stamp_glitch_is_propagated_through(filt):
     res = filt(imu, q, m_b=m, B_n=B_N, kp=0.0, ki=0.0)
     plain = filt(ImuSamples(imu.w_ib_b, imu.f_b, 0.01), q, m_b=m, B_n=B_N, kp=0.0, ki=0.0)
     assert int(res.faults["clock", "jump"]) == 1 and res.faults.flags["clock", "jump"][100]
-    np.testing.assert_allclose(res.hpr[:, 0], plain.hpr[:, 0], atol=1e-9)       # 0.05 rad/s over 4 s, no reset
+    np.testing.assert_allclose(res.hpr[:, 0], plain.hpr[:, 0], atol=1e-9)  # 0.05 rad/s over 4 s, no reset
 
 
 @pytest.mark.parametrize("filt", [mh.mahony, qkf.quaternion_kf])
@@ -201,10 +203,10 @@ def test_a_lost_state_is_reinitialised_from_a_quasi_static_window(filt):
     imu, m, q, q2 = gap(1.5, 0.3)
     res = filt(imu, q, m_b=m, B_n=B_N, kp=0.0, ki=0.0)
     window = round(obs.STILL_WINDOW / 0.01)
-    assert abs(res.q_bn[100] @ q) > 0.9999                                      # not from the jump's one sample
+    assert abs(res.q_bn[100] @ q) > 0.9999  # not from the jump's one sample
     assert abs(res.q_bn[100 + window - 2] @ q2) < 0.99
     np.testing.assert_allclose(abs(res.q_bn[100 + window - 1] @ q2), 1.0, atol=1e-12)
-    moving, m2, _, _ = gap(1.5, 0.3, moving_until=250)                         # turning after the gap: wait for rest
+    moving, m2, _, _ = gap(1.5, 0.3, moving_until=250)  # turning after the gap: wait for rest
     turned = filt(moving, q, m_b=m2, B_n=B_N, kp=0.0, ki=0.0)
     assert abs(turned.q_bn[249] @ q2) < 0.99
     np.testing.assert_allclose(abs(turned.q_bn[250 + window - 1] @ q2), 1.0, atol=1e-12)
@@ -222,16 +224,17 @@ def test_relock_heading_from_rtk_epoch_or_kept(filt):
         valid[120] = epoch_in_window
         res = filt(imu, q, rtk=RtkHeading(np.full(imu.n, 2.5), valid), kp=0.0, ki=0.0)
         np.testing.assert_allclose(res.hpr[end], [heading, 0.3, 0.0], atol=1e-12)
-    flat, _, _, _ = gap(0.3)                                                    # tilt kept, heading lost against RTK
+    flat, _, _, _ = gap(0.3)  # tilt kept, heading lost against RTK
     res = filt(flat, q, rtk=RtkHeading(np.full(imu.n, 2.5), valid | (np.arange(imu.n) == 120)), kp=0.0, ki=0.0)
     np.testing.assert_allclose(res.hpr[end], [2.5, 0.0, 0.0], atol=1e-12)
-    res = filt(imu, q, kp=0.0, ki=0.0)                                          # gyro + accelerometer only
+    res = filt(imu, q, kp=0.0, ki=0.0)  # gyro + accelerometer only
     np.testing.assert_allclose(res.hpr[end], [0.3, 0.3, 0.0], atol=1e-12)
 
 
 def test_max_dt_default_is_ten_median_intervals():
     w, f, m, q = level(100)
     dt = np.full(100, 0.01)
+
     def jumps(dt, limits=None):
         return int(mh.mahony(ImuSamples(w, f, dt, limits), q, m_b=m).faults["clock", "jump"])
 
@@ -241,7 +244,7 @@ def test_max_dt_default_is_ten_median_intervals():
     assert jumps(dt) == 1
     assert jumps(dt, SensorLimits(max_dt=0.2)) == 0
     assert jumps(dt, SensorLimits(max_dt=np.inf)) == 0
-    assert jumps(3600.0) == 0                                              # a scalar interval never jumps
+    assert jumps(3600.0) == 0  # a scalar interval never jumps
 
 
 def noisy(n, seed=0):
@@ -254,7 +257,7 @@ def test_stuck_run_default_is_a_tenth_of_a_second():
     for dt, run in ((0.01, 10), (0.02, 5)):
         for length in (run - 1, run):
             w = noisy(300)
-            w[100:100 + length, 1] = w[100, 1]
+            w[100 : 100 + length, 1] = w[100, 1]
             res = mh.mahony(ImuSamples(w, f, dt), q, m_b=m)
             assert int(res.faults["gyro", "stuck"]) == (length if length == run else 0)
             assert int(res.faults["gyro", "nan"]) == 0
@@ -274,12 +277,12 @@ def test_noise_free_and_saturated_gyros_are_not_stuck():
     saturated (counted as such), not stuck; a latched sample (a step into the run) is held like a NaN one."""
     _, f, m, q = level(400)
     w = np.zeros((400, 3))
-    w[100:200, 2] = 0.2                                                   # noise-free turn, back to exactly 0
+    w[100:200, 2] = 0.2  # noise-free turn, back to exactly 0
     res = mh.mahony(ImuSamples(w, f, 0.01), q, m_b=m)
     assert not res.faults
     np.testing.assert_array_equal(res.q_bn, mh.mahony(ImuSamples(w, f, 0.01, SensorLimits(stuck_run=None)), q, m_b=m).q_bn)
     w = noisy(400)
-    w[100:200, 2] = 0.5                                                   # clipped at 0.5 rad/s
+    w[100:200, 2] = 0.5  # clipped at 0.5 rad/s
     rails = SensorLimits(full_scale_gyro=0.5)
     res = mh.mahony(ImuSamples(w, f, 0.01, rails), q, m_b=m)
     assert int(res.faults["gyro", "saturated"]) == 100 and int(res.faults["gyro", "stuck"]) == 0
@@ -340,8 +343,8 @@ def test_a_stuck_axis_in_a_fast_turn_costs_no_more_than_ignoring_it():
 
     for axis in range(3):
         w = imu.w_ib_b.copy()
-        w[k0:k0 + n, axis] = w[k0, axis]
+        w[k0 : k0 + n, axis] = w[k0, axis]
         handled = mh.mahony(ImuSamples(w, imu.f_b, imu.dt), q0, m_b=rec.m_b)
         ignored = mh.mahony(ImuSamples(w, imu.f_b, imu.dt, SensorLimits(stuck_run=None)), q0, m_b=rec.m_b)
         assert int(handled.faults["gyro", "stuck"]) == n and not ignored.faults
-        assert worst(handled) < worst(ignored) + 0.15, axis          # the margin: 0.12 deg on y
+        assert worst(handled) < worst(ignored) + 0.15, axis  # the margin: 0.12 deg on y
