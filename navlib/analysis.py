@@ -751,6 +751,9 @@ def orientation_errors(
         raise ValueError("mask, q_ref: no sample is both masked in and has a reference")
     if not np.isfinite(q_bn[use]).all():
         raise ValueError("q_bn: NaN on scored samples (the estimate must cover every scored sample)")
+    for name, q in (("q_bn", q_bn), ("q_ref", q_ref)):
+        if np.any(np.linalg.norm(q[use], axis=1) < 1e-12):
+            raise ValueError(f"{name}: expected non-zero quaternions on the scored samples, got |q| = 0")
     e = attitude.quat_mult(attitude.quat_normalize(q_bn[use]), attitude.quat_conj(attitude.quat_normalize(q_ref[use])))
     offset = 0.0
     if remove_heading_offset:

@@ -370,6 +370,14 @@ _FILTERS = (
 )
 _HEADINGS = r"heading\w*"
 BY_DESIGN: list[tuple[str, str, str, str, str]] = [
+    (
+        r"filters\.presets\.foot_mounted",
+        "imu",
+        "stuck_axis",
+        "silent_accept",
+        "a preset reads only the still start's noise floor and runs no filter: the stuck axis is screened and counted by "
+        "the filter that gets these settings (zupt_ins.run_filter)",
+    ),
     # NaN marks a dropout (navlib/__init__.py, "Bad input"; tests/test_bad_input.py)
     (
         r"units\..*",
