@@ -13,6 +13,8 @@ tools/fuzz.py calls every public function with such values.
 
 from __future__ import annotations
 
+import os
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -379,6 +381,11 @@ def text(x: Any, name: str, *, empty: bool = True) -> str:
     if not isinstance(x, str) or not empty and not x.strip():
         raise ValueError(f"{name}: expected a {'' if empty else 'non-empty '}string, got {x!r:.60}")
     return x
+
+
+def file_path(x: Any, name: str) -> Path:
+    """``x`` as a :class:`pathlib.Path` if it names a file or folder (a string or a path-like object)."""
+    return Path(instance(x, name, (str, os.PathLike), "a file system path (str or pathlib.Path)"))
 
 
 def axes(ax: Any, name: str = "ax") -> Any:

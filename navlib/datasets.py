@@ -30,13 +30,11 @@ from __future__ import annotations
 import os
 import re
 from dataclasses import dataclass
-from pathlib import Path
-from typing import Any
 
 import numpy as np
 
 from . import attitude, geodesy
-from ._validate import text
+from ._validate import file_path, text
 from .imu import ImuSamples
 from .io import Recording, align
 
@@ -81,13 +79,6 @@ class ReferenceTrial:
         return 1.0 / float(np.median(self.recording.dt))
 
 
-def _path(x: Any, name: str) -> str | os.PathLike:
-    """``x`` if it names a file or folder (a string or a path), else a ValueError naming the argument."""
-    if not isinstance(x, (str, os.PathLike)):
-        raise ValueError(f"{name}: expected a file or folder path (str or pathlib.Path), got {type(x).__name__}")
-    return x
-
-
 def read_broad(path: str | os.PathLike) -> ReferenceTrial:
     """Read one BROAD trial converted by ``tools/broad_to_npz.py``.
 
@@ -108,7 +99,7 @@ def read_broad(path: str | os.PathLike) -> ReferenceTrial:
     ValueError
         If the file lacks one of BROAD's arrays or their lengths differ.
     """
-    path = Path(_path(path, "path"))
+    path = file_path(path, "path")
     with np.load(path, allow_pickle=False) as z:
         missing = {"gyr", "acc", "mag", "opt_quat", "movement", "sampling_rate"} - set(z.files)
         if missing:
@@ -234,7 +225,7 @@ def read_comma2k19(folder: str | os.PathLike) -> DriveLog:
     DriveLog
         In navlib's frames and units (module docstring).
     """
-    folder = Path(_path(folder, "folder"))
+    folder = file_path(folder, "folder")
 
     def load(name):
         path = folder / f"{name}.npy"

@@ -33,7 +33,6 @@ guessed from the files) is in ``conversions``.
 
 from __future__ import annotations
 
-import os
 import re
 import warnings
 from collections.abc import Mapping, Sequence
@@ -45,7 +44,7 @@ import pandas as pd
 
 from . import alignment, attitude, calibration, strapdown
 from ._typing import Array, ArrayLike, Dcm, Times
-from ._validate import as_array, booleans, choice, flag, instance, scalar, text, time_axis
+from ._validate import as_array, booleans, choice, file_path, flag, instance, scalar, text, time_axis
 from .imu import ImuSamples, SensorLimits
 from .timing import TimingReport, intervals, sanitize
 from .units import G0
@@ -510,13 +509,9 @@ def read_xio(
     return _finish(rec, source, _check_option(check), notes)
 
 
-def _path(path: str | os.PathLike, name: str) -> Path:
-    return Path(instance(path, name, (str, os.PathLike), "a file system path (str or pathlib.Path)"))
-
-
 def _read_table(path: str | Path, **read_csv) -> tuple[pd.DataFrame, str]:
     """A CSV file as a DataFrame (spaces after separators ignored), and its path for ``Recording.source``."""
-    path = _path(path, "path")
+    path = file_path(path, "path")
     if not path.is_file():
         raise ValueError(f"path: no such file {str(path)!r}")
     df = pd.read_csv(path, skipinitialspace=True, **read_csv)
@@ -731,7 +726,7 @@ def read_sensor_logger(
     check : {"warn", "raise", "off"}
         As in :func:`read_csv`.
     """
-    d = _path(directory, "directory")
+    d = file_path(directory, "directory")
     if not d.is_dir():
         raise ValueError(f"directory: no such directory {str(d)!r}")
     if not (d / "Gyroscope.csv").is_file():
@@ -830,7 +825,7 @@ def read_phyphox(
     check : {"warn", "raise", "off"}
         As in :func:`read_csv`.
     """
-    p = _path(path, "path")
+    p = file_path(path, "path")
     files = sorted(p.glob("*.csv")) if p.is_dir() else [p]
     if not files or not files[0].is_file():
         raise ValueError(f"path: no such file or folder of CSV files {str(p)!r}")
