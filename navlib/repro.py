@@ -323,14 +323,15 @@ def savefig(fig: Figure, name: str) -> Path:
 
 
 _INLINE = "module://matplotlib_inline.backend_inline"
+_PNG = {"format": "png", "metadata": {"Software": None}, "bbox_inches": "tight"}  # no timestamp, no software version
 
 
 def _write_png(fig: Figure, name: str) -> Path:
-    """Write ``build/<notebook>/figures/<name>.png`` (no timestamp, no software version) and return its path."""
+    """Write ``build/<notebook>/figures/<name>.png`` and return its path."""
     d = _build_dir(_state.notebook) / "figures"
     d.mkdir(exist_ok=True)
     path = d / f"{name}.png"
-    fig.savefig(path, metadata={"Software": None}, bbox_inches="tight")
+    fig.savefig(path, **_PNG)
     _state.figures.add(name)
     return path
 
@@ -343,7 +344,7 @@ def _png(fig: Figure):
     from IPython.display import Image  # noqa: PLC0415 -- only notebooks need IPython
 
     buffer = io.BytesIO()
-    fig.savefig(buffer, format="png", metadata={"Software": None}, bbox_inches="tight")
+    fig.savefig(buffer, **_PNG)
     plt.close(fig)
     return Image(data=buffer.getvalue(), format="png")
 
