@@ -35,6 +35,7 @@ VALIDATE_NAMES = {
     "as_quat",
     "scalar",
     "interval",
+    "file_path",
     "integer",
     "flag",
     "choice",
