@@ -451,6 +451,7 @@ def table() -> dict:
         ),
         "filters.presets.foot_mounted": Call(dict(imu=IMU, still=T < 0.5)),
         "filters.presets.FootMounted": Skip("a result record, built by foot_mounted"),
+        "filters.presets.MahonyGains": Call(dict(kp=0.1, ki=0.0)),
         "filters.mahony.mahony": Call(
             dict(imu=IMU, q0=Q, m_b=M, kp=1.0, ki=0.02, B_n=B_N),
             bad=(

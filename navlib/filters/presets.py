@@ -1,7 +1,40 @@
-"""Starting settings for a foot-mounted ZUPT filter, scaled to the IMU and learned from a still start.
+"""Starting settings measured on real and simulated recordings: Mahony gains for a hand-held sensor and for a
+vehicle, and a foot-mounted ZUPT filter scaled to the IMU and learned from a still start.
 
-:func:`navlib.filters.zupt_ins.run_filter` was built for paper 004's shoulder-worn IMU; on a foot its
-defaults detect no stance. :func:`foot_mounted` builds the records it takes from the recording itself:
+**Mahony gains** (:class:`MahonyGains`, :data:`HAND_HELD`, :data:`VEHICLE`). Both assume the gyro bias was
+removed at rest first (:func:`navlib.io.start_at_rest`, or :func:`navlib.calibration.gyro_bias_at_rest`):
+that is the setting that matters most. On a simulated MPU-6050 in a car the inclination error was 4.6-57 deg
+with the turn-on bias in (the smaller the gain, the worse), 1.2-3.8 deg with it removed. Then, in order:
+
+* ``kp`` (rad/s): the accelerometer pulls the tilt back with time constant ``1/kp``. Accelerations shorter
+  than it are averaged out; a residual gyro bias ``b`` tilts the estimate by about ``b/kp``. A hand moves in
+  gestures of a second or two, a car turns and brakes for ten seconds and more, hence 0.1 and 0.03 instead
+  of the signature's 1.0 (the paper's gain, for a slow robot).
+* ``ki`` (rad/s^2): 0 in both. The integral learns whatever the correction cannot remove, and on real
+  hand-held motion that is the motion's own acceleration (and in 9D the magnetic disturbances) more than the
+  bias: every ``ki > 0`` tried was worse on the trials below. Use it for long runs with a clean heading
+  reference (e.g. dual-antenna RTK), where a drifting bias is what is left.
+* An accelerometer-norm gate (``AttitudeGates(accel_tol=...)``) did not help at these gains (it cost
+  1.3-2.2 deg on the held-out hand-held trials): a hand's accelerations change the direction more than the norm.
+
+How they were chosen (``tools/preset_study.py`` prints every number; errors in deg):
+
+* hand-held: a grid ``kp`` 0.01-2, ``ki`` 0-0.02, gate none/5/10/20 % on the even-numbered BROAD trials of
+  :mod:`navlib.datasets` (optical reference); its best, ``kp = 0.1, ki = 0``, gives on the odd-numbered,
+  held-out trials a mean total error of 3.96 (6D) and 4.69 (9D), against 9.27 and 18.04 with the signature's
+  gains (bias removed as well) and 10.40 and 18.05 with neither;
+* vehicle: the same grid on a simulated 679-s drive (MPU-6050 and ADIS16475 models, 5 seeds each) and on
+  comma2k19's real highway minute: inclination error 1.39 / 0.81 (simulated, 6D) and 1.23 (real, 6D) at
+  ``kp = 0.03``, against 3.61 / 3.30 and 3.75 at ``kp = 1``. ``kp = 0.01`` was 0.03-0.25 better still on
+  these short drives; 0.03 is kept because a 100-s time constant would leave a wrong initial tilt or a change
+  of bias uncorrected for minutes.
+
+Nine hand-held trials of one sensor and one real minute of driving are thin evidence: check against a
+reference of your own when you can.
+
+**Foot-mounted ZUPT filter** (:func:`foot_mounted`). :func:`navlib.filters.zupt_ins.run_filter` was built for
+paper 004's shoulder-worn IMU; on a foot its defaults detect no stance. :func:`foot_mounted` builds the records
+it takes from the recording itself:
 
 * **Stance window**: 0.05 s (a foot stands still for 0.2-0.4 s per stride, so the window must be much
   shorter), at least 5 samples so that a slow IMU still has statistics.
@@ -30,12 +63,59 @@ import numpy as np
 
 from .. import analysis
 from .._typing import Array, ArrayLike
-from .._validate import booleans, instance
+from .._validate import booleans, instance, scalar
 from ..imu import ImuSamples
 from ..units import G0
 from . import zupt, zupt_ins
 
-__all__ = ["FOOT_THRESHOLD_FACTOR", "FOOT_GYRO_NOISE", "FOOT_WINDOW", "FootMounted", "foot_mounted"]
+__all__ = [
+    "HAND_HELD",
+    "VEHICLE",
+    "FOOT_THRESHOLD_FACTOR",
+    "FOOT_GYRO_NOISE",
+    "FOOT_WINDOW",
+    "MahonyGains",
+    "FootMounted",
+    "foot_mounted",
+]
+
+
+@dataclass(frozen=True)
+class MahonyGains:
+    """Gains of :func:`navlib.filters.mahony.mahony` for one kind of motion (module docstring).
+
+    Attributes
+    ----------
+    kp : float
+        Proportional gain (rad/s): the tilt correction's time constant is ``1/kp``.
+    ki : float
+        Integral gain (rad/s^2); 0: no gyro-bias learning (remove the bias at rest instead).
+
+    Examples
+    --------
+    >>> from navlib.filters import presets
+    >>> presets.HAND_HELD.kwargs()
+    {'kp': 0.1, 'ki': 0.0}
+
+    ``mahony(imu, q0, m_b=m_b, **presets.HAND_HELD.kwargs())`` runs the filter with them.
+    """
+
+    kp: float
+    ki: float
+
+    def __post_init__(self):
+        scalar(self.kp, "kp", positive=True)
+        scalar(self.ki, "ki", positive=True, allow_zero=True)
+
+    def kwargs(self) -> dict[str, float]:
+        """``{"kp": ..., "ki": ...}``, to pass to :func:`navlib.filters.mahony.mahony` with ``**``."""
+        return {"kp": self.kp, "ki": self.ki}
+
+
+HAND_HELD = MahonyGains(kp=0.1, ki=0.0)
+"""A phone or sensor moved by hand, gyro bias removed at rest (BROAD's hand-held trials)."""
+VEHICLE = MahonyGains(kp=0.03, ki=0.0)
+"""A sensor fixed in a car, gyro bias removed at rest (a simulated drive and comma2k19's highway minute)."""
 
 FOOT_THRESHOLD_FACTOR = 40.0
 """Detector thresholds as multiples of the still start's median detector statistics."""
