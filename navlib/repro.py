@@ -67,6 +67,7 @@ __all__ = [
     "SeedSpread",
     "STUDY_K",
     "EXTENSION",
+    "NOT_CHECKABLE",
     "verdict",
     "results",
     "verdicts",
@@ -101,6 +102,18 @@ of a catalogue row of kind ``extension`` (the project's own quantity, test vecto
 statement to judge) and only it gets it; *undecided at this scale* is a paper claim whose test straddles its cut
 within the seed-to-seed spread (both numbers shown), never a coin toss."""
 EXTENSION = "extension"
+NOT_CHECKABLE = {
+    "hardware-only": "hardware only",
+    "datasheet": "datasheet",
+    "data-not-available": "data not available",
+    "paper-too-vague": "paper too vague",
+    "not-a-result": "not a result",
+}
+"""Why a claim is *not checkable here*: its catalogue kind (``data/claims.csv``) as the ledger shows it. A claim of one
+of these kinds gets that verdict and only such a claim does (its ``reason`` gives the sentence why): measured on the
+authors' hardware or derived from their measured table; a manufacturer's specification (an input of a simulation, never
+its result); the paper leaves out, or the source has lost, what a check would need; the paper does not pin the
+statement down enough to simulate it; a design choice, setting or unit conversion of the paper, not a finding."""
 STUDY_K = 4.5
 """A studied tolerance is STUDY_K times the RMS of ``value - target`` (or the sd of a value) over the study's
 calibration seeds: with 12 seeds the RMS is known to about 20 %, so a new seed exceeds it with probability below
@@ -699,8 +712,9 @@ def verdict(
         false in its own setting), ``"direction only"`` (a stand-in can show only the sign
         or ordering), ``"undecided at this scale"`` (the test straddles its cut within the
         seed-to-seed spread: ``paper`` and ``ours`` show both numbers, ``reason`` the cut),
-        ``"not checkable here"`` (``paper`` gives the paper's number and ``reason`` what would
-        be needed), ``"extension"`` (the only verdict of a catalogue row of kind ``extension``:
+        ``"not checkable here"`` (only and always of a claim whose catalogue kind, one of
+        :data:`NOT_CHECKABLE`, says why; ``paper`` gives the paper's number and ``reason`` the
+        sentence why), ``"extension"`` (the only verdict of a catalogue row of kind ``extension``:
         the project's own quantity, checked, with no paper statement to judge).
     checks : sequence of str, optional
         Names of the checks, recorded earlier in this run and passed, that the verdict rests
@@ -739,6 +753,11 @@ def verdict(
         raise ValueError(
             f"verdict: {claim} is of kind {row['kind']!r} in data/claims.csv; verdict words judge a paper "
             f"statement, and {EXTENSION!r} is the one word of (and only of) the project's own quantities"
+        )
+    if (row["kind"] in NOT_CHECKABLE) != (verdict == "not checkable here"):
+        raise ValueError(
+            f"verdict: {claim} is of kind {row['kind']!r} in data/claims.csv; 'not checkable here' is the verdict of "
+            f"(and only of) the kinds that say why: {', '.join(NOT_CHECKABLE)}"
         )
     names = (
         [c.name for c in _state.checks if c.name == claim or c.name.startswith(claim + "/")] if checks is None else list(checks)

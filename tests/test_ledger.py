@@ -3,7 +3,8 @@
 * Every paper notebook calls ``repro.setup("<stem>", paper="<claims_id>")`` with its registry entry's
   claims id; the notebooks without a paper pass none.
 * Every ``repro.verdict(...)`` call written in a notebook names a claim of that notebook's paper, a
-  known verdict, and at most once; a hardware-only claim can only be "not checkable here".
+  known verdict, and at most once; "not checkable here" is the verdict of (and only of) a claim whose catalogue kind
+  says why (hardware only, datasheet, data not available, paper too vague, not a result), and the ledger shows it.
 * ``tools/ledger.py`` and ``navlib.repro`` know the same verdicts, and ``docs/claims.md`` explains each.
 * The ledger joins a results file with the catalogue as documented: every claim appears once, a claim
   without a verdict is "no verdict yet" and does not count as covered.
@@ -90,8 +91,11 @@ def test_verdict_calls_name_claims_of_the_notebooks_paper(path):
         assert claim in CLAIMS, f"{claim}: not in data/claims.csv"
         assert CLAIMS[claim]["paper"] == paper.claims_id, f"{claim}: not a claim of paper {paper.claims_id}"
         assert verdict in repro.VERDICTS, f"{claim}: unknown verdict {verdict!r}"
-        if CLAIMS[claim]["kind"] == "hardware-only":
-            assert verdict == "not checkable here", f"{claim} is hardware-only in the catalogue but {verdict!r}"
+        why = CLAIMS[claim]["kind"] in repro.NOT_CHECKABLE
+        assert why == (verdict == "not checkable here"), (
+            f"{claim} is of kind {CLAIMS[claim]['kind']!r} with verdict {verdict!r}: a claim not checkable here has a kind "
+            f"saying why ({', '.join(repro.NOT_CHECKABLE)}), and a claim of such a kind is not checkable here"
+        )
 
 
 def test_verdict_calls_are_found():
@@ -101,9 +105,12 @@ def test_verdict_calls_are_found():
 
 def test_one_vocabulary():
     assert ledger.VERDICTS == repro.VERDICTS
+    assert ledger.NOT_CHECKABLE == repro.NOT_CHECKABLE
     doc = (ROOT / "docs/claims.md").read_text(encoding="utf-8")
     for v in (*repro.VERDICTS, ledger.NO_VERDICT):
         assert f"*{v}*" in doc, f"docs/claims.md does not explain the verdict {v!r}"
+    for kind in repro.NOT_CHECKABLE:
+        assert f"| `{kind}` |" in doc, f"docs/claims.md does not explain the kind {kind!r} (why a claim is not checkable)"
 
 
 def test_catalogue_holds_no_second_copy_of_the_verdicts():
@@ -120,6 +127,7 @@ def _results(tmp_path, stem, verdicts, checks=()):
 def test_ledger_joins_results_with_the_catalogue(tmp_path):
     p = PAPERS[0]
     ids = [c for c, r in CLAIMS.items() if r["paper"] == p.claims_id and r["kind"] != "extension"]
+    hw = next(c for c in ids if CLAIMS[c]["kind"] == "hardware-only")
     check = {"name": ids[0] + "/a", "value": 1.0, "passed": True}
     _results(
         tmp_path,
@@ -137,7 +145,7 @@ def test_ledger_joins_results_with_the_catalogue(tmp_path):
                 "figure": "fig",
             },
             {
-                "claim": ids[1],
+                "claim": hw,
                 "verdict": "not checkable here",
                 "checks": [],
                 "evidence": [],
@@ -167,7 +175,9 @@ def test_ledger_joins_results_with_the_catalogue(tmp_path):
     assert led.counts["reproduced"] == 1 and led.counts["not checkable here"] == 1
     assert led.counts[ledger.NO_VERDICT] == len(ids) - 2
     assert led.computed == 1  # only the verdict resting on a check
-    assert led.rows[0].figure == f"{p.notebook}/figures/fig.png" and led.rows[1].paper == "4.77"
+    hw_row = next(r for r in led.rows if r.claim == hw)
+    assert led.rows[0].figure == f"{p.notebook}/figures/fig.png" and hw_row.paper == "4.77"
+    assert ledger.verdict_text(hw_row) == "not checkable here (hardware only): hardware"  # the category, then the sentence
     assert led.problems and "P999-NOT-A-CLAIM" in led.problems[0]
     assert led.checks_passed == led.checks_total == 1
     other = leds[PAPERS[1].notebook]
@@ -300,3 +310,30 @@ def test_the_ledger_lists_extensions_apart(tmp_path):
     led = next(led for led in ledger.ledgers(tmp_path) if led.stem == stem)
     assert ext in [r.claim for r in led.extensions] and ext not in [r.claim for r in led.rows]
     assert not led.problems and "extension" not in led.counts
+
+
+# Not checkable here, and why (issue 35): the catalogue kind of such a claim is one of a fixed vocabulary, and the
+# notebook's verdict gives the sentence; the ledger refuses a "not checkable here" without a kind saying why.
+def test_every_not_checkable_claim_says_why_in_the_ledger(tmp_path):
+    stem, paper = "03_gauss_kruger_ekf", "002"
+    own = [cid for cid, r in CLAIMS.items() if r["paper"] == paper]
+    why = next(cid for cid in own if CLAIMS[cid]["kind"] == "not-a-result")
+    computed = next(cid for cid in own if CLAIMS[cid]["kind"] == "analytic")
+    row = {"checks": [], "evidence": [], "paper": "x", "ours": None, "erratum": "", "figure": ""}
+    _results(
+        tmp_path,
+        stem,
+        [
+            dict(row, claim=why, verdict="not checkable here", reason="the paper's filter settings"),
+            dict(row, claim=computed, verdict="not checkable here", reason="no reason of the vocabulary"),
+        ],
+    )
+    led = next(led for led in ledger.ledgers(tmp_path) if led.stem == stem)
+    rows = {r.claim: r for r in led.rows}
+    assert ledger.verdict_text(rows[why]) == "not checkable here (not a result): the paper's filter settings"
+    assert rows[computed].verdict == ledger.NO_VERDICT  # refused: its kind does not say why it is not checkable
+    assert len(led.problems) == 1 and computed in led.problems[0]
+
+
+def test_each_reason_of_the_vocabulary_is_used():
+    assert set(repro.NOT_CHECKABLE) <= {r["kind"] for r in CLAIMS.values()}

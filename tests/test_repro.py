@@ -415,6 +415,14 @@ def test_verdict_not_checkable_here(paper_root):
     assert repro.verdict("P999-EQ2-SIGN", "reproduced").ours == "max error 3e-16 rad"  # a residual is shown as one
 
 
+def test_not_checkable_here_only_where_the_catalogue_kind_says_why(paper_root):
+    with pytest.raises(ValueError, match="^verdict: P999-EQ2-SIGN is of kind 'analytic'.*hardware-only, datasheet"):
+        repro.verdict("P999-EQ2-SIGN", "not checkable here", reason="too hard")
+    repro.check("P999-TAB1-HW/sim", 2.7, 2.72, 0.1, "a simulation of the hardware value")
+    with pytest.raises(ValueError, match="^verdict: P999-TAB1-HW is of kind 'hardware-only'"):
+        repro.verdict("P999-TAB1-HW", "reproduced")
+
+
 def test_verdict_before_setup(fake_root):
     with pytest.raises(RuntimeError, match="setup"):
         repro.verdict("P999-FIG1-RMSE", "reproduced")
@@ -460,7 +468,8 @@ def test_a_verdict_resting_only_on_printed_arithmetic_is_no_reproduction(paper_r
     repro.check("P999-EQ2-SIGN/table-sum", 12.0, 12.0, 0.05, "the table's column adds up to its printed total", on_printed=True)
     with pytest.raises(ValueError, match="^checks: a verdict of 'reproduced' rests on a computation"):
         repro.verdict("P999-EQ2-SIGN", "reproduced")
-    v = repro.verdict("P999-EQ2-SIGN", "not checkable here", paper="12", reason="hardware only")
+    repro.check("P999-TAB1-HW/table-sum", 12.0, 12.0, 0.05, "the table's column adds up to its printed total", on_printed=True)
+    v = repro.verdict("P999-TAB1-HW", "not checkable here", paper="12", reason="hardware only")
     assert v.ours is None  # a printed-arithmetic value is not shown as ours
     repro.check("P999-EQ2-SIGN/simulated", 3e-16, 0.0, 1e-12, "src", unit="rad")
     assert repro.verdict("P999-EQ2-SIGN", "reproduced").checks == ["P999-EQ2-SIGN/table-sum", "P999-EQ2-SIGN/simulated"]

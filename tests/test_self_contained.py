@@ -18,6 +18,7 @@ from pathlib import Path
 import pytest
 from helpers import project_files
 
+from navlib import repro
 from navlib.papers import PAPERS as REGISTRY
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -36,7 +37,7 @@ OUTSIDE = re.compile(
     ),
     re.IGNORECASE,
 )
-KINDS = {"analytic", "deterministic", "monte-carlo", "simulation-stand-in", "qualitative", "hardware-only", "extension"}
+KINDS = {"analytic", "deterministic", "monte-carlo", "simulation-stand-in", "qualitative", "extension", *repro.NOT_CHECKABLE}
 PAPERS = {p.claims_id for p in REGISTRY}
 ERRATUM_ID = re.compile(r"\bE(?:" + "|".join(sorted(PAPERS)) + r")-\d\d\b")
 

@@ -366,7 +366,7 @@ def ledger_rows(led: ledger.PaperLedger, res: dict | None) -> list[str]:
                 "",
                 "",
                 verdict_span(r.verdict),
-                html.escape(r.reason),
+                html.escape(ledger.verdict_text(r)[len(r.verdict) :].lstrip(": ")),  # why not checkable, and the reason
             ]
             rows.append(
                 f"<tr data-paper='{led.stem[:2]}' data-verdict='{html.escape(r.verdict)}'>"

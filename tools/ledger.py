@@ -10,6 +10,10 @@ Two words are kept apart everywhere: a *claim* is a statement of a paper (a cata
 *check* is one computed comparison of a notebook (a row of results.json). Coverage counts the
 claims whose verdict rests on at least one passed check.
 
+A claim is *not checkable here* for a reason of a fixed vocabulary, its catalogue kind (``NOT_CHECKABLE``: hardware
+only, datasheet, data not available, paper too vague, not a result), with the notebook's sentence why; the ledger
+shows both.
+
 Verdict words judge what a paper states. A catalogue row of kind ``extension`` (the project's own quantity, a
 test vector, a reconstruction of something the paper does not print) is not a paper claim: it sits in the
 ledger's separate *extensions* list with the one verdict ``extension`` (its checks passed), outside the counts.
@@ -37,6 +41,15 @@ VERDICTS = (
 )
 """The verdicts in the ledger's order (the same tuple as ``navlib.repro.VERDICTS``; tests/test_ledger.py checks)."""
 EXTENSION = "extension"
+NOT_CHECKABLE = {
+    "hardware-only": "hardware only",
+    "datasheet": "datasheet",
+    "data-not-available": "data not available",
+    "paper-too-vague": "paper too vague",
+    "not-a-result": "not a result",
+}
+"""The catalogue kinds that say why a claim is *not checkable here*, as the ledger shows them (the same mapping as
+``navlib.repro.NOT_CHECKABLE``; tests/test_ledger.py checks)."""
 COLUMNS = (*(v for v in VERDICTS if v != EXTENSION), NO_VERDICT)
 """The verdict columns of the paper claims (an extension is not one)."""
 
@@ -129,6 +142,12 @@ def paper_ledger(stem: str, paper: str, title: str, catalogue: list[dict[str, st
         if (row.kind == EXTENSION) != (v["verdict"] == EXTENSION):
             led.problems.append(f"{v['claim']}: verdict {v['verdict']!r} on a row of kind {row.kind!r}")
             continue
+        if (row.kind in NOT_CHECKABLE) != (v["verdict"] == "not checkable here"):
+            led.problems.append(
+                f"{v['claim']}: verdict {v['verdict']!r} on a row of kind {row.kind!r} (the kinds that say "
+                "why a claim is not checkable here go with that verdict, and only they)"
+            )
+            continue
         row.verdict, row.reason, row.erratum, row.checks = v["verdict"], v["reason"], v["erratum"], v["checks"]
         row.ours = v["ours"] or ""
         if v["paper"] is not None:
@@ -150,8 +169,10 @@ def ledgers(build: Path, root: Path = ROOT) -> list[PaperLedger]:
 
 
 def verdict_text(row: Row) -> str:
-    """The verdict with its erratum or reason, as one line."""
+    """The verdict with its erratum, or why it is not checkable here, and its reason, as one line."""
     text = row.verdict
+    if row.verdict == "not checkable here" and row.kind in NOT_CHECKABLE:
+        text += f" ({NOT_CHECKABLE[row.kind]})"
     if row.erratum and row.verdict == "reproduced with correction":
         text += f" ({row.erratum})"
     if row.reason:
