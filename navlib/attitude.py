@@ -65,14 +65,30 @@ MAX_ROTVEC_ANGLE = 1e12
 
 
 def wrap_pi(angle: Angles) -> Array:
-    """Wrap angles (rad) into (-pi, pi]; NaN (a dropout) stays NaN."""
+    """Wrap angles (rad) into (-pi, pi]; NaN (a dropout) stays NaN.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> np.round(attitude.wrap_pi([4.0, -4.0, np.nan]), 6)
+    array([-2.283185,  2.283185,       nan])
+    """
     a = as_array(angle, "angle", allow_nan=True)
     w = np.mod(a + np.pi, 2 * np.pi) - np.pi
     return np.where(w == -np.pi, np.pi, w)
 
 
 def wrap_2pi(angle: Angles) -> Array:
-    """Wrap angles (rad) into [0, 2*pi); NaN (a dropout) stays NaN."""
+    """Wrap angles (rad) into [0, 2*pi); NaN (a dropout) stays NaN.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> np.round(attitude.wrap_2pi([-0.5, 7.0, np.nan]), 6)
+    array([5.783185, 0.716815,      nan])
+    """
     w = np.mod(as_array(angle, "angle", allow_nan=True), 2 * np.pi)
     return np.where(w >= 2 * np.pi, 0.0, w)
 
@@ -87,6 +103,14 @@ def skew(v: Vec3) -> Array:
     Returns
     -------
     ndarray, shape (..., 3, 3)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> a, b = np.array([1.0, 2.0, 3.0]), np.array([0.0, 1.0, 0.0])
+    >>> attitude.skew(a) @ b, np.cross(a, b)
+    (array([-3.,  0.,  1.]), array([-3.,  0.,  1.]))
     """
     v = as_array(v, "v", tail=(3,))
     x, y, z = v[..., 0], v[..., 1], v[..., 2]
@@ -106,6 +130,13 @@ def rot(axis: str, angle: Angles, deg: bool = False) -> Array:
     Returns
     -------
     ndarray, shape (..., 3, 3)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> np.round(attitude.rot("z", 90.0, deg=True) @ [1.0, 0.0, 0.0], 12)
+    array([0., 1., 0.])
     """
     if axis not in _AXES:
         raise ValueError(f"axis: expected 'x', 'y' or 'z', got {axis!r}")
@@ -135,6 +166,15 @@ def orthonormalize(C: Dcm) -> Array:
     -------
     ndarray, shape (..., 3, 3)
         ``U diag(1, 1, det(U V^T)) V^T``; a proper rotation.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> C = attitude.rot("z", 0.3) + 1e-3                           # a noisy rotation matrix
+    >>> R = attitude.orthonormalize(C)
+    >>> bool(np.allclose(R @ R.T, np.eye(3))), round(float(np.linalg.det(R)), 12)
+    (True, 1.0)
     """
     C = as_array(C, "C", tail=(3, 3))
     U, _, Vt = np.linalg.svd(C)
@@ -164,6 +204,14 @@ def euler_to_dcm(hpr: Angles, deg: bool = False) -> Array:
     Returns
     -------
     C_bn : ndarray, shape (..., 3, 3)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> C_bn = attitude.euler_to_dcm([90.0, 0.0, 0.0], deg=True)   # facing east
+    >>> np.round(C_bn @ [0.0, 1.0, 0.0], 12)                      # the forward axis points east (ENU)
+    array([1., 0., 0.])
     """
     h, p, r = np.moveaxis(_as_hpr(hpr, deg), -1, 0)
     ch, sh, cp, sp, cr, sr = np.cos(h), np.sin(h), np.cos(p), np.sin(p), np.cos(r), np.sin(r)
@@ -191,6 +239,14 @@ def dcm_to_euler(C_bn: Dcm, deg: bool = False) -> Array:
     -------
     hpr : ndarray, shape (..., 3)
         rad, or deg with ``deg=True``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> C_bn = attitude.euler_to_dcm([30.0, 10.0, -5.0], deg=True)
+    >>> np.round(attitude.dcm_to_euler(C_bn, deg=True), 6)
+    array([30., 10., -5.])
     """
     return _dcm_to_euler(as_dcm(C_bn), flag(deg, "deg"))
 
@@ -247,7 +303,15 @@ def _positive_scalar(q):
 
 
 def quat_to_euler(q: Quat, deg: bool = False) -> Array:
-    """Heading, pitch, roll from a quaternion q_b^n; shape (..., 4) -> (..., 3)."""
+    """Heading, pitch, roll from a quaternion q_b^n; shape (..., 4) -> (..., 3).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> np.round(attitude.quat_to_euler([np.cos(np.pi / 8), 0.0, 0.0, -np.sin(np.pi / 8)], deg=True), 6)
+    array([45.,  0.,  0.])
+    """
     return _dcm_to_euler(quat_to_dcm(q), flag(deg, "deg"))  # a normalised quaternion's matrix is valid
 
 
@@ -262,6 +326,15 @@ def quat_to_dcm(q: Quat) -> Array:
     Returns
     -------
     C_bn : ndarray, shape (..., 3, 3)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> np.round(attitude.quat_to_dcm([np.cos(np.pi / 4), 0.0, 0.0, np.sin(np.pi / 4)]), 12)   # 90 deg about z
+    array([[ 0., -1.,  0.],
+           [ 1.,  0.,  0.],
+           [ 0.,  0.,  1.]])
     """
     q = as_quat(q)
     return _quat_to_dcm_batch(q.reshape(-1, 4)).reshape(q.shape[:-1] + (3, 3))
@@ -277,6 +350,13 @@ def dcm_to_quat(C_bn: Dcm) -> Array:
     Returns
     -------
     q : ndarray, shape (..., 4)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> np.round(attitude.dcm_to_quat(attitude.rot("z", 90.0, deg=True)), 4)
+    array([0.7071, 0.    , 0.    , 0.7071])
     """
     C = as_dcm(C_bn)
     tr = np.trace(C, axis1=-2, axis2=-1)
@@ -327,7 +407,16 @@ def dcm_to_quat(C_bn: Dcm) -> Array:
 
 
 def quat_mult(p: Quat, q: Quat) -> Array:
-    """Hamilton product ``p (x) q``; shapes (..., 4) broadcast."""
+    """Hamilton product ``p (x) q``; shapes (..., 4) broadcast.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> qz = attitude.rotvec_to_quat([0.0, 0.0, np.pi / 2])        # a quarter turn about z
+    >>> np.round(attitude.quat_mult(qz, qz), 12)                   # two of them: a half turn
+    array([0., 0., 0., 1.])
+    """
     p = as_array(p, "p", tail=(4,))
     q = as_array(q, "q", tail=(4,))
     p0, p1, p2, p3 = np.moveaxis(p, -1, 0)
@@ -344,13 +433,27 @@ def quat_mult(p: Quat, q: Quat) -> Array:
 
 
 def quat_conj(q: Quat) -> Array:
-    """Conjugate ``[q0, -q1, -q2, -q3]``; for unit q the inverse rotation."""
+    """Conjugate ``[q0, -q1, -q2, -q3]``; for unit q the inverse rotation.
+
+    Examples
+    --------
+    >>> from navlib import attitude
+    >>> attitude.quat_conj([0.5, 0.5, 0.5, 0.5])
+    array([ 0.5, -0.5, -0.5, -0.5])
+    """
     q = as_array(q, "q", tail=(4,))
     return q * np.array([1.0, -1.0, -1.0, -1.0])
 
 
 def quat_normalize(q: Quat) -> Array:
-    """Unit quaternion with q0 >= 0; shape (..., 4)."""
+    """Unit quaternion with q0 >= 0; shape (..., 4).
+
+    Examples
+    --------
+    >>> from navlib import attitude
+    >>> attitude.quat_normalize([-2.0, 0.0, 0.0, 0.0])
+    array([ 1., -0., -0., -0.])
+    """
     return _positive_scalar(as_quat(q))
 
 
@@ -384,7 +487,15 @@ def quat_rotate(q: Quat, v_b: Vec3) -> Array:
 
 
 def rotvec_to_quat(rv: Vec3) -> Array:
-    """Quaternion of the rotation vector ``rv`` (rad), shape (..., 3) -> (..., 4)."""
+    """Quaternion of the rotation vector ``rv`` (rad), shape (..., 3) -> (..., 4).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> np.round(attitude.rotvec_to_quat([0.0, 0.0, np.pi / 2]), 6)
+    array([0.707107, 0.      , 0.      , 0.707107])
+    """
     rv = as_array(rv, "rv", tail=(3,), huge=True)
     if np.any(np.abs(rv) > MAX_ROTVEC_ANGLE):
         raise ValueError(
@@ -399,7 +510,15 @@ def rotvec_to_quat(rv: Vec3) -> Array:
 
 
 def quat_to_rotvec(q: Quat) -> Array:
-    """Rotation vector (rad, angle in [0, pi]) of quaternion q, shape (..., 4) -> (..., 3)."""
+    """Rotation vector (rad, angle in [0, pi]) of quaternion q, shape (..., 4) -> (..., 3).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> np.round(attitude.quat_to_rotvec([np.cos(0.15), np.sin(0.15), 0.0, 0.0]), 6)
+    array([0.3, 0. , 0. ])
+    """
     q = quat_normalize(q)
     s = np.linalg.norm(q[..., 1:], axis=-1, keepdims=True)
     angle = 2 * np.arctan2(s, q[..., :1])
@@ -408,12 +527,30 @@ def quat_to_rotvec(q: Quat) -> Array:
 
 
 def rotvec_to_dcm(rv: Vec3) -> Array:
-    """Rotation matrix ``expm(skew(rv))`` (Rodrigues), shape (..., 3) -> (..., 3, 3)."""
+    """Rotation matrix ``expm(skew(rv))`` (Rodrigues), shape (..., 3) -> (..., 3, 3).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> np.round(attitude.rotvec_to_dcm([0.0, 0.0, np.pi / 2]), 12)
+    array([[ 0., -1.,  0.],
+           [ 1.,  0.,  0.],
+           [ 0.,  0.,  1.]])
+    """
     return quat_to_dcm(rotvec_to_quat(rv))
 
 
 def dcm_to_rotvec(C: Dcm) -> Array:
-    """Rotation vector (matrix logarithm) of rotation matrices, (..., 3, 3) -> (..., 3)."""
+    """Rotation vector (matrix logarithm) of rotation matrices, (..., 3, 3) -> (..., 3).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> np.round(attitude.dcm_to_rotvec(attitude.rot("x", 0.3)), 6)
+    array([0.3, 0. , 0. ])
+    """
     return quat_to_rotvec(dcm_to_quat(as_dcm(C, "C")))
 
 
@@ -444,6 +581,12 @@ def ned_to_enu(v: Vec3) -> Array:
     """A navigation-frame vector (..., 3) from NED to ENU; the same swap takes FRD body vectors to RFU.
 
     Its own inverse: ``ned_to_enu(ned_to_enu(v)) == v`` (so it also maps ENU to NED and RFU to FRD).
+
+    Examples
+    --------
+    >>> from navlib import attitude
+    >>> attitude.ned_to_enu([1.0, 2.0, 3.0])                        # north, east, down -> east, north, up
+    array([ 2.,  1., -3.])
     """
     v = as_array(v, "v", tail=(3,), allow_nan=True)
     return np.stack([v[..., 1], v[..., 0], -v[..., 2]], -1)
@@ -460,6 +603,14 @@ def ned_to_enu_dcm(C_ned: Dcm) -> Array:
     -------
     C_bn : ndarray, shape (..., 3, 3)
         ``M C_ned M`` (:data:`M_NED_ENU`); applied to an ENU/RFU matrix it gives the NED/FRD one.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> C_ned = attitude.rot("z", 30.0, deg=True)                   # yaw 30 deg in NED/FRD
+    >>> np.round(attitude.dcm_to_euler(attitude.ned_to_enu_dcm(C_ned), deg=True), 6)
+    array([30.,  0.,  0.])
     """
     C = as_dcm(C_ned, "C_ned")
     return M_NED_ENU @ C @ M_NED_ENU
@@ -479,6 +630,14 @@ def ned_to_enu_quat(q_ned: Quat) -> Array:
     Returns
     -------
     q_bn : ndarray, shape (..., 4)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> q_ned = attitude.dcm_to_quat(attitude.rot("z", 30.0, deg=True))
+    >>> np.round(attitude.quat_to_euler(attitude.ned_to_enu_quat(q_ned), deg=True), 6)
+    array([30.,  0.,  0.])
     """
     q = as_quat(q_ned, "q_ned")
     return np.stack([q[..., 0], q[..., 2], q[..., 1], -q[..., 3]], -1)
@@ -488,6 +647,13 @@ def ypr_to_hpr(ypr: Angles, deg: bool = False) -> Array:
     """navlib's ``[heading, pitch, roll]`` from aerospace ``[yaw, pitch, roll]`` (ZYX, FRD to NED).
 
     The angles are the same; the heading is wrapped to [0, 2 pi) (or [0, 360) deg with ``deg=True``).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> np.round(attitude.ypr_to_hpr([-30.0, 10.0, -5.0], deg=True), 6)
+    array([330.,  10.,  -5.])
     """
     a = np.array(_as_hpr(ypr, deg, "ypr"), dtype=float)
     a[..., 0] = wrap_2pi(a[..., 0])
@@ -495,7 +661,15 @@ def ypr_to_hpr(ypr: Angles, deg: bool = False) -> Array:
 
 
 def hpr_to_ypr(hpr: Angles, deg: bool = False) -> Array:
-    """Aerospace ``[yaw, pitch, roll]`` (ZYX, FRD to NED; yaw in (-pi, pi]) from navlib's ``[heading, pitch, roll]``."""
+    """Aerospace ``[yaw, pitch, roll]`` (ZYX, FRD to NED; yaw in (-pi, pi]) from navlib's ``[heading, pitch, roll]``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> np.round(attitude.hpr_to_ypr([30.0, 10.0, -5.0], deg=True), 6)
+    array([30., 10., -5.])
+    """
     a = np.array(_as_hpr(hpr, deg), dtype=float)
     a[..., 0] = wrap_pi(a[..., 0])
     return np.rad2deg(a) if deg else a
@@ -514,6 +688,13 @@ def mount_matrix(axes: str | Dcm) -> Array:
     Returns
     -------
     C_bs : ndarray, shape (3, 3)
+
+    Examples
+    --------
+    >>> from navlib import attitude
+    >>> C_bs = attitude.mount_matrix("-y,x,z")                      # body x is sensor -y, body y is sensor x
+    >>> C_bs @ [1.0, 2.0, 3.0]
+    array([-2.,  1.,  3.])
     """
     if not isinstance(axes, str):
         return as_dcm(as_array(axes, "axes", shape=(3, 3)), "axes")
