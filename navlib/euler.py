@@ -32,7 +32,18 @@ def _hpr(hpr, name="hpr"):
 
 
 def check_pitch(pitch: ArrayLike, name: str = "pitch") -> None:
-    """Raise ``ValueError`` naming ``name`` if any |pitch| exceeds :data:`PITCH_LIMIT` (Euler rates are singular at 90 deg)."""
+    """Raise ``ValueError`` naming ``name`` if any |pitch| exceeds :data:`PITCH_LIMIT` (Euler rates are singular at 90 deg).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import euler
+    >>> euler.check_pitch(np.deg2rad(80.0))                          # fine: returns None
+    >>> euler.check_pitch(np.deg2rad(90.0), name="hpr0[1]")
+    Traceback (most recent call last):
+        ...
+    ValueError: hpr0[1]: expected |pitch| <= 89 deg; the Euler rates are singular at +-90 deg (got max ...
+    """
     pitch = as_array(pitch, text(name, "name", empty=False), nonempty=True)
     if np.any(np.abs(pitch) > PITCH_LIMIT):
         raise ValueError(
