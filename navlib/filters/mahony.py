@@ -137,6 +137,19 @@ def mahony(
     AttitudeResult
         With ``faults``: what was held, skipped, gated or re-initialised
         (:mod:`navlib.filters.observations`).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude, imu, trajectory
+    >>> from navlib.filters import mahony
+    >>> traj = trajectory.static(3.0, 0.01, [0.6, 0.2, 50.0], np.deg2rad([30.0, 0.0, 0.0]))
+    >>> samples = imu.ImuSamples(*trajectory.ideal_imu(traj), 0.01)
+    >>> q0 = attitude.euler_to_quat(np.deg2rad([30.0, 0.0, 5.0]))    # starts with a 5 deg roll error
+    >>> res = mahony.mahony(samples, q0, kp=2.0)
+    >>> np.round(np.rad2deg(attitude.quat_to_euler(res.q_bn[[0, -1]])), 1) + 0.0   # the accelerometer levels it
+    array([[30. ,  0. ,  4.9],
+           [30. ,  0. ,  0. ]])
     """
     kp, ki = scalar(kp, "kp", positive=True, allow_zero=True), integral_gain(ki, m_b is not None or rtk is not None)
     lead, inp, found = pack(imu, q0, m_b, rtk, B_n, gates, kp)
