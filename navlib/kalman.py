@@ -68,6 +68,15 @@ def predict(x: ArrayLike, P: ArrayLike, F: ArrayLike, Q: ArrayLike) -> tuple[Arr
     ------
     ValueError
         Naming the argument: wrong shape, empty ``x``, non-finite values, or not real numbers.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import kalman
+    >>> x, P = kalman.predict(np.array([0.0, 1.0]), np.eye(2), np.array([[1.0, 0.1], [0.0, 1.0]]), 0.01 * np.eye(2))
+    >>> x, np.round(P, 3)
+    (array([0.1, 1. ]), array([[1.02, 0.1 ],
+           [0.1 , 1.01]]))
     """
     x, P = _state(x, P)
     n = x.shape[0]
@@ -128,6 +137,16 @@ def update(
         Naming the argument: shapes that do not agree with ``x`` and ``z``, empty
         ``x``, non-finite values (other than NaN in ``z``), a mask that is not
         boolean, a gate that is not positive, or values that are not real numbers.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import kalman
+    >>> x, P = np.array([0.0, 1.0]), np.eye(2)
+    >>> H = np.array([[1.0, 0.0]])
+    >>> x, P, nu, nis, used = kalman.update(x, P, np.array([0.5]), H @ x, H, np.array([[1.0]]), np.array([False]))
+    >>> np.round(x, 3), np.round(np.diag(P), 3), used                  # half-way to the measurement: equal variances
+    (array([0.25, 1.  ]), array([0.5, 1. ]), 1)
     """
     x, P = _state(x, P)
     z = _matrix(z, "z", (None,), allow_nan=True)
@@ -157,6 +176,18 @@ def discretize(F: ArrayLike, G: ArrayLike, Qc: ArrayLike, dt: float) -> tuple[Ar
     Returns
     -------
     Phi, Qd : ndarray, shape (n, n)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import kalman
+    >>> F = np.array([[0.0, 1.0], [0.0, 0.0]])                      # position, velocity
+    >>> G = np.array([[0.0], [1.0]])                                 # white acceleration noise
+    >>> Phi, Qd = kalman.discretize(F, G, np.array([[1.0]]), dt=0.1)
+    >>> Phi, np.round(Qd, 6)                                          # Qd = [[dt^3/3, dt^2/2], [dt^2/2, dt]]
+    (array([[1. , 0.1],
+           [0. , 1. ]]), array([[0.000333, 0.005   ],
+           [0.005   , 0.1     ]]))
     """
     F = as_array(F, "F", shape=(None, None), nonempty=True)
     n = len(F)
