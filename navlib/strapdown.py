@@ -153,6 +153,15 @@ def integrate_attitude(
     Returns
     -------
     q_bn : ndarray, shape (..., N + 1, 4)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude, strapdown
+    >>> w_ib_b = np.tile([0.0, 0.0, -np.deg2rad(9.0)], (100, 1))     # 9 deg/s clockwise for 1 s
+    >>> q = strapdown.integrate_attitude([1.0, 0.0, 0.0, 0.0], w_ib_b, 0.01)
+    >>> q.shape, np.round(np.rad2deg(attitude.quat_to_euler(q[-1])), 6) + 0.0
+    ((101, 4), array([9., 0., 0.]))
     """
     policy = choice(nan_policy, "nan_policy", _NAN_POLICIES)
     w, _ = _dropouts(_samples(w_ib_b, "w_ib_b"), "w_ib_b", policy)
@@ -212,6 +221,16 @@ def nav_step(
         Naming the argument: wrong shape (also empty), non-finite values, a latitude
         outside [-pi/2, pi/2] rad, a zero quaternion, ``dt <= 0``, a non-bool
         ``hold_height``, or values that are not real numbers.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import strapdown, trajectory
+    >>> lla, vel, q = np.array([0.6, 0.2, 50.0]), np.zeros(3), np.array([1.0, 0.0, 0.0, 0.0])
+    >>> w_ib_b, f_b = trajectory.ideal_imu(trajectory.static(0.01, 0.01, lla, [0.0, 0.0, 0.0]))
+    >>> _ = strapdown.nav_step(lla, vel, q, w_ib_b[0], f_b[0], 0.01, strapdown.earth_constants())   # updates lla, vel, q
+    >>> np.round(vel, 12) + 0.0                                       # static input: the state stays put
+    array([0., 0., 0.])
     """
     lla = _state_array(lla, "lla", 3)
     latitude(lla[0], "lla[0] (lat)")
@@ -233,7 +252,14 @@ def nav_step(
 
 
 def earth_constants(ellipsoid: earth.Ellipsoid = earth.WGS84) -> np.ndarray:
-    """The ``earth_consts`` array of :func:`nav_step` for an ellipsoid."""
+    """The ``earth_consts`` array of :func:`nav_step` for an ellipsoid.
+
+    Examples
+    --------
+    >>> from navlib import strapdown
+    >>> strapdown.earth_constants().shape
+    (7,)
+    """
     ellipsoid_(ellipsoid)
     return np.array(ellipsoid.gravity_constants + (ellipsoid.omega,))
 
@@ -395,6 +421,16 @@ def error_model(lat: float, h: float, vel_n: Vec3, f_n: Vec3, ellipsoid: earth.E
     Returns
     -------
     F : ndarray, shape (9, 9)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import strapdown
+    >>> F = strapdown.error_model(0.6, 0.0, np.zeros(3), [0.0, 0.0, 9.8])
+    >>> F.shape, np.round(F[3:6, 0:3], 2) + 0.0                       # velocity error from tilt: [f_n x]
+    ((9, 9), array([[ 0. , -9.8,  0. ],
+           [ 9.8,  0. ,  0. ],
+           [ 0. ,  0. ,  0. ]]))
     """
     lat = scalar(latitude(lat), "lat")
     if np.cos(lat) < 1e-9:
@@ -442,6 +478,13 @@ def error_input(C_bn: Dcm) -> Array:
     Returns
     -------
     G : ndarray, shape (9, 6)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import strapdown
+    >>> strapdown.error_input(np.eye(3)).shape                        # 9 error states, 6 sensor errors
+    (9, 6)
     """
     C = as_dcm(as_array(C_bn, "C_bn", shape=(3, 3)), "C_bn")
     G = np.zeros((9, 6))
