@@ -549,11 +549,11 @@ def triad_heading(C_bn: Dcm) -> Array:
 
 
 def four_position_heading(w_y: ArrayLike) -> Array:
-    """Heading from a level gyro turned to four positions 90 deg apart (turntable).
+    r"""Heading from a level gyro turned to four positions 90 deg apart (turntable).
 
     Position k has heading ``psi + k pi/2`` (turned clockwise), so
     ``w_k = w_ie cos(lat) cos(psi + k pi/2) + b``: the bias b cancels in
-    ``psi = atan2(w_3 - w_1, w_0 - w_2)``, for every psi.
+    :math:`\psi = \operatorname{atan2}(w_3 - w_1,\ w_0 - w_2)`, for every :math:`\psi`.
 
     Parameters
     ----------
@@ -584,7 +584,7 @@ def four_position_heading(w_y: ArrayLike) -> Array:
 
 
 def static_gyro_bias(w_ib_b: Vec3Series, C_bn: Dcm, lat: float) -> Array:
-    """Gyro bias from a static record: ``mean(w) - C_bn^T w_ie_n`` (rad/s).
+    r"""Gyro bias from a static record: :math:`\bar\omega - (C_b^n)^T \omega_{ie}^n` (rad/s).
 
     Parameters
     ----------

@@ -718,7 +718,9 @@ def condition_number(V: ArrayLike) -> Array:
 
 
 def lsq_covariance(V: ArrayLike, R: ArrayLike, max_cond: float = 1e6) -> Array:
-    """Covariance of the unweighted least-squares estimate of ``b``: ``A^-1 (sum V_k^T R_k V_k) A^-1``, ``A = sum V_k^T V_k``.
+    r"""Covariance of the unweighted least-squares estimate of ``b``.
+
+    :math:`P = A^{-1} \big(\sum_k V_k^T R_k V_k\big) A^{-1}` with :math:`A = \sum_k V_k^T V_k`.
 
     Parameters
     ----------
@@ -752,7 +754,7 @@ def lsq_covariance(V: ArrayLike, R: ArrayLike, max_cond: float = 1e6) -> Array:
 
 
 def cramer_rao_bound(V: ArrayLike, R: ArrayLike, max_cond: float = 1e6) -> Array:
-    """Cramer-Rao bound of ``b`` from stacked blocks: ``(sum V_k^T R_k^-1 V_k)^-1``.
+    r"""Cramer-Rao bound of ``b`` from stacked blocks: :math:`\big(\sum_k V_k^T R_k^{-1} V_k\big)^{-1}`.
 
     Parameters
     ----------

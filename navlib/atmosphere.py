@@ -1,14 +1,14 @@
-"""Barometric altitude: the ISA troposphere and the BMP180 datasheet formula.
+r"""Barometric altitude: the ISA troposphere and the BMP180 datasheet formula.
 
 * ISA (ICAO Doc 7488 = US Standard Atmosphere 1976, troposphere):
-  ``h = T0/L (1 - (p/p0)^(R L / g0))`` with T0 = 288.15 K, L = 0.0065 K/m,
+  :math:`h = \frac{T_0}{L} \big(1 - (p/p_0)^{R L / g_0}\big)` with T0 = 288.15 K, L = 0.0065 K/m,
   R = 287.05287 J/(kg K), g0 = 9.80665 m/s^2 (exponent 0.190263).
 * BMP180 datasheet (BST-BMP180-DS000-09 sec. 3.6), with rounded constants:
-  ``h = 44330 (1 - (p/p0)^(1/5.255))``. It differs from ISA by +0.14 m at
+  :math:`h = 44330\, \big(1 - (p/p_0)^{1/5.255}\big)`. It differs from ISA by +0.14 m at
   1 km. The datasheet's "1 hPa = 8.43 m" does not follow from its own
   formula (dh/dp at p0 is 8.33 m/hPa).
 * Hypsometric relative height with a measured temperature:
-  ``dh = R T / g0 ln(p_ref / p)`` (paper 004 §"barometer"; the
+  :math:`\Delta h = \frac{R T}{g_0} \ln(p_{ref} / p)` (paper 004 §"barometer"; the
   hypsometric equation of any meteorology text).
 
 Heights are geopotential metres, pressures Pa, temperatures K.
@@ -128,7 +128,7 @@ def bmp180_pressure(h: ArrayLike, p0: ArrayLike = P0) -> Array:
 
 
 def hypsometric_height(p: ArrayLike, p_ref: ArrayLike, temperature: ArrayLike) -> Array:
-    """Height above the reference level (m): ``R T / g0 ln(p_ref / p)``.
+    r"""Height above the reference level (m): :math:`\frac{R T}{g_0} \ln(p_{ref} / p)`.
 
     Parameters
     ----------

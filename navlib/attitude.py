@@ -1,20 +1,21 @@
-"""Attitude representations: rotation matrices, quaternions, Euler angles.
+r"""Attitude representations: rotation matrices, quaternions, Euler angles.
 
 One convention for the whole library (see :mod:`navlib` and notebook 00):
 
 * ``C_bn`` is the body-to-navigation rotation matrix C_b^n: ``v_n = C_bn @ v_b``.
   Its columns are the body axes (right, front, up) expressed in ENU; its rows
   are the ENU axes in body coordinates.
-* Euler angles ``hpr = [heading, pitch, roll]`` follow paper 000 Eq. (3)::
+* Euler angles ``hpr = [heading, pitch, roll]`` follow paper 000 Eq. (3),
+  ``C_bn = rot(z, -heading) @ rot(x, pitch) @ rot(y, roll)``:
 
-      C_bn = rot(z, -heading) @ rot(x, pitch) @ rot(y, roll)
+  .. math:: C_b^n = R_z(-\psi)\, R_x(\theta)\, R_y(\gamma)
 
-  heading in [0, 2*pi) clockwise from north, pitch in [-pi/2, pi/2] nose up,
+  with heading :math:`\psi` in [0, 2*pi) clockwise from north, pitch in [-pi/2, pi/2] nose up,
   roll in (-pi, pi] right side down. ``rot`` is the ordinary active rotation.
 * Quaternions are scalar first, ``q = [q0, q1, q2, q3]``, Hamilton product,
-  and represent the same rotation: ``v_n = q (x) v_b (x) q*``.
+  and represent the same rotation: :math:`v^n = q \otimes v^b \otimes q^*`.
 * Rotation vectors ``rv`` (axis times angle, rad) map through the exponential:
-  ``rotvec_to_dcm(rv) = expm(skew(rv))``.
+  ``rotvec_to_dcm(rv)`` is :math:`\exp([\mathbf{r}\times])`.
 
 All functions broadcast over leading axes: vectors are ``(..., 3)``, matrices
 ``(..., 3, 3)``, quaternions ``(..., 4)``, Euler triplets ``(..., 3)``.
@@ -267,10 +268,10 @@ def _dcm_to_euler(C, deg):
 
 
 def euler_to_quat(hpr: Angles, deg: bool = False) -> Array:
-    """Quaternion q_b^n from heading, pitch, roll.
+    r"""Quaternion q_b^n from heading, pitch, roll.
 
     ``q = q_z(-heading) (x) q_x(pitch) (x) q_y(roll)`` with
-    ``q_a(t) = [cos(t/2), sin(t/2) e_a]`` (paper 003 Eq. 1 with its phi = heading).
+    :math:`q_a(t) = [\cos(t/2),\ \sin(t/2)\, e_a]` (paper 003 Eq. 1 with its :math:`\phi` = heading).
 
     Parameters
     ----------
@@ -407,7 +408,7 @@ def dcm_to_quat(C_bn: Dcm) -> Array:
 
 
 def quat_mult(p: Quat, q: Quat) -> Array:
-    """Hamilton product ``p (x) q``; shapes (..., 4) broadcast.
+    r"""Hamilton product :math:`p \otimes q`; shapes (..., 4) broadcast.
 
     Examples
     --------
@@ -527,7 +528,7 @@ def quat_to_rotvec(q: Quat) -> Array:
 
 
 def rotvec_to_dcm(rv: Vec3) -> Array:
-    """Rotation matrix ``expm(skew(rv))`` (Rodrigues), shape (..., 3) -> (..., 3, 3).
+    r"""Rotation matrix :math:`\exp([\mathbf{r}\times])` (Rodrigues), shape (..., 3) -> (..., 3, 3).
 
     Examples
     --------

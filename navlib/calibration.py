@@ -1,17 +1,18 @@
-"""Sensor calibration and "characterise my IMU": ellipsoid, multi-position and Allan-deviation fits.
+r"""Sensor calibration and "characterise my IMU": ellipsoid, multi-position and Allan-deviation fits.
 
 Magnetometer: hard and soft iron (:func:`fit_magnetometer`)
-    Model ``m_raw = W m + b`` with the hard-iron offset ``b`` (3,) and a symmetric positive-definite
+    Model :math:`m_{raw} = W m + b` with the hard-iron offset ``b`` (3,) and a symmetric positive-definite
     soft-iron matrix ``W`` (3, 3) (the model of :class:`navlib.sensors.MagnetometerModel`), corrected by
-    ``m_cal = W^-1 (m_raw - b)``. As the sensor turns, ``|m_cal| = F`` (the field strength), so the raw
-    samples lie on the ellipsoid ``(m_raw - b)^T A (m_raw - b) = 1`` with ``A = W^-2 / F^2``. The
+    :math:`m_{cal} = W^{-1} (m_{raw} - b)`. As the sensor turns, :math:`\lVert m_{cal} \rVert = F` (the field
+    strength), so the raw samples lie on the ellipsoid :math:`(m_{raw} - b)^T A\, (m_{raw} - b) = 1` with
+    :math:`A = W^{-2} / F^2`. The
     ellipsoid is fitted algebraically to the general quadric
     ``v1 x^2 + v2 y^2 + v3 z^2 + 2 v4 yz + 2 v5 xz + 2 v6 xy + 2 v7 x + 2 v8 y + 2 v9 z + v10 = 0`` by least
     squares under the ellipsoid-specific constraint ``4J - I^2 = 1`` (``I = v1 + v2 + v3``,
     ``J = v1 v2 + v2 v3 + v1 v3 - v4^2 - v5^2 - v6^2``), a generalised eigenproblem whose one positive
     eigenvalue gives the fit (Li & Griffiths 2004); the samples are centred and scaled first, which leaves
     the fitted ellipsoid unchanged. Then ``b = -A3^-1 [v7, v8, v9]`` for the quadratic part ``A3``, and
-    ``W^-1 = F sqrt(A)`` with the symmetric square root: of all correction matrices ``R W^-1`` (R any
+    :math:`W^{-1} = F \sqrt{A}` with the symmetric square root: of all correction matrices ``R W^-1`` (R any
     rotation) the symmetric one does not rotate the sensor frame. ``F`` and ``W`` are only determined
     together: with a known ``field_strength`` (e.g. :func:`navlib.earth.magnetic_field`) ``F`` is that
     value; without, ``F = det(A)^(-1/6)`` so that ``det W = 1`` (soft iron redistributes the field between

@@ -156,7 +156,7 @@ def earth_rate_n(lat: ArrayLike, deg: bool = False, ellipsoid: Ellipsoid = WGS84
 
 
 def earth_rate_b(C_bn: Dcm, lat: float, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> Array:
-    """Earth rotation rate in the body frame, ``C_bn^T w_ie_n`` (rad/s), e.g. what a static gyro triad reads.
+    r"""Earth rotation rate in the body frame, :math:`(C_b^n)^T \omega_{ie}^n` (rad/s), e.g. what a static gyro triad reads.
 
     Parameters
     ----------
@@ -182,11 +182,15 @@ def earth_rate_b(C_bn: Dcm, lat: float, deg: bool = False, ellipsoid: Ellipsoid 
 
 
 def gravity(lat: ArrayLike, h: ArrayLike = 0.0, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> Array:
-    """Normal gravity magnitude (m/s^2): Somigliana with the TR8350.2 height series.
+    r"""Normal gravity magnitude (m/s^2): Somigliana with the TR8350.2 height series.
 
-    ``gamma = gamma_e (1 + k sin^2 lat) / sqrt(1 - e^2 sin^2 lat)`` with
-    ``k = b gamma_p / (a gamma_e) - 1``, then
-    ``gamma_h = gamma [1 - 2/a (1 + f + m - 2 f sin^2 lat) h + 3 h^2 / a^2]``.
+    .. math::
+
+        \gamma = \gamma_e \frac{1 + k \sin^2\varphi}{\sqrt{1 - e^2 \sin^2\varphi}}, \qquad
+        k = \frac{b \gamma_p}{a \gamma_e} - 1, \qquad
+        \gamma_h = \gamma \Big[1 - \frac{2}{a}\big(1 + f + m - 2 f \sin^2\varphi\big) h + \frac{3 h^2}{a^2}\Big]
+
+    at latitude :math:`\varphi` and height :math:`h`.
 
     Parameters
     ----------
@@ -228,12 +232,12 @@ def gravity_n(lat: ArrayLike, h: ArrayLike = 0.0, deg: bool = False, ellipsoid: 
 
 
 def radii(lat: ArrayLike, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> tuple[Array, Array]:
-    """Meridian and prime-vertical radii of curvature (m).
+    r"""Meridian and prime-vertical radii of curvature (m).
 
     Returns
     -------
     R_M, R_N : ndarray, shape (...)
-        ``R_N = a / sqrt(1 - e^2 sin^2 lat)``, ``R_M = R_N (1 - e^2) / (1 - e^2 sin^2 lat)``.
+        :math:`R_N = a / \sqrt{1 - e^2 \sin^2\varphi}`, :math:`R_M = R_N (1 - e^2) / (1 - e^2 \sin^2\varphi)`.
 
     Examples
     --------
@@ -249,9 +253,11 @@ def radii(lat: ArrayLike, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> tu
 
 
 def transport_rate_n(lat: ArrayLike, h: ArrayLike, vel_n: Vec3, ellipsoid: Ellipsoid = WGS84) -> Array:
-    """Transport rate of the ENU frame over the ellipsoid (rad/s).
+    r"""Transport rate of the ENU frame over the ellipsoid (rad/s).
 
-    ``w_en_n = [-v_N/(R_M+h), v_E/(R_N+h), v_E tan(lat)/(R_N+h)]``.
+    .. math::
+
+        \omega_{en}^n = \Big[-\frac{v_N}{R_M + h},\ \frac{v_E}{R_N + h},\ \frac{v_E \tan\varphi}{R_N + h}\Big]
 
     Parameters
     ----------

@@ -1,4 +1,4 @@
-"""Kalman filter building blocks: predict, Joseph-form update, discretisation.
+r"""Kalman filter building blocks: predict, Joseph-form update, discretisation.
 
 The predict and update are written once as compiled per-sample primitives (numba),
 :func:`navlib._kernels.kalman_predict` and :func:`navlib._kernels.kalman_update`, which
@@ -10,7 +10,7 @@ so a wrong argument raises ``ValueError`` naming it instead of being broadcast o
 its end.
 
 The update is the standard (E)KF update with the covariance in Joseph form,
-``P = (I - K H) P (I - K H)^T + K R K^T``, which stays symmetric positive
+:math:`P \leftarrow (I - K H) P (I - K H)^T + K R K^T`, which stays symmetric positive
 definite under rounding and suboptimal gains. It takes the *predicted
 measurement* ``h`` (``H x`` for a linear filter, ``h(x)`` for an EKF), so the
 innovation is ``z - h``, with angle components wrapped to (-pi, pi].
@@ -46,7 +46,7 @@ def _state(x: ArrayLike, P: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
 
 
 def predict(x: ArrayLike, P: ArrayLike, F: ArrayLike, Q: ArrayLike) -> tuple[Array, Array]:
-    """Linear prediction ``x = F x``, ``P = F P F^T + Q`` (symmetrised).
+    r"""Linear prediction :math:`x \leftarrow F x`, :math:`P \leftarrow F P F^T + Q` (symmetrised).
 
     Validates its arguments, then runs the compiled primitive
     :func:`navlib._kernels.kalman_predict` (which navlib's own compiled filters call directly).
@@ -160,11 +160,13 @@ def update(
 
 
 def discretize(F: ArrayLike, G: ArrayLike, Qc: ArrayLike, dt: float) -> tuple[Array, Array]:
-    """Discretise a continuous linear model by Van Loan's method.
+    r"""Discretise a continuous linear model by Van Loan's method.
 
-    For ``dx/dt = F x + G w`` with white noise of spectral density ``Qc``,
-    returns ``Phi = expm(F dt)`` and
-    ``Qd = integral_0^dt expm(F s) G Qc G^T expm(F s)^T ds``.
+    For :math:`\dot x = F x + G w` with white noise of spectral density :math:`Q_c`, returns
+
+    .. math::
+
+        \Phi = e^{F \Delta t}, \qquad Q_d = \int_0^{\Delta t} e^{F s}\, G Q_c G^T\, e^{F^T s}\, ds.
 
     Parameters
     ----------

@@ -93,7 +93,7 @@ def detect_steps(f_b: Vec3Series, dt: float, threshold: float = 1.0, min_interva
 
 
 def weinberg_step_length(peak_to_peak: ArrayLike, K: float = 0.45) -> Array:
-    """Weinberg (2002) step length ``K (a_max - a_min)^(1/4)`` (m); K is calibrated per person.
+    r"""Weinberg (2002) step length :math:`K\, (a_{max} - a_{min})^{1/4}` (m); K is calibrated per person.
 
     Examples
     --------

@@ -322,9 +322,12 @@ def _apply_errors(M, x, bias, scale, full_scale, y):
 
 
 def window_mean_std(errors: TriadErrors, duration: float, dt: float) -> float:
-    """Std of one axis's error averaged over a static window (white + bias terms).
+    r"""Std of one axis's error averaged over a static window (white + bias terms).
 
-    ``var = N^2 / T + bias^2 + sigma_gm^2 * 2 (tau/T) [1 - (tau/T)(1 - exp(-T/tau))]``
+    .. math::
+
+        \sigma^2 = \frac{N^2}{T} + b^2 + 2 \sigma_{gm}^2 \frac{\tau}{T} \Big[1 - \frac{\tau}{T}\big(1 - e^{-T/\tau}\big)\Big]
+
     for white noise density N, turn-on bias and a Gauss-Markov bias of std
     sigma_gm and correlation time tau (rate random walk and scale factor are
     not included): the error left in a static average of a real sensor, e.g. the

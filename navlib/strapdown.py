@@ -1,15 +1,18 @@
-"""Strapdown inertial navigation in the ENU frame over the WGS84 ellipsoid.
+r"""Strapdown inertial navigation in the ENU frame over the WGS84 ellipsoid.
 
 Discrete mechanisation (Titterton & Weston 2004, ch. 3; Groves 2013, ch. 5),
-one step per IMU sample k covering [t_k, t_k + dt]::
+one step per IMU sample k covering :math:`[t_k, t_k + \Delta t]`:
 
-    w_in   = w_ie(lat_k) + w_en(lat_k, h_k, v_k)
-    q_k+1  = q(-w_in dt) (x) q_k (x) q(w_k dt)                      attitude
-    f_n    = C(q(-w_in dt/2) (x) q_k (x) q(w_k dt/2)) f_k            mid-interval attitude
-    v_k+1  = v_k + (f_n + g_n(lat_k, h_k) - (2 w_ie + w_en) x v_k) dt
-    lat, lon, h advance with the mean of v_k and v_k+1 (trapezoid)
+.. math::
 
-where ``q(rv)`` is the quaternion of a rotation vector. Gyro and
+    \omega_{in} &= \omega_{ie}(\varphi_k) + \omega_{en}(\varphi_k, h_k, v_k) \\
+    q_{k+1} &= q(-\omega_{in} \Delta t) \otimes q_k \otimes q(\omega_k \Delta t) \\
+    f^n &= C\big(q(-\omega_{in} \Delta t / 2) \otimes q_k \otimes q(\omega_k \Delta t / 2)\big)\, f_k \\
+    v_{k+1} &= v_k + \big(f^n + g^n(\varphi_k, h_k) - (2 \omega_{ie} + \omega_{en}) \times v_k\big)\, \Delta t
+
+(the second line is the attitude, the third the specific force at the mid-interval attitude); latitude
+:math:`\varphi`, longitude and height advance with the mean of :math:`v_k` and :math:`v_{k+1}` (trapezoid),
+where :math:`q(\mathbf{r})` is the quaternion of a rotation vector. Gyro and
 accelerometer samples are the mean rate and mean specific force over the
 interval (``w_k dt`` is the angle increment). :func:`navlib.trajectory.ideal_imu`
 is the exact inverse of this scheme, so integrating ideal samples reproduces
@@ -128,9 +131,9 @@ def _sample_intervals(dt, n):
 def integrate_attitude(
     q0: Quat, w_ib_b: Vec3Series, dt: Interval, w_in_n: Vec3 | None = None, *, nan_policy: str = "raise"
 ) -> Array:
-    """Integrate gyro samples into an attitude history.
+    r"""Integrate gyro samples into an attitude history.
 
-    ``q_k+1 = q(-w_in_n dt_k) (x) q_k (x) q(w_k dt_k)`` with a constant
+    :math:`q_{k+1} = q(-\omega_{in}^n \Delta t_k) \otimes q_k \otimes q(\omega_k \Delta t_k)` with a constant
     navigation-frame rate ``w_in_n`` (e.g. Earth rate at a fixed latitude for
     a static or slowly moving IMU; zero to neglect it).
 

@@ -1,12 +1,12 @@
-"""Quaternion Kalman filter on gravity and a heading reference, driven by the Mahony PI-corrected rate.
+r"""Quaternion Kalman filter on gravity and a heading reference, driven by the Mahony PI-corrected rate.
 
 The filter of Zhang et al. 2023 (paper 003, :mod:`navlib.papers.mimu_mag_rtk`; its equation
 numbers are quoted, errata corrected). State: the quaternion ``q = q_b^n`` (4,).
 
 * Eq. (15): the rate is the gyro corrected by the Mahony PI error of the current estimate
   (:func:`navlib.filters.observations.pi_error`, as in :mod:`navlib.filters.mahony`);
-* Eqs. (16)-(17): ``Phi = I + dt/2 Omega(w)`` (:func:`transition`);
-* Eq. (18): ``Gamma = dt/2 Xi(q)`` (:func:`noise_input`), ``Q = sigma_gyro^2 I``;
+* Eqs. (16)-(17): :math:`\Phi = I + \tfrac{\Delta t}{2}\, \Omega(\omega)` (:func:`transition`);
+* Eq. (18): :math:`\Gamma = \tfrac{\Delta t}{2}\, \Xi(q)` (:func:`noise_input`), :math:`Q = \sigma_{gyro}^2 I`;
 * Eqs. (4), (6), (19): measurement ``z = [a; m]`` of unit vectors against
   ``h(q) = [C_nb [0, 0, 1]; C_nb b]`` with ``b = [0, cos I, -sin I]`` (Eq. 3,
   :func:`navlib.filters.observations.magnetic_reference`; north for RTK heading), innovation
@@ -202,7 +202,7 @@ def measurement_jacobian(q: Quat, b: Vec3) -> Array:
 
 
 def transition(w: Vec3, dt: float) -> Array:
-    """Quaternion transition ``Phi = I + dt/2 Omega(w)`` (Eq. 17); w (..., 3) rad/s -> (..., 4, 4).
+    r"""Quaternion transition :math:`\Phi = I + \tfrac{\Delta t}{2}\, \Omega(\omega)` (Eq. 17); w (..., 3) rad/s -> (..., 4, 4).
 
     Examples
     --------
@@ -229,7 +229,7 @@ def transition(w: Vec3, dt: float) -> Array:
 
 
 def noise_input(q: Quat, dt: float) -> Array:
-    """Gyro-noise input matrix ``Gamma = dt/2 Xi(q)`` (Eq. 18 corrected, E003-11); (..., 4) -> (..., 4, 3).
+    r"""Gyro-noise input matrix :math:`\Gamma = \tfrac{\Delta t}{2} \Xi(q)` (Eq. 18 corrected, E003-11); (..., 4) -> (..., 4, 3).
 
     Examples
     --------

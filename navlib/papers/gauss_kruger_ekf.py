@@ -179,9 +179,9 @@ def printed_meridian_radius(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg
 
 
 def paper_meridian_arc(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False, order: int = 8) -> Array:
-    """Eqs. (7)–(8): meridian arc length S from the equator (m), series to e^8 (correct, erratum E002-05).
+    r"""Eqs. (7)–(8): meridian arc length S from the equator (m), series to e^8 (correct, erratum E002-05).
 
-    ``S = a(1-e^2)[A W - B/2 sin 2W + C/4 sin 4W - D/6 sin 6W + E/8 sin 8W]``:
+    :math:`S = a(1-e^2)\big[A W - \tfrac{B}{2} \sin 2W + \tfrac{C}{4} \sin 4W - \tfrac{D}{6} \sin 6W + \tfrac{E}{8} \sin 8W\big]`:
     1e-8 m at 26°, 1e-4 m near the pole. Core's :func:`navlib.geodesy.meridian_arc`
     uses Krüger's n^6 series (nm accuracy).
 
@@ -230,14 +230,16 @@ def paper_series(
     typos: bool = False,
     printed_units: bool = False,
 ) -> tuple[Array, Array]:
-    """The paper's sixth-order GK series, Eqs. (7)–(11): northing x and easting y (m).
+    r"""The paper's sixth-order GK series, Eqs. (7)–(11): northing x and easting y (m).
 
-    With ``t = tan W``, ``eta^2 = e2^2 cos^2 W`` and ``N = R_N``::
+    With :math:`t = \tan W`, :math:`\eta^2 = e_2^2 \cos^2 W` and :math:`N = R_N`:
 
-        x = S + N/2 l^2 sinW cosW + N/24 l^4 sinW cos^3W (5 - t^2 + 9 eta^2 + 4 eta^4)
-              + N/720 l^6 sinW cos^5W (61 - 58 t^2 + t^4 + 270 eta^2 - 330 eta^2 t^2)
-        y = N l cosW + N/6 l^3 cos^3W (1 - t^2 + eta^2)
-              + N/120 l^5 cos^5W (5 - 18 t^2 + t^4 + 14 eta^2 - 58 eta^2 t^2)
+    .. math::
+
+        x &= S + \frac{N}{2} l^2 \sin W \cos W + \frac{N}{24} l^4 \sin W \cos^3 W\, (5 - t^2 + 9\eta^2 + 4\eta^4) \\
+          &\quad + \frac{N}{720} l^6 \sin W \cos^5 W\, (61 - 58 t^2 + t^4 + 270\eta^2 - 330\eta^2 t^2) \\
+        y &= N l \cos W + \frac{N}{6} l^3 \cos^3 W\, (1 - t^2 + \eta^2) \\
+          &\quad + \frac{N}{120} l^5 \cos^5 W\, (5 - 18 t^2 + t^4 + 14\eta^2 - 58\eta^2 t^2)
 
     ``typos=True`` uses the printed ``N/72`` and ``270 eta^4`` (erratum E002-03) to
     show their effect; l and W in radians (erratum E002-04). ``printed_units=True`` shows

@@ -1,4 +1,4 @@
-"""North finding with a single-axis optical gyro and a MEMS IMU (paper 000).
+r"""North finding with a single-axis optical gyro and a MEMS IMU (paper 000).
 
 Tan C., Xie X., "Indoor mobile robot north-finding based on single-axis optical
 gyroscope and MEMS IMU", Chinese Journal of Scientific Instrument
@@ -36,10 +36,13 @@ Equations implemented
   with the pitch (accelerometer) term (:func:`single_axis_heading_std`,
   :func:`single_axis_heading_error`); where Eq. (20) fails (near 0 and 180
   deg, E000-03) the clipped estimator's error by quadrature
-  (:func:`clipped_single_axis_theory`)::
+  (:func:`clipped_single_axis_theory`):
 
-      d psi = [-d w_y + w_ie (sin lat cos th - cos lat sin th cos psi) d th]
-              / (w_ie cos lat cos th sin psi),        d th = d f_y / (g cos th)
+  .. math::
+
+      \delta\psi = \frac{-\delta\omega_y + \omega_{ie} (\sin\varphi \cos\theta - \cos\varphi \sin\theta \cos\psi)\, \delta\theta}
+                        {\omega_{ie} \cos\varphi \cos\theta \sin\psi}, \qquad
+      \delta\theta = \frac{\delta f_y}{g \cos\theta}
 
 Extensions: :func:`pair_probabilities` (exact probability of each candidate
 pair winning for a Gaussian INS error; paper's "any second position" claim),
@@ -444,7 +447,7 @@ def triad_heading_error(C_bn: Dcm, dw_b: Vec3, lat: float) -> Array:
 
 
 def triad_heading_std(sigma_gyro: float, lat: float) -> Array:
-    """Eq. (16): TRIAD heading error std ``sigma / (w_ie cos lat)`` (rad).
+    r"""Eq. (16): TRIAD heading error std :math:`\sigma / (\omega_{ie} \cos\varphi)` (rad).
 
     ``sigma_gyro`` (rad/s) is the std of each horizontal gyro error (equal and
     uncorrelated, as the paper assumes); independent of heading.
@@ -467,14 +470,18 @@ def _pitch(pitch):
 def single_axis_heading_std(
     heading: Angles, sigma_gyro: float, lat: float, pitch: Angles = 0.0, sigma_accel: float = 0.0, g: float | None = None
 ) -> Array:
-    """Single-axis heading error std (rad): Eq. (20) or its full linearisation.
+    r"""Single-axis heading error std (rad): Eq. (20) or its full linearisation.
 
     With ``pitch = 0`` and ``sigma_accel = 0`` this is Eq. (20),
-    ``sigma_gyro / (w_ie cos lat |sin psi|)``. Otherwise the full
-    linearisation of Eq. (8) (E000-04)::
+    :math:`\sigma_g / (\omega_{ie} \cos\varphi\, \lvert\sin\psi\rvert)`. Otherwise the full
+    linearisation of Eq. (8) (E000-04):
 
-        var = [sigma_g^2 + (w_ie (sin lat cos th - cos lat sin th cos psi) sigma_th)^2]
-              / (w_ie cos lat cos th sin psi)^2,      sigma_th = sigma_a / (g cos th)
+    .. math::
+
+        \sigma_\psi^2 = \frac{\sigma_g^2
+            + \big(\omega_{ie} (\sin\varphi \cos\theta - \cos\varphi \sin\theta \cos\psi)\, \sigma_\theta\big)^2}
+                             {(\omega_{ie} \cos\varphi \cos\theta \sin\psi)^2}, \qquad
+        \sigma_\theta = \frac{\sigma_a}{g \cos\theta}
 
     Infinite at psi = 0 and pi, where the linearisation fails (E000-03).
 
@@ -859,7 +866,7 @@ def pair_probabilities(heading1: Angles, heading2: Angles, sigma_ins: ArrayLike)
 
 
 def four_position_heading_std(sigma_gyro: float, lat: float) -> Array:
-    """Four-position heading std ``sigma / (sqrt(2) w_ie cos lat)`` (rad), any heading.
+    r"""Four-position heading std :math:`\sigma / (\sqrt{2}\, \omega_{ie} \cos\varphi)` (rad), any heading.
 
     ``sigma_gyro`` (rad/s) is the std of each position's averaged output.
 

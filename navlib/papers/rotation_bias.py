@@ -1,4 +1,4 @@
-"""Gyro bias estimation by rotating the IMU (paper 001).
+r"""Gyro bias estimation by rotating the IMU (paper 001).
 
 Wu Z., Sun Z., Zhang W., Chen Q. (2014). Gyroscope bias estimation and
 compensation by rotation of the inertial measurement unit. *Journal of
@@ -32,9 +32,9 @@ Equations (paper numbering)
 * Eqs. (6)-(9)  per dwell k, ``delta_k = (gyro tilt change) - (accelerometer tilt
   change) = M(phi_k, theta_k) dT b = V_k b`` with M the first two rows
   of Eq. (2): :func:`tilt_matrix`, :func:`tilt_residuals`
-* Eq. (10) ``dR = I cos(da) + sin(da) [u x] + (1 - cos(da)) u u^T``  :func:`rodrigues`
+* Eq. (10) :math:`\Delta R = I \cos\Delta\alpha + \sin\Delta\alpha [u\times] + (1 - \cos\Delta\alpha) u u^T`  :func:`rodrigues`
 * Eq. (11) ``R' = dR^T R`` (``C_bn' = C_bn dR``)  :func:`rotate_attitude`
-* Eqs. (12)-(14) stacked ``r = V b``, ``b = (V^T V)^-1 V^T r``  :func:`lsq_bias`,
+* Eqs. (12)-(14) stacked :math:`r = V b`, :math:`\hat b = (V^T V)^{-1} V^T r`  :func:`lsq_bias`,
   :func:`running_lsq_bias` (recursive, optional forgetting)
 
 Paper's numbers: MTi-100 (bias stability 10 deg/h, noise 0.01 deg/s/sqrt(Hz)),
@@ -252,7 +252,7 @@ def _unit_axis(axis_b):
 
 
 def rodrigues(axis_b: Vec3, angle: Angles) -> Array:
-    """Eq. (10): ``dR = I cos a + sin a [u x] + (1 - cos a) u u^T`` (b' -> b).
+    r"""Eq. (10): :math:`\Delta R = I \cos a + \sin a\, [u\times] + (1 - \cos a)\, u u^T` (b' -> b).
 
     Parameters
     ----------
@@ -815,7 +815,7 @@ def _rv(r, V):
 
 
 def lsq_bias(r: ArrayLike, V: ArrayLike) -> Array:
-    """Eq. (14): ``b = (V^T V)^-1 V^T r`` over all valid dwells.
+    r"""Eq. (14): :math:`\hat b = (V^T V)^{-1} V^T r` over all valid dwells.
 
     Parameters
     ----------
