@@ -186,9 +186,9 @@ def gravity(lat: ArrayLike, h: ArrayLike = 0.0, deg: bool = False, ellipsoid: El
 
     .. math::
 
-        \gamma = \gamma_e \frac{1 + k \sin^2\varphi}{\sqrt{1 - e^2 \sin^2\varphi}}, \qquad
-        k = \frac{b \gamma_p}{a \gamma_e} - 1, \qquad
-        \gamma_h = \gamma \Big[1 - \frac{2}{a}\big(1 + f + m - 2 f \sin^2\varphi\big) h + \frac{3 h^2}{a^2}\Big]
+        \gamma &= \gamma_e \frac{1 + k \sin^2\varphi}{\sqrt{1 - e^2 \sin^2\varphi}}, \qquad
+        k = \frac{b \gamma_p}{a \gamma_e} - 1 \\
+        \gamma_h &= \gamma \Big[1 - \frac{2}{a}\big(1 + f + m - 2 f \sin^2\varphi\big) h + \frac{3 h^2}{a^2}\Big]
 
     at latitude :math:`\varphi` and height :math:`h`.
 

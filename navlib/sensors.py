@@ -1,22 +1,22 @@
-"""Simulated sensors: IMU, magnetometer, barometer, GNSS, dual-antenna heading.
+r"""Simulated sensors: IMU, magnetometer, barometer, GNSS, dual-antenna heading.
 
-IMU error model (per axis, applied to the ideal outputs of
-:func:`navlib.trajectory.ideal_imu`)::
+IMU error model (per axis, applied to the ideal outputs :math:`x` of
+:func:`navlib.trajectory.ideal_imu`), clipped at :math:`\pm` ``full_scale``:
 
-    y = M x + b_on + b_gm(t) + b_rrw(t) + n(t),    clipped at +-full_scale
+.. math:: y = M x + b_{on} + b_{gm}(t) + b_{rrw}(t) + n(t)
 
 * ``M = I + diag(scale) + misalignment``: scale-factor errors on the
   diagonal, small-angle misalignments off it (drawn once per run).
 * ``b_on``: turn-on bias, constant within a run.
-* ``b_gm``: first-order Gauss-Markov bias, ``b[k+1] = phi b[k] + w[k]`` with
-  ``phi = exp(-dt/T_c)`` and ``var(w) = sigma^2 (1 - phi^2)``, started from its
+* ``b_gm``: first-order Gauss-Markov bias, :math:`b_{k+1} = \phi\, b_k + w_k` with
+  :math:`\phi = e^{-\Delta t / T_c}` and :math:`\mathrm{var}(w) = \sigma^2 (1 - \phi^2)`, started from its
   stationary distribution. Its standard deviation ``sigma`` therefore does not
   depend on the sample rate. ``sigma = B / GM_ALLAN_PEAK`` so that the Allan
   deviation of the bias peaks at the datasheet bias instability B
   (see :mod:`navlib.analysis`).
 * ``b_rrw``: rate random walk with density K.
 * ``n``: white noise of density N (ARW for gyros, VRW for accelerometers);
-  per-sample sigma ``N / sqrt(dt)``.
+  per-sample sigma :math:`N / \sqrt{\Delta t}`.
 
 Each error component draws from its own child stream of ``rng`` (via
 ``Generator.spawn``), so switching one component on or off leaves the

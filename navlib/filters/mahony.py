@@ -102,9 +102,9 @@ def mahony(
 
     .. math::
 
-        e = a \times \hat a + m \times \hat m, \qquad
-        \omega = \omega_m + k_P e + k_I \sum e\, \Delta t, \qquad
-        q \leftarrow \mathrm{normalise}\big(q + \tfrac{\Delta t}{2}\, q \otimes [0, \omega]\big).
+        e &= a \times \hat a + m \times \hat m \\
+        \omega &= \omega_m + k_P e + k_I \textstyle\sum e\, \Delta t \\
+        q &\leftarrow \mathrm{normalise}\big(q + \tfrac{\Delta t}{2}\, q \otimes [0, \omega]\big).
 
     Identical to ``ahrs.filters.Mahony.updateMARG`` (AHRS 0.4.0, same frames and first-order update)
     except that ahrs skips samples whose gyro norm is exactly 0. With per-sample ``dt`` each step uses

@@ -1,4 +1,4 @@
-"""Planar vehicle model, dead reckoning and the 5-state EKF on grid position, heading, speed and yaw rate.
+r"""Planar vehicle model, dead reckoning and the 5-state EKF on grid position, heading, speed and yaw rate.
 
 The filter of Zhao Y., Nie X., Fang S., Wu H. (2023), "Research on inertial navigation/GPS robot
 combined positioning based on Gaussian projection", *Machine Building & Automation* 52(1): 173–176,
@@ -20,17 +20,20 @@ paper omits (erratum E002-09; -0.35° at Fuzhou, 0.66° at a 3° zone edge).
 Equations
 ---------
 Eq. (13), lost in the source and reconstructed as the
-short-step unicycle model::
+short-step unicycle model:
 
-    f(X) = [x + v T cos(theta), y + v T sin(theta), theta + omega T, v, omega]
+.. math:: f(X) = \big[x + v T \cos\theta,\ y + v T \sin\theta,\ \theta + \omega T,\ v,\ \omega\big]
 
 Eq. (16), its Jacobian ``Phi = df/dX``; Eq. (12) ``X_k = f(X_k-1) + Gamma w``
 with ``Gamma = I5`` (not given); Eqs. (14)–(15) ``Z = H X + v`` with
 ``H = I5`` and ``Z = [x_GPS, y_GPS, theta_IMU, v_IMU, omega_IMU]`` (erratum E002-07:
 the printed ``X_m`` is the measurement); the heading innovation is wrapped to
-(-pi, pi]. Noise, Eqs. (17)–(18), per step::
+(-pi, pi]. Noise, Eqs. (17)–(18), per step:
 
-    Q = diag(1, 1, 0.01, 0.0001, 0.0016)      R = diag(6.25, 6.25, 0.01, 0.0004, 0.0025)
+.. math::
+
+    Q &= \mathrm{diag}(1,\ 1,\ 0.01,\ 0.0001,\ 0.0016) \\
+    R &= \mathrm{diag}(6.25,\ 6.25,\ 0.01,\ 0.0004,\ 0.0025)
 
 in SI units (m², rad², m²/s², rad²/s²) in the paper (``gauss_kruger_ekf.Q_PAPER``, ``R_PAPER``);
 :class:`EkfConfig` has no default noise. ``theta_IMU`` must be an absolute heading and ``omega_IMU``

@@ -1,4 +1,4 @@
-"""ZUPT/ZARU: static detection and the zero-velocity / zero-angular-rate update of an INS.
+r"""ZUPT/ZARU: static detection and the zero-velocity / zero-angular-rate update of an INS.
 
 A strapdown INS drifts quadratically in position; whenever the IMU is known to stand still,
 the velocity must be zero (ZUPT) and the gyros must read the Earth rate only (ZARU). An
@@ -10,16 +10,24 @@ truth`` for r, v, psi and ``truth - estimate`` for the biases).
   detection: an algorithm evaluation", IEEE T-BME 57(11)): static when, over a centred window,
   ``rms|w - b_g| < tau_w``, ``std|f| < tau_f`` and ``|mean|f| - g| < tau_g``.
 * :func:`error_state_matrix` -- the continuous-time F of the standard local-level error model
-  without Earth-rate and transport-rate terms::
+  without Earth-rate and transport-rate terms:
 
-      d(dr)/dt = dv,   d(dv)/dt = -[(C_hat f_b) x] dpsi + C_hat db_a,
-      d(dpsi)/dt = C_hat db_g,   d(db)/dt = white
+  .. math::
+
+      \delta\dot r &= \delta v, \qquad \delta\dot v = -[(\hat C f^b) \times]\, \delta\psi + \hat C\, \delta b_a \\
+      \delta\dot\psi &= \hat C\, \delta b_g, \qquad \delta\dot b = \text{white noise}
 
   :func:`error_model_fd` differentiates the exact error dynamics numerically to check it.
-* :func:`zupt_zaru_matrix`, :func:`zupt_zaru_innovation` -- the static measurement::
+* :func:`zupt_zaru_matrix`, :func:`zupt_zaru_innovation` -- the static measurement:
 
-      z = [v_hat; w_meas - b_g_hat - C_hat^T w_ie_n] = H dx + v,
-      H = [[0, I, 0, 0, 0], [0, 0, -C_hat^T [w_ie_n x], 0, I]]
+  .. math::
+
+      z = \begin{bmatrix} \hat v \\ \omega_{meas} - \hat b_g - \hat C^T \omega_{ie}^n \end{bmatrix}
+        = H\, \delta x + v
+
+  .. math::
+
+      H = \begin{bmatrix} 0 & I & 0 & 0 & 0 \\ 0 & 0 & -\hat C^T [\omega_{ie}^n \times] & 0 & I \end{bmatrix}
 
   The ``-C^T [w_ie x]`` block is the exact first-order Earth-rate term; with it ``z - H dx``
   is second order.

@@ -11,20 +11,25 @@ Latitude is ``lat`` (the paper's L). omega_ie = 7.292115e-5 rad/s.
 
 Equations implemented
 ---------------------
-* TRIAD, Eqs. (1)-(2) -- :func:`triad`::
+* TRIAD, Eqs. (1)-(2) -- :func:`triad`:
 
-      C_n^s = [-f, -f x w, (-f x w) x (-f)] [g_n, g_n x w_ie, (g_n x w_ie) x g_n]^-1
+  .. math::
+
+      C_n^s = \big[-f,\ -f \times \omega,\ (-f \times \omega) \times (-f)\big]
+              \big[g^n,\ g^n \times \omega_{ie},\ (g^n \times \omega_{ie}) \times g^n\big]^{-1}
 
   With noisy inputs the product is not orthonormal (the paper does not say
   what it does about that); :func:`triad` projects it onto the nearest
   rotation with :func:`navlib.attitude.orthonormalize` (SVD) unless asked for
   the raw product.
-* Tilt, Eqs. (4)-(6) -- :func:`pitch_roll_from_accel`: ``pitch = asin(f_y / g)``,
-  ``roll = atan2(-f_x, f_z)``.
-* Single-axis candidates, Eqs. (8)-(11) -- :func:`heading_candidates`::
+* Tilt, Eqs. (4)-(6) -- :func:`pitch_roll_from_accel`: :math:`\theta = \arcsin(f_y / g)`,
+  :math:`\gamma = \operatorname{atan2}(-f_x, f_z)`.
+* Single-axis candidates, Eqs. (8)-(11) -- :func:`heading_candidates`:
 
-      cos psi = (w_y - w_ie sin(lat) sin(pitch)) / (w_ie cos(lat) cos(pitch))
-      psi(1) = alpha = acos(clip(cos psi, -1, 1)),   psi(2) = 2 pi - alpha
+  .. math::
+
+      \cos\psi &= \frac{\omega_y - \omega_{ie} \sin\varphi \sin\theta}{\omega_{ie} \cos\varphi \cos\theta} \\
+      \psi^{(1)} & = \alpha = \arccos\big(\mathrm{clip}(\cos\psi, -1, 1)\big), \qquad \psi^{(2)} = 2\pi - \alpha
 
   The clipping is reported per trial (``clipped``).
 * Resolution, Eq. (12) -- :func:`resolve`: the four candidate heading changes

@@ -1,4 +1,4 @@
-"""Indoor pedestrian navigation with a shoulder-mounted MEMS IMU (paper 004).
+r"""Indoor pedestrian navigation with a shoulder-mounted MEMS IMU (paper 004).
 
 Wen Zeyang, Xu Jiangning, Yu Mengqi, "Design of Indoor Navigation System
 Based on Double MEMS IMU" (基于MEMS IMU的室内导航系统设计), *Ship Electronic
@@ -36,15 +36,19 @@ prints NED / forward-right-down; ``C_enu = M C_ned M`` with
   ``R T/g ln(p_ref/p)`` with temperature.
   Floors: ``n = n_ref + round(h / h_floor)``.
 * Eq. (4), tilt compensation, CORRECTED (erratum E004-01; the printed form
-  mixes up axes and angles, :func:`tilt_compensate_printed`). NED/FRD::
+  mixes up axes and angles, :func:`tilt_compensate_printed`). NED/FRD, pitch :math:`\theta`, roll :math:`\gamma`:
 
-      H_X = H_x cos(th) + H_y sin(th) sin(ga) + H_z sin(th) cos(ga)
-      H_Y = H_y cos(ga) - H_z sin(ga)
+  .. math::
 
-  ENU/RFU (used by the filter), ``m_b = (m_x, m_y, m_z) = (H_y, H_x, -H_z)``::
+      H_X &= H_x \cos\theta + H_y \sin\theta \sin\gamma + H_z \sin\theta \cos\gamma \\
+      H_Y &= H_y \cos\gamma - H_z \sin\gamma
 
-      mh_x = m_x cos(ga) + m_z sin(ga)
-      mh_y = m_y cos(th) + m_x sin(th) sin(ga) - m_z sin(th) cos(ga)
+  ENU/RFU (used by the filter), ``m_b = (m_x, m_y, m_z) = (H_y, H_x, -H_z)``:
+
+  .. math::
+
+      m^h_x &= m_x \cos\gamma + m_z \sin\gamma \\
+      m^h_y &= m_y \cos\theta + m_x \sin\theta \sin\gamma - m_z \sin\theta \cos\gamma
 
 * Eq. (5) (missing, reconstructed; erratum E004-03):
   ``angle = atan2(-H_Y, H_X) = atan2(-mh_x, mh_y)`` plus 2 pi when negative,

@@ -18,16 +18,20 @@ specific force ``f_b`` (+g up); the paper's gravity vector is ``a_m = -f_b``.
 
 Equations (paper numbering)
 ---------------------------
-* Eq. (1)  ``R = R_y(phi) R_x(theta) R_z(-psi) = C_bn.T``  :func:`eq1_matrix`
+* Eq. (1)  :math:`R = R_y(\phi) R_x(\theta) R_z(-\psi) = (C_b^n)^T`  :func:`eq1_matrix`
 * Eq. (2)  Euler-angle kinematics, Omega = body rate relative to n, :func:`euler_rates`; integrated sample
-  by sample (RK4 with the rate held over each sample) by :func:`integrate_euler`::
+  by sample (RK4 with the rate held over each sample) by :func:`integrate_euler`:
 
-      roll'    = sin(phi) tan(theta) Wx + Wy - cos(phi) tan(theta) Wz
-      pitch'   = cos(phi) Wx + sin(phi) Wz
-      heading' = (sin(phi) Wx - cos(phi) Wz) / cos(theta)
+  .. math::
+
+      \dot\phi &= \sin\phi \tan\theta\, \Omega_x + \Omega_y - \cos\phi \tan\theta\, \Omega_z \\
+      \dot\theta &= \cos\phi\, \Omega_x + \sin\phi\, \Omega_z \\
+      \dot\psi &= (\sin\phi\, \Omega_x - \cos\phi\, \Omega_z) / \cos\theta
+
+  (roll :math:`\phi`, pitch :math:`\theta`, heading :math:`\psi`)
 
 * Eq. (3)  measured rate = Omega + b.
-* Eq. (4)  ``a_m = R [0, 0, -g] = g [cos(th) sin(phi), -sin(th), -cos(th) cos(phi)]``  :func:`gravity_body`
+* Eq. (4)  :math:`a_m = R\, [0, 0, -g]^T = g\, [\cos\theta \sin\phi,\ -\sin\theta,\ -\cos\theta \cos\phi]^T`  :func:`gravity_body`
 * Eq. (5)  ``phi = atan2(a_mx, -a_mz)``, ``theta = atan2(-a_my, hypot(a_mx, a_mz))``  :func:`roll_pitch_from_accel`
 * Eqs. (6)-(9)  per dwell k, ``delta_k = (gyro tilt change) - (accelerometer tilt
   change) = M(phi_k, theta_k) dT b = V_k b`` with M the first two rows
