@@ -952,7 +952,7 @@ def read_euroc(
     >>> header = f"#timestamp [ns],{gyro},{accel}"
     >>> rows = [f"{1403715523912140000 + k * 5000000},0,0,0.1,0,0,9.81" for k in range(3)]   # 200 Hz
     >>> _ = path.write_text("\\n".join([header, *rows]) + "\\n")
-    >>> rec = io.read_euroc(path, check="off")                       # three samples: too few to check the axes
+    >>> rec = io.read_euroc(path, check="off")                       # no axis check on a three-sample file
     >>> rec.time, rec.w_ib_b[0]
     (array([0.   , 0.005, 0.01 ]), array([0. , 0. , 0.1]))
     >>> tmp.cleanup()
