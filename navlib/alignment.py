@@ -66,6 +66,14 @@ def level(f_b: Vec3) -> tuple[Array, Array]:
     -------
     pitch, roll : ndarray, shape (...)
         Pitch in [-pi/2, pi/2], roll in (-pi, pi] (rad).
+
+    Examples
+    --------
+    >>> from navlib import alignment, attitude
+    >>> f_b = attitude.euler_to_dcm([0.0, 0.1, -0.2]).T @ [0.0, 0.0, 9.8]   # pitch 0.1 rad, roll -0.2 rad
+    >>> pitch, roll = alignment.level(f_b)
+    >>> round(float(pitch), 6), round(float(roll), 6)
+    (0.1, -0.2)
     """
     return _level(_nonzero(as_array(f_b, "f_b", tail=(3,)), "f_b"))
 
@@ -86,6 +94,14 @@ def magnetic_heading(m_b: Vec3, pitch: Angles, roll: Angles, declination: float 
         Attitude (rad), e.g. from :func:`level` or an INS; broadcast with ``m_b``.
     declination : float
         Magnetic declination D, east of true north positive (rad); 0 gives the magnetic heading.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import alignment
+    >>> m_b = [20.0 * np.sin(-0.5), 20.0 * np.cos(-0.5), -40.0]   # level, field 0.5 rad to the right of the nose
+    >>> round(float(alignment.magnetic_heading(m_b, pitch=0.0, roll=0.0)), 6)
+    0.5
     """
     m = _nonzero(as_array(m_b, "m_b", tail=(3,)), "m_b")
     p, r = pitch_roll(pitch, roll)
@@ -137,7 +153,16 @@ def tilt_heading(f_b: Vec3, m_b: Vec3, declination: float = 0.0) -> Array:
 
 
 def initial_attitude(f_b: Vec3, m_b: Vec3, declination: float = 0.0) -> Array:
-    """Initial quaternion ``q_bn`` (..., 4) from :func:`tilt_heading` (scalar first)."""
+    """Initial quaternion ``q_bn`` (..., 4) from :func:`tilt_heading` (scalar first).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import alignment, attitude
+    >>> q_bn = alignment.initial_attitude([0.0, 0.0, 9.8], [0.0, 20.0, -40.0])   # level, magnetometer facing north
+    >>> np.round(attitude.quat_to_euler(q_bn, deg=True), 6)
+    array([0., 0., 0.])
+    """
     return attitude.euler_to_quat(tilt_heading(f_b, m_b, declination))
 
 
@@ -151,7 +176,14 @@ horizontal Earth rate (< 0.26 deg/h) no longer defines north usefully."""
 
 
 def gyrocompass_latitude(lat: ArrayLike, deg: bool = False) -> Array:
-    """Latitude in rad, rejecting |lat| > 90 deg and near-polar |lat| > MAX_LAT_DEG."""
+    """Latitude in rad, rejecting |lat| > 90 deg and near-polar |lat| > MAX_LAT_DEG.
+
+    Examples
+    --------
+    >>> from navlib import alignment
+    >>> float(alignment.gyrocompass_latitude(45.0, deg=True))      # rad
+    0.7853981633974483
+    """
     lat = latitude(lat, "lat", deg=deg, nonempty=True)
     if np.any(np.abs(lat) > np.deg2rad(MAX_LAT_DEG)):
         raise ValueError(
@@ -200,6 +232,16 @@ class StaticWindow:
         * motion: refused with none of the three above -- the mean specific-force
           norm or the difference of the two half-window means exceeded ``accel_tol``
           (only tested when the window passed the other checks).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import alignment, trajectory
+    >>> traj = trajectory.static(1.0, 0.01, [0.6, 0.2, 50.0], [0.3, 0.0, 0.0])
+    >>> w_ib_b, f_b = trajectory.ideal_imu(traj)
+    >>> win = alignment.static_means(w_ib_b, f_b, lat=0.6, h=50.0)
+    >>> win.n_samples, np.round(win.f_mean, 4)                     # m/s^2, right-front-up
+    (100, array([ 0.    , -0.    ,  9.7967]))
     """
 
     w_mean: np.ndarray
@@ -328,6 +370,17 @@ def static_means(
         Empty windows, inf, mismatched shapes; with ``strict``, a refused
         window (too few samples, saturated, a frozen sensor, or the robot
         evidently moving).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import alignment, trajectory
+    >>> traj = trajectory.static(1.0, 0.01, [0.6, 0.2, 50.0], [0.3, 0.0, 0.0])
+    >>> w_ib_b, f_b = trajectory.ideal_imu(traj)
+    >>> f_b[10] = np.nan                                          # a dropout: left out of the mean
+    >>> win = alignment.static_means(w_ib_b, f_b, lat=0.6, h=50.0)
+    >>> int(win.n_used_accel), int(win.faults["accel", "nan"]), np.round(win.f_mean, 4)
+    (99, 1, array([ 0.    , -0.    ,  9.7967]))
     """
     if isinstance(w_ib_b, ImuSamples):  # no dt here: unpack's dt is left None and its intervals unused
         w_ib_b, f_b, _, full_scale_gyro, full_scale_accel = unpack(w_ib_b, f_b, None, full_scale_gyro, full_scale_accel)
@@ -450,6 +503,16 @@ def triad(f_b: Vec3, w_ib_b: Vec3, lat: ArrayLike, orthonormal: bool = True) -> 
     Returns
     -------
     C_bn : ndarray, shape (..., 3, 3)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import alignment, attitude, earth
+    >>> C_true = attitude.euler_to_dcm(np.deg2rad([30.0, 2.0, -1.0]))
+    >>> f_b = C_true.T @ [0.0, 0.0, earth.gravity(0.6)]           # what a static IMU senses
+    >>> w_ib_b = earth.earth_rate_b(C_true, 0.6)
+    >>> np.round(np.rad2deg(attitude.dcm_to_euler(alignment.triad(f_b, w_ib_b, 0.6))), 6)
+    array([30.,  2., -1.])
     """
     f, w = broadcast(
         as_array(f_b, "f_b", tail=(3,), nonempty=True),
@@ -472,17 +535,25 @@ def triad_heading(C_bn: Dcm) -> Array:
     The inverse of paper Eq. (3) for the heading; unlike
     :func:`navlib.attitude.dcm_to_euler` it accepts Eq. (2)'s raw,
     slightly non-orthonormal product. Shape (..., 3, 3) -> (...).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import alignment, attitude
+    >>> C_bn = attitude.euler_to_dcm(np.deg2rad([30.0, 2.0, -1.0]))
+    >>> round(float(np.rad2deg(alignment.triad_heading(C_bn))), 6)
+    30.0
     """
     C = as_array(C_bn, "C_bn", tail=(3, 3), nonempty=True)
     return attitude.wrap_2pi(np.arctan2(C[..., 0, 1], C[..., 1, 1]))
 
 
 def four_position_heading(w_y: ArrayLike) -> Array:
-    """Heading from a level gyro turned to four positions 90 deg apart (turntable).
+    r"""Heading from a level gyro turned to four positions 90 deg apart (turntable).
 
     Position k has heading ``psi + k pi/2`` (turned clockwise), so
     ``w_k = w_ie cos(lat) cos(psi + k pi/2) + b``: the bias b cancels in
-    ``psi = atan2(w_3 - w_1, w_0 - w_2)``, for every psi.
+    :math:`\psi = \operatorname{atan2}(w_3 - w_1,\ w_0 - w_2)`, for every :math:`\psi`.
 
     Parameters
     ----------
@@ -493,6 +564,15 @@ def four_position_heading(w_y: ArrayLike) -> Array:
     -------
     ndarray, shape (...)
         Heading of position 0 (rad, [0, 2 pi)).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import alignment, earth
+    >>> psi, b = np.deg2rad(40.0), 1e-5                           # true heading, gyro bias (rad/s)
+    >>> w_y = earth.earth_rate_n(0.6)[1] * np.cos(psi + np.arange(4) * np.pi / 2) + b
+    >>> round(float(np.rad2deg(alignment.four_position_heading(w_y))), 6)   # the bias cancels
+    40.0
     """
     w = as_array(w_y, "w_y", tail=(4,), nonempty=True)
     return attitude.wrap_2pi(np.arctan2(w[..., 3] - w[..., 1], w[..., 0] - w[..., 2]))
@@ -504,7 +584,7 @@ def four_position_heading(w_y: ArrayLike) -> Array:
 
 
 def static_gyro_bias(w_ib_b: Vec3Series, C_bn: Dcm, lat: float) -> Array:
-    """Gyro bias from a static record: ``mean(w) - C_bn^T w_ie_n`` (rad/s).
+    r"""Gyro bias from a static record: :math:`\bar\omega - (C_b^n)^T \omega_{ie}^n` (rad/s).
 
     Parameters
     ----------
@@ -512,6 +592,15 @@ def static_gyro_bias(w_ib_b: Vec3Series, C_bn: Dcm, lat: float) -> Array:
     C_bn : array_like, shape (3, 3)
         Attitude during the record.
     lat : float  (rad)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import alignment, attitude, earth
+    >>> C_bn = attitude.euler_to_dcm([0.3, 0.0, 0.0])
+    >>> w_ib_b = earth.earth_rate_b(C_bn, 0.6) + [1e-4, -2e-4, 0.0] + np.zeros((100, 3))   # static, biased gyro
+    >>> np.round(alignment.static_gyro_bias(w_ib_b, C_bn, 0.6), 8)
+    array([ 0.0001, -0.0002,  0.    ])
     """
     w = as_array(w_ib_b, "w_ib_b", shape=(None, 3), min_ndim=1)
     C = as_dcm(C_bn, "C_bn", shape=(3, 3))

@@ -69,7 +69,14 @@ __all__ = [
 
 
 def rmse(err: ArrayLike, axis: int | tuple[int, ...] | None = 0) -> Array:
-    """Root mean square of ``err`` along ``axis`` (NaN propagates: no silent dropping)."""
+    """Root mean square of ``err`` along ``axis`` (NaN propagates: no silent dropping).
+
+    Examples
+    --------
+    >>> from navlib import analysis
+    >>> analysis.rmse([[1.0, -2.0], [-1.0, 2.0]])
+    array([1., 2.])
+    """
     err = as_array(err, "err", allow_nan=True, nonempty=True)
     if axis is not None:
         for a in axis if isinstance(axis, tuple) else (axis,):
@@ -121,6 +128,16 @@ def allan_deviation(x: ArrayLike, dt: float, taus: ArrayLike | None = None) -> t
         Averaging times actually used (s).
     adev : ndarray, shape (M,) or (..., M, k)
         Allan deviation in the units of ``x``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import analysis
+    >>> rng = np.random.default_rng(0)
+    >>> x = 0.01 * rng.standard_normal(10_000)                      # white noise, 0.01 per sample at dt = 0.1 s
+    >>> taus, adev = analysis.allan_deviation(x, 0.1, taus=[0.1, 1.0, 10.0])
+    >>> taus, np.round(adev, 4)                                       # falls as 1/sqrt(tau)
+    (array([ 0.1,  1. , 10. ]), array([0.01  , 0.0032, 0.0012]))
     """
     x = as_array(x, "x")
     dt = interval(dt)
@@ -224,6 +241,13 @@ def allan_deviation_theory(
         Gauss-Markov correlation time T_c (s).
     rate_random_walk : float
         K (units/s/sqrt(Hz)).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import analysis
+    >>> np.round(analysis.allan_deviation_theory([1.0, 100.0], white=1e-3), 6)   # N / sqrt(tau)
+    array([0.001 , 0.0001])
     """
     taus = positive(taus, "taus", nonempty=True)
     white, bias_instability, rate_random_walk = (
@@ -273,6 +297,18 @@ def fit_allan(taus: ArrayLike, adev: ArrayLike, n_samples: int, dt: float, *, ra
         ``adev``; ``evidence``: (B, K), how many standard errors of the measured deviation the fit without the
         term misses it by where the term shows (kept above :data:`ALLAN_EVIDENCE`; ``-inf`` for K when it is
         not fitted).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import analysis
+    >>> taus = np.geomspace(0.1, 100.0, 13)
+    >>> adev = analysis.allan_deviation_theory(taus, white=1e-3, bias_instability=1e-4, correlation_time=10.0)
+    >>> fit = analysis.fit_allan(taus, adev, n_samples=100_000, dt=0.01)
+    >>> sorted(fit)
+    ['bias_instability', 'correlation_time', 'evidence', 'rate_random_walk', 'white']
+    >>> round(float(fit["white"]), 6)
+    0.001001
     """
     taus = positive(taus, "taus")
     adev = positive(adev, "adev")
@@ -382,6 +418,13 @@ def attitude_errors(hpr: Angles, hpr_true: Angles) -> Array:
     Returns
     -------
     err : ndarray, shape (..., 3)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import analysis
+    >>> np.round(analysis.attitude_errors([6.2, 0.1, 0.0], [0.1, 0.1, 0.0]), 6)   # heading wraps across north
+    array([-0.183185,  0.      ,  0.      ])
     """
     a = as_array(hpr, "hpr", tail=(3,), nonempty=True)
     b = as_array(hpr_true, "hpr_true", tail=(3,), nonempty=True)
@@ -402,6 +445,16 @@ def error_statistics(hpr: Angles, hpr_true: Angles) -> tuple[Array, Array]:
     -------
     max_abs, mean_abs : ndarray, shape (..., 3)
         Largest and mean wrapped |error| over time (rad).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import analysis
+    >>> hpr_true = np.zeros((3, 3))
+    >>> hpr = np.deg2rad([[1.0, 0.0, 0.0], [-2.0, 0.5, 0.0], [0.0, 0.0, 0.0]])
+    >>> max_abs, mean_abs = analysis.error_statistics(hpr, hpr_true)
+    >>> np.round(np.rad2deg(max_abs), 6), np.round(np.rad2deg(mean_abs), 6)
+    (array([2. , 0.5, 0. ]), array([1.      , 0.166667, 0.      ]))
     """
     a = as_array(hpr, "hpr", tail=(3,), min_ndim=1)
     b = as_array(hpr_true, "hpr_true", tail=(3,), min_ndim=1)
@@ -422,6 +475,15 @@ def horizontal_error(lla: Vec3, lla_true: Vec3) -> Array:
     Returns
     -------
     en : ndarray, shape (..., N, 2)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import analysis
+    >>> lla_true = np.array([[0.6, 0.2, 0.0]])
+    >>> lla = lla_true + [[1e-6, 0.0, 0.0]]                          # 1 urad north
+    >>> np.round(analysis.horizontal_error(lla, lla_true), 3)       # east, north (m)
+    array([[0.   , 6.356]])
     """
     a = as_array(lla, "lla", tail=(3,))
     b = as_array(lla_true, "lla_true", tail=(3,))
@@ -435,7 +497,14 @@ def horizontal_error(lla: Vec3, lla_true: Vec3) -> Array:
 
 
 def expanding_std(x: ArrayLike) -> Array:
-    """Standard deviation of ``x[:k+1]`` for every k (population std), e.g. of latitude over [0, t]."""
+    """Standard deviation of ``x[:k+1]`` for every k (population std), e.g. of latitude over [0, t].
+
+    Examples
+    --------
+    >>> from navlib import analysis
+    >>> analysis.expanding_std([1.0, 3.0, 1.0, 3.0])
+    array([0.        , 1.        , 0.94280904, 1.        ])
+    """
     x = as_array(x, "x", min_ndim=1, shape=(None,))
     x = x - x[0]  # conditioning
     n = np.arange(1, x.size + 1)
@@ -456,6 +525,12 @@ def detection_rates(detected: ArrayLike, truth: ArrayLike) -> tuple[float, float
         Fraction of truly static samples declared static.
     p_false : float
         Fraction of moving samples declared static.
+
+    Examples
+    --------
+    >>> from navlib import analysis
+    >>> analysis.detection_rates([True, True, False, True], [True, True, False, False])
+    (1.0, 0.5)
     """
     d = booleans(detected, "detected", shape=(None,))
     t = same_shape(booleans(truth, "truth"), "truth", d.shape, of="detected")
@@ -465,7 +540,14 @@ def detection_rates(detected: ArrayLike, truth: ArrayLike) -> tuple[float, float
 
 
 def position_error(estimate: ArrayLike, truth: ArrayLike) -> Array:
-    """Horizontal position error (m): ``|estimate[..., :2] - truth[..., :2]|``, shape (...)."""
+    """Horizontal position error (m): ``|estimate[..., :2] - truth[..., :2]|``, shape (...).
+
+    Examples
+    --------
+    >>> from navlib import analysis
+    >>> analysis.position_error([[3.0, 4.0, 9.0]], [[0.0, 0.0, 0.0]])   # height ignored
+    array([5.])
+    """
     est = as_array(estimate, "estimate", allow_nan=True)
     tru = as_array(truth, "truth")
     for name, arr in (("estimate", est), ("truth", tru)):
@@ -493,6 +575,15 @@ def settling_time(time: Times, error: ArrayLike, start: float, tol: float, end: 
         Band that counts as converged.
     end : float, optional
         Last time considered (s), e.g. the start of the next outage; default the end of the record.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import analysis
+    >>> time = np.arange(0.0, 10.0, 1.0)
+    >>> error = 5.0 * np.exp(-time)                                  # decays after an outage that ends at t = 0
+    >>> float(analysis.settling_time(time, error, start=0.0, tol=0.1))
+    4.0
     """
     t = time_axis(time, "time")
     e = last_axis(as_array(error, "error", min_ndim=1), "error", t.size, of="time")
@@ -524,6 +615,12 @@ def segments(mask: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     Returns
     -------
     starts, ends : ndarray of int
+
+    Examples
+    --------
+    >>> from navlib import analysis
+    >>> analysis.segments([False, True, True, False, True])
+    (array([1, 4]), array([3, 5]))
     """
     m = booleans(mask, "mask", shape=(None,))
     edges = np.diff(np.concatenate([[0], m.astype(np.int8), [0]]))
@@ -534,6 +631,12 @@ def moving_mean(x: ArrayLike, n: int) -> Array:
     """Centred moving mean over ``n`` samples along axis 0 (edges use the nearest full window).
 
     ``x`` : array_like, shape (N, ...) with N >= n >= 1. Returns a float array of the same shape.
+
+    Examples
+    --------
+    >>> from navlib import analysis
+    >>> analysis.moving_mean([0.0, 3.0, 0.0, 3.0, 0.0], 3)
+    array([1., 1., 2., 1., 1.])
     """
     x = as_array(x, "x", min_ndim=1)
     n = integer(n, "n")
@@ -571,6 +674,13 @@ def normal_condition(A: ArrayLike) -> Array:
 
     ``inf`` when ``A`` is singular: an eigenvalue within the eigensolver's rounding of the largest
     (``n eps eig_max``) counts as zero, whatever its sign (which is machine-dependent noise).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import analysis
+    >>> float(analysis.normal_condition(np.diag([4.0, 1.0]))), float(analysis.normal_condition(np.diag([1.0, 0.0])))
+    (2.0, inf)
     """
     A = as_array(A, "A", min_ndim=2)
     if A.shape[-1] != A.shape[-2]:
@@ -591,6 +701,14 @@ def condition_number(V: ArrayLike) -> Array:
     """cond(V) of stacked blocks ``V_k`` (..., K, m, n): ``sqrt(eig_max / eig_min)`` of ``sum V_k^T V_k``.
 
     Blocks holding NaN are left out. ``inf`` when ``b`` is not fully observable from the blocks.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import analysis
+    >>> V = np.stack([np.eye(3)[:2], np.eye(3)[1:]])                # two blocks, each seeing two axes
+    >>> float(analysis.condition_number(V)), float(analysis.condition_number(V[:1]))   # the second alone misses z
+    (1.4142135623730951, inf)
     """
     V = _blocks(V, allow_nan=True, with_r=False)
     ok = np.all(np.isfinite(V), axis=(-2, -1))
@@ -600,7 +718,9 @@ def condition_number(V: ArrayLike) -> Array:
 
 
 def lsq_covariance(V: ArrayLike, R: ArrayLike, max_cond: float = 1e6) -> Array:
-    """Covariance of the unweighted least-squares estimate of ``b``: ``A^-1 (sum V_k^T R_k V_k) A^-1``, ``A = sum V_k^T V_k``.
+    r"""Covariance of the unweighted least-squares estimate of ``b``.
+
+    :math:`P = A^{-1} \big(\sum_k V_k^T R_k V_k\big) A^{-1}` with :math:`A = \sum_k V_k^T V_k`.
 
     Parameters
     ----------
@@ -613,6 +733,16 @@ def lsq_covariance(V: ArrayLike, R: ArrayLike, max_cond: float = 1e6) -> Array:
     Returns
     -------
     P : ndarray, shape (..., n, n)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import analysis
+    >>> V = np.stack([np.eye(2), np.eye(2)])
+    >>> R = np.stack([np.eye(2), 4 * np.eye(2)])
+    >>> np.round(analysis.lsq_covariance(V, R), 3)                  # (1 + 4) / 4: worse than the weighted bound 0.8
+    array([[1.25, 0.  ],
+           [0.  , 1.25]])
     """
     V, R = _blocks(V, R)
     max_cond = scalar(max_cond, "max_cond", positive=True, allow_inf=True)
@@ -624,7 +754,7 @@ def lsq_covariance(V: ArrayLike, R: ArrayLike, max_cond: float = 1e6) -> Array:
 
 
 def cramer_rao_bound(V: ArrayLike, R: ArrayLike, max_cond: float = 1e6) -> Array:
-    """Cramer-Rao bound of ``b`` from stacked blocks: ``(sum V_k^T R_k^-1 V_k)^-1``.
+    r"""Cramer-Rao bound of ``b`` from stacked blocks: :math:`\big(\sum_k V_k^T R_k^{-1} V_k\big)^{-1}`.
 
     Parameters
     ----------
@@ -639,6 +769,16 @@ def cramer_rao_bound(V: ArrayLike, R: ArrayLike, max_cond: float = 1e6) -> Array
     P : ndarray, shape (..., n, n)
         Lower bound on the covariance of any unbiased estimate; ``inf`` on the diagonal (NaN off it)
         where ``b`` is not observable.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import analysis
+    >>> V = np.stack([np.eye(2), np.eye(2)])                       # b observed twice
+    >>> R = np.stack([np.eye(2), 4 * np.eye(2)])                    # noise variances 1 and 4
+    >>> np.round(analysis.cramer_rao_bound(V, R), 3)               # 1 / (1 + 1/4)
+    array([[0.8, 0. ],
+           [0. , 0.8]])
     """
     V, R = _blocks(V, R)
     max_cond = scalar(max_cond, "max_cond", positive=True, allow_inf=True)
@@ -673,6 +813,17 @@ def footfall_path_length(pos_n: ArrayLike, stance: ArrayLike, *, min_samples: in
         Sum of the stride lengths (m); 0 with fewer than two footfalls.
     footfalls : ndarray, shape (K, 2)
         Horizontal position of each footfall (m).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import analysis
+    >>> pos_n = np.array([[0.0, 0.0, 0.0], [0.0, 0.0, 0.0], [0.5, 0.1, 0.2], [1.2, 0.0, 0.0], [1.2, 0.0, 0.0]])
+    >>> stance = np.array([True, True, False, True, True])         # two footfalls, one stride between
+    >>> length, footfalls = analysis.footfall_path_length(pos_n, stance)
+    >>> round(length, 6), footfalls
+    (1.2, array([[0. , 0. ],
+           [1.2, 0. ]]))
     """
     p = as_array(pos_n, "pos_n", min_ndim=2)
     if p.ndim != 2 or p.shape[1] not in (2, 3):
@@ -701,6 +852,16 @@ class OrientationErrors:
         The constant heading offset removed before scoring (rad; 0 when not removed).
     samples : int
         Number of samples scored (masked in, with a reference).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import analysis, attitude
+    >>> q_ref = attitude.euler_to_quat(np.deg2rad([[10.0, 0.0, 0.0], [20.0, 5.0, 0.0]]))
+    >>> q_bn = attitude.euler_to_quat(np.deg2rad([[13.0, 0.0, 0.0], [23.0, 5.0, 2.0]]))   # 3 deg heading offset, 2 deg roll error
+    >>> err = analysis.orientation_errors(q_bn, q_ref, remove_heading_offset=False)
+    >>> round(float(np.rad2deg(err.heading)), 3), round(float(np.rad2deg(err.inclination)), 3), err.samples
+    (2.914, 1.409, 2)
     """
 
     total: float
@@ -741,6 +902,16 @@ def orientation_errors(
     ------
     ValueError
         If no sample is both masked in and has a reference, or ``q_bn`` has NaN there.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import analysis, attitude
+    >>> q_ref = attitude.euler_to_quat(np.deg2rad([[10.0, 0.0, 0.0], [20.0, 5.0, 0.0]]))
+    >>> q_bn = attitude.euler_to_quat(np.deg2rad([[13.0, 0.0, 0.0], [23.0, 5.0, 0.0]]))   # a constant 3 deg heading offset
+    >>> err = analysis.orientation_errors(q_bn, q_ref)               # the offset is removed by default
+    >>> round(float(np.rad2deg(err.heading_offset)), 3), round(float(np.rad2deg(err.total)), 3)
+    (-3.0, 0.0)
     """
     q_bn = as_array(q_bn, "q_bn", tail=(4,), shape=(None, 4), allow_nan=True)
     q_ref = as_array(q_ref, "q_ref", tail=(4,), shape=(q_bn.shape[0], 4), allow_nan=True, of="q_bn")

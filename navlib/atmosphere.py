@@ -1,14 +1,14 @@
-"""Barometric altitude: the ISA troposphere and the BMP180 datasheet formula.
+r"""Barometric altitude: the ISA troposphere and the BMP180 datasheet formula.
 
 * ISA (ICAO Doc 7488 = US Standard Atmosphere 1976, troposphere):
-  ``h = T0/L (1 - (p/p0)^(R L / g0))`` with T0 = 288.15 K, L = 0.0065 K/m,
+  :math:`h = \frac{T_0}{L} \big(1 - (p/p_0)^{R L / g_0}\big)` with T0 = 288.15 K, L = 0.0065 K/m,
   R = 287.05287 J/(kg K), g0 = 9.80665 m/s^2 (exponent 0.190263).
 * BMP180 datasheet (BST-BMP180-DS000-09 sec. 3.6), with rounded constants:
-  ``h = 44330 (1 - (p/p0)^(1/5.255))``. It differs from ISA by +0.14 m at
+  :math:`h = 44330\, \big(1 - (p/p_0)^{1/5.255}\big)`. It differs from ISA by +0.14 m at
   1 km. The datasheet's "1 hPa = 8.43 m" does not follow from its own
   formula (dh/dp at p0 is 8.33 m/hPa).
 * Hypsometric relative height with a measured temperature:
-  ``dh = R T / g0 ln(p_ref / p)`` (paper 004 §"barometer"; the
+  :math:`\Delta h = \frac{R T}{g_0} \ln(p_{ref} / p)` (paper 004 §"barometer"; the
   hypsometric equation of any meteorology text).
 
 Heights are geopotential metres, pressures Pa, temperatures K.
@@ -69,6 +69,13 @@ def isa_altitude(p: ArrayLike, p0: ArrayLike = P0) -> Array:
     """ISA geopotential altitude (m) from pressure ``p`` (Pa) with reference ``p0`` (Pa).
 
     Valid in the troposphere (below 11 km, p > 22632 Pa for p0 = 101325).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import atmosphere
+    >>> np.round(atmosphere.isa_altitude([101325.0, 89874.6]), 1)
+    array([   0., 1000.])
     """
     p, p0 = positive(p, "p"), positive(p0, "p0")
     in_range(p / p0, "p", _P_11KM / P0 * (1 - 1e-12), 1.2, "(fraction of p0)")
@@ -76,13 +83,29 @@ def isa_altitude(p: ArrayLike, p0: ArrayLike = P0) -> Array:
 
 
 def isa_pressure(h: ArrayLike, p0: ArrayLike = P0) -> Array:
-    """ISA pressure (Pa) at geopotential altitude ``h`` (m, -1 km to 11 km)."""
+    """ISA pressure (Pa) at geopotential altitude ``h`` (m, -1 km to 11 km).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import atmosphere
+    >>> np.round(atmosphere.isa_pressure([0.0, 1000.0]), 1)
+    array([101325. ,  89874.6])
+    """
     h = in_range(as_array(h, "h"), "h", -1000.0, 11000.0, "m")
     return positive(p0, "p0") * (1 - LAPSE * h / T0) ** (1 / _EXP)
 
 
 def bmp180_altitude(p: ArrayLike, p0: ArrayLike = P0) -> Array:
-    """Altitude (m) by the BMP180 datasheet formula ``44330 (1 - (p/p0)^(1/5.255))``."""
+    """Altitude (m) by the BMP180 datasheet formula ``44330 (1 - (p/p0)^(1/5.255))``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import atmosphere
+    >>> np.round(atmosphere.bmp180_altitude([101325.0, 90000.0]), 1)
+    array([  0. , 988.6])
+    """
     return _bmp180_altitude(positive(p, "p"), positive(p0, "p0"))
 
 
@@ -91,13 +114,21 @@ def _bmp180_altitude(p: np.ndarray, p0: np.ndarray) -> Array:
 
 
 def bmp180_pressure(h: ArrayLike, p0: ArrayLike = P0) -> Array:
-    """Inverse of :func:`bmp180_altitude`: ``p0 (1 - h/44330)^5.255`` (Pa)."""
+    """Inverse of :func:`bmp180_altitude`: ``p0 (1 - h/44330)^5.255`` (Pa).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import atmosphere
+    >>> np.round(atmosphere.bmp180_pressure([0.0, 1000.0]), 1)
+    array([101325. ,  89876.2])
+    """
     h = in_range(as_array(h, "h"), "h", -1000.0, 11000.0, "m")
     return positive(p0, "p0") * (1 - h / 44330.0) ** 5.255
 
 
 def hypsometric_height(p: ArrayLike, p_ref: ArrayLike, temperature: ArrayLike) -> Array:
-    """Height above the reference level (m): ``R T / g0 ln(p_ref / p)``.
+    r"""Height above the reference level (m): :math:`\frac{R T}{g_0} \ln(p_{ref} / p)`.
 
     Parameters
     ----------
@@ -105,6 +136,12 @@ def hypsometric_height(p: ArrayLike, p_ref: ArrayLike, temperature: ArrayLike) -
         Pressure and reference pressure (Pa).
     temperature : array_like
         Mean air temperature of the layer (K).
+
+    Examples
+    --------
+    >>> from navlib import atmosphere
+    >>> round(float(atmosphere.hypsometric_height(90000.0, 101325.0, 288.15)), 1)
+    999.7
     """
     p, p_ref = positive(p, "p"), positive(p_ref, "p_ref")
     return _hypsometric_height(p, p_ref, _temperature(temperature, p, p_ref))
@@ -144,6 +181,13 @@ def bmp180_compensate(UT: int, UP: int, calib: dict[str, int], oss: int = 0) -> 
     T, p : int
         Temperature in 0.1 degC and pressure in Pa, as the device computes them
         (C semantics: divisions truncate toward zero, right shifts are arithmetic).
+
+    Examples
+    --------
+    >>> from navlib import atmosphere
+    >>> calib = dict(AC1=408, AC2=-72, AC3=-14383, AC4=32741, AC5=32757, AC6=23153, B1=6190, B2=4, MB=-32768, MC=-8711, MD=2868)
+    >>> atmosphere.bmp180_compensate(27898, 23843, calib, oss=0)     # the datasheet's worked example: 15.0 degC, 69964 Pa
+    (150, 69964)
     """
     choice(oss, "oss", (0, 1, 2, 3))
     instance(calib, "calib", dict, "a dict of calibration coefficients")
@@ -199,6 +243,15 @@ def baro_height(p: ArrayLike, p_ref: ArrayLike, temperature: ArrayLike | None = 
         (one per trial of a (T, N) batch: shape (T, 1)).
     temperature : array_like, optional
         Air temperature (K).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import atmosphere
+    >>> np.round(atmosphere.baro_height([101325.0, 101289.0], p_ref=101325.0), 2)   # one floor up: about 36 Pa less
+    array([0., 3.])
+    >>> np.round(atmosphere.baro_height([101325.0, 101289.0], p_ref=101325.0, temperature=293.15), 2)
+    array([0.  , 3.05])
     """
     p = positive(p, "p", nonempty=True)
     p, p_ref = broadcast(p, positive(p_ref, "p_ref"), name="p_ref", of="p")
@@ -220,6 +273,14 @@ def reference_pressure(p: ArrayLike, time: Times, until: float) -> float | Array
     Returns
     -------
     float, or ndarray of shape (...) for a batch of series
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import atmosphere
+    >>> time = np.arange(5.0)
+    >>> atmosphere.reference_pressure([100000.0, 100002.0, np.nan, 99960.0, 99950.0], time, until=2.0)   # NaN ignored
+    100001.0
     """
     t = time_axis(time, "time", min_samples=1)
     p = last_axis(as_array(p, "p", allow_nan=True), "p", t.size, of="time")
@@ -241,7 +302,14 @@ def reference_pressure(p: ArrayLike, time: Times, until: float) -> float | Array
 
 
 def classify_floor(h: ArrayLike, floor_height: float = 3.0, ref_floor: int = 0) -> np.ndarray:
-    """Floor index ``ref_floor + round(h / floor_height)`` from a relative height (m)."""
+    """Floor index ``ref_floor + round(h / floor_height)`` from a relative height (m).
+
+    Examples
+    --------
+    >>> from navlib import atmosphere
+    >>> atmosphere.classify_floor([0.2, 3.1, 5.8, -2.9], floor_height=3.0)
+    array([ 0,  1,  2, -1])
+    """
     h = as_array(h, "h")
     hf = scalar(floor_height, "floor_height", positive=True)
     return integer(ref_floor, "ref_floor", minimum=None) + np.round(h / hf).astype(int)
@@ -263,6 +331,15 @@ def segment_floors(
     starts, ends : ndarray of int, shape (K,)
         Sample index of each segment's first sample and one past its last.
     floors : ndarray of int, shape (..., K)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import atmosphere
+    >>> h = np.array([0.1, 0.0, 1.5, 3.1, 3.0, 2.9])
+    >>> static = np.array([True, True, False, True, True, True])
+    >>> atmosphere.segment_floors(h, static)
+    (array([0, 3]), array([2, 6]), array([0, 1]))
     """
     h = as_array(h, "h", allow_nan=True)
     s = booleans(static, "static", shape=h.shape[-1:] or (None,), of="the last axis of h")

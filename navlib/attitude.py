@@ -1,20 +1,21 @@
-"""Attitude representations: rotation matrices, quaternions, Euler angles.
+r"""Attitude representations: rotation matrices, quaternions, Euler angles.
 
 One convention for the whole library (see :mod:`navlib` and notebook 00):
 
 * ``C_bn`` is the body-to-navigation rotation matrix C_b^n: ``v_n = C_bn @ v_b``.
   Its columns are the body axes (right, front, up) expressed in ENU; its rows
   are the ENU axes in body coordinates.
-* Euler angles ``hpr = [heading, pitch, roll]`` follow paper 000 Eq. (3)::
+* Euler angles ``hpr = [heading, pitch, roll]`` follow paper 000 Eq. (3),
+  ``C_bn = rot(z, -heading) @ rot(x, pitch) @ rot(y, roll)``:
 
-      C_bn = rot(z, -heading) @ rot(x, pitch) @ rot(y, roll)
+  .. math:: C_b^n = R_z(-\psi)\, R_x(\theta)\, R_y(\gamma)
 
-  heading in [0, 2*pi) clockwise from north, pitch in [-pi/2, pi/2] nose up,
+  with heading :math:`\psi` in [0, 2*pi) clockwise from north, pitch in [-pi/2, pi/2] nose up,
   roll in (-pi, pi] right side down. ``rot`` is the ordinary active rotation.
 * Quaternions are scalar first, ``q = [q0, q1, q2, q3]``, Hamilton product,
-  and represent the same rotation: ``v_n = q (x) v_b (x) q*``.
+  and represent the same rotation: :math:`v^n = q \otimes v^b \otimes q^*`.
 * Rotation vectors ``rv`` (axis times angle, rad) map through the exponential:
-  ``rotvec_to_dcm(rv) = expm(skew(rv))``.
+  ``rotvec_to_dcm(rv)`` is :math:`\exp([\mathbf{r}\times])`.
 
 All functions broadcast over leading axes: vectors are ``(..., 3)``, matrices
 ``(..., 3, 3)``, quaternions ``(..., 4)``, Euler triplets ``(..., 3)``.
@@ -65,14 +66,30 @@ MAX_ROTVEC_ANGLE = 1e12
 
 
 def wrap_pi(angle: Angles) -> Array:
-    """Wrap angles (rad) into (-pi, pi]; NaN (a dropout) stays NaN."""
+    """Wrap angles (rad) into (-pi, pi]; NaN (a dropout) stays NaN.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> np.round(attitude.wrap_pi([4.0, -4.0, np.nan]), 6)
+    array([-2.283185,  2.283185,       nan])
+    """
     a = as_array(angle, "angle", allow_nan=True)
     w = np.mod(a + np.pi, 2 * np.pi) - np.pi
     return np.where(w == -np.pi, np.pi, w)
 
 
 def wrap_2pi(angle: Angles) -> Array:
-    """Wrap angles (rad) into [0, 2*pi); NaN (a dropout) stays NaN."""
+    """Wrap angles (rad) into [0, 2*pi); NaN (a dropout) stays NaN.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> np.round(attitude.wrap_2pi([-0.5, 7.0, np.nan]), 6)
+    array([5.783185, 0.716815,      nan])
+    """
     w = np.mod(as_array(angle, "angle", allow_nan=True), 2 * np.pi)
     return np.where(w >= 2 * np.pi, 0.0, w)
 
@@ -87,6 +104,14 @@ def skew(v: Vec3) -> Array:
     Returns
     -------
     ndarray, shape (..., 3, 3)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> a, b = np.array([1.0, 2.0, 3.0]), np.array([0.0, 1.0, 0.0])
+    >>> attitude.skew(a) @ b, np.cross(a, b)
+    (array([-3.,  0.,  1.]), array([-3.,  0.,  1.]))
     """
     v = as_array(v, "v", tail=(3,))
     x, y, z = v[..., 0], v[..., 1], v[..., 2]
@@ -106,6 +131,13 @@ def rot(axis: str, angle: Angles, deg: bool = False) -> Array:
     Returns
     -------
     ndarray, shape (..., 3, 3)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> np.round(attitude.rot("z", 90.0, deg=True) @ [1.0, 0.0, 0.0], 12)
+    array([0., 1., 0.])
     """
     if axis not in _AXES:
         raise ValueError(f"axis: expected 'x', 'y' or 'z', got {axis!r}")
@@ -135,6 +167,15 @@ def orthonormalize(C: Dcm) -> Array:
     -------
     ndarray, shape (..., 3, 3)
         ``U diag(1, 1, det(U V^T)) V^T``; a proper rotation.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> C = attitude.rot("z", 0.3) + 1e-3                           # a noisy rotation matrix
+    >>> R = attitude.orthonormalize(C)
+    >>> bool(np.allclose(R @ R.T, np.eye(3))), round(float(np.linalg.det(R)), 12)
+    (True, 1.0)
     """
     C = as_array(C, "C", tail=(3, 3))
     U, _, Vt = np.linalg.svd(C)
@@ -164,6 +205,14 @@ def euler_to_dcm(hpr: Angles, deg: bool = False) -> Array:
     Returns
     -------
     C_bn : ndarray, shape (..., 3, 3)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> C_bn = attitude.euler_to_dcm([90.0, 0.0, 0.0], deg=True)   # facing east
+    >>> np.round(C_bn @ [0.0, 1.0, 0.0], 12)                      # the forward axis points east (ENU)
+    array([1., 0., 0.])
     """
     h, p, r = np.moveaxis(_as_hpr(hpr, deg), -1, 0)
     ch, sh, cp, sp, cr, sr = np.cos(h), np.sin(h), np.cos(p), np.sin(p), np.cos(r), np.sin(r)
@@ -191,6 +240,14 @@ def dcm_to_euler(C_bn: Dcm, deg: bool = False) -> Array:
     -------
     hpr : ndarray, shape (..., 3)
         rad, or deg with ``deg=True``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> C_bn = attitude.euler_to_dcm([30.0, 10.0, -5.0], deg=True)
+    >>> np.round(attitude.dcm_to_euler(C_bn, deg=True), 6)
+    array([30., 10., -5.])
     """
     return _dcm_to_euler(as_dcm(C_bn), flag(deg, "deg"))
 
@@ -211,10 +268,10 @@ def _dcm_to_euler(C, deg):
 
 
 def euler_to_quat(hpr: Angles, deg: bool = False) -> Array:
-    """Quaternion q_b^n from heading, pitch, roll.
+    r"""Quaternion q_b^n from heading, pitch, roll.
 
     ``q = q_z(-heading) (x) q_x(pitch) (x) q_y(roll)`` with
-    ``q_a(t) = [cos(t/2), sin(t/2) e_a]`` (paper 003 Eq. 1 with its phi = heading).
+    :math:`q_a(t) = [\cos(t/2),\ \sin(t/2)\, e_a]` (paper 003 Eq. 1 with its :math:`\phi` = heading).
 
     Parameters
     ----------
@@ -247,7 +304,15 @@ def _positive_scalar(q):
 
 
 def quat_to_euler(q: Quat, deg: bool = False) -> Array:
-    """Heading, pitch, roll from a quaternion q_b^n; shape (..., 4) -> (..., 3)."""
+    """Heading, pitch, roll from a quaternion q_b^n; shape (..., 4) -> (..., 3).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> np.round(attitude.quat_to_euler([np.cos(np.pi / 8), 0.0, 0.0, -np.sin(np.pi / 8)], deg=True), 6)
+    array([45.,  0.,  0.])
+    """
     return _dcm_to_euler(quat_to_dcm(q), flag(deg, "deg"))  # a normalised quaternion's matrix is valid
 
 
@@ -262,6 +327,15 @@ def quat_to_dcm(q: Quat) -> Array:
     Returns
     -------
     C_bn : ndarray, shape (..., 3, 3)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> np.round(attitude.quat_to_dcm([np.cos(np.pi / 4), 0.0, 0.0, np.sin(np.pi / 4)]), 12)   # 90 deg about z
+    array([[ 0., -1.,  0.],
+           [ 1.,  0.,  0.],
+           [ 0.,  0.,  1.]])
     """
     q = as_quat(q)
     return _quat_to_dcm_batch(q.reshape(-1, 4)).reshape(q.shape[:-1] + (3, 3))
@@ -277,6 +351,13 @@ def dcm_to_quat(C_bn: Dcm) -> Array:
     Returns
     -------
     q : ndarray, shape (..., 4)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> np.round(attitude.dcm_to_quat(attitude.rot("z", 90.0, deg=True)), 4)
+    array([0.7071, 0.    , 0.    , 0.7071])
     """
     C = as_dcm(C_bn)
     tr = np.trace(C, axis1=-2, axis2=-1)
@@ -327,7 +408,16 @@ def dcm_to_quat(C_bn: Dcm) -> Array:
 
 
 def quat_mult(p: Quat, q: Quat) -> Array:
-    """Hamilton product ``p (x) q``; shapes (..., 4) broadcast."""
+    r"""Hamilton product :math:`p \otimes q`; shapes (..., 4) broadcast.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> qz = attitude.rotvec_to_quat([0.0, 0.0, np.pi / 2])        # a quarter turn about z
+    >>> np.round(attitude.quat_mult(qz, qz), 12)                   # two of them: a half turn
+    array([0., 0., 0., 1.])
+    """
     p = as_array(p, "p", tail=(4,))
     q = as_array(q, "q", tail=(4,))
     p0, p1, p2, p3 = np.moveaxis(p, -1, 0)
@@ -344,13 +434,27 @@ def quat_mult(p: Quat, q: Quat) -> Array:
 
 
 def quat_conj(q: Quat) -> Array:
-    """Conjugate ``[q0, -q1, -q2, -q3]``; for unit q the inverse rotation."""
+    """Conjugate ``[q0, -q1, -q2, -q3]``; for unit q the inverse rotation.
+
+    Examples
+    --------
+    >>> from navlib import attitude
+    >>> attitude.quat_conj([0.5, 0.5, 0.5, 0.5])
+    array([ 0.5, -0.5, -0.5, -0.5])
+    """
     q = as_array(q, "q", tail=(4,))
     return q * np.array([1.0, -1.0, -1.0, -1.0])
 
 
 def quat_normalize(q: Quat) -> Array:
-    """Unit quaternion with q0 >= 0; shape (..., 4)."""
+    """Unit quaternion with q0 >= 0; shape (..., 4).
+
+    Examples
+    --------
+    >>> from navlib import attitude
+    >>> attitude.quat_normalize([-2.0, 0.0, 0.0, 0.0])
+    array([ 1., -0., -0., -0.])
+    """
     return _positive_scalar(as_quat(q))
 
 
@@ -384,7 +488,15 @@ def quat_rotate(q: Quat, v_b: Vec3) -> Array:
 
 
 def rotvec_to_quat(rv: Vec3) -> Array:
-    """Quaternion of the rotation vector ``rv`` (rad), shape (..., 3) -> (..., 4)."""
+    """Quaternion of the rotation vector ``rv`` (rad), shape (..., 3) -> (..., 4).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> np.round(attitude.rotvec_to_quat([0.0, 0.0, np.pi / 2]), 6)
+    array([0.707107, 0.      , 0.      , 0.707107])
+    """
     rv = as_array(rv, "rv", tail=(3,), huge=True)
     if np.any(np.abs(rv) > MAX_ROTVEC_ANGLE):
         raise ValueError(
@@ -399,7 +511,15 @@ def rotvec_to_quat(rv: Vec3) -> Array:
 
 
 def quat_to_rotvec(q: Quat) -> Array:
-    """Rotation vector (rad, angle in [0, pi]) of quaternion q, shape (..., 4) -> (..., 3)."""
+    """Rotation vector (rad, angle in [0, pi]) of quaternion q, shape (..., 4) -> (..., 3).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> np.round(attitude.quat_to_rotvec([np.cos(0.15), np.sin(0.15), 0.0, 0.0]), 6)
+    array([0.3, 0. , 0. ])
+    """
     q = quat_normalize(q)
     s = np.linalg.norm(q[..., 1:], axis=-1, keepdims=True)
     angle = 2 * np.arctan2(s, q[..., :1])
@@ -408,12 +528,30 @@ def quat_to_rotvec(q: Quat) -> Array:
 
 
 def rotvec_to_dcm(rv: Vec3) -> Array:
-    """Rotation matrix ``expm(skew(rv))`` (Rodrigues), shape (..., 3) -> (..., 3, 3)."""
+    r"""Rotation matrix :math:`\exp([\mathbf{r}\times])` (Rodrigues), shape (..., 3) -> (..., 3, 3).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> np.round(attitude.rotvec_to_dcm([0.0, 0.0, np.pi / 2]), 12)
+    array([[ 0., -1.,  0.],
+           [ 1.,  0.,  0.],
+           [ 0.,  0.,  1.]])
+    """
     return quat_to_dcm(rotvec_to_quat(rv))
 
 
 def dcm_to_rotvec(C: Dcm) -> Array:
-    """Rotation vector (matrix logarithm) of rotation matrices, (..., 3, 3) -> (..., 3)."""
+    """Rotation vector (matrix logarithm) of rotation matrices, (..., 3, 3) -> (..., 3).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> np.round(attitude.dcm_to_rotvec(attitude.rot("x", 0.3)), 6)
+    array([0.3, 0. , 0. ])
+    """
     return quat_to_rotvec(dcm_to_quat(as_dcm(C, "C")))
 
 
@@ -444,6 +582,12 @@ def ned_to_enu(v: Vec3) -> Array:
     """A navigation-frame vector (..., 3) from NED to ENU; the same swap takes FRD body vectors to RFU.
 
     Its own inverse: ``ned_to_enu(ned_to_enu(v)) == v`` (so it also maps ENU to NED and RFU to FRD).
+
+    Examples
+    --------
+    >>> from navlib import attitude
+    >>> attitude.ned_to_enu([1.0, 2.0, 3.0])                        # north, east, down -> east, north, up
+    array([ 2.,  1., -3.])
     """
     v = as_array(v, "v", tail=(3,), allow_nan=True)
     return np.stack([v[..., 1], v[..., 0], -v[..., 2]], -1)
@@ -460,6 +604,14 @@ def ned_to_enu_dcm(C_ned: Dcm) -> Array:
     -------
     C_bn : ndarray, shape (..., 3, 3)
         ``M C_ned M`` (:data:`M_NED_ENU`); applied to an ENU/RFU matrix it gives the NED/FRD one.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> C_ned = attitude.rot("z", 30.0, deg=True)                   # yaw 30 deg in NED/FRD
+    >>> np.round(attitude.dcm_to_euler(attitude.ned_to_enu_dcm(C_ned), deg=True), 6)
+    array([30.,  0.,  0.])
     """
     C = as_dcm(C_ned, "C_ned")
     return M_NED_ENU @ C @ M_NED_ENU
@@ -479,6 +631,14 @@ def ned_to_enu_quat(q_ned: Quat) -> Array:
     Returns
     -------
     q_bn : ndarray, shape (..., 4)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> q_ned = attitude.dcm_to_quat(attitude.rot("z", 30.0, deg=True))
+    >>> np.round(attitude.quat_to_euler(attitude.ned_to_enu_quat(q_ned), deg=True), 6)
+    array([30.,  0.,  0.])
     """
     q = as_quat(q_ned, "q_ned")
     return np.stack([q[..., 0], q[..., 2], q[..., 1], -q[..., 3]], -1)
@@ -488,6 +648,13 @@ def ypr_to_hpr(ypr: Angles, deg: bool = False) -> Array:
     """navlib's ``[heading, pitch, roll]`` from aerospace ``[yaw, pitch, roll]`` (ZYX, FRD to NED).
 
     The angles are the same; the heading is wrapped to [0, 2 pi) (or [0, 360) deg with ``deg=True``).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> np.round(attitude.ypr_to_hpr([-30.0, 10.0, -5.0], deg=True), 6)
+    array([330.,  10.,  -5.])
     """
     a = np.array(_as_hpr(ypr, deg, "ypr"), dtype=float)
     a[..., 0] = wrap_2pi(a[..., 0])
@@ -495,7 +662,15 @@ def ypr_to_hpr(ypr: Angles, deg: bool = False) -> Array:
 
 
 def hpr_to_ypr(hpr: Angles, deg: bool = False) -> Array:
-    """Aerospace ``[yaw, pitch, roll]`` (ZYX, FRD to NED; yaw in (-pi, pi]) from navlib's ``[heading, pitch, roll]``."""
+    """Aerospace ``[yaw, pitch, roll]`` (ZYX, FRD to NED; yaw in (-pi, pi]) from navlib's ``[heading, pitch, roll]``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> np.round(attitude.hpr_to_ypr([30.0, 10.0, -5.0], deg=True), 6)
+    array([30., 10., -5.])
+    """
     a = np.array(_as_hpr(hpr, deg), dtype=float)
     a[..., 0] = wrap_pi(a[..., 0])
     return np.rad2deg(a) if deg else a
@@ -514,6 +689,13 @@ def mount_matrix(axes: str | Dcm) -> Array:
     Returns
     -------
     C_bs : ndarray, shape (3, 3)
+
+    Examples
+    --------
+    >>> from navlib import attitude
+    >>> C_bs = attitude.mount_matrix("-y,x,z")                      # body x is sensor -y, body y is sensor x
+    >>> C_bs @ [1.0, 2.0, 3.0]
+    array([-2.,  1.,  3.])
     """
     if not isinstance(axes, str):
         return as_dcm(as_array(axes, "axes", shape=(3, 3)), "axes")

@@ -1,17 +1,18 @@
-"""Sensor calibration and "characterise my IMU": ellipsoid, multi-position and Allan-deviation fits.
+r"""Sensor calibration and "characterise my IMU": ellipsoid, multi-position and Allan-deviation fits.
 
 Magnetometer: hard and soft iron (:func:`fit_magnetometer`)
-    Model ``m_raw = W m + b`` with the hard-iron offset ``b`` (3,) and a symmetric positive-definite
+    Model :math:`m_{raw} = W m + b` with the hard-iron offset ``b`` (3,) and a symmetric positive-definite
     soft-iron matrix ``W`` (3, 3) (the model of :class:`navlib.sensors.MagnetometerModel`), corrected by
-    ``m_cal = W^-1 (m_raw - b)``. As the sensor turns, ``|m_cal| = F`` (the field strength), so the raw
-    samples lie on the ellipsoid ``(m_raw - b)^T A (m_raw - b) = 1`` with ``A = W^-2 / F^2``. The
+    :math:`m_{cal} = W^{-1} (m_{raw} - b)`. As the sensor turns, :math:`\lVert m_{cal} \rVert = F` (the field
+    strength), so the raw samples lie on the ellipsoid :math:`(m_{raw} - b)^T A\, (m_{raw} - b) = 1` with
+    :math:`A = W^{-2} / F^2`. The
     ellipsoid is fitted algebraically to the general quadric
     ``v1 x^2 + v2 y^2 + v3 z^2 + 2 v4 yz + 2 v5 xz + 2 v6 xy + 2 v7 x + 2 v8 y + 2 v9 z + v10 = 0`` by least
     squares under the ellipsoid-specific constraint ``4J - I^2 = 1`` (``I = v1 + v2 + v3``,
     ``J = v1 v2 + v2 v3 + v1 v3 - v4^2 - v5^2 - v6^2``), a generalised eigenproblem whose one positive
     eigenvalue gives the fit (Li & Griffiths 2004); the samples are centred and scaled first, which leaves
     the fitted ellipsoid unchanged. Then ``b = -A3^-1 [v7, v8, v9]`` for the quadratic part ``A3``, and
-    ``W^-1 = F sqrt(A)`` with the symmetric square root: of all correction matrices ``R W^-1`` (R any
+    :math:`W^{-1} = F \sqrt{A}` with the symmetric square root: of all correction matrices ``R W^-1`` (R any
     rotation) the symmetric one does not rotate the sensor frame. ``F`` and ``W`` are only determined
     together: with a known ``field_strength`` (e.g. :func:`navlib.earth.magnetic_field`) ``F`` is that
     value; without, ``F = det(A)^(-1/6)`` so that ``det W = 1`` (soft iron redistributes the field between
@@ -169,6 +170,14 @@ class MagCalibration:
     condition : float
         Condition number of the fit at the solution (``MAX_MAG_CONDITION``): how well the samples' coverage
         of orientations determines offset and soft iron.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import calibration
+    >>> cal = calibration.MagCalibration(offset=np.array([5.0, -3.0, 1.0]), soft_iron=np.eye(3), field_strength=50.0)
+    >>> cal.soft_iron @ ([5.0, 47.0, 1.0] - cal.offset)             # m_cal = W^-1 (m_raw - b)
+    array([ 0., 50.,  0.])
     """
 
     offset: np.ndarray
@@ -275,6 +284,17 @@ def fit_magnetometer(
         range of orientations (``MAX_MAG_CONDITION``), samples that no ellipsoid fits, a fit that leaves
         ``|m|`` no more constant than it was (a degenerate fit), or a fitted field strength outside
         ``field_range``. Each message says what to record instead.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import calibration, attitude
+    >>> hpr = np.deg2rad([[h, p, 0.0] for h in range(0, 360, 45) for p in (-60, 0, 60)])   # 24 orientations
+    >>> d = attitude.quat_rotate(attitude.euler_to_quat(hpr), [0.0, 1.0, 0.0])   # field directions in the sensor frame
+    >>> m_raw = 50.0 * d * [1.1, 0.9, 1.0] + [5.0, -3.0, 1.0]       # soft iron (scales) and hard iron (offset), uT
+    >>> cal = calibration.fit_magnetometer(m_raw, field_strength=50.0)
+    >>> np.round(cal.offset, 3), round(float(cal.norm_spread_after), 6)
+    (array([ 5., -3.,  1.]), 0.0)
     """
     m = as_array(m_b, "m_b", shape=(None, 3))
     if m.shape[0] < 9:
@@ -366,6 +386,14 @@ class AccelCalibration:
         RMS of ``|f_cal| - g`` over the positions (m/s^2).
     condition : float
         Condition number of the fit's Jacobian (bias in units of g); see ``MAX_ACCEL_CONDITION``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import calibration
+    >>> cal = calibration.AccelCalibration(bias=np.array([0.1, 0.0, -0.05]), matrix=np.diag([1.01, 0.99, 1.0]))
+    >>> np.round(cal.matrix @ ([0.1, 0.0, 9.75665] - cal.bias), 5)   # f_cal = S (f_raw - b)
+    array([0.     , 0.     , 9.80665])
     """
 
     bias: np.ndarray
@@ -451,6 +479,16 @@ def fit_accelerometer(f_means: Vec3Series, g: float = units.G0, *, misalignment:
     ValueError
         Too few positions, NaN or inf, a zero mean, or orientations that do not determine the unknowns
         (Jacobian condition number above ``MAX_ACCEL_CONDITION``).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import calibration
+    >>> f_true = 9.80665 * np.vstack([np.eye(3), -np.eye(3)])        # each axis up, then down
+    >>> f_means = f_true / [1.02, 0.98, 1.0] + [0.1, -0.2, 0.05]     # scale factors and biases
+    >>> cal = calibration.fit_accelerometer(f_means)
+    >>> np.round(cal.bias, 6), np.round(np.diag(cal.matrix), 6)
+    (array([ 0.1 , -0.2 ,  0.05]), array([1.02, 0.98, 1.  ]))
     """
     f = as_array(f_means, "f_means", shape=(None, 3))
     g = scalar(g, "g", positive=True)
@@ -508,6 +546,16 @@ def gyro_bias_at_rest(w_ib_b: Vec3Series, lat: float | None = None, C_bn: Dcm | 
     std_error : ndarray, shape (..., 3)
         White-noise standard error of the mean, ``std(w_ib_b) / sqrt(N)`` (rad/s). Optimistic when the
         record is longer than the Allan-deviation minimum (bias instability then dominates).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import calibration, attitude, earth
+    >>> C_bn = attitude.euler_to_dcm([0.3, 0.0, 0.0])
+    >>> w = earth.earth_rate_b(C_bn, 0.6) + [1e-4, -2e-4, 0.0] + 1e-5 * np.sin(np.arange(200.0))[:, None]
+    >>> bias, std_err = calibration.gyro_bias_at_rest(w, lat=0.6, C_bn=C_bn)
+    >>> np.round(bias, 6), np.round(std_err * 1e7, 2)                # rad/s; standard error in 1e-7 rad/s
+    (array([ 0.0001, -0.0002,  0.    ]), array([5.01, 5.01, 5.01]))
     """
     w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1)
     n = w.shape[-2]
@@ -555,6 +603,17 @@ class TriadNoise:
         is added (:func:`navlib.analysis.fit_allan` chooses the model with the lowest): positive, the term is
         kept (above 6: strong evidence); negative, the curve is explained without it and the term is 0 (its
         upper limit still says how large it could be); ``-inf`` for K when it is not fitted.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import calibration
+    >>> rng = np.random.default_rng(0)
+    >>> w_ib_b, f_b = 1e-3 * rng.standard_normal((2000, 3)), [0.0, 0.0, 9.8] + 1e-2 * rng.standard_normal((2000, 3))
+    >>> noise = calibration.characterise(w_ib_b, f_b, 0.01)
+    >>> gyro = noise.gyro                                            # a TriadNoise
+    >>> np.round(gyro.noise_density * 1e4, 1), gyro.noise_density_ci.shape
+    (array([1., 1., 1.]), (3, 2))
     """
 
     noise_density: np.ndarray
@@ -606,6 +665,16 @@ class NoiseCharacterisation:
         Record length N.
     confidence : float
         Confidence level of the intervals.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import calibration
+    >>> rng = np.random.default_rng(0)
+    >>> w_ib_b, f_b = 1e-3 * rng.standard_normal((2000, 3)), [0.0, 0.0, 9.8] + 1e-2 * rng.standard_normal((2000, 3))
+    >>> noise = calibration.characterise(w_ib_b, f_b, 0.01)
+    >>> noise.n_samples, noise.dt, noise.confidence
+    (2000, 0.01, 0.95)
     """
 
     gyro: TriadNoise
@@ -752,6 +821,17 @@ def characterise(
     ValueError
         Wrong shapes, NaN (dropouts: the Allan deviation needs an unbroken record), too short a record,
         irregular sampling.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import calibration
+    >>> rng = np.random.default_rng(0)
+    >>> w_ib_b = 1e-3 * rng.standard_normal((2000, 3))                # gyro white noise, 1e-3 rad/s per sample at 100 Hz
+    >>> f_b = [0.0, 0.0, 9.8] + 1e-2 * rng.standard_normal((2000, 3))
+    >>> noise = calibration.characterise(w_ib_b, f_b, 0.01)
+    >>> np.round(noise.gyro.noise_density * 1e4, 1)                   # 1e-3 * sqrt(0.01) = 1e-4 rad/sqrt(s)
+    array([1., 1., 1.])
     """
     w, f, dt, _, _ = unpack(w_ib_b, f_b, dt)
     w, f = imu_samples(w, f, allow_nan=False, shape=(None, 3))  # one record

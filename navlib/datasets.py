@@ -56,6 +56,13 @@ class ReferenceTrial:
         reference has no sample.
     movement : ndarray, shape (N,), bool
         The samples over which the benchmark's errors are taken (its movement phases).
+
+    Examples
+    --------
+    >>> from navlib import repro, datasets
+    >>> trial = datasets.read_broad(repro.root() / "data" / "real" / "broad" / "07_undisturbed_fast_rotation_B.npz")
+    >>> trial.name, trial.q_ref.shape[1], trial.movement.dtype
+    ('07_undisturbed_fast_rotation_B', 4, dtype('bool'))
     """
 
     name: str
@@ -98,6 +105,13 @@ def read_broad(path: str | os.PathLike) -> ReferenceTrial:
         If there is no such file.
     ValueError
         If the file lacks one of BROAD's arrays or their lengths differ.
+
+    Examples
+    --------
+    >>> from navlib import repro, datasets
+    >>> trial = datasets.read_broad(repro.root() / "data" / "real" / "broad" / "07_undisturbed_fast_rotation_B.npz")
+    >>> trial.recording.w_ib_b.shape == trial.q_ref.shape[:1] + (3,)
+    True
     """
     path = file_path(path, "path")
     with np.load(path, allow_pickle=False) as z:
@@ -129,6 +143,12 @@ def broad_split(names: list[str]) -> tuple[list[str], list[str]]:
     """Split BROAD trial names into ``(tuning, held_out)``: even trial numbers tune, odd ones are held out.
 
     On the 30 trials of the source repository this gives 16 and 14 (4 of them with a magnetic disturbance).
+
+    Examples
+    --------
+    >>> from navlib import datasets
+    >>> datasets.broad_split(["02_undisturbed_slow_rotation_B", "07_undisturbed_fast_rotation_B"])   # even tune, odd held out
+    (['02_undisturbed_slow_rotation_B'], ['07_undisturbed_fast_rotation_B'])
     """
     if not isinstance(names, (list, tuple)):
         raise ValueError(
@@ -166,6 +186,13 @@ class DriveLog:
     ref_time, ref_lla, ref_v_n, ref_q_bn : ndarray, shapes (R,), (R, 3), (R, 3), (R, 4)
         Reference pose: latitude, longitude (rad), height (m, WGS84); ENU velocity (m/s); attitude ``q_bn``
         of the right-front-up body (camera axes) in the local ENU frame.
+
+    Examples
+    --------
+    >>> from navlib import repro, datasets
+    >>> log = datasets.read_comma2k19(repro.root() / "data" / "real" / "comma2k19")
+    >>> log.imu.w_ib_b.shape[1], log.ref_lla.shape[1], log.ref_q_bn.shape[1]
+    (3, 3, 4)
     """
 
     imu: Recording
@@ -224,6 +251,14 @@ def read_comma2k19(folder: str | os.PathLike) -> DriveLog:
     -------
     DriveLog
         In navlib's frames and units (module docstring).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import repro, datasets
+    >>> log = datasets.read_comma2k19(repro.root() / "data" / "real" / "comma2k19")
+    >>> round(float(np.nanmax(log.can_speed)), 1) > 0                  # the car moves (m/s)
+    True
     """
     folder = file_path(folder, "folder")
 

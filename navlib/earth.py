@@ -56,6 +56,13 @@ class Ellipsoid:
         Geocentric gravitational constant (m^3/s^2).
     omega : float
         Angular velocity (rad/s).
+
+    Examples
+    --------
+    >>> from navlib import earth
+    >>> grs80 = earth.Ellipsoid("GRS80", a=6378137.0, f=1 / 298.257222101, GM=3.986005e14, omega=7.292115e-5)
+    >>> round(float(earth.gravity(45.0, deg=True, ellipsoid=grs80)), 5)
+    9.8062
     """
 
     name: str
@@ -149,7 +156,7 @@ def earth_rate_n(lat: ArrayLike, deg: bool = False, ellipsoid: Ellipsoid = WGS84
 
 
 def earth_rate_b(C_bn: Dcm, lat: float, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> Array:
-    """Earth rotation rate in the body frame, ``C_bn^T w_ie_n`` (rad/s), e.g. what a static gyro triad reads.
+    r"""Earth rotation rate in the body frame, :math:`(C_b^n)^T \omega_{ie}^n` (rad/s), e.g. what a static gyro triad reads.
 
     Parameters
     ----------
@@ -161,17 +168,29 @@ def earth_rate_b(C_bn: Dcm, lat: float, deg: bool = False, ellipsoid: Ellipsoid 
     Returns
     -------
     w_ie_b : ndarray, shape (..., 3)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude, earth
+    >>> C_bn = attitude.euler_to_dcm([90.0, 0.0, 0.0], deg=True)   # level, facing east
+    >>> np.round(earth.earth_rate_b(C_bn, 60.0, deg=True) * 180 / np.pi * 3600, 3)   # deg/h: [right, forward, up]
+    array([-7.521,  0.   , 13.026])
     """
     C = as_dcm(C_bn, "C_bn")
     return np.einsum("...ji,j->...i", C, earth_rate_n(scalar(lat, "lat"), deg, ellipsoid))
 
 
 def gravity(lat: ArrayLike, h: ArrayLike = 0.0, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> Array:
-    """Normal gravity magnitude (m/s^2): Somigliana with the TR8350.2 height series.
+    r"""Normal gravity magnitude (m/s^2): Somigliana with the TR8350.2 height series.
 
-    ``gamma = gamma_e (1 + k sin^2 lat) / sqrt(1 - e^2 sin^2 lat)`` with
-    ``k = b gamma_p / (a gamma_e) - 1``, then
-    ``gamma_h = gamma [1 - 2/a (1 + f + m - 2 f sin^2 lat) h + 3 h^2 / a^2]``.
+    .. math::
+
+        \gamma &= \gamma_e \frac{1 + k \sin^2\varphi}{\sqrt{1 - e^2 \sin^2\varphi}}, \qquad
+        k = \frac{b \gamma_p}{a \gamma_e} - 1 \\
+        \gamma_h &= \gamma \Big[1 - \frac{2}{a}\big(1 + f + m - 2 f \sin^2\varphi\big) h + \frac{3 h^2}{a^2}\Big]
+
+    at latitude :math:`\varphi` and height :math:`h`.
 
     Parameters
     ----------
@@ -198,19 +217,34 @@ def gravity(lat: ArrayLike, h: ArrayLike = 0.0, deg: bool = False, ellipsoid: El
 
 
 def gravity_n(lat: ArrayLike, h: ArrayLike = 0.0, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> Array:
-    """Normal gravity vector in ENU, ``[0, 0, -gamma]`` (m/s^2); shape (..., 3)."""
+    """Normal gravity vector in ENU, ``[0, 0, -gamma]`` (m/s^2); shape (..., 3).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import earth
+    >>> np.round(earth.gravity_n(45.0, deg=True), 5)
+    array([ 0.    ,  0.    , -9.8062])
+    """
     g = gravity(lat, h, deg=deg, ellipsoid=ellipsoid)
     z = np.zeros_like(g)
     return np.stack([z, z, -g], -1)
 
 
 def radii(lat: ArrayLike, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> tuple[Array, Array]:
-    """Meridian and prime-vertical radii of curvature (m).
+    r"""Meridian and prime-vertical radii of curvature (m).
 
     Returns
     -------
     R_M, R_N : ndarray, shape (...)
-        ``R_N = a / sqrt(1 - e^2 sin^2 lat)``, ``R_M = R_N (1 - e^2) / (1 - e^2 sin^2 lat)``.
+        :math:`R_N = a / \sqrt{1 - e^2 \sin^2\varphi}`, :math:`R_M = R_N (1 - e^2) / (1 - e^2 \sin^2\varphi)`.
+
+    Examples
+    --------
+    >>> from navlib import earth
+    >>> R_M, R_N = earth.radii(45.0, deg=True)
+    >>> round(float(R_M), 1), round(float(R_N), 1)
+    (6367381.8, 6388838.3)
     """
     lat = latitude(lat, "lat", deg=deg)
     ellipsoid_(ellipsoid)
@@ -219,9 +253,11 @@ def radii(lat: ArrayLike, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> tu
 
 
 def transport_rate_n(lat: ArrayLike, h: ArrayLike, vel_n: Vec3, ellipsoid: Ellipsoid = WGS84) -> Array:
-    """Transport rate of the ENU frame over the ellipsoid (rad/s).
+    r"""Transport rate of the ENU frame over the ellipsoid (rad/s).
 
-    ``w_en_n = [-v_N/(R_M+h), v_E/(R_N+h), v_E tan(lat)/(R_N+h)]``.
+    .. math::
+
+        \omega_{en}^n = \Big[-\frac{v_N}{R_M + h},\ \frac{v_E}{R_N + h},\ \frac{v_E \tan\varphi}{R_N + h}\Big]
 
     Parameters
     ----------
@@ -232,6 +268,13 @@ def transport_rate_n(lat: ArrayLike, h: ArrayLike, vel_n: Vec3, ellipsoid: Ellip
     Returns
     -------
     ndarray, shape (..., 3)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import earth
+    >>> np.round(earth.transport_rate_n(0.0, 0.0, [0.0, 10.0, 0.0]) * 1e6, 4)   # 10 m/s north at the equator (urad/s)
+    array([-1.5784,  0.    ,  0.    ])
     """
     lat = latitude(lat)
     if np.any(np.cos(lat) < 1e-9):
@@ -291,6 +334,13 @@ def magnetic_field(lat: ArrayLike, lon: ArrayLike, h: ArrayLike = 0.0, year: flo
     B_n : ndarray, shape (..., 3)
         Field in ENU (uT): ``[east, north, up]``. In the northern hemisphere
         the up component is negative (the field dips into the ground).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import earth
+    >>> np.round(earth.magnetic_field(45.0, 10.0, 0.0, year=2025.0), 1)   # ENU (uT)
+    array([  1.5,  22.8, -41.8])
     """
     lat = latitude(lat, "lat", deg=deg)
     lon = as_array(lon, "lon")
@@ -324,6 +374,13 @@ def field_from_angles(declination: ArrayLike, inclination: ArrayLike, intensity:
     Returns
     -------
     B_n : ndarray, shape (..., 3)  (uT)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import earth
+    >>> np.round(earth.field_from_angles(0.0, 60.0, 50.0), 3)       # ENU (uT): north and down
+    array([  0.   ,  25.   , -43.301])
     """
     D, I, F = broadcast(
         as_array(declination, "declination"),
@@ -349,6 +406,13 @@ def field_angles(B_n: Vec3, deg: bool = True) -> tuple[Array, Array, Array]:
     Returns
     -------
     declination, inclination, intensity : ndarray, shape (...)
+
+    Examples
+    --------
+    >>> from navlib import earth
+    >>> D, I, F = earth.field_angles([0.0, 20.0, -40.0])             # ENU field (uT)
+    >>> round(float(D), 3), round(float(I), 3), round(float(F), 3)
+    (0.0, 63.435, 44.721)
     """
     B = as_array(B_n, "B_n", tail=(3,))
     H = np.hypot(B[..., 0], B[..., 1])

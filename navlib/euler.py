@@ -32,7 +32,18 @@ def _hpr(hpr, name="hpr"):
 
 
 def check_pitch(pitch: ArrayLike, name: str = "pitch") -> None:
-    """Raise ``ValueError`` naming ``name`` if any |pitch| exceeds :data:`PITCH_LIMIT` (Euler rates are singular at 90 deg)."""
+    """Raise ``ValueError`` naming ``name`` if any |pitch| exceeds :data:`PITCH_LIMIT` (Euler rates are singular at 90 deg).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import euler
+    >>> euler.check_pitch(np.deg2rad(80.0))                          # fine: returns None
+    >>> euler.check_pitch(np.deg2rad(90.0), name="hpr0[1]")
+    Traceback (most recent call last):
+        ...
+    ValueError: hpr0[1]: expected |pitch| <= 89 deg; the Euler rates are singular at +-90 deg (got max ...
+    """
     pitch = as_array(pitch, text(name, "name", empty=False), nonempty=True)
     if np.any(np.abs(pitch) > PITCH_LIMIT):
         raise ValueError(
@@ -55,6 +66,13 @@ def euler_rates(hpr: Angles, w_nb_b: Vec3) -> Array:
     -------
     hpr_dot : ndarray, shape (..., 3)
         ``[heading', pitch', roll']`` (rad/s).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import euler
+    >>> np.round(euler.euler_rates([0.0, 0.0, 0.0], [0.0, 0.0, 0.1]), 6)   # level, turning left: heading decreases
+    array([-0.1,  0. ,  0. ])
     """
     hpr = _hpr(hpr)
     w = as_array(w_nb_b, "w_nb_b", tail=(3,))
@@ -201,6 +219,15 @@ def integrate_euler(
     -------
     hpr : ndarray, shape (..., N + 1, 3)
         Heading wrapped to [0, 2 pi), roll to (-pi, pi].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import euler
+    >>> w_ib_b = np.tile([0.0, 0.0, -np.deg2rad(9.0)], (100, 1))     # 9 deg/s clockwise for 1 s at 100 Hz
+    >>> hpr = euler.integrate_euler([0.0, 0.0, 0.0], w_ib_b, 0.01)
+    >>> hpr.shape, np.round(np.rad2deg(hpr[-1]), 6)                  # no Earth rate given: w_in_n = 0
+    ((101, 3), array([9., 0., 0.]))
     """
     max_gap = scalar(max_gap, "max_gap", allow_zero=True)
     if isinstance(w_ib_b, ImuSamples):  # validated by the record

@@ -68,6 +68,14 @@ def dropouts(x: ArrayLike, fraction: float, rng: np.random.Generator) -> tuple[A
     -------
     x_faulty : ndarray
     dropped : ndarray of bool, shape (N,)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import faults
+    >>> x, dropped = faults.dropouts(np.ones((8, 3)), 0.25, np.random.default_rng(0))
+    >>> int(dropped.sum()), int(np.isnan(x[:, 0]).sum())             # 2 of 8 rows set to NaN
+    (2, 2)
     """
     x = _samples(x, "x").copy()
     dropped = _hits(rng, fraction, _time_axis_len(x))
@@ -85,6 +93,14 @@ def gap(x: ArrayLike, time: Times, start: float, duration: float) -> tuple[Array
     -------
     x_faulty : ndarray
     dropped : ndarray of bool, shape (N,)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import faults
+    >>> x, dropped = faults.gap(np.ones(6), np.arange(6.0), start=2.0, duration=2.0)
+    >>> x
+    array([ 1.,  1., nan, nan,  1.,  1.])
     """
     x = _samples(x, "x").copy()
     t = same_shape(time_axis(time, "time"), "time", (_time_axis_len(x),), of="x")
@@ -116,6 +132,14 @@ def spikes(
     -------
     x_faulty : ndarray
     hit : ndarray of bool, shape (N,)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import faults
+    >>> x, hit = faults.spikes(np.zeros(6), 0.5, 0.01, np.random.default_rng(0))
+    >>> np.abs(x[hit]), int(hit.sum())                                    # 100 sigma spikes
+    (array([1., 1., 1.]), 3)
     """
     x = _samples(x, "x").copy()
     sigma = positive(sigma, "sigma")
@@ -141,6 +165,15 @@ def position_jumps(lla: Vec3Series, fraction: float, rng: np.random.Generator, s
     -------
     lla_faulty : ndarray, shape (N, 3)
     hit : ndarray of bool, shape (N,)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import analysis, faults
+    >>> lla = np.tile([0.6, 0.2, 50.0], (4, 1))
+    >>> lla_faulty, hit = faults.position_jumps(lla, 0.5, np.random.default_rng(0), size_m=50.0)
+    >>> hit, np.round(np.hypot(*analysis.horizontal_error(lla_faulty, lla).T), 6)   # east-north jump (m)
+    (array([False,  True,  True,  True]), array([ 0., 50., 50., 50.]))
     """
     lla = as_array(lla, "lla", tail=(3,), allow_nan=True, min_ndim=1).copy()
     lat_ok = np.isnan(lla[..., 0]) | (np.abs(lla[..., 0]) <= np.pi / 2)
@@ -163,6 +196,14 @@ def heading_flips(heading: Angles, fraction: float, rng: np.random.Generator) ->
     -------
     heading_faulty : ndarray, shape (N,)  in [0, 2 pi), NaN kept
     hit : ndarray of bool, shape (N,)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import faults
+    >>> heading, hit = faults.heading_flips(np.full(4, 0.5), 0.5, np.random.default_rng(0))
+    >>> np.round(heading, 6), hit
+    (array([0.5     , 3.641593, 3.641593, 3.641593]), array([False,  True,  True,  True]))
     """
     h = as_array(heading, "heading", allow_nan=True, min_ndim=1).copy()
     hit = _hits(rng, fraction, h.shape[-1])
@@ -176,6 +217,14 @@ def duplicate_timestamps(time: Times, fraction: float, rng: np.random.Generator)
     -------
     time_faulty : ndarray, shape (N,)
     hit : ndarray of bool, shape (N,)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import faults
+    >>> time, hit = faults.duplicate_timestamps(np.arange(6.0), 0.4, np.random.default_rng(0))
+    >>> time, hit
+    (array([0., 0., 1., 2., 4., 5.]), array([False,  True,  True,  True, False, False]))
     """
     t = time_axis(time).copy()
     hit = _hits(rng, fraction, t.size)
@@ -194,6 +243,14 @@ def swap_timestamps(time: Times, fraction: float, rng: np.random.Generator) -> t
     time_faulty : ndarray, shape (N,)
     order : ndarray of int, shape (N,)
         ``time_faulty = time[order]``; apply it to the data as well.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import faults
+    >>> time, order = faults.swap_timestamps(np.arange(6.0), 0.3, np.random.default_rng(0))
+    >>> time, order
+    (array([0., 2., 3., 4., 1., 5.]), array([0, 2, 3, 4, 1, 5]))
     """
     t = time_axis(time, increasing=False)
     order = np.arange(t.size)
@@ -208,6 +265,13 @@ def irregular_times(n: int, dt: float, jitter: float, rng: np.random.Generator, 
     Returns
     -------
     time : ndarray, shape (n,)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import faults
+    >>> np.round(faults.irregular_times(4, 0.01, 0.1, np.random.default_rng(0)), 5)
+    array([0.     , 0.01027, 0.01981, 0.0289 ])
     """
     integer(n, "n", minimum=2)
     dt = interval(dt)
@@ -232,6 +296,14 @@ def saturate(x: Vec3Series, full_scale: float) -> tuple[Array, np.ndarray]:
     x_clipped : ndarray
     clipped : ndarray of bool, shape (..., N)
         True where any component was clipped.
+
+    Examples
+    --------
+    >>> from navlib import faults
+    >>> x, clipped = faults.saturate([[1.0, 2.0, 3.0], [5.0, -9.0, 0.0]], full_scale=4.0)
+    >>> x, clipped
+    (array([[ 1.,  2.,  3.],
+           [ 4., -4.,  0.]]), array([False,  True]))
     """
     x = _samples(x, "x")
     fs = scalar(full_scale, "full_scale", positive=True)

@@ -154,6 +154,12 @@ def central_meridian(zone_number: ArrayLike, width: int = 3, deg: bool = False) 
     width : {3, 6}
     deg : bool
         Return degrees instead of rad.
+
+    Examples
+    --------
+    >>> from navlib import geodesy
+    >>> geodesy.central_meridian([39, 40], width=3, deg=True)       # 3 deg zones: L0 = 3 n
+    array([117., 120.])
     """
     return _central_meridian(zone_number, _width(width), deg, "zone_number")
 
@@ -566,6 +572,14 @@ def gk2geodetic(
     -------
     lat, lon : ndarray, shape (...)
         rad, or deg with ``deg=True``; lon in (-180°, 180°].
+
+    Examples
+    --------
+    >>> from navlib import geodesy
+    >>> x, y = geodesy.geodetic2gk(26.0, 119.2, zone=40, deg=True)
+    >>> lat, lon = geodesy.gk2geodetic(x, y, zone=40, deg=True)
+    >>> round(float(lat), 9), round(float(lon), 9)
+    (26.0, 119.2)
     """
     x = as_array(x, "x", nonempty=True)
     y = as_array(y, "y", nonempty=True)
@@ -629,6 +643,12 @@ def convergence(
     -------
     gamma : ndarray, shape (...)
         rad, or deg with ``deg=True``.
+
+    Examples
+    --------
+    >>> from navlib import geodesy
+    >>> round(float(geodesy.convergence(26.0, 121.0, lon0=120.0, deg=True)), 4)   # deg; about (L - L0) sin(lat)
+    0.4384
     """
     gamma, _ = _factors(lat, lon, zone, lon0, width, ellipsoid, deg, max_offset_deg)
     return np.rad2deg(gamma) if deg else gamma
@@ -649,6 +669,13 @@ def scale_factor(
     """Point scale factor k of the projection (1 on the central meridian for GK).
 
     Parameters are those of :func:`geodetic2gk`; returns shape (...).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import geodesy
+    >>> np.round(geodesy.scale_factor(26.0, [120.0, 121.5], lon0=120.0, deg=True), 7)   # 1 on the central meridian
+    array([1.       , 1.0002784])
     """
     k0 = scalar(k0, "k0", within=_K0_RANGE)
     _, k = _factors(lat, lon, zone, lon0, width, ellipsoid, deg, max_offset_deg)
@@ -668,6 +695,12 @@ def meridian_arc(lat: ArrayLike, ellipsoid: Ellipsoid = WGS84, deg: bool = False
     Returns
     -------
     S : ndarray, shape (...)
+
+    Examples
+    --------
+    >>> from navlib import geodesy
+    >>> round(float(geodesy.meridian_arc(90.0, deg=True)), 3)      # equator to pole (m)
+    10001965.729
     """
     ellipsoid_(ellipsoid)
     lat = latitude(lat, "lat", deg=deg, nonempty=True)
@@ -714,6 +747,14 @@ def local_scales(
         (radii of curvature from :func:`navlib.earth.radii`).
     angle : ndarray, shape (...)
         Angle between the images of the meridian and the parallel (rad; pi/2 if conformal).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import geodesy
+    >>> h, k, angle = geodesy.local_scales(26.0, 121.0, 120.0, deg=True)   # Gauss-Krueger: conformal
+    >>> round(abs(float(h - k)), 9), round(float(np.rad2deg(angle)), 6)   # equal scales, right angle
+    (0.0, 90.0)
     """
     ellipsoid_(ellipsoid)
     if project is None:
@@ -749,6 +790,13 @@ def geodetic2ecef(
     """Earth-centred Earth-fixed coordinates (m) of geodetic points; returns x, y, z of shape (...).
 
     ``ellipsoid``: default WGS84; pass ``earth.CGCS2000`` for China's national grid.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import geodesy
+    >>> np.round(geodesy.geodetic2ecef(0.0, 90.0, 0.0, deg=True), 3)   # on the equator, 90 deg east: the y axis
+    array([      0., 6378137.,       0.])
     """
     ellipsoid_(ellipsoid)
     return _ecef(*_geodetic(lat, lon, h, deg), ellipsoid)
@@ -777,6 +825,13 @@ def ecef2geodetic(
     Bowring's iteration on the parametric latitude (three steps reach 1e-15
     rad for points within 100 km of the surface). ``ellipsoid``: default WGS84;
     pass ``earth.CGCS2000`` for China's national grid.
+
+    Examples
+    --------
+    >>> from navlib import geodesy
+    >>> lat, lon, h = geodesy.ecef2geodetic(*geodesy.geodetic2ecef(30.0, 114.0, 50.0, deg=True), deg=True)
+    >>> round(float(lat), 9), round(float(lon), 9), round(float(h), 6)
+    (30.0, 114.0, 50.0)
     """
     ellipsoid_(ellipsoid)
     x, y, z = broadcast(*(as_array(v, k, nonempty=True) for v, k in ((x, "x"), (y, "y"), (z, "z"))), name="x, y, z")
@@ -832,6 +887,13 @@ def geodetic2enu(
     All arguments broadcast; angles in rad (deg with ``deg=True``). Returns
     e, n, u of shape (...). ``ellipsoid``: default WGS84; pass ``earth.CGCS2000``
     for China's national grid.
+
+    Examples
+    --------
+    >>> from navlib import geodesy
+    >>> e, n, u = geodesy.geodetic2enu(30.001, 114.0, 10.0, 30.0, 114.0, 0.0, deg=True)   # 0.001 deg north, 10 m up
+    >>> round(float(e), 3), round(float(n), 3), round(float(u), 3)
+    (0.0, 110.853, 9.999)
     """
     ellipsoid_(ellipsoid)
     lat0, lon0, h0 = _geodetic(lat0, lon0, h0, deg, _ORIGIN)
@@ -851,7 +913,16 @@ def enu2geodetic(
     ellipsoid: Ellipsoid = WGS84,
     deg: bool = False,
 ) -> tuple[Array, Array, Array]:
-    """Inverse of :func:`geodetic2enu`: geodetic lat, lon (rad or deg), h (m) of local ENU points."""
+    """Inverse of :func:`geodetic2enu`: geodetic lat, lon (rad or deg), h (m) of local ENU points.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import geodesy
+    >>> lat, lon, h = geodesy.enu2geodetic(100.0, 200.0, 10.0, 30.0, 114.0, 0.0, deg=True)
+    >>> np.round(geodesy.geodetic2enu(lat, lon, h, 30.0, 114.0, 0.0, deg=True), 6)   # back again
+    array([100., 200.,  10.])
+    """
     return _local2geodetic((e, n, u), ("e", "n", "u"), 1.0, (lat0, lon0, h0), ellipsoid, deg)
 
 
@@ -877,7 +948,15 @@ def geodetic2ned(
     ellipsoid: Ellipsoid = WGS84,
     deg: bool = False,
 ) -> tuple[Array, Array, Array]:
-    """North, east, down (m) of geodetic points in the local frame at (lat0, lon0, h0): :func:`geodetic2enu` reordered."""
+    """North, east, down (m) of geodetic points in the local frame at (lat0, lon0, h0): :func:`geodetic2enu` reordered.
+
+    Examples
+    --------
+    >>> from navlib import geodesy
+    >>> n, e, d = geodesy.geodetic2ned(30.001, 114.0, 10.0, 30.0, 114.0, 0.0, deg=True)
+    >>> round(float(n), 3), round(float(e), 3), round(float(d), 3)
+    (110.853, 0.0, -9.999)
+    """
     e, n, u = geodetic2enu(lat, lon, h, lat0, lon0, h0, ellipsoid, deg)
     return n, e, -u
 
@@ -892,5 +971,14 @@ def ned2geodetic(
     ellipsoid: Ellipsoid = WGS84,
     deg: bool = False,
 ) -> tuple[Array, Array, Array]:
-    """Inverse of :func:`geodetic2ned`: geodetic lat, lon (rad or deg), h (m) of local NED points."""
+    """Inverse of :func:`geodetic2ned`: geodetic lat, lon (rad or deg), h (m) of local NED points.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import geodesy
+    >>> lat, lon, h = geodesy.ned2geodetic(200.0, 100.0, -10.0, 30.0, 114.0, 0.0, deg=True)
+    >>> np.round(geodesy.geodetic2ned(lat, lon, h, 30.0, 114.0, 0.0, deg=True), 6)
+    array([200., 100., -10.])
+    """
     return _local2geodetic((e, n, d), ("e", "n", "d"), -1.0, (lat0, lon0, h0), ellipsoid, deg)

@@ -68,6 +68,14 @@ class SensorLimits:
         Longest interval integrated (s); a longer one is a clock jump (``("clock", "jump")``): nothing is
         integrated over it. None (default): :data:`JUMP_FACTOR` median intervals (no jump
         with a fixed ``dt``); ``inf``: off.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import imu
+    >>> limits = imu.SensorLimits(full_scale_gyro=np.deg2rad(2000.0), full_scale_accel=16 * 9.80665)   # +-2000 deg/s, +-16 g
+    >>> round(float(limits.full_scale_accel), 3), limits.stuck_run
+    (156.906, 'auto')
     """
 
     full_scale_gyro: float = np.inf
@@ -123,6 +131,14 @@ class ImuSamples:
         repeated. Timestamps with repeats or out of order go through :func:`navlib.timing.sanitize` first.
     limits : SensorLimits
         Ranges and fault thresholds (default or None: no ranges, navlib's default fault tests).
+
+    Examples
+    --------
+    >>> from navlib import imu, trajectory
+    >>> traj = trajectory.static(0.05, 0.01, [0.6, 0.2, 50.0], [0.0, 0.0, 0.0])
+    >>> samples = imu.ImuSamples(*trajectory.ideal_imu(traj), 0.01)
+    >>> samples.w_ib_b.shape, samples.dt                              # a scalar interval is repeated per sample
+    ((5, 3), array([0.01, 0.01, 0.01, 0.01, 0.01]))
     """
 
     w_ib_b: np.ndarray
@@ -169,6 +185,14 @@ def unpack(
     For the integrators and detectors that take either. With an ImuSamples, ``f_b`` and ``dt`` must be None
     and a range may be given either in its limits or here, not both; raw arguments are returned unchanged
     (``f_b`` and ``dt`` are then required).
+
+    Examples
+    --------
+    >>> from navlib import imu, trajectory
+    >>> traj = trajectory.static(0.05, 0.01, [0.6, 0.2, 50.0], [0.0, 0.0, 0.0])
+    >>> w_ib_b, f_b, dt, fs_gyro, fs_accel = imu.unpack(imu.ImuSamples(*trajectory.ideal_imu(traj), 0.01))
+    >>> w_ib_b.shape, dt, fs_gyro
+    ((5, 3), array([0.01, 0.01, 0.01, 0.01, 0.01]), None)
     """
     if isinstance(w_ib_b, ImuSamples):
         for name, value in (("f_b", f_b), ("dt", dt)):

@@ -123,6 +123,14 @@ class Recording:
     q_bn_ref : ndarray, shape (N, 4), or None
         The source's own attitude estimate (e.g. a phone's ``Orientation.csv``) as navlib's ``q_bn``
         (body right-front-up to ENU, scalar first); which north it refers to is in ``conversions``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import io
+    >>> rec = io.Recording(time=np.array([0.0, 0.01, 0.02]), w_ib_b=np.zeros((3, 3)), f_b=np.tile([0.0, 0.0, 9.81], (3, 1)))
+    >>> len(rec.time), rec.m_b is None
+    (3, True)
     """
 
     time: np.ndarray
@@ -287,6 +295,16 @@ def from_dataframe(
     -------
     Recording
         ``source`` is ``"DataFrame"``; readers replace it with the file's path.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import pandas as pd
+    >>> from navlib import io
+    >>> df = pd.DataFrame({"t": [0.0, 0.01, 0.02], "gx": [0.0, 1.0, 2.0], "gy": 0.0, "gz": 0.0})
+    >>> rec = io.from_dataframe(df, time="t", units={"gyro": "deg/s"}, gyro=["gx", "gy", "gz"])
+    >>> np.round(rec.w_ib_b[:, 0], 6), rec.conversions[1]
+    (array([0.      , 0.017453, 0.034907]), "gyro: columns ['gx', 'gy', 'gz'] in deg/s x 0.0174533 -> rad/s, axes 'x,y,z'")
     """
     instance(df, "df", pd.DataFrame, "a pandas.DataFrame")
     choice(timing, "timing", ("raise", "sanitize"))
@@ -416,6 +434,21 @@ def read_csv(path: str | Path, *, sep: str = ",", comment: str | None = None, ch
         Run :func:`check_axes` on the result: warn about, or refuse, a sensor axis that looks flipped.
     **kwargs
         The column, unit, axes (per sensor, ``mirror``) and timing arguments of :func:`from_dataframe`.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> import numpy as np
+    >>> from navlib import io
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> path = Path(tmp.name) / "log.csv"
+    >>> _ = path.write_text("t,gx,gy,gz\\n0.00,0,0,90\\n0.01,0,0,90\\n")
+    >>> rec = io.read_csv(path, time="t", units={"gyro": "deg/s"}, gyro=["gx", "gy", "gz"])
+    >>> np.round(rec.w_ib_b, 6)                                       # rad/s
+    array([[0.      , 0.      , 1.570796],
+           [0.      , 0.      , 1.570796]])
+    >>> tmp.cleanup()
     """
     df, source = _read_table(path, sep=text(sep, "sep", empty=False), comment=comment)
     return _finish(_in_file(source, from_dataframe, df, **kwargs), source, _check_option(check))
@@ -468,6 +501,14 @@ def read_xio(
         As in :func:`from_dataframe`. x-io's axes are used as the body axes unless ``axes`` maps them.
     check : {"warn", "raise", "off"}
         As in :func:`read_csv`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import io, repro
+    >>> rec = io.read_xio(repro.root() / "data" / "real" / "xio-fusion" / "sensor_data.csv")   # x-io's Fusion example
+    >>> rec.w_ib_b.shape, round(float(np.median(np.diff(rec.time))), 4)   # rad/s, about 100 Hz
+    ((13514, 3), 0.0101)
     """
     df, source = _read_table(path)
     df.columns = [c.strip() for c in df.columns]
@@ -725,6 +766,24 @@ def read_sensor_logger(
         As in :func:`from_dataframe`.
     check : {"warn", "raise", "off"}
         As in :func:`read_csv`.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> from navlib import io
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> folder = Path(tmp.name)
+    >>> def write(name, z):                                     # columns as the app writes them: time (ns), z, y, x
+    ...     rows = ["time,seconds_elapsed,z,y,x", f"1700000000000000000,0.0,{z},0,0", f"1700000000010000000,0.01,{z},0,0"]
+    ...     _ = (folder / name).write_text("\\n".join(rows) + "\\n")
+    ...
+    >>> write("Gyroscope.csv", 0.5)
+    >>> write("TotalAcceleration.csv", 9.81)
+    >>> rec = io.read_sensor_logger(folder, platform="android", check="off")
+    >>> rec.time, rec.w_ib_b[:, 2]
+    (array([0.  , 0.01]), array([0.5, 0.5]))
+    >>> tmp.cleanup()
     """
     d = file_path(directory, "directory")
     if not d.is_dir():
@@ -824,6 +883,20 @@ def read_phyphox(
         As in :func:`read_sensor_logger`.
     check : {"warn", "raise", "off"}
         As in :func:`read_csv`.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> from navlib import io
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> path = Path(tmp.name) / "Raw Data.csv"
+    >>> header = "Time (s),Gyroscope x (rad/s),Gyroscope y (rad/s),Gyroscope z (rad/s)"
+    >>> _ = path.write_text("\\n".join([header, "0.0,0,0,0.5", "0.01,0,0,0.5"]) + "\\n")
+    >>> rec = io.read_phyphox(path, check="off")
+    >>> rec.time, rec.w_ib_b[:, 2], rec.f_b is None
+    (array([0.  , 0.01]), array([0.5, 0.5]), True)
+    >>> tmp.cleanup()
     """
     p = file_path(path, "path")
     files = sorted(p.glob("*.csv")) if p.is_dir() else [p]
@@ -867,6 +940,22 @@ def read_euroc(
 
     Columns ``#timestamp [ns]``, ``w_RS_S_x [rad s^-1]`` ... ``a_RS_S_z [m s^-2]`` in the sensor frame S;
     give ``axes`` to map it to right-front-up.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> from navlib import io
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> path = Path(tmp.name) / "data.csv"
+    >>> gyro, accel = ",".join(f"w_RS_S_{a} [rad s^-1]" for a in "xyz"), ",".join(f"a_RS_S_{a} [m s^-2]" for a in "xyz")
+    >>> header = f"#timestamp [ns],{gyro},{accel}"
+    >>> rows = [f"{1403715523912140000 + k * 5000000},0,0,0.1,0,0,9.81" for k in range(3)]   # 200 Hz
+    >>> _ = path.write_text("\\n".join([header, *rows]) + "\\n")
+    >>> rec = io.read_euroc(path, check="off")                       # no axis check on a three-sample file
+    >>> rec.time, rec.w_ib_b[0]
+    (array([0.   , 0.005, 0.01 ]), array([0. , 0. , 0.1]))
+    >>> tmp.cleanup()
     """
     df, source = _read_table(path)
     df.columns = [c.strip() for c in df.columns]
@@ -923,6 +1012,19 @@ def align(
     -------
     x : ndarray, shape (M,) or (M, k)
         NaN before the first reading, after ``max_gap`` without one, and (interpolation) after the last.
+
+    Examples
+    --------
+    >>> from navlib import io
+    >>> io.align([0.0, 0.5, 1.0, 1.5], [0.0, 1.0], [[1.0], [2.0]])   # hold the last reading
+    array([[1.],
+           [1.],
+           [2.],
+           [2.]])
+    >>> io.align([0.0, 0.5, 1.0], [0.0, 1.0], [[1.0], [2.0]], method="interpolate")
+    array([[1. ],
+           [1.5],
+           [2. ]])
     """
     method = choice(method, "method", ("hold", "interpolate"))
     tt = time_axis(t_target, "t_target")
@@ -970,6 +1072,15 @@ def resample(rec: Recording, rate: float, *, method: str = "mean") -> Recording:
     -------
     Recording
         Same sensors, times ``k / rate``; ``conversions`` says how it was resampled.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import io, repro
+    >>> rec = io.read_xio(repro.root() / "data" / "real" / "xio-fusion" / "sensor_data.csv", check="off")
+    >>> slow = io.resample(rec, 10.0)                                 # 10 Hz: each sample the mean of its 0.1 s
+    >>> round(float(np.diff(slow.time)[0]), 6), len(slow.time) < len(rec.time)
+    (0.1, True)
     """
     instance(rec, "rec", Recording, "a navlib.io.Recording")
     rate = scalar(rate, "rate", positive=True)
@@ -1027,6 +1138,14 @@ class AxisCheck:
     turn : float
         Rotation (rad) summed over the window steps the check used: it needs turning to see anything.
     message : str
+
+    Examples
+    --------
+    >>> from navlib import io, repro
+    >>> rec = io.read_xio(repro.root() / "data" / "real" / "xio-fusion" / "sensor_data.csv", check="off")
+    >>> result = io.check_axes(rec)
+    >>> result.suspect, result.ranking[0][0]                          # no axis looks flipped; "as read" fits best
+    (None, 'as read')
     """
 
     ranking: tuple[tuple[str, float], ...]
@@ -1070,6 +1189,14 @@ def check_axes(rec: Recording, *, on_fail: str = "warn") -> AxisCheck:
     Returns
     -------
     AxisCheck
+
+    Examples
+    --------
+    >>> from navlib import io, repro
+    >>> rec = io.read_xio(repro.root() / "data" / "real" / "xio-fusion" / "sensor_data.csv", check="off")
+    >>> flipped = io.Recording(rec.time, rec.w_ib_b * [1.0, 1.0, -1.0], rec.f_b, rec.m_b)   # gyro z wired backwards
+    >>> io.check_axes(flipped, on_fail="ignore").suspect
+    'gyro z'
     """
     instance(rec, "rec", Recording, "a navlib.io.Recording")
     on_fail = choice(on_fail, "on_fail", ("warn", "raise", "ignore"))
@@ -1207,6 +1334,15 @@ def start_at_rest(rec: Recording, still: ArrayLike | None = None) -> tuple[Recor
         Corrected; ``conversions`` lists the corrections.
     q_bn0 : ndarray, shape (4,)
         Initial attitude.
+
+    Examples
+    --------
+    >>> from navlib import attitude, io, repro
+    >>> import numpy as np
+    >>> rec = io.read_xio(repro.root() / "data" / "real" / "xio-fusion" / "sensor_data.csv", check="off")
+    >>> rec0, q0 = io.start_at_rest(rec, still=rec.time < 1.0)       # the first second is still
+    >>> np.round(np.rad2deg(attitude.quat_to_euler(q0)), 1) + 0.0   # heading, pitch, roll (deg) at the start
+    array([269.7,  -1.2,   0. ])
     """
     instance(rec, "rec", Recording, "a navlib.io.Recording")
     if rec.w_ib_b is None or rec.f_b is None:

@@ -1,4 +1,4 @@
-"""Kalman filter building blocks: predict, Joseph-form update, discretisation.
+r"""Kalman filter building blocks: predict, Joseph-form update, discretisation.
 
 The predict and update are written once as compiled per-sample primitives (numba),
 :func:`navlib._kernels.kalman_predict` and :func:`navlib._kernels.kalman_update`, which
@@ -10,7 +10,7 @@ so a wrong argument raises ``ValueError`` naming it instead of being broadcast o
 its end.
 
 The update is the standard (E)KF update with the covariance in Joseph form,
-``P = (I - K H) P (I - K H)^T + K R K^T``, which stays symmetric positive
+:math:`P \leftarrow (I - K H) P (I - K H)^T + K R K^T`, which stays symmetric positive
 definite under rounding and suboptimal gains. It takes the *predicted
 measurement* ``h`` (``H x`` for a linear filter, ``h(x)`` for an EKF), so the
 innovation is ``z - h``, with angle components wrapped to (-pi, pi].
@@ -46,7 +46,7 @@ def _state(x: ArrayLike, P: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
 
 
 def predict(x: ArrayLike, P: ArrayLike, F: ArrayLike, Q: ArrayLike) -> tuple[Array, Array]:
-    """Linear prediction ``x = F x``, ``P = F P F^T + Q`` (symmetrised).
+    r"""Linear prediction :math:`x \leftarrow F x`, :math:`P \leftarrow F P F^T + Q` (symmetrised).
 
     Validates its arguments, then runs the compiled primitive
     :func:`navlib._kernels.kalman_predict` (which navlib's own compiled filters call directly).
@@ -68,6 +68,15 @@ def predict(x: ArrayLike, P: ArrayLike, F: ArrayLike, Q: ArrayLike) -> tuple[Arr
     ------
     ValueError
         Naming the argument: wrong shape, empty ``x``, non-finite values, or not real numbers.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import kalman
+    >>> x, P = kalman.predict(np.array([0.0, 1.0]), np.eye(2), np.array([[1.0, 0.1], [0.0, 1.0]]), 0.01 * np.eye(2))
+    >>> x, np.round(P, 3)
+    (array([0.1, 1. ]), array([[1.02, 0.1 ],
+           [0.1 , 1.01]]))
     """
     x, P = _state(x, P)
     n = x.shape[0]
@@ -128,6 +137,16 @@ def update(
         Naming the argument: shapes that do not agree with ``x`` and ``z``, empty
         ``x``, non-finite values (other than NaN in ``z``), a mask that is not
         boolean, a gate that is not positive, or values that are not real numbers.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import kalman
+    >>> x, P = np.array([0.0, 1.0]), np.eye(2)
+    >>> H = np.array([[1.0, 0.0]])
+    >>> x, P, nu, nis, used = kalman.update(x, P, np.array([0.5]), H @ x, H, np.array([[1.0]]), np.array([False]))
+    >>> np.round(x, 3), np.round(np.diag(P), 3), used                  # half-way to the measurement: equal variances
+    (array([0.25, 1.  ]), array([0.5, 1. ]), 1)
     """
     x, P = _state(x, P)
     z = _matrix(z, "z", (None,), allow_nan=True)
@@ -141,11 +160,13 @@ def update(
 
 
 def discretize(F: ArrayLike, G: ArrayLike, Qc: ArrayLike, dt: float) -> tuple[Array, Array]:
-    """Discretise a continuous linear model by Van Loan's method.
+    r"""Discretise a continuous linear model by Van Loan's method.
 
-    For ``dx/dt = F x + G w`` with white noise of spectral density ``Qc``,
-    returns ``Phi = expm(F dt)`` and
-    ``Qd = integral_0^dt expm(F s) G Qc G^T expm(F s)^T ds``.
+    For :math:`\dot x = F x + G w` with white noise of spectral density :math:`Q_c`, returns
+
+    .. math::
+
+        \Phi = e^{F \Delta t}, \qquad Q_d = \int_0^{\Delta t} e^{F s}\, G Q_c G^T\, e^{F^T s}\, ds.
 
     Parameters
     ----------
@@ -157,6 +178,18 @@ def discretize(F: ArrayLike, G: ArrayLike, Qc: ArrayLike, dt: float) -> tuple[Ar
     Returns
     -------
     Phi, Qd : ndarray, shape (n, n)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import kalman
+    >>> F = np.array([[0.0, 1.0], [0.0, 0.0]])                      # position, velocity
+    >>> G = np.array([[0.0], [1.0]])                                 # white acceleration noise
+    >>> Phi, Qd = kalman.discretize(F, G, np.array([[1.0]]), dt=0.1)
+    >>> Phi, np.round(Qd, 6)                                          # Qd = [[dt^3/3, dt^2/2], [dt^2/2, dt]]
+    (array([[1. , 0.1],
+           [0. , 1. ]]), array([[0.000333, 0.005   ],
+           [0.005   , 0.1     ]]))
     """
     F = as_array(F, "F", shape=(None, None), nonempty=True)
     n = len(F)

@@ -49,6 +49,15 @@ class TrialStreams:
         Master seed of the study.
     ids : array_like of int, shape (B,)
         Trial indices of the batch.
+
+    Examples
+    --------
+    >>> from navlib import montecarlo
+    >>> streams = montecarlo.TrialStreams(seed=1, ids=[0, 1, 2])
+    >>> a = streams.normal()
+    >>> b = montecarlo.TrialStreams(seed=1, ids=[2]).normal()
+    >>> bool(a[2] == b[0])                                            # trial 2's draw does not depend on the batch
+    True
     """
 
     def __init__(self, seed: int, ids: ArrayLike) -> None:
@@ -225,6 +234,17 @@ def run(
     -------
     dict[str, ndarray]
         Each key's arrays concatenated along axis 0, in trial order.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import montecarlo
+    >>> def batch(ids, streams):
+    ...     return {"x": streams.normal()}                        # one draw per trial
+    ...
+    >>> out = montecarlo.run(batch, n_trials=6, seed=1, batch_size=4, progress=False)
+    >>> out["x"].shape, bool(np.array_equal(out["x"], montecarlo.run(batch, 6, 1, batch_size=2, progress=False)["x"]))
+    ((6,), True)
     """
     if not callable(batch_fn):
         raise ValueError(f"batch_fn: expected a callable, got {type(batch_fn).__name__}")

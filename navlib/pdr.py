@@ -30,7 +30,19 @@ __all__ = ["StepResult", "detect_steps", "weinberg_step_length", "pdr", "pdr_hea
 @dataclass(frozen=True)
 class StepResult:
     """Detected steps: sample index of each step's end, and the accelerometer
-    peak-to-peak of |f| within it (m/s^2), the input of Weinberg's model."""
+    peak-to-peak of |f| within it (m/s^2), the input of Weinberg's model.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import pdr
+    >>> t = np.arange(0.0, 4.0, 0.01)
+    >>> f_b = np.zeros((400, 3)) + [0.0, 0.0, 9.80665]
+    >>> f_b[:, 2] += 3.0 * np.maximum(np.sin(2 * np.pi * 1.0 * t), 0.0) ** 4   # one impact per second
+    >>> steps = pdr.detect_steps(f_b, 0.01)
+    >>> steps.index, np.round(steps.peak_to_peak, 2)
+    (array([ 26, 125, 225, 325]), array([2.75, 2.81, 2.81, 2.81]))
+    """
 
     index: np.ndarray
     peak_to_peak: np.ndarray
@@ -50,6 +62,16 @@ def detect_steps(f_b: Vec3Series, dt: float, threshold: float = 1.0, min_interva
         Minimum time between steps (s).
     g : float
         Local gravity (m/s^2).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import pdr
+    >>> t = np.arange(0.0, 4.0, 0.01)
+    >>> f_b = np.zeros((400, 3)) + [0.0, 0.0, 9.80665]
+    >>> f_b[:, 2] += 3.0 * np.maximum(np.sin(2 * np.pi * 1.0 * t), 0.0) ** 4   # one impact per second
+    >>> len(pdr.detect_steps(f_b, 0.01).index)
+    4
     """
     f = as_array(f_b, "f_b", shape=(None, 3), min_ndim=1)
     dt = interval(dt)
@@ -71,7 +93,15 @@ def detect_steps(f_b: Vec3Series, dt: float, threshold: float = 1.0, min_interva
 
 
 def weinberg_step_length(peak_to_peak: ArrayLike, K: float = 0.45) -> Array:
-    """Weinberg (2002) step length ``K (a_max - a_min)^(1/4)`` (m); K is calibrated per person."""
+    r"""Weinberg (2002) step length :math:`K\, (a_{max} - a_{min})^{1/4}` (m); K is calibrated per person.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import pdr
+    >>> np.round(pdr.weinberg_step_length([4.0, 8.0]), 3)              # K (a_max - a_min)^(1/4), m
+    array([0.636, 0.757])
+    """
     a = positive(peak_to_peak, "peak_to_peak", allow_zero=True)
     return scalar(K, "K", positive=True) * a**0.25
 
@@ -83,6 +113,16 @@ def pdr(step_lengths: ArrayLike, step_headings: ArrayLike, start_en: ArrayLike =
     -------
     en : ndarray, shape (n_steps + 1, 2)
         Positions (m), starting at ``start_en``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import pdr
+    >>> np.round(pdr.pdr([0.7, 0.7, 0.7], np.deg2rad([0.0, 90.0, 90.0])), 6) + 0.0   # north, then east twice (m)
+    array([[0. , 0. ],
+           [0. , 0.7],
+           [0.7, 0.7],
+           [1.4, 0.7]])
     """
     L = positive(step_lengths, "step_lengths", allow_zero=True, shape=(None,))
     psi = same_shape(as_array(step_headings, "step_headings"), "step_headings", L.shape, of="step_lengths")
@@ -111,6 +151,15 @@ def pdr_headings(f_b: Vec3Series, m_b: Vec3Series, step_index: ArrayLike, declin
     Returns
     -------
     heading : ndarray, shape (n_steps,)  (rad)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import pdr
+    >>> f_b = np.tile([0.0, 0.0, 9.8], (10, 1))                      # level
+    >>> m_b = np.tile([20.0 * np.sin(-0.5), 20.0 * np.cos(-0.5), -40.0], (10, 1))   # facing 0.5 rad east of magnetic north
+    >>> np.round(pdr.pdr_headings(f_b, m_b, [4, 9]), 6)
+    array([0.5, 0.5])
     """
     f = as_array(f_b, "f_b", shape=(None, 3), min_ndim=1)
     m = same_shape(as_array(m_b, "m_b", allow_nan=True), "m_b", f.shape, of="f_b")

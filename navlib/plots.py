@@ -36,6 +36,18 @@ def body_axes(ax: Axes3D, C_bn: Dcm, title: str = "") -> None:
     ax : mpl_toolkits.mplot3d.Axes3D
     C_bn : array_like, shape (3, 3)
         Body-to-ENU rotation; its columns are the body axes in ENU.
+
+    Examples
+    --------
+    >>> import matplotlib.pyplot as plt
+    >>> import numpy as np
+    >>> from navlib import attitude, plots
+    >>> fig = plt.figure()
+    >>> ax = fig.add_subplot(projection="3d")
+    >>> plots.body_axes(ax, attitude.euler_to_dcm(np.deg2rad([30.0, 0.0, 0.0])), title="heading 30 deg")
+    >>> ax.get_title()
+    'heading 30 deg'
+    >>> plt.close(fig)
     """
     if not hasattr(ax, "quiver") or not hasattr(ax, "set_zlim"):
         raise ValueError(f"ax: expected a 3-D matplotlib Axes (projection='3d'), got {type(ax).__name__}")
@@ -71,6 +83,18 @@ def allan(
         Allan deviation (rad/s); several columns are drawn thin.
     theory : array_like, shape (M,), optional
         Model curve (rad/s), drawn dashed.
+
+    Examples
+    --------
+    >>> import matplotlib.pyplot as plt
+    >>> import numpy as np
+    >>> from navlib import analysis, plots
+    >>> taus = np.geomspace(0.1, 100.0, 10)
+    >>> fig, ax = plt.subplots()
+    >>> plots.allan(ax, taus, analysis.allan_deviation_theory(taus, white=1e-4), label="white noise")
+    >>> ax.get_xscale(), ax.get_ylabel()
+    ('log', 'Allan deviation (°/h)')
+    >>> plt.close(fig)
     """
     axes(ax)
     taus = positive(taus, "taus", shape=(None,), nonempty=True)
@@ -98,7 +122,15 @@ def allan(
 
 
 def heading_deg(hpr: Angles) -> Array:
-    """Heading in degrees in [0, 360) from an ``hpr`` array (..., 3)."""
+    """Heading in degrees in [0, 360) from an ``hpr`` array (..., 3).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import plots
+    >>> np.round(plots.heading_deg(np.array([[-0.1, 0.0, 0.0], [np.pi, 0.0, 0.0]])), 3)
+    array([354.27, 180.  ])
+    """
     return units.to_deg(attitude.wrap_2pi(euler_angles(hpr, "hpr")[..., 0]))
 
 
@@ -127,6 +159,16 @@ def paper_value(ax: Axes, value: float, label: str, *, axis: str = "y", text_at:
         ``"y"``: a horizontal line at y = value; ``"x"``: a vertical line at x = value.
     text_at : float
         Where along the line the label sits, as a fraction of the axes in [0, 1] (0 = left/bottom).
+
+    Examples
+    --------
+    >>> import matplotlib.pyplot as plt
+    >>> from navlib import plots
+    >>> fig, ax = plt.subplots()
+    >>> plots.paper_value(ax, 0.5, "paper: 0.5 deg")
+    >>> len(ax.lines), ax.texts[0].get_text()
+    (1, 'paper: 0.5 deg')
+    >>> plt.close(fig)
     """
     axes(ax)
     v = scalar(value, "value")
@@ -175,6 +217,16 @@ def block_diagram(
         Box size as a fraction of the axes, in (0, 1].
     colors : dict, optional
         ``name -> face colour`` for boxes to set apart (e.g. the sensors); default light grey.
+
+    Examples
+    --------
+    >>> import matplotlib.pyplot as plt
+    >>> from navlib import plots
+    >>> fig, ax = plt.subplots()
+    >>> plots.block_diagram(ax, {"imu": (0.2, 0.5, "IMU"), "ins": (0.6, 0.5, "INS")}, [("imu", "ins", "w, f")])
+    >>> sorted(t.get_text() for t in ax.texts)
+    ['', 'IMU', 'INS', 'w, f']
+    >>> plt.close(fig)
     """
     axes(ax)
     instance(blocks, "blocks", dict, "a dict name -> (x, y, text)")
@@ -244,6 +296,16 @@ def plane_frame(
     ``angle_deg`` is measured counter-clockwise from the plot's +x axis (for a map with x east and
     y north, a body forward axis at heading psi has angle 90° - psi). ``labels`` name the first
     and second axis (the second is 90° counter-clockwise of the first). ``length`` in data units.
+
+    Examples
+    --------
+    >>> import matplotlib.pyplot as plt
+    >>> from navlib import plots
+    >>> fig, ax = plt.subplots()
+    >>> plots.plane_frame(ax, (0.0, 0.0), 90.0, ("x_b", "y_b"))
+    >>> sorted(t.get_text() for t in ax.texts)
+    ['', '', 'x_b', 'y_b']
+    >>> plt.close(fig)
     """
     axes(ax)
     o = as_array(origin, "origin", shape=(2,))
@@ -272,6 +334,16 @@ def angle_arc(
     """An arc from ``start_deg`` to ``end_deg`` (counter-clockwise from +x) with ``label`` at its middle.
 
     ``center`` and ``radius`` in data units (use an equal aspect ratio for a circular arc).
+
+    Examples
+    --------
+    >>> import matplotlib.pyplot as plt
+    >>> from navlib import plots
+    >>> fig, ax = plt.subplots()
+    >>> plots.angle_arc(ax, (0.0, 0.0), 1.0, 0.0, 60.0, "60 deg")
+    >>> [t.get_text() for t in ax.texts]
+    ['60 deg']
+    >>> plt.close(fig)
     """
     axes(ax)
     c = as_array(center, "center", shape=(2,))

@@ -122,16 +122,61 @@ _NEEDS_EVIDENCE = ("reproduced with correction", "differs", "refuted")
 
 
 class ClaimCheckFailed(AssertionError):
-    """A reproduced value is outside the tolerance of its target."""
+    """A reproduced value is outside the tolerance of its target.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from navlib import repro
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> repro.setup("demo", out_dir=tmp.name, style=False)
+    >>> try:
+    ...     repro.check("demo/too-far", 1.2, 1.0, 0.05, "a worked example")
+    ... except repro.ClaimCheckFailed as e:
+    ...     print(type(e).__name__, issubclass(repro.ClaimCheckFailed, AssertionError))
+    ...
+    ClaimCheckFailed True
+    >>> tmp.cleanup()
+    """
 
 
 class ClaimCheckWarning(UserWarning):
-    """Teaching mode: a check failed (or a verdict could not be recorded); the notebook goes on."""
+    """Teaching mode: a check failed (or a verdict could not be recorded); the notebook goes on.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from navlib import repro
+    >>> import warnings
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> repro.setup("demo", out_dir=tmp.name, style=False)
+    >>> repro.mode(teaching=True, fast=False)                         # a failed check warns instead of raising
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     ok = repro.check("demo/too-far", 1.2, 1.0, 0.05, "a worked example").passed
+    ...
+    >>> ok, caught[0].category.__name__
+    (False, 'ClaimCheckWarning')
+    >>> repro.mode(teaching=False, fast=False)
+    >>> tmp.cleanup()
+    """
 
 
 @dataclass
 class Check:
-    """One recorded claim check (a row of results.json)."""
+    """One recorded claim check (a row of results.json).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from navlib import repro
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> repro.setup("demo", paper="000", out_dir=tmp.name, style=False)
+    >>> c = repro.check("P000-EQ3-EULER/demo", 1.02, 1.0, 0.05, "a worked example")
+    >>> c.passed, c.value, c.expected, c.tol
+    (True, 1.02, 1.0, 0.05)
+    >>> tmp.cleanup()
+    """
 
     name: str
     value: float
@@ -151,7 +196,20 @@ class Check:
 
 @dataclass
 class Verdict:
-    """The verdict on one claim of ``data/claims.csv`` (an entry of results.json's ``verdicts``)."""
+    """The verdict on one claim of ``data/claims.csv`` (an entry of results.json's ``verdicts``).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from navlib import repro
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> repro.setup("demo", paper="000", out_dir=tmp.name, style=False)
+    >>> _ = repro.check("P000-EQ3-EULER/demo", 1.0, 1.0, 0.1, "a worked example")
+    >>> v = repro.verdict("P000-EQ3-EULER", "reproduced", checks=["P000-EQ3-EULER/demo"])
+    >>> v.claim, v.verdict, v.checks
+    ('P000-EQ3-EULER', 'reproduced', ['P000-EQ3-EULER/demo'])
+    >>> tmp.cleanup()
+    """
 
     claim: str
     verdict: str
@@ -184,7 +242,17 @@ _state = _State()
 
 
 class NoOutputDirectory(RuntimeError):
-    """navlib.repro runs outside a checkout and was given no output directory."""
+    """navlib.repro runs outside a checkout and was given no output directory.
+
+    Examples
+    --------
+    >>> from navlib import repro
+    >>> issubclass(repro.NoOutputDirectory, Exception)
+    True
+    >>> import os
+    >>> os.environ.get("NAVLIB_ROOT") is None and repro.root().is_dir()   # in a checkout: no exception
+    True
+    """
 
 
 def root() -> Path:
@@ -195,6 +263,12 @@ def root() -> Path:
     ``notebooks/``). Outside a checkout there is no such directory, and
     :class:`NoOutputDirectory` is raised rather than writing beside the
     installed package: set ``NAVLIB_ROOT`` or pass ``out_dir`` to :func:`setup`.
+
+    Examples
+    --------
+    >>> from navlib import repro
+    >>> (repro.root() / "pyproject.toml").is_file()
+    True
     """
     env = os.environ.get("NAVLIB_ROOT")
     if env:
@@ -213,7 +287,18 @@ def build_dir(notebook: str | None = None) -> Path:
     """The output directory, or its ``<notebook>/`` folder; created.
 
     ``setup``'s ``out_dir`` when given, else the ``NAVLIB_BUILD_DIR`` environment variable when set,
-    else ``<root>/build``."""
+    else ``<root>/build``.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from navlib import repro
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> repro.setup("demo", out_dir=tmp.name, style=False)
+    >>> repro.build_dir("demo").name, repro.build_dir("demo").is_dir()
+    ('demo', True)
+    >>> tmp.cleanup()
+    """
     if notebook is not None and not isinstance(notebook, str):
         raise ValueError(f"notebook: expected a notebook name (str), got {type(notebook).__name__}")
     if notebook and ("/" in notebook or "\\" in notebook or notebook in (".", "..")):
@@ -246,6 +331,17 @@ def setup(notebook: str, *, paper: str | None = None, out_dir: str | os.PathLike
     out_dir : path, optional
         Where outputs go. Default: ``build/`` of the checkout (see :func:`root`);
         required when navlib runs outside a checkout.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> from navlib import repro
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> repro.setup("demo", paper="000", out_dir=tmp.name, style=False)   # outputs to <tmp>/demo/
+    >>> repro.results(), (Path(tmp.name) / "demo").is_dir()
+    ([], True)
+    >>> tmp.cleanup()
     """
     try:
         import matplotlib
@@ -316,6 +412,20 @@ def savefig(fig: Figure, name: str) -> Path:
     byte-identical files. Under Jupyter's inline backend the cell shows this
     PNG and the figure is closed: it is rendered once, not a second time by
     the backend at the end of the cell. Other backends leave the figure open for ``plt.show()``.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> import matplotlib.pyplot as plt
+    >>> from navlib import repro
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> repro.setup("demo", out_dir=tmp.name, style=False)
+    >>> fig, ax = plt.subplots()
+    >>> _ = ax.plot([0.0, 1.0], [0.0, 1.0])
+    >>> path = repro.savefig(fig, "line")
+    >>> path.relative_to(tmp.name).as_posix()
+    'demo/figures/line.png'
+    >>> tmp.cleanup()
     """
     import matplotlib
     import matplotlib.pyplot as plt
@@ -453,6 +563,20 @@ def check(
         The value is arithmetic on the paper's own printed numbers (typed in ``data/``), e.g. a
         table column against the total its text prints: legitimate, but a consistency check of the
         paper rather than a reproduction. Recorded in results.json.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from navlib import repro
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> repro.setup("demo", paper="000", out_dir=tmp.name, style=False)
+    >>> repro.check("P000-EQ3-EULER/demo", 1.02, 1.0, 0.05, "a worked example").passed
+    True
+    >>> repro.check("P000-EQ3-EULER/too-far", 1.2, 1.0, 0.05, "a worked example")
+    Traceback (most recent call last):
+        ...
+    navlib.repro.ClaimCheckFailed: P000-EQ3-EULER/too-far: reproduced 1.2 is outside target 1 ± 0.05 (a ...
+    >>> tmp.cleanup()
     """
     v, printed = _check_args(name, value, source, unit, note, on_printed)
     e = _as_float(expected, "expected", finite=True)
@@ -495,6 +619,16 @@ def check_range(
     For directional and bound claims, e.g. "the EKF error is smaller than
     dead reckoning's" as ``check_range(name, rmse_ekf / rmse_dr, upper=1)``. ``value`` and
     ``on_printed`` as for :func:`check`.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from navlib import repro
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> repro.setup("demo", out_dir=tmp.name, style=False)
+    >>> repro.check_range("demo/ratio", 0.4, "a worked example", upper=1.0).passed   # e.g. EKF error / dead-reckoning error
+    True
+    >>> tmp.cleanup()
     """
     return _interval_check(name, value, source, (lower, upper), paper_value, unit, note, on_printed, outside=False)
 
@@ -519,6 +653,16 @@ def check_outside(
     ``check_outside(name, ours, src, lower=4.77 - 3 * s, upper=4.77 + 3 * s)``.
     ``value`` is computed by navlib; the interval holds the paper's value with its
     stated or derived spread. A non-finite value fails. ``on_printed`` as for :func:`check`.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from navlib import repro
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> repro.setup("demo", out_dir=tmp.name, style=False)
+    >>> repro.check_outside("demo/differs", 5.0, "a worked example", lower=0.0, upper=1.0).passed   # 5 is outside [0, 1]
+    True
+    >>> tmp.cleanup()
     """
     return _interval_check(name, value, source, (lower, upper), paper_value, unit, note, on_printed, outside=True)
 
@@ -551,7 +695,15 @@ def _interval_check(name, value, source, bounds, paper_value, unit, note, on_pri
 
 @dataclass(frozen=True)
 class SeedSpread:
-    """One check's spread over a recorded seed study: ``data/seed_studies/<study>.csv`` (its script: ``run.py``)."""
+    """One check's spread over a recorded seed study: ``data/seed_studies/<study>.csv`` (its script: ``run.py``).
+
+    Examples
+    --------
+    >>> from navlib import repro
+    >>> s = repro.SeedSpread("demo", "demo/x", seeds=(1, 2, 3), mean=0.1, sd=0.02, rms=0.1)
+    >>> s.rms, len(s.seeds)
+    (0.1, 3)
+    """
 
     study: str
     check: str
@@ -576,6 +728,12 @@ def seed_spread(study: str, check: str, *, about_mean: bool = False) -> SeedSpre
     """The recorded spread of ``check`` in seed study ``study``, or None if the study has no row for it.
 
     ``about_mean``: the rows are plain values, spread about their own mean (the RMS is then the sd).
+
+    Examples
+    --------
+    >>> from navlib import repro
+    >>> repro.seed_spread("no_such_study_demo", "x") is None          # a study without that check
+    True
     """
     rows = _study_rows(text(study, "study", empty=False)).get(text(check, "check", empty=False))
     if not rows:
@@ -618,6 +776,18 @@ def check_study(
     the value is a regression of the stand-in: it must lie within STUDY_K sd of the study's mean. Two-sided: a value
     too large is as wrong as one too small. Before the study has a row for ``name`` (``data/seed_studies/run.py``
     writes it from these very checks) the check fails: in teaching mode it is recorded with its value.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from navlib import repro
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> repro.setup("demo", out_dir=tmp.name, style=False)
+    >>> repro.check_study("demo/x", 1.0, 1.0, "no_such_study_demo", "a worked example")
+    Traceback (most recent call last):
+        ...
+    navlib.repro.ClaimCheckFailed: demo/x: reproduced 1 is outside target 1 ± nan (a worked example; no ...
+    >>> tmp.cleanup()
     """
     v, _ = _check_args(name, value, source, unit, note, False)
     spread = seed_spread(study, name, about_mean=target is None)
@@ -673,12 +843,37 @@ def _bounds(lower, upper) -> tuple[float | None, float | None]:
 
 
 def results() -> list[Check]:
-    """Checks recorded so far in this notebook run."""
+    """Checks recorded so far in this notebook run.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from navlib import repro
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> repro.setup("demo", out_dir=tmp.name, style=False)
+    >>> _ = repro.check("demo/a", 1.0, 1.0, 0.1, "a worked example")
+    >>> [c.name for c in repro.results()]
+    ['demo/a']
+    >>> tmp.cleanup()
+    """
     return list(_state.checks)
 
 
 def verdicts() -> list[Verdict]:
-    """Verdicts recorded so far in this notebook run."""
+    """Verdicts recorded so far in this notebook run.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from navlib import repro
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> repro.setup("demo", paper="000", out_dir=tmp.name, style=False)
+    >>> _ = repro.check("P000-EQ3-EULER/demo", 1.0, 1.0, 0.1, "a worked example")
+    >>> _ = repro.verdict("P000-EQ3-EULER", "reproduced", checks=["P000-EQ3-EULER/demo"])
+    >>> [v.claim for v in repro.verdicts()]
+    ['P000-EQ3-EULER']
+    >>> tmp.cleanup()
+    """
     return list(_state.verdicts)
 
 
@@ -738,6 +933,21 @@ def verdict(
         the claim's ``erratum`` column) whose correction makes the claim hold.
     figure : str
         A figure saved earlier in this run (:func:`savefig` name) shown as the claim's thumbnail.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from navlib import repro
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> repro.setup("demo", paper="000", out_dir=tmp.name, style=False)
+    >>> _ = repro.check("P000-EQ3-EULER/demo", 1.0, 1.0, 0.1, "a worked example")
+    >>> repro.verdict("P000-EQ3-EULER", "reproduced", checks=["P000-EQ3-EULER/demo"]).verdict
+    'reproduced'
+    >>> repro.verdict("P000-EQ3-EULER", "reproduced", checks=["P000-EQ3-EULER/missing"])
+    Traceback (most recent call last):
+        ...
+    ValueError: checks: 'P000-EQ3-EULER/missing' was not recorded in this run
+    >>> tmp.cleanup()
     """
     if _state.notebook is None:
         raise RuntimeError("call navlib.repro.setup(notebook, paper=...) before verdict()")
@@ -888,6 +1098,14 @@ def env_flag(name: str, default: bool = False) -> bool:
 
     ``default`` when the variable is unset. For a notebook's parameters cell, e.g.
     ``TEACHING = repro.env_flag("NAVLIB_TEACHING")``; any other text raises ``ValueError`` naming it.
+
+    Examples
+    --------
+    >>> from navlib import repro
+    >>> os.environ["NAVLIB_DEMO_FLAG"] = "yes"
+    >>> repro.env_flag("NAVLIB_DEMO_FLAG"), repro.env_flag("NAVLIB_DEMO_UNSET", default=True)
+    (True, True)
+    >>> del os.environ["NAVLIB_DEMO_FLAG"]
     """
     text(name, "name")
     raw = os.environ.get(name)
@@ -904,6 +1122,17 @@ def mode(*, teaching: bool, fast: bool) -> None:
 
     In teaching mode a failed check warns (:class:`ClaimCheckWarning`) instead of raising. Both are
     recorded in results.json (``mode``), whose results then do not enter the ledger.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from navlib import repro
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> repro.setup("demo", out_dir=tmp.name, style=False)
+    >>> repro.mode(teaching=False, fast=True)                         # recorded in results.json
+    >>> repro.check("demo/fast", 1.0, 1.0, 0.1, "a worked example").passed
+    True
+    >>> tmp.cleanup()
     """
     if _state.notebook is None:
         raise RuntimeError("call navlib.repro.setup(notebook, ...) before mode()")
@@ -919,6 +1148,18 @@ def summary():
     ``result``, and the ``verdict`` of the claim it supports once recorded) and a row per verdict that
     rests on no check of the table (``not checkable here``). Ends a notebook section: checks record
     silently, and the table is the section's only output about them.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from navlib import repro
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> repro.setup("demo", out_dir=tmp.name, style=False)
+    >>> _ = repro.check("demo/a", 1.02, 1.0, 0.05, "a worked example")
+    >>> table = repro.summary()
+    >>> list(table.columns)
+    ['paper', 'ours', 'tolerance', 'result', 'verdict']
+    >>> tmp.cleanup()
     """
     checks = _state.checks[_state.shown_checks :]
     new_verdicts = _state.verdicts[_state.shown_verdicts :]
@@ -988,6 +1229,12 @@ def caption(markdown: str):
 
     A notebook's markdown cells cannot hold numbers that a run computes; typed copies go stale. Build
     the text with an f-string from the run's values and make this the last expression of the cell.
+
+    Examples
+    --------
+    >>> from navlib import repro
+    >>> repro.caption(f"Fig. 1: heading error after {10} s: {0.123:.2f} deg.").data
+    'Fig. 1: heading error after 10 s: 0.12 deg.'
     """
     from IPython.display import Markdown  # noqa: PLC0415 -- only notebooks need IPython
 
@@ -996,7 +1243,16 @@ def caption(markdown: str):
 
 @dataclass
 class Exercise:
-    """The outcome of :func:`exercise`: ``passed`` is None while the stub is not written yet."""
+    """The outcome of :func:`exercise`: ``passed`` is None while the stub is not written yet.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import repro
+    >>> result = repro.exercise(lambda x: None, np.sin, [(0.1,)])     # a stub not written yet
+    >>> result.passed is None, result.message[:27]
+    (True, '*`<lambda>` is not written ')
+    """
 
     passed: bool | None
     message: str
@@ -1013,6 +1269,19 @@ def exercise(student, reference, cases: Sequence[tuple], tol: float = 1e-9) -> E
     with ``reference`` within ``tol`` (absolute) on every case; the first case that does not is shown. The
     chapter tests its own hidden solution the same way (``assert exercise(solution, ...).passed``), so an
     exercise whose solution is wrong cannot pass.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import repro
+    >>> def my_wrap(a):
+    ...     return (a + np.pi) % (2 * np.pi) - np.pi              # a student's wrap into [-pi, pi)
+    ...
+    >>> from navlib import attitude
+    >>> repro.exercise(my_wrap, attitude.wrap_pi, [(0.5,), (4.0,)]).passed
+    True
+    >>> repro.exercise(my_wrap, attitude.wrap_pi, [(np.pi,)]).passed   # wrap_pi keeps +pi: (-pi, pi]
+    False
     """
     if not callable(student) or not callable(reference):
         raise ValueError("student, reference: expected functions")
@@ -1040,6 +1309,14 @@ def answer(markdown: str, label: str = "Answer"):
     """The answer to a "Try this" exercise, collapsed (an HTML ``<details>`` block) until the reader opens it.
 
     ``markdown`` is built from values the notebook computed (an f-string), never typed-in results.
+
+    Examples
+    --------
+    >>> from navlib import repro
+    >>> type(repro.answer(f"The heading error is {0.25:.2f} deg.")).__name__   # an IPython Markdown object
+    'Markdown'
+    >>> repro.answer("42").data.splitlines()[0]
+    '<details><summary>Answer</summary>'
     """
     from IPython.display import Markdown  # noqa: PLC0415 -- only notebooks need IPython
 
@@ -1064,6 +1341,23 @@ def explorer(draw, name: str, controls: dict) -> None:
     controls : dict
         ``argument -> ipywidgets control`` (e.g. ``FloatSlider(value=..., min=..., max=...)``), or
         ``argument -> value`` for a fixed argument; a control's ``value`` is its default.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> import matplotlib.pyplot as plt
+    >>> from navlib import repro
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> repro.setup("demo", out_dir=tmp.name, style=False)
+    >>> def draw(slope=1.0):
+    ...     fig, ax = plt.subplots()
+    ...     ax.plot([0.0, 1.0], [0.0, slope])
+    ...     return fig
+    ...
+    >>> repro.explorer(draw, "slope", {"slope": 2.0})                 # headless: saved and shown at its defaults
+    >>> sorted(p.name for p in (repro.build_dir("demo") / "figures").iterdir())
+    ['slope.png']
+    >>> tmp.cleanup()
     """
     import matplotlib
     import matplotlib.pyplot as plt

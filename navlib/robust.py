@@ -105,6 +105,13 @@ class FaultReport:
 
     ``report["gyro", "nan"]`` is the count (0 when the key is absent); ``report.flags[...]`` a
     boolean mask over samples where the filter was asked to keep flags.
+
+    Examples
+    --------
+    >>> from navlib import robust
+    >>> report = robust.FaultReport({("gyro", "nan"): 2})
+    >>> report["gyro", "nan"], report["accel", "nan"]                 # 0 for an absent key
+    (2, 0)
     """
 
     counts: Mapping[tuple[str, str], np.ndarray | int] = field(default_factory=dict)
@@ -153,6 +160,15 @@ def fault_report(x: ArrayLike, sensor: str, *, full_scale: float | None = None, 
     FaultReport
         ``counts[(sensor, "nan")]`` and, with ``full_scale``, ``counts[(sensor, "saturated")]``: int
         arrays of shape (...); with ``flags=True`` the boolean masks, shape (..., N), under the same keys.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import robust
+    >>> w_ib_b = np.array([[0.1, 0.0, 0.0], [np.nan, 0.0, 0.0], [5.0, 0.0, 0.0]])
+    >>> report = robust.fault_report(w_ib_b, "gyro", full_scale=4.0)
+    >>> int(report["gyro", "nan"]), int(report["gyro", "saturated"])
+    (1, 1)
     """
     instance(sensor, "sensor", str, "a sensor name (str)")
     a = as_array(x, "x", allow_nan=True, min_ndim=2)
@@ -190,6 +206,14 @@ def hold(x: ArrayLike, *, leading: str = "raise", name: str = "x", axis: int = -
     filled : ndarray, same shape as ``x``
     held : ndarray of bool, shape of ``x`` without the vector axis
         True where a sample was replaced.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import robust
+    >>> x, held = robust.hold(np.array([[1.0], [np.nan], [np.nan], [4.0]]))
+    >>> x[:, 0], held
+    (array([1., 1., 1., 4.]), array([False,  True,  True, False]))
     """
     choice(leading, "leading", LEADING)
     choice(axis, "axis", (-1, -2))
@@ -262,6 +286,17 @@ def despike(w_ib_b: Vec3Series, f_b: Vec3Series, spike_gyro: float, spike_accel:
     w_ib_b, f_b : ndarray, shape (N, 3)
         Copies with the spiky samples (both sensors) set to NaN.
     spikes : ndarray of bool, shape (N,)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import robust
+    >>> f_b = np.tile([0.0, 0.0, 9.8], (6, 1))
+    >>> w_ib_b = np.zeros((6, 3))
+    >>> w_ib_b[3, 0] = 5.0                                            # one isolated gyro spike (rad/s)
+    >>> w, f, spiked = robust.despike(w_ib_b, f_b, spike_gyro=1.0, spike_accel=np.inf)
+    >>> spiked, w[3]
+    (array([False, False, False,  True, False, False]), array([nan, nan, nan]))
     """
     w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
     f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=True)
@@ -293,6 +328,13 @@ def longest_repeat(x: ArrayLike, valid: ArrayLike | None = None) -> NDArray[np.i
     -------
     run : ndarray of int, shape (..., k)
         1 where no reading repeats; 0 for a component with no valid sample.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import robust
+    >>> robust.longest_repeat(np.array([[1.0, 0.1], [1.0, 0.2], [1.0, 0.3], [2.0, 0.3]]))
+    array([3, 2])
     """
     x = as_array(x, "x", allow_nan=True)
     if x.ndim < 2 or x.shape[-2] == 0:
@@ -346,6 +388,14 @@ def stuck_mask(x: ArrayLike, run: int, *, name: str = "x", axis: int = -2) -> ND
     -------
     stuck : ndarray of bool, shape (..., N)
         True where some component of the sample belongs to such a run.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import robust
+    >>> x = np.array([[0.1], [0.2], [0.2], [0.2], [0.2], [0.5]])
+    >>> robust.stuck_mask(x, run=3)                                   # the frozen run of 0.2
+    array([False,  True,  True,  True,  True, False])
     """
     run = integer(run, "run", minimum=2)
     return _stuck_runs(_series(x, name, axis), run)
@@ -392,6 +442,16 @@ def stuck_samples(
     Returns
     -------
     stuck : ndarray of bool, shape (..., N)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import robust
+    >>> rng = np.random.default_rng(0)
+    >>> x = rng.standard_normal((8, 3))
+    >>> x[3:7] = x[3]                                                 # frozen for four samples
+    >>> robust.stuck_samples(x, run=3)
+    array([False, False, False,  True,  True,  True,  True, False])
     """
     a = _series(x, name, axis)
     if run is None:
@@ -429,6 +489,16 @@ class Screened(NamedTuple):
         ``nan``/``stuck``/``spike``/``saturated``, ``accel`` ``nan``/``spike``/``freefall``/``saturated``, ``mag``
         ``nan``/``saturated`` (with ``m_b``), ``clock`` ``jump``. Each gyro sample has at most one of
         stuck, nan, spike (in that order); each accelerometer sample at most one of nan, spike, free fall.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import imu, robust
+    >>> w_ib_b = 1e-3 * np.sin(np.arange(30.0))[:, None] + np.zeros((30, 3))
+    >>> f_b = [0.0, 0.0, 9.8] + 1e-2 * np.cos(np.arange(30.0))[:, None]
+    >>> s = robust.screen(imu.ImuSamples(w_ib_b, f_b, 0.01))
+    >>> s.w_ib_b.shape, s.dt.shape, s.max_dt
+    ((30, 3), (30,), 0.1)
     """
 
     imu: ImuSamples
@@ -461,6 +531,17 @@ def screen(imu: ImuSamples, m_b: Vec3Series | None = None) -> Screened:
     ValueError
         If the gyro turns more than :data:`navlib._validate.MAX_TURN_PER_SAMPLE` within one integrated
         interval (``dt`` in the wrong unit).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import imu, robust
+    >>> w_ib_b = 1e-3 * np.sin(np.arange(30.0))[:, None] + np.zeros((30, 3))
+    >>> f_b = [0.0, 0.0, 9.8] + 1e-2 * np.cos(np.arange(30.0))[:, None]
+    >>> w_ib_b[10] = np.nan                                           # a gyro dropout
+    >>> s = robust.screen(imu.ImuSamples(w_ib_b, f_b, 0.01))
+    >>> int(s.faults["gyro", "nan"]), bool(s.fresh[10]), s.typical_dt
+    (1, False, 0.01)
     """
     instance(imu, "imu", ImuSamples, "an ImuSamples (navlib.imu)")
     lim, w, f, dts = imu.limits, imu.w_ib_b, imu.f_b, imu.dt

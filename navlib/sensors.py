@@ -1,22 +1,22 @@
-"""Simulated sensors: IMU, magnetometer, barometer, GNSS, dual-antenna heading.
+r"""Simulated sensors: IMU, magnetometer, barometer, GNSS, dual-antenna heading.
 
-IMU error model (per axis, applied to the ideal outputs of
-:func:`navlib.trajectory.ideal_imu`)::
+IMU error model (per axis, applied to the ideal outputs :math:`x` of
+:func:`navlib.trajectory.ideal_imu`), clipped at :math:`\pm` ``full_scale``:
 
-    y = M x + b_on + b_gm(t) + b_rrw(t) + n(t),    clipped at +-full_scale
+.. math:: y = M x + b_{on} + b_{gm}(t) + b_{rrw}(t) + n(t)
 
 * ``M = I + diag(scale) + misalignment``: scale-factor errors on the
   diagonal, small-angle misalignments off it (drawn once per run).
 * ``b_on``: turn-on bias, constant within a run.
-* ``b_gm``: first-order Gauss-Markov bias, ``b[k+1] = phi b[k] + w[k]`` with
-  ``phi = exp(-dt/T_c)`` and ``var(w) = sigma^2 (1 - phi^2)``, started from its
+* ``b_gm``: first-order Gauss-Markov bias, :math:`b_{k+1} = \phi\, b_k + w_k` with
+  :math:`\phi = e^{-\Delta t / T_c}` and :math:`\mathrm{var}(w) = \sigma^2 (1 - \phi^2)`, started from its
   stationary distribution. Its standard deviation ``sigma`` therefore does not
   depend on the sample rate. ``sigma = B / GM_ALLAN_PEAK`` so that the Allan
   deviation of the bias peaks at the datasheet bias instability B
   (see :mod:`navlib.analysis`).
 * ``b_rrw``: rate random walk with density K.
 * ``n``: white noise of density N (ARW for gyros, VRW for accelerometers);
-  per-sample sigma ``N / sqrt(dt)``.
+  per-sample sigma :math:`N / \sqrt{\Delta t}`.
 
 Each error component draws from its own child stream of ``rng`` (via
 ``Generator.spawn``), so switching one component on or off leaves the
@@ -115,6 +115,13 @@ class TriadErrors:
         Misalignment sigma (rad), independent for each off-diagonal element.
     full_scale : float
         Saturation limit (rad/s or m/s^2); ``inf`` for none.
+
+    Examples
+    --------
+    >>> from navlib import sensors, units
+    >>> gyro = sensors.TriadErrors(noise_density=units.deg_per_sqrt_h(0.15), bias=units.deg_per_h(10.0))
+    >>> round(float(gyro.noise_density), 8), round(float(gyro.bias), 8)            # SI: rad/s/sqrt(Hz), rad/s
+    (4.363e-05, 4.848e-05)
     """
 
     noise_density: float = 0.0
@@ -142,7 +149,15 @@ class TriadErrors:
 
 @dataclass(frozen=True)
 class ImuModel:
-    """Gyro and accelerometer error models of one IMU."""
+    """Gyro and accelerometer error models of one IMU.
+
+    Examples
+    --------
+    >>> from navlib import sensors
+    >>> model = sensors.ImuModel(gyro=sensors.TriadErrors(noise_density=1e-4), name="my gyro")
+    >>> model.name, model.gyro.noise_density, model.accel.noise_density   # accelerometer error-free
+    ('my gyro', 0.0001, 0.0)
+    """
 
     gyro: TriadErrors = field(default_factory=TriadErrors)
     accel: TriadErrors = field(default_factory=TriadErrors)
@@ -172,6 +187,15 @@ class ImuOutput:
         True ``I + scale + misalignment`` matrices.
     gyro_saturated, accel_saturated : int
         Number of clipped samples (all axes and trials).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import sensors
+    >>> w_ib_b, f_b = np.zeros((100, 3)), np.tile([0.0, 0.0, 9.81], (100, 1))
+    >>> out = sensors.simulate_imu(w_ib_b, f_b, 0.01, sensors.imu_model("MPU-6050"), np.random.default_rng(1))
+    >>> out.gyro_bias.shape, out.gyro_matrix.shape, out.gyro_saturated   # the error realisation behind the samples
+    ((100, 3), (3, 3), 0)
     """
 
     w_ib_b: np.ndarray
@@ -202,6 +226,14 @@ def gauss_markov(shape: tuple[int, ...], dt: float, sigma: float, correlation_ti
     Returns
     -------
     ndarray of ``shape``
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import sensors
+    >>> x = sensors.gauss_markov((20000, 1), 0.01, sigma=2.0, correlation_time=1.0, rng=np.random.default_rng(0))
+    >>> x.shape, round(float(x.std()), 1)                             # stationary: std close to sigma
+    ((20000, 1), 2.1)
     """
     dt = interval(dt)
     tc = scalar(correlation_time, "correlation_time", positive=True)
@@ -290,9 +322,12 @@ def _apply_errors(M, x, bias, scale, full_scale, y):
 
 
 def window_mean_std(errors: TriadErrors, duration: float, dt: float) -> float:
-    """Std of one axis's error averaged over a static window (white + bias terms).
+    r"""Std of one axis's error averaged over a static window (white + bias terms).
 
-    ``var = N^2 / T + bias^2 + sigma_gm^2 * 2 (tau/T) [1 - (tau/T)(1 - exp(-T/tau))]``
+    .. math::
+
+        \sigma^2 = \frac{N^2}{T} + b^2 + 2 \sigma_{gm}^2 \frac{\tau}{T} \Big[1 - \frac{\tau}{T}\big(1 - e^{-T/\tau}\big)\Big]
+
     for white noise density N, turn-on bias and a Gauss-Markov bias of std
     sigma_gm and correlation time tau (rate random walk and scale factor are
     not included): the error left in a static average of a real sensor, e.g. the
@@ -305,6 +340,13 @@ def window_mean_std(errors: TriadErrors, duration: float, dt: float) -> float:
         Averaging time T (s).
     dt : float
         Sample interval (s), for the discrete white-noise mean ``N / sqrt(n dt)``.
+
+    Examples
+    --------
+    >>> from navlib import sensors
+    >>> gyro = sensors.TriadErrors(noise_density=1e-4)              # white noise only
+    >>> round(sensors.window_mean_std(gyro, duration=100.0, dt=0.01), 8)   # N / sqrt(T)
+    1e-05
     """
     instance(errors, "errors", TriadErrors, "TriadErrors")
     T, dt = scalar(duration, "duration", positive=True), interval(dt)
@@ -410,7 +452,14 @@ def _preset_table() -> dict[str, dict[tuple[str, str], tuple[float, str, str]]]:
 
 
 def devices() -> list[str]:
-    """Names of the devices in ``navlib/data/sensor_presets.csv``."""
+    """Names of the devices in ``navlib/data/sensor_presets.csv``.
+
+    Examples
+    --------
+    >>> from navlib import sensors
+    >>> "MPU-6050" in sensors.devices(), "BMP180" in sensors.devices()
+    (True, True)
+    """
     return sorted(_preset_table())
 
 
@@ -418,6 +467,12 @@ def preset(device: str) -> dict[tuple[str, str], float]:
     """SI parameters of a device, keyed by ``(sensor, parameter)``.
 
     Example: ``preset("BMP180")[("baro", "noise")]`` is 2.0 Pa.
+
+    Examples
+    --------
+    >>> from navlib import sensors
+    >>> sensors.preset("BMP180")[("baro", "noise")]                  # Pa
+    2.0
     """
     table = _preset_table()
     if not isinstance(device, str) or device not in table:
@@ -434,7 +489,15 @@ def _preset_fields(device: str, sensor: str, names: set[str], what: str) -> dict
 
 
 def imu_model(device: str) -> ImuModel:
-    """:class:`ImuModel` of a preset device (``NAV-FOG``, ``MTi-100``, ``ADIS16475-1``, ``MPU-6050``)."""
+    """:class:`ImuModel` of a preset device (``NAV-FOG``, ``MTi-100``, ``ADIS16475-1``, ``MPU-6050``).
+
+    Examples
+    --------
+    >>> from navlib import sensors, units
+    >>> model = sensors.imu_model("MPU-6050")
+    >>> model.name, round(float(units.to_deg_per_s_sqrt_hz(model.gyro.noise_density)), 4)   # deg/s/sqrt(Hz)
+    ('MPU-6050', 0.005)
+    """
     names = {f.name for f in fields(TriadErrors)}
     gyro, accel = (TriadErrors(**_preset_fields(device, sensor, names, sensor)) for sensor in ("gyro", "accel"))
     return ImuModel(gyro, accel, device)
@@ -453,6 +516,16 @@ class MagnetometerModel:
     elements of E drawn with sigma ``soft_iron`` (symmetric), hard-iron offset
     h with sigma ``hard_iron`` (constant per run), white noise n with sigma
     ``noise``, and an optional external disturbance field ``d_n``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import sensors
+    >>> model = sensors.MagnetometerModel(noise=0.5, hard_iron=3.0)   # uT
+    >>> q_bn = np.tile([1.0, 0.0, 0.0, 0.0], (5, 1))
+    >>> out = sensors.simulate_magnetometer(q_bn, [0.0, 20.0, -40.0], model, np.random.default_rng(0))
+    >>> out.m_b.shape
+    (5, 3)
     """
 
     noise: float = 0.0
@@ -497,6 +570,17 @@ def simulate_magnetometer(
     Returns
     -------
     MagnetometerOutput
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude, sensors
+    >>> q_bn = np.tile(attitude.euler_to_quat(np.deg2rad([90.0, 0.0, 0.0])), (3, 1))   # facing east
+    >>> out = sensors.simulate_magnetometer(q_bn, [0.0, 20.0, -40.0], sensors.MagnetometerModel(), np.random.default_rng(0))
+    >>> np.round(out.m_b, 6) + 0.0                                    # error-free: north is to the left (-x)
+    array([[-20.,   0., -40.],
+           [-20.,   0., -40.],
+           [-20.,   0., -40.]])
     """
     q = as_quat(q_bn, "q_bn", min_ndim=1)
     B = as_array(B_n, "B_n", tail=(3,))
@@ -545,6 +629,14 @@ def magnetic_disturbances(
     -------
     d_n : ndarray, shape (N, 3)
         Disturbance field in ENU (uT).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import sensors
+    >>> d = sensors.magnetic_disturbances(np.arange(0.0, 60.0, 0.1), np.random.default_rng(0), rate=0.1)
+    >>> d.shape, bool(np.abs(d).max() > 0)                           # ENU disturbance (uT), (N, 3)
+    ((600, 3), True)
     """
     t = time_axis(time)
     rate = scalar(rate, "rate", allow_zero=True)
@@ -575,7 +667,17 @@ def magnetic_disturbances(
 @dataclass(frozen=True)
 class BarometerModel:
     """Barometer errors (Pa): white ``noise`` sigma, constant ``bias`` sigma,
-    and a deterministic weather ``drift_rate`` (Pa/s)."""
+    and a deterministic weather ``drift_rate`` (Pa/s).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import sensors
+    >>> model = sensors.BarometerModel(noise=2.0, bias=10.0, drift_rate=0.01)   # Pa, Pa, Pa/s
+    >>> p = sensors.simulate_barometer(np.zeros(3), np.array([0.0, 100.0, 200.0]), model, np.random.default_rng(0))
+    >>> p.shape
+    (3,)
+    """
 
     noise: float = 0.0
     bias: float = 0.0
@@ -609,6 +711,14 @@ def simulate_barometer(
     Returns
     -------
     ndarray, shape (..., N)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import sensors
+    >>> model = sensors.BarometerModel(drift_rate=0.01)               # weather drift only: 0.01 Pa/s
+    >>> np.round(sensors.simulate_barometer(np.zeros(3), np.array([0.0, 100.0, 200.0]), model, np.random.default_rng(0)), 3)
+    array([101325., 101326., 101327.])
     """
     t = time_axis(time)
     generator(rng)
@@ -637,6 +747,13 @@ def outage_mask(time: Times, outages: Sequence[tuple[float, float]]) -> np.ndarr
     Returns
     -------
     valid : ndarray of bool, shape (N,)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import sensors
+    >>> sensors.outage_mask(np.arange(6.0), [(2.0, 4.0)])
+    array([ True,  True, False, False,  True,  True])
     """
     t = time_axis(time)
     valid = np.ones(t.shape, dtype=bool)
@@ -674,6 +791,15 @@ def simulate_gnss_position(
     Returns
     -------
     lla_meas : ndarray, shape (..., N, 3)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import sensors
+    >>> lla = np.tile([0.6, 0.2, 50.0], (4, 1))
+    >>> gnss = sensors.simulate_gnss_position(lla, np.random.default_rng(0), 2.0, valid=np.array([True, True, False, True]))
+    >>> np.isnan(gnss[:, 0])                                          # no fix during the outage
+    array([False, False,  True, False])
     """
     lla = as_array(lla, "lla", tail=(3,), min_ndim=1)
     in_range(lla[..., 0], "lla[..., 0] (lat)", -np.pi / 2, np.pi / 2, "rad")
@@ -711,6 +837,14 @@ def simulate_heading(
     -------
     heading_meas : ndarray, shape (..., N)
     valid : ndarray of bool, shape (N,)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import sensors
+    >>> heading, valid = sensors.simulate_heading(np.full(4, 6.28), np.random.default_rng(0), 0.01)
+    >>> bool(((heading >= 0) & (heading < 2 * np.pi)).all()), valid  # wrapped into [0, 2 pi)
+    (True, array([ True,  True,  True,  True]))
     """
     h = as_array(heading, "heading", min_ndim=1)
     s = scalar(sigma, "sigma", allow_zero=True)

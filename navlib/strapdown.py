@@ -1,15 +1,18 @@
-"""Strapdown inertial navigation in the ENU frame over the WGS84 ellipsoid.
+r"""Strapdown inertial navigation in the ENU frame over the WGS84 ellipsoid.
 
 Discrete mechanisation (Titterton & Weston 2004, ch. 3; Groves 2013, ch. 5),
-one step per IMU sample k covering [t_k, t_k + dt]::
+one step per IMU sample k covering :math:`[t_k, t_k + \Delta t]`:
 
-    w_in   = w_ie(lat_k) + w_en(lat_k, h_k, v_k)
-    q_k+1  = q(-w_in dt) (x) q_k (x) q(w_k dt)                      attitude
-    f_n    = C(q(-w_in dt/2) (x) q_k (x) q(w_k dt/2)) f_k            mid-interval attitude
-    v_k+1  = v_k + (f_n + g_n(lat_k, h_k) - (2 w_ie + w_en) x v_k) dt
-    lat, lon, h advance with the mean of v_k and v_k+1 (trapezoid)
+.. math::
 
-where ``q(rv)`` is the quaternion of a rotation vector. Gyro and
+    \omega_{in} &= \omega_{ie}(\varphi_k) + \omega_{en}(\varphi_k, h_k, v_k) \\
+    q_{k+1} &= q(-\omega_{in} \Delta t) \otimes q_k \otimes q(\omega_k \Delta t) \\
+    f^n &= C\big(q(-\omega_{in} \Delta t / 2) \otimes q_k \otimes q(\omega_k \Delta t / 2)\big)\, f_k \\
+    v_{k+1} &= v_k + \big(f^n + g^n(\varphi_k, h_k) - (2 \omega_{ie} + \omega_{en}) \times v_k\big)\, \Delta t
+
+(the second line is the attitude, the third the specific force at the mid-interval attitude); latitude
+:math:`\varphi`, longitude and height advance with the mean of :math:`v_k` and :math:`v_{k+1}` (trapezoid),
+where :math:`q(\mathbf{r})` is the quaternion of a rotation vector. Gyro and
 accelerometer samples are the mean rate and mean specific force over the
 interval (``w_k dt`` is the angle increment). :func:`navlib.trajectory.ideal_imu`
 is the exact inverse of this scheme, so integrating ideal samples reproduces
@@ -128,9 +131,9 @@ def _sample_intervals(dt, n):
 def integrate_attitude(
     q0: Quat, w_ib_b: Vec3Series, dt: Interval, w_in_n: Vec3 | None = None, *, nan_policy: str = "raise"
 ) -> Array:
-    """Integrate gyro samples into an attitude history.
+    r"""Integrate gyro samples into an attitude history.
 
-    ``q_k+1 = q(-w_in_n dt_k) (x) q_k (x) q(w_k dt_k)`` with a constant
+    :math:`q_{k+1} = q(-\omega_{in}^n \Delta t_k) \otimes q_k \otimes q(\omega_k \Delta t_k)` with a constant
     navigation-frame rate ``w_in_n`` (e.g. Earth rate at a fixed latitude for
     a static or slowly moving IMU; zero to neglect it).
 
@@ -153,6 +156,15 @@ def integrate_attitude(
     Returns
     -------
     q_bn : ndarray, shape (..., N + 1, 4)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude, strapdown
+    >>> w_ib_b = np.tile([0.0, 0.0, -np.deg2rad(9.0)], (100, 1))     # 9 deg/s clockwise for 1 s
+    >>> q = strapdown.integrate_attitude([1.0, 0.0, 0.0, 0.0], w_ib_b, 0.01)
+    >>> q.shape, np.round(np.rad2deg(attitude.quat_to_euler(q[-1])), 6) + 0.0
+    ((101, 4), array([9., 0., 0.]))
     """
     policy = choice(nan_policy, "nan_policy", _NAN_POLICIES)
     w, _ = _dropouts(_samples(w_ib_b, "w_ib_b"), "w_ib_b", policy)
@@ -212,6 +224,16 @@ def nav_step(
         Naming the argument: wrong shape (also empty), non-finite values, a latitude
         outside [-pi/2, pi/2] rad, a zero quaternion, ``dt <= 0``, a non-bool
         ``hold_height``, or values that are not real numbers.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import strapdown, trajectory
+    >>> lla, vel, q = np.array([0.6, 0.2, 50.0]), np.zeros(3), np.array([1.0, 0.0, 0.0, 0.0])
+    >>> w_ib_b, f_b = trajectory.ideal_imu(trajectory.static(0.01, 0.01, lla, [0.0, 0.0, 0.0]))
+    >>> _ = strapdown.nav_step(lla, vel, q, w_ib_b[0], f_b[0], 0.01, strapdown.earth_constants())   # updates lla, vel, q
+    >>> np.round(vel, 12) + 0.0                                       # static input: the state stays put
+    array([0., 0., 0.])
     """
     lla = _state_array(lla, "lla", 3)
     latitude(lla[0], "lla[0] (lat)")
@@ -233,7 +255,14 @@ def nav_step(
 
 
 def earth_constants(ellipsoid: earth.Ellipsoid = earth.WGS84) -> np.ndarray:
-    """The ``earth_consts`` array of :func:`nav_step` for an ellipsoid."""
+    """The ``earth_consts`` array of :func:`nav_step` for an ellipsoid.
+
+    Examples
+    --------
+    >>> from navlib import strapdown
+    >>> strapdown.earth_constants().shape
+    (7,)
+    """
     ellipsoid_(ellipsoid)
     return np.array(ellipsoid.gravity_constants + (ellipsoid.omega,))
 
@@ -395,6 +424,16 @@ def error_model(lat: float, h: float, vel_n: Vec3, f_n: Vec3, ellipsoid: earth.E
     Returns
     -------
     F : ndarray, shape (9, 9)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import strapdown
+    >>> F = strapdown.error_model(0.6, 0.0, np.zeros(3), [0.0, 0.0, 9.8])
+    >>> F.shape, np.round(F[3:6, 0:3], 2) + 0.0                       # velocity error from tilt: [f_n x]
+    ((9, 9), array([[ 0. , -9.8,  0. ],
+           [ 9.8,  0. ,  0. ],
+           [ 0. ,  0. ,  0. ]]))
     """
     lat = scalar(latitude(lat), "lat")
     if np.cos(lat) < 1e-9:
@@ -442,6 +481,13 @@ def error_input(C_bn: Dcm) -> Array:
     Returns
     -------
     G : ndarray, shape (9, 6)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import strapdown
+    >>> strapdown.error_input(np.eye(3)).shape                        # 9 error states, 6 sensor errors
+    (9, 6)
     """
     C = as_dcm(as_array(C_bn, "C_bn", shape=(3, 3)), "C_bn")
     G = np.zeros((9, 6))

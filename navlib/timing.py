@@ -38,6 +38,14 @@ class TimingReport:
         is kept).
     dt_median, dt_min, dt_max : float
         Interval statistics after cleaning (s).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import timing
+    >>> time, x, report = timing.sanitize(np.array([0.0, 0.02, 0.01, 0.02, 0.03]), np.arange(5.0))
+    >>> report.n_in, report.n_out, report.n_out_of_order, report.n_duplicate
+    (5, 4, 1, 1)
     """
 
     n_in: int
@@ -79,6 +87,14 @@ def sanitize(time: ArrayLike, *series: ArrayLike) -> tuple[Array | TimingReport,
     *series : ndarray
         The series, reordered and de-duplicated.
     report : TimingReport
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import timing
+    >>> time, x, report = timing.sanitize(np.array([0.0, 0.02, 0.01, 0.02, 0.03]), np.arange(5.0))
+    >>> time, x                                                       # sorted, the repeated 0.02 dropped
+    (array([0.  , 0.01, 0.02, 0.03]), array([0., 2., 1., 4.]))
     """
     t = time_axis(time, increasing=False)
     running_max = np.maximum.accumulate(t)
@@ -110,6 +126,12 @@ def intervals(time: Times, n_samples: int | None = None) -> Array:
     Returns
     -------
     dt : ndarray, shape (N,)
+
+    Examples
+    --------
+    >>> from navlib import timing
+    >>> timing.intervals([0.0, 0.01, 0.03, 0.04])
+    array([0.01, 0.02, 0.01])
     """
     t = time_axis(time)
     dt = np.diff(t)

@@ -58,6 +58,13 @@ class Trajectory:
         What the integrator did with faulty samples, e.g. :func:`navlib.strapdown.integrate`'s held
         dropouts (``faults["gyro", "nan"]``, counts of shape (...), flags of shape (..., N - 1));
         empty for generated trajectories.
+
+    Examples
+    --------
+    >>> from navlib import trajectory
+    >>> traj = trajectory.static(1.0, 0.1, [0.6, 0.2, 50.0], [0.0, 0.0, 0.0])
+    >>> len(traj), traj.time[:3], traj.lla.shape, traj.q_bn.shape
+    (11, array([0. , 0.1, 0.2]), (11, 3), (11, 4))
     """
 
     time: np.ndarray
@@ -156,6 +163,16 @@ def from_profiles(time, lla0, hpr, vel_n, ellipsoid: earth.Ellipsoid = earth.WGS
         ``[heading, pitch, roll]`` (rad).
     vel_n : array_like, shape (N, 3)
         ENU velocity (m/s).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import analysis, trajectory
+    >>> time = np.arange(0.0, 10.01, 0.1)
+    >>> vel_n = np.tile([0.0, 1.0, 0.0], (time.size, 1))            # 1 m/s north
+    >>> traj = trajectory.from_profiles(time, [0.6, 0.2, 50.0], np.zeros((time.size, 3)), vel_n)
+    >>> round(float(analysis.horizontal_error(traj.lla[-1:], traj.lla[:1])[0, 1]), 3)   # metres north after 10 s
+    10.0
     """
     t = time_axis(time)
     if not np.allclose(np.diff(t), t[1] - t[0], rtol=1e-9, atol=0):
@@ -191,7 +208,15 @@ def static(duration: float, dt: float, lla0, hpr) -> Trajectory:
 
 
 def smooth_ramp(x):
-    """``x - sin(2 pi x) / (2 pi)`` on [0, 1]: 0 to 1 with zero slope at both ends."""
+    """``x - sin(2 pi x) / (2 pi)`` on [0, 1]: 0 to 1 with zero slope at both ends.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import trajectory
+    >>> np.round(trajectory.smooth_ramp(np.array([0.0, 0.25, 0.5, 1.0])), 4)
+    array([0.    , 0.0908, 0.5   , 1.    ])
+    """
     return _ramp(as_array(x, "x"))
 
 
@@ -224,6 +249,14 @@ def reciprocating_rotation(
         Time between the starts of successive rotations (s).
     rotation_time : float
         Duration of each rotation (s), less than ``period``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude, trajectory
+    >>> traj = trajectory.reciprocating_rotation(20.0, 0.1, [0.6, 0.2, 0.0], [0.0, 0.0, 0.0], [0.0, 1.0, 0.0], np.pi / 2, 10.0)
+    >>> np.round(np.rad2deg(attitude.quat_to_euler(traj.q_bn[[0, 85, 105, 185]]))[:, 2], 3)   # roll: 0, 0, 90, 90
+    array([ 0.,  0., 90., 90.])
     """
     t = _time_grid(duration, dt)
     u = as_array(axis_b, "axis_b", shape=(3,))
@@ -270,6 +303,16 @@ class Segment:
     their values at the end of the previous segment to the values given
     here (``None`` keeps them), and the heading changes by ``turn``.
     Units: s, m/s, rad.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude, trajectory
+    >>> Segment = trajectory.Segment
+    >>> segs = [Segment(10.0, speed=10.0), Segment(10.0, turn=np.pi / 2), Segment(10.0, speed=0.0)]   # speed up, turn right, stop
+    >>> traj = trajectory.vehicle(segs, 0.1, [0.6, 0.2, 50.0], 0.0)
+    >>> len(traj), round(float(np.rad2deg(attitude.quat_to_euler(traj.q_bn[-1])[0])), 3)
+    (301, 90.0)
     """
 
     duration: float
@@ -301,6 +344,17 @@ def vehicle(segments, dt: float, lla0, heading0: float, ellipsoid: earth.Ellipso
         Sample interval (s).
     lla0 : array_like, shape (3,)
     heading0 : float  (rad)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import trajectory
+    >>> segs = [trajectory.Segment(10.0, speed=10.0), trajectory.Segment(10.0, speed=0.0)]   # accelerate, brake
+    >>> traj = trajectory.vehicle(segs, 0.1, [0.6, 0.2, 50.0], np.pi / 2)   # heading east
+    >>> np.round(traj.vel_n[[0, 100, -1]], 3) + 0.0
+    array([[ 0.,  0.,  0.],
+           [10.,  0.,  0.],
+           [ 0.,  0.,  0.]])
     """
     segments = _listed(segments)
     if not segments or not all(isinstance(s, Segment) for s in segments):
@@ -330,6 +384,15 @@ class Leg:
     positive) and the height by ``climb`` (m; stairs). The speed moves
     smoothly from the previous leg's within the first ``ramp`` seconds of
     the walk (see :func:`walk`); a stop is static once that ramp is over.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude, trajectory
+    >>> legs = [trajectory.Leg(2.0), trajectory.Leg(5.0, speed=1.2, turn=np.pi / 2), trajectory.Leg(2.0)]
+    >>> traj = trajectory.walk(legs, 0.05, [0.6, 0.2, 50.0], 0.0)
+    >>> len(traj), round(float(np.rad2deg(attitude.quat_to_euler(traj.q_bn[-1])[0])), 0)   # turned 90 deg right
+    (181, 90.0)
     """
 
     duration: float
@@ -370,6 +433,13 @@ class Gait:
         Standing sway frequency (Hz).
     ramp : float
         Time to start or stop walking (s).
+
+    Examples
+    --------
+    >>> from navlib import trajectory
+    >>> gait = trajectory.Gait(step_frequency=2.0, bounce=0.03)
+    >>> gait.step_frequency, gait.sway
+    (2.0, 0.02)
     """
 
     step_frequency: float = 1.8
@@ -441,6 +511,14 @@ def stance_mask(legs: Sequence[Leg], dt: float, gait: Gait = Gait()) -> np.ndarr
     -------
     static : ndarray of bool, shape (N,)
         Same length as the trajectory's ``time``.
+
+    Examples
+    --------
+    >>> from navlib import trajectory
+    >>> legs = [trajectory.Leg(2.0), trajectory.Leg(5.0, speed=1.2), trajectory.Leg(2.0)]
+    >>> still = trajectory.stance_mask(legs, 0.05)
+    >>> still.shape, bool(still[:10].all()), bool(still[60:100].any())
+    ((181,), True, False)
     """
     legs, t = _walk_grid(legs, gait, dt)
     return _schedule(legs, t, gait.ramp)[3]
@@ -471,6 +549,14 @@ def walk(
     Returns
     -------
     Trajectory
+
+    Examples
+    --------
+    >>> from navlib import analysis, trajectory
+    >>> legs = [trajectory.Leg(2.0), trajectory.Leg(5.0, speed=1.2), trajectory.Leg(2.0)]   # stand, walk north, stand
+    >>> traj = trajectory.walk(legs, 0.05, [0.6, 0.2, 50.0], 0.0)
+    >>> round(float(analysis.horizontal_error(traj.lla[-1:], traj.lla[:1])[0, 1]), 1)   # metres north
+    6.0
     """
     legs, t = _walk_grid(legs, gait, dt)
     heading0 = scalar(heading0, "heading0")
@@ -522,6 +608,15 @@ def ideal_imu(traj: Trajectory, ellipsoid: earth.Ellipsoid = earth.WGS84):
         Angular rate relative to inertial space (rad/s).
     f_b : ndarray, shape (..., N - 1, 3)
         Specific force (m/s^2).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import trajectory
+    >>> traj = trajectory.static(0.05, 0.01, [0.6, 0.2, 50.0], [0.0, 0.0, 0.0])
+    >>> w_ib_b, f_b = trajectory.ideal_imu(traj)                      # one sample per interval: N - 1
+    >>> w_ib_b.shape, np.round(f_b[0], 4)                             # specific force: up, normal gravity
+    ((5, 3), array([0.    , 0.    , 9.7967]))
     """
     instance(traj, "traj", Trajectory, "a Trajectory")
     if not all(np.isfinite(a).all() for a in (traj.lla, traj.vel_n, traj.q_bn)):

@@ -81,6 +81,15 @@ class FusionResult:
         not fused), ``("heading", "reacquired")`` (used after ``confirm`` agreeing rejections); with a gate
         ``("mag", "outlier")`` (magnetic steps not carried, module docstring); counts of shape (...); and
         ``("clock", "jump")`` flagged per sample, shape (..., N).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.filters import heading_fusion, observations
+    >>> rtk = observations.RtkHeading(np.full(10, 0.5), np.arange(10) % 5 == 0)    # an RTK epoch every 5th sample
+    >>> out = heading_fusion.fuse_rtk_heading(np.full(10, 0.3), rtk, 0.01)
+    >>> np.round(out.heading, 3), round(float(out.delta[-1]), 3)   # output RTK heading; delta = H_rtk - H_mag
+    (array([0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5]), 0.2)
     """
 
     heading: np.ndarray
@@ -169,6 +178,17 @@ def fuse_rtk_heading(
     Returns
     -------
     FusionResult
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.filters import heading_fusion, observations
+    >>> heading_mag = 0.3 + 0.001 * np.arange(10)                     # magnetic heading, turning slowly (rad)
+    >>> rtk = observations.RtkHeading(np.full(10, 0.5), np.arange(10) % 5 == 0)   # RTK epochs at samples 0 and 5
+    >>> out = heading_fusion.fuse_rtk_heading(heading_mag, rtk, 0.01)
+    >>> np.round(out.heading, 3)                                      # RTK's 0.5 rad, carried by the magnetic increments
+    array([0.5  , 0.501, 0.502, 0.503, 0.504, 0.5  , 0.501, 0.502, 0.503,
+           0.504])
     """
     hm = as_array(heading_mag, "heading_mag", min_ndim=1, nonempty=True)
     alpha = in_range(scalar(alpha, "alpha"), "alpha", 0.0, 1.0, lo_open=True)
@@ -206,6 +226,15 @@ def rtk_at_imu_rate(time: Times, heading: Angles, valid: ArrayLike, step: int) -
         The heading, NaN between epochs and at invalid epochs.
     epoch_valid : ndarray of bool, shape (N,)
         True at valid epochs.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.filters import heading_fusion
+    >>> time = 0.01 * np.arange(6)
+    >>> heading, valid = heading_fusion.rtk_at_imu_rate(time, np.full(6, 0.5), np.ones(6, bool), step=3)
+    >>> heading, valid
+    (array([0.5, nan, nan, 0.5, nan, nan]), array([ True, False, False,  True, False, False]))
     """
     t = time_axis(time, "time")
     h = as_array(heading, "heading", allow_nan=True, nonempty=True)

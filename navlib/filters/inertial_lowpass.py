@@ -68,6 +68,13 @@ class InertialLowpassSettings:
     * ``mag_settle_time``: after a rejected magnetometer sample the field must be back within the tolerances
       for this long before it corrects the heading again (a field swinging through the reference norm while a
       magnet moves past would otherwise pass the test now and then; on BROAD trial 33 that cost 4.6 deg).
+
+    Examples
+    --------
+    >>> from navlib.filters import inertial_lowpass
+    >>> settings = inertial_lowpass.InertialLowpassSettings(tau_acc=1.0)   # trust the accelerometer more
+    >>> settings.tau_acc, settings.tau_mag
+    (1.0, 9.0)
     """
 
     tau_acc: float = 3.0
@@ -353,6 +360,17 @@ def inertial_lowpass(
         ``q_bn`` (..., N, 4); ``gyro_bias`` the final estimate (..., 3); ``faults``: the screen's, plus
         ``("mag", "rejected")`` for every magnetometer sample rejected as disturbed and ``("imu", "rest")``
         flags (not counted as faults) of the samples detected at rest.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude, imu, trajectory
+    >>> from navlib.filters import inertial_lowpass
+    >>> traj = trajectory.static(2.0, 0.01, [0.6, 0.2, 50.0], np.deg2rad([0.0, 5.0, -3.0]))
+    >>> samples = imu.ImuSamples(*trajectory.ideal_imu(traj), 0.01)
+    >>> res = inertial_lowpass.inertial_lowpass(samples)              # initial attitude found from the samples
+    >>> np.round(np.rad2deg(attitude.quat_to_euler(res.q_bn[-1]))[1:], 2)   # pitch, roll (deg)
+    array([ 5., -3.])
     """
     instance(settings, "settings", InertialLowpassSettings, "an InertialLowpassSettings")
     declination = scalar(declination, "declination", positive=False)

@@ -1,4 +1,4 @@
-"""Mahony's nonlinear complementary filter on SO(3) with a PI correction (gyro + accelerometer + heading reference).
+r"""Mahony's nonlinear complementary filter on SO(3) with a PI correction (gyro + accelerometer + heading reference).
 
 Mahony, Hamel, Pflimlin (2008), "Nonlinear complementary filters on the special orthogonal
 group", IEEE T-AC 53(5), in the explicit form used by Zhang et al. 2023 (paper 003,
@@ -11,9 +11,9 @@ group", IEEE T-AC 53(5), in the explicit form used by Zhang et al. 2023 (paper 0
   the vertical field times the heading error. A large heading error -- a magnetic disturbance -- therefore
   also tilts the estimate (13 deg on the real recording of notebook 06, where x-io's Fusion, which
   corrects heading only, stays within 0.2 deg); the field-norm and dip gate (``AttitudeGates(mag=MagGate())``) is the defence;
-* Eq. (15): ``w = w_m + kp e + ki sum(e dt)`` with kp in rad/s and ki in rad/s^2 (the full cross
-  product, not MahonyAHRS.c's half error "twoKp");
-* Eq. (17): first-order update ``q <- normalise(q + dt/2 q (x) [0, w])``.
+* Eq. (15): :math:`\omega = \omega_m + k_P e + k_I \sum e\, \Delta t` with :math:`k_P` in rad/s and
+  :math:`k_I` in rad/s^2 (the full cross product, not MahonyAHRS.c's half error "twoKp");
+* Eq. (17): first-order update :math:`q \leftarrow \mathrm{normalise}\big(q + \tfrac{\Delta t}{2}\, q \otimes [0, \omega]\big)`.
 
 The heading reference is a magnetometer, a dual-antenna RTK heading, or none (gyro + accelerometer:
 heading free). The samples arrive screened (:func:`navlib.robust.screen`) and gated
@@ -98,9 +98,13 @@ def mahony(
     ki: float | None = None,
     gates: AttitudeGates = AttitudeGates(),
 ) -> AttitudeResult:
-    """Mahony PI complementary filter (Eqs. 9-15 of Zhang et al. 2023), per sample:
-    ``e = a x a_est + m x m_est``, ``w = w_m + kp e + ki sum(e dt)``,
-    ``q <- normalise(q + dt/2 q (x) [0, w])``.
+    r"""Mahony PI complementary filter (Eqs. 9-15 of Zhang et al. 2023), per sample:
+
+    .. math::
+
+        e &= a \times \hat a + m \times \hat m \\
+        \omega &= \omega_m + k_P e + k_I \textstyle\sum e\, \Delta t \\
+        q &\leftarrow \mathrm{normalise}\big(q + \tfrac{\Delta t}{2}\, q \otimes [0, \omega]\big).
 
     Identical to ``ahrs.filters.Mahony.updateMARG`` (AHRS 0.4.0, same frames and first-order update)
     except that ahrs skips samples whose gyro norm is exactly 0. With per-sample ``dt`` each step uses
@@ -137,6 +141,19 @@ def mahony(
     AttitudeResult
         With ``faults``: what was held, skipped, gated or re-initialised
         (:mod:`navlib.filters.observations`).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude, imu, trajectory
+    >>> from navlib.filters import mahony
+    >>> traj = trajectory.static(3.0, 0.01, [0.6, 0.2, 50.0], np.deg2rad([30.0, 0.0, 0.0]))
+    >>> samples = imu.ImuSamples(*trajectory.ideal_imu(traj), 0.01)
+    >>> q0 = attitude.euler_to_quat(np.deg2rad([30.0, 0.0, 5.0]))    # starts with a 5 deg roll error
+    >>> res = mahony.mahony(samples, q0, kp=2.0)
+    >>> np.round(np.rad2deg(attitude.quat_to_euler(res.q_bn[[0, -1]])), 1) + 0.0   # the accelerometer levels it
+    array([[30. ,  0. ,  4.9],
+           [30. ,  0. ,  0. ]])
     """
     kp, ki = scalar(kp, "kp", positive=True, allow_zero=True), integral_gain(ki, m_b is not None or rtk is not None)
     lead, inp, found = pack(imu, q0, m_b, rtk, B_n, gates, kp)

@@ -103,7 +103,18 @@ _RTK_COUNTS = (("mag", "nan"), ("heading", "nan"), ("heading", "outlier"), ("hea
 
 
 class AttitudeInputs(NamedTuple):
-    """Inputs of the attitude kernels, T trials of N samples (from :func:`pack`)."""
+    """Inputs of the attitude kernels, T trials of N samples (from :func:`pack`).
+
+    Examples
+    --------
+    >>> from navlib import imu, trajectory
+    >>> from navlib.filters import observations
+    >>> traj = trajectory.static(0.1, 0.01, [0.6, 0.2, 50.0], [0.0, 0.0, 0.0])
+    >>> samples = imu.ImuSamples(*trajectory.ideal_imu(traj), 0.01)
+    >>> lead, inputs, found = observations.pack(samples, traj.q_bn[0], None, None, None, observations.AttitudeGates(), 1.0)
+    >>> lead, inputs.w.shape, inputs.use_mag                         # one trial of 10 samples, no magnetometer
+    ((), (1, 10, 3), False)
+    """
 
     q_init: np.ndarray  # (T, 4) attitude before the first sample
     w: np.ndarray  # (T, N, 3) gyro (rad/s), held over unusable samples
@@ -137,6 +148,12 @@ def integral_gain(ki: float | None, heading_reference: bool) -> float:
     observable at all. On the x-io hand-motion recording (data/real/xio-fusion, no magnetometer) ``ki = 0.02``
     learns (-0.27, 0.89, 0.70) deg/s where the true bias is about 0.01 deg/s, and the heading then drifts 10 deg in
     15 s at rest. With a heading reference every axis is observed and the default learns the bias.
+
+    Examples
+    --------
+    >>> from navlib.filters import observations
+    >>> observations.integral_gain(None, heading_reference=False), observations.integral_gain(0.05, heading_reference=False)
+    (0.0, 0.05)
     """
     if ki is None:
         return KI_WITH_REFERENCE if flag(heading_reference, "heading_reference") else 0.0
@@ -157,6 +174,14 @@ def magnetic_reference(B_n: Vec3) -> tuple[Array, float, float, float]:
         Unit field in the magnetic-north frame.
     declination, inclination, intensity : float
         D (rad, east positive), I (rad, down positive), F (uT).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.filters import observations
+    >>> b, D, I, F = observations.magnetic_reference([0.0, 20.0, -40.0])
+    >>> np.round(b, 4), round(float(np.rad2deg(I)), 3), round(float(F), 3)   # normalised [0, cos I, -sin I]
+    (array([ 0.    ,  0.4472, -0.8944]), 63.435, 44.721)
     """
     B = as_array(B_n, "B_n", shape=(3,))
     if np.linalg.norm(B) == 0:
@@ -425,6 +450,14 @@ class MagGate:
     A sample is used only if ``| |m| / F - 1 | <= norm_tol`` and its dip angle
     (against the accelerometer's up direction) is within ``dip_tol`` (rad) of
     the local inclination I. F and I come from the ``B_n`` given to the filter.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.filters import observations
+    >>> gate = observations.MagGate(norm_tol=0.05, dip_tol=np.deg2rad(3.0))   # 5 % on |m|, 3 deg on the dip
+    >>> gate.norm_tol, round(float(np.rad2deg(gate.dip_tol)), 6)
+    (0.05, 3.0)
     """
 
     norm_tol: float = 0.1
@@ -449,6 +482,13 @@ class AttitudeGates:
     mag : MagGate, optional
         Field-norm and dip-angle gate for the magnetometer (``("mag", "outlier")``); needs the filter's
         ``B_n``. None (default): no gate.
+
+    Examples
+    --------
+    >>> from navlib.filters import observations
+    >>> gates = observations.AttitudeGates(accel_tol=0.1, mag=observations.MagGate(norm_tol=0.1))
+    >>> gates.accel_tol, gates.mag.norm_tol
+    (0.1, 0.1)
     """
 
     accel_tol: float | None = None
@@ -483,6 +523,14 @@ class RtkHeading:
         With ``gate``: after this many consecutive rejected epochs that agree with each other (within
         ``gate``), use them (``("heading", "reacquired")``), so that an estimate that drifted in an outage
         is pulled back.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.filters import observations
+    >>> rtk = observations.RtkHeading(heading=np.array([0.5, 0.0, 0.52]), valid=np.array([True, False, True]), gate=0.1)
+    >>> int(rtk.valid.sum()), rtk.hold, rtk.gate
+    (2, 0.25, 0.1)
     """
 
     heading: ArrayLike
@@ -548,6 +596,15 @@ class AttitudeResult:
         Final quaternion covariance (the quaternion KF; None for Mahony).
     P_history : ndarray, shape (..., N, 4, 4) or None
         Covariance after every sample (``quaternion_kf(..., keep_cov=True)``).
+
+    Examples
+    --------
+    >>> from navlib import attitude, imu, trajectory
+    >>> from navlib.filters import mahony
+    >>> traj = trajectory.static(0.5, 0.01, [0.6, 0.2, 50.0], [0.0, 0.0, 0.0])
+    >>> res = mahony.mahony(imu.ImuSamples(*trajectory.ideal_imu(traj), 0.01), traj.q_bn[0])
+    >>> res.q_bn.shape, res.gyro_bias.shape                          # one attitude and bias per sample
+    ((50, 4), (3,))
     """
 
     q_bn: np.ndarray
@@ -570,6 +627,19 @@ def pack(
     The arguments are those of :func:`navlib.filters.mahony.mahony`. Returns ``(lead, inputs, faults)``:
     the leading (trial) shape, the kernel record with trials flattened to T, and the faults found before
     filtering (the kernels add the RTK gate's, :func:`attitude_result`).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import imu, trajectory
+    >>> from navlib.filters import observations
+    >>> traj = trajectory.static(0.1, 0.01, [0.6, 0.2, 50.0], [0.0, 0.0, 0.0])
+    >>> w_ib_b, f_b = trajectory.ideal_imu(traj)
+    >>> w_ib_b[3] = np.nan                                           # a gyro dropout
+    >>> samples = imu.ImuSamples(w_ib_b, f_b, 0.01)
+    >>> lead, inputs, found = observations.pack(samples, traj.q_bn[0], None, None, None, observations.AttitudeGates(), 1.0)
+    >>> int(found["gyro", "nan"])
+    1
     """
     instance(gates, "gates", AttitudeGates, "an AttitudeGates")
     if rtk is not None:
@@ -674,6 +744,18 @@ def run_trials(kernel: Callable, n_trials: int, *args) -> None:
     """Run ``kernel(t0, t1, *args)`` over trials 0 to ``n_trials`` - 1 in parallel
     (:func:`navlib._threads.run_chunks`). The compiled kernels release the GIL; each trial writes only its
     own outputs, so the results do not depend on the number of threads.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.filters import observations
+    >>> out = np.zeros(4)
+    >>> def kernel(t0, t1, out):
+    ...     out[t0:t1] = np.arange(t0, t1) ** 2                  # each trial writes only its own outputs
+    ...
+    >>> observations.run_trials(kernel, 4, out)
+    >>> out
+    array([0., 1., 4., 9.])
     """
     run_chunks(lambda t0, t1: kernel(t0, t1, *args), integer(n_trials, "n_trials"))
 
@@ -688,7 +770,21 @@ def attitude_result(
     P_hist: np.ndarray | None = None,
 ) -> AttitudeResult:
     """Assemble an :class:`AttitudeResult` from kernel outputs over T flattened trials (leading shape ``lead``):
-    the faults :func:`pack` found, plus the kernel's RTK ``counts`` (T, 4)."""
+    the faults :func:`pack` found, plus the kernel's RTK ``counts`` (T, 4).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import imu, trajectory
+    >>> from navlib.filters import observations
+    >>> traj = trajectory.static(0.1, 0.01, [0.6, 0.2, 50.0], [0.0, 0.0, 0.0])
+    >>> samples = imu.ImuSamples(*trajectory.ideal_imu(traj), 0.01)
+    >>> lead, inputs, found = observations.pack(samples, traj.q_bn[0], None, None, None, observations.AttitudeGates(), 1.0)
+    >>> q_out, bias, counts = traj.q_bn[None, 1:], np.zeros((1, 3)), np.zeros((1, 4), np.int64)   # one trial's kernel outputs
+    >>> res = observations.attitude_result(lead, q_out, bias, counts, found)
+    >>> res.q_bn.shape
+    (10, 4)
+    """
     N = q_out.shape[1]
     total = dict(found.counts)
     for i, key in enumerate(_RTK_COUNTS):

@@ -1,4 +1,4 @@
-"""Planar vehicle model, dead reckoning and the 5-state EKF on grid position, heading, speed and yaw rate.
+r"""Planar vehicle model, dead reckoning and the 5-state EKF on grid position, heading, speed and yaw rate.
 
 The filter of Zhao Y., Nie X., Fang S., Wu H. (2023), "Research on inertial navigation/GPS robot
 combined positioning based on Gaussian projection", *Machine Building & Automation* 52(1): 173–176,
@@ -20,17 +20,20 @@ paper omits (erratum E002-09; -0.35° at Fuzhou, 0.66° at a 3° zone edge).
 Equations
 ---------
 Eq. (13), lost in the source and reconstructed as the
-short-step unicycle model::
+short-step unicycle model:
 
-    f(X) = [x + v T cos(theta), y + v T sin(theta), theta + omega T, v, omega]
+.. math:: f(X) = \big[x + v T \cos\theta,\ y + v T \sin\theta,\ \theta + \omega T,\ v,\ \omega\big]
 
 Eq. (16), its Jacobian ``Phi = df/dX``; Eq. (12) ``X_k = f(X_k-1) + Gamma w``
 with ``Gamma = I5`` (not given); Eqs. (14)–(15) ``Z = H X + v`` with
 ``H = I5`` and ``Z = [x_GPS, y_GPS, theta_IMU, v_IMU, omega_IMU]`` (erratum E002-07:
 the printed ``X_m`` is the measurement); the heading innovation is wrapped to
-(-pi, pi]. Noise, Eqs. (17)–(18), per step::
+(-pi, pi]. Noise, Eqs. (17)–(18), per step:
 
-    Q = diag(1, 1, 0.01, 0.0001, 0.0016)      R = diag(6.25, 6.25, 0.01, 0.0004, 0.0025)
+.. math::
+
+    Q &= \mathrm{diag}(1,\ 1,\ 0.01,\ 0.0001,\ 0.0016) \\
+    R &= \mathrm{diag}(6.25,\ 6.25,\ 0.01,\ 0.0004,\ 0.0025)
 
 in SI units (m², rad², m²/s², rad²/s²) in the paper (``gauss_kruger_ekf.Q_PAPER``, ``R_PAPER``);
 :class:`EkfConfig` has no default noise. ``theta_IMU`` must be an absolute heading and ``omega_IMU``
@@ -165,7 +168,15 @@ def _state(X, name="X"):
 
 
 def motion_model(X: ArrayLike, T: float) -> Array:
-    """The motion model ``f(X)`` (Eq. 13) for states of shape (..., 5) and step ``T`` (s)."""
+    """The motion model ``f(X)`` (Eq. 13) for states of shape (..., 5) and step ``T`` (s).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.filters import planar_ekf
+    >>> np.round(planar_ekf.motion_model(np.array([0.0, 0.0, np.pi / 2, 2.0, 0.0]), 0.5), 6)   # heading east, 2 m/s for 0.5 s
+    array([0.      , 1.      , 1.570796, 2.      , 0.      ])
+    """
     X = _state(X)
     T = scalar(T, "T", positive=True)
     x, y, th, v, w = np.moveaxis(X, -1, 0)
@@ -173,7 +184,19 @@ def motion_model(X: ArrayLike, T: float) -> Array:
 
 
 def jacobian(X: ArrayLike, T: float) -> Array:
-    """Eq. (16): ``Phi = df/dX`` at states (..., 5); returns shape (..., 5, 5)."""
+    """Eq. (16): ``Phi = df/dX`` at states (..., 5); returns shape (..., 5, 5).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.filters import planar_ekf
+    >>> np.round(planar_ekf.jacobian(np.array([0.0, 0.0, 0.0, 1.0, 0.0]), 1.0), 3) + 0.0
+    array([[1., 0., 0., 1., 0.],
+           [0., 1., 1., 0., 0.],
+           [0., 0., 1., 0., 1.],
+           [0., 0., 0., 1., 0.],
+           [0., 0., 0., 0., 1.]])
+    """
     X = _state(X)
     T = scalar(T, "T", positive=True)
     Phi = np.broadcast_to(np.eye(5), X.shape[:-1] + (5, 5)).copy()
@@ -225,6 +248,16 @@ def propagate(
     Returns
     -------
     X : ndarray, shape (n_steps + 1, 5)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.filters import planar_ekf
+    >>> np.round(planar_ekf.propagate([0.0, 0.0, 0.0, 1.0, 0.0], 1.0, 3)[:, :2], 6)   # 3 steps of 1 s at 1 m/s
+    array([[0., 0.],
+           [1., 0.],
+           [2., 0.],
+           [3., 0.]])
     """
     x0 = as_array(x0, "x0", shape=(5,))
     T = scalar(T, "T", positive=True)
@@ -308,6 +341,19 @@ def dead_reckoning(
         The held samples among those that drive a step (``0 .. N-2``): ``("speed", "nan")``,
         ``("yaw_rate", "nan")``, ``("yaw_rate", "saturated")``, and the epochs after a clock jump,
         ``("clock", "jump")``, with their flags (shape (N,)).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.filters import planar_ekf
+    >>> t = np.arange(5.0)
+    >>> x, found = planar_ekf.dead_reckoning(t, speed=np.ones(5), yaw_rate=np.zeros(5), x0=[0.0, 0.0, 0.0, 1.0, 0.0])
+    >>> np.round(x[:, :2], 6)                                         # x (north), y (east): 1 m per second
+    array([[0., 0.],
+           [1., 0.],
+           [2., 0.],
+           [3., 0.],
+           [4., 0.]])
     """
     t = time_axis(t, "t")
     speed = same_shape(as_array(speed, "speed", allow_nan=True), "speed", t.shape, of="t")
@@ -579,7 +625,14 @@ CHANNELS = ("gps", "heading", "speed", "yaw_rate")
 
 
 def covariance(M: ArrayLike, name: str) -> Array:
-    """A validated (5, 5) symmetric positive semi-definite matrix from itself or its diagonal (5,)."""
+    """A validated (5, 5) symmetric positive semi-definite matrix from itself or its diagonal (5,).
+
+    Examples
+    --------
+    >>> from navlib.filters import planar_ekf
+    >>> planar_ekf.covariance([1.0, 1.0, 0.1, 0.5, 0.01], "P0").shape   # a diagonal becomes a (5, 5) matrix
+    (5, 5)
+    """
     M = as_array(M, text(name, "name", empty=False))
     if M.shape == (5,):
         M = np.diag(M)
@@ -636,6 +689,14 @@ class EkfConfig:
     fast : bool
         Use the specialised H = I5 update when every component is present (default; False:
         :func:`navlib.kalman.update` at every epoch; same result).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.filters import planar_ekf
+    >>> config = planar_ekf.EkfConfig(Q=np.full(5, 1e-4), R=np.full(5, 0.01), gate=9.0)   # diagonals
+    >>> np.diag(config.Q), config.gate
+    (array([0.0001, 0.0001, 0.0001, 0.0001, 0.0001]), array([9., 9., 9., 9.]))
     """
 
     Q: ArrayLike
@@ -688,6 +749,16 @@ class EkfResult:
         Zone held by :func:`navlib.papers.gauss_kruger_ekf.ekf` (None from :func:`filter_grid`).
     origin_gk : ndarray, shape (2,), or None
         GK coordinates (north, east; m) subtracted from the projected fixes (None from :func:`filter_grid`).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.filters import planar_ekf
+    >>> t = 0.5 * np.arange(5)
+    >>> truth = planar_ekf.propagate([0.0, 0.0, 0.0, 1.0, 0.0], 0.5, 4)   # straight at 1 m/s
+    >>> res = planar_ekf.filter_grid(t, truth, truth[0], planar_ekf.EkfConfig(Q=np.full(5, 1e-4), R=np.full(5, 0.01)))
+    >>> res.x.shape, res.P.shape, res.nis.shape
+    ((5, 5), (5, 5, 5), (5,))
     """
 
     t: np.ndarray
@@ -726,6 +797,18 @@ def filter_grid(t: Times, z: ArrayLike, x0: ArrayLike, config: EkfConfig) -> Ekf
     Returns
     -------
     EkfResult
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.filters import planar_ekf
+    >>> t = 0.5 * np.arange(5)
+    >>> truth = planar_ekf.propagate([0.0, 0.0, 0.0, 1.0, 0.0], 0.5, 4)   # heading 0 (north), 1 m/s
+    >>> z = truth.copy()
+    >>> z[2, 0] = 50.0                                               # a 50 m jump in x
+    >>> res = planar_ekf.filter_grid(t, z, truth[0], planar_ekf.EkfConfig(Q=np.full(5, 1e-4), R=np.full(5, 0.01), gate=9.0))
+    >>> np.round(res.x[:, 0], 3), int(res.faults["gnss", "outlier"])   # the jump is gated out
+    (array([0. , 0.5, 1. , 1.5, 2. ]), 1)
     """
     t = time_axis(t, "t")
     z = as_array(z, "z", allow_nan=True, shape=(t.size, 5))

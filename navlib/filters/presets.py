@@ -138,6 +138,19 @@ class FootMounted:
     gyro_bias : ndarray, shape (3,)
         Gyro bias over the still start (rad/s); give it to :class:`navlib.filters.zupt_ins.Start` too.
     config : navlib.filters.zupt_ins.FilterConfig
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import imu, trajectory
+    >>> from navlib.filters import presets
+    >>> traj = trajectory.static(2.0, 0.01, [0.6, 0.2, 50.0], [0.0, 0.0, 0.0])
+    >>> w_ib_b, f_b = trajectory.ideal_imu(traj)
+    >>> rng = np.random.default_rng(0)
+    >>> samples = imu.ImuSamples(w_ib_b + 1e-3 * rng.standard_normal((200, 3)), f_b + 0.02 * rng.standard_normal((200, 3)), 0.01)
+    >>> setup = presets.foot_mounted(samples, still=np.ones(200, bool))
+    >>> setup.window, np.round(setup.thresholds, 3)
+    (0.05, array([0.068, 0.632, 0.642]))
     """
 
     window: float
@@ -171,6 +184,20 @@ def foot_mounted(imu: ImuSamples, still: ArrayLike) -> FootMounted:
     Returns
     -------
     FootMounted
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import imu, trajectory
+    >>> from navlib.filters import presets
+    >>> traj = trajectory.static(2.0, 0.01, [0.6, 0.2, 50.0], [0.0, 0.0, 0.0])
+    >>> w_ib_b, f_b = trajectory.ideal_imu(traj)
+    >>> rng = np.random.default_rng(0)
+    >>> w_ib_b = w_ib_b + [1e-3, 0.0, 0.0] + 1e-3 * rng.standard_normal((200, 3))   # a gyro bias of 1e-3 rad/s on x
+    >>> samples = imu.ImuSamples(w_ib_b, f_b + 0.02 * rng.standard_normal((200, 3)), 0.01)
+    >>> setup = presets.foot_mounted(samples, still=np.ones(200, bool))
+    >>> np.round(setup.gyro_bias * 1e3, 1) + 0.0                       # learned from the still start (1e-3 rad/s)
+    array([0.9, 0.1, 0. ])
     """
     instance(imu, "imu", ImuSamples, "a navlib.imu.ImuSamples")
     mask = booleans(still, "still", shape=(imu.n,))

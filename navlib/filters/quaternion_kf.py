@@ -1,12 +1,12 @@
-"""Quaternion Kalman filter on gravity and a heading reference, driven by the Mahony PI-corrected rate.
+r"""Quaternion Kalman filter on gravity and a heading reference, driven by the Mahony PI-corrected rate.
 
 The filter of Zhang et al. 2023 (paper 003, :mod:`navlib.papers.mimu_mag_rtk`; its equation
 numbers are quoted, errata corrected). State: the quaternion ``q = q_b^n`` (4,).
 
 * Eq. (15): the rate is the gyro corrected by the Mahony PI error of the current estimate
   (:func:`navlib.filters.observations.pi_error`, as in :mod:`navlib.filters.mahony`);
-* Eqs. (16)-(17): ``Phi = I + dt/2 Omega(w)`` (:func:`transition`);
-* Eq. (18): ``Gamma = dt/2 Xi(q)`` (:func:`noise_input`), ``Q = sigma_gyro^2 I``;
+* Eqs. (16)-(17): :math:`\Phi = I + \tfrac{\Delta t}{2}\, \Omega(\omega)` (:func:`transition`);
+* Eq. (18): :math:`\Gamma = \tfrac{\Delta t}{2}\, \Xi(q)` (:func:`noise_input`), :math:`Q = \sigma_{gyro}^2 I`;
 * Eqs. (4), (6), (19): measurement ``z = [a; m]`` of unit vectors against
   ``h(q) = [C_nb [0, 0, 1]; C_nb b]`` with ``b = [0, cos I, -sin I]`` (Eq. 3,
   :func:`navlib.filters.observations.magnetic_reference`; north for RTK heading), innovation
@@ -70,6 +70,13 @@ class KfNoise:
         sigma_mag^2 I)``.
     p0 : float
         Initial covariance ``p0 I`` (also after a re-initialisation following a clock jump).
+
+    Examples
+    --------
+    >>> from navlib.filters import quaternion_kf
+    >>> noise = quaternion_kf.KfNoise(sigma_gyro=2e-3)               # a noisier gyro than the default
+    >>> noise.sigma_gyro, noise.sigma_accel
+    (0.002, 0.02)
     """
 
     sigma_gyro: float = 1e-3
@@ -171,17 +178,42 @@ def measurement_model(q: Quat, b: Vec3) -> Array:
     -------
     h : ndarray, shape (..., 6)
         ``[C_nb [0, 0, 1]; C_nb b]``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.filters import quaternion_kf
+    >>> np.round(quaternion_kf.measurement_model([1.0, 0.0, 0.0, 0.0], [0.0, 0.5, -0.866]), 3)   # level: up, then b
+    array([ 0.   ,  0.   ,  1.   ,  0.   ,  0.5  , -0.866])
     """
     return _model(q, b)[0]
 
 
 def measurement_jacobian(q: Quat, b: Vec3) -> Array:
-    """Jacobian ``H = dh/dq`` of :func:`measurement_model` (Eq. 20, H44 corrected); (..., 6, 4)."""
+    """Jacobian ``H = dh/dq`` of :func:`measurement_model` (Eq. 20, H44 corrected); (..., 6, 4).
+
+    Examples
+    --------
+    >>> from navlib.filters import quaternion_kf
+    >>> quaternion_kf.measurement_jacobian([1.0, 0.0, 0.0, 0.0], [0.0, 0.5, -0.866]).shape
+    (6, 4)
+    """
     return _model(q, b)[1]
 
 
 def transition(w: Vec3, dt: float) -> Array:
-    """Quaternion transition ``Phi = I + dt/2 Omega(w)`` (Eq. 17); w (..., 3) rad/s -> (..., 4, 4)."""
+    r"""Quaternion transition :math:`\Phi = I + \tfrac{\Delta t}{2}\, \Omega(\omega)` (Eq. 17); w (..., 3) rad/s -> (..., 4, 4).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.filters import quaternion_kf
+    >>> np.round(quaternion_kf.transition([0.0, 0.0, 1.0], 0.01), 3) + 0.0
+    array([[ 1.   ,  0.   ,  0.   , -0.005],
+           [ 0.   ,  1.   ,  0.005,  0.   ],
+           [ 0.   , -0.005,  1.   ,  0.   ],
+           [ 0.005,  0.   ,  0.   ,  1.   ]])
+    """
     w = as_array(w, "w", tail=(3,), nonempty=True)
     dt = interval(dt)
     c = 0.5 * dt
@@ -197,7 +229,18 @@ def transition(w: Vec3, dt: float) -> Array:
 
 
 def noise_input(q: Quat, dt: float) -> Array:
-    """Gyro-noise input matrix ``Gamma = dt/2 Xi(q)`` (Eq. 18 corrected, E003-11); (..., 4) -> (..., 4, 3)."""
+    r"""Gyro-noise input matrix :math:`\Gamma = \tfrac{\Delta t}{2} \Xi(q)` (Eq. 18 corrected, E003-11); (..., 4) -> (..., 4, 3).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.filters import quaternion_kf
+    >>> np.round(quaternion_kf.noise_input([1.0, 0.0, 0.0, 0.0], 0.01), 4) + 0.0
+    array([[0.   , 0.   , 0.   ],
+           [0.005, 0.   , 0.   ],
+           [0.   , 0.005, 0.   ],
+           [0.   , 0.   , 0.005]])
+    """
     q = as_quat(as_array(q, "q", tail=(4,), nonempty=True), "q", normalize=False)
     dt = interval(dt)
     q0, q1, q2, q3 = np.moveaxis(q, -1, 0)
@@ -456,6 +499,20 @@ def quaternion_kf(
     -------
     AttitudeResult
         With the final covariance ``P`` (and ``P_history`` with ``keep_cov``).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude, imu, trajectory
+    >>> from navlib.filters import quaternion_kf
+    >>> traj = trajectory.static(3.0, 0.01, [0.6, 0.2, 50.0], np.deg2rad([30.0, 0.0, 0.0]))
+    >>> B_n = np.array([0.0, 20.0, -40.0])
+    >>> m_b = attitude.quat_rotate(attitude.quat_conj(traj.q_bn[1:]), B_n)   # the magnetometer's readings
+    >>> q0 = attitude.euler_to_quat(np.deg2rad([25.0, 0.0, 0.0]))    # starts 5 deg off in heading
+    >>> res = quaternion_kf.quaternion_kf(imu.ImuSamples(*trajectory.ideal_imu(traj), 0.01), q0, m_b=m_b, B_n=B_n)
+    >>> np.round(np.rad2deg(attitude.quat_to_euler(res.q_bn[[0, -1]])), 1) + 0.0   # the heading error shrinks
+    array([[25.1,  0. , -0.1],
+           [29.3,  0.1, -0.1]])
     """
     kp, ki = scalar(kp, "kp", positive=True, allow_zero=True), integral_gain(ki, m_b is not None or rtk is not None)
     instance(noise, "noise", KfNoise, "a KfNoise")

@@ -1,4 +1,4 @@
-"""ZUPT/ZARU: static detection and the zero-velocity / zero-angular-rate update of an INS.
+r"""ZUPT/ZARU: static detection and the zero-velocity / zero-angular-rate update of an INS.
 
 A strapdown INS drifts quadratically in position; whenever the IMU is known to stand still,
 the velocity must be zero (ZUPT) and the gyros must read the Earth rate only (ZARU). An
@@ -10,16 +10,24 @@ truth`` for r, v, psi and ``truth - estimate`` for the biases).
   detection: an algorithm evaluation", IEEE T-BME 57(11)): static when, over a centred window,
   ``rms|w - b_g| < tau_w``, ``std|f| < tau_f`` and ``|mean|f| - g| < tau_g``.
 * :func:`error_state_matrix` -- the continuous-time F of the standard local-level error model
-  without Earth-rate and transport-rate terms::
+  without Earth-rate and transport-rate terms:
 
-      d(dr)/dt = dv,   d(dv)/dt = -[(C_hat f_b) x] dpsi + C_hat db_a,
-      d(dpsi)/dt = C_hat db_g,   d(db)/dt = white
+  .. math::
+
+      \delta\dot r &= \delta v, \qquad \delta\dot v = -[(\hat C f^b) \times]\, \delta\psi + \hat C\, \delta b_a \\
+      \delta\dot\psi &= \hat C\, \delta b_g, \qquad \delta\dot b = \text{white noise}
 
   :func:`error_model_fd` differentiates the exact error dynamics numerically to check it.
-* :func:`zupt_zaru_matrix`, :func:`zupt_zaru_innovation` -- the static measurement::
+* :func:`zupt_zaru_matrix`, :func:`zupt_zaru_innovation` -- the static measurement:
 
-      z = [v_hat; w_meas - b_g_hat - C_hat^T w_ie_n] = H dx + v,
-      H = [[0, I, 0, 0, 0], [0, 0, -C_hat^T [w_ie_n x], 0, I]]
+  .. math::
+
+      z = \begin{bmatrix} \hat v \\ \omega_{meas} - \hat b_g - \hat C^T \omega_{ie}^n \end{bmatrix}
+        = H\, \delta x + v
+
+  .. math::
+
+      H = \begin{bmatrix} 0 & I & 0 & 0 & 0 \\ 0 & 0 & -\hat C^T [\omega_{ie}^n \times] & 0 & I \end{bmatrix}
 
   The ``-C^T [w_ie x]`` block is the exact first-order Earth-rate term; with it ``z - H dx``
   is second order.
@@ -98,6 +106,17 @@ def detect_static(
     Returns
     -------
     static : ndarray of bool, shape (N,)
+
+    Examples
+    --------
+    >>> from navlib import trajectory
+    >>> from navlib.filters import zupt
+    >>> traj = trajectory.static(1.0, 0.01, [0.6, 0.2, 50.0], [0.0, 0.0, 0.0])
+    >>> w_ib_b, f_b = trajectory.ideal_imu(traj)
+    >>> w_ib_b[60:] += [0.0, 0.0, 1.0]                                # starts turning at 1 rad/s after 0.6 s
+    >>> static = zupt.detect_static(w_ib_b, f_b, 0.01, window=0.1)
+    >>> bool(static[:50].all()), bool(static[70:].any())
+    (True, False)
     """
     w, f, dt, _, _ = unpack(w_ib_b, f_b, dt)
     if isinstance(w_ib_b, ImuSamples):  # validated on construction
@@ -223,6 +242,16 @@ def error_state_matrix(C_bn: Dcm, f_b: Vec3) -> Array:
         Estimated attitude.
     f_b : array_like, shape (3,)
         Bias-corrected specific force (m/s^2).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.filters import zupt
+    >>> F = zupt.error_state_matrix(np.eye(3), [0.0, 0.0, 9.8])
+    >>> F.shape, np.round(F[3:6, 6:9], 2) + 0.0                       # velocity error from tilt: -skew(f_n)
+    ((15, 15), array([[ 0. ,  9.8,  0. ],
+           [-9.8,  0. ,  0. ],
+           [ 0. ,  0. ,  0. ]]))
     """
     C = as_dcm(as_array(C_bn, "C_bn", shape=(3, 3)))
     f = as_array(f_b, "f_b", shape=(3,))
@@ -264,6 +293,14 @@ def error_model_fd(C_bn: Dcm, f_b: Vec3, eps: float = 1e-6) -> Array:
     Returns
     -------
     F : ndarray, shape (15, 15)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.filters import zupt
+    >>> C_bn, f_b = np.eye(3), np.array([0.0, 0.0, 9.8])
+    >>> bool(np.allclose(zupt.error_model_fd(C_bn, f_b), zupt.error_state_matrix(C_bn, f_b), atol=1e-6))
+    True
     """
     C = as_dcm(as_array(C_bn, "C_bn", shape=(3, 3)))
     f = as_array(f_b, "f_b", shape=(3,))
@@ -297,7 +334,16 @@ def zupt_zaru_z_into(z, vel, w_mean, b_g, C, w_ie_n):
 
 
 def zupt_zaru_matrix(C_bn: Dcm, w_ie_n: Vec3) -> Array:
-    """H of the ZUPT/ZARU measurement (6 x 15) at the estimated attitude, with the Earth-rate block."""
+    """H of the ZUPT/ZARU measurement (6 x 15) at the estimated attitude, with the Earth-rate block.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import earth
+    >>> from navlib.filters import zupt
+    >>> zupt.zupt_zaru_matrix(np.eye(3), earth.earth_rate_n(0.6)).shape
+    (6, 15)
+    """
     C = as_dcm(as_array(C_bn, "C_bn", shape=(3, 3)))
     H = np.zeros((6, 15))
     zupt_zaru_rows_into(H, np.ascontiguousarray(C), as_array(w_ie_n, "w_ie_n", shape=(3,)))
@@ -319,6 +365,16 @@ def zupt_zaru_innovation(vel_n: Vec3, w_ib_b: Vec3, b_g: Vec3, C_bn: Dcm, w_ie_n
         Estimated attitude.
     w_ie_n : array_like, shape (3,)
         Earth rate in ENU (rad/s).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import earth
+    >>> from navlib.filters import zupt
+    >>> C_bn, w_ie_n = np.eye(3), earth.earth_rate_n(0.6)
+    >>> w_ib_b = C_bn.T @ w_ie_n + [1e-4, 0.0, 0.0]                  # standing still, gyro bias 1e-4 rad/s not yet estimated
+    >>> np.round(zupt.zupt_zaru_innovation([0.01, 0.0, 0.0], w_ib_b, np.zeros(3), C_bn, w_ie_n), 6)
+    array([0.01  , 0.    , 0.    , 0.0001, 0.    , 0.    ])
     """
     args = [as_array(a, n, shape=(3,)) for a, n in ((vel_n, "vel_n"), (w_ib_b, "w_ib_b"), (b_g, "b_g"), (w_ie_n, "w_ie_n"))]
     C = as_dcm(as_array(C_bn, "C_bn", shape=(3, 3)))

@@ -100,6 +100,15 @@ class Start:
         Bias estimates (m/s^2, rad/s), e.g. from :func:`navlib.alignment.static_gyro_bias`; default zero.
     time : float
         Time of the first epoch (s).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> from navlib.filters import zupt_ins
+    >>> start = zupt_ins.Start(lla=np.array([0.6, 0.2, 50.0]), q_bn=attitude.euler_to_quat([0.3, 0.0, 0.0]))
+    >>> start.vel_n, start.time
+    (array([0., 0., 0.]), 0.0)
     """
 
     lla: np.ndarray
@@ -139,6 +148,14 @@ class Aiding:
     B_n : array_like, shape (3,), optional
         Reference field in ENU (uT, e.g. :func:`navlib.earth.magnetic_field`) of the compass gate
         (:class:`Gates` ``mag_field``, ``mag_dip``).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.filters import zupt, zupt_ins
+    >>> aiding = zupt_ins.Aiding(walk="filter", declination=np.deg2rad(-3.0), B_n=np.array([0.0, 20.0, -40.0]))
+    >>> aiding.walk, aiding.zupt
+    ('filter', True)
     """
 
     walk: str = "reset"
@@ -184,6 +201,13 @@ class ProcessNoise:
         Uncertainty of a held sample (m/s^2, rad/s): while a fault is bridged by holding the last good
         sample, the velocity and attitude process noise grow by ``sigma^2 dt`` per held sample, so the
         covariance admits the guess and the next stance's ZUPT/ZARU is not gated out.
+
+    Examples
+    --------
+    >>> from navlib.filters import zupt_ins
+    >>> noise = zupt_ins.ProcessNoise(accel=0.05)
+    >>> noise.accel, noise.gyro_bias_rw
+    (0.05, 1e-05)
     """
 
     accel: float = 0.02
@@ -211,6 +235,13 @@ class MeasurementNoise:
         Barometric height sigma (m); default the BMP180's 0.17 m.
     heading : float
         Magnetic heading sigma (rad); default the HMC5983's 2 deg.
+
+    Examples
+    --------
+    >>> from navlib.filters import zupt, zupt_ins
+    >>> noise = zupt_ins.MeasurementNoise(zupt=0.02)
+    >>> noise.zupt, noise.baro
+    (0.02, 0.17)
     """
 
     zupt: float = 0.01
@@ -231,6 +262,14 @@ class InitialSigma:
     pos, vel, tilt, heading, accel_bias, gyro_bias : float
         (m, m/s, rad, rad, m/s^2, rad/s). The bias defaults are the residual biases after a static
         calibration (10 mg, 0.05 deg/s).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.filters import zupt_ins
+    >>> sigma = zupt_ins.InitialSigma(heading=np.deg2rad(10.0))
+    >>> round(float(np.rad2deg(sigma.heading)), 6), sigma.pos
+    (10.0, 0.01)
     """
 
     pos: float = 0.01
@@ -270,6 +309,12 @@ class Gates:
         (uT), or the dip by more than this (rad), are not used (``("mag", "outlier")``); also the defence
         against magnetometer spikes (a 100-sigma spike changes |m| by tens of uT). Default inf: every sample
         is used.
+
+    Examples
+    --------
+    >>> from navlib.filters import zupt, zupt_ins
+    >>> zupt_ins.Gates(zupt=16.8, mag_field=0.1)                    # chi-square 99 % (6 dof); a 10 % field-norm gate
+    Gates(zupt=16.8, max_rejected=5, baro=5.0, mag_field=0.1, mag_dip=inf)
     """
 
     zupt: float = 22.5
@@ -291,6 +336,12 @@ class BaroTracker:
     ----------
     alpha, beta : float
         Gains of the height and of its rate (dimensionless).
+
+    Examples
+    --------
+    >>> from navlib.filters import zupt_ins
+    >>> zupt_ins.BaroTracker(alpha=0.1, beta=0.01)
+    BaroTracker(alpha=0.1, beta=0.01)
     """
 
     alpha: float = 0.2
@@ -313,6 +364,13 @@ class FilterConfig:
     tracker : BaroTracker
     update_rate : float
         ZUPT/ZARU update rate while static (Hz): the static samples are averaged over ``1 / update_rate``.
+
+    Examples
+    --------
+    >>> from navlib.filters import zupt, zupt_ins
+    >>> config = zupt_ins.FilterConfig(gates=zupt_ins.Gates(zupt=30.0), update_rate=20.0)
+    >>> config.gates.zupt, config.update_rate, config.tracker.alpha
+    (30.0, 20.0, 0.2)
     """
 
     process: ProcessNoise = field(default_factory=ProcessNoise)
@@ -676,6 +734,18 @@ class FilterResult:
         The screen's counts and per-sample flags (``gyro``, ``accel``, ``clock``, ``mag`` with ``m_b``) and the
         filter's own (``zupt``, ``baro``, ``mag``; see the module's list), e.g. ``result.faults["gyro", "nan"]``,
         ``result.faults.flags["zupt", "refused"]``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import imu, trajectory
+    >>> from navlib.filters import zupt_ins
+    >>> traj = trajectory.static(1.0, 0.01, [0.6, 0.2, 50.0], [0.0, 0.0, 0.0])
+    >>> w_ib_b, f_b = trajectory.ideal_imu(traj)
+    >>> start = zupt_ins.Start(traj.lla[0], traj.q_bn[0])
+    >>> res = zupt_ins.run_filter(imu.ImuSamples(w_ib_b, f_b, 0.01), start, np.ones(100, bool))   # static throughout
+    >>> len(res.nav), res.P_diag.shape, res.zupt_updates
+    (101, (101, 15), 10)
     """
 
     nav: trajectory.Trajectory
@@ -850,6 +920,19 @@ def run_filter(
     FilterResult
         A ``RuntimeWarning`` is issued when ZUPT/ZARU is on and no static update was ever applied (check
         ``result.updated``).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import imu, trajectory
+    >>> from navlib.filters import zupt_ins
+    >>> traj = trajectory.static(1.0, 0.01, [0.6, 0.2, 50.0], [0.0, 0.0, 0.0])
+    >>> w_ib_b, f_b = trajectory.ideal_imu(traj)
+    >>> f_b += [0.05, 0.0, 0.0]                                       # an accelerometer bias (m/s^2)
+    >>> start = zupt_ins.Start(traj.lla[0], traj.q_bn[0])
+    >>> res = zupt_ins.run_filter(imu.ImuSamples(w_ib_b, f_b, 0.01), start, np.ones(100, bool))   # static throughout
+    >>> np.round(res.nav.vel_n[-1], 3) + 0.0, res.zupt_updates          # ZUPTs hold the velocity near zero
+    (array([0., 0., 0.]), 10)
     """
     instance(start, "start", Start, "a Start")
     instance(aiding, "aiding", Aiding, "an Aiding")

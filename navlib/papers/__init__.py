@@ -28,6 +28,13 @@ class Paper:
     number : the notebook number NN.
     claims_id : the paper column of ``data/claims.csv`` and ``data/errata.csv`` (claim ids ``P<claims_id>-...``).
     citation : short citation shown in the README and the report.
+
+    Examples
+    --------
+    >>> from navlib import papers
+    >>> paper = papers.by_notebook("03_gauss_kruger_ekf")
+    >>> paper.number, paper.claims_id, paper.name
+    (3, '002', 'gauss_kruger_ekf')
     """
 
     name: str
@@ -76,6 +83,13 @@ PAPERS: tuple[Paper, ...] = (
 
 
 def by_notebook(stem: str) -> Paper | None:
-    """The registered paper of a notebook stem, or None (notebook 00 has no paper)."""
+    """The registered paper of a notebook stem, or None (notebook 00 has no paper).
+
+    Examples
+    --------
+    >>> from navlib import papers
+    >>> papers.by_notebook("04_mimu_mag_rtk").citation[:13], papers.by_notebook("00_conventions")
+    ('Zhang, Wu & Y', None)
+    """
     text(stem, "stem")
     return next((p for p in PAPERS if p.notebook == stem), None)

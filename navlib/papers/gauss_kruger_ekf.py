@@ -121,6 +121,12 @@ def printed_zone_number(lon: ArrayLike, deg: bool = False) -> Array:
 
     Taken literally with Eq. (2), ``L0 = 3n = L - 1.5°``, so l = 1.5° for
     every point. Use :func:`navlib.geodesy.zone` instead.
+
+    Examples
+    --------
+    >>> from navlib.papers import gauss_kruger_ekf as gk
+    >>> float(gk.printed_zone_number(119.2, deg=True))               # not an integer: the zone is 40
+    39.233333333333334
     """
     return (_lon_deg(lon, deg) - 1.5) / 3.0
 
@@ -137,6 +143,13 @@ def paper_radii(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = Fal
     -------
     e1, e2 : float
     R_N, R_M : ndarray, shape (...)
+
+    Examples
+    --------
+    >>> from navlib.papers import gauss_kruger_ekf as gk
+    >>> e1, e2, R_N, R_M = gk.paper_radii(26.0, deg=True)
+    >>> round(float(e1), 9), round(float(R_N), 3), round(float(R_M), 3)
+    (0.081819191, 6382243.553, 6347684.393)
     """
     _ell(ellipsoid)
     W = latitude(lat, "lat", deg=deg, nonempty=True)
@@ -149,7 +162,16 @@ def paper_radii(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = Fal
 
 
 def printed_meridian_radius(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False) -> Array:
-    """Eq. (6) exactly as printed, ``a^2 (1 - e1^2)/sqrt((1 + e2^2 sin^2 W)^(3/2))`` (m): wrong (erratum E002-02)."""
+    """Eq. (6) exactly as printed, ``a^2 (1 - e1^2)/sqrt((1 + e2^2 sin^2 W)^(3/2))`` (m): wrong (erratum E002-02).
+
+    Examples
+    --------
+    >>> from navlib.papers import gauss_kruger_ekf as gk
+    >>> round(float(gk.printed_meridian_radius(26.0, deg=True)), 1)   # the printed Eq. (6): not a radius in metres
+    40369094087287.1
+    >>> round(float(gk.paper_radii(26.0, deg=True)[3]), 1)            # the corrected one
+    6347684.4
+    """
     _ell(ellipsoid)
     W = latitude(lat, "lat", deg=deg, nonempty=True)
     e1, e2, _, _ = paper_radii(0.0, ellipsoid)
@@ -157,9 +179,9 @@ def printed_meridian_radius(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg
 
 
 def paper_meridian_arc(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False, order: int = 8) -> Array:
-    """Eqs. (7)–(8): meridian arc length S from the equator (m), series to e^8 (correct, erratum E002-05).
+    r"""Eqs. (7)–(8): meridian arc length S from the equator (m), series to e^8 (correct, erratum E002-05).
 
-    ``S = a(1-e^2)[A W - B/2 sin 2W + C/4 sin 4W - D/6 sin 6W + E/8 sin 8W]``:
+    :math:`S = a(1-e^2)\big[A W - \tfrac{B}{2} \sin 2W + \tfrac{C}{4} \sin 4W - \tfrac{D}{6} \sin 6W + \tfrac{E}{8} \sin 8W\big]`:
     1e-8 m at 26°, 1e-4 m near the pole. Core's :func:`navlib.geodesy.meridian_arc`
     uses Krüger's n^6 series (nm accuracy).
 
@@ -170,6 +192,13 @@ def paper_meridian_arc(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: boo
     order : {8, 6, 4, 2}
         Highest power of e1 kept in A-E: 8 as printed; a lower order drops the later
         terms, only to show what a missing term would cost (millimetres for e^8).
+
+    Examples
+    --------
+    >>> from navlib.papers import gauss_kruger_ekf as gk
+    >>> S = gk.paper_meridian_arc(26.0, deg=True)
+    >>> round(float(S), 3)                                            # m, CGCS2000
+    2876834.573
     """
     _ell(ellipsoid)
     W = latitude(lat, "lat", deg=deg, nonempty=True)
@@ -201,14 +230,16 @@ def paper_series(
     typos: bool = False,
     printed_units: bool = False,
 ) -> tuple[Array, Array]:
-    """The paper's sixth-order GK series, Eqs. (7)–(11): northing x and easting y (m).
+    r"""The paper's sixth-order GK series, Eqs. (7)–(11): northing x and easting y (m).
 
-    With ``t = tan W``, ``eta^2 = e2^2 cos^2 W`` and ``N = R_N``::
+    With :math:`t = \tan W`, :math:`\eta^2 = e_2^2 \cos^2 W` and :math:`N = R_N`:
 
-        x = S + N/2 l^2 sinW cosW + N/24 l^4 sinW cos^3W (5 - t^2 + 9 eta^2 + 4 eta^4)
-              + N/720 l^6 sinW cos^5W (61 - 58 t^2 + t^4 + 270 eta^2 - 330 eta^2 t^2)
-        y = N l cosW + N/6 l^3 cos^3W (1 - t^2 + eta^2)
-              + N/120 l^5 cos^5W (5 - 18 t^2 + t^4 + 14 eta^2 - 58 eta^2 t^2)
+    .. math::
+
+        x &= S + \frac{N}{2} l^2 \sin W \cos W + \frac{N}{24} l^4 \sin W \cos^3 W\, (5 - t^2 + 9\eta^2 + 4\eta^4) \\
+          &\quad + \frac{N}{720} l^6 \sin W \cos^5 W\, (61 - 58 t^2 + t^4 + 270\eta^2 - 330\eta^2 t^2) \\
+        y &= N l \cos W + \frac{N}{6} l^3 \cos^3 W\, (1 - t^2 + \eta^2) \\
+          &\quad + \frac{N}{120} l^5 \cos^5 W\, (5 - 18 t^2 + t^4 + 14\eta^2 - 58\eta^2 t^2)
 
     ``typos=True`` uses the printed ``N/72`` and ``270 eta^4`` (erratum E002-03) to
     show their effect; l and W in radians (erratum E002-04). ``printed_units=True`` shows
@@ -221,6 +252,13 @@ def paper_series(
     ----------
     lat, lon, lon0 : array_like, broadcasting to shape (...)
         rad, or deg with ``deg=True``; ``|lon - lon0|`` at most 6°.
+
+    Examples
+    --------
+    >>> from navlib.papers import gauss_kruger_ekf as gk
+    >>> x, y = gk.paper_series(26.06, 119.20, 120.0, deg=True)
+    >>> round(float(x), 3), round(float(y), 3)                        # northing, easting (m) from the central meridian
+    (2883727.417, -80055.05)
     """
     _ell(ellipsoid)
     typos = flag(typos, "typos")
@@ -287,6 +325,16 @@ def waypoint_path(waypoints, speed: float, turn_rate: float, T: float):
         True states; the first heading points along the first leg.
     at_waypoint : ndarray of int, shape (M,)
         Index into ``X`` where each waypoint is reached (at the end of its turn).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.papers import gauss_kruger_ekf as gk
+    >>> X, at = gk.waypoint_path([[0.0, 0.0], [10.0, 0.0], [10.0, 10.0]], speed=1.0, turn_rate=np.pi / 4, T=0.5)
+    >>> X.shape, at, np.round(X[at, :2], 6)
+    ((45, 5), array([ 0, 24, 44]), array([[ 0.,  0.],
+           [10.,  0.],
+           [10., 10.]]))
     """
     wp = as_array(waypoints, "waypoints", shape=(None, 2))
     if len(wp) < 2:
@@ -387,6 +435,19 @@ def ekf(
     Returns
     -------
     EkfResult
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.filters import planar_ekf
+    >>> from navlib.papers import gauss_kruger_ekf as gk
+    >>> truth = planar_ekf.propagate([0.0, 0.0, np.pi / 4, 1.0, 0.0], 0.5, 20)
+    >>> rng = np.random.default_rng(0)
+    >>> s = gk.simulate_sensors(truth, np.deg2rad([26.06, 119.20]), gk.R_PAPER, rng)
+    >>> res = gk.ekf(0.5 * np.arange(21), s, truth[0], origin=np.deg2rad([26.06, 119.20]))
+    >>> rms = lambda e: round(float(np.sqrt(np.mean(np.sum(e**2, -1)))), 2)
+    >>> rms(res.x[:, :2] - truth[:, :2]), rms(res.z[:, :2] - truth[:, :2])   # filtered vs raw GPS (m)
+    (1.07, 2.89)
     """
     t = time_axis(t, "t")
     n = t.size
@@ -439,6 +500,16 @@ class Sensors:
     heading : (N,) IMU heading clockwise from true north (rad, [0, 2 pi));
     speed : (N,) (m/s); yaw_rate : (N,) (rad/s, clockwise positive).
     NaN marks a missing sample; :func:`ekf` reads the angles in degrees with ``deg=True``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.papers import gauss_kruger_ekf as gk
+    >>> nan = np.nan
+    >>> gps = np.array([[0.455, 2.080], [nan, nan]])                # [lat, lon] (rad); the second fix is an outage
+    >>> s = gk.Sensors(gps=gps, heading=np.array([0.5, 0.5]), speed=np.ones(2), yaw_rate=np.zeros(2))
+    >>> s.gps.shape, int(np.isnan(s.gps[:, 0]).sum())
+    ((2, 2), 1)
     """
 
     gps: np.ndarray
@@ -487,6 +558,17 @@ def simulate_sensors(
     Returns
     -------
     Sensors
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.filters import planar_ekf
+    >>> from navlib.papers import gauss_kruger_ekf as gk
+    >>> truth = planar_ekf.propagate([0.0, 0.0, np.pi / 4, 1.0, 0.0], 0.5, 4)   # north-east at 1 m/s
+    >>> origin = np.deg2rad([26.06, 119.20])
+    >>> s = gk.simulate_sensors(truth, origin, np.zeros(5), np.random.default_rng(0))   # noise-free (R = 0)
+    >>> np.round(np.rad2deg(s.gps[-1]) - [26.06, 119.20], 6), np.round(s.speed, 6)   # 2 m north-east of the origin
+    (array([1.3e-05, 1.4e-05]), array([1., 1., 1., 1., 1.]))
     """
     truth = as_array(truth, "truth", shape=(None, 5), min_ndim=1)
     origin = as_array(origin, "origin", shape=(2,))
@@ -550,6 +632,15 @@ def dead_reckoning_error_ms(truth, T: float, R, yaw_rate_bias: float = 0.0) -> A
     -------
     ms : ndarray, shape (N,)
         ``E|dr_k - truth_k|^2`` (m²) for every step; 0 at the start.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.filters import planar_ekf
+    >>> from navlib.papers import gauss_kruger_ekf as gk
+    >>> truth = planar_ekf.propagate([0.0, 0.0, 0.0, 1.0, 0.0], 0.5, 4)
+    >>> np.round(gk.dead_reckoning_error_ms(truth, 0.5, gk.R_PAPER), 4)   # grows along the track (m^2)
+    array([0.    , 0.0001, 0.0004, 0.0011, 0.0026])
     """
     truth = as_array(truth, "truth", shape=(None, 5))
     if len(truth) < 2:
@@ -597,6 +688,15 @@ def ekf_error_ms(truth, T: float, Q=Q_PAPER, R=R_PAPER, P0=None, yaw_rate_bias: 
     -------
     ms : ndarray, shape (N,)
         ``E|x_k - truth_k|^2`` of the position (m²) at every epoch; 0 at the start.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.filters import planar_ekf
+    >>> from navlib.papers import gauss_kruger_ekf as gk
+    >>> truth = planar_ekf.propagate([0.0, 0.0, 0.0, 1.0, 0.0], 0.5, 4)
+    >>> np.round(gk.ekf_error_ms(truth, 0.5), 3)                       # the paper's Q and R (m^2)
+    array([0.   , 0.238, 0.8  , 1.398, 1.844])
     """
     from ..filters.planar_ekf import jacobian
 
@@ -704,6 +804,16 @@ def draw_zones(ax, lon_min: float = 112.5, lon_max: float = 127.5, *, mark: tupl
         Longitude range (° E), 0 <= lon_min < lon_max <= 180, at most 30° wide.
     mark : (lat, lon) in degrees, optional
         A site drawn as a star with its zone.
+
+    Examples
+    --------
+    >>> import matplotlib.pyplot as plt
+    >>> from navlib.papers import gauss_kruger_ekf as gk
+    >>> fig, ax = plt.subplots()
+    >>> gk.draw_zones(ax, mark=(26.06, 119.20))
+    >>> len(ax.texts) > 0
+    True
+    >>> plt.close(fig)
     """
     axes(ax)
     lo, hi = scalar(lon_min, "lon_min", allow_zero=True), scalar(lon_max, "lon_max", positive=True)
@@ -758,6 +868,16 @@ def draw_zone_grid(
     step_deg : float
         Meridian spacing (°), dividing 1.5.
     mark : (lat, lon) in degrees, optional
+
+    Examples
+    --------
+    >>> import matplotlib.pyplot as plt
+    >>> from navlib.papers import gauss_kruger_ekf as gk
+    >>> fig, ax = plt.subplots()
+    >>> gk.draw_zone_grid(ax, zone=40, mark=(26.06, 119.20))
+    >>> len(ax.lines) > 0
+    True
+    >>> plt.close(fig)
     """
     axes(ax)
     n = int(scalar(zone, "zone", positive=True))
@@ -796,7 +916,18 @@ def draw_zone_grid(
 
 
 def draw_block_diagram(ax) -> None:
-    """Paper Fig. 2 redrawn: GPS through the Gauss–Krüger projection and the IMU into the 5-state EKF."""
+    """Paper Fig. 2 redrawn: GPS through the Gauss–Krüger projection and the IMU into the 5-state EKF.
+
+    Examples
+    --------
+    >>> import matplotlib.pyplot as plt
+    >>> from navlib.papers import gauss_kruger_ekf as gk
+    >>> fig, ax = plt.subplots()
+    >>> gk.draw_block_diagram(ax)
+    >>> len(ax.texts) > 0
+    True
+    >>> plt.close(fig)
+    """
     from ..plots import block_diagram  # noqa: PLC0415 -- plotting only (it validates ax)
 
     blocks = {

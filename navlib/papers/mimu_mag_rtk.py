@@ -110,7 +110,17 @@ __all__ = [
 
 
 def printed_eq2_roll(q: Quat) -> Array:
-    """Roll as printed in Eq. (2): ``atan(-2(q1 q3 + q0 q2) / (1 - 2(q1^2 + q2^2)))`` (E003-02)."""
+    """Roll as printed in Eq. (2): ``atan(-2(q1 q3 + q0 q2) / (1 - 2(q1^2 + q2^2)))`` (E003-02).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> from navlib.papers import mimu_mag_rtk
+    >>> q = attitude.euler_to_quat(np.deg2rad([30.0, 20.0, 10.0]))
+    >>> round(float(np.rad2deg(mimu_mag_rtk.printed_eq2_roll(q))), 3)   # not the 10 deg roll
+    1.116
+    """
     q0, q1, q2, q3 = np.moveaxis(as_quat(q, "q", normalize=False), -1, 0)
     return np.arctan(-2 * (q1 * q3 + q0 * q2) / (1 - 2 * (q1**2 + q2**2)))
 
@@ -121,6 +131,15 @@ def printed_eq2_arctan(q: Quat) -> Array:
     The roll numerator is the corrected ``2(q0 q2 - q1 q3)`` (E003-02), so that only the quadrant
     loss of ``arctan`` shows: heading and roll come back within (-90 deg, 90 deg), and a pitch argument
     that rounding pushes past 1 (at +-90 deg pitch) gives NaN. Returns ``[heading, pitch, roll]``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> from navlib.papers import mimu_mag_rtk
+    >>> q = attitude.euler_to_quat(np.deg2rad([150.0, 0.0, 0.0]))
+    >>> np.round(np.rad2deg(mimu_mag_rtk.printed_eq2_arctan(q)), 3) + 0.0   # heading 150 deg comes back as -30
+    array([-30.,   0.,   0.])
     """
     q0, q1, q2, q3 = np.moveaxis(as_quat(as_array(q, "q", tail=(4,), nonempty=True), "q"), -1, 0)  # as_array: no huge q
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -131,7 +150,16 @@ def printed_eq2_arctan(q: Quat) -> Array:
 
 
 def printed_eq4(q: Quat) -> Array:
-    """Eq. (4) as printed, with ``q0`` instead of ``q0**2`` in the third row (E003-04); (..., 4) -> (..., 3)."""
+    """Eq. (4) as printed, with ``q0`` instead of ``q0**2`` in the third row (E003-04); (..., 4) -> (..., 3).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> from navlib.papers import mimu_mag_rtk
+    >>> np.round(mimu_mag_rtk.printed_eq4(attitude.euler_to_quat(np.deg2rad([0.0, 20.0, 0.0]))), 4)   # cos 20 deg = 0.9397
+    array([0.    , 0.342 , 0.9547])
+    """
     q0, q1, q2, q3 = np.moveaxis(as_quat(q, "q", normalize=False), -1, 0)
     return np.stack([2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), q0 + q3**2 - q1**2 - q2**2], -1)
 
@@ -140,6 +168,15 @@ def printed_eq5_tilt(f_b: Vec3) -> tuple[Array, Array]:
     """Eq. (5) as printed, ``roll = atan(a_x / hypot(a_y, a_z))``, ``pitch = atan(-a_y / a_z)`` (E003-05).
 
     Returns (pitch, roll).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> from navlib.papers import mimu_mag_rtk
+    >>> f_b = attitude.euler_to_dcm(np.deg2rad([0.0, 10.0, 20.0])).T @ [0.0, 0.0, 9.8]
+    >>> np.round(np.rad2deg(mimu_mag_rtk.printed_eq5_tilt(f_b)), 3)   # pitch, roll: not 10, 20
+    array([-10.628, -19.683])
     """
     a = as_array(f_b, "f_b", tail=(3,), nonempty=True)
     return np.arctan(-a[..., 1] / a[..., 2]), np.arctan(a[..., 0] / np.hypot(a[..., 1], a[..., 2]))
@@ -149,6 +186,15 @@ def printed_eq6(q: Quat, b: Vec3) -> Array:
     """Eq. (6) as printed, ``(q0^2 - q1^2 + q2^2 - q3^2) b_z`` in the third row (E003-06); (..., 4), (3,) -> (..., 3).
 
     ``b = [0, b_y, b_z]`` is the reference field (Eq. 3); its east component is not used, as in the paper.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> from navlib.papers import mimu_mag_rtk
+    >>> q = attitude.euler_to_quat(np.deg2rad([30.0, 0.0, 0.0]))
+    >>> np.round(mimu_mag_rtk.printed_eq6(q, [0.0, 0.5, -0.866]), 4)   # the printed third row (E003-06)
+    array([-0.25 ,  0.433, -0.75 ])
     """
     q0, q1, q2, q3 = np.moveaxis(as_quat(q, "q", normalize=False, nonempty=True), -1, 0)
     b = as_array(b, "b", tail=(3,), nonempty=True)
@@ -164,13 +210,34 @@ def printed_eq6(q: Quat, b: Vec3) -> Array:
 
 
 def printed_eq7_heading(m_h: Vec3) -> Array:
-    """Eq. (7) as printed, ``atan(m_x / m_y)`` of the levelled field (the CCW yaw, E003-08)."""
+    """Eq. (7) as printed, ``atan(m_x / m_y)`` of the levelled field (the CCW yaw, E003-08).
+
+    Examples
+    --------
+    >>> from navlib import alignment
+    >>> import numpy as np
+    >>> from navlib.papers import mimu_mag_rtk
+    >>> round(float(np.rad2deg(mimu_mag_rtk.printed_eq7_heading([0.5, 0.866, -0.5]))), 3)   # counter-clockwise
+    30.001
+    >>> round(float(np.rad2deg(alignment.magnetic_heading([0.5, 0.866, -0.5], 0.0, 0.0))), 3)   # the clockwise heading
+    329.999
+    """
     m = as_array(m_h, "m_h", tail=(3,), nonempty=True)
     return np.arctan(m[..., 0] / m[..., 1])
 
 
 def printed_eq8_quat(hpr: Angles) -> Array:
-    """Eq. (8) as printed, with its yaw psi = -heading: ``q_z(psi) q_y(roll) q_x(pitch)`` (E003-01)."""
+    """Eq. (8) as printed, with its yaw psi = -heading: ``q_z(psi) q_y(roll) q_x(pitch)`` (E003-01).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> from navlib.papers import mimu_mag_rtk
+    >>> q = mimu_mag_rtk.printed_eq8_quat(np.deg2rad([30.0, 10.0, 20.0]))
+    >>> np.round(np.rad2deg(attitude.quat_to_euler(q)), 3)             # Eq. (8)'s rotation order: other angles
+    array([33.451,  9.391, 20.284])
+    """
     h, p, r = np.moveaxis(euler_angles(hpr), -1, 0)
 
     def axis_quat(a, i):
@@ -188,6 +255,18 @@ def printed_eq12_mahony(
     Otherwise the filter of :func:`navlib.filters.mahony.mahony` (same ``m_est``, PI law and
     first-order update), one trial, written per sample in plain Python: the reversed order negates
     the error, so the correction drives the estimate away from the measurements.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> from navlib.papers import mimu_mag_rtk
+    >>> w, f = np.zeros((100, 3)), np.tile([0.0, 0.0, 9.8], (100, 1))   # level and still
+    >>> m = np.tile([0.0, 20.0, -40.0], (100, 1))                     # facing magnetic north
+    >>> q = mimu_mag_rtk.printed_eq12_mahony(w, f, m, 0.01, attitude.euler_to_quat([0.0, 0.0, 0.1]))
+    >>> np.round(np.rad2deg(attitude.quat_to_euler(q[[0, -1]])), 2) + 0.0   # the printed order drives roll away
+    array([[359.98,   0.  ,   5.83],
+           [351.01,  -4.67,  34.63]])
     """
     w = as_array(w_ib_b, "w_ib_b", shape=(None, 3), nonempty=True)
     f = as_array(f_b, "f_b", shape=(None, 3), nonempty=True)
@@ -229,12 +308,32 @@ def printed_eq12_mahony(
 
 
 def printed_eq18_gamma(q: Quat, dt: float) -> Array:
-    """Gamma as printed in Eq. (18): ``-dt Xi(q)`` (E003-11)."""
+    """Gamma as printed in Eq. (18): ``-dt Xi(q)`` (E003-11).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.papers import mimu_mag_rtk
+    >>> np.round(mimu_mag_rtk.printed_eq18_gamma([1.0, 0.0, 0.0, 0.0], 0.01), 3) + 0.0   # -dt Xi: twice the size, wrong sign
+    array([[ 0.  ,  0.  ,  0.  ],
+           [-0.01,  0.  ,  0.  ],
+           [ 0.  , -0.01,  0.  ],
+           [ 0.  ,  0.  , -0.01]])
+    """
     return -2 * noise_input(q, dt)
 
 
 def printed_eq20_jacobian(q: Quat, b: Vec3) -> Array:
-    """Eq. (20) as printed: H44 = 2(q0 b_y - q1 b_z) (E003-13)."""
+    """Eq. (20) as printed: H44 = 2(q0 b_y - q1 b_z) (E003-13).
+
+    Examples
+    --------
+    >>> from navlib import attitude
+    >>> from navlib.papers import mimu_mag_rtk
+    >>> q = attitude.euler_to_quat([0.3, 0.1, 0.2])
+    >>> mimu_mag_rtk.printed_eq20_jacobian(q, [0.0, 0.5, -0.866]).shape
+    (6, 4)
+    """
     H = measurement_jacobian(q, b).copy()  # validates q and b
     q, b = np.asarray(q, dtype=float), np.asarray(b, dtype=float)
     H[..., 3, 3] = 2 * (q[..., 0] * b[..., 1] - q[..., 1] * b[..., 2])
@@ -258,6 +357,16 @@ def draw_fusion_structure(ax) -> None:
     magnetometer as its measurement (Eqs. 16-20, giving the magnetic heading) and the heading fusion
     of Sec. 2.5 (reconstructed, E003-15), which outputs the heading. Drawn in axes coordinates with
     :func:`navlib.plots.block_diagram`; ``ax`` is turned into a schematic (no axes).
+
+    Examples
+    --------
+    >>> import matplotlib.pyplot as plt
+    >>> from navlib.papers import mimu_mag_rtk
+    >>> fig, ax = plt.subplots()
+    >>> mimu_mag_rtk.draw_fusion_structure(ax)
+    >>> len(ax.texts) > 0
+    True
+    >>> plt.close(fig)
     """
     from .. import plots  # noqa: PLC0415 -- navlib.papers imports without matplotlib
 

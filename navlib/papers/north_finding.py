@@ -1,4 +1,4 @@
-"""North finding with a single-axis optical gyro and a MEMS IMU (paper 000).
+r"""North finding with a single-axis optical gyro and a MEMS IMU (paper 000).
 
 Tan C., Xie X., "Indoor mobile robot north-finding based on single-axis optical
 gyroscope and MEMS IMU", Chinese Journal of Scientific Instrument
@@ -11,20 +11,25 @@ Latitude is ``lat`` (the paper's L). omega_ie = 7.292115e-5 rad/s.
 
 Equations implemented
 ---------------------
-* TRIAD, Eqs. (1)-(2) -- :func:`triad`::
+* TRIAD, Eqs. (1)-(2) -- :func:`triad`:
 
-      C_n^s = [-f, -f x w, (-f x w) x (-f)] [g_n, g_n x w_ie, (g_n x w_ie) x g_n]^-1
+  .. math::
+
+      C_n^s = \big[-f,\ -f \times \omega,\ (-f \times \omega) \times (-f)\big]
+              \big[g^n,\ g^n \times \omega_{ie},\ (g^n \times \omega_{ie}) \times g^n\big]^{-1}
 
   With noisy inputs the product is not orthonormal (the paper does not say
   what it does about that); :func:`triad` projects it onto the nearest
   rotation with :func:`navlib.attitude.orthonormalize` (SVD) unless asked for
   the raw product.
-* Tilt, Eqs. (4)-(6) -- :func:`pitch_roll_from_accel`: ``pitch = asin(f_y / g)``,
-  ``roll = atan2(-f_x, f_z)``.
-* Single-axis candidates, Eqs. (8)-(11) -- :func:`heading_candidates`::
+* Tilt, Eqs. (4)-(6) -- :func:`pitch_roll_from_accel`: :math:`\theta = \arcsin(f_y / g)`,
+  :math:`\gamma = \operatorname{atan2}(-f_x, f_z)`.
+* Single-axis candidates, Eqs. (8)-(11) -- :func:`heading_candidates`:
 
-      cos psi = (w_y - w_ie sin(lat) sin(pitch)) / (w_ie cos(lat) cos(pitch))
-      psi(1) = alpha = acos(clip(cos psi, -1, 1)),   psi(2) = 2 pi - alpha
+  .. math::
+
+      \cos\psi &= \frac{\omega_y - \omega_{ie} \sin\varphi \sin\theta}{\omega_{ie} \cos\varphi \cos\theta} \\
+      \psi^{(1)} & = \alpha = \arccos\big(\mathrm{clip}(\cos\psi, -1, 1)\big), \qquad \psi^{(2)} = 2\pi - \alpha
 
   The clipping is reported per trial (``clipped``).
 * Resolution, Eq. (12) -- :func:`resolve`: the four candidate heading changes
@@ -36,10 +41,13 @@ Equations implemented
   with the pitch (accelerometer) term (:func:`single_axis_heading_std`,
   :func:`single_axis_heading_error`); where Eq. (20) fails (near 0 and 180
   deg, E000-03) the clipped estimator's error by quadrature
-  (:func:`clipped_single_axis_theory`)::
+  (:func:`clipped_single_axis_theory`):
 
-      d psi = [-d w_y + w_ie (sin lat cos th - cos lat sin th cos psi) d th]
-              / (w_ie cos lat cos th sin psi),        d th = d f_y / (g cos th)
+  .. math::
+
+      \delta\psi = \frac{-\delta\omega_y + \omega_{ie} (\sin\varphi \cos\theta - \cos\varphi \sin\theta \cos\psi)\, \delta\theta}
+                        {\omega_{ie} \cos\varphi \cos\theta \sin\psi}, \qquad
+      \delta\theta = \frac{\delta f_y}{g \cos\theta}
 
 Extensions: :func:`pair_probabilities` (exact probability of each candidate
 pair winning for a Gaussian INS error; paper's "any second position" claim),
@@ -174,6 +182,15 @@ def pitch_roll_from_accel(f_b: Vec3, g: float | None = None) -> tuple[Array, Arr
     Returns
     -------
     pitch, roll : ndarray, shape (...)  (rad)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> from navlib.papers import north_finding as nf
+    >>> f_b = attitude.euler_to_dcm(np.deg2rad([0.0, 5.0, -3.0])).T @ [0.0, 0.0, 9.8]
+    >>> np.round(np.rad2deg(nf.pitch_roll_from_accel(f_b)), 6)
+    array([ 5., -3.])
     """
     pitch, roll = level(f_b)  # validates f_b
     return (pitch, roll) if g is None else (_asin_pitch(f_b, scalar(g, "g", positive=True)), roll)
@@ -205,6 +222,17 @@ class Candidates:
         True where |cos_heading| > 1 was clipped (noise near 0 or 180 deg).
     pitch : ndarray, shape (...)
         Pitch from Eq. (5) (rad).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import earth
+    >>> from navlib.papers import north_finding as nf
+    >>> lat, psi = np.deg2rad(30.0), np.deg2rad(60.0)
+    >>> w_y = earth.earth_rate_n(lat)[1] * np.cos(psi)                # a level forward gyro at heading 60 deg
+    >>> cand = nf.heading_candidates(w_y, [0.0, 0.0, earth.gravity(lat)], lat)
+    >>> np.round(np.rad2deg(cand.pair), 6), bool(cand.clipped)        # psi and its mirror image 360 - psi
+    (array([ 60., 300.]), False)
     """
 
     pair: np.ndarray
@@ -240,6 +268,18 @@ def heading_candidates(w_y: ArrayLike, f_b: Vec3, lat: float, h: float = 0.0) ->
     Returns
     -------
     Candidates
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import earth
+    >>> from navlib.papers import north_finding as nf
+    >>> lat = np.deg2rad(30.0)
+    >>> w_y = earth.earth_rate_n(lat)[1] * np.cos(np.deg2rad([60.0, 120.0]))   # two headings, level
+    >>> cand = nf.heading_candidates(w_y, [0.0, 0.0, earth.gravity(lat)], lat)
+    >>> np.round(np.rad2deg(cand.pair), 6)
+    array([[ 60., 300.],
+           [120., 240.]])
     """
     w_y = as_array(w_y, "w_y", nonempty=True)
     lat = gyrocompass_latitude(lat)
@@ -263,6 +303,13 @@ def nearest_candidate_error(pair: ArrayLike, heading: Angles) -> Array:
         Candidate pairs (rad).
     heading : array_like, broadcasting to (...)
         True headings (rad).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.papers import north_finding as nf
+    >>> round(float(np.rad2deg(nf.nearest_candidate_error(np.deg2rad([61.0, 299.0]), np.deg2rad(300.0)))), 6)
+    -1.0
     """
     return _nearest_error(as_array(pair, "pair", tail=(2,), nonempty=True), as_array(heading, "heading", nonempty=True))
 
@@ -293,6 +340,14 @@ class Resolution:
         candidates fit equally well but point position 2 in different directions (a U-turn or a straight
         drive between headings whose pairs coincide: the hypotheses cannot be separated); ``inf`` when every
         candidate gives the same heading.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.papers import north_finding as nf
+    >>> res = nf.resolve(np.deg2rad([60.0, 300.0]), np.deg2rad([150.0, 210.0]), np.deg2rad(90.0))
+    >>> round(float(np.rad2deg(res.heading)), 6), int(res.index)
+    (150.0, 0)
     """
 
     heading: np.ndarray
@@ -325,6 +380,15 @@ def resolve(pair1: ArrayLike, pair2: ArrayLike, dpsi_ins: Angles, wrap: bool = T
     Returns
     -------
     Resolution
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.papers import north_finding as nf
+    >>> pair1, pair2 = np.deg2rad([60.0, 300.0]), np.deg2rad([150.0, 210.0])   # candidates at two stops
+    >>> res = nf.resolve(pair1, pair2, np.deg2rad(92.0))             # the INS measured a 92 deg turn
+    >>> round(float(np.rad2deg(res.heading)), 6), np.round(np.rad2deg(res.residuals), 3)
+    (150.0, array([ -2., 118.,  58., 178.]))
     """
     p1, p2 = broadcast(
         as_array(pair1, "pair1", tail=(2,), nonempty=True),
@@ -371,6 +435,15 @@ def triad_heading_error(C_bn: Dcm, dw_b: Vec3, lat: float) -> Array:
     Returns
     -------
     ndarray, shape (...)  (rad)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> from navlib.papers import north_finding as nf
+    >>> C_bn = attitude.euler_to_dcm([0.0, 0.0, 0.0])                # facing north: body x is east
+    >>> round(float(np.rad2deg(nf.triad_heading_error(C_bn, [1e-7, 0.0, 0.0], np.deg2rad(30.0)))), 4)
+    -0.0907
     """
     C = as_dcm(C_bn)
     dw = as_array(dw_b, "dw_b", tail=(3,), nonempty=True)
@@ -379,10 +452,17 @@ def triad_heading_error(C_bn: Dcm, dw_b: Vec3, lat: float) -> Array:
 
 
 def triad_heading_std(sigma_gyro: float, lat: float) -> Array:
-    """Eq. (16): TRIAD heading error std ``sigma / (w_ie cos lat)`` (rad).
+    r"""Eq. (16): TRIAD heading error std :math:`\sigma / (\omega_{ie} \cos\varphi)` (rad).
 
     ``sigma_gyro`` (rad/s) is the std of each horizontal gyro error (equal and
     uncorrelated, as the paper assumes); independent of heading.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.papers import north_finding as nf
+    >>> round(float(np.rad2deg(nf.triad_heading_std(1e-7, np.deg2rad(30.0)))), 4)   # deg, any heading
+    0.0907
     """
     s = positive(sigma_gyro, "sigma_gyro", allow_zero=True, nonempty=True)
     return s / (OMEGA_IE * np.cos(gyrocompass_latitude(lat)))
@@ -395,14 +475,18 @@ def _pitch(pitch):
 def single_axis_heading_std(
     heading: Angles, sigma_gyro: float, lat: float, pitch: Angles = 0.0, sigma_accel: float = 0.0, g: float | None = None
 ) -> Array:
-    """Single-axis heading error std (rad): Eq. (20) or its full linearisation.
+    r"""Single-axis heading error std (rad): Eq. (20) or its full linearisation.
 
     With ``pitch = 0`` and ``sigma_accel = 0`` this is Eq. (20),
-    ``sigma_gyro / (w_ie cos lat |sin psi|)``. Otherwise the full
-    linearisation of Eq. (8) (E000-04)::
+    :math:`\sigma_g / (\omega_{ie} \cos\varphi\, \lvert\sin\psi\rvert)`. Otherwise the full
+    linearisation of Eq. (8) (E000-04):
 
-        var = [sigma_g^2 + (w_ie (sin lat cos th - cos lat sin th cos psi) sigma_th)^2]
-              / (w_ie cos lat cos th sin psi)^2,      sigma_th = sigma_a / (g cos th)
+    .. math::
+
+        \sigma_\psi^2 = \frac{\sigma_g^2
+            + \big(\omega_{ie} (\sin\varphi \cos\theta - \cos\varphi \sin\theta \cos\psi)\, \sigma_\theta\big)^2}
+                             {(\omega_{ie} \cos\varphi \cos\theta \sin\psi)^2}, \qquad
+        \sigma_\theta = \frac{\sigma_a}{g \cos\theta}
 
     Infinite at psi = 0 and pi, where the linearisation fails (E000-03).
 
@@ -417,6 +501,13 @@ def single_axis_heading_std(
         Std of the averaged forward-accelerometer error.
     g : float, optional
         Gravity (m/s^2); normal gravity at ``lat`` by default.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.papers import north_finding as nf
+    >>> np.round(np.rad2deg(nf.single_axis_heading_std(np.deg2rad([90.0, 10.0]), 1e-7, np.deg2rad(30.0))), 4)   # Eq. (20)
+    array([0.0907, 0.5225])
     """
     psi = as_array(heading, "heading", nonempty=True)
     th = _pitch(pitch)
@@ -449,6 +540,14 @@ def single_axis_heading_error(
         Forward-accelerometer error (m/s^2).
     g : float, optional
         Gravity (m/s^2); normal gravity at ``lat`` by default.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.papers import north_finding as nf
+    >>> lat = np.deg2rad(30.0)
+    >>> np.round(np.rad2deg(nf.single_axis_heading_error(np.deg2rad([90.0, 10.0]), 0.0, lat, 1e-7)), 4)   # 1e-7 rad/s gyro error
+    array([-0.0907, -0.5225])
     """
     psi = as_array(heading, "heading", nonempty=True)
     th = _pitch(pitch)
@@ -479,6 +578,14 @@ class ClippedTheory:
         piles errors up at one value).
     sigma_cos : ndarray
         Standard deviation of the estimated cosine.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.papers import north_finding as nf
+    >>> th = nf.clipped_single_axis_theory(np.deg2rad([90.0, 1.0]), sigma_gyro=1e-6, lat=np.deg2rad(30.0))
+    >>> np.round(np.rad2deg(th.rmse), 3), np.round(th.p_clip, 3)      # near north the cosine is clipped half the time
+    (array([0.907, 5.885]), array([0.   , 0.496]))
     """
 
     rmse: np.ndarray
@@ -529,6 +636,17 @@ def clipped_single_axis_theory(
     Returns
     -------
     ClippedTheory
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.papers import north_finding as nf
+    >>> lat = np.deg2rad(30.0)
+    >>> th = nf.clipped_single_axis_theory(np.deg2rad(1.0), sigma_gyro=1e-6, lat=lat)
+    >>> round(float(np.rad2deg(th.rmse)), 3)                          # deg, 1 deg from north
+    5.885
+    >>> round(float(np.rad2deg(nf.single_axis_heading_std(np.deg2rad(1.0), 1e-6, lat))), 3)   # Eq. (20) there: far too large
+    51.986
     """
     psi, th = np.broadcast_arrays(as_array(heading, "heading", nonempty=True), _pitch(pitch))
     s_g = scalar(sigma_gyro, "sigma_gyro", positive=True)
@@ -591,6 +709,14 @@ def simulate_static_outputs(
     Returns
     -------
     w_ib_b, f_b : ndarray, shape (..., n_trials, 3)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.papers import north_finding as nf
+    >>> w, f = nf.simulate_static_outputs(np.deg2rad([30.0, 0.0, 0.0]), 0.5, 4, 1e-6, 1e-3, np.random.default_rng(0))
+    >>> w.shape, np.round(f.mean(0), 2) + 0.0                              # four trials; level: f points up
+    ((4, 3), array([0.  , 0.  , 9.79]))
     """
     C_nb = np.swapaxes(attitude.euler_to_dcm(hpr), -1, -2)
     lat = gyrocompass_latitude(scalar(lat, "lat"))
@@ -618,6 +744,14 @@ class MonteCarlo:
     ``single`` is the error of the candidate nearest the truth (the resolution
     assumed correct, as in Fig. 4); ``triad_raw`` uses Eq. (2) without
     orthonormalisation; ``clipped`` marks trials whose cosine was clipped.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.papers import north_finding as nf
+    >>> mc = nf.monte_carlo(np.deg2rad([45.0]), 0.0, 0.0, np.deg2rad(30.0), 200, 1e-6, 1e-3, np.random.default_rng(0))
+    >>> mc.triad.shape, round(float(np.rad2deg(np.std(mc.triad))), 2)  # TRIAD error std (deg)
+    ((1, 200), 0.9)
     """
 
     heading: np.ndarray
@@ -655,6 +789,14 @@ def monte_carlo(
     Returns
     -------
     MonteCarlo
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.papers import north_finding as nf
+    >>> mc = nf.monte_carlo(np.deg2rad([45.0]), 0.0, 0.0, np.deg2rad(30.0), 200, 1e-6, 1e-3, np.random.default_rng(0))
+    >>> round(float(np.rad2deg(nf.triad_heading_std(1e-6, np.deg2rad(30.0)))), 2)   # Eq. (16) predicts the same
+    0.91
     """
     psi = as_array(headings, "headings", shape=(None,), nonempty=True)
     th = scalar(pitch, "pitch", within=(-np.pi / 2, np.pi / 2), open_ends=(True, True))
@@ -696,6 +838,13 @@ def pair_probabilities(heading1: Angles, heading2: Angles, sigma_ins: ArrayLike)
     ndarray, shape (..., 4)
         ``[true pair, position 1 swapped, position 2 swapped, both swapped]``;
         heading 2 is wrong in the last two (by 2 dist(psi2, {0, pi})).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.papers import north_finding as nf
+    >>> np.round(nf.pair_probabilities(np.deg2rad(60.0), np.deg2rad(150.0), np.deg2rad(5.0)), 4)   # the true pair wins
+    array([1., 0., 0., 0.])
     """
     p1, p2 = as_array(heading1, "heading1", nonempty=True), as_array(heading2, "heading2", nonempty=True)
     sigma = positive(sigma_ins, "sigma_ins", nonempty=True)
@@ -722,9 +871,16 @@ def pair_probabilities(heading1: Angles, heading2: Angles, sigma_ins: ArrayLike)
 
 
 def four_position_heading_std(sigma_gyro: float, lat: float) -> Array:
-    """Four-position heading std ``sigma / (sqrt(2) w_ie cos lat)`` (rad), any heading.
+    r"""Four-position heading std :math:`\sigma / (\sqrt{2}\, \omega_{ie} \cos\varphi)` (rad), any heading.
 
     ``sigma_gyro`` (rad/s) is the std of each position's averaged output.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.papers import north_finding as nf
+    >>> round(float(np.rad2deg(nf.four_position_heading_std(1e-6, np.deg2rad(30.0)))), 3)   # deg; any heading
+    0.642
     """
     return triad_heading_std(sigma_gyro, lat) / np.sqrt(2.0)
 
@@ -760,6 +916,15 @@ def stop_and_go(
         For :func:`navlib.trajectory.vehicle` with ``heading0 = headings[0]``.
     stops : ndarray, shape (S, 2)
         Start and end time of each stop (s).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.papers import north_finding as nf
+    >>> segments, stops = nf.stop_and_go(np.deg2rad([0.0, 90.0]), 10.0, 30.0, 2.0, [0.0, 0.0], [0.0, 0.0])
+    >>> len(segments), stops
+    (5, array([[ 0., 10.],
+           [40., 50.]]))
     """
     psi = as_array(headings, "headings", shape=(None,), nonempty=True)
     if psi.size < 2:
@@ -804,6 +969,19 @@ class StopSolutions:
     samples per sensor, and ``("window", "refused")`` 1 for a refused stop, which with
     ``strict=False`` has NaN candidates and heading. ``windows`` holds each stop's
     :class:`navlib.alignment.StaticWindow`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import trajectory
+    >>> from navlib.papers import north_finding as nf
+    >>> traj = trajectory.static(2.0, 0.01, [0.5, 2.0, 10.0], np.deg2rad([60.0, 0.0, 0.0]))
+    >>> w_ib_b, f_b = trajectory.ideal_imu(traj)
+    >>> w_ib_b += 1e-9 * np.sin(np.arange(200.0))[:, None]           # not frozen (a constant output counts as stuck)
+    >>> f_b += 1e-6 * np.sin(np.arange(200.0))[:, None]
+    >>> sol = nf.stop_solutions(w_ib_b, f_b, windows=[[0, 100], [100, 200]], lat=0.5, h=10.0)
+    >>> sol.candidates.shape, np.round(np.rad2deg(sol.triad), 4)
+    ((2, 2), array([60., 60.]))
     """
 
     candidates: np.ndarray
@@ -861,6 +1039,19 @@ def stop_solutions(
         is refused (``("gyro", "stuck")``; a frozen gyro otherwise passes with a
         heading error of many degrees). Pass ``stuck_fraction=None`` for
         noise-free simulated data, whose readings repeat exactly.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import trajectory
+    >>> from navlib.papers import north_finding as nf
+    >>> traj = trajectory.static(2.0, 0.01, [0.5, 2.0, 10.0], np.deg2rad([60.0, 0.0, 0.0]))
+    >>> w_ib_b, f_b = trajectory.ideal_imu(traj)
+    >>> w_ib_b += 1e-9 * np.sin(np.arange(200.0))[:, None]           # not frozen (a constant output counts as stuck)
+    >>> f_b += 1e-6 * np.sin(np.arange(200.0))[:, None]
+    >>> sol = nf.stop_solutions(w_ib_b, f_b, windows=[[0, 200]], lat=0.5, h=10.0)   # one stop of 2 s
+    >>> np.round(np.rad2deg(sol.candidates[0]), 4), np.round(np.rad2deg(sol.triad), 4)
+    (array([ 60., 300.]), array([60.]))
     """
     window_options.setdefault("stuck_fraction", 0.5)
     if isinstance(w_ib_b, ImuSamples):
@@ -981,6 +1172,18 @@ def ins_heading_change(
     -------
     ndarray, shape (...)
         Heading change, wrapped into (-pi, pi] (rad); NaN for refused drives.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import trajectory
+    >>> from navlib.papers import north_finding as nf
+    >>> traj = trajectory.static(1.0, 0.01, [0.5, 2.0, 10.0], [0.0, 0.0, 0.0])
+    >>> w_ib_b, f_b = trajectory.ideal_imu(traj)
+    >>> w_ib_b[:, 2] -= np.pi / 2                                     # turning clockwise at 90 deg/s for 1 s
+    >>> dpsi = nf.ins_heading_change(w_ib_b, f_b[0], 0.01, lat=0.5)
+    >>> round(float(np.rad2deg(dpsi)), 3)
+    90.0
     """
     if isinstance(w_ib_b, ImuSamples):
         w_ib_b, _, dt, full_scale_gyro, _ = unpack(w_ib_b, dt=dt, full_scale_gyro=full_scale_gyro)
@@ -1063,6 +1266,16 @@ def draw_device(ax, heading_deg: float = 30.0) -> None:
         Drawn on with an equal aspect ratio and the axes hidden.
     heading_deg : float
         Heading of the robot (deg), any finite value (wrapped to [0, 360)).
+
+    Examples
+    --------
+    >>> import matplotlib.pyplot as plt
+    >>> from navlib.papers import north_finding as nf
+    >>> fig, ax = plt.subplots()
+    >>> nf.draw_device(ax, heading_deg=30.0)
+    >>> len(ax.patches) + len(ax.lines) > 0
+    True
+    >>> plt.close(fig)
     """
     axes(ax)
     psi = float(scalar(heading_deg, "heading_deg")) % 360.0
@@ -1140,6 +1353,16 @@ def draw_candidate_pairs(ax, heading1_deg: float, heading2_deg: float, dpsi_ins_
         True headings at the two stops (deg, clockwise from north; wrapped to [0, 360)).
     dpsi_ins_error_deg : float
         Error of the INS heading change (deg), drawn into the green arrow.
+
+    Examples
+    --------
+    >>> import matplotlib.pyplot as plt
+    >>> from navlib.papers import north_finding as nf
+    >>> fig, ax = plt.subplots()
+    >>> nf.draw_candidate_pairs(ax, 60.0, 150.0)
+    >>> len(ax.lines) > 0
+    True
+    >>> plt.close(fig)
     """
     axes(ax)
     psis = [float(scalar(h, name)) % 360.0 for h, name in ((heading1_deg, "heading1_deg"), (heading2_deg, "heading2_deg"))]

@@ -1,4 +1,4 @@
-"""Indoor pedestrian navigation with a shoulder-mounted MEMS IMU (paper 004).
+r"""Indoor pedestrian navigation with a shoulder-mounted MEMS IMU (paper 004).
 
 Wen Zeyang, Xu Jiangning, Yu Mengqi, "Design of Indoor Navigation System
 Based on Double MEMS IMU" (基于MEMS IMU的室内导航系统设计), *Ship Electronic
@@ -36,15 +36,19 @@ prints NED / forward-right-down; ``C_enu = M C_ned M`` with
   ``R T/g ln(p_ref/p)`` with temperature.
   Floors: ``n = n_ref + round(h / h_floor)``.
 * Eq. (4), tilt compensation, CORRECTED (erratum E004-01; the printed form
-  mixes up axes and angles, :func:`tilt_compensate_printed`). NED/FRD::
+  mixes up axes and angles, :func:`tilt_compensate_printed`). NED/FRD, pitch :math:`\theta`, roll :math:`\gamma`:
 
-      H_X = H_x cos(th) + H_y sin(th) sin(ga) + H_z sin(th) cos(ga)
-      H_Y = H_y cos(ga) - H_z sin(ga)
+  .. math::
 
-  ENU/RFU (used by the filter), ``m_b = (m_x, m_y, m_z) = (H_y, H_x, -H_z)``::
+      H_X &= H_x \cos\theta + H_y \sin\theta \sin\gamma + H_z \sin\theta \cos\gamma \\
+      H_Y &= H_y \cos\gamma - H_z \sin\gamma
 
-      mh_x = m_x cos(ga) + m_z sin(ga)
-      mh_y = m_y cos(th) + m_x sin(th) sin(ga) - m_z sin(th) cos(ga)
+  ENU/RFU (used by the filter), ``m_b = (m_x, m_y, m_z) = (H_y, H_x, -H_z)``:
+
+  .. math::
+
+      m^h_x &= m_x \cos\gamma + m_z \sin\gamma \\
+      m^h_y &= m_y \cos\theta + m_x \sin\theta \sin\gamma - m_z \sin\theta \cos\gamma
 
 * Eq. (5) (missing, reconstructed; erratum E004-03):
   ``angle = atan2(-H_Y, H_X) = atan2(-mh_x, mh_y)`` plus 2 pi when negative,
@@ -116,6 +120,13 @@ def carpark_legs(
     lengths cycle through ``stops``, s); each corner is a 90-degree right turn
     taken at 2/3 of the speed over 3 s. Starts with ``initial_stand``
     seconds of standing (calibration, pressure reference).
+
+    Examples
+    --------
+    >>> from navlib.papers import pedestrian_ins as pins
+    >>> legs = pins.carpark_legs()
+    >>> len(legs), legs[0]                                            # the initial stand first
+    (22, Leg(duration=30.0, speed=0.0, turn=0.0, climb=0.0))
     """
     speed = scalar(speed, "speed", positive=True)
     stops = positive(stops, "stops", shape=(None,), min_ndim=1)
@@ -141,6 +152,13 @@ def floor_test_legs(stand: float = 60.0, stairs: float = 15.0, floor_height: flo
     0.35 m/s, ``floor_height`` down or up, with a U-turn at the landing) and
     4 m of corridor; then a stand of ``stand`` seconds. The first stand is
     on 2F.
+
+    Examples
+    --------
+    >>> from navlib.papers import pedestrian_ins as pins
+    >>> legs = pins.floor_test_legs(n_round_trips=1)
+    >>> round(sum(leg.climb for leg in legs), 6), len(legs)           # down a floor and back up
+    (0.0, 9)
     """
     stand = scalar(stand, "stand", positive=True)
     stairs = scalar(stairs, "stairs", positive=True)
@@ -171,6 +189,13 @@ def tilt_compensate_ned(H_b, pitch, roll):
     -------
     H_X, H_Y : ndarray
         Horizontal components along magnetic-north-of-heading and its right.
+
+    Examples
+    --------
+    >>> from navlib.papers import pedestrian_ins as pins
+    >>> H_X, H_Y = pins.tilt_compensate_ned([20.0, 0.0, 40.0], 0.0, 0.0)   # level, facing magnetic north (NED, FRD)
+    >>> float(H_X), float(H_Y)
+    (20.0, 0.0)
     """
     H = as_array(H_b, "H_b", tail=(3,))
     th, ga = pitch_roll(pitch, roll)
@@ -186,6 +211,13 @@ def tilt_compensate_printed(H_b, pitch, roll):
     ``H_X = H_x sin(th) sin(ph) + H_y cos(ph) - H_z cos(th) sin(ph)``,
     ``H_Y = H_x cos(th) + H_z sin(th)``. Kept to show that it does not
     recover the heading under the stated axes.
+
+    Examples
+    --------
+    >>> from navlib.papers import pedestrian_ins as pins
+    >>> H_X, H_Y = pins.tilt_compensate_printed([20.0, 0.0, 40.0], 0.0, 0.0)   # the same level sensor
+    >>> float(H_X), float(H_Y)                                        # the printed Eq. (4) swaps the components
+    (0.0, 20.0)
     """
     H = as_array(H_b, "H_b", tail=(3,))
     th, ph = pitch_roll(pitch, roll)
@@ -194,7 +226,15 @@ def tilt_compensate_printed(H_b, pitch, roll):
 
 
 def heading_from_horizontal(H_X, H_Y, declination: float = 0.0):
-    """Eqs. (5)-(6): ``atan2(-H_Y, H_X) + D`` wrapped to [0, 2 pi) (erratum E004-04)."""
+    """Eqs. (5)-(6): ``atan2(-H_Y, H_X) + D`` wrapped to [0, 2 pi) (erratum E004-04).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.papers import pedestrian_ins as pins
+    >>> np.round(np.rad2deg(pins.heading_from_horizontal([1.0, 0.0], [0.0, -1.0])), 6)   # NED: north, then east
+    array([ 0., 90.])
+    """
     X, Y = as_array(H_X, "H_X"), as_array(H_Y, "H_Y")
     if np.any((X == 0) & (Y == 0)):
         raise ValueError("H_X, H_Y: heading undefined for a zero horizontal field")
@@ -211,6 +251,14 @@ def hvac_pressure_steps(time, door_times, rng: np.random.Generator, amplitude: f
 
     Returns shape (N,), or (n_trials, N) with ``n_trials`` (each trial's offsets drawn in turn: the same
     numbers as ``n_trials`` calls without it).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.papers import pedestrian_ins as pins
+    >>> time = np.arange(6.0)
+    >>> np.round(pins.hvac_pressure_steps(time, [2.0, 4.0], np.random.default_rng(0)), 3)   # a new offset after each door (Pa)
+    array([ 0.   ,  0.   ,  2.739,  2.739, -4.604, -4.604])
     """
     t = time_axis(time, "time", min_samples=1)
     doors = np.sort(as_array(door_times, "door_times", shape=(None,)))
@@ -227,7 +275,18 @@ def hvac_pressure_steps(time, door_times, rng: np.random.Generator, amplitude: f
 
 
 def simple_covariance_update(P, H, R):
-    """The printed last line of Eq. (3): optimal gain K and ``(I - K H) P``."""
+    """The printed last line of Eq. (3): optimal gain K and ``(I - K H) P``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.papers import pedestrian_ins as pins
+    >>> K, P = pins.simple_covariance_update(np.eye(2), np.eye(2), np.eye(2))
+    >>> K, P                                                          # equal variances: half-way
+    (array([[0.5, 0. ],
+           [0. , 0.5]]), array([[0.5, 0. ],
+           [0. , 0.5]]))
+    """
     P = as_array(P, "P", shape=(None, None))
     same_shape(P, "P", (len(P), len(P)))  # square (n, n)
     H = as_array(H, "H", shape=(None, len(P)), of="P")  # (m, n)
@@ -253,6 +312,16 @@ def draw_system(ax) -> None:
     (BMP180 formula) and the tilt-compensated magnetic heading (Eqs. 4-6, corrected) overwrite the INS
     height and heading ("direct binding"). Drawn in axes coordinates with
     :func:`navlib.plots.block_diagram`; ``ax`` is turned into a schematic (no axes).
+
+    Examples
+    --------
+    >>> import matplotlib.pyplot as plt
+    >>> from navlib.papers import pedestrian_ins as pins
+    >>> fig, ax = plt.subplots()
+    >>> pins.draw_system(ax)
+    >>> len(ax.texts) > 0
+    True
+    >>> plt.close(fig)
     """
     from .. import plots  # noqa: PLC0415 -- navlib.papers imports without matplotlib
 

@@ -1,4 +1,4 @@
-"""Gyro bias estimation by rotating the IMU (paper 001).
+r"""Gyro bias estimation by rotating the IMU (paper 001).
 
 Wu Z., Sun Z., Zhang W., Chen Q. (2014). Gyroscope bias estimation and
 compensation by rotation of the inertial measurement unit. *Journal of
@@ -18,23 +18,27 @@ specific force ``f_b`` (+g up); the paper's gravity vector is ``a_m = -f_b``.
 
 Equations (paper numbering)
 ---------------------------
-* Eq. (1)  ``R = R_y(phi) R_x(theta) R_z(-psi) = C_bn.T``  :func:`eq1_matrix`
+* Eq. (1)  :math:`R = R_y(\phi) R_x(\theta) R_z(-\psi) = (C_b^n)^T`  :func:`eq1_matrix`
 * Eq. (2)  Euler-angle kinematics, Omega = body rate relative to n, :func:`euler_rates`; integrated sample
-  by sample (RK4 with the rate held over each sample) by :func:`integrate_euler`::
+  by sample (RK4 with the rate held over each sample) by :func:`integrate_euler`:
 
-      roll'    = sin(phi) tan(theta) Wx + Wy - cos(phi) tan(theta) Wz
-      pitch'   = cos(phi) Wx + sin(phi) Wz
-      heading' = (sin(phi) Wx - cos(phi) Wz) / cos(theta)
+  .. math::
+
+      \dot\phi &= \sin\phi \tan\theta\, \Omega_x + \Omega_y - \cos\phi \tan\theta\, \Omega_z \\
+      \dot\theta &= \cos\phi\, \Omega_x + \sin\phi\, \Omega_z \\
+      \dot\psi &= (\sin\phi\, \Omega_x - \cos\phi\, \Omega_z) / \cos\theta
+
+  (roll :math:`\phi`, pitch :math:`\theta`, heading :math:`\psi`)
 
 * Eq. (3)  measured rate = Omega + b.
-* Eq. (4)  ``a_m = R [0, 0, -g] = g [cos(th) sin(phi), -sin(th), -cos(th) cos(phi)]``  :func:`gravity_body`
+* Eq. (4)  :math:`a_m = R\, [0, 0, -g]^T = g\, [\cos\theta \sin\phi,\ -\sin\theta,\ -\cos\theta \cos\phi]^T`  :func:`gravity_body`
 * Eq. (5)  ``phi = atan2(a_mx, -a_mz)``, ``theta = atan2(-a_my, hypot(a_mx, a_mz))``  :func:`roll_pitch_from_accel`
 * Eqs. (6)-(9)  per dwell k, ``delta_k = (gyro tilt change) - (accelerometer tilt
   change) = M(phi_k, theta_k) dT b = V_k b`` with M the first two rows
   of Eq. (2): :func:`tilt_matrix`, :func:`tilt_residuals`
-* Eq. (10) ``dR = I cos(da) + sin(da) [u x] + (1 - cos(da)) u u^T``  :func:`rodrigues`
+* Eq. (10) :math:`\Delta R = I \cos\Delta\alpha + \sin\Delta\alpha [u\times] + (1 - \cos\Delta\alpha) u u^T`  :func:`rodrigues`
 * Eq. (11) ``R' = dR^T R`` (``C_bn' = C_bn dR``)  :func:`rotate_attitude`
-* Eqs. (12)-(14) stacked ``r = V b``, ``b = (V^T V)^-1 V^T r``  :func:`lsq_bias`,
+* Eqs. (12)-(14) stacked :math:`r = V b`, :math:`\hat b = (V^T V)^{-1} V^T r`  :func:`lsq_bias`,
   :func:`running_lsq_bias` (recursive, optional forgetting)
 
 Paper's numbers: MTi-100 (bias stability 10 deg/h, noise 0.01 deg/s/sqrt(Hz)),
@@ -168,6 +172,13 @@ def gravity_body(tilt: ArrayLike, g: float = G0) -> Array:
     -------
     a_m : ndarray, shape (..., 3)
         Equals ``-f_b`` of a static accelerometer (erratum E001-03).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.papers import rotation_bias as rb
+    >>> np.round(rb.gravity_body(np.deg2rad([0.0, 30.0])), 4)         # pitched 30 deg: [roll, pitch] -> a_m
+    array([ 0.    , -4.9033, -8.4928])
     """
     tilt = as_array(tilt, "tilt", tail=(2,), nonempty=True)
     g = scalar(g, "g", positive=True)
@@ -189,6 +200,15 @@ def roll_pitch_from_accel(f_b: Vec3) -> Array:
     Returns
     -------
     tilt : ndarray, shape (..., 2)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> from navlib.papers import rotation_bias as rb
+    >>> f_b = attitude.euler_to_dcm(np.deg2rad([0.0, 10.0, -5.0])).T @ [0.0, 0.0, 9.8]
+    >>> np.round(np.rad2deg(rb.roll_pitch_from_accel(f_b)), 6)        # [roll, pitch]
+    array([-5., 10.])
     """
     pitch, roll = level(f_b)
     return np.stack([roll, pitch], -1)
@@ -206,6 +226,14 @@ def tilt_matrix(tilt: ArrayLike) -> Array:
     -------
     M : ndarray, shape (..., 2, 3)
         Its null space is the body vertical ``a_m`` (section 3.1).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.papers import rotation_bias as rb
+    >>> np.round(rb.tilt_matrix(np.zeros(2)), 6) + 0.0                 # level: roll' = w_y, pitch' = w_x
+    array([[0., 1., 0.],
+           [1., 0., 0.]])
     """
     tilt = as_array(tilt, "tilt", tail=(2,), nonempty=True)
     check_pitch(tilt[..., 1], "tilt[..., 1] (pitch)")
@@ -228,7 +256,7 @@ def _unit_axis(axis_b):
 
 
 def rodrigues(axis_b: Vec3, angle: Angles) -> Array:
-    """Eq. (10): ``dR = I cos a + sin a [u x] + (1 - cos a) u u^T`` (b' -> b).
+    r"""Eq. (10): :math:`\Delta R = I \cos a + \sin a\, [u\times] + (1 - \cos a)\, u u^T` (b' -> b).
 
     Parameters
     ----------
@@ -240,6 +268,15 @@ def rodrigues(axis_b: Vec3, angle: Angles) -> Array:
     Returns
     -------
     dR : ndarray, shape (..., 3, 3)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.papers import rotation_bias as rb
+    >>> np.round(rb.rodrigues([0.0, 0.0, 1.0], np.pi / 2), 12) + 0.0   # a quarter turn about z
+    array([[ 0., -1.,  0.],
+           [ 1.,  0.,  0.],
+           [ 0.,  0.,  1.]])
     """
     u = _unit_axis(axis_b)
     a = as_array(angle, "angle", nonempty=True)[..., None, None]
@@ -261,6 +298,13 @@ def rotate_attitude(hpr: Angles, axis_b: Vec3, angle: Angles) -> Array:
     Returns
     -------
     hpr : ndarray, shape (..., 3)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.papers import rotation_bias as rb
+    >>> np.round(np.rad2deg(rb.rotate_attitude([0.0, 0.0, 0.0], [0.0, 1.0, 0.0], np.pi / 2)), 6) + 0.0   # a quarter turn: roll 90
+    array([ 0.,  0., 90.])
     """
     return attitude.dcm_to_euler(attitude.euler_to_dcm(hpr) @ rodrigues(axis_b, angle))
 
@@ -285,6 +329,15 @@ def dwell_attitudes(hpr0: Angles, axis_b: Vec3, amplitude: float, n_dwells: int)
     ------
     ValueError
         If a dwell's pitch is within 1 deg of +-90 deg (erratum E001-08).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.papers import rotation_bias as rb
+    >>> np.round(np.rad2deg(rb.dwell_attitudes([0.0, 0.0, 0.0], [0.0, 1.0, 0.0], np.pi / 2, 3)), 6) + 0.0
+    array([[ 0.,  0.,  0.],
+           [ 0.,  0., 90.],
+           [ 0.,  0.,  0.]])
     """
     hpr0 = euler_angles(as_array(hpr0, "hpr0", shape=(3,)), "hpr0")
     n_dwells = integer(n_dwells, "n_dwells")
@@ -315,6 +368,13 @@ def dwell_windows(n_samples: int, dt: float, period: float, rotation_time: float
         First sample of each complete dwell.
     length : int
         Samples per dwell (at least :data:`MIN_DWELL_SAMPLES`).
+
+    Examples
+    --------
+    >>> from navlib.papers import rotation_bias as rb
+    >>> starts, length = rb.dwell_windows(400, 0.1, period=10.0, rotation_time=1.0, settle=0.5)
+    >>> starts, length                                                # 8.5 s of every 10 s period
+    (array([  5, 105, 205, 305]), 85)
     """
     n_samples = integer(n_samples, "n_samples")
     dt, period = interval(dt), scalar(period, "period", positive=True)
@@ -361,6 +421,19 @@ class Residuals:
         ``("imu", "saturated")`` samples inside dwell windows at the device rails (``full_scale_*``);
         ``("dwell", "refused")`` dwells skipped, for dropouts (more than ``max_missing`` of their
         samples NaN) or for saturated samples.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude, earth, trajectory
+    >>> from navlib.papers import rotation_bias as rb
+    >>> traj = trajectory.reciprocating_rotation(40.0, 0.1, [0.5, 2.0, 0.0], [0.0, 0.0, 0.0], [0.0, 1.0, 0.0], np.pi / 2, 10.0)
+    >>> w_ib_b, f_b = trajectory.ideal_imu(traj)
+    >>> starts, length = rb.dwell_windows(len(w_ib_b), 0.1, period=10.0, rotation_time=1.0)
+    >>> w_ie_b = earth.earth_rate_b(attitude.quat_to_dcm(traj.q_bn[starts]), 0.5)   # Earth rate at each dwell
+    >>> res = rb.tilt_residuals(w_ib_b + [1e-4, 2e-4, -1e-4], f_b, 0.1, starts, length, w_ie_b)
+    >>> res.r.shape, res.V.shape, res.duration                        # four dwells: [d roll, d pitch] each
+    ((4, 2), (4, 2, 3), 9.0)
     """
 
     r: np.ndarray
@@ -603,6 +676,19 @@ def tilt_residuals(
     Returns
     -------
     Residuals
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude, earth, trajectory
+    >>> from navlib.papers import rotation_bias as rb
+    >>> traj = trajectory.reciprocating_rotation(40.0, 0.1, [0.5, 2.0, 0.0], [0.0, 0.0, 0.0], [0.0, 1.0, 0.0], np.pi / 2, 10.0)
+    >>> w_ib_b, f_b = trajectory.ideal_imu(traj)
+    >>> starts, length = rb.dwell_windows(len(w_ib_b), 0.1, period=10.0, rotation_time=1.0)
+    >>> w_ie_b = earth.earth_rate_b(attitude.quat_to_dcm(traj.q_bn[starts]), 0.5)   # Earth rate at each dwell
+    >>> res = rb.tilt_residuals(w_ib_b + [1e-4, 2e-4, -1e-4], f_b, 0.1, starts, length, w_ie_b)   # a gyro bias (rad/s)
+    >>> np.round(rb.lsq_bias(res.r, res.V) * 1e4, 3)                  # Eq. (14) recovers it (1e-4 rad/s)
+    array([ 1.,  2., -1.])
     """
     w_ib_b, f_b, dt, full_scale_gyro, full_scale_accel = unpack(w_ib_b, f_b, dt, full_scale_gyro, full_scale_accel)
     for name, value in (("starts", starts), ("length", length)):
@@ -689,6 +775,14 @@ def residual_covariance(
     Returns
     -------
     R : ndarray, shape (..., 2, 2)  (rad^2)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.papers import rotation_bias as rb
+    >>> np.round(rb.residual_covariance(np.zeros(2), length=100, dt=0.1, gyro_noise=1e-4) * 1e12, 1)   # (1e-12 rad^2)
+    array([[120024.,      0.],
+           [     0., 120024.]])
     """
     M = tilt_matrix(tilt)  # validates tilt
     n = integer(length, "length", minimum=MIN_DWELL_SAMPLES)
@@ -725,7 +819,7 @@ def _rv(r, V):
 
 
 def lsq_bias(r: ArrayLike, V: ArrayLike) -> Array:
-    """Eq. (14): ``b = (V^T V)^-1 V^T r`` over all valid dwells.
+    r"""Eq. (14): :math:`\hat b = (V^T V)^{-1} V^T r` over all valid dwells.
 
     Parameters
     ----------
@@ -743,6 +837,15 @@ def lsq_bias(r: ArrayLike, V: ArrayLike) -> Array:
     ValueError
         If the valid dwells leave the bias unobservable (cond(V) > 1e6): the
         body verticals do not differ, e.g. a vertical rotation axis.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.papers import rotation_bias as rb
+    >>> V = np.stack([np.eye(3)[:2], np.eye(3)[1:]])                 # two dwells that together see all three axes
+    >>> b = np.array([1e-4, 2e-4, -1e-4])
+    >>> np.round(rb.lsq_bias(V @ b, V) * 1e4, 6)
+    array([ 1.,  2., -1.])
     """
     r, V = _rv(r, V)
     ok = np.all(np.isfinite(r), -1) & np.all(np.isfinite(V), (-2, -1))
@@ -807,6 +910,18 @@ def running_lsq_bias(r: ArrayLike, V: ArrayLike, forgetting: float = 1.0) -> tup
         the bias observable (cond(V) <= 1e6).
     faults : FaultReport
         ``("dwell", "nan")``: dwells skipped for a NaN residual (int, over all trials).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.papers import rotation_bias as rb
+    >>> V = np.stack([np.eye(3)[:2], np.eye(3)[1:], np.eye(3)[:2]])
+    >>> b = np.array([1e-4, 2e-4, -1e-4])
+    >>> est, found = rb.running_lsq_bias(V @ b, V)
+    >>> np.round(est * 1e4, 6)                                        # NaN until the dwells observe every axis
+    array([[nan, nan, nan],
+           [ 1.,  2., -1.],
+           [ 1.,  2., -1.]])
     """
     r, V = _rv(r, V)
     lam = scalar(forgetting, "forgetting")
@@ -839,6 +954,17 @@ class KalmanBias:
     P : ndarray, shape (..., K, 3, 3)
         Covariance after each dwell (rad^2/s^2); symmetric positive definite
         (Joseph-form update, symmetrised predict).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.papers import rotation_bias as rb
+    >>> V = np.stack([np.eye(3)[:2], np.eye(3)[1:]] * 3)            # six dwells
+    >>> b = np.array([1e-4, 2e-4, -1e-4])
+    >>> R = np.tile(1e-12 * np.eye(2), (6, 1, 1))
+    >>> kb = rb.kalman_bias(V @ b, V, R, interval=10.0, rate_random_walk=1e-9, bias_sigma=1e-3)
+    >>> kb.b.shape, np.round(kb.b[-1] * 1e4, 3)
+    ((6, 3), array([ 1.,  2., -1.]))
     """
 
     b: np.ndarray
@@ -914,6 +1040,17 @@ def kalman_bias(
     Returns
     -------
     KalmanBias
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.papers import rotation_bias as rb
+    >>> V = np.stack([np.eye(3)[:2], np.eye(3)[1:]] * 3)            # six dwells
+    >>> b = np.array([1e-4, 2e-4, -1e-4])
+    >>> R = np.tile(1e-12 * np.eye(2), (6, 1, 1))                    # residual noise (rad^2)
+    >>> kb = rb.kalman_bias(V @ b, V, R, interval=10.0, rate_random_walk=1e-9, bias_sigma=1e-3)
+    >>> np.round(kb.b[-1] * 1e4, 3), bool((kb.sigma[-1] < kb.sigma[0]).all())   # the uncertainty shrinks
+    (array([ 1.,  2., -1.]), True)
     """
     r, V = _rv(r, V)
     lead, K = r.shape[:-2], r.shape[-2]
@@ -981,6 +1118,14 @@ def design(
     crb : ndarray, shape (3, 3)
         Cramer-Rao bound (rad^2/s^2).
     V : ndarray, shape (n_dwells, 2, 3)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib.papers import rotation_bias as rb
+    >>> cond, V, R = rb.design([0.0, 0.0, 0.0], [0.0, 1.0, 0.0], np.pi / 2, 10.0, 0.01, 1e-4)
+    >>> round(float(cond), 3), V.shape, R.shape                       # two dwells, 90 deg apart about y
+    (1.414, (3, 3), (2, 2, 3))
     """
     hpr = dwell_attitudes(hpr0, axis_b, amplitude, n_dwells)
     dt = interval(dt)
@@ -1007,6 +1152,15 @@ def eq1_matrix(hpr: Angles) -> Array:
     -------
     R : ndarray, shape (..., 3, 3)
         Equals ``attitude.euler_to_dcm(hpr).T`` (erratum E001-01: heading clockwise).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import attitude
+    >>> from navlib.papers import rotation_bias as rb
+    >>> hpr = np.deg2rad([30.0, 10.0, 5.0])
+    >>> bool(np.allclose(rb.eq1_matrix(hpr), attitude.euler_to_dcm(hpr).T))   # R maps n to b: C_bn transposed
+    True
     """
     h, p, r = np.moveaxis(euler_angles(as_array(hpr, "hpr", tail=(3,), nonempty=True)), -1, 0)
     ch, sh, cp, sp, cr, sr = np.cos(h), np.sin(h), np.cos(p), np.sin(p), np.cos(r), np.sin(r)
@@ -1218,6 +1372,16 @@ def draw_rotation_scheme(ax, amplitude_deg: float = 90.0, pitch_deg: float = 30.
         Δα (°), in (0, 180].
     pitch_deg : float
         θ0 (°), in (-90, 90): how far u = y_b is pitched out of the horizontal (only written on the figure).
+
+    Examples
+    --------
+    >>> import matplotlib.pyplot as plt
+    >>> from navlib.papers import rotation_bias as rb
+    >>> fig, ax = plt.subplots()
+    >>> rb.draw_rotation_scheme(ax, amplitude_deg=90.0)
+    >>> len(ax.lines) + len(ax.patches) > 0
+    True
+    >>> plt.close(fig)
     """
     from ..plots import angle_arc, plane_frame  # noqa: PLC0415 -- plotting only
 
@@ -1255,6 +1419,21 @@ def draw_rotation_schedule(ax, time, angle_deg, starts, length: int, dt: float) 
         Dwell windows (:func:`dwell_windows`); alternate dwells are the two attitudes k and k'.
     dt : float
         Sample interval (s).
+
+    Examples
+    --------
+    >>> import matplotlib.pyplot as plt
+    >>> import numpy as np
+    >>> from navlib import attitude, trajectory
+    >>> from navlib.papers import rotation_bias as rb
+    >>> traj = trajectory.reciprocating_rotation(40.0, 0.1, [0.5, 2.0, 0.0], [0.0, 0.0, 0.0], [0.0, 1.0, 0.0], np.pi / 2, 10.0)
+    >>> angle = np.rad2deg(attitude.quat_to_euler(traj.q_bn)[:, 2])  # the roll angle follows the rotation about y
+    >>> starts, length = rb.dwell_windows(len(traj) - 1, 0.1, period=10.0, rotation_time=1.0)
+    >>> fig, ax = plt.subplots()
+    >>> rb.draw_rotation_schedule(ax, traj.time, angle, starts, length, 0.1)
+    >>> len(ax.patches)                                               # one shaded window per dwell
+    4
+    >>> plt.close(fig)
     """
     axes(ax)
     t = time_axis(time, "time")
@@ -1274,7 +1453,18 @@ def draw_rotation_schedule(ax, time, angle_deg, starts, length: int, dt: float) 
 
 
 def draw_flow(ax) -> None:
-    """Paper Fig. 4 redrawn: the estimation and compensation loop (§3.3) as a block diagram."""
+    """Paper Fig. 4 redrawn: the estimation and compensation loop (§3.3) as a block diagram.
+
+    Examples
+    --------
+    >>> import matplotlib.pyplot as plt
+    >>> from navlib.papers import rotation_bias as rb
+    >>> fig, ax = plt.subplots()
+    >>> rb.draw_flow(ax)
+    >>> len(ax.texts) > 0
+    True
+    >>> plt.close(fig)
+    """
     from ..plots import block_diagram  # noqa: PLC0415 -- plotting only (it validates ax)
 
     blocks = {
