@@ -78,10 +78,19 @@ html_theme_options = {
 
 # Docstrings write absolute values as |f| and |w|dt: plain text, not reStructuredText substitutions.
 _BARS = re.compile(r"(?<![\\|])\|(\S[^|\n]{0,40}?\S|\S)\|")
+_LITERAL = re.compile(r"(:math:`[^`]*`|``[^`]*``)")  # maths and code: bars kept as written
 
 
 def _escape_bars(app, what, name, obj, options, lines):
-    lines[:] = [_BARS.sub(r"\\|\1\\|", line) for line in lines]
+    in_math = False
+    for i, line in enumerate(lines):
+        if line.strip().startswith(".. math::"):
+            in_math = True
+        elif in_math and line.strip() and not line.startswith((" ", "\t")):
+            in_math = False
+        if not in_math:
+            parts = _LITERAL.split(line)
+            lines[i] = "".join(p if k % 2 else _BARS.sub(r"\\|\1\\|", p) for k, p in enumerate(parts))
 
 
 def _top_level(tex: str) -> str:
