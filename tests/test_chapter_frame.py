@@ -27,7 +27,7 @@ import pytest
 from navlib.papers import CHAPTERS, PAPERS
 
 ROOT = Path(__file__).resolve().parents[1]
-STEMS = sorted({*CHAPTERS, *(p.notebook for p in PAPERS)})
+STEMS = sorted({*CHAPTERS, *(stem for p in PAPERS for stem in p.notebooks)})
 PATHS = [ROOT / "notebooks" / f"{stem}.ipynb" for stem in STEMS]
 chapters = pytest.mark.parametrize("path", PATHS, ids=STEMS)
 
