@@ -78,7 +78,8 @@ def test_every_invited_value_is_run(path):
     """A `NAME = value` of a parameter in the chapter's text or its row of the course page is one of the runs below."""
     nb = nbformat.read(path, as_version=4)
     defined = parameter_names(nb)
-    rows = [line for line in COURSE.splitlines() if line.startswith(f"| {path.stem[:2]} |")]
+    label = nb.cells[0].source.split(" — ")[0].lstrip("# ")  # "05", "05b": the chapter's row of the course page
+    rows = [line for line in COURSE.splitlines() if line.startswith(f"| {label} |")]
     texts = [c.source for c in nb.cells if c.cell_type == "markdown"] + rows
     run = {(name, ast.literal_eval(value)) for changes in try_parameters(nb) for name, value in changes.items()}
     invited = {(m[1], m[2].strip()) for text in texts for m in INVITED.finditer(text) if m[1] in defined}
