@@ -1,6 +1,7 @@
 """Paper companions and the registry of the reproduced papers.
 
-Each paper has one name, used for its notebook (``notebooks/NN_<name>.ipynb``), its
+Each paper has one name, used for its notebook (``notebooks/NN_<name>.ipynb``; a paper taught in several
+lessons adds ``NN_<name>_<part>.ipynb``, :attr:`Paper.parts`), its
 companion module (``navlib.papers.<name>``) and its entry here; its claims and errata in
 ``data/claims.csv`` / ``data/errata.csv`` carry the paper's ``claims_id`` (``P000-...``).
 
