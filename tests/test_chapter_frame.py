@@ -37,8 +37,6 @@ NUMBERED = re.compile(r"(\d+) (\S.*)")
 SUBSECTION = re.compile(r"(\d+)\.(\d+) (\S.*)")
 EXERCISE = re.compile(r"\*\*(\d+)\. ([^*]+)\*\* \((★{1,3})[,)]")
 CODE_IT_MIN = 2
-RENAMED = {"Try this": "Exercises", "The method": OPENING, "The method in four blocks": OPENING}
-"""Former headings, with the one the rule asks for."""
 
 
 def markdown(path: Path) -> list[tuple[int, str]]:
@@ -76,9 +74,6 @@ def numbering_problems(path: Path) -> list[str]:
         if level == 2 and m and closing_kind(m.group(2)):
             problems.append(f"{where}: write '## {m.group(2)}' (the closing sections are unnumbered)")
             title = m.group(2)
-        if level == 2 and title in RENAMED:
-            problems.append(f"{where}: write '## {RENAMED[title]}'")
-            title = RENAMED[title]
         if level == 1 or level > 3:
             problems.append(f"{where}: only the title is a '#' heading and there are no '####' headings; use '##' or '###'")
         elif level == 2 and (kind := closing_kind(title)):
@@ -180,5 +175,5 @@ def test_every_notebook_is_a_chapter():
 
 def test_the_course_page_explains_the_stars():
     course = (ROOT / "docs" / "course.md").read_text(encoding="utf-8")
-    for stars in ("★ ", "★★ ", "★★★ "):
-        assert f"| {stars.strip()} |" in course, f"docs/course.md has no legend row for {stars.strip()}"
+    for stars in ("★", "★★", "★★★"):
+        assert f"| {stars} |" in course, f"docs/course.md has no legend row for {stars}"

@@ -245,7 +245,7 @@ def stage_notebook(src: Path, dest: Path, claims_by_figure: dict[str, list[str]]
             cell.source = fold_errata(absolute_links(link_names(cell.source, names), base="notebooks"))
         elif cell.cell_type == "code":
             tags = cell.metadata.setdefault("tags", [])
-            if "hide-input" not in tags and "# your code here" not in cell.source:  # an exercise's stub stays shown
+            if "hide-input" not in tags and "# your code here" not in cell.source:   # an exercise's stub stays shown
                 tags.append("hide-input")
             kept = []
             for out in cell.get("outputs", []):
