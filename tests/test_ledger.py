@@ -184,6 +184,53 @@ def test_ledger_joins_results_with_the_catalogue(tmp_path):
     assert not other.ran and other.counts[ledger.NO_VERDICT] == len(other.rows)
 
 
+def _verdict(claim, checks=(), figure=""):
+    return {
+        "claim": claim,
+        "verdict": "reproduced",
+        "checks": list(checks),
+        "evidence": [],
+        "paper": None,
+        "ours": None,
+        "reason": "",
+        "erratum": "",
+        "figure": figure,
+    }
+
+
+SPLIT = [p for p in PAPERS if p.parts]
+
+
+@pytest.mark.skipif(not SPLIT, reason="no paper is taught in more than one notebook")
+def test_a_paper_in_two_notebooks_has_one_ledger(tmp_path):
+    p = SPLIT[0]
+    first, second = p.notebooks[:2]
+    ids = [c for c, r in CLAIMS.items() if r["paper"] == p.claims_id and r["kind"] != "extension"]
+    _results(tmp_path, first, [_verdict(ids[0], [ids[0] + "/a"])], [{"name": ids[0] + "/a", "value": 1.0, "passed": True}])
+    _results(
+        tmp_path, second, [_verdict(ids[1], [ids[1] + "/b"], "fig")], [{"name": ids[1] + "/b", "value": 2.0, "passed": False}]
+    )
+    led = {led.stem: led for led in ledger.ledgers(tmp_path)}[first]
+    assert led.stems == list(p.notebooks) and led.ran and not led.problems
+    assert (led.checks_passed, led.checks_total) == (1, 2)  # both notebooks' checks
+    assert [(r.claim, r.stem) for r in led.rows[:2]] == [(ids[0], first), (ids[1], second)]
+    assert led.rows[1].figure == f"{second}/figures/fig.png"  # the figure of the notebook that recorded the verdict
+    _results(tmp_path / "twice", first, [_verdict(ids[1])])
+    _results(tmp_path / "twice", second, [_verdict(ids[1])])
+    problems = {led.stem: led for led in ledger.ledgers(tmp_path / "twice")}[first].problems
+    assert problems == [f"{ids[1]}: a verdict in {first} and another in {second}"]
+    _results(tmp_path / "half", first, [_verdict(ids[0])])
+    problems = {led.stem: led for led in ledger.ledgers(tmp_path / "half")}[first].problems
+    assert problems == [f"{second} has not run: the claims it checks have no verdict"]
+
+
+@pytest.mark.parametrize("p", PAPERS, ids=[p.name for p in PAPERS])
+def test_each_claim_gets_its_verdict_in_one_notebook(p):
+    found = [set(static_verdicts(ROOT / "notebooks" / f"{stem}.ipynb")) for stem in p.notebooks]
+    twice = sorted(set.intersection(*found)) if len(found) > 1 else []
+    assert not twice, f"claims given a verdict in more than one notebook of paper {p.claims_id}: {twice}"
+
+
 def test_chapters_have_no_claims():
     assert not set(CHAPTERS) & {p.notebook for p in PAPERS}
 

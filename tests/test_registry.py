@@ -39,15 +39,16 @@ def test_names_numbers_and_claim_ids_are_unique():
 
 
 @paper
-def test_notebook_exists_and_imports_its_companion(p):
-    path = ROOT / "notebooks" / f"{p.notebook}.ipynb"
-    assert path.is_file(), f"{p.name}: no notebook {path.name}"
-    code = "\n".join(
-        "".join(c["source"]) for c in json.loads(path.read_text(encoding="utf-8"))["cells"] if c["cell_type"] == "code"
-    )
-    assert re.search(rf"from navlib\.papers import [^\n]*\b{p.name}\b|import navlib\.papers\.{p.name}\b", code), (
-        f"{path.name} does not import its companion navlib.papers.{p.name}"
-    )
+def test_notebooks_exist_and_import_their_companion(p):
+    for stem in p.notebooks:
+        path = ROOT / "notebooks" / f"{stem}.ipynb"
+        assert path.is_file(), f"{p.name}: no notebook {path.name}"
+        code = "\n".join(
+            "".join(c["source"]) for c in json.loads(path.read_text(encoding="utf-8"))["cells"] if c["cell_type"] == "code"
+        )
+        assert re.search(rf"from navlib\.papers import [^\n]*\b{p.name}\b|import navlib\.papers\.{p.name}\b", code), (
+            f"{path.name} does not import its companion navlib.papers.{p.name}"
+        )
 
 
 @paper

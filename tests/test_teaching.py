@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import ast
 import json
+import re
 import time
 from pathlib import Path
 
@@ -35,6 +36,14 @@ def try_parameters(nb) -> list[dict[str, str]]:
     return [changes] if isinstance(changes, dict) else list(changes)
 
 
+def parameter_names(nb) -> set[str]:
+    """The names the ``parameters`` cell assigns."""
+    params = next(c.source for c in nb.cells if "parameters" in c.metadata.get("tags", []))
+    return {
+        t.id for node in ast.parse(params).body if isinstance(node, ast.Assign) for t in ast.walk(node) if isinstance(t, ast.Name)
+    }
+
+
 RUNS = [(p, k) for p in PATHS for k in range(len(try_parameters(nbformat.read(p, as_version=4))))]
 
 
@@ -50,17 +59,32 @@ def inject(nb, assignments: dict[str, str]) -> None:
 @pytest.mark.parametrize("path", PATHS, ids=[p.stem for p in PATHS])
 def test_names_a_parameter_to_change(path):
     nb = nbformat.read(path, as_version=4)
-    params = next(c.source for c in nb.cells if "parameters" in c.metadata.get("tags", []))
     runs = try_parameters(nb)
     assert runs and all(runs), "metadata.navlib.try_parameters names no parameter to change"
-    defined = {
-        t.id for node in ast.parse(params).body if isinstance(node, ast.Assign) for t in ast.walk(node) if isinstance(t, ast.Name)
-    }
+    defined = parameter_names(nb)
     for name, value in (item for changes in runs for item in changes.items()):
         assert name in defined, f"{name} is not set in the parameters cell"
         ast.literal_eval(value)  # a plain literal, so that a reader can type it too
     for switch in ("TEACHING", "FAST"):
         assert switch in defined, f"the parameters cell has no {switch} switch"
+
+
+INVITED = re.compile(r"`([A-Z][A-Z0-9_]*) = ([^`]+)`")
+COURSE = (ROOT / "docs" / "course.md").read_text(encoding="utf-8")
+
+
+@pytest.mark.parametrize("path", PATHS, ids=[p.stem for p in PATHS])
+def test_every_invited_value_is_run(path):
+    """A `NAME = value` of a parameter in the chapter's text or its row of the course page is one of the runs below."""
+    nb = nbformat.read(path, as_version=4)
+    defined = parameter_names(nb)
+    label = nb.cells[0].source.split(" — ")[0].lstrip("# ")  # "05", "05b": the chapter's row of the course page
+    rows = [line for line in COURSE.splitlines() if line.startswith(f"| {label} |")]
+    texts = [c.source for c in nb.cells if c.cell_type == "markdown"] + rows
+    run = {(name, ast.literal_eval(value)) for changes in try_parameters(nb) for name, value in changes.items()}
+    invited = {(m[1], m[2].strip()) for text in texts for m in INVITED.finditer(text) if m[1] in defined}
+    missing = sorted(f"{name} = {value}" for name, value in invited if (name, ast.literal_eval(value)) not in run)
+    assert not missing, f"invited in the text but never run: {missing}; add them to metadata.navlib.try_parameters"
 
 
 @pytest.mark.parametrize(("path", "run"), RUNS, ids=[f"{p.stem}-{k}" for p, k in RUNS])

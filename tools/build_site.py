@@ -303,7 +303,7 @@ def claims_matrix(led: ledger.PaperLedger, rows_of: str = "rows") -> str:
     rows = []
     for r in getattr(led, rows_of):
         thumb = (
-            f"<a href='chapters/{led.stem}.html#{anchor('fig', Path(r.figure).stem)}'><img src='{r.figure}' width='110' "
+            f"<a href='chapters/{r.stem}.html#{anchor('fig', Path(r.figure).stem)}'><img src='{r.figure}' width='110' "
             f"alt='{html.escape(r.claim)}: figure in the chapter'></a>"
             if r.figure
             else ""
@@ -322,8 +322,9 @@ def claims_matrix(led: ledger.PaperLedger, rows_of: str = "rows") -> str:
     return scroll_x(f"<table class='matrix'><thead><tr>{head}</tr></thead><tbody>\n" + "\n".join(rows) + "\n</tbody></table>")
 
 
-def ledger_rows(led: ledger.PaperLedger, res: dict | None) -> list[str]:
-    """One row per check of the paper's notebook (with its claim's verdict), one per claim without checks."""
+def ledger_rows(led: ledger.PaperLedger, stem: str, res: dict | None) -> list[str]:
+    """One row per check of the paper's notebook ``stem`` (with its claim's verdict), one per claim without checks
+    whose verdict it records (the first notebook also takes the claims without any verdict)."""
     by_check = {n: r for r in (*led.rows, *led.extensions) for n in r.checks}
     rows, claimed = [], set()
     for c in (res or {}).get("checks", []):
@@ -339,7 +340,7 @@ def ledger_rows(led: ledger.PaperLedger, res: dict | None) -> list[str]:
             ) + f"[{fmt(lo) if lo is not None else '−∞'}, {fmt(hi) if hi is not None else '∞'}] {unit}".strip()
         first = claim is not None and claim.claim not in claimed
         claimed.add(claim.claim if claim else "")
-        back = f"chapters/{led.stem}.html#{anchor('check', c['name'])}"
+        back = f"chapters/{stem}.html#{anchor('check', c['name'])}"
         cells = [
             html.escape(led.stem[:2]),
             f"<a href='{back}'><code>{html.escape(c['name'])}</code></a>",
@@ -357,7 +358,7 @@ def ledger_rows(led: ledger.PaperLedger, res: dict | None) -> list[str]:
             + "</tr>"
         )
     for r in led.rows:
-        if not r.checks:
+        if not r.checks and (r.stem or led.stem) == stem:
             cells = [
                 html.escape(led.stem[:2]),
                 f"<code id='{anchor('claim', r.claim)}'>{html.escape(r.claim)}</code> <small>(claim, no check)</small>",
@@ -377,7 +378,7 @@ def ledger_rows(led: ledger.PaperLedger, res: dict | None) -> list[str]:
 
 
 def ledger_page(leds: list[ledger.PaperLedger], build: Path) -> str:
-    rows = [row for led in leds for row in ledger_rows(led, ledger.results(build, led.stem))]
+    rows = [row for led in leds for stem in led.stems for row in ledger_rows(led, stem, ledger.results(build, stem))]
     papers = "".join(f"<button data-filter='paper' data-value='{led.stem[:2]}'>{html.escape(led.stem)}</button>" for led in leds)
     verdicts = "".join(
         f"<button data-filter='verdict' data-value='{html.escape(v)}'>{html.escape(v)}</button>"
@@ -433,9 +434,11 @@ def home_page(leds: list[ledger.PaperLedger], chapters: list[str]) -> str:
     matrices = []
     for led in leds:
         counts = ", ".join(f"{led.counts[v]} {v}" for v in ledger.COLUMNS if led.counts.get(v))
+        labels = [s[:2] + (chr(ord("a") + i) if i else "") for i, s in enumerate(led.stems)]  # 05, 05b, ...
+        links = ", ".join(f"<a href='chapters/{s}.html'>chapter {label}</a>" for s, label in zip(led.stems, labels, strict=True))
         matrices += [
             f"<details><summary><b>{html.escape(led.title)}</b> — {len(led.rows)} claims: "
-            f"{html.escape(counts)} (<a href='chapters/{led.stem}.html'>chapter</a>)</summary>",
+            f"{html.escape(counts)} ({links})</summary>",
             claims_matrix(led),
             "</details>",
             "",
@@ -659,9 +662,9 @@ def stage(build: Path, src: Path) -> list[str]:
         claims_by_figure: dict[str, list[str]] = {}
         for led in leds:
             for r in led.rows:
-                if led.stem == nb.stem and r.figure:
+                if r.figure and r.stem == nb.stem:
                     claims_by_figure.setdefault(Path(r.figure).stem, []).append(r.claim)
-        in_ledger = any(led.stem == nb.stem for led in leds)  # chapters of a paper; 00 and 06 have none
+        in_ledger = any(nb.stem in led.stems for led in leds)  # chapters of a paper; 00 and 06 have none
         checks = {c["name"] for c in (ledger.results(build, nb.stem) or {}).get("checks", [])} if in_ledger else set()
         stage_notebook(nb, src / "chapters" / nb.name, claims_by_figure, checks)
         chapters.append(nb.stem)

@@ -841,7 +841,7 @@ def table() -> dict:
         "montecarlo.TrialStreams": Call(dict(seed=1, ids=np.arange(5))),
         "montecarlo.run": Call(dict(batch_fn=_mc_batch, n_trials=5, seed=1, batch_size=2, progress=False)),
         # ------------------------------------------------------------------- papers
-        "papers.Paper": Call(dict(name="x", number=9, claims_id="009", citation="c")),
+        "papers.Paper": Call(dict(name="x", number=9, claims_id="009", citation="c", parts=("b",))),
         "papers.by_notebook": Call(dict(stem="01_north_finding")),
         # the paper's equations refuse an empty batch, as navlib.geodesy does
         "papers.gauss_kruger_ekf.printed_zone_number": Call(dict(lon=2.08), elementwise=("*",), bad=each(("lon",), ("empty",))),

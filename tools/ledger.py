@@ -85,6 +85,7 @@ class Row:
     erratum: str = ""
     figure: str = ""  # path relative to build/, or ""
     checks: list[str] = field(default_factory=list)
+    stem: str = ""  # the notebook that recorded the verdict, or ""
 
     @property
     def computed(self) -> bool:
@@ -94,9 +95,9 @@ class Row:
 
 @dataclass
 class PaperLedger:
-    """The claims of one paper with their verdicts, and the notebook's checks."""
+    """The claims of one paper with their verdicts, and the checks of its notebooks."""
 
-    stem: str
+    stem: str  # the paper's notebook (the first, when it is taught in several: ``stems``)
     paper: str
     title: str
     rows: list[Row]
@@ -105,6 +106,7 @@ class PaperLedger:
     checks_total: int = 0
     ran: bool = False
     problems: list[str] = field(default_factory=list)
+    stems: list[str] = field(default_factory=list)  # every notebook of the paper, ``stem`` first
 
     @property
     def counts(self) -> Counter:
@@ -115,22 +117,50 @@ class PaperLedger:
         return sum(r.computed for r in self.rows)
 
 
-def paper_ledger(stem: str, paper: str, title: str, catalogue: list[dict[str, str]], res: dict | None) -> PaperLedger:
-    """Join the catalogue's claims of ``paper`` with the verdicts of its notebook's results."""
+def paper_ledger(
+    stem: str,
+    paper: str,
+    title: str,
+    catalogue: list[dict[str, str]],
+    res: dict | None,
+    parts: dict[str, dict | None] | None = None,
+) -> PaperLedger:
+    """Join the catalogue's claims of ``paper`` with the verdicts of its notebook's results.
+
+    ``parts`` holds the results of the paper's further notebooks by stem (``navlib.papers.Paper.parts``, a paper taught
+    in several lessons): their checks add up with the first notebook's, and each claim takes its verdict from the one
+    notebook that records it; a claim given a verdict twice, or a notebook that has not run, is a problem.
+    """
     own = [c for c in catalogue if c["paper"] == paper]
     rows = {c["id"]: Row(c["id"], c["item"], c["quantity"], c["kind"], c["paper_value"]) for c in own}
+    runs = {stem: res, **(parts or {})}
     led = PaperLedger(
-        stem, paper, title, [r for r in rows.values() if r.kind != EXTENSION], [r for r in rows.values() if r.kind == EXTENSION]
+        stem,
+        paper,
+        title,
+        [r for r in rows.values() if r.kind != EXTENSION],
+        [r for r in rows.values() if r.kind == EXTENSION],
+        stems=list(runs),
     )
-    if res is None:
-        return led
-    led.ran = True
+    led.ran = any(r is not None for r in runs.values())
+    for part, part_res in runs.items():
+        if part_res is not None:
+            join(led, rows, part, part_res)
+        elif led.ran:
+            led.problems.append(f"{part} has not run: the claims it checks have no verdict")
+    return led
+
+
+def join(led: PaperLedger, rows: dict[str, Row], stem: str, res: dict) -> None:
+    """Add one notebook's checks and verdicts to its paper's ledger."""
+    paper = led.paper
     checks = res.get("checks", [])
-    led.checks_passed, led.checks_total = sum(bool(c.get("passed")) for c in checks), len(checks)
+    led.checks_passed += sum(bool(c.get("passed")) for c in checks)
+    led.checks_total += len(checks)
     if res.get("paper") not in (None, paper):
-        led.problems.append(f"results.json names paper {res.get('paper')}, the registry {paper}")
+        led.problems.append(f"{stem}/results.json names paper {res.get('paper')}, the registry {paper}")
     if res.get("mode"):  # a teaching or fast run: not the ledger's evidence
-        led.problems.append(f"results.json was written in {res['mode']} mode; rerun make reproduce")
+        led.problems.append(f"{stem}/results.json was written in {res['mode']} mode; rerun make reproduce")
     for v in res.get("verdicts", []):
         row = rows.get(v["claim"])
         if row is None:
@@ -148,22 +178,32 @@ def paper_ledger(stem: str, paper: str, title: str, catalogue: list[dict[str, st
                 "why a claim is not checkable here go with that verdict, and only they)"
             )
             continue
+        if row.stem:
+            led.problems.append(f"{v['claim']}: a verdict in {row.stem} and another in {stem}")
+            continue
+        row.stem = stem
         row.verdict, row.reason, row.erratum, row.checks = v["verdict"], v["reason"], v["erratum"], v["checks"]
         row.ours = v["ours"] or ""
         if v["paper"] is not None:
             row.paper = v["paper"]
         if v["figure"]:
             row.figure = f"{stem}/figures/{v['figure']}.png"
-    return led
 
 
 def ledgers(build: Path, root: Path = ROOT) -> list[PaperLedger]:
-    """One ledger per registered paper, in notebook order."""
+    """One ledger per registered paper (all its notebooks), in notebook order."""
     from navlib.papers import PAPERS  # the registry (imported here: reproduce.py's workers need no navlib)
 
     catalogue = claims(root)
     return [
-        paper_ledger(p.notebook, p.claims_id, p.citation, catalogue, results(build, p.notebook))
+        paper_ledger(
+            p.notebook,
+            p.claims_id,
+            p.citation,
+            catalogue,
+            results(build, p.notebook),
+            {s: results(build, s) for s in p.notebooks[1:]},
+        )
         for p in sorted(PAPERS, key=lambda p: p.number)
     ]
 

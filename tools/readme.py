@@ -52,7 +52,7 @@ GALLERY = [
     ("02_rotation_bias", "fig6_heading_error"),
     ("03_gauss_kruger_ekf", "fig4_fig5_tracks"),
     ("04_mimu_mag_rtk", "fig4_heading_modes"),
-    ("05_pedestrian_ins", "fig4_floor_test"),
+    ("05_pedestrian_ins_floors", "fig4_floor_test"),
     ("05_pedestrian_ins", "carpark_trajectory_error"),
     ("06_real_recordings", "attitude_real"),
 ]

@@ -81,7 +81,7 @@ def unregistered(notebooks: list[Path]) -> list[str]:
     """Notebook stems that are neither a chapter without a paper nor a registered paper (navlib/papers/__init__.py)."""
     from navlib.papers import CHAPTERS, PAPERS  # the registry (imported here: the notebook workers need no navlib)
 
-    known = set(CHAPTERS) | {p.notebook for p in PAPERS}
+    known = set(CHAPTERS) | {stem for p in PAPERS for stem in p.notebooks}
     return [p.stem for p in notebooks if p.stem not in known]
 
 

@@ -1,6 +1,7 @@
 """Paper companions and the registry of the reproduced papers.
 
-Each paper has one name, used for its notebook (``notebooks/NN_<name>.ipynb``), its
+Each paper has one name, used for its notebook (``notebooks/NN_<name>.ipynb``; a paper taught in several
+lessons adds ``NN_<name>_<part>.ipynb``, :attr:`Paper.parts`), its
 companion module (``navlib.papers.<name>``) and its entry here; its claims and errata in
 ``data/claims.csv`` / ``data/errata.csv`` carry the paper's ``claims_id`` (``P000-...``).
 
@@ -28,6 +29,8 @@ class Paper:
     number : the notebook number NN.
     claims_id : the paper column of ``data/claims.csv`` and ``data/errata.csv`` (claim ids ``P<claims_id>-...``).
     citation : short citation shown in the README and the report.
+    parts : the further notebooks of a paper taught in more than one lesson, ``NN_<name>_<part>`` each; the paper's
+        claims are split between its notebooks, each claim given its verdict in one of them.
 
     Examples
     --------
@@ -41,6 +44,7 @@ class Paper:
     number: int
     claims_id: str
     citation: str
+    parts: tuple[str, ...] = ()
 
     def __post_init__(self):
         if not isinstance(self.name, str) or not self.name.isidentifier():
@@ -48,11 +52,18 @@ class Paper:
         integer(self.number, "number", minimum=0)
         text(self.claims_id, "claims_id", empty=False)
         text(self.citation, "citation", empty=False)
+        if not isinstance(self.parts, tuple) or not all(isinstance(p, str) and p.isidentifier() for p in self.parts):
+            raise ValueError(f"parts: expected a tuple of notebook suffixes such as ('floors',), got {self.parts!r}")
 
     @property
     def notebook(self) -> str:
         """Notebook stem, e.g. ``01_north_finding``."""
         return f"{self.number:02d}_{self.name}"
+
+    @property
+    def notebooks(self) -> tuple[str, ...]:
+        """Every notebook stem of the paper, :attr:`notebook` first."""
+        return (self.notebook, *(f"{self.notebook}_{part}" for part in self.parts))
 
     @property
     def module(self) -> str:
@@ -78,18 +89,18 @@ PAPERS: tuple[Paper, ...] = (
     Paper("rotation_bias", 2, "001", "Wu, Sun, Zhang & Chen 2014 — gyro bias estimation by rotating the IMU"),
     Paper("gauss_kruger_ekf", 3, "002", "Zhao, Nie, Fang & Wu 2023 — Gauss–Krüger projection + EKF INS/GPS"),
     Paper("mimu_mag_rtk", 4, "003", "Zhang, Wu & Yun 2023 — MIMU / magnetometer / dual-antenna RTK attitude"),
-    Paper("pedestrian_ins", 5, "004", "Wen, Xu & Yu 2016 — shoulder-mounted MEMS IMU indoor navigation"),
+    Paper("pedestrian_ins", 5, "004", "Wen, Xu & Yu 2016 — shoulder-mounted MEMS IMU indoor navigation", parts=("floors",)),
 )
 
 
 def by_notebook(stem: str) -> Paper | None:
-    """The registered paper of a notebook stem, or None (notebook 00 has no paper).
+    """The registered paper of a notebook stem (any of its :attr:`Paper.notebooks`), or None (notebook 00 has no paper).
 
     Examples
     --------
     >>> from navlib import papers
-    >>> papers.by_notebook("04_mimu_mag_rtk").citation[:13], papers.by_notebook("00_conventions")
-    ('Zhang, Wu & Y', None)
+    >>> papers.by_notebook("04_mimu_mag_rtk").citation[:13], papers.by_notebook("05_pedestrian_ins_floors").number
+    ('Zhang, Wu & Y', 5)
     """
     text(stem, "stem")
-    return next((p for p in PAPERS if p.notebook == stem), None)
+    return next((p for p in PAPERS if stem in p.notebooks), None)
