@@ -71,6 +71,7 @@ class ReferenceTrial:
     @property
     def m_b(self) -> np.ndarray:
         """Magnetometer samples (uT), shape (N, 3)."""
+        assert self.recording.m_b is not None  # the loader requires the "mag" array
         return self.recording.m_b
 
     @property

@@ -754,7 +754,9 @@ def geodetic2ecef(
     return _ecef(*_geodetic(lat, lon, h, deg), ellipsoid)
 
 
-def _geodetic(lat, lon, h, deg, names=("lat", "lon", "h")):
+def _geodetic(
+    lat: ArrayLike, lon: ArrayLike, h: ArrayLike, deg: bool, names: tuple[str, str, str] = ("lat", "lon", "h")
+) -> tuple[Array, Array, Array]:
     """Latitude (rad), longitude (rad) and height (m) of geodetic points, each checked under its name."""
     lat_rad, lon_deg = _validate_lat_lon(lat, lon, deg, names[:2])
     h = as_array(h, names[2], nonempty=True)
@@ -762,7 +764,7 @@ def _geodetic(lat, lon, h, deg, names=("lat", "lon", "h")):
     return lat_rad, np.deg2rad(lon_deg), h
 
 
-def _ecef(lat, lon, h, ellipsoid):
+def _ecef(lat: Array, lon: Array, h: Array, ellipsoid: Ellipsoid) -> tuple[Array, Array, Array]:
     """:func:`geodetic2ecef` of checked points (rad, rad, m)."""
     R_N = ellipsoid.a / np.sqrt(1 - ellipsoid.e2 * np.sin(lat) ** 2)
     r = (R_N + h) * np.cos(lat)

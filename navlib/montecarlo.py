@@ -58,7 +58,7 @@ class TrialStreams:
             raise ValueError(f"ids: expected a non-empty 1-D array of non-negative trial indices, got {ids!r:.60}")
         self.ids = ids.astype(np.int64)
         self._seed = int(seed)
-        self._rngs = None  # per-trial generators, made on demand (generators(), many draws)
+        self._rngs: list[np.random.Generator] | None = None  # per-trial generators, made on demand (generators(), many draws)
         self._draws = 0
         if self.ids.max() < 2**32:  # one spawn-key word: the states straight from the seed (see _pcg64_states)
             self._states = [
@@ -69,12 +69,13 @@ class TrialStreams:
         else:
             self._materialize()
 
-    def _materialize(self) -> None:
+    def _materialize(self) -> list[np.random.Generator]:
         rngs = [np.random.default_rng(np.random.SeedSequence(self._seed, spawn_key=(int(i),))) for i in self.ids]
         if self._rngs is None and self._draws:  # continue where the shared generator left each stream
             for r, state in zip(rngs, self._states, strict=True):
                 r.bit_generator.state = state
         self._rngs = rngs
+        return rngs
 
     def __len__(self) -> int:
         return self.ids.size
@@ -103,9 +104,7 @@ class TrialStreams:
 
     def generators(self) -> list[np.random.Generator]:
         """The per-trial generators, for draws the helpers above do not cover."""
-        if self._rngs is None:
-            self._materialize()
-        return list(self._rngs)
+        return list(self._materialize() if self._rngs is None else self._rngs)
 
 
 _SHARED_DRAWS = 4
@@ -231,11 +230,11 @@ def run(
     _check_args(n_trials, seed, batch_size)
     progress = os.environ.get("NAVLIB_PROGRESS", "1").strip() != "0" if progress is None else flag(progress, "progress")
     text(label, "label")
-    if executor is not None and not isinstance(executor, Executor) and not hasattr(executor, "submit"):
+    if executor is not None and not hasattr(executor, "submit"):  # an Executor, or one by duck typing
         raise ValueError(f"executor: expected a concurrent.futures.Executor, got {type(executor).__name__}")
     batches = [np.arange(s, min(s + batch_size, n_trials)) for s in range(0, n_trials, batch_size)]
     job = partial(_run_batch, batch_fn, int(seed))
-    results = [None] * len(batches)
+    results: list[dict[str, Any]] = []
     bar = _progress_bar(n_trials, label) if progress else None
     try:
         if executor is None:
@@ -244,7 +243,7 @@ def run(
             futures = [executor.submit(job, ids, kwargs) for ids in batches]
             outcomes = (fut.result() for fut in futures)  # in order: results stay in trial order
         for k, outcome in enumerate(outcomes):
-            results[k] = outcome
+            results.append(outcome)
             if bar is not None:
                 bar.update(len(batches[k]))
     finally:

@@ -44,7 +44,7 @@ import warnings
 from collections.abc import Sequence
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -240,11 +240,11 @@ def setup(notebook: str, *, paper: str | None = None, out_dir: str | os.PathLike
     except ModuleNotFoundError as e:  # matplotlib is the optional `plots` extra
         raise ModuleNotFoundError(f"navlib.repro draws with matplotlib ({e}): pip install 'navlib-repro[plots]'") from e
 
-    if not isinstance(notebook, str) or not notebook or "/" in notebook:
+    if not isinstance(notebook, str) or not notebook or "/" in notebook:  # type: ignore[redundant-expr]  # the caller's argument, checked
         raise ValueError(f"notebook: expected a plain notebook name, got {notebook!r}")
     if out_dir is not None and not isinstance(out_dir, (str, os.PathLike)):
         raise ValueError(f"out_dir: expected a directory path, got {type(out_dir).__name__}")
-    if paper is not None and not (isinstance(paper, str) and re.fullmatch(r"\d{3}", paper)):
+    if paper is not None and not (isinstance(paper, str) and re.fullmatch(r"\d{3}", paper)):  # type: ignore[redundant-expr]  # the caller's argument, checked
         raise ValueError(f"paper: expected a paper's claims id of three digits such as '000', got {paper!r}")
     _state.notebook = notebook
     _state.out_dir = None if out_dir is None else Path(out_dir).resolve()
@@ -311,7 +311,7 @@ def savefig(fig: Figure, name: str) -> Path:
         raise RuntimeError("call navlib.repro.setup(notebook) before savefig()")
     if not hasattr(fig, "savefig"):
         raise ValueError(f"fig: expected a matplotlib Figure, got {type(fig).__name__}")
-    if not isinstance(name, str) or not name or "/" in name or "\\" in name:
+    if not isinstance(name, str) or not name or "/" in name or "\\" in name:  # type: ignore[redundant-expr]  # the caller's argument, checked
         raise ValueError(f"name: expected a plain file name without directories, got {name!r}")
     path = _write_png(fig, name)
     if matplotlib.get_backend() == _INLINE:
@@ -323,7 +323,11 @@ def savefig(fig: Figure, name: str) -> Path:
 
 
 _INLINE = "module://matplotlib_inline.backend_inline"
-_PNG = {"format": "png", "metadata": {"Software": None}, "bbox_inches": "tight"}  # no timestamp, no software version
+_PNG: dict[str, Any] = {
+    "format": "png",
+    "metadata": {"Software": None},
+    "bbox_inches": "tight",
+}  # no timestamp, no software version
 
 
 def _write_png(fig: Figure, name: str) -> Path:
@@ -567,8 +571,8 @@ def seed_spread(study: str, check: str, *, about_mean: bool = False) -> SeedSpre
     rows = _study_rows(text(study, "study", empty=False)).get(text(check, "check", empty=False))
     if not rows:
         return None
-    seeds, x = zip(*rows, strict=True)
-    x = np.asarray(x, float)
+    seeds, values = zip(*rows, strict=True)
+    x = np.asarray(values, float)
     mean, sd = float(x.mean()), float(x.std(ddof=1)) if x.size > 1 else math.inf
     rms = sd if about_mean else float(np.sqrt(np.mean(x**2)))
     return SeedSpread(study, check, tuple(seeds), mean, sd, rms)
@@ -832,7 +836,7 @@ def _write() -> None:
     # json.dumps(data, indent=1), with the two lists as placeholders for the rows encoded once when
     # recorded (encoding every row at every check was quadratic: 3 s in a notebook of 180 checks). Keys
     # beyond the original format are written only when used, so older results keep their bytes.
-    data = {"notebook": _state.notebook, "checks": "\0checks"}
+    data: dict[str, Any] = {"notebook": _state.notebook, "checks": "\0checks"}
     if _state.teaching or _state.fast:
         data["mode"] = {"teaching": _state.teaching, "fast": _state.fast}
     if _state.paper is not None:

@@ -207,7 +207,7 @@ def gauss_markov(shape: tuple[int, ...], dt: float, sigma: float, correlation_ti
     tc = scalar(correlation_time, "correlation_time", positive=True)
     sigma = scalar(sigma, "sigma", allow_zero=True)
     generator(rng)
-    if not isinstance(shape, (tuple, list)) or len(shape) < 2:
+    if not isinstance(shape, (tuple, list)) or len(shape) < 2:  # type: ignore[redundant-expr]  # the caller's argument, checked
         raise ValueError(f"shape: expected a tuple (..., N, k) of positive integers, got {shape!r}")
     return _gauss_markov(tuple(integer(n, "shape") for n in shape), dt, sigma, tc, rng)
 
@@ -420,7 +420,7 @@ def preset(device: str) -> dict[tuple[str, str], float]:
     Example: ``preset("BMP180")[("baro", "noise")]`` is 2.0 Pa.
     """
     table = _preset_table()
-    if not isinstance(device, str) or device not in table:
+    if not isinstance(device, str) or device not in table:  # type: ignore[redundant-expr]  # the caller's argument, checked
         raise ValueError(f"device: unknown device {device!r}; known: {devices()}")
     return {k: v[0] for k, v in table[device].items()}
 
@@ -625,7 +625,7 @@ def simulate_barometer(
 # --------------------------------------------------------------------------
 
 
-def outage_mask(time: Times, outages: Sequence[tuple[float, float]]) -> np.ndarray:
+def outage_mask(time: Times, outages: Sequence[ArrayLike]) -> np.ndarray:
     """Validity flags: False inside any ``[start, end)`` outage interval.
 
     Parameters
@@ -642,8 +642,8 @@ def outage_mask(time: Times, outages: Sequence[tuple[float, float]]) -> np.ndarr
     valid = np.ones(t.shape, dtype=bool)
     if isinstance(outages, (str, bytes)) or not isinstance(outages, Iterable):
         raise ValueError(f"outages: expected a sequence of (start, end) pairs, got {outages!r:.40}")
-    for iv in outages:
-        iv = as_array(iv, "outages", shape=(2,))
+    for pair in outages:
+        iv = as_array(pair, "outages", shape=(2,))
         if not iv[1] > iv[0]:
             raise ValueError(f"outages: expected (start, end) pairs with end > start, got {iv!r}")
         valid &= ~((t >= iv[0]) & (t < iv[1]))

@@ -13,6 +13,7 @@ by default) is the rule of :meth:`navlib.imu.SensorLimits.jump_limit`.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -62,7 +63,8 @@ def _reindex(x, keep, n, name):
     return np.take(a, keep, axis=axis)
 
 
-def sanitize(time: ArrayLike, *series: ArrayLike) -> tuple[Array | TimingReport, ...]:
+# (t, *series, report): Any, as a type of each element per number of series would take an overload per count.
+def sanitize(time: ArrayLike, *series: ArrayLike) -> tuple[Any, ...]:
     """Sort samples by time, drop repeated timestamps, report what was found.
 
     Parameters

@@ -529,7 +529,7 @@ def ideal_imu(traj: Trajectory, ellipsoid: earth.Ellipsoid = earth.WGS84):
     states = (traj.lla, traj.vel_n, traj.q_bn)
     if len(traj) > 2 and all((a == a[..., :1, :]).all() for a in states):
         # Every epoch the same (a static record): every interval gives the first one's samples, bit for bit.
-        first = Trajectory(traj.time[:2], *(a[..., :2, :] for a in states))
+        first = Trajectory(traj.time[:2], traj.lla[..., :2, :], traj.vel_n[..., :2, :], traj.q_bn[..., :2, :])
         lead_n = traj.lla.shape[:-2] + (len(traj) - 1, 3)
         return tuple(np.broadcast_to(x, lead_n).copy() for x in ideal_imu(first, ellipsoid))
     dt = traj.dt

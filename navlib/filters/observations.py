@@ -524,7 +524,7 @@ class RtkHeading:
         except ValueError:
             raise ValueError(
                 f"rtk: expected heading and valid broadcastable to the shape {shape} of {of}, got "
-                f"{self.heading.shape} and {self.valid.shape}"
+                f"{np.shape(self.heading)} and {np.shape(self.valid)}"
             ) from None
         return kernel_array(h.reshape(-1, shape[-1])), kernel_array(v.reshape(-1, shape[-1]))  # writable
 
@@ -596,7 +596,7 @@ def pack(
     flags = s.faults.flags
     skip_f = flags["accel", "saturated"] | flags["accel", "freefall"] | flags["accel", "spike"]
     use_mag = s.m_b is not None
-    m, skip_m = (s.m_b, flags["mag", "saturated"]) if use_mag else (np.zeros((1, 1, 3)), np.zeros((1, 1), bool))
+    m, skip_m = (s.m_b, flags["mag", "saturated"]) if s.m_b is not None else (np.zeros((1, 1, 3)), np.zeros((1, 1), bool))
     z, codes = np.empty((T, N, 6)), np.empty((2, T, N), dtype=np.int8)
     run_trials(
         _gate,

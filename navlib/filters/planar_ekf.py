@@ -160,7 +160,7 @@ def _phi(X, T):
     return Phi
 
 
-def _state(X, name="X"):
+def _state(X: ArrayLike, name: str = "X") -> Array:
     return as_array(X, name, tail=(5,))
 
 

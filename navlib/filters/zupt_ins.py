@@ -57,6 +57,7 @@ from numba import njit
 
 from .. import _kernels, earth, robust, trajectory
 from .._kernels import radii_mn
+from .._typing import Array, ArrayLike, Quat, Vec3
 from .._validate import as_array, as_quat, booleans, choice, flag, instance, integer, kernel_array, scalar
 from ..imu import ImuSamples
 from ..strapdown import earth_constants
@@ -80,11 +81,11 @@ _MAX_LATITUDE = np.deg2rad(89.9)
 """Largest |latitude| of :class:`Start` (rad): the ENU mechanisation is singular at the poles."""
 
 
-def _vector(x, name: str, size: int = 3) -> np.ndarray:
+def _vector(x: ArrayLike, name: str, size: int = 3) -> Array:
     return as_array(x, name, shape=(size,))
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class Start:
     """The INS state before the first sample.
 
@@ -102,22 +103,31 @@ class Start:
         Time of the first epoch (s).
     """
 
-    lla: np.ndarray
-    q_bn: np.ndarray
-    vel_n: np.ndarray = (0.0, 0.0, 0.0)
-    accel_bias: np.ndarray = (0.0, 0.0, 0.0)
-    gyro_bias: np.ndarray = (0.0, 0.0, 0.0)
-    time: float = 0.0
+    lla: Array
+    q_bn: Array
+    vel_n: Array
+    accel_bias: Array
+    gyro_bias: Array
+    time: float
 
-    def __post_init__(self):
-        lla = _vector(self.lla, "lla")
+    # Written out (init=False) so that it takes array_like values while the fields are typed as the arrays they hold.
+    def __init__(
+        self,
+        lla: Vec3,
+        q_bn: Quat,
+        vel_n: Vec3 = (0.0, 0.0, 0.0),
+        accel_bias: Vec3 = (0.0, 0.0, 0.0),
+        gyro_bias: Vec3 = (0.0, 0.0, 0.0),
+        time: float = 0.0,
+    ) -> None:
+        lla = _vector(lla, "lla")
         if abs(lla[0]) > _MAX_LATITUDE:
             raise ValueError("lla: expected |lat| <= 89.9 deg (ENU mechanisation)")
         object.__setattr__(self, "lla", lla)
-        object.__setattr__(self, "q_bn", np.ascontiguousarray(as_quat(_vector(self.q_bn, "q_bn", 4), "q_bn")))
-        for name in ("vel_n", "accel_bias", "gyro_bias"):
-            object.__setattr__(self, name, _vector(getattr(self, name), name))
-        object.__setattr__(self, "time", scalar(self.time, "time"))
+        object.__setattr__(self, "q_bn", np.ascontiguousarray(as_quat(_vector(q_bn, "q_bn", 4), "q_bn")))
+        for name, value in (("vel_n", vel_n), ("accel_bias", accel_bias), ("gyro_bias", gyro_bias)):
+            object.__setattr__(self, name, _vector(value, name))
+        object.__setattr__(self, "time", scalar(time, "time"))
 
 
 _WALK = {"none": 0, "reset": 1, "filter": 2}

@@ -93,6 +93,7 @@ Errata corrected (ids of ``data/errata.csv``)
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from scipy.special import ndtr
@@ -242,10 +243,10 @@ def heading_candidates(w_y: ArrayLike, f_b: Vec3, lat: float, h: float = 0.0) ->
     Candidates
     """
     w_y = as_array(w_y, "w_y", nonempty=True)
-    lat = gyrocompass_latitude(lat)
+    phi = gyrocompass_latitude(lat)
     level(f_b)  # checks f_b as pitch_roll_from_accel does
-    pitch = _asin_pitch(f_b, earth.gravity(lat, as_array(h, "h", nonempty=True)))  # as_array: gravity takes an empty h
-    cos_h = (w_y - OMEGA_IE * np.sin(lat) * np.sin(pitch)) / (OMEGA_IE * np.cos(lat) * np.cos(pitch))
+    pitch = _asin_pitch(f_b, earth.gravity(phi, as_array(h, "h", nonempty=True)))  # as_array: gravity takes an empty h
+    cos_h = (w_y - OMEGA_IE * np.sin(phi) * np.sin(pitch)) / (OMEGA_IE * np.cos(phi) * np.cos(pitch))
     clipped = np.abs(cos_h) > 1.0
     alpha = np.arccos(np.clip(cos_h, -1.0, 1.0))
     pair = np.stack([alpha, attitude.wrap_2pi(2 * np.pi - alpha)], -1)
@@ -422,12 +423,12 @@ def single_axis_heading_std(
     th = _pitch(pitch)
     s_g = positive(sigma_gyro, "sigma_gyro", allow_zero=True, nonempty=True)
     s_a = positive(sigma_accel, "sigma_accel", allow_zero=True, nonempty=True)
-    lat = gyrocompass_latitude(lat)
-    g = earth.gravity(lat) if g is None else positive(g, "g", nonempty=True)
-    s_th = s_a / (g * np.cos(th))
-    coupling = OMEGA_IE * (np.sin(lat) * np.cos(th) - np.cos(lat) * np.sin(th) * np.cos(psi))
+    phi = gyrocompass_latitude(lat)
+    grav = earth.gravity(phi) if g is None else positive(g, "g", nonempty=True)
+    s_th = s_a / (grav * np.cos(th))
+    coupling = OMEGA_IE * (np.sin(phi) * np.cos(th) - np.cos(phi) * np.sin(th) * np.cos(psi))
     with np.errstate(divide="ignore"):
-        return np.sqrt(s_g**2 + (coupling * s_th) ** 2) / np.abs(OMEGA_IE * np.cos(lat) * np.cos(th) * np.sin(psi))
+        return np.sqrt(s_g**2 + (coupling * s_th) ** 2) / np.abs(OMEGA_IE * np.cos(phi) * np.cos(th) * np.sin(psi))
 
 
 def single_axis_heading_error(
@@ -454,12 +455,12 @@ def single_axis_heading_error(
     th = _pitch(pitch)
     dw = as_array(dw_y, "dw_y", nonempty=True)
     df = as_array(df_y, "df_y", nonempty=True)
-    lat = gyrocompass_latitude(lat)
-    g = earth.gravity(lat) if g is None else positive(g, "g", nonempty=True)
-    d_th = df / (g * np.cos(th))
-    coupling = OMEGA_IE * (np.sin(lat) * np.cos(th) - np.cos(lat) * np.sin(th) * np.cos(psi))
+    phi = gyrocompass_latitude(lat)
+    grav = earth.gravity(phi) if g is None else positive(g, "g", nonempty=True)
+    d_th = df / (grav * np.cos(th))
+    coupling = OMEGA_IE * (np.sin(phi) * np.cos(th) - np.cos(phi) * np.sin(th) * np.cos(psi))
     with np.errstate(divide="ignore", invalid="ignore"):
-        return (-dw + coupling * d_th) / (OMEGA_IE * np.cos(lat) * np.cos(th) * np.sin(psi))
+        return (-dw + coupling * d_th) / (OMEGA_IE * np.cos(phi) * np.cos(th) * np.sin(psi))
 
 
 @dataclass(frozen=True)
@@ -533,13 +534,13 @@ def clipped_single_axis_theory(
     psi, th = np.broadcast_arrays(as_array(heading, "heading", nonempty=True), _pitch(pitch))
     s_g = scalar(sigma_gyro, "sigma_gyro", positive=True)
     s_a = scalar(sigma_accel, "sigma_accel", allow_zero=True)
-    lat = gyrocompass_latitude(scalar(lat, "lat"))
-    g = earth.gravity(lat) if g is None else scalar(g, "g", positive=True)
+    phi = gyrocompass_latitude(scalar(lat, "lat"))
+    grav = earth.gravity(phi) if g is None else scalar(g, "g", positive=True)
     span = scalar(n_sigma, "n_sigma", positive=True)
     if integer(n_grid, "n_grid", minimum=101) % 2 == 0:
         raise ValueError(f"n_grid: expected an odd integer of at least 101, got {n_grid!r}")
-    s_gyro_cos = s_g / (OMEGA_IE * np.cos(lat) * np.cos(th))
-    s_pitch_cos = (np.cos(psi) * np.tan(th) - np.tan(lat)) * s_a / (g * np.cos(th))
+    s_gyro_cos = s_g / (OMEGA_IE * np.cos(phi) * np.cos(th))
+    s_pitch_cos = (np.cos(psi) * np.tan(th) - np.tan(phi)) * s_a / (grav * np.cos(th))
     s_cos = np.hypot(s_gyro_cos, s_pitch_cos)
     z = np.linspace(-span, span, int(n_grid))
     weight = np.exp(-0.5 * z**2) / np.sqrt(2 * np.pi)
@@ -593,13 +594,13 @@ def simulate_static_outputs(
     w_ib_b, f_b : ndarray, shape (..., n_trials, 3)
     """
     C_nb = np.swapaxes(attitude.euler_to_dcm(hpr), -1, -2)
-    lat = gyrocompass_latitude(scalar(lat, "lat"))
+    phi = gyrocompass_latitude(scalar(lat, "lat"))
     n_trials = integer(n_trials, "n_trials")
     s_g = scalar(sigma_gyro, "sigma_gyro", allow_zero=True)
     s_a = scalar(sigma_accel, "sigma_accel", allow_zero=True)
     r_gyro, r_accel = generator(rng).spawn(2)
-    w_true = C_nb @ earth.earth_rate_n(lat)
-    f_true = C_nb @ np.array([0.0, 0.0, float(earth.gravity(lat))])
+    w_true = C_nb @ earth.earth_rate_n(phi)
+    f_true = C_nb @ np.array([0.0, 0.0, float(earth.gravity(phi))])
     shape = w_true.shape[:-1] + (int(n_trials), 3)
     w = w_true[..., None, :] + _bias(gyro_bias, "gyro_bias") + s_g * r_gyro.standard_normal(shape)
     f = f_true[..., None, :] + _bias(accel_bias, "accel_bias") + s_a * r_accel.standard_normal(shape)
@@ -829,7 +830,7 @@ def stop_solutions(
     *,
     time: Times | None = None,
     strict: bool = True,
-    **window_options: float | None,
+    **window_options: Any,
 ) -> StopSolutions:
     """Average each stop window and solve it with TRIAD and the single-axis method.
 
@@ -885,6 +886,8 @@ def stop_solutions(
         raise ValueError(
             f"windows: expected (S, 2) [start, end) sample indices within {n} samples, each >= 2 long, got {win.tolist()}"
         )
+    if lat is None:  # as static_means says
+        raise ValueError("lat: required")
     stats = tuple(static_means(w[..., a:b, :], f[..., a:b, :], lat, h, strict=strict, **window_options) for a, b in win)
     w_mean = np.stack([m.w_mean for m in stats], -2)
     f_mean = np.stack([m.f_mean for m in stats], -2)

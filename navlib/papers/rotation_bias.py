@@ -89,6 +89,7 @@ bound (:func:`navlib.analysis.cramer_rao_bound`, :func:`design`).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numba import njit
@@ -120,6 +121,9 @@ from ..analysis import condition_number, cramer_rao_bound, normal_condition
 from ..euler import PITCH_LIMIT, check_pitch
 from ..imu import ImuSamples, unpack
 from ..units import G0
+
+if TYPE_CHECKING:
+    from ..trajectory import Trajectory
 
 __all__ = [
     "eq1_matrix",
@@ -291,7 +295,7 @@ def dwell_attitudes(hpr0: Angles, axis_b: Vec3, amplitude: float, n_dwells: int)
     pair = np.stack([hpr0, rotate_attitude(hpr0, axis_b, scalar(amplitude, "amplitude"))])
     if np.any(np.abs(pair[:, 1]) > PITCH_LIMIT):
         raise ValueError(
-            f"axis_b: rotating by {np.rad2deg(amplitude):g} deg about {np.round(axis_b, 6)} drives "
+            f"axis_b: rotating by {np.rad2deg(amplitude):g} deg about {np.round(np.asarray(axis_b), 6)} drives "
             f"pitch to {np.rad2deg(pair[1, 1]):.1f} deg, where Eq. (2) is singular"
         )
     return pair[np.arange(n_dwells) % 2]
@@ -605,9 +609,8 @@ def tilt_residuals(
     Residuals
     """
     w_ib_b, f_b, dt, full_scale_gyro, full_scale_accel = unpack(w_ib_b, f_b, dt, full_scale_gyro, full_scale_accel)
-    for name, value in (("starts", starts), ("length", length)):
-        if value is None:
-            raise ValueError(f"{name}: required")
+    if starts is None or length is None:
+        raise ValueError(f"{'starts' if starts is None else 'length'}: required")
     w, f = imu_samples(w_ib_b, f_b)
     lead, n = w.shape[:-2], w.shape[-2]
     dts, regular = sample_intervals(dt, n), np.ndim(dt) == 0
@@ -716,7 +719,7 @@ def _residual_cov(M, pitch, n, dt, N, A, g):
 # --------------------------------------------------------------------------
 
 
-def _rv(r, V):
+def _rv(r: ArrayLike, V: ArrayLike) -> tuple[Array, Array]:
     r = as_array(r, "r", tail=(2,), min_ndim=1, allow_nan=True)
     V = as_array(V, "V", tail=(2, 3), min_ndim=1, allow_nan=True)
     if V.shape[:-2] != r.shape[:-1]:
@@ -1040,7 +1043,7 @@ class Rig:
         Earth rate in the body frame at each dwell (rad/s).
     """
 
-    traj: object
+    traj: Trajectory
     w_ib_b: Vec3Series
     f_b: Vec3Series
     starts: ArrayLike
@@ -1109,8 +1112,11 @@ def rig_experiment(
     res = tilt_residuals(imu.w_ib_b, imu.f_b, dt, starts, length, rig.w_ie_b)
     forgetting = np.exp(-period / memory)
     b_lsq, _ = running_lsq_bias(res.r, res.V, forgetting)
-    cases = {"uncorrected": (imu.w_ib_b, w_ie_n, None, hpr_true), "corrected": (imu.w_ib_b, w_ie_n, b_lsq, hpr_true)}
-    out = {"faults": res.faults}
+    cases: dict[str, tuple[Array, Array | None, Array | None, Array]] = {
+        "uncorrected": (imu.w_ib_b, w_ie_n, None, hpr_true),
+        "corrected": (imu.w_ib_b, w_ie_n, b_lsq, hpr_true),
+    }
+    out: dict[str, Any] = {"faults": res.faults}
     if extensions:
         R = residual_covariance(res.tilt, length, dt, model.gyro.noise_density, model.accel.noise_density)
         rrw = np.sqrt(2 / model.gyro.correlation_time) * model.gyro.gauss_markov_sigma  # RW matching the GM drift
