@@ -30,8 +30,10 @@ from __future__ import annotations
 import os
 import re
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from . import attitude, geodesy
 from ._validate import file_path, text
@@ -228,7 +230,7 @@ def read_comma2k19(folder: str | os.PathLike) -> DriveLog:
     """
     folder = file_path(folder, "folder")
 
-    def load(name):
+    def load(name: str) -> NDArray[Any]:
         path = folder / f"{name}.npy"
         if not path.is_file():
             raise FileNotFoundError(f"folder: {folder} has no {path.name} (a comma2k19 segment as in data/real/comma2k19/)")

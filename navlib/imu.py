@@ -82,7 +82,7 @@ class SensorLimits:
     freefall_time: float = 0.05
     max_dt: float | None = None
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         for name in ("full_scale_gyro", "full_scale_accel", "full_scale_mag"):
             object.__setattr__(self, name, range_limit(getattr(self, name), name))
         if isinstance(self.stuck_run, str):

@@ -399,7 +399,7 @@ def _target(sensor: str) -> str:
     return {"gyro": "rad/s", "accel": "m/s^2 (specific force)", "mag": "uT", "baro": "Pa"}[sensor]
 
 
-def _finish(rec: Recording, source: str, check: str, notes: Sequence[str] = (), **extra) -> Recording:
+def _finish(rec: Recording, source: str, check: str, notes: Sequence[str] = (), **extra: Any) -> Recording:
     """A reader's last step: its source and conversion notes on the recording, then :func:`check_axes`."""
     rec = replace(rec, source=source, conversions=rec.conversions + tuple(notes), **extra)
     if check != "off" and rec.w_ib_b is not None and (rec.f_b is not None or rec.m_b is not None):
@@ -408,7 +408,7 @@ def _finish(rec: Recording, source: str, check: str, notes: Sequence[str] = (), 
     return rec
 
 
-def read_csv(path: str | Path, *, sep: str = ",", comment: str | None = None, check: str = "warn", **kwargs) -> Recording:
+def read_csv(path: str | Path, *, sep: str = ",", comment: str | None = None, check: str = "warn", **kwargs: Any) -> Recording:
     """A :class:`Recording` from a CSV file: ``pandas.read_csv(path, sep, comment)`` then :func:`from_dataframe`.
 
     Parameters
@@ -513,7 +513,7 @@ def read_xio(
     return _finish(rec, source, _check_option(check), notes)
 
 
-def _read_table(path: str | Path, **read_csv) -> tuple[pd.DataFrame, str]:
+def _read_table(path: str | Path, **read_csv: Any) -> tuple[pd.DataFrame, str]:
     """A CSV file as a DataFrame (spaces after separators ignored), and its path for ``Recording.source``."""
     path = file_path(path, "path")
     if not path.is_file():

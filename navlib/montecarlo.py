@@ -29,6 +29,7 @@ from functools import partial
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from ._typing import ArrayLike
 from ._validate import flag, indices, integer, text
@@ -80,7 +81,7 @@ class TrialStreams:
     def __len__(self) -> int:
         return self.ids.size
 
-    def _stack(self, method: str, shape, **kw) -> np.ndarray:
+    def _stack(self, method: str, shape: int | tuple[int, ...], **kw: float) -> np.ndarray:
         shape = tuple(np.atleast_1d(shape)) if shape != () else ()
         self._draws += 1
         if self._rngs is None and self._draws > _SHARED_DRAWS:
@@ -135,13 +136,13 @@ def _pcg64_states(seed: int, ids: np.ndarray) -> list[tuple[int, int]]:
     entropy = [np.full(ids.size, w, np.uint32) for w in run] + [ids.astype(np.uint32)]
     const = [_HASH_A]
 
-    def hashmix(v):
+    def hashmix(v: NDArray[np.uint32]) -> NDArray[np.uint32]:
         v = v ^ np.uint32(const[0])
         const[0] = const[0] * _MULT_A & 0xFFFFFFFF
         v = v * np.uint32(const[0])
         return v ^ (v >> np.uint32(16))
 
-    def mix(x, y):
+    def mix(x: NDArray[np.uint32], y: NDArray[np.uint32]) -> NDArray[np.uint32]:
         r = np.uint32(_MIX_L) * x - np.uint32(_MIX_R) * y
         return r ^ (r >> np.uint32(16))
 
@@ -168,17 +169,19 @@ def _pcg64_states(seed: int, ids: np.ndarray) -> list[tuple[int, int]]:
     return out
 
 
-def _run_batch(batch_fn, seed, ids, kwargs):
+def _run_batch(
+    batch_fn: Callable[..., dict[str, Any]], seed: int, ids: NDArray[np.int64], kwargs: dict[str, Any]
+) -> dict[str, Any]:
     return batch_fn(ids, TrialStreams(seed, ids), **kwargs)
 
 
-def _progress_bar(total: int, label: str):
+def _progress_bar(total: int, label: str) -> Any:
     from tqdm.auto import tqdm
 
     return tqdm(total=total, desc=label, unit="trials", mininterval=1.0, dynamic_ncols=True)
 
 
-def _check_args(n_trials, seed, batch_size):
+def _check_args(n_trials: int, seed: int, batch_size: int) -> None:
     for name, v, lo in (("n_trials", n_trials, 1), ("seed", seed, 0), ("batch_size", batch_size, 1)):
         integer(v, name, minimum=lo)
 

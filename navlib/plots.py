@@ -103,14 +103,14 @@ def heading_deg(hpr: Angles) -> Array:
     return units.to_deg(attitude.wrap_2pi(euler_angles(hpr, "hpr")[..., 0]))
 
 
-def _color(c, name: str) -> None:
+def _color(c: object, name: str) -> None:
     from matplotlib.colors import is_color_like  # noqa: PLC0415 -- navlib imports without matplotlib
 
     if c is None or not is_color_like(c):
         raise ValueError(f"{name}: expected a matplotlib color, got {c!r:.40}")
 
 
-def _fraction(x, name: str) -> float:
+def _fraction(x: float, name: str) -> float:
     """A size as a fraction of the axes, in (0, 1]."""
     return scalar(x, name, within=(0.0, 1.0), open_ends=(True, False))
 

@@ -41,7 +41,7 @@ import os
 import platform
 import re
 import warnings
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -340,7 +340,7 @@ def _write_png(fig: Figure, name: str) -> Path:
     return path
 
 
-def _png(fig: Figure):
+def _png(fig: Figure) -> Any:
     """``fig`` as an IPython PNG image (as :func:`savefig` writes it), the figure closed."""
     import io
 
@@ -353,7 +353,7 @@ def _png(fig: Figure):
     return Image(data=buffer.getvalue(), format="png")
 
 
-def _as_float(x, name: str, finite: bool = False) -> float:
+def _as_float(x: object, name: str, finite: bool = False) -> float:
     x = real(x, name)  # strings (also "1.5"), complex, object and bool raise InputTypeError
     if x.size != 1:
         raise ValueError(f"{name}: expected a scalar, got shape {x.shape}")
@@ -363,7 +363,7 @@ def _as_float(x, name: str, finite: bool = False) -> float:
     return v
 
 
-def _check_args(name, value, source, unit, note, on_printed) -> tuple[float, bool]:
+def _check_args(name: str, value: Scalar, source: str, unit: str, note: str, on_printed: bool) -> tuple[float, bool]:
     """The arguments every check takes, checked: returns the value as a float and ``on_printed``."""
     text(name, "name", empty=False)
     _texts(source=source, unit=unit, note=note)
@@ -514,7 +514,18 @@ def check_outside(
     return _interval_check(name, value, source, (lower, upper), paper_value, unit, note, on_printed, outside=True)
 
 
-def _interval_check(name, value, source, bounds, paper_value, unit, note, on_printed, *, outside: bool) -> Check:
+def _interval_check(
+    name: str,
+    value: Scalar,
+    source: str,
+    bounds: tuple[float | None, float | None],
+    paper_value: str | float | None,
+    unit: str,
+    note: str,
+    on_printed: bool,
+    *,
+    outside: bool,
+) -> Check:
     """:func:`check_range` (``value`` within ``bounds``) or :func:`check_outside` (``value`` outside them)."""
     v, printed = _check_args(name, value, source, unit, note, on_printed)
     lo, hi = _bounds(*bounds)
@@ -634,7 +645,7 @@ def check_study(
     )
 
 
-def _not_the_target(value, **targets) -> None:
+def _not_the_target(value: object, **targets: object) -> None:
     """Refuse a value that is the very object passed as its target: such a check cannot fail.
 
     Only numpy values are compared by identity: Python shares small ints, and equal float literals
@@ -650,7 +661,7 @@ def _not_the_target(value, **targets) -> None:
                 )
 
 
-def _bounds(lower, upper) -> tuple[float | None, float | None]:
+def _bounds(lower: float | None, upper: float | None) -> tuple[float | None, float | None]:
     if lower is None and upper is None:
         raise ValueError("lower, upper: give at least one bound")
     lo = None if lower is None else _as_float(lower, "lower")
@@ -811,7 +822,7 @@ def verdict(
     return v
 
 
-def _shown(x, unit: str) -> str:
+def _shown(x: object, unit: str) -> str:
     """A value as the ledger shows it: a number to 5 significant digits with its unit, or the text given."""
     if isinstance(x, str):
         return x
@@ -968,7 +979,7 @@ def _whole_table() -> type:
     return CheckTable
 
 
-def caption(markdown: str):
+def caption(markdown: str) -> Any:
     """Text with computed numbers (a figure caption, a sentence quoting results) rendered as Markdown.
 
     A notebook's markdown cells cannot hold numbers that a run computes; typed copies go stale. Build
@@ -990,7 +1001,9 @@ class Exercise:
         return self.message
 
 
-def exercise(student, reference, cases: Sequence[tuple], tol: float = 1e-9) -> Exercise:
+def exercise(
+    student: Callable[..., Any], reference: Callable[..., Any], cases: Sequence[tuple[Any, ...]], tol: float = 1e-9
+) -> Exercise:
     """Check a student's function against navlib's ``reference`` on each argument tuple of ``cases``.
 
     A coding exercise gives a stub that returns ``None`` ("your code here"); until it is written the result
@@ -999,7 +1012,7 @@ def exercise(student, reference, cases: Sequence[tuple], tol: float = 1e-9) -> E
     chapter tests its own hidden solution the same way (``assert exercise(solution, ...).passed``), so an
     exercise whose solution is wrong cannot pass.
     """
-    if not callable(student) or not callable(reference):
+    if not callable(student) or not callable(reference):  # type: ignore[redundant-expr]  # the caller's argument, checked
         raise ValueError("student, reference: expected functions")
     if not isinstance(cases, (list, tuple)) or not cases or not all(isinstance(c, tuple) for c in cases):
         raise ValueError(f"cases: expected a non-empty list of argument tuples such as [(0.1,), (1.0,)], got {cases!r:.60}")
@@ -1021,7 +1034,7 @@ def exercise(student, reference, cases: Sequence[tuple], tol: float = 1e-9) -> E
     return Exercise(True, f"**Correct:** `{name}` agrees with navlib on all {len(cases)} cases (to {tol:g}).")
 
 
-def answer(markdown: str, label: str = "Answer"):
+def answer(markdown: str, label: str = "Answer") -> Any:
     """The answer to a "Try this" exercise, collapsed (an HTML ``<details>`` block) until the reader opens it.
 
     ``markdown`` is built from values the notebook computed (an f-string), never typed-in results.
@@ -1032,7 +1045,7 @@ def answer(markdown: str, label: str = "Answer"):
     return Markdown(f"<details><summary>{title}</summary>\n\n{body}\n\n</details>")
 
 
-def explorer(draw, name: str, controls: dict) -> None:
+def explorer(draw: Callable[..., Figure], name: str, controls: dict[str, Any]) -> None:
     """An interactive explorer with a static fallback: ``draw(**values) -> Figure``.
 
     The figure at the controls' default values is drawn once, saved as ``name`` (:func:`savefig`) and

@@ -110,10 +110,10 @@ class FaultReport:
     counts: Mapping[tuple[str, str], np.ndarray | int] = field(default_factory=dict)
     flags: Mapping[tuple[str, str], np.ndarray] = field(default_factory=dict)
 
-    def __getitem__(self, key: tuple[str, str]):
+    def __getitem__(self, key: tuple[str, str]) -> np.ndarray | int:
         return self.counts.get(key, 0)
 
-    def total(self):
+    def total(self) -> np.ndarray | np.int64:
         """Sum of all counts (an array over trials for batched filters)."""
         return sum((np.asarray(c) for c in self.counts.values()), start=np.int64(0))
 

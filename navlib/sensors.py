@@ -35,6 +35,7 @@ import functools
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field, fields, replace
 from importlib import resources
+from importlib.resources.abc import Traversable
 
 import numpy as np
 from numba import njit
@@ -126,7 +127,7 @@ class TriadErrors:
     misalignment: float = 0.0
     full_scale: float = np.inf
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         numbers(
             self,
             positive=("correlation_time", "full_scale"),
@@ -148,7 +149,7 @@ class ImuModel:
     accel: TriadErrors = field(default_factory=TriadErrors)
     name: str = "custom"
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         for key in ("gyro", "accel"):
             instance(getattr(self, key), key, TriadErrors, "TriadErrors")
         text(self.name, "name")
@@ -234,14 +235,14 @@ def _ar1_in_place(y, phi, y_before):
                 y[b, k, j] += phi * y[b, k - 1, j]
 
 
-def _error_matrix(errors: TriadErrors, lead: tuple, rng: np.random.Generator):
+def _error_matrix(errors: TriadErrors, lead: tuple[int, ...], rng: np.random.Generator) -> Array:
     M = np.broadcast_to(np.eye(3), lead + (3, 3)).copy()
     M += errors.misalignment * rng.standard_normal(lead + (3, 3)) * (1 - np.eye(3))
     M += errors.scale_factor * rng.standard_normal(lead + (3,))[..., None] * np.eye(3)
     return M
 
 
-def _corrupt(x, dt, errors: TriadErrors, rng: np.random.Generator):
+def _corrupt(x: Array, dt: float, errors: TriadErrors, rng: np.random.Generator) -> tuple[Array, Array, Array, int]:
     """Apply a triad error model to ideal samples ``x`` (..., N, 3)."""
     r_matrix, r_on, r_gm, r_rrw, r_white = rng.spawn(5)
     lead, shape = x.shape[:-2], x.shape
@@ -379,7 +380,7 @@ def _preset_parameters() -> dict[str, set[str]]:
     }
 
 
-def _read_presets(path) -> dict[str, dict[tuple[str, str], tuple[float, str, str]]]:
+def _read_presets(path: Traversable) -> dict[str, dict[tuple[str, str], tuple[float, str, str]]]:
     """Parse a presets CSV strictly: an unknown sensor or parameter, a repeated row or a bad
     value raises ``ValueError`` naming the line (a typo must not silently give a noise-free sensor)."""
     known = _preset_parameters()
@@ -460,7 +461,7 @@ class MagnetometerModel:
     soft_iron: float = 0.0
     full_scale: float = np.inf
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         numbers(self, positive=("full_scale",), non_negative=("noise", "hard_iron", "soft_iron"), infinite=("full_scale",))
 
     @classmethod
@@ -581,7 +582,7 @@ class BarometerModel:
     bias: float = 0.0
     drift_rate: float = 0.0
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         numbers(self, non_negative=("noise", "bias"), real=("drift_rate",))
 
     @classmethod

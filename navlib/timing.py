@@ -16,6 +16,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from ._typing import Array, ArrayLike, Times
 from ._validate import as_array, integer, time_axis
@@ -55,7 +56,7 @@ class TimingReport:
         return bool(self.dt_max - self.dt_min > 0.01 * self.dt_median)
 
 
-def _reindex(x, keep, n, name):
+def _reindex(x: ArrayLike, keep: NDArray[np.intp], n: int, name: str) -> Array:
     a = as_array(x, name, allow_nan=True, min_ndim=1)
     axis = -2 if a.ndim >= 2 else -1
     if a.shape[axis] != n:

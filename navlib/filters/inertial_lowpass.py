@@ -93,7 +93,7 @@ class InertialLowpassSettings:
     mag_rejection_factor: float = 2.0
     mag_settle_time: float = 1.0
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         for f in fields(self):
             scalar(getattr(self, f.name), f.name, positive=True)
 

@@ -39,7 +39,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 import numpy as np
 from numba import njit
@@ -430,7 +430,7 @@ class MagGate:
     norm_tol: float = 0.1
     dip_tol: float = np.deg2rad(5.0)
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         scalar(self.norm_tol, "norm_tol", positive=True)
         scalar(self.dip_tol, "dip_tol", positive=True)
 
@@ -455,7 +455,7 @@ class AttitudeGates:
     g: float = G0
     mag: MagGate | None = None
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         if self.accel_tol is not None:
             scalar(self.accel_tol, "accel_tol", positive=True)
         scalar(self.g, "g", positive=True)
@@ -491,7 +491,7 @@ class RtkHeading:
     gate: float | None = None
     confirm: int = 5
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         h = as_array(self.heading, "heading", finite=False, nonempty=True)
         v = booleans(self.valid, "valid")
         try:
@@ -670,7 +670,7 @@ def _gate(t0, t1, f, m, skip_f, skip_m, limits, z, codes):
             z[t, k, 3], z[t, k, 4], z[t, k, 5] = (mx, my, mz) if cm == 0 else (nan, nan, nan)
 
 
-def run_trials(kernel: Callable, n_trials: int, *args) -> None:
+def run_trials(kernel: Callable[..., None], n_trials: int, *args: Any) -> None:
     """Run ``kernel(t0, t1, *args)`` over trials 0 to ``n_trials`` - 1 in parallel
     (:func:`navlib._threads.run_chunks`). The compiled kernels release the GIL; each trial writes only its
     own outputs, so the results do not depend on the number of threads.

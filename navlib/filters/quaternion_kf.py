@@ -77,7 +77,7 @@ class KfNoise:
     sigma_mag: float = 0.08
     p0: float = 1e-4
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         for name in ("sigma_gyro", "sigma_accel", "sigma_mag", "p0"):
             scalar(getattr(self, name), name, positive=True)
 

@@ -57,7 +57,7 @@ from numba import njit
 
 from .. import _kernels, earth, robust, trajectory
 from .._kernels import radii_mn
-from .._typing import Array, ArrayLike, Quat, Vec3
+from .._typing import Array, ArrayLike, Quat, Vec3, Vec3Series
 from .._validate import as_array, as_quat, booleans, choice, flag, instance, integer, kernel_array, scalar
 from ..imu import ImuSamples
 from ..strapdown import earth_constants
@@ -156,7 +156,7 @@ class Aiding:
     declination: float = 0.0
     B_n: np.ndarray | None = None
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         choice(self.walk, "walk", tuple(_WALK))
         object.__setattr__(self, "zupt", flag(self.zupt, "zupt"))
         object.__setattr__(self, "declination", scalar(self.declination, "declination"))
@@ -171,7 +171,7 @@ class Aiding:
         return np.array([float(np.linalg.norm(B, axis=-1)), float(np.arctan2(-B[2], np.hypot(B[0], B[1])))])
 
 
-def _check(record, names: tuple[str, ...], may_be_inf: tuple[str, ...] = ()) -> None:
+def _check(record: object, names: tuple[str, ...], may_be_inf: tuple[str, ...] = ()) -> None:
     """Store each named field of a frozen record as a positive float (inf where allowed)."""
     for name in names:
         object.__setattr__(record, name, scalar(getattr(record, name), name, positive=True, allow_inf=name in may_be_inf))
@@ -203,7 +203,7 @@ class ProcessNoise:
     held_accel: float = 1.0
     held_gyro: float = 0.1
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         _check(self, ("accel", "gyro", "accel_bias_rw", "gyro_bias_rw", "held_accel", "held_gyro"))
 
 
@@ -228,7 +228,7 @@ class MeasurementNoise:
     baro: float = 0.17
     heading: float = np.deg2rad(2.0)
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         _check(self, ("zupt", "zaru", "baro", "heading"))
 
 
@@ -250,7 +250,7 @@ class InitialSigma:
     accel_bias: float = 0.01 * G0
     gyro_bias: float = np.deg2rad(0.05)
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         _check(self, ("pos", "vel", "tilt", "heading", "accel_bias", "gyro_bias"))
 
 
@@ -288,7 +288,7 @@ class Gates:
     mag_field: float = np.inf
     mag_dip: float = np.inf
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         _check(self, ("zupt", "baro", "mag_field", "mag_dip"), may_be_inf=("zupt", "baro", "mag_field", "mag_dip"))
         object.__setattr__(self, "max_rejected", integer(self.max_rejected, "max_rejected"))
 
@@ -306,7 +306,7 @@ class BaroTracker:
     alpha: float = 0.2
     beta: float = 0.02
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         _check(self, ("alpha", "beta"))
 
 
@@ -332,7 +332,7 @@ class FilterConfig:
     tracker: BaroTracker = field(default_factory=BaroTracker)
     update_rate: float = 10.0
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         for name, cls in (
             ("process", ProcessNoise),
             ("measurement", MeasurementNoise),
@@ -823,10 +823,10 @@ def _state(start: Start, sigma: InitialSigma) -> _State:
 def run_filter(
     imu: ImuSamples,
     start: Start,
-    static,
+    static: ArrayLike,
     *,
-    h_baro=None,
-    m_b=None,
+    h_baro: ArrayLike | None = None,
+    m_b: Vec3Series | None = None,
     aiding: Aiding = Aiding(),
     config: FilterConfig = FilterConfig(),
     ellipsoid: earth.Ellipsoid = earth.WGS84,

@@ -35,8 +35,8 @@ class Paper:
     claims_id: str
     citation: str
 
-    def __post_init__(self):
-        if not isinstance(self.name, str) or not self.name.isidentifier():
+    def __post_init__(self) -> None:
+        if not isinstance(self.name, str) or not self.name.isidentifier():  # type: ignore[redundant-expr]  # the caller's argument, checked
             raise ValueError(f"name: expected the paper's module name (a Python identifier), got {self.name!r}")
         integer(self.number, "number", minimum=0)
         text(self.claims_id, "claims_id", empty=False)

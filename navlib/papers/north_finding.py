@@ -93,7 +93,7 @@ Errata corrected (ids of ``data/errata.csv``)
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from scipy.special import ndtr
@@ -123,6 +123,9 @@ from .._validate import (
 from ..alignment import gyrocompass_latitude, level, static_means, triad, triad_heading
 from ..imu import ImuSamples, unpack
 from ..trajectory import Segment
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
 
 __all__ = [
     "Candidates",
@@ -1052,7 +1055,7 @@ def _arrow(ax, start, end, color, style="-", width=1.6, label=None):
         ax.plot([], [], color=color, linestyle=style, linewidth=width, label=label)
 
 
-def draw_device(ax, heading_deg: float = 30.0) -> None:
+def draw_device(ax: Axes, heading_deg: float = 30.0) -> None:
     """Paper Fig. 2 redrawn: the robot seen from above, its body frame b (= the sensor frame s of the
     calibrated MEMS IMU) and the single optical gyro along the forward axis y_s.
 
@@ -1121,13 +1124,14 @@ def draw_device(ax, heading_deg: float = 30.0) -> None:
     ax.plot([0, tip[0]], [0, tip[1]], color=_GYRO, linewidth=4, alpha=0.5, solid_capstyle="butt")
     ax.plot([0.0], [r], "o", color=_COMPASS, markersize=4)
     ax.text(-0.08, r, r"$\omega_{ie}\cos L$", fontsize=9, color=_COMPASS, ha="right", va="center")
-    ax.text(*(tip + 0.15 * right), r"$w_y=\omega_{ie}\cos L\,\cos\psi$", fontsize=9, color=_GYRO, ha="left", va="top")
+    label_at = tip + 0.15 * right
+    ax.text(label_at[0], label_at[1], r"$w_y=\omega_{ie}\cos L\,\cos\psi$", fontsize=9, color=_GYRO, ha="left", va="top")
     plots.angle_arc(ax, (0.0, 0.0), 1.0, _map_angle(psi), 90.0, r"$\psi$", color="tab:red")
     ax.set(xlim=(-2.3, 2.6), ylim=(-1.5, 2.4), aspect="equal")
     ax.set_axis_off()
 
 
-def draw_candidate_pairs(ax, heading1_deg: float, heading2_deg: float, dpsi_ins_error_deg: float = 0.0) -> None:
+def draw_candidate_pairs(ax: Axes, heading1_deg: float, heading2_deg: float, dpsi_ins_error_deg: float = 0.0) -> None:
     """Paper Fig. 3 redrawn: the two mirror-image heading candidates at two stops and how the MEMS INS
     heading change picks the pair (Eqs. 10-12).
 
@@ -1166,8 +1170,10 @@ def draw_candidate_pairs(ax, heading1_deg: float, heading2_deg: float, dpsi_ins_
                 if abs(cand - a) < 1e-9
                 else f"2π − {name} = {360.0 - a:.0f}°"
             )
+            at = c + 1.12 * _unit(_map_angle(cand))
             ax.text(
-                *(c + 1.12 * _unit(_map_angle(cand))),
+                at[0],
+                at[1],
                 label,
                 fontsize=8,
                 color=color,

@@ -96,7 +96,7 @@ from numba import njit
 
 from .. import _kernels, attitude, earth, kalman, robust
 from .._kernels import wrap_pi
-from .._typing import Angles, Array, ArrayLike, Interval, Vec3, Vec3Series
+from .._typing import Angles, Array, ArrayLike, Dcm, Interval, Times, Vec3, Vec3Series
 from .._validate import (
     as_array,
     axes,
@@ -123,6 +123,9 @@ from ..imu import ImuSamples, unpack
 from ..units import G0
 
 if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+
+    from ..sensors import ImuModel
     from ..trajectory import Trajectory
 
 __all__ = [
@@ -1055,7 +1058,7 @@ def rig_experiment(
     rig: Rig,
     dt: float,
     lat: float,
-    model,
+    model: ImuModel,
     rng: np.random.Generator,
     *,
     n_runs: int,
@@ -1063,7 +1066,7 @@ def rig_experiment(
     memory: float,
     extensions: bool = False,
     decimate: int = 100,
-) -> dict:
+) -> dict[str, Any]:
     """One pitch group of the paper's experiment (§4): ``n_runs`` noisy runs on one rig trajectory.
 
     Simulates ``model`` on the exact samples of ``traj`` (all runs in one vectorised call), estimates
@@ -1160,7 +1163,7 @@ def pair_spread(
     rotation_time: float,
     dt: float,
     lat: float,
-    model,
+    model: ImuModel,
     bias_b: Vec3,
     rng: np.random.Generator,
     *,
@@ -1202,14 +1205,14 @@ def pair_spread(
     return (b - bias_b).reshape(-1, 3).std(axis=0)
 
 
-def rotation_angle(C_bn) -> Array:
+def rotation_angle(C_bn: Dcm) -> Array:
     """Angle (rad) by which each attitude of ``C_bn`` (..., 3, 3) is turned from the first one (for the schedule figure)."""
     C = as_array(C_bn, "C_bn", shape=(None, 3, 3), nonempty=True)
     rel = np.swapaxes(C[:1], -1, -2) @ C
     return np.arccos(np.clip((np.trace(rel, axis1=-2, axis2=-1) - 1) / 2, -1.0, 1.0))
 
 
-def draw_rotation_scheme(ax, amplitude_deg: float = 90.0, pitch_deg: float = 30.0) -> None:
+def draw_rotation_scheme(ax: Axes, amplitude_deg: float = 90.0, pitch_deg: float = 30.0) -> None:
     """Paper Fig. 3 redrawn: the IMU turned by Δα about u = y_b, seen along u.
 
     The plane of the drawing is perpendicular to u (u points into the page). Left, the body axes of
@@ -1249,7 +1252,7 @@ def draw_rotation_scheme(ax, amplitude_deg: float = 90.0, pitch_deg: float = 30.
     ax.set_axis_off()
 
 
-def draw_rotation_schedule(ax, time, angle_deg, starts, length: int, dt: float) -> None:
+def draw_rotation_schedule(ax: Axes, time: Times, angle_deg: ArrayLike, starts: ArrayLike, length: int, dt: float) -> None:
     """The reciprocating schedule: rotation angle against time with the dwell windows shaded.
 
     Parameters
@@ -1279,7 +1282,7 @@ def draw_rotation_schedule(ax, time, angle_deg, starts, length: int, dt: float) 
     ax.set(xlabel="time (s)", ylabel="rotation angle α (°)", ylim=(-0.1 * a.max(), 1.2 * a.max()))
 
 
-def draw_flow(ax) -> None:
+def draw_flow(ax: Axes) -> None:
     """Paper Fig. 4 redrawn: the estimation and compensation loop (§3.3) as a block diagram."""
     from ..plots import block_diagram  # noqa: PLC0415 -- plotting only (it validates ax)
 
