@@ -82,7 +82,7 @@ class ReferenceTrial:
         return 1.0 / float(np.median(self.recording.dt))
 
 
-def read_broad(path: str | os.PathLike) -> ReferenceTrial:
+def read_broad(path: str | os.PathLike[str]) -> ReferenceTrial:
     """Read one BROAD trial converted by ``tools/broad_to_npz.py``.
 
     Parameters
@@ -215,7 +215,7 @@ def _ecef_to_enu(lat: np.ndarray, lon: np.ndarray) -> np.ndarray:
     )
 
 
-def read_comma2k19(folder: str | os.PathLike) -> DriveLog:
+def read_comma2k19(folder: str | os.PathLike[str]) -> DriveLog:
     """Read one comma2k19 segment as committed in data/real/comma2k19/ (the source's ``.npy`` logs, renamed
     ``<sensor>.<log>.<t|value>.npy`` and ``global_pose.<name>.npy``).
 

@@ -451,12 +451,10 @@ def _inverse(xi, eta, e, beta):
             fl[i : i + _CHUNK], fd[i : i + _CHUNK] = _inverse(fx[i : i + _CHUNK], fe[i : i + _CHUNK], e, beta)
         return lat, dlon
     xip, etap = np.empty(xi.shape), np.empty(xi.shape)
-    _series_inverse(
-        *(a.reshape(-1) for a in (xi, eta, np.sin(2 * xi), np.cos(2 * xi), np.sinh(2 * eta), np.cosh(2 * eta))),
-        beta,
-        xip.reshape(-1),
-        etap.reshape(-1),
+    xi_f, eta_f, sin2xi, cos2xi, sinh2eta, cosh2eta = (
+        a.reshape(-1) for a in (xi, eta, np.sin(2 * xi), np.cos(2 * xi), np.sinh(2 * eta), np.cosh(2 * eta))
     )
+    _series_inverse(xi_f, eta_f, sin2xi, cos2xi, sinh2eta, cosh2eta, beta, xip.reshape(-1), etap.reshape(-1))
     sinh_etap, cos_xip = np.sinh(etap), np.cos(xip)
     taup = np.sin(xip) / np.sqrt(sinh_etap * sinh_etap + cos_xip * cos_xip)
     return np.arctan(_geodetic_tan(taup, e)), np.arctan2(sinh_etap, cos_xip)
@@ -857,7 +855,14 @@ def enu2geodetic(
     return _local2geodetic((e, n, u), ("e", "n", "u"), 1.0, (lat0, lon0, h0), ellipsoid, deg)
 
 
-def _local2geodetic(local, names, up, origin, ellipsoid, deg):
+def _local2geodetic(
+    local: tuple[ArrayLike, ArrayLike, ArrayLike],
+    names: tuple[str, str, str],
+    up: float,
+    origin: tuple[ArrayLike, ArrayLike, ArrayLike],
+    ellipsoid: Ellipsoid,
+    deg: bool,
+) -> tuple[Array, Array, Array]:
     """Geodetic points of local coordinates ``local`` (east, north, up or down: ``up`` = 1.0 or -1.0)
     about ``origin`` (lat0, lon0, h0), each argument checked under its name."""
     ellipsoid_(ellipsoid)

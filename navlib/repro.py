@@ -133,7 +133,7 @@ class Check:
     note: str = ""
     outside: bool = False  # check_outside: passes when the value lies outside [lower, upper]
     on_printed: bool = False  # the value is arithmetic on the paper's printed numbers, not a reproduction
-    study: dict | None = None  # check_study: {"name": study, "target": target or None}
+    study: dict[str, Any] | None = None  # check_study: {"name": study, "target": target or None}
 
 
 @dataclass
@@ -159,7 +159,7 @@ class _State:
     checks: list[Check] = field(default_factory=list)
     verdicts: list[Verdict] = field(default_factory=list)
     figures: set[str] = field(default_factory=set)
-    catalogue: dict | None = None
+    catalogue: dict[str, Any] | None = None
     teaching: bool = False
     fast: bool = False
     shown_checks: int = 0  # checks and verdicts already shown by summary()
@@ -218,7 +218,7 @@ def _build_dir(notebook: str | None) -> Path:
     return d
 
 
-def setup(notebook: str, *, paper: str | None = None, out_dir: str | os.PathLike | None = None, style: bool = True) -> None:
+def setup(notebook: str, *, paper: str | None = None, out_dir: str | os.PathLike[str] | None = None, style: bool = True) -> None:
     """Start a notebook's run: reset its results file and set the figure style.
 
     Parameters
@@ -829,7 +829,7 @@ def _shown(x: object, unit: str) -> str:
     return f"{_as_float(x, 'value'):.5g}{' ' + unit if unit else ''}"
 
 
-def _catalogue() -> dict[str, dict]:
+def _catalogue() -> dict[str, dict[str, Any]]:
     """``data/claims.csv`` rows by id and ``data/errata.csv`` ids of the checkout (read once per run)."""
     if _state.catalogue is None:
         data = root() / "data"
@@ -859,7 +859,7 @@ def _write() -> None:
     (_build_dir(_state.notebook) / "results.json").write_text(text + "\n")
 
 
-def _encode(row: dict) -> str:
+def _encode(row: dict[str, Any]) -> str:
     """A results.json row as ``json.dumps(..., indent=1)`` lays it out inside a top-level list."""
     return json.dumps(row, indent=1, allow_nan=True).replace("\n", "\n  ")
 
@@ -868,7 +868,7 @@ def _rows(encoded: list[str]) -> str:
     return "[\n  " + ",\n  ".join(encoded) + "\n ]" if encoded else "[]"
 
 
-def _row(c: Check) -> dict:
+def _row(c: Check) -> dict[str, Any]:
     row = asdict(c)
     for key in ("outside", "on_printed", "study"):  # written only when set: other rows keep their bytes
         if not row[key]:
@@ -908,7 +908,7 @@ def mode(*, teaching: bool, fast: bool) -> None:
     _write()
 
 
-def summary():
+def summary() -> Any:
     """The checks and verdicts recorded since the previous call, as one compact table.
 
     A ``pandas.DataFrame`` with a row per check (``check``, ``paper`` value, ``ours``, ``tolerance``,
@@ -959,10 +959,10 @@ def _whole_table() -> type:
 
     class CheckTable(pd.DataFrame):
         @property
-        def _constructor(self):
+        def _constructor(self) -> type:
             return CheckTable
 
-        def _repr_html_(self):
+        def _repr_html_(self) -> str:
             """The whole table, folded under a one-line count (the reproduction details of a section)."""
             with pd.option_context("display.max_rows", None, "display.max_colwidth", None):
                 table = super()._repr_html_()
@@ -1089,7 +1089,7 @@ def explorer(draw: Callable[..., Figure], name: str, controls: dict[str, Any]) -
         if isinstance(c, (widgets.FloatSlider, widgets.FloatLogSlider)):
             c.readout_format = ".3g"
 
-    def redraw(_change=None):
+    def redraw(_change: object = None) -> None:
         shown.update(_png(draw(**{**defaults, **{k: c.value for k, c in live.items()}})))
 
     for c in live.values():

@@ -57,7 +57,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 import numpy as np
 from numba import njit
@@ -120,7 +120,7 @@ class FaultReport:
     def __bool__(self) -> bool:
         return bool(np.any(self.total()))
 
-    def as_dict(self) -> dict[str, int | list]:
+    def as_dict(self) -> dict[str, int | list[Any]]:
         """``{"sensor.kind": count}`` with plain Python numbers (e.g. for results.json)."""
         return {f"{s}.{k}": np.asarray(c).tolist() for (s, k), c in self.counts.items()}
 

@@ -36,6 +36,7 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field, fields, replace
 from importlib import resources
 from importlib.resources.abc import Traversable
+from typing import Any
 
 import numpy as np
 from numba import njit
@@ -154,7 +155,7 @@ class ImuModel:
             instance(getattr(self, key), key, TriadErrors, "TriadErrors")
         text(self.name, "name")
 
-    def replace(self, gyro: dict | None = None, accel: dict | None = None) -> ImuModel:
+    def replace(self, gyro: dict[str, Any] | None = None, accel: dict[str, Any] | None = None) -> ImuModel:
         """Copy with some parameters changed, e.g. ``m.replace(gyro={"bias": 0.0})``."""
         return ImuModel(replace(self.gyro, **(gyro or {})), replace(self.accel, **(accel or {})), self.name)
 
@@ -384,7 +385,7 @@ def _read_presets(path: Traversable) -> dict[str, dict[tuple[str, str], tuple[fl
     """Parse a presets CSV strictly: an unknown sensor or parameter, a repeated row or a bad
     value raises ``ValueError`` naming the line (a typo must not silently give a noise-free sensor)."""
     known = _preset_parameters()
-    table: dict[str, dict] = {}
+    table: dict[str, dict[tuple[str, str], tuple[float, str, str]]] = {}
     with path.open(encoding="utf-8") as fh:
         lines = [(n, line) for n, line in enumerate(fh, 1) if line.strip() and not line.startswith("#")]
     rows = csv.DictReader(line for _, line in lines)

@@ -347,7 +347,7 @@ def integrate(
     vel0 = as_array(vel0, "vel0", tail=(3,))
     q0 = as_quat(q0, "q0")
 
-    def flat(x, k, name):
+    def flat(x: Array, k: int, name: str) -> Array:
         x = broadcast_to(x, name, lead + x.shape[-k:], of="the trials of w_ib_b")
         return kernel_array(x.reshape((-1,) + x.shape[-k:]))
 

@@ -123,7 +123,7 @@ def detect_static(
     fn = np.linalg.norm(f, axis=-1)
     share = None if valid.all() else analysis.moving_mean(valid.astype(float), n)  # fraction of valid samples per window
 
-    def mean(x):
+    def mean(x: Array) -> Array:
         if share is None:
             return analysis.moving_mean(x, n)
         return analysis.moving_mean(np.where(valid, x, 0.0), n) / np.maximum(share, 0.5 / n)

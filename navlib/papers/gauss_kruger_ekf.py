@@ -115,7 +115,7 @@ def _lon_deg(lon: ArrayLike, deg: bool, name: str = "lon") -> Array:
     return arr if flag(deg, "deg") else np.rad2deg(arr)
 
 
-def _validate_lat_lon(lat, lon, deg):
+def _validate_lat_lon(lat: ArrayLike, lon: ArrayLike, deg: bool) -> list[Array]:
     lat_rad = latitude(lat, "lat", deg=deg, nonempty=True)
     lon_deg = _lon_deg(lon, deg)
     return broadcast(lat_rad, lon_deg, name="lat, lon")
@@ -329,7 +329,7 @@ def waypoint_path(waypoints: ArrayLike, speed: float, turn_rate: float, T: float
 # --------------------------------------------------------------------------
 
 
-def _forward_fill(values):
+def _forward_fill(values: Array) -> Array:
     """Replace NaN by the last finite value (the first finite one before it)."""
     if not np.isfinite(values).any():
         return values

@@ -177,7 +177,7 @@ def printed_eq8_quat(hpr: Angles) -> Array:
     """Eq. (8) as printed, with its yaw psi = -heading: ``q_z(psi) q_y(roll) q_x(pitch)`` (E003-01)."""
     h, p, r = np.moveaxis(euler_angles(hpr), -1, 0)
 
-    def axis_quat(a, i):
+    def axis_quat(a: Array, i: int) -> Array:
         return np.stack([np.cos(a / 2)] + [np.sin(a / 2) * (i == j) for j in range(3)], -1)
 
     return attitude.quat_mult(attitude.quat_mult(axis_quat(-h, 2), axis_quat(r, 1)), axis_quat(p, 0))

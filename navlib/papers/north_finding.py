@@ -96,6 +96,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from numpy.typing import NDArray
 from scipy.special import ndtr
 
 from .. import attitude, earth, plots, robust, strapdown
@@ -120,7 +121,7 @@ from .._validate import (
     scalar,
     time_axis,
 )
-from ..alignment import gyrocompass_latitude, level, static_means, triad, triad_heading
+from ..alignment import StaticWindow, gyrocompass_latitude, level, static_means, triad, triad_heading
 from ..imu import ImuSamples, unpack
 from ..trajectory import Segment
 
@@ -392,7 +393,7 @@ def triad_heading_std(sigma_gyro: float, lat: float) -> Array:
     return s / (OMEGA_IE * np.cos(gyrocompass_latitude(lat)))
 
 
-def _pitch(pitch):
+def _pitch(pitch: ArrayLike) -> Array:
     return in_range(as_array(pitch, "pitch", nonempty=True), "pitch", -np.pi / 2, np.pi / 2, "rad", lo_open=True, hi_open=True)
 
 
@@ -610,7 +611,7 @@ def simulate_static_outputs(
     return w, f
 
 
-def _bias(x, name):
+def _bias(x: ArrayLike, name: str) -> Array:
     b = as_array(x, name, nonempty=True)
     return b if b.ndim == 0 else as_array(b, name, tail=(3,), nonempty=True)
 
@@ -815,7 +816,7 @@ class StopSolutions:
     clipped: np.ndarray
     f_mean: np.ndarray
     faults: robust.FaultReport
-    windows: tuple = ()
+    windows: tuple[StaticWindow, ...] = ()
 
 
 def _stacked_faults(reports: list[robust.FaultReport]) -> robust.FaultReport:
@@ -905,7 +906,7 @@ def stop_solutions(
     )
 
 
-def _hold_last(w, dts):
+def _hold_last(w: Array, dts: Array) -> tuple[Array, Array, NDArray[np.bool_]]:
     """Forward-fill NaN rows along axis -2 (back-fill leading ones); the longest dropout run (s) and the
     trials without any valid row."""
     bad = ~np.all(np.isfinite(w), -1)
@@ -1044,7 +1045,9 @@ def _unit(angle_deg: float) -> np.ndarray:
     return np.array([np.cos(a), np.sin(a)])
 
 
-def _arrow(ax, start, end, color, style="-", width=1.6, label=None):
+def _arrow(
+    ax: Axes, start: Array, end: Array, color: str, style: str = "-", width: float = 1.6, label: str | None = None
+) -> None:
     ax.annotate(
         "",
         tuple(end),
@@ -1076,7 +1079,7 @@ def draw_device(ax: Axes, heading_deg: float = 30.0) -> None:
 
     fwd, right = _unit(_map_angle(psi)), _unit(_map_angle(psi + 90.0))
 
-    def box(half_width, t0, t1, **kw):  # a rectangle along the forward axis, from t0 to t1
+    def box(half_width: float, t0: float, t1: float, **kw: Any) -> None:  # a rectangle along the forward axis, from t0 to t1
         ax.add_patch(
             Polygon([s * half_width * right + t * fwd for s, t in ((-1, t0), (1, t0), (1, t1), (-1, t1))], closed=True, **kw)
         )

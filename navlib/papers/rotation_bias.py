@@ -227,7 +227,7 @@ def tilt_matrix(tilt: ArrayLike) -> Array:
 # --------------------------------------------------------------------------
 
 
-def _unit_axis(axis_b):
+def _unit_axis(axis_b: ArrayLike) -> Array:
     u = as_array(axis_b, "axis_b", shape=(3,))
     if abs(np.linalg.norm(u) - 1) > 1e-9:
         raise ValueError(f"axis_b: expected a unit vector, got norm {np.linalg.norm(u):.6g}")
@@ -635,7 +635,7 @@ def tilt_residuals(
     w_ie = np.zeros((K, 3)) if w_ie_b is None else as_array(w_ie_b, "w_ie_b", tail=(3,), nonempty=True)
     w_ie = broadcast_to(w_ie, "w_ie_b", lead + (K, 3), of="K = starts.size dwells and the trials of w_ib_b")
 
-    def flat(x):
+    def flat(x: Array) -> Array:
         return kernel_array(x.reshape((-1, n, 3)))
 
     r, V, tilt, c, singular = _residual_kernel(
