@@ -550,11 +550,11 @@ class AttitudeResult:
         Covariance after every sample (``quaternion_kf(..., keep_cov=True)``).
     """
 
-    q_bn: np.ndarray
-    gyro_bias: np.ndarray
+    q_bn: Array
+    gyro_bias: Array
     faults: FaultReport
-    P: np.ndarray | None = None
-    P_history: np.ndarray | None = None
+    P: Array | None = None
+    P_history: Array | None = None
 
     @property
     def hpr(self) -> np.ndarray:
