@@ -323,11 +323,8 @@ def savefig(fig: Figure, name: str) -> Path:
 
 
 _INLINE = "module://matplotlib_inline.backend_inline"
-_PNG: dict[str, Any] = {
-    "format": "png",
-    "metadata": {"Software": None},
-    "bbox_inches": "tight",
-}  # no timestamp, no software version
+# No timestamp, no software version.
+_PNG: dict[str, Any] = {"format": "png", "metadata": {"Software": None}, "bbox_inches": "tight"}
 
 
 def _write_png(fig: Figure, name: str) -> Path:
