@@ -18,13 +18,14 @@ export NAVLIB_PROGRESS := 0
 PYTEST_FLAGS ?= -q -ra --durations=10 --nbmake-timeout=1800 -n 2 --dist loadgroup
 
 .DEFAULT_GOAL := help
-.PHONY: help venv reproduce readme docs test lint lab bench strip clean determinism fuzz test-min build-check
+.PHONY: help venv reproduce readme docs test lint typecheck lab bench strip clean determinism fuzz test-min build-check
 
 help:
 	@echo "make reproduce  execute every notebook, write build/ (executed notebooks, figures, results)"
 	@echo "make readme     regenerate the README results section (claims by verdict), quoted numbers and figures from build/"
 	@echo "make test       unit/property tests + every notebook executed by nbmake"
 	@echo "make lint       ruff over the code (also part of make test)"
+	@echo "make typecheck  mypy over navlib/ at the level configured in pyproject.toml [tool.mypy]"
 	@echo "make fuzz       tools/fuzz.py: every public callable with bad and unusual arguments (build/fuzz.json)"
 	@echo "make lab        JupyterLab on notebooks/"
 	@echo "make bench      install bench-only peers (requirements-bench.txt), run bench/run.py"
@@ -97,6 +98,9 @@ test: $(STAMP)
 
 lint: $(STAMP)
 	$(VENV)/bin/ruff check .
+
+typecheck: $(STAMP)
+	$(VENV)/bin/mypy
 
 # Every public callable, every argument mutated (tools/fuzz.py); fails on a bad outcome not documented as by design.
 fuzz: $(STAMP)

@@ -48,6 +48,7 @@ Compiled kernels
 """
 
 import importlib
+from types import ModuleType
 
 __version__ = "0.1.0"
 
@@ -80,7 +81,7 @@ _SUBMODULES = (
 __all__ = [*_SUBMODULES, "__version__"]
 
 
-def __getattr__(name: str):
+def __getattr__(name: str) -> ModuleType:
     # Submodules load on first use (``from navlib import analysis`` or ``navlib.analysis``): a notebook or tool
     # pays only for the modules it needs.
     if name in _SUBMODULES:

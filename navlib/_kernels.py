@@ -102,7 +102,7 @@ def _llvm_fma(typingctx, a, b, c):
 
 @overload(fma)
 def _fma_compiled(a, b, c):
-    return lambda a, b, c: _llvm_fma(a, b, c)
+    return lambda a, b, c: _llvm_fma(a, b, c)  # type: ignore[call-arg]  # compiled: numba passes the typing context
 
 
 @njit(cache=True)

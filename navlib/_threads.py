@@ -26,7 +26,7 @@ def run_chunks(fn: Callable[[int, int], R], n: int) -> list[R]:
     """
     from numba import config  # here: navlib._validate imports this module, and navlib.units must not load numba
 
-    workers = min(n, config.NUMBA_NUM_THREADS)
+    workers = min(n, config.NUMBA_NUM_THREADS)  # type: ignore[attr-defined]  # numba sets it through globals()
     if workers <= 1:
         return [fn(0, n)]
     if workers not in _POOLS:

@@ -15,11 +15,15 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVar
 
 import numpy as np
+from numpy.typing import NDArray
 
-from ._typing import ArrayLike, Dcm, Interval, Quat, Times, Vec3Series
+from ._typing import Array, ArrayLike
+
+_S = TypeVar("_S", bound=np.generic)  # the element type of an array checked and returned as it is
+_F = TypeVar("_F", float, Array)  # a float or float array checked and returned as it is
 
 
 class InputTypeError(TypeError, ValueError):
@@ -46,7 +50,7 @@ _NOT_REAL = {
 }
 
 
-def real(x: ArrayLike, name: str) -> np.ndarray:
+def real(x: object, name: str) -> Array:
     """Return ``x`` as a float64 array, rejecting values that are not real numbers.
 
     Strings (also numeric ones such as ``"1.5"``), complex values (numpy would
@@ -75,7 +79,7 @@ unit conversions) opt out with ``huge=True`` or check their own limit."""
 
 
 def as_array(
-    x: ArrayLike,
+    x: object,
     name: str,
     *,
     tail: tuple[int, ...] = (),
@@ -86,7 +90,7 @@ def as_array(
     huge: bool = False,
     of: str = "",
     nonempty: bool = False,
-) -> np.ndarray:
+) -> Array:
     """Return ``x`` as a float64 array whose trailing shape is ``tail``.
 
     Parameters
@@ -138,7 +142,7 @@ def as_array(
     return arr
 
 
-def _within_limits(arr: np.ndarray, ignore_nan: bool) -> bool:
+def _within_limits(arr: Array, ignore_nan: bool) -> bool:
     """True if every value lies within +-MAX_MAGNITUDE (two reductions, no temporaries); a NaN makes it
     False unless ``ignore_nan``. An empty array is within them."""
     lowest, highest = (np.fmin, np.fmax) if ignore_nan else (np.minimum, np.maximum)
@@ -148,7 +152,7 @@ def _within_limits(arr: np.ndarray, ignore_nan: bool) -> bool:
     )
 
 
-def _magnitude(arr: np.ndarray, name: str) -> None:
+def _magnitude(arr: Array, name: str) -> None:
     """Refuse finite values beyond :data:`MAX_MAGNITUDE`."""
     big = np.abs(arr) > MAX_MAGNITUDE
     if big.any() and np.isfinite(arr[big]).any():
@@ -159,7 +163,7 @@ def _magnitude(arr: np.ndarray, name: str) -> None:
         )
 
 
-def _exact_shape(arr: np.ndarray, name: str, shape: tuple[int | None, ...], of: str = "") -> np.ndarray:
+def _exact_shape(arr: NDArray[_S], name: str, shape: tuple[int | None, ...], of: str = "") -> NDArray[_S]:
     """Return ``arr`` if its shape is ``shape``; a ``None`` entry takes any length, e.g. ``(None, 3)``."""
     if arr.ndim != len(shape) or any(s not in (None, n) for s, n in zip(shape, arr.shape, strict=True)):
         want = "(" + ", ".join("N" if s is None else str(s) for s in shape) + ("," if len(shape) == 1 else "") + ")"
@@ -167,7 +171,7 @@ def _exact_shape(arr: np.ndarray, name: str, shape: tuple[int | None, ...], of: 
     return arr
 
 
-def booleans(x: ArrayLike, name: str, *, shape: tuple[int | None, ...] | None = None, of: str = "") -> np.ndarray:
+def booleans(x: object, name: str, *, shape: tuple[int | None, ...] | None = None, of: str = "") -> NDArray[np.bool_]:
     """Return ``x`` as a boolean array (validity flags, masks), optionally of exact ``shape`` (as in :func:`as_array`).
 
     Only booleans are accepted: numbers (``0``/``1``, NaN) are refused with
@@ -182,9 +186,7 @@ def booleans(x: ArrayLike, name: str, *, shape: tuple[int | None, ...] | None = 
     return arr if shape is None else _exact_shape(arr, name, shape, of)
 
 
-def in_range(
-    arr: np.ndarray, name: str, lo: float, hi: float, unit: str = "", *, lo_open: bool = False, hi_open: bool = False
-) -> np.ndarray:
+def in_range(arr: _F, name: str, lo: float, hi: float, unit: str = "", *, lo_open: bool = False, hi_open: bool = False) -> _F:
     """Check ``lo <= arr <= hi`` (with optional open ends) elementwise."""
     ok_lo = arr > lo if lo_open else arr >= lo
     ok_hi = arr < hi if hi_open else arr <= hi
@@ -198,7 +200,7 @@ def in_range(
     return arr
 
 
-def pitch_roll(pitch: ArrayLike, roll: ArrayLike, names: tuple[str, str] = ("pitch", "roll")) -> tuple[np.ndarray, np.ndarray]:
+def pitch_roll(pitch: object, roll: object, names: tuple[str, str] = ("pitch", "roll")) -> tuple[Array, Array]:
     """Pitch within [-pi/2, pi/2] and roll within [-pi, pi] (rad); outside, degrees were most likely passed."""
     out = []
     for x, name, limit in ((pitch, names[0], np.pi / 2), (roll, names[1], np.pi)):
@@ -212,14 +214,14 @@ def pitch_roll(pitch: ArrayLike, roll: ArrayLike, names: tuple[str, str] = ("pit
     return out[0], out[1]
 
 
-def euler_angles(hpr: ArrayLike, name: str = "hpr") -> np.ndarray:
+def euler_angles(hpr: object, name: str = "hpr") -> Array:
     """``[heading, pitch, roll]`` (..., 3) in rad, its pitch and roll checked by :func:`pitch_roll`."""
     a = as_array(hpr, name, tail=(3,))
     pitch_roll(a[..., 1], a[..., 2], (f"{name}[..., 1] (pitch)", f"{name}[..., 2] (roll)"))
     return a
 
 
-def positive(x: ArrayLike, name: str, *, allow_zero: bool = False, **shape: Any) -> np.ndarray:
+def positive(x: object, name: str, *, allow_zero: bool = False, **shape: Any) -> Array:
     """Return ``x`` as a finite float array that is > 0 (or >= 0); ``shape`` takes the shape options of
     :func:`as_array` (``tail``, ``shape``, ``min_ndim``, ``nonempty``, ``of``)."""
     arr = as_array(x, name, **shape)
@@ -229,7 +231,7 @@ def positive(x: ArrayLike, name: str, *, allow_zero: bool = False, **shape: Any)
     return arr
 
 
-def latitude(lat: ArrayLike, name: str = "lat", deg: bool = False, *, nonempty: bool = False) -> np.ndarray:
+def latitude(lat: object, name: str = "lat", deg: bool = False, *, nonempty: bool = False) -> Array:
     """Validate a geodetic latitude (rad, or deg with ``deg``) and return it in radians; ``nonempty`` as in
     :func:`as_array`."""
     arr = as_array(lat, name, nonempty=nonempty)
@@ -244,7 +246,7 @@ def generator(rng: np.random.Generator, name: str = "rng") -> np.random.Generato
     return instance(rng, name, np.random.Generator, "a numpy.random.Generator")
 
 
-def time_axis(t: Times, name: str = "time", *, increasing: bool = True, min_samples: int = 2) -> np.ndarray:
+def time_axis(t: object, name: str = "time", *, increasing: bool = True, min_samples: int = 2) -> Array:
     """Return a 1-D time vector (s) of at least ``min_samples`` samples, strictly increasing unless ``increasing=False``."""
     arr = as_array(t, name)
     if arr.ndim != 1 or arr.size < min_samples:
@@ -260,7 +262,7 @@ ORTHO_TOL = 1e-6
 """Largest ``|C^T C - I|`` accepted for a rotation matrix."""
 
 
-def as_dcm(C: Dcm, name: str = "C_bn", **shape: Any) -> np.ndarray:
+def as_dcm(C: object, name: str = "C_bn", **shape: Any) -> Array:
     """Return ``C`` as float rotation matrices, shape (..., 3, 3): orthonormal to ``ORTHO_TOL``, det +1.
 
     ``shape`` takes the shape options of :func:`as_array`, e.g. ``shape=(3, 3)`` for one matrix."""
@@ -275,7 +277,7 @@ QUAT_MIN_NORM = 1e-12
 """Smallest quaternion norm :func:`as_quat` accepts: a zero quaternion is no rotation."""
 
 
-def as_quat(q: Quat, name: str = "q", *, normalize: bool = True, **shape: Any) -> np.ndarray:
+def as_quat(q: object, name: str = "q", *, normalize: bool = True, **shape: Any) -> Array:
     """Return ``q`` as unit quaternions, shape (..., 4), scalar first; a zero quaternion raises.
 
     Quaternions of any finite magnitude are normalised exactly. With ``normalize=False`` the values are
@@ -295,7 +297,7 @@ def as_quat(q: Quat, name: str = "q", *, normalize: bool = True, **shape: Any) -
 
 
 def scalar(
-    x: ArrayLike,
+    x: object,
     name: str,
     *,
     positive: bool = False,
@@ -334,12 +336,12 @@ def numbers(
 ) -> None:
     """Check the named attributes of ``obj`` (a model's fields) as scalars, each named in its message: > 0,
     >= 0 or any real number; those in ``infinite`` may also be inf (a full-scale range without a limit)."""
-    for names, sign in ((non_negative, {"allow_zero": True}), (positive, {"positive": True}), (real, {})):
+    for names, above, zero in ((non_negative, False, True), (positive, True, False), (real, False, False)):
         for name in names:
-            scalar(getattr(obj, name), name, allow_inf=name in infinite, **sign)
+            scalar(getattr(obj, name), name, positive=above, allow_zero=zero, allow_inf=name in infinite)
 
 
-def indices(x: ArrayLike, name: str) -> np.ndarray:
+def indices(x: object, name: str) -> NDArray[Any]:
     """``x`` as an array (of sample indices or trial ids, checked by the caller), a ragged sequence refused by name."""
     try:
         return np.asarray(x)
@@ -347,14 +349,14 @@ def indices(x: ArrayLike, name: str) -> np.ndarray:
         raise ValueError(f"{name}: expected an array of integer indices, got a ragged sequence") from None
 
 
-def integer(x: int, name: str, *, minimum: int | None = 1) -> int:
+def integer(x: object, name: str, *, minimum: int | None = 1) -> int:
     """Return ``x`` as an int >= ``minimum`` (any int with ``minimum=None``). ``bool`` is refused (``True`` is not a count)."""
     if isinstance(x, (bool, np.bool_)) or not isinstance(x, (int, np.integer)) or minimum is not None and x < minimum:
         raise ValueError(f"{name}: expected an integer{'' if minimum is None else f' >= {minimum}'}, got {x!r}")
     return int(x)
 
 
-def flag(x: bool, name: str) -> bool:
+def flag(x: object, name: str) -> bool:
     """Return ``x`` as a bool; only ``True``/``False`` (also numpy's) are accepted."""
     if not isinstance(x, (bool, np.bool_)):
         raise ValueError(f"{name}: expected True or False, got {x!r}")
@@ -402,14 +404,14 @@ def instance(x: Any, name: str, cls: type | tuple[type, ...], what: str, *, erro
     return x
 
 
-def same_shape(arr: np.ndarray, name: str, shape: tuple[int, ...], of: str = "") -> np.ndarray:
+def same_shape(arr: NDArray[_S], name: str, shape: tuple[int, ...], of: str = "") -> NDArray[_S]:
     """Return ``arr`` if its shape is ``shape`` (the shape of argument ``of``, when given, for the message)."""
     if arr.shape != tuple(shape):
         raise ValueError(f"{name}: expected {'the shape of ' + of if of else 'shape'} {tuple(shape)}, got {arr.shape}")
     return arr
 
 
-def last_axis(arr: np.ndarray, name: str, n: int, of: str = "") -> np.ndarray:
+def last_axis(arr: NDArray[_S], name: str, n: int, of: str = "") -> NDArray[_S]:
     """Return ``arr`` if its last axis holds ``n`` samples (those of argument ``of``, when given, for the message).
 
     For series of shape (..., N) that go with a time axis of N samples.
@@ -419,7 +421,7 @@ def last_axis(arr: np.ndarray, name: str, n: int, of: str = "") -> np.ndarray:
     return arr
 
 
-def broadcast(*arrays: np.ndarray, name: str, of: str = "") -> list[np.ndarray]:
+def broadcast(*arrays: Array, name: str, of: str = "") -> list[Array]:
     """Return ``arrays`` broadcast against each other (``np.broadcast_arrays``); ``name`` is blamed if they do not.
 
     ``of`` names the arrays in the message when ``name`` does not (e.g. ``name="f_b", of="w_ib_b, f_b"``).
@@ -431,7 +433,7 @@ def broadcast(*arrays: np.ndarray, name: str, of: str = "") -> list[np.ndarray]:
         raise ValueError(f"{name}: shapes {shapes}{f' (of {of})' if of else ''} do not broadcast") from None
 
 
-def broadcast_to(arr: np.ndarray, name: str, shape: tuple[int, ...], of: str = "") -> np.ndarray:
+def broadcast_to(arr: NDArray[_S], name: str, shape: tuple[int, ...], of: str = "") -> NDArray[_S]:
     """``np.broadcast_to(arr, shape)``, blaming ``name`` when ``arr`` does not broadcast to ``shape`` (set by ``of``)."""
     try:
         return np.broadcast_to(arr, shape)
@@ -457,7 +459,7 @@ def ellipsoid(x: Any, name: str = "ellipsoid") -> Any:
     return x
 
 
-def range_limit(x: float | None, name: str) -> float:
+def range_limit(x: object, name: str) -> float:
     """A device's full-scale range (same unit as its samples): a positive value, or ``None``/inf for no limit."""
     return np.inf if x is None else scalar(x, name, positive=True, allow_inf=True)
 
@@ -466,7 +468,7 @@ MIN_INTERVAL = 1e-9
 """Shortest sample interval (s) :func:`sample_intervals` accepts."""
 
 
-def interval(dt: float, name: str = "dt") -> float:
+def interval(dt: object, name: str = "dt") -> float:
     """A fixed sample interval (s): a positive scalar of at least :data:`MIN_INTERVAL`."""
     value = scalar(dt, name, positive=True)
     if value < MIN_INTERVAL:
@@ -482,7 +484,7 @@ MAX_TURN_PER_SAMPLE = 1.0
 attitude updates and linearised transitions are meaningless beyond it (2000 deg/s at 100 Hz is 0.35 rad)."""
 
 
-def small_turns(w: np.ndarray, dts: np.ndarray, name: str = "dt") -> None:
+def small_turns(w: Array, dts: Array, name: str = "dt") -> None:
     """Refuse intervals ``dts`` (N,) over which the gyro ``w`` (..., N, 3) turns more than :data:`MAX_TURN_PER_SAMPLE`."""
     if dts.size:  # a bound from two reductions settles the common case
         peak = max(-np.fmin.reduce(w, axis=None, initial=0.0), np.fmax.reduce(w, axis=None, initial=0.0))
@@ -500,7 +502,7 @@ def refuse_turn(largest: float, name: str = "dt") -> None:
         )
 
 
-def sample_intervals(dt: Interval, n: int, name: str = "dt") -> np.ndarray:
+def sample_intervals(dt: object, n: int, name: str = "dt") -> Array:
     """Per-sample intervals of shape (n,) from a positive scalar or an (n,) array of positive intervals (s).
 
     This is navlib's one reading of ``dt``: every filter accepts a fixed interval
@@ -532,8 +534,8 @@ def kernel_array(x: ArrayLike, dtype: Any = None) -> np.ndarray:
 
 
 def imu_samples(
-    w_ib_b: Vec3Series, f_b: Vec3Series, *, allow_nan: bool = True, shape: tuple[int | None, ...] | None = None
-) -> tuple[np.ndarray, np.ndarray]:
+    w_ib_b: object, f_b: object, *, allow_nan: bool = True, shape: tuple[int | None, ...] | None = None
+) -> tuple[Array, Array]:
     """Gyro and accelerometer samples, each (..., N, 3) with the same shape; NaN marks a dropout.
 
     ``shape`` fixes the shape exactly (as in :func:`as_array`), e.g. ``(None, 3)`` for one record;

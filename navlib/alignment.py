@@ -25,6 +25,7 @@ import warnings
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import NDArray
 
 from . import _kernels, attitude, earth
 from ._typing import Angles, Array, ArrayLike, Dcm, Vec3, Vec3Series
@@ -252,7 +253,7 @@ class StaticWindow:
     faults: FaultReport
 
 
-def _outliers(x, valid, k):
+def _outliers(x: Array, valid: NDArray[np.bool_], k: float) -> NDArray[np.bool_]:
     """Samples more than ``k`` robust sigmas from the median of the valid samples (any component).
 
     The robust sigma is :func:`navlib._kernels.robust_sigma`, ``1.4826 max(MAD, q / 2)`` per component,
@@ -275,7 +276,7 @@ def _outliers(x, valid, k):
     return valid & np.any(np.abs(x - med) > thresh, axis=-1)
 
 
-def _masked_mean(x, used, n_used):
+def _masked_mean(x: Array, used: NDArray[np.bool_], n_used: NDArray[np.intp]) -> Array:
     if used.all():
         return x.mean(-2)  # the fault-free path, bit-identical to a plain mean
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -479,7 +480,7 @@ def static_means(
     return StaticWindow(w_mean, f_mean, n, nu_g, nu_a, faults)
 
 
-def _reference_triad(g_n, w_ie_n):
+def _reference_triad(g_n: Array, w_ie_n: Array) -> Array:
     a = g_n
     b = np.cross(g_n, w_ie_n)
     return np.stack([a, b, np.cross(b, a)], -1)

@@ -163,7 +163,7 @@ def _allan_deviation(x: np.ndarray, dt: float, taus: ArrayLike | None) -> tuple[
     mean_sq = _mean_square_second_difference(theta.reshape(-1, n + 1, x.shape[-1]), m)
     tau = m * dt
     out = np.sqrt(mean_sq / (2 * tau * tau)[:, None]).reshape(x.shape[:-2] + (m.size, x.shape[-1]))
-    return tau, (out[:, 0] if one_series else out)
+    return tau, (out[:, 0] if one_series else out)  # type: ignore[return-value]  # int64 * float is float64; numpy's stubs widen it
 
 
 @njit(cache=True)
@@ -506,9 +506,9 @@ def expanding_std(x: ArrayLike) -> Array:
     array([0.        , 1.        , 0.94280904, 1.        ])
     """
     x = as_array(x, "x", min_ndim=1, shape=(None,))
-    x = x - x[0]  # conditioning
-    n = np.arange(1, x.size + 1)
-    m1, m2 = np.cumsum(x) / n, np.cumsum(x * x) / n
+    d = x - x[0]  # conditioning
+    n = np.arange(1, d.size + 1)
+    m1, m2 = np.cumsum(d) / n, np.cumsum(d * d) / n
     return np.sqrt(np.maximum(m2 - m1 * m1, 0.0))
 
 
@@ -658,10 +658,8 @@ def _moving_mean(x: np.ndarray, n: int) -> np.ndarray:
 # --------------------------------------------------------------------------
 
 
-def _blocks(V, R=None, allow_nan=False, *, with_r=True):
-    V = as_array(V, "V", min_ndim=3, allow_nan=allow_nan)
-    if not with_r:
-        return V
+def _blocks(V: ArrayLike, R: ArrayLike) -> tuple[Array, Array]:
+    V = as_array(V, "V", min_ndim=3)
     m = V.shape[-2]
     R = as_array(R, "R", min_ndim=3)
     if R.shape[-2:] != (m, m):
@@ -710,7 +708,7 @@ def condition_number(V: ArrayLike) -> Array:
     >>> float(analysis.condition_number(V)), float(analysis.condition_number(V[:1]))   # the second alone misses z
     (1.4142135623730951, inf)
     """
-    V = _blocks(V, allow_nan=True, with_r=False)
+    V = as_array(V, "V", min_ndim=3, allow_nan=True)
     ok = np.all(np.isfinite(V), axis=(-2, -1))
     Vz = np.where(ok[..., None, None], V, 0.0)
     A = np.einsum("...kij,...kil->...jl", Vz, Vz)
@@ -935,4 +933,5 @@ def orientation_errors(
     total = 2 * np.arccos(np.clip(w, 0.0, 1.0))
     heading = 2 * np.arctan2(np.abs(z), w)
     inclination = 2 * np.arccos(np.clip(np.sqrt(w * w + z * z), 0.0, 1.0))
-    return OrientationErrors(*(float(np.sqrt(np.mean(x * x))) for x in (total, heading, inclination)), offset, int(use.sum()))
+    total_rms, heading_rms, inclination_rms = (float(np.sqrt(np.mean(x * x))) for x in (total, heading, inclination))
+    return OrientationErrors(total_rms, heading_rms, inclination_rms, offset, int(use.sum()))

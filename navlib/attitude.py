@@ -28,7 +28,7 @@ import numpy as np
 from numba import njit
 
 from ._kernels import quat_to_dcm_into
-from ._typing import Angles, Array, Dcm, Quat, Vec3
+from ._typing import Angles, Array, ArrayLike, Dcm, Quat, Vec3
 from ._validate import as_array, as_dcm, as_quat, flag, in_range
 
 __all__ = [
@@ -185,7 +185,7 @@ def orthonormalize(C: Dcm) -> Array:
     return U @ D @ Vt
 
 
-def _as_hpr(hpr, deg: bool, name: str = "hpr") -> np.ndarray:
+def _as_hpr(hpr: ArrayLike, deg: bool, name: str = "hpr") -> Array:
     hpr = as_array(hpr, name, tail=(3,))
     if flag(deg, "deg"):
         hpr = np.deg2rad(hpr)
@@ -252,7 +252,7 @@ def dcm_to_euler(C_bn: Dcm, deg: bool = False) -> Array:
     return _dcm_to_euler(as_dcm(C_bn), flag(deg, "deg"))
 
 
-def _dcm_to_euler(C, deg):
+def _dcm_to_euler(C: Array, deg: bool) -> Array:
     """:func:`dcm_to_euler` of rotation matrices already known to be valid (no checks)."""
     c31, c32, c33 = C[..., 2, 0], C[..., 2, 1], C[..., 2, 2]
     horizontal = np.hypot(c31, c33)
@@ -299,7 +299,7 @@ def euler_to_quat(hpr: Angles, deg: bool = False) -> Array:
     return _positive_scalar(q)
 
 
-def _positive_scalar(q):
+def _positive_scalar(q: Array) -> Array:
     return np.where(q[..., :1] < 0, -q, q)
 
 

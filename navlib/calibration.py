@@ -96,7 +96,7 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from . import analysis, earth, units
-from ._typing import Array, Dcm, Interval, Vec3, Vec3Series
+from ._typing import Array, ArrayLike, Dcm, Interval, Vec3, Vec3Series
 from ._validate import as_array, as_dcm, choice, flag, imu_samples, sample_intervals, scalar
 from .imu import ImuSamples, unpack
 from .sensors import ImuModel, TriadErrors
@@ -139,7 +139,7 @@ MIN_RECORD = 100
 # --------------------------------------------------------------------------
 
 
-def _quality(record, names: tuple[str, ...]) -> None:
+def _quality(record: object, names: tuple[str, ...]) -> None:
     """A fit's quality figures: non-negative scalars, NaN when not computed, inf for a singular fit's condition."""
     for name in names:
         object.__setattr__(
@@ -188,7 +188,7 @@ class MagCalibration:
     norm_spread_after: float = np.nan
     condition: float = np.nan
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         object.__setattr__(self, "offset", as_array(self.offset, "offset", shape=(3,)))
         W = as_array(self.soft_iron, "soft_iron", shape=(3, 3))
         if not np.allclose(W, W.T, rtol=1e-9, atol=0.0) or np.linalg.eigvalsh(W)[0] <= 0:
@@ -333,7 +333,7 @@ def fit_magnetometer(
     )
 
 
-def _field_range(field_range) -> tuple[float, float]:
+def _field_range(field_range: ArrayLike) -> tuple[float, float]:
     lo, hi = as_array(field_range, "field_range", shape=(2,))
     if not 0 < lo < hi:
         raise ValueError(f"field_range: expected (low, high) with 0 < low < high, got ({lo:g}, {hi:g})")
@@ -402,7 +402,7 @@ class AccelCalibration:
     residual: float = np.nan
     condition: float = np.nan
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         object.__setattr__(self, "bias", as_array(self.bias, "bias", shape=(3,)))
         S = as_array(self.matrix, "matrix", shape=(3, 3))
         if np.any(np.triu(S, 1) != 0) or np.any(np.diag(S) <= 0):

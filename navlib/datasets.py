@@ -30,8 +30,10 @@ from __future__ import annotations
 import os
 import re
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from . import attitude, geodesy
 from ._validate import file_path, text
@@ -78,6 +80,7 @@ class ReferenceTrial:
     @property
     def m_b(self) -> np.ndarray:
         """Magnetometer samples (uT), shape (N, 3)."""
+        assert self.recording.m_b is not None  # the loader requires the "mag" array
         return self.recording.m_b
 
     @property
@@ -86,7 +89,7 @@ class ReferenceTrial:
         return 1.0 / float(np.median(self.recording.dt))
 
 
-def read_broad(path: str | os.PathLike) -> ReferenceTrial:
+def read_broad(path: str | os.PathLike[str]) -> ReferenceTrial:
     """Read one BROAD trial converted by ``tools/broad_to_npz.py``.
 
     Parameters
@@ -239,7 +242,7 @@ def _ecef_to_enu(lat: np.ndarray, lon: np.ndarray) -> np.ndarray:
     )
 
 
-def read_comma2k19(folder: str | os.PathLike) -> DriveLog:
+def read_comma2k19(folder: str | os.PathLike[str]) -> DriveLog:
     """Read one comma2k19 segment as committed in data/real/comma2k19/ (the source's ``.npy`` logs, renamed
     ``<sensor>.<log>.<t|value>.npy`` and ``global_pose.<name>.npy``).
 
@@ -262,7 +265,7 @@ def read_comma2k19(folder: str | os.PathLike) -> DriveLog:
     """
     folder = file_path(folder, "folder")
 
-    def load(name):
+    def load(name: str) -> NDArray[Any]:
         path = folder / f"{name}.npy"
         if not path.is_file():
             raise FileNotFoundError(f"folder: {folder} has no {path.name} (a comma2k19 segment as in data/real/comma2k19/)")

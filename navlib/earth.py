@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import functools
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -71,7 +72,7 @@ class Ellipsoid:
     GM: float
     omega: float
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         text(self.name, "name")
         for key, lo, hi in (("a", 6e6, 7e6), ("f", 0.0, 0.01), ("GM", 3e14, 5e14), ("omega", 0.0, 1e-4)):
             in_range(scalar(getattr(self, key), key), key, lo, hi)  # an Earth-like value
@@ -302,7 +303,7 @@ _WMM_MODELS = [
 
 
 @functools.cache
-def _geomag(coefficients_file: str):
+def _geomag(coefficients_file: str) -> Any:
     from pygeomag import GeoMag  # imported lazily: only magnetometer users need it
 
     return GeoMag(coefficients_file=coefficients_file)

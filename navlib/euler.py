@@ -25,7 +25,7 @@ PITCH_LIMIT = np.deg2rad(89.0)
 _RK4_ANGLE2 = 1e-6  # squared step angle (rad^2) above which integrate_euler uses RK4
 
 
-def _hpr(hpr, name="hpr"):
+def _hpr(hpr: ArrayLike, name: str = "hpr") -> Array:
     hpr = as_array(hpr, name, tail=(3,), nonempty=True)
     check_pitch(hpr[..., 1], f"{name}[..., 1] (pitch)")
     return hpr

@@ -19,7 +19,10 @@ Faults covered (navlib's robustness suite, ``tests/faults/``):
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
+from numpy.typing import NDArray
 
 from . import attitude, earth
 from ._typing import Angles, Array, ArrayLike, Times, Vec3Series
@@ -38,16 +41,16 @@ __all__ = [
 ]
 
 
-def _samples(x, name):
+def _samples(x: ArrayLike, name: str) -> Array:
     """Series with time on axis 0 of the sample dimension: (..., N) or (..., N, k) -> N on axis -2 if 2-D+."""
     return as_array(x, name, allow_nan=True, min_ndim=1)
 
 
-def _time_axis_len(a):
+def _time_axis_len(a: NDArray[Any]) -> int:
     return a.shape[-2] if a.ndim >= 2 else a.shape[-1]
 
 
-def _hits(rng: np.random.Generator, fraction: float, n: int) -> np.ndarray:
+def _hits(rng: np.random.Generator, fraction: float, n: int) -> NDArray[np.bool_]:
     """Which of ``n`` samples a fault hits, each with probability ``fraction`` (both arguments checked)."""
     generator(rng)
     return rng.random(n) < scalar(fraction, "fraction", within=(0.0, 1.0))
@@ -309,5 +312,5 @@ def saturate(x: Vec3Series, full_scale: float) -> tuple[Array, np.ndarray]:
     fs = scalar(full_scale, "full_scale", positive=True)
     clipped = np.abs(x) > fs
     if x.ndim >= 2:
-        clipped = clipped.any(axis=-1)
+        clipped = np.any(clipped, axis=-1)
     return np.clip(x, -fs, fs), clipped

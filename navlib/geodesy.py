@@ -99,12 +99,12 @@ def _max_offset(max_offset_deg):
 # --------------------------------------------------------------------------
 
 
-def _width(width) -> int:
+def _width(width: object) -> int:
     """The zone width (deg) as an int: 3 or 6."""
     return int(choice(width, "width", ZONE_WIDTHS))
 
 
-def _lon_deg(lon, deg: bool, name: str = "lon") -> np.ndarray:
+def _lon_deg(lon: ArrayLike, deg: bool, name: str = "lon") -> Array:
     arr = as_array(lon, name, nonempty=True)
     return arr if flag(deg, "deg") else np.rad2deg(arr)
 
@@ -136,7 +136,7 @@ def zone(lon: ArrayLike, width: int = 3, deg: bool = False) -> np.ndarray:
     return _zone(_lon_deg(lon, deg), _width(width))
 
 
-def _zone(lon_deg, w: int) -> np.ndarray:
+def _zone(lon_deg: Array, w: int) -> np.ndarray:
     """:func:`zone` of checked longitudes (deg) and width."""
     L = np.mod(lon_deg, 360.0)
     n = np.floor((L + 1.5) / 3.0) if w == 3 else np.floor(L / 6.0) + 1
@@ -164,7 +164,7 @@ def central_meridian(zone_number: ArrayLike, width: int = 3, deg: bool = False) 
     return _central_meridian(zone_number, _width(width), deg, "zone_number")
 
 
-def _central_meridian(zone_number, w: int, deg: bool, name: str):
+def _central_meridian(zone_number: object, w: int, deg: bool, name: str) -> Array:
     n = as_array(zone_number, name, nonempty=True)
     if np.any(n != np.round(n)):
         raise ValueError(f"{name}: expected integer zone numbers")
@@ -210,7 +210,7 @@ def _resolve_lon0(lon_deg, zone_number, lon0, w, deg, max_offset_deg):
 
 
 @functools.lru_cache(maxsize=16)
-def _kruger(a: float, f: float):
+def _kruger(a: float, f: float) -> tuple[float, float, tuple[float, ...], tuple[float, ...]]:
     """Rectifying radius A, eccentricity e and the alpha/beta coefficients to order n^6 (tuples of 6 floats)."""
     n = f / (2 - f)
     n2, n3, n4, n5, n6 = n**2, n**3, n**4, n**5, n**6
@@ -397,7 +397,7 @@ def _conformal_tan(tau, e):
     return taup.reshape(np.shape(tau))[()]
 
 
-def _geodetic_tan(taup, e, iterations: int = 4):
+def _geodetic_tan(taup: Array, e: float, iterations: int = 4) -> Array:
     """Invert :func:`_conformal_tan` by Newton's method (Karney eqs. 19–21); 4 steps reach 1e-16."""
     e2m = 1 - e * e
     tau = taup / e2m
@@ -457,12 +457,10 @@ def _inverse(xi, eta, e, beta):
             fl[i : i + _CHUNK], fd[i : i + _CHUNK] = _inverse(fx[i : i + _CHUNK], fe[i : i + _CHUNK], e, beta)
         return lat, dlon
     xip, etap = np.empty(xi.shape), np.empty(xi.shape)
-    _series_inverse(
-        *(a.reshape(-1) for a in (xi, eta, np.sin(2 * xi), np.cos(2 * xi), np.sinh(2 * eta), np.cosh(2 * eta))),
-        beta,
-        xip.reshape(-1),
-        etap.reshape(-1),
+    xi_f, eta_f, sin2xi, cos2xi, sinh2eta, cosh2eta = (
+        a.reshape(-1) for a in (xi, eta, np.sin(2 * xi), np.cos(2 * xi), np.sinh(2 * eta), np.cosh(2 * eta))
     )
+    _series_inverse(xi_f, eta_f, sin2xi, cos2xi, sinh2eta, cosh2eta, beta, xip.reshape(-1), etap.reshape(-1))
     sinh_etap, cos_xip = np.sinh(etap), np.cos(xip)
     taup = np.sin(xip) / np.sqrt(sinh_etap * sinh_etap + cos_xip * cos_xip)
     return np.arctan(_geodetic_tan(taup, e)), np.arctan2(sinh_etap, cos_xip)
@@ -606,7 +604,7 @@ def gk2geodetic(
     return (np.rad2deg(lat), lon_deg) if flag(deg, "deg") else (lat, np.deg2rad(lon_deg))
 
 
-def _grid(ellipsoid, k0, false_easting, false_northing) -> tuple[float, float, float]:
+def _grid(ellipsoid: Ellipsoid, k0: float, false_easting: float, false_northing: float) -> tuple[float, float, float]:
     """The grid of :func:`geodetic2gk` and :func:`gk2geodetic`: ellipsoid checked, k0 and the false offsets."""
     ellipsoid_(ellipsoid)
     return scalar(k0, "k0", within=_K0_RANGE), scalar(false_easting, "false_easting"), scalar(false_northing, "false_northing")
@@ -802,7 +800,9 @@ def geodetic2ecef(
     return _ecef(*_geodetic(lat, lon, h, deg), ellipsoid)
 
 
-def _geodetic(lat, lon, h, deg, names=("lat", "lon", "h")):
+def _geodetic(
+    lat: ArrayLike, lon: ArrayLike, h: ArrayLike, deg: bool, names: tuple[str, str, str] = ("lat", "lon", "h")
+) -> tuple[Array, Array, Array]:
     """Latitude (rad), longitude (rad) and height (m) of geodetic points, each checked under its name."""
     lat_rad, lon_deg = _validate_lat_lon(lat, lon, deg, names[:2])
     h = as_array(h, names[2], nonempty=True)
@@ -810,7 +810,7 @@ def _geodetic(lat, lon, h, deg, names=("lat", "lon", "h")):
     return lat_rad, np.deg2rad(lon_deg), h
 
 
-def _ecef(lat, lon, h, ellipsoid):
+def _ecef(lat: Array, lon: Array, h: Array, ellipsoid: Ellipsoid) -> tuple[Array, Array, Array]:
     """:func:`geodetic2ecef` of checked points (rad, rad, m)."""
     R_N = ellipsoid.a / np.sqrt(1 - ellipsoid.e2 * np.sin(lat) ** 2)
     r = (R_N + h) * np.cos(lat)
@@ -926,7 +926,14 @@ def enu2geodetic(
     return _local2geodetic((e, n, u), ("e", "n", "u"), 1.0, (lat0, lon0, h0), ellipsoid, deg)
 
 
-def _local2geodetic(local, names, up, origin, ellipsoid, deg):
+def _local2geodetic(
+    local: tuple[ArrayLike, ArrayLike, ArrayLike],
+    names: tuple[str, str, str],
+    up: float,
+    origin: tuple[ArrayLike, ArrayLike, ArrayLike],
+    ellipsoid: Ellipsoid,
+    deg: bool,
+) -> tuple[Array, Array, Array]:
     """Geodetic points of local coordinates ``local`` (east, north, up or down: ``up`` = 1.0 or -1.0)
     about ``origin`` (lat0, lon0, h0), each argument checked under its name."""
     ellipsoid_(ellipsoid)

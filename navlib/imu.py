@@ -14,11 +14,12 @@ take one in place of ``w_ib_b`` with ``f_b`` and ``dt`` left out (:func:`unpack`
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import overload
 
 import numpy as np
 
-from ._typing import Interval, Times, Vec3Series
-from ._validate import imu_samples, integer, range_limit, sample_intervals, scalar, time_axis
+from ._typing import Array, Interval, Times, Vec3Series
+from ._validate import imu_samples, instance, integer, range_limit, sample_intervals, scalar, time_axis
 
 __all__ = ["SensorLimits", "ImuSamples", "unpack", "JUMP_FACTOR", "STUCK_DURATION"]
 
@@ -89,7 +90,7 @@ class SensorLimits:
     freefall_time: float = 0.05
     max_dt: float | None = None
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         for name in ("full_scale_gyro", "full_scale_accel", "full_scale_mag"):
             object.__setattr__(self, name, range_limit(getattr(self, name), name))
         if isinstance(self.stuck_run, str):
@@ -113,12 +114,12 @@ class SensorLimits:
 
     def stuck_samples(self, typical_dt: float) -> int:
         """``stuck_run`` in samples at the typical (median) interval ``typical_dt`` (s); 0: no stuck check."""
-        if self.stuck_run == "auto":
+        if isinstance(self.stuck_run, str):  # "auto", the one string __post_init__ accepts
             return max(5, int(np.ceil(STUCK_DURATION / typical_dt - 1e-6)))  # 1e-6: a float32 dt gives the same run
         return self.stuck_run or 0
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class ImuSamples:
     """Gyro and accelerometer samples with their intervals and the sensors' limits, validated on construction.
 
@@ -141,20 +142,21 @@ class ImuSamples:
     ((5, 3), array([0.01, 0.01, 0.01, 0.01, 0.01]))
     """
 
-    w_ib_b: np.ndarray
-    f_b: np.ndarray
-    dt: Interval
-    limits: SensorLimits | None = None
+    w_ib_b: Array
+    f_b: Array
+    dt: Array
+    limits: SensorLimits
 
-    def __post_init__(self):
-        w, f = imu_samples(self.w_ib_b, self.f_b)
+    # Written out (init=False) so that it takes array_like samples and an optional limits, while the fields
+    # are typed as what they hold: the checked arrays and a SensorLimits.
+    def __init__(self, w_ib_b: Vec3Series, f_b: Vec3Series, dt: Interval, limits: SensorLimits | None = None) -> None:
+        w, f = imu_samples(w_ib_b, f_b)
         object.__setattr__(self, "w_ib_b", w)
         object.__setattr__(self, "f_b", f)
-        object.__setattr__(self, "dt", sample_intervals(self.dt, w.shape[-2]))
-        if self.limits is None:
-            object.__setattr__(self, "limits", SensorLimits())
-        elif not isinstance(self.limits, SensorLimits):
-            raise TypeError(f"limits: expected a SensorLimits, got {type(self.limits).__name__}")
+        object.__setattr__(self, "dt", sample_intervals(dt, w.shape[-2]))
+        if limits is not None:
+            instance(limits, "limits", SensorLimits, "a SensorLimits", error=TypeError)
+        object.__setattr__(self, "limits", SensorLimits() if limits is None else limits)
 
     @classmethod
     def from_times(cls, time: Times, w_ib_b: Vec3Series, f_b: Vec3Series, limits: SensorLimits | None = None) -> ImuSamples:
@@ -167,19 +169,35 @@ class ImuSamples:
         return self.w_ib_b.shape[-2]
 
 
-def _one(name: str, given, held: float):
+def _one(name: str, given: float | None, held: float) -> float | None:
     if given is not None and np.isfinite(held):
         raise ValueError(f"{name}: given twice (the ImuSamples holds it)")
     return given if given is not None else (None if np.isinf(held) else held)
 
 
+@overload
+def unpack(
+    w_ib_b: ImuSamples,
+    f_b: Vec3Series | None = None,
+    dt: Interval | None = None,
+    full_scale_gyro: float | None = None,
+    full_scale_accel: float | None = None,
+) -> tuple[Array, Array, Array, float | None, float | None]: ...
+@overload
+def unpack(
+    w_ib_b: Vec3Series,
+    f_b: Vec3Series | None = None,
+    dt: Interval | None = None,
+    full_scale_gyro: float | None = None,
+    full_scale_accel: float | None = None,
+) -> tuple[Vec3Series, Vec3Series, Interval, float | None, float | None]: ...
 def unpack(
     w_ib_b: Vec3Series | ImuSamples,
     f_b: Vec3Series | None = None,
     dt: Interval | None = None,
     full_scale_gyro: float | None = None,
     full_scale_accel: float | None = None,
-) -> tuple:
+) -> tuple[Vec3Series, Vec3Series, Interval, float | None, float | None]:
     """``(w_ib_b, f_b, dt, full_scale_gyro, full_scale_accel)`` from an :class:`ImuSamples` or raw arguments.
 
     For the integrators and detectors that take either. With an ImuSamples, ``f_b`` and ``dt`` must be None
@@ -206,7 +224,6 @@ def unpack(
             _one("full_scale_gyro", full_scale_gyro, lim.full_scale_gyro),
             _one("full_scale_accel", full_scale_accel, lim.full_scale_accel),
         )
-    for name, value in (("f_b", f_b), ("dt", dt)):
-        if value is None:
-            raise ValueError(f"{name}: required (or pass an ImuSamples as w_ib_b)")
+    if f_b is None or dt is None:
+        raise ValueError(f"{'f_b' if f_b is None else 'dt'}: required (or pass an ImuSamples as w_ib_b)")
     return w_ib_b, f_b, dt, full_scale_gyro, full_scale_accel

@@ -35,9 +35,10 @@ from __future__ import annotations
 
 import re
 import warnings
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
+from typing import Any, ParamSpec, TypeVar
 
 import numpy as np
 import pandas as pd
@@ -48,6 +49,9 @@ from ._validate import as_array, booleans, choice, file_path, flag, instance, sc
 from .imu import ImuSamples, SensorLimits
 from .timing import TimingReport, intervals, sanitize
 from .units import G0
+
+_P = ParamSpec("_P")
+_R = TypeVar("_R")
 
 __all__ = [
     "UNITS",
@@ -312,7 +316,7 @@ def from_dataframe(
     mounts = _mounts(axes, flag(mirror, "mirror"))
     text(time, "time", empty=False)
     instance(units, "units", Mapping, "a mapping of sensor to unit, e.g. {'gyro': 'deg/s'}")
-    columns = {"gyro": gyro, "accel": accel, "mag": mag, "baro": baro}
+    columns: dict[str, Any] = {"gyro": gyro, "accel": accel, "mag": mag, "baro": baro}  # checked below
     present = {s: c for s, c in columns.items() if c is not None}
     for sensor, cols in present.items():
         if sensor == "baro":
@@ -413,7 +417,7 @@ def _target(sensor: str) -> str:
     return {"gyro": "rad/s", "accel": "m/s^2 (specific force)", "mag": "uT", "baro": "Pa"}[sensor]
 
 
-def _finish(rec: Recording, source: str, check: str, notes: Sequence[str] = (), **extra) -> Recording:
+def _finish(rec: Recording, source: str, check: str, notes: Sequence[str] = (), **extra: Any) -> Recording:
     """A reader's last step: its source and conversion notes on the recording, then :func:`check_axes`."""
     rec = replace(rec, source=source, conversions=rec.conversions + tuple(notes), **extra)
     if check != "off" and rec.w_ib_b is not None and (rec.f_b is not None or rec.m_b is not None):
@@ -422,7 +426,7 @@ def _finish(rec: Recording, source: str, check: str, notes: Sequence[str] = (), 
     return rec
 
 
-def read_csv(path: str | Path, *, sep: str = ",", comment: str | None = None, check: str = "warn", **kwargs) -> Recording:
+def read_csv(path: str | Path, *, sep: str = ",", comment: str | None = None, check: str = "warn", **kwargs: Any) -> Recording:
     """A :class:`Recording` from a CSV file: ``pandas.read_csv(path, sep, comment)`` then :func:`from_dataframe`.
 
     Parameters
@@ -458,7 +462,7 @@ def _check_option(check: str) -> str:
     return choice(check, "check", ("warn", "raise", "off"))
 
 
-def _in_file(source: str, reader, *args, **kwargs) -> Recording:
+def _in_file(source: str, reader: Callable[_P, _R], *args: _P.args, **kwargs: _P.kwargs) -> _R:
     """Run ``reader``; a ValueError also names the file it came from (its message still starts with the
     argument or column at fault)."""
     try:
@@ -528,7 +532,7 @@ def read_xio(
         )
     elif rate is not None:
         raise ValueError(f"rate: {source} has its own time column 'Time (s)'; leave rate out")
-    cols = {"gyro": [f"Gyroscope {a} (deg/s)" for a in "XYZ"], "accel": [f"Accelerometer {a} (g)" for a in "XYZ"]}
+    cols: dict[str, Any] = {"gyro": [f"Gyroscope {a} (deg/s)" for a in "XYZ"], "accel": [f"Accelerometer {a} (g)" for a in "XYZ"]}
     units = {"gyro": "deg/s", "accel": "g"}
     for unit, name in (("uT", "uT"), ("G", "gauss")):
         if f"Magnetometer X ({unit})" in df.columns:
@@ -550,7 +554,7 @@ def read_xio(
     return _finish(rec, source, _check_option(check), notes)
 
 
-def _read_table(path: str | Path, **read_csv) -> tuple[pd.DataFrame, str]:
+def _read_table(path: str | Path, **read_csv: Any) -> tuple[pd.DataFrame, str]:
     """A CSV file as a DataFrame (spaces after separators ignored), and its path for ``Recording.source``."""
     path = file_path(path, "path")
     if not path.is_file():
@@ -801,7 +805,8 @@ def read_sensor_logger(
         t_ns, w = t_ns[order], w[order]
     t_gyro = (t_ns - t_ns[0]) * 1e-9
     frame = pd.DataFrame({"time": t_ns, "gx": w[:, 0], "gy": w[:, 1], "gz": w[:, 2]})
-    kw, units = {"gyro": ("gx", "gy", "gz")}, {"gyro": "rad/s"}
+    kw: dict[str, Any] = {"gyro": ("gx", "gy", "gz")}
+    units = {"gyro": "rad/s"}
     t_acc, f_acc, acc_file, note = _logger_accel(d, ios, ios)
     notes.append(note)
     sensors = {"accel": (t_acc, f_acc, acc_file, "m/s^2")}
@@ -848,8 +853,8 @@ def read_sensor_logger(
         check_units=check_units,
         **kw,
     )
-    q_ref, note = _logger_reference(d, platform, standardised, t_ns, _mounts(axes, mirror)["gyro"][0])
-    return _finish(rec, str(d), _check_option(check), notes + ([note] if note else []), q_bn_ref=q_ref)
+    q_ref, ref_note = _logger_reference(d, platform, standardised, t_ns, _mounts(axes, mirror)["gyro"][0])
+    return _finish(rec, str(d), _check_option(check), notes + ([ref_note] if ref_note else []), q_bn_ref=q_ref)
 
 
 _PHYPHOX = {"gyro": ("Gyroscope", "rad/s"), "accel": ("Acceleration", "m/s^2"), "mag": ("Magnetic field", "uT")}
@@ -923,7 +928,9 @@ def read_phyphox(
         )
     t_gyro = found["gyro"][0]
     frame = pd.DataFrame({"t": t_gyro})
-    kw, units, notes = {}, {}, []
+    kw: dict[str, Any] = {}
+    units: dict[str, str] = {}
+    notes: list[str] = []
     for sensor, (t_s, x, f) in found.items():
         names = [f"{sensor}_{a}" for a in "xyz"]
         frame[names] = x if sensor == "gyro" else align(t_gyro, t_s, x, method=method, max_gap=max_gap)
@@ -1089,7 +1096,7 @@ def resample(rec: Recording, rate: float, *, method: str = "mean") -> Recording:
     if t_new.size < 2:
         raise ValueError(f"rate: {rate:g} Hz gives fewer than 2 samples over {rec.time[-1]:.3g} s; raise it")
     bins = np.floor(rec.time * rate).astype(np.int64)
-    out = {}
+    out: dict[str, Any] = {}
     for name in ("w_ib_b", "f_b", "m_b", "pressure"):
         x = getattr(rec, name)
         if x is None:
@@ -1397,6 +1404,7 @@ def start_at_rest(rec: Recording, still: ArrayLike | None = None) -> tuple[Recor
 
 def _movement(rec: Recording, still: np.ndarray) -> str:
     """'' when the samples look still (:data:`STILL_LIMITS`), else what moved."""
+    assert rec.w_ib_b is not None  # the callers checked it
     w = rec.w_ib_b[still]
     figures = {
         "gyro std": (np.nanmax(np.nanstd(w, axis=0)), STILL_LIMITS[0], "rad/s"),
@@ -1411,6 +1419,7 @@ def _stillest_second(rec: Recording) -> tuple[np.ndarray, str]:
     """The 1-s window (on a 0.5-s grid) with the smallest gyro spread, and '' or what moved in it."""
     starts = np.arange(rec.time[0], max(rec.time[-1] - 1.0, rec.time[0]) + 1e-9, 0.5)
     windows = [(rec.time >= a) & (rec.time < a + 1.0) for a in starts]
+    assert rec.w_ib_b is not None  # the callers checked it
     spread = [np.nanmax(np.nanstd(rec.w_ib_b[w], axis=0)) if np.count_nonzero(w) > 1 else np.inf for w in windows]
     best = windows[int(np.argmin(spread))]
     return best, _movement(rec, best)

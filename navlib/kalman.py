@@ -21,6 +21,8 @@ is rejected and reported, never silently applied.
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 from scipy.linalg import expm
 
@@ -34,7 +36,7 @@ ACCEPTED, NO_DATA, REJECTED = 1, 0, -1
 """Status codes returned by :func:`update`."""
 
 
-def _matrix(a: ArrayLike, name: str, shape: tuple[int | None, ...], **kwargs) -> np.ndarray:
+def _matrix(a: ArrayLike, name: str, shape: tuple[int | None, ...], **kwargs: Any) -> np.ndarray:
     """``a`` as a C-contiguous float64 array of exactly ``shape``, finite unless ``kwargs`` say otherwise."""
     return kernel_array(as_array(a, name, shape=shape, **kwargs))
 

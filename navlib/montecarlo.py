@@ -29,6 +29,7 @@ from functools import partial
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from ._typing import ArrayLike
 from ._validate import flag, indices, integer, text
@@ -67,7 +68,7 @@ class TrialStreams:
             raise ValueError(f"ids: expected a non-empty 1-D array of non-negative trial indices, got {ids!r:.60}")
         self.ids = ids.astype(np.int64)
         self._seed = int(seed)
-        self._rngs = None  # per-trial generators, made on demand (generators(), many draws)
+        self._rngs: list[np.random.Generator] | None = None  # per-trial generators, made on demand (generators(), many draws)
         self._draws = 0
         if self.ids.max() < 2**32:  # one spawn-key word: the states straight from the seed (see _pcg64_states)
             self._states = [
@@ -78,17 +79,18 @@ class TrialStreams:
         else:
             self._materialize()
 
-    def _materialize(self) -> None:
+    def _materialize(self) -> list[np.random.Generator]:
         rngs = [np.random.default_rng(np.random.SeedSequence(self._seed, spawn_key=(int(i),))) for i in self.ids]
         if self._rngs is None and self._draws:  # continue where the shared generator left each stream
             for r, state in zip(rngs, self._states, strict=True):
                 r.bit_generator.state = state
         self._rngs = rngs
+        return rngs
 
     def __len__(self) -> int:
         return self.ids.size
 
-    def _stack(self, method: str, shape, **kw) -> np.ndarray:
+    def _stack(self, method: str, shape: int | tuple[int, ...], **kw: float) -> np.ndarray:
         shape = tuple(np.atleast_1d(shape)) if shape != () else ()
         self._draws += 1
         if self._rngs is None and self._draws > _SHARED_DRAWS:
@@ -112,9 +114,7 @@ class TrialStreams:
 
     def generators(self) -> list[np.random.Generator]:
         """The per-trial generators, for draws the helpers above do not cover."""
-        if self._rngs is None:
-            self._materialize()
-        return list(self._rngs)
+        return list(self._materialize() if self._rngs is None else self._rngs)
 
 
 _SHARED_DRAWS = 4
@@ -145,13 +145,13 @@ def _pcg64_states(seed: int, ids: np.ndarray) -> list[tuple[int, int]]:
     entropy = [np.full(ids.size, w, np.uint32) for w in run] + [ids.astype(np.uint32)]
     const = [_HASH_A]
 
-    def hashmix(v):
+    def hashmix(v: NDArray[np.uint32]) -> NDArray[np.uint32]:
         v = v ^ np.uint32(const[0])
         const[0] = const[0] * _MULT_A & 0xFFFFFFFF
         v = v * np.uint32(const[0])
         return v ^ (v >> np.uint32(16))
 
-    def mix(x, y):
+    def mix(x: NDArray[np.uint32], y: NDArray[np.uint32]) -> NDArray[np.uint32]:
         r = np.uint32(_MIX_L) * x - np.uint32(_MIX_R) * y
         return r ^ (r >> np.uint32(16))
 
@@ -178,17 +178,19 @@ def _pcg64_states(seed: int, ids: np.ndarray) -> list[tuple[int, int]]:
     return out
 
 
-def _run_batch(batch_fn, seed, ids, kwargs):
+def _run_batch(
+    batch_fn: Callable[..., dict[str, Any]], seed: int, ids: NDArray[np.int64], kwargs: dict[str, Any]
+) -> dict[str, Any]:
     return batch_fn(ids, TrialStreams(seed, ids), **kwargs)
 
 
-def _progress_bar(total: int, label: str):
+def _progress_bar(total: int, label: str) -> Any:
     from tqdm.auto import tqdm
 
     return tqdm(total=total, desc=label, unit="trials", mininterval=1.0, dynamic_ncols=True)
 
 
-def _check_args(n_trials, seed, batch_size):
+def _check_args(n_trials: int, seed: int, batch_size: int) -> None:
     for name, v, lo in (("n_trials", n_trials, 1), ("seed", seed, 0), ("batch_size", batch_size, 1)):
         integer(v, name, minimum=lo)
 
@@ -251,11 +253,11 @@ def run(
     _check_args(n_trials, seed, batch_size)
     progress = os.environ.get("NAVLIB_PROGRESS", "1").strip() != "0" if progress is None else flag(progress, "progress")
     text(label, "label")
-    if executor is not None and not isinstance(executor, Executor) and not hasattr(executor, "submit"):
+    if executor is not None and not hasattr(executor, "submit"):  # an Executor, or one by duck typing
         raise ValueError(f"executor: expected a concurrent.futures.Executor, got {type(executor).__name__}")
     batches = [np.arange(s, min(s + batch_size, n_trials)) for s in range(0, n_trials, batch_size)]
     job = partial(_run_batch, batch_fn, int(seed))
-    results = [None] * len(batches)
+    results: list[dict[str, Any]] = []
     bar = _progress_bar(n_trials, label) if progress else None
     try:
         if executor is None:
@@ -264,7 +266,7 @@ def run(
             futures = [executor.submit(job, ids, kwargs) for ids in batches]
             outcomes = (fut.result() for fut in futures)  # in order: results stay in trial order
         for k, outcome in enumerate(outcomes):
-            results[k] = outcome
+            results.append(outcome)
             if bar is not None:
                 bar.update(len(batches[k]))
     finally:

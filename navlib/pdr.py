@@ -82,11 +82,11 @@ def detect_steps(f_b: Vec3Series, dt: float, threshold: float = 1.0, min_interva
         raise ValueError(f"f_b: expected (N, 3) with N > {max(gap, n_smooth) + 2} samples, got {f.shape}")
     a = analysis.moving_mean(np.linalg.norm(f, axis=-1), n_smooth) - scalar(g, "g", positive=True)  # N > n_smooth
     peak = (a[1:-1] > a[:-2]) & (a[1:-1] >= a[2:]) & (a[1:-1] > thr)
-    idx = []
+    steps: list[int] = []
     for i in np.flatnonzero(peak) + 1:
-        if not idx or i - idx[-1] >= gap:
-            idx.append(i)
-    idx = np.array(idx, dtype=int)
+        if not steps or i - steps[-1] >= gap:
+            steps.append(int(i))
+    idx = np.array(steps, dtype=int)
     bounds = np.concatenate([[max(0, idx[0] - gap)], idx]) if idx.size else np.zeros(1, dtype=int)
     p2p = np.array([a[lo : hi + 1].max() - a[lo : hi + 1].min() for lo, hi in zip(bounds[:-1], bounds[1:], strict=True)])
     return StepResult(idx, p2p)

@@ -7,7 +7,8 @@ looks the same on every figure of every notebook.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -22,7 +23,7 @@ if TYPE_CHECKING:
 
 __all__ = ["body_axes", "allan", "heading_deg", "PAPER_STYLE", "paper_value", "block_diagram", "plane_frame", "angle_arc"]
 
-PAPER_STYLE = {"color": "black", "linestyle": (0, (5, 3)), "linewidth": 1.2}
+PAPER_STYLE: dict[str, Any] = {"color": "black", "linestyle": (0, (5, 3)), "linewidth": 1.2}
 """How a paper's printed value or curve is drawn: black, long dashes (markers: black open symbols)."""
 
 _AXIS_STYLE = (("x right", "tab:red"), ("y forward", "tab:green"), ("z up", "tab:blue"))
@@ -134,14 +135,14 @@ def heading_deg(hpr: Angles) -> Array:
     return units.to_deg(attitude.wrap_2pi(euler_angles(hpr, "hpr")[..., 0]))
 
 
-def _color(c, name: str) -> None:
+def _color(c: object, name: str) -> None:
     from matplotlib.colors import is_color_like  # noqa: PLC0415 -- navlib imports without matplotlib
 
     if c is None or not is_color_like(c):
         raise ValueError(f"{name}: expected a matplotlib color, got {c!r:.40}")
 
 
-def _fraction(x, name: str) -> float:
+def _fraction(x: float, name: str) -> float:
     """A size as a fraction of the axes, in (0, 1]."""
     return scalar(x, name, within=(0.0, 1.0), open_ends=(True, False))
 
@@ -196,12 +197,12 @@ def paper_value(ax: Axes, value: float, label: str, *, axis: str = "y", text_at:
 
 def block_diagram(
     ax: Axes,
-    blocks: dict[str, tuple[float, float, str]],
-    arrows: list[tuple[str, str] | tuple[str, str, str]],
+    blocks: Mapping[str, Sequence[object]],
+    arrows: Sequence[Sequence[str]],
     *,
     width: float = 0.18,
     height: float = 0.11,
-    colors: dict[str, ColorType] | None = None,
+    colors: Mapping[str, ColorType] | None = None,
 ) -> None:
     """Draw a block diagram (signal flow) on ``ax`` in axes coordinates [0, 1] x [0, 1].
 
@@ -286,7 +287,7 @@ def plane_frame(
     ax: Axes,
     origin: tuple[float, float],
     angle_deg: float,
-    labels: tuple[str, str],
+    labels: Sequence[str],
     *,
     length: float = 1.0,
     color: ColorType = "0.2",
@@ -318,7 +319,8 @@ def plane_frame(
     for k, name in enumerate(names):
         d = size * np.array([np.cos(a + k * np.pi / 2), np.sin(a + k * np.pi / 2)])
         ax.annotate("", tuple(o + d), tuple(o), arrowprops={"arrowstyle": "-|>", "color": color, "linewidth": 1.4})
-        ax.text(*(o + 1.12 * d), name, color=color, ha="center", va="center")
+        tip = o + 1.12 * d
+        ax.text(tip[0], tip[1], name, color=color, ha="center", va="center")
 
 
 def angle_arc(

@@ -41,10 +41,10 @@ import os
 import platform
 import re
 import warnings
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -191,7 +191,7 @@ class Check:
     note: str = ""
     outside: bool = False  # check_outside: passes when the value lies outside [lower, upper]
     on_printed: bool = False  # the value is arithmetic on the paper's printed numbers, not a reproduction
-    study: dict | None = None  # check_study: {"name": study, "target": target or None}
+    study: dict[str, Any] | None = None  # check_study: {"name": study, "target": target or None}
 
 
 @dataclass
@@ -230,7 +230,7 @@ class _State:
     checks: list[Check] = field(default_factory=list)
     verdicts: list[Verdict] = field(default_factory=list)
     figures: set[str] = field(default_factory=set)
-    catalogue: dict | None = None
+    catalogue: dict[str, Any] | None = None
     teaching: bool = False
     fast: bool = False
     shown_checks: int = 0  # checks and verdicts already shown by summary()
@@ -316,7 +316,7 @@ def _build_dir(notebook: str | None) -> Path:
     return d
 
 
-def setup(notebook: str, *, paper: str | None = None, out_dir: str | os.PathLike | None = None, style: bool = True) -> None:
+def setup(notebook: str, *, paper: str | None = None, out_dir: str | os.PathLike[str] | None = None, style: bool = True) -> None:
     """Start a notebook's run: reset its results file and set the figure style.
 
     Parameters
@@ -349,11 +349,11 @@ def setup(notebook: str, *, paper: str | None = None, out_dir: str | os.PathLike
     except ModuleNotFoundError as e:  # matplotlib is the optional `plots` extra
         raise ModuleNotFoundError(f"navlib.repro draws with matplotlib ({e}): pip install 'navlib-repro[plots]'") from e
 
-    if not isinstance(notebook, str) or not notebook or "/" in notebook:
+    if not isinstance(notebook, str) or not notebook or "/" in notebook:  # type: ignore[redundant-expr]  # the caller's argument, checked
         raise ValueError(f"notebook: expected a plain notebook name, got {notebook!r}")
     if out_dir is not None and not isinstance(out_dir, (str, os.PathLike)):
         raise ValueError(f"out_dir: expected a directory path, got {type(out_dir).__name__}")
-    if paper is not None and not (isinstance(paper, str) and re.fullmatch(r"\d{3}", paper)):
+    if paper is not None and not (isinstance(paper, str) and re.fullmatch(r"\d{3}", paper)):  # type: ignore[redundant-expr]  # the caller's argument, checked
         raise ValueError(f"paper: expected a paper's claims id of three digits such as '000', got {paper!r}")
     _state.notebook = notebook
     _state.out_dir = None if out_dir is None else Path(out_dir).resolve()
@@ -434,7 +434,7 @@ def savefig(fig: Figure, name: str) -> Path:
         raise RuntimeError("call navlib.repro.setup(notebook) before savefig()")
     if not hasattr(fig, "savefig"):
         raise ValueError(f"fig: expected a matplotlib Figure, got {type(fig).__name__}")
-    if not isinstance(name, str) or not name or "/" in name or "\\" in name:
+    if not isinstance(name, str) or not name or "/" in name or "\\" in name:  # type: ignore[redundant-expr]  # the caller's argument, checked
         raise ValueError(f"name: expected a plain file name without directories, got {name!r}")
     path = _write_png(fig, name)
     if matplotlib.get_backend() == _INLINE:
@@ -446,7 +446,8 @@ def savefig(fig: Figure, name: str) -> Path:
 
 
 _INLINE = "module://matplotlib_inline.backend_inline"
-_PNG = {"format": "png", "metadata": {"Software": None}, "bbox_inches": "tight"}  # no timestamp, no software version
+# No timestamp, no software version.
+_PNG: dict[str, Any] = {"format": "png", "metadata": {"Software": None}, "bbox_inches": "tight"}
 
 
 def _write_png(fig: Figure, name: str) -> Path:
@@ -459,7 +460,7 @@ def _write_png(fig: Figure, name: str) -> Path:
     return path
 
 
-def _png(fig: Figure):
+def _png(fig: Figure) -> Any:
     """``fig`` as an IPython PNG image (as :func:`savefig` writes it), the figure closed."""
     import io
 
@@ -472,7 +473,7 @@ def _png(fig: Figure):
     return Image(data=buffer.getvalue(), format="png")
 
 
-def _as_float(x, name: str, finite: bool = False) -> float:
+def _as_float(x: object, name: str, finite: bool = False) -> float:
     x = real(x, name)  # strings (also "1.5"), complex, object and bool raise InputTypeError
     if x.size != 1:
         raise ValueError(f"{name}: expected a scalar, got shape {x.shape}")
@@ -482,7 +483,7 @@ def _as_float(x, name: str, finite: bool = False) -> float:
     return v
 
 
-def _check_args(name, value, source, unit, note, on_printed) -> tuple[float, bool]:
+def _check_args(name: str, value: Scalar, source: str, unit: str, note: str, on_printed: bool) -> tuple[float, bool]:
     """The arguments every check takes, checked: returns the value as a float and ``on_printed``."""
     text(name, "name", empty=False)
     _texts(source=source, unit=unit, note=note)
@@ -667,7 +668,18 @@ def check_outside(
     return _interval_check(name, value, source, (lower, upper), paper_value, unit, note, on_printed, outside=True)
 
 
-def _interval_check(name, value, source, bounds, paper_value, unit, note, on_printed, *, outside: bool) -> Check:
+def _interval_check(
+    name: str,
+    value: Scalar,
+    source: str,
+    bounds: tuple[float | None, float | None],
+    paper_value: str | float | None,
+    unit: str,
+    note: str,
+    on_printed: bool,
+    *,
+    outside: bool,
+) -> Check:
     """:func:`check_range` (``value`` within ``bounds``) or :func:`check_outside` (``value`` outside them)."""
     v, printed = _check_args(name, value, source, unit, note, on_printed)
     lo, hi = _bounds(*bounds)
@@ -738,8 +750,8 @@ def seed_spread(study: str, check: str, *, about_mean: bool = False) -> SeedSpre
     rows = _study_rows(text(study, "study", empty=False)).get(text(check, "check", empty=False))
     if not rows:
         return None
-    seeds, x = zip(*rows, strict=True)
-    x = np.asarray(x, float)
+    seeds, values = zip(*rows, strict=True)
+    x = np.asarray(values, float)
     mean, sd = float(x.mean()), float(x.std(ddof=1)) if x.size > 1 else math.inf
     rms = sd if about_mean else float(np.sqrt(np.mean(x**2)))
     return SeedSpread(study, check, tuple(seeds), mean, sd, rms)
@@ -813,7 +825,7 @@ def check_study(
     )
 
 
-def _not_the_target(value, **targets) -> None:
+def _not_the_target(value: object, **targets: object) -> None:
     """Refuse a value that is the very object passed as its target: such a check cannot fail.
 
     Only numpy values are compared by identity: Python shares small ints, and equal float literals
@@ -829,7 +841,7 @@ def _not_the_target(value, **targets) -> None:
                 )
 
 
-def _bounds(lower, upper) -> tuple[float | None, float | None]:
+def _bounds(lower: float | None, upper: float | None) -> tuple[float | None, float | None]:
     if lower is None and upper is None:
         raise ValueError("lower, upper: give at least one bound")
     lo = None if lower is None else _as_float(lower, "lower")
@@ -1036,14 +1048,14 @@ def verdict(
     return v
 
 
-def _shown(x, unit: str) -> str:
+def _shown(x: object, unit: str) -> str:
     """A value as the ledger shows it: a number to 5 significant digits with its unit, or the text given."""
     if isinstance(x, str):
         return x
     return f"{_as_float(x, 'value'):.5g}{' ' + unit if unit else ''}"
 
 
-def _catalogue() -> dict[str, dict]:
+def _catalogue() -> dict[str, dict[str, Any]]:
     """``data/claims.csv`` rows by id and ``data/errata.csv`` ids of the checkout (read once per run)."""
     if _state.catalogue is None:
         data = root() / "data"
@@ -1061,7 +1073,7 @@ def _write() -> None:
     # json.dumps(data, indent=1), with the two lists as placeholders for the rows encoded once when
     # recorded (encoding every row at every check was quadratic: 3 s in a notebook of 180 checks). Keys
     # beyond the original format are written only when used, so older results keep their bytes.
-    data = {"notebook": _state.notebook, "checks": "\0checks"}
+    data: dict[str, Any] = {"notebook": _state.notebook, "checks": "\0checks"}
     if _state.teaching or _state.fast:
         data["mode"] = {"teaching": _state.teaching, "fast": _state.fast}
     if _state.paper is not None:
@@ -1073,7 +1085,7 @@ def _write() -> None:
     (_build_dir(_state.notebook) / "results.json").write_text(text + "\n")
 
 
-def _encode(row: dict) -> str:
+def _encode(row: dict[str, Any]) -> str:
     """A results.json row as ``json.dumps(..., indent=1)`` lays it out inside a top-level list."""
     return json.dumps(row, indent=1, allow_nan=True).replace("\n", "\n  ")
 
@@ -1082,7 +1094,7 @@ def _rows(encoded: list[str]) -> str:
     return "[\n  " + ",\n  ".join(encoded) + "\n ]" if encoded else "[]"
 
 
-def _row(c: Check) -> dict:
+def _row(c: Check) -> dict[str, Any]:
     row = asdict(c)
     for key in ("outside", "on_printed", "study"):  # written only when set: other rows keep their bytes
         if not row[key]:
@@ -1141,7 +1153,7 @@ def mode(*, teaching: bool, fast: bool) -> None:
     _write()
 
 
-def summary():
+def summary() -> Any:
     """The checks and verdicts recorded since the previous call, as one compact table.
 
     A ``pandas.DataFrame`` with a row per check (``check``, ``paper`` value, ``ours``, ``tolerance``,
@@ -1204,10 +1216,10 @@ def _whole_table() -> type:
 
     class CheckTable(pd.DataFrame):
         @property
-        def _constructor(self):
+        def _constructor(self) -> type:
             return CheckTable
 
-        def _repr_html_(self):
+        def _repr_html_(self) -> str:
             """The whole table, folded under a one-line count (the reproduction details of a section)."""
             with pd.option_context("display.max_rows", None, "display.max_colwidth", None):
                 table = super()._repr_html_()
@@ -1224,7 +1236,7 @@ def _whole_table() -> type:
     return CheckTable
 
 
-def caption(markdown: str):
+def caption(markdown: str) -> Any:
     """Text with computed numbers (a figure caption, a sentence quoting results) rendered as Markdown.
 
     A notebook's markdown cells cannot hold numbers that a run computes; typed copies go stale. Build
@@ -1261,7 +1273,9 @@ class Exercise:
         return self.message
 
 
-def exercise(student, reference, cases: Sequence[tuple], tol: float = 1e-9) -> Exercise:
+def exercise(
+    student: Callable[..., Any], reference: Callable[..., Any], cases: Sequence[tuple[Any, ...]], tol: float = 1e-9
+) -> Exercise:
     """Check a student's function against navlib's ``reference`` on each argument tuple of ``cases``.
 
     A coding exercise gives a stub that returns ``None`` ("your code here"); until it is written the result
@@ -1283,7 +1297,7 @@ def exercise(student, reference, cases: Sequence[tuple], tol: float = 1e-9) -> E
     >>> repro.exercise(my_wrap, attitude.wrap_pi, [(np.pi,)]).passed   # wrap_pi keeps +pi: (-pi, pi]
     False
     """
-    if not callable(student) or not callable(reference):
+    if not callable(student) or not callable(reference):  # type: ignore[redundant-expr]  # the caller's argument, checked
         raise ValueError("student, reference: expected functions")
     if not isinstance(cases, (list, tuple)) or not cases or not all(isinstance(c, tuple) for c in cases):
         raise ValueError(f"cases: expected a non-empty list of argument tuples such as [(0.1,), (1.0,)], got {cases!r:.60}")
@@ -1305,7 +1319,7 @@ def exercise(student, reference, cases: Sequence[tuple], tol: float = 1e-9) -> E
     return Exercise(True, f"**Correct:** `{name}` agrees with navlib on all {len(cases)} cases (to {tol:g}).")
 
 
-def answer(markdown: str, label: str = "Answer"):
+def answer(markdown: str, label: str = "Answer") -> Any:
     """The answer to a "Try this" exercise, collapsed (an HTML ``<details>`` block) until the reader opens it.
 
     ``markdown`` is built from values the notebook computed (an f-string), never typed-in results.
@@ -1324,7 +1338,7 @@ def answer(markdown: str, label: str = "Answer"):
     return Markdown(f"<details><summary>{title}</summary>\n\n{body}\n\n</details>")
 
 
-def explorer(draw, name: str, controls: dict) -> None:
+def explorer(draw: Callable[..., Figure], name: str, controls: dict[str, Any]) -> None:
     """An interactive explorer with a static fallback: ``draw(**values) -> Figure``.
 
     The figure at the controls' default values is drawn once, saved as ``name`` (:func:`savefig`) and
@@ -1385,7 +1399,7 @@ def explorer(draw, name: str, controls: dict) -> None:
         if isinstance(c, (widgets.FloatSlider, widgets.FloatLogSlider)):
             c.readout_format = ".3g"
 
-    def redraw(_change=None):
+    def redraw(_change: object = None) -> None:
         shown.update(_png(draw(**{**defaults, **{k: c.value for k, c in live.items()}})))
 
     for c in live.values():

@@ -57,7 +57,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 import numpy as np
 from numba import njit
@@ -117,17 +117,17 @@ class FaultReport:
     counts: Mapping[tuple[str, str], np.ndarray | int] = field(default_factory=dict)
     flags: Mapping[tuple[str, str], np.ndarray] = field(default_factory=dict)
 
-    def __getitem__(self, key: tuple[str, str]):
+    def __getitem__(self, key: tuple[str, str]) -> np.ndarray | int:
         return self.counts.get(key, 0)
 
-    def total(self):
+    def total(self) -> np.ndarray | np.int64:
         """Sum of all counts (an array over trials for batched filters)."""
         return sum((np.asarray(c) for c in self.counts.values()), start=np.int64(0))
 
     def __bool__(self) -> bool:
         return bool(np.any(self.total()))
 
-    def as_dict(self) -> dict[str, int | list]:
+    def as_dict(self) -> dict[str, int | list[Any]]:
         """``{"sensor.kind": count}`` with plain Python numbers (e.g. for results.json)."""
         return {f"{s}.{k}": np.asarray(c).tolist() for (s, k), c in self.counts.items()}
 
@@ -173,9 +173,9 @@ def fault_report(x: ArrayLike, sensor: str, *, full_scale: float | None = None, 
     instance(sensor, "sensor", str, "a sensor name (str)")
     a = as_array(x, "x", allow_nan=True, min_ndim=2)
     fs = range_limit(full_scale, "full_scale")
-    masks = {(sensor, "nan"): np.isnan(a).any(axis=-1)}
+    masks = {(sensor, "nan"): np.any(np.isnan(a), axis=-1)}
     if full_scale is not None:
-        masks[sensor, "saturated"] = ~masks[sensor, "nan"] & (np.abs(a) >= fs).any(axis=-1)
+        masks[sensor, "saturated"] = ~masks[sensor, "nan"] & np.any(np.abs(a) >= fs, axis=-1)
     return FaultReport({key: m.sum(axis=-1) for key, m in masks.items()}, masks if flag(flags, "flags") else {})
 
 
@@ -219,7 +219,7 @@ def hold(x: ArrayLike, *, leading: str = "raise", name: str = "x", axis: int = -
     choice(axis, "axis", (-1, -2))
     a = as_array(x, text(name, "name", empty=False), allow_nan=True, min_ndim=1)
     vector = axis == -2
-    bad = np.isnan(a).any(axis=-1) if vector else np.isnan(a)
+    bad = np.any(np.isnan(a), axis=-1) if vector else np.isnan(a)
     if not bad.any():
         return a, bad
     n = bad.shape[-1]
@@ -414,7 +414,7 @@ def _stuck_runs(a: np.ndarray, run: int, rail: float = np.inf) -> NDArray[np.boo
     flat = kernel_array(a.reshape((math.prod(lead), n, k)))  # writable: one kernel signature
     out = np.zeros(flat.shape, dtype=bool)
     stuck_runs(0, flat.shape[0], flat, run, rail, out)
-    return out.any(-1).reshape(lead + (n,))
+    return np.any(out, axis=-1).reshape(lead + (n,))
 
 
 def stuck_samples(

@@ -35,6 +35,8 @@ import functools
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field, fields, replace
 from importlib import resources
+from importlib.resources.abc import Traversable
+from typing import Any
 
 import numpy as np
 from numba import njit
@@ -133,7 +135,7 @@ class TriadErrors:
     misalignment: float = 0.0
     full_scale: float = np.inf
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         numbers(
             self,
             positive=("correlation_time", "full_scale"),
@@ -163,12 +165,12 @@ class ImuModel:
     accel: TriadErrors = field(default_factory=TriadErrors)
     name: str = "custom"
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         for key in ("gyro", "accel"):
             instance(getattr(self, key), key, TriadErrors, "TriadErrors")
         text(self.name, "name")
 
-    def replace(self, gyro: dict | None = None, accel: dict | None = None) -> ImuModel:
+    def replace(self, gyro: dict[str, Any] | None = None, accel: dict[str, Any] | None = None) -> ImuModel:
         """Copy with some parameters changed, e.g. ``m.replace(gyro={"bias": 0.0})``."""
         return ImuModel(replace(self.gyro, **(gyro or {})), replace(self.accel, **(accel or {})), self.name)
 
@@ -239,7 +241,7 @@ def gauss_markov(shape: tuple[int, ...], dt: float, sigma: float, correlation_ti
     tc = scalar(correlation_time, "correlation_time", positive=True)
     sigma = scalar(sigma, "sigma", allow_zero=True)
     generator(rng)
-    if not isinstance(shape, (tuple, list)) or len(shape) < 2:
+    if not isinstance(shape, (tuple, list)) or len(shape) < 2:  # type: ignore[redundant-expr]  # the caller's argument, checked
         raise ValueError(f"shape: expected a tuple (..., N, k) of positive integers, got {shape!r}")
     return _gauss_markov(tuple(integer(n, "shape") for n in shape), dt, sigma, tc, rng)
 
@@ -266,14 +268,14 @@ def _ar1_in_place(y, phi, y_before):
                 y[b, k, j] += phi * y[b, k - 1, j]
 
 
-def _error_matrix(errors: TriadErrors, lead: tuple, rng: np.random.Generator):
+def _error_matrix(errors: TriadErrors, lead: tuple[int, ...], rng: np.random.Generator) -> Array:
     M = np.broadcast_to(np.eye(3), lead + (3, 3)).copy()
     M += errors.misalignment * rng.standard_normal(lead + (3, 3)) * (1 - np.eye(3))
     M += errors.scale_factor * rng.standard_normal(lead + (3,))[..., None] * np.eye(3)
     return M
 
 
-def _corrupt(x, dt, errors: TriadErrors, rng: np.random.Generator):
+def _corrupt(x: Array, dt: float, errors: TriadErrors, rng: np.random.Generator) -> tuple[Array, Array, Array, int]:
     """Apply a triad error model to ideal samples ``x`` (..., N, 3)."""
     r_matrix, r_on, r_gm, r_rrw, r_white = rng.spawn(5)
     lead, shape = x.shape[:-2], x.shape
@@ -421,11 +423,11 @@ def _preset_parameters() -> dict[str, set[str]]:
     }
 
 
-def _read_presets(path) -> dict[str, dict[tuple[str, str], tuple[float, str, str]]]:
+def _read_presets(path: Traversable) -> dict[str, dict[tuple[str, str], tuple[float, str, str]]]:
     """Parse a presets CSV strictly: an unknown sensor or parameter, a repeated row or a bad
     value raises ``ValueError`` naming the line (a typo must not silently give a noise-free sensor)."""
     known = _preset_parameters()
-    table: dict[str, dict] = {}
+    table: dict[str, dict[tuple[str, str], tuple[float, str, str]]] = {}
     with path.open(encoding="utf-8") as fh:
         lines = [(n, line) for n, line in enumerate(fh, 1) if line.strip() and not line.startswith("#")]
     rows = csv.DictReader(line for _, line in lines)
@@ -475,7 +477,7 @@ def preset(device: str) -> dict[tuple[str, str], float]:
     2.0
     """
     table = _preset_table()
-    if not isinstance(device, str) or device not in table:
+    if not isinstance(device, str) or device not in table:  # type: ignore[redundant-expr]  # the caller's argument, checked
         raise ValueError(f"device: unknown device {device!r}; known: {devices()}")
     return {k: v[0] for k, v in table[device].items()}
 
@@ -533,7 +535,7 @@ class MagnetometerModel:
     soft_iron: float = 0.0
     full_scale: float = np.inf
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         numbers(self, positive=("full_scale",), non_negative=("noise", "hard_iron", "soft_iron"), infinite=("full_scale",))
 
     @classmethod
@@ -683,7 +685,7 @@ class BarometerModel:
     bias: float = 0.0
     drift_rate: float = 0.0
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         numbers(self, non_negative=("noise", "bias"), real=("drift_rate",))
 
     @classmethod
@@ -735,7 +737,7 @@ def simulate_barometer(
 # --------------------------------------------------------------------------
 
 
-def outage_mask(time: Times, outages: Sequence[tuple[float, float]]) -> np.ndarray:
+def outage_mask(time: Times, outages: Sequence[ArrayLike]) -> np.ndarray:
     """Validity flags: False inside any ``[start, end)`` outage interval.
 
     Parameters
@@ -759,8 +761,8 @@ def outage_mask(time: Times, outages: Sequence[tuple[float, float]]) -> np.ndarr
     valid = np.ones(t.shape, dtype=bool)
     if isinstance(outages, (str, bytes)) or not isinstance(outages, Iterable):
         raise ValueError(f"outages: expected a sequence of (start, end) pairs, got {outages!r:.40}")
-    for iv in outages:
-        iv = as_array(iv, "outages", shape=(2,))
+    for pair in outages:
+        iv = as_array(pair, "outages", shape=(2,))
         if not iv[1] > iv[0]:
             raise ValueError(f"outages: expected (start, end) pairs with end > start, got {iv!r}")
         valid &= ~((t >= iv[0]) & (t < iv[1]))

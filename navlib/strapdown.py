@@ -53,6 +53,7 @@ from __future__ import annotations
 
 import numpy as np
 from numba import njit
+from numpy.typing import NDArray
 
 from . import _kernels, attitude, earth, robust
 from ._kernels import quat_mult_t, rotvec_to_quat_t
@@ -107,12 +108,12 @@ def _attitude_kernel(q0, w, dt, w_in_n):
 _NAN_POLICIES = ("raise", "hold")
 
 
-def _samples(x, name):
+def _samples(x: ArrayLike, name: str) -> Array:
     """IMU samples ``(..., N, 3)``: real numbers, NaN allowed here (dropouts), inf never."""
     return as_array(x, name, tail=(3,), min_ndim=1, allow_nan=True)
 
 
-def _dropouts(x, name, policy):
+def _dropouts(x: Array, name: str, policy: str) -> tuple[Array, NDArray[np.bool_]]:
     """Apply the dropout policy to validated samples x; return (x, held mask)."""
     if policy == "raise":
         if np.isnan(x).any():
@@ -121,7 +122,7 @@ def _dropouts(x, name, policy):
     return robust.hold(x, leading="raise", name=name)
 
 
-def _sample_intervals(dt, n):
+def _sample_intervals(dt: Interval, n: int) -> Array:
     """``dt`` as the kernels take it: one element for a fixed interval (the time axis is then ``dt * k``),
     else one per sample."""
     dts = sample_intervals(dt, n)
@@ -356,16 +357,16 @@ def integrate(
     True
     """
     policy = choice(nan_policy, "nan_policy", _NAN_POLICIES)
-    validated = isinstance(w_ib_b, ImuSamples)  # by the record
-    w, f, dt, _, _ = unpack(w_ib_b, f_b, dt)
-    if not validated:
-        w, f = broadcast(_samples(w, "w_ib_b"), _samples(f, "f_b"), name="f_b", of="w_ib_b, f_b")
+    w_in, f_in, dt_in, _, _ = unpack(w_ib_b, f_b, dt)
+    if isinstance(w_ib_b, ImuSamples):  # validated by the record
+        w, f = w_ib_b.w_ib_b, w_ib_b.f_b
+    else:
+        w, f = broadcast(_samples(w_in, "w_ib_b"), _samples(f_in, "f_b"), name="f_b", of="w_ib_b, f_b")
     w, held_w = _dropouts(w, "w_ib_b", policy)
     f, held_f = _dropouts(f, "f_b", policy)
     lead, n = w.shape[:-2], w.shape[-2]
-    if not validated:
-        dt = _sample_intervals(dt, n)
-    small_turns(w, dt)
+    dts = w_ib_b.dt if isinstance(w_ib_b, ImuSamples) else _sample_intervals(dt_in, n)
+    small_turns(w, dts)
     t0 = scalar(t0, "t0")
     ellipsoid_(ellipsoid)
     lla0 = as_array(lla0, "lla0", tail=(3,))
@@ -375,7 +376,7 @@ def integrate(
     vel0 = as_array(vel0, "vel0", tail=(3,))
     q0 = as_quat(q0, "q0")
 
-    def flat(x, k, name):
+    def flat(x: Array, k: int, name: str) -> Array:
         x = broadcast_to(x, name, lead + x.shape[-k:], of="the trials of w_ib_b")
         return kernel_array(x.reshape((-1,) + x.shape[-k:]))
 
@@ -385,7 +386,7 @@ def integrate(
         flat(q0, 1, "q0"),
         flat(w, 2, "w_ib_b"),
         flat(f, 2, "f_b"),
-        dt,
+        dts,
         earth_constants(ellipsoid),
         flag(hold_height, "hold_height"),
     )
@@ -394,10 +395,11 @@ def integrate(
             "w_ib_b, f_b, dt: the integrated position diverges (it reaches a pole or overflows); check "
             "the units of dt and f_b and that f_b is specific force including gravity"
         )
-    time = t0 + (dt[0] * np.arange(n + 1) if dt.size == 1 else np.concatenate([[0.0], np.cumsum(dt)]))
+    time = t0 + (dts[0] * np.arange(n + 1) if dts.size == 1 else np.concatenate([[0.0], np.cumsum(dts)]))
     held = {("gyro", "nan"): held_w, ("accel", "nan"): held_f}
     faults = robust.FaultReport({key: m.sum(axis=-1) for key, m in held.items()}, held)
-    return Trajectory(time, *(x.reshape(lead + x.shape[-2:]) for x in (lla, vel, q)), faults)
+    lla, vel, q = (x.reshape(lead + x.shape[-2:]) for x in (lla, vel, q))
+    return Trajectory(time, lla, vel, q, faults)
 
 
 def error_model(lat: float, h: float, vel_n: Vec3, f_n: Vec3, ellipsoid: earth.Ellipsoid = earth.WGS84) -> Array:

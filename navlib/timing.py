@@ -13,8 +13,10 @@ by default) is the rule of :meth:`navlib.imu.SensorLimits.jump_limit`.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from ._typing import Array, ArrayLike, Times
 from ._validate import as_array, integer, time_axis
@@ -62,7 +64,7 @@ class TimingReport:
         return bool(self.dt_max - self.dt_min > 0.01 * self.dt_median)
 
 
-def _reindex(x, keep, n, name):
+def _reindex(x: ArrayLike, keep: NDArray[np.intp], n: int, name: str) -> Array:
     a = as_array(x, name, allow_nan=True, min_ndim=1)
     axis = -2 if a.ndim >= 2 else -1
     if a.shape[axis] != n:
@@ -70,7 +72,8 @@ def _reindex(x, keep, n, name):
     return np.take(a, keep, axis=axis)
 
 
-def sanitize(time: ArrayLike, *series: ArrayLike) -> tuple[Array | TimingReport, ...]:
+# (t, *series, report): Any, as a type of each element per number of series would take an overload per count.
+def sanitize(time: ArrayLike, *series: ArrayLike) -> tuple[Any, ...]:
     """Sort samples by time, drop repeated timestamps, report what was found.
 
     Parameters

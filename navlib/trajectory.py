@@ -11,15 +11,17 @@ rounding error and every simulated error is due to the sensor model alone.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from numba import njit
+from numpy.typing import NDArray
 
 from . import attitude, earth
 from ._kernels import radii_mn
-from ._typing import Vec3
+from ._typing import Angles, Array, ArrayLike, Times, Vec3, Vec3Series
 from ._validate import as_array, as_quat, in_range, instance, interval, kernel_array, latitude, numbers, scalar, time_axis
 from ._validate import ellipsoid as ellipsoid_
 from .robust import FaultReport
@@ -73,7 +75,7 @@ class Trajectory:
     q_bn: np.ndarray
     faults: FaultReport = field(default_factory=FaultReport)
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         instance(self.faults, "faults", FaultReport, "a navlib.robust.FaultReport")
         t = time_axis(self.time)
         n = t.size
@@ -144,13 +146,15 @@ def _time_grid(duration: float, dt: float) -> np.ndarray:
     return dt * np.arange(n + 1)
 
 
-def _lla(lla):
+def _lla(lla: ArrayLike) -> Array:
     lla = as_array(lla, "lla0", shape=(3,))
     latitude(lla[0], "lla0[0] (lat)")
     return lla
 
 
-def from_profiles(time, lla0, hpr, vel_n, ellipsoid: earth.Ellipsoid = earth.WGS84) -> Trajectory:
+def from_profiles(
+    time: Times, lla0: Vec3, hpr: Angles, vel_n: Vec3Series, ellipsoid: earth.Ellipsoid = earth.WGS84
+) -> Trajectory:
     """Trajectory from attitude and velocity profiles; position is integrated.
 
     Parameters
@@ -182,7 +186,7 @@ def from_profiles(time, lla0, hpr, vel_n, ellipsoid: earth.Ellipsoid = earth.WGS
     return _from_profiles(t, lla0, hpr, vel, ellipsoid)
 
 
-def _from_profiles(t, lla0, hpr, vel, ellipsoid) -> Trajectory:
+def _from_profiles(t: Array, lla0: ArrayLike, hpr: Array, vel: Array, ellipsoid: earth.Ellipsoid) -> Trajectory:
     """:func:`from_profiles` on a uniform grid ``t`` and profiles (N, 3) built or checked by the caller;
     ``lla0`` and ``ellipsoid`` are the user's, checked here."""
     ellipsoid_(ellipsoid)
@@ -190,7 +194,7 @@ def _from_profiles(t, lla0, hpr, vel, ellipsoid) -> Trajectory:
     return Trajectory(t, lla, vel, attitude.euler_to_quat(hpr))
 
 
-def static(duration: float, dt: float, lla0, hpr) -> Trajectory:
+def static(duration: float, dt: float, lla0: Vec3, hpr: Angles) -> Trajectory:
     """A stationary IMU at ``lla0`` with constant attitude ``hpr`` (rad).
 
     Examples
@@ -207,7 +211,7 @@ def static(duration: float, dt: float, lla0, hpr) -> Trajectory:
     return Trajectory(t, lla, np.zeros((t.size, 3)), q)
 
 
-def smooth_ramp(x):
+def smooth_ramp(x: ArrayLike) -> Array:
     """``x - sin(2 pi x) / (2 pi)`` on [0, 1]: 0 to 1 with zero slope at both ends.
 
     Examples
@@ -227,7 +231,14 @@ def _ramp(x: np.ndarray) -> np.ndarray:
 
 
 def reciprocating_rotation(
-    duration: float, dt: float, lla0, hpr0, axis_b, amplitude: float, period: float, rotation_time: float = 1.0
+    duration: float,
+    dt: float,
+    lla0: Vec3,
+    hpr0: Angles,
+    axis_b: Vec3,
+    amplitude: float,
+    period: float,
+    rotation_time: float = 1.0,
 ) -> Trajectory:
     """An IMU rotated back and forth about a body-fixed axis (paper 001 §3.2).
 
@@ -279,7 +290,7 @@ def reciprocating_rotation(
     return Trajectory(t, lla, np.zeros((t.size, 3)), attitude.quat_normalize(q))
 
 
-def _on_grid(t, durations):
+def _on_grid(t: Array, durations: Sequence[float]) -> Iterator[tuple[NDArray[np.bool_], Array]]:
     """Mask and local time of each of consecutive legs (``durations``, s) on the time grid ``t``.
 
     The legs of :func:`vehicle` and :func:`walk` both go through here; the last leg also takes
@@ -321,7 +332,7 @@ class Segment:
     pitch: float | None = None
     roll: float | None = None
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         numbers(self, positive=("duration",), real=("turn",))
         if self.speed is not None:
             scalar(self.speed, "speed", allow_zero=True)
@@ -331,7 +342,9 @@ class Segment:
             in_range(scalar(self.roll, "roll"), "roll", -np.pi, np.pi, "rad")
 
 
-def vehicle(segments, dt: float, lla0, heading0: float, ellipsoid: earth.Ellipsoid = earth.WGS84) -> Trajectory:
+def vehicle(
+    segments: Sequence[Segment], dt: float, lla0: Vec3, heading0: float, ellipsoid: earth.Ellipsoid = earth.WGS84
+) -> Trajectory:
     """A land vehicle driving along its forward axis through a list of segments.
 
     The velocity is ``speed * [sin(heading) cos(pitch), cos(heading) cos(pitch), sin(pitch)]``
@@ -400,7 +413,7 @@ class Leg:
     turn: float = 0.0
     climb: float = 0.0
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         numbers(self, positive=("duration",), non_negative=("speed",), real=("turn", "climb"))
         if self.speed == 0 and (self.turn != 0 or self.climb != 0):
             raise ValueError("turn, climb: expected 0 on a stop (speed == 0)")
@@ -455,7 +468,7 @@ class Gait:
     stand_frequency: float = 0.3
     ramp: float = 1.0
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         numbers(
             self,
             positive=("step_frequency", "stand_frequency", "ramp"),
@@ -464,7 +477,7 @@ class Gait:
         )
 
 
-def _listed(items) -> list:
+def _listed(items: Any) -> list[Any]:
     """``items`` as a list; [] if it is not iterable (None, a number)."""
     try:
         return list(items)
@@ -472,7 +485,7 @@ def _listed(items) -> list:
         return []
 
 
-def _walk_grid(legs, gait, dt) -> tuple[list[Leg], np.ndarray]:
+def _walk_grid(legs: object, gait: Gait, dt: float) -> tuple[list[Leg], np.ndarray]:
     """The legs of :func:`walk` (or :func:`stance_mask`) as a list, and its time grid; ``gait`` checked."""
     legs = _listed(legs)
     if not legs or not all(isinstance(leg, Leg) for leg in legs):
@@ -481,7 +494,7 @@ def _walk_grid(legs, gait, dt) -> tuple[list[Leg], np.ndarray]:
     return legs, _time_grid(sum(leg.duration for leg in legs), dt)
 
 
-def _schedule(legs, t, ramp):
+def _schedule(legs: list[Leg], t: Array, ramp: float) -> tuple[Array, Array, Array, NDArray[np.bool_]]:
     """Speed, heading offset, height offset and stance flags on the time grid."""
     speed, turn, climb = (np.zeros(t.size) for _ in range(3))
     static = np.zeros(t.size, dtype=bool)
@@ -590,7 +603,7 @@ def walk(
     return _from_profiles(t, lla0, hpr, vel, ellipsoid)
 
 
-def ideal_imu(traj: Trajectory, ellipsoid: earth.Ellipsoid = earth.WGS84):
+def ideal_imu(traj: Trajectory, ellipsoid: earth.Ellipsoid = earth.WGS84) -> tuple[Array, Array]:
     """Error-free gyro and accelerometer samples along a trajectory.
 
     Sample k is the mean angular rate and specific force over
@@ -624,9 +637,10 @@ def ideal_imu(traj: Trajectory, ellipsoid: earth.Ellipsoid = earth.WGS84):
     states = (traj.lla, traj.vel_n, traj.q_bn)
     if len(traj) > 2 and all((a == a[..., :1, :]).all() for a in states):
         # Every epoch the same (a static record): every interval gives the first one's samples, bit for bit.
-        first = Trajectory(traj.time[:2], *(a[..., :2, :] for a in states))
+        first = Trajectory(traj.time[:2], traj.lla[..., :2, :], traj.vel_n[..., :2, :], traj.q_bn[..., :2, :])
         lead_n = traj.lla.shape[:-2] + (len(traj) - 1, 3)
-        return tuple(np.broadcast_to(x, lead_n).copy() for x in ideal_imu(first, ellipsoid))
+        w_first, f_first = ideal_imu(first, ellipsoid)
+        return np.broadcast_to(w_first, lead_n).copy(), np.broadcast_to(f_first, lead_n).copy()
     dt = traj.dt
     lat, h = traj.lla[..., :-1, 0], traj.lla[..., :-1, 2]
     v0, v1 = traj.vel_n[..., :-1, :], traj.vel_n[..., 1:, :]

@@ -53,7 +53,7 @@ G0 = 9.80665
 _DEG = np.pi / 180.0
 
 
-def _num(x, name: str = "x") -> np.ndarray:
+def _num(x: ArrayLike, name: str = "x") -> Array:
     """Float array of ``x``; NaN (dropout) and inf (e.g. "no saturation") pass through."""
     return real(x, name)
 

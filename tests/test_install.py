@@ -116,6 +116,38 @@ def test_non_editable_install_runs_outside_checkout(installed, dist, tmp_path):
     assert not any(work.iterdir()), "the smoke run wrote into its working directory"
 
 
+TYPED_USER_SCRIPT = """
+import numpy as np
+from navlib.filters.mahony import mahony
+from navlib.imu import ImuSamples
+
+imu = ImuSamples(np.zeros((50, 3)), np.tile([0.0, 0.0, 9.8], (50, 1)), 0.01)
+res = mahony(imu, np.array([1.0, 0.0, 0.0, 0.0]))
+reveal_type(res)
+reveal_type(res.q_bn)
+res.q_nb
+"""
+
+
+def test_user_script_type_checks_against_the_installed_package(installed, tmp_path):
+    """A user's ``mypy --strict`` sees the installed navlib's annotations (py.typed): the filter's result is an
+    ``AttitudeResult`` whose ``q_bn`` is a float64 ndarray (what an editor completes), and a misspelt field is an error
+    rather than ``Any``. The checker is this environment's mypy, reading the fresh venv's site-packages."""
+    pytest.importorskip("mypy.api")
+    py, _ = installed
+    script, config = tmp_path / "user.py", tmp_path / "empty.ini"
+    script.write_text(TYPED_USER_SCRIPT, encoding="utf-8")
+    config.write_text("[mypy]\n", encoding="utf-8")
+    argv = ["--strict", "--python-executable", str(py), "--config-file", str(config), "--cache-dir", str(tmp_path / "cache")]
+    out = subprocess.run(
+        [sys.executable, "-m", "mypy", *argv, str(script)], cwd=tmp_path, env=CLEAN_ENV, capture_output=True, text=True
+    ).stdout
+    assert 'Revealed type is "navlib.filters.observations.AttitudeResult"' in out, out
+    assert 'Revealed type is "numpy.ndarray[tuple[Any, ...], numpy.dtype[numpy.float64]]"' in out, out
+    assert 'error: "AttitudeResult" has no attribute "q_nb"' in out, out
+    assert out.rstrip().endswith("Found 1 error in 1 file (checked 1 source file)"), out
+
+
 def test_installed_distribution_metadata(installed):
     py, _ = installed
     code = (

@@ -253,7 +253,8 @@ def nox_sessions() -> set[str]:
 
 
 def test_ci_runs_nox_sessions_on_three_systems_and_at_the_bounds():
-    """Pinned on Linux, macOS and Windows for every supported Python; latest and lowest versions; build; lint."""
+    """Pinned on Linux, macOS and Windows for every supported Python; latest and lowest versions; build; lint;
+    typecheck (mypy at the configured level)."""
     wf = WORKFLOWS["ci.yml"]
     pinned = wf["jobs"]["pinned"]["strategy"]["matrix"]
     assert set(pinned["os"]) == {"ubuntu-latest", "macos-latest", "windows-latest"}
@@ -262,7 +263,7 @@ def test_ci_runs_nox_sessions_on_three_systems_and_at_the_bounds():
     runs = " ".join(s.get("run", "") for s in steps(wf))
     assert "make" not in runs.split(), "CI calls nox sessions, not the POSIX Makefile"
     sessions = {*wf["jobs"]["bounds"]["strategy"]["matrix"]["session"], *wf["jobs"]["checks"]["strategy"]["matrix"]["session"]}
-    assert sessions == {"tests_latest", "tests_min", "build", "lint"} and sessions | {"tests"} <= nox_sessions()
+    assert sessions == {"tests_latest", "tests_min", "build", "lint", "typecheck"} and sessions | {"tests"} <= nox_sessions()
     assert f"nox=={ENV['nox']}" in wf["env"]["NOX"], "CI's nox is the pinned nox"
 
 

@@ -100,7 +100,7 @@ class InertialLowpassSettings:
     mag_rejection_factor: float = 2.0
     mag_settle_time: float = 1.0
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         for f in fields(self):
             scalar(getattr(self, f.name), f.name, positive=True)
 
@@ -384,7 +384,7 @@ def inertial_lowpass(
     skip_f = (flags["accel", "saturated"] | flags["accel", "freefall"] | flags["accel", "spike"]).reshape(T, N)
     f = np.where(skip_f[..., None], np.nan, imu.f_b.reshape(T, N, 3))
     use_mag = m_b is not None
-    if use_mag:
+    if s.m_b is not None:  # use_mag: screen returned the checked m_b
         m = np.where(flags["mag", "saturated"].reshape(T, N)[..., None], np.nan, s.m_b.reshape(T, N, 3))
     else:
         m = np.zeros((T, N, 3))

@@ -39,7 +39,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 import numpy as np
 from numba import njit
@@ -463,7 +463,7 @@ class MagGate:
     norm_tol: float = 0.1
     dip_tol: float = np.deg2rad(5.0)
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         scalar(self.norm_tol, "norm_tol", positive=True)
         scalar(self.dip_tol, "dip_tol", positive=True)
 
@@ -495,7 +495,7 @@ class AttitudeGates:
     g: float = G0
     mag: MagGate | None = None
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         if self.accel_tol is not None:
             scalar(self.accel_tol, "accel_tol", positive=True)
         scalar(self.g, "g", positive=True)
@@ -539,7 +539,7 @@ class RtkHeading:
     gate: float | None = None
     confirm: int = 5
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         h = as_array(self.heading, "heading", finite=False, nonempty=True)
         v = booleans(self.valid, "valid")
         try:
@@ -572,7 +572,7 @@ class RtkHeading:
         except ValueError:
             raise ValueError(
                 f"rtk: expected heading and valid broadcastable to the shape {shape} of {of}, got "
-                f"{self.heading.shape} and {self.valid.shape}"
+                f"{np.shape(self.heading)} and {np.shape(self.valid)}"
             ) from None
         return kernel_array(h.reshape(-1, shape[-1])), kernel_array(v.reshape(-1, shape[-1]))  # writable
 
@@ -607,11 +607,11 @@ class AttitudeResult:
     ((50, 4), (3,))
     """
 
-    q_bn: np.ndarray
-    gyro_bias: np.ndarray
+    q_bn: Array
+    gyro_bias: Array
     faults: FaultReport
-    P: np.ndarray | None = None
-    P_history: np.ndarray | None = None
+    P: Array | None = None
+    P_history: Array | None = None
 
     @property
     def hpr(self) -> np.ndarray:
@@ -666,7 +666,7 @@ def pack(
     flags = s.faults.flags
     skip_f = flags["accel", "saturated"] | flags["accel", "freefall"] | flags["accel", "spike"]
     use_mag = s.m_b is not None
-    m, skip_m = (s.m_b, flags["mag", "saturated"]) if use_mag else (np.zeros((1, 1, 3)), np.zeros((1, 1), bool))
+    m, skip_m = (s.m_b, flags["mag", "saturated"]) if s.m_b is not None else (np.zeros((1, 1, 3)), np.zeros((1, 1), bool))
     z, codes = np.empty((T, N, 6)), np.empty((2, T, N), dtype=np.int8)
     run_trials(
         _gate,
@@ -740,7 +740,7 @@ def _gate(t0, t1, f, m, skip_f, skip_m, limits, z, codes):
             z[t, k, 3], z[t, k, 4], z[t, k, 5] = (mx, my, mz) if cm == 0 else (nan, nan, nan)
 
 
-def run_trials(kernel: Callable, n_trials: int, *args) -> None:
+def run_trials(kernel: Callable[..., None], n_trials: int, *args: Any) -> None:
     """Run ``kernel(t0, t1, *args)`` over trials 0 to ``n_trials`` - 1 in parallel
     (:func:`navlib._threads.run_chunks`). The compiled kernels release the GIL; each trial writes only its
     own outputs, so the results do not depend on the number of threads.

@@ -163,7 +163,7 @@ def _phi(X, T):
     return Phi
 
 
-def _state(X, name="X"):
+def _state(X: ArrayLike, name: str = "X") -> Array:
     return as_array(X, name, tail=(5,))
 
 
@@ -707,7 +707,7 @@ class EkfConfig:
     limits: SensorLimits = field(default_factory=SensorLimits)
     fast: bool = True
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         for name in ("Q", "R"):
             object.__setattr__(self, name, covariance(getattr(self, name), name))
         object.__setattr__(self, "P0", np.zeros((5, 5)) if self.P0 is None else covariance(self.P0, "P0"))
@@ -849,7 +849,7 @@ class _Epochs(NamedTuple):
     jump: np.ndarray
 
 
-def _screen_epochs(t, z, limits: SensorLimits) -> _Epochs:
+def _screen_epochs(t: Array, z: Array, limits: SensorLimits) -> _Epochs:
     """The one pass over the validated measurements before the filter runs (yaw-rate rails and stuck
     output, clock jumps)."""
     dts = np.diff(t)

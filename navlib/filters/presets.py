@@ -60,6 +60,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import NDArray
 
 from .. import analysis
 from .._typing import Array, ArrayLike
@@ -103,7 +104,7 @@ class MahonyGains:
     kp: float
     ki: float
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         scalar(self.kp, "kp", positive=True)
         scalar(self.ki, "ki", positive=True, allow_zero=True)
 
@@ -158,7 +159,7 @@ class FootMounted:
     gyro_bias: np.ndarray
     config: zupt_ins.FilterConfig
 
-    def stance(self, imu: ImuSamples) -> Array:
+    def stance(self, imu: ImuSamples) -> NDArray[np.bool_]:
         """Stance flags, shape (N,), from :func:`navlib.filters.zupt.detect_static` with these settings."""
         return zupt.detect_static(imu, window=self.window, gyro_bias=self.gyro_bias, thresholds=self.thresholds)
 

@@ -84,7 +84,7 @@ class KfNoise:
     sigma_mag: float = 0.08
     p0: float = 1e-4
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         for name in ("sigma_gyro", "sigma_accel", "sigma_mag", "p0"):
             scalar(getattr(self, name), name, positive=True)
 
@@ -520,7 +520,7 @@ def quaternion_kf(
         raise ValueError("B_n: the quaternion KF needs the local field for its magnetometer reference")
     lead, inp, found = pack(imu, q0, m_b, rtk, B_n, gates, kp)
     T, N = inp.w.shape[:2]
-    b = magnetic_reference(B_n)[0] if inp.use_mag else np.array([0.0, 1.0, 0.0])  # RTK: north
+    b = magnetic_reference(B_n)[0] if inp.use_mag and B_n is not None else np.array([0.0, 1.0, 0.0])  # RTK: north
     sig = np.array([noise.sigma_gyro, noise.sigma_accel, noise.sigma_mag], dtype=float)
     model = _Model(b, sig, float(noise.p0), flag(linear_innovation, "linear_innovation"))
     keep_cov = flag(keep_cov, "keep_cov")

@@ -118,21 +118,22 @@ def detect_static(
     >>> bool(static[:50].all()), bool(static[70:].any())
     (True, False)
     """
-    w, f, dt, _, _ = unpack(w_ib_b, f_b, dt)
     if isinstance(w_ib_b, ImuSamples):  # validated on construction
+        w, f, dts, _, _ = unpack(w_ib_b, f_b, dt)
         if w.ndim != 2:
             raise ValueError(f"w_ib_b: expected one record of shape (N, 3), got {w.shape}")
-        dt = float(np.median(dt))  # the nominal interval of its per-sample intervals
+        step = float(np.median(dts))  # the nominal interval of its per-sample intervals
     else:
-        w, f = imu_samples(w, f, shape=(None, 3))
-        dt = interval(dt)
-    valid = np.isfinite(w).all(-1) & np.isfinite(f).all(-1)
+        w_in, f_in, dt_in, _, _ = unpack(w_ib_b, f_b, dt)
+        w, f = imu_samples(w_in, f_in, shape=(None, 3))
+        step = interval(dt_in)
+    valid = np.all(np.isfinite(w), axis=-1) & np.all(np.isfinite(f), axis=-1)
     if not valid.all():
         w, f = np.where(valid[:, None], w, 0.0), np.where(valid[:, None], f, 0.0)
-    n = int(round(scalar(window, "window", positive=True) / dt))
+    n = int(round(scalar(window, "window", positive=True) / step))
     if n < 2 or n > w.shape[0]:
         raise ValueError(
-            f"window: expected 2 samples up to the record's {w.shape[0]}, got {window} s at dt = {dt:g} s ({n:g} samples)"
+            f"window: expected 2 samples up to the record's {w.shape[0]}, got {window} s at dt = {step:g} s ({n:g} samples)"
         )
     b = as_array(gyro_bias, "gyro_bias", shape=(3,))
     tw, tf, tg = positive(as_array(thresholds, "thresholds", shape=(3,)), "thresholds")
@@ -141,7 +142,7 @@ def detect_static(
     fn = np.linalg.norm(f, axis=-1)
     share = None if valid.all() else analysis.moving_mean(valid.astype(float), n)  # fraction of valid samples per window
 
-    def mean(x):
+    def mean(x: Array) -> Array:
         if share is None:
             return analysis.moving_mean(x, n)
         return analysis.moving_mean(np.where(valid, x, 0.0), n) / np.maximum(share, 0.5 / n)
@@ -149,7 +150,7 @@ def detect_static(
     f_mean = mean(fn)
     f_var = np.maximum(mean(fn**2) - f_mean**2, 0.0)
     static = (np.sqrt(mean(w2)) < tw) & (np.sqrt(f_var) < tf) & (np.abs(f_mean - g) < tg)
-    if not valid.all():
+    if share is not None:  # some samples invalid
         static &= share >= 0.5
     return static
 

@@ -57,6 +57,7 @@ from numba import njit
 
 from .. import _kernels, earth, robust, trajectory
 from .._kernels import radii_mn
+from .._typing import Array, ArrayLike, Quat, Vec3, Vec3Series
 from .._validate import as_array, as_quat, booleans, choice, flag, instance, integer, kernel_array, scalar
 from ..imu import ImuSamples
 from ..strapdown import earth_constants
@@ -80,11 +81,11 @@ _MAX_LATITUDE = np.deg2rad(89.9)
 """Largest |latitude| of :class:`Start` (rad): the ENU mechanisation is singular at the poles."""
 
 
-def _vector(x, name: str, size: int = 3) -> np.ndarray:
+def _vector(x: ArrayLike, name: str, size: int = 3) -> Array:
     return as_array(x, name, shape=(size,))
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class Start:
     """The INS state before the first sample.
 
@@ -111,22 +112,31 @@ class Start:
     (array([0., 0., 0.]), 0.0)
     """
 
-    lla: np.ndarray
-    q_bn: np.ndarray
-    vel_n: np.ndarray = (0.0, 0.0, 0.0)
-    accel_bias: np.ndarray = (0.0, 0.0, 0.0)
-    gyro_bias: np.ndarray = (0.0, 0.0, 0.0)
-    time: float = 0.0
+    lla: Array
+    q_bn: Array
+    vel_n: Array
+    accel_bias: Array
+    gyro_bias: Array
+    time: float
 
-    def __post_init__(self):
-        lla = _vector(self.lla, "lla")
+    # Written out (init=False) so that it takes array_like values while the fields are typed as the arrays they hold.
+    def __init__(
+        self,
+        lla: Vec3,
+        q_bn: Quat,
+        vel_n: Vec3 = (0.0, 0.0, 0.0),
+        accel_bias: Vec3 = (0.0, 0.0, 0.0),
+        gyro_bias: Vec3 = (0.0, 0.0, 0.0),
+        time: float = 0.0,
+    ) -> None:
+        lla = _vector(lla, "lla")
         if abs(lla[0]) > _MAX_LATITUDE:
             raise ValueError("lla: expected |lat| <= 89.9 deg (ENU mechanisation)")
         object.__setattr__(self, "lla", lla)
-        object.__setattr__(self, "q_bn", np.ascontiguousarray(as_quat(_vector(self.q_bn, "q_bn", 4), "q_bn")))
-        for name in ("vel_n", "accel_bias", "gyro_bias"):
-            object.__setattr__(self, name, _vector(getattr(self, name), name))
-        object.__setattr__(self, "time", scalar(self.time, "time"))
+        object.__setattr__(self, "q_bn", np.ascontiguousarray(as_quat(_vector(q_bn, "q_bn", 4), "q_bn")))
+        for name, value in (("vel_n", vel_n), ("accel_bias", accel_bias), ("gyro_bias", gyro_bias)):
+            object.__setattr__(self, name, _vector(value, name))
+        object.__setattr__(self, "time", scalar(time, "time"))
 
 
 _WALK = {"none": 0, "reset": 1, "filter": 2}
@@ -163,7 +173,7 @@ class Aiding:
     declination: float = 0.0
     B_n: np.ndarray | None = None
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         choice(self.walk, "walk", tuple(_WALK))
         object.__setattr__(self, "zupt", flag(self.zupt, "zupt"))
         object.__setattr__(self, "declination", scalar(self.declination, "declination"))
@@ -178,7 +188,7 @@ class Aiding:
         return np.array([float(np.linalg.norm(B, axis=-1)), float(np.arctan2(-B[2], np.hypot(B[0], B[1])))])
 
 
-def _check(record, names: tuple[str, ...], may_be_inf: tuple[str, ...] = ()) -> None:
+def _check(record: object, names: tuple[str, ...], may_be_inf: tuple[str, ...] = ()) -> None:
     """Store each named field of a frozen record as a positive float (inf where allowed)."""
     for name in names:
         object.__setattr__(record, name, scalar(getattr(record, name), name, positive=True, allow_inf=name in may_be_inf))
@@ -217,7 +227,7 @@ class ProcessNoise:
     held_accel: float = 1.0
     held_gyro: float = 0.1
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         _check(self, ("accel", "gyro", "accel_bias_rw", "gyro_bias_rw", "held_accel", "held_gyro"))
 
 
@@ -249,7 +259,7 @@ class MeasurementNoise:
     baro: float = 0.17
     heading: float = np.deg2rad(2.0)
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         _check(self, ("zupt", "zaru", "baro", "heading"))
 
 
@@ -279,7 +289,7 @@ class InitialSigma:
     accel_bias: float = 0.01 * G0
     gyro_bias: float = np.deg2rad(0.05)
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         _check(self, ("pos", "vel", "tilt", "heading", "accel_bias", "gyro_bias"))
 
 
@@ -323,7 +333,7 @@ class Gates:
     mag_field: float = np.inf
     mag_dip: float = np.inf
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         _check(self, ("zupt", "baro", "mag_field", "mag_dip"), may_be_inf=("zupt", "baro", "mag_field", "mag_dip"))
         object.__setattr__(self, "max_rejected", integer(self.max_rejected, "max_rejected"))
 
@@ -347,7 +357,7 @@ class BaroTracker:
     alpha: float = 0.2
     beta: float = 0.02
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         _check(self, ("alpha", "beta"))
 
 
@@ -380,7 +390,7 @@ class FilterConfig:
     tracker: BaroTracker = field(default_factory=BaroTracker)
     update_rate: float = 10.0
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         for name, cls in (
             ("process", ProcessNoise),
             ("measurement", MeasurementNoise),
@@ -883,10 +893,10 @@ def _state(start: Start, sigma: InitialSigma) -> _State:
 def run_filter(
     imu: ImuSamples,
     start: Start,
-    static,
+    static: ArrayLike,
     *,
-    h_baro=None,
-    m_b=None,
+    h_baro: ArrayLike | None = None,
+    m_b: Vec3Series | None = None,
     aiding: Aiding = Aiding(),
     config: FilterConfig = FilterConfig(),
     ellipsoid: earth.Ellipsoid = earth.WGS84,

@@ -46,13 +46,13 @@ class Paper:
     citation: str
     parts: tuple[str, ...] = ()
 
-    def __post_init__(self):
-        if not isinstance(self.name, str) or not self.name.isidentifier():
+    def __post_init__(self) -> None:
+        if not isinstance(self.name, str) or not self.name.isidentifier():  # type: ignore[redundant-expr]  # the caller's argument, checked
             raise ValueError(f"name: expected the paper's module name (a Python identifier), got {self.name!r}")
         integer(self.number, "number", minimum=0)
         text(self.claims_id, "claims_id", empty=False)
         text(self.citation, "citation", empty=False)
-        if not isinstance(self.parts, tuple) or not all(isinstance(p, str) and p.isidentifier() for p in self.parts):
+        if not isinstance(self.parts, tuple) or not all(isinstance(p, str) and p.isidentifier() for p in self.parts):  # type: ignore[redundant-expr]  # the caller's argument, checked
             raise ValueError(f"parts: expected a tuple of notebook suffixes such as ('floors',), got {self.parts!r}")
 
     @property

@@ -47,11 +47,13 @@ unless ``deg=True`` and return metres.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from .. import geodesy, robust
-from .._typing import Array, ArrayLike
+from .._typing import Array, ArrayLike, Times
 from .._validate import (
     as_array,
     axes,
@@ -68,6 +70,9 @@ from .._validate import (
 from .._validate import ellipsoid as ellipsoid_
 from ..earth import CGCS2000, Ellipsoid
 from ..filters.planar_ekf import EkfConfig, EkfResult, covariance, filter_grid, propagate
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
 
 __all__ = [
     "Q_PAPER",
@@ -101,16 +106,16 @@ R_PAPER = np.diag([6.25, 6.25, 0.01, 0.0004, 0.0025])
 # --------------------------------------------------------------------------
 
 
-def _ell(ellipsoid) -> Ellipsoid:
+def _ell(ellipsoid: object) -> Ellipsoid:
     return ellipsoid_(ellipsoid)
 
 
-def _lon_deg(lon, deg: bool, name: str = "lon") -> np.ndarray:
+def _lon_deg(lon: ArrayLike, deg: bool, name: str = "lon") -> Array:
     arr = as_array(lon, name, nonempty=True)
     return arr if flag(deg, "deg") else np.rad2deg(arr)
 
 
-def _validate_lat_lon(lat, lon, deg):
+def _validate_lat_lon(lat: ArrayLike, lon: ArrayLike, deg: bool) -> list[Array]:
     lat_rad = latitude(lat, "lat", deg=deg, nonempty=True)
     lon_deg = _lon_deg(lon, deg)
     return broadcast(lat_rad, lon_deg, name="lat, lon")
@@ -205,7 +210,7 @@ def paper_meridian_arc(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: boo
     return _meridian_arc(W, W, ellipsoid, choice(order, "order", (8, 6, 4, 2)))
 
 
-def _meridian_arc(W, W_linear, ellipsoid: Ellipsoid, order: int = 8):
+def _meridian_arc(W: float | Array, W_linear: float | Array, ellipsoid: Ellipsoid, order: int = 8) -> Array:
     """Eq. (7) with the latitude ``W_linear`` in its linear term ``A W`` (W itself unless E002-04's degrees are shown)."""
     e2 = ellipsoid.e2
     e4, e6, e8 = (e2**k if 2 * k <= order else 0.0 for k in (2, 3, 4))
@@ -302,7 +307,7 @@ MAX_STEPS = 1e8
 """Most steps :func:`waypoint_path` builds (about 4 GB of states)."""
 
 
-def waypoint_path(waypoints, speed: float, turn_rate: float, T: float):
+def waypoint_path(waypoints: ArrayLike, speed: float, turn_rate: float, T: float) -> tuple[Array, NDArray[np.int_]]:
     """Drive straight between waypoints and turn on the spot at each (a robot square loop).
 
     Each leg and each turn gets a whole number of steps, with the speed or
@@ -372,7 +377,7 @@ def waypoint_path(waypoints, speed: float, turn_rate: float, T: float):
 # --------------------------------------------------------------------------
 
 
-def _forward_fill(values):
+def _forward_fill(values: Array) -> Array:
     """Replace NaN by the last finite value (the first finite one before it)."""
     if not np.isfinite(values).any():
         return values
@@ -384,12 +389,12 @@ PAPER_CONFIG = EkfConfig(Q_PAPER, R_PAPER)
 
 
 def ekf(
-    t,
+    t: Times,
     sensors: Sensors,
-    x0,
+    x0: ArrayLike,
     *,
-    origin=None,
-    zone=None,
+    origin: ArrayLike | None = None,
+    zone: int | None = None,
     width: int = 3,
     ellipsoid: Ellipsoid = CGCS2000,
     config: EkfConfig = PAPER_CONFIG,
@@ -468,7 +473,7 @@ def ekf(
         raise ValueError("gps: no valid fix and no origin given; cannot choose a zone")
     if zone is None:
         zone = int(geodesy.zone(ref[1], width, deg=deg))
-    kw = dict(zone=zone, width=width, ellipsoid=ellipsoid, deg=deg)
+    kw: dict[str, Any] = dict(zone=zone, width=width, ellipsoid=ellipsoid, deg=deg)
     origin_gk = np.array(geodesy.geodetic2gk(ref[0], ref[1], **kw)) if origin is not None else np.zeros(2)
     z = np.full((n, 5), np.nan)
     gamma = np.full(n, np.nan)
@@ -519,17 +524,17 @@ class Sensors:
 
 
 def simulate_sensors(
-    truth,
-    origin,
-    R,
+    truth: ArrayLike,
+    origin: ArrayLike,
+    R: ArrayLike,
     rng: np.random.Generator,
     *,
-    zone=None,
+    zone: int | None = None,
     width: int = 3,
     ellipsoid: Ellipsoid = CGCS2000,
     yaw_rate_bias: float = 0.0,
-    gps_valid=None,
-):
+    gps_valid: ArrayLike | None = None,
+) -> Sensors:
     """GPS, IMU heading, speed and yaw rate from true grid states: truth + N(0, R).
 
     The GPS noise (sigmas ``sqrt(R[0,0])``, ``sqrt(R[1,1])`` in m) is added in
@@ -576,7 +581,7 @@ def simulate_sensors(
     generator(rng)
     yaw_rate_bias = scalar(yaw_rate_bias, "yaw_rate_bias")
     zone = int(geodesy.zone(origin[1], width)) if zone is None else zone
-    kw = dict(zone=zone, width=width, ellipsoid=ellipsoid)
+    kw: dict[str, Any] = dict(zone=zone, width=width, ellipsoid=ellipsoid)
     o_north, o_east = geodesy.geodetic2gk(origin[0], origin[1], **kw)
     noise = sigma * rng.standard_normal(truth.shape)
     lat, lon = geodesy.gk2geodetic(o_north + truth[:, 0] + noise[:, 0], o_east + truth[:, 1] + noise[:, 1], **kw)
@@ -594,11 +599,11 @@ def simulate_sensors(
 # --------------------------------------------------------------------------
 
 
-def _sensor_sigmas(R, name: str = "R") -> np.ndarray:
+def _sensor_sigmas(R: ArrayLike, name: str = "R") -> np.ndarray:
     return np.sqrt(np.diag(covariance(R, name)))
 
 
-def dead_reckoning_error_ms(truth, T: float, R, yaw_rate_bias: float = 0.0) -> Array:
+def dead_reckoning_error_ms(truth: ArrayLike, T: float, R: ArrayLike, yaw_rate_bias: float = 0.0) -> Array:
     """Expected squared position error (m²) of dead reckoning on :func:`simulate_sensors`' speed and yaw rate.
 
     :func:`navlib.filters.planar_ekf.dead_reckoning` integrates the measured speed
@@ -661,7 +666,14 @@ def dead_reckoning_error_ms(truth, T: float, R, yaw_rate_bias: float = 0.0) -> A
     return np.r_[0.0, np.maximum(ms, 0.0)]
 
 
-def ekf_error_ms(truth, T: float, Q=Q_PAPER, R=R_PAPER, P0=None, yaw_rate_bias: float = 0.0) -> Array:
+def ekf_error_ms(
+    truth: ArrayLike,
+    T: float,
+    Q: ArrayLike = Q_PAPER,
+    R: ArrayLike = R_PAPER,
+    P0: ArrayLike | None = None,
+    yaw_rate_bias: float = 0.0,
+) -> Array:
     """Expected squared position error (m²) of :func:`ekf` on :func:`simulate_sensors`: a linear covariance analysis.
 
     Along the true states the filter's own recursion (Eq. 16's Phi at the truth, ``P = Phi P Phi^T + Q``,
@@ -794,7 +806,7 @@ def inverse_series(
     return (np.rad2deg(lat), np.rad2deg(lon)) if flag(deg, "deg") else (lat, lon)
 
 
-def draw_zones(ax, lon_min: float = 112.5, lon_max: float = 127.5, *, mark: tuple[float, float] | None = None) -> None:
+def draw_zones(ax: Axes, lon_min: float = 112.5, lon_max: float = 127.5, *, mark: tuple[float, float] | None = None) -> None:
     """3° Gauss–Krüger zones on a longitude axis: boundaries at 3n ± 1.5°, central meridians L0 = 3n, zone numbers.
 
     Parameters
@@ -844,7 +856,7 @@ def draw_zones(ax, lon_min: float = 112.5, lon_max: float = 127.5, *, mark: tupl
 
 
 def draw_zone_grid(
-    ax,
+    ax: Axes,
     zone: int,
     lat_max: float = 60.0,
     *,
@@ -915,7 +927,7 @@ def draw_zone_grid(
     ax.set(xlabel="GK easting y (km)", ylabel="GK northing x (km)", ylim=(-600, None))
 
 
-def draw_block_diagram(ax) -> None:
+def draw_block_diagram(ax: Axes) -> None:
     """Paper Fig. 2 redrawn: GPS through the Gauss–Krüger projection and the IMU into the 5-state EKF.
 
     Examples

@@ -81,6 +81,7 @@ for Sec. 2.5 is :mod:`navlib.filters.heading_fusion`.
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -88,6 +89,9 @@ from .. import attitude
 from .._typing import Angles, Array, Interval, Quat, Vec3, Vec3Series
 from .._validate import as_array, as_quat, euler_angles, interval, scalar
 from ..filters.quaternion_kf import measurement_jacobian, noise_input
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
 
 __all__ = [
     "printed_eq2_roll",
@@ -240,7 +244,7 @@ def printed_eq8_quat(hpr: Angles) -> Array:
     """
     h, p, r = np.moveaxis(euler_angles(hpr), -1, 0)
 
-    def axis_quat(a, i):
+    def axis_quat(a: Array, i: int) -> Array:
         return np.stack([np.cos(a / 2)] + [np.sin(a / 2) * (i == j) for j in range(3)], -1)
 
     return attitude.quat_mult(attitude.quat_mult(axis_quat(-h, 2), axis_quat(r, 1)), axis_quat(p, 0))
@@ -348,7 +352,7 @@ SENSOR_COLOR = "#dbe9f6"
 """Face colour of the sensor boxes in the redrawn schematic."""
 
 
-def draw_fusion_structure(ax) -> None:
+def draw_fusion_structure(ax: Axes) -> None:
     """Redraw the paper's fusion structure (its Fig. 3, the four-block framework) on ``ax``.
 
     Sensors on the left (gyro, accelerometer, magnetometer, dual-antenna RTK with its validity flag);

@@ -101,8 +101,10 @@ Errata corrected (ids of ``data/errata.csv``)
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from numpy.typing import NDArray
 from scipy.special import ndtr
 
 from .. import attitude, earth, plots, robust, strapdown
@@ -127,9 +129,12 @@ from .._validate import (
     scalar,
     time_axis,
 )
-from ..alignment import gyrocompass_latitude, level, static_means, triad, triad_heading
+from ..alignment import StaticWindow, gyrocompass_latitude, level, static_means, triad, triad_heading
 from ..imu import ImuSamples, unpack
 from ..trajectory import Segment
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
 
 __all__ = [
     "Candidates",
@@ -282,10 +287,10 @@ def heading_candidates(w_y: ArrayLike, f_b: Vec3, lat: float, h: float = 0.0) ->
            [120., 240.]])
     """
     w_y = as_array(w_y, "w_y", nonempty=True)
-    lat = gyrocompass_latitude(lat)
+    phi = gyrocompass_latitude(lat)
     level(f_b)  # checks f_b as pitch_roll_from_accel does
-    pitch = _asin_pitch(f_b, earth.gravity(lat, as_array(h, "h", nonempty=True)))  # as_array: gravity takes an empty h
-    cos_h = (w_y - OMEGA_IE * np.sin(lat) * np.sin(pitch)) / (OMEGA_IE * np.cos(lat) * np.cos(pitch))
+    pitch = _asin_pitch(f_b, earth.gravity(phi, as_array(h, "h", nonempty=True)))  # as_array: gravity takes an empty h
+    cos_h = (w_y - OMEGA_IE * np.sin(phi) * np.sin(pitch)) / (OMEGA_IE * np.cos(phi) * np.cos(pitch))
     clipped = np.abs(cos_h) > 1.0
     alpha = np.arccos(np.clip(cos_h, -1.0, 1.0))
     pair = np.stack([alpha, attitude.wrap_2pi(2 * np.pi - alpha)], -1)
@@ -468,7 +473,7 @@ def triad_heading_std(sigma_gyro: float, lat: float) -> Array:
     return s / (OMEGA_IE * np.cos(gyrocompass_latitude(lat)))
 
 
-def _pitch(pitch):
+def _pitch(pitch: ArrayLike) -> Array:
     return in_range(as_array(pitch, "pitch", nonempty=True), "pitch", -np.pi / 2, np.pi / 2, "rad", lo_open=True, hi_open=True)
 
 
@@ -513,12 +518,12 @@ def single_axis_heading_std(
     th = _pitch(pitch)
     s_g = positive(sigma_gyro, "sigma_gyro", allow_zero=True, nonempty=True)
     s_a = positive(sigma_accel, "sigma_accel", allow_zero=True, nonempty=True)
-    lat = gyrocompass_latitude(lat)
-    g = earth.gravity(lat) if g is None else positive(g, "g", nonempty=True)
-    s_th = s_a / (g * np.cos(th))
-    coupling = OMEGA_IE * (np.sin(lat) * np.cos(th) - np.cos(lat) * np.sin(th) * np.cos(psi))
+    phi = gyrocompass_latitude(lat)
+    grav = earth.gravity(phi) if g is None else positive(g, "g", nonempty=True)
+    s_th = s_a / (grav * np.cos(th))
+    coupling = OMEGA_IE * (np.sin(phi) * np.cos(th) - np.cos(phi) * np.sin(th) * np.cos(psi))
     with np.errstate(divide="ignore"):
-        return np.sqrt(s_g**2 + (coupling * s_th) ** 2) / np.abs(OMEGA_IE * np.cos(lat) * np.cos(th) * np.sin(psi))
+        return np.sqrt(s_g**2 + (coupling * s_th) ** 2) / np.abs(OMEGA_IE * np.cos(phi) * np.cos(th) * np.sin(psi))
 
 
 def single_axis_heading_error(
@@ -553,12 +558,12 @@ def single_axis_heading_error(
     th = _pitch(pitch)
     dw = as_array(dw_y, "dw_y", nonempty=True)
     df = as_array(df_y, "df_y", nonempty=True)
-    lat = gyrocompass_latitude(lat)
-    g = earth.gravity(lat) if g is None else positive(g, "g", nonempty=True)
-    d_th = df / (g * np.cos(th))
-    coupling = OMEGA_IE * (np.sin(lat) * np.cos(th) - np.cos(lat) * np.sin(th) * np.cos(psi))
+    phi = gyrocompass_latitude(lat)
+    grav = earth.gravity(phi) if g is None else positive(g, "g", nonempty=True)
+    d_th = df / (grav * np.cos(th))
+    coupling = OMEGA_IE * (np.sin(phi) * np.cos(th) - np.cos(phi) * np.sin(th) * np.cos(psi))
     with np.errstate(divide="ignore", invalid="ignore"):
-        return (-dw + coupling * d_th) / (OMEGA_IE * np.cos(lat) * np.cos(th) * np.sin(psi))
+        return (-dw + coupling * d_th) / (OMEGA_IE * np.cos(phi) * np.cos(th) * np.sin(psi))
 
 
 @dataclass(frozen=True)
@@ -651,13 +656,13 @@ def clipped_single_axis_theory(
     psi, th = np.broadcast_arrays(as_array(heading, "heading", nonempty=True), _pitch(pitch))
     s_g = scalar(sigma_gyro, "sigma_gyro", positive=True)
     s_a = scalar(sigma_accel, "sigma_accel", allow_zero=True)
-    lat = gyrocompass_latitude(scalar(lat, "lat"))
-    g = earth.gravity(lat) if g is None else scalar(g, "g", positive=True)
+    phi = gyrocompass_latitude(scalar(lat, "lat"))
+    grav = earth.gravity(phi) if g is None else scalar(g, "g", positive=True)
     span = scalar(n_sigma, "n_sigma", positive=True)
     if integer(n_grid, "n_grid", minimum=101) % 2 == 0:
         raise ValueError(f"n_grid: expected an odd integer of at least 101, got {n_grid!r}")
-    s_gyro_cos = s_g / (OMEGA_IE * np.cos(lat) * np.cos(th))
-    s_pitch_cos = (np.cos(psi) * np.tan(th) - np.tan(lat)) * s_a / (g * np.cos(th))
+    s_gyro_cos = s_g / (OMEGA_IE * np.cos(phi) * np.cos(th))
+    s_pitch_cos = (np.cos(psi) * np.tan(th) - np.tan(phi)) * s_a / (grav * np.cos(th))
     s_cos = np.hypot(s_gyro_cos, s_pitch_cos)
     z = np.linspace(-span, span, int(n_grid))
     weight = np.exp(-0.5 * z**2) / np.sqrt(2 * np.pi)
@@ -719,20 +724,20 @@ def simulate_static_outputs(
     ((4, 3), array([0.  , 0.  , 9.79]))
     """
     C_nb = np.swapaxes(attitude.euler_to_dcm(hpr), -1, -2)
-    lat = gyrocompass_latitude(scalar(lat, "lat"))
+    phi = gyrocompass_latitude(scalar(lat, "lat"))
     n_trials = integer(n_trials, "n_trials")
     s_g = scalar(sigma_gyro, "sigma_gyro", allow_zero=True)
     s_a = scalar(sigma_accel, "sigma_accel", allow_zero=True)
     r_gyro, r_accel = generator(rng).spawn(2)
-    w_true = C_nb @ earth.earth_rate_n(lat)
-    f_true = C_nb @ np.array([0.0, 0.0, float(earth.gravity(lat))])
+    w_true = C_nb @ earth.earth_rate_n(phi)
+    f_true = C_nb @ np.array([0.0, 0.0, float(earth.gravity(phi))])
     shape = w_true.shape[:-1] + (int(n_trials), 3)
     w = w_true[..., None, :] + _bias(gyro_bias, "gyro_bias") + s_g * r_gyro.standard_normal(shape)
     f = f_true[..., None, :] + _bias(accel_bias, "accel_bias") + s_a * r_accel.standard_normal(shape)
     return w, f
 
 
-def _bias(x, name):
+def _bias(x: ArrayLike, name: str) -> Array:
     b = as_array(x, name, nonempty=True)
     return b if b.ndim == 0 else as_array(b, name, tail=(3,), nonempty=True)
 
@@ -989,7 +994,7 @@ class StopSolutions:
     clipped: np.ndarray
     f_mean: np.ndarray
     faults: robust.FaultReport
-    windows: tuple = ()
+    windows: tuple[StaticWindow, ...] = ()
 
 
 def _stacked_faults(reports: list[robust.FaultReport]) -> robust.FaultReport:
@@ -1007,7 +1012,7 @@ def stop_solutions(
     *,
     time: Times | None = None,
     strict: bool = True,
-    **window_options: float | None,
+    **window_options: Any,
 ) -> StopSolutions:
     """Average each stop window and solve it with TRIAD and the single-axis method.
 
@@ -1076,6 +1081,8 @@ def stop_solutions(
         raise ValueError(
             f"windows: expected (S, 2) [start, end) sample indices within {n} samples, each >= 2 long, got {win.tolist()}"
         )
+    if lat is None:  # as static_means says
+        raise ValueError("lat: required")
     stats = tuple(static_means(w[..., a:b, :], f[..., a:b, :], lat, h, strict=strict, **window_options) for a, b in win)
     w_mean = np.stack([m.w_mean for m in stats], -2)
     f_mean = np.stack([m.f_mean for m in stats], -2)
@@ -1090,7 +1097,7 @@ def stop_solutions(
     )
 
 
-def _hold_last(w, dts):
+def _hold_last(w: Array, dts: Array) -> tuple[Array, Array, NDArray[np.bool_]]:
     """Forward-fill NaN rows along axis -2 (back-fill leading ones); the longest dropout run (s) and the
     trials without any valid row."""
     bad = ~np.all(np.isfinite(w), -1)
@@ -1241,7 +1248,9 @@ def _unit(angle_deg: float) -> np.ndarray:
     return np.array([np.cos(a), np.sin(a)])
 
 
-def _arrow(ax, start, end, color, style="-", width=1.6, label=None):
+def _arrow(
+    ax: Axes, start: Array, end: Array, color: str, style: str = "-", width: float = 1.6, label: str | None = None
+) -> None:
     ax.annotate(
         "",
         tuple(end),
@@ -1252,7 +1261,7 @@ def _arrow(ax, start, end, color, style="-", width=1.6, label=None):
         ax.plot([], [], color=color, linestyle=style, linewidth=width, label=label)
 
 
-def draw_device(ax, heading_deg: float = 30.0) -> None:
+def draw_device(ax: Axes, heading_deg: float = 30.0) -> None:
     """Paper Fig. 2 redrawn: the robot seen from above, its body frame b (= the sensor frame s of the
     calibrated MEMS IMU) and the single optical gyro along the forward axis y_s.
 
@@ -1283,7 +1292,7 @@ def draw_device(ax, heading_deg: float = 30.0) -> None:
 
     fwd, right = _unit(_map_angle(psi)), _unit(_map_angle(psi + 90.0))
 
-    def box(half_width, t0, t1, **kw):  # a rectangle along the forward axis, from t0 to t1
+    def box(half_width: float, t0: float, t1: float, **kw: Any) -> None:  # a rectangle along the forward axis, from t0 to t1
         ax.add_patch(
             Polygon([s * half_width * right + t * fwd for s, t in ((-1, t0), (1, t0), (1, t1), (-1, t1))], closed=True, **kw)
         )
@@ -1331,13 +1340,14 @@ def draw_device(ax, heading_deg: float = 30.0) -> None:
     ax.plot([0, tip[0]], [0, tip[1]], color=_GYRO, linewidth=4, alpha=0.5, solid_capstyle="butt")
     ax.plot([0.0], [r], "o", color=_COMPASS, markersize=4)
     ax.text(-0.08, r, r"$\omega_{ie}\cos L$", fontsize=9, color=_COMPASS, ha="right", va="center")
-    ax.text(*(tip + 0.15 * right), r"$w_y=\omega_{ie}\cos L\,\cos\psi$", fontsize=9, color=_GYRO, ha="left", va="top")
+    label_at = tip + 0.15 * right
+    ax.text(label_at[0], label_at[1], r"$w_y=\omega_{ie}\cos L\,\cos\psi$", fontsize=9, color=_GYRO, ha="left", va="top")
     plots.angle_arc(ax, (0.0, 0.0), 1.0, _map_angle(psi), 90.0, r"$\psi$", color="tab:red")
     ax.set(xlim=(-2.3, 2.6), ylim=(-1.5, 2.4), aspect="equal")
     ax.set_axis_off()
 
 
-def draw_candidate_pairs(ax, heading1_deg: float, heading2_deg: float, dpsi_ins_error_deg: float = 0.0) -> None:
+def draw_candidate_pairs(ax: Axes, heading1_deg: float, heading2_deg: float, dpsi_ins_error_deg: float = 0.0) -> None:
     """Paper Fig. 3 redrawn: the two mirror-image heading candidates at two stops and how the MEMS INS
     heading change picks the pair (Eqs. 10-12).
 
@@ -1386,8 +1396,10 @@ def draw_candidate_pairs(ax, heading1_deg: float, heading2_deg: float, dpsi_ins_
                 if abs(cand - a) < 1e-9
                 else f"2π − {name} = {360.0 - a:.0f}°"
             )
+            at = c + 1.12 * _unit(_map_angle(cand))
             ax.text(
-                *(c + 1.12 * _unit(_map_angle(cand))),
+                at[0],
+                at[1],
                 label,
                 fontsize=8,
                 color=color,

@@ -79,11 +79,17 @@ generator :func:`navlib.trajectory.walk`, and the HVAC pressure steps of its bui
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from .. import attitude
+from .._typing import Array, ArrayLike, Times
 from .._validate import as_array, generator, integer, pitch_roll, positive, same_shape, scalar, time_axis
 from ..trajectory import Leg
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
 
 __all__ = [
     "G_LOCAL",
@@ -109,8 +115,8 @@ and :func:`navlib.pdr.detect_steps` for the paper's detectors."""
 
 def carpark_legs(
     speed: float = 1.2,
-    stops=(8.0, 5.0, 20.0, 10.0, 6.0, 15.0, 30.0, 4.0, 12.0, 25.0),
-    side=(40.0, 24.0),
+    stops: ArrayLike = (8.0, 5.0, 20.0, 10.0, 6.0, 15.0, 30.0, 4.0, 12.0, 25.0),
+    side: ArrayLike = (40.0, 24.0),
     n_loops: int = 1,
     initial_stand: float = 30.0,
 ) -> list[Leg]:
@@ -176,7 +182,7 @@ def floor_test_legs(stand: float = 60.0, stairs: float = 15.0, floor_height: flo
 # --------------------------------------------------------------------------
 
 
-def tilt_compensate_ned(H_b, pitch, roll):
+def tilt_compensate_ned(H_b: ArrayLike, pitch: ArrayLike, roll: ArrayLike) -> tuple[Array, Array]:
     """Corrected Eq. (4) in the paper's NED / forward-right-down frame.
 
     Parameters
@@ -205,7 +211,7 @@ def tilt_compensate_ned(H_b, pitch, roll):
     return HX, HY
 
 
-def tilt_compensate_printed(H_b, pitch, roll):
+def tilt_compensate_printed(H_b: ArrayLike, pitch: ArrayLike, roll: ArrayLike) -> tuple[Array, Array]:
     """Eq. (4) as printed (errata E004-01, E004-02), with theta = pitch and phi = roll.
 
     ``H_X = H_x sin(th) sin(ph) + H_y cos(ph) - H_z cos(th) sin(ph)``,
@@ -225,7 +231,7 @@ def tilt_compensate_printed(H_b, pitch, roll):
     return (Hx * np.sin(th) * np.sin(ph) + Hy * np.cos(ph) - Hz * np.cos(th) * np.sin(ph), Hx * np.cos(th) + Hz * np.sin(th))
 
 
-def heading_from_horizontal(H_X, H_Y, declination: float = 0.0):
+def heading_from_horizontal(H_X: ArrayLike, H_Y: ArrayLike, declination: float = 0.0) -> Array:
     """Eqs. (5)-(6): ``atan2(-H_Y, H_X) + D`` wrapped to [0, 2 pi) (erratum E004-04).
 
     Examples
@@ -246,7 +252,9 @@ def heading_from_horizontal(H_X, H_Y, declination: float = 0.0):
 # --------------------------------------------------------------------------
 
 
-def hvac_pressure_steps(time, door_times, rng: np.random.Generator, amplitude: float = 10.0, n_trials: int | None = None):
+def hvac_pressure_steps(
+    time: Times, door_times: ArrayLike, rng: np.random.Generator, amplitude: float = 10.0, n_trials: int | None = None
+) -> Array:
     """Pressure offsets of ventilated zones: a new offset in [-a, a] after each door (Pa).
 
     Returns shape (N,), or (n_trials, N) with ``n_trials`` (each trial's offsets drawn in turn: the same
@@ -274,7 +282,7 @@ def hvac_pressure_steps(time, door_times, rng: np.random.Generator, amplitude: f
 # --------------------------------------------------------------------------
 
 
-def simple_covariance_update(P, H, R):
+def simple_covariance_update(P: ArrayLike, H: ArrayLike, R: ArrayLike) -> tuple[Array, Array]:
     """The printed last line of Eq. (3): optimal gain K and ``(I - K H) P``.
 
     Examples
@@ -303,7 +311,7 @@ SENSOR_COLOR = "#dbe9f6"
 """Face colour of the sensor boxes in the redrawn block diagram."""
 
 
-def draw_system(ax) -> None:
+def draw_system(ax: Axes) -> None:
     """Redraw the paper's system block diagram (its Fig. 2) on ``ax``.
 
     The strapdown INS runs on the MPU-6050 at all times. The static detector splits standing from

@@ -93,13 +93,14 @@ bound (:func:`navlib.analysis.cramer_rao_bound`, :func:`design`).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numba import njit
 
 from .. import _kernels, attitude, earth, kalman, robust
 from .._kernels import wrap_pi
-from .._typing import Angles, Array, ArrayLike, Interval, Vec3, Vec3Series
+from .._typing import Angles, Array, ArrayLike, Dcm, Interval, Times, Vec3, Vec3Series
 from .._validate import (
     as_array,
     axes,
@@ -124,6 +125,12 @@ from ..analysis import condition_number, cramer_rao_bound, normal_condition
 from ..euler import PITCH_LIMIT, check_pitch
 from ..imu import ImuSamples, unpack
 from ..units import G0
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+
+    from ..sensors import ImuModel
+    from ..trajectory import Trajectory
 
 __all__ = [
     "eq1_matrix",
@@ -248,7 +255,7 @@ def tilt_matrix(tilt: ArrayLike) -> Array:
 # --------------------------------------------------------------------------
 
 
-def _unit_axis(axis_b):
+def _unit_axis(axis_b: ArrayLike) -> Array:
     u = as_array(axis_b, "axis_b", shape=(3,))
     if abs(np.linalg.norm(u) - 1) > 1e-9:
         raise ValueError(f"axis_b: expected a unit vector, got norm {np.linalg.norm(u):.6g}")
@@ -344,7 +351,7 @@ def dwell_attitudes(hpr0: Angles, axis_b: Vec3, amplitude: float, n_dwells: int)
     pair = np.stack([hpr0, rotate_attitude(hpr0, axis_b, scalar(amplitude, "amplitude"))])
     if np.any(np.abs(pair[:, 1]) > PITCH_LIMIT):
         raise ValueError(
-            f"axis_b: rotating by {np.rad2deg(amplitude):g} deg about {np.round(axis_b, 6)} drives "
+            f"axis_b: rotating by {np.rad2deg(amplitude):g} deg about {np.round(np.asarray(axis_b), 6)} drives "
             f"pitch to {np.rad2deg(pair[1, 1]):.1f} deg, where Eq. (2) is singular"
         )
     return pair[np.arange(n_dwells) % 2]
@@ -691,9 +698,8 @@ def tilt_residuals(
     array([ 1.,  2., -1.])
     """
     w_ib_b, f_b, dt, full_scale_gyro, full_scale_accel = unpack(w_ib_b, f_b, dt, full_scale_gyro, full_scale_accel)
-    for name, value in (("starts", starts), ("length", length)):
-        if value is None:
-            raise ValueError(f"{name}: required")
+    if starts is None or length is None:
+        raise ValueError(f"{'starts' if starts is None else 'length'}: required")
     w, f = imu_samples(w_ib_b, f_b)
     lead, n = w.shape[:-2], w.shape[-2]
     dts, regular = sample_intervals(dt, n), np.ndim(dt) == 0
@@ -715,7 +721,7 @@ def tilt_residuals(
     w_ie = np.zeros((K, 3)) if w_ie_b is None else as_array(w_ie_b, "w_ie_b", tail=(3,), nonempty=True)
     w_ie = broadcast_to(w_ie, "w_ie_b", lead + (K, 3), of="K = starts.size dwells and the trials of w_ib_b")
 
-    def flat(x):
+    def flat(x: Array) -> Array:
         return kernel_array(x.reshape((-1, n, 3)))
 
     r, V, tilt, c, singular = _residual_kernel(
@@ -810,7 +816,7 @@ def _residual_cov(M, pitch, n, dt, N, A, g):
 # --------------------------------------------------------------------------
 
 
-def _rv(r, V):
+def _rv(r: ArrayLike, V: ArrayLike) -> tuple[Array, Array]:
     r = as_array(r, "r", tail=(2,), min_ndim=1, allow_nan=True)
     V = as_array(V, "V", tail=(2, 3), min_ndim=1, allow_nan=True)
     if V.shape[:-2] != r.shape[:-1]:
@@ -1194,7 +1200,7 @@ class Rig:
         Earth rate in the body frame at each dwell (rad/s).
     """
 
-    traj: object
+    traj: Trajectory
     w_ib_b: Vec3Series
     f_b: Vec3Series
     starts: ArrayLike
@@ -1206,7 +1212,7 @@ def rig_experiment(
     rig: Rig,
     dt: float,
     lat: float,
-    model,
+    model: ImuModel,
     rng: np.random.Generator,
     *,
     n_runs: int,
@@ -1214,7 +1220,7 @@ def rig_experiment(
     memory: float,
     extensions: bool = False,
     decimate: int = 100,
-) -> dict:
+) -> dict[str, Any]:
     """One pitch group of the paper's experiment (§4): ``n_runs`` noisy runs on one rig trajectory.
 
     Simulates ``model`` on the exact samples of ``traj`` (all runs in one vectorised call), estimates
@@ -1263,8 +1269,11 @@ def rig_experiment(
     res = tilt_residuals(imu.w_ib_b, imu.f_b, dt, starts, length, rig.w_ie_b)
     forgetting = np.exp(-period / memory)
     b_lsq, _ = running_lsq_bias(res.r, res.V, forgetting)
-    cases = {"uncorrected": (imu.w_ib_b, w_ie_n, None, hpr_true), "corrected": (imu.w_ib_b, w_ie_n, b_lsq, hpr_true)}
-    out = {"faults": res.faults}
+    cases: dict[str, tuple[Array, Array | None, Array | None, Array]] = {
+        "uncorrected": (imu.w_ib_b, w_ie_n, None, hpr_true),
+        "corrected": (imu.w_ib_b, w_ie_n, b_lsq, hpr_true),
+    }
+    out: dict[str, Any] = {"faults": res.faults}
     if extensions:
         R = residual_covariance(res.tilt, length, dt, model.gyro.noise_density, model.accel.noise_density)
         rrw = np.sqrt(2 / model.gyro.correlation_time) * model.gyro.gauss_markov_sigma  # RW matching the GM drift
@@ -1308,7 +1317,7 @@ def pair_spread(
     rotation_time: float,
     dt: float,
     lat: float,
-    model,
+    model: ImuModel,
     bias_b: Vec3,
     rng: np.random.Generator,
     *,
@@ -1350,14 +1359,14 @@ def pair_spread(
     return (b - bias_b).reshape(-1, 3).std(axis=0)
 
 
-def rotation_angle(C_bn) -> Array:
+def rotation_angle(C_bn: Dcm) -> Array:
     """Angle (rad) by which each attitude of ``C_bn`` (..., 3, 3) is turned from the first one (for the schedule figure)."""
     C = as_array(C_bn, "C_bn", shape=(None, 3, 3), nonempty=True)
     rel = np.swapaxes(C[:1], -1, -2) @ C
     return np.arccos(np.clip((np.trace(rel, axis1=-2, axis2=-1) - 1) / 2, -1.0, 1.0))
 
 
-def draw_rotation_scheme(ax, amplitude_deg: float = 90.0, pitch_deg: float = 30.0) -> None:
+def draw_rotation_scheme(ax: Axes, amplitude_deg: float = 90.0, pitch_deg: float = 30.0) -> None:
     """Paper Fig. 3 redrawn: the IMU turned by Δα about u = y_b, seen along u.
 
     The plane of the drawing is perpendicular to u (u points into the page). Left, the body axes of
@@ -1407,7 +1416,7 @@ def draw_rotation_scheme(ax, amplitude_deg: float = 90.0, pitch_deg: float = 30.
     ax.set_axis_off()
 
 
-def draw_rotation_schedule(ax, time, angle_deg, starts, length: int, dt: float) -> None:
+def draw_rotation_schedule(ax: Axes, time: Times, angle_deg: ArrayLike, starts: ArrayLike, length: int, dt: float) -> None:
     """The reciprocating schedule: rotation angle against time with the dwell windows shaded.
 
     Parameters
@@ -1452,7 +1461,7 @@ def draw_rotation_schedule(ax, time, angle_deg, starts, length: int, dt: float) 
     ax.set(xlabel="time (s)", ylabel="rotation angle α (°)", ylim=(-0.1 * a.max(), 1.2 * a.max()))
 
 
-def draw_flow(ax) -> None:
+def draw_flow(ax: Axes) -> None:
     """Paper Fig. 4 redrawn: the estimation and compensation loop (§3.3) as a block diagram.
 
     Examples
