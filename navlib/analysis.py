@@ -271,12 +271,18 @@ def fit_allan(taus: ArrayLike, adev: ArrayLike, n_samples: int, dt: float, *, ra
     The residuals are log-deviations weighted by the approximate number of
     independent clusters, ``sqrt(n_samples / m)``, so long averaging times
     (few clusters, large scatter) count less. Each term beyond white noise is kept only if the data ask for it:
-    the models with and without the bias instability (and, with ``rate_random_walk``, with and without K) are
-    compared where the term shows (the bias instability's peak, the last decade of averaging times): a term
-    whose removal leaves the curve within :data:`ALLAN_EVIDENCE` standard errors of the measured deviation
-    there is not identifiable and is left out, 0 (the margin is returned as ``evidence``; per axis in
-    :func:`navlib.calibration.characterise`'s ``TriadNoise.evidence``). Without this, a fit of every term
-    trades a random walk or white noise for an invented bias instability where their curves are alike.
+    every model (white noise with or without the bias instability and, with ``rate_random_walk``, with or
+    without K) is fitted and compared with the measured deviation where the terms show (the full model's
+    bias-instability peak and, with K, the last decade of averaging times). A model *fits* if its largest miss
+    there, in standard errors of the measured log-deviation (random-walk edf, the widest), is no more
+    improbable than a miss of :data:`ALLAN_EVIDENCE` in one comparison (Sidak's correction for the number
+    of averaging times compared). The fitting model of fewest parameters is chosen (white + K, two, before
+    white + B, three: a Gauss-Markov bias whose peak sits at the end of the record mimics a random walk),
+    the lowest cost between equals; the full model if none fits. A term's ``evidence`` is the smallest miss
+    of the models without it: at most :data:`ALLAN_EVIDENCE`, the data do not need the term (it may be
+    kept where either of two terms explains the curve; :func:`navlib.calibration.characterise` then
+    starts its interval at 0). Without this, a fit of every term trades a random walk or white noise for
+    an invented bias instability where their curves are alike.
 
     Parameters
     ----------
@@ -294,9 +300,13 @@ def fit_allan(taus: ArrayLike, adev: ArrayLike, n_samples: int, dt: float, *, ra
     dict
         ``white`` (N), ``bias_instability`` (B; 0 when left out), ``correlation_time`` (s; meaningless when B
         is 0: the full model's) and ``rate_random_walk`` (K; 0 unless fitted and chosen), in the units of
-        ``adev``; ``evidence``: (B, K), how many standard errors of the measured deviation the fit without the
-        term misses it by where the term shows (kept above :data:`ALLAN_EVIDENCE`; ``-inf`` for K when it is
-        not fitted).
+        ``adev``; ``evidence``: (B, K), the smallest miss, in Sidak-corrected standard errors, of the models
+        without the term (the term is needed above :data:`ALLAN_EVIDENCE`; ``-inf`` for K when it is not
+        fitted); ``sensitivity``, shape (4, M): the first-order change of log N, log B, log T_c and log K
+        of the chosen model's fit per change of the log-deviations (rows of absent terms 0), through which
+        :func:`navlib.calibration.characterise` carries the scatter of the Allan deviation to the terms;
+        ``adequate``, shape (A, 4): ``[N, B, T_c, K]`` of every model that fits within :data:`ALLAN_EVIDENCE`
+        (the chosen one among them; the full model alone if none does): the terms' model uncertainty.
 
     Examples
     --------
@@ -306,7 +316,7 @@ def fit_allan(taus: ArrayLike, adev: ArrayLike, n_samples: int, dt: float, *, ra
     >>> adev = analysis.allan_deviation_theory(taus, white=1e-3, bias_instability=1e-4, correlation_time=10.0)
     >>> fit = analysis.fit_allan(taus, adev, n_samples=100_000, dt=0.01)
     >>> sorted(fit)
-    ['bias_instability', 'correlation_time', 'evidence', 'rate_random_walk', 'white']
+    ['adequate', 'bias_instability', 'correlation_time', 'evidence', 'rate_random_walk', 'sensitivity', 'white']
     >>> round(float(fit["white"]), 6)
     0.001001
     """
@@ -322,33 +332,58 @@ def fit_allan(taus: ArrayLike, adev: ArrayLike, n_samples: int, dt: float, *, ra
 
 def _fit_allan(taus: np.ndarray, adev: np.ndarray, n_samples: int, dt: float, rate_random_walk: bool) -> dict:
     """:func:`fit_allan` of checked arguments."""
-    gm, rrw = True, rate_random_walk
-    p = _fit_terms(taus, adev, n_samples, dt, gm, rrw)
-    evidence = [0.0, -np.inf]
-    for term in (0, 1) if rrw else (0,):
-        without = _fit_terms(taus, adev, n_samples, dt, gm and term != 0, rrw and term != 1)
-        if term == 0:  # at the bias instability's peak
-            at = np.array([np.argmin(np.abs(np.log(taus / (GM_ALLAN_PEAK_TAU * p[2]))))])
-        else:  # over the last decade
-            at = np.flatnonzero(taus >= taus[-1] / 10)
-        edf = _edf_random_walk(n_samples + 1.0, taus[at] / dt)
-        miss = float(np.max(np.abs(np.log(_adev_theory(taus[at], *without) / adev[at])) * np.sqrt(2 * edf)))
-        evidence[term] = miss
-        if miss <= ALLAN_EVIDENCE:
-            gm, rrw, p = gm and term != 0, rrw and term != 1, without
-    full = _fit_terms(taus, adev, n_samples, dt, True, rate_random_walk)
+    models = [(gm, rrw) for gm in (False, True) for rrw in ((False, True) if rate_random_walk else (False,))]
+    fits = {model: _fit_terms(taus, adev, n_samples, dt, *model) for model in models}
+    full = fits[models[-1]]
+    peak = np.argmin(np.abs(np.log(taus / (GM_ALLAN_PEAK_TAU * full[2]))))  # where B shows
+    at = np.union1d([peak], np.flatnonzero(taus >= taus[-1] / 10) if rate_random_walk else [peak])  # and K
+    sigmas = np.sqrt(2 * _edf_random_walk(n_samples + 1.0, taus[at] / dt))  # standard errors of log adev
+    from scipy.stats import norm  # noqa: PLC0415 -- imported on first use (see GM_ALLAN_PEAK)
+
+    def miss(model):  # the largest miss of the fit, in standard errors of the measured deviation, ...
+        largest = np.max(np.abs(np.log(adev[at] / _adev_theory(taus[at], *fits[model]))) * sigmas)
+        # ... as the miss of one comparison that is as improbable (Sidak: the largest of at.size misses exceeds z
+        # with probability 1 - (1 - 2 Phi(-z))^at.size)
+        return float(norm.isf(-np.expm1(at.size * np.log1p(-2 * norm.sf(largest))) / 2))
+
+    def cost(model):  # the weighted least-squares cost over all averaging times
+        return float(np.sum((_fit_weights(taus, n_samples, dt) * np.log(adev / _adev_theory(taus, *fits[model]))) ** 2))
+
+    adequate = [model for model in models if miss(model) <= ALLAN_EVIDENCE] or models[-1:]
+    chosen = min(adequate, key=lambda model: (2 * model[0] + model[1], cost(model)))  # the fewest parameters
+    evidence = tuple(min(miss(m) for m in models if not m[term]) if rate_random_walk or term == 0 else -np.inf for term in (0, 1))
+    p = fits[chosen]
     return {
         "white": p[0],
         "bias_instability": p[1],
-        "correlation_time": p[2] if gm else full[2],
+        "correlation_time": p[2] if chosen[0] else full[2],
         "rate_random_walk": p[3],
-        "evidence": tuple(evidence),
+        "evidence": evidence,
+        "sensitivity": _log_sensitivity(taus, p, n_samples, dt),
+        "adequate": np.array([fits[model] for model in adequate]),
     }
 
 
+def _log_sensitivity(taus: np.ndarray, p: np.ndarray, n_samples: int, dt: float) -> np.ndarray:
+    """(4, M): the first-order change of the weighted fit's log N, log B, log T_c and log K per change of the
+    log-deviations, at the fitted parameters ``p`` (rows of absent terms 0): ``pinv(W J) W`` with ``J`` the
+    derivatives of the model's log-deviation by the log-parameters (central differences)."""
+    free = np.array([p[0] > 0, p[1] > 0, p[1] > 0, p[3] > 0])
+    step = 1e-6
+
+    def log_model(q):
+        return np.log(_adev_theory(taus, q[0], q[1], q[2], q[3]))
+
+    J = np.stack([(log_model(p * np.exp(step * e)) - log_model(p * np.exp(-step * e))) / (2 * step) for e in np.eye(4)[free]], -1)
+    w = _fit_weights(taus, n_samples, dt)
+    out = np.zeros((4, taus.size))
+    out[free] = np.linalg.pinv(w[:, None] * J) * w
+    return out
+
+
 ALLAN_EVIDENCE = 2.0
-"""A term beyond white noise is kept only if the fit without it misses the measured Allan deviation, where the term
-shows, by more than this many standard errors (:func:`fit_allan`)."""
+"""A model fits an Allan-deviation curve if its largest miss, where the terms show, is no more improbable than a miss
+of this many standard errors in one comparison; a term is needed if no model without it fits (:func:`fit_allan`)."""
 
 
 def _edf_random_walk(big_n: float, m: np.ndarray) -> np.ndarray:
@@ -359,12 +394,17 @@ def _edf_random_walk(big_n: float, m: np.ndarray) -> np.ndarray:
     return (big_n - 2) * ((big_n - 1) ** 2 - 3 * m * (big_n - 1) + 4 * m * m) / (m * (big_n - 3) ** 2)
 
 
+def _fit_weights(taus: np.ndarray, n_samples: int, dt: float) -> np.ndarray:
+    """:func:`fit_allan`'s weights of the log-deviations: the square root of the number of clusters, at least 1."""
+    return np.sqrt(np.maximum(n_samples * dt / taus, 1.0))
+
+
 def _fit_terms(taus, adev, n_samples, dt, gm: bool, rrw: bool) -> np.ndarray:
     """Weighted least squares of white noise with (``gm``) a Gauss-Markov bias and (``rrw``) rate random walk:
     parameters ``[N, B, T_c, K]`` (absent terms 0)."""
     from scipy.optimize import least_squares  # noqa: PLC0415 -- imported on first use (see GM_ALLAN_PEAK)
 
-    w = np.sqrt(np.maximum(n_samples * dt / taus, 1.0))
+    w = _fit_weights(taus, n_samples, dt)
     i_min = int(np.argmin(adev))
     free = np.array([True, gm, gm, rrw])
     p0 = np.array([adev[0] * np.sqrt(taus[0]), adev[i_min], taus[i_min] / GM_ALLAN_PEAK_TAU, adev[-1] / np.sqrt(taus[-1])])

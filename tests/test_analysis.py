@@ -190,12 +190,20 @@ def test_theory_terms_add_in_variance():
 @pytest.mark.parametrize("rrw", [False, True])
 def test_fit_allan_noise_free_curve(rrw):
     """White noise with a Gauss-Markov bias, or with rate random walk and no bias: the terms are recovered and the
-    one absent is not invented (fit_allan keeps a term only if the information criterion asks for it)."""
+    one absent is not invented (fit_allan keeps a term only if the data need it)."""
     dt, n = 0.01, 720_000
     taus = np.unique(np.round(np.logspace(0, np.log10(n // 3), 60))) * dt
     p = dict(white=1.7e-4, bias_instability=0.0 if rrw else 4.8e-5, correlation_time=100.0, rate_random_walk=2e-6 if rrw else 0.0)
     fit = A.fit_allan(taus, A.allan_deviation_theory(taus, **p), n, dt, rate_random_walk=rrw)
-    assert set(fit) == {"white", "bias_instability", "correlation_time", "rate_random_walk", "evidence"}
+    assert set(fit) == {
+        "white",
+        "bias_instability",
+        "correlation_time",
+        "rate_random_walk",
+        "evidence",
+        "sensitivity",
+        "adequate",
+    }
     keys = ("white", "rate_random_walk") if rrw else ("white", "bias_instability", "correlation_time")
     for k in keys:
         assert fit[k] == pytest.approx(p[k], rel=1e-3), k
