@@ -701,6 +701,8 @@ class OrientationErrors:
         The constant heading offset removed before scoring (rad; 0 when not removed).
     samples : int
         Number of samples scored (masked in, with a reference).
+    missing_reference : int
+        Number of masked-in samples left out because their reference row holds NaN (a gap of the reference).
     """
 
     total: float
@@ -708,6 +710,7 @@ class OrientationErrors:
     inclination: float
     heading_offset: float
     samples: int
+    missing_reference: int = 0
 
 
 def orientation_errors(
@@ -727,7 +730,7 @@ def orientation_errors(
     ----------
     q_bn, q_ref : array_like, shape (N, 4)
         Estimated and reference attitudes (scalar first, body to navigation frame, z up). Reference rows
-        with NaN are left out.
+        with NaN are left out and counted (``OrientationErrors.missing_reference``).
     mask : array_like of bool, shape (N,), optional
         The samples to score (e.g. the benchmark's movement phases); default all.
     remove_heading_offset : bool
@@ -764,4 +767,5 @@ def orientation_errors(
     total = 2 * np.arccos(np.clip(w, 0.0, 1.0))
     heading = 2 * np.arctan2(np.abs(z), w)
     inclination = 2 * np.arccos(np.clip(np.sqrt(w * w + z * z), 0.0, 1.0))
-    return OrientationErrors(*(float(np.sqrt(np.mean(x * x))) for x in (total, heading, inclination)), offset, int(use.sum()))
+    rms = (float(np.sqrt(np.mean(x * x))) for x in (total, heading, inclination))
+    return OrientationErrors(*rms, offset, int(use.sum()), int((mask & ~use).sum()))

@@ -92,7 +92,8 @@ def test_mask_and_missing_reference():
     mask = np.arange(100) >= 50
     assert analysis.orientation_errors(q, q_ref, mask).total == pytest.approx(0, abs=1e-7)
     q_ref[60:] = np.nan
-    assert analysis.orientation_errors(q, q_ref, mask).samples == 10
+    e = analysis.orientation_errors(q, q_ref, mask)
+    assert (e.samples, e.missing_reference) == (10, 40)  # masked-in rows without a reference are counted
     with pytest.raises(ValueError, match="no sample"):
         analysis.orientation_errors(q, q_ref, np.arange(100) >= 60)
     q[55] = np.nan

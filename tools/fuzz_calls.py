@@ -107,12 +107,7 @@ class Skip:
 
 # Bad calls that navlib does not refuse yet: "callable-arg-mutation" -> what it does instead. The tests mark
 # them xfail(strict=True), make fuzz lists them apart; remove the entry when navlib is fixed.
-KNOWN_GAPS: dict[str, str] = {
-    "filters.inertial_lowpass.inertial_lowpass-m_b-nan": "a NaN magnetometer sample is skipped but not counted in faults",
-    "filters.inertial_lowpass.inertial_lowpass-m_b-inf": "an infinite magnetometer sample is skipped, not refused or counted",
-    "analysis.orientation_errors-q_ref-nan": "by its docstring a NaN reference row is left out of the score, but the "
-    "result does not say how many were",
-}
+KNOWN_GAPS: dict[str, str] = {}
 
 
 def public_callables() -> dict[str, object]:
