@@ -476,6 +476,7 @@ BY_DESIGN: list[tuple[str, str, str, str, str]] = [
         "silent_accept",
         "a NaN reference row is a gap of the reference: left out and counted in OrientationErrors.missing_reference",
     ),
+    (r"analysis\.time_offset", "x", "nan", "silent_accept", "a NaN row of x is a missing sample, left out (docstring)"),
     (
         r"atmosphere\.(reference_pressure|segment_floors)",
         r"p|h",

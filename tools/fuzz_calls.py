@@ -301,6 +301,16 @@ def table() -> dict:
         ),
         "analysis.segments": Call(dict(mask=VALID)),
         "analysis.orientation_errors": Call(dict(q_bn=np.tile(Q, (N, 1)), q_ref=np.tile(Q, (N, 1)))),
+        "analysis.time_offset": Call(
+            dict(
+                t=0.3 + T,
+                x=np.sin(5 * (0.28 + T)),
+                t_ref=np.linspace(0.0, 1.0, 101),
+                x_ref=np.sin(np.linspace(0.0, 5.0, 101)),
+                max_offset=0.1,
+                step=0.005,
+            )
+        ),
         "analysis.OrientationErrors": Skip("a result record, built by orientation_errors"),
         "datasets.read_broad": Call(dict(path=str(REAL / "broad" / "07_undisturbed_fast_rotation_B.npz"))),
         "datasets.read_comma2k19": Call(dict(folder=str(REAL / "comma2k19"))),
