@@ -65,6 +65,7 @@ __all__ = [
     "footfall_path_length",
     "OrientationErrors",
     "orientation_errors",
+    "time_offset",
 ]
 
 
@@ -890,6 +891,8 @@ class OrientationErrors:
         The constant heading offset removed before scoring (rad; 0 when not removed).
     samples : int
         Number of samples scored (masked in, with a reference).
+    missing_reference : int
+        Number of masked-in samples left out because their reference row holds NaN (a gap of the reference).
 
     Examples
     --------
@@ -907,6 +910,7 @@ class OrientationErrors:
     inclination: float
     heading_offset: float
     samples: int
+    missing_reference: int = 0
 
 
 def orientation_errors(
@@ -926,7 +930,7 @@ def orientation_errors(
     ----------
     q_bn, q_ref : array_like, shape (N, 4)
         Estimated and reference attitudes (scalar first, body to navigation frame, z up). Reference rows
-        with NaN are left out.
+        with NaN are left out and counted (``OrientationErrors.missing_reference``).
     mask : array_like of bool, shape (N,), optional
         The samples to score (e.g. the benchmark's movement phases); default all.
     remove_heading_offset : bool
@@ -974,4 +978,64 @@ def orientation_errors(
     heading = 2 * np.arctan2(np.abs(z), w)
     inclination = 2 * np.arccos(np.clip(np.sqrt(w * w + z * z), 0.0, 1.0))
     total_rms, heading_rms, inclination_rms = (float(np.sqrt(np.mean(x * x))) for x in (total, heading, inclination))
-    return OrientationErrors(total_rms, heading_rms, inclination_rms, offset, int(use.sum()))
+    return OrientationErrors(total_rms, heading_rms, inclination_rms, offset, int(use.sum()), int((mask & ~use).sum()))
+
+
+def time_offset(t: Times, x: ArrayLike, t_ref: Times, x_ref: ArrayLike, max_offset: float = 0.5, step: float = 0.005) -> float:
+    """The delay ``tau`` (s) of a series against a reference of the same quantity: ``x(t) ~ x_ref(t - tau)``.
+
+    E.g. a GNSS receiver's fix latency, from its speed against the wheel speed, or from its positions against a
+    reference trajectory. Every offset on a grid of ``step`` within ``[-max_offset, max_offset]`` is scored by
+    the RMS of ``|x(t) - x_ref(t - tau)|`` (the reference interpolated linearly) over the same samples (those
+    whose shifted time stays inside the reference for every offset), and the best is refined by a parabola
+    through it and its two neighbours. Positive ``tau``: ``x`` is late.
+
+    Parameters
+    ----------
+    t, t_ref : array_like, shapes (N,), (M,)
+        Strictly increasing times (s) on one clock.
+    x, x_ref : array_like, shapes (N,) or (N, k), and (M,) or (M, k)
+        The series and its reference; NaN rows of ``x`` are left out, the reference must be finite.
+    max_offset : float
+        Largest offset tried (s).
+    step : float
+        Grid step (s), smaller than ``max_offset``.
+
+    Returns
+    -------
+    float
+        The offset (s).
+
+    Raises
+    ------
+    ValueError
+        If no sample of ``x`` stays inside the reference's time span for every offset, or the best offset
+        is at the edge of the grid (the delay may be larger: raise ``max_offset``).
+    """
+    t, t_ref = time_axis(t, "t"), time_axis(t_ref, "t_ref")
+    x = as_array(x, "x", allow_nan=True, min_ndim=1)
+    x_ref = as_array(x_ref, "x_ref", min_ndim=1)
+    if x.shape[0] != t.size or x_ref.shape[0] != t_ref.size or x.shape[1:] != x_ref.shape[1:]:
+        raise ValueError(f"x, x_ref: expected shapes ({t.size}, ...) and ({t_ref.size}, ...) alike, got {x.shape}, {x_ref.shape}")
+    max_offset = scalar(max_offset, "max_offset", positive=True)
+    step = scalar(step, "step", positive=True)
+    if step >= max_offset:
+        raise ValueError(f"step: expected a grid step below max_offset ({max_offset} s), got {step}")
+    x, x_ref = x.reshape(t.size, -1), x_ref.reshape(t_ref.size, -1)
+    use = np.isfinite(x).all(1) & (t - max_offset >= t_ref[0]) & (t + max_offset <= t_ref[-1])
+    if not use.any():
+        raise ValueError("t, t_ref: no finite sample of x stays inside the reference's time span for every offset")
+    taus = step * np.arange(-int(max_offset / step), int(max_offset / step) + 1)
+    cost = np.array([_offset_cost(t[use] - tau, x[use], t_ref, x_ref) for tau in taus])
+    i = int(np.argmin(cost))
+    if i in (0, taus.size - 1):
+        raise ValueError(f"max_offset: the best offset is at the edge of the grid ({taus[i]:+.3f} s); try a larger one")
+    c0, c1, c2 = cost[i - 1 : i + 2]
+    curvature = c0 - 2 * c1 + c2
+    return float(taus[i] + (0.5 * step * (c0 - c2) / curvature if curvature > 0 else 0.0))
+
+
+def _offset_cost(t_shifted, x, t_ref, x_ref) -> float:
+    """RMS of |x - x_ref(t_shifted)| (the reference interpolated linearly per column)."""
+    ref = np.stack([np.interp(t_shifted, t_ref, col) for col in x_ref.T], -1)
+    return float(np.sqrt(np.mean(np.sum((x - ref) ** 2, axis=1))))

@@ -12,7 +12,8 @@ A notebook calls :func:`setup` once with its own name; afterwards
   outside an interval); :func:`check_study` takes its tolerance from a
   recorded seed study (``data/seed_studies/``);
 * :func:`verdict` records the one verdict of a claim (:data:`VERDICTS`), resting
-  on the checks recorded before it;
+  on the checks recorded before it; with ``real_data=True`` a second verdict of the same claim whose
+  evidence is a committed real recording (any paper's claim, from any notebook: the recording's);
 * :func:`summary` returns the checks and verdicts recorded since the previous
   summary as one compact table (checks record silently; a section of a
   notebook ends with its table).
@@ -220,6 +221,7 @@ class Verdict:
     reason: str = ""
     erratum: str = ""
     figure: str = ""
+    real_data: bool = False  # the evidence is a committed real recording, not the paper's simulated setting
 
 
 @dataclass
@@ -901,8 +903,13 @@ def verdict(
     reason: str = "",
     erratum: str = "",
     figure: str = "",
+    real_data: bool = False,
 ) -> Verdict | None:
     """Record the verdict on a claim of this notebook's paper; raise ``ValueError`` if it is not supported.
+
+    With ``real_data=True`` the verdict is the claim's second one, whose evidence is a committed real recording
+    (``data/real/``) instead of the paper's (simulated) setting: it may judge a claim of any paper, from the
+    notebook that holds the recording, and the ledger shows it beside the claim's simulation verdict.
 
     Recorded silently (:func:`summary` shows it). In teaching mode a verdict resting on a failed
     check is not recorded: a :class:`ClaimCheckWarning` says so and ``None`` is returned.
@@ -945,6 +952,8 @@ def verdict(
         the claim's ``erratum`` column) whose correction makes the claim hold.
     figure : str
         A figure saved earlier in this run (:func:`savefig` name) shown as the claim's thumbnail.
+    real_data : bool
+        The evidence is a real recording (the ledger's *real data* verdict); the claim may be of any paper.
 
     Examples
     --------
@@ -963,12 +972,17 @@ def verdict(
     """
     if _state.notebook is None:
         raise RuntimeError("call navlib.repro.setup(notebook, paper=...) before verdict()")
-    if _state.paper is None:
-        raise ValueError(f"claim: notebook {_state.notebook} was set up without a paper, so it has no claims")
+    real_data = flag(real_data, "real_data")
+    if _state.paper is None and not real_data:
+        raise ValueError(
+            f"claim: notebook {_state.notebook} was set up without a paper, so it records only real-data verdicts "
+            "(real_data=True)"
+        )
     catalogue = _catalogue()
     row = catalogue["claims"].get(claim)
-    if row is None or row["paper"] != _state.paper:
-        raise ValueError(f"claim: expected a claim id of paper {_state.paper} in data/claims.csv, got {claim!r}")
+    if row is None or not (real_data or row["paper"] == _state.paper):
+        wanted = "a claim id" if real_data else f"a claim id of paper {_state.paper}"
+        raise ValueError(f"claim: expected {wanted} in data/claims.csv, got {claim!r}")
     choice(verdict, "verdict", VERDICTS)
     _texts(unit=unit, reason=reason, erratum=erratum, figure=figure)
     if (row["kind"] == EXTENSION) != (verdict == EXTENSION):
@@ -976,10 +990,10 @@ def verdict(
             f"verdict: {claim} is of kind {row['kind']!r} in data/claims.csv; verdict words judge a paper "
             f"statement, and {EXTENSION!r} is the one word of (and only of) the project's own quantities"
         )
-    if (row["kind"] in NOT_CHECKABLE) != (verdict == "not checkable here"):
+    if not real_data and (row["kind"] in NOT_CHECKABLE) != (verdict == "not checkable here"):
         raise ValueError(
-            f"verdict: {claim} is of kind {row['kind']!r} in data/claims.csv; 'not checkable here' is the verdict of "
-            f"(and only of) the kinds that say why: {', '.join(NOT_CHECKABLE)}"
+            f"verdict: {claim} is of kind {row['kind']!r} in data/claims.csv; 'not checkable here' is the simulation "
+            f"verdict of (and only of) the kinds that say why: {', '.join(NOT_CHECKABLE)}"
         )
     names = (
         [c.name for c in _state.checks if c.name == claim or c.name.startswith(claim + "/")] if checks is None else list(checks)
@@ -1041,11 +1055,23 @@ def verdict(
         reason.strip(),
         erratum,
         figure,
+        real_data,
     )
-    _state.verdicts = [k for k in _state.verdicts if k.claim != claim] + [v]
-    _state.encoded["verdict", claim] = _encode(asdict(v))
+    _state.verdicts = [k for k in _state.verdicts if (k.claim, k.real_data) != (claim, real_data)] + [v]
+    _state.encoded[_verdict_key(v)] = _encode(_verdict_row(v))
     _write()
     return v
+
+
+def _verdict_key(v: Verdict) -> tuple[str, str]:
+    return ("real-data verdict" if v.real_data else "verdict", v.claim)
+
+
+def _verdict_row(v: Verdict) -> dict[str, object]:
+    row = asdict(v)
+    if not row["real_data"]:  # written only when set: the simulation verdicts keep their bytes
+        del row["real_data"]
+    return row
 
 
 def _shown(x: object, unit: str) -> str:
@@ -1078,10 +1104,11 @@ def _write() -> None:
         data["mode"] = {"teaching": _state.teaching, "fast": _state.fast}
     if _state.paper is not None:
         data["paper"] = _state.paper
+    if _state.paper is not None or _state.verdicts:
         data["verdicts"] = "\0verdicts"
     text = json.dumps(data, indent=1, allow_nan=True)
     text = text.replace('"\\u0000checks"', _rows([_state.encoded["check", c.name] for c in _state.checks]))
-    text = text.replace('"\\u0000verdicts"', _rows([_state.encoded["verdict", v.claim] for v in _state.verdicts]))
+    text = text.replace('"\\u0000verdicts"', _rows([_state.encoded[_verdict_key(v)] for v in _state.verdicts]))
     (_build_dir(_state.notebook) / "results.json").write_text(text + "\n")
 
 
@@ -1176,7 +1203,7 @@ def summary() -> Any:
     checks = _state.checks[_state.shown_checks :]
     new_verdicts = _state.verdicts[_state.shown_verdicts :]
     _state.shown_checks, _state.shown_verdicts = len(_state.checks), len(_state.verdicts)
-    by_check = {n: v for v in _state.verdicts for n in v.checks}
+    by_check = {n: _shown_verdict(v) for v in _state.verdicts for n in v.checks}
     rows = [
         {
             "check": c.name,
@@ -1184,7 +1211,7 @@ def summary() -> Any:
             "ours": _ours(c),
             "tolerance": _target(c),
             "result": "pass" if c.passed else "FAIL",
-            "verdict": by_check[c.name].verdict if c.name in by_check else "",
+            "verdict": by_check.get(c.name, ""),
         }
         for c in checks
     ]
@@ -1196,7 +1223,7 @@ def summary() -> Any:
             "ours": v.ours or "",
             "tolerance": "",
             "result": "",
-            "verdict": v.verdict,
+            "verdict": _shown_verdict(v),
         }
         for v in new_verdicts
         if not set(v.checks) & shown
@@ -1207,6 +1234,10 @@ def summary() -> Any:
     table = table.set_index("check")
     table.index.name, table.columns.name = None, "check"  # one header row: "check" in its corner
     return table
+
+
+def _shown_verdict(v: Verdict) -> str:
+    return f"{v.verdict} (real data)" if v.real_data else v.verdict
 
 
 @functools.cache

@@ -92,7 +92,8 @@ def test_mask_and_missing_reference():
     mask = np.arange(100) >= 50
     assert analysis.orientation_errors(q, q_ref, mask).total == pytest.approx(0, abs=1e-7)
     q_ref[60:] = np.nan
-    assert analysis.orientation_errors(q, q_ref, mask).samples == 10
+    e = analysis.orientation_errors(q, q_ref, mask)
+    assert (e.samples, e.missing_reference) == (10, 40)  # masked-in rows without a reference are counted
     with pytest.raises(ValueError, match="no sample"):
         analysis.orientation_errors(q, q_ref, np.arange(100) >= 60)
     q[55] = np.nan
@@ -132,3 +133,17 @@ def test_drive_as_an_attitude_trial(drive):
     assert scored[0] >= drive.ref_time[0] and scored[-1] <= drive.ref_time[-1] and trial.movement.mean() > 0.95
     assert np.allclose(np.linalg.norm(trial.q_ref, axis=1), 1)
     assert trial.rate == pytest.approx(104, abs=1)
+
+
+def test_time_offset_finds_a_known_delay_and_refuses_one_beyond_its_grid():
+    t_ref = np.arange(0.0, 30.0, 0.01)
+    x_ref = np.stack([np.sin(0.7 * t_ref), np.cos(0.3 * t_ref)], -1)
+    t = np.arange(0.5, 29.5, 0.1)
+    x = np.stack([np.sin(0.7 * (t - 0.137)), np.cos(0.3 * (t - 0.137))], -1)  # 0.137 s late
+    x[5] = np.nan  # left out
+    assert analysis.time_offset(t, x, t_ref, x_ref) == pytest.approx(0.137, abs=1e-3)
+    assert analysis.time_offset(t, x[:, 0], t_ref, x_ref[:, 0]) == pytest.approx(0.137, abs=1e-3)
+    with pytest.raises(ValueError, match="max_offset"):
+        analysis.time_offset(t, x, t_ref, x_ref, max_offset=0.1, step=0.01)
+    with pytest.raises(ValueError, match="x, x_ref"):
+        analysis.time_offset(t, x, t_ref, x_ref[:, 0])

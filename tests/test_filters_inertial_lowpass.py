@@ -72,6 +72,16 @@ def test_a_disturbed_field_is_rejected_and_reported():
     assert _angle(res.q_bn[2000:3000], q_true) < 0.6
 
 
+@pytest.mark.parametrize("bad", [np.nan, np.inf])
+def test_a_non_finite_magnetometer_sample_is_skipped_and_counted(bad):
+    w, f, m, q_true = _static(1000)
+    m[[300, 600], 1] = bad
+    res = inertial_lowpass(ImuSamples(w, f, DT), m)
+    assert res.faults["mag", "nan"] == 2
+    assert np.flatnonzero(res.faults.flags["mag", "nan"]).tolist() == [300, 600]
+    assert _angle(res.q_bn[-100:], q_true) < 0.5  # the heading did not jump on it
+
+
 def test_6d_has_no_magnetometer_faults_and_batches_match():
     w, f, m, _ = _static(800)
     w2, f2, _, _ = _static(800, seed=1)

@@ -2,9 +2,10 @@
 
 * Every paper notebook calls ``repro.setup("<stem>", paper="<claims_id>")`` with its registry entry's
   claims id; the notebooks without a paper pass none.
-* Every ``repro.verdict(...)`` call written in a notebook names a claim of that notebook's paper, a
-  known verdict, and at most once; "not checkable here" is the verdict of (and only of) a claim whose catalogue kind
-  says why (hardware only, datasheet, data not available, paper too vague, not a result), and the ledger shows it.
+* Every ``repro.verdict(...)`` call written in a notebook names a claim of that notebook's paper (a real-data
+  verdict, ``real_data=True``: of any paper), a known verdict, and at most once per kind of evidence; "not checkable
+  here" is the simulation verdict of (and only of) a claim whose catalogue kind says why (hardware only, datasheet,
+  data not available, paper too vague, not a result), and the ledger shows it.
 * ``tools/ledger.py`` and ``navlib.repro`` know the same verdicts, and ``docs/claims.md`` explains each.
 * The ledger joins a results file with the catalogue as documented: every claim appears once, a claim
   without a verdict is "no verdict yet" and does not count as covered.
@@ -59,12 +60,12 @@ def literal(node: ast.Call, pos: int, key: str):
         return None
 
 
-def static_verdicts(path: Path) -> dict[str, str]:
-    """claim id -> verdict of the notebook's literal ``verdict(...)`` calls."""
+def static_verdicts(path: Path, real_data: bool = False) -> dict[str, str]:
+    """claim id -> verdict of the notebook's literal ``verdict(...)`` calls (those with ``real_data=True``, or not)."""
     out = {}
     for node in calls(path, "verdict"):
         claim, verdict = literal(node, 0, "claim"), literal(node, 1, "verdict")
-        if isinstance(claim, str) and isinstance(verdict, str):
+        if isinstance(claim, str) and isinstance(verdict, str) and bool(literal(node, 99, "real_data")) == real_data:
             assert claim not in out, f"{path.stem}: two verdict calls for {claim}"
             out[claim] = verdict
     return out
@@ -84,8 +85,11 @@ def test_setup_names_the_registered_paper(path):
 def test_verdict_calls_name_claims_of_the_notebooks_paper(path):
     paper = by_notebook(path.stem)
     found = static_verdicts(path)
+    for claim, verdict in static_verdicts(path, real_data=True).items():
+        assert claim in CLAIMS, f"{claim}: not in data/claims.csv"
+        assert verdict in repro.VERDICTS, f"{claim}: unknown verdict {verdict!r}"
     if paper is None:
-        assert not found, "a notebook without a paper records no verdicts"
+        assert not found, "a notebook without a paper records only real-data verdicts"
         return
     for claim, verdict in found.items():
         assert claim in CLAIMS, f"{claim}: not in data/claims.csv"
@@ -229,6 +233,26 @@ def test_each_claim_gets_its_verdict_in_one_notebook(p):
     found = [set(static_verdicts(ROOT / "notebooks" / f"{stem}.ipynb")) for stem in p.notebooks]
     twice = sorted(set.intersection(*found)) if len(found) > 1 else []
     assert not twice, f"claims given a verdict in more than one notebook of paper {p.claims_id}: {twice}"
+
+
+def test_real_data_verdicts_join_their_claims_from_any_notebook(tmp_path):
+    p, chapter = PAPERS[2], "07_real_references"
+    ids = [c for c, r in CLAIMS.items() if r["paper"] == p.claims_id and r["kind"] != "extension"]
+    entry = dict(checks=["x/real"], evidence=[], paper=None, ours="0.4 m", reason="", erratum="", figure="drive")
+    _results(tmp_path, p.notebook, [{"claim": ids[0], "verdict": "direction only", **entry, "reason": "stand-in"}])
+    (tmp_path / chapter).mkdir()
+    verdicts = [
+        {"claim": ids[0], "verdict": "reproduced", "real_data": True, **entry},
+        {"claim": "P999-NOT-A-CLAIM", "verdict": "reproduced", "real_data": True, **entry},
+    ]
+    (tmp_path / chapter / "results.json").write_text(json.dumps({"notebook": chapter, "checks": [], "verdicts": verdicts}))
+    leds = ledger.ledgers(tmp_path)
+    row = next(led for led in leds if led.stem == p.notebook).rows[0]
+    assert row.verdict == "direction only" and row.stem == p.notebook  # the simulation verdict stays
+    assert row.real.verdict == "reproduced" and row.real.stem == chapter
+    assert row.real.figure == f"{chapter}/figures/drive.png" and row.real.ours == "0.4 m"
+    assert next(led for led in leds if led.stem == p.notebook).real_counts == {"reproduced": 1}
+    assert any("P999-NOT-A-CLAIM" in m for led in leds for m in led.problems)
 
 
 def test_chapters_have_no_claims():

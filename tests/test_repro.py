@@ -4,7 +4,6 @@ import json
 import math
 import struct
 import zlib
-from dataclasses import asdict
 
 import numpy as np
 import pytest
@@ -293,11 +292,38 @@ def test_results_json_is_the_plain_json_layout(paper_root):
         "checks": [repro._row(c) for c in repro.results()],
         "mode": {"teaching": True, "fast": False},
         "paper": "999",
-        "verdicts": [asdict(v) for v in repro.verdicts()],
+        "verdicts": [repro._verdict_row(v) for v in repro.verdicts()],  # real_data is written only when set
     }
     assert text == json.dumps(plain, indent=1, allow_nan=True) + "\n"
     assert [r["name"] for r in json.loads(text)["checks"]] == ["P999-FIG1-RMSE/out", "extra-nan", "P999-FIG1-RMSE"]
     assert len(json.loads(text)["verdicts"]) == 2
+
+
+def test_a_real_data_verdict_is_a_second_verdict_of_any_papers_claim(fake_root):
+    (fake_root / "data").mkdir()
+    (fake_root / "data" / "claims.csv").write_text(CLAIMS_CSV, encoding="utf-8")
+    (fake_root / "data" / "errata.csv").write_text(ERRATA_CSV, encoding="utf-8")
+    repro.setup("07_real", paper=None)
+    repro.check_range("P998-EQ1-X/real", 0.5, "a recording", upper=1.0)
+    with pytest.raises(ValueError, match="real_data=True"):
+        repro.verdict("P998-EQ1-X", "reproduced")
+    repro.verdict("P998-EQ1-X", "reproduced", real_data=True)
+    repro.check_range("P999-FIG1-RMSE/real", 0.5, "a recording", upper=1.0)
+    repro.verdict("P999-FIG1-RMSE", "reproduced", real_data=True)
+    with pytest.raises(ValueError, match="claim"):
+        repro.verdict("P997-NONE", "reproduced", real_data=True)
+    rows = json.loads((fake_root / "build" / "07_real" / "results.json").read_text())["verdicts"]
+    assert [(r["claim"], r["real_data"]) for r in rows] == [("P998-EQ1-X", True), ("P999-FIG1-RMSE", True)]
+    assert "(real data)" in repro.summary()["verdict"].iloc[0]
+
+
+def test_a_claim_keeps_its_simulation_verdict_beside_the_real_data_one(paper_root):
+    repro.check("P999-FIG1-RMSE", 4.8, 4.77, 0.1, "Fig. 1")
+    repro.verdict("P999-FIG1-RMSE", "reproduced")
+    repro.verdict("P999-FIG1-RMSE", "reproduced", real_data=True)
+    assert [v.real_data for v in repro.verdicts()] == [False, True]
+    rows = json.loads((paper_root / "build" / NB / "results.json").read_text())["verdicts"]
+    assert "real_data" not in rows[0] and rows[1]["real_data"] is True
 
 
 def test_check_outside(fake_root):

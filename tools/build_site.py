@@ -245,7 +245,7 @@ def stage_notebook(src: Path, dest: Path, claims_by_figure: dict[str, list[str]]
             cell.source = fold_errata(absolute_links(link_names(cell.source, names), base="notebooks"))
         elif cell.cell_type == "code":
             tags = cell.metadata.setdefault("tags", [])
-            if "hide-input" not in tags and "# your code here" not in cell.source:   # an exercise's stub stays shown
+            if "hide-input" not in tags and "# your code here" not in cell.source:  # an exercise's stub stays shown
                 tags.append("hide-input")
             kept = []
             for out in cell.get("outputs", []):
@@ -318,6 +318,18 @@ def claims_matrix(led: ledger.PaperLedger, rows_of: str = "rows") -> str:
             thumb,
         ]
         rows.append("<tr>" + "".join(f"<td>{c}</td>" for c in cells) + "</tr>")
+        if r.real is not None:  # the claim's second verdict, on a committed real recording
+            real = r.real
+            why = ledger.verdict_text(real)[len(real.verdict) :].lstrip(": ")
+            cells = [
+                "↳ real data",
+                f"<small>{html.escape(real.stem)}</small>",
+                html.escape(real.paper),
+                html.escape(real.ours),
+                verdict_span(real.verdict) + (f"<br><small>{html.escape(why)}</small>" if why else ""),
+                f"<img src='{real.figure}' width='110' alt='{html.escape(r.claim)} on real data'>" if real.figure else "",
+            ]
+            rows.append("<tr class='real-data'>" + "".join(f"<td>{c}</td>" for c in cells) + "</tr>")
     head = "".join(f"<th>{h}</th>" for h in ("paper item", "claim", "paper", "ours", "verdict", "figure"))
     return scroll_x(f"<table class='matrix'><thead><tr>{head}</tr></thead><tbody>\n" + "\n".join(rows) + "\n</tbody></table>")
 

@@ -365,7 +365,8 @@ def unusual(variant: str, arg: Arg):
 
 _SENSORS = r"w_ib_b|f_b|m_b"
 _FILTERS = (
-    r"filters\.(mahony\.mahony|quaternion_kf\.quaternion_kf|zupt_ins\.run_filter|zupt\.detect_static)|"
+    r"filters\.(mahony\.mahony|quaternion_kf\.quaternion_kf|inertial_lowpass\.inertial_lowpass|zupt_ins\.run_filter|"
+    r"zupt\.detect_static)|"
     r"alignment\.static_means|papers\.north_finding\.(ins_heading_change|stop_solutions)|pdr\.pdr_headings"
 )
 _HEADINGS = r"heading\w*"
@@ -390,7 +391,7 @@ BY_DESIGN: list[tuple[str, str, str, str, str]] = [
     (r"attitude\.ned_to_enu", "v", "nan", "silent_nan", "a frame swap of logged vectors: a NaN reading stays NaN"),
     (_FILTERS, _SENSORS, "nan", "silent_accept", "NaN marks a sensor dropout: held or skipped, and counted in the result"),
     (
-        r"filters\.(mahony\.mahony|quaternion_kf\.quaternion_kf)",
+        r"filters\.(mahony\.mahony|quaternion_kf\.quaternion_kf|inertial_lowpass\.inertial_lowpass)",
         r"f_b|m_b",
         "inf",
         "silent_accept",
@@ -468,6 +469,14 @@ BY_DESIGN: list[tuple[str, str, str, str, str]] = [
         "NaN propagates: no silent dropping (docstrings; tests/test_bad_input.py)",
     ),
     (r"analysis\.condition_number", "V", "nan", "silent_accept", "blocks holding NaN are left out (docstring)"),
+    (
+        r"analysis\.orientation_errors",
+        "q_ref",
+        "nan",
+        "silent_accept",
+        "a NaN reference row is a gap of the reference: left out and counted in OrientationErrors.missing_reference",
+    ),
+    (r"analysis\.time_offset", "x", "nan", "silent_accept", "a NaN row of x is a missing sample, left out (docstring)"),
     (
         r"atmosphere\.(reference_pressure|segment_floors)",
         r"p|h",

@@ -107,12 +107,7 @@ class Skip:
 
 # Bad calls that navlib does not refuse yet: "callable-arg-mutation" -> what it does instead. The tests mark
 # them xfail(strict=True), make fuzz lists them apart; remove the entry when navlib is fixed.
-KNOWN_GAPS: dict[str, str] = {
-    "filters.inertial_lowpass.inertial_lowpass-m_b-nan": "a NaN magnetometer sample is skipped but not counted in faults",
-    "filters.inertial_lowpass.inertial_lowpass-m_b-inf": "an infinite magnetometer sample is skipped, not refused or counted",
-    "analysis.orientation_errors-q_ref-nan": "by its docstring a NaN reference row is left out of the score, but the "
-    "result does not say how many were",
-}
+KNOWN_GAPS: dict[str, str] = {}
 
 
 def public_callables() -> dict[str, object]:
@@ -306,6 +301,16 @@ def table() -> dict:
         ),
         "analysis.segments": Call(dict(mask=VALID)),
         "analysis.orientation_errors": Call(dict(q_bn=np.tile(Q, (N, 1)), q_ref=np.tile(Q, (N, 1)))),
+        "analysis.time_offset": Call(
+            dict(
+                t=0.3 + T,
+                x=np.sin(5 * (0.28 + T)),
+                t_ref=np.linspace(0.0, 1.0, 101),
+                x_ref=np.sin(np.linspace(0.0, 5.0, 101)),
+                max_offset=0.1,
+                step=0.005,
+            )
+        ),
         "analysis.OrientationErrors": Skip("a result record, built by orientation_errors"),
         "datasets.read_broad": Call(dict(path=str(REAL / "broad" / "07_undisturbed_fast_rotation_B.npz"))),
         "datasets.read_comma2k19": Call(dict(folder=str(REAL / "comma2k19"))),

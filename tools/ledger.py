@@ -14,6 +14,11 @@ A claim is *not checkable here* for a reason of a fixed vocabulary, its catalogu
 only, datasheet, data not available, paper too vague, not a result), with the notebook's sentence why; the ledger
 shows both.
 
+A claim may carry a second verdict whose evidence is a committed real recording (``repro.verdict(...,
+real_data=True)``, recorded by the notebook that holds the recording, e.g. 07_real_references): the ledger shows it
+beside the simulation verdict (``Row.real``) and counts it apart; coverage and the verdict columns count the
+claim's own (simulation) verdict only.
+
 Verdict words judge what a paper states. A catalogue row of kind ``extension`` (the project's own quantity, a
 test vector, a reconstruction of something the paper does not print) is not a paper claim: it sits in the
 ledger's separate *extensions* list with the one verdict ``extension`` (its checks passed), outside the counts.
@@ -86,6 +91,7 @@ class Row:
     figure: str = ""  # path relative to build/, or ""
     checks: list[str] = field(default_factory=list)
     stem: str = ""  # the notebook that recorded the verdict, or ""
+    real: Row | None = None  # the verdict on real data (evidence: a committed recording), if any
 
     @property
     def computed(self) -> bool:
@@ -115,6 +121,11 @@ class PaperLedger:
     @property
     def computed(self) -> int:
         return sum(r.computed for r in self.rows)
+
+    @property
+    def real_counts(self) -> Counter:
+        """The real-data verdicts by word (paper claims and extensions)."""
+        return Counter(r.real.verdict for r in (*self.rows, *self.extensions) if r.real is not None)
 
 
 def paper_ledger(
@@ -162,40 +173,66 @@ def join(led: PaperLedger, rows: dict[str, Row], stem: str, res: dict) -> None:
     if res.get("mode"):  # a teaching or fast run: not the ledger's evidence
         led.problems.append(f"{stem}/results.json was written in {res['mode']} mode; rerun make reproduce")
     for v in res.get("verdicts", []):
+        if v.get("real_data"):  # joined by ledgers(), from whichever notebook recorded it
+            continue
         row = rows.get(v["claim"])
         if row is None:
             led.problems.append(f"verdict for {v['claim']}, not a claim of paper {paper}")
             continue
-        if v["verdict"] not in VERDICTS:
-            led.problems.append(f"{v['claim']}: unknown verdict {v['verdict']!r}")
+        _apply(row, v, stem, led.problems)
+
+
+def _apply(row: Row, v: dict, stem: str, problems: list[str], real_data: bool = False) -> bool:
+    """Put the verdict ``v`` (a results.json entry of notebook ``stem``) on ``row``; False (and a problem) if invalid.
+
+    A claim not checkable here by simulation may still carry a real-data verdict: the kind's guard holds for the
+    claim's own (simulation) verdict only."""
+    if v["verdict"] not in VERDICTS:
+        problems.append(f"{v['claim']}: unknown verdict {v['verdict']!r}")
+        return False
+    if (row.kind == EXTENSION) != (v["verdict"] == EXTENSION):
+        problems.append(f"{v['claim']}: verdict {v['verdict']!r} on a row of kind {row.kind!r}")
+        return False
+    if not real_data and (row.kind in NOT_CHECKABLE) != (v["verdict"] == "not checkable here"):
+        problems.append(
+            f"{v['claim']}: verdict {v['verdict']!r} on a row of kind {row.kind!r} (the kinds that say "
+            "why a claim is not checkable here go with that verdict, and only they)"
+        )
+        return False
+    if row.stem:
+        problems.append(f"{v['claim']}: a verdict in {row.stem} and another in {stem}")
+        return False
+    row.stem = stem
+    row.verdict, row.reason, row.erratum, row.checks = v["verdict"], v["reason"], v["erratum"], v["checks"]
+    row.ours = v["ours"] or ""
+    if v["paper"] is not None:
+        row.paper = v["paper"]
+    if v["figure"]:
+        row.figure = f"{stem}/figures/{v['figure']}.png"
+    return True
+
+
+def join_real_data(leds: list[PaperLedger], stem: str, res: dict | None) -> None:
+    """Attach the real-data verdicts of notebook ``stem``'s results to their claims' rows (``Row.real``)."""
+    by_id = {r.claim: (led, r) for led in leds for r in (*led.rows, *led.extensions)}
+    for v in (res or {}).get("verdicts", []):
+        if not v.get("real_data"):
             continue
-        if (row.kind == EXTENSION) != (v["verdict"] == EXTENSION):
-            led.problems.append(f"{v['claim']}: verdict {v['verdict']!r} on a row of kind {row.kind!r}")
+        if v["claim"] not in by_id:
+            leds[0].problems.append(f"{stem}: real-data verdict for {v['claim']}, not a claim of data/claims.csv")
             continue
-        if (row.kind in NOT_CHECKABLE) != (v["verdict"] == "not checkable here"):
-            led.problems.append(
-                f"{v['claim']}: verdict {v['verdict']!r} on a row of kind {row.kind!r} (the kinds that say "
-                "why a claim is not checkable here go with that verdict, and only they)"
-            )
-            continue
-        if row.stem:
-            led.problems.append(f"{v['claim']}: a verdict in {row.stem} and another in {stem}")
-            continue
-        row.stem = stem
-        row.verdict, row.reason, row.erratum, row.checks = v["verdict"], v["reason"], v["erratum"], v["checks"]
-        row.ours = v["ours"] or ""
-        if v["paper"] is not None:
-            row.paper = v["paper"]
-        if v["figure"]:
-            row.figure = f"{stem}/figures/{v['figure']}.png"
+        led, row = by_id[v["claim"]]
+        real = Row(row.claim, row.item, row.quantity, row.kind, row.paper)
+        if _apply(real, v, stem, led.problems, real_data=True):
+            row.real = real
 
 
 def ledgers(build: Path, root: Path = ROOT) -> list[PaperLedger]:
     """One ledger per registered paper (all its notebooks), in notebook order."""
-    from navlib.papers import PAPERS  # the registry (imported here: reproduce.py's workers need no navlib)
+    from navlib.papers import CHAPTERS, PAPERS  # the registry (imported here: reproduce.py's workers need no navlib)
 
     catalogue = claims(root)
-    return [
+    leds = [
         paper_ledger(
             p.notebook,
             p.claims_id,
@@ -206,10 +243,13 @@ def ledgers(build: Path, root: Path = ROOT) -> list[PaperLedger]:
         )
         for p in sorted(PAPERS, key=lambda p: p.number)
     ]
+    for stem in sorted({*CHAPTERS, *(s for led in leds for s in led.stems)}):
+        join_real_data(leds, stem, results(build, stem))
+    return leds
 
 
 def verdict_text(row: Row) -> str:
-    """The verdict with its erratum, or why it is not checkable here, and its reason, as one line."""
+    """The verdict with its erratum or reason, as one line (a real-data row's own verdict: pass ``row.real``)."""
     text = row.verdict
     if row.verdict == "not checkable here" and row.kind in NOT_CHECKABLE:
         text += f" ({NOT_CHECKABLE[row.kind]})"

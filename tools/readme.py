@@ -28,6 +28,7 @@ import hashlib
 import json
 import re
 import sys
+from collections import Counter
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -97,15 +98,28 @@ def summary_rows(build: Path, leds: list[ledger.PaperLedger]) -> dict[str, str]:
 
 
 def row_line(r: ledger.Row) -> str:
-    """One claim as a markdown table row: id, item, paper, ours, verdict with its reason, thumbnail."""
-    thumb = f'<img src="docs/figures/{figure_copy(r.figure)}" width="{THUMB_WIDTH_PX}">' if r.figure else ""
-    return f"| `{r.claim}` | {cell(r.item)} | {cell(r.paper)} | {cell(r.ours)} | {cell(ledger.verdict_text(r))} | {thumb} |"
+    """One claim as a markdown table row: id, item, paper, ours, verdict with its reason, thumbnail; then its
+    real-data verdict, if any, as a row of its own (evidence: real data, and the notebook that recorded it)."""
+    line = f"| `{r.claim}` | {cell(r.item)} | {cell(r.paper)} | {cell(r.ours)} | {cell(ledger.verdict_text(r))} | {thumb(r)} |"
+    if r.real is None:
+        return line
+    real = r.real
+    return (
+        line + f"\n| ↳ real data | `{real.stem}` | {cell(real.paper)} | {cell(real.ours)} | "
+        f"{cell(ledger.verdict_text(real))} | {thumb(real)} |"
+    )
+
+
+def thumb(r: ledger.Row) -> str:
+    return f'<img src="docs/figures/{figure_copy(r.figure)}" width="{THUMB_WIDTH_PX}">' if r.figure else ""
 
 
 def matrix(led: ledger.PaperLedger) -> str:
     """The claims of one paper as a collapsible markdown table, between its ledger markers."""
     counts = led.counts
     summary = ", ".join(f"{counts[v]} {v}" for v in ledger.COLUMNS if counts.get(v))
+    if led.real_counts:
+        summary += "; on real data: " + ", ".join(f"{n} {v}" for v, n in sorted(led.real_counts.items()))
     lines = [
         f"<!-- ledger:{led.stem} -->",
         f"<details><summary><b>{led.stem}</b> — {led.title}: {len(led.rows)} claims ({summary})</summary>",
@@ -162,10 +176,25 @@ def render(build: Path) -> tuple[str, dict[str, str]]:
         f"{sum(len(led.extensions) for led in ran)} extensions (the project's own quantities) are listed apart, "
         "under each paper.",
         "",
+        real_data_line(ran),
+        "",
     ]
     block += [matrix(led) + "\n" for led in ran]
     block.append(END)
     return "\n".join(block), parts
+
+
+def real_data_line(leds: list[ledger.PaperLedger]) -> str:
+    """The count of the second verdicts, whose evidence is a committed real recording."""
+    counts = sum((led.real_counts for led in leds), Counter())
+    if not counts:
+        return "**Real data:** no claim has a real-data verdict yet."
+    return (
+        f"**Real data:** {sum(counts.values())} claims also carry a verdict whose evidence is a committed real recording "
+        f"(data/real/; the row marked *real data* under the claim, beside its simulation verdict): "
+        + ", ".join(f"{n} {v}" for v, n in sorted(counts.items()))
+        + "."
+    )
 
 
 def readme_parts(text: str) -> dict[str, str]:
@@ -221,7 +250,8 @@ def write_figures(build: Path, leds: list[ledger.PaperLedger]) -> list[str]:
     from PIL import Image  # Pillow comes with matplotlib
 
     FIGURES.mkdir(parents=True, exist_ok=True)
-    wanted = {r.figure: THUMB_FILE_WIDTH_PX for led in leds for r in (*led.rows, *led.extensions) if r.figure}
+    rows = [r for led in leds for r in (*led.rows, *led.extensions)]
+    wanted = {x.figure: THUMB_FILE_WIDTH_PX for r in rows for x in (r, r.real) if x is not None and x.figure}
     wanted |= {f"{stem}/figures/{fig}.png": GALLERY_WIDTH_PX for stem, fig in GALLERY}
     # Copies are remade only when their source PNG or width changed (build/readme-figures.json: the sources
     # of the last copies); re-encoding all of them took 1 s of every make reproduce.
