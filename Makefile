@@ -91,7 +91,7 @@ docs: $(STAMP) $(DOCS_STAMP)
 
 # Each notebook is executed once per run: reproduce.py --stale executes those whose execution into build/ is
 # missing, failed or out of date (all of them on a fresh clone, none right after `make reproduce`), two at a
-# time, and tests/test_notebooks.py reads their records. pytest exits 5 when it collected no tests: a failure.
+# time, and tests/test_notebook_runs.py reads their records. pytest exits 5 when it collected no tests: a failure.
 test: $(STAMP)
 	@rc=0; $(PY) tools/reproduce.py --stale || rc=$$?; \
 	NAVLIB_CHECK_README=1 $(PY) -m pytest tests $(PYTEST_FLAGS) || { r=$$?; [ $$r -ne 5 ] || echo "make test: pytest collected no tests" >&2; rc=$$r; }; \

@@ -4,7 +4,7 @@ Each notebook writes ``build/<notebook>/results.json``; ``tools/readme.py``
 turns those into the README's results section (claims by verdict, the per-paper
 matrices) and the numbers its prose quotes. When a pytest session passed, this hook
 re-renders the parts of the notebooks whose execution into build/ is up to date and
-passed (``tools/reproduce.py``'s record of it, as ``tests/test_notebooks.py`` uses it)
+passed (``tools/reproduce.py``'s record of it, as ``tests/test_notebook_runs.py`` uses it)
 and fails the session if the committed README disagrees (run ``make readme`` and
 commit). Enabled by ``make test`` (NAVLIB_CHECK_README=1), so a developer running
 one notebook by hand is not stopped by it.

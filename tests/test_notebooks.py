@@ -1,12 +1,4 @@
-"""Every numbered notebook runs to the end with every check passing; static checks on notebooks/*.ipynb.
-
-Each notebook is executed once per ``make test``: ``tools/reproduce.py --stale`` (run by ``make test`` before
-pytest) executes every notebook whose execution into build/ is missing, failed or out of date, and
-:func:`test_notebook_runs` reads the record of that execution (``build/<stem>.run.json``). A record is used
-only while it stands: the digest of the notebook, navlib/, data/, the runner and the installed packages is
-the one it ran with, and its executed notebook, results and figures in build/ are the ones it wrote;
-otherwise (a plain ``pytest`` after an edit, say) the test executes the notebook itself
-(``tests/test_reproduce_tool.py`` tests that rule).
+"""Static checks on notebooks/*.ipynb (their execution: tests/test_notebook_runs.py).
 
 Every notebook is committed stripped (`make strip`), runs on the ``python3``
 kernel, has a code cell tagged ``parameters``, and calls
@@ -18,7 +10,6 @@ from __future__ import annotations
 
 import json
 import re
-import sys
 from pathlib import Path
 
 import pytest
@@ -27,7 +18,6 @@ from navlib.papers import by_notebook
 
 NOTEBOOKS = Path(__file__).resolve().parents[1] / "notebooks"
 PATHS = sorted(NOTEBOOKS.glob("*.ipynb")) if NOTEBOOKS.is_dir() else []
-NUMBERED = [p for p in PATHS if re.match(r"\d\d_", p.name)]
 SETUP_CALL = re.compile(r"\bsetup\(\s*(?:notebook\s*=\s*)?[\"']([^\"']*)[\"']")
 YEAR = re.compile(r"\b(19|20)\d\d\b")
 PAPERS = [p for p in PATHS if by_notebook(p.stem) is not None]
@@ -90,14 +80,3 @@ def test_paper_notebook_cites_paper(path):
     assert cells and cells[0]["cell_type"] == "markdown", "first cell must be the markdown header"
     header = source(cells[0])
     assert "doi" in header.lower() or YEAR.search(header), "header cell gives no DOI or dated reference"
-
-
-@pytest.mark.parametrize("path", NUMBERED, ids=[p.stem for p in NUMBERED])
-def test_notebook_runs(path):
-    sys.path.insert(0, str(NOTEBOOKS.parent / "tools"))
-    import reproduce  # tools/reproduce.py
-
-    entry = reproduce.executed(path)
-    assert entry["error"] is None, f"{path.name} stopped: {entry['error']} (see build/{path.stem}.ipynb)"
-    failed = [c["name"] for c in entry["checks"] if not c.get("passed")]
-    assert not failed, f"{path.name}: {len(failed)} failed checks: {', '.join(failed)}"

@@ -28,7 +28,7 @@ only. Needs no network.
 
 ``--stale`` (``make test``) executes only the notebooks whose last execution into build/ is missing, failed
 or out of date (:func:`last_execution`) and reuses the others: each notebook is executed once per
-``make test``, none again right after ``make reproduce``. ``tests/test_notebooks.py`` reads the records.
+``make test``, none again right after ``make reproduce``. ``tests/test_notebook_runs.py`` reads the records.
 
 ``--seeds N`` (or ``--seed-list 7,123,9999``) is the seed sweep (``make seeds``): every notebook whose
 parameters cell sets ``SEED`` (the Monte Carlo ones) runs at full scale once per seed, the seed injected
