@@ -15,7 +15,7 @@ reproduce test: export MPLBACKEND := Agg
 export NAVLIB_PROGRESS := 0
 
 # Two workers (this machine has two cores); tests sharing a build/ folder share a group (conftest.py).
-PYTEST_FLAGS ?= -q -ra --durations=10 --nbmake-timeout=1800 -n 2 --dist loadgroup
+PYTEST_FLAGS ?= -q -ra --durations=10 -n 2 --dist loadgroup
 
 .DEFAULT_GOAL := help
 .PHONY: help venv reproduce readme docs test lint typecheck lab bench strip clean determinism fuzz test-min build-check
@@ -23,7 +23,7 @@ PYTEST_FLAGS ?= -q -ra --durations=10 --nbmake-timeout=1800 -n 2 --dist loadgrou
 help:
 	@echo "make reproduce  execute every notebook, write build/ (executed notebooks, figures, results)"
 	@echo "make readme     regenerate the README results section (claims by verdict), quoted numbers and figures from build/"
-	@echo "make test       unit/property tests + every notebook executed by nbmake"
+	@echo "make test       unit/property tests + every notebook run to the end (executed once: reused from make reproduce when up to date)"
 	@echo "make lint       ruff over the code (also part of make test)"
 	@echo "make typecheck  mypy over navlib/ at the level configured in pyproject.toml [tool.mypy]"
 	@echo "make fuzz       tools/fuzz.py: every public callable with bad and unusual arguments (build/fuzz.json)"
@@ -90,10 +90,12 @@ docs: $(STAMP) $(DOCS_STAMP)
 	$(PY) tools/build_site.py
 	$(PY) -m pytest -q -p no:cacheprovider tests/test_site.py
 
-# pytest exits 5 when it collected no tests: that is a failure here too.
+# Each notebook is executed once per run: reproduce.py --stale executes those whose execution into build/ is
+# missing, failed or out of date (all of them on a fresh clone, none right after `make reproduce`), two at a
+# time, and tests/test_notebook_runs.py reads their records. pytest exits 5 when it collected no tests: a failure.
 test: $(STAMP)
-	@rc=0; NAVLIB_CHECK_README=1 $(PY) -m pytest tests notebooks --nbmake $(PYTEST_FLAGS) || rc=$$?; \
-	if [ $$rc -eq 5 ]; then echo "make test: pytest collected no tests" >&2; fi; \
+	@rc=0; $(PY) tools/reproduce.py --stale || rc=$$?; \
+	NAVLIB_CHECK_README=1 $(PY) -m pytest tests $(PYTEST_FLAGS) || { r=$$?; [ $$r -ne 5 ] || echo "make test: pytest collected no tests" >&2; rc=$$r; }; \
 	exit $$rc
 
 lint: $(STAMP)

@@ -4,7 +4,7 @@
 # ///
 """Task sessions that run the same on Linux, macOS and Windows (CI calls these; the Makefile is POSIX-only).
 
-    nox -s tests-3.11       the pinned environment (environment.txt), unit tests + every notebook (nbmake)
+    nox -s tests-3.11       the pinned environment (environment.txt), unit tests + every notebook (tests/test_notebook_runs.py)
     nox -s tests_latest     the newest releases every declared requirement allows, unit tests
     nox -s tests_min        the declared floors (uv --resolution lowest-direct), unit tests
     nox -s build            sdist + wheel, twine check --strict, check-manifest
@@ -27,11 +27,12 @@ nox.options.default_venv_backend = "uv"
 ROOT = Path(__file__).parent
 PYTHONS = ["3.11", "3.12", "3.13"]
 ENV = {"PYTHONHASHSEED": "0", "MPLBACKEND": "Agg", "NAVLIB_PROGRESS": "0"}
-# Unit tests only: the notebooks (nbmake, test_teaching, test_isolation) are checked against the pins, whose
-# results the README quotes; test_install installs the pins; test_site needs the built site; test_packaging
-# checks the repository's configuration against the pins and runs the contributor tools.
+# Unit tests only: the notebooks (test_notebook_runs, test_teaching, test_isolation) are checked against
+# the pins, whose results the README quotes; test_install installs the pins; test_site needs the built site;
+# test_packaging checks the repository's configuration against the pins and runs the contributor tools.
 UNIT = [
     "tests",
+    "--ignore=tests/test_notebook_runs.py",
     "--ignore=tests/test_teaching.py",
     "--ignore=tests/test_isolation.py",
     "--ignore=tests/test_install.py",
@@ -71,9 +72,6 @@ def tests(session: nox.Session) -> None:
         "-m",
         "pytest",
         "tests",
-        "notebooks",
-        "--nbmake",
-        "--nbmake-timeout=1800",
         "-n",
         "2",
         "--dist",

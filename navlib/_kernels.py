@@ -31,7 +31,8 @@ from numba.extending import intrinsic, overload
 
 class CompileLog(event.Listener):
     """When an outermost numba compilation ends: run the cyclic garbage collector and append a line
-    ``<seconds> <module.function>`` (the compiled function, its callees' compilation included) to ``path``.
+    ``<seconds> <module.function> <CPU seconds>`` (the compiled function, its callees' compilation included;
+    the process's CPU time, which unlike the wall time does not grow on a busy machine) to ``path``.
 
     Registered only when ``NAVLIB_COMPILE_LOG`` names that file (``tools/reproduce.py`` sets it for its
     notebook kernels): importing navlib installs nothing process-wide otherwise. A compilation leaves tens
@@ -42,11 +43,11 @@ class CompileLog(event.Listener):
     """
 
     def __init__(self, path: str):
-        self.path, self.depth, self.start, self.name = path, 0, 0.0, ""
+        self.path, self.depth, self.start, self.start_cpu, self.name = path, 0, 0.0, 0.0, ""
 
     def on_start(self, ev):
         if self.depth == 0:
-            self.start = time.perf_counter()
+            self.start, self.start_cpu = time.perf_counter(), time.process_time()
             func = getattr(ev.data.get("dispatcher"), "py_func", None)
             self.name = f"{getattr(func, '__module__', '?')}.{getattr(func, '__qualname__', '?')}".replace(" ", "_")
         self.depth += 1
@@ -56,7 +57,7 @@ class CompileLog(event.Listener):
         if self.depth == 0:
             gc.collect()
             with open(self.path, "a") as fh:
-                fh.write(f"{time.perf_counter() - self.start:.3f} {self.name}\n")
+                fh.write(f"{time.perf_counter() - self.start:.3f} {self.name} {time.process_time() - self.start_cpu:.3f}\n")
 
 
 if os.environ.get("NAVLIB_COMPILE_LOG"):  # opt-in only

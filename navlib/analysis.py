@@ -160,7 +160,9 @@ def _allan_deviation(x: np.ndarray, dt: float, taus: ArrayLike | None) -> tuple[
         if m.min() < 1 or m.max() > (n - 1) // 2:
             raise ValueError(f"taus: expected values between dt and {(n - 1) // 2 * dt:g} s")
     m = m.astype(np.int64)
-    theta = np.concatenate([np.zeros(x.shape[:-2] + (1, x.shape[-1])), np.cumsum(x, axis=-2) * dt], axis=-2)
+    theta = np.zeros(x.shape[:-2] + (n + 1, x.shape[-1]))  # the integrated series, built in place: one record-sized array
+    np.cumsum(x, axis=-2, out=theta[..., 1:, :])
+    theta[..., 1:, :] *= dt
     mean_sq = _mean_square_second_difference(theta.reshape(-1, n + 1, x.shape[-1]), m)
     tau = m * dt
     out = np.sqrt(mean_sq / (2 * tau * tau)[:, None]).reshape(x.shape[:-2] + (m.size, x.shape[-1]))

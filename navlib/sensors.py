@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import csv
 import functools
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass, field, fields, replace
 from importlib import resources
 from importlib.resources.abc import Traversable
@@ -70,6 +70,7 @@ __all__ = [
     "ImuOutput",
     "window_mean_std",
     "simulate_imu",
+    "simulate_imu_batches",
     "imu_model",
     "preset",
     "devices",
@@ -248,8 +249,15 @@ def gauss_markov(shape: tuple[int, ...], dt: float, sigma: float, correlation_ti
 
 def _gauss_markov(shape: tuple[int, ...], dt: float, sigma: float, tc: float, rng: np.random.Generator) -> Array:
     """:func:`gauss_markov` of checked arguments."""
-    phi = np.exp(-dt / tc)
     x0 = sigma * rng.standard_normal(shape[:-2] + (1, shape[-1]))
+    return _gauss_markov_from(x0, shape, dt, sigma, tc, rng)
+
+
+def _gauss_markov_from(
+    x0: np.ndarray, shape: tuple[int, ...], dt: float, sigma: float, tc: float, rng: np.random.Generator
+) -> Array:
+    """Sequences of ``shape`` whose sample before the first is ``x0`` (shape[:-2] + (1, k)), driven by ``rng``."""
+    phi = np.exp(-dt / tc)
     y = rng.standard_normal(out=np.empty(shape))  # the driving noise, filtered in place below
     y *= sigma * np.sqrt(1 - phi * phi)
     _ar1_in_place(y.reshape(-1, shape[-2], shape[-1]), phi, (phi * x0).reshape(-1, shape[-1]))
@@ -276,28 +284,41 @@ def _error_matrix(errors: TriadErrors, lead: tuple[int, ...], rng: np.random.Gen
 
 
 def _corrupt(x: Array, dt: float, errors: TriadErrors, rng: np.random.Generator) -> tuple[Array, Array, Array, int]:
-    """Apply a triad error model to ideal samples ``x`` (..., N, 3)."""
+    """Apply a triad error model to ideal samples ``x`` (..., N, 3): ``(y, bias, M, clipped count)``."""
+    lead, n = x.shape[:-2], x.shape[-2]
+    (y, bias, M, n_clipped), *_ = _corrupt_batches(x.reshape(-1, n, 3), dt, errors, rng, max(1, int(np.prod(lead))))
+    return y.reshape(x.shape), bias.reshape(x.shape), M.reshape(lead + (3, 3)), n_clipped
+
+
+def _corrupt_batches(
+    x: Array, dt: float, errors: TriadErrors, rng: np.random.Generator, batch: int
+) -> Iterator[tuple[Array, Array, Array, int]]:
+    """:func:`_corrupt` of ``x`` (T, N, 3), ``batch`` trials at a time: one ``(y, bias, M, clipped)`` per batch.
+
+    Each of the five streams is drawn in trial order, the per-trial constants (matrix, turn-on bias,
+    Gauss-Markov start) for all trials first: the batches together are the bits of one batch of T trials.
+    """
     r_matrix, r_on, r_gm, r_rrw, r_white = rng.spawn(5)
-    lead, shape = x.shape[:-2], x.shape
-    M = _error_matrix(errors, lead, r_matrix)
-    turn_on = errors.bias * r_on.standard_normal(lead + (1, 3))
-    if errors.bias_instability > 0:  # turn-on + Gauss-Markov, added in place (addition commutes: same bits)
-        bias = _gauss_markov(shape, dt, float(errors.gauss_markov_sigma), float(errors.correlation_time), r_gm)
-        bias += turn_on
-    else:
-        bias = np.broadcast_to(turn_on, shape).copy()
-    if errors.rate_random_walk > 0:
-        bias += np.cumsum(errors.rate_random_walk * np.sqrt(dt) * r_rrw.standard_normal(shape), axis=-2)
-    y = r_white.standard_normal(shape) if errors.noise_density > 0 else np.empty(shape)  # the white noise
-    n_clipped = _apply_errors(
-        M.reshape(-1, 3, 3),
-        x.reshape(-1, shape[-2], 3),
-        bias.reshape(-1, shape[-2], 3),
-        errors.noise_density / np.sqrt(dt),
-        errors.full_scale,
-        y.reshape(-1, shape[-2], 3),
-    )
-    return y, bias, M, int(n_clipped)
+    n_trials, n = x.shape[0], x.shape[1]
+    M = _error_matrix(errors, (n_trials,), r_matrix)
+    turn_on = errors.bias * r_on.standard_normal((n_trials, 1, 3))
+    sigma, tc = float(errors.gauss_markov_sigma), float(errors.correlation_time)
+    if errors.bias_instability > 0:
+        x0 = sigma * r_gm.standard_normal((n_trials, 1, 3))
+    for i in range(0, max(n_trials, 1), batch):
+        trials = slice(i, min(i + batch, n_trials))
+        shape = (trials.stop - i, n, 3)
+        if errors.bias_instability > 0:  # turn-on + Gauss-Markov, added in place (addition commutes: same bits)
+            bias = _gauss_markov_from(x0[trials], shape, dt, sigma, tc, r_gm)
+            bias += turn_on[trials]
+        else:
+            bias = np.broadcast_to(turn_on[trials], shape).copy()
+        if errors.rate_random_walk > 0:
+            bias += np.cumsum(errors.rate_random_walk * np.sqrt(dt) * r_rrw.standard_normal(shape), axis=-2)
+        y = r_white.standard_normal(shape) if errors.noise_density > 0 else np.empty(shape)  # the white noise
+        scale = errors.noise_density / np.sqrt(dt)
+        n_clipped = _apply_errors(M[trials], x[trials], bias, scale, errors.full_scale, y)
+        yield y, bias, M[trials], int(n_clipped)
 
 
 @njit(cache=True)
@@ -403,6 +424,43 @@ def simulate_imu(
     gw, gb, gM, gs = _corrupt(w, dt, model.gyro, r_gyro)
     af, ab, aM, as_ = _corrupt(f, dt, model.accel, r_accel)
     return ImuOutput(gw, af, gb, ab, gM, aM, gs, as_)
+
+
+def simulate_imu_batches(
+    w_ib_b: Vec3Series, f_b: Vec3Series, dt: float, model: ImuModel, rng: np.random.Generator, n_trials: int, batch: int
+) -> Iterator[ImuOutput]:
+    """:func:`simulate_imu` with ``n_trials`` realisations, ``batch`` trials at a time, bit for bit.
+
+    The realisations of ``simulate_imu(w_ib_b, f_b, dt, model, rng, n_trials=n_trials)`` in order, trials
+    ``[0, batch)`` first, with the memory of ``batch`` trials: a Monte Carlo that reduces each batch before
+    the next never holds all of them (its result does not depend on ``batch``).
+
+    Parameters
+    ----------
+    w_ib_b, f_b : array_like, shape (N, 3)
+        Ideal angular rate (rad/s) and specific force (m/s^2), the same for every trial.
+    dt, model, rng :
+        As for :func:`simulate_imu`.
+    n_trials, batch : int
+        Realisations in all and per batch (the last batch may hold fewer).
+
+    Returns
+    -------
+    iterator of ImuOutput
+        One per batch: arrays of shape (trials of the batch, N, 3); ``*_saturated`` counts of the batch.
+        The arguments are checked at the call.
+    """
+    w, f = imu_samples(w_ib_b, f_b, allow_nan=False)
+    if w.ndim != 2:
+        raise ValueError(f"w_ib_b: expected shape (N, 3), one ideal record for every trial, got {w.shape}")
+    dt = interval(dt)
+    instance(model, "model", ImuModel, "an ImuModel")
+    generator(rng)
+    n_trials, batch = integer(n_trials, "n_trials"), integer(batch, "batch")
+    r_gyro, r_accel = rng.spawn(2)  # here, as simulate_imu does, not when the first batch is asked for
+    gyro = _corrupt_batches(np.broadcast_to(w, (n_trials,) + w.shape), dt, model.gyro, r_gyro, batch)
+    accel = _corrupt_batches(np.broadcast_to(f, (n_trials,) + f.shape), dt, model.accel, r_accel, batch)
+    return (ImuOutput(gw, af, gb, ab, gM, aM, gs, as_) for (gw, gb, gM, gs), (af, ab, aM, as_) in zip(gyro, accel, strict=True))
 
 
 # --------------------------------------------------------------------------

@@ -1,4 +1,4 @@
-"""Static checks on notebooks/*.ipynb (their execution is nbmake's job).
+"""Static checks on notebooks/*.ipynb (their execution: tests/test_notebook_runs.py).
 
 Every notebook is committed stripped (`make strip`), runs on the ``python3``
 kernel, has a code cell tagged ``parameters``, and calls

@@ -1,6 +1,7 @@
 """tools/reproduce.py's plan and profile: notebooks longest first by the last run's times less their
 compilation, and where a notebook's time went (compile log, cell timing)."""
 
+import json
 import sys
 from pathlib import Path
 
@@ -32,9 +33,12 @@ def test_a_warm_run_is_planned_without_the_last_runs_compilation():
 def test_the_compile_log_gives_seconds_per_kernel(tmp_path):
     log = tmp_path / "00_a.compile.log"  # as navlib._kernels.CompileLog writes it
     assert reproduce.read_compile_log(log) == []
-    log.write_text("1.500 navlib.strapdown._nav_kernel\n0.250 navlib.kalman.f\n2.000 navlib.strapdown._nav_kernel\n3.0\n")
+    log.write_text(
+        "1.500 navlib.strapdown._nav_kernel 1.25\n0.250 navlib.kalman.f\n2.000 navlib.strapdown._nav_kernel 0.5\n3.0\n"
+    )
     compilations = reproduce.read_compile_log(log)
     assert sum(s for s, _ in compilations) == 6.75
+    assert sum(cpu for _, _, cpu in reproduce.read_compile_lines(log)) == 1.75  # CPU where logged
     assert reproduce.kernels_by_compile_time(compilations) == [
         ("navlib.strapdown._nav_kernel", 3.5, 2),
         ("?", 3.0, 1),
@@ -120,3 +124,52 @@ def test_the_sweep_refuses_the_seeds_that_set_a_tolerance():
     args = reproduce.argparse.Namespace(seeds=None, seed_list=str(min(seeds)), jobs=1, timeout=10)
     paths = sorted((ROOT / "notebooks").glob(f"{stem}.ipynb"))
     assert reproduce.sweep(args, ROOT, paths, ROOT / "build") == 1
+
+
+# A notebook that writes a results.json with one passed check, as navlib.repro does.
+TINY = """import json, pathlib
+out = pathlib.Path("../build/00_tiny")
+out.mkdir(parents=True, exist_ok=True)
+(out / "results.json").write_text(json.dumps({"checks": [{"name": "tiny", "passed": True}]}))"""
+
+
+def test_an_execution_is_reused_only_while_its_inputs_and_outputs_are_unchanged(tmp_path, monkeypatch):
+    nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(TINY)])
+    nb.metadata.kernelspec = {"name": "python3", "display_name": "Python 3", "language": "python"}
+    path = tmp_path / "notebooks" / "00_tiny.ipynb"
+    for file, text in (
+        (path, nbformat.writes(nb)),
+        (tmp_path / "navlib" / "core.py", "A = 1\n"),
+        (tmp_path / "data" / "a.csv", "a\n1\n"),
+    ):
+        file.parent.mkdir(parents=True, exist_ok=True)
+        file.write_text(text)
+    build = tmp_path / "build"
+    assert reproduce.last_execution(path, build) == (None, "no execution recorded in build/")
+
+    entry = json.loads(json.dumps(reproduce.executed(path, timeout=300)))  # executed for real: no record yet
+    assert entry["ok"] and entry["checks_total"] == 1 and (build / "00_tiny.run.json").is_file()
+    if sys.platform.startswith("linux"):  # the kernel's peak memory and CPU time, from /proc
+        assert entry["peak_mb"] > 0 and entry["cpu_seconds"] > 0
+    runs = []
+    monkeypatch.setattr(reproduce, "run_notebook", lambda p, b, t: runs.append(p.name) or {"notebook": p.stem, "new": True})
+    assert reproduce.executed(path) == entry and runs == []  # reused
+
+    for changed in (
+        path,
+        tmp_path / "navlib" / "core.py",
+        tmp_path / "data" / "a.csv",
+        build / "00_tiny.ipynb",
+        build / "00_tiny" / "results.json",
+    ):
+        original = changed.read_bytes()
+        changed.write_bytes(original + b" ")
+        assert reproduce.last_execution(path, build)[0] is None, f"an edit of {changed.name} went unnoticed"
+        assert reproduce.executed(path)["new"] and runs[-1] == path.name  # executed again
+        changed.write_bytes(original)
+        assert reproduce.last_execution(path, build)[0] == entry  # the same content stands again
+    (tmp_path / "navlib" / "new.py").write_text("")
+    assert reproduce.last_execution(path, build)[0] is None, "a new navlib file went unnoticed"
+    (tmp_path / "navlib" / "new.py").unlink()
+    (build / "00_tiny" / "results.json").unlink()
+    assert reproduce.last_execution(path, build)[0] is None, "a deleted results.json went unnoticed"

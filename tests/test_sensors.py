@@ -621,3 +621,28 @@ def test_presets_reject_a_repeated_row(tmp_path):
 def test_shipped_presets_parse_strictly():
     table = sensors._read_presets(sensors.PRESETS_CSV)
     assert set(table) == set(sensors.devices()) and len(table) == 8
+
+
+@pytest.mark.parametrize(
+    "changes",
+    [{}, {"gyro": {"rate_random_walk": 1e-4}}, {"gyro": {"bias_instability": 0.0}, "accel": {"noise_density": 0.0}}],
+    ids=["preset", "random-walk", "no-gauss-markov"],
+)
+@pytest.mark.parametrize("n_trials, batch", [(7, 3), (4, 4), (1, 5)])
+def test_batches_are_the_bits_of_one_simulation(changes, n_trials, batch):
+    rng = np.random.default_rng(5)
+    w_ib_b, f_b = rng.normal(0, 0.5, (500, 3)), rng.normal(0, 3, (500, 3)) + [0, 0, 9.8]
+    model = sensors.imu_model("MTi-100").replace(**changes)
+    whole = sensors.simulate_imu(w_ib_b, f_b, 0.01, model, np.random.default_rng(11), n_trials=n_trials)
+    batches = list(sensors.simulate_imu_batches(w_ib_b, f_b, 0.01, model, np.random.default_rng(11), n_trials, batch))
+    assert [len(b.w_ib_b) for b in batches] == [min(batch, n_trials - i) for i in range(0, n_trials, batch)]
+    for name in ("w_ib_b", "f_b", "gyro_bias", "accel_bias", "gyro_matrix", "accel_matrix"):
+        assert_array_equal(np.concatenate([getattr(b, name) for b in batches]), getattr(whole, name), err_msg=name)
+    assert sum(b.gyro_saturated for b in batches) == whole.gyro_saturated
+
+
+def test_batches_need_one_ideal_record():
+    with pytest.raises(ValueError, match="w_ib_b"):
+        sensors.simulate_imu_batches(
+            np.zeros((2, 10, 3)), np.zeros((2, 10, 3)), 0.01, sensors.imu_model("MTi-100"), np.random.default_rng(0), 3, 2
+        )

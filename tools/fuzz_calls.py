@@ -1210,6 +1210,9 @@ def table() -> dict:
             dict(errors=sensors.TriadErrors(noise_density=1e-4, bias_instability=1e-5), duration=10.0, dt=DT)
         ),
         "sensors.simulate_imu": Call(dict(w_ib_b=W, f_b=F, dt=DT, model=sensors.imu_model("ADIS16475-1"), rng=RNG)),
+        "sensors.simulate_imu_batches": Call(
+            dict(w_ib_b=W, f_b=F, dt=DT, model=sensors.imu_model("ADIS16475-1"), rng=RNG, n_trials=3, batch=2)
+        ),
         "sensors.imu_model": Call(dict(device="ADIS16475-1")),
         "sensors.preset": Call(dict(device="ADIS16475-1")),
         "sensors.devices": Skip("takes no arguments"),

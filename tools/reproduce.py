@@ -6,6 +6,8 @@ directory ``notebooks/``) this writes
 
 * ``build/<stem>.ipynb`` - the executed notebook (``tools/build_site.py`` renders it as a chapter),
 * ``build/<stem>.kernel.log`` - the kernel process's own stderr,
+* ``build/<stem>.run.json`` - the record of the execution: its report entry, the SHA-256 of its inputs
+  (:func:`inputs_digest`) and of its outputs (executed notebook, results, figures),
 
 and reads ``build/<stem>/results.json`` and ``build/<stem>/figures/*.png``,
 which the notebook itself writes through ``navlib.repro``. Then it writes
@@ -18,10 +20,15 @@ byte-identical to an earlier run's (``make determinism``).
 Notebooks run ``--jobs`` at a time (default 2), each in its own kernel, longest first by the previous
 run's times in ``build/summary.json`` less their numba compilation (:func:`expected_seconds`; the kernels
 log each compilation to ``build/<stem>.compile.log``, see ``navlib._kernels.CompileLog``); each is
-reported with its wall time and its kernel's peak memory (resident set size, read from /proc while the
-kernel runs; "n/a" where there is none). A notebook that raises is reported and the run goes on with the
-others; the exit status is non-zero if any notebook failed. ``--only`` runs a subset, and the report then
-covers that subset only. Needs no network.
+reported with its wall time and its kernel's CPU time and peak memory (user + system time and resident set
+size, read from /proc while the kernel runs; "n/a" where there is none; CPU time, unlike wall time, does not
+grow on a busy machine). A notebook that raises is reported and the run goes on with the others; the exit
+status is non-zero if any notebook failed. ``--only`` runs a subset, and the report then covers that subset
+only. Needs no network.
+
+``--stale`` (``make test``) executes only the notebooks whose last execution into build/ is missing, failed
+or out of date (:func:`last_execution`) and reuses the others: each notebook is executed once per
+``make test``, none again right after ``make reproduce``. ``tests/test_notebook_runs.py`` reads the records.
 
 ``--seeds N`` (or ``--seed-list 7,123,9999``) is the seed sweep (``make seeds``): every notebook whose
 parameters cell sets ``SEED`` (the Monte Carlo ones) runs at full scale once per seed, the seed injected
@@ -37,7 +44,7 @@ kernels an empty numba cache (``NUMBA_CACHE_DIR``), as on a fresh clone; without
 cache is used (a warm rerun).
 
 Usage: python tools/reproduce.py [--only PATTERN] [--root DIR] [--timeout S] [--jobs N] [--profile] [--cold]
-                                 [--seeds N | --seed-list S1,S2,...]
+                                 [--stale] [--seeds N | --seed-list S1,S2,...]
 """
 
 from __future__ import annotations
@@ -45,12 +52,15 @@ from __future__ import annotations
 import argparse
 import ast
 import csv
+import ctypes
 import fnmatch
 import hashlib
+import importlib.metadata
 import json
 import multiprocessing
 import os
 import shutil
+import signal
 import sys
 import tempfile
 import time
@@ -93,28 +103,122 @@ def error_line(exc: BaseException) -> str:
     return lines[-1] if lines else type(exc).__name__
 
 
-def kernel_peak_mb(client: NotebookClient) -> float | None:
-    """Peak resident memory (MB) of the client's kernel process so far (Linux: VmHWM), or None."""
+def kernel_usage(client: NotebookClient) -> tuple[float | None, float | None]:
+    """Peak resident memory (MB, VmHWM) and CPU time (s, user + system) of the client's kernel so far; Linux only.
+
+    CPU seconds, unlike wall time, do not grow when other processes share the cores.
+    """
     try:
-        status = Path(f"/proc/{client.km.provisioner.process.pid}/status").read_text()
+        proc = Path(f"/proc/{client.km.provisioner.process.pid}")
+        status, stat = (proc / "status").read_text(), (proc / "stat").read_text()
     except (AttributeError, OSError):
-        return None
-    return next((int(line.split()[1]) / 1024 for line in status.splitlines() if line.startswith("VmHWM:")), None)
+        return None, None
+    peak = next((int(line.split()[1]) / 1024 for line in status.splitlines() if line.startswith("VmHWM:")), None)
+    utime, stime = stat.rsplit(")", 1)[1].split()[11:13]  # fields 14 and 15 of proc(5), in clock ticks
+    return peak, (int(utime) + int(stime)) / os.sysconf("SC_CLK_TCK")
+
+
+LEDGER_ENV = {"MPLBACKEND": "module://matplotlib_inline.backend_inline", "NAVLIB_PROGRESS": "0"}
+NOT_INHERITED = ("NAVLIB_TEACHING", "NAVLIB_FAST", "NAVLIB_BUILD_DIR")
+
+
+def kernel_environment(root: Path) -> dict[str, str]:
+    """This process's environment as the ledger's kernels get it.
+
+    navlib.repro writes to <root>/build, figures render with the (headless) inline backend so the executed
+    notebook shows them, no progress bars are kept, and a shell's teaching or fast switches or another build
+    directory do not leak in: the papers' scale, checks that raise.
+    """
+    env = {k: v for k, v in os.environ.items() if k not in NOT_INHERITED}
+    return env | LEDGER_ENV | {"NAVLIB_ROOT": str(root)}
+
+
+# ------------------------------------------------------------------------- records of executed notebooks
+
+RUN_INPUTS = ("navlib", "data", "tools/reproduce.py")
+"""What a notebook's execution depends on besides the notebook itself (paths under the repository root)."""
+
+
+def inputs_digest(path: Path) -> str:
+    """SHA-256 of everything the execution of notebook ``path`` depends on.
+
+    The notebook, every file under navlib/ and data/ (``__pycache__`` left out: numba's cache does not change
+    results), this runner, the Python version and the name and version of every installed distribution.
+    """
+    root = path.parents[1]
+    files = [path]
+    for name in RUN_INPUTS:
+        top = root / name
+        files += sorted(f for f in top.rglob("*") if "__pycache__" not in f.parts) if top.is_dir() else [top]
+    # a set: a distribution found twice on sys.path (the checkout's own egg-info, say) is one
+    installed = sorted({f"{d.metadata['Name']}=={d.version}" for d in importlib.metadata.distributions()})
+    digest = hashlib.sha256("\n".join([sys.version, *installed]).encode())
+    for f in files:
+        if f.is_file():
+            digest.update(f"\n{f.relative_to(root).as_posix()} {sha256(f)}".encode())
+    return digest.hexdigest()
+
+
+def sha256(path: Path) -> str:
+    return hashlib.sha256(path.read_bytes()).hexdigest()
+
+
+def outputs_digest(build: Path, entry: dict) -> dict[str, str]:
+    """SHA-256 of an execution's outputs: the executed notebook, its results.json and figures."""
+    stem = entry["notebook"]
+    files = [build / f"{stem}.ipynb", build / stem / "results.json"] + [build / f for f in entry["figures"]]
+    return {f.relative_to(build).as_posix(): sha256(f) for f in files if f.is_file()}
+
+
+def write_record(build: Path, entry: dict, inputs: str) -> None:
+    """``build/<stem>.run.json``: an execution's report entry with the digests of its inputs and outputs."""
+    record = {"inputs": inputs, "outputs": outputs_digest(build, entry), "entry": entry}
+    (build / f"{entry['notebook']}.run.json").write_text(json.dumps(record, indent=1) + "\n")
+
+
+def last_execution(path: Path, build: Path) -> tuple[dict | None, str]:
+    """The report entry of notebook ``path``'s last execution into ``build``, if it still stands, and why not.
+
+    It stands when ``build/<stem>.run.json`` exists, the notebook's inputs (:func:`inputs_digest`) are the same
+    as when it ran and its outputs in ``build`` are the ones it wrote; else ``(None, reason)``. A failed
+    execution stands too (its entry says so): running it again on the same inputs fails the same way.
+    """
+    file = build / f"{path.stem}.run.json"
+    if not file.is_file():
+        return None, "no execution recorded in build/"
+    record = json.loads(file.read_text())
+    if record["inputs"] != inputs_digest(path):
+        return None, "the notebook, navlib, data/, the runner or the installed packages changed since it ran"
+    if record["outputs"] != outputs_digest(build, record["entry"]):
+        return None, "its executed notebook, results or figures in build/ changed since it ran"
+    return record["entry"], "up to date"
+
+
+def executed(path: Path, timeout: int = 1800) -> dict:
+    """The report entry of notebook ``path`` executed into <root>/build: the last execution if it stands, else a new one."""
+    build = path.parents[1] / "build"
+    entry, _ = last_execution(path, build)
+    if entry is None:
+        build.mkdir(exist_ok=True)
+        entry = run_notebook(path, build, timeout)
+    return entry
 
 
 def run_notebook(path: Path, build: Path, timeout: int) -> dict:
     """Execute one notebook, write the executed .ipynb, return its summary entry."""
     stem = path.stem
     shutil.rmtree(build / stem, ignore_errors=True)  # no stale results or figures
+    inputs = inputs_digest(path)  # before the run: an input edited while it runs makes the record stale
     nb = nbformat.read(path, as_version=4)
-    peak = {"mb": None}
+    usage = {"peak_mb": None, "cpu_s": None}
 
-    def after_cell(**_):  # the kernel's high-water mark, read while it is alive
-        peak["mb"] = kernel_peak_mb(client) or peak["mb"]
+    def after_cell(**_):  # the kernel's high-water mark and CPU time, read while it is alive
+        peak_mb, cpu_s = kernel_usage(client)
+        usage["peak_mb"], usage["cpu_s"] = peak_mb or usage["peak_mb"], cpu_s or usage["cpu_s"]
 
     compile_log = build / f"{stem}.compile.log"  # one line per numba compilation (navlib._kernels.CompileLog)
     compile_log.unlink(missing_ok=True)
-    os.environ["NAVLIB_COMPILE_LOG"] = str(compile_log)  # the kernel inherits it
+    env = kernel_environment(path.parents[1]) | {"NAVLIB_COMPILE_LOG": str(compile_log)}
     # The kernel is killed once the last cell is done: every result, figure and log line is on disk by then,
     # and a graceful shutdown (the interpreter freeing a notebook's gigabyte) kept this worker ~1 s from the next.
     client = NotebookClient(
@@ -129,11 +233,10 @@ def run_notebook(path: Path, build: Path, timeout: int) -> dict:
     start = time.perf_counter()
     with open(build / f"{stem}.kernel.log", "w") as log:
         try:
-            client.execute(stderr=log)
+            client.execute(stderr=log, env=env)
         except Exception as exc:  # report it and go on with the next notebook
             error = error_line(exc)
     seconds = time.perf_counter() - start
-    peak_mb = None if peak["mb"] is None else round(peak["mb"])
     nbformat.write(nb, build / f"{stem}.ipynb")
     (build / f"{stem}.html").unlink(missing_ok=True)  # the last report's page (now: make docs)
 
@@ -142,13 +245,16 @@ def run_notebook(path: Path, build: Path, timeout: int) -> dict:
     passed = sum(bool(c.get("passed")) for c in checks)
     figures = sorted(p.relative_to(build).as_posix() for p in (build / stem / "figures").glob("*.png"))
     compilations = read_compile_log(compile_log)
-    return {
+    compile_cpu = sum(cpu_s for _, _, cpu_s in read_compile_lines(compile_log))
+    entry = {
         "notebook": stem,
         "ok": error is None and passed == len(checks),
         "error": error,
         "seconds": round(seconds, 1),
+        "cpu_seconds": None if usage["cpu_s"] is None else round(usage["cpu_s"], 1),
         "compile_seconds": round(sum(s for s, _ in compilations), 1),
-        "peak_mb": peak_mb,
+        "compile_cpu_seconds": round(compile_cpu, 1),
+        "peak_mb": None if usage["peak_mb"] is None else round(usage["peak_mb"]),
         "checks_passed": passed,
         "checks_total": len(checks),
         "checks": checks,
@@ -156,14 +262,21 @@ def run_notebook(path: Path, build: Path, timeout: int) -> dict:
         "kernels": kernels_by_compile_time(compilations),
         "cells": cell_seconds(nb),
     }
+    write_record(build, entry, inputs)
+    return entry
 
 
 def read_compile_log(path: Path) -> list[tuple[float, str]]:
     """``(seconds, function)`` of each outermost numba compilation a kernel logged (none without the file)."""
+    return [(seconds, name) for seconds, name, _ in read_compile_lines(path)]
+
+
+def read_compile_lines(path: Path) -> list[tuple[float, str, float]]:
+    """``(seconds, function, CPU seconds)`` of each compilation a kernel logged (CPU 0 where it is not logged)."""
     if not path.is_file():
         return []
-    lines = [line.split(maxsplit=1) for line in path.read_text().splitlines() if line.strip()]
-    return [(float(parts[0]), parts[1] if len(parts) > 1 else "?") for parts in lines]
+    lines = [line.split() for line in path.read_text().splitlines() if line.strip()]
+    return [(float(p[0]), p[1] if len(p) > 1 else "?", float(p[2]) if len(p) > 2 else 0.0) for p in lines]
 
 
 def kernels_by_compile_time(compilations: list[tuple[float, str]]) -> list[tuple[str, float, int]]:
@@ -208,6 +321,8 @@ def profile(e: dict, top: int = 5) -> str:
         f"{e['notebook']}: {e['seconds']:.1f} s = compile {e['compile_seconds']:.1f} + "
         f"other {e['seconds'] - e['compile_seconds']:.1f}; peak memory {mb(e['peak_mb'])}"
     ]
+    if e.get("cpu_seconds") is not None:
+        lines[0] += f"; CPU {e['cpu_seconds']:.1f} s, of which compile {e.get('compile_cpu_seconds') or 0.0:.1f} s"
     lines += [f"    compile {s:6.1f} s  {n} signature(s)  {name}" for name, s, n in e["kernels"][:top]]
     lines += [f"    cell {i:3d} {s:6.1f} s  {source}" for i, s, source in e["cells"][:top]]
     return "\n".join(lines)
@@ -215,6 +330,21 @@ def profile(e: dict, top: int = 5) -> str:
 
 def mb(x: float | None) -> str:
     return "n/a" if x is None else f"{x} MB"
+
+
+def cpu(e: dict) -> str:
+    """A notebook's kernel CPU time (user + system), "n/a" where it was not measured."""
+    return "n/a" if e.get("cpu_seconds") is None else f"{e['cpu_seconds']:.1f} s"
+
+
+def die_with_parent() -> None:
+    """Pool worker initializer (Linux): the kernel ends the worker when this runner dies.
+
+    Without it a runner killed alone left its forked workers waiting for work forever, and with them every
+    file they inherited (a `flock` that queued the run stayed taken).
+    """
+    if sys.platform.startswith("linux"):
+        ctypes.CDLL(None).prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG
 
 
 def write_manifest(build: Path, entries: list[dict]) -> dict:
@@ -358,7 +488,9 @@ def sweep(args: argparse.Namespace, root: Path, notebooks: list[Path], build: Pa
         flush=True,
     )
     start, runs = time.perf_counter(), []
-    with ProcessPoolExecutor(max(1, args.jobs), mp_context=multiprocessing.get_context(START_METHOD)) as pool:
+    with ProcessPoolExecutor(
+        max(1, args.jobs), mp_context=multiprocessing.get_context(START_METHOD), initializer=die_with_parent
+    ) as pool:
         futures = [pool.submit(run_seed, p, s, build / "seeds" / str(s), args.timeout) for p in order for s in seeds]
         for future in as_completed(futures):
             r = future.result()
@@ -414,6 +546,12 @@ def main(argv=None) -> int:
         help="also report each notebook's compile time, kernels by compile time and slowest cells",
     )
     ap.add_argument("--cold", action="store_true", help="an empty numba cache for the kernels, as on a fresh clone")
+    ap.add_argument(
+        "--stale",
+        action="store_true",
+        help="execute only the notebooks whose last execution into build/ is missing, failed or out of date "
+        "(make test); reuse the others",
+    )
     seeds = ap.add_mutually_exclusive_group()
     seeds.add_argument(
         "--seeds",
@@ -438,15 +576,9 @@ def main(argv=None) -> int:
         return 1
     build = root / "build"
     build.mkdir(exist_ok=True)
-    # Kernels inherit this environment: navlib.repro writes to <root>/build, and
-    # figures render with the (headless) inline backend so the HTML shows them.
-    os.environ["NAVLIB_ROOT"] = str(root)
-    os.environ["MPLBACKEND"] = "module://matplotlib_inline.backend_inline"
-    # The ledger's run: the papers' scale, checks that raise, no progress bars kept in the HTML, and
-    # results in build/ (a shell's teaching or fast switches, or another build directory, do not leak in).
-    os.environ["NAVLIB_PROGRESS"] = "0"
-    for name in ("NAVLIB_TEACHING", "NAVLIB_FAST", "NAVLIB_BUILD_DIR"):
+    for name in NOT_INHERITED:  # the seed sweep's kernels inherit os.environ (and set their own switches)
         os.environ.pop(name, None)
+    os.environ.update(kernel_environment(root))
     if args.seeds or args.seed_list:
         return sweep(args, root, notebooks, build)
     if not args.cold:
@@ -461,20 +593,26 @@ def run_all(args: argparse.Namespace, root: Path, notebooks: list[Path], build: 
     # Notebooks are independent (own kernel, own build/<stem>/, own seeds): run --jobs at once, longest first
     # by the last run's times without its numba compilation (cached for this run).
     last = json.loads((build / "summary.json").read_text()) if (build / "summary.json").is_file() else {}
-    order = longest_first(notebooks, expected_seconds(last, notebooks))
-    start = time.perf_counter()
     done = {}
+    if args.stale:  # passed executions whose inputs and outputs are unchanged are not run again
+        done = {p: e for p in notebooks if (e := last_execution(p, build)[0]) and e["ok"]}
+        for path in done:
+            print(f"{path.stem}: up to date in build/ (not executed again)", flush=True)
+    order = longest_first([p for p in notebooks if p not in done], expected_seconds(last, notebooks))
+    start = time.perf_counter()
     # Workers are reused and forked: they start with nbclient and nbformat already imported (spawned ones
     # imported them again, ~1.5 s each, while the notebooks waited); every notebook gets a new kernel.
-    with ProcessPoolExecutor(max(1, args.jobs), mp_context=multiprocessing.get_context(START_METHOD)) as pool:
+    with ProcessPoolExecutor(
+        max(1, args.jobs), mp_context=multiprocessing.get_context(START_METHOD), initializer=die_with_parent
+    ) as pool:
         futures = {pool.submit(run_notebook, path, build, args.timeout): path for path in order}
-        print(f"executing {len(notebooks)} notebooks, {max(1, args.jobs)} at a time ...", flush=True)
+        print(f"executing {len(order)} notebooks, {max(1, args.jobs)} at a time ...", flush=True)
         for future in as_completed(futures):
             e = done[futures[future]] = future.result()
             tail = "" if e["error"] is None else f"\n    ERROR: {e['error']}"
             print(
                 f"[{len(done)}/{len(notebooks)}] {e['notebook']} {'done' if e['ok'] else 'FAILED'} "
-                f"in {e['seconds']:.1f} s, peak memory {mb(e['peak_mb'])}{tail}",
+                f"in {e['seconds']:.1f} s ({cpu(e)} CPU), peak memory {mb(e['peak_mb'])}{tail}",
                 flush=True,
             )
     entries = [done[path] for path in notebooks]
@@ -484,7 +622,18 @@ def run_all(args: argparse.Namespace, root: Path, notebooks: list[Path], build: 
     manifest = write_manifest(build, entries)
     summary = {
         e["notebook"]: {
-            k: e[k] for k in ("checks_passed", "checks_total", "seconds", "compile_seconds", "peak_mb", "ok", "error")
+            k: e.get(k)
+            for k in (
+                "checks_passed",
+                "checks_total",
+                "seconds",
+                "cpu_seconds",
+                "compile_seconds",
+                "compile_cpu_seconds",
+                "peak_mb",
+                "ok",
+                "error",
+            )
         }
         for e in entries
     }
@@ -495,14 +644,20 @@ def run_all(args: argparse.Namespace, root: Path, notebooks: list[Path], build: 
     for e in entries:
         mark = "" if e["ok"] else "   FAILED"
         checks = f"{e['checks_passed']}/{e['checks_total']}"
-        print(f"{e['notebook']:<{width}}{checks:>7} checks passed{e['seconds']:>9.1f} s{mb(e['peak_mb']):>10}{mark}")
+        print(
+            f"{e['notebook']:<{width}}{checks:>7} checks passed{e['seconds']:>9.1f} s{cpu(e):>9} CPU{mb(e['peak_mb']):>10}{mark}"
+        )
     n_ok = sum(e["ok"] for e in entries)
     passed = sum(e["checks_passed"] for e in entries)
     total = sum(e["checks_total"] for e in entries)
     seconds = sum(e["seconds"] for e in entries)
+    cpu_total = {"cpu_seconds": sum(e.get("cpu_seconds") or 0.0 for e in entries)}
+    compile_cpu = sum(e.get("compile_cpu_seconds") or 0.0 for e in entries)
     print(
-        f"{'total':<{width}}{f'{passed}/{total}':>7} checks passed{seconds:>9.1f} s"
-        f"   ({n_ok}/{len(entries)} notebooks ok; {wall:.1f} s wall with {max(1, args.jobs)} at a time)"
+        f"{'total':<{width}}{f'{passed}/{total}':>7} checks passed{seconds:>9.1f} s{cpu(cpu_total):>9} CPU"
+        f"   ({n_ok}/{len(entries)} notebooks ok; {compile_cpu:.1f} s CPU compiling; {wall:.1f} s wall with "
+        f"{max(1, args.jobs)} at a time"
+        + (f"; {len(notebooks) - len(order)} up to date, not executed again)" if args.stale else ")")
     )
     for led in ledger.ledgers(build, root):
         if led.stem in {e["notebook"] for e in entries}:

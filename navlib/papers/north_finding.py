@@ -854,6 +854,21 @@ def pair_probabilities(heading1: Angles, heading2: Angles, sigma_ins: ArrayLike)
     p1, p2 = as_array(heading1, "heading1", nonempty=True), as_array(heading2, "heading2", nonempty=True)
     sigma = positive(sigma_ins, "sigma_ins", nonempty=True)
     p1, p2, sigma = np.broadcast_arrays(p1, p2, sigma)
+    shape = p1.shape
+    p1, p2, sigma = p1.ravel(), p2.ravel(), sigma.ravel()
+    out = np.empty((p1.size, 4))
+    for i in range(0, p1.size, _PAIR_BLOCK):  # each point on its own: blocks bound the twelve-wide temporaries
+        block = slice(i, i + _PAIR_BLOCK)
+        out[block] = _pair_mass(p1[block], p2[block], sigma[block])
+    return out.reshape(shape + (4,))
+
+
+_PAIR_BLOCK = 1 << 15
+"""Points per block of :func:`pair_probabilities` (its temporaries: about 1 kB per point)."""
+
+
+def _pair_mass(p1: np.ndarray, p2: np.ndarray, sigma: np.ndarray) -> np.ndarray:
+    """:func:`pair_probabilities` of 1-D checked arrays of equal length: shape (n, 4)."""
     shifts = attitude.wrap_pi(np.stack([np.zeros_like(p1), 2 * p1, -2 * p2, -2 * (p2 - p1)], -1))
     # periodic images so that every Voronoi arc is bounded on both sides
     images = np.concatenate([shifts - 2 * np.pi, shifts, shifts + 2 * np.pi], -1)

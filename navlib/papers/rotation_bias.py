@@ -129,7 +129,7 @@ from ..units import G0
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
 
-    from ..sensors import ImuModel
+    from ..sensors import ImuModel, ImuOutput
     from ..trajectory import Trajectory
 
 __all__ = [
@@ -1223,7 +1223,8 @@ def rig_experiment(
 ) -> dict[str, Any]:
     """One pitch group of the paper's experiment (§4): ``n_runs`` noisy runs on one rig trajectory.
 
-    Simulates ``model`` on the exact samples of ``traj`` (all runs in one vectorised call), estimates
+    Simulates ``model`` on the exact samples of ``traj`` (a few runs at a time, the same draws as all at once:
+    :func:`navlib.sensors.simulate_imu_batches`, so the memory is that of a few runs), estimates
     the bias dwell by dwell with a running least squares of memory ``memory`` (s; forgetting factor
     ``exp(-period / memory)``) and integrates Eq. (2) with the raw gyros (*uncorrected*) and with each
     estimate subtracted from the end of its dwell on (*corrected*), both with Earth rate removed
@@ -1251,7 +1252,7 @@ def rig_experiment(
         ``heading_err[case]`` (°, decimated), the estimates ``b_lsq`` at ``t_est``, the true bias, ``faults``
         of the residuals (:class:`Residuals`) and, with ``extensions``, ``kf_faults`` of the Kalman filter.
     """
-    from .. import analysis, euler, sensors, trajectory, units  # noqa: PLC0415 -- the driver alone needs them
+    from .. import sensors, trajectory  # noqa: PLC0415 -- the driver alone needs them
 
     n_runs = integer(n_runs, "n_runs")  # rng: simulate_imu checks it
     decimate = integer(decimate, "decimate")
@@ -1261,52 +1262,90 @@ def rig_experiment(
             "model: the no-rotation case reuses the sensor errors on a static IMU, which needs a gyro "
             "model without scale-factor and misalignment errors"
         )
-    traj, w_ib_b, starts, length = rig.traj, rig.w_ib_b, rig.starts, rig.length
-    w_ie_n = earth.earth_rate_n(lat)
-    imu = sensors.simulate_imu(w_ib_b, rig.f_b, dt, model, rng, n_trials=n_runs)
-    hpr_true = traj.hpr
+    traj = rig.traj
+    still = None  # the no-rotation case: a still IMU's exact gyro and attitude
+    if extensions:
+        static = trajectory.static(traj.time[-1], dt, [lat, 0, 0], traj.hpr[0])
+        still = (trajectory.ideal_imu(static)[0], static.hpr)
+    # The runs in batches of _RIG_BATCH, each simulated (the same draws as all at once), estimated, integrated
+    # and reduced before the next: the memory of a batch of 1-h runs, not of all of them.
+    batches = sensors.simulate_imu_batches(rig.w_ib_b, rig.f_b, dt, model, rng, n_runs, _RIG_BATCH)
+    parts = [_rig_runs(rig, imu, dt, lat, model, np.exp(-period / memory), period, still, decimate) for imu in batches]
+    out = {key: _joined([part[key] for part in parts]) for key in parts[0] if key != "t_est"}
+    out.update(time=traj.time[::decimate], time_b=traj.time[:-1:decimate], t_est=parts[0]["t_est"])
+    return out
+
+
+_RIG_BATCH = 2
+"""Runs per batch of :func:`rig_experiment` (its result does not depend on it)."""
+
+
+def _rig_runs(
+    rig: Rig,
+    imu: ImuOutput,
+    dt: float,
+    lat: float,
+    model: ImuModel,
+    forgetting: float,
+    period: float,
+    still: tuple[Array, Array] | None,
+    decimate: int,
+) -> dict[str, Any]:
+    """:func:`rig_experiment` for the runs of one simulated batch ``imu`` (no time axes; ``t_est`` of the dwells)."""
+    from .. import analysis, euler, units  # noqa: PLC0415 -- the driver alone needs them
+
+    hpr_true = rig.traj.hpr
     hpr0 = hpr_true[0]
-    res = tilt_residuals(imu.w_ib_b, imu.f_b, dt, starts, length, rig.w_ie_b)
-    forgetting = np.exp(-period / memory)
+    w_ie_n = earth.earth_rate_n(lat)
+    res = tilt_residuals(imu.w_ib_b, imu.f_b, dt, rig.starts, rig.length, rig.w_ie_b)
     b_lsq, _ = running_lsq_bias(res.r, res.V, forgetting)
+    gyro = imu.w_ib_b
     cases: dict[str, tuple[Array, Array | None, Array | None, Array]] = {
-        "uncorrected": (imu.w_ib_b, w_ie_n, None, hpr_true),
-        "corrected": (imu.w_ib_b, w_ie_n, b_lsq, hpr_true),
+        "uncorrected": (gyro, w_ie_n, None, hpr_true),
+        "corrected": (gyro, w_ie_n, b_lsq, hpr_true),
     }
     out: dict[str, Any] = {"faults": res.faults}
-    if extensions:
-        R = residual_covariance(res.tilt, length, dt, model.gyro.noise_density, model.accel.noise_density)
+    if still is not None:
+        R = residual_covariance(res.tilt, rig.length, dt, model.gyro.noise_density, model.accel.noise_density)
         rrw = np.sqrt(2 / model.gyro.correlation_time) * model.gyro.gauss_markov_sigma  # RW matching the GM drift
         kf = kalman_bias(res.r, res.V, R, period, rrw, np.hypot(model.gyro.bias, model.gyro.gauss_markov_sigma))
-        res_paper = tilt_residuals(imu.w_ib_b, imu.f_b, dt, starts, length)  # Earth rate neglected
+        res_paper = tilt_residuals(imu.w_ib_b, imu.f_b, dt, rig.starts, rig.length)  # Earth rate neglected
         b_paper, _ = running_lsq_bias(res_paper.r, res_paper.V, forgetting)
-        static = trajectory.static(traj.time[-1], dt, [lat, 0, 0], hpr0)
-        w_static = trajectory.ideal_imu(static)[0] + (imu.w_ib_b - w_ib_b)
+        w_still = gyro - np.asarray(rig.w_ib_b, dtype=float)  # the same sensor errors on a still IMU, summed in place (same bits)
+        w_still += still[0]
         cases.update(
             {
-                "Kalman": (imu.w_ib_b, w_ie_n, kf.b, hpr_true),
-                "no rotation": (w_static, w_ie_n, None, static.hpr),
-                "paper uncorrected": (imu.w_ib_b, None, None, hpr_true),
-                "paper corrected": (imu.w_ib_b, None, b_paper, hpr_true),
+                "Kalman": (gyro, w_ie_n, kf.b, hpr_true),
+                "no rotation": (w_still, w_ie_n, None, still[1]),
+                "paper uncorrected": (gyro, None, None, hpr_true),
+                "paper corrected": (gyro, None, b_paper, hpr_true),
             }
         )
         out.update(kf_faults=kf.faults, b_kf=kf.b)
     out["stats"], out["heading_err"] = {}, {}
-    for name, (gyro, w_in, b_hat, truth) in cases.items():
-        hpr = euler.integrate_euler(hpr0, gyro, dt, w_in, b_hat, None if b_hat is None else res.end)
+    for name, (w_case, w_in, b_hat, truth) in cases.items():
+        hpr = euler.integrate_euler(hpr0, w_case, dt, w_in, b_hat, None if b_hat is None else res.end)
         mx, mean = analysis.error_statistics(hpr, truth)
         final = analysis.attitude_errors(hpr[:, -1], truth[-1])
         out["stats"][name] = {"max": units.to_deg(mx), "mean": units.to_deg(mean), "final": units.to_deg(final)}
         out["heading_err"][name] = units.to_deg(analysis.attitude_errors(hpr[:, ::decimate], truth[::decimate])[..., 0])
     out.update(
-        time=traj.time[::decimate],
-        time_b=traj.time[:-1:decimate],
         b_lsq=b_lsq,
-        t_est=traj.time[res.end],
+        t_est=rig.traj.time[res.end],
         b_true_at_est=imu.gyro_bias[:, res.end - 1],
-        b_true=imu.gyro_bias[:, ::decimate],
+        b_true=imu.gyro_bias[:, ::decimate].copy(),  # a copy: a view would keep the batch's bias alive
     )
     return out
+
+
+def _joined(values: list[Any]) -> Any:
+    """Per-batch results of :func:`_rig_runs` joined: arrays along the runs, fault counts summed, dicts per key."""
+    first = values[0]
+    if isinstance(first, dict):
+        return {key: _joined([v[key] for v in values]) for key in first}
+    if isinstance(first, robust.FaultReport):
+        return robust.FaultReport({key: sum(v[key] for v in values) for key in first.counts})
+    return np.concatenate(values, axis=0)
 
 
 def pair_spread(
