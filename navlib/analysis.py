@@ -1013,6 +1013,16 @@ def time_offset(t: Times, x: ArrayLike, t_ref: Times, x_ref: ArrayLike, max_offs
     ValueError
         If no sample of ``x`` stays inside the reference's time span for every offset, or the best offset
         is at the edge of the grid (the delay may be larger: raise ``max_offset``).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import analysis
+    >>> t_ref = np.arange(0.0, 20.0, 0.01)
+    >>> t = np.arange(1.0, 19.0, 0.1)
+    >>> x = np.sin(t - 0.12)                                      # the reference, 0.12 s late
+    >>> round(analysis.time_offset(t, x, t_ref, np.sin(t_ref)), 3)
+    0.12
     """
     t, t_ref = time_axis(t, "t"), time_axis(t_ref, "t_ref")
     x = as_array(x, "x", allow_nan=True, min_ndim=1)

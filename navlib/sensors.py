@@ -449,6 +449,17 @@ def simulate_imu_batches(
     iterator of ImuOutput
         One per batch: arrays of shape (trials of the batch, N, 3); ``*_saturated`` counts of the batch.
         The arguments are checked at the call.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import sensors
+    >>> w, f, model = np.zeros((100, 3)), np.tile([0.0, 0.0, 9.8], (100, 1)), sensors.imu_model("MPU-6050")
+    >>> every = sensors.simulate_imu(w, f, 0.01, model, np.random.default_rng(1), n_trials=5).w_ib_b
+    >>> batches = sensors.simulate_imu_batches(w, f, 0.01, model, np.random.default_rng(1), 5, 2)
+    >>> parts = [b.w_ib_b for b in batches]
+    >>> [p.shape[0] for p in parts], bool(np.array_equal(np.concatenate(parts), every))
+    ([2, 2, 1], True)
     """
     w, f = imu_samples(w_ib_b, f_b, allow_nan=False)
     if w.ndim != 2:

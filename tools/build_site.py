@@ -485,7 +485,7 @@ def home_page(leds: list[ledger.PaperLedger], chapters: list[str]) -> str:
             "```bash",
             "git clone https://github.com/navlib-repro/navlib.git && cd navlib",
             "make reproduce   # set up .venv, execute every notebook, write build/ (figures, results, this site's input)",
-            "make test        # unit and property tests, and every notebook (executed once; reused from make reproduce when up to date)",
+            "make test        # unit and property tests, and every notebook (reused from make reproduce when up to date)",
             "```",
             "",
             "`make docs` builds this site from the executed notebooks into `build/site/`.",
