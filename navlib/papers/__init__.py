@@ -25,11 +25,18 @@ __all__ = ["Paper", "PAPERS", "CONVENTIONS", "REAL_DATA", "REAL_REFERENCES", "CH
 class Paper:
     """One reproduced paper.
 
-    name : the paper's one name: notebook ``NN_<name>``, module ``navlib.papers.<name>``.
-    number : the notebook number NN.
-    claims_id : the paper column of ``data/claims.csv`` and ``data/errata.csv`` (claim ids ``P<claims_id>-...``).
-    citation : short citation shown in the README and the report.
-    parts : the further notebooks of a paper taught in more than one lesson, ``NN_<name>_<part>`` each; the paper's
+    Attributes
+    ----------
+    name : str
+        The paper's one name: notebook ``NN_<name>``, module ``navlib.papers.<name>``.
+    number : int
+        The notebook number NN.
+    claims_id : str
+        The paper column of ``data/claims.csv`` and ``data/errata.csv`` (claim ids ``P<claims_id>-...``).
+    citation : str
+        Short citation shown in the README and the report.
+    parts : tuple of str
+        The further notebooks of a paper taught in more than one lesson, ``NN_<name>_<part>`` each; the paper's
         claims are split between its notebooks, each claim given its verdict in one of them.
 
     Examples
