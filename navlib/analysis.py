@@ -1011,7 +1011,8 @@ def time_offset(t: Times, x: ArrayLike, t_ref: Times, x_ref: ArrayLike, max_offs
     Raises
     ------
     ValueError
-        If no sample of ``x`` stays inside the reference's time span for every offset, or the best offset
+        If no sample of ``x`` stays inside the reference's time span for every offset, the reference has a gap
+        longer than 10 median intervals and ``max_offset`` (it cannot be interpolated across), or the best offset
         is at the edge of the grid (the delay may be larger: raise ``max_offset``).
 
     Examples
@@ -1034,6 +1035,13 @@ def time_offset(t: Times, x: ArrayLike, t_ref: Times, x_ref: ArrayLike, max_offs
     if step >= max_offset:
         raise ValueError(f"step: expected a grid step below max_offset ({max_offset} s), got {step}")
     x, x_ref = x.reshape(t.size, -1), x_ref.reshape(t_ref.size, -1)
+    d_ref = np.diff(t_ref)
+    k = int(np.argmax(d_ref)) if d_ref.size else 0
+    if d_ref.size and d_ref[k] > max(10 * np.median(d_ref), max_offset):  # linear interpolation across it would be made up
+        raise ValueError(
+            f"t_ref: a gap of {d_ref[k]:.3g} s after {t_ref[k]:.6g} s (over 10 median intervals and max_offset); "
+            "give the reference without gaps (e.g. the stretch before or after it)"
+        )
     use = np.isfinite(x).all(1) & (t - max_offset >= t_ref[0]) & (t + max_offset <= t_ref[-1])
     if not use.any():
         raise ValueError("t, t_ref: no finite sample of x stays inside the reference's time span for every offset")

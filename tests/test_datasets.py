@@ -147,3 +147,6 @@ def test_time_offset_finds_a_known_delay_and_refuses_one_beyond_its_grid():
         analysis.time_offset(t, x, t_ref, x_ref, max_offset=0.1, step=0.01)
     with pytest.raises(ValueError, match="x, x_ref"):
         analysis.time_offset(t, x, t_ref, x_ref[:, 0])
+    gap = (t_ref < 10.0) | (t_ref > 12.0)  # a 2-s hole in the reference: refused, not interpolated across
+    with pytest.raises(ValueError, match="t_ref: a gap of 2"):
+        analysis.time_offset(t, x, t_ref[gap], x_ref[gap])

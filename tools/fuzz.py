@@ -478,6 +478,14 @@ BY_DESIGN: list[tuple[str, str, str, str, str]] = [
     ),
     (r"analysis\.time_offset", "x", "nan", "silent_accept", "a NaN row of x is a missing sample, left out (docstring)"),
     (
+        r"analysis\.time_offset",
+        "t",
+        "time_jump",
+        "silent_accept",
+        "each sample of x is compared with the reference at its own time: a gap between samples only leaves fewer "
+        "(a gap of the reference is refused)",
+    ),
+    (
         r"atmosphere\.(reference_pressure|segment_floors)",
         r"p|h",
         "nan",
