@@ -212,19 +212,20 @@ def _apply(row: Row, v: dict, stem: str, problems: list[str], real_data: bool = 
     return True
 
 
-def join_real_data(leds: list[PaperLedger], stem: str, res: dict | None) -> None:
-    """Attach the real-data verdicts of notebook ``stem``'s results to their claims' rows (``Row.real``)."""
+def join_real_data(leds: list[PaperLedger], runs: dict[str, dict | None]) -> None:
+    """Attach the real-data verdicts of the notebooks' results (by stem) to their claims' rows (``Row.real``)."""
     by_id = {r.claim: (led, r) for led in leds for r in (*led.rows, *led.extensions)}
-    for v in (res or {}).get("verdicts", []):
-        if not v.get("real_data"):
-            continue
-        if v["claim"] not in by_id:
-            leds[0].problems.append(f"{stem}: real-data verdict for {v['claim']}, not a claim of data/claims.csv")
-            continue
-        led, row = by_id[v["claim"]]
-        real = Row(row.claim, row.item, row.quantity, row.kind, row.paper)
-        if _apply(real, v, stem, led.problems, real_data=True):
-            row.real = real
+    for stem, res in runs.items():
+        for v in (res or {}).get("verdicts", []):
+            if not v.get("real_data"):
+                continue
+            if v["claim"] not in by_id:
+                leds[0].problems.append(f"{stem}: real-data verdict for {v['claim']}, not a claim of data/claims.csv")
+                continue
+            led, row = by_id[v["claim"]]
+            real = row.real or Row(row.claim, row.item, row.quantity, row.kind, row.paper)  # a second one: a problem
+            if _apply(real, v, stem, led.problems, real_data=True):
+                row.real = real
 
 
 def ledgers(build: Path, root: Path = ROOT) -> list[PaperLedger]:
@@ -243,8 +244,7 @@ def ledgers(build: Path, root: Path = ROOT) -> list[PaperLedger]:
         )
         for p in sorted(PAPERS, key=lambda p: p.number)
     ]
-    for stem in sorted({*CHAPTERS, *(s for led in leds for s in led.stems)}):
-        join_real_data(leds, stem, results(build, stem))
+    join_real_data(leds, {s: results(build, s) for s in sorted({*CHAPTERS, *(s for led in leds for s in led.stems)})})
     return leds
 
 
