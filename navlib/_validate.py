@@ -13,9 +13,13 @@ tools/fuzz.py calls every public function with such values.
 
 from __future__ import annotations
 
+import functools
+import inspect
 import os
+import typing
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import Annotated, Any, ParamSpec, TypeVar
 
 import numpy as np
 from numpy.typing import NDArray
@@ -239,6 +243,19 @@ def latitude(lat: object, name: str = "lat", deg: bool = False, *, nonempty: boo
     lim = 90.0 if deg else np.pi / 2
     in_range(arr, name, -lim, lim, "deg" if deg else "rad")
     return np.deg2rad(arr) if deg else arr
+
+
+def longitude(lon: object, name: str = "lon", deg: bool = False) -> Array:
+    """A longitude (rad, or deg with ``deg``), non-empty, returned in degrees."""
+    arr = as_array(lon, name, nonempty=True)
+    return arr if flag(deg, "deg") else np.rad2deg(arr)
+
+
+def lat_lon(lat: object, lon: object, deg: bool = False, names: tuple[str, str] = ("lat", "lon")) -> list[Array]:
+    """Latitude (returned in rad, as :func:`latitude`) and longitude (returned in deg, as :func:`longitude`),
+    non-empty and broadcast against each other."""
+    lat_rad = latitude(lat, names[0], deg=deg, nonempty=True)
+    return broadcast(lat_rad, longitude(lon, names[1], deg), name=", ".join(names))
 
 
 def generator(rng: np.random.Generator, name: str = "rng") -> np.random.Generator:
@@ -544,3 +561,112 @@ def imu_samples(
     w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=allow_nan, shape=shape)
     f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=allow_nan)
     return w, same_shape(f, "f_b", w.shape, of="w_ib_b")
+
+
+class Check:
+    """What a parameter's annotation asks of its argument (``typing.Annotated`` metadata), checked by
+    :func:`navlib._validate.boundary` before the function runs: a function of :mod:`navlib._validate`, by name, and
+    its options, e.g. ``Annotated[float, Check("scalar", within=(0.0, 1.0))]``. ``Check("instance")`` asks for an
+    instance of the annotated class."""
+
+    __slots__ = ("validator", "options")
+
+    def __init__(self, validator: str, **options: Any) -> None:
+        self.validator = validator
+        self.options = options
+
+    def __repr__(self) -> str:
+        return f"Check({self.validator!r}{''.join(f', {k}={v!r}' for k, v in self.options.items())})"
+
+
+_T = TypeVar("_T")
+
+# Checked parameter kinds: annotations that @boundary checks.
+Real = Annotated[float, Check("scalar")]
+"""A finite real number."""
+Positive = Annotated[float, Check("scalar", positive=True)]
+"""A finite number > 0."""
+NonNegative = Annotated[float, Check("scalar", allow_zero=True)]
+"""A finite number >= 0."""
+Count = Annotated[int, Check("integer")]
+"""An integer >= 1 (not a bool)."""
+Flag = Annotated[bool, Check("flag")]
+"""``True`` or ``False``."""
+Rng = Annotated[np.random.Generator, Check("generator")]
+"""A ``numpy.random.Generator``."""
+Text = Annotated[str, Check("text")]
+"""A string."""
+Step = Annotated[float, Check("interval")]
+"""A fixed sample interval (s), at least 1 ns."""
+Is = Annotated[_T, Check("instance")]
+"""``Is[Cls]``: an instance of ``Cls``."""
+
+
+_P = ParamSpec("_P")
+_R = TypeVar("_R")
+
+
+def boundary(fn: Callable[_P, _R]) -> Callable[_P, _R]:
+    """Check the arguments whose annotation carries a :class:`~navlib._typing.Check` (``Positive``, ``Count``,
+    ``Rng``, ``Is[Cls]``, ...) before ``fn`` runs, and pass on what the check returns (e.g. a float).
+
+    Each check names its parameter in the error, as if the function had called it first thing. Defaults are checked
+    once (when the function is first called, so that annotations may name classes defined later in the module).
+    """
+    params = list(inspect.signature(fn).parameters.values())
+    plan: list[tuple[int, str, Callable[[Any], Any], Any]] = []
+
+    def resolve() -> list[tuple[int, str, Callable[[Any], Any], Any]]:
+        for i, p in enumerate(params):
+            check = _annotated_check(p.annotation, fn.__globals__, p.name)
+            if check is not None:
+                default = p.default if p.default is p.empty else check(p.default)
+                at = i if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD) else len(params)
+                plan.append((at, p.name, check, default))
+        if not plan:
+            raise TypeError(f"{fn.__qualname__}: @boundary without a checked parameter")
+        return plan
+
+    @functools.wraps(fn)
+    def checked(*args: _P.args, **kwargs: _P.kwargs) -> _R:
+        given = list(args)
+        for at, name, check, default in plan or resolve():
+            if at < len(given):
+                given[at] = check(given[at])
+            elif name in kwargs:
+                kwargs[name] = check(kwargs[name])
+            elif default is not inspect.Parameter.empty:
+                kwargs[name] = default
+        return fn(*given, **kwargs)  # type: ignore[arg-type]  # the same arguments, checked
+
+    return checked
+
+
+def _annotated_check(annotation: Any, namespace: dict[str, Any], name: str) -> Callable[[Any], Any] | None:
+    """The check an annotation asks for (``Annotated[..., Check(...)]``, optionally ``| None``), bound to ``name``."""
+    if isinstance(annotation, str):  # from __future__ import annotations
+        try:
+            annotation = eval(annotation, namespace)
+        except NameError:  # a name imported for the type checker only: not a checked kind
+            return None
+    members = typing.get_args(annotation) if typing.get_origin(annotation) in (typing.Union, type(int | None)) else ()
+    optional = type(None) in members
+    if optional and len(members) == 2:
+        annotation = next(m for m in members if m is not type(None))
+    marks = [m for m in getattr(annotation, "__metadata__", ()) if isinstance(m, Check)]
+    if not marks:
+        return None
+    mark, base = marks[0], typing.get_args(annotation)[0]
+    if mark.validator == "instance":
+        what = f"{'an' if base.__name__[0] in 'AEIOU' else 'a'} {base.__name__}"
+
+        def check(x: Any) -> Any:
+            return instance(x, name, base, what)
+
+    else:
+        validator = globals()[mark.validator]
+
+        def check(x: Any) -> Any:
+            return validator(x, name, **mark.options)
+
+    return (lambda x: None if x is None else check(x)) if optional else check

@@ -22,7 +22,22 @@ from numpy.typing import NDArray
 from . import attitude, earth
 from ._kernels import radii_mn
 from ._typing import Angles, Array, ArrayLike, Times, Vec3, Vec3Series
-from ._validate import as_array, as_quat, in_range, instance, interval, kernel_array, latitude, numbers, scalar, time_axis
+from ._validate import (
+    Is,
+    Positive,
+    Real,
+    as_array,
+    as_quat,
+    boundary,
+    in_range,
+    instance,
+    interval,
+    kernel_array,
+    latitude,
+    numbers,
+    scalar,
+    time_axis,
+)
 from ._validate import ellipsoid as ellipsoid_
 from .robust import FaultReport
 
@@ -230,15 +245,16 @@ def _ramp(x: np.ndarray) -> np.ndarray:
     return x - np.sin(2 * np.pi * x) / (2 * np.pi)
 
 
+@boundary
 def reciprocating_rotation(
     duration: float,
     dt: float,
     lla0: Vec3,
     hpr0: Angles,
     axis_b: Vec3,
-    amplitude: float,
-    period: float,
-    rotation_time: float = 1.0,
+    amplitude: Real,
+    period: Positive,
+    rotation_time: Positive = 1.0,
 ) -> Trajectory:
     """An IMU rotated back and forth about a body-fixed axis (paper 001 §3.2).
 
@@ -273,9 +289,6 @@ def reciprocating_rotation(
     u = as_array(axis_b, "axis_b", shape=(3,))
     if abs(np.linalg.norm(u) - 1) > 1e-9:
         raise ValueError(f"axis_b: expected a unit vector, got norm {np.linalg.norm(u):.6g}")
-    period = scalar(period, "period", positive=True)
-    rotation_time = scalar(rotation_time, "rotation_time", positive=True)
-    amplitude = scalar(amplitude, "amplitude")
     if rotation_time >= period:
         raise ValueError(f"rotation_time: expected less than period={period}, got {rotation_time}")
     k = np.floor(t / period)
@@ -342,8 +355,9 @@ class Segment:
             in_range(scalar(self.roll, "roll"), "roll", -np.pi, np.pi, "rad")
 
 
+@boundary
 def vehicle(
-    segments: Sequence[Segment], dt: float, lla0: Vec3, heading0: float, ellipsoid: earth.Ellipsoid = earth.WGS84
+    segments: Sequence[Segment], dt: float, lla0: Vec3, heading0: Real, ellipsoid: earth.Ellipsoid = earth.WGS84
 ) -> Trajectory:
     """A land vehicle driving along its forward axis through a list of segments.
 
@@ -372,7 +386,6 @@ def vehicle(
     segments = _listed(segments)
     if not segments or not all(isinstance(s, Segment) for s in segments):
         raise ValueError("segments: expected a non-empty sequence of Segment")
-    heading0 = scalar(heading0, "heading0")
     total = sum(s.duration for s in segments)
     t = _time_grid(total, dt)
     speed, heading, pitch, roll = (np.empty(t.size) for _ in range(4))
@@ -537,8 +550,9 @@ def stance_mask(legs: Sequence[Leg], dt: float, gait: Gait = Gait()) -> np.ndarr
     return _schedule(legs, t, gait.ramp)[3]
 
 
+@boundary
 def walk(
-    legs: Sequence[Leg], dt: float, lla0: Vec3, heading0: float, gait: Gait = Gait(), ellipsoid: earth.Ellipsoid = earth.WGS84
+    legs: Sequence[Leg], dt: float, lla0: Vec3, heading0: Real, gait: Gait = Gait(), ellipsoid: earth.Ellipsoid = earth.WGS84
 ) -> Trajectory:
     """A pedestrian walking and stopping, as seen by a shoulder-worn IMU.
 
@@ -572,7 +586,6 @@ def walk(
     6.0
     """
     legs, t = _walk_grid(legs, gait, dt)
-    heading0 = scalar(heading0, "heading0")
     speed, turn, climb, _ = _schedule(legs, t, gait.ramp)
     v_max = max(leg.speed for leg in legs)
     a = speed / v_max if v_max > 0 else np.zeros_like(speed)  # gait envelope, 0 when standing
@@ -603,7 +616,8 @@ def walk(
     return _from_profiles(t, lla0, hpr, vel, ellipsoid)
 
 
-def ideal_imu(traj: Trajectory, ellipsoid: earth.Ellipsoid = earth.WGS84) -> tuple[Array, Array]:
+@boundary
+def ideal_imu(traj: Is[Trajectory], ellipsoid: earth.Ellipsoid = earth.WGS84) -> tuple[Array, Array]:
     """Error-free gyro and accelerometer samples along a trajectory.
 
     Sample k is the mean angular rate and specific force over
@@ -631,7 +645,6 @@ def ideal_imu(traj: Trajectory, ellipsoid: earth.Ellipsoid = earth.WGS84) -> tup
     >>> w_ib_b.shape, np.round(f_b[0], 4)                             # specific force: up, normal gravity
     ((5, 3), array([0.    , 0.    , 9.7967]))
     """
-    instance(traj, "traj", Trajectory, "a Trajectory")
     if not all(np.isfinite(a).all() for a in (traj.lla, traj.vel_n, traj.q_bn)):
         raise ValueError("traj: expected a finite trajectory (no NaN positions, velocities or attitudes)")
     states = (traj.lla, traj.vel_n, traj.q_bn)

@@ -62,6 +62,8 @@ VALIDATE_NAMES = {
     "ellipsoid_",
     "numbers",
     "indices",
+    "longitude",
+    "lat_lon",
 }
 # One formula, one place: regular expressions that find where each is written out.
 FORMULAS = {

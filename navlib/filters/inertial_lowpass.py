@@ -45,7 +45,7 @@ from numba import njit
 
 from .._kernels import quat_mult_t, quat_to_dcm_t, rotvec_to_quat_t
 from .._typing import Vec3Series
-from .._validate import instance, scalar
+from .._validate import Is, Real, boundary, scalar
 from ..imu import ImuSamples
 from ..robust import FaultReport, screen
 from .observations import AttitudeResult, run_trials
@@ -334,12 +334,13 @@ def _wrap(a):
     return (a + np.pi) % (2 * np.pi) - np.pi
 
 
+@boundary
 def inertial_lowpass(
     imu: ImuSamples,
     m_b: Vec3Series | None = None,
     *,
-    declination: float = 0.0,
-    settings: InertialLowpassSettings = InertialLowpassSettings(),
+    declination: Real = 0.0,
+    settings: Is[InertialLowpassSettings] = InertialLowpassSettings(),
 ) -> AttitudeResult:
     """Attitude of every sample (module docstring), causal, with automatic initial attitude.
 
@@ -372,8 +373,6 @@ def inertial_lowpass(
     >>> np.round(np.rad2deg(attitude.quat_to_euler(res.q_bn[-1]))[1:], 2)   # pitch, roll (deg)
     array([ 5., -3.])
     """
-    instance(settings, "settings", InertialLowpassSettings, "an InertialLowpassSettings")
-    declination = scalar(declination, "declination", positive=False)
     if declination != 0.0 and m_b is None:
         raise ValueError("declination: without m_b the heading has no north to correct")
     s = screen(imu, m_b)
