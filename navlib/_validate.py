@@ -13,9 +13,11 @@ tools/fuzz.py calls every public function with such values.
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import inspect
 import os
+import sys
 import typing
 from collections.abc import Callable
 from pathlib import Path
@@ -343,21 +345,6 @@ def scalar(
     return value
 
 
-def numbers(
-    obj: Any,
-    *,
-    positive: tuple[str, ...] = (),
-    non_negative: tuple[str, ...] = (),
-    real: tuple[str, ...] = (),
-    infinite: tuple[str, ...] = (),
-) -> None:
-    """Check the named attributes of ``obj`` (a model's fields) as scalars, each named in its message: > 0,
-    >= 0 or any real number; those in ``infinite`` may also be inf (a full-scale range without a limit)."""
-    for names, above, zero in ((non_negative, False, True), (positive, True, False), (real, False, False)):
-        for name in names:
-            scalar(getattr(obj, name), name, positive=above, allow_zero=zero, allow_inf=name in infinite)
-
-
 def indices(x: object, name: str) -> NDArray[Any]:
     """``x`` as an array (of sample indices or trial ids, checked by the caller), a ragged sequence refused by name."""
     try:
@@ -596,6 +583,8 @@ Rng = Annotated[np.random.Generator, Check("generator")]
 """A ``numpy.random.Generator``."""
 Text = Annotated[str, Check("text")]
 """A string."""
+Limit = Annotated[float, Check("scalar", positive=True, allow_inf=True)]
+"""A positive limit; inf for none (e.g. a full-scale range)."""
 Step = Annotated[float, Check("interval")]
 """A fixed sample interval (s), at least 1 ns."""
 Is = Annotated[_T, Check("instance")]
@@ -607,7 +596,7 @@ _R = TypeVar("_R")
 
 
 def boundary(fn: Callable[_P, _R]) -> Callable[_P, _R]:
-    """Check the arguments whose annotation carries a :class:`~navlib._typing.Check` (``Positive``, ``Count``,
+    """Check the arguments whose annotation carries a :class:`Check` (``Positive``, ``Count``,
     ``Rng``, ``Is[Cls]``, ...) before ``fn`` runs, and pass on what the check returns (e.g. a float).
 
     Each check names its parameter in the error, as if the function had called it first thing. Defaults are checked
@@ -617,14 +606,16 @@ def boundary(fn: Callable[_P, _R]) -> Callable[_P, _R]:
     plan: list[tuple[int, str, Callable[[Any], Any], Any]] = []
 
     def resolve() -> list[tuple[int, str, Callable[[Any], Any], Any]]:
+        found = []
         for i, p in enumerate(params):
             check = _annotated_check(p.annotation, fn.__globals__, p.name)
             if check is not None:
                 default = p.default if p.default is p.empty else check(p.default)
                 at = i if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD) else len(params)
-                plan.append((at, p.name, check, default))
-        if not plan:
+                found.append((at, p.name, check, default))
+        if not found:
             raise TypeError(f"{fn.__qualname__}: @boundary without a checked parameter")
+        plan[:] = found  # one assignment: a concurrent first call sees the whole plan or none
         return plan
 
     @functools.wraps(fn)
@@ -640,6 +631,21 @@ def boundary(fn: Callable[_P, _R]) -> Callable[_P, _R]:
         return fn(*given, **kwargs)  # type: ignore[arg-type]  # the same arguments, checked
 
     return checked
+
+
+def fields_checked(record: Any) -> None:
+    """Check the fields of a dataclass ``record`` annotated with a checked kind (as :func:`boundary` checks
+    parameters): a record's ``__post_init__``."""
+    cls = type(record)
+    if cls not in _FIELD_CHECKS:
+        namespace = vars(sys.modules[cls.__module__])
+        found = ((f.name, _annotated_check(f.type, namespace, f.name)) for f in dataclasses.fields(cls))
+        _FIELD_CHECKS[cls] = [(name, check) for name, check in found if check is not None]
+    for name, check in _FIELD_CHECKS[cls]:
+        check(getattr(record, name))
+
+
+_FIELD_CHECKS: dict[type, list[tuple[str, Callable[[Any], Any]]]] = {}
 
 
 def _annotated_check(annotation: Any, namespace: dict[str, Any], name: str) -> Callable[[Any], Any] | None:

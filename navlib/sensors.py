@@ -45,25 +45,27 @@ from . import atmosphere, attitude, earth, units
 from ._typing import Angles, Array, ArrayLike, Quat, Times, Vec3, Vec3Series
 from ._validate import (
     Is,
+    Limit,
     NonNegative,
+    Positive,
+    Real,
     Rng,
     Step,
+    Text,
     as_array,
     as_quat,
     booleans,
     boundary,
     broadcast,
+    fields_checked,
     imu_samples,
     in_range,
-    instance,
     integer,
     interval,
     last_axis,
-    numbers,
     positive,
     same_shape,
     scalar,
-    text,
     time_axis,
 )
 from .analysis import GM_ALLAN_PEAK
@@ -131,22 +133,17 @@ class TriadErrors:
     (4.363e-05, 4.848e-05)
     """
 
-    noise_density: float = 0.0
-    bias: float = 0.0
-    bias_instability: float = 0.0
-    correlation_time: float = 3600.0
-    rate_random_walk: float = 0.0
-    scale_factor: float = 0.0
-    misalignment: float = 0.0
-    full_scale: float = np.inf
+    noise_density: NonNegative = 0.0
+    bias: NonNegative = 0.0
+    bias_instability: NonNegative = 0.0
+    correlation_time: Positive = 3600.0
+    rate_random_walk: NonNegative = 0.0
+    scale_factor: NonNegative = 0.0
+    misalignment: NonNegative = 0.0
+    full_scale: Limit = np.inf
 
     def __post_init__(self) -> None:
-        numbers(
-            self,
-            positive=("correlation_time", "full_scale"),
-            infinite=("full_scale",),
-            non_negative=("noise_density", "bias", "bias_instability", "rate_random_walk", "scale_factor", "misalignment"),
-        )
+        fields_checked(self)
 
     @property
     def gauss_markov_sigma(self) -> float:
@@ -166,14 +163,12 @@ class ImuModel:
     ('my gyro', 0.0001, 0.0)
     """
 
-    gyro: TriadErrors = field(default_factory=TriadErrors)
-    accel: TriadErrors = field(default_factory=TriadErrors)
-    name: str = "custom"
+    gyro: Is[TriadErrors] = field(default_factory=TriadErrors)
+    accel: Is[TriadErrors] = field(default_factory=TriadErrors)
+    name: Text = "custom"
 
     def __post_init__(self) -> None:
-        for key in ("gyro", "accel"):
-            instance(getattr(self, key), key, TriadErrors, "TriadErrors")
-        text(self.name, "name")
+        fields_checked(self)
 
     def replace(self, gyro: dict[str, Any] | None = None, accel: dict[str, Any] | None = None) -> ImuModel:
         """Copy with some parameters changed, e.g. ``m.replace(gyro={"bias": 0.0})``."""
@@ -597,13 +592,13 @@ class MagnetometerModel:
     (5, 3)
     """
 
-    noise: float = 0.0
-    hard_iron: float = 0.0
-    soft_iron: float = 0.0
-    full_scale: float = np.inf
+    noise: NonNegative = 0.0
+    hard_iron: NonNegative = 0.0
+    soft_iron: NonNegative = 0.0
+    full_scale: Limit = np.inf
 
     def __post_init__(self) -> None:
-        numbers(self, positive=("full_scale",), non_negative=("noise", "hard_iron", "soft_iron"), infinite=("full_scale",))
+        fields_checked(self)
 
     @classmethod
     def from_preset(cls, device: str) -> MagnetometerModel:
@@ -746,12 +741,12 @@ class BarometerModel:
     (3,)
     """
 
-    noise: float = 0.0
-    bias: float = 0.0
-    drift_rate: float = 0.0
+    noise: NonNegative = 0.0
+    bias: NonNegative = 0.0
+    drift_rate: Real = 0.0
 
     def __post_init__(self) -> None:
-        numbers(self, non_negative=("noise", "bias"), real=("drift_rate",))
+        fields_checked(self)
 
     @classmethod
     def from_preset(cls, device: str = "BMP180") -> BarometerModel:

@@ -24,17 +24,18 @@ from ._kernels import radii_mn
 from ._typing import Angles, Array, ArrayLike, Times, Vec3, Vec3Series
 from ._validate import (
     Is,
+    NonNegative,
     Positive,
     Real,
     as_array,
     as_quat,
     boundary,
+    fields_checked,
     in_range,
     instance,
     interval,
     kernel_array,
     latitude,
-    numbers,
     scalar,
     time_axis,
 )
@@ -339,16 +340,14 @@ class Segment:
     (301, 90.0)
     """
 
-    duration: float
-    speed: float | None = None
-    turn: float = 0.0
+    duration: Positive
+    speed: NonNegative | None = None
+    turn: Real = 0.0
     pitch: float | None = None
     roll: float | None = None
 
     def __post_init__(self) -> None:
-        numbers(self, positive=("duration",), real=("turn",))
-        if self.speed is not None:
-            scalar(self.speed, "speed", allow_zero=True)
+        fields_checked(self)
         if self.pitch is not None:
             in_range(scalar(self.pitch, "pitch"), "pitch", -np.pi / 2, np.pi / 2, "rad")
         if self.roll is not None:
@@ -421,13 +420,13 @@ class Leg:
     (181, 90.0)
     """
 
-    duration: float
-    speed: float = 0.0
-    turn: float = 0.0
-    climb: float = 0.0
+    duration: Positive
+    speed: NonNegative = 0.0
+    turn: Real = 0.0
+    climb: Real = 0.0
 
     def __post_init__(self) -> None:
-        numbers(self, positive=("duration",), non_negative=("speed",), real=("turn", "climb"))
+        fields_checked(self)
         if self.speed == 0 and (self.turn != 0 or self.climb != 0):
             raise ValueError("turn, climb: expected 0 on a stop (speed == 0)")
 
@@ -468,26 +467,21 @@ class Gait:
     (2.0, 0.02)
     """
 
-    step_frequency: float = 1.8
-    bounce: float = 0.025
-    sway: float = 0.02
-    surge: float = 0.01
-    heading_wiggle: float = np.deg2rad(3.0)
-    pitch_bob: float = np.deg2rad(1.5)
-    roll_sway: float = np.deg2rad(2.0)
-    lean: float = np.deg2rad(-3.0)
-    stand_sway: float = 0.002
-    stand_tilt: float = np.deg2rad(0.05)
-    stand_frequency: float = 0.3
-    ramp: float = 1.0
+    step_frequency: Positive = 1.8
+    bounce: NonNegative = 0.025
+    sway: NonNegative = 0.02
+    surge: NonNegative = 0.01
+    heading_wiggle: NonNegative = np.deg2rad(3.0)
+    pitch_bob: NonNegative = np.deg2rad(1.5)
+    roll_sway: NonNegative = np.deg2rad(2.0)
+    lean: Real = np.deg2rad(-3.0)
+    stand_sway: NonNegative = 0.002
+    stand_tilt: NonNegative = np.deg2rad(0.05)
+    stand_frequency: Positive = 0.3
+    ramp: Positive = 1.0
 
     def __post_init__(self) -> None:
-        numbers(
-            self,
-            positive=("step_frequency", "stand_frequency", "ramp"),
-            non_negative=("bounce", "sway", "surge", "heading_wiggle", "pitch_bob", "roll_sway", "stand_sway", "stand_tilt"),
-            real=("lean",),
-        )
+        fields_checked(self)
 
 
 def _listed(items: Any) -> list[Any]:

@@ -64,6 +64,8 @@ VALIDATE_NAMES = {
     "indices",
     "longitude",
     "lat_lon",
+    "fields_checked",
+    "boundary",
 }
 # One formula, one place: regular expressions that find where each is written out.
 FORMULAS = {

@@ -38,14 +38,14 @@ positive) turns the magnetic heading into a true one. Without ``m_b`` the headin
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 
 import numpy as np
 from numba import njit
 
 from .._kernels import quat_mult_t, quat_to_dcm_t, rotvec_to_quat_t
 from .._typing import Vec3Series
-from .._validate import Is, Real, boundary, scalar
+from .._validate import Is, Positive, Real, boundary, fields_checked
 from ..imu import ImuSamples
 from ..robust import FaultReport, screen
 from .observations import AttitudeResult, run_trials
@@ -82,27 +82,26 @@ class InertialLowpassSettings:
     bias_sigma_init: float = 0.5 * _DEG
     bias_forget_time: float = 100.0
     bias_clip: float = 2.0 * _DEG
-    bias_sigma_motion: float = 0.1 * _DEG
-    bias_sigma_rest: float = 0.03 * _DEG
-    bias_motion_scale: float = 100.0
-    rest_time: float = 1.5
-    rest_tau: float = 0.5
-    rest_gyro: float = 2.0 * _DEG
-    rest_accel: float = 0.5
-    mag_current_tau: float = 0.05
-    mag_ref_tau: float = 20.0
-    mag_norm_tol: float = 0.1
-    mag_dip_tol: float = 10.0 * _DEG
-    mag_new_time: float = 20.0
-    mag_new_first_time: float = 5.0
-    mag_new_min_gyro: float = 20.0 * _DEG
-    mag_max_rejection: float = 60.0
-    mag_rejection_factor: float = 2.0
-    mag_settle_time: float = 1.0
+    bias_sigma_motion: Positive = 0.1 * _DEG
+    bias_sigma_rest: Positive = 0.03 * _DEG
+    bias_motion_scale: Positive = 100.0
+    rest_time: Positive = 1.5
+    rest_tau: Positive = 0.5
+    rest_gyro: Positive = 2.0 * _DEG
+    rest_accel: Positive = 0.5
+    mag_current_tau: Positive = 0.05
+    mag_ref_tau: Positive = 20.0
+    mag_norm_tol: Positive = 0.1
+    mag_dip_tol: Positive = 10.0 * _DEG
+    mag_new_time: Positive = 20.0
+    mag_new_first_time: Positive = 5.0
+    mag_new_min_gyro: Positive = 20.0 * _DEG
+    mag_max_rejection: Positive = 60.0
+    mag_rejection_factor: Positive = 2.0
+    mag_settle_time: Positive = 1.0
 
     def __post_init__(self) -> None:
-        for f in fields(self):
-            scalar(getattr(self, f.name), f.name, positive=True)
+        fields_checked(self)
 
 
 def _butter2(tau: float, dt: float) -> np.ndarray:

@@ -51,11 +51,13 @@ from .._typing import Array, ArrayLike, Quat, Vec3
 from .._validate import (
     Is,
     NonNegative,
+    Positive,
     as_array,
     as_quat,
     booleans,
     boundary,
     broadcast_to,
+    fields_checked,
     flag,
     instance,
     integer,
@@ -473,12 +475,11 @@ class MagGate:
     (0.05, 3.0)
     """
 
-    norm_tol: float = 0.1
-    dip_tol: float = np.deg2rad(5.0)
+    norm_tol: Positive = 0.1
+    dip_tol: Positive = np.deg2rad(5.0)
 
     def __post_init__(self) -> None:
-        scalar(self.norm_tol, "norm_tol", positive=True)
-        scalar(self.dip_tol, "dip_tol", positive=True)
+        fields_checked(self)
 
 
 @dataclass(frozen=True)
@@ -504,16 +505,12 @@ class AttitudeGates:
     (0.1, 0.1)
     """
 
-    accel_tol: float | None = None
-    g: float = G0
-    mag: MagGate | None = None
+    accel_tol: Positive | None = None
+    g: Positive = G0
+    mag: Is[MagGate] | None = None
 
     def __post_init__(self) -> None:
-        if self.accel_tol is not None:
-            scalar(self.accel_tol, "accel_tol", positive=True)
-        scalar(self.g, "g", positive=True)
-        if self.mag is not None:
-            instance(self.mag, "mag", MagGate, "a MagGate")
+        fields_checked(self)
 
 
 @dataclass(frozen=True)

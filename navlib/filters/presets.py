@@ -64,7 +64,7 @@ from numpy.typing import NDArray
 
 from .. import analysis
 from .._typing import Array, ArrayLike
-from .._validate import Is, booleans, boundary, scalar
+from .._validate import Is, NonNegative, Positive, booleans, boundary, fields_checked
 from ..imu import ImuSamples
 from ..units import G0
 from . import zupt, zupt_ins
@@ -101,12 +101,11 @@ class MahonyGains:
     ``mahony(imu, q0, m_b=m_b, **presets.HAND_HELD.kwargs())`` runs the filter with them.
     """
 
-    kp: float
-    ki: float
+    kp: Positive
+    ki: NonNegative
 
     def __post_init__(self) -> None:
-        scalar(self.kp, "kp", positive=True)
-        scalar(self.ki, "ki", positive=True, allow_zero=True)
+        fields_checked(self)
 
     def kwargs(self) -> dict[str, float]:
         """``{"kp": ..., "ki": ...}``, to pass to :func:`navlib.filters.mahony.mahony` with ``**``."""

@@ -35,7 +35,7 @@ from numba import njit
 from .. import _kernels
 from .._kernels import fma
 from .._typing import Array, Quat, Vec3, Vec3Series
-from .._validate import Flag, Is, Step, as_array, as_quat, boundary, broadcast, flag, scalar
+from .._validate import Flag, Is, Positive, Step, as_array, as_quat, boundary, broadcast, fields_checked, flag, scalar
 from ..imu import ImuSamples
 from .observations import (
     AttitudeGates,
@@ -79,14 +79,13 @@ class KfNoise:
     (0.002, 0.02)
     """
 
-    sigma_gyro: float = 1e-3
-    sigma_accel: float = 0.02
-    sigma_mag: float = 0.08
-    p0: float = 1e-4
+    sigma_gyro: Positive = 1e-3
+    sigma_accel: Positive = 0.02
+    sigma_mag: Positive = 0.08
+    p0: Positive = 1e-4
 
     def __post_init__(self) -> None:
-        for name in ("sigma_gyro", "sigma_accel", "sigma_mag", "p0"):
-            scalar(getattr(self, name), name, positive=True)
+        fields_checked(self)
 
 
 class _Model(NamedTuple):
