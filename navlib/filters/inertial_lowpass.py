@@ -77,11 +77,11 @@ class InertialLowpassSettings:
     (1.0, 9.0)
     """
 
-    tau_acc: float = 3.0
-    tau_mag: float = 9.0
-    bias_sigma_init: float = 0.5 * _DEG
-    bias_forget_time: float = 100.0
-    bias_clip: float = 2.0 * _DEG
+    tau_acc: Positive = 3.0
+    tau_mag: Positive = 9.0
+    bias_sigma_init: Positive = 0.5 * _DEG
+    bias_forget_time: Positive = 100.0
+    bias_clip: Positive = 2.0 * _DEG
     bias_sigma_motion: Positive = 0.1 * _DEG
     bias_sigma_rest: Positive = 0.03 * _DEG
     bias_motion_scale: Positive = 100.0
