@@ -591,6 +591,9 @@ Is = Annotated[_T, Check("instance")]
 """``Is[Cls]``: an instance of ``Cls``."""
 
 
+_KINDS = {"Check", "Annotated", "Real", "Positive", "NonNegative", "Count", "Flag", "Rng", "Text", "Limit", "Step", "Is"}
+"""Names whose absence from an annotation's module is a mistake, not a name only the type checker sees."""
+
 _P = ParamSpec("_P")
 _R = TypeVar("_R")
 
@@ -653,7 +656,9 @@ def _annotated_check(annotation: Any, namespace: dict[str, Any], name: str) -> C
     if isinstance(annotation, str):  # from __future__ import annotations
         try:
             annotation = eval(annotation, namespace)
-        except NameError:  # a name imported for the type checker only: not a checked kind
+        except NameError as exc:  # a name imported for the type checker only: not a checked kind
+            if exc.name in _KINDS:
+                raise TypeError(f"{name}: the checked kind {exc.name} is not imported where {annotation!r} is written") from None
             return None
     members = typing.get_args(annotation) if typing.get_origin(annotation) in (typing.Union, type(int | None)) else ()
     optional = type(None) in members

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from navlib import _validate
-from navlib._validate import Check, Count, Is, Positive, Rng, boundary
+from navlib._validate import Check, Count, Is, NonNegative, Positive, Rng, boundary, fields_checked
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
 import fuzz_calls  # noqa: E402  (the registry of public callables)
@@ -88,3 +88,26 @@ def test_every_checked_annotation_of_a_public_function_is_checked():
             if isinstance(p.annotation, str) and _KINDS.search(p.annotation):
                 check = _validate._annotated_check(p.annotation, inspect.unwrap(fn).__globals__, p.name)
                 assert check is not None, f"{name}({p.name}: {p.annotation}) is not checked"
+
+
+def test_records_check_their_annotated_fields():
+    from dataclasses import dataclass
+
+    @dataclass(frozen=True)
+    class Gains:
+        kp: Positive
+        ki: NonNegative | None = None
+        note: str = ""
+
+        def __post_init__(self) -> None:
+            fields_checked(self)
+
+    assert Gains(1.0).ki is None and Gains(1.0, 0.0).ki == 0.0
+    for bad, name in (({"kp": 0.0}, "kp"), ({"kp": 1.0, "ki": -1.0}, "ki"), ({"kp": "1"}, "kp")):
+        with pytest.raises(ValueError, match=rf"^{name}: expected"):
+            Gains(**bad)
+
+
+def test_a_checked_kind_missing_from_the_namespace_is_refused_not_skipped():
+    with pytest.raises(TypeError, match="Positive is not imported"):
+        _validate._annotated_check("Positive", {}, "x")
