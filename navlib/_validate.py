@@ -13,9 +13,15 @@ tools/fuzz.py calls every public function with such values.
 
 from __future__ import annotations
 
+import dataclasses
+import functools
+import inspect
 import os
+import sys
+import typing
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import Annotated, Any, ParamSpec, TypeVar
 
 import numpy as np
 from numpy.typing import NDArray
@@ -241,6 +247,19 @@ def latitude(lat: object, name: str = "lat", deg: bool = False, *, nonempty: boo
     return np.deg2rad(arr) if deg else arr
 
 
+def longitude(lon: object, name: str = "lon", deg: bool = False) -> Array:
+    """A longitude (rad, or deg with ``deg``), non-empty, returned in degrees."""
+    arr = as_array(lon, name, nonempty=True)
+    return arr if flag(deg, "deg") else np.rad2deg(arr)
+
+
+def lat_lon(lat: object, lon: object, deg: bool = False, names: tuple[str, str] = ("lat", "lon")) -> list[Array]:
+    """Latitude (returned in rad, as :func:`latitude`) and longitude (returned in deg, as :func:`longitude`),
+    non-empty and broadcast against each other."""
+    lat_rad = latitude(lat, names[0], deg=deg, nonempty=True)
+    return broadcast(lat_rad, longitude(lon, names[1], deg), name=", ".join(names))
+
+
 def generator(rng: np.random.Generator, name: str = "rng") -> np.random.Generator:
     """Check that ``rng`` is a ``numpy.random.Generator`` (no legacy global state)."""
     return instance(rng, name, np.random.Generator, "a numpy.random.Generator")
@@ -324,21 +343,6 @@ def scalar(
     if np.isnan(value) or (positive or allow_zero) and not (value >= 0 if allow_zero else value > 0):
         raise ValueError(f"{name}: expected a {'non-negative' if allow_zero else 'positive'} value, got {value!r}")
     return value
-
-
-def numbers(
-    obj: Any,
-    *,
-    positive: tuple[str, ...] = (),
-    non_negative: tuple[str, ...] = (),
-    real: tuple[str, ...] = (),
-    infinite: tuple[str, ...] = (),
-) -> None:
-    """Check the named attributes of ``obj`` (a model's fields) as scalars, each named in its message: > 0,
-    >= 0 or any real number; those in ``infinite`` may also be inf (a full-scale range without a limit)."""
-    for names, above, zero in ((non_negative, False, True), (positive, True, False), (real, False, False)):
-        for name in names:
-            scalar(getattr(obj, name), name, positive=above, allow_zero=zero, allow_inf=name in infinite)
 
 
 def indices(x: object, name: str) -> NDArray[Any]:
@@ -544,3 +548,136 @@ def imu_samples(
     w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=allow_nan, shape=shape)
     f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=allow_nan)
     return w, same_shape(f, "f_b", w.shape, of="w_ib_b")
+
+
+class Check:
+    """What a parameter's annotation asks of its argument (``typing.Annotated`` metadata), checked by
+    :func:`navlib._validate.boundary` before the function runs: a function of :mod:`navlib._validate`, by name, and
+    its options, e.g. ``Annotated[float, Check("scalar", within=(0.0, 1.0))]``. ``Check("instance")`` asks for an
+    instance of the annotated class."""
+
+    __slots__ = ("validator", "options")
+
+    def __init__(self, validator: str, **options: Any) -> None:
+        self.validator = validator
+        self.options = options
+
+    def __repr__(self) -> str:
+        return f"Check({self.validator!r}{''.join(f', {k}={v!r}' for k, v in self.options.items())})"
+
+
+_T = TypeVar("_T")
+
+# Checked parameter kinds: annotations that @boundary checks.
+Real = Annotated[float, Check("scalar")]
+"""A finite real number."""
+Positive = Annotated[float, Check("scalar", positive=True)]
+"""A finite number > 0."""
+NonNegative = Annotated[float, Check("scalar", allow_zero=True)]
+"""A finite number >= 0."""
+Count = Annotated[int, Check("integer")]
+"""An integer >= 1 (not a bool)."""
+Flag = Annotated[bool, Check("flag")]
+"""``True`` or ``False``."""
+Rng = Annotated[np.random.Generator, Check("generator")]
+"""A ``numpy.random.Generator``."""
+Text = Annotated[str, Check("text")]
+"""A string."""
+Limit = Annotated[float, Check("scalar", positive=True, allow_inf=True)]
+"""A positive limit; inf for none (e.g. a full-scale range)."""
+Step = Annotated[float, Check("interval")]
+"""A fixed sample interval (s), at least 1 ns."""
+Is = Annotated[_T, Check("instance")]
+"""``Is[Cls]``: an instance of ``Cls``."""
+
+
+_KINDS = {"Check", "Annotated", "Real", "Positive", "NonNegative", "Count", "Flag", "Rng", "Text", "Limit", "Step", "Is"}
+"""Names whose absence from an annotation's module is a mistake, not a name only the type checker sees."""
+
+_P = ParamSpec("_P")
+_R = TypeVar("_R")
+
+
+def boundary(fn: Callable[_P, _R]) -> Callable[_P, _R]:
+    """Check the arguments whose annotation carries a :class:`Check` (``Positive``, ``Count``,
+    ``Rng``, ``Is[Cls]``, ...) before ``fn`` runs, and pass on what the check returns (e.g. a float).
+
+    Each check names its parameter in the error, as if the function had called it first thing. Defaults are checked
+    once (when the function is first called, so that annotations may name classes defined later in the module).
+    """
+    params = list(inspect.signature(fn).parameters.values())
+    plan: list[tuple[int, str, Callable[[Any], Any], Any]] = []
+
+    def resolve() -> list[tuple[int, str, Callable[[Any], Any], Any]]:
+        found = []
+        for i, p in enumerate(params):
+            check = _annotated_check(p.annotation, fn.__globals__, p.name)
+            if check is not None:
+                default = p.default if p.default is p.empty else check(p.default)
+                at = i if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD) else len(params)
+                found.append((at, p.name, check, default))
+        if not found:
+            raise TypeError(f"{fn.__qualname__}: @boundary without a checked parameter")
+        plan[:] = found  # one assignment: a concurrent first call sees the whole plan or none
+        return plan
+
+    @functools.wraps(fn)
+    def checked(*args: _P.args, **kwargs: _P.kwargs) -> _R:
+        given = list(args)
+        for at, name, check, default in plan or resolve():
+            if at < len(given):
+                given[at] = check(given[at])
+            elif name in kwargs:
+                kwargs[name] = check(kwargs[name])
+            elif default is not inspect.Parameter.empty:
+                kwargs[name] = default
+        return fn(*given, **kwargs)  # type: ignore[arg-type]  # the same arguments, checked
+
+    return checked
+
+
+def fields_checked(record: Any) -> None:
+    """Check the fields of a dataclass ``record`` annotated with a checked kind (as :func:`boundary` checks
+    parameters): a record's ``__post_init__``."""
+    cls = type(record)
+    if cls not in _FIELD_CHECKS:
+        namespace = vars(sys.modules[cls.__module__])
+        found = ((f.name, _annotated_check(f.type, namespace, f.name)) for f in dataclasses.fields(cls))
+        _FIELD_CHECKS[cls] = [(name, check) for name, check in found if check is not None]
+    for name, check in _FIELD_CHECKS[cls]:
+        check(getattr(record, name))
+
+
+_FIELD_CHECKS: dict[type, list[tuple[str, Callable[[Any], Any]]]] = {}
+
+
+def _annotated_check(annotation: Any, namespace: dict[str, Any], name: str) -> Callable[[Any], Any] | None:
+    """The check an annotation asks for (``Annotated[..., Check(...)]``, optionally ``| None``), bound to ``name``."""
+    if isinstance(annotation, str):  # from __future__ import annotations
+        try:
+            annotation = eval(annotation, namespace)
+        except NameError as exc:  # a name imported for the type checker only: not a checked kind
+            if exc.name in _KINDS:
+                raise TypeError(f"{name}: the checked kind {exc.name} is not imported where {annotation!r} is written") from None
+            return None
+    members = typing.get_args(annotation) if typing.get_origin(annotation) in (typing.Union, type(int | None)) else ()
+    optional = type(None) in members
+    if optional and len(members) == 2:
+        annotation = next(m for m in members if m is not type(None))
+    marks = [m for m in getattr(annotation, "__metadata__", ()) if isinstance(m, Check)]
+    if not marks:
+        return None
+    mark, base = marks[0], typing.get_args(annotation)[0]
+    if mark.validator == "instance":
+        what = f"{'an' if base.__name__[0] in 'AEIOU' else 'a'} {base.__name__}"
+
+        def check(x: Any) -> Any:
+            return instance(x, name, base, what)
+
+    else:
+        validator = globals()[mark.validator]
+
+        def check(x: Any) -> Any:
+            return validator(x, name, **mark.options)
+
+    return (lambda x: None if x is None else check(x)) if optional else check

@@ -19,6 +19,7 @@ a Gauss-Markov process.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Annotated
 
 import numpy as np
 from numba import njit
@@ -26,12 +27,18 @@ from numba import njit
 from . import _kernels, attitude, earth
 from ._typing import Angles, Array, ArrayLike, Times, Vec3
 from ._validate import (
+    Check,
+    Count,
+    Flag,
+    Positive,
+    Real,
+    Step,
     as_array,
     booleans,
+    boundary,
     broadcast,
     flag,
     integer,
-    interval,
     kernel_array,
     last_axis,
     latitude,
@@ -109,7 +116,8 @@ maximisation), written out so that ``import navlib`` does not import scipy.optim
 (tests/test_analysis.py recomputes them)."""
 
 
-def allan_deviation(x: ArrayLike, dt: float, taus: ArrayLike | None = None) -> tuple[Array, Array]:
+@boundary
+def allan_deviation(x: ArrayLike, dt: Step, taus: ArrayLike | None = None) -> tuple[Array, Array]:
     """Overlapping Allan deviation of rate samples.
 
     Parameters
@@ -141,7 +149,6 @@ def allan_deviation(x: ArrayLike, dt: float, taus: ArrayLike | None = None) -> t
     (array([ 0.1,  1. , 10. ]), array([0.01  , 0.0032, 0.0012]))
     """
     x = as_array(x, "x")
-    dt = interval(dt)
     return _allan_deviation(x, dt, taus)
 
 
@@ -224,11 +231,12 @@ def _second_difference_sq(theta, r, m, j):
     return d * d
 
 
+@boundary
 def allan_deviation_theory(
     taus: ArrayLike,
     white: float = 0.0,
     bias_instability: float = 0.0,
-    correlation_time: float = 1.0,
+    correlation_time: Positive = 1.0,
     rate_random_walk: float = 0.0,
 ) -> Array:
     """Allan deviation of navlib's sensor noise model (module docstring).
@@ -257,7 +265,6 @@ def allan_deviation_theory(
         scalar(v, name, allow_zero=True)
         for v, name in ((white, "white"), (bias_instability, "bias_instability"), (rate_random_walk, "rate_random_walk"))
     )
-    correlation_time = scalar(correlation_time, "correlation_time", positive=True)
     return _adev_theory(taus, white, bias_instability, correlation_time, rate_random_walk)
 
 
@@ -268,7 +275,8 @@ def _adev_theory(taus, white, bias_instability, correlation_time, rate_random_wa
     return np.sqrt(var)
 
 
-def fit_allan(taus: ArrayLike, adev: ArrayLike, n_samples: int, dt: float, *, rate_random_walk: bool = False) -> dict:
+@boundary
+def fit_allan(taus: ArrayLike, adev: ArrayLike, n_samples: Count, dt: Step, *, rate_random_walk: bool = False) -> dict:
     """Fit the noise model to an Allan-deviation curve by weighted least squares.
 
     The residuals are log-deviations weighted by the approximate number of
@@ -328,8 +336,6 @@ def fit_allan(taus: ArrayLike, adev: ArrayLike, n_samples: int, dt: float, *, ra
     if taus.ndim != 1 or taus.size < 3:
         raise ValueError(f"taus: expected a 1-D array of at least 3 averaging times, got shape {taus.shape}")
     same_shape(adev, "adev", taus.shape, of="taus")
-    n_samples = integer(n_samples, "n_samples")
-    dt = interval(dt)
     return _fit_allan(taus, adev, n_samples, dt, flag(rate_random_walk, "rate_random_walk"))
 
 
@@ -604,7 +610,8 @@ def position_error(estimate: ArrayLike, truth: ArrayLike) -> Array:
     return np.hypot(d[..., 0], d[..., 1])
 
 
-def settling_time(time: Times, error: ArrayLike, start: float, tol: float, end: float | None = None) -> Array:
+@boundary
+def settling_time(time: Times, error: ArrayLike, start: Real, tol: Positive, end: float | None = None) -> Array:
     """Time after ``start`` until ``|error|`` stays within ``tol`` up to ``end`` (s); inf if it never does.
 
     Parameters
@@ -630,8 +637,6 @@ def settling_time(time: Times, error: ArrayLike, start: float, tol: float, end: 
     """
     t = time_axis(time, "time")
     e = last_axis(as_array(error, "error", min_ndim=1), "error", t.size, of="time")
-    tol = scalar(tol, "tol", positive=True)
-    start = scalar(start, "start")
     stop = np.inf if end is None else scalar(end, "end")
     window = (t >= start) & (t < stop)
     if not window.any():
@@ -670,7 +675,8 @@ def segments(mask: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     return np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
 
 
-def moving_mean(x: ArrayLike, n: int) -> Array:
+@boundary
+def moving_mean(x: ArrayLike, n: Count) -> Array:
     """Centred moving mean over ``n`` samples along axis 0 (edges use the nearest full window).
 
     ``x`` : array_like, shape (N, ...) with N >= n >= 1. Returns a float array of the same shape.
@@ -682,7 +688,6 @@ def moving_mean(x: ArrayLike, n: int) -> Array:
     array([1., 1., 2., 1., 1.])
     """
     x = as_array(x, "x", min_ndim=1)
-    n = integer(n, "n")
     if n > x.shape[0]:
         raise ValueError(f"n: expected a window of at most {x.shape[0]} samples (the length of x), got {n}")
     return _moving_mean(x, n)
@@ -758,7 +763,10 @@ def condition_number(V: ArrayLike) -> Array:
     return _normal_condition(A)
 
 
-def lsq_covariance(V: ArrayLike, R: ArrayLike, max_cond: float = 1e6) -> Array:
+@boundary
+def lsq_covariance(
+    V: ArrayLike, R: ArrayLike, max_cond: Annotated[float, Check("scalar", positive=True, allow_inf=True)] = 1e6
+) -> Array:
     r"""Covariance of the unweighted least-squares estimate of ``b``.
 
     :math:`P = A^{-1} \big(\sum_k V_k^T R_k V_k\big) A^{-1}` with :math:`A = \sum_k V_k^T V_k`.
@@ -786,7 +794,6 @@ def lsq_covariance(V: ArrayLike, R: ArrayLike, max_cond: float = 1e6) -> Array:
            [0.  , 1.25]])
     """
     V, R = _blocks(V, R)
-    max_cond = scalar(max_cond, "max_cond", positive=True, allow_inf=True)
     A = np.einsum("...kji,...kjl->...il", V, V)
     if np.any(_normal_condition(A) > max_cond):
         raise ValueError("V: the unknowns are not observable from these blocks (rank-deficient V)")
@@ -794,7 +801,10 @@ def lsq_covariance(V: ArrayLike, R: ArrayLike, max_cond: float = 1e6) -> Array:
     return A_inv @ np.einsum("...kji,...kjl,...klm->...im", V, R, V) @ A_inv
 
 
-def cramer_rao_bound(V: ArrayLike, R: ArrayLike, max_cond: float = 1e6) -> Array:
+@boundary
+def cramer_rao_bound(
+    V: ArrayLike, R: ArrayLike, max_cond: Annotated[float, Check("scalar", positive=True, allow_inf=True)] = 1e6
+) -> Array:
     r"""Cramer-Rao bound of ``b`` from stacked blocks: :math:`\big(\sum_k V_k^T R_k^{-1} V_k\big)^{-1}`.
 
     Parameters
@@ -822,7 +832,6 @@ def cramer_rao_bound(V: ArrayLike, R: ArrayLike, max_cond: float = 1e6) -> Array
            [0. , 0.8]])
     """
     V, R = _blocks(V, R)
-    max_cond = scalar(max_cond, "max_cond", positive=True, allow_inf=True)
     n = V.shape[-1]
     info = np.einsum("...kji,...kjl,...klm->...im", V, np.linalg.inv(R), V)
     bad = _normal_condition(info) ** 2 > max_cond**2
@@ -915,8 +924,9 @@ class OrientationErrors:
     missing_reference: int = 0
 
 
+@boundary
 def orientation_errors(
-    q_bn: ArrayLike, q_ref: ArrayLike, mask: ArrayLike | None = None, *, remove_heading_offset: bool = True
+    q_bn: ArrayLike, q_ref: ArrayLike, mask: ArrayLike | None = None, *, remove_heading_offset: Flag = True
 ) -> OrientationErrors:
     """Total, heading and inclination RMS errors of an attitude estimate against a reference.
 
@@ -960,7 +970,6 @@ def orientation_errors(
     q_bn = as_array(q_bn, "q_bn", tail=(4,), shape=(None, 4), allow_nan=True)
     q_ref = as_array(q_ref, "q_ref", tail=(4,), shape=(q_bn.shape[0], 4), allow_nan=True, of="q_bn")
     mask = np.ones(q_bn.shape[0], bool) if mask is None else booleans(mask, "mask", shape=(q_bn.shape[0],), of="q_bn")
-    remove_heading_offset = flag(remove_heading_offset, "remove_heading_offset")
     use = mask & np.isfinite(q_ref).all(1)
     if not use.any():
         raise ValueError("mask, q_ref: no sample is both masked in and has a reference")
@@ -983,7 +992,10 @@ def orientation_errors(
     return OrientationErrors(total_rms, heading_rms, inclination_rms, offset, int(use.sum()), int((mask & ~use).sum()))
 
 
-def time_offset(t: Times, x: ArrayLike, t_ref: Times, x_ref: ArrayLike, max_offset: float = 0.5, step: float = 0.005) -> float:
+@boundary
+def time_offset(
+    t: Times, x: ArrayLike, t_ref: Times, x_ref: ArrayLike, max_offset: Positive = 0.5, step: Positive = 0.005
+) -> float:
     """The delay ``tau`` (s) of a series against a reference of the same quantity: ``x(t) ~ x_ref(t - tau)``.
 
     E.g. a GNSS receiver's fix latency, from its speed against the wheel speed, or from its positions against a
@@ -1030,8 +1042,6 @@ def time_offset(t: Times, x: ArrayLike, t_ref: Times, x_ref: ArrayLike, max_offs
     x_ref = as_array(x_ref, "x_ref", min_ndim=1)
     if x.shape[0] != t.size or x_ref.shape[0] != t_ref.size or x.shape[1:] != x_ref.shape[1:]:
         raise ValueError(f"x, x_ref: expected shapes ({t.size}, ...) and ({t_ref.size}, ...) alike, got {x.shape}, {x_ref.shape}")
-    max_offset = scalar(max_offset, "max_offset", positive=True)
-    step = scalar(step, "step", positive=True)
     if step >= max_offset:
         raise ValueError(f"step: expected a grid step below max_offset ({max_offset} s), got {step}")
     x, x_ref = x.reshape(t.size, -1), x_ref.reshape(t_ref.size, -1)

@@ -16,20 +16,24 @@ Heights are geopotential metres, pressures Pa, temperatures K.
 
 from __future__ import annotations
 
+from typing import Annotated
+
 import numpy as np
 
 from ._typing import Array, ArrayLike, Times
 from ._validate import (
+    Check,
+    Positive,
+    Real,
     as_array,
     booleans,
+    boundary,
     broadcast,
-    choice,
     in_range,
     instance,
     integer,
     last_axis,
     positive,
-    scalar,
     time_axis,
 )
 from .analysis import segments
@@ -164,7 +168,10 @@ def _cdiv(a: int, b: int) -> int:
     return q if (a >= 0) == (b >= 0) else -q
 
 
-def bmp180_compensate(UT: int, UP: int, calib: dict[str, int], oss: int = 0) -> tuple[int, int]:
+@boundary
+def bmp180_compensate(
+    UT: int, UP: int, calib: dict[str, int], oss: Annotated[int, Check("choice", options=(0, 1, 2, 3))] = 0
+) -> tuple[int, int]:
     """BMP180 datasheet integer compensation (sec. 3.5).
 
     Parameters
@@ -189,7 +196,6 @@ def bmp180_compensate(UT: int, UP: int, calib: dict[str, int], oss: int = 0) -> 
     >>> atmosphere.bmp180_compensate(27898, 23843, calib, oss=0)     # the datasheet's worked example: 15.0 degC, 69964 Pa
     (150, 69964)
     """
-    choice(oss, "oss", (0, 1, 2, 3))
     instance(calib, "calib", dict, "a dict of calibration coefficients")
     missing = {"AC1", "AC2", "AC3", "AC4", "AC5", "AC6", "B1", "B2", "MB", "MC", "MD"} - set(calib)
     if missing:
@@ -260,7 +266,8 @@ def baro_height(p: ArrayLike, p_ref: ArrayLike, temperature: ArrayLike | None = 
     return _hypsometric_height(p, p_ref, _temperature(temperature, p, p_ref))
 
 
-def reference_pressure(p: ArrayLike, time: Times, until: float) -> float | Array:
+@boundary
+def reference_pressure(p: ArrayLike, time: Times, until: Real) -> float | Array:
     """Mean pressure (Pa) over ``time <= until`` (the initial stand on the start floor).
 
     Parameters
@@ -284,7 +291,6 @@ def reference_pressure(p: ArrayLike, time: Times, until: float) -> float | Array
     """
     t = time_axis(time, "time", min_samples=1)
     p = last_axis(as_array(p, "p", allow_nan=True), "p", t.size, of="time")
-    until = scalar(until, "until")
     window = p[..., t <= until]
     valid = np.isfinite(window)
     if not valid.any(axis=-1).all():
@@ -301,7 +307,8 @@ def reference_pressure(p: ArrayLike, time: Times, until: float) -> float | Array
     return float(ref) if ref.ndim == 0 else ref
 
 
-def classify_floor(h: ArrayLike, floor_height: float = 3.0, ref_floor: int = 0) -> np.ndarray:
+@boundary
+def classify_floor(h: ArrayLike, floor_height: Positive = 3.0, ref_floor: int = 0) -> np.ndarray:
     """Floor index ``ref_floor + round(h / floor_height)`` from a relative height (m).
 
     Examples
@@ -311,8 +318,7 @@ def classify_floor(h: ArrayLike, floor_height: float = 3.0, ref_floor: int = 0) 
     array([ 0,  1,  2, -1])
     """
     h = as_array(h, "h")
-    hf = scalar(floor_height, "floor_height", positive=True)
-    return integer(ref_floor, "ref_floor", minimum=None) + np.round(h / hf).astype(int)
+    return integer(ref_floor, "ref_floor", minimum=None) + np.round(h / floor_height).astype(int)
 
 
 def segment_floors(

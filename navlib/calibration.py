@@ -97,13 +97,14 @@ from __future__ import annotations
 
 import zlib
 from dataclasses import dataclass
+from typing import Annotated
 
 import numpy as np
 from scipy.optimize import least_squares
 
 from . import analysis, earth, sensors, units
 from ._typing import Array, ArrayLike, Dcm, Interval, Vec3, Vec3Series
-from ._validate import as_array, as_dcm, choice, flag, imu_samples, sample_intervals, scalar
+from ._validate import Check, Flag, Positive, as_array, as_dcm, boundary, choice, imu_samples, sample_intervals, scalar
 from .imu import ImuSamples, unpack
 from .sensors import ImuModel, TriadErrors
 
@@ -461,7 +462,8 @@ def _condition(p: np.ndarray, f: np.ndarray, g: float, misalignment: bool) -> fl
     return float(np.linalg.cond(J))
 
 
-def fit_accelerometer(f_means: Vec3Series, g: float = units.G0, *, misalignment: bool = False) -> AccelCalibration:
+@boundary
+def fit_accelerometer(f_means: Vec3Series, g: Positive = units.G0, *, misalignment: Flag = False) -> AccelCalibration:
     """Accelerometer bias and scale factors from static positions (module docstring).
 
     Parameters
@@ -497,8 +499,6 @@ def fit_accelerometer(f_means: Vec3Series, g: float = units.G0, *, misalignment:
     (array([ 0.1 , -0.2 ,  0.05]), array([1.02, 0.98, 1.  ]))
     """
     f = as_array(f_means, "f_means", shape=(None, 3))
-    g = scalar(g, "g", positive=True)
-    misalignment = flag(misalignment, "misalignment")
     need = 9 if misalignment else 6
     if f.shape[0] < need:
         raise ValueError(f"f_means: expected at least {need} static positions, got {f.shape[0]}")
@@ -838,13 +838,14 @@ def _fixed_interval(dt: Interval, n: int) -> float:
     return float(d.mean())
 
 
+@boundary
 def characterise(
     w_ib_b: Vec3Series | ImuSamples,
     f_b: Vec3Series | None = None,
     dt: Interval | None = None,
     *,
-    rate_random_walk: bool = False,
-    confidence: float = 0.95,
+    rate_random_walk: Flag = False,
+    confidence: Annotated[float, Check("scalar", within=(0.0, 1.0), open_ends=(True, True))] = 0.95,
 ) -> NoiseCharacterisation:
     """Characterise an IMU from a static record: per-axis Allan deviation and noise terms (module docstring).
 
@@ -891,8 +892,6 @@ def characterise(
     if n < MIN_RECORD:
         raise ValueError(f"w_ib_b: expected a static record of at least {MIN_RECORD} samples, got {n}")
     dt = _fixed_interval(dt, n)
-    rate_random_walk = flag(rate_random_walk, "rate_random_walk")
-    confidence = scalar(confidence, "confidence", within=(0.0, 1.0), open_ends=(True, True))
     return NoiseCharacterisation(
         _triad_noise(w, dt, rate_random_walk, confidence, "w_ib_b"),
         _triad_noise(f, dt, rate_random_walk, confidence, "f_b"),

@@ -14,13 +14,27 @@ from __future__ import annotations
 
 import functools
 from dataclasses import dataclass
-from typing import Any
+from typing import Annotated, Any
 
 import numpy as np
 
 from ._kernels import normal_gravity, radii_mn
 from ._typing import Array, ArrayLike, Dcm, Vec3
-from ._validate import as_array, as_dcm, broadcast, flag, in_range, kernel_array, latitude, positive, scalar, text
+from ._validate import (
+    Check,
+    Real,
+    as_array,
+    as_dcm,
+    boundary,
+    broadcast,
+    flag,
+    in_range,
+    kernel_array,
+    latitude,
+    positive,
+    scalar,
+    text,
+)
 from ._validate import ellipsoid as ellipsoid_
 
 __all__ = [
@@ -123,6 +137,9 @@ class Ellipsoid:
 
 OMEGA_IE = 7.292115e-5
 """Earth rotation rate (rad/s), WGS84/CGCS2000 defining value (15.041 deg/h)."""
+
+EllipsoidArg = Annotated[Ellipsoid, Check("ellipsoid")]
+"""An ellipsoid argument (e.g. ``WGS84``), checked by :func:`navlib._validate.boundary`."""
 
 WGS84 = Ellipsoid("WGS84", 6378137.0, 1 / 298.257223563, 3.986004418e14, OMEGA_IE)
 GRS80 = Ellipsoid("GRS80", 6378137.0, 1 / 298.257222101, 3.986005e14, OMEGA_IE)
@@ -232,7 +249,8 @@ def gravity_n(lat: ArrayLike, h: ArrayLike = 0.0, deg: bool = False, ellipsoid: 
     return np.stack([z, z, -g], -1)
 
 
-def radii(lat: ArrayLike, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> tuple[Array, Array]:
+@boundary
+def radii(lat: ArrayLike, deg: bool = False, ellipsoid: EllipsoidArg = WGS84) -> tuple[Array, Array]:
     r"""Meridian and prime-vertical radii of curvature (m).
 
     Returns
@@ -248,7 +266,6 @@ def radii(lat: ArrayLike, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> tu
     (6367381.8, 6388838.3)
     """
     lat = latitude(lat, "lat", deg=deg)
-    ellipsoid_(ellipsoid)
     R_M, R_N = radii_mn(kernel_array(lat).reshape(-1), ellipsoid.a, ellipsoid.e2)
     return R_M.reshape(lat.shape), R_N.reshape(lat.shape)
 
@@ -315,7 +332,8 @@ def _wmm_file(year: float) -> str:
     return [f for start, f in _WMM_MODELS if year >= start][-1]
 
 
-def magnetic_field(lat: ArrayLike, lon: ArrayLike, h: ArrayLike = 0.0, year: float = 2025.0, deg: bool = True) -> Array:
+@boundary
+def magnetic_field(lat: ArrayLike, lon: ArrayLike, h: ArrayLike = 0.0, year: Real = 2025.0, deg: bool = True) -> Array:
     """Main geomagnetic field from the World Magnetic Model (through pygeomag).
 
     The WMM epoch (2010, 2015v2, 2020, 2025) is chosen from ``year``; each is
@@ -348,7 +366,6 @@ def magnetic_field(lat: ArrayLike, lon: ArrayLike, h: ArrayLike = 0.0, year: flo
     in_range(lon, "lon", -2 * np.pi, 2 * np.pi, "rad") if not deg else in_range(lon, "lon", -360, 360, "deg")
     lon = np.deg2rad(lon) if deg else lon
     h = in_range(as_array(h, "h"), "h", -1e3, 850e3, "m")
-    year = scalar(year, "year")
     gm = _geomag(_wmm_file(year))
     lat, lon, h = np.broadcast_arrays(lat, lon, h)
     out = np.empty(lat.shape + (3,))

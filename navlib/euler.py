@@ -15,7 +15,7 @@ from numba import njit
 
 from . import _kernels
 from ._typing import Angles, Array, ArrayLike, Interval, Vec3, Vec3Series
-from ._validate import as_array, broadcast_to, kernel_array, sample_intervals, scalar, small_turns, text
+from ._validate import NonNegative, as_array, boundary, broadcast_to, kernel_array, sample_intervals, small_turns, text
 from .imu import ImuSamples, unpack
 
 __all__ = ["PITCH_LIMIT", "check_pitch", "euler_rates", "integrate_euler"]
@@ -163,6 +163,7 @@ def _euler_kernel(hpr0, w, dts, w_in, bias, bias_from, pitch_limit, max_gap):
     return out, singular, gap_too_long
 
 
+@boundary
 def integrate_euler(
     hpr0: Angles,
     w_ib_b: Vec3Series | ImuSamples,
@@ -171,7 +172,7 @@ def integrate_euler(
     bias_b: ArrayLike | None = None,
     bias_from: ArrayLike | None = None,
     *,
-    max_gap: float = 0.0,
+    max_gap: NonNegative = 0.0,
 ) -> Array:
     """Integrate Eq. (2) from gyro samples, optionally bias-compensated.
 
@@ -229,7 +230,6 @@ def integrate_euler(
     >>> hpr.shape, np.round(np.rad2deg(hpr[-1]), 6)                  # no Earth rate given: w_in_n = 0
     ((101, 3), array([9., 0., 0.]))
     """
-    max_gap = scalar(max_gap, "max_gap", allow_zero=True)
     if isinstance(w_ib_b, ImuSamples):  # validated by the record
         w, _, dts, _, _ = unpack(w_ib_b, dt=dt)  # (NaN with max_gap = 0: refused by the gap check)
     else:

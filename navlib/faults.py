@@ -19,14 +19,14 @@ Faults covered (navlib's robustness suite, ``tests/faults/``):
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Annotated, Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from . import attitude, earth
 from ._typing import Angles, Array, ArrayLike, Times, Vec3Series
-from ._validate import as_array, generator, integer, interval, positive, same_shape, scalar, time_axis
+from ._validate import Check, Positive, Real, Rng, Step, as_array, boundary, generator, positive, same_shape, scalar, time_axis
 
 __all__ = [
     "dropouts",
@@ -89,7 +89,8 @@ def dropouts(x: ArrayLike, fraction: float, rng: np.random.Generator) -> tuple[A
     return x, dropped
 
 
-def gap(x: ArrayLike, time: Times, start: float, duration: float) -> tuple[Array, np.ndarray]:
+@boundary
+def gap(x: ArrayLike, time: Times, start: Real, duration: Positive) -> tuple[Array, np.ndarray]:
     """NaN over ``[start, start + duration)`` (s): a sensor outage.
 
     Returns
@@ -107,8 +108,6 @@ def gap(x: ArrayLike, time: Times, start: float, duration: float) -> tuple[Array
     """
     x = _samples(x, "x").copy()
     t = same_shape(time_axis(time, "time"), "time", (_time_axis_len(x),), of="x")
-    start = scalar(start, "start")
-    duration = scalar(duration, "duration", positive=True)
     dropped = (t >= start) & (t < start + duration)
     if x.ndim == 1:
         x[dropped] = np.nan
@@ -156,7 +155,10 @@ def spikes(
     return x, hit
 
 
-def position_jumps(lla: Vec3Series, fraction: float, rng: np.random.Generator, size_m: float = 50.0) -> tuple[Array, np.ndarray]:
+@boundary
+def position_jumps(
+    lla: Vec3Series, fraction: float, rng: np.random.Generator, size_m: Positive = 50.0
+) -> tuple[Array, np.ndarray]:
     """Move a random ``fraction`` of GNSS fixes by ``size_m`` metres horizontally.
 
     Parameters
@@ -186,9 +188,8 @@ def position_jumps(lla: Vec3Series, fraction: float, rng: np.random.Generator, s
     az = rng.uniform(0, 2 * np.pi, lla.shape[-2])
     lat, h = np.nan_to_num(lla[..., 0]), np.nan_to_num(lla[..., 2])
     R_M, R_N = earth.radii(lat)
-    size = scalar(size_m, "size_m", positive=True)
-    lla[..., 0] += np.where(hit, size * np.cos(az) / (R_M + h), 0.0)
-    lla[..., 1] += np.where(hit, size * np.sin(az) / ((R_N + h) * np.cos(lat)), 0.0)
+    lla[..., 0] += np.where(hit, size_m * np.cos(az) / (R_M + h), 0.0)
+    lla[..., 1] += np.where(hit, size_m * np.sin(az) / ((R_N + h) * np.cos(lat)), 0.0)
     return lla, hit
 
 
@@ -262,7 +263,14 @@ def swap_timestamps(time: Times, fraction: float, rng: np.random.Generator) -> t
     return t[order], order
 
 
-def irregular_times(n: int, dt: float, jitter: float, rng: np.random.Generator, t0: float = 0.0) -> Array:
+@boundary
+def irregular_times(
+    n: Annotated[int, Check("integer", minimum=2)],
+    dt: Step,
+    jitter: Annotated[float, Check("scalar", within=(0.0, 0.99))],
+    rng: Rng,
+    t0: Real = 0.0,
+) -> Array:
     """Sample times with intervals ``dt (1 + u)``, u uniform in ``[-jitter, jitter]``.
 
     Returns
@@ -276,16 +284,12 @@ def irregular_times(n: int, dt: float, jitter: float, rng: np.random.Generator, 
     >>> np.round(faults.irregular_times(4, 0.01, 0.1, np.random.default_rng(0)), 5)
     array([0.     , 0.01027, 0.01981, 0.0289 ])
     """
-    integer(n, "n", minimum=2)
-    dt = interval(dt)
-    jitter = scalar(jitter, "jitter", within=(0.0, 0.99))
-    t0 = scalar(t0, "t0")
-    generator(rng)
     steps = dt * (1 + rng.uniform(-jitter, jitter, n - 1))
     return t0 + np.concatenate([[0.0], np.cumsum(steps)])
 
 
-def saturate(x: Vec3Series, full_scale: float) -> tuple[Array, np.ndarray]:
+@boundary
+def saturate(x: Vec3Series, full_scale: Positive) -> tuple[Array, np.ndarray]:
     """Clip at ``±full_scale``; returns the clipped copy and the mask of clipped samples.
 
     Parameters
@@ -309,8 +313,7 @@ def saturate(x: Vec3Series, full_scale: float) -> tuple[Array, np.ndarray]:
            [ 4., -4.,  0.]]), array([False,  True]))
     """
     x = _samples(x, "x")
-    fs = scalar(full_scale, "full_scale", positive=True)
-    clipped = np.abs(x) > fs
+    clipped = np.abs(x) > full_scale
     if x.ndim >= 2:
         clipped = np.any(clipped, axis=-1)
-    return np.clip(x, -fs, fs), clipped
+    return np.clip(x, -full_scale, full_scale), clipped

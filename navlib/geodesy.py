@@ -50,15 +50,16 @@ from __future__ import annotations
 
 import functools
 from collections.abc import Callable
+from typing import Annotated
 
 import numpy as np
 from numba import njit
 
 from ._kernels import fma
 from ._typing import Array, ArrayLike
-from ._validate import as_array, broadcast, choice, flag, in_range, latitude, scalar
+from ._validate import Check, as_array, boundary, broadcast, choice, flag, in_range, lat_lon, latitude, longitude, scalar
 from ._validate import ellipsoid as ellipsoid_
-from .earth import WGS84, Ellipsoid, radii
+from .earth import WGS84, Ellipsoid, EllipsoidArg, radii
 
 __all__ = [
     "zone",
@@ -104,11 +105,6 @@ def _width(width: object) -> int:
     return int(choice(width, "width", ZONE_WIDTHS))
 
 
-def _lon_deg(lon: ArrayLike, deg: bool, name: str = "lon") -> Array:
-    arr = as_array(lon, name, nonempty=True)
-    return arr if flag(deg, "deg") else np.rad2deg(arr)
-
-
 def zone(lon: ArrayLike, width: int = 3, deg: bool = False) -> np.ndarray:
     """Gauss–Krüger zone number (corrected Eq. 1).
 
@@ -133,7 +129,7 @@ def zone(lon: ArrayLike, width: int = 3, deg: bool = False) -> np.ndarray:
     >>> int(geodesy.zone(114.3, deg=True)), int(geodesy.zone(114.3, width=6, deg=True))
     (38, 20)
     """
-    return _zone(_lon_deg(lon, deg), _width(width))
+    return _zone(longitude(lon, "lon", deg), _width(width))
 
 
 def _zone(lon_deg: Array, w: int) -> np.ndarray:
@@ -187,7 +183,7 @@ def _resolve_lon0(lon_deg, zone_number, lon0, w, deg, max_offset_deg):
         L0 = _meridian(_zone(lon_deg, w).astype(float), w)
         limit = np.inf
     else:
-        L0 = _central_meridian(zone_number, w, True, "zone") if lon0 is None else _lon_deg(lon0, deg, "lon0")
+        L0 = _central_meridian(zone_number, w, True, "zone") if lon0 is None else longitude(lon0, "lon0", deg)
         max_offset_deg = _max_offset(max_offset_deg)
         limit = float(w if max_offset_deg is None else max_offset_deg)
     l_deg = lon_deg - L0
@@ -466,12 +462,6 @@ def _inverse(xi, eta, e, beta):
     return np.arctan(_geodetic_tan(taup, e)), np.arctan2(sinh_etap, cos_xip)
 
 
-def _validate_lat_lon(lat, lon, deg, names=("lat", "lon")):
-    lat_rad = latitude(lat, names[0], deg=deg, nonempty=True)
-    lon_deg = _lon_deg(lon, deg, names[1])
-    return broadcast(lat_rad, lon_deg, name=", ".join(names))
-
-
 def geodetic2gk(
     lat: ArrayLike,
     lon: ArrayLike,
@@ -527,7 +517,7 @@ def geodetic2gk(
     >>> round(float(x), 3), round(float(y), 3)
     (3320151.288, 28945.951)
     """
-    lat_rad, lon_deg = _validate_lat_lon(lat, lon, deg)
+    lat_rad, lon_deg = lat_lon(lat, lon, deg)
     k0, fe, fn = _grid(ellipsoid, k0, false_easting, false_northing)
     w = _width(width)
     L0, l_deg = _resolve_lon0(lon_deg, zone, lon0, w, deg, max_offset_deg)
@@ -590,7 +580,7 @@ def gk2geodetic(
         y = y - _PREFIX_UNIT * zone
     if (zone is None) == (lon0 is None):
         raise ValueError("zone, lon0: give exactly one of them (or zone_prefix=True)")
-    L0 = _central_meridian(zone, w, True, "y" if zone_prefix else "zone") if lon0 is None else _lon_deg(lon0, deg, "lon0")
+    L0 = _central_meridian(zone, w, True, "y" if zone_prefix else "zone") if lon0 is None else longitude(lon0, "lon0", deg)
     x, y, L0 = broadcast(x, y, L0, name="x, y", of="x, y and the central meridian")
     A, e, _, beta = _kruger(ellipsoid.a, ellipsoid.f)
     xi = (x - fn) / (k0 * A)
@@ -612,7 +602,7 @@ def _grid(ellipsoid: Ellipsoid, k0: float, false_easting: float, false_northing:
 
 def _factors(lat, lon, zone, lon0, width, ellipsoid, deg, max_offset_deg):
     ellipsoid_(ellipsoid)
-    lat_rad, lon_deg = _validate_lat_lon(lat, lon, deg)
+    lat_rad, lon_deg = lat_lon(lat, lon, deg)
     _, l_deg = _resolve_lon0(lon_deg, zone, lon0, _width(width), deg, max_offset_deg)
     return _forward_factors(lat_rad, l_deg, ellipsoid)
 
@@ -652,6 +642,7 @@ def convergence(
     return np.rad2deg(gamma) if deg else gamma
 
 
+@boundary
 def scale_factor(
     lat: ArrayLike,
     lon: ArrayLike,
@@ -661,7 +652,7 @@ def scale_factor(
     width: int = 3,
     ellipsoid: Ellipsoid = WGS84,
     deg: bool = False,
-    k0: float = 1.0,
+    k0: Annotated[float, Check("scalar", within=_K0_RANGE)] = 1.0,
     max_offset_deg: float | None = None,
 ) -> Array:
     """Point scale factor k of the projection (1 on the central meridian for GK).
@@ -675,12 +666,12 @@ def scale_factor(
     >>> np.round(geodesy.scale_factor(26.0, [120.0, 121.5], lon0=120.0, deg=True), 7)   # 1 on the central meridian
     array([1.       , 1.0002784])
     """
-    k0 = scalar(k0, "k0", within=_K0_RANGE)
     _, k = _factors(lat, lon, zone, lon0, width, ellipsoid, deg, max_offset_deg)
     return k0 * k
 
 
-def meridian_arc(lat: ArrayLike, ellipsoid: Ellipsoid = WGS84, deg: bool = False) -> Array:
+@boundary
+def meridian_arc(lat: ArrayLike, ellipsoid: EllipsoidArg = WGS84, deg: bool = False) -> Array:
     """Meridian arc length S from the equator (m), by Krüger's n^6 series (nm accuracy).
 
     Parameters
@@ -700,7 +691,6 @@ def meridian_arc(lat: ArrayLike, ellipsoid: Ellipsoid = WGS84, deg: bool = False
     >>> round(float(geodesy.meridian_arc(90.0, deg=True)), 3)      # equator to pole (m)
     10001965.729
     """
-    ellipsoid_(ellipsoid)
     lat = latitude(lat, "lat", deg=deg, nonempty=True)
     return _forward(lat, np.zeros_like(lat), ellipsoid)[0]
 
@@ -710,14 +700,15 @@ def _gk_project(lat, lon, lon0, ellipsoid):
     return geodetic2gk(lat, lon, lon0=lon0, ellipsoid=ellipsoid, max_offset_deg=_MAX_OFFSET_DEG)
 
 
+@boundary
 def local_scales(
     lat: ArrayLike,
     lon: ArrayLike,
     lon0: ArrayLike,
-    ellipsoid: Ellipsoid = WGS84,
+    ellipsoid: EllipsoidArg = WGS84,
     deg: bool = False,
     project: Callable[..., tuple[Array, Array]] | None = None,
-    step: float = 1e-6,
+    step: Annotated[float, Check("scalar", within=(0.0, 0.01), open_ends=(True, False))] = 1e-6,
 ) -> tuple[Array, Array, Array]:
     """Meridian and parallel scale factors and the angle between their images, by central differences.
 
@@ -754,14 +745,12 @@ def local_scales(
     >>> round(abs(float(h - k)), 9), round(float(np.rad2deg(angle)), 6)   # equal scales, right angle
     (0.0, 90.0)
     """
-    ellipsoid_(ellipsoid)
     if project is None:
         project = _gk_project
     elif not callable(project):
         raise TypeError(f"project: expected a callable (lat, lon, lon0, ellipsoid) -> (x, y), got {type(project).__name__}")
-    step = scalar(step, "step", within=(0.0, 1e-2), open_ends=(True, False))
-    lat_r, lon_d = _validate_lat_lon(lat, lon, deg)
-    lon0_d = _lon_deg(lon0, deg, "lon0")
+    lat_r, lon_d = lat_lon(lat, lon, deg)
+    lon0_d = longitude(lon0, "lon0", deg)
     lon_r, lon0_r = np.deg2rad(lon_d), np.deg2rad(lon0_d)
 
     def xy(la, lo):
@@ -782,8 +771,9 @@ def local_scales(
 # --------------------------------------------------------------------------
 
 
+@boundary
 def geodetic2ecef(
-    lat: ArrayLike, lon: ArrayLike, h: ArrayLike, ellipsoid: Ellipsoid = WGS84, deg: bool = False
+    lat: ArrayLike, lon: ArrayLike, h: ArrayLike, ellipsoid: EllipsoidArg = WGS84, deg: bool = False
 ) -> tuple[Array, Array, Array]:
     """Earth-centred Earth-fixed coordinates (m) of geodetic points; returns x, y, z of shape (...).
 
@@ -796,7 +786,6 @@ def geodetic2ecef(
     >>> np.round(geodesy.geodetic2ecef(0.0, 90.0, 0.0, deg=True), 3)   # on the equator, 90 deg east: the y axis
     array([      0., 6378137.,       0.])
     """
-    ellipsoid_(ellipsoid)
     return _ecef(*_geodetic(lat, lon, h, deg), ellipsoid)
 
 
@@ -804,7 +793,7 @@ def _geodetic(
     lat: ArrayLike, lon: ArrayLike, h: ArrayLike, deg: bool, names: tuple[str, str, str] = ("lat", "lon", "h")
 ) -> tuple[Array, Array, Array]:
     """Latitude (rad), longitude (rad) and height (m) of geodetic points, each checked under its name."""
-    lat_rad, lon_deg = _validate_lat_lon(lat, lon, deg, names[:2])
+    lat_rad, lon_deg = lat_lon(lat, lon, deg, names[:2])
     h = as_array(h, names[2], nonempty=True)
     broadcast(h, lat_rad, name=names[2], of=f"{names[2]} and {names[0]}, {names[1]}")
     return lat_rad, np.deg2rad(lon_deg), h
@@ -817,8 +806,9 @@ def _ecef(lat: Array, lon: Array, h: Array, ellipsoid: Ellipsoid) -> tuple[Array
     return r * np.cos(lon), r * np.sin(lon), (R_N * (1 - ellipsoid.e2) + h) * np.sin(lat)
 
 
+@boundary
 def ecef2geodetic(
-    x: ArrayLike, y: ArrayLike, z: ArrayLike, ellipsoid: Ellipsoid = WGS84, deg: bool = False
+    x: ArrayLike, y: ArrayLike, z: ArrayLike, ellipsoid: EllipsoidArg = WGS84, deg: bool = False
 ) -> tuple[Array, Array, Array]:
     """Geodetic latitude, longitude (rad or deg) and height (m) of ECEF points (m).
 
@@ -833,7 +823,6 @@ def ecef2geodetic(
     >>> round(float(lat), 9), round(float(lon), 9), round(float(h), 6)
     (30.0, 114.0, 50.0)
     """
-    ellipsoid_(ellipsoid)
     x, y, z = broadcast(*(as_array(v, k, nonempty=True) for v, k in ((x, "x"), (y, "y"), (z, "z"))), name="x, y, z")
     return _from_ecef(x, y, z, ellipsoid, deg)
 
@@ -872,6 +861,7 @@ def _enu_rotation(lat0, lon0):
     )
 
 
+@boundary
 def geodetic2enu(
     lat: ArrayLike,
     lon: ArrayLike,
@@ -879,7 +869,7 @@ def geodetic2enu(
     lat0: ArrayLike,
     lon0: ArrayLike,
     h0: ArrayLike,
-    ellipsoid: Ellipsoid = WGS84,
+    ellipsoid: EllipsoidArg = WGS84,
     deg: bool = False,
 ) -> tuple[Array, Array, Array]:
     """East, north, up (m) of geodetic points in the local tangent frame at (lat0, lon0, h0).
@@ -895,7 +885,6 @@ def geodetic2enu(
     >>> round(float(e), 3), round(float(n), 3), round(float(u), 3)
     (0.0, 110.853, 9.999)
     """
-    ellipsoid_(ellipsoid)
     lat0, lon0, h0 = _geodetic(lat0, lon0, h0, deg, _ORIGIN)
     p = np.stack(_ecef(*_geodetic(lat, lon, h, deg), ellipsoid), -1)
     p0 = np.stack(_ecef(lat0, lon0, h0, ellipsoid), -1)

@@ -38,14 +38,29 @@ import warnings
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any, ParamSpec, TypeVar
+from typing import Annotated, Any, ParamSpec, TypeVar
 
 import numpy as np
 import pandas as pd
 
 from . import alignment, attitude, calibration, strapdown
 from ._typing import Array, ArrayLike, Dcm, Times
-from ._validate import as_array, booleans, choice, file_path, flag, instance, scalar, text, time_axis
+from ._validate import (
+    Check,
+    Flag,
+    Is,
+    Positive,
+    as_array,
+    booleans,
+    boundary,
+    choice,
+    file_path,
+    flag,
+    instance,
+    scalar,
+    text,
+    time_axis,
+)
 from .imu import ImuSamples, SensorLimits
 from .timing import TimingReport, intervals, sanitize
 from .units import G0
@@ -252,10 +267,11 @@ def _check_timing(t: np.ndarray, policy: str, name: str = "time") -> None:
         )
 
 
+@boundary
 def from_dataframe(
     df: pd.DataFrame,
     *,
-    time: str,
+    time: Annotated[str, Check("text", empty=False)],
     time_unit: str = "s",
     units: Mapping[str, str],
     gyro: Sequence[str] | None = None,
@@ -264,8 +280,8 @@ def from_dataframe(
     baro: str | None = None,
     axes: str | Dcm | Mapping[str, str | Dcm] = "x,y,z",
     mirror: bool = False,
-    timing: str = "raise",
-    check_units: bool = True,
+    timing: Annotated[str, Check("choice", options=('raise', 'sanitize'))] = "raise",
+    check_units: Flag = True,
 ) -> Recording:
     """A :class:`Recording` from a table with one row per sample.
 
@@ -311,10 +327,7 @@ def from_dataframe(
     (array([0.      , 0.017453, 0.034907]), "gyro: columns ['gx', 'gy', 'gz'] in deg/s x 0.0174533 -> rad/s, axes 'x,y,z'")
     """
     instance(df, "df", pd.DataFrame, "a pandas.DataFrame")
-    choice(timing, "timing", ("raise", "sanitize"))
-    check_units = flag(check_units, "check_units")
     mounts = _mounts(axes, flag(mirror, "mirror"))
-    text(time, "time", empty=False)
     instance(units, "units", Mapping, "a mapping of sensor to unit, e.g. {'gyro': 'deg/s'}")
     columns: dict[str, Any] = {"gyro": gyro, "accel": accel, "mag": mag, "baro": baro}  # checked below
     present = {s: c for s, c in columns.items() if c is not None}
@@ -994,8 +1007,14 @@ def _default_gap(ts: np.ndarray) -> float:
     return 1.5 * float(np.percentile(np.diff(ts), 99))
 
 
+@boundary
 def align(
-    t_target: Times, t_source: ArrayLike, x_source: ArrayLike, *, method: str = "hold", max_gap: float | None = None
+    t_target: Times,
+    t_source: ArrayLike,
+    x_source: ArrayLike,
+    *,
+    method: Annotated[str, Check("choice", options=("hold", "interpolate"))] = "hold",
+    max_gap: float | None = None,
 ) -> Array:
     """Readings of one sensor on another sensor's clock; NaN where there is no reading to use.
 
@@ -1033,7 +1052,6 @@ def align(
            [1.5],
            [2. ]])
     """
-    method = choice(method, "method", ("hold", "interpolate"))
     tt = time_axis(t_target, "t_target")
     ts = time_axis(t_source, "t_source")
     x = as_array(x_source, "x_source", allow_nan=True, min_ndim=1)
@@ -1057,7 +1075,10 @@ def align(
     return out.reshape((tt.size,) + x.shape[1:])
 
 
-def resample(rec: Recording, rate: float, *, method: str = "mean") -> Recording:
+@boundary
+def resample(
+    rec: Is[Recording], rate: Positive, *, method: Annotated[str, Check("choice", options=("mean", "interpolate"))] = "mean"
+) -> Recording:
     """The recording on a uniform clock of ``rate`` Hz.
 
     ``"mean"`` (decimation): each new sample is the mean of the readings in its interval
@@ -1089,9 +1110,6 @@ def resample(rec: Recording, rate: float, *, method: str = "mean") -> Recording:
     >>> round(float(np.diff(slow.time)[0]), 6), len(slow.time) < len(rec.time)
     (0.1, True)
     """
-    instance(rec, "rec", Recording, "a navlib.io.Recording")
-    rate = scalar(rate, "rate", positive=True)
-    method = choice(method, "method", ("mean", "interpolate"))
     t_new = np.arange(0.0, rec.time[-1], 1.0 / rate)
     if t_new.size < 2:
         raise ValueError(f"rate: {rate:g} Hz gives fewer than 2 samples over {rec.time[-1]:.3g} s; raise it")
@@ -1172,7 +1190,10 @@ def _window_means(t: np.ndarray, x: np.ndarray, window: float) -> tuple[np.ndarr
         return sums / counts[:, None], k
 
 
-def check_axes(rec: Recording, *, on_fail: str = "warn") -> AxisCheck:
+@boundary
+def check_axes(
+    rec: Is[Recording], *, on_fail: Annotated[str, Check("choice", options=("warn", "raise", "ignore"))] = "warn"
+) -> AxisCheck:
     """Test the gyro against the accelerometer and magnetometer kinematically; name an axis that looks flipped.
 
     The gyro, less its mean over the stillest second when that second is still (:data:`STILL_LIMITS`), is
@@ -1205,8 +1226,6 @@ def check_axes(rec: Recording, *, on_fail: str = "warn") -> AxisCheck:
     >>> io.check_axes(flipped, on_fail="ignore").suspect
     'gyro z'
     """
-    instance(rec, "rec", Recording, "a navlib.io.Recording")
-    on_fail = choice(on_fail, "on_fail", ("warn", "raise", "ignore"))
     if rec.w_ib_b is None or (rec.f_b is None and rec.m_b is None):
         raise ValueError("rec: the axis check needs the gyro and an accelerometer or magnetometer")
     flips = np.array([np.ones(3), _flip(0), _flip(1), _flip(2)])
@@ -1313,7 +1332,8 @@ tolerance of common MEMS gyros, the MPU-6050's) and accelerometer standard devia
 samples marked still."""
 
 
-def start_at_rest(rec: Recording, still: ArrayLike | None = None) -> tuple[Recording, Array]:
+@boundary
+def start_at_rest(rec: Is[Recording], still: ArrayLike | None = None) -> tuple[Recording, Array]:
     """Use a still stretch: gyro bias at rest removed, the magnetometer calibrated when the recording allows,
     and the initial attitude from the mean specific force (and field) over the still samples.
 
@@ -1351,7 +1371,6 @@ def start_at_rest(rec: Recording, still: ArrayLike | None = None) -> tuple[Recor
     >>> np.round(np.rad2deg(attitude.quat_to_euler(q0)), 1) + 0.0   # heading, pitch, roll (deg) at the start
     array([269.7,  -1.2,   0. ])
     """
-    instance(rec, "rec", Recording, "a navlib.io.Recording")
     if rec.w_ib_b is None or rec.f_b is None:
         raise ValueError("rec: start_at_rest needs the gyro and the accelerometer")
     notes = []

@@ -21,14 +21,14 @@ is rejected and reported, never silently applied.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Annotated, Any
 
 import numpy as np
 from scipy.linalg import expm
 
 from . import _kernels
 from ._typing import Array, ArrayLike
-from ._validate import as_array, booleans, interval, kernel_array, same_shape, scalar
+from ._validate import Check, Step, as_array, booleans, boundary, kernel_array, same_shape
 
 __all__ = ["predict", "update", "discretize", "ACCEPTED", "NO_DATA", "REJECTED"]
 
@@ -85,6 +85,7 @@ def predict(x: ArrayLike, P: ArrayLike, F: ArrayLike, Q: ArrayLike) -> tuple[Arr
     return _kernels.kalman_predict(x, P, _matrix(F, "F", (n, n), of="x"), _matrix(Q, "Q", (n, n), of="x"))
 
 
+@boundary
 def update(
     x: ArrayLike,
     P: ArrayLike,
@@ -93,7 +94,7 @@ def update(
     H: ArrayLike,
     R: ArrayLike,
     angle_mask: ArrayLike,
-    gate: float = np.inf,
+    gate: Annotated[float, Check("scalar", positive=True, allow_inf=True)] = np.inf,
 ) -> tuple[Array, Array, Array, float, int]:
     """Joseph-form measurement update that skips NaN components.
 
@@ -157,11 +158,11 @@ def update(
     H = _matrix(H, "H", (m, n), of="z, x")
     R = _matrix(R, "R", (m, m), of="z")
     angle_mask = kernel_array(booleans(angle_mask, "angle_mask", shape=(m,)))
-    gate = scalar(gate, "gate", positive=True, allow_inf=True)
     return _kernels.kalman_update(x, P, z, h, H, R, angle_mask, gate)
 
 
-def discretize(F: ArrayLike, G: ArrayLike, Qc: ArrayLike, dt: float) -> tuple[Array, Array]:
+@boundary
+def discretize(F: ArrayLike, G: ArrayLike, Qc: ArrayLike, dt: Step) -> tuple[Array, Array]:
     r"""Discretise a continuous linear model by Van Loan's method.
 
     For :math:`\dot x = F x + G w` with white noise of spectral density :math:`Q_c`, returns
@@ -198,7 +199,6 @@ def discretize(F: ArrayLike, G: ArrayLike, Qc: ArrayLike, dt: float) -> tuple[Ar
     same_shape(F, "F", (n, n))  # square
     G = as_array(G, "G", shape=(n, None), of="F")  # n rows
     Qc = as_array(Qc, "Qc", shape=(G.shape[1], G.shape[1]), of="G")  # (p, p), p the columns of G
-    dt = interval(dt)
     M = np.zeros((2 * n, 2 * n))
     M[:n, :n] = -F
     M[:n, n:] = G @ Qc @ G.T

@@ -32,7 +32,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ._typing import ArrayLike
-from ._validate import flag, indices, integer, text
+from ._validate import Text, boundary, flag, indices, integer
 
 __all__ = ["TrialStreams", "run"]
 
@@ -195,6 +195,7 @@ def _check_args(n_trials: int, seed: int, batch_size: int) -> None:
         integer(v, name, minimum=lo)
 
 
+@boundary
 def run(
     batch_fn: Callable[..., dict[str, np.ndarray]],
     n_trials: int,
@@ -203,7 +204,7 @@ def run(
     batch_size: int = 1000,
     executor: Executor | None = None,
     progress: bool | None = None,
-    label: str = "trials",
+    label: Text = "trials",
     **kwargs: Any,
 ) -> dict[str, np.ndarray]:
     """Run ``n_trials`` Monte Carlo trials in batches and concatenate the results.
@@ -252,7 +253,6 @@ def run(
         raise ValueError(f"batch_fn: expected a callable, got {type(batch_fn).__name__}")
     _check_args(n_trials, seed, batch_size)
     progress = os.environ.get("NAVLIB_PROGRESS", "1").strip() != "0" if progress is None else flag(progress, "progress")
-    text(label, "label")
     if executor is not None and not hasattr(executor, "submit"):  # an Executor, or one by duck typing
         raise ValueError(f"executor: expected a concurrent.futures.Executor, got {type(executor).__name__}")
     batches = [np.arange(s, min(s + batch_size, n_trials)) for s in range(0, n_trials, batch_size)]

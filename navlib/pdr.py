@@ -20,7 +20,7 @@ import numpy as np
 
 from . import analysis
 from ._typing import Array, ArrayLike, Vec3Series
-from ._validate import as_array, indices, interval, positive, same_shape, scalar
+from ._validate import Step, as_array, boundary, indices, positive, same_shape, scalar
 from .alignment import level, magnetic_heading
 from .units import G0
 
@@ -48,7 +48,8 @@ class StepResult:
     peak_to_peak: np.ndarray
 
 
-def detect_steps(f_b: Vec3Series, dt: float, threshold: float = 1.0, min_interval: float = 0.35, g: float = G0) -> StepResult:
+@boundary
+def detect_steps(f_b: Vec3Series, dt: Step, threshold: float = 1.0, min_interval: float = 0.35, g: float = G0) -> StepResult:
     """Steps as peaks of the smoothed specific-force magnitude above ``g + threshold``.
 
     Parameters
@@ -74,7 +75,6 @@ def detect_steps(f_b: Vec3Series, dt: float, threshold: float = 1.0, min_interva
     4
     """
     f = as_array(f_b, "f_b", shape=(None, 3), min_ndim=1)
-    dt = interval(dt)
     thr = scalar(threshold, "threshold", positive=True)
     gap = int(round(scalar(min_interval, "min_interval", positive=True) / dt))
     n_smooth = max(2, int(round(0.1 / dt)))

@@ -8,13 +8,28 @@ looks the same on every figure of every notebook.
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Annotated, Any
 
 import numpy as np
 
 from . import attitude, units
 from ._typing import Angles, Array, ArrayLike, Dcm
-from ._validate import as_array, as_dcm, axes, choice, euler_angles, instance, positive, same_shape, scalar, text
+from ._validate import (
+    Check,
+    Positive,
+    Real,
+    Text,
+    as_array,
+    as_dcm,
+    axes,
+    boundary,
+    euler_angles,
+    instance,
+    positive,
+    same_shape,
+    scalar,
+    text,
+)
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -29,7 +44,8 @@ PAPER_STYLE: dict[str, Any] = {"color": "black", "linestyle": (0, (5, 3)), "line
 _AXIS_STYLE = (("x right", "tab:red"), ("y forward", "tab:green"), ("z up", "tab:blue"))
 
 
-def body_axes(ax: Axes3D, C_bn: Dcm, title: str = "") -> None:
+@boundary
+def body_axes(ax: Axes3D, C_bn: Dcm, title: Text = "") -> None:
     """Draw the ENU frame (grey) and the body axes of ``C_bn`` on a 3-D axes.
 
     Parameters
@@ -53,7 +69,6 @@ def body_axes(ax: Axes3D, C_bn: Dcm, title: str = "") -> None:
     if not hasattr(ax, "quiver") or not hasattr(ax, "set_zlim"):
         raise ValueError(f"ax: expected a 3-D matplotlib Axes (projection='3d'), got {type(ax).__name__}")
     C = as_dcm(C_bn, "C_bn")
-    text(title, "title")
     # E, N, U labelled beyond the body axes' labels (a level body's z axis lies on U)
     for v, at, name in zip(np.eye(3), [(1.3, 0, -0.18), (0, 1.3, -0.18), (0, 0, 1.38)], "ENU", strict=True):
         ax.quiver(0, 0, 0, *v, color="0.6", arrow_length_ratio=0.08, linewidth=1)
@@ -67,12 +82,13 @@ def body_axes(ax: Axes3D, C_bn: Dcm, title: str = "") -> None:
         ax.set_title(title)
 
 
+@boundary
 def allan(
     ax: Axes,
     taus: ArrayLike,
     adev_rad_s: ArrayLike,
     theory: ArrayLike | None = None,
-    label: str = "",
+    label: Text = "",
     color: ColorType | None = None,
 ) -> None:
     """Log-log Allan deviation of a gyro in deg/h against averaging time in s.
@@ -104,7 +120,6 @@ def allan(
         raise ValueError(f"adev_rad_s: expected shape ({taus.size},) or ({taus.size}, k) (one row per tau), got {a.shape}")
     if theory is not None:
         theory = same_shape(positive(theory, "theory"), "theory", taus.shape, of="taus")
-    text(label, "label")
     if color is not None:
         _color(color, "color")
     lines = ax.loglog(taus, a, color=color, linewidth=1 if a.ndim > 1 else 1.5, alpha=0.8)
@@ -147,7 +162,15 @@ def _fraction(x: float, name: str) -> float:
     return scalar(x, name, within=(0.0, 1.0), open_ends=(True, False))
 
 
-def paper_value(ax: Axes, value: float, label: str, *, axis: str = "y", text_at: float = 0.02) -> None:
+@boundary
+def paper_value(
+    ax: Axes,
+    value: Real,
+    label: Text,
+    *,
+    axis: Annotated[str, Check("choice", options=("x", "y"))] = "y",
+    text_at: Annotated[float, Check("scalar", within=(0.0, 1.0))] = 0.02,
+) -> None:
     """Mark a paper's printed value on ``ax``: a line in :data:`PAPER_STYLE` with its label written on it.
 
     Parameters
@@ -172,20 +195,22 @@ def paper_value(ax: Axes, value: float, label: str, *, axis: str = "y", text_at:
     >>> plt.close(fig)
     """
     axes(ax)
-    v = scalar(value, "value")
-    text(label, "label")
-    choice(axis, "axis", ("x", "y"))
-    at = scalar(text_at, "text_at", within=(0.0, 1.0))
     if axis == "y":
-        ax.axhline(v, label=label, **PAPER_STYLE)
-        ax.annotate(
-            label, (at, v), xycoords=("axes fraction", "data"), xytext=(0, 3), textcoords="offset points", fontsize=8, va="bottom"
-        )
-    else:
-        ax.axvline(v, label=label, **PAPER_STYLE)
+        ax.axhline(value, label=label, **PAPER_STYLE)
         ax.annotate(
             label,
-            (v, at),
+            (text_at, value),
+            xycoords=("axes fraction", "data"),
+            xytext=(0, 3),
+            textcoords="offset points",
+            fontsize=8,
+            va="bottom",
+        )
+    else:
+        ax.axvline(value, label=label, **PAPER_STYLE)
+        ax.annotate(
+            label,
+            (value, text_at),
             xycoords=("data", "axes fraction"),
             xytext=(3, 0),
             textcoords="offset points",
@@ -323,13 +348,14 @@ def plane_frame(
         ax.text(tip[0], tip[1], name, color=color, ha="center", va="center")
 
 
+@boundary
 def angle_arc(
     ax: Axes,
     center: tuple[float, float],
-    radius: float,
+    radius: Positive,
     start_deg: float,
     end_deg: float,
-    label: str = "",
+    label: Text = "",
     *,
     color: ColorType = "0.2",
 ) -> None:
@@ -349,14 +375,14 @@ def angle_arc(
     """
     axes(ax)
     c = as_array(center, "center", shape=(2,))
-    r = scalar(radius, "radius", positive=True)
     t0, t1 = scalar(start_deg, "start_deg"), scalar(end_deg, "end_deg")
-    text(label, "label")
     _color(color, "color")
     from matplotlib.patches import Arc  # noqa: PLC0415 -- navlib imports without matplotlib
 
     lo, hi = min(t0, t1), max(t0, t1)
-    ax.add_patch(Arc(tuple(c), 2 * r, 2 * r, theta1=lo, theta2=hi, color=color, linewidth=1))
+    ax.add_patch(Arc(tuple(c), 2 * radius, 2 * radius, theta1=lo, theta2=hi, color=color, linewidth=1))
     if label:
         mid = np.deg2rad((lo + hi) / 2)
-        ax.text(c[0] + 1.25 * r * np.cos(mid), c[1] + 1.25 * r * np.sin(mid), label, color=color, ha="center", va="center")
+        ax.text(
+            c[0] + 1.25 * radius * np.cos(mid), c[1] + 1.25 * radius * np.sin(mid), label, color=color, ha="center", va="center"
+        )

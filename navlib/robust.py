@@ -57,7 +57,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Any, NamedTuple
+from typing import Annotated, Any, NamedTuple
 
 import numpy as np
 from numba import njit
@@ -67,17 +67,18 @@ from ._kernels import stuck_runs
 from ._threads import run_chunks
 from ._typing import Array, ArrayLike, Vec3Series
 from ._validate import (
+    Check,
+    Is,
     as_array,
     booleans,
+    boundary,
     choice,
     flag,
-    instance,
     integer,
     kernel_array,
     range_limit,
     refuse_turn,
     same_shape,
-    scalar,
     text,
 )
 from .imu import ImuSamples
@@ -136,7 +137,8 @@ class FaultReport:
         return "FaultReport(" + (", ".join(rows) if rows else "no faults") + ")"
 
 
-def fault_report(x: ArrayLike, sensor: str, *, full_scale: float | None = None, flags: bool = False) -> FaultReport:
+@boundary
+def fault_report(x: ArrayLike, sensor: Is[str], *, full_scale: float | None = None, flags: bool = False) -> FaultReport:
     """Count the NaN and saturated samples of a series, per trial.
 
     E.g. ``fault_report(w_ib_b, "gyro", full_scale=fs)`` before an integrator that returns a plain array
@@ -170,7 +172,6 @@ def fault_report(x: ArrayLike, sensor: str, *, full_scale: float | None = None, 
     >>> int(report["gyro", "nan"]), int(report["gyro", "saturated"])
     (1, 1)
     """
-    instance(sensor, "sensor", str, "a sensor name (str)")
     a = as_array(x, "x", allow_nan=True, min_ndim=2)
     fs = range_limit(full_scale, "full_scale")
     masks = {(sensor, "nan"): np.any(np.isnan(a), axis=-1)}
@@ -186,7 +187,14 @@ def _last_valid(valid: np.ndarray, fill: int) -> np.ndarray:
     return idx
 
 
-def hold(x: ArrayLike, *, leading: str = "raise", name: str = "x", axis: int = -2) -> tuple[np.ndarray, np.ndarray]:
+@boundary
+def hold(
+    x: ArrayLike,
+    *,
+    leading: Annotated[str, Check("choice", options=LEADING)] = "raise",
+    name: str = "x",
+    axis: int = -2,
+) -> tuple[np.ndarray, np.ndarray]:
     """Zero-order hold of NaN samples along the time axis.
 
     Parameters
@@ -215,7 +223,6 @@ def hold(x: ArrayLike, *, leading: str = "raise", name: str = "x", axis: int = -
     >>> x[:, 0], held
     (array([1., 1., 1., 4.]), array([False,  True,  True, False]))
     """
-    choice(leading, "leading", LEADING)
     choice(axis, "axis", (-1, -2))
     a = as_array(x, text(name, "name", empty=False), allow_nan=True, min_ndim=1)
     vector = axis == -2
@@ -265,7 +272,13 @@ def _spike_mask(w, f, spike_gyro, spike_accel):
     return hit
 
 
-def despike(w_ib_b: Vec3Series, f_b: Vec3Series, spike_gyro: float, spike_accel: float) -> tuple[Array, Array, NDArray[np.bool_]]:
+@boundary
+def despike(
+    w_ib_b: Vec3Series,
+    f_b: Vec3Series,
+    spike_gyro: Annotated[float, Check("scalar", positive=True, allow_inf=True)],
+    spike_accel: Annotated[float, Check("scalar", positive=True, allow_inf=True)],
+) -> tuple[Array, Array, NDArray[np.bool_]]:
     """Mark isolated IMU spikes as dropouts (NaN), e.g. before :func:`navlib.filters.zupt.detect_static`.
 
     The test of :func:`is_spike` (also applied by :func:`screen`): a sample deviating from the line through its neighbours by more
@@ -302,9 +315,7 @@ def despike(w_ib_b: Vec3Series, f_b: Vec3Series, spike_gyro: float, spike_accel:
     f = as_array(f_b, "f_b", tail=(3,), min_ndim=1, allow_nan=True)
     if w.ndim != 2 or f.shape != w.shape:
         raise ValueError(f"f_b: expected the shape (N, 3) of w_ib_b {w.shape}, got {f.shape}")
-    tg = scalar(spike_gyro, "spike_gyro", positive=True, allow_inf=True)  # inf: off
-    ta = scalar(spike_accel, "spike_accel", positive=True, allow_inf=True)
-    hit = _spike_mask(kernel_array(w), kernel_array(f), tg, ta)
+    hit = _spike_mask(kernel_array(w), kernel_array(f), spike_gyro, spike_accel)
     w, f = w.copy(), f.copy()
     w[hit], f[hit] = np.nan, np.nan
     return w, f, hit
@@ -363,7 +374,10 @@ def _longest_runs(x, valid):
     return out
 
 
-def stuck_mask(x: ArrayLike, run: int, *, name: str = "x", axis: int = -2) -> NDArray[np.bool_]:
+@boundary
+def stuck_mask(
+    x: ArrayLike, run: Annotated[int, Check("integer", minimum=2)], *, name: str = "x", axis: int = -2
+) -> NDArray[np.bool_]:
     """Samples of a sensor that stopped updating: some component repeats exactly over ``run`` samples.
 
     Real sensor noise makes an exact repeat of a floating-point reading over a
@@ -397,7 +411,6 @@ def stuck_mask(x: ArrayLike, run: int, *, name: str = "x", axis: int = -2) -> ND
     >>> robust.stuck_mask(x, run=3)                                   # the frozen run of 0.2
     array([False,  True,  True,  True,  True, False])
     """
-    run = integer(run, "run", minimum=2)
     return _stuck_runs(_series(x, name, axis), run)
 
 
@@ -511,7 +524,8 @@ class Screened(NamedTuple):
     faults: FaultReport
 
 
-def screen(imu: ImuSamples, m_b: Vec3Series | None = None) -> Screened:
+@boundary
+def screen(imu: Is[ImuSamples], m_b: Vec3Series | None = None) -> Screened:
     """Find the faults of IMU samples, per their :class:`~navlib.imu.SensorLimits`, before any filter runs.
 
     Parameters
@@ -543,7 +557,6 @@ def screen(imu: ImuSamples, m_b: Vec3Series | None = None) -> Screened:
     >>> int(s.faults["gyro", "nan"]), bool(s.fresh[10]), s.typical_dt
     (1, False, 0.01)
     """
-    instance(imu, "imu", ImuSamples, "an ImuSamples (navlib.imu)")
     lim, w, f, dts = imu.limits, imu.w_ib_b, imu.f_b, imu.dt
     lead, n = w.shape[:-2], w.shape[-2]
     T = math.prod(lead)

@@ -44,22 +44,28 @@ from numba import njit
 from . import atmosphere, attitude, earth, units
 from ._typing import Angles, Array, ArrayLike, Quat, Times, Vec3, Vec3Series
 from ._validate import (
+    Is,
+    Limit,
+    NonNegative,
+    Positive,
+    Real,
+    Rng,
+    Step,
+    Text,
     as_array,
     as_quat,
     booleans,
+    boundary,
     broadcast,
-    generator,
+    fields_checked,
     imu_samples,
     in_range,
-    instance,
     integer,
     interval,
     last_axis,
-    numbers,
     positive,
     same_shape,
     scalar,
-    text,
     time_axis,
 )
 from .analysis import GM_ALLAN_PEAK
@@ -127,22 +133,17 @@ class TriadErrors:
     (4.363e-05, 4.848e-05)
     """
 
-    noise_density: float = 0.0
-    bias: float = 0.0
-    bias_instability: float = 0.0
-    correlation_time: float = 3600.0
-    rate_random_walk: float = 0.0
-    scale_factor: float = 0.0
-    misalignment: float = 0.0
-    full_scale: float = np.inf
+    noise_density: NonNegative = 0.0
+    bias: NonNegative = 0.0
+    bias_instability: NonNegative = 0.0
+    correlation_time: Positive = 3600.0
+    rate_random_walk: NonNegative = 0.0
+    scale_factor: NonNegative = 0.0
+    misalignment: NonNegative = 0.0
+    full_scale: Limit = np.inf
 
     def __post_init__(self) -> None:
-        numbers(
-            self,
-            positive=("correlation_time", "full_scale"),
-            infinite=("full_scale",),
-            non_negative=("noise_density", "bias", "bias_instability", "rate_random_walk", "scale_factor", "misalignment"),
-        )
+        fields_checked(self)
 
     @property
     def gauss_markov_sigma(self) -> float:
@@ -162,14 +163,12 @@ class ImuModel:
     ('my gyro', 0.0001, 0.0)
     """
 
-    gyro: TriadErrors = field(default_factory=TriadErrors)
-    accel: TriadErrors = field(default_factory=TriadErrors)
-    name: str = "custom"
+    gyro: Is[TriadErrors] = field(default_factory=TriadErrors)
+    accel: Is[TriadErrors] = field(default_factory=TriadErrors)
+    name: Text = "custom"
 
     def __post_init__(self) -> None:
-        for key in ("gyro", "accel"):
-            instance(getattr(self, key), key, TriadErrors, "TriadErrors")
-        text(self.name, "name")
+        fields_checked(self)
 
     def replace(self, gyro: dict[str, Any] | None = None, accel: dict[str, Any] | None = None) -> ImuModel:
         """Copy with some parameters changed, e.g. ``m.replace(gyro={"bias": 0.0})``."""
@@ -211,7 +210,8 @@ class ImuOutput:
     accel_saturated: int
 
 
-def gauss_markov(shape: tuple[int, ...], dt: float, sigma: float, correlation_time: float, rng: np.random.Generator) -> Array:
+@boundary
+def gauss_markov(shape: tuple[int, ...], dt: Step, sigma: NonNegative, correlation_time: float, rng: Rng) -> Array:
     """First-order Gauss-Markov sequences, stationary from the first sample.
 
     Parameters
@@ -238,10 +238,7 @@ def gauss_markov(shape: tuple[int, ...], dt: float, sigma: float, correlation_ti
     >>> x.shape, round(float(x.std()), 1)                             # stationary: std close to sigma
     ((20000, 1), 2.1)
     """
-    dt = interval(dt)
     tc = scalar(correlation_time, "correlation_time", positive=True)
-    sigma = scalar(sigma, "sigma", allow_zero=True)
-    generator(rng)
     if not isinstance(shape, (tuple, list)) or len(shape) < 2:  # type: ignore[redundant-expr]  # the caller's argument, checked
         raise ValueError(f"shape: expected a tuple (..., N, k) of positive integers, got {shape!r}")
     return _gauss_markov(tuple(integer(n, "shape") for n in shape), dt, sigma, tc, rng)
@@ -344,7 +341,8 @@ def _apply_errors(M, x, bias, scale, full_scale, y):
     return n_clipped
 
 
-def window_mean_std(errors: TriadErrors, duration: float, dt: float) -> float:
+@boundary
+def window_mean_std(errors: Is[TriadErrors], duration: float, dt: float) -> float:
     r"""Std of one axis's error averaged over a static window (white + bias terms).
 
     .. math::
@@ -371,7 +369,6 @@ def window_mean_std(errors: TriadErrors, duration: float, dt: float) -> float:
     >>> round(sensors.window_mean_std(gyro, duration=100.0, dt=0.01), 8)   # N / sqrt(T)
     1e-05
     """
-    instance(errors, "errors", TriadErrors, "TriadErrors")
     T, dt = scalar(duration, "duration", positive=True), interval(dt)
     n = max(int(round(T / dt)), 1)
     r = errors.correlation_time / T
@@ -379,8 +376,9 @@ def window_mean_std(errors: TriadErrors, duration: float, dt: float) -> float:
     return float(np.sqrt(errors.noise_density**2 / (n * dt) + errors.bias**2 + gm))
 
 
+@boundary
 def simulate_imu(
-    w_ib_b: Vec3Series, f_b: Vec3Series, dt: float, model: ImuModel, rng: np.random.Generator, n_trials: int | None = None
+    w_ib_b: Vec3Series, f_b: Vec3Series, dt: Step, model: Is[ImuModel], rng: Rng, n_trials: int | None = None
 ) -> ImuOutput:
     """Corrupt ideal IMU samples with an :class:`ImuModel`.
 
@@ -413,9 +411,6 @@ def simulate_imu(
     ((1000, 3), (1000, 3))
     """
     w, f = imu_samples(w_ib_b, f_b, allow_nan=False)
-    dt = interval(dt)
-    instance(model, "model", ImuModel, "an ImuModel")
-    generator(rng)
     if n_trials is not None:
         n_trials = integer(n_trials, "n_trials")
         w = np.broadcast_to(w, (n_trials,) + w.shape)
@@ -426,8 +421,9 @@ def simulate_imu(
     return ImuOutput(gw, af, gb, ab, gM, aM, gs, as_)
 
 
+@boundary
 def simulate_imu_batches(
-    w_ib_b: Vec3Series, f_b: Vec3Series, dt: float, model: ImuModel, rng: np.random.Generator, n_trials: int, batch: int
+    w_ib_b: Vec3Series, f_b: Vec3Series, dt: Step, model: Is[ImuModel], rng: Rng, n_trials: int, batch: int
 ) -> Iterator[ImuOutput]:
     """:func:`simulate_imu` with ``n_trials`` realisations, ``batch`` trials at a time, bit for bit.
 
@@ -464,9 +460,6 @@ def simulate_imu_batches(
     w, f = imu_samples(w_ib_b, f_b, allow_nan=False)
     if w.ndim != 2:
         raise ValueError(f"w_ib_b: expected shape (N, 3), one ideal record for every trial, got {w.shape}")
-    dt = interval(dt)
-    instance(model, "model", ImuModel, "an ImuModel")
-    generator(rng)
     n_trials, batch = integer(n_trials, "n_trials"), integer(batch, "batch")
     r_gyro, r_accel = rng.spawn(2)  # here, as simulate_imu does, not when the first batch is asked for
     gyro = _corrupt_batches(np.broadcast_to(w, (n_trials,) + w.shape), dt, model.gyro, r_gyro, batch)
@@ -599,13 +592,13 @@ class MagnetometerModel:
     (5, 3)
     """
 
-    noise: float = 0.0
-    hard_iron: float = 0.0
-    soft_iron: float = 0.0
-    full_scale: float = np.inf
+    noise: NonNegative = 0.0
+    hard_iron: NonNegative = 0.0
+    soft_iron: NonNegative = 0.0
+    full_scale: Limit = np.inf
 
     def __post_init__(self) -> None:
-        numbers(self, positive=("full_scale",), non_negative=("noise", "hard_iron", "soft_iron"), infinite=("full_scale",))
+        fields_checked(self)
 
     @classmethod
     def from_preset(cls, device: str) -> MagnetometerModel:
@@ -622,8 +615,9 @@ class MagnetometerOutput:
     soft_iron: np.ndarray
 
 
+@boundary
 def simulate_magnetometer(
-    q_bn: Quat, B_n: Vec3, model: MagnetometerModel, rng: np.random.Generator, disturbance_n: Vec3Series | None = None
+    q_bn: Quat, B_n: Vec3, model: Is[MagnetometerModel], rng: Rng, disturbance_n: Vec3Series | None = None
 ) -> MagnetometerOutput:
     """Magnetometer readings along an attitude history.
 
@@ -655,8 +649,6 @@ def simulate_magnetometer(
     """
     q = as_quat(q_bn, "q_bn", min_ndim=1)
     B = as_array(B_n, "B_n", tail=(3,))
-    generator(rng)
-    instance(model, "model", MagnetometerModel, "a MagnetometerModel")
     if disturbance_n is not None:
         B, D = broadcast(B, as_array(disturbance_n, "disturbance_n", tail=(3,)), name="disturbance_n", of="B_n, disturbance_n")
         B = B + D
@@ -673,10 +665,11 @@ def simulate_magnetometer(
     return MagnetometerOutput(np.clip(m, -model.full_scale, model.full_scale), h, S)
 
 
+@boundary
 def magnetic_disturbances(
     time: Times,
-    rng: np.random.Generator,
-    rate: float,
+    rng: Rng,
+    rate: NonNegative,
     amplitude: tuple[float, float] = (5.0, 10.0),
     duration: tuple[float, float] = (2.0, 5.0),
 ) -> Array:
@@ -710,8 +703,6 @@ def magnetic_disturbances(
     ((600, 3), True)
     """
     t = time_axis(time)
-    rate = scalar(rate, "rate", allow_zero=True)
-    generator(rng)
     for name, pair in (("amplitude", amplitude), ("duration", duration)):
         lo, hi = positive(pair, name, shape=(2,))
         if hi < lo:
@@ -750,12 +741,12 @@ class BarometerModel:
     (3,)
     """
 
-    noise: float = 0.0
-    bias: float = 0.0
-    drift_rate: float = 0.0
+    noise: NonNegative = 0.0
+    bias: NonNegative = 0.0
+    drift_rate: Real = 0.0
 
     def __post_init__(self) -> None:
-        numbers(self, non_negative=("noise", "bias"), real=("drift_rate",))
+        fields_checked(self)
 
     @classmethod
     def from_preset(cls, device: str = "BMP180") -> BarometerModel:
@@ -763,8 +754,9 @@ class BarometerModel:
         return cls(**_preset_fields(device, "baro", {"noise", "bias", "drift_rate"}, "barometer"))
 
 
+@boundary
 def simulate_barometer(
-    h: ArrayLike, time: Times, model: BarometerModel, rng: np.random.Generator, p0: float = atmosphere.P0
+    h: ArrayLike, time: Times, model: Is[BarometerModel], rng: Rng, p0: float = atmosphere.P0
 ) -> Array:
     """Barometric pressure (Pa) at heights ``h`` (m) with the ISA as truth.
 
@@ -792,8 +784,6 @@ def simulate_barometer(
     array([101325., 101326., 101327.])
     """
     t = time_axis(time)
-    generator(rng)
-    instance(model, "model", BarometerModel, "a BarometerModel")
     p = last_axis(atmosphere.isa_pressure(h, scalar(p0, "p0", positive=True)), "h", t.size, of="time")  # checks h
     r_bias, r_noise = rng.spawn(2)
     p = p + model.bias * r_bias.standard_normal(p.shape[:-1] + (1,))
@@ -838,10 +828,11 @@ def outage_mask(time: Times, outages: Sequence[ArrayLike]) -> np.ndarray:
     return valid
 
 
+@boundary
 def simulate_gnss_position(
     lla: Vec3Series,
-    rng: np.random.Generator,
-    sigma_horizontal: float,
+    rng: Rng,
+    sigma_horizontal: NonNegative,
     sigma_vertical: float | None = None,
     valid: ArrayLike | None = None,
 ) -> Array:
@@ -874,14 +865,12 @@ def simulate_gnss_position(
     """
     lla = as_array(lla, "lla", tail=(3,), min_ndim=1)
     in_range(lla[..., 0], "lla[..., 0] (lat)", -np.pi / 2, np.pi / 2, "rad")
-    sh = scalar(sigma_horizontal, "sigma_horizontal", allow_zero=True)
-    sv = 1.5 * sh if sigma_vertical is None else scalar(sigma_vertical, "sigma_vertical", allow_zero=True)
-    generator(rng)
+    sv = 1.5 * sigma_horizontal if sigma_vertical is None else scalar(sigma_vertical, "sigma_vertical", allow_zero=True)
     R_M, R_N = earth.radii(lla[..., 0])
     e = rng.standard_normal(lla.shape)
     out = lla.copy()
-    out[..., 0] += sh * e[..., 1] / (R_M + lla[..., 2])
-    out[..., 1] += sh * e[..., 0] / ((R_N + lla[..., 2]) * np.cos(lla[..., 0]))
+    out[..., 0] += sigma_horizontal * e[..., 1] / (R_M + lla[..., 2])
+    out[..., 1] += sigma_horizontal * e[..., 0] / ((R_N + lla[..., 2]) * np.cos(lla[..., 0]))
     out[..., 2] += sv * e[..., 2]
     if valid is not None:
         valid = same_shape(np.asarray(valid, dtype=bool), "valid", lla.shape[-2:-1])
@@ -889,8 +878,9 @@ def simulate_gnss_position(
     return out
 
 
+@boundary
 def simulate_heading(
-    heading: Angles, rng: np.random.Generator, sigma: float, valid: ArrayLike | None = None
+    heading: Angles, rng: Rng, sigma: NonNegative, valid: ArrayLike | None = None
 ) -> tuple[Array, np.ndarray]:
     """Dual-antenna heading: truth plus white noise, wrapped to [0, 2 pi).
 
@@ -918,9 +908,7 @@ def simulate_heading(
     (True, array([ True,  True,  True,  True]))
     """
     h = as_array(heading, "heading", min_ndim=1)
-    s = scalar(sigma, "sigma", allow_zero=True)
-    generator(rng)
-    out = attitude.wrap_2pi(h + s * rng.standard_normal(h.shape))
+    out = attitude.wrap_2pi(h + sigma * rng.standard_normal(h.shape))
     v = (
         np.ones(h.shape[-1:], dtype=bool)
         if valid is None

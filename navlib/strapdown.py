@@ -51,6 +51,8 @@ Timing
 
 from __future__ import annotations
 
+from typing import Annotated
+
 import numpy as np
 from numba import njit
 from numpy.typing import NDArray
@@ -59,14 +61,17 @@ from . import _kernels, attitude, earth, robust
 from ._kernels import quat_mult_t, rotvec_to_quat_t
 from ._typing import Array, ArrayLike, Dcm, Interval, Quat, Vec3, Vec3Series
 from ._validate import (
+    Check,
+    Real,
+    Step,
     as_array,
     as_dcm,
     as_quat,
+    boundary,
     broadcast,
     broadcast_to,
     choice,
     flag,
-    interval,
     kernel_array,
     latitude,
     sample_intervals,
@@ -129,8 +134,14 @@ def _sample_intervals(dt: Interval, n: int) -> Array:
     return dts[:1] if np.ndim(dt) == 0 else dts
 
 
+@boundary
 def integrate_attitude(
-    q0: Quat, w_ib_b: Vec3Series, dt: Interval, w_in_n: Vec3 | None = None, *, nan_policy: str = "raise"
+    q0: Quat,
+    w_ib_b: Vec3Series,
+    dt: Interval,
+    w_in_n: Vec3 | None = None,
+    *,
+    nan_policy: Annotated[str, Check("choice", options=_NAN_POLICIES)] = "raise",
 ) -> Array:
     r"""Integrate gyro samples into an attitude history.
 
@@ -167,8 +178,7 @@ def integrate_attitude(
     >>> q.shape, np.round(np.rad2deg(attitude.quat_to_euler(q[-1])), 6) + 0.0
     ((101, 4), array([9., 0., 0.]))
     """
-    policy = choice(nan_policy, "nan_policy", _NAN_POLICIES)
-    w, _ = _dropouts(_samples(w_ib_b, "w_ib_b"), "w_ib_b", policy)
+    w, _ = _dropouts(_samples(w_ib_b, "w_ib_b"), "w_ib_b", nan_policy)
     dt = _sample_intervals(dt, w.shape[-2])
     small_turns(w, dt)
     q0 = as_quat(q0, "q0")
@@ -186,8 +196,9 @@ def _state_array(x: ArrayLike, name: str, size: int) -> np.ndarray:
     return x if arr is x and arr.flags.writeable else arr.copy()
 
 
+@boundary
 def nav_step(
-    lla: Vec3, vel: Vec3, q: Quat, w: Vec3, f: Vec3, dt: float, earth_consts: ArrayLike, hold_height: bool = False
+    lla: Vec3, vel: Vec3, q: Quat, w: Vec3, f: Vec3, dt: Step, earth_consts: ArrayLike, hold_height: bool = False
 ) -> tuple[Array, Array, Array]:
     """One mechanisation step (module docstring), updating ``lla``, ``vel``, ``q`` in place.
 
@@ -244,7 +255,6 @@ def nav_step(
         raise ValueError("q: expected a non-zero quaternion")
     w = kernel_array(as_array(w, "w", shape=(3,)))
     f = kernel_array(as_array(f, "f", shape=(3,)))
-    dt = interval(dt)
     c = kernel_array(as_array(earth_consts, "earth_consts", shape=(7,)))
     if not (c[0] > 0 and 0 <= c[2] < 1):
         raise ValueError(
@@ -294,6 +304,7 @@ def _store(lla_out, vel_out, q_out, lla, vel, q):
         q_out[i] = q[i]
 
 
+@boundary
 def integrate(
     lla0: Vec3,
     vel0: Vec3,
@@ -301,7 +312,7 @@ def integrate(
     w_ib_b: Vec3Series | ImuSamples,
     f_b: Vec3Series | None = None,
     dt: Interval | None = None,
-    t0: float = 0.0,
+    t0: Real = 0.0,
     hold_height: bool = False,
     ellipsoid: earth.Ellipsoid = earth.WGS84,
     *,
@@ -367,7 +378,6 @@ def integrate(
     lead, n = w.shape[:-2], w.shape[-2]
     dts = w_ib_b.dt if isinstance(w_ib_b, ImuSamples) else _sample_intervals(dt_in, n)
     small_turns(w, dts)
-    t0 = scalar(t0, "t0")
     ellipsoid_(ellipsoid)
     lla0 = as_array(lla0, "lla0", tail=(3,))
     latitude(lla0[..., 0], "lla0[..., 0] (lat)")
@@ -402,7 +412,8 @@ def integrate(
     return Trajectory(time, lla, vel, q, faults)
 
 
-def error_model(lat: float, h: float, vel_n: Vec3, f_n: Vec3, ellipsoid: earth.Ellipsoid = earth.WGS84) -> Array:
+@boundary
+def error_model(lat: float, h: Real, vel_n: Vec3, f_n: Vec3, ellipsoid: earth.Ellipsoid = earth.WGS84) -> Array:
     """Linear error dynamics of the ENU mechanisation (phi-angle model).
 
     State ``dx = [phi (3), dv_n (3), dlat, dlon, dh]`` with the attitude
@@ -440,7 +451,6 @@ def error_model(lat: float, h: float, vel_n: Vec3, f_n: Vec3, ellipsoid: earth.E
     lat = scalar(latitude(lat), "lat")
     if np.cos(lat) < 1e-9:
         raise ValueError("lat: the local-level (ENU) error model is singular at the poles; expected |lat| < 90 deg")
-    h = scalar(h, "h")
     ellipsoid_(ellipsoid)
     v = as_array(vel_n, "vel_n", shape=(3,))
     f = as_array(f_n, "f_n", shape=(3,))

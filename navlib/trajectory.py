@@ -22,7 +22,23 @@ from numpy.typing import NDArray
 from . import attitude, earth
 from ._kernels import radii_mn
 from ._typing import Angles, Array, ArrayLike, Times, Vec3, Vec3Series
-from ._validate import as_array, as_quat, in_range, instance, interval, kernel_array, latitude, numbers, scalar, time_axis
+from ._validate import (
+    Is,
+    NonNegative,
+    Positive,
+    Real,
+    as_array,
+    as_quat,
+    boundary,
+    fields_checked,
+    in_range,
+    instance,
+    interval,
+    kernel_array,
+    latitude,
+    scalar,
+    time_axis,
+)
 from ._validate import ellipsoid as ellipsoid_
 from .robust import FaultReport
 
@@ -230,15 +246,16 @@ def _ramp(x: np.ndarray) -> np.ndarray:
     return x - np.sin(2 * np.pi * x) / (2 * np.pi)
 
 
+@boundary
 def reciprocating_rotation(
     duration: float,
     dt: float,
     lla0: Vec3,
     hpr0: Angles,
     axis_b: Vec3,
-    amplitude: float,
-    period: float,
-    rotation_time: float = 1.0,
+    amplitude: Real,
+    period: Positive,
+    rotation_time: Positive = 1.0,
 ) -> Trajectory:
     """An IMU rotated back and forth about a body-fixed axis (paper 001 §3.2).
 
@@ -273,9 +290,6 @@ def reciprocating_rotation(
     u = as_array(axis_b, "axis_b", shape=(3,))
     if abs(np.linalg.norm(u) - 1) > 1e-9:
         raise ValueError(f"axis_b: expected a unit vector, got norm {np.linalg.norm(u):.6g}")
-    period = scalar(period, "period", positive=True)
-    rotation_time = scalar(rotation_time, "rotation_time", positive=True)
-    amplitude = scalar(amplitude, "amplitude")
     if rotation_time >= period:
         raise ValueError(f"rotation_time: expected less than period={period}, got {rotation_time}")
     k = np.floor(t / period)
@@ -326,24 +340,23 @@ class Segment:
     (301, 90.0)
     """
 
-    duration: float
-    speed: float | None = None
-    turn: float = 0.0
+    duration: Positive
+    speed: NonNegative | None = None
+    turn: Real = 0.0
     pitch: float | None = None
     roll: float | None = None
 
     def __post_init__(self) -> None:
-        numbers(self, positive=("duration",), real=("turn",))
-        if self.speed is not None:
-            scalar(self.speed, "speed", allow_zero=True)
+        fields_checked(self)
         if self.pitch is not None:
             in_range(scalar(self.pitch, "pitch"), "pitch", -np.pi / 2, np.pi / 2, "rad")
         if self.roll is not None:
             in_range(scalar(self.roll, "roll"), "roll", -np.pi, np.pi, "rad")
 
 
+@boundary
 def vehicle(
-    segments: Sequence[Segment], dt: float, lla0: Vec3, heading0: float, ellipsoid: earth.Ellipsoid = earth.WGS84
+    segments: Sequence[Segment], dt: float, lla0: Vec3, heading0: Real, ellipsoid: earth.Ellipsoid = earth.WGS84
 ) -> Trajectory:
     """A land vehicle driving along its forward axis through a list of segments.
 
@@ -372,7 +385,6 @@ def vehicle(
     segments = _listed(segments)
     if not segments or not all(isinstance(s, Segment) for s in segments):
         raise ValueError("segments: expected a non-empty sequence of Segment")
-    heading0 = scalar(heading0, "heading0")
     total = sum(s.duration for s in segments)
     t = _time_grid(total, dt)
     speed, heading, pitch, roll = (np.empty(t.size) for _ in range(4))
@@ -408,13 +420,13 @@ class Leg:
     (181, 90.0)
     """
 
-    duration: float
-    speed: float = 0.0
-    turn: float = 0.0
-    climb: float = 0.0
+    duration: Positive
+    speed: NonNegative = 0.0
+    turn: Real = 0.0
+    climb: Real = 0.0
 
     def __post_init__(self) -> None:
-        numbers(self, positive=("duration",), non_negative=("speed",), real=("turn", "climb"))
+        fields_checked(self)
         if self.speed == 0 and (self.turn != 0 or self.climb != 0):
             raise ValueError("turn, climb: expected 0 on a stop (speed == 0)")
 
@@ -455,26 +467,21 @@ class Gait:
     (2.0, 0.02)
     """
 
-    step_frequency: float = 1.8
-    bounce: float = 0.025
-    sway: float = 0.02
-    surge: float = 0.01
-    heading_wiggle: float = np.deg2rad(3.0)
-    pitch_bob: float = np.deg2rad(1.5)
-    roll_sway: float = np.deg2rad(2.0)
-    lean: float = np.deg2rad(-3.0)
-    stand_sway: float = 0.002
-    stand_tilt: float = np.deg2rad(0.05)
-    stand_frequency: float = 0.3
-    ramp: float = 1.0
+    step_frequency: Positive = 1.8
+    bounce: NonNegative = 0.025
+    sway: NonNegative = 0.02
+    surge: NonNegative = 0.01
+    heading_wiggle: NonNegative = np.deg2rad(3.0)
+    pitch_bob: NonNegative = np.deg2rad(1.5)
+    roll_sway: NonNegative = np.deg2rad(2.0)
+    lean: Real = np.deg2rad(-3.0)
+    stand_sway: NonNegative = 0.002
+    stand_tilt: NonNegative = np.deg2rad(0.05)
+    stand_frequency: Positive = 0.3
+    ramp: Positive = 1.0
 
     def __post_init__(self) -> None:
-        numbers(
-            self,
-            positive=("step_frequency", "stand_frequency", "ramp"),
-            non_negative=("bounce", "sway", "surge", "heading_wiggle", "pitch_bob", "roll_sway", "stand_sway", "stand_tilt"),
-            real=("lean",),
-        )
+        fields_checked(self)
 
 
 def _listed(items: Any) -> list[Any]:
@@ -537,8 +544,9 @@ def stance_mask(legs: Sequence[Leg], dt: float, gait: Gait = Gait()) -> np.ndarr
     return _schedule(legs, t, gait.ramp)[3]
 
 
+@boundary
 def walk(
-    legs: Sequence[Leg], dt: float, lla0: Vec3, heading0: float, gait: Gait = Gait(), ellipsoid: earth.Ellipsoid = earth.WGS84
+    legs: Sequence[Leg], dt: float, lla0: Vec3, heading0: Real, gait: Gait = Gait(), ellipsoid: earth.Ellipsoid = earth.WGS84
 ) -> Trajectory:
     """A pedestrian walking and stopping, as seen by a shoulder-worn IMU.
 
@@ -572,7 +580,6 @@ def walk(
     6.0
     """
     legs, t = _walk_grid(legs, gait, dt)
-    heading0 = scalar(heading0, "heading0")
     speed, turn, climb, _ = _schedule(legs, t, gait.ramp)
     v_max = max(leg.speed for leg in legs)
     a = speed / v_max if v_max > 0 else np.zeros_like(speed)  # gait envelope, 0 when standing
@@ -603,7 +610,8 @@ def walk(
     return _from_profiles(t, lla0, hpr, vel, ellipsoid)
 
 
-def ideal_imu(traj: Trajectory, ellipsoid: earth.Ellipsoid = earth.WGS84) -> tuple[Array, Array]:
+@boundary
+def ideal_imu(traj: Is[Trajectory], ellipsoid: earth.Ellipsoid = earth.WGS84) -> tuple[Array, Array]:
     """Error-free gyro and accelerometer samples along a trajectory.
 
     Sample k is the mean angular rate and specific force over
@@ -631,7 +639,6 @@ def ideal_imu(traj: Trajectory, ellipsoid: earth.Ellipsoid = earth.WGS84) -> tup
     >>> w_ib_b.shape, np.round(f_b[0], 4)                             # specific force: up, normal gravity
     ((5, 3), array([0.    , 0.    , 9.7967]))
     """
-    instance(traj, "traj", Trajectory, "a Trajectory")
     if not all(np.isfinite(a).all() for a in (traj.lla, traj.vel_n, traj.q_bn)):
         raise ValueError("traj: expected a finite trajectory (no NaN positions, velocities or attitudes)")
     states = (traj.lla, traj.vel_n, traj.q_bn)

@@ -62,6 +62,10 @@ VALIDATE_NAMES = {
     "ellipsoid_",
     "numbers",
     "indices",
+    "longitude",
+    "lat_lon",
+    "fields_checked",
+    "boundary",
 }
 # One formula, one place: regular expressions that find where each is written out.
 FORMULAS = {

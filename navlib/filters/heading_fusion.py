@@ -44,11 +44,12 @@ from numba import njit
 from .._kernels import wrap_pi
 from .._typing import Angles, Array, ArrayLike, Interval, Times
 from .._validate import (
+    Count,
+    Is,
     as_array,
     booleans,
+    boundary,
     in_range,
-    instance,
-    integer,
     kernel_array,
     last_axis,
     same_shape,
@@ -148,8 +149,9 @@ def _fuse_kernel(h_mag, h_rtk, ok, dts, jump, alpha, rtk_par, out, delta_out, co
             delta_out[t, k] = delta
 
 
+@boundary
 def fuse_rtk_heading(
-    heading_mag: Angles, rtk: RtkHeading, dt: Interval, alpha: float = 0.01, max_dt: float | None = None
+    heading_mag: Angles, rtk: Is[RtkHeading], dt: Interval, alpha: float = 0.01, max_dt: float | None = None
 ) -> FusionResult:
     """Fuse the magnetic heading with dual-antenna RTK heading (the rule of the module docstring).
 
@@ -192,7 +194,6 @@ def fuse_rtk_heading(
     """
     hm = as_array(heading_mag, "heading_mag", min_ndim=1, nonempty=True)
     alpha = in_range(scalar(alpha, "alpha"), "alpha", 0.0, 1.0, lo_open=True)
-    instance(rtk, "rtk", RtkHeading, "an RtkHeading")
     hr, ok = rtk.at(hm.shape, "heading_mag")
     T, N = hr.shape
     dts = sample_intervals(dt, N)
@@ -206,7 +207,8 @@ def fuse_rtk_heading(
     return FusionResult(out.reshape(hm.shape), delta.reshape(hm.shape), faults)
 
 
-def rtk_at_imu_rate(time: Times, heading: Angles, valid: ArrayLike, step: int) -> tuple[Array, np.ndarray]:
+@boundary
+def rtk_at_imu_rate(time: Times, heading: Angles, valid: ArrayLike, step: Count) -> tuple[Array, np.ndarray]:
     """Place RTK epochs on the IMU time axis: every ``step``-th IMU sample carries an epoch.
 
     Parameters
@@ -239,7 +241,6 @@ def rtk_at_imu_rate(time: Times, heading: Angles, valid: ArrayLike, step: int) -
     t = time_axis(time, "time")
     h = as_array(heading, "heading", allow_nan=True, nonempty=True)
     v = same_shape(booleans(valid, "valid"), "valid", t.shape, of="time")
-    step = integer(step, "step")
     last_axis(h, "heading", t.size, of="time")
     epoch = np.zeros(t.shape, dtype=bool)
     epoch[::step] = True

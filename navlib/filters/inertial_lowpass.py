@@ -38,14 +38,14 @@ positive) turns the magnetic heading into a true one. Without ``m_b`` the headin
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 
 import numpy as np
 from numba import njit
 
 from .._kernels import quat_mult_t, quat_to_dcm_t, rotvec_to_quat_t
 from .._typing import Vec3Series
-from .._validate import instance, scalar
+from .._validate import Is, Positive, Real, boundary, fields_checked
 from ..imu import ImuSamples
 from ..robust import FaultReport, screen
 from .observations import AttitudeResult, run_trials
@@ -77,32 +77,31 @@ class InertialLowpassSettings:
     (1.0, 9.0)
     """
 
-    tau_acc: float = 3.0
-    tau_mag: float = 9.0
-    bias_sigma_init: float = 0.5 * _DEG
-    bias_forget_time: float = 100.0
-    bias_clip: float = 2.0 * _DEG
-    bias_sigma_motion: float = 0.1 * _DEG
-    bias_sigma_rest: float = 0.03 * _DEG
-    bias_motion_scale: float = 100.0
-    rest_time: float = 1.5
-    rest_tau: float = 0.5
-    rest_gyro: float = 2.0 * _DEG
-    rest_accel: float = 0.5
-    mag_current_tau: float = 0.05
-    mag_ref_tau: float = 20.0
-    mag_norm_tol: float = 0.1
-    mag_dip_tol: float = 10.0 * _DEG
-    mag_new_time: float = 20.0
-    mag_new_first_time: float = 5.0
-    mag_new_min_gyro: float = 20.0 * _DEG
-    mag_max_rejection: float = 60.0
-    mag_rejection_factor: float = 2.0
-    mag_settle_time: float = 1.0
+    tau_acc: Positive = 3.0
+    tau_mag: Positive = 9.0
+    bias_sigma_init: Positive = 0.5 * _DEG
+    bias_forget_time: Positive = 100.0
+    bias_clip: Positive = 2.0 * _DEG
+    bias_sigma_motion: Positive = 0.1 * _DEG
+    bias_sigma_rest: Positive = 0.03 * _DEG
+    bias_motion_scale: Positive = 100.0
+    rest_time: Positive = 1.5
+    rest_tau: Positive = 0.5
+    rest_gyro: Positive = 2.0 * _DEG
+    rest_accel: Positive = 0.5
+    mag_current_tau: Positive = 0.05
+    mag_ref_tau: Positive = 20.0
+    mag_norm_tol: Positive = 0.1
+    mag_dip_tol: Positive = 10.0 * _DEG
+    mag_new_time: Positive = 20.0
+    mag_new_first_time: Positive = 5.0
+    mag_new_min_gyro: Positive = 20.0 * _DEG
+    mag_max_rejection: Positive = 60.0
+    mag_rejection_factor: Positive = 2.0
+    mag_settle_time: Positive = 1.0
 
     def __post_init__(self) -> None:
-        for f in fields(self):
-            scalar(getattr(self, f.name), f.name, positive=True)
+        fields_checked(self)
 
 
 def _butter2(tau: float, dt: float) -> np.ndarray:
@@ -334,12 +333,13 @@ def _wrap(a):
     return (a + np.pi) % (2 * np.pi) - np.pi
 
 
+@boundary
 def inertial_lowpass(
     imu: ImuSamples,
     m_b: Vec3Series | None = None,
     *,
-    declination: float = 0.0,
-    settings: InertialLowpassSettings = InertialLowpassSettings(),
+    declination: Real = 0.0,
+    settings: Is[InertialLowpassSettings] = InertialLowpassSettings(),
 ) -> AttitudeResult:
     """Attitude of every sample (module docstring), causal, with automatic initial attitude.
 
@@ -372,8 +372,6 @@ def inertial_lowpass(
     >>> np.round(np.rad2deg(attitude.quat_to_euler(res.q_bn[-1]))[1:], 2)   # pitch, roll (deg)
     array([ 5., -3.])
     """
-    instance(settings, "settings", InertialLowpassSettings, "an InertialLowpassSettings")
-    declination = scalar(declination, "declination", positive=False)
     if declination != 0.0 and m_b is None:
         raise ValueError("declination: without m_b the heading has no north to correct")
     s = screen(imu, m_b)

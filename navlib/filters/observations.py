@@ -48,7 +48,22 @@ from .. import attitude, earth
 from .._kernels import dcm_heading, euler_to_quat, level, tilt_heading, wrap_pi
 from .._threads import run_chunks
 from .._typing import Array, ArrayLike, Quat, Vec3
-from .._validate import as_array, as_quat, booleans, broadcast_to, flag, instance, integer, kernel_array, scalar
+from .._validate import (
+    Is,
+    NonNegative,
+    Positive,
+    as_array,
+    as_quat,
+    booleans,
+    boundary,
+    broadcast_to,
+    fields_checked,
+    flag,
+    instance,
+    integer,
+    kernel_array,
+    scalar,
+)
 from ..imu import ImuSamples, SensorLimits
 from ..robust import FaultReport, screen
 from ..units import G0
@@ -460,12 +475,11 @@ class MagGate:
     (0.05, 3.0)
     """
 
-    norm_tol: float = 0.1
-    dip_tol: float = np.deg2rad(5.0)
+    norm_tol: Positive = 0.1
+    dip_tol: Positive = np.deg2rad(5.0)
 
     def __post_init__(self) -> None:
-        scalar(self.norm_tol, "norm_tol", positive=True)
-        scalar(self.dip_tol, "dip_tol", positive=True)
+        fields_checked(self)
 
 
 @dataclass(frozen=True)
@@ -491,16 +505,12 @@ class AttitudeGates:
     (0.1, 0.1)
     """
 
-    accel_tol: float | None = None
-    g: float = G0
-    mag: MagGate | None = None
+    accel_tol: Positive | None = None
+    g: Positive = G0
+    mag: Is[MagGate] | None = None
 
     def __post_init__(self) -> None:
-        if self.accel_tol is not None:
-            scalar(self.accel_tol, "accel_tol", positive=True)
-        scalar(self.g, "g", positive=True)
-        if self.mag is not None:
-            instance(self.mag, "mag", MagGate, "a MagGate")
+        fields_checked(self)
 
 
 @dataclass(frozen=True)
@@ -619,8 +629,15 @@ class AttitudeResult:
         return attitude.quat_to_euler(self.q_bn)
 
 
+@boundary
 def pack(
-    imu: ImuSamples, q0: Quat, m_b: ArrayLike | None, rtk: RtkHeading | None, B_n: Vec3 | None, gates: AttitudeGates, kp: float
+    imu: ImuSamples,
+    q0: Quat,
+    m_b: ArrayLike | None,
+    rtk: RtkHeading | None,
+    B_n: Vec3 | None,
+    gates: Is[AttitudeGates],
+    kp: NonNegative,
 ) -> tuple[tuple[int, ...], AttitudeInputs, FaultReport]:
     """Screen the samples once (:func:`navlib.robust.screen`), apply the gates, and build the kernels' record.
 
@@ -641,7 +658,6 @@ def pack(
     >>> int(found["gyro", "nan"])
     1
     """
-    instance(gates, "gates", AttitudeGates, "an AttitudeGates")
     if rtk is not None:
         instance(rtk, "rtk", RtkHeading, "an RtkHeading")
         if m_b is not None:
@@ -652,7 +668,6 @@ def pack(
         raise ValueError("B_n: the magnetometer gate needs the local field")
     if B_n is not None:
         _, _, incl, field = magnetic_reference(B_n)
-    kp = scalar(kp, "kp", positive=True, allow_zero=True)
     s = screen(imu, m_b)
     lead, (N, T) = imu.w_ib_b.shape[:-2], (imu.n, int(np.prod(imu.w_ib_b.shape[:-2])))
     q = broadcast_to(as_quat(q0, "q0"), "q0", lead + (4,), of="the trials of imu")

@@ -106,14 +106,16 @@ from .. import _kernels, kalman
 from .._kernels import wrap_pi
 from .._typing import Array, ArrayLike, Times
 from .._validate import (
+    Is,
+    Positive,
     as_array,
+    boundary,
     flag,
     instance,
     integer,
     kernel_array,
     range_limit,
     same_shape,
-    scalar,
     text,
     time_axis,
 )
@@ -167,7 +169,8 @@ def _state(X: ArrayLike, name: str = "X") -> Array:
     return as_array(X, name, tail=(5,))
 
 
-def motion_model(X: ArrayLike, T: float) -> Array:
+@boundary
+def motion_model(X: ArrayLike, T: Positive) -> Array:
     """The motion model ``f(X)`` (Eq. 13) for states of shape (..., 5) and step ``T`` (s).
 
     Examples
@@ -178,12 +181,12 @@ def motion_model(X: ArrayLike, T: float) -> Array:
     array([0.      , 1.      , 1.570796, 2.      , 0.      ])
     """
     X = _state(X)
-    T = scalar(T, "T", positive=True)
     x, y, th, v, w = np.moveaxis(X, -1, 0)
     return np.stack([x + v * T * np.cos(th), y + v * T * np.sin(th), th + w * T, v, w], -1)
 
 
-def jacobian(X: ArrayLike, T: float) -> Array:
+@boundary
+def jacobian(X: ArrayLike, T: Positive) -> Array:
     """Eq. (16): ``Phi = df/dX`` at states (..., 5); returns shape (..., 5, 5).
 
     Examples
@@ -198,7 +201,6 @@ def jacobian(X: ArrayLike, T: float) -> Array:
            [0., 0., 0., 0., 1.]])
     """
     X = _state(X)
-    T = scalar(T, "T", positive=True)
     Phi = np.broadcast_to(np.eye(5), X.shape[:-1] + (5, 5)).copy()
     s, c = np.sin(X[..., 2]), np.cos(X[..., 2])
     Phi[..., 0, 2] = -X[..., 3] * T * s
@@ -229,8 +231,9 @@ def _propagate(x0, T, speed, yaw_rate):
     return X
 
 
+@boundary
 def propagate(
-    x0: ArrayLike, T: float, n_steps: int | None = None, speed: ArrayLike | None = None, yaw_rate: ArrayLike | None = None
+    x0: ArrayLike, T: Positive, n_steps: int | None = None, speed: ArrayLike | None = None, yaw_rate: ArrayLike | None = None
 ) -> Array:
     """Noise-free states from Eq. (13): ``X_k+1 = f(X_k)``.
 
@@ -260,7 +263,6 @@ def propagate(
            [3., 0.]])
     """
     x0 = as_array(x0, "x0", shape=(5,))
-    T = scalar(T, "T", positive=True)
     if (speed is None) != (yaw_rate is None):
         raise ValueError("speed, yaw_rate: give both (the measured inputs) or neither (n_steps of constant motion)")
     if speed is None and yaw_rate is None:
@@ -772,7 +774,8 @@ class EkfResult:
     origin_gk: np.ndarray | None = None
 
 
-def filter_grid(t: Times, z: ArrayLike, x0: ArrayLike, config: EkfConfig) -> EkfResult:
+@boundary
+def filter_grid(t: Times, z: ArrayLike, x0: ArrayLike, config: Is[EkfConfig]) -> EkfResult:
     """The EKF on measurements already in the grid frame.
 
     The measurements are screened once (:class:`EkfConfig`: yaw rate at the rails, stuck
@@ -813,7 +816,6 @@ def filter_grid(t: Times, z: ArrayLike, x0: ArrayLike, config: EkfConfig) -> Ekf
     t = time_axis(t, "t")
     z = as_array(z, "z", allow_nan=True, shape=(t.size, 5))
     x0 = as_array(x0, "x0", shape=(5,))
-    instance(config, "config", EkfConfig, "an EkfConfig (navlib.filters.planar_ekf)")
     epochs = _screen_epochs(t, z, config.limits)
     X, P, nis, status, rejected, reacquired = _ekf_kernel(
         t, epochs.z, x0, config.P0, config.Q, config.R, config.gate, config.reacquire, config.fast, epochs.rail, epochs.jump_steps

@@ -64,7 +64,7 @@ from numpy.typing import NDArray
 
 from .. import analysis
 from .._typing import Array, ArrayLike
-from .._validate import booleans, instance, scalar
+from .._validate import Is, NonNegative, Positive, booleans, boundary, fields_checked
 from ..imu import ImuSamples
 from ..units import G0
 from . import zupt, zupt_ins
@@ -101,12 +101,11 @@ class MahonyGains:
     ``mahony(imu, q0, m_b=m_b, **presets.HAND_HELD.kwargs())`` runs the filter with them.
     """
 
-    kp: float
-    ki: float
+    kp: Positive
+    ki: NonNegative
 
     def __post_init__(self) -> None:
-        scalar(self.kp, "kp", positive=True)
-        scalar(self.ki, "ki", positive=True, allow_zero=True)
+        fields_checked(self)
 
     def kwargs(self) -> dict[str, float]:
         """``{"kp": ..., "ki": ...}``, to pass to :func:`navlib.filters.mahony.mahony` with ``**``."""
@@ -172,7 +171,8 @@ def _statistics(w: np.ndarray, f: np.ndarray, n: int) -> tuple[Array, Array, Arr
     return np.sqrt(analysis.moving_mean(np.sum(w**2, axis=1), n)), std, np.abs(mean - G0)
 
 
-def foot_mounted(imu: ImuSamples, still: ArrayLike) -> FootMounted:
+@boundary
+def foot_mounted(imu: Is[ImuSamples], still: ArrayLike) -> FootMounted:
     """The foot-mounted set-up (module docstring) learned from ``imu``'s still start.
 
     Parameters
@@ -200,7 +200,6 @@ def foot_mounted(imu: ImuSamples, still: ArrayLike) -> FootMounted:
     >>> np.round(setup.gyro_bias * 1e3, 1) + 0.0                       # learned from the still start (1e-3 rad/s)
     array([0.9, 0.1, 0. ])
     """
-    instance(imu, "imu", ImuSamples, "a navlib.imu.ImuSamples")
     mask = booleans(still, "still", shape=(imu.n,))
     rate = 1.0 / float(np.median(imu.dt))
     n = max(5, int(round(FOOT_WINDOW * rate)))

@@ -35,7 +35,7 @@ from numba import njit
 from .. import _kernels
 from .._kernels import fma
 from .._typing import Array, Quat, Vec3, Vec3Series
-from .._validate import as_array, as_quat, broadcast, flag, instance, interval, scalar
+from .._validate import Flag, Is, Positive, Step, as_array, as_quat, boundary, broadcast, fields_checked, flag, scalar
 from ..imu import ImuSamples
 from .observations import (
     AttitudeGates,
@@ -79,14 +79,13 @@ class KfNoise:
     (0.002, 0.02)
     """
 
-    sigma_gyro: float = 1e-3
-    sigma_accel: float = 0.02
-    sigma_mag: float = 0.08
-    p0: float = 1e-4
+    sigma_gyro: Positive = 1e-3
+    sigma_accel: Positive = 0.02
+    sigma_mag: Positive = 0.08
+    p0: Positive = 1e-4
 
     def __post_init__(self) -> None:
-        for name in ("sigma_gyro", "sigma_accel", "sigma_mag", "p0"):
-            scalar(getattr(self, name), name, positive=True)
+        fields_checked(self)
 
 
 class _Model(NamedTuple):
@@ -201,7 +200,8 @@ def measurement_jacobian(q: Quat, b: Vec3) -> Array:
     return _model(q, b)[1]
 
 
-def transition(w: Vec3, dt: float) -> Array:
+@boundary
+def transition(w: Vec3, dt: Step) -> Array:
     r"""Quaternion transition :math:`\Phi = I + \tfrac{\Delta t}{2}\, \Omega(\omega)` (Eq. 17); w (..., 3) rad/s -> (..., 4, 4).
 
     Examples
@@ -215,7 +215,6 @@ def transition(w: Vec3, dt: float) -> Array:
            [ 0.005,  0.   ,  0.   ,  1.   ]])
     """
     w = as_array(w, "w", tail=(3,), nonempty=True)
-    dt = interval(dt)
     c = 0.5 * dt
     wx, wy, wz = np.moveaxis(w, -1, 0)
     o = np.ones_like(wx)
@@ -228,7 +227,8 @@ def transition(w: Vec3, dt: float) -> Array:
     return np.stack([np.stack(r, -1) for r in rows], -2)
 
 
-def noise_input(q: Quat, dt: float) -> Array:
+@boundary
+def noise_input(q: Quat, dt: Step) -> Array:
     r"""Gyro-noise input matrix :math:`\Gamma = \tfrac{\Delta t}{2} \Xi(q)` (Eq. 18 corrected, E003-11); (..., 4) -> (..., 4, 3).
 
     Examples
@@ -242,7 +242,6 @@ def noise_input(q: Quat, dt: float) -> Array:
            [0.   , 0.   , 0.005]])
     """
     q = as_quat(as_array(q, "q", tail=(4,), nonempty=True), "q", normalize=False)
-    dt = interval(dt)
     q0, q1, q2, q3 = np.moveaxis(q, -1, 0)
     rows = [[-q1, -q2, -q3], [q0, -q3, q2], [q3, q0, -q1], [-q2, q1, q0]]
     return dt / 2 * np.stack([np.stack(r, -1) for r in rows], -2)
@@ -457,6 +456,7 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
     _copy4(P_out[t], P)
 
 
+@boundary
 def quaternion_kf(
     imu: ImuSamples,
     q0: Quat,
@@ -467,8 +467,8 @@ def quaternion_kf(
     kp: float = 1.0,
     ki: float | None = None,
     gates: AttitudeGates = AttitudeGates(),
-    noise: KfNoise = KfNoise(),
-    keep_cov: bool = False,
+    noise: Is[KfNoise] = KfNoise(),
+    keep_cov: Flag = False,
     linear_innovation: bool = False,
 ) -> AttitudeResult:
     """Quaternion Kalman filter driven by the PI-corrected rate (Eqs. 16-20, Fig. 2 of Zhang et al. 2023).
@@ -515,7 +515,6 @@ def quaternion_kf(
            [29.3,  0.1, -0.1]])
     """
     kp, ki = scalar(kp, "kp", positive=True, allow_zero=True), integral_gain(ki, m_b is not None or rtk is not None)
-    instance(noise, "noise", KfNoise, "a KfNoise")
     if m_b is not None and B_n is None:
         raise ValueError("B_n: the quaternion KF needs the local field for its magnetometer reference")
     lead, inp, found = pack(imu, q0, m_b, rtk, B_n, gates, kp)
@@ -523,7 +522,6 @@ def quaternion_kf(
     b = magnetic_reference(B_n)[0] if inp.use_mag and B_n is not None else np.array([0.0, 1.0, 0.0])  # RTK: north
     sig = np.array([noise.sigma_gyro, noise.sigma_accel, noise.sigma_mag], dtype=float)
     model = _Model(b, sig, float(noise.p0), flag(linear_innovation, "linear_innovation"))
-    keep_cov = flag(keep_cov, "keep_cov")
     q_out, bias, counts = np.empty((T, N, 4)), np.empty((T, 3)), np.zeros((T, 4), dtype=np.int64)
     P_out, P_hist = np.empty((T, 4, 4)), np.empty((T, N if keep_cov else 0, 4, 4))
     run_trials(_kernel, T, inp, kp, ki, model, q_out, bias, counts, P_out, P_hist)

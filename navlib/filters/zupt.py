@@ -48,7 +48,7 @@ from numpy.typing import NDArray
 from .. import analysis, attitude
 from .._kernels import fma
 from .._typing import Array, ArrayLike, Dcm, Vec3, Vec3Series
-from .._validate import as_array, as_dcm, imu_samples, interval, positive, scalar
+from .._validate import Positive, as_array, as_dcm, boundary, imu_samples, interval, positive, scalar
 from ..imu import ImuSamples, unpack
 from ..units import G0
 
@@ -66,6 +66,7 @@ STATIC_THRESHOLDS = (0.05, 0.1, 0.3)
 (m/s^2); starting values to tune per sensor and wearer."""
 
 
+@boundary
 def detect_static(
     w_ib_b: Vec3Series | ImuSamples,
     f_b: Vec3Series | None = None,
@@ -73,7 +74,7 @@ def detect_static(
     window: float = 0.5,
     gyro_bias: Vec3 = (0.0, 0.0, 0.0),
     thresholds: ArrayLike = STATIC_THRESHOLDS,
-    g: float = G0,
+    g: Positive = G0,
 ) -> NDArray[np.bool_]:
     """Static (standing) detector from gyro and accelerometer statistics.
 
@@ -137,7 +138,6 @@ def detect_static(
         )
     b = as_array(gyro_bias, "gyro_bias", shape=(3,))
     tw, tf, tg = positive(as_array(thresholds, "thresholds", shape=(3,)), "thresholds")
-    g = scalar(g, "g", positive=True)
     w2 = np.sum((w - b) ** 2, -1)
     fn = np.linalg.norm(f, axis=-1)
     share = None if valid.all() else analysis.moving_mean(valid.astype(float), n)  # fraction of valid samples per window
@@ -280,7 +280,8 @@ def _error_rate(dx, C_true, f_true):
     return np.concatenate([dx[3:6], dv_rate, dpsi_rate, np.zeros(6)])
 
 
-def error_model_fd(C_bn: Dcm, f_b: Vec3, eps: float = 1e-6) -> Array:
+@boundary
+def error_model_fd(C_bn: Dcm, f_b: Vec3, eps: Positive = 1e-6) -> Array:
     """Central-difference Jacobian of the exact error dynamics at dx = 0 (checks :func:`error_state_matrix`).
 
     Parameters
@@ -305,7 +306,6 @@ def error_model_fd(C_bn: Dcm, f_b: Vec3, eps: float = 1e-6) -> Array:
     """
     C = as_dcm(as_array(C_bn, "C_bn", shape=(3, 3)))
     f = as_array(f_b, "f_b", shape=(3,))
-    eps = scalar(eps, "eps", positive=True)
     F = np.empty((15, 15))
     for j in range(15):
         e = np.zeros(15)

@@ -58,7 +58,7 @@ from numba import njit
 from .. import _kernels, earth, robust, trajectory
 from .._kernels import radii_mn
 from .._typing import Array, ArrayLike, Quat, Vec3, Vec3Series
-from .._validate import as_array, as_quat, booleans, choice, flag, instance, integer, kernel_array, scalar
+from .._validate import Is, as_array, as_quat, booleans, boundary, choice, flag, instance, integer, kernel_array, scalar
 from ..imu import ImuSamples
 from ..strapdown import earth_constants
 from ..units import G0
@@ -890,15 +890,16 @@ def _state(start: Start, sigma: InitialSigma) -> _State:
     return _State(lla=start.lla, vel=start.vel_n, q=start.q_bn, b=np.concatenate([start.accel_bias, start.gyro_bias]), p0_diag=p0)
 
 
+@boundary
 def run_filter(
     imu: ImuSamples,
-    start: Start,
+    start: Is[Start],
     static: ArrayLike,
     *,
     h_baro: ArrayLike | None = None,
     m_b: Vec3Series | None = None,
-    aiding: Aiding = Aiding(),
-    config: FilterConfig = FilterConfig(),
+    aiding: Is[Aiding] = Aiding(),
+    config: Is[FilterConfig] = FilterConfig(),
     ellipsoid: earth.Ellipsoid = earth.WGS84,
 ) -> FilterResult:
     """The paper's system: strapdown INS + ZUPT/ZARU Kalman filter + walking aids.
@@ -944,9 +945,6 @@ def run_filter(
     >>> np.round(res.nav.vel_n[-1], 3) + 0.0, res.zupt_updates          # ZUPTs hold the velocity near zero
     (array([0., 0., 0.]), 10)
     """
-    instance(start, "start", Start, "a Start")
-    instance(aiding, "aiding", Aiding, "an Aiding")
-    instance(config, "config", FilterConfig, "a FilterConfig")
     s = robust.screen(imu, m_b)
     n, dts = imu.n, imu.dt
     if imu.w_ib_b.ndim != 2:

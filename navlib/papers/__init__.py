@@ -16,7 +16,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .._validate import integer, text
+from .._validate import Text, boundary, integer, text
 
 __all__ = ["Paper", "PAPERS", "CONVENTIONS", "REAL_DATA", "REAL_REFERENCES", "CHAPTERS", "by_notebook"]
 
@@ -100,7 +100,8 @@ PAPERS: tuple[Paper, ...] = (
 )
 
 
-def by_notebook(stem: str) -> Paper | None:
+@boundary
+def by_notebook(stem: Text) -> Paper | None:
     """The registered paper of a notebook stem (any of its :attr:`Paper.notebooks`), or None (notebook 00 has no paper).
 
     Examples
@@ -109,5 +110,4 @@ def by_notebook(stem: str) -> Paper | None:
     >>> papers.by_notebook("04_mimu_mag_rtk").citation[:13], papers.by_notebook("05_pedestrian_ins_floors").number
     ('Zhang, Wu & Y', 5)
     """
-    text(stem, "stem")
     return next((p for p in PAPERS if stem in p.notebooks), None)

@@ -55,20 +55,25 @@ from numpy.typing import NDArray
 from .. import geodesy, robust
 from .._typing import Array, ArrayLike, Times
 from .._validate import (
+    Flag,
+    Is,
+    Positive,
+    Real,
+    Rng,
     as_array,
     axes,
     booleans,
+    boundary,
     broadcast,
     choice,
     flag,
-    generator,
-    instance,
+    lat_lon,
     latitude,
+    longitude,
     scalar,
     time_axis,
 )
-from .._validate import ellipsoid as ellipsoid_
-from ..earth import CGCS2000, Ellipsoid
+from ..earth import CGCS2000, Ellipsoid, EllipsoidArg
 from ..filters.planar_ekf import EkfConfig, EkfResult, covariance, filter_grid, propagate
 
 if TYPE_CHECKING:
@@ -106,21 +111,6 @@ R_PAPER = np.diag([6.25, 6.25, 0.01, 0.0004, 0.0025])
 # --------------------------------------------------------------------------
 
 
-def _ell(ellipsoid: object) -> Ellipsoid:
-    return ellipsoid_(ellipsoid)
-
-
-def _lon_deg(lon: ArrayLike, deg: bool, name: str = "lon") -> Array:
-    arr = as_array(lon, name, nonempty=True)
-    return arr if flag(deg, "deg") else np.rad2deg(arr)
-
-
-def _validate_lat_lon(lat: ArrayLike, lon: ArrayLike, deg: bool) -> list[Array]:
-    lat_rad = latitude(lat, "lat", deg=deg, nonempty=True)
-    lon_deg = _lon_deg(lon, deg)
-    return broadcast(lat_rad, lon_deg, name="lat, lon")
-
-
 def printed_zone_number(lon: ArrayLike, deg: bool = False) -> Array:
     """Eq. (1) exactly as printed, ``n = (L - 1.5)/3`` (L in deg): not an integer (erratum E002-01).
 
@@ -133,10 +123,11 @@ def printed_zone_number(lon: ArrayLike, deg: bool = False) -> Array:
     >>> float(gk.printed_zone_number(119.2, deg=True))               # not an integer: the zone is 40
     39.233333333333334
     """
-    return (_lon_deg(lon, deg) - 1.5) / 3.0
+    return (longitude(lon, "lon", deg) - 1.5) / 3.0
 
 
-def paper_radii(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False) -> tuple[float, float, Array, Array]:
+@boundary
+def paper_radii(lat: ArrayLike, ellipsoid: EllipsoidArg = CGCS2000, deg: bool = False) -> tuple[float, float, Array, Array]:
     """Eqs. (3)–(6): first and second eccentricities and the radii R_N, R_M (m).
 
     ``e1 = sqrt(a^2 - b^2)/a``, ``e2 = sqrt(a^2 - b^2)/b``,
@@ -156,7 +147,6 @@ def paper_radii(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = Fal
     >>> round(float(e1), 9), round(float(R_N), 3), round(float(R_M), 3)
     (0.081819191, 6382243.553, 6347684.393)
     """
-    _ell(ellipsoid)
     W = latitude(lat, "lat", deg=deg, nonempty=True)
     a, b = ellipsoid.a, ellipsoid.b
     e1 = np.sqrt(a * a - b * b) / a
@@ -166,7 +156,8 @@ def paper_radii(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = Fal
     return e1, e2, R_N, R_M
 
 
-def printed_meridian_radius(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False) -> Array:
+@boundary
+def printed_meridian_radius(lat: ArrayLike, ellipsoid: EllipsoidArg = CGCS2000, deg: bool = False) -> Array:
     """Eq. (6) exactly as printed, ``a^2 (1 - e1^2)/sqrt((1 + e2^2 sin^2 W)^(3/2))`` (m): wrong (erratum E002-02).
 
     Examples
@@ -177,13 +168,13 @@ def printed_meridian_radius(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg
     >>> round(float(gk.paper_radii(26.0, deg=True)[3]), 1)            # the corrected one
     6347684.4
     """
-    _ell(ellipsoid)
     W = latitude(lat, "lat", deg=deg, nonempty=True)
     e1, e2, _, _ = paper_radii(0.0, ellipsoid)
     return ellipsoid.a**2 * (1 - e1**2) / np.sqrt((1 + e2**2 * np.sin(W) ** 2) ** 1.5)
 
 
-def paper_meridian_arc(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False, order: int = 8) -> Array:
+@boundary
+def paper_meridian_arc(lat: ArrayLike, ellipsoid: EllipsoidArg = CGCS2000, deg: bool = False, order: int = 8) -> Array:
     r"""Eqs. (7)–(8): meridian arc length S from the equator (m), series to e^8 (correct, erratum E002-05).
 
     :math:`S = a(1-e^2)\big[A W - \tfrac{B}{2} \sin 2W + \tfrac{C}{4} \sin 4W - \tfrac{D}{6} \sin 6W + \tfrac{E}{8} \sin 8W\big]`:
@@ -205,7 +196,6 @@ def paper_meridian_arc(lat: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: boo
     >>> round(float(S), 3)                                            # m, CGCS2000
     2876834.573
     """
-    _ell(ellipsoid)
     W = latitude(lat, "lat", deg=deg, nonempty=True)
     return _meridian_arc(W, W, ellipsoid, choice(order, "order", (8, 6, 4, 2)))
 
@@ -226,14 +216,15 @@ def _meridian_arc(W: float | Array, W_linear: float | Array, ellipsoid: Ellipsoi
     )
 
 
+@boundary
 def paper_series(
     lat: ArrayLike,
     lon: ArrayLike,
     lon0: ArrayLike,
-    ellipsoid: Ellipsoid = CGCS2000,
+    ellipsoid: EllipsoidArg = CGCS2000,
     deg: bool = False,
-    typos: bool = False,
-    printed_units: bool = False,
+    typos: Flag = False,
+    printed_units: Flag = False,
 ) -> tuple[Array, Array]:
     r"""The paper's sixth-order GK series, Eqs. (7)–(11): northing x and easting y (m).
 
@@ -265,11 +256,8 @@ def paper_series(
     >>> round(float(x), 3), round(float(y), 3)                        # northing, easting (m) from the central meridian
     (2883727.417, -80055.05)
     """
-    _ell(ellipsoid)
-    typos = flag(typos, "typos")
-    printed_units = flag(printed_units, "printed_units")
-    W, lon_deg = _validate_lat_lon(lat, lon, deg)
-    L0 = _lon_deg(lon0, deg, "lon0")
+    W, lon_deg = lat_lon(lat, lon, deg)
+    L0 = longitude(lon0, "lon0", deg)
     l_deg = lon_deg - L0
     if np.any(np.abs(l_deg) > 6.0):
         raise ValueError(f"lon: expected |lon - lon0| <= 6°, got {np.abs(l_deg).max():.4g}°")
@@ -307,7 +295,8 @@ MAX_STEPS = 1e8
 """Most steps :func:`waypoint_path` builds (about 4 GB of states)."""
 
 
-def waypoint_path(waypoints: ArrayLike, speed: float, turn_rate: float, T: float) -> tuple[Array, NDArray[np.int_]]:
+@boundary
+def waypoint_path(waypoints: ArrayLike, speed: Positive, turn_rate: Positive, T: Positive) -> tuple[Array, NDArray[np.int_]]:
     """Drive straight between waypoints and turn on the spot at each (a robot square loop).
 
     Each leg and each turn gets a whole number of steps, with the speed or
@@ -348,9 +337,6 @@ def waypoint_path(waypoints: ArrayLike, speed: float, turn_rate: float, T: float
     length = np.hypot(legs[:, 0], legs[:, 1])
     if np.any(length <= 0):
         raise ValueError("waypoints: consecutive waypoints must differ")
-    speed = scalar(speed, "speed", positive=True)
-    turn_rate = scalar(turn_rate, "turn_rate", positive=True)
-    T = scalar(T, "T", positive=True)
     course = np.arctan2(legs[:, 1], legs[:, 0])
     steps = (length.sum() / speed + np.abs(np.angle(np.exp(1j * np.diff(course)))).sum() / turn_rate) / T
     if steps > MAX_STEPS:
@@ -388,9 +374,10 @@ PAPER_CONFIG = EkfConfig(Q_PAPER, R_PAPER)
 """The paper's noise, Eqs. (17)-(18), with navlib's default fault handling: the default of :func:`ekf`."""
 
 
+@boundary
 def ekf(
     t: Times,
-    sensors: Sensors,
+    sensors: Is[Sensors],
     x0: ArrayLike,
     *,
     origin: ArrayLike | None = None,
@@ -399,7 +386,7 @@ def ekf(
     ellipsoid: Ellipsoid = CGCS2000,
     config: EkfConfig = PAPER_CONFIG,
     correct_convergence: bool = True,
-    deg: bool = False,
+    deg: Flag = False,
 ) -> EkfResult:
     """The paper's pipeline: GPS lat/lon -> Gauss–Krüger -> EKF with IMU heading, speed, yaw rate.
 
@@ -456,8 +443,6 @@ def ekf(
     """
     t = time_axis(t, "t")
     n = t.size
-    instance(sensors, "sensors", Sensors, "a gauss_kruger_ekf.Sensors")
-    deg = flag(deg, "deg")
     gps = as_array(sensors.gps, "gps", allow_nan=True, shape=(n, 2))
     imu = []
     for name in ("heading", "speed", "yaw_rate"):
@@ -523,16 +508,17 @@ class Sensors:
     yaw_rate: np.ndarray
 
 
+@boundary
 def simulate_sensors(
     truth: ArrayLike,
     origin: ArrayLike,
     R: ArrayLike,
-    rng: np.random.Generator,
+    rng: Rng,
     *,
     zone: int | None = None,
     width: int = 3,
     ellipsoid: Ellipsoid = CGCS2000,
-    yaw_rate_bias: float = 0.0,
+    yaw_rate_bias: Real = 0.0,
     gps_valid: ArrayLike | None = None,
 ) -> Sensors:
     """GPS, IMU heading, speed and yaw rate from true grid states: truth + N(0, R).
@@ -578,8 +564,6 @@ def simulate_sensors(
     truth = as_array(truth, "truth", shape=(None, 5), min_ndim=1)
     origin = as_array(origin, "origin", shape=(2,))
     sigma = np.sqrt(np.diag(covariance(R, "R")))
-    generator(rng)
-    yaw_rate_bias = scalar(yaw_rate_bias, "yaw_rate_bias")
     zone = int(geodesy.zone(origin[1], width)) if zone is None else zone
     kw: dict[str, Any] = dict(zone=zone, width=width, ellipsoid=ellipsoid)
     o_north, o_east = geodesy.geodetic2gk(origin[0], origin[1], **kw)
@@ -603,7 +587,8 @@ def _sensor_sigmas(R: ArrayLike, name: str = "R") -> np.ndarray:
     return np.sqrt(np.diag(covariance(R, name)))
 
 
-def dead_reckoning_error_ms(truth: ArrayLike, T: float, R: ArrayLike, yaw_rate_bias: float = 0.0) -> Array:
+@boundary
+def dead_reckoning_error_ms(truth: ArrayLike, T: Positive, R: ArrayLike, yaw_rate_bias: Real = 0.0) -> Array:
     """Expected squared position error (m²) of dead reckoning on :func:`simulate_sensors`' speed and yaw rate.
 
     :func:`navlib.filters.planar_ekf.dead_reckoning` integrates the measured speed
@@ -650,12 +635,10 @@ def dead_reckoning_error_ms(truth: ArrayLike, T: float, R: ArrayLike, yaw_rate_b
     truth = as_array(truth, "truth", shape=(None, 5))
     if len(truth) < 2:
         raise ValueError(f"truth: expected at least 2 states, got {len(truth)}")
-    T = scalar(T, "T", positive=True)
     sigma = _sensor_sigmas(R)
-    b = scalar(yaw_rate_bias, "yaw_rate_bias")
     K = len(truth) - 1
     a = truth[:K, 3] * np.exp(1j * truth[:K, 2])
-    q = np.exp(1j * b * T - (sigma[4] * T) ** 2 / 2)
+    q = np.exp(1j * yaw_rate_bias * T - (sigma[4] * T) ** 2 / 2)
     u = q ** np.arange(K)
     h = np.zeros(K, complex)  # h_j = sum_{k<j} conj(a_k) q^(j-k)
     for j in range(1, K):
@@ -666,9 +649,10 @@ def dead_reckoning_error_ms(truth: ArrayLike, T: float, R: ArrayLike, yaw_rate_b
     return np.r_[0.0, np.maximum(ms, 0.0)]
 
 
+@boundary
 def ekf_error_ms(
     truth: ArrayLike,
-    T: float,
+    T: Positive,
     Q: ArrayLike = Q_PAPER,
     R: ArrayLike = R_PAPER,
     P0: ArrayLike | None = None,
@@ -715,7 +699,6 @@ def ekf_error_ms(
     truth = as_array(truth, "truth", shape=(None, 5))
     if len(truth) < 2:
         raise ValueError(f"truth: expected at least 2 states, got {len(truth)}")
-    T = scalar(T, "T", positive=True)
     Q, R = covariance(Q, "Q"), covariance(R, "R")
     P = np.zeros((5, 5)) if P0 is None else covariance(P0, "P0").copy()
     b = np.array([0.0, 0.0, 0.0, 0.0, scalar(yaw_rate_bias, "yaw_rate_bias")])
@@ -740,9 +723,9 @@ def ekf_error_ms(
 # --------------------------------------------------------------------------
 
 
-def footpoint_latitude(x: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, iterations: int = 8) -> Array:
+@boundary
+def footpoint_latitude(x: ArrayLike, ellipsoid: EllipsoidArg = CGCS2000, iterations: int = 8) -> Array:
     """Latitude W_f (rad) whose meridian arc S(W_f) of Eq. (7) equals the northing ``x`` (m): Newton on dS/dW = R_M."""
-    _ell(ellipsoid)
     x = as_array(x, "x", nonempty=True)
     n = int(scalar(iterations, "iterations", positive=True))
     if np.any(np.abs(x) > _meridian_arc(np.pi / 2, np.pi / 2, ellipsoid)):
@@ -753,8 +736,9 @@ def footpoint_latitude(x: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, iterations
     return W
 
 
+@boundary
 def inverse_series(
-    x: ArrayLike, y: ArrayLike, lon0: ArrayLike, ellipsoid: Ellipsoid = CGCS2000, deg: bool = False
+    x: ArrayLike, y: ArrayLike, lon0: ArrayLike, ellipsoid: EllipsoidArg = CGCS2000, deg: bool = False
 ) -> tuple[Array, Array]:
     """The textbook sixth-order inverse of Eq. (9): latitude and longitude from GK x (north), y (east).
 
@@ -779,11 +763,10 @@ def inverse_series(
     lat, lon : ndarray, shape (...)
         rad, or deg with ``deg=True``.
     """
-    _ell(ellipsoid)
     x, y = broadcast(as_array(x, "x", nonempty=True), as_array(y, "y", nonempty=True), name="x, y")
     if np.any(np.abs(y) > 1e6):
         raise ValueError(f"y: expected an easting within 1000 km of the central meridian, got {np.abs(y).max():.4g} m")
-    L0 = np.deg2rad(_lon_deg(lon0, deg, "lon0"))
+    L0 = np.deg2rad(longitude(lon0, "lon0", deg))
     try:
         np.broadcast_shapes(x.shape, L0.shape)
     except ValueError:
@@ -855,12 +838,13 @@ def draw_zones(ax: Axes, lon_min: float = 112.5, lon_max: float = 127.5, *, mark
     ax.set(xlim=(lo, hi), xlabel="longitude L (° E)", ylabel="latitude W (° N)")
 
 
+@boundary
 def draw_zone_grid(
     ax: Axes,
     zone: int,
-    lat_max: float = 60.0,
+    lat_max: Positive = 60.0,
     *,
-    step_deg: float = 0.5,
+    step_deg: Positive = 0.5,
     mark: tuple[float, float] | None = None,
     ellipsoid: Ellipsoid = CGCS2000,
 ) -> None:
@@ -895,18 +879,16 @@ def draw_zone_grid(
     n = int(scalar(zone, "zone", positive=True))
     if n != zone or n > 120:
         raise ValueError(f"zone: expected a 3° zone number 1-120, got {zone!r}")
-    top = scalar(lat_max, "lat_max", positive=True)
-    if not 10 < top <= 80:
-        raise ValueError(f"lat_max: expected a latitude in (10°, 80°], got {top!r}")
-    step = scalar(step_deg, "step_deg", positive=True)
+    if not 10 < lat_max <= 80:
+        raise ValueError(f"lat_max: expected a latitude in (10°, 80°], got {lat_max!r}")
     L0 = float(geodesy.central_meridian(n, deg=True))
-    lats = np.linspace(0.0, top, 121)
-    for k, dl in enumerate(np.arange(-1.5, 1.5 + step / 2, step)):
+    lats = np.linspace(0.0, lat_max, 121)
+    for k, dl in enumerate(np.arange(-1.5, 1.5 + step_deg / 2, step_deg)):
         x, y = geodesy.geodetic2gk(lats, np.full_like(lats, L0 + dl), zone=n, ellipsoid=ellipsoid, deg=True)
         ax.plot(y / 1e3, x / 1e3, color="tab:green" if abs(dl) < 1e-9 else "0.5", lw=1.6 if abs(dl) < 1e-9 else 0.8)
         if k % 2 == 0:
             ax.text(y[0] / 1e3, -250, f"{L0 + dl:g}°", ha="center", va="top", fontsize=7)
-    for lat in np.arange(0.0, top + 1e-9, 10.0):
+    for lat in np.arange(0.0, lat_max + 1e-9, 10.0):
         lons = np.linspace(L0 - 1.5, L0 + 1.5, 31)
         x, y = geodesy.geodetic2gk(np.full_like(lons, lat), lons, zone=n, ellipsoid=ellipsoid, deg=True)
         ax.plot(y / 1e3, x / 1e3, color="0.7", lw=0.8)
@@ -915,7 +897,7 @@ def draw_zone_grid(
         lat, lon = as_array(mark, "mark", shape=(2,))
         x, y = geodesy.geodetic2gk(lat, lon, zone=n, ellipsoid=ellipsoid, deg=True)
         ax.plot(y / 1e3, x / 1e3, "*", color="k", ms=12)
-    top_km = geodesy.geodetic2gk(top, L0, zone=n, ellipsoid=ellipsoid, deg=True)[0] / 1e3
+    top_km = geodesy.geodetic2gk(lat_max, L0, zone=n, ellipsoid=ellipsoid, deg=True)[0] / 1e3
     ax.annotate(
         f"central meridian $L_0$ = {L0:g}°:\nthe x axis (north)",
         (0, 0.8 * top_km),

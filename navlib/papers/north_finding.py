@@ -101,7 +101,7 @@ Errata corrected (ids of ``data/errata.csv``)
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Annotated, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -110,9 +110,14 @@ from scipy.special import ndtr
 from .. import attitude, earth, plots, robust, strapdown
 from .._typing import Angles, Array, ArrayLike, Dcm, Interval, Times, Vec3, Vec3Series
 from .._validate import (
+    Check,
+    Count,
+    NonNegative,
+    Positive,
     as_array,
     as_dcm,
     axes,
+    boundary,
     broadcast,
     broadcast_to,
     choice,
@@ -599,14 +604,15 @@ class ClippedTheory:
     sigma_cos: np.ndarray
 
 
+@boundary
 def clipped_single_axis_theory(
     heading: Angles,
-    sigma_gyro: float,
+    sigma_gyro: Positive,
     lat: float,
     pitch: Angles = 0.0,
-    sigma_accel: float = 0.0,
+    sigma_accel: NonNegative = 0.0,
     g: float | None = None,
-    n_sigma: float = 12.0,
+    n_sigma: Positive = 12.0,
     n_grid: int = 20001,
 ) -> ClippedTheory:
     """Error of the single-axis estimator where Eq. (20) fails: the cosine clipped, not linearised in psi.
@@ -654,17 +660,14 @@ def clipped_single_axis_theory(
     51.986
     """
     psi, th = np.broadcast_arrays(as_array(heading, "heading", nonempty=True), _pitch(pitch))
-    s_g = scalar(sigma_gyro, "sigma_gyro", positive=True)
-    s_a = scalar(sigma_accel, "sigma_accel", allow_zero=True)
     phi = gyrocompass_latitude(scalar(lat, "lat"))
     grav = earth.gravity(phi) if g is None else scalar(g, "g", positive=True)
-    span = scalar(n_sigma, "n_sigma", positive=True)
     if integer(n_grid, "n_grid", minimum=101) % 2 == 0:
         raise ValueError(f"n_grid: expected an odd integer of at least 101, got {n_grid!r}")
-    s_gyro_cos = s_g / (OMEGA_IE * np.cos(phi) * np.cos(th))
-    s_pitch_cos = (np.cos(psi) * np.tan(th) - np.tan(phi)) * s_a / (grav * np.cos(th))
+    s_gyro_cos = sigma_gyro / (OMEGA_IE * np.cos(phi) * np.cos(th))
+    s_pitch_cos = (np.cos(psi) * np.tan(th) - np.tan(phi)) * sigma_accel / (grav * np.cos(th))
     s_cos = np.hypot(s_gyro_cos, s_pitch_cos)
-    z = np.linspace(-span, span, int(n_grid))
+    z = np.linspace(-n_sigma, n_sigma, int(n_grid))
     weight = np.exp(-0.5 * z**2) / np.sqrt(2 * np.pi)
     c = np.cos(psi)[..., None] + s_cos[..., None] * z
     alpha = np.arccos(np.clip(c, -1.0, 1.0))
@@ -682,12 +685,13 @@ def clipped_single_axis_theory(
 # --------------------------------------------------------------------------
 
 
+@boundary
 def simulate_static_outputs(
     hpr: Angles,
     lat: float,
-    n_trials: int,
-    sigma_gyro: float,
-    sigma_accel: float,
+    n_trials: Count,
+    sigma_gyro: NonNegative,
+    sigma_accel: NonNegative,
     rng: np.random.Generator,
     gyro_bias: Vec3 = 0.0,
     accel_bias: Vec3 = 0.0,
@@ -725,15 +729,12 @@ def simulate_static_outputs(
     """
     C_nb = np.swapaxes(attitude.euler_to_dcm(hpr), -1, -2)
     phi = gyrocompass_latitude(scalar(lat, "lat"))
-    n_trials = integer(n_trials, "n_trials")
-    s_g = scalar(sigma_gyro, "sigma_gyro", allow_zero=True)
-    s_a = scalar(sigma_accel, "sigma_accel", allow_zero=True)
     r_gyro, r_accel = generator(rng).spawn(2)
     w_true = C_nb @ earth.earth_rate_n(phi)
     f_true = C_nb @ np.array([0.0, 0.0, float(earth.gravity(phi))])
     shape = w_true.shape[:-1] + (int(n_trials), 3)
-    w = w_true[..., None, :] + _bias(gyro_bias, "gyro_bias") + s_g * r_gyro.standard_normal(shape)
-    f = f_true[..., None, :] + _bias(accel_bias, "accel_bias") + s_a * r_accel.standard_normal(shape)
+    w = w_true[..., None, :] + _bias(gyro_bias, "gyro_bias") + sigma_gyro * r_gyro.standard_normal(shape)
+    f = f_true[..., None, :] + _bias(accel_bias, "accel_bias") + sigma_accel * r_accel.standard_normal(shape)
     return w, f
 
 
@@ -766,10 +767,11 @@ class MonteCarlo:
     clipped: np.ndarray
 
 
+@boundary
 def monte_carlo(
     headings: Angles,
-    pitch: float,
-    roll: float,
+    pitch: Annotated[float, Check("scalar", within=(-np.pi / 2, np.pi / 2), open_ends=(True, True))],
+    roll: Annotated[float, Check("scalar", within=(-np.pi, np.pi))],
     lat: float,
     n_trials: int,
     sigma_gyro: float,
@@ -804,9 +806,7 @@ def monte_carlo(
     0.91
     """
     psi = as_array(headings, "headings", shape=(None,), nonempty=True)
-    th = scalar(pitch, "pitch", within=(-np.pi / 2, np.pi / 2), open_ends=(True, True))
-    ro = scalar(roll, "roll", within=(-np.pi, np.pi))
-    hpr = np.stack(np.broadcast_arrays(psi, th, ro), -1)
+    hpr = np.stack(np.broadcast_arrays(psi, pitch, roll), -1)
     w, f = simulate_static_outputs(hpr, lat, n_trials, sigma_gyro, sigma_accel, rng)
     C_raw = triad(f, w, lat, orthonormal=False)
     truth = psi[:, None]
@@ -910,8 +910,9 @@ def four_position_heading_std(sigma_gyro: float, lat: float) -> Array:
 # --------------------------------------------------------------------------
 
 
+@boundary
 def stop_and_go(
-    headings: Angles, stop_duration: float, drive_duration: float, speed: float, pitches: Angles, rolls: Angles
+    headings: Angles, stop_duration: Positive, drive_duration: Positive, speed: Positive, pitches: Angles, rolls: Angles
 ) -> tuple[list[Segment], Array]:
     """Segments of a drive with stops at given headings (Table 1 stand-in).
 
@@ -954,11 +955,8 @@ def stop_and_go(
         as_array(rolls, "rolls", shape=psi.shape, of="headings: one per stop"),
         ("pitches", "rolls"),
     )
-    stop_duration = scalar(stop_duration, "stop_duration", positive=True)
-    drive_duration = scalar(drive_duration, "drive_duration", positive=True)
     if drive_duration < 30:
         raise ValueError(f"drive_duration: expected >= 30 s (accelerate, turn, brake), got {drive_duration}")
-    speed = scalar(speed, "speed", positive=True)
     ramp = 10.0
     segments = [Segment(stop_duration, speed=0.0, pitch=th[0], roll=ro[0])]
     stops = [(0.0, stop_duration)]
@@ -1131,6 +1129,7 @@ def _hold_last(w: Array, dts: Array) -> tuple[Array, Array, NDArray[np.bool_]]:
     return filled, longest, empty
 
 
+@boundary
 def ins_heading_change(
     w_ib_b: Vec3Series | ImuSamples,
     f_start: Vec3,
@@ -1138,7 +1137,7 @@ def ins_heading_change(
     lat: float | None = None,
     earth_rate: str = "vertical",
     *,
-    max_gap: float = 0.1,
+    max_gap: NonNegative = 0.1,
     full_scale_gyro: float | None = None,
 ) -> Array:
     """MEMS strapdown heading change over a drive, started with heading 0 (paper step 2).
@@ -1216,7 +1215,6 @@ def ins_heading_change(
     n = w.shape[-2]
     dts = sample_intervals(dt, n)
     step = float(dts[0]) if np.all(dts == dts[0]) else float(dts.mean())
-    max_gap = scalar(max_gap, "max_gap", allow_zero=True)
     fs = range_limit(full_scale_gyro, "full_scale_gyro")
     pitch, roll = level(
         broadcast_to(

@@ -85,7 +85,20 @@ import numpy as np
 
 from .. import attitude
 from .._typing import Array, ArrayLike, Times
-from .._validate import as_array, generator, integer, pitch_roll, positive, same_shape, scalar, time_axis
+from .._validate import (
+    Count,
+    NonNegative,
+    Positive,
+    Rng,
+    as_array,
+    boundary,
+    integer,
+    pitch_roll,
+    positive,
+    same_shape,
+    scalar,
+    time_axis,
+)
 from ..trajectory import Leg
 
 if TYPE_CHECKING:
@@ -113,11 +126,12 @@ and :func:`navlib.pdr.detect_steps` for the paper's detectors."""
 # --------------------------------------------------------------------------
 
 
+@boundary
 def carpark_legs(
-    speed: float = 1.2,
+    speed: Positive = 1.2,
     stops: ArrayLike = (8.0, 5.0, 20.0, 10.0, 6.0, 15.0, 30.0, 4.0, 12.0, 25.0),
     side: ArrayLike = (40.0, 24.0),
-    n_loops: int = 1,
+    n_loops: Count = 1,
     initial_stand: float = 30.0,
 ) -> list[Leg]:
     """A rectangular walk in an underground car park with stops between the pillars.
@@ -134,10 +148,8 @@ def carpark_legs(
     >>> len(legs), legs[0]                                            # the initial stand first
     (22, Leg(duration=30.0, speed=0.0, turn=0.0, climb=0.0))
     """
-    speed = scalar(speed, "speed", positive=True)
     stops = positive(stops, "stops", shape=(None,), min_ndim=1)
     a, b = positive(side, "side", shape=(2,))
-    n_loops = integer(n_loops, "n_loops")
     legs, k = [Leg(scalar(initial_stand, "initial_stand", positive=True))], 0
     corner = 3.0 * 2 / 3 * speed  # path length of a corner (m)
     for _ in range(n_loops):
@@ -151,7 +163,10 @@ def carpark_legs(
     return legs
 
 
-def floor_test_legs(stand: float = 60.0, stairs: float = 15.0, floor_height: float = 3.0, n_round_trips: int = 2) -> list[Leg]:
+@boundary
+def floor_test_legs(
+    stand: Positive = 60.0, stairs: Positive = 15.0, floor_height: Positive = 3.0, n_round_trips: Count = 2
+) -> list[Leg]:
     """The paper's floor test 2F -> 1F -> 2F (x ``n_round_trips``): stands, corridor walks and stairs.
 
     Each transition: 8 m of corridor at 1.2 m/s, the stairs (``stairs`` s at
@@ -166,13 +181,9 @@ def floor_test_legs(stand: float = 60.0, stairs: float = 15.0, floor_height: flo
     >>> round(sum(leg.climb for leg in legs), 6), len(legs)           # down a floor and back up
     (0.0, 9)
     """
-    stand = scalar(stand, "stand", positive=True)
-    stairs = scalar(stairs, "stairs", positive=True)
-    hf = scalar(floor_height, "floor_height", positive=True)
-    n_round_trips = integer(n_round_trips, "n_round_trips")
     legs = [Leg(stand)]
     for trip in range(2 * n_round_trips):
-        climb = -hf if trip % 2 == 0 else hf
+        climb = -floor_height if trip % 2 == 0 else floor_height
         legs += [Leg(8 / 1.2, 1.2), Leg(stairs, 0.35, turn=np.pi, climb=climb), Leg(4 / 1.2, 1.2, turn=np.pi), Leg(stand)]
     return legs
 
@@ -252,8 +263,9 @@ def heading_from_horizontal(H_X: ArrayLike, H_Y: ArrayLike, declination: float =
 # --------------------------------------------------------------------------
 
 
+@boundary
 def hvac_pressure_steps(
-    time: Times, door_times: ArrayLike, rng: np.random.Generator, amplitude: float = 10.0, n_trials: int | None = None
+    time: Times, door_times: ArrayLike, rng: Rng, amplitude: NonNegative = 10.0, n_trials: int | None = None
 ) -> Array:
     """Pressure offsets of ventilated zones: a new offset in [-a, a] after each door (Pa).
 
@@ -270,10 +282,8 @@ def hvac_pressure_steps(
     """
     t = time_axis(time, "time", min_samples=1)
     doors = np.sort(as_array(door_times, "door_times", shape=(None,)))
-    a = scalar(amplitude, "amplitude", allow_zero=True)
-    generator(rng)
     shape = () if n_trials is None else (integer(n_trials, "n_trials"),)
-    levels = np.concatenate([np.zeros(shape + (1,)), rng.uniform(-a, a, shape + (doors.size,))], -1)
+    levels = np.concatenate([np.zeros(shape + (1,)), rng.uniform(-amplitude, amplitude, shape + (doors.size,))], -1)
     return levels[..., np.searchsorted(doors, t, side="right")]
 
 

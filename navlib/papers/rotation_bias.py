@@ -93,7 +93,7 @@ bound (:func:`navlib.analysis.cramer_rao_bound`, :func:`design`).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Annotated, Any
 
 import numpy as np
 from numba import njit
@@ -102,8 +102,15 @@ from .. import _kernels, attitude, earth, kalman, robust
 from .._kernels import wrap_pi
 from .._typing import Angles, Array, ArrayLike, Dcm, Interval, Times, Vec3, Vec3Series
 from .._validate import (
+    Check,
+    Count,
+    NonNegative,
+    Positive,
+    Real,
+    Step,
     as_array,
     axes,
+    boundary,
     broadcast_to,
     euler_angles,
     flag,
@@ -165,7 +172,8 @@ _MAX_COND = 1e6
 # --------------------------------------------------------------------------
 
 
-def gravity_body(tilt: ArrayLike, g: float = G0) -> Array:
+@boundary
+def gravity_body(tilt: ArrayLike, g: Positive = G0) -> Array:
     """Eq. (4): gravity vector in the body frame, ``a_m = R [0, 0, -g]``.
 
     Parameters
@@ -188,7 +196,6 @@ def gravity_body(tilt: ArrayLike, g: float = G0) -> Array:
     array([ 0.    , -4.9033, -8.4928])
     """
     tilt = as_array(tilt, "tilt", tail=(2,), nonempty=True)
-    g = scalar(g, "g", positive=True)
     r, p = tilt[..., 0], tilt[..., 1]
     return g * np.stack([np.cos(p) * np.sin(r), -np.sin(p), -np.cos(p) * np.cos(r)], -1)
 
@@ -316,7 +323,8 @@ def rotate_attitude(hpr: Angles, axis_b: Vec3, angle: Angles) -> Array:
     return attitude.dcm_to_euler(attitude.euler_to_dcm(hpr) @ rodrigues(axis_b, angle))
 
 
-def dwell_attitudes(hpr0: Angles, axis_b: Vec3, amplitude: float, n_dwells: int) -> Array:
+@boundary
+def dwell_attitudes(hpr0: Angles, axis_b: Vec3, amplitude: float, n_dwells: Count) -> Array:
     """Attitudes of a reciprocating schedule: hpr0, rotated, hpr0, rotated, ...
 
     Parameters
@@ -347,7 +355,6 @@ def dwell_attitudes(hpr0: Angles, axis_b: Vec3, amplitude: float, n_dwells: int)
            [ 0.,  0.,  0.]])
     """
     hpr0 = euler_angles(as_array(hpr0, "hpr0", shape=(3,)), "hpr0")
-    n_dwells = integer(n_dwells, "n_dwells")
     pair = np.stack([hpr0, rotate_attitude(hpr0, axis_b, scalar(amplitude, "amplitude"))])
     if np.any(np.abs(pair[:, 1]) > PITCH_LIMIT):
         raise ValueError(
@@ -357,7 +364,10 @@ def dwell_attitudes(hpr0: Angles, axis_b: Vec3, amplitude: float, n_dwells: int)
     return pair[np.arange(n_dwells) % 2]
 
 
-def dwell_windows(n_samples: int, dt: float, period: float, rotation_time: float, settle: float = 0.0) -> tuple[np.ndarray, int]:
+@boundary
+def dwell_windows(
+    n_samples: Count, dt: float, period: float, rotation_time: NonNegative, settle: NonNegative = 0.0
+) -> tuple[np.ndarray, int]:
     """Dwell windows of :func:`navlib.trajectory.reciprocating_rotation`.
 
     Period k holds still over ``[k period, (k+1) period - rotation_time)``;
@@ -383,10 +393,7 @@ def dwell_windows(n_samples: int, dt: float, period: float, rotation_time: float
     >>> starts, length                                                # 8.5 s of every 10 s period
     (array([  5, 105, 205, 305]), 85)
     """
-    n_samples = integer(n_samples, "n_samples")
     dt, period = interval(dt), scalar(period, "period", positive=True)
-    rotation_time = scalar(rotation_time, "rotation_time", allow_zero=True)
-    settle = scalar(settle, "settle", allow_zero=True)
     per = int(round(period / dt))
     first = int(round(settle / dt))
     length = int(np.floor((period - rotation_time) / dt + 1e-9)) - first
@@ -608,6 +615,7 @@ def _residual_kernel(w, f, dts, regular, starts, n, w_ie, pitch_limit, max_missi
     return r, V, tilt, counts, singular
 
 
+@boundary
 def tilt_residuals(
     w_ib_b: Vec3Series | ImuSamples,
     f_b: Vec3Series | None = None,
@@ -616,7 +624,7 @@ def tilt_residuals(
     length: int | None = None,
     w_ie_b: Vec3Series | None = None,
     *,
-    max_missing: float = 0.0,
+    max_missing: Annotated[float, Check("scalar", within=(0.0, 0.5))] = 0.0,
     outlier_k: float | None = None,
     full_scale_gyro: float | None = None,
     full_scale_accel: float | None = None,
@@ -714,7 +722,6 @@ def tilt_residuals(
         or starts.max() + length > n
     ):
         raise ValueError(f"starts: expected a 1-D array of dwell start indices within [0, {n - length}]")
-    max_missing = scalar(max_missing, "max_missing", within=(0.0, 0.5))
     k_out = 0.0 if outlier_k is None else scalar(outlier_k, "outlier_k", positive=True)
     fs_g, fs_a = range_limit(full_scale_gyro, "full_scale_gyro"), range_limit(full_scale_accel, "full_scale_accel")
     K = starts.size
@@ -753,8 +760,14 @@ def tilt_residuals(
     )
 
 
+@boundary
 def residual_covariance(
-    tilt: ArrayLike, length: int, dt: float, gyro_noise: float, accel_noise: float = 0.0, g: float = G0
+    tilt: ArrayLike,
+    length: Annotated[int, Check("integer", minimum=MIN_DWELL_SAMPLES)],
+    dt: Step,
+    gyro_noise: NonNegative,
+    accel_noise: NonNegative = 0.0,
+    g: float = G0,
 ) -> Array:
     """Covariance of each dwell residual of :func:`tilt_residuals` from white sensor noise.
 
@@ -791,11 +804,9 @@ def residual_covariance(
            [     0., 120024.]])
     """
     M = tilt_matrix(tilt)  # validates tilt
-    n = integer(length, "length", minimum=MIN_DWELL_SAMPLES)
-    dt = interval(dt)
-    N = scalar(gyro_noise, "gyro_noise", allow_zero=True)
-    A = scalar(accel_noise, "accel_noise", allow_zero=True)
-    return _residual_cov(M, np.asarray(tilt, dtype=float)[..., 1], n, dt, N, A, scalar(g, "g", positive=True))
+    return _residual_cov(
+        M, np.asarray(tilt, dtype=float)[..., 1], length, dt, gyro_noise, accel_noise, scalar(g, "g", positive=True)
+    )
 
 
 def _residual_cov(M, pitch, n, dt, N, A, g):
@@ -893,7 +904,8 @@ def _running_kernel(r, V, lam, max_cond):
     return out, skipped
 
 
-def running_lsq_bias(r: ArrayLike, V: ArrayLike, forgetting: float = 1.0) -> tuple[Array, robust.FaultReport]:
+@boundary
+def running_lsq_bias(r: ArrayLike, V: ArrayLike, forgetting: Real = 1.0) -> tuple[Array, robust.FaultReport]:
     """Eq. (14) updated dwell by dwell (recursive least squares).
 
     After dwell k, ``b_k = (sum_i l^(k-i) V_i^T V_i)^-1 sum_i l^(k-i) V_i^T r_i``
@@ -930,11 +942,10 @@ def running_lsq_bias(r: ArrayLike, V: ArrayLike, forgetting: float = 1.0) -> tup
            [ 1.,  2., -1.]])
     """
     r, V = _rv(r, V)
-    lam = scalar(forgetting, "forgetting")
-    if not 0 < lam <= 1:
-        raise ValueError(f"forgetting: expected a value in (0, 1], got {lam}")
+    if not 0 < forgetting <= 1:
+        raise ValueError(f"forgetting: expected a value in (0, 1], got {forgetting}")
     lead, K = r.shape[:-2], r.shape[-2]
-    out, skipped = _running_kernel(kernel_array(r.reshape(-1, K, 2)), kernel_array(V.reshape(-1, K, 2, 3)), lam, _MAX_COND)
+    out, skipped = _running_kernel(kernel_array(r.reshape(-1, K, 2)), kernel_array(V.reshape(-1, K, 2, 3)), forgetting, _MAX_COND)
     return out.reshape(lead + (K, 3)), robust.FaultReport({("dwell", "nan"): int(skipped)})
 
 
@@ -1011,8 +1022,15 @@ def _kalman_kernel(r, V, R, qq, intervals, p0, gate):
     return b, sig, no_data, rejected, Ps
 
 
+@boundary
 def kalman_bias(
-    r: ArrayLike, V: ArrayLike, R: ArrayLike, interval: Interval, rate_random_walk: float, bias_sigma: float, gate: float = 13.8
+    r: ArrayLike,
+    V: ArrayLike,
+    R: ArrayLike,
+    interval: Interval,
+    rate_random_walk: NonNegative,
+    bias_sigma: Positive,
+    gate: Positive = 13.8,
 ) -> KalmanBias:
     """Kalman filter on the dwell residuals with a random-walk bias state.
 
@@ -1069,16 +1087,13 @@ def kalman_bias(
         gaps = np.full(K, float(gaps))
     elif gaps.shape != (K,):
         raise ValueError(f"interval: expected a float or shape ({K},), got {gaps.shape}")
-    q = scalar(rate_random_walk, "rate_random_walk", allow_zero=True)
-    s0 = scalar(bias_sigma, "bias_sigma", positive=True)
-    gate = scalar(gate, "gate", positive=True)
     b, sig, no_data, rejected, P = _kalman_kernel(
         kernel_array(r.reshape(-1, K, 2)),
         kernel_array(V.reshape(-1, K, 2, 3)),
         kernel_array(R.reshape(-1, K, 2, 2)),
-        q * q,
+        rate_random_walk * rate_random_walk,
         kernel_array(gaps),
-        s0 * s0 * np.eye(3),
+        bias_sigma * bias_sigma * np.eye(3),
         gate,
     )
     faults = robust.FaultReport({("dwell", "nan"): int(no_data), ("dwell", "outlier"): int(rejected)})
@@ -1090,14 +1105,15 @@ def kalman_bias(
 # --------------------------------------------------------------------------
 
 
+@boundary
 def design(
     hpr0: Angles,
     axis_b: Vec3,
     amplitude: float,
     dwell_time: float,
-    dt: float,
-    gyro_noise: float,
-    accel_noise: float = 0.0,
+    dt: Step,
+    gyro_noise: NonNegative,
+    accel_noise: NonNegative = 0.0,
     n_dwells: int = 2,
 ) -> tuple[float, Array, Array]:
     """Observability of a rotation schedule without simulation.
@@ -1134,15 +1150,12 @@ def design(
     (1.414, (3, 3), (2, 2, 3))
     """
     hpr = dwell_attitudes(hpr0, axis_b, amplitude, n_dwells)
-    dt = interval(dt)
     n = int(round(scalar(dwell_time, "dwell_time", positive=True) / dt))
     if n < MIN_DWELL_SAMPLES:
         raise ValueError(f"dwell_time: dwell windows too short ({n} samples); expected at least {MIN_DWELL_SAMPLES}")
-    N = scalar(gyro_noise, "gyro_noise", allow_zero=True)
-    A = scalar(accel_noise, "accel_noise", allow_zero=True)
     M = tilt_matrix(hpr[:, [2, 1]])
     V = M * (n * dt)
-    R = _residual_cov(M, hpr[:, 1], n, dt, N, A, G0)
+    R = _residual_cov(M, hpr[:, 1], n, dt, gyro_noise, accel_noise, G0)
     return float(condition_number(V)), cramer_rao_bound(V, R, _MAX_COND), V
 
 
@@ -1208,6 +1221,7 @@ class Rig:
     w_ie_b: Vec3Series
 
 
+@boundary
 def rig_experiment(
     rig: Rig,
     dt: float,
@@ -1215,11 +1229,11 @@ def rig_experiment(
     model: ImuModel,
     rng: np.random.Generator,
     *,
-    n_runs: int,
+    n_runs: Count,
     period: float,
     memory: float,
     extensions: bool = False,
-    decimate: int = 100,
+    decimate: Count = 100,
 ) -> dict[str, Any]:
     """One pitch group of the paper's experiment (§4): ``n_runs`` noisy runs on one rig trajectory.
 
@@ -1254,8 +1268,6 @@ def rig_experiment(
     """
     from .. import sensors, trajectory  # noqa: PLC0415 -- the driver alone needs them
 
-    n_runs = integer(n_runs, "n_runs")  # rng: simulate_imu checks it
-    decimate = integer(decimate, "decimate")
     period, memory = scalar(period, "period", positive=True), scalar(memory, "memory", positive=True)
     if flag(extensions, "extensions") and (model.gyro.scale_factor != 0 or model.gyro.misalignment != 0):
         raise ValueError(
@@ -1348,6 +1360,7 @@ def _joined(values: list[Any]) -> Any:
     return np.concatenate(values, axis=0)
 
 
+@boundary
 def pair_spread(
     hpr0: Angles,
     axis_b: Vec3,
@@ -1360,7 +1373,7 @@ def pair_spread(
     bias_b: Vec3,
     rng: np.random.Generator,
     *,
-    n_runs: int,
+    n_runs: Count,
     duration: float,
 ) -> Array:
     """Per-axis standard deviation (rad/s) of the least-squares bias from each pair of dwells, by Monte Carlo.
@@ -1373,7 +1386,6 @@ def pair_spread(
     """
     from .. import sensors, trajectory  # noqa: PLC0415 -- the driver alone needs them
 
-    n_runs = integer(n_runs, "n_runs")  # rng: simulate_imu checks it
     bias_b = as_array(bias_b, "bias_b", shape=(3,))
     try:
         hpr_dw = dwell_attitudes(hpr0, axis_b, amplitude, 2)
@@ -1405,7 +1417,12 @@ def rotation_angle(C_bn: Dcm) -> Array:
     return np.arccos(np.clip((np.trace(rel, axis1=-2, axis2=-1) - 1) / 2, -1.0, 1.0))
 
 
-def draw_rotation_scheme(ax: Axes, amplitude_deg: float = 90.0, pitch_deg: float = 30.0) -> None:
+@boundary
+def draw_rotation_scheme(
+    ax: Axes,
+    amplitude_deg: Annotated[float, Check("scalar", within=(0.0, 180.0), open_ends=(True, False))] = 90.0,
+    pitch_deg: Annotated[float, Check("scalar", within=(-90.0, 90.0), open_ends=(True, True))] = 30.0,
+) -> None:
     """Paper Fig. 3 redrawn: the IMU turned by Δα about u = y_b, seen along u.
 
     The plane of the drawing is perpendicular to u (u points into the page). Left, the body axes of
@@ -1434,11 +1451,9 @@ def draw_rotation_scheme(ax: Axes, amplitude_deg: float = 90.0, pitch_deg: float
     from ..plots import angle_arc, plane_frame  # noqa: PLC0415 -- plotting only
 
     axes(ax)
-    alpha = scalar(amplitude_deg, "amplitude_deg", within=(0.0, 180.0), open_ends=(True, False))
-    pitch = scalar(pitch_deg, "pitch_deg", within=(-90.0, 90.0), open_ends=(True, True))
     views = (
         ((0.0, 0.0), 0.0, ("$x_b$", "$z_b$"), "tab:blue", "dwell k"),
-        ((3.0, 0.0), -alpha, ("$x_b'$", "$z_b'$"), "tab:orange", "dwell k′: turned by Δα"),
+        ((3.0, 0.0), -amplitude_deg, ("$x_b'$", "$z_b'$"), "tab:orange", "dwell k′: turned by Δα"),
     )
     for (ox, oy), angle, names, color, title in views:
         ax.plot([ox, ox], [oy - 1.2, oy + 1.2], color="0.55", ls="--", lw=1)
@@ -1447,15 +1462,16 @@ def draw_rotation_scheme(ax: Axes, amplitude_deg: float = 90.0, pitch_deg: float
         ax.plot(ox, oy, "o", ms=11, mfc="white", mec="k", zorder=5)
         ax.plot(ox, oy, "x", ms=7, color="k", zorder=6)
         ax.text(ox, oy - 1.55, title, ha="center", fontsize=9, color=color)
-    angle_arc(ax, views[1][0], 0.5, 90.0 - alpha, 90.0, "Δα", color="0.25")
+    angle_arc(ax, views[1][0], 0.5, 90.0 - amplitude_deg, 90.0, "Δα", color="0.25")
     ax.annotate("", (2.2, 0.9), (0.8, 0.9), arrowprops={"arrowstyle": "-|>", "color": "0.3", "connectionstyle": "arc3,rad=-0.3"})
     ax.text(1.5, 1.35, "rotate by Δα\nabout u", ha="center", fontsize=8)
-    ax.text(1.5, -0.25, f"u = $y_b$ into the page\n(pitched up θ0 = {pitch:g}°)", ha="center", va="top", fontsize=8)
+    ax.text(1.5, -0.25, f"u = $y_b$ into the page\n(pitched up θ0 = {pitch_deg:g}°)", ha="center", va="top", fontsize=8)
     ax.set(xlim=(-1.4, 4.4), ylim=(-1.8, 2.0), aspect="equal")
     ax.set_axis_off()
 
 
-def draw_rotation_schedule(ax: Axes, time: Times, angle_deg: ArrayLike, starts: ArrayLike, length: int, dt: float) -> None:
+@boundary
+def draw_rotation_schedule(ax: Axes, time: Times, angle_deg: ArrayLike, starts: ArrayLike, length: Count, dt: Step) -> None:
     """The reciprocating schedule: rotation angle against time with the dwell windows shaded.
 
     Parameters
@@ -1489,8 +1505,6 @@ def draw_rotation_schedule(ax: Axes, time: Times, angle_deg: ArrayLike, starts: 
     starts = as_array(starts, "starts", nonempty=True)
     if starts.ndim != 1 or np.any(starts < 0) or np.any(starts != np.round(starts)):
         raise ValueError(f"starts: expected a 1-D array of sample indices >= 0 (dwell_windows), got shape {starts.shape}")
-    length = integer(length, "length")
-    dt = interval(dt)
     ax.plot(t, a, color="k", lw=1.5)
     for k, s in enumerate(starts.astype(int)):
         ax.axvspan(s * dt, (s + length) * dt, color="tab:blue" if k % 2 == 0 else "tab:orange", alpha=0.15, lw=0)
