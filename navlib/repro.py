@@ -140,7 +140,8 @@ def study_k(n: int, *, about_mean: bool = False) -> float:
 
     A prediction interval of one new seed: about a target, ``|value - target| <= t_n RMS`` (the RMS of ``n`` centred
     Gaussian values has ``n`` degrees of freedom); about the study's mean, ``|value - mean| <= t_{n-1} sqrt(1 + 1/n)
-    sd``. With 12 seeds that is 7.5 and 8.3 (Z = 4.50 once the spread is known); with 24, 5.7 and 5.9.
+    sd``. With 12 seeds that is 7.5 and 8.3 (Z = 4.50 once the spread is known); with 24, 5.7 and 5.9. ``study_k(m)`` is
+    also the t quantile of m degrees of freedom for a standard error estimated from m + 1 values.
 
     Examples
     --------
@@ -150,10 +151,12 @@ def study_k(n: int, *, about_mean: bool = False) -> float:
     """
     from scipy import stats  # noqa: PLC0415 -- scipy loads only where a study is read
 
-    n = int(scalar(n, "n"))
-    if n < 2:
-        raise ValueError(f"n: a seed study needs at least 2 seeds, got {n}")
-    dof = n - 1 if flag(about_mean, "about_mean") else n
+    n, about_mean = int(scalar(n, "n")), flag(about_mean, "about_mean")
+    if n < 1 + about_mean:
+        raise ValueError(
+            f"n: a spread {'about its own mean ' if about_mean else ''}needs at least {1 + about_mean} values, got {n}"
+        )
+    dof = n - 1 if about_mean else n
     return float(stats.t.isf(CHECK_ALPHA / 2, dof)) * (math.sqrt(1.0 + 1.0 / n) if about_mean else 1.0)
 
 

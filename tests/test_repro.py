@@ -636,8 +636,9 @@ def test_the_family_wise_level_is_the_sidak_share_of_the_sweep_budget():
     assert repro.study_k(100_000) == pytest.approx(repro.Z, rel=1e-3)
     assert repro.study_k(100_000, about_mean=True) == pytest.approx(repro.Z, rel=1e-3)
     assert repro.study_k(12, about_mean=True) == pytest.approx(stats.t.isf(repro.CHECK_ALPHA / 2, 11) * np.sqrt(13 / 12))
-    with pytest.raises(ValueError, match="at least 2 seeds"):
-        repro.study_k(1)
+    assert repro.study_k(1) == pytest.approx(stats.t.isf(repro.CHECK_ALPHA / 2, 1))  # a standard error from 2 values
+    with pytest.raises(ValueError, match="at least 2 values"):
+        repro.study_k(1, about_mean=True)
 
 
 def test_the_last_sweep_has_no_more_seed_dependent_checks_than_the_level_assumes():
