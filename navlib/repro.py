@@ -45,6 +45,7 @@ import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
+from statistics import NormalDist
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -66,7 +67,12 @@ __all__ = [
     "check_study",
     "seed_spread",
     "SeedSpread",
-    "STUDY_K",
+    "SWEEP_ALPHA",
+    "SWEEP_SEEDS_BUDGET",
+    "SEED_DEPENDENT_CHECKS",
+    "CHECK_ALPHA",
+    "Z",
+    "study_k",
     "EXTENSION",
     "NOT_CHECKABLE",
     "verdict",
@@ -115,10 +121,46 @@ of these kinds gets that verdict and only such a claim does (its ``reason`` give
 authors' hardware or derived from their measured table; a manufacturer's specification (an input of a simulation, never
 its result); the paper leaves out, or the source has lost, what a check would need; the paper does not pin the
 statement down enough to simulate it; a design choice, setting or unit conversion of the paper, not a finding."""
-STUDY_K = 4.5
-"""A studied tolerance is STUDY_K times the RMS of ``value - target`` (or the sd of a value) over the study's
-calibration seeds: with 12 seeds the RMS is known to about 20 %, so a new seed exceeds it with probability below
-1e-3 even where the RMS came out one standard error low."""
+SWEEP_ALPHA = 0.02
+"""The family-wise budget: the chance, at most, that a correct ledger shows any check failure on a sweep of
+:data:`SWEEP_SEEDS_BUDGET` fresh seeds (``tools/reproduce.py --seeds``)."""
+SWEEP_SEEDS_BUDGET = 10
+"""The seeds of the sweep the budget is set for (a reviewer's 5-10)."""
+SEED_DEPENDENT_CHECKS = 300
+"""An upper bound of the checks whose value changes with the seed (248 on the sweep of seeds 7001-7012:
+``data/seed_studies/README.md``); a sweep of :data:`SWEEP_SEEDS_BUDGET` seeds makes 10 x 300 such comparisons."""
+CHECK_ALPHA = 1.0 - (1.0 - SWEEP_ALPHA) ** (1.0 / (SWEEP_SEEDS_BUDGET * SEED_DEPENDENT_CHECKS))
+"""The level of one seed-dependent check (Šidák): 1 - (1 - 0.02)^(1/3000) = 6.7e-6, two-sided."""
+Z = NormalDist().inv_cdf(1.0 - CHECK_ALPHA / 2)
+"""The multiplier of a standard-error band (4.50): a correct Gaussian statistic leaves ``expected ± Z se`` with
+probability :data:`CHECK_ALPHA`. Notebooks write every seed-dependent standard-error band as ``Z * se``."""
+
+
+def study_k(n: int, *, about_mean: bool = False) -> float:
+    """The multiplier of a seed-study band from ``n`` calibration seeds, at the level :data:`CHECK_ALPHA`.
+
+    A prediction interval of one new seed: about a target, ``|value - target| <= t_n RMS`` (the RMS of ``n`` centred
+    Gaussian values has ``n`` degrees of freedom); about the study's mean, ``|value - mean| <= t_{n-1} sqrt(1 + 1/n)
+    sd``. With 12 seeds that is 7.5 and 8.3 (Z = 4.50 once the spread is known); with 24, 5.7 and 5.9. ``study_k(m)`` is
+    also the t quantile of m degrees of freedom for a standard error estimated from m + 1 values.
+
+    Examples
+    --------
+    >>> from navlib import repro
+    >>> round(repro.study_k(12), 2), round(repro.study_k(12, about_mean=True), 2), round(repro.study_k(24), 2)
+    (7.55, 8.3, 5.72)
+    """
+    from scipy import stats  # noqa: PLC0415 -- scipy loads only where a study is read
+
+    n, about_mean = int(scalar(n, "n")), flag(about_mean, "about_mean")
+    if n < 1 + about_mean:
+        raise ValueError(
+            f"n: a spread {'about its own mean ' if about_mean else ''}needs at least {1 + about_mean} values, got {n}"
+        )
+    dof = n - 1 if about_mean else n
+    return float(stats.t.isf(CHECK_ALPHA / 2, dof)) * (math.sqrt(1.0 + 1.0 / n) if about_mean else 1.0)
+
+
 _NEEDS_EVIDENCE = ("reproduced with correction", "differs", "refuted")
 
 
@@ -724,17 +766,24 @@ class SeedSpread:
     seeds: tuple[int, ...]
     mean: float  # of value - target (of the value where there is no target)
     sd: float
-    rms: float  # root mean square of value - target (the bias included)
+    rms: float  # root mean square of value - target (the bias included); the sd about the mean
+    about_mean: bool = False  # the rows are plain values, spread about their own mean
+
+    @property
+    def k(self) -> float:
+        """:func:`study_k` of this study's seed count."""
+        return study_k(len(self.seeds), about_mean=self.about_mean)
 
     @property
     def tol(self) -> float:
-        """STUDY_K x the RMS (about a target) or x the sd (about the study's mean)."""
-        return STUDY_K * self.rms
+        """k x the RMS (about a target) or x the sd (about the study's mean)."""
+        return self.k * self.rms
 
     def describe(self) -> str:
         return (
             f"seed study {self.study} ({len(self.seeds)} calibration seeds {min(self.seeds)}-{max(self.seeds)}: mean "
-            f"{self.mean:.4g}, sd {self.sd:.3g}, RMS {self.rms:.3g}); tolerance {STUDY_K:g} x RMS"
+            f"{self.mean:.4g}, sd {self.sd:.3g}, RMS {self.rms:.3g}); tolerance {self.k:.2f} x "
+            f"{'sd' if self.about_mean else 'RMS'} (a {len(self.seeds)}-seed prediction interval at level {CHECK_ALPHA:.2g})"
         )
 
 
@@ -756,7 +805,7 @@ def seed_spread(study: str, check: str, *, about_mean: bool = False) -> SeedSpre
     x = np.asarray(values, float)
     mean, sd = float(x.mean()), float(x.std(ddof=1)) if x.size > 1 else math.inf
     rms = sd if about_mean else float(np.sqrt(np.mean(x**2)))
-    return SeedSpread(study, check, tuple(seeds), mean, sd, rms)
+    return SeedSpread(study, check, tuple(seeds), mean, sd, rms, about_mean)
 
 
 def _study_rows(study: str) -> dict[str, list[tuple[int, float]]]:
@@ -785,9 +834,10 @@ def check_study(
 ) -> Check:
     """Check ``value`` against ``target`` within the spread a recorded seed study measured; record; raise on failure.
 
-    With a ``target`` (a prediction computed in this run) the tolerance is STUDY_K x the RMS of ``value - target``
-    over the study's calibration seeds, and a bias of the prediction shows as the study's mean. With ``target=None``
-    the value is a regression of the stand-in: it must lie within STUDY_K sd of the study's mean. Two-sided: a value
+    With a ``target`` (a prediction computed in this run) the tolerance is :func:`study_k` x the RMS of ``value -
+    target`` over the study's calibration seeds, and a bias of the prediction shows as the study's mean. With
+    ``target=None`` the value is a regression of the stand-in: it must lie within :func:`study_k` sd of the study's mean
+    (a prediction interval of one new seed). Both at the level :data:`CHECK_ALPHA`. Two-sided: a value
     too large is as wrong as one too small. Before the study has a row for ``name`` (``data/seed_studies/run.py``
     writes it from these very checks) the check fails: in teaching mode it is recorded with its value.
 

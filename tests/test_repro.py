@@ -4,9 +4,11 @@ import json
 import math
 import struct
 import zlib
+from pathlib import Path
 
 import numpy as np
 import pytest
+from scipy import stats
 
 matplotlib = pytest.importorskip("matplotlib")
 matplotlib.use("Agg")
@@ -612,12 +614,41 @@ def test_a_studied_tolerance_is_k_times_the_rms_over_the_seeds(fake_root):
     assert pred.rms == pytest.approx(np.sqrt((0.1**2 + 0.05**2 + 0.02**2) / 3))
     assert pred.mean == pytest.approx(0.07 / 3)
     c = repro.check_study("X/pred", 1.0 + 0.9 * pred.tol, 1.0, "nb", "prediction")
-    assert c.passed and c.tol == pytest.approx(repro.STUDY_K * pred.rms) and c.study == {"name": "nb", "target": 1.0}
+    assert c.passed and c.tol == pytest.approx(repro.study_k(3) * pred.rms) and c.study == {"name": "nb", "target": 1.0}
     with pytest.raises(repro.ClaimCheckFailed):  # two-sided: too small fails as well
         repro.check_study("X/pred", 1.0 - 1.1 * pred.tol, 1.0, "nb", "prediction")
     plain = repro.seed_spread("nb", "X/plain", about_mean=True)
     assert (plain.mean, plain.sd, plain.rms) == pytest.approx((6.0, 1.0, 1.0))
-    assert repro.check_study("X/plain", 6.0 + 4.0, None, "nb", "regression").passed  # within 4.5 sd of the mean
+    assert plain.tol == pytest.approx(repro.study_k(3, about_mean=True) * 1.0)
+    assert repro.check_study("X/plain", 6.0 + 0.99 * plain.tol, None, "nb", "regression").passed
+    with pytest.raises(repro.ClaimCheckFailed):
+        repro.check_study("X/plain", 6.0 - 1.01 * plain.tol, None, "nb", "regression")
+
+
+def test_the_family_wise_level_is_the_sidak_share_of_the_sweep_budget():
+    # any failure of a correct ledger on a sweep of SWEEP_SEEDS_BUDGET seeds: at most SWEEP_ALPHA
+    trials = repro.SWEEP_SEEDS_BUDGET * repro.SEED_DEPENDENT_CHECKS
+    assert 1 - (1 - repro.CHECK_ALPHA) ** trials == pytest.approx(repro.SWEEP_ALPHA)
+    assert 2 * stats.norm.sf(repro.Z) == pytest.approx(repro.CHECK_ALPHA)
+    # a study's band: a t prediction interval, wider than Z for few seeds and Z in the limit
+    ks = [repro.study_k(n) for n in (6, 12, 24, 48)]
+    assert ks == sorted(ks, reverse=True) and ks[-1] > repro.Z
+    assert repro.study_k(100_000) == pytest.approx(repro.Z, rel=1e-3)
+    assert repro.study_k(100_000, about_mean=True) == pytest.approx(repro.Z, rel=1e-3)
+    assert repro.study_k(12, about_mean=True) == pytest.approx(stats.t.isf(repro.CHECK_ALPHA / 2, 11) * np.sqrt(13 / 12))
+    assert repro.study_k(1) == pytest.approx(stats.t.isf(repro.CHECK_ALPHA / 2, 1))  # a standard error from 2 values
+    with pytest.raises(ValueError, match="at least 2 values"):
+        repro.study_k(1, about_mean=True)
+
+
+def test_the_last_sweep_has_no_more_seed_dependent_checks_than_the_level_assumes():
+    # build/seeds.json of the last `make seeds` (tools/reproduce.py --seeds): a check whose value differs between seeds
+    sweep = Path(__file__).resolve().parents[1] / "build" / "seeds.json"
+    if not sweep.is_file() or len(json.loads(sweep.read_text())["seeds"]) < 2:
+        pytest.skip("no seed sweep of two or more seeds in build/ (make seeds)")
+    notebooks = json.loads(sweep.read_text())["notebooks"].values()
+    varying = [n for t in notebooks for n, c in t["checks"].items() if len({repr(v) for v in c["values"]}) > 1]
+    assert len(varying) <= repro.SEED_DEPENDENT_CHECKS, "raise SEED_DEPENDENT_CHECKS (and Z with it): data/seed_studies/README.md"
 
 
 def test_a_check_without_its_study_row_fails(fake_root):

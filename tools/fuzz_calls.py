@@ -1171,6 +1171,7 @@ def table() -> dict:
         "repro.exercise": Call(dict(student=np.sin, reference=np.sin, cases=[(0.1,), (1.0,)])),
         "repro.Exercise": Skip("a result record, built by exercise"),
         "repro.answer": Call(dict(markdown="The error grows as 1/cos L: 1.7 times at 60°.", label="Answer")),
+        "repro.study_k": Call(dict(n=12, about_mean=True)),
         "repro.env_flag": Call(dict(name="NAVLIB_FUZZ_UNSET_FLAG", default=True)),
         "repro.mode": Call(dict(teaching=True, fast=False), before=_setup),
         "repro.ClaimCheckWarning": Skip("warning class, issued by navlib itself"),
