@@ -211,7 +211,7 @@ def _transition_into(out, A, C_dt, f_dt, dt):
             out[i, j] = A[i, j] + 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def error_state_predict_into(P, C_dt, f_dt, dt, q, work):
     """``P = Phi P Phi^T + diag(q)`` (symmetrised) in place, ``Phi = I + F dt``; compiled, unvalidated.
 
