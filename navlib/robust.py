@@ -574,7 +574,7 @@ def screen(imu: ImuSamples, m_b: Vec3Series | None = None) -> Screened:
     run_chunks(lambda t0, t1: _gyro_hold(t0, t1, wf, flags, stuck_axes, lim.gyro_jump or 0.0, held, fresh), T)
     keys = _KEYS if m_b is not None else [key for key in _KEYS if key[0] != "mag"]
     found = {key: flags[_KEYS.index(key)].reshape(lead + (n,)) for key in keys}
-    report = FaultReport({key: v.sum(-1) for key, v in found.items()}, found)
+    report = FaultReport({key: np.count_nonzero(v, axis=-1) for key, v in found.items()}, found)
     return Screened(imu, held.reshape(w.shape), fresh.reshape(lead + (n,)), m_b, dts, typical, max_dt, report)
 
 

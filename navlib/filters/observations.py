@@ -711,7 +711,9 @@ def pack(
         long_hold,
         SETTLE_TIME_CONSTANTS / kp if kp > 0 else 0.0,
     )
-    return lead, inputs, FaultReport({key: v.sum(-1) for key, v in found.items()}, found)
+    counted = s.faults.counts  # the screen's counts of its own flags; the gates' flags counted here
+    counts = {key: counted[key] if found[key] is flags.get(key) else np.count_nonzero(v, axis=-1) for key, v in found.items()}
+    return lead, inputs, FaultReport(counts, found)
 
 
 def _still(w: np.ndarray, f: np.ndarray, g: float) -> np.ndarray:
