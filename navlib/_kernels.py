@@ -527,9 +527,6 @@ def _upper_inverse(a, n):
 def lu_inverse(a, n, ipiv, work):
     """Inverse of ``a[:n, :n]`` in place, bit for bit ``numpy.linalg.inv`` on OpenBLAS (getrf + getri), n <= 9.
 
-    Compiled without numba's runtime (it allocates nothing): a per-sample call then counts no references to its
-    arrays (atomic operations dearer than the arithmetic of a small inverse).
-
     ``ipiv`` (n,) int and ``work`` (n,) float are scratch. Returns 0, or j + 1 if pivot j is exactly
     zero (singular; ``a`` is then garbage). Unblocked getri: ``inv(A) inv(L) = inv(U)`` column by
     column from the last, then the column swaps.

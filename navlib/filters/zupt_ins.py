@@ -638,8 +638,8 @@ def _filter_kernel(samples, s0, c):
     x, P = np.zeros(15), np.diag(s0.p0_diag)
     ws = _work(c)
     w_k, f_k, C, C_dt, f_dt, q_k = ws.w_k, ws.f_k, ws.C, ws.C_dt, ws.f_dt, ws.q_k
-    q_rate, earth_consts, w_sum, predict = c.q_rate, c.earth_consts, ws.w_sum, ws.predict  # out of the loop: a
-    # record's array read per sample counts a reference (an atomic operation)
+    # read before the loop: a record's array read per sample counts a reference (navlib._kernels)
+    q_rate, earth_consts, w_sum, predict = c.q_rate, c.earth_consts, ws.w_sum, ws.predict
     n_sum, n_rejected = 0, 0  # static samples summed, ZUPTs rejected in this stance
     hb, vb, tracking, t_baro, n_baro_rejected = 0.0, 0.0, False, 0.0, 0
     _store(0, lla_out, vel_out, q_out, b_out, p_out, lla, vel, q, b, P)
