@@ -46,7 +46,7 @@ from numba import njit
 from numpy.typing import NDArray
 
 from .. import analysis, attitude
-from .._kernels import NO_RUNTIME, fma
+from .._kernels import fma
 from .._typing import Array, ArrayLike, Dcm, Vec3, Vec3Series
 from .._validate import as_array, as_dcm, imu_samples, interval, positive, scalar
 from ..imu import ImuSamples, unpack
@@ -211,7 +211,7 @@ def _transition_into(out, A, C_dt, f_dt, dt):
             out[i, j] = A[i, j] + 0.0
 
 
-@njit(cache=True, **NO_RUNTIME)
+@njit(cache=True)
 def error_state_predict_into(P, C_dt, f_dt, dt, q, work):
     """``P = Phi P Phi^T + diag(q)`` (symmetrised) in place, ``Phi = I + F dt``; compiled, unvalidated.
 
