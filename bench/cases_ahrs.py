@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+from numba import njit
 
 from bench.run import Result, best_time, best_times
 from navlib import attitude, earth
@@ -59,9 +60,10 @@ def _fusion_loop(w, f, m, m_peer: int):
     return fusion_loop
 
 
-def _with_peers(case: str, navlib_run, w, f, m, q0, n: int, m_peer: int) -> tuple[float, list[Result]]:
-    """navlib's best time (alternating with imufusion's, see best_times) and the peers' rows."""
-    t, t_fusion = best_times(navlib_run, _fusion_loop(w, f, m, m_peer))
+def _with_peers(case: str, navlib_run, w, f, m, q0, n: int, m_peer: int, bound=None) -> tuple[float, float | None, list[Result]]:
+    """navlib's best time and that of ``bound`` (None: not timed), alternating with imufusion's (see best_times),
+    and the peers' rows."""
+    t, t_bound, t_fusion = best_times(navlib_run, bound, _fusion_loop(w, f, m, m_peer))
     rows = _ahrs_rows(case, w, f, m, q0, n, m_peer)
     if t_fusion is not None:
         rows.append(
@@ -74,20 +76,80 @@ def _with_peers(case: str, navlib_run, w, f, m, q0, n: int, m_peer: int) -> tupl
                 note=f"timed on {m_peer} samples",
             )
         )
-    return t, rows
+    return t, t_bound, rows
+
+
+@njit(cache=True)
+def _mahony_bound(w, f, m, q_init, dt, kp, ki, q_out):
+    """Mahony's MARG update on clean samples and nothing else: normalise the accelerometer and magnetometer,
+    the error of Eqs. (12)-(14), the PI rate (Eq. 15), the first-order update and normalisation (Eq. 17),
+    store. No screening, gates, fault branches or records: the latency bound of one filter on this CPU,
+    the dependent chain q -> C(q) -> e -> w -> q of each sample plus its loads and stores."""
+    q0, q1, q2, q3 = q_init[0], q_init[1], q_init[2], q_init[3]
+    ix = iy = iz = 0.0
+    for k in range(w.shape[0]):
+        sa = 1.0 / np.sqrt(f[k, 0] * f[k, 0] + f[k, 1] * f[k, 1] + f[k, 2] * f[k, 2])
+        sm = 1.0 / np.sqrt(m[k, 0] * m[k, 0] + m[k, 1] * m[k, 1] + m[k, 2] * m[k, 2])
+        ax, ay, az, mx, my, mz = f[k, 0] * sa, f[k, 1] * sa, f[k, 2] * sa, m[k, 0] * sm, m[k, 1] * sm, m[k, 2] * sm
+        C11, C12, C13 = q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3, 2 * (q1 * q2 - q0 * q3), 2 * (q1 * q3 + q0 * q2)
+        C21, C22, C23 = 2 * (q1 * q2 + q0 * q3), q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3, 2 * (q2 * q3 - q0 * q1)
+        C31, C32, C33 = 2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3
+        hx, hy, hz = C11 * mx + C12 * my + C13 * mz, C21 * mx + C22 * my + C23 * mz, C31 * mx + C32 * my + C33 * mz
+        bn = np.sqrt(hx * hx + hy * hy)
+        vx, vy, vz = bn * C21 + hz * C31, bn * C22 + hz * C32, bn * C23 + hz * C33
+        ex = ay * C33 - az * C32 + my * vz - mz * vy
+        ey = az * C31 - ax * C33 + mz * vx - mx * vz
+        ez = ax * C32 - ay * C31 + mx * vy - my * vx
+        ix, iy, iz = ix + ex * dt, iy + ey * dt, iz + ez * dt
+        wx, wy, wz = w[k, 0] + kp * ex + ki * ix, w[k, 1] + kp * ey + ki * iy, w[k, 2] + kp * ez + ki * iz
+        c = 0.5 * dt
+        q0, q1, q2, q3 = (
+            q0 + c * (-q1 * wx - q2 * wy - q3 * wz),
+            q1 + c * (q0 * wx + q2 * wz - q3 * wy),
+            q2 + c * (q0 * wy - q1 * wz + q3 * wx),
+            q3 + c * (q0 * wz + q1 * wy - q2 * wx),
+        )
+        s = 1.0 / np.sqrt(q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
+        q0, q1, q2, q3 = q0 * s, q1 * s, q2 * s, q3 * s
+        q_out[k, 0], q_out[k, 1], q_out[k, 2], q_out[k, 3] = q0, q1, q2, q3
+
+
+BOUND_SHARE = 0.8  # issue 38: one filter, as a user calls it, at >= 80 % of the latency bound
 
 
 def mahony_single(quick: bool):
-    """One Mahony MARG filter over 1 h at 100 Hz (goal: >= 10 M samples/s)."""
+    """One Mahony MARG filter over 1 h at 100 Hz, as a user calls it (validation, screening, gates included),
+    against the latency bound (:func:`_mahony_bound`, same data, timed alternately; goal >= 80 % of it)."""
     n = 36_000 if quick else 360_000
     w, f, m, q0 = _marg_data(n)
     case = "Mahony MARG, 1 filter"
-    t, peers = _with_peers(case, lambda: mh.mahony(ImuSamples(w, f, DT), q0, m_b=m), w, f, m, q0, n, 2_000 if quick else 10_000)
-    return [Result(case, "navlib.filters.mahony.mahony (numba)", n / t, "samples/s", t, goal=10e6)] + peers
+    q_bound = np.empty((n, 4))
+
+    def bound():
+        _mahony_bound(w, f, m, q0, DT, 1.0, 0.02, q_bound)
+
+    def run():
+        return mh.mahony(ImuSamples(w, f, DT), q0, m_b=m)
+
+    bound()
+    assert np.abs(run().q_bn - q_bound).max() < 1e-9, "the bound kernel is not Mahony's filter (to rounding)"
+    t, t_bound, peers = _with_peers(case, run, w, f, m, q0, n, 2_000 if quick else 10_000, bound)
+    return [
+        Result(
+            case,
+            "navlib.filters.mahony.mahony (numba)",
+            n / t,
+            "samples/s",
+            t,
+            goal=BOUND_SHARE * n / t_bound,
+            note=f"{t_bound / t:.0%} of the latency bound; goal: >= {BOUND_SHARE:.0%} of it",
+        ),
+        Result(case, "latency bound (minimal kernel, bench)", n / t_bound, "samples/s", t_bound, note="Mahony's chain only"),
+    ] + peers
 
 
 def mahony_batch(quick: bool):
-    """A batch of Mahony filters, trials over the cores (goal: >= 1.8 x one filter's throughput, this run).
+    """A batch of Mahony filters, trials over the cores (goal: >= 1.9 x one filter's throughput, this run).
 
     The batch and one filter (its first trial) are timed alternately, best of five rounds each."""
     trials, n = (8, 36_000) if quick else (32, 180_000)
@@ -103,18 +165,18 @@ def mahony_batch(quick: bool):
             trials * n / t,
             "samples/s",
             t,
-            goal=1.8 * single,
-            note=f"aggregate over the batch; goal: >= 1.8x one filter on 2 cores ({single:.3g} samples/s, this run)",
+            goal=1.9 * single,
+            note=f"aggregate over the batch; goal: >= 1.9x one filter on 2 cores ({single:.3g} samples/s, this run)",
         )
     ]
 
 
 def quaternion_kf(quick: bool):
-    """The paper's PI + quaternion KF (4 states, 6 measurements) against ahrs's EKF and imufusion."""
+    """The paper's PI + quaternion KF (4 states, 6 measurements) against ahrs's EKF and imufusion (goal >= 3x it)."""
     n = 36_000 if quick else 360_000
     w, f, m, q0 = _marg_data(n, seed=2)
     case = "quaternion KF (PI + KF)"
-    t, peers = _with_peers(
+    t, _, peers = _with_peers(
         case, lambda: qkf.quaternion_kf(ImuSamples(w, f, DT), q0, m_b=m, B_n=B_N), w, f, m, q0, n, 1_000 if quick else 5_000
     )
     fusion = next((r.throughput for r in peers if r.implementation.startswith("imufusion")), None)
@@ -125,8 +187,8 @@ def quaternion_kf(quick: bool):
             n / t,
             "samples/s",
             t,
-            goal=fusion,
-            note="goal: >= 1x imufusion, this run" if fusion else "",
+            goal=3 * fusion if fusion else None,
+            note="goal: >= 3x imufusion, this run" if fusion else "",
         )
     ] + peers
 

@@ -12,7 +12,7 @@ from navlib.papers import gauss_kruger_ekf as planar
 
 
 def gauss_kruger(quick: bool):
-    """Forward GK (CGCS2000, 3° zone 40) of random points in the zone at 0-70° N; goal 3x pyproj."""
+    """Forward GK (CGCS2000, 3° zone 40) of random points in the zone at 0-70° N; goal 5x pyproj (issue 38)."""
     n = 100_000 if quick else 1_000_000
     rng = np.random.default_rng(10)
     lat, lon = rng.uniform(0.0, 70.0, n), rng.uniform(118.5, 121.5, n)
@@ -29,8 +29,8 @@ def gauss_kruger(quick: bool):
     t_nav, t_proj = best_times(navlib_run, None if proj is None else lambda: proj.transform(lon, lat))
     rows = [Result("Gauss-Kruger forward, 3° zone", "navlib.geodesy (numba series)", n / t_nav, "points/s", t_nav)]
     if t_proj is not None:
-        rows[0].goal = 3 * n / t_proj
-        rows[0].note = "goal: ≥ 3× pyproj, this run"
+        rows[0].goal = 5 * n / t_proj
+        rows[0].note = "goal: ≥ 5× pyproj, this run"
         rows.append(Result("Gauss-Kruger forward, 3° zone", "pyproj (PROJ tmerc)", n / t_proj, "points/s", t_proj))
     return rows
 

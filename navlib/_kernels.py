@@ -12,6 +12,13 @@ compiled kernel calls the primitive (e.g. :func:`kalman_update`), never the publ
 The per-sample quaternion helpers (:func:`quat_mult_t`, :func:`rotvec_to_quat_t`, :func:`quat_to_dcm_t`, ...)
 are the compiled twins of :mod:`navlib.attitude`'s vectorised functions; this module imports no other
 navlib module.
+
+Reference counts: numba counts a reference to each array a compiled function receives, unpacks from a tuple or
+record, or slices, unless it can prove the count is released on every path (a function that may raise, e.g.
+divide, or that calls one that is not inlined, keeps them). Each count is an atomic operation, dearer than a
+small product. Per-sample code therefore reads a record's arrays once, before its loop, and the per-sample
+steps that allocate nothing are compiled without numba's runtime (:data:`NO_RUNTIME`: no counts at all), e.g.
+:func:`lu_inverse`, :func:`nav_step`.
 """
 
 from __future__ import annotations
@@ -21,12 +28,17 @@ import math
 import os
 import time
 from fractions import Fraction
+from typing import Any
 
 import numpy as np
 from llvmlite import ir
 from numba import njit, types
 from numba.core import event
 from numba.extending import intrinsic, overload
+
+NO_RUNTIME: dict[str, Any] = {"_nrt": False}
+"""``njit`` options of a per-sample step that allocates nothing: compiled without numba's runtime, so that it counts
+no references to its arrays (module docstring)."""
 
 
 class CompileLog(event.Listener):
@@ -355,7 +367,7 @@ def quat_to_dcm_1(q):
     return C
 
 
-@njit(cache=True)
+@njit(cache=True, **NO_RUNTIME)
 def nav_step(lla, vel, q, w, f, dt, earth_consts, hold_height=False):
     """One ENU strapdown step updating ``lla``, ``vel``, ``q`` in place; :func:`navlib.strapdown.nav_step` unvalidated.
 
@@ -460,7 +472,7 @@ def _dot_row_col(a, i, j, L):
     return t1 + t2
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _lu(a, n, ipiv, work):
     """LU factors of ``a[:n, :n]`` with partial pivoting, in place (LAPACK getf2, left-looking, as OpenBLAS).
 
@@ -496,7 +508,7 @@ def _lu(a, n, ipiv, work):
     return info
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _upper_inverse(a, n):
     """Inverse of the upper triangle of ``a[:n, :n]`` in place (LAPACK trti2, as OpenBLAS: trmv by axpy)."""
     for j in range(n):
@@ -511,7 +523,7 @@ def _upper_inverse(a, n):
             a[r, j] *= -ajj
 
 
-@njit(cache=True)
+@njit(cache=True, **NO_RUNTIME)
 def lu_inverse(a, n, ipiv, work):
     """Inverse of ``a[:n, :n]`` in place, bit for bit ``numpy.linalg.inv`` on OpenBLAS (getrf + getri), n <= 9.
 

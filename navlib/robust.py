@@ -63,7 +63,7 @@ import numpy as np
 from numba import njit
 from numpy.typing import NDArray
 
-from ._kernels import stuck_runs
+from ._kernels import NO_RUNTIME, stuck_runs
 from ._threads import run_chunks
 from ._typing import Array, ArrayLike, Vec3Series
 from ._validate import (
@@ -585,9 +585,12 @@ def screen(imu: Is[ImuSamples], m_b: Vec3Series | None = None) -> Screened:
     flags[6] &= ~flags[5]  # a spike is a spike, not free fall
     held, fresh = np.empty_like(wf), np.empty((T, n), dtype=bool)
     run_chunks(lambda t0, t1: _gyro_hold(t0, t1, wf, flags, stuck_axes, lim.gyro_jump or 0.0, held, fresh), T)
+    counts = np.zeros((len(_KEYS), T), dtype=np.int64)
+    run_chunks(lambda t0, t1: _count_flags(t0, t1, flags, counts), T)  # (a numpy count over a batch is serial)
     keys = _KEYS if m_b is not None else [key for key in _KEYS if key[0] != "mag"]
     found = {key: flags[_KEYS.index(key)].reshape(lead + (n,)) for key in keys}
-    report = FaultReport({key: v.sum(-1) for key, v in found.items()}, found)
+    counted = {key: counts[_KEYS.index(key)].reshape(lead) for key in keys}
+    report = FaultReport({key: c if lead else c[()] for key, c in counted.items()}, found)
     return Screened(imu, held.reshape(w.shape), fresh.reshape(lead + (n,)), m_b, dts, typical, max_dt, report)
 
 
@@ -607,6 +610,17 @@ _KEYS = [
 """What :func:`screen` flags, in the order of its flag array."""
 
 
+@njit(cache=True, nogil=True, **NO_RUNTIME)
+def _count_flags(t0, t1, flags, counts):
+    """``counts[:, t] = flags[:, t].sum(-1)`` for trials t0 to t1 - 1 of ``flags`` (K, T, N)."""
+    for key in range(flags.shape[0]):
+        for t in range(t0, t1):
+            c = 0
+            for k in range(flags.shape[2]):
+                c += flags[key, t, k]
+            counts[key, t] = c
+
+
 def _freefall_runs(low: np.ndarray, dts: np.ndarray, min_time: float) -> None:
     """Keep, in place, only the runs of ``low`` (T, N) samples whose intervals sum to at least ``min_time``."""
     for t in np.flatnonzero(low.any(-1)):
@@ -616,7 +630,7 @@ def _freefall_runs(low: np.ndarray, dts: np.ndarray, min_time: float) -> None:
                 low[t, a:b] = False
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, **NO_RUNTIME)
 def _scan(t0, t1, w, f, m, dts, tests, flags, turn, stuck_axes):
     """Trials t0 to t1 - 1 of the samples ``w``, ``f`` (T, N, 3) and ``m`` ((T, N, 3), or (1, 1, 3): none):
     every flag of :data:`_KEYS` into ``flags`` (K, T, N), but for free fall the samples of low norm (the

@@ -281,17 +281,25 @@ def earth_constants(ellipsoid: earth.Ellipsoid = earth.WGS84) -> np.ndarray:
 @njit(cache=True)
 def _nav_kernel(lla0, vel0, q0, w, f, dt, earth_consts, hold_height):
     T, N = w.shape[0], w.shape[1]
-    per_sample = dt.shape[0] > 1
     lla = np.empty((T, N + 1, 3))
     vel = np.empty((T, N + 1, 3))
     q = np.empty((T, N + 1, 4))
     for t in range(T):
-        lla_k, v_k, q_k = lla0[t].copy(), vel0[t].copy(), q0[t].copy()
-        _store(lla[t, 0], vel[t, 0], q[t, 0], lla_k, v_k, q_k)
-        for k in range(N):
-            _kernels.nav_step(lla_k, v_k, q_k, w[t, k], f[t, k], dt[k if per_sample else 0], earth_consts, hold_height)
-            _store(lla[t, k + 1], vel[t, k + 1], q[t, k + 1], lla_k, v_k, q_k)
+        _store(lla[t, 0], vel[t, 0], q[t, 0], lla0[t], vel0[t], q0[t])
+        _nav_trial(t, w, f, dt, earth_consts, hold_height, lla, vel, q)
     return lla, vel, q
+
+
+@njit(cache=True, **_kernels.NO_RUNTIME)
+def _nav_trial(t, w, f, dt, earth_consts, hold_height, lla, vel, q):
+    """Trial t: each epoch's state is the previous one's, copied forward and stepped in place (row views of the
+    outputs, free without numba's runtime; with it, each would count a reference)."""
+    per_sample = dt.shape[0] > 1
+    for k in range(w.shape[1]):
+        _store(lla[t, k + 1], vel[t, k + 1], q[t, k + 1], lla[t, k], vel[t, k], q[t, k])
+        _kernels.nav_step(
+            lla[t, k + 1], vel[t, k + 1], q[t, k + 1], w[t, k], f[t, k], dt[k if per_sample else 0], earth_consts, hold_height
+        )
 
 
 @njit(cache=True)

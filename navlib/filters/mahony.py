@@ -82,7 +82,8 @@ def _trial(t, inp, kp, ki, q_out, bias_out, counts):
         q0, q1, q2, q3 = q0 + 0.5 * dt * d0, q1 + 0.5 * dt * d1, q2 + 0.5 * dt * d2, q3 + 0.5 * dt * d3
         s = 1.0 / np.sqrt(q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
         q0, q1, q2, q3 = q0 * s, q1 * s, q2 * s, q3 * s
-        q0, q1, q2, q3, _ = relock(inp, t, k, q0, q1, q2, q3, check, rtk, health)  # after a jump: only if the state is lost
+        if check[0]:  # after a clock jump: re-initialised only if the state is lost
+            q0, q1, q2, q3, _ = relock(inp, t, k, q0, q1, q2, q3, check, rtk, health)
         q_out[t, k, 0], q_out[t, k, 1], q_out[t, k, 2], q_out[t, k, 3] = q0, q1, q2, q3
     bias_out[t, 0], bias_out[t, 1], bias_out[t, 2] = -ki * ix, -ki * iy, -ki * iz
 

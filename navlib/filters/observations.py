@@ -45,7 +45,7 @@ import numpy as np
 from numba import njit
 
 from .. import attitude, earth
-from .._kernels import dcm_heading, euler_to_quat, level, tilt_heading, wrap_pi
+from .._kernels import NO_RUNTIME, dcm_heading, euler_to_quat, level, tilt_heading, wrap_pi
 from .._threads import run_chunks
 from .._typing import Array, ArrayLike, Quat, Vec3
 from .._validate import (
@@ -389,7 +389,9 @@ def relock(inp, t, k, q0, q1, q2, q3, state, rtk, health):
 
     ``state = [checking (1/0), samples in the window, sum of the unit accelerometer (3), of the unit magnetometer (3),
     magnetometer samples, last valid RTK heading in the window (NaN: none)]`` (10 values; a jump sets ``state[0] = 1``
-    and clears the rest: :func:`start_relock`). Returns ``(q0, q1, q2, q3, re-initialised)``.
+    and clears the rest: :func:`start_relock`). Returns ``(q0, q1, q2, q3, re-initialised)``. Callers test
+    ``state[0]`` first: a call passing ``inp`` counts a reference to each of its arrays (atomic operations costing more
+    than a filter's arithmetic), not to be paid per sample.
     """
     if state[0] == 0.0:
         return q0, q1, q2, q3, False
@@ -724,7 +726,9 @@ def pack(
         long_hold,
         SETTLE_TIME_CONSTANTS / kp if kp > 0 else 0.0,
     )
-    return lead, inputs, FaultReport({key: v.sum(-1) for key, v in found.items()}, found)
+    counted = s.faults.counts  # the screen's counts of its own flags; the gates' flags counted here
+    counts = {key: counted[key] if found[key] is flags.get(key) else np.count_nonzero(v, axis=-1) for key, v in found.items()}
+    return lead, inputs, FaultReport(counts, found)
 
 
 def _still(w: np.ndarray, f: np.ndarray, g: float) -> np.ndarray:
@@ -734,13 +738,13 @@ def _still(w: np.ndarray, f: np.ndarray, g: float) -> np.ndarray:
     return np.ascontiguousarray((rate < STILL_RATE) & (np.abs(norm - g) < STILL_ACCEL * g))
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, **NO_RUNTIME)
 def _gate(t0, t1, f, m, skip_f, skip_m, limits, z, codes):
     """Trials t0 to t1 - 1: the unit accelerometer and magnetometer vectors of ``f`` and ``m`` (T, N, 3; ``m``
     (1, 1, 3): none) into ``z`` (T, N, 6), NaN where skipped, with their codes in ``codes`` (2, T, N): 0 used,
     1 unusable, 2 outside the norm and dip-angle gates ``limits`` (see :func:`pack`), 3 skipped by the screen
     (``skip_f``, ``skip_m``)."""
-    nan, use_mag = np.nan, m.shape[1] == f.shape[1]
+    nan, use_mag, mag_limits = np.nan, m.shape[1] == f.shape[1], limits[2:]
     for t in range(t0, t1):
         for k in range(f.shape[1]):
             ax, ay, az, ca = _accel_obs(f[t, k, 0], f[t, k, 1], f[t, k, 2], limits[0], limits[1])
@@ -748,7 +752,7 @@ def _gate(t0, t1, f, m, skip_f, skip_m, limits, z, codes):
             mx = my = mz = nan
             cm = 1
             if use_mag:
-                mx, my, mz, cm = _mag_obs(m[t, k, 0], m[t, k, 1], m[t, k, 2], ax, ay, az, ca, limits[2:])
+                mx, my, mz, cm = _mag_obs(m[t, k, 0], m[t, k, 1], m[t, k, 2], ax, ay, az, ca, mag_limits)
                 cm = 3 if skip_m[t, k] else cm
             codes[0, t, k], codes[1, t, k] = ca, cm
             z[t, k, 0], z[t, k, 1], z[t, k, 2] = (ax, ay, az) if ca == 0 else (nan, nan, nan)

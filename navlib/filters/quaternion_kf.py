@@ -33,7 +33,7 @@ import numpy as np
 from numba import njit
 
 from .. import _kernels
-from .._kernels import fma
+from .._kernels import NO_RUNTIME, fma
 from .._typing import Array, Quat, Vec3, Vec3Series
 from .._validate import Flag, Is, Positive, Step, as_array, as_quat, boundary, broadcast, fields_checked, flag, scalar
 from ..imu import ImuSamples
@@ -97,7 +97,7 @@ class _Model(NamedTuple):
     linear_innovation: bool  # the printed z - H q (erratum E003-12), for its demonstration only
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **NO_RUNTIME)
 def _phi_into(Phi, wx, wy, wz, dt):
     """Eq. (17): Phi = I + dt/2 Omega(w)."""
     c = 0.5 * dt
@@ -107,7 +107,7 @@ def _phi_into(Phi, wx, wy, wz, dt):
     Phi[3, 0], Phi[3, 1], Phi[3, 2], Phi[3, 3] = c * wz, c * wy, -c * wx, 1.0
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **NO_RUNTIME)
 def _gamma_into(G, q, dt):
     """Eq. (18) corrected: Gamma = dt/2 Xi(q)."""
     c = 0.5 * dt
@@ -118,7 +118,7 @@ def _gamma_into(G, q, dt):
     G[3, 0], G[3, 1], G[3, 2] = -c * q2, c * q1, c * q0
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **NO_RUNTIME)
 def _h_into(h, q, by, bz):
     """Eqs. (4), (6) corrected: h(q) = [C_nb [0,0,1]; C_nb [0, by, bz]]."""
     q0, q1, q2, q3 = q[0], q[1], q[2], q[3]
@@ -130,7 +130,7 @@ def _h_into(h, q, by, bz):
     h[5] = 2 * (q2 * q3 - q0 * q1) * by + (q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3) * bz
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **NO_RUNTIME)
 def _jacobian_into(H, q, by, bz):
     """Eq. (20) with the corrected H44 = 2(q0 by + q1 bz)."""
     q0, q1, q2, q3 = q[0], q[1], q[2], q[3]
@@ -247,7 +247,7 @@ def noise_input(q: Quat, dt: Step) -> Array:
     return dt / 2 * np.stack([np.stack(r, -1) for r in rows], -2)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, **NO_RUNTIME)
 def _output(t, k, x, P, q_out, P_hist, keep):
     q_out[t, k, 0], q_out[t, k, 1], q_out[t, k, 2], q_out[t, k, 3] = x[0], x[1], x[2], x[3]
     if keep:
@@ -270,7 +270,11 @@ def _copy4(dst, src):
 # products go through BLAS: each product element is the fused chain over k = 0, 1, ... of
 # OpenBLAS's small-matrix kernels, a matrix-vector product is summed as OpenBLAS's gemv does, and
 # the inverse is _kernels.lu_inverse. Written out here, the per-sample cost is arithmetic, not library
-# calls and temporary arrays.
+# calls and temporary arrays. Nor reference counts: numba counts a reference to each array argument of a
+# function (an atomic operation, dearer than a 4 x 4 product) unless it can prove the function never
+# raises, so the per-sample steps take their arrays directly (never a tuple or record to unpack) and are
+# compiled without numba's runtime (``_kernels.NO_RUNTIME``: they allocate nothing, and count nothing); each step is
+# compiled for 6 and for 3 rows (constant sizes: unrolled loops).
 
 
 @njit(cache=True, inline="always")
@@ -323,15 +327,35 @@ def _symmetrise(P, A, n):
 
 @njit(cache=True)
 def _workspace():
-    """Scratch of :func:`_predict` and :func:`_update`: six (6, 6) matrices, three (6,) vectors, two (6,) indices."""
-    mats = (np.empty((6, 6)), np.empty((6, 6)), np.empty((6, 6)), np.empty((6, 6)), np.empty((6, 6)), np.empty((6, 6)))
-    return mats, (np.empty(6), np.empty(6), np.empty(6)), (np.empty(6, np.int64), np.empty(6, np.int64))
+    """Scratch of the Kalman steps, one flat tuple: (6, 6) matrices ``Hs, PHt, S, K, A, B``, (6,) vectors ``ys, v,
+    work`` and (6,) indices ``rows, ipiv``. The per-sample loop unpacks it once and hands the steps its arrays
+    (see the note on reference counts above)."""
+    return (
+        np.empty((6, 6)),
+        np.empty((6, 6)),
+        np.empty((6, 6)),
+        np.empty((6, 6)),
+        np.empty((6, 6)),
+        np.empty((6, 6)),
+        np.empty(6),
+        np.empty(6),
+        np.empty(6),
+        np.empty(6, np.int64),
+        np.empty(6, np.int64),
+    )
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _predict(x, P, Phi, G, q_gyro, ws):
-    """Eqs. (16)-(18) in place: ``x = Phi x``, ``P = sym(Phi P Phi^T + Gamma Q Gamma^T)``, ``Q = q_gyro I``."""
-    (A, B, C, D, _, _), (v, _, _), _ = ws
+    """Eqs. (16)-(18) in place: ``x = Phi x``, ``P = sym(Phi P Phi^T + Gamma Q Gamma^T)``, ``Q = q_gyro I``
+    (scratch ``ws`` of :func:`_workspace`)."""
+    _, _, S, K, A, B, _, v, _, _, _ = ws
+    _predict_step(x, P, Phi, G, q_gyro, A, B, S, K, v)
+
+
+@njit(cache=True, **NO_RUNTIME)
+def _predict_step(x, P, Phi, G, q_gyro, A, B, C, D, v):
+    """:func:`_predict` with its scratch matrices ``A, B, C, D`` and vector ``v``."""
     for i in range(4):
         for j in range(3):
             A[i, j] = G[i, j] * q_gyro + 0.0  # Gamma Q: the zeros of Q add +0
@@ -346,14 +370,21 @@ def _predict(x, P, Phi, G, q_gyro, ws):
     _symmetrise(P, D, 4)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _update(x, P, z, h, H, r_diag, ws):
-    """Joseph update of ``x``, ``P`` in place with the finite rows of ``z`` (R diagonal, ``r_diag``).
+    """Joseph update of ``x``, ``P`` in place with the finite rows of ``z`` (R diagonal, ``r_diag``; scratch ``ws``
+    of :func:`_workspace`). The rows come in threes (accelerometer, heading reference): 6, 3 or none."""
+    Hs, PHt, S, K, A, B, ys, v, work, rows, ipiv = ws
+    m = _select_rows(z, h, H, Hs, ys, rows)
+    if m:
+        _gain(P, r_diag, rows, m, Hs, PHt, S, K, ipiv, work)
+        _correct(x, P, r_diag, rows, m, Hs, K, ys, A, B, S, v)
 
-    The rows come in threes (accelerometer, heading reference): the update is compiled for 6 and for
-    3 rows, all its loops unrolled.
-    """
-    (Hs, _, _, _, _, _), (ys, _, _), (rows, _) = ws
+
+@njit(cache=True, **NO_RUNTIME)
+def _select_rows(z, h, H, Hs, ys, rows):
+    """The finite rows of ``z``: their indices into ``rows``, innovations ``z - h`` into ``ys``, Jacobian rows into
+    ``Hs``; returns their number."""
     m = 0
     for r in range(6):
         if np.isfinite(z[r]):
@@ -363,16 +394,12 @@ def _update(x, P, z, h, H, r_diag, ws):
         ys[a] = z[rows[a]] - h[rows[a]]
         for k in range(4):
             Hs[a, k] = H[rows[a], k]
-    if m == 6:
-        _joseph(x, P, r_diag, ws, 6)
-    elif m == 3:
-        _joseph(x, P, r_diag, ws, 3)
+    return m
 
 
 @njit(cache=True, inline="always")
-def _joseph(x, P, r_diag, ws, m):
-    """:func:`_update` with its m rows selected (``Hs``, ``ys``, ``rows`` of ``ws``)."""
-    (Hs, PHt, S, K, A, B), (ys, v, work), (rows, ipiv) = ws
+def _gain_m(P, r_diag, rows, m, Hs, PHt, S, K, ipiv, work):
+    """Kalman gain ``K = P H^T S^-1`` of the m selected rows, with ``PHt = P H^T`` (``S`` holds ``S^-1`` after)."""
     _mm_t(PHt, P, Hs, 4, 4, m)  # P H^T
     _mm(S, Hs, PHt, m, 4, m)
     for a in range(m):
@@ -383,6 +410,11 @@ def _joseph(x, P, r_diag, ws, m):
             S[a, b] = S[b, a] = (S[a, b] + S[b, a]) / 2
     _kernels.lu_inverse(S, m, ipiv, work)  # S^-1 (S is symmetric positive definite)
     _mm(K, PHt, S, 4, m, m)  # gain
+
+
+@njit(cache=True, inline="always")
+def _correct_m(x, P, r_diag, rows, m, Hs, K, ys, A, B, S, v):
+    """``x += K y`` and the Joseph form ``P = sym((I - K H) P (I - K H)^T + K R K^T)`` (scratch ``A, B, S, v``)."""
     _mm(A, K, Hs, 4, m, 4)
     for i in range(4):
         for j in range(4):
@@ -401,6 +433,24 @@ def _joseph(x, P, r_diag, ws, m):
     _symmetrise(P, S, 4)
 
 
+@njit(cache=True, **NO_RUNTIME)
+def _gain(P, r_diag, rows, m, Hs, PHt, S, K, ipiv, work):
+    """:func:`_gain_m` for m = 6 or 3 rows."""
+    if m == 6:
+        _gain_m(P, r_diag, rows, 6, Hs, PHt, S, K, ipiv, work)
+    else:
+        _gain_m(P, r_diag, rows, 3, Hs, PHt, S, K, ipiv, work)
+
+
+@njit(cache=True, **NO_RUNTIME)
+def _correct(x, P, r_diag, rows, m, Hs, K, ys, A, B, S, v):
+    """:func:`_correct_m` for m = 6 or 3 rows."""
+    if m == 6:
+        _correct_m(x, P, r_diag, rows, 6, Hs, K, ys, A, B, S, v)
+    else:
+        _correct_m(x, P, r_diag, rows, 3, Hs, K, ys, A, B, S, v)
+
+
 @njit(cache=True, nogil=True)
 def _kernel(t0, t1, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
     """Trials t0 to t1 - 1 of ``inp`` (:class:`~navlib.filters.observations.AttitudeInputs`); ``model``: :class:`_Model`."""
@@ -410,7 +460,8 @@ def _kernel(t0, t1, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
 
 @njit(cache=True)
 def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
-    w, dts, b_ref, sigmas = inp.w, inp.dts, model.b_ref, model.sigmas
+    # Arrays are taken out of the records and the scratch tuple once, before the loop (see _workspace).
+    w, dts, jump, fresh, z_in, b_ref, sigmas = inp.w, inp.dts, inp.jump, inp.fresh, inp.z, model.b_ref, model.sigmas
     N = w.shape[1]
     keep = P_hist.shape[1] == N
     sg, sa, sm = sigmas[0], sigmas[1], sigmas[2]
@@ -419,38 +470,42 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
     P = model.p0 * np.eye(4)
     r_diag = np.array([sa * sa, sa * sa, sa * sa, sm * sm, sm * sm, sm * sm])
     Phi, G, z, h, H = np.empty((4, 4)), np.empty((4, 3)), np.empty(6), np.empty(6), np.empty((6, 4))
-    ws = _workspace()
+    Hs, PHt, S, K, A, B, ys, v, work, rows, ipiv = _workspace()
     rtk = np.array([0.0, 1.0, 0.0, np.inf, 0.0, 0.0])
     health = np.array([0.0, np.inf])
     check = np.zeros(10)
     ix = iy = iz = 0.0
     for k in range(N):
         dt, gx, gy, gz = dts[k], w[t, k, 0], w[t, k, 1], w[t, k, 2]
-        if inp.jump[k]:  # clock jump: one typical interval, then check
+        if jump[k]:  # clock jump: one typical interval, then check
             dt = jump_step(inp, check, rtk, health)
-        ax, ay, az, mx, my, mz, C = observe(inp.z, t, k, x[0], x[1], x[2], x[3])
+        ax, ay, az, mx, my, mz, C = observe(z_in, t, k, x[0], x[1], x[2], x[3])
         if inp.use_rtk:
             mx, my, mz = rtk_north(inp, t, k, C, dt, rtk, counts)
         ex, ey, ez = pi_error(C, ax, ay, az, mx, my, mz)  # PI-corrected rate, Eq. (15)
-        if learning(inp.fresh[t, k], dt, health, inp):  # Eq. (15), unless settling after a fault
+        if learning(fresh[t, k], dt, health, inp):  # Eq. (15), unless settling after a fault
             ix += ex * dt
             iy += ey * dt
             iz += ez * dt
         _phi_into(Phi, gx + kp * ex + ki * ix, gy + kp * ey + ki * iy, gz + kp * ez + ki * iz, dt)
         _gamma_into(G, x, dt)
-        _predict(x, P, Phi, G, sg * sg, ws)  # Eqs. (16)-(18)
+        _predict_step(x, P, Phi, G, sg * sg, A, B, S, K, v)  # Eqs. (16)-(18)
         z[0], z[1], z[2], z[3], z[4], z[5] = ax, ay, az, mx, my, mz  # NaN rows: skipped
         _jacobian_into(H, x, by, bz)  # Eq. (20)
         if model.linear_innovation:
             _mat_vec(h, H, x, 6, 4)  # printed Eq. (19): wrong (E003-12)
         else:
             _h_into(h, x, by, bz)  # z - h(q), Eq. (19) corrected
-        _update(x, P, z, h, H, r_diag, ws)
+        m = _select_rows(z, h, H, Hs, ys, rows)  # the update of _update, its scratch unpacked above
+        if m:
+            _gain(P, r_diag, rows, m, Hs, PHt, S, K, ipiv, work)
+            _correct(x, P, r_diag, rows, m, Hs, K, ys, A, B, S, v)
         s = np.sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2] + x[3] * x[3])
         x[0], x[1], x[2], x[3] = x[0] / s, x[1] / s, x[2] / s, x[3] / s
-        x[0], x[1], x[2], x[3], lost = relock(inp, t, k, x[0], x[1], x[2], x[3], check, rtk, health)
-        if lost:  # re-initialised after a jump: covariance back to p0 I
-            _copy4(P, model.p0 * np.eye(4))
+        if check[0]:  # after a clock jump: re-initialised only if the state is lost
+            x[0], x[1], x[2], x[3], lost = relock(inp, t, k, x[0], x[1], x[2], x[3], check, rtk, health)
+            if lost:  # covariance back to p0 I
+                _copy4(P, model.p0 * np.eye(4))
         _output(t, k, x, P, q_out, P_hist, keep)
     bias_out[t, 0], bias_out[t, 1], bias_out[t, 2] = -ki * ix, -ki * iy, -ki * iz
     _copy4(P_out[t], P)

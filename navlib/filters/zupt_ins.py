@@ -638,6 +638,8 @@ def _filter_kernel(samples, s0, c):
     x, P = np.zeros(15), np.diag(s0.p0_diag)
     ws = _work(c)
     w_k, f_k, C, C_dt, f_dt, q_k = ws.w_k, ws.f_k, ws.C, ws.C_dt, ws.f_dt, ws.q_k
+    # read before the loop: a record's array read per sample counts a reference (navlib._kernels)
+    q_rate, earth_consts, w_sum, predict = c.q_rate, c.earth_consts, ws.w_sum, ws.predict
     n_sum, n_rejected = 0, 0  # static samples summed, ZUPTs rejected in this stance
     hb, vb, tracking, t_baro, n_baro_rejected = 0.0, 0.0, False, 0.0, 0
     _store(0, lla_out, vel_out, q_out, b_out, p_out, lla, vel, q, b, P)
@@ -647,7 +649,7 @@ def _filter_kernel(samples, s0, c):
         for i in range(3):
             w_k[i] = w[k, i] - b[3 + i]
             f_k[i] = f[k, i] - b[i]
-        _kernels.nav_step(lla, vel, q, w_k, f_k, dtk, c.earth_consts, False)  # the shared mechanisation
+        _kernels.nav_step(lla, vel, q, w_k, f_k, dtk, earth_consts, False)  # the shared mechanisation
         # --- P = Phi P Phi^T + Q, Phi = I + F dt; x = Phi x stays 0 (fed back and reset at each update) ---
         _kernels.quat_to_dcm_into(C, q)
         f_n = _kernels.mat3_vec(C, f_k)
@@ -656,21 +658,21 @@ def _filter_kernel(samples, s0, c):
             for j in range(3):
                 C_dt[i, j] = C[i, j] * dtk
         for i in range(15):
-            q_k[i] = c.q_rate[i] * dtk
+            q_k[i] = q_rate[i] * dtk
         if hold[k] > 0:  # a held sample is a guess: inflate, don't trust
             for i in range(3):
                 if hold[k] & _HOLD_ACCEL:
                     q_k[3 + i] += c.held_accel * c.held_accel * dtk
                 if hold[k] & _HOLD_GYRO:
                     q_k[6 + i] += c.held_gyro * c.held_gyro * dtk
-        error_state_predict_into(P, C_dt, f_dt, dtk, q_k, ws.predict)
+        error_state_predict_into(P, C_dt, f_dt, dtk, q_k, predict)
         if jump[k]:  # Phi = I, Q = 0 above: add the whole interval's noise
             for i in range(15):
-                P[i, i] += c.q_rate[i] * dt[k]
+                P[i, i] += q_rate[i] * dt[k]
         # --- standing still: ZUPT/ZARU every `every` usable samples ---
         if zupt_row[k]:
             for i in range(3):
-                ws.w_sum[i] += w[k, i]
+                w_sum[i] += w[k, i]
             n_sum += 1
             if n_sum >= c.every:
                 # a stance that keeps failing the gate means the INS, not the stance, is wrong
@@ -683,9 +685,9 @@ def _filter_kernel(samples, s0, c):
                 elif status == -1:
                     counts[_ZUPT_REJECTED] += 1
                     n_rejected += 1
-                ws.w_sum[:], n_sum = 0.0, 0
+                w_sum[:], n_sum = 0.0, 0
         elif not static[k]:
-            ws.w_sum[:], n_sum, n_rejected = 0.0, 0, 0
+            w_sum[:], n_sum, n_rejected = 0.0, 0, 0
         # --- barometer: the tracker always, the height aid while walking ---
         if np.isfinite(h_baro[k]):
             hb, vb, tracking, n_baro_rejected, used, event = _track_baro(h_baro[k], hb, vb, tracking, t_baro, n_baro_rejected, c)
