@@ -45,13 +45,17 @@ autodoc_member_order = "bysource"
 autodoc_typehints = "description"
 autodoc_preserve_defaults = True
 # numpy's ArrayLike is a long Union: show the alias names of navlib._typing instead.
-autodoc_type_aliases = {
-    name: f"navlib._typing.{name}"
-    for name in ("ArrayLike", "Array", "Scalar", "Vec3", "Vec3Series", "Quat", "Dcm", "Angles", "Times", "Interval")
-} | {
-    name: f"navlib._validate.{name}"
-    for name in ("Real", "Positive", "NonNegative", "Count", "Flag", "Rng", "Text", "Limit", "Step", "Is")
-} | {"EllipsoidArg": "navlib.earth.EllipsoidArg"}
+autodoc_type_aliases = (
+    {
+        name: f"navlib._typing.{name}"
+        for name in ("ArrayLike", "Array", "Scalar", "Vec3", "Vec3Series", "Quat", "Dcm", "Angles", "Times", "Interval")
+    }
+    | {
+        name: f"navlib._validate.{name}"
+        for name in ("Real", "Positive", "NonNegative", "Count", "Flag", "Rng", "Text", "Limit", "Step", "Is")
+    }
+    | {"EllipsoidArg": "navlib.earth.EllipsoidArg"}
+)
 
 # MathJax 3 from the site's own _static (tools/build_site.py copies it from docs/node_modules, pinned in
 # docs/package.json and installed by `make docs` with npm ci): offline, no CDN. myst-parser adds the

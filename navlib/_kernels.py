@@ -16,9 +16,9 @@ navlib module.
 Reference counts: numba counts a reference to each array a compiled function receives, unpacks from a tuple or
 record, or slices, unless it can prove the count is released on every path (a function that may raise, e.g.
 divide, or that calls one that is not inlined, keeps them). Each count is an atomic operation, dearer than a
-small product. Per-sample code therefore reads a record's arrays once, before its loop, and the per-sample
-steps that allocate nothing are compiled without numba's runtime (:data:`NO_RUNTIME`: no counts at all), e.g.
-:func:`lu_inverse`, :func:`nav_step`.
+small product. Per-sample code therefore reads a record's arrays once, before its loop, and calls per-sample
+steps with arrays, never a tuple or record to unpack. (numba's private option to compile without its runtime would
+remove the counts altogether; navlib uses only numba's public options.)
 """
 
 from __future__ import annotations
@@ -28,17 +28,12 @@ import math
 import os
 import time
 from fractions import Fraction
-from typing import Any
 
 import numpy as np
 from llvmlite import ir
 from numba import njit, types
 from numba.core import event
 from numba.extending import intrinsic, overload
-
-NO_RUNTIME: dict[str, Any] = {"_nrt": False}
-"""``njit`` options of a per-sample step that allocates nothing: compiled without numba's runtime, so that it counts
-no references to its arrays (module docstring)."""
 
 
 class CompileLog(event.Listener):
@@ -367,7 +362,7 @@ def quat_to_dcm_1(q):
     return C
 
 
-@njit(cache=True, **NO_RUNTIME)
+@njit(cache=True)
 def nav_step(lla, vel, q, w, f, dt, earth_consts, hold_height=False):
     """One ENU strapdown step updating ``lla``, ``vel``, ``q`` in place; :func:`navlib.strapdown.nav_step` unvalidated.
 
@@ -523,7 +518,7 @@ def _upper_inverse(a, n):
             a[r, j] *= -ajj
 
 
-@njit(cache=True, **NO_RUNTIME)
+@njit(cache=True)
 def lu_inverse(a, n, ipiv, work):
     """Inverse of ``a[:n, :n]`` in place, bit for bit ``numpy.linalg.inv`` on OpenBLAS (getrf + getri), n <= 9.
 

@@ -280,7 +280,7 @@ def from_dataframe(
     baro: str | None = None,
     axes: str | Dcm | Mapping[str, str | Dcm] = "x,y,z",
     mirror: bool = False,
-    timing: Annotated[str, Check("choice", options=('raise', 'sanitize'))] = "raise",
+    timing: Annotated[str, Check("choice", options=("raise", "sanitize"))] = "raise",
     check_units: Flag = True,
 ) -> Recording:
     """A :class:`Recording` from a table with one row per sample.

@@ -63,7 +63,7 @@ import numpy as np
 from numba import njit
 from numpy.typing import NDArray
 
-from ._kernels import NO_RUNTIME, stuck_runs
+from ._kernels import stuck_runs
 from ._threads import run_chunks
 from ._typing import Array, ArrayLike, Vec3Series
 from ._validate import (
@@ -610,7 +610,7 @@ _KEYS = [
 """What :func:`screen` flags, in the order of its flag array."""
 
 
-@njit(cache=True, nogil=True, **NO_RUNTIME)
+@njit(cache=True, nogil=True)
 def _count_flags(t0, t1, flags, counts):
     """``counts[:, t] = flags[:, t].sum(-1)`` for trials t0 to t1 - 1 of ``flags`` (K, T, N)."""
     for key in range(flags.shape[0]):
@@ -630,7 +630,7 @@ def _freefall_runs(low: np.ndarray, dts: np.ndarray, min_time: float) -> None:
                 low[t, a:b] = False
 
 
-@njit(cache=True, nogil=True, **NO_RUNTIME)
+@njit(cache=True, nogil=True)
 def _scan(t0, t1, w, f, m, dts, tests, flags, turn, stuck_axes):
     """Trials t0 to t1 - 1 of the samples ``w``, ``f`` (T, N, 3) and ``m`` ((T, N, 3), or (1, 1, 3): none):
     every flag of :data:`_KEYS` into ``flags`` (K, T, N), but for free fall the samples of low norm (the

@@ -755,9 +755,7 @@ class BarometerModel:
 
 
 @boundary
-def simulate_barometer(
-    h: ArrayLike, time: Times, model: Is[BarometerModel], rng: Rng, p0: float = atmosphere.P0
-) -> Array:
+def simulate_barometer(h: ArrayLike, time: Times, model: Is[BarometerModel], rng: Rng, p0: float = atmosphere.P0) -> Array:
     """Barometric pressure (Pa) at heights ``h`` (m) with the ISA as truth.
 
     Parameters
@@ -879,9 +877,7 @@ def simulate_gnss_position(
 
 
 @boundary
-def simulate_heading(
-    heading: Angles, rng: Rng, sigma: NonNegative, valid: ArrayLike | None = None
-) -> tuple[Array, np.ndarray]:
+def simulate_heading(heading: Angles, rng: Rng, sigma: NonNegative, valid: ArrayLike | None = None) -> tuple[Array, np.ndarray]:
     """Dual-antenna heading: truth plus white noise, wrapped to [0, 2 pi).
 
     Parameters

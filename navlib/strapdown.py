@@ -290,7 +290,7 @@ def _nav_kernel(lla0, vel0, q0, w, f, dt, earth_consts, hold_height):
     return lla, vel, q
 
 
-@njit(cache=True, **_kernels.NO_RUNTIME)
+@njit(cache=True)
 def _nav_trial(t, w, f, dt, earth_consts, hold_height, lla, vel, q):
     """Trial t: each epoch's state is the previous one's, copied forward and stepped in place (row views of the
     outputs, free without numba's runtime; with it, each would count a reference)."""

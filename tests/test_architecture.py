@@ -9,6 +9,7 @@
 * The deprecated aliases of the old paper modules are imported by nothing in navlib.
 * No import cycle: the graph of navlib's imports, at module level or inside functions, is acyclic.
 * Importing navlib's modules changes nothing process-wide (no numba event listener) unless asked to.
+* Kernels are compiled with numba's public options only (no ``_nrt`` or other underscored option).
 """
 
 from __future__ import annotations
@@ -212,6 +213,33 @@ def test_the_compile_log_is_opt_in(tmp_path):
 
 MAX_PARAMETERS = 12
 """No function (public, private or compiled) takes more: options go into small frozen records."""
+
+
+def njit_options(tree: ast.AST) -> set[str]:
+    """Keyword names passed to any ``njit``/``jit``/``vectorize`` call or decorator, ``**dict`` literals included."""
+    names: set[str] = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Call) and ast.unparse(node.func).split(".")[-1] in {"njit", "jit", "vectorize"}:
+            for kw in node.keywords:
+                if kw.arg is not None:
+                    names.add(kw.arg)
+                elif isinstance(kw.value, ast.Dict):
+                    names |= {k.value for k in kw.value.keys if isinstance(k, ast.Constant)}
+                else:
+                    names.add("**" + ast.unparse(kw.value))
+    return names
+
+
+@pytest.mark.parametrize("module", sorted(MODULES))
+def test_kernels_use_public_numba_options_only(module):
+    options = njit_options(ast.parse(MODULES[module].read_text()))
+    private = sorted(o for o in options if o.startswith(("_", "**")))
+    assert not private, f"{module}: numba options {private}: use numba's public options only (cache, nogil, inline, ...)"
+
+
+def test_the_option_check_sees_private_options():
+    tree = ast.parse("@njit(cache=True, _nrt=False)\ndef f(): pass\n@njit(**OPTS)\ndef g(): pass")
+    assert {"_nrt", "**OPTS"} <= njit_options(tree)
 
 
 def test_no_function_takes_more_than_twelve_parameters():

@@ -45,7 +45,7 @@ import numpy as np
 from numba import njit
 
 from .. import attitude, earth
-from .._kernels import NO_RUNTIME, dcm_heading, euler_to_quat, level, tilt_heading, wrap_pi
+from .._kernels import dcm_heading, euler_to_quat, level, tilt_heading, wrap_pi
 from .._threads import run_chunks
 from .._typing import Array, ArrayLike, Quat, Vec3
 from .._validate import (
@@ -738,7 +738,7 @@ def _still(w: np.ndarray, f: np.ndarray, g: float) -> np.ndarray:
     return np.ascontiguousarray((rate < STILL_RATE) & (np.abs(norm - g) < STILL_ACCEL * g))
 
 
-@njit(cache=True, nogil=True, **NO_RUNTIME)
+@njit(cache=True, nogil=True)
 def _gate(t0, t1, f, m, skip_f, skip_m, limits, z, codes):
     """Trials t0 to t1 - 1: the unit accelerometer and magnetometer vectors of ``f`` and ``m`` (T, N, 3; ``m``
     (1, 1, 3): none) into ``z`` (T, N, 6), NaN where skipped, with their codes in ``codes`` (2, T, N): 0 used,

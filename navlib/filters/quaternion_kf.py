@@ -33,7 +33,7 @@ import numpy as np
 from numba import njit
 
 from .. import _kernels
-from .._kernels import NO_RUNTIME, fma
+from .._kernels import fma
 from .._typing import Array, Quat, Vec3, Vec3Series
 from .._validate import Flag, Is, Positive, Step, as_array, as_quat, boundary, broadcast, fields_checked, flag, scalar
 from ..imu import ImuSamples
@@ -97,7 +97,7 @@ class _Model(NamedTuple):
     linear_innovation: bool  # the printed z - H q (erratum E003-12), for its demonstration only
 
 
-@njit(cache=True, **NO_RUNTIME)
+@njit(cache=True)
 def _phi_into(Phi, wx, wy, wz, dt):
     """Eq. (17): Phi = I + dt/2 Omega(w)."""
     c = 0.5 * dt
@@ -107,7 +107,7 @@ def _phi_into(Phi, wx, wy, wz, dt):
     Phi[3, 0], Phi[3, 1], Phi[3, 2], Phi[3, 3] = c * wz, c * wy, -c * wx, 1.0
 
 
-@njit(cache=True, **NO_RUNTIME)
+@njit(cache=True)
 def _gamma_into(G, q, dt):
     """Eq. (18) corrected: Gamma = dt/2 Xi(q)."""
     c = 0.5 * dt
@@ -118,7 +118,7 @@ def _gamma_into(G, q, dt):
     G[3, 0], G[3, 1], G[3, 2] = -c * q2, c * q1, c * q0
 
 
-@njit(cache=True, **NO_RUNTIME)
+@njit(cache=True)
 def _h_into(h, q, by, bz):
     """Eqs. (4), (6) corrected: h(q) = [C_nb [0,0,1]; C_nb [0, by, bz]]."""
     q0, q1, q2, q3 = q[0], q[1], q[2], q[3]
@@ -130,7 +130,7 @@ def _h_into(h, q, by, bz):
     h[5] = 2 * (q2 * q3 - q0 * q1) * by + (q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3) * bz
 
 
-@njit(cache=True, **NO_RUNTIME)
+@njit(cache=True)
 def _jacobian_into(H, q, by, bz):
     """Eq. (20) with the corrected H44 = 2(q0 by + q1 bz)."""
     q0, q1, q2, q3 = q[0], q[1], q[2], q[3]
@@ -247,7 +247,7 @@ def noise_input(q: Quat, dt: Step) -> Array:
     return dt / 2 * np.stack([np.stack(r, -1) for r in rows], -2)
 
 
-@njit(cache=True, **NO_RUNTIME)
+@njit(cache=True)
 def _output(t, k, x, P, q_out, P_hist, keep):
     q_out[t, k, 0], q_out[t, k, 1], q_out[t, k, 2], q_out[t, k, 3] = x[0], x[1], x[2], x[3]
     if keep:
@@ -272,8 +272,7 @@ def _copy4(dst, src):
 # the inverse is _kernels.lu_inverse. Written out here, the per-sample cost is arithmetic, not library
 # calls and temporary arrays. Nor reference counts: numba counts a reference to each array argument of a
 # function (an atomic operation, dearer than a 4 x 4 product) unless it can prove the function never
-# raises, so the per-sample steps take their arrays directly (never a tuple or record to unpack) and are
-# compiled without numba's runtime (``_kernels.NO_RUNTIME``: they allocate nothing, and count nothing); each step is
+# raises, so the per-sample steps take their arrays directly (never a tuple or record to unpack); each step is
 # compiled for 6 and for 3 rows (constant sizes: unrolled loops).
 
 
@@ -353,7 +352,7 @@ def _predict(x, P, Phi, G, q_gyro, ws):
     _predict_step(x, P, Phi, G, q_gyro, A, B, S, K, v)
 
 
-@njit(cache=True, **NO_RUNTIME)
+@njit(cache=True)
 def _predict_step(x, P, Phi, G, q_gyro, A, B, C, D, v):
     """:func:`_predict` with its scratch matrices ``A, B, C, D`` and vector ``v``."""
     for i in range(4):
@@ -381,7 +380,7 @@ def _update(x, P, z, h, H, r_diag, ws):
         _correct(x, P, r_diag, rows, m, Hs, K, ys, A, B, S, v)
 
 
-@njit(cache=True, **NO_RUNTIME)
+@njit(cache=True)
 def _select_rows(z, h, H, Hs, ys, rows):
     """The finite rows of ``z``: their indices into ``rows``, innovations ``z - h`` into ``ys``, Jacobian rows into
     ``Hs``; returns their number."""
@@ -433,7 +432,7 @@ def _correct_m(x, P, r_diag, rows, m, Hs, K, ys, A, B, S, v):
     _symmetrise(P, S, 4)
 
 
-@njit(cache=True, **NO_RUNTIME)
+@njit(cache=True)
 def _gain(P, r_diag, rows, m, Hs, PHt, S, K, ipiv, work):
     """:func:`_gain_m` for m = 6 or 3 rows."""
     if m == 6:
@@ -442,7 +441,7 @@ def _gain(P, r_diag, rows, m, Hs, PHt, S, K, ipiv, work):
         _gain_m(P, r_diag, rows, 3, Hs, PHt, S, K, ipiv, work)
 
 
-@njit(cache=True, **NO_RUNTIME)
+@njit(cache=True)
 def _correct(x, P, r_diag, rows, m, Hs, K, ys, A, B, S, v):
     """:func:`_correct_m` for m = 6 or 3 rows."""
     if m == 6:
