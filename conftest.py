@@ -1,4 +1,5 @@
-"""Session hook: after the notebooks' tests passed, the README's results section must match.
+"""Session hooks: tests that share a module-scoped fixture run on one xdist worker; after the notebooks' tests
+passed, the README's results section must match.
 
 Each notebook writes ``build/<notebook>/results.json``; ``tools/readme.py``
 turns those into the README's results section (claims by verdict, the per-paper
@@ -14,7 +15,29 @@ import os
 import sys
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parent
+
+# jsonschema (nbformat's validator, imported by the notebook tests) imports its optional IRI format checker,
+# rfc3987_syntax, which builds ~35 Earley parsers: ~1 s in every test worker. The notebook schema has no IRI
+# fields; marked absent, jsonschema skips that checker (as tools/reproduce.py does).
+sys.modules.setdefault("rfc3987_syntax", None)
+
+
+@pytest.hookimpl(tryfirst=True)  # before pytest-xdist reads the groups (it appends them to the test ids)
+def pytest_collection_modifyitems(config, items):
+    """Under ``--dist loadgroup`` (make test), the tests of a module that defines a module- or class-scoped fixture
+    share one worker (an ``xdist_group`` named after the module), so that fixture (a whole filter run, a built
+    wheel) is computed once per run instead of once on each worker that gets some of the module's tests."""
+    for item in items:
+        module = getattr(item, "module", None)
+        info = getattr(item, "_fixtureinfo", None)
+        if module is None or info is None:
+            continue
+        fixtures = [d for defs in info.name2fixturedefs.values() for d in defs]
+        if any(d.scope in ("module", "class") and getattr(d.func, "__module__", None) == module.__name__ for d in fixtures):
+            item.add_marker(pytest.mark.xdist_group(module.__name__))
 
 
 def pytest_sessionfinish(session, exitstatus):
