@@ -46,6 +46,12 @@ def test_the_shared_kernels_are_warmed_up_only_when_the_notebooks_would_compile(
     assert reproduce.compilation_expected(build, warm, tmp_path)
 
 
+def test_a_papers_further_notebook_waits_for_its_first_one():
+    paths = [Path(f"{stem}.ipynb") for stem in ("04_mimu_mag_rtk", "05_pedestrian_ins_floors", "05_pedestrian_ins", "06_x")]
+    assert reproduce.paper_parts(paths) == {paths[1]: paths[2]}  # they share kernels: compiled once, not twice at once
+    assert reproduce.paper_parts(paths[:2]) == {}  # the first one not in this run (up to date): nothing to wait for
+
+
 def test_the_compile_log_gives_seconds_per_kernel(tmp_path):
     log = tmp_path / "00_a.compile.log"  # as navlib._kernels.CompileLog writes it
     assert reproduce.read_compile_log(log) == []

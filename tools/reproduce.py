@@ -24,7 +24,8 @@ reported with its wall time and its kernel's CPU time and peak memory (user + sy
 size, read from /proc while the kernel runs; "n/a" where there is none; CPU time, unlike wall time, does not
 grow on a busy machine). When the notebooks will compile kernels (a fresh clone, ``--cold``, navlib edited), a
 warm-up goes first (:func:`warm_up`, ``python -m navlib.warmup``): the kernels several notebooks share are
-compiled once, in one process, and the notebooks load them from numba's cache. A notebook that raises is
+compiled once, in one process, and the notebooks load them from numba's cache; a paper's further notebooks
+(``05_pedestrian_ins_floors``) start when its first one is done, for the same reason. A notebook that raises is
 reported and the run goes on with the others; the exit status is non-zero if any notebook (or the warm-up)
 failed. ``--only`` runs a subset, and the report then covers that subset only. Needs no network.
 
@@ -68,7 +69,7 @@ import subprocess
 import sys
 import tempfile
 import time
-from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, as_completed, wait
 from datetime import datetime
 from pathlib import Path
 
@@ -330,6 +331,21 @@ def warm_up(build: Path) -> dict:
         "seconds": round(time.perf_counter() - start, 1),
         "cpu_seconds": round(after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime, 1),
         "compile_cpu_seconds": round(sum(cpu_s for _, _, cpu_s in read_compile_lines(log)), 1),
+    }
+
+
+def paper_parts(notebooks: list[Path]) -> dict[Path, Path]:
+    """Each further notebook of a paper (``05_pedestrian_ins_floors``) mapped to the paper's first one, both in
+    ``notebooks``: it runs after that one, whose kernels it shares, so that it loads them from numba's cache
+    instead of compiling them at the same time (navlib/papers/__init__.py)."""
+    from navlib.papers import PAPERS
+
+    by_stem = {p.stem: p for p in notebooks}
+    return {
+        by_stem[stem]: by_stem[paper.notebook]
+        for paper in PAPERS
+        for stem in paper.notebooks[1:]
+        if stem in by_stem and paper.notebook in by_stem
     }
 
 
@@ -648,25 +664,33 @@ def run_all(args: argparse.Namespace, root: Path, notebooks: list[Path], build: 
     ) as pool:
         if order and (args.cold or compilation_expected(build, last, root)):
             warm = pool.submit(warm_up, build)  # first: the shared kernels compiled once, before their users
-        futures = {pool.submit(run_notebook, path, build, args.timeout): path for path in order}
+        parts = paper_parts(order)  # submitted when their paper's first notebook is done
+        futures = {pool.submit(run_notebook, path, build, args.timeout): path for path in order if path not in parts}
         print(f"executing {len(order)} notebooks, {max(1, args.jobs)} at a time ...", flush=True)
-        for future in as_completed([*futures, *([warm] if warm else [])]):
-            if future is warm:
-                w = warm.result()
+        pending = {*futures, *([warm] if warm else [])}
+        while pending:
+            finished, pending = wait(pending, return_when=FIRST_COMPLETED)
+            for path in [p for p, first in parts.items() for f in finished if futures.get(f) == first]:
+                future = pool.submit(run_notebook, path, build, args.timeout)
+                futures[future] = path
+                pending.add(future)
+            for future in finished:
+                if future is warm:
+                    w = warm.result()
+                    print(
+                        f"warm-up (python -m navlib.warmup) {'done' if w['error'] is None else 'FAILED'} in "
+                        f"{w['seconds']:.1f} s ({w['cpu_seconds']:.1f} s CPU, {w['compile_cpu_seconds']:.1f} s compiling)"
+                        + ("" if w["error"] is None else f"\n    ERROR: {w['error']}"),
+                        flush=True,
+                    )
+                    continue
+                e = done[futures[future]] = future.result()
+                tail = "" if e["error"] is None else f"\n    ERROR: {e['error']}"
                 print(
-                    f"warm-up (python -m navlib.warmup) {'done' if w['error'] is None else 'FAILED'} in {w['seconds']:.1f} s "
-                    f"({w['cpu_seconds']:.1f} s CPU, {w['compile_cpu_seconds']:.1f} s compiling)"
-                    + ("" if w["error"] is None else f"\n    ERROR: {w['error']}"),
+                    f"[{len(done)}/{len(notebooks)}] {e['notebook']} {'done' if e['ok'] else 'FAILED'} "
+                    f"in {e['seconds']:.1f} s ({cpu(e)} CPU), peak memory {mb(e['peak_mb'])}{tail}",
                     flush=True,
                 )
-                continue
-            e = done[futures[future]] = future.result()
-            tail = "" if e["error"] is None else f"\n    ERROR: {e['error']}"
-            print(
-                f"[{len(done)}/{len(notebooks)}] {e['notebook']} {'done' if e['ok'] else 'FAILED'} "
-                f"in {e['seconds']:.1f} s ({cpu(e)} CPU), peak memory {mb(e['peak_mb'])}{tail}",
-                flush=True,
-            )
     entries = [done[path] for path in notebooks]
     wall = time.perf_counter() - start
     warm_up_run = [warm.result()] if warm else []  # its CPU and compilation count in the totals
