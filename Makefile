@@ -18,7 +18,8 @@ reproduce test: export MPLBACKEND := Agg
 # Executed notebooks keep no progress bars (navlib.montecarlo reads it).
 export NAVLIB_PROGRESS := 0
 
-# Two workers (this machine has two cores); tests sharing a build/ folder share a group (conftest.py).
+# Two workers (this machine has two cores); conftest.py shares the tests out: a file with a module-scoped fixture
+# on one worker, the longest tests of the last run first.
 PYTEST_FLAGS ?= -q -ra --durations=10 -n 2 --dist loadgroup
 
 .DEFAULT_GOAL := help

@@ -60,7 +60,7 @@ def pytest_xdist_make_scheduler(config, log):
                 for nodeid in next(iter(self.registered_collections.values())):
                     scope = self._split_scope(nodeid)
                     unit_seconds[scope] = unit_seconds.get(scope, 0.0) + last.get(nodeid, 0.0)
-                for node, ids in self.registered_collections.items():
+                for node, ids in list(self.registered_collections.items()):
                     self.registered_collections[node] = sorted(ids, key=lambda i: -unit_seconds[self._split_scope(i)])
             super().schedule()
 
@@ -68,11 +68,11 @@ def pytest_xdist_make_scheduler(config, log):
     return Scheduling(config, log)
 
 
+_seconds: dict[str, float] = {}  # this run's, per test (the controller receives every worker's reports)
+
+
 def pytest_runtest_logreport(report):
     _seconds[report.nodeid] = _seconds.get(report.nodeid, 0.0) + report.duration
-
-
-_seconds: dict[str, float] = {}
 
 
 def pytest_sessionfinish(session, exitstatus):
