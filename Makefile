@@ -10,11 +10,16 @@ BENCH_STAMP := $(VENV)/.bench-installed
 
 # Headless, deterministic runs.
 export PYTHONHASHSEED := 0
+# Python's bytecode cache on (in the gitignored __pycache__ folders, beside numba's): where the environment turns it
+# off, every notebook kernel, test worker and test subprocess compiled navlib and every test module from source again
+# (~3 s of CPU per pytest worker's collection, ~0.2 s per navlib import).
+unexport PYTHONDONTWRITEBYTECODE
 reproduce test: export MPLBACKEND := Agg
 # Executed notebooks keep no progress bars (navlib.montecarlo reads it).
 export NAVLIB_PROGRESS := 0
 
-# Two workers (this machine has two cores); tests sharing a build/ folder share a group (conftest.py).
+# Two workers (this machine has two cores); conftest.py shares the tests out: a file with a module-scoped fixture
+# on one worker, the longest tests of the last run first.
 PYTEST_FLAGS ?= -q -ra --durations=10 -n 2 --dist loadgroup
 
 .DEFAULT_GOAL := help
@@ -93,9 +98,11 @@ docs: $(STAMP) $(DOCS_STAMP)
 # Each notebook is executed once per run: reproduce.py --stale executes those whose execution into build/ is
 # missing, failed or out of date (all of them on a fresh clone, none right after `make reproduce`), two at a
 # time, and tests/test_notebook_runs.py reads their records. pytest exits 5 when it collected no tests: a failure.
+# nbmake (for running one notebook by hand) is not loaded: make test runs none with it, and its import cost each
+# pytest process ~1 s (nbformat's validator building IRI parsers; conftest.py keeps test modules from paying it).
 test: $(STAMP)
 	@rc=0; $(PY) tools/reproduce.py --stale || rc=$$?; \
-	NAVLIB_CHECK_README=1 $(PY) -m pytest tests $(PYTEST_FLAGS) || { r=$$?; [ $$r -ne 5 ] || echo "make test: pytest collected no tests" >&2; rc=$$r; }; \
+	NAVLIB_CHECK_README=1 $(PY) -m pytest tests -p no:nbmake $(PYTEST_FLAGS) || { r=$$?; [ $$r -ne 5 ] || echo "make test: pytest collected no tests" >&2; rc=$$r; }; \
 	exit $$rc
 
 lint: $(STAMP)

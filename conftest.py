@@ -1,4 +1,5 @@
-"""Session hook: after the notebooks' tests passed, the README's results section must match.
+"""Session hooks: how make test's two xdist workers share the tests (:func:`pytest_xdist_make_scheduler`); after
+the notebooks' tests passed, the README's results section must match.
 
 Each notebook writes ``build/<notebook>/results.json``; ``tools/readme.py``
 turns those into the README's results section (claims by verdict, the per-paper
@@ -11,15 +12,75 @@ one notebook by hand is not stopped by it.
 """
 
 import os
+import re
 import sys
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parent
+
+# jsonschema (nbformat's validator, imported by the notebook tests) imports its optional IRI format checker,
+# rfc3987_syntax, which builds ~35 Earley parsers: ~1 s in every test worker. The notebook schema has no IRI
+# fields; marked absent, jsonschema skips that checker (as tools/reproduce.py does).
+sys.modules.setdefault("rfc3987_syntax", None)
+
+
+SHARED_FIXTURE = re.compile(r"@pytest\.fixture\(scope=\"(module|class)\"")
+DURATIONS = "navlib/test-seconds"  # pytest's cache key: each test's seconds in the last run (setup + call + teardown)
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_xdist_make_scheduler(config, log):
+    """``--dist loadgroup`` (make test), scheduled by this project's rule, because pytest-xdist 3.8 cannot group
+    under pytest 9.2 (it renames ``item._nodeid``, which pytest no longer reads): the tests of a file that defines a
+    module- or class-scoped fixture (a whole filter run, a built wheel) go to one worker, which computes that fixture
+    once instead of once per worker; every other test is a unit of its own. Units start longest first by the last
+    run's times (the longest-processing-time rule), so no worker is left idle behind a long test at the end."""
+    if config.getvalue("dist") != "loadgroup":
+        return None
+    from xdist.scheduler import LoadScopeScheduling
+
+    shared = {
+        path.relative_to(ROOT).as_posix()
+        for path in (ROOT / "tests").rglob("test_*.py")
+        if SHARED_FIXTURE.search(path.read_text(encoding="utf-8"))
+    }
+    cache = getattr(config, "cache", None)  # absent under -p no:cacheprovider
+    last = cache.get(DURATIONS, {}) if cache else {}
+
+    class Scheduling(LoadScopeScheduling):
+        def _split_scope(self, nodeid):
+            file = nodeid.split("::", 1)[0]
+            return file if file in shared else nodeid
+
+        def schedule(self):
+            if self.collection is None:  # the first call: every worker's (identical) collection, longest unit first
+                unit_seconds: dict[str, float] = {}
+                for nodeid in next(iter(self.registered_collections.values())):
+                    scope = self._split_scope(nodeid)
+                    unit_seconds[scope] = unit_seconds.get(scope, 0.0) + last.get(nodeid, 0.0)
+                for node, ids in list(self.registered_collections.items()):
+                    self.registered_collections[node] = sorted(ids, key=lambda i: -unit_seconds[self._split_scope(i)])
+            super().schedule()
+
+    config.option.loadscopereorder = False  # the order above, not the number of tests per unit
+    return Scheduling(config, log)
+
+
+_seconds: dict[str, float] = {}  # this run's, per test (the controller receives every worker's reports)
+
+
+def pytest_runtest_logreport(report):
+    _seconds[report.nodeid] = _seconds.get(report.nodeid, 0.0) + report.duration
 
 
 def pytest_sessionfinish(session, exitstatus):
     if hasattr(session.config, "workerinput"):  # an xdist worker: the controller checks
         return
+    cache = getattr(session.config, "cache", None)
+    if cache and _seconds:  # the next run's plan (tests not run this time keep their last time)
+        cache.set(DURATIONS, cache.get(DURATIONS, {}) | _seconds)
     if exitstatus != 0 or os.environ.get("NAVLIB_CHECK_README") != "1":  # set by `make test`
         return
     sys.path.insert(0, str(ROOT / "tools"))

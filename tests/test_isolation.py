@@ -238,7 +238,9 @@ def test_paper_notebook_runs_without_network_and_writes_only_build(tmp_path):
 # Each runs in its own cell, wrapped so that a refusal is printed and the notebook goes on;
 # the last cell repeats the first probe *unwrapped*, which must fail the run.
 CONTROL_FILE = BUILD / "isolation" / "probe.txt"
-VICTIM = REPO / "navlib" / "_isolation_victim.txt"  # created by the test itself, outside the harness
+# created by the test itself, outside the harness; in tests/, which no notebook execution depends on: in navlib/ it made
+# a notebook's execution record look out of date to a test_notebook_runs test running meanwhile, which ran it again
+VICTIM = REPO / "tests" / "_isolation_victim.txt"
 PROBES = [
     (f"open({str(PROBE)!r}, 'w').write('x')", PROBE.name),  # write into the repo
     (f"open({str(PROBE)!r}, 'a')", PROBE.name),  # append

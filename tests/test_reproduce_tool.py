@@ -2,6 +2,7 @@
 compilation, and where a notebook's time went (compile log, cell timing)."""
 
 import json
+import os
 import sys
 from pathlib import Path
 
@@ -28,6 +29,27 @@ def test_a_warm_run_is_planned_without_the_last_runs_compilation():
     summary = {"00_a": {"seconds": 50.0, "compile_seconds": 30.0}, "01_b": {"seconds": 25.0}}
     paths = [Path("00_a.ipynb"), Path("01_b.ipynb"), Path("02_new.ipynb")]
     assert reproduce.expected_seconds(summary, paths) == {paths[0]: 20.0, paths[1]: 25.0, paths[2]: 0.0}
+
+
+def test_the_shared_kernels_are_warmed_up_only_when_the_notebooks_would_compile(tmp_path):
+    build, navlib = tmp_path / "build", tmp_path / "navlib"
+    for folder in (build, navlib):
+        folder.mkdir()
+    (navlib / "core.py").write_text("A = 1\n")
+    assert reproduce.compilation_expected(build, {}, tmp_path)  # no earlier run: a fresh clone
+    (build / "summary.json").write_text("{}")
+    warm = {"00_a": {"compile_cpu_seconds": 0.0}, "01_b": {}}
+    assert not reproduce.compilation_expected(build, warm, tmp_path)  # numba's cache holds every kernel
+    assert reproduce.compilation_expected(build, warm | {"02_c": {"compile_cpu_seconds": 4.5}}, tmp_path)
+    later = (build / "summary.json").stat().st_mtime + 10
+    os.utime(navlib / "core.py", (later, later))  # navlib edited since: its kernels compile again
+    assert reproduce.compilation_expected(build, warm, tmp_path)
+
+
+def test_a_papers_further_notebook_waits_for_its_first_one():
+    paths = [Path(f"{stem}.ipynb") for stem in ("04_mimu_mag_rtk", "05_pedestrian_ins_floors", "05_pedestrian_ins", "06_x")]
+    assert reproduce.paper_parts(paths) == {paths[1]: paths[2]}  # they share kernels: compiled once, not twice at once
+    assert reproduce.paper_parts(paths[:2]) == {}  # the first one not in this run (up to date): nothing to wait for
 
 
 def test_the_compile_log_gives_seconds_per_kernel(tmp_path):

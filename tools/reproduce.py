@@ -22,9 +22,12 @@ run's times in ``build/summary.json`` less their numba compilation (:func:`expec
 log each compilation to ``build/<stem>.compile.log``, see ``navlib._kernels.CompileLog``); each is
 reported with its wall time and its kernel's CPU time and peak memory (user + system time and resident set
 size, read from /proc while the kernel runs; "n/a" where there is none; CPU time, unlike wall time, does not
-grow on a busy machine). A notebook that raises is reported and the run goes on with the others; the exit
-status is non-zero if any notebook failed. ``--only`` runs a subset, and the report then covers that subset
-only. Needs no network.
+grow on a busy machine). When the notebooks will compile kernels (a fresh clone, ``--cold``, navlib edited), a
+warm-up goes first (:func:`warm_up`, ``python -m navlib.warmup``): the kernels several notebooks share are
+compiled once, in one process, and the notebooks load them from numba's cache; a paper's further notebooks
+(``05_pedestrian_ins_floors``) start when its first one is done, for the same reason. A notebook that raises is
+reported and the run goes on with the others; the exit status is non-zero if any notebook (or the warm-up)
+failed. ``--only`` runs a subset, and the report then covers that subset only. Needs no network.
 
 ``--stale`` (``make test``) executes only the notebooks whose last execution into build/ is missing, failed
 or out of date (:func:`last_execution`) and reuses the others: each notebook is executed once per
@@ -59,12 +62,14 @@ import importlib.metadata
 import json
 import multiprocessing
 import os
+import resource
 import shutil
 import signal
+import subprocess
 import sys
 import tempfile
 import time
-from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, as_completed, wait
 from datetime import datetime
 from pathlib import Path
 
@@ -301,6 +306,57 @@ def cell_seconds(nb) -> list[tuple[int, float, str]]:
             first_line = next((ln for ln in cell.source.splitlines() if ln.strip()), "")
             cells.append((index, round(seconds, 3), first_line[:70]))
     return sorted(cells, key=lambda c: -c[1])
+
+
+def warm_up(build: Path) -> dict:
+    """Compile the kernels shared by several notebooks once, in one process: ``python -m navlib.warmup``.
+
+    Run first, beside the first notebook, so that the notebooks after it load those kernels from numba's cache
+    instead of compiling them, and never two at the same time (the quaternion Kalman filter alone is ~20 s of
+    CPU). Its wall and CPU time and its compilations (``build/warmup.compile.log``) are reported like a notebook's.
+    """
+    log = build / "warmup.compile.log"
+    log.unlink(missing_ok=True)
+    before, start = resource.getrusage(resource.RUSAGE_CHILDREN), time.perf_counter()
+    done = subprocess.run(
+        [sys.executable, "-m", "navlib.warmup"],
+        env=os.environ | {"NAVLIB_COMPILE_LOG": str(log)},
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return {
+        "error": None if done.returncode == 0 else error_line(RuntimeError(done.stderr or "navlib.warmup failed")),
+        "seconds": round(time.perf_counter() - start, 1),
+        "cpu_seconds": round(after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime, 1),
+        "compile_cpu_seconds": round(sum(cpu_s for _, _, cpu_s in read_compile_lines(log)), 1),
+    }
+
+
+def paper_parts(notebooks: list[Path]) -> dict[Path, Path]:
+    """Each further notebook of a paper (``05_pedestrian_ins_floors``) mapped to the paper's first one, both in
+    ``notebooks``: it runs after that one, whose kernels it shares, so that it loads them from numba's cache
+    instead of compiling them at the same time (navlib/papers/__init__.py)."""
+    from navlib.papers import PAPERS
+
+    by_stem = {p.stem: p for p in notebooks}
+    return {
+        by_stem[stem]: by_stem[paper.notebook]
+        for paper in PAPERS
+        for stem in paper.notebooks[1:]
+        if stem in by_stem and paper.notebook in by_stem
+    }
+
+
+def compilation_expected(build: Path, summary: dict, root: Path) -> bool:
+    """Whether this run's notebooks will compile kernels: no earlier run, an earlier one that compiled, or navlib
+    edited since it. A warm run (numba's cache up to date) skips the warm-up's ~1 s."""
+    summary_file = build / "summary.json"
+    if not summary or any(e.get("compile_cpu_seconds") for e in summary.values()):
+        return True
+    since = summary_file.stat().st_mtime
+    return any(f.stat().st_mtime > since for f in (root / "navlib").rglob("*.py"))
 
 
 def expected_seconds(summary: dict, notebooks: list[Path]) -> dict[Path, float]:
@@ -599,24 +655,45 @@ def run_all(args: argparse.Namespace, root: Path, notebooks: list[Path], build: 
         for path in done:
             print(f"{path.stem}: up to date in build/ (not executed again)", flush=True)
     order = longest_first([p for p in notebooks if p not in done], expected_seconds(last, notebooks))
+    warm = None
     start = time.perf_counter()
     # Workers are reused and forked: they start with nbclient and nbformat already imported (spawned ones
     # imported them again, ~1.5 s each, while the notebooks waited); every notebook gets a new kernel.
     with ProcessPoolExecutor(
         max(1, args.jobs), mp_context=multiprocessing.get_context(START_METHOD), initializer=die_with_parent
     ) as pool:
-        futures = {pool.submit(run_notebook, path, build, args.timeout): path for path in order}
+        if order and (args.cold or compilation_expected(build, last, root)):
+            warm = pool.submit(warm_up, build)  # first: the shared kernels compiled once, before their users
+        parts = paper_parts(order)  # submitted when their paper's first notebook is done
+        futures = {pool.submit(run_notebook, path, build, args.timeout): path for path in order if path not in parts}
         print(f"executing {len(order)} notebooks, {max(1, args.jobs)} at a time ...", flush=True)
-        for future in as_completed(futures):
-            e = done[futures[future]] = future.result()
-            tail = "" if e["error"] is None else f"\n    ERROR: {e['error']}"
-            print(
-                f"[{len(done)}/{len(notebooks)}] {e['notebook']} {'done' if e['ok'] else 'FAILED'} "
-                f"in {e['seconds']:.1f} s ({cpu(e)} CPU), peak memory {mb(e['peak_mb'])}{tail}",
-                flush=True,
-            )
+        pending = {*futures, *([warm] if warm else [])}
+        while pending:
+            finished, pending = wait(pending, return_when=FIRST_COMPLETED)
+            for path in [p for p, first in parts.items() for f in finished if futures.get(f) == first]:
+                future = pool.submit(run_notebook, path, build, args.timeout)
+                futures[future] = path
+                pending.add(future)
+            for future in finished:
+                if future is warm:
+                    w = warm.result()
+                    print(
+                        f"warm-up (python -m navlib.warmup) {'done' if w['error'] is None else 'FAILED'} in "
+                        f"{w['seconds']:.1f} s ({w['cpu_seconds']:.1f} s CPU, {w['compile_cpu_seconds']:.1f} s compiling)"
+                        + ("" if w["error"] is None else f"\n    ERROR: {w['error']}"),
+                        flush=True,
+                    )
+                    continue
+                e = done[futures[future]] = future.result()
+                tail = "" if e["error"] is None else f"\n    ERROR: {e['error']}"
+                print(
+                    f"[{len(done)}/{len(notebooks)}] {e['notebook']} {'done' if e['ok'] else 'FAILED'} "
+                    f"in {e['seconds']:.1f} s ({cpu(e)} CPU), peak memory {mb(e['peak_mb'])}{tail}",
+                    flush=True,
+                )
     entries = [done[path] for path in notebooks]
     wall = time.perf_counter() - start
+    warm_up_run = [warm.result()] if warm else []  # its CPU and compilation count in the totals
 
     (build / "index.html").unlink(missing_ok=True)  # the hand-written report: replaced by make docs
     manifest = write_manifest(build, entries)
@@ -647,12 +724,17 @@ def run_all(args: argparse.Namespace, root: Path, notebooks: list[Path], build: 
         print(
             f"{e['notebook']:<{width}}{checks:>7} checks passed{e['seconds']:>9.1f} s{cpu(e):>9} CPU{mb(e['peak_mb']):>10}{mark}"
         )
+    for w in warm_up_run:
+        print(
+            f"{'warm-up':<{width}}{'':>7}{'':>14}{w['seconds']:>9.1f} s{cpu(w):>9} CPU"
+            + ("" if w["error"] is None else "   FAILED")
+        )
     n_ok = sum(e["ok"] for e in entries)
     passed = sum(e["checks_passed"] for e in entries)
     total = sum(e["checks_total"] for e in entries)
     seconds = sum(e["seconds"] for e in entries)
-    cpu_total = {"cpu_seconds": sum(e.get("cpu_seconds") or 0.0 for e in entries)}
-    compile_cpu = sum(e.get("compile_cpu_seconds") or 0.0 for e in entries)
+    cpu_total = {"cpu_seconds": sum(e.get("cpu_seconds") or 0.0 for e in entries + warm_up_run)}
+    compile_cpu = sum(e.get("compile_cpu_seconds") or 0.0 for e in entries + warm_up_run)
     print(
         f"{'total':<{width}}{f'{passed}/{total}':>7} checks passed{seconds:>9.1f} s{cpu(cpu_total):>9} CPU"
         f"   ({n_ok}/{len(entries)} notebooks ok; {compile_cpu:.1f} s CPU compiling; {wall:.1f} s wall with "
@@ -678,7 +760,7 @@ def run_all(args: argparse.Namespace, root: Path, notebooks: list[Path], build: 
         )
         if changed:
             return 1
-    return 0 if n_ok == len(entries) else 1
+    return 0 if n_ok == len(entries) and all(w["error"] is None for w in warm_up_run) else 1
 
 
 if __name__ == "__main__":
