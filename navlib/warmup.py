@@ -5,8 +5,8 @@ package's ``__pycache__``, or numba's user cache when that is not writable; ``NU
 In a fresh environment that first call waits for the compiler: seconds for Mahony, about a quarter of a
 minute for the quaternion Kalman filter. Running this module once after installing (about a minute) compiles
 the main entry points in the forms their public functions call them, so that a later first call in any
-process loads the compiled code instead (a fraction of a second). ``make reproduce`` and ``make test`` need
-no warm-up: they compile as they go.
+process loads the compiled code instead (a fraction of a second). ``make reproduce`` runs it first when the
+notebooks would compile, so that kernels several notebooks share are compiled once.
 """
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ __all__ = ["warmup"]
 def _calls() -> dict[str, Callable[[], object]]:
     """One small call of each main entry point, with and without its optional sensors."""
     from . import sensors, strapdown
-    from .filters import mahony, quaternion_kf
+    from .filters import mahony, quaternion_kf, zupt_ins
     from .imu import ImuSamples
 
     n = 200
@@ -37,6 +37,10 @@ def _calls() -> dict[str, Callable[[], object]]:
             w_ib_b, f_b, 0.01, sensors.imu_model("MPU-6050"), np.random.default_rng(0)
         ),
         "strapdown.integrate": lambda: strapdown.integrate(np.array([0.5, 0.1, 0.0]), np.zeros(3), q0, w_ib_b, f_b, 0.01),
+        # one specialisation serves every option (notebooks 05, 05b and 06 share it)
+        "filters.zupt_ins.run_filter": lambda: zupt_ins.run_filter(
+            imu, zupt_ins.Start(np.array([0.5, 0.1, 0.0]), q0), np.ones(n, bool)
+        ),
     }
 
 
@@ -53,7 +57,7 @@ def warmup(verbose: bool = True) -> dict[str, float]:
     >>> from navlib import warmup
     >>> seconds = warmup.warmup(verbose=False)                        # fast once numba's cache holds the kernels
     >>> len(seconds), sorted(seconds)[-1]                          # seconds per entry point
-    (5, 'strapdown.integrate')
+    (6, 'strapdown.integrate')
     """
     seconds = {}
     for name, call in _calls().items():

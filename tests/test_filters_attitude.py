@@ -299,7 +299,7 @@ def test_batch_results_do_not_depend_on_the_number_of_threads():
 # --------------------------------------------------------------------------- the fixed-size KF == the generic KF
 
 
-@njit
+@njit(cache=True)
 def _blas_products(A, B, S):
     return A @ B, np.linalg.inv(S)
 
@@ -337,7 +337,7 @@ def _emulated_getri():
     return True
 
 
-@njit
+@njit(cache=True)
 def _fma_compiled(a, b, c):
     out = np.empty(a.shape)
     for i in range(a.shape[0]):
