@@ -14,6 +14,7 @@ one notebook by hand is not stopped by it.
 import os
 import re
 import sys
+from collections import OrderedDict
 from pathlib import Path
 
 import pytest
@@ -54,15 +55,15 @@ def pytest_xdist_make_scheduler(config, log):
             file = nodeid.split("::", 1)[0]
             return file if file in shared else nodeid
 
-        def schedule(self):
-            if self.collection is None:  # the first call: every worker's (identical) collection, longest unit first
-                unit_seconds: dict[str, float] = {}
-                for nodeid in next(iter(self.registered_collections.values())):
-                    scope = self._split_scope(nodeid)
-                    unit_seconds[scope] = unit_seconds.get(scope, 0.0) + last.get(nodeid, 0.0)
-                for node, ids in list(self.registered_collections.items()):
-                    self.registered_collections[node] = sorted(ids, key=lambda i: -unit_seconds[self._split_scope(i)])
-            super().schedule()
+        # The units, longest first. Reordered where xdist stores them: a worker runs the tests whose indices in its
+        # own collection it is sent, so the collections themselves must keep pytest's order.
+        @property
+        def workqueue(self):
+            return self._units
+
+        @workqueue.setter
+        def workqueue(self, units):
+            self._units = OrderedDict(sorted(units.items(), key=lambda unit: -sum(last.get(i, 0.0) for i in unit[1])))
 
     config.option.loadscopereorder = False  # the order above, not the number of tests per unit
     return Scheduling(config, log)

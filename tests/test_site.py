@@ -73,7 +73,12 @@ class Watched:
         self.problems: list[str] = []
         self.page.on("console", lambda m: m.type == "error" and self.problems.append(f"console: {m.text}"))
         self.page.on("pageerror", lambda e: self.problems.append(f"script error: {e}"))
-        self.page.on("requestfailed", lambda r: self.problems.append(f"failed: {r.url}"))
+        # net::ERR_ABORTED is a request the test's own next navigation cut (Chromium fetches the favicon after
+        # "load"); a file that is missing answers 404, caught below, and an image that fails shows as not loaded.
+        self.page.on(
+            "requestfailed",
+            lambda r: r.failure != "net::ERR_ABORTED" and self.problems.append(f"failed: {r.url} ({r.failure})"),
+        )
         self.page.on("response", lambda r: r.status >= 400 and self.problems.append(f"HTTP {r.status}: {r.url}"))
         self.page.on(
             "request",
