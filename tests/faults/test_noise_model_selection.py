@@ -17,29 +17,29 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from scipy.signal import lfilter
 
 from navlib import analysis
 
-DT, N = 0.1, 72_000  # 2 h at 10 Hz
-WHITE, RRW = 1e-3, 8.7e-6  # crossover of the two near tau = sqrt(3) N / K = 200 s: K shows late
-SIGMA_GM, TC = 3e-4, 10.0  # a Gauss-Markov bias peaking at 19 s: B = 0.617 sigma
-SEEDS = range(12)  # 12 records x 2 triads x 3 axes = 72 axes per case
 STUDY = Path(__file__).resolve().parents[2] / "data" / "seed_studies" / "allan_coverage.py"
+
+
+def load_study():
+    spec = importlib.util.spec_from_file_location("allan_coverage", STUDY)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+COVERAGE = load_study()  # the coverage study's records and truths, shared with these tests
+DT, N = COVERAGE.DT, COVERAGE.LENGTHS["2h"]  # 2 h at 10 Hz
+# white 1e-3 and K 8.7e-6 cross near tau = sqrt(3) N / K = 200 s: K shows late; the Gauss-Markov bias peaks at 19 s
+SIGMA_GM = COVERAGE.SIGMA_GM  # B = 0.617 sigma
+SEEDS = range(12)  # 12 records x 2 triads x 3 axes = 72 axes per case
 
 
 def record(seed, gm):
     """Gyro and accelerometer records (same model) of white noise with rate random walk, or with a Gauss-Markov bias."""
-    rng = np.random.default_rng(seed)
-    x = WHITE / np.sqrt(DT) * rng.standard_normal((2, N, 3))
-    if gm:
-        a = np.exp(-DT / TC)
-        drive = SIGMA_GM * np.sqrt(1 - a * a) * rng.standard_normal((2, N, 3))
-        drive[:, 0] = SIGMA_GM * rng.standard_normal((2, 3))  # the stationary start
-        x += lfilter([1.0], [1.0, -a], drive, axis=1)  # b[k] = a b[k-1] + drive[k]
-    else:
-        x += np.cumsum(RRW * np.sqrt(DT) * rng.standard_normal((2, N, 3)), axis=1)
-    return x[0], x[1] + 9.8
+    return COVERAGE.record(seed, N, "white+bi" if gm else "white+rrw")
 
 
 def axis_fits(gm):
@@ -80,9 +80,7 @@ def test_a_bias_instability_that_is_there_is_kept(gauss_markov):
 
 @pytest.fixture(scope="module")
 def study():
-    spec = importlib.util.spec_from_file_location("allan_coverage", STUDY)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
+    module = COVERAGE
     lines = [line for line in STUDY.with_suffix(".csv").read_text(encoding="utf-8").splitlines() if not line.startswith("#")]
     return module, list(csv.DictReader(lines))
 
