@@ -281,6 +281,83 @@ def kalman_update(x, P, z, h, H, R, angle_mask, gate=np.inf):
     return x + K @ ys, (Pn + Pn.T) / 2, y, nis, 1
 
 
+@njit(cache=True)
+def spd_solve_into(S, B):
+    """``B = S^-1 B`` in place for a symmetric positive definite ``S`` (m, m) and ``B`` (m, k), by Cholesky.
+
+    ``S``'s lower triangle becomes the factor L (``S = L L^T``; only the lower triangle is read), with the
+    reciprocals of its diagonal on the diagonal. Returns False, ``B`` unsolved, when S is not positive definite
+    (to rounding). Allocates nothing.
+    """
+    m = S.shape[0]
+    for j in range(m):
+        d = S[j, j]
+        for k in range(j):
+            d -= S[j, k] * S[j, k]
+        if not d > 0.0:
+            return False
+        inv = 1.0 / np.sqrt(d)
+        S[j, j] = inv
+        for i in range(j + 1, m):
+            t = S[i, j]
+            for k in range(j):
+                t -= S[i, k] * S[j, k]
+            S[i, j] = t * inv
+    n = B.shape[1]
+    for i in range(m):  # L W = B, all columns at once (independent chains, along B's rows)
+        for k in range(i):
+            s = S[i, k]
+            for c in range(n):
+                B[i, c] -= s * B[k, c]
+        for c in range(n):
+            B[i, c] *= S[i, i]
+    for i in range(m - 1, -1, -1):  # L^T U = W
+        for k in range(i + 1, m):
+            s = S[k, i]
+            for c in range(n):
+                B[i, c] -= s * B[k, c]
+        for c in range(n):
+            B[i, c] *= S[i, i]
+    return True
+
+
+@njit(cache=True)
+def scalar_update(P, dx, y, h, cols, r):
+    """Joseph-form update of a closed-loop error-state filter (state 0 before it) by one scalar measurement, in
+    place; compiled, unvalidated.
+
+    ``P`` (n, n) symmetric, ``y`` the innovation, ``h`` (n,) the measurement row, zero outside the columns
+    ``cols``, ``r`` its variance. Writes ``dx = k y`` (n,) and ``P = (I - k h) P (I - k h)^T + k r k^T``
+    (symmetric, exactly): :func:`kalman_update`'s algebra for one component, ``x = 0`` and ``h x = 0``, equal
+    to it to rounding (the sums skip h's zeros; one triangle is computed).
+    """
+    n = P.shape[0]
+    ph, k, g, L = np.empty(n), np.empty(n), np.empty(n), np.empty((n, n))
+    for i in range(n):  # P h^T
+        t = 0.0
+        for c in cols:
+            t += P[i, c] * h[c]
+        ph[i] = t
+    s = r
+    for c in cols:
+        s += h[c] * ph[c]
+    for i in range(n):
+        k[i] = ph[i] / s
+        dx[i] = k[i] * y
+    for i in range(n):  # L = (I - k h) P = P - k (P h^T)^T
+        for j in range(n):
+            L[i, j] = P[i, j] - k[i] * ph[j]
+    for i in range(n):  # g = L h^T
+        t = 0.0
+        for c in cols:
+            t += L[i, c] * h[c]
+        g[i] = t
+    for i in range(n):  # P = L - g k^T + k r k^T, one triangle
+        w = r * k[i] - g[i]
+        for j in range(i, n):
+            P[i, j] = P[j, i] = L[i, j] + w * k[j]
+
+
 # --------------------------------------------------------------------------
 # Per-sample quaternion helpers (scalar first, Hamilton product, the conventions of navlib.attitude)
 # --------------------------------------------------------------------------

@@ -67,7 +67,7 @@ for n in ((), (3, 4), (2 * geodesy._CHUNK + 5,)):           # scalars, n-D, bloc
 from navlib.filters import zupt
 P15 = np.eye(15)
 zupt.error_state_predict_into(P15, np.eye(3) * 0.01, np.array([0.0, 0.0, 0.098]), 0.01, np.full(15, 1e-8),
-                              np.empty((2, 15, 15)))
+                              np.empty((15, 15)))
 assert np.all(np.isfinite(P15))
 
 # The primitives are unvalidated: bounds checking is on, so an empty gyro sample is caught here.

@@ -85,46 +85,99 @@ def test_error_model_matches_finite_differences_of_the_mechanisation():
         np.testing.assert_allclose(F_fd, F, atol=1e-6 * np.abs(F).max())
 
 
-def _dense_fma_covariance(P, Phi, q):
-    """Phi P Phi^T + diag(q), symmetrised: every sum over all k, ascending, one rounding per term (no skipping)."""
-    from navlib._kernels import fma
-
-    def product(A, B):
-        C = np.zeros((15, 15))
-        for i in range(15):
-            for j in range(15):
-                for k in range(15):
-                    C[i, j] = fma(A[i, k], B[k, j], C[i, j])
-        return C
-
-    M = product(product(Phi, P), Phi.T) + np.diag(q)
-    return (M + M.T) / 2
+def _random_covariance(rng, n):
+    """A symmetric positive definite n x n covariance whose states' sigmas span three decades (as the INS's)."""
+    A = rng.standard_normal((n, n)) * np.exp(rng.uniform(-7.0, 0.0, n))[:, None]
+    P = A @ A.T + 1e-12 * np.eye(n)
+    return (P + P.T) / 2
 
 
 def test_block_covariance_predict_is_the_dense_product():
-    """error_state_predict_into multiplies only Phi's non-zero blocks yet equals the dense product summed in order
-    with one rounding per term bit for bit (zero terms skipped, nothing else), and kalman_predict to rounding (bit
-    for bit with OpenBLAS on x86-64). Phi = I + F dt from error_state_into, the model's one definition."""
-    from navlib import _kernels
-
+    """error_state_predict_into multiplies only Phi's non-zero blocks (and one triangle of the result) yet equals
+    the dense Phi P Phi^T + Q to rounding, exactly symmetric; Phi = I + F dt from error_state_into, the model's
+    one definition. A zero row and column of P and dt = 0 (a clock jump) included."""
     rng = np.random.default_rng(3)
-    work = np.empty((2, 15, 15))
-    for dt in (0.01, 0.0, 1.3):
-        A = rng.standard_normal((15, 15))
-        P = A @ A.T * 1e-3
-        P[4] = P[:, 4] = 0.0
+    work = np.empty((15, 15))
+    for dt in (0.01, 0.0, 1.3, 0.005, 0.01, 0.02):
+        P = _random_covariance(rng, 15)
+        if dt == 0.01:
+            P[4] = P[:, 4] = 0.0
         C = attitude.euler_to_dcm(random_hpr(rng, 1)[0])
-        C_dt, f_dt = C * dt, C @ np.array([0.1, 0.0, 9.8]) * dt
+        C_dt, f_dt = C * dt, C @ (np.array([0.1, 0.0, 9.8]) + rng.normal(0, 2, 3)) * dt
         Phi = np.eye(15)
         Phi[[0, 1, 2], [3, 4, 5]] = dt
         zupt.error_state_into(Phi, C_dt, f_dt)
         q = rng.uniform(0.0, 1e-4, 15) * dt
         got = P.copy()
         zupt.error_state_predict_into(got, C_dt, f_dt, dt, q, work)
-        np.testing.assert_array_equal(got, _dense_fma_covariance(P, Phi, q))
+        want = Phi @ P @ Phi.T + np.diag(q)
         np.testing.assert_array_equal(got, got.T)
-        _, want = _kernels.kalman_predict(np.zeros(15), P, Phi, np.diag(q))
-        np.testing.assert_allclose(got, want, rtol=0, atol=1e-15 * np.abs(want).max())
+        np.testing.assert_allclose(got, want, rtol=0, atol=1e-13 * np.abs(want).max())
+        if dt == 0.0:
+            np.testing.assert_array_equal(got, P + np.diag(q))
+
+
+def test_structured_zupt_zaru_update_is_the_generic_joseph_update():
+    """zupt_zaru_update_into (H's structure, Cholesky, one triangle) equals kalman_update with the same H and R to
+    rounding: dx, P, NIS, status; rejects by the gate without writing; a NaN measurement is no measurement."""
+    from navlib import _kernels
+
+    rng = np.random.default_rng(5)
+    for _ in range(50):
+        P0 = _random_covariance(rng, 15)
+        H = zupt.zupt_zaru_matrix(attitude.euler_to_dcm(random_hpr(rng, 1)[0]), earth.earth_rate_n(rng.uniform(-1.5, 1.5)))
+        r = np.concatenate([np.full(3, 10 ** rng.uniform(-6, -2)), np.full(3, 10 ** rng.uniform(-9, -5))])
+        z = rng.normal(0, 0.01, 6)
+        P, dx = P0.copy(), np.zeros(15)
+        nis, status = zupt.zupt_zaru_update_into(P, dx, z, H, r, np.inf)
+        x_want, P_want, _, nis_want, status_want = _kernels.kalman_update(
+            np.zeros(15), P0, z, np.zeros(6), H, np.diag(r), np.zeros(6, bool)
+        )
+        assert status == status_want == 1
+        np.testing.assert_array_equal(P, P.T)
+        np.testing.assert_allclose(P, P_want, rtol=0, atol=1e-12 * np.abs(P_want).max())
+        np.testing.assert_allclose(dx, x_want, rtol=0, atol=1e-12 * np.abs(x_want).max())
+        assert nis == pytest.approx(nis_want, rel=1e-12)
+        P, dx = P0.copy(), np.zeros(15)
+        assert zupt.zupt_zaru_update_into(P, dx, z, H, r, nis_want / 2)[1] == -1  # gated: nothing written
+        np.testing.assert_array_equal(P, P0)
+        z[4] = np.nan
+        assert zupt.zupt_zaru_update_into(P, dx, z, H, r, np.inf)[1] == 0
+        np.testing.assert_array_equal(P, P0)
+        assert not dx.any()
+
+
+def test_scalar_update_is_the_generic_joseph_update():
+    """_kernels.scalar_update (one measurement row, its non-zero columns) equals kalman_update to rounding."""
+    from navlib import _kernels
+
+    rng = np.random.default_rng(6)
+    for cols in ([2], [6, 7, 8], [0, 5, 14]):
+        P0 = _random_covariance(rng, 15)
+        h = np.zeros(15)
+        h[cols] = rng.normal(size=len(cols))
+        y, r = rng.normal(), 10 ** rng.uniform(-4, 0)
+        P, dx = P0.copy(), np.zeros(15)
+        _kernels.scalar_update(P, dx, y, h, np.array(cols), r)
+        x_want, P_want, *_ = _kernels.kalman_update(
+            np.zeros(15), P0, np.array([y]), np.zeros(1), h[None], np.array([[r]]), np.zeros(1, bool)
+        )
+        np.testing.assert_array_equal(P, P.T)
+        np.testing.assert_allclose(P, P_want, rtol=0, atol=1e-12 * np.abs(P_want).max())
+        np.testing.assert_allclose(dx, x_want, rtol=0, atol=1e-12 * np.abs(x_want).max())
+
+
+def test_spd_solve_is_the_inverse():
+    from navlib import _kernels
+
+    rng = np.random.default_rng(7)
+    for m in (1, 3, 6, 9):
+        S = _random_covariance(rng, m) + np.eye(m)
+        B = rng.normal(size=(m, 4))
+        X, F = B.copy(), S.copy()
+        assert _kernels.spd_solve_into(F, X)
+        np.testing.assert_allclose(S @ X, B, rtol=0, atol=1e-12 * np.abs(B).max())
+        assert not _kernels.spd_solve_into(-S, B.copy())  # not positive definite: not solved
 
 
 def test_zupt_zaru_innovation_is_H_dx_to_second_order():

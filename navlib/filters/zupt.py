@@ -33,8 +33,7 @@ truth`` for r, v, psi and ``truth - estimate`` for the biases).
   is second order.
 
 The ``*_into`` functions are the compiled forms that filter kernels call (no validation), among them
-:func:`error_state_predict_into`, the covariance prediction with ``Phi = I + F dt`` that multiplies only
-Phi's non-zero blocks.
+:func:`error_state_predict_into`, the covariance prediction with ``Phi = I + F dt`` by Phi's non-zero blocks.
 Used by paper 004 (Wen et al. 2016, :mod:`navlib.papers.pedestrian_ins`), which assembles them
 with barometer and magnetometer aiding into its filter.
 """
@@ -45,8 +44,7 @@ import numpy as np
 from numba import njit
 from numpy.typing import NDArray
 
-from .. import analysis, attitude
-from .._kernels import fma
+from .. import _kernels, analysis, attitude
 from .._typing import Array, ArrayLike, Dcm, Vec3, Vec3Series
 from .._validate import Positive, as_array, as_dcm, boundary, imu_samples, interval, positive, scalar
 from ..imu import ImuSamples, unpack
@@ -156,12 +154,6 @@ def detect_static(
 
 
 @njit(cache=True)
-def skew_1(v):
-    """``[v x]`` of one vector; compiled."""
-    return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
-
-
-@njit(cache=True)
 def error_state_into(F, C, f_n):
     """Write the time-varying blocks of F into ``F`` (15 x 15, constant blocks preset); compiled, unvalidated.
 
@@ -178,60 +170,61 @@ def error_state_into(F, C, f_n):
 
 
 @njit(cache=True)
-def _transition_into(out, A, C_dt, f_dt, dt):
-    """``out = Phi A`` (15 x 15) for ``Phi = I + F dt``, F of :func:`error_state_into` with ``C dt`` and ``f_n dt``.
+def _phi_row(A, r, C_dt, f_dt, dt):
+    """The first nine elements of ``Phi A[r]^T`` for row ``r`` of a 15-column ``A``, ``Phi = I + F dt``, as a tuple.
 
-    Only Phi's non-zero entries are multiplied; each sum keeps the order of a dense product (k ascending,
-    the diagonal 1 first, one fused multiply-add per term, as BLAS's dgemm), so that skipping the zero
-    terms (exact zeros added) changes no bit for finite A.
+    By F's blocks: position ``x_r + x_v dt``, velocity ``x_v - [f_n dt x] x_psi + (C dt) x_ba``, attitude
+    ``x_psi + (C dt) x_bg``; Phi's last six (bias) rows are the identity. The row is read into locals first:
+    nothing written can alias it.
     """
+    r0, r1, r2, v0, v1, v2 = A[r, 0], A[r, 1], A[r, 2], A[r, 3], A[r, 4], A[r, 5]
+    p0, p1, p2, a0, a1, a2 = A[r, 6], A[r, 7], A[r, 8], A[r, 9], A[r, 10], A[r, 11]
+    g0, g1, g2 = A[r, 12], A[r, 13], A[r, 14]
     f0, f1, f2 = f_dt[0], f_dt[1], f_dt[2]
-    for j in range(15):
-        for a in range(3):  # position rows: I, I dt
-            out[a, j] = fma(dt, A[3 + a, j], A[a, j] + 0.0)
-        # velocity rows: I, -[f_n dt x] (zero diagonal), C dt
-        out[3, j] = fma(
-            C_dt[0, 2],
-            A[11, j],
-            fma(C_dt[0, 1], A[10, j], fma(C_dt[0, 0], A[9, j], fma(-f1, A[8, j], fma(f2, A[7, j], A[3, j] + 0.0)))),
-        )
-        out[4, j] = fma(
-            C_dt[1, 2],
-            A[11, j],
-            fma(C_dt[1, 1], A[10, j], fma(C_dt[1, 0], A[9, j], fma(f0, A[8, j], fma(-f2, A[6, j], A[4, j] + 0.0)))),
-        )
-        out[5, j] = fma(
-            C_dt[2, 2],
-            A[11, j],
-            fma(C_dt[2, 1], A[10, j], fma(C_dt[2, 0], A[9, j], fma(-f0, A[7, j], fma(f1, A[6, j], A[5, j] + 0.0)))),
-        )
-        for a in range(3):  # attitude rows: I, C dt
-            out[6 + a, j] = fma(C_dt[a, 2], A[14, j], fma(C_dt[a, 1], A[13, j], fma(C_dt[a, 0], A[12, j], A[6 + a, j] + 0.0)))
-        for i in range(9, 15):  # bias rows: I
-            out[i, j] = A[i, j] + 0.0
+    return (
+        r0 + dt * v0,
+        r1 + dt * v1,
+        r2 + dt * v2,
+        v0 + (p1 * f2 - p2 * f1) + (C_dt[0, 0] * a0 + C_dt[0, 1] * a1 + C_dt[0, 2] * a2),
+        v1 + (p2 * f0 - p0 * f2) + (C_dt[1, 0] * a0 + C_dt[1, 1] * a1 + C_dt[1, 2] * a2),
+        v2 + (p0 * f1 - p1 * f0) + (C_dt[2, 0] * a0 + C_dt[2, 1] * a1 + C_dt[2, 2] * a2),
+        p0 + (C_dt[0, 0] * g0 + C_dt[0, 1] * g1 + C_dt[0, 2] * g2),
+        p1 + (C_dt[1, 0] * g0 + C_dt[1, 1] * g1 + C_dt[1, 2] * g2),
+        p2 + (C_dt[2, 0] * g0 + C_dt[2, 1] * g1 + C_dt[2, 2] * g2),
+    )
 
 
 @njit(cache=True)
 def error_state_predict_into(P, C_dt, f_dt, dt, q, work):
-    """``P = Phi P Phi^T + diag(q)`` (symmetrised) in place, ``Phi = I + F dt``; compiled, unvalidated.
+    """``P = Phi P Phi^T + diag(q)`` in place, ``Phi = I + F dt`` multiplied by blocks; compiled, unvalidated.
 
     ``C_dt`` = C dt (3 x 3), ``f_dt`` = (C f_b) dt (3,), ``q`` the diagonal process noise (15,), ``work`` a
-    (2, 15, 15) scratch: nothing is allocated. Exploits Phi's identity and zero blocks (:func:`_transition_into`)
-    and gives :func:`navlib._kernels.kalman_predict`'s covariance for that Phi and ``Q = diag(q)`` bit for bit
-    where BLAS's dgemm sums in order with fused multiply-adds (OpenBLAS on x86-64), to rounding elsewhere.
+    (15, 15) scratch: nothing is allocated. ``P`` must be symmetric; the result is, exactly.
+
+    The transition matrix of the INS error model is block-sparse (Groves 2013, *Principles of GNSS, Inertial,
+    and Multisensor Integrated Navigation Systems*, 2nd ed., ch. 14; Sola 2017, *Quaternion kinematics for the
+    error-state Kalman filter*, sec. 5.4): identity blocks on the diagonal, ``I dt`` (position from velocity),
+    ``-[f_n dt x]`` (velocity from attitude), ``C dt`` (velocity from the accelerometer bias, attitude from the
+    gyro bias), nothing else; its bias rows are the identity. So only the first nine rows of ``M = Phi P`` are
+    computed, by blocks (:func:`_phi_row` on each column of P, a row as P is symmetric), the bias-bias block of
+    the result is P's own, its bias rows are M's bias columns, and of ``Phi M^T`` the first nine rows, by blocks
+    again, from the diagonal on (mirrored): about a third of a dense product's multiplications, no
+    symmetrisation. Equal to the dense ``Phi P Phi^T + Q`` to rounding (tests/test_pedestrian.py), not bit for
+    bit: the sums run in another order.
     """
-    FP, FPT = work[0], work[1]
-    _transition_into(FP, P, C_dt, f_dt, dt)  # Phi P
+    M = work
+    for j in range(15):  # M[:9] = (Phi P)[:9], column j from row j of P
+        m = _phi_row(P, j, C_dt, f_dt, dt)
+        for i in range(9):
+            M[i, j] = m[i]
+    for i in range(9):  # rows 0-8 of Phi P Phi^T = (Phi M^T)^T from the diagonal on; the bias columns are M's
+        v = _phi_row(M, i, C_dt, f_dt, dt)
+        for j in range(i, 9):
+            P[i, j] = P[j, i] = v[j]
+        for j in range(9, 15):
+            P[i, j] = P[j, i] = M[i, j]
     for i in range(15):
-        for j in range(15):
-            FPT[j, i] = FP[i, j]
-    MT = work[0]
-    _transition_into(MT, FPT, C_dt, f_dt, dt)  # (Phi P Phi^T)^T = Phi (Phi P)^T
-    for i in range(15):
-        MT[i, i] += q[i]
-    for i in range(15):  # (M + M^T) / 2, one half computed
-        for j in range(i, 15):
-            P[i, j] = P[j, i] = (MT[j, i] + MT[i, j]) / 2
+        P[i, i] += q[i]
 
 
 def error_state_matrix(C_bn: Dcm, f_b: Vec3) -> Array:
@@ -316,22 +309,95 @@ def error_model_fd(C_bn: Dcm, f_b: Vec3, eps: Positive = 1e-6) -> Array:
 
 @njit(cache=True)
 def zupt_zaru_rows_into(H, C, w_ie_n):
-    """ZUPT/ZARU rows into ``H`` (6 x 15): H[0:3, 3:6] = I, H[3:6, 6:9] = -C^T [w_ie x], H[3:6, 12:15] = I."""
-    A = -(C.T @ skew_1(w_ie_n))
+    """ZUPT/ZARU rows into ``H`` (6 x 15): H[0:3, 3:6] = I, H[3:6, 6:9] = -C^T [w_ie x], H[3:6, 12:15] = I.
+
+    Row i of ``-C^T [w x]`` is ``w x c_i``, c_i the i-th column of C; allocates nothing.
+    """
+    w0, w1, w2 = w_ie_n[0], w_ie_n[1], w_ie_n[2]
     for i in range(3):
         H[i, 3 + i] = 1.0
         H[3 + i, 12 + i] = 1.0
-        for j in range(3):
-            H[3 + i, 6 + j] = A[i, j]
+        c0, c1, c2 = C[0, i], C[1, i], C[2, i]
+        H[3 + i, 6], H[3 + i, 7], H[3 + i, 8] = w1 * c2 - w2 * c1, w2 * c0 - w0 * c2, w0 * c1 - w1 * c0
 
 
 @njit(cache=True)
 def zupt_zaru_z_into(z, vel, w_mean, b_g, C, w_ie_n):
-    """The static measurement into ``z`` (6,); compiled, unvalidated."""
-    ce = C.T @ w_ie_n
+    """The static measurement into ``z`` (6,); compiled, unvalidated; allocates nothing."""
     for i in range(3):
         z[i] = vel[i]
-        z[3 + i] = w_mean[i] - b_g[i] - ce[i]
+        z[3 + i] = w_mean[i] - b_g[i] - (C[0, i] * w_ie_n[0] + C[1, i] * w_ie_n[1] + C[2, i] * w_ie_n[2])
+
+
+@njit(cache=True)
+def zupt_zaru_update_into(P, dx, z, H, r, gate):
+    """Joseph-form ZUPT/ZARU update of the closed-loop error state (0 before it) in place; compiled, unvalidated.
+
+    ``P`` (15, 15) symmetric, ``z`` (6,) the static measurement (:func:`zupt_zaru_z_into`; the innovation, the
+    state being 0), ``H`` its rows (:func:`zupt_zaru_rows_into`), ``R = diag(r)``. Writes ``dx = K z`` (15,) and
+    ``P = (I - K H) P (I - K H)^T + K R K^T`` (symmetric, exactly); returns ``(nis, status)``, status 1
+    (accepted), -1 (``nis > gate``, or S not positive definite) or 0 (a non-finite ``z``: no measurement);
+    nothing is written but for 1.
+
+    :func:`navlib.kalman.update`'s algebra written for this H: its rows pick the velocity (``I``) and the gyro bias
+    plus ``A dpsi`` (``A = H[3:6, 6:9]``), so ``H P`` and ``L H^T`` cost a few products per column instead of
+    fifteen; S is solved by Cholesky (:func:`navlib._kernels.spd_solve_into`), ``dx = (H P)^T S^-1 z``, and the
+    covariance loops are unrolled over the six components and fill one triangle. Equal to the generic update to
+    rounding (tests/test_pedestrian.py), not bit for bit.
+    """
+    if not (np.isfinite(z[0]) and np.isfinite(z[1]) and np.isfinite(z[2])):
+        return np.nan, 0
+    if not (np.isfinite(z[3]) and np.isfinite(z[4]) and np.isfinite(z[5])):
+        return np.nan, 0
+    HP, KT, L, S = np.empty((6, 15)), np.empty((6, 16)), np.empty((15, 15)), np.empty((6, 6))
+    a00, a01, a02 = H[3, 6], H[3, 7], H[3, 8]
+    a10, a11, a12 = H[4, 6], H[4, 7], H[4, 8]
+    a20, a21, a22 = H[5, 6], H[5, 7], H[5, 8]
+    for j in range(15):  # H P, and a copy to solve for K^T = S^-1 H P
+        p6, p7, p8 = P[6, j], P[7, j], P[8, j]
+        HP[0, j], HP[1, j], HP[2, j] = P[3, j], P[4, j], P[5, j]
+        HP[3, j] = P[12, j] + (a00 * p6 + a01 * p7 + a02 * p8)
+        HP[4, j] = P[13, j] + (a10 * p6 + a11 * p7 + a12 * p8)
+        HP[5, j] = P[14, j] + (a20 * p6 + a21 * p7 + a22 * p8)
+        for a in range(6):
+            KT[a, j] = HP[a, j]
+    for a in range(6):  # S = H (H P)^T + R, and z beside H P
+        h6, h7, h8 = HP[a, 6], HP[a, 7], HP[a, 8]
+        S[a, 0], S[a, 1], S[a, 2] = HP[a, 3], HP[a, 4], HP[a, 5]
+        S[a, 3] = HP[a, 12] + (a00 * h6 + a01 * h7 + a02 * h8)
+        S[a, 4] = HP[a, 13] + (a10 * h6 + a11 * h7 + a12 * h8)
+        S[a, 5] = HP[a, 14] + (a20 * h6 + a21 * h7 + a22 * h8)
+        S[a, a] += r[a]
+        KT[a, 15] = z[a]
+    if not _kernels.spd_solve_into(S, KT):  # [K^T | S^-1 z]
+        return np.nan, -1
+    nis = 0.0
+    for a in range(6):
+        nis += z[a] * KT[a, 15]
+    if nis > gate:
+        return nis, -1
+    u0, u1, u2, u3, u4, u5 = KT[0, 15], KT[1, 15], KT[2, 15], KT[3, 15], KT[4, 15], KT[5, 15]
+    for j in range(15):  # dx = K z = (H P)^T S^-1 z
+        dx[j] = HP[0, j] * u0 + HP[1, j] * u1 + HP[2, j] * u2 + HP[3, j] * u3 + HP[4, j] * u4 + HP[5, j] * u5
+    for i in range(15):  # L = (I - K H) P = P - K H P
+        k0, k1, k2, k3, k4, k5 = KT[0, i], KT[1, i], KT[2, i], KT[3, i], KT[4, i], KT[5, i]
+        for j in range(15):
+            L[i, j] = P[i, j] - (k0 * HP[0, j] + k1 * HP[1, j] + k2 * HP[2, j] + k3 * HP[3, j] + k4 * HP[4, j] + k5 * HP[5, j])
+    for i in range(15):  # W^T = K R - L H^T, into H P (no longer needed)
+        l6, l7, l8 = L[i, 6], L[i, 7], L[i, 8]
+        HP[0, i] = r[0] * KT[0, i] - L[i, 3]
+        HP[1, i] = r[1] * KT[1, i] - L[i, 4]
+        HP[2, i] = r[2] * KT[2, i] - L[i, 5]
+        HP[3, i] = r[3] * KT[3, i] - (L[i, 12] + (a00 * l6 + a01 * l7 + a02 * l8))
+        HP[4, i] = r[4] * KT[4, i] - (L[i, 13] + (a10 * l6 + a11 * l7 + a12 * l8))
+        HP[5, i] = r[5] * KT[5, i] - (L[i, 14] + (a20 * l6 + a21 * l7 + a22 * l8))
+    for i in range(15):  # P = L (I - K H)^T + K R K^T = L + W K^T, one triangle
+        w0, w1, w2, w3, w4, w5 = HP[0, i], HP[1, i], HP[2, i], HP[3, i], HP[4, i], HP[5, i]
+        for j in range(i, 15):
+            P[i, j] = P[j, i] = L[i, j] + (
+                w0 * KT[0, j] + w1 * KT[1, j] + w2 * KT[2, j] + w3 * KT[3, j] + w4 * KT[4, j] + w5 * KT[5, j]
+            )
+    return nis, 1
 
 
 def zupt_zaru_matrix(C_bn: Dcm, w_ie_n: Vec3) -> Array:

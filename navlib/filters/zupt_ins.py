@@ -11,8 +11,10 @@ scenarios); its defaults (:class:`FilterConfig`) are that paper's sensors.
 
 The filter (:func:`run_filter`, a compiled per-sample kernel) reuses navlib's strapdown step, the block
 covariance prediction of :mod:`navlib.filters.zupt` (:func:`~navlib.filters.zupt.error_state_predict_into`,
-which multiplies only the non-zero blocks of the transition matrix) and :func:`navlib.kalman.update`; a step
-without a measurement allocates nothing.
+which multiplies only the non-zero blocks of the transition matrix) and the Joseph-form update of
+:func:`navlib.kalman.update` written for the error state (0 between updates) and for these measurements
+(:func:`~navlib.filters.zupt.zupt_zaru_update_into`, ``navlib._kernels.scalar_update``); a step without a
+measurement allocates nothing.
 
 Faults (tests in ``tests/faults/test_faults_pedestrian.py``). The IMU samples are screened once, before the
 filter runs (:func:`navlib.robust.screen`, per the :class:`navlib.imu.SensorLimits` of the
@@ -62,7 +64,7 @@ from .._validate import Is, as_array, as_quat, booleans, boundary, choice, flag,
 from ..imu import ImuSamples
 from ..strapdown import earth_constants
 from ..units import G0
-from .zupt import error_state_predict_into, zupt_zaru_rows_into, zupt_zaru_z_into
+from .zupt import error_state_predict_into, zupt_zaru_rows_into, zupt_zaru_update_into, zupt_zaru_z_into
 
 __all__ = [
     "Start",
@@ -461,7 +463,7 @@ class _Tuning(NamedTuple):
 
 @njit(cache=True)
 def _feedback(x, lla, vel, q, b, a, e2):
-    """Closed-loop correction of Eq. (3): apply dx to the INS and zero it."""
+    """Closed-loop correction of Eq. (3): apply the error state ``x`` to the INS (the filter's state is 0 again)."""
     R_M, R_N = radii_mn(lla[0], a, e2)
     lla[0] -= x[1] / (R_M + lla[2])
     lla[1] -= x[0] / ((R_N + lla[2]) * np.cos(lla[0]))
@@ -474,7 +476,6 @@ def _feedback(x, lla, vel, q, b, a, e2):
     q[0], q[1], q[2], q[3] = m0 / s, m1 / s, m2 / s, m3 / s
     for i in range(6):
         b[i] += x[9 + i]
-    x[:] = 0.0
 
 
 @njit(cache=True)
@@ -499,7 +500,7 @@ class _Work(NamedTuple):
     allocates nothing."""
 
     q_k: np.ndarray  # (15,) process noise (diagonal) of a step
-    predict: np.ndarray  # (2, 15, 15) scratch of error_state_predict_into
+    predict: np.ndarray  # (15, 15) scratch of error_state_predict_into
     C: np.ndarray  # (3, 3) C_bn after the step
     C_dt: np.ndarray  # (3, 3)
     f_dt: np.ndarray  # (3,) f_n dt
@@ -507,22 +508,18 @@ class _Work(NamedTuple):
     f_k: np.ndarray  # (3,) bias-corrected accelerometer
     w_sum: np.ndarray  # (3,) sum of the static gyro samples since the last ZUPT/ZARU
     w_ie: np.ndarray  # (3,) Earth rate (ENU)
-    H6: np.ndarray  # ZUPT/ZARU: H, z, H x, R
+    dx: np.ndarray  # (15,) the error state an update estimates, fed back at once
+    H6: np.ndarray  # ZUPT/ZARU: H (6, 15), z, diag(R)
     z6: np.ndarray
-    h6: np.ndarray
-    R6: np.ndarray
-    H1: np.ndarray  # one scalar measurement (height, heading): H, z, H x, R
-    z1: np.ndarray
-    h1: np.ndarray
-    R1: np.ndarray
+    r6: np.ndarray
+    h1: np.ndarray  # (15,) the row of a scalar measurement (height, heading)
 
 
 @njit(cache=True)
 def _work(c):
-    R6 = np.diag(np.array([c.r_zupt, c.r_zupt, c.r_zupt, c.r_zaru, c.r_zaru, c.r_zaru]))
     return _Work(
         np.empty(15),
-        np.empty((2, 15, 15)),
+        np.empty((15, 15)),
         np.empty((3, 3)),
         np.empty((3, 3)),
         np.empty(3),
@@ -530,37 +527,38 @@ def _work(c):
         np.zeros(3),
         np.zeros(3),
         np.zeros(3),
+        np.zeros(15),
         np.zeros((6, 15)),
         np.zeros(6),
-        np.zeros(6),
-        R6,
-        np.zeros((1, 15)),
-        np.zeros(1),
-        np.zeros(1),
-        np.zeros((1, 1)),
+        np.array([c.r_zupt, c.r_zupt, c.r_zupt, c.r_zaru, c.r_zaru, c.r_zaru]),
+        np.zeros(15),
     )
 
 
-@njit(cache=True)
-def _zupt_zaru(x, P, lla, vel, q, b, n_sum, forced, c, ws):
+_HEIGHT_COLUMN, _ATTITUDE_COLUMNS = np.array([2]), np.array([6, 7, 8])
+"""The error states the height and the heading measure (their rows' non-zero columns)."""
+
+
+@njit(cache=True, inline="always")
+def _zupt_zaru(P, lla, vel, q, b, n_sum, forced, c, ws):
     """ZUPT + ZARU (Eq. 2) on the mean rate of ``n_sum`` static samples; ``forced``: ungated, the velocity
-    variances widened to the innovation first (P was too small). Returns ``(x, P, status)``."""
+    variances widened to the innovation first (P was too small). Returns the status of
+    :func:`~navlib.filters.zupt.zupt_zaru_update_into`."""
     omega = c.earth_consts[6]
     ws.w_ie[1], ws.w_ie[2] = omega * np.cos(lla[0]), omega * np.sin(lla[0])
     zupt_zaru_rows_into(ws.H6, ws.C, ws.w_ie)
-    zupt_zaru_z_into(ws.z6, vel, ws.w_sum / n_sum, b[3:6], ws.C, ws.w_ie)
+    for i in range(3):  # the mean rate (the caller zeroes the sum after the update)
+        ws.w_sum[i] /= n_sum
+    zupt_zaru_z_into(ws.z6, vel, ws.w_sum, b[3:6], ws.C, ws.w_ie)
     for i in range(3):
-        ws.R6[3 + i, 3 + i] = c.r_zaru / n_sum
-    ws.h6[:] = 0.0  # H x, x = 0 between updates (closed loop)
+        ws.r6[3 + i] = c.r_zaru / n_sum
     if forced:
         for i in range(3):
-            _reset_state(P, 3 + i, max(np.sqrt(P[3 + i, 3 + i]), abs(ws.z6[i] - ws.h6[i])))
-    x, P, _, _, status = _kernels.kalman_update(
-        x, P, ws.z6, ws.h6, ws.H6, ws.R6, np.zeros(6, dtype=np.bool_), np.inf if forced else c.gate
-    )
+            _reset_state(P, 3 + i, max(np.sqrt(P[3 + i, 3 + i]), abs(ws.z6[i])))
+    _, status = zupt_zaru_update_into(P, ws.dx, ws.z6, ws.H6, ws.r6, np.inf if forced else c.gate)
     if status == 1:
-        _feedback(x, lla, vel, q, b, c.earth_consts[0], c.earth_consts[2])
-    return x, P, status
+        _feedback(ws.dx, lla, vel, q, b, c.earth_consts[0], c.earth_consts[2])
+    return status
 
 
 @njit(cache=True)
@@ -578,51 +576,47 @@ def _track_baro(h, hb, vb, started, t_since, n_rejected, c):
     return hb + c.alpha * r, vb + c.beta * r / t_since, True, 0, True, 0
 
 
-@njit(cache=True)
-def _height_aid(x, P, lla, vel, q, b, hb, vb, h, c, ws):
+@njit(cache=True, inline="always")
+def _height_aid(P, lla, vel, q, b, hb, vb, h, c, ws):
     """The tracked height while walking: a direct reset (the paper's binding) or a Kalman measurement of the
-    measured height ``h``. Returns ``(x, P)``."""
+    measured height ``h``."""
     if c.walk == 1:
         lla[2], vel[2] = hb, vb
         _reset_state(P, 2, np.sqrt(c.r_baro))
         _reset_state(P, 5, 0.3)
-        return x, P
-    ws.H1[:] = 0.0
-    ws.H1[0, 2] = 1.0
-    ws.z1[0], ws.h1[0], ws.R1[0, 0] = lla[2] - h, 0.0, c.r_baro
-    x, P, _, _, _ = _kernels.kalman_update(x, P, ws.z1, ws.h1, ws.H1, ws.R1, np.zeros(1, dtype=np.bool_), np.inf)
-    _feedback(x, lla, vel, q, b, c.earth_consts[0], c.earth_consts[2])
-    return x, P
+        return
+    ws.h1[:] = 0.0
+    ws.h1[2] = 1.0
+    _kernels.scalar_update(P, ws.dx, lla[2] - h, ws.h1, _HEIGHT_COLUMN, c.r_baro)
+    _feedback(ws.dx, lla, vel, q, b, c.earth_consts[0], c.earth_consts[2])
 
 
-@njit(cache=True)
-def _heading_aid(x, P, lla, vel, q, b, m_b, c, ws):
+@njit(cache=True, inline="always")
+def _heading_aid(P, lla, vel, q, b, m_b, c, ws):
     """The tilt-compensated compass heading while walking (Eqs. 4-6), gated on the field's intensity and dip:
-    a direct reset ``C <- rot(z, H_hat - alpha) C`` or a Kalman measurement. Returns ``(x, P, used)``."""
+    a direct reset ``C <- rot(z, H_hat - alpha) C`` or a Kalman measurement. Returns whether it was used."""
     C = ws.C
-    m_n = C @ m_b
+    m_n = _kernels.mat3_vec(C, m_b)  # (C @ m_b's bits)
     F_m = np.sqrt(m_n[0] ** 2 + m_n[1] ** 2 + m_n[2] ** 2)
     dip = np.arctan2(-m_n[2], np.sqrt(m_n[0] ** 2 + m_n[1] ** 2))
     if abs(F_m - c.field_ref[0]) > c.field_tol or abs(dip - c.field_ref[1]) > c.dip_tol:
-        return x, P, False
+        return False
     pitch, roll = np.arcsin(min(1.0, max(-1.0, C[2, 1]))), np.arctan2(-C[2, 0], C[2, 2])
     alpha_h = _kernels.tilt_heading(m_b[0], m_b[1], m_b[2], pitch, roll) + c.declination
     dh = _kernels.wrap_pi(_kernels.dcm_heading(C[0, 1], C[1, 1]) - alpha_h)
     if c.walk == 1:
-        rz = np.array([np.cos(dh / 2), 0.0, 0.0, np.sin(dh / 2)])
-        qn = _kernels.quat_normalize_1(_kernels.quat_mult_1(rz, q))
-        for i in range(4):
-            q[i] = qn[i]
+        m0, m1, m2, m3 = _kernels.quat_mult_t(np.cos(dh / 2), 0.0, 0.0, np.sin(dh / 2), q[0], q[1], q[2], q[3])
+        s = np.sqrt(m0 * m0 + m1 * m1 + m2 * m2 + m3 * m3)
+        q[0], q[1], q[2], q[3] = m0 / s, m1 / s, m2 / s, m3 / s
         _reset_state(P, 8, np.sqrt(c.r_heading))
-        return x, P, True
+        return True
     c1 = C[:, 1]
     hh = c1[0] ** 2 + c1[1] ** 2
-    ws.H1[:] = 0.0
-    ws.H1[0, 6], ws.H1[0, 7], ws.H1[0, 8] = c1[0] * c1[2] / hh, c1[1] * c1[2] / hh, -1.0
-    ws.z1[0], ws.h1[0], ws.R1[0, 0] = dh, 0.0, c.r_heading
-    x, P, _, _, _ = _kernels.kalman_update(x, P, ws.z1, ws.h1, ws.H1, ws.R1, np.ones(1, dtype=np.bool_), np.inf)
-    _feedback(x, lla, vel, q, b, c.earth_consts[0], c.earth_consts[2])
-    return x, P, True
+    ws.h1[:] = 0.0
+    ws.h1[6], ws.h1[7], ws.h1[8] = c1[0] * c1[2] / hh, c1[1] * c1[2] / hh, -1.0
+    _kernels.scalar_update(P, ws.dx, _kernels.wrap_pi(dh), ws.h1, _ATTITUDE_COLUMNS, c.r_heading)
+    _feedback(ws.dx, lla, vel, q, b, c.earth_consts[0], c.earth_consts[2])
+    return True
 
 
 @njit(cache=True)
@@ -635,7 +629,7 @@ def _filter_kernel(samples, s0, c):
     lla_out, vel_out, q_out = np.empty((n + 1, 3)), np.empty((n + 1, 3)), np.empty((n + 1, 4))
     b_out, p_out = np.empty((n + 1, 6)), np.empty((n + 1, 15))
     lla, vel, q, b = s0.lla.copy(), s0.vel.copy(), s0.q.copy(), s0.b.copy()
-    x, P = np.zeros(15), np.diag(s0.p0_diag)
+    P = np.diag(s0.p0_diag)
     ws = _work(c)
     w_k, f_k, C, C_dt, f_dt, q_k = ws.w_k, ws.f_k, ws.C, ws.C_dt, ws.f_dt, ws.q_k
     # read before the loop: a record's array read per sample counts a reference (navlib._kernels)
@@ -677,7 +671,7 @@ def _filter_kernel(samples, s0, c):
             if n_sum >= c.every:
                 # a stance that keeps failing the gate means the INS, not the stance, is wrong
                 forced = n_rejected >= c.max_rejected
-                x, P, status = _zupt_zaru(x, P, lla, vel, q, b, n_sum, forced, c, ws)
+                status = _zupt_zaru(P, lla, vel, q, b, n_sum, forced, c, ws)
                 if status == 1:
                     counts[_ZUPT] += 1
                     counts[_ZUPT_FORCED] += forced
@@ -699,12 +693,12 @@ def _filter_kernel(samples, s0, c):
                 t_baro = 0.0
                 if c.walk > 0 and not static[k]:
                     counts[_BARO_AIDED] += 1
-                    x, P = _height_aid(x, P, lla, vel, q, b, hb, vb, h_baro[k], c, ws)
+                    _height_aid(P, lla, vel, q, b, hb, vb, h_baro[k], c, ws)
         hb += vb * dtk
         t_baro += dt[k]  # (dtk but for a jump, 0: keeps t_baro > 0)
         # --- compass heading while walking ---
         if c.walk > 0 and not static[k] and _finite_row(m_b, k):
-            x, P, used = _heading_aid(x, P, lla, vel, q, b, m_b[k], c, ws)
+            used = _heading_aid(P, lla, vel, q, b, m_b[k], c, ws)
             counts[_MAG_AIDED if used else _MAG_GATED] += 1
         _store(k + 1, lla_out, vel_out, q_out, b_out, p_out, lla, vel, q, b, P)
     return lla_out, vel_out, q_out, b_out, p_out, counts, P
