@@ -436,15 +436,16 @@ def _cholesky_solve(S, B, L, out):
 
 
 @njit(cache=True)
-def _update_identity_h(x, P, z, R, gate, w):
-    """Joseph-form update with H = I5 in place on x, P; returns (nis, status). w: work arrays (7, 5, 5)."""
-    S, L, Kt, A, tmp, KR, y = w[0], w[1], w[2], w[3], w[4], w[5], w[6]
+def _update_identity_h(x, P, z, R, gate, w, y):
+    """Joseph-form update with H = I5 in place on x, P; returns (nis, status). w: work arrays (6, 5, 5); y: the
+    innovation's work column (5, 1), contiguous like P (one specialisation of _cholesky_solve, not two)."""
+    S, L, Kt, A, tmp, KR = w[0], w[1], w[2], w[3], w[4], w[5]
     for i in range(5):
         y[i, 0] = z[i] - x[i]
         for j in range(5):
             S[i, j] = 0.5 * (P[i, j] + P[j, i]) + R[i, j]
     y[_HEADING, 0] = wrap_pi(y[_HEADING, 0])
-    _cholesky_solve(S, y[:, :1], L, tmp)  # S^-1 y
+    _cholesky_solve(S, y, L, tmp)  # S^-1 y
     nis = 0.0
     for i in range(5):
         nis += y[i, 0] * tmp[i, 0]
@@ -589,7 +590,7 @@ def _ekf_kernel(t, Z, x0, P0, Q, R, gate, reacquire, fast, rail, jump_steps):
         if np.isfinite(gate[g]):
             gate_on = True
     H = np.eye(5)
-    w = np.zeros((7, 5, 5))
+    w, y = np.zeros((6, 5, 5)), np.zeros((5, 1))
     Phi_P = np.empty((5, 5))
     zu = np.empty(5)
     x, P = x0.copy(), P0.copy()
@@ -614,7 +615,7 @@ def _ekf_kernel(t, Z, x0, P0, Q, R, gate, reacquire, fast, rail, jump_steps):
             if n_rej > 0:
                 status[k] = kalman.REJECTED
         elif fast and np.all(np.isfinite(z)):
-            nis[k], status[k] = _update_identity_h(x, P, z, R, np.inf, w)
+            nis[k], status[k] = _update_identity_h(x, P, z, R, np.inf, w, y)
         else:  # dropouts: the general kernel
             x, P, _, nis[k], status[k] = _kernels.kalman_update(x, P, z, x, H, R, _ANGLE_MASK, np.inf)
         x[_HEADING] = np.mod(x[_HEADING], 2 * np.pi)

@@ -538,6 +538,10 @@ def _work(c):
 _HEIGHT_COLUMN, _ATTITUDE_COLUMNS = np.array([2]), np.array([6, 7, 8])
 """The error states the height and the heading measure (their rows' non-zero columns)."""
 
+# The three measurement steps below are inlined into _filter_kernel (inline="always", each has one call site):
+# compiled on their own, each would optimise and emit its callees' code once more (numba links a function's
+# callees into its own module), which cost 3 s of the kernel's cold compile.
+
 
 @njit(cache=True, inline="always")
 def _zupt_zaru(P, lla, vel, q, b, n_sum, forced, c, ws):
