@@ -996,15 +996,17 @@ def _kalman_kernel(r, V, R, qq, intervals, p0, gate):
     b = np.empty((T, K, 3))
     sig = np.empty((T, K, 3))
     Ps = np.empty((T, K, 3, 3))
-    F = np.eye(3)
     mask = np.zeros(2, dtype=np.bool_)
     no_data = rejected = 0
     for t in range(T):
         x = np.zeros(3)
         P = p0.copy()
         for k in range(K):
-            if k > 0:
-                x, P = _kernels.kalman_predict(x, P, F, qq * intervals[k] * np.eye(3))
+            if k > 0:  # random-walk bias, Phi = I: x stays, P += Q (kalman_predict's bits: I P I^T is exact, P symmetric)
+                q = qq * intervals[k]
+                for i in range(3):
+                    for j in range(3):
+                        P[i, j] += q if i == j else 0.0
             H = V[t, k]
             if np.all(np.isfinite(H)):
                 x, P, _, _, status = _kernels.kalman_update(x, P, r[t, k], H @ x, H, R[t, k], mask, gate)
