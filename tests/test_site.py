@@ -121,7 +121,7 @@ def visited(browser, server) -> dict[tuple[str, int], dict]:
     typeset; a screenshot of each.
 
     One tab per width (each in its own browser context, so its own renderer process), in step: while one tab's page
-    is checked, the other's loads and typesets, so the two widths take little more than the time of one on two cores.
+    is checked, the other's loads and typesets, so the two widths overlap where a core is free.
     """
     seen = {}
     SHOTS.mkdir(parents=True, exist_ok=True)
