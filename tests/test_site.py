@@ -86,8 +86,17 @@ class Watched:
         )
 
     def open(self, path: str) -> list[str]:
+        self.start(path)
+        return self.finish()
+
+    def start(self, path: str) -> None:
+        """Navigate to ``path`` and return once the new document is committed: Chromium loads it meanwhile."""
         self.problems.clear()
-        self.page.goto(self.base + path, wait_until="load")
+        self.page.goto(self.base + path, wait_until="commit")
+
+    def finish(self) -> list[str]:
+        """Wait for the page started last to load, typeset and show its images; its problems."""
+        self.page.wait_for_load_state("load")
         # math typeset and web fonts loaded (each a promise that settles at once on a page without them)
         self.page.evaluate(
             "async () => { if (window.MathJax && MathJax.startup) await MathJax.startup.promise; await document.fonts.ready; }"
@@ -109,22 +118,39 @@ def pages() -> list[str]:
 @pytest.fixture(scope="module")
 def visited(browser, server) -> dict[tuple[str, int], dict]:
     """Every page opened once per width: its load problems, what tests/site_checks.js finds, how much math it
-    typeset; a screenshot of each."""
+    typeset; a screenshot of each.
+
+    One tab per width (each in its own browser context, so its own renderer process), in step: while one tab's page
+    is checked, the other's loads and typesets, so the two widths overlap where a core is free.
+    """
     seen = {}
     SHOTS.mkdir(parents=True, exist_ok=True)
-    for width in WIDTHS:
-        page = Watched(browser, server)
-        page.page.set_viewport_size({"width": width, "height": 1400 if width > 600 else 844})
-        for path in pages():
-            problems = page.open(path)
-            seen[path, width] = {
-                "problems": problems,
-                **page.page.evaluate(CHECKS),
-                "display_math": page.page.locator("mjx-container[display='true']").count(),
-                "math": page.page.locator("mjx-container").count(),
-            }
-            page.page.screenshot(path=str(SHOTS / f"{path.replace('/', '-').removesuffix('.html')}-{width}.png"))
+    tabs = {width: Watched(browser, server) for width in WIDTHS}
+    for width, tab in tabs.items():
+        tab.page.set_viewport_size({"width": width, "height": 1400 if width > 600 else 844})
+    shown: dict[int, str] = {}  # the page each tab is loading
+    for path in [*pages(), None]:
+        for width, tab in tabs.items():
+            if width in shown:
+                loaded = shown.pop(width)
+                seen[loaded, width] = look(tab, loaded, width)
+            if path is not None:
+                tab.start(path)
+                shown[width] = path
     return seen
+
+
+def look(tab: Watched, path: str, width: int) -> dict:
+    """What ``tab``, started on ``path``, shows once loaded (its screenshot saved)."""
+    problems = tab.finish()
+    found = {
+        "problems": problems,
+        **tab.page.evaluate(CHECKS),
+        "display_math": tab.page.locator("mjx-container[display='true']").count(),
+        "math": tab.page.locator("mjx-container").count(),
+    }
+    tab.page.screenshot(path=str(SHOTS / f"{path.replace('/', '-').removesuffix('.html')}-{width}.png"))
+    return found
 
 
 def failing(visited, key: str) -> dict:
