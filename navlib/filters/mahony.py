@@ -60,7 +60,7 @@ def _kernel(t0, t1, inp, kp, ki, q_out, bias_out, counts):
 
 @njit(cache=True)
 def _trial(t, inp, kp, ki, q_out, bias_out, counts):
-    w, f, m, codes, limits, dts = inp.w, inp.f, inp.m, inp.codes, inp.limits, inp.dts
+    w, f, m, skip, gated, limits, dts = inp.w, inp.f, inp.m, inp.skip, inp.gated, inp.limits, inp.dts
     q0, q1, q2, q3 = inp.q_init[t, 0], inp.q_init[t, 1], inp.q_init[t, 2], inp.q_init[t, 3]
     ix = iy = iz = 0.0
     rtk = np.array([0.0, 1.0, 0.0, np.inf, 0.0, 0.0])
@@ -70,7 +70,7 @@ def _trial(t, inp, kp, ki, q_out, bias_out, counts):
         dt, gx, gy, gz = dts[k], w[t, k, 0], w[t, k, 1], w[t, k, 2]
         if inp.jump[k]:  # clock jump: one typical interval, then check
             dt = jump_step(inp, check, rtk, health)
-        ax, ay, az, mx, my, mz, C = observe(f, m, codes, limits, t, k, q0, q1, q2, q3)  # unit vectors, gated
+        ax, ay, az, mx, my, mz, C = observe(f, m, skip, gated, limits, t, k, q0, q1, q2, q3)  # unit vectors, gated
         hx, hy, hz = rtk_north(inp, t, k, C, dt, rtk, counts) if inp.use_rtk else (mx, my, mz)
         ex, ey, ez = pi_error(C, ax, ay, az, hx, hy, hz)  # Eqs. (12)-(14)
         if learning(inp.fresh[t, k], dt, health, inp):  # Eq. (15), unless settling after a fault

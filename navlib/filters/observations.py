@@ -137,8 +137,9 @@ class AttitudeInputs(NamedTuple):
     fresh: np.ndarray  # (T, N) bool: the gyro sample is used as measured
     f: np.ndarray  # (T, N, 3) accelerometer (m/s^2) as measured
     m: np.ndarray  # (T, N, 3) magnetometer (uT) as measured, or (1, 1, 3) unused
-    limits: np.ndarray  # (6,) gates: |f|^2 low, high, |m|^2 low, high, sin(dip) low, high (see pack)
-    codes: np.ndarray  # (2, T, N) int8 accelerometer, magnetometer: 0 to use, 1 unusable or none, 2 gated, 3 screened out
+    limits: tuple[float, ...]  # gates: |f|^2 low, high, |m|^2 low, high, sin(dip) low, high (see pack)
+    skip: np.ndarray  # (2, T, N) bool: accelerometer, magnetometer skipped by the screen (or none)
+    gated: np.ndarray  # (4, T, N) bool, set by the kernels: accelerometer unusable, outside its gate; magnetometer same
     hdg: np.ndarray  # (T, N) RTK heading (rad), or (1, 1) unused
     hdg_ok: np.ndarray  # (T, N) bool: a valid RTK epoch, or (1, 1) unused
     use_rtk: bool  # heading reference: RTK (True) or magnetometer
@@ -215,41 +216,6 @@ def magnetic_reference(B_n: Vec3) -> tuple[Array, float, float, float]:
 
 
 @njit(cache=True, inline="always")
-def _accel_obs(fx, fy, fz, lo2, hi2):
-    """Unit accelerometer vector and a code: 0 used, 1 unusable, 2 gated (norm test)."""
-    n2 = fx * fx + fy * fy + fz * fz
-    if not (n2 > 0.0 and n2 < np.inf):
-        return 0.0, 0.0, 0.0, 1
-    if n2 < lo2 or n2 > hi2:
-        return 0.0, 0.0, 0.0, 2
-    s = 1.0 / np.sqrt(n2)
-    return fx * s, fy * s, fz * s, 0
-
-
-@njit(cache=True, inline="always")
-def _mag_obs(mx, my, mz, ax, ay, az, a_code, gate):
-    """Unit magnetometer vector and a code (0 used, 1 unusable, 2 gated by norm or dip angle).
-
-    ``gate``: the limits of :class:`AttitudeInputs` (``[2:4]`` the norm's, ``[4:6]`` the dip's); the dip is
-    measured against the accelerometer's up direction when that is usable.
-    """
-    n2 = mx * mx + my * my + mz * mz
-    if not (n2 > 0.0 and n2 < np.inf):
-        return 0.0, 0.0, 0.0, 1
-    s = 1.0 / np.sqrt(n2)
-    ux, uy, uz = mx * s, my * s, mz * s
-    if a_code == 0:
-        sin_dip = -(ax * ux + ay * uy + az * uz)
-        if 1.0 - sin_dip * sin_dip < 1e-12:  # parallel to gravity: no heading
-            return 0.0, 0.0, 0.0, 1
-        if sin_dip < gate[4] or sin_dip > gate[5]:
-            return 0.0, 0.0, 0.0, 2
-    if n2 < gate[2] or n2 > gate[3]:
-        return 0.0, 0.0, 0.0, 2
-    return ux, uy, uz, 0
-
-
-@njit(cache=True, inline="always")
 def _dcm_t(q0, q1, q2, q3):
     """The nine elements of C_b^n, row by row."""
     return (
@@ -318,31 +284,49 @@ def rtk_gate(h, predicted, gate, confirm, state):
 
 
 @njit(cache=True, inline="always")
-def observe(f, m, codes, limits, t, k, q0, q1, q2, q3):
+def observe(f, m, skip, gated, limits, t, k, q0, q1, q2, q3):
     """Unit accelerometer and magnetometer vectors of sample k of trial t (NaN where skipped or absent) and C_b^n(q)
     as nine elements: (ax, ay, az, mx, my, mz, C).
 
-    ``f``, ``m``, ``codes``, ``limits``: those of :class:`AttitudeInputs`. A sample whose code is 0 is normalised and
-    tested against the gates here; its code becomes 1 (unusable: zero or not finite; a field parallel to gravity) or
-    2 (outside the norm or dip-angle gate) if it is skipped. The magnetometer's dip is measured against the
-    accelerometer's up direction when that is used.
+    ``f``, ``m``, ``skip``, ``gated``: those of :class:`AttitudeInputs`; ``limits``: its ``limits`` as a tuple. A sample
+    the screen kept is normalised and tested here, and flagged in ``gated`` if it is unusable (zero or not finite; a
+    field parallel to gravity) or outside the gates: the norm's, and the magnetometer's dip angle against the
+    accelerometer's up direction when that is used. Written without branches on the data, the test costs little
+    beside the filter's own chain.
     """
-    nan = np.nan
-    ax = ay = az = mx = my = mz = nan
-    ca, cm = codes[0, t, k], codes[1, t, k]
-    if ca == 0:
-        ux, uy, uz, ca = _accel_obs(f[t, k, 0], f[t, k, 1], f[t, k, 2], limits[0], limits[1])
-        if ca == 0:
-            ax, ay, az = ux, uy, uz
-        else:
-            codes[0, t, k] = ca
-    if cm == 0:
-        ux, uy, uz, cm = _mag_obs(m[t, k, 0], m[t, k, 1], m[t, k, 2], ax, ay, az, ca, limits)
-        if cm == 0:
-            mx, my, mz = ux, uy, uz
-        else:
-            codes[1, t, k] = cm
+    fx, fy, fz = f[t, k, 0], f[t, k, 1], f[t, k, 2]
+    n2 = fx * fx + fy * fy + fz * fz
+    finite = n2 > 0.0 and n2 < np.inf
+    s = 1.0 / np.sqrt(n2) if finite else 0.0
+    ax, ay, az = fx * s, fy * s, fz * s
+    used_a = not skip[0, t, k]
+    if used_a and not (finite and limits[0] <= n2 <= limits[1]):
+        gated[0 if not finite else 1, t, k] = True
+        used_a = False
+    if not used_a:
+        ax = ay = az = np.nan
+    mx = my = mz = np.nan
+    if not skip[1, t, k]:
+        mx, my, mz, code = _mag_obs(m[t, k, 0], m[t, k, 1], m[t, k, 2], ax, ay, az, used_a, limits)
+        if code:
+            gated[1 + code, t, k] = True
+            mx = my = mz = np.nan
     return ax, ay, az, mx, my, mz, _dcm_t(q0, q1, q2, q3)
+
+
+@njit(cache=True, inline="always")
+def _mag_obs(mx, my, mz, ax, ay, az, used_a, limits):
+    """Unit magnetometer vector and a code: 0 used, 1 unusable, 2 gated (:func:`observe`)."""
+    n2 = mx * mx + my * my + mz * mz
+    finite = n2 > 0.0 and n2 < np.inf
+    s = 1.0 / np.sqrt(n2) if finite else 0.0
+    ux, uy, uz = mx * s, my * s, mz * s
+    sin_dip = -(ax * ux + ay * uy + az * uz)
+    dip = 0
+    if used_a:  # parallel to gravity: no heading; else the dip gate
+        dip = 1 if 1.0 - sin_dip * sin_dip < 1e-12 else (2 if (sin_dip < limits[4]) | (sin_dip > limits[5]) else 0)
+    code = 1 if not finite else (dip if dip else (2 if (n2 < limits[2]) | (n2 > limits[3]) else 0))
+    return ux, uy, uz, code
 
 
 @njit(cache=True, inline="always")
@@ -743,12 +727,10 @@ def pack(
         limits[2:4] = (field * max(1 - gates.mag.norm_tol, 0.0)) ** 2, (field * (1 + gates.mag.norm_tol)) ** 2
         limits[4:6] = np.sin(max(incl - gates.mag.dip_tol, -np.pi / 2)), np.sin(min(incl + gates.mag.dip_tol, np.pi / 2))
     flags = s.faults.flags
-    codes = np.zeros((2, T, N), dtype=np.int8)  # the screen's skips: 3; without a magnetometer: none (1)
-    codes[0][(flags["accel", "saturated"] | flags["accel", "freefall"] | flags["accel", "spike"]).reshape(T, N)] = 3
-    if use_mag:
-        codes[1][flags["mag", "saturated"].reshape(T, N)] = 3
-    else:
-        codes[1] = 1
+    skip = np.empty((2, T, N), dtype=bool)  # the screen's skips
+    np.logical_or(flags["accel", "saturated"], flags["accel", "freefall"], out=skip[0].reshape(lead + (N,)))
+    np.logical_or(skip[0], flags["accel", "spike"].reshape(T, N), out=skip[0])
+    skip[1] = flags["mag", "saturated"].reshape(T, N) if use_mag else True
     jump = kernel_array(flags["clock", "jump"].reshape(-1, N)[0])
     if rtk is not None:
         hdg, ok = rtk.at(lead + (N,), "imu's samples")
@@ -763,8 +745,9 @@ def pack(
         kernel_array(s.fresh.reshape(T, N)),
         f,
         kernel_array(s.m_b.reshape(T, N, 3)) if s.m_b is not None else np.zeros((1, 1, 3)),
-        limits,
-        codes,
+        tuple(limits.tolist()),
+        skip,
+        np.zeros((4, T, N), dtype=bool),
         hdg,
         ok,
         rtk is not None,
@@ -819,7 +802,7 @@ def attitude_result(
     P_hist: np.ndarray | None = None,
 ) -> AttitudeResult:
     """Assemble an :class:`AttitudeResult` from kernel outputs over T flattened trials (leading shape ``lead``):
-    the screen's faults (:func:`pack`), the gates' (``inputs.codes``, as the kernel left them), and the kernel's RTK
+    the screen's faults (:func:`pack`), the gates' (``inputs.gated``, as the kernel left them), and the kernel's RTK
     ``counts`` (T, 4).
 
     Examples
@@ -838,10 +821,12 @@ def attitude_result(
     N = q_out.shape[1]
     flags, counted = screened_faults.flags, screened_faults.counts
     found = {key: v for key, v in flags.items() if key not in (("accel", "nan"), ("mag", "nan"))}
-    for i, sensor in enumerate(("accel", "mag")[: 1 + inputs.use_mag]):  # the screen's skips are counted there
-        found[sensor, "nan"] = (inputs.codes[i] == 1).reshape(lead + (N,))
-        found[sensor, "outlier"] = (inputs.codes[i] == 2).reshape(lead + (N,))
-    total = {key: counted[key] if v is flags.get(key) else np.count_nonzero(v, axis=-1) for key, v in found.items()}
+    total = {key: counted[key] for key in found}
+    # the gates' counts, row by row (np.count_nonzero along an axis is ten times slower); the screen's skips are its own
+    n_gated = np.array([np.count_nonzero(row) for row in inputs.gated.reshape(-1, N)]).reshape((4,) + lead)
+    for i, sensor in enumerate(("accel", "mag")[: 1 + inputs.use_mag]):
+        for j, kind in enumerate(("nan", "outlier")):
+            found[sensor, kind], total[sensor, kind] = inputs.gated[2 * i + j].reshape(lead + (N,)), n_gated[2 * i + j][()]
     for i, key in enumerate(_RTK_COUNTS):
         if counts[:, i].any():
             total[key] = total.get(key, 0) + counts[:, i].reshape(lead)

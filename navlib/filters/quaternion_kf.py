@@ -333,7 +333,7 @@ def _kernel(t0, t1, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
 def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
     # Arrays are taken out of the records once, before the loop (see the note on reference counts above).
     w, dts, jump, fresh, b_ref, sigmas = inp.w, inp.dts, inp.jump, inp.fresh, model.b_ref, model.sigmas
-    f, m, codes, limits = inp.f, inp.m, inp.codes, inp.limits
+    f, m, skip, gated, limits = inp.f, inp.m, inp.skip, inp.gated, inp.limits
     N = w.shape[1]
     keep = P_hist.shape[1] == N
     sg, sa, sm = sigmas[0], sigmas[1], sigmas[2]
@@ -351,7 +351,7 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
         dt, gx, gy, gz = dts[k], w[t, k, 0], w[t, k, 1], w[t, k, 2]
         if jump[k]:  # clock jump: one typical interval, then check
             dt = jump_step(inp, check, rtk, health)
-        ax, ay, az, mx, my, mz, C = observe(f, m, codes, limits, t, k, x[0], x[1], x[2], x[3])  # unit vectors, gated
+        ax, ay, az, mx, my, mz, C = observe(f, m, skip, gated, limits, t, k, x[0], x[1], x[2], x[3])  # unit vectors, gated
         hx, hy, hz = rtk_north(inp, t, k, C, dt, rtk, counts) if inp.use_rtk else (mx, my, mz)
         ex, ey, ez = pi_error(C, ax, ay, az, hx, hy, hz)  # PI-corrected rate, Eq. (15)
         if learning(fresh[t, k], dt, health, inp):  # Eq. (15), unless settling after a fault
