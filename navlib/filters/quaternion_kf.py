@@ -271,55 +271,62 @@ def _copy4(dst, src):
 
 
 @njit(cache=True)
-def _predict(x, P, Phi, G, q_gyro, A):
-    """Eqs. (16)-(18) in place: ``x = Phi x``, ``P = sym(Phi P Phi^T + Gamma Q Gamma^T)``, ``Q = q_gyro I``
-    (scratch ``A`` (4, 4))."""
-    for i in range(4):
-        for j in range(4):
-            A[i, j] = Phi[i, 0] * P[0, j] + Phi[i, 1] * P[1, j] + Phi[i, 2] * P[2, j] + Phi[i, 3] * P[3, j]
+def _predict(x, P, Phi, G, q_gyro):
+    """Eqs. (16)-(18) in place: ``x = Phi x``, ``P = Phi P Phi^T + Gamma Q Gamma^T`` (``Q = q_gyro I``; each
+    element computed once and mirrored: symmetric exactly)."""
+    A = (_row_times(Phi, P, 0), _row_times(Phi, P, 1), _row_times(Phi, P, 2), _row_times(Phi, P, 3))  # Phi P
     x0, x1, x2, x3 = x[0], x[1], x[2], x[3]
     for i in range(4):
         x[i] = Phi[i, 0] * x0 + Phi[i, 1] * x1 + Phi[i, 2] * x2 + Phi[i, 3] * x3
+        a = A[i]
         for j in range(i + 1):
-            p = A[i, 0] * Phi[j, 0] + A[i, 1] * Phi[j, 1] + A[i, 2] * Phi[j, 2] + A[i, 3] * Phi[j, 3]
-            p_t = A[j, 0] * Phi[i, 0] + A[j, 1] * Phi[i, 1] + A[j, 2] * Phi[i, 2] + A[j, 3] * Phi[i, 3]
-            gqg = q_gyro * (G[i, 0] * G[j, 0] + G[i, 1] * G[j, 1] + G[i, 2] * G[j, 2])
-            P[i, j] = P[j, i] = (p + p_t) / 2 + gqg
+            p = a[0] * Phi[j, 0] + a[1] * Phi[j, 1] + a[2] * Phi[j, 2] + a[3] * Phi[j, 3]
+            P[i, j] = P[j, i] = p + q_gyro * (G[i, 0] * G[j, 0] + G[i, 1] * G[j, 1] + G[i, 2] * G[j, 2])
 
 
 @njit(cache=True)
-def _update(x, P, z, h, H, r_diag, x_pred, g):
+def _row_times(A, B, i):
+    """Row i of ``A @ B`` (4 x 4), as a tuple."""
+    return (
+        A[i, 0] * B[0, 0] + A[i, 1] * B[1, 0] + A[i, 2] * B[2, 0] + A[i, 3] * B[3, 0],
+        A[i, 0] * B[0, 1] + A[i, 1] * B[1, 1] + A[i, 2] * B[2, 1] + A[i, 3] * B[3, 1],
+        A[i, 0] * B[0, 2] + A[i, 1] * B[1, 2] + A[i, 2] * B[2, 2] + A[i, 3] * B[3, 2],
+        A[i, 0] * B[0, 3] + A[i, 1] * B[1, 3] + A[i, 2] * B[2, 3] + A[i, 3] * B[3, 3],
+    )
+
+
+@njit(cache=True)
+def _update(x, P, z, h, H, r_diag, x_pred):
     """Eq. (20)'s update of ``x``, ``P`` in place with the finite rows of ``z`` (R diagonal, ``r_diag``), one scalar
     row at a time (sequential Kalman filtering: Simon 2006, Sec. 6.1; Brown and Hwang 2012). Row i's innovation is
     ``z_i - h_i - H_i (x - x_pred)``, at the state the rows before it left, linearised at the predicted state
-    ``x_pred`` like the batch update, of which the sequence is an exact rewriting; no matrix is inverted. Scratch
-    ``g`` (3, 4)."""
+    ``x_pred`` like the batch update, of which the sequence is an exact rewriting; no matrix is inverted."""
     x_pred[0], x_pred[1], x_pred[2], x_pred[3] = x[0], x[1], x[2], x[3]
     for i in range(6):
         if np.isfinite(z[i]):  # NaN: a skipped row
-            _row_update(x, P, z[i] - h[i], H, i, r_diag[i], x_pred, g)
+            _row_update(x, P, z[i] - h[i], H[i, 0], H[i, 1], H[i, 2], H[i, 3], r_diag[i], x_pred)
 
 
 @njit(cache=True)
-def _row_update(x, P, y, H, i, r, x_pred, g):
-    """One scalar Joseph update ``P = (I - K H_i) P (I - K H_i)^T + K r K^T`` (symmetrised), ``x += K y'`` with the
-    innovation ``y' = y - H_i (x - x_pred)`` (:func:`_update`) and ``K = P H_i^T / (H_i P H_i^T + r)``."""
+def _row_update(x, P, y, h0, h1, h2, h3, r, x_pred):
+    """One scalar update with the row ``H_i = [h0, h1, h2, h3]``: ``x += K y'``, with the innovation
+    ``y' = y - H_i (x - x_pred)`` (:func:`_update`), and the Joseph form
+    ``P = (I - K H_i) P (I - K H_i)^T + K r K^T``, which for one row expands to ``P - K u^T - u K^T + s K K^T``
+    (``u = P H_i^T``, ``s = H_i u + r``; for any gain, and symmetric exactly), with ``K = u / s``."""
+    y -= h0 * (x[0] - x_pred[0]) + h1 * (x[1] - x_pred[1]) + h2 * (x[2] - x_pred[2]) + h3 * (x[3] - x_pred[3])
+    u = (
+        P[0, 0] * h0 + P[0, 1] * h1 + P[0, 2] * h2 + P[0, 3] * h3,
+        P[1, 0] * h0 + P[1, 1] * h1 + P[1, 2] * h2 + P[1, 3] * h3,
+        P[2, 0] * h0 + P[2, 1] * h1 + P[2, 2] * h2 + P[2, 3] * h3,
+        P[3, 0] * h0 + P[3, 1] * h1 + P[3, 2] * h2 + P[3, 3] * h3,
+    )
+    s = r + (h0 * u[0] + h1 * u[1] + h2 * u[2] + h3 * u[3])
+    inv_s = 1.0 / s
+    K = (u[0] * inv_s, u[1] * inv_s, u[2] * inv_s, u[3] * inv_s)
     for j in range(4):
-        y -= H[i, j] * (x[j] - x_pred[j])
-    s = r
-    for j in range(4):
-        u = P[j, 0] * H[i, 0] + P[j, 1] * H[i, 1] + P[j, 2] * H[i, 2] + P[j, 3] * H[i, 3]
-        g[0, j] = u  # P H_i^T
-        s += H[i, j] * u
-    for j in range(4):
-        g[1, j] = g[0, j] / s  # K
-        g[2, j] = g[0, j] - g[1, j] * (s - r)  # (I - K H_i) P H_i^T
-        x[j] += g[1, j] * y
-    for j in range(4):  # (I - K H_i) P = P - K u^T, times (I - K H_i)^T, plus K r K^T
+        x[j] += K[j] * y
         for m in range(j + 1):
-            c = P[j, m] - g[1, j] * g[0, m] - g[2, j] * g[1, m] + r * g[1, j] * g[1, m]
-            c_t = P[m, j] - g[1, m] * g[0, j] - g[2, m] * g[1, j] + r * g[1, m] * g[1, j]
-            P[j, m] = P[m, j] = (c + c_t) / 2
+            P[j, m] = P[m, j] = P[j, m] - (K[j] * u[m] + u[j] * K[m]) + s * K[j] * K[m]
 
 
 @njit(cache=True, nogil=True)
@@ -342,7 +349,7 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
     P = model.p0 * np.eye(4)
     r_diag = np.array([sa * sa, sa * sa, sa * sa, sm * sm, sm * sm, sm * sm])
     Phi, G, z, h, H = np.empty((4, 4)), np.empty((4, 3)), np.empty(6), np.empty(6), np.empty((6, 4))
-    A, x_pred, g = np.empty((4, 4)), np.empty(4), np.empty((3, 4))
+    x_pred = np.empty(4)
     rtk = np.array([0.0, 1.0, 0.0, np.inf, 0.0, 0.0])
     health = np.array([0.0, np.inf])
     check = np.zeros(10)
@@ -360,14 +367,14 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
             iz += ez * dt
         _phi_into(Phi, gx + kp * ex + ki * ix, gy + kp * ey + ki * iy, gz + kp * ez + ki * iz, dt)
         _gamma_into(G, x, dt)
-        _predict(x, P, Phi, G, sg * sg, A)  # Eqs. (16)-(18)
+        _predict(x, P, Phi, G, sg * sg)  # Eqs. (16)-(18)
         z[0], z[1], z[2], z[3], z[4], z[5] = ax, ay, az, hx, hy, hz  # NaN rows: skipped
         _jacobian_into(H, x, by, bz)  # Eq. (20)
         if model.linear_innovation:
             _linear_h(h, H, x)  # printed Eq. (19): wrong (E003-12)
         else:
             _h_into(h, x, by, bz)  # z - h(q), Eq. (19) corrected
-        _update(x, P, z, h, H, r_diag, x_pred, g)
+        _update(x, P, z, h, H, r_diag, x_pred)
         s = np.sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2] + x[3] * x[3])
         x[0], x[1], x[2], x[3] = x[0] / s, x[1] / s, x[2] / s, x[3] / s
         if check[0]:  # after a clock jump: re-initialised only if the state is lost
