@@ -16,9 +16,9 @@ group", IEEE T-AC 53(5), in the explicit form used by Zhang et al. 2023 (paper 0
 * Eq. (17): first-order update :math:`q \leftarrow \mathrm{normalise}\big(q + \tfrac{\Delta t}{2}\, q \otimes [0, \omega]\big)`.
 
 The heading reference is a magnetometer, a dual-antenna RTK heading, or none (gyro + accelerometer:
-heading free). The samples arrive screened (:func:`navlib.robust.screen`) and gated
-(:mod:`navlib.filters.observations`, which also says what is done with bad samples), so the loop holds
-only the equations. Compiled and allocation-free per sample; leading axes of the inputs are Monte Carlo
+heading free). The samples arrive screened (:func:`navlib.robust.screen`, here or once by the caller) and are gated
+in the observation step (:mod:`navlib.filters.observations`, which also says what is done with bad samples), so the
+loop holds only the equations. Compiled and allocation-free per sample; leading axes of the inputs are Monte Carlo
 trials, run in parallel.
 """
 

@@ -9,12 +9,13 @@ such filters:
 
 * the option records :class:`AttitudeGates` (accelerometer-norm and :class:`MagGate` gates) and
   :class:`RtkHeading` (the RTK heading reference with its hold, gate and re-acquisition);
-* :func:`pack` -- :func:`navlib.robust.screen`'s clean samples with the gates applied, as the
-  :class:`AttitudeInputs` record of the compiled kernels (trials flattened);
+* :func:`screened` and :func:`pack` -- the samples screened once (:func:`navlib.robust.screen`; screen once, filter
+  many: every filter takes the screen's result in place of its ``ImuSamples``) as the :class:`AttitudeInputs` record
+  of the compiled kernels (trials flattened), with the gates' limits;
 * :func:`observe`, :func:`rtk_north`, :func:`pi_error`, :func:`rtk_gate`, :func:`learning`, :func:`jump_step`,
-  :func:`relock` -- the compiled per-sample steps: unit vectors (the RTK pseudo-vector with its state-dependent
-  gate), Mahony's error ``e = a_meas x a_est + m_meas x m_est``, when the gyro-bias integral may learn, and what
-  follows a clock jump (re-initialisation only when earned);
+  :func:`relock` -- the compiled per-sample steps: unit vectors gated (the accelerometer's and magnetometer's
+  gates; the RTK pseudo-vector with its state-dependent gate), Mahony's error ``e = a_meas x a_est + m_meas x m_est``,
+  when the gyro-bias integral may learn, and what follows a clock jump (re-initialisation only when earned);
 * :class:`AttitudeResult` and :func:`run_trials` (Monte Carlo trials in parallel; the kernels release
   the GIL).
 
