@@ -81,6 +81,7 @@ __all__ = [
     "magnetic_reference",
     "screened",
     "pack",
+    "unit_vectors",
     "attitude_result",
     "run_trials",
 ]
@@ -770,6 +771,39 @@ def _still(w: np.ndarray, f: np.ndarray, g: float) -> np.ndarray:
     :data:`STILL_ACCEL` (NaN is not still)."""
     rate, norm = np.linalg.norm(w, axis=-1), np.linalg.norm(f, axis=-1)
     return np.ascontiguousarray((rate < STILL_RATE) & (np.abs(norm - g) < STILL_ACCEL * g))
+
+
+def unit_vectors(inputs: AttitudeInputs) -> np.ndarray:
+    """The unit accelerometer and magnetometer vectors of every sample, (T, N, 6), NaN where skipped (screened out,
+    unusable or gated), the gates' flags set in ``inputs.gated``: the :func:`observe` step of the compiled kernels for
+    all samples at once, for a filter written with numpy (one that reads ``inputs`` from :func:`pack`).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import imu, trajectory
+    >>> from navlib.filters import observations
+    >>> traj = trajectory.static(0.1, 0.01, [0.6, 0.2, 50.0], [0.0, 0.0, 0.0])
+    >>> w_ib_b, f_b = trajectory.ideal_imu(traj)
+    >>> f_b[2] = 0.0                                                 # an unusable accelerometer sample
+    >>> samples = imu.ImuSamples(w_ib_b, f_b, 0.01)
+    >>> lead, inputs, found = observations.pack(samples, traj.q_bn[0], None, None, None, observations.AttitudeGates(), 1.0)
+    >>> z = observations.unit_vectors(inputs)
+    >>> z.shape, np.round(z[0, 0, :3], 3) + 0.0, bool(np.isnan(z[0, 2, 0])), int(inputs.gated[0].sum())
+    ((1, 10, 6), array([0., 0., 1.]), True, 1)
+    """
+    z = np.empty(inputs.f.shape[:2] + (6,))
+    run_trials(_unit_vectors, z.shape[0], inputs.f, inputs.m, inputs.skip, inputs.gated, inputs.limits, z)
+    return z
+
+
+@njit(cache=True, nogil=True)
+def _unit_vectors(t0, t1, f, m, skip, gated, limits, z):
+    for t in range(t0, t1):
+        for k in range(f.shape[1]):
+            z[t, k, 0], z[t, k, 1], z[t, k, 2], z[t, k, 3], z[t, k, 4], z[t, k, 5], _ = observe(
+                f, m, skip, gated, limits, t, k, 1.0, 0.0, 0.0, 0.0
+            )
 
 
 def run_trials(kernel: Callable[..., None], n_trials: int, *args: Any) -> None:
