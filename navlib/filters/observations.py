@@ -792,8 +792,9 @@ def unit_vectors(inputs: AttitudeInputs) -> np.ndarray:
     >>> z.shape, np.round(z[0, 0, :3], 3) + 0.0, bool(np.isnan(z[0, 2, 0])), int(inputs.gated[0].sum())
     ((1, 10, 6), array([0., 0., 1.]), True, 1)
     """
-    z = np.empty(inputs.f.shape[:2] + (6,))
-    run_trials(_unit_vectors, z.shape[0], inputs.f, inputs.m, inputs.skip, inputs.gated, inputs.limits, z)
+    T, N = inputs.w.shape[0], inputs.w.shape[1]
+    z = np.empty((T, N, 6))
+    run_trials(_unit_vectors, T, inputs.f, inputs.m, inputs.skip, inputs.gated, inputs.limits, z)
     return z
 
 
