@@ -2,8 +2,8 @@
 
 navlib's filters and simulators are numba kernels compiled on their first call and cached on disk (in the
 package's ``__pycache__``, or numba's user cache when that is not writable; ``NUMBA_CACHE_DIR`` moves it).
-In a fresh environment that first call waits for the compiler: seconds for Mahony, about a quarter of a
-minute for the quaternion Kalman filter. Running this module once after installing (about a minute) compiles
+In a fresh environment that first call waits for the compiler: seconds (about 4 s for Mahony, 8 s for the
+quaternion Kalman filter on this project's reference machine). Running this module once after installing (about a minute) compiles
 the main entry points in the forms their public functions call them, so that a later first call in any
 process loads the compiled code instead (a fraction of a second). ``make reproduce`` runs it first when the
 notebooks would compile, so that kernels several notebooks share are compiled once.

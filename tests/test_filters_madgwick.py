@@ -27,12 +27,12 @@ def madgwick(
     lead, inp, found = observations.pack(imu, q0, m_b, None, B_n, gates, kp=1.0)
     b = observations.magnetic_reference(B_n)[0] if inp.use_mag else np.zeros(3)
     q, (T, N) = inp.q_init.copy(), inp.w.shape[:2]
-    q_out = np.empty((T, N, 4))
+    q_out, zs = np.empty((T, N, 4)), observations.unit_vectors(inp)
     for k in range(N):
         if not inp.jump[k]:  # a clock jump: nothing integrated over it
             dt = inp.dts[k]
             q_dot = 0.5 * attitude.quat_mult(q, np.concatenate([np.zeros((T, 1)), inp.w[:, k]], -1))
-            z = inp.z[:, k]  # unit vectors; NaN: skipped (screened or gated)
+            z = zs[:, k]  # unit vectors; NaN: skipped (screened or gated)
             used = np.isfinite(z)
             error = np.where(used, measurement_model(q, b) - z, 0.0)
             grad = np.einsum("tij,ti->tj", measurement_jacobian(q, b), error)
@@ -41,7 +41,7 @@ def madgwick(
             q = q + q_dot * dt
             q /= np.linalg.norm(q, axis=-1, keepdims=True)
         q_out[:, k] = q
-    return observations.attitude_result(lead, q_out, np.zeros((T, 3)), np.zeros((T, 4), np.int64), found)
+    return observations.attitude_result(lead, inp, q_out, np.zeros((T, 3)), np.zeros((T, 4), np.int64), found)
 
 
 # ---------------------------------------------------------------- tests

@@ -16,9 +16,9 @@ group", IEEE T-AC 53(5), in the explicit form used by Zhang et al. 2023 (paper 0
 * Eq. (17): first-order update :math:`q \leftarrow \mathrm{normalise}\big(q + \tfrac{\Delta t}{2}\, q \otimes [0, \omega]\big)`.
 
 The heading reference is a magnetometer, a dual-antenna RTK heading, or none (gyro + accelerometer:
-heading free). The samples arrive screened (:func:`navlib.robust.screen`) and gated
-(:mod:`navlib.filters.observations`, which also says what is done with bad samples), so the loop holds
-only the equations. Compiled and allocation-free per sample; leading axes of the inputs are Monte Carlo
+heading free). The samples arrive screened (:func:`navlib.robust.screen`, here or once by the caller) and are gated
+in the observation step (:mod:`navlib.filters.observations`, which also says what is done with bad samples), so the
+loop holds only the equations. Compiled and allocation-free per sample; leading axes of the inputs are Monte Carlo
 trials, run in parallel.
 """
 
@@ -31,6 +31,7 @@ from .._kernels import quat_mult_t
 from .._typing import Quat, Vec3, Vec3Series
 from .._validate import scalar
 from ..imu import ImuSamples
+from ..robust import Screened
 from .observations import (
     AttitudeGates,
     AttitudeResult,
@@ -59,7 +60,7 @@ def _kernel(t0, t1, inp, kp, ki, q_out, bias_out, counts):
 
 @njit(cache=True)
 def _trial(t, inp, kp, ki, q_out, bias_out, counts):
-    w, z, dts = inp.w, inp.z, inp.dts
+    w, f, m, skip, gated, limits, dts = inp.w, inp.f, inp.m, inp.skip, inp.gated, inp.limits, inp.dts
     q0, q1, q2, q3 = inp.q_init[t, 0], inp.q_init[t, 1], inp.q_init[t, 2], inp.q_init[t, 3]
     ix = iy = iz = 0.0
     rtk = np.array([0.0, 1.0, 0.0, np.inf, 0.0, 0.0])
@@ -69,10 +70,9 @@ def _trial(t, inp, kp, ki, q_out, bias_out, counts):
         dt, gx, gy, gz = dts[k], w[t, k, 0], w[t, k, 1], w[t, k, 2]
         if inp.jump[k]:  # clock jump: one typical interval, then check
             dt = jump_step(inp, check, rtk, health)
-        ax, ay, az, mx, my, mz, C = observe(z, t, k, q0, q1, q2, q3)
-        if inp.use_rtk:
-            mx, my, mz = rtk_north(inp, t, k, C, dt, rtk, counts)
-        ex, ey, ez = pi_error(C, ax, ay, az, mx, my, mz)  # Eqs. (12)-(14)
+        ax, ay, az, mx, my, mz, C = observe(f, m, skip, gated, limits, t, k, q0, q1, q2, q3)  # unit vectors, gated
+        hx, hy, hz = rtk_north(inp, t, k, C, dt, rtk, counts) if inp.use_rtk else (mx, my, mz)
+        ex, ey, ez = pi_error(C, ax, ay, az, hx, hy, hz)  # Eqs. (12)-(14)
         if learning(inp.fresh[t, k], dt, health, inp):  # Eq. (15), unless settling after a fault
             ix += ex * dt
             iy += ey * dt
@@ -83,13 +83,13 @@ def _trial(t, inp, kp, ki, q_out, bias_out, counts):
         s = 1.0 / np.sqrt(q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
         q0, q1, q2, q3 = q0 * s, q1 * s, q2 * s, q3 * s
         if check[0]:  # after a clock jump: re-initialised only if the state is lost
-            q0, q1, q2, q3, _ = relock(inp, t, k, q0, q1, q2, q3, check, rtk, health)
+            q0, q1, q2, q3, _ = relock(inp, t, k, q0, q1, q2, q3, (ax, ay, az, mx, my, mz), check, rtk, health)
         q_out[t, k, 0], q_out[t, k, 1], q_out[t, k, 2], q_out[t, k, 3] = q0, q1, q2, q3
     bias_out[t, 0], bias_out[t, 1], bias_out[t, 2] = -ki * ix, -ki * iy, -ki * iz
 
 
 def mahony(
-    imu: ImuSamples,
+    imu: ImuSamples | Screened,
     q0: Quat,
     *,
     m_b: Vec3Series | None = None,
@@ -113,16 +113,17 @@ def mahony(
 
     Parameters
     ----------
-    imu : ImuSamples
+    imu : ImuSamples or Screened
         Gyro (rad/s) and accelerometer (m/s^2) samples, shape (..., N, 3) (leading axes: trials), their
-        intervals and limits; screened once (:func:`navlib.robust.screen`). Earth rate is neglected, as
-        in the paper.
+        intervals and limits, screened once here (:func:`navlib.robust.screen`); or the result of
+        ``robust.screen(imu, m_b)``, used as it is (screen once, filter many:
+        :func:`navlib.filters.observations.screened`). Earth rate is neglected, as in the paper.
     q0 : array_like, shape (4,) or (..., 4)
         Attitude before the first sample, e.g. :func:`navlib.alignment.initial_attitude`.
     m_b : array_like, shape (..., N, 3), optional
-        Magnetometer samples (uT). With neither ``m_b`` nor ``rtk`` the filter runs on gyro and
-        accelerometer alone: tilt is corrected, the heading is free (it starts at ``q0``'s heading and
-        drifts with the gyro bias about the vertical, which the accelerometer cannot observe).
+        Magnetometer samples (uT); with screened ``imu``, given to the screen instead. With neither ``m_b`` nor
+        ``rtk`` the filter runs on gyro and accelerometer alone: tilt is corrected, the heading is free (it starts at
+        ``q0``'s heading and drifts with the gyro bias about the vertical, which the accelerometer cannot observe).
     rtk : RtkHeading, optional
         Instead of ``m_b``: dual-antenna heading at the IMU rate, used as a north pseudo-vector (mode (a)
         of the paper's Fig. 4).
@@ -156,9 +157,10 @@ def mahony(
     array([[30. ,  0. ,  4.9],
            [30. ,  0. ,  0. ]])
     """
-    kp, ki = scalar(kp, "kp", positive=True, allow_zero=True), integral_gain(ki, m_b is not None or rtk is not None)
+    kp = scalar(kp, "kp", positive=True, allow_zero=True)
     lead, inp, found = pack(imu, q0, m_b, rtk, B_n, gates, kp)
+    ki = integral_gain(ki, inp.use_mag or inp.use_rtk)
     T, N = inp.w.shape[:2]
     q_out, bias, counts = np.empty((T, N, 4)), np.empty((T, 3)), np.zeros((T, 4), dtype=np.int64)
     run_trials(_kernel, T, inp, kp, ki, q_out, bias, counts)
-    return attitude_result(lead, q_out, bias, counts, found)
+    return attitude_result(lead, inp, q_out, bias, counts, found)

@@ -9,12 +9,13 @@ such filters:
 
 * the option records :class:`AttitudeGates` (accelerometer-norm and :class:`MagGate` gates) and
   :class:`RtkHeading` (the RTK heading reference with its hold, gate and re-acquisition);
-* :func:`pack` -- :func:`navlib.robust.screen`'s clean samples with the gates applied, as the
-  :class:`AttitudeInputs` record of the compiled kernels (trials flattened);
+* :func:`screened` and :func:`pack` -- the samples screened once (:func:`navlib.robust.screen`; screen once, filter
+  many: every filter takes the screen's result in place of its ``ImuSamples``) as the :class:`AttitudeInputs` record
+  of the compiled kernels (trials flattened), with the gates' limits;
 * :func:`observe`, :func:`rtk_north`, :func:`pi_error`, :func:`rtk_gate`, :func:`learning`, :func:`jump_step`,
-  :func:`relock` -- the compiled per-sample steps: unit vectors (the RTK pseudo-vector with its state-dependent
-  gate), Mahony's error ``e = a_meas x a_est + m_meas x m_est``, when the gyro-bias integral may learn, and what
-  follows a clock jump (re-initialisation only when earned);
+  :func:`relock` -- the compiled per-sample steps: unit vectors gated (the accelerometer's and magnetometer's
+  gates; the RTK pseudo-vector with its state-dependent gate), Mahony's error ``e = a_meas x a_est + m_meas x m_est``,
+  when the gyro-bias integral may learn, and what follows a clock jump (re-initialisation only when earned);
 * :class:`AttitudeResult` and :func:`run_trials` (Monte Carlo trials in parallel; the kernels release
   the GIL).
 
@@ -65,7 +66,7 @@ from .._validate import (
     scalar,
 )
 from ..imu import ImuSamples, SensorLimits
-from ..robust import FaultReport, screen
+from ..robust import FaultReport, Screened, screen
 from ..units import G0
 
 __all__ = [
@@ -78,7 +79,9 @@ __all__ = [
     "KI_WITH_REFERENCE",
     "integral_gain",
     "magnetic_reference",
+    "screened",
     "pack",
+    "unit_vectors",
     "attitude_result",
     "run_trials",
 ]
@@ -134,7 +137,11 @@ class AttitudeInputs(NamedTuple):
     q_init: np.ndarray  # (T, 4) attitude before the first sample
     w: np.ndarray  # (T, N, 3) gyro (rad/s), held over unusable samples
     fresh: np.ndarray  # (T, N) bool: the gyro sample is used as measured
-    z: np.ndarray  # (T, N, 6) unit accelerometer and magnetometer vectors, NaN = skipped or none
+    f: np.ndarray  # (T, N, 3) accelerometer (m/s^2) as measured
+    m: np.ndarray  # (T, N, 3) magnetometer (uT) as measured, or (1, 1, 3) unused
+    limits: tuple[float, ...]  # gates: |f|^2 low, high, |m|^2 low, high, sin(dip) low, high (see pack)
+    skip: np.ndarray  # (2, T, N) bool: accelerometer, magnetometer skipped by the screen (or none)
+    gated: np.ndarray  # (4, T, N) bool, set by the kernels: accelerometer unusable, outside its gate; magnetometer same
     hdg: np.ndarray  # (T, N) RTK heading (rad), or (1, 1) unused
     hdg_ok: np.ndarray  # (T, N) bool: a valid RTK epoch, or (1, 1) unused
     use_rtk: bool  # heading reference: RTK (True) or magnetometer
@@ -211,41 +218,6 @@ def magnetic_reference(B_n: Vec3) -> tuple[Array, float, float, float]:
 
 
 @njit(cache=True, inline="always")
-def _accel_obs(fx, fy, fz, lo2, hi2):
-    """Unit accelerometer vector and a code: 0 used, 1 unusable, 2 gated (norm test)."""
-    n2 = fx * fx + fy * fy + fz * fz
-    if not (n2 > 0.0 and n2 < np.inf):
-        return 0.0, 0.0, 0.0, 1
-    if n2 < lo2 or n2 > hi2:
-        return 0.0, 0.0, 0.0, 2
-    s = 1.0 / np.sqrt(n2)
-    return fx * s, fy * s, fz * s, 0
-
-
-@njit(cache=True, inline="always")
-def _mag_obs(mx, my, mz, ax, ay, az, a_code, gate):
-    """Unit magnetometer vector and a code (0 used, 1 unusable, 2 gated by norm or dip angle).
-
-    ``gate = [|m|^2 low, |m|^2 high, sin(dip) low, sin(dip) high]``; the dip is
-    measured against the accelerometer's up direction when that is usable.
-    """
-    n2 = mx * mx + my * my + mz * mz
-    if not (n2 > 0.0 and n2 < np.inf):
-        return 0.0, 0.0, 0.0, 1
-    s = 1.0 / np.sqrt(n2)
-    ux, uy, uz = mx * s, my * s, mz * s
-    if a_code == 0:
-        sin_dip = -(ax * ux + ay * uy + az * uz)
-        if 1.0 - sin_dip * sin_dip < 1e-12:  # parallel to gravity: no heading
-            return 0.0, 0.0, 0.0, 1
-        if sin_dip < gate[2] or sin_dip > gate[3]:
-            return 0.0, 0.0, 0.0, 2
-    if n2 < gate[0] or n2 > gate[1]:
-        return 0.0, 0.0, 0.0, 2
-    return ux, uy, uz, 0
-
-
-@njit(cache=True, inline="always")
 def _dcm_t(q0, q1, q2, q3):
     """The nine elements of C_b^n, row by row."""
     return (
@@ -314,10 +286,49 @@ def rtk_gate(h, predicted, gate, confirm, state):
 
 
 @njit(cache=True, inline="always")
-def observe(z, t, k, q0, q1, q2, q3):
-    """Unit accelerometer and magnetometer vectors of sample k of trial t of ``z`` (:attr:`AttitudeInputs.z`;
-    NaN where skipped or absent) and C_b^n(q) as nine elements: (ax, ay, az, mx, my, mz, C)."""
-    return z[t, k, 0], z[t, k, 1], z[t, k, 2], z[t, k, 3], z[t, k, 4], z[t, k, 5], _dcm_t(q0, q1, q2, q3)
+def observe(f, m, skip, gated, limits, t, k, q0, q1, q2, q3):
+    """Unit accelerometer and magnetometer vectors of sample k of trial t (NaN where skipped or absent) and C_b^n(q)
+    as nine elements: (ax, ay, az, mx, my, mz, C).
+
+    ``f``, ``m``, ``skip``, ``gated``: those of :class:`AttitudeInputs`; ``limits``: its ``limits`` as a tuple. A sample
+    the screen kept is normalised and tested here, and flagged in ``gated`` if it is unusable (zero or not finite; a
+    field parallel to gravity) or outside the gates: the norm's, and the magnetometer's dip angle against the
+    accelerometer's up direction when that is used. Written without branches on the data, the test costs little
+    beside the filter's own chain.
+    """
+    fx, fy, fz = f[t, k, 0], f[t, k, 1], f[t, k, 2]
+    n2 = fx * fx + fy * fy + fz * fz
+    finite = n2 > 0.0 and n2 < np.inf
+    s = 1.0 / np.sqrt(n2) if finite else 0.0
+    ax, ay, az = fx * s, fy * s, fz * s
+    used_a = not skip[0, t, k]
+    if used_a and not (finite and limits[0] <= n2 <= limits[1]):
+        gated[0 if not finite else 1, t, k] = True
+        used_a = False
+    if not used_a:
+        ax = ay = az = np.nan
+    mx = my = mz = np.nan
+    if not skip[1, t, k]:
+        mx, my, mz, code = _mag_obs(m[t, k, 0], m[t, k, 1], m[t, k, 2], ax, ay, az, used_a, limits)
+        if code:
+            gated[1 + code, t, k] = True
+            mx = my = mz = np.nan
+    return ax, ay, az, mx, my, mz, _dcm_t(q0, q1, q2, q3)
+
+
+@njit(cache=True, inline="always")
+def _mag_obs(mx, my, mz, ax, ay, az, used_a, limits):
+    """Unit magnetometer vector and a code: 0 used, 1 unusable, 2 gated (:func:`observe`)."""
+    n2 = mx * mx + my * my + mz * mz
+    finite = n2 > 0.0 and n2 < np.inf
+    s = 1.0 / np.sqrt(n2) if finite else 0.0
+    ux, uy, uz = mx * s, my * s, mz * s
+    sin_dip = -(ax * ux + ay * uy + az * uz)
+    dip = 0
+    if used_a:  # parallel to gravity: no heading; else the dip gate
+        dip = 1 if 1.0 - sin_dip * sin_dip < 1e-12 else (2 if (sin_dip < limits[4]) | (sin_dip > limits[5]) else 0)
+    code = 1 if not finite else (dip if dip else (2 if (n2 < limits[2]) | (n2 > limits[3]) else 0))
+    return ux, uy, uz, code
 
 
 @njit(cache=True, inline="always")
@@ -373,7 +384,7 @@ def learning(fresh, dt, state, inp):
 
 
 @njit(cache=True)
-def relock(inp, t, k, q0, q1, q2, q3, state, rtk, health):
+def relock(inp, t, k, q0, q1, q2, q3, u, state, rtk, health):
     """After a clock jump: re-initialise the attitude only once the data show it is lost, from a quasi-static window.
 
     A clock jump may be a pure stamp glitch (the samples on either side are contiguous: the filter has already
@@ -389,22 +400,20 @@ def relock(inp, t, k, q0, q1, q2, q3, state, rtk, health):
 
     ``state = [checking (1/0), samples in the window, sum of the unit accelerometer (3), of the unit magnetometer (3),
     magnetometer samples, last valid RTK heading in the window (NaN: none)]`` (10 values; a jump sets ``state[0] = 1``
-    and clears the rest: :func:`start_relock`). Returns ``(q0, q1, q2, q3, re-initialised)``. Callers test
+    and clears the rest: :func:`start_relock`); ``u``: the sample's unit accelerometer and magnetometer vectors of
+    :func:`observe` (6 values). Returns ``(q0, q1, q2, q3, re-initialised)``. Callers test
     ``state[0]`` first: a call passing ``inp`` counts a reference to each of its arrays (atomic operations costing more
     than a filter's arithmetic), not to be paid per sample.
     """
     if state[0] == 0.0:
         return q0, q1, q2, q3, False
-    z = inp.z
-    if not inp.still[t, k] or np.isnan(z[t, k, 0]):
+    if not inp.still[t, k] or np.isnan(u[0]):
         start_relock(state)  # the window must be quasi-static throughout
         return q0, q1, q2, q3, False
     state[1] += 1.0
-    for i in range(3):
-        state[2 + i] += z[t, k, i]
-    if not np.isnan(z[t, k, 3]):
-        for i in range(3):
-            state[5 + i] += z[t, k, 3 + i]
+    state[2], state[3], state[4] = state[2] + u[0], state[3] + u[1], state[4] + u[2]
+    if not np.isnan(u[3]):
+        state[5], state[6], state[7] = state[5] + u[3], state[6] + u[4], state[7] + u[5]
         state[8] += 1.0
     if inp.use_rtk and inp.hdg_ok[t, k] and not np.isnan(inp.hdg[t, k]):
         state[9] = inp.hdg[t, k]
@@ -631,9 +640,47 @@ class AttitudeResult:
         return attitude.quat_to_euler(self.q_bn)
 
 
+def screened(imu: ImuSamples | Screened, m_b: ArrayLike | None = None) -> Screened:
+    """The samples an attitude filter consumes: ``imu`` screened (:func:`navlib.robust.screen`), or ``imu`` itself
+    when it is already the result of :func:`navlib.robust.screen`.
+
+    Screen once, filter many: every filter of :mod:`navlib.filters` that takes ``imu`` also takes
+    ``robust.screen(imu, m_b)`` (the magnetometer then given to the screen only), and screens nothing again; the
+    screen's faults are those of each filter's result. Several filters, or several gains, run on one record then
+    pay for the screening once.
+
+    Raises
+    ------
+    ValueError
+        If ``m_b`` is given with screened samples (the magnetometer is screened with them: give it to
+        :func:`navlib.robust.screen` only).
+
+    Examples
+    --------
+    >>> from navlib import imu, robust, trajectory
+    >>> from navlib.filters import mahony, observations, quaternion_kf
+    >>> traj = trajectory.static(0.1, 0.01, [0.6, 0.2, 50.0], [0.0, 0.0, 0.0])
+    >>> s = robust.screen(imu.ImuSamples(*trajectory.ideal_imu(traj), 0.01))
+    >>> observations.screened(s) is s                                # already screened: used as it is
+    True
+    >>> a, b = mahony.mahony(s, traj.q_bn[0]), quaternion_kf.quaternion_kf(s, traj.q_bn[0])   # one screen, two filters
+    >>> a.q_bn.shape, b.q_bn.shape, bool(a.faults), bool(b.faults)
+    ((10, 4), (10, 4), False, False)
+    """
+    if isinstance(imu, Screened):
+        if m_b is not None:
+            raise ValueError(
+                "m_b: imu is already screened (robust.screen(imu, m_b)), with its magnetometer if it has one; "
+                "give m_b to robust.screen only, not again to the filter"
+            )
+        return imu
+    instance(imu, "imu", ImuSamples, "ImuSamples, or the result of navlib.robust.screen")
+    return screen(imu, m_b)
+
+
 @boundary
 def pack(
-    imu: ImuSamples,
+    imu: ImuSamples | Screened,
     q0: Quat,
     m_b: ArrayLike | None,
     rtk: RtkHeading | None,
@@ -641,11 +688,11 @@ def pack(
     gates: Is[AttitudeGates],
     kp: NonNegative,
 ) -> tuple[tuple[int, ...], AttitudeInputs, FaultReport]:
-    """Screen the samples once (:func:`navlib.robust.screen`), apply the gates, and build the kernels' record.
+    """The kernels' record of the samples, screened once (:func:`screened`), and the gates the kernels apply.
 
     The arguments are those of :func:`navlib.filters.mahony.mahony`. Returns ``(lead, inputs, faults)``:
-    the leading (trial) shape, the kernel record with trials flattened to T, and the faults found before
-    filtering (the kernels add the RTK gate's, :func:`attitude_result`).
+    the leading (trial) shape, the kernel record with trials flattened to T, and the screen's faults (the
+    kernels' gates and RTK reference add theirs, :func:`attitude_result`).
 
     Examples
     --------
@@ -660,18 +707,19 @@ def pack(
     >>> int(found["gyro", "nan"])
     1
     """
+    s = screened(imu, m_b)
+    use_mag = s.m_b is not None
     if rtk is not None:
         instance(rtk, "rtk", RtkHeading, "an RtkHeading")
-        if m_b is not None:
+        if use_mag:
             raise ValueError("m_b, rtk: give at most one heading reference (magnetometer or RTK)")
-    if gates.mag is not None and m_b is None:
+    if gates.mag is not None and not use_mag:
         raise ValueError("gates: a magnetometer gate needs m_b")
     if gates.mag is not None and B_n is None:
         raise ValueError("B_n: the magnetometer gate needs the local field")
     if B_n is not None:
         _, _, incl, field = magnetic_reference(B_n)
-    s = screen(imu, m_b)
-    lead, (N, T) = imu.w_ib_b.shape[:-2], (imu.n, int(np.prod(imu.w_ib_b.shape[:-2])))
+    lead, (N, T) = s.w_ib_b.shape[:-2], (s.imu.n, int(np.prod(s.w_ib_b.shape[:-2])))
     q = broadcast_to(as_quat(q0, "q0"), "q0", lead + (4,), of="the trials of imu")
     q = np.array(q.reshape(T, 4), order="C")  # a writable copy: one kernel signature
     limits = np.array([0.0, np.inf, 0.0, np.inf, -2.0, 2.0])  # |f|^2 low/high, |m|^2 low/high, sin(dip) low/high
@@ -681,38 +729,27 @@ def pack(
         limits[2:4] = (field * max(1 - gates.mag.norm_tol, 0.0)) ** 2, (field * (1 + gates.mag.norm_tol)) ** 2
         limits[4:6] = np.sin(max(incl - gates.mag.dip_tol, -np.pi / 2)), np.sin(min(incl + gates.mag.dip_tol, np.pi / 2))
     flags = s.faults.flags
-    skip_f = flags["accel", "saturated"] | flags["accel", "freefall"] | flags["accel", "spike"]
-    use_mag = s.m_b is not None
-    m, skip_m = (s.m_b, flags["mag", "saturated"]) if s.m_b is not None else (np.zeros((1, 1, 3)), np.zeros((1, 1), bool))
-    z, codes = np.empty((T, N, 6)), np.empty((2, T, N), dtype=np.int8)
-    run_trials(
-        _gate,
-        T,
-        kernel_array(imu.f_b.reshape(T, N, 3)),
-        kernel_array(m.reshape(-1, m.shape[-2], 3)),
-        kernel_array(skip_f.reshape(T, N)),
-        kernel_array(skip_m.reshape(-1, skip_m.shape[-1])),
-        limits,
-        z,
-        codes,
-    )
+    skip = np.empty((2, T, N), dtype=bool)  # the screen's skips
+    np.logical_or(flags["accel", "saturated"], flags["accel", "freefall"], out=skip[0].reshape(lead + (N,)))
+    np.logical_or(skip[0], flags["accel", "spike"].reshape(T, N), out=skip[0])
+    skip[1] = flags["mag", "saturated"].reshape(T, N) if use_mag else True
     jump = kernel_array(flags["clock", "jump"].reshape(-1, N)[0])
-    found = {key: v for key, v in flags.items() if key not in (("accel", "nan"), ("mag", "nan"))}
-    for i, sensor in enumerate(("accel", "mag")[: 1 + use_mag]):  # the screen's skips are counted there
-        found[sensor, "nan"] = (codes[i] == 1).reshape(lead + (N,))
-        found[sensor, "outlier"] = (codes[i] == 2).reshape(lead + (N,))
     if rtk is not None:
         hdg, ok = rtk.at(lead + (N,), "imu's samples")
         rtk_par = rtk.params()
     else:
         hdg, ok, rtk_par = np.zeros((1, 1)), np.zeros((1, 1), dtype=bool), np.array([0.0, np.inf, 0.0])
-    long_hold = imu.limits.stuck_samples(s.typical_dt) or SensorLimits().stuck_samples(s.typical_dt)
-    w = kernel_array(s.w_ib_b.reshape(T, N, 3))
+    long_hold = s.imu.limits.stuck_samples(s.typical_dt) or SensorLimits().stuck_samples(s.typical_dt)
+    w, f = kernel_array(s.w_ib_b.reshape(T, N, 3)), kernel_array(s.imu.f_b.reshape(T, N, 3))
     inputs = AttitudeInputs(
         q,
         w,
         kernel_array(s.fresh.reshape(T, N)),
-        z,
+        f,
+        kernel_array(s.m_b.reshape(T, N, 3)) if s.m_b is not None else np.zeros((1, 1, 3)),
+        tuple(limits.tolist()),
+        skip,
+        np.zeros((4, T, N), dtype=bool),
         hdg,
         ok,
         rtk is not None,
@@ -720,15 +757,13 @@ def pack(
         s.dt,
         jump,
         s.typical_dt,
-        _still(w, imu.f_b.reshape(T, N, 3), gates.g) if jump.any() else np.zeros((1, 1), dtype=bool),
+        _still(w, f, gates.g) if jump.any() else np.zeros((1, 1), dtype=bool),
         max(1, round(STILL_WINDOW / s.typical_dt)),
         rtk_par,
         long_hold,
         SETTLE_TIME_CONSTANTS / kp if kp > 0 else 0.0,
     )
-    counted = s.faults.counts  # the screen's counts of its own flags; the gates' flags counted here
-    counts = {key: counted[key] if found[key] is flags.get(key) else np.count_nonzero(v, axis=-1) for key, v in found.items()}
-    return lead, inputs, FaultReport(counts, found)
+    return lead, inputs, s.faults
 
 
 def _still(w: np.ndarray, f: np.ndarray, g: float) -> np.ndarray:
@@ -738,25 +773,38 @@ def _still(w: np.ndarray, f: np.ndarray, g: float) -> np.ndarray:
     return np.ascontiguousarray((rate < STILL_RATE) & (np.abs(norm - g) < STILL_ACCEL * g))
 
 
+def unit_vectors(inputs: AttitudeInputs) -> np.ndarray:
+    """The unit accelerometer and magnetometer vectors of every sample, (T, N, 6), NaN where skipped (screened out,
+    unusable or gated), the gates' flags set in ``inputs.gated``: the :func:`observe` step of the compiled kernels for
+    all samples at once, for a filter written with numpy (one that reads ``inputs`` from :func:`pack`).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import imu, trajectory
+    >>> from navlib.filters import observations
+    >>> traj = trajectory.static(0.1, 0.01, [0.6, 0.2, 50.0], [0.0, 0.0, 0.0])
+    >>> w_ib_b, f_b = trajectory.ideal_imu(traj)
+    >>> f_b[2] = 0.0                                                 # an unusable accelerometer sample
+    >>> samples = imu.ImuSamples(w_ib_b, f_b, 0.01)
+    >>> lead, inputs, found = observations.pack(samples, traj.q_bn[0], None, None, None, observations.AttitudeGates(), 1.0)
+    >>> z = observations.unit_vectors(inputs)
+    >>> z.shape, np.round(z[0, 0, :3], 3) + 0.0, bool(np.isnan(z[0, 2, 0])), int(inputs.gated[0].sum())
+    ((1, 10, 6), array([0., 0., 1.]), True, 1)
+    """
+    T, N = inputs.w.shape[0], inputs.w.shape[1]
+    z = np.empty((T, N, 6))
+    run_trials(_unit_vectors, T, inputs.f, inputs.m, inputs.skip, inputs.gated, inputs.limits, z)
+    return z
+
+
 @njit(cache=True, nogil=True)
-def _gate(t0, t1, f, m, skip_f, skip_m, limits, z, codes):
-    """Trials t0 to t1 - 1: the unit accelerometer and magnetometer vectors of ``f`` and ``m`` (T, N, 3; ``m``
-    (1, 1, 3): none) into ``z`` (T, N, 6), NaN where skipped, with their codes in ``codes`` (2, T, N): 0 used,
-    1 unusable, 2 outside the norm and dip-angle gates ``limits`` (see :func:`pack`), 3 skipped by the screen
-    (``skip_f``, ``skip_m``)."""
-    nan, use_mag, mag_limits = np.nan, m.shape[1] == f.shape[1], limits[2:]
+def _unit_vectors(t0, t1, f, m, skip, gated, limits, z):
     for t in range(t0, t1):
         for k in range(f.shape[1]):
-            ax, ay, az, ca = _accel_obs(f[t, k, 0], f[t, k, 1], f[t, k, 2], limits[0], limits[1])
-            ca = 3 if skip_f[t, k] else ca
-            mx = my = mz = nan
-            cm = 1
-            if use_mag:
-                mx, my, mz, cm = _mag_obs(m[t, k, 0], m[t, k, 1], m[t, k, 2], ax, ay, az, ca, mag_limits)
-                cm = 3 if skip_m[t, k] else cm
-            codes[0, t, k], codes[1, t, k] = ca, cm
-            z[t, k, 0], z[t, k, 1], z[t, k, 2] = (ax, ay, az) if ca == 0 else (nan, nan, nan)
-            z[t, k, 3], z[t, k, 4], z[t, k, 5] = (mx, my, mz) if cm == 0 else (nan, nan, nan)
+            z[t, k, 0], z[t, k, 1], z[t, k, 2], z[t, k, 3], z[t, k, 4], z[t, k, 5], _ = observe(
+                f, m, skip, gated, limits, t, k, 1.0, 0.0, 0.0, 0.0
+            )
 
 
 def run_trials(kernel: Callable[..., None], n_trials: int, *args: Any) -> None:
@@ -781,15 +829,17 @@ def run_trials(kernel: Callable[..., None], n_trials: int, *args: Any) -> None:
 
 def attitude_result(
     lead: tuple[int, ...],
+    inputs: AttitudeInputs,
     q_out: np.ndarray,
     bias: np.ndarray,
     counts: np.ndarray,
-    found: FaultReport,
+    screened_faults: FaultReport,
     P: np.ndarray | None = None,
     P_hist: np.ndarray | None = None,
 ) -> AttitudeResult:
     """Assemble an :class:`AttitudeResult` from kernel outputs over T flattened trials (leading shape ``lead``):
-    the faults :func:`pack` found, plus the kernel's RTK ``counts`` (T, 4).
+    the screen's faults (:func:`pack`), the gates' (``inputs.gated``, as the kernel left them), and the kernel's RTK
+    ``counts`` (T, 4).
 
     Examples
     --------
@@ -800,19 +850,26 @@ def attitude_result(
     >>> samples = imu.ImuSamples(*trajectory.ideal_imu(traj), 0.01)
     >>> lead, inputs, found = observations.pack(samples, traj.q_bn[0], None, None, None, observations.AttitudeGates(), 1.0)
     >>> q_out, bias, counts = traj.q_bn[None, 1:], np.zeros((1, 3)), np.zeros((1, 4), np.int64)   # one trial's kernel outputs
-    >>> res = observations.attitude_result(lead, q_out, bias, counts, found)
+    >>> res = observations.attitude_result(lead, inputs, q_out, bias, counts, found)
     >>> res.q_bn.shape
     (10, 4)
     """
     N = q_out.shape[1]
-    total = dict(found.counts)
+    flags, counted = screened_faults.flags, screened_faults.counts
+    found = {key: v for key, v in flags.items() if key not in (("accel", "nan"), ("mag", "nan"))}
+    total = {key: counted[key] for key in found}
+    # the gates' counts, row by row (np.count_nonzero along an axis is ten times slower); the screen's skips are its own
+    n_gated = np.array([np.count_nonzero(row) for row in inputs.gated.reshape(-1, N)]).reshape((4,) + lead)
+    for i, sensor in enumerate(("accel", "mag")[: 1 + inputs.use_mag]):
+        for j, kind in enumerate(("nan", "outlier")):
+            found[sensor, kind], total[sensor, kind] = inputs.gated[2 * i + j].reshape(lead + (N,)), n_gated[2 * i + j][()]
     for i, key in enumerate(_RTK_COUNTS):
         if counts[:, i].any():
             total[key] = total.get(key, 0) + counts[:, i].reshape(lead)
     return AttitudeResult(
         q_out.reshape(lead + (N, 4)),
         bias.reshape(lead + (3,)),
-        FaultReport(total, found.flags),
+        FaultReport(total, found),
         None if P is None else P.reshape(lead + (4, 4)),
         None if P_hist is None else P_hist.reshape(lead + (N, 4, 4)),
     )

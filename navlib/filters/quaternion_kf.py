@@ -11,17 +11,19 @@ numbers are quoted, errata corrected). State: the quaternion ``q = q_b^n`` (4,).
   ``h(q) = [C_nb [0, 0, 1]; C_nb b]`` with ``b = [0, cos I, -sin I]`` (Eq. 3,
   :func:`navlib.filters.observations.magnetic_reference`; north for RTK heading), innovation
   ``z - h(q)`` (:func:`measurement_model`);
-* Eq. (20): Jacobian ``H = dh/dq`` (:func:`measurement_jacobian`); Joseph update of
-  :func:`navlib.kalman.update` skipping missing rows; normalise.
+* Eq. (20): Jacobian ``H = dh/dq`` (:func:`measurement_jacobian`); the Kalman update in Joseph form
+  skipping missing rows, processed one scalar row at a time (below); normalise.
 
 Without a heading reference the magnetometer rows are missing at every sample: the gravity rows
 alone correct tilt. The samples arrive screened and gated (:mod:`navlib.filters.observations`, which also
 says what is done with bad samples): a skipped measurement is a missing row, so a fault never enters P.
 
-The Kalman steps are written at their fixed size (4 states, 3 or 6 measurements) without library
-calls or temporary arrays, in the operation order of the BLAS and LAPACK behind the generic
-:func:`navlib.kalman.predict` / :func:`navlib.kalman.update` (:func:`navlib._kernels.fma`,
-:func:`navlib._kernels.lu_inverse`): with numpy's OpenBLAS on x86-64 they return the same bits.
+R is diagonal, so the update is sequential Kalman filtering (Simon 2006, "Optimal State Estimation", Sec. 6.1;
+Brown and Hwang 2012, "Introduction to Random Signals and Applied Kalman Filtering"): the 3 or 6 rows are processed
+one at a time, each a scalar Joseph update whose innovation is corrected by ``H_i (x - x_pred)`` for the rows before
+it, so that the sequence is the batch update of :func:`navlib.kalman.update` rewritten, with no matrix inverted. It
+equals that update to rounding (tests/test_filters_attitude.py: within 1e-12 over 5,000 steps with 0, 3 and 6 rows),
+not bit for bit. The steps are written at their fixed size (4 states) without library calls or temporary arrays.
 """
 
 from __future__ import annotations
@@ -32,11 +34,10 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit
 
-from .. import _kernels
-from .._kernels import fma
 from .._typing import Array, Quat, Vec3, Vec3Series
 from .._validate import Flag, Is, Positive, Step, as_array, as_quat, boundary, broadcast, fields_checked, flag, scalar
 from ..imu import ImuSamples
+from ..robust import Screened
 from .observations import (
     AttitudeGates,
     AttitudeResult,
@@ -254,7 +255,7 @@ def _output(t, k, x, P, q_out, P_hist, keep):
         _copy4(P_hist[t, k], P)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _copy4(dst, src):
     """``dst[:4, :4] = src[:4, :4]`` element by element (an array assignment compiles numba's shape-mismatch
     messages, seconds of a cold start)."""
@@ -264,190 +265,70 @@ def _copy4(dst, src):
 
 
 # --------------------------------------------------------------------------
-# The Kalman steps at fixed size (4 states, at most 6 measurements), allocation-free
+# The Kalman steps at fixed size (4 states, 6 measurement rows), allocation-free
 # --------------------------------------------------------------------------
-# Bit for bit navlib._kernels.kalman_predict / kalman_update (tests/test_ahrs.py), whose matrix
-# products go through BLAS: each product element is the fused chain over k = 0, 1, ... of
-# OpenBLAS's small-matrix kernels, a matrix-vector product is summed as OpenBLAS's gemv does, and
-# the inverse is _kernels.lu_inverse. Written out here, the per-sample cost is arithmetic, not library
-# calls and temporary arrays. Nor reference counts: numba counts a reference to each array argument of a
-# function (an atomic operation, dearer than a 4 x 4 product) unless it can prove the function never
-# raises, so the per-sample steps take their arrays directly (never a tuple or record to unpack); each step is
-# compiled for 6 and for 3 rows (constant sizes: unrolled loops).
-
-
-@njit(cache=True, inline="always")
-def _mm(C, A, B, n, kk, m):
-    """``C[:n, :m] = A[:n, :kk] @ B[:kk, :m]``, each element ``fma`` over k = 0 ... kk - 1 (BLAS order)."""
-    for i in range(n):
-        for j in range(m):
-            acc = 0.0
-            for k in range(kk):
-                acc = fma(A[i, k], B[k, j], acc)
-            C[i, j] = acc
-
-
-@njit(cache=True, inline="always")
-def _mm_t(C, A, B, n, kk, m):
-    """``C[:n, :m] = A[:n, :kk] @ B[:m, :kk].T`` in the order of :func:`_mm`."""
-    for i in range(n):
-        for j in range(m):
-            acc = 0.0
-            for k in range(kk):
-                acc = fma(A[i, k], B[j, k], acc)
-            C[i, j] = acc
-
-
-@njit(cache=True, inline="always")
-def _mat_vec(y, A, x, n, m):
-    """``y[:n] = A[:n, :m] @ x[:m]`` summed as OpenBLAS dgemv_t (m < 8, n % 4 in (0, 2)): the first four
-    products pairwise ``(p0 + p2) + (p1 + p3)``, the last ``m % 4`` in one fused expression."""
-    b = m - (m & 3)
-    for j in range(n):
-        yj = 0.0
-        if b == 4:
-            yj = yj + ((A[j, 0] * x[0] + A[j, 2] * x[2]) + (A[j, 1] * x[1] + A[j, 3] * x[3]))
-        if m - b == 3:
-            yj = yj + fma(A[j, b + 2], x[b + 2], fma(A[j, b], x[b], A[j, b + 1] * x[b + 1]))
-        elif m - b == 2:
-            yj = yj + fma(A[j, b], x[b], A[j, b + 1] * x[b + 1])
-        elif m - b == 1:
-            yj = fma(A[j, b], x[b], yj)
-        y[j] = yj
-
-
-@njit(cache=True, inline="always")
-def _symmetrise(P, A, n):
-    """``P[:n, :n] = (A + A^T) / 2``."""
-    for i in range(n):
-        for j in range(n):
-            P[i, j] = (A[i, j] + A[j, i]) / 2
+# The per-sample cost is arithmetic, not library calls and temporary arrays. Nor reference counts: numba counts a
+# reference to each array argument of a function (an atomic operation, dearer than a 4 x 4 product) unless it can
+# prove the function never raises, so the per-sample steps take their arrays directly (never a tuple or record).
 
 
 @njit(cache=True)
-def _workspace():
-    """Scratch of the Kalman steps, one flat tuple: (6, 6) matrices ``Hs, PHt, S, K, A, B``, (6,) vectors ``ys, v,
-    work`` and (6,) indices ``rows, ipiv``. The per-sample loop unpacks it once and hands the steps its arrays
-    (see the note on reference counts above)."""
+def _predict(x, P, Phi, G, q_gyro):
+    """Eqs. (16)-(18) in place: ``x = Phi x``, ``P = Phi P Phi^T + Gamma Q Gamma^T`` (``Q = q_gyro I``; each
+    element computed once and mirrored: symmetric exactly)."""
+    A = (_row_times(Phi, P, 0), _row_times(Phi, P, 1), _row_times(Phi, P, 2), _row_times(Phi, P, 3))  # Phi P
+    x0, x1, x2, x3 = x[0], x[1], x[2], x[3]
+    for i in range(4):
+        x[i] = Phi[i, 0] * x0 + Phi[i, 1] * x1 + Phi[i, 2] * x2 + Phi[i, 3] * x3
+        a = A[i]
+        for j in range(i + 1):
+            p = a[0] * Phi[j, 0] + a[1] * Phi[j, 1] + a[2] * Phi[j, 2] + a[3] * Phi[j, 3]
+            P[i, j] = P[j, i] = p + q_gyro * (G[i, 0] * G[j, 0] + G[i, 1] * G[j, 1] + G[i, 2] * G[j, 2])
+
+
+@njit(cache=True)
+def _row_times(A, B, i):
+    """Row i of ``A @ B`` (4 x 4), as a tuple."""
     return (
-        np.empty((6, 6)),
-        np.empty((6, 6)),
-        np.empty((6, 6)),
-        np.empty((6, 6)),
-        np.empty((6, 6)),
-        np.empty((6, 6)),
-        np.empty(6),
-        np.empty(6),
-        np.empty(6),
-        np.empty(6, np.int64),
-        np.empty(6, np.int64),
+        A[i, 0] * B[0, 0] + A[i, 1] * B[1, 0] + A[i, 2] * B[2, 0] + A[i, 3] * B[3, 0],
+        A[i, 0] * B[0, 1] + A[i, 1] * B[1, 1] + A[i, 2] * B[2, 1] + A[i, 3] * B[3, 1],
+        A[i, 0] * B[0, 2] + A[i, 1] * B[1, 2] + A[i, 2] * B[2, 2] + A[i, 3] * B[3, 2],
+        A[i, 0] * B[0, 3] + A[i, 1] * B[1, 3] + A[i, 2] * B[2, 3] + A[i, 3] * B[3, 3],
     )
 
 
 @njit(cache=True)
-def _predict(x, P, Phi, G, q_gyro, ws):
-    """Eqs. (16)-(18) in place: ``x = Phi x``, ``P = sym(Phi P Phi^T + Gamma Q Gamma^T)``, ``Q = q_gyro I``
-    (scratch ``ws`` of :func:`_workspace`)."""
-    _, _, S, K, A, B, _, v, _, _, _ = ws
-    _predict_step(x, P, Phi, G, q_gyro, A, B, S, K, v)
+def _update(x, P, z, h, H, r_diag, x_pred):
+    """Eq. (20)'s update of ``x``, ``P`` in place with the finite rows of ``z`` (R diagonal, ``r_diag``), one scalar
+    row at a time (sequential Kalman filtering: Simon 2006, Sec. 6.1; Brown and Hwang 2012). Row i's innovation is
+    ``z_i - h_i - H_i (x - x_pred)``, at the state the rows before it left, linearised at the predicted state
+    ``x_pred`` like the batch update, of which the sequence is an exact rewriting; no matrix is inverted."""
+    x_pred[0], x_pred[1], x_pred[2], x_pred[3] = x[0], x[1], x[2], x[3]
+    for i in range(6):
+        if np.isfinite(z[i]):  # NaN: a skipped row
+            _row_update(x, P, z[i] - h[i], H[i, 0], H[i, 1], H[i, 2], H[i, 3], r_diag[i], x_pred)
 
 
 @njit(cache=True)
-def _predict_step(x, P, Phi, G, q_gyro, A, B, C, D, v):
-    """:func:`_predict` with its scratch matrices ``A, B, C, D`` and vector ``v``."""
-    for i in range(4):
-        for j in range(3):
-            A[i, j] = G[i, j] * q_gyro + 0.0  # Gamma Q: the zeros of Q add +0
-    _mm_t(B, A, G, 4, 3, 4)  # Gamma Q Gamma^T
-    _mm(C, Phi, P, 4, 4, 4)
-    _mm_t(D, C, Phi, 4, 4, 4)  # Phi P Phi^T
-    _mat_vec(v, Phi, x, 4, 4)
-    for i in range(4):
-        x[i] = v[i]
-        for j in range(4):
-            D[i, j] = D[i, j] + B[i, j]
-    _symmetrise(P, D, 4)
-
-
-@njit(cache=True)
-def _update(x, P, z, h, H, r_diag, ws):
-    """Joseph update of ``x``, ``P`` in place with the finite rows of ``z`` (R diagonal, ``r_diag``; scratch ``ws``
-    of :func:`_workspace`). The rows come in threes (accelerometer, heading reference): 6, 3 or none."""
-    Hs, PHt, S, K, A, B, ys, v, work, rows, ipiv = ws
-    m = _select_rows(z, h, H, Hs, ys, rows)
-    if m:
-        _gain(P, r_diag, rows, m, Hs, PHt, S, K, ipiv, work)
-        _correct(x, P, r_diag, rows, m, Hs, K, ys, A, B, S, v)
-
-
-@njit(cache=True)
-def _select_rows(z, h, H, Hs, ys, rows):
-    """The finite rows of ``z``: their indices into ``rows``, innovations ``z - h`` into ``ys``, Jacobian rows into
-    ``Hs``; returns their number."""
-    m = 0
-    for r in range(6):
-        if np.isfinite(z[r]):
-            rows[m] = r
-            m += 1
-    for a in range(m):
-        ys[a] = z[rows[a]] - h[rows[a]]
-        for k in range(4):
-            Hs[a, k] = H[rows[a], k]
-    return m
-
-
-@njit(cache=True, inline="always")
-def _gain_m(P, r_diag, rows, m, Hs, PHt, S, K, ipiv, work):
-    """Kalman gain ``K = P H^T S^-1`` of the m selected rows, with ``PHt = P H^T`` (``S`` holds ``S^-1`` after)."""
-    _mm_t(PHt, P, Hs, 4, 4, m)  # P H^T
-    _mm(S, Hs, PHt, m, 4, m)
-    for a in range(m):
-        for b in range(m):
-            S[a, b] = S[a, b] + (r_diag[rows[a]] if a == b else 0.0)
-    for a in range(m):
-        for b in range(a + 1, m):
-            S[a, b] = S[b, a] = (S[a, b] + S[b, a]) / 2
-    _kernels.lu_inverse(S, m, ipiv, work)  # S^-1 (S is symmetric positive definite)
-    _mm(K, PHt, S, 4, m, m)  # gain
-
-
-@njit(cache=True, inline="always")
-def _correct_m(x, P, r_diag, rows, m, Hs, K, ys, A, B, S, v):
-    """``x += K y`` and the Joseph form ``P = sym((I - K H) P (I - K H)^T + K R K^T)`` (scratch ``A, B, S, v``)."""
-    _mm(A, K, Hs, 4, m, 4)
-    for i in range(4):
-        for j in range(4):
-            A[i, j] = (1.0 if i == j else 0.0) - A[i, j]  # I - K H
-    _mm(B, A, P, 4, 4, 4)
-    _mm_t(S, B, A, 4, 4, 4)  # (I - K H) P (I - K H)^T
-    for i in range(4):
-        for b in range(m):
-            B[i, b] = K[i, b] * r_diag[rows[b]] + 0.0  # K R: the zeros of R add +0
-    _mm_t(A, B, K, 4, m, 4)  # K R K^T
-    _mat_vec(v, K, ys, 4, m)
-    for i in range(4):
-        x[i] = x[i] + v[i]
-        for j in range(4):
-            S[i, j] = S[i, j] + A[i, j]
-    _symmetrise(P, S, 4)
-
-
-@njit(cache=True)
-def _gain(P, r_diag, rows, m, Hs, PHt, S, K, ipiv, work):
-    """:func:`_gain_m` for m = 6 or 3 rows."""
-    if m == 6:
-        _gain_m(P, r_diag, rows, 6, Hs, PHt, S, K, ipiv, work)
-    else:
-        _gain_m(P, r_diag, rows, 3, Hs, PHt, S, K, ipiv, work)
-
-
-@njit(cache=True)
-def _correct(x, P, r_diag, rows, m, Hs, K, ys, A, B, S, v):
-    """:func:`_correct_m` for m = 6 or 3 rows."""
-    if m == 6:
-        _correct_m(x, P, r_diag, rows, 6, Hs, K, ys, A, B, S, v)
-    else:
-        _correct_m(x, P, r_diag, rows, 3, Hs, K, ys, A, B, S, v)
+def _row_update(x, P, y, h0, h1, h2, h3, r, x_pred):
+    """One scalar update with the row ``H_i = [h0, h1, h2, h3]``: ``x += K y'``, with the innovation
+    ``y' = y - H_i (x - x_pred)`` (:func:`_update`), and the Joseph form
+    ``P = (I - K H_i) P (I - K H_i)^T + K r K^T``, which for one row expands to ``P - K u^T - u K^T + s K K^T``
+    (``u = P H_i^T``, ``s = H_i u + r``; for any gain, and symmetric exactly), with ``K = u / s``."""
+    y -= h0 * (x[0] - x_pred[0]) + h1 * (x[1] - x_pred[1]) + h2 * (x[2] - x_pred[2]) + h3 * (x[3] - x_pred[3])
+    u = (
+        P[0, 0] * h0 + P[0, 1] * h1 + P[0, 2] * h2 + P[0, 3] * h3,
+        P[1, 0] * h0 + P[1, 1] * h1 + P[1, 2] * h2 + P[1, 3] * h3,
+        P[2, 0] * h0 + P[2, 1] * h1 + P[2, 2] * h2 + P[2, 3] * h3,
+        P[3, 0] * h0 + P[3, 1] * h1 + P[3, 2] * h2 + P[3, 3] * h3,
+    )
+    s = r + (h0 * u[0] + h1 * u[1] + h2 * u[2] + h3 * u[3])
+    inv_s = 1.0 / s
+    K = (u[0] * inv_s, u[1] * inv_s, u[2] * inv_s, u[3] * inv_s)
+    for j in range(4):
+        x[j] += K[j] * y
+        for m in range(j + 1):
+            P[j, m] = P[m, j] = P[j, m] - (K[j] * u[m] + u[j] * K[m]) + s * K[j] * K[m]
 
 
 @njit(cache=True, nogil=True)
@@ -459,8 +340,9 @@ def _kernel(t0, t1, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
 
 @njit(cache=True)
 def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
-    # Arrays are taken out of the records and the scratch tuple once, before the loop (see _workspace).
-    w, dts, jump, fresh, z_in, b_ref, sigmas = inp.w, inp.dts, inp.jump, inp.fresh, inp.z, model.b_ref, model.sigmas
+    # Arrays are taken out of the records once, before the loop (see the note on reference counts above).
+    w, dts, jump, fresh, b_ref, sigmas = inp.w, inp.dts, inp.jump, inp.fresh, model.b_ref, model.sigmas
+    f, m, skip, gated, limits = inp.f, inp.m, inp.skip, inp.gated, inp.limits
     N = w.shape[1]
     keep = P_hist.shape[1] == N
     sg, sa, sm = sigmas[0], sigmas[1], sigmas[2]
@@ -469,7 +351,7 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
     P = model.p0 * np.eye(4)
     r_diag = np.array([sa * sa, sa * sa, sa * sa, sm * sm, sm * sm, sm * sm])
     Phi, G, z, h, H = np.empty((4, 4)), np.empty((4, 3)), np.empty(6), np.empty(6), np.empty((6, 4))
-    Hs, PHt, S, K, A, B, ys, v, work, rows, ipiv = _workspace()
+    x_pred = np.empty(4)
     rtk = np.array([0.0, 1.0, 0.0, np.inf, 0.0, 0.0])
     health = np.array([0.0, np.inf])
     check = np.zeros(10)
@@ -478,31 +360,27 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
         dt, gx, gy, gz = dts[k], w[t, k, 0], w[t, k, 1], w[t, k, 2]
         if jump[k]:  # clock jump: one typical interval, then check
             dt = jump_step(inp, check, rtk, health)
-        ax, ay, az, mx, my, mz, C = observe(z_in, t, k, x[0], x[1], x[2], x[3])
-        if inp.use_rtk:
-            mx, my, mz = rtk_north(inp, t, k, C, dt, rtk, counts)
-        ex, ey, ez = pi_error(C, ax, ay, az, mx, my, mz)  # PI-corrected rate, Eq. (15)
+        ax, ay, az, mx, my, mz, C = observe(f, m, skip, gated, limits, t, k, x[0], x[1], x[2], x[3])  # unit vectors, gated
+        hx, hy, hz = rtk_north(inp, t, k, C, dt, rtk, counts) if inp.use_rtk else (mx, my, mz)
+        ex, ey, ez = pi_error(C, ax, ay, az, hx, hy, hz)  # PI-corrected rate, Eq. (15)
         if learning(fresh[t, k], dt, health, inp):  # Eq. (15), unless settling after a fault
             ix += ex * dt
             iy += ey * dt
             iz += ez * dt
         _phi_into(Phi, gx + kp * ex + ki * ix, gy + kp * ey + ki * iy, gz + kp * ez + ki * iz, dt)
         _gamma_into(G, x, dt)
-        _predict_step(x, P, Phi, G, sg * sg, A, B, S, K, v)  # Eqs. (16)-(18)
-        z[0], z[1], z[2], z[3], z[4], z[5] = ax, ay, az, mx, my, mz  # NaN rows: skipped
+        _predict(x, P, Phi, G, sg * sg)  # Eqs. (16)-(18)
+        z[0], z[1], z[2], z[3], z[4], z[5] = ax, ay, az, hx, hy, hz  # NaN rows: skipped
         _jacobian_into(H, x, by, bz)  # Eq. (20)
         if model.linear_innovation:
-            _mat_vec(h, H, x, 6, 4)  # printed Eq. (19): wrong (E003-12)
+            _linear_h(h, H, x)  # printed Eq. (19): wrong (E003-12)
         else:
             _h_into(h, x, by, bz)  # z - h(q), Eq. (19) corrected
-        m = _select_rows(z, h, H, Hs, ys, rows)  # the update of _update, its scratch unpacked above
-        if m:
-            _gain(P, r_diag, rows, m, Hs, PHt, S, K, ipiv, work)
-            _correct(x, P, r_diag, rows, m, Hs, K, ys, A, B, S, v)
+        _update(x, P, z, h, H, r_diag, x_pred)
         s = np.sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2] + x[3] * x[3])
         x[0], x[1], x[2], x[3] = x[0] / s, x[1] / s, x[2] / s, x[3] / s
         if check[0]:  # after a clock jump: re-initialised only if the state is lost
-            x[0], x[1], x[2], x[3], lost = relock(inp, t, k, x[0], x[1], x[2], x[3], check, rtk, health)
+            x[0], x[1], x[2], x[3], lost = relock(inp, t, k, x[0], x[1], x[2], x[3], (ax, ay, az, mx, my, mz), check, rtk, health)
             if lost:  # covariance back to p0 I
                 _copy4(P, model.p0 * np.eye(4))
         _output(t, k, x, P, q_out, P_hist, keep)
@@ -510,9 +388,16 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
     _copy4(P_out[t], P)
 
 
+@njit(cache=True)
+def _linear_h(h, H, x):
+    """``h = H x`` (the printed Eq. 19's prediction)."""
+    for i in range(6):
+        h[i] = H[i, 0] * x[0] + H[i, 1] * x[1] + H[i, 2] * x[2] + H[i, 3] * x[3]
+
+
 @boundary
 def quaternion_kf(
-    imu: ImuSamples,
+    imu: ImuSamples | Screened,
     q0: Quat,
     *,
     m_b: Vec3Series | None = None,
@@ -531,10 +416,11 @@ def quaternion_kf(
     ``Phi = I + dt/2 Omega(w)``, ``Gamma = dt/2 Xi(q)``, ``Q = sigma_gyro^2 I``;
     measurement ``z = [a; m]`` (unit vectors) against ``h(q) = [C_nb [0,0,1]; C_nb b]``
     with ``b`` from the local field (or north for RTK), ``R = diag(sigma_accel^2 I,
-    sigma_mag^2 I)``; Joseph update of :func:`navlib.kalman.update` skipping
-    missing rows; normalise. The covariance is predicted with ``Phi P Phi^T + Gamma Q Gamma^T`` and
-    updated in Joseph form (both symmetrised). When the attitude is re-initialised after a clock jump
-    (:func:`navlib.filters.observations.relock`) the covariance restarts at ``p0 I``.
+    sigma_mag^2 I)``; the update of :func:`navlib.kalman.update` skipping missing rows, as sequential
+    scalar Joseph updates (module docstring); normalise. The covariance is predicted with
+    ``Phi P Phi^T + Gamma Q Gamma^T`` and updated in Joseph form (both symmetric exactly). When the attitude is
+    re-initialised after a clock jump (:func:`navlib.filters.observations.relock`) the covariance restarts at
+    ``p0 I``.
 
     Parameters
     ----------
@@ -568,10 +454,11 @@ def quaternion_kf(
     array([[25.1,  0. , -0.1],
            [29.3,  0.1, -0.1]])
     """
-    kp, ki = scalar(kp, "kp", positive=True, allow_zero=True), integral_gain(ki, m_b is not None or rtk is not None)
-    if m_b is not None and B_n is None:
-        raise ValueError("B_n: the quaternion KF needs the local field for its magnetometer reference")
+    kp = scalar(kp, "kp", positive=True, allow_zero=True)
     lead, inp, found = pack(imu, q0, m_b, rtk, B_n, gates, kp)
+    if inp.use_mag and B_n is None:
+        raise ValueError("B_n: the quaternion KF needs the local field for its magnetometer reference")
+    ki = integral_gain(ki, inp.use_mag or inp.use_rtk)
     T, N = inp.w.shape[:2]
     b = magnetic_reference(B_n)[0] if inp.use_mag and B_n is not None else np.array([0.0, 1.0, 0.0])  # RTK: north
     sig = np.array([noise.sigma_gyro, noise.sigma_accel, noise.sigma_mag], dtype=float)
@@ -579,4 +466,4 @@ def quaternion_kf(
     q_out, bias, counts = np.empty((T, N, 4)), np.empty((T, 3)), np.zeros((T, 4), dtype=np.int64)
     P_out, P_hist = np.empty((T, 4, 4)), np.empty((T, N if keep_cov else 0, 4, 4))
     run_trials(_kernel, T, inp, kp, ki, model, q_out, bias, counts, P_out, P_hist)
-    return attitude_result(lead, q_out, bias, counts, found, P_out, P_hist if keep_cov else None)
+    return attitude_result(lead, inp, q_out, bias, counts, found, P_out, P_hist if keep_cov else None)
