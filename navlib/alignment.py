@@ -29,7 +29,7 @@ from numpy.typing import NDArray
 
 from . import _kernels, attitude, earth
 from ._typing import Angles, Array, ArrayLike, Dcm, Vec3, Vec3Series
-from ._validate import as_array, as_dcm, broadcast, flag, imu_samples, kernel_array, latitude, pitch_roll, scalar
+from ._validate import as_array, broadcast, flag, imu_samples, kernel_array, latitude, pitch_roll, scalar
 from .imu import ImuSamples, unpack
 from .robust import FaultReport, longest_repeat
 
@@ -185,7 +185,11 @@ def gyrocompass_latitude(lat: ArrayLike, deg: bool = False) -> Array:
     >>> float(alignment.gyrocompass_latitude(45.0, deg=True))      # rad
     0.7853981633974483
     """
-    lat = latitude(lat, "lat", deg=deg, nonempty=True)
+    return _not_polar(latitude(lat, "lat", deg=deg, nonempty=True))
+
+
+def _not_polar(lat: Array) -> Array:
+    """Refuse a checked latitude (rad) beyond MAX_LAT_DEG."""
     if np.any(np.abs(lat) > np.deg2rad(MAX_LAT_DEG)):
         raise ValueError(
             f"lat: expected |lat| <= {MAX_LAT_DEG} deg for north finding (cos(lat) -> 0 near "
@@ -401,7 +405,8 @@ def static_means(
     )
     fs_g = np.inf if full_scale_gyro is None else scalar(full_scale_gyro, "full_scale_gyro", positive=True)
     fs_a = np.inf if full_scale_accel is None else scalar(full_scale_accel, "full_scale_accel", positive=True)
-    g = earth.gravity(gyrocompass_latitude(lat), as_array(h, "h", nonempty=True))
+    g = earth.gravity(lat, h)  # checks lat and h (an empty h fails the shape check below)
+    _not_polar(np.asarray(lat, dtype=float))
     lead = w.shape[:-2]
     if np.ndim(g) > len(lead) or any(a not in (1, b) for a, b in zip(np.shape(g)[::-1], lead[::-1], strict=False)):
         raise ValueError(f"lat, h: expected one value or one per trial (trial shape {lead}), got shape {np.shape(g)}")
@@ -590,8 +595,8 @@ def static_gyro_bias(w_ib_b: Vec3Series, C_bn: Dcm, lat: float) -> Array:
     Parameters
     ----------
     w_ib_b : array_like, shape (N, 3)
-    C_bn : array_like, shape (3, 3)
-        Attitude during the record.
+    C_bn : array_like, shape (3, 3) or (..., 3, 3)
+        Attitude during the record (several: one bias each).
     lat : float  (rad)
 
     Examples
@@ -604,5 +609,4 @@ def static_gyro_bias(w_ib_b: Vec3Series, C_bn: Dcm, lat: float) -> Array:
     array([ 0.0001, -0.0002,  0.    ])
     """
     w = as_array(w_ib_b, "w_ib_b", shape=(None, 3), min_ndim=1)
-    C = as_dcm(C_bn, "C_bn", shape=(3, 3))
-    return w.mean(0) - C.T @ earth.earth_rate_n(scalar(lat, "lat"))
+    return w.mean(0) - earth.earth_rate_b(C_bn, lat)

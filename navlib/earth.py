@@ -23,19 +23,18 @@ from ._typing import Array, ArrayLike, Dcm, Vec3
 from ._validate import (
     Check,
     Real,
+    Text,
     as_array,
     as_dcm,
     boundary,
     broadcast,
+    fields_checked,
     flag,
     in_range,
     kernel_array,
     latitude,
     positive,
-    scalar,
-    text,
 )
-from ._validate import ellipsoid as ellipsoid_
 
 __all__ = [
     "Ellipsoid",
@@ -80,16 +79,14 @@ class Ellipsoid:
     9.8062
     """
 
-    name: str
-    a: float
-    f: float
-    GM: float
-    omega: float
+    name: Text
+    a: Annotated[float, Check("scalar", within=(6e6, 7e6))]  # Earth-like values
+    f: Annotated[float, Check("scalar", within=(0.0, 0.01))]
+    GM: Annotated[float, Check("scalar", within=(3e14, 5e14))]
+    omega: Annotated[float, Check("scalar", within=(0.0, 1e-4))]
 
     def __post_init__(self) -> None:
-        text(self.name, "name")
-        for key, lo, hi in (("a", 6e6, 7e6), ("f", 0.0, 0.01), ("GM", 3e14, 5e14), ("omega", 0.0, 1e-4)):
-            in_range(scalar(getattr(self, key), key), key, lo, hi)  # an Earth-like value
+        fields_checked(self)
 
     @property
     def b(self) -> float:
@@ -149,7 +146,8 @@ CGCS2000 = Ellipsoid("CGCS2000", 6378137.0, 1 / 298.257222101, 3.986004418e14, O
 KRASSOVSKY = Ellipsoid("Krassovsky1940", 6378245.0, 1 / 298.3, 3.986004418e14, OMEGA_IE)
 
 
-def earth_rate_n(lat: ArrayLike, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> Array:
+@boundary
+def earth_rate_n(lat: ArrayLike, deg: bool = False, ellipsoid: EllipsoidArg = WGS84) -> Array:
     """Earth rotation rate in ENU, ``[0, w cos(lat), w sin(lat)]`` (rad/s).
 
     Parameters
@@ -168,12 +166,17 @@ def earth_rate_n(lat: ArrayLike, deg: bool = False, ellipsoid: Ellipsoid = WGS84
     >>> np.round(earth.earth_rate_n(60.0, deg=True) * 180 / np.pi * 3600, 3)   # deg/h: [east, north, up]
     array([ 0.   ,  7.521, 13.026])
     """
-    lat = latitude(lat, "lat", deg=deg)
-    w = ellipsoid_(ellipsoid).omega
+    return _earth_rate_n(latitude(lat, "lat", deg=deg), ellipsoid)
+
+
+def _earth_rate_n(lat: Array, ellipsoid: Ellipsoid) -> Array:
+    """:func:`earth_rate_n` of a checked latitude (rad)."""
+    w = ellipsoid.omega
     return np.stack([np.zeros_like(lat), w * np.cos(lat), w * np.sin(lat)], -1)
 
 
-def earth_rate_b(C_bn: Dcm, lat: float, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> Array:
+@boundary
+def earth_rate_b(C_bn: Dcm, lat: Real, deg: bool = False, ellipsoid: EllipsoidArg = WGS84) -> Array:
     r"""Earth rotation rate in the body frame, :math:`(C_b^n)^T \omega_{ie}^n` (rad/s), e.g. what a static gyro triad reads.
 
     Parameters
@@ -196,10 +199,11 @@ def earth_rate_b(C_bn: Dcm, lat: float, deg: bool = False, ellipsoid: Ellipsoid 
     array([-7.521,  0.   , 13.026])
     """
     C = as_dcm(C_bn, "C_bn")
-    return np.einsum("...ji,j->...i", C, earth_rate_n(scalar(lat, "lat"), deg, ellipsoid))
+    return np.einsum("...ji,j->...i", C, _earth_rate_n(latitude(lat, "lat", deg=deg), ellipsoid))
 
 
-def gravity(lat: ArrayLike, h: ArrayLike = 0.0, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> Array:
+@boundary
+def gravity(lat: ArrayLike, h: ArrayLike = 0.0, deg: bool = False, ellipsoid: EllipsoidArg = WGS84) -> Array:
     r"""Normal gravity magnitude (m/s^2): Somigliana with the TR8350.2 height series.
 
     .. math::
@@ -228,10 +232,14 @@ def gravity(lat: ArrayLike, h: ArrayLike = 0.0, deg: bool = False, ellipsoid: El
     9.8062
     """
     lat = latitude(lat, "lat", deg=deg)
-    h = in_range(as_array(h, "h"), "h", -12e3, 100e3, "m")
+    return _gravity(lat, in_range(as_array(h, "h"), "h", -12e3, 100e3, "m"), ellipsoid)
+
+
+def _gravity(lat: Array, h: Array, ellipsoid: Ellipsoid) -> Array:
+    """:func:`gravity` of a checked latitude (rad) and height."""
     shape = np.broadcast_shapes(lat.shape, h.shape)
     lat, h = (kernel_array(np.broadcast_to(x, shape)).reshape(-1) for x in (lat, h))
-    return normal_gravity(lat, h, *ellipsoid_(ellipsoid).gravity_constants).reshape(shape)
+    return normal_gravity(lat, h, *ellipsoid.gravity_constants).reshape(shape)
 
 
 def gravity_n(lat: ArrayLike, h: ArrayLike = 0.0, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> Array:
@@ -265,12 +273,17 @@ def radii(lat: ArrayLike, deg: bool = False, ellipsoid: EllipsoidArg = WGS84) ->
     >>> round(float(R_M), 1), round(float(R_N), 1)
     (6367381.8, 6388838.3)
     """
-    lat = latitude(lat, "lat", deg=deg)
+    return _radii(latitude(lat, "lat", deg=deg), ellipsoid)
+
+
+def _radii(lat: Array, ellipsoid: Ellipsoid) -> tuple[Array, Array]:
+    """:func:`radii` of a checked latitude (rad)."""
     R_M, R_N = radii_mn(kernel_array(lat).reshape(-1), ellipsoid.a, ellipsoid.e2)
     return R_M.reshape(lat.shape), R_N.reshape(lat.shape)
 
 
-def transport_rate_n(lat: ArrayLike, h: ArrayLike, vel_n: Vec3, ellipsoid: Ellipsoid = WGS84) -> Array:
+@boundary
+def transport_rate_n(lat: ArrayLike, h: ArrayLike, vel_n: Vec3, ellipsoid: EllipsoidArg = WGS84) -> Array:
     r"""Transport rate of the ENU frame over the ellipsoid (rad/s).
 
     .. math::
@@ -301,7 +314,7 @@ def transport_rate_n(lat: ArrayLike, h: ArrayLike, vel_n: Vec3, ellipsoid: Ellip
         )
     h = in_range(as_array(h, "h"), "h", -12e3, 1e6, "m")
     vel_n = as_array(vel_n, "vel_n", tail=(3,))
-    R_M, R_N = radii(lat, ellipsoid=ellipsoid)
+    R_M, R_N = _radii(lat, ellipsoid)
     vE, vN = vel_n[..., 0], vel_n[..., 1]
     return np.stack([-vN / (R_M + h), vE / (R_N + h), vE * np.tan(lat) / (R_N + h)], -1)
 

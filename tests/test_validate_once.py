@@ -1,0 +1,121 @@
+"""Validation once at the boundary: on one call of a public function, each argument is checked by one function.
+
+A public function checks its arguments (through :mod:`navlib._validate`, by hand or with ``@boundary``) and
+then works on the checked values: a helper of its own module gets them through an unchecked private core
+(``earth._gravity``), a compiled formula through :mod:`navlib._kernels`, and what it hands to a public function
+of another module unchecked, that function checks. A profile hook records every outermost call of a
+``_validate`` function during a registry call (tools/fuzz_calls.py) with the argument name it checks and the
+public function (or record) it checks it for; an argument name checked for two of them is checked twice.
+"""
+
+from __future__ import annotations
+
+import inspect
+import sys
+from collections import defaultdict
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from navlib import _validate, earth
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "tools"))
+import fuzz  # noqa: E402
+import fuzz_calls  # noqa: E402
+
+VALIDATORS = {
+    f.__code__: inspect.signature(f)
+    for name, f in vars(_validate).items()
+    if inspect.isfunction(f)
+    and f.__module__ == _validate.__name__
+    and not name.startswith("_")
+    and name not in ("boundary", "fields_checked", "kernel_array", "refuse_turn")
+}
+VALIDATE_FILE = _validate.__file__
+
+ONCE = [
+    "earth.earth_rate_n",
+    "earth.earth_rate_b",
+    "earth.gravity",
+    "earth.gravity_n",
+    "earth.radii",
+    "earth.transport_rate_n",
+    "alignment.static_means",
+    "alignment.static_gyro_bias",
+    "strapdown.error_model",
+    "strapdown.integrate",
+    "strapdown.integrate_attitude",
+    "strapdown.earth_constants",
+]
+"""Entry points held to one check per argument."""
+
+
+def owner(frame) -> str:
+    """The public function (or record class) a check at ``frame`` is made for."""
+    while frame is not None:
+        code = frame.f_code
+        if code.co_filename == VALIDATE_FILE:
+            fn = frame.f_locals.get("fn") if code.co_name == "checked" else None  # @boundary: the function it wraps
+            if fn is not None:
+                return fn.__qualname__
+        elif "navlib" in code.co_filename:
+            top = code.co_qualname.split(".<locals>.")[0]
+            parts = top.split(".")
+            if parts[-1].startswith("__") and len(parts) > 1:  # a record's __post_init__ / __init__
+                return parts[-2]
+            if not parts[-1].startswith("_"):
+                return top
+        else:
+            return "<caller>"
+        frame = frame.f_back
+    return "<caller>"
+
+
+def checks_of(func, kwargs) -> dict[str, set[str]]:
+    """Argument name -> the public functions that check it, during ``func(**kwargs)``."""
+    seen: dict[str, set[str]] = defaultdict(set)
+
+    def hook(frame, event, arg):
+        if event != "call" or frame.f_code not in VALIDATORS or frame.f_back.f_code in VALIDATORS:
+            return
+        params = VALIDATORS[frame.f_code].parameters
+        name = frame.f_locals.get("name", frame.f_locals.get("names")) if ("name" in params or "names" in params) else None
+        seen[str(name)].add(owner(frame.f_back))
+
+    sys.setprofile(hook)
+    try:
+        func(**kwargs)
+    finally:
+        sys.setprofile(None)
+    return seen
+
+
+PUBLIC = fuzz_calls.public_callables()
+REGISTRY = fuzz_calls.table()
+
+
+def registry_call(key: str):
+    call = fuzz.with_defaults(PUBLIC[key], REGISTRY[key])
+    if call.before:
+        call.before()
+    return {k: v.make() if isinstance(v, fuzz_calls.Fresh) else v for k, v in call.kwargs.items()}
+
+
+@pytest.mark.parametrize("key", ONCE)
+def test_each_argument_is_checked_once(key):
+    func = PUBLIC[key]
+    func(**registry_call(key))  # a first call checks @boundary defaults once; the second is the one counted
+    twice = {name: sorted(owners) for name, owners in checks_of(func, registry_call(key)).items() if len(owners) > 1}
+    assert twice == {}, f"{key}: arguments checked by more than one function: {twice}"
+
+
+def test_the_hook_sees_a_second_check():
+    """A public function that checks ``lat`` and passes it on to another one that checks it again is caught."""
+
+    def twice(lat):
+        return earth.gravity(_validate.latitude(lat, "lat"))
+
+    twice.__code__ = twice.__code__.replace(co_filename=str(ROOT / "navlib" / "x.py"), co_qualname="twice")
+    assert checks_of(twice, {"lat": np.float64(0.5)})["lat"] == {"twice", "gravity"}
