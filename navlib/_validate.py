@@ -369,13 +369,10 @@ def flag(x: object, name: str) -> bool:
 
 def choice(x: Any, name: str, options: tuple[Any, ...]) -> Any:
     """Return ``x`` if it is one of ``options`` (strings, or e.g. the allowed integer settings); arrays are refused."""
+    a_bool = isinstance(x, (bool, np.bool_))  # True is not 1 unless the options are booleans
     try:  # an array, even 0-d (which compares like its element), is refused
-        ok = (
-            not isinstance(x, np.ndarray)
-            and x in options
-            and (not isinstance(x, (bool, np.bool_)) or any(isinstance(o, bool) for o in options))
-        )
-    except (TypeError, ValueError):  # an unhashable value
+        ok = not isinstance(x, np.ndarray) and x in options and (not a_bool or any(isinstance(o, bool) for o in options))
+    except (TypeError, ValueError):  # a value that does not compare
         ok = False
     if not ok:
         raise ValueError(f"{name}: expected one of {tuple(options)}, got {x!r}")
@@ -474,13 +471,7 @@ MIN_INTERVAL = 1e-9
 
 def interval(dt: object, name: str = "dt") -> float:
     """A fixed sample interval (s): a positive scalar of at least :data:`MIN_INTERVAL`."""
-    value = scalar(dt, name, positive=True)
-    if value < MIN_INTERVAL:
-        raise ValueError(
-            f"{name}: expected a sample interval of at least {MIN_INTERVAL:g} s (no IMU samples faster than "
-            f"1 GHz; is {name} in seconds?), got {value:g}"
-        )
-    return value
+    return float(sample_intervals(scalar(dt, name), 1, name)[0])
 
 
 MAX_TURN_PER_SAMPLE = 1.0
@@ -522,7 +513,7 @@ def sample_intervals(dt: object, n: int, name: str = "dt") -> Array:
     if arr.min() < MIN_INTERVAL:
         raise ValueError(
             f"{name}: expected intervals of at least {MIN_INTERVAL:g} s (no IMU samples faster than "
-            f"1 GHz; is dt in seconds?), got {arr.min():g}"
+            f"1 GHz; is {name} in seconds?), got {arr.min():g}"
         )
     return kernel_array(arr)
 
@@ -587,11 +578,13 @@ Limit = Annotated[float, Check("scalar", positive=True, allow_inf=True)]
 """A positive limit; inf for none (e.g. a full-scale range)."""
 Step = Annotated[float, Check("interval")]
 """A fixed sample interval (s), at least 1 ns."""
+Fraction = Annotated[float, Check("scalar", within=(0.0, 1.0), open_ends=(True, False))]
+"""A fraction in (0, 1]."""
 Is = Annotated[_T, Check("instance")]
 """``Is[Cls]``: an instance of ``Cls``."""
 
 
-_KINDS = {"Check", "Annotated", "Real", "Positive", "NonNegative", "Count", "Flag", "Rng", "Text", "Limit", "Step", "Is"}
+_KINDS = {"Check", "Annotated"} | {k for k, v in list(globals().items()) if typing.get_origin(v) is Annotated}
 """Names whose absence from an annotation's module is a mistake, not a name only the type checker sees."""
 
 _P = ParamSpec("_P")
@@ -668,6 +661,7 @@ def _annotated_check(annotation: Any, namespace: dict[str, Any], name: str) -> C
     if not marks:
         return None
     mark, base = marks[0], typing.get_args(annotation)[0]
+    base = typing.get_origin(base) or base  # Is[dict[str, int]]: a dict
     if mark.validator == "instance":
         what = f"{'an' if base.__name__[0] in 'AEIOU' else 'a'} {base.__name__}"
 

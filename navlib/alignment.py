@@ -29,7 +29,20 @@ from numpy.typing import NDArray
 
 from . import _kernels, attitude, earth
 from ._typing import Angles, Array, ArrayLike, Dcm, Vec3, Vec3Series
-from ._validate import as_array, broadcast, flag, imu_samples, kernel_array, latitude, pitch_roll, scalar
+from ._validate import (
+    Flag,
+    Fraction,
+    Positive,
+    as_array,
+    boundary,
+    broadcast,
+    flag,
+    imu_samples,
+    kernel_array,
+    latitude,
+    pitch_roll,
+    scalar,
+)
 from .imu import ImuSamples, unpack
 from .robust import FaultReport, longest_repeat
 
@@ -287,19 +300,20 @@ def _masked_mean(x: Array, used: NDArray[np.bool_], n_used: NDArray[np.intp]) ->
         return np.where(used[..., None], x, 0.0).sum(-2) / n_used[..., None]
 
 
+@boundary
 def static_means(
     w_ib_b: Vec3Series | ImuSamples,
     f_b: Vec3Series | None = None,
     lat: ArrayLike | None = None,
     h: ArrayLike = 0.0,
-    accel_tol: float = 0.2,
+    accel_tol: Positive = 0.2,
     *,
-    min_fraction: float = 0.5,
-    outlier_k: float | None = None,
-    full_scale_gyro: float | None = None,
-    full_scale_accel: float | None = None,
-    stuck_fraction: float | None = None,
-    strict: bool = True,
+    min_fraction: Fraction = 0.5,
+    outlier_k: Positive | None = None,
+    full_scale_gyro: Positive | None = None,
+    full_scale_accel: Positive | None = None,
+    stuck_fraction: Fraction | None = None,
+    strict: Flag = True,
 ) -> StaticWindow:
     """Average a static window of gyro and accelerometer samples (paper step 1).
 
@@ -397,14 +411,9 @@ def static_means(
     n = w.shape[-2]
     if n < 2:
         raise ValueError(f"w_ib_b: expected a static window of at least 2 samples, got {n}")
-    tol = scalar(accel_tol, "accel_tol", positive=True)
-    frac = scalar(min_fraction, "min_fraction", within=(0.0, 1.0), open_ends=(True, False))
-    k_out = None if outlier_k is None else scalar(outlier_k, "outlier_k", positive=True)
-    stuck = (
-        None if stuck_fraction is None else scalar(stuck_fraction, "stuck_fraction", within=(0.0, 1.0), open_ends=(True, False))
-    )
-    fs_g = np.inf if full_scale_gyro is None else scalar(full_scale_gyro, "full_scale_gyro", positive=True)
-    fs_a = np.inf if full_scale_accel is None else scalar(full_scale_accel, "full_scale_accel", positive=True)
+    tol, frac, k_out, stuck = accel_tol, min_fraction, outlier_k, stuck_fraction
+    fs_g = np.inf if full_scale_gyro is None else full_scale_gyro
+    fs_a = np.inf if full_scale_accel is None else full_scale_accel
     g = earth.gravity(lat, h)  # checks lat and h (an empty h fails the shape check below)
     _not_polar(np.asarray(lat, dtype=float))
     lead = w.shape[:-2]
@@ -438,7 +447,7 @@ def static_means(
             ).max(-1)
     moving = ~too_few & ~saturated & ~frozen & ((dev > tol) | ~(halves <= tol))
     bad = too_few | saturated | frozen | moving
-    if flag(strict, "strict") and np.any(bad):
+    if strict and np.any(bad):
         if np.any(too_few):
             which = "w_ib_b" if np.any(nu_g < need) else "f_b"
             left = int(min(nu_g.min(), nu_a.min()))

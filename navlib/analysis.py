@@ -840,7 +840,8 @@ def cramer_rao_bound(
     return np.where(bad[..., None, None], np.where(np.eye(n, dtype=bool), np.inf, np.nan), P)
 
 
-def footfall_path_length(pos_n: ArrayLike, stance: ArrayLike, *, min_samples: int = 1) -> tuple[float, Array]:
+@boundary
+def footfall_path_length(pos_n: ArrayLike, stance: ArrayLike, *, min_samples: Count = 1) -> tuple[float, Array]:
     """Horizontal path length of a foot-mounted track measured from footfall to footfall.
 
     The foot stands still during each stance: the track's mean position over a stance is where the foot
@@ -879,9 +880,8 @@ def footfall_path_length(pos_n: ArrayLike, stance: ArrayLike, *, min_samples: in
     if p.ndim != 2 or p.shape[1] not in (2, 3):
         raise ValueError(f"pos_n: expected shape (N, 2) or (N, 3) (east, north[, up]), got {p.shape}")
     m = booleans(stance, "stance", shape=(p.shape[0],))
-    n_min = integer(min_samples, "min_samples")
     starts, ends = segments(m)
-    keep = ends - starts >= n_min
+    keep = ends - starts >= min_samples
     footfalls = np.array([p[a:b, :2].mean(0) for a, b in zip(starts[keep], ends[keep], strict=True)]).reshape(-1, 2)
     return float(np.sum(np.linalg.norm(np.diff(footfalls, axis=0), axis=1))), footfalls
 

@@ -23,6 +23,7 @@ import numpy as np
 from ._typing import Array, ArrayLike, Times
 from ._validate import (
     Check,
+    Is,
     Positive,
     Real,
     as_array,
@@ -30,7 +31,6 @@ from ._validate import (
     boundary,
     broadcast,
     in_range,
-    instance,
     integer,
     last_axis,
     positive,
@@ -170,7 +170,7 @@ def _cdiv(a: int, b: int) -> int:
 
 @boundary
 def bmp180_compensate(
-    UT: int, UP: int, calib: dict[str, int], oss: Annotated[int, Check("choice", options=(0, 1, 2, 3))] = 0
+    UT: int, UP: int, calib: Is[dict[str, int]], oss: Annotated[int, Check("choice", options=(0, 1, 2, 3))] = 0
 ) -> tuple[int, int]:
     """BMP180 datasheet integer compensation (sec. 3.5).
 
@@ -196,7 +196,6 @@ def bmp180_compensate(
     >>> atmosphere.bmp180_compensate(27898, 23843, calib, oss=0)     # the datasheet's worked example: 15.0 degC, 69964 Pa
     (150, 69964)
     """
-    instance(calib, "calib", dict, "a dict of calibration coefficients")
     missing = {"AC1", "AC2", "AC3", "AC4", "AC5", "AC6", "B1", "B2", "MB", "MC", "MD"} - set(calib)
     if missing:
         raise ValueError(f"calib: missing coefficients {sorted(missing)}")

@@ -20,7 +20,7 @@ import numpy as np
 
 from . import analysis
 from ._typing import Array, ArrayLike, Vec3Series
-from ._validate import Step, as_array, boundary, indices, positive, same_shape, scalar
+from ._validate import Positive, Step, as_array, boundary, indices, positive, same_shape, scalar
 from .alignment import level, magnetic_heading
 from .units import G0
 
@@ -49,7 +49,7 @@ class StepResult:
 
 
 @boundary
-def detect_steps(f_b: Vec3Series, dt: Step, threshold: float = 1.0, min_interval: float = 0.35, g: float = G0) -> StepResult:
+def detect_steps(f_b: Vec3Series, dt: Step, threshold: Positive = 1.0, min_interval: float = 0.35, g: float = G0) -> StepResult:
     """Steps as peaks of the smoothed specific-force magnitude above ``g + threshold``.
 
     Parameters
@@ -75,13 +75,12 @@ def detect_steps(f_b: Vec3Series, dt: Step, threshold: float = 1.0, min_interval
     4
     """
     f = as_array(f_b, "f_b", shape=(None, 3), min_ndim=1)
-    thr = scalar(threshold, "threshold", positive=True)
     gap = int(round(scalar(min_interval, "min_interval", positive=True) / dt))
     n_smooth = max(2, int(round(0.1 / dt)))
     if f.shape[0] < max(gap, n_smooth) + 2:
         raise ValueError(f"f_b: expected (N, 3) with N > {max(gap, n_smooth) + 2} samples, got {f.shape}")
     a = analysis.moving_mean(np.linalg.norm(f, axis=-1), n_smooth) - scalar(g, "g", positive=True)  # N > n_smooth
-    peak = (a[1:-1] > a[:-2]) & (a[1:-1] >= a[2:]) & (a[1:-1] > thr)
+    peak = (a[1:-1] > a[:-2]) & (a[1:-1] >= a[2:]) & (a[1:-1] > threshold)
     steps: list[int] = []
     for i in np.flatnonzero(peak) + 1:
         if not steps or i - steps[-1] >= gap:

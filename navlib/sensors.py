@@ -211,7 +211,7 @@ class ImuOutput:
 
 
 @boundary
-def gauss_markov(shape: tuple[int, ...], dt: Step, sigma: NonNegative, correlation_time: float, rng: Rng) -> Array:
+def gauss_markov(shape: tuple[int, ...], dt: Step, sigma: NonNegative, correlation_time: Positive, rng: Rng) -> Array:
     """First-order Gauss-Markov sequences, stationary from the first sample.
 
     Parameters
@@ -238,10 +238,9 @@ def gauss_markov(shape: tuple[int, ...], dt: Step, sigma: NonNegative, correlati
     >>> x.shape, round(float(x.std()), 1)                             # stationary: std close to sigma
     ((20000, 1), 2.1)
     """
-    tc = scalar(correlation_time, "correlation_time", positive=True)
     if not isinstance(shape, (tuple, list)) or len(shape) < 2:  # type: ignore[redundant-expr]  # the caller's argument, checked
         raise ValueError(f"shape: expected a tuple (..., N, k) of positive integers, got {shape!r}")
-    return _gauss_markov(tuple(integer(n, "shape") for n in shape), dt, sigma, tc, rng)
+    return _gauss_markov(tuple(integer(n, "shape") for n in shape), dt, sigma, correlation_time, rng)
 
 
 def _gauss_markov(shape: tuple[int, ...], dt: float, sigma: float, tc: float, rng: np.random.Generator) -> Array:
