@@ -166,7 +166,8 @@ def earth_rate_n(lat: ArrayLike, deg: bool = False, ellipsoid: EllipsoidArg = WG
     >>> np.round(earth.earth_rate_n(60.0, deg=True) * 180 / np.pi * 3600, 3)   # deg/h: [east, north, up]
     array([ 0.   ,  7.521, 13.026])
     """
-    return _earth_rate_n(latitude(lat, "lat", deg=deg), ellipsoid)
+    lat = latitude(lat, "lat", deg=deg)
+    return _earth_rate_n(lat, ellipsoid)
 
 
 def _earth_rate_n(lat: Array, ellipsoid: Ellipsoid) -> Array:
@@ -199,7 +200,8 @@ def earth_rate_b(C_bn: Dcm, lat: Real, deg: bool = False, ellipsoid: EllipsoidAr
     array([-7.521,  0.   , 13.026])
     """
     C = as_dcm(C_bn, "C_bn")
-    return np.einsum("...ji,j->...i", C, _earth_rate_n(latitude(lat, "lat", deg=deg), ellipsoid))
+    lat_rad = latitude(lat, "lat", deg=deg)
+    return np.einsum("...ji,j->...i", C, _earth_rate_n(lat_rad, ellipsoid))
 
 
 @boundary
@@ -232,7 +234,8 @@ def gravity(lat: ArrayLike, h: ArrayLike = 0.0, deg: bool = False, ellipsoid: El
     9.8062
     """
     lat = latitude(lat, "lat", deg=deg)
-    return _gravity(lat, in_range(as_array(h, "h"), "h", -12e3, 100e3, "m"), ellipsoid)
+    h = in_range(as_array(h, "h"), "h", -12e3, 100e3, "m")
+    return _gravity(lat, h, ellipsoid)
 
 
 def _gravity(lat: Array, h: Array, ellipsoid: Ellipsoid) -> Array:
@@ -273,7 +276,8 @@ def radii(lat: ArrayLike, deg: bool = False, ellipsoid: EllipsoidArg = WGS84) ->
     >>> round(float(R_M), 1), round(float(R_N), 1)
     (6367381.8, 6388838.3)
     """
-    return _radii(latitude(lat, "lat", deg=deg), ellipsoid)
+    lat = latitude(lat, "lat", deg=deg)
+    return _radii(lat, ellipsoid)
 
 
 def _radii(lat: Array, ellipsoid: Ellipsoid) -> tuple[Array, Array]:

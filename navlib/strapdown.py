@@ -461,11 +461,12 @@ def error_model(
            [ 9.8,  0. ,  0. ],
            [ 0. ,  0. ,  0. ]]))
     """
-    lat_1 = latitude(lat).reshape(1)  # checked, as the compiled formulas of earth.radii and earth.gravity take it
+    phi = latitude(lat)
     if np.cos(lat) < 1e-9:
         raise ValueError("lat: the local-level (ENU) error model is singular at the poles; expected |lat| < 90 deg")
     v = as_array(vel_n, "vel_n", shape=(3,))
     f = as_array(f_n, "f_n", shape=(3,))
+    lat_1 = phi.reshape(1)  # as the compiled formulas of earth.radii and earth.gravity take it
     R_M, R_N = _kernels.radii_mn(lat_1, ellipsoid.a, ellipsoid.e2)
     RMh, RNh = R_M[0] + h, R_N[0] + h
     sl, cl, tl = np.sin(lat), np.cos(lat), np.tan(lat)

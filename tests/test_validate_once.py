@@ -48,6 +48,9 @@ ONCE = [
     "strapdown.integrate",
     "strapdown.integrate_attitude",
     "strapdown.earth_constants",
+    "atmosphere.classify_floor",
+    "atmosphere.segment_floors",
+    "calibration.gyro_bias_at_rest",
 ]
 """Entry points held to one check per argument."""
 
