@@ -444,22 +444,6 @@ def broadcast_to(arr: NDArray[_S], name: str, shape: tuple[int, ...], of: str = 
         ) from None
 
 
-ELLIPSOID_FIELDS = ("a", "f", "GM", "omega")
-"""What :func:`ellipsoid` asks of an ellipsoid: the defining fields of :class:`navlib.earth.Ellipsoid` (its
-properties derive from them; testing those would compute them)."""
-
-
-def ellipsoid(x: Any, name: str = "ellipsoid") -> Any:
-    """Return ``x`` if it is a :class:`navlib.earth.Ellipsoid` (e.g. ``earth.WGS84``).
-
-    Recognised by :data:`ELLIPSOID_FIELDS`, not by class: earth imports this module, so this one does not
-    import earth.
-    """
-    if not all(hasattr(x, field) for field in ELLIPSOID_FIELDS):
-        raise InputTypeError(f"{name}: expected a navlib.earth.Ellipsoid (e.g. earth.WGS84), got {type(x).__name__}")
-    return x
-
-
 def range_limit(x: object, name: str) -> float:
     """A device's full-scale range (same unit as its samples): a positive value, or ``None``/inf for no limit."""
     return np.inf if x is None else scalar(x, name, positive=True, allow_inf=True)
@@ -666,7 +650,7 @@ def _annotated_check(annotation: Any, namespace: dict[str, Any], name: str) -> C
         what = f"{'an' if base.__name__[0] in 'AEIOU' else 'a'} {base.__name__}"
 
         def check(x: Any) -> Any:
-            return instance(x, name, base, what)
+            return instance(x, name, base, what, error=InputTypeError)
 
     else:
         validator = globals()[mark.validator]

@@ -135,7 +135,7 @@ class Ellipsoid:
 OMEGA_IE = 7.292115e-5
 """Earth rotation rate (rad/s), WGS84/CGCS2000 defining value (15.041 deg/h)."""
 
-EllipsoidArg = Annotated[Ellipsoid, Check("ellipsoid")]
+EllipsoidArg = Annotated[Ellipsoid, Check("instance")]
 """An ellipsoid argument (e.g. ``WGS84``), checked by :func:`navlib._validate.boundary`."""
 
 WGS84 = Ellipsoid("WGS84", 6378137.0, 1 / 298.257223563, 3.986004418e14, OMEGA_IE)

@@ -39,7 +39,6 @@ from ._validate import (
     scalar,
     time_axis,
 )
-from ._validate import ellipsoid as ellipsoid_
 from .robust import FaultReport
 
 __all__ = [
@@ -168,8 +167,9 @@ def _lla(lla: ArrayLike) -> Array:
     return lla
 
 
+@boundary
 def from_profiles(
-    time: Times, lla0: Vec3, hpr: Angles, vel_n: Vec3Series, ellipsoid: earth.Ellipsoid = earth.WGS84
+    time: Times, lla0: Vec3, hpr: Angles, vel_n: Vec3Series, ellipsoid: earth.EllipsoidArg = earth.WGS84
 ) -> Trajectory:
     """Trajectory from attitude and velocity profiles; position is integrated.
 
@@ -204,8 +204,7 @@ def from_profiles(
 
 def _from_profiles(t: Array, lla0: ArrayLike, hpr: Array, vel: Array, ellipsoid: earth.Ellipsoid) -> Trajectory:
     """:func:`from_profiles` on a uniform grid ``t`` and profiles (N, 3) built or checked by the caller;
-    ``lla0`` and ``ellipsoid`` are the user's, checked here."""
-    ellipsoid_(ellipsoid)
+    ``lla0`` is the user's, checked here."""
     lla = _positions(_lla(lla0), kernel_array(vel), t[1] - t[0], ellipsoid.a, ellipsoid.e2)
     return Trajectory(t, lla, vel, attitude.euler_to_quat(hpr))
 
@@ -356,7 +355,7 @@ class Segment:
 
 @boundary
 def vehicle(
-    segments: Sequence[Segment], dt: float, lla0: Vec3, heading0: Real, ellipsoid: earth.Ellipsoid = earth.WGS84
+    segments: Sequence[Segment], dt: float, lla0: Vec3, heading0: Real, ellipsoid: earth.EllipsoidArg = earth.WGS84
 ) -> Trajectory:
     """A land vehicle driving along its forward axis through a list of segments.
 
@@ -546,7 +545,7 @@ def stance_mask(legs: Sequence[Leg], dt: float, gait: Gait = Gait()) -> np.ndarr
 
 @boundary
 def walk(
-    legs: Sequence[Leg], dt: float, lla0: Vec3, heading0: Real, gait: Gait = Gait(), ellipsoid: earth.Ellipsoid = earth.WGS84
+    legs: Sequence[Leg], dt: float, lla0: Vec3, heading0: Real, gait: Gait = Gait(), ellipsoid: earth.EllipsoidArg = earth.WGS84
 ) -> Trajectory:
     """A pedestrian walking and stopping, as seen by a shoulder-worn IMU.
 
