@@ -148,6 +148,11 @@ def paper_radii(lat: ArrayLike, ellipsoid: EllipsoidArg = CGCS2000, deg: bool = 
     (0.081819191, 6382243.553, 6347684.393)
     """
     W = latitude(lat, "lat", deg=deg, nonempty=True)
+    return _paper_radii(W, ellipsoid)
+
+
+def _paper_radii(W: float | Array, ellipsoid: Ellipsoid) -> tuple[float, float, Array, Array]:
+    """:func:`paper_radii` of a checked latitude (rad)."""
     a, b = ellipsoid.a, ellipsoid.b
     e1 = np.sqrt(a * a - b * b) / a
     e2 = np.sqrt(a * a - b * b) / b
@@ -169,7 +174,7 @@ def printed_meridian_radius(lat: ArrayLike, ellipsoid: EllipsoidArg = CGCS2000, 
     6347684.4
     """
     W = latitude(lat, "lat", deg=deg, nonempty=True)
-    e1, e2, _, _ = paper_radii(0.0, ellipsoid)
+    e1, e2, _, _ = _paper_radii(0.0, ellipsoid)
     return ellipsoid.a**2 * (1 - e1**2) / np.sqrt((1 + e2**2 * np.sin(W) ** 2) ** 1.5)
 
 
@@ -262,7 +267,7 @@ def paper_series(
     if np.any(np.abs(l_deg) > 6.0):
         raise ValueError(f"lon: expected |lon - lon0| <= 6°, got {np.abs(l_deg).max():.4g}°")
     l = l_deg if printed_units else np.deg2rad(l_deg)
-    _, e2, N, _ = paper_radii(W, ellipsoid)
+    _, e2, N, _ = _paper_radii(W, ellipsoid)
     t2 = np.tan(W) ** 2
     eta2 = e2**2 * np.cos(W) ** 2
     s, c = np.sin(W), np.cos(W)
@@ -732,7 +737,7 @@ def footpoint_latitude(x: ArrayLike, ellipsoid: EllipsoidArg = CGCS2000, iterati
         raise ValueError("x: expected a northing within the meridian quadrant")
     W = x / ellipsoid.a
     for _ in range(n):
-        W = np.clip(W + (x - _meridian_arc(W, W, ellipsoid)) / paper_radii(W, ellipsoid)[3], -np.pi / 2, np.pi / 2)
+        W = np.clip(W + (x - _meridian_arc(W, W, ellipsoid)) / _paper_radii(W, ellipsoid)[3], -np.pi / 2, np.pi / 2)
     return W
 
 
@@ -772,7 +777,7 @@ def inverse_series(
     except ValueError:
         raise ValueError(f"lon0: expected a shape that broadcasts with x, y {x.shape}, got {L0.shape}") from None
     Wf = footpoint_latitude(x, ellipsoid)
-    _, e2, N, M = paper_radii(Wf, ellipsoid)
+    _, e2, N, M = _paper_radii(Wf, ellipsoid)
     t, c = np.tan(Wf), np.cos(Wf)
     t2, eta2 = t * t, e2**2 * c * c
     lat = (
