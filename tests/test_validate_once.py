@@ -18,7 +18,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from navlib import _validate, earth
+matplotlib = pytest.importorskip("matplotlib")
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+from navlib import _validate, earth  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tools"))
@@ -35,24 +39,54 @@ VALIDATORS = {
 }
 VALIDATE_FILE = _validate.__file__
 
-ONCE = [
-    "earth.earth_rate_n",
-    "earth.earth_rate_b",
-    "earth.gravity",
-    "earth.gravity_n",
-    "earth.radii",
-    "earth.transport_rate_n",
-    "alignment.static_means",
-    "alignment.static_gyro_bias",
-    "strapdown.error_model",
-    "strapdown.integrate",
-    "strapdown.integrate_attitude",
-    "strapdown.earth_constants",
-    "atmosphere.classify_floor",
-    "atmosphere.segment_floors",
-    "calibration.gyro_bias_at_rest",
-]
-"""Entry points held to one check per argument."""
+TWICE = {
+    # A public function of another module checks again what the caller checked: unchecked cores are private to
+    # their module (tests/test_architecture.py), and these callers need the checked value themselves first.
+    "alignment.triad": ["lat"],  # gyrocompass_latitude, then earth.gravity and earth.earth_rate_n
+    "analysis.orientation_errors": ["q"],  # attitude's quaternion functions on its normalised quaternions
+    "calibration.characterise": ["correlation_time", "dt", "rate_random_walk", "taus"],  # analysis' Allan functions
+    "io.read_xio": ["q", "time"],  # timing.intervals of the record's time; attitude in the axis check
+    "io.read_sensor_logger": ["q", "time"],
+    "io.read_euroc": ["q", "time"],
+    "io.read_phyphox": ["q", "time"],
+    "io.check_axes": ["q"],
+    "geodesy.local_scales": ["('lat', 'lon')", "ellipsoid", "lon0"],  # the projection it differentiates is public
+    "papers.gauss_kruger_ekf.waypoint_path": ["T", "speed"],  # filters.planar_ekf
+    "papers.gauss_kruger_ekf.ekf": ["('lat', 'lon')", "axis", "deg", "ellipsoid", "name", "t", "width", "z", "zone"],
+    "papers.gauss_kruger_ekf.simulate_sensors": ["('lat', 'lon')", "deg", "ellipsoid", "width", "zone", "zone_prefix"],
+    "papers.gauss_kruger_ekf.ekf_error_ms": ["T"],
+    "papers.gauss_kruger_ekf.draw_zone_grid": ["deg", "width", "zone"],
+    "papers.north_finding.heading_candidates": ["h", "lat"],  # alignment and earth
+    "papers.north_finding.clipped_single_axis_theory": ["angle", "lat"],
+    "papers.north_finding.simulate_static_outputs": ["lat"],
+    "papers.north_finding.monte_carlo": ["angle", "f_b", "h", "lat"],
+    "papers.north_finding.stop_solutions": ["None", "f_b", "h", "lat"],
+    "papers.north_finding.ins_heading_change": ["dt", "lat", "w_ib_b"],  # strapdown.integrate_attitude
+    "papers.north_finding.draw_device": ["ax"],  # plots
+    "papers.north_finding.draw_candidate_pairs": ["ax"],
+    "papers.rotation_bias.rotate_attitude": ["deg"],
+    "papers.rotation_bias.dwell_attitudes": ["deg"],
+    "papers.rotation_bias.design": ["V", "deg"],
+    "papers.rotation_bias.draw_rotation_scheme": ["ax"],
+    "pdr.pdr_headings": ["f_b", "m_b"],  # alignment.level and magnetic_heading of the step means
+    "sensors.simulate_barometer": ["h", "p0"],  # atmosphere.isa_pressure
+    "trajectory.static": ["hpr"],  # attitude.euler_to_quat
+    "trajectory.reciprocating_rotation": ["q"],
+    "trajectory.ideal_imu": ["ellipsoid", "h", "lat", "q", "vel_n"],  # earth and attitude of the record's states
+    "filters.mahony.mahony": ["B_n", "kp"],
+    "filters.observations.magnetic_reference": ["B_n"],
+    "filters.quaternion_kf.quaternion_kf": ["B_n", "kp"],
+    "filters.planar_ekf.dead_reckoning": ["full_scale_gyro"],
+    "filters.planar_ekf.filter_grid": ["z"],
+    # A record checks its fields when built, also from arguments its builder checked.
+    "calibration.fit_accelerometer": ["g"],
+    "montecarlo.run": ["seed"],
+    "papers.north_finding.stop_and_go": ["speed"],
+    "papers.pedestrian_ins.carpark_legs": ["speed"],
+    "trajectory.from_profiles": ["hpr", "time", "vel_n"],
+    "filters.presets.foot_mounted": ["baro", "heading", "zupt"],
+}
+"""Arguments still checked twice on one registry call, and why: this list may shrink, never grow."""
 
 
 def owner(frame) -> str:
@@ -106,12 +140,17 @@ def registry_call(key: str):
     return {k: v.make() if isinstance(v, fuzz_calls.Fresh) else v for k, v in call.kwargs.items()}
 
 
-@pytest.mark.parametrize("key", ONCE)
+CALLS = sorted(k for k, c in REGISTRY.items() if isinstance(c, fuzz_calls.Call) and not k.startswith(("repro.", "plots.")))
+
+
+@pytest.mark.filterwarnings("ignore::RuntimeWarning")  # as in tests/test_bad_input.py: the registry's tiny records
+@pytest.mark.parametrize("key", CALLS)
 def test_each_argument_is_checked_once(key):
     func = PUBLIC[key]
     func(**registry_call(key))  # a first call checks @boundary defaults once; the second is the one counted
     twice = {name: sorted(owners) for name, owners in checks_of(func, registry_call(key)).items() if len(owners) > 1}
-    assert twice == {}, f"{key}: arguments checked by more than one function: {twice}"
+    plt.close("all")
+    assert set(twice) <= set(TWICE.get(key, ())), f"{key}: arguments checked by more than one function: {twice}"
 
 
 def test_the_hook_sees_a_second_check():
