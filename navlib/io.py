@@ -487,10 +487,11 @@ def _in_file(source: str, reader: Callable[_P, _R], *args: _P.args, **kwargs: _P
 _XIO_OLD = "Packet number"  # x-IMU (older x-io board, CalInertialAndMag.csv): no time column
 
 
+@boundary
 def read_xio(
     path: str | Path,
     *,
-    rate: float | None = None,
+    rate: Positive | None = None,
     axes: str | Dcm | Mapping[str, str | Dcm] = "x,y,z",
     mirror: bool = False,
     timing: str = "raise",
@@ -537,7 +538,6 @@ def read_xio(
                 f"rate: {source} has a column {packet!r} and no 'Time (s)': an x-IMU file, whose "
                 f"samples carry no time; pass rate= (the board's sample rate in Hz, e.g. rate=256)"
             )
-        rate = scalar(rate, "rate", positive=True)
         df["Time (s)"] = np.arange(len(df)) / rate
         notes.append(
             f"time: x-IMU layout; row number / rate {rate:g} Hz -> s (the x-IMU numbers every packet it "

@@ -44,6 +44,7 @@ from numba import njit
 from . import atmosphere, attitude, earth, units
 from ._typing import Angles, Array, ArrayLike, Quat, Times, Vec3, Vec3Series
 from ._validate import (
+    Count,
     Is,
     Limit,
     NonNegative,
@@ -377,7 +378,7 @@ def window_mean_std(errors: Is[TriadErrors], duration: float, dt: float) -> floa
 
 @boundary
 def simulate_imu(
-    w_ib_b: Vec3Series, f_b: Vec3Series, dt: Step, model: Is[ImuModel], rng: Rng, n_trials: int | None = None
+    w_ib_b: Vec3Series, f_b: Vec3Series, dt: Step, model: Is[ImuModel], rng: Rng, n_trials: Count | None = None
 ) -> ImuOutput:
     """Corrupt ideal IMU samples with an :class:`ImuModel`.
 
@@ -411,7 +412,6 @@ def simulate_imu(
     """
     w, f = imu_samples(w_ib_b, f_b, allow_nan=False)
     if n_trials is not None:
-        n_trials = integer(n_trials, "n_trials")
         w = np.broadcast_to(w, (n_trials,) + w.shape)
         f = np.broadcast_to(f, (n_trials,) + f.shape)
     r_gyro, r_accel = rng.spawn(2)
