@@ -27,13 +27,13 @@ from ._validate import (
     NonNegative,
     Positive,
     Real,
+    Step,
     as_array,
     as_quat,
     boundary,
     fields_checked,
     in_range,
     instance,
-    interval,
     kernel_array,
     latitude,
     scalar,
@@ -147,9 +147,7 @@ MAX_SAMPLES = 10**9
 
 
 def _time_grid(duration: float, dt: float) -> np.ndarray:
-    """Sample times ``0, dt, ..., n dt`` with ``n = round(duration / dt) >= 1`` (s)."""
-    duration = scalar(duration, "duration", positive=True)
-    dt = interval(dt)
+    """Sample times ``0, dt, ..., n dt`` with ``n = round(duration / dt) >= 1`` (s) of a checked duration and dt."""
     n = round(duration / dt)
     if n < 1:
         raise ValueError(f"duration: expected at least one sample interval dt={dt}, got {duration}")
@@ -209,7 +207,8 @@ def _from_profiles(t: Array, lla0: ArrayLike, hpr: Array, vel: Array, ellipsoid:
     return Trajectory(t, lla, vel, attitude.euler_to_quat(hpr))
 
 
-def static(duration: float, dt: float, lla0: Vec3, hpr: Angles) -> Trajectory:
+@boundary
+def static(duration: Positive, dt: Step, lla0: Vec3, hpr: Angles) -> Trajectory:
     """A stationary IMU at ``lla0`` with constant attitude ``hpr`` (rad).
 
     Examples
@@ -247,8 +246,8 @@ def _ramp(x: np.ndarray) -> np.ndarray:
 
 @boundary
 def reciprocating_rotation(
-    duration: float,
-    dt: float,
+    duration: Positive,
+    dt: Step,
     lla0: Vec3,
     hpr0: Angles,
     axis_b: Vec3,
@@ -355,7 +354,7 @@ class Segment:
 
 @boundary
 def vehicle(
-    segments: Sequence[Segment], dt: float, lla0: Vec3, heading0: Real, ellipsoid: earth.EllipsoidArg = earth.WGS84
+    segments: Sequence[Segment], dt: Step, lla0: Vec3, heading0: Real, ellipsoid: earth.EllipsoidArg = earth.WGS84
 ) -> Trajectory:
     """A land vehicle driving along its forward axis through a list of segments.
 
@@ -492,11 +491,10 @@ def _listed(items: Any) -> list[Any]:
 
 
 def _walk_grid(legs: object, gait: Gait, dt: float) -> tuple[list[Leg], np.ndarray]:
-    """The legs of :func:`walk` (or :func:`stance_mask`) as a list, and its time grid; ``gait`` checked."""
+    """The legs of :func:`walk` (or :func:`stance_mask`) as a list, and its time grid."""
     legs = _listed(legs)
     if not legs or not all(isinstance(leg, Leg) for leg in legs):
         raise ValueError("legs: expected a non-empty sequence of Leg")
-    instance(gait, "gait", Gait, "a Gait")
     return legs, _time_grid(sum(leg.duration for leg in legs), dt)
 
 
@@ -516,7 +514,8 @@ def _schedule(legs: list[Leg], t: Array, ramp: float) -> tuple[Array, Array, Arr
     return speed, turn, climb, static
 
 
-def stance_mask(legs: Sequence[Leg], dt: float, gait: Gait = Gait()) -> np.ndarray:
+@boundary
+def stance_mask(legs: Sequence[Leg], dt: Step, gait: Is[Gait] = Gait()) -> np.ndarray:
     """True-static flags of :func:`walk` on its time grid (stops after their ramp).
 
     Parameters
@@ -545,7 +544,12 @@ def stance_mask(legs: Sequence[Leg], dt: float, gait: Gait = Gait()) -> np.ndarr
 
 @boundary
 def walk(
-    legs: Sequence[Leg], dt: float, lla0: Vec3, heading0: Real, gait: Gait = Gait(), ellipsoid: earth.EllipsoidArg = earth.WGS84
+    legs: Sequence[Leg],
+    dt: Step,
+    lla0: Vec3,
+    heading0: Real,
+    gait: Is[Gait] = Gait(),
+    ellipsoid: earth.EllipsoidArg = earth.WGS84,
 ) -> Trajectory:
     """A pedestrian walking and stopping, as seen by a shoulder-worn IMU.
 
