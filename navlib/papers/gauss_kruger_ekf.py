@@ -57,6 +57,7 @@ from .._typing import Array, ArrayLike, Times
 from .._validate import (
     Flag,
     Is,
+    NonNegative,
     Positive,
     Real,
     Rng,
@@ -794,7 +795,10 @@ def inverse_series(
     return (np.rad2deg(lat), np.rad2deg(lon)) if flag(deg, "deg") else (lat, lon)
 
 
-def draw_zones(ax: Axes, lon_min: float = 112.5, lon_max: float = 127.5, *, mark: tuple[float, float] | None = None) -> None:
+@boundary
+def draw_zones(
+    ax: Axes, lon_min: NonNegative = 112.5, lon_max: Positive = 127.5, *, mark: tuple[float, float] | None = None
+) -> None:
     """3° Gauss–Krüger zones on a longitude axis: boundaries at 3n ± 1.5°, central meridians L0 = 3n, zone numbers.
 
     Parameters
@@ -816,7 +820,7 @@ def draw_zones(ax: Axes, lon_min: float = 112.5, lon_max: float = 127.5, *, mark
     >>> plt.close(fig)
     """
     axes(ax)
-    lo, hi = scalar(lon_min, "lon_min", allow_zero=True), scalar(lon_max, "lon_max", positive=True)
+    lo, hi = lon_min, lon_max
     if not lo < hi <= 180 or hi - lo > 30:
         raise ValueError(f"lon_min, lon_max: expected 0 <= lon_min < lon_max <= 180 and at most 30° apart, got {lo}, {hi}")
     first, last = int(np.ceil((lo + 1.5) / 3)), int(np.floor((hi - 1.5) / 3))
