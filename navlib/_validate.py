@@ -529,7 +529,7 @@ class Check:
     """What a parameter's annotation asks of its argument (``typing.Annotated`` metadata), checked by
     :func:`navlib._validate.boundary` before the function runs: a function of :mod:`navlib._validate`, by name, and
     its options, e.g. ``Annotated[float, Check("scalar", within=(0.0, 1.0))]``. ``Check("instance")`` asks for an
-    instance of the annotated class."""
+    instance of the annotated class (``what``: how the message names it)."""
 
     __slots__ = ("validator", "options")
 
@@ -647,7 +647,7 @@ def _annotated_check(annotation: Any, namespace: dict[str, Any], name: str) -> C
     mark, base = marks[0], typing.get_args(annotation)[0]
     base = typing.get_origin(base) or base  # Is[dict[str, int]]: a dict
     if mark.validator == "instance":
-        what = f"{'an' if base.__name__[0] in 'AEIOU' else 'a'} {base.__name__}"
+        what = mark.options.get("what") or f"{'an' if base.__name__[0] in 'AEIOU' else 'a'} {base.__name__}"
 
         def check(x: Any) -> Any:
             return instance(x, name, base, what, error=InputTypeError)

@@ -56,7 +56,6 @@ from ._validate import (
     choice,
     file_path,
     flag,
-    instance,
     scalar,
     text,
     time_axis,
@@ -269,11 +268,11 @@ def _check_timing(t: np.ndarray, policy: str, name: str = "time") -> None:
 
 @boundary
 def from_dataframe(
-    df: pd.DataFrame,
+    df: Is[pd.DataFrame],
     *,
     time: Annotated[str, Check("text", empty=False)],
     time_unit: str = "s",
-    units: Mapping[str, str],
+    units: Annotated[Mapping[str, str], Check("instance", what="a mapping of sensor to unit, e.g. {'gyro': 'deg/s'}")],
     gyro: Sequence[str] | None = None,
     accel: Sequence[str] | None = None,
     mag: Sequence[str] | None = None,
@@ -326,9 +325,7 @@ def from_dataframe(
     >>> np.round(rec.w_ib_b[:, 0], 6), rec.conversions[1]
     (array([0.      , 0.017453, 0.034907]), "gyro: columns ['gx', 'gy', 'gz'] in deg/s x 0.0174533 -> rad/s, axes 'x,y,z'")
     """
-    instance(df, "df", pd.DataFrame, "a pandas.DataFrame")
     mounts = _mounts(axes, flag(mirror, "mirror"))
-    instance(units, "units", Mapping, "a mapping of sensor to unit, e.g. {'gyro': 'deg/s'}")
     columns: dict[str, Any] = {"gyro": gyro, "accel": accel, "mag": mag, "baro": baro}  # checked below
     present = {s: c for s, c in columns.items() if c is not None}
     for sensor, cols in present.items():

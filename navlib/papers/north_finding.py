@@ -112,6 +112,7 @@ from .._typing import Angles, Array, ArrayLike, Dcm, Interval, Times, Vec3, Vec3
 from .._validate import (
     Check,
     Count,
+    Limit,
     NonNegative,
     Positive,
     as_array,
@@ -120,7 +121,6 @@ from .._validate import (
     boundary,
     broadcast,
     broadcast_to,
-    choice,
     flag,
     generator,
     imu_samples,
@@ -129,7 +129,6 @@ from .._validate import (
     integer,
     pitch_roll,
     positive,
-    range_limit,
     sample_intervals,
     scalar,
     time_axis,
@@ -1135,10 +1134,10 @@ def ins_heading_change(
     f_start: Vec3,
     dt: Interval | None = None,
     lat: float | None = None,
-    earth_rate: str = "vertical",
+    earth_rate: Annotated[str, Check("choice", options=("vertical", "none", "full"))] = "vertical",
     *,
     max_gap: NonNegative = 0.1,
-    full_scale_gyro: float | None = None,
+    full_scale_gyro: Limit | None = None,
 ) -> Array:
     """MEMS strapdown heading change over a drive, started with heading 0 (paper step 2).
 
@@ -1210,12 +1209,11 @@ def ins_heading_change(
         w_ib_b, _, dt, full_scale_gyro, _ = unpack(w_ib_b, dt=dt, full_scale_gyro=full_scale_gyro)
     w_ie = earth.earth_rate_n(gyrocompass_latitude(scalar(lat, "lat")))
     rates = {"vertical": w_ie * [0, 0, 1], "none": np.zeros(3), "full": w_ie}
-    choice(earth_rate, "earth_rate", tuple(rates))
     w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
     n = w.shape[-2]
     dts = sample_intervals(dt, n)
     step = float(dts[0]) if np.all(dts == dts[0]) else float(dts.mean())
-    fs = range_limit(full_scale_gyro, "full_scale_gyro")
+    fs = np.inf if full_scale_gyro is None else full_scale_gyro
     pitch, roll = level(
         broadcast_to(
             as_array(f_start, "f_start", tail=(3,), nonempty=True), "f_start", w.shape[:-2] + (3,), of="the trials of w_ib_b"
