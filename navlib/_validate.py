@@ -133,7 +133,7 @@ def as_array(
         want = "(" + ", ".join(["..."] + [str(t) for t in tail]) + ")"
         raise ValueError(f"{name}: expected shape {want}, got {arr.shape}")
     if shape is not None:
-        _exact_shape(arr, name, shape, of)
+        same_shape(arr, name, shape, of)
     if arr.size == 0 and (nonempty or min_ndim > 0):
         raise ValueError(f"{name}: expected a non-empty array, got shape {arr.shape}")
     if _within_limits(arr, ignore_nan=allow_nan or not finite):
@@ -169,8 +169,9 @@ def _magnitude(arr: Array, name: str) -> None:
         )
 
 
-def _exact_shape(arr: NDArray[_S], name: str, shape: tuple[int | None, ...], of: str = "") -> NDArray[_S]:
-    """Return ``arr`` if its shape is ``shape``; a ``None`` entry takes any length, e.g. ``(None, 3)``."""
+def same_shape(arr: NDArray[_S], name: str, shape: tuple[int | None, ...], of: str = "") -> NDArray[_S]:
+    """Return ``arr`` if its shape is ``shape``; a ``None`` entry takes any length, e.g. ``(None, 3)``; ``of`` names
+    the argument(s) that set the sizes, for the message."""
     if arr.ndim != len(shape) or any(s not in (None, n) for s, n in zip(shape, arr.shape, strict=True)):
         want = "(" + ", ".join("N" if s is None else str(s) for s in shape) + ("," if len(shape) == 1 else "") + ")"
         raise ValueError(f"{name}: expected shape {want}{f' (sizes from {of})' if of else ''}, got {arr.shape}")
@@ -189,7 +190,7 @@ def booleans(x: object, name: str, *, shape: tuple[int | None, ...] | None = Non
         raise InputTypeError(f"{name}: expected booleans, got a ragged {type(x).__name__}") from exc
     if arr.dtype != bool:
         raise InputTypeError(f"{name}: expected booleans, got dtype {arr.dtype}")
-    return arr if shape is None else _exact_shape(arr, name, shape, of)
+    return arr if shape is None else same_shape(arr, name, shape, of)
 
 
 def in_range(arr: _F, name: str, lo: float, hi: float, unit: str = "", *, lo_open: bool = False, hi_open: bool = False) -> _F:
@@ -208,16 +209,17 @@ def in_range(arr: _F, name: str, lo: float, hi: float, unit: str = "", *, lo_ope
 
 def pitch_roll(pitch: object, roll: object, names: tuple[str, str] = ("pitch", "roll")) -> tuple[Array, Array]:
     """Pitch within [-pi/2, pi/2] and roll within [-pi, pi] (rad); outside, degrees were most likely passed."""
-    out = []
-    for x, name, limit in ((pitch, names[0], np.pi / 2), (roll, names[1], np.pi)):
-        a = as_array(x, name)
-        if np.any(np.abs(a) > limit + 1e-12):
-            raise ValueError(
-                f"{name}: expected radians within [{-limit:.4g}, {limit:.4g}], got max |{name}| "
-                f"{np.max(np.abs(a)):g} (degrees? convert with np.deg2rad)"
-            )
-        out.append(a)
-    return out[0], out[1]
+    return _radians(pitch, names[0], np.pi / 2), _radians(roll, names[1], np.pi)
+
+
+def _radians(x: object, name: str, limit: float) -> Array:
+    a = as_array(x, name)
+    if np.any(np.abs(a) > limit + 1e-12):
+        raise ValueError(
+            f"{name}: expected radians within [{-limit:.4g}, {limit:.4g}], got max |{name}| "
+            f"{np.max(np.abs(a)):g} (degrees? convert with np.deg2rad)"
+        )
+    return a
 
 
 def euler_angles(hpr: object, name: str = "hpr") -> Array:
@@ -403,13 +405,6 @@ def instance(x: Any, name: str, cls: type | tuple[type, ...], what: str, *, erro
     if not isinstance(x, cls):
         raise error(f"{name}: expected {what}, got {type(x).__name__}")
     return x
-
-
-def same_shape(arr: NDArray[_S], name: str, shape: tuple[int, ...], of: str = "") -> NDArray[_S]:
-    """Return ``arr`` if its shape is ``shape`` (the shape of argument ``of``, when given, for the message)."""
-    if arr.shape != tuple(shape):
-        raise ValueError(f"{name}: expected {'the shape of ' + of if of else 'shape'} {tuple(shape)}, got {arr.shape}")
-    return arr
 
 
 def last_axis(arr: NDArray[_S], name: str, n: int, of: str = "") -> NDArray[_S]:
