@@ -213,6 +213,7 @@ def pitch_roll(pitch: object, roll: object, names: tuple[str, str] = ("pitch", "
 
 
 def _radians(x: object, name: str, limit: float) -> Array:
+    """``x`` as angles within +-``limit`` (rad)."""
     a = as_array(x, name)
     if np.any(np.abs(a) > limit + 1e-12):
         raise ValueError(

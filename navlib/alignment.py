@@ -411,7 +411,6 @@ def static_means(
     n = w.shape[-2]
     if n < 2:
         raise ValueError(f"w_ib_b: expected a static window of at least 2 samples, got {n}")
-    tol, frac, k_out, stuck = accel_tol, min_fraction, outlier_k, stuck_fraction
     fs_g = np.inf if full_scale_gyro is None else full_scale_gyro
     fs_a = np.inf if full_scale_accel is None else full_scale_accel
     g = earth.gravity(lat, h)  # checks lat and h (an empty h fails the shape check below)
@@ -419,18 +418,18 @@ def static_means(
     lead = w.shape[:-2]
     if np.ndim(g) > len(lead) or any(a not in (1, b) for a, b in zip(np.shape(g)[::-1], lead[::-1], strict=False)):
         raise ValueError(f"lat, h: expected one value or one per trial (trial shape {lead}), got shape {np.shape(g)}")
-    need = max(2, int(np.ceil(frac * n)))
+    need = max(2, int(np.ceil(min_fraction * n)))
     out = {}
     for name, x, fs in (("gyro", w, fs_g), ("accel", f, fs_a)):
         valid = np.all(np.isfinite(x), -1)
         sat = valid & np.any(np.abs(x) >= fs, -1)
-        outl = _outliers(x, valid, k_out) if k_out is not None else np.zeros_like(valid)
+        outl = _outliers(x, valid, outlier_k) if outlier_k is not None else np.zeros_like(valid)
         used = valid & ~outl
         n_used = used.sum(-1)
         n_stuck = np.zeros(valid.shape[:-1], dtype=int)
-        if stuck is not None:
+        if stuck_fraction is not None:
             run = longest_repeat(x, valid).max(-1)
-            n_stuck = np.where((run >= stuck * valid.sum(-1)) & (run >= 2), run, 0)
+            n_stuck = np.where((run >= stuck_fraction * valid.sum(-1)) & (run >= 2), run, 0)
         out[name] = (_masked_mean(x, used, n_used), n_used, n - valid.sum(-1), outl.sum(-1), sat.sum(-1), used, n_stuck)
     (w_mean, nu_g, nd_g, no_g, ns_g, _, nk_g), (f_mean, nu_a, nd_a, no_a, ns_a, used_f, nk_a) = out["gyro"], out["accel"]
     too_few = (nu_g < need) | (nu_a < need)
@@ -445,7 +444,7 @@ def static_means(
             halves = np.abs(
                 _masked_mean(f[..., : n // 2, :], u1, u1.sum(-1)) - _masked_mean(f[..., n // 2 :, :], u2, u2.sum(-1))
             ).max(-1)
-    moving = ~too_few & ~saturated & ~frozen & ((dev > tol) | ~(halves <= tol))
+    moving = ~too_few & ~saturated & ~frozen & ((dev > accel_tol) | ~(halves <= accel_tol))
     bad = too_few | saturated | frozen | moving
     if strict and np.any(bad):
         if np.any(too_few):
@@ -453,7 +452,7 @@ def static_means(
             left = int(min(nu_g.min(), nu_a.min()))
             raise ValueError(
                 f"{which}: only {left} of {n} samples left after dropouts/outliers; expected at least "
-                f"{need} (min_fraction = {frac:g})"
+                f"{need} (min_fraction = {min_fraction:g})"
             )
         if np.any(saturated):
             which = "w_ib_b" if np.any(ns_g > 0) else "f_b"
@@ -465,16 +464,16 @@ def static_means(
             which, run = ("w_ib_b", nk_g) if np.any(nk_g > 0) else ("f_b", nk_a)
             raise ValueError(
                 f"{which}: one reading repeated over {int(run.max())} consecutive samples of {n} "
-                f"(stuck_fraction = {stuck:g}): the sensor output is frozen"
+                f"(stuck_fraction = {stuck_fraction:g}): the sensor output is frozen"
             )
-        if np.any(dev[moving] > tol):
+        if np.any(dev[moving] > accel_tol):
             raise ValueError(
                 f"f_b: mean specific-force norm differs from gravity by {np.nanmax(dev):.3g} m/s^2 "
-                f"(> accel_tol = {tol:g}): the robot is not static"
+                f"(> accel_tol = {accel_tol:g}): the robot is not static"
             )
         raise ValueError(
             f"f_b: the two halves of the window differ by {np.nanmax(halves):.3g} m/s^2 "
-            f"(> accel_tol = {tol:g}): the robot moved during the stop"
+            f"(> accel_tol = {accel_tol:g}): the robot moved during the stop"
         )
     w_mean = np.where(bad[..., None], np.nan, w_mean)
     f_mean = np.where(bad[..., None], np.nan, f_mean)

@@ -820,10 +820,11 @@ def draw_zones(
     >>> plt.close(fig)
     """
     axes(ax)
-    lo, hi = lon_min, lon_max
-    if not lo < hi <= 180 or hi - lo > 30:
-        raise ValueError(f"lon_min, lon_max: expected 0 <= lon_min < lon_max <= 180 and at most 30° apart, got {lo}, {hi}")
-    first, last = int(np.ceil((lo + 1.5) / 3)), int(np.floor((hi - 1.5) / 3))
+    if not lon_min < lon_max <= 180 or lon_max - lon_min > 30:
+        raise ValueError(
+            f"lon_min, lon_max: expected 0 <= lon_min < lon_max <= 180 and at most 30° apart, got {lon_min}, {lon_max}"
+        )
+    first, last = int(np.ceil((lon_min + 1.5) / 3)), int(np.floor((lon_max - 1.5) / 3))
     for n in range(first, last + 1):
         ax.axvspan(3 * n - 1.5, 3 * n + 1.5, color="0.93" if n % 2 else "0.85", lw=0)
         ax.axvline(3 * n, color="tab:green", lw=1.4)
@@ -844,7 +845,7 @@ def draw_zones(
         ax.annotate(
             f"site, zone {int(geodesy.zone(lon, deg=True))}", (lon, lat), xytext=(6, 6), textcoords="offset points", fontsize=8
         )
-    ax.set(xlim=(lo, hi), xlabel="longitude L (° E)", ylabel="latitude W (° N)")
+    ax.set(xlim=(lon_min, lon_max), xlabel="longitude L (° E)", ylabel="latitude W (° N)")
 
 
 @boundary
