@@ -436,7 +436,14 @@ def _finish(rec: Recording, source: str, check: str, notes: Sequence[str] = (), 
     return rec
 
 
-def read_csv(path: str | Path, *, sep: str = ",", comment: str | None = None, check: str = "warn", **kwargs: Any) -> Recording:
+CheckMode = Annotated[str, Check("choice", options=("warn", "raise", "off"))]
+"""A reader's axis check (:func:`check_axes`): warn or raise on suspect axes, or ``"off"``: not run."""
+
+
+@boundary
+def read_csv(
+    path: str | Path, *, sep: str = ",", comment: str | None = None, check: CheckMode = "warn", **kwargs: Any
+) -> Recording:
     """A :class:`Recording` from a CSV file: ``pandas.read_csv(path, sep, comment)`` then :func:`from_dataframe`.
 
     Parameters
@@ -465,11 +472,7 @@ def read_csv(path: str | Path, *, sep: str = ",", comment: str | None = None, ch
     >>> tmp.cleanup()
     """
     df, source = _read_table(path, sep=text(sep, "sep", empty=False), comment=comment)
-    return _finish(_in_file(source, from_dataframe, df, **kwargs), source, _check_option(check))
-
-
-def _check_option(check: str) -> str:
-    return choice(check, "check", ("warn", "raise", "off"))
+    return _finish(_in_file(source, from_dataframe, df, **kwargs), source, check)
 
 
 def _in_file(source: str, reader: Callable[_P, _R], *args: _P.args, **kwargs: _P.kwargs) -> _R:
@@ -493,7 +496,7 @@ def read_xio(
     mirror: bool = False,
     timing: str = "raise",
     check_units: bool = True,
-    check: str = "warn",
+    check: CheckMode = "warn",
 ) -> Recording:
     """An x-io Technologies CSV: NGIMU / Fusion examples (``Time (s)``), or the older x-IMU layout.
 
@@ -561,7 +564,7 @@ def read_xio(
         check_units=check_units,
         **cols,
     )
-    return _finish(rec, source, _check_option(check), notes)
+    return _finish(rec, source, check, notes)
 
 
 def _read_table(path: str | Path, **read_csv: Any) -> tuple[pd.DataFrame, str]:
@@ -731,6 +734,7 @@ def _logger_reference(
     )
 
 
+@boundary
 def read_sensor_logger(
     directory: str | Path,
     *,
@@ -741,7 +745,7 @@ def read_sensor_logger(
     max_gap: float | None = None,
     timing: str = "raise",
     check_units: bool = True,
-    check: str = "warn",
+    check: CheckMode = "warn",
 ) -> Recording:
     """A Sensor Logger (phone app) CSV export, iOS or Android, any app version: put on the gyroscope's clock.
 
@@ -864,12 +868,13 @@ def read_sensor_logger(
         **kw,
     )
     q_ref, ref_note = _logger_reference(d, platform, standardised, t_ns, _mounts(axes, mirror)["gyro"][0])
-    return _finish(rec, str(d), _check_option(check), notes + ([ref_note] if ref_note else []), q_bn_ref=q_ref)
+    return _finish(rec, str(d), check, notes + ([ref_note] if ref_note else []), q_bn_ref=q_ref)
 
 
 _PHYPHOX = {"gyro": ("Gyroscope", "rad/s"), "accel": ("Acceleration", "m/s^2"), "mag": ("Magnetic field", "uT")}
 
 
+@boundary
 def read_phyphox(
     path: str | Path,
     *,
@@ -878,7 +883,7 @@ def read_phyphox(
     method: str = "hold",
     max_gap: float | None = None,
     check_units: bool = True,
-    check: str = "warn",
+    check: CheckMode = "warn",
 ) -> Recording:
     """A phyphox CSV export: one experiment's ``Raw Data.csv``, or the folder of a multi-sensor export
     (``Gyroscope.csv``, ``Accelerometer.csv``, ``Magnetometer.csv``), put on the gyroscope's clock.
@@ -947,11 +952,12 @@ def read_phyphox(
         kw[sensor], units[sensor] = tuple(names), _PHYPHOX[sensor][1]
         notes.append(f"{sensor}: {f.name}")
     rec = _in_file(str(p), from_dataframe, frame, time="t", units=units, axes=axes, mirror=mirror, check_units=check_units, **kw)
-    return _finish(rec, str(p), _check_option(check), notes)
+    return _finish(rec, str(p), check, notes)
 
 
+@boundary
 def read_euroc(
-    path: str | Path, *, axes: str | Dcm = "x,y,z", timing: str = "raise", check_units: bool = True, check: str = "warn"
+    path: str | Path, *, axes: str | Dcm = "x,y,z", timing: str = "raise", check_units: bool = True, check: CheckMode = "warn"
 ) -> Recording:
     """The EuRoC MAV dataset's IMU file (``mav0/imu0/data.csv``): ns timestamps, rad/s, m/s^2.
 
@@ -991,7 +997,7 @@ def read_euroc(
         timing=timing,
         check_units=check_units,
     )
-    return _finish(rec, source, _check_option(check))
+    return _finish(rec, source, check)
 
 
 # ----------------------------------------------------------------------------------- clocks
