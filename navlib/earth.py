@@ -344,13 +344,16 @@ def _geomag(coefficients_file: str) -> Any:
 
 
 def _wmm_file(year: float) -> str:
-    if not 2010.0 <= year < 2030.0:
-        raise ValueError(f"year: expected a decimal year in [2010, 2030) covered by the World Magnetic Model, got {year}")
+    """The model file of a checked year."""
     return [f for start, f in _WMM_MODELS if year >= start][-1]
 
 
+WmmYear = Annotated[float, Check("scalar", within=(2010.0, 2030.0), open_ends=(False, True))]
+"""A decimal year the World Magnetic Model epochs shipped with pygeomag cover."""
+
+
 @boundary
-def magnetic_field(lat: ArrayLike, lon: ArrayLike, h: ArrayLike = 0.0, year: Real = 2025.0, deg: bool = True) -> Array:
+def magnetic_field(lat: ArrayLike, lon: ArrayLike, h: ArrayLike = 0.0, year: WmmYear = 2025.0, deg: bool = True) -> Array:
     """Main geomagnetic field from the World Magnetic Model (through pygeomag).
 
     The WMM epoch (2010, 2015v2, 2020, 2025) is chosen from ``year``; each is
