@@ -327,13 +327,13 @@ def scalar(
     allow_inf: bool = False,
     huge: bool = False,
     allow_nan: bool = False,
-    within: tuple[float, float] | None = None,
+    within: tuple[float, float] | tuple[float, float, str] | None = None,
     open_ends: tuple[bool, bool] = (False, False),
 ) -> float:
     """Return ``x`` as a Python float; optionally > 0 (or >= 0 with ``allow_zero``); inf only if ``allow_inf``.
 
     ``allow_nan``: NaN is accepted as such (a figure that was not computed). ``within``: the bounds
-    ``(lo, hi)`` of :func:`in_range`, open at the ends flagged in ``open_ends``.
+    ``(lo, hi)`` of :func:`in_range` (or ``(lo, hi, unit)``), open at the ends flagged in ``open_ends``.
     """
     arr = as_array(x, name, finite=not allow_inf, allow_nan=allow_nan, huge=huge)
     if within is not None:

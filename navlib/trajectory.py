@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Annotated, Any
 
 import numpy as np
 from numba import njit
@@ -23,6 +23,7 @@ from . import attitude, earth
 from ._kernels import radii_mn
 from ._typing import Angles, Array, ArrayLike, Times, Vec3, Vec3Series
 from ._validate import (
+    Check,
     Is,
     NonNegative,
     Positive,
@@ -36,7 +37,6 @@ from ._validate import (
     instance,
     kernel_array,
     latitude,
-    scalar,
     time_axis,
 )
 from .robust import FaultReport
@@ -341,15 +341,11 @@ class Segment:
     duration: Positive
     speed: NonNegative | None = None
     turn: Real = 0.0
-    pitch: float | None = None
-    roll: float | None = None
+    pitch: Annotated[float, Check("scalar", within=(-np.pi / 2, np.pi / 2, "rad"))] | None = None
+    roll: Annotated[float, Check("scalar", within=(-np.pi, np.pi, "rad"))] | None = None
 
     def __post_init__(self) -> None:
         fields_checked(self)
-        if self.pitch is not None:
-            in_range(scalar(self.pitch, "pitch"), "pitch", -np.pi / 2, np.pi / 2, "rad")
-        if self.roll is not None:
-            in_range(scalar(self.roll, "roll"), "roll", -np.pi, np.pi, "rad")
 
 
 @boundary
