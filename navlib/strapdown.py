@@ -276,6 +276,7 @@ def earth_constants(ellipsoid: earth.EllipsoidArg = earth.WGS84) -> np.ndarray:
 
 
 def _earth_constants(ellipsoid: earth.Ellipsoid) -> np.ndarray:
+    """:func:`earth_constants` of a checked ellipsoid."""
     return np.array(ellipsoid.gravity_constants + (ellipsoid.omega,))
 
 
@@ -422,7 +423,7 @@ def integrate(
 @boundary
 def error_model(
     lat: Real,
-    h: Annotated[float, Check("scalar", within=(-12e3, 100e3))],
+    h: Annotated[float, Check("scalar", within=(-12e3, 100e3, "m"))],
     vel_n: Vec3,
     f_n: Vec3,
     ellipsoid: earth.EllipsoidArg = earth.WGS84,
