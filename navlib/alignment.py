@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from . import _kernels, attitude, earth
+from . import _earth, _kernels, attitude, earth
 from ._typing import Angles, Array, ArrayLike, Dcm, Vec3, Vec3Series
 from ._validate import (
     Flag,
@@ -535,9 +535,9 @@ def triad(f_b: Vec3, w_ib_b: Vec3, lat: ArrayLike, orthonormal: bool = True) -> 
         of="f_b, w_ib_b",
     )
     lat = gyrocompass_latitude(lat)
-    g_n = np.stack(np.broadcast_arrays(0.0, 0.0, -earth.gravity(lat)), -1)
+    g_n = np.stack(np.broadcast_arrays(0.0, 0.0, -_earth.gravity(lat, np.zeros(()), earth.WGS84)), -1)
     body = _reference_triad(-f, w)  # columns: -f, -f x w, (-f x w) x (-f)
-    nav = _reference_triad(g_n, earth.earth_rate_n(lat))
+    nav = _reference_triad(g_n, _earth.earth_rate_n(lat, earth.WGS84))
     C_nb = body @ np.linalg.inv(nav)
     C_bn = np.swapaxes(C_nb, -1, -2)
     return attitude.orthonormalize(C_bn) if flag(orthonormal, "orthonormal") else C_bn

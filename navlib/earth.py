@@ -8,6 +8,9 @@ reproduce the printed WGS84 and GRS80 values to 1e-10 m/s^2 (tested against
 
 Vectors are in the ENU navigation frame. Latitude is ``lat``, longitude
 ``lon`` (rad unless ``deg=True``), height ``h`` above the ellipsoid (m).
+
+Each function checks its arguments, then calls its unchecked core in :mod:`navlib._earth`; another module
+that has checked a latitude or height itself calls the core.
 """
 
 from __future__ import annotations
@@ -18,7 +21,7 @@ from typing import Annotated, Any
 
 import numpy as np
 
-from ._kernels import normal_gravity, radii_mn
+from . import _earth
 from ._typing import Array, ArrayLike, Dcm, Vec3
 from ._validate import (
     Check,
@@ -31,7 +34,6 @@ from ._validate import (
     fields_checked,
     flag,
     in_range,
-    kernel_array,
     latitude,
     positive,
 )
@@ -167,13 +169,7 @@ def earth_rate_n(lat: ArrayLike, deg: bool = False, ellipsoid: EllipsoidArg = WG
     array([ 0.   ,  7.521, 13.026])
     """
     lat = latitude(lat, "lat", deg=deg)
-    return _earth_rate_n(lat, ellipsoid)
-
-
-def _earth_rate_n(lat: Array, ellipsoid: Ellipsoid) -> Array:
-    """:func:`earth_rate_n` of a checked latitude (rad)."""
-    w = ellipsoid.omega
-    return np.stack([np.zeros_like(lat), w * np.cos(lat), w * np.sin(lat)], -1)
+    return _earth.earth_rate_n(lat, ellipsoid)
 
 
 @boundary
@@ -201,7 +197,7 @@ def earth_rate_b(C_bn: Dcm, lat: Real, deg: bool = False, ellipsoid: EllipsoidAr
     """
     C = as_dcm(C_bn, "C_bn")
     lat_rad = latitude(lat, "lat", deg=deg)
-    return np.einsum("...ji,j->...i", C, _earth_rate_n(lat_rad, ellipsoid))
+    return np.einsum("...ji,j->...i", C, _earth.earth_rate_n(lat_rad, ellipsoid))
 
 
 @boundary
@@ -235,14 +231,7 @@ def gravity(lat: ArrayLike, h: ArrayLike = 0.0, deg: bool = False, ellipsoid: El
     """
     lat = latitude(lat, "lat", deg=deg)
     h = in_range(as_array(h, "h"), "h", -12e3, 100e3, "m")
-    return _gravity(lat, h, ellipsoid)
-
-
-def _gravity(lat: Array, h: Array, ellipsoid: Ellipsoid) -> Array:
-    """:func:`gravity` of a checked latitude (rad) and height."""
-    shape = np.broadcast_shapes(lat.shape, h.shape)
-    lat, h = (kernel_array(np.broadcast_to(x, shape)).reshape(-1) for x in (lat, h))
-    return normal_gravity(lat, h, *ellipsoid.gravity_constants).reshape(shape)
+    return _earth.gravity(lat, h, ellipsoid)
 
 
 def gravity_n(lat: ArrayLike, h: ArrayLike = 0.0, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> Array:
@@ -255,9 +244,7 @@ def gravity_n(lat: ArrayLike, h: ArrayLike = 0.0, deg: bool = False, ellipsoid: 
     >>> np.round(earth.gravity_n(45.0, deg=True), 5)
     array([ 0.    ,  0.    , -9.8062])
     """
-    g = gravity(lat, h, deg=deg, ellipsoid=ellipsoid)
-    z = np.zeros_like(g)
-    return np.stack([z, z, -g], -1)
+    return _earth.gravity_n(gravity(lat, h, deg=deg, ellipsoid=ellipsoid))
 
 
 @boundary
@@ -277,13 +264,7 @@ def radii(lat: ArrayLike, deg: bool = False, ellipsoid: EllipsoidArg = WGS84) ->
     (6367381.8, 6388838.3)
     """
     lat = latitude(lat, "lat", deg=deg)
-    return _radii(lat, ellipsoid)
-
-
-def _radii(lat: Array, ellipsoid: Ellipsoid) -> tuple[Array, Array]:
-    """:func:`radii` of a checked latitude (rad)."""
-    R_M, R_N = radii_mn(kernel_array(lat).reshape(-1), ellipsoid.a, ellipsoid.e2)
-    return R_M.reshape(lat.shape), R_N.reshape(lat.shape)
+    return _earth.radii(lat, ellipsoid)
 
 
 @boundary
@@ -318,9 +299,7 @@ def transport_rate_n(lat: ArrayLike, h: ArrayLike, vel_n: Vec3, ellipsoid: Ellip
         )
     h = in_range(as_array(h, "h"), "h", -12e3, 1e6, "m")
     vel_n = as_array(vel_n, "vel_n", tail=(3,))
-    R_M, R_N = _radii(lat, ellipsoid)
-    vE, vN = vel_n[..., 0], vel_n[..., 1]
-    return np.stack([-vN / (R_M + h), vE / (R_N + h), vE * np.tan(lat) / (R_N + h)], -1)
+    return _earth.transport_rate_n(lat, h, vel_n, ellipsoid)
 
 
 # --------------------------------------------------------------------------

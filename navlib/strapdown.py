@@ -57,7 +57,7 @@ import numpy as np
 from numba import njit
 from numpy.typing import NDArray
 
-from . import _kernels, attitude, earth, robust
+from . import _earth, _kernels, attitude, earth, robust
 from ._kernels import quat_mult_t, rotvec_to_quat_t
 from ._typing import Array, ArrayLike, Dcm, Interval, Quat, Vec3, Vec3Series
 from ._validate import (
@@ -467,15 +467,14 @@ def error_model(
         raise ValueError("lat: the local-level (ENU) error model is singular at the poles; expected |lat| < 90 deg")
     v = as_array(vel_n, "vel_n", shape=(3,))
     f = as_array(f_n, "f_n", shape=(3,))
-    lat_1 = phi.reshape(1)  # as the compiled formulas of earth.radii and earth.gravity take it
-    R_M, R_N = _kernels.radii_mn(lat_1, ellipsoid.a, ellipsoid.e2)
-    RMh, RNh = R_M[0] + h, R_N[0] + h
+    R_M, R_N = _earth.radii(phi, ellipsoid)
+    RMh, RNh = R_M + h, R_N + h
     sl, cl, tl = np.sin(lat), np.cos(lat), np.tan(lat)
     W = ellipsoid.omega
     vE, vN = v[0], v[1]
-    w_ie = np.array([0.0, W * cl, W * sl])
-    w_en = np.array([-vN / RMh, vE / RNh, vE * tl / RNh])
-    g = _kernels.normal_gravity(lat_1, np.array([h]), *ellipsoid.gravity_constants)[0]
+    w_ie = _earth.earth_rate_n(phi, ellipsoid)
+    w_en = _earth.transport_rate_n(phi, np.asarray(h), v, ellipsoid)
+    g = _earth.gravity(phi, np.asarray(h), ellipsoid)
     sk = attitude.skew
     Maa = -sk(w_ie + w_en)
     Mav = np.array([[0, -1 / RMh, 0], [1 / RNh, 0, 0], [tl / RNh, 0, 0]])

@@ -19,7 +19,7 @@ import numpy as np
 from numba import njit
 from numpy.typing import NDArray
 
-from . import attitude, earth
+from . import _earth, attitude, earth
 from ._kernels import radii_mn
 from ._typing import Angles, Array, ArrayLike, Times, Vec3, Vec3Series
 from ._validate import (
@@ -610,7 +610,7 @@ def walk(
 
 
 @boundary
-def ideal_imu(traj: Is[Trajectory], ellipsoid: earth.Ellipsoid = earth.WGS84) -> tuple[Array, Array]:
+def ideal_imu(traj: Is[Trajectory], ellipsoid: earth.EllipsoidArg = earth.WGS84) -> tuple[Array, Array]:
     """Error-free gyro and accelerometer samples along a trajectory.
 
     Sample k is the mean angular rate and specific force over
@@ -649,10 +649,13 @@ def ideal_imu(traj: Is[Trajectory], ellipsoid: earth.Ellipsoid = earth.WGS84) ->
         return np.broadcast_to(w_first, lead_n).copy(), np.broadcast_to(f_first, lead_n).copy()
     dt = traj.dt
     lat, h = traj.lla[..., :-1, 0], traj.lla[..., :-1, 2]
+    if np.any(np.cos(lat) < 1e-9):
+        raise ValueError("traj.lla[..., 0] (lat): the ENU transport rate is singular at the poles; expected |lat| < 90 deg")
+    in_range(h, "traj.lla[..., 2] (h)", -12e3, 100e3, "m")  # earth.gravity's heights
     v0, v1 = traj.vel_n[..., :-1, :], traj.vel_n[..., 1:, :]
     q0, q1 = traj.q_bn[..., :-1, :], traj.q_bn[..., 1:, :]
-    w_ie = earth.earth_rate_n(lat, ellipsoid=ellipsoid)
-    w_en = earth.transport_rate_n(lat, h, v0, ellipsoid=ellipsoid)
+    w_ie = _earth.earth_rate_n(lat, ellipsoid)
+    w_en = _earth.transport_rate_n(lat, h, v0, ellipsoid)
     w_in = w_ie + w_en
     dq = attitude.quat_mult(attitude.quat_mult(attitude.quat_conj(q0), attitude.rotvec_to_quat(w_in * dt)), q1)
     w_ib_b = attitude.quat_to_rotvec(dq) / dt
@@ -660,6 +663,6 @@ def ideal_imu(traj: Is[Trajectory], ellipsoid: earth.Ellipsoid = earth.WGS84) ->
         attitude.quat_mult(attitude.rotvec_to_quat(-w_in * dt / 2), q0), attitude.rotvec_to_quat(w_ib_b * dt / 2)
     )
     C_mid = attitude.quat_to_dcm(q_mid)
-    a_n = (v1 - v0) / dt - earth.gravity_n(lat, h, ellipsoid=ellipsoid) + np.cross(2 * w_ie + w_en, v0)
+    a_n = (v1 - v0) / dt - _earth.gravity_n(_earth.gravity(lat, h, ellipsoid)) + np.cross(2 * w_ie + w_en, v0)
     f_b = np.einsum("...ji,...j->...i", C_mid, a_n)
     return w_ib_b, f_b

@@ -1,9 +1,9 @@
 """Validation once at the boundary: on one call of a public function, each argument is checked by one function.
 
 A public function checks its arguments (through :mod:`navlib._validate`, by hand or with ``@boundary``) and
-then works on the checked values: a helper of its own module gets them through an unchecked private core
-(``earth._gravity``), a compiled formula through :mod:`navlib._kernels`, and what it hands to a public function
-of another module unchecked, that function checks. A profile hook records every outermost call of a
+then works on the checked values: it hands them to unchecked cores (a private helper of its own module, a
+shared core module such as :mod:`navlib._earth`, a compiled formula of :mod:`navlib._kernels`), and what it
+hands to a public function of another module unchecked, that function checks. A profile hook records every outermost call of a
 ``_validate`` function during a registry call (tools/fuzz_calls.py) with the argument name it checks and the
 public function (or record) it checks it for; an argument name checked for two of them is checked twice.
 """
@@ -40,9 +40,8 @@ VALIDATORS = {
 VALIDATE_FILE = _validate.__file__
 
 TWICE = {
-    # A public function of another module checks again what the caller checked: unchecked cores are private to
-    # their module (tests/test_architecture.py), and these callers need the checked value themselves first.
-    "alignment.triad": ["lat"],  # gyrocompass_latitude, then earth.gravity and earth.earth_rate_n
+    # A public function of another module checks again what the caller checked: these callers need the checked
+    # value themselves first, and the callee's unchecked core is not yet in a shared private module (navlib/_earth.py).
     "analysis.orientation_errors": ["q"],  # attitude's quaternion functions on its normalised quaternions
     "calibration.characterise": ["correlation_time", "dt", "rate_random_walk", "taus"],  # analysis' Allan functions
     "io.read_xio": ["q", "time"],  # timing.intervals of the record's time; attitude in the axis check
@@ -56,10 +55,9 @@ TWICE = {
     "papers.gauss_kruger_ekf.simulate_sensors": ["('lat', 'lon')", "deg", "ellipsoid", "width", "zone", "zone_prefix"],
     "papers.gauss_kruger_ekf.ekf_error_ms": ["T"],
     "papers.gauss_kruger_ekf.draw_zone_grid": ["deg", "width", "zone"],
-    "papers.north_finding.heading_candidates": ["h", "lat"],  # alignment and earth
     "papers.north_finding.clipped_single_axis_theory": ["angle", "lat"],
     "papers.north_finding.simulate_static_outputs": ["lat"],
-    "papers.north_finding.monte_carlo": ["angle", "f_b", "h", "lat"],
+    "papers.north_finding.monte_carlo": ["angle", "f_b", "lat"],
     "papers.north_finding.stop_solutions": ["None", "f_b", "h", "lat"],
     "papers.north_finding.ins_heading_change": ["dt", "lat", "w_ib_b"],  # strapdown.integrate_attitude
     "papers.north_finding.draw_device": ["ax"],  # plots
@@ -72,7 +70,7 @@ TWICE = {
     "sensors.simulate_barometer": ["h", "p0"],  # atmosphere.isa_pressure
     "trajectory.static": ["hpr"],  # attitude.euler_to_quat
     "trajectory.reciprocating_rotation": ["q"],
-    "trajectory.ideal_imu": ["ellipsoid", "h", "lat", "q", "vel_n"],  # earth and attitude of the record's states
+    "trajectory.ideal_imu": ["q"],  # attitude's quaternion functions of the record's attitudes
     "filters.mahony.mahony": ["B_n", "kp"],
     "filters.observations.magnetic_reference": ["B_n"],
     "filters.quaternion_kf.quaternion_kf": ["B_n", "kp"],

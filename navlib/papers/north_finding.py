@@ -107,7 +107,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.special import ndtr
 
-from .. import attitude, earth, plots, robust, strapdown
+from .. import _earth, attitude, earth, plots, robust, strapdown
 from .._typing import Angles, Array, ArrayLike, Dcm, Interval, Times, Vec3, Vec3Series
 from .._validate import (
     Check,
@@ -293,7 +293,8 @@ def heading_candidates(w_y: ArrayLike, f_b: Vec3, lat: float, h: float = 0.0) ->
     w_y = as_array(w_y, "w_y", nonempty=True)
     phi = gyrocompass_latitude(lat)
     level(f_b)  # checks f_b as pitch_roll_from_accel does
-    pitch = _asin_pitch(f_b, earth.gravity(phi, as_array(h, "h", nonempty=True)))  # as_array: gravity takes an empty h
+    height = in_range(as_array(h, "h", nonempty=True), "h", -12e3, 100e3, "m")  # earth.gravity's heights
+    pitch = _asin_pitch(f_b, _earth.gravity(phi, height, earth.WGS84))
     cos_h = (w_y - OMEGA_IE * np.sin(phi) * np.sin(pitch)) / (OMEGA_IE * np.cos(phi) * np.cos(pitch))
     clipped = np.abs(cos_h) > 1.0
     alpha = np.arccos(np.clip(cos_h, -1.0, 1.0))
@@ -523,7 +524,7 @@ def single_axis_heading_std(
     s_g = positive(sigma_gyro, "sigma_gyro", allow_zero=True, nonempty=True)
     s_a = positive(sigma_accel, "sigma_accel", allow_zero=True, nonempty=True)
     phi = gyrocompass_latitude(lat)
-    grav = earth.gravity(phi) if g is None else positive(g, "g", nonempty=True)
+    grav = _earth.gravity(phi, np.zeros(()), earth.WGS84) if g is None else positive(g, "g", nonempty=True)
     s_th = s_a / (grav * np.cos(th))
     coupling = OMEGA_IE * (np.sin(phi) * np.cos(th) - np.cos(phi) * np.sin(th) * np.cos(psi))
     with np.errstate(divide="ignore"):
@@ -563,7 +564,7 @@ def single_axis_heading_error(
     dw = as_array(dw_y, "dw_y", nonempty=True)
     df = as_array(df_y, "df_y", nonempty=True)
     phi = gyrocompass_latitude(lat)
-    grav = earth.gravity(phi) if g is None else positive(g, "g", nonempty=True)
+    grav = _earth.gravity(phi, np.zeros(()), earth.WGS84) if g is None else positive(g, "g", nonempty=True)
     d_th = df / (grav * np.cos(th))
     coupling = OMEGA_IE * (np.sin(phi) * np.cos(th) - np.cos(phi) * np.sin(th) * np.cos(psi))
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -660,7 +661,7 @@ def clipped_single_axis_theory(
     """
     psi, th = np.broadcast_arrays(as_array(heading, "heading", nonempty=True), _pitch(pitch))
     phi = gyrocompass_latitude(scalar(lat, "lat"))
-    grav = earth.gravity(phi) if g is None else scalar(g, "g", positive=True)
+    grav = _earth.gravity(phi, np.zeros(()), earth.WGS84) if g is None else scalar(g, "g", positive=True)
     if integer(n_grid, "n_grid", minimum=101) % 2 == 0:
         raise ValueError(f"n_grid: expected an odd integer of at least 101, got {n_grid!r}")
     s_gyro_cos = sigma_gyro / (OMEGA_IE * np.cos(phi) * np.cos(th))
@@ -729,8 +730,8 @@ def simulate_static_outputs(
     C_nb = np.swapaxes(attitude.euler_to_dcm(hpr), -1, -2)
     phi = gyrocompass_latitude(scalar(lat, "lat"))
     r_gyro, r_accel = generator(rng).spawn(2)
-    w_true = C_nb @ earth.earth_rate_n(phi)
-    f_true = C_nb @ np.array([0.0, 0.0, float(earth.gravity(phi))])
+    w_true = C_nb @ _earth.earth_rate_n(phi, earth.WGS84)
+    f_true = C_nb @ np.array([0.0, 0.0, float(_earth.gravity(phi, np.zeros(()), earth.WGS84))])
     shape = w_true.shape[:-1] + (int(n_trials), 3)
     w = w_true[..., None, :] + _bias(gyro_bias, "gyro_bias") + sigma_gyro * r_gyro.standard_normal(shape)
     f = f_true[..., None, :] + _bias(accel_bias, "accel_bias") + sigma_accel * r_accel.standard_normal(shape)
@@ -1207,7 +1208,7 @@ def ins_heading_change(
     """
     if isinstance(w_ib_b, ImuSamples):
         w_ib_b, _, dt, full_scale_gyro, _ = unpack(w_ib_b, dt=dt, full_scale_gyro=full_scale_gyro)
-    w_ie = earth.earth_rate_n(gyrocompass_latitude(scalar(lat, "lat")))
+    w_ie = _earth.earth_rate_n(gyrocompass_latitude(scalar(lat, "lat")), earth.WGS84)
     rates = {"vertical": w_ie * [0, 0, 1], "none": np.zeros(3), "full": w_ie}
     w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
     n = w.shape[-2]
