@@ -24,7 +24,7 @@ from typing import Annotated
 import numpy as np
 from numba import njit
 
-from . import _kernels, attitude, earth
+from . import _attitude, _kernels, attitude, earth
 from ._typing import Angles, Array, ArrayLike, Times, Vec3
 from ._validate import (
     Check,
@@ -978,12 +978,13 @@ def orientation_errors(
     for name, q in (("q_bn", q_bn), ("q_ref", q_ref)):
         if np.any(np.linalg.norm(q[use], axis=1) < 1e-12):
             raise ValueError(f"{name}: expected non-zero quaternions on the scored samples, got |q| = 0")
-    e = attitude.quat_mult(attitude.quat_normalize(q_bn[use]), attitude.quat_conj(attitude.quat_normalize(q_ref[use])))
+    q_est, q_true = (_attitude.positive_scalar(_attitude.unit(q[use])) for q in (q_bn, q_ref))  # checked non-zero above
+    e = _attitude.quat_mult(q_est, _attitude.quat_conj(q_true))
     offset = 0.0
     if remove_heading_offset:
         twist = 2 * np.arctan2(e[:, 3], e[:, 0])  # signed heading error
         offset = float(np.arctan2(np.sin(twist).mean(), np.cos(twist).mean()))
-        e = attitude.quat_mult(np.array([np.cos(offset / 2), 0.0, 0.0, -np.sin(offset / 2)]), e)
+        e = _attitude.quat_mult(np.array([np.cos(offset / 2), 0.0, 0.0, -np.sin(offset / 2)]), e)
     w, z = np.abs(e[:, 0]), e[:, 3]
     total = 2 * np.arccos(np.clip(w, 0.0, 1.0))
     heading = 2 * np.arctan2(np.abs(z), w)

@@ -25,9 +25,8 @@ Functions taking or returning angles in degrees say so with ``deg=True``.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
-from ._kernels import quat_to_dcm_into
+from . import _attitude
 from ._typing import Angles, Array, ArrayLike, Dcm, Quat, Vec3
 from ._validate import as_array, as_dcm, as_quat, flag, in_range
 
@@ -302,16 +301,7 @@ def euler_to_quat(hpr: Angles, deg: bool = False) -> Array:
     >>> np.round(attitude.quat_to_euler(q, deg=True), 6)
     array([30., 10.,  0.])
     """
-    h, p, r = np.moveaxis(_as_hpr(hpr, deg), -1, 0) / 2
-    ch, sh, cp, sp, cr, sr = np.cos(h), np.sin(h), np.cos(p), np.sin(p), np.cos(r), np.sin(r)
-    q = np.stack(
-        [ch * cp * cr + sh * sp * sr, ch * sp * cr + sh * cp * sr, ch * cp * sr - sh * sp * cr, -sh * cp * cr + ch * sp * sr], -1
-    )
-    return _positive_scalar(q)
-
-
-def _positive_scalar(q: Array) -> Array:
-    return np.where(q[..., :1] < 0, -q, q)
+    return _attitude.euler_to_quat(_as_hpr(hpr, deg))
 
 
 def quat_to_euler(q: Quat, deg: bool = False) -> Array:
@@ -348,8 +338,7 @@ def quat_to_dcm(q: Quat) -> Array:
            [ 1.,  0.,  0.],
            [ 0.,  0.,  1.]])
     """
-    q = as_quat(q)
-    return _quat_to_dcm_batch(q.reshape(-1, 4)).reshape(q.shape[:-1] + (3, 3))
+    return _attitude.quat_to_dcm(as_quat(q))
 
 
 def dcm_to_quat(C_bn: Dcm) -> Array:
@@ -415,7 +404,7 @@ def dcm_to_quat(C_bn: Dcm) -> Array:
             s = 2 * np.sqrt(1 + Cm[..., i, i] - Cm[..., j, j] - Cm[..., l, l])
         q[m] = np.stack(f(Cm, s), -1)
     q /= np.linalg.norm(q, axis=-1, keepdims=True)
-    return _positive_scalar(q)
+    return _attitude.positive_scalar(q)
 
 
 def quat_mult(p: Quat, q: Quat) -> Array:
@@ -429,19 +418,7 @@ def quat_mult(p: Quat, q: Quat) -> Array:
     >>> np.round(attitude.quat_mult(qz, qz), 12)                   # two of them: a half turn
     array([0., 0., 0., 1.])
     """
-    p = as_array(p, "p", tail=(4,))
-    q = as_array(q, "q", tail=(4,))
-    p0, p1, p2, p3 = np.moveaxis(p, -1, 0)
-    q0, q1, q2, q3 = np.moveaxis(q, -1, 0)
-    return np.stack(
-        [
-            p0 * q0 - p1 * q1 - p2 * q2 - p3 * q3,
-            p0 * q1 + p1 * q0 + p2 * q3 - p3 * q2,
-            p0 * q2 - p1 * q3 + p2 * q0 + p3 * q1,
-            p0 * q3 + p1 * q2 - p2 * q1 + p3 * q0,
-        ],
-        -1,
-    )
+    return _attitude.quat_mult(as_array(p, "p", tail=(4,)), as_array(q, "q", tail=(4,)))
 
 
 def quat_conj(q: Quat) -> Array:
@@ -453,8 +430,7 @@ def quat_conj(q: Quat) -> Array:
     >>> attitude.quat_conj([0.5, 0.5, 0.5, 0.5])
     array([ 0.5, -0.5, -0.5, -0.5])
     """
-    q = as_array(q, "q", tail=(4,))
-    return q * np.array([1.0, -1.0, -1.0, -1.0])
+    return _attitude.quat_conj(as_array(q, "q", tail=(4,)))
 
 
 def quat_normalize(q: Quat) -> Array:
@@ -466,7 +442,7 @@ def quat_normalize(q: Quat) -> Array:
     >>> attitude.quat_normalize([-2.0, 0.0, 0.0, 0.0])
     array([ 1., -0., -0., -0.])
     """
-    return _positive_scalar(as_quat(q))
+    return _attitude.positive_scalar(as_quat(q))
 
 
 def quat_rotate(q: Quat, v_b: Vec3) -> Array:
@@ -514,11 +490,7 @@ def rotvec_to_quat(rv: Vec3) -> Array:
             f"rv: rotation angle {np.abs(rv).max():.3g} rad is beyond {MAX_ROTVEC_ANGLE:g} rad, where a "
             f"float no longer resolves the angle modulo 2 pi"
         )
-    angle = np.linalg.norm(rv, axis=-1, keepdims=True)
-    half = angle / 2
-    # sin(x/2)/x with its Taylor series near 0 to keep full precision.
-    k = np.where(angle > 1e-4, np.sin(half) / np.where(angle > 0, angle, 1.0), 0.5 - angle**2 / 48 + angle**4 / 3840)
-    return np.concatenate([np.cos(half), k * rv], -1)
+    return _attitude.rotvec_to_quat(rv)
 
 
 def quat_to_rotvec(q: Quat) -> Array:
@@ -531,11 +503,7 @@ def quat_to_rotvec(q: Quat) -> Array:
     >>> np.round(attitude.quat_to_rotvec([np.cos(0.15), np.sin(0.15), 0.0, 0.0]), 6)
     array([0.3, 0. , 0. ])
     """
-    q = quat_normalize(q)
-    s = np.linalg.norm(q[..., 1:], axis=-1, keepdims=True)
-    angle = 2 * np.arctan2(s, q[..., :1])
-    k = np.where(s > 1e-8, angle / np.where(s > 0, s, 1.0), 2 + s**2 / 3)
-    return k * q[..., 1:]
+    return _attitude.quat_to_rotvec(as_quat(q))
 
 
 def rotvec_to_dcm(rv: Vec3) -> Array:
@@ -564,15 +532,6 @@ def dcm_to_rotvec(C: Dcm) -> Array:
     array([0.3, 0. , 0. ])
     """
     return quat_to_rotvec(dcm_to_quat(as_dcm(C, "C")))
-
-
-@njit(cache=True)
-def _quat_to_dcm_batch(q):
-    """:func:`quat_to_dcm` of unit quaternions ``q`` (M, 4): (M, 3, 3), one pass with no temporaries."""
-    C = np.empty((q.shape[0], 3, 3))
-    for i in range(q.shape[0]):
-        quat_to_dcm_into(C[i], q[i])
-    return C
 
 
 # --------------------------------------------------------------------------

@@ -43,7 +43,7 @@ from typing import Annotated, Any, ParamSpec, TypeVar
 import numpy as np
 import pandas as pd
 
-from . import alignment, attitude, calibration, strapdown
+from . import _attitude, alignment, attitude, calibration, strapdown
 from ._typing import Array, ArrayLike, Dcm, Times
 from ._validate import (
     Check,
@@ -1240,7 +1240,7 @@ def check_axes(
     _, k = _window_means(rec.time, rec.w_ib_b, AXIS_CHECK_WINDOW)
     counts = np.bincount(k)
     mid = np.round(np.bincount(k, weights=np.arange(rec.n)) / np.maximum(counts, 1)).astype(np.int64)
-    C_bn = attitude.quat_to_dcm(q_bn[:, mid])  # (gyro hypothesis, window, 3, 3)
+    C_bn = _attitude.quat_to_dcm(_attitude.unit(q_bn[:, mid]))  # (gyro hypothesis, window, 3, 3)
     step = np.linalg.norm(attitude.dcm_to_rotvec(np.swapaxes(C_bn[0, :-1], -1, -2) @ C_bn[0, 1:]), axis=-1)
     gap_in = np.bincount(k, weights=gap, minlength=counts.size) > 0
     use = (step > _MIN_STEP) & (counts[1:] > 0) & (counts[:-1] > 0) & ~gap_in[1:] & ~gap_in[:-1]

@@ -19,7 +19,7 @@ import numpy as np
 from numba import njit
 from numpy.typing import NDArray
 
-from . import _earth, attitude, earth
+from . import _attitude, _earth, attitude, earth
 from ._kernels import radii_mn
 from ._typing import Angles, Array, ArrayLike, Times, Vec3, Vec3Series
 from ._validate import (
@@ -203,8 +203,9 @@ def from_profiles(
 def _from_profiles(t: Array, lla0: ArrayLike, hpr: Array, vel: Array, ellipsoid: earth.Ellipsoid) -> Trajectory:
     """:func:`from_profiles` on a uniform grid ``t`` and profiles (N, 3) built or checked by the caller;
     ``lla0`` is the user's, checked here."""
+    in_range(hpr[:, 1], "hpr[:, 1] (pitch)", -np.pi / 2 - 1e-12, np.pi / 2 + 1e-12, "rad")  # also of built profiles
     lla = _positions(_lla(lla0), kernel_array(vel), t[1] - t[0], ellipsoid.a, ellipsoid.e2)
-    return Trajectory(t, lla, vel, attitude.euler_to_quat(hpr))
+    return Trajectory(t, lla, vel, _attitude.euler_to_quat(hpr))
 
 
 @boundary
@@ -221,7 +222,9 @@ def static(duration: Positive, dt: Step, lla0: Vec3, hpr: Angles) -> Trajectory:
     """
     t = _time_grid(duration, dt)
     lla = np.broadcast_to(_lla(lla0), (t.size, 3)).copy()
-    q = np.broadcast_to(attitude.euler_to_quat(as_array(hpr, "hpr", shape=(3,))), (t.size, 4)).copy()
+    hpr = as_array(hpr, "hpr", shape=(3,))
+    in_range(hpr[1], "hpr[1] (pitch)", -np.pi / 2 - 1e-12, np.pi / 2 + 1e-12, "rad")
+    q = np.broadcast_to(_attitude.euler_to_quat(hpr), (t.size, 4)).copy()
     return Trajectory(t, lla, np.zeros((t.size, 3)), q)
 
 
@@ -296,10 +299,9 @@ def reciprocating_rotation(
     alpha = amplitude * (start + (1 - 2 * start) * s)
     hpr0 = as_array(hpr0, "hpr0", shape=(3,))
     in_range(hpr0[..., 1], "hpr0[1] (pitch)", -np.pi / 2, np.pi / 2, "rad")  # named here: euler_to_quat says hpr
-    q0 = attitude.euler_to_quat(hpr0)
-    q = attitude.quat_mult(q0, attitude.rotvec_to_quat(alpha[:, None] * u))
+    q = _attitude.quat_mult(_attitude.euler_to_quat(hpr0), attitude.rotvec_to_quat(alpha[:, None] * u))
     lla = np.broadcast_to(_lla(lla0), (t.size, 3)).copy()
-    return Trajectory(t, lla, np.zeros((t.size, 3)), attitude.quat_normalize(q))
+    return Trajectory(t, lla, np.zeros((t.size, 3)), _attitude.positive_scalar(_attitude.unit(q)))
 
 
 def _on_grid(t: Array, durations: Sequence[float]) -> Iterator[tuple[NDArray[np.bool_], Array]]:
@@ -657,12 +659,13 @@ def ideal_imu(traj: Is[Trajectory], ellipsoid: earth.EllipsoidArg = earth.WGS84)
     w_ie = _earth.earth_rate_n(lat, ellipsoid)
     w_en = _earth.transport_rate_n(lat, h, v0, ellipsoid)
     w_in = w_ie + w_en
-    dq = attitude.quat_mult(attitude.quat_mult(attitude.quat_conj(q0), attitude.rotvec_to_quat(w_in * dt)), q1)
-    w_ib_b = attitude.quat_to_rotvec(dq) / dt
-    q_mid = attitude.quat_mult(
-        attitude.quat_mult(attitude.rotvec_to_quat(-w_in * dt / 2), q0), attitude.rotvec_to_quat(w_ib_b * dt / 2)
+    # The record's attitudes are checked; the rotations derived from them are below pi.
+    dq = _attitude.quat_mult(_attitude.quat_mult(_attitude.quat_conj(q0), _attitude.rotvec_to_quat(w_in * dt)), q1)
+    w_ib_b = _attitude.quat_to_rotvec(_attitude.unit(dq)) / dt
+    q_mid = _attitude.quat_mult(
+        _attitude.quat_mult(_attitude.rotvec_to_quat(-w_in * dt / 2), q0), _attitude.rotvec_to_quat(w_ib_b * dt / 2)
     )
-    C_mid = attitude.quat_to_dcm(q_mid)
+    C_mid = _attitude.quat_to_dcm(_attitude.unit(q_mid))
     a_n = (v1 - v0) / dt - _earth.gravity_n(_earth.gravity(lat, h, ellipsoid)) + np.cross(2 * w_ie + w_en, v0)
     f_b = np.einsum("...ji,...j->...i", C_mid, a_n)
     return w_ib_b, f_b

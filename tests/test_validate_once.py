@@ -41,14 +41,12 @@ VALIDATE_FILE = _validate.__file__
 
 TWICE = {
     # A public function of another module checks again what the caller checked: these callers need the checked
-    # value themselves first, and the callee's unchecked core is not yet in a shared private module (navlib/_earth.py).
-    "analysis.orientation_errors": ["q"],  # attitude's quaternion functions on its normalised quaternions
+    # value themselves first, and the callee's unchecked core is not yet in a private core module (navlib/_earth.py).
     "calibration.characterise": ["correlation_time", "dt", "rate_random_walk", "taus"],  # analysis' Allan functions
-    "io.read_xio": ["q", "time"],  # timing.intervals of the record's time; attitude in the axis check
-    "io.read_sensor_logger": ["q", "time"],
-    "io.read_euroc": ["q", "time"],
-    "io.read_phyphox": ["q", "time"],
-    "io.check_axes": ["q"],
+    "io.read_xio": ["time"],  # timing.intervals of the record's time
+    "io.read_sensor_logger": ["time"],
+    "io.read_euroc": ["time"],
+    "io.read_phyphox": ["time"],
     "geodesy.local_scales": ["('lat', 'lon')", "ellipsoid", "lon0"],  # the projection it differentiates is public
     "papers.gauss_kruger_ekf.waypoint_path": ["T", "speed"],  # filters.planar_ekf
     "papers.gauss_kruger_ekf.ekf": ["('lat', 'lon')", "axis", "deg", "ellipsoid", "name", "t", "width", "z", "zone"],
@@ -68,9 +66,6 @@ TWICE = {
     "papers.rotation_bias.draw_rotation_scheme": ["ax"],
     "pdr.pdr_headings": ["f_b", "m_b"],  # alignment.level and magnetic_heading of the step means
     "sensors.simulate_barometer": ["h", "p0"],  # atmosphere.isa_pressure
-    "trajectory.static": ["hpr"],  # attitude.euler_to_quat
-    "trajectory.reciprocating_rotation": ["q"],
-    "trajectory.ideal_imu": ["q"],  # attitude's quaternion functions of the record's attitudes
     "filters.mahony.mahony": ["B_n", "kp"],
     "filters.observations.magnetic_reference": ["B_n"],
     "filters.quaternion_kf.quaternion_kf": ["B_n", "kp"],
@@ -81,7 +76,7 @@ TWICE = {
     "montecarlo.run": ["seed"],
     "papers.north_finding.stop_and_go": ["speed"],
     "papers.pedestrian_ins.carpark_legs": ["speed"],
-    "trajectory.from_profiles": ["hpr", "time", "vel_n"],
+    "trajectory.from_profiles": ["time", "vel_n"],
     "filters.presets.foot_mounted": ["baro", "heading", "zupt"],
 }
 """Arguments still checked twice on one registry call, and why: this list may shrink, never grow."""
