@@ -4,7 +4,8 @@ The checked public functions live in :mod:`navlib.attitude`; each checks its arg
 here. A function of another module that has already checked its quaternions or angles (a
 :class:`navlib.trajectory.Trajectory`'s attitudes, its own Euler angles) calls the core directly, so that nothing
 is checked twice on one call. Inputs are float64 arrays: quaternions ``(..., 4)`` scalar first, non-zero (unit
-where a function says so), Euler angles ``(..., 3)`` in rad with the pitch within [-pi/2, pi/2].
+where a function says so), Euler angles ``(..., 3)`` in rad with the pitch within [-pi/2, pi/2]; the levelling
+cores of :mod:`navlib.alignment` take non-zero specific forces and magnetic fields.
 """
 
 from __future__ import annotations
@@ -12,8 +13,35 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ._kernels import quat_to_dcm_into
+from ._kernels import quat_to_dcm_into, tilt_heading
 from ._typing import Array
+from ._validate import kernel_array
+
+
+def wrap_pi(a: Array) -> Array:
+    """:func:`navlib.attitude.wrap_pi` of an angle array (rad)."""
+    w = np.mod(a + np.pi, 2 * np.pi) - np.pi
+    return np.where(w == -np.pi, np.pi, w)
+
+
+def wrap_2pi(a: Array) -> Array:
+    """:func:`navlib.attitude.wrap_2pi` of an angle array (rad)."""
+    w = np.mod(a, 2 * np.pi)
+    return np.where(w >= 2 * np.pi, 0.0, w)
+
+
+def level(f: Array) -> tuple[Array, Array]:
+    """:func:`navlib.alignment.level` of non-zero specific forces (..., 3): pitch, roll (rad)."""
+    return np.arctan2(f[..., 1], np.hypot(f[..., 0], f[..., 2])), np.arctan2(-f[..., 0], f[..., 2])
+
+
+def magnetic_heading(m: Array, p: Array, r: Array, D: float) -> Array:
+    """:func:`navlib.alignment.magnetic_heading` of non-zero fields ``m``, pitch, roll and declination (rad)."""
+    shape = np.broadcast_shapes(m.shape[:-1], p.shape, r.shape)
+    m = np.broadcast_to(m, shape + (3,)).reshape(-1, 3)
+    p, r = (kernel_array(np.broadcast_to(x, shape).reshape(-1)) for x in (p, r))
+    a = tilt_heading(kernel_array(m[:, 0]), kernel_array(m[:, 1]), kernel_array(m[:, 2]), p, r)
+    return (wrap_2pi(a + D) if D else a).reshape(shape)
 
 
 def unit(q: Array) -> Array:

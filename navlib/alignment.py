@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from . import _earth, _kernels, attitude, earth
+from . import _attitude, _earth, _kernels, attitude, earth
 from ._typing import Angles, Array, ArrayLike, Dcm, Vec3, Vec3Series
 from ._validate import (
     Flag,
@@ -89,12 +89,7 @@ def level(f_b: Vec3) -> tuple[Array, Array]:
     >>> round(float(pitch), 6), round(float(roll), 6)
     (0.1, -0.2)
     """
-    return _level(_nonzero(as_array(f_b, "f_b", tail=(3,)), "f_b"))
-
-
-def _level(f: np.ndarray) -> tuple[Array, Array]:
-    """:func:`level` of a checked specific force."""
-    return np.arctan2(f[..., 1], np.hypot(f[..., 0], f[..., 2])), np.arctan2(-f[..., 0], f[..., 2])
+    return _attitude.level(_nonzero(as_array(f_b, "f_b", tail=(3,)), "f_b"))
 
 
 def magnetic_heading(m_b: Vec3, pitch: Angles, roll: Angles, declination: float = 0.0) -> Array:
@@ -119,16 +114,7 @@ def magnetic_heading(m_b: Vec3, pitch: Angles, roll: Angles, declination: float 
     """
     m = _nonzero(as_array(m_b, "m_b", tail=(3,)), "m_b")
     p, r = pitch_roll(pitch, roll)
-    return _magnetic_heading(m, p, r, scalar(declination, "declination"))
-
-
-def _magnetic_heading(m: np.ndarray, p: np.ndarray, r: np.ndarray, D: float) -> Array:
-    """:func:`magnetic_heading` of checked arguments."""
-    shape = np.broadcast_shapes(m.shape[:-1], p.shape, r.shape)
-    m = np.broadcast_to(m, shape + (3,)).reshape(-1, 3)
-    p, r = (kernel_array(np.broadcast_to(x, shape).reshape(-1)) for x in (p, r))
-    a = _kernels.tilt_heading(kernel_array(m[:, 0]), kernel_array(m[:, 1]), kernel_array(m[:, 2]), p, r)
-    return (attitude.wrap_2pi(a + D) if D else a).reshape(shape)
+    return _attitude.magnetic_heading(m, p, r, scalar(declination, "declination"))
 
 
 def tilt_heading(f_b: Vec3, m_b: Vec3, declination: float = 0.0) -> Array:
@@ -161,8 +147,8 @@ def tilt_heading(f_b: Vec3, m_b: Vec3, declination: float = 0.0) -> Array:
     )
     if np.any(cross < 1e-6):
         raise ValueError("m_b: magnetometer parallel to gravity; heading is undefined")
-    pitch, roll = _level(f)
-    heading = _magnetic_heading(m, pitch, roll, scalar(declination, "declination"))
+    pitch, roll = _attitude.level(f)
+    heading = _attitude.magnetic_heading(m, pitch, roll, scalar(declination, "declination"))
     return np.stack(np.broadcast_arrays(heading, pitch, roll), -1)
 
 

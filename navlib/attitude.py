@@ -74,14 +74,7 @@ def wrap_pi(angle: Angles) -> Array:
     >>> np.round(attitude.wrap_pi([4.0, -4.0, np.nan]), 6)
     array([-2.283185,  2.283185,       nan])
     """
-    a = as_array(angle, "angle", allow_nan=True)
-    return _wrap_pi(a)
-
-
-def _wrap_pi(a: Array) -> Array:
-    """:func:`wrap_pi` of checked angles."""
-    w = np.mod(a + np.pi, 2 * np.pi) - np.pi
-    return np.where(w == -np.pi, np.pi, w)
+    return _attitude.wrap_pi(as_array(angle, "angle", allow_nan=True))
 
 
 def wrap_2pi(angle: Angles) -> Array:
@@ -94,14 +87,7 @@ def wrap_2pi(angle: Angles) -> Array:
     >>> np.round(attitude.wrap_2pi([-0.5, 7.0, np.nan]), 6)
     array([5.783185, 0.716815,      nan])
     """
-    a = as_array(angle, "angle", allow_nan=True)
-    return _wrap_2pi(a)
-
-
-def _wrap_2pi(a: Array) -> Array:
-    """:func:`wrap_2pi` of checked angles."""
-    w = np.mod(a, 2 * np.pi)
-    return np.where(w >= 2 * np.pi, 0.0, w)
+    return _attitude.wrap_2pi(as_array(angle, "angle", allow_nan=True))
 
 
 def skew(v: Vec3) -> Array:
@@ -273,7 +259,7 @@ def _dcm_to_euler(C: Array, deg: bool) -> Array:
     if locked.any():  # gimbal lock: the whole turn about the vertical as heading
         roll = np.where(locked, 0.0, roll)
         heading = np.where(locked, np.arctan2(-C[..., 1, 0], C[..., 0, 0]), heading)
-    hpr = np.stack([_wrap_2pi(heading), pitch, _wrap_pi(roll)], -1)
+    hpr = np.stack([_attitude.wrap_2pi(heading), pitch, _attitude.wrap_pi(roll)], -1)
     return np.rad2deg(hpr) if deg else hpr
 
 
@@ -627,7 +613,7 @@ def ypr_to_hpr(ypr: Angles, deg: bool = False) -> Array:
     array([330.,  10.,  -5.])
     """
     a = np.array(_as_hpr(ypr, deg, "ypr"), dtype=float)
-    a[..., 0] = _wrap_2pi(a[..., 0])
+    a[..., 0] = _attitude.wrap_2pi(a[..., 0])
     return np.rad2deg(a) if deg else a
 
 
@@ -642,7 +628,7 @@ def hpr_to_ypr(hpr: Angles, deg: bool = False) -> Array:
     array([30., 10., -5.])
     """
     a = np.array(_as_hpr(hpr, deg), dtype=float)
-    a[..., 0] = _wrap_pi(a[..., 0])
+    a[..., 0] = _attitude.wrap_pi(a[..., 0])
     return np.rad2deg(a) if deg else a
 
 

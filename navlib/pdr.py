@@ -18,10 +18,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import analysis
+from . import _attitude, analysis
 from ._typing import Array, ArrayLike, Vec3Series
-from ._validate import Positive, Step, as_array, boundary, indices, positive, same_shape, scalar
-from .alignment import level, magnetic_heading
+from ._validate import Positive, Real, Step, as_array, boundary, indices, positive, same_shape, scalar
 from .units import G0
 
 __all__ = ["StepResult", "detect_steps", "weinberg_step_length", "pdr", "pdr_headings"]
@@ -130,7 +129,8 @@ def pdr(step_lengths: ArrayLike, step_headings: ArrayLike, start_en: ArrayLike =
     return start + np.concatenate([np.zeros((1, 2)), np.cumsum(d, 0)])
 
 
-def pdr_headings(f_b: Vec3Series, m_b: Vec3Series, step_index: ArrayLike, declination: float = 0.0) -> Array:
+@boundary
+def pdr_headings(f_b: Vec3Series, m_b: Vec3Series, step_index: ArrayLike, declination: Real = 0.0) -> Array:
     """Heading of every step: tilt-compensated magnetic heading from the step's mean samples.
 
     Pitch and roll come from the mean specific force over the step
@@ -179,5 +179,8 @@ def pdr_headings(f_b: Vec3Series, m_b: Vec3Series, step_index: ArrayLike, declin
     )
     if not np.isfinite(m_mean).all():
         raise ValueError("m_b: a step without any magnetometer sample")
-    pitch, roll = level(f_mean)
-    return magnetic_heading(m_mean, pitch, roll, declination)
+    for name, mean in (("f_b", f_mean), ("m_b", m_mean)):
+        if np.any(np.linalg.norm(mean, axis=-1) == 0):
+            raise ValueError(f"{name}: expected non-zero vectors (a step's mean is zero)")
+    pitch, roll = _attitude.level(f_mean)
+    return _attitude.magnetic_heading(m_mean, pitch, roll, declination)

@@ -64,7 +64,6 @@ TWICE = {
     "papers.rotation_bias.dwell_attitudes": ["deg"],
     "papers.rotation_bias.design": ["V", "deg"],
     "papers.rotation_bias.draw_rotation_scheme": ["ax"],
-    "pdr.pdr_headings": ["f_b", "m_b"],  # alignment.level and magnetic_heading of the step means
     "sensors.simulate_barometer": ["h", "p0"],  # atmosphere.isa_pressure
     "filters.mahony.mahony": ["B_n", "kp"],
     "filters.observations.magnetic_reference": ["B_n"],
