@@ -562,6 +562,11 @@ Fraction = Annotated[float, Check("scalar", within=(0.0, 1.0), open_ends=(True, 
 """A fraction in (0, 1]."""
 Is = Annotated[_T, Check("instance")]
 """``Is[Cls]``: an instance of ``Cls``."""
+MAX_GYROCOMPASS_LAT_DEG = 89.0
+"""Largest |latitude| (deg) at which gyrocompassing finds north (:data:`navlib.alignment.MAX_LAT_DEG`)."""
+_GYRO_LAT = np.deg2rad(MAX_GYROCOMPASS_LAT_DEG)
+GyroLatitude = Annotated[float, Check("scalar", within=(-_GYRO_LAT, _GYRO_LAT, "rad (|lat| <= 89 deg: no north near the poles)"))]
+"""A latitude (rad) where gyrocompassing finds north, as :func:`navlib.alignment.gyrocompass_latitude` takes."""
 
 
 _KINDS = {"Check", "Annotated"} | {k for k, v in list(globals().items()) if typing.get_origin(v) is Annotated}

@@ -30,6 +30,7 @@ from numpy.typing import NDArray
 from . import _attitude, _earth, _kernels, attitude, earth
 from ._typing import Angles, Array, ArrayLike, Dcm, Vec3, Vec3Series
 from ._validate import (
+    MAX_GYROCOMPASS_LAT_DEG,
     Flag,
     Fraction,
     Positive,
@@ -170,7 +171,7 @@ def initial_attitude(f_b: Vec3, m_b: Vec3, declination: float = 0.0) -> Array:
 # Gyrocompassing: static means, TRIAD, four-position
 # --------------------------------------------------------------------------
 
-MAX_LAT_DEG = 89.0
+MAX_LAT_DEG = MAX_GYROCOMPASS_LAT_DEG
 """Largest |latitude| accepted for gyrocompassing (deg): beyond it cos(lat) < 0.0175 and the
 horizontal Earth rate (< 0.26 deg/h) no longer defines north usefully."""
 

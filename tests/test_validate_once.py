@@ -53,9 +53,7 @@ TWICE = {
     "papers.gauss_kruger_ekf.simulate_sensors": ["('lat', 'lon')", "deg", "ellipsoid", "width", "zone", "zone_prefix"],
     "papers.gauss_kruger_ekf.ekf_error_ms": ["T"],
     "papers.gauss_kruger_ekf.draw_zone_grid": ["deg", "width", "zone"],
-    "papers.north_finding.clipped_single_axis_theory": ["angle", "lat"],
-    "papers.north_finding.simulate_static_outputs": ["lat"],
-    "papers.north_finding.monte_carlo": ["angle", "f_b", "lat"],
+    "papers.north_finding.monte_carlo": ["f_b", "lat"],  # simulate_static_outputs, triad and heading_candidates
     "papers.north_finding.stop_solutions": ["None", "f_b", "h", "lat"],
     "papers.north_finding.ins_heading_change": ["dt", "lat", "w_ib_b"],  # strapdown.integrate_attitude
     "papers.north_finding.draw_device": ["ax"],  # plots

@@ -107,11 +107,12 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.special import ndtr
 
-from .. import _earth, attitude, earth, plots, robust, strapdown
+from .. import _attitude, _earth, attitude, earth, plots, robust, strapdown
 from .._typing import Angles, Array, ArrayLike, Dcm, Interval, Times, Vec3, Vec3Series
 from .._validate import (
     Check,
     Count,
+    GyroLatitude,
     Limit,
     NonNegative,
     Positive,
@@ -298,7 +299,7 @@ def heading_candidates(w_y: ArrayLike, f_b: Vec3, lat: float, h: float = 0.0) ->
     cos_h = (w_y - OMEGA_IE * np.sin(phi) * np.sin(pitch)) / (OMEGA_IE * np.cos(phi) * np.cos(pitch))
     clipped = np.abs(cos_h) > 1.0
     alpha = np.arccos(np.clip(cos_h, -1.0, 1.0))
-    pair = np.stack([alpha, attitude.wrap_2pi(2 * np.pi - alpha)], -1)
+    pair = np.stack([alpha, _attitude.wrap_2pi(2 * np.pi - alpha)], -1)
     return Candidates(pair, alpha, cos_h, clipped, pitch)
 
 
@@ -326,7 +327,7 @@ def nearest_candidate_error(pair: ArrayLike, heading: Angles) -> Array:
 
 def _nearest_error(pair: np.ndarray, heading: np.ndarray) -> np.ndarray:
     """:func:`nearest_candidate_error` of validated arrays."""
-    e = attitude.wrap_pi(pair - heading[..., None])
+    e = _attitude.wrap_pi(pair - heading[..., None])
     return np.take_along_axis(e, np.argmin(np.abs(e), -1)[..., None], -1)[..., 0]
 
 
@@ -410,14 +411,14 @@ def resolve(pair1: ArrayLike, pair2: ArrayLike, dpsi_ins: Angles, wrap: bool = T
     cands = (p2[..., :, None] - p1[..., None, :]).reshape(p2.shape[:-1] + (4,))
     cands, ins = np.broadcast_arrays(cands, ins[..., None])
     diff = cands - ins
-    res = attitude.wrap_pi(diff) if flag(wrap, "wrap") else diff
+    res = _attitude.wrap_pi(diff) if flag(wrap, "wrap") else diff
     score = np.abs(res)
     index = np.argmin(score, axis=-1)
     best = np.take_along_axis(score, index[..., None], -1)
     p2b = np.broadcast_to(p2, cands.shape[:-1] + (2,))
     headings = np.repeat(p2b, 2, axis=-1)  # candidate j points position 2 at p2[j // 2]
     heading = np.take_along_axis(headings, index[..., None], -1)[..., 0]
-    distinct = np.abs(attitude.wrap_pi(headings - heading[..., None])) > 1e-9
+    distinct = np.abs(_attitude.wrap_pi(headings - heading[..., None])) > 1e-9
     margin = np.where(distinct, score, np.inf).min(-1) - best[..., 0]
     margin = np.where(margin < 1e-9, 0.0, margin)  # equal fits to rounding: not separable
     return Resolution(heading, cands, res, index, margin)
@@ -608,7 +609,7 @@ class ClippedTheory:
 def clipped_single_axis_theory(
     heading: Angles,
     sigma_gyro: Positive,
-    lat: float,
+    lat: GyroLatitude,
     pitch: Angles = 0.0,
     sigma_accel: NonNegative = 0.0,
     g: float | None = None,
@@ -660,7 +661,7 @@ def clipped_single_axis_theory(
     51.986
     """
     psi, th = np.broadcast_arrays(as_array(heading, "heading", nonempty=True), _pitch(pitch))
-    phi = gyrocompass_latitude(scalar(lat, "lat"))
+    phi = np.asarray(lat)
     grav = _earth.gravity(phi, np.zeros(()), earth.WGS84) if g is None else scalar(g, "g", positive=True)
     if integer(n_grid, "n_grid", minimum=101) % 2 == 0:
         raise ValueError(f"n_grid: expected an odd integer of at least 101, got {n_grid!r}")
@@ -671,7 +672,7 @@ def clipped_single_axis_theory(
     weight = np.exp(-0.5 * z**2) / np.sqrt(2 * np.pi)
     c = np.cos(psi)[..., None] + s_cos[..., None] * z
     alpha = np.arccos(np.clip(c, -1.0, 1.0))
-    err = _nearest_error(np.stack([alpha, attitude.wrap_2pi(2 * np.pi - alpha)], -1), psi[..., None])
+    err = _nearest_error(np.stack([alpha, _attitude.wrap_2pi(2 * np.pi - alpha)], -1), psi[..., None])
     m2 = np.trapezoid(weight * err**2, z, axis=-1)
     m4 = np.trapezoid(weight * err**4, z, axis=-1)
     p_clip = ndtr((np.cos(psi) - 1.0) / s_cos) + ndtr((-1.0 - np.cos(psi)) / s_cos)
@@ -688,7 +689,7 @@ def clipped_single_axis_theory(
 @boundary
 def simulate_static_outputs(
     hpr: Angles,
-    lat: float,
+    lat: GyroLatitude,
     n_trials: Count,
     sigma_gyro: NonNegative,
     sigma_accel: NonNegative,
@@ -728,7 +729,7 @@ def simulate_static_outputs(
     ((4, 3), array([0.  , 0.  , 9.79]))
     """
     C_nb = np.swapaxes(attitude.euler_to_dcm(hpr), -1, -2)
-    phi = gyrocompass_latitude(scalar(lat, "lat"))
+    phi = np.asarray(lat)
     r_gyro, r_accel = generator(rng).spawn(2)
     w_true = C_nb @ _earth.earth_rate_n(phi, earth.WGS84)
     f_true = C_nb @ np.array([0.0, 0.0, float(_earth.gravity(phi, np.zeros(()), earth.WGS84))])
@@ -810,8 +811,8 @@ def monte_carlo(
     w, f = simulate_static_outputs(hpr, lat, n_trials, sigma_gyro, sigma_accel, rng)
     C_raw = triad(f, w, lat, orthonormal=False)
     truth = psi[:, None]
-    err_raw = attitude.wrap_pi(triad_heading(C_raw) - truth)
-    err_triad = attitude.wrap_pi(triad_heading(attitude.orthonormalize(C_raw)) - truth)
+    err_raw = _attitude.wrap_pi(triad_heading(C_raw) - truth)
+    err_triad = _attitude.wrap_pi(triad_heading(attitude.orthonormalize(C_raw)) - truth)
     cand = heading_candidates(w[..., 1], f, lat)
     return MonteCarlo(psi, err_triad, err_raw, _nearest_error(cand.pair, truth), cand.clipped)
 
@@ -869,7 +870,7 @@ _PAIR_BLOCK = 1 << 15
 
 def _pair_mass(p1: np.ndarray, p2: np.ndarray, sigma: np.ndarray) -> np.ndarray:
     """:func:`pair_probabilities` of 1-D checked arrays of equal length: shape (n, 4)."""
-    shifts = attitude.wrap_pi(np.stack([np.zeros_like(p1), 2 * p1, -2 * p2, -2 * (p2 - p1)], -1))
+    shifts = _attitude.wrap_pi(np.stack([np.zeros_like(p1), 2 * p1, -2 * p2, -2 * (p2 - p1)], -1))
     # periodic images so that every Voronoi arc is bounded on both sides
     images = np.concatenate([shifts - 2 * np.pi, shifts, shifts + 2 * np.pi], -1)
     order = np.argsort(images, axis=-1, kind="stable")
@@ -962,7 +963,7 @@ def stop_and_go(
     stops = [(0.0, stop_duration)]
     t = stop_duration
     for k in range(1, psi.size):
-        turn = float(attitude.wrap_pi(psi[k] - psi[k - 1]))
+        turn = float(_attitude.wrap_pi(psi[k] - psi[k - 1]))
         segments += [
             Segment(ramp, speed=speed),
             Segment(drive_duration - 2 * ramp, turn=turn),
@@ -1233,7 +1234,7 @@ def ins_heading_change(
     q0 = attitude.euler_to_quat(np.stack([np.zeros_like(pitch), pitch, roll], -1))
     q = strapdown.integrate_attitude(q0, w, step, rates[earth_rate])
     end = attitude.quat_to_dcm(q[..., -1, :])
-    dpsi = attitude.wrap_pi(np.arctan2(end[..., 0, 1], end[..., 1, 1]))
+    dpsi = _attitude.wrap_pi(np.arctan2(end[..., 0, 1], end[..., 1, 1]))
     if np.any(refused):
         dpsi = np.where(refused, np.nan, dpsi)
     return dpsi
