@@ -44,6 +44,32 @@ def magnetic_heading(m: Array, p: Array, r: Array, D: float) -> Array:
     return (wrap_2pi(a + D) if D else a).reshape(shape)
 
 
+def euler_to_dcm(hpr: Array) -> Array:
+    """:func:`navlib.attitude.euler_to_dcm` of checked ``[heading, pitch, roll]`` (rad)."""
+    h, p, r = np.moveaxis(hpr, -1, 0)
+    ch, sh, cp, sp, cr, sr = np.cos(h), np.sin(h), np.cos(p), np.sin(p), np.cos(r), np.sin(r)
+    rows = [
+        [cr * ch + sr * sp * sh, cp * sh, sr * ch - cr * sp * sh],
+        [-cr * sh + sr * sp * ch, cp * ch, -sr * sh - cr * sp * ch],
+        [-sr * cp, sp, cr * cp],
+    ]
+    return np.stack([np.stack(row, -1) for row in rows], -2)
+
+
+def dcm_to_euler(C: Array) -> Array:
+    """:func:`navlib.attitude.dcm_to_euler` (rad) of rotation matrices."""
+    c31, c32, c33 = C[..., 2, 0], C[..., 2, 1], C[..., 2, 2]
+    horizontal = np.hypot(c31, c33)
+    pitch = np.arctan2(c32, horizontal)
+    roll = np.arctan2(-c31, c33)
+    heading = np.arctan2(C[..., 0, 1], C[..., 1, 1])
+    locked = horizontal < 1e-9
+    if locked.any():  # gimbal lock: the whole turn about the vertical as heading
+        roll = np.where(locked, 0.0, roll)
+        heading = np.where(locked, np.arctan2(-C[..., 1, 0], C[..., 0, 0]), heading)
+    return np.stack([wrap_2pi(heading), pitch, wrap_pi(roll)], -1)
+
+
 def unit(q: Array) -> Array:
     """Non-zero quaternions scaled to unit norm (as :func:`navlib._validate.as_quat` does)."""
     return q / np.linalg.norm(q, axis=-1, keepdims=True)

@@ -1,4 +1,4 @@
-"""Unchecked cores of :mod:`navlib.earth`: Earth rate, normal gravity, radii and transport rate of checked values.
+"""Unchecked cores of :mod:`navlib.earth`: Earth rate, normal gravity, radii, transport rate and field angles.
 
 The checked public functions live in :mod:`navlib.earth`; each checks its arguments, then calls its core here.
 A function of another module that has already checked a latitude (e.g. :func:`navlib.alignment.triad`) calls
@@ -24,6 +24,12 @@ def earth_rate_n(lat: Array, ellipsoid: Ellipsoid) -> Array:
     """:func:`navlib.earth.earth_rate_n` of a checked latitude (rad)."""
     w = ellipsoid.omega
     return np.stack([np.zeros_like(lat), w * np.cos(lat), w * np.sin(lat)], -1)
+
+
+def field_angles(B: Array) -> tuple[Array, Array, Array]:
+    """:func:`navlib.earth.field_angles` (rad) of ENU field vectors: declination, inclination, intensity."""
+    H = np.hypot(B[..., 0], B[..., 1])
+    return np.arctan2(B[..., 0], B[..., 1]), np.arctan2(-B[..., 2], H), np.linalg.norm(B, axis=-1)
 
 
 def gravity(lat: Array, h: Array, ellipsoid: Ellipsoid) -> Array:

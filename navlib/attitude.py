@@ -210,14 +210,7 @@ def euler_to_dcm(hpr: Angles, deg: bool = False) -> Array:
     >>> np.round(C_bn @ [0.0, 1.0, 0.0], 12)                      # the forward axis points east (ENU)
     array([1., 0., 0.])
     """
-    h, p, r = np.moveaxis(_as_hpr(hpr, deg), -1, 0)
-    ch, sh, cp, sp, cr, sr = np.cos(h), np.sin(h), np.cos(p), np.sin(p), np.cos(r), np.sin(r)
-    rows = [
-        [cr * ch + sr * sp * sh, cp * sh, sr * ch - cr * sp * sh],
-        [-cr * sh + sr * sp * ch, cp * ch, -sr * sh - cr * sp * ch],
-        [-sr * cp, sp, cr * cp],
-    ]
-    return np.stack([np.stack(row, -1) for row in rows], -2)
+    return _attitude.euler_to_dcm(_as_hpr(hpr, deg))
 
 
 def dcm_to_euler(C_bn: Dcm, deg: bool = False) -> Array:
@@ -245,22 +238,8 @@ def dcm_to_euler(C_bn: Dcm, deg: bool = False) -> Array:
     >>> np.round(attitude.dcm_to_euler(C_bn, deg=True), 6)
     array([30., 10., -5.])
     """
-    return _dcm_to_euler(as_dcm(C_bn), flag(deg, "deg"))
-
-
-def _dcm_to_euler(C: Array, deg: bool) -> Array:
-    """:func:`dcm_to_euler` of rotation matrices already known to be valid (no checks)."""
-    c31, c32, c33 = C[..., 2, 0], C[..., 2, 1], C[..., 2, 2]
-    horizontal = np.hypot(c31, c33)
-    pitch = np.arctan2(c32, horizontal)
-    roll = np.arctan2(-c31, c33)
-    heading = np.arctan2(C[..., 0, 1], C[..., 1, 1])
-    locked = horizontal < 1e-9
-    if locked.any():  # gimbal lock: the whole turn about the vertical as heading
-        roll = np.where(locked, 0.0, roll)
-        heading = np.where(locked, np.arctan2(-C[..., 1, 0], C[..., 0, 0]), heading)
-    hpr = np.stack([_attitude.wrap_2pi(heading), pitch, _attitude.wrap_pi(roll)], -1)
-    return np.rad2deg(hpr) if deg else hpr
+    hpr = _attitude.dcm_to_euler(as_dcm(C_bn))
+    return np.rad2deg(hpr) if flag(deg, "deg") else hpr
 
 
 def euler_to_quat(hpr: Angles, deg: bool = False) -> Array:
@@ -300,7 +279,8 @@ def quat_to_euler(q: Quat, deg: bool = False) -> Array:
     >>> np.round(attitude.quat_to_euler([np.cos(np.pi / 8), 0.0, 0.0, -np.sin(np.pi / 8)], deg=True), 6)
     array([45.,  0.,  0.])
     """
-    return _dcm_to_euler(quat_to_dcm(q), flag(deg, "deg"))  # a normalised quaternion's matrix is valid
+    hpr = _attitude.dcm_to_euler(quat_to_dcm(q))  # a normalised quaternion's matrix is valid
+    return np.rad2deg(hpr) if flag(deg, "deg") else hpr
 
 
 def quat_to_dcm(q: Quat) -> Array:

@@ -431,11 +431,7 @@ def field_angles(B_n: Vec3, deg: bool = True) -> tuple[Array, Array, Array]:
     >>> round(float(D), 3), round(float(I), 3), round(float(F), 3)
     (0.0, 63.435, 44.721)
     """
-    B = as_array(B_n, "B_n", tail=(3,))
-    H = np.hypot(B[..., 0], B[..., 1])
-    D = np.arctan2(B[..., 0], B[..., 1])
-    I = np.arctan2(-B[..., 2], H)
-    F = np.linalg.norm(B, axis=-1)
+    D, I, F = _earth.field_angles(as_array(B_n, "B_n", tail=(3,)))
     if flag(deg, "deg"):
         D, I = np.rad2deg(D), np.rad2deg(I)
     return D, I, F
