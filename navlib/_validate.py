@@ -133,7 +133,7 @@ def as_array(
         want = "(" + ", ".join(["..."] + [str(t) for t in tail]) + ")"
         raise ValueError(f"{name}: expected shape {want}, got {arr.shape}")
     if shape is not None:
-        _exact_shape(arr, name, shape, of)
+        same_shape(arr, name, shape, of)
     if arr.size == 0 and (nonempty or min_ndim > 0):
         raise ValueError(f"{name}: expected a non-empty array, got shape {arr.shape}")
     if _within_limits(arr, ignore_nan=allow_nan or not finite):
@@ -169,8 +169,9 @@ def _magnitude(arr: Array, name: str) -> None:
         )
 
 
-def _exact_shape(arr: NDArray[_S], name: str, shape: tuple[int | None, ...], of: str = "") -> NDArray[_S]:
-    """Return ``arr`` if its shape is ``shape``; a ``None`` entry takes any length, e.g. ``(None, 3)``."""
+def same_shape(arr: NDArray[_S], name: str, shape: tuple[int | None, ...], of: str = "") -> NDArray[_S]:
+    """Return ``arr`` if its shape is ``shape``; a ``None`` entry takes any length, e.g. ``(None, 3)``; ``of`` names
+    the argument(s) that set the sizes, for the message."""
     if arr.ndim != len(shape) or any(s not in (None, n) for s, n in zip(shape, arr.shape, strict=True)):
         want = "(" + ", ".join("N" if s is None else str(s) for s in shape) + ("," if len(shape) == 1 else "") + ")"
         raise ValueError(f"{name}: expected shape {want}{f' (sizes from {of})' if of else ''}, got {arr.shape}")
@@ -189,7 +190,7 @@ def booleans(x: object, name: str, *, shape: tuple[int | None, ...] | None = Non
         raise InputTypeError(f"{name}: expected booleans, got a ragged {type(x).__name__}") from exc
     if arr.dtype != bool:
         raise InputTypeError(f"{name}: expected booleans, got dtype {arr.dtype}")
-    return arr if shape is None else _exact_shape(arr, name, shape, of)
+    return arr if shape is None else same_shape(arr, name, shape, of)
 
 
 def in_range(arr: _F, name: str, lo: float, hi: float, unit: str = "", *, lo_open: bool = False, hi_open: bool = False) -> _F:
@@ -208,16 +209,18 @@ def in_range(arr: _F, name: str, lo: float, hi: float, unit: str = "", *, lo_ope
 
 def pitch_roll(pitch: object, roll: object, names: tuple[str, str] = ("pitch", "roll")) -> tuple[Array, Array]:
     """Pitch within [-pi/2, pi/2] and roll within [-pi, pi] (rad); outside, degrees were most likely passed."""
-    out = []
-    for x, name, limit in ((pitch, names[0], np.pi / 2), (roll, names[1], np.pi)):
-        a = as_array(x, name)
-        if np.any(np.abs(a) > limit + 1e-12):
-            raise ValueError(
-                f"{name}: expected radians within [{-limit:.4g}, {limit:.4g}], got max |{name}| "
-                f"{np.max(np.abs(a)):g} (degrees? convert with np.deg2rad)"
-            )
-        out.append(a)
-    return out[0], out[1]
+    return _radians(pitch, names[0], np.pi / 2), _radians(roll, names[1], np.pi)
+
+
+def _radians(x: object, name: str, limit: float) -> Array:
+    """``x`` as angles within +-``limit`` (rad)."""
+    a = as_array(x, name)
+    if np.any(np.abs(a) > limit + 1e-12):
+        raise ValueError(
+            f"{name}: expected radians within [{-limit:.4g}, {limit:.4g}], got max |{name}| "
+            f"{np.max(np.abs(a)):g} (degrees? convert with np.deg2rad)"
+        )
+    return a
 
 
 def euler_angles(hpr: object, name: str = "hpr") -> Array:
@@ -324,13 +327,13 @@ def scalar(
     allow_inf: bool = False,
     huge: bool = False,
     allow_nan: bool = False,
-    within: tuple[float, float] | None = None,
+    within: tuple[float, float] | tuple[float, float, str] | None = None,
     open_ends: tuple[bool, bool] = (False, False),
 ) -> float:
     """Return ``x`` as a Python float; optionally > 0 (or >= 0 with ``allow_zero``); inf only if ``allow_inf``.
 
     ``allow_nan``: NaN is accepted as such (a figure that was not computed). ``within``: the bounds
-    ``(lo, hi)`` of :func:`in_range`, open at the ends flagged in ``open_ends``.
+    ``(lo, hi)`` of :func:`in_range` (or ``(lo, hi, unit)``), open at the ends flagged in ``open_ends``.
     """
     arr = as_array(x, name, finite=not allow_inf, allow_nan=allow_nan, huge=huge)
     if within is not None:
@@ -369,13 +372,10 @@ def flag(x: object, name: str) -> bool:
 
 def choice(x: Any, name: str, options: tuple[Any, ...]) -> Any:
     """Return ``x`` if it is one of ``options`` (strings, or e.g. the allowed integer settings); arrays are refused."""
+    a_bool = isinstance(x, (bool, np.bool_))  # True is not 1 unless the options are booleans
     try:  # an array, even 0-d (which compares like its element), is refused
-        ok = (
-            not isinstance(x, np.ndarray)
-            and x in options
-            and (not isinstance(x, (bool, np.bool_)) or any(isinstance(o, bool) for o in options))
-        )
-    except (TypeError, ValueError):  # an unhashable value
+        ok = not isinstance(x, np.ndarray) and x in options and (not a_bool or any(isinstance(o, bool) for o in options))
+    except (TypeError, ValueError):  # a value that does not compare
         ok = False
     if not ok:
         raise ValueError(f"{name}: expected one of {tuple(options)}, got {x!r}")
@@ -406,13 +406,6 @@ def instance(x: Any, name: str, cls: type | tuple[type, ...], what: str, *, erro
     if not isinstance(x, cls):
         raise error(f"{name}: expected {what}, got {type(x).__name__}")
     return x
-
-
-def same_shape(arr: NDArray[_S], name: str, shape: tuple[int, ...], of: str = "") -> NDArray[_S]:
-    """Return ``arr`` if its shape is ``shape`` (the shape of argument ``of``, when given, for the message)."""
-    if arr.shape != tuple(shape):
-        raise ValueError(f"{name}: expected {'the shape of ' + of if of else 'shape'} {tuple(shape)}, got {arr.shape}")
-    return arr
 
 
 def last_axis(arr: NDArray[_S], name: str, n: int, of: str = "") -> NDArray[_S]:
@@ -447,22 +440,6 @@ def broadcast_to(arr: NDArray[_S], name: str, shape: tuple[int, ...], of: str = 
         ) from None
 
 
-ELLIPSOID_FIELDS = ("a", "f", "GM", "omega")
-"""What :func:`ellipsoid` asks of an ellipsoid: the defining fields of :class:`navlib.earth.Ellipsoid` (its
-properties derive from them; testing those would compute them)."""
-
-
-def ellipsoid(x: Any, name: str = "ellipsoid") -> Any:
-    """Return ``x`` if it is a :class:`navlib.earth.Ellipsoid` (e.g. ``earth.WGS84``).
-
-    Recognised by :data:`ELLIPSOID_FIELDS`, not by class: earth imports this module, so this one does not
-    import earth.
-    """
-    if not all(hasattr(x, field) for field in ELLIPSOID_FIELDS):
-        raise InputTypeError(f"{name}: expected a navlib.earth.Ellipsoid (e.g. earth.WGS84), got {type(x).__name__}")
-    return x
-
-
 def range_limit(x: object, name: str) -> float:
     """A device's full-scale range (same unit as its samples): a positive value, or ``None``/inf for no limit."""
     return np.inf if x is None else scalar(x, name, positive=True, allow_inf=True)
@@ -474,13 +451,7 @@ MIN_INTERVAL = 1e-9
 
 def interval(dt: object, name: str = "dt") -> float:
     """A fixed sample interval (s): a positive scalar of at least :data:`MIN_INTERVAL`."""
-    value = scalar(dt, name, positive=True)
-    if value < MIN_INTERVAL:
-        raise ValueError(
-            f"{name}: expected a sample interval of at least {MIN_INTERVAL:g} s (no IMU samples faster than "
-            f"1 GHz; is {name} in seconds?), got {value:g}"
-        )
-    return value
+    return float(sample_intervals(scalar(dt, name), 1, name)[0])
 
 
 MAX_TURN_PER_SAMPLE = 1.0
@@ -522,7 +493,7 @@ def sample_intervals(dt: object, n: int, name: str = "dt") -> Array:
     if arr.min() < MIN_INTERVAL:
         raise ValueError(
             f"{name}: expected intervals of at least {MIN_INTERVAL:g} s (no IMU samples faster than "
-            f"1 GHz; is dt in seconds?), got {arr.min():g}"
+            f"1 GHz; is {name} in seconds?), got {arr.min():g}"
         )
     return kernel_array(arr)
 
@@ -554,7 +525,7 @@ class Check:
     """What a parameter's annotation asks of its argument (``typing.Annotated`` metadata), checked by
     :func:`navlib._validate.boundary` before the function runs: a function of :mod:`navlib._validate`, by name, and
     its options, e.g. ``Annotated[float, Check("scalar", within=(0.0, 1.0))]``. ``Check("instance")`` asks for an
-    instance of the annotated class."""
+    instance of the annotated class (``what``: how the message names it)."""
 
     __slots__ = ("validator", "options")
 
@@ -587,11 +558,18 @@ Limit = Annotated[float, Check("scalar", positive=True, allow_inf=True)]
 """A positive limit; inf for none (e.g. a full-scale range)."""
 Step = Annotated[float, Check("interval")]
 """A fixed sample interval (s), at least 1 ns."""
+Fraction = Annotated[float, Check("scalar", within=(0.0, 1.0), open_ends=(True, False))]
+"""A fraction in (0, 1]."""
 Is = Annotated[_T, Check("instance")]
 """``Is[Cls]``: an instance of ``Cls``."""
+MAX_GYROCOMPASS_LAT_DEG = 89.0
+"""Largest |latitude| (deg) at which gyrocompassing finds north (:data:`navlib.alignment.MAX_LAT_DEG`)."""
+_GYRO_LAT = np.deg2rad(MAX_GYROCOMPASS_LAT_DEG)
+GyroLatitude = Annotated[float, Check("scalar", within=(-_GYRO_LAT, _GYRO_LAT, "rad (|lat| <= 89 deg: no north near the poles)"))]
+"""A latitude (rad) where gyrocompassing finds north, as :func:`navlib.alignment.gyrocompass_latitude` takes."""
 
 
-_KINDS = {"Check", "Annotated", "Real", "Positive", "NonNegative", "Count", "Flag", "Rng", "Text", "Limit", "Step", "Is"}
+_KINDS = {"Check", "Annotated"} | {k for k, v in list(globals().items()) if typing.get_origin(v) is Annotated}
 """Names whose absence from an annotation's module is a mistake, not a name only the type checker sees."""
 
 _P = ParamSpec("_P")
@@ -668,11 +646,12 @@ def _annotated_check(annotation: Any, namespace: dict[str, Any], name: str) -> C
     if not marks:
         return None
     mark, base = marks[0], typing.get_args(annotation)[0]
+    base = typing.get_origin(base) or base  # Is[dict[str, int]]: a dict
     if mark.validator == "instance":
-        what = f"{'an' if base.__name__[0] in 'AEIOU' else 'a'} {base.__name__}"
+        what = mark.options.get("what") or f"{'an' if base.__name__[0] in 'AEIOU' else 'a'} {base.__name__}"
 
         def check(x: Any) -> Any:
-            return instance(x, name, base, what)
+            return instance(x, name, base, what, error=InputTypeError)
 
     else:
         validator = globals()[mark.validator]

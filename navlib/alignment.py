@@ -27,9 +27,23 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from . import _kernels, attitude, earth
+from . import _attitude, _earth, _kernels, attitude, earth
 from ._typing import Angles, Array, ArrayLike, Dcm, Vec3, Vec3Series
-from ._validate import as_array, as_dcm, broadcast, flag, imu_samples, kernel_array, latitude, pitch_roll, scalar
+from ._validate import (
+    MAX_GYROCOMPASS_LAT_DEG,
+    Flag,
+    Fraction,
+    Positive,
+    as_array,
+    boundary,
+    broadcast,
+    flag,
+    imu_samples,
+    kernel_array,
+    latitude,
+    pitch_roll,
+    scalar,
+)
 from .imu import ImuSamples, unpack
 from .robust import FaultReport, longest_repeat
 
@@ -76,12 +90,7 @@ def level(f_b: Vec3) -> tuple[Array, Array]:
     >>> round(float(pitch), 6), round(float(roll), 6)
     (0.1, -0.2)
     """
-    return _level(_nonzero(as_array(f_b, "f_b", tail=(3,)), "f_b"))
-
-
-def _level(f: np.ndarray) -> tuple[Array, Array]:
-    """:func:`level` of a checked specific force."""
-    return np.arctan2(f[..., 1], np.hypot(f[..., 0], f[..., 2])), np.arctan2(-f[..., 0], f[..., 2])
+    return _attitude.level(_nonzero(as_array(f_b, "f_b", tail=(3,)), "f_b"))
 
 
 def magnetic_heading(m_b: Vec3, pitch: Angles, roll: Angles, declination: float = 0.0) -> Array:
@@ -106,16 +115,7 @@ def magnetic_heading(m_b: Vec3, pitch: Angles, roll: Angles, declination: float 
     """
     m = _nonzero(as_array(m_b, "m_b", tail=(3,)), "m_b")
     p, r = pitch_roll(pitch, roll)
-    return _magnetic_heading(m, p, r, scalar(declination, "declination"))
-
-
-def _magnetic_heading(m: np.ndarray, p: np.ndarray, r: np.ndarray, D: float) -> Array:
-    """:func:`magnetic_heading` of checked arguments."""
-    shape = np.broadcast_shapes(m.shape[:-1], p.shape, r.shape)
-    m = np.broadcast_to(m, shape + (3,)).reshape(-1, 3)
-    p, r = (kernel_array(np.broadcast_to(x, shape).reshape(-1)) for x in (p, r))
-    a = _kernels.tilt_heading(kernel_array(m[:, 0]), kernel_array(m[:, 1]), kernel_array(m[:, 2]), p, r)
-    return (attitude.wrap_2pi(a + D) if D else a).reshape(shape)
+    return _attitude.magnetic_heading(m, p, r, scalar(declination, "declination"))
 
 
 def tilt_heading(f_b: Vec3, m_b: Vec3, declination: float = 0.0) -> Array:
@@ -148,8 +148,8 @@ def tilt_heading(f_b: Vec3, m_b: Vec3, declination: float = 0.0) -> Array:
     )
     if np.any(cross < 1e-6):
         raise ValueError("m_b: magnetometer parallel to gravity; heading is undefined")
-    pitch, roll = _level(f)
-    heading = _magnetic_heading(m, pitch, roll, scalar(declination, "declination"))
+    pitch, roll = _attitude.level(f)
+    heading = _attitude.magnetic_heading(m, pitch, roll, scalar(declination, "declination"))
     return np.stack(np.broadcast_arrays(heading, pitch, roll), -1)
 
 
@@ -171,7 +171,7 @@ def initial_attitude(f_b: Vec3, m_b: Vec3, declination: float = 0.0) -> Array:
 # Gyrocompassing: static means, TRIAD, four-position
 # --------------------------------------------------------------------------
 
-MAX_LAT_DEG = 89.0
+MAX_LAT_DEG = MAX_GYROCOMPASS_LAT_DEG
 """Largest |latitude| accepted for gyrocompassing (deg): beyond it cos(lat) < 0.0175 and the
 horizontal Earth rate (< 0.26 deg/h) no longer defines north usefully."""
 
@@ -185,7 +185,11 @@ def gyrocompass_latitude(lat: ArrayLike, deg: bool = False) -> Array:
     >>> float(alignment.gyrocompass_latitude(45.0, deg=True))      # rad
     0.7853981633974483
     """
-    lat = latitude(lat, "lat", deg=deg, nonempty=True)
+    return _not_polar(latitude(lat, "lat", deg=deg, nonempty=True))
+
+
+def _not_polar(lat: Array) -> Array:
+    """Refuse a checked latitude (rad) beyond MAX_LAT_DEG."""
     if np.any(np.abs(lat) > np.deg2rad(MAX_LAT_DEG)):
         raise ValueError(
             f"lat: expected |lat| <= {MAX_LAT_DEG} deg for north finding (cos(lat) -> 0 near "
@@ -283,19 +287,20 @@ def _masked_mean(x: Array, used: NDArray[np.bool_], n_used: NDArray[np.intp]) ->
         return np.where(used[..., None], x, 0.0).sum(-2) / n_used[..., None]
 
 
+@boundary
 def static_means(
     w_ib_b: Vec3Series | ImuSamples,
     f_b: Vec3Series | None = None,
     lat: ArrayLike | None = None,
     h: ArrayLike = 0.0,
-    accel_tol: float = 0.2,
+    accel_tol: Positive = 0.2,
     *,
-    min_fraction: float = 0.5,
-    outlier_k: float | None = None,
-    full_scale_gyro: float | None = None,
-    full_scale_accel: float | None = None,
-    stuck_fraction: float | None = None,
-    strict: bool = True,
+    min_fraction: Fraction = 0.5,
+    outlier_k: Positive | None = None,
+    full_scale_gyro: Positive | None = None,
+    full_scale_accel: Positive | None = None,
+    stuck_fraction: Fraction | None = None,
+    strict: Flag = True,
 ) -> StaticWindow:
     """Average a static window of gyro and accelerometer samples (paper step 1).
 
@@ -393,30 +398,25 @@ def static_means(
     n = w.shape[-2]
     if n < 2:
         raise ValueError(f"w_ib_b: expected a static window of at least 2 samples, got {n}")
-    tol = scalar(accel_tol, "accel_tol", positive=True)
-    frac = scalar(min_fraction, "min_fraction", within=(0.0, 1.0), open_ends=(True, False))
-    k_out = None if outlier_k is None else scalar(outlier_k, "outlier_k", positive=True)
-    stuck = (
-        None if stuck_fraction is None else scalar(stuck_fraction, "stuck_fraction", within=(0.0, 1.0), open_ends=(True, False))
-    )
-    fs_g = np.inf if full_scale_gyro is None else scalar(full_scale_gyro, "full_scale_gyro", positive=True)
-    fs_a = np.inf if full_scale_accel is None else scalar(full_scale_accel, "full_scale_accel", positive=True)
-    g = earth.gravity(gyrocompass_latitude(lat), as_array(h, "h", nonempty=True))
+    fs_g = np.inf if full_scale_gyro is None else full_scale_gyro
+    fs_a = np.inf if full_scale_accel is None else full_scale_accel
+    g = earth.gravity(lat, h)  # checks lat and h (an empty h fails the shape check below)
+    _not_polar(np.asarray(lat, dtype=float))
     lead = w.shape[:-2]
     if np.ndim(g) > len(lead) or any(a not in (1, b) for a, b in zip(np.shape(g)[::-1], lead[::-1], strict=False)):
         raise ValueError(f"lat, h: expected one value or one per trial (trial shape {lead}), got shape {np.shape(g)}")
-    need = max(2, int(np.ceil(frac * n)))
+    need = max(2, int(np.ceil(min_fraction * n)))
     out = {}
     for name, x, fs in (("gyro", w, fs_g), ("accel", f, fs_a)):
         valid = np.all(np.isfinite(x), -1)
         sat = valid & np.any(np.abs(x) >= fs, -1)
-        outl = _outliers(x, valid, k_out) if k_out is not None else np.zeros_like(valid)
+        outl = _outliers(x, valid, outlier_k) if outlier_k is not None else np.zeros_like(valid)
         used = valid & ~outl
         n_used = used.sum(-1)
         n_stuck = np.zeros(valid.shape[:-1], dtype=int)
-        if stuck is not None:
+        if stuck_fraction is not None:
             run = longest_repeat(x, valid).max(-1)
-            n_stuck = np.where((run >= stuck * valid.sum(-1)) & (run >= 2), run, 0)
+            n_stuck = np.where((run >= stuck_fraction * valid.sum(-1)) & (run >= 2), run, 0)
         out[name] = (_masked_mean(x, used, n_used), n_used, n - valid.sum(-1), outl.sum(-1), sat.sum(-1), used, n_stuck)
     (w_mean, nu_g, nd_g, no_g, ns_g, _, nk_g), (f_mean, nu_a, nd_a, no_a, ns_a, used_f, nk_a) = out["gyro"], out["accel"]
     too_few = (nu_g < need) | (nu_a < need)
@@ -431,15 +431,15 @@ def static_means(
             halves = np.abs(
                 _masked_mean(f[..., : n // 2, :], u1, u1.sum(-1)) - _masked_mean(f[..., n // 2 :, :], u2, u2.sum(-1))
             ).max(-1)
-    moving = ~too_few & ~saturated & ~frozen & ((dev > tol) | ~(halves <= tol))
+    moving = ~too_few & ~saturated & ~frozen & ((dev > accel_tol) | ~(halves <= accel_tol))
     bad = too_few | saturated | frozen | moving
-    if flag(strict, "strict") and np.any(bad):
+    if strict and np.any(bad):
         if np.any(too_few):
             which = "w_ib_b" if np.any(nu_g < need) else "f_b"
             left = int(min(nu_g.min(), nu_a.min()))
             raise ValueError(
                 f"{which}: only {left} of {n} samples left after dropouts/outliers; expected at least "
-                f"{need} (min_fraction = {frac:g})"
+                f"{need} (min_fraction = {min_fraction:g})"
             )
         if np.any(saturated):
             which = "w_ib_b" if np.any(ns_g > 0) else "f_b"
@@ -451,16 +451,16 @@ def static_means(
             which, run = ("w_ib_b", nk_g) if np.any(nk_g > 0) else ("f_b", nk_a)
             raise ValueError(
                 f"{which}: one reading repeated over {int(run.max())} consecutive samples of {n} "
-                f"(stuck_fraction = {stuck:g}): the sensor output is frozen"
+                f"(stuck_fraction = {stuck_fraction:g}): the sensor output is frozen"
             )
-        if np.any(dev[moving] > tol):
+        if np.any(dev[moving] > accel_tol):
             raise ValueError(
                 f"f_b: mean specific-force norm differs from gravity by {np.nanmax(dev):.3g} m/s^2 "
-                f"(> accel_tol = {tol:g}): the robot is not static"
+                f"(> accel_tol = {accel_tol:g}): the robot is not static"
             )
         raise ValueError(
             f"f_b: the two halves of the window differ by {np.nanmax(halves):.3g} m/s^2 "
-            f"(> accel_tol = {tol:g}): the robot moved during the stop"
+            f"(> accel_tol = {accel_tol:g}): the robot moved during the stop"
         )
     w_mean = np.where(bad[..., None], np.nan, w_mean)
     f_mean = np.where(bad[..., None], np.nan, f_mean)
@@ -522,9 +522,9 @@ def triad(f_b: Vec3, w_ib_b: Vec3, lat: ArrayLike, orthonormal: bool = True) -> 
         of="f_b, w_ib_b",
     )
     lat = gyrocompass_latitude(lat)
-    g_n = np.stack(np.broadcast_arrays(0.0, 0.0, -earth.gravity(lat)), -1)
+    g_n = np.stack(np.broadcast_arrays(0.0, 0.0, -_earth.gravity(lat, np.zeros(()), earth.WGS84)), -1)
     body = _reference_triad(-f, w)  # columns: -f, -f x w, (-f x w) x (-f)
-    nav = _reference_triad(g_n, earth.earth_rate_n(lat))
+    nav = _reference_triad(g_n, _earth.earth_rate_n(lat, earth.WGS84))
     C_nb = body @ np.linalg.inv(nav)
     C_bn = np.swapaxes(C_nb, -1, -2)
     return attitude.orthonormalize(C_bn) if flag(orthonormal, "orthonormal") else C_bn
@@ -590,8 +590,8 @@ def static_gyro_bias(w_ib_b: Vec3Series, C_bn: Dcm, lat: float) -> Array:
     Parameters
     ----------
     w_ib_b : array_like, shape (N, 3)
-    C_bn : array_like, shape (3, 3)
-        Attitude during the record.
+    C_bn : array_like, shape (3, 3) or (..., 3, 3)
+        Attitude during the record (several: one bias each).
     lat : float  (rad)
 
     Examples
@@ -604,5 +604,4 @@ def static_gyro_bias(w_ib_b: Vec3Series, C_bn: Dcm, lat: float) -> Array:
     array([ 0.0001, -0.0002,  0.    ])
     """
     w = as_array(w_ib_b, "w_ib_b", shape=(None, 3), min_ndim=1)
-    C = as_dcm(C_bn, "C_bn", shape=(3, 3))
-    return w.mean(0) - C.T @ earth.earth_rate_n(scalar(lat, "lat"))
+    return w.mean(0) - earth.earth_rate_b(C_bn, lat)

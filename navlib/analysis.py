@@ -24,7 +24,7 @@ from typing import Annotated
 import numpy as np
 from numba import njit
 
-from . import _kernels, attitude, earth
+from . import _attitude, _kernels, attitude, earth
 from ._typing import Angles, Array, ArrayLike, Times, Vec3
 from ._validate import (
     Check,
@@ -840,7 +840,8 @@ def cramer_rao_bound(
     return np.where(bad[..., None, None], np.where(np.eye(n, dtype=bool), np.inf, np.nan), P)
 
 
-def footfall_path_length(pos_n: ArrayLike, stance: ArrayLike, *, min_samples: int = 1) -> tuple[float, Array]:
+@boundary
+def footfall_path_length(pos_n: ArrayLike, stance: ArrayLike, *, min_samples: Count = 1) -> tuple[float, Array]:
     """Horizontal path length of a foot-mounted track measured from footfall to footfall.
 
     The foot stands still during each stance: the track's mean position over a stance is where the foot
@@ -879,9 +880,8 @@ def footfall_path_length(pos_n: ArrayLike, stance: ArrayLike, *, min_samples: in
     if p.ndim != 2 or p.shape[1] not in (2, 3):
         raise ValueError(f"pos_n: expected shape (N, 2) or (N, 3) (east, north[, up]), got {p.shape}")
     m = booleans(stance, "stance", shape=(p.shape[0],))
-    n_min = integer(min_samples, "min_samples")
     starts, ends = segments(m)
-    keep = ends - starts >= n_min
+    keep = ends - starts >= min_samples
     footfalls = np.array([p[a:b, :2].mean(0) for a, b in zip(starts[keep], ends[keep], strict=True)]).reshape(-1, 2)
     return float(np.sum(np.linalg.norm(np.diff(footfalls, axis=0), axis=1))), footfalls
 
@@ -978,12 +978,13 @@ def orientation_errors(
     for name, q in (("q_bn", q_bn), ("q_ref", q_ref)):
         if np.any(np.linalg.norm(q[use], axis=1) < 1e-12):
             raise ValueError(f"{name}: expected non-zero quaternions on the scored samples, got |q| = 0")
-    e = attitude.quat_mult(attitude.quat_normalize(q_bn[use]), attitude.quat_conj(attitude.quat_normalize(q_ref[use])))
+    q_est, q_true = (_attitude.positive_scalar(_attitude.unit(q[use])) for q in (q_bn, q_ref))  # checked non-zero above
+    e = _attitude.quat_mult(q_est, _attitude.quat_conj(q_true))
     offset = 0.0
     if remove_heading_offset:
         twist = 2 * np.arctan2(e[:, 3], e[:, 0])  # signed heading error
         offset = float(np.arctan2(np.sin(twist).mean(), np.cos(twist).mean()))
-        e = attitude.quat_mult(np.array([np.cos(offset / 2), 0.0, 0.0, -np.sin(offset / 2)]), e)
+        e = _attitude.quat_mult(np.array([np.cos(offset / 2), 0.0, 0.0, -np.sin(offset / 2)]), e)
     w, z = np.abs(e[:, 0]), e[:, 3]
     total = 2 * np.arccos(np.clip(w, 0.0, 1.0))
     heading = 2 * np.arctan2(np.abs(z), w)

@@ -23,6 +23,7 @@ import numpy as np
 from ._typing import Array, ArrayLike, Times
 from ._validate import (
     Check,
+    Is,
     Positive,
     Real,
     as_array,
@@ -30,7 +31,6 @@ from ._validate import (
     boundary,
     broadcast,
     in_range,
-    instance,
     integer,
     last_axis,
     positive,
@@ -170,7 +170,7 @@ def _cdiv(a: int, b: int) -> int:
 
 @boundary
 def bmp180_compensate(
-    UT: int, UP: int, calib: dict[str, int], oss: Annotated[int, Check("choice", options=(0, 1, 2, 3))] = 0
+    UT: int, UP: int, calib: Is[dict[str, int]], oss: Annotated[int, Check("choice", options=(0, 1, 2, 3))] = 0
 ) -> tuple[int, int]:
     """BMP180 datasheet integer compensation (sec. 3.5).
 
@@ -196,7 +196,6 @@ def bmp180_compensate(
     >>> atmosphere.bmp180_compensate(27898, 23843, calib, oss=0)     # the datasheet's worked example: 15.0 degC, 69964 Pa
     (150, 69964)
     """
-    instance(calib, "calib", dict, "a dict of calibration coefficients")
     missing = {"AC1", "AC2", "AC3", "AC4", "AC5", "AC6", "B1", "B2", "MB", "MC", "MD"} - set(calib)
     if missing:
         raise ValueError(f"calib: missing coefficients {sorted(missing)}")
@@ -307,8 +306,12 @@ def reference_pressure(p: ArrayLike, time: Times, until: Real) -> float | Array:
     return float(ref) if ref.ndim == 0 else ref
 
 
+Floor = Annotated[int, Check("integer", minimum=None)]
+"""A floor index (any integer)."""
+
+
 @boundary
-def classify_floor(h: ArrayLike, floor_height: Positive = 3.0, ref_floor: int = 0) -> np.ndarray:
+def classify_floor(h: ArrayLike, floor_height: Positive = 3.0, ref_floor: Floor = 0) -> np.ndarray:
     """Floor index ``ref_floor + round(h / floor_height)`` from a relative height (m).
 
     Examples
@@ -318,11 +321,17 @@ def classify_floor(h: ArrayLike, floor_height: Positive = 3.0, ref_floor: int = 
     array([ 0,  1,  2, -1])
     """
     h = as_array(h, "h")
-    return integer(ref_floor, "ref_floor", minimum=None) + np.round(h / floor_height).astype(int)
+    return _floors(h, floor_height, ref_floor)
 
 
+def _floors(h: Array, floor_height: float, ref_floor: int) -> np.ndarray:
+    """:func:`classify_floor` of checked arguments."""
+    return ref_floor + np.round(h / floor_height).astype(int)
+
+
+@boundary
 def segment_floors(
-    h: ArrayLike, static: ArrayLike, floor_height: float = 3.0, ref_floor: int = 0
+    h: ArrayLike, static: ArrayLike, floor_height: Positive = 3.0, ref_floor: Floor = 0
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Floor of every static segment from the median height over the segment.
 
@@ -354,4 +363,4 @@ def segment_floors(
     if starts.size == 0:
         return starts, ends, np.zeros(h.shape[:-1] + (0,), dtype=int)
     med = np.stack([np.nanmedian(h[..., a:b], axis=-1) for a, b in zip(starts, ends, strict=True)], -1)
-    return starts, ends, classify_floor(med, floor_height, ref_floor)
+    return starts, ends, _floors(med, floor_height, ref_floor)

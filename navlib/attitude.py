@@ -25,9 +25,8 @@ Functions taking or returning angles in degrees say so with ``deg=True``.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
-from ._kernels import quat_to_dcm_into
+from . import _attitude
 from ._typing import Angles, Array, ArrayLike, Dcm, Quat, Vec3
 from ._validate import as_array, as_dcm, as_quat, flag, in_range
 
@@ -75,9 +74,7 @@ def wrap_pi(angle: Angles) -> Array:
     >>> np.round(attitude.wrap_pi([4.0, -4.0, np.nan]), 6)
     array([-2.283185,  2.283185,       nan])
     """
-    a = as_array(angle, "angle", allow_nan=True)
-    w = np.mod(a + np.pi, 2 * np.pi) - np.pi
-    return np.where(w == -np.pi, np.pi, w)
+    return _attitude.wrap_pi(as_array(angle, "angle", allow_nan=True))
 
 
 def wrap_2pi(angle: Angles) -> Array:
@@ -90,8 +87,7 @@ def wrap_2pi(angle: Angles) -> Array:
     >>> np.round(attitude.wrap_2pi([-0.5, 7.0, np.nan]), 6)
     array([5.783185, 0.716815,      nan])
     """
-    w = np.mod(as_array(angle, "angle", allow_nan=True), 2 * np.pi)
-    return np.where(w >= 2 * np.pi, 0.0, w)
+    return _attitude.wrap_2pi(as_array(angle, "angle", allow_nan=True))
 
 
 def skew(v: Vec3) -> Array:
@@ -214,14 +210,7 @@ def euler_to_dcm(hpr: Angles, deg: bool = False) -> Array:
     >>> np.round(C_bn @ [0.0, 1.0, 0.0], 12)                      # the forward axis points east (ENU)
     array([1., 0., 0.])
     """
-    h, p, r = np.moveaxis(_as_hpr(hpr, deg), -1, 0)
-    ch, sh, cp, sp, cr, sr = np.cos(h), np.sin(h), np.cos(p), np.sin(p), np.cos(r), np.sin(r)
-    rows = [
-        [cr * ch + sr * sp * sh, cp * sh, sr * ch - cr * sp * sh],
-        [-cr * sh + sr * sp * ch, cp * ch, -sr * sh - cr * sp * ch],
-        [-sr * cp, sp, cr * cp],
-    ]
-    return np.stack([np.stack(row, -1) for row in rows], -2)
+    return _attitude.euler_to_dcm(_as_hpr(hpr, deg))
 
 
 def dcm_to_euler(C_bn: Dcm, deg: bool = False) -> Array:
@@ -249,22 +238,8 @@ def dcm_to_euler(C_bn: Dcm, deg: bool = False) -> Array:
     >>> np.round(attitude.dcm_to_euler(C_bn, deg=True), 6)
     array([30., 10., -5.])
     """
-    return _dcm_to_euler(as_dcm(C_bn), flag(deg, "deg"))
-
-
-def _dcm_to_euler(C: Array, deg: bool) -> Array:
-    """:func:`dcm_to_euler` of rotation matrices already known to be valid (no checks)."""
-    c31, c32, c33 = C[..., 2, 0], C[..., 2, 1], C[..., 2, 2]
-    horizontal = np.hypot(c31, c33)
-    pitch = np.arctan2(c32, horizontal)
-    roll = np.arctan2(-c31, c33)
-    heading = np.arctan2(C[..., 0, 1], C[..., 1, 1])
-    locked = horizontal < 1e-9
-    if locked.any():  # gimbal lock: the whole turn about the vertical as heading
-        roll = np.where(locked, 0.0, roll)
-        heading = np.where(locked, np.arctan2(-C[..., 1, 0], C[..., 0, 0]), heading)
-    hpr = np.stack([wrap_2pi(heading), pitch, wrap_pi(roll)], -1)
-    return np.rad2deg(hpr) if deg else hpr
+    hpr = _attitude.dcm_to_euler(as_dcm(C_bn))
+    return np.rad2deg(hpr) if flag(deg, "deg") else hpr
 
 
 def euler_to_quat(hpr: Angles, deg: bool = False) -> Array:
@@ -291,16 +266,7 @@ def euler_to_quat(hpr: Angles, deg: bool = False) -> Array:
     >>> np.round(attitude.quat_to_euler(q, deg=True), 6)
     array([30., 10.,  0.])
     """
-    h, p, r = np.moveaxis(_as_hpr(hpr, deg), -1, 0) / 2
-    ch, sh, cp, sp, cr, sr = np.cos(h), np.sin(h), np.cos(p), np.sin(p), np.cos(r), np.sin(r)
-    q = np.stack(
-        [ch * cp * cr + sh * sp * sr, ch * sp * cr + sh * cp * sr, ch * cp * sr - sh * sp * cr, -sh * cp * cr + ch * sp * sr], -1
-    )
-    return _positive_scalar(q)
-
-
-def _positive_scalar(q: Array) -> Array:
-    return np.where(q[..., :1] < 0, -q, q)
+    return _attitude.euler_to_quat(_as_hpr(hpr, deg))
 
 
 def quat_to_euler(q: Quat, deg: bool = False) -> Array:
@@ -313,7 +279,8 @@ def quat_to_euler(q: Quat, deg: bool = False) -> Array:
     >>> np.round(attitude.quat_to_euler([np.cos(np.pi / 8), 0.0, 0.0, -np.sin(np.pi / 8)], deg=True), 6)
     array([45.,  0.,  0.])
     """
-    return _dcm_to_euler(quat_to_dcm(q), flag(deg, "deg"))  # a normalised quaternion's matrix is valid
+    hpr = _attitude.dcm_to_euler(quat_to_dcm(q))  # a normalised quaternion's matrix is valid
+    return np.rad2deg(hpr) if flag(deg, "deg") else hpr
 
 
 def quat_to_dcm(q: Quat) -> Array:
@@ -337,8 +304,7 @@ def quat_to_dcm(q: Quat) -> Array:
            [ 1.,  0.,  0.],
            [ 0.,  0.,  1.]])
     """
-    q = as_quat(q)
-    return _quat_to_dcm_batch(q.reshape(-1, 4)).reshape(q.shape[:-1] + (3, 3))
+    return _attitude.quat_to_dcm(as_quat(q))
 
 
 def dcm_to_quat(C_bn: Dcm) -> Array:
@@ -404,7 +370,7 @@ def dcm_to_quat(C_bn: Dcm) -> Array:
             s = 2 * np.sqrt(1 + Cm[..., i, i] - Cm[..., j, j] - Cm[..., l, l])
         q[m] = np.stack(f(Cm, s), -1)
     q /= np.linalg.norm(q, axis=-1, keepdims=True)
-    return _positive_scalar(q)
+    return _attitude.positive_scalar(q)
 
 
 def quat_mult(p: Quat, q: Quat) -> Array:
@@ -418,19 +384,7 @@ def quat_mult(p: Quat, q: Quat) -> Array:
     >>> np.round(attitude.quat_mult(qz, qz), 12)                   # two of them: a half turn
     array([0., 0., 0., 1.])
     """
-    p = as_array(p, "p", tail=(4,))
-    q = as_array(q, "q", tail=(4,))
-    p0, p1, p2, p3 = np.moveaxis(p, -1, 0)
-    q0, q1, q2, q3 = np.moveaxis(q, -1, 0)
-    return np.stack(
-        [
-            p0 * q0 - p1 * q1 - p2 * q2 - p3 * q3,
-            p0 * q1 + p1 * q0 + p2 * q3 - p3 * q2,
-            p0 * q2 - p1 * q3 + p2 * q0 + p3 * q1,
-            p0 * q3 + p1 * q2 - p2 * q1 + p3 * q0,
-        ],
-        -1,
-    )
+    return _attitude.quat_mult(as_array(p, "p", tail=(4,)), as_array(q, "q", tail=(4,)))
 
 
 def quat_conj(q: Quat) -> Array:
@@ -442,8 +396,7 @@ def quat_conj(q: Quat) -> Array:
     >>> attitude.quat_conj([0.5, 0.5, 0.5, 0.5])
     array([ 0.5, -0.5, -0.5, -0.5])
     """
-    q = as_array(q, "q", tail=(4,))
-    return q * np.array([1.0, -1.0, -1.0, -1.0])
+    return _attitude.quat_conj(as_array(q, "q", tail=(4,)))
 
 
 def quat_normalize(q: Quat) -> Array:
@@ -455,7 +408,7 @@ def quat_normalize(q: Quat) -> Array:
     >>> attitude.quat_normalize([-2.0, 0.0, 0.0, 0.0])
     array([ 1., -0., -0., -0.])
     """
-    return _positive_scalar(as_quat(q))
+    return _attitude.positive_scalar(as_quat(q))
 
 
 def quat_rotate(q: Quat, v_b: Vec3) -> Array:
@@ -503,11 +456,7 @@ def rotvec_to_quat(rv: Vec3) -> Array:
             f"rv: rotation angle {np.abs(rv).max():.3g} rad is beyond {MAX_ROTVEC_ANGLE:g} rad, where a "
             f"float no longer resolves the angle modulo 2 pi"
         )
-    angle = np.linalg.norm(rv, axis=-1, keepdims=True)
-    half = angle / 2
-    # sin(x/2)/x with its Taylor series near 0 to keep full precision.
-    k = np.where(angle > 1e-4, np.sin(half) / np.where(angle > 0, angle, 1.0), 0.5 - angle**2 / 48 + angle**4 / 3840)
-    return np.concatenate([np.cos(half), k * rv], -1)
+    return _attitude.rotvec_to_quat(rv)
 
 
 def quat_to_rotvec(q: Quat) -> Array:
@@ -520,11 +469,7 @@ def quat_to_rotvec(q: Quat) -> Array:
     >>> np.round(attitude.quat_to_rotvec([np.cos(0.15), np.sin(0.15), 0.0, 0.0]), 6)
     array([0.3, 0. , 0. ])
     """
-    q = quat_normalize(q)
-    s = np.linalg.norm(q[..., 1:], axis=-1, keepdims=True)
-    angle = 2 * np.arctan2(s, q[..., :1])
-    k = np.where(s > 1e-8, angle / np.where(s > 0, s, 1.0), 2 + s**2 / 3)
-    return k * q[..., 1:]
+    return _attitude.quat_to_rotvec(as_quat(q))
 
 
 def rotvec_to_dcm(rv: Vec3) -> Array:
@@ -553,15 +498,6 @@ def dcm_to_rotvec(C: Dcm) -> Array:
     array([0.3, 0. , 0. ])
     """
     return quat_to_rotvec(dcm_to_quat(as_dcm(C, "C")))
-
-
-@njit(cache=True)
-def _quat_to_dcm_batch(q):
-    """:func:`quat_to_dcm` of unit quaternions ``q`` (M, 4): (M, 3, 3), one pass with no temporaries."""
-    C = np.empty((q.shape[0], 3, 3))
-    for i in range(q.shape[0]):
-        quat_to_dcm_into(C[i], q[i])
-    return C
 
 
 # --------------------------------------------------------------------------
@@ -657,7 +593,7 @@ def ypr_to_hpr(ypr: Angles, deg: bool = False) -> Array:
     array([330.,  10.,  -5.])
     """
     a = np.array(_as_hpr(ypr, deg, "ypr"), dtype=float)
-    a[..., 0] = wrap_2pi(a[..., 0])
+    a[..., 0] = _attitude.wrap_2pi(a[..., 0])
     return np.rad2deg(a) if deg else a
 
 
@@ -672,7 +608,7 @@ def hpr_to_ypr(hpr: Angles, deg: bool = False) -> Array:
     array([30., 10., -5.])
     """
     a = np.array(_as_hpr(hpr, deg), dtype=float)
-    a[..., 0] = wrap_pi(a[..., 0])
+    a[..., 0] = _attitude.wrap_pi(a[..., 0])
     return np.rad2deg(a) if deg else a
 
 

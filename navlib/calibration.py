@@ -104,7 +104,7 @@ from scipy.optimize import least_squares
 
 from . import analysis, earth, sensors, units
 from ._typing import Array, ArrayLike, Dcm, Interval, Vec3, Vec3Series
-from ._validate import Check, Flag, Positive, as_array, as_dcm, boundary, choice, imu_samples, sample_intervals, scalar
+from ._validate import Check, Flag, Positive, as_array, boundary, imu_samples, sample_intervals, scalar
 from .imu import ImuSamples, unpack
 from .sensors import ImuModel, TriadErrors
 
@@ -571,8 +571,8 @@ def gyro_bias_at_rest(w_ib_b: Vec3Series, lat: float | None = None, C_bn: Dcm | 
     if (lat is None) != (C_bn is None):
         given, missing = ("lat", "C_bn") if C_bn is None else ("C_bn", "lat")
         raise ValueError(f"{missing}: required with {given} to remove Earth rate (give both or neither)")
-    if lat is not None:
-        mean = mean - earth.earth_rate_b(as_dcm(C_bn, "C_bn"), lat)  # validates lat (rad, scalar)
+    if lat is not None and C_bn is not None:
+        mean = mean - earth.earth_rate_b(C_bn, lat)  # checks C_bn and lat (rad, scalar)
     return mean, w.std(-2, ddof=1) / np.sqrt(n)
 
 
@@ -634,7 +634,8 @@ class TriadNoise:
     adev: np.ndarray
     evidence: np.ndarray
 
-    def to_triad_errors(self, combine: str = "rms") -> TriadErrors:
+    @boundary
+    def to_triad_errors(self, combine: Annotated[str, Check("choice", options=("rms", "max"))] = "rms") -> TriadErrors:
         """The :class:`navlib.sensors.TriadErrors` these terms feed (one value for the three axes).
 
         ``noise_density``, ``bias_instability`` and ``rate_random_walk`` are combined over the axes by
@@ -644,7 +645,6 @@ class TriadNoise:
         misalignment and full scale are not observable from one static record and keep their defaults (set
         them with :meth:`navlib.sensors.ImuModel.replace`).
         """
-        combine = choice(combine, "combine", ("rms", "max"))
 
         def one(x: np.ndarray) -> float:
             return float(np.sqrt(np.mean(x * x)) if combine == "rms" else np.max(x))

@@ -8,6 +8,9 @@ reproduce the printed WGS84 and GRS80 values to 1e-10 m/s^2 (tested against
 
 Vectors are in the ENU navigation frame. Latitude is ``lat``, longitude
 ``lon`` (rad unless ``deg=True``), height ``h`` above the ellipsoid (m).
+
+Each function checks its arguments, then calls its unchecked core in :mod:`navlib._earth`; another module
+that has checked a latitude or height itself calls the core.
 """
 
 from __future__ import annotations
@@ -18,24 +21,22 @@ from typing import Annotated, Any
 
 import numpy as np
 
-from ._kernels import normal_gravity, radii_mn
+from . import _earth
 from ._typing import Array, ArrayLike, Dcm, Vec3
 from ._validate import (
     Check,
     Real,
+    Text,
     as_array,
     as_dcm,
     boundary,
     broadcast,
+    fields_checked,
     flag,
     in_range,
-    kernel_array,
     latitude,
     positive,
-    scalar,
-    text,
 )
-from ._validate import ellipsoid as ellipsoid_
 
 __all__ = [
     "Ellipsoid",
@@ -80,16 +81,14 @@ class Ellipsoid:
     9.8062
     """
 
-    name: str
-    a: float
-    f: float
-    GM: float
-    omega: float
+    name: Text
+    a: Annotated[float, Check("scalar", within=(6e6, 7e6))]  # Earth-like values
+    f: Annotated[float, Check("scalar", within=(0.0, 0.01))]
+    GM: Annotated[float, Check("scalar", within=(3e14, 5e14))]
+    omega: Annotated[float, Check("scalar", within=(0.0, 1e-4))]
 
     def __post_init__(self) -> None:
-        text(self.name, "name")
-        for key, lo, hi in (("a", 6e6, 7e6), ("f", 0.0, 0.01), ("GM", 3e14, 5e14), ("omega", 0.0, 1e-4)):
-            in_range(scalar(getattr(self, key), key), key, lo, hi)  # an Earth-like value
+        fields_checked(self)
 
     @property
     def b(self) -> float:
@@ -138,7 +137,7 @@ class Ellipsoid:
 OMEGA_IE = 7.292115e-5
 """Earth rotation rate (rad/s), WGS84/CGCS2000 defining value (15.041 deg/h)."""
 
-EllipsoidArg = Annotated[Ellipsoid, Check("ellipsoid")]
+EllipsoidArg = Annotated[Ellipsoid, Check("instance")]
 """An ellipsoid argument (e.g. ``WGS84``), checked by :func:`navlib._validate.boundary`."""
 
 WGS84 = Ellipsoid("WGS84", 6378137.0, 1 / 298.257223563, 3.986004418e14, OMEGA_IE)
@@ -149,7 +148,8 @@ CGCS2000 = Ellipsoid("CGCS2000", 6378137.0, 1 / 298.257222101, 3.986004418e14, O
 KRASSOVSKY = Ellipsoid("Krassovsky1940", 6378245.0, 1 / 298.3, 3.986004418e14, OMEGA_IE)
 
 
-def earth_rate_n(lat: ArrayLike, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> Array:
+@boundary
+def earth_rate_n(lat: ArrayLike, deg: bool = False, ellipsoid: EllipsoidArg = WGS84) -> Array:
     """Earth rotation rate in ENU, ``[0, w cos(lat), w sin(lat)]`` (rad/s).
 
     Parameters
@@ -169,11 +169,11 @@ def earth_rate_n(lat: ArrayLike, deg: bool = False, ellipsoid: Ellipsoid = WGS84
     array([ 0.   ,  7.521, 13.026])
     """
     lat = latitude(lat, "lat", deg=deg)
-    w = ellipsoid_(ellipsoid).omega
-    return np.stack([np.zeros_like(lat), w * np.cos(lat), w * np.sin(lat)], -1)
+    return _earth.earth_rate_n(lat, ellipsoid)
 
 
-def earth_rate_b(C_bn: Dcm, lat: float, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> Array:
+@boundary
+def earth_rate_b(C_bn: Dcm, lat: Real, deg: bool = False, ellipsoid: EllipsoidArg = WGS84) -> Array:
     r"""Earth rotation rate in the body frame, :math:`(C_b^n)^T \omega_{ie}^n` (rad/s), e.g. what a static gyro triad reads.
 
     Parameters
@@ -196,10 +196,12 @@ def earth_rate_b(C_bn: Dcm, lat: float, deg: bool = False, ellipsoid: Ellipsoid 
     array([-7.521,  0.   , 13.026])
     """
     C = as_dcm(C_bn, "C_bn")
-    return np.einsum("...ji,j->...i", C, earth_rate_n(scalar(lat, "lat"), deg, ellipsoid))
+    lat_rad = latitude(lat, "lat", deg=deg)
+    return np.einsum("...ji,j->...i", C, _earth.earth_rate_n(lat_rad, ellipsoid))
 
 
-def gravity(lat: ArrayLike, h: ArrayLike = 0.0, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> Array:
+@boundary
+def gravity(lat: ArrayLike, h: ArrayLike = 0.0, deg: bool = False, ellipsoid: EllipsoidArg = WGS84) -> Array:
     r"""Normal gravity magnitude (m/s^2): Somigliana with the TR8350.2 height series.
 
     .. math::
@@ -229,9 +231,7 @@ def gravity(lat: ArrayLike, h: ArrayLike = 0.0, deg: bool = False, ellipsoid: El
     """
     lat = latitude(lat, "lat", deg=deg)
     h = in_range(as_array(h, "h"), "h", -12e3, 100e3, "m")
-    shape = np.broadcast_shapes(lat.shape, h.shape)
-    lat, h = (kernel_array(np.broadcast_to(x, shape)).reshape(-1) for x in (lat, h))
-    return normal_gravity(lat, h, *ellipsoid_(ellipsoid).gravity_constants).reshape(shape)
+    return _earth.gravity(lat, h, ellipsoid)
 
 
 def gravity_n(lat: ArrayLike, h: ArrayLike = 0.0, deg: bool = False, ellipsoid: Ellipsoid = WGS84) -> Array:
@@ -244,9 +244,7 @@ def gravity_n(lat: ArrayLike, h: ArrayLike = 0.0, deg: bool = False, ellipsoid: 
     >>> np.round(earth.gravity_n(45.0, deg=True), 5)
     array([ 0.    ,  0.    , -9.8062])
     """
-    g = gravity(lat, h, deg=deg, ellipsoid=ellipsoid)
-    z = np.zeros_like(g)
-    return np.stack([z, z, -g], -1)
+    return _earth.gravity_n(gravity(lat, h, deg=deg, ellipsoid=ellipsoid))
 
 
 @boundary
@@ -266,11 +264,11 @@ def radii(lat: ArrayLike, deg: bool = False, ellipsoid: EllipsoidArg = WGS84) ->
     (6367381.8, 6388838.3)
     """
     lat = latitude(lat, "lat", deg=deg)
-    R_M, R_N = radii_mn(kernel_array(lat).reshape(-1), ellipsoid.a, ellipsoid.e2)
-    return R_M.reshape(lat.shape), R_N.reshape(lat.shape)
+    return _earth.radii(lat, ellipsoid)
 
 
-def transport_rate_n(lat: ArrayLike, h: ArrayLike, vel_n: Vec3, ellipsoid: Ellipsoid = WGS84) -> Array:
+@boundary
+def transport_rate_n(lat: ArrayLike, h: ArrayLike, vel_n: Vec3, ellipsoid: EllipsoidArg = WGS84) -> Array:
     r"""Transport rate of the ENU frame over the ellipsoid (rad/s).
 
     .. math::
@@ -301,9 +299,7 @@ def transport_rate_n(lat: ArrayLike, h: ArrayLike, vel_n: Vec3, ellipsoid: Ellip
         )
     h = in_range(as_array(h, "h"), "h", -12e3, 1e6, "m")
     vel_n = as_array(vel_n, "vel_n", tail=(3,))
-    R_M, R_N = radii(lat, ellipsoid=ellipsoid)
-    vE, vN = vel_n[..., 0], vel_n[..., 1]
-    return np.stack([-vN / (R_M + h), vE / (R_N + h), vE * np.tan(lat) / (R_N + h)], -1)
+    return _earth.transport_rate_n(lat, h, vel_n, ellipsoid)
 
 
 # --------------------------------------------------------------------------
@@ -327,13 +323,16 @@ def _geomag(coefficients_file: str) -> Any:
 
 
 def _wmm_file(year: float) -> str:
-    if not 2010.0 <= year < 2030.0:
-        raise ValueError(f"year: expected a decimal year in [2010, 2030) covered by the World Magnetic Model, got {year}")
+    """The model file of a checked year."""
     return [f for start, f in _WMM_MODELS if year >= start][-1]
 
 
+WmmYear = Annotated[float, Check("scalar", within=(2010.0, 2030.0), open_ends=(False, True))]
+"""A decimal year the World Magnetic Model epochs shipped with pygeomag cover."""
+
+
 @boundary
-def magnetic_field(lat: ArrayLike, lon: ArrayLike, h: ArrayLike = 0.0, year: Real = 2025.0, deg: bool = True) -> Array:
+def magnetic_field(lat: ArrayLike, lon: ArrayLike, h: ArrayLike = 0.0, year: WmmYear = 2025.0, deg: bool = True) -> Array:
     """Main geomagnetic field from the World Magnetic Model (through pygeomag).
 
     The WMM epoch (2010, 2015v2, 2020, 2025) is chosen from ``year``; each is
@@ -432,11 +431,7 @@ def field_angles(B_n: Vec3, deg: bool = True) -> tuple[Array, Array, Array]:
     >>> round(float(D), 3), round(float(I), 3), round(float(F), 3)
     (0.0, 63.435, 44.721)
     """
-    B = as_array(B_n, "B_n", tail=(3,))
-    H = np.hypot(B[..., 0], B[..., 1])
-    D = np.arctan2(B[..., 0], B[..., 1])
-    I = np.arctan2(-B[..., 2], H)
-    F = np.linalg.norm(B, axis=-1)
+    D, I, F = _earth.field_angles(as_array(B_n, "B_n", tail=(3,)))
     if flag(deg, "deg"):
         D, I = np.rad2deg(D), np.rad2deg(I)
     return D, I, F

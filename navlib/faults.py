@@ -26,7 +26,7 @@ from numpy.typing import NDArray
 
 from . import attitude, earth
 from ._typing import Angles, Array, ArrayLike, Times, Vec3Series
-from ._validate import Check, Positive, Real, Rng, Step, as_array, boundary, generator, positive, same_shape, scalar, time_axis
+from ._validate import Check, Positive, Real, Rng, Step, as_array, boundary, positive, same_shape, time_axis
 
 __all__ = [
     "dropouts",
@@ -50,13 +50,17 @@ def _time_axis_len(a: NDArray[Any]) -> int:
     return a.shape[-2] if a.ndim >= 2 else a.shape[-1]
 
 
+Probability = Annotated[float, Check("scalar", within=(0.0, 1.0))]
+"""The fraction of samples a fault hits, in [0, 1]."""
+
+
 def _hits(rng: np.random.Generator, fraction: float, n: int) -> NDArray[np.bool_]:
-    """Which of ``n`` samples a fault hits, each with probability ``fraction`` (both arguments checked)."""
-    generator(rng)
-    return rng.random(n) < scalar(fraction, "fraction", within=(0.0, 1.0))
+    """Which of ``n`` samples a fault hits, each with probability ``fraction`` (a checked generator and fraction)."""
+    return rng.random(n) < fraction
 
 
-def dropouts(x: ArrayLike, fraction: float, rng: np.random.Generator) -> tuple[Array, np.ndarray]:
+@boundary
+def dropouts(x: ArrayLike, fraction: Probability, rng: Rng) -> tuple[Array, np.ndarray]:
     """Set a random ``fraction`` of samples (whole rows) to NaN.
 
     Parameters
@@ -116,9 +120,8 @@ def gap(x: ArrayLike, time: Times, start: Real, duration: Positive) -> tuple[Arr
     return x, dropped
 
 
-def spikes(
-    x: ArrayLike, fraction: float, sigma: ArrayLike, rng: np.random.Generator, k: float = 100.0
-) -> tuple[Array, np.ndarray]:
+@boundary
+def spikes(x: ArrayLike, fraction: Probability, sigma: ArrayLike, rng: Rng, k: Positive = 100.0) -> tuple[Array, np.ndarray]:
     """Add ``±k sigma`` spikes to a random ``fraction`` of samples (each component).
 
     Parameters
@@ -151,14 +154,12 @@ def spikes(
     hit = _hits(rng, fraction, _time_axis_len(x))
     sign = np.where(rng.random(x.shape) < 0.5, -1.0, 1.0)
     mask = hit if x.ndim == 1 else hit[:, None]
-    x = x + np.where(mask, scalar(k, "k", positive=True) * sigma * sign, 0.0)
+    x = x + np.where(mask, k * sigma * sign, 0.0)
     return x, hit
 
 
 @boundary
-def position_jumps(
-    lla: Vec3Series, fraction: float, rng: np.random.Generator, size_m: Positive = 50.0
-) -> tuple[Array, np.ndarray]:
+def position_jumps(lla: Vec3Series, fraction: Probability, rng: Rng, size_m: Positive = 50.0) -> tuple[Array, np.ndarray]:
     """Move a random ``fraction`` of GNSS fixes by ``size_m`` metres horizontally.
 
     Parameters
@@ -193,7 +194,8 @@ def position_jumps(
     return lla, hit
 
 
-def heading_flips(heading: Angles, fraction: float, rng: np.random.Generator) -> tuple[Array, np.ndarray]:
+@boundary
+def heading_flips(heading: Angles, fraction: Probability, rng: Rng) -> tuple[Array, np.ndarray]:
     """Rotate a random ``fraction`` of heading samples by 180 deg (dual-antenna ambiguity).
 
     Returns
@@ -214,7 +216,8 @@ def heading_flips(heading: Angles, fraction: float, rng: np.random.Generator) ->
     return np.where(hit, attitude.wrap_2pi(h + np.pi), h), hit
 
 
-def duplicate_timestamps(time: Times, fraction: float, rng: np.random.Generator) -> tuple[Array, np.ndarray]:
+@boundary
+def duplicate_timestamps(time: Times, fraction: Probability, rng: Rng) -> tuple[Array, np.ndarray]:
     """Repeat the previous timestamp on a random ``fraction`` of samples.
 
     Returns
@@ -237,7 +240,8 @@ def duplicate_timestamps(time: Times, fraction: float, rng: np.random.Generator)
     return t, hit
 
 
-def swap_timestamps(time: Times, fraction: float, rng: np.random.Generator) -> tuple[Array, np.ndarray]:
+@boundary
+def swap_timestamps(time: Times, fraction: Probability, rng: Rng) -> tuple[Array, np.ndarray]:
     """Swap a random ``fraction`` of samples with their successor: out-of-order arrival.
 
     Returns the permutation too, so data can be reordered the same way.

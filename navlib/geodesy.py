@@ -57,8 +57,7 @@ from numba import njit
 
 from ._kernels import fma
 from ._typing import Array, ArrayLike
-from ._validate import Check, as_array, boundary, broadcast, choice, flag, in_range, lat_lon, latitude, longitude, scalar
-from ._validate import ellipsoid as ellipsoid_
+from ._validate import Check, Real, as_array, boundary, broadcast, choice, flag, in_range, lat_lon, latitude, longitude, scalar
 from .earth import WGS84, Ellipsoid, EllipsoidArg, radii
 
 __all__ = [
@@ -82,6 +81,8 @@ ZONE_WIDTHS = (3, 6)
 _MAX_OFFSET_DEG = 60.0  # hard limit from the central meridian (series valid to ~ 3900 km at 35° N)
 _PREFIX_UNIT = 1e6  # zone number times 1e6 m prefixed to the easting
 _K0_RANGE = (0.5, 1.5)  # accepted central-meridian scales k0 (GK 1, UTM 0.9996)
+GridScale = Annotated[float, Check("scalar", within=_K0_RANGE)]
+"""The central-meridian scale k0 of a grid."""
 
 
 # --------------------------------------------------------------------------
@@ -462,6 +463,7 @@ def _inverse(xi, eta, e, beta):
     return np.arctan(_geodetic_tan(taup, e)), np.arctan2(sinh_etap, cos_xip)
 
 
+@boundary
 def geodetic2gk(
     lat: ArrayLike,
     lon: ArrayLike,
@@ -469,11 +471,11 @@ def geodetic2gk(
     zone: ArrayLike | None = None,
     lon0: ArrayLike | None = None,
     width: int = 3,
-    ellipsoid: Ellipsoid = WGS84,
+    ellipsoid: EllipsoidArg = WGS84,
     deg: bool = False,
-    k0: float = 1.0,
-    false_easting: float = 0.0,
-    false_northing: float = 0.0,
+    k0: GridScale = 1.0,
+    false_easting: Real = 0.0,
+    false_northing: Real = 0.0,
     zone_prefix: bool = False,
     max_offset_deg: float | None = None,
 ) -> tuple[Array, Array]:
@@ -518,10 +520,9 @@ def geodetic2gk(
     (3320151.288, 28945.951)
     """
     lat_rad, lon_deg = lat_lon(lat, lon, deg)
-    k0, fe, fn = _grid(ellipsoid, k0, false_easting, false_northing)
     w = _width(width)
     L0, l_deg = _resolve_lon0(lon_deg, zone, lon0, w, deg, max_offset_deg)
-    x, y = _forward(lat_rad, l_deg, ellipsoid, k0, fn, fe)
+    x, y = _forward(lat_rad, l_deg, ellipsoid, k0, false_northing, false_easting)
     if flag(zone_prefix, "zone_prefix"):
         if not (y.min(initial=0.0) >= 0 and y.max(initial=0.0) < _PREFIX_UNIT):
             raise ValueError("false_easting: zone_prefix needs eastings in [0, 1e6) m; use false_easting=500e3")
@@ -529,6 +530,7 @@ def geodetic2gk(
     return x, y
 
 
+@boundary
 def gk2geodetic(
     x: ArrayLike,
     y: ArrayLike,
@@ -536,11 +538,11 @@ def gk2geodetic(
     zone: ArrayLike | None = None,
     lon0: ArrayLike | None = None,
     width: int = 3,
-    ellipsoid: Ellipsoid = WGS84,
+    ellipsoid: EllipsoidArg = WGS84,
     deg: bool = False,
-    k0: float = 1.0,
-    false_easting: float = 0.0,
-    false_northing: float = 0.0,
+    k0: GridScale = 1.0,
+    false_easting: Real = 0.0,
+    false_northing: Real = 0.0,
     zone_prefix: bool = False,
 ) -> tuple[Array, Array]:
     """Gauss–Krüger inverse projection.
@@ -571,7 +573,6 @@ def gk2geodetic(
     """
     x = as_array(x, "x", nonempty=True)
     y = as_array(y, "y", nonempty=True)
-    k0, fe, fn = _grid(ellipsoid, k0, false_easting, false_northing)
     w = _width(width)
     if flag(zone_prefix, "zone_prefix"):
         if zone is not None or lon0 is not None:
@@ -583,8 +584,8 @@ def gk2geodetic(
     L0 = _central_meridian(zone, w, True, "y" if zone_prefix else "zone") if lon0 is None else longitude(lon0, "lon0", deg)
     x, y, L0 = broadcast(x, y, L0, name="x, y", of="x, y and the central meridian")
     A, e, _, beta = _kruger(ellipsoid.a, ellipsoid.f)
-    xi = (x - fn) / (k0 * A)
-    eta = (y - fe) / (k0 * A)
+    xi = (x - false_northing) / (k0 * A)
+    eta = (y - false_easting) / (k0 * A)
     if np.any(np.abs(eta) > 1.2):
         raise ValueError("y: easting too far from the central meridian for the series (|y| > 1.2 A k0)")
     lat, dlon = _inverse(xi, eta, e, beta)
@@ -594,19 +595,13 @@ def gk2geodetic(
     return (np.rad2deg(lat), lon_deg) if flag(deg, "deg") else (lat, np.deg2rad(lon_deg))
 
 
-def _grid(ellipsoid: Ellipsoid, k0: float, false_easting: float, false_northing: float) -> tuple[float, float, float]:
-    """The grid of :func:`geodetic2gk` and :func:`gk2geodetic`: ellipsoid checked, k0 and the false offsets."""
-    ellipsoid_(ellipsoid)
-    return scalar(k0, "k0", within=_K0_RANGE), scalar(false_easting, "false_easting"), scalar(false_northing, "false_northing")
-
-
 def _factors(lat, lon, zone, lon0, width, ellipsoid, deg, max_offset_deg):
-    ellipsoid_(ellipsoid)
     lat_rad, lon_deg = lat_lon(lat, lon, deg)
     _, l_deg = _resolve_lon0(lon_deg, zone, lon0, _width(width), deg, max_offset_deg)
     return _forward_factors(lat_rad, l_deg, ellipsoid)
 
 
+@boundary
 def convergence(
     lat: ArrayLike,
     lon: ArrayLike,
@@ -614,7 +609,7 @@ def convergence(
     zone: ArrayLike | None = None,
     lon0: ArrayLike | None = None,
     width: int = 3,
-    ellipsoid: Ellipsoid = WGS84,
+    ellipsoid: EllipsoidArg = WGS84,
     deg: bool = False,
     max_offset_deg: float | None = None,
 ) -> Array:
@@ -650,9 +645,9 @@ def scale_factor(
     zone: ArrayLike | None = None,
     lon0: ArrayLike | None = None,
     width: int = 3,
-    ellipsoid: Ellipsoid = WGS84,
+    ellipsoid: EllipsoidArg = WGS84,
     deg: bool = False,
-    k0: Annotated[float, Check("scalar", within=_K0_RANGE)] = 1.0,
+    k0: GridScale = 1.0,
     max_offset_deg: float | None = None,
 ) -> Array:
     """Point scale factor k of the projection (1 on the central meridian for GK).
@@ -892,6 +887,7 @@ def geodetic2enu(
     return enu[..., 0], enu[..., 1], enu[..., 2]
 
 
+@boundary
 def enu2geodetic(
     e: ArrayLike,
     n: ArrayLike,
@@ -899,7 +895,7 @@ def enu2geodetic(
     lat0: ArrayLike,
     lon0: ArrayLike,
     h0: ArrayLike,
-    ellipsoid: Ellipsoid = WGS84,
+    ellipsoid: EllipsoidArg = WGS84,
     deg: bool = False,
 ) -> tuple[Array, Array, Array]:
     """Inverse of :func:`geodetic2enu`: geodetic lat, lon (rad or deg), h (m) of local ENU points.
@@ -925,7 +921,6 @@ def _local2geodetic(
 ) -> tuple[Array, Array, Array]:
     """Geodetic points of local coordinates ``local`` (east, north, up or down: ``up`` = 1.0 or -1.0)
     about ``origin`` (lat0, lon0, h0), each argument checked under its name."""
-    ellipsoid_(ellipsoid)
     e, n, v = broadcast(*(as_array(x, k, nonempty=True) for x, k in zip(local, names, strict=True)), name=", ".join(names))
     enu = np.stack([e, n, v if up == 1.0 else -v], -1)
     lat0, lon0, h0 = _geodetic(*origin, deg, _ORIGIN)
@@ -941,7 +936,7 @@ def geodetic2ned(
     lat0: ArrayLike,
     lon0: ArrayLike,
     h0: ArrayLike,
-    ellipsoid: Ellipsoid = WGS84,
+    ellipsoid: EllipsoidArg = WGS84,
     deg: bool = False,
 ) -> tuple[Array, Array, Array]:
     """North, east, down (m) of geodetic points in the local frame at (lat0, lon0, h0): :func:`geodetic2enu` reordered.
@@ -957,6 +952,7 @@ def geodetic2ned(
     return n, e, -u
 
 
+@boundary
 def ned2geodetic(
     n: ArrayLike,
     e: ArrayLike,
@@ -964,7 +960,7 @@ def ned2geodetic(
     lat0: ArrayLike,
     lon0: ArrayLike,
     h0: ArrayLike,
-    ellipsoid: Ellipsoid = WGS84,
+    ellipsoid: EllipsoidArg = WGS84,
     deg: bool = False,
 ) -> tuple[Array, Array, Array]:
     """Inverse of :func:`geodetic2ned`: geodetic lat, lon (rad or deg), h (m) of local NED points.

@@ -43,7 +43,7 @@ from typing import Annotated, Any, ParamSpec, TypeVar
 import numpy as np
 import pandas as pd
 
-from . import alignment, attitude, calibration, strapdown
+from . import _attitude, alignment, attitude, calibration, strapdown
 from ._typing import Array, ArrayLike, Dcm, Times
 from ._validate import (
     Check,
@@ -56,7 +56,6 @@ from ._validate import (
     choice,
     file_path,
     flag,
-    instance,
     scalar,
     text,
     time_axis,
@@ -269,11 +268,11 @@ def _check_timing(t: np.ndarray, policy: str, name: str = "time") -> None:
 
 @boundary
 def from_dataframe(
-    df: pd.DataFrame,
+    df: Is[pd.DataFrame],
     *,
     time: Annotated[str, Check("text", empty=False)],
     time_unit: str = "s",
-    units: Mapping[str, str],
+    units: Annotated[Mapping[str, str], Check("instance", what="a mapping of sensor to unit, e.g. {'gyro': 'deg/s'}")],
     gyro: Sequence[str] | None = None,
     accel: Sequence[str] | None = None,
     mag: Sequence[str] | None = None,
@@ -326,9 +325,7 @@ def from_dataframe(
     >>> np.round(rec.w_ib_b[:, 0], 6), rec.conversions[1]
     (array([0.      , 0.017453, 0.034907]), "gyro: columns ['gx', 'gy', 'gz'] in deg/s x 0.0174533 -> rad/s, axes 'x,y,z'")
     """
-    instance(df, "df", pd.DataFrame, "a pandas.DataFrame")
     mounts = _mounts(axes, flag(mirror, "mirror"))
-    instance(units, "units", Mapping, "a mapping of sensor to unit, e.g. {'gyro': 'deg/s'}")
     columns: dict[str, Any] = {"gyro": gyro, "accel": accel, "mag": mag, "baro": baro}  # checked below
     present = {s: c for s, c in columns.items() if c is not None}
     for sensor, cols in present.items():
@@ -439,7 +436,14 @@ def _finish(rec: Recording, source: str, check: str, notes: Sequence[str] = (), 
     return rec
 
 
-def read_csv(path: str | Path, *, sep: str = ",", comment: str | None = None, check: str = "warn", **kwargs: Any) -> Recording:
+CheckMode = Annotated[str, Check("choice", options=("warn", "raise", "off"))]
+"""A reader's axis check (:func:`check_axes`): warn or raise on suspect axes, or ``"off"``: not run."""
+
+
+@boundary
+def read_csv(
+    path: str | Path, *, sep: str = ",", comment: str | None = None, check: CheckMode = "warn", **kwargs: Any
+) -> Recording:
     """A :class:`Recording` from a CSV file: ``pandas.read_csv(path, sep, comment)`` then :func:`from_dataframe`.
 
     Parameters
@@ -468,11 +472,7 @@ def read_csv(path: str | Path, *, sep: str = ",", comment: str | None = None, ch
     >>> tmp.cleanup()
     """
     df, source = _read_table(path, sep=text(sep, "sep", empty=False), comment=comment)
-    return _finish(_in_file(source, from_dataframe, df, **kwargs), source, _check_option(check))
-
-
-def _check_option(check: str) -> str:
-    return choice(check, "check", ("warn", "raise", "off"))
+    return _finish(_in_file(source, from_dataframe, df, **kwargs), source, check)
 
 
 def _in_file(source: str, reader: Callable[_P, _R], *args: _P.args, **kwargs: _P.kwargs) -> _R:
@@ -487,15 +487,16 @@ def _in_file(source: str, reader: Callable[_P, _R], *args: _P.args, **kwargs: _P
 _XIO_OLD = "Packet number"  # x-IMU (older x-io board, CalInertialAndMag.csv): no time column
 
 
+@boundary
 def read_xio(
     path: str | Path,
     *,
-    rate: float | None = None,
+    rate: Positive | None = None,
     axes: str | Dcm | Mapping[str, str | Dcm] = "x,y,z",
     mirror: bool = False,
     timing: str = "raise",
     check_units: bool = True,
-    check: str = "warn",
+    check: CheckMode = "warn",
 ) -> Recording:
     """An x-io Technologies CSV: NGIMU / Fusion examples (``Time (s)``), or the older x-IMU layout.
 
@@ -537,7 +538,6 @@ def read_xio(
                 f"rate: {source} has a column {packet!r} and no 'Time (s)': an x-IMU file, whose "
                 f"samples carry no time; pass rate= (the board's sample rate in Hz, e.g. rate=256)"
             )
-        rate = scalar(rate, "rate", positive=True)
         df["Time (s)"] = np.arange(len(df)) / rate
         notes.append(
             f"time: x-IMU layout; row number / rate {rate:g} Hz -> s (the x-IMU numbers every packet it "
@@ -564,7 +564,7 @@ def read_xio(
         check_units=check_units,
         **cols,
     )
-    return _finish(rec, source, _check_option(check), notes)
+    return _finish(rec, source, check, notes)
 
 
 def _read_table(path: str | Path, **read_csv: Any) -> tuple[pd.DataFrame, str]:
@@ -734,6 +734,7 @@ def _logger_reference(
     )
 
 
+@boundary
 def read_sensor_logger(
     directory: str | Path,
     *,
@@ -744,7 +745,7 @@ def read_sensor_logger(
     max_gap: float | None = None,
     timing: str = "raise",
     check_units: bool = True,
-    check: str = "warn",
+    check: CheckMode = "warn",
 ) -> Recording:
     """A Sensor Logger (phone app) CSV export, iOS or Android, any app version: put on the gyroscope's clock.
 
@@ -867,12 +868,13 @@ def read_sensor_logger(
         **kw,
     )
     q_ref, ref_note = _logger_reference(d, platform, standardised, t_ns, _mounts(axes, mirror)["gyro"][0])
-    return _finish(rec, str(d), _check_option(check), notes + ([ref_note] if ref_note else []), q_bn_ref=q_ref)
+    return _finish(rec, str(d), check, notes + ([ref_note] if ref_note else []), q_bn_ref=q_ref)
 
 
 _PHYPHOX = {"gyro": ("Gyroscope", "rad/s"), "accel": ("Acceleration", "m/s^2"), "mag": ("Magnetic field", "uT")}
 
 
+@boundary
 def read_phyphox(
     path: str | Path,
     *,
@@ -881,7 +883,7 @@ def read_phyphox(
     method: str = "hold",
     max_gap: float | None = None,
     check_units: bool = True,
-    check: str = "warn",
+    check: CheckMode = "warn",
 ) -> Recording:
     """A phyphox CSV export: one experiment's ``Raw Data.csv``, or the folder of a multi-sensor export
     (``Gyroscope.csv``, ``Accelerometer.csv``, ``Magnetometer.csv``), put on the gyroscope's clock.
@@ -950,11 +952,12 @@ def read_phyphox(
         kw[sensor], units[sensor] = tuple(names), _PHYPHOX[sensor][1]
         notes.append(f"{sensor}: {f.name}")
     rec = _in_file(str(p), from_dataframe, frame, time="t", units=units, axes=axes, mirror=mirror, check_units=check_units, **kw)
-    return _finish(rec, str(p), _check_option(check), notes)
+    return _finish(rec, str(p), check, notes)
 
 
+@boundary
 def read_euroc(
-    path: str | Path, *, axes: str | Dcm = "x,y,z", timing: str = "raise", check_units: bool = True, check: str = "warn"
+    path: str | Path, *, axes: str | Dcm = "x,y,z", timing: str = "raise", check_units: bool = True, check: CheckMode = "warn"
 ) -> Recording:
     """The EuRoC MAV dataset's IMU file (``mav0/imu0/data.csv``): ns timestamps, rad/s, m/s^2.
 
@@ -994,7 +997,7 @@ def read_euroc(
         timing=timing,
         check_units=check_units,
     )
-    return _finish(rec, source, _check_option(check))
+    return _finish(rec, source, check)
 
 
 # ----------------------------------------------------------------------------------- clocks
@@ -1237,7 +1240,7 @@ def check_axes(
     _, k = _window_means(rec.time, rec.w_ib_b, AXIS_CHECK_WINDOW)
     counts = np.bincount(k)
     mid = np.round(np.bincount(k, weights=np.arange(rec.n)) / np.maximum(counts, 1)).astype(np.int64)
-    C_bn = attitude.quat_to_dcm(q_bn[:, mid])  # (gyro hypothesis, window, 3, 3)
+    C_bn = _attitude.quat_to_dcm(_attitude.unit(q_bn[:, mid]))  # (gyro hypothesis, window, 3, 3)
     step = np.linalg.norm(attitude.dcm_to_rotvec(np.swapaxes(C_bn[0, :-1], -1, -2) @ C_bn[0, 1:]), axis=-1)
     gap_in = np.bincount(k, weights=gap, minlength=counts.size) > 0
     use = (step > _MIN_STEP) & (counts[1:] > 0) & (counts[:-1] > 0) & ~gap_in[1:] & ~gap_in[:-1]

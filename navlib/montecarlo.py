@@ -26,13 +26,13 @@ import os
 from collections.abc import Callable
 from concurrent.futures import Executor
 from functools import partial
-from typing import Any
+from typing import Annotated, Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from ._typing import ArrayLike
-from ._validate import Text, boundary, flag, indices, integer
+from ._validate import Check, Count, Text, boundary, flag, indices, integer
 
 __all__ = ["TrialStreams", "run"]
 
@@ -62,7 +62,7 @@ class TrialStreams:
     """
 
     def __init__(self, seed: int, ids: ArrayLike) -> None:
-        _check_args(1, seed, 1)
+        seed = integer(seed, "seed", minimum=0)
         ids = indices(ids, "ids")
         if ids.ndim != 1 or ids.size == 0 or not np.issubdtype(ids.dtype, np.integer) or ids.min() < 0:
             raise ValueError(f"ids: expected a non-empty 1-D array of non-negative trial indices, got {ids!r:.60}")
@@ -190,18 +190,17 @@ def _progress_bar(total: int, label: str) -> Any:
     return tqdm(total=total, desc=label, unit="trials", mininterval=1.0, dynamic_ncols=True)
 
 
-def _check_args(n_trials: int, seed: int, batch_size: int) -> None:
-    for name, v, lo in (("n_trials", n_trials, 1), ("seed", seed, 0), ("batch_size", batch_size, 1)):
-        integer(v, name, minimum=lo)
+Seed = Annotated[int, Check("integer", minimum=0)]
+"""A seed of numpy's SeedSequence (an integer >= 0)."""
 
 
 @boundary
 def run(
     batch_fn: Callable[..., dict[str, np.ndarray]],
-    n_trials: int,
-    seed: int,
+    n_trials: Count,
+    seed: Seed,
     *,
-    batch_size: int = 1000,
+    batch_size: Count = 1000,
     executor: Executor | None = None,
     progress: bool | None = None,
     label: Text = "trials",
@@ -251,7 +250,6 @@ def run(
     """
     if not callable(batch_fn):
         raise ValueError(f"batch_fn: expected a callable, got {type(batch_fn).__name__}")
-    _check_args(n_trials, seed, batch_size)
     progress = os.environ.get("NAVLIB_PROGRESS", "1").strip() != "0" if progress is None else flag(progress, "progress")
     if executor is not None and not hasattr(executor, "submit"):  # an Executor, or one by duck typing
         raise ValueError(f"executor: expected a concurrent.futures.Executor, got {type(executor).__name__}")

@@ -18,10 +18,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import analysis
+from . import _attitude, analysis
 from ._typing import Array, ArrayLike, Vec3Series
-from ._validate import Step, as_array, boundary, indices, positive, same_shape, scalar
-from .alignment import level, magnetic_heading
+from ._validate import Positive, Real, Step, as_array, boundary, indices, positive, same_shape, scalar
 from .units import G0
 
 __all__ = ["StepResult", "detect_steps", "weinberg_step_length", "pdr", "pdr_headings"]
@@ -49,7 +48,7 @@ class StepResult:
 
 
 @boundary
-def detect_steps(f_b: Vec3Series, dt: Step, threshold: float = 1.0, min_interval: float = 0.35, g: float = G0) -> StepResult:
+def detect_steps(f_b: Vec3Series, dt: Step, threshold: Positive = 1.0, min_interval: float = 0.35, g: float = G0) -> StepResult:
     """Steps as peaks of the smoothed specific-force magnitude above ``g + threshold``.
 
     Parameters
@@ -75,13 +74,12 @@ def detect_steps(f_b: Vec3Series, dt: Step, threshold: float = 1.0, min_interval
     4
     """
     f = as_array(f_b, "f_b", shape=(None, 3), min_ndim=1)
-    thr = scalar(threshold, "threshold", positive=True)
     gap = int(round(scalar(min_interval, "min_interval", positive=True) / dt))
     n_smooth = max(2, int(round(0.1 / dt)))
     if f.shape[0] < max(gap, n_smooth) + 2:
         raise ValueError(f"f_b: expected (N, 3) with N > {max(gap, n_smooth) + 2} samples, got {f.shape}")
     a = analysis.moving_mean(np.linalg.norm(f, axis=-1), n_smooth) - scalar(g, "g", positive=True)  # N > n_smooth
-    peak = (a[1:-1] > a[:-2]) & (a[1:-1] >= a[2:]) & (a[1:-1] > thr)
+    peak = (a[1:-1] > a[:-2]) & (a[1:-1] >= a[2:]) & (a[1:-1] > threshold)
     steps: list[int] = []
     for i in np.flatnonzero(peak) + 1:
         if not steps or i - steps[-1] >= gap:
@@ -131,7 +129,8 @@ def pdr(step_lengths: ArrayLike, step_headings: ArrayLike, start_en: ArrayLike =
     return start + np.concatenate([np.zeros((1, 2)), np.cumsum(d, 0)])
 
 
-def pdr_headings(f_b: Vec3Series, m_b: Vec3Series, step_index: ArrayLike, declination: float = 0.0) -> Array:
+@boundary
+def pdr_headings(f_b: Vec3Series, m_b: Vec3Series, step_index: ArrayLike, declination: Real = 0.0) -> Array:
     """Heading of every step: tilt-compensated magnetic heading from the step's mean samples.
 
     Pitch and roll come from the mean specific force over the step
@@ -180,5 +179,8 @@ def pdr_headings(f_b: Vec3Series, m_b: Vec3Series, step_index: ArrayLike, declin
     )
     if not np.isfinite(m_mean).all():
         raise ValueError("m_b: a step without any magnetometer sample")
-    pitch, roll = level(f_mean)
-    return magnetic_heading(m_mean, pitch, roll, declination)
+    for name, mean in (("f_b", f_mean), ("m_b", m_mean)):
+        if np.any(np.linalg.norm(mean, axis=-1) == 0):
+            raise ValueError(f"{name}: expected non-zero vectors (a step's mean is zero)")
+    pitch, roll = _attitude.level(f_mean)
+    return _attitude.magnetic_heading(m_mean, pitch, roll, declination)

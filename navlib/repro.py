@@ -51,7 +51,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ._typing import Scalar
-from ._validate import choice, flag, instance, real, scalar, text
+from ._validate import Flag, Is, NonNegative, Text, boundary, choice, flag, real, scalar, text
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -941,6 +941,7 @@ def verdicts() -> list[Verdict]:
     return list(_state.verdicts)
 
 
+@boundary
 def verdict(
     claim: str,
     verdict: str,
@@ -953,7 +954,7 @@ def verdict(
     reason: str = "",
     erratum: str = "",
     figure: str = "",
-    real_data: bool = False,
+    real_data: Flag = False,
 ) -> Verdict | None:
     """Record the verdict on a claim of this notebook's paper; raise ``ValueError`` if it is not supported.
 
@@ -1022,7 +1023,6 @@ def verdict(
     """
     if _state.notebook is None:
         raise RuntimeError("call navlib.repro.setup(notebook, paper=...) before verdict()")
-    real_data = flag(real_data, "real_data")
     if _state.paper is None and not real_data:
         raise ValueError(
             f"claim: notebook {_state.notebook} was set up without a paper, so it records only real-data verdicts "
@@ -1182,7 +1182,8 @@ def _row(c: Check) -> dict[str, Any]:
 _TRUE, _FALSE = ("1", "true", "yes", "on"), ("", "0", "false", "no", "off")
 
 
-def env_flag(name: str, default: bool = False) -> bool:
+@boundary
+def env_flag(name: Text, default: bool = False) -> bool:
     """A boolean switch from the environment variable ``name`` (``1/true/yes/on`` or ``0/false/no/off``).
 
     ``default`` when the variable is unset. For a notebook's parameters cell, e.g.
@@ -1196,7 +1197,6 @@ def env_flag(name: str, default: bool = False) -> bool:
     (True, True)
     >>> del os.environ["NAVLIB_DEMO_FLAG"]
     """
-    text(name, "name")
     raw = os.environ.get(name)
     if raw is None:
         return flag(default, "default")
@@ -1206,7 +1206,8 @@ def env_flag(name: str, default: bool = False) -> bool:
     raise ValueError(f"{name}: expected one of {', '.join(_TRUE + _FALSE[1:])} (environment variable), got {raw!r}")
 
 
-def mode(*, teaching: bool, fast: bool) -> None:
+@boundary
+def mode(*, teaching: Flag, fast: Flag) -> None:
     """Apply a notebook's switches (after :func:`setup`): teaching mode and the fast parameter set.
 
     In teaching mode a failed check warns (:class:`ClaimCheckWarning`) instead of raising. Both are
@@ -1225,8 +1226,7 @@ def mode(*, teaching: bool, fast: bool) -> None:
     """
     if _state.notebook is None:
         raise RuntimeError("call navlib.repro.setup(notebook, ...) before mode()")
-    _state.teaching = flag(teaching, "teaching")
-    _state.fast = flag(fast, "fast")
+    _state.teaching, _state.fast = teaching, fast
     _write()
 
 
@@ -1354,8 +1354,9 @@ class Exercise:
         return self.message
 
 
+@boundary
 def exercise(
-    student: Callable[..., Any], reference: Callable[..., Any], cases: Sequence[tuple[Any, ...]], tol: float = 1e-9
+    student: Callable[..., Any], reference: Callable[..., Any], cases: Sequence[tuple[Any, ...]], tol: NonNegative = 1e-9
 ) -> Exercise:
     """Check a student's function against navlib's ``reference`` on each argument tuple of ``cases``.
 
@@ -1382,7 +1383,6 @@ def exercise(
         raise ValueError("student, reference: expected functions")
     if not isinstance(cases, (list, tuple)) or not cases or not all(isinstance(c, tuple) for c in cases):
         raise ValueError(f"cases: expected a non-empty list of argument tuples such as [(0.1,), (1.0,)], got {cases!r:.60}")
-    tol = scalar(tol, "tol", allow_zero=True)
     name = getattr(student, "__name__", "your function")
     for args in cases:
         got = student(*args)
@@ -1419,7 +1419,8 @@ def answer(markdown: str, label: str = "Answer") -> Any:
     return Markdown(f"<details><summary>{title}</summary>\n\n{body}\n\n</details>")
 
 
-def explorer(draw: Callable[..., Figure], name: str, controls: dict[str, Any]) -> None:
+@boundary
+def explorer(draw: Callable[..., Figure], name: str, controls: Is[dict[str, Any]]) -> None:
     """An interactive explorer with a static fallback: ``draw(**values) -> Figure``.
 
     The figure at the controls' default values is drawn once, saved as ``name`` (:func:`savefig`) and
@@ -1460,7 +1461,6 @@ def explorer(draw: Callable[..., Figure], name: str, controls: dict[str, Any]) -
 
     if not callable(draw):
         raise ValueError(f"draw: expected a function returning a Figure, got {type(draw).__name__}")
-    instance(controls, "controls", dict, "a dict argument -> control")
     defaults = {k: getattr(c, "value", c) for k, c in controls.items()}
     fig = draw(**defaults)
     if matplotlib.get_backend() != _INLINE:  # a script or another backend: the saved figure, nothing live

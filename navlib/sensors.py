@@ -44,6 +44,7 @@ from numba import njit
 from . import atmosphere, attitude, earth, units
 from ._typing import Angles, Array, ArrayLike, Quat, Times, Vec3, Vec3Series
 from ._validate import (
+    Count,
     Is,
     Limit,
     NonNegative,
@@ -61,7 +62,6 @@ from ._validate import (
     imu_samples,
     in_range,
     integer,
-    interval,
     last_axis,
     positive,
     same_shape,
@@ -211,7 +211,7 @@ class ImuOutput:
 
 
 @boundary
-def gauss_markov(shape: tuple[int, ...], dt: Step, sigma: NonNegative, correlation_time: float, rng: Rng) -> Array:
+def gauss_markov(shape: tuple[int, ...], dt: Step, sigma: NonNegative, correlation_time: Positive, rng: Rng) -> Array:
     """First-order Gauss-Markov sequences, stationary from the first sample.
 
     Parameters
@@ -238,10 +238,9 @@ def gauss_markov(shape: tuple[int, ...], dt: Step, sigma: NonNegative, correlati
     >>> x.shape, round(float(x.std()), 1)                             # stationary: std close to sigma
     ((20000, 1), 2.1)
     """
-    tc = scalar(correlation_time, "correlation_time", positive=True)
     if not isinstance(shape, (tuple, list)) or len(shape) < 2:  # type: ignore[redundant-expr]  # the caller's argument, checked
         raise ValueError(f"shape: expected a tuple (..., N, k) of positive integers, got {shape!r}")
-    return _gauss_markov(tuple(integer(n, "shape") for n in shape), dt, sigma, tc, rng)
+    return _gauss_markov(tuple(integer(n, "shape") for n in shape), dt, sigma, correlation_time, rng)
 
 
 def _gauss_markov(shape: tuple[int, ...], dt: float, sigma: float, tc: float, rng: np.random.Generator) -> Array:
@@ -342,7 +341,7 @@ def _apply_errors(M, x, bias, scale, full_scale, y):
 
 
 @boundary
-def window_mean_std(errors: Is[TriadErrors], duration: float, dt: float) -> float:
+def window_mean_std(errors: Is[TriadErrors], duration: Positive, dt: Step) -> float:
     r"""Std of one axis's error averaged over a static window (white + bias terms).
 
     .. math::
@@ -369,16 +368,15 @@ def window_mean_std(errors: Is[TriadErrors], duration: float, dt: float) -> floa
     >>> round(sensors.window_mean_std(gyro, duration=100.0, dt=0.01), 8)   # N / sqrt(T)
     1e-05
     """
-    T, dt = scalar(duration, "duration", positive=True), interval(dt)
-    n = max(int(round(T / dt)), 1)
-    r = errors.correlation_time / T
+    n = max(int(round(duration / dt)), 1)
+    r = errors.correlation_time / duration
     gm = errors.gauss_markov_sigma**2 * 2 * r * (1 - r * (1 - np.exp(-1 / r)))
     return float(np.sqrt(errors.noise_density**2 / (n * dt) + errors.bias**2 + gm))
 
 
 @boundary
 def simulate_imu(
-    w_ib_b: Vec3Series, f_b: Vec3Series, dt: Step, model: Is[ImuModel], rng: Rng, n_trials: int | None = None
+    w_ib_b: Vec3Series, f_b: Vec3Series, dt: Step, model: Is[ImuModel], rng: Rng, n_trials: Count | None = None
 ) -> ImuOutput:
     """Corrupt ideal IMU samples with an :class:`ImuModel`.
 
@@ -412,7 +410,6 @@ def simulate_imu(
     """
     w, f = imu_samples(w_ib_b, f_b, allow_nan=False)
     if n_trials is not None:
-        n_trials = integer(n_trials, "n_trials")
         w = np.broadcast_to(w, (n_trials,) + w.shape)
         f = np.broadcast_to(f, (n_trials,) + f.shape)
     r_gyro, r_accel = rng.spawn(2)
@@ -423,7 +420,7 @@ def simulate_imu(
 
 @boundary
 def simulate_imu_batches(
-    w_ib_b: Vec3Series, f_b: Vec3Series, dt: Step, model: Is[ImuModel], rng: Rng, n_trials: int, batch: int
+    w_ib_b: Vec3Series, f_b: Vec3Series, dt: Step, model: Is[ImuModel], rng: Rng, n_trials: Count, batch: Count
 ) -> Iterator[ImuOutput]:
     """:func:`simulate_imu` with ``n_trials`` realisations, ``batch`` trials at a time, bit for bit.
 
@@ -460,7 +457,6 @@ def simulate_imu_batches(
     w, f = imu_samples(w_ib_b, f_b, allow_nan=False)
     if w.ndim != 2:
         raise ValueError(f"w_ib_b: expected shape (N, 3), one ideal record for every trial, got {w.shape}")
-    n_trials, batch = integer(n_trials, "n_trials"), integer(batch, "batch")
     r_gyro, r_accel = rng.spawn(2)  # here, as simulate_imu does, not when the first batch is asked for
     gyro = _corrupt_batches(np.broadcast_to(w, (n_trials,) + w.shape), dt, model.gyro, r_gyro, batch)
     accel = _corrupt_batches(np.broadcast_to(f, (n_trials,) + f.shape), dt, model.accel, r_accel, batch)

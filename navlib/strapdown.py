@@ -57,7 +57,7 @@ import numpy as np
 from numba import njit
 from numpy.typing import NDArray
 
-from . import _kernels, attitude, earth, robust
+from . import _earth, _kernels, attitude, earth, robust
 from ._kernels import quat_mult_t, rotvec_to_quat_t
 from ._typing import Array, ArrayLike, Dcm, Interval, Quat, Vec3, Vec3Series
 from ._validate import (
@@ -70,15 +70,12 @@ from ._validate import (
     boundary,
     broadcast,
     broadcast_to,
-    choice,
     flag,
     kernel_array,
     latitude,
     sample_intervals,
-    scalar,
     small_turns,
 )
-from ._validate import ellipsoid as ellipsoid_
 from .imu import ImuSamples, unpack
 from .trajectory import Trajectory
 
@@ -265,7 +262,8 @@ def nav_step(
     return lla, vel, q
 
 
-def earth_constants(ellipsoid: earth.Ellipsoid = earth.WGS84) -> np.ndarray:
+@boundary
+def earth_constants(ellipsoid: earth.EllipsoidArg = earth.WGS84) -> np.ndarray:
     """The ``earth_consts`` array of :func:`nav_step` for an ellipsoid.
 
     Examples
@@ -274,7 +272,11 @@ def earth_constants(ellipsoid: earth.Ellipsoid = earth.WGS84) -> np.ndarray:
     >>> strapdown.earth_constants().shape
     (7,)
     """
-    ellipsoid_(ellipsoid)
+    return _earth_constants(ellipsoid)
+
+
+def _earth_constants(ellipsoid: earth.Ellipsoid) -> np.ndarray:
+    """:func:`earth_constants` of a checked ellipsoid."""
     return np.array(ellipsoid.gravity_constants + (ellipsoid.omega,))
 
 
@@ -322,9 +324,9 @@ def integrate(
     dt: Interval | None = None,
     t0: Real = 0.0,
     hold_height: bool = False,
-    ellipsoid: earth.Ellipsoid = earth.WGS84,
+    ellipsoid: earth.EllipsoidArg = earth.WGS84,
     *,
-    nan_policy: str = "raise",
+    nan_policy: Annotated[str, Check("choice", options=_NAN_POLICIES)] = "raise",
 ) -> Trajectory:
     """Full strapdown navigation: attitude, ENU velocity and geodetic position.
 
@@ -375,18 +377,16 @@ def integrate(
     >>> bool(np.abs(nav.lla - traj.lla).max() < 1e-9)   # ideal samples reproduce the trajectory
     True
     """
-    policy = choice(nan_policy, "nan_policy", _NAN_POLICIES)
     w_in, f_in, dt_in, _, _ = unpack(w_ib_b, f_b, dt)
     if isinstance(w_ib_b, ImuSamples):  # validated by the record
         w, f = w_ib_b.w_ib_b, w_ib_b.f_b
     else:
         w, f = broadcast(_samples(w_in, "w_ib_b"), _samples(f_in, "f_b"), name="f_b", of="w_ib_b, f_b")
-    w, held_w = _dropouts(w, "w_ib_b", policy)
-    f, held_f = _dropouts(f, "f_b", policy)
+    w, held_w = _dropouts(w, "w_ib_b", nan_policy)
+    f, held_f = _dropouts(f, "f_b", nan_policy)
     lead, n = w.shape[:-2], w.shape[-2]
     dts = w_ib_b.dt if isinstance(w_ib_b, ImuSamples) else _sample_intervals(dt_in, n)
     small_turns(w, dts)
-    ellipsoid_(ellipsoid)
     lla0 = as_array(lla0, "lla0", tail=(3,))
     latitude(lla0[..., 0], "lla0[..., 0] (lat)")
     if np.any(np.abs(lla0[..., 0]) > np.deg2rad(89.9)):
@@ -405,7 +405,7 @@ def integrate(
         flat(w, 2, "w_ib_b"),
         flat(f, 2, "f_b"),
         dts,
-        earth_constants(ellipsoid),
+        _earth_constants(ellipsoid),
         flag(hold_height, "hold_height"),
     )
     if not (np.all(np.isfinite(lla)) and np.all(np.abs(lla[..., 0]) < np.pi / 2)):
@@ -421,7 +421,13 @@ def integrate(
 
 
 @boundary
-def error_model(lat: float, h: Real, vel_n: Vec3, f_n: Vec3, ellipsoid: earth.Ellipsoid = earth.WGS84) -> Array:
+def error_model(
+    lat: Real,
+    h: Annotated[float, Check("scalar", within=(-12e3, 100e3, "m"))],
+    vel_n: Vec3,
+    f_n: Vec3,
+    ellipsoid: earth.EllipsoidArg = earth.WGS84,
+) -> Array:
     """Linear error dynamics of the ENU mechanisation (phi-angle model).
 
     State ``dx = [phi (3), dv_n (3), dlat, dlon, dh]`` with the attitude
@@ -456,20 +462,19 @@ def error_model(lat: float, h: Real, vel_n: Vec3, f_n: Vec3, ellipsoid: earth.El
            [ 9.8,  0. ,  0. ],
            [ 0. ,  0. ,  0. ]]))
     """
-    lat = scalar(latitude(lat), "lat")
+    phi = latitude(lat)
     if np.cos(lat) < 1e-9:
         raise ValueError("lat: the local-level (ENU) error model is singular at the poles; expected |lat| < 90 deg")
-    ellipsoid_(ellipsoid)
     v = as_array(vel_n, "vel_n", shape=(3,))
     f = as_array(f_n, "f_n", shape=(3,))
-    R_M, R_N = earth.radii(lat, ellipsoid=ellipsoid)
-    RMh, RNh = float(R_M) + h, float(R_N) + h
+    R_M, R_N = _earth.radii(phi, ellipsoid)
+    RMh, RNh = R_M + h, R_N + h
     sl, cl, tl = np.sin(lat), np.cos(lat), np.tan(lat)
     W = ellipsoid.omega
     vE, vN = v[0], v[1]
-    w_ie = np.array([0.0, W * cl, W * sl])
-    w_en = np.array([-vN / RMh, vE / RNh, vE * tl / RNh])
-    g = float(earth.gravity(lat, h, ellipsoid=ellipsoid))
+    w_ie = _earth.earth_rate_n(phi, ellipsoid)
+    w_en = _earth.transport_rate_n(phi, np.asarray(h), v, ellipsoid)
+    g = _earth.gravity(phi, np.asarray(h), ellipsoid)
     sk = attitude.skew
     Maa = -sk(w_ie + w_en)
     Mav = np.array([[0, -1 / RMh, 0], [1 / RNh, 0, 0], [tl / RNh, 0, 0]])

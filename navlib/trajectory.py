@@ -13,33 +13,32 @@ from __future__ import annotations
 
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Annotated, Any
 
 import numpy as np
 from numba import njit
 from numpy.typing import NDArray
 
-from . import attitude, earth
+from . import _attitude, _earth, attitude, earth
 from ._kernels import radii_mn
 from ._typing import Angles, Array, ArrayLike, Times, Vec3, Vec3Series
 from ._validate import (
+    Check,
     Is,
     NonNegative,
     Positive,
     Real,
+    Step,
     as_array,
     as_quat,
     boundary,
     fields_checked,
     in_range,
     instance,
-    interval,
     kernel_array,
     latitude,
-    scalar,
     time_axis,
 )
-from ._validate import ellipsoid as ellipsoid_
 from .robust import FaultReport
 
 __all__ = [
@@ -148,9 +147,7 @@ MAX_SAMPLES = 10**9
 
 
 def _time_grid(duration: float, dt: float) -> np.ndarray:
-    """Sample times ``0, dt, ..., n dt`` with ``n = round(duration / dt) >= 1`` (s)."""
-    duration = scalar(duration, "duration", positive=True)
-    dt = interval(dt)
+    """Sample times ``0, dt, ..., n dt`` with ``n = round(duration / dt) >= 1`` (s) of a checked duration and dt."""
     n = round(duration / dt)
     if n < 1:
         raise ValueError(f"duration: expected at least one sample interval dt={dt}, got {duration}")
@@ -168,8 +165,9 @@ def _lla(lla: ArrayLike) -> Array:
     return lla
 
 
+@boundary
 def from_profiles(
-    time: Times, lla0: Vec3, hpr: Angles, vel_n: Vec3Series, ellipsoid: earth.Ellipsoid = earth.WGS84
+    time: Times, lla0: Vec3, hpr: Angles, vel_n: Vec3Series, ellipsoid: earth.EllipsoidArg = earth.WGS84
 ) -> Trajectory:
     """Trajectory from attitude and velocity profiles; position is integrated.
 
@@ -204,13 +202,14 @@ def from_profiles(
 
 def _from_profiles(t: Array, lla0: ArrayLike, hpr: Array, vel: Array, ellipsoid: earth.Ellipsoid) -> Trajectory:
     """:func:`from_profiles` on a uniform grid ``t`` and profiles (N, 3) built or checked by the caller;
-    ``lla0`` and ``ellipsoid`` are the user's, checked here."""
-    ellipsoid_(ellipsoid)
+    ``lla0`` is the user's, checked here."""
+    in_range(hpr[:, 1], "hpr[:, 1] (pitch)", -np.pi / 2 - 1e-12, np.pi / 2 + 1e-12, "rad")  # also of built profiles
     lla = _positions(_lla(lla0), kernel_array(vel), t[1] - t[0], ellipsoid.a, ellipsoid.e2)
-    return Trajectory(t, lla, vel, attitude.euler_to_quat(hpr))
+    return Trajectory(t, lla, vel, _attitude.euler_to_quat(hpr))
 
 
-def static(duration: float, dt: float, lla0: Vec3, hpr: Angles) -> Trajectory:
+@boundary
+def static(duration: Positive, dt: Step, lla0: Vec3, hpr: Angles) -> Trajectory:
     """A stationary IMU at ``lla0`` with constant attitude ``hpr`` (rad).
 
     Examples
@@ -223,7 +222,9 @@ def static(duration: float, dt: float, lla0: Vec3, hpr: Angles) -> Trajectory:
     """
     t = _time_grid(duration, dt)
     lla = np.broadcast_to(_lla(lla0), (t.size, 3)).copy()
-    q = np.broadcast_to(attitude.euler_to_quat(as_array(hpr, "hpr", shape=(3,))), (t.size, 4)).copy()
+    hpr = as_array(hpr, "hpr", shape=(3,))
+    in_range(hpr[1], "hpr[1] (pitch)", -np.pi / 2 - 1e-12, np.pi / 2 + 1e-12, "rad")
+    q = np.broadcast_to(_attitude.euler_to_quat(hpr), (t.size, 4)).copy()
     return Trajectory(t, lla, np.zeros((t.size, 3)), q)
 
 
@@ -248,8 +249,8 @@ def _ramp(x: np.ndarray) -> np.ndarray:
 
 @boundary
 def reciprocating_rotation(
-    duration: float,
-    dt: float,
+    duration: Positive,
+    dt: Step,
     lla0: Vec3,
     hpr0: Angles,
     axis_b: Vec3,
@@ -298,10 +299,9 @@ def reciprocating_rotation(
     alpha = amplitude * (start + (1 - 2 * start) * s)
     hpr0 = as_array(hpr0, "hpr0", shape=(3,))
     in_range(hpr0[..., 1], "hpr0[1] (pitch)", -np.pi / 2, np.pi / 2, "rad")  # named here: euler_to_quat says hpr
-    q0 = attitude.euler_to_quat(hpr0)
-    q = attitude.quat_mult(q0, attitude.rotvec_to_quat(alpha[:, None] * u))
+    q = _attitude.quat_mult(_attitude.euler_to_quat(hpr0), attitude.rotvec_to_quat(alpha[:, None] * u))
     lla = np.broadcast_to(_lla(lla0), (t.size, 3)).copy()
-    return Trajectory(t, lla, np.zeros((t.size, 3)), attitude.quat_normalize(q))
+    return Trajectory(t, lla, np.zeros((t.size, 3)), _attitude.positive_scalar(_attitude.unit(q)))
 
 
 def _on_grid(t: Array, durations: Sequence[float]) -> Iterator[tuple[NDArray[np.bool_], Array]]:
@@ -343,20 +343,16 @@ class Segment:
     duration: Positive
     speed: NonNegative | None = None
     turn: Real = 0.0
-    pitch: float | None = None
-    roll: float | None = None
+    pitch: Annotated[float, Check("scalar", within=(-np.pi / 2, np.pi / 2, "rad"))] | None = None
+    roll: Annotated[float, Check("scalar", within=(-np.pi, np.pi, "rad"))] | None = None
 
     def __post_init__(self) -> None:
         fields_checked(self)
-        if self.pitch is not None:
-            in_range(scalar(self.pitch, "pitch"), "pitch", -np.pi / 2, np.pi / 2, "rad")
-        if self.roll is not None:
-            in_range(scalar(self.roll, "roll"), "roll", -np.pi, np.pi, "rad")
 
 
 @boundary
 def vehicle(
-    segments: Sequence[Segment], dt: float, lla0: Vec3, heading0: Real, ellipsoid: earth.Ellipsoid = earth.WGS84
+    segments: Sequence[Segment], dt: Step, lla0: Vec3, heading0: Real, ellipsoid: earth.EllipsoidArg = earth.WGS84
 ) -> Trajectory:
     """A land vehicle driving along its forward axis through a list of segments.
 
@@ -493,11 +489,10 @@ def _listed(items: Any) -> list[Any]:
 
 
 def _walk_grid(legs: object, gait: Gait, dt: float) -> tuple[list[Leg], np.ndarray]:
-    """The legs of :func:`walk` (or :func:`stance_mask`) as a list, and its time grid; ``gait`` checked."""
+    """The legs of :func:`walk` (or :func:`stance_mask`) as a list, and its time grid."""
     legs = _listed(legs)
     if not legs or not all(isinstance(leg, Leg) for leg in legs):
         raise ValueError("legs: expected a non-empty sequence of Leg")
-    instance(gait, "gait", Gait, "a Gait")
     return legs, _time_grid(sum(leg.duration for leg in legs), dt)
 
 
@@ -517,7 +512,8 @@ def _schedule(legs: list[Leg], t: Array, ramp: float) -> tuple[Array, Array, Arr
     return speed, turn, climb, static
 
 
-def stance_mask(legs: Sequence[Leg], dt: float, gait: Gait = Gait()) -> np.ndarray:
+@boundary
+def stance_mask(legs: Sequence[Leg], dt: Step, gait: Is[Gait] = Gait()) -> np.ndarray:
     """True-static flags of :func:`walk` on its time grid (stops after their ramp).
 
     Parameters
@@ -546,7 +542,12 @@ def stance_mask(legs: Sequence[Leg], dt: float, gait: Gait = Gait()) -> np.ndarr
 
 @boundary
 def walk(
-    legs: Sequence[Leg], dt: float, lla0: Vec3, heading0: Real, gait: Gait = Gait(), ellipsoid: earth.Ellipsoid = earth.WGS84
+    legs: Sequence[Leg],
+    dt: Step,
+    lla0: Vec3,
+    heading0: Real,
+    gait: Is[Gait] = Gait(),
+    ellipsoid: earth.EllipsoidArg = earth.WGS84,
 ) -> Trajectory:
     """A pedestrian walking and stopping, as seen by a shoulder-worn IMU.
 
@@ -611,7 +612,7 @@ def walk(
 
 
 @boundary
-def ideal_imu(traj: Is[Trajectory], ellipsoid: earth.Ellipsoid = earth.WGS84) -> tuple[Array, Array]:
+def ideal_imu(traj: Is[Trajectory], ellipsoid: earth.EllipsoidArg = earth.WGS84) -> tuple[Array, Array]:
     """Error-free gyro and accelerometer samples along a trajectory.
 
     Sample k is the mean angular rate and specific force over
@@ -650,17 +651,21 @@ def ideal_imu(traj: Is[Trajectory], ellipsoid: earth.Ellipsoid = earth.WGS84) ->
         return np.broadcast_to(w_first, lead_n).copy(), np.broadcast_to(f_first, lead_n).copy()
     dt = traj.dt
     lat, h = traj.lla[..., :-1, 0], traj.lla[..., :-1, 2]
+    if np.any(np.cos(lat) < 1e-9):
+        raise ValueError("traj.lla[..., 0] (lat): the ENU transport rate is singular at the poles; expected |lat| < 90 deg")
+    in_range(h, "traj.lla[..., 2] (h)", -12e3, 100e3, "m")  # earth.gravity's heights
     v0, v1 = traj.vel_n[..., :-1, :], traj.vel_n[..., 1:, :]
     q0, q1 = traj.q_bn[..., :-1, :], traj.q_bn[..., 1:, :]
-    w_ie = earth.earth_rate_n(lat, ellipsoid=ellipsoid)
-    w_en = earth.transport_rate_n(lat, h, v0, ellipsoid=ellipsoid)
+    w_ie = _earth.earth_rate_n(lat, ellipsoid)
+    w_en = _earth.transport_rate_n(lat, h, v0, ellipsoid)
     w_in = w_ie + w_en
-    dq = attitude.quat_mult(attitude.quat_mult(attitude.quat_conj(q0), attitude.rotvec_to_quat(w_in * dt)), q1)
-    w_ib_b = attitude.quat_to_rotvec(dq) / dt
-    q_mid = attitude.quat_mult(
-        attitude.quat_mult(attitude.rotvec_to_quat(-w_in * dt / 2), q0), attitude.rotvec_to_quat(w_ib_b * dt / 2)
+    # The record's attitudes are checked; the rotations derived from them are below pi.
+    dq = _attitude.quat_mult(_attitude.quat_mult(_attitude.quat_conj(q0), _attitude.rotvec_to_quat(w_in * dt)), q1)
+    w_ib_b = _attitude.quat_to_rotvec(_attitude.unit(dq)) / dt
+    q_mid = _attitude.quat_mult(
+        _attitude.quat_mult(_attitude.rotvec_to_quat(-w_in * dt / 2), q0), _attitude.rotvec_to_quat(w_ib_b * dt / 2)
     )
-    C_mid = attitude.quat_to_dcm(q_mid)
-    a_n = (v1 - v0) / dt - earth.gravity_n(lat, h, ellipsoid=ellipsoid) + np.cross(2 * w_ie + w_en, v0)
+    C_mid = _attitude.quat_to_dcm(_attitude.unit(q_mid))
+    a_n = (v1 - v0) / dt - _earth.gravity_n(_earth.gravity(lat, h, ellipsoid)) + np.cross(2 * w_ie + w_en, v0)
     f_b = np.einsum("...ji,...j->...i", C_mid, a_n)
     return w_ib_b, f_b

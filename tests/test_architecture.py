@@ -5,7 +5,12 @@
 * No module uses another module's private name (``from .earth import _radii``,
   ``attitude._as_quat(...)``): what two modules share lives in the shared layers
   ``navlib._validate`` (argument validation), ``navlib._kernels`` (compiled primitives) and
-  ``navlib._typing`` (shape aliases), or is public.
+  ``navlib._typing`` (shape aliases), in a private core module, or is public.
+* Checked public functions live in the public modules; their unchecked cores, called with values already
+  checked, live in a private core module ``navlib/_<name>.py`` (``navlib._earth``) under public names, where
+  a function of another module that has checked the values itself calls them. A public function is thin:
+  check, then call the core. A core module imports no public navlib module at run time and nothing from
+  ``navlib._validate`` but the ``kernel_array`` conversion: it checks nothing.
 * The deprecated aliases of the old paper modules are imported by nothing in navlib.
 * No import cycle: the graph of navlib's imports, at module level or inside functions, is acyclic.
 * Importing navlib's modules changes nothing process-wide (no numba event listener) unless asked to.
@@ -95,6 +100,28 @@ def test_no_private_names_of_other_modules(module):
     assert not bad, f"{module} uses private names of other modules:\n" + "\n".join(bad)
 
 
+SHARED_LAYERS = {"navlib._validate", "navlib._kernels", "navlib._typing", "navlib._threads"}
+CORE_MODULES = {m for m in MODULES if m.rpartition(".")[2].startswith("_") and m not in SHARED_LAYERS}
+"""Private modules of unchecked cores (``navlib._earth``)."""
+
+
+def checking_imports(module: str) -> list[str]:
+    """The run-time imports that a core module must not make: a public navlib module, or a checker of _validate."""
+    skip = type_checking_lines(ast.parse(MODULES[module].read_text(encoding="utf-8")))
+    return [
+        f"line {line}: {src}" + (f".{name}" if name else "")
+        for src, name, line in imports(module)
+        if line not in skip
+        and (not src.rpartition(".")[2].startswith("_") or (src == "navlib._validate" and name != "kernel_array"))
+    ]
+
+
+@pytest.mark.parametrize("module", sorted(CORE_MODULES))
+def test_core_modules_check_nothing(module):
+    bad = checking_imports(module)
+    assert not bad, f"core module {module} imports checked code (cores take checked values):\n" + "\n".join(bad)
+
+
 @pytest.mark.parametrize("module", sorted(CORE))
 def test_core_never_imports_a_paper(module):
     bad = [f"line {line}: {src}" for src, _, line in imports(module) if src.startswith("navlib.papers.")]
@@ -112,6 +139,8 @@ def test_the_checks_see_imports():
     assert ("navlib.attitude", None) in found and ("navlib._validate", "as_array") in found
     assert aliases("navlib.alignment")["attitude"] == "navlib.attitude"
     assert COMPANIONS and "navlib.filters" in CORE
+    assert "navlib._earth" in CORE_MODULES and "navlib._validate" not in CORE_MODULES
+    assert checking_imports("navlib._earth") == [] and checking_imports("navlib.earth")  # earth imports checkers
 
 
 def type_checking_lines(tree: ast.Module) -> set[int]:

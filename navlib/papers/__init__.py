@@ -15,8 +15,9 @@ core (see CONTRIBUTING.md). ``tools/reproduce.py``, ``tools/readme.py`` and the 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Annotated
 
-from .._validate import Text, boundary, integer, text
+from .._validate import Check, Text, boundary, fields_checked
 
 __all__ = ["Paper", "PAPERS", "CONVENTIONS", "REAL_DATA", "REAL_REFERENCES", "CHAPTERS", "by_notebook"]
 
@@ -48,17 +49,15 @@ class Paper:
     """
 
     name: str
-    number: int
-    claims_id: str
-    citation: str
+    number: Annotated[int, Check("integer", minimum=0)]
+    claims_id: Annotated[str, Check("text", empty=False)]
+    citation: Annotated[str, Check("text", empty=False)]
     parts: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name.isidentifier():  # type: ignore[redundant-expr]  # the caller's argument, checked
             raise ValueError(f"name: expected the paper's module name (a Python identifier), got {self.name!r}")
-        integer(self.number, "number", minimum=0)
-        text(self.claims_id, "claims_id", empty=False)
-        text(self.citation, "citation", empty=False)
+        fields_checked(self)
         if not isinstance(self.parts, tuple) or not all(isinstance(p, str) and p.isidentifier() for p in self.parts):  # type: ignore[redundant-expr]  # the caller's argument, checked
             raise ValueError(f"parts: expected a tuple of notebook suffixes such as ('floors',), got {self.parts!r}")
 

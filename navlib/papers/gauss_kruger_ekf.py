@@ -57,6 +57,7 @@ from .._typing import Array, ArrayLike, Times
 from .._validate import (
     Flag,
     Is,
+    NonNegative,
     Positive,
     Real,
     Rng,
@@ -148,6 +149,11 @@ def paper_radii(lat: ArrayLike, ellipsoid: EllipsoidArg = CGCS2000, deg: bool = 
     (0.081819191, 6382243.553, 6347684.393)
     """
     W = latitude(lat, "lat", deg=deg, nonempty=True)
+    return _paper_radii(W, ellipsoid)
+
+
+def _paper_radii(W: float | Array, ellipsoid: Ellipsoid) -> tuple[float, float, Array, Array]:
+    """:func:`paper_radii` of a checked latitude (rad)."""
     a, b = ellipsoid.a, ellipsoid.b
     e1 = np.sqrt(a * a - b * b) / a
     e2 = np.sqrt(a * a - b * b) / b
@@ -169,7 +175,7 @@ def printed_meridian_radius(lat: ArrayLike, ellipsoid: EllipsoidArg = CGCS2000, 
     6347684.4
     """
     W = latitude(lat, "lat", deg=deg, nonempty=True)
-    e1, e2, _, _ = paper_radii(0.0, ellipsoid)
+    e1, e2, _, _ = _paper_radii(0.0, ellipsoid)
     return ellipsoid.a**2 * (1 - e1**2) / np.sqrt((1 + e2**2 * np.sin(W) ** 2) ** 1.5)
 
 
@@ -262,7 +268,7 @@ def paper_series(
     if np.any(np.abs(l_deg) > 6.0):
         raise ValueError(f"lon: expected |lon - lon0| <= 6°, got {np.abs(l_deg).max():.4g}°")
     l = l_deg if printed_units else np.deg2rad(l_deg)
-    _, e2, N, _ = paper_radii(W, ellipsoid)
+    _, e2, N, _ = _paper_radii(W, ellipsoid)
     t2 = np.tan(W) ** 2
     eta2 = e2**2 * np.cos(W) ** 2
     s, c = np.sin(W), np.cos(W)
@@ -732,7 +738,7 @@ def footpoint_latitude(x: ArrayLike, ellipsoid: EllipsoidArg = CGCS2000, iterati
         raise ValueError("x: expected a northing within the meridian quadrant")
     W = x / ellipsoid.a
     for _ in range(n):
-        W = np.clip(W + (x - _meridian_arc(W, W, ellipsoid)) / paper_radii(W, ellipsoid)[3], -np.pi / 2, np.pi / 2)
+        W = np.clip(W + (x - _meridian_arc(W, W, ellipsoid)) / _paper_radii(W, ellipsoid)[3], -np.pi / 2, np.pi / 2)
     return W
 
 
@@ -772,7 +778,7 @@ def inverse_series(
     except ValueError:
         raise ValueError(f"lon0: expected a shape that broadcasts with x, y {x.shape}, got {L0.shape}") from None
     Wf = footpoint_latitude(x, ellipsoid)
-    _, e2, N, M = paper_radii(Wf, ellipsoid)
+    _, e2, N, M = _paper_radii(Wf, ellipsoid)
     t, c = np.tan(Wf), np.cos(Wf)
     t2, eta2 = t * t, e2**2 * c * c
     lat = (
@@ -789,7 +795,10 @@ def inverse_series(
     return (np.rad2deg(lat), np.rad2deg(lon)) if flag(deg, "deg") else (lat, lon)
 
 
-def draw_zones(ax: Axes, lon_min: float = 112.5, lon_max: float = 127.5, *, mark: tuple[float, float] | None = None) -> None:
+@boundary
+def draw_zones(
+    ax: Axes, lon_min: NonNegative = 112.5, lon_max: Positive = 127.5, *, mark: tuple[float, float] | None = None
+) -> None:
     """3° Gauss–Krüger zones on a longitude axis: boundaries at 3n ± 1.5°, central meridians L0 = 3n, zone numbers.
 
     Parameters
@@ -811,10 +820,11 @@ def draw_zones(ax: Axes, lon_min: float = 112.5, lon_max: float = 127.5, *, mark
     >>> plt.close(fig)
     """
     axes(ax)
-    lo, hi = scalar(lon_min, "lon_min", allow_zero=True), scalar(lon_max, "lon_max", positive=True)
-    if not lo < hi <= 180 or hi - lo > 30:
-        raise ValueError(f"lon_min, lon_max: expected 0 <= lon_min < lon_max <= 180 and at most 30° apart, got {lo}, {hi}")
-    first, last = int(np.ceil((lo + 1.5) / 3)), int(np.floor((hi - 1.5) / 3))
+    if not lon_min < lon_max <= 180 or lon_max - lon_min > 30:
+        raise ValueError(
+            f"lon_min, lon_max: expected 0 <= lon_min < lon_max <= 180 and at most 30° apart, got {lon_min}, {lon_max}"
+        )
+    first, last = int(np.ceil((lon_min + 1.5) / 3)), int(np.floor((lon_max - 1.5) / 3))
     for n in range(first, last + 1):
         ax.axvspan(3 * n - 1.5, 3 * n + 1.5, color="0.93" if n % 2 else "0.85", lw=0)
         ax.axvline(3 * n, color="tab:green", lw=1.4)
@@ -835,7 +845,7 @@ def draw_zones(ax: Axes, lon_min: float = 112.5, lon_max: float = 127.5, *, mark
         ax.annotate(
             f"site, zone {int(geodesy.zone(lon, deg=True))}", (lon, lat), xytext=(6, 6), textcoords="offset points", fontsize=8
         )
-    ax.set(xlim=(lo, hi), xlabel="longitude L (° E)", ylabel="latitude W (° N)")
+    ax.set(xlim=(lon_min, lon_max), xlabel="longitude L (° E)", ylabel="latitude W (° N)")
 
 
 @boundary

@@ -86,8 +86,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .. import attitude
-from .._typing import Angles, Array, Interval, Quat, Vec3, Vec3Series
-from .._validate import as_array, as_quat, euler_angles, interval, scalar
+from .._typing import Angles, Array, Quat, Vec3, Vec3Series
+from .._validate import NonNegative, Step, as_array, as_quat, boundary, euler_angles
 from ..filters.quaternion_kf import measurement_jacobian, noise_input
 
 if TYPE_CHECKING:
@@ -250,8 +250,9 @@ def printed_eq8_quat(hpr: Angles) -> Array:
     return attitude.quat_mult(attitude.quat_mult(axis_quat(-h, 2), axis_quat(r, 1)), axis_quat(p, 0))
 
 
+@boundary
 def printed_eq12_mahony(
-    w_ib_b: Vec3Series, f_b: Vec3Series, m_b: Vec3Series, dt: Interval, q0: Quat, kp: float = 1.0, ki: float = 0.02
+    w_ib_b: Vec3Series, f_b: Vec3Series, m_b: Vec3Series, dt: Step, q0: Quat, kp: NonNegative = 1.0, ki: NonNegative = 0.02
 ) -> Array:
     """Eqs. (12)-(15) with the cross products in the order the printed hat-less ``a x a`` leaves open,
     estimated x measured (E003-09); returns ``q_b^n`` after each sample, shape (N, 4).
@@ -280,8 +281,6 @@ def printed_eq12_mahony(
             raise ValueError(f"{name}: expected the shape of w_ib_b {w.shape}, got {x.shape}")
         if not np.all(np.linalg.norm(x, axis=-1) > 0):
             raise ValueError(f"{name}: expected non-zero vectors")
-    dt = interval(dt)
-    kp, ki = scalar(kp, "kp", positive=True, allow_zero=True), scalar(ki, "ki", positive=True, allow_zero=True)
     a, b, c, d = (float(x) for x in as_quat(as_array(q0, "q0", shape=(4,)), "q0"))
     ix = iy = iz = 0.0
     out = np.empty((len(w), 4))

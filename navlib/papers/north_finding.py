@@ -107,11 +107,13 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.special import ndtr
 
-from .. import attitude, earth, plots, robust, strapdown
+from .. import _attitude, _earth, attitude, earth, plots, robust, strapdown
 from .._typing import Angles, Array, ArrayLike, Dcm, Interval, Times, Vec3, Vec3Series
 from .._validate import (
     Check,
     Count,
+    GyroLatitude,
+    Limit,
     NonNegative,
     Positive,
     as_array,
@@ -120,7 +122,6 @@ from .._validate import (
     boundary,
     broadcast,
     broadcast_to,
-    choice,
     flag,
     generator,
     imu_samples,
@@ -129,7 +130,6 @@ from .._validate import (
     integer,
     pitch_roll,
     positive,
-    range_limit,
     sample_intervals,
     scalar,
     time_axis,
@@ -294,11 +294,12 @@ def heading_candidates(w_y: ArrayLike, f_b: Vec3, lat: float, h: float = 0.0) ->
     w_y = as_array(w_y, "w_y", nonempty=True)
     phi = gyrocompass_latitude(lat)
     level(f_b)  # checks f_b as pitch_roll_from_accel does
-    pitch = _asin_pitch(f_b, earth.gravity(phi, as_array(h, "h", nonempty=True)))  # as_array: gravity takes an empty h
+    height = in_range(as_array(h, "h", nonempty=True), "h", -12e3, 100e3, "m")  # earth.gravity's heights
+    pitch = _asin_pitch(f_b, _earth.gravity(phi, height, earth.WGS84))
     cos_h = (w_y - OMEGA_IE * np.sin(phi) * np.sin(pitch)) / (OMEGA_IE * np.cos(phi) * np.cos(pitch))
     clipped = np.abs(cos_h) > 1.0
     alpha = np.arccos(np.clip(cos_h, -1.0, 1.0))
-    pair = np.stack([alpha, attitude.wrap_2pi(2 * np.pi - alpha)], -1)
+    pair = np.stack([alpha, _attitude.wrap_2pi(2 * np.pi - alpha)], -1)
     return Candidates(pair, alpha, cos_h, clipped, pitch)
 
 
@@ -326,7 +327,7 @@ def nearest_candidate_error(pair: ArrayLike, heading: Angles) -> Array:
 
 def _nearest_error(pair: np.ndarray, heading: np.ndarray) -> np.ndarray:
     """:func:`nearest_candidate_error` of validated arrays."""
-    e = attitude.wrap_pi(pair - heading[..., None])
+    e = _attitude.wrap_pi(pair - heading[..., None])
     return np.take_along_axis(e, np.argmin(np.abs(e), -1)[..., None], -1)[..., 0]
 
 
@@ -410,14 +411,14 @@ def resolve(pair1: ArrayLike, pair2: ArrayLike, dpsi_ins: Angles, wrap: bool = T
     cands = (p2[..., :, None] - p1[..., None, :]).reshape(p2.shape[:-1] + (4,))
     cands, ins = np.broadcast_arrays(cands, ins[..., None])
     diff = cands - ins
-    res = attitude.wrap_pi(diff) if flag(wrap, "wrap") else diff
+    res = _attitude.wrap_pi(diff) if flag(wrap, "wrap") else diff
     score = np.abs(res)
     index = np.argmin(score, axis=-1)
     best = np.take_along_axis(score, index[..., None], -1)
     p2b = np.broadcast_to(p2, cands.shape[:-1] + (2,))
     headings = np.repeat(p2b, 2, axis=-1)  # candidate j points position 2 at p2[j // 2]
     heading = np.take_along_axis(headings, index[..., None], -1)[..., 0]
-    distinct = np.abs(attitude.wrap_pi(headings - heading[..., None])) > 1e-9
+    distinct = np.abs(_attitude.wrap_pi(headings - heading[..., None])) > 1e-9
     margin = np.where(distinct, score, np.inf).min(-1) - best[..., 0]
     margin = np.where(margin < 1e-9, 0.0, margin)  # equal fits to rounding: not separable
     return Resolution(heading, cands, res, index, margin)
@@ -524,7 +525,7 @@ def single_axis_heading_std(
     s_g = positive(sigma_gyro, "sigma_gyro", allow_zero=True, nonempty=True)
     s_a = positive(sigma_accel, "sigma_accel", allow_zero=True, nonempty=True)
     phi = gyrocompass_latitude(lat)
-    grav = earth.gravity(phi) if g is None else positive(g, "g", nonempty=True)
+    grav = _earth.gravity(phi, np.zeros(()), earth.WGS84) if g is None else positive(g, "g", nonempty=True)
     s_th = s_a / (grav * np.cos(th))
     coupling = OMEGA_IE * (np.sin(phi) * np.cos(th) - np.cos(phi) * np.sin(th) * np.cos(psi))
     with np.errstate(divide="ignore"):
@@ -564,7 +565,7 @@ def single_axis_heading_error(
     dw = as_array(dw_y, "dw_y", nonempty=True)
     df = as_array(df_y, "df_y", nonempty=True)
     phi = gyrocompass_latitude(lat)
-    grav = earth.gravity(phi) if g is None else positive(g, "g", nonempty=True)
+    grav = _earth.gravity(phi, np.zeros(()), earth.WGS84) if g is None else positive(g, "g", nonempty=True)
     d_th = df / (grav * np.cos(th))
     coupling = OMEGA_IE * (np.sin(phi) * np.cos(th) - np.cos(phi) * np.sin(th) * np.cos(psi))
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -608,7 +609,7 @@ class ClippedTheory:
 def clipped_single_axis_theory(
     heading: Angles,
     sigma_gyro: Positive,
-    lat: float,
+    lat: GyroLatitude,
     pitch: Angles = 0.0,
     sigma_accel: NonNegative = 0.0,
     g: float | None = None,
@@ -660,8 +661,8 @@ def clipped_single_axis_theory(
     51.986
     """
     psi, th = np.broadcast_arrays(as_array(heading, "heading", nonempty=True), _pitch(pitch))
-    phi = gyrocompass_latitude(scalar(lat, "lat"))
-    grav = earth.gravity(phi) if g is None else scalar(g, "g", positive=True)
+    phi = np.asarray(lat)
+    grav = _earth.gravity(phi, np.zeros(()), earth.WGS84) if g is None else scalar(g, "g", positive=True)
     if integer(n_grid, "n_grid", minimum=101) % 2 == 0:
         raise ValueError(f"n_grid: expected an odd integer of at least 101, got {n_grid!r}")
     s_gyro_cos = sigma_gyro / (OMEGA_IE * np.cos(phi) * np.cos(th))
@@ -671,7 +672,7 @@ def clipped_single_axis_theory(
     weight = np.exp(-0.5 * z**2) / np.sqrt(2 * np.pi)
     c = np.cos(psi)[..., None] + s_cos[..., None] * z
     alpha = np.arccos(np.clip(c, -1.0, 1.0))
-    err = _nearest_error(np.stack([alpha, attitude.wrap_2pi(2 * np.pi - alpha)], -1), psi[..., None])
+    err = _nearest_error(np.stack([alpha, _attitude.wrap_2pi(2 * np.pi - alpha)], -1), psi[..., None])
     m2 = np.trapezoid(weight * err**2, z, axis=-1)
     m4 = np.trapezoid(weight * err**4, z, axis=-1)
     p_clip = ndtr((np.cos(psi) - 1.0) / s_cos) + ndtr((-1.0 - np.cos(psi)) / s_cos)
@@ -688,7 +689,7 @@ def clipped_single_axis_theory(
 @boundary
 def simulate_static_outputs(
     hpr: Angles,
-    lat: float,
+    lat: GyroLatitude,
     n_trials: Count,
     sigma_gyro: NonNegative,
     sigma_accel: NonNegative,
@@ -728,10 +729,10 @@ def simulate_static_outputs(
     ((4, 3), array([0.  , 0.  , 9.79]))
     """
     C_nb = np.swapaxes(attitude.euler_to_dcm(hpr), -1, -2)
-    phi = gyrocompass_latitude(scalar(lat, "lat"))
+    phi = np.asarray(lat)
     r_gyro, r_accel = generator(rng).spawn(2)
-    w_true = C_nb @ earth.earth_rate_n(phi)
-    f_true = C_nb @ np.array([0.0, 0.0, float(earth.gravity(phi))])
+    w_true = C_nb @ _earth.earth_rate_n(phi, earth.WGS84)
+    f_true = C_nb @ np.array([0.0, 0.0, float(_earth.gravity(phi, np.zeros(()), earth.WGS84))])
     shape = w_true.shape[:-1] + (int(n_trials), 3)
     w = w_true[..., None, :] + _bias(gyro_bias, "gyro_bias") + sigma_gyro * r_gyro.standard_normal(shape)
     f = f_true[..., None, :] + _bias(accel_bias, "accel_bias") + sigma_accel * r_accel.standard_normal(shape)
@@ -810,8 +811,8 @@ def monte_carlo(
     w, f = simulate_static_outputs(hpr, lat, n_trials, sigma_gyro, sigma_accel, rng)
     C_raw = triad(f, w, lat, orthonormal=False)
     truth = psi[:, None]
-    err_raw = attitude.wrap_pi(triad_heading(C_raw) - truth)
-    err_triad = attitude.wrap_pi(triad_heading(attitude.orthonormalize(C_raw)) - truth)
+    err_raw = _attitude.wrap_pi(triad_heading(C_raw) - truth)
+    err_triad = _attitude.wrap_pi(triad_heading(attitude.orthonormalize(C_raw)) - truth)
     cand = heading_candidates(w[..., 1], f, lat)
     return MonteCarlo(psi, err_triad, err_raw, _nearest_error(cand.pair, truth), cand.clipped)
 
@@ -869,7 +870,7 @@ _PAIR_BLOCK = 1 << 15
 
 def _pair_mass(p1: np.ndarray, p2: np.ndarray, sigma: np.ndarray) -> np.ndarray:
     """:func:`pair_probabilities` of 1-D checked arrays of equal length: shape (n, 4)."""
-    shifts = attitude.wrap_pi(np.stack([np.zeros_like(p1), 2 * p1, -2 * p2, -2 * (p2 - p1)], -1))
+    shifts = _attitude.wrap_pi(np.stack([np.zeros_like(p1), 2 * p1, -2 * p2, -2 * (p2 - p1)], -1))
     # periodic images so that every Voronoi arc is bounded on both sides
     images = np.concatenate([shifts - 2 * np.pi, shifts, shifts + 2 * np.pi], -1)
     order = np.argsort(images, axis=-1, kind="stable")
@@ -962,7 +963,7 @@ def stop_and_go(
     stops = [(0.0, stop_duration)]
     t = stop_duration
     for k in range(1, psi.size):
-        turn = float(attitude.wrap_pi(psi[k] - psi[k - 1]))
+        turn = float(_attitude.wrap_pi(psi[k] - psi[k - 1]))
         segments += [
             Segment(ramp, speed=speed),
             Segment(drive_duration - 2 * ramp, turn=turn),
@@ -1135,10 +1136,10 @@ def ins_heading_change(
     f_start: Vec3,
     dt: Interval | None = None,
     lat: float | None = None,
-    earth_rate: str = "vertical",
+    earth_rate: Annotated[str, Check("choice", options=("vertical", "none", "full"))] = "vertical",
     *,
     max_gap: NonNegative = 0.1,
-    full_scale_gyro: float | None = None,
+    full_scale_gyro: Limit | None = None,
 ) -> Array:
     """MEMS strapdown heading change over a drive, started with heading 0 (paper step 2).
 
@@ -1208,14 +1209,13 @@ def ins_heading_change(
     """
     if isinstance(w_ib_b, ImuSamples):
         w_ib_b, _, dt, full_scale_gyro, _ = unpack(w_ib_b, dt=dt, full_scale_gyro=full_scale_gyro)
-    w_ie = earth.earth_rate_n(gyrocompass_latitude(scalar(lat, "lat")))
+    w_ie = _earth.earth_rate_n(gyrocompass_latitude(scalar(lat, "lat")), earth.WGS84)
     rates = {"vertical": w_ie * [0, 0, 1], "none": np.zeros(3), "full": w_ie}
-    choice(earth_rate, "earth_rate", tuple(rates))
     w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
     n = w.shape[-2]
     dts = sample_intervals(dt, n)
     step = float(dts[0]) if np.all(dts == dts[0]) else float(dts.mean())
-    fs = range_limit(full_scale_gyro, "full_scale_gyro")
+    fs = np.inf if full_scale_gyro is None else full_scale_gyro
     pitch, roll = level(
         broadcast_to(
             as_array(f_start, "f_start", tail=(3,), nonempty=True), "f_start", w.shape[:-2] + (3,), of="the trials of w_ib_b"
@@ -1234,7 +1234,7 @@ def ins_heading_change(
     q0 = attitude.euler_to_quat(np.stack([np.zeros_like(pitch), pitch, roll], -1))
     q = strapdown.integrate_attitude(q0, w, step, rates[earth_rate])
     end = attitude.quat_to_dcm(q[..., -1, :])
-    dpsi = attitude.wrap_pi(np.arctan2(end[..., 0, 1], end[..., 1, 1]))
+    dpsi = _attitude.wrap_pi(np.arctan2(end[..., 0, 1], end[..., 1, 1]))
     if np.any(refused):
         dpsi = np.where(refused, np.nan, dpsi)
     return dpsi

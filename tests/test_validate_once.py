@@ -1,0 +1,153 @@
+"""Validation once at the boundary: on one call of a public function, each argument is checked by one function.
+
+A public function checks its arguments (through :mod:`navlib._validate`, by hand or with ``@boundary``) and
+then works on the checked values: it hands them to unchecked cores (a private helper of its own module, a
+shared core module such as :mod:`navlib._earth`, a compiled formula of :mod:`navlib._kernels`), and what it
+hands to a public function of another module unchecked, that function checks. A profile hook records every outermost call of a
+``_validate`` function during a registry call (tools/fuzz_calls.py) with the argument name it checks and the
+public function (or record) it checks it for; an argument name checked for two of them is checked twice.
+"""
+
+from __future__ import annotations
+
+import inspect
+import sys
+from collections import defaultdict
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+matplotlib = pytest.importorskip("matplotlib")
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+from navlib import _validate, earth  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "tools"))
+import fuzz  # noqa: E402
+import fuzz_calls  # noqa: E402
+
+VALIDATORS = {
+    f.__code__: inspect.signature(f)
+    for name, f in vars(_validate).items()
+    if inspect.isfunction(f)
+    and f.__module__ == _validate.__name__
+    and not name.startswith("_")
+    and name not in ("boundary", "fields_checked", "kernel_array", "refuse_turn")
+}
+VALIDATE_FILE = _validate.__file__
+
+TWICE = {
+    # A public function of another module checks again what the caller checked: these callers need the checked
+    # value themselves first, and the callee's unchecked core is not yet in a private core module (navlib/_earth.py).
+    "calibration.characterise": ["correlation_time", "dt", "rate_random_walk", "taus"],  # analysis' Allan functions
+    "io.read_xio": ["time"],  # timing.intervals of the record's time
+    "io.read_sensor_logger": ["time"],
+    "io.read_euroc": ["time"],
+    "io.read_phyphox": ["time"],
+    "geodesy.local_scales": ["('lat', 'lon')", "ellipsoid", "lon0"],  # the projection it differentiates is public
+    "papers.gauss_kruger_ekf.waypoint_path": ["T", "speed"],  # filters.planar_ekf
+    "papers.gauss_kruger_ekf.ekf": ["('lat', 'lon')", "axis", "deg", "ellipsoid", "name", "t", "width", "z", "zone"],
+    "papers.gauss_kruger_ekf.simulate_sensors": ["('lat', 'lon')", "deg", "ellipsoid", "width", "zone", "zone_prefix"],
+    "papers.gauss_kruger_ekf.ekf_error_ms": ["T"],
+    "papers.gauss_kruger_ekf.draw_zone_grid": ["deg", "width", "zone"],
+    "papers.north_finding.monte_carlo": ["f_b", "lat"],  # simulate_static_outputs, triad and heading_candidates
+    "papers.north_finding.stop_solutions": ["None", "f_b", "h", "lat"],
+    "papers.north_finding.ins_heading_change": ["dt", "lat", "w_ib_b"],  # strapdown.integrate_attitude
+    "papers.north_finding.draw_device": ["ax"],  # plots
+    "papers.north_finding.draw_candidate_pairs": ["ax"],
+    "papers.rotation_bias.rotate_attitude": ["deg"],
+    "papers.rotation_bias.dwell_attitudes": ["deg"],
+    "papers.rotation_bias.design": ["V", "deg"],
+    "papers.rotation_bias.draw_rotation_scheme": ["ax"],
+    "sensors.simulate_barometer": ["h", "p0"],  # atmosphere.isa_pressure
+    "filters.mahony.mahony": ["B_n", "kp"],
+    "filters.observations.magnetic_reference": ["B_n"],
+    "filters.quaternion_kf.quaternion_kf": ["B_n", "kp"],
+    "filters.planar_ekf.dead_reckoning": ["full_scale_gyro"],
+    "filters.planar_ekf.filter_grid": ["z"],
+    # A record checks its fields when built, also from arguments its builder checked.
+    "calibration.fit_accelerometer": ["g"],
+    "montecarlo.run": ["seed"],
+    "papers.north_finding.stop_and_go": ["speed"],
+    "papers.pedestrian_ins.carpark_legs": ["speed"],
+    "trajectory.from_profiles": ["time", "vel_n"],
+    "filters.presets.foot_mounted": ["baro", "heading", "zupt"],
+}
+"""Arguments still checked twice on one registry call, and why: this list may shrink, never grow."""
+
+
+def owner(frame) -> str:
+    """The public function (or record class) a check at ``frame`` is made for."""
+    while frame is not None:
+        code = frame.f_code
+        if code.co_filename == VALIDATE_FILE:
+            fn = frame.f_locals.get("fn") if code.co_name == "checked" else None  # @boundary: the function it wraps
+            if fn is not None:
+                return fn.__qualname__
+        elif "navlib" in code.co_filename:
+            top = code.co_qualname.split(".<locals>.")[0]
+            parts = top.split(".")
+            if parts[-1].startswith("__") and len(parts) > 1:  # a record's __post_init__ / __init__
+                return parts[-2]
+            if not parts[-1].startswith("_"):
+                return top
+        else:
+            return "<caller>"
+        frame = frame.f_back
+    return "<caller>"
+
+
+def checks_of(func, kwargs) -> dict[str, set[str]]:
+    """Argument name -> the public functions that check it, during ``func(**kwargs)``."""
+    seen: dict[str, set[str]] = defaultdict(set)
+
+    def hook(frame, event, arg):
+        if event != "call" or frame.f_code not in VALIDATORS or frame.f_back.f_code in VALIDATORS:
+            return
+        params = VALIDATORS[frame.f_code].parameters
+        name = frame.f_locals.get("name", frame.f_locals.get("names")) if ("name" in params or "names" in params) else None
+        seen[str(name)].add(owner(frame.f_back))
+
+    sys.setprofile(hook)
+    try:
+        func(**kwargs)
+    finally:
+        sys.setprofile(None)
+    return seen
+
+
+PUBLIC = fuzz_calls.public_callables()
+REGISTRY = fuzz_calls.table()
+
+
+def registry_call(key: str):
+    call = fuzz.with_defaults(PUBLIC[key], REGISTRY[key])
+    if call.before:
+        call.before()
+    return {k: v.make() if isinstance(v, fuzz_calls.Fresh) else v for k, v in call.kwargs.items()}
+
+
+CALLS = sorted(k for k, c in REGISTRY.items() if isinstance(c, fuzz_calls.Call) and not k.startswith(("repro.", "plots.")))
+
+
+@pytest.mark.filterwarnings("ignore::RuntimeWarning")  # as in tests/test_bad_input.py: the registry's tiny records
+@pytest.mark.parametrize("key", CALLS)
+def test_each_argument_is_checked_once(key):
+    func = PUBLIC[key]
+    func(**registry_call(key))  # a first call checks @boundary defaults once; the second is the one counted
+    twice = {name: sorted(owners) for name, owners in checks_of(func, registry_call(key)).items() if len(owners) > 1}
+    plt.close("all")
+    assert set(twice) <= set(TWICE.get(key, ())), f"{key}: arguments checked by more than one function: {twice}"
+
+
+def test_the_hook_sees_a_second_check():
+    """A public function that checks ``lat`` and passes it on to another one that checks it again is caught."""
+
+    def twice(lat):
+        return earth.gravity(_validate.latitude(lat, "lat"))
+
+    twice.__code__ = twice.__code__.replace(co_filename=str(ROOT / "navlib" / "x.py"), co_qualname="twice")
+    assert checks_of(twice, {"lat": np.float64(0.5)})["lat"] == {"twice", "gravity"}
