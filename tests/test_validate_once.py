@@ -58,14 +58,11 @@ TWICE = {
     "papers.north_finding.ins_heading_change": ["dt", "lat", "w_ib_b"],  # strapdown.integrate_attitude
     "papers.north_finding.draw_device": ["ax"],  # plots
     "papers.north_finding.draw_candidate_pairs": ["ax"],
-    "papers.rotation_bias.rotate_attitude": ["deg"],
-    "papers.rotation_bias.dwell_attitudes": ["deg"],
-    "papers.rotation_bias.design": ["V", "deg"],
+    "papers.rotation_bias.design": ["V"],
     "papers.rotation_bias.draw_rotation_scheme": ["ax"],
     "sensors.simulate_barometer": ["h", "p0"],  # atmosphere.isa_pressure
-    "filters.mahony.mahony": ["B_n", "kp"],
-    "filters.observations.magnetic_reference": ["B_n"],
-    "filters.quaternion_kf.quaternion_kf": ["B_n", "kp"],
+    "filters.mahony.mahony": ["kp"],
+    "filters.quaternion_kf.quaternion_kf": ["kp"],
     "filters.planar_ekf.dead_reckoning": ["full_scale_gyro"],
     "filters.planar_ekf.filter_grid": ["z"],
     # A record checks its fields when built, also from arguments its builder checked.

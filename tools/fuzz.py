@@ -398,7 +398,7 @@ BY_DESIGN: list[tuple[str, str, str, str, str]] = [
         "a non-finite accelerometer or magnetometer sample is skipped like a dropout (counted)",
     ),
     (
-        r"filters\.observations\.pack|robust\.screen",
+        r"filters\.observations\.(pack|screened)|robust\.screen",
         "m_b",
         r"nan|inf",
         "silent_nan",

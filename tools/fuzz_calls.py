@@ -32,6 +32,7 @@ from navlib import (
     imu,
     io,
     repro,
+    robust,
     sensors,
     strapdown,
     trajectory,
@@ -469,7 +470,11 @@ def table() -> dict:
                 Bad("imu", "array", imu=W),
                 Bad("gates", "mag_without_m_b", m_b=None, gates=observations.AttitudeGates(mag=observations.MagGate())),
                 Bad("B_n", "mag_gate_without_B_n", B_n=None, gates=observations.AttitudeGates(mag=observations.MagGate())),
+                Bad("m_b", "given_twice", imu=robust.screen(IMU, M)),
             ),
+        ),
+        "filters.observations.screened": Call(
+            dict(imu=IMU, m_b=M), bad=(Bad("m_b", "given_twice", imu=robust.screen(IMU, M)), Bad("imu", "array", imu=W))
         ),
         "filters.observations.MagGate": Call(
             dict(norm_tol=0.1, dip_tol=0.1),
@@ -506,6 +511,7 @@ def table() -> dict:
         ),
         "filters.observations.attitude_result": Skip("assembles kernel outputs (validated by pack)"),
         "filters.observations.run_trials": Skip("runs a compiled kernel on validated inputs"),
+        "filters.observations.unit_vectors": Skip("reads the kernel record built by pack from validated values"),
         "filters.planar_ekf.motion_model": Call(
             dict(X=np.array([1.0, 2.0, 0.5, 1.0, 0.1]), T=0.5), bad=(Bad("X", "shape", X=np.zeros(4)),)
         ),
@@ -556,7 +562,13 @@ def table() -> dict:
         "filters.planar_ekf.EkfResult": Skip("a result record, built by filter_grid"),
         "filters.planar_ekf.covariance": Call(dict(M=np.eye(5), name="M"), bad=(Bad("P0", "not_psd", M=-np.eye(5), name="P0"),)),
         "filters.quaternion_kf.quaternion_kf": Call(
-            dict(imu=IMU, q0=Q, m_b=M, B_n=B_N), bad=(Bad("B_n", "missing", B_n=None), Bad("noise", "float", noise=1e-3))
+            dict(imu=IMU, q0=Q, m_b=M, B_n=B_N),
+            bad=(
+                Bad("B_n", "missing", B_n=None),
+                Bad("noise", "float", noise=1e-3),
+                Bad("B_n", "missing_with_screened", imu=robust.screen(IMU, M), m_b=None, B_n=None),
+                Bad("m_b", "given_twice", imu=robust.screen(IMU, M)),
+            ),
         ),
         "filters.quaternion_kf.KfNoise": Call(
             dict(sigma_gyro=1e-3, sigma_accel=0.02, sigma_mag=0.08, p0=1e-4),

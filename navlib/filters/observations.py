@@ -45,7 +45,7 @@ from typing import Any, NamedTuple
 import numpy as np
 from numba import njit
 
-from .. import attitude, earth
+from .. import _earth, attitude
 from .._kernels import dcm_heading, euler_to_quat, level, tilt_heading, wrap_pi
 from .._threads import run_chunks
 from .._typing import Array, ArrayLike, Quat, Vec3
@@ -208,7 +208,7 @@ def magnetic_reference(B_n: Vec3) -> tuple[Array, float, float, float]:
     B = as_array(B_n, "B_n", shape=(3,))
     if np.linalg.norm(B) == 0:
         raise ValueError(f"B_n: expected a non-zero field vector, got {B.tolist()}")
-    D, I, F = earth.field_angles(B, deg=False)
+    D, I, F = _earth.field_angles(B)
     return np.array([0.0, np.cos(I), -np.sin(I)]), float(D), float(I), float(F)
 
 
@@ -674,8 +674,7 @@ def screened(imu: ImuSamples | Screened, m_b: ArrayLike | None = None) -> Screen
                 "give m_b to robust.screen only, not again to the filter"
             )
         return imu
-    instance(imu, "imu", ImuSamples, "ImuSamples, or the result of navlib.robust.screen")
-    return screen(imu, m_b)
+    return screen(imu, m_b)  # which checks that imu is an ImuSamples
 
 
 @boundary

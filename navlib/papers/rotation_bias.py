@@ -98,7 +98,7 @@ from typing import TYPE_CHECKING, Annotated, Any
 import numpy as np
 from numba import njit
 
-from .. import _kernels, attitude, earth, kalman, robust
+from .. import _attitude, _kernels, attitude, earth, kalman, robust
 from .._kernels import wrap_pi
 from .._typing import Angles, Array, ArrayLike, Dcm, Interval, Times, Vec3, Vec3Series
 from .._validate import (
@@ -320,7 +320,7 @@ def rotate_attitude(hpr: Angles, axis_b: Vec3, angle: Angles) -> Array:
     >>> np.round(np.rad2deg(rb.rotate_attitude([0.0, 0.0, 0.0], [0.0, 1.0, 0.0], np.pi / 2)), 6) + 0.0   # a quarter turn: roll 90
     array([ 0.,  0., 90.])
     """
-    return attitude.dcm_to_euler(attitude.euler_to_dcm(hpr) @ rodrigues(axis_b, angle))
+    return _attitude.dcm_to_euler(attitude.euler_to_dcm(hpr) @ rodrigues(axis_b, angle))  # a rotation matrix
 
 
 @boundary
