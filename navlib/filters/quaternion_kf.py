@@ -338,7 +338,7 @@ def _kernel(t0, t1, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
         _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
     # Arrays are taken out of the records once, before the loop (see the note on reference counts above).
     w, dts, jump, fresh, b_ref, sigmas = inp.w, inp.dts, inp.jump, inp.fresh, model.b_ref, model.sigmas
@@ -353,17 +353,18 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
     Phi, G, z, h, H = np.empty((4, 4)), np.empty((4, 3)), np.empty(6), np.empty(6), np.empty((6, 4))
     x_pred = np.empty(4)
     rtk = np.array([0.0, 1.0, 0.0, np.inf, 0.0, 0.0])
-    health = np.array([0.0, np.inf])
+    held, since, checking = 0.0, np.inf, False  # learning's state; relock's check under way (its state: check)
     check = np.zeros(10)
     ix = iy = iz = 0.0
     for k in range(N):
         dt, gx, gy, gz = dts[k], w[t, k, 0], w[t, k, 1], w[t, k, 2]
         if jump[k]:  # clock jump: one typical interval, then check
-            dt = jump_step(inp, check, rtk, health)
+            dt, since, checking = jump_step(inp, check, rtk), 0.0, True
         ax, ay, az, mx, my, mz, C = observe(f, m, skip, gated, limits, t, k, x[0], x[1], x[2], x[3])  # unit vectors, gated
         hx, hy, hz = rtk_north(inp, t, k, C, dt, rtk, counts) if inp.use_rtk else (mx, my, mz)
         ex, ey, ez = pi_error(C, ax, ay, az, hx, hy, hz)  # PI-corrected rate, Eq. (15)
-        if learning(fresh[t, k], dt, health, inp):  # Eq. (15), unless settling after a fault
+        learn, held, since = learning(fresh[t, k], dt, held, since, inp.long_hold, inp.settle)
+        if learn:  # Eq. (15), unless settling after a fault
             ix += ex * dt
             iy += ey * dt
             iz += ez * dt
@@ -379,8 +380,11 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
         _update(x, P, z, h, H, r_diag, x_pred)
         s = np.sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2] + x[3] * x[3])
         x[0], x[1], x[2], x[3] = x[0] / s, x[1] / s, x[2] / s, x[3] / s
-        if check[0]:  # after a clock jump: re-initialised only if the state is lost
-            x[0], x[1], x[2], x[3], lost = relock(inp, t, k, x[0], x[1], x[2], x[3], (ax, ay, az, mx, my, mz), check, rtk, health)
+        if checking:  # after a clock jump: re-initialised only if the state is lost
+            x[0], x[1], x[2], x[3], lost, since = relock(
+                inp, t, k, x[0], x[1], x[2], x[3], (ax, ay, az, mx, my, mz), check, rtk, since
+            )
+            checking = check[0] != 0.0
             if lost:  # covariance back to p0 I
                 _copy4(P, model.p0 * np.eye(4))
         _output(t, k, x, P, q_out, P_hist, keep)
