@@ -297,38 +297,36 @@ def _row_times(A, B, i):
     )
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _update(x, P, z, h, H, r_diag, x_pred):
     """Eq. (20)'s update of ``x``, ``P`` in place with the finite rows of ``z`` (R diagonal, ``r_diag``), one scalar
     row at a time (sequential Kalman filtering: Simon 2006, Sec. 6.1; Brown and Hwang 2012). Row i's innovation is
-    ``z_i - h_i - H_i (x - x_pred)``, at the state the rows before it left, linearised at the predicted state
-    ``x_pred`` like the batch update, of which the sequence is an exact rewriting; no matrix is inverted."""
+    ``y = z_i - h_i - H_i (x - x_pred)``, at the state the rows before it left, linearised at the predicted state
+    ``x_pred`` like the batch update, of which the sequence is an exact rewriting; no matrix is inverted.
+
+    Each row ``H_i`` updates ``x += K y`` and ``P`` in Joseph form ``P = (I - K H_i) P (I - K H_i)^T + K r K^T``, which
+    for one row expands to ``P - K u^T - u K^T + s K K^T`` (``u = P H_i^T``, ``s = H_i u + r``; for any gain, and
+    symmetric exactly), with ``K = u / s``. (One function: a call per row cost more than the row's arithmetic.)"""
     x_pred[0], x_pred[1], x_pred[2], x_pred[3] = x[0], x[1], x[2], x[3]
     for i in range(6):
-        if np.isfinite(z[i]):  # NaN: a skipped row
-            _row_update(x, P, z[i] - h[i], H[i, 0], H[i, 1], H[i, 2], H[i, 3], r_diag[i], x_pred)
-
-
-@njit(cache=True)
-def _row_update(x, P, y, h0, h1, h2, h3, r, x_pred):
-    """One scalar update with the row ``H_i = [h0, h1, h2, h3]``: ``x += K y'``, with the innovation
-    ``y' = y - H_i (x - x_pred)`` (:func:`_update`), and the Joseph form
-    ``P = (I - K H_i) P (I - K H_i)^T + K r K^T``, which for one row expands to ``P - K u^T - u K^T + s K K^T``
-    (``u = P H_i^T``, ``s = H_i u + r``; for any gain, and symmetric exactly), with ``K = u / s``."""
-    y -= h0 * (x[0] - x_pred[0]) + h1 * (x[1] - x_pred[1]) + h2 * (x[2] - x_pred[2]) + h3 * (x[3] - x_pred[3])
-    u = (
-        P[0, 0] * h0 + P[0, 1] * h1 + P[0, 2] * h2 + P[0, 3] * h3,
-        P[1, 0] * h0 + P[1, 1] * h1 + P[1, 2] * h2 + P[1, 3] * h3,
-        P[2, 0] * h0 + P[2, 1] * h1 + P[2, 2] * h2 + P[2, 3] * h3,
-        P[3, 0] * h0 + P[3, 1] * h1 + P[3, 2] * h2 + P[3, 3] * h3,
-    )
-    s = r + (h0 * u[0] + h1 * u[1] + h2 * u[2] + h3 * u[3])
-    inv_s = 1.0 / s
-    K = (u[0] * inv_s, u[1] * inv_s, u[2] * inv_s, u[3] * inv_s)
-    for j in range(4):
-        x[j] += K[j] * y
-        for m in range(j + 1):
-            P[j, m] = P[m, j] = P[j, m] - (K[j] * u[m] + u[j] * K[m]) + s * K[j] * K[m]
+        if not np.isfinite(z[i]):  # NaN: a skipped row
+            continue
+        h0, h1, h2, h3 = H[i, 0], H[i, 1], H[i, 2], H[i, 3]
+        y = z[i] - h[i]
+        y -= h0 * (x[0] - x_pred[0]) + h1 * (x[1] - x_pred[1]) + h2 * (x[2] - x_pred[2]) + h3 * (x[3] - x_pred[3])
+        u = (
+            P[0, 0] * h0 + P[0, 1] * h1 + P[0, 2] * h2 + P[0, 3] * h3,
+            P[1, 0] * h0 + P[1, 1] * h1 + P[1, 2] * h2 + P[1, 3] * h3,
+            P[2, 0] * h0 + P[2, 1] * h1 + P[2, 2] * h2 + P[2, 3] * h3,
+            P[3, 0] * h0 + P[3, 1] * h1 + P[3, 2] * h2 + P[3, 3] * h3,
+        )
+        s = r_diag[i] + (h0 * u[0] + h1 * u[1] + h2 * u[2] + h3 * u[3])
+        inv_s = 1.0 / s
+        K = (u[0] * inv_s, u[1] * inv_s, u[2] * inv_s, u[3] * inv_s)
+        for j in range(4):
+            x[j] += K[j] * y
+            for m in range(j + 1):
+                P[j, m] = P[m, j] = P[j, m] - (K[j] * u[m] + u[j] * K[m]) + s * K[j] * K[m]
 
 
 @njit(cache=True, nogil=True)
