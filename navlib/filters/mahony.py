@@ -37,6 +37,7 @@ from .observations import (
     AttitudeResult,
     RtkHeading,
     attitude_result,
+    dcm_elements,
     integral_gain,
     jump_step,
     learning,
@@ -71,7 +72,16 @@ def _trial(t, inp, kp, ki, q_out, bias_out, counts):
         dt, gx, gy, gz = dts[k], w[t, k, 0], w[t, k, 1], w[t, k, 2]
         if jump[k]:  # clock jump: one typical interval, then check
             dt, since, checking = jump_step(inp, check, rtk), 0.0, True
-        ax, ay, az, mx, my, mz, C = observe(f, m, skip, gated, limits, t, k, q0, q1, q2, q3)  # unit vectors, gated
+        sm = skip[1, t, k]
+        mx, my, mz = (m[t, k, 0], m[t, k, 1], m[t, k, 2]) if not sm else (0.0, 0.0, 0.0)  # (none where skipped)
+        ax, ay, az, mx, my, mz, gate_a, gate_m = observe(
+            f[t, k, 0], f[t, k, 1], f[t, k, 2], mx, my, mz, skip[0, t, k], sm, limits
+        )
+        if gate_a:  # unit vectors above, NaN where skipped; record the gates' drops
+            gated[gate_a - 1, t, k] = True
+        if gate_m:
+            gated[gate_m + 1, t, k] = True
+        C = dcm_elements(q0, q1, q2, q3)
         hx, hy, hz = rtk_north(inp, t, k, C, dt, rtk, counts) if inp.use_rtk else (mx, my, mz)
         ex, ey, ez = pi_error(C, ax, ay, az, hx, hy, hz)  # Eqs. (12)-(14)
         learn, held, since = learning(fresh[t, k], dt, held, since, long_hold, settle)

@@ -221,8 +221,8 @@ def magnetic_reference(B_n: Vec3) -> tuple[Array, float, float, float]:
 
 
 @njit(cache=True, inline="always")
-def _dcm_t(q0, q1, q2, q3):
-    """The nine elements of C_b^n, row by row."""
+def dcm_elements(q0, q1, q2, q3):
+    """The nine elements of C_b^n(q), row by row (a tuple: the kernels' per-sample form)."""
     return (
         q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3,
         2 * (q1 * q2 - q0 * q3),
@@ -289,45 +289,43 @@ def rtk_gate(h, predicted, gate, confirm, state):
 
 
 @njit(cache=True, inline="always")
-def observe(f, m, skip, gated, limits, t, k, q0, q1, q2, q3):
-    """Unit accelerometer and magnetometer vectors of sample k of trial t (NaN where skipped or absent) and C_b^n(q)
-    as nine elements: (ax, ay, az, mx, my, mz, C).
+def observe(fx, fy, fz, mx, my, mz, skip_a, skip_m, limits):
+    """Unit accelerometer and magnetometer vectors of one sample (NaN where skipped or absent) and why each was
+    dropped: ``(ax, ay, az, mx, my, mz, gate_a, gate_m)``, a gate code 0 (used), 1 (unusable) or 2 (outside its gate).
 
-    ``f``, ``m``, ``skip``, ``gated``: those of :class:`AttitudeInputs`; ``limits``: its ``limits`` as a tuple. A sample
-    the screen kept is normalised and tested here, and flagged in ``gated`` if it is unusable (zero or not finite; a
-    field parallel to gravity) or outside the gates: the norm's, and the magnetometer's dip angle against the
-    accelerometer's up direction when that is used. A used sample passes one range test per norm (the limits hold
-    the finiteness test, :func:`pack`) and the dip's tests; only a sample that fails one is examined for its flag.
+    ``f``, ``m``: the sample as measured (``m`` any value where ``skip_m``); ``skip_a``, ``skip_m``: the screen's skips
+    (:attr:`AttitudeInputs.skip`); ``limits``: :attr:`AttitudeInputs.limits`. A sample the screen kept is normalised
+    and tested here: unusable (zero or not finite; a field parallel to gravity) or outside the gates (the norm's, and
+    the magnetometer's dip angle against the accelerometer's up direction when that is used). The caller flags a
+    dropped sample in :attr:`AttitudeInputs.gated` (``gated[gate_a - 1]``, ``gated[gate_m + 1]``). A used sample passes
+    one range test per norm (the limits hold the finiteness test, :func:`pack`) and the dip's tests; only a sample that
+    fails one is examined for its code. Scalars in, scalars out: a kernel that inlines it counts no array references.
     """
-    fx, fy, fz = f[t, k, 0], f[t, k, 1], f[t, k, 2]
     n2 = fx * fx + fy * fy + fz * fz
     s = 1.0 / np.sqrt(n2)  # (used only where n2 is finite and positive)
     ax, ay, az = fx * s, fy * s, fz * s
-    used_a = not skip[0, t, k]
+    used_a, gate_a = not skip_a, 0
     if used_a and not limits[0] <= n2 <= limits[1]:
-        gated[0 if not 0.0 < n2 < np.inf else 1, t, k] = True
-        used_a = False
+        used_a, gate_a = False, 1 if not 0.0 < n2 < np.inf else 2
     if not used_a:
         ax = ay = az = np.nan
-    mx = my = mz = np.nan
-    if not skip[1, t, k]:
-        mx, my, mz = m[t, k, 0], m[t, k, 1], m[t, k, 2]
+    gate_m = 0
+    if skip_m:
+        mx = my = mz = np.nan
+    else:
         n2 = mx * mx + my * my + mz * mz
         s = 1.0 / np.sqrt(n2)
         mx, my, mz = mx * s, my * s, mz * s
         sin_dip = -(ax * mx + ay * my + az * mz)  # (NaN without the accelerometer: no dip test)
-        if (
-            not limits[2] <= n2 <= limits[3]
-            or used_a
-            and not (limits[4] <= sin_dip <= limits[5] and 1.0 - sin_dip * sin_dip >= 1e-12)
-        ):
-            gated[1 + _mag_code(n2, sin_dip, used_a, limits), t, k] = True
+        dip_ok = limits[4] <= sin_dip <= limits[5] and 1.0 - sin_dip * sin_dip >= 1e-12
+        if not limits[2] <= n2 <= limits[3] or used_a and not dip_ok:
+            gate_m = _mag_code(n2, sin_dip, used_a)
             mx = my = mz = np.nan
-    return ax, ay, az, mx, my, mz, _dcm_t(q0, q1, q2, q3)
+    return ax, ay, az, mx, my, mz, gate_a, gate_m
 
 
 @njit(cache=True)
-def _mag_code(n2, sin_dip, used_a, limits):
+def _mag_code(n2, sin_dip, used_a):
     """Why :func:`observe` drops a magnetometer sample of squared norm ``n2``: 1 unusable (zero or not finite, or
     parallel to gravity), 2 outside the gate (the dip's or the norm's)."""
     if not 0.0 < n2 < np.inf:
@@ -426,7 +424,7 @@ def relock(inp, t, k, q0, q1, q2, q3, u, state, rtk, since):
         return q0, q1, q2, q3, False, since
     state[0] = 0.0  # one verdict per jump
     pitch, roll = level(state[2], state[3], state[4])
-    C = _dcm_t(q0, q1, q2, q3)
+    C = dcm_elements(q0, q1, q2, q3)
     h_est = dcm_heading(C[1], C[4])
     n = np.sqrt(state[2] * state[2] + state[3] * state[3] + state[4] * state[4])
     cos_tilt = (state[2] * C[6] + state[3] * C[7] + state[4] * C[8]) / n  # measured vs estimated up, body frame
@@ -804,9 +802,16 @@ def unit_vectors(inputs: AttitudeInputs) -> np.ndarray:
 def _unit_vectors(t0, t1, f, m, skip, gated, limits, z):
     for t in range(t0, t1):
         for k in range(f.shape[1]):
-            z[t, k, 0], z[t, k, 1], z[t, k, 2], z[t, k, 3], z[t, k, 4], z[t, k, 5], _ = observe(
-                f, m, skip, gated, limits, t, k, 1.0, 0.0, 0.0, 0.0
+            sm = skip[1, t, k]
+            mx, my, mz = (m[t, k, 0], m[t, k, 1], m[t, k, 2]) if not sm else (0.0, 0.0, 0.0)  # (none where skipped)
+            ax, ay, az, mx, my, mz, gate_a, gate_m = observe(
+                f[t, k, 0], f[t, k, 1], f[t, k, 2], mx, my, mz, skip[0, t, k], sm, limits
             )
+            if gate_a:
+                gated[gate_a - 1, t, k] = True
+            if gate_m:
+                gated[gate_m + 1, t, k] = True
+            z[t, k, 0], z[t, k, 1], z[t, k, 2], z[t, k, 3], z[t, k, 4], z[t, k, 5] = ax, ay, az, mx, my, mz
 
 
 def run_trials(kernel: Callable[..., None], n_trials: int, *args: Any) -> None:
