@@ -288,7 +288,7 @@ def rtk_gate(h, predicted, gate, confirm, state):
     return 2 if state[0] >= confirm else 1
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", error_model="numpy")  # (1 / 0 is inf: never used)
 def observe(fx, fy, fz, mx, my, mz, skip_a, skip_m, limits):
     """Unit accelerometer and magnetometer vectors of one sample (NaN where skipped or absent) and why each was
     dropped: ``(ax, ay, az, mx, my, mz, gate_a, gate_m)``, a gate code 0 (used), 1 (unusable) or 2 (outside its gate).
