@@ -562,7 +562,6 @@ def screen(imu: Is[ImuSamples], m_b: Vec3Series | None = None) -> Screened:
     lim, w, f, dts = imu.limits, imu.w_ib_b, imu.f_b, imu.dt
     lead, n = w.shape[:-2], w.shape[-2]
     T = math.prod(lead)
-    m_given = m_b
     if m_b is not None:  # of the right shape, its magnitudes are checked in the scan (as_array's, in parallel)
         m_b = real(m_b, "m_b")
         if m_b.shape != w.shape:
@@ -587,7 +586,7 @@ def screen(imu: Is[ImuSamples], m_b: Vec3Series | None = None) -> Screened:
     turn, huge_m = np.zeros(T), np.zeros(T, dtype=bool)
     run_chunks(lambda t0, t1: _scan(t0, t1, wf, ff, mf, dts, tests, flags, turn, stuck_axes, huge_m), T)
     if huge_m.any():
-        as_array(m_given, "m_b", tail=(3,), finite=False)  # raises naming the fault
+        as_array(m_b, "m_b", tail=(3,), finite=False)  # raises naming the fault
     refuse_turn(float(turn.max()))  # (clock jumps are not integrated)
     _freefall_runs(flags[6], dts, lim.freefall_time)
     flags[6] &= ~flags[5]  # a spike is a spike, not free fall
