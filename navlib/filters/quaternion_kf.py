@@ -257,6 +257,14 @@ def _output(t, k, x, P, q_out, P_hist, keep):
 
 
 @njit(cache=True)
+def _reset_cov(P, p0):
+    """``P = p0 I`` (4 x 4) in place."""
+    for i in range(4):
+        for j in range(4):
+            P[i, j] = p0 if i == j else 0.0
+
+
+@njit(cache=True)
 def _copy4(dst, src):
     """``dst[:4, :4] = src[:4, :4]`` element by element (an array assignment compiles numba's shape-mismatch
     messages, seconds of a cold start)."""
@@ -277,7 +285,12 @@ def _copy4(dst, src):
 def _predict(x, P, Phi, G, q_gyro):
     """Eqs. (16)-(18) in place: ``x = Phi x``, ``P = Phi P Phi^T + Gamma Q Gamma^T`` (``Q = q_gyro I``; each
     element computed once and mirrored: symmetric exactly)."""
-    A = (_row_times(Phi, P, 0), _row_times(Phi, P, 1), _row_times(Phi, P, 2), _row_times(Phi, P, 3))  # Phi P
+    A = (  # Phi P, row by row
+        _row_times(Phi[0, 0], Phi[0, 1], Phi[0, 2], Phi[0, 3], P),
+        _row_times(Phi[1, 0], Phi[1, 1], Phi[1, 2], Phi[1, 3], P),
+        _row_times(Phi[2, 0], Phi[2, 1], Phi[2, 2], Phi[2, 3], P),
+        _row_times(Phi[3, 0], Phi[3, 1], Phi[3, 2], Phi[3, 3], P),
+    )
     x0, x1, x2, x3 = x[0], x[1], x[2], x[3]
     for i in range(4):
         x[i] = Phi[i, 0] * x0 + Phi[i, 1] * x1 + Phi[i, 2] * x2 + Phi[i, 3] * x3
@@ -288,13 +301,14 @@ def _predict(x, P, Phi, G, q_gyro):
 
 
 @njit(cache=True)
-def _row_times(A, B, i):
-    """Row i of ``A @ B`` (4 x 4), as a tuple."""
+def _row_times(a0, a1, a2, a3, B):
+    """The row ``[a0, a1, a2, a3] @ B`` (B 4 x 4), as a tuple. (Scalars, not a row index: an index given as a
+    constant would compile one specialisation per row.)"""
     return (
-        A[i, 0] * B[0, 0] + A[i, 1] * B[1, 0] + A[i, 2] * B[2, 0] + A[i, 3] * B[3, 0],
-        A[i, 0] * B[0, 1] + A[i, 1] * B[1, 1] + A[i, 2] * B[2, 1] + A[i, 3] * B[3, 1],
-        A[i, 0] * B[0, 2] + A[i, 1] * B[1, 2] + A[i, 2] * B[2, 2] + A[i, 3] * B[3, 2],
-        A[i, 0] * B[0, 3] + A[i, 1] * B[1, 3] + A[i, 2] * B[2, 3] + A[i, 3] * B[3, 3],
+        a0 * B[0, 0] + a1 * B[1, 0] + a2 * B[2, 0] + a3 * B[3, 0],
+        a0 * B[0, 1] + a1 * B[1, 1] + a2 * B[2, 1] + a3 * B[3, 1],
+        a0 * B[0, 2] + a1 * B[1, 2] + a2 * B[2, 2] + a3 * B[3, 2],
+        a0 * B[0, 3] + a1 * B[1, 3] + a2 * B[2, 3] + a3 * B[3, 3],
     )
 
 
@@ -347,7 +361,8 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
     sg, sa, sm = sigmas[0], sigmas[1], sigmas[2]
     by, bz = b_ref[1], b_ref[2]
     x = inp.q_init[t].copy()
-    P = model.p0 * np.eye(4)
+    P = np.empty((4, 4))
+    _reset_cov(P, model.p0)
     r_diag = np.array([sa * sa, sa * sa, sa * sa, sm * sm, sm * sm, sm * sm])
     Phi, G, z, h, H = np.empty((4, 4)), np.empty((4, 3)), np.empty(6), np.empty(6), np.empty((6, 4))
     x_pred = np.empty(4)
@@ -394,7 +409,7 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
             )
             checking = check[0] != 0.0
             if lost:  # covariance back to p0 I
-                _copy4(P, model.p0 * np.eye(4))
+                _reset_cov(P, model.p0)
         _output(t, k, x, P, q_out, P_hist, keep)
     bias_out[t, 0], bias_out[t, 1], bias_out[t, 2] = -ki * ix, -ki * iy, -ki * iz
     _copy4(P_out[t], P)
