@@ -589,11 +589,10 @@ def screen(imu: Is[ImuSamples], m_b: Vec3Series | None = None) -> Screened:
         as_array(m_b, "m_b", tail=(3,), finite=False)  # raises naming the fault
     refuse_turn(float(turn.max()))  # (clock jumps are not integrated)
     _freefall_runs(flags[6], dts, lim.freefall_time)
-    flags[6] &= ~flags[5]  # a spike is a spike, not free fall
     held, fresh = np.empty_like(wf), np.empty((T, n), dtype=bool)
     run_chunks(lambda t0, t1: _gyro_hold(t0, t1, wf, flags, stuck_axes, lim.gyro_jump or 0.0, held, fresh), T)
     counts = np.zeros((len(_KEYS), T), dtype=np.int64)
-    run_chunks(lambda t0, t1: count_flags(t0, t1, flags, counts), T)  # (a numpy count over a batch is serial)
+    run_chunks(lambda t0, t1: _spikes_and_counts(t0, t1, flags, counts), T)  # (numpy would do it serially)
     keys = _KEYS if m_b is not None else [key for key in _KEYS if key[0] != "mag"]
     found = {key: flags[_KEYS.index(key)].reshape(lead + (n,)) for key in keys}
     counted = {key: counts[_KEYS.index(key)].reshape(lead) for key in keys}
@@ -615,6 +614,17 @@ _KEYS = [
     ("clock", "jump"),
 ]
 """What :func:`screen` flags, in the order of its flag array."""
+
+
+@njit(cache=True, nogil=True)
+def _spikes_and_counts(t0, t1, flags, counts):
+    """Trials t0 to t1 - 1 of ``flags`` (:data:`_KEYS`): an accelerometer spike is a spike, not free fall; then
+    ``counts`` of every flag (:func:`navlib._kernels.count_flags`)."""
+    for t in range(t0, t1):
+        for k in range(flags.shape[2]):
+            if flags[5, t, k]:
+                flags[6, t, k] = False
+    count_flags(t0, t1, flags, counts)
 
 
 def _freefall_runs(low: np.ndarray, dts: np.ndarray, min_time: float) -> None:

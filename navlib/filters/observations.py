@@ -730,9 +730,9 @@ def pack(
     limits[0:4] = np.clip(limits[0:4], _TINY, _HUGE)  # a norm within them is also finite and non-zero (observe)
     flags = s.faults.flags
     skip = np.empty((2, T, N), dtype=bool)  # the screen's skips
-    np.logical_or(flags["accel", "saturated"], flags["accel", "freefall"], out=skip[0].reshape(lead + (N,)))
-    np.logical_or(skip[0], flags["accel", "spike"].reshape(T, N), out=skip[0])
-    skip[1] = flags["mag", "saturated"].reshape(T, N) if use_mag else True
+    sat, free, spike = (kernel_array(flags["accel", kind].reshape(T, N)) for kind in ("saturated", "freefall", "spike"))
+    mag = kernel_array(flags["mag", "saturated"].reshape(T, N)) if use_mag else np.ones((1, 1), dtype=bool)
+    run_chunks(lambda t0, t1: _skips(t0, t1, sat, free, spike, mag, skip), T)
     jump = kernel_array(flags["clock", "jump"].reshape(-1, N)[0])
     if rtk is not None:
         hdg, ok = rtk.at(lead + (N,), "imu's samples")
@@ -764,6 +764,17 @@ def pack(
         SETTLE_TIME_CONSTANTS / kp if kp > 0 else 0.0,
     )
     return lead, inputs, s.faults
+
+
+@njit(cache=True, nogil=True)
+def _skips(t0, t1, saturated, freefall, spike, mag_saturated, skip):
+    """Trials t0 to t1 - 1 of ``skip`` (2, T, N): the accelerometer samples the screen skips (saturated, free fall,
+    spike: (T, N) each) and the magnetometer's (saturated (T, N), or (1, 1) without a magnetometer: all)."""
+    use_mag = mag_saturated.shape[1] == skip.shape[2]
+    for t in range(t0, t1):
+        for k in range(skip.shape[2]):
+            skip[0, t, k] = saturated[t, k] or freefall[t, k] or spike[t, k]
+            skip[1, t, k] = mag_saturated[t, k] if use_mag else True
 
 
 def _still(w: np.ndarray, f: np.ndarray, g: float) -> np.ndarray:
