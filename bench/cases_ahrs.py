@@ -153,9 +153,8 @@ def mahony_single(quick: bool):
     runs = [tuple(best_times(*fns)) for _ in range(REPEATS)]
     (t, t_bound, t_screen, t_user), spread = _median_run(runs, lambda r: r[1] / r[0], ".1%")
     _, user_spread = _median_run(runs, lambda r: r[1] / r[3], ".1%")
-    peers = _ahrs_rows(case, w, f, m, q0, n, 2_000 if quick else 10_000)
     m_peer = 2_000 if quick else 10_000
-    peers += _fusion_row(case, best_times(_fusion_loop(w, f, m, m_peer))[0], n, m_peer)
+    peers = _ahrs_rows(case, w, f, m, q0, n, m_peer) + _fusion_row(case, best_times(_fusion_loop(w, f, m, m_peer))[0], n, m_peer)
     return [
         Result(
             case,
