@@ -236,7 +236,7 @@ def dcm_elements(q0, q1, q2, q3):
     )
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _rtk_north(C31, C32, C33, sh, ch):
     """Mode (a) of Fig. 4: RTK heading as body-frame north ``C_nb(H_rtk, pitch_est, roll_est) [0, 1, 0]``."""
     cp = np.sqrt(C31 * C31 + C33 * C33)
@@ -267,7 +267,7 @@ def pi_error(C, ax, ay, az, mx, my, mz):
     return ex, ey, ez
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def rtk_gate(h, predicted, gate, confirm, state):
     """Gate one RTK epoch against the predicted heading: 0 use, 1 reject, 2 use (re-acquired).
 
@@ -324,7 +324,7 @@ def observe(fx, fy, fz, mx, my, mz, skip_a, skip_m, limits):
     return ax, ay, az, mx, my, mz, gate_a, gate_m
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _mag_code(n2, sin_dip, used_a):
     """Why :func:`observe` drops a magnetometer sample of squared norm ``n2``: 1 unusable (zero or not finite, or
     parallel to gravity), 2 outside the gate (the dip's or the norm's)."""
@@ -335,7 +335,7 @@ def _mag_code(n2, sin_dip, used_a):
     return 2
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def rtk_north(inp, t, k, C, dt, rtk, counts):
     """Mode (a) of Fig. 4: the RTK heading as a north pseudo-vector in the body frame (NaN without a used epoch
     within ``inp.rtk_par[0]`` s), at the attitude whose C_b^n elements are ``C``.
@@ -445,7 +445,7 @@ def relock(inp, t, k, q0, q1, q2, q3, u, state, rtk, since):
     return r0, r1, r2, r3, True, 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def start_relock(state):
     """(Re)start the quasi-static window of :func:`relock`: checking, nothing collected."""
     state[0] = 1.0
@@ -454,7 +454,7 @@ def start_relock(state):
     state[9] = np.nan
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def jump_step(inp, state, rtk):
     """At a clock jump: the interval integrated (one typical interval: the samples of a stamp glitch are contiguous,
     and over a real gap nothing is known), the check of :func:`relock` started and the last RTK epoch stale. (The
