@@ -60,23 +60,31 @@ def _fusion_loop(w, f, m, m_peer: int):
     return fusion_loop
 
 
-def _with_peers(case: str, navlib_run, w, f, m, q0, n: int, m_peer: int, bound=None) -> tuple[float, float | None, list[Result]]:
-    """navlib's best time and that of ``bound`` (None: not timed), alternating with imufusion's (see best_times),
-    and the peers' rows."""
-    t, t_bound, t_fusion = best_times(navlib_run, bound, _fusion_loop(w, f, m, m_peer))
-    rows = _ahrs_rows(case, w, f, m, q0, n, m_peer)
-    if t_fusion is not None:
-        rows.append(
-            Result(
-                case,
-                "imufusion (C, per-sample calls)",
-                m_peer / t_fusion,
-                "samples/s",
-                t_fusion * n / m_peer,
-                note=f"timed on {m_peer} samples",
-            )
+def _fusion_row(case: str, t_fusion: float | None, n: int, m_peer: int) -> list[Result]:
+    if t_fusion is None:
+        return []
+    return [
+        Result(
+            case,
+            "imufusion (C, per-sample calls)",
+            m_peer / t_fusion,
+            "samples/s",
+            t_fusion * n / m_peer,
+            note=f"timed on {m_peer} samples",
         )
-    return t, t_bound, rows
+    ]
+
+
+REPEATS = 3
+"""Each figure of these cases is measured this many times (each a best of rounds, :func:`bench.run.best_times`);
+the rows show the median run and the spread (lowest to highest) of the figure over the runs."""
+
+
+def _median_run(runs: list[tuple[float, ...]], figure, fmt: str = ".2f") -> tuple[tuple[float, ...], str]:
+    """The run whose ``figure(run)`` is the median of ``runs``, and the spread of the figure as text (format ``fmt``)."""
+    values = sorted((figure(r), i) for i, r in enumerate(runs))
+    lo, hi = values[0][0], values[-1][0]
+    return runs[values[len(values) // 2][1]], f"{len(runs)} runs: {lo:{fmt}} to {hi:{fmt}}"
 
 
 @njit(cache=True)
@@ -115,12 +123,18 @@ def _mahony_bound(w, f, m, q_init, dt, kp, ki, q_out):
 
 
 BOUND_SHARE = 0.8  # issue 38: one filter at >= 80 % of the latency bound
+BOUND_HOW = (
+    "latency bound: bench's _mahony_bound, Mahony's MARG update alone on clean samples (normalise a and m, error "
+    "Eqs. 12-14, PI rate, first-order update, normalise, store: the dependent chain of one filter), same data, timed "
+    "alternately with the filter (best of 5 rounds each)"
+)
 
 
 def mahony_single(quick: bool):
     """One Mahony MARG filter over 1 h at 100 Hz against the latency bound (:func:`_mahony_bound`, same data, timed
     alternately). The goal row is the filter on screened samples (``robust.screen`` once, outside the timed call:
-    screen once, filter many); the screen alone and the filter as a user calls it (screen + filter) have their rows."""
+    screen once, filter many); the screen alone and the filter as a user calls it (screen + filter) have their rows.
+    Measured :data:`REPEATS` times: the rows give the run of median share of the bound, and the shares' spread."""
     n = 36_000 if quick else 360_000
     w, f, m, q0 = _marg_data(n)
     case = "Mahony MARG, 1 filter"
@@ -135,10 +149,12 @@ def mahony_single(quick: bool):
 
     bound()
     assert np.abs(user().q_bn - q_bound).max() < 1e-9, "the bound kernel is not Mahony's filter (to rounding)"
-    t, t_bound, t_screen, t_user = best_times(
-        lambda: mh.mahony(screened, q0), bound, lambda: robust.screen(ImuSamples(w, f, DT), m), user
-    )
-    _, _, peers = _with_peers(case, None, w, f, m, q0, n, 2_000 if quick else 10_000)
+    fns = (lambda: mh.mahony(screened, q0), bound, lambda: robust.screen(ImuSamples(w, f, DT), m), user)
+    runs = [tuple(best_times(*fns)) for _ in range(REPEATS)]
+    (t, t_bound, t_screen, t_user), spread = _median_run(runs, lambda r: r[1] / r[0], ".1%")
+    _, user_spread = _median_run(runs, lambda r: r[1] / r[3], ".1%")
+    m_peer = 2_000 if quick else 10_000
+    peers = _ahrs_rows(case, w, f, m, q0, n, m_peer) + _fusion_row(case, best_times(_fusion_loop(w, f, m, m_peer))[0], n, m_peer)
     return [
         Result(
             case,
@@ -147,9 +163,9 @@ def mahony_single(quick: bool):
             "samples/s",
             t,
             goal=BOUND_SHARE * n / t_bound,
-            note=f"{t_bound / t:.0%} of the latency bound; goal: >= {BOUND_SHARE:.0%} of it",
+            note=f"{t_bound / t:.1%} of the latency bound ({spread}); goal: >= {BOUND_SHARE:.0%} of it",
         ),
-        Result(case, "latency bound (minimal kernel, bench)", n / t_bound, "samples/s", t_bound, note="Mahony's chain only"),
+        Result(case, "latency bound (minimal kernel, bench)", n / t_bound, "samples/s", t_bound, note=BOUND_HOW),
         Result(case, "navlib.robust.screen alone", n / t_screen, "samples/s", t_screen, note="gyro, accelerometer, magnetometer"),
         Result(
             case,
@@ -157,20 +173,28 @@ def mahony_single(quick: bool):
             n / t_user,
             "samples/s",
             t_user,
-            note=f"{t_bound / t_user:.0%} of the latency bound",
+            note=f"{t_bound / t_user:.1%} of the latency bound ({user_spread})",
         ),
     ] + peers
 
 
 def mahony_batch(quick: bool):
-    """A batch of Mahony filters, trials over the cores (goal: >= 1.9 x one filter's throughput, this run).
+    """A batch of Mahony filters, trials over the cores (goal: >= 1.9 x one filter's throughput, this run), as a user
+    calls it (``ImuSamples`` and screening included).
 
-    The batch and one filter (its first trial) are timed alternately, best of five rounds each."""
+    The batch and one filter (its first trial) are timed alternately, best of five rounds each; :data:`REPEATS` runs,
+    the row gives the run of median ratio and the ratios' spread."""
     trials, n = (8, 36_000) if quick else (32, 180_000)
     w, f, m, q0 = _marg_data(n, trials, seed=1)
-    t, t_one = best_times(
-        lambda: mh.mahony(ImuSamples(w, f, DT), q0, m_b=m), lambda: mh.mahony(ImuSamples(w[0], f[0], DT), q0, m_b=m[0])
-    )
+
+    def batch():
+        mh.mahony(ImuSamples(w, f, DT), q0, m_b=m)
+
+    def one():
+        mh.mahony(ImuSamples(w[0], f[0], DT), q0, m_b=m[0])
+
+    runs = [tuple(best_times(batch, one)) for _ in range(REPEATS)]
+    (t, t_one), spread = _median_run(runs, lambda r: trials * r[1] / r[0])
     single = n / t_one
     return [
         Result(
@@ -180,21 +204,27 @@ def mahony_batch(quick: bool):
             "samples/s",
             t,
             goal=1.9 * single,
-            note=f"aggregate over the batch; goal: >= 1.9x one filter on 2 cores ({single:.3g} samples/s, this run)",
+            note=f"aggregate over the batch, {trials * n / t / single:.2f}x one filter ({spread}); goal: >= 1.9x one "
+            f"filter on 2 cores ({single:.3g} samples/s, this run)",
         )
     ]
 
 
 def quaternion_kf(quick: bool):
     """The paper's PI + quaternion KF (4 states, 6 measurements) as a user calls it (screening included) against
-    ahrs's EKF and imufusion (goal >= 3x it)."""
+    ahrs's EKF and imufusion (goal >= 3x it), timed alternately with imufusion; :data:`REPEATS` runs, the rows give the
+    run of median ratio and the ratios' spread."""
     n = 36_000 if quick else 360_000
+    m_peer = 1_000 if quick else 5_000
     w, f, m, q0 = _marg_data(n, seed=2)
     case = "quaternion KF (PI + KF)"
-    t, _, peers = _with_peers(
-        case, lambda: qkf.quaternion_kf(ImuSamples(w, f, DT), q0, m_b=m, B_n=B_N), w, f, m, q0, n, 1_000 if quick else 5_000
-    )
-    fusion = next((r.throughput for r in peers if r.implementation.startswith("imufusion")), None)
+    fusion = _fusion_loop(w, f, m, m_peer)
+    runs = [
+        tuple(best_times(lambda: qkf.quaternion_kf(ImuSamples(w, f, DT), q0, m_b=m, B_n=B_N), fusion)) for _ in range(REPEATS)
+    ]
+    (t, t_fusion), spread = _median_run(runs, lambda r: (n / r[0]) / (m_peer / r[1]) if r[1] else 0.0)
+    peers = _ahrs_rows(case, w, f, m, q0, n, m_peer) + _fusion_row(case, t_fusion, n, m_peer)
+    ratio = (n / t) / (m_peer / t_fusion) if t_fusion else None
     return [
         Result(
             case,
@@ -202,8 +232,8 @@ def quaternion_kf(quick: bool):
             n / t,
             "samples/s",
             t,
-            goal=3 * fusion if fusion else None,
-            note="goal: >= 3x imufusion, this run" if fusion else "",
+            goal=3 * m_peer / t_fusion if t_fusion else None,
+            note=f"{ratio:.2f}x imufusion ({spread}); goal: >= 3x imufusion, this run" if ratio else "",
         )
     ] + peers
 

@@ -29,19 +29,30 @@ def _run(code: str, cache: str) -> float:
     return float(out.stdout.strip().splitlines()[-1])
 
 
+REPEATS = 3  # each first call measured this many times (a fresh cache each): the median and the spread
+
+
+def _median(times: list[float]) -> tuple[float, str]:
+    times = sorted(times)
+    return times[len(times) // 2], f"{len(times)} runs: {times[0]:.2f} to {times[-1]:.2f} s"
+
+
 def first_calls(quick: bool = False) -> list[Result]:
     rows = []
     for name in CALLS:
-        with tempfile.TemporaryDirectory() as cache:
-            cold = _run(SETUP.format(name=name), cache)
-            subprocess.run(
-                [sys.executable, "-m", "navlib.warmup"],
-                env=dict(os.environ, NUMBA_CACHE_DIR=cache),
-                capture_output=True,
-                check=True,
-                cwd=cache,
-            )
-            warm = _run(SETUP.format(name=name), cache)
+        colds, warms = [], []
+        for _ in range(REPEATS):
+            with tempfile.TemporaryDirectory() as cache:
+                colds.append(_run(SETUP.format(name=name), cache))
+                subprocess.run(
+                    [sys.executable, "-m", "navlib.warmup"],
+                    env=dict(os.environ, NUMBA_CACHE_DIR=cache),
+                    capture_output=True,
+                    check=True,
+                    cwd=cache,
+                )
+                warms.append(_run(SETUP.format(name=name), cache))
+        (cold, cold_spread), (warm, warm_spread) = _median(colds), _median(warms)
         rows += [
             Result(
                 f"first call: {name}",
@@ -50,9 +61,16 @@ def first_calls(quick: bool = False) -> list[Result]:
                 "calls/s",
                 warm,
                 goal=1 / GOAL_S,
-                note=f"{warm:.2f} s in a fresh interpreter (goal <= {GOAL_S:g} s)",
+                note=f"{warm:.2f} s in a fresh interpreter ({warm_spread}; goal <= {GOAL_S:g} s)",
             ),
-            Result(f"first call: {name}", "navlib, empty cache (compiles)", 1 / cold, "calls/s", cold, note=f"{cold:.2f} s"),
+            Result(
+                f"first call: {name}",
+                "navlib, empty cache (compiles)",
+                1 / cold,
+                "calls/s",
+                cold,
+                note=f"{cold:.2f} s ({cold_spread})",
+            ),
         ]
     return rows
 

@@ -639,3 +639,15 @@ def stuck_runs(t0, t1, x, run, rail, out):
                 if i - start >= run:
                     out[t, start:i, c] = True
                 start = i
+
+
+@njit(cache=True, nogil=True)
+def count_flags(t0, t1, flags, counts):
+    """``counts[:, t] = flags[:, t].sum(-1)`` for series t0 to t1 - 1 of the flags (K, T, N) (numpy counts a batch
+    serially, holding the GIL)."""
+    for key in range(flags.shape[0]):
+        for t in range(t0, t1):
+            c = 0
+            for k in range(flags.shape[2]):
+                c += flags[key, t, k]
+            counts[key, t] = c

@@ -63,10 +63,11 @@ import numpy as np
 from numba import njit
 from numpy.typing import NDArray
 
-from ._kernels import stuck_runs
+from ._kernels import count_flags, stuck_runs
 from ._threads import run_chunks
 from ._typing import Array, ArrayLike, Vec3Series
 from ._validate import (
+    MAX_MAGNITUDE,
     Check,
     Is,
     as_array,
@@ -77,6 +78,7 @@ from ._validate import (
     integer,
     kernel_array,
     range_limit,
+    real,
     refuse_turn,
     same_shape,
     text,
@@ -560,8 +562,10 @@ def screen(imu: Is[ImuSamples], m_b: Vec3Series | None = None) -> Screened:
     lim, w, f, dts = imu.limits, imu.w_ib_b, imu.f_b, imu.dt
     lead, n = w.shape[:-2], w.shape[-2]
     T = math.prod(lead)
-    if m_b is not None:
-        m_b = same_shape(as_array(m_b, "m_b", tail=(3,), finite=False), "m_b", w.shape, of="w_ib_b")
+    if m_b is not None:  # of the right shape, its magnitudes are checked in the scan (as_array's, in parallel)
+        m_b = real(m_b, "m_b")
+        if m_b.shape != w.shape:
+            m_b = same_shape(as_array(m_b, "m_b", tail=(3,), finite=False), "m_b", w.shape, of="w_ib_b")
     typical = float(np.median(dts))
     max_dt, run = lim.jump_limit(typical), lim.stuck_samples(typical)
     tests = np.array(
@@ -578,15 +582,17 @@ def screen(imu: Is[ImuSamples], m_b: Vec3Series | None = None) -> Screened:
     )
     wf, ff = kernel_array(w.reshape(T, n, 3)), kernel_array(f.reshape(T, n, 3))
     mf = np.zeros((1, 1, 3)) if m_b is None else kernel_array(m_b.reshape(T, n, 3))
-    flags, turn, stuck_axes = np.zeros((len(_KEYS), T, n), dtype=bool), np.zeros(T), np.zeros((T, n, 3), dtype=bool)
-    run_chunks(lambda t0, t1: _scan(t0, t1, wf, ff, mf, dts, tests, flags, turn, stuck_axes), T)
+    flags, stuck_axes = np.zeros((len(_KEYS), T, n), dtype=bool), np.zeros((T, n, 3), dtype=bool)
+    turn, huge_m = np.zeros(T), np.zeros(T, dtype=bool)
+    run_chunks(lambda t0, t1: _scan(t0, t1, wf, ff, mf, dts, tests, flags, turn, stuck_axes, huge_m), T)
+    if huge_m.any():
+        as_array(m_b, "m_b", tail=(3,), finite=False)  # raises naming the fault
     refuse_turn(float(turn.max()))  # (clock jumps are not integrated)
     _freefall_runs(flags[6], dts, lim.freefall_time)
-    flags[6] &= ~flags[5]  # a spike is a spike, not free fall
     held, fresh = np.empty_like(wf), np.empty((T, n), dtype=bool)
     run_chunks(lambda t0, t1: _gyro_hold(t0, t1, wf, flags, stuck_axes, lim.gyro_jump or 0.0, held, fresh), T)
     counts = np.zeros((len(_KEYS), T), dtype=np.int64)
-    run_chunks(lambda t0, t1: _count_flags(t0, t1, flags, counts), T)  # (a numpy count over a batch is serial)
+    run_chunks(lambda t0, t1: _spikes_and_counts(t0, t1, flags, counts), T)  # (numpy would do it serially)
     keys = _KEYS if m_b is not None else [key for key in _KEYS if key[0] != "mag"]
     found = {key: flags[_KEYS.index(key)].reshape(lead + (n,)) for key in keys}
     counted = {key: counts[_KEYS.index(key)].reshape(lead) for key in keys}
@@ -611,14 +617,14 @@ _KEYS = [
 
 
 @njit(cache=True, nogil=True)
-def _count_flags(t0, t1, flags, counts):
-    """``counts[:, t] = flags[:, t].sum(-1)`` for trials t0 to t1 - 1 of ``flags`` (K, T, N)."""
-    for key in range(flags.shape[0]):
-        for t in range(t0, t1):
-            c = 0
-            for k in range(flags.shape[2]):
-                c += flags[key, t, k]
-            counts[key, t] = c
+def _spikes_and_counts(t0, t1, flags, counts):
+    """Trials t0 to t1 - 1 of ``flags`` (:data:`_KEYS`): an accelerometer spike is a spike, not free fall; then
+    ``counts`` of every flag (:func:`navlib._kernels.count_flags`)."""
+    for t in range(t0, t1):
+        for k in range(flags.shape[2]):
+            if flags[5, t, k]:
+                flags[6, t, k] = False
+    count_flags(t0, t1, flags, counts)
 
 
 def _freefall_runs(low: np.ndarray, dts: np.ndarray, min_time: float) -> None:
@@ -631,11 +637,12 @@ def _freefall_runs(low: np.ndarray, dts: np.ndarray, min_time: float) -> None:
 
 
 @njit(cache=True, nogil=True)
-def _scan(t0, t1, w, f, m, dts, tests, flags, turn, stuck_axes):
+def _scan(t0, t1, w, f, m, dts, tests, flags, turn, stuck_axes, huge_m):
     """Trials t0 to t1 - 1 of the samples ``w``, ``f`` (T, N, 3) and ``m`` ((T, N, 3), or (1, 1, 3): none):
     every flag of :data:`_KEYS` into ``flags`` (K, T, N), but for free fall the samples of low norm (the
     caller keeps the long runs), ``stuck_axes`` (T, N, 3): which gyro axes are stuck, and ``turn[t]``, the
-    largest turn ``|w| dt`` over an integrated interval.
+    largest turn ``|w| dt`` over an integrated interval; ``huge_m[t]``: a finite magnetometer component of
+    ``MAX_MAGNITUDE`` or more (:func:`navlib._validate.as_array`'s limit).
     ``tests = [max_dt, stuck run (0: off), full scales (gyro, accel, mag), spike thresholds (gyro, accel),
     free-fall threshold]``."""
     max_dt, run, fs_w, fs_f, fs_m, low = tests[0], int(tests[1]), tests[2], tests[3], tests[4], tests[7]
@@ -661,6 +668,8 @@ def _scan(t0, t1, w, f, m, dts, tests, flags, turn, stuck_axes):
                 mx, my, mz = mt[k, 0], mt[k, 1], mt[k, 2]
                 ok_m = _finite3(mx, my, mz)
                 nan_m[k], rails_m[k] = not ok_m, ok_m and _at_rails(mx, my, mz, fs_m)
+                if ok_m and _at_rails(mx, my, mz, MAX_MAGNITUDE):
+                    huge_m[t] = True
             jump[k] = dts[k] > max_dt
 
 

@@ -571,3 +571,41 @@ def test_screened_samples_give_the_filters_result_without_screening_again(filt, 
     assert _outputs(once) == _outputs(direct) and once.faults["mag", "outlier"].sum() > 0
     with pytest.raises(ValueError, match="^m_b: imu is already screened"):
         filt(screened, q0, m_b=m, **kw)
+
+
+def test_observe_codes_each_dropped_sample():
+    """observe's one range test per norm (finiteness folded into the limits by pack) drops and codes as the
+    separate tests do: 1 unusable (zero, not finite, a field parallel to gravity), 2 outside a gate."""
+    gates = AttitudeGates(accel_tol=0.1, mag=MagGate(norm_tol=0.1, dip_tol=np.deg2rad(5.0)))
+    imu = ImuSamples(np.zeros((4, 3)), np.tile([0.0, 0.0, G], (4, 1)), DT)
+    limits = obs.pack(imu, [1.0, 0.0, 0.0, 0.0], np.tile(B_N, (4, 1)), None, B_N, gates, 1.0)[1].limits
+    m_ok = INTENSITY * np.array([0.0, np.cos(INCL), -np.sin(INCL)])  # body = navigation frame
+    f_ok = np.array([0.0, 0.0, G])
+    cases = [  # (f, m, skip_a, skip_m) -> (accel code, mag code)
+        ((f_ok, m_ok, False, False), (0, 0)),
+        ((0.0 * f_ok, m_ok, False, False), (1, 0)),  # no accelerometer: no dip test
+        ((np.array([np.inf, 0.0, G]), m_ok, False, False), (1, 0)),
+        ((1.2 * f_ok, m_ok, False, False), (2, 0)),
+        ((f_ok, 0.0 * m_ok, False, False), (0, 1)),
+        ((f_ok, np.array([0.0, 0.0, -INTENSITY]), False, False), (0, 1)),  # parallel to gravity
+        ((f_ok, np.array([0.0, INTENSITY, 0.0]), False, False), (0, 2)),  # dip 0 deg
+        ((f_ok, 1.2 * m_ok, False, False), (0, 2)),
+        ((f_ok, 1.2 * m_ok, False, True), (0, 0)),  # skipped by the screen: no code, NaN
+        ((1.2 * f_ok, np.array([0.0, INTENSITY, 0.0]), False, False), (2, 0)),  # accelerometer gated: no dip test
+    ]
+    for (f, m, skip_a, skip_m), codes in cases:
+        out = obs.observe(*f, *m, skip_a, skip_m, limits)
+        assert out[6:] == codes, (f, m, out)
+        assert np.isnan(out[0]) == (skip_a or codes[0] > 0) and np.isnan(out[3]) == (skip_m or codes[1] > 0)
+
+
+def test_screen_refuses_a_huge_magnetometer_value_in_a_batch():
+    """The magnetometer's magnitude limit (navlib._validate.MAX_MAGNITUDE), checked in the screen's parallel scan,
+    raises as_array's message; inf and NaN stay dropouts."""
+    rng = np.random.default_rng(3)
+    w, f, m = 1e-3 * rng.standard_normal((3, 50, 3)), np.tile([0.0, 0.0, G], (3, 50, 1)), np.tile(B_N, (3, 50, 1))
+    m[1, 7, 2], m[2, 9, 0] = np.inf, np.nan
+    assert int(robust.screen(ImuSamples(w, f, DT), m).faults["mag", "nan"].sum()) == 2
+    m[2, 30, 1] = -1e200
+    with pytest.raises(ValueError, match=r"^m_b: expected magnitudes up to"):
+        robust.screen(ImuSamples(w, f, DT), m)

@@ -37,6 +37,7 @@ from .observations import (
     AttitudeResult,
     RtkHeading,
     attitude_result,
+    dcm_elements,
     integral_gain,
     jump_step,
     learning,
@@ -58,22 +59,33 @@ def _kernel(t0, t1, inp, kp, ki, q_out, bias_out, counts):
         _trial(t, inp, kp, ki, q_out, bias_out, counts)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _trial(t, inp, kp, ki, q_out, bias_out, counts):
-    w, f, m, skip, gated, limits, dts = inp.w, inp.f, inp.m, inp.skip, inp.gated, inp.limits, inp.dts
+    w, f, m, skip, gated, limits = inp.w, inp.f, inp.m, inp.skip, inp.gated, inp.limits
+    dts, jump, fresh, long_hold, settle = inp.dts, inp.jump, inp.fresh, inp.long_hold, inp.settle
     q0, q1, q2, q3 = inp.q_init[t, 0], inp.q_init[t, 1], inp.q_init[t, 2], inp.q_init[t, 3]
     ix = iy = iz = 0.0
     rtk = np.array([0.0, 1.0, 0.0, np.inf, 0.0, 0.0])
-    health = np.array([0.0, np.inf])
+    held, since, checking = 0.0, np.inf, False  # learning's state; relock's check under way (its state: check)
     check = np.zeros(10)
     for k in range(w.shape[1]):
         dt, gx, gy, gz = dts[k], w[t, k, 0], w[t, k, 1], w[t, k, 2]
-        if inp.jump[k]:  # clock jump: one typical interval, then check
-            dt = jump_step(inp, check, rtk, health)
-        ax, ay, az, mx, my, mz, C = observe(f, m, skip, gated, limits, t, k, q0, q1, q2, q3)  # unit vectors, gated
+        if jump[k]:  # clock jump: one typical interval, then check
+            dt, since, checking = jump_step(inp, check, rtk), 0.0, True
+        sm = skip[1, t, k]
+        mx, my, mz = (m[t, k, 0], m[t, k, 1], m[t, k, 2]) if not sm else (0.0, 0.0, 0.0)  # (none where skipped)
+        ax, ay, az, mx, my, mz, gate_a, gate_m = observe(
+            f[t, k, 0], f[t, k, 1], f[t, k, 2], mx, my, mz, skip[0, t, k], sm, limits
+        )
+        if gate_a:  # unit vectors above, NaN where skipped; record the gates' drops
+            gated[gate_a - 1, t, k] = True
+        if gate_m:
+            gated[gate_m + 1, t, k] = True
+        C = dcm_elements(q0, q1, q2, q3)
         hx, hy, hz = rtk_north(inp, t, k, C, dt, rtk, counts) if inp.use_rtk else (mx, my, mz)
         ex, ey, ez = pi_error(C, ax, ay, az, hx, hy, hz)  # Eqs. (12)-(14)
-        if learning(inp.fresh[t, k], dt, health, inp):  # Eq. (15), unless settling after a fault
+        learn, held, since = learning(fresh[t, k], dt, held, since, long_hold, settle)
+        if learn:  # Eq. (15), unless settling after a fault
             ix += ex * dt
             iy += ey * dt
             iz += ez * dt
@@ -82,8 +94,9 @@ def _trial(t, inp, kp, ki, q_out, bias_out, counts):
         q0, q1, q2, q3 = q0 + 0.5 * dt * d0, q1 + 0.5 * dt * d1, q2 + 0.5 * dt * d2, q3 + 0.5 * dt * d3
         s = 1.0 / np.sqrt(q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
         q0, q1, q2, q3 = q0 * s, q1 * s, q2 * s, q3 * s
-        if check[0]:  # after a clock jump: re-initialised only if the state is lost
-            q0, q1, q2, q3, _ = relock(inp, t, k, q0, q1, q2, q3, (ax, ay, az, mx, my, mz), check, rtk, health)
+        if checking:  # after a clock jump: re-initialised only if the state is lost
+            q0, q1, q2, q3, _, since = relock(inp, t, k, q0, q1, q2, q3, (ax, ay, az, mx, my, mz), check, rtk, since)
+            checking = check[0] != 0.0
         q_out[t, k, 0], q_out[t, k, 1], q_out[t, k, 2], q_out[t, k, 3] = q0, q1, q2, q3
     bias_out[t, 0], bias_out[t, 1], bias_out[t, 2] = -ki * ix, -ki * iy, -ki * iz
 

@@ -43,6 +43,7 @@ from .observations import (
     AttitudeResult,
     RtkHeading,
     attitude_result,
+    dcm_elements,
     integral_gain,
     jump_step,
     learning,
@@ -256,6 +257,14 @@ def _output(t, k, x, P, q_out, P_hist, keep):
 
 
 @njit(cache=True)
+def _reset_cov(P, p0):
+    """``P = p0 I`` (4 x 4) in place."""
+    for i in range(4):
+        for j in range(4):
+            P[i, j] = p0 if i == j else 0.0
+
+
+@njit(cache=True)
 def _copy4(dst, src):
     """``dst[:4, :4] = src[:4, :4]`` element by element (an array assignment compiles numba's shape-mismatch
     messages, seconds of a cold start)."""
@@ -276,7 +285,12 @@ def _copy4(dst, src):
 def _predict(x, P, Phi, G, q_gyro):
     """Eqs. (16)-(18) in place: ``x = Phi x``, ``P = Phi P Phi^T + Gamma Q Gamma^T`` (``Q = q_gyro I``; each
     element computed once and mirrored: symmetric exactly)."""
-    A = (_row_times(Phi, P, 0), _row_times(Phi, P, 1), _row_times(Phi, P, 2), _row_times(Phi, P, 3))  # Phi P
+    A = (  # Phi P, row by row
+        _row_times(Phi[0, 0], Phi[0, 1], Phi[0, 2], Phi[0, 3], P),
+        _row_times(Phi[1, 0], Phi[1, 1], Phi[1, 2], Phi[1, 3], P),
+        _row_times(Phi[2, 0], Phi[2, 1], Phi[2, 2], Phi[2, 3], P),
+        _row_times(Phi[3, 0], Phi[3, 1], Phi[3, 2], Phi[3, 3], P),
+    )
     x0, x1, x2, x3 = x[0], x[1], x[2], x[3]
     for i in range(4):
         x[i] = Phi[i, 0] * x0 + Phi[i, 1] * x1 + Phi[i, 2] * x2 + Phi[i, 3] * x3
@@ -287,48 +301,47 @@ def _predict(x, P, Phi, G, q_gyro):
 
 
 @njit(cache=True)
-def _row_times(A, B, i):
-    """Row i of ``A @ B`` (4 x 4), as a tuple."""
+def _row_times(a0, a1, a2, a3, B):
+    """The row ``[a0, a1, a2, a3] @ B`` (B 4 x 4), as a tuple. (Scalars, not a row index: an index given as a
+    constant would compile one specialisation per row.)"""
     return (
-        A[i, 0] * B[0, 0] + A[i, 1] * B[1, 0] + A[i, 2] * B[2, 0] + A[i, 3] * B[3, 0],
-        A[i, 0] * B[0, 1] + A[i, 1] * B[1, 1] + A[i, 2] * B[2, 1] + A[i, 3] * B[3, 1],
-        A[i, 0] * B[0, 2] + A[i, 1] * B[1, 2] + A[i, 2] * B[2, 2] + A[i, 3] * B[3, 2],
-        A[i, 0] * B[0, 3] + A[i, 1] * B[1, 3] + A[i, 2] * B[2, 3] + A[i, 3] * B[3, 3],
+        a0 * B[0, 0] + a1 * B[1, 0] + a2 * B[2, 0] + a3 * B[3, 0],
+        a0 * B[0, 1] + a1 * B[1, 1] + a2 * B[2, 1] + a3 * B[3, 1],
+        a0 * B[0, 2] + a1 * B[1, 2] + a2 * B[2, 2] + a3 * B[3, 2],
+        a0 * B[0, 3] + a1 * B[1, 3] + a2 * B[2, 3] + a3 * B[3, 3],
     )
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _update(x, P, z, h, H, r_diag, x_pred):
     """Eq. (20)'s update of ``x``, ``P`` in place with the finite rows of ``z`` (R diagonal, ``r_diag``), one scalar
     row at a time (sequential Kalman filtering: Simon 2006, Sec. 6.1; Brown and Hwang 2012). Row i's innovation is
-    ``z_i - h_i - H_i (x - x_pred)``, at the state the rows before it left, linearised at the predicted state
-    ``x_pred`` like the batch update, of which the sequence is an exact rewriting; no matrix is inverted."""
+    ``y = z_i - h_i - H_i (x - x_pred)``, at the state the rows before it left, linearised at the predicted state
+    ``x_pred`` like the batch update, of which the sequence is an exact rewriting; no matrix is inverted.
+
+    Each row ``H_i`` updates ``x += K y`` and ``P`` in Joseph form ``P = (I - K H_i) P (I - K H_i)^T + K r K^T``, which
+    for one row expands to ``P - K u^T - u K^T + s K K^T`` (``u = P H_i^T``, ``s = H_i u + r``; for any gain, and
+    symmetric exactly), with ``K = u / s``. (One function: a call per row cost more than the row's arithmetic.)"""
     x_pred[0], x_pred[1], x_pred[2], x_pred[3] = x[0], x[1], x[2], x[3]
     for i in range(6):
-        if np.isfinite(z[i]):  # NaN: a skipped row
-            _row_update(x, P, z[i] - h[i], H[i, 0], H[i, 1], H[i, 2], H[i, 3], r_diag[i], x_pred)
-
-
-@njit(cache=True)
-def _row_update(x, P, y, h0, h1, h2, h3, r, x_pred):
-    """One scalar update with the row ``H_i = [h0, h1, h2, h3]``: ``x += K y'``, with the innovation
-    ``y' = y - H_i (x - x_pred)`` (:func:`_update`), and the Joseph form
-    ``P = (I - K H_i) P (I - K H_i)^T + K r K^T``, which for one row expands to ``P - K u^T - u K^T + s K K^T``
-    (``u = P H_i^T``, ``s = H_i u + r``; for any gain, and symmetric exactly), with ``K = u / s``."""
-    y -= h0 * (x[0] - x_pred[0]) + h1 * (x[1] - x_pred[1]) + h2 * (x[2] - x_pred[2]) + h3 * (x[3] - x_pred[3])
-    u = (
-        P[0, 0] * h0 + P[0, 1] * h1 + P[0, 2] * h2 + P[0, 3] * h3,
-        P[1, 0] * h0 + P[1, 1] * h1 + P[1, 2] * h2 + P[1, 3] * h3,
-        P[2, 0] * h0 + P[2, 1] * h1 + P[2, 2] * h2 + P[2, 3] * h3,
-        P[3, 0] * h0 + P[3, 1] * h1 + P[3, 2] * h2 + P[3, 3] * h3,
-    )
-    s = r + (h0 * u[0] + h1 * u[1] + h2 * u[2] + h3 * u[3])
-    inv_s = 1.0 / s
-    K = (u[0] * inv_s, u[1] * inv_s, u[2] * inv_s, u[3] * inv_s)
-    for j in range(4):
-        x[j] += K[j] * y
-        for m in range(j + 1):
-            P[j, m] = P[m, j] = P[j, m] - (K[j] * u[m] + u[j] * K[m]) + s * K[j] * K[m]
+        if not np.isfinite(z[i]):  # NaN: a skipped row
+            continue
+        h0, h1, h2, h3 = H[i, 0], H[i, 1], H[i, 2], H[i, 3]
+        y = z[i] - h[i]
+        y -= h0 * (x[0] - x_pred[0]) + h1 * (x[1] - x_pred[1]) + h2 * (x[2] - x_pred[2]) + h3 * (x[3] - x_pred[3])
+        u = (
+            P[0, 0] * h0 + P[0, 1] * h1 + P[0, 2] * h2 + P[0, 3] * h3,
+            P[1, 0] * h0 + P[1, 1] * h1 + P[1, 2] * h2 + P[1, 3] * h3,
+            P[2, 0] * h0 + P[2, 1] * h1 + P[2, 2] * h2 + P[2, 3] * h3,
+            P[3, 0] * h0 + P[3, 1] * h1 + P[3, 2] * h2 + P[3, 3] * h3,
+        )
+        s = r_diag[i] + (h0 * u[0] + h1 * u[1] + h2 * u[2] + h3 * u[3])
+        inv_s = 1.0 / s
+        K = (u[0] * inv_s, u[1] * inv_s, u[2] * inv_s, u[3] * inv_s)
+        for j in range(4):
+            x[j] += K[j] * y
+            for m in range(j + 1):
+                P[j, m] = P[m, j] = P[j, m] - (K[j] * u[m] + u[j] * K[m]) + s * K[j] * K[m]
 
 
 @njit(cache=True, nogil=True)
@@ -338,7 +351,7 @@ def _kernel(t0, t1, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
         _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
     # Arrays are taken out of the records once, before the loop (see the note on reference counts above).
     w, dts, jump, fresh, b_ref, sigmas = inp.w, inp.dts, inp.jump, inp.fresh, model.b_ref, model.sigmas
@@ -348,22 +361,33 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
     sg, sa, sm = sigmas[0], sigmas[1], sigmas[2]
     by, bz = b_ref[1], b_ref[2]
     x = inp.q_init[t].copy()
-    P = model.p0 * np.eye(4)
+    P = np.empty((4, 4))
+    _reset_cov(P, model.p0)
     r_diag = np.array([sa * sa, sa * sa, sa * sa, sm * sm, sm * sm, sm * sm])
     Phi, G, z, h, H = np.empty((4, 4)), np.empty((4, 3)), np.empty(6), np.empty(6), np.empty((6, 4))
     x_pred = np.empty(4)
     rtk = np.array([0.0, 1.0, 0.0, np.inf, 0.0, 0.0])
-    health = np.array([0.0, np.inf])
+    held, since, checking = 0.0, np.inf, False  # learning's state; relock's check under way (its state: check)
     check = np.zeros(10)
     ix = iy = iz = 0.0
     for k in range(N):
         dt, gx, gy, gz = dts[k], w[t, k, 0], w[t, k, 1], w[t, k, 2]
         if jump[k]:  # clock jump: one typical interval, then check
-            dt = jump_step(inp, check, rtk, health)
-        ax, ay, az, mx, my, mz, C = observe(f, m, skip, gated, limits, t, k, x[0], x[1], x[2], x[3])  # unit vectors, gated
+            dt, since, checking = jump_step(inp, check, rtk), 0.0, True
+        sm = skip[1, t, k]
+        mx, my, mz = (m[t, k, 0], m[t, k, 1], m[t, k, 2]) if not sm else (0.0, 0.0, 0.0)  # (none where skipped)
+        ax, ay, az, mx, my, mz, gate_a, gate_m = observe(
+            f[t, k, 0], f[t, k, 1], f[t, k, 2], mx, my, mz, skip[0, t, k], sm, limits
+        )
+        if gate_a:  # unit vectors above, NaN where skipped; record the gates' drops
+            gated[gate_a - 1, t, k] = True
+        if gate_m:
+            gated[gate_m + 1, t, k] = True
+        C = dcm_elements(x[0], x[1], x[2], x[3])
         hx, hy, hz = rtk_north(inp, t, k, C, dt, rtk, counts) if inp.use_rtk else (mx, my, mz)
         ex, ey, ez = pi_error(C, ax, ay, az, hx, hy, hz)  # PI-corrected rate, Eq. (15)
-        if learning(fresh[t, k], dt, health, inp):  # Eq. (15), unless settling after a fault
+        learn, held, since = learning(fresh[t, k], dt, held, since, inp.long_hold, inp.settle)
+        if learn:  # Eq. (15), unless settling after a fault
             ix += ex * dt
             iy += ey * dt
             iz += ez * dt
@@ -379,10 +403,13 @@ def _trial(t, inp, kp, ki, model, q_out, bias_out, counts, P_out, P_hist):
         _update(x, P, z, h, H, r_diag, x_pred)
         s = np.sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2] + x[3] * x[3])
         x[0], x[1], x[2], x[3] = x[0] / s, x[1] / s, x[2] / s, x[3] / s
-        if check[0]:  # after a clock jump: re-initialised only if the state is lost
-            x[0], x[1], x[2], x[3], lost = relock(inp, t, k, x[0], x[1], x[2], x[3], (ax, ay, az, mx, my, mz), check, rtk, health)
+        if checking:  # after a clock jump: re-initialised only if the state is lost
+            x[0], x[1], x[2], x[3], lost, since = relock(
+                inp, t, k, x[0], x[1], x[2], x[3], (ax, ay, az, mx, my, mz), check, rtk, since
+            )
+            checking = check[0] != 0.0
             if lost:  # covariance back to p0 I
-                _copy4(P, model.p0 * np.eye(4))
+                _reset_cov(P, model.p0)
         _output(t, k, x, P, q_out, P_hist, keep)
     bias_out[t, 0], bias_out[t, 1], bias_out[t, 2] = -ki * ix, -ki * iy, -ki * iz
     _copy4(P_out[t], P)
