@@ -12,8 +12,8 @@ Each run is executed once per ``make test``, as the notebooks are: ``tools/repro
 ``make test`` before pytest) executes the runs whose record is missing, failed or out of date, and
 :func:`test_runs_in_teaching_and_fast_mode` reads the record (``build/teaching/<notebook>-<run>.json``) and the
 results it wrote (``build/teaching/<notebook>-<run>/``, marked ``mode``, which the ledger refuses anyway). A record
-stands while the notebook's inputs (the digest of a notebook execution's record: the notebook with its parameter
-changes, navlib/, data/, the runner, the installed packages) and its results are unchanged; otherwise (a plain
+stands while its results and what the run depends on are unchanged (as for a notebook's execution record: the
+notebook, its parameter changes included, navlib/, data/, the runner, the installed packages); otherwise (a plain
 ``pytest`` after an edit, say) the test executes the run itself. Run times are reported (``-rA`` shows them) and
 listed on the course page of the site, never asserted.
 """
