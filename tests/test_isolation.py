@@ -69,6 +69,8 @@ import pytest
 
 nbformat = pytest.importorskip("nbformat")
 pytest.importorskip("nbclient")
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
+import reproduce  # noqa: E402  (tools/reproduce.py: the digest of a notebook's inputs)
 
 REPO = Path(__file__).resolve().parents[1]
 BUILD = REPO / "build"
@@ -240,9 +242,6 @@ RESULTS = ISOLATED_OUT / NOTEBOOK.stem / "results.json"
 
 def isolation_inputs() -> str:
     """SHA-256 of what the isolated execution depends on: the notebook's inputs and this file."""
-    sys.path.insert(0, str(REPO / "tools"))
-    import reproduce  # tools/reproduce.py
-
     return hashlib.sha256(f"{reproduce.inputs_digest(NOTEBOOK)} {reproduce.sha256(Path(__file__))}".encode()).hexdigest()
 
 
@@ -252,18 +251,14 @@ def isolated_execution(tmp_path: Path) -> dict:
     inputs = isolation_inputs()
     if RECORD.is_file():
         record = json.loads(RECORD.read_text())
-        if record["ok"] and record["inputs"] == inputs and RESULTS.is_file() and record["results"] == sha256(RESULTS):
+        if record["ok"] and record["inputs"] == inputs and RESULTS.is_file() and record["results"] == reproduce.sha256(RESULTS):
             return record
     shutil.rmtree(RESULTS.parent, ignore_errors=True)
     ok, out, violations, _ = run_isolated(NOTEBOOK, tmp_path)
     record = {"inputs": inputs, "ok": ok, "output": out[-3000:], "violations": violations}
-    record["results"] = sha256(RESULTS) if RESULTS.is_file() else None
+    record["results"] = reproduce.sha256(RESULTS) if RESULTS.is_file() else None
     RECORD.write_text(json.dumps(record, indent=1) + "\n")
     return record
-
-
-def sha256(path: Path) -> str:
-    return hashlib.sha256(path.read_bytes()).hexdigest()
 
 
 def test_paper_notebook_runs_without_network_and_writes_only_build(tmp_path):
