@@ -28,7 +28,7 @@ PYTEST_FLAGS ?= -q -ra --durations=10 -n 2 --dist loadgroup
 help:
 	@echo "make reproduce  execute every notebook, write build/ (executed notebooks, figures, results)"
 	@echo "make readme     regenerate the README results section (claims by verdict), quoted numbers and figures from build/"
-	@echo "make test       unit/property tests + every notebook run to the end (executed once: reused from make reproduce when up to date)"
+	@echo "make test       unit/property tests + every notebook run to the end, also in teaching mode (each execution reused while up to date)"
 	@echo "make lint       ruff over the code (also part of make test)"
 	@echo "make typecheck  mypy over navlib/ at the level configured in pyproject.toml [tool.mypy]"
 	@echo "make fuzz       tools/fuzz.py: every public callable with bad and unusual arguments (build/fuzz.json)"
@@ -97,7 +97,10 @@ docs: $(STAMP) $(DOCS_STAMP)
 
 # Each notebook is executed once per run: reproduce.py --stale executes those whose execution into build/ is
 # missing, failed or out of date (all of them on a fresh clone, none right after `make reproduce`), two at a
-# time, and tests/test_notebook_runs.py reads their records. pytest exits 5 when it collected no tests: a failure.
+# time, and tests/test_notebook_runs.py reads their records; then likewise the teaching runs (each notebook in
+# teaching + fast mode once per parameter change it invites; build/teaching/), which tests/test_teaching.py reads.
+# tests/test_isolation.py records its isolated execution of one notebook the same way (build/isolation/run.json):
+# a warm `make test` executes no notebook. pytest exits 5 when it collected no tests: a failure.
 # nbmake (for running one notebook by hand) is not loaded: make test runs none with it, and its import cost each
 # pytest process ~1 s (nbformat's validator building IRI parsers; conftest.py keeps test modules from paying it).
 test: $(STAMP)

@@ -11,6 +11,7 @@ commit). Enabled by ``make test`` (NAVLIB_CHECK_README=1), so a developer runnin
 one notebook by hand is not stopped by it.
 """
 
+import math
 import os
 import re
 import sys
@@ -37,7 +38,8 @@ def pytest_xdist_make_scheduler(config, log):
     under pytest 9.2 (it renames ``item._nodeid``, which pytest no longer reads): the tests of a file that defines a
     module- or class-scoped fixture (a whole filter run, a built wheel) go to one worker, which computes that fixture
     once instead of once per worker; every other test is a unit of its own. Units start longest first by the last
-    run's times (the longest-processing-time rule), so no worker is left idle behind a long test at the end."""
+    run's times (the longest-processing-time rule), so no worker is left idle behind a long test at the end; a unit
+    with a test never timed (new, or skipped so far: the site's before `make docs`) starts first, as if longest."""
     if config.getvalue("dist") != "loadgroup":
         return None
     from xdist.scheduler import LoadScopeScheduling
@@ -49,6 +51,9 @@ def pytest_xdist_make_scheduler(config, log):
     }
     cache = getattr(config, "cache", None)  # absent under -p no:cacheprovider
     last = cache.get(DURATIONS, {}) if cache else {}
+
+    def expected_seconds(nodeids) -> float:
+        return sum(last[i] for i in nodeids) if all(i in last for i in nodeids) else math.inf
 
     class Scheduling(LoadScopeScheduling):
         def _split_scope(self, nodeid):
@@ -63,25 +68,28 @@ def pytest_xdist_make_scheduler(config, log):
 
         @workqueue.setter
         def workqueue(self, units):
-            self._units = OrderedDict(sorted(units.items(), key=lambda unit: -sum(last.get(i, 0.0) for i in unit[1])))
+            self._units = OrderedDict(sorted(units.items(), key=lambda unit: -expected_seconds(unit[1])))
 
     config.option.loadscopereorder = False  # the order above, not the number of tests per unit
     return Scheduling(config, log)
 
 
 _seconds: dict[str, float] = {}  # this run's, per test (the controller receives every worker's reports)
+_skipped: set[str] = set()  # not timed: a skipped test's few milliseconds say nothing of its next run
 
 
 def pytest_runtest_logreport(report):
     _seconds[report.nodeid] = _seconds.get(report.nodeid, 0.0) + report.duration
+    if report.skipped:
+        _skipped.add(report.nodeid)
 
 
 def pytest_sessionfinish(session, exitstatus):
     if hasattr(session.config, "workerinput"):  # an xdist worker: the controller checks
         return
     cache = getattr(session.config, "cache", None)
-    if cache and _seconds:  # the next run's plan (tests not run this time keep their last time)
-        cache.set(DURATIONS, cache.get(DURATIONS, {}) | _seconds)
+    if cache and _seconds:  # the next run's plan (tests not run or skipped this time keep their last time, if any)
+        cache.set(DURATIONS, cache.get(DURATIONS, {}) | {i: s for i, s in _seconds.items() if i not in _skipped})
     if exitstatus != 0 or os.environ.get("NAVLIB_CHECK_README") != "1":  # set by `make test`
         return
     sys.path.insert(0, str(ROOT / "tools"))

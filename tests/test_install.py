@@ -6,7 +6,10 @@ exactly the tracked files (what check-manifest compares); the wheel holds the pa
 ``py.typed``. The wheel goes into a fresh virtual environment (dependencies pinned by environment.txt):
 without extras navlib imports and runs with no matplotlib; with ``[plots]`` ``tests/data/installed_smoke.py``
 runs from an empty directory outside the checkout. The sdist's own tests are collected and a sample run
-from the unpacked archive. Needs the package index (or the installer's cache) during set-up only.
+from the unpacked archive; that run is recorded (``build/install/sdist-tests.json``) with the digest of what it
+depends on (every file of the sdist, the Python, the installed packages, the environment, this file) and read
+instead of run again while that is unchanged and it passed. Needs the package index (or the installer's cache)
+during set-up only.
 
 The builder and installer are ``uv`` (pinned in environment.txt) when it is on the path beside this Python:
 the same PEP 517 build and non-editable install as ``python -m build`` and ``pip install``, in seconds.
@@ -15,6 +18,8 @@ Without uv they fall back to ``python -m build`` and pip.
 
 from __future__ import annotations
 
+import hashlib
+import json
 import os
 import shutil
 import subprocess
@@ -159,11 +164,29 @@ def test_installed_distribution_metadata(installed):
     assert out[2].strip() == "['bench', 'docs', 'notebooks', 'plots', 'test']"
 
 
-def test_sdist_tests_run_unpacked(dist, tmp_path):
-    """The unpacked sdist's tests import the sdist's navlib: all of them collect, and a sample reading the data,
-    notebooks and ledger passes. Plain Python kernels (NUMBA_DISABLE_JIT): compiling them for a copy of navlib
-    would double the cost of collecting."""
-    with tarfile.open(dist["sdist"]) as tar:
+SDIST_RECORD = ROOT / "build" / "install" / "sdist-tests.json"
+SAMPLE = ["test_units.py", "test_notebooks.py", "test_ledger.py", "test_self_contained.py"]
+
+
+def sdist_inputs(sdist: Path) -> str:
+    """SHA-256 of what the unpacked sdist's test run depends on: the name and content of every file in it, the Python,
+    the installed packages (as tools/reproduce.py lists them for its records), the environment's NAVLIB_, NUMBA_ and
+    PYTHON variables and this file."""
+    sys.path.insert(0, str(ROOT / "tools"))
+    import reproduce  # tools/reproduce.py
+
+    env = sorted((k, v) for k, v in CLEAN_ENV.items() if k.startswith(("NAVLIB_", "NUMBA_", "PYTHON")))
+    digest = hashlib.sha256(f"{sys.version} {reproduce.installed_distributions()} {env}".encode())
+    digest.update(Path(__file__).read_bytes())
+    with tarfile.open(sdist) as tar:
+        for member in sorted((m for m in tar.getmembers() if m.isfile()), key=lambda m: m.name):
+            digest.update(f"\n{member.name} {hashlib.sha256(tar.extractfile(member).read()).hexdigest()}".encode())
+    return digest.hexdigest()
+
+
+def sdist_tests(sdist: Path, tmp_path: Path) -> dict:
+    """Unpack the sdist, say where its navlib is imported from, collect all its tests and run the sample."""
+    with tarfile.open(sdist) as tar:
         tar.extractall(tmp_path, filter="data")
     unpacked = next(tmp_path.iterdir())
     env = {**CLEAN_ENV, "PYTHONPATH": str(unpacked), "NUMBA_DISABLE_JIT": "1"}
@@ -175,10 +198,28 @@ def test_sdist_tests_run_unpacked(dist, tmp_path):
         text=True,
         check=True,
     ).stdout
-    assert Path(where.strip()).is_relative_to(unpacked), where
     # One pytest run: every test collected (an error collecting any file fails it), the sample run; nbmake not loaded
     pytest_ = [sys.executable, "-m", "pytest", "-p", "no:cacheprovider", "-p", "no:nbmake", "-n", "0", "-q", "-rN"]
-    sample = ["test_units.py", "test_notebooks.py", "test_ledger.py", "test_self_contained.py"]
-    run = subprocess.run([*pytest_, "tests", "-k", " or ".join(sample)], cwd=unpacked, env=env, capture_output=True, text=True)
-    assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
-    assert " deselected" in run.stdout.splitlines()[-1], run.stdout[-3000:]  # the rest was collected, not run
+    run = subprocess.run([*pytest_, "tests", "-k", " or ".join(SAMPLE)], cwd=unpacked, env=env, capture_output=True, text=True)
+    return {
+        "navlib_from_unpacked": Path(where.strip()).is_relative_to(unpacked),
+        "navlib": where.strip(),
+        "returncode": run.returncode,
+        "last_line": (run.stdout.splitlines() or [""])[-1],
+        "output": run.stdout[-3000:] + run.stderr[-3000:],
+    }
+
+
+def test_sdist_tests_run_unpacked(dist, tmp_path):
+    """The unpacked sdist's tests import the sdist's navlib: all of them collect, and a sample reading the data,
+    notebooks and ledger passes. Plain Python kernels (NUMBA_DISABLE_JIT): compiling them for a copy of navlib
+    would double the cost of collecting. Read from its record while its inputs are unchanged and it passed."""
+    inputs = sdist_inputs(dist["sdist"])
+    record = json.loads(SDIST_RECORD.read_text()) if SDIST_RECORD.is_file() else {}
+    if record.get("inputs") != inputs or record.get("returncode") != 0:
+        record = {"inputs": inputs, **sdist_tests(dist["sdist"], tmp_path)}
+        SDIST_RECORD.parent.mkdir(parents=True, exist_ok=True)
+        SDIST_RECORD.write_text(json.dumps(record, indent=1) + "\n")
+    assert record["navlib_from_unpacked"], record["navlib"]
+    assert record["returncode"] == 0, record["output"]
+    assert " deselected" in record["last_line"], record["output"]  # the rest was collected, not run

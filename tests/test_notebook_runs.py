@@ -28,3 +28,19 @@ def test_notebook_runs(path):
     assert entry["error"] is None, f"{path.name} stopped: {entry['error']} (see build/{path.stem}.ipynb)"
     failed = [c["name"] for c in entry["checks"] if not c.get("passed")]
     assert not failed, f"{path.name}: {len(failed)} failed checks: {', '.join(failed)}"
+
+
+def test_the_records_digest_names_every_installed_package_version():
+    """The execution records' digest reads the installed packages from their folders' names (not every METADATA file):
+    the same packages and versions as importlib.metadata finds, so that an upgrade makes every record stale."""
+    import importlib.metadata
+    import re
+
+    sys.path.insert(0, str(ROOT / "tools"))
+    import reproduce
+
+    def normal(name: str, version: str) -> str:
+        return f"{re.sub(r'[-_.]+', '_', name).lower()}=={version}"
+
+    expected = {normal(d.metadata["Name"], d.version) for d in importlib.metadata.distributions()}
+    assert {normal(*d.split("==")) for d in reproduce.installed_distributions()} == expected

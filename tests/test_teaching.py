@@ -8,10 +8,14 @@ parameter is injected papermill-style: a cell assigning it is inserted right aft
 (``metadata.navlib.try_parameters``: a mapping of parameter name to a Python literal as text, or a list of
 such mappings, one run each: e.g. chapter 04's ``KI = 0.0``, the baseline its text discusses).
 
-Results go to a temporary build directory (``NAVLIB_BUILD_DIR``): the ledger's ``build/`` is not
-touched, and results written in these modes are marked (``mode``) and refused by the ledger anyway.
-Run times are reported (``-rA`` shows them) and written to ``build/teaching/<notebook>.json`` for the
-course page of the site, never asserted.
+Each run is executed once per ``make test``, as the notebooks are: ``tools/reproduce.py --stale`` (run by
+``make test`` before pytest) executes the runs whose record is missing, failed or out of date, and
+:func:`test_runs_in_teaching_and_fast_mode` reads the record (``build/teaching/<notebook>-<run>.json``) and the
+results it wrote (``build/teaching/<notebook>-<run>/``, marked ``mode``, which the ledger refuses anyway). A record
+stands while its results and what the run depends on are unchanged (as for a notebook's execution record: the
+notebook, its parameter changes included, navlib/, data/, the runner, the installed packages); otherwise (a plain
+``pytest`` after an edit, say) the test executes the run itself. Run times are reported (``-rA`` shows them) and
+listed on the course page of the site, never asserted.
 """
 
 from __future__ import annotations
@@ -19,21 +23,18 @@ from __future__ import annotations
 import ast
 import json
 import re
-import time
+import sys
 from pathlib import Path
 
 import nbformat
 import pytest
-from nbclient import NotebookClient
 
 ROOT = Path(__file__).resolve().parents[1]
 PATHS = sorted((ROOT / "notebooks").glob("[0-9][0-9]_*.ipynb"))
+sys.path.insert(0, str(ROOT / "tools"))
+import reproduce  # noqa: E402  (tools/reproduce.py: the teaching runs and their records)
 
-
-def try_parameters(nb) -> list[dict[str, str]]:
-    """The parameter changes a notebook invites: one mapping per run."""
-    changes = nb.metadata.get("navlib", {}).get("try_parameters", {})
-    return [changes] if isinstance(changes, dict) else list(changes)
+try_parameters = reproduce.try_parameters
 
 
 def parameter_names(nb) -> set[str]:
@@ -44,16 +45,7 @@ def parameter_names(nb) -> set[str]:
     }
 
 
-RUNS = [(p, k) for p in PATHS for k in range(len(try_parameters(nbformat.read(p, as_version=4))))]
-
-
-def inject(nb, assignments: dict[str, str]) -> None:
-    """Insert ``NAME = value`` lines after the ``parameters`` cell (papermill's convention)."""
-    index = next(i for i, c in enumerate(nb.cells) if "parameters" in c.metadata.get("tags", []))
-    code = "\n".join(f"{name} = {value}" for name, value in assignments.items())
-    cell = nbformat.v4.new_code_cell("# injected parameters\n" + code)
-    cell.metadata["tags"] = ["injected-parameters"]
-    nb.cells.insert(index + 1, cell)
+RUNS = reproduce.teaching_runs(PATHS)
 
 
 @pytest.mark.parametrize("path", PATHS, ids=[p.stem for p in PATHS])
@@ -88,34 +80,77 @@ def test_every_invited_value_is_run(path):
 
 
 @pytest.mark.parametrize(("path", "run"), RUNS, ids=[f"{p.stem}-{k}" for p, k in RUNS])
-def test_runs_in_teaching_and_fast_mode(path, run, tmp_path, monkeypatch):
-    nb = nbformat.read(path, as_version=4)
-    changes = try_parameters(nb)[run]
-    inject(nb, changes)
-    for name, value in {
-        "NAVLIB_TEACHING": "1",
-        "NAVLIB_FAST": "1",
-        "NAVLIB_PROGRESS": "0",
-        "NAVLIB_BUILD_DIR": str(tmp_path),
-        "NAVLIB_ROOT": str(ROOT),
-        "MPLBACKEND": "Agg",
-    }.items():
-        monkeypatch.setenv(name, value)
-    start = time.perf_counter()
-    # killed once the last cell is done (results.json is on disk by then), as tools/reproduce.py does: a graceful shutdown
-    # (the interpreter freeing what the notebook computed) made the ten runs 67 s instead of 58 s (61 s CPU instead of 55)
-    client = NotebookClient(
-        nb, timeout=600, kernel_name="python3", shutdown_kernel="immediate", resources={"metadata": {"path": str(path.parent)}}
-    )
-    client.execute()
-    seconds = time.perf_counter() - start
-    results = json.loads((tmp_path / path.stem / "results.json").read_text())
-    assert results["mode"] == {"teaching": True, "fast": True}
-    held = f"{sum(c['passed'] for c in results['checks'])}/{len(results['checks'])}"
-    print(f"{path.stem}: teaching + fast with {changes}: {seconds:.1f} s, {held} checks held")
-    record = ROOT / "build" / "teaching" / f"{path.stem}-{run}.json"
-    record.parent.mkdir(parents=True, exist_ok=True)
-    record.write_text(
-        json.dumps({"notebook": path.stem, "parameters": changes, "seconds": round(seconds, 1), "checks_held": held}),
-        encoding="utf-8",
-    )
+def test_runs_in_teaching_and_fast_mode(path, run):
+    record = reproduce.teaching_executed(path, run)
+    assert record["error"] is None, f"{path.name} with {record['parameters']} stopped: {record['error']}"
+    results = ROOT / "build" / "teaching" / f"{path.stem}-{run}" / path.stem / "results.json"
+    assert json.loads(results.read_text())["mode"] == {"teaching": True, "fast": True}
+    seconds, held = record["seconds"], record["checks_held"]
+    print(f"{path.stem}: teaching + fast with {record['parameters']}: {seconds:.1f} s, {held} checks held")
+
+
+# A notebook whose one check holds with its invited change (K = 2) and writes its results where navlib.repro would.
+TINY = """import json, os, pathlib
+out = pathlib.Path(os.environ["NAVLIB_BUILD_DIR"]) / "00_tiny"
+out.mkdir(parents=True, exist_ok=True)
+mode = {"teaching": os.environ.get("NAVLIB_TEACHING") == "1", "fast": os.environ.get("NAVLIB_FAST") == "1"}
+(out / "results.json").write_text(json.dumps({"mode": mode, "checks": [{"name": "k", "passed": K == 2}]}))"""
+
+
+def tiny_project(root: Path, runs: list[dict[str, str]]) -> Path:
+    """A project under ``root`` with one notebook inviting ``runs``, a navlib/ and a data/ file."""
+    parameters = nbformat.v4.new_code_cell("TEACHING = False\nFAST = False\nK = 1")
+    parameters.metadata["tags"] = ["parameters"]
+    nb = nbformat.v4.new_notebook(cells=[parameters, nbformat.v4.new_code_cell(TINY)])
+    nb.metadata.kernelspec = {"name": "python3", "display_name": "Python 3", "language": "python"}
+    nb.metadata.navlib = {"try_parameters": runs}
+    path = root / "notebooks" / "00_tiny.ipynb"
+    for file, text in ((path, nbformat.writes(nb)), (root / "navlib" / "core.py", "A = 1\n"), (root / "data" / "a.csv", "a\n")):
+        file.parent.mkdir(parents=True, exist_ok=True)
+        file.write_text(text)
+    return path
+
+
+def test_a_teaching_run_is_reused_only_while_its_inputs_and_results_are_unchanged(tmp_path, monkeypatch):
+    path = tiny_project(tmp_path, [{"K": "2"}])
+    build = tmp_path / "build"
+    assert reproduce.last_teaching_run(path, 0, build) == (None, "no teaching run recorded in build/teaching/")
+
+    record = reproduce.teaching_executed(path, 0, timeout=300)  # executed for real: no record yet
+    assert record["error"] is None and record["checks_held"] == "1/1" and record["parameters"] == {"K": "2"}
+    results = build / "teaching" / "00_tiny-0" / "00_tiny" / "results.json"
+    assert json.loads(results.read_text())["mode"] == {"teaching": True, "fast": True}
+    runs = []
+    monkeypatch.setattr(reproduce, "run_teaching", lambda p, k, b, t: runs.append(k) or {"new": True})
+    assert reproduce.teaching_executed(path, 0) == record and runs == []  # reused
+
+    for changed in (path, tmp_path / "navlib" / "core.py", tmp_path / "data" / "a.csv", results):
+        original = changed.read_bytes()
+        changed.write_bytes(original + b" ")
+        assert reproduce.last_teaching_run(path, 0, build)[0] is None, f"an edit of {changed.name} went unnoticed"
+        assert reproduce.teaching_executed(path, 0)["new"] and runs == [0]  # executed again
+        runs.clear()
+        changed.write_bytes(original)
+        assert reproduce.last_teaching_run(path, 0, build)[0] == record  # the same content stands again
+
+
+def test_stale_picks_the_missing_failed_and_out_of_date_teaching_runs(tmp_path):
+    path = tiny_project(tmp_path, [{"K": "2"}, {"K": "3"}])
+    build = tmp_path / "build"
+    assert reproduce.stale_teaching_runs([path], build) == [(path, 0), (path, 1)]  # none recorded
+
+    def record(run: int, error: str | None) -> None:  # as reproduce.run_teaching writes it, without a kernel
+        results = build / "teaching" / f"00_tiny-{run}" / "00_tiny" / "results.json"
+        results.parent.mkdir(parents=True, exist_ok=True)
+        results.write_text("{}")
+        entry = {"seconds": 1.0, "error": error, "inputs": reproduce.teaching_inputs(path, run)}
+        entry["outputs"] = reproduce.teaching_outputs(path, run, build)
+        reproduce.teaching_record(path, run, build).write_text(json.dumps(entry))
+
+    record(0, None)
+    record(1, "ZeroDivisionError: division by zero")
+    assert reproduce.stale_teaching_runs([path], build) == [(path, 1)]  # the failed one is run again
+    record(1, None)
+    assert reproduce.stale_teaching_runs([path], build) == []
+    (tmp_path / "data" / "a.csv").write_text("a\n1\n")
+    assert reproduce.stale_teaching_runs([path], build) == [(path, 0), (path, 1)]

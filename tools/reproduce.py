@@ -155,17 +155,49 @@ def inputs_digest(path: Path) -> str:
     for name in RUN_INPUTS:
         top = root / name
         files += sorted(f for f in top.rglob("*") if "__pycache__" not in f.parts) if top.is_dir() else [top]
-    # a set: a distribution found twice on sys.path (the checkout's own egg-info, say) is one
-    installed = sorted({f"{d.metadata['Name']}=={d.version}" for d in importlib.metadata.distributions()})
-    digest = hashlib.sha256("\n".join([sys.version, *installed]).encode())
+    digest = hashlib.sha256("\n".join([sys.version, *installed_distributions()]).encode())
     for f in files:
         if f.is_file():
-            digest.update(f"\n{f.relative_to(root).as_posix()} {sha256(f)}".encode())
+            digest.update(f"\n{f.relative_to(root).as_posix()} {hashed(f)}".encode())
     return digest.hexdigest()
+
+
+def installed_distributions() -> list[str]:
+    """``name==version`` of every distribution on ``sys.path``, read from the names of their .dist-info folders (the
+    wheel format spells both there; reading every METADATA file cost ~1 s per digest) or an .egg-info's metadata.
+
+    A set: a distribution found twice on sys.path (the checkout's own egg-info beside the installed one) is one.
+    """
+    found = set()
+    for entry in dict.fromkeys(sys.path):
+        try:
+            names = os.listdir(entry or ".")
+        except OSError:  # a zip archive, a missing folder
+            continue
+        for name in names:
+            if name.endswith(".dist-info"):
+                found.add(name.removesuffix(".dist-info").replace("-", "==", 1))
+            elif name.endswith(".egg-info"):
+                dist = importlib.metadata.PathDistribution(Path(entry or ".", name))
+                found.add(f"{name.removesuffix('.egg-info').split('-')[0]}=={dist.version}")
+    return sorted(found)
 
 
 def sha256(path: Path) -> str:
     return hashlib.sha256(path.read_bytes()).hexdigest()
+
+
+_hashes: dict[Path, tuple[tuple[int, int], str]] = {}
+
+
+def hashed(path: Path) -> str:
+    """:func:`sha256` of ``path``, hashed again only when its modification time or size changed since this process
+    last read it: every record's digest reads the same 17 MB of navlib/ and data/."""
+    stat = path.stat()
+    key = (stat.st_mtime_ns, stat.st_size)
+    if path not in _hashes or _hashes[path][0] != key:
+        _hashes[path] = (key, sha256(path))
+    return _hashes[path][1]
 
 
 def outputs_digest(build: Path, entry: dict) -> dict[str, str]:
@@ -419,6 +451,135 @@ def compare_manifest(manifest: dict, reference: Path, notebooks: list[str]) -> l
     return sorted(k for k in set(ref) | set(manifest) if ref.get(k) != manifest.get(k))
 
 
+# ------------------------------------------------------------------------------------------ teaching runs
+
+TEACHING_ENV = {"NAVLIB_TEACHING": "1", "NAVLIB_FAST": "1", "MPLBACKEND": "Agg"}
+"""The switches of a teaching run (tests/test_teaching.py): failed checks warn, the small parameter set."""
+
+
+def try_parameters(nb) -> list[dict[str, str]]:
+    """The parameter changes a notebook invites (``metadata.navlib.try_parameters``): one mapping per teaching run."""
+    changes = nb.metadata.get("navlib", {}).get("try_parameters", {})
+    return [changes] if isinstance(changes, dict) else list(changes)
+
+
+def teaching_runs(notebooks: list[Path]) -> list[tuple[Path, int]]:
+    """``(notebook, run)`` of every teaching run: each notebook once per parameter change it invites."""
+    return [(p, k) for p in notebooks for k in range(len(try_parameters(nbformat.read(p, as_version=4))))]
+
+
+def inject(nb, assignments: dict[str, str]) -> None:
+    """Insert ``NAME = value`` lines after the ``parameters`` cell (papermill's convention)."""
+    code = "\n".join(f"{name} = {value}" for name, value in assignments.items())
+    cell = nbformat.v4.new_code_cell("# injected parameters\n" + code)
+    cell.metadata["tags"] = ["injected-parameters"]
+    nb.cells.insert(parameters_cell(nb) + 1, cell)
+
+
+def teaching_record(path: Path, run: int, build: Path) -> Path:
+    """``build/teaching/<stem>-<run>.json``: the record of a teaching run (the site's course page lists them); its
+    results are under ``build/teaching/<stem>-<run>/``."""
+    return build / "teaching" / f"{path.stem}-{run}.json"
+
+
+def teaching_inputs(path: Path, run: int) -> str:
+    """SHA-256 of what a teaching run depends on: the notebook's :func:`inputs_digest` (its parameter changes are in
+    the notebook), which change is injected, and the switches."""
+    return hashlib.sha256(f"{inputs_digest(path)} {run} {sorted(TEACHING_ENV.items())}".encode()).hexdigest()
+
+
+def teaching_outputs(path: Path, run: int, build: Path) -> dict[str, str]:
+    """SHA-256 of a teaching run's results.json (the file the test reads)."""
+    results = teaching_record(path, run, build).with_suffix("") / path.stem / "results.json"
+    return {results.relative_to(build).as_posix(): sha256(results)} if results.is_file() else {}
+
+
+def last_teaching_run(path: Path, run: int, build: Path) -> tuple[dict | None, str]:
+    """The record of teaching run ``run`` of notebook ``path`` if it still stands (its inputs and results unchanged,
+    as :func:`last_execution` decides for a notebook's execution), and why not."""
+    file = teaching_record(path, run, build)
+    if not file.is_file():
+        return None, "no teaching run recorded in build/teaching/"
+    record = json.loads(file.read_text())
+    if record.get("inputs") != teaching_inputs(path, run):
+        return None, "the notebook, navlib, data/, the runner or the installed packages changed since it ran"
+    if record["outputs"] != teaching_outputs(path, run, build):
+        return None, "its results in build/teaching/ changed since it ran"
+    return record, "up to date"
+
+
+def run_teaching(path: Path, run: int, build: Path, timeout: int) -> dict:
+    """Execute teaching run ``run`` of a notebook (its ``run``-th parameter change injected, in teaching and fast mode,
+    results under ``build/teaching/<stem>-<run>/``) and write its record; the record."""
+    file = teaching_record(path, run, build)
+    out = file.with_suffix("")
+    shutil.rmtree(out, ignore_errors=True)
+    out.mkdir(parents=True)
+    inputs = teaching_inputs(path, run)  # before the run, as for a notebook's execution
+    nb = nbformat.read(path, as_version=4)
+    changes = try_parameters(nb)[run]
+    inject(nb, changes)
+    env = kernel_environment(path.parents[1]) | TEACHING_ENV | {"NAVLIB_BUILD_DIR": str(out)}
+    resources = {"metadata": {"path": str(path.parent)}}
+    client = NotebookClient(nb, kernel_name="python3", timeout=timeout, shutdown_kernel="immediate", resources=resources)
+    error, start = None, time.perf_counter()
+    with open(file.with_suffix(".kernel.log"), "w") as log:
+        try:
+            client.execute(stderr=log, env=env)
+        except Exception as exc:  # recorded; the test reports it
+            error = error_line(exc)
+    results = out / path.stem / "results.json"
+    checks = json.loads(results.read_text()).get("checks", []) if results.is_file() else []
+    record = {
+        "notebook": path.stem,
+        "run": run,
+        "parameters": changes,
+        "seconds": round(time.perf_counter() - start, 1),
+        "checks_held": f"{sum(bool(c.get('passed')) for c in checks)}/{len(checks)}",
+        "error": error,
+        "inputs": inputs,
+        "outputs": teaching_outputs(path, run, build),
+    }
+    file.write_text(json.dumps(record, indent=1) + "\n")
+    return record
+
+
+def teaching_executed(path: Path, run: int, timeout: int = 1800) -> dict:
+    """The record of a teaching run of notebook ``path`` into <root>/build: the last one if it stands, else a new one."""
+    build = path.parents[1] / "build"
+    record, _ = last_teaching_run(path, run, build)
+    return record if record is not None else run_teaching(path, run, build, timeout)
+
+
+def stale_teaching_runs(notebooks: list[Path], build: Path) -> list[tuple[Path, int]]:
+    """The teaching runs of ``notebooks`` whose record is missing, failed or out of date, longest first by their last
+    times (a failed run is run again: its failure may have been the machine's, a timeout)."""
+    runs = teaching_runs(notebooks)
+    last = {(p, k): json.loads(f.read_text()) for p, k in runs if (f := teaching_record(p, k, build)).is_file()}
+    todo = [(p, k) for p, k in runs if not ((r := last_teaching_run(p, k, build)[0]) and r["error"] is None)]
+    return sorted(todo, key=lambda run: -last.get(run, {}).get("seconds", 0.0))
+
+
+def run_stale_teaching(notebooks: list[Path], build: Path, jobs: int, timeout: int) -> int:
+    """``--stale``: execute the :func:`stale_teaching_runs`, ``jobs`` at a time; reuse the others. The exit status: 1 if
+    any failed."""
+    todo = stale_teaching_runs(notebooks, build)
+    print(f"teaching runs: executing {len(todo)}, the others up to date in build/teaching/ ...", flush=True)
+    failed = 0
+    with ProcessPoolExecutor(
+        max(1, jobs), mp_context=multiprocessing.get_context(START_METHOD), initializer=die_with_parent
+    ) as pool:
+        for future in as_completed([pool.submit(run_teaching, p, k, build, timeout) for p, k in todo]):
+            r = future.result()
+            failed += r["error"] is not None
+            print(
+                f"teaching run {r['notebook']}-{r['run']} with {r['parameters']}: {r['seconds']:.1f} s, "
+                f"{r['checks_held']} checks held" + (f", ERROR {r['error']}" if r["error"] else ""),
+                flush=True,
+            )
+    return 1 if failed else 0
+
+
 # ---------------------------------------------------------------------------------------------- seed sweep
 
 
@@ -637,11 +798,13 @@ def main(argv=None) -> int:
     os.environ.update(kernel_environment(root))
     if args.seeds or args.seed_list:
         return sweep(args, root, notebooks, build)
-    if not args.cold:
-        return run_all(args, root, notebooks, build)
     with tempfile.TemporaryDirectory(prefix="navlib-numba-cache-") as empty_cache:
-        os.environ["NUMBA_CACHE_DIR"] = empty_cache  # the kernels compile as on a fresh clone
-        return run_all(args, root, notebooks, build)
+        if args.cold:
+            os.environ["NUMBA_CACHE_DIR"] = empty_cache  # the kernels compile as on a fresh clone
+        status = run_all(args, root, notebooks, build)
+        if args.stale:  # make test: the teaching runs of tests/test_teaching.py too
+            status |= run_stale_teaching(notebooks, build, args.jobs, args.timeout)
+        return status
 
 
 def run_all(args: argparse.Namespace, root: Path, notebooks: list[Path], build: Path) -> int:
