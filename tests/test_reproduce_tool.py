@@ -31,6 +31,23 @@ def test_a_warm_run_is_planned_without_the_last_runs_compilation():
     assert reproduce.expected_seconds(summary, paths) == {paths[0]: 20.0, paths[1]: 25.0, paths[2]: 0.0}
 
 
+def test_a_fresh_clone_runs_the_longest_notebooks_first():
+    paths = [Path(f"{stem}.ipynb") for stem in ("00_conventions_sensors", "02_rotation_bias", "99_new")]
+    seconds = reproduce.expected_seconds({}, paths)  # no build/summary.json: the typical times
+    assert reproduce.longest_first(paths, seconds) == [paths[1], paths[0], paths[2]]
+
+
+def test_the_warm_up_runs_in_one_process_per_core():
+    from navlib import warmup
+
+    assert reproduce.warm_up_parts(2) == reproduce.warm_up_parts(4) == [1, 2]
+    assert reproduce.warm_up_parts(1) == [None]  # one core: all in one process
+    names = [name for part in warmup.PARTS for name in part]
+    assert sorted(names) == sorted(warmup._calls())  # every entry point in exactly one part
+    with pytest.raises(ValueError, match="part"):
+        warmup.warmup(part=3)
+
+
 def test_the_shared_kernels_are_warmed_up_only_when_the_notebooks_would_compile(tmp_path):
     build, navlib = tmp_path / "build", tmp_path / "navlib"
     for folder in (build, navlib):
