@@ -7,11 +7,13 @@ quaternion Kalman filter on this project's reference machine). Running this modu
 the main entry points in the forms their public functions call them, so that a later first call in any
 process loads the compiled code instead (a fraction of a second). ``make reproduce`` runs it first when the
 notebooks would compile, in two processes at once (``python -m navlib.warmup --part 1`` and ``--part 2``), so that
-every kernel the notebooks call is compiled once, before its notebooks start.
+every kernel the notebooks call is compiled once, before its notebooks start. ``--also MODULE`` also runs
+``MODULE._warm_up()``: a paper's companion module compiles its own kernels there (the core names no paper).
 """
 
 from __future__ import annotations
 
+import importlib
 import time
 from collections.abc import Callable
 
@@ -23,10 +25,9 @@ __all__ = ["warmup"]
 def _calls() -> dict[str, Callable[[], object]]:
     """One small call of each kernel the notebooks use, in the forms they call it (with and without optional
     sensors), grouped by :data:`PARTS`."""
-    from . import analysis, attitude, earth, euler, sensors, strapdown, trajectory
+    from . import analysis, euler, sensors, strapdown
     from .filters import heading_fusion, inertial_lowpass, mahony, observations, planar_ekf, quaternion_kf, zupt_ins
     from .imu import ImuSamples
-    from .papers import rotation_bias as rb
 
     n = 200
     w_ib_b, f_b = np.zeros((n, 3)), np.tile([0.0, 0.0, 9.81], (n, 1))
@@ -36,19 +37,8 @@ def _calls() -> dict[str, Callable[[], object]]:
     truth = planar_ekf.propagate(x0, 0.5, n - 1)
     config = planar_ekf.EkfConfig(Q=np.full(5, 1e-4), R=np.full(5, 0.01), gate=9.0)
 
-    def rotation_bias() -> object:
-        rig = trajectory.reciprocating_rotation(40.0, 0.1, [0.5, 2.0, 0.0], [0.0] * 3, [0.0, 1.0, 0.0], np.pi / 2, 10.0)
-        w_rig, f_rig = trajectory.ideal_imu(rig)
-        starts, length = rb.dwell_windows(len(w_rig), 0.1, period=10.0, rotation_time=1.0)
-        w_ie_b = earth.earth_rate_b(attitude.quat_to_dcm(rig.q_bn[starts]), 0.5)
-        res = rb.tilt_residuals(w_rig, f_rig, 0.1, starts, length, w_ie_b)
-        rb.running_lsq_bias(res.r, res.V)
-        R = np.tile(1e-12 * np.eye(2), (len(starts), 1, 1))
-        return rb.kalman_bias(res.r, res.V, R, interval=10.0, rate_random_walk=1e-9, bias_sigma=1e-3)
-
     return {
-        # PARTS[0]: paper 001's kernels (its notebook is the longest: it starts first) and the attitude filters
-        "papers.rotation_bias": rotation_bias,
+        # PARTS[0]
         "euler.integrate_euler": lambda: euler.integrate_euler(np.zeros(3), w_ib_b, 0.01),
         "strapdown.integrate_attitude": lambda: strapdown.integrate_attitude(q0, w_ib_b, 0.01),
         "analysis.allan_deviation": lambda: analysis.allan_deviation(w_ib_b, 0.01),
@@ -80,7 +70,6 @@ def _calls() -> dict[str, Callable[[], object]]:
 
 PARTS = (
     (
-        "papers.rotation_bias",
         "euler.integrate_euler",
         "strapdown.integrate_attitude",
         "analysis.allan_deviation",
@@ -97,9 +86,9 @@ PARTS = (
         "filters.zupt_ins.run_filter",
     ),
 )
-"""The entry points in two parts of about equal compile time (~25 s of CPU each on an empty cache), compiled in two
-processes at once on two cores (``--part 1``, ``--part 2``). The first holds the kernels of the notebook that starts
-first in ``make reproduce`` (the longest, paper 001's)."""
+"""The entry points in two parts, compiled in two processes at once on two cores (``--part 1``, ``--part 2``); the
+first, the shorter, also compiles a paper's own kernels (``--also navlib.papers.rotation_bias``: ~25 s of CPU each on
+an empty cache)."""
 
 
 def warmup(verbose: bool = True, part: int | None = None) -> dict[str, float]:
@@ -133,8 +122,24 @@ def warmup(verbose: bool = True, part: int | None = None) -> dict[str, float]:
     return seconds
 
 
-if __name__ == "__main__":
-    import sys
+def _also(module: str) -> float:
+    """Run ``module._warm_up()``, the calls that compile the kernels of a module outside the core (a paper's
+    companion, named by the caller: the core names no paper); its seconds."""
+    start = time.perf_counter()
+    importlib.import_module(module)._warm_up()
+    return time.perf_counter() - start
 
-    total = sum(warmup(part=int(sys.argv[sys.argv.index("--part") + 1]) if "--part" in sys.argv else None).values())
+
+if __name__ == "__main__":
+    import argparse
+
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--part", type=int, choices=range(1, len(PARTS) + 1), help="only this part of PARTS")
+    ap.add_argument("--also", action="append", default=[], metavar="MODULE", help="also run MODULE._warm_up()")
+    args = ap.parse_args()
+    total = sum(warmup(part=args.part).values())
+    for module in args.also:
+        seconds = _also(module)
+        print(f"{module:32s} {seconds:6.2f} s", flush=True)
+        total += seconds
     print(f"compiled and cached in {total:.0f} s; later first calls load the compiled code")

@@ -1,6 +1,7 @@
 """tools/reproduce.py's plan and profile: notebooks longest first by the last run's times less their
 compilation, and where a notebook's time went (compile log, cell timing)."""
 
+import importlib
 import json
 import os
 import sys
@@ -42,6 +43,8 @@ def test_the_warm_up_runs_in_one_process_per_core():
 
     assert reproduce.warm_up_parts(2) == reproduce.warm_up_parts(4) == [1, 2]
     assert reproduce.warm_up_parts(1) == [None]  # one core: all in one process
+    for module in reproduce.WARM_UP_ALSO:
+        assert callable(importlib.import_module(module)._warm_up)
     names = [name for part in warmup.PARTS for name in part]
     assert sorted(names) == sorted(warmup._calls())  # every entry point in exactly one part
     with pytest.raises(ValueError, match="part"):

@@ -309,6 +309,11 @@ def cell_seconds(nb) -> list[tuple[int, float, str]]:
     return sorted(cells, key=lambda c: -c[1])
 
 
+WARM_UP_ALSO = ("navlib.papers.rotation_bias",)
+"""Paper companions whose own kernels the warm-up compiles too (``_warm_up()``; the core names no paper): in the
+first part, with all of them when the warm-up is one process."""
+
+
 def warm_up(build: Path, part: int | None = None) -> dict:
     """Compile the kernels the notebooks call, before them: ``python -m navlib.warmup [--part N]``.
 
@@ -321,7 +326,9 @@ def warm_up(build: Path, part: int | None = None) -> dict:
     log.unlink(missing_ok=True)
     before, start = resource.getrusage(resource.RUSAGE_CHILDREN), time.perf_counter()
     done = subprocess.run(
-        [sys.executable, "-m", "navlib.warmup", *([] if part is None else ["--part", str(part)])],
+        [sys.executable, "-m", "navlib.warmup"]
+        + ([] if part is None else ["--part", str(part)])
+        + [arg for module in (WARM_UP_ALSO if part in (None, 1) else ()) for arg in ("--also", module)],
         env=os.environ | {"NAVLIB_COMPILE_LOG": str(log)},
         capture_output=True,
         text=True,

@@ -1558,3 +1558,17 @@ def draw_flow(ax: Axes) -> None:
         ("rotate", "imu", "turns"),
     ]
     block_diagram(ax, blocks, arrows, width=0.2, height=0.2, colors={"imu": "#dbe9f6", "att": "#e3f1dc"})
+
+
+def _warm_up() -> None:
+    """Compile this module's kernels on a small rig, in the forms notebook 02 calls them (``python -m navlib.warmup
+    --also navlib.papers.rotation_bias``, run by ``make reproduce`` before the notebooks)."""
+    from .. import trajectory  # noqa: PLC0415 -- the warm-up alone needs it
+
+    rig = trajectory.reciprocating_rotation(40.0, 0.1, [0.5, 2.0, 0.0], [0.0] * 3, [0.0, 1.0, 0.0], np.pi / 2, 10.0)
+    w_ib_b, f_b = trajectory.ideal_imu(rig)
+    starts, length = dwell_windows(len(w_ib_b), 0.1, period=10.0, rotation_time=1.0)
+    w_ie_b = earth.earth_rate_b(attitude.quat_to_dcm(rig.q_bn[starts]), 0.5)
+    res = tilt_residuals(w_ib_b, f_b, 0.1, starts, length, w_ie_b)
+    running_lsq_bias(res.r, res.V)
+    kalman_bias(res.r, res.V, np.tile(1e-12 * np.eye(2), (len(starts), 1, 1)), 10.0, 1e-9, 1e-3)
