@@ -60,7 +60,11 @@ def test_the_shared_kernels_are_warmed_up_only_when_the_notebooks_would_compile(
     (build / "summary.json").write_text("{}")
     warm = {"00_a": {"compile_cpu_seconds": 0.0}, "01_b": {}}
     assert not reproduce.compilation_expected(build, warm, tmp_path)  # numba's cache holds every kernel
-    assert reproduce.compilation_expected(build, warm | {"02_c": {"compile_cpu_seconds": 4.5}}, tmp_path)
+    compiled = warm | {"02_c": {"compile_cpu_seconds": 4.5}}
+    assert not reproduce.compilation_expected(build, compiled, tmp_path)  # into numba's cache: there now
+    (build / reproduce.COLD_MARK).write_text("--cold\n")
+    assert reproduce.compilation_expected(build, compiled, tmp_path)  # into a temporary cache, gone
+    (build / reproduce.COLD_MARK).unlink()
     later = (build / "summary.json").stat().st_mtime + 10
     os.utime(navlib / "core.py", (later, later))  # navlib edited since: its kernels compile again
     assert reproduce.compilation_expected(build, warm, tmp_path)

@@ -366,11 +366,16 @@ def paper_parts(notebooks: list[Path]) -> dict[Path, Path]:
     }
 
 
+COLD_MARK = "cold-cache"
+"""The file in build/ that says the last run compiled into a temporary numba cache (``--cold``)."""
+
+
 def compilation_expected(build: Path, summary: dict, root: Path) -> bool:
-    """Whether this run's notebooks will compile kernels: no earlier run, an earlier one that compiled, or navlib
-    edited since it. A warm run (numba's cache up to date) skips the warm-up's ~1 s."""
+    """Whether this run's notebooks will compile kernels: no earlier run, an earlier ``--cold`` one (its kernels went
+    to a temporary cache), or navlib edited since it. An earlier run that compiled left its kernels in numba's cache:
+    a warm run skips the warm-up (two processes, ~3 s of CPU)."""
     summary_file = build / "summary.json"
-    if not summary or any(e.get("compile_cpu_seconds") for e in summary.values()):
+    if not summary or (build / COLD_MARK).is_file():
         return True
     since = summary_file.stat().st_mtime
     return any(f.stat().st_mtime > since for f in (root / "navlib").rglob("*.py"))
@@ -754,6 +759,10 @@ def run_all(args: argparse.Namespace, root: Path, notebooks: list[Path], build: 
         for e in entries
     }
     (build / "summary.json").write_text(json.dumps(summary, indent=1) + "\n")
+    if args.cold:
+        (build / COLD_MARK).write_text("the last run compiled into a temporary numba cache (--cold)\n")
+    else:
+        (build / COLD_MARK).unlink(missing_ok=True)
 
     width = max(len(e["notebook"]) for e in entries) + 3
     print()
