@@ -34,11 +34,14 @@ def _calls() -> dict[str, Callable[[], object]]:
     m_b, B_n = np.tile([0.0, 20.0, -40.0], (n, 1)), np.array([0.0, 20.0, -40.0])
     imu, q0 = ImuSamples(w_ib_b, f_b, 0.01), np.array([1.0, 0.0, 0.0, 0.0])
     t, x0 = 0.5 * np.arange(n), np.array([0.0, 0.0, 0.0, 1.0, 0.0])
-    truth = planar_ekf.propagate(x0, 0.5, n - 1)
-    config = planar_ekf.EkfConfig(Q=np.full(5, 1e-4), R=np.full(5, 0.01), gate=9.0)
+
+    def planar() -> object:
+        truth = planar_ekf.propagate(x0, 0.5, n - 1)
+        config = planar_ekf.EkfConfig(Q=np.full(5, 1e-4), R=np.full(5, 0.01), gate=9.0)
+        planar_ekf.dead_reckoning(t, truth[:, 3], truth[:, 4], x0)
+        return planar_ekf.filter_grid(t, truth, x0, config)
 
     return {
-        # PARTS[0]
         "euler.integrate_euler": lambda: euler.integrate_euler(np.zeros(3), w_ib_b, 0.01),
         "strapdown.integrate_attitude": lambda: strapdown.integrate_attitude(q0, w_ib_b, 0.01),
         "analysis.allan_deviation": lambda: analysis.allan_deviation(w_ib_b, 0.01),
@@ -48,11 +51,7 @@ def _calls() -> dict[str, Callable[[], object]]:
             np.full(n, 0.3), observations.RtkHeading(np.full(n, 0.5), np.arange(n) % 5 == 0), 0.01
         ),
         "filters.quaternion_kf (MARG)": lambda: quaternion_kf.quaternion_kf(imu, q0, m_b=m_b, B_n=B_n),
-        # PARTS[1]
-        "filters.planar_ekf": lambda: (
-            planar_ekf.filter_grid(t, truth, x0, config),
-            planar_ekf.dead_reckoning(t, truth[:, 3], truth[:, 4], x0),
-        ),
+        "filters.planar_ekf": planar,
         "filters.inertial_lowpass": lambda: (
             inertial_lowpass.inertial_lowpass(imu),
             inertial_lowpass.inertial_lowpass(imu, m_b),
@@ -69,26 +68,22 @@ def _calls() -> dict[str, Callable[[], object]]:
 
 
 PARTS = (
-    (
-        "euler.integrate_euler",
-        "strapdown.integrate_attitude",
-        "analysis.allan_deviation",
-        "filters.mahony (IMU)",
-        "filters.mahony (MARG)",
-        "filters.heading_fusion",
-        "filters.quaternion_kf (MARG)",
-    ),
+    ("filters.mahony (IMU)", "filters.mahony (MARG)", "filters.quaternion_kf (MARG)"),
     (
         "filters.planar_ekf",
         "filters.inertial_lowpass",
         "sensors.simulate_imu",
         "strapdown.integrate",
         "filters.zupt_ins.run_filter",
+        "euler.integrate_euler",
+        "strapdown.integrate_attitude",
+        "analysis.allan_deviation",
+        "filters.heading_fusion",
     ),
 )
 """The entry points in two parts, compiled in two processes at once on two cores (``--part 1``, ``--part 2``); the
-first, the shorter, also compiles a paper's own kernels (``--also navlib.papers.rotation_bias``: ~25 s of CPU each on
-an empty cache)."""
+first, the shorter, also compiles a paper's own kernels (``--also navlib.papers.rotation_bias``; ~23 s of CPU each on
+an empty cache; the two differ by about a second, the wait before the notebooks start)."""
 
 
 def warmup(verbose: bool = True, part: int | None = None) -> dict[str, float]:
@@ -104,9 +99,9 @@ def warmup(verbose: bool = True, part: int | None = None) -> dict[str, float]:
     Examples
     --------
     >>> from navlib import warmup
-    >>> seconds = warmup.warmup(verbose=False, part=2)                # fast once numba's cache holds the kernels
+    >>> seconds = warmup.warmup(verbose=False, part=1)                # fast once numba's cache holds the kernels
     >>> len(seconds), sorted(seconds)[-1]                          # seconds per entry point
-    (5, 'strapdown.integrate')
+    (3, 'filters.quaternion_kf (MARG)')
     """
     if part is not None and part not in range(1, len(PARTS) + 1):
         raise ValueError(f"part: expected None or an integer from 1 to {len(PARTS)}, got {part!r}")
