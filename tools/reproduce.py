@@ -19,8 +19,7 @@ byte-identical to an earlier run's (``make determinism``).
 
 Notebooks run ``--jobs`` at a time (default 2), each in its own kernel, longest first by the previous
 run's times in ``build/summary.json`` less their numba compilation (:func:`expected_seconds`; typical times on a
-fresh clone; the kernels
-log each compilation to ``build/<stem>.compile.log``, see ``navlib._kernels.CompileLog``); each is
+fresh clone; the kernels log each compilation to ``build/<stem>.compile.log``, see ``navlib._kernels.CompileLog``); each is
 reported with its wall time and its kernel's CPU time and peak memory (user + system time and resident set
 size, read from /proc while the kernel runs; "n/a" where there is none; CPU time, unlike wall time, does not
 grow on a busy machine). When the notebooks will compile kernels (a fresh clone, ``--cold``, navlib edited), a
