@@ -6,11 +6,14 @@ In a fresh environment that first call waits for the compiler: seconds (about 4 
 quaternion Kalman filter on this project's reference machine). Running this module once after installing (about a minute) compiles
 the main entry points in the forms their public functions call them, so that a later first call in any
 process loads the compiled code instead (a fraction of a second). ``make reproduce`` runs it first when the
-notebooks would compile, so that kernels several notebooks share are compiled once.
+notebooks would compile, in two processes at once (``python -m navlib.warmup --part 1`` and ``--part 2``), so that
+every kernel the notebooks call is compiled once, before its notebooks start. ``--also MODULE`` also runs
+``MODULE._warm_up()``: a paper's companion module compiles its own kernels there (the core names no paper).
 """
 
 from __future__ import annotations
 
+import importlib
 import time
 from collections.abc import Callable
 
@@ -20,19 +23,39 @@ __all__ = ["warmup"]
 
 
 def _calls() -> dict[str, Callable[[], object]]:
-    """One small call of each main entry point, with and without its optional sensors."""
-    from . import sensors, strapdown
-    from .filters import mahony, quaternion_kf, zupt_ins
+    """One small call of each kernel the notebooks use, in the forms they call it (with and without optional
+    sensors), grouped by :data:`PARTS`."""
+    from . import analysis, euler, sensors, strapdown
+    from .filters import heading_fusion, inertial_lowpass, mahony, observations, planar_ekf, quaternion_kf, zupt_ins
     from .imu import ImuSamples
 
     n = 200
     w_ib_b, f_b = np.zeros((n, 3)), np.tile([0.0, 0.0, 9.81], (n, 1))
     m_b, B_n = np.tile([0.0, 20.0, -40.0], (n, 1)), np.array([0.0, 20.0, -40.0])
     imu, q0 = ImuSamples(w_ib_b, f_b, 0.01), np.array([1.0, 0.0, 0.0, 0.0])
+    t, x0 = 0.5 * np.arange(n), np.array([0.0, 0.0, 0.0, 1.0, 0.0])
+
+    def planar() -> object:
+        truth = planar_ekf.propagate(x0, 0.5, n - 1)
+        config = planar_ekf.EkfConfig(Q=np.full(5, 1e-4), R=np.full(5, 0.01), gate=9.0)
+        planar_ekf.dead_reckoning(t, truth[:, 3], truth[:, 4], x0)
+        return planar_ekf.filter_grid(t, truth, x0, config)
+
     return {
+        "euler.integrate_euler": lambda: euler.integrate_euler(np.zeros(3), w_ib_b, 0.01),
+        "strapdown.integrate_attitude": lambda: strapdown.integrate_attitude(q0, w_ib_b, 0.01),
+        "analysis.allan_deviation": lambda: analysis.allan_deviation(w_ib_b, 0.01),
         "filters.mahony (IMU)": lambda: mahony.mahony(imu, q0),
         "filters.mahony (MARG)": lambda: mahony.mahony(imu, q0, m_b=m_b),
+        "filters.heading_fusion": lambda: heading_fusion.fuse_rtk_heading(
+            np.full(n, 0.3), observations.RtkHeading(np.full(n, 0.5), np.arange(n) % 5 == 0), 0.01
+        ),
         "filters.quaternion_kf (MARG)": lambda: quaternion_kf.quaternion_kf(imu, q0, m_b=m_b, B_n=B_n),
+        "filters.planar_ekf": planar,
+        "filters.inertial_lowpass": lambda: (
+            inertial_lowpass.inertial_lowpass(imu),
+            inertial_lowpass.inertial_lowpass(imu, m_b),
+        ),
         "sensors.simulate_imu": lambda: sensors.simulate_imu(
             w_ib_b, f_b, 0.01, sensors.imu_model("MPU-6050"), np.random.default_rng(0)
         ),
@@ -44,31 +67,74 @@ def _calls() -> dict[str, Callable[[], object]]:
     }
 
 
-def warmup(verbose: bool = True) -> dict[str, float]:
-    """Call each main entry point once on a small input; return the seconds each took (compiling or loading).
+PARTS = (
+    ("filters.mahony (IMU)", "filters.mahony (MARG)", "filters.quaternion_kf (MARG)"),
+    (
+        "filters.planar_ekf",
+        "filters.inertial_lowpass",
+        "sensors.simulate_imu",
+        "strapdown.integrate",
+        "filters.zupt_ins.run_filter",
+        "euler.integrate_euler",
+        "strapdown.integrate_attitude",
+        "analysis.allan_deviation",
+        "filters.heading_fusion",
+    ),
+)
+"""The entry points in two parts, compiled in two processes at once on two cores (``--part 1``, ``--part 2``); the
+first, the shorter, also compiles a paper's own kernels (``--also navlib.papers.rotation_bias``; ~23 s of CPU each on
+an empty cache; the two differ by about a second, the wait before the notebooks start)."""
+
+
+def warmup(verbose: bool = True, part: int | None = None) -> dict[str, float]:
+    """Call each kernel's entry point once on a small input; return the seconds each took (compiling or loading).
 
     Parameters
     ----------
     verbose : bool
         Print each entry point and its time as it finishes.
+    part : int, optional
+        Only the entry points of ``PARTS[part - 1]`` (1 or 2: two processes compile the two at once); default all.
 
     Examples
     --------
     >>> from navlib import warmup
-    >>> seconds = warmup.warmup(verbose=False)                        # fast once numba's cache holds the kernels
+    >>> seconds = warmup.warmup(verbose=False, part=1)                # fast once numba's cache holds the kernels
     >>> len(seconds), sorted(seconds)[-1]                          # seconds per entry point
-    (6, 'strapdown.integrate')
+    (3, 'filters.quaternion_kf (MARG)')
     """
+    if part is not None and part not in range(1, len(PARTS) + 1):
+        raise ValueError(f"part: expected None or an integer from 1 to {len(PARTS)}, got {part!r}")
+    calls = _calls()
+    names = list(calls) if part is None else PARTS[part - 1]
     seconds = {}
-    for name, call in _calls().items():
+    for name in names:
         start = time.perf_counter()
-        call()
+        calls[name]()
         seconds[name] = time.perf_counter() - start
         if verbose:
             print(f"{name:32s} {seconds[name]:6.2f} s", flush=True)
     return seconds
 
 
+def _also(module: str) -> float:
+    """Run ``module._warm_up()``, the calls that compile the kernels of a module outside the core (a paper's
+    companion, named by the caller: the core names no paper); its seconds."""
+    start = time.perf_counter()
+    importlib.import_module(module)._warm_up()
+    return time.perf_counter() - start
+
+
 if __name__ == "__main__":
-    total = sum(warmup().values())
+    import argparse
+
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--part", type=int, choices=range(1, len(PARTS) + 1), help="only this part of PARTS")
+    ap.add_argument("--also", action="append", default=[], metavar="MODULE", help="also run MODULE._warm_up()")
+    args = ap.parse_args()
+    total = sum(warmup(part=args.part).values())
+    for module in args.also:
+        seconds = _also(module)
+        print(f"{module:32s} {seconds:6.2f} s", flush=True)
+        total += seconds
     print(f"compiled and cached in {total:.0f} s; later first calls load the compiled code")

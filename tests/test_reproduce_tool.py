@@ -1,6 +1,7 @@
 """tools/reproduce.py's plan and profile: notebooks longest first by the last run's times less their
 compilation, and where a notebook's time went (compile log, cell timing)."""
 
+import importlib
 import json
 import os
 import sys
@@ -31,6 +32,25 @@ def test_a_warm_run_is_planned_without_the_last_runs_compilation():
     assert reproduce.expected_seconds(summary, paths) == {paths[0]: 20.0, paths[1]: 25.0, paths[2]: 0.0}
 
 
+def test_a_fresh_clone_runs_the_longest_notebooks_first():
+    paths = [Path(f"{stem}.ipynb") for stem in ("00_conventions_sensors", "02_rotation_bias", "99_new")]
+    seconds = reproduce.expected_seconds({}, paths)  # no build/summary.json: the typical times
+    assert reproduce.longest_first(paths, seconds) == [paths[1], paths[0], paths[2]]
+
+
+def test_the_warm_up_runs_in_one_process_per_core():
+    from navlib import warmup
+
+    assert reproduce.warm_up_parts(2) == reproduce.warm_up_parts(4) == [1, 2]
+    assert reproduce.warm_up_parts(1) == [None]  # one core: all in one process
+    for module in reproduce.WARM_UP_ALSO:
+        assert callable(importlib.import_module(module)._warm_up)
+    names = [name for part in warmup.PARTS for name in part]
+    assert sorted(names) == sorted(warmup._calls())  # every entry point in exactly one part
+    with pytest.raises(ValueError, match="part"):
+        warmup.warmup(part=3)
+
+
 def test_the_shared_kernels_are_warmed_up_only_when_the_notebooks_would_compile(tmp_path):
     build, navlib = tmp_path / "build", tmp_path / "navlib"
     for folder in (build, navlib):
@@ -40,7 +60,11 @@ def test_the_shared_kernels_are_warmed_up_only_when_the_notebooks_would_compile(
     (build / "summary.json").write_text("{}")
     warm = {"00_a": {"compile_cpu_seconds": 0.0}, "01_b": {}}
     assert not reproduce.compilation_expected(build, warm, tmp_path)  # numba's cache holds every kernel
-    assert reproduce.compilation_expected(build, warm | {"02_c": {"compile_cpu_seconds": 4.5}}, tmp_path)
+    compiled = warm | {"02_c": {"compile_cpu_seconds": 4.5}}
+    assert not reproduce.compilation_expected(build, compiled, tmp_path)  # into numba's cache: there now
+    (build / reproduce.COLD_MARK).write_text("--cold\n")
+    assert reproduce.compilation_expected(build, compiled, tmp_path)  # into a temporary cache, gone
+    (build / reproduce.COLD_MARK).unlink()
     later = (build / "summary.json").stat().st_mtime + 10
     os.utime(navlib / "core.py", (later, later))  # navlib edited since: its kernels compile again
     assert reproduce.compilation_expected(build, warm, tmp_path)

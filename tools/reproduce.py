@@ -18,13 +18,13 @@ results file and figure), and prints one line per notebook and the claims by ver
 byte-identical to an earlier run's (``make determinism``).
 
 Notebooks run ``--jobs`` at a time (default 2), each in its own kernel, longest first by the previous
-run's times in ``build/summary.json`` less their numba compilation (:func:`expected_seconds`; the kernels
-log each compilation to ``build/<stem>.compile.log``, see ``navlib._kernels.CompileLog``); each is
+run's times in ``build/summary.json`` less their numba compilation (:func:`expected_seconds`; typical times on a
+fresh clone; the kernels log each compilation to ``build/<stem>.compile.log``, see ``navlib._kernels.CompileLog``); each is
 reported with its wall time and its kernel's CPU time and peak memory (user + system time and resident set
 size, read from /proc while the kernel runs; "n/a" where there is none; CPU time, unlike wall time, does not
 grow on a busy machine). When the notebooks will compile kernels (a fresh clone, ``--cold``, navlib edited), a
-warm-up goes first (:func:`warm_up`, ``python -m navlib.warmup``): the kernels several notebooks share are
-compiled once, in one process, and the notebooks load them from numba's cache; a paper's further notebooks
+warm-up goes first (:func:`warm_up`, ``python -m navlib.warmup``, its two parts at once on two cores): every
+kernel the notebooks call is compiled once, and the notebooks load them from numba's cache; a paper's further notebooks
 (``05_pedestrian_ins_floors``) start when its first one is done, for the same reason. A notebook that raises is
 reported and the run goes on with the others; the exit status is non-zero if any notebook (or the warm-up)
 failed. ``--only`` runs a subset, and the report then covers that subset only. Needs no network.
@@ -340,18 +340,26 @@ def cell_seconds(nb) -> list[tuple[int, float, str]]:
     return sorted(cells, key=lambda c: -c[1])
 
 
-def warm_up(build: Path) -> dict:
-    """Compile the kernels shared by several notebooks once, in one process: ``python -m navlib.warmup``.
+WARM_UP_ALSO = ("navlib.papers.rotation_bias",)
+"""Paper companions whose own kernels the warm-up compiles too (``_warm_up()``; the core names no paper): in the
+first part, with all of them when the warm-up is one process."""
 
-    Run first, beside the first notebook, so that the notebooks after it load those kernels from numba's cache
-    instead of compiling them, and never two at the same time (the quaternion Kalman filter alone is ~20 s of
-    CPU). Its wall and CPU time and its compilations (``build/warmup.compile.log``) are reported like a notebook's.
+
+def warm_up(build: Path, part: int | None = None) -> dict:
+    """Compile the kernels the notebooks call, before them: ``python -m navlib.warmup [--part N]``.
+
+    The two parts (``navlib.warmup.PARTS``) run first, one per core, so that the notebooks load every kernel
+    from numba's cache instead of compiling it, and never two at the same time (the quaternion Kalman filter alone
+    is ~5 s of CPU). Its wall and CPU time and its compilations (``build/warmup[-N].compile.log``) are reported
+    like a notebook's.
     """
-    log = build / "warmup.compile.log"
+    log = build / f"warmup{'' if part is None else f'-{part}'}.compile.log"
     log.unlink(missing_ok=True)
     before, start = resource.getrusage(resource.RUSAGE_CHILDREN), time.perf_counter()
     done = subprocess.run(
-        [sys.executable, "-m", "navlib.warmup"],
+        [sys.executable, "-m", "navlib.warmup"]
+        + ([] if part is None else ["--part", str(part)])
+        + [arg for module in (WARM_UP_ALSO if part in (None, 1) else ()) for arg in ("--also", module)],
         env=os.environ | {"NAVLIB_COMPILE_LOG": str(log)},
         capture_output=True,
         text=True,
@@ -359,11 +367,19 @@ def warm_up(build: Path) -> dict:
     )
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     return {
+        "part": part,
         "error": None if done.returncode == 0 else error_line(RuntimeError(done.stderr or "navlib.warmup failed")),
         "seconds": round(time.perf_counter() - start, 1),
         "cpu_seconds": round(after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime, 1),
         "compile_cpu_seconds": round(sum(cpu_s for _, _, cpu_s in read_compile_lines(log)), 1),
     }
+
+
+def warm_up_parts(jobs: int) -> list[int | None]:
+    """The warm-up's parts, one process each: both of ``navlib.warmup.PARTS`` on two cores or more, all in one else."""
+    from navlib.warmup import PARTS
+
+    return list(range(1, len(PARTS) + 1)) if jobs >= len(PARTS) else [None]
 
 
 def paper_parts(notebooks: list[Path]) -> dict[Path, Path]:
@@ -381,20 +397,44 @@ def paper_parts(notebooks: list[Path]) -> dict[Path, Path]:
     }
 
 
+COLD_MARK = "cold-cache"
+"""The file in build/ that says the last run compiled into a temporary numba cache (``--cold``)."""
+
+
 def compilation_expected(build: Path, summary: dict, root: Path) -> bool:
-    """Whether this run's notebooks will compile kernels: no earlier run, an earlier one that compiled, or navlib
-    edited since it. A warm run (numba's cache up to date) skips the warm-up's ~1 s."""
+    """Whether this run's notebooks will compile kernels: no earlier run, an earlier ``--cold`` one (its kernels went
+    to a temporary cache), or navlib edited since it. An earlier run that compiled left its kernels in numba's cache:
+    a warm run skips the warm-up (two processes, ~3 s of CPU)."""
     summary_file = build / "summary.json"
-    if not summary or any(e.get("compile_cpu_seconds") for e in summary.values()):
+    if not summary or (build / COLD_MARK).is_file():
         return True
     since = summary_file.stat().st_mtime
     return any(f.stat().st_mtime > since for f in (root / "navlib").rglob("*.py"))
 
 
+TYPICAL_SECONDS = {
+    "02_rotation_bias": 12.5,
+    "07_real_references": 12.9,
+    "01_north_finding": 8.7,
+    "04_mimu_mag_rtk": 8.3,
+    "00_conventions_sensors": 8.2,
+    "05_pedestrian_ins": 6.6,
+    "03_gauss_kruger_ekf": 6.1,
+    "06_real_recordings": 4.5,
+    "05_pedestrian_ins_floors": 4.4,
+}
+"""Each notebook's CPU seconds in a warm run on the reference machine: the order of a first run (a fresh clone
+has no ``build/summary.json``), longest first, so that the last notebooks to start are short ones."""
+
+
 def expected_seconds(summary: dict, notebooks: list[Path]) -> dict[Path, float]:
-    """Each notebook's time in a run's ``summary.json`` less its numba compilation (0 when not in it)."""
+    """Each notebook's time in a run's ``summary.json`` less its numba compilation (:data:`TYPICAL_SECONDS` when not
+    in it, else 0)."""
     return {
-        p: summary.get(p.stem, {}).get("seconds", 0.0) - summary.get(p.stem, {}).get("compile_seconds", 0.0) for p in notebooks
+        p: summary[p.stem].get("seconds", 0.0) - summary[p.stem].get("compile_seconds", 0.0)
+        if p.stem in summary
+        else TYPICAL_SECONDS.get(p.stem, 0.0)
+        for p in notebooks
     }
 
 
@@ -818,7 +858,7 @@ def run_all(args: argparse.Namespace, root: Path, notebooks: list[Path], build: 
         for path in done:
             print(f"{path.stem}: up to date in build/ (not executed again)", flush=True)
     order = longest_first([p for p in notebooks if p not in done], expected_seconds(last, notebooks))
-    warm = None
+    warm: list = []
     start = time.perf_counter()
     # Workers are reused and forked: they start with nbclient and nbformat already imported (spawned ones
     # imported them again, ~1.5 s each, while the notebooks waited); every notebook gets a new kernel.
@@ -826,11 +866,23 @@ def run_all(args: argparse.Namespace, root: Path, notebooks: list[Path], build: 
         max(1, args.jobs), mp_context=multiprocessing.get_context(START_METHOD), initializer=die_with_parent
     ) as pool:
         if order and (args.cold or compilation_expected(build, last, root)):
-            warm = pool.submit(warm_up, build)  # first: the shared kernels compiled once, before their users
+            # first, one part per worker, and the notebooks after both: every kernel compiled once, none while a
+            # notebook that calls it runs (the parts' times differ by a second or two: that is the wait)
+            warm = [pool.submit(warm_up, build, part) for part in warm_up_parts(max(1, args.jobs))]
+            print(f"warm-up: compiling the kernels in {len(warm)} process(es) ...", flush=True)
+            for future in as_completed(warm):
+                w = future.result()
+                part = "" if w["part"] is None else f" --part {w['part']}"
+                print(
+                    f"warm-up (python -m navlib.warmup{part}) {'done' if w['error'] is None else 'FAILED'} in "
+                    f"{w['seconds']:.1f} s ({w['cpu_seconds']:.1f} s CPU, {w['compile_cpu_seconds']:.1f} s compiling)"
+                    + ("" if w["error"] is None else f"\n    ERROR: {w['error']}"),
+                    flush=True,
+                )
         parts = paper_parts(order)  # submitted when their paper's first notebook is done
         futures = {pool.submit(run_notebook, path, build, args.timeout): path for path in order if path not in parts}
         print(f"executing {len(order)} notebooks, {max(1, args.jobs)} at a time ...", flush=True)
-        pending = {*futures, *([warm] if warm else [])}
+        pending = set(futures)
         while pending:
             finished, pending = wait(pending, return_when=FIRST_COMPLETED)
             for path in [p for p, first in parts.items() for f in finished if futures.get(f) == first]:
@@ -838,15 +890,6 @@ def run_all(args: argparse.Namespace, root: Path, notebooks: list[Path], build: 
                 futures[future] = path
                 pending.add(future)
             for future in finished:
-                if future is warm:
-                    w = warm.result()
-                    print(
-                        f"warm-up (python -m navlib.warmup) {'done' if w['error'] is None else 'FAILED'} in "
-                        f"{w['seconds']:.1f} s ({w['cpu_seconds']:.1f} s CPU, {w['compile_cpu_seconds']:.1f} s compiling)"
-                        + ("" if w["error"] is None else f"\n    ERROR: {w['error']}"),
-                        flush=True,
-                    )
-                    continue
                 e = done[futures[future]] = future.result()
                 tail = "" if e["error"] is None else f"\n    ERROR: {e['error']}"
                 print(
@@ -856,7 +899,7 @@ def run_all(args: argparse.Namespace, root: Path, notebooks: list[Path], build: 
                 )
     entries = [done[path] for path in notebooks]
     wall = time.perf_counter() - start
-    warm_up_run = [warm.result()] if warm else []  # its CPU and compilation count in the totals
+    warm_up_run = [w.result() for w in warm]  # its CPU and compilation count in the totals
 
     (build / "index.html").unlink(missing_ok=True)  # the hand-written report: replaced by make docs
     manifest = write_manifest(build, entries)
@@ -878,6 +921,10 @@ def run_all(args: argparse.Namespace, root: Path, notebooks: list[Path], build: 
         for e in entries
     }
     (build / "summary.json").write_text(json.dumps(summary, indent=1) + "\n")
+    if args.cold:
+        (build / COLD_MARK).write_text("the last run compiled into a temporary numba cache (--cold)\n")
+    else:
+        (build / COLD_MARK).unlink(missing_ok=True)
 
     width = max(len(e["notebook"]) for e in entries) + 3
     print()
@@ -888,9 +935,9 @@ def run_all(args: argparse.Namespace, root: Path, notebooks: list[Path], build: 
             f"{e['notebook']:<{width}}{checks:>7} checks passed{e['seconds']:>9.1f} s{cpu(e):>9} CPU{mb(e['peak_mb']):>10}{mark}"
         )
     for w in warm_up_run:
+        label = "warm-up" if w["part"] is None else f"warm-up {w['part']}"
         print(
-            f"{'warm-up':<{width}}{'':>7}{'':>14}{w['seconds']:>9.1f} s{cpu(w):>9} CPU"
-            + ("" if w["error"] is None else "   FAILED")
+            f"{label:<{width}}{'':>7}{'':>14}{w['seconds']:>9.1f} s{cpu(w):>9} CPU" + ("" if w["error"] is None else "   FAILED")
         )
     n_ok = sum(e["ok"] for e in entries)
     passed = sum(e["checks_passed"] for e in entries)

@@ -585,10 +585,9 @@ def _ekf_kernel(t, Z, x0, P0, Q, R, gate, reacquire, fast, rail, jump_steps):
     rejected = np.zeros((n, 4), dtype=np.bool_)
     reacquired = np.zeros((n, 4), dtype=np.bool_)
     streak = np.zeros(4, dtype=np.int64)
-    gate_on = False
-    for g in range(4):
-        if np.isfinite(gate[g]):
-            gate_on = True
+    gate_on = np.isfinite(gate[0])  # any channel gated (a plain bool: a literal False compiled the gate twice)
+    for g in range(1, 4):
+        gate_on = gate_on or np.isfinite(gate[g])
     H = np.eye(5)
     w, y = np.zeros((6, 5, 5)), np.zeros((5, 1))
     Phi_P = np.empty((5, 5))

@@ -639,6 +639,9 @@ def _filter_kernel(samples, s0, c):
     # read before the loop: a record's array read per sample counts a reference (navlib._kernels)
     q_rate, earth_consts, w_sum, predict = c.q_rate, c.earth_consts, ws.w_sum, ws.predict
     n_sum, n_rejected = 0, 0  # static samples summed, ZUPTs rejected in this stance
+    # False as a plain bool, not the literal False: navlib.strapdown's specialisation of nav_step, compiled once
+    # (a literal compiled a second one, 0.7 s of a cold start)
+    hold_height = n < 0
     hb, vb, tracking, t_baro, n_baro_rejected = 0.0, 0.0, False, 0.0, 0
     _store(0, lla_out, vel_out, q_out, b_out, p_out, lla, vel, q, b, P)
     for k in range(n):
@@ -647,7 +650,7 @@ def _filter_kernel(samples, s0, c):
         for i in range(3):
             w_k[i] = w[k, i] - b[3 + i]
             f_k[i] = f[k, i] - b[i]
-        _kernels.nav_step(lla, vel, q, w_k, f_k, dtk, earth_consts, False)  # the shared mechanisation
+        _kernels.nav_step(lla, vel, q, w_k, f_k, dtk, earth_consts, hold_height)  # the shared mechanisation
         # --- P = Phi P Phi^T + Q, Phi = I + F dt; x = Phi x stays 0 (fed back and reset at each update) ---
         _kernels.quat_to_dcm_into(C, q)
         f_n = _kernels.mat3_vec(C, f_k)

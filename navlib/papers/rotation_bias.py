@@ -459,6 +459,15 @@ class Residuals:
 
 
 @njit(cache=True)
+def _median(v):
+    """``np.median(v)`` of a 1-D array without NaN (the same bits), from a sorted copy: numba compiles ``np.sort``
+    once for :func:`navlib._kernels.quant_step` anyway, and its ``np.median`` took a second more of a cold start."""
+    s = np.sort(v)
+    half = s.shape[0] >> 1
+    return (s[half - 1] + s[half]) / 2 if s.shape[0] % 2 == 0 else s[half]
+
+
+@njit(cache=True)
 def _median_sigma(buf, ok, n, a, want_sigma):
     """Median (and robust sigma: :func:`navlib._kernels.robust_sigma`, 1.4826 MAD floored at half the
     quantisation step) of column ``a`` of ``buf[:n]`` over rows where ``ok``; NaN when none."""
@@ -470,13 +479,13 @@ def _median_sigma(buf, ok, n, a, want_sigma):
             m += 1
     if m == 0:
         return np.nan, np.nan
-    med = np.median(vals[:m])
+    med = _median(vals[:m])
     if not want_sigma:
         return med, 0.0
     q = _kernels.quant_step(vals[:m])
     for j in range(m):
         vals[j] = abs(vals[j] - med)
-    return med, _kernels.robust_sigma(np.median(vals[:m]), q)
+    return med, _kernels.robust_sigma(_median(vals[:m]), q)
 
 
 _RESIDUAL_FAULTS = (("dwell", "refused"), ("imu", "nan"), ("gyro", "outlier"), ("accel", "outlier"), ("imu", "saturated"))
@@ -1549,3 +1558,17 @@ def draw_flow(ax: Axes) -> None:
         ("rotate", "imu", "turns"),
     ]
     block_diagram(ax, blocks, arrows, width=0.2, height=0.2, colors={"imu": "#dbe9f6", "att": "#e3f1dc"})
+
+
+def _warm_up() -> None:
+    """Compile this module's kernels on a small rig, in the forms notebook 02 calls them (``python -m navlib.warmup
+    --also navlib.papers.rotation_bias``, run by ``make reproduce`` before the notebooks)."""
+    from .. import trajectory  # noqa: PLC0415 -- the warm-up alone needs it
+
+    rig = trajectory.reciprocating_rotation(40.0, 0.1, [0.5, 2.0, 0.0], [0.0] * 3, [0.0, 1.0, 0.0], np.pi / 2, 10.0)
+    w_ib_b, f_b = trajectory.ideal_imu(rig)
+    starts, length = dwell_windows(len(w_ib_b), 0.1, period=10.0, rotation_time=1.0)
+    w_ie_b = earth.earth_rate_b(attitude.quat_to_dcm(rig.q_bn[starts]), 0.5)
+    res = tilt_residuals(w_ib_b, f_b, 0.1, starts, length, w_ie_b)
+    running_lsq_bias(res.r, res.V)
+    kalman_bias(res.r, res.V, np.tile(1e-12 * np.eye(2), (len(starts), 1, 1)), 10.0, 1e-9, 1e-3)
