@@ -1,5 +1,6 @@
 """The first call of the main entry points in a fresh interpreter with an empty numba cache: compiled on the
-call, and after ``python -m navlib.warmup`` (each in its own interpreter, one cache directory per case)."""
+call, and after ``python -m navlib.warmup --part N``, the part that compiles it (each in its own interpreter, one
+cache directory per case)."""
 
 from __future__ import annotations
 
@@ -9,6 +10,7 @@ import sys
 import tempfile
 
 from bench.run import Result
+from navlib import warmup
 
 # The entry points navlib.warmup compiles, each called once in a fresh interpreter (imports and inputs not timed):
 # the same calls, so the warm case loads exactly what the warm-up cached.
@@ -40,12 +42,13 @@ def _median(times: list[float]) -> tuple[float, str]:
 def first_calls(quick: bool = False) -> list[Result]:
     rows = []
     for name in CALLS:
+        part = next(i for i, names in enumerate(warmup.PARTS, 1) if name in names)  # the warm-up part holding it
         colds, warms = [], []
         for _ in range(REPEATS):
             with tempfile.TemporaryDirectory() as cache:
                 colds.append(_run(SETUP.format(name=name), cache))
                 subprocess.run(
-                    [sys.executable, "-m", "navlib.warmup"],
+                    [sys.executable, "-m", "navlib.warmup", "--part", str(part)],
                     env=dict(os.environ, NUMBA_CACHE_DIR=cache),
                     capture_output=True,
                     check=True,
@@ -56,7 +59,7 @@ def first_calls(quick: bool = False) -> list[Result]:
         rows += [
             Result(
                 f"first call: {name}",
-                "navlib, after python -m navlib.warmup",
+                f"navlib, after python -m navlib.warmup --part {part}",
                 1 / warm,
                 "calls/s",
                 warm,

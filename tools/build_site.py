@@ -586,7 +586,12 @@ def course_page(build: Path) -> str:
         if (build / "teaching").is_dir()
         else []
     )
-    rows += ["", "Teaching + fast mode with a parameter changed, from the last `make test` (tests/test_teaching.py):", ""]
+    rows += [
+        "",
+        "Teaching + fast mode with a parameter changed, from each run's last execution "
+        "(`make test` runs it when out of date; tests/test_teaching.py):",
+        "",
+    ]
     if runs:
         rows += ["| chapter | change | run | checks held |", "| --- | --- | --- | --- |"]
         rows += [

@@ -714,12 +714,16 @@ def tilt_residuals(
     >>> np.round(rb.lsq_bias(res.r, res.V) * 1e4, 3)                  # Eq. (14) recovers it (1e-4 rad/s)
     array([ 1.,  2., -1.])
     """
-    w_ib_b, f_b, dt, full_scale_gyro, full_scale_accel = unpack(w_ib_b, f_b, dt, full_scale_gyro, full_scale_accel)
+    if isinstance(w_ib_b, ImuSamples):  # samples and intervals checked by the record
+        w, f, dts, full_scale_gyro, full_scale_accel = unpack(w_ib_b, f_b, dt, full_scale_gyro, full_scale_accel)
+        regular = False
+    else:
+        w_ib_b, f_b, dt, _, _ = unpack(w_ib_b, f_b, dt)  # f_b and dt required
+        w, f = imu_samples(w_ib_b, f_b)
+        dts, regular = sample_intervals(dt, w.shape[-2]), np.ndim(dt) == 0
     if starts is None or length is None:
         raise ValueError(f"{'starts' if starts is None else 'length'}: required")
-    w, f = imu_samples(w_ib_b, f_b)
     lead, n = w.shape[:-2], w.shape[-2]
-    dts, regular = sample_intervals(dt, n), np.ndim(dt) == 0
     small_turns(w, dts)
     length = integer(length, "length", minimum=MIN_DWELL_SAMPLES)
     starts = indices(starts, "starts")
