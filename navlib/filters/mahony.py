@@ -29,7 +29,6 @@ from numba import njit
 
 from .._kernels import quat_mult_t
 from .._typing import Quat, Vec3, Vec3Series
-from .._validate import scalar
 from ..imu import ImuSamples
 from ..robust import Screened
 from .observations import (
@@ -170,8 +169,8 @@ def mahony(
     array([[30. ,  0. ,  4.9],
            [30. ,  0. ,  0. ]])
     """
-    kp = scalar(kp, "kp", positive=True, allow_zero=True)
     lead, inp, found = pack(imu, q0, m_b, rtk, B_n, gates, kp)
+    kp = float(kp)  # checked by pack
     ki = integral_gain(ki, inp.use_mag or inp.use_rtk)
     T, N = inp.w.shape[:2]
     q_out, bias, counts = np.empty((T, N, 4)), np.empty((T, 3)), np.zeros((T, 4), dtype=np.int64)

@@ -35,7 +35,7 @@ import numpy as np
 from numba import njit
 
 from .._typing import Array, Quat, Vec3, Vec3Series
-from .._validate import Flag, Is, Positive, Step, as_array, as_quat, boundary, broadcast, fields_checked, flag, scalar
+from .._validate import Flag, Is, Positive, Step, as_array, as_quat, boundary, broadcast, fields_checked, flag
 from ..imu import ImuSamples
 from ..robust import Screened
 from .observations import (
@@ -481,8 +481,8 @@ def quaternion_kf(
     array([[25.1,  0. , -0.1],
            [29.3,  0.1, -0.1]])
     """
-    kp = scalar(kp, "kp", positive=True, allow_zero=True)
     lead, inp, found = pack(imu, q0, m_b, rtk, B_n, gates, kp)
+    kp = float(kp)  # checked by pack
     if inp.use_mag and B_n is None:
         raise ValueError("B_n: the quaternion KF needs the local field for its magnetometer reference")
     ki = integral_gain(ki, inp.use_mag or inp.use_rtk)
