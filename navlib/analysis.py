@@ -24,7 +24,7 @@ from typing import Annotated
 import numpy as np
 from numba import njit
 
-from . import _attitude, _kernels, attitude, earth
+from . import _attitude, _earth, _kernels, attitude, earth
 from ._typing import Angles, Array, ArrayLike, Times, Vec3
 from ._validate import (
     Check,
@@ -539,7 +539,7 @@ def horizontal_error(lla: Vec3, lla_true: Vec3) -> Array:
     broadcast(a, b, name="lla_true", of="lla, lla_true")
     latitude(a[..., 0], "lla[..., 0] (lat)")
     latitude(b[..., 0], "lla_true[..., 0] (lat)")
-    R_M, R_N = earth.radii(b[..., 0])
+    R_M, R_N = _earth.radii(b[..., 0], earth.WGS84)
     return np.stack(
         [(a[..., 1] - b[..., 1]) * (R_N + b[..., 2]) * np.cos(b[..., 0]), (a[..., 0] - b[..., 0]) * (R_M + b[..., 2])], -1
     )

@@ -55,10 +55,11 @@ from typing import Annotated
 import numpy as np
 from numba import njit
 
+from . import _earth
 from ._kernels import fma
 from ._typing import Array, ArrayLike
-from ._validate import Check, Real, as_array, boundary, broadcast, choice, flag, in_range, lat_lon, latitude, longitude, scalar
-from .earth import WGS84, Ellipsoid, EllipsoidArg, radii
+from ._validate import Check, Real, as_array, boundary, broadcast, choice, flag, in_range, lat_lon, latitude, longitude
+from .earth import WGS84, Ellipsoid, EllipsoidArg
 
 __all__ = [
     "zone",
@@ -83,17 +84,8 @@ _PREFIX_UNIT = 1e6  # zone number times 1e6 m prefixed to the easting
 _K0_RANGE = (0.5, 1.5)  # accepted central-meridian scales k0 (GK 1, UTM 0.9996)
 GridScale = Annotated[float, Check("scalar", within=_K0_RANGE)]
 """The central-meridian scale k0 of a grid."""
-
-
-# --------------------------------------------------------------------------
-# Validation (every public function: wrong types, NaN/inf, empty, out of range -> error naming the argument)
-# --------------------------------------------------------------------------
-
-
-def _max_offset(max_offset_deg):
-    if max_offset_deg is None:
-        return None
-    return scalar(max_offset_deg, "max_offset_deg", within=(0.0, _MAX_OFFSET_DEG), open_ends=(True, False))
+MaxOffset = Annotated[float, Check("scalar", within=(0.0, _MAX_OFFSET_DEG), open_ends=(True, False))]
+"""The largest allowed ``|lon - lon0|`` (deg), at most the series' 60°."""
 
 
 # --------------------------------------------------------------------------
@@ -185,9 +177,13 @@ def _resolve_lon0(lon_deg, zone_number, lon0, w, deg, max_offset_deg):
         limit = np.inf
     else:
         L0 = _central_meridian(zone_number, w, True, "zone") if lon0 is None else longitude(lon0, "lon0", deg)
-        max_offset_deg = _max_offset(max_offset_deg)
         limit = float(w if max_offset_deg is None else max_offset_deg)
-    l_deg = lon_deg - L0
+    return L0, _offset(lon_deg - L0, limit, w)
+
+
+def _offset(l_deg, limit, w):
+    """Longitude offsets ``l_deg`` from the central meridian (deg) wrapped into [-180, 180), refused beyond
+    ``limit`` (deg; the series' 60° at most) for zones of width ``w``."""
     offset = max(l_deg.max(initial=0.0), -l_deg.min(initial=0.0))  # max |l_deg|, without a temporary
     if offset > 180.0:  # only then is the (slower) wrap needed
         l_deg = np.mod(l_deg + 180.0, 360.0) - 180.0
@@ -198,7 +194,7 @@ def _resolve_lon0(lon_deg, zone_number, lon0, w, deg, max_offset_deg):
             f"(zone width {w}°; pass max_offset_deg to allow more), got offsets up to "
             f"{np.abs(l_deg).max():.4g}°"
         )
-    return L0, l_deg
+    return l_deg
 
 
 # --------------------------------------------------------------------------
@@ -477,7 +473,7 @@ def geodetic2gk(
     false_easting: Real = 0.0,
     false_northing: Real = 0.0,
     zone_prefix: bool = False,
-    max_offset_deg: float | None = None,
+    max_offset_deg: MaxOffset | None = None,
 ) -> tuple[Array, Array]:
     """Gauss–Krüger forward projection (Eq. 9, by Krüger's n-series).
 
@@ -611,7 +607,7 @@ def convergence(
     width: int = 3,
     ellipsoid: EllipsoidArg = WGS84,
     deg: bool = False,
-    max_offset_deg: float | None = None,
+    max_offset_deg: MaxOffset | None = None,
 ) -> Array:
     """Grid (meridian) convergence gamma: the grid bearing of true north is ``-gamma``.
 
@@ -648,7 +644,7 @@ def scale_factor(
     ellipsoid: EllipsoidArg = WGS84,
     deg: bool = False,
     k0: GridScale = 1.0,
-    max_offset_deg: float | None = None,
+    max_offset_deg: MaxOffset | None = None,
 ) -> Array:
     """Point scale factor k of the projection (1 on the central meridian for GK).
 
@@ -691,8 +687,10 @@ def meridian_arc(lat: ArrayLike, ellipsoid: EllipsoidArg = WGS84, deg: bool = Fa
 
 
 def _gk_project(lat, lon, lon0, ellipsoid):
-    """:func:`geodetic2gk` about the central meridian lon0 (all rad), any offset up to the series' 60° limit."""
-    return geodetic2gk(lat, lon, lon0=lon0, ellipsoid=ellipsoid, max_offset_deg=_MAX_OFFSET_DEG)
+    """:func:`geodetic2gk` of checked points about the central meridian lon0 (all rad), any offset up to the
+    series' 60° limit."""
+    l_deg = _offset(np.rad2deg(lon) - np.rad2deg(lon0), _MAX_OFFSET_DEG, 3)
+    return _forward(lat, l_deg, ellipsoid, 1.0, 0.0, 0.0)
 
 
 @boundary
@@ -753,7 +751,7 @@ def local_scales(
 
     d_lat = (xy(lat_r + step, lon_r) - xy(lat_r - step, lon_r)) / (2 * step)
     d_lon = (xy(lat_r, lon_r + step) - xy(lat_r, lon_r - step)) / (2 * step)
-    R_M, R_N = radii(lat_r, ellipsoid=ellipsoid)
+    R_M, R_N = _earth.radii(lat_r, ellipsoid)
     h = np.linalg.norm(d_lat, axis=-1) / R_M
     k = np.linalg.norm(d_lon, axis=-1) / (R_N * np.cos(lat_r))
     cross = d_lat[..., 0] * d_lon[..., 1] - d_lat[..., 1] * d_lon[..., 0]

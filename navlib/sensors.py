@@ -41,7 +41,7 @@ from typing import Any
 import numpy as np
 from numba import njit
 
-from . import atmosphere, attitude, earth, units
+from . import _earth, atmosphere, attitude, earth, units
 from ._typing import Angles, Array, ArrayLike, Quat, Times, Vec3, Vec3Series
 from ._validate import (
     Count,
@@ -751,7 +751,7 @@ class BarometerModel:
 
 
 @boundary
-def simulate_barometer(h: ArrayLike, time: Times, model: Is[BarometerModel], rng: Rng, p0: float = atmosphere.P0) -> Array:
+def simulate_barometer(h: ArrayLike, time: Times, model: Is[BarometerModel], rng: Rng, p0: Positive = atmosphere.P0) -> Array:
     """Barometric pressure (Pa) at heights ``h`` (m) with the ISA as truth.
 
     Parameters
@@ -778,7 +778,7 @@ def simulate_barometer(h: ArrayLike, time: Times, model: Is[BarometerModel], rng
     array([101325., 101326., 101327.])
     """
     t = time_axis(time)
-    p = last_axis(atmosphere.isa_pressure(h, scalar(p0, "p0", positive=True)), "h", t.size, of="time")  # checks h
+    p = last_axis(atmosphere.isa_pressure(h, p0), "h", t.size, of="time")  # isa_pressure checks h
     r_bias, r_noise = rng.spawn(2)
     p = p + model.bias * r_bias.standard_normal(p.shape[:-1] + (1,))
     p = p + model.drift_rate * (t - t[0])
@@ -860,7 +860,7 @@ def simulate_gnss_position(
     lla = as_array(lla, "lla", tail=(3,), min_ndim=1)
     in_range(lla[..., 0], "lla[..., 0] (lat)", -np.pi / 2, np.pi / 2, "rad")
     sv = 1.5 * sigma_horizontal if sigma_vertical is None else scalar(sigma_vertical, "sigma_vertical", allow_zero=True)
-    R_M, R_N = earth.radii(lla[..., 0])
+    R_M, R_N = _earth.radii(lla[..., 0], earth.WGS84)
     e = rng.standard_normal(lla.shape)
     out = lla.copy()
     out[..., 0] += sigma_horizontal * e[..., 1] / (R_M + lla[..., 2])

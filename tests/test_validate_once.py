@@ -47,7 +47,6 @@ TWICE = {
     "io.read_sensor_logger": ["time"],
     "io.read_euroc": ["time"],
     "io.read_phyphox": ["time"],
-    "geodesy.local_scales": ["('lat', 'lon')", "ellipsoid", "lon0"],  # the projection it differentiates is public
     "papers.gauss_kruger_ekf.waypoint_path": ["T", "speed"],  # filters.planar_ekf
     "papers.gauss_kruger_ekf.ekf": ["('lat', 'lon')", "axis", "deg", "ellipsoid", "name", "t", "width", "z", "zone"],
     "papers.gauss_kruger_ekf.simulate_sensors": ["('lat', 'lon')", "deg", "ellipsoid", "width", "zone", "zone_prefix"],

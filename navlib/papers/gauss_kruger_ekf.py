@@ -47,7 +47,7 @@ unless ``deg=True`` and return metres.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Annotated, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -55,6 +55,8 @@ from numpy.typing import NDArray
 from .. import geodesy, robust
 from .._typing import Array, ArrayLike, Times
 from .._validate import (
+    Check,
+    Count,
     Flag,
     Is,
     NonNegative,
@@ -851,8 +853,8 @@ def draw_zones(
 @boundary
 def draw_zone_grid(
     ax: Axes,
-    zone: int,
-    lat_max: Positive = 60.0,
+    zone: Count,
+    lat_max: Annotated[float, Check("scalar", within=(10.0, 80.0), open_ends=(True, False))] = 60.0,
     *,
     step_deg: Positive = 0.5,
     mark: tuple[float, float] | None = None,
@@ -886,28 +888,25 @@ def draw_zone_grid(
     >>> plt.close(fig)
     """
     axes(ax)
-    n = int(scalar(zone, "zone", positive=True))
-    if n != zone or n > 120:
+    if zone > 120:
         raise ValueError(f"zone: expected a 3° zone number 1-120, got {zone!r}")
-    if not 10 < lat_max <= 80:
-        raise ValueError(f"lat_max: expected a latitude in (10°, 80°], got {lat_max!r}")
-    L0 = float(geodesy.central_meridian(n, deg=True))
+    L0 = float(geodesy.central_meridian(zone, deg=True))
     lats = np.linspace(0.0, lat_max, 121)
     for k, dl in enumerate(np.arange(-1.5, 1.5 + step_deg / 2, step_deg)):
-        x, y = geodesy.geodetic2gk(lats, np.full_like(lats, L0 + dl), zone=n, ellipsoid=ellipsoid, deg=True)
+        x, y = geodesy.geodetic2gk(lats, np.full_like(lats, L0 + dl), zone=zone, ellipsoid=ellipsoid, deg=True)
         ax.plot(y / 1e3, x / 1e3, color="tab:green" if abs(dl) < 1e-9 else "0.5", lw=1.6 if abs(dl) < 1e-9 else 0.8)
         if k % 2 == 0:
             ax.text(y[0] / 1e3, -250, f"{L0 + dl:g}°", ha="center", va="top", fontsize=7)
     for lat in np.arange(0.0, lat_max + 1e-9, 10.0):
         lons = np.linspace(L0 - 1.5, L0 + 1.5, 31)
-        x, y = geodesy.geodetic2gk(np.full_like(lons, lat), lons, zone=n, ellipsoid=ellipsoid, deg=True)
+        x, y = geodesy.geodetic2gk(np.full_like(lons, lat), lons, zone=zone, ellipsoid=ellipsoid, deg=True)
         ax.plot(y / 1e3, x / 1e3, color="0.7", lw=0.8)
         ax.text(y[-1] / 1e3 + 8, x[-1] / 1e3, f"{lat:g}° N", fontsize=7, va="center")
     if mark is not None:
         lat, lon = as_array(mark, "mark", shape=(2,))
-        x, y = geodesy.geodetic2gk(lat, lon, zone=n, ellipsoid=ellipsoid, deg=True)
+        x, y = geodesy.geodetic2gk(lat, lon, zone=zone, ellipsoid=ellipsoid, deg=True)
         ax.plot(y / 1e3, x / 1e3, "*", color="k", ms=12)
-    top_km = geodesy.geodetic2gk(lat_max, L0, zone=n, ellipsoid=ellipsoid, deg=True)[0] / 1e3
+    top_km = geodesy.geodetic2gk(lat_max, L0, zone=zone, ellipsoid=ellipsoid, deg=True)[0] / 1e3
     ax.annotate(
         f"central meridian $L_0$ = {L0:g}°:\nthe x axis (north)",
         (0, 0.8 * top_km),

@@ -913,7 +913,12 @@ def four_position_heading_std(sigma_gyro: float, lat: float) -> Array:
 
 @boundary
 def stop_and_go(
-    headings: Angles, stop_duration: Positive, drive_duration: Positive, speed: Positive, pitches: Angles, rolls: Angles
+    headings: Angles,
+    stop_duration: Positive,
+    drive_duration: Annotated[float, Check("scalar", within=(30.0, np.inf, "s (accelerate, turn, brake)"))],
+    speed: Positive,
+    pitches: Angles,
+    rolls: Angles,
 ) -> tuple[list[Segment], Array]:
     """Segments of a drive with stops at given headings (Table 1 stand-in).
 
@@ -956,8 +961,6 @@ def stop_and_go(
         as_array(rolls, "rolls", shape=psi.shape, of="headings: one per stop"),
         ("pitches", "rolls"),
     )
-    if drive_duration < 30:
-        raise ValueError(f"drive_duration: expected >= 30 s (accelerate, turn, brake), got {drive_duration}")
     ramp = 10.0
     segments = [Segment(stop_duration, speed=0.0, pitch=th[0], roll=ro[0])]
     stops = [(0.0, stop_duration)]
@@ -1095,8 +1098,6 @@ def stop_solutions(
         raise ValueError(
             f"windows: expected (S, 2) [start, end) sample indices within {n} samples, each >= 2 long, got {win.tolist()}"
         )
-    if lat is None:  # as static_means says
-        raise ValueError("lat: required")
     stats = tuple(static_means(w[..., a:b, :], f[..., a:b, :], lat, h, strict=strict, **window_options) for a, b in win)
     w_mean = np.stack([m.w_mean for m in stats], -2)
     f_mean = np.stack([m.f_mean for m in stats], -2)
