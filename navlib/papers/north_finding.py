@@ -1098,6 +1098,8 @@ def stop_solutions(
         raise ValueError(
             f"windows: expected (S, 2) [start, end) sample indices within {n} samples, each >= 2 long, got {win.tolist()}"
         )
+    if lat is None:  # as static_means says
+        raise ValueError("lat: required")
     stats = tuple(static_means(w[..., a:b, :], f[..., a:b, :], lat, h, strict=strict, **window_options) for a, b in win)
     w_mean = np.stack([m.w_mean for m in stats], -2)
     f_mean = np.stack([m.f_mean for m in stats], -2)
