@@ -660,11 +660,11 @@ def dead_reckoning_error_ms(truth: ArrayLike, T: Positive, R: ArrayLike, yaw_rat
 @boundary
 def ekf_error_ms(
     truth: ArrayLike,
-    T: Positive,
+    T: float,  # checked by planar_ekf.jacobian, its only use
     Q: ArrayLike = Q_PAPER,
     R: ArrayLike = R_PAPER,
     P0: ArrayLike | None = None,
-    yaw_rate_bias: float = 0.0,
+    yaw_rate_bias: Real = 0.0,
 ) -> Array:
     """Expected squared position error (m²) of :func:`ekf` on :func:`simulate_sensors`: a linear covariance analysis.
 
@@ -709,7 +709,7 @@ def ekf_error_ms(
         raise ValueError(f"truth: expected at least 2 states, got {len(truth)}")
     Q, R = covariance(Q, "Q"), covariance(R, "R")
     P = np.zeros((5, 5)) if P0 is None else covariance(P0, "P0").copy()
-    b = np.array([0.0, 0.0, 0.0, 0.0, scalar(yaw_rate_bias, "yaw_rate_bias")])
+    b = np.array([0.0, 0.0, 0.0, 0.0, yaw_rate_bias])
     S, m = np.zeros((5, 5)), np.zeros(5)
     ms = np.zeros(len(truth))
     eye = np.eye(5)
