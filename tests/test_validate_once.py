@@ -48,9 +48,7 @@ TWICE = {
     "io.read_euroc": ["time"],
     "io.read_phyphox": ["time"],
     "papers.gauss_kruger_ekf.waypoint_path": ["T", "speed"],  # filters.planar_ekf
-    "papers.gauss_kruger_ekf.ekf": ["('lat', 'lon')", "axis", "deg", "ellipsoid", "name", "t", "width", "z", "zone"],
-    "papers.gauss_kruger_ekf.simulate_sensors": ["('lat', 'lon')", "deg", "ellipsoid", "width", "zone", "zone_prefix"],
-    "papers.gauss_kruger_ekf.draw_zone_grid": ["deg", "width", "zone"],
+    "papers.gauss_kruger_ekf.ekf": ["axis", "name", "t", "z"],  # filters.planar_ekf.filter_grid and robust
     "papers.north_finding.monte_carlo": ["f_b", "lat"],  # simulate_static_outputs, triad and heading_candidates
     "papers.north_finding.stop_solutions": ["None", "f_b", "h", "lat"],
     "papers.north_finding.ins_heading_change": ["dt", "lat", "w_ib_b"],  # strapdown.integrate_attitude
