@@ -42,7 +42,6 @@ VALIDATE_FILE = _validate.__file__
 TWICE = {
     # A public function of another module checks again what the caller checked: these callers need the checked
     # value themselves first, and the callee's unchecked core is not yet in a private core module (navlib/_earth.py).
-    "calibration.characterise": ["correlation_time", "dt", "rate_random_walk", "taus"],  # analysis' Allan functions
     "io.read_xio": ["time"],  # timing.intervals of the record's time
     "io.read_sensor_logger": ["time"],
     "io.read_euroc": ["time"],
