@@ -61,7 +61,7 @@ from ._validate import (
     time_axis,
 )
 from .imu import ImuSamples, SensorLimits
-from .timing import TimingReport, intervals, sanitize
+from .timing import TimingReport, sanitize
 from .units import G0
 
 _P = ParamSpec("_P")
@@ -124,7 +124,8 @@ class Recording:
     Attributes
     ----------
     time : ndarray, shape (N,)
-        Sample times (s) from the first sample.
+        Sample times (s) from the first sample, strictly increasing: the readers check them once, and
+        ``dt`` and the functions that take a recording use them as they are.
     w_ib_b, f_b, m_b : ndarray, shape (N, 3), or None
         Gyro (rad/s), specific force (m/s^2), magnetic field (uT) in the right-front-up body frame;
         NaN where a sensor has no reading at that time.
@@ -170,7 +171,7 @@ class Recording:
     @property
     def dt(self) -> Array:
         """Interval covered by each sample (s), shape (N,): ``t[k] - t[k-1]``, the first one repeating the second."""
-        dt = intervals(self.time)
+        dt = np.diff(self.time)
         return np.concatenate([dt[:1], dt])
 
     def imu(self, limits: SensorLimits | None = None) -> ImuSamples:

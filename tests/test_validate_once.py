@@ -42,10 +42,6 @@ VALIDATE_FILE = _validate.__file__
 TWICE = {
     # A public function of another module checks again what the caller checked: these callers need the checked
     # value themselves first, and the callee's unchecked core is not yet in a private core module (navlib/_earth.py).
-    "io.read_xio": ["time"],  # timing.intervals of the record's time
-    "io.read_sensor_logger": ["time"],
-    "io.read_euroc": ["time"],
-    "io.read_phyphox": ["time"],
     "papers.gauss_kruger_ekf.waypoint_path": ["T", "speed"],  # filters.planar_ekf
     "papers.gauss_kruger_ekf.ekf": ["axis", "name", "t", "z"],  # filters.planar_ekf.filter_grid and robust
     "papers.north_finding.monte_carlo": ["f_b", "lat"],  # simulate_static_outputs, triad and heading_candidates
