@@ -104,7 +104,7 @@ from scipy.optimize import least_squares
 
 from . import _noise, analysis, earth, units
 from ._typing import Array, ArrayLike, Dcm, Interval, Vec3, Vec3Series
-from ._validate import Check, Flag, Positive, as_array, boundary, imu_samples, sample_intervals, scalar
+from ._validate import Check, Flag, Positive, as_array, boundary, imu_samples, interval, sample_intervals, scalar
 from .imu import ImuSamples, unpack
 from .sensors import ImuModel, TriadErrors
 
@@ -835,7 +835,7 @@ def _fixed_interval(dt: Interval, n: int) -> float:
             f"{d.min():g} to {d.max():g} s (resample first by averaging, navlib.io.resample(rec, rate); "
             "interpolation changes the white-noise level)"
         )
-    return float(d.mean())
+    return interval(d.mean(), "dt")  # and not too long for the Allan deviation (its square overflows)
 
 
 @boundary
