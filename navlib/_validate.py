@@ -263,6 +263,21 @@ def lat_lon(lat: object, lon: object, deg: bool = False, names: tuple[str, str] 
     return broadcast(lat_rad, longitude(lon, names[1], deg), name=", ".join(names))
 
 
+def zone_offset(l_deg: Array, limit: float, width: int) -> Array:
+    """Longitude offsets ``l_deg`` from a zone's central meridian (deg), wrapped into [-180, 180) and refused beyond
+    ``limit`` (deg) for zones ``width`` degrees wide (navlib.geodesy's projections)."""
+    offset = max(l_deg.max(initial=0.0), -l_deg.min(initial=0.0))  # max |l_deg|, without a temporary
+    if offset > 180.0:  # only then is the (slower) wrap needed
+        l_deg = np.mod(l_deg + 180.0, 360.0) - 180.0
+        offset = np.abs(l_deg).max(initial=0.0)
+    if offset > limit:
+        raise ValueError(
+            f"lon: expected longitudes within {limit:g}° of the central meridian (zone width {width}°; pass "
+            f"max_offset_deg to allow more), got offsets up to {np.abs(l_deg).max():.4g}°"
+        )
+    return l_deg
+
+
 def generator(rng: np.random.Generator, name: str = "rng") -> np.random.Generator:
     """Check that ``rng`` is a ``numpy.random.Generator`` (no legacy global state)."""
     return instance(rng, name, np.random.Generator, "a numpy.random.Generator")

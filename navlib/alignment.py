@@ -388,13 +388,14 @@ def static_means(
     >>> int(win.n_used_accel), int(win.faults["accel", "nan"]), np.round(win.f_mean, 4)
     (99, 1, array([ 0.    , -0.    ,  9.7967]))
     """
-    if isinstance(w_ib_b, ImuSamples):  # no dt here: unpack's dt is left None and its intervals unused
-        w_ib_b, f_b, _, full_scale_gyro, full_scale_accel = unpack(w_ib_b, f_b, None, full_scale_gyro, full_scale_accel)
+    if isinstance(w_ib_b, ImuSamples):  # samples checked by the record; no dt here: unpack's is left None and unused
+        w, f, _, full_scale_gyro, full_scale_accel = unpack(w_ib_b, f_b, None, full_scale_gyro, full_scale_accel)
     elif f_b is None:
         raise ValueError("f_b: required (or pass an ImuSamples as w_ib_b)")
+    else:
+        w, f = imu_samples(w_ib_b, f_b)
     if lat is None:
         raise ValueError("lat: required")
-    w, f = imu_samples(w_ib_b, f_b)
     n = w.shape[-2]
     if n < 2:
         raise ValueError(f"w_ib_b: expected a static window of at least 2 samples, got {n}")

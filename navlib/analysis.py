@@ -24,7 +24,7 @@ from typing import Annotated
 import numpy as np
 from numba import njit
 
-from . import _attitude, _kernels, attitude, earth
+from . import _attitude, _earth, _kernels, _noise, attitude, earth
 from ._typing import Angles, Array, ArrayLike, Times, Vec3
 from ._validate import (
     Check,
@@ -93,27 +93,21 @@ def rmse(err: ArrayLike, axis: int | tuple[int, ...] | None = 0) -> Array:
     return np.sqrt(np.mean(err * err, axis=axis))
 
 
-def _gm_allan_var_unit(u):
-    """Allan variance of a unit-variance Gauss-Markov process at tau = u T_c."""
-    u = np.asarray(u, dtype=float)
-    small = u < 1e-3
-    us = np.where(small, 1.0, u)
-    big = (2 / us) * (1 - (3 - 4 * np.exp(-us) + np.exp(-2 * us)) / (2 * us))
-    return np.where(small, 2 * u / 3 - u * u / 2, big)  # series avoids cancellation
-
-
 def _peak():
     from scipy.optimize import minimize_scalar  # noqa: PLC0415 -- tests only (the constants below are its result)
 
-    res = minimize_scalar(lambda u: -_gm_allan_var_unit(u), bounds=(0.1, 10.0), method="bounded", options={"xatol": 1e-10})
+    res = minimize_scalar(lambda u: -_noise.gm_allan_var_unit(u), bounds=(0.1, 10.0), method="bounded", options={"xatol": 1e-10})
     return float(np.sqrt(-res.fun)), float(res.x)
 
 
-GM_ALLAN_PEAK, GM_ALLAN_PEAK_TAU = 0.6173642831444414, 1.8926178039336263
+GM_ALLAN_PEAK, GM_ALLAN_PEAK_TAU = _noise.GM_ALLAN_PEAK, _noise.GM_ALLAN_PEAK_TAU
 """Peak Allan deviation of a unit-variance Gauss-Markov process (~0.6174), and
 the tau of the peak in units of the correlation time (~1.893): the result of ``_peak()`` (a bounded
 maximisation), written out so that ``import navlib`` does not import scipy.optimize
 (tests/test_analysis.py recomputes them)."""
+ALLAN_EVIDENCE = _noise.ALLAN_EVIDENCE
+"""A model fits an Allan-deviation curve if its largest miss, where the terms show, is no more improbable than a miss
+of this many standard errors in one comparison; a term is needed if no model without it fits (:func:`fit_allan`)."""
 
 
 @boundary
@@ -149,86 +143,14 @@ def allan_deviation(x: ArrayLike, dt: Step, taus: ArrayLike | None = None) -> tu
     (array([ 0.1,  1. , 10. ]), array([0.01  , 0.0032, 0.0012]))
     """
     x = as_array(x, "x")
-    return _allan_deviation(x, dt, taus)
-
-
-def _allan_deviation(x: np.ndarray, dt: float, taus: ArrayLike | None) -> tuple[Array, Array]:
-    """:func:`allan_deviation` of a checked series and interval (also :func:`navlib.calibration.characterise`'s)."""
-    one_series = x.ndim == 1
-    if one_series:
-        x = x[:, None]
-    if x.ndim < 2 or x.shape[-2] < 9:
-        raise ValueError(f"x: expected at least 9 samples on axis -2, got shape {x.shape}")
-    n = x.shape[-2]
-    if taus is None:
-        m = np.unique(np.round(np.logspace(0, np.log10(n // 3), 10 * max(1, int(np.log10(n // 3)) + 1))))
-    else:
-        m = np.unique(np.round(positive(taus, "taus") / dt))
-        if m.min() < 1 or m.max() > (n - 1) // 2:
-            raise ValueError(f"taus: expected values between dt and {(n - 1) // 2 * dt:g} s")
-    m = m.astype(np.int64)
-    theta = np.zeros(x.shape[:-2] + (n + 1, x.shape[-1]))  # the integrated series, built in place: one record-sized array
-    np.cumsum(x, axis=-2, out=theta[..., 1:, :])
-    theta[..., 1:, :] *= dt
-    mean_sq = _mean_square_second_difference(theta.reshape(-1, n + 1, x.shape[-1]), m)
-    tau = m * dt
-    out = np.sqrt(mean_sq / (2 * tau * tau)[:, None]).reshape(x.shape[:-2] + (m.size, x.shape[-1]))
-    return tau, (out[:, 0] if one_series else out)  # type: ignore[return-value]  # int64 * float is float64; numpy's stubs widen it
-
-
-@njit(cache=True)
-def _mean_square_second_difference(theta, m):
-    """Mean over ``r`` of ``(theta[r + 2m] - 2 theta[r + m] + theta[r])**2`` for each ``m``: shape (B, M, k).
-
-    One pass per averaging time and no temporaries (numpy needs four record-sized arrays per ``m``); the
-    sum runs over ``r`` in order, as numpy's reduction over a non-contiguous axis does. Vector series
-    (k = 3) take two averaging times per pass with the sums in registers (fewer passes over the record, same sums).
-    """
-    n_b, length, k = theta.shape
-    out = np.empty((n_b, m.size, k))
-    for b in range(n_b):
-        series = theta[b]
-        i = 0
-        while i < m.size:
-            if k == 3 and i + 1 < m.size:
-                _two_taus_xyz(series, m[i], m[i + 1], out[b, i], out[b, i + 1])
-                i += 2
-                continue
-            count = length - 2 * m[i]
-            for j in range(k):
-                acc = 0.0
-                for r in range(count):
-                    acc += _second_difference_sq(series, r, m[i], j)
-                out[b, i, j] = acc / count
-            i += 1
-    return out
-
-
-@njit(cache=True, inline="always")
-def _two_taus_xyz(theta, ma, mb, out_a, out_b):
-    """The sums of :func:`_mean_square_second_difference` for ``ma < mb`` on three axes in one pass."""
-    length = theta.shape[0]
-    ca, cb = length - 2 * ma, length - 2 * mb
-    ax = ay = az = bx = by = bz = 0.0
-    for r in range(cb):
-        ax += _second_difference_sq(theta, r, ma, 0)
-        ay += _second_difference_sq(theta, r, ma, 1)
-        az += _second_difference_sq(theta, r, ma, 2)
-        bx += _second_difference_sq(theta, r, mb, 0)
-        by += _second_difference_sq(theta, r, mb, 1)
-        bz += _second_difference_sq(theta, r, mb, 2)
-    for r in range(cb, ca):
-        ax += _second_difference_sq(theta, r, ma, 0)
-        ay += _second_difference_sq(theta, r, ma, 1)
-        az += _second_difference_sq(theta, r, ma, 2)
-    out_a[0], out_a[1], out_a[2] = ax / ca, ay / ca, az / ca
-    out_b[0], out_b[1], out_b[2] = bx / cb, by / cb, bz / cb
-
-
-@njit(cache=True, inline="always")
-def _second_difference_sq(theta, r, m, j):
-    d = theta[r + 2 * m, j] - 2 * theta[r + m, j] + theta[r, j]
-    return d * d
+    series = x[:, None] if x.ndim == 1 else x
+    if series.ndim < 2 or series.shape[-2] < 9:
+        raise ValueError(f"x: expected at least 9 samples on axis -2, got shape {series.shape}")
+    n = series.shape[-2]
+    m = _noise.cluster_lengths(n, dt, None if taus is None else positive(taus, "taus"))
+    if taus is not None and (m.min() < 1 or m.max() > (n - 1) // 2):
+        raise ValueError(f"taus: expected values between dt and {(n - 1) // 2 * dt:g} s")
+    return _noise.deviation(x, dt, m)
 
 
 @boundary
@@ -265,14 +187,7 @@ def allan_deviation_theory(
         scalar(v, name, allow_zero=True)
         for v, name in ((white, "white"), (bias_instability, "bias_instability"), (rate_random_walk, "rate_random_walk"))
     )
-    return _adev_theory(taus, white, bias_instability, correlation_time, rate_random_walk)
-
-
-def _adev_theory(taus, white, bias_instability, correlation_time, rate_random_walk):
-    """:func:`allan_deviation_theory` of checked arguments (the model :func:`fit_allan` evaluates)."""
-    sigma_gm = bias_instability / GM_ALLAN_PEAK
-    var = white**2 / taus + sigma_gm**2 * _gm_allan_var_unit(taus / correlation_time) + rate_random_walk**2 * taus / 3
-    return np.sqrt(var)
+    return _noise.theory(taus, white, bias_instability, correlation_time, rate_random_walk)
 
 
 @boundary
@@ -336,100 +251,7 @@ def fit_allan(taus: ArrayLike, adev: ArrayLike, n_samples: Count, dt: Step, *, r
     if taus.ndim != 1 or taus.size < 3:
         raise ValueError(f"taus: expected a 1-D array of at least 3 averaging times, got shape {taus.shape}")
     same_shape(adev, "adev", taus.shape, of="taus")
-    return _fit_allan(taus, adev, n_samples, dt, flag(rate_random_walk, "rate_random_walk"))
-
-
-def _fit_allan(taus: np.ndarray, adev: np.ndarray, n_samples: int, dt: float, rate_random_walk: bool) -> dict:
-    """:func:`fit_allan` of checked arguments."""
-    models = [(gm, rrw) for gm in (False, True) for rrw in ((False, True) if rate_random_walk else (False,))]
-    fits = {model: _fit_terms(taus, adev, n_samples, dt, *model) for model in models}
-    full = fits[models[-1]]
-    peak = np.argmin(np.abs(np.log(taus / (GM_ALLAN_PEAK_TAU * full[2]))))  # where B shows
-    at = np.union1d([peak], np.flatnonzero(taus >= taus[-1] / 10) if rate_random_walk else [peak])  # and K
-    sigmas = np.sqrt(2 * _edf_random_walk(n_samples + 1.0, taus[at] / dt))  # standard errors of log adev
-    from scipy.stats import norm  # noqa: PLC0415 -- imported on first use (see GM_ALLAN_PEAK)
-
-    def miss(model):  # the largest miss of the fit, in standard errors of the measured deviation, ...
-        largest = np.max(np.abs(np.log(adev[at] / _adev_theory(taus[at], *fits[model]))) * sigmas)
-        # ... as the miss of one comparison that is as improbable (Sidak: the largest of at.size misses exceeds z
-        # with probability 1 - (1 - 2 Phi(-z))^at.size)
-        return float(norm.isf(-np.expm1(at.size * np.log1p(-2 * norm.sf(largest))) / 2))
-
-    def cost(model):  # the weighted least-squares cost over all averaging times
-        return float(np.sum((_fit_weights(taus, n_samples, dt) * np.log(adev / _adev_theory(taus, *fits[model]))) ** 2))
-
-    adequate = [model for model in models if miss(model) <= ALLAN_EVIDENCE] or models[-1:]
-    chosen = min(adequate, key=lambda model: (2 * model[0] + model[1], cost(model)))  # the fewest parameters
-    evidence = tuple(min(miss(m) for m in models if not m[term]) if rate_random_walk or term == 0 else -np.inf for term in (0, 1))
-    p = fits[chosen]
-    return {
-        "white": p[0],
-        "bias_instability": p[1],
-        "correlation_time": p[2] if chosen[0] else full[2],
-        "rate_random_walk": p[3],
-        "evidence": evidence,
-        "sensitivity": _log_sensitivity(taus, p, n_samples, dt),
-        "adequate": np.array([fits[model] for model in adequate]),
-    }
-
-
-def _log_sensitivity(taus: np.ndarray, p: np.ndarray, n_samples: int, dt: float) -> np.ndarray:
-    """(4, M): the first-order change of the weighted fit's log N, log B, log T_c and log K per change of the
-    log-deviations, at the fitted parameters ``p`` (rows of absent terms 0): ``pinv(W J) W`` with ``J`` the
-    derivatives of the model's log-deviation by the log-parameters (central differences)."""
-    free = np.array([p[0] > 0, p[1] > 0, p[1] > 0, p[3] > 0])
-    step = 1e-6
-
-    def log_model(q):
-        return np.log(_adev_theory(taus, q[0], q[1], q[2], q[3]))
-
-    J = np.stack([(log_model(p * np.exp(step * e)) - log_model(p * np.exp(-step * e))) / (2 * step) for e in np.eye(4)[free]], -1)
-    w = _fit_weights(taus, n_samples, dt)
-    out = np.zeros((4, taus.size))
-    out[free] = np.linalg.pinv(w[:, None] * J) * w
-    return out
-
-
-ALLAN_EVIDENCE = 2.0
-"""A model fits an Allan-deviation curve if its largest miss, where the terms show, is no more improbable than a miss
-of this many standard errors in one comparison; a term is needed if no model without it fits (:func:`fit_allan`)."""
-
-
-def _edf_random_walk(big_n: float, m: np.ndarray) -> np.ndarray:
-    """Equivalent degrees of freedom of the overlapping Allan variance for random-walk noise (Riley 2008, Table 5;
-    ``big_n`` = samples + 1): the smallest of the noise types, so the widest standard error."""
-    if big_n <= 3:  # the formula needs more than two samples; one degree of freedom is all two give
-        return np.ones_like(m, dtype=float)
-    return (big_n - 2) * ((big_n - 1) ** 2 - 3 * m * (big_n - 1) + 4 * m * m) / (m * (big_n - 3) ** 2)
-
-
-def _fit_weights(taus: np.ndarray, n_samples: int, dt: float) -> np.ndarray:
-    """:func:`fit_allan`'s weights of the log-deviations: the square root of the number of clusters, at least 1."""
-    return np.sqrt(np.maximum(n_samples * dt / taus, 1.0))
-
-
-def _fit_terms(taus, adev, n_samples, dt, gm: bool, rrw: bool) -> np.ndarray:
-    """Weighted least squares of white noise with (``gm``) a Gauss-Markov bias and (``rrw``) rate random walk:
-    parameters ``[N, B, T_c, K]`` (absent terms 0)."""
-    from scipy.optimize import least_squares  # noqa: PLC0415 -- imported on first use (see GM_ALLAN_PEAK)
-
-    w = _fit_weights(taus, n_samples, dt)
-    i_min = int(np.argmin(adev))
-    free = np.array([True, gm, gm, rrw])
-    p0 = np.array([adev[0] * np.sqrt(taus[0]), adev[i_min], taus[i_min] / GM_ALLAN_PEAK_TAU, adev[-1] / np.sqrt(taus[-1])])
-    lb = np.array([0.0, 0.0, taus[0] / 10, 0.0])
-
-    def full(q):
-        p = np.array([0.0, 0.0, p0[2], 0.0])  # without the bias term its correlation time is moot
-        p[free] = q
-        return p
-
-    def resid(q):
-        p = full(q)
-        return w * (np.log(_adev_theory(taus, p[0], p[1], p[2], p[3])) - np.log(adev))
-
-    sol = least_squares(resid, p0[free], bounds=(lb[free], np.inf), x_scale=np.abs(p0[free]) + 1e-300)
-    return full(sol.x)
+    return _noise.fit(taus, adev, n_samples, dt, flag(rate_random_walk, "rate_random_walk"))
 
 
 # --------------------------------------------------------------------------
@@ -539,7 +361,7 @@ def horizontal_error(lla: Vec3, lla_true: Vec3) -> Array:
     broadcast(a, b, name="lla_true", of="lla, lla_true")
     latitude(a[..., 0], "lla[..., 0] (lat)")
     latitude(b[..., 0], "lla_true[..., 0] (lat)")
-    R_M, R_N = earth.radii(b[..., 0])
+    R_M, R_N = _earth.radii(b[..., 0], earth.WGS84)
     return np.stack(
         [(a[..., 1] - b[..., 1]) * (R_N + b[..., 2]) * np.cos(b[..., 0]), (a[..., 0] - b[..., 0]) * (R_M + b[..., 2])], -1
     )

@@ -170,7 +170,10 @@ def _cdiv(a: int, b: int) -> int:
 
 @boundary
 def bmp180_compensate(
-    UT: int, UP: int, calib: Is[dict[str, int]], oss: Annotated[int, Check("choice", options=(0, 1, 2, 3))] = 0
+    UT: Annotated[int, Check("integer", minimum=0)],
+    UP: Annotated[int, Check("integer", minimum=0)],
+    calib: Is[dict[str, int]],
+    oss: Annotated[int, Check("choice", options=(0, 1, 2, 3))] = 0,
 ) -> tuple[int, int]:
     """BMP180 datasheet integer compensation (sec. 3.5).
 
@@ -200,7 +203,6 @@ def bmp180_compensate(
     if missing:
         raise ValueError(f"calib: missing coefficients {sorted(missing)}")
     c = {k: integer(v, f"calib[{k!r}]", minimum=None) for k, v in calib.items()}
-    UT, UP = integer(UT, "UT", minimum=0), integer(UP, "UP", minimum=0)
     if UT >= 1 << 16:
         raise ValueError(f"UT: expected a 16-bit raw reading (0 ... 65535), got {UT}")
     if UP >= 1 << (16 + oss):

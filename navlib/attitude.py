@@ -24,11 +24,13 @@ Functions taking or returning angles in degrees say so with ``deg=True``.
 
 from __future__ import annotations
 
+from typing import Annotated
+
 import numpy as np
 
 from . import _attitude
 from ._typing import Angles, Array, ArrayLike, Dcm, Quat, Vec3
-from ._validate import as_array, as_dcm, as_quat, flag, in_range
+from ._validate import Check, Flag, as_array, as_dcm, as_quat, boundary, flag, in_range
 
 __all__ = [
     "wrap_pi",
@@ -115,7 +117,8 @@ def skew(v: Vec3) -> Array:
     return np.stack([np.stack([o, -z, y], -1), np.stack([z, o, -x], -1), np.stack([-y, x, o], -1)], -2)
 
 
-def rot(axis: str, angle: Angles, deg: bool = False) -> Array:
+@boundary
+def rot(axis: Annotated[str, Check("choice", options=("x", "y", "z"))], angle: Angles, deg: Flag = False) -> Array:
     """Active rotation matrix about a coordinate axis (paper 000's rot(j, phi)).
 
     Parameters
@@ -135,10 +138,8 @@ def rot(axis: str, angle: Angles, deg: bool = False) -> Array:
     >>> np.round(attitude.rot("z", 90.0, deg=True) @ [1.0, 0.0, 0.0], 12)
     array([0., 1., 0.])
     """
-    if axis not in _AXES:
-        raise ValueError(f"axis: expected 'x', 'y' or 'z', got {axis!r}")
     a = as_array(angle, "angle")
-    if flag(deg, "deg"):
+    if deg:
         a = np.deg2rad(a)
     c, s = np.cos(a), np.sin(a)
     o, i = np.zeros_like(a), np.ones_like(a)

@@ -102,9 +102,9 @@ from typing import Annotated
 import numpy as np
 from scipy.optimize import least_squares
 
-from . import analysis, earth, sensors, units
+from . import _noise, analysis, earth, units
 from ._typing import Array, ArrayLike, Dcm, Interval, Vec3, Vec3Series
-from ._validate import Check, Flag, Positive, as_array, boundary, imu_samples, sample_intervals, scalar
+from ._validate import Check, Flag, Positive, as_array, boundary, imu_samples, interval, sample_intervals, scalar
 from .imu import ImuSamples, unpack
 from .sensors import ImuModel, TriadErrors
 
@@ -751,7 +751,7 @@ def _simulate(terms: dict, n: int, dt: float, rng: np.random.Generator) -> np.nd
     x = terms["white"] / np.sqrt(dt) * rng.standard_normal((n, 3))
     for k in np.flatnonzero(terms["bias_instability"] > 0):
         sigma = terms["bias_instability"][k] / analysis.GM_ALLAN_PEAK
-        x[:, k] += sensors.gauss_markov((n, 1), dt, sigma, terms["correlation_time"][k], rng)[:, 0]
+        x[:, k] += _noise.gauss_markov((n, 1), dt, sigma, terms["correlation_time"][k], rng)[:, 0]
     if np.any(terms["rate_random_walk"] > 0):
         x += np.cumsum(terms["rate_random_walk"] * np.sqrt(dt) * rng.standard_normal((n, 3)), axis=0)
     return x
@@ -760,11 +760,11 @@ def _simulate(terms: dict, n: int, dt: float, rng: np.random.Generator) -> np.nd
 def _bootstrap(terms: dict, sensitivity: np.ndarray, taus: np.ndarray, n: int, dt: float, rng: np.random.Generator) -> dict:
     """Replicates (R, 3) of the fitted terms: records of the fitted model, their Allan deviations' departure from
     the model carried to the log-terms through the fit's ``sensitivity`` (3, 4, M)."""
-    model = np.stack([analysis.allan_deviation_theory(taus, *(terms[key][k] for key in _TERMS)) for k in range(3)], -1)
+    model = np.stack([_noise.theory(taus, *(terms[key][k] for key in _TERMS)) for k in range(3)], -1)
     p = np.stack([terms[key] for key in _TERMS])  # (4, 3)
     reps = np.empty((_REPLICATES, 4, 3))
     for r in range(_REPLICATES):
-        _, adev = analysis.allan_deviation(_simulate(terms, n, dt, rng), dt, taus)
+        _, adev = _noise.deviation(_simulate(terms, n, dt, rng), dt, _noise.cluster_lengths(n, dt, taus))
         reps[r] = p * np.exp(np.einsum("kqm,mk->qk", sensitivity, np.log(adev / model)))
     return {key: reps[:, i] for i, key in enumerate(_TERMS)}
 
@@ -786,10 +786,10 @@ def _bootstrap_interval(estimate: np.ndarray, replicates: np.ndarray, confidence
 
 def _triad_noise(x: np.ndarray, dt: float, rate_random_walk: bool, confidence: float, name: str) -> TriadNoise:
     n = x.shape[0]
-    taus, adev = analysis.allan_deviation(x - x.mean(0), dt)
+    taus, adev = _noise.deviation(x - x.mean(0), dt, _noise.cluster_lengths(n, dt))
     if not np.all(adev > 0):
         raise ValueError(f"{name}: an axis without noise (a constant record) has no noise terms to characterise")
-    fits = [analysis.fit_allan(taus, adev[:, k], n, dt, rate_random_walk=rate_random_walk) for k in range(3)]
+    fits = [_noise.fit(taus, adev[:, k], n, dt, rate_random_walk) for k in range(3)]
     fitted = {key: np.array([f[key] for f in fits]) for key in _TERMS}
     peak = analysis.GM_ALLAN_PEAK_TAU * fitted["correlation_time"]
     below, beyond = peak < taus[0], (peak > taus[-1]) & rate_random_walk
@@ -835,7 +835,7 @@ def _fixed_interval(dt: Interval, n: int) -> float:
             f"{d.min():g} to {d.max():g} s (resample first by averaging, navlib.io.resample(rec, rate); "
             "interpolation changes the white-noise level)"
         )
-    return float(d.mean())
+    return interval(d.mean(), "dt")  # and not too long for the Allan deviation (its square overflows)
 
 
 @boundary

@@ -36,7 +36,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from . import attitude, geodesy
-from ._validate import file_path, text
+from ._validate import file_path, text, time_axis
 from .imu import ImuSamples
 from .io import Recording, align
 
@@ -132,7 +132,7 @@ def read_broad(path: str | os.PathLike[str]) -> ReferenceTrial:
     q /= np.linalg.norm(q, axis=1, keepdims=True)  # float32-rounded in the file; NaN rows stay NaN
     q *= np.where(q[:, :1] < 0, -1.0, 1.0)  # navlib's sign: q0 >= 0
     recording = Recording(
-        np.arange(n) / rate,
+        time_axis(np.arange(n) / rate, "path"),  # the recording's times, checked once (a rate <= 0 or NaN in the file)
         w,
         f,
         m,
@@ -276,7 +276,7 @@ def read_comma2k19(folder: str | os.PathLike[str]) -> DriveLog:
         raise ValueError("folder: gyro and accelerometer logs have different times")
     t0 = float(t_imu[0])
     imu = Recording(
-        t_imu - t0,
+        time_axis(t_imu - t0, "folder"),  # the recording's times, checked once
         load("IMU.gyro.value") @ _FRD_TO_RFU.T,
         load("IMU.accelerometer.value") @ _FRD_TO_RFU.T,
         start=t0,

@@ -27,7 +27,8 @@ come from the derivative of the same series (:func:`convergence`,
 central meridian. The series is a compiled per-point kernel (numba); the
 transcendental functions it needs (tan, atanh, sinh, atan2, asinh, and sin,
 cos, sinh, cosh for the inverse) are numpy's vectorised ones rather than scalar calls
-inside a loop.
+inside a loop. The series, zone numbers and central meridians, unchecked, are
+:mod:`navlib._geodesy` (for callers that have checked their points themselves).
 
 Zone numbers: 3° zone n covers ``3n ± 1.5°``, so :func:`zone` uses
 ``n = floor((L + 1.5)/3)`` (0 ≤ L < 1.5° E is zone 120, central meridian 0°;
@@ -48,17 +49,28 @@ values (|lat| > 90°, a longitude too far from the zone, zone numbers, ``k0``,
 
 from __future__ import annotations
 
-import functools
 from collections.abc import Callable
 from typing import Annotated
 
 import numpy as np
-from numba import njit
 
-from ._kernels import fma
+from . import _earth, _geodesy
 from ._typing import Array, ArrayLike
-from ._validate import Check, Real, as_array, boundary, broadcast, choice, flag, in_range, lat_lon, latitude, longitude, scalar
-from .earth import WGS84, Ellipsoid, EllipsoidArg, radii
+from ._validate import (
+    Check,
+    Real,
+    as_array,
+    boundary,
+    broadcast,
+    choice,
+    flag,
+    in_range,
+    lat_lon,
+    latitude,
+    longitude,
+    zone_offset,
+)
+from .earth import WGS84, Ellipsoid, EllipsoidArg
 
 __all__ = [
     "zone",
@@ -83,17 +95,10 @@ _PREFIX_UNIT = 1e6  # zone number times 1e6 m prefixed to the easting
 _K0_RANGE = (0.5, 1.5)  # accepted central-meridian scales k0 (GK 1, UTM 0.9996)
 GridScale = Annotated[float, Check("scalar", within=_K0_RANGE)]
 """The central-meridian scale k0 of a grid."""
-
-
-# --------------------------------------------------------------------------
-# Validation (every public function: wrong types, NaN/inf, empty, out of range -> error naming the argument)
-# --------------------------------------------------------------------------
-
-
-def _max_offset(max_offset_deg):
-    if max_offset_deg is None:
-        return None
-    return scalar(max_offset_deg, "max_offset_deg", within=(0.0, _MAX_OFFSET_DEG), open_ends=(True, False))
+ZoneWidth = Annotated[int, Check("choice", options=ZONE_WIDTHS)]
+"""A zone width (deg): 3 or 6."""
+MaxOffset = Annotated[float, Check("scalar", within=(0.0, _MAX_OFFSET_DEG), open_ends=(True, False))]
+"""The largest allowed ``|lon - lon0|`` (deg), at most the series' 60°."""
 
 
 # --------------------------------------------------------------------------
@@ -130,15 +135,7 @@ def zone(lon: ArrayLike, width: int = 3, deg: bool = False) -> np.ndarray:
     >>> int(geodesy.zone(114.3, deg=True)), int(geodesy.zone(114.3, width=6, deg=True))
     (38, 20)
     """
-    return _zone(longitude(lon, "lon", deg), _width(width))
-
-
-def _zone(lon_deg: Array, w: int) -> np.ndarray:
-    """:func:`zone` of checked longitudes (deg) and width."""
-    L = np.mod(lon_deg, 360.0)
-    n = np.floor((L + 1.5) / 3.0) if w == 3 else np.floor(L / 6.0) + 1
-    n = n.astype(int)
-    return np.where(n == 0, 360 // w, np.where(n > 360 // w, n - 360 // w, n))
+    return _geodesy.zone(longitude(lon, "lon", deg), _width(width))
 
 
 def central_meridian(zone_number: ArrayLike, width: int = 3, deg: bool = False) -> np.ndarray:
@@ -166,14 +163,8 @@ def _central_meridian(zone_number: object, w: int, deg: bool, name: str) -> Arra
     if np.any(n != np.round(n)):
         raise ValueError(f"{name}: expected integer zone numbers")
     in_range(n, name, 1, 360 // w)
-    L0 = _meridian(n, w)
+    L0 = _geodesy.meridian(n, w)
     return L0 if flag(deg, "deg") else np.deg2rad(L0)
-
-
-def _meridian(n: np.ndarray, w: int) -> np.ndarray:
-    """Central meridians (deg, in (-180, 180]) of checked zone numbers ``n`` (float) of width ``w``."""
-    L0 = w * n if w == 3 else 6 * n - 3
-    return np.where(L0 > 180, L0 - 360, L0)
 
 
 def _resolve_lon0(lon_deg, zone_number, lon0, w, deg, max_offset_deg):
@@ -181,286 +172,12 @@ def _resolve_lon0(lon_deg, zone_number, lon0, w, deg, max_offset_deg):
     if lon0 is not None and zone_number is not None:
         raise ValueError("lon0, zone: give at most one of them")
     if lon0 is None and zone_number is None:
-        L0 = _meridian(_zone(lon_deg, w).astype(float), w)
+        L0 = _geodesy.meridian(_geodesy.zone(lon_deg, w).astype(float), w)
         limit = np.inf
     else:
         L0 = _central_meridian(zone_number, w, True, "zone") if lon0 is None else longitude(lon0, "lon0", deg)
-        max_offset_deg = _max_offset(max_offset_deg)
         limit = float(w if max_offset_deg is None else max_offset_deg)
-    l_deg = lon_deg - L0
-    offset = max(l_deg.max(initial=0.0), -l_deg.min(initial=0.0))  # max |l_deg|, without a temporary
-    if offset > 180.0:  # only then is the (slower) wrap needed
-        l_deg = np.mod(l_deg + 180.0, 360.0) - 180.0
-        offset = np.abs(l_deg).max(initial=0.0)
-    if offset > min(limit, _MAX_OFFSET_DEG):
-        raise ValueError(
-            f"lon: expected longitudes within {min(limit, _MAX_OFFSET_DEG):g}° of the central meridian "
-            f"(zone width {w}°; pass max_offset_deg to allow more), got offsets up to "
-            f"{np.abs(l_deg).max():.4g}°"
-        )
-    return L0, l_deg
-
-
-# --------------------------------------------------------------------------
-# Krüger n-series (Karney 2011)
-# --------------------------------------------------------------------------
-
-
-@functools.lru_cache(maxsize=16)
-def _kruger(a: float, f: float) -> tuple[float, float, tuple[float, ...], tuple[float, ...]]:
-    """Rectifying radius A, eccentricity e and the alpha/beta coefficients to order n^6 (tuples of 6 floats)."""
-    n = f / (2 - f)
-    n2, n3, n4, n5, n6 = n**2, n**3, n**4, n**5, n**6
-    A = a / (1 + n) * (1 + n2 / 4 + n4 / 64 + n6 / 256)
-    alpha = tuple(
-        float(c)
-        for c in (
-            n / 2 - 2 * n2 / 3 + 5 * n3 / 16 + 41 * n4 / 180 - 127 * n5 / 288 + 7891 * n6 / 37800,
-            13 * n2 / 48 - 3 * n3 / 5 + 557 * n4 / 1440 + 281 * n5 / 630 - 1983433 * n6 / 1935360,
-            61 * n3 / 240 - 103 * n4 / 140 + 15061 * n5 / 26880 + 167603 * n6 / 181440,
-            49561 * n4 / 161280 - 179 * n5 / 168 + 6601661 * n6 / 7257600,
-            34729 * n5 / 80640 - 3418889 * n6 / 1995840,
-            212378941 * n6 / 319334400,
-        )
-    )
-    beta = tuple(
-        float(c)
-        for c in (
-            n / 2 - 2 * n2 / 3 + 37 * n3 / 96 - n4 / 360 - 81 * n5 / 512 + 96199 * n6 / 604800,
-            n2 / 48 + n3 / 15 - 437 * n4 / 1440 + 46 * n5 / 105 - 1118711 * n6 / 3870720,
-            17 * n3 / 480 - 37 * n4 / 840 - 209 * n5 / 4480 + 5569 * n6 / 90720,
-            4397 * n4 / 161280 - 11 * n5 / 504 - 830251 * n6 / 7257600,
-            4583 * n5 / 161280 - 108847 * n6 / 3991680,
-            20648693 * n6 / 638668800,
-        )
-    )
-    return A, np.sqrt(f * (2 - f)), alpha, beta
-
-
-# The compiled series works on (re, im) pairs. Complex products round as numpy's vectorised complex
-# multiply does (one fused multiply-add per component) and zero signs follow numpy's complex arithmetic
-# (the 0.0 terms below), so the results are those of the former all-numpy evaluation, bit for bit.
-
-
-@njit(cache=True, inline="always")
-def _cmul(ar, ai, br, bi):
-    """(ar + i ai)(br + i bi) as (re, im), each component rounded once."""
-    return fma(ar, br, -(ai * bi)), fma(ar, bi, ai * br)
-
-
-@njit(cache=True, inline="always")
-def _zeta2(sin2xi, cos2xi, sinh2eta, cosh2eta):
-    """sin 2zeta and cos 2zeta of zeta = xi + i eta as (re, im) pairs, from the real double-angle functions."""
-    v, w = cos2xi * sinh2eta, sin2xi * sinh2eta
-    return sin2xi * cosh2eta + 0.0 * v, 0.0 + v, cos2xi * cosh2eta - 0.0 * w, 0.0 - w
-
-
-@njit(cache=True, inline="always")
-def _clenshaw(coef, c2r, c2i, weighted):
-    """Clenshaw recurrence ``b_j = 2 cos(2 zeta) b_j+1 - b_j+2 + w_j coef[j]`` (complex), down to (b_1, b_2).
-
-    ``w_j = 2(j+1)`` when ``weighted`` (the derivative's cosine sum), else 1. Then
-    ``sum_j coef[j] sin(2(j+1) zeta) = sin(2 zeta) b_1`` and
-    ``sum_j 2(j+1) coef[j] cos(2(j+1) zeta) = cos(2 zeta) b_1 - b_2``: one complex sine and
-    cosine of 2 zeta and a recurrence replace six complex sines.
-    """
-    tr, ti = 2 * c2r, 2 * c2i
-    b1r, b1i, b2r, b2i = 0.0, 0.0, 0.0, 0.0
-    for j in range(len(coef) - 1, -1, -1):
-        pr, pi = _cmul(tr, ti, b1r, b1i)
-        w = 2 * (j + 1) * coef[j] if weighted else coef[j]
-        b1r, b1i, b2r, b2i = pr - b2r + w, pi - b2i + 0.0, b1r, b1i
-    return b1r, b1i, b2r, b2i
-
-
-@njit(cache=True, inline="always")
-def _gauss_schreiber(taup, u):
-    """cos l, sin l (from u = tan(l/2)) and D = tau'^2 + cos^2 l of the Gauss-Schreiber zeta' (Karney eq. 10).
-
-    Gauss-Schreiber: the spherical transverse Mercator of the conformal sphere, ``xi' = atan2(tau', cos l)``,
-    ``eta' = asinh(sin l / sqrt(D))``.
-    """
-    cos_l = (1 - u * u) / (1 + u * u)
-    sin_l = 2 * u / (1 + u * u)
-    return cos_l, sin_l, taup * taup + cos_l * cos_l
-
-
-@njit(cache=True, inline="always")
-def _double_angles(taup, cos_l, sin_l, D):
-    """sin 2xi', cos 2xi', sinh 2eta', cosh 2eta' of the Gauss-Schreiber zeta', algebraically."""
-    return (
-        2 * taup * cos_l / D,
-        (cos_l * cos_l - taup * taup) / D,
-        2 * sin_l * np.sqrt(1 + taup * taup) / D,
-        1 + 2 * sin_l * sin_l / D,
-    )
-
-
-@njit(cache=True, error_model="numpy")
-def _gauss_schreiber_args(tau, sig, u, taup, cos_l, r):
-    """tau' (:func:`_conformal_from`), ``cos l`` and ``r = sin l / sqrt(D)`` into ``taup``, ``cos_l``, ``r``:
-    then xi' = atan2(tau', cos l), eta' = asinh(r)."""
-    for i in range(tau.shape[0]):
-        tp = _conformal_from(tau[i], sig[i])
-        c, s, D = _gauss_schreiber(tp, u[i])
-        taup[i], cos_l[i], r[i] = tp, c, s / np.sqrt(D)
-
-
-@njit(cache=True, error_model="numpy")
-def _series_xy(taup, u, xi_p, eta_p, alpha, A, k0, fn, fe, x, y):
-    """Northing ``x = k0 A (xi' + Re S) + fn`` and easting ``y = k0 A (eta' + Im S) + fe`` into ``x``, ``y`` (m).
-
-    S = sum_j alpha[j] sin(2(j+1) zeta'), Karney eq. 11; all arrays 1-D of one length.
-    """
-    for i in range(taup.shape[0]):
-        cos_l, sin_l, D = _gauss_schreiber(taup[i], u[i])
-        sin2xi, cos2xi, sinh2eta, cosh2eta = _double_angles(taup[i], cos_l, sin_l, D)
-        s2r, s2i, c2r, c2i = _zeta2(sin2xi, cos2xi, sinh2eta, cosh2eta)
-        b1r, b1i, _, _ = _clenshaw(alpha, c2r, c2i, False)
-        sr, si = _cmul(s2r, s2i, b1r, b1i)
-        x[i] = k0 * (A * (xi_p[i] + sr)) + fn
-        y[i] = k0 * (A * (eta_p[i] + si)) + fe
-
-
-@njit(cache=True, error_model="numpy")
-def _series_slope(taup, u, alpha, slope, cos_l, sin_l, D):
-    """``slope = d zeta / d zeta' = 1 + sum_j 2(j+1) alpha[j] cos(2(j+1) zeta')`` (complex; Karney eqs. 13, 14),
-    with the ``cos_l``, ``sin_l``, ``D`` of :func:`_gauss_schreiber`."""
-    for i in range(taup.shape[0]):
-        c, s, d = _gauss_schreiber(taup[i], u[i])
-        cos_l[i], sin_l[i], D[i] = c, s, d
-        sin2xi, cos2xi, sinh2eta, cosh2eta = _double_angles(taup[i], c, s, d)
-        _, _, c2r, c2i = _zeta2(sin2xi, cos2xi, sinh2eta, cosh2eta)
-        d1r, d1i, d2r, d2i = _clenshaw(alpha, c2r, c2i, True)
-        pr, pi = _cmul(c2r, c2i, d1r, d1i)
-        slope[i] = complex(1 + (pr - d2r), 0.0 + (pi - d2i))
-
-
-@njit(cache=True, error_model="numpy")
-def _series_inverse(xi, eta, sin2xi, cos2xi, sinh2eta, cosh2eta, beta, xi_p, eta_p):
-    """``zeta' = zeta - sum_j beta[j] sin(2(j+1) zeta)`` into ``xi_p``, ``eta_p`` (Karney eq. 11 inverted)."""
-    for i in range(xi.shape[0]):
-        s2r, s2i, c2r, c2i = _zeta2(sin2xi[i], cos2xi[i], sinh2eta[i], cosh2eta[i])
-        b1r, b1i, _, _ = _clenshaw(beta, c2r, c2i, False)
-        sr, si = _cmul(s2r, s2i, b1r, b1i)
-        xi_p[i] = xi[i] - sr
-        eta_p[i] = eta[i] - si
-
-
-@njit(cache=True, inline="always")
-def _conformal_s(tau, e):
-    """``s = e tau / sqrt(1 + tau^2)`` (e sin lat), whence ``sigma = sinh(e atanh(s))`` of Karney eq. 7."""
-    return e * tau / np.sqrt(1 + tau * tau)
-
-
-@njit(cache=True, error_model="numpy")
-def _conformal_arg(tau, e, s):
-    for i in range(tau.shape[0]):
-        s[i] = _conformal_s(tau[i], e)
-
-
-@njit(cache=True, error_model="numpy")
-def _forward_args(tau, l_deg, e, s, h):
-    """``s`` (:func:`_conformal_s`) and ``h = l / 2`` (rad, from l in deg) into ``s``, ``h``: then numpy's
-    vectorised atanh, sinh and tan give sigma and u = tan(l/2)."""
-    for i in range(tau.shape[0]):
-        s[i] = _conformal_s(tau[i], e)
-        h[i] = l_deg[i] * (np.pi / 180) / 2  # np.deg2rad(l_deg) / 2
-
-
-@njit(cache=True, inline="always")
-def _conformal_from(tau, sig):
-    """tau' = tan of the conformal latitude from tau = tan(lat) and its sigma (Karney eq. 7)."""
-    return np.sqrt(1 + sig * sig) * tau - sig * np.sqrt(1 + tau * tau)
-
-
-@njit(cache=True, error_model="numpy")
-def _conformal_into(tau, sig, taup):
-    for i in range(tau.shape[0]):
-        taup[i] = _conformal_from(tau[i], sig[i])
-
-
-def _sigma(s, e):
-    """sigma = sinh(e atanh(s)) of Karney eq. 7 (numpy's vectorised atanh and sinh), s from :func:`_conformal_s`."""
-    return np.sinh(e * np.arctanh(s))
-
-
-def _conformal_tan(tau, e):
-    """tau' = tan of the conformal latitude, from tau = tan(lat) (Karney eq. 7); any shape."""
-    t = np.reshape(tau, -1)
-    s, taup = np.empty(t.shape), np.empty(t.shape)
-    _conformal_arg(t, e, s)
-    _conformal_into(t, _sigma(s, e), taup)
-    return taup.reshape(np.shape(tau))[()]
-
-
-def _geodetic_tan(taup: Array, e: float, iterations: int = 4) -> Array:
-    """Invert :func:`_conformal_tan` by Newton's method (Karney eqs. 19–21); 4 steps reach 1e-16."""
-    e2m = 1 - e * e
-    tau = taup / e2m
-    for _ in range(iterations):
-        taupa = _conformal_tan(tau, e)
-        tau = tau + (taup - taupa) * (1 + e2m * tau * tau) / (e2m * np.sqrt((1 + tau * tau) * (1 + taupa * taupa)))
-    return tau
-
-
-_CHUNK = 1 << 15  # points per block: keeps the temporaries in cache
-
-
-def _forward(lat, l_deg, ellipsoid, k0=1.0, fn=-0.0, fe=-0.0, out=None):
-    """GK northing and easting (m), ``k0 x + fn`` and ``k0 y + fe``; ``out``: the (x, y) arrays to fill.
-
-    lat (rad) and l_deg (longitude minus central meridian, deg) of one shape. (The default -0.0 adds
-    nothing, not even to the sign of a zero.)
-    """
-    if lat.size > _CHUNK:
-        x, y = np.empty(lat.shape), np.empty(lat.shape)
-        fx, fy, fl, fo = x.reshape(-1), y.reshape(-1), lat.reshape(-1), l_deg.reshape(-1)
-        for i in range(0, lat.size, _CHUNK):
-            _forward(fl[i : i + _CHUNK], fo[i : i + _CHUNK], ellipsoid, k0, fn, fe, (fx[i : i + _CHUNK], fy[i : i + _CHUNK]))
-        return x, y
-    A, e, alpha, _ = _kruger(ellipsoid.a, ellipsoid.f)
-    tau = np.tan(lat).reshape(-1)
-    s, h = np.empty(tau.shape), np.empty(tau.shape)
-    _forward_args(tau, l_deg.reshape(-1), e, s, h)
-    u = np.tan(h)  # cos l and sin l from one tangent
-    taup, cos_l, r = np.empty(u.shape), np.empty(u.shape), np.empty(u.shape)
-    _gauss_schreiber_args(tau, _sigma(s, e), u, taup, cos_l, r)
-    x, y = (np.empty(lat.shape), np.empty(lat.shape)) if out is None else out
-    _series_xy(taup, u, np.arctan2(taup, cos_l), np.arcsinh(r), alpha, A, k0, fn, fe, x.reshape(-1), y.reshape(-1))
-    return x[()], y[()]  # a 0-d input gives scalars, as numpy's arithmetic does
-
-
-def _forward_factors(lat, l_deg, ellipsoid):
-    """Grid convergence (rad) and point scale (k0 = 1) at lat (rad), l_deg (deg), of one shape."""
-    A, e, alpha, _ = _kruger(ellipsoid.a, ellipsoid.f)
-    tau = np.tan(lat)
-    taup = _conformal_tan(tau, e)
-    slope, cos_l, sin_l, D = (np.empty(lat.shape, dtype=complex), np.empty(lat.shape), np.empty(lat.shape), np.empty(lat.shape))
-    _series_slope(
-        taup.reshape(-1), np.tan(np.deg2rad(l_deg) / 2).reshape(-1), alpha, *(a.reshape(-1) for a in (slope, cos_l, sin_l, D))
-    )
-    gamma = np.arctan2(sin_l * taup, cos_l * np.sqrt(1 + taup * taup)) - np.angle(slope)
-    k = (A / ellipsoid.a) * np.abs(slope) * np.sqrt(1 - e * e * tau * tau / (1 + tau * tau)) * np.sqrt(1 + tau * tau) / np.sqrt(D)
-    return gamma, k
-
-
-def _inverse(xi, eta, e, beta):
-    """Geodetic latitude and longitude offset (rad) from the normalised GK coordinates xi + i eta."""
-    if xi.size > _CHUNK:
-        lat, dlon = np.empty(xi.shape), np.empty(xi.shape)
-        fl, fd, fx, fe = lat.reshape(-1), dlon.reshape(-1), xi.reshape(-1), eta.reshape(-1)
-        for i in range(0, xi.size, _CHUNK):
-            fl[i : i + _CHUNK], fd[i : i + _CHUNK] = _inverse(fx[i : i + _CHUNK], fe[i : i + _CHUNK], e, beta)
-        return lat, dlon
-    xip, etap = np.empty(xi.shape), np.empty(xi.shape)
-    xi_f, eta_f, sin2xi, cos2xi, sinh2eta, cosh2eta = (
-        a.reshape(-1) for a in (xi, eta, np.sin(2 * xi), np.cos(2 * xi), np.sinh(2 * eta), np.cosh(2 * eta))
-    )
-    _series_inverse(xi_f, eta_f, sin2xi, cos2xi, sinh2eta, cosh2eta, beta, xip.reshape(-1), etap.reshape(-1))
-    sinh_etap, cos_xip = np.sinh(etap), np.cos(xip)
-    taup = np.sin(xip) / np.sqrt(sinh_etap * sinh_etap + cos_xip * cos_xip)
-    return np.arctan(_geodetic_tan(taup, e)), np.arctan2(sinh_etap, cos_xip)
+    return L0, zone_offset(lon_deg - L0, min(limit, _MAX_OFFSET_DEG), w)
 
 
 @boundary
@@ -477,7 +194,7 @@ def geodetic2gk(
     false_easting: Real = 0.0,
     false_northing: Real = 0.0,
     zone_prefix: bool = False,
-    max_offset_deg: float | None = None,
+    max_offset_deg: MaxOffset | None = None,
 ) -> tuple[Array, Array]:
     """Gauss–Krüger forward projection (Eq. 9, by Krüger's n-series).
 
@@ -522,11 +239,11 @@ def geodetic2gk(
     lat_rad, lon_deg = lat_lon(lat, lon, deg)
     w = _width(width)
     L0, l_deg = _resolve_lon0(lon_deg, zone, lon0, w, deg, max_offset_deg)
-    x, y = _forward(lat_rad, l_deg, ellipsoid, k0, false_northing, false_easting)
+    x, y = _geodesy.forward(lat_rad, l_deg, ellipsoid, k0, false_northing, false_easting)
     if flag(zone_prefix, "zone_prefix"):
         if not (y.min(initial=0.0) >= 0 and y.max(initial=0.0) < _PREFIX_UNIT):
             raise ValueError("false_easting: zone_prefix needs eastings in [0, 1e6) m; use false_easting=500e3")
-        y = y + _PREFIX_UNIT * _zone(L0, w)
+        y = y + _PREFIX_UNIT * _geodesy.zone(L0, w)
     return x, y
 
 
@@ -583,22 +300,17 @@ def gk2geodetic(
         raise ValueError("zone, lon0: give exactly one of them (or zone_prefix=True)")
     L0 = _central_meridian(zone, w, True, "y" if zone_prefix else "zone") if lon0 is None else longitude(lon0, "lon0", deg)
     x, y, L0 = broadcast(x, y, L0, name="x, y", of="x, y and the central meridian")
-    A, e, _, beta = _kruger(ellipsoid.a, ellipsoid.f)
-    xi = (x - false_northing) / (k0 * A)
-    eta = (y - false_easting) / (k0 * A)
-    if np.any(np.abs(eta) > 1.2):
-        raise ValueError("y: easting too far from the central meridian for the series (|y| > 1.2 A k0)")
-    lat, dlon = _inverse(xi, eta, e, beta)
-    lon_deg = L0 + np.rad2deg(dlon)
-    lon_deg = np.mod(lon_deg + 180.0, 360.0) - 180.0
-    lon_deg = np.where(lon_deg == -180.0, 180.0, lon_deg)
+    xi, eta = _geodesy.normalised(x, y, ellipsoid, k0, false_northing, false_easting)
+    if np.any(np.abs(eta) > _geodesy.MAX_ETA):
+        raise ValueError(f"y: easting too far from the central meridian for the series (|y| > {_geodesy.MAX_ETA:g} A k0)")
+    lat, lon_deg = _geodesy.geodetic(xi, eta, L0, ellipsoid)
     return (np.rad2deg(lat), lon_deg) if flag(deg, "deg") else (lat, np.deg2rad(lon_deg))
 
 
 def _factors(lat, lon, zone, lon0, width, ellipsoid, deg, max_offset_deg):
     lat_rad, lon_deg = lat_lon(lat, lon, deg)
     _, l_deg = _resolve_lon0(lon_deg, zone, lon0, _width(width), deg, max_offset_deg)
-    return _forward_factors(lat_rad, l_deg, ellipsoid)
+    return _geodesy.factors(lat_rad, l_deg, ellipsoid)
 
 
 @boundary
@@ -611,7 +323,7 @@ def convergence(
     width: int = 3,
     ellipsoid: EllipsoidArg = WGS84,
     deg: bool = False,
-    max_offset_deg: float | None = None,
+    max_offset_deg: MaxOffset | None = None,
 ) -> Array:
     """Grid (meridian) convergence gamma: the grid bearing of true north is ``-gamma``.
 
@@ -648,7 +360,7 @@ def scale_factor(
     ellipsoid: EllipsoidArg = WGS84,
     deg: bool = False,
     k0: GridScale = 1.0,
-    max_offset_deg: float | None = None,
+    max_offset_deg: MaxOffset | None = None,
 ) -> Array:
     """Point scale factor k of the projection (1 on the central meridian for GK).
 
@@ -687,12 +399,14 @@ def meridian_arc(lat: ArrayLike, ellipsoid: EllipsoidArg = WGS84, deg: bool = Fa
     10001965.729
     """
     lat = latitude(lat, "lat", deg=deg, nonempty=True)
-    return _forward(lat, np.zeros_like(lat), ellipsoid)[0]
+    return _geodesy.forward(lat, np.zeros_like(lat), ellipsoid)[0]
 
 
 def _gk_project(lat, lon, lon0, ellipsoid):
-    """:func:`geodetic2gk` about the central meridian lon0 (all rad), any offset up to the series' 60° limit."""
-    return geodetic2gk(lat, lon, lon0=lon0, ellipsoid=ellipsoid, max_offset_deg=_MAX_OFFSET_DEG)
+    """:func:`geodetic2gk` of checked points about the central meridian lon0 (all rad), any offset up to the
+    series' 60° limit."""
+    l_deg = zone_offset(np.rad2deg(lon) - np.rad2deg(lon0), _MAX_OFFSET_DEG, 3)
+    return _geodesy.forward(lat, l_deg, ellipsoid, 1.0, 0.0, 0.0)
 
 
 @boundary
@@ -753,7 +467,7 @@ def local_scales(
 
     d_lat = (xy(lat_r + step, lon_r) - xy(lat_r - step, lon_r)) / (2 * step)
     d_lon = (xy(lat_r, lon_r + step) - xy(lat_r, lon_r - step)) / (2 * step)
-    R_M, R_N = radii(lat_r, ellipsoid=ellipsoid)
+    R_M, R_N = _earth.radii(lat_r, ellipsoid)
     h = np.linalg.norm(d_lat, axis=-1) / R_M
     k = np.linalg.norm(d_lon, axis=-1) / (R_N * np.cos(lat_r))
     cross = d_lat[..., 0] * d_lon[..., 1] - d_lat[..., 1] * d_lon[..., 0]

@@ -61,7 +61,7 @@ from ._validate import (
     time_axis,
 )
 from .imu import ImuSamples, SensorLimits
-from .timing import TimingReport, intervals, sanitize
+from .timing import TimingReport, sanitize
 from .units import G0
 
 _P = ParamSpec("_P")
@@ -124,7 +124,8 @@ class Recording:
     Attributes
     ----------
     time : ndarray, shape (N,)
-        Sample times (s) from the first sample.
+        Sample times (s) from the first sample, strictly increasing: the readers check them once, and
+        ``dt`` and the functions that take a recording use them as they are.
     w_ib_b, f_b, m_b : ndarray, shape (N, 3), or None
         Gyro (rad/s), specific force (m/s^2), magnetic field (uT) in the right-front-up body frame;
         NaN where a sensor has no reading at that time.
@@ -170,7 +171,7 @@ class Recording:
     @property
     def dt(self) -> Array:
         """Interval covered by each sample (s), shape (N,): ``t[k] - t[k-1]``, the first one repeating the second."""
-        dt = intervals(self.time)
+        dt = np.diff(self.time)
         return np.concatenate([dt[:1], dt])
 
     def imu(self, limits: SensorLimits | None = None) -> ImuSamples:
@@ -276,7 +277,7 @@ def from_dataframe(
     gyro: Sequence[str] | None = None,
     accel: Sequence[str] | None = None,
     mag: Sequence[str] | None = None,
-    baro: str | None = None,
+    baro: Annotated[str, Check("text", empty=False)] | None = None,
     axes: str | Dcm | Mapping[str, str | Dcm] = "x,y,z",
     mirror: bool = False,
     timing: Annotated[str, Check("choice", options=("raise", "sanitize"))] = "raise",
@@ -329,9 +330,7 @@ def from_dataframe(
     columns: dict[str, Any] = {"gyro": gyro, "accel": accel, "mag": mag, "baro": baro}  # checked below
     present = {s: c for s, c in columns.items() if c is not None}
     for sensor, cols in present.items():
-        if sensor == "baro":
-            text(cols, "baro", empty=False)
-        elif (
+        if sensor != "baro" and (
             isinstance(cols, str) or not isinstance(cols, Sequence) or len(cols) != 3 or not all(isinstance(c, str) for c in cols)
         ):
             raise ValueError(f"{sensor}: expected the names of its x, y, z columns (3 strings), got {cols!r}")
@@ -627,12 +626,10 @@ def _logger_platform(d: Path, platform: str | None) -> tuple[str, bool, list[str
         row = pd.read_csv(d / "Metadata.csv", dtype=str, keep_default_na=False)
         meta = {k.strip(): str(v).strip().lower() for k, v in row.iloc[0].items()} if len(row) else {}
     written = meta.get("platform") or None
-    if platform is not None:
-        platform = choice(platform, "platform", ("ios", "android"))
-        if written not in (None, platform):
-            raise ValueError(
-                f"platform: {platform!r} given, but {d / 'Metadata.csv'} says {written!r}; leave platform out to use the file's"
-            )
+    if platform is not None and written not in (None, platform):
+        raise ValueError(
+            f"platform: {platform!r} given, but {d / 'Metadata.csv'} says {written!r}; leave platform out to use the file's"
+        )
     if written is not None and written not in ("ios", "android"):
         raise ValueError(f"{d / 'Metadata.csv'}: column 'platform': unknown value {written!r}; pass platform=")
     standardised = meta.get("standardisation", "false") == "true"
@@ -738,7 +735,7 @@ def _logger_reference(
 def read_sensor_logger(
     directory: str | Path,
     *,
-    platform: str | None = None,
+    platform: Annotated[str, Check("choice", options=("ios", "android"))] | None = None,
     axes: str | Dcm | Mapping[str, str | Dcm] = "x,y,z",
     mirror: bool = False,
     method: str = "hold",

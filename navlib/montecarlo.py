@@ -32,7 +32,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ._typing import ArrayLike
-from ._validate import Check, Count, Text, boundary, flag, indices, integer
+from ._validate import Check, Count, Text, boundary, flag, indices
 
 __all__ = ["TrialStreams", "run"]
 
@@ -61,8 +61,8 @@ class TrialStreams:
     True
     """
 
-    def __init__(self, seed: int, ids: ArrayLike) -> None:
-        seed = integer(seed, "seed", minimum=0)
+    @boundary
+    def __init__(self, seed: Seed, ids: ArrayLike) -> None:
         ids = indices(ids, "ids")
         if ids.ndim != 1 or ids.size == 0 or not np.issubdtype(ids.dtype, np.integer) or ids.min() < 0:
             raise ValueError(f"ids: expected a non-empty 1-D array of non-negative trial indices, got {ids!r:.60}")

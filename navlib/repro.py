@@ -327,7 +327,8 @@ def root() -> Path:
     )
 
 
-def build_dir(notebook: str | None = None) -> Path:
+@boundary
+def build_dir(notebook: Text | None = None) -> Path:
     """The output directory, or its ``<notebook>/`` folder; created.
 
     ``setup``'s ``out_dir`` when given, else the ``NAVLIB_BUILD_DIR`` environment variable when set,
@@ -343,8 +344,6 @@ def build_dir(notebook: str | None = None) -> Path:
     ('demo', True)
     >>> tmp.cleanup()
     """
-    if notebook is not None and not isinstance(notebook, str):
-        raise ValueError(f"notebook: expected a notebook name (str), got {type(notebook).__name__}")
     if notebook and ("/" in notebook or "\\" in notebook or notebook in (".", "..")):
         raise ValueError(f"notebook: expected a plain notebook name, got {notebook!r}")
     return _build_dir(notebook)

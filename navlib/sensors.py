@@ -41,7 +41,7 @@ from typing import Any
 import numpy as np
 from numba import njit
 
-from . import atmosphere, attitude, earth, units
+from . import _earth, _noise, atmosphere, attitude, earth, units
 from ._typing import Angles, Array, ArrayLike, Quat, Times, Vec3, Vec3Series
 from ._validate import (
     Count,
@@ -240,36 +240,7 @@ def gauss_markov(shape: tuple[int, ...], dt: Step, sigma: NonNegative, correlati
     """
     if not isinstance(shape, (tuple, list)) or len(shape) < 2:  # type: ignore[redundant-expr]  # the caller's argument, checked
         raise ValueError(f"shape: expected a tuple (..., N, k) of positive integers, got {shape!r}")
-    return _gauss_markov(tuple(integer(n, "shape") for n in shape), dt, sigma, correlation_time, rng)
-
-
-def _gauss_markov(shape: tuple[int, ...], dt: float, sigma: float, tc: float, rng: np.random.Generator) -> Array:
-    """:func:`gauss_markov` of checked arguments."""
-    x0 = sigma * rng.standard_normal(shape[:-2] + (1, shape[-1]))
-    return _gauss_markov_from(x0, shape, dt, sigma, tc, rng)
-
-
-def _gauss_markov_from(
-    x0: np.ndarray, shape: tuple[int, ...], dt: float, sigma: float, tc: float, rng: np.random.Generator
-) -> Array:
-    """Sequences of ``shape`` whose sample before the first is ``x0`` (shape[:-2] + (1, k)), driven by ``rng``."""
-    phi = np.exp(-dt / tc)
-    y = rng.standard_normal(out=np.empty(shape))  # the driving noise, filtered in place below
-    y *= sigma * np.sqrt(1 - phi * phi)
-    _ar1_in_place(y.reshape(-1, shape[-2], shape[-1]), phi, (phi * x0).reshape(-1, shape[-1]))
-    return y
-
-
-@njit(cache=True)
-def _ar1_in_place(y, phi, y_before):
-    """``y[:, k] += phi * y[:, k-1]`` along axis 1, with ``phi * y[:, -1] = y_before``: a first-order
-    recursive filter (scipy's ``lfilter([1], [1, -phi], y, axis=1, zi=y_before)``, same arithmetic) without
-    a second array of the size of ``y`` (gigabytes for a Monte Carlo batch)."""
-    for b in range(y.shape[0]):
-        for j in range(y.shape[2]):
-            y[b, 0, j] += y_before[b, j]
-            for k in range(1, y.shape[1]):
-                y[b, k, j] += phi * y[b, k - 1, j]
+    return _noise.gauss_markov(tuple(integer(n, "shape") for n in shape), dt, sigma, correlation_time, rng)
 
 
 def _error_matrix(errors: TriadErrors, lead: tuple[int, ...], rng: np.random.Generator) -> Array:
@@ -305,7 +276,7 @@ def _corrupt_batches(
         trials = slice(i, min(i + batch, n_trials))
         shape = (trials.stop - i, n, 3)
         if errors.bias_instability > 0:  # turn-on + Gauss-Markov, added in place (addition commutes: same bits)
-            bias = _gauss_markov_from(x0[trials], shape, dt, sigma, tc, r_gm)
+            bias = _noise.gauss_markov_from(x0[trials], shape, dt, sigma, tc, r_gm)
             bias += turn_on[trials]
         else:
             bias = np.broadcast_to(turn_on[trials], shape).copy()
@@ -751,7 +722,7 @@ class BarometerModel:
 
 
 @boundary
-def simulate_barometer(h: ArrayLike, time: Times, model: Is[BarometerModel], rng: Rng, p0: float = atmosphere.P0) -> Array:
+def simulate_barometer(h: ArrayLike, time: Times, model: Is[BarometerModel], rng: Rng, p0: Positive = atmosphere.P0) -> Array:
     """Barometric pressure (Pa) at heights ``h`` (m) with the ISA as truth.
 
     Parameters
@@ -778,7 +749,7 @@ def simulate_barometer(h: ArrayLike, time: Times, model: Is[BarometerModel], rng
     array([101325., 101326., 101327.])
     """
     t = time_axis(time)
-    p = last_axis(atmosphere.isa_pressure(h, scalar(p0, "p0", positive=True)), "h", t.size, of="time")  # checks h
+    p = last_axis(atmosphere.isa_pressure(h, p0), "h", t.size, of="time")  # isa_pressure checks h
     r_bias, r_noise = rng.spawn(2)
     p = p + model.bias * r_bias.standard_normal(p.shape[:-1] + (1,))
     p = p + model.drift_rate * (t - t[0])
@@ -860,7 +831,7 @@ def simulate_gnss_position(
     lla = as_array(lla, "lla", tail=(3,), min_ndim=1)
     in_range(lla[..., 0], "lla[..., 0] (lat)", -np.pi / 2, np.pi / 2, "rad")
     sv = 1.5 * sigma_horizontal if sigma_vertical is None else scalar(sigma_vertical, "sigma_vertical", allow_zero=True)
-    R_M, R_N = earth.radii(lla[..., 0])
+    R_M, R_N = _earth.radii(lla[..., 0], earth.WGS84)
     e = rng.standard_normal(lla.shape)
     out = lla.copy()
     out[..., 0] += sigma_horizontal * e[..., 1] / (R_M + lla[..., 2])

@@ -388,9 +388,11 @@ def integrate(
     dts = w_ib_b.dt if isinstance(w_ib_b, ImuSamples) else _sample_intervals(dt_in, n)
     small_turns(w, dts)
     lla0 = as_array(lla0, "lla0", tail=(3,))
-    latitude(lla0[..., 0], "lla0[..., 0] (lat)")
-    if np.any(np.abs(lla0[..., 0]) > np.deg2rad(89.9)):
-        raise ValueError("lla0[..., 0] (lat): the ENU mechanisation is singular at the poles; expected |lat| <= 89.9 deg")
+    if np.any(np.abs(lla0[..., 0]) > np.deg2rad(89.9)):  # the one latitude check: also any beyond +-pi/2
+        raise ValueError(
+            f"lla0[..., 0] (lat): expected radians within +-89.9 deg (the ENU mechanisation is singular at the poles), "
+            f"got max |lat| {np.abs(lla0[..., 0]).max():.4g} rad"
+        )
     vel0 = as_array(vel0, "vel0", tail=(3,))
     q0 = as_quat(q0, "q0")
 

@@ -13,10 +13,12 @@ back. Noise densities follow the usual identities:
 
 from __future__ import annotations
 
+from typing import Annotated
+
 import numpy as np
 
 from ._typing import Array, ArrayLike
-from ._validate import real
+from ._validate import Check, boundary, real
 
 __all__ = [
     "G0",
@@ -367,7 +369,8 @@ CONVERTERS = {
 }
 
 
-def to_si(value: ArrayLike, unit: str) -> Array:
+@boundary
+def to_si(value: ArrayLike, unit: Annotated[str, Check("choice", options=tuple(CONVERTERS))]) -> Array:
     """Convert ``value`` given in ``unit`` (a key of :data:`CONVERTERS`) to SI.
 
     Examples
@@ -378,8 +381,4 @@ def to_si(value: ArrayLike, unit: str) -> Array:
     >>> float(units.to_si(2.0, "mg"))
     0.0196133
     """
-    try:
-        conv = CONVERTERS[unit]
-    except KeyError:
-        raise ValueError(f"unit: unknown unit {unit!r}; known: {sorted(CONVERTERS)}") from None
-    return conv(_num(value, "value"))
+    return CONVERTERS[unit](_num(value, "value"))

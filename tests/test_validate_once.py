@@ -42,17 +42,8 @@ VALIDATE_FILE = _validate.__file__
 TWICE = {
     # A public function of another module checks again what the caller checked: these callers need the checked
     # value themselves first, and the callee's unchecked core is not yet in a private core module (navlib/_earth.py).
-    "calibration.characterise": ["correlation_time", "dt", "rate_random_walk", "taus"],  # analysis' Allan functions
-    "io.read_xio": ["time"],  # timing.intervals of the record's time
-    "io.read_sensor_logger": ["time"],
-    "io.read_euroc": ["time"],
-    "io.read_phyphox": ["time"],
-    "geodesy.local_scales": ["('lat', 'lon')", "ellipsoid", "lon0"],  # the projection it differentiates is public
     "papers.gauss_kruger_ekf.waypoint_path": ["T", "speed"],  # filters.planar_ekf
-    "papers.gauss_kruger_ekf.ekf": ["('lat', 'lon')", "axis", "deg", "ellipsoid", "name", "t", "width", "z", "zone"],
-    "papers.gauss_kruger_ekf.simulate_sensors": ["('lat', 'lon')", "deg", "ellipsoid", "width", "zone", "zone_prefix"],
-    "papers.gauss_kruger_ekf.ekf_error_ms": ["T"],
-    "papers.gauss_kruger_ekf.draw_zone_grid": ["deg", "width", "zone"],
+    "papers.gauss_kruger_ekf.ekf": ["axis", "name", "t", "z"],  # filters.planar_ekf.filter_grid and robust
     "papers.north_finding.monte_carlo": ["f_b", "lat"],  # simulate_static_outputs, triad and heading_candidates
     "papers.north_finding.stop_solutions": ["None", "f_b", "h", "lat"],
     "papers.north_finding.ins_heading_change": ["dt", "lat", "w_ib_b"],  # strapdown.integrate_attitude

@@ -47,14 +47,16 @@ unless ``deg=True`` and return metres.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Annotated
 
 import numpy as np
 from numpy.typing import NDArray
 
-from .. import geodesy, robust
+from .. import _geodesy, geodesy, robust
 from .._typing import Array, ArrayLike, Times
 from .._validate import (
+    Check,
+    Count,
     Flag,
     Is,
     NonNegative,
@@ -73,9 +75,11 @@ from .._validate import (
     longitude,
     scalar,
     time_axis,
+    zone_offset,
 )
 from ..earth import CGCS2000, Ellipsoid, EllipsoidArg
 from ..filters.planar_ekf import EkfConfig, EkfResult, covariance, filter_grid, propagate
+from ..geodesy import ZoneWidth
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -387,9 +391,9 @@ def ekf(
     x0: ArrayLike,
     *,
     origin: ArrayLike | None = None,
-    zone: int | None = None,
-    width: int = 3,
-    ellipsoid: Ellipsoid = CGCS2000,
+    zone: Count | None = None,
+    width: ZoneWidth = 3,
+    ellipsoid: EllipsoidArg = CGCS2000,
     config: EkfConfig = PAPER_CONFIG,
     correct_convergence: bool = True,
     deg: Flag = False,
@@ -456,31 +460,46 @@ def ekf(
         imu.append(np.deg2rad(arr) if deg and name != "speed" else arr)
     heading, speed, yaw_rate = imu
     fix = np.all(np.isfinite(gps), axis=1)
+    if fix.any():
+        lat, lon = lat_lon(gps[fix, 0], gps[fix, 1], deg)  # rad, deg
     if origin is not None:
-        ref = as_array(origin, "origin", shape=(2,))
+        lat0, lon0 = as_array(origin, "origin", shape=(2,))
+        lat0, lon0 = lat_lon(lat0, lon0, deg)
     elif fix.any():
-        ref = gps[np.argmax(fix)]
+        lat0, lon0 = lat[0], lon[0]
     else:
         raise ValueError("gps: no valid fix and no origin given; cannot choose a zone")
-    if zone is None:
-        zone = int(geodesy.zone(ref[1], width, deg=deg))
-    kw: dict[str, Any] = dict(zone=zone, width=width, ellipsoid=ellipsoid, deg=deg)
-    origin_gk = np.array(geodesy.geodetic2gk(ref[0], ref[1], **kw)) if origin is not None else np.zeros(2)
+    zone = int(_geodesy.zone(lon0, width)) if zone is None else _zone_number(zone, width)
+    L0 = _geodesy.meridian(np.asarray(zone, dtype=float), width)
+    origin_gk = np.array(_grid(lat0, lon0, L0, width, ellipsoid)[:2]) if origin is not None else np.zeros(2)
     z = np.full((n, 5), np.nan)
     gamma = np.full(n, np.nan)
     if fix.any():
-        north, east = geodesy.geodetic2gk(gps[fix, 0], gps[fix, 1], **kw)
+        north, east, gamma[fix] = _grid(lat, lon, L0, width, ellipsoid)
         z[fix, 0], z[fix, 1] = north - origin_gk[0], east - origin_gk[1]
-        gamma[fix] = geodesy.convergence(gps[fix, 0], gps[fix, 1], **kw)
     else:
-        gamma[:] = geodesy.convergence(ref[0], ref[1], **kw)
-    if deg:
-        gamma = np.deg2rad(gamma)
+        gamma[:] = _grid(lat0, lon0, L0, width, ellipsoid)[2]
     z[:, 2] = heading - _forward_fill(gamma) if flag(correct_convergence, "correct_convergence") else heading
     z[:, 3], z[:, 4] = speed, yaw_rate
     res = filter_grid(t, z, x0, config)
     res.zone, res.origin_gk = zone, origin_gk
     return res
+
+
+def _zone_number(zone: int, width: int) -> int:
+    """``zone`` (an integer >= 1, checked) within the 360/width zones of its width."""
+    if zone > 360 // width:
+        raise ValueError(f"zone: expected a {width}° zone number 1-{360 // width}, got {zone!r}")
+    return zone
+
+
+def _grid(lat: Array, lon_deg: Array, L0: Array, width: int, ellipsoid: Ellipsoid) -> tuple[Array, Array, Array]:
+    """Gauss–Krüger northing, easting (m) and grid convergence (rad) of checked points (lat in rad, lon in deg)
+    in the zone of central meridian ``L0`` (deg): :func:`navlib.geodesy.geodetic2gk` and
+    :func:`navlib.geodesy.convergence` of their core, with the same longitude limit (the zone width)."""
+    l_deg = zone_offset(lon_deg - L0, float(width), width)
+    north, east = _geodesy.forward(lat, l_deg, ellipsoid, 1.0, 0.0, 0.0)
+    return north, east, _geodesy.factors(lat, l_deg, ellipsoid)[0]
 
 
 # --------------------------------------------------------------------------
@@ -521,9 +540,9 @@ def simulate_sensors(
     R: ArrayLike,
     rng: Rng,
     *,
-    zone: int | None = None,
-    width: int = 3,
-    ellipsoid: Ellipsoid = CGCS2000,
+    zone: Count | None = None,
+    width: ZoneWidth = 3,
+    ellipsoid: EllipsoidArg = CGCS2000,
     yaw_rate_bias: Real = 0.0,
     gps_valid: ArrayLike | None = None,
 ) -> Sensors:
@@ -570,18 +589,28 @@ def simulate_sensors(
     truth = as_array(truth, "truth", shape=(None, 5), min_ndim=1)
     origin = as_array(origin, "origin", shape=(2,))
     sigma = np.sqrt(np.diag(covariance(R, "R")))
-    zone = int(geodesy.zone(origin[1], width)) if zone is None else zone
-    kw: dict[str, Any] = dict(zone=zone, width=width, ellipsoid=ellipsoid)
-    o_north, o_east = geodesy.geodetic2gk(origin[0], origin[1], **kw)
+    lat0, lon0 = lat_lon(origin[0], origin[1])  # rad, deg
+    zone = int(_geodesy.zone(lon0, width)) if zone is None else _zone_number(zone, width)
+    L0 = _geodesy.meridian(np.asarray(zone, dtype=float), width)
+    o_north, o_east, _ = _grid(lat0, lon0, L0, width, ellipsoid)
     noise = sigma * rng.standard_normal(truth.shape)
-    lat, lon = geodesy.gk2geodetic(o_north + truth[:, 0] + noise[:, 0], o_east + truth[:, 1] + noise[:, 1], **kw)
-    gps = np.stack([lat, lon], -1)
+    gps = np.stack(_geodetic(o_north + truth[:, 0] + noise[:, 0], o_east + truth[:, 1] + noise[:, 1], L0, ellipsoid), -1)
     if gps_valid is not None:
         gps[~booleans(gps_valid, "gps_valid", shape=(len(truth),))] = np.nan
-    true_lat, true_lon = geodesy.gk2geodetic(o_north + truth[:, 0], o_east + truth[:, 1], **kw)
-    gamma = geodesy.convergence(true_lat, true_lon, **kw)
+    true_lat, true_lon = _geodetic(o_north + truth[:, 0], o_east + truth[:, 1], L0, ellipsoid)
+    gamma = _grid(true_lat, np.rad2deg(true_lon), L0, width, ellipsoid)[2]
     heading = np.mod(truth[:, 2] + gamma + noise[:, 2], 2 * np.pi)
     return Sensors(gps, heading, truth[:, 3] + noise[:, 3], truth[:, 4] + noise[:, 4] + yaw_rate_bias)
+
+
+def _geodetic(north: Array, east: Array, L0: Array, ellipsoid: Ellipsoid) -> tuple[Array, Array]:
+    """Latitude and longitude (rad) of grid points (m) about the central meridian ``L0`` (deg):
+    :func:`navlib.geodesy.gk2geodetic` of its core, with the same easting limit."""
+    xi, eta = _geodesy.normalised(north, east, ellipsoid)
+    if np.any(np.abs(eta) > _geodesy.MAX_ETA):
+        raise ValueError("truth: positions too far east or west of the central meridian for the Gauss–Krüger series")
+    lat, lon_deg = _geodesy.geodetic(xi, eta, L0, ellipsoid)
+    return lat, np.deg2rad(lon_deg)
 
 
 # --------------------------------------------------------------------------
@@ -658,11 +687,11 @@ def dead_reckoning_error_ms(truth: ArrayLike, T: Positive, R: ArrayLike, yaw_rat
 @boundary
 def ekf_error_ms(
     truth: ArrayLike,
-    T: Positive,
+    T: float,  # checked by planar_ekf.jacobian, its only use
     Q: ArrayLike = Q_PAPER,
     R: ArrayLike = R_PAPER,
     P0: ArrayLike | None = None,
-    yaw_rate_bias: float = 0.0,
+    yaw_rate_bias: Real = 0.0,
 ) -> Array:
     """Expected squared position error (m²) of :func:`ekf` on :func:`simulate_sensors`: a linear covariance analysis.
 
@@ -707,7 +736,7 @@ def ekf_error_ms(
         raise ValueError(f"truth: expected at least 2 states, got {len(truth)}")
     Q, R = covariance(Q, "Q"), covariance(R, "R")
     P = np.zeros((5, 5)) if P0 is None else covariance(P0, "P0").copy()
-    b = np.array([0.0, 0.0, 0.0, 0.0, scalar(yaw_rate_bias, "yaw_rate_bias")])
+    b = np.array([0.0, 0.0, 0.0, 0.0, yaw_rate_bias])
     S, m = np.zeros((5, 5)), np.zeros(5)
     ms = np.zeros(len(truth))
     eye = np.eye(5)
@@ -851,12 +880,12 @@ def draw_zones(
 @boundary
 def draw_zone_grid(
     ax: Axes,
-    zone: int,
-    lat_max: Positive = 60.0,
+    zone: Count,
+    lat_max: Annotated[float, Check("scalar", within=(10.0, 80.0), open_ends=(True, False))] = 60.0,
     *,
     step_deg: Positive = 0.5,
     mark: tuple[float, float] | None = None,
-    ellipsoid: Ellipsoid = CGCS2000,
+    ellipsoid: EllipsoidArg = CGCS2000,
 ) -> None:
     """One 3° zone drawn in its Gauss–Krüger plane: meridians every ``step_deg`` and parallels every 10°.
 
@@ -886,28 +915,30 @@ def draw_zone_grid(
     >>> plt.close(fig)
     """
     axes(ax)
-    n = int(scalar(zone, "zone", positive=True))
-    if n != zone or n > 120:
-        raise ValueError(f"zone: expected a 3° zone number 1-120, got {zone!r}")
-    if not 10 < lat_max <= 80:
-        raise ValueError(f"lat_max: expected a latitude in (10°, 80°], got {lat_max!r}")
-    L0 = float(geodesy.central_meridian(n, deg=True))
+    L0 = float(_geodesy.meridian(np.asarray(_zone_number(zone, 3), dtype=float), 3))
+
+    def grid_km(lat: Array, l_deg: Array) -> tuple[Array, Array]:
+        """Northing, easting (km) of latitudes (rad) at longitude offsets ``l_deg`` (deg) from L0."""
+        x, y = _geodesy.forward(lat, l_deg, ellipsoid, 1.0, 0.0, 0.0)
+        return x / 1e3, y / 1e3
+
     lats = np.linspace(0.0, lat_max, 121)
     for k, dl in enumerate(np.arange(-1.5, 1.5 + step_deg / 2, step_deg)):
-        x, y = geodesy.geodetic2gk(lats, np.full_like(lats, L0 + dl), zone=n, ellipsoid=ellipsoid, deg=True)
-        ax.plot(y / 1e3, x / 1e3, color="tab:green" if abs(dl) < 1e-9 else "0.5", lw=1.6 if abs(dl) < 1e-9 else 0.8)
+        x, y = grid_km(np.deg2rad(lats), np.full_like(lats, L0 + dl) - L0)
+        ax.plot(y, x, color="tab:green" if abs(dl) < 1e-9 else "0.5", lw=1.6 if abs(dl) < 1e-9 else 0.8)
         if k % 2 == 0:
-            ax.text(y[0] / 1e3, -250, f"{L0 + dl:g}°", ha="center", va="top", fontsize=7)
+            ax.text(y[0], -250, f"{L0 + dl:g}°", ha="center", va="top", fontsize=7)
     for lat in np.arange(0.0, lat_max + 1e-9, 10.0):
         lons = np.linspace(L0 - 1.5, L0 + 1.5, 31)
-        x, y = geodesy.geodetic2gk(np.full_like(lons, lat), lons, zone=n, ellipsoid=ellipsoid, deg=True)
-        ax.plot(y / 1e3, x / 1e3, color="0.7", lw=0.8)
-        ax.text(y[-1] / 1e3 + 8, x[-1] / 1e3, f"{lat:g}° N", fontsize=7, va="center")
+        x, y = grid_km(np.deg2rad(np.full_like(lons, lat)), lons - L0)
+        ax.plot(y, x, color="0.7", lw=0.8)
+        ax.text(y[-1] + 8, x[-1], f"{lat:g}° N", fontsize=7, va="center")
     if mark is not None:
         lat, lon = as_array(mark, "mark", shape=(2,))
-        x, y = geodesy.geodetic2gk(lat, lon, zone=n, ellipsoid=ellipsoid, deg=True)
-        ax.plot(y / 1e3, x / 1e3, "*", color="k", ms=12)
-    top_km = geodesy.geodetic2gk(lat_max, L0, zone=n, ellipsoid=ellipsoid, deg=True)[0] / 1e3
+        lat, lon = lat_lon(lat, lon, True)
+        x, y = grid_km(lat, zone_offset(lon - L0, 3.0, 3))
+        ax.plot(y, x, "*", color="k", ms=12)
+    top_km = grid_km(np.deg2rad(np.asarray(lat_max)), np.zeros(()))[0]
     ax.annotate(
         f"central meridian $L_0$ = {L0:g}°:\nthe x axis (north)",
         (0, 0.8 * top_km),

@@ -913,7 +913,12 @@ def four_position_heading_std(sigma_gyro: float, lat: float) -> Array:
 
 @boundary
 def stop_and_go(
-    headings: Angles, stop_duration: Positive, drive_duration: Positive, speed: Positive, pitches: Angles, rolls: Angles
+    headings: Angles,
+    stop_duration: Positive,
+    drive_duration: Annotated[float, Check("scalar", within=(30.0, np.inf, "s (accelerate, turn, brake)"))],
+    speed: Positive,
+    pitches: Angles,
+    rolls: Angles,
 ) -> tuple[list[Segment], Array]:
     """Segments of a drive with stops at given headings (Table 1 stand-in).
 
@@ -956,8 +961,6 @@ def stop_and_go(
         as_array(rolls, "rolls", shape=psi.shape, of="headings: one per stop"),
         ("pitches", "rolls"),
     )
-    if drive_duration < 30:
-        raise ValueError(f"drive_duration: expected >= 30 s (accelerate, turn, brake), got {drive_duration}")
     ramp = 10.0
     segments = [Segment(stop_duration, speed=0.0, pitch=th[0], roll=ro[0])]
     stops = [(0.0, stop_duration)]
@@ -1075,9 +1078,10 @@ def stop_solutions(
     window_options.setdefault("stuck_fraction", 0.5)
     if isinstance(w_ib_b, ImuSamples):
         fs_gyro, fs_accel = window_options.pop("full_scale_gyro", None), window_options.pop("full_scale_accel", None)
-        w_ib_b, f_b, _, fs_gyro, fs_accel = unpack(w_ib_b, f_b, None, fs_gyro, fs_accel)
+        w, f, _, fs_gyro, fs_accel = unpack(w_ib_b, f_b, None, fs_gyro, fs_accel)  # samples checked by the record
         window_options.update(full_scale_gyro=fs_gyro, full_scale_accel=fs_accel)
-    w, f = imu_samples(w_ib_b, f_b)
+    else:
+        w, f = imu_samples(w_ib_b, f_b)
     n = w.shape[-2]
     if time is not None:
         t = time_axis(time, "time")
@@ -1207,13 +1211,13 @@ def ins_heading_change(
     >>> round(float(np.rad2deg(dpsi)), 3)
     90.0
     """
-    if isinstance(w_ib_b, ImuSamples):
-        w_ib_b, _, dt, full_scale_gyro, _ = unpack(w_ib_b, dt=dt, full_scale_gyro=full_scale_gyro)
     w_ie = _earth.earth_rate_n(gyrocompass_latitude(scalar(lat, "lat")), earth.WGS84)
     rates = {"vertical": w_ie * [0, 0, 1], "none": np.zeros(3), "full": w_ie}
-    w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
-    n = w.shape[-2]
-    dts = sample_intervals(dt, n)
+    if isinstance(w_ib_b, ImuSamples):  # samples and intervals checked by the record
+        w, _, dts, full_scale_gyro, _ = unpack(w_ib_b, dt=dt, full_scale_gyro=full_scale_gyro)
+    else:
+        w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
+        dts = sample_intervals(dt, w.shape[-2])
     step = float(dts[0]) if np.all(dts == dts[0]) else float(dts.mean())
     fs = np.inf if full_scale_gyro is None else full_scale_gyro
     pitch, roll = level(
