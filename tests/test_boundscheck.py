@@ -56,8 +56,8 @@ for step in (_kernels.nav_step, strapdown.nav_step):
             step(lla, vel, q, np.array([0.01, -0.02, 0.3]), np.array([0.1, 0.2, 9.8]), 0.01, c, hold)
         assert np.all(np.isfinite(lla)) and np.all(np.isfinite(vel)) and np.all(np.isfinite(q))
 
-from navlib import earth, geodesy
-for n in ((), (3, 4), (2 * geodesy._CHUNK + 5,)):           # scalars, n-D, blocks with a partial last one
+from navlib import _geodesy, earth, geodesy
+for n in ((), (3, 4), (2 * _geodesy.CHUNK + 5,)):           # scalars, n-D, blocks with a partial last one
     lat, lon = np.full(n, 26.06), np.full(n, 121.3)
     x, y = geodesy.geodetic2gk(lat, lon, zone=40, ellipsoid=earth.CGCS2000, deg=True)
     la, lo = geodesy.gk2geodetic(x, y, zone=40, ellipsoid=earth.CGCS2000, deg=True)
