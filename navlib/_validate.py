@@ -26,6 +26,7 @@ from typing import Annotated, Any, ParamSpec, TypeVar
 import numpy as np
 from numpy.typing import NDArray
 
+from ._threads import run_chunks
 from ._typing import Array, ArrayLike
 
 _S = TypeVar("_S", bound=np.generic)  # the element type of an array checked and returned as it is
@@ -148,14 +149,29 @@ def as_array(
     return arr
 
 
+_PARALLEL_SIZE = 1 << 22
+"""Arrays of at least this many values (a batch of Monte Carlo records) are reduced in chunks on threads."""
+
+
 def _within_limits(arr: Array, ignore_nan: bool) -> bool:
     """True if every value lies within +-MAX_MAGNITUDE (two reductions, no temporaries); a NaN makes it
-    False unless ``ignore_nan``. An empty array is within them."""
+    False unless ``ignore_nan``. An empty array is within them. A large contiguous array is reduced in chunks on
+    :func:`navlib._threads.run_chunks`'s threads (numpy's reductions release the GIL; min and max are exact, so the
+    result does not depend on the chunks)."""
     lowest, highest = (np.fmin, np.fmax) if ignore_nan else (np.minimum, np.maximum)
-    return bool(
-        -MAX_MAGNITUDE <= lowest.reduce(arr, axis=None, initial=0.0)
-        and highest.reduce(arr, axis=None, initial=0.0) <= MAX_MAGNITUDE
-    )
+    if arr.size >= _PARALLEL_SIZE and arr.flags.c_contiguous:
+        flat, step = arr.reshape(-1), _PARALLEL_SIZE // 8
+        parts = run_chunks(
+            lambda i0, i1: (
+                lowest.reduce(flat[i0 * step : i1 * step], initial=0.0),
+                highest.reduce(flat[i0 * step : i1 * step], initial=0.0),
+            ),
+            -(-flat.size // step),
+        )
+        lo, hi = lowest.reduce([p[0] for p in parts]), highest.reduce([p[1] for p in parts])
+    else:
+        lo, hi = lowest.reduce(arr, axis=None, initial=0.0), highest.reduce(arr, axis=None, initial=0.0)
+    return bool(-MAX_MAGNITUDE <= lo and hi <= MAX_MAGNITUDE)
 
 
 def _magnitude(arr: Array, name: str) -> None:
