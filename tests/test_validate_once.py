@@ -52,8 +52,6 @@ TWICE = {
     "papers.rotation_bias.design": ["V"],
     "papers.rotation_bias.draw_rotation_scheme": ["ax"],
     "sensors.simulate_barometer": ["h", "p0"],  # atmosphere.isa_pressure
-    "filters.mahony.mahony": ["kp"],
-    "filters.quaternion_kf.quaternion_kf": ["kp"],
     "filters.planar_ekf.dead_reckoning": ["full_scale_gyro"],
     "filters.planar_ekf.filter_grid": ["z"],
     # A record checks its fields when built, also from arguments its builder checked.
