@@ -4,9 +4,9 @@ Each is the one implementation of its formula: the public, validated functions
 (:func:`navlib.earth.gravity`, :func:`navlib.earth.radii`, :func:`navlib.kalman.predict`,
 :func:`navlib.kalman.update`, :func:`navlib.strapdown.nav_step`, :func:`navlib.robust.stuck_mask`) and the
 compiled filters (strapdown, Kalman filters, pedestrian, attitude and planar filters) and the Gauss-Krüger
-series call these. The small-matrix primitives (:func:`fma`, :func:`mat3_vec`, :func:`lu_inverse`)
-reproduce the operation order of the BLAS and LAPACK that numpy calls, so that a fixed-size filter step
-written with them returns the bits of the generic one (:func:`kalman_update`) without its library calls.
+series call these. The small-matrix primitives (:func:`fma`, :func:`mat3_vec`) reproduce the operation order
+of the BLAS that numpy calls, so that a fixed-size step written with them returns the bits of the generic one
+without its library calls.
 Arguments are plain floats or float arrays in SI units, unvalidated: validate at the public boundary. A
 compiled kernel calls the primitive (e.g. :func:`kalman_update`), never the public validated wrapper.
 The per-sample quaternion helpers (:func:`quat_mult_t`, :func:`rotvec_to_quat_t`, :func:`quat_to_dcm_t`, ...)
@@ -487,137 +487,6 @@ def nav_step(lla, vel, q, w, f, dt, earth_consts, hold_height=False):
     lla[1] += (v0 + vn0) / 2 / ((R_N + h) * cl) * dt
     lla[2] = h + (v2 + vn2) / 2 * dt
     vel[0], vel[1], vel[2] = vn0, vn1, vn2
-
-
-# --------------------------------------------------------------------------
-# Small-matrix inverse in LAPACK's operation order
-# --------------------------------------------------------------------------
-# numpy.linalg.inv in a numba kernel calls LAPACK getrf + getri: for the small matrices of the
-# filters that costs microseconds of library overhead per call. lu_inverse does the same arithmetic
-# in place, in the order and with the fused multiply-adds of OpenBLAS's unblocked code paths for
-# n <= 9 (getf2, trti2, the unblocked getri, and the gemv_n / dot kernels of its x86-64 SkylakeX
-# build), so that it returns numpy.linalg.inv's bits (tests/test_ahrs.py checks it).
-
-
-@njit(cache=True, inline="always")
-def _gemv_sub(a, lda, M, N, r0, c0, x, ycol, y0):
-    """``a[y0 + r, ycol] -= sum_c a[r0 + r, c0 + c] x[c]`` for r < M, c < N: OpenBLAS dgemv_n with alpha = -1.
-
-    Rows in blocks of four take four columns at a time ``fma(a3, x3, fma(a2, x2, fma(a0, x0, a1 x1)))``,
-    then two ``fma(a0, x0, a1 x1)``, then one ``a x``; the last ``M % 4`` rows a plain fused chain.
-    """
-    m2 = M - (M & 3)
-    for r in range(M):
-        y = a[y0 + r, ycol]
-        if r < m2:
-            c = 0
-            while c + 4 <= N:
-                s = fma(a[r0 + r, c0 + c], x[c], a[r0 + r, c0 + c + 1] * x[c + 1])
-                s = fma(a[r0 + r, c0 + c + 3], x[c + 3], fma(a[r0 + r, c0 + c + 2], x[c + 2], s))
-                y = y - s
-                c += 4
-            if N - c >= 2:
-                y = y - fma(a[r0 + r, c0 + c], x[c], a[r0 + r, c0 + c + 1] * x[c + 1])
-                c += 2
-            if c < N:
-                y = y - a[r0 + r, c0 + c] * x[c]
-        else:  # (for n <= 3, lda == M % 4 takes no other branch: N < 4)
-            t = 0.0
-            for c in range(N):
-                t = fma(a[r0 + r, c0 + c], x[c], t)
-            y = y - t
-        a[y0 + r, ycol] = y
-
-
-@njit(cache=True, inline="always")
-def _dot_row_col(a, i, j, L):
-    """``sum_k<L a[i, k] a[k, j]``: OpenBLAS ddot with a strided first vector (blocks of four in two sums)."""
-    t1 = t2 = 0.0
-    k = 0
-    while k + 4 <= L:
-        t1 = t1 + fma(a[k, j], a[i, k], a[k + 2, j] * a[i, k + 2])
-        t2 = t2 + fma(a[k + 1, j], a[i, k + 1], a[k + 3, j] * a[i, k + 3])
-        k += 4
-    while k < L:
-        t1 = fma(a[k, j], a[i, k], t1)
-        k += 1
-    return t1 + t2
-
-
-@njit(cache=True, inline="always")
-def _lu(a, n, ipiv, work):
-    """LU factors of ``a[:n, :n]`` with partial pivoting, in place (LAPACK getf2, left-looking, as OpenBLAS).
-
-    ``ipiv[j]``: the row swapped with row j. Returns 0, or j + 1 for an exactly zero pivot j.
-    """
-    info = 0
-    for j in range(n):
-        for i in range(j):  # earlier row swaps, on this column
-            p = ipiv[i]
-            if p != i:
-                a[i, j], a[p, j] = a[p, j], a[i, j]
-        for i in range(1, j):
-            a[i, j] -= _dot_row_col(a, i, j, i)
-        for c in range(j):
-            work[c] = a[c, j]
-        _gemv_sub(a, n, n - j, j, j, 0, work, j, j)
-        p, big = j, abs(a[j, j])
-        for r in range(j + 1, n):
-            if abs(a[r, j]) > big:
-                p, big = r, abs(a[r, j])
-        ipiv[j] = p
-        pivot = a[p, j]
-        if pivot == 0.0:
-            if info == 0:
-                info = j + 1
-        elif abs(pivot) >= 2.2250738585072014e-308:  # DBL_MIN
-            inv = 1.0 / pivot
-            if p != j:
-                for c in range(j + 1):
-                    a[j, c], a[p, c] = a[p, c], a[j, c]
-            for r in range(j + 1, n):
-                a[r, j] *= inv
-    return info
-
-
-@njit(cache=True, inline="always")
-def _upper_inverse(a, n):
-    """Inverse of the upper triangle of ``a[:n, :n]`` in place (LAPACK trti2, as OpenBLAS: trmv by axpy)."""
-    for j in range(n):
-        ajj = 1.0 / a[j, j]
-        a[j, j] = ajj
-        for i in range(j):
-            bi = a[i, j]
-            for r in range(i):
-                a[r, j] = fma(bi, a[r, i], a[r, j])
-            a[i, j] = bi * a[i, i]
-        for r in range(j):
-            a[r, j] *= -ajj
-
-
-@njit(cache=True)
-def lu_inverse(a, n, ipiv, work):
-    """Inverse of ``a[:n, :n]`` in place, bit for bit ``numpy.linalg.inv`` on OpenBLAS (getrf + getri), n <= 9.
-
-    ``ipiv`` (n,) int and ``work`` (n,) float are scratch. Returns 0, or j + 1 if pivot j is exactly
-    zero (singular; ``a`` is then garbage). Unblocked getri: ``inv(A) inv(L) = inv(U)`` column by
-    column from the last, then the column swaps.
-    """
-    info = _lu(a, n, ipiv, work)
-    if info:
-        return info
-    _upper_inverse(a, n)
-    for j in range(n - 1, -1, -1):
-        for i in range(j + 1, n):
-            work[i - j - 1] = a[i, j]
-            a[i, j] = 0.0
-        _gemv_sub(a, n, n, n - 1 - j, 0, j + 1, work, j, 0)
-    for j in range(n - 2, -1, -1):
-        p = ipiv[j]
-        if p != j:
-            for r in range(n):
-                a[r, j], a[r, p] = a[r, p], a[r, j]
-    return 0
 
 
 @njit(cache=True, nogil=True)

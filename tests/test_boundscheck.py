@@ -10,7 +10,7 @@ convergence; scalars, n-D and blocked arrays) in a subprocess with ``NUMBA_BOUND
 out-of-bounds index raises ``IndexError``. A separate ``NUMBA_CACHE_DIR`` (``build/numba-boundscheck``,
 holding bounds-checked builds only, so later runs reuse them) keeps the cached builds compiled without
 bounds checks out of it. The same for the attitude filters, whose fixed-size Kalman steps index
-small scratch matrices by hand (:func:`navlib._kernels.lu_inverse`, the quaternion KF's update with 3 and 6
+small scratch matrices by hand (:func:`navlib._kernels.spd_solve_into`, the quaternion KF's update with 3 and 6
 rows, the stuck-run screening).
 """
 
@@ -104,9 +104,7 @@ from navlib.imu import ImuSamples, SensorLimits
 rng = np.random.default_rng(7)
 for n in range(1, 10):
     A = rng.standard_normal((n, n))
-    a = np.zeros((9, 9))
-    a[:n, :n] = A @ A.T + np.eye(n)
-    assert _kernels.lu_inverse(a, n, np.zeros(n, np.int64), np.zeros(n)) == 0
+    assert _kernels.spd_solve_into(A @ A.T + np.eye(n), rng.standard_normal((n, 2)))
 B = earth.magnetic_field(32.0, 118.8, 0.0, 2022.5)
 N = 300
 w = 0.01 * rng.standard_normal((2, N, 3)); w[0, 5] = np.nan; w[1, 20:40, 1] = w[1, 19, 1]
@@ -121,8 +119,8 @@ for filt in (mh.mahony, qkf.quaternion_kf):
     filt(ImuSamples(w, f, dt), q0)
 qkf.quaternion_kf(ImuSamples(w, f, 0.01), q0, m_b=m, B_n=B, keep_cov=True, linear_innovation=True)
 robust.stuck_mask(w, 5)
-try:                                            # bounds checking is on: a matrix too small for n is caught
-    _kernels.lu_inverse(np.eye(2), 3, np.zeros(3, np.int64), np.zeros(3))
+try:                                            # bounds checking is on: a right-hand side too short for S is caught
+    _kernels.spd_solve_into(np.eye(3), np.zeros((2, 1)))
 except IndexError:
     print("ok")
 """
