@@ -42,21 +42,12 @@ VALIDATE_FILE = _validate.__file__
 TWICE = {
     # A public function of another module checks again what the caller checked: these callers need the checked
     # value themselves first, and the callee's unchecked core is not yet in a private core module (navlib/_earth.py).
-    "papers.gauss_kruger_ekf.waypoint_path": ["T", "speed"],  # filters.planar_ekf
     "papers.gauss_kruger_ekf.ekf": ["axis", "name", "t", "z"],  # filters.planar_ekf.filter_grid and robust
-    "papers.north_finding.monte_carlo": ["f_b", "lat"],  # simulate_static_outputs, triad and heading_candidates
-    "papers.north_finding.stop_solutions": ["None", "f_b", "h", "lat"],
-    "papers.north_finding.ins_heading_change": ["dt", "lat", "w_ib_b"],  # strapdown.integrate_attitude
-    "papers.north_finding.draw_device": ["ax"],  # plots
-    "papers.north_finding.draw_candidate_pairs": ["ax"],
-    "papers.rotation_bias.design": ["V"],
-    "papers.rotation_bias.draw_rotation_scheme": ["ax"],
+    "papers.north_finding.stop_solutions": ["None"],
     "sensors.simulate_barometer": ["h", "p0"],  # atmosphere.isa_pressure
-    "filters.planar_ekf.dead_reckoning": ["full_scale_gyro"],
     "filters.planar_ekf.filter_grid": ["z"],
     # A record checks its fields when built, also from arguments its builder checked.
     "calibration.fit_accelerometer": ["g"],
-    "montecarlo.run": ["seed"],
     "papers.north_finding.stop_and_go": ["speed"],
     "papers.pedestrian_ins.carpark_legs": ["speed"],
     "trajectory.from_profiles": ["time", "vel_n"],
