@@ -130,6 +130,7 @@ from .._validate import (
     integer,
     pitch_roll,
     positive,
+    same_shape,
     sample_intervals,
     scalar,
     small_turns,
@@ -1106,9 +1107,7 @@ def stop_solutions(
         w, f = imu_samples(w_ib_b, f_b)
     n = w.shape[-2]
     if time is not None:
-        t = time_axis(time, "time")
-        if t.size != n:
-            raise ValueError(f"time: expected {n} sample times, got {t.size}")
+        t = same_shape(time_axis(time, "time"), "time", (n,), of="w_ib_b")
         tw = as_array(windows, "windows", nonempty=True)
         if tw.ndim != 2 or tw.shape[1] != 2 or np.any(tw[:, 1] <= tw[:, 0]):
             raise ValueError(f"windows: expected (S, 2) [start, end) times in s with end > start, got {tw.tolist()}")
