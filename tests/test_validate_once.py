@@ -40,17 +40,26 @@ VALIDATORS = {
 VALIDATE_FILE = _validate.__file__
 
 TWICE = {
-    # A public function of another module checks again what the caller checked: these callers need the checked
-    # value themselves first, and the callee's unchecked core is not yet in a private core module (navlib/_earth.py).
-    "papers.gauss_kruger_ekf.ekf": ["axis", "name", "t", "z"],  # filters.planar_ekf.filter_grid and robust
+    # robust.py (hold, stuck_samples) has no unchecked core yet: it checks name, axis and x on each call, also of
+    # values its callers checked (gauss_kruger_ekf's forward fill, planar_ekf's stuck yaw rate).
+    "papers.gauss_kruger_ekf.ekf": ["axis", "name", "t", "z"],  # t: filter_grid, whose core builds public records
+    "filters.planar_ekf.filter_grid": ["z"],  # robust.stuck_samples
+    # static_means (alignment) checks each window's samples again; its core needs public robust and earth names,
+    # so it cannot live in a private core module.
     "papers.north_finding.stop_solutions": ["None"],
-    "sensors.simulate_barometer": ["h", "p0"],  # atmosphere.isa_pressure
-    "filters.planar_ekf.filter_grid": ["z"],
-    # A record checks its fields when built, also from arguments its builder checked.
+    # isa_pressure checks h's values and p0; simulate_barometer checks h's length against time and p0 as a scalar
+    # (isa_pressure takes arrays). The ISA core needs units.G0, a public module's constant.
+    "sensors.simulate_barometer": ["h", "p0"],
+    # A record checks its fields when built, also from arguments its builder checked: the builder needs the
+    # checked value before it can build the record (g for the fit; a uniform time grid and vel_n of N rows before
+    # the positions are integrated) or asks more of it than the record does (a drive's speed > 0, a segment's
+    # or leg's >= 0), and the record checks its fields for direct construction.
     "calibration.fit_accelerometer": ["g"],
     "papers.north_finding.stop_and_go": ["speed"],
     "papers.pedestrian_ins.carpark_legs": ["speed"],
     "trajectory.from_profiles": ["time", "vel_n"],
+    # Not one argument: different fields of different records that share a name (Gates.zupt is a gate,
+    # MeasurementNoise.zupt a sigma; InitialSigma.heading and MeasurementNoise.heading), each checked once.
     "filters.presets.foot_mounted": ["baro", "heading", "zupt"],
 }
 """Arguments still checked twice on one registry call, and why: this list may shrink, never grow."""
