@@ -308,13 +308,14 @@ def block_diagram(
     ax.set_axis_off()
 
 
+@boundary
 def plane_frame(
     ax: Axes,
     origin: tuple[float, float],
-    angle_deg: float,
+    angle_deg: Real,
     labels: Sequence[str],
     *,
-    length: float = 1.0,
+    length: Positive = 1.0,
     color: ColorType = "0.2",
 ) -> None:
     """Draw a 2-D frame: two perpendicular axes from ``origin``, the first at ``angle_deg``.
@@ -335,13 +336,11 @@ def plane_frame(
     """
     axes(ax)
     o = as_array(origin, "origin", shape=(2,))
-    a = scalar(angle_deg, "angle_deg")
     if not isinstance(labels, (tuple, list)) or len(labels) != 2:
         raise ValueError(f"labels: expected two axis names, got {labels!r:.60}")
     names = [text(n, "labels") for n in labels]
-    size = scalar(length, "length", positive=True)
     _color(color, "color")
-    _plots.plane_frame(ax, o, a, names, size, color)
+    _plots.plane_frame(ax, o, angle_deg, names, length, color)
 
 
 @boundary

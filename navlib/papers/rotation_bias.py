@@ -116,7 +116,6 @@ from .._validate import (
     flag,
     imu_samples,
     indices,
-    integer,
     interval,
     kernel_array,
     positive,
@@ -630,7 +629,7 @@ def tilt_residuals(
     f_b: Vec3Series | None = None,
     dt: Interval | None = None,
     starts: ArrayLike | None = None,
-    length: int | None = None,
+    length: Annotated[int, Check("integer", minimum=MIN_DWELL_SAMPLES)] | None = None,
     w_ie_b: Vec3Series | None = None,
     *,
     max_missing: Annotated[float, Check("scalar", within=(0.0, 0.5))] = 0.0,
@@ -725,7 +724,6 @@ def tilt_residuals(
         raise ValueError(f"{'starts' if starts is None else 'length'}: required")
     lead, n = w.shape[:-2], w.shape[-2]
     small_turns(w, dts)
-    length = integer(length, "length", minimum=MIN_DWELL_SAMPLES)
     starts = indices(starts, "starts")
     if (
         starts.ndim != 1
