@@ -530,8 +530,11 @@ def _moving_mean(x: np.ndarray, n: int) -> np.ndarray:
 
 def _blocks(V: ArrayLike, R: ArrayLike) -> tuple[Array, Array]:
     V = as_array(V, "V", min_ndim=3)
-    m = V.shape[-2]  # rows of each block of V
-    return V, as_array(R, "R", tail=(m, m), min_ndim=1)
+    m = V.shape[-2]
+    R = as_array(R, "R", min_ndim=3)
+    if R.shape[-2:] != (m, m):
+        raise ValueError(f"R: expected shape (..., {m}, {m}) (m = {m} rows of each block of V {V.shape}), got {R.shape}")
+    return V, R
 
 
 def normal_condition(A: ArrayLike) -> Array:
