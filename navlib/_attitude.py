@@ -5,17 +5,24 @@ here. A function of another module that has already checked its quaternions or a
 :class:`navlib.trajectory.Trajectory`'s attitudes, its own Euler angles) calls the core directly, so that nothing
 is checked twice on one call. Inputs are float64 arrays: quaternions ``(..., 4)`` scalar first, non-zero (unit
 where a function says so), Euler angles ``(..., 3)`` in rad with the pitch within [-pi/2, pi/2]; the levelling
-cores of :mod:`navlib.alignment` take non-zero specific forces and magnetic fields.
+and TRIAD cores of :mod:`navlib.alignment` take non-zero specific forces and magnetic fields, the attitude
+integration of :mod:`navlib.strapdown` finite gyro samples.
 """
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 from numba import njit
 
-from ._kernels import quat_to_dcm_into, tilt_heading
+from . import _earth
+from ._kernels import quat_mult_t, quat_to_dcm_into, rotvec_to_quat_t, tilt_heading
 from ._typing import Array
 from ._validate import kernel_array
+
+if TYPE_CHECKING:
+    from .earth import Ellipsoid
 
 
 def wrap_pi(a: Array) -> Array:
@@ -140,3 +147,54 @@ def quat_to_rotvec(q: Array) -> Array:
     angle = 2 * np.arctan2(s, q[..., :1])
     k = np.where(s > 1e-8, angle / np.where(s > 0, s, 1.0), 2 + s**2 / 3)
     return k * q[..., 1:]
+
+
+@njit(cache=True)
+def _integrate_kernel(q0, w, dt, w_in_n):
+    """``dt`` has 1 element (regular sampling) or one per sample (irregular)."""
+    T, N = w.shape[0], w.shape[1]
+    q = np.empty((T, N + 1, 4))
+    per_sample = dt.shape[0] > 1
+    dtk = dt[0]
+    n0, n1, n2, n3 = rotvec_to_quat_t(-w_in_n[0] * dtk, -w_in_n[1] * dtk, -w_in_n[2] * dtk)
+    for t in range(T):
+        a0, a1, a2, a3 = q0[t, 0], q0[t, 1], q0[t, 2], q0[t, 3]
+        q[t, 0, 0], q[t, 0, 1], q[t, 0, 2], q[t, 0, 3] = a0, a1, a2, a3
+        for k in range(N):
+            if per_sample:
+                dtk = dt[k]
+                n0, n1, n2, n3 = rotvec_to_quat_t(-w_in_n[0] * dtk, -w_in_n[1] * dtk, -w_in_n[2] * dtk)
+            # q_k+1 = q(-w_in dt) (x) q_k (x) q(w_k dt), then renormalise
+            b0, b1, b2, b3 = rotvec_to_quat_t(w[t, k, 0] * dtk, w[t, k, 1] * dtk, w[t, k, 2] * dtk)
+            a0, a1, a2, a3 = quat_mult_t(n0, n1, n2, n3, a0, a1, a2, a3)
+            a0, a1, a2, a3 = quat_mult_t(a0, a1, a2, a3, b0, b1, b2, b3)
+            s = 1.0 / np.sqrt(a0 * a0 + a1 * a1 + a2 * a2 + a3 * a3)
+            a0, a1, a2, a3 = a0 * s, a1 * s, a2 * s, a3 * s
+            q[t, k + 1, 0], q[t, k + 1, 1], q[t, k + 1, 2], q[t, k + 1, 3] = a0, a1, a2, a3
+    return q
+
+
+def integrate(q0: Array, w: Array, dt: Array, w_in_n: Array) -> Array:
+    """:func:`navlib.strapdown.integrate_attitude`'s core: unit ``q0`` (..., 4), finite gyro samples ``w``
+    (..., N, 3) with the same leading axes, ``dt`` of 1 element (regular sampling) or N (s), ``w_in_n`` (3,)
+    (rad/s); returns ``q_bn`` (..., N + 1, 4)."""
+    lead = w.shape[:-2]
+    q = _integrate_kernel(kernel_array(q0.reshape(-1, 4)), kernel_array(w.reshape(-1, *w.shape[-2:])), dt, w_in_n)
+    return q.reshape(lead + q.shape[-2:])
+
+
+def _reference_triad(g_n: Array, w_ie_n: Array) -> Array:
+    a = g_n
+    b = np.cross(g_n, w_ie_n)
+    return np.stack([a, b, np.cross(b, a)], -1)
+
+
+def triad(f: Array, w: Array, lat: Array, ellipsoid: Ellipsoid) -> Array:
+    """:func:`navlib.alignment.triad`'s core (Eq. 2, not orthonormalised): ``C_bn`` (..., 3, 3) from averaged
+    specific force ``f`` and angular rate ``w`` (..., 3) at latitude ``lat`` (rad, within the gyrocompassing
+    limit) on ``ellipsoid``."""
+    g_n = np.stack(np.broadcast_arrays(0.0, 0.0, -_earth.gravity(lat, np.zeros(()), ellipsoid)), -1)
+    body = _reference_triad(-f, w)  # columns: -f, -f x w, (-f x w) x (-f)
+    nav = _reference_triad(g_n, _earth.earth_rate_n(lat, ellipsoid))
+    C_nb = body @ np.linalg.inv(nav)
+    return np.swapaxes(C_nb, -1, -2)

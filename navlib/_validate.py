@@ -593,6 +593,8 @@ Fraction = Annotated[float, Check("scalar", within=(0.0, 1.0), open_ends=(True, 
 """A fraction in (0, 1]."""
 Is = Annotated[_T, Check("instance")]
 """``Is[Cls]``: an instance of ``Cls``."""
+FilePath = Annotated[Path, Check("file_path")]
+"""A file or folder named by a string or path-like object, passed on as a :class:`pathlib.Path`."""
 MAX_GYROCOMPASS_LAT_DEG = 89.0
 """Largest |latitude| (deg) at which gyrocompassing finds north (:data:`navlib.alignment.MAX_LAT_DEG`)."""
 _GYRO_LAT = np.deg2rad(MAX_GYROCOMPASS_LAT_DEG)

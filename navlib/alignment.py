@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from . import _attitude, _earth, _kernels, attitude, earth
+from . import _attitude, _kernels, attitude, earth
 from ._typing import Angles, Array, ArrayLike, Dcm, Vec3, Vec3Series
 from ._validate import (
     MAX_GYROCOMPASS_LAT_DEG,
@@ -481,12 +481,6 @@ def static_means(
     return StaticWindow(w_mean, f_mean, n, nu_g, nu_a, faults)
 
 
-def _reference_triad(g_n: Array, w_ie_n: Array) -> Array:
-    a = g_n
-    b = np.cross(g_n, w_ie_n)
-    return np.stack([a, b, np.cross(b, a)], -1)
-
-
 def triad(f_b: Vec3, w_ib_b: Vec3, lat: ArrayLike, orthonormal: bool = True) -> Array:
     """Analytic coarse alignment with a three-axis gyro: TRIAD (paper 000, Tan & Xie, Eqs. 1-2).
 
@@ -522,12 +516,7 @@ def triad(f_b: Vec3, w_ib_b: Vec3, lat: ArrayLike, orthonormal: bool = True) -> 
         name="w_ib_b",
         of="f_b, w_ib_b",
     )
-    lat = gyrocompass_latitude(lat)
-    g_n = np.stack(np.broadcast_arrays(0.0, 0.0, -_earth.gravity(lat, np.zeros(()), earth.WGS84)), -1)
-    body = _reference_triad(-f, w)  # columns: -f, -f x w, (-f x w) x (-f)
-    nav = _reference_triad(g_n, _earth.earth_rate_n(lat, earth.WGS84))
-    C_nb = body @ np.linalg.inv(nav)
-    C_bn = np.swapaxes(C_nb, -1, -2)
+    C_bn = _attitude.triad(f, w, gyrocompass_latitude(lat), earth.WGS84)
     return attitude.orthonormalize(C_bn) if flag(orthonormal, "orthonormal") else C_bn
 
 

@@ -24,7 +24,7 @@ from typing import Annotated
 import numpy as np
 from numba import njit
 
-from . import _attitude, _earth, _kernels, _noise, attitude, earth
+from . import _attitude, _earth, _kernels, _lsq, _noise, attitude, earth
 from ._typing import Angles, Array, ArrayLike, Times, Vec3
 from ._validate import (
     Check,
@@ -553,16 +553,7 @@ def normal_condition(A: ArrayLike) -> Array:
     A = as_array(A, "A", min_ndim=2)
     if A.shape[-1] != A.shape[-2]:
         raise ValueError(f"A: expected square matrices (..., n, n), got shape {A.shape}")
-    return _normal_condition(A)
-
-
-def _normal_condition(A: np.ndarray) -> Array:
-    """:func:`normal_condition` of checked matrices (also of the normal matrices built here)."""
-    ev = np.linalg.eigvalsh(A)
-    zero = ev[..., 0] <= ev[..., -1] * A.shape[-1] * np.finfo(float).eps
-    with np.errstate(divide="ignore", invalid="ignore"):
-        c = np.sqrt(ev[..., -1] / ev[..., 0])
-    return np.where(~zero & np.isfinite(c), c, np.inf)
+    return _lsq.normal_condition(A)
 
 
 def condition_number(V: ArrayLike) -> Array:
@@ -578,11 +569,7 @@ def condition_number(V: ArrayLike) -> Array:
     >>> float(analysis.condition_number(V)), float(analysis.condition_number(V[:1]))   # the second alone misses z
     (1.4142135623730951, inf)
     """
-    V = as_array(V, "V", min_ndim=3, allow_nan=True)
-    ok = np.all(np.isfinite(V), axis=(-2, -1))
-    Vz = np.where(ok[..., None, None], V, 0.0)
-    A = np.einsum("...kij,...kil->...jl", Vz, Vz)
-    return _normal_condition(A)
+    return _lsq.condition_number(as_array(V, "V", min_ndim=3, allow_nan=True))
 
 
 @boundary
@@ -617,7 +604,7 @@ def lsq_covariance(
     """
     V, R = _blocks(V, R)
     A = np.einsum("...kji,...kjl->...il", V, V)
-    if np.any(_normal_condition(A) > max_cond):
+    if np.any(_lsq.normal_condition(A) > max_cond):
         raise ValueError("V: the unknowns are not observable from these blocks (rank-deficient V)")
     A_inv = np.linalg.inv(A)
     return A_inv @ np.einsum("...kji,...kjl,...klm->...im", V, R, V) @ A_inv
@@ -653,13 +640,7 @@ def cramer_rao_bound(
     array([[0.8, 0. ],
            [0. , 0.8]])
     """
-    V, R = _blocks(V, R)
-    n = V.shape[-1]
-    info = np.einsum("...kji,...kjl,...klm->...im", V, np.linalg.inv(R), V)
-    bad = _normal_condition(info) ** 2 > max_cond**2
-    safe = np.where(bad[..., None, None], np.eye(n), info)
-    P = np.linalg.inv(safe)
-    return np.where(bad[..., None, None], np.where(np.eye(n, dtype=bool), np.inf, np.nan), P)
+    return _lsq.cramer_rao_bound(*_blocks(V, R), max_cond)
 
 
 @boundary

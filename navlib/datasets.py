@@ -27,7 +27,6 @@ less the first IMU sample's time.
 
 from __future__ import annotations
 
-import os
 import re
 from dataclasses import dataclass
 from typing import Any
@@ -36,7 +35,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from . import attitude, geodesy
-from ._validate import file_path, text, time_axis
+from ._validate import FilePath, boundary, text, time_axis
 from .imu import ImuSamples
 from .io import Recording, align
 
@@ -89,7 +88,8 @@ class ReferenceTrial:
         return 1.0 / float(np.median(self.recording.dt))
 
 
-def read_broad(path: str | os.PathLike[str]) -> ReferenceTrial:
+@boundary
+def read_broad(path: FilePath) -> ReferenceTrial:
     """Read one BROAD trial converted by ``tools/broad_to_npz.py``.
 
     Parameters
@@ -116,7 +116,6 @@ def read_broad(path: str | os.PathLike[str]) -> ReferenceTrial:
     >>> trial.recording.w_ib_b.shape == trial.q_ref.shape[:1] + (3,)
     True
     """
-    path = file_path(path, "path")
     with np.load(path, allow_pickle=False) as z:
         missing = {"gyr", "acc", "mag", "opt_quat", "movement", "sampling_rate"} - set(z.files)
         if missing:
@@ -242,7 +241,8 @@ def _ecef_to_enu(lat: np.ndarray, lon: np.ndarray) -> np.ndarray:
     )
 
 
-def read_comma2k19(folder: str | os.PathLike[str]) -> DriveLog:
+@boundary
+def read_comma2k19(folder: FilePath) -> DriveLog:
     """Read one comma2k19 segment as committed in data/real/comma2k19/ (the source's ``.npy`` logs, renamed
     ``<sensor>.<log>.<t|value>.npy`` and ``global_pose.<name>.npy``).
 
@@ -263,7 +263,6 @@ def read_comma2k19(folder: str | os.PathLike[str]) -> DriveLog:
     >>> round(float(np.nanmax(log.can_speed)), 1) > 0                  # the car moves (m/s)
     True
     """
-    folder = file_path(folder, "folder")
 
     def load(name: str) -> NDArray[Any]:
         path = folder / f"{name}.npy"

@@ -47,6 +47,7 @@ from . import _attitude, alignment, attitude, calibration, strapdown
 from ._typing import Array, ArrayLike, Dcm, Times
 from ._validate import (
     Check,
+    FilePath,
     Flag,
     Is,
     Positive,
@@ -54,7 +55,6 @@ from ._validate import (
     booleans,
     boundary,
     choice,
-    file_path,
     flag,
     scalar,
     text,
@@ -441,7 +441,7 @@ CheckMode = Annotated[str, Check("choice", options=("warn", "raise", "off"))]
 
 @boundary
 def read_csv(
-    path: str | Path, *, sep: str = ",", comment: str | None = None, check: CheckMode = "warn", **kwargs: Any
+    path: FilePath, *, sep: str = ",", comment: str | None = None, check: CheckMode = "warn", **kwargs: Any
 ) -> Recording:
     """A :class:`Recording` from a CSV file: ``pandas.read_csv(path, sep, comment)`` then :func:`from_dataframe`.
 
@@ -488,7 +488,7 @@ _XIO_OLD = "Packet number"  # x-IMU (older x-io board, CalInertialAndMag.csv): n
 
 @boundary
 def read_xio(
-    path: str | Path,
+    path: FilePath,
     *,
     rate: Positive | None = None,
     axes: str | Dcm | Mapping[str, str | Dcm] = "x,y,z",
@@ -566,9 +566,8 @@ def read_xio(
     return _finish(rec, source, check, notes)
 
 
-def _read_table(path: str | Path, **read_csv: Any) -> tuple[pd.DataFrame, str]:
-    """A CSV file as a DataFrame (spaces after separators ignored), and its path for ``Recording.source``."""
-    path = file_path(path, "path")
+def _read_table(path: Path, **read_csv: Any) -> tuple[pd.DataFrame, str]:
+    """A CSV file (a checked path) as a DataFrame (spaces after separators ignored), and its path for ``Recording.source``."""
     if not path.is_file():
         raise ValueError(f"path: no such file {str(path)!r}")
     df = pd.read_csv(path, skipinitialspace=True, **read_csv)
@@ -733,7 +732,7 @@ def _logger_reference(
 
 @boundary
 def read_sensor_logger(
-    directory: str | Path,
+    directory: FilePath,
     *,
     platform: Annotated[str, Check("choice", options=("ios", "android"))] | None = None,
     axes: str | Dcm | Mapping[str, str | Dcm] = "x,y,z",
@@ -800,7 +799,7 @@ def read_sensor_logger(
     (array([0.  , 0.01]), array([0.5, 0.5]))
     >>> tmp.cleanup()
     """
-    d = file_path(directory, "directory")
+    d = directory
     if not d.is_dir():
         raise ValueError(f"directory: no such directory {str(d)!r}")
     if not (d / "Gyroscope.csv").is_file():
@@ -873,7 +872,7 @@ _PHYPHOX = {"gyro": ("Gyroscope", "rad/s"), "accel": ("Acceleration", "m/s^2"), 
 
 @boundary
 def read_phyphox(
-    path: str | Path,
+    path: FilePath,
     *,
     axes: str | Dcm | Mapping[str, str | Dcm] = "x,y,z",
     mirror: bool = False,
@@ -915,7 +914,7 @@ def read_phyphox(
     (array([0.  , 0.01]), array([0.5, 0.5]), True)
     >>> tmp.cleanup()
     """
-    p = file_path(path, "path")
+    p = path
     files = sorted(p.glob("*.csv")) if p.is_dir() else [p]
     if not files or not files[0].is_file():
         raise ValueError(f"path: no such file or folder of CSV files {str(p)!r}")
@@ -954,7 +953,7 @@ def read_phyphox(
 
 @boundary
 def read_euroc(
-    path: str | Path, *, axes: str | Dcm = "x,y,z", timing: str = "raise", check_units: bool = True, check: CheckMode = "warn"
+    path: FilePath, *, axes: str | Dcm = "x,y,z", timing: str = "raise", check_units: bool = True, check: CheckMode = "warn"
 ) -> Recording:
     """The EuRoC MAV dataset's IMU file (``mav0/imu0/data.csv``): ns timestamps, rad/s, m/s^2.
 

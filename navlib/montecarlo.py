@@ -66,6 +66,16 @@ class TrialStreams:
         ids = indices(ids, "ids")
         if ids.ndim != 1 or ids.size == 0 or not np.issubdtype(ids.dtype, np.integer) or ids.min() < 0:
             raise ValueError(f"ids: expected a non-empty 1-D array of non-negative trial indices, got {ids!r:.60}")
+        self._start(seed, ids)
+
+    @classmethod
+    def _of(cls, seed: int, ids: NDArray[np.integer]) -> TrialStreams:
+        """The streams of a seed and trial indices that the caller (:func:`run`) has checked or made."""
+        streams = cls.__new__(cls)
+        streams._start(seed, ids)
+        return streams
+
+    def _start(self, seed: int, ids: NDArray[np.integer]) -> None:
         self.ids = ids.astype(np.int64)
         self._seed = int(seed)
         self._rngs: list[np.random.Generator] | None = None  # per-trial generators, made on demand (generators(), many draws)
@@ -181,7 +191,7 @@ def _pcg64_states(seed: int, ids: np.ndarray) -> list[tuple[int, int]]:
 def _run_batch(
     batch_fn: Callable[..., dict[str, Any]], seed: int, ids: NDArray[np.int64], kwargs: dict[str, Any]
 ) -> dict[str, Any]:
-    return batch_fn(ids, TrialStreams(seed, ids), **kwargs)
+    return batch_fn(ids, TrialStreams._of(seed, ids), **kwargs)
 
 
 def _progress_bar(total: int, label: str) -> Any:

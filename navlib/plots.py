@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING, Annotated, Any
 
 import numpy as np
 
-from . import attitude, units
+from . import _plots, attitude, units
 from ._typing import Angles, Array, ArrayLike, Dcm
 from ._validate import (
     Check,
@@ -308,13 +308,14 @@ def block_diagram(
     ax.set_axis_off()
 
 
+@boundary
 def plane_frame(
     ax: Axes,
     origin: tuple[float, float],
-    angle_deg: float,
+    angle_deg: Real,
     labels: Sequence[str],
     *,
-    length: float = 1.0,
+    length: Positive = 1.0,
     color: ColorType = "0.2",
 ) -> None:
     """Draw a 2-D frame: two perpendicular axes from ``origin``, the first at ``angle_deg``.
@@ -335,17 +336,11 @@ def plane_frame(
     """
     axes(ax)
     o = as_array(origin, "origin", shape=(2,))
-    a = np.deg2rad(scalar(angle_deg, "angle_deg"))
     if not isinstance(labels, (tuple, list)) or len(labels) != 2:
         raise ValueError(f"labels: expected two axis names, got {labels!r:.60}")
     names = [text(n, "labels") for n in labels]
-    size = scalar(length, "length", positive=True)
     _color(color, "color")
-    for k, name in enumerate(names):
-        d = size * np.array([np.cos(a + k * np.pi / 2), np.sin(a + k * np.pi / 2)])
-        ax.annotate("", tuple(o + d), tuple(o), arrowprops={"arrowstyle": "-|>", "color": color, "linewidth": 1.4})
-        tip = o + 1.12 * d
-        ax.text(tip[0], tip[1], name, color=color, ha="center", va="center")
+    _plots.plane_frame(ax, o, angle_deg, names, length, color)
 
 
 @boundary
@@ -377,12 +372,4 @@ def angle_arc(
     c = as_array(center, "center", shape=(2,))
     t0, t1 = scalar(start_deg, "start_deg"), scalar(end_deg, "end_deg")
     _color(color, "color")
-    from matplotlib.patches import Arc  # noqa: PLC0415 -- navlib imports without matplotlib
-
-    lo, hi = min(t0, t1), max(t0, t1)
-    ax.add_patch(Arc(tuple(c), 2 * radius, 2 * radius, theta1=lo, theta2=hi, color=color, linewidth=1))
-    if label:
-        mid = np.deg2rad((lo + hi) / 2)
-        ax.text(
-            c[0] + 1.25 * radius * np.cos(mid), c[1] + 1.25 * radius * np.sin(mid), label, color=color, ha="center", va="center"
-        )
+    _plots.angle_arc(ax, c, radius, t0, t1, label, color)

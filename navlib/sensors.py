@@ -425,9 +425,7 @@ def simulate_imu_batches(
     >>> [p.shape[0] for p in parts], bool(np.array_equal(np.concatenate(parts), every))
     ([2, 2, 1], True)
     """
-    w, f = imu_samples(w_ib_b, f_b, allow_nan=False)
-    if w.ndim != 2:
-        raise ValueError(f"w_ib_b: expected shape (N, 3), one ideal record for every trial, got {w.shape}")
+    w, f = imu_samples(w_ib_b, f_b, allow_nan=False, shape=(None, 3))  # one ideal record for every trial
     r_gyro, r_accel = rng.spawn(2)  # here, as simulate_imu does, not when the first batch is asked for
     gyro = _corrupt_batches(np.broadcast_to(w, (n_trials,) + w.shape), dt, model.gyro, r_gyro, batch)
     accel = _corrupt_batches(np.broadcast_to(f, (n_trials,) + f.shape), dt, model.accel, r_accel, batch)

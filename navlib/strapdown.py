@@ -57,8 +57,7 @@ import numpy as np
 from numba import njit
 from numpy.typing import NDArray
 
-from . import _earth, _kernels, attitude, earth, robust
-from ._kernels import quat_mult_t, rotvec_to_quat_t
+from . import _attitude, _earth, _kernels, attitude, earth, robust
 from ._typing import Array, ArrayLike, Dcm, Interval, Quat, Vec3, Vec3Series
 from ._validate import (
     Check,
@@ -80,31 +79,6 @@ from .imu import ImuSamples, unpack
 from .trajectory import Trajectory
 
 __all__ = ["integrate", "integrate_attitude", "nav_step", "earth_constants", "error_model", "error_input"]
-
-
-@njit(cache=True)
-def _attitude_kernel(q0, w, dt, w_in_n):
-    """``dt`` has 1 element (regular sampling) or one per sample (irregular)."""
-    T, N = w.shape[0], w.shape[1]
-    q = np.empty((T, N + 1, 4))
-    per_sample = dt.shape[0] > 1
-    dtk = dt[0]
-    n0, n1, n2, n3 = rotvec_to_quat_t(-w_in_n[0] * dtk, -w_in_n[1] * dtk, -w_in_n[2] * dtk)
-    for t in range(T):
-        a0, a1, a2, a3 = q0[t, 0], q0[t, 1], q0[t, 2], q0[t, 3]
-        q[t, 0, 0], q[t, 0, 1], q[t, 0, 2], q[t, 0, 3] = a0, a1, a2, a3
-        for k in range(N):
-            if per_sample:
-                dtk = dt[k]
-                n0, n1, n2, n3 = rotvec_to_quat_t(-w_in_n[0] * dtk, -w_in_n[1] * dtk, -w_in_n[2] * dtk)
-            # q_k+1 = q(-w_in dt) (x) q_k (x) q(w_k dt), then renormalise
-            b0, b1, b2, b3 = rotvec_to_quat_t(w[t, k, 0] * dtk, w[t, k, 1] * dtk, w[t, k, 2] * dtk)
-            a0, a1, a2, a3 = quat_mult_t(n0, n1, n2, n3, a0, a1, a2, a3)
-            a0, a1, a2, a3 = quat_mult_t(a0, a1, a2, a3, b0, b1, b2, b3)
-            s = 1.0 / np.sqrt(a0 * a0 + a1 * a1 + a2 * a2 + a3 * a3)
-            a0, a1, a2, a3 = a0 * s, a1 * s, a2 * s, a3 * s
-            q[t, k + 1, 0], q[t, k + 1, 1], q[t, k + 1, 2], q[t, k + 1, 3] = a0, a1, a2, a3
-    return q
 
 
 _NAN_POLICIES = ("raise", "hold")
@@ -179,11 +153,9 @@ def integrate_attitude(
     dt = _sample_intervals(dt, w.shape[-2])
     small_turns(w, dt)
     q0 = as_quat(q0, "q0")
-    lead = w.shape[:-2]
-    q0 = broadcast_to(q0, "q0", lead + (4,), of="the trials of w_ib_b").reshape(-1, 4)
+    q0 = broadcast_to(q0, "q0", w.shape[:-2] + (4,), of="the trials of w_ib_b")
     w_in = np.zeros(3) if w_in_n is None else as_array(w_in_n, "w_in_n", shape=(3,))
-    q = _attitude_kernel(kernel_array(q0), kernel_array(w.reshape(-1, *w.shape[-2:])), dt, w_in)
-    return q.reshape(lead + q.shape[-2:])
+    return _attitude.integrate(q0, w, dt, w_in)
 
 
 def _state_array(x: ArrayLike, name: str, size: int) -> np.ndarray:

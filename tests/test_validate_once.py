@@ -40,26 +40,26 @@ VALIDATORS = {
 VALIDATE_FILE = _validate.__file__
 
 TWICE = {
-    # A public function of another module checks again what the caller checked: these callers need the checked
-    # value themselves first, and the callee's unchecked core is not yet in a private core module (navlib/_earth.py).
-    "papers.gauss_kruger_ekf.waypoint_path": ["T", "speed"],  # filters.planar_ekf
-    "papers.gauss_kruger_ekf.ekf": ["axis", "name", "t", "z"],  # filters.planar_ekf.filter_grid and robust
-    "papers.north_finding.monte_carlo": ["f_b", "lat"],  # simulate_static_outputs, triad and heading_candidates
-    "papers.north_finding.stop_solutions": ["None", "f_b", "h", "lat"],
-    "papers.north_finding.ins_heading_change": ["dt", "lat", "w_ib_b"],  # strapdown.integrate_attitude
-    "papers.north_finding.draw_device": ["ax"],  # plots
-    "papers.north_finding.draw_candidate_pairs": ["ax"],
-    "papers.rotation_bias.design": ["V"],
-    "papers.rotation_bias.draw_rotation_scheme": ["ax"],
-    "sensors.simulate_barometer": ["h", "p0"],  # atmosphere.isa_pressure
-    "filters.planar_ekf.dead_reckoning": ["full_scale_gyro"],
-    "filters.planar_ekf.filter_grid": ["z"],
-    # A record checks its fields when built, also from arguments its builder checked.
+    # robust.py (hold, stuck_samples) has no unchecked core yet: it checks name, axis and x on each call, also of
+    # values its callers checked (gauss_kruger_ekf's forward fill, planar_ekf's stuck yaw rate).
+    "papers.gauss_kruger_ekf.ekf": ["axis", "name", "t", "z"],  # t: filter_grid, whose core builds public records
+    "filters.planar_ekf.filter_grid": ["z"],  # robust.stuck_samples
+    # static_means (alignment) checks each window's samples again; its core needs public robust and earth names,
+    # so it cannot live in a private core module.
+    "papers.north_finding.stop_solutions": ["None"],
+    # isa_pressure checks h's values and p0; simulate_barometer checks h's length against time and p0 as a scalar
+    # (isa_pressure takes arrays). The ISA core needs units.G0, a public module's constant.
+    "sensors.simulate_barometer": ["h", "p0"],
+    # A record checks its fields when built, also from arguments its builder checked: the builder needs the
+    # checked value before it can build the record (g for the fit; a uniform time grid and vel_n of N rows before
+    # the positions are integrated) or asks more of it than the record does (a drive's speed > 0, a segment's
+    # or leg's >= 0), and the record checks its fields for direct construction.
     "calibration.fit_accelerometer": ["g"],
-    "montecarlo.run": ["seed"],
     "papers.north_finding.stop_and_go": ["speed"],
     "papers.pedestrian_ins.carpark_legs": ["speed"],
     "trajectory.from_profiles": ["time", "vel_n"],
+    # Not one argument: different fields of different records that share a name (Gates.zupt is a gate,
+    # MeasurementNoise.zupt a sigma; InitialSigma.heading and MeasurementNoise.heading), each checked once.
     "filters.presets.foot_mounted": ["baro", "heading", "zupt"],
 }
 """Arguments still checked twice on one registry call, and why: this list may shrink, never grow."""

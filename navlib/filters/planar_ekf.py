@@ -102,8 +102,9 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit
 
-from .. import _kernels, kalman
+from .. import _kernels, _planar, kalman
 from .._kernels import wrap_pi
+from .._planar import motion
 from .._typing import Array, ArrayLike, Times
 from .._validate import (
     Is,
@@ -114,7 +115,6 @@ from .._validate import (
     instance,
     integer,
     kernel_array,
-    range_limit,
     same_shape,
     text,
     time_axis,
@@ -142,15 +142,6 @@ _ANGLE_MASK = np.array([False, False, True, False, False])
 # --------------------------------------------------------------------------
 # Motion model, Eqs. (13) and (16)
 # --------------------------------------------------------------------------
-
-
-@njit(cache=True)
-def _f(X, T):
-    out = X.copy()
-    out[0] = X[0] + X[3] * T * np.cos(X[2])
-    out[1] = X[1] + X[3] * T * np.sin(X[2])
-    out[2] = X[2] + X[4] * T
-    return out
 
 
 @njit(cache=True)
@@ -216,21 +207,6 @@ def jacobian(X: ArrayLike, T: Positive) -> Array:
 # --------------------------------------------------------------------------
 
 
-@njit(cache=True)
-def _propagate(x0, T, speed, yaw_rate):
-    X = np.empty((speed.shape[0] + 1, 5))
-    for i in range(5):  # element by element: an array assignment compiles numba's shape messages
-        X[0, i] = x0[i]
-    X[0, 3], X[0, 4] = speed[0], yaw_rate[0]
-    for k in range(speed.shape[0]):
-        x = _f(X[k], T)
-        for i in range(5):
-            X[k + 1, i] = x[i]
-        if k + 1 < speed.shape[0]:
-            X[k + 1, 3], X[k + 1, 4] = speed[k + 1], yaw_rate[k + 1]
-    return X
-
-
 @boundary
 def propagate(
     x0: ArrayLike, T: Positive, n_steps: int | None = None, speed: ArrayLike | None = None, yaw_rate: ArrayLike | None = None
@@ -271,7 +247,7 @@ def propagate(
     else:
         speed = as_array(speed, "speed", shape=(None,), min_ndim=1)
         yaw_rate = same_shape(as_array(yaw_rate, "yaw_rate"), "yaw_rate", speed.shape, of="speed")
-    return _propagate(x0, T, speed, yaw_rate)
+    return _planar.propagate(x0, T, speed, yaw_rate)
 
 
 # --------------------------------------------------------------------------
@@ -362,18 +338,19 @@ def dead_reckoning(
     yaw_rate = same_shape(as_array(yaw_rate, "yaw_rate", allow_nan=True), "yaw_rate", t.shape, of="t")
     x0 = as_array(x0, "x0", shape=(5,))
     bias = as_array(velocity_bias, "velocity_bias", shape=(2,))
+    limits = SensorLimits(np.inf if full_scale_gyro is None else full_scale_gyro, max_dt=max_dt)  # checks both
     with np.errstate(invalid="ignore"):  # NaN compares False
         flags = {
             ("speed", "nan"): np.isnan(speed),
             ("yaw_rate", "nan"): np.isnan(yaw_rate),
-            ("yaw_rate", "saturated"): np.abs(yaw_rate) >= range_limit(full_scale_gyro, "full_scale_gyro"),
+            ("yaw_rate", "saturated"): np.abs(yaw_rate) >= limits.full_scale_gyro,
         }
     for held in flags.values():
         held[-1] = False  # the last sample drives no step
     usable = ~(flags["speed", "nan"] | flags["yaw_rate", "nan"] | flags["yaw_rate", "saturated"])
     dts = np.diff(t)
     t_nominal = float(np.median(dts))
-    flags["clock", "jump"] = np.concatenate([[False], dts > SensorLimits(max_dt=max_dt).jump_limit(t_nominal)])
+    flags["clock", "jump"] = np.concatenate([[False], dts > limits.jump_limit(t_nominal)])
     pose = _dead_reckon(t, speed, yaw_rate, usable, x0, bias, flags["clock", "jump"], t_nominal)
     return pose, FaultReport({key: int(held.sum()) for key, held in flags.items()}, flags)
 
@@ -603,7 +580,7 @@ def _ekf_kernel(t, Z, x0, P0, Q, R, gate, reacquire, fast, rail, jump_steps):
             _mul(Phi, P, Phi_P)
             _mul_bt(Phi_P, Phi, P)
             _add_scaled(P, Q, 1.0)  # P = Phi P Phi^T + Gamma Q Gamma^T, Gamma = I
-            x = _f(x, T)  # Eq. (13)
+            x = motion(x, T)  # Eq. (13)
         z = Z[k]
         at_rail = not np.isnan(rail[k])
         n_rej = 0

@@ -52,7 +52,7 @@ from typing import TYPE_CHECKING, Annotated
 import numpy as np
 from numpy.typing import NDArray
 
-from .. import _geodesy, geodesy, robust
+from .. import _geodesy, _planar, geodesy, robust
 from .._typing import Array, ArrayLike, Times
 from .._validate import (
     Check,
@@ -78,7 +78,7 @@ from .._validate import (
     zone_offset,
 )
 from ..earth import CGCS2000, Ellipsoid, EllipsoidArg
-from ..filters.planar_ekf import EkfConfig, EkfResult, covariance, filter_grid, propagate
+from ..filters.planar_ekf import EkfConfig, EkfResult, covariance, filter_grid
 from ..geodesy import ZoneWidth
 
 if TYPE_CHECKING:
@@ -364,7 +364,7 @@ def waypoint_path(waypoints: ArrayLike, speed: Positive, turn_rate: Positive, T:
         w_cmd += [0.0] * n_leg
     reached.append(len(v_cmd))
     x0 = np.array([wp[0, 0], wp[0, 1], course[0], 0.0, 0.0])
-    X = propagate(x0, T, speed=np.array(v_cmd + [0.0]), yaw_rate=np.array(w_cmd + [0.0]))[:-1]
+    X = _planar.propagate(x0, T, np.array(v_cmd + [0.0]), np.array(w_cmd + [0.0]))[:-1]
     return X, np.array(reached)
 
 

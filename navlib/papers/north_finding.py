@@ -11,7 +11,7 @@ Latitude is ``lat`` (the paper's L). omega_ie = 7.292115e-5 rad/s.
 
 Equations implemented
 ---------------------
-* TRIAD, Eqs. (1)-(2) -- :func:`triad`:
+* TRIAD, Eqs. (1)-(2) -- :func:`navlib.alignment.triad`:
 
   .. math::
 
@@ -107,7 +107,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.special import ndtr
 
-from .. import _attitude, _earth, attitude, earth, plots, robust, strapdown
+from .. import _attitude, _earth, _plots, attitude, earth, robust
 from .._typing import Angles, Array, ArrayLike, Dcm, Interval, Times, Vec3, Vec3Series
 from .._validate import (
     Check,
@@ -116,6 +116,7 @@ from .._validate import (
     Limit,
     NonNegative,
     Positive,
+    Rng,
     as_array,
     as_dcm,
     axes,
@@ -123,18 +124,19 @@ from .._validate import (
     broadcast,
     broadcast_to,
     flag,
-    generator,
     imu_samples,
     in_range,
     indices,
     integer,
     pitch_roll,
     positive,
+    same_shape,
     sample_intervals,
     scalar,
+    small_turns,
     time_axis,
 )
-from ..alignment import StaticWindow, gyrocompass_latitude, level, static_means, triad, triad_heading
+from ..alignment import StaticWindow, gyrocompass_latitude, level, static_means, triad_heading
 from ..imu import ImuSamples, unpack
 from ..trajectory import Segment
 
@@ -295,6 +297,11 @@ def heading_candidates(w_y: ArrayLike, f_b: Vec3, lat: float, h: float = 0.0) ->
     phi = gyrocompass_latitude(lat)
     level(f_b)  # checks f_b as pitch_roll_from_accel does
     height = in_range(as_array(h, "h", nonempty=True), "h", -12e3, 100e3, "m")  # earth.gravity's heights
+    return _candidates(w_y, f_b, phi, height)
+
+
+def _candidates(w_y: Array, f_b: Vec3, phi: Array, height: Array) -> Candidates:
+    """:func:`heading_candidates` of checked values (``phi`` in rad)."""
     pitch = _asin_pitch(f_b, _earth.gravity(phi, height, earth.WGS84))
     cos_h = (w_y - OMEGA_IE * np.sin(phi) * np.sin(pitch)) / (OMEGA_IE * np.cos(phi) * np.cos(pitch))
     clipped = np.abs(cos_h) > 1.0
@@ -693,7 +700,7 @@ def simulate_static_outputs(
     n_trials: Count,
     sigma_gyro: NonNegative,
     sigma_accel: NonNegative,
-    rng: np.random.Generator,
+    rng: Rng,
     gyro_bias: Vec3 = 0.0,
     accel_bias: Vec3 = 0.0,
 ) -> tuple[Array, Array]:
@@ -728,14 +735,29 @@ def simulate_static_outputs(
     >>> w.shape, np.round(f.mean(0), 2) + 0.0                              # four trials; level: f points up
     ((4, 3), array([0.  , 0.  , 9.79]))
     """
+    gyro_bias, accel_bias = _bias(gyro_bias, "gyro_bias"), _bias(accel_bias, "accel_bias")
+    return _static_outputs(hpr, lat, n_trials, sigma_gyro, sigma_accel, rng, gyro_bias, accel_bias)
+
+
+def _static_outputs(
+    hpr: Angles,
+    lat: float,
+    n_trials: int,
+    sigma_gyro: float,
+    sigma_accel: float,
+    rng: np.random.Generator,
+    gyro_bias: Array,
+    accel_bias: Array,
+) -> tuple[Array, Array]:
+    """:func:`simulate_static_outputs` of checked values (``hpr`` is checked by :func:`navlib.attitude.euler_to_dcm`)."""
     C_nb = np.swapaxes(attitude.euler_to_dcm(hpr), -1, -2)
     phi = np.asarray(lat)
-    r_gyro, r_accel = generator(rng).spawn(2)
+    r_gyro, r_accel = rng.spawn(2)
     w_true = C_nb @ _earth.earth_rate_n(phi, earth.WGS84)
     f_true = C_nb @ np.array([0.0, 0.0, float(_earth.gravity(phi, np.zeros(()), earth.WGS84))])
     shape = w_true.shape[:-1] + (int(n_trials), 3)
-    w = w_true[..., None, :] + _bias(gyro_bias, "gyro_bias") + sigma_gyro * r_gyro.standard_normal(shape)
-    f = f_true[..., None, :] + _bias(accel_bias, "accel_bias") + sigma_accel * r_accel.standard_normal(shape)
+    w = w_true[..., None, :] + gyro_bias + sigma_gyro * r_gyro.standard_normal(shape)
+    f = f_true[..., None, :] + accel_bias + sigma_accel * r_accel.standard_normal(shape)
     return w, f
 
 
@@ -773,11 +795,11 @@ def monte_carlo(
     headings: Angles,
     pitch: Annotated[float, Check("scalar", within=(-np.pi / 2, np.pi / 2), open_ends=(True, True))],
     roll: Annotated[float, Check("scalar", within=(-np.pi, np.pi))],
-    lat: float,
-    n_trials: int,
-    sigma_gyro: float,
-    sigma_accel: float,
-    rng: np.random.Generator,
+    lat: GyroLatitude,
+    n_trials: Count,
+    sigma_gyro: NonNegative,
+    sigma_accel: NonNegative,
+    rng: Rng,
 ) -> MonteCarlo:
     """TRIAD and single-axis heading errors over a heading grid (paper Fig. 4).
 
@@ -808,12 +830,13 @@ def monte_carlo(
     """
     psi = as_array(headings, "headings", shape=(None,), nonempty=True)
     hpr = np.stack(np.broadcast_arrays(psi, pitch, roll), -1)
-    w, f = simulate_static_outputs(hpr, lat, n_trials, sigma_gyro, sigma_accel, rng)
-    C_raw = triad(f, w, lat, orthonormal=False)
+    w, f = _static_outputs(hpr, lat, n_trials, sigma_gyro, sigma_accel, rng, np.zeros(()), np.zeros(()))
+    phi = np.asarray(lat)
+    C_raw = _attitude.triad(f, w, phi, earth.WGS84)
     truth = psi[:, None]
     err_raw = _attitude.wrap_pi(triad_heading(C_raw) - truth)
     err_triad = _attitude.wrap_pi(triad_heading(attitude.orthonormalize(C_raw)) - truth)
-    cand = heading_candidates(w[..., 1], f, lat)
+    cand = _candidates(w[..., 1], f, phi, np.zeros(()))
     return MonteCarlo(psi, err_triad, err_raw, _nearest_error(cand.pair, truth), cand.clipped)
 
 
@@ -1084,9 +1107,7 @@ def stop_solutions(
         w, f = imu_samples(w_ib_b, f_b)
     n = w.shape[-2]
     if time is not None:
-        t = time_axis(time, "time")
-        if t.size != n:
-            raise ValueError(f"time: expected {n} sample times, got {t.size}")
+        t = same_shape(time_axis(time, "time"), "time", (n,), of="w_ib_b")
         tw = as_array(windows, "windows", nonempty=True)
         if tw.ndim != 2 or tw.shape[1] != 2 or np.any(tw[:, 1] <= tw[:, 0]):
             raise ValueError(f"windows: expected (S, 2) [start, end) times in s with end > start, got {tw.tolist()}")
@@ -1107,8 +1128,9 @@ def stop_solutions(
     ok = np.all(np.isfinite(f_mean), -1)
     f_safe = np.where(ok[..., None], f_mean, [0.0, 0.0, 9.8])  # refused stops: solved on a dummy, set NaN
     w_safe = np.where(ok[..., None], w_mean, 1e-5)
-    cand = heading_candidates(w_safe[..., 1], f_safe, lat, h)
-    heading = triad_heading(triad(f_safe, w_safe, lat))
+    phi, height = np.asarray(lat, dtype=float), np.asarray(h, dtype=float)  # checked by static_means
+    cand = _candidates(w_safe[..., 1], f_safe, phi, height)
+    heading = triad_heading(attitude.orthonormalize(_attitude.triad(f_safe, w_safe, phi, earth.WGS84)))
     pair = np.where(ok[..., None], cand.pair, np.nan)
     return StopSolutions(
         pair, np.where(ok, heading, np.nan), cand.clipped & ok, f_mean, _stacked_faults([m.faults for m in stats]), stats
@@ -1139,7 +1161,7 @@ def ins_heading_change(
     w_ib_b: Vec3Series | ImuSamples,
     f_start: Vec3,
     dt: Interval | None = None,
-    lat: float | None = None,
+    lat: GyroLatitude | None = None,
     earth_rate: Annotated[str, Check("choice", options=("vertical", "none", "full"))] = "vertical",
     *,
     max_gap: NonNegative = 0.1,
@@ -1211,13 +1233,16 @@ def ins_heading_change(
     >>> round(float(np.rad2deg(dpsi)), 3)
     90.0
     """
-    w_ie = _earth.earth_rate_n(gyrocompass_latitude(scalar(lat, "lat")), earth.WGS84)
+    if lat is None:
+        raise ValueError("lat: required (rad)")
+    w_ie = _earth.earth_rate_n(np.asarray(lat), earth.WGS84)
     rates = {"vertical": w_ie * [0, 0, 1], "none": np.zeros(3), "full": w_ie}
     if isinstance(w_ib_b, ImuSamples):  # samples and intervals checked by the record
         w, _, dts, full_scale_gyro, _ = unpack(w_ib_b, dt=dt, full_scale_gyro=full_scale_gyro)
     else:
         w = as_array(w_ib_b, "w_ib_b", tail=(3,), min_ndim=1, allow_nan=True)
         dts = sample_intervals(dt, w.shape[-2])
+    small_turns(w, dts)
     step = float(dts[0]) if np.all(dts == dts[0]) else float(dts.mean())
     fs = np.inf if full_scale_gyro is None else full_scale_gyro
     pitch, roll = level(
@@ -1236,7 +1261,7 @@ def ins_heading_change(
         w = w * (dts / step)[:, None]  # w_k dt_k integrated exactly with the mean interval
     refused = empty | (longest > max_gap) | saturated
     q0 = attitude.euler_to_quat(np.stack([np.zeros_like(pitch), pitch, roll], -1))
-    q = strapdown.integrate_attitude(q0, w, step, rates[earth_rate])
+    q = _attitude.integrate(_attitude.unit(q0), w, np.array([step]), rates[earth_rate])  # unit as as_quat makes it
     end = attitude.quat_to_dcm(q[..., -1, :])
     dpsi = _attitude.wrap_pi(np.arctan2(end[..., 0, 1], end[..., 1, 1]))
     if np.any(refused):
@@ -1324,10 +1349,8 @@ def draw_device(ax: Axes, heading_deg: float = 30.0) -> None:
             linewidth=0.8,
         )
     )  # its nose
-    plots.plane_frame(ax, (0.0, 0.0), 0.0, ("E", "N"), length=2.0, color=_COMPASS)
-    plots.plane_frame(
-        ax, (0.0, 0.0), _map_angle(psi + 90.0), ("$x_b, x_s$ (right)", "$y_b, y_s$ (forward)"), length=1.6, color=_BODY
-    )
+    _plots.plane_frame(ax, (0.0, 0.0), 0.0, ("E", "N"), 2.0, _COMPASS)
+    _plots.plane_frame(ax, (0.0, 0.0), _map_angle(psi + 90.0), ("$x_b, x_s$ (right)", "$y_b, y_s$ (forward)"), 1.6, _BODY)
     box(0.07, 0.15, 0.5, facecolor=_GYRO, edgecolor="0.2", linewidth=0.8)  # the optical gyro
     ax.annotate(
         "optical gyro\n(axis $y_s$)",
@@ -1359,7 +1382,7 @@ def draw_device(ax: Axes, heading_deg: float = 30.0) -> None:
     ax.text(-0.08, r, r"$\omega_{ie}\cos L$", fontsize=9, color=_COMPASS, ha="right", va="center")
     label_at = tip + 0.15 * right
     ax.text(label_at[0], label_at[1], r"$w_y=\omega_{ie}\cos L\,\cos\psi$", fontsize=9, color=_GYRO, ha="left", va="top")
-    plots.angle_arc(ax, (0.0, 0.0), 1.0, _map_angle(psi), 90.0, r"$\psi$", color="tab:red")
+    _plots.angle_arc(ax, (0.0, 0.0), 1.0, _map_angle(psi), 90.0, r"$\psi$", "tab:red")
     ax.set(xlim=(-2.3, 2.6), ylim=(-1.5, 2.4), aspect="equal")
     ax.set_axis_off()
 
@@ -1424,8 +1447,8 @@ def draw_candidate_pairs(ax: Axes, heading1_deg: float, heading2_deg: float, dps
                 va="center",
             )
         alpha_is_true = abs(psi - a) < 1e-9  # the arcs take the colour of their candidate's arrow
-        plots.angle_arc(ax, tuple(c), 0.35, _map_angle(a), 90.0, "", color=_BODY if alpha_is_true else _MIRROR)
-        plots.angle_arc(ax, tuple(c), 0.3, 90.0, 90.0 + a, "", color=_MIRROR if alpha_is_true else _BODY)
+        _plots.angle_arc(ax, c, 0.35, _map_angle(a), 90.0, "", _BODY if alpha_is_true else _MIRROR)
+        _plots.angle_arc(ax, c, 0.3, 90.0, 90.0 + a, "", _MIRROR if alpha_is_true else _BODY)
     carried = psis[0] + (psis[1] - psis[0]) + err  # psi1 + dpsi_INS
     _arrow(ax, centres[1], centres[1] + 0.75 * _unit(_map_angle(carried)), "tab:green", ":", 2.0)
     ax.annotate(

@@ -98,7 +98,7 @@ from typing import TYPE_CHECKING, Annotated, Any
 import numpy as np
 from numba import njit
 
-from .. import _attitude, _kernels, attitude, earth, kalman, robust
+from .. import _attitude, _kernels, _lsq, _plots, attitude, earth, kalman, robust
 from .._kernels import wrap_pi
 from .._typing import Angles, Array, ArrayLike, Dcm, Interval, Times, Vec3, Vec3Series
 from .._validate import (
@@ -116,7 +116,6 @@ from .._validate import (
     flag,
     imu_samples,
     indices,
-    integer,
     interval,
     kernel_array,
     positive,
@@ -128,7 +127,7 @@ from .._validate import (
     time_axis,
 )
 from ..alignment import level
-from ..analysis import condition_number, cramer_rao_bound, normal_condition
+from ..analysis import normal_condition
 from ..euler import PITCH_LIMIT, check_pitch
 from ..imu import ImuSamples, unpack
 from ..units import G0
@@ -630,7 +629,7 @@ def tilt_residuals(
     f_b: Vec3Series | None = None,
     dt: Interval | None = None,
     starts: ArrayLike | None = None,
-    length: int | None = None,
+    length: Annotated[int, Check("integer", minimum=MIN_DWELL_SAMPLES)] | None = None,
     w_ie_b: Vec3Series | None = None,
     *,
     max_missing: Annotated[float, Check("scalar", within=(0.0, 0.5))] = 0.0,
@@ -725,7 +724,6 @@ def tilt_residuals(
         raise ValueError(f"{'starts' if starts is None else 'length'}: required")
     lead, n = w.shape[:-2], w.shape[-2]
     small_turns(w, dts)
-    length = integer(length, "length", minimum=MIN_DWELL_SAMPLES)
     starts = indices(starts, "starts")
     if (
         starts.ndim != 1
@@ -1171,7 +1169,7 @@ def design(
     M = tilt_matrix(hpr[:, [2, 1]])
     V = M * (n * dt)
     R = _residual_cov(M, hpr[:, 1], n, dt, gyro_noise, accel_noise, G0)
-    return float(condition_number(V)), cramer_rao_bound(V, R, _MAX_COND), V
+    return float(_lsq.condition_number(V)), _lsq.cramer_rao_bound(V, R, _MAX_COND), V
 
 
 def eq1_matrix(hpr: Angles) -> Array:
@@ -1463,8 +1461,6 @@ def draw_rotation_scheme(
     True
     >>> plt.close(fig)
     """
-    from ..plots import angle_arc, plane_frame  # noqa: PLC0415 -- plotting only
-
     axes(ax)
     views = (
         ((0.0, 0.0), 0.0, ("$x_b$", "$z_b$"), "tab:blue", "dwell k"),
@@ -1473,11 +1469,11 @@ def draw_rotation_scheme(
     for (ox, oy), angle, names, color, title in views:
         ax.plot([ox, ox], [oy - 1.2, oy + 1.2], color="0.55", ls="--", lw=1)
         ax.text(ox, oy + 1.32, "vertical", color="0.45", ha="center", fontsize=8)
-        plane_frame(ax, (ox, oy), angle, names, length=1.0, color=color)
+        _plots.plane_frame(ax, (ox, oy), angle, names, 1.0, color)
         ax.plot(ox, oy, "o", ms=11, mfc="white", mec="k", zorder=5)
         ax.plot(ox, oy, "x", ms=7, color="k", zorder=6)
         ax.text(ox, oy - 1.55, title, ha="center", fontsize=9, color=color)
-    angle_arc(ax, views[1][0], 0.5, 90.0 - amplitude_deg, 90.0, "Δα", color="0.25")
+    _plots.angle_arc(ax, views[1][0], 0.5, 90.0 - amplitude_deg, 90.0, "Δα", "0.25")
     ax.annotate("", (2.2, 0.9), (0.8, 0.9), arrowprops={"arrowstyle": "-|>", "color": "0.3", "connectionstyle": "arc3,rad=-0.3"})
     ax.text(1.5, 1.35, "rotate by Δα\nabout u", ha="center", fontsize=8)
     ax.text(1.5, -0.25, f"u = $y_b$ into the page\n(pitched up θ0 = {pitch_deg:g}°)", ha="center", va="top", fontsize=8)
