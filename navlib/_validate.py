@@ -507,9 +507,9 @@ def sample_intervals(dt: object, n: int, name: str = "dt") -> Array:
     arr = as_array(dt, name, huge=True)  # an interval too long to integrate over is refused by small_turns
     if arr.ndim == 0:
         arr = np.full(n, scalar(arr, name, positive=True, huge=True))
-    elif arr.shape != (n,):
+    if arr.shape != (n,):
         raise ValueError(f"{name}: expected a positive scalar or per-sample intervals of shape ({n},), got {arr.shape}")
-    elif not np.all(arr > 0):
+    if not np.all(arr > 0):
         raise ValueError(f"{name}: expected positive intervals, got min {arr.min():g} (run timing.sanitize first)")
     if arr.min() < MIN_INTERVAL:
         raise ValueError(
@@ -607,9 +607,9 @@ def boundary(fn: Callable[_P, _R]) -> Callable[_P, _R]:
     once (when the function is first called, so that annotations may name classes defined later in the module).
     """
     params = list(inspect.signature(fn).parameters.values())
-    plan: list[tuple[int, str, Callable[[Any], Any], Any]] = []
 
-    def resolve() -> list[tuple[int, str, Callable[[Any], Any], Any]]:
+    @functools.cache
+    def plan() -> list[tuple[int, str, Callable[[Any], Any], Any]]:
         found = []
         for i, p in enumerate(params):
             check = _annotated_check(p.annotation, fn.__globals__, p.name)
@@ -619,13 +619,12 @@ def boundary(fn: Callable[_P, _R]) -> Callable[_P, _R]:
                 found.append((at, p.name, check, default))
         if not found:
             raise TypeError(f"{fn.__qualname__}: @boundary without a checked parameter")
-        plan[:] = found  # one assignment: a concurrent first call sees the whole plan or none
-        return plan
+        return found
 
     @functools.wraps(fn)
     def checked(*args: _P.args, **kwargs: _P.kwargs) -> _R:
         given = list(args)
-        for at, name, check, default in plan or resolve():
+        for at, name, check, default in plan():
             if at < len(given):
                 given[at] = check(given[at])
             elif name in kwargs:
@@ -640,16 +639,16 @@ def boundary(fn: Callable[_P, _R]) -> Callable[_P, _R]:
 def fields_checked(record: Any) -> None:
     """Check the fields of a dataclass ``record`` annotated with a checked kind (as :func:`boundary` checks
     parameters): a record's ``__post_init__``."""
-    cls = type(record)
-    if cls not in _FIELD_CHECKS:
-        namespace = vars(sys.modules[cls.__module__])
-        found = ((f.name, _annotated_check(f.type, namespace, f.name)) for f in dataclasses.fields(cls))
-        _FIELD_CHECKS[cls] = [(name, check) for name, check in found if check is not None]
-    for name, check in _FIELD_CHECKS[cls]:
+    for name, check in _field_checks(type(record)):
         check(getattr(record, name))
 
 
-_FIELD_CHECKS: dict[type, list[tuple[str, Callable[[Any], Any]]]] = {}
+@functools.cache
+def _field_checks(cls: type) -> list[tuple[str, Callable[[Any], Any]]]:
+    """The checks of ``cls``'s annotated fields, found once per record class."""
+    namespace = vars(sys.modules[cls.__module__])
+    found = ((f.name, _annotated_check(f.type, namespace, f.name)) for f in dataclasses.fields(cls))
+    return [(name, check) for name, check in found if check is not None]
 
 
 def _annotated_check(annotation: Any, namespace: dict[str, Any], name: str) -> Callable[[Any], Any] | None:

@@ -261,13 +261,6 @@ def tilt_matrix(tilt: ArrayLike) -> Array:
 # --------------------------------------------------------------------------
 
 
-def _unit_axis(axis_b: ArrayLike) -> Array:
-    u = as_array(axis_b, "axis_b", shape=(3,))
-    if abs(np.linalg.norm(u) - 1) > 1e-9:
-        raise ValueError(f"axis_b: expected a unit vector, got norm {np.linalg.norm(u):.6g}")
-    return u
-
-
 def rodrigues(axis_b: Vec3, angle: Angles) -> Array:
     r"""Eq. (10): :math:`\Delta R = I \cos a + \sin a\, [u\times] + (1 - \cos a)\, u u^T` (b' -> b).
 
@@ -291,7 +284,9 @@ def rodrigues(axis_b: Vec3, angle: Angles) -> Array:
            [ 1.,  0.,  0.],
            [ 0.,  0.,  1.]])
     """
-    u = _unit_axis(axis_b)
+    u = as_array(axis_b, "axis_b", shape=(3,))
+    if abs(np.linalg.norm(u) - 1) > 1e-9:
+        raise ValueError(f"axis_b: expected a unit vector, got norm {np.linalg.norm(u):.6g}")
     a = as_array(angle, "angle", nonempty=True)[..., None, None]
     return np.cos(a) * np.eye(3) + np.sin(a) * attitude.skew(u) + (1 - np.cos(a)) * np.outer(u, u)
 
