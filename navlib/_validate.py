@@ -639,7 +639,7 @@ def boundary(fn: Callable[_P, _R]) -> Callable[_P, _R]:
 def fields_checked(record: Any) -> None:
     """Check the fields of a dataclass ``record`` annotated with a checked kind (as :func:`boundary` checks
     parameters): a record's ``__post_init__``."""
-    for name, check in _field_checks(type(record)):
+    for name, check in _field_checks(type(record)):  # type: ignore[arg-type]  # a class is Hashable; mypy reads type[Any] as not
         check(getattr(record, name))
 
 

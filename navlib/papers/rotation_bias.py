@@ -348,7 +348,7 @@ def dwell_attitudes(hpr0: Angles, axis_b: Vec3, amplitude: float, n_dwells: Coun
            [ 0.,  0., 90.],
            [ 0.,  0.,  0.]])
     """
-    hpr0 = euler_angles(as_array(hpr0, "hpr0", shape=(3,)), "hpr0")
+    hpr0 = euler_angles(hpr0, "hpr0", shape=(3,))
     pair = np.stack([hpr0, rotate_attitude(hpr0, axis_b, scalar(amplitude, "amplitude"))])
     if np.any(np.abs(pair[:, 1]) > PITCH_LIMIT):
         raise ValueError(
