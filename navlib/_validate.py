@@ -222,14 +222,15 @@ def in_range(arr: _F, name: str, lo: float, hi: float, unit: str = "", *, lo_ope
     return arr
 
 
-def pitch_roll(pitch: object, roll: object, names: tuple[str, str] = ("pitch", "roll")) -> tuple[Array, Array]:
-    """Pitch within [-pi/2, pi/2] and roll within [-pi, pi] (rad); outside, degrees were most likely passed."""
-    return _radians(pitch, names[0], np.pi / 2), _radians(roll, names[1], np.pi)
+def pitch_roll(pitch: object, roll: object, names: tuple[str, str] = ("pitch", "roll"), **shape: Any) -> tuple[Array, Array]:
+    """Pitch within [-pi/2, pi/2] and roll within [-pi, pi] (rad); outside, degrees were most likely passed. ``shape``
+    takes the shape options of :func:`as_array` (``shape``, ``of``, ...), for both."""
+    return _radians(pitch, names[0], np.pi / 2, **shape), _radians(roll, names[1], np.pi, **shape)
 
 
-def _radians(x: object, name: str, limit: float) -> Array:
+def _radians(x: object, name: str, limit: float, **shape: Any) -> Array:
     """``x`` as angles within +-``limit`` (rad)."""
-    a = as_array(x, name)
+    a = as_array(x, name, **shape)
     if np.any(np.abs(a) > limit + 1e-12):
         raise ValueError(
             f"{name}: expected radians within [{-limit:.4g}, {limit:.4g}], got max |{name}| "
