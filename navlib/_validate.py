@@ -135,10 +135,10 @@ def as_array(
     aside where it is accepted) and not huge, and the element-wise checks that name the fault are skipped.
     """
     arr = real(x, name)
+    if shape is not None:  # first: the exact shape is the more telling message
+        same_shape(arr, name, shape, of)
     if tail and arr.shape[arr.ndim - len(tail) :] != tail or arr.ndim < len(tail) + min_ndim:
         raise ValueError(f"{name}: expected shape {_shape_text(('...', *tail))}, got {arr.shape}")
-    if shape is not None:
-        same_shape(arr, name, shape, of)
     if arr.size == 0 and (nonempty or min_ndim > 0):
         raise ValueError(f"{name}: expected a non-empty array, got shape {arr.shape}")
     if _within_limits(arr, ignore_nan=allow_nan or not finite):
