@@ -66,16 +66,21 @@ def real(x: object, name: str) -> Array:
     """
     if isinstance(x, (str, bytes)):
         raise InputTypeError(f"{name}: expected a real numeric array, got {type(x).__name__} {x!r:.40}")
-    try:
-        arr = np.asarray(x)
-    except (TypeError, ValueError) as exc:  # ragged nested sequences
-        raise InputTypeError(f"{name}: expected a real numeric array, got {type(x).__name__}") from exc
+    arr = _asarray(x, name, "a real numeric array")
     kind = _NOT_REAL.get(arr.dtype.kind)
     if kind is not None:
         raise InputTypeError(
             f"{name}: expected a real numeric array, got {kind} {'array' if arr.ndim else 'value'} (dtype {arr.dtype})"
         )
     return arr.astype(float, copy=False)
+
+
+def _asarray(x: object, name: str, expected: str) -> NDArray[Any]:
+    """``np.asarray(x)``; a ragged nested sequence, which no array holds, raises :class:`InputTypeError` naming ``name``."""
+    try:
+        return np.asarray(x)
+    except (TypeError, ValueError) as exc:
+        raise InputTypeError(f"{name}: expected {expected}, got a ragged {type(x).__name__}") from exc
 
 
 MAX_MAGNITUDE = 1e150
@@ -130,20 +135,16 @@ def as_array(
     aside where it is accepted) and not huge, and the element-wise checks that name the fault are skipped.
     """
     arr = real(x, name)
-    if tail and arr.shape[arr.ndim - len(tail) :] != tail or arr.ndim < len(tail) + min_ndim:
-        want = "(" + ", ".join(["..."] + [str(t) for t in tail]) + ")"
-        raise ValueError(f"{name}: expected shape {want}, got {arr.shape}")
-    if shape is not None:
+    if shape is not None:  # first: the exact shape is the more telling message
         same_shape(arr, name, shape, of)
+    if tail and arr.shape[arr.ndim - len(tail) :] != tail or arr.ndim < len(tail) + min_ndim:
+        raise ValueError(f"{name}: expected shape {_shape_text(('...', *tail))}, got {arr.shape}")
     if arr.size == 0 and (nonempty or min_ndim > 0):
         raise ValueError(f"{name}: expected a non-empty array, got shape {arr.shape}")
     if _within_limits(arr, ignore_nan=allow_nan or not finite):
         return arr
-    if finite:
-        bad = np.isinf(arr) if allow_nan else ~np.isfinite(arr)
-        if bad.any():
-            what = "infinite" if allow_nan else "non-finite (NaN or inf)"
-            raise ValueError(f"{name}: contains {what} values")
+    if finite and (np.isinf(arr) if allow_nan else ~np.isfinite(arr)).any():
+        raise ValueError(f"{name}: contains {'infinite' if allow_nan else 'non-finite (NaN or inf)'} values")
     if not huge:
         _magnitude(arr, name)
     return arr
@@ -178,10 +179,9 @@ def _magnitude(arr: Array, name: str) -> None:
     """Refuse finite values beyond :data:`MAX_MAGNITUDE`."""
     big = np.abs(arr) > MAX_MAGNITUDE
     if big.any() and np.isfinite(arr[big]).any():
-        top = np.abs(arr[big & np.isfinite(arr)]).max()
         raise ValueError(
-            f"{name}: expected magnitudes up to {MAX_MAGNITUDE:g}, got {top:g} (its square overflows "
-            f"float64; wrong units or scaling?)"
+            f"{name}: expected magnitudes up to {MAX_MAGNITUDE:g}, got {np.abs(arr[big & np.isfinite(arr)]).max():g} "
+            f"(its square overflows float64; wrong units or scaling?)"
         )
 
 
@@ -189,9 +189,13 @@ def same_shape(arr: NDArray[_S], name: str, shape: tuple[int | None, ...], of: s
     """Return ``arr`` if its shape is ``shape``; a ``None`` entry takes any length, e.g. ``(None, 3)``; ``of`` names
     the argument(s) that set the sizes, for the message."""
     if arr.ndim != len(shape) or any(s not in (None, n) for s, n in zip(shape, arr.shape, strict=True)):
-        want = "(" + ", ".join("N" if s is None else str(s) for s in shape) + ("," if len(shape) == 1 else "") + ")"
-        raise ValueError(f"{name}: expected shape {want}{f' (sizes from {of})' if of else ''}, got {arr.shape}")
+        raise ValueError(f"{name}: expected shape {_shape_text(shape)}{f' (sizes from {of})' if of else ''}, got {arr.shape}")
     return arr
+
+
+def _shape_text(dims: tuple[int | str | None, ...]) -> str:
+    """A shape as messages write it: ``(N, 3)`` (``None`` reads N), ``(..., 3)``, ``(5,)``."""
+    return "(" + ", ".join("N" if d is None else str(d) for d in dims) + ("," if len(dims) == 1 else "") + ")"
 
 
 def booleans(x: object, name: str, *, shape: tuple[int | None, ...] | None = None, of: str = "") -> NDArray[np.bool_]:
@@ -200,10 +204,7 @@ def booleans(x: object, name: str, *, shape: tuple[int | None, ...] | None = Non
     Only booleans are accepted: numbers (``0``/``1``, NaN) are refused with
     :class:`InputTypeError`, so a mask is never guessed from values.
     """
-    try:
-        arr = np.asarray(x)
-    except (TypeError, ValueError) as exc:  # ragged nested sequences
-        raise InputTypeError(f"{name}: expected booleans, got a ragged {type(x).__name__}") from exc
+    arr = _asarray(x, name, "booleans")
     if arr.dtype != bool:
         raise InputTypeError(f"{name}: expected booleans, got dtype {arr.dtype}")
     return arr if shape is None else same_shape(arr, name, shape, of)
@@ -214,23 +215,22 @@ def in_range(arr: _F, name: str, lo: float, hi: float, unit: str = "", *, lo_ope
     ok_lo = arr > lo if lo_open else arr >= lo
     ok_hi = arr < hi if hi_open else arr <= hi
     if not np.all(ok_lo & ok_hi):
-        lb = "(" if lo_open else "["
-        rb = ")" if hi_open else "]"
         raise ValueError(
-            f"{name}: expected values in {lb}{lo:g}, {hi:g}{rb}{' ' + unit if unit else ''}, "
-            f"got min {np.nanmin(arr):g}, max {np.nanmax(arr):g}"
+            f"{name}: expected values in {'(' if lo_open else '['}{lo:g}, {hi:g}{')' if hi_open else ']'}"
+            f"{' ' + unit if unit else ''}, got min {np.nanmin(arr):g}, max {np.nanmax(arr):g}"
         )
     return arr
 
 
-def pitch_roll(pitch: object, roll: object, names: tuple[str, str] = ("pitch", "roll")) -> tuple[Array, Array]:
-    """Pitch within [-pi/2, pi/2] and roll within [-pi, pi] (rad); outside, degrees were most likely passed."""
-    return _radians(pitch, names[0], np.pi / 2), _radians(roll, names[1], np.pi)
+def pitch_roll(pitch: object, roll: object, names: tuple[str, str] = ("pitch", "roll"), **shape: Any) -> tuple[Array, Array]:
+    """Pitch within [-pi/2, pi/2] and roll within [-pi, pi] (rad); outside, degrees were most likely passed. ``shape``
+    takes the shape options of :func:`as_array` (``shape``, ``of``, ...), for both."""
+    return _radians(pitch, names[0], np.pi / 2, **shape), _radians(roll, names[1], np.pi, **shape)
 
 
-def _radians(x: object, name: str, limit: float) -> Array:
+def _radians(x: object, name: str, limit: float, **shape: Any) -> Array:
     """``x`` as angles within +-``limit`` (rad)."""
-    a = as_array(x, name)
+    a = as_array(x, name, **shape)
     if np.any(np.abs(a) > limit + 1e-12):
         raise ValueError(
             f"{name}: expected radians within [{-limit:.4g}, {limit:.4g}], got max |{name}| "
@@ -239,9 +239,10 @@ def _radians(x: object, name: str, limit: float) -> Array:
     return a
 
 
-def euler_angles(hpr: object, name: str = "hpr") -> Array:
-    """``[heading, pitch, roll]`` (..., 3) in rad, its pitch and roll checked by :func:`pitch_roll`."""
-    a = as_array(hpr, name, tail=(3,))
+def euler_angles(hpr: object, name: str = "hpr", **shape: Any) -> Array:
+    """``[heading, pitch, roll]`` (..., 3) in rad, its pitch and roll checked by :func:`pitch_roll`; ``shape`` takes
+    the shape options of :func:`as_array` (``shape``, ``of``, ``nonempty``, ...)."""
+    a = as_array(hpr, name, tail=(3,), **shape)
     pitch_roll(a[..., 1], a[..., 2], (f"{name}[..., 1] (pitch)", f"{name}[..., 2] (roll)"))
     return a
 
@@ -250,8 +251,7 @@ def positive(x: object, name: str, *, allow_zero: bool = False, **shape: Any) ->
     """Return ``x`` as a finite float array that is > 0 (or >= 0); ``shape`` takes the shape options of
     :func:`as_array` (``tail``, ``shape``, ``min_ndim``, ``nonempty``, ``of``)."""
     arr = as_array(x, name, **shape)
-    ok = arr >= 0 if allow_zero else arr > 0
-    if not np.all(ok):
+    if not np.all(arr >= 0 if allow_zero else arr > 0):
         raise ValueError(f"{name}: expected {'non-negative' if allow_zero else 'positive'} values, got {arr.min():g}")
     return arr
 
@@ -260,10 +260,9 @@ def latitude(lat: object, name: str = "lat", deg: bool = False, *, nonempty: boo
     """Validate a geodetic latitude (rad, or deg with ``deg``) and return it in radians; ``nonempty`` as in
     :func:`as_array`."""
     arr = as_array(lat, name, nonempty=nonempty)
-    deg = flag(deg, "deg")
-    lim = 90.0 if deg else np.pi / 2
-    in_range(arr, name, -lim, lim, "deg" if deg else "rad")
-    return np.deg2rad(arr) if deg else arr
+    if flag(deg, "deg"):
+        return np.deg2rad(in_range(arr, name, -90.0, 90.0, "deg"))
+    return in_range(arr, name, -np.pi / 2, np.pi / 2, "rad")
 
 
 def longitude(lon: object, name: str = "lon", deg: bool = False) -> Array:
@@ -292,11 +291,6 @@ def zone_offset(l_deg: Array, limit: float, width: int) -> Array:
             f"max_offset_deg to allow more), got offsets up to {np.abs(l_deg).max():.4g}°"
         )
     return l_deg
-
-
-def generator(rng: np.random.Generator, name: str = "rng") -> np.random.Generator:
-    """Check that ``rng`` is a ``numpy.random.Generator`` (no legacy global state)."""
-    return instance(rng, name, np.random.Generator, "a numpy.random.Generator")
 
 
 def time_axis(t: object, name: str = "time", *, increasing: bool = True, min_samples: int = 2) -> Array:
@@ -381,10 +375,7 @@ def scalar(
 
 def indices(x: object, name: str) -> NDArray[Any]:
     """``x`` as an array (of sample indices or trial ids, checked by the caller), a ragged sequence refused by name."""
-    try:
-        return np.asarray(x)
-    except ValueError:
-        raise ValueError(f"{name}: expected an array of integer indices, got a ragged sequence") from None
+    return _asarray(x, name, "an array of integer indices")
 
 
 def integer(x: object, name: str, *, minimum: int | None = 1) -> int:
@@ -517,9 +508,9 @@ def sample_intervals(dt: object, n: int, name: str = "dt") -> Array:
     arr = as_array(dt, name, huge=True)  # an interval too long to integrate over is refused by small_turns
     if arr.ndim == 0:
         arr = np.full(n, scalar(arr, name, positive=True, huge=True))
-    elif arr.shape != (n,):
+    if arr.shape != (n,):
         raise ValueError(f"{name}: expected a positive scalar or per-sample intervals of shape ({n},), got {arr.shape}")
-    elif not np.all(arr > 0):
+    if not np.all(arr > 0):
         raise ValueError(f"{name}: expected positive intervals, got min {arr.min():g} (run timing.sanitize first)")
     if arr.min() < MIN_INTERVAL:
         raise ValueError(
@@ -581,8 +572,8 @@ Count = Annotated[int, Check("integer")]
 """An integer >= 1 (not a bool)."""
 Flag = Annotated[bool, Check("flag")]
 """``True`` or ``False``."""
-Rng = Annotated[np.random.Generator, Check("generator")]
-"""A ``numpy.random.Generator``."""
+Rng = Annotated[np.random.Generator, Check("instance", what="a numpy.random.Generator")]
+"""A ``numpy.random.Generator`` (no legacy global state)."""
 Text = Annotated[str, Check("text")]
 """A string."""
 Limit = Annotated[float, Check("scalar", positive=True, allow_inf=True)]
@@ -617,9 +608,9 @@ def boundary(fn: Callable[_P, _R]) -> Callable[_P, _R]:
     once (when the function is first called, so that annotations may name classes defined later in the module).
     """
     params = list(inspect.signature(fn).parameters.values())
-    plan: list[tuple[int, str, Callable[[Any], Any], Any]] = []
 
-    def resolve() -> list[tuple[int, str, Callable[[Any], Any], Any]]:
+    @functools.cache
+    def plan() -> list[tuple[int, str, Callable[[Any], Any], Any]]:
         found = []
         for i, p in enumerate(params):
             check = _annotated_check(p.annotation, fn.__globals__, p.name)
@@ -629,13 +620,12 @@ def boundary(fn: Callable[_P, _R]) -> Callable[_P, _R]:
                 found.append((at, p.name, check, default))
         if not found:
             raise TypeError(f"{fn.__qualname__}: @boundary without a checked parameter")
-        plan[:] = found  # one assignment: a concurrent first call sees the whole plan or none
-        return plan
+        return found
 
     @functools.wraps(fn)
     def checked(*args: _P.args, **kwargs: _P.kwargs) -> _R:
         given = list(args)
-        for at, name, check, default in plan or resolve():
+        for at, name, check, default in plan():
             if at < len(given):
                 given[at] = check(given[at])
             elif name in kwargs:
@@ -650,16 +640,16 @@ def boundary(fn: Callable[_P, _R]) -> Callable[_P, _R]:
 def fields_checked(record: Any) -> None:
     """Check the fields of a dataclass ``record`` annotated with a checked kind (as :func:`boundary` checks
     parameters): a record's ``__post_init__``."""
-    cls = type(record)
-    if cls not in _FIELD_CHECKS:
-        namespace = vars(sys.modules[cls.__module__])
-        found = ((f.name, _annotated_check(f.type, namespace, f.name)) for f in dataclasses.fields(cls))
-        _FIELD_CHECKS[cls] = [(name, check) for name, check in found if check is not None]
-    for name, check in _FIELD_CHECKS[cls]:
+    for name, check in _field_checks(type(record)):  # type: ignore[arg-type]  # a class is Hashable; mypy reads type[Any] as not
         check(getattr(record, name))
 
 
-_FIELD_CHECKS: dict[type, list[tuple[str, Callable[[Any], Any]]]] = {}
+@functools.cache
+def _field_checks(cls: type) -> list[tuple[str, Callable[[Any], Any]]]:
+    """The checks of ``cls``'s annotated fields, found once per record class."""
+    namespace = vars(sys.modules[cls.__module__])
+    found = ((f.name, _annotated_check(f.type, namespace, f.name)) for f in dataclasses.fields(cls))
+    return [(name, check) for name, check in found if check is not None]
 
 
 def _annotated_check(annotation: Any, namespace: dict[str, Any], name: str) -> Callable[[Any], Any] | None:

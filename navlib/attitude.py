@@ -635,7 +635,7 @@ def mount_matrix(axes: str | Dcm) -> Array:
     array([-2.,  1.,  3.])
     """
     if not isinstance(axes, str):
-        return as_dcm(as_array(axes, "axes", shape=(3, 3)), "axes")
+        return as_dcm(axes, "axes", shape=(3, 3))
     parts = [a.strip().lower() for a in axes.split(",")]
     if len(parts) != 3 or any(a.lstrip("+-") not in _AXES for a in parts) or len({a.lstrip("+-") for a in parts}) != 3:
         raise ValueError(f"axes: expected three signed sensor axes for (right, front, up), e.g. '-y,x,z', got {axes!r}")

@@ -113,7 +113,11 @@ TIME_UNITS: dict[str, float | None] = {"s": 1.0, "ms": 1e-3, "us": 1e-6, "ns": 1
 
 _FIELDS = {"gyro": "w_ib_b", "accel": "f_b", "mag": "m_b", "baro": "pressure"}
 # Plausible medians of |x| in navlib units, and the largest physical value (MEMS ranges, Earth's surface).
-_MEDIAN = {"accel": (3.0, 30.0), "mag": (5.0, 500.0), "baro": (3e4, 1.2e5)}
+_MEDIAN = {  # plausible median magnitudes (navlib units), and the units a column outside them was probably in
+    "accel": (3.0, 30.0, "g or m/s^2 (or gravity removed: navlib needs specific force including gravity)"),
+    "mag": (5.0, 500.0, "uT, nT or gauss"),
+    "baro": (3e4, 1.2e5, "Pa or hPa"),
+}
 _MAX = {"gyro": 40.0}  # rad/s: the widest MEMS gyro range, +-2000 deg/s, is 34.9 rad/s
 
 
@@ -225,14 +229,9 @@ def _check_magnitude(sensor: str, x: np.ndarray, unit: str) -> None:
             f"gyro (+-2000 deg/s = 34.9 rad/s); is the column in deg/s? (check_units=False to accept)"
         )
     if sensor in _MEDIAN:
-        lo, hi = _MEDIAN[sensor]
+        lo, hi, hint = _MEDIAN[sensor]
         med = float(np.median(norm))
         if not lo <= med <= hi:
-            hint = {
-                "accel": "g or m/s^2 (or gravity removed: navlib needs specific force including gravity)",
-                "mag": "uT, nT or gauss",
-                "baro": "Pa or hPa",
-            }[sensor]
             raise ValueError(
                 f"units[{sensor!r}]: median magnitude {med:.4g} in navlib units after reading the "
                 f"column as {unit!r}, expected {lo:g}..{hi:g}; check the unit ({hint}); "

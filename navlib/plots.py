@@ -16,6 +16,7 @@ from . import _plots, attitude, units
 from ._typing import Angles, Array, ArrayLike, Dcm
 from ._validate import (
     Check,
+    Fraction,
     Positive,
     Real,
     Text,
@@ -157,11 +158,6 @@ def _color(c: object, name: str) -> None:
         raise ValueError(f"{name}: expected a matplotlib color, got {c!r:.40}")
 
 
-def _fraction(x: float, name: str) -> float:
-    """A size as a fraction of the axes, in (0, 1]."""
-    return scalar(x, name, within=(0.0, 1.0), open_ends=(True, False))
-
-
 @boundary
 def paper_value(
     ax: Axes,
@@ -220,13 +216,14 @@ def paper_value(
         )
 
 
+@boundary
 def block_diagram(
     ax: Axes,
     blocks: Mapping[str, Sequence[object]],
     arrows: Sequence[Sequence[str]],
     *,
-    width: float = 0.18,
-    height: float = 0.11,
+    width: Fraction = 0.18,
+    height: Fraction = 0.11,
     colors: Mapping[str, ColorType] | None = None,
 ) -> None:
     """Draw a block diagram (signal flow) on ``ax`` in axes coordinates [0, 1] x [0, 1].
@@ -257,7 +254,6 @@ def block_diagram(
     axes(ax)
     instance(blocks, "blocks", dict, "a dict name -> (x, y, text)")
     instance(arrows, "arrows", (list, tuple), "a list of (from, to[, label])")
-    w, h = _fraction(width, "width"), _fraction(height, "height")
     colors = {} if colors is None else dict(instance(colors, "colors", dict, "a dict name -> colour"))
     boxes = {}
     for name, spec in blocks.items():
@@ -274,9 +270,9 @@ def block_diagram(
     for name, (x, y, label) in boxes.items():
         ax.add_patch(
             FancyBboxPatch(
-                (x - w / 2, y - h / 2),
-                w,
-                h,
+                (x - width / 2, y - height / 2),
+                width,
+                height,
                 transform=ax.transAxes,
                 boxstyle="round,pad=0.01",
                 facecolor=colors.get(name, "0.93"),
@@ -289,7 +285,7 @@ def block_diagram(
         (x0, y0, _), (x1, y1, _) = boxes[arrow[0]], boxes[arrow[1]]
         # leave each box where the line from centre to centre crosses its edge
         dx, dy = x1 - x0, y1 - y0
-        s = min((w / 2 + 0.01) / abs(dx) if dx else np.inf, (h / 2 + 0.01) / abs(dy) if dy else np.inf, 0.5)
+        s = min((width / 2 + 0.01) / abs(dx) if dx else np.inf, (height / 2 + 0.01) / abs(dy) if dy else np.inf, 0.5)
         start, end = (x0 + s * dx, y0 + s * dy), (x1 - s * dx, y1 - s * dy)
         ax.annotate("", end, start, xycoords="axes fraction", arrowprops={"arrowstyle": "-|>", "color": "0.25", "linewidth": 1.1})
         if len(arrow) == 3:

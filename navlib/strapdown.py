@@ -488,7 +488,7 @@ def error_input(C_bn: Dcm) -> Array:
     >>> strapdown.error_input(np.eye(3)).shape                        # 9 error states, 6 sensor errors
     (9, 6)
     """
-    C = as_dcm(as_array(C_bn, "C_bn", shape=(3, 3)), "C_bn")
+    C = as_dcm(C_bn, "C_bn", shape=(3, 3))
     G = np.zeros((9, 6))
     G[0:3, 0:3] = -C
     G[3:6, 3:6] = C

@@ -45,16 +45,15 @@ from .._kernels import wrap_pi
 from .._typing import Angles, Array, ArrayLike, Interval, Times
 from .._validate import (
     Count,
+    Fraction,
     Is,
     as_array,
     booleans,
     boundary,
-    in_range,
     kernel_array,
     last_axis,
     same_shape,
     sample_intervals,
-    scalar,
     time_axis,
 )
 from ..imu import SensorLimits
@@ -151,7 +150,7 @@ def _fuse_kernel(h_mag, h_rtk, ok, dts, jump, alpha, rtk_par, out, delta_out, co
 
 @boundary
 def fuse_rtk_heading(
-    heading_mag: Angles, rtk: Is[RtkHeading], dt: Interval, alpha: float = 0.01, max_dt: float | None = None
+    heading_mag: Angles, rtk: Is[RtkHeading], dt: Interval, alpha: Fraction = 0.01, max_dt: float | None = None
 ) -> FusionResult:
     """Fuse the magnetic heading with dual-antenna RTK heading (the rule of the module docstring).
 
@@ -193,7 +192,6 @@ def fuse_rtk_heading(
            0.504])
     """
     hm = as_array(heading_mag, "heading_mag", min_ndim=1, nonempty=True)
-    alpha = in_range(scalar(alpha, "alpha"), "alpha", 0.0, 1.0, lo_open=True)
     hr, ok = rtk.at(hm.shape, "heading_mag")
     T, N = hr.shape
     dts = sample_intervals(dt, N)

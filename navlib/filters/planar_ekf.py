@@ -156,10 +156,6 @@ def _phi(X, T):
     return Phi
 
 
-def _state(X: ArrayLike, name: str = "X") -> Array:
-    return as_array(X, name, tail=(5,))
-
-
 @boundary
 def motion_model(X: ArrayLike, T: Positive) -> Array:
     """The motion model ``f(X)`` (Eq. 13) for states of shape (..., 5) and step ``T`` (s).
@@ -171,7 +167,7 @@ def motion_model(X: ArrayLike, T: Positive) -> Array:
     >>> np.round(planar_ekf.motion_model(np.array([0.0, 0.0, np.pi / 2, 2.0, 0.0]), 0.5), 6)   # heading east, 2 m/s for 0.5 s
     array([0.      , 1.      , 1.570796, 2.      , 0.      ])
     """
-    X = _state(X)
+    X = as_array(X, "X", tail=(5,))
     x, y, th, v, w = np.moveaxis(X, -1, 0)
     return np.stack([x + v * T * np.cos(th), y + v * T * np.sin(th), th + w * T, v, w], -1)
 
@@ -191,7 +187,7 @@ def jacobian(X: ArrayLike, T: Positive) -> Array:
            [0., 0., 0., 1., 0.],
            [0., 0., 0., 0., 1.]])
     """
-    X = _state(X)
+    X = as_array(X, "X", tail=(5,))
     Phi = np.broadcast_to(np.eye(5), X.shape[:-1] + (5, 5)).copy()
     s, c = np.sin(X[..., 2]), np.cos(X[..., 2])
     Phi[..., 0, 2] = -X[..., 3] * T * s

@@ -153,7 +153,7 @@ def _model_rows(q, b, out_h, out_H):
 
 
 def _model(q, b):
-    q = as_quat(as_array(q, "q", tail=(4,), nonempty=True), "q", normalize=False)
+    q = as_quat(q, "q", normalize=False, nonempty=True)
     b = as_array(b, "b", tail=(3,), nonempty=True)
     if np.any(b[..., 0] != 0):
         raise ValueError("b: expected reference vectors [0, b_y, b_z] (Eq. 3, magnetic north)")
@@ -243,7 +243,7 @@ def noise_input(q: Quat, dt: Step) -> Array:
            [0.   , 0.005, 0.   ],
            [0.   , 0.   , 0.005]])
     """
-    q = as_quat(as_array(q, "q", tail=(4,), nonempty=True), "q", normalize=False)
+    q = as_quat(q, "q", normalize=False, nonempty=True)
     q0, q1, q2, q3 = np.moveaxis(q, -1, 0)
     rows = [[-q1, -q2, -q3], [q0, -q3, q2], [q3, q0, -q1], [-q2, q1, q0]]
     return dt / 2 * np.stack([np.stack(r, -1) for r in rows], -2)

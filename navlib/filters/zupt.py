@@ -135,7 +135,7 @@ def detect_static(
             f"window: expected 2 samples up to the record's {w.shape[0]}, got {window} s at dt = {step:g} s ({n:g} samples)"
         )
     b = as_array(gyro_bias, "gyro_bias", shape=(3,))
-    tw, tf, tg = positive(as_array(thresholds, "thresholds", shape=(3,)), "thresholds")
+    tw, tf, tg = positive(thresholds, "thresholds", shape=(3,))
     w2 = np.sum((w - b) ** 2, -1)
     fn = np.linalg.norm(f, axis=-1)
     share = None if valid.all() else analysis.moving_mean(valid.astype(float), n)  # fraction of valid samples per window
@@ -247,7 +247,7 @@ def error_state_matrix(C_bn: Dcm, f_b: Vec3) -> Array:
            [-9.8,  0. ,  0. ],
            [ 0. ,  0. ,  0. ]]))
     """
-    C = as_dcm(as_array(C_bn, "C_bn", shape=(3, 3)))
+    C = as_dcm(C_bn, shape=(3, 3))
     f = as_array(f_b, "f_b", shape=(3,))
     F = np.zeros((15, 15))
     F[0:3, 3:6] = np.eye(3)
@@ -297,7 +297,7 @@ def error_model_fd(C_bn: Dcm, f_b: Vec3, eps: Positive = 1e-6) -> Array:
     >>> bool(np.allclose(zupt.error_model_fd(C_bn, f_b), zupt.error_state_matrix(C_bn, f_b), atol=1e-6))
     True
     """
-    C = as_dcm(as_array(C_bn, "C_bn", shape=(3, 3)))
+    C = as_dcm(C_bn, shape=(3, 3))
     f = as_array(f_b, "f_b", shape=(3,))
     F = np.empty((15, 15))
     for j in range(15):
@@ -411,7 +411,7 @@ def zupt_zaru_matrix(C_bn: Dcm, w_ie_n: Vec3) -> Array:
     >>> zupt.zupt_zaru_matrix(np.eye(3), earth.earth_rate_n(0.6)).shape
     (6, 15)
     """
-    C = as_dcm(as_array(C_bn, "C_bn", shape=(3, 3)))
+    C = as_dcm(C_bn, shape=(3, 3))
     H = np.zeros((6, 15))
     zupt_zaru_rows_into(H, np.ascontiguousarray(C), as_array(w_ie_n, "w_ie_n", shape=(3,)))
     return H
@@ -444,7 +444,7 @@ def zupt_zaru_innovation(vel_n: Vec3, w_ib_b: Vec3, b_g: Vec3, C_bn: Dcm, w_ie_n
     array([0.01  , 0.    , 0.    , 0.0001, 0.    , 0.    ])
     """
     args = [as_array(a, n, shape=(3,)) for a, n in ((vel_n, "vel_n"), (w_ib_b, "w_ib_b"), (b_g, "b_g"), (w_ie_n, "w_ie_n"))]
-    C = as_dcm(as_array(C_bn, "C_bn", shape=(3, 3)))
+    C = as_dcm(C_bn, shape=(3, 3))
     z = np.empty(6)
     zupt_zaru_z_into(z, args[0], args[1], args[2], np.ascontiguousarray(C), args[3])
     return z

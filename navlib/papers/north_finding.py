@@ -979,11 +979,7 @@ def stop_and_go(
     psi = as_array(headings, "headings", shape=(None,), nonempty=True)
     if psi.size < 2:
         raise ValueError(f"headings: expected a 1-D array of >= 2 stops, got {psi.shape}")
-    th, ro = pitch_roll(
-        as_array(pitches, "pitches", shape=psi.shape, of="headings: one per stop"),
-        as_array(rolls, "rolls", shape=psi.shape, of="headings: one per stop"),
-        ("pitches", "rolls"),
-    )
+    th, ro = pitch_roll(pitches, rolls, ("pitches", "rolls"), shape=psi.shape, of="headings: one per stop")
     ramp = 10.0
     segments = [Segment(stop_duration, speed=0.0, pitch=th[0], roll=ro[0])]
     stops = [(0.0, stop_duration)]

@@ -261,13 +261,6 @@ def tilt_matrix(tilt: ArrayLike) -> Array:
 # --------------------------------------------------------------------------
 
 
-def _unit_axis(axis_b: ArrayLike) -> Array:
-    u = as_array(axis_b, "axis_b", shape=(3,))
-    if abs(np.linalg.norm(u) - 1) > 1e-9:
-        raise ValueError(f"axis_b: expected a unit vector, got norm {np.linalg.norm(u):.6g}")
-    return u
-
-
 def rodrigues(axis_b: Vec3, angle: Angles) -> Array:
     r"""Eq. (10): :math:`\Delta R = I \cos a + \sin a\, [u\times] + (1 - \cos a)\, u u^T` (b' -> b).
 
@@ -291,7 +284,9 @@ def rodrigues(axis_b: Vec3, angle: Angles) -> Array:
            [ 1.,  0.,  0.],
            [ 0.,  0.,  1.]])
     """
-    u = _unit_axis(axis_b)
+    u = as_array(axis_b, "axis_b", shape=(3,))
+    if abs(np.linalg.norm(u) - 1) > 1e-9:
+        raise ValueError(f"axis_b: expected a unit vector, got norm {np.linalg.norm(u):.6g}")
     a = as_array(angle, "angle", nonempty=True)[..., None, None]
     return np.cos(a) * np.eye(3) + np.sin(a) * attitude.skew(u) + (1 - np.cos(a)) * np.outer(u, u)
 
@@ -353,7 +348,7 @@ def dwell_attitudes(hpr0: Angles, axis_b: Vec3, amplitude: float, n_dwells: Coun
            [ 0.,  0., 90.],
            [ 0.,  0.,  0.]])
     """
-    hpr0 = euler_angles(as_array(hpr0, "hpr0", shape=(3,)), "hpr0")
+    hpr0 = euler_angles(hpr0, "hpr0", shape=(3,))
     pair = np.stack([hpr0, rotate_attitude(hpr0, axis_b, scalar(amplitude, "amplitude"))])
     if np.any(np.abs(pair[:, 1]) > PITCH_LIMIT):
         raise ValueError(
