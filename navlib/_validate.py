@@ -369,7 +369,9 @@ def scalar(
     if allow_nan and np.isnan(value):
         return value
     if np.isnan(value) or (positive or allow_zero) and not (value >= 0 if allow_zero else value > 0):
-        raise ValueError(f"{name}: expected a {'non-negative' if allow_zero else 'positive'} value, got {value!r}")
+        raise ValueError(
+            f"{name}: expected a {'non-negative' if allow_zero else 'positive' if positive else 'non-NaN'} value, got {value!r}"
+        )
     return value
 
 

@@ -510,12 +510,9 @@ def triad(f_b: Vec3, w_ib_b: Vec3, lat: ArrayLike, orthonormal: bool = True) -> 
     >>> np.round(np.rad2deg(attitude.dcm_to_euler(alignment.triad(f_b, w_ib_b, 0.6))), 6)
     array([30.,  2., -1.])
     """
-    f, w = broadcast(
-        as_array(f_b, "f_b", tail=(3,), nonempty=True),
-        as_array(w_ib_b, "w_ib_b", tail=(3,), nonempty=True),
-        name="w_ib_b",
-        of="f_b, w_ib_b",
-    )
+    f = as_array(f_b, "f_b", tail=(3,), nonempty=True)
+    w = as_array(w_ib_b, "w_ib_b", tail=(3,), nonempty=True)
+    f, w = broadcast(f, w, name="w_ib_b", of="f_b, w_ib_b")
     C_bn = _attitude.triad(f, w, gyrocompass_latitude(lat), earth.WGS84)
     return attitude.orthonormalize(C_bn) if flag(orthonormal, "orthonormal") else C_bn
 

@@ -399,13 +399,10 @@ def field_from_angles(declination: ArrayLike, inclination: ArrayLike, intensity:
     >>> np.round(earth.field_from_angles(0.0, 60.0, 50.0), 3)       # ENU (uT): north and down
     array([  0.   ,  25.   , -43.301])
     """
-    D, I, F = broadcast(
-        as_array(declination, "declination"),
-        as_array(inclination, "inclination"),
-        positive(intensity, "intensity", allow_zero=True),
-        name="declination",
-        of="declination, inclination, intensity",
-    )
+    D = as_array(declination, "declination")
+    I = as_array(inclination, "inclination")
+    F = positive(intensity, "intensity", allow_zero=True)
+    D, I, F = broadcast(D, I, F, name="declination", of="declination, inclination, intensity")
     if flag(deg, "deg"):
         D, I = np.deg2rad(D), np.deg2rad(I)
     in_range(I, "inclination", -np.pi / 2, np.pi / 2, "rad")

@@ -408,12 +408,9 @@ def resolve(pair1: ArrayLike, pair2: ArrayLike, dpsi_ins: Angles, wrap: bool = T
     >>> round(float(np.rad2deg(res.heading)), 6), np.round(np.rad2deg(res.residuals), 3)
     (150.0, array([ -2., 118.,  58., 178.]))
     """
-    p1, p2 = broadcast(
-        as_array(pair1, "pair1", tail=(2,), nonempty=True),
-        as_array(pair2, "pair2", tail=(2,), nonempty=True),
-        name="pair2",
-        of="pair1, pair2",
-    )
+    p1 = as_array(pair1, "pair1", tail=(2,), nonempty=True)
+    p2 = as_array(pair2, "pair2", tail=(2,), nonempty=True)
+    p1, p2 = broadcast(p1, p2, name="pair2", of="pair1, pair2")
     ins = as_array(dpsi_ins, "dpsi_ins", nonempty=True)
     cands = (p2[..., :, None] - p1[..., None, :]).reshape(p2.shape[:-1] + (4,))
     cands, ins = np.broadcast_arrays(cands, ins[..., None])
