@@ -84,6 +84,7 @@ from nbclient import NotebookClient  # noqa: E402
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO))
 
+import kernel_fork  # noqa: E402  (tools/kernel_fork.py: kernels forked from a process with the imports done)
 import ledger  # noqa: E402  (tools/ledger.py: claims with their verdicts; no navlib import at module level)
 
 SWEEP_SEEDS = (11, 29, 47, 83, 131, 257, 521, 1031, 5003, 8191)
@@ -241,8 +242,11 @@ def executed(path: Path, timeout: int = 1800) -> dict:
     return entry
 
 
-def run_notebook(path: Path, build: Path, timeout: int) -> dict:
-    """Execute one notebook, write the executed .ipynb, return its summary entry."""
+def run_notebook(path: Path, build: Path, timeout: int, kernels: str | None = None) -> dict:
+    """Execute one notebook, write the executed .ipynb, return its summary entry.
+
+    ``kernels``: the address of a :mod:`kernel_fork` server to fork the notebook's kernel from (a new process
+    either way); default a kernel started from nothing."""
     stem = path.stem
     shutil.rmtree(build / stem, ignore_errors=True)  # no stale results or figures
     inputs = inputs_digest(path)  # before the run: an input edited while it runs makes the record stale
@@ -265,6 +269,7 @@ def run_notebook(path: Path, build: Path, timeout: int) -> dict:
         on_cell_executed=after_cell,
         shutdown_kernel="immediate",
         resources={"metadata": {"path": str(path.parent)}},
+        kernel_manager_class=kernel_fork.manager_class(kernels),
     )
     error = None
     start = time.perf_counter()
@@ -861,10 +866,16 @@ def run_all(args: argparse.Namespace, root: Path, notebooks: list[Path], build: 
     warm: list = []
     start = time.perf_counter()
     # Workers are reused and forked: they start with nbclient and nbformat already imported (spawned ones
-    # imported them again, ~1.5 s each, while the notebooks waited); every notebook gets a new kernel.
-    with ProcessPoolExecutor(
-        max(1, args.jobs), mp_context=multiprocessing.get_context(START_METHOD), initializer=die_with_parent
-    ) as pool:
+    # imported them again, ~1.5 s each, while the notebooks waited); every notebook gets a new kernel, forked
+    # from a server that has imported ipykernel and the scientific stack once (tools/kernel_fork.py).
+    with (
+        tempfile.TemporaryDirectory(prefix="navlib-kernels-") as folder,
+        ProcessPoolExecutor(
+            max(1, args.jobs), mp_context=multiprocessing.get_context(START_METHOD), initializer=die_with_parent
+        ) as pool,
+    ):
+        kernels = str(Path(folder) / "fork.sock")
+        server = kernel_fork.start(kernels) if order else None
         if order and (args.cold or compilation_expected(build, last, root)):
             # first, one part per worker, and the notebooks after both: every kernel compiled once, none while a
             # notebook that calls it runs (the parts' times differ by a second or two: that is the wait)
@@ -879,14 +890,16 @@ def run_all(args: argparse.Namespace, root: Path, notebooks: list[Path], build: 
                     + ("" if w["error"] is None else f"\n    ERROR: {w['error']}"),
                     flush=True,
                 )
+        if server is not None and not kernel_fork.wait_ready(kernels, server):
+            print("kernel fork server did not start: kernels start from nothing", flush=True)
         parts = paper_parts(order)  # submitted when their paper's first notebook is done
-        futures = {pool.submit(run_notebook, path, build, args.timeout): path for path in order if path not in parts}
+        futures = {pool.submit(run_notebook, path, build, args.timeout, kernels): path for path in order if path not in parts}
         print(f"executing {len(order)} notebooks, {max(1, args.jobs)} at a time ...", flush=True)
         pending = set(futures)
         while pending:
             finished, pending = wait(pending, return_when=FIRST_COMPLETED)
             for path in [p for p, first in parts.items() for f in finished if futures.get(f) == first]:
-                future = pool.submit(run_notebook, path, build, args.timeout)
+                future = pool.submit(run_notebook, path, build, args.timeout, kernels)
                 futures[future] = path
                 pending.add(future)
             for future in finished:
@@ -897,6 +910,9 @@ def run_all(args: argparse.Namespace, root: Path, notebooks: list[Path], build: 
                     f"in {e['seconds']:.1f} s ({cpu(e)} CPU), peak memory {mb(e['peak_mb'])}{tail}",
                     flush=True,
                 )
+        if server is not None:
+            server.kill()
+            server.wait()
     entries = [done[path] for path in notebooks]
     wall = time.perf_counter() - start
     warm_up_run = [w.result() for w in warm]  # its CPU and compilation count in the totals
