@@ -141,7 +141,7 @@ def kernel_environment(root: Path) -> dict[str, str]:
 
 # ------------------------------------------------------------------------- records of executed notebooks
 
-RUN_INPUTS = ("navlib", "data", "tools/reproduce.py")
+RUN_INPUTS = ("navlib", "data", "tools/reproduce.py", "tools/kernel_fork.py")
 """What a notebook's execution depends on besides the notebook itself (paths under the repository root)."""
 
 
