@@ -17,6 +17,7 @@ the usual way.
 
 from __future__ import annotations
 
+import asyncio
 import ctypes
 import json
 import os
@@ -133,6 +134,7 @@ def wait_ready(address: str, server: subprocess.Popen, timeout: float = 60.0) ->
     end = time.monotonic() + timeout
     while not os.path.exists(address):
         if server.poll() is not None or time.monotonic() > end:
+            Path(address + ".failed").touch()  # the kernels waiting for it in fork_ready start from nothing
             return False
         time.sleep(0.01)
     return True
@@ -142,12 +144,17 @@ def wait_ready(address: str, server: subprocess.Popen, timeout: float = 60.0) ->
 
 
 def fork_ready(address: str | None, env: dict[str, str]) -> bool:
-    """Whether a kernel with environment ``env`` can be forked from the server at ``address``: it listens and
-    ``env`` is the server's (this process's) apart from the ``NAVLIB_*`` settings."""
-    if not address or not os.path.exists(address):
-        return False
+    """Whether a kernel with environment ``env`` can be forked from the server at ``address``: ``env`` is the
+    server's (this process's) apart from the ``NAVLIB_*`` settings, and the server listens (waited for while it
+    imports, unless :func:`wait_ready` found that it failed)."""
     keys = set(env) | set(os.environ)
-    return all(env.get(k) == os.environ.get(k) for k in keys if not k.startswith(SAME_FROM_SERVER))
+    if not address or any(env.get(k) != os.environ.get(k) for k in keys if not k.startswith(SAME_FROM_SERVER)):
+        return False
+    while not os.path.exists(address):
+        if os.path.exists(address + ".failed"):
+            return False
+        time.sleep(0.01)
+    return True
 
 
 class ForkedKernel:
@@ -188,8 +195,12 @@ class ForkedKernel:
 
 
 def _forking_manager():
+    from queue import Empty
+
     from jupyter_client import AsyncKernelManager
+    from jupyter_client.asynchronous.client import AsyncKernelClient
     from jupyter_client.provisioning import LocalProvisioner
+    from traitlets import default
 
     class ForkingProvisioner(LocalProvisioner):
         """Launches the kernel command ``python -m ipykernel_launcher ARGS`` by a fork of the server."""
@@ -214,10 +225,52 @@ def _forking_manager():
             self.cwd = request["cwd"]
             return self.connection_info
 
+        async def wait(self):
+            """Until the kernel has ended: polled every 10 ms (jupyter_client's every 100 ms)."""
+            while self.process is not None and self.process.poll() is None:
+                await asyncio.sleep(0.01)
+            self.process = None
+            return 0
+
+    class QuickClient(AsyncKernelClient):
+        """jupyter_client's client, ready once the kernel has answered and IOPub has been quiet for 10 ms (200 ms in
+        jupyter_client: the idle status of the kernel-info request; the notebook's cells never wait for messages
+        that are not theirs)."""
+
+        async def _async_wait_for_ready(self, timeout=None):
+            deadline = time.monotonic() + (float("inf") if timeout is None else timeout)
+            while True:
+                self.kernel_info()
+                try:
+                    msg = await self.shell_channel.get_msg(timeout=1)
+                    if msg["msg_type"] == "kernel_info_reply":
+                        await self.iopub_channel.get_msg(timeout=0.2)  # IOPub is connected
+                        self._handle_kernel_info_reply(msg)
+                        break
+                except Empty:
+                    pass
+                if not await self._async_is_alive():
+                    raise RuntimeError("Kernel died before replying to kernel_info")
+                if time.monotonic() > deadline:
+                    raise RuntimeError(f"Kernel didn't respond in {timeout:g} seconds")
+            try:
+                while True:
+                    await self.iopub_channel.get_msg(timeout=0.01)
+            except Empty:
+                pass
+
     class ForkingKernelManager(AsyncKernelManager):
         """nbclient's kernel manager with the kernel forked from the server at :attr:`address` (when it can be)."""
 
         address: str = ""
+
+        @default("client_factory")
+        def _quick_client(self):
+            return QuickClient
+
+        async def _async_wait(self, pollinterval: float = 0.01) -> None:
+            """Until the killed kernel has ended: polled every 10 ms (jupyter_client's every 100 ms)."""
+            await super()._async_wait(pollinterval=0.01)
 
         async def _async_pre_start_kernel(self, **kw):
             if self.provisioner is None:

@@ -890,10 +890,11 @@ def run_all(args: argparse.Namespace, root: Path, notebooks: list[Path], build: 
                     + ("" if w["error"] is None else f"\n    ERROR: {w['error']}"),
                     flush=True,
                 )
-        if server is not None and not kernel_fork.wait_ready(kernels, server):
-            print("kernel fork server did not start: kernels start from nothing", flush=True)
-        parts = paper_parts(order)  # submitted when their paper's first notebook is done
+        # a paper's further notebooks after its first when they would compile the same kernels (not in a warm run)
+        parts = paper_parts(order) if warm else {}  # submitted when their paper's first notebook is done
         futures = {pool.submit(run_notebook, path, build, args.timeout, kernels): path for path in order if path not in parts}
+        if server is not None and not kernel_fork.wait_ready(kernels, server):  # the workers wait for it meanwhile
+            print("kernel fork server did not start: kernels start from nothing", flush=True)
         print(f"executing {len(order)} notebooks, {max(1, args.jobs)} at a time ...", flush=True)
         pending = set(futures)
         while pending:
