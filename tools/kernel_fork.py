@@ -7,7 +7,8 @@ starting from nothing (~0.7 s of CPU per kernel, then ~1 s per notebook for the 
 navlib, which reads per-notebook settings at import) once, and forks a kernel per request: the child sets the
 notebook's environment, working directory and standard streams, then runs ipykernel's own entry point with the
 same arguments. :class:`ForkingKernelManager` is the kernel manager nbclient uses for it; the kernel's process id
-is the child's, so the runner reads its CPU time and memory as before.
+is the child's, so the runner reads its CPU time and memory as before. Besides the imports, the server does what
+numba does on the first call of any compiled function in a process (its registries; no navlib kernel is loaded).
 
 The server is started with the runner's environment (:func:`start`), which the kernels also get apart from their
 ``NAVLIB_*`` settings: packages read their settings (``MPLBACKEND``, ``NUMBA_CACHE_DIR``, thread counts) at import.
@@ -71,6 +72,12 @@ def serve(address: str) -> None:
             importlib.import_module(name)
         except ImportError:  # the notebook that needs it says so itself
             pass
+    from numba.core.registry import cpu_target
+
+    # numba's typing and lowering registries, which the first call of any compiled function installs in each
+    # process (~0.3 s, even when the function comes from numba's cache): once here
+    cpu_target.typing_context.refresh()
+    cpu_target.target_context.refresh()
     signal.signal(signal.SIGCHLD, signal.SIG_IGN)  # the kernels are reaped by the system
     server = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
     server.bind(address + ".tmp")
