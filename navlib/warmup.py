@@ -68,22 +68,21 @@ def _calls() -> dict[str, Callable[[], object]]:
 
 
 PARTS = (
-    ("filters.mahony (IMU)", "filters.mahony (MARG)", "filters.quaternion_kf (MARG)"),
+    ("filters.mahony (IMU)", "filters.mahony (MARG)", "filters.quaternion_kf (MARG)", "euler.integrate_euler"),
     (
         "filters.planar_ekf",
         "filters.inertial_lowpass",
         "sensors.simulate_imu",
         "strapdown.integrate",
         "filters.zupt_ins.run_filter",
-        "euler.integrate_euler",
         "strapdown.integrate_attitude",
         "analysis.allan_deviation",
         "filters.heading_fusion",
     ),
 )
 """The entry points in two parts, compiled in two processes at once on two cores (``--part 1``, ``--part 2``); the
-first, the shorter, also compiles a paper's own kernels (``--also navlib.papers.rotation_bias``; ~23 s of CPU each on
-an empty cache; the two differ by about a second, the wait before the notebooks start)."""
+first also compiles a paper's own kernels (``--also navlib.papers.rotation_bias``; ~26 s of CPU each on an empty
+cache, within about a second of each other: the wait before the notebooks start)."""
 
 
 def warmup(verbose: bool = True, part: int | None = None) -> dict[str, float]:
@@ -101,7 +100,7 @@ def warmup(verbose: bool = True, part: int | None = None) -> dict[str, float]:
     >>> from navlib import warmup
     >>> seconds = warmup.warmup(verbose=False, part=1)                # fast once numba's cache holds the kernels
     >>> len(seconds), sorted(seconds)[-1]                          # seconds per entry point
-    (3, 'filters.quaternion_kf (MARG)')
+    (4, 'filters.quaternion_kf (MARG)')
     """
     if part is not None and part not in range(1, len(PARTS) + 1):
         raise ValueError(f"part: expected None or an integer from 1 to {len(PARTS)}, got {part!r}")

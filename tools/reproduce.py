@@ -25,7 +25,9 @@ size, read from /proc while the kernel runs; "n/a" where there is none; CPU time
 grow on a busy machine). When the notebooks will compile kernels (a fresh clone, ``--cold``, navlib edited), a
 warm-up goes first (:func:`warm_up`, ``python -m navlib.warmup``, its two parts at once on two cores): every
 kernel the notebooks call is compiled once, and the notebooks load them from numba's cache; a paper's further notebooks
-(``05_pedestrian_ins_floors``) start when its first one is done, for the same reason. A notebook that raises is
+(``05_pedestrian_ins_floors``) then start when its first one is done, for the same reason. Each kernel is a new
+process forked from a server that has imported ipykernel and the scientific stack once (``tools/kernel_fork.py``;
+~1.5 s of CPU less per notebook than a kernel started from nothing). A notebook that raises is
 reported and the run goes on with the others; the exit status is non-zero if any notebook (or the warm-up)
 failed. ``--only`` runs a subset, and the report then covers that subset only. Needs no network.
 
@@ -84,6 +86,7 @@ from nbclient import NotebookClient  # noqa: E402
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO))
 
+import kernel_fork  # noqa: E402  (tools/kernel_fork.py: kernels forked from a process with the imports done)
 import ledger  # noqa: E402  (tools/ledger.py: claims with their verdicts; no navlib import at module level)
 
 SWEEP_SEEDS = (11, 29, 47, 83, 131, 257, 521, 1031, 5003, 8191)
@@ -140,7 +143,7 @@ def kernel_environment(root: Path) -> dict[str, str]:
 
 # ------------------------------------------------------------------------- records of executed notebooks
 
-RUN_INPUTS = ("navlib", "data", "tools/reproduce.py")
+RUN_INPUTS = ("navlib", "data", "tools/reproduce.py", "tools/kernel_fork.py")
 """What a notebook's execution depends on besides the notebook itself (paths under the repository root)."""
 
 
@@ -241,8 +244,11 @@ def executed(path: Path, timeout: int = 1800) -> dict:
     return entry
 
 
-def run_notebook(path: Path, build: Path, timeout: int) -> dict:
-    """Execute one notebook, write the executed .ipynb, return its summary entry."""
+def run_notebook(path: Path, build: Path, timeout: int, kernels: str | None = None) -> dict:
+    """Execute one notebook, write the executed .ipynb, return its summary entry.
+
+    ``kernels``: the address of a :mod:`kernel_fork` server to fork the notebook's kernel from (a new process
+    either way); default a kernel started from nothing."""
     stem = path.stem
     shutil.rmtree(build / stem, ignore_errors=True)  # no stale results or figures
     inputs = inputs_digest(path)  # before the run: an input edited while it runs makes the record stale
@@ -265,6 +271,7 @@ def run_notebook(path: Path, build: Path, timeout: int) -> dict:
         on_cell_executed=after_cell,
         shutdown_kernel="immediate",
         resources={"metadata": {"path": str(path.parent)}},
+        kernel_manager_class=kernel_fork.manager_class(kernels),
     )
     error = None
     start = time.perf_counter()
@@ -861,10 +868,16 @@ def run_all(args: argparse.Namespace, root: Path, notebooks: list[Path], build: 
     warm: list = []
     start = time.perf_counter()
     # Workers are reused and forked: they start with nbclient and nbformat already imported (spawned ones
-    # imported them again, ~1.5 s each, while the notebooks waited); every notebook gets a new kernel.
-    with ProcessPoolExecutor(
-        max(1, args.jobs), mp_context=multiprocessing.get_context(START_METHOD), initializer=die_with_parent
-    ) as pool:
+    # imported them again, ~1.5 s each, while the notebooks waited); every notebook gets a new kernel, forked
+    # from a server that has imported ipykernel and the scientific stack once (tools/kernel_fork.py).
+    with (
+        tempfile.TemporaryDirectory(prefix="navlib-kernels-") as folder,
+        ProcessPoolExecutor(
+            max(1, args.jobs), mp_context=multiprocessing.get_context(START_METHOD), initializer=die_with_parent
+        ) as pool,
+    ):
+        kernels = str(Path(folder) / "fork.sock")
+        server = kernel_fork.start(kernels) if order else None
         if order and (args.cold or compilation_expected(build, last, root)):
             # first, one part per worker, and the notebooks after both: every kernel compiled once, none while a
             # notebook that calls it runs (the parts' times differ by a second or two: that is the wait)
@@ -879,14 +892,17 @@ def run_all(args: argparse.Namespace, root: Path, notebooks: list[Path], build: 
                     + ("" if w["error"] is None else f"\n    ERROR: {w['error']}"),
                     flush=True,
                 )
-        parts = paper_parts(order)  # submitted when their paper's first notebook is done
-        futures = {pool.submit(run_notebook, path, build, args.timeout): path for path in order if path not in parts}
+        # a paper's further notebooks after its first when they would compile the same kernels (not in a warm run)
+        parts = paper_parts(order) if warm else {}  # submitted when their paper's first notebook is done
+        futures = {pool.submit(run_notebook, path, build, args.timeout, kernels): path for path in order if path not in parts}
+        if server is not None and not kernel_fork.wait_ready(kernels, server):  # the workers wait for it meanwhile
+            print("kernel fork server did not start: kernels start from nothing", flush=True)
         print(f"executing {len(order)} notebooks, {max(1, args.jobs)} at a time ...", flush=True)
         pending = set(futures)
         while pending:
             finished, pending = wait(pending, return_when=FIRST_COMPLETED)
             for path in [p for p, first in parts.items() for f in finished if futures.get(f) == first]:
-                future = pool.submit(run_notebook, path, build, args.timeout)
+                future = pool.submit(run_notebook, path, build, args.timeout, kernels)
                 futures[future] = path
                 pending.add(future)
             for future in finished:
@@ -897,6 +913,9 @@ def run_all(args: argparse.Namespace, root: Path, notebooks: list[Path], build: 
                     f"in {e['seconds']:.1f} s ({cpu(e)} CPU), peak memory {mb(e['peak_mb'])}{tail}",
                     flush=True,
                 )
+        if server is not None:
+            server.kill()
+            server.wait()
     entries = [done[path] for path in notebooks]
     wall = time.perf_counter() - start
     warm_up_run = [w.result() for w in warm]  # its CPU and compilation count in the totals

@@ -1290,7 +1290,8 @@ def rig_experiment(
     # The runs in batches of _RIG_BATCH, each simulated (the same draws as all at once), estimated, integrated
     # and reduced before the next: the memory of a batch of 1-h runs, not of all of them.
     batches = sensors.simulate_imu_batches(rig.w_ib_b, rig.f_b, dt, model, rng, n_runs, _RIG_BATCH)
-    parts = [_rig_runs(rig, imu, dt, lat, model, np.exp(-period / memory), period, still, decimate) for imu in batches]
+    hpr_true = traj.hpr  # converted from the quaternions once, not per batch
+    parts = [_rig_runs(rig, hpr_true, imu, dt, lat, model, np.exp(-period / memory), period, still, decimate) for imu in batches]
     out = {key: _joined([part[key] for part in parts]) for key in parts[0] if key != "t_est"}
     out.update(time=traj.time[::decimate], time_b=traj.time[:-1:decimate], t_est=parts[0]["t_est"])
     return out
@@ -1302,6 +1303,7 @@ _RIG_BATCH = 2
 
 def _rig_runs(
     rig: Rig,
+    hpr_true: Array,
     imu: ImuOutput,
     dt: float,
     lat: float,
@@ -1311,10 +1313,10 @@ def _rig_runs(
     still: tuple[Array, Array] | None,
     decimate: int,
 ) -> dict[str, Any]:
-    """:func:`rig_experiment` for the runs of one simulated batch ``imu`` (no time axes; ``t_est`` of the dwells)."""
+    """:func:`rig_experiment` for the runs of one simulated batch ``imu`` (no time axes; ``t_est`` of the dwells);
+    ``hpr_true`` is ``rig.traj.hpr``."""
     from .. import analysis, euler, units  # noqa: PLC0415 -- the driver alone needs them
 
-    hpr_true = rig.traj.hpr
     hpr0 = hpr_true[0]
     w_ie_n = earth.earth_rate_n(lat)
     res = tilt_residuals(imu.w_ib_b, imu.f_b, dt, rig.starts, rig.length, rig.w_ie_b)
