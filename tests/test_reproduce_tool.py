@@ -219,3 +219,29 @@ def test_an_execution_is_reused_only_while_its_inputs_and_outputs_are_unchanged(
     (tmp_path / "navlib" / "new.py").unlink()
     (build / "00_tiny" / "results.json").unlink()
     assert reproduce.last_execution(path, build)[0] is None, "a deleted results.json went unnoticed"
+
+
+class _Client:
+    """A stand-in for nbclient's client whose kernel start fails ``fails`` times with ``message``."""
+
+    def __init__(self, fails: int, message: str) -> None:
+        self.fails, self.message, self.calls = fails, message, 0
+
+    def execute(self, **_):
+        self.calls += 1
+        if self.calls <= self.fails:
+            raise RuntimeError(self.message)
+
+
+def test_a_kernel_that_died_at_start_is_started_again():
+    """The port race of two kernel starts is retried; a notebook's own error, or a start failing every time, is not hidden."""
+    died = "Kernel died before replying to kernel_info"
+    client = _Client(fails=2, message=died)
+    reproduce.execute(client)
+    assert client.calls == 3
+    with pytest.raises(RuntimeError, match="kernel_info"):
+        reproduce.execute(_Client(fails=reproduce.KERNEL_START_TRIES, message=died))
+    other = _Client(fails=1, message="a cell failed")
+    with pytest.raises(RuntimeError, match="a cell failed"):
+        reproduce.execute(other)
+    assert other.calls == 1

@@ -111,6 +111,22 @@ def error_line(exc: BaseException) -> str:
     return lines[-1] if lines else type(exc).__name__
 
 
+KERNEL_START_TRIES = 3
+
+
+def execute(client: NotebookClient, **kwargs) -> None:
+    """``client.execute(**kwargs)``, with the kernel started again if it died before running a cell: kernels started
+    at once can race for one free port ("Address already in use", seen in a seed sweep), a failed start, not a
+    failed notebook (nbclient has cleaned the dead kernel up, so the next try starts a new one on new ports)."""
+    for attempt in range(1, KERNEL_START_TRIES + 1):
+        try:
+            client.execute(**kwargs)
+            return
+        except RuntimeError as exc:
+            if "before replying to kernel_info" not in str(exc) or attempt == KERNEL_START_TRIES:
+                raise
+
+
 def kernel_usage(client: NotebookClient) -> tuple[float | None, float | None]:
     """Peak resident memory (MB, VmHWM) and CPU time (s, user + system) of the client's kernel so far; Linux only.
 
@@ -277,7 +293,7 @@ def run_notebook(path: Path, build: Path, timeout: int, kernels: str | None = No
     start = time.perf_counter()
     with open(build / f"{stem}.kernel.log", "w") as log:
         try:
-            client.execute(stderr=log, env=env)
+            execute(client, stderr=log, env=env)
         except Exception as exc:  # report it and go on with the next notebook
             error = error_line(exc)
     seconds = time.perf_counter() - start
@@ -572,7 +588,7 @@ def run_teaching(path: Path, run: int, build: Path, timeout: int) -> dict:
     error, start = None, time.perf_counter()
     with open(file.with_suffix(".kernel.log"), "w") as log:
         try:
-            client.execute(stderr=log, env=env)
+            execute(client, stderr=log, env=env)
         except Exception as exc:  # recorded; the test reports it
             error = error_line(exc)
     results = out / path.stem / "results.json"
@@ -665,6 +681,7 @@ def run_seed(path: Path, seed: int, out: Path, timeout: int) -> dict:
     cell = nbformat.v4.new_code_cell(f"# injected by tools/reproduce.py --seeds\nSEED = {seed}")
     cell.metadata["tags"] = ["injected-parameters"]
     nb.cells.insert(parameters_cell(nb) + 1, cell)
+    shutil.rmtree(out / path.stem, ignore_errors=True)  # a run that fails must not report the last run's checks
     os.environ.update(NAVLIB_TEACHING="1", NAVLIB_BUILD_DIR=str(out))  # the kernel inherits them
     client = NotebookClient(
         nb,
@@ -675,7 +692,7 @@ def run_seed(path: Path, seed: int, out: Path, timeout: int) -> dict:
     )
     error, start = None, time.perf_counter()
     try:
-        client.execute()
+        execute(client)
     except Exception as exc:  # reported with the run; the sweep goes on
         error = error_line(exc)
     seconds = time.perf_counter() - start
