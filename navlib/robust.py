@@ -584,13 +584,14 @@ def screen(imu: Is[ImuSamples], m_b: Vec3Series | None = None) -> Screened:
     mf = np.zeros((1, 1, 3)) if m_b is None else kernel_array(m_b.reshape(T, n, 3))
     flags, stuck_axes = np.zeros((len(_KEYS), T, n), dtype=bool), np.zeros((T, n, 3), dtype=bool)
     turn, huge_m = np.zeros(T), np.zeros(T, dtype=bool)
-    run_chunks(lambda t0, t1: _scan(t0, t1, wf, ff, mf, dts, tests, flags, turn, stuck_axes, huge_m), T)
+    held, fresh, gate = np.empty_like(wf), np.empty((T, n), dtype=bool), lim.gyro_jump or 0.0
+    run_chunks(
+        lambda t0, t1: _scan_and_hold(t0, t1, wf, ff, mf, dts, tests, gate, flags, turn, stuck_axes, huge_m, held, fresh), T
+    )
     if huge_m.any():
         as_array(m_b, "m_b", tail=(3,), finite=False)  # raises naming the fault
     refuse_turn(float(turn.max()))  # (clock jumps are not integrated)
     _freefall_runs(flags[6], dts, lim.freefall_time)
-    held, fresh = np.empty_like(wf), np.empty((T, n), dtype=bool)
-    run_chunks(lambda t0, t1: _gyro_hold(t0, t1, wf, flags, stuck_axes, lim.gyro_jump or 0.0, held, fresh), T)
     counts = np.zeros((len(_KEYS), T), dtype=np.int64)
     run_chunks(lambda t0, t1: _spikes_and_counts(t0, t1, flags, counts), T)  # (numpy would do it serially)
     keys = _KEYS if m_b is not None else [key for key in _KEYS if key[0] != "mag"]
@@ -634,6 +635,16 @@ def _freefall_runs(low: np.ndarray, dts: np.ndarray, min_time: float) -> None:
         for a, b in zip(edges[::2], edges[1::2], strict=True):
             if dts[a:b].sum() < min_time:
                 low[t, a:b] = False
+
+
+@njit(cache=True, nogil=True)
+def _scan_and_hold(t0, t1, w, f, m, dts, tests, gate, flags, turn, stuck_axes, huge_m, held, fresh):
+    """Trials t0 to t1 - 1, one at a time: scanned (:func:`_scan`), then its gyro held (:func:`_gyro_hold`, which
+    needs only the trial's gyro flags) while its samples are still in cache: a batch too large for the cache is read
+    from memory once, not once per pass."""
+    for t in range(t0, t1):
+        _scan(t, t + 1, w, f, m, dts, tests, flags, turn, stuck_axes, huge_m)
+        _gyro_hold(t, t + 1, w, flags, stuck_axes, gate, held, fresh)
 
 
 @njit(cache=True, nogil=True)
