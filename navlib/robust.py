@@ -488,7 +488,7 @@ class Screened(NamedTuple):
         Gyro with every unusable sample (``("gyro", "nan" | "spike")``) replaced by the last used one, 0
         before the first, and the stuck axes of a stuck sample (``("gyro", "stuck")``) held alone, at the run's
         value when the run continues the signal (frozen at its last reading), else at the last used value
-        (latched elsewhere): the attitude filters' hold.
+        (latched elsewhere): the attitude filters' hold. With nothing to hold, ``imu.w_ib_b`` itself (not a copy).
     fresh : ndarray of bool, shape (..., N)
         The gyro sample measures the motion (at least one live axis); saturated samples are used.
     m_b : ndarray, shape (..., N, 3), or None
@@ -585,9 +585,18 @@ def screen(imu: Is[ImuSamples], m_b: Vec3Series | None = None) -> Screened:
     flags, stuck_axes = np.zeros((len(_KEYS), T, n), dtype=bool), np.zeros((T, n, 3), dtype=bool)
     turn, huge_m = np.zeros(T), np.zeros(T, dtype=bool)
     held, fresh, gate = np.empty_like(wf), np.empty((T, n), dtype=bool), lim.gyro_jump or 0.0
+    as_given = np.zeros(T, dtype=bool)
     run_chunks(
-        lambda t0, t1: _scan_and_hold(t0, t1, wf, ff, mf, dts, tests, gate, flags, turn, stuck_axes, huge_m, held, fresh), T
+        lambda t0, t1: _scan_and_hold(
+            t0, t1, wf, ff, mf, dts, tests, gate, flags, turn, stuck_axes, huge_m, held, fresh, as_given
+        ),
+        T,
     )
+    if as_given.all():  # nothing held: the gyro as given (held's memory was never touched)
+        held = wf
+    else:
+        for t in np.flatnonzero(as_given):
+            held[t] = wf[t]
     if huge_m.any():
         as_array(m_b, "m_b", tail=(3,), finite=False)  # raises naming the fault
     refuse_turn(float(turn.max()))  # (clock jumps are not integrated)
@@ -638,13 +647,28 @@ def _freefall_runs(low: np.ndarray, dts: np.ndarray, min_time: float) -> None:
 
 
 @njit(cache=True, nogil=True)
-def _scan_and_hold(t0, t1, w, f, m, dts, tests, gate, flags, turn, stuck_axes, huge_m, held, fresh):
+def _scan_and_hold(t0, t1, w, f, m, dts, tests, gate, flags, turn, stuck_axes, huge_m, held, fresh, as_given):
     """Trials t0 to t1 - 1, one at a time: scanned (:func:`_scan`), then its gyro held (:func:`_gyro_hold`, which
     needs only the trial's gyro flags) while its samples are still in cache: a batch too large for the cache is read
-    from memory once, not once per pass."""
+    from memory once, not once per pass. A trial with nothing to hold (no stuck, NaN or spike sample, no step gate)
+    is used as given: ``fresh[t]`` all True, ``as_given[t]`` True and ``held[t]`` left to the caller (no copy of the
+    gyro written, and read again, for nothing)."""
     for t in range(t0, t1):
         _scan(t, t + 1, w, f, m, dts, tests, flags, turn, stuck_axes, huge_m)
-        _gyro_hold(t, t + 1, w, flags, stuck_axes, gate, held, fresh)
+        if gate > 0.0 or _any_gyro_fault(flags, t):
+            _gyro_hold(t, t + 1, w, flags, stuck_axes, gate, held, fresh)
+        else:
+            fresh[t, :] = True
+            as_given[t] = True
+
+
+@njit(cache=True, inline="always")
+def _any_gyro_fault(flags, t):
+    """Has trial t a stuck, NaN or spike gyro sample (:data:`_KEYS` 0 to 2)?"""
+    for k in range(flags.shape[2]):
+        if flags[0, t, k] or flags[1, t, k] or flags[2, t, k]:
+            return True
+    return False
 
 
 @njit(cache=True, nogil=True)
