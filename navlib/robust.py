@@ -488,7 +488,8 @@ class Screened(NamedTuple):
         Gyro with every unusable sample (``("gyro", "nan" | "spike")``) replaced by the last used one, 0
         before the first, and the stuck axes of a stuck sample (``("gyro", "stuck")``) held alone, at the run's
         value when the run continues the signal (frozen at its last reading), else at the last used value
-        (latched elsewhere): the attitude filters' hold. With nothing to hold, ``imu.w_ib_b`` itself (not a copy).
+        (latched elsewhere): the attitude filters' hold. With nothing to hold, the gyro as given (``imu.w_ib_b``,
+        or its contiguous copy).
     fresh : ndarray of bool, shape (..., N)
         The gyro sample measures the motion (at least one live axis); saturated samples are used.
     m_b : ndarray, shape (..., N, 3), or None
