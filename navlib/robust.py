@@ -589,7 +589,7 @@ def screen(imu: Is[ImuSamples], m_b: Vec3Series | None = None) -> Screened:
     as_given = np.zeros(T, dtype=bool)
     run_chunks(
         lambda t0, t1: _scan_and_hold(
-            t0, t1, wf, ff, mf, dts, tests, gate, flags, turn, stuck_axes, huge_m, held, fresh, as_given
+            t0, t1, (wf, ff, mf, dts), tests, gate, flags, turn, stuck_axes, huge_m, held, fresh, as_given
         ),
         T,
     )
@@ -648,12 +648,13 @@ def _freefall_runs(low: np.ndarray, dts: np.ndarray, min_time: float) -> None:
 
 
 @njit(cache=True, nogil=True)
-def _scan_and_hold(t0, t1, w, f, m, dts, tests, gate, flags, turn, stuck_axes, huge_m, held, fresh, as_given):
-    """Trials t0 to t1 - 1, one at a time: scanned (:func:`_scan`), then its gyro held (:func:`_gyro_hold`, which
-    needs only the trial's gyro flags) while its samples are still in cache: a batch too large for the cache is read
-    from memory once, not once per pass. A trial with nothing to hold (no stuck, NaN or spike sample, no step gate)
-    is used as given: ``fresh[t]`` all True, ``as_given[t]`` True and ``held[t]`` left to the caller (no copy of the
-    gyro written, and read again, for nothing)."""
+def _scan_and_hold(t0, t1, samples, tests, gate, flags, turn, stuck_axes, huge_m, held, fresh, as_given):
+    """Trials t0 to t1 - 1 of ``samples = (w, f, m, dts)``, one at a time: scanned (:func:`_scan`), then its gyro
+    held (:func:`_gyro_hold`, which needs only the trial's gyro flags) while its samples are still in cache: a batch
+    too large for the cache is read from memory once, not once per pass. A trial with nothing to hold (no stuck, NaN
+    or spike sample, no step gate) is used as given: ``fresh[t]`` all True, ``as_given[t]`` True and ``held[t]`` left
+    to the caller (no copy of the gyro written, and read again, for nothing)."""
+    w, f, m, dts = samples
     for t in range(t0, t1):
         _scan(t, t + 1, w, f, m, dts, tests, flags, turn, stuck_axes, huge_m)
         if gate > 0.0 or _any_gyro_fault(flags, t):
