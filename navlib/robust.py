@@ -488,7 +488,8 @@ class Screened(NamedTuple):
         Gyro with every unusable sample (``("gyro", "nan" | "spike")``) replaced by the last used one, 0
         before the first, and the stuck axes of a stuck sample (``("gyro", "stuck")``) held alone, at the run's
         value when the run continues the signal (frozen at its last reading), else at the last used value
-        (latched elsewhere): the attitude filters' hold.
+        (latched elsewhere): the attitude filters' hold. With nothing to hold, the gyro as given (``imu.w_ib_b``,
+        or its contiguous copy).
     fresh : ndarray of bool, shape (..., N)
         The gyro sample measures the motion (at least one live axis); saturated samples are used.
     m_b : ndarray, shape (..., N, 3), or None
@@ -584,13 +585,23 @@ def screen(imu: Is[ImuSamples], m_b: Vec3Series | None = None) -> Screened:
     mf = np.zeros((1, 1, 3)) if m_b is None else kernel_array(m_b.reshape(T, n, 3))
     flags, stuck_axes = np.zeros((len(_KEYS), T, n), dtype=bool), np.zeros((T, n, 3), dtype=bool)
     turn, huge_m = np.zeros(T), np.zeros(T, dtype=bool)
-    run_chunks(lambda t0, t1: _scan(t0, t1, wf, ff, mf, dts, tests, flags, turn, stuck_axes, huge_m), T)
+    held, fresh, gate = np.empty_like(wf), np.empty((T, n), dtype=bool), lim.gyro_jump or 0.0
+    as_given = np.zeros(T, dtype=bool)
+    run_chunks(
+        lambda t0, t1: _scan_and_hold(
+            t0, t1, (wf, ff, mf, dts), tests, gate, flags, turn, stuck_axes, huge_m, held, fresh, as_given
+        ),
+        T,
+    )
+    if as_given.all():  # nothing held: the gyro as given (held's memory was never touched)
+        held = wf
+    else:
+        for t in np.flatnonzero(as_given):
+            held[t] = wf[t]
     if huge_m.any():
         as_array(m_b, "m_b", tail=(3,), finite=False)  # raises naming the fault
     refuse_turn(float(turn.max()))  # (clock jumps are not integrated)
     _freefall_runs(flags[6], dts, lim.freefall_time)
-    held, fresh = np.empty_like(wf), np.empty((T, n), dtype=bool)
-    run_chunks(lambda t0, t1: _gyro_hold(t0, t1, wf, flags, stuck_axes, lim.gyro_jump or 0.0, held, fresh), T)
     counts = np.zeros((len(_KEYS), T), dtype=np.int64)
     run_chunks(lambda t0, t1: _spikes_and_counts(t0, t1, flags, counts), T)  # (numpy would do it serially)
     keys = _KEYS if m_b is not None else [key for key in _KEYS if key[0] != "mag"]
@@ -634,6 +645,32 @@ def _freefall_runs(low: np.ndarray, dts: np.ndarray, min_time: float) -> None:
         for a, b in zip(edges[::2], edges[1::2], strict=True):
             if dts[a:b].sum() < min_time:
                 low[t, a:b] = False
+
+
+@njit(cache=True, nogil=True)
+def _scan_and_hold(t0, t1, samples, tests, gate, flags, turn, stuck_axes, huge_m, held, fresh, as_given):
+    """Trials t0 to t1 - 1 of ``samples = (w, f, m, dts)``, one at a time: scanned (:func:`_scan`), then its gyro
+    held (:func:`_gyro_hold`, which needs only the trial's gyro flags) while its samples are still in cache: a batch
+    too large for the cache is read from memory once, not once per pass. A trial with nothing to hold (no stuck, NaN
+    or spike sample, no step gate) is used as given: ``fresh[t]`` all True, ``as_given[t]`` True and ``held[t]`` left
+    to the caller (no copy of the gyro written, and read again, for nothing)."""
+    w, f, m, dts = samples
+    for t in range(t0, t1):
+        _scan(t, t + 1, w, f, m, dts, tests, flags, turn, stuck_axes, huge_m)
+        if gate > 0.0 or _any_gyro_fault(flags, t):
+            _gyro_hold(t, t + 1, w, flags, stuck_axes, gate, held, fresh)
+        else:
+            fresh[t, :] = True
+            as_given[t] = True
+
+
+@njit(cache=True, inline="always")
+def _any_gyro_fault(flags, t):
+    """Has trial t a stuck, NaN or spike gyro sample (:data:`_KEYS` 0 to 2)?"""
+    for k in range(flags.shape[2]):
+        if flags[0, t, k] or flags[1, t, k] or flags[2, t, k]:
+            return True
+    return False
 
 
 @njit(cache=True, nogil=True)
