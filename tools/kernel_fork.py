@@ -45,6 +45,9 @@ PRELOAD = (
 PRELOAD_IF_INSTALLED = ("pyproj", "imufusion", "vqf", "ahrs")
 """The peer packages the notebooks compare against (notebooks 03 and 07), where installed."""
 
+SUPPORTED = sys.platform.startswith("linux")
+"""Where kernels are forked (measured here). Elsewhere they start the usual way: Windows has no fork, and on macOS a
+fork after numpy's Accelerate BLAS or other Objective-C code has started is unsafe."""
 KERNEL_MODULE = "ipykernel_launcher"
 SAME_FROM_SERVER = ("NAVLIB_",)
 """Environment variables a kernel may have that differ from the server's (read by navlib when it runs, not at import)."""

@@ -893,8 +893,8 @@ def run_all(args: argparse.Namespace, root: Path, notebooks: list[Path], build: 
             max(1, args.jobs), mp_context=multiprocessing.get_context(START_METHOD), initializer=die_with_parent
         ) as pool,
     ):
-        kernels = str(Path(folder) / "fork.sock")
-        server = kernel_fork.start(kernels) if order else None
+        kernels = str(Path(folder) / "fork.sock") if kernel_fork.SUPPORTED else None
+        server = kernel_fork.start(kernels) if order and kernels else None
         if order and (args.cold or compilation_expected(build, last, root)):
             # first, one part per worker, and the notebooks after both: every kernel compiled once, none while a
             # notebook that calls it runs (the parts' times differ by a second or two: that is the wait)
