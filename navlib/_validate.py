@@ -510,9 +510,9 @@ def sample_intervals(dt: object, n: int, name: str = "dt") -> Array:
     arr = as_array(dt, name, huge=True)  # an interval too long to integrate over is refused by small_turns
     if arr.ndim == 0:
         arr = np.full(n, scalar(arr, name, positive=True, huge=True))
-    if arr.shape != (n,):
+    elif arr.shape != (n,):  # (a filled scalar has the shape and sign: no second pass over n values)
         raise ValueError(f"{name}: expected a positive scalar or per-sample intervals of shape ({n},), got {arr.shape}")
-    if not np.all(arr > 0):
+    elif not np.all(arr > 0):
         raise ValueError(f"{name}: expected positive intervals, got min {arr.min():g} (run timing.sanitize first)")
     if arr.min() < MIN_INTERVAL:
         raise ValueError(

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import asyncio
 import ctypes
+import functools
 import json
 import os
 import signal
@@ -27,6 +28,7 @@ import socket
 import subprocess
 import sys
 import time
+import uuid
 from pathlib import Path
 
 PRELOAD = (
@@ -284,7 +286,7 @@ def _forking_manager():
 
         async def _async_pre_start_kernel(self, **kw):
             if self.provisioner is None:
-                self.kernel_id = self.kernel_id or kw.pop("kernel_id", None) or __import__("uuid").uuid4().hex
+                self.kernel_id = self.kernel_id or kw.pop("kernel_id", None) or uuid.uuid4().hex
                 self.provisioner = ForkingProvisioner(kernel_id=self.kernel_id, kernel_spec=self.kernel_spec, parent=self)
                 self.provisioner.address = self.address
             return await super()._async_pre_start_kernel(**kw)
@@ -292,8 +294,10 @@ def _forking_manager():
     return ForkingKernelManager
 
 
+@functools.cache
 def manager_class(address: str | None):
-    """A kernel manager class for nbclient whose kernels are forked from the server at ``address``."""
+    """A kernel manager class for nbclient whose kernels are forked from the server at ``address`` (built once per
+    address and process)."""
     cls = _forking_manager()
     return type("ForkingKernelManager", (cls,), {"address": address or ""})
 

@@ -26,8 +26,8 @@ grow on a busy machine). When the notebooks will compile kernels (a fresh clone,
 warm-up goes first (:func:`warm_up`, ``python -m navlib.warmup``, its two parts at once on two cores): every
 kernel the notebooks call is compiled once, and the notebooks load them from numba's cache; a paper's further notebooks
 (``05_pedestrian_ins_floors``) then start when its first one is done, for the same reason. Each kernel is a new
-process forked from a server that has imported ipykernel and the scientific stack once (``tools/kernel_fork.py``;
-~1.5 s of CPU less per notebook than a kernel started from nothing). A notebook that raises is
+process; on Linux it is forked from a server that has imported ipykernel and the scientific stack once
+(``tools/kernel_fork.py``; ~1.5 s of CPU less per notebook than a kernel started from nothing). A notebook that raises is
 reported and the run goes on with the others; the exit status is non-zero if any notebook (or the warm-up)
 failed. ``--only`` runs a subset, and the report then covers that subset only. Needs no network.
 
