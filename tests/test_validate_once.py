@@ -43,10 +43,7 @@ VALIDATORS = {
 VALIDATE_FILE = _validate.__file__
 
 TWICE = {
-    # robust.py (hold, stuck_samples) has no unchecked core yet: it checks name, axis and x on each call, also of
-    # values its callers checked (gauss_kruger_ekf's forward fill, planar_ekf's stuck yaw rate).
-    "papers.gauss_kruger_ekf.ekf": ["axis", "name", "t", "z"],  # t: filter_grid, whose core builds public records
-    "filters.planar_ekf.filter_grid": ["z"],  # robust.stuck_samples
+    "papers.gauss_kruger_ekf.ekf": ["t"],  # filter_grid, whose core builds public records
     # static_means (alignment) checks each window's samples again; its core needs public robust and earth names,
     # so it cannot live in a private core module.
     "papers.north_finding.stop_solutions": ["None"],
