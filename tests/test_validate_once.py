@@ -25,7 +25,8 @@ matplotlib = pytest.importorskip("matplotlib")
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from navlib import _validate, earth  # noqa: E402
+from navlib import _validate, calibration, earth, trajectory  # noqa: E402
+from navlib.papers import north_finding, pedestrian_ins  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tools"))
@@ -50,14 +51,6 @@ TWICE = {
     # isa_pressure checks h's values and p0; simulate_barometer checks h's length against time and p0 as a scalar
     # (isa_pressure takes arrays). The ISA core needs units.G0, a public module's constant.
     "sensors.simulate_barometer": ["h", "p0"],
-    # A record checks its fields when built, also from arguments its builder checked: the builder needs the
-    # checked value before it can build the record (g for the fit; a uniform time grid and vel_n of N rows before
-    # the positions are integrated) or asks more of it than the record does (a drive's speed > 0, a segment's
-    # or leg's >= 0), and the record checks its fields for direct construction.
-    "calibration.fit_accelerometer": ["g"],
-    "papers.north_finding.stop_and_go": ["speed"],
-    "papers.pedestrian_ins.carpark_legs": ["speed"],
-    "trajectory.from_profiles": ["time", "vel_n"],
 }
 """Arguments still checked twice on one registry call, and why: this list may shrink, never grow."""
 
@@ -130,6 +123,24 @@ def test_each_argument_is_checked_once(key):
     twice = {name: sorted(owners) for name, owners in checks_of(func, registry_call(key)).items() if checked_twice(owners)}
     plt.close("all")
     assert set(twice) <= set(TWICE.get(key, ())), f"{key}: arguments checked by more than one function: {twice}"
+
+
+@pytest.mark.parametrize(
+    "call, message",
+    [
+        (lambda: calibration.fit_accelerometer(np.vstack([9.8 * np.eye(3), -9.8 * np.eye(3)]), g=-1.0), "^g: "),
+        (lambda: north_finding.stop_and_go([0.0, 1.0], 60.0, 60.0, 0.0, [0.0, 0.0], [0.0, 0.0]), "^speed: "),
+        (lambda: pedestrian_ins.carpark_legs(speed=-1.0), "^speed: "),
+        (lambda: pedestrian_ins.carpark_legs(side=(40.0, 2.0)), "^side: expected sides longer than a corner"),
+        (lambda: trajectory.from_profiles([0.0, 0.1, 0.3], [0.6, 0.2, 0.0], np.zeros((3, 3)), np.zeros((3, 3))), "^time: "),
+        (lambda: trajectory.from_profiles([0.0, 0.1], [0.6, 0.2, 0.0], np.zeros((2, 3)), np.zeros((3, 3))), "^vel_n: "),
+        (lambda: trajectory.from_profiles([0.0, 1.0], [1.5, 0.2, 0.0], np.zeros((2, 3)), [[0, 1e6, 0]] * 2), "^vel_n: .* pole"),
+    ],
+)
+def test_a_builder_refuses_what_its_unchecked_record_would(call, message):
+    """Builders make their records unchecked (navlib._records): a bad argument is refused by the builder, by its name."""
+    with pytest.raises(ValueError, match=message):
+        call()
 
 
 def in_navlib(func, qualname: str) -> None:
