@@ -48,9 +48,6 @@ TWICE = {
     # static_means (alignment) checks each window's samples again; its core needs public robust and earth names,
     # so it cannot live in a private core module.
     "papers.north_finding.stop_solutions": ["None"],
-    # isa_pressure checks h's values and p0; simulate_barometer checks h's length against time and p0 as a scalar
-    # (isa_pressure takes arrays). The ISA core needs units.G0, a public module's constant.
-    "sensors.simulate_barometer": ["h", "p0"],
 }
 """Arguments still checked twice on one registry call, and why: this list may shrink, never grow."""
 
