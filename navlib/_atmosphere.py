@@ -10,23 +10,11 @@ from __future__ import annotations
 
 from ._typing import Array
 
-P0 = 101325.0
-"""ISA sea-level pressure (Pa)."""
-T0 = 288.15
-"""ISA sea-level temperature (K)."""
-LAPSE = 0.0065
-"""ISA tropospheric lapse rate (K/m)."""
-R_AIR = 287.05287
-"""Specific gas constant of dry air (J/(kg K))."""
-G0 = 9.80665
-"""The ISA's g0 (m/s^2): standard gravity, :data:`navlib.units.G0`."""
-H_MIN, H_MAX = -1000.0, 11000.0
-"""Heights (m) where the ISA troposphere holds."""
-
-EXPONENT = R_AIR * LAPSE / G0
-"""``R L / g0`` (0.190263): ``p / p0 = (1 - L h / T0)^(1 / EXPONENT)``."""
-P_11KM = P0 * (1 - LAPSE * H_MAX / T0) ** (1 / EXPONENT)
-"""Tropopause pressure (Pa) for ``p0 = P0``: 22632.04."""
+P0, T0, LAPSE, R_AIR = 101325.0, 288.15, 0.0065, 287.05287  # published as navlib.atmosphere's, with their units
+G0 = 9.80665  # the ISA's g0 (m/s^2): standard gravity, navlib.units.G0
+H_MIN, H_MAX = -1000.0, 11000.0  # heights (m) where the ISA troposphere holds
+EXPONENT = R_AIR * LAPSE / G0  # R L / g0 = 0.190263: p / p0 = (1 - L h / T0)^(1 / EXPONENT)
+P_11KM = P0 * (1 - LAPSE * H_MAX / T0) ** (1 / EXPONENT)  # tropopause pressure (Pa) for p0 = P0: 22632.04
 
 
 def isa_pressure(h: Array, p0: float | Array) -> Array:

@@ -21,7 +21,6 @@ from typing import Annotated
 import numpy as np
 
 from . import _atmosphere
-from ._atmosphere import LAPSE, P0, R_AIR, T0
 from ._typing import Array, ArrayLike, Times
 from ._validate import (
     Check,
@@ -57,6 +56,15 @@ __all__ = [
     "classify_floor",
     "segment_floors",
 ]
+
+P0 = _atmosphere.P0
+"""ISA sea-level pressure (Pa)."""
+T0 = _atmosphere.T0
+"""ISA sea-level temperature (K)."""
+LAPSE = _atmosphere.LAPSE
+"""ISA tropospheric lapse rate (K/m)."""
+R_AIR = _atmosphere.R_AIR
+"""Specific gas constant of dry air (J/(kg K))."""
 
 
 def isa_altitude(p: ArrayLike, p0: ArrayLike = P0) -> Array:
