@@ -7,7 +7,8 @@ hands to a public function of another module unchecked, that function checks. A 
 ``_validate`` function during a registry call (tools/fuzz_calls.py) with the argument name it checks and the
 public function (or record's field) it checks it for; an argument name checked for two functions, or for a function
 and a record's field, is checked twice. Fields of two records that share a name are two arguments
-(``Gates.zupt``, a gate, beside ``MeasurementNoise.zupt``, a sigma).
+(``Gates.zupt``, a gate, beside ``MeasurementNoise.zupt``, a sigma). A record checks its fields when the user builds
+it; a builder that has checked its arguments builds it with :func:`navlib._records.unchecked`.
 """
 
 from __future__ import annotations
