@@ -20,6 +20,7 @@ from typing import Annotated
 
 import numpy as np
 
+from . import _atmosphere
 from ._typing import Array, ArrayLike, Times
 from ._validate import (
     Check,
@@ -56,17 +57,14 @@ __all__ = [
     "segment_floors",
 ]
 
-P0 = 101325.0
+P0 = _atmosphere.P0
 """ISA sea-level pressure (Pa)."""
-T0 = 288.15
+T0 = _atmosphere.T0
 """ISA sea-level temperature (K)."""
-LAPSE = 0.0065
+LAPSE = _atmosphere.LAPSE
 """ISA tropospheric lapse rate (K/m)."""
-R_AIR = 287.05287
+R_AIR = _atmosphere.R_AIR
 """Specific gas constant of dry air (J/(kg K))."""
-
-_EXP = R_AIR * LAPSE / G0
-_P_11KM = P0 * (1 - LAPSE * 11000.0 / T0) ** (1 / _EXP)  # tropopause pressure, 22632.04 Pa
 
 
 def isa_altitude(p: ArrayLike, p0: ArrayLike = P0) -> Array:
@@ -82,8 +80,8 @@ def isa_altitude(p: ArrayLike, p0: ArrayLike = P0) -> Array:
     array([   0., 1000.])
     """
     p, p0 = positive(p, "p"), positive(p0, "p0")
-    in_range(p / p0, "p", _P_11KM / P0 * (1 - 1e-12), 1.2, "(fraction of p0)")
-    return T0 / LAPSE * (1 - (p / p0) ** _EXP)
+    in_range(p / p0, "p", _atmosphere.P_11KM / P0 * (1 - 1e-12), 1.2, "(fraction of p0)")
+    return _atmosphere.isa_altitude(p, p0)
 
 
 def isa_pressure(h: ArrayLike, p0: ArrayLike = P0) -> Array:
@@ -96,8 +94,8 @@ def isa_pressure(h: ArrayLike, p0: ArrayLike = P0) -> Array:
     >>> np.round(atmosphere.isa_pressure([0.0, 1000.0]), 1)
     array([101325. ,  89874.6])
     """
-    h = in_range(as_array(h, "h"), "h", -1000.0, 11000.0, "m")
-    return positive(p0, "p0") * (1 - LAPSE * h / T0) ** (1 / _EXP)
+    h = in_range(as_array(h, "h"), "h", _atmosphere.H_MIN, _atmosphere.H_MAX, "m")
+    return _atmosphere.isa_pressure(h, positive(p0, "p0"))
 
 
 def bmp180_altitude(p: ArrayLike, p0: ArrayLike = P0) -> Array:

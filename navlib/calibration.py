@@ -103,6 +103,7 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from . import _noise, analysis, earth, units
+from ._records import unchecked
 from ._typing import Array, ArrayLike, Dcm, Interval, Vec3, Vec3Series
 from ._validate import Check, Flag, Positive, as_array, boundary, imu_samples, interval, sample_intervals, scalar
 from .imu import ImuSamples, unpack
@@ -524,7 +525,8 @@ def fit_accelerometer(f_means: Vec3Series, g: Positive = units.G0, *, misalignme
     )
     b, S = _unpack_params(sol.x, misalignment)
     S = np.sign(np.diag(S))[:, None] * S  # |S (f - b)| is blind to the signs of S's rows
-    return AccelCalibration(b, S, g, float(np.sqrt(np.mean(sol.fun**2))), _condition(sol.x, f, g, misalignment))
+    residual = float(np.sqrt(np.mean(sol.fun**2)))
+    return unchecked(AccelCalibration, bias=b, matrix=S, g=g, residual=residual, condition=_condition(sol.x, f, g, misalignment))
 
 
 # --------------------------------------------------------------------------

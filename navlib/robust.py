@@ -63,6 +63,7 @@ import numpy as np
 from numba import njit
 from numpy.typing import NDArray
 
+from . import _robust
 from ._kernels import count_flags, stuck_runs
 from ._threads import run_chunks
 from ._typing import Array, ArrayLike, Vec3Series
@@ -182,13 +183,6 @@ def fault_report(x: ArrayLike, sensor: Is[str], *, full_scale: float | None = No
     return FaultReport({key: m.sum(axis=-1) for key, m in masks.items()}, masks if flag(flags, "flags") else {})
 
 
-def _last_valid(valid: np.ndarray, fill: int) -> np.ndarray:
-    """Index of the last valid sample at or before each sample (along the last axis); ``fill`` before the first."""
-    idx = np.where(valid, np.arange(valid.shape[-1]), fill)
-    np.maximum.accumulate(idx, axis=-1, out=idx)
-    return idx
-
-
 @boundary
 def hold(
     x: ArrayLike,
@@ -226,24 +220,7 @@ def hold(
     (array([1., 1., 1., 4.]), array([False,  True,  True, False]))
     """
     choice(axis, "axis", (-1, -2))
-    a = as_array(x, text(name, "name", empty=False), allow_nan=True, min_ndim=1)
-    vector = axis == -2
-    bad = np.any(np.isnan(a), axis=-1) if vector else np.isnan(a)
-    if not bad.any():
-        return a, bad
-    n = bad.shape[-1]
-    first = np.argmax(~bad, axis=-1)
-    if np.any(bad.all(axis=-1)):
-        raise ValueError(f"{name}: a series has no valid sample to hold")
-    if leading == "raise" and np.any(bad[..., 0]):
-        raise ValueError(f"{name}: the first sample of a series is NaN and there is nothing before it to hold")
-    idx = _last_valid(~bad, fill=0)
-    before = bad & (np.arange(n) < first[..., None])
-    idx = np.where(before, first[..., None], idx)
-    filled = np.take_along_axis(a, idx[..., None] if vector else idx, axis=axis)
-    if leading == "zero" and before.any():
-        filled = np.where(before[..., None] if vector else before, 0.0, filled)
-    return filled, bad
+    return _robust.hold(as_array(x, text(name, "name", empty=False), allow_nan=True, min_ndim=1), leading, name, axis)
 
 
 @njit(cache=True)
@@ -413,7 +390,7 @@ def stuck_mask(
     >>> robust.stuck_mask(x, run=3)                                   # the frozen run of 0.2
     array([False,  True,  True,  True,  True, False])
     """
-    return _stuck_runs(_series(x, name, axis), run)
+    return _robust.stuck_mask(_series(x, name, axis), run)
 
 
 def _series(x: ArrayLike, name: str, axis: int) -> np.ndarray:
@@ -421,15 +398,6 @@ def _series(x: ArrayLike, name: str, axis: int) -> np.ndarray:
     choice(axis, "axis", (-1, -2))
     a = as_array(x, text(name, "name", empty=False), allow_nan=True, min_ndim=-axis)
     return a[..., None] if axis == -1 else a
-
-
-def _stuck_runs(a: np.ndarray, run: int, rail: float = np.inf) -> NDArray[np.bool_]:
-    """:func:`stuck_mask` of validated samples ``a`` (..., N, k); values with ``|a| >= rail`` never repeat."""
-    lead, (n, k) = a.shape[:-2], a.shape[-2:]
-    flat = kernel_array(a.reshape((math.prod(lead), n, k)))  # writable: one kernel signature
-    out = np.zeros(flat.shape, dtype=bool)
-    stuck_runs(0, flat.shape[0], flat, run, rail, out)
-    return np.any(out, axis=-1).reshape(lead + (n,))
 
 
 def stuck_samples(
@@ -470,11 +438,8 @@ def stuck_samples(
     """
     a = _series(x, name, axis)
     if run is None:
-        return np.zeros(a.shape[:-1], dtype=bool)
-    run = integer(run, "run", minimum=2)
-    fs = range_limit(full_scale, "full_scale")
-    noisy = np.logical_and.accumulate(a == a[..., :1, :], axis=-2).sum(-2).max(-1) < run
-    return _stuck_runs(a, run, np.inf if full_scale is None else fs) & noisy[..., None]
+        return _robust.stuck_samples(a, None)
+    return _robust.stuck_samples(a, integer(run, "run", minimum=2), range_limit(full_scale, "full_scale"))
 
 
 class Screened(NamedTuple):

@@ -41,7 +41,7 @@ from typing import Any
 import numpy as np
 from numba import njit
 
-from . import _earth, _noise, atmosphere, attitude, earth, units
+from . import _atmosphere, _earth, _noise, atmosphere, attitude, earth, units
 from ._typing import Angles, Array, ArrayLike, Quat, Times, Vec3, Vec3Series
 from ._validate import (
     Count,
@@ -747,7 +747,8 @@ def simulate_barometer(h: ArrayLike, time: Times, model: Is[BarometerModel], rng
     array([101325., 101326., 101327.])
     """
     t = time_axis(time)
-    p = last_axis(atmosphere.isa_pressure(h, p0), "h", t.size, of="time")  # isa_pressure checks h
+    h = in_range(last_axis(as_array(h, "h"), "h", t.size, of="time"), "h", _atmosphere.H_MIN, _atmosphere.H_MAX, "m")
+    p = _atmosphere.isa_pressure(h, p0)
     r_bias, r_noise = rng.spawn(2)
     p = p + model.bias * r_bias.standard_normal(p.shape[:-1] + (1,))
     p = p + model.drift_rate * (t - t[0])

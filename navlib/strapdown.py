@@ -57,7 +57,7 @@ import numpy as np
 from numba import njit
 from numpy.typing import NDArray
 
-from . import _attitude, _earth, _kernels, attitude, earth, robust
+from . import _attitude, _earth, _kernels, _robust, attitude, earth, robust
 from ._typing import Array, ArrayLike, Dcm, Interval, Quat, Vec3, Vec3Series
 from ._validate import (
     Check,
@@ -95,7 +95,7 @@ def _dropouts(x: Array, name: str, policy: str) -> tuple[Array, NDArray[np.bool_
         if np.isnan(x).any():
             raise ValueError(f"{name}: contains NaN samples (use nan_policy='hold' to hold the last good sample)")
         return x, np.zeros(x.shape[:-1], dtype=bool)
-    return robust.hold(x, leading="raise", name=name)
+    return _robust.hold(x, "raise", name, axis=-2)
 
 
 def _sample_intervals(dt: Interval, n: int) -> Array:

@@ -21,6 +21,7 @@ from numpy.typing import NDArray
 
 from . import _attitude, _earth, attitude, earth
 from ._kernels import radii_mn
+from ._records import unchecked
 from ._typing import Angles, Array, ArrayLike, Times, Vec3, Vec3Series
 from ._validate import (
     Check,
@@ -200,12 +201,16 @@ def from_profiles(
     return _from_profiles(t, lla0, hpr, vel, ellipsoid)
 
 
-def _from_profiles(t: Array, lla0: ArrayLike, hpr: Array, vel: Array, ellipsoid: earth.Ellipsoid) -> Trajectory:
+def _from_profiles(
+    t: Array, lla0: ArrayLike, hpr: Array, vel: Array, ellipsoid: earth.Ellipsoid, source: str = "vel_n"
+) -> Trajectory:
     """:func:`from_profiles` on a uniform grid ``t`` and profiles (N, 3) built or checked by the caller;
-    ``lla0`` is the user's, checked here."""
+    ``lla0`` is the user's, checked here; ``source`` names the argument the velocities come from."""
     in_range(hpr[:, 1], "hpr[:, 1] (pitch)", -np.pi / 2 - 1e-12, np.pi / 2 + 1e-12, "rad")  # also of built profiles
     lla = _positions(_lla(lla0), kernel_array(vel), t[1] - t[0], ellipsoid.a, ellipsoid.e2)
-    return Trajectory(t, lla, vel, _attitude.euler_to_quat(hpr))
+    if not np.all(np.abs(lla[:, 0]) <= np.pi / 2):
+        raise ValueError(f"{source}: the trajectory passes a pole (latitude beyond +-pi/2 rad); start farther from it")
+    return unchecked(Trajectory, time=t, lla=lla, vel_n=vel, q_bn=_attitude.euler_to_quat(hpr))
 
 
 @boundary
@@ -394,7 +399,7 @@ def vehicle(
             cur[key] = new
     vel = speed[:, None] * np.stack([np.sin(heading) * np.cos(pitch), np.cos(heading) * np.cos(pitch), np.sin(pitch)], -1)
     hpr = np.stack([attitude.wrap_2pi(heading), pitch, roll], -1)
-    return _from_profiles(t, lla0, hpr, vel, ellipsoid)
+    return _from_profiles(t, lla0, hpr, vel, ellipsoid, "segments")
 
 
 @dataclass(frozen=True)
@@ -608,7 +613,7 @@ def walk(
         ],
         -1,
     )
-    return _from_profiles(t, lla0, hpr, vel, ellipsoid)
+    return _from_profiles(t, lla0, hpr, vel, ellipsoid, "legs")
 
 
 @boundary

@@ -15,6 +15,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from numpy.testing import assert_allclose
 
+from navlib import _atmosphere, units
 from navlib import atmosphere as atm
 
 
@@ -188,3 +189,8 @@ def test_bmp180_compensate_uses_c_division():
     assert atm.bmp180_compensate(27898, 23843, calib, 0) == (150, 69964)
     assert atm.bmp180_compensate(30000, 23843, calib, 0)[1] == 72532
     assert atm.bmp180_compensate(33000, 23843, calib, 0)[0] == 528
+
+
+def test_the_isa_core_uses_standard_gravity():
+    """The ISA's g0 in navlib._atmosphere (a core module imports no public one) is navlib.units.G0."""
+    assert _atmosphere.G0 == units.G0 and atm.P0 is _atmosphere.P0

@@ -5,7 +5,10 @@ then works on the checked values: it hands them to unchecked cores (a private he
 shared core module such as :mod:`navlib._earth`, a compiled formula of :mod:`navlib._kernels`), and what it
 hands to a public function of another module unchecked, that function checks. A profile hook records every outermost call of a
 ``_validate`` function during a registry call (tools/fuzz_calls.py) with the argument name it checks and the
-public function (or record) it checks it for; an argument name checked for two of them is checked twice.
+public function (or record's field) it checks it for; an argument name checked for two functions, or for a function
+and a record's field, is checked twice. Fields of two records that share a name are two arguments
+(``Gates.zupt``, a gate, beside ``MeasurementNoise.zupt``, a sigma). A record checks its fields when the user builds
+it; a builder that has checked its arguments builds it with :func:`navlib._records.unchecked`.
 """
 
 from __future__ import annotations
@@ -13,6 +16,7 @@ from __future__ import annotations
 import inspect
 import sys
 from collections import defaultdict
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -22,7 +26,8 @@ matplotlib = pytest.importorskip("matplotlib")
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from navlib import _validate, earth  # noqa: E402
+from navlib import _validate, calibration, earth, trajectory  # noqa: E402
+from navlib.papers import north_finding, pedestrian_ins  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tools"))
@@ -40,27 +45,10 @@ VALIDATORS = {
 VALIDATE_FILE = _validate.__file__
 
 TWICE = {
-    # robust.py (hold, stuck_samples) has no unchecked core yet: it checks name, axis and x on each call, also of
-    # values its callers checked (gauss_kruger_ekf's forward fill, planar_ekf's stuck yaw rate).
-    "papers.gauss_kruger_ekf.ekf": ["axis", "name", "t", "z"],  # t: filter_grid, whose core builds public records
-    "filters.planar_ekf.filter_grid": ["z"],  # robust.stuck_samples
+    "papers.gauss_kruger_ekf.ekf": ["t"],  # filter_grid, whose core builds public records
     # static_means (alignment) checks each window's samples again; its core needs public robust and earth names,
     # so it cannot live in a private core module.
     "papers.north_finding.stop_solutions": ["None"],
-    # isa_pressure checks h's values and p0; simulate_barometer checks h's length against time and p0 as a scalar
-    # (isa_pressure takes arrays). The ISA core needs units.G0, a public module's constant.
-    "sensors.simulate_barometer": ["h", "p0"],
-    # A record checks its fields when built, also from arguments its builder checked: the builder needs the
-    # checked value before it can build the record (g for the fit; a uniform time grid and vel_n of N rows before
-    # the positions are integrated) or asks more of it than the record does (a drive's speed > 0, a segment's
-    # or leg's >= 0), and the record checks its fields for direct construction.
-    "calibration.fit_accelerometer": ["g"],
-    "papers.north_finding.stop_and_go": ["speed"],
-    "papers.pedestrian_ins.carpark_legs": ["speed"],
-    "trajectory.from_profiles": ["time", "vel_n"],
-    # Not one argument: different fields of different records that share a name (Gates.zupt is a gate,
-    # MeasurementNoise.zupt a sigma; InitialSigma.heading and MeasurementNoise.heading), each checked once.
-    "filters.presets.foot_mounted": ["baro", "heading", "zupt"],
 }
 """Arguments still checked twice on one registry call, and why: this list may shrink, never grow."""
 
@@ -77,13 +65,19 @@ def owner(frame) -> str:
             top = code.co_qualname.split(".<locals>.")[0]
             parts = top.split(".")
             if parts[-1].startswith("__") and len(parts) > 1:  # a record's __post_init__ / __init__
-                return parts[-2]
+                return f"{parts[-2]}.{parts[-1]}"
             if not parts[-1].startswith("_"):
                 return top
         else:
             return "<caller>"
         frame = frame.f_back
     return "<caller>"
+
+
+def checked_twice(owners: set[str]) -> bool:
+    """Two functions check one argument, or a function and a record's field; two records' fields are two arguments."""
+    records = {o for o in owners if o.endswith("__")}
+    return len(owners - records) + bool(records) > 1
 
 
 def checks_of(func, kwargs) -> dict[str, set[str]]:
@@ -124,9 +118,32 @@ CALLS = sorted(k for k, c in REGISTRY.items() if isinstance(c, fuzz_calls.Call) 
 def test_each_argument_is_checked_once(key):
     func = PUBLIC[key]
     func(**registry_call(key))  # a first call checks @boundary defaults once; the second is the one counted
-    twice = {name: sorted(owners) for name, owners in checks_of(func, registry_call(key)).items() if len(owners) > 1}
+    twice = {name: sorted(owners) for name, owners in checks_of(func, registry_call(key)).items() if checked_twice(owners)}
     plt.close("all")
     assert set(twice) <= set(TWICE.get(key, ())), f"{key}: arguments checked by more than one function: {twice}"
+
+
+@pytest.mark.parametrize(
+    "call, message",
+    [
+        (lambda: calibration.fit_accelerometer(np.vstack([9.8 * np.eye(3), -9.8 * np.eye(3)]), g=-1.0), "^g: "),
+        (lambda: north_finding.stop_and_go([0.0, 1.0], 60.0, 60.0, 0.0, [0.0, 0.0], [0.0, 0.0]), "^speed: "),
+        (lambda: pedestrian_ins.carpark_legs(speed=-1.0), "^speed: "),
+        (lambda: pedestrian_ins.carpark_legs(side=(40.0, 2.0)), "^side: expected sides longer than a corner"),
+        (lambda: trajectory.from_profiles([0.0, 0.1, 0.3], [0.6, 0.2, 0.0], np.zeros((3, 3)), np.zeros((3, 3))), "^time: "),
+        (lambda: trajectory.from_profiles([0.0, 0.1], [0.6, 0.2, 0.0], np.zeros((2, 3)), np.zeros((3, 3))), "^vel_n: "),
+        (lambda: trajectory.from_profiles([0.0, 1.0], [1.5, 0.2, 0.0], np.zeros((2, 3)), [[0, 1e6, 0]] * 2), "^vel_n: .* pole"),
+    ],
+)
+def test_a_builder_refuses_what_its_unchecked_record_would(call, message):
+    """Builders make their records unchecked (navlib._records): a bad argument is refused by the builder, by its name."""
+    with pytest.raises(ValueError, match=message):
+        call()
+
+
+def in_navlib(func, qualname: str) -> None:
+    """Let the hook see ``func`` as navlib's ``qualname``."""
+    func.__code__ = func.__code__.replace(co_filename=str(ROOT / "navlib" / "x.py"), co_qualname=qualname)
 
 
 def test_the_hook_sees_a_second_check():
@@ -135,5 +152,38 @@ def test_the_hook_sees_a_second_check():
     def twice(lat):
         return earth.gravity(_validate.latitude(lat, "lat"))
 
-    twice.__code__ = twice.__code__.replace(co_filename=str(ROOT / "navlib" / "x.py"), co_qualname="twice")
+    in_navlib(twice, "twice")
     assert checks_of(twice, {"lat": np.float64(0.5)})["lat"] == {"twice", "gravity"}
+
+
+def test_the_hook_sees_a_record_built_from_a_checked_argument():
+    """A builder that checks ``lat`` and builds a record whose field ``lat`` is checked again is caught; two records
+    that each have a field ``lat`` are two arguments, each checked once."""
+
+    @dataclass(frozen=True)
+    class Fix:
+        lat: float
+
+        def __post_init__(self):
+            _validate.latitude(self.lat, "lat")
+
+    @dataclass(frozen=True)
+    class Site:
+        lat: float
+
+        def __post_init__(self):
+            _validate.latitude(self.lat, "lat")
+
+    def build(lat):
+        return Fix(_validate.latitude(lat, "lat"))
+
+    for func, qualname in (
+        (Fix.__post_init__, "Fix.__post_init__"),
+        (Site.__post_init__, "Site.__post_init__"),
+        (build, "build"),
+    ):
+        in_navlib(func, qualname)
+    built = checks_of(build, {"lat": np.float64(0.5)})["lat"]
+    assert built == {"build", "Fix.__post_init__"} and checked_twice(built)
+    both = checks_of(lambda lat: (Fix(lat), Site(lat)), {"lat": np.float64(0.5)})["lat"]
+    assert both == {"Fix.__post_init__", "Site.__post_init__"} and not checked_twice(both)

@@ -102,7 +102,7 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit
 
-from .. import _kernels, _planar, kalman
+from .. import _kernels, _planar, _robust, kalman
 from .._kernels import wrap_pi
 from .._planar import motion
 from .._typing import Array, ArrayLike, Times
@@ -120,7 +120,7 @@ from .._validate import (
     time_axis,
 )
 from ..imu import SensorLimits
-from ..robust import FaultReport, stuck_samples
+from ..robust import FaultReport
 
 __all__ = [
     "CHANNELS",
@@ -836,7 +836,7 @@ def _screen_epochs(t: Array, z: Array, limits: SensorLimits) -> _Epochs:
     with np.errstate(invalid="ignore"):
         saturated = np.abs(z[:, 4]) >= fs  # NaN compares False
     rail = np.where(saturated, np.copysign(fs, z[:, 4]), np.nan)
-    stuck = stuck_samples(z[:, 4], limits.stuck_samples(t_nominal) or None, full_scale=fs, name="z", axis=-1)
+    stuck = _robust.stuck_samples(z[:, 4:], limits.stuck_samples(t_nominal) or None, fs)
     z_used = z
     if stuck.any():  # stuck yaw rate: skipped like a NaN sample
         z_used = z.copy()

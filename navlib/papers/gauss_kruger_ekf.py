@@ -52,7 +52,7 @@ from typing import TYPE_CHECKING, Annotated
 import numpy as np
 from numpy.typing import NDArray
 
-from .. import _geodesy, _planar, geodesy, robust
+from .. import _geodesy, _planar, _robust, geodesy
 from .._typing import Array, ArrayLike, Times
 from .._validate import (
     Check,
@@ -377,7 +377,7 @@ def _forward_fill(values: Array) -> Array:
     """Replace NaN by the last finite value (the first finite one before it)."""
     if not np.isfinite(values).any():
         return values
-    return robust.hold(values, leading="first", name="values", axis=-1)[0]
+    return _robust.hold(values, "first", "values", axis=-1)[0]
 
 
 PAPER_CONFIG = EkfConfig(Q_PAPER, R_PAPER)

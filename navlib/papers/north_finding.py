@@ -108,6 +108,7 @@ from numpy.typing import NDArray
 from scipy.special import ndtr
 
 from .. import _attitude, _earth, _plots, attitude, earth, robust
+from .._records import unchecked
 from .._typing import Angles, Array, ArrayLike, Dcm, Interval, Times, Vec3, Vec3Series
 from .._validate import (
     Check,
@@ -978,16 +979,16 @@ def stop_and_go(
         raise ValueError(f"headings: expected a 1-D array of >= 2 stops, got {psi.shape}")
     th, ro = pitch_roll(pitches, rolls, ("pitches", "rolls"), shape=psi.shape, of="headings: one per stop")
     ramp = 10.0
-    segments = [Segment(stop_duration, speed=0.0, pitch=th[0], roll=ro[0])]
+    segments = [unchecked(Segment, duration=stop_duration, speed=0.0, pitch=th[0], roll=ro[0])]
     stops = [(0.0, stop_duration)]
     t = stop_duration
     for k in range(1, psi.size):
         turn = float(_attitude.wrap_pi(psi[k] - psi[k - 1]))
         segments += [
-            Segment(ramp, speed=speed),
-            Segment(drive_duration - 2 * ramp, turn=turn),
-            Segment(ramp, speed=0.0, pitch=th[k], roll=ro[k]),
-            Segment(stop_duration),
+            unchecked(Segment, duration=ramp, speed=speed),
+            unchecked(Segment, duration=drive_duration - 2 * ramp, turn=turn),
+            unchecked(Segment, duration=ramp, speed=0.0, pitch=th[k], roll=ro[k]),
+            unchecked(Segment, duration=stop_duration),
         ]
         t += drive_duration
         stops.append((t, t + stop_duration))

@@ -84,6 +84,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .. import attitude
+from .._records import unchecked
 from .._typing import Array, ArrayLike, Times
 from .._validate import (
     Count,
@@ -150,16 +151,20 @@ def carpark_legs(
     """
     stops = positive(stops, "stops", shape=(None,), min_ndim=1)
     a, b = positive(side, "side", shape=(2,))
-    legs, k = [Leg(scalar(initial_stand, "initial_stand", positive=True))], 0
     corner = 3.0 * 2 / 3 * speed  # path length of a corner (m)
+    if min(a, b) <= corner:
+        raise ValueError(
+            f"side: expected sides longer than a corner's path ({corner:g} m at speed {speed:g} m/s), got {a:g} x {b:g} m"
+        )
+    legs, k = [unchecked(Leg, duration=scalar(initial_stand, "initial_stand", positive=True))], 0
     for _ in range(n_loops):
         for length in (a, b, a, b):
             for _ in range(2):
-                legs.append(Leg((length - corner) / 2 / speed, speed))
-                legs.append(Leg(float(stops[k % stops.size])))
+                legs.append(unchecked(Leg, duration=(length - corner) / 2 / speed, speed=speed))
+                legs.append(unchecked(Leg, duration=float(stops[k % stops.size])))
                 k += 1
-            legs.append(Leg(3.0, 2 / 3 * speed, turn=np.pi / 2))
-    legs.append(Leg(float(stops[k % stops.size])))
+            legs.append(unchecked(Leg, duration=3.0, speed=2 / 3 * speed, turn=np.pi / 2))
+    legs.append(unchecked(Leg, duration=float(stops[k % stops.size])))
     return legs
 
 
@@ -181,10 +186,15 @@ def floor_test_legs(
     >>> round(sum(leg.climb for leg in legs), 6), len(legs)           # down a floor and back up
     (0.0, 9)
     """
-    legs = [Leg(stand)]
+    legs = [unchecked(Leg, duration=stand)]
     for trip in range(2 * n_round_trips):
         climb = -floor_height if trip % 2 == 0 else floor_height
-        legs += [Leg(8 / 1.2, 1.2), Leg(stairs, 0.35, turn=np.pi, climb=climb), Leg(4 / 1.2, 1.2, turn=np.pi), Leg(stand)]
+        legs += [
+            unchecked(Leg, duration=8 / 1.2, speed=1.2),
+            unchecked(Leg, duration=stairs, speed=0.35, turn=np.pi, climb=climb),
+            unchecked(Leg, duration=4 / 1.2, speed=1.2, turn=np.pi),
+            unchecked(Leg, duration=stand),
+        ]
     return legs
 
 
