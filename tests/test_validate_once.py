@@ -45,7 +45,6 @@ VALIDATORS = {
 VALIDATE_FILE = _validate.__file__
 
 TWICE = {
-    "papers.gauss_kruger_ekf.ekf": ["t"],  # filter_grid, whose core builds public records
     # static_means (alignment) checks each window's samples again; its core needs public robust and earth names,
     # so it cannot live in a private core module.
     "papers.north_finding.stop_solutions": ["None"],

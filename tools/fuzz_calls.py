@@ -906,7 +906,8 @@ def table() -> dict:
             bad=(
                 Bad("t", "non_monotonic", **ekf3(t=np.array([0.0, 1.0, 0.5]))),
                 Bad("t", "repeated", **ekf3(t=np.array([0.0, 0.5, 0.5]))),
-                Bad("gps", "length", **ekf3(gps=gps3[:2])),
+                Bad("t", "length", **ekf3(t=np.arange(4.0))),  # refused by filter_grid, under the user's name
+                Bad("gps", "one_column", **ekf3(gps=gps3[:, :1])),
                 Bad("gps", "all_nan", **ekf3(gps=np.full((3, 2), np.nan))),
                 Bad("gps", "inf_lat", **ekf3(gps=gps3 + [[np.inf, 0.0]])),
                 Bad("lat", "gps_lat2rad", **ekf3(gps=np.full((3, 2), [2.0, 2.1]))),
