@@ -11,7 +11,8 @@ One implementation of each concept, imported by every paper companion and notebo
 * :func:`tilt_heading` -- both at once from one accelerometer + magnetometer reading,
   ``hpr``; :func:`initial_attitude` returns it as a quaternion.
 * gyrocompassing of a static IMU: :func:`static_means` (robust window means with a
-  :class:`StaticWindow` report), :func:`triad` (analytic coarse alignment from specific force
+  :class:`StaticWindow` report; :func:`static_windows` for the stops of one record, each
+  tested as :class:`StaticTests` says), :func:`triad` (analytic coarse alignment from specific force
   and Earth rate) and :func:`triad_heading`, :func:`four_position_heading` (a single gyro on a
   turntable); :func:`static_gyro_bias` (a static record's mean rate minus Earth rate).
 
@@ -28,21 +29,26 @@ import numpy as np
 from numpy.typing import NDArray
 
 from . import _attitude, _kernels, attitude, earth
-from ._typing import Angles, Array, ArrayLike, Dcm, Vec3, Vec3Series
+from ._typing import Angles, Array, ArrayLike, Dcm, Times, Vec3, Vec3Series
 from ._validate import (
     MAX_GYROCOMPASS_LAT_DEG,
     Flag,
     Fraction,
+    Is,
     Positive,
     as_array,
     boundary,
     broadcast,
+    fields_checked,
     flag,
     imu_samples,
+    indices,
     kernel_array,
     latitude,
     pitch_roll,
+    same_shape,
     scalar,
+    time_axis,
 )
 from .imu import ImuSamples, unpack
 from .robust import FaultReport, longest_repeat
@@ -55,7 +61,9 @@ __all__ = [
     "MAX_LAT_DEG",
     "gyrocompass_latitude",
     "StaticWindow",
+    "StaticTests",
     "static_means",
+    "static_windows",
     "triad",
     "triad_heading",
     "four_position_heading",
@@ -257,6 +265,47 @@ class StaticWindow:
     faults: FaultReport
 
 
+@dataclass(frozen=True)
+class StaticTests:
+    """The tests a static window must pass to be averaged, validated on construction: :func:`static_windows` takes
+    them as one record, :func:`static_means` as keywords (the same defaults). A refusal is counted in the window's
+    :class:`StaticWindow` ``faults``.
+
+    Attributes
+    ----------
+    accel_tol : float
+        Largest accepted deviation (m/s^2) of the mean specific-force norm from normal gravity, and of the two
+        half-window means from each other. Larger deviations mean the robot was not static (refused). Default 0.2.
+    min_fraction : float
+        Smallest fraction of the window, in (0, 1], that must remain per sensor. Default 0.5.
+    outlier_k : float, optional
+        MAD outlier threshold (e.g. 6); None (default): no outlier rejection.
+    full_scale_gyro, full_scale_accel : float, optional
+        Device ranges (rad/s, m/s^2); None (default): no saturation check.
+    stuck_fraction : float, optional
+        In (0, 1]: refuse a window whose longest run of one repeated reading, on any axis, covers this fraction of
+        the valid samples (0.5: most of the stop; :func:`navlib.papers.north_finding.stop_solutions` uses 0.5);
+        None (default): no check.
+
+    Examples
+    --------
+    >>> from navlib import alignment
+    >>> tests = alignment.StaticTests(outlier_k=6.0, stuck_fraction=0.5)
+    >>> tests.accel_tol, tests.min_fraction, tests.outlier_k
+    (0.2, 0.5, 6.0)
+    """
+
+    accel_tol: Positive = 0.2
+    min_fraction: Fraction = 0.5
+    outlier_k: Positive | None = None
+    full_scale_gyro: Positive | None = None
+    full_scale_accel: Positive | None = None
+    stuck_fraction: Fraction | None = None
+
+    def __post_init__(self) -> None:
+        fields_checked(self)
+
+
 def _outliers(x: Array, valid: NDArray[np.bool_], k: float) -> NDArray[np.bool_]:
     """Samples more than ``k`` robust sigmas from the median of the valid samples (any component).
 
@@ -347,21 +396,8 @@ def static_means(
         Latitude (rad), used for the expected gravity (required).
     h : float
         Height (m).
-    accel_tol : float
-        Largest accepted deviation (m/s^2) of the mean specific-force norm
-        from normal gravity, and of the two half-window means from each
-        other. Larger deviations mean the robot was not static (refused).
-    min_fraction : float
-        Smallest fraction of the window, in (0, 1], that must remain per sensor.
-    outlier_k : float, optional
-        MAD outlier threshold (e.g. 6); None: no outlier rejection.
-    full_scale_gyro, full_scale_accel : float, optional
-        Device ranges; None: no saturation check.
-    stuck_fraction : float, optional
-        In (0, 1]: refuse a window whose longest run of one repeated reading,
-        on any axis, covers this fraction of the valid samples (0.5: most of
-        the stop; :func:`navlib.papers.north_finding.stop_solutions` uses
-        0.5); None (default): no check.
+    accel_tol, min_fraction, outlier_k, full_scale_gyro, full_scale_accel, stuck_fraction : float or None
+        The window's tests: the fields of :class:`StaticTests`, with the same defaults.
     strict : bool
         Raise ValueError for a refused window (default); ``False`` returns NaN
         means with its ``faults`` instead.
@@ -388,6 +424,93 @@ def static_means(
     >>> int(win.n_used_accel), int(win.faults["accel", "nan"]), np.round(win.f_mean, 4)
     (99, 1, array([ 0.    , -0.    ,  9.7967]))
     """
+    w, f, g, fs_g, fs_a = _static_record(w_ib_b, f_b, lat, h, full_scale_gyro, full_scale_accel)
+    if w.shape[-2] < 2:
+        raise ValueError(f"w_ib_b: expected a static window of at least 2 samples, got {w.shape[-2]}")
+    return _window_means(w, f, g, accel_tol, min_fraction, outlier_k, fs_g, fs_a, stuck_fraction, strict)
+
+
+@boundary
+def static_windows(
+    w_ib_b: Vec3Series | ImuSamples,
+    f_b: Vec3Series | None = None,
+    windows: ArrayLike | None = None,
+    lat: ArrayLike | None = None,
+    h: ArrayLike = 0.0,
+    tests: Is[StaticTests] | None = None,
+    *,
+    time: Times | None = None,
+    strict: Flag = True,
+) -> tuple[StaticWindow, ...]:
+    """Average several static windows (stops) of one record, each as :func:`static_means` averages one.
+
+    For multi-position alignment: the record, the site and the tests are checked once, then each window is
+    averaged and tested on its own (faults and refusals as in :func:`static_means`).
+
+    Parameters
+    ----------
+    w_ib_b, f_b : array_like, shape (..., N, 3)
+        Gyro (rad/s) and accelerometer (m/s^2) samples of the whole record; NaN marks dropouts. An
+        :class:`navlib.imu.ImuSamples` as ``w_ib_b`` supplies ``f_b`` and the device ranges (not its ``dt``:
+        windows are sample indices, or times with ``time``).
+    windows : array_like, shape (S, 2)
+        ``[start, end)`` of the windows, each of at least 2 samples: integer sample indices, or times (s) when
+        ``time`` is given.
+    lat, h : float
+        Latitude (rad) and height (m) of the site, as in :func:`static_means`.
+    tests : StaticTests, optional
+        What each window must pass; default ``StaticTests()``.
+    time : array_like, shape (N,), optional
+        Strictly increasing sample times (s), e.g. from :func:`navlib.timing.sanitize` (which removes
+        duplicated and out-of-order timestamps); the windows are then cut by time, so dropped samples do not
+        shift them.
+    strict : bool
+        Raise ValueError for the first refused window (default); ``False`` returns NaN means for it instead.
+
+    Returns
+    -------
+    tuple of StaticWindow
+        One per window, in the order of ``windows``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navlib import alignment, trajectory
+    >>> traj = trajectory.static(2.0, 0.01, [0.6, 0.2, 50.0], [0.3, 0.0, 0.0])
+    >>> w_ib_b, f_b = trajectory.ideal_imu(traj)
+    >>> f_b[140:] = np.nan                                        # the second stop's accelerometer drops out
+    >>> first, second = alignment.static_windows(w_ib_b, f_b, [[0, 100], [100, 200]], lat=0.6, h=50.0, strict=False)
+    >>> np.round(first.f_mean, 4), int(second.n_used_accel), int(second.faults["window", "refused"])
+    (array([ 0.    , -0.    ,  9.7967]), 40, 1)
+    """
+    tests = StaticTests() if tests is None else tests
+    w, f, g, fs_g, fs_a = _static_record(w_ib_b, f_b, lat, h, tests.full_scale_gyro, tests.full_scale_accel)
+    return tuple(
+        _window_means(
+            w[..., a:b, :],
+            f[..., a:b, :],
+            g,
+            tests.accel_tol,
+            tests.min_fraction,
+            tests.outlier_k,
+            fs_g,
+            fs_a,
+            tests.stuck_fraction,
+            strict,
+        )
+        for a, b in _window_indices(windows, time, w.shape[-2])
+    )
+
+
+def _static_record(
+    w_ib_b: Vec3Series | ImuSamples,
+    f_b: Vec3Series | None,
+    lat: ArrayLike | None,
+    h: ArrayLike,
+    full_scale_gyro: float | None,
+    full_scale_accel: float | None,
+) -> tuple[Array, Array, Array, float, float]:
+    """The checked samples of a static record, the normal gravity at ``lat``, ``h`` and the device ranges (inf: none)."""
     if isinstance(w_ib_b, ImuSamples):  # samples checked by the record; no dt here: unpack's is left None and unused
         w, f, _, full_scale_gyro, full_scale_accel = unpack(w_ib_b, f_b, None, full_scale_gyro, full_scale_accel)
     elif f_b is None:
@@ -396,16 +519,50 @@ def static_means(
         w, f = imu_samples(w_ib_b, f_b)
     if lat is None:
         raise ValueError("lat: required")
-    n = w.shape[-2]
-    if n < 2:
-        raise ValueError(f"w_ib_b: expected a static window of at least 2 samples, got {n}")
-    fs_g = np.inf if full_scale_gyro is None else full_scale_gyro
-    fs_a = np.inf if full_scale_accel is None else full_scale_accel
     g = earth.gravity(lat, h)  # checks lat and h (an empty h fails the shape check below)
     _not_polar(np.asarray(lat, dtype=float))
     lead = w.shape[:-2]
     if np.ndim(g) > len(lead) or any(a not in (1, b) for a, b in zip(np.shape(g)[::-1], lead[::-1], strict=False)):
         raise ValueError(f"lat, h: expected one value or one per trial (trial shape {lead}), got shape {np.shape(g)}")
+    fs_g = np.inf if full_scale_gyro is None else full_scale_gyro
+    fs_a = np.inf if full_scale_accel is None else full_scale_accel
+    return w, f, g, fs_g, fs_a
+
+
+def _window_indices(windows: object, time: object, n: int) -> NDArray[np.intp]:
+    """``windows`` ([start, end) sample indices, or times with ``time``) as (S, 2) sample indices into ``n`` samples."""
+    if time is not None:
+        t = same_shape(time_axis(time, "time"), "time", (n,), of="w_ib_b")
+        tw = as_array(windows, "windows", nonempty=True)
+        if tw.ndim != 2 or tw.shape[1] != 2 or np.any(tw[:, 1] <= tw[:, 0]):
+            raise ValueError(f"windows: expected (S, 2) [start, end) times in s with end > start, got {tw.tolist()}")
+        win = np.searchsorted(t, tw, side="left")
+    else:
+        win = indices(windows, "windows")
+        if win.ndim != 2 or win.shape[1] != 2 or not np.issubdtype(win.dtype, np.integer):
+            raise ValueError(f"windows: expected (S, 2) integer [start, end) sample indices, got {win.tolist()}")
+    if np.any(win[:, 0] < 0) or np.any(win[:, 1] > n) or np.any(win[:, 1] - win[:, 0] < 2):
+        raise ValueError(
+            f"windows: expected (S, 2) [start, end) sample indices within {n} samples, each >= 2 long, got {win.tolist()}"
+        )
+    return win
+
+
+def _window_means(
+    w: Array,
+    f: Array,
+    g: Array,
+    accel_tol: float,
+    min_fraction: float,
+    outlier_k: float | None,
+    fs_g: float,
+    fs_a: float,
+    stuck_fraction: float | None,
+    strict: bool,
+) -> StaticWindow:
+    """:func:`static_means` of checked samples (..., N, 3), N >= 2, with the expected gravity ``g`` and device
+    ranges ``fs_g``, ``fs_a`` (inf: none)."""
+    n = w.shape[-2]
     need = max(2, int(np.ceil(min_fraction * n)))
     out = {}
     for name, x, fs in (("gyro", w, fs_g), ("accel", f, fs_a)):

@@ -8,7 +8,8 @@ hands to a public function of another module unchecked, that function checks. A 
 public function (or record's field) it checks it for; an argument name checked for two functions, or for a function
 and a record's field, is checked twice. Fields of two records that share a name are two arguments
 (``Gates.zupt``, a gate, beside ``MeasurementNoise.zupt``, a sigma). A record checks its fields when the user builds
-it; a builder that has checked its arguments builds it with :func:`navlib._records.unchecked`.
+it; a builder that has checked its arguments builds it with :func:`navlib._records.unchecked`. No registry call
+checks an argument twice (no exceptions are listed).
 """
 
 from __future__ import annotations
@@ -43,14 +44,6 @@ VALIDATORS = {
     and name not in ("boundary", "fields_checked", "kernel_array", "refuse_turn")
 }
 VALIDATE_FILE = _validate.__file__
-
-TWICE = {
-    "papers.gauss_kruger_ekf.ekf": ["t"],  # filter_grid, whose core builds public records
-    # static_means (alignment) checks each window's samples again; its core needs public robust and earth names,
-    # so it cannot live in a private core module.
-    "papers.north_finding.stop_solutions": ["None"],
-}
-"""Arguments still checked twice on one registry call, and why: this list may shrink, never grow."""
 
 
 def owner(frame) -> str:
@@ -120,7 +113,7 @@ def test_each_argument_is_checked_once(key):
     func(**registry_call(key))  # a first call checks @boundary defaults once; the second is the one counted
     twice = {name: sorted(owners) for name, owners in checks_of(func, registry_call(key)).items() if checked_twice(owners)}
     plt.close("all")
-    assert set(twice) <= set(TWICE.get(key, ())), f"{key}: arguments checked by more than one function: {twice}"
+    assert not twice, f"{key}: arguments checked by more than one function: {twice}"
 
 
 @pytest.mark.parametrize(
@@ -187,3 +180,11 @@ def test_the_hook_sees_a_record_built_from_a_checked_argument():
     assert built == {"build", "Fix.__post_init__"} and checked_twice(built)
     both = checks_of(lambda lat: (Fix(lat), Site(lat)), {"lat": np.float64(0.5)})["lat"]
     assert both == {"Fix.__post_init__", "Site.__post_init__"} and not checked_twice(both)
+
+
+def test_stop_windows_cut_by_time_are_checked_once():
+    """The registry call cuts stops by sample index; cut by ``time``, each argument is still checked by one function."""
+    kwargs = registry_call("papers.north_finding.stop_solutions")
+    kwargs.update(time=0.01 * np.arange(kwargs["w_ib_b"].shape[-2]), windows=np.array([[0.0, 0.05], [0.05, 0.1]]))
+    seen = checks_of(north_finding.stop_solutions, kwargs)
+    assert seen["time"] == {"static_windows"} and not [name for name, owners in seen.items() if checked_twice(owners)]

@@ -367,7 +367,7 @@ _SENSORS = r"w_ib_b|f_b|m_b"
 _FILTERS = (
     r"filters\.(mahony\.mahony|quaternion_kf\.quaternion_kf|inertial_lowpass\.inertial_lowpass|zupt_ins\.run_filter|"
     r"zupt\.detect_static)|"
-    r"alignment\.static_means|papers\.north_finding\.(ins_heading_change|stop_solutions)|pdr\.pdr_headings"
+    r"alignment\.static_(means|windows)|papers\.north_finding\.(ins_heading_change|stop_solutions)|pdr\.pdr_headings"
 )
 _HEADINGS = r"heading\w*"
 BY_DESIGN: list[tuple[str, str, str, str, str]] = [

@@ -26,6 +26,7 @@ import numpy as np
 import pandas as pd
 
 from navlib import (
+    alignment,
     analysis,
     attitude,
     earth,
@@ -271,6 +272,20 @@ def table() -> dict:
         "alignment.gyrocompass_latitude": Call(dict(lat=0.6), elementwise=("*",)),
         "alignment.StaticWindow": Skip("a result record, built by static_means"),
         "alignment.static_means": Call(dict(w_ib_b=static_w, f_b=static_f, lat=0.6, h=50.0, accel_tol=0.2)),
+        "alignment.StaticTests": Call(
+            dict(accel_tol=0.2, min_fraction=0.5, outlier_k=6.0, full_scale_gyro=8.0, full_scale_accel=160.0, stuck_fraction=0.5)
+        ),
+        "alignment.static_windows": Call(
+            dict(w_ib_b=W, f_b=F, windows=np.array([[0, 5], [5, 10]]), lat=0.6, h=50.0, tests=alignment.StaticTests()),
+            bad=(
+                Bad("windows", "too_short", windows=np.array([[0, 1]])),
+                Bad("windows", "beyond_record", windows=np.array([[0, 5], [5, 11]])),
+                Bad("windows", "fractional", windows=np.array([[0.0, 5.5]])),
+                Bad("time", "length", time=0.01 * np.arange(9), windows=np.array([[0.0, 0.05]])),
+                Bad("windows", "reversed_times", time=0.01 * np.arange(10), windows=np.array([[0.05, 0.0]])),
+                Bad("tests", "dict", tests={"accel_tol": 0.2}),
+            ),
+        ),
         "alignment.triad": Call(dict(f_b=static_f[0], w_ib_b=static_w[0], lat=0.6, orthonormal=True), elementwise=("lat",)),
         "alignment.triad_heading": Call(dict(C_bn=C)),
         "alignment.four_position_heading": Call(dict(w_y=np.array([2e-5, 3e-5, -1e-5, -3e-5]))),
@@ -906,7 +921,8 @@ def table() -> dict:
             bad=(
                 Bad("t", "non_monotonic", **ekf3(t=np.array([0.0, 1.0, 0.5]))),
                 Bad("t", "repeated", **ekf3(t=np.array([0.0, 0.5, 0.5]))),
-                Bad("gps", "length", **ekf3(gps=gps3[:2])),
+                Bad("t", "length", **ekf3(t=np.arange(4.0))),  # refused by filter_grid, under the user's name
+                Bad("gps", "one_column", **ekf3(gps=gps3[:, :1])),
                 Bad("gps", "all_nan", **ekf3(gps=np.full((3, 2), np.nan))),
                 Bad("gps", "inf_lat", **ekf3(gps=gps3 + [[np.inf, 0.0]])),
                 Bad("lat", "gps_lat2rad", **ekf3(gps=np.full((3, 2), [2.0, 2.1]))),

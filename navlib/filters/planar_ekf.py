@@ -762,7 +762,7 @@ def filter_grid(t: Times, z: ArrayLike, x0: ArrayLike, config: Is[EkfConfig]) ->
     Parameters
     ----------
     t : array_like, shape (N,)
-        Strictly increasing times (s); step ``T = t[k] - t[k-1]``.
+        Strictly increasing times (s), one per row of ``z``; step ``T = t[k] - t[k-1]``.
     z : array_like, shape (N, 5)
         ``[x_GPS, y_GPS, theta, v, omega]`` per epoch; NaN components are
         missing (the row of ``t[0]`` is not used: ``x0`` holds there).
@@ -786,8 +786,8 @@ def filter_grid(t: Times, z: ArrayLike, x0: ArrayLike, config: Is[EkfConfig]) ->
     >>> np.round(res.x[:, 0], 3), int(res.faults["gnss", "outlier"])   # the jump is gated out
     (array([0. , 0.5, 1. , 1.5, 2. ]), 1)
     """
-    t = time_axis(t, "t")
-    z = as_array(z, "z", allow_nan=True, shape=(t.size, 5))
+    z = as_array(z, "z", allow_nan=True, shape=(None, 5))
+    t = same_shape(time_axis(t, "t"), "t", (z.shape[0],), of="z")  # z first: ekf hands on its user's t unchecked
     x0 = as_array(x0, "x0", shape=(5,))
     epochs = _screen_epochs(t, z, config.limits)
     X, P, nis, status, rejected, reacquired = _ekf_kernel(

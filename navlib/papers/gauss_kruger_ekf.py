@@ -74,7 +74,6 @@ from .._validate import (
     latitude,
     longitude,
     scalar,
-    time_axis,
     zone_offset,
 )
 from ..earth import CGCS2000, Ellipsoid, EllipsoidArg
@@ -412,10 +411,10 @@ def ekf(
     Parameters
     ----------
     t : array_like, shape (N,)
-        Strictly increasing times (s).
+        Strictly increasing times (s), one per sample of ``sensors``.
     sensors : Sensors
         The measurements (:class:`Sensors`: GPS fixes, IMU heading from true north, speed, yaw rate; NaN:
-        missing), angles in rad, or in deg (deg/s) with ``deg=True``.
+        missing; N samples each, as many as ``gps`` has rows), angles in rad, or in deg (deg/s) with ``deg=True``.
     x0 : array_like, shape (5,)
         Initial state in the grid relative to ``origin`` (heading in rad).
     origin : array_like, shape (2,), optional
@@ -451,12 +450,11 @@ def ekf(
     >>> rms(res.x[:, :2] - truth[:, :2]), rms(res.z[:, :2] - truth[:, :2])   # filtered vs raw GPS (m)
     (1.07, 2.89)
     """
-    t = time_axis(t, "t")
-    n = t.size
-    gps = as_array(sensors.gps, "gps", allow_nan=True, shape=(n, 2))
+    gps = as_array(sensors.gps, "gps", allow_nan=True, shape=(None, 2))  # t: checked by filter_grid
+    n = gps.shape[0]
     imu = []
     for name in ("heading", "speed", "yaw_rate"):
-        arr = as_array(getattr(sensors, name), name, allow_nan=True, shape=(n,))
+        arr = as_array(getattr(sensors, name), name, allow_nan=True, shape=(n,), of="gps")
         imu.append(np.deg2rad(arr) if deg and name != "speed" else arr)
     heading, speed, yaw_rate = imu
     fix = np.all(np.isfinite(gps), axis=1)

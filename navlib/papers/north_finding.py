@@ -125,19 +125,15 @@ from .._validate import (
     broadcast,
     broadcast_to,
     flag,
-    imu_samples,
     in_range,
-    indices,
     integer,
     pitch_roll,
     positive,
-    same_shape,
     sample_intervals,
     scalar,
     small_turns,
-    time_axis,
 )
-from ..alignment import StaticWindow, gyrocompass_latitude, level, static_means, triad_heading
+from ..alignment import StaticTests, StaticWindow, gyrocompass_latitude, level, static_windows, triad_heading
 from ..imu import ImuSamples, unpack
 from ..trajectory import Segment
 
@@ -1048,7 +1044,8 @@ def stop_solutions(
     strict: bool = True,
     **window_options: Any,
 ) -> StopSolutions:
-    """Average each stop window and solve it with TRIAD and the single-axis method.
+    """Average each stop window (:func:`navlib.alignment.static_windows`) and solve it with TRIAD and the
+    single-axis method.
 
     Parameters
     ----------
@@ -1069,10 +1066,11 @@ def stop_solutions(
         shift them.
     strict : bool
         Raise for a refused stop (default) or return NaN for it (see
-        :func:`static_means`).
+        :func:`navlib.alignment.static_means`).
     **window_options
         ``accel_tol``, ``min_fraction``, ``outlier_k``, ``full_scale_gyro``,
-        ``full_scale_accel``, ``stuck_fraction`` for :func:`static_means`.
+        ``full_scale_accel``, ``stuck_fraction``: the tests of each stop
+        (:class:`navlib.alignment.StaticTests`).
         ``stuck_fraction`` defaults to 0.5 here: a stop in which a gyro or
         accelerometer axis repeats one reading over half of its valid samples
         is refused (``("gyro", "stuck")``; a frozen gyro otherwise passes with a
@@ -1092,37 +1090,14 @@ def stop_solutions(
     >>> np.round(np.rad2deg(sol.candidates[0]), 4), np.round(np.rad2deg(sol.triad), 4)
     (array([ 60., 300.]), array([60.]))
     """
-    window_options.setdefault("stuck_fraction", 0.5)
-    if isinstance(w_ib_b, ImuSamples):
-        fs_gyro, fs_accel = window_options.pop("full_scale_gyro", None), window_options.pop("full_scale_accel", None)
-        w, f, _, fs_gyro, fs_accel = unpack(w_ib_b, f_b, None, fs_gyro, fs_accel)  # samples checked by the record
-        window_options.update(full_scale_gyro=fs_gyro, full_scale_accel=fs_accel)
-    else:
-        w, f = imu_samples(w_ib_b, f_b)
-    n = w.shape[-2]
-    if time is not None:
-        t = same_shape(time_axis(time, "time"), "time", (n,), of="w_ib_b")
-        tw = as_array(windows, "windows", nonempty=True)
-        if tw.ndim != 2 or tw.shape[1] != 2 or np.any(tw[:, 1] <= tw[:, 0]):
-            raise ValueError(f"windows: expected (S, 2) [start, end) times in s with end > start, got {tw.tolist()}")
-        win = np.searchsorted(t, tw, side="left")
-    else:
-        win = indices(windows, "windows")
-        if win.ndim != 2 or win.shape[1] != 2 or not np.issubdtype(win.dtype, np.integer):
-            raise ValueError(f"windows: expected (S, 2) integer [start, end) sample indices, got {win.tolist()}")
-    if np.any(win[:, 0] < 0) or np.any(win[:, 1] > n) or np.any(win[:, 1] - win[:, 0] < 2):
-        raise ValueError(
-            f"windows: expected (S, 2) [start, end) sample indices within {n} samples, each >= 2 long, got {win.tolist()}"
-        )
-    if lat is None:  # as static_means says
-        raise ValueError("lat: required")
-    stats = tuple(static_means(w[..., a:b, :], f[..., a:b, :], lat, h, strict=strict, **window_options) for a, b in win)
+    tests = StaticTests(**{"stuck_fraction": 0.5, **window_options})
+    stats = static_windows(w_ib_b, f_b, windows, lat, h, tests, time=time, strict=strict)
     w_mean = np.stack([m.w_mean for m in stats], -2)
     f_mean = np.stack([m.f_mean for m in stats], -2)
     ok = np.all(np.isfinite(f_mean), -1)
     f_safe = np.where(ok[..., None], f_mean, [0.0, 0.0, 9.8])  # refused stops: solved on a dummy, set NaN
     w_safe = np.where(ok[..., None], w_mean, 1e-5)
-    phi, height = np.asarray(lat, dtype=float), np.asarray(h, dtype=float)  # checked by static_means
+    phi, height = np.asarray(lat, dtype=float), np.asarray(h, dtype=float)  # checked by static_windows
     cand = _candidates(w_safe[..., 1], f_safe, phi, height)
     heading = triad_heading(attitude.orthonormalize(_attitude.triad(f_safe, w_safe, phi, earth.WGS84)))
     pair = np.where(ok[..., None], cand.pair, np.nan)
