@@ -72,6 +72,19 @@ def test_errors_of_a_perfect_and_a_turned_estimate():
     assert (kept.total, kept.heading, kept.inclination) == pytest.approx((0.3, 0.3, 0.0), abs=1e-7)
 
 
+def test_error_rotation_rounds_as_the_full_quaternion_product():
+    """orientation_errors forms only the components it needs (the norms summed in order, the product's w and z):
+    bit for bit what np.linalg.norm and quat_mult give, so its results do not move."""
+    from navlib import _attitude
+
+    rng = np.random.default_rng(4)
+    p, q = rng.standard_normal((2, 5000, 4)) * np.exp(rng.uniform(-3, 3, (2, 5000, 1)))
+    assert np.array_equal(analysis._row_norms(p), np.linalg.norm(p, axis=1))
+    e = _attitude.quat_mult(p, q)
+    w, z = analysis._scalar_and_up(p, q)
+    assert np.array_equal(w, e[:, 0]) and np.array_equal(z, e[:, 3])
+
+
 def test_inclination_is_the_angle_between_up_axes():
     rng = np.random.default_rng(2)
     q_ref = _random_q(rng, 400)
