@@ -890,6 +890,7 @@ def _running_kernel(r, V, lam, max_cond):
     T, K = r.shape[0], r.shape[1]
     out = np.full((T, K, 3), np.nan)
     skipped = 0
+    a, b, ipiv = np.empty((3, 3)).T, np.empty(3), np.empty(3, dtype=np.int32)  # np.linalg.solve's work, by hand
     for t in range(T):
         A = np.zeros((3, 3))
         y = np.zeros(3)
@@ -904,8 +905,12 @@ def _running_kernel(r, V, lam, max_cond):
                 skipped += 1
             ev = np.linalg.eigvalsh(A)
             if ev[0] > 0 and ev[2] / ev[0] < max_cond * max_cond:
-                b = np.linalg.solve(A, y)
                 for i in range(3):  # element by element: an array assignment compiles numba's shape messages
+                    b[i] = y[i]
+                    for j in range(3):
+                        a[i, j] = A[i, j]
+                _kernels.lu_solve_into(a, b, ipiv)
+                for i in range(3):
                     out[t, k, i] = b[i]
     return out, skipped
 
