@@ -426,13 +426,20 @@ COLD_MARK = "cold-cache"
 
 def compilation_expected(build: Path, summary: dict, root: Path) -> bool:
     """Whether this run's notebooks will compile kernels: no earlier run, an earlier ``--cold`` one (its kernels went
-    to a temporary cache), or navlib edited since it. An earlier run that compiled left its kernels in numba's cache:
-    a warm run skips the warm-up (two processes, ~3 s of CPU)."""
+    to a temporary cache), numba's cache emptied since (:func:`kernels_cached`) or navlib edited since it. An earlier
+    run that compiled left its kernels in numba's cache: a warm run skips the warm-up (two processes, ~3 s of CPU)."""
     summary_file = build / "summary.json"
-    if not summary or (build / COLD_MARK).is_file():
+    if not summary or (build / COLD_MARK).is_file() or not kernels_cached(root):
         return True
     since = summary_file.stat().st_mtime
     return any(f.stat().st_mtime > since for f in (root / "navlib").rglob("*.py"))
+
+
+def kernels_cached(root: Path) -> bool:
+    """Whether numba's cache holds compiled navlib kernels: its index files in navlib's ``__pycache__`` folders, or
+    under ``NUMBA_CACHE_DIR`` where that moves the cache."""
+    cache = os.environ.get("NUMBA_CACHE_DIR")
+    return next((Path(cache) if cache else root / "navlib").rglob("*.nbi"), None) is not None
 
 
 TYPICAL_SECONDS = {
