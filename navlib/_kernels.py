@@ -30,10 +30,10 @@ import time
 from fractions import Fraction
 
 import numpy as np
-from llvmlite import binding, ir
+from llvmlite import ir
 from numba import njit, types
 from numba.core import event
-from numba.extending import get_cython_function_address, intrinsic, overload
+from numba.extending import intrinsic, overload
 
 
 class CompileLog(event.Listener):
@@ -319,41 +319,6 @@ def spd_solve_into(S, B):
         for c in range(n):
             B[i, c] *= S[i, i]
     return True
-
-
-def lu_solve_into(a, b, ipiv):
-    """``b = A^-1 b`` in place by LAPACK's dgesv (LU with partial pivoting): numba's ``np.linalg.solve(A, b)`` for a
-    vector ``b``, the same routine on the same arguments (the same bits), without its generic implementation, whose
-    slice assignment compiles numba's shape messages into the caller (2 s of a cold start).
-
-    ``a`` (n, n): A in Fortran order (``np.empty((n, n)).T`` filled), ``b`` (n,); ``a`` and ``ipiv`` (n,) int32 are
-    work (the LU factors and pivots). Raises ``LinAlgError`` if A is exactly singular, as ``np.linalg.solve`` does.
-    Uncompiled (``NUMBA_DISABLE_JIT=1``) it calls the routine through scipy's wrapper.
-    """
-    from scipy.linalg import lapack  # noqa: PLC0415 -- uncompiled runs alone need the wrapper
-
-    _, _, b[:], info = lapack.dgesv(a, b)
-    if info != 0:
-        raise np.linalg.LinAlgError("Matrix is singular to machine precision.")
-
-
-# dgesv from scipy.linalg.cython_lapack, where numba's np.linalg.solve takes it too. Called by name: a cached caller
-# holds the symbol, which this import binds in every process (a ctypes pointer would make callers uncachable).
-binding.add_symbol("navlib_dgesv", get_cython_function_address("scipy.linalg.cython_lapack", "dgesv"))
-_dgesv = types.ExternalFunction("navlib_dgesv", types.void(*(types.voidptr,) * 8))
-
-
-@overload(lu_solve_into)
-def _lu_solve_into_compiled(a, b, ipiv):
-    def impl(a, b, ipiv):
-        dims = np.empty(3, dtype=np.int32)  # Fortran's integers by reference
-        dims[0], dims[1], dims[2] = a.shape[0], 1, 0
-        n, nrhs, info = dims.ctypes, dims[1:].ctypes, dims[2:].ctypes  # n is also both leading dimensions
-        _dgesv(n, nrhs, a.ctypes, n, ipiv.ctypes, b.ctypes, n, info)  # type: ignore[call-overload]  # compiled only
-        if dims[2] != 0:
-            raise np.linalg.LinAlgError("Matrix is singular to machine precision.")
-
-    return impl
 
 
 @njit(cache=True)

@@ -234,17 +234,15 @@ def test_error_statistics_match_numpy():
 
 
 def test_the_running_least_squares_solves_with_lapacks_dgesv_bit_for_bit():
-    """_kernels.lu_solve_into, compiled (dgesv called by its address), gives the bits of the same routine through
-    scipy's wrapper (the one numba's np.linalg.solve calls), row exchanges included; a singular A raises."""
+    """Its solver compiled (dgesv called by its symbol) gives the bits of the same routine through scipy's wrapper
+    (the one numba's np.linalg.solve calls), row exchanges included; a singular A raises."""
     from numba import njit
     from scipy.linalg import lapack
-
-    from navlib import _kernels
 
     @njit
     def solve(A, y):
         a, b = np.asfortranarray(A), y.copy()
-        _kernels.lu_solve_into(a, b, np.empty(A.shape[0], dtype=np.int32))
+        gb._lu_solve_into(a, b, np.empty(A.shape[0], dtype=np.int32))
         return b
 
     rng = np.random.default_rng(3)
