@@ -22,10 +22,10 @@ run's times in ``build/summary.json`` less their numba compilation (:func:`expec
 fresh clone; the kernels log each compilation to ``build/<stem>.compile.log``, see ``navlib._kernels.CompileLog``); each is
 reported with its wall time and its kernel's CPU time and peak memory (user + system time and resident set
 size, read from /proc while the kernel runs; "n/a" where there is none; CPU time, unlike wall time, does not
-grow on a busy machine). When the notebooks will compile kernels (a fresh clone, ``--cold``, navlib edited), a
-warm-up goes first (:func:`warm_up`, ``python -m navlib.warmup``, its two parts at once on two cores): every
-kernel the notebooks call is compiled once, and the notebooks load them from numba's cache; a paper's further notebooks
-(``05_pedestrian_ins_floors``) then start when its first one is done, for the same reason. Each kernel is a new
+grow on a busy machine). When the notebooks will compile kernels (a fresh clone, ``--cold``, navlib edited, numba's
+cache emptied), a warm-up goes first (:func:`warm_up`, ``python -m navlib.warmup``, its two parts at once on two
+cores): every kernel the notebooks call is compiled once, and the notebooks load them from numba's cache; a paper's
+further notebooks (``05_pedestrian_ins_floors``) then start when its first one is done, for the same reason. Each kernel is a new
 process; on Linux it is forked from a server that has imported ipykernel and the scientific stack once
 (``tools/kernel_fork.py``; ~1.5 s of CPU less per notebook than a kernel started from nothing). A notebook that raises is
 reported and the run goes on with the others; the exit status is non-zero if any notebook (or the warm-up)
