@@ -25,8 +25,8 @@ __all__ = ["warmup"]
 def _calls() -> dict[str, Callable[[], object]]:
     """One small call of each kernel the notebooks use, in the forms they call it (with and without optional
     sensors), grouped by :data:`PARTS`."""
-    from . import analysis, euler, sensors, strapdown
-    from .filters import heading_fusion, inertial_lowpass, mahony, observations, planar_ekf, quaternion_kf, zupt_ins
+    from . import alignment, analysis, euler, geodesy, robust, sensors, strapdown, trajectory
+    from .filters import heading_fusion, inertial_lowpass, mahony, observations, planar_ekf, quaternion_kf, zupt, zupt_ins
     from .imu import ImuSamples
 
     n = 200
@@ -39,6 +39,7 @@ def _calls() -> dict[str, Callable[[], object]]:
         truth = planar_ekf.propagate(x0, 0.5, n - 1)
         config = planar_ekf.EkfConfig(Q=np.full(5, 1e-4), R=np.full(5, 0.01), gate=9.0)
         planar_ekf.dead_reckoning(t, truth[:, 3], truth[:, 4], x0)
+        planar_ekf.dead_reckoning(t, truth[:, 3].copy(), truth[:, 4].copy(), x0)  # columns and contiguous inputs
         return planar_ekf.filter_grid(t, truth, x0, config)
 
     return {
@@ -56,10 +57,22 @@ def _calls() -> dict[str, Callable[[], object]]:
             inertial_lowpass.inertial_lowpass(imu),
             inertial_lowpass.inertial_lowpass(imu, m_b),
         ),
-        "sensors.simulate_imu": lambda: sensors.simulate_imu(
-            w_ib_b, f_b, 0.01, sensors.imu_model("MPU-6050"), np.random.default_rng(0)
+        "sensors.simulate_imu": lambda: (
+            sensors.simulate_imu(w_ib_b, f_b, 0.01, sensors.imu_model("MPU-6050"), np.random.default_rng(0)),
+            # the runs in batches of two: each batch reads the broadcast exact samples (another specialisation)
+            list(sensors.simulate_imu_batches(w_ib_b, f_b, 0.01, sensors.imu_model("MTi-100"), np.random.default_rng(0), 2, 2)),
         ),
         "strapdown.integrate": lambda: strapdown.integrate(np.array([0.5, 0.1, 0.0]), np.zeros(3), q0, w_ib_b, f_b, 0.01),
+        "analysis.error_statistics": lambda: analysis.error_statistics(np.zeros((n, 3)), np.zeros((n, 3))),
+        "robust.longest_repeat": lambda: robust.longest_repeat(f_b),
+        "trajectory.from_profiles": lambda: trajectory.from_profiles(t, [0.5, 0.1, 0.0], w_ib_b, w_ib_b),
+        "alignment.tilt_heading": lambda: alignment.tilt_heading(f_b, m_b),
+        "geodesy": lambda: (
+            geodesy.gk2geodetic(*geodesy.geodetic2gk(np.full(n, 0.5), np.full(n, 2.0)), zone=39),
+            geodesy.convergence(np.full(n, 0.5), np.full(n, 2.0)),
+        ),
+        "filters.quaternion_kf.measurement_model": lambda: quaternion_kf.measurement_model(np.tile(q0, (n, 1)), B_n),
+        "filters.zupt.error_state_matrix": lambda: zupt.error_state_matrix(np.eye(3), f_b[0]),
         # one specialisation serves every option (notebooks 05, 05b and 06 share it)
         "filters.zupt_ins.run_filter": lambda: zupt_ins.run_filter(
             imu, zupt_ins.Start(np.array([0.5, 0.1, 0.0]), q0), np.ones(n, bool)
@@ -68,16 +81,28 @@ def _calls() -> dict[str, Callable[[], object]]:
 
 
 PARTS = (
-    ("filters.mahony (IMU)", "filters.mahony (MARG)", "filters.quaternion_kf (MARG)", "euler.integrate_euler"),
     (
-        "filters.planar_ekf",
-        "filters.inertial_lowpass",
-        "sensors.simulate_imu",
-        "strapdown.integrate",
-        "filters.zupt_ins.run_filter",
+        "filters.mahony (IMU)",
+        "filters.mahony (MARG)",
+        "filters.quaternion_kf (MARG)",
+        "filters.quaternion_kf.measurement_model",
+        "euler.integrate_euler",
+        "analysis.error_statistics",
+        "trajectory.from_profiles",
+        "robust.longest_repeat",
+        "alignment.tilt_heading",
         "strapdown.integrate_attitude",
         "analysis.allan_deviation",
         "filters.heading_fusion",
+        "sensors.simulate_imu",
+    ),
+    (
+        "filters.planar_ekf",  # first: the paper kernels of part 1 load its Kalman update from the cache
+        "filters.inertial_lowpass",
+        "strapdown.integrate",
+        "filters.zupt_ins.run_filter",
+        "filters.zupt.error_state_matrix",
+        "geodesy",
     ),
 )
 """The entry points in two parts, compiled in two processes at once on two cores (``--part 1``, ``--part 2``); the
@@ -100,7 +125,7 @@ def warmup(verbose: bool = True, part: int | None = None) -> dict[str, float]:
     >>> from navlib import warmup
     >>> seconds = warmup.warmup(verbose=False, part=1)                # fast once numba's cache holds the kernels
     >>> len(seconds), sorted(seconds)[-1]                          # seconds per entry point
-    (4, 'filters.quaternion_kf (MARG)')
+    (13, 'trajectory.from_profiles')
     """
     if part is not None and part not in range(1, len(PARTS) + 1):
         raise ValueError(f"part: expected None or an integer from 1 to {len(PARTS)}, got {part!r}")

@@ -51,7 +51,8 @@ def test_the_warm_up_runs_in_one_process_per_core():
         warmup.warmup(part=3)
 
 
-def test_the_shared_kernels_are_warmed_up_only_when_the_notebooks_would_compile(tmp_path):
+def test_the_shared_kernels_are_warmed_up_only_when_the_notebooks_would_compile(tmp_path, monkeypatch):
+    monkeypatch.delenv("NUMBA_CACHE_DIR", raising=False)  # numba's cache in navlib/__pycache__
     build, navlib = tmp_path / "build", tmp_path / "navlib"
     for folder in (build, navlib):
         folder.mkdir()
@@ -59,6 +60,9 @@ def test_the_shared_kernels_are_warmed_up_only_when_the_notebooks_would_compile(
     assert reproduce.compilation_expected(build, {}, tmp_path)  # no earlier run: a fresh clone
     (build / "summary.json").write_text("{}")
     warm = {"00_a": {"compile_cpu_seconds": 0.0}, "01_b": {}}
+    assert reproduce.compilation_expected(build, warm, tmp_path)  # numba's cache emptied since: compiled again
+    (navlib / "__pycache__").mkdir()
+    (navlib / "__pycache__" / "core.kernel-1.py311.nbi").write_bytes(b"")
     assert not reproduce.compilation_expected(build, warm, tmp_path)  # numba's cache holds every kernel
     compiled = warm | {"02_c": {"compile_cpu_seconds": 4.5}}
     assert not reproduce.compilation_expected(build, compiled, tmp_path)  # into numba's cache: there now

@@ -22,10 +22,10 @@ run's times in ``build/summary.json`` less their numba compilation (:func:`expec
 fresh clone; the kernels log each compilation to ``build/<stem>.compile.log``, see ``navlib._kernels.CompileLog``); each is
 reported with its wall time and its kernel's CPU time and peak memory (user + system time and resident set
 size, read from /proc while the kernel runs; "n/a" where there is none; CPU time, unlike wall time, does not
-grow on a busy machine). When the notebooks will compile kernels (a fresh clone, ``--cold``, navlib edited), a
-warm-up goes first (:func:`warm_up`, ``python -m navlib.warmup``, its two parts at once on two cores): every
-kernel the notebooks call is compiled once, and the notebooks load them from numba's cache; a paper's further notebooks
-(``05_pedestrian_ins_floors``) then start when its first one is done, for the same reason. Each kernel is a new
+grow on a busy machine). When the notebooks will compile kernels (a fresh clone, ``--cold``, navlib edited, numba's
+cache emptied), a warm-up goes first (:func:`warm_up`, ``python -m navlib.warmup``, its two parts at once on two
+cores): every kernel the notebooks call is compiled once, and the notebooks load them from numba's cache; a paper's
+further notebooks (``05_pedestrian_ins_floors``) then start when its first one is done, for the same reason. Each kernel is a new
 process; on Linux it is forked from a server that has imported ipykernel and the scientific stack once
 (``tools/kernel_fork.py``; ~1.5 s of CPU less per notebook than a kernel started from nothing). A notebook that raises is
 reported and the run goes on with the others; the exit status is non-zero if any notebook (or the warm-up)
@@ -426,13 +426,20 @@ COLD_MARK = "cold-cache"
 
 def compilation_expected(build: Path, summary: dict, root: Path) -> bool:
     """Whether this run's notebooks will compile kernels: no earlier run, an earlier ``--cold`` one (its kernels went
-    to a temporary cache), or navlib edited since it. An earlier run that compiled left its kernels in numba's cache:
-    a warm run skips the warm-up (two processes, ~3 s of CPU)."""
+    to a temporary cache), numba's cache emptied since (:func:`kernels_cached`) or navlib edited since it. An earlier
+    run that compiled left its kernels in numba's cache: a warm run skips the warm-up (two processes, ~3 s of CPU)."""
     summary_file = build / "summary.json"
-    if not summary or (build / COLD_MARK).is_file():
+    if not summary or (build / COLD_MARK).is_file() or not kernels_cached(root):
         return True
     since = summary_file.stat().st_mtime
     return any(f.stat().st_mtime > since for f in (root / "navlib").rglob("*.py"))
+
+
+def kernels_cached(root: Path) -> bool:
+    """Whether numba's cache holds compiled navlib kernels: its index files in navlib's ``__pycache__`` folders, or
+    under ``NUMBA_CACHE_DIR`` where that moves the cache."""
+    cache = os.environ.get("NUMBA_CACHE_DIR")
+    return next((Path(cache) if cache else root / "navlib").rglob("*.nbi"), None) is not None
 
 
 TYPICAL_SECONDS = {

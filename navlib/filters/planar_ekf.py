@@ -136,7 +136,6 @@ __all__ = [
 
 _HEADING = 2
 _FAULT_SENSORS = ("gnss", "heading", "speed", "yaw_rate")  # CHANNELS in the FaultReport vocabulary
-_ANGLE_MASK = np.array([False, False, True, False, False])
 
 
 # --------------------------------------------------------------------------
@@ -562,6 +561,10 @@ def _ekf_kernel(t, Z, x0, P0, Q, R, gate, reacquire, fast, rail, jump_steps):
     for g in range(1, 4):
         gate_on = gate_on or np.isfinite(gate[g])
     H = np.eye(5)
+    # the heading wraps; a local array, not a global constant (read-only in a kernel): the general update then has
+    # the signature of the paper kernels' and of kalman.update's calls, one compiled function for all of them
+    angle_mask = np.zeros(5, dtype=np.bool_)
+    angle_mask[_HEADING] = True
     w, y = np.zeros((6, 5, 5)), np.zeros((5, 1))
     Phi_P = np.empty((5, 5))
     zu = np.empty(5)
@@ -583,13 +586,13 @@ def _ekf_kernel(t, Z, x0, P0, Q, R, gate, reacquire, fast, rail, jump_steps):
         if gate_on or at_rail:
             n_rej = _gate_and_censor(x, P, z, R, gate, gate_on, rail[k], zu, rejected[k], streak, reacquire, reacquired[k])
         if n_rej > 0 or at_rail:  # gated or saturated: the general kernel on zu
-            x, P, _, nis[k], status[k] = _kernels.kalman_update(x, P, zu, x, H, R, _ANGLE_MASK, np.inf)
+            x, P, _, nis[k], status[k] = _kernels.kalman_update(x, P, zu, x, H, R, angle_mask, np.inf)
             if n_rej > 0:
                 status[k] = kalman.REJECTED
         elif fast and np.all(np.isfinite(z)):
             nis[k], status[k] = _update_identity_h(x, P, z, R, np.inf, w, y)
         else:  # dropouts: the general kernel
-            x, P, _, nis[k], status[k] = _kernels.kalman_update(x, P, z, x, H, R, _ANGLE_MASK, np.inf)
+            x, P, _, nis[k], status[k] = _kernels.kalman_update(x, P, z, x, H, R, angle_mask, np.inf)
         x[_HEADING] = np.mod(x[_HEADING], 2 * np.pi)
         _store(X, Ps, k, x, P)
     return X, Ps, nis, status, rejected, reacquired

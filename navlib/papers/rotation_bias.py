@@ -96,7 +96,10 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Annotated, Any
 
 import numpy as np
-from numba import njit
+import scipy.linalg
+from llvmlite import binding
+from numba import njit, types
+from numba.extending import get_cython_function_address, overload
 
 from .. import _attitude, _kernels, _lsq, _plots, attitude, earth, kalman, robust
 from .._kernels import wrap_pi
@@ -885,11 +888,45 @@ def lsq_bias(r: ArrayLike, V: ArrayLike) -> Array:
     return np.linalg.solve(A, y[..., None])[..., 0]
 
 
+def _lu_solve_into(a, b, ipiv):
+    """``b = A^-1 b`` in place by LAPACK's dgesv (LU with partial pivoting): numba's ``np.linalg.solve(A, b)`` for a
+    vector ``b``, the same routine on the same arguments (the same bits), without its generic implementation, whose
+    slice assignment compiles numba's shape messages into the caller (2 s of a cold start).
+
+    ``a`` (n, n): A in Fortran order (``np.empty((n, n)).T`` filled), ``b`` (n,); ``a`` and ``ipiv`` (n,) int32 are
+    work (the LU factors and pivots). Raises ``LinAlgError`` if A is exactly singular, as ``np.linalg.solve`` does.
+    Uncompiled (``NUMBA_DISABLE_JIT=1``) it calls the routine through scipy's wrapper.
+    """
+    _, _, b[:], info = scipy.linalg.lapack.dgesv(a, b)
+    if info != 0:
+        raise np.linalg.LinAlgError("Matrix is singular to machine precision.")
+
+
+# dgesv from scipy.linalg.cython_lapack, where numba's np.linalg.solve takes it too. Called by name: the cached kernel
+# holds the symbol, which this import binds in every process (a ctypes pointer would make the kernel uncachable).
+binding.add_symbol("navlib_dgesv", get_cython_function_address("scipy.linalg.cython_lapack", "dgesv"))
+_dgesv = types.ExternalFunction("navlib_dgesv", types.void(*(types.voidptr,) * 8))
+
+
+@overload(_lu_solve_into)
+def _lu_solve_into_compiled(a, b, ipiv):
+    def impl(a, b, ipiv):
+        dims = np.empty(3, dtype=np.int32)  # Fortran's integers by reference
+        dims[0], dims[1], dims[2] = a.shape[0], 1, 0
+        n, nrhs, info = dims.ctypes, dims[1:].ctypes, dims[2:].ctypes  # n is also both leading dimensions
+        _dgesv(n, nrhs, a.ctypes, n, ipiv.ctypes, b.ctypes, n, info)  # type: ignore[call-overload]  # compiled only
+        if dims[2] != 0:
+            raise np.linalg.LinAlgError("Matrix is singular to machine precision.")
+
+    return impl
+
+
 @njit(cache=True)
 def _running_kernel(r, V, lam, max_cond):
     T, K = r.shape[0], r.shape[1]
     out = np.full((T, K, 3), np.nan)
     skipped = 0
+    a, b, ipiv = np.empty((3, 3)).T, np.empty(3), np.empty(3, dtype=np.int32)  # np.linalg.solve's work, by hand
     for t in range(T):
         A = np.zeros((3, 3))
         y = np.zeros(3)
@@ -904,8 +941,12 @@ def _running_kernel(r, V, lam, max_cond):
                 skipped += 1
             ev = np.linalg.eigvalsh(A)
             if ev[0] > 0 and ev[2] / ev[0] < max_cond * max_cond:
-                b = np.linalg.solve(A, y)
                 for i in range(3):  # element by element: an array assignment compiles numba's shape messages
+                    b[i] = y[i]
+                    for j in range(3):
+                        a[i, j] = A[i, j]
+                _lu_solve_into(a, b, ipiv)
+                for i in range(3):
                     out[t, k, i] = b[i]
     return out, skipped
 
