@@ -51,6 +51,14 @@ def test_the_warm_up_runs_in_one_process_per_core():
         warmup.warmup(part=3)
 
 
+@pytest.mark.skipif(not hasattr(os, "sched_getaffinity"), reason="the cores a process may use: Linux")
+def test_one_notebook_more_than_cores_runs_at_once(monkeypatch):
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {0, 1})
+    assert reproduce.default_jobs() == 3  # the third fills the gaps of the two (kernel start, messages, files)
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {0})
+    assert reproduce.default_jobs() == 1
+
+
 def test_the_shared_kernels_are_warmed_up_only_when_the_notebooks_would_compile(tmp_path, monkeypatch):
     monkeypatch.delenv("NUMBA_CACHE_DIR", raising=False)  # numba's cache in navlib/__pycache__
     build, navlib = tmp_path / "build", tmp_path / "navlib"

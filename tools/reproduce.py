@@ -17,19 +17,20 @@ results file and figure), and prints one line per notebook and the claims by ver
 ``--check-against MANIFEST`` fails the run unless those files are
 byte-identical to an earlier run's (``make determinism``).
 
-Notebooks run ``--jobs`` at a time (default 2), each in its own kernel, longest first by the previous
-run's times in ``build/summary.json`` less their numba compilation (:func:`expected_seconds`; typical times on a
-fresh clone; the kernels log each compilation to ``build/<stem>.compile.log``, see ``navlib._kernels.CompileLog``); each is
-reported with its wall time and its kernel's CPU time and peak memory (user + system time and resident set
-size, read from /proc while the kernel runs; "n/a" where there is none; CPU time, unlike wall time, does not
-grow on a busy machine). When the notebooks will compile kernels (a fresh clone, ``--cold``, navlib edited, numba's
-cache emptied), a warm-up goes first (:func:`warm_up`, ``python -m navlib.warmup``, its two parts at once on two
-cores): every kernel the notebooks call is compiled once, and the notebooks load them from numba's cache; a paper's
-further notebooks (``05_pedestrian_ins_floors``) then start when its first one is done, for the same reason. Each kernel is a new
+Notebooks run ``--jobs`` at a time (default: one more than the cores, :func:`default_jobs`), each in its own kernel,
+longest first by the previous run's times in ``build/summary.json`` less their numba compilation
+(:func:`expected_seconds`; typical times on a fresh clone; the kernels log each compilation to
+``build/<stem>.compile.log``, see ``navlib._kernels.CompileLog``); each is reported with its wall time and its
+kernel's CPU time and peak memory (user + system time and resident set size, read from /proc while the kernel runs;
+"n/a" where there is none; CPU time, unlike wall time, does not grow on a busy machine). When the notebooks will
+compile kernels (a fresh clone, ``--cold``, navlib edited, numba's cache emptied), a warm-up goes first
+(:func:`warm_up`, ``python -m navlib.warmup``, its two parts at once on two cores): every kernel the notebooks call is
+compiled once, and the notebooks load them from numba's cache; a paper's further notebooks
+(``05_pedestrian_ins_floors``) then start when its first one is done, for the same reason. Each kernel is a new
 process; on Linux it is forked from a server that has imported ipykernel and the scientific stack once
-(``tools/kernel_fork.py``; ~1.5 s of CPU less per notebook than a kernel started from nothing). A notebook that raises is
-reported and the run goes on with the others; the exit status is non-zero if any notebook (or the warm-up)
-failed. ``--only`` runs a subset, and the report then covers that subset only. Needs no network.
+(``tools/kernel_fork.py``; ~1.5 s of CPU less per notebook than a kernel started from nothing). A notebook that raises
+is reported and the run goes on with the others; the exit status is non-zero if any notebook (or the warm-up) failed.
+``--only`` runs a subset, and the report then covers that subset only. Needs no network.
 
 ``--stale`` (``make test``) executes only the notebooks whose last execution into build/ is missing, failed
 or out of date (:func:`last_execution`) and reuses the others: each notebook is executed once per
@@ -396,6 +397,16 @@ def warm_up(build: Path, part: int | None = None) -> dict:
         "cpu_seconds": round(after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime, 1),
         "compile_cpu_seconds": round(sum(cpu_s for _, _, cpu_s in read_compile_lines(log)), 1),
     }
+
+
+def default_jobs() -> int:
+    """Notebooks run at once by default: one more than the cores this process may use (1 on one core).
+
+    A notebook keeps its core busy about 85 % of its wall time (kernel start, messages, writing files are the
+    rest); a third notebook on two cores fills those gaps: a warm run took 28.8-29.6 s with three at a time
+    against 30.7-30.8 s with two, and 31.2 s with four (alternated, on the reference machine)."""
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
+    return cores + 1 if cores > 1 else 1
 
 
 def warm_up_parts(jobs: int) -> list[int | None]:
@@ -819,8 +830,8 @@ def main(argv=None) -> int:
     ap.add_argument(
         "--jobs",
         type=int,
-        default=min(2, os.cpu_count() or 1),
-        help="notebooks executed at once, each in its own kernel (default: 2, or 1 on one core)",
+        default=default_jobs(),
+        help="notebooks executed at once, each in its own kernel (default: one more than the cores, 1 on one core)",
     )
     ap.add_argument(
         "--check-against",
