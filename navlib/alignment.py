@@ -29,6 +29,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from . import _attitude, _kernels, attitude, earth
+from ._records import unchecked
 from ._typing import Angles, Array, ArrayLike, Dcm, Times, Vec3, Vec3Series
 from ._validate import (
     MAX_GYROCOMPASS_LAT_DEG,
@@ -427,7 +428,16 @@ def static_means(
     w, f, g, fs_g, fs_a = _static_record(w_ib_b, f_b, lat, h, full_scale_gyro, full_scale_accel)
     if w.shape[-2] < 2:
         raise ValueError(f"w_ib_b: expected a static window of at least 2 samples, got {w.shape[-2]}")
-    return _window_means(w, f, g, accel_tol, min_fraction, outlier_k, fs_g, fs_a, stuck_fraction, strict)
+    tests = unchecked(  # the keywords are checked by @boundary
+        StaticTests,
+        accel_tol=accel_tol,
+        min_fraction=min_fraction,
+        outlier_k=outlier_k,
+        full_scale_gyro=full_scale_gyro,
+        full_scale_accel=full_scale_accel,
+        stuck_fraction=stuck_fraction,
+    )
+    return _window_means(w, f, g, tests, fs_g, fs_a, strict)
 
 
 @boundary
@@ -485,21 +495,8 @@ def static_windows(
     """
     tests = StaticTests() if tests is None else tests
     w, f, g, fs_g, fs_a = _static_record(w_ib_b, f_b, lat, h, tests.full_scale_gyro, tests.full_scale_accel)
-    return tuple(
-        _window_means(
-            w[..., a:b, :],
-            f[..., a:b, :],
-            g,
-            tests.accel_tol,
-            tests.min_fraction,
-            tests.outlier_k,
-            fs_g,
-            fs_a,
-            tests.stuck_fraction,
-            strict,
-        )
-        for a, b in _window_indices(windows, time, w.shape[-2])
-    )
+    windows = _window_indices(windows, time, w.shape[-2])
+    return tuple(_window_means(w[..., a:b, :], f[..., a:b, :], g, tests, fs_g, fs_a, strict) for a, b in windows)
 
 
 def _static_record(
@@ -548,33 +545,22 @@ def _window_indices(windows: object, time: object, n: int) -> NDArray[np.intp]:
     return win
 
 
-def _window_means(
-    w: Array,
-    f: Array,
-    g: Array,
-    accel_tol: float,
-    min_fraction: float,
-    outlier_k: float | None,
-    fs_g: float,
-    fs_a: float,
-    stuck_fraction: float | None,
-    strict: bool,
-) -> StaticWindow:
-    """:func:`static_means` of checked samples (..., N, 3), N >= 2, with the expected gravity ``g`` and device
-    ranges ``fs_g``, ``fs_a`` (inf: none)."""
+def _window_means(w: Array, f: Array, g: Array, tests: StaticTests, fs_g: float, fs_a: float, strict: bool) -> StaticWindow:
+    """:func:`static_means` of checked samples (..., N, 3), N >= 2, with the expected gravity ``g``, checked ``tests``
+    and device ranges ``fs_g``, ``fs_a`` (inf: none; an :class:`~navlib.imu.ImuSamples`' ranges replace the tests')."""
     n = w.shape[-2]
-    need = max(2, int(np.ceil(min_fraction * n)))
+    need = max(2, int(np.ceil(tests.min_fraction * n)))
     out = {}
     for name, x, fs in (("gyro", w, fs_g), ("accel", f, fs_a)):
         valid = np.all(np.isfinite(x), -1)
         sat = valid & np.any(np.abs(x) >= fs, -1)
-        outl = _outliers(x, valid, outlier_k) if outlier_k is not None else np.zeros_like(valid)
+        outl = _outliers(x, valid, tests.outlier_k) if tests.outlier_k is not None else np.zeros_like(valid)
         used = valid & ~outl
         n_used = used.sum(-1)
         n_stuck = np.zeros(valid.shape[:-1], dtype=int)
-        if stuck_fraction is not None:
+        if tests.stuck_fraction is not None:
             run = longest_repeat(x, valid).max(-1)
-            n_stuck = np.where((run >= stuck_fraction * valid.sum(-1)) & (run >= 2), run, 0)
+            n_stuck = np.where((run >= tests.stuck_fraction * valid.sum(-1)) & (run >= 2), run, 0)
         out[name] = (_masked_mean(x, used, n_used), n_used, n - valid.sum(-1), outl.sum(-1), sat.sum(-1), used, n_stuck)
     (w_mean, nu_g, nd_g, no_g, ns_g, _, nk_g), (f_mean, nu_a, nd_a, no_a, ns_a, used_f, nk_a) = out["gyro"], out["accel"]
     too_few = (nu_g < need) | (nu_a < need)
@@ -589,7 +575,7 @@ def _window_means(
             halves = np.abs(
                 _masked_mean(f[..., : n // 2, :], u1, u1.sum(-1)) - _masked_mean(f[..., n // 2 :, :], u2, u2.sum(-1))
             ).max(-1)
-    moving = ~too_few & ~saturated & ~frozen & ((dev > accel_tol) | ~(halves <= accel_tol))
+    moving = ~too_few & ~saturated & ~frozen & ((dev > tests.accel_tol) | ~(halves <= tests.accel_tol))
     bad = too_few | saturated | frozen | moving
     if strict and np.any(bad):
         if np.any(too_few):
@@ -597,7 +583,7 @@ def _window_means(
             left = int(min(nu_g.min(), nu_a.min()))
             raise ValueError(
                 f"{which}: only {left} of {n} samples left after dropouts/outliers; expected at least "
-                f"{need} (min_fraction = {min_fraction:g})"
+                f"{need} (min_fraction = {tests.min_fraction:g})"
             )
         if np.any(saturated):
             which = "w_ib_b" if np.any(ns_g > 0) else "f_b"
@@ -609,16 +595,16 @@ def _window_means(
             which, run = ("w_ib_b", nk_g) if np.any(nk_g > 0) else ("f_b", nk_a)
             raise ValueError(
                 f"{which}: one reading repeated over {int(run.max())} consecutive samples of {n} "
-                f"(stuck_fraction = {stuck_fraction:g}): the sensor output is frozen"
+                f"(stuck_fraction = {tests.stuck_fraction:g}): the sensor output is frozen"
             )
-        if np.any(dev[moving] > accel_tol):
+        if np.any(dev[moving] > tests.accel_tol):
             raise ValueError(
                 f"f_b: mean specific-force norm differs from gravity by {np.nanmax(dev):.3g} m/s^2 "
-                f"(> accel_tol = {accel_tol:g}): the robot is not static"
+                f"(> accel_tol = {tests.accel_tol:g}): the robot is not static"
             )
         raise ValueError(
             f"f_b: the two halves of the window differ by {np.nanmax(halves):.3g} m/s^2 "
-            f"(> accel_tol = {accel_tol:g}): the robot moved during the stop"
+            f"(> accel_tol = {tests.accel_tol:g}): the robot moved during the stop"
         )
     w_mean = np.where(bad[..., None], np.nan, w_mean)
     f_mean = np.where(bad[..., None], np.nan, f_mean)
